@@ -1,0 +1,6 @@
+//! Pliant's assembly layer: turns scripts (and, later, hands) into load cases on the
+//! physics core. It knows no input device and no file format.
+
+pub mod timeline;
+
+pub use timeline::{Action, MovePath, NodeRef, Rotation, Timeline};

@@ -1,0 +1,61 @@
+//! A scripted timeline of actions (issue 2, SPEC L1–L3 + dead loads): executed in order,
+//! each action starting when the previous one is done (instantaneous actions take no
+//! time; `Move` blocks for its duration unless `wait` is false).
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// A node of a hose, by index (already resolved and range-checked by the loader).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct NodeRef {
+    pub hose: usize,
+    pub node: usize,
+}
+
+/// Where a driven node goes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum MovePath {
+    /// Absolute waypoints [m]; the last one is the target.
+    To(Vec<DVec3>),
+    /// Waypoints as offsets [m] from the node's position when the action starts.
+    By(Vec<DVec3>),
+}
+
+/// A rotation given as axis–angle in the global frame, applied on top of the node's
+/// orientation when the action starts.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Rotation {
+    /// Unit axis (global frame).
+    pub axis: DVec3,
+    /// Angle [rad]; may exceed π (several turns are fine).
+    pub angle: f64,
+}
+
+/// One step of a timeline.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Action {
+    /// L1: hold the node in all six degrees of freedom where it is now.
+    Fix { node: NodeRef },
+    /// L2 (+ L3): drive the node along `path` and/or rotate it by `rotation` over
+    /// `duration` seconds with a smooth start and stop. While and after moving, the node
+    /// stays held (its orientation too) until released. With `wait == false` the
+    /// timeline goes on at once and the move runs alongside the next actions.
+    Move { node: NodeRef, path: Option<MovePath>, rotation: Option<Rotation>, duration: f64, wait: bool },
+    /// Dead load: a constant force [N] and moment [N·m] (global frame) added at the node.
+    Load { node: NodeRef, force: DVec3, moment: DVec3 },
+    /// Remove all dead loads from the node.
+    Unload { node: NodeRef },
+    /// Remove the fix / drive from the node: it moves freely again.
+    Release { node: NodeRef },
+    /// Simulate for `duration` seconds.
+    Run { duration: f64 },
+    /// Simulate until the total kinetic energy is below `kinetic_energy_threshold` [J]
+    /// (or `max_duration` seconds have passed, which is reported as not at rest).
+    Settle { kinetic_energy_threshold: f64, max_duration: f64 },
+}
+
+/// The ordered list of actions of a scene.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Timeline {
+    pub actions: Vec<Action>,
+}

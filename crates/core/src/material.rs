@@ -1,0 +1,72 @@
+//! Hose material (SPEC M3): bimodular elastic law and density, all SI.
+
+use serde::{Deserialize, Serialize};
+
+/// Elastic material of a hose wall. All values SI: moduli in Pa, density in kg/m³.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Material {
+    /// Young's modulus in tension E_t [Pa]; used for axial extension.
+    pub e_tension: f64,
+    /// Young's modulus in compression E_c [Pa]; used for axial shortening.
+    pub e_compression: f64,
+    /// Explicit bending modulus [Pa]. `None` → the reduced (bimodular) modulus
+    /// E_b = 4 E_t E_c / (√E_t + √E_c)² (SPEC M3).
+    pub e_bending: Option<f64>,
+    /// Poisson's ratio ν [-]; G = E_b / (2 (1 + ν)).
+    pub poisson: f64,
+    /// Density ρ [kg/m³].
+    pub density: f64,
+}
+
+impl Material {
+    /// A material with one modulus E for tension, compression and bending.
+    pub fn isotropic(e: f64, poisson: f64, density: f64) -> Self {
+        Self { e_tension: e, e_compression: e, e_bending: None, poisson, density }
+    }
+
+    /// Bending modulus: explicit if given, else the reduced modulus of a bimodular
+    /// material, E_b = 4 E_t E_c / (√E_t + √E_c)² (SPEC M3).
+    pub fn bending_modulus(&self) -> f64 {
+        self.e_bending.unwrap_or_else(|| {
+            let s = self.e_tension.sqrt() + self.e_compression.sqrt();
+            4.0 * self.e_tension * self.e_compression / (s * s)
+        })
+    }
+
+    /// Shear modulus G = E_b / (2 (1 + ν)), used for torsion.
+    pub fn shear_modulus(&self) -> f64 {
+        self.bending_modulus() / (2.0 * (1.0 + self.poisson))
+    }
+
+    /// Axial modulus for a given elongation sign: E_t when stretched, E_c when shortened.
+    pub fn axial_modulus(&self, elongation: f64) -> f64 {
+        if elongation >= 0.0 {
+            self.e_tension
+        } else {
+            self.e_compression
+        }
+    }
+
+    /// Largest modulus, which sets the axial wave speed c = √(E/ρ) (SPEC P4).
+    pub fn max_modulus(&self) -> f64 {
+        self.e_tension.max(self.e_compression).max(self.bending_modulus())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reduced_modulus_equals_e_when_equal() {
+        let m = Material::isotropic(10e6, 0.49, 1100.0);
+        assert!((m.bending_modulus() - 10e6).abs() < 1e-6);
+    }
+
+    #[test]
+    fn reduced_modulus_lies_between_tension_and_compression() {
+        let m = Material { e_tension: 11.583e6, e_compression: 13.1363e6, e_bending: None, poisson: 0.49, density: 940.0 };
+        let eb = m.bending_modulus();
+        assert!(eb > 11.583e6 && eb < 13.1363e6);
+    }
+}

@@ -1,0 +1,62 @@
+//! What a caller hands the core to build a [`crate::Model`]: plain SI data, already
+//! validated by the scene loader (or by code using the library directly).
+
+use crate::{Material, Section};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// One hose, discretised: its stress-free rest shape as a polyline of nodes.
+///
+/// The rest shape is stress-free: an imperfection is expressed by moving rest nodes
+/// (SPEC §7), not by a load. Node material frames are built by the core from the
+/// polyline (tangent = mean of adjacent chords, cross-section axes by parallel transport
+/// starting from `normal_hint`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HoseSpec {
+    /// Name shown in outputs.
+    pub name: String,
+    /// Wall material.
+    pub material: Material,
+    /// Rest positions of the nodes [m]; at least 2, consecutive nodes distinct.
+    pub nodes: Vec<DVec3>,
+    /// Cross-section per node (same length as `nodes`), or one entry for a uniform hose.
+    pub sections: Vec<Section>,
+    /// Preferred direction of the first node's local y axis; `None` → any axis normal
+    /// to the first tangent. Only affects how orientations are reported.
+    pub normal_hint: Option<DVec3>,
+}
+
+/// Global simulation settings (SPEC P4, P6). All SI.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SimSettings {
+    /// Gravitational acceleration [m/s²]; zero vector switches gravity off.
+    pub gravity: DVec3,
+    /// Mass-proportional Rayleigh damping α [1/s].
+    pub damping_mass: f64,
+    /// Stiffness-proportional Rayleigh damping β [s]; `None` → automatic default.
+    pub damping_stiffness: Option<f64>,
+    /// Safety factor on the stable time step (the thesis uses 0.5).
+    pub time_step_safety: f64,
+    /// Fixed time step [s]; `None` → computed from the model. A fixed step larger than the
+    /// stable one is refused when the model is built.
+    pub time_step: Option<f64>,
+}
+
+impl Default for SimSettings {
+    fn default() -> Self {
+        Self {
+            gravity: DVec3::new(0.0, 0.0, -9.81),
+            damping_mass: 1.0,
+            damping_stiffness: None,
+            time_step_safety: 0.5,
+            time_step: None,
+        }
+    }
+}
+
+/// A whole world to simulate.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct WorldSpec {
+    pub hoses: Vec<HoseSpec>,
+    pub settings: SimSettings,
+}
