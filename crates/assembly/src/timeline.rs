@@ -40,9 +40,19 @@ pub enum Action {
     /// `duration` seconds with a smooth start and stop. While and after moving, the node
     /// stays held (its orientation too) until released. With `wait == false` the
     /// timeline goes on at once and the move runs alongside the next actions.
-    Move { node: NodeRef, path: Option<MovePath>, rotation: Option<Rotation>, duration: f64, wait: bool },
+    Move {
+        node: NodeRef,
+        path: Option<MovePath>,
+        rotation: Option<Rotation>,
+        duration: f64,
+        wait: bool,
+    },
     /// Dead load: a constant force [N] and moment [N·m] (global frame) added at the node.
-    Load { node: NodeRef, force: DVec3, moment: DVec3 },
+    Load {
+        node: NodeRef,
+        force: DVec3,
+        moment: DVec3,
+    },
     /// Remove all dead loads from the node.
     Unload { node: NodeRef },
     /// Remove the fix / drive from the node: it moves freely again.
@@ -51,7 +61,10 @@ pub enum Action {
     Run { duration: f64 },
     /// Simulate until the total kinetic energy is below `kinetic_energy_threshold` [J]
     /// (or `max_duration` seconds have passed, which is reported as not at rest).
-    Settle { kinetic_energy_threshold: f64, max_duration: f64 },
+    Settle {
+        kinetic_energy_threshold: f64,
+        max_duration: f64,
+    },
 }
 
 /// The ordered list of actions of a scene.

@@ -2,11 +2,30 @@
 //! quaternion node frames (P2), lumped masses (P3), explicit central-difference dynamics
 //! (P4), gravity and Rayleigh damping (P6), and the load cases fix, drive and dead load
 //! (L1–L3). Plain data and functions: no files, threads or sockets.
+//!
+//! Calling convention (as MuJoCo's): a [`Model`] is built once from a [`WorldSpec`]; a
+//! [`State`] holds everything that changes; [`explicit::step`]`(&model, &mut state)`
+//! advances it.
 
+pub mod element;
+pub mod explicit;
+pub mod forces;
+pub mod frames;
+pub mod health;
+pub mod loads;
+pub mod mass;
 pub mod material;
+pub mod math;
+pub mod model;
+pub mod relax;
 pub mod section;
 pub mod spec;
+pub mod state;
+pub mod timestep;
 
+pub use health::Divergence;
 pub use material::Material;
+pub use model::{HoseInfo, Model, ModelError};
 pub use section::Section;
 pub use spec::{HoseSpec, SimSettings, WorldSpec};
+pub use state::State;

@@ -21,7 +21,13 @@ pub struct Material {
 impl Material {
     /// A material with one modulus E for tension, compression and bending.
     pub fn isotropic(e: f64, poisson: f64, density: f64) -> Self {
-        Self { e_tension: e, e_compression: e, e_bending: None, poisson, density }
+        Self {
+            e_tension: e,
+            e_compression: e,
+            e_bending: None,
+            poisson,
+            density,
+        }
     }
 
     /// Bending modulus: explicit if given, else the reduced modulus of a bimodular
@@ -49,7 +55,9 @@ impl Material {
 
     /// Largest modulus, which sets the axial wave speed c = √(E/ρ) (SPEC P4).
     pub fn max_modulus(&self) -> f64 {
-        self.e_tension.max(self.e_compression).max(self.bending_modulus())
+        self.e_tension
+            .max(self.e_compression)
+            .max(self.bending_modulus())
     }
 }
 
@@ -65,7 +73,13 @@ mod tests {
 
     #[test]
     fn reduced_modulus_lies_between_tension_and_compression() {
-        let m = Material { e_tension: 11.583e6, e_compression: 13.1363e6, e_bending: None, poisson: 0.49, density: 940.0 };
+        let m = Material {
+            e_tension: 11.583e6,
+            e_compression: 13.1363e6,
+            e_bending: None,
+            poisson: 0.49,
+            density: 940.0,
+        };
         let eb = m.bending_modulus();
         assert!(eb > 11.583e6 && eb < 13.1363e6);
     }

@@ -39,6 +39,9 @@ impl Section {
 
     /// Mean of two sections (used for an element between two nodes of different section).
     pub fn mean(a: &Section, b: &Section) -> Section {
-        Section { d_inner: 0.5 * (a.d_inner + b.d_inner), d_outer: 0.5 * (a.d_outer + b.d_outer) }
+        Section {
+            d_inner: 0.5 * (a.d_inner + b.d_inner),
+            d_outer: 0.5 * (a.d_outer + b.d_outer),
+        }
     }
 }

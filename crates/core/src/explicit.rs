@@ -1,0 +1,73 @@
+//! Explicit dynamics (SPEC P4, dissertation §4.2.4 eq. 4.51–4.58): central differences
+//! (Newmark β = 0, γ = ½, in leapfrog form) for the node positions, and Euler's equations
+//! for the node rotations with the isotropic lumped inertia of [`crate::mass`]
+//! (I ω̇ = M, the gyroscopic term vanishing for isotropic I), the orientation advanced by
+//! the exponential map q ← exp(ω Δt) q (appendix A.2) — never by adding small angles.
+//!
+//! Nodes held by a kinematic load case (fix, drive) take their prescribed pose; the load
+//! the support must apply is the one that makes the node's own momentum balance hold:
+//! R = m (v_new − v_old)/Δt − f  (and likewise for moments). No allocation in a step.
+
+use crate::forces::{add_body_loads, internal_loads, Config};
+use crate::loads::LoadCase;
+use crate::math::{exp_map, log_map};
+use crate::{Model, State};
+use glam::DVec3;
+
+/// Advances `state` by one time step of `model.time_step`.
+pub fn step(model: &Model, state: &mut State) {
+    let dt = model.time_step;
+    let t_next = state.time + dt;
+    {
+        let config = Config {
+            x: &state.x,
+            q: &state.q,
+            v: &state.v,
+            w: &state.w,
+        };
+        internal_loads(
+            model,
+            &config,
+            model.damping_stiffness,
+            &mut state.force,
+            &mut state.moment,
+        );
+        add_body_loads(model, &config, &mut state.force, &mut state.moment);
+    }
+    state.held.fill(false);
+    state.reaction_force.fill(DVec3::ZERO);
+    state.reaction_moment.fill(DVec3::ZERO);
+    for (_, case) in state.loads.iter() {
+        if let LoadCase::DeadLoad(d) = case {
+            state.force[d.node] += d.force;
+            state.moment[d.node] += d.moment;
+        }
+    }
+    // Kinematic load cases, in order (a later one on the same node wins).
+    for (_, case) in state.loads.iter() {
+        let Some((x_new, q_new)) = case.prescribed_pose(t_next) else {
+            continue;
+        };
+        let i = case.node();
+        let v_new = (x_new - state.x[i]) / dt;
+        let w_new = log_map(q_new * state.q[i].conjugate()) / dt;
+        state.reaction_force[i] = model.mass[i] * (v_new - state.v[i]) / dt - state.force[i];
+        state.reaction_moment[i] = model.inertia[i] * (w_new - state.w[i]) / dt - state.moment[i];
+        state.x[i] = x_new;
+        state.q[i] = q_new;
+        state.v[i] = v_new;
+        state.w[i] = w_new;
+        state.held[i] = true;
+    }
+    for i in 0..state.x.len() {
+        if state.held[i] {
+            continue;
+        }
+        state.v[i] += dt / model.mass[i] * state.force[i];
+        state.x[i] += dt * state.v[i];
+        state.w[i] += dt / model.inertia[i] * state.moment[i];
+        state.q[i] = (exp_map(dt * state.w[i]) * state.q[i]).normalize();
+    }
+    state.time = t_next;
+    state.step += 1;
+}

@@ -1,0 +1,100 @@
+//! Load cases (SPEC §3, table 5.1 of the dissertation): each acts on one node, can be
+//! added and removed at run time, and several may act on one node at once (dead loads
+//! add up; of several kinematic ones the most recently added holds the node).
+
+mod dead_load;
+mod drive;
+mod fix;
+
+pub use dead_load::DeadLoad;
+pub use drive::Drive;
+pub use fix::Fix;
+
+use glam::{DQuat, DVec3};
+use serde::Serialize;
+
+/// Handle of an active load case, for removing it later.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub struct LoadCaseId(pub u64);
+
+/// One load case.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoadCase {
+    /// L1: node held in all six degrees of freedom.
+    Fix(Fix),
+    /// L2 + L3: node driven along a path and/or rotated over a duration, then held.
+    Drive(Drive),
+    /// Constant force and moment at a node (global axes).
+    DeadLoad(DeadLoad),
+}
+
+impl LoadCase {
+    pub fn node(&self) -> usize {
+        match self {
+            LoadCase::Fix(f) => f.node,
+            LoadCase::Drive(d) => d.node,
+            LoadCase::DeadLoad(d) => d.node,
+        }
+    }
+
+    /// The pose (position, orientation) a kinematic load case prescribes at time `t`.
+    pub fn prescribed_pose(&self, t: f64) -> Option<(DVec3, DQuat)> {
+        match self {
+            LoadCase::Fix(f) => Some((f.position, f.orientation)),
+            LoadCase::Drive(d) => Some(d.pose_at(t)),
+            LoadCase::DeadLoad(_) => None,
+        }
+    }
+}
+
+/// The active load cases of a state.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LoadCases {
+    cases: Vec<(LoadCaseId, LoadCase)>,
+    next_id: u64,
+}
+
+impl LoadCases {
+    /// Adds a load case and returns its handle.
+    pub fn add(&mut self, case: LoadCase) -> LoadCaseId {
+        let id = LoadCaseId(self.next_id);
+        self.next_id += 1;
+        self.cases.push((id, case));
+        id
+    }
+
+    /// Removes a load case; returns it if it was active.
+    pub fn remove(&mut self, id: LoadCaseId) -> Option<LoadCase> {
+        let pos = self.cases.iter().position(|(i, _)| *i == id)?;
+        Some(self.cases.remove(pos).1)
+    }
+
+    /// Removes every load case on `node` that `pred` selects; returns how many.
+    pub fn remove_on_node(&mut self, node: usize, pred: impl Fn(&LoadCase) -> bool) -> usize {
+        let before = self.cases.len();
+        self.cases.retain(|(_, c)| !(c.node() == node && pred(c)));
+        before - self.cases.len()
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = &(LoadCaseId, LoadCase)> {
+        self.cases.iter()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.cases.is_empty()
+    }
+
+    /// Whether a kinematic load case (fix or drive) holds `node`.
+    pub fn holds(&self, node: usize) -> bool {
+        self.cases
+            .iter()
+            .any(|(_, c)| c.node() == node && !matches!(c, LoadCase::DeadLoad(_)))
+    }
+
+    /// Whether any drive is still moving at time `t`.
+    pub fn any_drive_moving(&self, t: f64) -> bool {
+        self.cases
+            .iter()
+            .any(|(_, c)| matches!(c, LoadCase::Drive(d) if !d.finished(t)))
+    }
+}

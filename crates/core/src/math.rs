@@ -1,0 +1,117 @@
+//! Rotation helpers (SPEC P2, dissertation appendix A.2): the exponential map
+//! (Rodrigues' formula) from rotation vectors to unit quaternions, its inverse, and the
+//! tangent operator that turns moments conjugate to a rotation vector into spatial moments.
+
+use glam::{DQuat, DVec3};
+
+/// Exponential map: rotation vector φ (axis · angle, any magnitude) → unit quaternion.
+/// Rodrigues' formula in quaternion form, q = (cos |φ|/2, sin(|φ|/2) φ/|φ|), with a
+/// Taylor expansion near zero so tiny rotations keep full precision.
+pub fn exp_map(phi: DVec3) -> DQuat {
+    let angle_sq = phi.length_squared();
+    let half = 0.5 * angle_sq.sqrt();
+    // sin(half)/|φ| = ½ sinc(half)
+    let s = if half < 1e-4 {
+        0.5 * (1.0 - half * half / 6.0)
+    } else {
+        half.sin() / (2.0 * half)
+    };
+    DQuat::from_xyzw(phi.x * s, phi.y * s, phi.z * s, half.cos())
+}
+
+/// Logarithm map: unit quaternion → rotation vector of angle in [0, π] (the shorter of
+/// q and −q). Uses atan2 so that small angles keep full relative precision.
+pub fn log_map(q: DQuat) -> DVec3 {
+    let (v, w) = if q.w < 0.0 {
+        (-q.xyz(), -q.w)
+    } else {
+        (q.xyz(), q.w)
+    };
+    let s = v.length();
+    if s < 1e-12 {
+        // angle ≈ 2 s, direction v/s → φ ≈ 2 v (1 + s²/(3 w²)) to second order
+        return v * (2.0 / w);
+    }
+    let angle = 2.0 * s.atan2(w);
+    v * (angle / s)
+}
+
+/// Moment conjugate to a change of the rotation vector θ, mapped to the moment conjugate
+/// to a spatial (left) rotation increment: m = J_l(θ)⁻ᵀ M, with
+/// J_l⁻¹(θ) = I − ½[θ]× + (1/θ² − (1 + cos θ)/(2 θ sin θ)) [θ]×²
+/// (e.g. Bullo & Murray 1995; Ibrahimbegović 1997, eq. 2.19).
+pub fn left_jacobian_inverse_transpose_times(theta: DVec3, moment: DVec3) -> DVec3 {
+    let t2 = theta.length_squared();
+    // c = 1/θ² − (1 + cos θ)/(2 θ sin θ) → 1/12 + θ²/720 as θ → 0
+    let c = if t2 < 1e-6 {
+        1.0 / 12.0 + t2 / 720.0
+    } else {
+        let t = t2.sqrt();
+        1.0 / t2 - (1.0 + t.cos()) / (2.0 * t * t.sin())
+    };
+    let txm = theta.cross(moment);
+    moment + 0.5 * txm + c * theta.cross(txm)
+}
+
+/// Quaternion rotating the unit vector `from` onto the unit vector `to` by the smallest
+/// angle (parallel transport of a frame along a turning tangent).
+pub fn rotation_between(from: DVec3, to: DVec3) -> DQuat {
+    DQuat::from_rotation_arc(from, to)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn exp_log_round_trip_over_all_angles() {
+        let axis = DVec3::new(1.0, -2.0, 0.5).normalize();
+        for &angle in &[0.0, 1e-12, 1e-7, 1e-3, 0.5, 2.0, PI - 1e-6] {
+            let phi = axis * angle;
+            let back = log_map(exp_map(phi));
+            assert!(
+                (back - phi).length() <= 1e-14 + 1e-12 * angle,
+                "angle {angle}: {back:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn exp_matches_glam_axis_angle_past_180_degrees() {
+        let axis = DVec3::new(0.0, 0.6, 0.8);
+        for &angle in &[3.5, 5.0, 7.0, 13.0] {
+            let a = exp_map(axis * angle);
+            let b = DQuat::from_axis_angle(axis, angle);
+            let v = DVec3::new(0.3, 0.1, -0.7);
+            assert!((a * v - b * v).length() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn jacobian_correction_vanishes_for_parallel_moment() {
+        let t = DVec3::new(0.0, 0.0, 0.3);
+        let m = DVec3::new(0.0, 0.0, 2.0);
+        assert!((left_jacobian_inverse_transpose_times(t, m) - m).length() < 1e-15);
+    }
+
+    /// J_l⁻ᵀ checked against finite differences of the log map under left perturbation.
+    #[test]
+    fn jacobian_matches_finite_differences() {
+        let theta = DVec3::new(0.4, -0.2, 0.7);
+        let moment = DVec3::new(0.3, 1.1, -0.5);
+        let q = exp_map(theta);
+        let h = 1e-6;
+        let mut expected = DVec3::ZERO;
+        for k in 0..3 {
+            let mut e = DVec3::ZERO;
+            e[k] = h;
+            let dp = log_map(exp_map(e) * q);
+            let dm = log_map(exp_map(-e) * q);
+            // d(M·θ)/dψ_k
+            expected[k] = moment.dot((dp - dm) / (2.0 * h));
+        }
+        let got = left_jacobian_inverse_transpose_times(theta, moment);
+        assert!((got - expected).length() < 1e-8, "{got:?} vs {expected:?}");
+    }
+}

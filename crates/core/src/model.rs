@@ -1,0 +1,232 @@
+//! The Model: what the world is (topology, rest geometry, stiffness, masses, settings),
+//! fixed after building, in the spirit of MuJoCo's mjModel.
+
+use crate::element::BeamElement;
+use crate::frames::node_frames;
+use crate::mass::half_element_mass;
+use crate::spec::{HoseSpec, SimSettings, WorldSpec};
+use crate::timestep::{stable_time_step, TimeStepReport};
+use glam::{DQuat, DVec3};
+use serde::Serialize;
+
+/// Where one hose's nodes and elements lie in the model's flat arrays.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct HoseInfo {
+    pub name: String,
+    pub first_node: usize,
+    pub node_count: usize,
+    pub first_element: usize,
+    pub element_count: usize,
+}
+
+impl HoseInfo {
+    /// Global index of local node `i` of this hose.
+    pub fn node(&self, i: usize) -> usize {
+        self.first_node + i
+    }
+    pub fn nodes(&self) -> std::ops::Range<usize> {
+        self.first_node..self.first_node + self.node_count
+    }
+}
+
+/// The built world. Nodes of all hoses are stored in one flat array.
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub hoses: Vec<HoseInfo>,
+    pub elements: Vec<BeamElement>,
+    /// Lumped translational mass per node [kg].
+    pub mass: Vec<f64>,
+    /// Lumped isotropic rotational inertia per node [kg·m²] (see [`crate::mass`]).
+    pub inertia: Vec<f64>,
+    /// Outer radius per node [m] (for drawing and, later, contact).
+    pub radius: Vec<f64>,
+    /// Rest positions [m] and rest material frames.
+    pub rest_x: Vec<DVec3>,
+    pub rest_q: Vec<DQuat>,
+    pub gravity: DVec3,
+    /// Mass-proportional Rayleigh damping α [1/s].
+    pub damping_mass: f64,
+    /// Stiffness-proportional Rayleigh damping β [s] (resolved default if not given).
+    pub damping_stiffness: f64,
+    /// The time step used [s].
+    pub time_step: f64,
+    /// How the time step was chosen.
+    pub time_step_report: TimeStepReport,
+}
+
+/// Why a world spec could not be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ModelError {
+    #[error("hose '{hose}': {reason}")]
+    Hose { hose: String, reason: String },
+    #[error("settings: {0}")]
+    Settings(String),
+    #[error("the world has no hose")]
+    Empty,
+}
+
+fn finite(v: DVec3) -> bool {
+    v.is_finite()
+}
+
+fn check_hose(h: &HoseSpec) -> Result<(), ModelError> {
+    let err = |reason: String| {
+        Err(ModelError::Hose {
+            hose: h.name.clone(),
+            reason,
+        })
+    };
+    if h.nodes.len() < 2 {
+        return err(format!("needs at least 2 nodes, has {}", h.nodes.len()));
+    }
+    if h.sections.len() != 1 && h.sections.len() != h.nodes.len() {
+        return err(format!(
+            "has {} sections for {} nodes (give 1 or one per node)",
+            h.sections.len(),
+            h.nodes.len()
+        ));
+    }
+    for (i, p) in h.nodes.iter().enumerate() {
+        if !finite(*p) {
+            return err(format!("node {i} position is not finite: {p:?}"));
+        }
+        if i > 0 && (h.nodes[i] - h.nodes[i - 1]).length() <= 1e-9 {
+            return err(format!(
+                "nodes {} and {i} coincide (zero-length element)",
+                i - 1
+            ));
+        }
+    }
+    for (i, s) in h.sections.iter().enumerate() {
+        if !(s.d_outer > 0.0 && s.d_outer.is_finite())
+            || !(s.d_inner >= 0.0 && s.d_inner < s.d_outer)
+        {
+            return err(format!(
+                "section {i} invalid: d_inner {} m, d_outer {} m",
+                s.d_inner, s.d_outer
+            ));
+        }
+    }
+    let m = &h.material;
+    let positive = |v: f64| v > 0.0 && v.is_finite();
+    if !positive(m.e_tension) || !positive(m.e_compression) || !positive(m.density) {
+        return err("material moduli and density must be positive and finite".into());
+    }
+    if let Some(eb) = m.e_bending {
+        if !positive(eb) {
+            return err(format!("bending modulus must be positive, is {eb}"));
+        }
+    }
+    if !(m.poisson > -1.0 && m.poisson < 0.5) {
+        return err(format!("Poisson's ratio {} outside (−1, 0.5)", m.poisson));
+    }
+    Ok(())
+}
+
+impl Model {
+    /// Builds the model: node frames by parallel transport, elements, lumped masses, the
+    /// stable time step and damping defaults.
+    pub fn build(spec: &WorldSpec) -> Result<Model, ModelError> {
+        if spec.hoses.is_empty() {
+            return Err(ModelError::Empty);
+        }
+        check_settings(&spec.settings)?;
+        let total_nodes: usize = spec.hoses.iter().map(|h| h.nodes.len()).sum();
+        let mut model = Model {
+            hoses: Vec::with_capacity(spec.hoses.len()),
+            elements: Vec::with_capacity(total_nodes),
+            mass: vec![0.0; total_nodes],
+            inertia: vec![0.0; total_nodes],
+            radius: Vec::with_capacity(total_nodes),
+            rest_x: Vec::with_capacity(total_nodes),
+            rest_q: Vec::with_capacity(total_nodes),
+            gravity: spec.settings.gravity,
+            damping_mass: spec.settings.damping_mass,
+            damping_stiffness: 0.0,
+            time_step: 0.0,
+            time_step_report: TimeStepReport::default(),
+        };
+        for h in &spec.hoses {
+            check_hose(h)?;
+            model.add_hose(h);
+        }
+        let report = stable_time_step(&model, &spec.settings)?;
+        model.damping_stiffness = report.damping_stiffness;
+        model.time_step = report.chosen;
+        model.time_step_report = report;
+        Ok(model)
+    }
+
+    fn add_hose(&mut self, h: &HoseSpec) {
+        let first_node = self.rest_x.len();
+        let first_element = self.elements.len();
+        let frames = node_frames(&h.nodes, h.normal_hint);
+        let section = |i: usize| {
+            if h.sections.len() == 1 {
+                h.sections[0]
+            } else {
+                h.sections[i]
+            }
+        };
+        for (i, (x, q)) in h.nodes.iter().zip(&frames).enumerate() {
+            self.rest_x.push(*x);
+            self.rest_q.push(*q);
+            self.radius.push(section(i).outer_radius());
+        }
+        for i in 0..h.nodes.len() - 1 {
+            let (a, b) = (first_node + i, first_node + i + 1);
+            let sec = crate::Section::mean(&section(i), &section(i + 1));
+            let el = BeamElement::new(
+                (a, b),
+                [h.nodes[i], h.nodes[i + 1]],
+                [frames[i], frames[i + 1]],
+                &sec,
+                &h.material,
+            );
+            let (m, j) = half_element_mass(&sec, &h.material, 0.5 * el.rest_length);
+            for n in [a, b] {
+                self.mass[n] += m;
+                self.inertia[n] += j;
+            }
+            self.elements.push(el);
+        }
+        self.hoses.push(HoseInfo {
+            name: h.name.clone(),
+            first_node,
+            node_count: h.nodes.len(),
+            first_element,
+            element_count: h.nodes.len() - 1,
+        });
+    }
+
+    pub fn node_count(&self) -> usize {
+        self.rest_x.len()
+    }
+}
+
+fn check_settings(s: &SimSettings) -> Result<(), ModelError> {
+    let bad = |m: String| Err(ModelError::Settings(m));
+    if !s.gravity.is_finite() {
+        return bad(format!("gravity is not finite: {:?}", s.gravity));
+    }
+    if !(s.damping_mass >= 0.0 && s.damping_mass.is_finite()) {
+        return bad(format!("mass damping must be ≥ 0, is {}", s.damping_mass));
+    }
+    if let Some(b) = s.damping_stiffness {
+        if !(b >= 0.0 && b.is_finite()) {
+            return bad(format!("stiffness damping must be ≥ 0, is {b}"));
+        }
+    }
+    if !(s.time_step_safety > 0.0 && s.time_step_safety <= 1.0) {
+        return bad(format!(
+            "time step safety must lie in (0, 1], is {}",
+            s.time_step_safety
+        ));
+    }
+    if let Some(dt) = s.time_step {
+        if !(dt > 0.0 && dt.is_finite()) {
+            return bad(format!("time step must be positive, is {dt}"));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,89 @@
+//! The State: where the world is now (positions, orientations, velocities, active load
+//! cases, last reactions). A step reads the Model and writes the State; a snapshot is a
+//! clone of the State.
+
+use crate::loads::LoadCases;
+use crate::Model;
+use glam::{DQuat, DVec3};
+
+#[derive(Clone, Debug)]
+pub struct State {
+    /// Simulated time [s].
+    pub time: f64,
+    /// Steps taken.
+    pub step: u64,
+    /// Node positions [m].
+    pub x: Vec<DVec3>,
+    /// Node material frames (local → global), unit quaternions.
+    pub q: Vec<DQuat>,
+    /// Node velocities [m/s].
+    pub v: Vec<DVec3>,
+    /// Node angular velocities, global axes [rad/s].
+    pub w: Vec<DVec3>,
+    /// Total force on each node in the last step, support reactions excluded [N].
+    pub force: Vec<DVec3>,
+    /// Total moment on each node in the last step, support reactions excluded [N·m].
+    pub moment: Vec<DVec3>,
+    /// Force the supports (fix / drive) applied to each node in the last step [N]; zero
+    /// for free nodes.
+    pub reaction_force: Vec<DVec3>,
+    /// Moment the supports applied to each node in the last step [N·m].
+    pub reaction_moment: Vec<DVec3>,
+    /// Whether a kinematic load case held the node in the last step.
+    pub held: Vec<bool>,
+    /// Active load cases.
+    pub loads: LoadCases,
+}
+
+impl State {
+    /// The rest state of a model: at rest, in the rest shape, no load cases.
+    pub fn at_rest(model: &Model) -> State {
+        let n = model.node_count();
+        State {
+            time: 0.0,
+            step: 0,
+            x: model.rest_x.clone(),
+            q: model.rest_q.clone(),
+            v: vec![DVec3::ZERO; n],
+            w: vec![DVec3::ZERO; n],
+            force: vec![DVec3::ZERO; n],
+            moment: vec![DVec3::ZERO; n],
+            reaction_force: vec![DVec3::ZERO; n],
+            reaction_moment: vec![DVec3::ZERO; n],
+            held: vec![false; n],
+            loads: LoadCases::default(),
+        }
+    }
+
+    /// Kinetic energy Σ ½ m v² + ½ I ω² [J].
+    pub fn kinetic_energy(&self, model: &Model) -> f64 {
+        let mut e = 0.0;
+        for i in 0..self.x.len() {
+            e += 0.5
+                * (model.mass[i] * self.v[i].length_squared()
+                    + model.inertia[i] * self.w[i].length_squared());
+        }
+        e
+    }
+
+    /// Elastic strain energy of all elements [J].
+    pub fn strain_energy(&self, model: &Model) -> f64 {
+        model
+            .elements
+            .iter()
+            .map(|e| {
+                e.strain_energy(
+                    [self.x[e.node_a], self.x[e.node_b]],
+                    [self.q[e.node_a], self.q[e.node_b]],
+                )
+            })
+            .sum()
+    }
+
+    /// Potential energy of gravity −Σ m g·x [J].
+    pub fn gravity_energy(&self, model: &Model) -> f64 {
+        -(0..self.x.len())
+            .map(|i| model.mass[i] * model.gravity.dot(self.x[i]))
+            .sum::<f64>()
+    }
+}

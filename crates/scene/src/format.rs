@@ -1,0 +1,265 @@
+//! The scene file's raw shape (format `pliant-scene`, version 1), exactly as written:
+//! lengths still in the file's `length_unit`, moduli in MPa, nothing checked beyond types.
+//! [`crate::load`] checks and converts it. The JSON Schema (`docs/scene.schema.json`) is
+//! generated from these types, so their doc comments are the schema's descriptions.
+
+use crate::units::LengthUnit;
+use schemars::JsonSchema;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// A 3-vector `[x, y, z]`.
+pub type Vec3 = [f64; 3];
+
+/// A whole scene file.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Must be `"pliant-scene"`.
+    pub format: FormatTag,
+    /// Format version; this build reads version 1.
+    #[schemars(range(min = 1, max = 1))]
+    pub version: u32,
+    /// Name shown in outputs. Default: the file name.
+    pub name: Option<String>,
+    /// Unit of every length, position and diameter in the file: `"mm"` or `"m"`.
+    pub length_unit: LengthUnit,
+    /// Global simulation settings (SI, not affected by `length_unit`).
+    pub simulation: Option<SimulationSection>,
+    /// What to record.
+    pub output: Option<OutputSection>,
+    /// User materials by name. Names of the built-in library (`hose1` … `hose5`) are
+    /// reserved.
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialEntry>,
+    /// The hoses of the scene (at least one).
+    #[schemars(length(min = 1))]
+    pub hoses: Vec<HoseEntry>,
+    /// Scripted actions, executed in order.
+    #[serde(default)]
+    pub timeline: Vec<ActionEntry>,
+}
+
+/// The value of `format`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, JsonSchema)]
+pub enum FormatTag {
+    /// The only value.
+    #[serde(rename = "pliant-scene")]
+    PliantScene,
+}
+
+/// `[simulation]`: global settings, all optional, all SI.
+#[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SimulationSection {
+    /// Gravitational acceleration [m/s²]. Default `[0, 0, -9.81]`; `[0, 0, 0]` switches
+    /// gravity off.
+    pub gravity: Option<Vec3>,
+    /// Mass-proportional Rayleigh damping α [1/s], ≥ 0. Default 1.0.
+    pub damping_mass_per_s: Option<f64>,
+    /// Stiffness-proportional Rayleigh damping β [s], ≥ 0. Default: chosen automatically
+    /// by the physics core.
+    pub damping_stiffness_s: Option<f64>,
+    /// Safety factor on the stable explicit time step, in (0, 1]. Default 0.5.
+    pub time_step_safety: Option<f64>,
+    /// Fixed time step [s], > 0. Default: computed from the model.
+    pub time_step_s: Option<f64>,
+}
+
+/// `[output]`: what to record.
+#[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSection {
+    /// Interval between recorded states [s], ≥ 0; 0 records every step. Default 0.01.
+    pub record_interval_s: Option<f64>,
+}
+
+/// `[materials.NAME]`: a user material.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialEntry {
+    /// Young's modulus in tension E_t [MPa], > 0.
+    pub e_tension_mpa: f64,
+    /// Young's modulus in compression E_c [MPa], > 0.
+    pub e_compression_mpa: f64,
+    /// Bending modulus [MPa], > 0. Default: the reduced bimodular modulus
+    /// E_b = 4 E_t E_c / (√E_t + √E_c)².
+    pub e_bending_mpa: Option<f64>,
+    /// Poisson's ratio ν, in (−1, 0.5).
+    pub poisson: f64,
+    /// Density ρ [kg/m³], > 0.
+    pub density_kg_m3: f64,
+}
+
+/// `[[hoses]]`: one hose.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HoseEntry {
+    /// Unique, non-empty name; timeline actions refer to the hose by it.
+    pub name: String,
+    /// A library material (`hose1` … `hose5`) or a key of `[materials]`.
+    pub material: String,
+    /// Tube cross-section (length unit). Optional for a library material, whose
+    /// diameters are the default; required otherwise.
+    pub section: Option<SectionEntry>,
+    /// Number of beam elements, ≥ 1. Excludes `element_length`.
+    pub elements: Option<u32>,
+    /// Target element length (length unit), > 0. Excludes `elements`. Default when
+    /// neither is given: 1.5 × d_outer.
+    pub element_length: Option<f64>,
+    /// First point of the centre line (length unit).
+    pub start: Vec3,
+    /// Centre-line segments, each starting where the previous one ended.
+    #[schemars(length(min = 1))]
+    pub path: Vec<SegmentEntry>,
+    /// Offsets of rest-shape nodes (length unit), applied after discretisation.
+    #[serde(default)]
+    pub imperfection: Vec<ImperfectionEntry>,
+    /// Preferred direction of the first node's cross-section y axis; must not be
+    /// parallel to the hose's first tangent. Default: any normal direction.
+    pub normal_hint: Option<Vec3>,
+}
+
+/// Inner and outer diameter (length unit).
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SectionEntry {
+    /// Inner diameter d_i, ≥ 0 (0 for a solid rod) and < d_outer.
+    pub d_inner: f64,
+    /// Outer diameter d_a, > 0.
+    pub d_outer: f64,
+}
+
+/// One centre-line segment: exactly one of `line`, `arc`, `spline`.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub enum SegmentEntry {
+    /// Straight line to `to`.
+    Line {
+        /// End point (length unit).
+        to: Vec3,
+    },
+    /// Circular arc from the segment's start through `via` to `to`.
+    Arc {
+        /// A point on the arc between start and end (length unit).
+        via: Vec3,
+        /// End point (length unit).
+        to: Vec3,
+    },
+    /// Uniform Catmull-Rom spline from the segment's start through `through` to `to`.
+    Spline {
+        /// Interior points the curve passes through, in order (length unit).
+        #[serde(default)]
+        through: Vec<Vec3>,
+        /// End point (length unit).
+        to: Vec3,
+    },
+}
+
+/// A rest-shape node offset.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ImperfectionEntry {
+    /// Node index; negative counts from the end (−1 = last node).
+    pub node: i64,
+    /// Offset added to the node's rest position (length unit).
+    pub offset: Vec3,
+}
+
+/// One point or a list of points.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum Points {
+    /// A single point `[x, y, z]`.
+    One(Vec3),
+    /// Several points `[[x, y, z], …]`.
+    Many(Vec<Vec3>),
+}
+
+impl Points {
+    /// The points as a list.
+    pub fn to_vec(&self) -> Vec<Vec3> {
+        match self {
+            Points::One(p) => vec![*p],
+            Points::Many(ps) => ps.clone(),
+        }
+    }
+}
+
+/// A rotation about a global axis.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RotateEntry {
+    /// Rotation axis in the global frame; any non-zero length.
+    pub axis: Vec3,
+    /// Angle in degrees (right-hand rule); may exceed 360.
+    pub angle_deg: f64,
+}
+
+/// `[[timeline]]`: one action, chosen by `action`.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(tag = "action", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ActionEntry {
+    /// Hold the node in all six degrees of freedom where it is now.
+    Fix {
+        /// Hose name.
+        hose: String,
+        /// Node index; negative counts from the end (−1 = last).
+        node: i64,
+    },
+    /// Drive the node along waypoints and/or rotate it; it stays held afterwards.
+    Move {
+        /// Hose name.
+        hose: String,
+        /// Node index; negative counts from the end (−1 = last).
+        node: i64,
+        /// Absolute waypoints (length unit); the last is the target. Excludes `by`.
+        to: Option<Points>,
+        /// Waypoints as offsets from the node's position when the move starts (length
+        /// unit). Excludes `to`.
+        by: Option<Points>,
+        /// Rotation applied on top of the node's orientation over the move.
+        rotate: Option<RotateEntry>,
+        /// Duration of the move [s], > 0.
+        duration_s: f64,
+        /// Whether the timeline waits for the move to end. Default true.
+        wait: Option<bool>,
+    },
+    /// Add a constant force and/or moment (global frame) at the node.
+    Load {
+        /// Hose name.
+        hose: String,
+        /// Node index; negative counts from the end (−1 = last).
+        node: i64,
+        /// Force [N]. Default zero; at least one of `force_n`, `moment_nm`.
+        force_n: Option<Vec3>,
+        /// Moment [N·m]. Default zero; at least one of `force_n`, `moment_nm`.
+        moment_nm: Option<Vec3>,
+    },
+    /// Remove all loads from the node.
+    Unload {
+        /// Hose name.
+        hose: String,
+        /// Node index; negative counts from the end (−1 = last).
+        node: i64,
+    },
+    /// Remove the fix / drive from the node.
+    Release {
+        /// Hose name.
+        hose: String,
+        /// Node index; negative counts from the end (−1 = last).
+        node: i64,
+    },
+    /// Simulate for a while.
+    Run {
+        /// Duration [s], > 0.
+        duration_s: f64,
+    },
+    /// Simulate until the hoses come to rest.
+    Settle {
+        /// Rest threshold on the total kinetic energy [J], > 0. Default 1e-6.
+        kinetic_energy_j: Option<f64>,
+        /// Give up after this long [s], > 0. Default 30.
+        max_duration_s: Option<f64>,
+    },
+}

@@ -1,0 +1,222 @@
+//! The built-in material library (SPEC M4). The data lives in `data/materials.toml`
+//! (embedded at build time); this module only reads it. Every value carries its
+//! provenance: a source in the dissertation, or a marked assumption.
+
+use crate::error::SceneError;
+use pliant_core::{Material, Section};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::sync::OnceLock;
+
+/// The library file, as shipped.
+pub const LIBRARY_TOML: &str = include_str!("../data/materials.toml");
+
+/// Where a library value comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Provenance {
+    /// Taken from the literature (e.g. "dissertation table 3.3, hose 1").
+    Source(String),
+    /// Not given by the literature; a documented assumption.
+    Assumption(String),
+}
+
+/// One value of a library entry with its provenance, in the file's units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LibraryValue {
+    /// Key in the library file, e.g. `e_tension_mpa`.
+    pub key: String,
+    /// The value in the unit named by the key.
+    pub value: f64,
+    /// Where it comes from.
+    pub provenance: Provenance,
+}
+
+/// One library hose: material, default cross-section and the provenance of each value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LibraryEntry {
+    /// Key used in scene files, e.g. `hose3`.
+    pub name: String,
+    /// What kind of hose it is.
+    pub description: String,
+    /// The material, SI.
+    pub material: Material,
+    /// The hose's own cross-section, SI; the default for hoses of this material.
+    pub section: Section,
+    /// Every value with its provenance.
+    pub values: Vec<LibraryValue>,
+}
+
+/// The set of library entries, sorted by name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Library {
+    entries: Vec<LibraryEntry>,
+}
+
+impl Library {
+    /// The built-in library (parsed once).
+    pub fn builtin() -> Result<&'static Library, SceneError> {
+        static BUILTIN: OnceLock<Result<Library, String>> = OnceLock::new();
+        BUILTIN
+            .get_or_init(|| Library::parse(LIBRARY_TOML))
+            .as_ref()
+            .map_err(|message| SceneError::Library { message: message.clone() })
+    }
+
+    /// Reads a library file in the format of `data/materials.toml`.
+    pub fn parse(text: &str) -> Result<Library, String> {
+        let raw: BTreeMap<String, RawEntry> = toml::from_str(text).map_err(|e| e.to_string())?;
+        let entries = raw
+            .into_iter()
+            .map(|(name, entry)| entry.build(name))
+            .collect::<Result<Vec<_>, String>>()?;
+        Ok(Library { entries })
+    }
+
+    /// The entry with this name, if any.
+    pub fn get(&self, name: &str) -> Option<&LibraryEntry> {
+        self.entries.iter().find(|e| e.name == name)
+    }
+
+    /// All entries, sorted by name.
+    pub fn entries(&self) -> &[LibraryEntry] {
+        &self.entries
+    }
+
+    /// All entry names, sorted.
+    pub fn names(&self) -> Vec<&str> {
+        self.entries.iter().map(|e| e.name.as_str()).collect()
+    }
+}
+
+/// A value with its provenance, as written in the library file.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawValue {
+    value: f64,
+    source: Option<String>,
+    assumption: Option<String>,
+}
+
+/// A library entry as written in the library file.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawEntry {
+    description: String,
+    d_inner_mm: RawValue,
+    d_outer_mm: RawValue,
+    e_compression_mpa: RawValue,
+    e_tension_mpa: RawValue,
+    density_kg_m3: RawValue,
+    poisson: RawValue,
+}
+
+impl RawValue {
+    /// Checks the value and its provenance (exactly one of `source`, `assumption`).
+    fn build(self, entry: &str, key: &str) -> Result<LibraryValue, String> {
+        let provenance = match (self.source, self.assumption) {
+            (Some(s), None) if !s.trim().is_empty() => Provenance::Source(s),
+            (None, Some(a)) if !a.trim().is_empty() => Provenance::Assumption(a),
+            _ => {
+                return Err(format!(
+                    "{entry}.{key}: needs exactly one non-empty `source` or `assumption`"
+                ))
+            }
+        };
+        if !self.value.is_finite() {
+            return Err(format!("{entry}.{key}: value must be finite"));
+        }
+        Ok(LibraryValue { key: key.to_string(), value: self.value, provenance })
+    }
+}
+
+impl RawEntry {
+    /// Converts to SI and checks plausibility.
+    fn build(self, name: String) -> Result<LibraryEntry, String> {
+        let values = vec![
+            self.d_inner_mm.build(&name, "d_inner_mm")?,
+            self.d_outer_mm.build(&name, "d_outer_mm")?,
+            self.e_compression_mpa.build(&name, "e_compression_mpa")?,
+            self.e_tension_mpa.build(&name, "e_tension_mpa")?,
+            self.density_kg_m3.build(&name, "density_kg_m3")?,
+            self.poisson.build(&name, "poisson")?,
+        ];
+        let [d_i, d_a, e_c, e_t, rho, nu] = [0, 1, 2, 3, 4, 5].map(|i| values[i].value);
+        if !(d_i >= 0.0 && d_a > d_i && e_c > 0.0 && e_t > 0.0 && rho > 0.0) {
+            return Err(format!("{name}: needs 0 <= d_inner < d_outer and positive moduli and density"));
+        }
+        if !(nu > -1.0 && nu < 0.5) {
+            return Err(format!("{name}.poisson: must lie in (-1, 0.5)"));
+        }
+        Ok(LibraryEntry {
+            name,
+            description: self.description,
+            material: Material {
+                e_tension: e_t * 1e6,
+                e_compression: e_c * 1e6,
+                e_bending: None,
+                poisson: nu,
+                density: rho,
+            },
+            section: Section::new(d_i * 1e-3, d_a * 1e-3),
+            values,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// SPEC M4: (name, d_i mm, d_a mm, E_c MPa, E_t MPa).
+    const SPEC_TABLE: [(&str, f64, f64, f64, f64); 5] = [
+        ("hose1", 10.0, 16.0, 13.1363, 11.583),
+        ("hose2", 12.7, 24.6, 7.1719, 6.0346),
+        ("hose3", 27.0, 35.0, 8.6913, 6.9442),
+        ("hose4", 8.0, 15.0, 6.8072, 7.5928),
+        ("hose5", 7.3, 14.3, 9.3374, 12.6627),
+    ];
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() <= 1e-12 * b.abs().max(1e-12)
+    }
+
+    #[test]
+    fn builtin_library_matches_spec_table() {
+        let lib = Library::builtin().expect("library parses");
+        assert_eq!(lib.names(), vec!["hose1", "hose2", "hose3", "hose4", "hose5"]);
+        for (name, d_i, d_a, e_c, e_t) in SPEC_TABLE {
+            let e = lib.get(name).expect("entry exists");
+            assert!(close(e.section.d_inner, d_i * 1e-3), "{name} d_i");
+            assert!(close(e.section.d_outer, d_a * 1e-3), "{name} d_a");
+            assert!(close(e.material.e_compression, e_c * 1e6), "{name} E_c");
+            assert!(close(e.material.e_tension, e_t * 1e6), "{name} E_t");
+            assert_eq!(e.material.e_bending, None);
+            assert_eq!(e.material.poisson, 0.49);
+            let expected_density = if name == "hose1" { 940.0 } else { 1100.0 };
+            assert_eq!(e.material.density, expected_density, "{name} density");
+        }
+    }
+
+    #[test]
+    fn provenance_is_recorded_for_every_value() {
+        let lib = Library::builtin().expect("library parses");
+        for e in lib.entries() {
+            assert_eq!(e.values.len(), 6);
+            for v in &e.values {
+                let is_assumption = matches!(v.provenance, Provenance::Assumption(_));
+                let should_be = v.key == "poisson" || (v.key == "density_kg_m3" && e.name != "hose1");
+                assert_eq!(is_assumption, should_be, "{}.{}", e.name, v.key);
+                if let Provenance::Source(s) = &v.provenance {
+                    assert!(s.contains("dissertation"), "{}.{}", e.name, v.key);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn value_without_provenance_is_rejected() {
+        let text = LIBRARY_TOML.replacen(", source = \"dissertation table 3.2, hose 1\"", "", 1);
+        let err = Library::parse(&text).expect_err("must fail");
+        assert!(err.contains("hose1.d_inner_mm"), "{err}");
+    }
+}
