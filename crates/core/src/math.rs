@@ -54,9 +54,18 @@ pub fn left_jacobian_inverse_transpose_times(theta: DVec3, moment: DVec3) -> DVe
 }
 
 /// Quaternion rotating the unit vector `from` onto the unit vector `to` by the smallest
-/// angle (parallel transport of a frame along a turning tangent).
+/// angle (parallel transport of a frame along a turning tangent): q ∝ (1 + a·b, a × b).
+/// Unlike glam's `from_rotation_arc`, angles below 3e-8 rad are not rounded to zero — the
+/// co-rotational frame must follow the chord exactly, or the rounding shows up as force
+/// noise of order E I/l² · 1e-8.
 pub fn rotation_between(from: DVec3, to: DVec3) -> DQuat {
-    DQuat::from_rotation_arc(from, to)
+    let w = 1.0 + from.dot(to);
+    if w < 1e-12 {
+        // antiparallel: half a turn about any axis normal to `from`
+        return DQuat::from_axis_angle(from.any_orthonormal_vector(), std::f64::consts::PI);
+    }
+    let c = from.cross(to);
+    DQuat::from_xyzw(c.x, c.y, c.z, w).normalize()
 }
 
 #[cfg(test)]
@@ -86,6 +95,15 @@ mod tests {
             let v = DVec3::new(0.3, 0.1, -0.7);
             assert!((a * v - b * v).length() < 1e-13);
         }
+    }
+
+    #[test]
+    fn rotation_between_keeps_tiny_angles() {
+        let a = DVec3::X;
+        let b = DVec3::new(1.0, 1e-9, 0.0).normalize();
+        let q = rotation_between(a, b);
+        assert!((q * a - b).length() < 1e-17);
+        assert!((log_map(q).z - 1e-9).abs() < 1e-20);
     }
 
     #[test]

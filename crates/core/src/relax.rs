@@ -2,7 +2,7 @@
 //! 1999, "Form finding and analysis of tension structures by dynamic relaxation"): the
 //! explicit step runs on, and every time the total kinetic energy passes a peak all
 //! velocities are set to zero. The state walks down the energy landscape to the nearest
-//! equilibrium. Used by the validation suite to reach static states of the same explicit
+//! equilibrium (optionally with viscous damping only). Used by the validation suite to reach static states of the same explicit
 //! model the user runs (its answer is the model's, not another solver's).
 
 use crate::explicit::step;
@@ -19,6 +19,10 @@ pub struct RelaxOptions {
     pub moment_tolerance: f64,
     /// Give up after this many steps.
     pub max_steps: u64,
+    /// Zero all velocities at each kinetic-energy peak. Fast for stiff, well-conditioned
+    /// problems; for a very soft mode (a column near buckling) turn it off and rely on the
+    /// model's viscous damping tuned near that mode's critical value instead.
+    pub kinetic_damping: bool,
 }
 
 /// How relaxation ended.
@@ -55,7 +59,7 @@ pub fn relax(
         step(model, state);
         steps += 1;
         let energy = state.kinetic_energy(model);
-        if energy < last_energy {
+        if opts.kinetic_damping && energy < last_energy {
             state.v.fill(DVec3::ZERO);
             state.w.fill(DVec3::ZERO);
             last_energy = 0.0;

@@ -1,0 +1,322 @@
+//! Executes a [`Timeline`] on a model: turns each action into load cases on the state and
+//! advances the explicit integrator, checking health as it goes and tracking the peak
+//! support loads of every held node.
+
+use crate::timeline::{Action, MovePath, NodeRef, Timeline};
+use glam::DVec3;
+use pliant_core::health::{check, Divergence};
+use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase};
+use pliant_core::{explicit, Model, State};
+use serde::Serialize;
+
+/// How often the state is checked for divergence, in steps.
+const HEALTH_CHECK_EVERY: u64 = 16;
+/// How often `Settle` looks at the kinetic energy, in steps.
+const SETTLE_CHECK_EVERY: u64 = 16;
+
+/// Sees the run as it goes. Only states that passed the divergence check reach `on_state`.
+pub trait Observer {
+    /// Whether the observer wants the state at simulated time `time` (e.g. a recorder
+    /// sampling at an interval).
+    fn wants_state(&self, _time: f64) -> bool {
+        false
+    }
+    /// A checked state the observer asked for.
+    fn on_state(&mut self, _model: &Model, _state: &State) {}
+    /// An action is about to start.
+    fn on_action(&mut self, _index: usize, _action: &Action, _state: &State) {}
+    /// Called every step with the simulated time (for progress display); keep it cheap.
+    fn on_step(&mut self, _time: f64) {}
+}
+
+/// An observer that watches nothing.
+pub struct NoObserver;
+impl Observer for NoObserver {}
+
+/// Peak support loads at one node that a fix or drive held at some point.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct NodePeak {
+    pub hose: usize,
+    pub node: usize,
+    /// Largest |F| the support applied [N] and when [s].
+    pub max_force: f64,
+    pub max_force_time: f64,
+    /// Largest |M| the support applied [N·m] and when [s].
+    pub max_moment: f64,
+    pub max_moment_time: f64,
+    /// Support force and moment in the last step it held the node.
+    pub last_force: DVec3,
+    pub last_moment: DVec3,
+}
+
+/// Outcome of one `Settle` action.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SettleOutcome {
+    pub action: usize,
+    pub at_rest: bool,
+    pub time: f64,
+    pub kinetic_energy: f64,
+}
+
+/// What a whole run did.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct RunSummary {
+    pub steps: u64,
+    pub simulated_time: f64,
+    pub actions_completed: usize,
+    pub settles: Vec<SettleOutcome>,
+    pub peaks: Vec<NodePeak>,
+}
+
+/// A run that stopped early.
+#[derive(Debug, thiserror::Error)]
+#[error("{divergence}")]
+pub struct RunError {
+    pub divergence: Divergence,
+    /// Everything up to the last healthy state.
+    pub partial: RunSummary,
+}
+
+/// Executes timelines. Holds preallocated per-node peak trackers.
+pub struct Runner<'m> {
+    model: &'m Model,
+    peaks: Vec<Option<NodePeak>>,
+    summary: RunSummary,
+}
+
+impl<'m> Runner<'m> {
+    pub fn new(model: &'m Model) -> Self {
+        Runner {
+            model,
+            peaks: vec![None; model.node_count()],
+            summary: RunSummary::default(),
+        }
+    }
+
+    /// Total simulated duration the timeline asks for at most (settles counted at their
+    /// maximum), for progress display.
+    pub fn planned_duration(timeline: &Timeline) -> f64 {
+        timeline
+            .actions
+            .iter()
+            .map(|a| match a {
+                Action::Move {
+                    duration,
+                    wait: true,
+                    ..
+                } => *duration,
+                Action::Run { duration } => *duration,
+                Action::Settle { max_duration, .. } => *max_duration,
+                _ => 0.0,
+            })
+            .sum()
+    }
+
+    /// Runs every action of `timeline` on `state`.
+    pub fn run(
+        mut self,
+        timeline: &Timeline,
+        state: &mut State,
+        obs: &mut dyn Observer,
+    ) -> Result<RunSummary, RunError> {
+        for (k, action) in timeline.actions.iter().enumerate() {
+            obs.on_action(k, action, state);
+            if let Err(divergence) = self.apply(k, action, state, obs) {
+                return Err(RunError {
+                    divergence,
+                    partial: self.finish(state),
+                });
+            }
+            self.summary.actions_completed = k + 1;
+        }
+        Ok(self.finish(state))
+    }
+
+    fn finish(&mut self, state: &State) -> RunSummary {
+        let mut s = std::mem::take(&mut self.summary);
+        s.steps = state.step;
+        s.simulated_time = state.time;
+        s.peaks = self.peaks.iter().flatten().cloned().collect();
+        s
+    }
+
+    fn global(&self, n: NodeRef) -> usize {
+        self.model.hoses[n.hose].node(n.node)
+    }
+
+    /// One action: load-case changes are instantaneous, time-taking actions step.
+    pub fn apply(
+        &mut self,
+        index: usize,
+        action: &Action,
+        state: &mut State,
+        obs: &mut dyn Observer,
+    ) -> Result<(), Divergence> {
+        let kinematic = |c: &LoadCase| !matches!(c, LoadCase::DeadLoad(_));
+        match action {
+            Action::Fix { node } => {
+                let i = self.global(*node);
+                state.loads.remove_on_node(i, kinematic);
+                state.loads.add(LoadCase::Fix(Fix {
+                    node: i,
+                    position: state.x[i],
+                    orientation: state.q[i],
+                }));
+                self.track(*node);
+            }
+            Action::Move {
+                node,
+                path,
+                rotation,
+                duration,
+                wait,
+            } => {
+                let i = self.global(*node);
+                let start = state.x[i];
+                let waypoints: Vec<DVec3> = match path {
+                    Some(MovePath::To(p)) => p.clone(),
+                    Some(MovePath::By(p)) => p.iter().map(|d| start + *d).collect(),
+                    None => Vec::new(),
+                };
+                let phi = rotation
+                    .map(|r| r.axis.normalize_or_zero() * r.angle)
+                    .unwrap_or(DVec3::ZERO);
+                state.loads.remove_on_node(i, kinematic);
+                let drive = Drive::new(
+                    i,
+                    (start, state.q[i]),
+                    &waypoints,
+                    phi,
+                    state.time,
+                    *duration,
+                );
+                state.loads.add(LoadCase::Drive(drive));
+                self.track(*node);
+                if *wait {
+                    self.advance(state, *duration, obs)?;
+                }
+            }
+            Action::Load {
+                node,
+                force,
+                moment,
+            } => {
+                let i = self.global(*node);
+                state.loads.add(LoadCase::DeadLoad(DeadLoad {
+                    node: i,
+                    force: *force,
+                    moment: *moment,
+                }));
+            }
+            Action::Unload { node } => {
+                let i = self.global(*node);
+                state
+                    .loads
+                    .remove_on_node(i, |c| matches!(c, LoadCase::DeadLoad(_)));
+            }
+            Action::Release { node } => {
+                let i = self.global(*node);
+                state.loads.remove_on_node(i, kinematic);
+            }
+            Action::Run { duration } => self.advance(state, *duration, obs)?,
+            Action::Settle {
+                kinetic_energy_threshold,
+                max_duration,
+            } => {
+                let outcome =
+                    self.settle(index, state, *kinetic_energy_threshold, *max_duration, obs)?;
+                self.summary.settles.push(outcome);
+            }
+        }
+        Ok(())
+    }
+
+    fn track(&mut self, n: NodeRef) {
+        let i = self.global(n);
+        if self.peaks[i].is_none() {
+            self.peaks[i] = Some(NodePeak {
+                hose: n.hose,
+                node: n.node,
+                ..Default::default()
+            });
+        }
+    }
+
+    /// One explicit step plus health check, peak tracking and observation.
+    fn step(&mut self, state: &mut State, obs: &mut dyn Observer) -> Result<(), Divergence> {
+        explicit::step(self.model, state);
+        let wants = obs.wants_state(state.time);
+        if wants || state.step % HEALTH_CHECK_EVERY == 0 {
+            check(self.model, state)?;
+        }
+        for (i, peak) in self.peaks.iter_mut().enumerate() {
+            let Some(p) = peak else { continue };
+            if !state.held[i] {
+                continue;
+            }
+            let (f, m) = (state.reaction_force[i], state.reaction_moment[i]);
+            if f.length() > p.max_force {
+                p.max_force = f.length();
+                p.max_force_time = state.time;
+            }
+            if m.length() > p.max_moment {
+                p.max_moment = m.length();
+                p.max_moment_time = state.time;
+            }
+            p.last_force = f;
+            p.last_moment = m;
+        }
+        if wants {
+            obs.on_state(self.model, state);
+        }
+        obs.on_step(state.time);
+        Ok(())
+    }
+
+    fn advance(
+        &mut self,
+        state: &mut State,
+        duration: f64,
+        obs: &mut dyn Observer,
+    ) -> Result<(), Divergence> {
+        let steps = (duration / self.model.time_step).round() as u64;
+        for _ in 0..steps {
+            self.step(state, obs)?;
+        }
+        Ok(())
+    }
+
+    fn settle(
+        &mut self,
+        index: usize,
+        state: &mut State,
+        threshold: f64,
+        max_duration: f64,
+        obs: &mut dyn Observer,
+    ) -> Result<SettleOutcome, Divergence> {
+        let end = state.time + max_duration;
+        loop {
+            self.step(state, obs)?;
+            if state.step % SETTLE_CHECK_EVERY == 0 && !state.loads.any_drive_moving(state.time) {
+                let ke = state.kinetic_energy(self.model);
+                if ke < threshold {
+                    return Ok(SettleOutcome {
+                        action: index,
+                        at_rest: true,
+                        time: state.time,
+                        kinetic_energy: ke,
+                    });
+                }
+            }
+            if state.time >= end {
+                let ke = state.kinetic_energy(self.model);
+                return Ok(SettleOutcome {
+                    action: index,
+                    at_rest: ke < threshold,
+                    time: state.time,
+                    kinetic_energy: ke,
+                });
+            }
+        }
+    }
+}

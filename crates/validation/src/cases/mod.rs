@@ -1,0 +1,22 @@
+//! The validation cases, one file each.
+
+mod axial;
+mod buckling;
+mod energy;
+mod invariance;
+mod rollup;
+mod tip_load;
+mod torsion;
+
+use crate::CaseFn;
+
+/// All cases in report order.
+pub const ALL: &[(&str, CaseFn)] = &[
+    ("rollup", rollup::run),
+    ("tip_load", tip_load::run),
+    ("buckling", buckling::run),
+    ("axial", axial::run),
+    ("torsion", torsion::run),
+    ("invariance", invariance::run),
+    ("energy", energy::run),
+];

@@ -1,0 +1,43 @@
+//! Each validation case as a test: every check of the case must pass.
+
+fn assert_case(name: &str) {
+    let checks = pliant_validation::run(Some(name)).expect("case exists");
+    assert!(!checks.is_empty());
+    for c in &checks {
+        println!(
+            "{}: {} computed {:.6e} reference {:.6e} error {:.3e} tol {:.1e}",
+            c.case, c.quantity, c.computed, c.reference, c.error, c.tolerance
+        );
+    }
+    let failed: Vec<_> = checks.iter().filter(|c| !c.pass).collect();
+    assert!(failed.is_empty(), "failed checks: {failed:#?}");
+}
+
+#[test]
+fn rollup() {
+    assert_case("rollup");
+}
+#[test]
+fn tip_load() {
+    assert_case("tip_load");
+}
+#[test]
+fn buckling() {
+    assert_case("buckling");
+}
+#[test]
+fn axial() {
+    assert_case("axial");
+}
+#[test]
+fn torsion() {
+    assert_case("torsion");
+}
+#[test]
+fn invariance() {
+    assert_case("invariance");
+}
+#[test]
+fn energy() {
+    assert_case("energy");
+}
