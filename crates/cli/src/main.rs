@@ -1,1 +1,88 @@
-fn main() {}
+//! `pliant`: run a scene and write its time series, validate the physics against exact
+//! solutions, benchmark the solver.
+
+mod bench;
+mod recorder;
+mod run_cmd;
+mod summary;
+mod validate_cmd;
+mod vtk;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "pliant",
+    version,
+    about = "Real-time simulation of flexible hoses and cables for assembly studies"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scene's timeline (the built-in demo when no scene is given) and write CSV
+    /// time series, VTK frames and summary.json.
+    Run {
+        /// Scene file (TOML or JSON); omit for the built-in demo.
+        scene: Option<PathBuf>,
+        /// Output folder.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Run the validation suite against exact and independent reference solutions.
+    Validate {
+        /// Print one JSON array of checks instead of a table.
+        #[arg(long)]
+        json: bool,
+        /// Run only this case.
+        #[arg(long)]
+        case: Option<String>,
+        /// Also write the results table to this Markdown file (e.g. docs/validation.md).
+        #[arg(long)]
+        write_docs: Option<PathBuf>,
+    },
+    /// Measure cost per element per step and the real-time factor.
+    Bench {
+        /// Print one JSON object instead of a table.
+        #[arg(long)]
+        json: bool,
+        /// Shorter measurements (for smoke tests).
+        #[arg(long)]
+        quick: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let command = cli.command.unwrap_or(Command::Run {
+        scene: None,
+        out: PathBuf::from("out"),
+        quiet: false,
+    });
+    let result = match command {
+        Command::Run { scene, out, quiet } => run_cmd::run(scene.as_deref(), &out, quiet),
+        Command::Validate {
+            json,
+            case,
+            write_docs,
+        } => validate_cmd::run(json, case.as_deref(), write_docs.as_deref()),
+        Command::Bench { json, quick } => {
+            bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
+        }
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -80,9 +80,14 @@ impl Stiffness {
         outer_diameter: f64,
         inner_diameter: f64,
     ) -> Result<Self> {
-        let all_finite = [youngs_modulus, poisson_ratio, outer_diameter, inner_diameter]
-            .iter()
-            .all(|v| v.is_finite());
+        let all_finite = [
+            youngs_modulus,
+            poisson_ratio,
+            outer_diameter,
+            inner_diameter,
+        ]
+        .iter()
+        .all(|v| v.is_finite());
         if !all_finite {
             return Err(ReferenceError::InvalidStiffness(
                 "tube parameters must be finite".to_string(),
@@ -128,15 +133,6 @@ impl Stiffness {
     /// Torsional stiffness `GJ` [N m²] (about d1).
     pub fn torsion(&self) -> f64 {
         self.torsion
-    }
-
-    /// Axial stiffness active at axial force `n_axial` (`EA_t` if `N ≥ 0`).
-    pub(crate) fn axial_for(&self, n_axial: f64) -> f64 {
-        if n_axial >= 0.0 {
-            self.axial_tension
-        } else {
-            self.axial_compression
-        }
     }
 }
 
@@ -298,13 +294,6 @@ impl Rod {
             self.nodes[self.nodes.len() - 1],
             self.rest_frames[self.rest_frames.len() - 1],
         )
-    }
-
-    /// Index of the segment that contains reference arc length `s` (the segment
-    /// starting at an interior node owns that node).
-    pub(crate) fn segment_at(&self, s: f64) -> usize {
-        let k = self.arc_lengths.partition_point(|&a| a <= s);
-        k.saturating_sub(1).min(self.segment_count() - 1)
     }
 }
 

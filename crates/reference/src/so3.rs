@@ -77,6 +77,11 @@ pub(crate) fn interpolate(a: &Rotation3<f64>, b: &Rotation3<f64>, t: f64) -> Rot
     a * Rotation3::new(delta * t)
 }
 
+/// The rotation nearest to a matrix that is a rotation up to integration drift.
+pub(crate) fn nearest_rotation(m: &Matrix3<f64>) -> Rotation3<f64> {
+    Rotation3::from_matrix_eps(m, 1e-15, 50, Rotation3::from_matrix_unchecked(*m))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -84,7 +89,17 @@ mod tests {
     #[test]
     fn log_inverts_exp_including_small_and_near_pi_angles() {
         let axis = Vector3::new(0.3, -0.5, 0.8).normalize();
-        for &angle in &[0.0, 1e-12, 1e-9, 1e-3, 1.0, 2.0, 3.0, 3.14159, std::f64::consts::PI] {
+        for &angle in &[
+            0.0,
+            1e-12,
+            1e-9,
+            1e-3,
+            1.0,
+            2.0,
+            3.0,
+            3.14159,
+            std::f64::consts::PI,
+        ] {
             let psi = axis * angle;
             let r = Rotation3::new(psi);
             let back = log(r.matrix());

@@ -87,12 +87,23 @@ fn write_origin(
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            SceneError::Io { path, source } => write!(f, "{path}: cannot read scene file: {source}"),
-            SceneError::Syntax { origin, location, message } => {
+            SceneError::Io { path, source } => {
+                write!(f, "{path}: cannot read scene file: {source}")
+            }
+            SceneError::Syntax {
+                origin,
+                location,
+                message,
+            } => {
                 write_origin(f, origin, *location)?;
                 write!(f, ": syntax error: {message}")
             }
-            SceneError::Structure { origin, location, field, message } => {
+            SceneError::Structure {
+                origin,
+                location,
+                field,
+                message,
+            } => {
                 write_origin(f, origin, *location)?;
                 write!(f, ": {field}: {message}")
             }
@@ -127,18 +138,33 @@ pub struct FieldError {
 
 impl FieldError {
     /// An error about `field` having `value`.
-    pub fn new(field: impl Into<String>, value: impl Into<String>, reason: impl Into<String>) -> Self {
-        Self { field: field.into(), value: Some(value.into()), reason: reason.into() }
+    pub fn new(
+        field: impl Into<String>,
+        value: impl Into<String>,
+        reason: impl Into<String>,
+    ) -> Self {
+        Self {
+            field: field.into(),
+            value: Some(value.into()),
+            reason: reason.into(),
+        }
     }
 
     /// An error about `field` as a whole (missing, empty, inconsistent).
     pub fn about(field: impl Into<String>, reason: impl Into<String>) -> Self {
-        Self { field: field.into(), value: None, reason: reason.into() }
+        Self {
+            field: field.into(),
+            value: None,
+            reason: reason.into(),
+        }
     }
 
     /// Attaches the origin, turning this into a [`SceneError`].
     pub fn at(self, origin: &str) -> SceneError {
-        SceneError::Invalid { origin: origin.to_string(), error: self }
+        SceneError::Invalid {
+            origin: origin.to_string(),
+            error: self,
+        }
     }
 }
 
@@ -157,8 +183,12 @@ mod tests {
 
     #[test]
     fn invalid_reads_field_value_reason() {
-        let e = FieldError::new("hoses[1].section.d_inner", "40 mm", "must be smaller than d_outer (35 mm)")
-            .at("scene.toml");
+        let e = FieldError::new(
+            "hoses[1].section.d_inner",
+            "40 mm",
+            "must be smaller than d_outer (35 mm)",
+        )
+        .at("scene.toml");
         assert_eq!(
             e.to_string(),
             "scene.toml: hoses[1].section.d_inner = 40 mm: must be smaller than d_outer (35 mm)"
@@ -174,7 +204,10 @@ mod tests {
             field: "hoses[0]".into(),
             message: "unknown field `sectoin`".into(),
         };
-        assert_eq!(e.to_string(), "a.toml:3:7: hoses[0]: unknown field `sectoin`");
+        assert_eq!(
+            e.to_string(),
+            "a.toml:3:7: hoses[0]: unknown field `sectoin`"
+        );
         assert_eq!(e.location(), Some((3, 7)));
     }
 }

@@ -52,17 +52,17 @@ pub enum FormatTag {
 #[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SimulationSection {
-    /// Gravitational acceleration [m/s²]. Default `[0, 0, -9.81]`; `[0, 0, 0]` switches
+    /// Gravitational acceleration (m/s²). Default `[0, 0, -9.81]`; `[0, 0, 0]` switches
     /// gravity off.
     pub gravity: Option<Vec3>,
-    /// Mass-proportional Rayleigh damping α [1/s], ≥ 0. Default 1.0.
+    /// Mass-proportional Rayleigh damping α (1/s), ≥ 0. Default 1.0.
     pub damping_mass_per_s: Option<f64>,
-    /// Stiffness-proportional Rayleigh damping β [s], ≥ 0. Default: chosen automatically
+    /// Stiffness-proportional Rayleigh damping β (s), ≥ 0. Default: chosen automatically
     /// by the physics core.
     pub damping_stiffness_s: Option<f64>,
     /// Safety factor on the stable explicit time step, in (0, 1]. Default 0.5.
     pub time_step_safety: Option<f64>,
-    /// Fixed time step [s], > 0. Default: computed from the model.
+    /// Fixed time step (s), > 0. Default: computed from the model.
     pub time_step_s: Option<f64>,
 }
 
@@ -70,7 +70,7 @@ pub struct SimulationSection {
 #[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSection {
-    /// Interval between recorded states [s], ≥ 0; 0 records every step. Default 0.01.
+    /// Interval between recorded states (s), ≥ 0; 0 records every step. Default 0.01.
     pub record_interval_s: Option<f64>,
 }
 
@@ -78,16 +78,16 @@ pub struct OutputSection {
 #[derive(Clone, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialEntry {
-    /// Young's modulus in tension E_t [MPa], > 0.
+    /// Young's modulus in tension E_t (MPa), > 0.
     pub e_tension_mpa: f64,
-    /// Young's modulus in compression E_c [MPa], > 0.
+    /// Young's modulus in compression E_c (MPa), > 0.
     pub e_compression_mpa: f64,
-    /// Bending modulus [MPa], > 0. Default: the reduced bimodular modulus
+    /// Bending modulus (MPa), > 0. Default: the reduced bimodular modulus
     /// E_b = 4 E_t E_c / (√E_t + √E_c)².
     pub e_bending_mpa: Option<f64>,
     /// Poisson's ratio ν, in (−1, 0.5).
     pub poisson: f64,
-    /// Density ρ [kg/m³], > 0.
+    /// Density ρ (kg/m³), > 0.
     pub density_kg_m3: f64,
 }
 
@@ -196,70 +196,90 @@ pub struct RotateEntry {
     pub angle_deg: f64,
 }
 
-/// `[[timeline]]`: one action, chosen by `action`.
-#[derive(Clone, Debug, Deserialize, JsonSchema)]
+/// `[[timeline]]`: one action, chosen by `action`; the other fields depend on it.
+// Deserialised by hand (module `action_de`) so that errors inside an action keep their
+// full field path; the serde attributes here describe the shape for the schema.
+#[derive(Clone, Debug, JsonSchema)]
 #[serde(tag = "action", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ActionEntry {
     /// Hold the node in all six degrees of freedom where it is now.
-    Fix {
-        /// Hose name.
-        hose: String,
-        /// Node index; negative counts from the end (−1 = last).
-        node: i64,
-    },
+    Fix(NodeEntry),
     /// Drive the node along waypoints and/or rotate it; it stays held afterwards.
-    Move {
-        /// Hose name.
-        hose: String,
-        /// Node index; negative counts from the end (−1 = last).
-        node: i64,
-        /// Absolute waypoints (length unit); the last is the target. Excludes `by`.
-        to: Option<Points>,
-        /// Waypoints as offsets from the node's position when the move starts (length
-        /// unit). Excludes `to`.
-        by: Option<Points>,
-        /// Rotation applied on top of the node's orientation over the move.
-        rotate: Option<RotateEntry>,
-        /// Duration of the move [s], > 0.
-        duration_s: f64,
-        /// Whether the timeline waits for the move to end. Default true.
-        wait: Option<bool>,
-    },
+    Move(MoveEntry),
     /// Add a constant force and/or moment (global frame) at the node.
-    Load {
-        /// Hose name.
-        hose: String,
-        /// Node index; negative counts from the end (−1 = last).
-        node: i64,
-        /// Force [N]. Default zero; at least one of `force_n`, `moment_nm`.
-        force_n: Option<Vec3>,
-        /// Moment [N·m]. Default zero; at least one of `force_n`, `moment_nm`.
-        moment_nm: Option<Vec3>,
-    },
+    Load(LoadEntry),
     /// Remove all loads from the node.
-    Unload {
-        /// Hose name.
-        hose: String,
-        /// Node index; negative counts from the end (−1 = last).
-        node: i64,
-    },
+    Unload(NodeEntry),
     /// Remove the fix / drive from the node.
-    Release {
-        /// Hose name.
-        hose: String,
-        /// Node index; negative counts from the end (−1 = last).
-        node: i64,
-    },
+    Release(NodeEntry),
     /// Simulate for a while.
-    Run {
-        /// Duration [s], > 0.
-        duration_s: f64,
-    },
+    Run(RunEntry),
     /// Simulate until the hoses come to rest.
-    Settle {
-        /// Rest threshold on the total kinetic energy [J], > 0. Default 1e-6.
-        kinetic_energy_j: Option<f64>,
-        /// Give up after this long [s], > 0. Default 30.
-        max_duration_s: Option<f64>,
-    },
+    Settle(SettleEntry),
+}
+
+/// The names of the `action` values, in the order of [`ActionEntry`].
+pub const ACTION_NAMES: [&str; 7] = ["fix", "move", "load", "unload", "release", "run", "settle"];
+
+/// `fix`, `unload`, `release`: a node of a hose.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct NodeEntry {
+    /// Hose name.
+    pub hose: String,
+    /// Node index; negative counts from the end (−1 = last).
+    pub node: i64,
+}
+
+/// `move`: drive a node along waypoints and/or rotate it.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MoveEntry {
+    /// Hose name.
+    pub hose: String,
+    /// Node index; negative counts from the end (−1 = last).
+    pub node: i64,
+    /// Absolute waypoints (length unit); the last is the target. Excludes `by`.
+    pub to: Option<Points>,
+    /// Waypoints as offsets from the node's position when the move starts (length
+    /// unit). Excludes `to`.
+    pub by: Option<Points>,
+    /// Rotation applied on top of the node's orientation over the move.
+    pub rotate: Option<RotateEntry>,
+    /// Duration of the move (s), > 0.
+    pub duration_s: f64,
+    /// Whether the timeline waits for the move to end. Default true.
+    pub wait: Option<bool>,
+}
+
+/// `load`: a constant force and/or moment at a node.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LoadEntry {
+    /// Hose name.
+    pub hose: String,
+    /// Node index; negative counts from the end (−1 = last).
+    pub node: i64,
+    /// Force (N) in the global frame. Default zero; give `force_n` and/or `moment_nm`.
+    pub force_n: Option<Vec3>,
+    /// Moment (N·m) in the global frame. Default zero; give `force_n` and/or `moment_nm`.
+    pub moment_nm: Option<Vec3>,
+}
+
+/// `run`: simulate for a while.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RunEntry {
+    /// Duration (s), > 0.
+    pub duration_s: f64,
+}
+
+/// `settle`: simulate until the hoses come to rest.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SettleEntry {
+    /// Rest threshold on the total kinetic energy (J), > 0. Default 1e-6.
+    pub kinetic_energy_j: Option<f64>,
+    /// Give up after this long (s), > 0. Default 30.
+    pub max_duration_s: Option<f64>,
 }

@@ -1,1 +1,34 @@
-pub fn x() {}
+//! Pliant scene files (SPEC §5, M1–M4, L1–L3): a versioned TOML (or JSON) format with a
+//! JSON Schema, the built-in material library, centre-line discretisation and thorough
+//! validation. Loading is a pure function from text to a [`LoadedScene`] in SI units —
+//! a core [`pliant_core::WorldSpec`] plus a [`pliant_assembly::Timeline`] — or a
+//! [`SceneError`] that names the field, the value and the reason. Nothing is ever
+//! half-loaded.
+//!
+//! The format is documented in `docs/scene-format.md`; its schema is
+//! `docs/scene.schema.json` (see [`scene_schema_json`]).
+
+mod action_de;
+pub mod centerline;
+pub mod error;
+pub mod format;
+pub mod hoses;
+pub mod library;
+pub mod load;
+pub mod materials;
+pub mod scene;
+pub mod schema;
+pub mod settings;
+pub mod timeline;
+pub mod units;
+pub mod validate;
+
+pub use error::{FieldError, SceneError};
+pub use library::{Library, LibraryEntry, LibraryValue, Provenance};
+pub use load::{
+    demo_scene, load_scene_file, load_scene_json_str, load_scene_str, DEMO_SCENE_TOML, FORMAT_TAG,
+    FORMAT_VERSION,
+};
+pub use scene::{HoseInfo, LoadedScene};
+pub use schema::scene_schema_json;
+pub use units::LengthUnit;

@@ -59,7 +59,9 @@ impl Library {
         BUILTIN
             .get_or_init(|| Library::parse(LIBRARY_TOML))
             .as_ref()
-            .map_err(|message| SceneError::Library { message: message.clone() })
+            .map_err(|message| SceneError::Library {
+                message: message.clone(),
+            })
     }
 
     /// Reads a library file in the format of `data/materials.toml`.
@@ -125,7 +127,11 @@ impl RawValue {
         if !self.value.is_finite() {
             return Err(format!("{entry}.{key}: value must be finite"));
         }
-        Ok(LibraryValue { key: key.to_string(), value: self.value, provenance })
+        Ok(LibraryValue {
+            key: key.to_string(),
+            value: self.value,
+            provenance,
+        })
     }
 }
 
@@ -142,7 +148,9 @@ impl RawEntry {
         ];
         let [d_i, d_a, e_c, e_t, rho, nu] = [0, 1, 2, 3, 4, 5].map(|i| values[i].value);
         if !(d_i >= 0.0 && d_a > d_i && e_c > 0.0 && e_t > 0.0 && rho > 0.0) {
-            return Err(format!("{name}: needs 0 <= d_inner < d_outer and positive moduli and density"));
+            return Err(format!(
+                "{name}: needs 0 <= d_inner < d_outer and positive moduli and density"
+            ));
         }
         if !(nu > -1.0 && nu < 0.5) {
             return Err(format!("{name}.poisson: must lie in (-1, 0.5)"));
@@ -183,7 +191,10 @@ mod tests {
     #[test]
     fn builtin_library_matches_spec_table() {
         let lib = Library::builtin().expect("library parses");
-        assert_eq!(lib.names(), vec!["hose1", "hose2", "hose3", "hose4", "hose5"]);
+        assert_eq!(
+            lib.names(),
+            vec!["hose1", "hose2", "hose3", "hose4", "hose5"]
+        );
         for (name, d_i, d_a, e_c, e_t) in SPEC_TABLE {
             let e = lib.get(name).expect("entry exists");
             assert!(close(e.section.d_inner, d_i * 1e-3), "{name} d_i");
@@ -204,7 +215,8 @@ mod tests {
             assert_eq!(e.values.len(), 6);
             for v in &e.values {
                 let is_assumption = matches!(v.provenance, Provenance::Assumption(_));
-                let should_be = v.key == "poisson" || (v.key == "density_kg_m3" && e.name != "hose1");
+                let should_be =
+                    v.key == "poisson" || (v.key == "density_kg_m3" && e.name != "hose1");
                 assert_eq!(is_assumption, should_be, "{}.{}", e.name, v.key);
                 if let Provenance::Source(s) = &v.provenance {
                     assert!(s.contains("dissertation"), "{}.{}", e.name, v.key);

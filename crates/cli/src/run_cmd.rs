@@ -1,0 +1,93 @@
+//! `pliant run [SCENE] [--out DIR]`: load a scene, run its timeline, write the outputs.
+
+use crate::recorder::Recorder;
+use crate::summary::{final_state, peak_rows, peak_table, Summary};
+use anyhow::Context;
+use pliant_assembly::Runner;
+use pliant_core::{Model, State};
+use pliant_scene::{demo_scene, load_scene_file};
+use std::path::Path;
+use std::process::ExitCode;
+use std::time::Instant;
+
+pub fn run(scene_path: Option<&Path>, out: &Path, quiet: bool) -> anyhow::Result<ExitCode> {
+    let scene = match scene_path {
+        Some(p) => load_scene_file(p)?,
+        None => demo_scene()?,
+    };
+    let model = Model::build(&scene.world)
+        .with_context(|| format!("building the model of {}", scene.source))?;
+    std::fs::create_dir_all(out)
+        .with_context(|| format!("creating output folder {}", out.display()))?;
+    let elements = model.elements.len();
+    eprintln!(
+        "pliant: scene '{}' ({}): {} hose(s), {} elements, time step {:.3e} s (stable limit {:.3e} s, safety {})",
+        scene.name,
+        scene.source,
+        model.hoses.len(),
+        elements,
+        model.time_step,
+        model.time_step_report.critical,
+        model.time_step_report.safety
+    );
+    let planned = Runner::planned_duration(&scene.timeline);
+    let mut recorder = Recorder::create(out, &model, scene.record_interval, planned, quiet)
+        .with_context(|| format!("creating output files in {}", out.display()))?;
+    let mut state = State::at_rest(&model);
+    let started = Instant::now();
+    let outcome = Runner::new(&model).run(&scene.timeline, &mut state, &mut recorder);
+    let wall = started.elapsed().as_secs_f64();
+    recorder.finish(&model, &state).context("writing outputs")?;
+    let (run, diverged) = match outcome {
+        Ok(run) => (run, None),
+        Err(e) => (e.partial.clone(), Some(e.divergence.to_string())),
+    };
+    let summary = Summary {
+        pliant_version: env!("CARGO_PKG_VERSION"),
+        scene: scene.name.clone(),
+        source: scene.source.clone(),
+        completed: diverged.is_none(),
+        diverged: diverged.clone(),
+        steps: run.steps,
+        simulated_time_s: run.simulated_time,
+        time_step_s: model.time_step,
+        time_step: model.time_step_report.clone(),
+        wall_time_s: wall,
+        realtime_factor: run.simulated_time / wall.max(1e-9),
+        elements,
+        actions_completed: run.actions_completed,
+        settles: run.settles.clone(),
+        peaks: peak_rows(&model, &run),
+        final_state: final_state(&model, &state),
+    };
+    let path = out.join("summary.json");
+    std::fs::write(&path, serde_json::to_string_pretty(&summary)?)
+        .with_context(|| format!("writing {}", path.display()))?;
+    println!("{}", peak_table(&summary.peaks));
+    for s in &summary.settles {
+        let word = if s.at_rest {
+            "at rest"
+        } else {
+            "NOT at rest (max duration reached)"
+        };
+        println!(
+            "settle (action {}): {word} at t = {:.3} s, kinetic energy {:.3e} J",
+            s.action + 1,
+            s.time,
+            s.kinetic_energy
+        );
+    }
+    println!(
+        "{} steps, {:.3} s simulated in {:.3} s wall ({:.1}× real time); outputs in {}",
+        summary.steps,
+        summary.simulated_time_s,
+        wall,
+        summary.realtime_factor,
+        out.display()
+    );
+    if let Some(msg) = diverged {
+        eprintln!("error: {msg}\n(outputs hold the run up to the last healthy state)");
+        return Ok(ExitCode::from(3));
+    }
+    Ok(ExitCode::SUCCESS)
+}

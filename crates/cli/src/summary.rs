@@ -1,0 +1,111 @@
+//! `summary.json` and the peak-load table printed after a run.
+
+use comfy_table::{presets::UTF8_FULL_CONDENSED, Table};
+use pliant_assembly::{RunSummary, SettleOutcome};
+use pliant_core::timestep::TimeStepReport;
+use pliant_core::{Model, State};
+use serde::Serialize;
+
+#[derive(Serialize)]
+pub struct PeakRow {
+    pub hose: String,
+    pub hose_index: usize,
+    pub node: usize,
+    pub max_force_n: f64,
+    pub max_force_time_s: f64,
+    pub max_moment_nm: f64,
+    pub max_moment_time_s: f64,
+    pub final_force_n: [f64; 3],
+    pub final_moment_nm: [f64; 3],
+}
+
+#[derive(Serialize)]
+pub struct FinalHose {
+    pub name: String,
+    /// Node positions [m].
+    pub positions_m: Vec<[f64; 3]>,
+    /// Node orientations as unit quaternions (w, x, y, z).
+    pub orientations: Vec<[f64; 4]>,
+}
+
+#[derive(Serialize)]
+pub struct Summary {
+    pub pliant_version: &'static str,
+    pub scene: String,
+    pub source: String,
+    pub completed: bool,
+    pub diverged: Option<String>,
+    pub steps: u64,
+    pub simulated_time_s: f64,
+    pub time_step_s: f64,
+    pub time_step: TimeStepReport,
+    pub wall_time_s: f64,
+    pub realtime_factor: f64,
+    pub elements: usize,
+    pub actions_completed: usize,
+    pub settles: Vec<SettleOutcome>,
+    pub peaks: Vec<PeakRow>,
+    pub final_state: Vec<FinalHose>,
+}
+
+pub fn peak_rows(model: &Model, run: &RunSummary) -> Vec<PeakRow> {
+    run.peaks
+        .iter()
+        .map(|p| PeakRow {
+            hose: model.hoses[p.hose].name.clone(),
+            hose_index: p.hose,
+            node: p.node,
+            max_force_n: p.max_force,
+            max_force_time_s: p.max_force_time,
+            max_moment_nm: p.max_moment,
+            max_moment_time_s: p.max_moment_time,
+            final_force_n: p.last_force.to_array(),
+            final_moment_nm: p.last_moment.to_array(),
+        })
+        .collect()
+}
+
+pub fn final_state(model: &Model, state: &State) -> Vec<FinalHose> {
+    model
+        .hoses
+        .iter()
+        .map(|h| FinalHose {
+            name: h.name.clone(),
+            positions_m: h.nodes().map(|i| state.x[i].to_array()).collect(),
+            orientations: h
+                .nodes()
+                .map(|i| [state.q[i].w, state.q[i].x, state.q[i].y, state.q[i].z])
+                .collect(),
+        })
+        .collect()
+}
+
+/// The table printed at the end of `pliant run`.
+pub fn peak_table(rows: &[PeakRow]) -> Table {
+    let mut table = Table::new();
+    table.load_preset(UTF8_FULL_CONDENSED);
+    table.set_header(vec![
+        "hose",
+        "node",
+        "peak |F| [N]",
+        "at [s]",
+        "peak |M| [N·m]",
+        "at [s]",
+        "final |F| [N]",
+        "final |M| [N·m]",
+    ]);
+    for r in rows {
+        let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        table.add_row(vec![
+            r.hose.clone(),
+            r.node.to_string(),
+            format!("{:.3}", r.max_force_n),
+            format!("{:.3}", r.max_force_time_s),
+            format!("{:.4}", r.max_moment_nm),
+            format!("{:.3}", r.max_moment_time_s),
+            format!("{:.3}", norm(r.final_force_n)),
+            format!("{:.4}", norm(r.final_moment_nm)),
+        ]);
+    }
+    table
+}

@@ -1,0 +1,238 @@
+//! Building one hose: material and cross-section, centre line, element count, rest
+//! nodes with imperfections, normal hint (SPEC M1–M3).
+
+use crate::centerline::{element_count, Centerline, CurveError, Resolution, Segment, MAX_ELEMENTS};
+use crate::error::FieldError;
+use crate::format::{HoseEntry, SectionEntry, SegmentEntry, Vec3};
+use crate::materials::Materials;
+use crate::scene::HoseInfo;
+use crate::units::{fmt_vec, LengthUnit};
+use crate::validate::{
+    finite_vec, node_index, non_negative, non_zero_vec, positive, vec_with_unit, with_unit,
+};
+use glam::DVec3;
+use pliant_core::{HoseSpec, Section};
+
+/// Default element length as a multiple of the outer diameter (SPEC M1: 1–2 d_a).
+pub const DEFAULT_ELEMENT_LENGTH_PER_D_OUTER: f64 = 1.5;
+
+/// Checks and builds `hoses[index]`.
+pub fn build_hose(
+    index: usize,
+    raw: &HoseEntry,
+    unit: LengthUnit,
+    materials: &Materials,
+) -> Result<(HoseSpec, HoseInfo), FieldError> {
+    let at = |rest: &str| format!("hoses[{index}].{rest}");
+    let u = unit.symbol();
+    let scale = unit.to_metres();
+
+    if raw.name.trim().is_empty() {
+        return Err(FieldError::new(
+            at("name"),
+            "\"\"",
+            "a hose name must not be empty",
+        ));
+    }
+    let resolved = materials.resolve(&at("material"), &raw.material)?;
+    let section = match (&raw.section, resolved.default_section) {
+        (Some(s), _) => section(&at("section"), s, unit)?,
+        (None, Some(default)) => default,
+        (None, None) => {
+            return Err(FieldError::about(
+                at("section"),
+                format!(
+                    "required because material \"{}\" is not a library hose",
+                    raw.material
+                ),
+            ))
+        }
+    };
+
+    let resolution = match (raw.elements, raw.element_length) {
+        (Some(_), Some(_)) => {
+            return Err(FieldError::about(
+                at("elements"),
+                "give either elements or element_length, not both",
+            ))
+        }
+        (Some(0), None) => return Err(FieldError::new(at("elements"), "0", "must be at least 1")),
+        (Some(n), None) => Resolution::Elements(n as usize),
+        (None, Some(l)) => {
+            Resolution::ElementLength(positive(&at("element_length"), l, u)? * scale)
+        }
+        (None, None) => {
+            Resolution::ElementLength(DEFAULT_ELEMENT_LENGTH_PER_D_OUTER * section.d_outer)
+        }
+    };
+
+    if raw.path.is_empty() {
+        return Err(FieldError::about(
+            at("path"),
+            "a hose needs at least one segment",
+        ));
+    }
+    let start = finite_vec(&at("start"), raw.start, u)? * scale;
+    let segments = raw
+        .path
+        .iter()
+        .enumerate()
+        .map(|(k, s)| segment(&at(&format!("path[{k}]")), s, unit))
+        .collect::<Result<Vec<_>, _>>()?;
+    let curve = Centerline::new(start, &segments).map_err(|e| curve_error(index, raw, e, unit))?;
+    let length = curve.length();
+    let count = element_count(length, resolution, curve.min_arc_radius()).ok_or_else(|| {
+        FieldError::about(
+            at("path"),
+            format!(
+                "a centre line of {} needs more than {MAX_ELEMENTS} elements at the requested resolution (or at ≥ 4 elements per quarter circle of its tightest arc)",
+                with_unit((length / scale * 1e3).round() / 1e3, u)
+            ),
+        )
+    })?;
+    let mut nodes = curve.discretise(count.count);
+
+    // Index of the imperfection entry that last moved each node, for error messages.
+    let mut moved_by: Vec<Option<usize>> = vec![None; nodes.len()];
+    for (k, imp) in raw.imperfection.iter().enumerate() {
+        let node = node_index(
+            &at(&format!("imperfection[{k}].node")),
+            imp.node,
+            nodes.len(),
+            &raw.name,
+        )?;
+        nodes[node] +=
+            finite_vec(&at(&format!("imperfection[{k}].offset")), imp.offset, u)? * scale;
+        moved_by[node] = Some(k);
+    }
+    let extent = nodes
+        .iter()
+        .fold(0.0_f64, |m, p| m.max(p.length()))
+        .max(length);
+    for i in 1..nodes.len() {
+        if (nodes[i] - nodes[i - 1]).length() <= 1e-12 * extent {
+            let (moved, other) = if moved_by[i].is_some() {
+                (i, i - 1)
+            } else {
+                (i - 1, i)
+            };
+            let reason = format!(
+                "moves node {moved} onto node {other}: neighbouring nodes must be distinct"
+            );
+            return Err(match moved_by[moved] {
+                Some(k) => FieldError::new(
+                    at(&format!("imperfection[{k}].offset")),
+                    vec_with_unit(raw.imperfection[k].offset, u),
+                    reason,
+                ),
+                None => FieldError::about(at("imperfection"), reason),
+            });
+        }
+    }
+
+    let normal_hint = match raw.normal_hint {
+        Some(h) => {
+            let d = non_zero_vec(&at("normal_hint"), h, "")?;
+            let tangent = (nodes[1] - nodes[0]).normalize();
+            if d.normalize().cross(tangent).length() < 1e-6 {
+                return Err(FieldError::new(
+                    at("normal_hint"),
+                    fmt_vec(h),
+                    format!(
+                        "must not be parallel to the hose's first tangent {}",
+                        fmt_vec(tangent.to_array())
+                    ),
+                ));
+            }
+            Some(d.normalize())
+        }
+        None => None,
+    };
+
+    let info = HoseInfo {
+        name: raw.name.clone(),
+        length,
+        elements: count.count,
+        requested_elements: count.requested,
+        raised_for_arcs: count.raised_for_arcs,
+        element_length: length / count.count as f64,
+    };
+    let spec = HoseSpec {
+        name: raw.name.clone(),
+        material: resolved.material,
+        nodes,
+        sections: vec![section],
+        normal_hint,
+    };
+    Ok((spec, info))
+}
+
+/// Checks a cross-section (file units) and converts it to metres.
+fn section(field: &str, s: &SectionEntry, unit: LengthUnit) -> Result<Section, FieldError> {
+    let u = unit.symbol();
+    let d_outer = positive(&format!("{field}.d_outer"), s.d_outer, u)?;
+    let d_inner = non_negative(&format!("{field}.d_inner"), s.d_inner, u)?;
+    if d_inner >= d_outer {
+        return Err(FieldError::new(
+            format!("{field}.d_inner"),
+            with_unit(d_inner, u),
+            format!("must be smaller than d_outer ({})", with_unit(d_outer, u)),
+        ));
+    }
+    let scale = unit.to_metres();
+    Ok(Section::new(d_inner * scale, d_outer * scale))
+}
+
+/// Checks a path segment's points (file units) and converts them to metres.
+fn segment(field: &str, s: &SegmentEntry, unit: LengthUnit) -> Result<Segment, FieldError> {
+    let (u, scale) = (unit.symbol(), unit.to_metres());
+    let point =
+        |name: &str, p: Vec3| finite_vec(&format!("{field}.{name}"), p, u).map(|v| v * scale);
+    Ok(match s {
+        SegmentEntry::Line { to } => Segment::Line {
+            to: point("line.to", *to)?,
+        },
+        SegmentEntry::Arc { via, to } => Segment::Arc {
+            via: point("arc.via", *via)?,
+            to: point("arc.to", *to)?,
+        },
+        SegmentEntry::Spline { through, to } => Segment::Spline {
+            through: through
+                .iter()
+                .enumerate()
+                .map(|(j, p)| point(&format!("spline.through[{j}]"), *p))
+                .collect::<Result<Vec<DVec3>, _>>()?,
+            to: point("spline.to", *to)?,
+        },
+    })
+}
+
+/// The raw point named by a curve error's `part`, if it names one.
+fn raw_point(s: &SegmentEntry, part: &str) -> Option<Vec3> {
+    match (s, part) {
+        (SegmentEntry::Line { to }, "line.to") | (SegmentEntry::Arc { to, .. }, "arc.to") => {
+            Some(*to)
+        }
+        (SegmentEntry::Arc { via, .. }, "arc.via") => Some(*via),
+        (SegmentEntry::Spline { to, .. }, "spline.to") => Some(*to),
+        (SegmentEntry::Spline { through, .. }, p) => p
+            .strip_prefix("spline.through[")
+            .and_then(|r| r.strip_suffix(']'))
+            .and_then(|j| j.parse::<usize>().ok())
+            .and_then(|j| through.get(j).copied()),
+        _ => None,
+    }
+}
+
+/// Turns a centre-line error into a field error with the point as written.
+fn curve_error(index: usize, raw: &HoseEntry, e: CurveError, unit: LengthUnit) -> FieldError {
+    let field = if e.part.is_empty() {
+        format!("hoses[{index}].path[{}]", e.segment)
+    } else {
+        format!("hoses[{index}].path[{}].{}", e.segment, e.part)
+    };
+    match raw.path.get(e.segment).and_then(|s| raw_point(s, &e.part)) {
+        Some(p) => FieldError::new(field, vec_with_unit(p, unit.symbol()), e.reason),
+        None => FieldError::about(field, e.reason),
+    }
+}

@@ -1,0 +1,337 @@
+//! Loading a scene: text → checked header (format, version) → raw [`SceneFile`] (typed,
+//! with line/column on any shape error) → [`LoadedScene`] (checked, SI). A pure function
+//! of the text: it returns a complete scene or an error, never part of one.
+
+use crate::action_de::INNER_PATH_PREFIX;
+use crate::error::{FieldError, SceneError};
+use crate::format::SceneFile;
+use crate::hoses::build_hose;
+use crate::library::Library;
+use crate::materials::Materials;
+use crate::scene::LoadedScene;
+use crate::settings::{build_record_interval, build_settings};
+use crate::timeline::{build_timeline, HoseNodes};
+use pliant_core::WorldSpec;
+use serde::Deserialize;
+use std::path::Path;
+
+/// The format tag every scene file starts with.
+pub const FORMAT_TAG: &str = "pliant-scene";
+/// The scene format version this build reads.
+pub const FORMAT_VERSION: i64 = 1;
+
+/// The built-in demo scene's text (`examples/demo.toml`).
+pub const DEMO_SCENE_TOML: &str = include_str!("../../../examples/demo.toml");
+
+/// Loads a scene file; `.json` files are read as JSON, everything else as TOML.
+pub fn load_scene_file(path: &Path) -> Result<LoadedScene, SceneError> {
+    let origin = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: origin.clone(),
+        source,
+    })?;
+    let is_json = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+    if is_json {
+        load_scene_json_str(&text, &origin)
+    } else {
+        load_scene_str(&text, &origin)
+    }
+}
+
+/// Loads a scene from TOML text; `origin` names it in errors (e.g. the file name).
+pub fn load_scene_str(text: &str, origin: &str) -> Result<LoadedScene, SceneError> {
+    let file = parse_toml(text, origin)?;
+    build_scene(&file, text, origin)
+}
+
+/// Loads a scene from JSON text (same structure as the TOML format).
+pub fn load_scene_json_str(text: &str, origin: &str) -> Result<LoadedScene, SceneError> {
+    let file = parse_json(text, origin)?;
+    build_scene(&file, text, origin)
+}
+
+/// The built-in demo scene.
+pub fn demo_scene() -> Result<LoadedScene, SceneError> {
+    load_scene_str(DEMO_SCENE_TOML, "examples/demo.toml (built in)")
+}
+
+/// 1-based line and column of a byte offset.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
+/// The header's two values in a form common to TOML and JSON.
+enum HeaderValue {
+    Str(String),
+    Int(i64),
+    Other(String),
+}
+
+/// Checks `format` and `version` before anything else, so that a file of another kind or
+/// version gets a clear error rather than a list of unknown fields.
+fn check_header(
+    origin: &str,
+    format: Option<(HeaderValue, Option<(usize, usize)>)>,
+    version: Option<(HeaderValue, Option<(usize, usize)>)>,
+) -> Result<(), SceneError> {
+    let structure = |location, field: &str, message: String| SceneError::Structure {
+        origin: origin.to_string(),
+        location,
+        field: field.to_string(),
+        message,
+    };
+    match format {
+        None => {
+            return Err(structure(
+                None,
+                "format",
+                format!("missing; a scene file must contain format = \"{FORMAT_TAG}\""),
+            ))
+        }
+        Some((HeaderValue::Str(s), _)) if s == FORMAT_TAG => {}
+        Some((value, location)) => {
+            let found = match value {
+                HeaderValue::Str(s) => format!("\"{s}\""),
+                HeaderValue::Int(i) => i.to_string(),
+                HeaderValue::Other(o) => o,
+            };
+            return Err(structure(
+                location,
+                "format",
+                format!("expected \"{FORMAT_TAG}\", found {found}: not a Pliant scene file"),
+            ));
+        }
+    }
+    match version {
+        None => Err(structure(
+            None,
+            "version",
+            format!("missing; this build reads version = {FORMAT_VERSION}"),
+        )),
+        Some((HeaderValue::Int(v), _)) if v == FORMAT_VERSION => Ok(()),
+        Some((HeaderValue::Int(v), location)) => Err(structure(
+            location,
+            "version",
+            format!(
+                "unsupported scene format version {v}; this build reads version {FORMAT_VERSION}"
+            ),
+        )),
+        Some((value, location)) => {
+            let found = match value {
+                HeaderValue::Str(s) => format!("\"{s}\""),
+                HeaderValue::Int(i) => i.to_string(),
+                HeaderValue::Other(o) => o,
+            };
+            Err(structure(
+                location,
+                "version",
+                format!("expected the integer {FORMAT_VERSION}, found {found}"),
+            ))
+        }
+    }
+}
+
+/// Makes serde's messages name the field itself where they name it only in the text.
+fn refine(path: String, message: String) -> (String, String) {
+    // Errors inside a timeline action carry their inner path (see `action_de`).
+    let (path, message) = match message
+        .strip_prefix(INNER_PATH_PREFIX)
+        .and_then(|rest| rest.split_once("`: "))
+    {
+        Some((inner, rest)) if path == "." => (inner.to_string(), rest.to_string()),
+        Some((inner, rest)) => (format!("{path}.{inner}"), rest.to_string()),
+        None => (path, message),
+    };
+    let named = ["missing field `", "unknown field `"]
+        .iter()
+        .find_map(|p| message.strip_prefix(p))
+        .and_then(|rest| rest.split('`').next())
+        .map(str::to_string);
+    let field = match named {
+        Some(name) if path == "." => name,
+        Some(name) if !path.ends_with(&name) => format!("{path}.{name}"),
+        _ if path == "." => "(top level)".to_string(),
+        _ => path,
+    };
+    let message = if message.contains("untagged enum Points") {
+        "expected a point [x, y, z] or a list of points [[x, y, z], …]".to_string()
+    } else if message.contains("wanted exactly 1 element") {
+        // Only path segments are externally tagged enums written as tables.
+        "a segment is a table with exactly one of `line`, `arc`, `spline`".to_string()
+    } else {
+        message
+    };
+    (field, message)
+}
+
+/// TOML header: only `format` and `version`, with their spans; other keys ignored.
+#[derive(Deserialize)]
+struct TomlHeader {
+    format: Option<toml::Spanned<toml::Value>>,
+    version: Option<toml::Spanned<toml::Value>>,
+}
+
+/// Parses TOML text into the raw scene structure (header checked first).
+pub fn parse_toml(text: &str, origin: &str) -> Result<SceneFile, SceneError> {
+    let header: TomlHeader = toml::from_str(text).map_err(|e| SceneError::Syntax {
+        origin: origin.to_string(),
+        location: e.span().map(|s| line_column(text, s.start)),
+        message: e.message().trim().to_string(),
+    })?;
+    let convert = |v: toml::Spanned<toml::Value>| {
+        let location = Some(line_column(text, v.span().start));
+        let value = match v.into_inner() {
+            toml::Value::String(s) => HeaderValue::Str(s),
+            toml::Value::Integer(i) => HeaderValue::Int(i),
+            other => HeaderValue::Other(other.to_string()),
+        };
+        (value, location)
+    };
+    check_header(
+        origin,
+        header.format.map(convert),
+        header.version.map(convert),
+    )?;
+    serde_path_to_error::deserialize(toml::Deserializer::new(text)).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        let (field, message) = refine(path, inner.message().trim().to_string());
+        SceneError::Structure {
+            origin: origin.to_string(),
+            location: inner.span().map(|s| line_column(text, s.start)),
+            field,
+            message,
+        }
+    })
+}
+
+/// JSON header: only `format` and `version`; other keys ignored.
+#[derive(Deserialize)]
+struct JsonHeader {
+    format: Option<serde_json::Value>,
+    version: Option<serde_json::Value>,
+}
+
+/// Parses JSON text into the raw scene structure (header checked first).
+pub fn parse_json(text: &str, origin: &str) -> Result<SceneFile, SceneError> {
+    let header: JsonHeader = serde_json::from_str(text).map_err(|e| SceneError::Syntax {
+        origin: origin.to_string(),
+        location: Some((e.line(), e.column())),
+        message: e.to_string(),
+    })?;
+    let convert = |v: serde_json::Value| {
+        let value = match v {
+            serde_json::Value::String(s) => HeaderValue::Str(s),
+            serde_json::Value::Number(n) if n.is_i64() => {
+                HeaderValue::Int(n.as_i64().unwrap_or_default())
+            }
+            other => HeaderValue::Other(other.to_string()),
+        };
+        (value, None)
+    };
+    check_header(
+        origin,
+        header.format.map(convert),
+        header.version.map(convert),
+    )?;
+    let mut de = serde_json::Deserializer::from_str(text);
+    serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        let location = Some((inner.line(), inner.column()));
+        // serde_json appends " at line L column C"; the location is reported separately.
+        let message = inner.to_string();
+        let message = message
+            .rsplit_once(" at line ")
+            .map_or(message.clone(), |(m, _)| m.to_string());
+        let (field, message) = refine(path, message);
+        SceneError::Structure {
+            origin: origin.to_string(),
+            location,
+            field,
+            message,
+        }
+    })
+}
+
+/// Checks a raw scene and converts it to SI.
+pub fn build_scene(file: &SceneFile, text: &str, origin: &str) -> Result<LoadedScene, SceneError> {
+    build(file, text, origin).map_err(|e| e.at(origin))
+}
+
+/// [`build_scene`] without the origin attached to errors.
+fn build(file: &SceneFile, text: &str, origin: &str) -> Result<LoadedScene, FieldError> {
+    let library = Library::builtin().map_err(|e| FieldError::about("materials", e.to_string()))?;
+    let materials = Materials::build(&file.materials, library)?;
+    let settings = build_settings(file.simulation.as_ref())?;
+    let record_interval = build_record_interval(file.output.as_ref())?;
+    if file.hoses.is_empty() {
+        return Err(FieldError::about(
+            "hoses",
+            "a scene needs at least one hose",
+        ));
+    }
+    let mut hoses = Vec::with_capacity(file.hoses.len());
+    let mut infos = Vec::with_capacity(file.hoses.len());
+    for (i, raw) in file.hoses.iter().enumerate() {
+        if let Some(first) = file.hoses[..i].iter().position(|h| h.name == raw.name) {
+            return Err(FieldError::new(
+                format!("hoses[{i}].name"),
+                format!("\"{}\"", raw.name),
+                format!("duplicate hose name (also hoses[{first}].name)"),
+            ));
+        }
+        let (spec, info) = build_hose(i, raw, file.length_unit, &materials)?;
+        hoses.push(spec);
+        infos.push(info);
+    }
+    let nodes: Vec<HoseNodes> = hoses
+        .iter()
+        .map(|h| HoseNodes {
+            name: &h.name,
+            nodes: h.nodes.len(),
+        })
+        .collect();
+    let timeline = build_timeline(&file.timeline, &nodes, file.length_unit)?;
+    let name = match &file.name {
+        Some(n) if !n.trim().is_empty() => n.clone(),
+        _ => Path::new(origin)
+            .file_stem()
+            .map_or_else(|| origin.to_string(), |s| s.to_string_lossy().into_owned()),
+    };
+    Ok(LoadedScene {
+        name,
+        hose_names: hoses.iter().map(|h| h.name.clone()).collect(),
+        world: WorldSpec { hoses, settings },
+        timeline,
+        record_interval,
+        hoses: infos,
+        length_unit: file.length_unit,
+        source: origin.to_string(),
+        text: text.to_string(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_column_counts_from_one() {
+        let t = "ab\ncdé\nf";
+        assert_eq!(line_column(t, 0), (1, 1));
+        assert_eq!(line_column(t, 3), (2, 1));
+        assert_eq!(line_column(t, 5), (2, 3));
+        assert_eq!(line_column(t, 6), (2, 3));
+        assert_eq!(line_column(t, 999), (3, 2));
+    }
+}

@@ -1,0 +1,114 @@
+//! Resolving materials: the scene's own `[materials]` (converted from MPa to Pa and
+//! checked) and the built-in library, which scene materials may not shadow.
+
+use crate::error::FieldError;
+use crate::format::MaterialEntry;
+use crate::library::Library;
+use crate::validate::{finite, positive, with_unit};
+use pliant_core::{Material, Section};
+use std::collections::BTreeMap;
+
+/// Materials a hose may name: the library's and the scene's own.
+pub struct Materials<'a> {
+    library: &'a Library,
+    user: BTreeMap<String, Material>,
+}
+
+/// A material looked up by name, with the library's default cross-section if it has one.
+pub struct Resolved {
+    /// The material, SI.
+    pub material: Material,
+    /// Default cross-section, SI (library hoses only).
+    pub default_section: Option<Section>,
+}
+
+impl<'a> Materials<'a> {
+    /// Checks and converts the scene's `[materials]`.
+    pub fn build(
+        raw: &BTreeMap<String, MaterialEntry>,
+        library: &'a Library,
+    ) -> Result<Self, FieldError> {
+        let mut user = BTreeMap::new();
+        for (name, entry) in raw {
+            let field = format!("materials.{name}");
+            if name.trim().is_empty() {
+                return Err(FieldError::about(
+                    field,
+                    "a material name must not be empty",
+                ));
+            }
+            if library.get(name).is_some() {
+                return Err(FieldError::about(
+                    field,
+                    format!(
+                        "the name is taken by the built-in library ({}); choose another name",
+                        library.names().join(", ")
+                    ),
+                ));
+            }
+            user.insert(name.clone(), user_material(&field, entry)?);
+        }
+        Ok(Self { library, user })
+    }
+
+    /// Looks up `name` for the field `field` (used in the error).
+    pub fn resolve(&self, field: &str, name: &str) -> Result<Resolved, FieldError> {
+        if let Some(entry) = self.library.get(name) {
+            return Ok(Resolved {
+                material: entry.material.clone(),
+                default_section: Some(entry.section),
+            });
+        }
+        if let Some(material) = self.user.get(name) {
+            return Ok(Resolved {
+                material: material.clone(),
+                default_section: None,
+            });
+        }
+        let user: Vec<&str> = self.user.keys().map(String::as_str).collect();
+        let scene = if user.is_empty() {
+            "none".to_string()
+        } else {
+            user.join(", ")
+        };
+        Err(FieldError::new(
+            field,
+            format!("\"{name}\""),
+            format!(
+                "unknown material; library materials: {}; scene materials: {scene}",
+                self.library.names().join(", ")
+            ),
+        ))
+    }
+}
+
+/// Checks one `[materials.NAME]` entry and converts it to SI.
+fn user_material(field: &str, m: &MaterialEntry) -> Result<Material, FieldError> {
+    let e_tension = positive(&format!("{field}.e_tension_mpa"), m.e_tension_mpa, "MPa")?;
+    let e_compression = positive(
+        &format!("{field}.e_compression_mpa"),
+        m.e_compression_mpa,
+        "MPa",
+    )?;
+    let e_bending = match m.e_bending_mpa {
+        Some(e) => Some(positive(&format!("{field}.e_bending_mpa"), e, "MPa")? * 1e6),
+        None => None,
+    };
+    let poisson_field = format!("{field}.poisson");
+    let poisson = finite(&poisson_field, m.poisson, "")?;
+    if !(poisson > -1.0 && poisson < 0.5) {
+        return Err(FieldError::new(
+            poisson_field,
+            with_unit(poisson, ""),
+            "must lie in (−1, 0.5)",
+        ));
+    }
+    let density = positive(&format!("{field}.density_kg_m3"), m.density_kg_m3, "kg/m³")?;
+    Ok(Material {
+        e_tension: e_tension * 1e6,
+        e_compression: e_compression * 1e6,
+        e_bending,
+        poisson,
+        density,
+    })
+}

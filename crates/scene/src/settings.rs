@@ -1,0 +1,61 @@
+//! Building the global settings: `[simulation]` into the core's [`SimSettings`] and
+//! `[output]` into the record interval. These are SI and unaffected by `length_unit`.
+
+use crate::error::FieldError;
+use crate::format::{OutputSection, SimulationSection};
+use crate::validate::{finite_vec, non_negative, positive, with_unit};
+use pliant_core::SimSettings;
+
+/// Default interval between recorded states (s).
+pub const DEFAULT_RECORD_INTERVAL: f64 = 0.01;
+
+/// Checks `[simulation]`; omitted values take [`SimSettings::default`].
+pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, FieldError> {
+    let default = SimSettings::default();
+    let Some(raw) = raw else { return Ok(default) };
+    let gravity = match raw.gravity {
+        Some(g) => finite_vec("simulation.gravity", g, "m/s²")?,
+        None => default.gravity,
+    };
+    let damping_mass = match raw.damping_mass_per_s {
+        Some(a) => non_negative("simulation.damping_mass_per_s", a, "1/s")?,
+        None => default.damping_mass,
+    };
+    let damping_stiffness = match raw.damping_stiffness_s {
+        Some(b) => Some(non_negative("simulation.damping_stiffness_s", b, "s")?),
+        None => default.damping_stiffness,
+    };
+    let time_step_safety = match raw.time_step_safety {
+        Some(f) => {
+            let f = positive("simulation.time_step_safety", f, "")?;
+            if f > 1.0 {
+                return Err(FieldError::new(
+                    "simulation.time_step_safety",
+                    with_unit(f, ""),
+                    "must lie in (0, 1]",
+                ));
+            }
+            f
+        }
+        None => default.time_step_safety,
+    };
+    let time_step = match raw.time_step_s {
+        Some(dt) => Some(positive("simulation.time_step_s", dt, "s")?),
+        None => default.time_step,
+    };
+    Ok(SimSettings {
+        gravity,
+        damping_mass,
+        damping_stiffness,
+        time_step_safety,
+        time_step,
+    })
+}
+
+/// Checks `[output]` and returns the record interval (s).
+pub fn build_record_interval(raw: Option<&OutputSection>) -> Result<f64, FieldError> {
+    match raw.and_then(|o| o.record_interval_s) {
+        Some(dt) => non_negative("output.record_interval_s", dt, "s"),
+        None => Ok(DEFAULT_RECORD_INTERVAL),
+    }
+}

@@ -1,0 +1,180 @@
+//! Building the timeline: hose names and node indices resolved, waypoints converted to
+//! metres, angles to radians, defaults filled in (SPEC L1–L3).
+
+use crate::error::FieldError;
+use crate::format::{
+    ActionEntry, LoadEntry, MoveEntry, NodeEntry, Points, RotateEntry, RunEntry, SettleEntry,
+};
+use crate::units::LengthUnit;
+use crate::validate::{finite, finite_vec, node_index, non_zero_vec, positive};
+use glam::DVec3;
+use pliant_assembly::{Action, MovePath, NodeRef, Rotation, Timeline};
+
+/// Default rest threshold of `settle` (J).
+pub const DEFAULT_SETTLE_KINETIC_ENERGY: f64 = 1e-6;
+/// Default time limit of `settle` (s).
+pub const DEFAULT_SETTLE_MAX_DURATION: f64 = 30.0;
+
+/// A hose as the timeline sees it: its name and node count.
+pub struct HoseNodes<'a> {
+    /// Hose name.
+    pub name: &'a str,
+    /// Number of nodes.
+    pub nodes: usize,
+}
+
+/// Checks and builds the timeline.
+pub fn build_timeline(
+    raw: &[ActionEntry],
+    hoses: &[HoseNodes],
+    unit: LengthUnit,
+) -> Result<Timeline, FieldError> {
+    let actions = raw
+        .iter()
+        .enumerate()
+        .map(|(i, a)| build_action(&format!("timeline[{i}]"), a, hoses, unit))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Timeline { actions })
+}
+
+/// Resolves `hose` and `node` of an action.
+fn node_ref(
+    field: &str,
+    hose: &str,
+    node: i64,
+    hoses: &[HoseNodes],
+) -> Result<NodeRef, FieldError> {
+    let index = hoses.iter().position(|h| h.name == hose).ok_or_else(|| {
+        let names: Vec<&str> = hoses.iter().map(|h| h.name).collect();
+        FieldError::new(
+            format!("{field}.hose"),
+            format!("\"{hose}\""),
+            format!("unknown hose; hoses: {}", names.join(", ")),
+        )
+    })?;
+    let node = node_index(&format!("{field}.node"), node, hoses[index].nodes, hose)?;
+    Ok(NodeRef { hose: index, node })
+}
+
+/// Checks waypoints and converts them to metres.
+fn waypoints(field: &str, points: &Points, unit: LengthUnit) -> Result<Vec<DVec3>, FieldError> {
+    let (u, scale) = (unit.symbol(), unit.to_metres());
+    match points {
+        Points::One(p) => Ok(vec![finite_vec(field, *p, u)? * scale]),
+        Points::Many(ps) if ps.is_empty() => {
+            Err(FieldError::new(field, "[]", "needs at least one waypoint"))
+        }
+        Points::Many(ps) => ps
+            .iter()
+            .enumerate()
+            .map(|(k, p)| finite_vec(&format!("{field}[{k}]"), *p, u).map(|v| v * scale))
+            .collect(),
+    }
+}
+
+/// Checks a rotation and converts it to a unit axis and radians.
+fn rotation(field: &str, r: &RotateEntry) -> Result<Rotation, FieldError> {
+    let axis = non_zero_vec(&format!("{field}.axis"), r.axis, "")?.normalize();
+    let angle = finite(&format!("{field}.angle_deg"), r.angle_deg, "°")?.to_radians();
+    Ok(Rotation { axis, angle })
+}
+
+/// Checks and builds one action.
+fn build_action(
+    field: &str,
+    a: &ActionEntry,
+    hoses: &[HoseNodes],
+    unit: LengthUnit,
+) -> Result<Action, FieldError> {
+    let sub = |name: &str| format!("{field}.{name}");
+    Ok(match a {
+        ActionEntry::Fix(NodeEntry { hose, node }) => Action::Fix {
+            node: node_ref(field, hose, *node, hoses)?,
+        },
+        ActionEntry::Unload(NodeEntry { hose, node }) => Action::Unload {
+            node: node_ref(field, hose, *node, hoses)?,
+        },
+        ActionEntry::Release(NodeEntry { hose, node }) => Action::Release {
+            node: node_ref(field, hose, *node, hoses)?,
+        },
+        ActionEntry::Move(MoveEntry {
+            hose,
+            node,
+            to,
+            by,
+            rotate,
+            duration_s,
+            wait,
+        }) => {
+            let node = node_ref(field, hose, *node, hoses)?;
+            let path = match (to, by) {
+                (Some(_), Some(_)) => {
+                    return Err(FieldError::about(
+                        field,
+                        "a move takes either `to` (absolute) or `by` (relative), not both",
+                    ))
+                }
+                (Some(p), None) => Some(MovePath::To(waypoints(&sub("to"), p, unit)?)),
+                (None, Some(p)) => Some(MovePath::By(waypoints(&sub("by"), p, unit)?)),
+                (None, None) => None,
+            };
+            let rotation = match rotate {
+                Some(r) => Some(rotation(&sub("rotate"), r)?),
+                None => None,
+            };
+            if path.is_none() && rotation.is_none() {
+                return Err(FieldError::about(
+                    field,
+                    "a move needs `to`, `by` or `rotate`",
+                ));
+            }
+            let duration = positive(&sub("duration_s"), *duration_s, "s")?;
+            Action::Move {
+                node,
+                path,
+                rotation,
+                duration,
+                wait: wait.unwrap_or(true),
+            }
+        }
+        ActionEntry::Load(LoadEntry {
+            hose,
+            node,
+            force_n,
+            moment_nm,
+        }) => {
+            let node = node_ref(field, hose, *node, hoses)?;
+            if force_n.is_none() && moment_nm.is_none() {
+                return Err(FieldError::about(
+                    field,
+                    "a load needs `force_n` and/or `moment_nm`",
+                ));
+            }
+            let force = finite_vec(&sub("force_n"), force_n.unwrap_or([0.0; 3]), "N")?;
+            let moment = finite_vec(&sub("moment_nm"), moment_nm.unwrap_or([0.0; 3]), "N·m")?;
+            Action::Load {
+                node,
+                force,
+                moment,
+            }
+        }
+        ActionEntry::Run(RunEntry { duration_s }) => Action::Run {
+            duration: positive(&sub("duration_s"), *duration_s, "s")?,
+        },
+        ActionEntry::Settle(SettleEntry {
+            kinetic_energy_j,
+            max_duration_s,
+        }) => Action::Settle {
+            kinetic_energy_threshold: positive(
+                &sub("kinetic_energy_j"),
+                kinetic_energy_j.unwrap_or(DEFAULT_SETTLE_KINETIC_ENERGY),
+                "J",
+            )?,
+            max_duration: positive(
+                &sub("max_duration_s"),
+                max_duration_s.unwrap_or(DEFAULT_SETTLE_MAX_DURATION),
+                "s",
+            )?,
+        },
+    })
+}

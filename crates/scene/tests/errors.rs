@@ -1,0 +1,315 @@
+//! Bad scene files: each kind of mistake gives an error that names the field and the
+//! reason, and loading never panics.
+
+use pliant_scene::{load_scene_json_str, load_scene_str, SceneError};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+/// A valid scene exercising every section; the cases below break one thing each.
+const BASE: &str = r#"
+format = "pliant-scene"
+version = 1
+name = "errors"
+length_unit = "mm"
+
+[simulation]
+gravity = [0, 0, -9.81]
+time_step_safety = 0.5
+
+[output]
+record_interval_s = 0.01
+
+[materials.rub]
+e_tension_mpa = 10
+e_compression_mpa = 12
+poisson = 0.49
+density_kg_m3 = 1000
+
+[[hoses]]
+name = "a"
+material = "hose3"
+section = { d_inner = 27, d_outer = 35 }
+elements = 4
+start = [0, 0, 0]
+path = [
+  { line = { to = [300, 0, 0] } },
+  { arc = { via = [400, 50, 0], to = [450, 150, 0] } },
+]
+imperfection = [{ node = 5, offset = [0, 0, 1] }]
+
+[[hoses]]
+name = "b"
+material = "rub"
+section = { d_inner = 10, d_outer = 16 }
+start = [0, 100, 0]
+path = [{ line = { to = [200, 100, 0] } }]
+
+[[timeline]]
+action = "fix"
+hose = "a"
+node = 0
+
+[[timeline]]
+action = "move"
+hose = "a"
+node = -1
+to = [[500, 0, 0], [600, 100, 0]]
+rotate = { axis = [1, 0, 0], angle_deg = 90 }
+duration_s = 2.0
+
+[[timeline]]
+action = "load"
+hose = "b"
+node = -1
+force_n = [0, 0, -5]
+
+[[timeline]]
+action = "settle"
+"#;
+
+/// One bad input: replacements applied to [`BASE`], the field the error must name
+/// (exactly, where it is about one field) and a piece of the reason.
+struct Case {
+    what: &'static str,
+    edits: &'static [(&'static str, &'static str)],
+    field: Option<&'static str>,
+    message: &'static [&'static str],
+}
+
+const CASES: &[Case] = &[
+    Case { what: "missing format", edits: &[("format = \"pliant-scene\"\n", "")], field: Some("format"), message: &["missing"] },
+    Case { what: "wrong format", edits: &[("\"pliant-scene\"", "\"pliant-scen\"")], field: Some("format"), message: &["expected \"pliant-scene\", found \"pliant-scen\""] },
+    Case { what: "unsupported version", edits: &[("version = 1", "version = 2")], field: Some("version"), message: &["unsupported scene format version 2", "reads version 1"] },
+    Case { what: "missing version", edits: &[("version = 1\n", "")], field: Some("version"), message: &["missing"] },
+    Case { what: "version not an integer", edits: &[("version = 1", "version = \"1\"")], field: Some("version"), message: &["expected the integer 1"] },
+    Case { what: "unknown length unit cm", edits: &[("\"mm\"", "\"cm\"")], field: Some("length_unit"), message: &["unknown variant `cm`", "`mm` or `m`"] },
+    Case { what: "length unit wrong case", edits: &[("\"mm\"", "\"MM\"")], field: Some("length_unit"), message: &["`MM`", "`mm` or `m`"] },
+    Case { what: "missing length unit", edits: &[("length_unit = \"mm\"\n", "")], field: Some("length_unit"), message: &["missing field"] },
+    Case { what: "missing required hose field", edits: &[("material = \"hose3\"\n", "")], field: Some("hoses[0].material"), message: &["missing field `material`"] },
+    Case { what: "unknown field (typo)", edits: &[("section = { d_inner = 27", "sectoin = { d_inner = 27")], field: Some("hoses[0].sectoin"), message: &["unknown field `sectoin`"] },
+    Case { what: "unknown field in a section table", edits: &[("d_inner = 27,", "d_innr = 27,")], field: Some("hoses[0].section.d_innr"), message: &["unknown field `d_innr`"] },
+    Case { what: "wrong type", edits: &[("elements = 4", "elements = \"ten\"")], field: Some("hoses[0].elements"), message: &["invalid type"] },
+    Case { what: "negative element count", edits: &[("elements = 4", "elements = -3")], field: Some("hoses[0].elements"), message: &["-3"] },
+    Case { what: "vector of two components", edits: &[("start = [0, 0, 0]", "start = [0, 0]")], field: Some("hoses[0].start"), message: &["invalid length 2"] },
+    Case { what: "negative outer diameter", edits: &[("d_outer = 35", "d_outer = -35")], field: Some("hoses[0].section.d_outer"), message: &["= -35 mm: must be greater than 0"] },
+    Case { what: "zero outer diameter", edits: &[("d_outer = 35", "d_outer = 0")], field: Some("hoses[0].section.d_outer"), message: &["= 0 mm: must be greater than 0"] },
+    Case { what: "negative inner diameter", edits: &[("d_inner = 27", "d_inner = -1")], field: Some("hoses[0].section.d_inner"), message: &["= -1 mm: must not be negative"] },
+    Case { what: "inner not smaller than outer", edits: &[("d_inner = 10, d_outer = 16", "d_inner = 40, d_outer = 35")], field: Some("hoses[1].section.d_inner"), message: &["hoses[1].section.d_inner = 40 mm: must be smaller than d_outer (35 mm)"] },
+    Case { what: "unknown material", edits: &[("material = \"hose3\"", "material = \"hose9\"")], field: Some("hoses[0].material"), message: &["\"hose9\": unknown material", "hose1, hose2, hose3, hose4, hose5", "rub"] },
+    Case { what: "material shadows the library", edits: &[("[materials.rub]", "[materials.hose1]")], field: Some("materials.hose1"), message: &["taken by the built-in library"] },
+    Case { what: "user material without section", edits: &[("section = { d_inner = 10, d_outer = 16 }\n", "")], field: Some("hoses[1].section"), message: &["required because material \"rub\" is not a library hose"] },
+    Case { what: "zero modulus", edits: &[("e_tension_mpa = 10", "e_tension_mpa = 0")], field: Some("materials.rub.e_tension_mpa"), message: &["= 0 MPa: must be greater than 0"] },
+    Case { what: "negative compression modulus", edits: &[("e_compression_mpa = 12", "e_compression_mpa = -12")], field: Some("materials.rub.e_compression_mpa"), message: &["must be greater than 0"] },
+    Case { what: "negative density", edits: &[("density_kg_m3 = 1000", "density_kg_m3 = -1000")], field: Some("materials.rub.density_kg_m3"), message: &["= -1000 kg/m³: must be greater than 0"] },
+    Case { what: "poisson 0.5", edits: &[("poisson = 0.49", "poisson = 0.5")], field: Some("materials.rub.poisson"), message: &["= 0.5: must lie in (−1, 0.5)"] },
+    Case { what: "poisson -1", edits: &[("poisson = 0.49", "poisson = -1")], field: Some("materials.rub.poisson"), message: &["= -1: must lie in (−1, 0.5)"] },
+    Case { what: "nan position", edits: &[("start = [0, 0, 0]", "start = [nan, 0, 0]")], field: Some("hoses[0].start[0]"), message: &["= nan mm: must be a finite number"] },
+    Case { what: "inf gravity", edits: &[("gravity = [0, 0, -9.81]", "gravity = [0, 0, -inf]")], field: Some("simulation.gravity[2]"), message: &["= -inf m/s²: must be a finite number"] },
+    Case { what: "nan modulus", edits: &[("e_tension_mpa = 10", "e_tension_mpa = nan")], field: Some("materials.rub.e_tension_mpa"), message: &["must be a finite number"] },
+    Case { what: "inf waypoint", edits: &[("[600, 100, 0]", "[600, inf, 0]")], field: Some("timeline[1].to[1][1]"), message: &["= inf mm: must be a finite number"] },
+    Case { what: "nan angle", edits: &[("angle_deg = 90", "angle_deg = nan")], field: Some("timeline[1].rotate.angle_deg"), message: &["must be a finite number"] },
+    Case { what: "zero-length segment", edits: &[("{ line = { to = [300, 0, 0] } }", "{ line = { to = [0, 0, 0] } }")], field: Some("hoses[0].path[0].line.to"), message: &["= [0, 0, 0] mm", "zero length"] },
+    Case { what: "zero-length hose", edits: &[("to = [200, 100, 0]", "to = [0, 100, 0]")], field: Some("hoses[1].path[0].line.to"), message: &["zero length"] },
+    Case { what: "collinear arc", edits: &[("via = [400, 50, 0], to = [450, 150, 0]", "via = [400, 0, 0], to = [450, 0, 0]")], field: Some("hoses[0].path[1].arc"), message: &["collinear"] },
+    Case { what: "arc via on its start", edits: &[("via = [400, 50, 0]", "via = [300, 0, 0]")], field: Some("hoses[0].path[1].arc.via"), message: &["coincides with the arc's start point"] },
+    Case { what: "empty path", edits: &[("path = [{ line = { to = [200, 100, 0] } }]", "path = []")], field: Some("hoses[1].path"), message: &["at least one segment"] },
+    Case { what: "segment of two kinds", edits: &[("{ line = { to = [200, 100, 0] } }", "{ line = { to = [200, 100, 0] }, arc = { via = [1, 2, 3], to = [4, 5, 6] } }")], field: Some("hoses[1].path[0]"), message: &["exactly one of `line`, `arc`, `spline`"] },
+    Case { what: "empty segment", edits: &[("{ line = { to = [200, 100, 0] } }", "{}")], field: Some("hoses[1].path[0]"), message: &["exactly one of `line`, `arc`, `spline`"] },
+    Case { what: "zero elements", edits: &[("elements = 4", "elements = 0")], field: Some("hoses[0].elements"), message: &["= 0: must be at least 1"] },
+    Case { what: "zero element length", edits: &[("elements = 4", "element_length = 0")], field: Some("hoses[0].element_length"), message: &["= 0 mm: must be greater than 0"] },
+    Case { what: "negative element length", edits: &[("elements = 4", "element_length = -5")], field: Some("hoses[0].element_length"), message: &["= -5 mm: must be greater than 0"] },
+    Case { what: "both elements and element length", edits: &[("elements = 4", "elements = 4\nelement_length = 20")], field: Some("hoses[0].elements"), message: &["either elements or element_length"] },
+    Case { what: "absurd element count", edits: &[("elements = 4", "elements = 4000000000")], field: Some("hoses[0].path"), message: &["more than 100000 elements"] },
+    Case { what: "duplicate hose names", edits: &[("name = \"b\"", "name = \"a\"")], field: Some("hoses[1].name"), message: &["\"a\": duplicate hose name (also hoses[0].name)"] },
+    Case { what: "empty hose name", edits: &[("name = \"b\"", "name = \"\"")], field: Some("hoses[1].name"), message: &["must not be empty"] },
+    Case { what: "unknown hose in an action", edits: &[("hose = \"b\"", "hose = \"c\"")], field: Some("timeline[2].hose"), message: &["\"c\": unknown hose; hoses: a, b"] },
+    Case { what: "node index too large", edits: &[("node = 0", "node = 99")], field: Some("timeline[0].node"), message: &["= 99: out of range"] },
+    Case { what: "negative node index too small", edits: &[("node = 0", "node = -99")], field: Some("timeline[0].node"), message: &["= -99: out of range"] },
+    Case { what: "unknown action", edits: &[("action = \"fix\"", "action = \"fx\"")], field: Some("timeline[0].action"), message: &["unknown action `fx`, expected one of `fix`"] },
+    Case { what: "action without its tag", edits: &[("action = \"settle\"\n", "")], field: Some("timeline[3].action"), message: &["missing field `action`"] },
+    Case { what: "wrong type inside an action", edits: &[("duration_s = 2.0", "duration_s = \"2 s\"")], field: Some("timeline[1].duration_s"), message: &["invalid type: string \"2 s\", expected f64"] },
+    Case { what: "unknown field inside a rotation", edits: &[("angle_deg = 90", "angle = 90")], field: Some("timeline[1].rotate.angle"), message: &["unknown field `angle`"] },
+    Case { what: "unknown field in an action", edits: &[("force_n = [0, 0, -5]", "force = [0, 0, -5]")], field: Some("timeline[2].force"), message: &["unknown field `force`"] },
+    Case { what: "move with nothing to do", edits: &[("to = [[500, 0, 0], [600, 100, 0]]\n", ""), ("rotate = { axis = [1, 0, 0], angle_deg = 90 }\n", "")], field: Some("timeline[1]"), message: &["a move needs `to`, `by` or `rotate`"] },
+    Case { what: "move with both to and by", edits: &[("to = [[500, 0, 0], [600, 100, 0]]", "to = [500, 0, 0]\nby = [1, 0, 0]")], field: Some("timeline[1]"), message: &["either `to` (absolute) or `by` (relative), not both"] },
+    Case { what: "move with no waypoints", edits: &[("to = [[500, 0, 0], [600, 100, 0]]", "to = []")], field: Some("timeline[1].to"), message: &["needs at least one waypoint"] },
+    Case { what: "waypoint of wrong shape", edits: &[("to = [[500, 0, 0], [600, 100, 0]]", "to = [500, 0]")], field: Some("timeline[1].to"), message: &["expected a point [x, y, z] or a list of points"] },
+    Case { what: "zero duration", edits: &[("duration_s = 2.0", "duration_s = 0")], field: Some("timeline[1].duration_s"), message: &["= 0 s: must be greater than 0"] },
+    Case { what: "negative run duration", edits: &[("action = \"settle\"", "action = \"run\"\nduration_s = -1")], field: Some("timeline[3].duration_s"), message: &["= -1 s: must be greater than 0"] },
+    Case { what: "zero rotation axis", edits: &[("axis = [1, 0, 0]", "axis = [0, 0, 0]")], field: Some("timeline[1].rotate.axis"), message: &["= [0, 0, 0]: must not be the zero vector"] },
+    Case { what: "load with neither force nor moment", edits: &[("force_n = [0, 0, -5]\n", "")], field: Some("timeline[2]"), message: &["needs `force_n` and/or `moment_nm`"] },
+    Case { what: "zero settle threshold", edits: &[("action = \"settle\"", "action = \"settle\"\nkinetic_energy_j = 0")], field: Some("timeline[3].kinetic_energy_j"), message: &["must be greater than 0"] },
+    Case { what: "imperfection node out of range", edits: &[("node = 5, offset", "node = 500, offset")], field: Some("hoses[0].imperfection[0].node"), message: &["= 500: out of range: hose \"a\""] },
+    Case { what: "imperfection collapses two nodes", edits: &[("start = [0, 100, 0]", "start = [0, 100, 0]\nelements = 10\nimperfection = [{ node = 3, offset = [0, 0, 1] }, { node = 1, offset = [-20, 0, 0] }]")], field: Some("hoses[1].imperfection[1].offset"), message: &["= [-20, 0, 0] mm: moves node 1 onto node 0"] },
+    Case { what: "normal hint along the tangent", edits: &[("elements = 4", "elements = 4\nnormal_hint = [2, 0, 0]")], field: Some("hoses[0].normal_hint"), message: &["must not be parallel to the hose's first tangent"] },
+    Case { what: "negative record interval", edits: &[("record_interval_s = 0.01", "record_interval_s = -1")], field: Some("output.record_interval_s"), message: &["= -1 s: must not be negative"] },
+    Case { what: "time step safety above 1", edits: &[("time_step_safety = 0.5", "time_step_safety = 1.5")], field: Some("simulation.time_step_safety"), message: &["= 1.5: must lie in (0, 1]"] },
+    Case { what: "time step safety zero", edits: &[("time_step_safety = 0.5", "time_step_safety = 0")], field: Some("simulation.time_step_safety"), message: &["= 0: must be greater than 0"] },
+    Case { what: "negative damping", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\ndamping_mass_per_s = -1")], field: Some("simulation.damping_mass_per_s"), message: &["must not be negative"] },
+    Case { what: "non-positive fixed time step", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\ntime_step_s = 0")], field: Some("simulation.time_step_s"), message: &["must be greater than 0"] },
+];
+
+/// Applies a case's edits, checking that each one actually changes the text.
+fn edited(case: &Case) -> String {
+    let mut text = BASE.to_string();
+    for (from, to) in case.edits {
+        assert!(
+            text.contains(from),
+            "case '{}': base scene does not contain {from:?}",
+            case.what
+        );
+        text = text.replacen(from, to, 1);
+    }
+    text
+}
+
+#[test]
+fn base_scene_is_valid() {
+    let scene = load_scene_str(BASE, "base.toml").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.hose_names, ["a", "b"]);
+    // 4 elements were asked for, but the arc (R = 125 mm) needs more.
+    assert!(scene.hoses[0].raised_for_arcs);
+    assert!(scene.hoses[0].elements > 4);
+}
+
+#[test]
+fn every_bad_input_is_named_and_explained() {
+    let mut failures = Vec::new();
+    for case in CASES {
+        let text = edited(case);
+        let result = catch_unwind(AssertUnwindSafe(|| load_scene_str(&text, "scene.toml")));
+        let err = match result {
+            Err(_) => {
+                failures.push(format!("{}: PANICKED", case.what));
+                continue;
+            }
+            Ok(Ok(_)) => {
+                failures.push(format!("{}: loaded without error", case.what));
+                continue;
+            }
+            Ok(Err(e)) => e,
+        };
+        let shown = err.to_string();
+        if !shown.starts_with("scene.toml") {
+            failures.push(format!(
+                "{}: error does not name the file: {shown}",
+                case.what
+            ));
+        }
+        if let Some(field) = case.field {
+            if err.field() != Some(field) {
+                failures.push(format!(
+                    "{}: field {:?}, expected {field:?}: {shown}",
+                    case.what,
+                    err.field()
+                ));
+            }
+            if !shown.contains(field) {
+                failures.push(format!(
+                    "{}: message does not name {field}: {shown}",
+                    case.what
+                ));
+            }
+        }
+        for piece in case.message {
+            if !shown.contains(piece) {
+                failures.push(format!("{}: message lacks {piece:?}: {shown}", case.what));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    assert!(CASES.len() >= 18);
+}
+
+#[test]
+fn syntax_errors_keep_line_and_column() {
+    let text = BASE.replacen("elements = 4", "elements = = 10", 1);
+    let err = load_scene_str(&text, "scene.toml").unwrap_err();
+    assert!(matches!(err, SceneError::Syntax { .. }), "{err}");
+    let line = BASE
+        .lines()
+        .position(|l| l.starts_with("elements = 4"))
+        .unwrap()
+        + 1;
+    assert_eq!(err.location().map(|(l, _)| l), Some(line), "{err}");
+    assert!(
+        err.to_string().starts_with(&format!("scene.toml:{line}:")),
+        "{err}"
+    );
+}
+
+#[test]
+fn shape_errors_keep_line_and_column() {
+    let text = BASE.replacen("elements = 4", "elements = \"ten\"", 1);
+    let err = load_scene_str(&text, "scene.toml").unwrap_err();
+    let line = BASE
+        .lines()
+        .position(|l| l.starts_with("elements = 4"))
+        .unwrap()
+        + 1;
+    assert_eq!(err.location(), Some((line, 12)), "{err}");
+    let text = BASE.replacen("d_inner = 27,", "d_innr = 27,", 1);
+    let err = load_scene_str(&text, "scene.toml").unwrap_err();
+    let line = BASE
+        .lines()
+        .position(|l| l.contains("d_inner = 27,"))
+        .unwrap()
+        + 1;
+    assert_eq!(err.location().map(|(l, _)| l), Some(line), "{err}");
+}
+
+#[test]
+fn json_errors_name_field_and_position() {
+    let err = load_scene_json_str(
+        "{\"format\": \"pliant-scene\", \"version\": 1, \"length_unit\": \"mm\", \"hoses\": 3}",
+        "s.json",
+    )
+    .unwrap_err();
+    assert_eq!(err.field(), Some("hoses"), "{err}");
+    assert!(err.location().is_some());
+    let err = load_scene_json_str("{\"format\": ", "s.json").unwrap_err();
+    assert!(matches!(err, SceneError::Syntax { .. }), "{err}");
+}
+
+#[test]
+fn garbage_never_panics() {
+    let inputs = [
+        String::new(),
+        "\u{0}".to_string(),
+        "format = \"pliant-scene\"\nversion = 1".to_string(),
+        "format = \"pliant-scene\"\nversion = 1\nlength_unit = \"mm\"\nhoses = []".to_string(),
+        "[[[".to_string(),
+        BASE.replace("0", "-"),
+        BASE.replace("]", ""),
+        BASE.replace("1", "1e400"),
+        BASE.replace("= [", "= [[").replace("]\n", "]]\n"),
+    ];
+    for (i, text) in inputs.iter().enumerate() {
+        let result = catch_unwind(AssertUnwindSafe(|| load_scene_str(text, "g.toml")));
+        match result {
+            Ok(Ok(_)) => panic!("garbage {i} loaded"),
+            Ok(Err(e)) => assert!(!e.to_string().is_empty()),
+            Err(_) => panic!("garbage {i} panicked"),
+        }
+    }
+    // Every prefix of a valid scene: errors or loads, never panics.
+    for cut in (0..BASE.len())
+        .filter(|&c| BASE.is_char_boundary(c))
+        .step_by(7)
+    {
+        let result = catch_unwind(AssertUnwindSafe(|| load_scene_str(&BASE[..cut], "p.toml")));
+        assert!(result.is_ok(), "prefix of {cut} bytes panicked");
+    }
+}
+
+#[test]
+fn empty_hose_list_is_rejected() {
+    let text = "format = \"pliant-scene\"\nversion = 1\nlength_unit = \"mm\"\nhoses = []\n";
+    let err = load_scene_str(text, "scene.toml").unwrap_err();
+    assert_eq!(err.field(), Some("hoses"), "{err}");
+    assert!(err.to_string().contains("at least one hose"), "{err}");
+}
