@@ -15,7 +15,7 @@
 
 use crate::boundary::EndCondition;
 use crate::error::{ReferenceError, Result};
-use crate::shooting::{Solver, Unknowns};
+use crate::shooting::{Globalization, Solver, Unknowns};
 use crate::solution::Solution;
 
 /// A converged point of the path.
@@ -88,7 +88,7 @@ impl Solver {
                     }
                 };
                 let load_scale = current.load_scale + (1.0 - current.load_scale) * t_next;
-                match self.newton(&condition, &guess, load_scale) {
+                match self.newton(&condition, &guess, load_scale, Globalization::Local) {
                     Ok(solution) => {
                         eprintln!("ok t={t_next} it={}", solution.iterations());
                         guess = solution.unknowns();
