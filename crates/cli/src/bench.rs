@@ -1,7 +1,685 @@
+//! `pliant bench [--json] [--quick]`: the performance benchmark (SPEC §6, docs/performance.md).
+//!
+//! Every case runs the real explicit step (`pliant_core::explicit::step`) with the model's
+//! automatic stable time step (never overridden: the point is the physically correct step,
+//! SPEC P4), gravity on, default damping, one end of every hose fixed and the rest hanging
+//! free from a horizontal start, so that the hoses fall and swing with large rotations.
+//! Hose: library material 1 (oil return hose, SPEC M4: d_i 10 mm, d_a 16 mm,
+//! E_t 11.583 MPa, E_c 13.1363 MPa, ρ 940 kg/m³, ν 0.49), element length 24 mm (1.5 d_a).
+//!
+//! For each case: a warm-up, then several repeats each long enough to average out timer
+//! resolution; the median over the repeats is reported. Only ratios, medians and scaling
+//! are meant to be compared between machines; nothing here asserts an absolute time.
+
+use anyhow::{bail, Context, Result};
+use comfy_table::{presets, CellAlignment, Table};
+use glam::DVec3;
+use pliant_core::loads::{Fix, LoadCase};
+use pliant_core::{explicit, health, HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
+use serde::Serialize;
+use std::time::{Duration, Instant};
+
+/// Command-line options of `pliant bench`.
+#[derive(Clone, Copy, Debug, Default)]
 pub struct BenchOptions {
+    /// Print one JSON object on stdout instead of the human table.
     pub json: bool,
+    /// Shrink the measuring time (CI smoke test); every row is still measured.
     pub quick: bool,
 }
-pub fn run(_o: &BenchOptions) -> anyhow::Result<()> {
-    anyhow::bail!("bench not built yet")
+
+/// Element length of the benchmark hoses [m]: 1.5 × d_a.
+pub const ELEMENT_LENGTH: f64 = 0.024;
+/// Single-hose sizes, fitted for the scaling slope.
+pub const SINGLE_HOSE_ELEMENTS: [usize; 5] = [10, 30, 100, 1000, 10_000];
+/// Hose counts of the multi-hose cases (30 elements each).
+pub const HOSE_COUNTS: [usize; 3] = [1, 5, 30];
+/// The single-hose size whose cost is the headline number.
+pub const HEADLINE_ELEMENTS: usize = 100;
+
+/// Floating-point operations per step, counted by hand from the source of
+/// `BeamElement::loads`, `forces::{internal_loads, add_body_loads}` and `explicit::step`
+/// (glam 0.30 scalar f64 code; +, −, ×, ÷ and √ count one each; sin, cos and atan2 are
+/// libm calls, counted separately and not included). docs/performance.md has the
+/// breakdown. Rust does not contract a·b + c into FMA, so each operation is one instruction.
+pub mod flops {
+    /// `BeamElement::loads` (628, on the usual branch θ² ≥ 1e-6 of the Jacobian) plus the
+    /// four vector additions of the assembly in `internal_loads` (12).
+    pub const PER_ELEMENT: u64 = 640;
+    /// Gravity and mass-proportional damping per node (`add_body_loads`).
+    pub const PER_NODE_BODY: u64 = 19;
+    /// Leapfrog update of a free node: velocity, position, angular velocity, and
+    /// q ← normalize(exp(ω Δt) q).
+    pub const PER_FREE_NODE: u64 = 76;
+    /// A held (fixed) node: prescribed velocity, angular velocity and the two reactions.
+    pub const PER_HELD_NODE: u64 = 72;
+    /// libm calls (not in the flop count): 2 atan2 (log map), 2 sin + 2 cos (Jacobian).
+    pub const TRANSCENDENTAL_PER_ELEMENT: u64 = 6;
+    /// sin + cos of the exponential map.
+    pub const TRANSCENDENTAL_PER_FREE_NODE: u64 = 2;
+    /// atan2 of the log map.
+    pub const TRANSCENDENTAL_PER_HELD_NODE: u64 = 1;
+
+    /// Flops of one step of a world of `elements` elements, `nodes` nodes of which `held`
+    /// are held by a fix.
+    pub fn per_step(elements: usize, nodes: usize, held: usize) -> u64 {
+        let (e, n, h) = (elements as u64, nodes as u64, held as u64);
+        e * PER_ELEMENT + n * PER_NODE_BODY + (n - h) * PER_FREE_NODE + h * PER_HELD_NODE
+    }
+
+    /// libm calls of one step.
+    pub fn transcendental_per_step(elements: usize, nodes: usize, held: usize) -> u64 {
+        let (e, n, h) = (elements as u64, nodes as u64, held as u64);
+        e * TRANSCENDENTAL_PER_ELEMENT
+            + (n - h) * TRANSCENDENTAL_PER_FREE_NODE
+            + h * TRANSCENDENTAL_PER_HELD_NODE
+    }
+}
+
+/// The dissertation's measurement (ch. 6.1, eq. 6.1): g(x) = 0.5805·x + 2.0629 ms per
+/// update for x beams on a 1999 SGI Octane (R10000), real time meaning every update within
+/// 100 ms, with a time step √1000 ≈ 31.6× too large (SPEC P4).
+pub mod dissertation {
+    pub const MS_PER_BEAM: f64 = 0.5805;
+    pub const MS_FIXED: f64 = 2.0629;
+    pub const CRITERION_MS: f64 = 100.0;
+    /// √1000: the factor by which the thesis's time step was too large.
+    pub const TIME_STEP_ERROR: f64 = 31.622_776_601_683_793;
+
+    /// Beams the thesis kept within its 100 ms criterion (≈ 168.7, "about 170").
+    pub fn beams_in_real_time() -> f64 {
+        (CRITERION_MS - MS_FIXED) / MS_PER_BEAM
+    }
+}
+
+/// One measured case.
+#[derive(Clone, Debug, Serialize)]
+pub struct BenchRow {
+    /// Case name, e.g. "1 hose × 100" or "5 hoses × 30".
+    pub name: String,
+    pub hoses: usize,
+    pub elements_per_hose: usize,
+    /// Elements in the world.
+    pub elements: usize,
+    pub nodes: usize,
+    /// The automatic stable time step used [s].
+    pub time_step_s: f64,
+    /// Axial (thesis) bound l_min/c and the eigenvalue bound 2/ω_max [s], before damping
+    /// reduction and safety factor.
+    pub axial_bound_s: f64,
+    pub eigen_bound_s: f64,
+    /// Steps timed per repeat, and the repeats.
+    pub steps_per_repeat: u64,
+    pub repeats: usize,
+    /// Median wall time of one step [ns].
+    pub ns_per_step: f64,
+    /// Median wall time per element and step [ns] (= ns_per_step / elements).
+    pub ns_per_element_step: f64,
+    /// Fastest and slowest repeat, per element-step [ns] (noise indicator).
+    pub ns_per_element_step_min: f64,
+    pub ns_per_element_step_max: f64,
+    /// Simulated seconds per wall second at the median cost.
+    pub realtime_factor: f64,
+    /// Elements that would run in real time at this per-element cost:
+    /// 1 / (ns_per_element_step·1e-9 / Δt).
+    pub elements_in_real_time: f64,
+    /// Hand-counted flops per element-step of this world (see [`flops`]).
+    pub flops_per_element_step: f64,
+    /// Achieved arithmetic rate [GFLOP/s] (flops / ns).
+    pub gflops: f64,
+    /// Simulated time covered by warm-up and repeats [s].
+    pub simulated_s: f64,
+}
+
+/// Least-squares straight line y = slope·x + intercept with its coefficient of
+/// determination.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct LineFit {
+    pub slope: f64,
+    pub intercept: f64,
+    pub r_squared: f64,
+}
+
+/// Scaling of the cost per step with the number of elements (single hoses).
+#[derive(Clone, Debug, Serialize)]
+pub struct Scaling {
+    /// Slope of ln(ns per step) against ln(elements); 1 means linear cost.
+    pub loglog_slope: f64,
+    pub loglog_intercept: f64,
+    pub r_squared: f64,
+    /// The element counts fitted.
+    pub elements: Vec<usize>,
+}
+
+/// Arithmetic intensity summary (headline case).
+#[derive(Clone, Debug, Serialize)]
+pub struct FlopSummary {
+    pub per_element: u64,
+    pub per_node_body: u64,
+    pub per_free_node: u64,
+    pub per_held_node: u64,
+    /// Flops per element-step of the headline (100-element) hose.
+    pub per_element_step: f64,
+    /// libm calls (sin, cos, atan2) per element-step, not included in the flops.
+    pub transcendental_per_element_step: f64,
+    /// Achieved GFLOP/s on the headline hose.
+    pub gflops: f64,
+    pub method: &'static str,
+}
+
+/// Comparison with the dissertation's real-time capacity.
+#[derive(Clone, Debug, Serialize)]
+pub struct DissertationComparison {
+    /// g(x) = ms_per_beam·x + ms_fixed per update, criterion 100 ms.
+    pub ms_per_beam: f64,
+    pub ms_fixed: f64,
+    pub criterion_ms: f64,
+    /// Beams within the thesis criterion (≈ 168.7) — with its 31.6× too large step.
+    pub thesis_beams_in_real_time: f64,
+    pub thesis_time_step_error: f64,
+    /// The thesis's capacity had it used the correct step and one step per update
+    /// (an assumption: 168.7 / 31.6 ≈ 5.3 beams).
+    pub thesis_beams_with_correct_step: f64,
+    /// Beams Pliant keeps in real time with the correct step (headline per-element cost).
+    pub pliant_beams_in_real_time: f64,
+    /// Pliant's beams in real time / the thesis's 168.7.
+    pub ratio: f64,
+    /// Pliant's beams in real time / the thesis's step-corrected 5.3.
+    pub ratio_step_corrected: f64,
+    /// Cost of one beam update: 0.5805 ms / Pliant's ns per element-step.
+    pub per_beam_update_speedup: f64,
+}
+
+/// What the machine is (for reading the numbers, not for comparing them).
+#[derive(Clone, Debug, Serialize)]
+pub struct MachineInfo {
+    pub cpu: String,
+    pub logical_cores: usize,
+    pub os: &'static str,
+    pub arch: &'static str,
+    pub debug_build: bool,
+}
+
+/// The whole benchmark result.
+#[derive(Clone, Debug, Serialize)]
+pub struct BenchReport {
+    /// Headline: median ns per element per step on the 100-element hose.
+    pub ns_per_element_step: f64,
+    /// Simulated seconds per wall second for 5 hoses × 30 elements.
+    pub realtime_factor_5x30: f64,
+    pub quick: bool,
+    pub machine: MachineInfo,
+    pub rows: Vec<BenchRow>,
+    pub scaling: Scaling,
+    pub flops: FlopSummary,
+    pub dissertation: DissertationComparison,
+    pub material: &'static str,
+    pub element_length_m: f64,
+}
+
+/// How long to measure.
+#[derive(Clone, Copy, Debug)]
+pub struct Budget {
+    pub warmup: Duration,
+    pub repeat: Duration,
+    pub repeats: usize,
+}
+
+impl Budget {
+    pub fn new(quick: bool) -> Self {
+        if quick {
+            Budget {
+                warmup: Duration::from_millis(5),
+                repeat: Duration::from_millis(10),
+                repeats: 3,
+            }
+        } else {
+            Budget {
+                warmup: Duration::from_millis(150),
+                repeat: Duration::from_millis(250),
+                repeats: 7,
+            }
+        }
+    }
+}
+
+/// Library material 1 (SPEC M4, tables 3.2–3.4): oil return hose, chloroprene/NBR.
+pub fn material_1() -> (Material, Section) {
+    (
+        Material {
+            e_tension: 11.583e6,
+            e_compression: 13.1363e6,
+            e_bending: None,
+            poisson: 0.49,
+            density: 940.0,
+        },
+        Section::new(0.010, 0.016),
+    )
+}
+
+/// `hoses` straight horizontal hoses of `elements` elements each along x, 0.1 m apart in y.
+pub fn world(hoses: usize, elements: usize) -> WorldSpec {
+    let (material, section) = material_1();
+    WorldSpec {
+        hoses: (0..hoses)
+            .map(|h| HoseSpec {
+                name: format!("hose{h}"),
+                material: material.clone(),
+                nodes: (0..=elements)
+                    .map(|i| DVec3::new(i as f64 * ELEMENT_LENGTH, 0.1 * h as f64, 0.0))
+                    .collect(),
+                sections: vec![section],
+                normal_hint: Some(DVec3::Z),
+            })
+            .collect(),
+        settings: SimSettings::default(),
+    }
+}
+
+/// The model and its rest state with the first node of every hose fixed.
+pub fn setup(hoses: usize, elements: usize) -> Result<(Model, State)> {
+    let model = Model::build(&world(hoses, elements)).context("building the benchmark model")?;
+    let mut state = State::at_rest(&model);
+    for h in &model.hoses {
+        let n = h.first_node;
+        state.loads.add(LoadCase::Fix(Fix {
+            node: n,
+            position: model.rest_x[n],
+            orientation: model.rest_q[n],
+        }));
+    }
+    Ok((model, state))
+}
+
+fn run_steps(model: &Model, state: &mut State, n: u64) {
+    for _ in 0..n {
+        explicit::step(model, state);
+    }
+    std::hint::black_box(&state.x);
+}
+
+/// Measures one case: warm-up, then `budget.repeats` timed repeats of a fixed number of
+/// steps sized to last about `budget.repeat`; median over the repeats.
+pub fn measure(hoses: usize, elements_per_hose: usize, budget: Budget) -> Result<BenchRow> {
+    let (model, mut state) = setup(hoses, elements_per_hose)?;
+    let elements = model.elements.len();
+    let nodes = model.node_count();
+    let dt = model.time_step;
+
+    // Warm-up (caches, branch predictors, CPU clock) and a first estimate of the cost.
+    let t0 = Instant::now();
+    let mut warm_steps = 0u64;
+    while warm_steps < 2 || t0.elapsed() < budget.warmup {
+        run_steps(&model, &mut state, 1);
+        warm_steps += 1;
+    }
+    let est = t0.elapsed().as_secs_f64() / warm_steps as f64;
+    let steps_per_repeat = ((budget.repeat.as_secs_f64() / est).ceil() as u64).max(2);
+
+    let mut per_step_ns = Vec::with_capacity(budget.repeats);
+    for _ in 0..budget.repeats.max(1) {
+        let t = Instant::now();
+        run_steps(&model, &mut state, steps_per_repeat);
+        per_step_ns.push(t.elapsed().as_nanos() as f64 / steps_per_repeat as f64);
+        if let Err(d) = health::check(&model, &state) {
+            bail!("benchmark case {hoses} × {elements_per_hose} diverged: {d}");
+        }
+    }
+    let ns_per_step = median(&per_step_ns);
+    let per_elem = |ns: f64| ns / elements as f64;
+    let ns_per_element_step = per_elem(ns_per_step);
+    let flops_per_element_step =
+        flops::per_step(elements, nodes, model.hoses.len()) as f64 / elements as f64;
+    let r = &model.time_step_report;
+    Ok(BenchRow {
+        name: if hoses == 1 {
+            format!("1 hose × {elements_per_hose}")
+        } else {
+            format!("{hoses} hoses × {elements_per_hose}")
+        },
+        hoses,
+        elements_per_hose,
+        elements,
+        nodes,
+        time_step_s: dt,
+        axial_bound_s: r.axial_bound,
+        eigen_bound_s: r.eigen_bound,
+        steps_per_repeat,
+        repeats: per_step_ns.len(),
+        ns_per_step,
+        ns_per_element_step,
+        ns_per_element_step_min: per_elem(per_step_ns.iter().copied().fold(f64::INFINITY, f64::min)),
+        ns_per_element_step_max: per_elem(per_step_ns.iter().copied().fold(0.0, f64::max)),
+        realtime_factor: realtime_factor(dt, ns_per_step),
+        elements_in_real_time: elements_in_real_time(dt, ns_per_element_step),
+        flops_per_element_step,
+        gflops: flops_per_element_step / ns_per_element_step,
+        simulated_s: state.time,
+    })
+}
+
+/// Simulated seconds per wall second for a step Δt costing `ns_per_step`.
+pub fn realtime_factor(dt: f64, ns_per_step: f64) -> f64 {
+    dt / (ns_per_step * 1e-9)
+}
+
+/// Elements that fit in real time at a cost of `ns_per_element_step` per element-step:
+/// 1 / (ns_per_element_step·1e-9 / Δt).
+pub fn elements_in_real_time(dt: f64, ns_per_element_step: f64) -> f64 {
+    1.0 / (ns_per_element_step * 1e-9 / dt)
+}
+
+/// Median (mean of the two middle values for an even count). Panics on an empty slice.
+pub fn median(values: &[f64]) -> f64 {
+    assert!(!values.is_empty(), "median of nothing");
+    let mut v = values.to_vec();
+    v.sort_by(|a, b| a.total_cmp(b));
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// Least-squares line through (x, y); needs at least two distinct x.
+pub fn fit_line(points: &[(f64, f64)]) -> LineFit {
+    let n = points.len() as f64;
+    let mx = points.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = points.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let syy: f64 = points.iter().map(|p| (p.1 - my).powi(2)).sum();
+    let slope = sxy / sxx;
+    let intercept = my - slope * mx;
+    let ss_res: f64 = points
+        .iter()
+        .map(|p| (p.1 - (slope * p.0 + intercept)).powi(2))
+        .sum();
+    let r_squared = if syy > 0.0 { 1.0 - ss_res / syy } else { 1.0 };
+    LineFit {
+        slope,
+        intercept,
+        r_squared,
+    }
+}
+
+/// Fit of ln(cost) against ln(size): the exponent of a power law cost ∝ size^slope.
+pub fn fit_loglog(sizes_and_costs: &[(f64, f64)]) -> LineFit {
+    let logs: Vec<(f64, f64)> = sizes_and_costs
+        .iter()
+        .map(|&(x, y)| (x.ln(), y.ln()))
+        .collect();
+    fit_line(&logs)
+}
+
+fn machine() -> MachineInfo {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown".into());
+    MachineInfo {
+        cpu,
+        logical_cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        os: std::env::consts::OS,
+        arch: std::env::consts::ARCH,
+        debug_build: cfg!(debug_assertions),
+    }
+}
+
+/// Assembles the report from measured rows (single hoses first, then the multi-hose cases).
+pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
+    let single = |n: usize| {
+        rows.iter()
+            .find(|r| r.hoses == 1 && r.elements_per_hose == n)
+            .with_context(|| format!("no row for one hose of {n} elements"))
+    };
+    let headline = single(HEADLINE_ELEMENTS)?.clone();
+    let five = rows
+        .iter()
+        .find(|r| r.hoses == 5 && r.elements_per_hose == 30)
+        .context("no row for 5 hoses × 30")?;
+    let mut fit_sizes = Vec::new();
+    let mut fit_points = Vec::new();
+    for n in SINGLE_HOSE_ELEMENTS {
+        let r = single(n)?;
+        fit_sizes.push(n);
+        fit_points.push((r.elements as f64, r.ns_per_step));
+    }
+    let fit = fit_loglog(&fit_points);
+    let thesis = dissertation::beams_in_real_time();
+    let thesis_corrected = thesis / dissertation::TIME_STEP_ERROR;
+    let pliant = headline.elements_in_real_time;
+    let (e, n, h) = (headline.elements, headline.nodes, headline.hoses);
+    Ok(BenchReport {
+        ns_per_element_step: headline.ns_per_element_step,
+        realtime_factor_5x30: five.realtime_factor,
+        quick,
+        machine: machine(),
+        scaling: Scaling {
+            loglog_slope: fit.slope,
+            loglog_intercept: fit.intercept,
+            r_squared: fit.r_squared,
+            elements: fit_sizes,
+        },
+        flops: FlopSummary {
+            per_element: flops::PER_ELEMENT,
+            per_node_body: flops::PER_NODE_BODY,
+            per_free_node: flops::PER_FREE_NODE,
+            per_held_node: flops::PER_HELD_NODE,
+            per_element_step: headline.flops_per_element_step,
+            transcendental_per_element_step: flops::transcendental_per_step(e, n, h) as f64
+                / e as f64,
+            gflops: headline.gflops,
+            method: "hand count of the source (glam 0.30 scalar f64): +,-,*,/,sqrt = 1 each; \
+                     sin/cos/atan2 counted separately; see docs/performance.md",
+        },
+        dissertation: DissertationComparison {
+            ms_per_beam: dissertation::MS_PER_BEAM,
+            ms_fixed: dissertation::MS_FIXED,
+            criterion_ms: dissertation::CRITERION_MS,
+            thesis_beams_in_real_time: thesis,
+            thesis_time_step_error: dissertation::TIME_STEP_ERROR,
+            thesis_beams_with_correct_step: thesis_corrected,
+            pliant_beams_in_real_time: pliant,
+            ratio: pliant / thesis,
+            ratio_step_corrected: pliant / thesis_corrected,
+            per_beam_update_speedup: dissertation::MS_PER_BEAM * 1e6
+                / headline.ns_per_element_step,
+        },
+        material: "library material 1 (oil return hose): d_i 10 mm, d_a 16 mm, E_t 11.583 MPa, \
+                   E_c 13.1363 MPa, rho 940 kg/m3, nu 0.49",
+        element_length_m: ELEMENT_LENGTH,
+        rows,
+    })
+}
+
+/// Runs every case and prints the result (table, or one JSON object with `opts.json`).
+pub fn run(opts: &BenchOptions) -> Result<BenchReport> {
+    let budget = Budget::new(opts.quick);
+    let mut cases: Vec<(usize, usize)> = SINGLE_HOSE_ELEMENTS.iter().map(|&n| (1, n)).collect();
+    // One hose of 30 is already a single-hose case.
+    cases.extend(HOSE_COUNTS.iter().filter(|&&h| h != 1).map(|&h| (h, 30)));
+    let mut rows = Vec::with_capacity(cases.len());
+    for (hoses, elements) in cases {
+        if !opts.json {
+            eprintln!("measuring {hoses} × {elements} …");
+        }
+        rows.push(measure(hoses, elements, budget)?);
+    }
+    let report = report(rows, opts.quick)?;
+    if opts.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{}", render(&report));
+    }
+    Ok(report)
+}
+
+/// The human-readable form of a report: a Markdown-compatible table and a summary.
+pub fn render(r: &BenchReport) -> String {
+    let mut t = Table::new();
+    t.load_preset(presets::ASCII_MARKDOWN);
+    t.set_header(vec![
+        "case",
+        "elements",
+        "Δt [µs]",
+        "ns/step",
+        "ns/element-step",
+        "min–max",
+        "realtime factor",
+        "elements in real time",
+        "GFLOP/s",
+    ]);
+    for row in &r.rows {
+        t.add_row(vec![
+            row.name.clone(),
+            row.elements.to_string(),
+            format!("{:.2}", row.time_step_s * 1e6),
+            format!("{:.0}", row.ns_per_step),
+            format!("{:.1}", row.ns_per_element_step),
+            format!(
+                "{:.1}–{:.1}",
+                row.ns_per_element_step_min, row.ns_per_element_step_max
+            ),
+            format!("{:.3}", row.realtime_factor),
+            format!("{:.0}", row.elements_in_real_time),
+            format!("{:.2}", row.gflops),
+        ]);
+    }
+    for i in 1..9 {
+        if let Some(c) = t.column_mut(i) {
+            c.set_cell_alignment(CellAlignment::Right);
+        }
+    }
+    let d = &r.dissertation;
+    let mut s = format!("{t}\n\n");
+    s += &format!(
+        "headline: {:.1} ns per element-step (1 hose × {HEADLINE_ELEMENTS}, median); \
+         5 hoses × 30 run at {:.2}× real time\n",
+        r.ns_per_element_step, r.realtime_factor_5x30
+    );
+    s += &format!(
+        "scaling: cost per step ∝ elements^{:.3} (log-log least squares over {:?} elements, R² {:.4})\n",
+        r.scaling.loglog_slope, r.scaling.elements, r.scaling.r_squared
+    );
+    s += &format!(
+        "flops: {:.0} per element-step (hand count) + {:.1} libm calls → {:.2} GFLOP/s\n",
+        r.flops.per_element_step, r.flops.transcendental_per_element_step, r.flops.gflops
+    );
+    s += &format!(
+        "dissertation (SGI Octane, g(x) = {}·x + {} ms, {} ms criterion): {:.0} beams in real time \
+         with a {:.1}× too large step ({:.1} beams with the correct step);\n\
+         Pliant with the correct step: {:.0} beams in real time = {:.0}× the thesis's figure \
+         ({:.0}× its step-corrected figure); one beam update is {:.2e}× faster\n",
+        d.ms_per_beam,
+        d.ms_fixed,
+        d.criterion_ms,
+        d.thesis_beams_in_real_time,
+        d.thesis_time_step_error,
+        d.thesis_beams_with_correct_step,
+        d.pliant_beams_in_real_time,
+        d.ratio,
+        d.ratio_step_corrected,
+        d.per_beam_update_speedup
+    );
+    s += &format!(
+        "machine: {} ({} logical cores, {}-{}){}{}\n",
+        r.machine.cpu,
+        r.machine.logical_cores,
+        r.machine.os,
+        r.machine.arch,
+        if r.machine.debug_build {
+            "; DEBUG BUILD — use --release"
+        } else {
+            ""
+        },
+        if r.quick { "; --quick (short runs, noisy)" } else { "" }
+    );
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn loglog_fit_recovers_power_law_exponents() {
+        for exponent in [1.0, 2.0, 0.5] {
+            let pts: Vec<(f64, f64)> = [10.0, 30.0, 100.0, 1000.0, 10_000.0]
+                .iter()
+                .map(|&n: &f64| (n, 250.0 * n.powf(exponent)))
+                .collect();
+            let fit = fit_loglog(&pts);
+            assert!((fit.slope - exponent).abs() < 1e-12, "{fit:?}");
+            assert!((fit.intercept - 250f64.ln()).abs() < 1e-10, "{fit:?}");
+            assert!((fit.r_squared - 1.0).abs() < 1e-12, "{fit:?}");
+        }
+    }
+
+    #[test]
+    fn loglog_fit_of_linear_cost_with_overhead_is_below_one() {
+        // cost = 1000 + 300 n: a fixed overhead flattens the small sizes
+        let pts: Vec<(f64, f64)> = [10.0, 100.0, 1000.0]
+            .iter()
+            .map(|&n| (n, 1000.0 + 300.0 * n))
+            .collect();
+        let fit = fit_loglog(&pts);
+        assert!(fit.slope > 0.85 && fit.slope < 0.99, "{fit:?}");
+        assert!(fit.r_squared < 1.0);
+    }
+
+    #[test]
+    fn median_and_real_time_arithmetic() {
+        assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), 2.5);
+        // Δt 100 µs, 1 µs per step → 100× real time; 200 ns per element-step → 500 elements
+        assert!((realtime_factor(1e-4, 1000.0) - 100.0).abs() < 1e-9);
+        assert!((elements_in_real_time(1e-4, 200.0) - 500.0).abs() < 1e-9);
+        assert!((dissertation::beams_in_real_time() - 168.7).abs() < 0.05);
+    }
+
+    #[test]
+    fn flop_count_per_step_adds_up() {
+        // one hose of 2 elements: 3 nodes, 1 held
+        assert_eq!(flops::per_step(2, 3, 1), 2 * 640 + 3 * 19 + 2 * 76 + 72);
+        assert_eq!(flops::transcendental_per_step(2, 3, 1), 2 * 6 + 2 * 2 + 1);
+    }
+
+    #[test]
+    fn benchmark_world_matches_the_brief() {
+        let (model, state) = setup(5, 30).unwrap();
+        assert_eq!(model.elements.len(), 150);
+        assert_eq!(model.hoses.len(), 5);
+        assert!(model.gravity.length() > 9.0, "gravity must be on");
+        assert!(model.elements.iter().all(|e| (e.rest_length - ELEMENT_LENGTH).abs() < 1e-12));
+        assert_eq!(state.loads.iter().count(), 5);
+        for h in &model.hoses {
+            assert!(state.loads.holds(h.first_node));
+            assert!(!state.loads.holds(h.first_node + h.node_count - 1));
+        }
+    }
+
+    #[test]
+    fn a_short_measurement_is_consistent_and_the_hose_swings() {
+        let budget = Budget {
+            warmup: Duration::from_millis(1),
+            repeat: Duration::from_millis(2),
+            repeats: 3,
+        };
+        let row = measure(1, 10, budget).unwrap();
+        assert_eq!(row.repeats, 3);
+        assert!(row.ns_per_element_step > 0.0);
+        assert!(row.ns_per_element_step_min <= row.ns_per_element_step);
+        assert!(row.ns_per_element_step <= row.ns_per_element_step_max);
+        let rt = row.time_step_s / (row.ns_per_step * 1e-9);
+        assert!((row.realtime_factor - rt).abs() <= 1e-9 * rt);
+        assert!((row.elements_in_real_time - row.realtime_factor * 10.0).abs() < 1e-6 * rt * 10.0);
+        assert!(row.simulated_s > 0.0);
+    }
 }

@@ -90,7 +90,6 @@ impl Solver {
                 let load_scale = current.load_scale + (1.0 - current.load_scale) * t_next;
                 match self.newton(&condition, &guess, load_scale, Globalization::Local) {
                     Ok(solution) => {
-                        eprintln!("ok t={t_next} it={}", solution.iterations());
                         guess = solution.unknowns();
                         t = t_next;
                         if t >= 1.0 {
@@ -105,7 +104,6 @@ impl Solver {
                         halvings = halvings.saturating_sub(1);
                     }
                     Err(error) => {
-                        eprintln!("fail t={t_next} {error}");
                         if !interpolable || halvings >= max_halvings {
                             return Err(ReferenceError::ContinuationFailed {
                                 target: index,

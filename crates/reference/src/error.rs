@@ -59,6 +59,19 @@ pub enum ReferenceError {
         /// Requested tolerance.
         tolerance: f64,
     },
+    /// A continuation sub-step converged, but the Newton corrector was too large
+    /// compared with the predictor (strong path curvature or a jump to another
+    /// equilibrium branch); the step is halved.
+    #[error(
+        "continuation sub-step rejected: corrector {corrector:.3e} too large for \
+         predictor {predictor:.3e} (possible branch switch)"
+    )]
+    StepRejected {
+        /// Norm of the first Newton step (scaled unknowns).
+        predictor: f64,
+        /// Distance from the first Newton iterate to the solution (scaled).
+        corrector: f64,
+    },
     /// Path following could not reach a target even after the maximum number of
     /// step halvings.
     #[error(

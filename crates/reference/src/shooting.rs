@@ -142,6 +142,13 @@ pub(crate) enum Globalization {
 /// Largest accepted contraction `‖Δx̄_{k+1}‖ / ‖Δx_k‖` in [`Globalization::Local`].
 const LOCAL_MAX_CONTRACTION: f64 = 0.5;
 
+/// Largest accepted ratio, in [`Globalization::Local`], between the distance from
+/// the first Newton iterate to the converged solution (corrector) and the first
+/// Newton step (Euler predictor). The ratio is `O(Δt)` along a smooth path, so
+/// small steps always pass; a larger ratio flags strong path curvature or a jump
+/// to another branch, and the continuation step is halved.
+const LOCAL_MAX_CORRECTOR_RATIO: f64 = 0.1;
+
 /// Residual scales (see the module documentation).
 #[derive(Debug, Clone, Copy)]
 struct Scales {
@@ -316,6 +323,10 @@ impl Solver {
     }
 
     /// Newton iteration from `guess`; `load_scale` multiplies the distributed load.
+    ///
+    /// With [`Globalization::Local`] the solve also fails
+    /// ([`ReferenceError::StepRejected`]) when the corrector is large compared with
+    /// the predictor (see [`LOCAL_MAX_CORRECTOR_RATIO`]).
     pub(crate) fn newton(
         &self,
         end: &EndCondition,
@@ -328,11 +339,23 @@ impl Solver {
             Globalization::Damped => (self.options.max_backtracks, 1.0),
             Globalization::Local => (0, LOCAL_MAX_CONTRACTION),
         };
-        let mut x = self.to_scaled(guess);
+        let start = self.to_scaled(guess);
+        let mut x = start;
+        let mut first_iterate: Option<Vector6<f64>> = None;
         let mut eval = self.evaluate(&x, end, load_scale)?;
         for iteration in 0..=self.options.max_iterations {
             let residual_max = eval.residual.amax();
             if residual_max <= tolerance {
+                if let (Globalization::Local, Some(first)) = (globalization, first_iterate) {
+                    let predictor = (first - start).norm();
+                    let corrector = (x - first).norm();
+                    if corrector > LOCAL_MAX_CORRECTOR_RATIO * predictor {
+                        return Err(ReferenceError::StepRejected {
+                            predictor,
+                            corrector,
+                        });
+                    }
+                }
                 return Ok(self.solution(&x, end, &eval, iteration, residual_max, load_scale));
             }
             if iteration == self.options.max_iterations {
@@ -365,6 +388,7 @@ impl Solver {
                 Some((trial, e)) => {
                     x = trial;
                     eval = e;
+                    first_iterate.get_or_insert(x);
                 }
                 None => {
                     return Err(ReferenceError::NotConverged {

@@ -6,6 +6,7 @@
 pub mod cases;
 pub mod harness;
 pub mod markdown;
+pub mod reference_bridge;
 pub mod result;
 
 pub use result::{CaseFn, Check};

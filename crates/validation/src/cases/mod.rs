@@ -5,6 +5,7 @@ mod buckling;
 mod energy;
 mod invariance;
 mod rollup;
+mod thesis;
 mod tip_load;
 mod torsion;
 
@@ -19,4 +20,8 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("torsion", torsion::run),
     ("invariance", invariance::run),
     ("energy", energy::run),
+    ("thesis_1", thesis::run_1),
+    ("thesis_2", thesis::run_2),
+    ("thesis_3", thesis::run_3),
+    ("thesis_4", thesis::run_4),
 ];

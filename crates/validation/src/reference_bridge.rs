@@ -1,0 +1,42 @@
+//! Conversions between the beam model's glam types and the reference solver's nalgebra
+//! types, and the reference rod for a model hose.
+
+use glam::{DQuat, DVec3};
+use nalgebra::{Rotation3, UnitQuaternion, Vector3};
+use pliant_core::{Model, Section};
+use pliant_reference::{Pose, Rod, Solver, Stiffness};
+
+pub fn to_na(v: DVec3) -> Vector3<f64> {
+    Vector3::new(v.x, v.y, v.z)
+}
+
+pub fn to_glam(v: &Vector3<f64>) -> DVec3 {
+    DVec3::new(v.x, v.y, v.z)
+}
+
+pub fn rotation(q: DQuat) -> Rotation3<f64> {
+    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z)).to_rotation_matrix()
+}
+
+/// A reference solver for hose `h` of `model`: same rest polyline, same EA_t, EA_c, EI,
+/// GJ (read from the model's first element — the validation hoses are uniform), base
+/// clamped at the rest pose of node 0.
+pub fn solver_for(model: &Model, h: usize, section: &Section) -> Result<Solver, String> {
+    let info = &model.hoses[h];
+    let e = &model.elements[info.first_element];
+    let _ = section;
+    let stiffness = Stiffness::bimodular(e.axial_stiffness_tension, e.axial_stiffness_compression, e.bending_stiffness, e.torsion_stiffness)
+        .map_err(|e| e.to_string())?;
+    let nodes: Vec<Vector3<f64>> = info.nodes().map(|i| to_na(model.rest_x[i])).collect();
+    let base_frame = rotation(model.rest_q[info.first_node]);
+    let rod = Rod::with_base_frame(nodes, base_frame, stiffness).map_err(|e| e.to_string())?;
+    let base = rod.rest_base_pose();
+    Solver::new(rod, base).map_err(|e| e.to_string())
+}
+
+/// The reference end pose matching a model node pose: the model's node frame and the
+/// reference's end frame differ by a constant offset fixed at rest.
+pub fn end_pose(model: &Model, node: usize, rest_end: &Pose, x: DVec3, q: DQuat) -> Pose {
+    let turn = q * model.rest_q[node].conjugate();
+    Pose::new(to_na(x), rotation(turn) * rest_end.frame)
+}
