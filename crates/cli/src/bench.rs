@@ -14,6 +14,7 @@
 use anyhow::{bail, Context, Result};
 use comfy_table::{presets, CellAlignment, Table};
 use glam::DVec3;
+use pliant_core::frames::node_frames;
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::{explicit, health, HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 use serde::Serialize;
@@ -236,8 +237,8 @@ impl Budget {
         } else {
             Budget {
                 warmup: Duration::from_millis(150),
-                repeat: Duration::from_millis(250),
-                repeats: 7,
+                repeat: Duration::from_millis(150),
+                repeats: 11,
             }
         }
     }
@@ -276,16 +277,51 @@ pub fn world(hoses: usize, elements: usize) -> WorldSpec {
     }
 }
 
-/// The model and its rest state with the first node of every hose fixed.
+/// Amplitude [rad] and wavelength [m] of the tangent angle of the initial bend,
+/// φ(s) = φ₀ sin(2π s / λ): curvature up to φ₀·2π/λ ≈ 7.9 1/m (bend radius ≈ 127 mm ≈ 8 d_a,
+/// a routed hose), about 0.09 rad of bending per element end.
+pub const BEND_AMPLITUDE: f64 = 0.6;
+pub const BEND_WAVELENGTH: f64 = 0.48;
+
+/// Node positions of a hose of `elements` elements laid as a horizontal wave of tangent
+/// angle φ(s) = φ₀ sin(2π s/λ), starting at `origin` along +x; every element keeps its
+/// rest length, so the initial deformation is pure bending.
+pub fn bent_shape(origin: DVec3, elements: usize) -> Vec<DVec3> {
+    let mut p = origin;
+    let mut nodes = Vec::with_capacity(elements + 1);
+    nodes.push(p);
+    for i in 0..elements {
+        let s = (i as f64 + 0.5) * ELEMENT_LENGTH;
+        let phi = BEND_AMPLITUDE * (std::f64::consts::TAU * s / BEND_WAVELENGTH).sin();
+        p += ELEMENT_LENGTH * DVec3::new(phi.cos(), phi.sin(), 0.0);
+        nodes.push(p);
+    }
+    nodes
+}
+
+/// The model (straight, stress-free rest shape) and its initial state: every hose bent
+/// into the wave of [`bent_shape`], at rest, its first node fixed where it lies. Released,
+/// the hoses spring back, fall and swing under gravity — every element deforms, as in use.
+///
+/// (Starting from the stress-free straight shape instead would leave most of a long hose
+/// in undeformed free fall during the measurement, where the element takes its cheap
+/// small-angle branches and the cost per element looks lower than it is in use.)
 pub fn setup(hoses: usize, elements: usize) -> Result<(Model, State)> {
     let model = Model::build(&world(hoses, elements)).context("building the benchmark model")?;
     let mut state = State::at_rest(&model);
     for h in &model.hoses {
+        let origin = model.rest_x[h.first_node];
+        let shape = bent_shape(origin, h.element_count);
+        let frames = node_frames(&shape, Some(DVec3::Z));
+        for (k, n) in h.nodes().enumerate() {
+            state.x[n] = shape[k];
+            state.q[n] = frames[k];
+        }
         let n = h.first_node;
         state.loads.add(LoadCase::Fix(Fix {
             node: n,
-            position: model.rest_x[n],
-            orientation: model.rest_q[n],
+            position: state.x[n],
+            orientation: state.q[n],
         }));
     }
     Ok((model, state))
@@ -662,6 +698,38 @@ mod tests {
         for h in &model.hoses {
             assert!(state.loads.holds(h.first_node));
             assert!(!state.loads.holds(h.first_node + h.node_count - 1));
+        }
+    }
+
+    #[test]
+    fn initial_bend_keeps_element_lengths_and_bends_every_element() {
+        let nodes = bent_shape(DVec3::new(0.0, 0.3, 0.0), 40);
+        assert_eq!(nodes.len(), 41);
+        for w in nodes.windows(2) {
+            assert!(((w[1] - w[0]).length() - ELEMENT_LENGTH).abs() < 1e-14);
+        }
+        // curvature from the turning angle between consecutive chords
+        let kappa_max = BEND_AMPLITUDE * std::f64::consts::TAU / BEND_WAVELENGTH;
+        let mut turned = 0;
+        for w in nodes.windows(3) {
+            let (a, b) = ((w[1] - w[0]).normalize(), (w[2] - w[1]).normalize());
+            let angle = a.cross(b).length().asin();
+            assert!(angle / ELEMENT_LENGTH <= kappa_max * 1.001);
+            if angle > 2e-3 {
+                turned += 1;
+            }
+        }
+        assert!(turned >= 30, "only {turned} of 39 joints bent");
+    }
+
+    #[test]
+    fn initial_state_is_bent_and_held_where_it_lies() {
+        let (model, state) = setup(2, 30).unwrap();
+        assert!(state.strain_energy(&model) > 1e-4, "the hoses must start deformed");
+        for (_, case) in state.loads.iter() {
+            let (x, q) = case.prescribed_pose(0.0).unwrap();
+            assert_eq!(x, state.x[case.node()]);
+            assert_eq!(q, state.q[case.node()]);
         }
     }
 

@@ -6,7 +6,10 @@
 //! when Newton fails, halved (down to `2^-max_step_halvings` of the step) along the
 //! interpolated path `c(t)` (positions and loads linearly in `t`, frames along the
 //! SO(3) geodesic `R_a exp(t log(R_aᵀ R_b))`). After each success the step doubles
-//! again. Every sub-step starts from the last converged unknowns.
+//! again. Every sub-step starts from the last converged unknowns and must pass the
+//! local convergence tests of [`Globalization::Local`] (which keep the path from
+//! jumping to another equilibrium branch); only at the smallest step is a damped
+//! Newton solve tried as a last resort.
 //!
 //! The path starts from the unloaded rest state (`n = m = 0`), whose end condition
 //! is the rest end pose moved rigidly with the base (clamped targets) or zero end
@@ -88,7 +91,14 @@ impl Solver {
                     }
                 };
                 let load_scale = current.load_scale + (1.0 - current.load_scale) * t_next;
-                match self.newton(&condition, &guess, load_scale, Globalization::Local) {
+                let mut attempt = self.newton(&condition, &guess, load_scale, Globalization::Local);
+                if attempt.is_err() && halvings >= max_halvings {
+                    // Last resort at the smallest step: a damped solve (needed e.g.
+                    // when the path starts exactly at the kink N = 0 of a bimodular
+                    // law, where the local convergence tests cannot hold).
+                    attempt = self.newton(&condition, &guess, load_scale, Globalization::Damped);
+                }
+                match attempt {
                     Ok(solution) => {
                         guess = solution.unknowns();
                         t = t_next;

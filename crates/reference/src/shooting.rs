@@ -228,14 +228,14 @@ impl Solver {
         }
     }
 
-    fn to_scaled(&self, unknowns: &Unknowns) -> Vector6<f64> {
+    fn scale(&self, unknowns: &Unknowns) -> Vector6<f64> {
         let sc = self.scales();
         let f = unknowns.force / sc.force;
         let m = unknowns.moment / sc.moment;
         Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z)
     }
 
-    fn from_scaled(&self, x: &Vector6<f64>) -> Unknowns {
+    fn unscale(&self, x: &Vector6<f64>) -> Unknowns {
         let sc = self.scales();
         Unknowns {
             force: Vector3::new(x[0], x[1], x[2]) * sc.force,
@@ -271,7 +271,7 @@ impl Solver {
             }
         }
         let start = Augmented {
-            state: self.base_state(&self.from_scaled(x)),
+            state: self.base_state(&self.unscale(x)),
             variations,
         };
         let out = integrate(
@@ -339,7 +339,7 @@ impl Solver {
             Globalization::Damped => (self.options.max_backtracks, 1.0),
             Globalization::Local => (0, LOCAL_MAX_CONTRACTION),
         };
-        let start = self.to_scaled(guess);
+        let start = self.scale(guess);
         let mut x = start;
         let mut first_iterate: Option<Vector6<f64>> = None;
         let mut eval = self.evaluate(&x, end, load_scale)?;
@@ -415,7 +415,7 @@ impl Solver {
         residual: f64,
         load_scale: f64,
     ) -> Solution {
-        let unknowns = self.from_scaled(x);
+        let unknowns = self.unscale(x);
         let y = &eval.end;
         let end_state = SectionState {
             arc_length: self.rod.length(),

@@ -97,13 +97,13 @@ mod tests {
             1.0,
             2.0,
             3.0,
-            3.14159,
+            3.141_59,
             std::f64::consts::PI,
         ] {
             let psi = axis * angle;
             let r = Rotation3::new(psi);
             let back = log(r.matrix());
-            let err = if angle > 3.14 {
+            let err = if angle > 3.0 {
                 // ±axis·π are the same rotation.
                 (back - psi).norm().min((back + psi).norm())
             } else {

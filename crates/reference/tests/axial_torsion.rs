@@ -30,7 +30,12 @@ fn stretch_gives_tension_stiffness_force() {
     let ea_c = 1e3 * EI / (L * L);
     let solver = clamped_rod(Stiffness::bimodular(ea_t, ea_c, EI, GJ).unwrap());
     let dl = 0.1 * L;
-    let end = EndCondition::clamped(solver.rod().rest_end_pose().translated(&Vector3::new(dl, 0.0, 0.0)));
+    let end = EndCondition::clamped(
+        solver
+            .rod()
+            .rest_end_pose()
+            .translated(&Vector3::new(dl, 0.0, 0.0)),
+    );
     let solution = &solver.solve_path(&[end]).unwrap()[0];
     let expected = ea_t * dl / L;
     let force = solution.end_reaction().force;
@@ -49,7 +54,12 @@ fn compression_gives_compression_stiffness_force() {
     let ea_c = 1e3 * EI / (L * L);
     let solver = clamped_rod(Stiffness::bimodular(ea_t, ea_c, EI, GJ).unwrap());
     let dl = -0.01 * L;
-    let end = EndCondition::clamped(solver.rod().rest_end_pose().translated(&Vector3::new(dl, 0.0, 0.0)));
+    let end = EndCondition::clamped(
+        solver
+            .rod()
+            .rest_end_pose()
+            .translated(&Vector3::new(dl, 0.0, 0.0)),
+    );
     let solution = &solver.solve_path(&[end]).unwrap()[0];
     let expected = ea_c * dl / L;
     let force = solution.end_reaction().force;

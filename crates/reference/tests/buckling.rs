@@ -66,7 +66,11 @@ fn clamped_clamped_buckling_follows_the_elastica() {
         .collect();
     let start = std::time::Instant::now();
     let solutions = solver.solve_path(&targets).unwrap();
-    eprintln!("buckling path ({} targets): {:?}", targets.len(), start.elapsed());
+    eprintln!(
+        "buckling path ({} targets): {:?}",
+        targets.len(),
+        start.elapsed()
+    );
 
     let p_cr = 4.0 * PI * PI * EI / (l * l);
     let mut previous_load = 0.0;
@@ -82,7 +86,10 @@ fn clamped_clamped_buckling_follows_the_elastica() {
             deflection / l
         );
         assert!(load > previous_load, "axial load must grow with shortening");
-        assert!(deflection > previous_deflection, "deflection grows along +z");
+        assert!(
+            deflection > previous_deflection,
+            "deflection grows along +z"
+        );
         if *d <= 2e-3 {
             assert!(ratio < 1.0, "approach from below: P/P_cr = {ratio}");
         }

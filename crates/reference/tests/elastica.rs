@@ -34,7 +34,10 @@ fn cantilever_tip_load_matches_elastica() {
     let targets: Vec<EndCondition> = cases
         .iter()
         .map(|&(lambda, _, _)| {
-            EndCondition::loaded(Vector3::new(0.0, lambda * EI / (L * L), 0.0), Vector3::zeros())
+            EndCondition::loaded(
+                Vector3::new(0.0, lambda * EI / (L * L), 0.0),
+                Vector3::zeros(),
+            )
         })
         .collect();
     let start = std::time::Instant::now();

@@ -47,9 +47,16 @@ fn thesis_case_moved_end_is_in_equilibrium() {
         // Moment balance about the base point.
         let arm = solution.end_state().position - solution.base_state().position;
         let moment_scale = end.moment.norm() + arm.norm() * scale;
-        let moment_balance = (base.moment + end.moment + arm.cross(&end.force)).norm() / moment_scale;
-        assert!(force_balance < 1e-8, "step {i}: force balance {force_balance:e}");
-        assert!(moment_balance < 1e-8, "step {i}: moment balance {moment_balance:e}");
+        let moment_balance =
+            (base.moment + end.moment + arm.cross(&end.force)).norm() / moment_scale;
+        assert!(
+            force_balance < 1e-8,
+            "step {i}: force balance {force_balance:e}"
+        );
+        assert!(
+            moment_balance < 1e-8,
+            "step {i}: moment balance {moment_balance:e}"
+        );
         // The end sits where it was sent, with its rest frame.
         let pose = match solution.end_condition() {
             EndCondition::Clamped(pose) => *pose,
@@ -61,7 +68,10 @@ fn thesis_case_moved_end_is_in_equilibrium() {
     let last = solutions.last().unwrap();
     let nodes = last.node_states().unwrap();
     let force = last.end_reaction().force;
-    eprintln!("final end force {force:?} N, moment {:?} N m", last.end_reaction().moment);
+    eprintln!(
+        "final end force {force:?} N, moment {:?} N m",
+        last.end_reaction().moment
+    );
     eprintln!("final mid-node position {:?} m", nodes[10].position);
     // The imperfection makes the hose bow out towards +z.
     assert!(nodes[10].position.z > 0.06);

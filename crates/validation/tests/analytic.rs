@@ -41,3 +41,23 @@ fn invariance() {
 fn energy() {
     assert_case("energy");
 }
+#[test]
+fn convergence() {
+    assert_case("convergence");
+}
+#[test]
+fn thesis_1() {
+    assert_case("thesis_1");
+}
+#[test]
+fn thesis_2() {
+    assert_case("thesis_2");
+}
+#[test]
+fn thesis_3() {
+    assert_case("thesis_3");
+}
+#[test]
+fn thesis_4() {
+    assert_case("thesis_4");
+}

@@ -2,11 +2,12 @@
 
 mod axial;
 mod buckling;
+mod convergence;
 mod energy;
 mod invariance;
 mod rollup;
 mod thesis;
-mod tip_load;
+pub(crate) mod tip_load;
 mod torsion;
 
 use crate::CaseFn;
@@ -20,6 +21,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("torsion", torsion::run),
     ("invariance", invariance::run),
     ("energy", energy::run),
+    ("convergence", convergence::run),
     ("thesis_1", thesis::run_1),
     ("thesis_2", thesis::run_2),
     ("thesis_3", thesis::run_3),

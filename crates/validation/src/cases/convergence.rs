@@ -1,0 +1,57 @@
+//! `convergence`: the discretisation error of the tip-load cantilever (λ = PL²/EI = 2)
+//! falls at second order in the element count, as expected of a linear co-rotational
+//! Euler–Bernoulli element. The error is taken against the independent shooting solution
+//! of the same extensible rod (same EA, EI), so the extensibility of the hose does not
+//! pollute the measured rate; the slope of log(error) over log(N) for N = 4, 8, 16, 32 must
+//! lie within 10 % of −2.
+
+use crate::cases::tip_load::tip_deflection;
+use crate::harness::hose1;
+use crate::Check;
+use nalgebra::Vector3;
+use pliant_reference::{EndCondition, Rod, Solver, Stiffness};
+
+const LAMBDA: f64 = 2.0;
+const COUNTS: [usize; 4] = [4, 8, 16, 32];
+
+fn reference_tip() -> Result<f64, String> {
+    let (mat, sec) = hose1();
+    let stiffness = Stiffness::bimodular(
+        mat.e_tension * sec.area(),
+        mat.e_compression * sec.area(),
+        mat.bending_modulus() * sec.second_moment(),
+        mat.shear_modulus() * sec.polar_moment(),
+    )
+    .map_err(|e| e.to_string())?;
+    let rod = Rod::new(vec![Vector3::zeros(), Vector3::x()], stiffness).map_err(|e| e.to_string())?;
+    let base = rod.rest_base_pose();
+    let solver = Solver::new(rod, base).map_err(|e| e.to_string())?;
+    let p = LAMBDA * mat.bending_modulus() * sec.second_moment();
+    let steps: Vec<EndCondition> =
+        (1..=8).map(|k| EndCondition::loaded(Vector3::new(0.0, -p * k as f64 / 8.0, 0.0), Vector3::zeros())).collect();
+    let sols = solver.solve_path(&steps).map_err(|e| e.to_string())?;
+    let tip = sols.last().ok_or("no solution")?.end_state().position;
+    Ok(-tip.y)
+}
+
+pub fn run() -> Vec<Check> {
+    let reference = match reference_tip() {
+        Ok(r) => r,
+        Err(e) => return vec![Check::failed("convergence", "reference", &e)],
+    };
+    let mut points = Vec::new();
+    for n in COUNTS {
+        match tip_deflection(n, LAMBDA) {
+            Ok((w, _)) => points.push(((n as f64).ln(), ((w - reference).abs() / reference).ln())),
+            Err(e) => return vec![Check::failed("convergence", &format!("N={n}"), &e)],
+        }
+    }
+    let n = points.len() as f64;
+    let (mx, my) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let slope = points.iter().map(|(x, y)| (x - mx) * (y - my)).sum::<f64>() / points.iter().map(|(x, _)| (x - mx).powi(2)).sum::<f64>();
+    let finest = points.last().map(|p| p.1.exp()).unwrap_or(f64::NAN);
+    vec![
+        Check::relative("convergence", "log-log slope of tip error vs N (lambda=2)", slope, -2.0, 0.1),
+        Check::with_error("convergence", "tip w error at N=32 vs reference (relative)", finest, 0.0, finest, 1e-3),
+    ]
+}
