@@ -9,7 +9,7 @@ use crate::so3;
 /// d2, d3), all global.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Pose {
-    /// Centre-line position [m].
+    /// Centre-line position \[m\].
     pub position: Vector3<f64>,
     /// Material frame `R = [d1 d2 d3]`.
     pub frame: Rotation3<f64>,
@@ -70,9 +70,9 @@ pub enum EndCondition {
     /// Free end under a dead force and a dead moment (global; the moment acts about
     /// the end point). Residual: `n(L) − F` and `m(L) − M`.
     Loaded {
-        /// Dead force `F` [N] applied to the end.
+        /// Dead force `F` \[N\] applied to the end.
         force: Vector3<f64>,
-        /// Dead moment `M` [N m] applied to the end.
+        /// Dead moment `M` \[N m\] applied to the end.
         moment: Vector3<f64>,
     },
 }

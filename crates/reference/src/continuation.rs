@@ -7,7 +7,7 @@
 //! interpolated path `c(t)` (positions and loads linearly in `t`, frames along the
 //! SO(3) geodesic `R_a exp(t log(R_aᵀ R_b))`). After each success the step doubles
 //! again. Every sub-step starts from the last converged unknowns and must pass the
-//! local convergence tests of [`Globalization::Local`] (which keep the path from
+//! local convergence tests of the shooting Newton iteration (which keep the path from
 //! jumping to another equilibrium branch); only at the smallest step is a damped
 //! Newton solve tried as a last resort.
 //!
@@ -36,6 +36,11 @@ impl Solver {
     /// interpolated: the switch is attempted as one Newton solve from the previous
     /// solution. Fails with [`ReferenceError::ContinuationFailed`] when a target
     /// cannot be reached within `max_step_halvings` halvings.
+    ///
+    /// # Errors
+    ///
+    /// [`ReferenceError::ContinuationFailed`] when a target cannot be reached;
+    /// invalid targets are reported before any work is done.
     pub fn solve_path(&self, targets: &[EndCondition]) -> Result<Vec<Solution>> {
         let Some(first) = targets.first() else {
             return Ok(Vec::new());
@@ -55,12 +60,22 @@ impl Solver {
     }
 
     /// Like [`Solver::solve_path`], but continuing from an existing solution of
-    /// this solver.
+    /// this solver (same rod, base and options).
+    ///
+    /// # Errors
+    ///
+    /// As [`Solver::solve_path`]; [`ReferenceError::InvalidBoundaryCondition`] if
+    /// `start` was computed by a different solver.
     pub fn solve_path_from(
         &self,
         start: &Solution,
         targets: &[EndCondition],
     ) -> Result<Vec<Solution>> {
+        if start.solver() != self {
+            return Err(ReferenceError::InvalidBoundaryCondition(
+                "the start solution belongs to a different problem".to_string(),
+            ));
+        }
         let start = PathPoint {
             condition: *start.end_condition(),
             unknowns: start.unknowns(),
@@ -80,7 +95,7 @@ impl Solver {
             let mut halvings = 0u32;
             let mut guess = current.unknowns;
             loop {
-                let step = 0.5_f64.powi(halvings as i32);
+                let step = (-f64::from(halvings)).exp2();
                 let t_next = (t + step).min(1.0);
                 let (condition, interpolable) = if t_next >= 1.0 {
                     (*target, true)

@@ -37,13 +37,21 @@ pub struct Stiffness {
 }
 
 impl Stiffness {
-    /// Same axial stiffness in tension and compression: `EA` [N], `EI` [N m²],
-    /// `GJ` [N m²]. All must be finite and positive.
+    /// Same axial stiffness in tension and compression: `EA` \[N\], `EI` \[N m²\],
+    /// `GJ` \[N m²\]. All must be finite and positive.
+    ///
+    /// # Errors
+    ///
+    /// [`ReferenceError::InvalidStiffness`] unless all values are finite and positive.
     pub fn new(axial: f64, bending: f64, torsion: f64) -> Result<Self> {
         Self::bimodular(axial, axial, bending, torsion)
     }
 
     /// Different axial stiffnesses in tension (`EA_t`) and compression (`EA_c`).
+    ///
+    /// # Errors
+    ///
+    /// [`ReferenceError::InvalidStiffness`] unless all values are finite and positive.
     pub fn bimodular(
         axial_tension: f64,
         axial_compression: f64,
@@ -70,10 +78,15 @@ impl Stiffness {
         })
     }
 
-    /// Stiffnesses of a homogeneous circular tube: Young's modulus `E` [Pa],
-    /// Poisson ratio `ν` (−1 < ν < 0.5), outer and inner diameters [m]
+    /// Stiffnesses of a homogeneous circular tube: Young's modulus `E` \[Pa\],
+    /// Poisson ratio `ν` (−1 < ν < 0.5), outer and inner diameters \[m\]
     /// (`0 ≤ d_i < d_a`). `A = π(d_a² − d_i²)/4`, `I = π(d_a⁴ − d_i⁴)/64`, `J = 2I`,
     /// `G = E / (2(1 + ν))`.
+    ///
+    /// # Errors
+    ///
+    /// [`ReferenceError::InvalidStiffness`] for non-finite values, a Poisson ratio
+    /// outside (−1, 0.5) or diameters not satisfying `0 ≤ d_i < d_a`.
     pub fn circular_tube(
         youngs_modulus: f64,
         poisson_ratio: f64,
@@ -115,22 +128,22 @@ impl Stiffness {
         )
     }
 
-    /// Axial stiffness in tension, `EA_t` [N].
+    /// Axial stiffness in tension, `EA_t` \[N\].
     pub fn axial_tension(&self) -> f64 {
         self.axial_tension
     }
 
-    /// Axial stiffness in compression, `EA_c` [N].
+    /// Axial stiffness in compression, `EA_c` \[N\].
     pub fn axial_compression(&self) -> f64 {
         self.axial_compression
     }
 
-    /// Bending stiffness `EI` [N m²] (about d2 and d3).
+    /// Bending stiffness `EI` \[N m²\] (about d2 and d3).
     pub fn bending(&self) -> f64 {
         self.bending
     }
 
-    /// Torsional stiffness `GJ` [N m²] (about d1).
+    /// Torsional stiffness `GJ` \[N m²\] (about d1).
     pub fn torsion(&self) -> f64 {
         self.torsion
     }
@@ -155,9 +168,12 @@ impl Rod {
     /// Rod with the default base rest frame: the minimal rotation taking the global
     /// x axis to the first segment's direction (the identity for a rod along +x).
     ///
-    /// Errors: fewer than two nodes, non-finite coordinates, a zero-length segment,
-    /// or two consecutive segments pointing in exactly opposite directions (the
-    /// parallel transport is undefined).
+    /// # Errors
+    ///
+    /// [`ReferenceError::InvalidRestShape`] for fewer than two nodes, non-finite
+    /// coordinates, a zero-length segment, two consecutive segments pointing in
+    /// opposite directions (the parallel transport is undefined), or a first
+    /// segment along −x (give the base frame explicitly then).
     pub fn new(rest_nodes: Vec<Vector3<f64>>, stiffness: Stiffness) -> Result<Self> {
         let first = first_direction(&rest_nodes)?;
         let base_frame = minimal_rotation(&Vector3::x(), &first).ok_or_else(|| {
@@ -173,6 +189,12 @@ impl Rod {
     /// Rod with an explicit base rest frame, whose first column (d1) must be the
     /// direction of the first segment (to 1e-9); its d2, d3 fix the roll of all rest
     /// frames.
+    ///
+    /// # Errors
+    ///
+    /// [`ReferenceError::InvalidRestShape`] for an invalid polyline (see
+    /// [`Rod::new`]) or a base frame that is non-finite or not along the first
+    /// segment.
     pub fn with_base_frame(
         rest_nodes: Vec<Vector3<f64>>,
         base_frame: Rotation3<f64>,
@@ -225,8 +247,12 @@ impl Rod {
         })
     }
 
-    /// Adds a distributed dead load `q` per unit reference length [N/m], global
+    /// Adds a distributed dead load `q` per unit reference length \[N/m\], global
     /// (e.g. gravity `ρ A g`).
+    ///
+    /// # Errors
+    ///
+    /// [`ReferenceError::InvalidBoundaryCondition`] if `load` is not finite.
     pub fn with_distributed_load(mut self, load: Vector3<f64>) -> Result<Self> {
         if !load.iter().all(|v| v.is_finite()) {
             return Err(ReferenceError::InvalidBoundaryCondition(
@@ -312,7 +338,7 @@ fn first_direction(nodes: &[Vector3<f64>]) -> Result<Vector3<f64>> {
     }
     let scale = nodes
         .iter()
-        .map(|x| x.amax())
+        .map(nalgebra::Matrix::amax)
         .fold(0.0_f64, f64::max)
         .max(f64::MIN_POSITIVE);
     for (k, pair) in nodes.windows(2).enumerate() {

@@ -45,7 +45,7 @@ pub struct SolverOptions {
     pub max_iterations: usize,
     /// Maximum number of backtracking halvings of one Newton step. Default 30.
     pub max_backtracks: u32,
-    /// Maximum number of halvings of a continuation step. Default 16.
+    /// Maximum number of halvings of a continuation step (at most 52). Default 16.
     pub max_step_halvings: u32,
 }
 
@@ -74,6 +74,12 @@ impl SolverOptions {
                 self.tolerance
             )));
         }
+        if self.max_step_halvings > 52 {
+            return Err(ReferenceError::InvalidOptions(format!(
+                "max_step_halvings must be at most 52 (steps below 2^-52 are void), got {}",
+                self.max_step_halvings
+            )));
+        }
         if self.max_iterations == 0 {
             return Err(ReferenceError::InvalidOptions(
                 "max_iterations must be positive".to_string(),
@@ -87,9 +93,9 @@ impl SolverOptions {
 /// (global; the base support applies `−n(0)`, `−m(0)` to the rod).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Unknowns {
-    /// `n(0)` [N].
+    /// `n(0)` \[N\].
     pub force: Vector3<f64>,
-    /// `m(0)` [N m].
+    /// `m(0)` \[N m\].
     pub moment: Vector3<f64>,
 }
 
@@ -168,6 +174,11 @@ impl Solver {
     /// Solver for `rod` with its base (`s = 0`) clamped at `base` (position and
     /// material frame; use [`Rod::rest_base_pose`] for the rest pose), default
     /// options.
+    ///
+    /// # Errors
+    ///
+    /// [`ReferenceError::InvalidBoundaryCondition`] if `base` is non-finite or its
+    /// frame is not a rotation.
     pub fn new(rod: Rod, base: Pose) -> Result<Self> {
         base.validate("base")?;
         Ok(Self {
@@ -178,6 +189,11 @@ impl Solver {
     }
 
     /// Replaces the numerical options.
+    ///
+    /// # Errors
+    ///
+    /// [`ReferenceError::InvalidOptions`] for a zero step count or iteration limit,
+    /// a non-positive tolerance or more than 52 step halvings.
     pub fn with_options(mut self, options: SolverOptions) -> Result<Self> {
         options.validate()?;
         self.options = options;
@@ -212,6 +228,12 @@ impl Solver {
 
     /// Solves the static problem for `end` by Newton's method starting from
     /// `guess` (no continuation; see [`Solver::solve_path`] for large loads).
+    ///
+    /// # Errors
+    ///
+    /// invalid input ([`ReferenceError::InvalidBoundaryCondition`]), or
+    /// [`ReferenceError::NotConverged`], [`ReferenceError::SingularJacobian`],
+    /// [`ReferenceError::Integration`] when Newton fails.
     pub fn solve(&self, end: &EndCondition, guess: &Unknowns) -> Result<Solution> {
         end.validate()?;
         guess.validate()?;

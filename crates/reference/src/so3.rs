@@ -97,7 +97,7 @@ mod tests {
             1.0,
             2.0,
             3.0,
-            3.141_59,
+            std::f64::consts::PI - 1e-5,
             std::f64::consts::PI,
         ] {
             let psi = axis * angle;

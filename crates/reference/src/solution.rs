@@ -12,25 +12,25 @@ use crate::so3;
 /// `Wrench` is returned.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Wrench {
-    /// Force [N], global.
+    /// Force \[N\], global.
     pub force: Vector3<f64>,
-    /// Moment [N m], global.
+    /// Moment \[N m\], global.
     pub moment: Vector3<f64>,
 }
 
 /// The fields at one reference arc length.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SectionState {
-    /// Reference arc length `s` [m].
+    /// Reference arc length `s` \[m\].
     pub arc_length: f64,
-    /// Centre line `r(s)` [m].
+    /// Centre line `r(s)` \[m\].
     pub position: Vector3<f64>,
     /// Material frame `R(s) = [d1 d2 d3]`. At an interior rest node this is the
     /// frame *after* the concentrated rest kink (that of the following segment).
     pub frame: Rotation3<f64>,
-    /// Internal force `n(s)` [N]: exerted by the part `(s, L]` on `[0, s]`.
+    /// Internal force `n(s)` \[N\]: exerted by the part `(s, L]` on `[0, s]`.
     pub force: Vector3<f64>,
-    /// Internal moment `m(s)` [N m] (about `r(s)`), same convention.
+    /// Internal moment `m(s)` \[N m\] (about `r(s)`), same convention.
     pub moment: Vector3<f64>,
 }
 
@@ -71,6 +71,11 @@ impl Solution {
             residual,
             load_scale,
         }
+    }
+
+    /// The solver that produced this solution.
+    pub(crate) fn solver(&self) -> &Solver {
+        &self.solver
     }
 
     /// The converged shooting unknowns `n(0)`, `m(0)`.
@@ -130,6 +135,11 @@ impl Solution {
 
     /// Fields at the given reference arc lengths (any order, each in `[0, L]`), on
     /// the same RK4 grid as the solve.
+    ///
+    /// # Errors
+    ///
+    /// [`ReferenceError::InvalidArcLength`] for arc lengths outside `[0, L]` or not
+    /// finite.
     pub fn sample(&self, arc_lengths: &[f64]) -> Result<Vec<SectionState>> {
         let rod = self.solver.rod();
         let length = rod.length();
@@ -178,6 +188,11 @@ impl Solution {
     }
 
     /// Fields at the rest nodes `s_0 … s_K` (see [`crate::Rod::node_arc_lengths`]).
+    ///
+    /// # Errors
+    ///
+    /// never in practice (the node arc lengths are valid); see
+    /// [`Solution::sample`].
     pub fn node_states(&self) -> Result<Vec<SectionState>> {
         let arc = self.solver.rod().node_arc_lengths().to_vec();
         self.sample(&arc)
