@@ -16,7 +16,9 @@ use comfy_table::{presets, CellAlignment, Table};
 use glam::DVec3;
 use pliant_core::frames::node_frames;
 use pliant_core::loads::{Fix, LoadCase};
-use pliant_core::{explicit, health, HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
+use pliant_core::{
+    explicit, health, HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec,
+};
 use serde::Serialize;
 use std::time::{Duration, Instant};
 
@@ -384,7 +386,9 @@ pub fn measure(hoses: usize, elements_per_hose: usize, budget: Budget) -> Result
         repeats: per_step_ns.len(),
         ns_per_step,
         ns_per_element_step,
-        ns_per_element_step_min: per_elem(per_step_ns.iter().copied().fold(f64::INFINITY, f64::min)),
+        ns_per_element_step_min: per_elem(
+            per_step_ns.iter().copied().fold(f64::INFINITY, f64::min),
+        ),
         ns_per_element_step_max: per_elem(per_step_ns.iter().copied().fold(0.0, f64::max)),
         realtime_factor: realtime_factor(dt, ns_per_step),
         elements_in_real_time: elements_in_real_time(dt, ns_per_element_step),
@@ -525,8 +529,7 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
             pliant_beams_in_real_time: pliant,
             ratio: pliant / thesis,
             ratio_step_corrected: pliant / thesis_corrected,
-            per_beam_update_speedup: dissertation::MS_PER_BEAM * 1e6
-                / headline.ns_per_element_step,
+            per_beam_update_speedup: dissertation::MS_PER_BEAM * 1e6 / headline.ns_per_element_step,
         },
         material: "library material 1 (oil return hose): d_i 10 mm, d_a 16 mm, E_t 11.583 MPa, \
                    E_c 13.1363 MPa, rho 940 kg/m3, nu 0.49",
@@ -609,10 +612,10 @@ pub fn render(r: &BenchReport) -> String {
         r.flops.per_element_step, r.flops.transcendental_per_element_step, r.flops.gflops
     );
     s += &format!(
-        "dissertation (SGI Octane, g(x) = {}·x + {} ms, {} ms criterion): {:.0} beams in real time \
+        "dissertation (SGI Octane, g(x) = {}·x + {} ms, {} ms criterion): {:.1} beams in real time \
          with a {:.1}× too large step ({:.1} beams with the correct step);\n\
-         Pliant with the correct step: {:.0} beams in real time = {:.0}× the thesis's figure \
-         ({:.0}× its step-corrected figure); one beam update is {:.2e}× faster\n",
+         Pliant with the correct step: {:.0} beams in real time = {:.1}× the thesis's figure \
+         ({:.0}× its step-corrected figure); one beam update is {:.0}× faster\n",
         d.ms_per_beam,
         d.ms_fixed,
         d.criterion_ms,
@@ -635,7 +638,11 @@ pub fn render(r: &BenchReport) -> String {
         } else {
             ""
         },
-        if r.quick { "; --quick (short runs, noisy)" } else { "" }
+        if r.quick {
+            "; --quick (short runs, noisy)"
+        } else {
+            ""
+        }
     );
     s
 }
@@ -693,7 +700,10 @@ mod tests {
         assert_eq!(model.elements.len(), 150);
         assert_eq!(model.hoses.len(), 5);
         assert!(model.gravity.length() > 9.0, "gravity must be on");
-        assert!(model.elements.iter().all(|e| (e.rest_length - ELEMENT_LENGTH).abs() < 1e-12));
+        assert!(model
+            .elements
+            .iter()
+            .all(|e| (e.rest_length - ELEMENT_LENGTH).abs() < 1e-12));
         assert_eq!(state.loads.iter().count(), 5);
         for h in &model.hoses {
             assert!(state.loads.holds(h.first_node));
@@ -725,7 +735,10 @@ mod tests {
     #[test]
     fn initial_state_is_bent_and_held_where_it_lies() {
         let (model, state) = setup(2, 30).unwrap();
-        assert!(state.strain_energy(&model) > 1e-4, "the hoses must start deformed");
+        assert!(
+            state.strain_energy(&model) > 1e-4,
+            "the hoses must start deformed"
+        );
         for (_, case) in state.loads.iter() {
             let (x, q) = case.prescribed_pose(0.0).unwrap();
             assert_eq!(x, state.x[case.node()]);

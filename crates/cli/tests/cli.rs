@@ -14,19 +14,37 @@ fn examples() -> &'static Path {
 #[test]
 fn demo_run_writes_finite_outputs_and_summary() {
     let out = tempfile::tempdir().unwrap();
-    let status = pliant().args(["run", "--quiet", "--out"]).arg(out.path()).output().unwrap();
-    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
-    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap()).unwrap();
+    let status = pliant()
+        .args(["run", "--quiet", "--out"])
+        .arg(out.path())
+        .output()
+        .unwrap();
+    assert!(
+        status.status.success(),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap())
+            .unwrap();
     assert_eq!(summary["completed"], true);
     assert!(summary["steps"].as_u64().unwrap() > 1000);
     assert!(summary["time_step_s"].as_f64().unwrap() > 0.0);
     assert!(summary["wall_time_s"].as_f64().is_some());
     let peaks = summary["peaks"].as_array().unwrap();
     assert_eq!(peaks.len(), 2, "fixed end and driven end");
-    assert!(peaks.iter().all(|p| p["max_force_n"].as_f64().unwrap() > 0.0));
+    assert!(peaks
+        .iter()
+        .all(|p| p["max_force_n"].as_f64().unwrap() > 0.0));
     // the demo ends hanging from its fixed end: that end carries the hose's weight
     assert_eq!(summary["settles"][0]["at_rest"], true);
-    for file in ["nodes.csv", "reactions.csv", "energy.csv", "vtk/hoses.pvd", "vtk/frame_00000.vtp"] {
+    for file in [
+        "nodes.csv",
+        "reactions.csv",
+        "energy.csv",
+        "vtk/hoses.pvd",
+        "vtk/frame_00000.vtp",
+    ] {
         let text = std::fs::read_to_string(out.path().join(file)).unwrap();
         assert!(!text.to_lowercase().contains("nan"), "{file} contains NaN");
         assert!(text.lines().count() > 2, "{file} is empty");
@@ -66,23 +84,42 @@ max_duration_s = 60
     )
     .unwrap();
     let out = dir.path().join("out");
-    let o = pliant().args(["run", "--quiet"]).arg(&scene).arg("--out").arg(&out).output().unwrap();
+    let o = pliant()
+        .args(["run", "--quiet"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let s: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let f = &s["peaks"][0]["final_force_n"];
     // hose 1: d 10/16 mm, ρ = 940 kg/m³, 0.4 m
-    let weight = 940.0 * std::f64::consts::PI / 4.0 * (0.016f64.powi(2) - 0.010f64.powi(2)) * 0.4 * 9.81;
+    let weight =
+        940.0 * std::f64::consts::PI / 4.0 * (0.016f64.powi(2) - 0.010f64.powi(2)) * 0.4 * 9.81;
     let fz = f[2].as_f64().unwrap();
-    assert!((fz - weight).abs() < 1e-3 * weight, "support force {fz} N vs weight {weight} N");
+    assert!(
+        (fz - weight).abs() < 1e-3 * weight,
+        "support force {fz} N vs weight {weight} N"
+    );
 }
 
 #[test]
 fn bad_scene_names_the_field_and_fails() {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("bad.toml");
-    let text = std::fs::read_to_string(examples().join("thesis_1.toml")).unwrap().replace("d_inner = 30", "d_inner = 45");
+    let text = std::fs::read_to_string(examples().join("thesis_1.toml"))
+        .unwrap()
+        .replace("d_inner = 30", "d_inner = 45");
     std::fs::write(&scene, text).unwrap();
-    let o = pliant().args(["run", "--quiet"]).arg(&scene).arg("--out").arg(dir.path().join("o")).output().unwrap();
+    let o = pliant()
+        .args(["run", "--quiet"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(dir.path().join("o"))
+        .output()
+        .unwrap();
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("d_inner") && err.contains("d_outer"), "{err}");
@@ -90,7 +127,10 @@ fn bad_scene_names_the_field_and_fails() {
 
 #[test]
 fn missing_scene_file_is_a_clear_error() {
-    let o = pliant().args(["run", "--quiet", "/nonexistent/scene.toml"]).output().unwrap();
+    let o = pliant()
+        .args(["run", "--quiet", "/nonexistent/scene.toml"])
+        .output()
+        .unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent/scene.toml"));
 }
@@ -124,31 +164,60 @@ duration_s = 0.001
     )
     .unwrap();
     let out = dir.path().join("out");
-    let o = pliant().args(["run", "--quiet"]).arg(&scene).arg("--out").arg(&out).output().unwrap();
-    assert_eq!(o.status.code(), Some(3), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = pliant()
+        .args(["run", "--quiet"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(3),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("diverged at step") && err.contains("too fast"), "{err}");
+    assert!(
+        err.contains("diverged at step") && err.contains("too fast"),
+        "{err}"
+    );
     let nodes = std::fs::read_to_string(out.join("nodes.csv")).unwrap();
     assert!(!nodes.to_lowercase().contains("nan") && !nodes.contains("inf"));
-    let s: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(s["completed"], false);
 }
 
 #[test]
 fn validate_json_prints_the_documented_fields() {
-    let o = pliant().args(["validate", "--json", "--case", "torsion"]).output().unwrap();
+    let o = pliant()
+        .args(["validate", "--json", "--case", "torsion"])
+        .output()
+        .unwrap();
     assert!(o.status.success());
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let rows = v.as_array().unwrap();
     assert!(!rows.is_empty());
-    for key in ["case", "quantity", "computed", "reference", "error", "tolerance", "pass"] {
+    for key in [
+        "case",
+        "quantity",
+        "computed",
+        "reference",
+        "error",
+        "tolerance",
+        "pass",
+    ] {
         assert!(rows[0].get(key).is_some(), "missing {key}");
     }
 }
 
 #[test]
 fn validate_unknown_case_fails_clearly() {
-    let o = pliant().args(["validate", "--case", "nope"]).output().unwrap();
+    let o = pliant()
+        .args(["validate", "--case", "nope"])
+        .output()
+        .unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("unknown validation case"));
 }

@@ -15,7 +15,8 @@ pub fn to_glam(v: &Vector3<f64>) -> DVec3 {
 }
 
 pub fn rotation(q: DQuat) -> Rotation3<f64> {
-    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z)).to_rotation_matrix()
+    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z))
+        .to_rotation_matrix()
 }
 
 /// A reference solver for hose `h` of `model`: same rest polyline, same EA_t, EA_c, EI,
@@ -25,8 +26,13 @@ pub fn solver_for(model: &Model, h: usize, section: &Section) -> Result<Solver, 
     let info = &model.hoses[h];
     let e = &model.elements[info.first_element];
     let _ = section;
-    let stiffness = Stiffness::bimodular(e.axial_stiffness_tension, e.axial_stiffness_compression, e.bending_stiffness, e.torsion_stiffness)
-        .map_err(|e| e.to_string())?;
+    let stiffness = Stiffness::bimodular(
+        e.axial_stiffness_tension,
+        e.axial_stiffness_compression,
+        e.bending_stiffness,
+        e.torsion_stiffness,
+    )
+    .map_err(|e| e.to_string())?;
     let nodes: Vec<Vector3<f64>> = info.nodes().map(|i| to_na(model.rest_x[i])).collect();
     let base_frame = rotation(model.rest_q[info.first_node]);
     let rod = Rod::with_base_frame(nodes, base_frame, stiffness).map_err(|e| e.to_string())?;

@@ -23,12 +23,19 @@ fn reference_tip() -> Result<f64, String> {
         mat.shear_modulus() * sec.polar_moment(),
     )
     .map_err(|e| e.to_string())?;
-    let rod = Rod::new(vec![Vector3::zeros(), Vector3::x()], stiffness).map_err(|e| e.to_string())?;
+    let rod =
+        Rod::new(vec![Vector3::zeros(), Vector3::x()], stiffness).map_err(|e| e.to_string())?;
     let base = rod.rest_base_pose();
     let solver = Solver::new(rod, base).map_err(|e| e.to_string())?;
     let p = LAMBDA * mat.bending_modulus() * sec.second_moment();
-    let steps: Vec<EndCondition> =
-        (1..=8).map(|k| EndCondition::loaded(Vector3::new(0.0, -p * k as f64 / 8.0, 0.0), Vector3::zeros())).collect();
+    let steps: Vec<EndCondition> = (1..=8)
+        .map(|k| {
+            EndCondition::loaded(
+                Vector3::new(0.0, -p * k as f64 / 8.0, 0.0),
+                Vector3::zeros(),
+            )
+        })
+        .collect();
     let sols = solver.solve_path(&steps).map_err(|e| e.to_string())?;
     let tip = sols.last().ok_or("no solution")?.end_state().position;
     Ok(-tip.y)
@@ -47,11 +54,27 @@ pub fn run() -> Vec<Check> {
         }
     }
     let n = points.len() as f64;
-    let (mx, my) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
-    let slope = points.iter().map(|(x, y)| (x - mx) * (y - my)).sum::<f64>() / points.iter().map(|(x, _)| (x - mx).powi(2)).sum::<f64>();
+    let (mx, my) = points
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let slope = points.iter().map(|(x, y)| (x - mx) * (y - my)).sum::<f64>()
+        / points.iter().map(|(x, _)| (x - mx).powi(2)).sum::<f64>();
     let finest = points.last().map(|p| p.1.exp()).unwrap_or(f64::NAN);
     vec![
-        Check::relative("convergence", "log-log slope of tip error vs N (lambda=2)", slope, -2.0, 0.1),
-        Check::with_error("convergence", "tip w error at N=32 vs reference (relative)", finest, 0.0, finest, 1e-3),
+        Check::relative(
+            "convergence",
+            "log-log slope of tip error vs N (lambda=2)",
+            slope,
+            -2.0,
+            0.1,
+        ),
+        Check::with_error(
+            "convergence",
+            "tip w error at N=32 vs reference (relative)",
+            finest,
+            0.0,
+            finest,
+            1e-3,
+        ),
     ]
 }

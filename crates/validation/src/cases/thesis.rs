@@ -30,10 +30,14 @@ const FORCE_TOLERANCE: f64 = 0.02;
 const SHAPE_TOLERANCE_MM: f64 = 2.0;
 
 /// (name, E_t, E_c, ρ) of library hoses 1 and 4 (SPEC M4; ρ of hose 4 an assumption).
-const MATERIALS: [(&str, f64, f64, f64); 2] = [("material 1", 11.583e6, 13.1363e6, 940.0), ("material 4", 7.5928e6, 6.8072e6, 1100.0)];
+const MATERIALS: [(&str, f64, f64, f64); 2] = [
+    ("material 1", 11.583e6, 13.1363e6, 940.0),
+    ("material 4", 7.5928e6, 6.8072e6, 1100.0),
+];
 
 fn scene_path(k: usize) -> PathBuf {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples")).join(format!("thesis_{k}.toml"))
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"))
+        .join(format!("thesis_{k}.toml"))
 }
 
 /// Captures the driven node's pose, its support force and all node positions at
@@ -49,7 +53,8 @@ struct Sampler {
 impl Sampler {
     fn next_time(&self) -> Option<f64> {
         let t0 = self.drive_start?;
-        (self.next < SAMPLES).then(|| t0 + self.drive_duration * (self.next + 1) as f64 / SAMPLES as f64)
+        (self.next < SAMPLES)
+            .then(|| t0 + self.drive_duration * (self.next + 1) as f64 / SAMPLES as f64)
     }
 }
 
@@ -58,7 +63,12 @@ impl Observer for Sampler {
         self.next_time().is_some_and(|t| time + 1e-9 >= t)
     }
     fn on_state(&mut self, _model: &Model, s: &State) {
-        self.samples.push((s.x[self.end], s.q[self.end], s.reaction_force[self.end], s.x.clone()));
+        self.samples.push((
+            s.x[self.end],
+            s.q[self.end],
+            s.reaction_force[self.end],
+            s.x.clone(),
+        ));
         self.next += 1;
     }
     fn on_action(&mut self, _index: usize, action: &Action, state: &State) {
@@ -79,14 +89,26 @@ fn experiment(k: usize, material: (&str, f64, f64, f64)) -> Vec<Check> {
     };
     let mean = 0.5 * (e_t + e_c);
     let hose = &mut scene.world.hoses[0];
-    hose.material = Material { e_tension: mean, e_compression: mean, e_bending: Some(mean), poisson: 0.49, density: rho };
+    hose.material = Material {
+        e_tension: mean,
+        e_compression: mean,
+        e_bending: Some(mean),
+        poisson: 0.49,
+        density: rho,
+    };
     let section = hose.sections[0];
     let model = match Model::build(&scene.world) {
         Ok(m) => m,
         Err(e) => return fail(e.to_string()),
     };
     let end = model.hoses[0].first_node + model.hoses[0].node_count - 1;
-    let mut sampler = Sampler { end, drive_start: None, drive_duration: 0.0, next: 0, samples: Vec::new() };
+    let mut sampler = Sampler {
+        end,
+        drive_start: None,
+        drive_duration: 0.0,
+        next: 0,
+        samples: Vec::new(),
+    };
     let mut state = State::at_rest(&model);
     if let Err(e) = Runner::new(&model).run(&scene.timeline, &mut state, &mut sampler) {
         return fail(e.to_string());
@@ -96,14 +118,20 @@ fn experiment(k: usize, material: (&str, f64, f64, f64)) -> Vec<Check> {
         Err(e) => return fail(e),
     };
     let rest_end = solver.rod().rest_end_pose();
-    let targets: Vec<EndCondition> =
-        sampler.samples.iter().map(|(x, q, _, _)| EndCondition::clamped(end_pose(&model, end, &rest_end, *x, *q))).collect();
+    let targets: Vec<EndCondition> = sampler
+        .samples
+        .iter()
+        .map(|(x, q, _, _)| EndCondition::clamped(end_pose(&model, end, &rest_end, *x, *q)))
+        .collect();
     let solutions = match solver.solve_path(&targets) {
         Ok(s) => s,
         Err(e) => return fail(format!("reference solver: {e}")),
     };
     let arc = solver.rod().node_arc_lengths().to_vec();
-    let peak_ref = solutions.iter().map(|s| s.end_reaction().force.norm()).fold(0.0, f64::max);
+    let peak_ref = solutions
+        .iter()
+        .map(|s| s.end_reaction().force.norm())
+        .fold(0.0, f64::max);
     let mut worst_force: (f64, f64, f64) = (0.0, 0.0, 0.0); // (error, computed |F|, reference |F|)
     let mut worst_shape: f64 = 0.0;
     for ((_, _, f_sim, xs), sol) in sampler.samples.iter().zip(&solutions) {
@@ -112,14 +140,30 @@ fn experiment(k: usize, material: (&str, f64, f64, f64)) -> Vec<Check> {
         if err >= worst_force.0 {
             worst_force = (err, f_sim.length(), f_ref.length());
         }
-        let Ok(sections) = sol.sample(&arc) else { return fail("reference sampling failed".into()) };
+        let Ok(sections) = sol.sample(&arc) else {
+            return fail("reference sampling failed".into());
+        };
         for (x, sec) in xs[model.hoses[0].nodes()].iter().zip(&sections) {
             worst_shape = worst_shape.max((*x - to_glam(&sec.position)).length() * 1000.0);
         }
     }
     vec![
-        Check::with_error(&case, &format!("{mat_name}: end force |F| at worst instant N (error of peak)"), worst_force.1, worst_force.2, worst_force.0, FORCE_TOLERANCE),
-        Check::with_error(&case, &format!("{mat_name}: max node distance mm (abs)"), worst_shape, 0.0, worst_shape, SHAPE_TOLERANCE_MM),
+        Check::with_error(
+            &case,
+            &format!("{mat_name}: end force |F| at worst instant N (error of peak)"),
+            worst_force.1,
+            worst_force.2,
+            worst_force.0,
+            FORCE_TOLERANCE,
+        ),
+        Check::with_error(
+            &case,
+            &format!("{mat_name}: max node distance mm (abs)"),
+            worst_shape,
+            0.0,
+            worst_shape,
+            SHAPE_TOLERANCE_MM,
+        ),
     ]
 }
 
