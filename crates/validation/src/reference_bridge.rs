@@ -3,7 +3,7 @@
 
 use glam::{DQuat, DVec3};
 use nalgebra::{Rotation3, UnitQuaternion, Vector3};
-use pliant_core::{Model, Section};
+use pliant_core::Model;
 use pliant_reference::{Pose, Rod, Solver, Stiffness};
 
 pub fn to_na(v: DVec3) -> Vector3<f64> {
@@ -22,10 +22,9 @@ pub fn rotation(q: DQuat) -> Rotation3<f64> {
 /// A reference solver for hose `h` of `model`: same rest polyline, same EA_t, EA_c, EI,
 /// GJ (read from the model's first element — the validation hoses are uniform), base
 /// clamped at the rest pose of node 0.
-pub fn solver_for(model: &Model, h: usize, section: &Section) -> Result<Solver, String> {
+pub fn solver_for(model: &Model, h: usize) -> Result<Solver, String> {
     let info = &model.hoses[h];
     let e = &model.elements[info.first_element];
-    let _ = section;
     let stiffness = Stiffness::bimodular(
         e.axial_stiffness_tension,
         e.axial_stiffness_compression,

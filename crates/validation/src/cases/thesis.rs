@@ -96,7 +96,6 @@ fn experiment(k: usize, material: (&str, f64, f64, f64)) -> Vec<Check> {
         poisson: 0.49,
         density: rho,
     };
-    let section = hose.sections[0];
     let model = match Model::build(&scene.world) {
         Ok(m) => m,
         Err(e) => return fail(e.to_string()),
@@ -113,7 +112,7 @@ fn experiment(k: usize, material: (&str, f64, f64, f64)) -> Vec<Check> {
     if let Err(e) = Runner::new(&model).run(&scene.timeline, &mut state, &mut sampler) {
         return fail(e.to_string());
     }
-    let solver = match solver_for(&model, 0, &section) {
+    let solver = match solver_for(&model, 0) {
         Ok(s) => s,
         Err(e) => return fail(e),
     };
