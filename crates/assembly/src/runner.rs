@@ -77,10 +77,11 @@ pub struct RunError {
     pub partial: RunSummary,
 }
 
-/// Executes timelines. Holds preallocated per-node peak trackers.
+/// Executes timelines. Tracks the peak support loads of every node a fix or drive held.
 pub struct Runner<'m> {
     model: &'m Model,
-    peaks: Vec<Option<NodePeak>>,
+    /// (global node, its peaks), in the order the nodes were first held.
+    peaks: Vec<(usize, NodePeak)>,
     summary: RunSummary,
 }
 
@@ -88,7 +89,7 @@ impl<'m> Runner<'m> {
     pub fn new(model: &'m Model) -> Self {
         Runner {
             model,
-            peaks: vec![None; model.node_count()],
+            peaks: Vec::new(),
             summary: RunSummary::default(),
         }
     }
@@ -136,7 +137,7 @@ impl<'m> Runner<'m> {
         let mut s = std::mem::take(&mut self.summary);
         s.steps = state.step;
         s.simulated_time = state.time;
-        s.peaks = self.peaks.iter().flatten().cloned().collect();
+        s.peaks = self.peaks.iter().map(|(_, p)| p.clone()).collect();
         s
     }
 
@@ -233,12 +234,13 @@ impl<'m> Runner<'m> {
 
     fn track(&mut self, n: NodeRef) {
         let i = self.global(n);
-        if self.peaks[i].is_none() {
-            self.peaks[i] = Some(NodePeak {
+        if !self.peaks.iter().any(|(g, _)| *g == i) {
+            let peak = NodePeak {
                 hose: n.hose,
                 node: n.node,
                 ..Default::default()
-            });
+            };
+            self.peaks.push((i, peak));
         }
     }
 
@@ -249,8 +251,8 @@ impl<'m> Runner<'m> {
         if wants || state.step % HEALTH_CHECK_EVERY == 0 {
             check(self.model, state)?;
         }
-        for (i, peak) in self.peaks.iter_mut().enumerate() {
-            let Some(p) = peak else { continue };
+        for (i, p) in self.peaks.iter_mut() {
+            let i = *i;
             if !state.held[i] {
                 continue;
             }

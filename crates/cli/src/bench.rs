@@ -246,24 +246,18 @@ impl Budget {
     }
 }
 
-/// Library material 1 (SPEC M4, tables 3.2–3.4): oil return hose, chloroprene/NBR.
-pub fn material_1() -> (Material, Section) {
-    (
-        Material {
-            e_tension: 11.583e6,
-            e_compression: 13.1363e6,
-            e_bending: None,
-            poisson: 0.49,
-            density: 940.0,
-        },
-        Section::new(0.010, 0.016),
-    )
+/// Library material 1 (SPEC M4, tables 3.2–3.4): oil return hose, chloroprene/NBR, read
+/// from the built-in material library.
+pub fn material_1() -> Result<(Material, Section)> {
+    let library = pliant_scene::Library::builtin()?;
+    let entry = library.get("hose1").context("library hose1 is missing")?;
+    Ok((entry.material.clone(), entry.section))
 }
 
 /// `hoses` straight horizontal hoses of `elements` elements each along x, 0.1 m apart in y.
-pub fn world(hoses: usize, elements: usize) -> WorldSpec {
-    let (material, section) = material_1();
-    WorldSpec {
+pub fn world(hoses: usize, elements: usize) -> Result<WorldSpec> {
+    let (material, section) = material_1()?;
+    Ok(WorldSpec {
         hoses: (0..hoses)
             .map(|h| HoseSpec {
                 name: format!("hose{h}"),
@@ -276,7 +270,7 @@ pub fn world(hoses: usize, elements: usize) -> WorldSpec {
             })
             .collect(),
         settings: SimSettings::default(),
-    }
+    })
 }
 
 /// Amplitude [rad] and wavelength [m] of the tangent angle of the initial bend,
@@ -309,7 +303,7 @@ pub fn bent_shape(origin: DVec3, elements: usize) -> Vec<DVec3> {
 /// in undeformed free fall during the measurement, where the element takes its cheap
 /// small-angle branches and the cost per element looks lower than it is in use.)
 pub fn setup(hoses: usize, elements: usize) -> Result<(Model, State)> {
-    let model = Model::build(&world(hoses, elements)).context("building the benchmark model")?;
+    let model = Model::build(&world(hoses, elements)?).context("building the benchmark model")?;
     let mut state = State::at_rest(&model);
     for h in &model.hoses {
         let origin = model.rest_x[h.first_node];

@@ -11,6 +11,38 @@ fn examples() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"))
 }
 
+/// Writes a scene file with one hose `h` of library hose 1 along +x, fixed at node 0,
+/// with extra `settings` TOML before the hose and further timeline `actions` after the fix.
+fn write_line_scene(
+    dir: &Path,
+    name: &str,
+    elements: usize,
+    length_mm: f64,
+    settings: &str,
+    actions: &str,
+) -> std::path::PathBuf {
+    let path = dir.join(name);
+    let text = format!(
+        r#"format = "pliant-scene"
+version = 1
+length_unit = "mm"
+{settings}
+[[hoses]]
+name = "h"
+material = "hose1"
+elements = {elements}
+start = [0, 0, 0]
+path = [ {{ line = {{ to = [{length_mm}, 0, 0] }} }} ]
+[[timeline]]
+action = "fix"
+hose = "h"
+node = 0
+{actions}"#
+    );
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
 #[test]
 fn demo_run_writes_finite_outputs_and_summary() {
     let out = tempfile::tempdir().unwrap();
@@ -58,31 +90,14 @@ fn hanging_hose_reaction_equals_its_weight() {
     // thesis-like hose, gravity on, fixed at one end, settles hanging: the support
     // carries the full weight m g (sum of lumped masses) — checked through the outputs.
     let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("hang.toml");
-    std::fs::write(
-        &scene,
-        r#"format = "pliant-scene"
-version = 1
-length_unit = "mm"
-[simulation]
-damping_mass_per_s = 5.0
-[[hoses]]
-name = "h"
-material = "hose1"
-elements = 20
-start = [0, 0, 0]
-path = [ { line = { to = [400, 0, 0] } } ]
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-[[timeline]]
-action = "settle"
-kinetic_energy_j = 1e-14
-max_duration_s = 60
-"#,
-    )
-    .unwrap();
+    let scene = write_line_scene(
+        dir.path(),
+        "hang.toml",
+        20,
+        400.0,
+        "[simulation]\ndamping_mass_per_s = 5.0",
+        "[[timeline]]\naction = \"settle\"\nkinetic_energy_j = 1e-14\nmax_duration_s = 60\n",
+    );
     let out = dir.path().join("out");
     let o = pliant()
         .args(["run", "--quiet"])
@@ -138,31 +153,14 @@ fn missing_scene_file_is_a_clear_error() {
 #[test]
 fn diverging_run_stops_with_step_and_cause_and_no_nan() {
     let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("fast.toml");
-    std::fs::write(
-        &scene,
-        r#"format = "pliant-scene"
-version = 1
-length_unit = "mm"
-[[hoses]]
-name = "h"
-material = "hose1"
-elements = 10
-start = [0, 0, 0]
-path = [ { line = { to = [200, 0, 0] } } ]
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-[[timeline]]
-action = "move"
-hose = "h"
-node = -1
-by = [0, 0, 50000]
-duration_s = 0.001
-"#,
-    )
-    .unwrap();
+    let scene = write_line_scene(
+        dir.path(),
+        "fast.toml",
+        10,
+        200.0,
+        "",
+        "[[timeline]]\naction = \"move\"\nhose = \"h\"\nnode = -1\nby = [0, 0, 50000]\nduration_s = 0.001\n",
+    );
     let out = dir.path().join("out");
     let o = pliant()
         .args(["run", "--quiet"])

@@ -102,7 +102,6 @@ pub fn max_frequency(model: &Model) -> f64 {
         .map(|e| e.rest_length)
         .fold(f64::INFINITY, f64::min)
         * 1e-6;
-    let mut lambda = 0.0;
     for _ in 0..60 {
         let norm = (u_x
             .iter()
@@ -113,7 +112,6 @@ pub fn max_frequency(model: &Model) -> f64 {
         for v in u_x.iter_mut().chain(u_r.iter_mut()) {
             *v /= norm;
         }
-        lambda = norm;
         for i in 0..n {
             xp[i] = model.rest_x[i] + scale * u_x[i];
             xm[i] = model.rest_x[i] - scale * u_x[i];
@@ -150,14 +148,14 @@ pub fn max_frequency(model: &Model) -> f64 {
             u_r[i] = -(mp[i] - mm[i]) / (2.0 * scale * model.inertia[i]);
         }
     }
-    let norm = (u_x
+    // u had unit norm before the last product, so |M⁻¹ K u| is the eigenvalue estimate
+    let lambda: f64 = u_x
         .iter()
         .chain(&u_r)
         .map(|v| v.length_squared())
-        .sum::<f64>())
-    .sqrt();
-    lambda = lambda.max(norm).max(1e-300);
-    1.02 * lambda.sqrt()
+        .sum::<f64>()
+        .sqrt();
+    1.02 * lambda.max(1e-300).sqrt()
 }
 
 /// A fixed pseudo-random unit-ish direction per node (deterministic).

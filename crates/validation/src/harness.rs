@@ -5,18 +5,21 @@ use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::relax::{relax, RelaxOptions, RelaxReport};
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 
-/// The validation hose: library hose 1's section (d_i 10 mm, d_a 16 mm) and its
-/// bimodular material (E_t = 11.583 MPa, E_c = 13.1363 MPa, ρ = 940 kg/m³, ν = 0.49),
-/// 1 m long — a slender hose (L/d_a = 62.5) as in an engine bay.
+/// Material and section of a built-in library hose (SPEC M4), read from the library data
+/// file so that every case uses the same values as scene files do.
+pub fn library_hose(name: &str) -> (Material, Section) {
+    let library = pliant_scene::Library::builtin().expect("the built-in material library parses");
+    let entry = library
+        .get(name)
+        .unwrap_or_else(|| panic!("library hose {name} exists"));
+    (entry.material.clone(), entry.section)
+}
+
+/// The validation hose: library hose 1 (d_i 10 mm, d_a 16 mm, bimodular E_t 11.583 MPa,
+/// E_c 13.1363 MPa, ρ 940 kg/m³, ν 0.49), 1 m long in the cases — a slender hose
+/// (L/d_a = 62.5) as in an engine bay.
 pub fn hose1() -> (Material, Section) {
-    let m = Material {
-        e_tension: 11.583e6,
-        e_compression: 13.1363e6,
-        e_bending: None,
-        poisson: 0.49,
-        density: 940.0,
-    };
-    (m, Section::new(0.010, 0.016))
+    library_hose("hose1")
 }
 
 /// Settings for static validation: no gravity, no mass damping (relaxation damps
