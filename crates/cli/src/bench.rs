@@ -269,6 +269,7 @@ pub fn world(hoses: usize, elements: usize) -> Result<WorldSpec> {
                 normal_hint: Some(DVec3::Z),
             })
             .collect(),
+        rigid_parts: Vec::new(),
         settings: SimSettings::default(),
     })
 }

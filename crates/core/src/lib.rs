@@ -27,5 +27,5 @@ pub use health::Divergence;
 pub use material::Material;
 pub use model::{HoseInfo, Model, ModelError};
 pub use section::Section;
-pub use spec::{HoseSpec, SimSettings, WorldSpec};
+pub use spec::{HoseSpec, RigidPartSpec, SimSettings, WorldSpec};
 pub use state::State;

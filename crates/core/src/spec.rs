@@ -54,9 +54,29 @@ impl Default for SimSettings {
     }
 }
 
+/// A rigid, fixed part of the environment (CAD part, sheet, primitive) as a triangle
+/// mesh in world coordinates — the loader has already applied the part's pose and unit.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RigidPartSpec {
+    /// Name shown in outputs.
+    pub name: String,
+    /// Vertex positions [m], world frame.
+    pub vertices: Vec<DVec3>,
+    /// Triangles as indices into `vertices` (orientation may be inconsistent; contact
+    /// must not rely on it).
+    pub triangles: Vec<[u32; 3]>,
+    /// Coulomb friction coefficient before sliding (static) against hoses.
+    pub friction_static: f64,
+    /// Coulomb friction coefficient while sliding.
+    pub friction_sliding: f64,
+}
+
 /// A whole world to simulate.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct WorldSpec {
     pub hoses: Vec<HoseSpec>,
+    /// Rigid environment (issue 3, SPEC L4); empty → no contact with parts.
+    #[serde(default)]
+    pub rigid_parts: Vec<RigidPartSpec>,
     pub settings: SimSettings,
 }

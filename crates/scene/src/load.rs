@@ -311,7 +311,11 @@ fn build(file: &SceneFile, text: &str, origin: &str) -> Result<LoadedScene, Fiel
     Ok(LoadedScene {
         name,
         hose_names: hoses.iter().map(|h| h.name.clone()).collect(),
-        world: WorldSpec { hoses, settings },
+        world: WorldSpec {
+            hoses,
+            rigid_parts: Vec::new(),
+            settings,
+        },
         timeline,
         record_interval,
         hoses: infos,

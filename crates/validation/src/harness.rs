@@ -61,6 +61,7 @@ pub fn straight_hose(
 pub fn build(hose: HoseSpec, settings: SimSettings) -> Model {
     Model::build(&WorldSpec {
         hoses: vec![hose],
+        rigid_parts: Vec::new(),
         settings,
     })
     .expect("validation model must build")

@@ -25,6 +25,7 @@ pub fn run() -> Vec<Check> {
     };
     let model = Model::build(&WorldSpec {
         hoses: vec![hose],
+        rigid_parts: Vec::new(),
         settings: static_settings(),
     })
     .expect("arc builds");
