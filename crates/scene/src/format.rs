@@ -35,6 +35,9 @@ pub struct SceneFile {
     /// The hoses of the scene (at least one).
     #[schemars(length(min = 1))]
     pub hoses: Vec<HoseEntry>,
+    /// Rigid parts of the environment (triangle meshes from files, or primitives).
+    #[serde(default)]
+    pub parts: Vec<PartEntry>,
     /// Scripted actions, executed in order.
     #[serde(default)]
     pub timeline: Vec<ActionEntry>,
@@ -156,6 +159,77 @@ pub enum SegmentEntry {
     },
 }
 
+/// `[[parts]]`: one rigid, fixed part: exactly one of `mesh`, `box`, `cylinder`,
+/// `sphere`, placed by `position` and `rotation`.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PartEntry {
+    /// Unique, non-empty name.
+    pub name: String,
+    /// Mesh file (`.obj`, `.stl`, `.gltf`, `.glb`), relative to the scene file's
+    /// directory or absolute.
+    pub mesh: Option<String>,
+    /// Unit of the mesh file's coordinates: `"mm"` or `"m"`. Default: `"m"` for glTF/GLB
+    /// (glTF is defined in metres), the scene's `length_unit` for OBJ and STL. Only with
+    /// `mesh`.
+    pub mesh_unit: Option<LengthUnit>,
+    /// A box centred at `position`.
+    #[serde(rename = "box")]
+    pub box_: Option<BoxEntry>,
+    /// A closed cylinder along the part's local z axis, centred at `position`.
+    pub cylinder: Option<CylinderEntry>,
+    /// A sphere centred at `position`.
+    pub sphere: Option<SphereEntry>,
+    /// Where the part's local origin goes (length unit). Default `[0, 0, 0]`.
+    pub position: Option<Vec3>,
+    /// Rotation of the part about its local origin, applied before `position`.
+    /// Default: none.
+    pub rotation: Option<RotateEntry>,
+    /// Coulomb friction of hoses on this part. Default static 0.5, sliding 0.4.
+    pub friction: Option<FrictionEntry>,
+}
+
+/// `box = { size = [x, y, z] }`.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BoxEntry {
+    /// Edge lengths along the local x, y, z axes (length unit), each > 0.
+    pub size: Vec3,
+}
+
+/// `cylinder = { radius, height, segments }`.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CylinderEntry {
+    /// Radius (length unit), > 0.
+    pub radius: f64,
+    /// Height along the local z axis (length unit), > 0.
+    pub height: f64,
+    /// Number of sides of the inscribed prism, ≥ 3. Default 32.
+    pub segments: Option<u32>,
+}
+
+/// `sphere = { radius, subdivisions }`.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SphereEntry {
+    /// Radius (length unit), > 0.
+    pub radius: f64,
+    /// Subdivisions of an icosahedron (20·4ⁿ triangles). Default 3 (1280 triangles).
+    pub subdivisions: Option<u32>,
+}
+
+/// `friction = { static, sliding }`: Coulomb coefficients, 0 ≤ sliding ≤ static.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionEntry {
+    /// Static coefficient (before sliding), ≥ 0.
+    #[serde(rename = "static")]
+    pub static_: f64,
+    /// Sliding coefficient, ≥ 0 and ≤ `static`.
+    pub sliding: f64,
+}
+
 /// A rest-shape node offset.
 #[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -186,11 +260,12 @@ impl Points {
     }
 }
 
-/// A rotation about a global axis.
+/// A rotation about an axis.
 #[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RotateEntry {
-    /// Rotation axis in the global frame; any non-zero length.
+    /// Rotation axis in the global frame (for a part: through its position); any
+    /// non-zero length.
     pub axis: Vec3,
     /// Angle in degrees (right-hand rule); may exceed 360.
     pub angle_deg: f64,

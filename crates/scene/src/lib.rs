@@ -1,4 +1,4 @@
-//! Pliant scene files (SPEC §5, M1–M4, L1–L3): a versioned TOML (or JSON) format with a
+//! Pliant scene files (SPEC §5, M1–M4, L1–L4): a versioned TOML (or JSON) format with a
 //! JSON Schema, the built-in material library, centre-line discretisation and thorough
 //! validation. Loading is a pure function from text to a [`LoadedScene`] in SI units —
 //! a core [`pliant_core::WorldSpec`] plus a [`pliant_assembly::Timeline`] — or a
@@ -16,6 +16,8 @@ pub mod hoses;
 pub mod library;
 pub mod load;
 pub mod materials;
+pub mod mesh;
+pub mod parts;
 pub mod scene;
 pub mod schema;
 pub mod settings;
@@ -26,9 +28,10 @@ pub mod validate;
 pub use error::{FieldError, SceneError};
 pub use library::{Library, LibraryEntry, LibraryValue, Provenance};
 pub use load::{
-    demo_scene, load_scene_file, load_scene_json_str, load_scene_str, DEMO_SCENE_TOML, FORMAT_TAG,
-    FORMAT_VERSION,
+    base_dir_of, demo_scene, load_scene_file, load_scene_json_str, load_scene_json_str_in,
+    load_scene_str, load_scene_str_in, DEMO_SCENE_TOML, FORMAT_TAG, FORMAT_VERSION,
 };
-pub use scene::{HoseInfo, LoadedScene};
+pub use mesh::{TriMesh, MAX_TRIANGLES};
+pub use scene::{HoseInfo, LoadedScene, PartInfo};
 pub use schema::scene_schema_json;
 pub use units::LengthUnit;

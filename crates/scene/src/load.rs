@@ -8,12 +8,13 @@ use crate::format::SceneFile;
 use crate::hoses::build_hose;
 use crate::library::Library;
 use crate::materials::Materials;
+use crate::parts::build_parts;
 use crate::scene::LoadedScene;
 use crate::settings::{build_record_interval, build_settings};
 use crate::timeline::{build_timeline, HoseNodes};
 use pliant_core::WorldSpec;
 use serde::Deserialize;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The format tag every scene file starts with.
 pub const FORMAT_TAG: &str = "pliant-scene";
@@ -23,7 +24,8 @@ pub const FORMAT_VERSION: i64 = 1;
 /// The built-in demo scene's text (`examples/demo.toml`).
 pub const DEMO_SCENE_TOML: &str = include_str!("../../../examples/demo.toml");
 
-/// Loads a scene file; `.json` files are read as JSON, everything else as TOML.
+/// Loads a scene file; `.json` files are read as JSON, everything else as TOML. Relative
+/// mesh paths are resolved against the file's directory.
 pub fn load_scene_file(path: &Path) -> Result<LoadedScene, SceneError> {
     let origin = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
@@ -33,23 +35,56 @@ pub fn load_scene_file(path: &Path) -> Result<LoadedScene, SceneError> {
     let is_json = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     if is_json {
-        load_scene_json_str(&text, &origin)
+        load_scene_json_str_in(&text, &origin, &dir)
     } else {
-        load_scene_str(&text, &origin)
+        load_scene_str_in(&text, &origin, &dir)
+    }
+}
+
+/// The directory relative mesh paths are resolved against for a scene from `origin`:
+/// the directory of `origin` if it names an existing file, else the current directory
+/// (the empty path).
+pub fn base_dir_of(origin: &str) -> PathBuf {
+    let p = Path::new(origin);
+    if p.is_file() {
+        p.parent().map(Path::to_path_buf).unwrap_or_default()
+    } else {
+        PathBuf::new()
     }
 }
 
 /// Loads a scene from TOML text; `origin` names it in errors (e.g. the file name).
+/// Relative mesh paths are resolved as by [`base_dir_of`].
 pub fn load_scene_str(text: &str, origin: &str) -> Result<LoadedScene, SceneError> {
-    let file = parse_toml(text, origin)?;
-    build_scene(&file, text, origin)
+    load_scene_str_in(text, origin, &base_dir_of(origin))
 }
 
-/// Loads a scene from JSON text (same structure as the TOML format).
+/// Loads a scene from TOML text, resolving relative mesh paths against `base_dir`.
+pub fn load_scene_str_in(
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+) -> Result<LoadedScene, SceneError> {
+    let file = parse_toml(text, origin)?;
+    build_scene_in(&file, text, origin, base_dir)
+}
+
+/// Loads a scene from JSON text (same structure as the TOML format). Relative mesh
+/// paths are resolved as by [`base_dir_of`].
 pub fn load_scene_json_str(text: &str, origin: &str) -> Result<LoadedScene, SceneError> {
+    load_scene_json_str_in(text, origin, &base_dir_of(origin))
+}
+
+/// Loads a scene from JSON text, resolving relative mesh paths against `base_dir`.
+pub fn load_scene_json_str_in(
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+) -> Result<LoadedScene, SceneError> {
     let file = parse_json(text, origin)?;
-    build_scene(&file, text, origin)
+    build_scene_in(&file, text, origin, base_dir)
 }
 
 /// The built-in demo scene.
@@ -263,13 +298,29 @@ pub fn parse_json(text: &str, origin: &str) -> Result<SceneFile, SceneError> {
     })
 }
 
-/// Checks a raw scene and converts it to SI.
+/// Checks a raw scene and converts it to SI (relative mesh paths as by [`base_dir_of`]).
 pub fn build_scene(file: &SceneFile, text: &str, origin: &str) -> Result<LoadedScene, SceneError> {
-    build(file, text, origin).map_err(|e| e.at(origin))
+    build_scene_in(file, text, origin, &base_dir_of(origin))
 }
 
-/// [`build_scene`] without the origin attached to errors.
-fn build(file: &SceneFile, text: &str, origin: &str) -> Result<LoadedScene, FieldError> {
+/// Checks a raw scene and converts it to SI, resolving relative mesh paths against
+/// `base_dir`.
+pub fn build_scene_in(
+    file: &SceneFile,
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+) -> Result<LoadedScene, SceneError> {
+    build(file, text, origin, base_dir).map_err(|e| e.at(origin))
+}
+
+/// [`build_scene_in`] without the origin attached to errors.
+fn build(
+    file: &SceneFile,
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+) -> Result<LoadedScene, FieldError> {
     let library = Library::builtin().map_err(|e| FieldError::about("materials", e.to_string()))?;
     let materials = Materials::build(&file.materials, library)?;
     let settings = build_settings(file.simulation.as_ref())?;
@@ -302,6 +353,7 @@ fn build(file: &SceneFile, text: &str, origin: &str) -> Result<LoadedScene, Fiel
         })
         .collect();
     let timeline = build_timeline(&file.timeline, &nodes, file.length_unit)?;
+    let (rigid_parts, part_infos) = build_parts(&file.parts, file.length_unit, base_dir)?;
     let name = match &file.name {
         Some(n) if !n.trim().is_empty() => n.clone(),
         _ => Path::new(origin)
@@ -313,12 +365,13 @@ fn build(file: &SceneFile, text: &str, origin: &str) -> Result<LoadedScene, Fiel
         hose_names: hoses.iter().map(|h| h.name.clone()).collect(),
         world: WorldSpec {
             hoses,
-            rigid_parts: Vec::new(),
+            rigid_parts,
             settings,
         },
         timeline,
         record_interval,
         hoses: infos,
+        parts: part_infos,
         length_unit: file.length_unit,
         source: origin.to_string(),
         text: text.to_string(),

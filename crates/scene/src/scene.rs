@@ -22,6 +22,22 @@ pub struct HoseInfo {
     pub element_length: f64,
 }
 
+/// How one rigid part was built.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartInfo {
+    /// The part's name.
+    pub name: String,
+    /// Where its triangles came from: the mesh file as resolved, or `box`, `cylinder`,
+    /// `sphere`.
+    pub source: String,
+    /// Number of triangles kept.
+    pub triangles: usize,
+    /// Number of degenerate (zero-area) triangles of the file that were dropped.
+    pub dropped_degenerate: usize,
+    /// World-frame bounding box (m): minimum and maximum corner.
+    pub bounds: (glam::DVec3, glam::DVec3),
+}
+
 /// A scene, fully checked and converted to SI. Hoses in `world.hoses`, `hose_names` and
 /// `hoses` share indices, which are also the `hose` indices of the timeline's node
 /// references.
@@ -29,7 +45,7 @@ pub struct HoseInfo {
 pub struct LoadedScene {
     /// Scene name (the file's `name`, else the file name without extension).
     pub name: String,
-    /// Hoses and global settings for the physics core.
+    /// Hoses, rigid parts and global settings for the physics core.
     pub world: WorldSpec,
     /// Scripted actions, node references resolved to indices.
     pub timeline: Timeline,
@@ -39,6 +55,8 @@ pub struct LoadedScene {
     pub hose_names: Vec<String>,
     /// Discretisation facts per hose, by index.
     pub hoses: Vec<HoseInfo>,
+    /// Facts per rigid part, by index (same order as `world.rigid_parts`).
+    pub parts: Vec<PartInfo>,
     /// The length unit the file was written in.
     pub length_unit: LengthUnit,
     /// Where the scene came from (a path, or a description such as the built-in demo).

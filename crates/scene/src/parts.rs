@@ -1,0 +1,245 @@
+//! Building rigid parts (SPEC §5, L4): a mesh file or a primitive, posed, converted to
+//! metres, checked, as a core [`RigidPartSpec`] in world coordinates.
+
+use crate::error::FieldError;
+use crate::format::{FrictionEntry, PartEntry};
+use crate::mesh::{
+    bounds, box_mesh, check_mesh, check_triangle_count, cylinder_mesh, cylinder_triangles,
+    read_mesh_file, sphere_mesh, sphere_triangles, MeshFormat, TriMesh, DEFAULT_CYLINDER_SEGMENTS,
+    DEFAULT_SPHERE_SUBDIVISIONS, MAX_TRIANGLES,
+};
+use crate::scene::PartInfo;
+use crate::units::LengthUnit;
+use crate::validate::{finite, finite_vec, non_negative, non_zero_vec, positive, with_unit};
+use glam::{DQuat, DVec3};
+use pliant_core::RigidPartSpec;
+use std::path::Path;
+
+/// Default static friction coefficient of a hose on a part. Assumption: the dissertation
+/// gives none; 0.5 is typical of rubber on painted or lacquered metal and hard plastics.
+pub const DEFAULT_FRICTION_STATIC: f64 = 0.5;
+/// Default sliding friction coefficient (assumption, see [`DEFAULT_FRICTION_STATIC`]).
+pub const DEFAULT_FRICTION_SLIDING: f64 = 0.4;
+
+/// The shape kinds of a part, as written.
+const KINDS: &str = "`mesh`, `box`, `cylinder`, `sphere`";
+
+/// Checks and builds every part; `base_dir` resolves relative mesh paths.
+pub fn build_parts(
+    raw: &[PartEntry],
+    unit: LengthUnit,
+    base_dir: &Path,
+) -> Result<(Vec<RigidPartSpec>, Vec<PartInfo>), FieldError> {
+    for (i, p) in raw.iter().enumerate() {
+        if p.name.trim().is_empty() {
+            return Err(FieldError::new(
+                format!("parts[{i}].name"),
+                format!("\"{}\"", p.name),
+                "a part name must not be empty",
+            ));
+        }
+        if let Some(first) = raw[..i].iter().position(|q| q.name == p.name) {
+            return Err(FieldError::new(
+                format!("parts[{i}].name"),
+                format!("\"{}\"", p.name),
+                format!("duplicate part name (also parts[{first}].name)"),
+            ));
+        }
+    }
+    let mut specs = Vec::with_capacity(raw.len());
+    let mut infos = Vec::with_capacity(raw.len());
+    for (i, p) in raw.iter().enumerate() {
+        let (spec, info) = build_part(i, p, unit, base_dir)?;
+        specs.push(spec);
+        infos.push(info);
+    }
+    Ok((specs, infos))
+}
+
+/// Checks and builds `parts[index]`.
+pub fn build_part(
+    index: usize,
+    raw: &PartEntry,
+    unit: LengthUnit,
+    base_dir: &Path,
+) -> Result<(RigidPartSpec, PartInfo), FieldError> {
+    let at = |rest: &str| format!("parts[{index}].{rest}");
+    let (u, scale) = (unit.symbol(), unit.to_metres());
+
+    let given: Vec<&str> = [
+        ("mesh", raw.mesh.is_some()),
+        ("box", raw.box_.is_some()),
+        ("cylinder", raw.cylinder.is_some()),
+        ("sphere", raw.sphere.is_some()),
+    ]
+    .iter()
+    .filter(|(_, g)| *g)
+    .map(|(n, _)| *n)
+    .collect();
+    match given.len() {
+        0 => {
+            return Err(FieldError::about(
+                format!("parts[{index}]"),
+                format!("a part needs exactly one of {KINDS}"),
+            ))
+        }
+        1 => {}
+        _ => {
+            return Err(FieldError::about(
+                format!("parts[{index}]"),
+                format!(
+                    "give exactly one of {KINDS}, not {}",
+                    given
+                        .iter()
+                        .map(|g| format!("`{g}`"))
+                        .collect::<Vec<_>>()
+                        .join(" and ")
+                ),
+            ))
+        }
+    }
+    if raw.mesh_unit.is_some() && raw.mesh.is_none() {
+        return Err(FieldError::about(
+            at("mesh_unit"),
+            "only allowed with `mesh` (primitive sizes are in the scene's length_unit)",
+        ));
+    }
+
+    let position = match raw.position {
+        Some(p) => finite_vec(&at("position"), p, u)? * scale,
+        None => DVec3::ZERO,
+    };
+    let rotation = match &raw.rotation {
+        Some(r) => {
+            let axis = non_zero_vec(&at("rotation.axis"), r.axis, "")?;
+            let angle = finite(&at("rotation.angle_deg"), r.angle_deg, "°")?;
+            DQuat::from_axis_angle(axis.normalize(), angle.to_radians())
+        }
+        None => DQuat::IDENTITY,
+    };
+    let (friction_static, friction_sliding) = friction(&at("friction"), raw.friction.as_ref())?;
+
+    // The local mesh in metres, its source, and how many degenerate triangles went.
+    let (local, source, dropped) = if let Some(file) = &raw.mesh {
+        let field = at("mesh");
+        let err = |reason: String| FieldError::new(field.clone(), format!("\"{file}\""), reason);
+        if file.trim().is_empty() {
+            return Err(err("must name a mesh file".to_string()));
+        }
+        let path = base_dir.join(file);
+        let format = MeshFormat::of(&path).map_err(err)?;
+        let mesh_unit = raw.mesh_unit.unwrap_or(match format {
+            MeshFormat::Gltf => LengthUnit::Metre,
+            MeshFormat::Obj | MeshFormat::Stl => unit,
+        });
+        let mesh = read_mesh_file(&path).map_err(|reason| {
+            if let Some(rest) = reason.strip_prefix("cannot read: ") {
+                err(format!("cannot read {}: {rest}", path.display()))
+            } else {
+                err(reason)
+            }
+        })?;
+        let checked = check_mesh(mesh).map_err(err)?;
+        let s = mesh_unit.to_metres();
+        let mut mesh = checked.mesh;
+        for v in &mut mesh.vertices {
+            *v *= s;
+        }
+        (mesh, path.display().to_string(), checked.dropped_degenerate)
+    } else if let Some(b) = &raw.box_ {
+        let mut size = DVec3::ZERO;
+        for k in 0..3 {
+            size[k] = positive(&at(&format!("box.size[{k}]")), b.size[k], u)? * scale;
+        }
+        (box_mesh(size), "box".to_string(), 0)
+    } else if let Some(c) = &raw.cylinder {
+        let radius = positive(&at("cylinder.radius"), c.radius, u)? * scale;
+        let height = positive(&at("cylinder.height"), c.height, u)? * scale;
+        let segments = c.segments.unwrap_or(DEFAULT_CYLINDER_SEGMENTS);
+        if segments < 3 {
+            return Err(FieldError::new(
+                at("cylinder.segments"),
+                segments.to_string(),
+                "must be at least 3",
+            ));
+        }
+        check_triangle_count(cylinder_triangles(segments)).map_err(|r| {
+            FieldError::new(
+                at("cylinder.segments"),
+                segments.to_string(),
+                format!("gives {r}"),
+            )
+        })?;
+        (
+            cylinder_mesh(radius, height, segments),
+            "cylinder".to_string(),
+            0,
+        )
+    } else if let Some(s) = &raw.sphere {
+        let radius = positive(&at("sphere.radius"), s.radius, u)? * scale;
+        let subdivisions = s.subdivisions.unwrap_or(DEFAULT_SPHERE_SUBDIVISIONS);
+        let count = sphere_triangles(subdivisions).unwrap_or(usize::MAX);
+        if count > MAX_TRIANGLES {
+            let n = if count == usize::MAX {
+                "more than 2^64 triangles".to_string()
+            } else {
+                format!("{count} triangles")
+            };
+            return Err(FieldError::new(
+                at("sphere.subdivisions"),
+                subdivisions.to_string(),
+                format!("gives {n}; at most {MAX_TRIANGLES} are supported per part"),
+            ));
+        }
+        (sphere_mesh(radius, subdivisions), "sphere".to_string(), 0)
+    } else {
+        unreachable!("exactly one shape kind was checked above")
+    };
+
+    let TriMesh {
+        vertices,
+        triangles,
+    } = local;
+    let vertices: Vec<DVec3> = vertices
+        .into_iter()
+        .map(|v| position + rotation * v)
+        .collect();
+    if vertices.iter().any(|v| !v.is_finite()) {
+        return Err(FieldError::about(
+            format!("parts[{index}]"),
+            "coordinates overflow after scaling and placing the part",
+        ));
+    }
+    let info = PartInfo {
+        name: raw.name.clone(),
+        source,
+        triangles: triangles.len(),
+        dropped_degenerate: dropped,
+        bounds: bounds(&vertices),
+    };
+    let spec = RigidPartSpec {
+        name: raw.name.clone(),
+        vertices,
+        triangles,
+        friction_static,
+        friction_sliding,
+    };
+    Ok((spec, info))
+}
+
+/// Checks `friction`: both ≥ 0 and sliding ≤ static.
+fn friction(field: &str, raw: Option<&FrictionEntry>) -> Result<(f64, f64), FieldError> {
+    let Some(f) = raw else {
+        return Ok((DEFAULT_FRICTION_STATIC, DEFAULT_FRICTION_SLIDING));
+    };
+    let st = non_negative(&format!("{field}.static"), f.static_, "")?;
+    let sl = non_negative(&format!("{field}.sliding"), f.sliding, "")?;
+    if sl > st {
+        return Err(FieldError::new(
+            format!("{field}.sliding"),
+            with_unit(sl, ""),
+            format!("must not exceed static ({})", with_unit(st, "")),
+        ));
+    }
+    Ok((st, sl))
+}
