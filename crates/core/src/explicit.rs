@@ -6,8 +6,11 @@
 //!
 //! Nodes held by a kinematic load case (fix, drive) take their prescribed pose; the load
 //! the support must apply is the one that makes the node's own momentum balance hold:
-//! R = m (v_new − v_old)/Δt − f  (and likewise for moments). No allocation in a step.
+//! R = m (v_new − v_old)/Δt − f  (and likewise for moments). Contact with rigid parts
+//! ([`crate::contact`]) corrects velocities before and positions after the position
+//! update. No allocation in a step.
 
+use crate::contact::{project_positions, resolve_velocities};
 use crate::forces::{add_body_loads, internal_loads, Config};
 use crate::loads::LoadCase;
 use crate::math::{exp_map, log_map};
@@ -60,13 +63,23 @@ pub fn step(model: &Model, state: &mut State) {
         state.held[i] = true;
     }
     for i in 0..state.x.len() {
-        if state.held[i] {
-            continue;
+        if !state.held[i] {
+            state.v[i] += dt / model.mass[i] * state.force[i];
+            state.w[i] += dt / model.inertia[i] * state.moment[i];
         }
-        state.v[i] += dt / model.mass[i] * state.force[i];
-        state.x[i] += dt * state.v[i];
-        state.w[i] += dt / model.inertia[i] * state.moment[i];
-        state.q[i] = (exp_map(dt * state.w[i]) * state.q[i]).normalize();
+    }
+    let contact = !model.environment.is_empty();
+    if contact {
+        resolve_velocities(model, state, dt);
+    }
+    for i in 0..state.x.len() {
+        if !state.held[i] {
+            state.x[i] += dt * state.v[i];
+            state.q[i] = (exp_map(dt * state.w[i]) * state.q[i]).normalize();
+        }
+    }
+    if contact {
+        project_positions(model, state, dt);
     }
     state.time = t_next;
     state.step += 1;

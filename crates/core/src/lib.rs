@@ -7,6 +7,7 @@
 //! [`State`] holds everything that changes; [`explicit::step`]`(&model, &mut state)`
 //! advances it.
 
+pub mod contact;
 pub mod element;
 pub mod explicit;
 pub mod forces;

@@ -1,6 +1,7 @@
 //! The Model: what the world is (topology, rest geometry, stiffness, masses, settings),
 //! fixed after building, in the spirit of MuJoCo's mjModel.
 
+use crate::contact::RigidEnvironment;
 use crate::element::BeamElement;
 use crate::frames::node_frames;
 use crate::mass::half_element_mass;
@@ -52,6 +53,8 @@ pub struct Model {
     pub time_step: f64,
     /// How the time step was chosen.
     pub time_step_report: TimeStepReport,
+    /// Rigid parts hoses collide with (SPEC L4); empty when the scene has none.
+    pub environment: RigidEnvironment,
 }
 
 /// Why a world spec could not be built.
@@ -63,6 +66,8 @@ pub enum ModelError {
     Settings(String),
     #[error("the world has no hose")]
     Empty,
+    #[error("{0}")]
+    RigidPart(String),
 }
 
 fn finite(v: DVec3) -> bool {
@@ -145,6 +150,8 @@ impl Model {
             damping_stiffness: 0.0,
             time_step: 0.0,
             time_step_report: TimeStepReport::default(),
+            environment: RigidEnvironment::build(&spec.rigid_parts)
+                .map_err(ModelError::RigidPart)?,
         };
         for h in &spec.hoses {
             check_hose(h)?;

@@ -2,6 +2,7 @@
 //! cases, last reactions). A step reads the Model and writes the State; a snapshot is a
 //! clone of the State.
 
+use crate::contact::ContactScratch;
 use crate::loads::LoadCases;
 use crate::Model;
 use glam::{DQuat, DVec3};
@@ -33,6 +34,10 @@ pub struct State {
     pub held: Vec<bool>,
     /// Active load cases.
     pub loads: LoadCases,
+    /// Force the rigid parts applied to each node in the last step [N] (SPEC I2).
+    pub contact_force: Vec<DVec3>,
+    /// Contact memory (sides of surfaces) and per-step contact list.
+    pub contact: ContactScratch,
 }
 
 impl State {
@@ -52,6 +57,8 @@ impl State {
             reaction_moment: vec![DVec3::ZERO; n],
             held: vec![false; n],
             loads: LoadCases::default(),
+            contact_force: vec![DVec3::ZERO; n],
+            contact: ContactScratch::new(n, model.elements.len()),
         }
     }
 

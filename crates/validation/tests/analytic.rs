@@ -61,3 +61,15 @@ fn thesis_3() {
 fn thesis_4() {
     assert_case("thesis_4");
 }
+#[test]
+fn contact_rest() {
+    assert_case("contact_rest");
+}
+#[test]
+fn contact_incline() {
+    assert_case("contact_incline");
+}
+#[test]
+fn tunnelling() {
+    assert_case("tunnelling");
+}

@@ -23,7 +23,7 @@ pub struct GuideRange {
 /// One table: a value per row (posture or grip `P`), duty and population, with its
 /// provenance and unit.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Table<P, V> {
+pub(crate) struct Table<P, V> {
     source: String,
     unit: String,
     /// Indexed `[posture][duty][population]`; one row per value of `P::ALL`.
@@ -48,21 +48,32 @@ impl<P: Named, V: Copy> Table<P, V> {
     }
 }
 
-/// All six tables of SPEC I3.
+/// Provenance of one table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TableInfo<'a> {
+    /// Key in the limits file, e.g. `push_limit`.
+    pub key: &'static str,
+    /// Where the table comes from, e.g. "dissertation table 3.7: …".
+    pub source: &'a str,
+    /// Unit of its values: "N" or "N m".
+    pub unit: &'a str,
+}
+
+/// All six tables of SPEC I3; look values up with the methods.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ErgonomicLimits {
     /// Push against a plane, guide values (table 3.6) [N].
-    pub push_guide: Table<PushPosture, GuideRange>,
+    push_guide: Table<PushPosture, GuideRange>,
     /// Push against a plane, limit values (table 3.7) [N].
-    pub push_limit: Table<PushPosture, f64>,
+    push_limit: Table<PushPosture, f64>,
     /// Pull, guide values (table 3.8) [N].
-    pub pull_guide: Table<PullPosture, GuideRange>,
+    pull_guide: Table<PullPosture, GuideRange>,
     /// Pull, limit values (table 3.9) [N].
-    pub pull_limit: Table<PullPosture, f64>,
+    pull_limit: Table<PullPosture, f64>,
     /// Turning, guide values (table 3.10) [N·m].
-    pub torque_guide: Table<TorqueGrip, GuideRange>,
+    torque_guide: Table<TorqueGrip, GuideRange>,
     /// Turning, limit values (table 3.11) [N·m].
-    pub torque_limit: Table<TorqueGrip, f64>,
+    torque_limit: Table<TorqueGrip, f64>,
 }
 
 impl ErgonomicLimits {
@@ -79,7 +90,8 @@ impl ErgonomicLimits {
     /// row present once, every value finite and positive, lo ≤ hi for guide ranges, and
     /// each guide range's upper end at most the matching limit value.
     pub fn parse(text: &str) -> Result<ErgonomicLimits, ErgonomicsError> {
-        let raw: RawFile = toml::from_str(text).map_err(|e| ErgonomicsError::File(e.to_string()))?;
+        let raw: RawFile =
+            toml::from_str(text).map_err(|e| ErgonomicsError::File(e.to_string()))?;
         let limits = ErgonomicLimits {
             push_guide: raw.push_guide.build("push_guide", "N")?,
             push_limit: raw.push_limit.build("push_limit", "N")?,
@@ -95,7 +107,12 @@ impl ErgonomicLimits {
     }
 
     /// Push guide range (table 3.6) [N].
-    pub fn push_guide(&self, posture: PushPosture, population: Population, duty: Duty) -> GuideRange {
+    pub fn push_guide(
+        &self,
+        posture: PushPosture,
+        population: Population,
+        duty: Duty,
+    ) -> GuideRange {
         self.push_guide.get(posture, population, duty)
     }
 
@@ -105,7 +122,12 @@ impl ErgonomicLimits {
     }
 
     /// Pull guide range (table 3.8) [N].
-    pub fn pull_guide(&self, posture: PullPosture, population: Population, duty: Duty) -> GuideRange {
+    pub fn pull_guide(
+        &self,
+        posture: PullPosture,
+        population: Population,
+        duty: Duty,
+    ) -> GuideRange {
         self.pull_guide.get(posture, population, duty)
     }
 
@@ -124,15 +146,40 @@ impl ErgonomicLimits {
         self.torque_limit.get(grip, population, duty)
     }
 
-    /// (table key, source) of every table, in file order.
-    pub fn sources(&self) -> [(&'static str, &str); 6] {
+    /// Key, source and unit of every table, in file order.
+    pub fn tables(&self) -> [TableInfo<'_>; 6] {
+        let info = |key, source, unit| TableInfo { key, source, unit };
         [
-            ("push_guide", self.push_guide.source()),
-            ("push_limit", self.push_limit.source()),
-            ("pull_guide", self.pull_guide.source()),
-            ("pull_limit", self.pull_limit.source()),
-            ("torque_guide", self.torque_guide.source()),
-            ("torque_limit", self.torque_limit.source()),
+            info(
+                "push_guide",
+                self.push_guide.source(),
+                self.push_guide.unit(),
+            ),
+            info(
+                "push_limit",
+                self.push_limit.source(),
+                self.push_limit.unit(),
+            ),
+            info(
+                "pull_guide",
+                self.pull_guide.source(),
+                self.pull_guide.unit(),
+            ),
+            info(
+                "pull_limit",
+                self.pull_limit.source(),
+                self.pull_limit.unit(),
+            ),
+            info(
+                "torque_guide",
+                self.torque_guide.source(),
+                self.torque_guide.unit(),
+            ),
+            info(
+                "torque_limit",
+                self.torque_limit.source(),
+                self.torque_limit.unit(),
+            ),
         ]
     }
 }
@@ -238,7 +285,9 @@ impl<V: RawValue> RawTable<V> {
     /// Checks provenance and unit, maps row names onto `P` and requires every row once.
     fn build<P: Named>(self, key: &str, unit: &str) -> Result<Table<P, V::Value>, ErgonomicsError> {
         if self.source.trim().is_empty() {
-            return Err(ErgonomicsError::File(format!("{key}: `source` must not be empty")));
+            return Err(ErgonomicsError::File(format!(
+                "{key}: `source` must not be empty"
+            )));
         }
         if self.unit != unit {
             return Err(ErgonomicsError::File(format!(
@@ -248,8 +297,8 @@ impl<V: RawValue> RawTable<V> {
         }
         let mut rows: Vec<Option<[[V::Value; 2]; 2]>> = vec![None; P::ALL.len()];
         for (name, row) in self.rows {
-            let posture: P = parse_named(&name)
-                .map_err(|e| ErgonomicsError::File(format!("{key}: {e}")))?;
+            let posture: P =
+                parse_named(&name).map_err(|e| ErgonomicsError::File(format!("{key}: {e}")))?;
             let at = |duty: &str, population: &str| format!("{key}.{name}.{duty}.{population}");
             // [duty][population], in the order of `Duty::ALL` and `Population::ALL`.
             let values = [

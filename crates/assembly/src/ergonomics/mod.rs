@@ -13,6 +13,8 @@ mod profile;
 pub use classify::{Classification, HandAssessment, LoadKind};
 pub use colour::{colour_rgb, colour_value, Rgb};
 pub use error::ErgonomicsError;
-pub use limits::{ErgonomicLimits, GuideRange, Table, ERGONOMICS_TOML};
-pub use names::{allowed_names, Duty, Named, Population, Posture, PullPosture, PushPosture, TorqueGrip};
+pub use limits::{ErgonomicLimits, GuideRange, TableInfo, ERGONOMICS_TOML};
+pub use names::{
+    allowed_names, Duty, Named, Population, Posture, PullPosture, PushPosture, TorqueGrip,
+};
 pub use profile::ErgonomicProfile;

@@ -79,8 +79,8 @@ impl FromStr for ErgonomicProfile {
                 "duty" => profile.duty = parse_named(value).map_err(bad)?,
                 other => {
                     return Err(refuse(format!(
-                        "unknown key `{other}`; allowed: posture, push, pull, torque, population, duty"
-                    )))
+                    "unknown key `{other}`; allowed: posture, push, pull, torque, population, duty"
+                )))
                 }
             }
         }

@@ -2,6 +2,7 @@
 
 mod axial;
 mod buckling;
+mod contact;
 mod convergence;
 mod energy;
 mod invariance;
@@ -22,6 +23,9 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("invariance", invariance::run),
     ("energy", energy::run),
     ("convergence", convergence::run),
+    ("contact_rest", contact::run_rest),
+    ("contact_incline", contact::run_incline),
+    ("tunnelling", contact::run_tunnelling),
     ("thesis_1", thesis::run_1),
     ("thesis_2", thesis::run_2),
     ("thesis_3", thesis::run_3),

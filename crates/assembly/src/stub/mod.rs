@@ -1,0 +1,13 @@
+//! Pushing a hose end onto a connector stub (SPEC L6; dissertation sections 4.3.5 and
+//! 5.3.5): the stub's geometry, the Lamé press fit and its friction force law, and the
+//! state machine of approach, insertion, fixing and pulling off.
+
+mod error;
+mod press_fit;
+mod spec;
+mod state;
+
+pub use error::StubError;
+pub use press_fit::{contact_pressure, PressFit};
+pub use spec::{Friction, RawStubSpec, StubSpec};
+pub use state::{StubObservation, StubState, StubTolerance};

@@ -1,0 +1,123 @@
+//! The press fit of a hose end on a stub (SPEC L6; dissertation eq. 4.105–4.107): a
+//! thick-walled cylinder (the hose) on a rigid shaft (the stub), after Lamé.
+//!
+//! Contact pressure, with Q = r_i / r_a of the hose and radial interference δ = r_s − r_i:
+//!
+//! ```text
+//! p = E · (δ / r_s) · (1 − Q²) / ((1 + Q²) + ν (1 − Q²))
+//! ```
+//!
+//! (SPEC L6 form of eq. 4.106, whose μ is 1/ν here). Axial force to push the hose further
+//! on or pull it off at insertion depth l (eq. 4.107):
+//!
+//! ```text
+//! f = p · γ · 2π r_s · l,   γ = static coefficient at rest, sliding coefficient in motion
+//! ```
+//!
+//! Which modulus: the hose wall is stretched circumferentially by the stub, so
+//! [`PressFit::new`] uses the tension modulus E_t of the material (SPEC M3). This is a
+//! choice — the dissertation names only "E"; [`PressFit::with_modulus`] takes any E.
+//! When δ ≤ 0 (the bore is at least as wide as the stub) there is no press fit: p = 0 and
+//! f = 0.
+
+use super::error::StubError;
+use super::spec::{Friction, StubSpec};
+use pliant_core::{Material, Section};
+use std::f64::consts::PI;
+
+/// Lamé contact pressure p [Pa] of a hose (bore radius `r_inner`, outer radius `r_outer`,
+/// modulus `modulus`, Poisson's ratio `poisson`) on a rigid stub of radius `r_stub`
+/// (SPEC L6). 0 when r_stub ≤ r_inner.
+///
+/// Errors: modulus not finite and positive; ν outside (−1, 0.5]; radii not finite, or
+/// not 0 < r_inner < r_outer, or r_stub ≤ 0.
+pub fn contact_pressure(
+    modulus: f64,
+    poisson: f64,
+    r_inner: f64,
+    r_outer: f64,
+    r_stub: f64,
+) -> Result<f64, StubError> {
+    let refuse = |field, reason| StubError::PressFit { field, reason };
+    if !(modulus.is_finite() && modulus > 0.0) {
+        return Err(refuse("modulus", "must be finite and positive"));
+    }
+    if !(poisson > -1.0 && poisson <= 0.5) {
+        return Err(refuse("poisson", "must lie in (-1, 0.5]"));
+    }
+    if !(r_inner.is_finite() && r_outer.is_finite() && r_inner > 0.0 && r_outer > r_inner) {
+        return Err(refuse(
+            "hose section",
+            "needs finite radii with 0 < r_inner < r_outer (a hose with a bore)",
+        ));
+    }
+    if !(r_stub.is_finite() && r_stub > 0.0) {
+        return Err(refuse("stub radius", "must be finite and positive"));
+    }
+    let delta = r_stub - r_inner;
+    if delta <= 0.0 {
+        return Ok(0.0);
+    }
+    let q2 = (r_inner / r_outer).powi(2);
+    Ok(modulus * (delta / r_stub) * (1.0 - q2) / ((1.0 + q2) + poisson * (1.0 - q2)))
+}
+
+/// One hose on one stub: the contact pressure, ready for the axial force at any depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PressFit {
+    stub: StubSpec,
+    interference: f64,
+    pressure: f64,
+}
+
+impl PressFit {
+    /// The press fit of a hose with this section and material on `stub`, with E = E_t
+    /// (see the module's note on the modulus).
+    pub fn new(stub: &StubSpec, section: &Section, material: &Material) -> Result<Self, StubError> {
+        Self::with_modulus(stub, section, material.e_tension, material.poisson)
+    }
+
+    /// As [`PressFit::new`] with an explicit modulus E [Pa] and Poisson's ratio ν.
+    pub fn with_modulus(
+        stub: &StubSpec,
+        section: &Section,
+        modulus: f64,
+        poisson: f64,
+    ) -> Result<Self, StubError> {
+        let (r_i, r_a, r_s) = (0.5 * section.d_inner, 0.5 * section.d_outer, stub.radius());
+        let pressure = contact_pressure(modulus, poisson, r_i, r_a, r_s)?;
+        Ok(PressFit {
+            stub: *stub,
+            interference: r_s - r_i,
+            pressure,
+        })
+    }
+
+    /// The stub.
+    pub fn stub(&self) -> &StubSpec {
+        &self.stub
+    }
+
+    /// Radial interference δ = r_s − r_i [m]; ≤ 0 means no press fit.
+    pub fn interference(&self) -> f64 {
+        self.interference
+    }
+
+    /// Contact pressure p [Pa] (0 when δ ≤ 0).
+    pub fn pressure(&self) -> f64 {
+        self.pressure
+    }
+
+    /// Axial force f = p · γ · 2π r_s · l [N] needed to move the hose at insertion depth
+    /// `depth` (clamped to [0, length]; NaN counts as 0), with γ of the given kind
+    /// (eq. 4.107). With `Friction::Static` it is the holding force.
+    pub fn axial_force(&self, depth: f64, friction: Friction) -> f64 {
+        let l = self.stub.clamp_depth(depth);
+        self.pressure * self.stub.friction(friction) * 2.0 * PI * self.stub.radius() * l
+    }
+
+    /// The holding force at this depth: the static axial force [N].
+    pub fn holding_force(&self, depth: f64) -> f64 {
+        self.axial_force(depth, Friction::Static)
+    }
+}

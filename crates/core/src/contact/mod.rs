@@ -1,0 +1,15 @@
+//! Contact with the rigid environment (SPEC L4, dissertation §4.3.4 eq. 4.94–4.95):
+//! kinematic contact for flexible hoses — each beam is a capsule, a node or beam point
+//! that touches or penetrates a part loses its approaching normal velocity (the impulse is
+//! reported as contact force), Coulomb friction acts on the tangential velocity, and any
+//! penetration is pushed out over a few steps (position only, never an explosive force).
+
+mod environment;
+mod resolve;
+mod segment_triangle;
+
+pub use environment::{RigidEnvironment, RigidPart};
+pub use resolve::{ContactPoint, ContactScratch};
+pub use segment_triangle::{closest_segment_triangle, SegmentTriangleClosest};
+
+pub(crate) use resolve::{project_positions, resolve_velocities};
