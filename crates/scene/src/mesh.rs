@@ -711,6 +711,17 @@ mod tests {
     }
 
     #[test]
+    fn obj_ignores_materials_and_triangulates_polygons() {
+        let text = "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl red\nf 1 2 3 4\nl 1 3\n";
+        let m = read_obj(text.as_bytes()).unwrap();
+        assert_eq!(m.vertices.len(), 4);
+        assert_eq!(m.triangles.len(), 2);
+        // Negative (relative) indices.
+        let m = read_obj(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n").unwrap();
+        assert_eq!(m.triangles, vec![[0, 1, 2]]);
+    }
+
+    #[test]
     fn checks_drop_degenerate_triangles() {
         let mut m = box_mesh(DVec3::ONE);
         m.triangles.push([0, 0, 1]);
