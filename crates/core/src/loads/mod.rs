@@ -5,10 +5,12 @@
 mod dead_load;
 mod drive;
 mod fix;
+mod motion;
 
 pub use dead_load::DeadLoad;
 pub use drive::Drive;
 pub use fix::Fix;
+pub use motion::Motion;
 
 use glam::{DQuat, DVec3};
 use serde::Serialize;
@@ -67,6 +69,15 @@ impl LoadCases {
     pub fn remove(&mut self, id: LoadCaseId) -> Option<LoadCase> {
         let pos = self.cases.iter().position(|(i, _)| *i == id)?;
         Some(self.cases.remove(pos).1)
+    }
+
+    /// The load case with this handle, for updating it in place (e.g. a hand moving the
+    /// pose a fix holds).
+    pub fn get_mut(&mut self, id: LoadCaseId) -> Option<&mut LoadCase> {
+        self.cases
+            .iter_mut()
+            .find(|(i, _)| *i == id)
+            .map(|(_, c)| c)
     }
 
     /// Removes every load case on `node` that `pred` selects; returns how many.
