@@ -5,9 +5,14 @@
 
 pub mod clip;
 pub mod ergonomics;
+pub mod hand;
 pub mod runner;
 pub mod stub;
 pub mod timeline;
 
-pub use runner::{NoObserver, NodePeak, Observer, RunError, RunSummary, Runner, SettleOutcome};
+pub use hand::{Hand, HandLoad};
+pub use runner::{
+    ContactEpisode, HandPeak, HandRecord, NoObserver, NodePeak, Observer, RunError, RunSummary,
+    Runner, SettleOutcome,
+};
 pub use timeline::{Action, MovePath, NodeRef, Rotation, Timeline};

@@ -2,6 +2,8 @@
 //! advances the explicit integrator, checking health as it goes and tracking the peak
 //! support loads of every held node.
 
+use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile, HandAssessment, LoadKind};
+use crate::hand::{Hand, HandLoad};
 use crate::timeline::{Action, MovePath, NodeRef, Timeline};
 use glam::DVec3;
 use pliant_core::health::{check, Divergence};
@@ -27,6 +29,44 @@ pub trait Observer {
     fn on_action(&mut self, _index: usize, _action: &Action, _state: &State) {}
     /// Called every step with the simulated time (for progress display); keep it cheap.
     fn on_step(&mut self, _time: f64) {}
+    /// The hands' loads and their ergonomic assessment, with every state the observer
+    /// asked for.
+    fn on_hands(&mut self, _time: f64, _hands: &[HandRecord]) {}
+}
+
+/// One hand's load in one step and how it compares with the ergonomic limits.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct HandRecord {
+    pub hand: usize,
+    pub load: HandLoad,
+    /// `None` only if the load was not finite (the step is then reported as diverged).
+    pub assessment: Option<HandAssessment>,
+}
+
+/// Peak loads of one hand over the run, and its worst moment against the limits.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct HandPeak {
+    pub hand: usize,
+    pub max_force: f64,
+    pub max_force_time: f64,
+    pub max_torque: f64,
+    pub max_torque_time: f64,
+    /// Largest load/limit ratio, its kind, magnitude, limit and time.
+    pub worst_ratio: f64,
+    pub worst_kind: Option<LoadKind>,
+    pub worst_magnitude: f64,
+    pub worst_limit: f64,
+    pub worst_time: f64,
+}
+
+/// A rigid part the hoses touched, and when (SPEC I5: where contact blocked the path).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ContactEpisode {
+    pub part: String,
+    pub first_time: f64,
+    pub last_time: f64,
+    /// Steps with at least one contact point on this part.
+    pub steps: u64,
 }
 
 /// An observer that watches nothing.
@@ -66,6 +106,22 @@ pub struct RunSummary {
     pub actions_completed: usize,
     pub settles: Vec<SettleOutcome>,
     pub peaks: Vec<NodePeak>,
+    /// Per hand that grabbed at some point.
+    pub hand_peaks: Vec<HandPeak>,
+    /// Parts touched, in the order first touched.
+    pub contacts: Vec<ContactEpisode>,
+    /// Largest total contact force of the parts on the hoses [N] and when.
+    pub max_contact_force: f64,
+    pub max_contact_force_time: f64,
+    /// The ergonomic profile hand loads were judged with.
+    pub ergonomics: String,
+}
+
+impl RunSummary {
+    /// Whether every hand stayed within its limit values.
+    pub fn feasible(&self) -> bool {
+        self.hand_peaks.iter().all(|h| h.worst_ratio <= 1.0)
+    }
 }
 
 /// A run that stopped early.
@@ -83,6 +139,14 @@ pub struct Runner<'m> {
     /// (global node, its peaks), in the order the nodes were first held.
     peaks: Vec<(usize, NodePeak)>,
     summary: RunSummary,
+    /// Hands by index; `None` while a hand holds nothing.
+    hands: Vec<Option<Hand>>,
+    /// Per-step hand loads (buffer reused every step).
+    hand_records: Vec<HandRecord>,
+    profile: ErgonomicProfile,
+    limits: Option<&'static ErgonomicLimits>,
+    /// Per part: index into `summary.contacts` once touched.
+    contact_index: Vec<Option<usize>>,
 }
 
 impl<'m> Runner<'m> {
@@ -91,7 +155,18 @@ impl<'m> Runner<'m> {
             model,
             peaks: Vec::new(),
             summary: RunSummary::default(),
+            hands: Vec::new(),
+            hand_records: Vec::new(),
+            profile: ErgonomicProfile::default(),
+            limits: ErgonomicLimits::builtin().ok(),
+            contact_index: vec![None; model.environment.parts.len()],
         }
+    }
+
+    /// Judges hand loads with `profile` (default: [`ErgonomicProfile::default`]).
+    pub fn with_ergonomics(mut self, profile: ErgonomicProfile) -> Self {
+        self.profile = profile;
+        self
     }
 
     /// Total simulated duration the timeline asks for at most (settles counted at their
@@ -102,6 +177,11 @@ impl<'m> Runner<'m> {
             .iter()
             .map(|a| match a {
                 Action::Move {
+                    duration,
+                    wait: true,
+                    ..
+                } => *duration,
+                Action::MoveHand {
                     duration,
                     wait: true,
                     ..
@@ -138,6 +218,7 @@ impl<'m> Runner<'m> {
         s.steps = state.step;
         s.simulated_time = state.time;
         s.peaks = self.peaks.iter().map(|(_, p)| p.clone()).collect();
+        s.ergonomics = self.profile.to_string();
         s
     }
 
@@ -219,6 +300,48 @@ impl<'m> Runner<'m> {
                 let i = self.global(*node);
                 state.loads.remove_on_node(i, kinematic);
             }
+            Action::Grab { hand, at } => {
+                if let Some(old) = self.hand_slot(*hand).take() {
+                    old.release(state);
+                }
+                let grabbed = Hand::grab(self.model, state, *at);
+                if grabbed.is_some() && !self.summary.hand_peaks.iter().any(|p| p.hand == *hand) {
+                    self.summary.hand_peaks.push(HandPeak {
+                        hand: *hand,
+                        ..Default::default()
+                    });
+                }
+                *self.hand_slot(*hand) = grabbed;
+            }
+            Action::MoveHand {
+                hand,
+                path,
+                rotation,
+                duration,
+                wait,
+            } => {
+                let t0 = state.time;
+                if let Some(h) = self.hand_slot(*hand).as_mut() {
+                    let (start, _) = h.pose_at(t0);
+                    let waypoints: Vec<DVec3> = match path {
+                        Some(MovePath::To(p)) => p.clone(),
+                        Some(MovePath::By(p)) => p.iter().map(|d| start + *d).collect(),
+                        None => Vec::new(),
+                    };
+                    let phi = rotation
+                        .map(|r| r.axis.normalize_or_zero() * r.angle)
+                        .unwrap_or(DVec3::ZERO);
+                    h.move_along(&waypoints, phi, t0, *duration);
+                }
+                if *wait {
+                    self.advance(state, *duration, obs)?;
+                }
+            }
+            Action::ReleaseHand { hand } => {
+                if let Some(h) = self.hand_slot(*hand).take() {
+                    h.release(state);
+                }
+            }
             Action::Run { duration } => self.advance(state, *duration, obs)?,
             Action::Settle {
                 kinetic_energy_threshold,
@@ -245,12 +368,108 @@ impl<'m> Runner<'m> {
     }
 
     /// One explicit step plus health check, peak tracking and observation.
+    fn hand_slot(&mut self, hand: usize) -> &mut Option<Hand> {
+        if self.hands.len() <= hand {
+            self.hands.resize_with(hand + 1, || None);
+        }
+        &mut self.hands[hand]
+    }
+
+    /// Hand loads of the last step, their assessment, and the hands' peaks.
+    fn track_hands(&mut self, state: &State) {
+        self.hand_records.clear();
+        for (k, hand) in self.hands.iter().enumerate() {
+            let Some(hand) = hand else { continue };
+            let load = hand.load(self.model, state);
+            let assessment = self.limits.and_then(|l| {
+                l.assess(&self.profile, load.force, load.torque, load.direction)
+                    .ok()
+            });
+            self.hand_records.push(HandRecord {
+                hand: k,
+                load,
+                assessment,
+            });
+        }
+        for r in &self.hand_records {
+            let Some(p) = self
+                .summary
+                .hand_peaks
+                .iter_mut()
+                .find(|p| p.hand == r.hand)
+            else {
+                continue;
+            };
+            let (f, t) = (r.load.force.length(), r.load.torque.length());
+            if f > p.max_force {
+                p.max_force = f;
+                p.max_force_time = state.time;
+            }
+            if t > p.max_torque {
+                p.max_torque = t;
+                p.max_torque_time = state.time;
+            }
+            if let Some(a) = &r.assessment {
+                let w = a.worst();
+                if w.ratio > p.worst_ratio {
+                    p.worst_ratio = w.ratio;
+                    p.worst_kind = Some(w.kind);
+                    p.worst_magnitude = w.magnitude;
+                    p.worst_limit = w.limit;
+                    p.worst_time = state.time;
+                }
+            }
+        }
+    }
+
+    /// Which parts the hoses touch this step, and the total contact force.
+    fn track_contacts(&mut self, state: &State) {
+        if self.contact_index.is_empty() {
+            return;
+        }
+        for c in &state.contact.points {
+            let t = state.time;
+            match self.contact_index[c.part] {
+                Some(k) => {
+                    let e = &mut self.summary.contacts[k];
+                    if e.last_time != t {
+                        e.last_time = t;
+                        e.steps += 1;
+                    }
+                }
+                None => {
+                    self.contact_index[c.part] = Some(self.summary.contacts.len());
+                    let part = self.model.environment.parts[c.part].name.clone();
+                    self.summary.contacts.push(ContactEpisode {
+                        part,
+                        first_time: t,
+                        last_time: t,
+                        steps: 1,
+                    });
+                }
+            }
+        }
+        let total = state.contact_force.iter().map(|f| f.length()).sum::<f64>();
+        if total > self.summary.max_contact_force {
+            self.summary.max_contact_force = total;
+            self.summary.max_contact_force_time = state.time;
+        }
+    }
+
     fn step(&mut self, state: &mut State, obs: &mut dyn Observer) -> Result<(), Divergence> {
+        let t_next = state.time + self.model.time_step;
+        for hand in self.hands.iter().flatten() {
+            hand.update(state, t_next);
+        }
         explicit::step(self.model, state);
         let wants = obs.wants_state(state.time);
         if wants || state.step % HEALTH_CHECK_EVERY == 0 {
             check(self.model, state)?;
         }
+        if !self.hands.is_empty() {
+            self.track_hands(state);
+        }
+        self.track_contacts(state);
         for (i, p) in self.peaks.iter_mut() {
             let i = *i;
             if !state.held[i] {
@@ -270,6 +489,7 @@ impl<'m> Runner<'m> {
         }
         if wants {
             obs.on_state(self.model, state);
+            obs.on_hands(state.time, &self.hand_records);
         }
         obs.on_step(state.time);
         Ok(())
@@ -299,7 +519,10 @@ impl<'m> Runner<'m> {
         let end = state.time + max_duration;
         loop {
             self.step(state, obs)?;
-            if state.step % SETTLE_CHECK_EVERY == 0 && !state.loads.any_drive_moving(state.time) {
+            if state.step % SETTLE_CHECK_EVERY == 0
+                && !state.loads.any_drive_moving(state.time)
+                && !self.hands.iter().flatten().any(|h| h.moving(state.time))
+            {
                 let ke = state.kinetic_energy(self.model);
                 if ke < threshold {
                     return Ok(SettleOutcome {

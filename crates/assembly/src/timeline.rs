@@ -57,6 +57,20 @@ pub enum Action {
     Unload { node: NodeRef },
     /// Remove the fix / drive from the node: it moves freely again.
     Release { node: NodeRef },
+    /// I1: hand `hand` grabs the beam nearest to `at` [m]; its two nodes follow the hand
+    /// (replacing any fix or drive on them) until the hand lets go.
+    Grab { hand: usize, at: DVec3 },
+    /// Moves hand `hand` along `path` and/or turns it by `rotation` over `duration`
+    /// seconds (smooth start and stop); `wait` as for `Move`.
+    MoveHand {
+        hand: usize,
+        path: Option<MovePath>,
+        rotation: Option<Rotation>,
+        duration: f64,
+        wait: bool,
+    },
+    /// Hand `hand` lets go of its beam.
+    ReleaseHand { hand: usize },
     /// Simulate for `duration` seconds.
     Run { duration: f64 },
     /// Simulate until the total kinetic energy is below `kinetic_energy_threshold` [J]

@@ -3,6 +3,7 @@
 
 mod bench;
 mod recorder;
+mod report;
 mod run_cmd;
 mod summary;
 mod validate_cmd;
@@ -36,6 +37,10 @@ enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Ergonomic profile hand loads are judged with, e.g.
+        /// "posture=standing, population=men, duty=continuous, torque=t_handle".
+        #[arg(long)]
+        ergonomics: Option<String>,
     },
     /// Run the validation suite against exact and independent reference solutions.
     Validate {
@@ -66,9 +71,15 @@ fn main() -> ExitCode {
         scene: None,
         out: PathBuf::from("out"),
         quiet: false,
+        ergonomics: None,
     });
     let result = match command {
-        Command::Run { scene, out, quiet } => run_cmd::run(scene.as_deref(), &out, quiet),
+        Command::Run {
+            scene,
+            out,
+            quiet,
+            ergonomics,
+        } => run_cmd::run(scene.as_deref(), &out, quiet, ergonomics.as_deref()),
         Command::Validate {
             json,
             case,

@@ -4,6 +4,7 @@
 
 use crate::vtk::VtkSeries;
 use indicatif::{ProgressBar, ProgressStyle};
+use pliant_assembly::HandRecord;
 use pliant_assembly::{Action, Observer};
 use pliant_core::loads::LoadCase;
 use pliant_core::{Model, State};
@@ -11,10 +12,29 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
+/// One hand's load at one recorded time, for the report.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct HandSample {
+    pub time: f64,
+    pub hand: usize,
+    pub force: f64,
+    pub torque: f64,
+    /// Worst load/limit ratio and the limit it was judged against.
+    pub ratio: f64,
+    pub limit: f64,
+}
+
 pub struct Recorder {
     nodes: BufWriter<File>,
     reactions: BufWriter<File>,
     energy: BufWriter<File>,
+    hands: BufWriter<File>,
+    contacts: BufWriter<File>,
+    colours: BufWriter<File>,
+    /// Hand samples kept for the report's plots.
+    pub hand_series: Vec<HandSample>,
+    /// Colour value per hose at the current record (scratch).
+    hose_colour: Vec<f64>,
     vtk: VtkSeries,
     interval: f64,
     next_time: f64,
@@ -47,6 +67,15 @@ impl Recorder {
         )?;
         let mut energy = open("energy.csv")?;
         writeln!(energy, "time_s,kinetic_j,strain_j,gravity_j")?;
+        let mut hands = open("hands.csv")?;
+        writeln!(
+            hands,
+            "time_s,hand,hose,x_m,y_m,z_m,fx_n,fy_n,fz_n,tx_nm,ty_nm,tz_nm,force_n,torque_nm,kind,ratio,limit,colour"
+        )?;
+        let mut contacts = open("contacts.csv")?;
+        writeln!(contacts, "time_s,hose,node,fx_n,fy_n,fz_n")?;
+        let mut colours = open("colours.csv")?;
+        writeln!(colours, "time_s,hose,colour")?;
         let progress = if quiet {
             ProgressBar::hidden()
         } else {
@@ -69,6 +98,11 @@ impl Recorder {
             nodes,
             reactions,
             energy,
+            hands,
+            contacts,
+            colours,
+            hand_series: Vec::new(),
+            hose_colour: vec![0.0; model.hoses.len()],
             vtk: VtkSeries::create(&out.join("vtk"))?,
             interval,
             next_time: 0.0,
@@ -108,6 +142,16 @@ impl Recorder {
                 f.x, f.y, f.z, m.x, m.y, m.z
             )?;
         }
+        for (g, &(h, k)) in self.node_owner.iter().enumerate() {
+            let f = state.contact_force[g];
+            if f != glam::DVec3::ZERO {
+                writeln!(
+                    self.contacts,
+                    "{t:.6},{h},{k},{:.6e},{:.6e},{:.6e}",
+                    f.x, f.y, f.z
+                )?;
+            }
+        }
         let (ke, se, ge) = (
             state.kinetic_energy(model),
             state.strain_energy(model),
@@ -122,8 +166,48 @@ impl Recorder {
         Ok(())
     }
 
+    /// Hand loads with their ergonomic classification, and the colour value per hose
+    /// (SPEC I4: c = min(|f|/f_max, 1) of the hands holding it, 0 for a hose nobody holds).
+    fn write_hands(&mut self, t: f64, hands: &[HandRecord]) -> std::io::Result<()> {
+        self.hose_colour.fill(0.0);
+        for r in hands {
+            let (p, f, m) = (r.load.position, r.load.force, r.load.torque);
+            let (kind, ratio, limit, colour) = match &r.assessment {
+                Some(a) => {
+                    let w = a.worst();
+                    (
+                        format!("{:?}", w.kind).to_lowercase(),
+                        w.ratio,
+                        w.limit,
+                        a.colour_value(),
+                    )
+                }
+                None => ("none".into(), 0.0, 0.0, 0.0),
+            };
+            writeln!(
+                self.hands,
+                "{t:.6},{},{},{:.6},{:.6},{:.6},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{kind},{ratio:.4},{limit},{colour:.4}",
+                r.hand, r.load.hose, p.x, p.y, p.z, f.x, f.y, f.z, m.x, m.y, m.z, f.length(), m.length()
+            )?;
+            self.hose_colour[r.load.hose] = self.hose_colour[r.load.hose].max(colour);
+            self.hand_series.push(HandSample {
+                time: t,
+                hand: r.hand,
+                force: f.length(),
+                torque: m.length(),
+                ratio,
+                limit,
+            });
+        }
+        for (h, c) in self.hose_colour.iter().enumerate() {
+            writeln!(self.colours, "{t:.6},{h},{c:.4}")?;
+        }
+        Ok(())
+    }
+
     /// Records the final state and flushes everything.
-    pub fn finish(mut self, model: &Model, state: &State) -> std::io::Result<()> {
+    /// Returns the hand samples for the report.
+    pub fn finish(mut self, model: &Model, state: &State) -> std::io::Result<Vec<HandSample>> {
         self.progress.finish_and_clear();
         if let Some(e) = self.error.take() {
             return Err(e);
@@ -135,7 +219,11 @@ impl Recorder {
         self.nodes.flush()?;
         self.reactions.flush()?;
         self.energy.flush()?;
-        self.vtk.finish()
+        self.hands.flush()?;
+        self.contacts.flush()?;
+        self.colours.flush()?;
+        self.vtk.finish()?;
+        Ok(std::mem::take(&mut self.hand_series))
     }
 }
 
@@ -163,6 +251,15 @@ impl Observer for Recorder {
         let short = name.split([' ', '{', '(']).next().unwrap_or("").to_string();
         self.progress
             .set_message(format!("action {}: {short}", index + 1));
+    }
+
+    fn on_hands(&mut self, time: f64, hands: &[HandRecord]) {
+        if self.error.is_some() {
+            return;
+        }
+        if let Err(e) = self.write_hands(time, hands) {
+            self.error = Some(e);
+        }
     }
 
     fn on_step(&mut self, time: f64) {

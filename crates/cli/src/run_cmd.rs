@@ -1,8 +1,10 @@
 //! `pliant run [SCENE] [--out DIR]`: load a scene, run its timeline, write the outputs.
 
 use crate::recorder::Recorder;
+use crate::report::{html, verdict, Report};
 use crate::summary::{final_state, peak_rows, peak_table, Summary};
 use anyhow::Context;
+use pliant_assembly::ergonomics::ErgonomicProfile;
 use pliant_assembly::Runner;
 use pliant_core::{Model, State};
 use pliant_scene::{demo_scene, load_scene_file};
@@ -10,7 +12,12 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
-pub fn run(scene_path: Option<&Path>, out: &Path, quiet: bool) -> anyhow::Result<ExitCode> {
+pub fn run(
+    scene_path: Option<&Path>,
+    out: &Path,
+    quiet: bool,
+    ergonomics: Option<&str>,
+) -> anyhow::Result<ExitCode> {
     let scene = match scene_path {
         Some(p) => load_scene_file(p)?,
         None => demo_scene()?,
@@ -35,9 +42,19 @@ pub fn run(scene_path: Option<&Path>, out: &Path, quiet: bool) -> anyhow::Result
         .with_context(|| format!("creating output files in {}", out.display()))?;
     let mut state = State::at_rest(&model);
     let started = Instant::now();
-    let outcome = Runner::new(&model).run(&scene.timeline, &mut state, &mut recorder);
+    let profile: ErgonomicProfile = match ergonomics {
+        Some(text) => text
+            .parse()
+            .with_context(|| format!("--ergonomics '{text}'"))?,
+        None => ErgonomicProfile::default(),
+    };
+    let outcome = Runner::new(&model).with_ergonomics(profile).run(
+        &scene.timeline,
+        &mut state,
+        &mut recorder,
+    );
     let wall = started.elapsed().as_secs_f64();
-    recorder.finish(&model, &state).context("writing outputs")?;
+    let hand_series = recorder.finish(&model, &state).context("writing outputs")?;
     let (run, diverged) = match outcome {
         Ok(run) => (run, None),
         Err(e) => (e.partial.clone(), Some(e.divergence.to_string())),
@@ -60,6 +77,28 @@ pub fn run(scene_path: Option<&Path>, out: &Path, quiet: bool) -> anyhow::Result
         peaks: peak_rows(&model, &run),
         final_state: final_state(&model, &state),
     };
+    let report = Report {
+        scene: &scene.name,
+        ergonomics: &run.ergonomics,
+        verdict: verdict(&run, diverged.as_deref()),
+        run: &run,
+        diverged: diverged.as_deref(),
+    };
+    let write = |name: &str, text: String| {
+        let path = out.join(name);
+        std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))
+    };
+    write("report.json", serde_json::to_string_pretty(&report)?)?;
+    write("report.html", html(&report, &hand_series))?;
+    let word = match report.verdict.feasible {
+        Some(true) => "FEASIBLE",
+        Some(false) => "NOT FEASIBLE",
+        None => "not assessed",
+    };
+    println!("verdict: {word}");
+    for r in &report.verdict.reasons {
+        println!("  - {r}");
+    }
     let path = out.join("summary.json");
     std::fs::write(&path, serde_json::to_string_pretty(&summary)?)
         .with_context(|| format!("writing {}", path.display()))?;

@@ -10,7 +10,7 @@
 //! ([`crate::contact`]) corrects velocities before and positions after the position
 //! update. No allocation in a step.
 
-use crate::contact::{project_positions, resolve_velocities};
+use crate::contact::{add_hose_contact_forces, project_positions, resolve_velocities};
 use crate::forces::{add_body_loads, internal_loads, Config};
 use crate::loads::LoadCase;
 use crate::math::{exp_map, log_map};
@@ -37,6 +37,7 @@ pub fn step(model: &Model, state: &mut State) {
         );
         add_body_loads(model, &config, &mut state.force, &mut state.moment);
     }
+    add_hose_contact_forces(model, state);
     state.held.fill(false);
     state.reaction_force.fill(DVec3::ZERO);
     state.reaction_moment.fill(DVec3::ZERO);

@@ -2,7 +2,7 @@
 //! cases, last reactions). A step reads the Model and writes the State; a snapshot is a
 //! clone of the State.
 
-use crate::contact::ContactScratch;
+use crate::contact::{ContactScratch, HoseContactScratch};
 use crate::loads::LoadCases;
 use crate::Model;
 use glam::{DQuat, DVec3};
@@ -38,6 +38,11 @@ pub struct State {
     pub contact_force: Vec<DVec3>,
     /// Contact memory (sides of surfaces) and per-step contact list.
     pub contact: ContactScratch,
+    /// Force other hoses, or the hose itself, applied to each node by contact in the last
+    /// step [N] (SPEC L5); included in `force`.
+    pub hose_contact_force: Vec<DVec3>,
+    /// Hose–hose contact broad phase and per-beam data, allocated once.
+    pub hose_contact: HoseContactScratch,
 }
 
 impl State {
@@ -59,6 +64,8 @@ impl State {
             loads: LoadCases::default(),
             contact_force: vec![DVec3::ZERO; n],
             contact: ContactScratch::new(n, model.elements.len()),
+            hose_contact_force: vec![DVec3::ZERO; n],
+            hose_contact: HoseContactScratch::new(model),
         }
     }
 

@@ -3,12 +3,19 @@
 //! that touches or penetrates a part loses its approaching normal velocity (the impulse is
 //! reported as contact force), Coulomb friction acts on the tangential velocity, and any
 //! penetration is pushed out over a few steps (position only, never an explosive force).
+//!
+//! Hose–hose and self contact (SPEC L5, [`hose_hose`]): penalty forces between beam
+//! capsules, found by an O(N) uniform-grid broad phase ([`broad_phase`]).
 
+pub mod broad_phase;
 mod environment;
+pub mod hose_hose;
 mod resolve;
 mod segment_triangle;
 
+pub use broad_phase::BroadPhase;
 pub use environment::{RigidEnvironment, RigidPart};
+pub use hose_hose::{add_hose_contact_forces, hose_contact_forces, HoseContactScratch};
 pub use resolve::{ContactPoint, ContactScratch};
 pub use segment_triangle::{closest_segment_triangle, SegmentTriangleClosest};
 

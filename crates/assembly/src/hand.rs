@@ -1,0 +1,153 @@
+//! Hands (SPEC I1, I2; dissertation eq. 5.2): a hand grabs the beam nearest to a point and
+//! its two nodes follow the hand rigidly — each node's target is the hand pose times the
+//! node's offset from the hand at grab time, T = H_t · H_0⁻¹ · T_0 — as fix load cases
+//! whose pose the hand updates every step. The load the hand applies is the sum of the
+//! two supports' forces, and their moments plus the forces' moments about the hand point.
+
+use glam::{DQuat, DVec3};
+use pliant_core::loads::{Fix, LoadCase, LoadCaseId, Motion};
+use pliant_core::{Model, State};
+use serde::Serialize;
+
+/// A hand holding one beam.
+#[derive(Clone, Debug)]
+pub struct Hand {
+    /// Index of the beam held.
+    pub element: usize,
+    /// The hose the beam belongs to.
+    pub hose: usize,
+    motion: Motion,
+    /// (global node, its fix load case, offset position and rotation in the hand frame).
+    held: [(usize, LoadCaseId, DVec3, DQuat); 2],
+}
+
+/// The load a hand applies to the hose in one step (global axes).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct HandLoad {
+    /// The hose the hand holds.
+    pub hose: usize,
+    /// Hand position [m].
+    pub position: DVec3,
+    /// Force the hand applies [N].
+    pub force: DVec3,
+    /// Torque the hand applies about its position [N·m].
+    pub torque: DVec3,
+    /// Reference direction for push/pull: the held beam's axis, pointing towards the
+    /// nearer end of the hose (pushing a hose end onto a stub is a push).
+    pub direction: DVec3,
+}
+
+/// Index of the beam whose centre-line segment passes closest to `point`.
+pub fn nearest_beam(model: &Model, state: &State, point: DVec3) -> Option<usize> {
+    let mut best: Option<(usize, f64)> = None;
+    for (e, el) in model.elements.iter().enumerate() {
+        let (a, b) = (state.x[el.node_a], state.x[el.node_b]);
+        let ab = b - a;
+        let t = ((point - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        let d = (a + t * ab - point).length_squared();
+        if best.is_none_or(|(_, bd)| d < bd) {
+            best = Some((e, d));
+        }
+    }
+    best.map(|(e, _)| e)
+}
+
+impl Hand {
+    /// Grabs the beam nearest to `point`; the hand's frame starts at `point` with the
+    /// global orientation. Any other fix or drive on the two nodes is replaced.
+    pub fn grab(model: &Model, state: &mut State, point: DVec3) -> Option<Hand> {
+        let element = nearest_beam(model, state, point)?;
+        let el = &model.elements[element];
+        let hose = model
+            .hoses
+            .iter()
+            .position(|h| h.nodes().contains(&el.node_a))?;
+        let mut held = [(
+            0,
+            pliant_core::loads::LoadCaseId(0),
+            DVec3::ZERO,
+            DQuat::IDENTITY,
+        ); 2];
+        for (slot, node) in [el.node_a, el.node_b].into_iter().enumerate() {
+            state
+                .loads
+                .remove_on_node(node, |c| !matches!(c, LoadCase::DeadLoad(_)));
+            let id = state.loads.add(LoadCase::Fix(Fix {
+                node,
+                position: state.x[node],
+                orientation: state.q[node],
+            }));
+            held[slot] = (node, id, state.x[node] - point, state.q[node]);
+        }
+        Some(Hand {
+            element,
+            hose,
+            motion: Motion::hold((point, DQuat::IDENTITY)),
+            held,
+        })
+    }
+
+    /// The hand's pose at time `t`.
+    pub fn pose_at(&self, t: f64) -> (DVec3, DQuat) {
+        self.motion.pose_at(t)
+    }
+
+    /// Starts a new hand motion from its pose at `start_time`.
+    pub fn move_along(
+        &mut self,
+        waypoints: &[DVec3],
+        rotation: DVec3,
+        start_time: f64,
+        duration: f64,
+    ) {
+        let start = self.motion.pose_at(start_time);
+        self.motion = Motion::new(start, waypoints, rotation, start_time, duration);
+    }
+
+    /// Whether the hand is still moving at time `t`.
+    pub fn moving(&self, t: f64) -> bool {
+        !self.motion.finished(t)
+    }
+
+    /// Sets the held nodes' targets for time `t` (call before each step with its end time).
+    pub fn update(&self, state: &mut State, t: f64) {
+        let (p, q) = self.motion.pose_at(t);
+        for (_, id, offset, rotation) in self.held {
+            if let Some(LoadCase::Fix(fix)) = state.loads.get_mut(id) {
+                fix.position = p + q * offset;
+                fix.orientation = (q * rotation).normalize();
+            }
+        }
+    }
+
+    /// The load the hand applied in the last step.
+    pub fn load(&self, model: &Model, state: &State) -> HandLoad {
+        let (h, _) = self.motion.pose_at(state.time);
+        let mut force = DVec3::ZERO;
+        let mut torque = DVec3::ZERO;
+        for (node, ..) in self.held {
+            let f = state.reaction_force[node];
+            force += f;
+            torque += state.reaction_moment[node] + (state.x[node] - h).cross(f);
+        }
+        let el = &model.elements[self.element];
+        let info = &model.hoses[self.hose];
+        let towards_start =
+            el.node_a - info.first_node < info.first_node + info.node_count - 1 - el.node_b;
+        let axis = (state.x[el.node_b] - state.x[el.node_a]).normalize_or_zero();
+        HandLoad {
+            hose: self.hose,
+            position: h,
+            force,
+            torque,
+            direction: if towards_start { -axis } else { axis },
+        }
+    }
+
+    /// Lets go: the two nodes move freely again.
+    pub fn release(self, state: &mut State) {
+        for (_, id, ..) in self.held {
+            state.loads.remove(id);
+        }
+    }
+}

@@ -1,0 +1,223 @@
+//! The verdict of a run (SPEC I5): feasible or not and why, peak hand loads against the
+//! ergonomic limits, the parts the hoses touched — as `report.json` for machines and a
+//! self-contained `report.html` (inline SVG plots, no scripts) for people.
+
+use crate::recorder::HandSample;
+use pliant_assembly::RunSummary;
+use serde::Serialize;
+use std::fmt::Write as _;
+
+#[derive(Serialize)]
+pub struct Verdict {
+    /// `None` when nothing was judged (no hand acted).
+    pub feasible: Option<bool>,
+    pub reasons: Vec<String>,
+}
+
+#[derive(Serialize)]
+pub struct Report<'a> {
+    pub scene: &'a str,
+    pub ergonomics: &'a str,
+    pub verdict: Verdict,
+    pub run: &'a RunSummary,
+    pub diverged: Option<&'a str>,
+}
+
+/// Judges a run: infeasible if it diverged or any hand exceeded its limit value.
+pub fn verdict(run: &RunSummary, diverged: Option<&str>) -> Verdict {
+    let mut reasons = Vec::new();
+    if let Some(d) = diverged {
+        reasons.push(format!("the simulation stopped early: {d}"));
+    }
+    for h in &run.hand_peaks {
+        if h.worst_ratio > 1.0 {
+            let kind = h
+                .worst_kind
+                .map(|k| format!("{k:?}").to_lowercase())
+                .unwrap_or_default();
+            reasons.push(format!(
+                "hand {}: {kind} of {:.1} at t = {:.2} s exceeds the limit {:.1} ({:.0} % of it)",
+                h.hand,
+                h.worst_magnitude,
+                h.worst_time,
+                h.worst_limit,
+                100.0 * h.worst_ratio
+            ));
+        }
+    }
+    for c in &run.contacts {
+        reasons.push(format!(
+            "contact with '{}' from t = {:.2} s to {:.2} s",
+            c.part, c.first_time, c.last_time
+        ));
+    }
+    let judged = !run.hand_peaks.is_empty();
+    let feasible = if diverged.is_some() {
+        Some(false)
+    } else if judged {
+        Some(run.feasible())
+    } else {
+        None
+    };
+    if !judged {
+        reasons.push("no hand acted in this scene: there is no hand load to judge".into());
+    } else if feasible == Some(true) {
+        reasons.push("every hand load stayed within its ergonomic limit value".into());
+    }
+    Verdict { feasible, reasons }
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// An SVG line plot of force over time with the limit drawn as a dashed line.
+fn plot(title: &str, samples: &[&HandSample]) -> String {
+    let (w, h, pad) = (640.0, 220.0, 40.0);
+    let t_max = samples.iter().map(|s| s.time).fold(1e-9, f64::max);
+    let y_max = samples
+        .iter()
+        .map(|s| s.force.max(s.limit))
+        .fold(1e-9, f64::max)
+        * 1.1;
+    let x = |t: f64| pad + (w - 2.0 * pad) * t / t_max;
+    let y = |v: f64| h - pad - (h - 2.0 * pad) * v / y_max;
+    let line = |f: &dyn Fn(&HandSample) -> f64| {
+        samples
+            .iter()
+            .map(|s| format!("{:.1},{:.1}", x(s.time), y(f(s))))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let mut svg =
+        format!("<svg width=\"{w}\" height=\"{h}\" xmlns=\"http://www.w3.org/2000/svg\">");
+    let _ = write!(
+        svg,
+        "<text x=\"{pad}\" y=\"16\" font-size=\"13\">{}</text>",
+        escape(title)
+    );
+    let _ = write!(
+        svg,
+        "<line x1=\"{pad}\" y1=\"{0}\" x2=\"{1}\" y2=\"{0}\" stroke=\"#888\"/>",
+        h - pad,
+        w - pad
+    );
+    let _ = write!(
+        svg,
+        "<line x1=\"{pad}\" y1=\"{pad}\" x2=\"{pad}\" y2=\"{}\" stroke=\"#888\"/>",
+        h - pad
+    );
+    let _ = write!(
+        svg,
+        "<text x=\"{}\" y=\"{}\" font-size=\"11\">{:.1} s</text>",
+        w - pad - 20.0,
+        h - pad + 15.0,
+        t_max
+    );
+    let _ = write!(
+        svg,
+        "<text x=\"2\" y=\"{}\" font-size=\"11\">{:.0} N</text>",
+        pad + 4.0,
+        y_max
+    );
+    let _ = write!(
+        svg,
+        "<polyline fill=\"none\" stroke=\"#c00\" stroke-dasharray=\"6 4\" points=\"{}\"/>",
+        line(&|s| s.limit)
+    );
+    let _ = write!(
+        svg,
+        "<polyline fill=\"none\" stroke=\"#036\" stroke-width=\"1.5\" points=\"{}\"/>",
+        line(&|s| s.force)
+    );
+    svg.push_str("</svg>");
+    svg
+}
+
+/// The human-readable report.
+pub fn html(report: &Report, samples: &[HandSample]) -> String {
+    let v = &report.verdict;
+    let (word, colour) = match v.feasible {
+        Some(true) => ("FEASIBLE", "#070"),
+        Some(false) => ("NOT FEASIBLE", "#b00"),
+        None => ("NOT ASSESSED", "#555"),
+    };
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        "<!doctype html><html><head><meta charset=\"utf-8\"><title>Pliant report: {0}</title>\
+         <style>body{{font-family:sans-serif;max-width:760px;margin:2em auto}}td,th{{padding:2px 8px;text-align:right}}\
+         th{{background:#eee}}</style></head><body><h1>{0}</h1>\
+         <p style=\"font-size:1.6em;color:{colour}\"><b>{word}</b></p><ul>",
+        escape(report.scene)
+    );
+    for r in &v.reasons {
+        let _ = write!(s, "<li>{}</li>", escape(r));
+    }
+    let _ = write!(
+        s,
+        "</ul><p>Ergonomic profile: {}</p>",
+        escape(report.ergonomics)
+    );
+    let run = report.run;
+    if !run.hand_peaks.is_empty() {
+        s.push_str("<h2>Hands</h2><table><tr><th>hand</th><th>peak |F| [N]</th><th>at [s]</th><th>peak |T| [N·m]</th><th>at [s]</th><th>worst</th><th>of limit</th></tr>");
+        for h in &run.hand_peaks {
+            let kind = h
+                .worst_kind
+                .map(|k| format!("{k:?}").to_lowercase())
+                .unwrap_or_default();
+            let _ = write!(
+                s,
+                "<tr><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.3}</td><td>{:.2}</td><td>{kind}</td><td>{:.0} %</td></tr>",
+                h.hand, h.max_force, h.max_force_time, h.max_torque, h.max_torque_time, 100.0 * h.worst_ratio
+            );
+        }
+        s.push_str("</table>");
+        for h in &run.hand_peaks {
+            let mine: Vec<&HandSample> = samples.iter().filter(|x| x.hand == h.hand).collect();
+            if mine.len() > 1 {
+                s.push_str(&plot(
+                    &format!("hand {}: |F| (blue) and its limit (red, dashed)", h.hand),
+                    &mine,
+                ));
+            }
+        }
+    }
+    if !run.peaks.is_empty() {
+        s.push_str("<h2>Fixed and driven nodes</h2><table><tr><th>hose</th><th>node</th><th>peak |F| [N]</th><th>at [s]</th><th>peak |M| [N·m]</th><th>at [s]</th></tr>");
+        for p in &run.peaks {
+            let _ = write!(
+                s,
+                "<tr><td>{}</td><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.3}</td><td>{:.2}</td></tr>",
+                p.hose, p.node, p.max_force, p.max_force_time, p.max_moment, p.max_moment_time
+            );
+        }
+        s.push_str("</table>");
+    }
+    s.push_str("<h2>Contact with parts</h2>");
+    if run.contacts.is_empty() {
+        s.push_str("<p>No hose touched a part.</p>");
+    } else {
+        s.push_str("<table><tr><th>part</th><th>from [s]</th><th>to [s]</th><th>steps</th></tr>");
+        for c in &run.contacts {
+            let _ = write!(
+                s,
+                "<tr><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{}</td></tr>",
+                escape(&c.part),
+                c.first_time,
+                c.last_time,
+                c.steps
+            );
+        }
+        let _ = write!(
+            s,
+            "</table><p>Largest total contact force {:.2} N at t = {:.2} s.</p>",
+            run.max_contact_force, run.max_contact_force_time
+        );
+    }
+    s.push_str("</body></html>\n");
+    s
+}
