@@ -87,6 +87,11 @@ impl Hand {
         })
     }
 
+    /// Whether the hand holds `node`.
+    pub fn holds(&self, node: usize) -> bool {
+        self.held.iter().any(|h| h.0 == node)
+    }
+
     /// The hand's pose at time `t`.
     pub fn pose_at(&self, t: f64) -> (DVec3, DQuat) {
         self.motion.pose_at(t)

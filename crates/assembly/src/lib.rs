@@ -5,11 +5,13 @@
 
 pub mod clip;
 pub mod ergonomics;
+pub mod fasteners;
 pub mod hand;
 pub mod runner;
 pub mod stub;
 pub mod timeline;
 
+pub use fasteners::{ClipSite, FastenerReport, StubSite};
 pub use hand::{Hand, HandLoad};
 pub use runner::{
     ContactEpisode, HandPeak, HandRecord, NoObserver, NodePeak, Observer, RunError, RunSummary,

@@ -3,6 +3,7 @@
 //! support loads of every held node.
 
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile, HandAssessment, LoadKind};
+use crate::fasteners::{ClipSite, FastenerReport, Fasteners, StubSite};
 use crate::hand::{Hand, HandLoad};
 use crate::timeline::{Action, MovePath, NodeRef, Timeline};
 use glam::DVec3;
@@ -115,12 +116,15 @@ pub struct RunSummary {
     pub max_contact_force_time: f64,
     /// The ergonomic profile hand loads were judged with.
     pub ergonomics: String,
+    /// Stubs and clips and whether they ended assembled.
+    pub fasteners: Vec<FastenerReport>,
 }
 
 impl RunSummary {
     /// Whether every hand stayed within its limit values.
     pub fn feasible(&self) -> bool {
         self.hand_peaks.iter().all(|h| h.worst_ratio <= 1.0)
+            && self.fasteners.iter().all(|f| f.assembled)
     }
 }
 
@@ -147,6 +151,9 @@ pub struct Runner<'m> {
     limits: Option<&'static ErgonomicLimits>,
     /// Per part: index into `summary.contacts` once touched.
     contact_index: Vec<Option<usize>>,
+    /// Stubs and clips to set up when the run starts, then their runtime.
+    sites: Option<(Vec<StubSite>, Vec<ClipSite>)>,
+    fasteners: Fasteners,
 }
 
 impl<'m> Runner<'m> {
@@ -160,7 +167,15 @@ impl<'m> Runner<'m> {
             profile: ErgonomicProfile::default(),
             limits: ErgonomicLimits::builtin().ok(),
             contact_index: vec![None; model.environment.parts.len()],
+            sites: None,
+            fasteners: Fasteners::default(),
         }
+    }
+
+    /// Adds connector stubs and clips (SPEC L6, L7).
+    pub fn with_fasteners(mut self, stubs: Vec<StubSite>, clips: Vec<ClipSite>) -> Self {
+        self.sites = Some((stubs, clips));
+        self
     }
 
     /// Judges hand loads with `profile` (default: [`ErgonomicProfile::default`]).
@@ -200,6 +215,9 @@ impl<'m> Runner<'m> {
         state: &mut State,
         obs: &mut dyn Observer,
     ) -> Result<RunSummary, RunError> {
+        if let Some((stubs, clips)) = self.sites.take() {
+            self.fasteners = Fasteners::new(state, stubs, clips);
+        }
         for (k, action) in timeline.actions.iter().enumerate() {
             obs.on_action(k, action, state);
             if let Err(divergence) = self.apply(k, action, state, obs) {
@@ -219,6 +237,7 @@ impl<'m> Runner<'m> {
         s.simulated_time = state.time;
         s.peaks = self.peaks.iter().map(|(_, p)| p.clone()).collect();
         s.ergonomics = self.profile.to_string();
+        s.fasteners = self.fasteners.reports();
         s
     }
 
@@ -460,6 +479,21 @@ impl<'m> Runner<'m> {
         let t_next = state.time + self.model.time_step;
         for hand in self.hands.iter().flatten() {
             hand.update(state, t_next);
+        }
+        if !self.fasteners.is_empty() {
+            let (hands, records) = (&self.hands, &self.hand_records);
+            let holder = |node: usize| {
+                hands
+                    .iter()
+                    .position(|h| h.as_ref().is_some_and(|h| h.holds(node)))
+            };
+            let held = |node: usize| holder(node).is_some();
+            let force = |node: usize| {
+                holder(node)
+                    .and_then(|k| records.iter().find(|r| r.hand == k))
+                    .map_or(DVec3::ZERO, |r| r.load.force)
+            };
+            self.fasteners.update(self.model, state, &held, &force);
         }
         explicit::step(self.model, state);
         let wants = obs.wants_state(state.time);

@@ -1,0 +1,307 @@
+//! Connector stubs (SPEC L6) and clips (SPEC L7) acting on the simulation: each step the
+//! assembly layer observes the hose, advances each fastener's state machine and turns the
+//! state into load cases — the stub's press-fit friction as a force on the hose end while
+//! it is pushed on, an L1 fix once it is released on the stub; the clip's snap force on
+//! the beam crossing the clip while it snaps in, an L1 fix of that point once seated.
+//! Forces on a node a hand holds end up in the hand's load, which is what the worker
+//! feels.
+
+use crate::clip::{ClipObservation, ClipSpec, ClipState, ClipTolerance};
+use crate::stub::{PressFit, StubObservation, StubState, StubTolerance};
+use glam::DVec3;
+use pliant_core::loads::{DeadLoad, Fix, LoadCase, LoadCaseId};
+use pliant_core::{Model, State};
+use serde::Serialize;
+
+/// Axial speed below which stub friction is regularised linearly [m/s] (a Coulomb law
+/// smoothed over ±1 mm/s so that a hose held still on the stub does not chatter).
+const FRICTION_SPEED: f64 = 1e-3;
+
+/// A stub and the hose end meant to go onto it.
+#[derive(Clone, Debug)]
+pub struct StubSite {
+    pub name: String,
+    pub fit: PressFit,
+    /// Global index of the hose's end node, and of its neighbour (gives the direction).
+    pub end_node: usize,
+    pub inner_node: usize,
+}
+
+/// A clip and the hose meant to go into it.
+#[derive(Clone, Debug)]
+pub struct ClipSite {
+    pub name: String,
+    pub spec: ClipSpec,
+    pub hose: usize,
+}
+
+/// How a fastener did over the run.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct FastenerReport {
+    pub name: String,
+    /// "stub" or "clip".
+    pub kind: &'static str,
+    /// Largest force the fastener applied to the hose [N] and when.
+    pub max_force: f64,
+    pub max_force_time: f64,
+    /// State at the end of the run (e.g. "fixed", "seated", "approach").
+    pub final_state: String,
+    /// Whether the fastener ended in its assembled state (stub: fixed; clip: seated).
+    pub assembled: bool,
+}
+
+struct StubRun {
+    site: StubSite,
+    tolerance: StubTolerance,
+    state: StubState,
+    force: LoadCaseId,
+    fix: Option<LoadCaseId>,
+    report: FastenerReport,
+}
+
+struct ClipRun {
+    site: ClipSite,
+    tolerance: ClipTolerance,
+    state: ClipState,
+    /// Dead loads on the two nodes of the crossing beam.
+    forces: [LoadCaseId; 2],
+    fix: Option<LoadCaseId>,
+    report: FastenerReport,
+}
+
+/// All fasteners of a run.
+#[derive(Default)]
+pub struct Fasteners {
+    stubs: Vec<StubRun>,
+    clips: Vec<ClipRun>,
+}
+
+fn zero_load(state: &mut State, node: usize) -> LoadCaseId {
+    state.loads.add(LoadCase::DeadLoad(DeadLoad {
+        node,
+        force: DVec3::ZERO,
+        moment: DVec3::ZERO,
+    }))
+}
+
+fn set_load(state: &mut State, id: LoadCaseId, node: usize, force: DVec3) {
+    if let Some(LoadCase::DeadLoad(d)) = state.loads.get_mut(id) {
+        d.node = node;
+        d.force = force;
+    }
+}
+
+fn state_name<T: Serialize>(s: &T) -> String {
+    serde_json::to_value(s)
+        .ok()
+        .and_then(|v| {
+            v.as_str()
+                .map(str::to_owned)
+                .or_else(|| v.as_object().and_then(|o| o.keys().next().cloned()))
+        })
+        .unwrap_or_default()
+}
+
+impl Fasteners {
+    /// Sets up the fasteners; their force load cases are added to `state` (initially zero).
+    pub fn new(state: &mut State, stubs: Vec<StubSite>, clips: Vec<ClipSite>) -> Self {
+        let stubs = stubs
+            .into_iter()
+            .map(|site| StubRun {
+                tolerance: StubTolerance::for_stub(site.fit.stub()),
+                state: StubState::Approach,
+                force: zero_load(state, site.end_node),
+                fix: None,
+                report: FastenerReport {
+                    name: site.name.clone(),
+                    kind: "stub",
+                    ..Default::default()
+                },
+                site,
+            })
+            .collect();
+        let clips = clips
+            .into_iter()
+            .map(|site| ClipRun {
+                tolerance: ClipTolerance::for_clip(&site.spec),
+                state: ClipState::Free,
+                forces: [zero_load(state, 0), zero_load(state, 0)],
+                fix: None,
+                report: FastenerReport {
+                    name: site.name.clone(),
+                    kind: "clip",
+                    ..Default::default()
+                },
+                site,
+            })
+            .collect();
+        Fasteners { stubs, clips }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.stubs.is_empty() && self.clips.is_empty()
+    }
+
+    /// One step's update, before the physics step. `held_by_hand(node)` tells whether a hand
+    /// holds the node; `hand_force(node)` the force of the hand holding it (last step).
+    pub fn update(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        held_by_hand: &dyn Fn(usize) -> bool,
+        hand_force: &dyn Fn(usize) -> DVec3,
+    ) {
+        for s in &mut self.stubs {
+            update_stub(s, state, held_by_hand, hand_force);
+        }
+        for c in &mut self.clips {
+            update_clip(c, model, state, held_by_hand);
+        }
+    }
+
+    /// Reports at the end of the run.
+    pub fn reports(&self) -> Vec<FastenerReport> {
+        let mut out: Vec<FastenerReport> = self.stubs.iter().map(|s| s.report.clone()).collect();
+        out.extend(self.clips.iter().map(|c| c.report.clone()));
+        out
+    }
+}
+
+fn update_stub(
+    s: &mut StubRun,
+    state: &mut State,
+    held_by_hand: &dyn Fn(usize) -> bool,
+    hand_force: &dyn Fn(usize) -> DVec3,
+) {
+    let (e, n) = (s.site.end_node, s.site.inner_node);
+    let stub = *s.site.fit.stub();
+    let axis = stub.axis();
+    let grabbed = held_by_hand(e) || held_by_hand(n);
+    let obs = StubObservation {
+        end_position: state.x[e],
+        end_direction: state.x[e] - state.x[n],
+        axial_force: hand_force(e).dot(axis),
+        grabbed,
+    };
+    let Ok(next) = s.state.next(&s.site.fit, &s.tolerance, &obs) else {
+        return;
+    };
+    s.state = next;
+    let mut force = DVec3::ZERO;
+    match next {
+        StubState::Fixed { .. } if !grabbed => {
+            if s.fix.is_none() {
+                s.fix = Some(state.loads.add(LoadCase::Fix(Fix {
+                    node: e,
+                    position: state.x[e],
+                    orientation: state.q[e],
+                })));
+            }
+        }
+        StubState::Inserting { .. } | StubState::Fixed { .. } => {
+            if let Some(id) = s.fix.take() {
+                state.loads.remove(id);
+            }
+            // friction opposing the axial motion (regularised Coulomb), and the stub's
+            // base stopping the end at the stub's length
+            let v = state.v[e].dot(axis);
+            let resist = next.resisting_force(&s.site.fit);
+            force -= axis * resist * (v / FRICTION_SPEED).clamp(-1.0, 1.0);
+            let over = stub.axial_coordinate(state.x[e]) - stub.length();
+            if over > 0.0 {
+                force -= axis * over * 1e3 * s.site.fit.holding_force(stub.length()).max(1.0)
+                    / stub.length();
+            }
+        }
+        _ => {
+            if let Some(id) = s.fix.take() {
+                state.loads.remove(id);
+            }
+        }
+    }
+    set_load(state, s.force, e, force);
+    let f = if s.fix.is_some() {
+        state.reaction_force[e].length()
+    } else {
+        force.length()
+    };
+    if f > s.report.max_force {
+        s.report.max_force = f;
+        s.report.max_force_time = state.time;
+    }
+    s.report.final_state = state_name(&next);
+    s.report.assembled = matches!(next, StubState::Fixed { .. });
+}
+
+/// The beam of hose `hose` crossing the clip's plane nearest to its seat: (a, b, t, centre).
+fn crossing(
+    model: &Model,
+    state: &State,
+    clip: &ClipSpec,
+    hose: usize,
+) -> Option<(usize, usize, f64, DVec3)> {
+    let info = &model.hoses[hose];
+    let mut best: Option<(usize, usize, f64, DVec3, f64)> = None;
+    for e in info.first_element..info.first_element + info.element_count {
+        let el = &model.elements[e];
+        let (a, b) = (state.x[el.node_a], state.x[el.node_b]);
+        if let Some(m) = clip.centre_on_segment(a, b) {
+            let d = (m - clip.origin()).length();
+            if best.is_none_or(|x| d < x.4) {
+                let t = ((m - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+                best = Some((el.node_a, el.node_b, t, m, d));
+            }
+        }
+    }
+    best.map(|(a, b, t, m, _)| (a, b, t, m))
+}
+
+fn update_clip(
+    c: &mut ClipRun,
+    model: &Model,
+    state: &mut State,
+    held_by_hand: &dyn Fn(usize) -> bool,
+) {
+    let cross = crossing(model, state, &c.site.spec, c.site.hose);
+    let radius = cross.map_or(
+        model.radius[model.hoses[c.site.hose].first_node],
+        |(a, ..)| model.radius[a],
+    );
+    let grabbed = model.hoses[c.site.hose].nodes().any(held_by_hand);
+    let obs = ClipObservation {
+        centre: cross.map(|x| x.3),
+        radius,
+        grabbed,
+    };
+    let Ok(next) = c.state.next(&c.site.spec, &c.tolerance, &obs) else {
+        return;
+    };
+    c.state = next;
+    let force = next.force(&c.site.spec, &obs);
+    match (next, cross) {
+        (ClipState::Seated, Some((a, b, t, _))) => {
+            let node = if t < 0.5 { a } else { b };
+            if c.fix.is_none() {
+                c.fix = Some(state.loads.add(LoadCase::Fix(Fix {
+                    node,
+                    position: state.x[node],
+                    orientation: state.q[node],
+                })));
+            }
+        }
+        _ => {
+            if let Some(id) = c.fix.take() {
+                state.loads.remove(id);
+            }
+        }
+    }
+    let (a, b, t) = cross.map_or((0, 0, 0.0), |(a, b, t, _)| (a, b, t));
+    set_load(state, c.forces[0], a, force * (1.0 - t));
+    set_load(state, c.forces[1], b, force * t);
+    if force.length() > c.report.max_force {
+        c.report.max_force = force.length();
+        c.report.max_force_time = state.time;
+    }
+    c.report.final_state = state_name(&next);
+    c.report.assembled = next == ClipState::Seated;
+}

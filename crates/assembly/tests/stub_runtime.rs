@@ -1,0 +1,175 @@
+//! A hose end pushed onto a connector stub by a hand (SPEC L6, issue 3 item 4): the hand
+//! feels the press-fit friction of the hand calculation, the end stays on the stub when
+//! released (fixed), and comes off when pulled harder than the holding force.
+
+use glam::DVec3;
+use pliant_assembly::stub::{Friction, PressFit, StubSpec};
+use pliant_assembly::{Action, HandRecord, MovePath, Observer, Runner, StubSite, Timeline};
+use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
+
+const N: usize = 12;
+const L: f64 = 0.3;
+
+fn setup() -> (Model, StubSite, PressFit) {
+    // library hose 3, coolant hose EPDM/aramid: d_i 27 mm, d_a 35 mm
+    let material = Material {
+        e_tension: 6.9442e6,
+        e_compression: 8.6913e6,
+        e_bending: None,
+        poisson: 0.49,
+        density: 1100.0,
+    };
+    let section = Section::new(0.027, 0.035);
+    let nodes = (0..=N)
+        .map(|i| DVec3::new(L * i as f64 / N as f64, 0.0, 0.0))
+        .collect();
+    let hose = HoseSpec {
+        name: "h".into(),
+        material: material.clone(),
+        nodes,
+        sections: vec![section],
+        normal_hint: Some(DVec3::Y),
+    };
+    let settings = SimSettings {
+        gravity: DVec3::ZERO,
+        damping_mass: 5.0,
+        ..Default::default()
+    };
+    let model = Model::build(&WorldSpec {
+        hoses: vec![hose],
+        rigid_parts: vec![],
+        settings,
+    })
+    .unwrap();
+    // 28 mm stub, mouth 2 mm in front of the hose end, 30 mm long, along +x
+    let stub = StubSpec::new(
+        DVec3::new(L + 0.002, 0.0, 0.0),
+        DVec3::X,
+        0.030,
+        0.028,
+        0.6,
+        0.4,
+    )
+    .unwrap();
+    let fit = PressFit::new(&stub, &section, &material).unwrap();
+    let site = StubSite {
+        name: "stub".into(),
+        fit,
+        end_node: N,
+        inner_node: N - 1,
+    };
+    (model, site, fit)
+}
+
+#[derive(Default)]
+struct Trace(Vec<(f64, DVec3, f64)>); // (time, hand force, end x)
+impl Observer for Trace {
+    fn wants_state(&self, _t: f64) -> bool {
+        true
+    }
+    fn on_hands(&mut self, t: f64, hands: &[HandRecord]) {
+        if let Some(r) = hands.first() {
+            self.0.push((t, r.load.force, 0.0));
+        }
+    }
+    fn on_state(&mut self, _m: &Model, s: &State) {
+        if let Some(last) = self.0.last_mut() {
+            last.2 = s.x[N].x;
+        }
+    }
+}
+
+fn push_on() -> Vec<Action> {
+    vec![
+        Action::Grab {
+            hand: 0,
+            at: DVec3::new(L - 0.01, 0.0, 0.0),
+        },
+        // 24 mm at 10 mm/s: 22 mm onto the stub
+        Action::MoveHand {
+            hand: 0,
+            path: Some(MovePath::By(vec![DVec3::new(0.024, 0.0, 0.0)])),
+            rotation: None,
+            duration: 2.4,
+            wait: true,
+        },
+    ]
+}
+
+#[test]
+fn pushing_on_needs_the_sliding_press_fit_force() {
+    let (model, site, fit) = setup();
+    let mut state = State::at_rest(&model);
+    let mut trace = Trace::default();
+    let run = Runner::new(&model).with_fasteners(vec![site], vec![]);
+    run.run(&Timeline { actions: push_on() }, &mut state, &mut trace)
+        .unwrap();
+    // mid-move (constant speed part of the smooth step), compare at the depth then
+    let (t, f, x) = trace.0.iter().copied().find(|(t, ..)| *t >= 1.2).unwrap();
+    let depth = x - (L + 0.002);
+    let expected = fit.axial_force(depth, Friction::Sliding);
+    assert!(
+        depth > 0.005,
+        "end is on the stub at t = {t}: depth {depth}"
+    );
+    assert!(
+        (f.x - expected).abs() < 0.02 * expected,
+        "hand pushes {} N at depth {depth} m; press fit {expected} N",
+        f.x
+    );
+}
+
+#[test]
+fn released_on_the_stub_it_stays_and_pulling_hard_takes_it_off() {
+    let (model, site, fit) = setup();
+    let mut state = State::at_rest(&model);
+    let mut actions = push_on();
+    actions.push(Action::ReleaseHand { hand: 0 });
+    actions.push(Action::Run { duration: 0.5 });
+    let mut trace = Trace::default();
+    let summary = Runner::new(&model)
+        .with_fasteners(vec![site.clone()], vec![])
+        .run(
+            &Timeline {
+                actions: actions.clone(),
+            },
+            &mut state,
+            &mut trace,
+        )
+        .unwrap();
+    let stub = &summary.fasteners[0];
+    assert!(stub.assembled && stub.final_state == "fixed", "{stub:?}");
+    let x_fixed = state.x[N].x;
+    // now grab again and pull back 40 mm: more than the holding force is needed, and
+    // the end comes off
+    let mut state2 = State::at_rest(&model);
+    actions.push(Action::Grab {
+        hand: 0,
+        at: DVec3::new(L, 0.0, 0.0),
+    });
+    actions.push(Action::MoveHand {
+        hand: 0,
+        path: Some(MovePath::By(vec![DVec3::new(-0.04, 0.0, 0.0)])),
+        rotation: None,
+        duration: 2.0,
+        wait: true,
+    });
+    let mut trace2 = Trace::default();
+    let summary2 = Runner::new(&model)
+        .with_fasteners(vec![site], vec![])
+        .run(&Timeline { actions }, &mut state2, &mut trace2)
+        .unwrap();
+    assert!(
+        !summary2.fasteners[0].assembled,
+        "{:?}",
+        summary2.fasteners[0]
+    );
+    assert!(state2.x[N].x < L, "end pulled back off the stub");
+    let peak_pull = trace2.0.iter().map(|(_, f, _)| -f.x).fold(0.0, f64::max);
+    let holding = fit.holding_force(x_fixed - (L + 0.002));
+    assert!(
+        peak_pull >= 0.95 * fit.axial_force(x_fixed - (L + 0.002), Friction::Sliding)
+            && peak_pull <= 1.05 * holding,
+        "peak pull {peak_pull} N, holding {holding} N"
+    );
+}
