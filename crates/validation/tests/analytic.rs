@@ -73,3 +73,11 @@ fn contact_incline() {
 fn tunnelling() {
     assert_case("tunnelling");
 }
+#[test]
+fn stub() {
+    assert_case("stub");
+}
+#[test]
+fn clip() {
+    assert_case("clip");
+}

@@ -5,6 +5,7 @@ mod buckling;
 mod contact;
 mod convergence;
 mod energy;
+mod fasteners;
 mod invariance;
 mod rollup;
 mod thesis;
@@ -26,6 +27,8 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("contact_rest", contact::run_rest),
     ("contact_incline", contact::run_incline),
     ("tunnelling", contact::run_tunnelling),
+    ("stub", fasteners::run_stub),
+    ("clip", fasteners::run_clip),
     ("thesis_1", thesis::run_1),
     ("thesis_2", thesis::run_2),
     ("thesis_3", thesis::run_3),
