@@ -16,6 +16,7 @@ use comfy_table::{presets, CellAlignment, Table};
 use glam::DVec3;
 use pliant_core::frames::node_frames;
 use pliant_core::loads::{Fix, LoadCase};
+use pliant_core::RigidPartSpec;
 use pliant_core::{
     explicit, health, HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec,
 };
@@ -132,6 +133,25 @@ pub struct BenchRow {
     pub gflops: f64,
     /// Simulated time covered by warm-up and repeats [s].
     pub simulated_s: f64,
+    /// Triangles of the rigid environment (0: no contact).
+    pub contact_triangles: usize,
+    /// Active contact points in the last step measured.
+    pub contact_points: usize,
+}
+
+/// The cost of contact with a large rigid environment (issue 3 item 11).
+#[derive(Clone, Debug, Serialize)]
+pub struct ContactCost {
+    pub triangles: usize,
+    /// ns per step of 5 hoses × 30 without and with the environment.
+    pub ns_per_step_free: f64,
+    pub ns_per_step_contact: f64,
+    /// ns_per_step_contact / ns_per_step_free.
+    pub ratio: f64,
+    /// Simulated seconds per wall second with contact.
+    pub realtime_factor: f64,
+    /// Active contact points at the end of the measurement.
+    pub contact_points: usize,
 }
 
 /// Least-squares straight line y = slope·x + intercept with its coefficient of
@@ -218,6 +238,7 @@ pub struct BenchReport {
     pub dissertation: DissertationComparison,
     pub material: &'static str,
     pub element_length_m: f64,
+    pub contact: ContactCost,
 }
 
 /// How long to measure.
@@ -254,8 +275,45 @@ pub fn material_1() -> Result<(Material, Section)> {
     Ok((entry.material.clone(), entry.section))
 }
 
-/// `hoses` straight horizontal hoses of `elements` elements each along x, 0.1 m apart in y.
-pub fn world(hoses: usize, elements: usize) -> Result<WorldSpec> {
+/// Quads per side of the contact benchmark's floor: 224² quads = 100 352 triangles.
+pub const FLOOR_QUADS: usize = 224;
+
+/// A bumpy floor of `2·quads²` triangles 3 cm below the hoses (bumps ±1 cm), covering
+/// them and the area they can fall onto — the hoses land on it within the warm-up.
+pub fn bumpy_floor(quads: usize) -> RigidPartSpec {
+    let (x0, x1, y0, y1) = (-0.3, 1.0, -0.8, 1.2);
+    let mut vertices = Vec::with_capacity((quads + 1) * (quads + 1));
+    for j in 0..=quads {
+        for i in 0..=quads {
+            let x = x0 + (x1 - x0) * i as f64 / quads as f64;
+            let y = y0 + (y1 - y0) * j as f64 / quads as f64;
+            vertices.push(DVec3::new(
+                x,
+                y,
+                -0.03 + 0.01 * (17.0 * x).sin() * (13.0 * y).cos(),
+            ));
+        }
+    }
+    let mut triangles = Vec::with_capacity(2 * quads * quads);
+    let idx = |i: usize, j: usize| (j * (quads + 1) + i) as u32;
+    for j in 0..quads {
+        for i in 0..quads {
+            triangles.push([idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)]);
+            triangles.push([idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)]);
+        }
+    }
+    RigidPartSpec {
+        name: "floor".into(),
+        vertices,
+        triangles,
+        friction_static: 0.5,
+        friction_sliding: 0.4,
+    }
+}
+
+/// `hoses` straight horizontal hoses of `elements` elements each along x, 0.1 m apart in y,
+/// above a bumpy floor of `2·floor_quads²` triangles (no floor for 0).
+pub fn world_with_floor(hoses: usize, elements: usize, floor_quads: usize) -> Result<WorldSpec> {
     let (material, section) = material_1()?;
     Ok(WorldSpec {
         hoses: (0..hoses)
@@ -269,7 +327,11 @@ pub fn world(hoses: usize, elements: usize) -> Result<WorldSpec> {
                 normal_hint: Some(DVec3::Z),
             })
             .collect(),
-        rigid_parts: Vec::new(),
+        rigid_parts: if floor_quads > 0 {
+            vec![bumpy_floor(floor_quads)]
+        } else {
+            Vec::new()
+        },
         settings: SimSettings::default(),
     })
 }
@@ -303,8 +365,9 @@ pub fn bent_shape(origin: DVec3, elements: usize) -> Vec<DVec3> {
 /// (Starting from the stress-free straight shape instead would leave most of a long hose
 /// in undeformed free fall during the measurement, where the element takes its cheap
 /// small-angle branches and the cost per element looks lower than it is in use.)
-pub fn setup(hoses: usize, elements: usize) -> Result<(Model, State)> {
-    let model = Model::build(&world(hoses, elements)?).context("building the benchmark model")?;
+pub fn setup(hoses: usize, elements: usize, floor_quads: usize) -> Result<(Model, State)> {
+    let model = Model::build(&world_with_floor(hoses, elements, floor_quads)?)
+        .context("building the benchmark model")?;
     let mut state = State::at_rest(&model);
     for h in &model.hoses {
         let origin = model.rest_x[h.first_node];
@@ -333,8 +396,13 @@ fn run_steps(model: &Model, state: &mut State, n: u64) {
 
 /// Measures one case: warm-up, then `budget.repeats` timed repeats of a fixed number of
 /// steps sized to last about `budget.repeat`; median over the repeats.
-pub fn measure(hoses: usize, elements_per_hose: usize, budget: Budget) -> Result<BenchRow> {
-    let (model, mut state) = setup(hoses, elements_per_hose)?;
+pub fn measure(
+    hoses: usize,
+    elements_per_hose: usize,
+    floor_quads: usize,
+    budget: Budget,
+) -> Result<BenchRow> {
+    let (model, mut state) = setup(hoses, elements_per_hose, floor_quads)?;
     let elements = model.elements.len();
     let nodes = model.node_count();
     let dt = model.time_step;
@@ -365,11 +433,16 @@ pub fn measure(hoses: usize, elements_per_hose: usize, budget: Budget) -> Result
         flops::per_step(elements, nodes, model.hoses.len()) as f64 / elements as f64;
     let r = &model.time_step_report;
     Ok(BenchRow {
-        name: if hoses == 1 {
-            format!("1 hose × {elements_per_hose}")
-        } else {
-            format!("{hoses} hoses × {elements_per_hose}")
+        name: match (hoses, floor_quads) {
+            (1, _) => format!("1 hose × {elements_per_hose}"),
+            (_, 0) => format!("{hoses} hoses × {elements_per_hose}"),
+            _ => format!(
+                "{hoses} hoses × {elements_per_hose} on {} triangles",
+                2 * floor_quads * floor_quads
+            ),
         },
+        contact_triangles: 2 * floor_quads * floor_quads,
+        contact_points: state.contact.points.len(),
         hoses,
         elements_per_hose,
         elements,
@@ -477,8 +550,20 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
     let headline = single(HEADLINE_ELEMENTS)?.clone();
     let five = rows
         .iter()
-        .find(|r| r.hoses == 5 && r.elements_per_hose == 30)
+        .find(|r| r.hoses == 5 && r.elements_per_hose == 30 && r.contact_triangles == 0)
         .context("no row for 5 hoses × 30")?;
+    let five_contact = rows
+        .iter()
+        .find(|r| r.hoses == 5 && r.elements_per_hose == 30 && r.contact_triangles > 0)
+        .context("no row for 5 hoses × 30 with contact")?;
+    let contact = ContactCost {
+        triangles: five_contact.contact_triangles,
+        ns_per_step_free: five.ns_per_step,
+        ns_per_step_contact: five_contact.ns_per_step,
+        ratio: five_contact.ns_per_step / five.ns_per_step,
+        realtime_factor: five_contact.realtime_factor,
+        contact_points: five_contact.contact_points,
+    };
     let mut fit_sizes = Vec::new();
     let mut fit_points = Vec::new();
     for n in SINGLE_HOSE_ELEMENTS {
@@ -529,6 +614,7 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
         material: "library material 1 (oil return hose): d_i 10 mm, d_a 16 mm, E_t 11.583 MPa, \
                    E_c 13.1363 MPa, rho 940 kg/m3, nu 0.49",
         element_length_m: ELEMENT_LENGTH,
+        contact,
         rows,
     })
 }
@@ -539,13 +625,20 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport> {
     let mut cases: Vec<(usize, usize)> = SINGLE_HOSE_ELEMENTS.iter().map(|&n| (1, n)).collect();
     // One hose of 30 is already a single-hose case.
     cases.extend(HOSE_COUNTS.iter().filter(|&&h| h != 1).map(|&h| (h, 30)));
-    let mut rows = Vec::with_capacity(cases.len());
+    let mut rows = Vec::with_capacity(cases.len() + 1);
     for (hoses, elements) in cases {
         if !opts.json {
             eprintln!("measuring {hoses} × {elements} …");
         }
-        rows.push(measure(hoses, elements, budget)?);
+        rows.push(measure(hoses, elements, 0, budget)?);
     }
+    if !opts.json {
+        eprintln!(
+            "measuring 5 × 30 on a {}-triangle floor …",
+            2 * FLOOR_QUADS * FLOOR_QUADS
+        );
+    }
+    rows.push(measure(5, 30, FLOOR_QUADS, budget)?);
     let report = report(rows, opts.quick)?;
     if opts.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
@@ -691,7 +784,7 @@ mod tests {
 
     #[test]
     fn benchmark_world_matches_the_brief() {
-        let (model, state) = setup(5, 30).unwrap();
+        let (model, state) = setup(5, 30, 0).unwrap();
         assert_eq!(model.elements.len(), 150);
         assert_eq!(model.hoses.len(), 5);
         assert!(model.gravity.length() > 9.0, "gravity must be on");
@@ -729,7 +822,7 @@ mod tests {
 
     #[test]
     fn initial_state_is_bent_and_held_where_it_lies() {
-        let (model, state) = setup(2, 30).unwrap();
+        let (model, state) = setup(2, 30, 0).unwrap();
         assert!(
             state.strain_energy(&model) > 1e-4,
             "the hoses must start deformed"
@@ -757,7 +850,7 @@ mod tests {
             repeat: Duration::from_millis(2),
             repeats: 3,
         };
-        let row = measure(1, 10, budget).unwrap();
+        let row = measure(1, 10, 0, budget).unwrap();
         assert_eq!(row.repeats, 3);
         assert!(row.ns_per_element_step > 0.0);
         assert!(row.ns_per_element_step_min <= row.ns_per_element_step);

@@ -109,32 +109,28 @@ fn pair_penetration(model: &Model, state: &State, i: usize, j: usize) -> f64 {
 
 #[test]
 fn crossing_hoses_pressed_together() {
-    // Hose 0 along x, fixed at both ends; hose 1 along y, 1 mm above it, free, pressed
-    // down at its middle by a dead load of 5 N; no gravity.
+    // Two equal hoses crossing at right angles at their middle nodes, each fixed at both
+    // ends, 1 mm apart; a dead load of 5 N presses the upper one's middle node down; no
+    // gravity. (Frictionless, a free hose balanced on a crossing has no stable rest: a
+    // slide along its axis moves the load off the support; so both are held at the ends.)
+    // By symmetry the lower hose carries half the load: with bending stiffness k_b and
+    // contact stiffness k_c, C = F/(2 + k_b/k_c) ≈ F/2.
     let l = 0.4;
     let n = 16;
     let z0 = 2.0 * R + 0.001;
     let model = build(
         vec![
-            straight(
-                "lower",
-                DVec3::new(-l / 2.0, 0.0, 0.0),
-                DVec3::new(l / 2.0, 0.0, 0.0),
-                n,
-            ),
-            straight(
-                "upper",
-                DVec3::new(0.0, -l / 2.0, z0),
-                DVec3::new(0.0, l / 2.0, z0),
-                n,
-            ),
+            straight("lower", DVec3::new(-l / 2.0, 0.0, 0.0), DVec3::new(l / 2.0, 0.0, 0.0), n),
+            straight("upper", DVec3::new(0.0, -l / 2.0, z0), DVec3::new(0.0, l / 2.0, z0), n),
         ],
         settings(DVec3::ZERO, 20.0),
     );
     let mut state = State::at_rest(&model);
     assert!(state.hose_contact.active);
-    fix(&mut state, model.hoses[0].node(0));
-    fix(&mut state, model.hoses[0].node(n));
+    for h in 0..2 {
+        fix(&mut state, model.hoses[h].node(0));
+        fix(&mut state, model.hoses[h].node(n));
+    }
     let load = DVec3::new(0.0, 0.0, -5.0);
     dead_load(&mut state, model.hoses[1].node(n / 2), load);
     let steps = (2.0 / model.time_step) as usize;
@@ -144,106 +140,240 @@ fn crossing_hoses_pressed_together() {
         step(&model, &mut state);
         worst_pen = worst_pen.max(state.hose_contact.max_penetration);
         let (s0, s1) = (hose_sum(&model, &state, 0), hose_sum(&model, &state, 1));
-        let scale: f64 = state.hose_contact_force.iter().map(|f| f.length()).sum();
-        if scale > 0.0 {
-            worst_balance = worst_balance.max((s0 + s1).length() / scale);
+        if s1.length() > 0.0 {
+            worst_balance = worst_balance.max((s0 + s1).length() / s1.length());
         }
         if k % 100 == 0 {
             check(&model, &state).unwrap();
         }
     }
     let pen_now = max_penetration_between(&model, &state, 0, 1);
-    let on_upper = hose_sum(&model, &state, 1);
-    let balance = (on_upper + load).length() / load.length();
+    let (on_lower, on_upper) = (hose_sum(&model, &state, 0), hose_sum(&model, &state, 1));
+    let half = 0.5 * load;
+    let split = (on_lower - half).length() / half.length();
+    let reaction = |h: usize| -> DVec3 {
+        [model.hoses[h].node(0), model.hoses[h].node(n)]
+            .iter()
+            .map(|&i| state.reaction_force[i])
+            .sum()
+    };
+    let lower_balance = (reaction(0) + on_lower).length() / on_lower.length();
+    let upper_balance = (reaction(1) + on_upper + load).length() / load.length();
     println!(
         "crossing: dt {:.3e} s, {} steps; max penetration {:.4} mm ({:.2} % of r), at rest {:.4} mm; \
-         pairs in contact {}; contact on upper {:?} N (load {:?}), balance error {:.2e}; \
-         action/reaction error {:.1e}; KE {:.2e} J",
+         pairs in contact {}; contact on lower {on_lower:?} N (F/2 = {half:?}), error {split:.2e}; \
+         supports + contact on lower {lower_balance:.1e}, on upper (+ load) {upper_balance:.1e}; \
+         action/reaction error {worst_balance:.1e}; KE {:.2e} J",
         model.time_step,
         steps,
         worst_pen * 1e3,
         100.0 * worst_pen / R,
         pen_now * 1e3,
         state.hose_contact.pairs_in_contact,
-        on_upper,
-        load,
-        balance,
-        worst_balance,
         state.kinetic_energy(&model)
     );
     assert!(worst_pen < 0.05 * R, "penetration {worst_pen} m");
     assert!(pen_now > 0.0, "the hoses should be in contact at rest");
-    assert!(
-        worst_balance < 1e-9,
-        "contact forces not equal and opposite: {worst_balance}"
-    );
-    assert!(
-        balance < 0.01,
-        "contact force {on_upper:?} vs load {load:?}"
-    );
-    // the lower hose's supports carry the load through the contact
-    let reactions: DVec3 = [model.hoses[0].node(0), model.hoses[0].node(n)]
-        .iter()
-        .map(|&i| state.reaction_force[i])
-        .sum();
-    assert!(
-        (reactions + load).length() < 0.01 * load.length(),
-        "{reactions:?}"
-    );
+    assert!(worst_balance < 1e-9, "contact forces not equal and opposite: {worst_balance}");
+    assert!(split < 0.01, "lower hose carries {on_lower:?}, expected {half:?}");
+    assert!(lower_balance < 0.01 && upper_balance < 0.01);
 }
 
 #[test]
-fn hose_falls_onto_another_under_gravity() {
-    // Upper hose falls 5 mm under gravity onto a lower one fixed at both ends.
-    let l = 0.4;
-    let n = 16;
+fn hose_rests_in_the_groove_of_two_others() {
+    // Two touching parallel hoses along x, fixed at both ends; a third one above their
+    // groove (free, 2 mm up) falls under gravity plus dead loads of 0.2 N per node and
+    // comes to rest. A free body: the contact force on it must balance its load.
+    let l = 0.3;
+    let n = 12;
     let g = DVec3::new(0.0, 0.0, -9.81);
+    let d = 2.0 * R; // centre distance of the lower pair (just touching)
+    let z = d * 3f64.sqrt() / 2.0 + 0.002;
     let model = build(
         vec![
-            straight(
-                "lower",
-                DVec3::new(-l / 2.0, 0.0, 0.0),
-                DVec3::new(l / 2.0, 0.0, 0.0),
-                n,
-            ),
-            straight(
-                "upper",
-                DVec3::new(0.0, -0.1, 2.0 * R + 0.005),
-                DVec3::new(0.0, 0.1, 2.0 * R + 0.005),
-                8,
-            ),
+            straight("left", DVec3::new(0.0, -d / 2.0, 0.0), DVec3::new(l, -d / 2.0, 0.0), n),
+            straight("right", DVec3::new(0.0, d / 2.0, 0.0), DVec3::new(l, d / 2.0, 0.0), n),
+            straight("top", DVec3::new(0.0, 0.0, z), DVec3::new(l, 0.0, z), n),
         ],
-        settings(g, 10.0),
+        settings(g, 20.0),
     );
     let mut state = State::at_rest(&model);
-    fix(&mut state, model.hoses[0].node(0));
-    fix(&mut state, model.hoses[0].node(n));
-    let steps = (1.5 / model.time_step) as usize;
+    for h in 0..2 {
+        fix(&mut state, model.hoses[h].node(0));
+        fix(&mut state, model.hoses[h].node(n));
+    }
+    let per_node = DVec3::new(0.0, 0.0, -0.2);
+    for i in model.hoses[2].nodes() {
+        dead_load(&mut state, i, per_node);
+    }
+    let load: DVec3 = model.hoses[2]
+        .nodes()
+        .map(|i| model.mass[i] * g + per_node)
+        .sum();
+    let steps = (2.0 / model.time_step) as usize;
     let mut worst_pen: f64 = 0.0;
+    let mut worst_balance: f64 = 0.0;
     for k in 0..steps {
         step(&model, &mut state);
         worst_pen = worst_pen.max(state.hose_contact.max_penetration);
+        let total: DVec3 = state.hose_contact_force.iter().sum();
+        let scale: f64 = state.hose_contact_force.iter().map(|f| f.length()).sum();
+        if scale > 0.0 {
+            worst_balance = worst_balance.max(total.length() / scale);
+        }
         if k % 100 == 0 {
             check(&model, &state).unwrap();
         }
     }
-    let weight: DVec3 = model.hoses[1].nodes().map(|i| model.mass[i]).sum::<f64>() * g;
-    let on_upper = hose_sum(&model, &state, 1);
-    let err = (on_upper + weight).length() / weight.length();
+    let on_top = hose_sum(&model, &state, 2);
+    let err = (on_top + load).length() / load.length();
+    let lower = hose_sum(&model, &state, 0) + hose_sum(&model, &state, 1);
+    let speed = state.v.iter().map(|v| v.length()).fold(0.0, f64::max);
     println!(
-        "falling: max penetration {:.4} mm; contact on upper {on_upper:?} N vs weight {weight:?} N, error {err:.2e}",
-        worst_pen * 1e3
+        "groove: max penetration {:.4} mm ({:.2} % of r); contact on top {on_top:?} N vs load \
+         {load:?} N, error {err:.2e}; on the lower pair {lower:?} N; action/reaction error \
+         {worst_balance:.1e}; pairs {}; max speed {speed:.1e} m/s",
+        worst_pen * 1e3,
+        100.0 * worst_pen / R,
+        state.hose_contact.pairs_in_contact
     );
     assert!(worst_pen < 0.05 * R);
-    assert!(err < 0.01);
-    let (s0, s1) = (hose_sum(&model, &state, 0), hose_sum(&model, &state, 1));
-    assert!((s0 + s1).length() <= 1e-9 * s1.length());
+    assert!(worst_balance < 1e-9);
+    assert!(err < 0.01, "contact {on_top:?} vs load {load:?}");
+    assert!((lower + on_top).length() <= 1e-9 * on_top.length());
+    assert!(speed < 1e-3);
+}
+
+#[test]
+fn u_bend_touches_itself_and_stops() {
+    // A U in the xy plane: leg A (0.25 m) along +x at y = +3r, leg B (0.2 m) at y = −3r
+    // (surfaces 4r apart), joined by a half circle of centre-line radius 3r whose middle
+    // node is clamped. A's node at x = 0.2 m and B's tip are pulled towards each other:
+    // B's end meets A's side. (Frictionless capsules pressed together are unstable
+    // sideways by f/(r₁+r₂); the loads are kept small against the legs' bending stiffness.)
+    let bend_r = 3.0 * R;
+    let (leg_a_len, leg_b_len) = (0.25, 0.2);
+    let (n_a, n_b, n_bend) = (25, 20, 12);
+    let mut nodes = Vec::new();
+    for i in 0..=n_a {
+        nodes.push(DVec3::new(leg_a_len * (1.0 - i as f64 / n_a as f64), bend_r, 0.0));
+    }
+    for i in 1..n_bend {
+        let a = PI / 2.0 + PI * i as f64 / n_bend as f64;
+        nodes.push(DVec3::new(bend_r * a.cos(), bend_r * a.sin(), 0.0));
+    }
+    for i in 0..=n_b {
+        nodes.push(DVec3::new(leg_b_len * i as f64 / n_b as f64, -bend_r, 0.0));
+    }
+    let model = build(vec![hose("u", nodes)], settings(DVec3::ZERO, 20.0));
+    let mut state = State::at_rest(&model);
+    assert!(state.hose_contact.active);
+    let tip_b = model.node_count() - 1;
+    let facing = n_a - n_b; // node of leg A at x = 0.2 m
+    assert!((state.x[facing].x - leg_b_len).abs() < 1e-12);
+    fix(&mut state, n_a + n_bend / 2);
+    let f = 0.4;
+    dead_load(&mut state, facing, DVec3::new(0.0, -f, 0.0));
+    dead_load(&mut state, tip_b, DVec3::new(0.0, f, 0.0));
+    let leg_a = 0..n_a; // elements of leg A
+    let leg_b = model.elements.len() - n_b..model.elements.len();
+    let steps = (3.0 / model.time_step) as usize;
+    let mut worst_pen: f64 = 0.0;
+    let mut first_touch = None;
+    for k in 0..steps {
+        step(&model, &mut state);
+        worst_pen = worst_pen.max(state.hose_contact.max_penetration);
+        if first_touch.is_none() && state.hose_contact.pairs_in_contact > 0 {
+            first_touch = Some(state.time);
+        }
+        if k % 100 == 0 {
+            check(&model, &state).unwrap();
+        }
+    }
+    let mut pen_legs = f64::NEG_INFINITY;
+    for i in leg_a.clone() {
+        for j in leg_b.clone() {
+            pen_legs = pen_legs.max(pair_penetration(&model, &state, i, j));
+        }
+    }
+    let on_a: DVec3 = (0..=n_a).map(|i| state.hose_contact_force[i]).sum();
+    let max_speed = state.v.iter().map(|v| v.length()).fold(0.0, f64::max);
+    let total: DVec3 = state.hose_contact_force.iter().sum();
+    let off_plane = state.x.iter().map(|x| x.z.abs()).fold(0.0, f64::max);
+    println!(
+        "U: first touch at {:?} s; max penetration {:.4} mm; at rest: legs' penetration {:.4} mm, \
+         contact force on leg A {on_a:?} N (loads ±{f} N); pairs {}; max speed {max_speed:.2e} m/s; \
+         largest |z| {off_plane:.1e} m",
+        first_touch,
+        worst_pen * 1e3,
+        pen_legs * 1e3,
+        state.hose_contact.pairs_in_contact
+    );
+    assert!(first_touch.is_some(), "the legs never touched");
+    assert!(pen_legs > 0.0 && pen_legs < 0.05 * R, "legs: {pen_legs}");
+    assert!(worst_pen < 0.05 * R);
+    assert!(on_a.y > 0.1 * f, "leg A pushed back towards +y: {on_a:?}");
+    assert!(total.length() < 1e-9 * on_a.length());
+    assert!(max_speed < 1e-3, "still moving: {max_speed} m/s");
+}
+
+#[test]
+fn bundle_runs_one_second_without_divergence() {
+    // Three touching hoses fixed at both ends, two more in their grooves, and a sixth
+    // dropped across the top at 60°; gravity; one second of contact everywhere.
+    let l = 0.3;
+    let n = 12;
+    let d = 2.0 * R * 0.99; // slightly pressed together at the start
+    let h = d * 3f64.sqrt() / 2.0;
+    let mut hoses = Vec::new();
+    for col in 0..3 {
+        let y = (col as f64 - 1.0) * d;
+        hoses.push(straight(&format!("bottom {col}"), DVec3::new(0.0, y, 0.0), DVec3::new(l, y, 0.0), n));
+    }
+    for col in 0..2 {
+        let y = (col as f64 - 0.5) * d;
+        hoses.push(straight(&format!("middle {col}"), DVec3::new(0.0, y, h), DVec3::new(l, y, h), n));
+    }
+    let c = DVec3::new(l / 2.0, 0.0, 2.0 * h + 0.01);
+    let dir = DVec3::new(0.5, 3f64.sqrt() / 2.0, 0.0);
+    hoses.push(straight("top", c - 0.12 * dir, c + 0.12 * dir, 10));
+    let model = build(hoses, settings(DVec3::new(0.0, 0.0, -9.81), 1.0));
+    let mut state = State::at_rest(&model);
+    for h in 0..3 {
+        fix(&mut state, model.hoses[h].node(0));
+        fix(&mut state, model.hoses[h].node(n));
+    }
+    let mut worst_pen: f64 = 0.0;
+    let mut max_pairs = 0;
+    for k in 0..(1.0 / model.time_step) as usize {
+        step(&model, &mut state);
+        worst_pen = worst_pen.max(state.hose_contact.max_penetration);
+        max_pairs = max_pairs.max(state.hose_contact.pairs_in_contact);
+        if k % 50 == 0 {
+            check(&model, &state).unwrap();
+        }
+    }
+    check(&model, &state).unwrap();
+    let total: DVec3 = state.hose_contact_force.iter().sum();
+    println!(
+        "bundle: up to {max_pairs} pairs in contact, max penetration {:.4} mm (at start {:.3} mm), \
+         KE at 1 s {:.2e} J",
+        worst_pen * 1e3,
+        (2.0 * R - d) * 1e3,
+        state.kinetic_energy(&model)
+    );
+    assert!(max_pairs > 20);
+    assert!(worst_pen < 0.05 * R);
+    assert!(
+        total.length()
+            < 1e-9 * state.hose_contact_force.iter().map(|f| f.length()).sum::<f64>()
+    );
 }
 
 #[test]
 fn neighbouring_beams_of_one_hose_give_no_force_at_rest() {
     // Short beams (l₀ = r/2, so up to ~6 neighbours' capsules overlap) on a straight and on
-    // a tightly curved hose (rest radius 2 r): no contact force at rest, nor after a second.
+    // a tightly curved hose (rest radius 2 r): no contact force at rest, nor after 0.2 s.
     let straight_hose = straight("straight", DVec3::ZERO, DVec3::new(0.3, 0.0, 0.0), 60);
     let arc_nodes: Vec<DVec3> = (0..=80)
         .map(|i| {
@@ -270,87 +400,11 @@ fn neighbouring_beams_of_one_hose_give_no_force_at_rest() {
     // on the straight hose (l₀ = r/2): gap (j−i−1)·l₀ < π r ⇔ j − i ≤ 7 is excluded
     assert!(state.hose_contact.excluded(0, 7));
     assert!(!state.hose_contact.excluded(0, 8));
-    for _ in 0..(1.0 / model.time_step) as usize {
+    for _ in 0..(0.2 / model.time_step) as usize {
         step(&model, &mut state);
         assert_eq!(state.hose_contact.pairs_in_contact, 0);
         assert!(state.hose_contact_force.iter().all(|f| *f == DVec3::ZERO));
     }
-}
-
-#[test]
-fn u_bend_touches_itself_and_stops() {
-    // A U in the xy plane: legs along +x at y = ±3r (surfaces 4r apart), joined by a half
-    // circle of centre-line radius 3r; the leg tips are pulled towards each other.
-    let bend_r = 3.0 * R;
-    let leg = 0.25;
-    let n_leg = 25;
-    let n_bend = 12;
-    let mut nodes = Vec::new();
-    for i in 0..=n_leg {
-        nodes.push(DVec3::new(
-            leg * (1.0 - i as f64 / n_leg as f64),
-            bend_r,
-            0.0,
-        ));
-    }
-    for i in 1..n_bend {
-        let a = PI / 2.0 + PI * i as f64 / n_bend as f64;
-        nodes.push(DVec3::new(bend_r * a.cos(), bend_r * a.sin(), 0.0));
-    }
-    for i in 0..=n_leg {
-        nodes.push(DVec3::new(leg * i as f64 / n_leg as f64, -bend_r, 0.0));
-    }
-    let model = build(vec![hose("u", nodes)], settings(DVec3::ZERO, 20.0));
-    let mut state = State::at_rest(&model);
-    assert!(state.hose_contact.active);
-    let tip_a = 0;
-    let tip_b = model.node_count() - 1;
-    let f = 1.0;
-    dead_load(&mut state, tip_a, DVec3::new(0.0, -f, 0.0));
-    dead_load(&mut state, tip_b, DVec3::new(0.0, f, 0.0));
-    let leg_a = 0..n_leg; // elements of leg A
-    let leg_b = model.elements.len() - n_leg..model.elements.len();
-    let steps = (2.0 / model.time_step) as usize;
-    let mut worst_pen: f64 = 0.0;
-    let mut first_touch = None;
-    for k in 0..steps {
-        step(&model, &mut state);
-        worst_pen = worst_pen.max(state.hose_contact.max_penetration);
-        if first_touch.is_none() && state.hose_contact.pairs_in_contact > 0 {
-            first_touch = Some(state.time);
-        }
-        if k % 100 == 0 {
-            check(&model, &state).unwrap();
-        }
-    }
-    let mut pen_legs = f64::NEG_INFINITY;
-    for i in leg_a.clone() {
-        for j in leg_b.clone() {
-            pen_legs = pen_legs.max(pair_penetration(&model, &state, i, j));
-        }
-    }
-    let tip_gap = (state.x[tip_a] - state.x[tip_b]).length() - 2.0 * R;
-    let leg_force: DVec3 = (0..=n_leg).map(|i| state.hose_contact_force[i]).sum();
-    let max_speed = state.v.iter().map(|v| v.length()).fold(0.0, f64::max);
-    let total: DVec3 = state.hose_contact_force.iter().sum();
-    println!(
-        "U: first touch at {:?} s; max penetration {:.4} mm; legs at rest: penetration {:.4} mm, \
-         tip gap {:.3} mm; contact force on leg A {leg_force:?} N; pairs {}; max speed {max_speed:.2e} m/s",
-        first_touch,
-        worst_pen * 1e3,
-        pen_legs * 1e3,
-        tip_gap * 1e3,
-        state.hose_contact.pairs_in_contact
-    );
-    assert!(first_touch.is_some(), "the legs never touched");
-    assert!(pen_legs > 0.0 && pen_legs < 0.05 * R, "legs: {pen_legs}");
-    assert!(worst_pen < 0.05 * R);
-    assert!(
-        leg_force.y > 0.1 * f,
-        "leg A pushed back towards +y: {leg_force:?}"
-    );
-    assert!(total.length() < 1e-9 * leg_force.length());
-    assert!(max_speed < 1e-3, "still moving: {max_speed} m/s");
 }
 
 /// Deterministic pseudo-random numbers in [0, 1).
@@ -375,8 +429,8 @@ fn broad_phase_finds_exactly_the_brute_force_pairs() {
     let n = 700;
     let mut bp = BroadPhase::new(n);
     for i in 0..n {
-        let c = (rng.vec() - 0.5) * 0.6;
-        let ext = rng.vec() * if i % 50 == 0 { 0.15 } else { 0.03 };
+        let c = (rng.vec() - 0.5) * 0.3;
+        let ext = rng.vec() * if i % 50 == 0 { 0.2 } else { 0.06 };
         bp.lo[i] = c - 0.5 * ext;
         bp.hi[i] = c + 0.5 * ext;
     }
@@ -584,62 +638,6 @@ fn contact_keeps_the_stable_time_step() {
 }
 
 #[test]
-fn bundle_runs_one_second_without_divergence() {
-    // Six hoses in a 3×2 bundle, slightly pressed into each other, ends of the bottom row
-    // fixed, under gravity: one second of contact everywhere, no divergence.
-    let l = 0.3;
-    let n = 12;
-    let gap = 2.0 * R * 0.99;
-    let mut hoses = Vec::new();
-    for row in 0..2 {
-        for col in 0..3 {
-            let y = col as f64 * gap;
-            let z = row as f64 * gap;
-            hoses.push(straight(
-                &format!("h{row}{col}"),
-                DVec3::new(0.0, y, z),
-                DVec3::new(l, y, z),
-                n,
-            ));
-        }
-    }
-    let model = build(hoses, settings(DVec3::new(0.0, 0.0, -9.81), 1.0));
-    let mut state = State::at_rest(&model);
-    for h in 0..3 {
-        fix(&mut state, model.hoses[h].node(0));
-        fix(&mut state, model.hoses[h].node(n));
-    }
-    let mut worst_pen: f64 = 0.0;
-    let mut max_pairs = 0;
-    for k in 0..(1.0 / model.time_step) as usize {
-        step(&model, &mut state);
-        worst_pen = worst_pen.max(state.hose_contact.max_penetration);
-        max_pairs = max_pairs.max(state.hose_contact.pairs_in_contact);
-        if k % 50 == 0 {
-            check(&model, &state).unwrap();
-        }
-    }
-    check(&model, &state).unwrap();
-    let total: DVec3 = state.hose_contact_force.iter().sum();
-    println!(
-        "bundle: up to {max_pairs} pairs in contact, max penetration {:.4} mm, KE at 1 s {:.2e} J",
-        worst_pen * 1e3,
-        state.kinetic_energy(&model)
-    );
-    assert!(max_pairs > 20);
-    assert!(worst_pen < 0.05 * R);
-    assert!(
-        total.length()
-            < 1e-9
-                * state
-                    .hose_contact_force
-                    .iter()
-                    .map(|f| f.length())
-                    .sum::<f64>()
-    );
-}
-
-#[test]
 #[ignore = "timing report, run with --ignored --nocapture"]
 fn cost_per_step_30_hoses_of_30_beams() {
     use std::time::Instant;
@@ -700,3 +698,4 @@ fn cost_per_step_30_hoses_of_30_beams() {
         );
     }
 }
+

@@ -68,23 +68,22 @@ impl RigidEnvironment {
         self.parts.is_empty()
     }
 
-    /// Closest point to `p` on any part within `max_distance`: (part, point, distance).
+    /// Closest point to `p` on any part within `max_distance`: (part, point, distance),
+    /// found among the triangles whose bounding boxes meet the cube of half-size
+    /// `max_distance` around `p` (anything outside that cube is farther away).
     pub fn closest_point(&self, p: DVec3, max_distance: f64) -> Option<(usize, DVec3, f64)> {
         let mut best: Option<(usize, DVec3, f64)> = None;
         let query = Aabb::new(
             p - DVec3::splat(max_distance),
             p + DVec3::splat(max_distance),
         );
-        for (k, part) in self.parts.iter().enumerate() {
-            if !part.mesh.local_aabb().intersects(&query) {
-                continue;
-            }
-            let proj = part.mesh.project_local_point(p, false);
-            let d = (proj.point - p).length();
+        self.for_each_triangle_near(&query, |k, tri| {
+            let q = tri.project_local_point(p, false).point;
+            let d = (q - p).length();
             if d <= max_distance && best.is_none_or(|b| d < b.2) {
-                best = Some((k, proj.point, d));
+                best = Some((k, q, d));
             }
-        }
+        });
         best
     }
 

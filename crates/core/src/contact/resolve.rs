@@ -34,6 +34,14 @@ const SKIN: f64 = 0.01;
 const MAX_PUSH: f64 = 0.1;
 /// Beam-interior contacts are those strictly between the nodes.
 const INTERIOR: f64 = 0.02;
+/// How far a node's distance query looks, in radii: nodes farther away are skipped until
+/// they may have moved that close.
+const QUERY_RANGE: f64 = 3.0;
+
+/// A lower bound on node `i`'s current distance to the environment.
+fn distance_bound(c: &ContactScratch, i: usize, x: DVec3) -> f64 {
+    c.node_distance[i] - (x - c.node_measured_at[i]).length()
+}
 
 /// One active contact in a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,6 +68,11 @@ pub struct ContactScratch {
     pub node_normal: Vec<DVec3>,
     /// Normal of each beam's last interior contact (zero when not in contact).
     pub element_normal: Vec<DVec3>,
+    /// Distance from each node to the nearest part when last measured [m], and where the
+    /// node was then: |x − x_measured| bounds how much closer it can have come, so far
+    /// nodes skip the mesh query (conservative advancement).
+    pub node_distance: Vec<f64>,
+    pub node_measured_at: Vec<DVec3>,
 }
 
 impl ContactScratch {
@@ -68,6 +81,8 @@ impl ContactScratch {
             points: Vec::with_capacity(nodes + elements),
             node_normal: vec![DVec3::ZERO; nodes],
             element_normal: vec![DVec3::ZERO; elements],
+            node_distance: vec![0.0; nodes],
+            node_measured_at: vec![DVec3::splat(f64::INFINITY); nodes],
         }
     }
 }
@@ -118,11 +133,17 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     contact.points.clear();
     state.contact_force.fill(DVec3::ZERO);
     for i in 0..state.x.len() {
-        if state.held[i] {
-            continue;
-        }
         let r = model.radius[i];
-        match env.closest_point(state.x[i], r * (1.0 + SKIN)) {
+        let reach = r * (1.0 + SKIN);
+        if distance_bound(contact, i, state.x[i]) > reach {
+            contact.node_normal[i] = DVec3::ZERO;
+            continue; // certainly clear of every part: no query
+        }
+        let range = QUERY_RANGE * r;
+        let found = env.closest_point(state.x[i], range);
+        contact.node_distance[i] = found.map_or(range, |f| f.2);
+        contact.node_measured_at[i] = state.x[i];
+        match found.filter(|f| f.2 <= reach && !state.held[i]) {
             Some((part, q, _)) => {
                 let (normal, depth) = side(state.x[i], q, r, contact.node_normal[i]);
                 contact.node_normal[i] = normal;
@@ -146,6 +167,13 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         let r = model.radius[a].max(model.radius[b]);
         let reach = r * (1.0 + SKIN);
         let (xa, xb) = (state.x[a], state.x[b]);
+        // every point of the segment lies within half its length of a node
+        let bound = distance_bound(contact, a, xa).min(distance_bound(contact, b, xb))
+            - 0.5 * (xb - xa).length();
+        if bound > reach {
+            contact.element_normal[e] = DVec3::ZERO;
+            continue;
+        }
         let aabb = Aabb::new(
             xa.min(xb) - DVec3::splat(reach),
             xa.max(xb) + DVec3::splat(reach),
