@@ -14,6 +14,7 @@ use crate::contact::{add_hose_contact_forces, project_positions, resolve_velocit
 use crate::forces::{add_body_loads, internal_loads, Config};
 use crate::loads::LoadCase;
 use crate::math::{exp_map, log_map};
+use crate::stiffened::step_body;
 use crate::{Model, State};
 use glam::DVec3;
 
@@ -62,6 +63,26 @@ pub fn step(model: &Model, state: &mut State) {
         state.v[i] = v_new;
         state.w[i] = w_new;
         state.held[i] = true;
+    }
+    // Stiffened sections move as rigid bodies; their nodes are then dependent points.
+    for (b, body) in model.bodies.iter().enumerate() {
+        let held = body.nodes.clone().find(|&i| state.held[i]);
+        step_body(
+            body,
+            &mut state.bodies[b],
+            held,
+            &mut state.x,
+            &mut state.q,
+            &mut state.v,
+            &mut state.w,
+            &state.force,
+            &state.moment,
+            (&mut state.reaction_force, &mut state.reaction_moment),
+            dt,
+        );
+        for i in body.nodes.clone() {
+            state.held[i] = true;
+        }
     }
     for i in 0..state.x.len() {
         if !state.held[i] {

@@ -22,6 +22,7 @@ pub mod relax;
 pub mod section;
 pub mod spec;
 pub mod state;
+pub mod stiffened;
 pub mod timestep;
 
 pub use health::Divergence;

@@ -6,6 +6,7 @@ use crate::element::BeamElement;
 use crate::frames::node_frames;
 use crate::mass::half_element_mass;
 use crate::spec::{HoseSpec, SimSettings, WorldSpec};
+use crate::stiffened::{RigidBody, StiffenedSpan};
 use crate::timestep::{stable_time_step, TimeStepReport};
 use glam::{DQuat, DVec3};
 use serde::Serialize;
@@ -55,6 +56,9 @@ pub struct Model {
     pub time_step_report: TimeStepReport,
     /// Rigid parts hoses collide with (SPEC L4); empty when the scene has none.
     pub environment: RigidEnvironment,
+    /// Stiffened sections (SPEC M6), and for each node the body it belongs to.
+    pub bodies: Vec<RigidBody>,
+    pub body_of: Vec<Option<usize>>,
 }
 
 /// Why a world spec could not be built.
@@ -152,6 +156,8 @@ impl Model {
             time_step_report: TimeStepReport::default(),
             environment: RigidEnvironment::build(&spec.rigid_parts)
                 .map_err(ModelError::RigidPart)?,
+            bodies: Vec::new(),
+            body_of: vec![None; total_nodes],
         };
         for h in &spec.hoses {
             check_hose(h)?;
@@ -204,6 +210,51 @@ impl Model {
             first_element,
             element_count: h.nodes.len() - 1,
         });
+    }
+
+    /// Makes spans of hoses rigid (SPEC M6). Spans must lie within their hose, hold at
+    /// least two nodes, and not overlap.
+    pub fn with_stiffened_spans(mut self, spans: &[StiffenedSpan]) -> Result<Model, ModelError> {
+        for span in spans {
+            let Some(info) = self.hoses.get(span.hose) else {
+                return Err(ModelError::Settings(format!(
+                    "stiffened span names hose {} of {}",
+                    span.hose,
+                    self.hoses.len()
+                )));
+            };
+            let err = |reason: String| {
+                Err(ModelError::Hose {
+                    hose: info.name.clone(),
+                    reason,
+                })
+            };
+            if span.first >= span.last || span.last >= info.node_count {
+                return err(format!(
+                    "stiffened span {}..={} must hold at least two of the hose's {} nodes",
+                    span.first, span.last, info.node_count
+                ));
+            }
+            let nodes = info.node(span.first)..info.node(span.last) + 1;
+            if nodes.clone().any(|i| self.body_of[i].is_some()) {
+                return err(format!(
+                    "stiffened span {}..={} overlaps another",
+                    span.first, span.last
+                ));
+            }
+            let body = RigidBody::new(
+                nodes.clone(),
+                &self.rest_x,
+                &self.rest_q,
+                &self.mass,
+                &self.inertia,
+            );
+            for i in nodes {
+                self.body_of[i] = Some(self.bodies.len());
+            }
+            self.bodies.push(body);
+        }
+        Ok(self)
     }
 
     pub fn node_count(&self) -> usize {

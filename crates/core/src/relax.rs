@@ -62,6 +62,10 @@ pub fn relax(
         if opts.kinetic_damping && energy < last_energy {
             state.v.fill(DVec3::ZERO);
             state.w.fill(DVec3::ZERO);
+            for b in state.bodies.iter_mut() {
+                b.velocity = DVec3::ZERO;
+                b.angular_velocity = DVec3::ZERO;
+            }
             last_energy = 0.0;
         } else {
             last_energy = energy;

@@ -4,6 +4,7 @@
 
 use crate::contact::{ContactScratch, HoseContactScratch};
 use crate::loads::LoadCases;
+use crate::stiffened::BodyState;
 use crate::Model;
 use glam::{DQuat, DVec3};
 
@@ -38,6 +39,8 @@ pub struct State {
     pub contact_force: Vec<DVec3>,
     /// Contact memory (sides of surfaces) and per-step contact list.
     pub contact: ContactScratch,
+    /// Pose and velocity of each stiffened section (SPEC M6).
+    pub bodies: Vec<BodyState>,
     /// Force other hoses, or the hose itself, applied to each node by contact in the last
     /// step [N] (SPEC L5); included in `force`.
     pub hose_contact_force: Vec<DVec3>,
@@ -64,6 +67,16 @@ impl State {
             loads: LoadCases::default(),
             contact_force: vec![DVec3::ZERO; n],
             contact: ContactScratch::new(n, model.elements.len()),
+            bodies: model
+                .bodies
+                .iter()
+                .map(|b| BodyState {
+                    centre: b.rest_centre,
+                    orientation: b.rest_orientation,
+                    velocity: DVec3::ZERO,
+                    angular_velocity: DVec3::ZERO,
+                })
+                .collect(),
             hose_contact_force: vec![DVec3::ZERO; n],
             hose_contact: HoseContactScratch::new(model),
         }

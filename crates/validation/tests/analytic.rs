@@ -81,3 +81,7 @@ fn stub() {
 fn clip() {
     assert_case("clip");
 }
+#[test]
+fn stiffened() {
+    assert_case("stiffened");
+}

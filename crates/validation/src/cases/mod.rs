@@ -8,6 +8,7 @@ mod energy;
 mod fasteners;
 mod invariance;
 mod rollup;
+mod stiffened;
 mod thesis;
 pub(crate) mod tip_load;
 mod torsion;
@@ -27,6 +28,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("contact_rest", contact::run_rest),
     ("contact_incline", contact::run_incline),
     ("tunnelling", contact::run_tunnelling),
+    ("stiffened", stiffened::run),
     ("stub", fasteners::run_stub),
     ("clip", fasteners::run_clip),
     ("thesis_1", thesis::run_1),
