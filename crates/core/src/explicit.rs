@@ -10,7 +10,9 @@
 //! ([`crate::contact`]) corrects velocities before and positions after the position
 //! update. No allocation in a step.
 
-use crate::contact::{add_hose_contact_forces, project_positions, resolve_velocities};
+use crate::contact::{
+    add_hose_contact_forces, add_penalty_forces, project_positions, resolve_velocities,
+};
 use crate::forces::{add_body_loads, internal_loads, Config};
 use crate::loads::LoadCase;
 use crate::math::{exp_map, log_map};
@@ -42,6 +44,7 @@ pub fn step(model: &Model, state: &mut State) {
     state.held.fill(false);
     state.reaction_force.fill(DVec3::ZERO);
     state.reaction_moment.fill(DVec3::ZERO);
+    state.contact_force.fill(DVec3::ZERO);
     for (_, case) in state.loads.iter() {
         if let LoadCase::DeadLoad(d) = case {
             state.force[d.node] += d.force;
@@ -64,7 +67,11 @@ pub fn step(model: &Model, state: &mut State) {
         state.w[i] = w_new;
         state.held[i] = true;
     }
-    // Stiffened sections move as rigid bodies; their nodes are then dependent points.
+    // Stiffened sections move as rigid bodies; their nodes are then dependent points,
+    // pushed off parts by penalty springs (the kinematic contact below skips them).
+    if !model.bodies.is_empty() && !model.environment.is_empty() {
+        add_penalty_forces(model, state);
+    }
     for (b, body) in model.bodies.iter().enumerate() {
         let held = body.nodes.clone().find(|&i| state.held[i]);
         step_body(

@@ -10,6 +10,7 @@
 pub mod broad_phase;
 mod environment;
 pub mod hose_hose;
+mod penalty;
 mod resolve;
 mod segment_triangle;
 
@@ -19,4 +20,5 @@ pub use hose_hose::{add_hose_contact_forces, hose_contact_forces, HoseContactScr
 pub use resolve::{ContactPoint, ContactScratch};
 pub use segment_triangle::{closest_segment_triangle, SegmentTriangleClosest};
 
+pub(crate) use penalty::add_penalty_forces;
 pub(crate) use resolve::{project_positions, resolve_velocities};

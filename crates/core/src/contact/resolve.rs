@@ -131,7 +131,6 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     let env = &model.environment;
     let contact = &mut state.contact;
     contact.points.clear();
-    state.contact_force.fill(DVec3::ZERO);
     for i in 0..state.x.len() {
         let r = model.radius[i];
         let reach = r * (1.0 + SKIN);
