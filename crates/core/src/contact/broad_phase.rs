@@ -3,8 +3,8 @@
 //!
 //! A uniform grid, stored as a spatial hash with a counting sort (no per-step allocation):
 //! 1. Each element's axis-aligned box (its segment grown by its radius) is given by the
-//!    caller; the cell size h is this step's largest box extent along any axis, so every
-//!    box's half-extent is ≤ h/2.
+//!    caller; the cell size h is, per axis, this step's largest box extent along it, so
+//!    every box's half-extent is ≤ h/2 (hoses lying along x do not coarsen y and z).
 //! 2. Each element is filed under the cell of its box centre, floor(c/h). Two boxes that
 //!    overlap have centres at most h apart per axis, so their cells differ by at most one
 //!    per axis: a box's partners lie in its own cell or one of the 26 around it.
@@ -13,6 +13,8 @@
 //!    "forward" neighbours (one of each opposite pair ±d) are visited, so every unordered
 //!    pair is visited exactly once; a bucket entry is used only if its cell really is the
 //!    one looked for (hash collisions and two neighbours sharing a bucket never duplicate).
+//!    Cells, boxes and indices are copied in bucket order, so the scans read contiguous
+//!    memory.
 //! 4. The boxes are compared; overlapping pairs are handed to the caller.
 //!
 //! Cost: O(N) to file, 14 bucket look-ups per element, and the boxes in them — bounded by
@@ -45,21 +47,39 @@ pub struct BroadPhase {
     /// Lower and upper corners of each box, written by the caller before [`Self::rebuild`].
     pub lo: Vec<DVec3>,
     pub hi: Vec<DVec3>,
-    cell: Vec<[i64; 3]>,
+    /// Packed cell of each box.
+    key: Vec<u64>,
     bucket_of: Vec<u32>,
-    /// Bucket b's entries are `items[start[b]..start[b + 1]]`.
+    /// Bucket b's entries are positions `start[b]..start[b + 1]` of the sorted arrays.
     start: Vec<u32>,
+    /// Sorted by bucket: box index, packed cell and corners (contiguous for the scans).
     items: Vec<u32>,
-    mask: u64,
-    /// Cell size of the last rebuild [m].
-    pub cell_size: f64,
+    s_key: Vec<u64>,
+    s_lo: Vec<DVec3>,
+    s_hi: Vec<DVec3>,
+    /// 64 − log₂(number of buckets).
+    shift: u32,
+    /// Cell size of the last rebuild along x, y, z [m].
+    pub cell_size: DVec3,
 }
 
-fn hash(c: [i64; 3], mask: u64) -> u32 {
-    let h = (c[0] as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        ^ (c[1] as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
-        ^ (c[2] as u64).wrapping_mul(0x1656_67B1_9E37_79F9);
-    ((h ^ (h >> 29)) & mask) as u32
+const BITS: u32 = 21;
+const FIELD: u64 = (1 << BITS) - 1;
+
+/// Cell coordinates packed into one word (21 bits each, wrapping: cells 2²¹ apart share
+/// a key, which only costs a box test — such boxes never overlap).
+fn pack(c: [i64; 3]) -> u64 {
+    ((c[0] as u64 & FIELD) << (2 * BITS)) | ((c[1] as u64 & FIELD) << BITS) | (c[2] as u64 & FIELD)
+}
+
+fn offset(key: u64, d: [i64; 3]) -> u64 {
+    let f = |shift: u32, d: i64| (((key >> shift) & FIELD).wrapping_add(d as u64) & FIELD) << shift;
+    f(2 * BITS, d[0]) | f(BITS, d[1]) | f(0, d[2])
+}
+
+/// Fibonacci hashing: the top bits of key·⌊2⁶⁴/φ⌋, which depend on every bit of the key.
+fn hash(key: u64, shift: u32) -> u32 {
+    (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> shift) as u32
 }
 
 impl BroadPhase {
@@ -69,12 +89,15 @@ impl BroadPhase {
         BroadPhase {
             lo: vec![DVec3::ZERO; n],
             hi: vec![DVec3::ZERO; n],
-            cell: vec![[0; 3]; n],
+            key: vec![0; n],
             bucket_of: vec![0; n],
             start: vec![0; buckets + 1],
             items: vec![0; n],
-            mask: buckets as u64 - 1,
-            cell_size: 0.0,
+            s_key: vec![0; n],
+            s_lo: vec![DVec3::ZERO; n],
+            s_hi: vec![DVec3::ZERO; n],
+            shift: 64 - buckets.trailing_zeros(),
+            cell_size: DVec3::ZERO,
         }
     }
 
@@ -89,23 +112,33 @@ impl BroadPhase {
     /// Files the boxes `lo`/`hi` into the grid. O(N), no allocation.
     pub fn rebuild(&mut self) {
         let n = self.lo.len();
-        let mut h: f64 = 0.0;
+        // Cell size per axis: the largest box extent along it (a box elongated along one
+        // axis does not coarsen the grid along the others).
+        let mut h = DVec3::ZERO;
         for i in 0..n {
-            let ext = self.hi[i] - self.lo[i];
-            h = h.max(ext.max_element());
+            h = h.max(self.hi[i] - self.lo[i]);
         }
-        // Guard against all-degenerate boxes; NaN boxes land in cell 0 (the health
-        // check reports the divergence).
-        let h = if h > 0.0 && h.is_finite() { h } else { 1.0 };
+        // Guard against degenerate extents; NaN boxes land in cell 0 (the health check
+        // reports the divergence).
+        let fallback = if h.max_element() > 0.0 && h.max_element().is_finite() {
+            h.max_element()
+        } else {
+            1.0
+        };
+        let h = DVec3::select(
+            h.cmpgt(DVec3::splat(1e-9 * fallback)) & h.is_finite_mask(),
+            h,
+            DVec3::splat(fallback),
+        );
         self.cell_size = h;
-        let inv = 1.0 / h;
+        let inv = h.recip();
         let buckets = self.start.len() - 1;
         self.start.fill(0);
         for i in 0..n {
-            let c = 0.5 * (self.lo[i] + self.hi[i]) * inv;
-            let cell = [c.x.floor() as i64, c.y.floor() as i64, c.z.floor() as i64];
-            let b = hash(cell, self.mask);
-            self.cell[i] = cell;
+            let c = (0.5 * (self.lo[i] + self.hi[i]) * inv).floor();
+            let key = pack([c.x as i64, c.y as i64, c.z as i64]);
+            let b = hash(key, self.shift);
+            self.key[i] = key;
             self.bucket_of[i] = b;
             self.start[b as usize] += 1;
         }
@@ -120,36 +153,39 @@ impl BroadPhase {
         for i in (0..n).rev() {
             let b = self.bucket_of[i] as usize;
             self.start[b] -= 1;
-            self.items[self.start[b] as usize] = i as u32;
+            let k = self.start[b] as usize;
+            self.items[k] = i as u32;
+            self.s_key[k] = self.key[i];
+            self.s_lo[k] = self.lo[i];
+            self.s_hi[k] = self.hi[i];
         }
-    }
-
-    fn overlap(&self, i: usize, j: usize) -> bool {
-        self.lo[i].cmple(self.hi[j]).all() && self.lo[j].cmple(self.hi[i]).all()
     }
 
     /// Calls `f(i, j)` (i ≠ j, each unordered pair once) for every pair of overlapping
     /// boxes, as filed by the last [`Self::rebuild`].
     pub fn for_each_pair(&self, mut f: impl FnMut(usize, usize)) {
-        for i in 0..self.lo.len() {
-            let c = self.cell[i];
-            // own cell: partners with a larger index
-            let b = self.bucket_of[i] as usize;
-            for &j in &self.items[self.start[b] as usize..self.start[b + 1] as usize] {
-                let j = j as usize;
-                if j > i && self.cell[j] == c && self.overlap(i, j) {
-                    f(i, j);
-                }
-            }
-            for d in FORWARD {
-                let nc = [c[0] + d[0], c[1] + d[1], c[2] + d[2]];
-                let b = hash(nc, self.mask) as usize;
-                for &j in &self.items[self.start[b] as usize..self.start[b + 1] as usize] {
-                    let j = j as usize;
-                    if self.cell[j] == nc && self.overlap(i, j) {
-                        f(i, j);
+        let n = self.items.len();
+        for k in 0..n {
+            let key = self.s_key[k];
+            let (lo, hi) = (self.s_lo[k], self.s_hi[k]);
+            let i = self.items[k] as usize;
+            let mut scan = |from: usize, to: usize, key: u64| {
+                for m in from..to {
+                    if self.s_key[m] == key
+                        && lo.cmple(self.s_hi[m]).all()
+                        && self.s_lo[m].cmple(hi).all()
+                    {
+                        f(i, self.items[m] as usize);
                     }
                 }
+            };
+            // own cell: entries after this one in its bucket
+            let b = self.bucket_of[i] as usize;
+            scan(k + 1, self.start[b + 1] as usize, key);
+            for d in FORWARD {
+                let nk = offset(key, d);
+                let b = hash(nk, self.shift) as usize;
+                scan(self.start[b] as usize, self.start[b + 1] as usize, nk);
             }
         }
     }

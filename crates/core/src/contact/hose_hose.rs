@@ -41,8 +41,10 @@
 //! hose can make with its legs touching (centre-line radius (r_i + r_j)/2). Beams closer
 //! along the hose (including the neighbours sharing a node, g = 0) cannot touch without
 //! the wall folding into itself; their capsules overlap at rest or in any bend, and a
-//! force between them would be an artefact of the discretisation. For a straight hose
-//! this excludes ⌈π r / l₀⌉ beams beyond the neighbour on each side.
+//! force between them would be an artefact of the discretisation. On a hose of uniform
+//! radius r and beam length l₀ this excludes beams i, j with |i − j| ≤ ⌈π r / l₀⌉.
+//! Pairs of different hoses are never excluded (hoses that overlap at rest are pushed
+//! apart).
 //!
 //! **Broad phase.** [`BroadPhase`]: a uniform grid, O(N), storage allocated once in
 //! [`HoseContactScratch::new`] (called by [`State::at_rest`]). A model with one hose too
@@ -77,6 +79,8 @@ pub struct HoseContactScratch {
     pub pairs_in_contact: usize,
     /// Largest penetration in the last step [m] (0 when none).
     pub max_penetration: f64,
+    /// Elastic energy of the contact springs, Σ ½ k δ², in the last step [J].
+    pub energy: f64,
 }
 
 impl HoseContactScratch {
@@ -93,6 +97,7 @@ impl HoseContactScratch {
             active: model.hoses.len() > 1,
             pairs_in_contact: 0,
             max_penetration: 0.0,
+            energy: 0.0,
         };
         for (h, hose) in model.hoses.iter().enumerate() {
             let mut arc = 0.0;
@@ -225,6 +230,7 @@ pub fn hose_contact_forces(
     out.fill(DVec3::ZERO);
     scratch.pairs_in_contact = 0;
     scratch.max_penetration = 0.0;
+    scratch.energy = 0.0;
     if !scratch.active {
         return;
     }
@@ -238,6 +244,7 @@ pub fn hose_contact_forces(
     let sc = &*scratch;
     let mut pairs = 0;
     let mut max_pen: f64 = 0.0;
+    let mut energy = 0.0;
     sc.broad.for_each_pair(|i, j| {
         if sc.excluded(i, j) {
             return;
@@ -277,9 +284,11 @@ pub fn hose_contact_forces(
         out[d] -= w[3] * fv;
         pairs += 1;
         max_pen = max_pen.max(pen);
+        energy += 0.5 * k * pen * pen;
     });
     scratch.pairs_in_contact = pairs;
     scratch.max_penetration = max_pen;
+    scratch.energy = energy;
 }
 
 /// Computes the hose–hose and self contact forces of the state's configuration into
