@@ -52,6 +52,9 @@ impl<'de> Deserialize<'de> for ActionEntry {
             "load" => ActionEntry::Load(part(table)?),
             "unload" => ActionEntry::Unload(part(table)?),
             "release" => ActionEntry::Release(part(table)?),
+            "grab" => ActionEntry::Grab(part(table)?),
+            "move_hand" => ActionEntry::MoveHand(part(table)?),
+            "release_hand" => ActionEntry::ReleaseHand(part(table)?),
             "run" => ActionEntry::Run(part(table)?),
             "settle" => ActionEntry::Settle(part(table)?),
             other => {

@@ -38,6 +38,15 @@ pub struct SceneFile {
     /// Rigid parts of the environment (triangle meshes from files, or primitives).
     #[serde(default)]
     pub parts: Vec<PartEntry>,
+    /// Connector stubs hose ends are pushed onto (SPEC L6).
+    #[serde(default)]
+    pub stubs: Vec<StubEntry>,
+    /// Clips hoses are snapped into (SPEC L7).
+    #[serde(default)]
+    pub clips: Vec<ClipEntry>,
+    /// Which rows and columns of the ergonomic tables judge hand loads (SPEC I3).
+    /// Default: standing, women, occasional duty.
+    pub ergonomics: Option<ErgonomicsSection>,
     /// Scripted actions, executed in order.
     #[serde(default)]
     pub timeline: Vec<ActionEntry>,
@@ -75,6 +84,85 @@ pub struct SimulationSection {
 pub struct OutputSection {
     /// Interval between recorded states (s), ≥ 0; 0 records every step. Default 0.01.
     pub record_interval_s: Option<f64>,
+}
+
+/// `[ergonomics]`: the worker the hand loads are judged for (SPEC I3). Names are
+/// case-insensitive; `-` and spaces count as `_`.
+#[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ErgonomicsSection {
+    /// `standing`, `crouching` or `sitting`: sets the push row (same name) and the pull
+    /// row (`standing_lever`, `crouching_lever`, `handle`). Default `standing`.
+    pub posture: Option<String>,
+    /// Push row, overriding `posture`: `standing`, `crouching` or `sitting`.
+    pub push: Option<String>,
+    /// Pull row, overriding `posture`: `standing_lever`, `crouching_lever` or `handle`.
+    pub pull: Option<String>,
+    /// Torque grip: `screwdriver` (torsion) or `t_handle` (bending). Default `t_handle`.
+    pub torque: Option<String>,
+    /// `women` or `men`. Default `women` (the lower limits).
+    pub population: Option<String>,
+    /// `continuous` (held over a minute) or `occasional`. Default `occasional`.
+    pub duty: Option<String>,
+}
+
+/// Which end of a hose: its first node or its last.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum HoseEndName {
+    /// The first node (at the hose's `start`).
+    Start,
+    /// The last node.
+    End,
+}
+
+/// `[[stubs]]`: a rigid connector stub (SPEC L6), a cylinder a hose end is pushed onto.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StubEntry {
+    /// Unique, non-empty name (shared namespace with clips).
+    pub name: String,
+    /// The stub's mouth: the centre of its free end, where a hose first meets it
+    /// (length unit).
+    pub origin: Vec3,
+    /// Push-on direction, from the mouth towards the stub's base; any non-zero length
+    /// (normalised on loading).
+    pub axis: Vec3,
+    /// Length a hose can be pushed on (length unit), > 0.
+    pub length: f64,
+    /// Outer diameter d_s (length unit), > 0.
+    pub diameter: f64,
+    /// Coulomb friction of the hose on the stub. Default static 0.6, sliding 0.4
+    /// (assumption: rubber on plastic).
+    pub friction: Option<FrictionEntry>,
+    /// The hose meant to go onto this stub. Requires `end`.
+    pub hose: Option<String>,
+    /// Which end of `hose` goes onto the stub: `"start"` or `"end"`. Requires `hose`.
+    pub end: Option<HoseEndName>,
+}
+
+/// `[[clips]]`: a clip a hose is snapped into (SPEC L7).
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ClipEntry {
+    /// Unique, non-empty name (shared namespace with stubs).
+    pub name: String,
+    /// Seat centre: where a seated hose's centre line passes (length unit).
+    pub origin: Vec3,
+    /// Direction from the seat out through the opening (the hose comes in against it);
+    /// any non-zero length (normalised on loading).
+    pub opening: Vec3,
+    /// Direction of a seated hose's axis through the clip; roughly perpendicular to
+    /// `opening` (its part along `opening` is removed); any non-zero length.
+    pub orientation: Vec3,
+    /// Opening width d₁ (length unit), > 0 and < `inner_diameter`.
+    pub opening_width: f64,
+    /// Inner (seat) diameter d₂ (length unit), > 0.
+    pub inner_diameter: f64,
+    /// Snap force k (N), ≥ 0: the force against the hose at the opening.
+    pub snap_force_n: f64,
+    /// The hose meant to be snapped into this clip. Optional.
+    pub hose: Option<String>,
 }
 
 /// `[materials.NAME]`: a user material.
@@ -287,6 +375,12 @@ pub enum ActionEntry {
     Unload(NodeEntry),
     /// Remove the fix / drive from the node.
     Release(NodeEntry),
+    /// A hand grabs the beam nearest to `at` (SPEC I1); its two nodes follow the hand.
+    Grab(GrabEntry),
+    /// Move a hand (holding a beam) along waypoints and/or turn it.
+    MoveHand(MoveHandEntry),
+    /// A hand lets go of its beam.
+    ReleaseHand(HandEntry),
     /// Simulate for a while.
     Run(RunEntry),
     /// Simulate until the hoses come to rest.
@@ -294,7 +388,18 @@ pub enum ActionEntry {
 }
 
 /// The names of the `action` values, in the order of [`ActionEntry`].
-pub const ACTION_NAMES: [&str; 7] = ["fix", "move", "load", "unload", "release", "run", "settle"];
+pub const ACTION_NAMES: [&str; 10] = [
+    "fix",
+    "move",
+    "load",
+    "unload",
+    "release",
+    "grab",
+    "move_hand",
+    "release_hand",
+    "run",
+    "settle",
+];
 
 /// `fix`, `unload`, `release`: a node of a hose.
 #[derive(Clone, Debug, Deserialize, JsonSchema)]
@@ -325,6 +430,47 @@ pub struct MoveEntry {
     pub duration_s: f64,
     /// Whether the timeline waits for the move to end. Default true.
     pub wait: Option<bool>,
+}
+
+/// `grab`: a hand takes hold of the beam nearest to a point.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GrabEntry {
+    /// Hand index, 0 … 7.
+    #[schemars(range(min = 0, max = 7))]
+    pub hand: i64,
+    /// Where the hand grabs (length unit): the beam nearest to it is taken, and the
+    /// hand's frame starts here.
+    pub at: Vec3,
+}
+
+/// `move_hand`: drive a hand along waypoints and/or rotate it.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MoveHandEntry {
+    /// Hand index, 0 … 7; it must be holding a beam (an earlier `grab`, not released).
+    #[schemars(range(min = 0, max = 7))]
+    pub hand: i64,
+    /// Absolute waypoints (length unit); the last is the target. Excludes `by`.
+    pub to: Option<Points>,
+    /// Waypoints as offsets from the hand's position when the move starts (length
+    /// unit). Excludes `to`.
+    pub by: Option<Points>,
+    /// Rotation applied on top of the hand's orientation over the move.
+    pub rotate: Option<RotateEntry>,
+    /// Duration of the move (s), > 0.
+    pub duration_s: f64,
+    /// Whether the timeline waits for the move to end. Default true.
+    pub wait: Option<bool>,
+}
+
+/// `release_hand`: a hand lets go.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HandEntry {
+    /// Hand index, 0 … 7; it must be holding a beam.
+    #[schemars(range(min = 0, max = 7))]
+    pub hand: i64,
 }
 
 /// `load`: a constant force and/or moment at a node.

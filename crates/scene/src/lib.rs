@@ -1,7 +1,8 @@
-//! Pliant scene files (SPEC §5, M1–M4, L1–L4): a versioned TOML (or JSON) format with a
-//! JSON Schema, the built-in material library, centre-line discretisation and thorough
-//! validation. Loading is a pure function from text to a [`LoadedScene`] in SI units —
-//! a core [`pliant_core::WorldSpec`] plus a [`pliant_assembly::Timeline`] — or a
+//! Pliant scene files (SPEC §5, M1–M4, L1–L7, I1, I3): a versioned TOML (or JSON) format
+//! with a JSON Schema, the built-in material library, centre-line discretisation and
+//! thorough validation. Loading is a pure function from text to a [`LoadedScene`] in SI
+//! units — a core [`pliant_core::WorldSpec`], a [`pliant_assembly::Timeline`] (hands
+//! included), stubs, clips and an ergonomic profile — or a
 //! [`SceneError`] that names the field, the value and the reason. Nothing is ever
 //! half-loaded.
 //!
@@ -10,6 +11,8 @@
 
 mod action_de;
 pub mod centerline;
+pub mod connectors;
+pub mod ergonomics;
 pub mod error;
 pub mod format;
 pub mod hoses;
@@ -32,6 +35,6 @@ pub use load::{
     load_scene_str, load_scene_str_in, DEMO_SCENE_TOML, FORMAT_TAG, FORMAT_VERSION,
 };
 pub use mesh::{TriMesh, MAX_TRIANGLES};
-pub use scene::{HoseInfo, LoadedScene, PartInfo};
+pub use scene::{HoseEnd, HoseInfo, LoadedScene, PartInfo, SceneClip, SceneStub};
 pub use schema::scene_schema_json;
 pub use units::LengthUnit;

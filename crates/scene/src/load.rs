@@ -3,6 +3,8 @@
 //! of the text: it returns a complete scene or an error, never part of one.
 
 use crate::action_de::INNER_PATH_PREFIX;
+use crate::connectors::build_connectors;
+use crate::ergonomics::build_ergonomics;
 use crate::error::{FieldError, SceneError};
 use crate::format::SceneFile;
 use crate::hoses::build_hose;
@@ -354,6 +356,8 @@ fn build(
         .collect();
     let timeline = build_timeline(&file.timeline, &nodes, file.length_unit)?;
     let (rigid_parts, part_infos) = build_parts(&file.parts, file.length_unit, base_dir)?;
+    let (stubs, clips) = build_connectors(&file.stubs, &file.clips, &hoses, file.length_unit)?;
+    let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
     let name = match &file.name {
         Some(n) if !n.trim().is_empty() => n.clone(),
         _ => Path::new(origin)
@@ -372,6 +376,9 @@ fn build(
         record_interval,
         hoses: infos,
         parts: part_infos,
+        stubs,
+        clips,
+        ergonomics,
         length_unit: file.length_unit,
         source: origin.to_string(),
         text: text.to_string(),

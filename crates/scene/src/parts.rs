@@ -117,7 +117,11 @@ pub fn build_part(
         }
         None => DQuat::IDENTITY,
     };
-    let (friction_static, friction_sliding) = friction(&at("friction"), raw.friction.as_ref())?;
+    let (friction_static, friction_sliding) = friction(
+        &at("friction"),
+        raw.friction.as_ref(),
+        (DEFAULT_FRICTION_STATIC, DEFAULT_FRICTION_SLIDING),
+    )?;
 
     // The local mesh in metres, its source, and how many degenerate triangles went.
     let (local, source, dropped) = if let Some(file) = &raw.mesh {
@@ -227,10 +231,15 @@ pub fn build_part(
     Ok((spec, info))
 }
 
-/// Checks `friction`: both ≥ 0 and sliding ≤ static.
-fn friction(field: &str, raw: Option<&FrictionEntry>) -> Result<(f64, f64), FieldError> {
+/// Checks `friction`: both ≥ 0 and sliding ≤ static; `default` (static, sliding) when
+/// absent.
+pub(crate) fn friction(
+    field: &str,
+    raw: Option<&FrictionEntry>,
+    default: (f64, f64),
+) -> Result<(f64, f64), FieldError> {
     let Some(f) = raw else {
-        return Ok((DEFAULT_FRICTION_STATIC, DEFAULT_FRICTION_SLIDING));
+        return Ok(default);
     };
     let st = non_negative(&format!("{field}.static"), f.static_, "")?;
     let sl = non_negative(&format!("{field}.sliding"), f.sliding, "")?;

@@ -2,8 +2,53 @@
 //! need, in SI units, plus a few facts for reports.
 
 use crate::units::LengthUnit;
+use pliant_assembly::clip::ClipSpec;
+use pliant_assembly::ergonomics::ErgonomicProfile;
+use pliant_assembly::stub::StubSpec;
 use pliant_assembly::Timeline;
 use pliant_core::WorldSpec;
+
+/// One end of a hose: the hose's index and which end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HoseEnd {
+    /// Hose index (as in `LoadedScene::world.hoses`).
+    pub hose: usize,
+    /// `true`: the last node; `false`: the first node.
+    pub at_end: bool,
+}
+
+impl HoseEnd {
+    /// The node index of this end on a hose of `nodes` nodes.
+    pub fn node(&self, nodes: usize) -> usize {
+        if self.at_end {
+            nodes.saturating_sub(1)
+        } else {
+            0
+        }
+    }
+}
+
+/// A connector stub of the scene (SPEC L6).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneStub {
+    /// The stub's name.
+    pub name: String,
+    /// Geometry and friction, SI, axis normalised.
+    pub spec: StubSpec,
+    /// The hose end meant to go onto it, if the file names one.
+    pub hose_end: Option<HoseEnd>,
+}
+
+/// A clip of the scene (SPEC L7).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneClip {
+    /// The clip's name.
+    pub name: String,
+    /// Geometry and snap force, SI, directions normalised and perpendicular.
+    pub spec: ClipSpec,
+    /// Index of the hose meant to be snapped into it, if the file names one.
+    pub hose: Option<usize>,
+}
 
 /// How one hose was discretised.
 #[derive(Clone, Debug, PartialEq)]
@@ -57,6 +102,13 @@ pub struct LoadedScene {
     pub hoses: Vec<HoseInfo>,
     /// Facts per rigid part, by index (same order as `world.rigid_parts`).
     pub parts: Vec<PartInfo>,
+    /// Connector stubs, in file order.
+    pub stubs: Vec<SceneStub>,
+    /// Clips, in file order.
+    pub clips: Vec<SceneClip>,
+    /// The rows and columns of the ergonomic tables hand loads are judged against
+    /// (`[ergonomics]`, else the default profile).
+    pub ergonomics: ErgonomicProfile,
     /// The length unit the file was written in.
     pub length_unit: LengthUnit,
     /// Where the scene came from (a path, or a description such as the built-in demo).
@@ -69,5 +121,15 @@ impl LoadedScene {
     /// Index of the hose with this name.
     pub fn hose_index(&self, name: &str) -> Option<usize> {
         self.hose_names.iter().position(|n| n == name)
+    }
+
+    /// The stub with this name.
+    pub fn stub(&self, name: &str) -> Option<&SceneStub> {
+        self.stubs.iter().find(|s| s.name == name)
+    }
+
+    /// The clip with this name.
+    pub fn clip(&self, name: &str) -> Option<&SceneClip> {
+        self.clips.iter().find(|c| c.name == name)
     }
 }

@@ -3,7 +3,8 @@
 
 use crate::error::FieldError;
 use crate::format::{
-    ActionEntry, LoadEntry, MoveEntry, NodeEntry, Points, RotateEntry, RunEntry, SettleEntry,
+    ActionEntry, GrabEntry, HandEntry, LoadEntry, MoveEntry, MoveHandEntry, NodeEntry, Points,
+    RotateEntry, RunEntry, SettleEntry,
 };
 use crate::units::LengthUnit;
 use crate::validate::{finite, finite_vec, node_index, non_zero_vec, positive};
@@ -14,6 +15,8 @@ use pliant_assembly::{Action, MovePath, NodeRef, Rotation, Timeline};
 pub const DEFAULT_SETTLE_KINETIC_ENERGY: f64 = 1e-6;
 /// Default time limit of `settle` (s).
 pub const DEFAULT_SETTLE_MAX_DURATION: f64 = 30.0;
+/// Number of hands a timeline may use (indices 0 … `MAX_HANDS` − 1).
+pub const MAX_HANDS: usize = 8;
 
 /// A hose as the timeline sees it: its name and node count.
 pub struct HoseNodes<'a> {
@@ -34,7 +37,58 @@ pub fn build_timeline(
         .enumerate()
         .map(|(i, a)| build_action(&format!("timeline[{i}]"), a, hoses, unit))
         .collect::<Result<Vec<_>, _>>()?;
+    check_hands(&actions)?;
     Ok(Timeline { actions })
+}
+
+/// Checks a hand index: 0 … [`MAX_HANDS`] − 1.
+fn hand_index(field: &str, hand: i64) -> Result<usize, FieldError> {
+    if (0..MAX_HANDS as i64).contains(&hand) {
+        Ok(hand as usize)
+    } else {
+        Err(FieldError::new(
+            field,
+            hand.to_string(),
+            format!("out of range: hands are numbered 0 … {}", MAX_HANDS - 1),
+        ))
+    }
+}
+
+/// Follows which hands hold a beam through the timeline: `move_hand` and `release_hand`
+/// need a hand that grabbed earlier and has not let go since. (A `grab` by a hand that
+/// already holds a beam lets go of it first, as the runner does.)
+fn check_hands(actions: &[Action]) -> Result<(), FieldError> {
+    // For each hand: the index of the action where it last grabbed or released.
+    let mut holding = [None::<usize>; MAX_HANDS];
+    let mut released = [None::<usize>; MAX_HANDS];
+    for (i, a) in actions.iter().enumerate() {
+        let (hand, verb) = match a {
+            Action::Grab { hand, .. } => {
+                holding[*hand] = Some(i);
+                released[*hand] = None;
+                continue;
+            }
+            Action::MoveHand { hand, .. } => (*hand, "move"),
+            Action::ReleaseHand { hand } => (*hand, "release"),
+            _ => continue,
+        };
+        if holding[hand].is_none() {
+            let why = match released[hand] {
+                Some(r) => format!("it let go at timeline[{r}] and has not grabbed since"),
+                None => format!("no earlier `grab` with hand = {hand}"),
+            };
+            return Err(FieldError::new(
+                format!("timeline[{i}].hand"),
+                hand.to_string(),
+                format!("cannot {verb} a hand that holds nothing: {why}"),
+            ));
+        }
+        if verb == "release" {
+            holding[hand] = None;
+            released[hand] = Some(i);
+        }
+    }
+    Ok(())
 }
 
 /// Resolves `hose` and `node` of an action.
@@ -79,6 +133,41 @@ fn rotation(field: &str, r: &RotateEntry) -> Result<Rotation, FieldError> {
     Ok(Rotation { axis, angle })
 }
 
+/// Checks the `to` / `by` / `rotate` of a `move` or `move_hand`: at most one of `to`
+/// and `by`, at least one of the three. `what` names the action in messages.
+fn path_and_rotation(
+    field: &str,
+    what: &str,
+    to: &Option<Points>,
+    by: &Option<Points>,
+    rotate: &Option<RotateEntry>,
+    unit: LengthUnit,
+) -> Result<(Option<MovePath>, Option<Rotation>), FieldError> {
+    let sub = |name: &str| format!("{field}.{name}");
+    let path = match (to, by) {
+        (Some(_), Some(_)) => {
+            return Err(FieldError::about(
+                field,
+                format!("{what} takes either `to` (absolute) or `by` (relative), not both"),
+            ))
+        }
+        (Some(p), None) => Some(MovePath::To(waypoints(&sub("to"), p, unit)?)),
+        (None, Some(p)) => Some(MovePath::By(waypoints(&sub("by"), p, unit)?)),
+        (None, None) => None,
+    };
+    let rotation = match rotate {
+        Some(r) => Some(rotation(&sub("rotate"), r)?),
+        None => None,
+    };
+    if path.is_none() && rotation.is_none() {
+        return Err(FieldError::about(
+            field,
+            format!("{what} needs `to`, `by` or `rotate`"),
+        ));
+    }
+    Ok((path, rotation))
+}
+
 /// Checks and builds one action.
 fn build_action(
     field: &str,
@@ -107,27 +196,7 @@ fn build_action(
             wait,
         }) => {
             let node = node_ref(field, hose, *node, hoses)?;
-            let path = match (to, by) {
-                (Some(_), Some(_)) => {
-                    return Err(FieldError::about(
-                        field,
-                        "a move takes either `to` (absolute) or `by` (relative), not both",
-                    ))
-                }
-                (Some(p), None) => Some(MovePath::To(waypoints(&sub("to"), p, unit)?)),
-                (None, Some(p)) => Some(MovePath::By(waypoints(&sub("by"), p, unit)?)),
-                (None, None) => None,
-            };
-            let rotation = match rotate {
-                Some(r) => Some(rotation(&sub("rotate"), r)?),
-                None => None,
-            };
-            if path.is_none() && rotation.is_none() {
-                return Err(FieldError::about(
-                    field,
-                    "a move needs `to`, `by` or `rotate`",
-                ));
-            }
+            let (path, rotation) = path_and_rotation(field, "a move", to, by, rotate, unit)?;
             let duration = positive(&sub("duration_s"), *duration_s, "s")?;
             Action::Move {
                 node,
@@ -158,6 +227,31 @@ fn build_action(
                 moment,
             }
         }
+        ActionEntry::Grab(GrabEntry { hand, at }) => Action::Grab {
+            hand: hand_index(&sub("hand"), *hand)?,
+            at: finite_vec(&sub("at"), *at, unit.symbol())? * unit.to_metres(),
+        },
+        ActionEntry::MoveHand(MoveHandEntry {
+            hand,
+            to,
+            by,
+            rotate,
+            duration_s,
+            wait,
+        }) => {
+            let hand = hand_index(&sub("hand"), *hand)?;
+            let (path, rotation) = path_and_rotation(field, "a hand move", to, by, rotate, unit)?;
+            Action::MoveHand {
+                hand,
+                path,
+                rotation,
+                duration: positive(&sub("duration_s"), *duration_s, "s")?,
+                wait: wait.unwrap_or(true),
+            }
+        }
+        ActionEntry::ReleaseHand(HandEntry { hand }) => Action::ReleaseHand {
+            hand: hand_index(&sub("hand"), *hand)?,
+        },
         ActionEntry::Run(RunEntry { duration_s }) => Action::Run {
             duration: positive(&sub("duration_s"), *duration_s, "s")?,
         },

@@ -73,6 +73,9 @@ fn demo_scene_is_as_described() {
             Action::Run { .. } => "run",
             Action::Load { .. } => "load",
             Action::Unload { .. } => "unload",
+            Action::Grab { .. } => "grab",
+            Action::MoveHand { .. } => "move_hand",
+            Action::ReleaseHand { .. } => "release_hand",
         })
         .collect();
     assert_eq!(kinds, ["fix", "move", "run", "release", "settle"]);
@@ -212,7 +215,9 @@ fn documented_example_loads() {
         .expect("toml block");
     let scene = load_scene_str(block, "scene-format.md").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.hose_names, ["coolant", "return"]);
-    assert_eq!(scene.timeline.actions.len(), 8);
+    assert_eq!(scene.timeline.actions.len(), 11);
+    assert_eq!(scene.stubs.len(), 1);
+    assert_eq!(scene.clips.len(), 1);
     assert_eq!(scene.world.settings.damping_stiffness, Some(0.0002));
     assert_eq!(scene.hoses[1].elements, 20);
     pliant_core::Model::build(&scene.world).unwrap_or_else(|e| panic!("{e}"));

@@ -1,0 +1,251 @@
+//! Building connector stubs (SPEC L6) and clips (SPEC L7): positions and sizes converted
+//! to metres, directions normalised, names and hose references checked, as the assembly
+//! layer's [`StubSpec`] and [`ClipSpec`].
+
+use crate::error::FieldError;
+use crate::format::{ClipEntry, HoseEndName, StubEntry};
+use crate::parts::friction;
+use crate::scene::{HoseEnd, SceneClip, SceneStub};
+use crate::units::LengthUnit;
+use crate::validate::{finite_vec, non_negative, non_zero_vec, positive, vec_with_unit, with_unit};
+use pliant_assembly::clip::ClipSpec;
+use pliant_assembly::stub::StubSpec;
+use pliant_core::HoseSpec;
+
+/// Default static friction coefficient of a hose on a stub. Assumption: the
+/// dissertation names the coefficients (γ_H, γ_G, sections 4.3.5 and 5.3.1) but gives no
+/// values; 0.6 / 0.4 is typical of rubber on plastic.
+pub const DEFAULT_STUB_FRICTION_STATIC: f64 = 0.6;
+/// Default sliding friction coefficient of a hose on a stub (assumption, see
+/// [`DEFAULT_STUB_FRICTION_STATIC`]).
+pub const DEFAULT_STUB_FRICTION_SLIDING: f64 = 0.4;
+/// Largest angle (degrees) by which a clip's `orientation` may miss being perpendicular
+/// to its `opening`.
+pub const CLIP_ORIENTATION_TOLERANCE_DEG: f64 = 30.0;
+
+/// Checks the names of stubs and clips: non-empty and unique across both lists.
+fn check_names(stubs: &[StubEntry], clips: &[ClipEntry]) -> Result<(), FieldError> {
+    let all: Vec<(String, &str)> = stubs
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (format!("stubs[{i}].name"), s.name.as_str()))
+        .chain(
+            clips
+                .iter()
+                .enumerate()
+                .map(|(i, c)| (format!("clips[{i}].name"), c.name.as_str())),
+        )
+        .collect();
+    for (k, (field, name)) in all.iter().enumerate() {
+        if name.trim().is_empty() {
+            return Err(FieldError::new(
+                field.as_str(),
+                format!("\"{name}\""),
+                "a stub or clip name must not be empty",
+            ));
+        }
+        if let Some((first, _)) = all[..k].iter().find(|(_, n)| n == name) {
+            return Err(FieldError::new(
+                field.as_str(),
+                format!("\"{name}\""),
+                format!("duplicate name (also {first}); stubs and clips share one set of names"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Resolves a hose name.
+fn hose_index(field: &str, name: &str, hoses: &[HoseSpec]) -> Result<usize, FieldError> {
+    hoses.iter().position(|h| h.name == name).ok_or_else(|| {
+        let names: Vec<&str> = hoses.iter().map(|h| h.name.as_str()).collect();
+        FieldError::new(
+            field,
+            format!("\"{name}\""),
+            format!("unknown hose; hoses: {}", names.join(", ")),
+        )
+    })
+}
+
+/// Outer diameter (m) of a hose at a node (sections are per node, or one for all).
+fn d_outer_at(hose: &HoseSpec, node: usize) -> f64 {
+    hose.sections
+        .get(node)
+        .or(hose.sections.last())
+        .map_or(0.0, |s| s.d_outer)
+}
+
+/// A length in metres, written in the file's unit (rounded to 1e-9 of it, so that
+/// 0.035 m reads `35 mm`, not `35.00000000000001 mm`).
+fn in_unit(metres: f64, unit: LengthUnit) -> String {
+    let v = ((metres / unit.to_metres()) * 1e9).round() / 1e9;
+    with_unit(v, unit.symbol())
+}
+
+/// Checks and builds every stub and clip (names unique across both).
+pub fn build_connectors(
+    stubs: &[StubEntry],
+    clips: &[ClipEntry],
+    hoses: &[HoseSpec],
+    unit: LengthUnit,
+) -> Result<(Vec<SceneStub>, Vec<SceneClip>), FieldError> {
+    check_names(stubs, clips)?;
+    let stubs = stubs
+        .iter()
+        .enumerate()
+        .map(|(i, s)| build_stub(i, s, hoses, unit))
+        .collect::<Result<Vec<_>, _>>()?;
+    let clips = clips
+        .iter()
+        .enumerate()
+        .map(|(i, c)| build_clip(i, c, hoses, unit))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((stubs, clips))
+}
+
+/// Checks and builds `stubs[index]`.
+pub fn build_stub(
+    index: usize,
+    raw: &StubEntry,
+    hoses: &[HoseSpec],
+    unit: LengthUnit,
+) -> Result<SceneStub, FieldError> {
+    let at = |rest: &str| format!("stubs[{index}].{rest}");
+    let (u, scale) = (unit.symbol(), unit.to_metres());
+    let origin = finite_vec(&at("origin"), raw.origin, u)? * scale;
+    let axis = non_zero_vec(&at("axis"), raw.axis, "")?;
+    let length = positive(&at("length"), raw.length, u)?;
+    let diameter = positive(&at("diameter"), raw.diameter, u)?;
+    let (friction_static, friction_sliding) = friction(
+        &at("friction"),
+        raw.friction.as_ref(),
+        (DEFAULT_STUB_FRICTION_STATIC, DEFAULT_STUB_FRICTION_SLIDING),
+    )?;
+    let hose_end = match (&raw.hose, raw.end) {
+        (None, None) => None,
+        (Some(_), None) => {
+            return Err(FieldError::about(
+                at("end"),
+                "required with `hose`: \"start\" or \"end\", the hose end that goes onto the stub",
+            ))
+        }
+        (None, Some(_)) => {
+            return Err(FieldError::about(
+                at("hose"),
+                "required with `end`: the hose whose end goes onto the stub",
+            ))
+        }
+        (Some(name), Some(end)) => {
+            let hose = hose_index(&at("hose"), name, hoses)?;
+            let at_end = end == HoseEndName::End;
+            let spec = &hoses[hose];
+            let node = if at_end { spec.nodes.len() - 1 } else { 0 };
+            let d_outer = d_outer_at(spec, node);
+            if diameter * scale >= d_outer {
+                return Err(FieldError::new(
+                    at("diameter"),
+                    with_unit(diameter, u),
+                    format!(
+                        "must be smaller than the outer diameter of hose \"{name}\" at its {} ({}): the hose could not go on",
+                        if at_end { "end" } else { "start" },
+                        in_unit(d_outer, unit)
+                    ),
+                ));
+            }
+            Some(HoseEnd { hose, at_end })
+        }
+    };
+    let spec = StubSpec::new(
+        origin,
+        axis,
+        length * scale,
+        diameter * scale,
+        friction_static,
+        friction_sliding,
+    )
+    .map_err(|e| FieldError::about(format!("stubs[{index}]"), e.to_string()))?;
+    Ok(SceneStub {
+        name: raw.name.clone(),
+        spec,
+        hose_end,
+    })
+}
+
+/// Checks and builds `clips[index]`.
+pub fn build_clip(
+    index: usize,
+    raw: &ClipEntry,
+    hoses: &[HoseSpec],
+    unit: LengthUnit,
+) -> Result<SceneClip, FieldError> {
+    let at = |rest: &str| format!("clips[{index}].{rest}");
+    let (u, scale) = (unit.symbol(), unit.to_metres());
+    let origin = finite_vec(&at("origin"), raw.origin, u)? * scale;
+    let opening = non_zero_vec(&at("opening"), raw.opening, "")?.normalize();
+    let orientation = non_zero_vec(&at("orientation"), raw.orientation, "")?.normalize();
+    let off_perpendicular = orientation
+        .dot(opening)
+        .abs()
+        .clamp(0.0, 1.0)
+        .asin()
+        .to_degrees();
+    if off_perpendicular > CLIP_ORIENTATION_TOLERANCE_DEG {
+        return Err(FieldError::new(
+            at("orientation"),
+            vec_with_unit(raw.orientation, ""),
+            format!(
+                "must be roughly perpendicular to opening {}: it is {:.1}° off (at most {CLIP_ORIENTATION_TOLERANCE_DEG}° allowed)",
+                vec_with_unit(raw.opening, ""),
+                off_perpendicular
+            ),
+        ));
+    }
+    let opening_width = positive(&at("opening_width"), raw.opening_width, u)?;
+    let inner_diameter = positive(&at("inner_diameter"), raw.inner_diameter, u)?;
+    if opening_width >= inner_diameter {
+        return Err(FieldError::new(
+            at("opening_width"),
+            with_unit(opening_width, u),
+            format!(
+                "must be smaller than inner_diameter ({})",
+                with_unit(inner_diameter, u)
+            ),
+        ));
+    }
+    let snap_force = non_negative(&at("snap_force_n"), raw.snap_force_n, "N")?;
+    let hose = match &raw.hose {
+        None => None,
+        Some(name) => {
+            let h = hose_index(&at("hose"), name, hoses)?;
+            let spec = &hoses[h];
+            let d_max = (0..spec.nodes.len())
+                .map(|n| d_outer_at(spec, n))
+                .fold(0.0, f64::max);
+            if d_max <= opening_width * scale {
+                return Err(FieldError::new(
+                    at("opening_width"),
+                    with_unit(opening_width, u),
+                    format!(
+                        "must be smaller than the outer diameter of hose \"{name}\" ({}): the hose would pass through the opening and never be held",
+                        in_unit(d_max, unit)
+                    ),
+                ));
+            }
+            Some(h)
+        }
+    };
+    let spec = ClipSpec::new(
+        origin,
+        opening,
+        orientation,
+        opening_width * scale,
+        inner_diameter * scale,
+        snap_force,
+    )
+    .map_err(|e| FieldError::about(format!("clips[{index}]"), e.to_string()))?;
+    Ok(SceneClip {
+        name: raw.name.clone(),
+        spec,
+        hose,
+    })
+}
