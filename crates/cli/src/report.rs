@@ -45,6 +45,17 @@ pub fn verdict(run: &RunSummary, diverged: Option<&str>) -> Verdict {
             ));
         }
     }
+    for f in run.fasteners.iter().filter(|f| !f.assembled) {
+        let wanted = if f.kind == "stub" {
+            "fixed on it"
+        } else {
+            "seated in it"
+        };
+        reasons.push(format!(
+            "{} '{}': the hose did not end {wanted} (final state: {})",
+            f.kind, f.name, f.final_state
+        ));
+    }
     for c in &run.contacts {
         reasons.push(format!(
             "contact with '{}' from t = {:.2} s to {:.2} s",
@@ -62,7 +73,7 @@ pub fn verdict(run: &RunSummary, diverged: Option<&str>) -> Verdict {
     if !judged {
         reasons.push("no hand acted in this scene: there is no hand load to judge".into());
     } else if feasible == Some(true) {
-        reasons.push("every hand load stayed within its ergonomic limit value".into());
+        reasons.push("every hand load stayed within its ergonomic limit value, and every stub and clip was fitted".into());
     }
     Verdict { feasible, reasons }
 }
@@ -185,6 +196,21 @@ pub fn html(report: &Report, samples: &[HandSample]) -> String {
                 ));
             }
         }
+    }
+    if !run.fasteners.is_empty() {
+        s.push_str("<h2>Stubs and clips</h2><table><tr><th>kind</th><th>name</th><th>peak force [N]</th><th>at [s]</th><th>final state</th></tr>");
+        for f in &run.fasteners {
+            let _ = write!(
+                s,
+                "<tr><td>{}</td><td>{}</td><td>{:.1}</td><td>{:.2}</td><td>{}</td></tr>",
+                f.kind,
+                escape(&f.name),
+                f.max_force,
+                f.max_force_time,
+                escape(&f.final_state)
+            );
+        }
+        s.push_str("</table>");
     }
     if !run.peaks.is_empty() {
         s.push_str("<h2>Fixed and driven nodes</h2><table><tr><th>hose</th><th>node</th><th>peak |F| [N]</th><th>at [s]</th><th>peak |M| [N·m]</th><th>at [s]</th></tr>");

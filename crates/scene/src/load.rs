@@ -24,7 +24,7 @@ pub const FORMAT_TAG: &str = "pliant-scene";
 pub const FORMAT_VERSION: i64 = 1;
 
 /// The built-in demo scene's text (`examples/demo.toml`).
-pub const DEMO_SCENE_TOML: &str = include_str!("../../../examples/demo.toml");
+pub const DEMO_SCENE_TOML: &str = include_str!("../../../examples/engine_bay.toml");
 
 /// Loads a scene file; `.json` files are read as JSON, everything else as TOML. Relative
 /// mesh paths are resolved against the file's directory.
@@ -91,7 +91,13 @@ pub fn load_scene_json_str_in(
 
 /// The built-in demo scene.
 pub fn demo_scene() -> Result<LoadedScene, SceneError> {
-    load_scene_str(DEMO_SCENE_TOML, "examples/demo.toml (built in)")
+    // its engine block mesh is read from the repository's examples folder
+    let examples = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"));
+    load_scene_str_in(
+        DEMO_SCENE_TOML,
+        "examples/engine_bay.toml (built in)",
+        examples,
+    )
 }
 
 /// 1-based line and column of a byte offset.

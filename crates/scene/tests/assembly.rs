@@ -286,7 +286,8 @@ fn metres_give_the_same_stubs_and_clips() {
 
 #[test]
 fn scenes_without_the_new_sections_have_none() {
-    let s = pliant_scene::demo_scene().unwrap();
+    let demo = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/demo.toml");
+    let s = pliant_scene::load_scene_file(&demo).unwrap();
     assert!(s.stubs.is_empty());
     assert!(s.clips.is_empty());
     assert_eq!(s.ergonomics, ErgonomicProfile::default());
@@ -488,9 +489,22 @@ fn engine_bay_is_the_assembly_demo() {
             _ => None,
         })
         .collect();
+    // route and push onto the stub, then press the hose into each of the two clips
     assert_eq!(
         kinds,
-        ["grab", "move_hand", "move_hand", "release_hand", "settle"]
+        [
+            "grab",
+            "move_hand",
+            "move_hand",
+            "release_hand",
+            "grab",
+            "move_hand",
+            "release_hand",
+            "grab",
+            "move_hand",
+            "release_hand",
+            "settle"
+        ]
     );
     // The grab is at the free end, which starts near (but not on) the stub.
     let Some(Action::Grab { at, .. }) = a.iter().find(|x| matches!(x, Action::Grab { .. })) else {

@@ -44,9 +44,26 @@ fn every_example_builds_a_core_model() {
     }
 }
 
+fn coolant_demo() -> pliant_scene::LoadedScene {
+    load_scene_file(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/demo.toml"))
+        .expect("demo.toml loads")
+}
+
 #[test]
-fn demo_scene_is_as_described() {
-    let scene = demo_scene().expect("demo loads");
+fn built_in_demo_is_the_engine_bay() {
+    let scene = demo_scene().expect("built-in demo loads");
+    assert!(scene.source.contains("engine_bay"));
+    assert!(!scene.parts.is_empty() && !scene.stubs.is_empty() && scene.clips.len() >= 2);
+    assert!(scene
+        .timeline
+        .actions
+        .iter()
+        .any(|a| matches!(a, Action::Grab { .. })));
+}
+
+#[test]
+fn coolant_demo_scene_is_as_described() {
+    let scene = coolant_demo();
     assert_eq!(scene.name, "Demo: coolant hose");
     assert_eq!(scene.length_unit, LengthUnit::Millimetre);
     assert_eq!(scene.hose_names, vec!["coolant".to_string()]);
@@ -191,7 +208,7 @@ fn metres_and_millimetres_give_the_same_scene() {
 
 #[test]
 fn json_scene_loads_like_toml() {
-    let toml_scene = demo_scene().expect("demo loads");
+    let toml_scene = coolant_demo();
     let value: toml::Value = toml::from_str(&toml_scene.text).expect("valid toml");
     let json = serde_json::to_string_pretty(&value).expect("serialises");
     let json_scene = load_scene_json_str(&json, "demo.json").expect("json loads");
