@@ -73,6 +73,7 @@ pub fn run(
         None => demo_scene()?,
     };
     let model = Model::build(&scene.world)
+        .and_then(|m| m.with_stiffened_spans(&scene.stiffened_spans()))
         .with_context(|| format!("building the model of {}", scene.source))?;
     std::fs::create_dir_all(out)
         .with_context(|| format!("creating output folder {}", out.display()))?;

@@ -209,6 +209,20 @@ pub struct HoseEntry {
     /// Preferred direction of the first node's cross-section y axis; must not be
     /// parallel to the hose's first tangent. Default: any normal direction.
     pub normal_hint: Option<Vec3>,
+    /// Stiffened (rigid) sections, e.g. a metal tube joining two flexible parts
+    /// (SPEC M6): each a span of nodes that moves as one rigid body.
+    #[serde(default)]
+    pub stiffened: Vec<StiffenedEntry>,
+}
+
+/// A stiffened span of a hose: nodes `first` to `last` (inclusive) are rigid together.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StiffenedEntry {
+    /// First node; negative counts from the end (−1 = last node).
+    pub first: i64,
+    /// Last node (inclusive), after `first`; negative counts from the end.
+    pub last: i64,
 }
 
 /// Inner and outer diameter (length unit).

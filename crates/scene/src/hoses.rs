@@ -149,7 +149,39 @@ pub fn build_hose(
         None => None,
     };
 
+    let mut stiffened: Vec<(usize, usize)> = Vec::with_capacity(raw.stiffened.len());
+    for (k, span) in raw.stiffened.iter().enumerate() {
+        let first = node_index(
+            &at(&format!("stiffened[{k}].first")),
+            span.first,
+            nodes.len(),
+            &raw.name,
+        )?;
+        let last = node_index(
+            &at(&format!("stiffened[{k}].last")),
+            span.last,
+            nodes.len(),
+            &raw.name,
+        )?;
+        if last <= first {
+            return Err(FieldError::new(
+                at(&format!("stiffened[{k}].last")),
+                span.last.to_string(),
+                format!("must come after first (node {first}): a stiffened span holds at least two nodes"),
+            ));
+        }
+        if let Some(&(a, b)) = stiffened.iter().find(|&&(a, b)| first <= b && a <= last) {
+            return Err(FieldError::new(
+                at(&format!("stiffened[{k}]")),
+                format!("{first}..={last}"),
+                format!("overlaps the stiffened span {a}..={b}"),
+            ));
+        }
+        stiffened.push((first, last));
+    }
+
     let info = HoseInfo {
+        stiffened,
         name: raw.name.clone(),
         length,
         elements: count.count,

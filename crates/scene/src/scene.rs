@@ -65,6 +65,8 @@ pub struct HoseInfo {
     pub raised_for_arcs: bool,
     /// Arc length between neighbouring nodes (m).
     pub element_length: f64,
+    /// Stiffened spans (first, last node, inclusive) (SPEC M6).
+    pub stiffened: Vec<(usize, usize)>,
 }
 
 /// How one rigid part was built.
@@ -118,6 +120,19 @@ pub struct LoadedScene {
 }
 
 impl LoadedScene {
+    /// All stiffened spans, for [`pliant_core::Model::with_stiffened_spans`].
+    pub fn stiffened_spans(&self) -> Vec<pliant_core::stiffened::StiffenedSpan> {
+        self.hoses
+            .iter()
+            .enumerate()
+            .flat_map(|(hose, info)| {
+                info.stiffened.iter().map(move |&(first, last)| {
+                    pliant_core::stiffened::StiffenedSpan { hose, first, last }
+                })
+            })
+            .collect()
+    }
+
     /// Index of the hose with this name.
     pub fn hose_index(&self, name: &str) -> Option<usize> {
         self.hose_names.iter().position(|n| n == name)

@@ -521,8 +521,11 @@ fn engine_bay_is_the_assembly_demo() {
     let mut hand = *at;
     let mut path = vec![hand];
     let mut turned = DVec3::ZERO;
+    // the moves of the first grab: routing and pushing onto the stub (later grabs press
+    // the hose into the clips)
     let moves: Vec<&Action> = a
         .iter()
+        .take_while(|x| !matches!(x, Action::ReleaseHand { .. }))
         .filter(|x| matches!(x, Action::MoveHand { .. }))
         .collect();
     for m in &moves {

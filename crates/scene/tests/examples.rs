@@ -239,3 +239,35 @@ fn documented_example_loads() {
     assert_eq!(scene.hoses[1].elements, 20);
     pliant_core::Model::build(&scene.world).unwrap_or_else(|e| panic!("{e}"));
 }
+
+#[test]
+fn stiffened_spans_resolve_and_bad_ones_are_refused() {
+    let scene = demo_scene().expect("demo loads");
+    let spans = scene.stiffened_spans();
+    assert_eq!(spans.len(), 1);
+    assert_eq!((spans[0].first, spans[0].last), (3, 5));
+    let base = pliant_scene::DEMO_SCENE_TOML;
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    for (span, field, reason) in [
+        (
+            "{ first = 5, last = 3 }",
+            "stiffened[0].last",
+            "must come after first",
+        ),
+        ("{ first = 2, last = 99 }", "stiffened[0].last", ""),
+        (
+            "{ first = 1, last = 3 }, { first = 3, last = 4 }",
+            "stiffened[1]",
+            "overlaps",
+        ),
+    ] {
+        let text = base.replace(
+            "stiffened = [{ first = 3, last = 5 }]",
+            &format!("stiffened = [{span}]"),
+        );
+        let err = pliant_scene::load_scene_str_in(&text, "bay.toml", &examples)
+            .expect_err(span)
+            .to_string();
+        assert!(err.contains(field) && err.contains(reason), "{span}: {err}");
+    }
+}
