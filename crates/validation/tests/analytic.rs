@@ -85,3 +85,7 @@ fn clip() {
 fn stiffened() {
     assert_case("stiffened");
 }
+#[test]
+fn hose_contact() {
+    assert_case("hose_contact");
+}

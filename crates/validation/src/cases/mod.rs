@@ -6,6 +6,7 @@ mod contact;
 mod convergence;
 mod energy;
 mod fasteners;
+mod hose_contact;
 mod invariance;
 mod rollup;
 mod stiffened;
@@ -28,6 +29,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("contact_rest", contact::run_rest),
     ("contact_incline", contact::run_incline),
     ("tunnelling", contact::run_tunnelling),
+    ("hose_contact", hose_contact::run),
     ("stiffened", stiffened::run),
     ("stub", fasteners::run_stub),
     ("clip", fasteners::run_clip),
