@@ -57,6 +57,7 @@ struct StubRun {
     force: LoadCaseId,
     fix: Option<LoadCaseId>,
     report: FastenerReport,
+    force_now: f64,
 }
 
 struct ClipRun {
@@ -67,6 +68,7 @@ struct ClipRun {
     forces: [LoadCaseId; 2],
     fix: Option<LoadCaseId>,
     report: FastenerReport,
+    force_now: f64,
 }
 
 /// All fasteners of a run.
@@ -74,6 +76,15 @@ struct ClipRun {
 pub struct Fasteners {
     stubs: Vec<StubRun>,
     clips: Vec<ClipRun>,
+}
+
+/// A fastener's force at one recorded time (index into the run's fastener reports).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct FastenerSample {
+    pub time: f64,
+    pub fastener: usize,
+    /// Magnitude of the force the fastener applies to the hose [N].
+    pub force: f64,
 }
 
 fn zero_load(state: &mut State, node: usize) -> LoadCaseId {
@@ -117,6 +128,7 @@ impl Fasteners {
                     kind: "stub",
                     ..Default::default()
                 },
+                force_now: 0.0,
                 site,
             })
             .collect();
@@ -132,6 +144,7 @@ impl Fasteners {
                     kind: "clip",
                     ..Default::default()
                 },
+                force_now: 0.0,
                 site,
             })
             .collect();
@@ -157,6 +170,20 @@ impl Fasteners {
         for c in &mut self.clips {
             update_clip(c, model, state, held_by_hand);
         }
+    }
+
+    /// Appends each fastener's current force (same order as [`Fasteners::reports`]).
+    pub fn sample(&self, time: f64, out: &mut Vec<FastenerSample>) {
+        let forces = self
+            .stubs
+            .iter()
+            .map(|s| s.force_now)
+            .chain(self.clips.iter().map(|c| c.force_now));
+        out.extend(forces.enumerate().map(|(fastener, force)| FastenerSample {
+            time,
+            fastener,
+            force,
+        }));
     }
 
     /// Reports at the end of the run.
@@ -225,6 +252,7 @@ fn update_stub(
     } else {
         force.length()
     };
+    s.force_now = f;
     if f > s.report.max_force {
         s.report.max_force = f;
         s.report.max_force_time = state.time;
@@ -298,6 +326,7 @@ fn update_clip(
     let (a, b, t) = cross.map_or((0, 0, 0.0), |(a, b, t, _)| (a, b, t));
     set_load(state, c.forces[0], a, force * (1.0 - t));
     set_load(state, c.forces[1], b, force * t);
+    c.force_now = force.length();
     if force.length() > c.report.max_force {
         c.report.max_force = force.length();
         c.report.max_force_time = state.time;

@@ -11,7 +11,7 @@ pub mod runner;
 pub mod stub;
 pub mod timeline;
 
-pub use fasteners::{ClipSite, FastenerReport, StubSite};
+pub use fasteners::{ClipSite, FastenerReport, FastenerSample, StubSite};
 pub use hand::{Hand, HandLoad};
 pub use runner::{
     ContactEpisode, HandPeak, HandRecord, NoObserver, NodePeak, Observer, RunError, RunSummary,

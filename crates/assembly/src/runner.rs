@@ -3,7 +3,7 @@
 //! support loads of every held node.
 
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile, HandAssessment, LoadKind};
-use crate::fasteners::{ClipSite, FastenerReport, Fasteners, StubSite};
+use crate::fasteners::{ClipSite, FastenerReport, FastenerSample, Fasteners, StubSite};
 use crate::hand::{Hand, HandLoad};
 use crate::timeline::{Action, MovePath, NodeRef, Timeline};
 use glam::DVec3;
@@ -118,6 +118,8 @@ pub struct RunSummary {
     pub ergonomics: String,
     /// Stubs and clips and whether they ended assembled.
     pub fasteners: Vec<FastenerReport>,
+    /// Their forces at the recorded times (the observer's sampling).
+    pub fastener_series: Vec<FastenerSample>,
 }
 
 impl RunSummary {
@@ -524,6 +526,10 @@ impl<'m> Runner<'m> {
         if wants {
             obs.on_state(self.model, state);
             obs.on_hands(state.time, &self.hand_records);
+            if !self.fasteners.is_empty() {
+                self.fasteners
+                    .sample(state.time, &mut self.summary.fastener_series);
+            }
         }
         obs.on_step(state.time);
         Ok(())

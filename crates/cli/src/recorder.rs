@@ -73,7 +73,7 @@ impl Recorder {
             "time_s,hand,hose,x_m,y_m,z_m,fx_n,fy_n,fz_n,tx_nm,ty_nm,tz_nm,force_n,torque_nm,kind,ratio,limit,colour"
         )?;
         let mut contacts = open("contacts.csv")?;
-        writeln!(contacts, "time_s,hose,node,fx_n,fy_n,fz_n")?;
+        writeln!(contacts, "time_s,hose,node,with,fx_n,fy_n,fz_n")?;
         let mut colours = open("colours.csv")?;
         writeln!(colours, "time_s,hose,colour")?;
         let progress = if quiet {
@@ -143,13 +143,17 @@ impl Recorder {
             )?;
         }
         for (g, &(h, k)) in self.node_owner.iter().enumerate() {
-            let f = state.contact_force[g];
-            if f != glam::DVec3::ZERO {
-                writeln!(
-                    self.contacts,
-                    "{t:.6},{h},{k},{:.6e},{:.6e},{:.6e}",
-                    f.x, f.y, f.z
-                )?;
+            for (with, f) in [
+                ("part", state.contact_force[g]),
+                ("hose", state.hose_contact_force[g]),
+            ] {
+                if f != glam::DVec3::ZERO {
+                    writeln!(
+                        self.contacts,
+                        "{t:.6},{h},{k},{with},{:.6e},{:.6e},{:.6e}",
+                        f.x, f.y, f.z
+                    )?;
+                }
             }
         }
         let (ke, se, ge) = (

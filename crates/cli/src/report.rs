@@ -84,21 +84,18 @@ fn escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// An SVG line plot of force over time with the limit drawn as a dashed line.
-fn plot(title: &str, samples: &[&HandSample]) -> String {
+/// An SVG line plot of force over time with the limit drawn as a dashed line; samples are
+/// (time [s], force [N], limit [N]).
+fn plot(title: &str, samples: &[(f64, f64, f64)]) -> String {
     let (w, h, pad) = (640.0, 220.0, 40.0);
-    let t_max = samples.iter().map(|s| s.time).fold(1e-9, f64::max);
-    let y_max = samples
-        .iter()
-        .map(|s| s.force.max(s.limit))
-        .fold(1e-9, f64::max)
-        * 1.1;
+    let t_max = samples.iter().map(|s| s.0).fold(1e-9, f64::max);
+    let y_max = samples.iter().map(|s| s.1.max(s.2)).fold(1e-9, f64::max) * 1.1;
     let x = |t: f64| pad + (w - 2.0 * pad) * t / t_max;
     let y = |v: f64| h - pad - (h - 2.0 * pad) * v / y_max;
-    let line = |f: &dyn Fn(&HandSample) -> f64| {
+    let line = |f: &dyn Fn(&(f64, f64, f64)) -> f64| {
         samples
             .iter()
-            .map(|s| format!("{:.1},{:.1}", x(s.time), y(f(s))))
+            .map(|s| format!("{:.1},{:.1}", x(s.0), y(f(s))))
             .collect::<Vec<_>>()
             .join(" ")
     };
@@ -136,19 +133,21 @@ fn plot(title: &str, samples: &[&HandSample]) -> String {
     let _ = write!(
         svg,
         "<polyline fill=\"none\" stroke=\"#c00\" stroke-dasharray=\"6 4\" points=\"{}\"/>",
-        line(&|s| s.limit)
+        line(&|s| s.2)
     );
     let _ = write!(
         svg,
         "<polyline fill=\"none\" stroke=\"#036\" stroke-width=\"1.5\" points=\"{}\"/>",
-        line(&|s| s.force)
+        line(&|s| s.1)
     );
     svg.push_str("</svg>");
     svg
 }
 
 /// The human-readable report.
-pub fn html(report: &Report, samples: &[HandSample]) -> String {
+/// `push_limit` is the profile's push limit value, drawn on the stub and clip plots (the
+/// worker pushes hoses on and in).
+pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String {
     let v = &report.verdict;
     let (word, colour) = match v.feasible {
         Some(true) => ("FEASIBLE", "#070"),
@@ -188,7 +187,11 @@ pub fn html(report: &Report, samples: &[HandSample]) -> String {
         }
         s.push_str("</table>");
         for h in &run.hand_peaks {
-            let mine: Vec<&HandSample> = samples.iter().filter(|x| x.hand == h.hand).collect();
+            let mine: Vec<(f64, f64, f64)> = samples
+                .iter()
+                .filter(|x| x.hand == h.hand)
+                .map(|x| (x.time, x.force, x.limit))
+                .collect();
             if mine.len() > 1 {
                 s.push_str(&plot(
                     &format!("hand {}: |F| (blue) and its limit (red, dashed)", h.hand),
@@ -211,6 +214,21 @@ pub fn html(report: &Report, samples: &[HandSample]) -> String {
             );
         }
         s.push_str("</table>");
+        for (k, f) in run.fasteners.iter().enumerate() {
+            let mine: Vec<(f64, f64, f64)> = run
+                .fastener_series
+                .iter()
+                .filter(|x| x.fastener == k)
+                .map(|x| (x.time, x.force, push_limit))
+                .collect();
+            if mine.iter().any(|p| p.1 > 0.0) {
+                let title = format!(
+                    "{} '{}': force on the hose (blue), push limit (red, dashed)",
+                    f.kind, f.name
+                );
+                s.push_str(&plot(&title, &mine));
+            }
+        }
     }
     if !run.peaks.is_empty() {
         s.push_str("<h2>Fixed and driven nodes</h2><table><tr><th>hose</th><th>node</th><th>peak |F| [N]</th><th>at [s]</th><th>peak |M| [N·m]</th><th>at [s]</th></tr>");

@@ -4,7 +4,7 @@ use crate::recorder::Recorder;
 use crate::report::{html, verdict, Report};
 use crate::summary::{final_state, peak_rows, peak_table, Summary};
 use anyhow::{anyhow, bail, Context};
-use pliant_assembly::ergonomics::ErgonomicProfile;
+use pliant_assembly::ergonomics::{ErgonomicLimits, ErgonomicProfile};
 use pliant_assembly::stub::PressFit;
 use pliant_assembly::{ClipSite, Runner, StubSite};
 use pliant_core::{Model, State};
@@ -141,7 +141,22 @@ pub fn run(
         std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))
     };
     write("report.json", serde_json::to_string_pretty(&report)?)?;
-    write("report.html", html(&report, &hand_series))?;
+    let push_limit = ErgonomicLimits::builtin()
+        .map(|l| l.push_limit(profile.push_posture, profile.population, profile.duty))
+        .unwrap_or(f64::NAN);
+    write("report.html", html(&report, &hand_series, push_limit))?;
+    let mut csv = String::from("time_s,kind,name,force_n\n");
+    for x in &run.fastener_series {
+        let f = &run.fasteners[x.fastener];
+        csv.push_str(&format!(
+            "{:.6},{},{},{:.6e}\n",
+            x.time,
+            f.kind,
+            f.name.replace(',', ";"),
+            x.force
+        ));
+    }
+    write("fasteners.csv", csv)?;
     let word = match report.verdict.feasible {
         Some(true) => "FEASIBLE",
         Some(false) => "NOT FEASIBLE",
