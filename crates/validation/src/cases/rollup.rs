@@ -1,6 +1,6 @@
 //! `rollup`: a cantilever under an end moment bends into an exact circular arc of
 //! curvature M/EI. M = 2πEI/L closes a full circle (tip back at the root); M = πEI/L
-//! makes a half circle with the tip at w = 2L/π, u = −L.
+//! makes a half circle with the tip at w = 2L/π, u = −L. Self contact is off here.
 
 use crate::harness::{build, clamp, hose1, relax_to, static_settings, straight_hose};
 use crate::Check;
@@ -21,6 +21,9 @@ fn tip_under_moment(fraction_of_turn: f64) -> Result<DVec3, String> {
     let ei = mat.bending_modulus() * sec.second_moment();
     let m_full = fraction_of_turn * 2.0 * PI * ei / len;
     let mut state = State::at_rest(&model);
+    // the full circle brings the tip back onto the root: switch self contact off, this
+    // case tests the element, not contact (which would rightly stop the tip short)
+    state.hose_contact.active = false;
     clamp(&mut state, 0);
     let mut id = None;
     let steps = 8;
