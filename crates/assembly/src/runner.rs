@@ -7,6 +7,7 @@ use crate::fasteners::{ClipSite, FastenerReport, FastenerSample, Fasteners, Stub
 use crate::hand::{Hand, HandLoad};
 use crate::timeline::{Action, MovePath, NodeRef, Timeline};
 use glam::DVec3;
+use pliant_core::curve::catmull_rom;
 use pliant_core::health::{check, Divergence};
 use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase};
 use pliant_core::{explicit, Model, State};
@@ -339,23 +340,42 @@ impl<'m> Runner<'m> {
                 path,
                 rotation,
                 duration,
+                speed,
+                spline,
                 wait,
             } => {
                 let t0 = state.time;
+                let mut duration = *duration;
                 if let Some(h) = self.hand_slot(*hand).as_mut() {
                     let (start, _) = h.pose_at(t0);
-                    let waypoints: Vec<DVec3> = match path {
+                    let mut waypoints: Vec<DVec3> = match path {
                         Some(MovePath::To(p)) => p.clone(),
                         Some(MovePath::By(p)) => p.iter().map(|d| start + *d).collect(),
                         None => Vec::new(),
                     };
+                    if *spline && waypoints.len() >= 2 {
+                        let mut through = Vec::with_capacity(waypoints.len() + 1);
+                        through.push(start);
+                        through.extend_from_slice(&waypoints);
+                        waypoints = catmull_rom(&through, 16).split_off(1);
+                    }
+                    if let Some(v) = speed {
+                        let mut length = 0.0;
+                        let mut at = start;
+                        for p in &waypoints {
+                            length += (*p - at).length();
+                            at = *p;
+                        }
+                        // the smooth step's mean speed is the given one
+                        duration = (length / v).max(1e-3);
+                    }
                     let phi = rotation
                         .map(|r| r.axis.normalize_or_zero() * r.angle)
                         .unwrap_or(DVec3::ZERO);
-                    h.move_along(&waypoints, phi, t0, *duration);
+                    h.move_along(&waypoints, phi, t0, duration);
                 }
                 if *wait {
-                    self.advance(state, *duration, obs)?;
+                    self.advance(state, duration, obs)?;
                 }
             }
             Action::ReleaseHand { hand } => {

@@ -61,12 +61,16 @@ pub enum Action {
     /// (replacing any fix or drive on them) until the hand lets go.
     Grab { hand: usize, at: DVec3 },
     /// Moves hand `hand` along `path` and/or turns it by `rotation` over `duration`
-    /// seconds (smooth start and stop); `wait` as for `Move`.
+    /// seconds — or, when `speed` [m/s] is given, over the path's length divided by it —
+    /// with a smooth start and stop; through the waypoints as a polyline, or along a
+    /// Catmull-Rom spline through them when `spline`. `wait` as for `Move`.
     MoveHand {
         hand: usize,
         path: Option<MovePath>,
         rotation: Option<Rotation>,
         duration: f64,
+        speed: Option<f64>,
+        spline: bool,
         wait: bool,
     },
     /// Hand `hand` lets go of its beam.

@@ -76,6 +76,8 @@ fn pulling_hand_feels_the_axial_stiffness_of_the_free_length() {
             path: Some(MovePath::By(vec![DVec3::new(dl, 0.0, 0.0)])),
             rotation: None,
             duration: 0.5,
+            speed: None,
+            spline: false,
             wait: true,
         },
         Action::Run { duration: 1.0 },
@@ -116,6 +118,8 @@ fn twisting_hand_feels_the_torsional_stiffness() {
                 angle: phi,
             }),
             duration: 0.5,
+            speed: None,
+            spline: false,
             wait: true,
         },
         Action::Run { duration: 1.0 },
@@ -146,6 +150,8 @@ fn two_hands_pull_with_equal_and_opposite_forces() {
             path: Some(MovePath::By(vec![DVec3::new(-dl, 0.0, 0.0)])),
             rotation: None,
             duration: 0.5,
+            speed: None,
+            spline: false,
             wait: false,
         },
         Action::MoveHand {
@@ -153,6 +159,8 @@ fn two_hands_pull_with_equal_and_opposite_forces() {
             path: Some(MovePath::By(vec![DVec3::new(dl, 0.0, 0.0)])),
             rotation: None,
             duration: 0.5,
+            speed: None,
+            spline: false,
             wait: true,
         },
         Action::Run { duration: 1.0 },
@@ -175,6 +183,8 @@ fn released_hand_applies_nothing_and_hose_relaxes() {
             path: Some(MovePath::By(vec![DVec3::new(0.0, 0.05, 0.0)])),
             rotation: None,
             duration: 0.5,
+            speed: None,
+            spline: false,
             wait: true,
         },
         Action::ReleaseHand { hand: 0 },
@@ -187,4 +197,77 @@ fn released_hand_applies_nothing_and_hose_relaxes() {
     assert!(state.x[N].y.abs() < 1e-4, "tip y {}", state.x[N].y);
     assert!(!state.held[N] && !state.held[N - 1]);
     let _ = model;
+}
+
+/// Records the hand position at every recorded state.
+#[derive(Default)]
+struct HandPath(Vec<(f64, DVec3)>);
+impl Observer for HandPath {
+    fn wants_state(&self, _t: f64) -> bool {
+        true
+    }
+    fn on_hands(&mut self, t: f64, hands: &[HandRecord]) {
+        if let Some(r) = hands.first() {
+            self.0.push((t, r.load.position));
+        }
+    }
+}
+
+#[test]
+fn hand_moves_at_a_given_speed_along_a_spline() {
+    let model = model();
+    let mut state = State::at_rest(&model);
+    let mut obs = HandPath::default();
+    let start = DVec3::new(L, 0.0, 0.0);
+    let via = DVec3::new(0.05, 0.05, 0.0);
+    let end = DVec3::new(0.1, 0.0, 0.0);
+    let actions = vec![
+        fix0(),
+        Action::Grab { hand: 0, at: start },
+        Action::MoveHand {
+            hand: 0,
+            path: Some(MovePath::By(vec![via, end])),
+            rotation: None,
+            duration: 0.0,
+            speed: Some(0.1),
+            spline: true,
+            wait: true,
+        },
+    ];
+    Runner::new(&model)
+        .run(&Timeline { actions }, &mut state, &mut obs)
+        .unwrap();
+    let (t_end, p_end) = *obs.0.last().unwrap();
+    assert!(
+        (p_end - (start + end)).length() < 1e-9,
+        "ends at the last waypoint"
+    );
+    // duration = spline length / speed: a little more than the polyline's 0.1414 m
+    let polyline = via.length() + (end - via).length();
+    assert!(
+        t_end > polyline / 0.1 && t_end < 1.2 * polyline / 0.1,
+        "took {t_end} s"
+    );
+    // passes through the middle waypoint, but not along the straight chords
+    let nearest = obs
+        .0
+        .iter()
+        .map(|(_, p)| (*p - (start + via)).length())
+        .fold(f64::INFINITY, f64::min);
+    assert!(nearest < 2e-3, "misses the waypoint by {nearest} m");
+    let to_segment = |p: DVec3, a: DVec3, b: DVec3| {
+        let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+        (a + t * (b - a) - p).length()
+    };
+    let off_chords = obs
+        .0
+        .iter()
+        .map(|(_, p)| {
+            to_segment(*p, start, start + via).min(to_segment(*p, start + via, start + end))
+        })
+        .fold(0.0, f64::max);
+    assert!(
+        off_chords > 2e-3,
+        "a spline rounds the corner, leaving the straight chords: {off_chords} m"
+    );
 }

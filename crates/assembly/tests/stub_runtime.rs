@@ -91,6 +91,8 @@ fn push_on() -> Vec<Action> {
             path: Some(MovePath::By(vec![DVec3::new(0.024, 0.0, 0.0)])),
             rotation: None,
             duration: 2.4,
+            speed: None,
+            spline: false,
             wait: true,
         },
     ]
@@ -152,6 +154,8 @@ fn released_on_the_stub_it_stays_and_pulling_hard_takes_it_off() {
         path: Some(MovePath::By(vec![DVec3::new(-0.04, 0.0, 0.0)])),
         rotation: None,
         duration: 2.0,
+        speed: None,
+        spline: false,
         wait: true,
     });
     let mut trace2 = Trace::default();

@@ -8,6 +8,7 @@
 //! advances it.
 
 pub mod contact;
+pub mod curve;
 pub mod element;
 pub mod explicit;
 pub mod forces;

@@ -472,8 +472,14 @@ pub struct MoveHandEntry {
     pub by: Option<Points>,
     /// Rotation applied on top of the hand's orientation over the move.
     pub rotate: Option<RotateEntry>,
-    /// Duration of the move (s), > 0.
-    pub duration_s: f64,
+    /// Duration of the move (s), > 0. Give either this or `speed_m_s`.
+    pub duration_s: Option<f64>,
+    /// Mean speed along the path (m/s, always SI), > 0: the duration is the path's length
+    /// divided by it. Give either this or `duration_s`.
+    pub speed_m_s: Option<f64>,
+    /// Move along a Catmull-Rom spline through the waypoints instead of straight lines.
+    /// Default false.
+    pub spline: Option<bool>,
     /// Whether the timeline waits for the move to end. Default true.
     pub wait: Option<bool>,
 }

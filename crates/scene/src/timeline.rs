@@ -237,15 +237,43 @@ fn build_action(
             by,
             rotate,
             duration_s,
+            speed_m_s,
+            spline,
             wait,
         }) => {
             let hand = hand_index(&sub("hand"), *hand)?;
             let (path, rotation) = path_and_rotation(field, "a hand move", to, by, rotate, unit)?;
+            let (duration, speed) = match (duration_s, speed_m_s) {
+                (Some(d), None) => (positive(&sub("duration_s"), *d, "s")?, None),
+                (None, Some(v)) => {
+                    if path.is_none() {
+                        return Err(FieldError::about(
+                            sub("speed_m_s"),
+                            "a speed needs a path (`to` or `by`); give `duration_s` for a pure rotation",
+                        ));
+                    }
+                    (0.0, Some(positive(&sub("speed_m_s"), *v, "m/s")?))
+                }
+                (Some(_), Some(_)) => {
+                    return Err(FieldError::about(
+                        sub("speed_m_s"),
+                        "give either `duration_s` or `speed_m_s`, not both",
+                    ))
+                }
+                (None, None) => {
+                    return Err(FieldError::about(
+                        field.to_string(),
+                        "a hand move needs `duration_s` or `speed_m_s`",
+                    ))
+                }
+            };
             Action::MoveHand {
                 hand,
                 path,
                 rotation,
-                duration: positive(&sub("duration_s"), *duration_s, "s")?,
+                duration,
+                speed,
+                spline: spline.unwrap_or(false),
                 wait: wait.unwrap_or(true),
             }
         }

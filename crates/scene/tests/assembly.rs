@@ -136,6 +136,8 @@ fn hand_actions_load_in_si() {
             path: Some(MovePath::To(p)),
             rotation: Some(r),
             duration,
+            speed: None,
+            spline: false,
             wait: true,
         } => {
             assert_eq!(p.len(), 2);
@@ -318,6 +320,9 @@ const CASES: &[Case] = &[
     Case { what: "release_hand twice", edits: &[("action = \"release_hand\"\nhand = 7", "action = \"release_hand\"\nhand = 0")], field: "timeline[6].hand", message: &["cannot release a hand that holds nothing: it let go at timeline[5]"] },
     Case { what: "move_hand with both to and by", edits: &[("to = [[550, 0, 0], [580, 0, 0]]", "to = [550, 0, 0]\nby = [1, 0, 0]")], field: "timeline[3]", message: &["a hand move takes either `to` (absolute) or `by` (relative), not both"] },
     Case { what: "move_hand with nothing to do", edits: &[("to = [[550, 0, 0], [580, 0, 0]]\n", ""), ("rotate = { axis = [0, 0, 1], angle_deg = 10 }\n", "")], field: "timeline[3]", message: &["a hand move needs `to`, `by` or `rotate`"] },
+    Case { what: "move_hand with both duration and speed", edits: &[("duration_s = 1.5", "duration_s = 1.5\nspeed_m_s = 0.1")], field: "timeline[3].speed_m_s", message: &["either `duration_s` or `speed_m_s`, not both"] },
+    Case { what: "move_hand with neither duration nor speed", edits: &[("duration_s = 1.5\n", "")], field: "timeline[3]", message: &["needs `duration_s` or `speed_m_s`"] },
+    Case { what: "move_hand with a zero speed", edits: &[("duration_s = 1.5", "speed_m_s = 0")], field: "timeline[3].speed_m_s", message: &["must be greater than 0"] },
     Case { what: "move_hand with no waypoints", edits: &[("to = [[550, 0, 0], [580, 0, 0]]", "to = []")], field: "timeline[3].to", message: &["needs at least one waypoint"] },
     Case { what: "move_hand waypoint not finite", edits: &[("[580, 0, 0]", "[580, inf, 0]")], field: "timeline[3].to[1][1]", message: &["= inf mm: must be a finite number"] },
     Case { what: "move_hand zero duration", edits: &[("duration_s = 1.5", "duration_s = 0")], field: "timeline[3].duration_s", message: &["= 0 s: must be greater than 0"] },
