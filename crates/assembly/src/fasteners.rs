@@ -186,11 +186,17 @@ impl Fasteners {
         }));
     }
 
-    /// Reports at the end of the run.
+    /// Reports at the end of the run (the state names are made here, not every step).
     pub fn reports(&self) -> Vec<FastenerReport> {
-        let mut out: Vec<FastenerReport> = self.stubs.iter().map(|s| s.report.clone()).collect();
-        out.extend(self.clips.iter().map(|c| c.report.clone()));
-        out
+        let stubs = self.stubs.iter().map(|s| FastenerReport {
+            final_state: state_name(&s.state),
+            ..s.report.clone()
+        });
+        let clips = self.clips.iter().map(|c| FastenerReport {
+            final_state: state_name(&c.state),
+            ..c.report.clone()
+        });
+        stubs.chain(clips).collect()
     }
 }
 
@@ -257,7 +263,6 @@ fn update_stub(
         s.report.max_force = f;
         s.report.max_force_time = state.time;
     }
-    s.report.final_state = state_name(&next);
     s.report.assembled = matches!(next, StubState::Fixed { .. });
 }
 
@@ -331,6 +336,5 @@ fn update_clip(
         c.report.max_force = force.length();
         c.report.max_force_time = state.time;
     }
-    c.report.final_state = state_name(&next);
     c.report.assembled = next == ClipState::Seated;
 }

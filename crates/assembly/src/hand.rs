@@ -109,6 +109,13 @@ impl Hand {
         self.motion = Motion::new(start, waypoints, rotation, start_time, duration);
     }
 
+    /// Sets the hand's pose directly (interactive input: a pointer or VR controller): the
+    /// hand holds `position` and `orientation` from now on, until the next call or
+    /// motion. Takes effect at the next [`Hand::update`].
+    pub fn set_pose(&mut self, position: DVec3, orientation: DQuat) {
+        self.motion = Motion::hold((position, orientation.normalize()));
+    }
+
     /// Whether the hand is still moving at time `t`.
     pub fn moving(&self, t: f64) -> bool {
         !self.motion.finished(t)

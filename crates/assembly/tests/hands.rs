@@ -271,3 +271,31 @@ fn hand_moves_at_a_given_speed_along_a_spline() {
         "a spline rounds the corner, leaving the straight chords: {off_chords} m"
     );
 }
+
+/// Interactive input: `set_pose` makes the held nodes follow a pose set directly (held
+/// until the next call), with the nodes' offsets from the hand kept rigid.
+#[test]
+fn set_pose_moves_held_nodes_to_the_target_pose() {
+    use glam::DQuat;
+    use pliant_assembly::Hand;
+    let model = model();
+    let mut state = State::at_rest(&model);
+    let grab = DVec3::new(L, 0.0, 0.0);
+    let mut hand = Hand::grab(&model, &mut state, grab).unwrap();
+    let target = grab + DVec3::new(0.0, 0.01, 0.0);
+    hand.set_pose(target, DQuat::IDENTITY);
+    assert_eq!(hand.pose_at(state.time + 1.0), (target, DQuat::IDENTITY));
+    for _ in 0..200 {
+        let t = state.time + model.time_step;
+        hand.update(&mut state, t);
+        pliant_core::explicit::step(&model, &mut state);
+    }
+    let tip = state.x[N];
+    assert!(
+        (tip - target).length() < 1e-6,
+        "tip {tip:?} target {target:?}"
+    );
+    let load = hand.load(&model, &state);
+    assert!(load.force.length() > 0.0 && load.force.is_finite());
+    assert!(!hand.moving(state.time));
+}
