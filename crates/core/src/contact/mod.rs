@@ -18,7 +18,9 @@ pub use broad_phase::BroadPhase;
 pub use environment::{RigidEnvironment, RigidPart};
 pub use hose_hose::{add_hose_contact_forces, hose_contact_forces, HoseContactScratch};
 pub use resolve::{ContactPoint, ContactScratch};
-pub use segment_triangle::{closest_segment_triangle, SegmentTriangleClosest};
+pub use segment_triangle::{
+    closest_segment_triangle, closest_segment_triangle_away_from_ends, SegmentTriangleClosest,
+};
 
 pub(crate) use penalty::add_penalty_forces;
 pub(crate) use resolve::{project_positions, resolve_velocities};

@@ -23,7 +23,7 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use crate::contact::closest_segment_triangle;
+use crate::contact::closest_segment_triangle_away_from_ends;
 use crate::{Model, State};
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
@@ -179,7 +179,7 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         );
         let mut best: Option<(usize, f64, DVec3, DVec3, f64)> = None;
         env.for_each_triangle_near(&aabb, |part, tri| {
-            let c = closest_segment_triangle(xa, xb, tri);
+            let c = closest_segment_triangle_away_from_ends(xa, xb, tri);
             if c.t > INTERIOR
                 && c.t < 1.0 - INTERIOR
                 && c.distance < reach

@@ -32,13 +32,12 @@ fn location_parameter(loc: SegmentPointLocation) -> f64 {
 
 /// Closest points between segment [a, b] and `tri`.
 pub fn closest_segment_triangle(a: DVec3, b: DVec3, tri: &Triangle) -> SegmentTriangleClosest {
-    let mut best = SegmentTriangleClosest {
-        t: 0.0,
-        on_segment: a,
-        on_triangle: a,
-        distance: f64::INFINITY,
-    };
-    let mut consider = |t: f64, p: DVec3, q: DVec3| {
+    let mut best = closest_segment_triangle_away_from_ends(a, b, tri);
+    if best.distance == 0.0 {
+        return best;
+    }
+    for (t, p) in [(0.0, a), (1.0, b)] {
+        let q = tri.project_local_point(p, false).point;
         let d = (p - q).length();
         if d < best.distance {
             best = SegmentTriangleClosest {
@@ -48,6 +47,26 @@ pub fn closest_segment_triangle(a: DVec3, b: DVec3, tri: &Triangle) -> SegmentTr
                 distance: d,
             };
         }
+    }
+    best
+}
+
+/// As [`closest_segment_triangle`], but without the two end points' projections onto the
+/// face: the piercing point, or the closest pair between the segment and the triangle's
+/// edges. If the true closest point lies strictly inside the segment, it is one of these
+/// (a segment's interior can be nearest to a face only when it pierces it or runs
+/// parallel to it, and then an end point is as near). Contact of the beam interior needs
+/// only this; the end points are the nodes, which have their own contact.
+pub fn closest_segment_triangle_away_from_ends(
+    a: DVec3,
+    b: DVec3,
+    tri: &Triangle,
+) -> SegmentTriangleClosest {
+    let mut best = SegmentTriangleClosest {
+        t: 0.0,
+        on_segment: a,
+        on_triangle: a,
+        distance: f64::INFINITY,
     };
     // piercing: the end points lie on opposite sides of the triangle's plane
     let normal = (tri.b - tri.a).cross(tri.c - tri.a);
@@ -57,17 +76,27 @@ pub fn closest_segment_triangle(a: DVec3, b: DVec3, tri: &Triangle) -> SegmentTr
         let p = a + t * (b - a);
         let proj = tri.project_local_point(p, false);
         if (proj.point - p).length_squared() <= 1e-24 * normal.length() {
-            consider(t, p, proj.point);
-            return best;
+            return SegmentTriangleClosest {
+                t,
+                on_segment: p,
+                on_triangle: proj.point,
+                distance: 0.0,
+            };
         }
-    }
-    for (t, p) in [(0.0, a), (1.0, b)] {
-        consider(t, p, tri.project_local_point(p, false).point);
     }
     for (e0, e1) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)] {
         let (l1, l2) = closest_points_segment_segment_with_locations_nD((&a, &b), (&e0, &e1));
         let (t, s) = (location_parameter(l1), location_parameter(l2));
-        consider(t, a + t * (b - a), e0 + s * (e1 - e0));
+        let (p, q) = (a + t * (b - a), e0 + s * (e1 - e0));
+        let d = (p - q).length();
+        if d < best.distance {
+            best = SegmentTriangleClosest {
+                t,
+                on_segment: p,
+                on_triangle: q,
+                distance: d,
+            };
+        }
     }
     best
 }
