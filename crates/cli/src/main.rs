@@ -5,6 +5,7 @@ mod bench;
 mod recorder;
 mod report;
 mod run_cmd;
+mod serve_cmd;
 mod summary;
 mod validate_cmd;
 mod vtk;
@@ -54,6 +55,18 @@ enum Command {
         #[arg(long)]
         write_docs: Option<PathBuf>,
     },
+    /// Serve a scene interactively (the built-in demo when no scene is given): the
+    /// simulation runs in real time; clients connect over WebSocket (docs/protocol.md).
+    Serve {
+        /// Scene file (TOML or JSON); omit for the built-in demo.
+        scene: Option<PathBuf>,
+        /// Port to listen on (0 picks a free one).
+        #[arg(long, default_value_t = 8080)]
+        port: u16,
+        /// Address to listen on.
+        #[arg(long, default_value = "127.0.0.1")]
+        host: String,
+    },
     /// Measure cost per element per step and the real-time factor.
     Bench {
         /// Print one JSON object instead of a table.
@@ -85,6 +98,7 @@ fn main() -> ExitCode {
             case,
             write_docs,
         } => validate_cmd::run(json, case.as_deref(), write_docs.as_deref()),
+        Command::Serve { scene, port, host } => serve_cmd::run(scene.as_deref(), &host, port),
         Command::Bench { json, quick } => {
             bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
         }

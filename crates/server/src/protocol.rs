@@ -1,0 +1,119 @@
+//! The message protocol, version [`PROTOCOL_VERSION`]: JSON text messages over WebSocket,
+//! each an object with a `type` field. Documented in `docs/protocol.md`.
+
+use crate::ownership::HandId;
+use crate::snapshot::{SceneData, Snapshot};
+use serde::{Deserialize, Serialize};
+
+/// Version of the protocol this server speaks.
+pub const PROTOCOL_VERSION: u32 = 1;
+
+/// Client → server.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ClientMessage {
+    /// Must come first; the server answers `welcome` and starts sending snapshots.
+    Hello { version: u32 },
+    /// Grab the beam nearest to `position` [m] with hand `hand_id`.
+    Grab { hand_id: HandId, position: [f64; 3] },
+    /// Set the hand's target pose: position [m], orientation as a unit quaternion
+    /// `[x, y, z, w]` (kept when omitted).
+    Move {
+        hand_id: HandId,
+        position: [f64; 3],
+        #[serde(default)]
+        orientation: Option<[f64; 4]>,
+    },
+    /// Let go.
+    Release { hand_id: HandId },
+    /// Stop stepping (snapshots keep coming).
+    Pause,
+    /// Step in real time again.
+    Resume,
+    /// Advance `n` steps now (1 ≤ n ≤ 100 000), mainly while paused.
+    Step { n: u32 },
+    /// Back to the rest state; every hand is released.
+    Reset,
+}
+
+/// Error codes of `error` messages.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ErrorCode {
+    /// Not JSON, or not a known message (unknown `type`, missing or wrong fields).
+    Malformed,
+    /// Larger than the size limit.
+    MessageTooLarge,
+    /// Over the rate limit; messages were dropped.
+    RateLimited,
+    /// `hello` with a version this server does not speak.
+    UnsupportedVersion,
+    /// A message other than `hello` before `hello`.
+    HelloRequired,
+    /// The hand belongs to another client.
+    HandOwned,
+    /// No such hand is held.
+    HandNotHeld,
+    /// The session holds the most hands it may.
+    TooManyHands,
+    /// A value out of range (non-finite position, n out of range, zero quaternion).
+    InvalidValue,
+    /// Binary messages are not part of the protocol.
+    BinaryNotSupported,
+}
+
+/// Server → client.
+#[derive(Clone, Debug, Serialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum ServerMessage<'a> {
+    Welcome {
+        version: u32,
+        client_id: u64,
+        session: &'a SceneData,
+    },
+    Snapshot(&'a Snapshot),
+    Error {
+        code: ErrorCode,
+        message: String,
+    },
+}
+
+impl ServerMessage<'_> {
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("server messages always serialise")
+    }
+}
+
+/// An error message as JSON text.
+pub fn error_json(code: ErrorCode, message: impl Into<String>) -> String {
+    ServerMessage::Error {
+        code,
+        message: message.into(),
+    }
+    .to_json()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_parse_as_documented() {
+        let m: ClientMessage =
+            serde_json::from_str(r#"{"type":"move","hand_id":2,"position":[1,2,3]}"#).unwrap();
+        assert_eq!(
+            m,
+            ClientMessage::Move {
+                hand_id: 2,
+                position: [1.0, 2.0, 3.0],
+                orientation: None
+            }
+        );
+        let m: ClientMessage = serde_json::from_str(r#"{"type":"pause"}"#).unwrap();
+        assert_eq!(m, ClientMessage::Pause);
+        assert!(serde_json::from_str::<ClientMessage>(r#"{"type":"jump"}"#).is_err());
+        assert!(serde_json::from_str::<ClientMessage>(r#"{"type":"step","n":-1}"#).is_err());
+        let e = error_json(ErrorCode::HandOwned, "x");
+        assert_eq!(e, r#"{"type":"error","code":"hand_owned","message":"x"}"#);
+    }
+}

@@ -1,0 +1,424 @@
+//! The simulation thread (SPEC I6, dissertation 5.2.3): owns the model and state, steps at
+//! its own rate — real time as the target, sleeping when ahead, as fast as it can when
+//! behind — applies queued input commands between steps, and publishes the newest snapshot
+//! into a latest-value slot (a `tokio::sync::watch` channel: publishing replaces the value
+//! and never waits for readers; readers skip stale values). It never waits for clients.
+
+use crate::ownership::HandId;
+use crate::snapshot::{HandSnapshot, HoseSnapshot, SceneData, Snapshot};
+use glam::{DQuat, DVec3};
+use pliant_assembly::ergonomics::{
+    colour_value, ErgonomicLimits, ErgonomicProfile, HandAssessment,
+};
+use pliant_assembly::Hand;
+use pliant_core::{explicit, health, Model, State};
+use pliant_scene::LoadedScene;
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc;
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+use tokio::sync::watch;
+
+/// Fastest a hand's held beam is dragged towards the target of a `move` [m/s]; input
+/// jumps are spread over several steps so that no step sees a large displacement.
+pub const HAND_MAX_SPEED: f64 = 2.0;
+/// Fastest a hand turns towards its target orientation [rad/s].
+pub const HAND_MAX_TURN_RATE: f64 = 4.0 * std::f64::consts::PI;
+/// Most wall-clock time spent stepping before commands are looked at again.
+const BATCH: Duration = Duration::from_millis(2);
+/// Behind real time by more than this, the thread stops trying to catch up.
+const MAX_LAG: f64 = 0.05;
+/// Health check interval in steps.
+const HEALTH_EVERY: u64 = 16;
+
+/// An input command (already checked: finite values, allowed by ownership).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Command {
+    Grab {
+        hand: HandId,
+        position: DVec3,
+    },
+    Move {
+        hand: HandId,
+        position: DVec3,
+        orientation: Option<DQuat>,
+    },
+    Release {
+        hand: HandId,
+    },
+    Pause,
+    Resume,
+    Step(u32),
+    Reset,
+}
+
+/// A session could not start.
+#[derive(Debug, thiserror::Error)]
+pub enum SessionError {
+    #[error("cannot build the model: {0}")]
+    Model(String),
+}
+
+/// Options of the simulation thread.
+#[derive(Clone, Debug)]
+pub struct SessionOptions {
+    /// Most snapshots published per wall-clock second.
+    pub publish_hz: f64,
+    /// Start paused.
+    pub paused: bool,
+}
+
+impl Default for SessionOptions {
+    fn default() -> Self {
+        SessionOptions {
+            publish_hz: 240.0,
+            paused: false,
+        }
+    }
+}
+
+/// A running simulation. Dropping it stops the thread.
+pub struct Session {
+    commands: mpsc::Sender<Command>,
+    snapshots: watch::Receiver<Arc<Snapshot>>,
+    scene: Arc<SceneData>,
+    epoch: Arc<AtomicU64>,
+    stop: Arc<AtomicBool>,
+    thread: Option<JoinHandle<()>>,
+}
+
+impl Session {
+    /// Builds the model of `scene` and starts its simulation thread.
+    pub fn start(scene: &LoadedScene, options: SessionOptions) -> Result<Session, SessionError> {
+        let model = Model::build(&scene.world)
+            .and_then(|m| m.with_stiffened_spans(&scene.stiffened_spans()))
+            .map_err(|e| SessionError::Model(e.to_string()))?;
+        let data = Arc::new(SceneData::new(scene, &model, 60.0));
+        let (tx, rx) = mpsc::channel();
+        let epoch = Arc::new(AtomicU64::new(0));
+        let stop = Arc::new(AtomicBool::new(false));
+        let mut sim = Sim::new(
+            model,
+            scene.ergonomics.clone(),
+            epoch.clone(),
+            options.paused,
+        );
+        let (snap_tx, snap_rx) = watch::channel(Arc::new(sim.snapshot(0.0)));
+        let publish_every = Duration::from_secs_f64(1.0 / options.publish_hz.max(1.0));
+        let stop2 = stop.clone();
+        let thread = std::thread::Builder::new()
+            .name("pliant-sim".into())
+            .spawn(move || sim.run(rx, snap_tx, stop2, publish_every))
+            .expect("spawn simulation thread");
+        Ok(Session {
+            commands: tx,
+            snapshots: snap_rx,
+            scene: data,
+            epoch,
+            stop,
+            thread: Some(thread),
+        })
+    }
+
+    /// Queues a command; it is applied before the next step.
+    pub fn send(&self, command: Command) {
+        let _ = self.commands.send(command);
+    }
+
+    /// A receiver of the newest snapshot.
+    pub fn subscribe(&self) -> watch::Receiver<Arc<Snapshot>> {
+        self.snapshots.clone()
+    }
+
+    /// The newest snapshot.
+    pub fn latest(&self) -> Arc<Snapshot> {
+        self.snapshots.borrow().clone()
+    }
+
+    /// The static scene data.
+    pub fn scene(&self) -> &Arc<SceneData> {
+        &self.scene
+    }
+
+    /// Resets so far (ownership entries of older epochs are void).
+    pub fn epoch(&self) -> u64 {
+        self.epoch.load(Ordering::SeqCst)
+    }
+
+    /// Counts a reset requested by a client (the command follows through the queue).
+    pub(crate) fn bump_epoch(&self) -> u64 {
+        self.epoch.fetch_add(1, Ordering::SeqCst) + 1
+    }
+}
+
+impl Drop for Session {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::SeqCst);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+/// A hand driven by messages: its pose moves towards the target at bounded speed.
+struct Interactive {
+    hand: Hand,
+    pose: (DVec3, DQuat),
+    target: (DVec3, DQuat),
+}
+
+struct Sim {
+    model: Model,
+    state: State,
+    hands: BTreeMap<HandId, Interactive>,
+    paused: bool,
+    epoch: Arc<AtomicU64>,
+    /// Epoch as of the last reset the thread itself saw.
+    profile: ErgonomicProfile,
+    limits: Option<&'static ErgonomicLimits>,
+    notice: Option<String>,
+    steps_since_check: u64,
+    /// Real-time pacing: simulated time `anchor_sim` at wall time `anchor_wall`.
+    anchor_wall: Instant,
+    anchor_sim: f64,
+}
+
+impl Sim {
+    fn new(model: Model, profile: ErgonomicProfile, epoch: Arc<AtomicU64>, paused: bool) -> Sim {
+        let state = State::at_rest(&model);
+        Sim {
+            model,
+            state,
+            hands: BTreeMap::new(),
+            paused,
+            epoch,
+            profile,
+            limits: ErgonomicLimits::builtin().ok(),
+            notice: None,
+            steps_since_check: 0,
+            anchor_wall: Instant::now(),
+            anchor_sim: 0.0,
+        }
+    }
+
+    fn run(
+        &mut self,
+        commands: mpsc::Receiver<Command>,
+        out: watch::Sender<Arc<Snapshot>>,
+        stop: Arc<AtomicBool>,
+        publish_every: Duration,
+    ) {
+        let mut last_publish = Instant::now() - publish_every;
+        let mut dirty = true;
+        // Real-time factor over windows of about half a second.
+        let (mut rtf_wall, mut rtf_sim, mut rtf) = (Instant::now(), self.state.time, 0.0);
+        self.rebase();
+        while !stop.load(Ordering::Relaxed) {
+            while let Ok(c) = commands.try_recv() {
+                self.apply(c);
+                dirty = true;
+            }
+            let now = Instant::now();
+            let mut wait = Duration::from_millis(5);
+            if !self.paused {
+                let dt = self.model.time_step;
+                let due = self.anchor_sim + now.duration_since(self.anchor_wall).as_secs_f64();
+                if due - self.state.time > MAX_LAG {
+                    // Cannot keep up: run flat out from here.
+                    self.anchor_sim = self.state.time;
+                    self.anchor_wall = now;
+                }
+                let due = self.anchor_sim + now.duration_since(self.anchor_wall).as_secs_f64();
+                if self.state.time + dt <= due {
+                    while self.state.time + dt <= due && now.elapsed() < BATCH {
+                        self.step();
+                    }
+                    dirty = true;
+                    wait = Duration::ZERO;
+                } else {
+                    wait = Duration::from_secs_f64((self.state.time + dt - due).min(0.002));
+                }
+            }
+            let since = rtf_wall.elapsed().as_secs_f64();
+            if since >= 0.5 {
+                rtf = (self.state.time - rtf_sim) / since;
+                rtf_wall = Instant::now();
+                rtf_sim = self.state.time;
+            }
+            if dirty && last_publish.elapsed() >= publish_every {
+                out.send_replace(Arc::new(self.snapshot(rtf)));
+                last_publish = Instant::now();
+                dirty = false;
+            } else if dirty {
+                wait = wait.min(publish_every.saturating_sub(last_publish.elapsed()));
+            }
+            if !wait.is_zero() {
+                // Sleeping on the command queue: a command wakes the thread at once.
+                match commands.recv_timeout(wait) {
+                    Ok(c) => {
+                        self.apply(c);
+                        dirty = true;
+                    }
+                    Err(mpsc::RecvTimeoutError::Timeout) => {}
+                    Err(mpsc::RecvTimeoutError::Disconnected) => break,
+                }
+            }
+        }
+    }
+
+    fn rebase(&mut self) {
+        self.anchor_wall = Instant::now();
+        self.anchor_sim = self.state.time;
+    }
+
+    fn apply(&mut self, c: Command) {
+        match c {
+            Command::Grab { hand, position } => {
+                if let Some(old) = self.hands.remove(&hand) {
+                    old.hand.release(&mut self.state);
+                }
+                match Hand::grab(&self.model, &mut self.state, position) {
+                    Some(h) => {
+                        let pose = (position, DQuat::IDENTITY);
+                        self.hands.insert(
+                            hand,
+                            Interactive {
+                                hand: h,
+                                pose,
+                                target: pose,
+                            },
+                        );
+                    }
+                    None => self.notice = Some(format!("hand {hand}: nothing to grab")),
+                }
+            }
+            Command::Move {
+                hand,
+                position,
+                orientation,
+            } => {
+                if let Some(h) = self.hands.get_mut(&hand) {
+                    h.target = (position, orientation.unwrap_or(h.target.1));
+                }
+            }
+            Command::Release { hand } => {
+                if let Some(h) = self.hands.remove(&hand) {
+                    h.hand.release(&mut self.state);
+                }
+            }
+            Command::Pause => self.paused = true,
+            Command::Resume => {
+                self.paused = false;
+                self.rebase();
+            }
+            Command::Step(n) => {
+                for _ in 0..n {
+                    if !self.step() {
+                        break;
+                    }
+                }
+                self.rebase();
+            }
+            Command::Reset => self.reset(None),
+        }
+    }
+
+    /// Back to rest, hands released. A client's `reset` has counted the epoch already.
+    fn reset(&mut self, divergence: Option<String>) {
+        self.state = State::at_rest(&self.model);
+        self.hands.clear();
+        self.steps_since_check = 0;
+        if let Some(message) = divergence {
+            self.epoch.fetch_add(1, Ordering::SeqCst);
+            self.notice = Some(format!(
+                "the simulation diverged and was reset, hands released: {message}"
+            ));
+        } else {
+            self.notice = None;
+        }
+        self.rebase();
+    }
+
+    /// One step; false if it diverged (the state is then reset).
+    fn step(&mut self) -> bool {
+        let dt = self.model.time_step;
+        let t = self.state.time + dt;
+        for h in self.hands.values_mut() {
+            h.pose.0 = h.pose.0.move_towards(h.target.0, HAND_MAX_SPEED * dt);
+            h.pose.1 = h.pose.1.rotate_towards(h.target.1, HAND_MAX_TURN_RATE * dt);
+            h.hand.set_pose(h.pose.0, h.pose.1);
+            h.hand.update(&mut self.state, t);
+        }
+        explicit::step(&self.model, &mut self.state);
+        self.steps_since_check += 1;
+        if self.steps_since_check >= HEALTH_EVERY {
+            self.steps_since_check = 0;
+            if let Err(d) = health::check(&self.model, &self.state) {
+                self.reset(Some(d.to_string()));
+                return false;
+            }
+        }
+        true
+    }
+
+    fn snapshot(&self, real_time_factor: f64) -> Snapshot {
+        let mut hoses: Vec<HoseSnapshot> = self
+            .model
+            .hoses
+            .iter()
+            .map(|h| HoseSnapshot {
+                positions: h.nodes().map(|n| self.state.x[n].to_array()).collect(),
+                colour: 0.0,
+            })
+            .collect();
+        let hands = self
+            .hands
+            .iter()
+            .map(|(&id, h)| {
+                let load = h.hand.load(&self.model, &self.state);
+                let assessment: Option<HandAssessment> = self.limits.and_then(|l| {
+                    l.assess(&self.profile, load.force, load.torque, load.direction)
+                        .ok()
+                });
+                let worst = assessment.as_ref().map(|a| *a.worst());
+                let ratio = worst.map(|w| w.ratio).filter(|r| r.is_finite());
+                let colour = colour_value(ratio.unwrap_or(f64::NAN));
+                if let Some(hs) = hoses.get_mut(load.hose) {
+                    hs.colour = hs.colour.max(colour);
+                }
+                HandSnapshot {
+                    hand_id: id,
+                    hose: load.hose,
+                    position: h.pose.0.to_array(),
+                    orientation: h.pose.1.to_array(),
+                    target: h.target.0.to_array(),
+                    force: finite(load.force),
+                    torque: finite(load.torque),
+                    ratio,
+                    kind: worst.map(|w| w.kind),
+                    colour,
+                }
+            })
+            .collect();
+        Snapshot {
+            time: self.state.time,
+            step: self.state.step,
+            paused: self.paused,
+            real_time_factor,
+            epoch: self.epoch.load(Ordering::SeqCst),
+            hoses,
+            hands,
+            notice: self.notice.clone(),
+            ..Default::default()
+        }
+    }
+}
+
+/// JSON has no NaN: non-finite components are sent as 0 (the health check resets the
+/// state soon after anyway).
+fn finite(v: DVec3) -> [f64; 3] {
+    let v = if v.is_finite() { v } else { DVec3::ZERO };
+    v.to_array()
+}

@@ -1,0 +1,167 @@
+//! What clients see: the static scene data sent once in `welcome`, and the snapshot of the
+//! newest consistent state the simulation thread published (SPEC I2, I4, I6).
+
+use pliant_core::Model;
+use pliant_scene::LoadedScene;
+use serde::Serialize;
+use std::sync::OnceLock;
+
+/// Static data of the session (sent once, in `welcome`).
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneData {
+    pub scene: String,
+    pub source: String,
+    /// Integrator time step [s].
+    pub time_step: f64,
+    pub hoses: Vec<HoseData>,
+    pub parts: Vec<PartData>,
+    /// The ergonomic profile hand loads are judged with.
+    pub ergonomics: String,
+    pub limits: LimitsData,
+}
+
+/// One hose's fixed data.
+#[derive(Clone, Debug, Serialize)]
+pub struct HoseData {
+    pub name: String,
+    /// Outer radius at each node [m] (the tube is swept through them, SPEC I7).
+    pub radii: Vec<f64>,
+}
+
+/// One rigid part: its bounding box and its triangle mesh (world frame, metres).
+#[derive(Clone, Debug, Serialize)]
+pub struct PartData {
+    pub name: String,
+    pub bounds_min: [f64; 3],
+    pub bounds_max: [f64; 3],
+    /// x, y, z of each vertex, flattened.
+    pub vertices: Vec<f32>,
+    /// Three vertex indices per triangle, flattened.
+    pub triangles: Vec<u32>,
+}
+
+/// The limits clients must keep to.
+#[derive(Clone, Debug, Serialize)]
+pub struct LimitsData {
+    pub max_message_bytes: usize,
+    pub max_messages_per_second: f64,
+    pub snapshot_hz: f64,
+    pub max_hands: usize,
+}
+
+impl SceneData {
+    pub fn new(scene: &LoadedScene, model: &Model, snapshot_hz: f64) -> Self {
+        let hoses = model
+            .hoses
+            .iter()
+            .map(|h| HoseData {
+                name: h.name.clone(),
+                radii: h.nodes().map(|n| model.radius[n]).collect(),
+            })
+            .collect();
+        let parts = scene
+            .world
+            .rigid_parts
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let (lo, hi) = scene
+                    .parts
+                    .get(i)
+                    .map(|info| info.bounds)
+                    .unwrap_or_else(|| {
+                        p.vertices.iter().fold(
+                            (glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY),
+                            |(lo, hi), v| (lo.min(*v), hi.max(*v)),
+                        )
+                    });
+                PartData {
+                    name: p.name.clone(),
+                    bounds_min: lo.to_array(),
+                    bounds_max: hi.to_array(),
+                    vertices: p
+                        .vertices
+                        .iter()
+                        .flat_map(|v| [v.x as f32, v.y as f32, v.z as f32])
+                        .collect(),
+                    triangles: p.triangles.iter().flatten().copied().collect(),
+                }
+            })
+            .collect();
+        SceneData {
+            scene: scene.name.clone(),
+            source: scene.source.clone(),
+            time_step: model.time_step,
+            hoses,
+            parts,
+            ergonomics: scene.ergonomics.to_string(),
+            limits: LimitsData {
+                max_message_bytes: crate::limits::MAX_MESSAGE_BYTES,
+                max_messages_per_second: crate::limits::MAX_MESSAGES_PER_SECOND,
+                snapshot_hz,
+                max_hands: crate::ownership::MAX_HANDS,
+            },
+        }
+    }
+}
+
+/// The newest consistent state, as published by the simulation thread.
+#[derive(Debug, Default, Serialize)]
+pub struct Snapshot {
+    /// Simulated time [s].
+    pub time: f64,
+    /// Steps taken since the start or the last reset.
+    pub step: u64,
+    pub paused: bool,
+    /// Simulated seconds per wall-clock second, measured (≤ 1: real time is the target).
+    pub real_time_factor: f64,
+    /// Resets so far (a `reset` message, or a divergence).
+    pub epoch: u64,
+    pub hoses: Vec<HoseSnapshot>,
+    pub hands: Vec<HandSnapshot>,
+    /// Something the viewer should tell the user (e.g. the simulation diverged and was
+    /// reset).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub notice: Option<String>,
+    #[serde(skip)]
+    pub(crate) json: OnceLock<String>,
+}
+
+/// One hose's state.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct HoseSnapshot {
+    /// Node positions [m].
+    pub positions: Vec<[f64; 3]>,
+    /// Colour value c = min(|f| / f_max, 1) of the hands holding it (SPEC I4): 0 blue,
+    /// 0.5 green, 1 red; 0 when no hand holds it.
+    pub colour: f64,
+}
+
+/// One hand's state and load (SPEC I2, I3).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct HandSnapshot {
+    pub hand_id: u32,
+    pub hose: usize,
+    /// Hand pose: position [m] and orientation `[x, y, z, w]`.
+    pub position: [f64; 3],
+    pub orientation: [f64; 4],
+    /// The pose the hand is moving towards (the last `move`).
+    pub target: [f64; 3],
+    /// Force [N] and torque about the hand position [N·m] the hand applies.
+    pub force: [f64; 3],
+    pub torque: [f64; 3],
+    /// The worse of force/limit and torque/limit; NaN-free (`null` if not assessable).
+    pub ratio: Option<f64>,
+    /// `push`, `pull` or `torque`: which load the ratio belongs to.
+    pub kind: Option<pliant_assembly::ergonomics::LoadKind>,
+    /// Colour value c = min(ratio, 1).
+    pub colour: f64,
+}
+
+impl Snapshot {
+    /// The `snapshot` message as JSON, serialised once however many clients read it.
+    pub fn json(&self) -> &str {
+        self.json
+            .get_or_init(|| crate::protocol::ServerMessage::Snapshot(self).to_json())
+    }
+}

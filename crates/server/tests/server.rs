@@ -1,0 +1,324 @@
+//! The server over real WebSocket connections on the loopback interface (ephemeral port):
+//! welcome and snapshots, hands, bad input, floods, several clients, ownership, slow
+//! clients. Every wait is bounded.
+
+use futures_util::{SinkExt, StreamExt};
+use pliant_server::session::SessionOptions;
+use pliant_server::{start, RunningServer, ServerConfig, Session};
+use serde_json::{json, Value};
+use std::time::{Duration, Instant};
+use tokio::net::TcpStream;
+use tokio_tungstenite::tungstenite::Message;
+use tokio_tungstenite::{MaybeTlsStream, WebSocketStream};
+
+type Ws = WebSocketStream<MaybeTlsStream<TcpStream>>;
+const WAIT: Duration = Duration::from_secs(10);
+
+async fn server() -> RunningServer {
+    let scene = pliant_scene::demo_scene().unwrap();
+    let session = Session::start(&scene, SessionOptions::default()).unwrap();
+    let config = ServerConfig {
+        host: "127.0.0.1".into(),
+        port: 0,
+    };
+    start(session, &config).await.unwrap()
+}
+
+async fn connect(s: &RunningServer) -> Ws {
+    let (ws, _) = tokio_tungstenite::connect_async_with_config(s.ws_url(), None, true)
+        .await
+        .unwrap();
+    ws
+}
+
+async fn send(ws: &mut Ws, v: Value) {
+    ws.send(Message::text(v.to_string())).await.unwrap();
+}
+
+/// Next message of `type` satisfying `pred`, within WAIT.
+async fn next_where(ws: &mut Ws, ty: &str, pred: impl Fn(&Value) -> bool) -> Value {
+    let deadline = Instant::now() + WAIT;
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        let msg = tokio::time::timeout(left, ws.next())
+            .await
+            .unwrap_or_else(|_| panic!("no {ty} message in time"))
+            .expect("connection open")
+            .expect("message");
+        if let Message::Text(t) = msg {
+            let v: Value = serde_json::from_str(t.as_str()).unwrap();
+            if v["type"] == ty && pred(&v) {
+                return v;
+            }
+        }
+    }
+}
+
+async fn hello(ws: &mut Ws) -> Value {
+    send(ws, json!({"type": "hello", "version": 1})).await;
+    next_where(ws, "welcome", |_| true).await
+}
+
+fn node(snap: &Value, hose: usize, i: usize) -> [f64; 3] {
+    let p = &snap["hoses"][hose]["positions"][i];
+    [
+        p[0].as_f64().unwrap(),
+        p[1].as_f64().unwrap(),
+        p[2].as_f64().unwrap(),
+    ]
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn force(hand: &Value) -> f64 {
+    hand["force"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_f64().unwrap().powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn hello_gets_welcome_and_snapshots_whose_time_advances() {
+    let s = server().await;
+    let body = reqwest_free_get(&s).await;
+    assert!(body.contains("later version") && body.contains("/ws"));
+    let mut ws = connect(&s).await;
+    let w = hello(&mut ws).await;
+    assert_eq!(w["version"], 1);
+    assert!(!w["session"]["hoses"].as_array().unwrap().is_empty());
+    assert!(w["session"]["hoses"][0]["radii"][0].as_f64().unwrap() > 0.0);
+    let first = next_where(&mut ws, "snapshot", |_| true).await;
+    let t0 = first["time"].as_f64().unwrap();
+    next_where(&mut ws, "snapshot", |v| v["time"].as_f64().unwrap() > t0).await;
+}
+
+/// GET / over a raw TCP connection (no HTTP client dependency).
+async fn reqwest_free_get(s: &RunningServer) -> String {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let mut c = TcpStream::connect(s.addr).await.unwrap();
+    c.write_all(b"GET / HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n")
+        .await
+        .unwrap();
+    let mut out = String::new();
+    tokio::time::timeout(WAIT, c.read_to_string(&mut out))
+        .await
+        .unwrap()
+        .unwrap();
+    out
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn grab_and_move_loads_the_hand_and_moves_the_node() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    let snap = next_where(&mut ws, "snapshot", |_| true).await;
+    let n = snap["hoses"][0]["positions"].as_array().unwrap().len();
+    let p0 = node(&snap, 0, n / 2);
+    send(
+        &mut ws,
+        json!({"type": "grab", "hand_id": 0, "position": p0}),
+    )
+    .await;
+    let target = [p0[0], p0[1], p0[2] + 0.03];
+    send(
+        &mut ws,
+        json!({"type": "move", "hand_id": 0, "position": target}),
+    )
+    .await;
+    let moved = next_where(&mut ws, "snapshot", |v| {
+        v["hands"]
+            .as_array()
+            .is_some_and(|h| h.len() == 1 && force(&h[0]) > 0.0)
+            && dist(node(v, 0, n / 2), p0) > 0.01
+    })
+    .await;
+    assert_eq!(moved["hands"][0]["hand_id"], 0);
+    assert!(moved["hands"][0]["colour"].as_f64().unwrap() >= 0.0);
+    send(&mut ws, json!({"type": "release", "hand_id": 0})).await;
+    next_where(&mut ws, "snapshot", |v| {
+        v["hands"].as_array().unwrap().is_empty()
+    })
+    .await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bad_messages_get_errors_and_the_connection_lives_on() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    send(&mut ws, json!({"type": "pause"})).await;
+    next_where(&mut ws, "error", |v| v["code"] == "hello_required").await;
+    send(&mut ws, json!({"type": "hello", "version": 99})).await;
+    next_where(&mut ws, "error", |v| v["code"] == "unsupported_version").await;
+    hello(&mut ws).await;
+    ws.send(Message::text("{not json")).await.unwrap();
+    next_where(&mut ws, "error", |v| v["code"] == "malformed").await;
+    send(&mut ws, json!({"type": "teleport"})).await;
+    next_where(&mut ws, "error", |v| v["code"] == "malformed").await;
+    send(
+        &mut ws,
+        json!({"type": "move", "hand_id": 0, "position": [0, 0, 0]}),
+    )
+    .await;
+    next_where(&mut ws, "error", |v| v["code"] == "hand_not_held").await;
+    send(&mut ws, json!({"type": "step", "n": 0})).await;
+    next_where(&mut ws, "error", |v| v["code"] == "invalid_value").await;
+    let big = format!(
+        r#"{{"type":"hello","version":1,"pad":"{}"}}"#,
+        "x".repeat(100_000)
+    );
+    ws.send(Message::text(big)).await.unwrap();
+    next_where(&mut ws, "error", |v| v["code"] == "message_too_large").await;
+    ws.send(Message::binary(vec![1u8, 2, 3])).await.unwrap();
+    next_where(&mut ws, "error", |v| v["code"] == "binary_not_supported").await;
+    let a = next_where(&mut ws, "snapshot", |_| true).await["time"]
+        .as_f64()
+        .unwrap();
+    next_where(&mut ws, "snapshot", |v| v["time"].as_f64().unwrap() > a).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_flood_is_rate_limited_and_the_server_stays_responsive() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    for _ in 0..1000 {
+        ws.feed(Message::text(r#"{"type":"resume"}"#))
+            .await
+            .unwrap();
+    }
+    ws.flush().await.unwrap();
+    next_where(&mut ws, "error", |v| v["code"] == "rate_limited").await;
+    let a = next_where(&mut ws, "snapshot", |_| true).await["time"]
+        .as_f64()
+        .unwrap();
+    next_where(&mut ws, "snapshot", |v| v["time"].as_f64().unwrap() > a).await;
+    let mut other = connect(&s).await;
+    hello(&mut other).await;
+    next_where(&mut other, "snapshot", |_| true).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn two_clients_share_a_session_and_hands_belong_to_the_grabber() {
+    let s = server().await;
+    let mut a = connect(&s).await;
+    let mut b = connect(&s).await;
+    let wa = hello(&mut a).await;
+    let wb = hello(&mut b).await;
+    assert_ne!(wa["client_id"], wb["client_id"]);
+    let snap = next_where(&mut a, "snapshot", |_| true).await;
+    let p = node(&snap, 0, 3);
+    send(&mut a, json!({"type": "grab", "hand_id": 7, "position": p})).await;
+    // B sees A's hand.
+    next_where(&mut b, "snapshot", |v| {
+        v["hands"].as_array().unwrap().len() == 1
+    })
+    .await;
+    send(&mut b, json!({"type": "move", "hand_id": 7, "position": p})).await;
+    next_where(&mut b, "error", |v| v["code"] == "hand_owned").await;
+    send(&mut b, json!({"type": "release", "hand_id": 7})).await;
+    next_where(&mut b, "error", |v| v["code"] == "hand_owned").await;
+    send(&mut b, json!({"type": "grab", "hand_id": 7, "position": p})).await;
+    next_where(&mut b, "error", |v| v["code"] == "hand_owned").await;
+    // A disconnects: its hand is released, and B may take the id.
+    a.close(None).await.unwrap();
+    drop(a);
+    next_where(&mut b, "snapshot", |v| {
+        v["hands"].as_array().unwrap().is_empty()
+    })
+    .await;
+    send(&mut b, json!({"type": "grab", "hand_id": 7, "position": p})).await;
+    next_where(&mut b, "snapshot", |v| {
+        v["hands"].as_array().unwrap().len() == 1
+    })
+    .await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_simulation_keeps_stepping_while_a_client_does_not_read() {
+    let s = server().await;
+    let mut slow = connect(&s).await;
+    hello(&mut slow).await;
+    let mut watcher = connect(&s).await;
+    hello(&mut watcher).await;
+    let t0 = next_where(&mut watcher, "snapshot", |_| true).await["time"]
+        .as_f64()
+        .unwrap();
+    // `slow` reads nothing for a second while snapshots pile up for it.
+    tokio::time::sleep(Duration::from_millis(1000)).await;
+    let t1 = next_where(&mut watcher, "snapshot", |_| true).await["time"]
+        .as_f64()
+        .unwrap();
+    assert!(t1 > t0, "{t0} → {t1}");
+    // `slow` then gets snapshots again.
+    next_where(&mut slow, "snapshot", |v| v["time"].as_f64().unwrap() >= t1).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn pause_step_and_reset() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    send(&mut ws, json!({"type": "pause"})).await;
+    let p = next_where(&mut ws, "snapshot", |v| v["paused"] == true).await;
+    let step = p["step"].as_u64().unwrap();
+    send(&mut ws, json!({"type": "step", "n": 10})).await;
+    next_where(&mut ws, "snapshot", |v| {
+        v["step"].as_u64().unwrap() == step + 10
+    })
+    .await;
+    send(&mut ws, json!({"type": "reset"})).await;
+    next_where(&mut ws, "snapshot", |v| v["step"] == 0 && v["epoch"] == 1).await;
+}
+
+/// Latency from a `move` to the first snapshot that shows the new target (a measurement,
+/// not an assertion). `cargo test --release -p pliant-server -- --ignored --nocapture`.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+#[ignore]
+async fn measure_move_to_snapshot_latency() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    let snap = next_where(&mut ws, "snapshot", |_| true).await;
+    let p = node(&snap, 0, 5);
+    send(
+        &mut ws,
+        json!({"type": "grab", "hand_id": 0, "position": p}),
+    )
+    .await;
+    next_where(&mut ws, "snapshot", |v| {
+        v["hands"].as_array().unwrap().len() == 1
+    })
+    .await;
+    let mut lat = Vec::new();
+    for k in 1..=50 {
+        let z = p[2] + 1e-4 * k as f64;
+        tokio::time::sleep(Duration::from_millis(20)).await;
+        let t = Instant::now();
+        send(
+            &mut ws,
+            json!({"type": "move", "hand_id": 0, "position": [p[0], p[1], z]}),
+        )
+        .await;
+        next_where(&mut ws, "snapshot", |v| {
+            v["hands"][0]["target"][2]
+                .as_f64()
+                .is_some_and(|tz| (tz - z).abs() < 1e-12)
+        })
+        .await;
+        lat.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    lat.sort_by(f64::total_cmp);
+    println!(
+        "move → snapshot latency over {} moves: median {:.2} ms, p90 {:.2} ms, max {:.2} ms",
+        lat.len(),
+        lat[lat.len() / 2],
+        lat[lat.len() * 9 / 10],
+        lat[lat.len() - 1]
+    );
+}
