@@ -3,64 +3,14 @@
 use crate::recorder::Recorder;
 use crate::report::{html, verdict, Report};
 use crate::summary::{final_state, peak_rows, peak_table, Summary};
-use anyhow::{anyhow, bail, Context};
+use anyhow::{anyhow, Context};
 use pliant_assembly::ergonomics::{ErgonomicLimits, ErgonomicProfile};
-use pliant_assembly::stub::PressFit;
-use pliant_assembly::{ClipSite, Runner, StubSite};
+use pliant_assembly::Runner;
 use pliant_core::{Model, State};
-use pliant_scene::{demo_scene, load_scene_file, HoseEnd, LoadedScene};
+use pliant_scene::{demo_scene, load_scene_file};
 use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
-
-/// The scene's stubs and clips, tied to the model's nodes. A stub must name its hose end
-/// and a clip its hose, unless the scene has only one hose.
-fn fastener_sites(
-    scene: &LoadedScene,
-    model: &Model,
-) -> anyhow::Result<(Vec<StubSite>, Vec<ClipSite>)> {
-    let only_hose = (model.hoses.len() == 1).then_some(0);
-    let mut stubs = Vec::with_capacity(scene.stubs.len());
-    for s in &scene.stubs {
-        let end = s
-            .hose_end
-            .or(only_hose.map(|hose| HoseEnd { hose, at_end: true }));
-        let Some(end) = end else {
-            bail!(
-                "stub '{}': name the hose end that goes onto it (`hose` and `end`)",
-                s.name
-            )
-        };
-        let info = &model.hoses[end.hose];
-        let spec = &scene.world.hoses[end.hose];
-        let local = end.node(info.node_count);
-        let inner = if end.at_end { local - 1 } else { local + 1 };
-        let section = spec.sections[if spec.sections.len() == 1 { 0 } else { local }];
-        let fit = PressFit::new(&s.spec, &section, &spec.material)
-            .map_err(|e| anyhow!("stub '{}': {e}", s.name))?;
-        stubs.push(StubSite {
-            name: s.name.clone(),
-            fit,
-            end_node: info.node(local),
-            inner_node: info.node(inner),
-        });
-    }
-    let mut clips = Vec::with_capacity(scene.clips.len());
-    for c in &scene.clips {
-        let Some(hose) = c.hose.or(only_hose) else {
-            bail!(
-                "clip '{}': name the hose that goes into it (`hose`)",
-                c.name
-            )
-        };
-        clips.push(ClipSite {
-            name: c.name.clone(),
-            spec: c.spec,
-            hose,
-        });
-    }
-    Ok((stubs, clips))
-}
 
 pub fn run(
     scene_path: Option<&Path>,
@@ -100,7 +50,7 @@ pub fn run(
             .with_context(|| format!("--ergonomics '{text}'"))?,
         None => scene.ergonomics,
     };
-    let (stubs, clips) = fastener_sites(&scene, &model)?;
+    let (stubs, clips) = scene.fastener_sites(&model).map_err(|e| anyhow!(e))?;
     let outcome = Runner::new(&model)
         .with_ergonomics(profile)
         .with_fasteners(stubs, clips)

@@ -14,6 +14,7 @@ pub mod centerline;
 pub mod connectors;
 pub mod ergonomics;
 pub mod error;
+mod fastener_sites;
 pub mod format;
 pub mod hoses;
 pub mod library;
