@@ -1,7 +1,8 @@
 //! Connector stubs (SPEC L6) and clips (SPEC L7) acting on the simulation: each step the
 //! assembly layer observes the hose, advances each fastener's state machine and turns the
 //! state into load cases — the stub's press-fit friction as a force on the hose end while
-//! it is pushed on, an L1 fix once it is released on the stub; the clip's snap force on
+//! it is pushed on, an L1 fix once it is released on the stub (on the stub's axis, the end
+//! turned onto it); the clip's snap force on
 //! the beam crossing the clip while it snaps in, an L1 fix of that point once seated.
 //! Forces on a node a hand holds end up in the hand's load, which is what the worker
 //! feels.
@@ -10,6 +11,7 @@ use crate::clip::{ClipObservation, ClipSpec, ClipState, ClipTolerance};
 use crate::stub::{PressFit, StubObservation, StubState, StubTolerance};
 use glam::DVec3;
 use pliant_core::loads::{DeadLoad, Fix, LoadCase, LoadCaseId};
+use pliant_core::math::rotation_between;
 use pliant_core::{Model, State};
 use serde::Serialize;
 
@@ -222,12 +224,17 @@ fn update_stub(
     s.state = next;
     let mut force = DVec3::ZERO;
     match next {
-        StubState::Fixed { .. } if !grabbed => {
+        StubState::Fixed { depth } if !grabbed => {
             if s.fix.is_none() {
+                // the end sits on the stub: on its axis at the insertion depth, its tangent
+                // turned onto the axis (SPEC L6: the hose end is aligned with the stub)
+                let position = stub.origin() + axis * depth;
+                let tangent = (state.x[e] - state.x[n]).normalize_or(axis);
+                let orientation = (rotation_between(tangent, axis) * state.q[e]).normalize();
                 s.fix = Some(state.loads.add(LoadCase::Fix(Fix {
                     node: e,
-                    position: state.x[e],
-                    orientation: state.q[e],
+                    position,
+                    orientation,
                 })));
             }
         }

@@ -157,3 +157,43 @@ fn released_on_the_stub_it_stays_and_pulling_hard_takes_it_off() {
         "peak pull {peak_pull} N, holding {holding} N"
     );
 }
+
+#[test]
+fn released_slightly_off_axis_the_end_is_aligned_with_the_stub() {
+    let (model, site, _) = setup();
+    let stub = *site.fit.stub();
+    let mut state = State::at_rest(&model);
+    let actions = vec![
+        Action::Grab {
+            hand: 0,
+            at: DVec3::new(L - 0.01, 0.0, 0.0),
+        },
+        // ends 3 mm beside the axis, well within the stub's reach
+        Action::MoveHand {
+            hand: 0,
+            path: Some(MovePath::By(vec![DVec3::new(0.024, 0.003, 0.0)])),
+            rotation: None,
+            duration: 2.4,
+            speed: None,
+            spline: false,
+            wait: true,
+        },
+        Action::ReleaseHand { hand: 0 },
+        Action::Run { duration: 0.5 },
+    ];
+    let summary = Runner::new(&model)
+        .with_fasteners(vec![site], vec![])
+        .run(&Timeline { actions }, &mut state, &mut Trace::default())
+        .unwrap();
+    assert!(summary.fasteners[0].assembled);
+    assert!(
+        stub.lateral_distance(state.x[N]) < 1e-9,
+        "end {} m off the axis",
+        stub.lateral_distance(state.x[N])
+    );
+    let tangent = (state.q[N] * DVec3::X).normalize();
+    assert!(
+        tangent.dot(stub.axis()) > 1.0 - 1e-9,
+        "end tangent {tangent:?}"
+    );
+}
