@@ -10,7 +10,9 @@ use glam::{DQuat, DVec3};
 use pliant_assembly::ergonomics::{
     colour_value, ErgonomicLimits, ErgonomicProfile, HandAssessment,
 };
-use pliant_assembly::Hand;
+use pliant_assembly::fasteners::Fasteners;
+use pliant_assembly::{Action, ClipSite, Hand, StubSite};
+use pliant_core::loads::{DeadLoad, Fix, LoadCase};
 use pliant_core::{explicit, health, Model, State};
 use pliant_scene::LoadedScene;
 use std::collections::BTreeMap;
@@ -96,11 +98,15 @@ impl Session {
             .and_then(|m| m.with_stiffened_spans(&scene.stiffened_spans()))
             .map_err(|e| SessionError::Model(e.to_string()))?;
         let data = Arc::new(SceneData::new(scene, &model, 60.0));
+        let sites = scene.fastener_sites(&model).map_err(SessionError::Model)?;
         let (tx, rx) = mpsc::channel();
         let epoch = Arc::new(AtomicU64::new(0));
         let stop = Arc::new(AtomicBool::new(false));
+        let initial = initial_actions(scene);
         let mut sim = Sim::new(
             model,
+            sites,
+            initial,
             scene.ergonomics.clone(),
             epoch.clone(),
             options.paused,
@@ -172,6 +178,13 @@ struct Interactive {
 struct Sim {
     model: Model,
     state: State,
+    /// Stubs and clips (SPEC L6, L7): their sites, kept for resets, and their runtime.
+    sites: (Vec<StubSite>, Vec<ClipSite>),
+    /// The scene's initial load cases (its timeline's leading fixes and loads), kept for
+    /// resets.
+    initial: Vec<Action>,
+    fasteners: Fasteners,
+    hand_forces: Vec<DVec3>,
     hands: BTreeMap<HandId, Interactive>,
     paused: bool,
     epoch: Arc<AtomicU64>,
@@ -186,11 +199,24 @@ struct Sim {
 }
 
 impl Sim {
-    fn new(model: Model, profile: ErgonomicProfile, epoch: Arc<AtomicU64>, paused: bool) -> Sim {
-        let state = State::at_rest(&model);
+    fn new(
+        model: Model,
+        sites: (Vec<StubSite>, Vec<ClipSite>),
+        initial: Vec<Action>,
+        profile: ErgonomicProfile,
+        epoch: Arc<AtomicU64>,
+        paused: bool,
+    ) -> Sim {
+        let mut state = State::at_rest(&model);
+        apply_initial(&model, &mut state, &initial);
+        let fasteners = Fasteners::new(&mut state, sites.0.clone(), sites.1.clone());
         Sim {
             model,
             state,
+            sites,
+            initial,
+            fasteners,
+            hand_forces: Vec::with_capacity(16),
             hands: BTreeMap::new(),
             paused,
             epoch,
@@ -328,6 +354,9 @@ impl Sim {
     /// Back to rest, hands released. A client's `reset` has counted the epoch already.
     fn reset(&mut self, divergence: Option<String>) {
         self.state = State::at_rest(&self.model);
+        apply_initial(&self.model, &mut self.state, &self.initial);
+        self.fasteners =
+            Fasteners::new(&mut self.state, self.sites.0.clone(), self.sites.1.clone());
         self.hands.clear();
         self.steps_since_check = 0;
         if let Some(message) = divergence {
@@ -350,6 +379,20 @@ impl Sim {
             h.pose.1 = h.pose.1.rotate_towards(h.target.1, HAND_MAX_TURN_RATE * dt);
             h.hand.set_pose(h.pose.0, h.pose.1);
             h.hand.update(&mut self.state, t);
+        }
+        if !self.fasteners.is_empty() {
+            // the hands' loads of the last step (buffer reused: no allocation per step)
+            self.hand_forces.clear();
+            for h in self.hands.values() {
+                self.hand_forces
+                    .push(h.hand.load(&self.model, &self.state).force);
+            }
+            let (hands, forces) = (&self.hands, &self.hand_forces);
+            let holder = |node: usize| hands.values().position(|h| h.hand.holds(node));
+            let held = |node: usize| holder(node).is_some();
+            let force = |node: usize| holder(node).map_or(DVec3::ZERO, |k| forces[k]);
+            self.fasteners
+                .update(&self.model, &mut self.state, &held, &force);
         }
         explicit::step(&self.model, &mut self.state);
         self.steps_since_check += 1;
@@ -410,8 +453,51 @@ impl Sim {
             epoch: self.epoch.load(Ordering::SeqCst),
             hoses,
             hands,
+            fasteners: self.fasteners.reports(),
             notice: self.notice.clone(),
             ..Default::default()
+        }
+    }
+}
+
+/// A scene's initial load cases (SPEC §5): the leading instantaneous actions of its
+/// timeline — fixes and dead loads — up to the first action that takes time or involves a
+/// hand. A live session starts from them; the rest of the timeline is the script of
+/// `pliant run`, not of an interactive session.
+fn initial_actions(scene: &LoadedScene) -> Vec<Action> {
+    scene
+        .timeline
+        .actions
+        .iter()
+        .take_while(|a| matches!(a, Action::Fix { .. } | Action::Load { .. }))
+        .cloned()
+        .collect()
+}
+
+fn apply_initial(model: &Model, state: &mut State, actions: &[Action]) {
+    for a in actions {
+        match a {
+            Action::Fix { node } => {
+                let i = model.hoses[node.hose].node(node.node);
+                state.loads.add(LoadCase::Fix(Fix {
+                    node: i,
+                    position: state.x[i],
+                    orientation: state.q[i],
+                }));
+            }
+            Action::Load {
+                node,
+                force,
+                moment,
+            } => {
+                let i = model.hoses[node.hose].node(node.node);
+                state.loads.add(LoadCase::DeadLoad(DeadLoad {
+                    node: i,
+                    force: *force,
+                    moment: *moment,
+                }));
+            }
+            _ => {}
         }
     }
 }

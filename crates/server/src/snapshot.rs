@@ -119,6 +119,9 @@ pub struct Snapshot {
     pub epoch: u64,
     pub hoses: Vec<HoseSnapshot>,
     pub hands: Vec<HandSnapshot>,
+    /// Stubs and clips (SPEC L6, L7): `final_state` is the state now, `assembled` whether
+    /// the hose is fixed on the stub / seated in the clip, `max_force` the peak so far.
+    pub fasteners: Vec<pliant_assembly::FastenerReport>,
     /// Something the viewer should tell the user (e.g. the simulation diverged and was
     /// reset).
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -322,3 +322,62 @@ async fn measure_move_to_snapshot_latency() {
         lat[lat.len() - 1]
     );
 }
+
+/// The demo's stub works in a live session: a client grabs the lower hose's free end,
+/// turns it onto the stub's axis, pushes it on and lets go — the snapshot's stub reports
+/// the end fixed on it. The scene's initial fixes hold the other hose ends.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_client_pushes_the_hose_onto_the_stub() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    // as in examples/engine_bay.toml
+    send(
+        &mut ws,
+        json!({"type": "grab", "hand_id": 0, "position": [-0.170, -0.600, 0.250]}),
+    )
+    .await;
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let turned = [0.0, 0.0, h, h]; // 90° about z, as [x, y, z, w]
+    let approach = [-0.040, -0.360, 0.250];
+    send(
+        &mut ws,
+        json!({"type": "move", "hand_id": 0, "position": approach, "orientation": turned}),
+    )
+    .await;
+    next_where(&mut ws, "snapshot", |v| {
+        v["hands"][0]["position"].as_array().is_some_and(|p| {
+            let p: Vec<f64> = p.iter().map(|x| x.as_f64().unwrap()).collect();
+            dist([p[0], p[1], p[2]], approach) < 1e-6
+        })
+    })
+    .await;
+    let on = [-0.040, -0.222, 0.250];
+    send(
+        &mut ws,
+        json!({"type": "move", "hand_id": 0, "position": on, "orientation": turned}),
+    )
+    .await;
+    let inserting = next_where(&mut ws, "snapshot", |v| {
+        v["fasteners"][0]["final_state"] == "inserting"
+    })
+    .await;
+    assert_eq!(inserting["fasteners"][0]["kind"], "stub");
+    next_where(&mut ws, "snapshot", |v| {
+        v["hands"][0]["position"].as_array().is_some_and(|p| {
+            let p: Vec<f64> = p.iter().map(|x| x.as_f64().unwrap()).collect();
+            dist([p[0], p[1], p[2]], on) < 1e-6
+        })
+    })
+    .await;
+    send(&mut ws, json!({"type": "release", "hand_id": 0})).await;
+    let fixed = next_where(&mut ws, "snapshot", |v| {
+        v["fasteners"][0]["assembled"] == true
+    })
+    .await;
+    assert_eq!(fixed["fasteners"][0]["final_state"], "fixed");
+    assert!(
+        fixed["fasteners"][0]["max_force"].as_f64().unwrap() > 10.0,
+        "the press fit resisted"
+    );
+}
