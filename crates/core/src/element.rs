@@ -17,7 +17,10 @@
 //! moments are −m_a, −m_b plus ½ (s·e₁) e₁ each (the twist of E is the nodes' mean).
 //! Forces and moments are exactly in equilibrium for any configuration.
 
-use crate::math::{exp_map, left_jacobian_inverse_transpose_times, log_map, rotation_between};
+use crate::autodiff::{Quat, Scalar, V3};
+use crate::math::{
+    exp_map, left_jacobian_inverse_transpose_times_of, log_map_of, rotation_between_of,
+};
 use crate::{Material, Section};
 use glam::{DQuat, DVec3};
 
@@ -76,6 +79,23 @@ pub struct ElementLoads {
     pub axial_force: f64,
 }
 
+/// [`Deformation`] over any [`Scalar`].
+#[derive(Clone, Copy, Debug)]
+struct DeformationOf<T> {
+    chord_dir: V3<T>,
+    length: T,
+    frame: Quat<T>,
+    theta: [V3<T>; 2],
+}
+
+/// [`ElementLoads`] over any [`Scalar`].
+#[derive(Clone, Copy, Debug)]
+pub struct ElementLoadsOf<T> {
+    pub force: [V3<T>; 2],
+    pub moment: [V3<T>; 2],
+    pub axial_force: f64,
+}
+
 impl BeamElement {
     /// Builds an element between global nodes `a` and `b` from their rest positions and
     /// rest material frames. The section is the mean of the two nodes' sections.
@@ -87,7 +107,8 @@ impl BeamElement {
         material: &Material,
     ) -> Self {
         let chord = rest_x[1] - rest_x[0];
-        let frame = aligned_mean_frame(rest_q[0], rest_q[1], chord.normalize());
+        let frame: DQuat =
+            aligned_mean_frame(rest_q[0].into(), rest_q[1].into(), chord.normalize().into()).into();
         let area = section.area();
         let e_b = material.bending_modulus();
         Self {
@@ -106,76 +127,119 @@ impl BeamElement {
 
     /// Co-rotational kinematics: chord, element frame, end rotations relative to it.
     pub fn deformation(&self, x: [DVec3; 2], q: [DQuat; 2]) -> Deformation {
+        let d = self.deformation_of([x[0].into(), x[1].into()], [q[0].into(), q[1].into()]);
+        Deformation {
+            chord_dir: d.chord_dir.into(),
+            length: d.length,
+            frame: d.frame.into(),
+            theta: [d.theta[0].into(), d.theta[1].into()],
+        }
+    }
+
+    /// [`Self::deformation`] over any [`Scalar`].
+    #[inline(always)]
+    fn deformation_of<T: Scalar>(&self, x: [V3<T>; 2], q: [Quat<T>; 2]) -> DeformationOf<T> {
         let chord = x[1] - x[0];
         let length = chord.length();
-        let chord_dir = chord / length;
-        let ra = q[0] * self.rest_offset_a;
-        let rb = q[1] * self.rest_offset_b;
+        let chord_dir = chord.scale(T::cst(1.0) / length);
+        let ra = q[0] * Quat::cst(self.rest_offset_a);
+        let rb = q[1] * Quat::cst(self.rest_offset_b);
         let frame = aligned_mean_frame(ra, rb, chord_dir);
         let inv = frame.conjugate();
-        Deformation {
+        DeformationOf {
             chord_dir,
             length,
             frame,
-            theta: [log_map(inv * ra), log_map(inv * rb)],
+            theta: [log_map_of(inv * ra), log_map_of(inv * rb)],
         }
     }
 
     /// Internal nodal loads, including stiffness-proportional Rayleigh damping with
     /// coefficient `beta` [s] acting on the rates of the same local deformations.
     pub fn loads(&self, ends: &ElementEnds, beta: f64) -> ElementLoads {
-        let d = self.deformation(ends.x, ends.q);
+        let l = self.loads_of::<f64>(
+            [ends.x[0].into(), ends.x[1].into()],
+            [ends.q[0].into(), ends.q[1].into()],
+            [ends.v[0].into(), ends.v[1].into()],
+            [ends.w[0].into(), ends.w[1].into()],
+            beta,
+        );
+        ElementLoads {
+            force: [l.force[0].into(), l.force[1].into()],
+            moment: [l.moment[0].into(), l.moment[1].into()],
+            axial_force: l.axial_force,
+        }
+    }
+
+    /// [`Self::loads`] over any [`Scalar`]: with dual numbers seeded on the end
+    /// increments it gives the consistent tangent ([`crate::tangent`]).
+    #[inline(always)]
+    pub fn loads_of<T: Scalar>(
+        &self,
+        x: [V3<T>; 2],
+        q: [Quat<T>; 2],
+        v: [V3<T>; 2],
+        w: [V3<T>; 2],
+        beta: f64,
+    ) -> ElementLoadsOf<T> {
+        let d = self.deformation_of(x, q);
         let e1 = d.chord_dir;
         let l0 = self.rest_length;
         let strain = (d.length - l0) / l0;
 
         // Deformation rates in the element frame (for damping).
-        let dv = ends.v[1] - ends.v[0];
+        let dv = v[1] - v[0];
         let strain_rate = e1.dot(dv) / l0;
-        let frame_spin = e1.cross(dv) / d.length + e1 * (0.5 * e1.dot(ends.w[0] + ends.w[1]));
+        let frame_spin =
+            e1.cross(dv).scale(T::cst(1.0) / d.length) + e1.scale(e1.dot(w[0] + w[1]) * 0.5);
         let inv = d.frame.conjugate();
-        let rate_a = inv * (ends.w[0] - frame_spin);
-        let rate_b = inv * (ends.w[1] - frame_spin);
+        let rate_a = inv.rotate(w[0] - frame_spin);
+        let rate_b = inv.rotate(w[1] - frame_spin);
 
-        let ea = if strain >= 0.0 {
+        let ea = if strain.re() >= 0.0 {
             self.axial_stiffness_tension
         } else {
             self.axial_stiffness_compression
         };
-        let axial_force = ea * (strain + beta * strain_rate);
+        let axial_force = (strain + strain_rate * beta) * ea;
 
-        let ta = d.theta[0] + beta * rate_a;
-        let tb = d.theta[1] + beta * rate_b;
+        let ta = d.theta[0] + rate_a.scale_f(beta);
+        let tb = d.theta[1] + rate_b.scale_f(beta);
         let (ma_local, mb_local) = self.end_moments(ta, tb);
 
         // Moments conjugate to spatial rotation increments, in global axes.
-        let ma = d.frame * left_jacobian_inverse_transpose_times(d.theta[0], ma_local);
-        let mb = d.frame * left_jacobian_inverse_transpose_times(d.theta[1], mb_local);
+        let ma = d.frame.rotate(left_jacobian_inverse_transpose_times_of(
+            d.theta[0], ma_local,
+        ));
+        let mb = d.frame.rotate(left_jacobian_inverse_transpose_times_of(
+            d.theta[1], mb_local,
+        ));
         let sum = ma + mb;
-        let twist_share = 0.5 * sum.dot(e1) * e1;
-        let force_b = -axial_force * e1 + sum.cross(e1) / d.length;
-        ElementLoads {
+        let twist_share = e1.scale(sum.dot(e1) * 0.5);
+        let force_b = -e1.scale(axial_force) + sum.cross(e1).scale(T::cst(1.0) / d.length);
+        ElementLoadsOf {
             force: [-force_b, force_b],
             moment: [twist_share - ma, twist_share - mb],
-            axial_force,
+            axial_force: axial_force.re(),
         }
     }
 
     /// Local end moments (element axes) for end rotations θ_a, θ_b: torsion G J Δθₓ/l₀ and
     /// the bending law (E I / l₀)·[[4, 2], [2, 4]] in both planes.
-    fn end_moments(&self, ta: DVec3, tb: DVec3) -> (DVec3, DVec3) {
+    #[inline(always)]
+    fn end_moments<T: Scalar>(&self, ta: V3<T>, tb: V3<T>) -> (V3<T>, V3<T>) {
         let l0 = self.rest_length;
         let kb = self.bending_stiffness / l0;
-        let torque = self.torsion_stiffness / l0 * (tb.x - ta.x);
-        let ma = DVec3::new(
+        let torque = (tb.x - ta.x) * (self.torsion_stiffness / l0);
+        let ma = V3::new(
             -torque,
-            kb * (4.0 * ta.y + 2.0 * tb.y),
-            kb * (4.0 * ta.z + 2.0 * tb.z),
+            (ta.y * 4.0 + tb.y * 2.0) * kb,
+            (ta.z * 4.0 + tb.z * 2.0) * kb,
         );
-        let mb = DVec3::new(
+        let mb = V3::new(
             torque,
-            kb * (2.0 * ta.y + 4.0 * tb.y),
-            kb * (2.0 * ta.z + 4.0 * tb.z),
+            (ta.y * 2.0 + tb.y * 4.0) * kb,
+            (ta.z * 2.0 + tb.z * 4.0) * kb,
         );
         (ma, mb)
     }
@@ -202,10 +266,15 @@ impl BeamElement {
 /// The element frame: the midpoint rotation of the two end frames (slerp at ½, which for
 /// unit quaternions in one hemisphere is their normalised sum), turned by the smallest
 /// rotation that lays its x axis onto the chord (Crisfield 1990, §3).
-fn aligned_mean_frame(ra: DQuat, rb: DQuat, chord_dir: DVec3) -> DQuat {
-    let rb = if ra.dot(rb) < 0.0 { -rb } else { rb };
-    let mean = (ra + rb).normalize();
-    (rotation_between(mean * DVec3::X, chord_dir) * mean).normalize()
+fn aligned_mean_frame<T: Scalar>(ra: Quat<T>, rb: Quat<T>, chord_dir: V3<T>) -> Quat<T> {
+    let rb = if ra.dot(rb).re() < 0.0 {
+        rb.negate()
+    } else {
+        rb
+    };
+    let mean = ra.add(rb).normalize();
+    let x_axis = mean.rotate(V3::new(T::cst(1.0), T::cst(0.0), T::cst(0.0)));
+    (rotation_between_of(x_axis, chord_dir) * mean).normalize()
 }
 
 /// Exposed for tests of the element in isolation: rotate a frame by a rotation vector.

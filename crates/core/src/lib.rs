@@ -7,6 +7,7 @@
 //! [`State`] holds everything that changes; [`explicit::step`]`(&model, &mut state)`
 //! advances it.
 
+pub mod autodiff;
 pub mod contact;
 pub mod curve;
 pub mod element;
@@ -24,6 +25,7 @@ pub mod section;
 pub mod spec;
 pub mod state;
 pub mod stiffened;
+pub mod tangent;
 pub mod timestep;
 
 pub use health::Divergence;

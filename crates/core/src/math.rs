@@ -2,6 +2,7 @@
 //! (Rodrigues' formula) from rotation vectors to unit quaternions, its inverse, and the
 //! tangent operator that turns moments conjugate to a rotation vector into spatial moments.
 
+use crate::autodiff::{Quat, Scalar, V3};
 use glam::{DQuat, DVec3};
 
 /// Exponential map: rotation vector φ (axis · angle, any magnitude) → unit quaternion.
@@ -26,24 +27,28 @@ pub fn exp_map(phi: DVec3) -> DQuat {
 /// Logarithm map: unit quaternion → rotation vector of angle in [0, π] (the shorter of
 /// q and −q). Uses atan2 so that small angles keep full relative precision.
 pub fn log_map(q: DQuat) -> DVec3 {
-    let (v, w) = if q.w < 0.0 {
-        (-q.xyz(), -q.w)
-    } else {
-        (q.xyz(), q.w)
-    };
+    log_map_of(Quat::from(q)).into()
+}
+
+/// [`log_map`] over any [`Scalar`] (for the tangent by automatic differentiation).
+#[inline(always)]
+pub fn log_map_of<T: Scalar>(q: Quat<T>) -> V3<T> {
+    let q = if q.w.re() < 0.0 { q.negate() } else { q };
+    let (v, w) = (q.vector(), q.w);
     let s2 = v.length_squared();
     let w2 = w * w;
     // angle/s = 2 atan(x)/(x w) with x = s/w; series of atan(x)/x below x = 0.05
     // (rotations under 0.1 rad, the usual deformation of one element; error < 1e-17)
-    if s2 < 2.5e-3 * w2 {
+    if s2.re() < 2.5e-3 * w2.re() {
         let x2 = s2 / w2;
-        let atan_over_x = 1.0
-            - x2 * (1.0 / 3.0 - x2 * (1.0 / 5.0 - x2 * (1.0 / 7.0 - x2 * (1.0 / 9.0 - x2 / 11.0))));
-        return v * (2.0 * atan_over_x / w);
+        let one = T::cst(1.0);
+        let atan_over_x = one
+            - x2 * (one / 3.0 - x2 * (one / 5.0 - x2 * (one / 7.0 - x2 * (one / 9.0 - x2 / 11.0))));
+        return v.scale(atan_over_x * 2.0 / w);
     }
     let s = s2.sqrt();
-    let angle = 2.0 * s.atan2(w);
-    v * (angle / s)
+    let angle = s.atan2(w) * 2.0;
+    v.scale(angle / s)
 }
 
 /// Moment conjugate to a change of the rotation vector θ, mapped to the moment conjugate
@@ -51,17 +56,23 @@ pub fn log_map(q: DQuat) -> DVec3 {
 /// J_l⁻¹(θ) = I − ½[θ]× + (1/θ² − (1 + cos θ)/(2 θ sin θ)) [θ]×²
 /// (e.g. Bullo & Murray 1995; Ibrahimbegović 1997, eq. 2.19).
 pub fn left_jacobian_inverse_transpose_times(theta: DVec3, moment: DVec3) -> DVec3 {
+    left_jacobian_inverse_transpose_times_of(V3::from(theta), V3::from(moment)).into()
+}
+
+/// [`left_jacobian_inverse_transpose_times`] over any [`Scalar`].
+#[inline(always)]
+pub fn left_jacobian_inverse_transpose_times_of<T: Scalar>(theta: V3<T>, moment: V3<T>) -> V3<T> {
     let t2 = theta.length_squared();
     // c = 1/θ² − (1 + cos θ)/(2 θ sin θ) = 1/12 + θ²/720 + θ⁴/30240 + θ⁶/1209600 + …;
     // the series is used below θ² = 0.1 (truncation error < 3e-12 relative to c)
-    let c = if t2 < 0.1 {
-        1.0 / 12.0 + t2 * (1.0 / 720.0 + t2 * (1.0 / 30240.0 + t2 / 1209600.0))
+    let c = if t2.re() < 0.1 {
+        (t2 * (t2 * (t2 / 1209600.0 + 1.0 / 30240.0) + 1.0 / 720.0)) + 1.0 / 12.0
     } else {
         let t = t2.sqrt();
-        1.0 / t2 - (1.0 + t.cos()) / (2.0 * t * t.sin())
+        T::cst(1.0) / t2 - (t.cos() + 1.0) / (t * t.sin() * 2.0)
     };
     let txm = theta.cross(moment);
-    moment + 0.5 * txm + c * theta.cross(txm)
+    moment + txm.scale_f(0.5) + theta.cross(txm).scale(c)
 }
 
 /// Quaternion rotating the unit vector `from` onto the unit vector `to` by the smallest
@@ -70,13 +81,19 @@ pub fn left_jacobian_inverse_transpose_times(theta: DVec3, moment: DVec3) -> DVe
 /// co-rotational frame must follow the chord exactly, or the rounding shows up as force
 /// noise of order E I/l² · 1e-8.
 pub fn rotation_between(from: DVec3, to: DVec3) -> DQuat {
-    let w = 1.0 + from.dot(to);
-    if w < 1e-12 {
+    rotation_between_of(V3::from(from), V3::from(to)).into()
+}
+
+/// [`rotation_between`] over any [`Scalar`].
+#[inline(always)]
+pub fn rotation_between_of<T: Scalar>(from: V3<T>, to: V3<T>) -> Quat<T> {
+    let w = from.dot(to) + 1.0;
+    if w.re() < 1e-12 {
         // antiparallel: half a turn about any axis normal to `from`
-        return DQuat::from_axis_angle(from.any_orthonormal_vector(), std::f64::consts::PI);
+        let q = DQuat::from_axis_angle(from.re().any_orthonormal_vector(), std::f64::consts::PI);
+        return Quat::cst(q);
     }
-    let c = from.cross(to);
-    DQuat::from_xyzw(c.x, c.y, c.z, w).normalize()
+    Quat::from_parts(from.cross(to), w).normalize()
 }
 
 #[cfg(test)]
