@@ -20,6 +20,7 @@ pub mod mass;
 pub mod material;
 pub mod math;
 pub mod model;
+pub mod newton;
 pub mod relax;
 pub mod section;
 pub mod spec;

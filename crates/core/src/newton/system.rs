@@ -1,0 +1,300 @@
+//! The nonlinear system the Newton solvers ([`super::statics`], [`super::implicit`])
+//! linearise: the total force and moment on every node for a configuration, and its
+//! tangent K = −∂(f, m)/∂u with respect to the node increments u = (δx, δθ).
+//!
+//! What enters, and how:
+//! * elements: loads and their consistent tangent by automatic differentiation
+//!   ([`crate::tangent`]), with stiffness-proportional damping through the velocities;
+//! * gravity m g (constant) and mass-proportional damping −α m v, −α I ω;
+//! * dead loads (constant forces and moments in global axes — no tangent);
+//! * stiffened sections (SPEC M6): their elements with axial, bending and torsion
+//!   stiffness × [`RIGID_FACTOR`] — rigid to 1e-6 relative, where the explicit solver
+//!   uses an exact rigid body (its time step forbids stiff springs; Newton does not care);
+//! * rigid parts: a penalty spring per penetrating node ball, f = k (r − d) n with
+//!   k = E_c A / l₀ of the node's elements and tangent k n nᵀ (frictionless: friction is
+//!   the explicit solver's);
+//! * hose–hose contact: the explicit solver's penalty forces at the current positions,
+//!   without tangent (a fixed-point term; converges for the light contact of assembly).
+//!
+//! Prescribed nodes (fix, drive, hand) are eliminated: their increment is zero.
+
+use super::block_tridiagonal::BlockTridiagonal;
+use crate::contact::hose_contact_forces;
+use crate::element::{BeamElement, ElementEnds};
+use crate::loads::LoadCase;
+use crate::tangent::element_tangent;
+use crate::{Model, State};
+use glam::{DQuat, DVec3};
+use nalgebra::{Matrix3, Vector6};
+
+/// How much stiffer than the hose a stiffened section's elements are in the Newton solvers.
+pub const RIGID_FACTOR: f64 = 1e6;
+
+/// Buffers of the Newton solvers, allocated once per model.
+#[derive(Clone, Debug)]
+pub struct NewtonSystem {
+    /// The model's elements, stiffened-section ones made rigid.
+    pub elements: Vec<BeamElement>,
+    pub matrix: BlockTridiagonal,
+    /// Right-hand side, then the solution of the linear solve.
+    pub rhs: Vec<Vector6<f64>>,
+    pub force: Vec<DVec3>,
+    pub moment: Vec<DVec3>,
+    /// Force of rigid parts on each node (penalty), last assembly.
+    pub contact_force: Vec<DVec3>,
+    /// Penalty stiffness per node [N/m].
+    pub contact_stiffness: Vec<f64>,
+    /// Whether a node's increment is prescribed (zero).
+    pub prescribed: Vec<bool>,
+}
+
+/// Why a Newton solver could not be set up for a model.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("the Newton solvers need each element to join consecutive nodes; element {0} does not")]
+pub struct NotAChain(pub usize);
+
+impl NewtonSystem {
+    pub fn new(model: &Model) -> Result<Self, NotAChain> {
+        let n = model.node_count();
+        let mut elements = model.elements.clone();
+        let mut contact_stiffness = vec![0.0_f64; n];
+        for (k, e) in elements.iter_mut().enumerate() {
+            if e.node_b != e.node_a + 1 {
+                return Err(NotAChain(k));
+            }
+            let axial = e.axial_stiffness_compression / e.rest_length;
+            contact_stiffness[e.node_a] = contact_stiffness[e.node_a].max(axial);
+            contact_stiffness[e.node_b] = contact_stiffness[e.node_b].max(axial);
+            let rigid = matches!(
+                (model.body_of[e.node_a], model.body_of[e.node_b]),
+                (Some(a), Some(b)) if a == b
+            );
+            if rigid {
+                e.axial_stiffness_tension *= RIGID_FACTOR;
+                e.axial_stiffness_compression *= RIGID_FACTOR;
+                e.bending_stiffness *= RIGID_FACTOR;
+                e.torsion_stiffness *= RIGID_FACTOR;
+            }
+        }
+        Ok(Self {
+            elements,
+            matrix: BlockTridiagonal::new(n),
+            rhs: vec![Vector6::zeros(); n],
+            force: vec![DVec3::ZERO; n],
+            moment: vec![DVec3::ZERO; n],
+            contact_force: vec![DVec3::ZERO; n],
+            contact_stiffness,
+            prescribed: vec![false; n],
+        })
+    }
+
+    /// Total loads on every node at (x, q, v, w) and their tangent; `rate_factor` c is
+    /// ∂v/∂δx (0 for statics, γ/(βΔt) for Newmark). Writes `force`, `moment`,
+    /// `contact_force` and `matrix` (prescribed nodes not yet eliminated).
+    pub fn assemble(&mut self, model: &Model, state: &mut State, rate_factor: f64) {
+        self.matrix.clear();
+        self.force.fill(DVec3::ZERO);
+        self.moment.fill(DVec3::ZERO);
+        self.contact_force.fill(DVec3::ZERO);
+        let beta = model.damping_stiffness;
+        for e in &self.elements {
+            let (a, b) = (e.node_a, e.node_b);
+            let ends = ElementEnds {
+                x: [state.x[a], state.x[b]],
+                q: [state.q[a], state.q[b]],
+                v: [state.v[a], state.v[b]],
+                w: [state.w[a], state.w[b]],
+            };
+            let (loads, k) = element_tangent(e, &ends, beta, rate_factor);
+            self.force[a] += loads.force[0];
+            self.force[b] += loads.force[1];
+            self.moment[a] += loads.moment[0];
+            self.moment[b] += loads.moment[1];
+            self.matrix.diag[a] += k.fixed_view::<6, 6>(0, 0);
+            self.matrix.diag[b] += k.fixed_view::<6, 6>(6, 6);
+            self.matrix.upper[a] += k.fixed_view::<6, 6>(0, 6);
+            self.matrix.lower[a] += k.fixed_view::<6, 6>(6, 0);
+        }
+        let alpha = model.damping_mass;
+        for i in 0..self.force.len() {
+            self.force[i] += model.mass[i] * (model.gravity - alpha * state.v[i]);
+            self.moment[i] -= alpha * model.inertia[i] * state.w[i];
+            let (dm, di) = (alpha * model.mass[i] * rate_factor, alpha * model.inertia[i] * rate_factor);
+            for k in 0..3 {
+                self.matrix.diag[i][(k, k)] += dm;
+                self.matrix.diag[i][(k + 3, k + 3)] += di;
+            }
+        }
+        for (_, case) in state.loads.iter() {
+            if let LoadCase::DeadLoad(d) = case {
+                self.force[d.node] += d.force;
+                self.moment[d.node] += d.moment;
+            }
+        }
+        if !model.environment.is_empty() {
+            self.add_contact(model, state);
+        }
+        if state.hose_contact.active {
+            hose_contact_forces(
+                model,
+                &state.x,
+                &state.v,
+                &mut state.hose_contact,
+                &mut state.hose_contact_force,
+            );
+            for (f, c) in self.force.iter_mut().zip(&state.hose_contact_force) {
+                *f += *c;
+            }
+        }
+    }
+
+    /// Penalty contact of node balls with the rigid parts (see the module doc).
+    fn add_contact(&mut self, model: &Model, state: &State) {
+        for i in 0..self.force.len() {
+            let r = model.radius[i];
+            let Some((_, p, d)) = model.environment.closest_point(state.x[i], r) else {
+                continue;
+            };
+            if d >= r || d <= 1e-12 * r {
+                continue;
+            }
+            let n = (state.x[i] - p) / d;
+            let k = self.contact_stiffness[i];
+            let f = n * (k * (r - d));
+            self.force[i] += f;
+            self.contact_force[i] += f;
+            let nn = Matrix3::new(
+                n.x * n.x,
+                n.x * n.y,
+                n.x * n.z,
+                n.y * n.x,
+                n.y * n.y,
+                n.y * n.z,
+                n.z * n.x,
+                n.z * n.y,
+                n.z * n.z,
+            );
+            let mut block = self.matrix.diag[i].fixed_view_mut::<3, 3>(0, 0);
+            block += nn * k;
+        }
+    }
+
+    /// Potential energy of the conservative loads at the state's configuration: strain
+    /// energy (rigid-factor elements), gravity, dead forces, contact springs. Used by the
+    /// static line search. Dead moments have no potential (they are not conservative
+    /// under finite rotations) and are left out.
+    pub fn potential_energy(&self, model: &Model, state: &State) -> f64 {
+        let mut e = 0.0;
+        for el in &self.elements {
+            let (a, b) = (el.node_a, el.node_b);
+            e += el.strain_energy([state.x[a], state.x[b]], [state.q[a], state.q[b]]);
+        }
+        for i in 0..state.x.len() {
+            e -= model.mass[i] * model.gravity.dot(state.x[i]);
+        }
+        for (_, case) in state.loads.iter() {
+            if let LoadCase::DeadLoad(d) = case {
+                e -= d.force.dot(state.x[d.node]);
+            }
+        }
+        if !model.environment.is_empty() {
+            for i in 0..state.x.len() {
+                let r = model.radius[i];
+                if let Some((_, _, d)) = model.environment.closest_point(state.x[i], r) {
+                    if d < r {
+                        e += 0.5 * self.contact_stiffness[i] * (r - d) * (r - d);
+                    }
+                }
+            }
+        }
+        e
+    }
+
+    /// Marks the nodes prescribed by kinematic load cases at time `t`, moves them there
+    /// and records their previous poses' velocities over `dt` (for dynamics; pass
+    /// `dt = None` for statics, which zeroes them).
+    pub fn apply_prescribed(&mut self, state: &mut State, t: f64, dt: Option<f64>) {
+        self.prescribed.fill(false);
+        for (_, case) in state.loads.iter() {
+            let Some((x_new, q_new)) = case.prescribed_pose(t) else {
+                continue;
+            };
+            let i = case.node();
+            match dt {
+                Some(h) => {
+                    state.v[i] = (x_new - state.x[i]) / h;
+                    state.w[i] = crate::math::log_map(q_new * state.q[i].conjugate()) / h;
+                }
+                None => {
+                    state.v[i] = DVec3::ZERO;
+                    state.w[i] = DVec3::ZERO;
+                }
+            }
+            state.x[i] = x_new;
+            state.q[i] = q_new;
+            self.prescribed[i] = true;
+        }
+    }
+
+    /// Eliminates the prescribed nodes from the matrix and zeroes their right-hand side.
+    pub fn eliminate_prescribed(&mut self) {
+        for i in 0..self.prescribed.len() {
+            if self.prescribed[i] {
+                self.matrix.eliminate(i);
+                self.rhs[i] = Vector6::zeros();
+            }
+        }
+    }
+}
+
+/// Applies the increment `s · rhs` to the free nodes: x += s δx, q ← exp(s δθ) q.
+pub fn apply_increment(state: &mut State, rhs: &[Vector6<f64>], prescribed: &[bool], s: f64) {
+    for i in 0..state.x.len() {
+        if prescribed[i] {
+            continue;
+        }
+        let d = rhs[i];
+        state.x[i] += s * DVec3::new(d[0], d[1], d[2]);
+        let phi = s * DVec3::new(d[3], d[4], d[5]);
+        state.q[i] = (crate::math::exp_map(phi) * state.q[i]).normalize();
+    }
+}
+
+/// Largest force and moment residual over the free nodes.
+pub fn residual_norms(force: &[DVec3], moment: &[DVec3], prescribed: &[bool]) -> (f64, f64) {
+    let mut f: f64 = 0.0;
+    let mut m: f64 = 0.0;
+    for i in 0..force.len() {
+        if !prescribed[i] {
+            f = f.max(force[i].length());
+            m = m.max(moment[i].length());
+        }
+    }
+    (f, m)
+}
+
+/// Puts each stiffened section's body state where its nodes now are (the Newton solvers
+/// move the nodes; the explicit solver and the reports read the bodies).
+pub fn sync_bodies(model: &Model, state: &mut State) {
+    for (b, body) in model.bodies.iter().enumerate() {
+        let first = body.nodes.start;
+        let centre = body
+            .nodes
+            .clone()
+            .map(|i| model.mass[i] * state.x[i])
+            .sum::<DVec3>()
+            / body.mass;
+        let velocity = body
+            .nodes
+            .clone()
+            .map(|i| model.mass[i] * state.v[i])
+            .sum::<DVec3>()
+            / body.mass;
+        let orientation: DQuat = (state.q[first] * body.frames[0].conjugate()).normalize();
+        let s = &mut state.bodies[b];
+        s.centre = centre;
+        s.orientation = orientation;
+        s.velocity = velocity;
+        s.angular_velocity = state.w[first];
+    }
+}

@@ -1,0 +1,106 @@
+//! The Newton solvers (issue 5): quasi-static equilibrium against the exact elastica and
+//! against the explicit solver's relaxed state; implicit HHT-α at large steps.
+
+use glam::{DQuat, DVec3};
+use pliant_core::loads::{DeadLoad, Fix, LoadCase};
+use pliant_core::newton::{ImplicitOptions, ImplicitSolver, StaticSolver};
+use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
+
+fn cantilever(n: usize, material: Material, section: Section, gravity: DVec3) -> (Model, State) {
+    let nodes = (0..=n)
+        .map(|i| DVec3::new(i as f64 / n as f64, 0.0, 0.0))
+        .collect();
+    let model = Model::build(&WorldSpec {
+        hoses: vec![HoseSpec {
+            name: "h".into(),
+            material,
+            nodes,
+            sections: vec![section],
+            normal_hint: Some(DVec3::Y),
+        }],
+        rigid_parts: vec![],
+        settings: SimSettings {
+            gravity,
+            damping_mass: 4.0,
+            ..Default::default()
+        },
+    })
+    .unwrap();
+    let mut state = State::at_rest(&model);
+    state.loads.add(LoadCase::Fix(Fix {
+        node: 0,
+        position: DVec3::ZERO,
+        orientation: DQuat::IDENTITY,
+    }));
+    (model, state)
+}
+
+fn hose1() -> (Material, Section) {
+    (
+        Material {
+            e_tension: 11.583e6,
+            e_compression: 13.1363e6,
+            e_bending: None,
+            poisson: 0.49,
+            density: 940.0,
+        },
+        Section::new(0.010, 0.016),
+    )
+}
+
+/// λ = PL²/EI = 2: exact w/L = 0.493457 (Mattiasson 1981), in one static solve from the
+/// straight rest shape.
+#[test]
+fn static_tip_load_matches_the_elastica() {
+    let (mat, sec) = hose1();
+    let (model, mut state) = cantilever(40, mat.clone(), sec, DVec3::ZERO);
+    let ei = mat.bending_modulus() * sec.second_moment();
+    state.loads.add(LoadCase::DeadLoad(DeadLoad {
+        node: 40,
+        force: DVec3::new(0.0, -2.0 * ei, 0.0),
+        moment: DVec3::ZERO,
+    }));
+    let mut solver = StaticSolver::new(&model).unwrap();
+    let report = solver.solve(&model, &mut state).unwrap();
+    println!("{report:?}");
+    assert!(report.converged, "{report:?}");
+    let w = -state.x[40].y;
+    assert!((w - 0.493457).abs() < 0.005 * 0.493457, "w/L = {w}");
+    // the support carries the load
+    assert!((state.reaction_force[0].y - 2.0 * ei).abs() < 1e-6 * ei);
+}
+
+/// A steel tube (E = 200 GPa) hanging under gravity at Δt = 10 ms: every step converges
+/// and it comes to rest at the static solution.
+#[test]
+fn implicit_steel_tube_at_10_ms_reaches_the_static_state() {
+    let mat = Material::isotropic(200e9, 0.3, 7850.0);
+    let sec = Section::new(0.008, 0.010);
+    let g = DVec3::new(0.0, 0.0, -9.81);
+    let (model, mut state) = cantilever(30, mat.clone(), sec, g);
+    let mut statics = state.clone();
+    StaticSolver::new(&model)
+        .unwrap()
+        .solve(&model, &mut statics)
+        .unwrap();
+    let mut solver = ImplicitSolver::new(
+        &model,
+        ImplicitOptions {
+            time_step: 0.01,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let mut iters = 0;
+    for _ in 0..1000 {
+        let r = solver.step(&model, &mut state).unwrap();
+        iters += r.iterations;
+        assert_eq!(r.substeps, 1);
+    }
+    println!("mean iterations {}", iters as f64 / 1000.0);
+    let tip = state.x[30];
+    let exact = statics.x[30];
+    println!("implicit {tip:?} static {exact:?}");
+    assert!((tip - exact).length() < 1e-3 * exact.z.abs());
+}
+
