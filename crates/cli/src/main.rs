@@ -2,13 +2,11 @@
 //! solutions, benchmark the solver.
 
 mod bench;
-mod recorder;
-mod report;
 mod run_cmd;
 mod serve_cmd;
-mod summary;
 mod validate_cmd;
-mod vtk;
+
+use pliant_cli::{recorder, report, summary};
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;

@@ -24,6 +24,25 @@ pub struct HandSample {
     pub limit: f64,
 }
 
+impl HandSample {
+    /// The sample of hand record `r` at time `t` (ratio and limit of its worst load
+    /// kind; 0 when it was not assessed).
+    pub fn new(time: f64, r: &HandRecord) -> Self {
+        let (ratio, limit) = r
+            .assessment
+            .as_ref()
+            .map_or((0.0, 0.0), |a| (a.worst().ratio, a.worst().limit));
+        HandSample {
+            time,
+            hand: r.hand,
+            force: r.load.force.length(),
+            torque: r.load.torque.length(),
+            ratio,
+            limit,
+        }
+    }
+}
+
 pub struct Recorder {
     nodes: BufWriter<File>,
     reactions: BufWriter<File>,
@@ -194,14 +213,7 @@ impl Recorder {
                 r.hand, r.load.hose, p.x, p.y, p.z, f.x, f.y, f.z, m.x, m.y, m.z, f.length(), m.length()
             )?;
             self.hose_colour[r.load.hose] = self.hose_colour[r.load.hose].max(colour);
-            self.hand_series.push(HandSample {
-                time: t,
-                hand: r.hand,
-                force: f.length(),
-                torque: m.length(),
-                ratio,
-                limit,
-            });
+            self.hand_series.push(HandSample::new(t, r));
         }
         for (h, c) in self.hose_colour.iter().enumerate() {
             writeln!(self.colours, "{t:.6},{h},{c:.4}")?;

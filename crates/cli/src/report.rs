@@ -3,9 +3,12 @@
 //! self-contained `report.html` (inline SVG plots, no scripts) for people.
 
 use crate::recorder::HandSample;
+use anyhow::Context;
+use pliant_assembly::ergonomics::{ErgonomicLimits, ErgonomicProfile};
 use pliant_assembly::RunSummary;
 use serde::Serialize;
 use std::fmt::Write as _;
+use std::path::Path;
 
 #[derive(Serialize)]
 pub struct Verdict {
@@ -76,6 +79,37 @@ pub fn verdict(run: &RunSummary, diverged: Option<&str>) -> Verdict {
         reasons.push("every hand load stayed within its ergonomic limit value, and every stub and clip was fitted".into());
     }
     Verdict { feasible, reasons }
+}
+
+/// Writes `report.json` and `report.html` of a run into the folder `out` (which must
+/// exist) and returns the verdict. `samples` are the hand loads at the recorded times;
+/// `profile` is the ergonomic profile the run was judged with (its push limit is drawn
+/// on the stub and clip plots).
+pub fn write_reports(
+    out: &Path,
+    scene: &str,
+    run: &RunSummary,
+    diverged: Option<&str>,
+    samples: &[HandSample],
+    profile: &ErgonomicProfile,
+) -> anyhow::Result<Verdict> {
+    let report = Report {
+        scene,
+        ergonomics: &run.ergonomics,
+        verdict: verdict(run, diverged),
+        run,
+        diverged,
+    };
+    let write = |name: &str, text: String| {
+        let path = out.join(name);
+        std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))
+    };
+    write("report.json", serde_json::to_string_pretty(&report)?)?;
+    let push_limit = ErgonomicLimits::builtin()
+        .map(|l| l.push_limit(profile.push_posture, profile.population, profile.duty))
+        .unwrap_or(f64::NAN);
+    write("report.html", html(&report, samples, push_limit))?;
+    Ok(report.verdict)
 }
 
 fn escape(s: &str) -> String {

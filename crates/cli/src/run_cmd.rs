@@ -1,10 +1,10 @@
 //! `pliant run [SCENE] [--out DIR]`: load a scene, run its timeline, write the outputs.
 
 use crate::recorder::Recorder;
-use crate::report::{html, verdict, Report};
+use crate::report::write_reports;
 use crate::summary::{final_state, peak_rows, peak_table, Summary};
 use anyhow::{anyhow, Context};
-use pliant_assembly::ergonomics::{ErgonomicLimits, ErgonomicProfile};
+use pliant_assembly::ergonomics::ErgonomicProfile;
 use pliant_assembly::Runner;
 use pliant_core::{Model, State};
 use pliant_scene::{demo_scene, load_scene_file};
@@ -79,22 +79,18 @@ pub fn run(
         peaks: peak_rows(&model, &run),
         final_state: final_state(&model, &state),
     };
-    let report = Report {
-        scene: &scene.name,
-        ergonomics: &run.ergonomics,
-        verdict: verdict(&run, diverged.as_deref()),
-        run: &run,
-        diverged: diverged.as_deref(),
-    };
+    let verdict = write_reports(
+        out,
+        &scene.name,
+        &run,
+        diverged.as_deref(),
+        &hand_series,
+        &profile,
+    )?;
     let write = |name: &str, text: String| {
         let path = out.join(name);
         std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))
     };
-    write("report.json", serde_json::to_string_pretty(&report)?)?;
-    let push_limit = ErgonomicLimits::builtin()
-        .map(|l| l.push_limit(profile.push_posture, profile.population, profile.duty))
-        .unwrap_or(f64::NAN);
-    write("report.html", html(&report, &hand_series, push_limit))?;
     let mut csv = String::from("time_s,kind,name,force_n\n");
     for x in &run.fastener_series {
         let f = &run.fasteners[x.fastener];
@@ -107,13 +103,13 @@ pub fn run(
         ));
     }
     write("fasteners.csv", csv)?;
-    let word = match report.verdict.feasible {
+    let word = match verdict.feasible {
         Some(true) => "FEASIBLE",
         Some(false) => "NOT FEASIBLE",
         None => "not assessed",
     };
     println!("verdict: {word}");
-    for r in &report.verdict.reasons {
+    for r in &verdict.reasons {
         println!("  - {r}");
     }
     let path = out.join("summary.json");
