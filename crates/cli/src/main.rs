@@ -2,6 +2,7 @@
 //! solutions, benchmark the solver.
 
 mod bench;
+mod peers;
 mod run_cmd;
 mod serve_cmd;
 mod validate_cmd;
@@ -74,6 +75,35 @@ enum Command {
         #[arg(long)]
         quick: bool,
     },
+    /// Pliant's side of the head-to-head benchmarks with PyElastica and MuJoCo
+    /// (bench/peers/run.sh); prints one JSON object.
+    Peer {
+        #[command(subcommand)]
+        case: PeerCase,
+    },
+}
+
+#[derive(Subcommand)]
+enum PeerCase {
+    /// The shared problem data (material, geometry, damping rules) as JSON.
+    Params,
+    /// Cantilever (1 m, library hose 1) under a dead tip load λ = PL²/EI.
+    Cantilever {
+        #[arg(long, default_value_t = 16)]
+        elements: usize,
+        #[arg(long, value_enum, default_value_t = peers::Solver::Relax)]
+        solver: peers::Solver,
+        #[arg(long, default_value_t = 2.0)]
+        lambda: f64,
+        /// Convergence tolerance (relative residual for relax; speed for damped).
+        #[arg(long, default_value_t = 1e-6)]
+        tol: f64,
+    },
+    /// 500 mm hose dropped onto a horizontal cylinder: time to rest.
+    Drop {
+        #[arg(long, default_value_t = 20)]
+        elements: usize,
+    },
 }
 
 fn main() -> ExitCode {
@@ -100,6 +130,18 @@ fn main() -> ExitCode {
         Command::Bench { json, quick } => {
             bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
         }
+        Command::Peer { case } => match case {
+            PeerCase::Params => peers::params().and_then(|p| peers::print(&p)),
+            PeerCase::Cantilever {
+                elements,
+                solver,
+                lambda,
+                tol,
+            } => peers::solve_cantilever(elements, solver, lambda, tol)
+                .and_then(|r| peers::print(&r)),
+            PeerCase::Drop { elements } => peers::drop(elements).and_then(|r| peers::print(&r)),
+        }
+        .map(|_| ExitCode::SUCCESS),
     };
     match result {
         Ok(code) => code,
