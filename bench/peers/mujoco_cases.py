@@ -149,6 +149,8 @@ def drop_once(p, n, cap_s, dt):
         steps += chunk
         if not np.all(np.isfinite(d.qvel)) or d.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
             return None
+        if np.min(d.xpos[1:, 2]) < -L:
+            return None  # fell off the cylinder: the step was too large for the contact
         cv = d.cvel
         root = d.subtree_com[m.body_rootid]
         lin = cv[:, 3:] + np.cross(cv[:, :3], d.xipos - root)

@@ -8,7 +8,9 @@ root="$(cd "$here/../.." && pwd)"
 if [ ! -x "$here/.venv/bin/python" ] || ! "$here/.venv/bin/python" -c "import elastica, mujoco" 2>/dev/null; then
     "$here/setup.sh"
 fi
-(cd "$root" && cargo build --release -p pliant --quiet)
+if [ -z "${PLIANT_BIN:-}" ]; then
+    (cd "$root" && cargo build --release -p pliant --quiet)
+fi  # PLIANT_BIN=path: use an already built pliant instead
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$root/target}"
 cd "$here"
 exec "$here/.venv/bin/python" "$here/run.py" "$@"
