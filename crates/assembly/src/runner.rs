@@ -10,7 +10,7 @@ use glam::DVec3;
 use pliant_core::curve::catmull_rom;
 use pliant_core::health::{check, Divergence};
 use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase};
-use pliant_core::{explicit, Model, State};
+use pliant_core::{Model, Solver, SolverKind, SolverSettings, State};
 use serde::Serialize;
 
 /// How often the state is checked for divergence, in steps.
@@ -121,6 +121,10 @@ pub struct RunSummary {
     pub fasteners: Vec<FastenerReport>,
     /// Their forces at the recorded times (the observer's sampling).
     pub fastener_series: Vec<FastenerSample>,
+    /// Newton solvers only: the most iterations one step took, and how many steps ended
+    /// without reaching the tolerance.
+    pub newton_iterations_max: usize,
+    pub newton_unconverged_steps: u64,
 }
 
 impl RunSummary {
@@ -157,6 +161,7 @@ pub struct Runner<'m> {
     /// Stubs and clips to set up when the run starts, then their runtime.
     sites: Option<(Vec<StubSite>, Vec<ClipSite>)>,
     fasteners: Fasteners,
+    solver: Solver,
 }
 
 impl<'m> Runner<'m> {
@@ -172,7 +177,24 @@ impl<'m> Runner<'m> {
             contact_index: vec![None; model.environment.parts.len()],
             sites: None,
             fasteners: Fasteners::default(),
+            solver: Solver::for_model(model).expect("Model::build makes every hose a chain"),
         }
+    }
+
+    /// Advances with `kind` instead of the scene's solver (SPEC P5).
+    pub fn with_solver(mut self, kind: SolverKind) -> Self {
+        let settings = SolverSettings {
+            kind,
+            ..self.model.solver
+        };
+        self.solver =
+            Solver::new(self.model, settings).expect("Model::build makes every hose a chain");
+        self
+    }
+
+    /// The solver in use.
+    pub fn solver(&self) -> &Solver {
+        &self.solver
     }
 
     /// Adds connector stubs and clips (SPEC L6, L7).
@@ -498,7 +520,7 @@ impl<'m> Runner<'m> {
     }
 
     fn step(&mut self, state: &mut State, obs: &mut dyn Observer) -> Result<(), Divergence> {
-        let t_next = state.time + self.model.time_step;
+        let t_next = state.time + self.solver.time_step(self.model);
         for hand in self.hands.iter().flatten() {
             hand.update(state, t_next);
         }
@@ -517,7 +539,16 @@ impl<'m> Runner<'m> {
             };
             self.fasteners.update(self.model, state, &held, &force);
         }
-        explicit::step(self.model, state);
+        match self.solver.step(self.model, state) {
+            Err(e) => return Err(e.into_divergence(self.model, state)),
+            Ok(stats) => {
+                let s = &mut self.summary;
+                s.newton_iterations_max = s.newton_iterations_max.max(stats.iterations);
+                if !stats.converged {
+                    s.newton_unconverged_steps += 1;
+                }
+            }
+        }
         let wants = obs.wants_state(state.time);
         if wants || state.step % HEALTH_CHECK_EVERY == 0 {
             check(self.model, state)?;
@@ -561,7 +592,7 @@ impl<'m> Runner<'m> {
         duration: f64,
         obs: &mut dyn Observer,
     ) -> Result<(), Divergence> {
-        let steps = (duration / self.model.time_step).round() as u64;
+        let steps = (duration / self.solver.time_step(self.model)).round() as u64;
         for _ in 0..steps {
             self.step(state, obs)?;
         }

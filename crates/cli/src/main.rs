@@ -41,6 +41,10 @@ enum Command {
         /// "posture=standing, population=men, duty=continuous, torque=t_handle".
         #[arg(long)]
         ergonomics: Option<String>,
+        /// Solver instead of the scene's: explicit (the dissertation's central
+        /// differences), implicit (HHT-α, 10 ms steps) or static (equilibrium per input).
+        #[arg(long)]
+        solver: Option<pliant_core::SolverKind>,
     },
     /// Run the validation suite against exact and independent reference solutions.
     Validate {
@@ -113,6 +117,7 @@ fn main() -> ExitCode {
         out: PathBuf::from("out"),
         quiet: false,
         ergonomics: None,
+        solver: None,
     });
     let result = match command {
         Command::Run {
@@ -120,7 +125,8 @@ fn main() -> ExitCode {
             out,
             quiet,
             ergonomics,
-        } => run_cmd::run(scene.as_deref(), &out, quiet, ergonomics.as_deref()),
+            solver,
+        } => run_cmd::run(scene.as_deref(), &out, quiet, ergonomics.as_deref(), solver),
         Command::Validate {
             json,
             case,

@@ -6,7 +6,7 @@ use crate::summary::{final_state, peak_rows, peak_table, Summary};
 use anyhow::{anyhow, Context};
 use pliant_assembly::ergonomics::ErgonomicProfile;
 use pliant_assembly::Runner;
-use pliant_core::{Model, State};
+use pliant_core::{Model, SolverKind, State};
 use pliant_scene::{demo_scene, load_scene_file};
 use std::path::Path;
 use std::process::ExitCode;
@@ -17,6 +17,7 @@ pub fn run(
     out: &Path,
     quiet: bool,
     ergonomics: Option<&str>,
+    solver: Option<SolverKind>,
 ) -> anyhow::Result<ExitCode> {
     let scene = match scene_path {
         Some(p) => load_scene_file(p)?,
@@ -51,7 +52,16 @@ pub fn run(
         None => scene.ergonomics,
     };
     let (stubs, clips) = scene.fastener_sites(&model).map_err(|e| anyhow!(e))?;
-    let outcome = Runner::new(&model)
+    let mut runner = Runner::new(&model);
+    if let Some(kind) = solver {
+        runner = runner.with_solver(kind);
+    }
+    let solver_kind = runner.solver().kind();
+    let solver_step = runner.solver().time_step(&model);
+    if solver_kind != SolverKind::Explicit {
+        eprintln!("pliant: solver {solver_kind}, step {solver_step:.3e} s");
+    }
+    let outcome = runner
         .with_ergonomics(profile)
         .with_fasteners(stubs, clips)
         .run(&scene.timeline, &mut state, &mut recorder);
@@ -69,13 +79,16 @@ pub fn run(
         diverged: diverged.clone(),
         steps: run.steps,
         simulated_time_s: run.simulated_time,
-        time_step_s: model.time_step,
+        time_step_s: solver_step,
         time_step: model.time_step_report.clone(),
+        solver: solver_kind.name(),
         wall_time_s: wall,
         realtime_factor: run.simulated_time / wall.max(1e-9),
         elements,
         actions_completed: run.actions_completed,
         settles: run.settles.clone(),
+        newton_iterations_max: run.newton_iterations_max,
+        newton_unconverged_steps: run.newton_unconverged_steps,
         peaks: peak_rows(&model, &run),
         final_state: final_state(&model, &state),
     };

@@ -37,13 +37,21 @@ pub struct Summary {
     pub diverged: Option<String>,
     pub steps: u64,
     pub simulated_time_s: f64,
+    /// The step the solver advanced by [s] (the explicit stable step, or the implicit /
+    /// static step).
     pub time_step_s: f64,
+    /// How the explicit stable step was chosen (reported for every solver).
     pub time_step: TimeStepReport,
+    /// explicit, implicit or static.
+    pub solver: &'static str,
     pub wall_time_s: f64,
     pub realtime_factor: f64,
     pub elements: usize,
     pub actions_completed: usize,
     pub settles: Vec<SettleOutcome>,
+    /// Newton solvers: most iterations in one step; steps that missed the tolerance.
+    pub newton_iterations_max: usize,
+    pub newton_unconverged_steps: u64,
     pub peaks: Vec<PeakRow>,
     pub final_state: Vec<FinalHose>,
 }

@@ -5,6 +5,7 @@ use crate::contact::RigidEnvironment;
 use crate::element::BeamElement;
 use crate::frames::node_frames;
 use crate::mass::half_element_mass;
+use crate::solver::SolverSettings;
 use crate::spec::{HoseSpec, SimSettings, WorldSpec};
 use crate::stiffened::{RigidBody, StiffenedSpan};
 use crate::timestep::{stable_time_step, TimeStepReport};
@@ -59,6 +60,8 @@ pub struct Model {
     /// Stiffened sections (SPEC M6), and for each node the body it belongs to.
     pub bodies: Vec<RigidBody>,
     pub body_of: Vec<Option<usize>>,
+    /// The solver the scene asks for (issue 5); callers may choose another.
+    pub solver: SolverSettings,
 }
 
 /// Why a world spec could not be built.
@@ -158,6 +161,7 @@ impl Model {
                 .map_err(ModelError::RigidPart)?,
             bodies: Vec::new(),
             body_of: vec![None; total_nodes],
+            solver: spec.settings.solver,
         };
         for h in &spec.hoses {
             check_hose(h)?;
@@ -284,6 +288,14 @@ fn check_settings(s: &SimSettings) -> Result<(), ModelError> {
     if let Some(dt) = s.time_step {
         if !(dt > 0.0 && dt.is_finite()) {
             return bad(format!("time step must be positive, is {dt}"));
+        }
+    }
+    for (name, v) in [
+        ("implicit time step", s.solver.implicit_time_step),
+        ("static input step", s.solver.static_input_step),
+    ] {
+        if !(v > 0.0 && v <= 1.0) {
+            return bad(format!("{name} must lie in (0, 1] s, is {v}"));
         }
     }
     Ok(())

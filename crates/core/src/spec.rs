@@ -40,6 +40,9 @@ pub struct SimSettings {
     /// Fixed time step [s]; `None` → computed from the model. A fixed step larger than the
     /// stable one is refused when the model is built.
     pub time_step: Option<f64>,
+    /// Which solver advances the simulation, and its steps (issue 5).
+    #[serde(default)]
+    pub solver: crate::solver::SolverSettings,
 }
 
 impl Default for SimSettings {
@@ -50,6 +53,7 @@ impl Default for SimSettings {
             damping_stiffness: None,
             time_step_safety: 0.5,
             time_step: None,
+            solver: Default::default(),
         }
     }
 }

@@ -103,4 +103,3 @@ fn implicit_steel_tube_at_10_ms_reaches_the_static_state() {
     println!("implicit {tip:?} static {exact:?}");
     assert!((tip - exact).length() < 1e-3 * exact.z.abs());
 }
-

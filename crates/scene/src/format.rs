@@ -76,6 +76,13 @@ pub struct SimulationSection {
     pub time_step_safety: Option<f64>,
     /// Fixed time step (s), > 0. Default: computed from the model.
     pub time_step_s: Option<f64>,
+    /// Solver: `explicit` (default; the dissertation's central differences), `implicit`
+    /// (HHT-α with Newton, large steps) or `static` (the equilibrium at each input).
+    pub solver: Option<String>,
+    /// Implicit solver's time step (s), in (0, 1]. Default 0.01.
+    pub implicit_time_step_s: Option<f64>,
+    /// Static solver: simulated time between equilibrium solves (s), in (0, 1]. Default 0.01.
+    pub static_input_step_s: Option<f64>,
 }
 
 /// `[output]`: what to record.

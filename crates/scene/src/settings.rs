@@ -43,12 +43,43 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
         Some(dt) => Some(positive("simulation.time_step_s", dt, "s")?),
         None => default.time_step,
     };
+    let mut solver = default.solver;
+    if let Some(name) = &raw.solver {
+        solver.kind = name.parse().map_err(|reason: String| {
+            FieldError::new("simulation.solver", name.clone(), &reason)
+        })?;
+    }
+    for (field, value, target) in [
+        (
+            "simulation.implicit_time_step_s",
+            raw.implicit_time_step_s,
+            &mut solver.implicit_time_step,
+        ),
+        (
+            "simulation.static_input_step_s",
+            raw.static_input_step_s,
+            &mut solver.static_input_step,
+        ),
+    ] {
+        if let Some(v) = value {
+            let v = positive(field, v, "s")?;
+            if v > 1.0 {
+                return Err(FieldError::new(
+                    field,
+                    with_unit(v, "s"),
+                    "must lie in (0, 1] s",
+                ));
+            }
+            *target = v;
+        }
+    }
     Ok(SimSettings {
         gravity,
         damping_mass,
         damping_stiffness,
         time_step_safety,
         time_step,
+        solver,
     })
 }
 

@@ -106,7 +106,9 @@ mod tests {
         let mut a = BlockTridiagonal::new(n);
         let mut seed = 12345u64;
         let mut rnd = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
         };
         for i in 0..n {
@@ -120,8 +122,12 @@ mod tests {
         for i in 0..n {
             dense.view_mut((6 * i, 6 * i), (6, 6)).copy_from(&a.diag[i]);
             if i + 1 < n {
-                dense.view_mut((6 * i, 6 * i + 6), (6, 6)).copy_from(&a.upper[i]);
-                dense.view_mut((6 * i + 6, 6 * i), (6, 6)).copy_from(&a.lower[i]);
+                dense
+                    .view_mut((6 * i, 6 * i + 6), (6, 6))
+                    .copy_from(&a.upper[i]);
+                dense
+                    .view_mut((6 * i + 6, 6 * i), (6, 6))
+                    .copy_from(&a.lower[i]);
             }
         }
         let b: Vec<Vector6<f64>> = (0..n).map(|_| Vector6::from_fn(|_, _| rnd())).collect();

@@ -19,7 +19,8 @@
 //! 1/16 of the step) before it is reported.
 
 use super::block_tridiagonal::SingularBlock;
-use super::system::{apply_increment, residual_norms, sync_bodies, NewtonSystem, NotAChain};
+use super::statics::increment_at_round_off;
+use super::system::{apply_increment, sync_bodies, NewtonSystem, NotAChain};
 use crate::math::{left_jacobian_inverse_transpose_times, log_map};
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
@@ -119,7 +120,11 @@ impl ImplicitSolver {
     }
 
     /// Advances `state` by `options.time_step`.
-    pub fn step(&mut self, model: &Model, state: &mut State) -> Result<ImplicitReport, ImplicitError> {
+    pub fn step(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+    ) -> Result<ImplicitReport, ImplicitError> {
         let mut report = ImplicitReport::default();
         self.advance(model, state, self.options.time_step, 0, &mut report)?;
         report.converged = true;
@@ -168,8 +173,16 @@ impl ImplicitSolver {
             let free = !sys.prescribed[i];
             self.f_prev[i] = sys.force[i];
             self.m_prev[i] = sys.moment[i];
-            self.acc[i] = if free { sys.force[i] / model.mass[i] } else { DVec3::ZERO };
-            self.ang_acc[i] = if free { sys.moment[i] / model.inertia[i] } else { DVec3::ZERO };
+            self.acc[i] = if free {
+                sys.force[i] / model.mass[i]
+            } else {
+                DVec3::ZERO
+            };
+            self.ang_acc[i] = if free {
+                sys.moment[i] / model.inertia[i]
+            } else {
+                DVec3::ZERO
+            };
         }
         self.started = true;
     }
@@ -231,7 +244,8 @@ impl ImplicitSolver {
                 let theta = log_map(state.q[i] * self.q0[i].conjugate());
                 let alp_new =
                     c_acc * (theta - h * self.w0[i]) - (0.5 - beta) / beta * self.ang_acc[i];
-                let rf = (1.0 + alpha) * sys.force[i] - alpha * self.f_prev[i] - model.mass[i] * a_new;
+                let rf =
+                    (1.0 + alpha) * sys.force[i] - alpha * self.f_prev[i] - model.mass[i] * a_new;
                 let rm = (1.0 + alpha) * sys.moment[i]
                     - alpha * self.m_prev[i]
                     - model.inertia[i] * alp_new;
@@ -250,7 +264,12 @@ impl ImplicitSolver {
                     }
                 }
             }
-            for m in sys.matrix.upper.iter_mut().chain(sys.matrix.lower.iter_mut()) {
+            for m in sys
+                .matrix
+                .upper
+                .iter_mut()
+                .chain(sys.matrix.lower.iter_mut())
+            {
                 *m *= 1.0 + alpha;
             }
             let (mut rf, mut rm) = (0.0_f64, 0.0_f64);
@@ -273,12 +292,15 @@ impl ImplicitSolver {
             sys.matrix.solve(&mut sys.rhs)?;
             apply_increment(state, &sys.rhs, &sys.prescribed, 1.0);
             report.iterations += 1;
+            if increment_at_round_off(&sys.rhs, &sys.prescribed, model) {
+                converged = true;
+                break;
+            }
         }
         if !converged {
             return Ok(false);
         }
         // accept: store a_{n+1}, f_{n+1}; reactions on prescribed nodes m a − f
-        let _ = residual_norms;
         for i in 0..n {
             let a_new = if sys.prescribed[i] {
                 (state.v[i] - self.v0[i]) / h

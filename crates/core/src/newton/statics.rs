@@ -114,6 +114,11 @@ impl StaticSolver {
             }
             sys.eliminate_prescribed();
             sys.matrix.solve(&mut sys.rhs)?;
+            if increment_at_round_off(&sys.rhs, &sys.prescribed, model) {
+                // the residual left is round-off of the stiff (rigid-factor) elements
+                report.converged = true;
+                break;
+            }
             // −dΠ/ds along the step = (f, m)·δu (the loads are −∇Π)
             let mut directional = 0.0;
             for i in 0..sys.rhs.len() {
@@ -168,6 +173,23 @@ impl StaticSolver {
         finish(model, state, &self.system);
         Ok(report)
     }
+}
+
+/// Whether a Newton increment is below what f64 can resolve for this model: no node
+/// moves by more than 1e-12 of the model's size or turns by more than 1e-12 rad.
+pub(crate) fn increment_at_round_off(
+    rhs: &[nalgebra::Vector6<f64>],
+    prescribed: &[bool],
+    model: &Model,
+) -> bool {
+    let size = model
+        .rest_x
+        .iter()
+        .fold(0.0_f64, |m, x| m.max(x.abs().max_element()))
+        .max(1.0);
+    rhs.iter().zip(prescribed).all(|(d, p)| {
+        *p || (d.fixed_rows::<3>(0).norm() <= 1e-12 * size && d.fixed_rows::<3>(3).norm() <= 1e-12)
+    })
 }
 
 /// Writes the converged loads into the state: forces, support reactions (−f on a

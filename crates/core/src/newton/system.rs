@@ -119,7 +119,10 @@ impl NewtonSystem {
         for i in 0..self.force.len() {
             self.force[i] += model.mass[i] * (model.gravity - alpha * state.v[i]);
             self.moment[i] -= alpha * model.inertia[i] * state.w[i];
-            let (dm, di) = (alpha * model.mass[i] * rate_factor, alpha * model.inertia[i] * rate_factor);
+            let (dm, di) = (
+                alpha * model.mass[i] * rate_factor,
+                alpha * model.inertia[i] * rate_factor,
+            );
             for k in 0..3 {
                 self.matrix.diag[i][(k, k)] += dm;
                 self.matrix.diag[i][(k + 3, k + 3)] += di;
