@@ -164,9 +164,13 @@ def markdown(res):
              "or JIT compilation). Raw runs: `bench/peers/results.json`.")
     L.append("")
     L.append("**(a) Cantilever under a tip load**, λ = PL²/EI = 2, library hose 1, L = 1 m, "
-             f"exact w/L = {EXACT_W} (elliptic integrals). Wall time to the first converged run "
-             "whose tip error is within the level (each tool's resolution N and stopping "
-             "tolerance swept, coarse to fine; N and tol of the fastest such run in brackets):")
+             ff"exact w/L = {EXACT_W} (elliptic integrals). Wall time of the fastest converged run "
+             "whose tip error is within the level and whose resolution, converged at its tightest "
+             "tolerance, is within it too (a loose stop can land near the answer by luck). "
+             "Resolution N and stopping tolerance swept, coarse to fine; N and tol of that run in "
+             "brackets; 'not reached': best converged error within the tool's time budget "
+             "(PyElastica and MuJoCo clamp by fixing the first element, which converges like 1/N; "
+             "see bench/peers/README.md):")
     L.append("")
     L.append("| tool | " + " | ".join(f"{lv * 100:g} %" for lv in LEVELS) + " |")
     L.append("|---|" + "---:|" * len(LEVELS))
