@@ -164,7 +164,7 @@ def markdown(res):
              "or JIT compilation). Raw runs: `bench/peers/results.json`.")
     L.append("")
     L.append("**(a) Cantilever under a tip load**, λ = PL²/EI = 2, library hose 1, L = 1 m, "
-             ff"exact w/L = {EXACT_W} (elliptic integrals). Wall time of the fastest converged run "
+             f"exact w/L = {EXACT_W} (elliptic integrals). Wall time of the fastest converged run "
              "whose tip error is within the level and whose resolution, converged at its tightest "
              "tolerance, is within it too (a loose stop can land near the answer by luck). "
              "Resolution N and stopping tolerance swept, coarse to fine; N and tol of that run in "
