@@ -6,11 +6,18 @@ use pliant_server::{ServerConfig, Session};
 use std::path::Path;
 use std::process::ExitCode;
 
-pub fn run(scene: Option<&Path>, host: &str, port: u16) -> anyhow::Result<ExitCode> {
-    let scene = match scene {
+pub fn run(scene_path: Option<&Path>, host: &str, port: u16) -> anyhow::Result<ExitCode> {
+    let scene = match scene_path {
         Some(p) => pliant_scene::load_scene_file(p)
             .with_context(|| format!("cannot load {}", p.display()))?,
         None => pliant_scene::demo_scene().context("cannot load the demo scene")?,
+    };
+    // Scenes opened in the browser arrive as text: their relative mesh paths are resolved
+    // against the served scene's folder (the examples folder for the built-in demo).
+    let scene_dir = match scene_path {
+        Some(p) => p.parent().map(Path::to_path_buf).unwrap_or_default(),
+        None if Path::new("examples").is_dir() => "examples".into(),
+        None => Default::default(),
     };
     let session = Session::start(&scene, SessionOptions::default())?;
     let runtime = tokio::runtime::Builder::new_multi_thread()
@@ -21,15 +28,22 @@ pub fn run(scene: Option<&Path>, host: &str, port: u16) -> anyhow::Result<ExitCo
         let config = ServerConfig {
             host: host.to_string(),
             port,
+            scene_dir,
         };
         let server = pliant_server::start(session, &config)
             .await
             .with_context(|| format!("cannot listen on {host}:{port}"))?;
         println!("Pliant serving '{}' at {}", scene.name, server.url());
+        if !pliant_server::assets::viewer_embedded() {
+            println!("(this binary has no browser viewer: run scripts/build-web.sh, then rebuild)");
+        }
         println!(
             "WebSocket (protocol v1): {}  — Ctrl-C stops",
             server.ws_url()
         );
+        // Scripts and tests read the URL from stdout: make sure it is not left buffered.
+        use std::io::Write as _;
+        let _ = std::io::stdout().flush();
         tokio::select! {
             r = server.wait() => r.context("server failed")?,
             _ = tokio::signal::ctrl_c() => println!("stopped"),

@@ -1,15 +1,19 @@
 //! Pliant's interactive server (SPEC I1, I2, I4, I6): the simulation runs in its own thread
 //! at its own rate ([`session`]), publishes the newest snapshot ([`snapshot`]) and takes
 //! hand input from any client — browser, VR, script — through one versioned JSON protocol
-//! over WebSocket ([`protocol`], documented in `docs/protocol.md`). Misbehaving clients get
+//! over WebSocket ([`protocol`], documented in `docs/protocol.md`), and serves the
+//! browser/VR viewer embedded at compile time ([`assets`]). Misbehaving clients get
 //! error replies ([`limits`]); hands belong to the client that grabbed them ([`ownership`]).
 
+pub mod assets;
 pub mod limits;
 pub mod ownership;
+pub mod peaks;
 pub mod protocol;
 pub mod server;
 pub mod session;
 pub mod snapshot;
+pub mod verdict;
 
 pub use protocol::{ClientMessage, ServerMessage, PROTOCOL_VERSION};
 pub use server::{router, serve, start, RunningServer, ServerConfig};

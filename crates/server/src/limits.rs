@@ -7,6 +7,8 @@ use std::time::{Duration, Instant};
 pub const MAX_MESSAGE_BYTES: usize = 64 * 1024;
 /// Hard cap on a WebSocket message: above this the connection is closed (protects memory).
 pub const HARD_MAX_MESSAGE_BYTES: usize = 1024 * 1024;
+/// Largest `load_scene` message (a scene file's text) [bytes].
+pub const MAX_SCENE_MESSAGE_BYTES: usize = HARD_MAX_MESSAGE_BYTES;
 /// Messages per second a client may send on average.
 pub const MAX_MESSAGES_PER_SECOND: f64 = 200.0;
 /// Burst a client may send at once.

@@ -34,6 +34,31 @@ pub enum ClientMessage {
     Step { n: u32 },
     /// Back to the rest state; every hand is released.
     Reset,
+    /// Judge hand loads with another ergonomic profile (SPEC I3) from now on: `posture`
+    /// (standing, crouching, sitting), `population` (women, men), `duty` (continuous,
+    /// occasional) and optionally `torque` (screwdriver, t_handle). Omitted fields keep
+    /// their current value. The running verdict is re-judged against the new limits.
+    SetErgonomics {
+        #[serde(default)]
+        posture: Option<String>,
+        #[serde(default)]
+        population: Option<String>,
+        #[serde(default)]
+        duty: Option<String>,
+        #[serde(default)]
+        torque: Option<String>,
+    },
+    /// Replace the session's scene with the scene file `text` (TOML, or JSON when
+    /// `format` is `"json"`); `name` names it in messages. On success every client gets a
+    /// new `welcome`; on error the sender gets `error{invalid_scene}` with the loader's
+    /// message and the old session keeps running.
+    LoadScene {
+        text: String,
+        #[serde(default)]
+        format: Option<String>,
+        #[serde(default)]
+        name: Option<String>,
+    },
 }
 
 /// Error codes of `error` messages.
@@ -60,6 +85,8 @@ pub enum ErrorCode {
     InvalidValue,
     /// Binary messages are not part of the protocol.
     BinaryNotSupported,
+    /// A `load_scene` whose scene could not be loaded (the message is the loader's).
+    InvalidScene,
 }
 
 /// Server → client.
@@ -113,6 +140,20 @@ mod tests {
         assert_eq!(m, ClientMessage::Pause);
         assert!(serde_json::from_str::<ClientMessage>(r#"{"type":"jump"}"#).is_err());
         assert!(serde_json::from_str::<ClientMessage>(r#"{"type":"step","n":-1}"#).is_err());
+        let m: ClientMessage =
+            serde_json::from_str(r#"{"type":"set_ergonomics","posture":"sitting"}"#).unwrap();
+        assert_eq!(
+            m,
+            ClientMessage::SetErgonomics {
+                posture: Some("sitting".into()),
+                population: None,
+                duty: None,
+                torque: None
+            }
+        );
+        let m: ClientMessage =
+            serde_json::from_str(r#"{"type":"load_scene","text":"x","name":"a.toml"}"#).unwrap();
+        assert!(matches!(m, ClientMessage::LoadScene { .. }));
         let e = error_json(ErrorCode::HandOwned, "x");
         assert_eq!(e, r#"{"type":"error","code":"hand_owned","message":"x"}"#);
     }

@@ -1,25 +1,31 @@
-//! The HTTP/WebSocket shell (axum): `GET /` serves a placeholder page, `GET /ws` speaks the
-//! protocol. Each connection is one task: it reads the client's messages (checking size,
-//! rate, form and ownership) and sends the newest snapshot at most 60 times a second,
-//! skipping stale ones. A slow client only slows its own task; the simulation never waits.
+//! The HTTP/WebSocket shell (axum): `GET /ws` speaks the protocol, every other path serves
+//! the embedded browser viewer ([`crate::assets`]). Each connection is one task: it reads
+//! the client's messages (checking size, rate, form and ownership) and sends the newest
+//! snapshot at most 60 times a second, skipping stale ones. A slow client only slows its
+//! own task; the simulation never waits. `load_scene` replaces the session for every
+//! client: each connection notices the new generation and sends a new `welcome`.
 
 use crate::limits::{
-    Admit, RateLimiter, HARD_MAX_MESSAGE_BYTES, MAX_MESSAGE_BYTES, MAX_STEPS_PER_REQUEST,
+    Admit, RateLimiter, HARD_MAX_MESSAGE_BYTES, MAX_MESSAGE_BYTES, MAX_SCENE_MESSAGE_BYTES,
+    MAX_STEPS_PER_REQUEST,
 };
 use crate::ownership::{ClientId, Ownership, Refusal};
 use crate::protocol::{error_json, ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
-use crate::session::{Command, Session};
+use crate::session::{Command, Session, SessionOptions};
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::State;
-use axum::response::{Html, IntoResponse};
+use axum::response::IntoResponse;
 use axum::routing::get;
 use axum::Router;
 use glam::{DQuat, DVec3};
+use pliant_assembly::ergonomics::{ErgonomicProfile, Posture};
 use std::net::SocketAddr;
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use tokio::net::TcpListener;
+use tokio::sync::watch;
 
 /// Most snapshots sent to one client per second.
 pub const SNAPSHOT_HZ: f64 = 60.0;
@@ -30,6 +36,9 @@ pub struct ServerConfig {
     pub host: String,
     /// 0 picks a free port.
     pub port: u16,
+    /// Relative mesh paths of scenes sent with `load_scene` are resolved against this
+    /// folder (the browser sends only the scene text).
+    pub scene_dir: PathBuf,
 }
 
 impl Default for ServerConfig {
@@ -37,37 +46,54 @@ impl Default for ServerConfig {
         ServerConfig {
             host: "127.0.0.1".into(),
             port: 8080,
+            scene_dir: PathBuf::new(),
         }
     }
 }
 
 struct Shared {
-    session: Session,
+    /// The session every client talks to; replaced by `load_scene`.
+    session: Mutex<Arc<Session>>,
+    /// Counts session replacements; connections watch it to follow the new session.
+    generation: watch::Sender<u64>,
     ownership: Mutex<Ownership>,
     next_client: AtomicU64,
+    scene_dir: PathBuf,
+}
+
+impl Shared {
+    fn session(&self) -> Arc<Session> {
+        self.session.lock().unwrap().clone()
+    }
 }
 
 /// The router for one session.
-pub fn router(session: Session) -> Router {
+pub fn router(session: Session, config: &ServerConfig) -> Router {
     let shared = Arc::new(Shared {
-        session,
+        session: Mutex::new(Arc::new(session)),
+        generation: watch::channel(0).0,
         ownership: Mutex::new(Ownership::default()),
         next_client: AtomicU64::new(1),
+        scene_dir: config.scene_dir.clone(),
     });
     Router::new()
-        .route("/", get(index))
         .route("/ws", get(ws_upgrade))
+        .fallback(get(crate::assets::static_file))
         .with_state(shared)
 }
 
 /// Serves `session` on `listener` until the task is dropped.
-pub async fn serve(listener: TcpListener, session: Session) -> std::io::Result<()> {
+pub async fn serve(
+    listener: TcpListener,
+    session: Session,
+    config: ServerConfig,
+) -> std::io::Result<()> {
     use axum::serve::ListenerExt;
     // No Nagle delay: small messages (moves, snapshots) go out at once.
     let listener = listener.tap_io(|tcp| {
         let _ = tcp.set_nodelay(true);
     });
-    axum::serve(listener, router(session)).await
+    axum::serve(listener, router(session, &config)).await
 }
 
 /// A server running on the current tokio runtime.
@@ -99,14 +125,8 @@ impl RunningServer {
 pub async fn start(session: Session, config: &ServerConfig) -> std::io::Result<RunningServer> {
     let listener = TcpListener::bind((config.host.as_str(), config.port)).await?;
     let addr = listener.local_addr()?;
-    let task = tokio::spawn(serve(listener, session));
+    let task = tokio::spawn(serve(listener, session, config.clone()));
     Ok(RunningServer { addr, task })
-}
-
-const INDEX_HTML: &str = include_str!("index.html");
-
-async fn index() -> Html<&'static str> {
-    Html(INDEX_HTML)
 }
 
 async fn ws_upgrade(ws: WebSocketUpgrade, State(shared): State<Arc<Shared>>) -> impl IntoResponse {
@@ -116,20 +136,51 @@ async fn ws_upgrade(ws: WebSocketUpgrade, State(shared): State<Arc<Shared>>) -> 
             let client = shared.next_client.fetch_add(1, Ordering::SeqCst);
             connection(socket, client, &shared).await;
             // A disconnecting client's hands are released.
-            let epoch = shared.session.epoch();
+            let session = shared.session();
+            let epoch = session.epoch();
             let mine = shared
                 .ownership
                 .lock()
                 .unwrap()
                 .release_all_of(client, epoch);
             for hand in mine {
-                shared.session.send(Command::Release { hand });
+                session.send(Command::Release { hand });
             }
         })
 }
 
-async fn connection(mut socket: WebSocket, client: ClientId, shared: &Shared) {
-    let mut snapshots = shared.session.subscribe();
+/// What to do after a text message.
+enum Reply {
+    None,
+    Text(String),
+    /// Load this scene (slow: done off the connection's task).
+    LoadScene {
+        text: String,
+        json: bool,
+        name: String,
+    },
+}
+
+impl From<Option<String>> for Reply {
+    fn from(o: Option<String>) -> Self {
+        o.map_or(Reply::None, Reply::Text)
+    }
+}
+
+fn welcome(client: ClientId, session: &Session) -> String {
+    ServerMessage::Welcome {
+        version: PROTOCOL_VERSION,
+        client_id: client,
+        session: session.scene(),
+    }
+    .to_json()
+}
+
+async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared>) {
+    let mut generation = shared.generation.subscribe();
+    generation.mark_unchanged();
+    let mut session = shared.session();
+    let mut snapshots = session.subscribe();
     let mut limiter = RateLimiter::default();
     let mut welcomed = false;
     let interval = Duration::from_secs_f64(1.0 / SNAPSHOT_HZ);
@@ -141,18 +192,30 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Shared) {
                 let reply = match msg {
                     Message::Text(text) => match limiter.admit(Instant::now()) {
                         Admit::Yes => handle_text(text.as_str(), client, shared, &mut welcomed),
-                        Admit::Drop => None,
-                        Admit::DropAndReport(n) => Some(error_json(
+                        Admit::Drop => Reply::None,
+                        Admit::DropAndReport(n) => Reply::Text(error_json(
                             ErrorCode::RateLimited,
                             format!("over {} messages per second: {n} message(s) dropped", crate::limits::MAX_MESSAGES_PER_SECOND),
                         )),
                     },
                     Message::Binary(_) => match limiter.admit(Instant::now()) {
-                        Admit::Yes | Admit::DropAndReport(_) => Some(error_json(ErrorCode::BinaryNotSupported, "send JSON text messages")),
-                        Admit::Drop => None,
+                        Admit::Yes | Admit::DropAndReport(_) => Reply::Text(error_json(ErrorCode::BinaryNotSupported, "send JSON text messages")),
+                        Admit::Drop => Reply::None,
                     },
                     Message::Close(_) => return,
-                    _ => None,
+                    _ => Reply::None,
+                };
+                let reply = match reply {
+                    Reply::None => None,
+                    Reply::Text(t) => Some(t),
+                    Reply::LoadScene { text, json, name } => {
+                        let shared = shared.clone();
+                        match tokio::task::spawn_blocking(move || load_scene(&shared, &text, json, &name)).await {
+                            Ok(Ok(())) => None, // the new welcome follows through `generation`
+                            Ok(Err(e)) => Some(e),
+                            Err(_) => Some(error_json(ErrorCode::InvalidScene, "the scene loader failed")),
+                        }
+                    }
                 };
                 if let Some(reply) = reply {
                     if socket.send(Message::Text(reply.into())).await.is_err() {
@@ -171,34 +234,70 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Shared) {
                 }
                 next_send = tokio::time::Instant::now() + interval;
             }
+            changed = generation.changed() => {
+                if changed.is_err() { return }
+                generation.mark_unchanged();
+                // The scene was replaced: follow the new session (dropping ours; the old
+                // simulation stops when its last reader lets go).
+                session = shared.session();
+                snapshots = session.subscribe();
+                snapshots.mark_changed();
+                if welcomed && socket.send(Message::Text(welcome(client, &session).into())).await.is_err() {
+                    return;
+                }
+            }
         }
     }
 }
 
+/// Loads a scene sent by a client and makes it the session of every client. On error the
+/// old session keeps running and the error (with the loader's message) is returned.
+fn load_scene(shared: &Shared, text: &str, json: bool, name: &str) -> Result<(), String> {
+    let invalid = |m: String| error_json(ErrorCode::InvalidScene, m);
+    let scene = if json {
+        pliant_scene::load_scene_json_str_in(text, name, &shared.scene_dir)
+    } else {
+        pliant_scene::load_scene_str_in(text, name, &shared.scene_dir)
+    }
+    .map_err(|e| invalid(e.to_string()))?;
+    let session =
+        Session::start(&scene, SessionOptions::default()).map_err(|e| invalid(e.to_string()))?;
+    let old = {
+        let mut current = shared.session.lock().unwrap();
+        shared.ownership.lock().unwrap().clear();
+        std::mem::replace(&mut *current, Arc::new(session))
+    };
+    shared.generation.send_modify(|g| *g += 1);
+    drop(old);
+    Ok(())
+}
+
 /// Handles one text message; returns the reply, if any.
-fn handle_text(
-    text: &str,
-    client: ClientId,
-    shared: &Shared,
-    welcomed: &mut bool,
-) -> Option<String> {
-    if text.len() > MAX_MESSAGE_BYTES {
-        return Some(error_json(
+fn handle_text(text: &str, client: ClientId, shared: &Shared, welcomed: &mut bool) -> Reply {
+    let too_large = || {
+        Reply::Text(error_json(
             ErrorCode::MessageTooLarge,
             format!(
-                "message of {} bytes; the limit is {MAX_MESSAGE_BYTES}",
+                "message of {} bytes; the limit is {MAX_MESSAGE_BYTES} ({MAX_SCENE_MESSAGE_BYTES} for load_scene)",
                 text.len()
             ),
-        ));
+        ))
+    };
+    if text.len() > MAX_SCENE_MESSAGE_BYTES {
+        return too_large();
     }
     let msg: ClientMessage = match serde_json::from_str(text) {
         Ok(m) => m,
-        Err(e) => return Some(error_json(ErrorCode::Malformed, e.to_string())),
+        Err(_) if text.len() > MAX_MESSAGE_BYTES => return too_large(),
+        Err(e) => return Reply::Text(error_json(ErrorCode::Malformed, e.to_string())),
     };
+    if text.len() > MAX_MESSAGE_BYTES && !matches!(msg, ClientMessage::LoadScene { .. }) {
+        return too_large();
+    }
     match (msg, *welcomed) {
         (ClientMessage::Hello { version }, _) => {
             if version != PROTOCOL_VERSION {
-                return Some(error_json(
+                return Reply::Text(error_json(
                     ErrorCode::UnsupportedVersion,
                     format!(
                         "this server speaks protocol version {PROTOCOL_VERSION}, not {version}"
@@ -206,18 +305,56 @@ fn handle_text(
                 ));
             }
             *welcomed = true;
-            Some(
-                ServerMessage::Welcome {
-                    version: PROTOCOL_VERSION,
-                    client_id: client,
-                    session: shared.session.scene(),
-                }
-                .to_json(),
-            )
+            Reply::Text(welcome(client, &shared.session()))
         }
-        (_, false) => Some(error_json(ErrorCode::HelloRequired, "send hello first")),
-        (msg, true) => handle_command(msg, client, shared).err(),
+        (_, false) => Reply::Text(error_json(ErrorCode::HelloRequired, "send hello first")),
+        (ClientMessage::LoadScene { text, format, name }, true) => {
+            let json = match format.as_deref().map(str::to_ascii_lowercase).as_deref() {
+                None | Some("toml") => false,
+                Some("json") => true,
+                Some(other) => {
+                    return Reply::Text(error_json(
+                        ErrorCode::InvalidValue,
+                        format!("format must be \"toml\" or \"json\", not {other:?}"),
+                    ))
+                }
+            };
+            Reply::LoadScene {
+                text,
+                json,
+                name: name.unwrap_or_else(|| "scene from the viewer".into()),
+            }
+        }
+        (msg, true) => handle_command(msg, client, shared).err().into(),
     }
+}
+
+/// Applies a `set_ergonomics` message on top of `profile`.
+fn ergonomics(
+    mut profile: ErgonomicProfile,
+    posture: Option<&str>,
+    population: Option<&str>,
+    duty: Option<&str>,
+    torque: Option<&str>,
+) -> Result<ErgonomicProfile, String> {
+    let bad = |e: pliant_assembly::ergonomics::ErgonomicsError| {
+        error_json(ErrorCode::InvalidValue, e.to_string())
+    };
+    if let Some(p) = posture {
+        let p: Posture = p.parse().map_err(bad)?;
+        profile.push_posture = p.push();
+        profile.pull_posture = p.pull();
+    }
+    if let Some(p) = population {
+        profile.population = p.parse().map_err(bad)?;
+    }
+    if let Some(d) = duty {
+        profile.duty = d.parse().map_err(bad)?;
+    }
+    if let Some(t) = torque {
+        profile.torque_grip = t.parse().map_err(bad)?;
+    }
+    Ok(profile)
 }
 
 fn refusal(r: Refusal, hand: u32) -> String {
@@ -250,9 +387,23 @@ fn point(p: [f64; 3]) -> Result<DVec3, String> {
 }
 
 fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Result<(), String> {
-    let session = &shared.session;
+    let session = &shared.session();
     let command = match msg {
-        ClientMessage::Hello { .. } => unreachable!("handled before"),
+        ClientMessage::Hello { .. } | ClientMessage::LoadScene { .. } => {
+            return Ok(()); // handled in handle_text
+        }
+        ClientMessage::SetErgonomics {
+            posture,
+            population,
+            duty,
+            torque,
+        } => Command::SetErgonomics(ergonomics(
+            session.latest().ergonomics,
+            posture.as_deref(),
+            population.as_deref(),
+            duty.as_deref(),
+            torque.as_deref(),
+        )?),
         ClientMessage::Grab { hand_id, position } => {
             let position = point(position)?;
             shared

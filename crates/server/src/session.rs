@@ -5,12 +5,14 @@
 //! and never waits for readers; readers skip stale values). It never waits for clients.
 
 use crate::ownership::HandId;
-use crate::snapshot::{HandSnapshot, HoseSnapshot, SceneData, Snapshot};
+use crate::peaks::HandPeaks;
+use crate::snapshot::{FastenerSnapshot, HandSnapshot, HoseSnapshot, SceneData, Snapshot};
+use crate::verdict::RunningVerdict;
 use glam::{DQuat, DVec3};
 use pliant_assembly::ergonomics::{
     colour_value, ErgonomicLimits, ErgonomicProfile, HandAssessment,
 };
-use pliant_assembly::fasteners::Fasteners;
+use pliant_assembly::fasteners::{FastenerSample, Fasteners};
 use pliant_assembly::{Action, ClipSite, Hand, StubSite};
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
 use pliant_core::{explicit, health, Model, State};
@@ -54,6 +56,8 @@ pub enum Command {
     Resume,
     Step(u32),
     Reset,
+    /// Judge hand loads with this profile from now on.
+    SetErgonomics(ErgonomicProfile),
 }
 
 /// A session could not start.
@@ -97,8 +101,8 @@ impl Session {
         let model = Model::build(&scene.world)
             .and_then(|m| m.with_stiffened_spans(&scene.stiffened_spans()))
             .map_err(|e| SessionError::Model(e.to_string()))?;
-        let data = Arc::new(SceneData::new(scene, &model, 60.0));
         let sites = scene.fastener_sites(&model).map_err(SessionError::Model)?;
+        let data = Arc::new(SceneData::new(scene, &model, &sites, 60.0));
         let (tx, rx) = mpsc::channel();
         let epoch = Arc::new(AtomicU64::new(0));
         let stop = Arc::new(AtomicBool::new(false));
@@ -185,7 +189,13 @@ struct Sim {
     initial: Vec<Action>,
     fasteners: Fasteners,
     hand_forces: Vec<DVec3>,
+    /// Current force of each fastener (buffer reused for every snapshot).
+    fastener_forces: Vec<FastenerSample>,
     hands: BTreeMap<HandId, Interactive>,
+    /// Peak loads of each hand id since the start or the last reset (running verdict).
+    peaks: BTreeMap<HandId, HandPeaks>,
+    /// Why the simulation last diverged, until the next client reset.
+    diverged: Option<String>,
     paused: bool,
     epoch: Arc<AtomicU64>,
     /// Epoch as of the last reset the thread itself saw.
@@ -217,7 +227,10 @@ impl Sim {
             initial,
             fasteners,
             hand_forces: Vec::with_capacity(16),
+            fastener_forces: Vec::new(),
             hands: BTreeMap::new(),
+            peaks: BTreeMap::new(),
+            diverged: None,
             paused,
             epoch,
             profile,
@@ -348,6 +361,7 @@ impl Sim {
                 self.rebase();
             }
             Command::Reset => self.reset(None),
+            Command::SetErgonomics(profile) => self.profile = profile,
         }
     }
 
@@ -358,7 +372,9 @@ impl Sim {
         self.fasteners =
             Fasteners::new(&mut self.state, self.sites.0.clone(), self.sites.1.clone());
         self.hands.clear();
+        self.peaks.clear();
         self.steps_since_check = 0;
+        self.diverged = divergence.clone();
         if let Some(message) = divergence {
             self.epoch.fetch_add(1, Ordering::SeqCst);
             self.notice = Some(format!(
@@ -395,6 +411,7 @@ impl Sim {
                 .update(&self.model, &mut self.state, &held, &force);
         }
         explicit::step(&self.model, &mut self.state);
+        self.track_peaks();
         self.steps_since_check += 1;
         if self.steps_since_check >= HEALTH_EVERY {
             self.steps_since_check = 0;
@@ -406,7 +423,20 @@ impl Sim {
         true
     }
 
-    fn snapshot(&self, real_time_factor: f64) -> Snapshot {
+    /// Updates each hand's peak push, pull and torque after a step (no allocation once a
+    /// hand id has been seen).
+    fn track_peaks(&mut self) {
+        let Some(limits) = self.limits else { return };
+        let t = self.state.time;
+        for (&id, h) in &self.hands {
+            let load = h.hand.load(&self.model, &self.state);
+            if let Ok(a) = limits.assess(&self.profile, load.force, load.torque, load.direction) {
+                self.peaks.entry(id).or_default().record(&a, t);
+            }
+        }
+    }
+
+    fn snapshot(&mut self, real_time_factor: f64) -> Snapshot {
         let mut hoses: Vec<HoseSnapshot> = self
             .model
             .hoses
@@ -427,6 +457,11 @@ impl Sim {
                 });
                 let worst = assessment.as_ref().map(|a| *a.worst());
                 let ratio = worst.map(|w| w.ratio).filter(|r| r.is_finite());
+                let judged = |c: Option<pliant_assembly::ergonomics::Classification>| {
+                    c.filter(|c| c.ratio.is_finite())
+                };
+                let force_c = judged(assessment.map(|a| a.force));
+                let torque_c = judged(assessment.map(|a| a.torque));
                 let colour = colour_value(ratio.unwrap_or(f64::NAN));
                 if let Some(hs) = hoses.get_mut(load.hose) {
                     hs.colour = hs.colour.max(colour);
@@ -442,9 +477,38 @@ impl Sim {
                     ratio,
                     kind: worst.map(|w| w.kind),
                     colour,
+                    force_kind: force_c.map(|c| c.kind),
+                    force_limit: force_c.map(|c| c.limit),
+                    force_ratio: force_c.map(|c| c.ratio),
+                    torque_limit: torque_c.map(|c| c.limit),
+                    torque_ratio: torque_c.map(|c| c.ratio),
                 }
             })
             .collect();
+        self.fastener_forces.clear();
+        self.fasteners
+            .sample(self.state.time, &mut self.fastener_forces);
+        let fasteners = self
+            .fasteners
+            .reports()
+            .into_iter()
+            .zip(&self.fastener_forces)
+            .map(|(report, sample)| FastenerSnapshot {
+                force: if sample.force.is_finite() {
+                    sample.force
+                } else {
+                    0.0
+                },
+                report,
+            })
+            .collect::<Vec<_>>();
+        let verdict = RunningVerdict::judge(
+            &self.peaks,
+            self.limits,
+            &self.profile,
+            &fasteners,
+            self.diverged.as_deref(),
+        );
         Snapshot {
             time: self.state.time,
             step: self.state.step,
@@ -453,7 +517,9 @@ impl Sim {
             epoch: self.epoch.load(Ordering::SeqCst),
             hoses,
             hands,
-            fasteners: self.fasteners.reports(),
+            fasteners,
+            ergonomics: self.profile,
+            verdict,
             notice: self.notice.clone(),
             ..Default::default()
         }

@@ -1,6 +1,7 @@
 //! What clients see: the static scene data sent once in `welcome`, and the snapshot of the
 //! newest consistent state the simulation thread published (SPEC I2, I4, I6).
 
+use pliant_assembly::{ClipSite, StubSite};
 use pliant_core::Model;
 use pliant_scene::LoadedScene;
 use serde::Serialize;
@@ -15,6 +16,9 @@ pub struct SceneData {
     pub time_step: f64,
     pub hoses: Vec<HoseData>,
     pub parts: Vec<PartData>,
+    /// Stubs and clips: where they are, for drawing (same order as the snapshot's
+    /// `fasteners`).
+    pub fasteners: Vec<FastenerData>,
     /// The ergonomic profile hand loads are judged with.
     pub ergonomics: String,
     pub limits: LimitsData,
@@ -40,6 +44,56 @@ pub struct PartData {
     pub triangles: Vec<u32>,
 }
 
+/// Where a stub or clip is (world frame, metres).
+#[derive(Clone, Debug, Serialize)]
+pub struct FastenerData {
+    pub name: String,
+    /// "stub" or "clip".
+    pub kind: &'static str,
+    /// Stub: its mouth; clip: its seat centre.
+    pub origin: [f64; 3],
+    /// Stub: the push-on direction (mouth towards base); clip: the seated hose's axis.
+    pub axis: [f64; 3],
+    /// Clip: the direction out through the opening; stub: zero.
+    pub opening: [f64; 3],
+    /// Stub: the length a hose can be pushed on; clip: zero.
+    pub length: f64,
+    /// Stub: outer diameter; clip: inner diameter.
+    pub diameter: f64,
+    /// Clip: width of the opening; stub: zero.
+    pub opening_width: f64,
+}
+
+impl FastenerData {
+    /// Stubs first, then clips (the order of the snapshot's fasteners).
+    pub fn of(stubs: &[StubSite], clips: &[ClipSite]) -> Vec<FastenerData> {
+        let stubs = stubs.iter().map(|s| {
+            let spec = s.fit.stub();
+            FastenerData {
+                name: s.name.clone(),
+                kind: "stub",
+                origin: spec.origin().to_array(),
+                axis: spec.axis().to_array(),
+                opening: [0.0; 3],
+                length: spec.length(),
+                diameter: spec.diameter(),
+                opening_width: 0.0,
+            }
+        });
+        let clips = clips.iter().map(|c| FastenerData {
+            name: c.name.clone(),
+            kind: "clip",
+            origin: c.spec.origin().to_array(),
+            axis: c.spec.orientation().to_array(),
+            opening: c.spec.opening().to_array(),
+            length: 0.0,
+            diameter: c.spec.inner_diameter(),
+            opening_width: c.spec.opening_width(),
+        });
+        stubs.chain(clips).collect()
+    }
+}
+
 /// The limits clients must keep to.
 #[derive(Clone, Debug, Serialize)]
 pub struct LimitsData {
@@ -50,7 +104,12 @@ pub struct LimitsData {
 }
 
 impl SceneData {
-    pub fn new(scene: &LoadedScene, model: &Model, snapshot_hz: f64) -> Self {
+    pub fn new(
+        scene: &LoadedScene,
+        model: &Model,
+        sites: &(Vec<StubSite>, Vec<ClipSite>),
+        snapshot_hz: f64,
+    ) -> Self {
         let hoses = model
             .hoses
             .iter()
@@ -94,6 +153,7 @@ impl SceneData {
             time_step: model.time_step,
             hoses,
             parts,
+            fasteners: FastenerData::of(&sites.0, &sites.1),
             ergonomics: scene.ergonomics.to_string(),
             limits: LimitsData {
                 max_message_bytes: crate::limits::MAX_MESSAGE_BYTES,
@@ -121,7 +181,11 @@ pub struct Snapshot {
     pub hands: Vec<HandSnapshot>,
     /// Stubs and clips (SPEC L6, L7): `final_state` is the state now, `assembled` whether
     /// the hose is fixed on the stub / seated in the clip, `max_force` the peak so far.
-    pub fasteners: Vec<pliant_assembly::FastenerReport>,
+    pub fasteners: Vec<FastenerSnapshot>,
+    /// The ergonomic profile hand loads are judged with now (changed by `set_ergonomics`).
+    pub ergonomics: pliant_assembly::ergonomics::ErgonomicProfile,
+    /// Feasible so far or not, and why (SPEC I5).
+    pub verdict: crate::verdict::RunningVerdict,
     /// Something the viewer should tell the user (e.g. the simulation diverged and was
     /// reset).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -159,6 +223,22 @@ pub struct HandSnapshot {
     pub kind: Option<pliant_assembly::ergonomics::LoadKind>,
     /// Colour value c = min(ratio, 1).
     pub colour: f64,
+    /// The force judged as `push` or `pull`, its limit value [N] and |force| / limit.
+    pub force_kind: Option<pliant_assembly::ergonomics::LoadKind>,
+    pub force_limit: Option<f64>,
+    pub force_ratio: Option<f64>,
+    /// The torque's limit value [N·m] and |torque| / limit.
+    pub torque_limit: Option<f64>,
+    pub torque_ratio: Option<f64>,
+}
+
+/// One stub or clip: its report so far and the force it applies now.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct FastenerSnapshot {
+    #[serde(flatten)]
+    pub report: pliant_assembly::FastenerReport,
+    /// Magnitude of the force the fastener applies to the hose now [N].
+    pub force: f64,
 }
 
 impl Snapshot {

@@ -1,0 +1,85 @@
+// `window.pliant`: a small debug handle for tests, benchmarks and the browser console —
+// the newest snapshot, hose node positions, screen coordinates of world points, latency
+// samples. Read-only views plus `send` for raw protocol messages.
+
+import type { MouseHand } from './grab';
+import type { HoseTube } from './hoses';
+import type { Net } from './net';
+import type { ClientMessage, Snapshot, Vec3, Welcome } from './protocol';
+import type { Stage } from './scene';
+import type { XrHands } from './xr';
+
+export interface DebugSources {
+  stage: Stage;
+  net: Net;
+  mouse: MouseHand;
+  xr: XrHands;
+  state: { frames: number; snapshots: number; errors: { code: string; message: string }[] };
+  tubes: () => HoseTube[];
+  latest: () => Snapshot | null;
+  shown: () => Snapshot | null;
+  welcome: () => Welcome | null;
+  replaying: () => boolean;
+  startReplay: (text: string) => void;
+  lastRecording: () => string;
+}
+
+export function installDebugHandle(src: DebugSources): void {
+  const handle = {
+    get frames() { return src.state.frames; },
+    get snapshots() { return src.state.snapshots; },
+    get errors() { return src.state.errors; },
+    get connected() { return src.net.open; },
+    get clientId() { return src.net.clientId; },
+    get welcome() { return src.welcome(); },
+    get snapshot() { return src.latest(); },
+    get shown() { return src.shown(); },
+    get replaying() { return src.replaying(); },
+    get mouseHandId() { return src.mouse.handId; },
+    get xrHandIds() { return src.xr.hands.map((h) => src.xr.handBase + h.handId); },
+    get inVr() { return src.xr.inSession; },
+    /** Node positions of hose `h` as drawn (world frame). */
+    hoseNodes(h: number): Vec3[] {
+      const t = src.tubes()[h];
+      if (t === undefined) return [];
+      return Array.from({ length: t.nodes }, (_, i) => t.node(i));
+    },
+    /** Client (CSS pixel) coordinates of a world point. */
+    screenOf(p: Vec3): { x: number; y: number } {
+      const v = src.stage.toThree(p).project(src.stage.camera);
+      const r = src.stage.renderer.domElement.getBoundingClientRect();
+      return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
+    },
+    /** three.js (= XR reference space) coordinates of a world point. */
+    threeOf(p: Vec3): Vec3 {
+      const v = src.stage.toThree(p);
+      return [v.x, v.y, v.z];
+    },
+    /** Latency samples: ms from sending a move to its snapshot and to the frame drawn. */
+    latency(): { snapshot: number; frame: number }[] {
+      return src.net.done
+        .filter((p) => p.snapshotAt !== undefined && p.frameAt !== undefined)
+        .map((p) => ({ snapshot: (p.snapshotAt as number) - p.sentAt, frame: (p.frameAt as number) - p.sentAt }));
+    },
+    clearLatency(): void {
+      src.net.done.length = 0;
+      src.net.pending.length = 0;
+    },
+    send(msg: ClientMessage): boolean {
+      return src.net.send(msg);
+    },
+    replay(text: string): void {
+      src.startReplay(text);
+    },
+    get lastRecording() { return src.lastRecording(); },
+    canvasPixels(): { width: number; height: number; data: number[] } {
+      const gl = src.stage.renderer.getContext();
+      const w = gl.drawingBufferWidth;
+      const h = gl.drawingBufferHeight;
+      const buf = new Uint8Array(w * h * 4);
+      gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, buf);
+      return { width: w, height: h, data: Array.from(buf) };
+    },
+  };
+  (window as unknown as { pliant: typeof handle }).pliant = handle;
+}

@@ -1,0 +1,217 @@
+// Pliant's browser/VR viewer (issue 4): connects to the `pliant serve` that served this
+// page, draws the session (parts, stubs, clips, hoses as force-coloured tubes), lets the
+// mouse or VR controllers grab and move hoses, and shows loads, limits and the verdict.
+// `?xr=emulate` installs an emulated headset (iwer) for tests and development.
+
+import './style.css';
+import * as THREE from 'three';
+import { installDebugHandle } from './debug';
+import { MouseHand } from './grab';
+import { HoseTube } from './hoses';
+import { ForceLabels } from './labels';
+import { Net } from './net';
+import { Panel } from './panel';
+import type { Snapshot, Welcome } from './protocol';
+import { download, parseRecording, Player, Recorder } from './record';
+import { Stage } from './scene';
+import { XrHands } from './xr';
+
+async function main(): Promise<void> {
+  const params = new URLSearchParams(location.search);
+  if (params.get('xr') === 'emulate') {
+    const { XRDevice, metaQuest3 } = await import('iwer');
+    const device = new XRDevice(metaQuest3);
+    device.installRuntime({ forceInstall: true });
+    (window as unknown as { pliantXrDevice: unknown }).pliantXrDevice = device;
+  }
+
+  const app = document.getElementById('app') as HTMLElement;
+  const view = document.getElementById('view') as HTMLElement;
+  const stage = new Stage(view);
+  const legend = document.createElement('div');
+  legend.id = 'legend';
+  legend.innerHTML = 'hand load / limit<div class="grad"></div>0 &nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp; 50 % &nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp; ≥ 100 %';
+  view.appendChild(legend);
+
+  let tubes: HoseTube[] = [];
+  let liveWelcome: Welcome | null = null;
+  let liveWelcomeRaw = '';
+  let shownWelcome: Welcome | null = null;
+  let latest: Snapshot | null = null; // newest live snapshot
+  let shown: Snapshot | null = null; // the one drawn last
+  let needsFraming = false;
+  let player: Player | null = null;
+  const recorder = new Recorder();
+  const state = { frames: 0, snapshots: 0, errors: [] as { code: string; message: string }[] };
+
+  const wsUrl = params.get('ws') ?? `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws`;
+
+  const showWelcome = (w: Welcome) => {
+    for (const t of tubes) {
+      stage.world.remove(t.mesh);
+      t.dispose();
+    }
+    tubes = w.session.hoses.map((h, i) => new HoseTube(h, i));
+    for (const t of tubes) stage.world.add(t.mesh);
+    shownWelcome = w;
+    shown = null;
+    needsFraming = true;
+    panel.welcome(w);
+  };
+
+  const net = new Net(wsUrl, {
+    welcome(w, raw) {
+      const newScene = liveWelcome !== null;
+      liveWelcome = w;
+      liveWelcomeRaw = raw;
+      mouse.handId = w.client_id * 4;
+      xr.handBase = w.client_id * 4;
+      mouse.drop();
+      xr.drop();
+      latest = null;
+      if (recorder.active) stopRecording();
+      if (player === null) showWelcome(w);
+      panel.setMessage(newScene ? `loaded scene '${w.session.scene}'` : '');
+    },
+    snapshot(s, raw) {
+      state.snapshots++;
+      if (latest !== null && s.epoch !== latest.epoch) {
+        mouse.drop();
+        xr.drop();
+      }
+      latest = s;
+      recorder.add(raw);
+    },
+    error(e) {
+      state.errors.push(e);
+      if (state.errors.length > 50) state.errors.shift();
+      panel.setMessage(`${e.code}: ${e.message}`, true);
+    },
+    status(text) {
+      panel.setStatus(`${text} · ${wsUrl}`);
+    },
+  });
+
+  const stopRecording = () => {
+    const n = recorder.count;
+    const text = recorder.finish();
+    panel.setRecording(false);
+    download(`pliant-recording-${new Date().toISOString().replace(/[:.]/g, '-')}.json`, text);
+    panel.setMessage(`recording saved (${n} snapshots)`);
+    lastRecording = text;
+  };
+  let lastRecording = '';
+
+  const startReplay = (text: string) => {
+    try {
+      const rec = parseRecording(text);
+      player = new Player(rec);
+      mouse.drop();
+      showWelcome(rec.welcome);
+      panel.setReplay(true);
+      panel.replayPlay.textContent = 'Pause';
+      panel.setMessage(`replaying ${rec.frames.length} snapshots (${player.duration.toFixed(1)} s)`);
+    } catch (e) {
+      panel.setMessage(`cannot replay: ${(e as Error).message}`, true);
+    }
+  };
+  const stopReplay = () => {
+    player = null;
+    panel.setReplay(false);
+    if (liveWelcome !== null) showWelcome(liveWelcome);
+    panel.setMessage('live');
+  };
+
+  const panel = new Panel(app, {
+    pause: (p) => net.send({ type: p ? 'pause' : 'resume' }),
+    step: (n) => net.send({ type: 'step', n }),
+    reset: () => net.send({ type: 'reset' }),
+    ergonomics: (posture, population, duty) => net.send({ type: 'set_ergonomics', posture, population, duty }),
+    openScene: (file) => {
+      void file.text().then((text) => {
+        const json = file.name.toLowerCase().endsWith('.json');
+        panel.setMessage(`loading ${file.name}…`);
+        net.send({ type: 'load_scene', text, format: json ? 'json' : 'toml', name: file.name });
+      });
+    },
+    record: (on) => {
+      if (on) {
+        if (liveWelcomeRaw === '') return;
+        recorder.begin(liveWelcomeRaw);
+        panel.setRecording(true, 0);
+      } else {
+        stopRecording();
+      }
+    },
+    replayFile: (file) => void file.text().then(startReplay),
+    live: stopReplay,
+  });
+  panel.replayPlay.onclick = () => {
+    if (player === null) return;
+    player.setPlaying(!player.playing, performance.now());
+    panel.replayPlay.textContent = player.playing ? 'Pause' : 'Play';
+  };
+  panel.replaySlider.oninput = () => {
+    if (player !== null) player.seek(Number(panel.replaySlider.value) / 1000, performance.now());
+  };
+
+  const mouse = new MouseHand(stage, () => tubes, net, () => player === null);
+  const xr = new XrHands(stage, net, view);
+  const labels = new ForceLabels(stage);
+
+  const apply = (s: Snapshot) => {
+    s.hoses.forEach((h, i) => tubes[i]?.update(h.positions, h.colour));
+    labels.update(s.hands);
+    panel.snapshot(s);
+    if (needsFraming && shownWelcome !== null) {
+      needsFraming = false;
+      const box = new THREE.Box3();
+      for (const h of s.hoses) for (const p of h.positions) box.expandByPoint(new THREE.Vector3(...p));
+      stage.load(shownWelcome.session, box);
+      if (xr.inSession) xr.place(true);
+    }
+    shown = s;
+  };
+
+  let lastRecordingShown = -1;
+  stage.renderer.setAnimationLoop(() => {
+    const now = performance.now();
+    let drewLive = false;
+    if (player !== null) {
+      const s = player.frame(now);
+      if (s !== null && s !== shown) apply(s);
+      const d = player.duration;
+      if (d > 0) panel.replaySlider.value = String(Math.round((player.time(now) / d) * 1000));
+    } else if (latest !== null && latest !== shown) {
+      apply(latest);
+      drewLive = true;
+    }
+    mouse.flush();
+    xr.update();
+    stage.renderer.render(stage.scene, stage.camera);
+    state.frames++;
+    if (drewLive) net.frameDrawn(performance.now());
+    if (recorder.active && recorder.count !== lastRecordingShown && state.frames % 15 === 0) {
+      lastRecordingShown = recorder.count;
+      panel.setRecording(true, recorder.count);
+    }
+  });
+
+  installDebugHandle({
+    stage,
+    net,
+    mouse,
+    xr,
+    state,
+    tubes: () => tubes,
+    latest: () => latest,
+    shown: () => shown,
+    welcome: () => shownWelcome,
+    replaying: () => player !== null,
+    startReplay,
+    lastRecording: () => lastRecording,
+  });
+  net.connect();
+}
+
+void main();

@@ -1,0 +1,210 @@
+// The side panel: session status, controls (pause/step/reset, ergonomic profile, open a
+// scene, record/replay), each hand's force and torque against its limit (bars and a live
+// plot), stub and clip forces, and the running verdict.
+
+import { colourCss } from './colour';
+import { LoadPlot } from './plot';
+import { norm, type Snapshot, type Welcome } from './protocol';
+
+function el<K extends keyof HTMLElementTagNameMap>(tag: K, attrs: Record<string, string> = {}, text?: string): HTMLElementTagNameMap[K] {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+  if (text !== undefined) e.textContent = text;
+  return e;
+}
+
+function bar(ratio: number | null | undefined): HTMLElement {
+  const outer = el('div', { class: 'bar' });
+  const inner = el('div', { class: 'fill' });
+  const r = ratio ?? 0;
+  inner.style.width = `${Math.min(r, 1.5) / 1.5 * 100}%`;
+  inner.style.background = colourCss(ratio ?? 0);
+  const limit = el('div', { class: 'limit' });
+  limit.style.left = `${100 / 1.5}%`;
+  outer.append(inner, limit);
+  return outer;
+}
+
+const fmt = (x: number | null | undefined, digits = 1) => (x === null || x === undefined || !Number.isFinite(x) ? '–' : x.toFixed(digits));
+
+export interface PanelActions {
+  pause(paused: boolean): void;
+  step(n: number): void;
+  reset(): void;
+  ergonomics(posture: string, population: string, duty: string): void;
+  openScene(file: File): void;
+  record(on: boolean): void;
+  replayFile(file: File): void;
+  live(): void;
+}
+
+export class Panel {
+  readonly root: HTMLElement;
+  private readonly status = el('div', { id: 'status' });
+  private readonly scene = el('div', { id: 'scene-name' });
+  private readonly clock = el('div', { id: 'clock' });
+  private readonly hands = el('div', { id: 'hands' });
+  private readonly fasteners = el('div', { id: 'fasteners' });
+  private readonly verdict = el('div', { id: 'verdict' });
+  private readonly message = el('div', { id: 'message' });
+  readonly plot: LoadPlot;
+  private readonly pauseBtn = el('button', { id: 'pause' }, 'Pause');
+  private readonly recordBtn = el('button', { id: 'record' }, 'Record');
+  private readonly posture = el('select', { id: 'posture' });
+  private readonly population = el('select', { id: 'population' });
+  private readonly duty = el('select', { id: 'duty' });
+  private readonly replayBar = el('div', { id: 'replay-bar' });
+  readonly replaySlider = el('input', { id: 'replay-slider', type: 'range', min: '0', max: '1000', value: '0' });
+  readonly replayPlay = el('button', { id: 'replay-play' }, 'Pause');
+  private paused = false;
+  private recording = false;
+  private profileShown = '';
+
+  constructor(parent: HTMLElement, private readonly actions: PanelActions) {
+    this.root = el('aside', { id: 'panel' });
+    parent.appendChild(this.root);
+    const title = el('h1', {}, 'Pliant');
+    const controls = el('div', { class: 'row' });
+    const stepBtn = el('button', { id: 'step' }, 'Step');
+    const stepN = el('input', { id: 'step-n', type: 'number', min: '1', max: '100000', value: '1000', title: 'steps per click' });
+    const resetBtn = el('button', { id: 'reset' }, 'Reset');
+    this.pauseBtn.onclick = () => {
+      this.actions.pause(!this.paused);
+    };
+    stepBtn.onclick = () => this.actions.step(Math.max(1, Math.min(100000, Number(stepN.value) || 1)));
+    resetBtn.onclick = () => this.actions.reset();
+    controls.append(this.pauseBtn, stepBtn, stepN, resetBtn);
+
+    const ergo = el('div', { class: 'row' });
+    const opts = (s: HTMLSelectElement, values: string[]) => {
+      for (const v of values) s.append(el('option', { value: v }, v));
+      s.onchange = () => this.actions.ergonomics(this.posture.value, this.population.value, this.duty.value);
+    };
+    opts(this.posture, ['standing', 'crouching', 'sitting']);
+    opts(this.population, ['women', 'men']);
+    opts(this.duty, ['occasional', 'continuous']);
+    ergo.append(this.posture, this.population, this.duty);
+
+    const files = el('div', { class: 'row' });
+    const open = el('input', { id: 'open-scene', type: 'file', accept: '.toml,.json' });
+    open.style.display = 'none';
+    const openBtn = el('button', { id: 'open' }, 'Open scene…');
+    openBtn.onclick = () => open.click();
+    open.onchange = () => {
+      const f = open.files?.[0];
+      if (f !== undefined) this.actions.openScene(f);
+      open.value = '';
+    };
+    this.recordBtn.onclick = () => this.actions.record(!this.recording);
+    const replay = el('input', { id: 'replay-file', type: 'file', accept: '.json' });
+    replay.style.display = 'none';
+    const replayBtn = el('button', { id: 'replay' }, 'Replay…');
+    replayBtn.onclick = () => replay.click();
+    replay.onchange = () => {
+      const f = replay.files?.[0];
+      if (f !== undefined) this.actions.replayFile(f);
+      replay.value = '';
+    };
+    files.append(openBtn, open, this.recordBtn, replayBtn, replay);
+
+    const liveBtn = el('button', { id: 'live' }, 'Back to live');
+    liveBtn.onclick = () => this.actions.live();
+    this.replayBar.append(el('span', {}, 'Replay '), this.replayPlay, this.replaySlider, liveBtn);
+    this.replayBar.hidden = true;
+
+    const canvas = el('canvas', { id: 'plot', width: '300', height: '130' });
+    this.plot = new LoadPlot(canvas);
+    const help = el('p', { class: 'help' },
+      'Drag a hose to pull it; Shift-drag or wheel: depth; Alt/Ctrl-drag: turn the hand. Drag elsewhere to orbit.');
+    this.root.append(
+      title, this.status, this.scene, this.clock, controls,
+      el('h2', {}, 'Ergonomics'), ergo,
+      el('h2', {}, 'Session'), files, this.replayBar,
+      el('h2', {}, 'Hands'), this.hands, canvas,
+      el('h2', {}, 'Stubs and clips'), this.fasteners,
+      el('h2', {}, 'Verdict so far'), this.verdict,
+      this.message, help,
+    );
+  }
+
+  setStatus(text: string): void {
+    this.status.textContent = text;
+  }
+
+  setMessage(text: string, error = false): void {
+    this.message.textContent = text;
+    this.message.className = error ? 'error' : '';
+  }
+
+  setRecording(on: boolean, frames = 0): void {
+    this.recording = on;
+    this.recordBtn.textContent = on ? `Stop & save (${frames})` : 'Record';
+    this.recordBtn.classList.toggle('on', on);
+  }
+
+  setReplay(on: boolean): void {
+    this.replayBar.hidden = !on;
+  }
+
+  welcome(w: Welcome): void {
+    this.scene.textContent = `${w.session.scene} — ${w.session.hoses.length} hose(s), ${w.session.parts.length} part(s)`;
+    this.scene.title = w.session.source;
+    this.plot.clear();
+    this.profileShown = '';
+  }
+
+  snapshot(s: Snapshot): void {
+    this.paused = s.paused;
+    this.pauseBtn.textContent = s.paused ? 'Resume' : 'Pause';
+    this.clock.textContent = `t = ${s.time.toFixed(2)} s · step ${s.step} · real-time factor ${s.real_time_factor.toFixed(2)}${s.paused ? ' · paused' : ''}`;
+    if (s.notice !== undefined) this.setMessage(s.notice, true);
+    if (s.ergonomics !== undefined) {
+      const e = s.ergonomics;
+      const key = `${e.push_posture}/${e.population}/${e.duty}`;
+      if (key !== this.profileShown) {
+        this.profileShown = key;
+        this.posture.value = e.push_posture;
+        this.population.value = e.population;
+        this.duty.value = e.duty;
+      }
+    }
+    // hands
+    const rows: HTMLElement[] = [];
+    for (const h of s.hands) {
+      const f = norm(h.force);
+      const t = norm(h.torque);
+      const row = el('div', { class: 'hand', 'data-hand': String(h.hand_id) });
+      row.append(
+        el('div', { class: 'hand-title' }, `Hand ${h.hand_id} on hose ${h.hose}${h.kind ? ` — worst: ${h.kind}` : ''}`),
+        el('div', { class: 'force', 'data-value': f.toFixed(3) },
+          `Force ${fmt(f)} N (${h.force_kind ?? '–'}) / limit ${fmt(h.force_limit)} N`),
+        bar(h.force_ratio),
+        el('div', { class: 'torque', 'data-value': t.toFixed(4) },
+          `Torque ${fmt(t, 2)} N·m / limit ${fmt(h.torque_limit, 2)} N·m`),
+        bar(h.torque_ratio),
+      );
+      rows.push(row);
+      this.plot.add(s.time, h.hand_id, h.force_ratio ?? 0, h.torque_ratio ?? 0);
+    }
+    if (rows.length === 0) rows.push(el('div', { class: 'muted' }, 'No hand holds a hose. Drag one.'));
+    this.hands.replaceChildren(...rows);
+    this.plot.draw(s.time);
+    // fasteners
+    const frows = s.fasteners.map((f) =>
+      el('div', { class: `fastener${f.assembled ? ' ok' : ''}` },
+        `${f.kind} '${f.name}': ${f.final_state}${f.assembled ? ' ✓' : ''} · now ${fmt(f.force)} N · peak ${fmt(f.max_force)} N`),
+    );
+    if (frows.length === 0) frows.push(el('div', { class: 'muted' }, 'none in this scene'));
+    this.fasteners.replaceChildren(...frows);
+    // verdict
+    const v = s.verdict;
+    if (v !== undefined) {
+      const word = v.feasible === null ? 'nothing judged yet' : v.feasible ? 'feasible so far' : 'NOT feasible';
+      const head = el('div', { class: `verdict-word ${v.feasible === null ? '' : v.feasible ? 'ok' : 'bad'}` }, word);
+      const list = el('ul');
+      for (const r of v.reasons) list.append(el('li', {}, r));
+      for (const r of v.pending) list.append(el('li', { class: 'muted' }, r));
+      this.verdict.replaceChildren(head, list);
+    }
+  }
+}

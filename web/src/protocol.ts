@@ -1,0 +1,105 @@
+// The messages of Pliant's protocol version 1 (docs/protocol.md), as TypeScript types.
+
+export type Vec3 = [number, number, number];
+export type Quat = [number, number, number, number]; // x, y, z, w
+
+export interface HoseData { name: string; radii: number[] }
+export interface PartData {
+  name: string;
+  bounds_min: Vec3;
+  bounds_max: Vec3;
+  vertices: number[];
+  triangles: number[];
+}
+export interface FastenerData {
+  name: string;
+  kind: 'stub' | 'clip';
+  origin: Vec3;
+  axis: Vec3;
+  opening: Vec3;
+  length: number;
+  diameter: number;
+  opening_width: number;
+}
+export interface SceneData {
+  scene: string;
+  source: string;
+  time_step: number;
+  hoses: HoseData[];
+  parts: PartData[];
+  fasteners?: FastenerData[];
+  ergonomics: string;
+  limits: { max_message_bytes: number; max_messages_per_second: number; snapshot_hz: number; max_hands: number };
+}
+export interface Welcome { type: 'welcome'; version: number; client_id: number; session: SceneData }
+
+export type LoadKind = 'push' | 'pull' | 'torque';
+export interface HandSnapshot {
+  hand_id: number;
+  hose: number;
+  position: Vec3;
+  orientation: Quat;
+  target: Vec3;
+  force: Vec3;
+  torque: Vec3;
+  ratio: number | null;
+  kind: LoadKind | null;
+  colour: number;
+  force_kind?: LoadKind | null;
+  force_limit?: number | null;
+  force_ratio?: number | null;
+  torque_limit?: number | null;
+  torque_ratio?: number | null;
+}
+export interface FastenerSnapshot {
+  name: string;
+  kind: 'stub' | 'clip';
+  max_force: number;
+  max_force_time: number;
+  final_state: string;
+  assembled: boolean;
+  force?: number;
+}
+export interface ErgonomicProfile {
+  push_posture: string;
+  pull_posture: string;
+  torque_grip: string;
+  population: string;
+  duty: string;
+}
+export interface RunningVerdict { feasible: boolean | null; reasons: string[]; pending: string[] }
+export interface Snapshot {
+  type: 'snapshot';
+  time: number;
+  step: number;
+  paused: boolean;
+  real_time_factor: number;
+  epoch: number;
+  hoses: { positions: Vec3[]; colour: number }[];
+  hands: HandSnapshot[];
+  fasteners: FastenerSnapshot[];
+  ergonomics?: ErgonomicProfile;
+  verdict?: RunningVerdict;
+  notice?: string;
+}
+export interface ErrorMessage { type: 'error'; code: string; message: string }
+export type ServerMessage = Welcome | Snapshot | ErrorMessage;
+
+export type ClientMessage =
+  | { type: 'hello'; version: 1 }
+  | { type: 'grab'; hand_id: number; position: Vec3 }
+  | { type: 'move'; hand_id: number; position: Vec3; orientation?: Quat }
+  | { type: 'release'; hand_id: number }
+  | { type: 'pause' }
+  | { type: 'resume' }
+  | { type: 'step'; n: number }
+  | { type: 'reset' }
+  | { type: 'set_ergonomics'; posture?: string; population?: string; duty?: string; torque?: string }
+  | { type: 'load_scene'; text: string; format?: 'toml' | 'json'; name?: string };
+
+/** |v| */
+export function norm(v: readonly number[]): number {
+  let s = 0;
+  for (const x of v) s += x * x;
+  return Math.sqrt(s);
+}

@@ -1,0 +1,133 @@
+// WebXR (SPEC I1 with VR controllers): an "Enter VR" button starts an immersive-vr session
+// through three.js' renderer.xr. Each controller is a hand of its own: squeeze grabs the
+// beam nearest to the controller's grip, moving sends the grip pose (position, and the
+// rotation since the grab), releasing the squeeze lets go. Both hands work at once. While
+// in VR, the scene is placed in front of the user at working height.
+
+import * as THREE from 'three';
+import type { Net } from './net';
+import type { Stage } from './scene';
+
+interface XrHand {
+  grip: THREE.Group;
+  handId: number;
+  held: boolean;
+  grabRotation: THREE.Quaternion;
+  handedness: string;
+}
+
+export class XrHands {
+  readonly hands: XrHand[] = [];
+  readonly button: HTMLButtonElement;
+  private session: XRSession | null = null;
+  private readonly pos = new THREE.Vector3();
+  private readonly rot = new THREE.Quaternion();
+  /** Base of hand ids (set from the client id so that viewers do not clash). */
+  handBase = 1;
+
+  constructor(private readonly stage: Stage, private readonly net: Net, parent: HTMLElement) {
+    const xr = stage.renderer.xr;
+    xr.enabled = true;
+    this.button = document.createElement('button');
+    this.button.id = 'enter-vr';
+    this.button.textContent = 'VR not available';
+    this.button.disabled = true;
+    parent.appendChild(this.button);
+    void this.checkSupport();
+    this.button.onclick = () => void this.toggle();
+    for (let i = 0; i < 2; i++) {
+      const grip = xr.getControllerGrip(i);
+      const marker = new THREE.Mesh(
+        new THREE.SphereGeometry(0.015, 16, 8),
+        new THREE.MeshStandardMaterial({ color: 0xffffff, emissive: 0x333333 }),
+      );
+      grip.add(marker);
+      stage.scene.add(grip);
+      const hand: XrHand = { grip, handId: i + 1, held: false, grabRotation: new THREE.Quaternion(), handedness: '' };
+      grip.addEventListener('connected', (e) => {
+        const data = (e as unknown as { data?: XRInputSource }).data;
+        hand.handedness = data?.handedness ?? '';
+      });
+      grip.addEventListener('squeezestart', () => this.grab(hand));
+      grip.addEventListener('squeezeend', () => this.release(hand));
+      this.hands.push(hand);
+    }
+  }
+
+  private async checkSupport(): Promise<void> {
+    const supported = navigator.xr !== undefined && (await navigator.xr.isSessionSupported('immersive-vr').catch(() => false));
+    this.button.disabled = !supported;
+    this.button.textContent = supported ? 'Enter VR' : 'VR not available';
+  }
+
+  get inSession(): boolean {
+    return this.session !== null;
+  }
+
+  private async toggle(): Promise<void> {
+    if (this.session !== null) {
+      await this.session.end();
+      return;
+    }
+    if (navigator.xr === undefined) return;
+    const session = await navigator.xr.requestSession('immersive-vr', { optionalFeatures: ['local-floor'] });
+    this.stage.renderer.xr.setReferenceSpaceType('local-floor');
+    await this.stage.renderer.xr.setSession(session);
+    this.session = session;
+    this.button.textContent = 'Exit VR';
+    this.place(true);
+    session.addEventListener('end', () => {
+      for (const h of this.hands) this.release(h);
+      this.session = null;
+      this.button.textContent = 'Enter VR';
+      this.place(false);
+    });
+  }
+
+  /** In VR: the scene's centre 1 m high, 0.6 m in front of the user; else at the origin. */
+  place(inVr: boolean): void {
+    const w = this.stage.world;
+    w.position.set(0, 0, 0);
+    if (inVr) {
+      w.updateMatrixWorld(true);
+      const c = this.stage.toThree([this.stage.centre.x, this.stage.centre.y, this.stage.centre.z]);
+      w.position.set(-c.x, 1.0 - c.y, -0.6 - c.z);
+    }
+    w.updateMatrixWorld(true);
+  }
+
+  private grab(h: XrHand): void {
+    h.grip.getWorldPosition(this.pos);
+    h.grip.getWorldQuaternion(h.grabRotation);
+    const position = this.stage.toWorld(this.pos);
+    h.held = this.net.send({ type: 'grab', hand_id: this.handBase + h.handId, position });
+  }
+
+  private release(h: XrHand): void {
+    if (!h.held) return;
+    h.held = false;
+    this.net.send({ type: 'release', hand_id: this.handBase + h.handId });
+  }
+
+  /** Sends each held controller's pose (once per frame). */
+  update(): void {
+    for (const h of this.hands) {
+      if (!h.held) continue;
+      h.grip.getWorldPosition(this.pos);
+      h.grip.getWorldQuaternion(this.rot);
+      // rotation since the grab, in three.js space
+      const delta = this.rot.clone().multiply(h.grabRotation.clone().invert());
+      this.net.send({
+        type: 'move',
+        hand_id: this.handBase + h.handId,
+        position: this.stage.toWorld(this.pos),
+        orientation: this.stage.toWorldRotation(delta),
+      });
+    }
+  }
+
+  /** Forget held hands (the server released them: reset, new scene). */
+  drop(): void {
+    for (const h of this.hands) h.held = false;
+  }
+}

@@ -1,0 +1,96 @@
+// Shared by the end-to-end tests and the latency benchmark: starts `pliant serve --port 0`
+// (binary from $PLIANT_BIN, default target/release/pliant), reads the URL it prints, and
+// launches Debian's Chromium headless through playwright-core (never a downloaded browser).
+
+import { spawn } from 'node:child_process';
+import { existsSync } from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+export const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
+export const chromiumPath = process.env.PLIANT_CHROMIUM ?? '/usr/bin/chromium';
+
+/** Starts the server; resolves to { url, proc, stop() } once it printed its URL. */
+export async function startServer(args = []) {
+  const bin = path.resolve(repo, process.env.PLIANT_BIN ?? 'target/release/pliant');
+  if (!existsSync(bin)) throw new Error(`no pliant binary at ${bin}: build it (cargo build --release -p pliant) or set PLIANT_BIN`);
+  const proc = spawn(bin, ['serve', ...args, '--port', '0'], { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] });
+  let out = '';
+  const url = await new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`pliant serve printed no URL in 60 s:\n${out}`)), 60000);
+    const onData = (d) => {
+      out += d.toString();
+      const m = out.match(/at (http:\/\/127\.0\.0\.1:\d+\/)/);
+      if (m) {
+        clearTimeout(timer);
+        resolve(m[1]);
+      }
+    };
+    proc.stdout.on('data', onData);
+    proc.stderr.on('data', (d) => (out += d.toString()));
+    proc.on('exit', (code) => {
+      clearTimeout(timer);
+      reject(new Error(`pliant serve exited with ${code}:\n${out}`));
+    });
+  });
+  return {
+    url,
+    proc,
+    output: () => out,
+    stop: () =>
+      new Promise((resolve) => {
+        if (proc.exitCode !== null) return resolve();
+        proc.once('exit', () => resolve());
+        proc.kill('SIGINT');
+        setTimeout(() => proc.kill('SIGKILL'), 3000).unref();
+      }),
+  };
+}
+
+export async function launchBrowser() {
+  if (!existsSync(chromiumPath)) throw new Error(`no Chromium at ${chromiumPath}: run scripts/install-browser.sh`);
+  return chromium.launch({
+    executablePath: chromiumPath,
+    args: [
+      '--headless',
+      '--no-sandbox',
+      '--disable-gpu',
+      '--disable-quic',
+      '--no-first-run',
+      '--disable-background-networking',
+      '--disable-component-update',
+      '--disable-sync',
+      '--enable-unsafe-swiftshader',
+      '--use-angle=swiftshader',
+      '--ignore-gpu-blocklist',
+    ],
+  });
+}
+
+/** Opens the viewer and waits until it has drawn a few frames of the live session. */
+export async function openViewer(browser, url, { width = 1280, height = 800, query = '' } = {}) {
+  const page = await browser.newPage({ viewport: { width, height } });
+  const logs = [];
+  page.on('console', (m) => logs.push(`${m.type()}: ${m.text()}`));
+  page.on('pageerror', (e) => logs.push(`pageerror: ${e.message}`));
+  await page.goto(url + query);
+  try {
+    await page.waitForFunction(() => window.pliant && window.pliant.shown !== null && window.pliant.frames > 5, null, { timeout: 30000 });
+  } catch (e) {
+    throw new Error(`viewer did not draw the session: ${e.message}\n${logs.join('\n')}`);
+  }
+  return { page, logs };
+}
+
+export const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+export function median(xs) {
+  const s = [...xs].sort((a, b) => a - b);
+  return s.length === 0 ? NaN : s[Math.floor((s.length - 1) / 2)];
+}
+
+export function percentile(xs, p) {
+  const s = [...xs].sort((a, b) => a - b);
+  return s.length === 0 ? NaN : s[Math.min(s.length - 1, Math.ceil((p / 100) * s.length) - 1)];
+}
