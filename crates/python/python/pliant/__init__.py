@@ -1,0 +1,48 @@
+"""Pliant: real-time simulation of flexible hoses for assembly studies.
+
+Load a scene (or build one in code), step or settle it, add and remove load cases, grab
+and move hands, read positions, orientations and forces as numpy arrays, run a whole
+timeline and write the same reports as the ``pliant`` command. All values are SI
+(metres, newtons, seconds, radians); vectors are in global axes; quaternions are
+(w, x, y, z).
+
+>>> import pliant
+>>> scene = pliant.demo_scene()
+>>> sim = pliant.Simulation(scene)
+>>> _ = sim.grab(0, hose="lower", node=-1)
+>>> sim.move_hand(0, by=[0.0, 0.0, 0.05], duration=0.2)
+>>> sim.positions("lower").shape, sim.hand_force(0).shape
+((16, 3), (3,))
+
+See docs/python.md in the repository for a guide.
+"""
+
+from ._pliant import (
+    HandLoad,
+    LoadId,
+    RunResult,
+    Scene,
+    SceneError,
+    SettleReport,
+    Simulation,
+    SimulationDiverged,
+    __version__,
+    demo_scene,
+    load_scene,
+    run_timeline,
+)
+
+__all__ = [
+    "HandLoad",
+    "LoadId",
+    "RunResult",
+    "Scene",
+    "SceneError",
+    "SettleReport",
+    "Simulation",
+    "SimulationDiverged",
+    "__version__",
+    "demo_scene",
+    "load_scene",
+    "run_timeline",
+]

@@ -1,0 +1,36 @@
+//! The `pliant` Python package's native module (`pliant._pliant`): scenes, interactive
+//! simulations, timeline runs and reports, on top of Pliant's Rust crates. The Python
+//! package (python/pliant) re-exports everything from here and adds type stubs.
+
+mod args;
+mod arrays;
+mod collector;
+mod engine;
+mod errors;
+mod hand_load;
+mod load_id;
+mod run_result;
+mod scene;
+mod settle;
+mod settle_report;
+mod simulation;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _pliant(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("SceneError", py.get_type::<errors::SceneError>())?;
+    m.add("SimulationDiverged", py.get_type::<errors::SimulationDiverged>())?;
+    m.add_class::<scene::Scene>()?;
+    m.add_class::<simulation::Simulation>()?;
+    m.add_class::<load_id::LoadId>()?;
+    m.add_class::<hand_load::HandLoad>()?;
+    m.add_class::<settle_report::SettleReport>()?;
+    m.add_class::<run_result::RunResult>()?;
+    m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::demo_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(run_result::run_timeline, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,329 @@
+//! `pliant.run_timeline` and its `pliant.RunResult`: a scene's whole timeline run as
+//! `pliant run` runs it, the verdict, peaks and per-hand series as numpy arrays, and
+//! the same `report.json` / `report.html`.
+
+use crate::args::{hose_index, HoseRef};
+use crate::arrays::{scalars, to_python, vector_frames, vectors};
+use crate::collector::Collector;
+use crate::errors::{diverged, scene_error_message};
+use crate::scene::Scene;
+use glam::DVec3;
+use numpy::{PyArray1, PyArray3};
+use pliant_assembly::ergonomics::ErgonomicProfile;
+use pliant_assembly::{RunSummary, Runner};
+use pliant_cli::report::{verdict, write_reports};
+use pliant_core::{Model, State};
+use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// The outcome of a timeline run (see :func:`run_timeline`).
+///
+/// ``feasible`` is True, False, or None when no hand acted; ``reasons`` explains it
+/// (the lines ``pliant run`` prints under its verdict). ``summary`` is the whole run
+/// summary as a dict (the ``run`` object of report.json); ``peaks``, ``hand_peaks``,
+/// ``fasteners`` and ``contacts`` are its parts. ``times`` and :meth:`positions` give the
+/// hoses' shapes at the scene's record interval; :meth:`hand_series` each hand's load
+/// over time.
+#[pyclass(module = "pliant", name = "RunResult", frozen)]
+pub struct RunResult {
+    scene_name: String,
+    model: Arc<Model>,
+    profile: ErgonomicProfile,
+    run: RunSummary,
+    diverged: Option<String>,
+    feasible: Option<bool>,
+    reasons: Vec<String>,
+    data: Collector,
+}
+
+/// Runs a scene's whole timeline as ``pliant run`` does (same steps, same verdict, same
+/// report) and returns a :class:`RunResult`. ``ergonomics`` overrides the scene's
+/// ergonomic profile, as ``pliant run --ergonomics`` does, e.g.
+/// ``"posture=sitting, population=men"``.
+///
+/// Raises :class:`SimulationDiverged` if the run blows up; its ``result`` attribute holds
+/// the run up to the last healthy state (its verdict: not feasible). Raises ValueError
+/// for a bad ``ergonomics`` text.
+///
+/// >>> import pliant
+/// >>> result = pliant.run_timeline(pliant.demo_scene())
+/// >>> result.feasible
+/// False
+/// >>> result.reasons[0]
+/// 'hand 0: torque of 10.5 at t = 8.92 s exceeds the limit 3.2 (327 % of it)'
+/// >>> result.hand_series(0)["force"].shape[1]
+/// 3
+#[pyfunction]
+#[pyo3(signature = (scene, ergonomics = None))]
+pub fn run_timeline(
+    py: Python<'_>,
+    scene: &Bound<'_, Scene>,
+    ergonomics: Option<&str>,
+) -> PyResult<RunResult> {
+    let s = scene.get();
+    let (loaded, model) = (s.scene.clone(), s.model.clone());
+    let profile: ErgonomicProfile = match ergonomics {
+        Some(text) => text
+            .parse()
+            .map_err(|e| PyValueError::new_err(format!("ergonomics '{text}': {e}")))?,
+        None => loaded.ergonomics,
+    };
+    let (stubs, clips) = loaded
+        .fastener_sites(&model)
+        .map_err(|e| scene_error_message(py, format!("{}: {e}", loaded.source)))?;
+    let mut data = Collector::new(loaded.record_interval);
+    let (outcome, state) = py.allow_threads(|| {
+        let mut state = State::at_rest(&model);
+        let outcome = Runner::new(&model)
+            .with_ergonomics(profile)
+            .with_fasteners(stubs, clips)
+            .run(&loaded.timeline, &mut state, &mut data);
+        (outcome, state)
+    });
+    data.finish(&state);
+    let (run, divergence) = match outcome {
+        Ok(run) => (run, None),
+        Err(e) => (e.partial.clone(), Some(e.divergence)),
+    };
+    let message = divergence.as_ref().map(|d| d.to_string());
+    let v = verdict(&run, message.as_deref());
+    let result = RunResult {
+        scene_name: loaded.name.clone(),
+        model,
+        profile,
+        run,
+        diverged: message,
+        feasible: v.feasible,
+        reasons: v.reasons,
+        data,
+    };
+    match divergence {
+        None => Ok(result),
+        Some(d) => {
+            let err = diverged(py, &d);
+            err.value(py).setattr("result", Py::new(py, result)?)?;
+            Err(err)
+        }
+    }
+}
+
+#[pymethods]
+impl RunResult {
+    /// True: every hand load within its limit and every stub and clip fitted; False;
+    /// None: no hand acted, nothing to judge.
+    #[getter]
+    fn feasible(&self) -> Option<bool> {
+        self.feasible
+    }
+
+    /// Why (the lines under ``pliant run``'s verdict).
+    #[getter]
+    fn reasons(&self) -> Vec<String> {
+        self.reasons.clone()
+    }
+
+    /// Whether every action ran (False after a divergence).
+    #[getter]
+    fn completed(&self) -> bool {
+        self.diverged.is_none()
+    }
+
+    /// The divergence message, or None.
+    #[getter]
+    fn diverged(&self) -> Option<String> {
+        self.diverged.clone()
+    }
+
+    /// Steps taken.
+    #[getter]
+    fn steps(&self) -> u64 {
+        self.run.steps
+    }
+
+    /// Simulated time at the end [s].
+    #[getter]
+    fn simulated_time(&self) -> f64 {
+        self.run.simulated_time
+    }
+
+    /// The ergonomic profile the hand loads were judged with.
+    #[getter]
+    fn ergonomics(&self) -> String {
+        self.run.ergonomics.clone()
+    }
+
+    /// The whole run summary as a dict (the ``run`` object of report.json).
+    #[getter]
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.run)
+    }
+
+    /// Peak support loads per fixed or driven node: dicts with hose (name), hose_index,
+    /// node, max_force [N], max_force_time [s], max_moment [N·m], max_moment_time [s],
+    /// last_force, last_moment.
+    #[getter]
+    fn peaks<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        self.run
+            .peaks
+            .iter()
+            .map(|p| {
+                let d = PyDict::new(py);
+                d.set_item("hose", &self.model.hoses[p.hose].name)?;
+                d.set_item("hose_index", p.hose)?;
+                d.set_item("node", p.node)?;
+                d.set_item("max_force", p.max_force)?;
+                d.set_item("max_force_time", p.max_force_time)?;
+                d.set_item("max_moment", p.max_moment)?;
+                d.set_item("max_moment_time", p.max_moment_time)?;
+                d.set_item("last_force", p.last_force.to_array())?;
+                d.set_item("last_moment", p.last_moment.to_array())?;
+                Ok(d)
+            })
+            .collect()
+    }
+
+    /// Peak loads per hand and its worst moment against the limits (dicts).
+    #[getter]
+    fn hand_peaks<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.run.hand_peaks)
+    }
+
+    /// Stubs and clips: peak force, final state, assembled (dicts).
+    #[getter]
+    fn fasteners<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.run.fasteners)
+    }
+
+    /// Rigid parts the hoses touched and when (dicts).
+    #[getter]
+    fn contacts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.run.contacts)
+    }
+
+    /// Recorded times [s], shape (K,).
+    #[getter]
+    fn times<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        scalars(py, self.data.times.clone())
+    }
+
+    /// A hose's node positions at the recorded times [m], shape (K, N, 3).
+    fn positions<'py>(&self, py: Python<'py>, hose: HoseRef) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        let h = hose_index(&self.model, &hose)?;
+        let nodes = self.model.hoses[h].nodes();
+        let total = self.model.node_count();
+        let k = self.data.times.len();
+        let frames = (0..k).flat_map(|f| {
+            let base = f * total;
+            self.data.positions[base + nodes.start..base + nodes.end]
+                .iter()
+                .copied()
+        });
+        vector_frames(py, k, nodes.len(), frames)
+    }
+
+    /// Numbers of the hands that acted.
+    #[getter]
+    fn hands(&self) -> Vec<usize> {
+        self.run.hand_peaks.iter().map(|p| p.hand).collect()
+    }
+
+    /// Hand ``hand``'s load at the recorded times while it held something, as numpy
+    /// arrays: ``time`` (K,) [s], ``position`` (K, 3) [m], ``force`` (K, 3) [N],
+    /// ``torque`` (K, 3) [N·m], ``ratio`` (K,) to the limit of the worst load kind,
+    /// ``limit`` (K,), ``colour`` (K,) = min(ratio, 1).
+    fn hand_series<'py>(&self, py: Python<'py>, hand: usize) -> PyResult<Bound<'py, PyDict>> {
+        if !self.run.hand_peaks.iter().any(|p| p.hand == hand) {
+            return Err(PyValueError::new_err(format!(
+                "hand {hand} did not act in this run; hands that did: {:?}",
+                self.hands()
+            )));
+        }
+        let mine: Vec<_> = self
+            .data
+            .hand_records
+            .iter()
+            .filter(|(_, r)| r.hand == hand)
+            .collect();
+        let worst = |r: &pliant_assembly::HandRecord| r.assessment.map(|a| *a.worst());
+        let d = PyDict::new(py);
+        d.set_item("time", scalars(py, mine.iter().map(|(t, _)| *t).collect()))?;
+        d.set_item(
+            "position",
+            vectors(py, mine.iter().map(|(_, r)| r.load.position).collect::<Vec<DVec3>>().into_iter()),
+        )?;
+        d.set_item(
+            "force",
+            vectors(py, mine.iter().map(|(_, r)| r.load.force).collect::<Vec<DVec3>>().into_iter()),
+        )?;
+        d.set_item(
+            "torque",
+            vectors(py, mine.iter().map(|(_, r)| r.load.torque).collect::<Vec<DVec3>>().into_iter()),
+        )?;
+        d.set_item(
+            "ratio",
+            scalars(py, mine.iter().map(|(_, r)| worst(r).map_or(0.0, |w| w.ratio)).collect()),
+        )?;
+        d.set_item(
+            "limit",
+            scalars(py, mine.iter().map(|(_, r)| worst(r).map_or(0.0, |w| w.limit)).collect()),
+        )?;
+        d.set_item(
+            "colour",
+            scalars(
+                py,
+                mine.iter()
+                    .map(|(_, r)| r.assessment.map_or(0.0, |a| a.colour_value()))
+                    .collect(),
+            ),
+        )?;
+        Ok(d)
+    }
+
+    /// Writes ``report.json`` and ``report.html`` into the folder ``out`` (created if
+    /// needed) — the same files, from the same code, as ``pliant run``.
+    ///
+    /// >>> import pliant, tempfile, os
+    /// >>> out = tempfile.mkdtemp()
+    /// >>> pliant.run_timeline(pliant.demo_scene()).write_report(out)
+    /// >>> sorted(os.listdir(out))
+    /// ['report.html', 'report.json']
+    fn write_report(&self, py: Python<'_>, out: PathBuf) -> PyResult<()> {
+        py.allow_threads(|| {
+            std::fs::create_dir_all(&out)
+                .map_err(|e| format!("creating output folder {}: {e}", out.display()))?;
+            write_reports(
+                &out,
+                &self.scene_name,
+                &self.run,
+                self.diverged.as_deref(),
+                &self.data.hand_samples,
+                &self.profile,
+            )
+            .map(|_| ())
+            .map_err(|e| format!("{e:#}"))
+        })
+        .map_err(PyOSError::new_err)
+    }
+
+    fn __repr__(&self) -> String {
+        let word = match self.feasible {
+            Some(true) => "FEASIBLE",
+            Some(false) => "NOT FEASIBLE",
+            None => "not assessed",
+        };
+        format!(
+            "<pliant.RunResult '{}': {word}, {} steps, {:.3} s simulated{}>",
+            self.scene_name,
+            self.run.steps,
+            self.run.simulated_time,
+            if self.diverged.is_some() {
+                ", diverged"
+            } else {
+                ""
+            }
+        )
+    }
+}

@@ -1,0 +1,77 @@
+//! Static equilibrium by dynamic relaxation with kinetic damping — the method of
+//! `pliant_core::relax` (Cundall 1976; Barnes 1999) run on the full interactive step, so
+//! that hands, stubs and clips act while the hose settles: the explicit step runs on, and
+//! whenever the total kinetic energy passes a peak all velocities are set to zero. The
+//! result is the equilibrium of the same explicit model `step` advances; it is not an
+//! implicit or Newton solver.
+
+use crate::engine::{Engine, Refusal};
+use glam::DVec3;
+use pliant_core::health::{check, Divergence};
+use pliant_core::relax::{residual, RelaxOptions, RelaxReport};
+
+/// How often the residual is looked at, in steps (as `pliant_core::relax`).
+const CHECK_EVERY: u64 = 64;
+
+impl Engine {
+    /// Relaxes to static equilibrium under the current load cases and hand poses.
+    /// Refused while a hand or a drive is still moving (there is no equilibrium then).
+    pub fn settle(
+        &mut self,
+        opts: &RelaxOptions,
+    ) -> Result<Result<RelaxReport, Divergence>, Refusal> {
+        if self.moving() {
+            return Err(Refusal::Invalid(
+                "a hand or a drive is still moving; let it finish first (run() for its remaining duration)"
+                    .into(),
+            ));
+        }
+        if let Some(d) = self.diverged() {
+            return Ok(Err(d.clone()));
+        }
+        let mut last_energy = 0.0;
+        let mut steps = 0;
+        let outcome = (|| {
+            while steps < opts.max_steps {
+                let chunk = CHECK_EVERY.min(opts.max_steps - steps);
+                for _ in 0..chunk {
+                    self.step_once()?;
+                    steps += 1;
+                    let energy = self.state.kinetic_energy(&self.model);
+                    if opts.kinetic_damping && energy < last_energy {
+                        let s = &mut self.state;
+                        s.v.fill(DVec3::ZERO);
+                        s.w.fill(DVec3::ZERO);
+                        for b in s.bodies.iter_mut() {
+                            b.velocity = DVec3::ZERO;
+                            b.angular_velocity = DVec3::ZERO;
+                        }
+                        last_energy = 0.0;
+                    } else {
+                        last_energy = energy;
+                    }
+                }
+                check(&self.model, &self.state)?;
+                let (f, m) = residual(&self.state);
+                if f <= opts.force_tolerance && m <= opts.moment_tolerance {
+                    return Ok(RelaxReport {
+                        steps,
+                        residual_force: f,
+                        residual_moment: m,
+                        converged: true,
+                    });
+                }
+            }
+            check(&self.model, &self.state)?;
+            let (f, m) = residual(&self.state);
+            Ok(RelaxReport {
+                steps,
+                residual_force: f,
+                residual_moment: m,
+                converged: false,
+            })
+        })();
+        self.record(&outcome.as_ref().map(|_| ()).map_err(|d: &Divergence| d.clone()));
+        Ok(outcome)
+    }
+}
