@@ -133,8 +133,14 @@ impl Simulation {
         }
     }
 
+    /// Whole steps in `duration` (rounded, as the timeline's `run`).
     fn steps_for(&self, duration: f64) -> u64 {
         (duration / self.model().time_step).round() as u64
+    }
+
+    /// Steps until a motion of `duration` starting now has ended (rounded up).
+    fn steps_until_done(&self, duration: f64) -> u64 {
+        (duration / self.model().time_step - 1e-9).ceil().max(0.0) as u64
     }
 
     /// Waypoints from `to` (absolute) or `by` (offsets from `start`); at most one.
@@ -297,8 +303,8 @@ impl Simulation {
     ///
     /// >>> import pliant
     /// >>> sim = pliant.Simulation(pliant.demo_scene(), initial_loads=False)
-    /// >>> sim.fix("lower", -1)
-    /// LoadId(0, kind='fix', hose='lower', node=15)
+    /// >>> sim.fix("lower", -1)  # doctest: +ELLIPSIS
+    /// LoadId(..., kind='fix', hose='lower', node=15)
     fn fix(&mut self, hose: HoseRef, node: i64) -> PyResult<LoadId> {
         let (_, i) = hose_node(self.model(), &hose, node)?;
         let id = self.engine.fix(i).map_err(refused)?;
@@ -334,7 +340,7 @@ impl Simulation {
             .map_err(refused)?;
         let load = self.new_load(id);
         if wait {
-            let n = self.steps_for(duration);
+            let n = self.steps_until_done(duration);
             self.advance(py, n)?;
         }
         Ok(load)
@@ -499,7 +505,7 @@ impl Simulation {
             .move_hand(hand, &waypoints, phi, duration)
             .map_err(refused)?;
         if wait {
-            let n = self.steps_for(duration);
+            let n = self.steps_until_done(duration);
             self.advance(py, n)?;
         }
         Ok(())

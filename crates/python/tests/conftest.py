@@ -1,0 +1,83 @@
+"""Shared fixtures: a cantilever scene built in code, the repository's paths and the
+`pliant` binary (for comparing with the command line)."""
+
+import math
+import os
+import pathlib
+import shutil
+
+import pytest
+
+import pliant
+
+REPO = pathlib.Path(__file__).resolve().parents[3]
+EXAMPLES = REPO / "examples"
+
+# A user material with an explicit bending modulus, so EI is known exactly.
+E_BENDING = 12.0e6  # Pa
+DENSITY = 1000.0  # kg/m^3
+D_OUTER, D_INNER = 0.016, 0.010  # m
+AREA = math.pi / 4 * (D_OUTER**2 - D_INNER**2)
+SECOND_MOMENT = math.pi / 64 * (D_OUTER**4 - D_INNER**4)
+EI = E_BENDING * SECOND_MOMENT
+G = 9.81
+
+
+def cantilever_dict(length=0.2, elements=20, gravity=(0.0, 0.0, -G), fixed=True):
+    """A straight hose along +x from the origin, clamped at node 0 (SI units)."""
+    scene = {
+        "format": "pliant-scene",
+        "version": 1,
+        "name": "cantilever",
+        "length_unit": "m",
+        "simulation": {"gravity": list(gravity), "damping_mass_per_s": 5.0},
+        "materials": {
+            "test_rubber": {
+                "e_tension_mpa": 20.0,
+                "e_compression_mpa": 20.0,
+                "e_bending_mpa": E_BENDING / 1e6,
+                "poisson": 0.45,
+                "density_kg_m3": DENSITY,
+            }
+        },
+        "hoses": [
+            {
+                "name": "beam",
+                "material": "test_rubber",
+                "section": {"d_inner": D_INNER, "d_outer": D_OUTER},
+                "elements": elements,
+                "start": [0.0, 0.0, 0.0],
+                "path": [{"line": {"to": [length, 0.0, 0.0]}}],
+                "normal_hint": [0.0, 0.0, 1.0],
+            }
+        ],
+        "timeline": [],
+    }
+    if fixed:
+        scene["timeline"].append({"action": "fix", "hose": "beam", "node": 0})
+    return scene
+
+
+@pytest.fixture
+def cantilever():
+    """A Simulation of the clamped cantilever under gravity, at rest in its rest shape."""
+    return pliant.Simulation(pliant.Scene.from_dict(cantilever_dict()))
+
+
+@pytest.fixture
+def pliant_bin():
+    """The `pliant` command: $PLIANT_BIN, else target*/release/pliant of the repository.
+    Fails (does not skip) if $PLIANT_BIN is set but missing."""
+    given = os.environ.get("PLIANT_BIN")
+    if given:
+        assert pathlib.Path(given).is_file(), f"PLIANT_BIN={given} does not exist"
+        return given
+    for target in [os.environ.get("CARGO_TARGET_DIR"), REPO / "target"]:
+        if target:
+            candidate = pathlib.Path(target) / "release" / "pliant"
+            if candidate.is_file():
+                return str(candidate)
+    found = shutil.which("pliant")
+    if found:
+        return found
+    pytest.skip("the pliant binary is not built (cargo build --release -p pliant)")
