@@ -6,4 +6,5 @@ cargo build --release --workspace
 cargo test --release --workspace
 ./target/release/pliant validate
 ./target/release/pliant bench --quick --json > /dev/null
+./scripts/test-python.sh   # the Python API (crates/python): builds it into .venv, runs pytest
 echo "all tests passed"
