@@ -36,6 +36,7 @@ export function installDebugHandle(src: DebugSources): void {
     get shown() { return src.shown(); },
     get replaying() { return src.replaying(); },
     get mouseHandId() { return src.mouse.handId; },
+    get lastPick() { return src.mouse.lastPick; },
     get xrHandIds() { return src.xr.hands.map((h) => src.xr.handBase + h.handId); },
     get inVr() { return src.xr.inSession; },
     /** Node positions of hose `h` as drawn (world frame). */
@@ -54,6 +55,13 @@ export function installDebugHandle(src: DebugSources): void {
     threeOf(p: Vec3): Vec3 {
       const v = src.stage.toThree(p);
       return [v.x, v.y, v.z];
+    },
+    /** Each controller grip's position in three.js space, and whether it holds a hose. */
+    xrGrips(): { position: Vec3; held: boolean; handId: number }[] {
+      return src.xr.hands.map((h) => {
+        const v = h.grip.getWorldPosition(h.grip.position.clone());
+        return { position: [v.x, v.y, v.z], held: h.held, handId: src.xr.handBase + h.handId };
+      });
     },
     /** Latency samples: ms from sending a move to its snapshot and to the frame drawn. */
     latency(): { snapshot: number; frame: number }[] {

@@ -6,6 +6,7 @@
 
 import * as THREE from 'three';
 import { colourRgb } from './colour';
+import { surface, type SurfaceMaterial } from './materials';
 import type { HoseData, Vec3 } from './protocol';
 
 /** Curve samples per beam. */
@@ -14,7 +15,7 @@ const SUBDIV = 4;
 const RADIAL = 14;
 
 export class HoseTube {
-  readonly mesh: THREE.Mesh<THREE.BufferGeometry, THREE.MeshStandardMaterial>;
+  readonly mesh: THREE.Mesh<THREE.BufferGeometry, SurfaceMaterial>;
   readonly nodes: number;
   private readonly rings: number;
   private readonly pos: Float32Array;
@@ -53,7 +54,7 @@ export class HoseTube {
     g.setAttribute('position', pa);
     g.setAttribute('normal', na);
     g.setIndex(idx);
-    const m = new THREE.MeshStandardMaterial({ color: 0x0000ff, roughness: 0.55, metalness: 0.05 });
+    const m = surface({ color: 0x0000ff, roughness: 0.55, metalness: 0.05 });
     this.mesh = new THREE.Mesh(g, m);
     this.mesh.name = `hose:${data.name}`;
     this.mesh.castShadow = true;

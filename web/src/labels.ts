@@ -12,7 +12,7 @@ interface Label { sprite: THREE.Sprite; canvas: HTMLCanvasElement; texture: THRE
 export class ForceLabels {
   private labels = new Map<number, Label>();
   private readonly group = new THREE.Group();
-  /** Label width in metres. */
+  /** Label width in metres (in VR: readable at arm's length). */
   width = 0.16;
 
   constructor(private readonly stage: Stage) {
@@ -63,10 +63,11 @@ export class ForceLabels {
         }
         l.texture.needsUpdate = true;
       }
+      const width = this.stage.renderer.xr.isPresenting ? this.width : Math.max(this.stage.radius * 0.3, 0.05);
       const p = this.stage.toThree(h.position);
-      p.y += this.width * 0.35;
+      p.y += width * 0.35;
       l.sprite.position.copy(p);
-      l.sprite.scale.set(this.width, this.width / 4, 1);
+      l.sprite.scale.set(width, width / 4, 1);
     }
     for (const [id, l] of this.labels) {
       if (!seen.has(id)) {

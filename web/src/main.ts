@@ -27,7 +27,7 @@ async function main(): Promise<void> {
 
   const app = document.getElementById('app') as HTMLElement;
   const view = document.getElementById('view') as HTMLElement;
-  const stage = new Stage(view);
+  const stage = new Stage(view, params.get('quality') === 'low' ? 'low' : 'high');
   const legend = document.createElement('div');
   legend.id = 'legend';
   legend.innerHTML = 'hand load / limit<div class="grad"></div>0 &nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp; 50 % &nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp; ≥ 100 %';

@@ -70,7 +70,7 @@ export class LoadPlot {
           if (s.hand !== hand || s.t < now - this.window_s) continue;
           const px = x(s.t);
           const py = y(s[which]);
-          if (first || s.t - prevT > 0.25) ctx.moveTo(px, py);
+          if (first || s.t - prevT > 1.0) ctx.moveTo(px, py);
           else ctx.lineTo(px, py);
           first = false;
           prevT = s.t;

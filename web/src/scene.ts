@@ -5,6 +5,7 @@
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { setQuality, surface, type Quality } from './materials';
 import type { FastenerData, SceneData, Vec3 } from './protocol';
 
 const PART_COLOURS = [0xb8b4ac, 0x9aa3ab, 0xc4b59a, 0xa9a9a9, 0xb0a8a0];
@@ -24,12 +25,18 @@ export class Stage {
   private readonly sun = new THREE.DirectionalLight(0xffffff, 2.2);
   radius = 1;
 
-  constructor(readonly container: HTMLElement) {
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+  /**
+   * `low` quality (URL `?quality=low`): no antialiasing, no shadows, one pixel per CSS
+   * pixel — for software rendering (headless tests, old machines).
+   */
+  constructor(readonly container: HTMLElement, readonly quality: Quality = 'high') {
+    setQuality(quality);
+    const low = quality === 'low';
+    this.renderer = new THREE.WebGLRenderer({ antialias: !low, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(low ? 1 : Math.min(window.devicePixelRatio, 2));
     this.renderer.setSize(container.clientWidth, container.clientHeight);
     this.renderer.outputColorSpace = THREE.SRGBColorSpace;
-    this.renderer.shadowMap.enabled = true;
+    this.renderer.shadowMap.enabled = !low;
     this.renderer.shadowMap.type = THREE.PCFShadowMap;
     container.appendChild(this.renderer.domElement);
 
@@ -113,7 +120,7 @@ export class Stage {
       const flat = g.toNonIndexed();
       g.dispose();
       flat.computeVertexNormals();
-      const m = new THREE.MeshStandardMaterial({
+      const m = surface({
         color: PART_COLOURS[i % PART_COLOURS.length],
         roughness: 0.75,
         metalness: 0.15,
@@ -145,7 +152,7 @@ export class Stage {
     const g = new THREE.Group();
     const plane = new THREE.Mesh(
       new THREE.PlaneGeometry(size, size),
-      new THREE.MeshStandardMaterial({ color: 0x3a4048, roughness: 1 }),
+      surface({ color: 0x3a4048, roughness: 1 }),
     );
     plane.receiveShadow = true;
     plane.position.set(this.centre.x, this.centre.y, z);
@@ -210,7 +217,7 @@ function stubMesh(f: FastenerData): THREE.Object3D {
   const g = new THREE.Group();
   g.name = `stub:${f.name}`;
   const r = f.diameter / 2;
-  const mat = new THREE.MeshStandardMaterial({ color: 0xd0d4d8, metalness: 0.6, roughness: 0.35 });
+  const mat = surface({ color: 0xd0d4d8, metalness: 0.6, roughness: 0.35 });
   const body = new THREE.Mesh(new THREE.CylinderGeometry(r, r, f.length, 24), mat);
   body.position.y = f.length / 2;
   const flange = new THREE.Mesh(new THREE.CylinderGeometry(r * 1.6, r * 1.6, f.length * 0.12, 24), mat);
@@ -227,7 +234,7 @@ function clipMesh(f: FastenerData): THREE.Object3D {
   const r = f.diameter / 2;
   const gap = Math.min(Math.asin(Math.min(f.opening_width / f.diameter, 0.99)) * 2, Math.PI);
   const ring = new THREE.TorusGeometry(r + 0.003, 0.003, 8, 32, 2 * Math.PI - gap);
-  const mat = new THREE.MeshStandardMaterial({ color: 0xe0a030, roughness: 0.5 });
+  const mat = surface({ color: 0xe0a030, roughness: 0.5 });
   const mesh = new THREE.Mesh(ring, mat);
   // Torus: in its xy plane, axis z, arc from +x counter-clockwise. Put the axis along the
   // hose direction and centre the gap on the opening direction.
