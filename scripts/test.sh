@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # Builds everything and runs every test: unit tests, scene-format tests, the validation
-# suite (each case a test), the CLI end-to-end tests, and a quick benchmark smoke run.
+# suite (each case a test), the CLI end-to-end tests, a quick benchmark smoke run, and the
+# browser viewer's end-to-end tests in headless Chromium.
 source "$(dirname "$0")/common.sh"
+./scripts/build-web.sh     # the viewer first: the release build below embeds web/dist
 cargo build --release --workspace
 cargo test --release --workspace
 ./target/release/pliant validate
 ./target/release/pliant bench --quick --json > /dev/null
 ./scripts/test-python.sh   # the Python API (crates/python): builds it into .venv, runs pytest
+./scripts/install-browser.sh   # Debian's chromium, only if /usr/bin/chromium is missing
+(cd web && npm run --silent test:e2e)   # viewer end-to-end (target/release/pliant serve)
 echo "all tests passed"
