@@ -27,8 +27,13 @@ use std::time::{Duration, Instant};
 use tokio::net::TcpListener;
 use tokio::sync::watch;
 
-/// Most snapshots sent to one client per second.
+/// Most snapshots sent to one client per second, as a rule.
 pub const SNAPSHOT_HZ: f64 = 60.0;
+/// After a client's accepted command, the first snapshot published after it goes out to
+/// that client without waiting for the 60 Hz pacing, but at most this often [Hz]: the
+/// reply to input comes sooner (lower hand-to-screen latency), and a client gets at most as
+/// many extra snapshots as it sends commands.
+pub const INPUT_SNAPSHOT_HZ: f64 = 240.0;
 
 /// Where to listen.
 #[derive(Clone, Debug)]
@@ -184,7 +189,10 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
     let mut limiter = RateLimiter::default();
     let mut welcomed = false;
     let interval = Duration::from_secs_f64(1.0 / SNAPSHOT_HZ);
-    let mut next_send = tokio::time::Instant::now();
+    let fast_interval = Duration::from_secs_f64(1.0 / INPUT_SNAPSHOT_HZ);
+    let mut last_send = tokio::time::Instant::now() - interval;
+    // a command of this client was accepted since the last snapshot sent to it
+    let mut input_pending = false;
     loop {
         tokio::select! {
             incoming = socket.recv() => {
@@ -205,6 +213,12 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
                     Message::Close(_) => return,
                     _ => Reply::None,
                 };
+                let accepted = matches!(reply, Reply::None | Reply::LoadScene { .. });
+                if accepted && welcomed && !input_pending {
+                    // wait for a snapshot published after this command, and send it soon
+                    input_pending = true;
+                    snapshots.mark_unchanged();
+                }
                 let reply = match reply {
                     Reply::None => None,
                     Reply::Text(t) => Some(t),
@@ -224,7 +238,8 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
                 }
             }
             changed = async {
-                tokio::time::sleep_until(next_send).await;
+                let wait = if input_pending { fast_interval } else { interval };
+                tokio::time::sleep_until(last_send + wait).await;
                 snapshots.changed().await
             }, if welcomed => {
                 if changed.is_err() { return }
@@ -232,7 +247,8 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
                 if socket.send(Message::Text(snap.json().to_owned().into())).await.is_err() {
                     return;
                 }
-                next_send = tokio::time::Instant::now() + interval;
+                last_send = tokio::time::Instant::now();
+                input_pending = false;
             }
             changed = generation.changed() => {
                 if changed.is_err() { return }

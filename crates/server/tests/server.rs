@@ -392,3 +392,63 @@ async fn a_client_pushes_the_hose_onto_the_stub() {
         "the press fit resisted"
     );
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ergonomics_and_scene_can_be_changed_and_bad_scenes_are_refused() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    let w = hello(&mut ws).await;
+    let old = w["session"]["scene"].as_str().unwrap().to_owned();
+    // stubs and clips: drawn from the welcome, their current force in every snapshot
+    assert!(!w["session"]["fasteners"].as_array().unwrap().is_empty());
+    let snap = next_where(&mut ws, "snapshot", |_| true).await;
+    assert!(snap["fasteners"][0]["force"].as_f64().is_some());
+    assert!(snap["verdict"]["feasible"].is_null(), "{}", snap["verdict"]);
+    // ergonomics
+    send(&mut ws, json!({"type": "set_ergonomics", "posture": "crouching", "population": "men", "duty": "continuous"})).await;
+    next_where(&mut ws, "snapshot", |v| {
+        v["ergonomics"]["push_posture"] == "crouching"
+            && v["ergonomics"]["population"] == "men"
+            && v["ergonomics"]["duty"] == "continuous"
+    })
+    .await;
+    send(
+        &mut ws,
+        json!({"type": "set_ergonomics", "duty": "sometimes"}),
+    )
+    .await;
+    let e = next_where(&mut ws, "error", |_| true).await;
+    assert_eq!(e["code"], "invalid_value");
+    assert!(e["message"].as_str().unwrap().contains("sometimes"), "{e}");
+    // a broken scene: the loader's message, the old session runs on
+    send(&mut ws, json!({"type": "load_scene", "text": "format = \"pliant-scene\"\nversion = 7\n", "name": "bad.toml"})).await;
+    let e = next_where(&mut ws, "error", |_| true).await;
+    assert_eq!(e["code"], "invalid_scene");
+    assert!(e["message"].as_str().unwrap().contains("bad.toml"), "{e}");
+    let t0 = next_where(&mut ws, "snapshot", |_| true).await["time"]
+        .as_f64()
+        .unwrap();
+    next_where(&mut ws, "snapshot", |v| v["time"].as_f64().unwrap() > t0).await;
+    // a good scene: every client gets a new welcome
+    let mut other = connect(&s).await;
+    hello(&mut other).await;
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/demo.toml"
+    ))
+    .unwrap();
+    send(
+        &mut ws,
+        json!({"type": "load_scene", "text": text, "name": "demo.toml"}),
+    )
+    .await;
+    let w1 = next_where(&mut ws, "welcome", |_| true).await;
+    let w2 = next_where(&mut other, "welcome", |_| true).await;
+    assert_ne!(w1["session"]["scene"].as_str().unwrap(), old);
+    assert_eq!(w1["session"]["scene"], w2["session"]["scene"]);
+    let n = w1["session"]["hoses"].as_array().unwrap().len();
+    next_where(&mut other, "snapshot", |v| {
+        v["hoses"].as_array().unwrap().len() == n
+    })
+    .await;
+}
