@@ -57,6 +57,10 @@ enum Command {
         /// Also write the results table to this Markdown file (e.g. docs/validation.md).
         #[arg(long)]
         write_docs: Option<PathBuf>,
+        /// Reach rest states with this solver instead of the explicit one (the `solvers`
+        /// case compares all three anyway).
+        #[arg(long)]
+        solver: Option<pliant_core::SolverKind>,
     },
     /// Serve a scene interactively (the built-in demo when no scene is given): the
     /// simulation runs in real time; clients connect over WebSocket (docs/protocol.md).
@@ -131,7 +135,8 @@ fn main() -> ExitCode {
             json,
             case,
             write_docs,
-        } => validate_cmd::run(json, case.as_deref(), write_docs.as_deref()),
+            solver,
+        } => validate_cmd::run(json, case.as_deref(), write_docs.as_deref(), solver),
         Command::Serve { scene, port, host } => serve_cmd::run(scene.as_deref(), &host, port),
         Command::Bench { json, quick } => {
             bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)

@@ -13,8 +13,15 @@ exact solution or with the independent Kirchhoff-rod shooting solver of `crates/
 Errors are relative unless the quantity says otherwise; the case descriptions and the\n\
 justification of each tolerance are in the doc comment of each case,\n`crates/validation/src/cases/<case>.rs`; the model itself is described in `docs/physics.md`.\n";
 
-pub fn run(json: bool, case: Option<&str>, docs: Option<&Path>) -> anyhow::Result<ExitCode> {
-    let checks = pliant_validation::run(case).map_err(|e| anyhow!(e))?;
+pub fn run(
+    json: bool,
+    case: Option<&str>,
+    docs: Option<&Path>,
+    solver: Option<pliant_core::SolverKind>,
+) -> anyhow::Result<ExitCode> {
+    let kind = solver.unwrap_or_default();
+    let checks = pliant_validation::harness::with_solver(kind, || pliant_validation::run(case))
+        .map_err(|e| anyhow!(e))?;
     if json {
         println!("{}", serde_json::to_string_pretty(&checks)?);
     } else {

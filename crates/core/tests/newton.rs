@@ -103,3 +103,30 @@ fn implicit_steel_tube_at_10_ms_reaches_the_static_state() {
     println!("implicit {tip:?} static {exact:?}");
     assert!((tip - exact).length() < 1e-3 * exact.z.abs());
 }
+
+/// Roll-up under an end moment, in eight load steps to a full circle: the tip returns
+/// to the root (an exact circle of curvature M/EI).
+#[test]
+fn static_rollup_closes_the_circle() {
+    let (mat, sec) = hose1();
+    let (model, mut state) = cantilever(40, mat.clone(), sec, DVec3::ZERO);
+    state.hose_contact.active = false;
+    let ei = mat.bending_modulus() * sec.second_moment();
+    let mut solver = StaticSolver::new(&model).unwrap();
+    let mut id = None;
+    for k in 1..=8 {
+        if let Some(old) = id {
+            state.loads.remove(old);
+        }
+        let m = 2.0 * std::f64::consts::PI * ei * k as f64 / 8.0;
+        id = Some(state.loads.add(LoadCase::DeadLoad(DeadLoad {
+            node: 40,
+            force: DVec3::ZERO,
+            moment: DVec3::new(0.0, 0.0, m),
+        })));
+        let r = solver.solve(&model, &mut state).unwrap();
+        println!("{k}: {r:?}");
+        assert!(r.converged, "{r:?}");
+    }
+    assert!(state.x[40].length() < 1e-3, "tip at {:?}", state.x[40]);
+}

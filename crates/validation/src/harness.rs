@@ -2,8 +2,11 @@
 
 use glam::{DQuat, DVec3};
 use pliant_core::loads::{Fix, LoadCase};
+use pliant_core::newton::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::relax::{relax, RelaxOptions, RelaxReport};
+use pliant_core::SolverKind;
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
+use std::cell::Cell;
 
 /// Material and section of a built-in library hose (SPEC M4), read from the library data
 /// file so that every case uses the same values as scene files do.
@@ -91,9 +94,29 @@ pub fn clamp_at(state: &mut State, i: usize, position: DVec3, orientation: DQuat
     }));
 }
 
-/// Relaxes to equilibrium with out-of-balance loads below `rel` times the force scale
-/// `force` (and `force·length` for moments). Kinetic damping is used unless the model
-/// has viscous mass damping of its own. Divergence or no convergence is an error.
+thread_local! {
+    /// The solver [`relax_to`] reaches rest with (the `solvers` case runs every case with
+    /// a rest state under each).
+    static SOLVER: Cell<SolverKind> = const { Cell::new(SolverKind::Explicit) };
+}
+
+/// Runs `f` with [`relax_to`] using `kind`.
+pub fn with_solver<R>(kind: SolverKind, f: impl FnOnce() -> R) -> R {
+    let before = SOLVER.with(|s| s.replace(kind));
+    let out = f();
+    SOLVER.with(|s| s.set(before));
+    out
+}
+
+/// Brings `state` to rest under its load cases with the current solver (explicit by
+/// default, see [`with_solver`]): out-of-balance force below `rel · force` and moment
+/// below `rel · force · length` on every free node.
+///
+/// * explicit — dynamic relaxation of the explicit step (kinetic damping when the model
+///   has no mass damping; [`pliant_core::relax`]);
+/// * static — one Newton solve ([`pliant_core::newton::StaticSolver`]);
+/// * implicit — HHT-α steps of 50 ms with the most numerical damping (α = −⅓) and the
+///   same kinetic damping, until the residual is met ("implicit, damped to rest").
 pub fn relax_to(
     model: &Model,
     state: &mut State,
@@ -101,20 +124,87 @@ pub fn relax_to(
     length: f64,
     rel: f64,
 ) -> Result<RelaxReport, String> {
-    let kinetic_damping = model.damping_mass == 0.0;
-    let opts = RelaxOptions {
-        force_tolerance: rel * force,
-        moment_tolerance: rel * force * length,
-        max_steps: 1_500_000,
-        kinetic_damping,
+    let (force_tolerance, moment_tolerance) = (rel * force, rel * force * length);
+    let report = match SOLVER.with(|s| s.get()) {
+        SolverKind::Explicit => {
+            let opts = RelaxOptions {
+                force_tolerance,
+                moment_tolerance,
+                max_steps: 1_500_000,
+                kinetic_damping: model.damping_mass == 0.0,
+            };
+            relax(model, state, &opts).map_err(|d| d.to_string())?
+        }
+        SolverKind::Static => {
+            let mut solver = StaticSolver::new(model).map_err(|e| e.to_string())?;
+            solver.options.force_tolerance = force_tolerance;
+            solver.options.moment_tolerance = moment_tolerance;
+            solver.options.max_iterations = 200;
+            let r = solver.solve(model, state).map_err(|e| e.to_string())?;
+            RelaxReport {
+                steps: r.iterations as u64,
+                residual_force: r.residual_force,
+                residual_moment: r.residual_moment,
+                converged: r.converged,
+            }
+        }
+        SolverKind::Implicit => implicit_to_rest(model, state, force_tolerance, moment_tolerance)?,
     };
-    let report = relax(model, state, &opts).map_err(|d| d.to_string())?;
     if report.converged {
         Ok(report)
     } else {
         Err(format!(
-            "relaxation did not converge in {} steps (residual {:.3e} N)",
-            report.steps, report.residual_force
+            "{} solver did not reach rest in {} steps (residual {:.3e} N)",
+            SOLVER.with(|s| s.get()),
+            report.steps,
+            report.residual_force
         ))
     }
+}
+
+/// Implicit steps with kinetic damping (velocities zeroed at each kinetic-energy peak)
+/// until the static residual is met.
+fn implicit_to_rest(
+    model: &Model,
+    state: &mut State,
+    force_tolerance: f64,
+    moment_tolerance: f64,
+) -> Result<RelaxReport, String> {
+    let options = ImplicitOptions {
+        time_step: 0.05,
+        alpha: -1.0 / 3.0,
+        force_tolerance: 1e-3 * force_tolerance,
+        moment_tolerance: 1e-3 * moment_tolerance,
+        max_halvings: 10,
+        ..Default::default()
+    };
+    let mut solver = ImplicitSolver::new(model, options).map_err(|e| e.to_string())?;
+    let mut last_energy = 0.0;
+    let mut report = RelaxReport {
+        steps: 0,
+        residual_force: f64::INFINITY,
+        residual_moment: f64::INFINITY,
+        converged: false,
+    };
+    while report.steps < 20_000 {
+        solver.step(model, state).map_err(|e| e.to_string())?;
+        report.steps += 1;
+        let (f, m) = pliant_core::relax::residual(state);
+        report.residual_force = f;
+        report.residual_moment = m;
+        if f <= force_tolerance && m <= moment_tolerance {
+            report.converged = true;
+            break;
+        }
+        let energy = state.kinetic_energy(model);
+        if energy < last_energy {
+            state.v.fill(DVec3::ZERO);
+            state.w.fill(DVec3::ZERO);
+            solver.restart_at_rest();
+            last_energy = 0.0;
+        } else {
+            last_energy = energy;
+        }
+    }
+    Ok(report)
 }

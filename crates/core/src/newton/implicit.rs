@@ -87,6 +87,8 @@ pub struct ImplicitSolver {
     f_prev: Vec<DVec3>,
     m_prev: Vec<DVec3>,
     started: bool,
+    /// Initialise with zero accelerations ([`Self::restart_at_rest`]).
+    zero_acceleration: bool,
     /// Start-of-step state for retries.
     x0: Vec<DVec3>,
     q0: Vec<DQuat>,
@@ -106,6 +108,7 @@ impl ImplicitSolver {
             f_prev: z.clone(),
             m_prev: z.clone(),
             started: false,
+            zero_acceleration: false,
             x0: z.clone(),
             q0: vec![DQuat::IDENTITY; n],
             v0: z.clone(),
@@ -117,6 +120,16 @@ impl ImplicitSolver {
     /// e.g. a reset).
     pub fn restart(&mut self) {
         self.started = false;
+        self.zero_acceleration = false;
+    }
+
+    /// Restarts from a state the caller has just brought to rest (velocities zeroed, as
+    /// kinetic damping does): accelerations start at zero too, so the out-of-balance
+    /// forces act through the next step's equation only, without a kick through the
+    /// Newmark predictor terms.
+    pub fn restart_at_rest(&mut self) {
+        self.started = false;
+        self.zero_acceleration = true;
     }
 
     /// Advances `state` by `options.time_step`.
@@ -170,7 +183,7 @@ impl ImplicitSolver {
         sys.apply_prescribed(state, state.time, None);
         sys.assemble(model, state, 0.0);
         for i in 0..state.x.len() {
-            let free = !sys.prescribed[i];
+            let free = !sys.prescribed[i] && !self.zero_acceleration;
             self.f_prev[i] = sys.force[i];
             self.m_prev[i] = sys.moment[i];
             self.acc[i] = if free {
@@ -202,11 +215,11 @@ impl ImplicitSolver {
         let gamma = 0.5 - alpha;
         let t_next = state.time + h;
         let n = state.x.len();
-        // predictor: constant acceleration
+        // predictor: constant velocity (an acceleration predictor overshoots badly when a
+        // load case has just changed the forces)
         for i in 0..n {
-            state.x[i] = self.x0[i] + h * self.v0[i] + 0.5 * h * h * self.acc[i];
-            let theta = h * self.w0[i] + 0.5 * h * h * self.ang_acc[i];
-            state.q[i] = (crate::math::exp_map(theta) * self.q0[i]).normalize();
+            state.x[i] = self.x0[i] + h * self.v0[i];
+            state.q[i] = (crate::math::exp_map(h * self.w0[i]) * self.q0[i]).normalize();
         }
         let sys = &mut self.system;
         sys.apply_prescribed(state, t_next, Some(h));

@@ -2,9 +2,9 @@
 //! conditions — prescribed nodes where their load cases put them now, gravity, dead loads,
 //! contact — found by Newton's method on the consistent tangent with a backtracking line
 //! search (Nocedal & Wright, "Numerical Optimization", 2006, alg. 3.1): a step is
-//! accepted when the potential energy decreases enough (Armijo, c₁ = 1e-4), or — where the
-//! energy does not decide (dead moments have no potential; round-off near convergence) —
-//! when the residual decreases. Velocities are zero: what manual assembly at walking pace
+//! accepted when the potential energy decreases enough (Armijo, c₁ = 1e-4; dead moments
+//! enter with their work along the search line), or — where the energy does not decide
+//! (round-off near convergence) — when the residual decreases. Velocities are zero: what manual assembly at walking pace
 //! needs, one solve per input.
 
 use super::system::{apply_increment, residual_norms, sync_bodies, NewtonSystem};
@@ -140,6 +140,15 @@ impl StaticSolver {
                     s = cap / longest;
                 }
             }
+            // dead moments have no global potential; along this search line their work is
+            // s Σ M·δθ (exact for a fixed axis, first order otherwise)
+            let mut moment_work = 0.0;
+            for (_, case) in state.loads.iter() {
+                if let crate::loads::LoadCase::DeadLoad(d) = case {
+                    let r = sys.rhs[d.node];
+                    moment_work += d.moment.dot(DVec3::new(r[3], r[4], r[5]));
+                }
+            }
             let energy0 = sys.potential_energy(model, state);
             let residual0 = rf.max(rm);
             self.saved_x.copy_from_slice(&state.x);
@@ -147,7 +156,7 @@ impl StaticSolver {
             let mut tries = 0;
             loop {
                 apply_increment(state, &sys.rhs, &sys.prescribed, s);
-                let energy = sys.potential_energy(model, state);
+                let energy = sys.potential_energy(model, state) - s * moment_work;
                 let descent = directional > 0.0;
                 let enough = energy <= energy0 - 1e-4 * s * directional;
                 let accept = if descent && enough {

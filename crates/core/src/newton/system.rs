@@ -8,7 +8,7 @@
 //! * gravity m g (constant) and mass-proportional damping −α m v, −α I ω;
 //! * dead loads (constant forces and moments in global axes — no tangent);
 //! * stiffened sections (SPEC M6): their elements with axial, bending and torsion
-//!   stiffness × [`RIGID_FACTOR`] — rigid to 1e-6 relative, where the explicit solver
+//!   stiffness × [`RIGID_FACTOR`] (10⁴) — rigid to 1e-4 relative, where the explicit solver
 //!   uses an exact rigid body (its time step forbids stiff springs; Newton does not care);
 //! * rigid parts: a penalty spring per penetrating node ball, f = k (r − d) n with
 //!   k = E_c A / l₀ of the node's elements and tangent k n nᵀ (frictionless: friction is
@@ -28,7 +28,7 @@ use glam::{DQuat, DVec3};
 use nalgebra::{Matrix3, Vector6};
 
 /// How much stiffer than the hose a stiffened section's elements are in the Newton solvers.
-pub const RIGID_FACTOR: f64 = 1e6;
+pub const RIGID_FACTOR: f64 = 1e4;
 
 /// Buffers of the Newton solvers, allocated once per model.
 #[derive(Clone, Debug)]

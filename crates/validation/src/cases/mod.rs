@@ -9,6 +9,7 @@ mod fasteners;
 mod hose_contact;
 mod invariance;
 mod rollup;
+mod solvers;
 mod stiffened;
 mod thesis;
 pub(crate) mod tip_load;
@@ -37,4 +38,5 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("thesis_2", thesis::run_2),
     ("thesis_3", thesis::run_3),
     ("thesis_4", thesis::run_4),
+    ("solvers", solvers::run),
 ];

@@ -1,0 +1,79 @@
+//! `solvers`: every case with a rest state, run under each solver (issue 5): the explicit
+//! solver damped to rest, implicit HHT-α damped to rest and the quasi-static Newton
+//! solver must agree within 0.1 % on every quantity the case compares (relative to the
+//! quantity's reference scale — the exact value, or the hose length where the exact value
+//! is zero). The exact checks themselves stay in each case's own rows (explicit); here
+//! each quantity of the implicit and static runs is also checked against its exact value
+//! with the case's own tolerance.
+//!
+//! Cases without a rest state (energy drift, wave convergence, sliding on the incline,
+//! tunnelling at speed, stub and clip timelines, the thesis runs) are dynamic by nature
+//! and are run by the explicit solver only.
+
+use super::{axial, buckling, rollup, stiffened, tip_load, torsion};
+use crate::harness::with_solver;
+use crate::Check;
+use pliant_core::SolverKind;
+
+/// Largest disagreement between solvers, relative to the quantity's scale.
+pub const AGREEMENT: f64 = 1e-3;
+
+/// The cases with a rest state and the Newton solvers each is checked under. Not (yet)
+/// covered: `torsion` under the implicit solver (it reaches the exact torque when damped
+/// viscously, but with kinetic-damping restarts the support moment it reports is wrong —
+/// a bug not yet found), `buckling` and `stiffened` under the implicit solver (the clamped-clamped
+/// column's sudden end shortening defeats Newton without a line search even at 1/1024 of
+/// the step; the stiff span leaves a round-off residual above the case's 1e-6 tolerance),
+/// and `hose_contact` under both (hose–hose contact enters the Newton system without a
+/// tangent, and the fixed-point iteration does not settle) — see docs/physics.md.
+const CASES: &[(&str, crate::CaseFn, &[SolverKind])] = &[
+    ("rollup", rollup::run, BOTH),
+    ("tip_load", tip_load::run, BOTH),
+    ("buckling", buckling::run, &[SolverKind::Static]),
+    ("axial", axial::run, BOTH),
+    ("torsion", torsion::run, &[SolverKind::Static]),
+    ("stiffened", stiffened::run, &[SolverKind::Static]),
+];
+
+const BOTH: &[SolverKind] = &[SolverKind::Implicit, SolverKind::Static];
+
+pub fn run() -> Vec<Check> {
+    let mut out = Vec::new();
+    for (name, case, kinds) in CASES {
+        let explicit = with_solver(SolverKind::Explicit, case);
+        for &kind in kinds.iter() {
+            let other = with_solver(kind, case);
+            for (e, o) in explicit.iter().zip(&other) {
+                let label = format!("{name}: {} [{kind} vs explicit]", e.quantity);
+                if !(e.pass && o.quantity == e.quantity) {
+                    out.push(Check::failed(
+                        "solvers",
+                        &label,
+                        "run failed or rows differ",
+                    ));
+                    continue;
+                }
+                if !o.pass {
+                    out.push(Check::failed(
+                        "solvers",
+                        &label,
+                        &format!(
+                            "{kind}: {} vs exact {} beyond the case's tolerance",
+                            o.computed, o.reference
+                        ),
+                    ));
+                    continue;
+                }
+                let scale = if e.reference.abs() > 0.0 {
+                    e.reference.abs()
+                } else {
+                    e.computed.abs().max(1.0)
+                };
+                out.push(Check::scaled(
+                    "solvers", &label, o.computed, e.computed, scale, AGREEMENT,
+                ));
+            }
+        }
+    }
+    out
+}
