@@ -17,6 +17,8 @@ const INTERVAL_MS = arg('interval', 100);
 const CONFIGS = [
   { name: 'low quality, 800x500', width: 800, height: 500, query: '?quality=low' },
   { name: 'full quality, 1280x800', width: 1280, height: 800, query: '' },
+  // a small canvas: little software rendering per frame
+  { name: 'low quality, 400x250', width: 400 + 320, height: 250, query: '?quality=low' },
   // the simulation paused after the grab: the same path without its thread's CPU load
   { name: 'low quality, sim paused', width: 800, height: 500, query: '?quality=low', pause: true },
 ];
@@ -75,8 +77,10 @@ for (const r of rows) {
     `${r.config.padEnd(26)} ${r.fps.toFixed(0).padStart(4)} ${String(r.n).padStart(3)}    ${f(median(r.snap)).padStart(6)} / ${f(percentile(r.snap, 95)).padStart(6)}              ${f(median(r.frame)).padStart(6)} / ${f(percentile(r.frame, 95)).padStart(6)}`,
   );
 }
-const ok = rows[0] !== undefined && median(rows[0].frame) <= 2 * (1000 / 60);
-console.log(`goal: move → frame ≤ 2 frames at 60 Hz (33.3 ms) on localhost: ${ok ? 'met' : 'not met'} (median, ${rows[0]?.config})`);
+for (const r of rows) {
+  const ok = median(r.frame) <= 2 * (1000 / 60);
+  console.log(`goal move → frame ≤ 2 frames at 60 Hz (33.3 ms), median, ${r.config}: ${ok ? 'met' : 'not met'}`);
+}
 console.log(JSON.stringify(rows.map((r) => ({
   config: r.config, fps: r.fps, samples: r.n,
   snapshot_ms: { median: median(r.snap), p95: percentile(r.snap, 95) },
