@@ -226,6 +226,8 @@ pub struct MachineInfo {
 /// The whole benchmark result.
 #[derive(Clone, Debug, Serialize)]
 pub struct BenchReport {
+    /// The Newton solvers' rows (issue 5).
+    pub newton: Option<crate::bench_newton::NewtonBench>,
     /// Headline: median ns per element per step on the 100-element hose.
     pub ns_per_element_step: f64,
     /// Simulated seconds per wall second for 5 hoses × 30 elements.
@@ -616,6 +618,7 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
         element_length_m: ELEMENT_LENGTH,
         contact,
         rows,
+        newton: None,
     })
 }
 
@@ -639,11 +642,19 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport> {
         );
     }
     rows.push(measure(5, 30, FLOOR_QUADS, budget)?);
-    let report = report(rows, opts.quick)?;
+    if !opts.json {
+        eprintln!("measuring the Newton solvers …");
+    }
+    let newton = crate::bench_newton::run(opts.quick)?;
+    let mut report = report(rows, opts.quick)?;
+    report.newton = Some(newton);
     if opts.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print!("{}", render(&report));
+        if let Some(n) = &report.newton {
+            print!("{}", crate::bench_newton::render(n));
+        }
     }
     Ok(report)
 }

@@ -2,6 +2,7 @@
 //! solutions, benchmark the solver.
 
 mod bench;
+mod bench_newton;
 mod peers;
 mod run_cmd;
 mod serve_cmd;
