@@ -89,3 +89,7 @@ fn stiffened() {
 fn hose_contact() {
     assert_case("hose_contact");
 }
+#[test]
+fn solvers() {
+    assert_case("solvers");
+}
