@@ -144,6 +144,8 @@ const CASES: &[Case] = &[
     Case { what: "negative record interval", edits: &[("record_interval_s = 0.01", "record_interval_s = -1")], field: Some("output.record_interval_s"), message: &["= -1 s: must not be negative"] },
     Case { what: "time step safety above 1", edits: &[("time_step_safety = 0.5", "time_step_safety = 1.5")], field: Some("simulation.time_step_safety"), message: &["= 1.5: must lie in (0, 1]"] },
     Case { what: "time step safety zero", edits: &[("time_step_safety = 0.5", "time_step_safety = 0")], field: Some("simulation.time_step_safety"), message: &["= 0: must be greater than 0"] },
+    Case { what: "unknown solver", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\nsolver = \"newton\"")], field: Some("simulation.solver"), message: &["unknown solver 'newton'"] },
+    Case { what: "implicit step above 1 s", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\nimplicit_time_step_s = 2.0")], field: Some("simulation.implicit_time_step_s"), message: &["must lie in (0, 1] s"] },
     Case { what: "negative damping", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\ndamping_mass_per_s = -1")], field: Some("simulation.damping_mass_per_s"), message: &["must not be negative"] },
     Case { what: "non-positive fixed time step", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\ntime_step_s = 0")], field: Some("simulation.time_step_s"), message: &["must be greater than 0"] },
 ];
