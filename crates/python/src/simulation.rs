@@ -288,6 +288,58 @@ impl Simulation {
             .map_err(|d| diverged(py, &d))
     }
 
+    /// Solves directly for the static equilibrium under the current load cases and hand
+    /// poses with the quasi-static Newton solver (consistent tangent, line search; issue
+    /// 5) — the same equilibrium :meth:`settle` reaches, in a few iterations instead of
+    /// thousands of steps. Time does not advance; velocities are set to zero.
+    ///
+    /// Returns a :class:`SettleReport` whose ``steps`` are the Newton iterations.
+    ///
+    /// >>> import pliant
+    /// >>> sim = pliant.Simulation(pliant.demo_scene())
+    /// >>> report = sim.solve_static()
+    /// >>> report.converged
+    /// True
+    #[pyo3(signature = (force_tolerance = 1e-7, moment_tolerance = 1e-8, max_iterations = 100))]
+    fn solve_static(
+        &mut self,
+        py: Python<'_>,
+        force_tolerance: f64,
+        moment_tolerance: f64,
+        max_iterations: usize,
+    ) -> PyResult<SettleReport> {
+        for (v, name) in [
+            (force_tolerance, "force_tolerance"),
+            (moment_tolerance, "moment_tolerance"),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(PyValueError::new_err(format!(
+                    "{name} must be finite and > 0, got {v}"
+                )));
+            }
+        }
+        let engine = &mut self.engine;
+        let report = py.allow_threads(|| {
+            let mut solver = pliant_core::newton::StaticSolver::new(&engine.model)
+                .map_err(|e| e.to_string())?;
+            solver.options.force_tolerance = force_tolerance;
+            solver.options.moment_tolerance = moment_tolerance;
+            solver.options.max_iterations = max_iterations;
+            solver
+                .solve(&engine.model, &mut engine.state)
+                .map_err(|e| e.to_string())
+        });
+        let r = report.map_err(|e| {
+            pyo3::exceptions::PyRuntimeError::new_err(format!("static solve failed: {e}"))
+        })?;
+        Ok(SettleReport::from(pliant_core::relax::RelaxReport {
+            steps: r.iterations as u64,
+            residual_force: r.residual_force,
+            residual_moment: r.residual_moment,
+            converged: r.converged,
+        }))
+    }
+
     /// Back to the start: rest shape, t = 0, hands released, user load cases removed,
     /// the initial load cases applied again, stubs and clips reset. Also clears a
     /// divergence.

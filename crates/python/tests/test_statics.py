@@ -111,3 +111,15 @@ def test_invalid_arguments_are_value_errors(cantilever):
         cantilever.run(-1.0)
     with pytest.raises(ValueError, match="force_tolerance"):
         cantilever.settle(force_tolerance=0.0)
+
+
+def test_solve_static_agrees_with_settle(cantilever):
+    """The quasi-static Newton solver and dynamic relaxation reach one equilibrium."""
+    report = cantilever.solve_static()
+    assert report.converged, report
+    assert report.steps < 100
+    newton = cantilever.positions("beam").copy()
+    cantilever.settle(**TIGHT)
+    relaxed = cantilever.positions("beam")
+    scale = tip_deflection(cantilever)
+    assert np.abs(newton - relaxed).max() < 1e-4 * scale

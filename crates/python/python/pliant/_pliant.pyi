@@ -161,6 +161,14 @@ class Simulation:
         max_steps: int = 1_000_000,
         kinetic_damping: bool = True,
     ) -> SettleReport: ...
+    def solve_static(
+        self,
+        force_tolerance: float = 1e-7,
+        moment_tolerance: float = 1e-8,
+        max_iterations: int = 100,
+    ) -> SettleReport:
+        """Static equilibrium by the quasi-static Newton solver; ``steps`` = iterations."""
+        ...
     def reset(self) -> None: ...
     # load cases
     def fix(self, hose: HoseRef, node: int) -> LoadId: ...
