@@ -265,16 +265,7 @@ impl Simulation {
         max_steps: u64,
         kinetic_damping: bool,
     ) -> PyResult<SettleReport> {
-        for (v, name) in [
-            (force_tolerance, "force_tolerance"),
-            (moment_tolerance, "moment_tolerance"),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(PyValueError::new_err(format!(
-                    "{name} must be finite and > 0, got {v}"
-                )));
-            }
-        }
+        check_tolerances(force_tolerance, moment_tolerance)?;
         let opts = RelaxOptions {
             force_tolerance,
             moment_tolerance,
@@ -308,16 +299,7 @@ impl Simulation {
         moment_tolerance: f64,
         max_iterations: usize,
     ) -> PyResult<SettleReport> {
-        for (v, name) in [
-            (force_tolerance, "force_tolerance"),
-            (moment_tolerance, "moment_tolerance"),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(PyValueError::new_err(format!(
-                    "{name} must be finite and > 0, got {v}"
-                )));
-            }
-        }
+        check_tolerances(force_tolerance, moment_tolerance)?;
         let engine = &mut self.engine;
         let report = py.allow_threads(|| {
             let mut solver = pliant_core::newton::StaticSolver::new(&engine.model)
@@ -756,4 +738,19 @@ impl Simulation {
             }
         )
     }
+}
+
+/// Both tolerances finite and positive, or a ValueError naming the bad one.
+fn check_tolerances(force_tolerance: f64, moment_tolerance: f64) -> PyResult<()> {
+    for (v, name) in [
+        (force_tolerance, "force_tolerance"),
+        (moment_tolerance, "moment_tolerance"),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(PyValueError::new_err(format!(
+                "{name} must be finite and > 0, got {v}"
+            )));
+        }
+    }
+    Ok(())
 }
