@@ -8,7 +8,7 @@
 
 use crate::bench::{fit_loglog, material_1, median};
 use anyhow::{Context, Result};
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::newton::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::{HoseSpec, Model, SimSettings, State, WorldSpec};
@@ -41,10 +41,7 @@ fn hose(elements: usize, length: f64) -> Result<(Model, State)> {
             material,
             nodes,
             sections: vec![section],
-            // Known issue (issue 5 note): with the section's y axis vertical (hint Z) the
-            // Newton solvers fail on this large sag of the soft hose; with y horizontal
-            // they converge. Benchmarked as it works, the failure is tracked.
-            normal_hint: Some(DVec3::Y),
+            normal_hint: Some(DVec3::Z),
         }],
         rigid_parts: vec![],
         settings: SimSettings::default(),
@@ -52,10 +49,12 @@ fn hose(elements: usize, length: f64) -> Result<(Model, State)> {
     .context("building the Newton benchmark hose")?;
     let mut state = State::at_rest(&model);
     state.hose_contact.active = false;
+    // clamped in its rest pose (an identity orientation would twist the root by the
+    // section frame's quarter turn about the axis)
     state.loads.add(LoadCase::Fix(Fix {
         node: 0,
         position: DVec3::ZERO,
-        orientation: DQuat::IDENTITY,
+        orientation: model.rest_q[0],
     }));
     Ok((model, state))
 }

@@ -227,6 +227,31 @@ pub fn hose_contact_forces(
     scratch: &mut HoseContactScratch,
     out: &mut [DVec3],
 ) {
+    hose_contact_forces_with(model, x, v, scratch, out, |_| {});
+}
+
+/// One pair of beams in contact: the force k·pen·n acts on beam i's nodes with weights
+/// w[0], w[1] and against beam j's nodes with w[2], w[3] (the Newton solvers build their
+/// contact tangent k wₐ w_b n nᵀ from it).
+#[derive(Clone, Copy, Debug)]
+pub struct ContactPair {
+    pub nodes: [usize; 4],
+    pub weights: [f64; 4],
+    pub normal: DVec3,
+    pub stiffness: f64,
+    /// Coefficient of the normal damper on the approach speed [N·s/m].
+    pub damping: f64,
+}
+
+/// [`hose_contact_forces`], also reporting each pair in contact to `on_pair`.
+pub fn hose_contact_forces_with(
+    model: &Model,
+    x: &[DVec3],
+    v: &[DVec3],
+    scratch: &mut HoseContactScratch,
+    out: &mut [DVec3],
+    mut on_pair: impl FnMut(ContactPair),
+) {
     out.fill(DVec3::ZERO);
     scratch.pairs_in_contact = 0;
     scratch.max_penetration = 0.0;
@@ -282,6 +307,15 @@ pub fn hose_contact_forces(
         out[b] += w[1] * fv;
         out[c] -= w[2] * fv;
         out[d] -= w[3] * fv;
+        if f > 0.0 {
+            on_pair(ContactPair {
+                nodes: [a, b, c, d],
+                weights: w,
+                normal: n,
+                stiffness: k,
+                damping,
+            });
+        }
         pairs += 1;
         max_pen = max_pen.max(pen);
         energy += 0.5 * k * pen * pen;

@@ -16,7 +16,10 @@ mod segment_triangle;
 
 pub use broad_phase::BroadPhase;
 pub use environment::{RigidEnvironment, RigidPart};
-pub use hose_hose::{add_hose_contact_forces, hose_contact_forces, HoseContactScratch};
+pub use hose_hose::{
+    add_hose_contact_forces, hose_contact_forces, hose_contact_forces_with, ContactPair,
+    HoseContactScratch,
+};
 pub use resolve::{ContactPoint, ContactScratch};
 pub use segment_triangle::{
     closest_segment_triangle, closest_segment_triangle_away_from_ends, SegmentTriangleClosest,

@@ -15,7 +15,11 @@ pub struct BlockTridiagonal {
     pub lower: Vec<Matrix6<f64>>,
     /// Scratch: D'⁻¹ U per block row (elimination multipliers).
     gain: Vec<Matrix6<f64>>,
+    /// LU factors of the eliminated diagonal blocks D'.
+    factors: Vec<Option<BlockLu>>,
 }
+
+type BlockLu = nalgebra::LU<f64, nalgebra::Const<6>, nalgebra::Const<6>>;
 
 /// The elimination met a singular pivot block (a node with no stiffness and no mass in
 /// some direction — e.g. a free-floating hose in a static solve).
@@ -30,6 +34,7 @@ impl BlockTridiagonal {
             upper: vec![Matrix6::zeros(); n.saturating_sub(1)],
             lower: vec![Matrix6::zeros(); n.saturating_sub(1)],
             gain: vec![Matrix6::zeros(); n],
+            factors: vec![None; n],
         }
     }
 
@@ -68,20 +73,40 @@ impl BlockTridiagonal {
 
     /// Solves A x = rhs in place (rhs becomes x). Destroys the matrix's diagonal blocks.
     pub fn solve(&mut self, rhs: &mut [Vector6<f64>]) -> Result<(), SingularBlock> {
+        self.factor()?;
+        self.solve_factored(rhs)
+    }
+
+    /// Block elimination: D'_i = D_i − L_{i−1} D'_{i−1}⁻¹ U_{i−1}, each D'_i factorised by LU
+    /// and the multipliers D'_i⁻¹ U_i kept, so that [`Self::solve_factored`] can then solve
+    /// for any number of right-hand sides. Overwrites the diagonal blocks.
+    pub fn factor(&mut self) -> Result<(), SingularBlock> {
         let n = self.diag.len();
         for i in 0..n {
             if i > 0 {
-                // D'_i = D_i − L_{i−1} D'_{i−1}⁻¹ U_{i−1};  r'_i = r_i − L_{i−1} y_{i−1}
                 let l = self.lower[i - 1];
                 self.diag[i] -= l * self.gain[i - 1];
-                let prev = rhs[i - 1];
-                rhs[i] -= l * prev;
             }
             let lu = self.diag[i].lu();
-            rhs[i] = lu.solve(&rhs[i]).ok_or(SingularBlock(i))?;
             if i + 1 < n {
                 self.gain[i] = lu.solve(&self.upper[i]).ok_or(SingularBlock(i))?;
             }
+            self.factors[i] = Some(lu);
+        }
+        Ok(())
+    }
+
+    /// Solves with the factors of the last [`Self::factor`] (rhs becomes x).
+    pub fn solve_factored(&self, rhs: &mut [Vector6<f64>]) -> Result<(), SingularBlock> {
+        let n = self.diag.len();
+        for i in 0..n {
+            if i > 0 {
+                // r'_i = r_i − L_{i−1} y_{i−1}
+                let prev = rhs[i - 1];
+                rhs[i] -= self.lower[i - 1] * prev;
+            }
+            let lu = self.factors[i].as_ref().ok_or(SingularBlock(i))?;
+            rhs[i] = lu.solve(&rhs[i]).ok_or(SingularBlock(i))?;
             if !rhs[i].iter().all(|v| v.is_finite()) {
                 return Err(SingularBlock(i));
             }

@@ -20,7 +20,7 @@
 
 use super::block_tridiagonal::SingularBlock;
 use super::statics::increment_at_round_off;
-use super::system::{apply_increment, sync_bodies, NewtonSystem, NotAChain};
+use super::system::{apply_increment, rotation_limited_step, sync_bodies, NewtonSystem, NotAChain};
 use crate::math::{left_jacobian_inverse_transpose_times, log_map};
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
@@ -302,8 +302,9 @@ impl ImplicitSolver {
                 break;
             }
             sys.eliminate_prescribed();
-            sys.matrix.solve(&mut sys.rhs)?;
-            apply_increment(state, &sys.rhs, &sys.prescribed, 1.0);
+            sys.solve_linear()?;
+            let s = rotation_limited_step(&sys.rhs, &sys.prescribed);
+            apply_increment(state, &sys.rhs, &sys.prescribed, s);
             report.iterations += 1;
             if increment_at_round_off(&sys.rhs, &sys.prescribed, model) {
                 converged = true;

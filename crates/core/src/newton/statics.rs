@@ -7,7 +7,9 @@
 //! (round-off near convergence) — when the residual decreases. Velocities are zero: what manual assembly at walking pace
 //! needs, one solve per input.
 
-use super::system::{apply_increment, residual_norms, sync_bodies, NewtonSystem};
+use super::system::{
+    apply_increment, residual_norms, rotation_limited_step, sync_bodies, NewtonSystem,
+};
 use crate::{Model, State};
 use glam::DVec3;
 
@@ -113,7 +115,7 @@ impl StaticSolver {
                 sys.rhs[i] = nalgebra::Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z);
             }
             sys.eliminate_prescribed();
-            sys.matrix.solve(&mut sys.rhs)?;
+            sys.solve_linear()?;
             if increment_at_round_off(&sys.rhs, &sys.prescribed, model) {
                 // the residual left is round-off of the stiff (rigid-factor) elements
                 report.converged = true;
@@ -128,7 +130,7 @@ impl StaticSolver {
                         + sys.moment[i].dot(DVec3::new(d[3], d[4], d[5]));
                 }
             }
-            let mut s: f64 = 1.0;
+            let mut s: f64 = rotation_limited_step(&sys.rhs, &sys.prescribed);
             if !model.environment.is_empty() {
                 let longest = sys
                     .rhs

@@ -14,12 +14,14 @@
 //!   k = E_c A / l₀ of the node's elements and tangent k n nᵀ (frictionless: friction is
 //!   the explicit solver's);
 //! * hose–hose contact: the explicit solver's penalty forces at the current positions,
-//!   without tangent (a fixed-point term; converges for the light contact of assembly).
+//!   with each pair's tangent: within the block band (each node with itself, the two nodes
+//!   of a beam with each other) in the matrix, across the two beams by an iteration on the
+//!   factorised band ([`NewtonSystem::solve_linear`]).
 //!
 //! Prescribed nodes (fix, drive, hand) are eliminated: their increment is zero.
 
-use super::block_tridiagonal::BlockTridiagonal;
-use crate::contact::hose_contact_forces;
+use super::block_tridiagonal::{BlockTridiagonal, SingularBlock};
+use crate::contact::{hose_contact_forces_with, ContactPair};
 use crate::element::{BeamElement, ElementEnds};
 use crate::loads::LoadCase;
 use crate::tangent::element_tangent;
@@ -46,7 +48,16 @@ pub struct NewtonSystem {
     pub contact_stiffness: Vec<f64>,
     /// Whether a node's increment is prescribed (zero).
     pub prescribed: Vec<bool>,
+    /// Hose–hose contact pairs of the last assembly (their cross-beam coupling is applied
+    /// iteratively in [`Self::solve_linear`]).
+    pub pairs: Vec<ContactPair>,
+    /// Scratch of the linear solve.
+    base_rhs: Vec<Vector6<f64>>,
+    work: Vec<Vector6<f64>>,
 }
+
+/// Inner iterations of the contact coupling in [`NewtonSystem::solve_linear`].
+const MAX_COUPLING_ITERATIONS: usize = 200;
 
 /// Why a Newton solver could not be set up for a model.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -85,6 +96,9 @@ impl NewtonSystem {
             contact_force: vec![DVec3::ZERO; n],
             contact_stiffness,
             prescribed: vec![false; n],
+            pairs: Vec::with_capacity(4 * n),
+            base_rhs: vec![Vector6::zeros(); n],
+            work: vec![Vector6::zeros(); n],
         })
     }
 
@@ -96,6 +110,7 @@ impl NewtonSystem {
         self.force.fill(DVec3::ZERO);
         self.moment.fill(DVec3::ZERO);
         self.contact_force.fill(DVec3::ZERO);
+        self.pairs.clear();
         let beta = model.damping_stiffness;
         for e in &self.elements {
             let (a, b) = (e.node_a, e.node_b);
@@ -138,12 +153,20 @@ impl NewtonSystem {
             self.add_contact(model, state);
         }
         if state.hose_contact.active {
-            hose_contact_forces(
+            let (matrix, pairs) = (&mut self.matrix, &mut self.pairs);
+            pairs.clear();
+            hose_contact_forces_with(
                 model,
                 &state.x,
                 &state.v,
                 &mut state.hose_contact,
                 &mut state.hose_contact_force,
+                |mut pair| {
+                    // the damper acts through v = v₀ + c δx: stiffness k + c·damping
+                    pair.stiffness += pair.damping * rate_factor;
+                    add_pair_tangent(matrix, &pair);
+                    pairs.push(pair);
+                },
             );
             for (f, c) in self.force.iter_mut().zip(&state.hose_contact_force) {
                 *f += *c;
@@ -183,10 +206,11 @@ impl NewtonSystem {
     }
 
     /// Potential energy of the conservative loads at the state's configuration: strain
-    /// energy (rigid-factor elements), gravity, dead forces, contact springs. Used by the
+    /// energy (rigid-factor elements), gravity, dead forces, contact springs (parts and
+    /// hoses). Used by the
     /// static line search. Dead moments have no potential (they are not conservative
     /// under finite rotations) and are left out.
-    pub fn potential_energy(&self, model: &Model, state: &State) -> f64 {
+    pub fn potential_energy(&mut self, model: &Model, state: &mut State) -> f64 {
         let mut e = 0.0;
         for el in &self.elements {
             let (a, b) = (el.node_a, el.node_b);
@@ -199,6 +223,18 @@ impl NewtonSystem {
             if let LoadCase::DeadLoad(d) = case {
                 e -= d.force.dot(state.x[d.node]);
             }
+        }
+        if state.hose_contact.active {
+            // the penalty springs' energy ½ k pen², computed with the forces
+            hose_contact_forces_with(
+                model,
+                &state.x,
+                &state.v,
+                &mut state.hose_contact,
+                &mut state.hose_contact_force,
+                |_| {},
+            );
+            e += state.hose_contact.energy;
         }
         if !model.environment.is_empty() {
             for i in 0..state.x.len() {
@@ -239,6 +275,55 @@ impl NewtonSystem {
         }
     }
 
+    /// Solves J δu = rhs (rhs becomes δu) for J = T + C: T the block-tridiagonal part in
+    /// `matrix`, C the hose–hose contact coupling between the two beams of each pair,
+    /// −k wᵢ wⱼ n nᵀ. Without contact pairs this is one O(N) solve; with them, the
+    /// fixed-point iteration δu ← T⁻¹ (rhs − C δu) on the factorised T (a block splitting,
+    /// convergent since the pair's stiffness also sits on T's diagonal) until δu changes
+    /// by less than 1e-12 of its size.
+    pub fn solve_linear(&mut self) -> Result<(), SingularBlock> {
+        if self.pairs.is_empty() {
+            return self.matrix.solve(&mut self.rhs);
+        }
+        self.matrix.factor()?;
+        self.base_rhs.copy_from_slice(&self.rhs);
+        self.matrix.solve_factored(&mut self.rhs)?;
+        for _ in 0..MAX_COUPLING_ITERATIONS {
+            self.work.copy_from_slice(&self.base_rhs);
+            for p in &self.pairs {
+                let [a, b, c, d] = p.nodes;
+                for (i, wi) in [(a, p.weights[0]), (b, p.weights[1])] {
+                    for (j, wj) in [(c, p.weights[2]), (d, p.weights[3])] {
+                        let kw = p.stiffness * wi * wj;
+                        let dj = self.rhs[j].fixed_rows::<3>(0).into_owned();
+                        let di = self.rhs[i].fixed_rows::<3>(0).into_owned();
+                        let nv = nalgebra::Vector3::new(p.normal.x, p.normal.y, p.normal.z);
+                        if !self.prescribed[i] {
+                            let mut row = self.work[i].fixed_rows_mut::<3>(0);
+                            row += nv * (kw * nv.dot(&dj));
+                        }
+                        if !self.prescribed[j] {
+                            let mut row = self.work[j].fixed_rows_mut::<3>(0);
+                            row += nv * (kw * nv.dot(&di));
+                        }
+                    }
+                }
+            }
+            self.matrix.solve_factored(&mut self.work)?;
+            let mut change: f64 = 0.0;
+            let mut size: f64 = 0.0;
+            for (new, old) in self.work.iter().zip(&self.rhs) {
+                change = change.max((new - old).amax());
+                size = size.max(new.amax());
+            }
+            self.rhs.copy_from_slice(&self.work);
+            if change <= 1e-12 * size {
+                break;
+            }
+        }
+        Ok(())
+    }
+
     /// Eliminates the prescribed nodes from the matrix and zeroes their right-hand side.
     pub fn eliminate_prescribed(&mut self) {
         for i in 0..self.prescribed.len() {
@@ -246,6 +331,45 @@ impl NewtonSystem {
                 self.matrix.eliminate(i);
                 self.rhs[i] = Vector6::zeros();
             }
+        }
+    }
+}
+
+/// The tangent of one hose–hose contact pair, k wₐ w_b n nᵀ (signs by side), for the node
+/// pairs inside the block band: each node with itself and the two nodes of one beam with
+/// each other. The coupling across the two beams (far apart in the chain) is applied by
+/// [`NewtonSystem::solve_linear`].
+fn add_pair_tangent(matrix: &mut BlockTridiagonal, pair: &ContactPair) {
+    let n = pair.normal;
+    let nn = Matrix3::new(
+        n.x * n.x,
+        n.x * n.y,
+        n.x * n.z,
+        n.y * n.x,
+        n.y * n.y,
+        n.y * n.z,
+        n.z * n.x,
+        n.z * n.y,
+        n.z * n.z,
+    ) * pair.stiffness;
+    let [a, b, c, d] = pair.nodes;
+    let w = pair.weights;
+    for (node, wk) in [(a, w[0]), (b, w[1]), (c, w[2]), (d, w[3])] {
+        let mut block = matrix.diag[node].fixed_view_mut::<3, 3>(0, 0);
+        block += nn * (wk * wk);
+    }
+    for (first, second, wf, ws) in [(a, b, w[0], w[1]), (c, d, w[2], w[3])] {
+        let (lo, hi, wl, wh) = if first < second {
+            (first, second, wf, ws)
+        } else {
+            (second, first, ws, wf)
+        };
+        if hi == lo + 1 {
+            let coupling = nn * (wl * wh);
+            let mut up = matrix.upper[lo].fixed_view_mut::<3, 3>(0, 0);
+            up += coupling;
+            let mut down = matrix.lower[lo].fixed_view_mut::<3, 3>(0, 0);
+            down += coupling;
         }
     }
 }
@@ -260,6 +384,27 @@ pub fn apply_increment(state: &mut State, rhs: &[Vector6<f64>], prescribed: &[bo
         state.x[i] += s * DVec3::new(d[0], d[1], d[2]);
         let phi = s * DVec3::new(d[3], d[4], d[5]);
         state.q[i] = (crate::math::exp_map(phi) * state.q[i]).normalize();
+    }
+}
+
+/// Largest rotation one Newton iteration may give a node [rad]. Newton's step on the
+/// rotation group is only a linearisation; a larger turn (a free end spun by a suddenly
+/// released twist) can land in an equilibrium whole turns away. Steps are shortened to it.
+pub const MAX_ROTATION_PER_ITERATION: f64 = 0.25;
+
+/// The fraction of the Newton increment that keeps every node's rotation within
+/// [`MAX_ROTATION_PER_ITERATION`] (1 when it already does).
+pub fn rotation_limited_step(rhs: &[Vector6<f64>], prescribed: &[bool]) -> f64 {
+    let largest = rhs
+        .iter()
+        .zip(prescribed)
+        .filter(|(_, p)| !**p)
+        .map(|(d, _)| d.fixed_rows::<3>(3).norm())
+        .fold(0.0, f64::max);
+    if largest > MAX_ROTATION_PER_ITERATION {
+        MAX_ROTATION_PER_ITERATION / largest
+    } else {
+        1.0
     }
 }
 
