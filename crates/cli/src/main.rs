@@ -74,6 +74,9 @@ enum Command {
         /// Address to listen on.
         #[arg(long, default_value = "127.0.0.1")]
         host: String,
+        /// Solver instead of the scene's: explicit, implicit or static.
+        #[arg(long)]
+        solver: Option<pliant_core::SolverKind>,
     },
     /// Measure cost per element per step and the real-time factor.
     Bench {
@@ -138,7 +141,12 @@ fn main() -> ExitCode {
             write_docs,
             solver,
         } => validate_cmd::run(json, case.as_deref(), write_docs.as_deref(), solver),
-        Command::Serve { scene, port, host } => serve_cmd::run(scene.as_deref(), &host, port),
+        Command::Serve {
+            scene,
+            port,
+            host,
+            solver,
+        } => serve_cmd::run(scene.as_deref(), &host, port, solver),
         Command::Bench { json, quick } => {
             bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
         }

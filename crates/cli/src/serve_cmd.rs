@@ -6,7 +6,12 @@ use pliant_server::{ServerConfig, Session};
 use std::path::Path;
 use std::process::ExitCode;
 
-pub fn run(scene_path: Option<&Path>, host: &str, port: u16) -> anyhow::Result<ExitCode> {
+pub fn run(
+    scene_path: Option<&Path>,
+    host: &str,
+    port: u16,
+    solver: Option<pliant_core::SolverKind>,
+) -> anyhow::Result<ExitCode> {
     let scene = match scene_path {
         Some(p) => pliant_scene::load_scene_file(p)
             .with_context(|| format!("cannot load {}", p.display()))?,
@@ -19,7 +24,13 @@ pub fn run(scene_path: Option<&Path>, host: &str, port: u16) -> anyhow::Result<E
         None if Path::new("examples").is_dir() => "examples".into(),
         None => Default::default(),
     };
-    let session = Session::start(&scene, SessionOptions::default())?;
+    let session = Session::start(
+        &scene,
+        SessionOptions {
+            solver,
+            ..SessionOptions::default()
+        },
+    )?;
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()

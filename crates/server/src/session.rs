@@ -15,7 +15,7 @@ use pliant_assembly::ergonomics::{
 use pliant_assembly::fasteners::{FastenerSample, Fasteners};
 use pliant_assembly::{Action, ClipSite, Hand, StubSite};
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
-use pliant_core::{explicit, health, Model, State};
+use pliant_core::{health, Model, Solver, SolverKind, SolverSettings, State};
 use pliant_scene::LoadedScene;
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -74,6 +74,8 @@ pub struct SessionOptions {
     pub publish_hz: f64,
     /// Start paused.
     pub paused: bool,
+    /// Solver instead of the scene's `[simulation] solver` (issue 5).
+    pub solver: Option<SolverKind>,
 }
 
 impl Default for SessionOptions {
@@ -81,6 +83,7 @@ impl Default for SessionOptions {
         SessionOptions {
             publish_hz: 240.0,
             paused: false,
+            solver: None,
         }
     }
 }
@@ -107,8 +110,15 @@ impl Session {
         let epoch = Arc::new(AtomicU64::new(0));
         let stop = Arc::new(AtomicBool::new(false));
         let initial = initial_actions(scene);
+        let settings = SolverSettings {
+            kind: options.solver.unwrap_or(model.solver.kind),
+            ..model.solver
+        };
+        let solver =
+            Solver::new(&model, settings).map_err(|e| SessionError::Model(e.to_string()))?;
         let mut sim = Sim::new(
             model,
+            solver,
             sites,
             initial,
             scene.ergonomics.clone(),
@@ -181,6 +191,8 @@ struct Interactive {
 
 struct Sim {
     model: Model,
+    /// Advances the state: explicit, implicit or static (issue 5).
+    solver: Solver,
     state: State,
     /// Stubs and clips (SPEC L6, L7): their sites, kept for resets, and their runtime.
     sites: (Vec<StubSite>, Vec<ClipSite>),
@@ -211,6 +223,7 @@ struct Sim {
 impl Sim {
     fn new(
         model: Model,
+        solver: Solver,
         sites: (Vec<StubSite>, Vec<ClipSite>),
         initial: Vec<Action>,
         profile: ErgonomicProfile,
@@ -222,6 +235,7 @@ impl Sim {
         let fasteners = Fasteners::new(&mut state, sites.0.clone(), sites.1.clone());
         Sim {
             model,
+            solver,
             state,
             sites,
             initial,
@@ -262,7 +276,7 @@ impl Sim {
             let now = Instant::now();
             let mut wait = Duration::from_millis(5);
             if !self.paused {
-                let dt = self.model.time_step;
+                let dt = self.solver.time_step(&self.model);
                 let due = self.anchor_sim + now.duration_since(self.anchor_wall).as_secs_f64();
                 if due - self.state.time > MAX_LAG {
                     // Cannot keep up: run flat out from here.
@@ -368,6 +382,7 @@ impl Sim {
     /// Back to rest, hands released. A client's `reset` has counted the epoch already.
     fn reset(&mut self, divergence: Option<String>) {
         self.state = State::at_rest(&self.model);
+        self.solver.restart();
         apply_initial(&self.model, &mut self.state, &self.initial);
         self.fasteners =
             Fasteners::new(&mut self.state, self.sites.0.clone(), self.sites.1.clone());
@@ -388,7 +403,7 @@ impl Sim {
 
     /// One step; false if it diverged (the state is then reset).
     fn step(&mut self) -> bool {
-        let dt = self.model.time_step;
+        let dt = self.solver.time_step(&self.model);
         let t = self.state.time + dt;
         for h in self.hands.values_mut() {
             h.pose.0 = h.pose.0.move_towards(h.target.0, HAND_MAX_SPEED * dt);
@@ -410,7 +425,11 @@ impl Sim {
             self.fasteners
                 .update(&self.model, &mut self.state, &held, &force);
         }
-        explicit::step(&self.model, &mut self.state);
+        if let Err(e) = self.solver.step(&self.model, &mut self.state) {
+            let d = e.into_divergence(&self.model, &self.state);
+            self.reset(Some(d.to_string()));
+            return false;
+        }
         self.track_peaks();
         self.steps_since_check += 1;
         if self.steps_since_check >= HEALTH_EVERY {

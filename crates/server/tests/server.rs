@@ -15,8 +15,12 @@ type Ws = WebSocketStream<MaybeTlsStream<TcpStream>>;
 const WAIT: Duration = Duration::from_secs(10);
 
 async fn server() -> RunningServer {
+    server_with(SessionOptions::default()).await
+}
+
+async fn server_with(options: SessionOptions) -> RunningServer {
     let scene = pliant_scene::demo_scene().unwrap();
-    let session = Session::start(&scene, SessionOptions::default()).unwrap();
+    let session = Session::start(&scene, options).unwrap();
     let config = ServerConfig {
         host: "127.0.0.1".into(),
         port: 0,
@@ -50,6 +54,12 @@ async fn next_where(ws: &mut Ws, ty: &str, pred: impl Fn(&Value) -> bool) -> Val
             let v: Value = serde_json::from_str(t.as_str()).unwrap();
             if v["type"] == ty && pred(&v) {
                 return v;
+            }
+            if std::env::var("DBG").is_ok() && v["type"] == "snapshot" {
+                eprintln!(
+                    "t {} notice {} hands {}",
+                    v["time"], v["notice"], v["hands"]
+                );
             }
         }
     }
@@ -125,7 +135,25 @@ async fn reqwest_free_get(s: &RunningServer) -> String {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn grab_and_move_loads_the_hand_and_moves_the_node() {
-    let s = server().await;
+    grab_and_move(server().await).await;
+}
+
+/// The same interaction with the Newton solvers chosen per session (issue 5).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn grab_and_move_works_with_the_static_and_implicit_solvers() {
+    for kind in [
+        pliant_core::SolverKind::Static,
+        pliant_core::SolverKind::Implicit,
+    ] {
+        let options = SessionOptions {
+            solver: Some(kind),
+            ..SessionOptions::default()
+        };
+        grab_and_move(server_with(options).await).await;
+    }
+}
+
+async fn grab_and_move(s: RunningServer) {
     let mut ws = connect(&s).await;
     hello(&mut ws).await;
     let snap = next_where(&mut ws, "snapshot", |_| true).await;

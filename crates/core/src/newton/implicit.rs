@@ -180,7 +180,14 @@ impl ImplicitSolver {
     /// Accelerations and loads of the initial state (m a₀ = f₀).
     fn initialise(&mut self, model: &Model, state: &mut State) {
         let sys = &mut self.system;
-        sys.apply_prescribed(state, state.time, None);
+        // which nodes are prescribed; they are moved onto their targets by the first step
+        sys.set_prescribed(state, state.time);
+        for i in 0..state.x.len() {
+            if sys.prescribed[i] {
+                state.v[i] = DVec3::ZERO;
+                state.w[i] = DVec3::ZERO;
+            }
+        }
         sys.assemble(model, state, 0.0);
         for i in 0..state.x.len() {
             let free = !sys.prescribed[i] && !self.zero_acceleration;
@@ -215,21 +222,20 @@ impl ImplicitSolver {
         let gamma = 0.5 - alpha;
         let t_next = state.time + h;
         let n = state.x.len();
-        // predictor: constant velocity (an acceleration predictor overshoots badly when a
-        // load case has just changed the forces)
-        for i in 0..n {
-            state.x[i] = self.x0[i] + h * self.v0[i];
-            state.q[i] = (crate::math::exp_map(h * self.w0[i]) * self.q0[i]).normalize();
-        }
+        // predictor: constant velocity for the free nodes (an acceleration predictor
+        // overshoots badly when a load case has just changed the forces); prescribed nodes
+        // stay where they are until the first iteration carries their motion
+        // (NewtonSystem::set_prescribed)
         let sys = &mut self.system;
-        sys.apply_prescribed(state, t_next, Some(h));
-        // prescribed nodes: velocity over the step already set from the start pose; undo
-        // the predictor's effect on it
+        sys.set_prescribed(state, t_next);
         for i in 0..n {
             if sys.prescribed[i] {
-                // apply_prescribed measured from the predicted pose: recompute from x0
-                state.v[i] = (state.x[i] - self.x0[i]) / h;
-                state.w[i] = log_map(state.q[i] * self.q0[i].conjugate()) / h;
+                let (dx, dth) = sys.prescribed_increment(state, i);
+                state.v[i] = dx / h;
+                state.w[i] = dth / h;
+            } else {
+                state.x[i] = self.x0[i] + h * self.v0[i];
+                state.q[i] = (crate::math::exp_map(h * self.w0[i]) * self.q0[i]).normalize();
             }
         }
         let c_acc = 1.0 / (beta * h * h);
@@ -297,15 +303,24 @@ impl ImplicitSolver {
             if !(rf.is_finite() && rm.is_finite()) {
                 return Ok(false);
             }
-            if rf <= o.force_tolerance && rm <= o.moment_tolerance {
+            let pending = sys.pending();
+            if !pending && rf <= o.force_tolerance && rm <= o.moment_tolerance {
                 converged = true;
                 break;
+            }
+
+            if pending {
+                sys.add_prescribed_coupling(state);
             }
             sys.eliminate_prescribed();
             sys.solve_linear()?;
             let s = rotation_limited_step(&sys.rhs, &sys.prescribed);
             apply_increment(state, &sys.rhs, &sys.prescribed, s);
             report.iterations += 1;
+            if pending {
+                sys.move_prescribed(state);
+                continue;
+            }
             if increment_at_round_off(&sys.rhs, &sys.prescribed, model) {
                 converged = true;
                 break;

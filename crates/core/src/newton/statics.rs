@@ -83,7 +83,7 @@ impl StaticSolver {
     /// as the explicit step does; velocities are zero.
     pub fn solve(&mut self, model: &Model, state: &mut State) -> Result<StaticReport, StaticError> {
         let sys = &mut self.system;
-        sys.apply_prescribed(state, state.time, None);
+        sys.set_prescribed(state, state.time);
         state.v.fill(DVec3::ZERO);
         state.w.fill(DVec3::ZERO);
         let min_radius = model.radius.iter().cloned().fold(f64::INFINITY, f64::min);
@@ -102,7 +102,9 @@ impl StaticSolver {
             if !(rf.is_finite() && rm.is_finite()) {
                 return Err(StaticError::NonFinite(report.iterations));
             }
-            if rf <= self.options.force_tolerance && rm <= self.options.moment_tolerance {
+            let pending = sys.pending();
+            if !pending && rf <= self.options.force_tolerance && rm <= self.options.moment_tolerance
+            {
                 report.converged = true;
                 break;
             }
@@ -114,8 +116,19 @@ impl StaticSolver {
                 let (f, m) = (sys.force[i], sys.moment[i]);
                 sys.rhs[i] = nalgebra::Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z);
             }
+            if pending {
+                sys.add_prescribed_coupling(state);
+            }
             sys.eliminate_prescribed();
             sys.solve_linear()?;
+            if pending {
+                // the prescribed motion and the free nodes' linear response to it, taken
+                // whole (the energy before and after the supports moved is not comparable)
+                let s = rotation_limited_step(&sys.rhs, &sys.prescribed);
+                apply_increment(state, &sys.rhs, &sys.prescribed, s);
+                sys.move_prescribed(state);
+                continue;
+            }
             if increment_at_round_off(&sys.rhs, &sys.prescribed, model) {
                 // the residual left is round-off of the stiff (rigid-factor) elements
                 report.converged = true;

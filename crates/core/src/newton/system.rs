@@ -48,6 +48,10 @@ pub struct NewtonSystem {
     pub contact_stiffness: Vec<f64>,
     /// Whether a node's increment is prescribed (zero).
     pub prescribed: Vec<bool>,
+    /// Target poses of the prescribed nodes, and whether they still have to be moved.
+    target_x: Vec<DVec3>,
+    target_q: Vec<DQuat>,
+    pending: bool,
     /// Hose–hose contact pairs of the last assembly (their cross-beam coupling is applied
     /// iteratively in [`Self::solve_linear`]).
     pub pairs: Vec<ContactPair>,
@@ -96,6 +100,9 @@ impl NewtonSystem {
             contact_force: vec![DVec3::ZERO; n],
             contact_stiffness,
             prescribed: vec![false; n],
+            target_x: vec![DVec3::ZERO; n],
+            target_q: vec![DQuat::IDENTITY; n],
+            pending: false,
             pairs: Vec::with_capacity(4 * n),
             base_rhs: vec![Vector6::zeros(); n],
             work: vec![Vector6::zeros(); n],
@@ -249,30 +256,72 @@ impl NewtonSystem {
         e
     }
 
-    /// Marks the nodes prescribed by kinematic load cases at time `t`, moves them there
-    /// and records their previous poses' velocities over `dt` (for dynamics; pass
-    /// `dt = None` for statics, which zeroes them).
-    pub fn apply_prescribed(&mut self, state: &mut State, t: f64, dt: Option<f64>) {
+    /// Marks the nodes prescribed by kinematic load cases at time `t` and records their
+    /// target poses, without moving them: the first Newton iteration then carries the
+    /// prescribed motion into the free nodes through the tangent
+    /// ([`Self::add_prescribed_coupling`]) — the linear response as predictor — and
+    /// [`Self::move_prescribed`] puts them on target. (Jumping them first would start
+    /// Newton from a state strained by the whole jump in one element.)
+    pub fn set_prescribed(&mut self, state: &State, t: f64) {
         self.prescribed.fill(false);
+        self.pending = false;
         for (_, case) in state.loads.iter() {
             let Some((x_new, q_new)) = case.prescribed_pose(t) else {
                 continue;
             };
             let i = case.node();
-            match dt {
-                Some(h) => {
-                    state.v[i] = (x_new - state.x[i]) / h;
-                    state.w[i] = crate::math::log_map(q_new * state.q[i].conjugate()) / h;
-                }
-                None => {
-                    state.v[i] = DVec3::ZERO;
-                    state.w[i] = DVec3::ZERO;
-                }
-            }
-            state.x[i] = x_new;
-            state.q[i] = q_new;
+            self.target_x[i] = x_new;
+            self.target_q[i] = q_new;
             self.prescribed[i] = true;
+            if x_new != state.x[i] || q_new != state.q[i] {
+                self.pending = true;
+            }
         }
+    }
+
+    /// Whether prescribed nodes still have to be moved to their targets.
+    pub fn pending(&self) -> bool {
+        self.pending
+    }
+
+    /// The increment (δx, δθ) that takes prescribed node `i` to its target.
+    pub fn prescribed_increment(&self, state: &State, i: usize) -> (DVec3, DVec3) {
+        (
+            self.target_x[i] - state.x[i],
+            crate::math::log_map(self.target_q[i] * state.q[i].conjugate()),
+        )
+    }
+
+    /// rhs_i −= J_ip δu_p for the free neighbours i of each prescribed node p (call after
+    /// the matrix is complete, before [`Self::eliminate_prescribed`]).
+    pub fn add_prescribed_coupling(&mut self, state: &State) {
+        let n = self.prescribed.len();
+        for p in 0..n {
+            if !self.prescribed[p] {
+                continue;
+            }
+            let (dx, dth) = self.prescribed_increment(state, p);
+            let d = Vector6::new(dx.x, dx.y, dx.z, dth.x, dth.y, dth.z);
+            if p > 0 && !self.prescribed[p - 1] {
+                // block (p−1, p)
+                self.rhs[p - 1] -= self.matrix.upper[p - 1] * d;
+            }
+            if p + 1 < n && !self.prescribed[p + 1] {
+                // block (p+1, p)
+                self.rhs[p + 1] -= self.matrix.lower[p] * d;
+            }
+        }
+    }
+
+    /// Puts the prescribed nodes on their targets.
+    pub fn move_prescribed(&mut self, state: &mut State) {
+        for i in 0..self.prescribed.len() {
+            if self.prescribed[i] {
+                state.x[i] = self.target_x[i];
+                state.q[i] = self.target_q[i];
+            }
+        }
+        self.pending = false;
     }
 
     /// Solves J δu = rhs (rhs becomes δu) for J = T + C: T the block-tridiagonal part in
