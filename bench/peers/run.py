@@ -143,10 +143,13 @@ def machine():
             "date": datetime.datetime.now().isoformat(timespec="seconds")}
 
 
-TOOLS = [("pliant-relax", "Pliant, dynamic relaxation (kinetic damping)"),
+TOOLS = [("pliant-static", "Pliant, quasi-static Newton (one solve)"),
+         ("pliant-relax", "Pliant, dynamic relaxation (kinetic damping)"),
          ("pliant-damped", "Pliant, explicit + mass damping to rest"),
          ("pyelastica", "PyElastica 1.0, damped dynamics to rest"),
          ("mujoco", "MuJoCo 3.3 cable plugin, damped dynamics to rest")]
+PLIANT = [key for key, _ in TOOLS if key.startswith("pliant")]
+PEERS = [(key, label) for key, label in TOOLS if not key.startswith("pliant")]
 
 
 def markdown(res):
@@ -192,7 +195,7 @@ def markdown(res):
     L.append("")
     L.append("| peer | " + " | ".join(f"{lv * 100:g} %" for lv in LEVELS) + " |")
     L.append("|---|" + "---:|" * len(LEVELS))
-    for key, label in TOOLS[2:]:
+    for key, label in PEERS:
         if key not in res["ratios"]:
             continue
         cells = []
@@ -277,7 +280,7 @@ def main():
     drop_sizes = [10] if q else [10, 20, 40]
     cap_pl, cap_peer, cap_drop = (20, 60, 30) if q else (60, 110, 50)
     runs = []
-    for solver in ("relax", "damped"):
+    for solver in ("static", "relax", "damped"):
         log(f"pliant {solver}:")
         rs = sweep_cantilever(pliant_cantilever(solver), sizes, cap_pl, q)
         for r in rs:
@@ -322,12 +325,12 @@ def score(res):
             best[key] = best_per_level(rs)
     res["cantilever_best"] = best
     ratios = {}
-    for key, _ in TOOLS[2:]:
+    for key, _ in PEERS:
         if key not in best:
             continue
         ratios[key] = {}
         for lv in LEVELS:
-            pts = [best[k][str(lv)] for k in ("pliant-relax", "pliant-damped") if k in best]
+            pts = [best[k][str(lv)] for k in PLIANT if k in best]
             pts = [b["wall_s"] for b in pts if b["reached"]]
             pb = best[key][str(lv)]
             if not pts:

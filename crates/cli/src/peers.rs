@@ -15,6 +15,7 @@
 use anyhow::{bail, Result};
 use glam::{DQuat, DVec3};
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
+use pliant_core::newton::StaticSolver;
 use pliant_core::relax::{relax, RelaxOptions};
 use pliant_core::{
     explicit, health, HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings, State,
@@ -36,9 +37,10 @@ pub enum Solver {
     /// the first cantilever mode (α = 2ω₁), run until every node is slower than
     /// tol·L·ω₁ — the same "damped dynamics to rest" the peers use.
     Damped,
-    /// Quasi-static Newton solver (issue 5; being added to crates/core).
+    /// Quasi-static Newton solver (`pliant_core::newton::StaticSolver`): one solve.
     Static,
-    /// Implicit HHT-α dynamics run to rest (issue 5; being added to crates/core).
+    /// Implicit HHT-α dynamics (`pliant_core::newton::ImplicitSolver`); not offered for
+    /// the static cantilever.
     Implicit,
 }
 
@@ -209,7 +211,7 @@ pub fn solve_cantilever(
     let w1 = omega1(ei, mat.density * sec.area(), len);
     let settings = match solver {
         // as the validation suite's static settings: kinetic damping only, default β
-        Solver::Relax => SimSettings {
+        Solver::Relax | Solver::Static => SimSettings {
             gravity: DVec3::ZERO,
             damping_mass: 0.0,
             damping_stiffness: None,
@@ -221,8 +223,8 @@ pub fn solve_cantilever(
             damping_stiffness: None,
             ..Default::default()
         },
-        Solver::Static | Solver::Implicit => {
-            bail!("solver '{solver:?}' is not available yet (issue 5: being added to crates/core)")
+        Solver::Implicit => {
+            bail!("the cantilever is a static problem: use --solver static (Newton) or relax")
         }
     };
     let model = Model::build(&WorldSpec {
@@ -287,7 +289,26 @@ pub fn solve_cantilever(
                 ),
             )
         }
-        Solver::Static | Solver::Implicit => unreachable!("refused above"),
+        Solver::Static => {
+            // one Newton solve from the straight rest shape (consistent tangent by AD,
+            // O(N) block-tridiagonal solve, energy line search); buffers included in the time
+            let mut solver = StaticSolver::new(&model)?;
+            solver.options.force_tolerance = tol * p;
+            solver.options.moment_tolerance = tol * p * len;
+            solver.options.max_iterations = 200;
+            let r = solver.solve(&model, &mut state)?;
+            (
+                r.converged,
+                r.iterations as u64,
+                format!(
+                    "quasi-static Newton: {} iterations, residual {:.2e} N (stop at tol*P = {:.2e} N)",
+                    r.iterations,
+                    r.residual_force,
+                    tol * p
+                ),
+            )
+        }
+        Solver::Implicit => unreachable!("refused above"),
     };
     let wall_s = start.elapsed().as_secs_f64();
     let tip = state.x[elements];
