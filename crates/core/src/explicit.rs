@@ -13,7 +13,7 @@
 use crate::contact::{
     add_hose_contact_forces, add_penalty_forces, project_positions, resolve_velocities,
 };
-use crate::forces::{add_body_loads, internal_loads, Config};
+use crate::forces::{add_body_loads, internal_loads_except, Config};
 use crate::loads::LoadCase;
 use crate::math::{exp_map, log_map};
 use crate::stiffened::step_body;
@@ -31,12 +31,15 @@ pub fn step(model: &Model, state: &mut State) {
             v: &state.v,
             w: &state.w,
         };
-        internal_loads(
+        let asleep = &state.sleep.node_asleep;
+        let sleeping = state.sleep.enabled && state.sleep.hose_asleep.contains(&true);
+        internal_loads_except(
             model,
             &config,
             model.damping_stiffness,
             &mut state.force,
             &mut state.moment,
+            |a| sleeping && asleep[a],
         );
         add_body_loads(model, &config, &mut state.force, &mut state.moment);
     }
@@ -52,11 +55,17 @@ pub fn step(model: &Model, state: &mut State) {
         }
     }
     // Kinematic load cases, in order (a later one on the same node wins).
+    let mut moved_any = false;
     for (_, case) in state.loads.iter() {
         let Some((x_new, q_new)) = case.prescribed_pose(t_next) else {
             continue;
         };
         let i = case.node();
+        if state.sleep.enabled && (x_new != state.x[i] || q_new != state.q[i]) {
+            // a moving support wakes its hose below
+            state.sleep.node_asleep[i] = false;
+            moved_any = true;
+        }
         let v_new = (x_new - state.x[i]) / dt;
         let w_new = log_map(q_new * state.q[i].conjugate()) / dt;
         state.reaction_force[i] = model.mass[i] * (v_new - state.v[i]) / dt - state.force[i];
@@ -73,6 +82,11 @@ pub fn step(model: &Model, state: &mut State) {
         add_penalty_forces(model, state);
     }
     for (b, body) in model.bodies.iter().enumerate() {
+        if state.sleep.enabled && state.sleep.node_asleep[body.nodes.start] {
+            state.bodies[b].velocity = DVec3::ZERO;
+            state.bodies[b].angular_velocity = DVec3::ZERO;
+            continue; // a sleeping section stays put (its nodes are held below)
+        }
         let held = body.nodes.clone().find(|&i| state.held[i]);
         step_body(
             body,
@@ -89,6 +103,18 @@ pub fn step(model: &Model, state: &mut State) {
         );
         for i in body.nodes.clone() {
             state.held[i] = true;
+        }
+    }
+    if state.sleep.enabled {
+        // sleeping nodes stay where they are, like held ones (no reaction reported)
+        for i in 0..state.x.len() {
+            if state.sleep.node_asleep[i] && !state.held[i] {
+                state.held[i] = true;
+                state.v[i] = DVec3::ZERO;
+                state.w[i] = DVec3::ZERO;
+                state.force[i] = DVec3::ZERO;
+                state.moment[i] = DVec3::ZERO;
+            }
         }
     }
     for i in 0..state.x.len() {
@@ -112,4 +138,21 @@ pub fn step(model: &Model, state: &mut State) {
     }
     state.time = t_next;
     state.step += 1;
+    if state.sleep.enabled {
+        update_sleep(model, state, moved_any);
+    }
+}
+
+/// Sleep bookkeeping after a step: a node whose support moved this step was marked awake
+/// above (its hose wakes); then calm hoses fall asleep ([`crate::sleep`]).
+fn update_sleep(model: &Model, state: &mut State, moved_any: bool) {
+    if moved_any {
+        for h in 0..model.hoses.len() {
+            let info = &model.hoses[h];
+            if state.sleep.hose_asleep[h] && info.nodes().any(|i| !state.sleep.node_asleep[i]) {
+                state.sleep.wake(model, h);
+            }
+        }
+    }
+    crate::sleep::update(model, state, |_| false);
 }

@@ -21,10 +21,26 @@ pub fn internal_loads(
     force: &mut [DVec3],
     moment: &mut [DVec3],
 ) {
+    internal_loads_except(model, c, beta, force, moment, |_| false);
+}
+
+/// [`internal_loads`] leaving out the elements whose first node `skip` selects (the
+/// elements of sleeping hoses, [`crate::sleep`]).
+pub fn internal_loads_except(
+    model: &Model,
+    c: &Config,
+    beta: f64,
+    force: &mut [DVec3],
+    moment: &mut [DVec3],
+    skip: impl Fn(usize) -> bool,
+) {
     force.fill(DVec3::ZERO);
     moment.fill(DVec3::ZERO);
     for e in &model.elements {
         let (a, b) = (e.node_a, e.node_b);
+        if skip(a) {
+            continue;
+        }
         let ends = ElementEnds {
             x: [c.x[a], c.x[b]],
             q: [c.q[a], c.q[b]],

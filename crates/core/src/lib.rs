@@ -23,6 +23,7 @@ pub mod model;
 pub mod newton;
 pub mod relax;
 pub mod section;
+pub mod sleep;
 pub mod solver;
 pub mod spec;
 pub mod state;

@@ -4,6 +4,7 @@
 
 use crate::contact::{ContactScratch, HoseContactScratch};
 use crate::loads::LoadCases;
+use crate::sleep::Sleep;
 use crate::stiffened::BodyState;
 use crate::Model;
 use glam::{DQuat, DVec3};
@@ -46,6 +47,8 @@ pub struct State {
     pub hose_contact_force: Vec<DVec3>,
     /// Hose–hose contact broad phase and per-beam data, allocated once.
     pub hose_contact: HoseContactScratch,
+    /// Which hoses sleep (SPEC I6; off unless enabled).
+    pub sleep: Sleep,
 }
 
 impl State {
@@ -79,6 +82,7 @@ impl State {
                 .collect(),
             hose_contact_force: vec![DVec3::ZERO; n],
             hose_contact: HoseContactScratch::new(model),
+            sleep: Sleep::new(model),
         }
     }
 

@@ -231,6 +231,7 @@ impl Sim {
         paused: bool,
     ) -> Sim {
         let mut state = State::at_rest(&model);
+        state.sleep.enabled = true; // hoses far from the action sleep (SPEC I6)
         apply_initial(&model, &mut state, &initial);
         let fasteners = Fasteners::new(&mut state, sites.0.clone(), sites.1.clone());
         Sim {
@@ -329,6 +330,8 @@ impl Sim {
     fn apply(&mut self, c: Command) {
         match c {
             Command::Grab { hand, position } => {
+                // a grab or a release changes what holds the hoses: let them all move
+                self.state.sleep.wake_all(&self.model);
                 if let Some(old) = self.hands.remove(&hand) {
                     old.hand.release(&mut self.state);
                 }
@@ -357,6 +360,7 @@ impl Sim {
                 }
             }
             Command::Release { hand } => {
+                self.state.sleep.wake_all(&self.model);
                 if let Some(h) = self.hands.remove(&hand) {
                     h.hand.release(&mut self.state);
                 }
@@ -382,6 +386,7 @@ impl Sim {
     /// Back to rest, hands released. A client's `reset` has counted the epoch already.
     fn reset(&mut self, divergence: Option<String>) {
         self.state = State::at_rest(&self.model);
+        self.state.sleep.enabled = true;
         self.solver.restart();
         apply_initial(&self.model, &mut self.state, &self.initial);
         self.fasteners =
@@ -460,9 +465,11 @@ impl Sim {
             .model
             .hoses
             .iter()
-            .map(|h| HoseSnapshot {
+            .enumerate()
+            .map(|(k, h)| HoseSnapshot {
                 positions: h.nodes().map(|n| self.state.x[n].to_array()).collect(),
                 colour: 0.0,
+                asleep: self.state.sleep.hose_asleep[k],
             })
             .collect();
         let hands = self

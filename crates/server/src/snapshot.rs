@@ -202,6 +202,9 @@ pub struct HoseSnapshot {
     /// Colour value c = min(|f| / f_max, 1) of the hands holding it (SPEC I4): 0 blue,
     /// 0.5 green, 1 red; 0 when no hand holds it.
     pub colour: f64,
+    /// The hose is at rest and not simulated until something moves or touches it
+    /// (SPEC I6).
+    pub asleep: bool,
 }
 
 /// One hand's state and load (SPEC I2, I3).

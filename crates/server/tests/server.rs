@@ -480,3 +480,49 @@ async fn ergonomics_and_scene_can_be_changed_and_bad_scenes_are_refused() {
     })
     .await;
 }
+
+/// SPEC I6: once the demo's hoses have come to rest they sleep (not simulated); a grab
+/// wakes them and the grabbed hose moves again.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn resting_hoses_sleep_and_a_grab_wakes_them() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    send(&mut ws, json!({"type": "pause"})).await;
+    let all_asleep = |v: &Value| {
+        v["hoses"]
+            .as_array()
+            .is_some_and(|h| h.iter().all(|h| h["asleep"] == true))
+    };
+    let mut asleep = None;
+    let paused = next_where(&mut ws, "snapshot", |v| v["paused"] == true).await;
+    let mut last = paused["step"].as_u64().unwrap();
+    for _ in 0..10 {
+        send(&mut ws, json!({"type": "step", "n": 20000})).await;
+        let snap = next_where(&mut ws, "snapshot", |v| {
+            v["step"].as_u64().is_some_and(|s| s >= last + 20000)
+        })
+        .await;
+        last = snap["step"].as_u64().unwrap();
+        if all_asleep(&snap) {
+            asleep = Some(snap);
+            break;
+        }
+    }
+    let snap = asleep.expect("the demo's hoses come to rest and sleep");
+    let n = snap["hoses"][1]["positions"].as_array().unwrap().len();
+    let p0 = node(&snap, 1, n / 2);
+    send(
+        &mut ws,
+        json!({"type": "grab", "hand_id": 0, "position": p0}),
+    )
+    .await;
+    send(
+        &mut ws,
+        json!({"type": "move", "hand_id": 0, "position": [p0[0], p0[1], p0[2] + 0.03]}),
+    )
+    .await;
+    send(&mut ws, json!({"type": "resume"})).await;
+    let moved = next_where(&mut ws, "snapshot", |v| dist(node(v, 1, n / 2), p0) > 0.01).await;
+    assert_eq!(moved["hoses"][1]["asleep"], false);
+}

@@ -1,0 +1,111 @@
+//! Sleeping hoses (SPEC I6, dissertation §5.2.2: "only hoses near the action need
+//! simulating"): in an interactive session a hose that has come to rest and that nothing
+//! moves is frozen — its elements are not evaluated and its nodes are held where they are
+//! — until something touches it again. Off by default (scripted runs and the validation
+//! suite simulate everything); `pliant serve` switches it on.
+//!
+//! A hose falls asleep when, for [`SLEEP_AFTER_STEPS`] steps in a row, every node is
+//! slower than [`SLEEP_SPEED`], no kinematic load case moves any of its nodes and no other
+//! hose touches it. It wakes when a kinematic load case on one of its nodes moves, when a
+//! load case on it is added or removed ([`Sleep::wake`], called by whoever changes them),
+//! or when an awake hose comes into contact with it.
+
+use crate::{Model, State};
+use glam::DVec3;
+
+/// Node speed below which a hose counts as at rest [m/s].
+pub const SLEEP_SPEED: f64 = 1e-4;
+/// Consecutive calm steps before a hose sleeps.
+pub const SLEEP_AFTER_STEPS: u32 = 2000;
+
+/// Sleep state of the hoses of a [`State`].
+#[derive(Clone, Debug, Default)]
+pub struct Sleep {
+    /// Whether hoses may sleep at all.
+    pub enabled: bool,
+    /// Per hose: asleep now.
+    pub hose_asleep: Vec<bool>,
+    /// Per node: its hose is asleep (for the step's inner loops).
+    pub node_asleep: Vec<bool>,
+    /// Per hose: calm steps in a row.
+    calm: Vec<u32>,
+    /// Per node: the hose–hose contact force when its hose fell asleep.
+    contact_at_sleep: Vec<DVec3>,
+}
+
+impl Sleep {
+    pub fn new(model: &Model) -> Self {
+        Sleep {
+            enabled: false,
+            hose_asleep: vec![false; model.hoses.len()],
+            node_asleep: vec![false; model.node_count()],
+            calm: vec![0; model.hoses.len()],
+            contact_at_sleep: vec![DVec3::ZERO; model.node_count()],
+        }
+    }
+
+    /// Wakes hose `h` (e.g. a hand grabbed it or a load case on it changed).
+    pub fn wake(&mut self, model: &Model, h: usize) {
+        if let Some(info) = model.hoses.get(h) {
+            self.hose_asleep[h] = false;
+            self.calm[h] = 0;
+            for i in info.nodes() {
+                self.node_asleep[i] = false;
+            }
+        }
+    }
+
+    /// Wakes every hose.
+    pub fn wake_all(&mut self, model: &Model) {
+        for h in 0..model.hoses.len() {
+            self.wake(model, h);
+        }
+    }
+
+    /// How many hoses sleep.
+    pub fn sleeping(&self) -> usize {
+        self.hose_asleep.iter().filter(|a| **a).count()
+    }
+}
+
+/// Change of contact force that wakes a sleeping node [N] (plus 1 % of the force it slept
+/// with).
+const WAKE_FORCE: f64 = 1e-6;
+
+/// After a step: wakes sleeping hoses that were touched or moved, puts calm ones to sleep.
+/// `moved(i)` tells whether a kinematic load case moved node i in this step (the explicit
+/// step wakes those hoses itself and passes none).
+pub fn update(model: &Model, state: &mut State, moved: impl Fn(usize) -> bool) {
+    if !state.sleep.enabled {
+        return;
+    }
+    for (h, info) in model.hoses.iter().enumerate() {
+        let driven = info.nodes().any(&moved);
+        if state.sleep.hose_asleep[h] {
+            let touched = info.nodes().any(|i| {
+                let (now, then) = (state.hose_contact_force[i], state.sleep.contact_at_sleep[i]);
+                (now - then).length() > WAKE_FORCE + 0.01 * then.length()
+            });
+            if driven || touched {
+                state.sleep.wake(model, h);
+            }
+            continue;
+        }
+        let calm = !driven
+            && info.nodes().all(|i| {
+                state.v[i].length() < SLEEP_SPEED
+                    && state.w[i].length() * model.radius[i] < SLEEP_SPEED
+            });
+        let s = &mut state.sleep;
+        s.calm[h] = if calm { s.calm[h] + 1 } else { 0 };
+        if s.calm[h] >= SLEEP_AFTER_STEPS {
+            s.hose_asleep[h] = true;
+            for i in info.nodes() {
+                s.node_asleep[i] = true;
+                s.contact_at_sleep[i] = state.hose_contact_force[i];
+                state.v[i] = DVec3::ZERO;
+                state.w[i] = DVec3::ZERO;
+            }
+        }
+    }
+}
