@@ -9,7 +9,7 @@ use pliant_assembly::fasteners::Fasteners;
 use pliant_assembly::{Action, ClipSite, Hand, HandLoad, StubSite};
 use pliant_core::health::{check, Divergence};
 use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId};
-use pliant_core::{explicit, Model, State};
+use pliant_core::{Model, Solver, SolverKind, SolverSettings, State};
 use pliant_scene::LoadedScene;
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
@@ -44,6 +44,8 @@ pub struct Engine {
     hand_forces: Vec<(u32, DVec3)>,
     /// Set once the state has diverged; stepping is refused until `reset`.
     diverged: Option<Divergence>,
+    /// Advances the state: the scene's solver unless chosen otherwise (issue 5).
+    solver: Solver,
 }
 
 /// A scene's initial load cases: the leading fixes and dead loads of its timeline, up to
@@ -69,7 +71,7 @@ impl Engine {
         let mut state = State::at_rest(&model);
         let fasteners = Fasteners::new(&mut state, sites.0.clone(), sites.1.clone());
         let mut engine = Engine {
-            model,
+            model: model.clone(),
             state,
             hands: BTreeMap::new(),
             fasteners,
@@ -80,6 +82,7 @@ impl Engine {
             limits: ErgonomicLimits::builtin().ok(),
             hand_forces: Vec::new(),
             diverged: None,
+            solver: Solver::for_model(&model).map_err(|e| e.to_string())?,
         };
         engine.apply_initial();
         Ok(engine)
@@ -117,7 +120,28 @@ impl Engine {
         self.hands.clear();
         self.user_loads.clear();
         self.diverged = None;
+        self.solver.restart();
         self.apply_initial();
+    }
+
+    /// Advances with `kind` from now on (explicit, implicit or static).
+    pub fn set_solver(&mut self, kind: SolverKind) -> Result<(), String> {
+        let settings = SolverSettings {
+            kind,
+            ..self.model.solver
+        };
+        self.solver = Solver::new(&self.model, settings).map_err(|e| e.to_string())?;
+        Ok(())
+    }
+
+    /// The solver in use.
+    pub fn solver(&self) -> &Solver {
+        &self.solver
+    }
+
+    /// Simulated time one step advances [s].
+    pub fn time_step(&self) -> f64 {
+        self.solver.time_step(&self.model)
     }
 
     /// The divergence that stopped the simulation, if any.
@@ -132,10 +156,10 @@ impl Engine {
         }
     }
 
-    /// One explicit step: hands move their held nodes, stubs and clips act, the state
+    /// One step of the solver: hands move their held nodes, stubs and clips act, the state
     /// advances; the state is checked every few steps.
     pub(crate) fn step_once(&mut self) -> Result<(), Divergence> {
-        let t_next = self.state.time + self.model.time_step;
+        let t_next = self.state.time + self.solver.time_step(&self.model);
         for hand in self.hands.values() {
             hand.update(&mut self.state, t_next);
         }
@@ -161,7 +185,9 @@ impl Engine {
             self.fasteners
                 .update(&self.model, &mut self.state, &held, &force);
         }
-        explicit::step(&self.model, &mut self.state);
+        if let Err(e) = self.solver.step(&self.model, &mut self.state) {
+            return Err(e.into_divergence(&self.model, &self.state));
+        }
         if self.state.step % HEALTH_CHECK_EVERY == 0 {
             check(&self.model, &self.state)?;
         }

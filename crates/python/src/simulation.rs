@@ -135,12 +135,12 @@ impl Simulation {
 
     /// Whole steps in `duration` (rounded, as the timeline's `run`).
     fn steps_for(&self, duration: f64) -> u64 {
-        (duration / self.model().time_step).round() as u64
+        (duration / self.engine.time_step()).round() as u64
     }
 
     /// Steps until a motion of `duration` starting now has ended (rounded up).
     fn steps_until_done(&self, duration: f64) -> u64 {
-        (duration / self.model().time_step - 1e-9).ceil().max(0.0) as u64
+        (duration / self.engine.time_step() - 1e-9).ceil().max(0.0) as u64
     }
 
     /// Waypoints from `to` (absolute) or `by` (offsets from `start`); at most one.
@@ -163,16 +163,27 @@ impl Simulation {
 #[pymethods]
 impl Simulation {
     #[new]
-    #[pyo3(signature = (scene, *, initial_loads = true))]
-    fn new(py: Python<'_>, scene: Bound<'_, Scene>, initial_loads: bool) -> PyResult<Self> {
+    #[pyo3(signature = (scene, *, initial_loads = true, solver = None))]
+    fn new(
+        py: Python<'_>,
+        scene: Bound<'_, Scene>,
+        initial_loads: bool,
+        solver: Option<&str>,
+    ) -> PyResult<Self> {
         let s = scene.get();
         let initial = if initial_loads {
             initial_actions(&s.scene)
         } else {
             Vec::new()
         };
-        let engine = Engine::new(s.model.clone(), &s.scene, initial)
+        let mut engine = Engine::new(s.model.clone(), &s.scene, initial)
             .map_err(|e| scene_error_message(py, format!("{}: {e}", s.scene.source)))?;
+        if let Some(name) = solver {
+            let kind: pliant_core::SolverKind = name
+                .parse()
+                .map_err(|e: String| PyValueError::new_err(format!("solver: {e}")))?;
+            engine.set_solver(kind).map_err(PyValueError::new_err)?;
+        }
         Ok(Simulation {
             engine,
             scene: scene.unbind(),
@@ -191,11 +202,24 @@ impl Simulation {
         self.engine.state.time
     }
 
-    /// The explicit time step [s] (chosen from the model's stable step, see the scene's
-    /// ``[simulation]``).
+    /// Simulated time one step advances [s]: the explicit stable step, or the implicit /
+    /// static solver's step (see :attr:`solver` and the scene's ``[simulation]``).
     #[getter]
     fn time_step(&self) -> f64 {
-        self.model().time_step
+        self.engine.time_step()
+    }
+
+    /// The solver that advances the simulation: ``"explicit"`` (the dissertation's
+    /// central differences), ``"implicit"`` (HHT-α, 10 ms steps) or ``"static"`` (one
+    /// equilibrium solve per 10 ms of input). Chosen by the scene or by
+    /// ``Simulation(scene, solver=...)``.
+    ///
+    /// >>> import pliant
+    /// >>> pliant.Simulation(pliant.demo_scene(), solver="implicit").time_step
+    /// 0.01
+    #[getter]
+    fn solver(&self) -> &'static str {
+        self.engine.solver().kind().name()
     }
 
     /// Steps taken since the start (or the last reset).

@@ -123,3 +123,23 @@ def test_solve_static_agrees_with_settle(cantilever):
     relaxed = cantilever.positions("beam")
     scale = tip_deflection(cantilever)
     assert np.abs(newton - relaxed).max() < 1e-4 * scale
+
+
+@pytest.mark.parametrize("solver", ["implicit", "static"])
+def test_newton_solvers_reach_the_same_sag(solver):
+    """A cantilever under gravity run with the implicit or static solver comes to the
+    equilibrium the explicit solver settles to."""
+    scene = pliant.Scene.from_dict(cantilever_dict())
+    explicit = pliant.Simulation(scene)
+    explicit.settle(**TIGHT)
+    other = pliant.Simulation(scene, solver=solver)
+    assert other.solver == solver
+    assert other.time_step == pytest.approx(0.01)
+    other.run(3.0)
+    scale = tip_deflection(explicit)
+    assert abs(tip_deflection(other) - scale) < 1e-3 * scale
+
+
+def test_unknown_solver_is_a_value_error():
+    with pytest.raises(ValueError, match="unknown solver 'newton'"):
+        pliant.Simulation(pliant.Scene.from_dict(cantilever_dict()), solver="newton")

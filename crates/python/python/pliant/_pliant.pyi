@@ -139,7 +139,13 @@ class SettleReport:
 class Simulation:
     """A simulation of a scene, stepped on request."""
 
-    def __init__(self, scene: Scene, *, initial_loads: bool = True) -> None: ...
+    def __init__(
+        self, scene: Scene, *, initial_loads: bool = True, solver: str | None = None
+    ) -> None: ...
+    @property
+    def solver(self) -> str:
+        """explicit, implicit or static."""
+        ...
     @property
     def scene(self) -> Scene: ...
     @property
