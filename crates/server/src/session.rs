@@ -28,6 +28,10 @@ use tokio::sync::watch;
 /// Fastest a hand's held beam is dragged towards the target of a `move` [m/s]; input
 /// jumps are spread over several steps so that no step sees a large displacement.
 pub const HAND_MAX_SPEED: f64 = 2.0;
+/// Largest acceleration of a hand towards (and braking before) its target [m/s²] — a
+/// hand does not start or stop instantly, so a `move` does not jerk the held beam (an
+/// instant 2 m/s start gives inertial force spikes the worker would not feel).
+pub const HAND_MAX_ACCEL: f64 = 20.0;
 /// Fastest a hand turns towards its target orientation [rad/s].
 pub const HAND_MAX_TURN_RATE: f64 = 4.0 * std::f64::consts::PI;
 /// Most wall-clock time spent stepping before commands are looked at again.
@@ -187,6 +191,8 @@ struct Interactive {
     hand: Hand,
     pose: (DVec3, DQuat),
     target: (DVec3, DQuat),
+    /// Current speed towards the target [m/s].
+    speed: f64,
 }
 
 struct Sim {
@@ -344,6 +350,7 @@ impl Sim {
                                 hand: h,
                                 pose,
                                 target: pose,
+                                speed: 0.0,
                             },
                         );
                     }
@@ -411,7 +418,13 @@ impl Sim {
         let dt = self.solver.time_step(&self.model);
         let t = self.state.time + dt;
         for h in self.hands.values_mut() {
-            h.pose.0 = h.pose.0.move_towards(h.target.0, HAND_MAX_SPEED * dt);
+            // accelerate at most HAND_MAX_ACCEL, and brake so as to stop on the target
+            let to_go = (h.target.0 - h.pose.0).length();
+            let braking = (2.0 * HAND_MAX_ACCEL * to_go).sqrt();
+            h.speed = (h.speed + HAND_MAX_ACCEL * dt)
+                .min(HAND_MAX_SPEED)
+                .min(braking);
+            h.pose.0 = h.pose.0.move_towards(h.target.0, h.speed * dt);
             h.pose.1 = h.pose.1.rotate_towards(h.target.1, HAND_MAX_TURN_RATE * dt);
             h.hand.set_pose(h.pose.0, h.pose.1);
             h.hand.update(&mut self.state, t);

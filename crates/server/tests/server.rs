@@ -526,3 +526,45 @@ async fn resting_hoses_sleep_and_a_grab_wakes_them() {
     let moved = next_where(&mut ws, "snapshot", |v| dist(node(v, 1, n / 2), p0) > 0.01).await;
     assert_eq!(moved["hoses"][1]["asleep"], false);
 }
+
+/// A hand does not start or stop instantly (acceleration ≤ HAND_MAX_ACCEL): lifting the
+/// lower hose's middle 12 cm at once gives no inertial spike — the largest hand force on
+/// the way stays within 1.5 times the force that holds it there once it has settled.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_sudden_move_gives_no_inertial_force_spike() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    let snap = next_where(&mut ws, "snapshot", |v| v["time"].as_f64() > Some(0.5)).await;
+    let n = snap["hoses"][1]["positions"].as_array().unwrap().len();
+    let p0 = node(&snap, 1, n / 2);
+    send(
+        &mut ws,
+        json!({"type": "grab", "hand_id": 0, "position": p0}),
+    )
+    .await;
+    send(
+        &mut ws,
+        json!({"type": "move", "hand_id": 0, "position": [p0[0], p0[1], p0[2] + 0.12]}),
+    )
+    .await;
+    let start = next_where(&mut ws, "snapshot", |v| {
+        v["hands"].as_array().is_some_and(|h| h.len() == 1)
+    })
+    .await;
+    let t0 = start["time"].as_f64().unwrap();
+    let (mut peak, mut last): (f64, f64) = (0.0, 0.0);
+    loop {
+        let v = next_where(&mut ws, "snapshot", |_| true).await;
+        if let Some(h) = v["hands"].as_array().and_then(|h| h.first()) {
+            last = force(h);
+            peak = peak.max(last);
+        }
+        if v["time"].as_f64().unwrap() > t0 + 3.0 {
+            break;
+        }
+    }
+    println!("hand force during a 12 cm lift: peak {peak:.2} N, settled {last:.2} N");
+    assert!(last > 1.0, "the lifted hose loads the hand: {last} N");
+    assert!(peak < 1.5 * last, "peak {peak} N vs settled {last} N");
+}
