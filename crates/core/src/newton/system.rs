@@ -196,17 +196,7 @@ impl NewtonSystem {
             let f = n * (k * (r - d));
             self.force[i] += f;
             self.contact_force[i] += f;
-            let nn = Matrix3::new(
-                n.x * n.x,
-                n.x * n.y,
-                n.x * n.z,
-                n.y * n.x,
-                n.y * n.y,
-                n.y * n.z,
-                n.z * n.x,
-                n.z * n.y,
-                n.z * n.z,
-            );
+            let nn = normal_projector(n);
             let mut block = self.matrix.diag[i].fixed_view_mut::<3, 3>(0, 0);
             block += nn * k;
         }
@@ -384,13 +374,9 @@ impl NewtonSystem {
     }
 }
 
-/// The tangent of one hose–hose contact pair, k wₐ w_b n nᵀ (signs by side), for the node
-/// pairs inside the block band: each node with itself and the two nodes of one beam with
-/// each other. The coupling across the two beams (far apart in the chain) is applied by
-/// [`NewtonSystem::solve_linear`].
-fn add_pair_tangent(matrix: &mut BlockTridiagonal, pair: &ContactPair) {
-    let n = pair.normal;
-    let nn = Matrix3::new(
+/// n nᵀ: the stiffness direction of a contact spring along the unit normal n.
+fn normal_projector(n: DVec3) -> Matrix3<f64> {
+    Matrix3::new(
         n.x * n.x,
         n.x * n.y,
         n.x * n.z,
@@ -400,7 +386,15 @@ fn add_pair_tangent(matrix: &mut BlockTridiagonal, pair: &ContactPair) {
         n.z * n.x,
         n.z * n.y,
         n.z * n.z,
-    ) * pair.stiffness;
+    )
+}
+
+/// The tangent of one hose–hose contact pair, k wₐ w_b n nᵀ (signs by side), for the node
+/// pairs inside the block band: each node with itself and the two nodes of one beam with
+/// each other. The coupling across the two beams (far apart in the chain) is applied by
+/// [`NewtonSystem::solve_linear`].
+fn add_pair_tangent(matrix: &mut BlockTridiagonal, pair: &ContactPair) {
+    let nn = normal_projector(pair.normal) * pair.stiffness;
     let [a, b, c, d] = pair.nodes;
     let w = pair.weights;
     for (node, wk) in [(a, w[0]), (b, w[1]), (c, w[2]), (d, w[3])] {
