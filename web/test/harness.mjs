@@ -11,6 +11,14 @@ import { chromium } from 'playwright-core';
 export const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 export const chromiumPath = process.env.PLIANT_CHROMIUM ?? '/usr/bin/chromium';
 
+/**
+ * The longest any single wait of the tests may take before it fails as hung (also every
+ * page's default Playwright timeout). A hang guard, not a performance expectation: the
+ * tests run on slow, shared, loaded machines with software WebGL, so every wait is for a
+ * condition (a snapshot, a drawn frame, simulated time) and none sleeps and then asserts.
+ */
+export const HANG_GUARD_MS = 300_000;
+
 /** Starts the server; resolves to { url, proc, stop() } once it printed its URL. */
 export async function startServer(args = []) {
   const bin = path.resolve(repo, process.env.PLIANT_BIN ?? 'target/release/pliant');
@@ -18,7 +26,7 @@ export async function startServer(args = []) {
   const proc = spawn(bin, ['serve', ...args, '--port', '0'], { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] });
   let out = '';
   const url = await new Promise((resolve, reject) => {
-    const timer = setTimeout(() => reject(new Error(`pliant serve printed no URL in 60 s:\n${out}`)), 60000);
+    const timer = setTimeout(() => reject(new Error(`pliant serve printed no URL within the hang guard:\n${out}`)), HANG_GUARD_MS);
     const onData = (d) => {
       out += d.toString();
       const m = out.match(/at (http:\/\/127\.0\.0\.1:\d+\/)/);
@@ -71,12 +79,13 @@ export async function launchBrowser() {
 /** Opens the viewer and waits until it has drawn a few frames of the live session. */
 export async function openViewer(browser, url, { width = 1280, height = 800, query = '' } = {}) {
   const page = await browser.newPage({ viewport: { width, height } });
+  page.setDefaultTimeout(HANG_GUARD_MS);
   const logs = [];
   page.on('console', (m) => logs.push(`${m.type()}: ${m.text()}`));
   page.on('pageerror', (e) => logs.push(`pageerror: ${e.message}`));
   await page.goto(url + query);
   try {
-    await page.waitForFunction(() => window.pliant && window.pliant.shown !== null && window.pliant.frames > 5, null, { timeout: 30000 });
+    await page.waitForFunction(() => window.pliant && window.pliant.shown !== null && window.pliant.frames > 5);
   } catch (e) {
     throw new Error(`viewer did not draw the session: ${e.message}\n${logs.join('\n')}`);
   }
@@ -84,6 +93,18 @@ export async function openViewer(browser, url, { width = 1280, height = 800, que
 }
 
 export const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+/** Waits until the viewer has drawn `n` more frames (also in VR). */
+export async function framesDrawn(page, n) {
+  const f = await page.evaluate(() => window.pliant.frames);
+  await page.waitForFunction(([f, n]) => window.pliant.frames >= f + n, [f, n]);
+}
+
+/** Waits until the snapshot shown is `dt` seconds of simulated time later than now. */
+export async function simulated(page, dt) {
+  const t = await page.evaluate(() => window.pliant.shown.time);
+  await page.waitForFunction(([t, dt]) => window.pliant.shown.time >= t + dt, [t, dt]);
+}
 
 export function median(xs) {
   const s = [...xs].sort((a, b) => a - b);

@@ -1,12 +1,14 @@
 // End-to-end tests of the browser viewer: `pliant serve` (the real binary, embedded
 // viewer) driven in headless Chromium (SwiftShader WebGL) through playwright-core.
 // Run: npm run test:e2e (PLIANT_BIN overrides the binary, default target/release/pliant).
+// Every wait is for a condition, bounded only by the hang guard (HANG_GUARD_MS, the pages'
+// default timeout): nothing depends on how fast the machine is.
 
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
 import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openViewer, repo, sleep, startServer } from './harness.mjs';
+import { framesDrawn, launchBrowser, openViewer, repo, simulated, sleep, startServer } from './harness.mjs';
 
 /** Software rendering is slow at full quality: most tests use the cheap mode. */
 const LOW = { width: 1024, height: 640, query: '?quality=low' };
@@ -51,19 +53,29 @@ async function pixelClasses(page) {
 async function resetSession(page) {
   const epoch = await page.evaluate(() => window.pliant.snapshot.epoch);
   await page.evaluate(() => window.pliant.send({ type: 'reset' }));
-  await page.waitForFunction((e) => window.pliant.shown?.epoch > e, epoch, { timeout: 10000 });
+  await page.waitForFunction((e) => window.pliant.shown?.epoch > e, epoch);
 }
 
-/** Waits until hose `h` has come to rest (after a reset it falls under gravity first). */
+/** Waits until hose `h` has come to rest (after a reset it falls under gravity first):
+ *  it moves less than 1 mm in 0.2 s of simulated time, within 20 s of simulated time. */
 async function settled(page, h) {
-  let prev = await page.evaluate((h) => window.pliant.hoseNodes(h), h);
+  const nodes = () => page.evaluate((h) => window.pliant.hoseNodes(h), h);
+  let prev = await nodes();
   for (let i = 0; i < 100; i++) {
-    await sleep(200);
-    const now = await page.evaluate((h) => window.pliant.hoseNodes(h), h);
+    await simulated(page, 0.2);
+    const now = await nodes();
     if (moved(prev, now) < 0.001) return now;
     prev = now;
   }
   throw new Error(`hose ${h} did not come to rest`);
+}
+
+/** Waits until node `k` of hose `h` is more than `d` [m] away from `p`. */
+async function nodeMoved(page, h, k, p, d) {
+  await page.waitForFunction(([h, k, p, d]) => {
+    const n = window.pliant.hoseNodes(h)[k];
+    return n !== undefined && Math.hypot(n[0] - p[0], n[1] - p[1], n[2] - p[2]) > d;
+  }, [h, k, p, d]);
 }
 
 const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
@@ -81,7 +93,7 @@ describe('viewer', () => {
     try {
       const w = await page.evaluate(() => window.pliant.welcome);
       assert.ok(w.session.hoses.length >= 1);
-      await sleep(500);
+      await framesDrawn(page, 10);
       const c = await pixelClasses(page);
       assert.ok(c.hose > 500, `hose-coloured pixels: ${c.hose}`);
       assert.ok(c.part > 5000, `part-coloured pixels: ${c.part}`);
@@ -100,8 +112,8 @@ describe('viewer', () => {
         window.pliant.send({ type: 'grab', hand_id: id, position: p });
         window.pliant.send({ type: 'move', hand_id: id, position: [p[0] + 0.05, p[1] + 0.1, p[2] + 0.12] });
       }, [end]);
-      await page.waitForFunction(() => (window.pliant.shown?.hoses ?? []).some((h) => h.colour > 0.2), null, { timeout: 15000 });
-      await sleep(1500);
+      await page.waitForFunction(() => (window.pliant.shown?.hoses ?? []).some((h) => h.colour > 0.2));
+      await simulated(page, 1.5);
       const dir = path.join(repo, 'target', 'e2e');
       mkdirSync(dir, { recursive: true });
       await page.screenshot({ path: path.join(dir, 'viewer.png') });
@@ -132,9 +144,13 @@ describe('viewer', () => {
       await page.waitForFunction(
         (id) => (window.pliant.snapshot?.hands ?? []).some((h) => h.hand_id === id && Math.hypot(...h.force) > 0.1),
         handId,
-        { timeout: 10000 },
       );
-      await sleep(700); // let the hand reach its target
+      // the hand reaches its target: the node has moved and the panel shows the force
+      await nodeMoved(page, hose, k, before[k], 0.02);
+      await page.waitForFunction(
+        (id) => Number(document.querySelector(`#hands .hand[data-hand="${id}"] .force`)?.getAttribute('data-value')) > 0.1,
+        handId,
+      );
       const during = await page.evaluate((h) => window.pliant.hoseNodes(h), hose);
       assert.ok(moved(before, during) > 0.02, `hose moved ${moved(before, during)} m`);
       assert.ok(dist(before[k], during[k]) > 0.02, `grabbed node moved ${dist(before[k], during[k])} m`);
@@ -144,7 +160,7 @@ describe('viewer', () => {
       const text = await page.textContent(`#hands .hand[data-hand="${handId}"] .force`);
       assert.match(text, /Force [1-9]\d*\.\d N|Force 0\.[1-9] N/);
       await page.mouse.up();
-      await page.waitForFunction((id) => !(window.pliant.snapshot?.hands ?? []).some((h) => h.hand_id === id), handId, { timeout: 10000 });
+      await page.waitForFunction((id) => !(window.pliant.snapshot?.hands ?? []).some((h) => h.hand_id === id), handId);
     } finally {
       await page.close();
     }
@@ -153,10 +169,10 @@ describe('viewer', () => {
   test('the emulated headset (iwer) grabs, moves and releases hoses with both controllers', async () => {
     const { page, logs } = await openViewer(browser, server.url, { ...LOW, query: '?xr=emulate&quality=low' });
     try {
-      await page.locator('#enter-vr:not([disabled])').waitFor({ timeout: 15000 });
+      await page.locator('#enter-vr:not([disabled])').waitFor();
       await resetSession(page);
       await page.click('#enter-vr');
-      await page.waitForFunction(() => window.pliant.inVr, null, { timeout: 15000 }).catch((e) => {
+      await page.waitForFunction(() => window.pliant.inVr).catch((e) => {
         throw new Error(`${e.message}\n${logs.join('\n')}`);
       });
       const nHoses = await page.evaluate(() => window.pliant.welcome.session.hoses.length);
@@ -179,7 +195,7 @@ describe('viewer', () => {
           d.controllers[side].position.set(...t[side]);
         }
       }, target);
-      await sleep(300);
+      await framesDrawn(page, 5);
       // the grip sits at an offset from the controller's origin: correct for it once
       const offsets = await page.evaluate((t) => {
         const d = window.pliantXrDevice;
@@ -194,7 +210,7 @@ describe('viewer', () => {
         }
         return out;
       }, target);
-      await sleep(300);
+      await framesDrawn(page, 5);
       // the grips are where the test put them (XR space = three.js space)
       const grips = await page.evaluate(() => window.pliant.xrGrips());
       void offsets;
@@ -209,7 +225,6 @@ describe('viewer', () => {
       await page.waitForFunction(
         ([ids, n]) => (window.pliant.snapshot?.hands ?? []).filter((h) => ids.includes(h.hand_id)).length === n,
         [ids, wanted],
-        { timeout: 10000 },
       );
       // move the right controller up 15 cm and sideways 10 cm
       await page.evaluate((t) => {
@@ -219,9 +234,8 @@ describe('viewer', () => {
       await page.waitForFunction(
         ([ids]) => (window.pliant.snapshot?.hands ?? []).some((h) => ids.includes(h.hand_id) && Math.hypot(...h.force) > 0.1),
         [ids],
-        { timeout: 10000 },
       );
-      await sleep(600);
+      await nodeMoved(page, lower, k, nodesBefore[k], 0.05);
       const nodesAfter = await page.evaluate((h) => window.pliant.hoseNodes(h), lower);
       assert.ok(dist(nodesBefore[k], nodesAfter[k]) > 0.05, `grabbed node moved ${dist(nodesBefore[k], nodesAfter[k])} m`);
       const hands = await page.evaluate(() => window.pliant.snapshot.hands);
@@ -230,7 +244,7 @@ describe('viewer', () => {
       await page.evaluate(() => {
         for (const side of ['left', 'right']) window.pliantXrDevice.controllers[side].updateButtonValue('squeeze', 0);
       });
-      await page.waitForFunction(([ids]) => !(window.pliant.snapshot?.hands ?? []).some((h) => ids.includes(h.hand_id)), [ids], { timeout: 10000 });
+      await page.waitForFunction(([ids]) => !(window.pliant.snapshot?.hands ?? []).some((h) => ids.includes(h.hand_id)), [ids]);
     } finally {
       await page.close();
     }
@@ -248,7 +262,6 @@ describe('panel', () => {
       await page.waitForFunction(
         (o) => window.pliant.snapshot.ergonomics.population === o && window.pliant.snapshot.ergonomics.push_posture === 'sitting',
         other,
-        { timeout: 10000 },
       );
       // a held hand is judged against the new limits: the pull limit changes with them
       const nodes = await page.evaluate(() => window.pliant.hoseNodes(window.pliant.welcome.session.hoses.length - 1));
@@ -260,7 +273,6 @@ describe('panel', () => {
       await page.waitForFunction(
         ([id, l]) => window.pliant.snapshot.hands.some((h) => h.hand_id === id && h.torque_limit !== l),
         [id, limitA],
-        { timeout: 10000 },
       );
       await page.evaluate((id) => window.pliant.send({ type: 'release', hand_id: id }), id);
       // a bad value comes back as an error
@@ -278,7 +290,7 @@ describe('panel', () => {
       const oldName = await page.evaluate(() => window.pliant.welcome.session.scene);
       // broken: the loader's message comes back, the old scene stays
       await page.setInputFiles('#open-scene', { name: 'broken.toml', mimeType: 'text/plain', buffer: Buffer.from('format = "pliant-scene"\nversion = 1\nname = 3\n') });
-      await page.waitForFunction(() => window.pliant.errors.some((e) => e.code === 'invalid_scene'), null, { timeout: 10000 });
+      await page.waitForFunction(() => window.pliant.errors.some((e) => e.code === 'invalid_scene'));
       const err = await page.evaluate(() => window.pliant.errors.find((e) => e.code === 'invalid_scene').message);
       assert.match(err, /broken\.toml/);
       assert.match(await page.textContent('#message'), /invalid_scene/);
@@ -289,12 +301,12 @@ describe('panel', () => {
       const file = path.join(repo, 'examples', 'demo.toml');
       const wanted = /name = "([^"]+)"/.exec(readFileSync(file, 'utf8'))[1];
       await page.setInputFiles('#open-scene', file);
-      await page.waitForFunction((n) => window.pliant.welcome?.session.scene === n && window.pliant.shown !== null, wanted, { timeout: 20000 });
+      await page.waitForFunction((n) => window.pliant.welcome?.session.scene === n && window.pliant.shown !== null, wanted);
       assert.equal(await page.evaluate(() => window.pliant.welcome.session.hoses.length), 1);
       await page.waitForFunction(() => window.pliant.shown.hoses.length === 1);
       // back to the demo for the other tests
       await page.setInputFiles('#open-scene', path.join(repo, 'examples', 'engine_bay.toml'));
-      await page.waitForFunction((n) => window.pliant.welcome?.session.scene === n, oldName, { timeout: 20000 });
+      await page.waitForFunction((n) => window.pliant.welcome?.session.scene === n, oldName);
     } finally {
       await page.close();
     }
@@ -305,6 +317,7 @@ describe('panel', () => {
     try {
       await resetSession(page);
       await page.click('#record');
+      const received = await page.evaluate(() => window.pliant.snapshots);
       const id = await page.evaluate(() => window.pliant.mouseHandId);
       const nodes = await page.evaluate(() => window.pliant.hoseNodes(window.pliant.welcome.session.hoses.length - 1));
       const end = nodes[nodes.length - 1];
@@ -312,7 +325,12 @@ describe('panel', () => {
         window.pliant.send({ type: 'grab', hand_id: id, position: p });
         window.pliant.send({ type: 'move', hand_id: id, position: [p[0], p[1], p[2] + 0.15] });
       }, [end, id]);
-      await sleep(1500);
+      // recorded: more than 10 snapshots, the newest with the hand lifting the hose
+      await page.waitForFunction(
+        ([n, id]) => window.pliant.snapshots > n + 20 && window.pliant.snapshot.hands.some((h) => h.hand_id === id),
+        [received, id],
+      );
+      await simulated(page, 0.5);
       const download = page.waitForEvent('download');
       await page.click('#record');
       const file = await (await download).path();
@@ -328,7 +346,6 @@ describe('panel', () => {
       await page.waitForFunction(
         ([lo, hi]) => window.pliant.shown && window.pliant.shown.time >= lo && window.pliant.shown.time <= hi && window.pliant.shown.hands.length > 0,
         [Math.min(...recordedTimes), Math.max(...recordedTimes)],
-        { timeout: 10000 },
       );
       assert.ok(await page.isVisible('#replay-bar'));
       await page.click('#live');
