@@ -1,6 +1,7 @@
-//! Pliant's assembly layer: turns scripts (and, later, hands) into load cases on the
-//! physics core, with the force laws of connector stubs (SPEC L6) and clips (SPEC L7) and
-//! the ergonomic limits hand loads are judged against (SPEC I3–I4). It knows no input
+//! Pliant's assembly layer: the [`Workcell`] that owns an assembly study and steps it,
+//! the shells' common vocabulary of inputs, hands, connector stubs (SPEC L6) and clips
+//! (SPEC L7), the ergonomic limits hand loads are judged against (SPEC I3–I4), the
+//! verdict, input logs and their replay, and the timeline runner. It knows no input
 //! device and no scene file format.
 
 pub mod clip;
@@ -10,11 +11,15 @@ pub mod hand;
 pub mod runner;
 pub mod stub;
 pub mod timeline;
+pub mod report;
+pub mod workcell;
 
 pub use fasteners::{ClipSite, FastenerReport, FastenerSample, StubSite};
 pub use hand::{Hand, HandLoad};
-pub use runner::{
-    ContactEpisode, HandPeak, HandRecord, NoObserver, NodePeak, Observer, RunError, RunSummary,
-    Runner, SettleOutcome,
-};
+pub use runner::{run_timeline, RunError, Runner};
 pub use timeline::{Action, MovePath, NodeRef, Rotation, Timeline};
+pub use workcell::{
+    Applied, ContactEpisode, HandPeak, HandRecord, Input, NoObserver, NodePeak, Observer,
+    Refusal, RunSummary, SettleOutcome, Stage, Verdict, Workcell, WorkcellOptions,
+    WorkcellSetup,
+};

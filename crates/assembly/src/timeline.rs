@@ -73,6 +73,14 @@ pub enum Action {
         spline: bool,
         wait: bool,
     },
+    /// Hand `hand` heads for `position` [m] (and `orientation`, if given) at bounded
+    /// speed and acceleration, as a live hand driven by a pointer or a VR controller
+    /// does; the timeline goes on at once.
+    AimHand {
+        hand: usize,
+        position: DVec3,
+        orientation: Option<glam::DQuat>,
+    },
     /// Hand `hand` lets go of its beam.
     ReleaseHand { hand: usize },
     /// Simulate for `duration` seconds.

@@ -1,9 +1,5 @@
-//! The output writers of `pliant run` as a library: the recorder (CSV time series, VTK
-//! frames), the verdict report (`report.json`, `report.html`) and `summary.json`. The
-//! `pliant` binary and the Python API (crates/python) both use them, so both write the
-//! same files.
+//! The `pliant` command's helpers that its tests use: the peak table printed after a
+//! run. The output writers themselves are `pliant_assembly::report`, shared with
+//! `pliant serve` and the Python API.
 
-pub mod recorder;
-pub mod report;
-pub mod summary;
-mod vtk;
+pub mod table;

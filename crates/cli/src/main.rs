@@ -4,11 +4,12 @@
 mod bench;
 mod bench_newton;
 mod peers;
+mod progress;
+mod replay_cmd;
 mod run_cmd;
 mod serve_cmd;
 mod validate_cmd;
 
-use pliant_cli::{recorder, report, summary};
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -48,6 +49,19 @@ enum Command {
         solver: Option<pliant_core::SolverKind>,
     },
     /// Run the validation suite against exact and independent reference solutions.
+    /// Replays a session's input log (a folder of `pliant serve`, or its inputs.jsonl)
+    /// bit for bit and writes the same outputs as `run`.
+    Replay {
+        session: PathBuf,
+        /// Output folder (default: SESSION/replay).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Also write the session as a scene file whose timeline re-enacts it.
+        #[arg(long)]
+        timeline: Option<PathBuf>,
+        #[arg(long)]
+        quiet: bool,
+    },
     Validate {
         /// Print one JSON array of checks instead of a table.
         #[arg(long)]
@@ -135,6 +149,12 @@ fn main() -> ExitCode {
             ergonomics,
             solver,
         } => run_cmd::run(scene.as_deref(), &out, quiet, ergonomics.as_deref(), solver),
+        Command::Replay {
+            session,
+            out,
+            timeline,
+            quiet,
+        } => replay_cmd::run(&session, out.as_deref(), timeline.as_deref(), quiet),
         Command::Validate {
             json,
             case,

@@ -54,6 +54,7 @@ impl<'de> Deserialize<'de> for ActionEntry {
             "release" => ActionEntry::Release(part(table)?),
             "grab" => ActionEntry::Grab(part(table)?),
             "move_hand" => ActionEntry::MoveHand(part(table)?),
+            "aim_hand" => ActionEntry::AimHand(part(table)?),
             "release_hand" => ActionEntry::ReleaseHand(part(table)?),
             "run" => ActionEntry::Run(part(table)?),
             "settle" => ActionEntry::Settle(part(table)?),

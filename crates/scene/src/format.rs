@@ -400,6 +400,9 @@ pub enum ActionEntry {
     Grab(GrabEntry),
     /// Move a hand (holding a beam) along waypoints and/or turn it.
     MoveHand(MoveHandEntry),
+    /// A hand heads for a pose at bounded speed, as a live hand does (the timeline goes
+    /// on at once; what `pliant replay --timeline` writes for a live session's moves).
+    AimHand(AimHandEntry),
     /// A hand lets go of its beam.
     ReleaseHand(HandEntry),
     /// Simulate for a while.
@@ -409,7 +412,7 @@ pub enum ActionEntry {
 }
 
 /// The names of the `action` values, in the order of [`ActionEntry`].
-pub const ACTION_NAMES: [&str; 10] = [
+pub const ACTION_NAMES: [&str; 11] = [
     "fix",
     "move",
     "load",
@@ -417,6 +420,7 @@ pub const ACTION_NAMES: [&str; 10] = [
     "release",
     "grab",
     "move_hand",
+    "aim_hand",
     "release_hand",
     "run",
     "settle",
@@ -489,6 +493,21 @@ pub struct MoveHandEntry {
     pub spline: Option<bool>,
     /// Whether the timeline waits for the move to end. Default true.
     pub wait: Option<bool>,
+}
+
+/// `aim_hand`: a hand heads for a pose at bounded speed and acceleration (2 m/s,
+/// 20 m/s², 4π rad/s), as a hand steered by a pointer or a VR controller does.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AimHandEntry {
+    /// Hand index (0 … 7).
+    #[schemars(range(min = 0, max = 7))]
+    pub hand: i64,
+    /// Target position, in the scene's length unit.
+    pub position: Vec3,
+    /// Target orientation as a unit quaternion [w, x, y, z] (global frame); omitted: the
+    /// orientation the hand aims at now.
+    pub orientation_wxyz: Option<[f64; 4]>,
 }
 
 /// `release_hand`: a hand lets go.

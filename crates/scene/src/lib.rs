@@ -15,6 +15,8 @@ pub mod connectors;
 pub mod ergonomics;
 pub mod error;
 mod fastener_sites;
+mod workcell;
+pub mod session;
 pub mod format;
 pub mod hoses;
 pub mod library;

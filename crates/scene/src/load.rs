@@ -388,6 +388,7 @@ fn build(
         length_unit: file.length_unit,
         source: origin.to_string(),
         text: text.to_string(),
+        base_dir: base_dir.to_path_buf(),
     })
 }
 

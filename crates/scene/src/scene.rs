@@ -117,6 +117,8 @@ pub struct LoadedScene {
     pub source: String,
     /// The scene file's text as loaded, for reports that embed their input.
     pub text: String,
+    /// The folder relative mesh paths were read from.
+    pub base_dir: std::path::PathBuf,
 }
 
 impl LoadedScene {

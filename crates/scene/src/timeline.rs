@@ -3,7 +3,7 @@
 
 use crate::error::FieldError;
 use crate::format::{
-    ActionEntry, GrabEntry, HandEntry, LoadEntry, MoveEntry, MoveHandEntry, NodeEntry, Points,
+    ActionEntry, AimHandEntry, GrabEntry, HandEntry, LoadEntry, MoveEntry, MoveHandEntry, NodeEntry, Points,
     RotateEntry, RunEntry, SettleEntry,
 };
 use crate::units::LengthUnit;
@@ -70,6 +70,7 @@ fn check_hands(actions: &[Action]) -> Result<(), FieldError> {
             }
             Action::MoveHand { hand, .. } => (*hand, "move"),
             Action::ReleaseHand { hand } => (*hand, "release"),
+            Action::AimHand { hand, .. } => (*hand, "aim"),
             _ => continue,
         };
         if holding[hand].is_none() {
@@ -275,6 +276,32 @@ fn build_action(
                 speed,
                 spline: spline.unwrap_or(false),
                 wait: wait.unwrap_or(true),
+            }
+        }
+        ActionEntry::AimHand(AimHandEntry {
+            hand,
+            position,
+            orientation_wxyz,
+        }) => {
+            let orientation = match orientation_wxyz {
+                None => None,
+                Some([w, x, y, z]) => {
+                    let q = glam::DQuat::from_xyzw(*x, *y, *z, *w);
+                    if !q.is_finite() || (q.length() - 1.0).abs() > 1e-6 {
+                        return Err(FieldError::new(
+                            sub("orientation_wxyz"),
+                            format!("{:?}", [w, x, y, z]),
+                            "must be a finite unit quaternion [w, x, y, z]",
+                        ));
+                    }
+                    Some(q.normalize())
+                }
+            };
+            Action::AimHand {
+                hand: hand_index(&sub("hand"), *hand)?,
+                position: finite_vec(&sub("position"), *position, unit.symbol())?
+                    * unit.to_metres(),
+                orientation,
             }
         }
         ActionEntry::ReleaseHand(HandEntry { hand }) => Action::ReleaseHand {

@@ -8,12 +8,10 @@
 pub mod assets;
 pub mod limits;
 pub mod ownership;
-pub mod peaks;
 pub mod protocol;
 pub mod server;
 pub mod session;
 pub mod snapshot;
-pub mod verdict;
 
 pub use protocol::{ClientMessage, ServerMessage, PROTOCOL_VERSION};
 pub use server::{router, serve, start, RunningServer, ServerConfig};

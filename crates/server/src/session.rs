@@ -1,23 +1,28 @@
-//! The simulation thread (SPEC I6, dissertation 5.2.3): owns the model and state, steps at
-//! its own rate — real time as the target, sleeping when ahead, as fast as it can when
-//! behind — applies queued input commands between steps, and publishes the newest snapshot
-//! into a latest-value slot (a `tokio::sync::watch` channel: publishing replaces the value
-//! and never waits for readers; readers skip stale values). It never waits for clients.
+//! The simulation thread (SPEC I6, dissertation 5.2.3): a thin shell over the scene's
+//! [`Workcell`] that steps it at its own rate — real time as the target, sleeping when
+//! ahead, as fast as it can when behind — feeds it the queued input commands between
+//! steps, and publishes the newest snapshot into a latest-value slot (a
+//! `tokio::sync::watch` channel: publishing replaces the value and never waits for
+//! readers; readers skip stale values). It never waits for clients.
+//!
+//! Every session is a recording (SPEC W2): with a session folder, the workcell writes
+//! its input log there as it goes (a mark about once a second says how far it got), next
+//! to a copy of the scene; [`Session::report`] replays the log into a fresh workcell and
+//! writes the same report and CSVs as `pliant run`.
 
 use crate::ownership::HandId;
-use crate::peaks::HandPeaks;
 use crate::snapshot::{FastenerSnapshot, HandSnapshot, HoseSnapshot, SceneData, Snapshot};
-use crate::verdict::RunningVerdict;
 use glam::{DQuat, DVec3};
-use pliant_assembly::ergonomics::{
-    colour_value, ErgonomicLimits, ErgonomicProfile, HandAssessment,
-};
-use pliant_assembly::fasteners::{FastenerSample, Fasteners};
-use pliant_assembly::{Action, ClipSite, Hand, StubSite};
-use pliant_core::loads::{DeadLoad, Fix, LoadCase};
-use pliant_core::{health, Model, Solver, SolverKind, SolverSettings, State};
+use pliant_assembly::ergonomics::{colour_value, ErgonomicProfile, HandAssessment};
+use pliant_assembly::fasteners::FastenerSample;
+use pliant_assembly::report::{replay_with_outputs, Summary};
+use pliant_assembly::workcell::log::{InputLog, LogHeader};
+use pliant_assembly::workcell::StampedInput;
+use pliant_assembly::{Input, NoObserver, Stage, Verdict, Workcell, WorkcellOptions};
+use pliant_core::SolverKind;
+use pliant_scene::session::start_session_folder;
 use pliant_scene::LoadedScene;
-use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc;
 use std::sync::Arc;
@@ -25,24 +30,15 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 use tokio::sync::watch;
 
-/// Fastest a hand's held beam is dragged towards the target of a `move` [m/s]; input
-/// jumps are spread over several steps so that no step sees a large displacement.
-pub const HAND_MAX_SPEED: f64 = 2.0;
-/// Largest acceleration of a hand towards (and braking before) its target [m/s²] — a
-/// hand does not start or stop instantly, so a `move` does not jerk the held beam (an
-/// instant 2 m/s start gives inertial force spikes the worker would not feel).
-pub const HAND_MAX_ACCEL: f64 = 20.0;
-/// Fastest a hand turns towards its target orientation [rad/s].
-pub const HAND_MAX_TURN_RATE: f64 = 4.0 * std::f64::consts::PI;
 /// Most wall-clock time spent stepping before commands are looked at again.
 const BATCH: Duration = Duration::from_millis(2);
 /// Behind real time by more than this, the thread stops trying to catch up.
 const MAX_LAG: f64 = 0.05;
-/// Health check interval in steps.
-const HEALTH_EVERY: u64 = 16;
+/// How often the input log is told how far the session has got (wall clock).
+const MARK_EVERY: Duration = Duration::from_secs(1);
 
 /// An input command (already checked: finite values, allowed by ownership).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub enum Command {
     Grab {
         hand: HandId,
@@ -62,6 +58,8 @@ pub enum Command {
     Reset,
     /// Judge hand loads with this profile from now on.
     SetErgonomics(ErgonomicProfile),
+    /// Send back the input log so far (for a report).
+    Log(mpsc::Sender<(Vec<StampedInput>, u64)>),
 }
 
 /// A session could not start.
@@ -69,6 +67,8 @@ pub enum Command {
 pub enum SessionError {
     #[error("cannot build the model: {0}")]
     Model(String),
+    #[error("cannot create the session folder {path}: {reason}")]
+    Folder { path: String, reason: String },
 }
 
 /// Options of the simulation thread.
@@ -80,6 +80,9 @@ pub struct SessionOptions {
     pub paused: bool,
     /// Solver instead of the scene's `[simulation] solver` (issue 5).
     pub solver: Option<SolverKind>,
+    /// The session folder: the scene's copy and the input log are written there as the
+    /// session goes, and reports into its subfolders. `None`: the log stays in memory.
+    pub folder: Option<PathBuf>,
 }
 
 impl Default for SessionOptions {
@@ -88,6 +91,7 @@ impl Default for SessionOptions {
             publish_hz: 240.0,
             paused: false,
             solver: None,
+            folder: None,
         }
     }
 }
@@ -97,49 +101,59 @@ pub struct Session {
     commands: mpsc::Sender<Command>,
     snapshots: watch::Receiver<Arc<Snapshot>>,
     scene: Arc<SceneData>,
+    loaded: Arc<LoadedScene>,
+    header: LogHeader,
+    folder: Option<PathBuf>,
     epoch: Arc<AtomicU64>,
     stop: Arc<AtomicBool>,
     thread: Option<JoinHandle<()>>,
 }
 
 impl Session {
-    /// Builds the model of `scene` and starts its simulation thread.
+    /// Builds the workcell of `scene` and starts its simulation thread.
     pub fn start(scene: &LoadedScene, options: SessionOptions) -> Result<Session, SessionError> {
-        let model = Model::build(&scene.world)
-            .and_then(|m| m.with_stiffened_spans(&scene.stiffened_spans()))
-            .map_err(|e| SessionError::Model(e.to_string()))?;
-        let sites = scene.fastener_sites(&model).map_err(SessionError::Model)?;
-        let data = Arc::new(SceneData::new(scene, &model, &sites, 60.0));
+        let setup = scene.workcell_setup().map_err(SessionError::Model)?;
+        let sites = (setup.stubs.clone(), setup.clips.clone());
+        let cell_options = WorkcellOptions {
+            solver: options.solver,
+            sleeping: true, // hoses far from the action sleep (SPEC I6)
+            ..Default::default()
+        };
+        let mut cell = Workcell::new(setup, cell_options).map_err(SessionError::Model)?;
+        if let Some(dir) = &options.folder {
+            let file = start_session_folder(dir, scene, &cell).map_err(|e| SessionError::Folder {
+                path: dir.display().to_string(),
+                reason: e.to_string(),
+            })?;
+            cell.log_to(Box::new(file));
+        }
+        let header = LogHeader::new(
+            &scene.name,
+            &scene.source,
+            "",
+            &scene.base_dir.display().to_string(),
+            cell_options,
+            cell.time_step(),
+        );
+        let data = Arc::new(SceneData::new(scene, cell.model(), &sites, 60.0));
         let (tx, rx) = mpsc::channel();
         let epoch = Arc::new(AtomicU64::new(0));
         let stop = Arc::new(AtomicBool::new(false));
-        let initial = initial_actions(scene);
-        let settings = SolverSettings {
-            kind: options.solver.unwrap_or(model.solver.kind),
-            ..model.solver
-        };
-        let solver =
-            Solver::new(&model, settings).map_err(|e| SessionError::Model(e.to_string()))?;
-        let mut sim = Sim::new(
-            model,
-            solver,
-            sites,
-            initial,
-            scene.ergonomics.clone(),
-            epoch.clone(),
-            options.paused,
-        );
+        let mut sim = Sim::new(cell, epoch.clone(), options.paused);
         let (snap_tx, snap_rx) = watch::channel(Arc::new(sim.snapshot(0.0)));
         let publish_every = Duration::from_secs_f64(1.0 / options.publish_hz.max(1.0));
         let stop2 = stop.clone();
         let thread = std::thread::Builder::new()
             .name("pliant-sim".into())
             .spawn(move || sim.run(rx, snap_tx, stop2, publish_every))
-            .expect("spawn simulation thread");
+            .map_err(|e| SessionError::Model(format!("cannot start the simulation thread: {e}")))?;
         Ok(Session {
             commands: tx,
             snapshots: snap_rx,
             scene: data,
+            loaded: Arc::new(scene.clone()),
+            header,
+            folder: options.folder,
             epoch,
             stop,
             thread: Some(thread),
@@ -166,6 +180,11 @@ impl Session {
         &self.scene
     }
 
+    /// The session folder, if the session records into one.
+    pub fn folder(&self) -> Option<&Path> {
+        self.folder.as_deref()
+    }
+
     /// Resets so far (ownership entries of older epochs are void).
     pub fn epoch(&self) -> u64 {
         self.epoch.load(Ordering::SeqCst)
@@ -174,6 +193,59 @@ impl Session {
     /// Counts a reset requested by a client (the command follows through the queue).
     pub(crate) fn bump_epoch(&self) -> u64 {
         self.epoch.fetch_add(1, Ordering::SeqCst) + 1
+    }
+
+    /// The input log so far (inputs and the tick the session has reached).
+    pub fn input_log(&self) -> Result<InputLog, String> {
+        let (tx, rx) = mpsc::channel();
+        self.send(Command::Log(tx));
+        let (inputs, end_tick) = rx
+            .recv()
+            .map_err(|_| "the simulation thread has stopped".to_string())?;
+        Ok(InputLog {
+            header: self.header.clone(),
+            inputs,
+            end_tick,
+        })
+    }
+
+    /// Writes the session's report so far into `out` — `report.html`, `report.json`,
+    /// `summary.json` and the CSVs of `pliant run` — by replaying its input log into a
+    /// fresh workcell (the one verdict implementation, bit for bit the live session),
+    /// and the log beside them. Blocks for the replay: call it off the async runtime.
+    pub fn report(&self, out: &Path) -> Result<(Verdict, Summary), String> {
+        let log = self.input_log()?;
+        let cell = self.loaded.workcell(log.header.options)?;
+        let result = replay_with_outputs(
+            out,
+            cell,
+            &log,
+            &self.loaded.name,
+            self.loaded.record_interval,
+            &mut NoObserver,
+        )?;
+        let mut text = pliant_assembly::workcell::log::header_line(&LogHeader {
+            scene_file: "scene.toml".into(),
+            ..log.header.clone()
+        });
+        for s in &log.inputs {
+            text.push_str(&serde_json::to_string(&pliant_assembly::workcell::log::LogLine::Input(s.clone())).map_err(|e| e.to_string())?);
+            text.push('\n');
+        }
+        text.push_str(&format!("{{\"tick\":{}}}\n", log.end_tick));
+        let write = |name: &str, body: &str| {
+            std::fs::write(out.join(name), body)
+                .map_err(|e| format!("writing {}: {e}", out.join(name).display()))
+        };
+        write(pliant_assembly::workcell::log::LOG_FILE, &text)?;
+        if !self.loaded.is_json() {
+            write("scene.toml", &self.loaded.text)?;
+        } else {
+            write("scene.json", &self.loaded.text)?;
+            let fixed = text.replace("\"scene_file\":\"scene.toml\"", "\"scene_file\":\"scene.json\"");
+            write(pliant_assembly::workcell::log::LOG_FILE, &fixed)?;
+        }
+        Ok(result)
     }
 }
 
@@ -186,81 +258,36 @@ impl Drop for Session {
     }
 }
 
-/// A hand driven by messages: its pose moves towards the target at bounded speed.
-struct Interactive {
-    hand: Hand,
-    pose: (DVec3, DQuat),
-    target: (DVec3, DQuat),
-    /// Current speed towards the target [m/s].
-    speed: f64,
-}
-
 struct Sim {
-    model: Model,
-    /// Advances the state: explicit, implicit or static (issue 5).
-    solver: Solver,
-    state: State,
-    /// Stubs and clips (SPEC L6, L7): their sites, kept for resets, and their runtime.
-    sites: (Vec<StubSite>, Vec<ClipSite>),
-    /// The scene's initial load cases (its timeline's leading fixes and loads), kept for
-    /// resets.
-    initial: Vec<Action>,
-    fasteners: Fasteners,
-    hand_forces: Vec<DVec3>,
+    cell: Workcell,
     /// Current force of each fastener (buffer reused for every snapshot).
     fastener_forces: Vec<FastenerSample>,
-    hands: BTreeMap<HandId, Interactive>,
-    /// Peak loads of each hand id since the start or the last reset (running verdict).
-    peaks: BTreeMap<HandId, HandPeaks>,
     /// Why the simulation last diverged, until the next client reset.
     diverged: Option<String>,
     paused: bool,
     epoch: Arc<AtomicU64>,
-    /// Epoch as of the last reset the thread itself saw.
-    profile: ErgonomicProfile,
-    limits: Option<&'static ErgonomicLimits>,
     notice: Option<String>,
-    steps_since_check: u64,
     /// Real-time pacing: simulated time `anchor_sim` at wall time `anchor_wall`.
     anchor_wall: Instant,
     anchor_sim: f64,
 }
 
 impl Sim {
-    fn new(
-        model: Model,
-        solver: Solver,
-        sites: (Vec<StubSite>, Vec<ClipSite>),
-        initial: Vec<Action>,
-        profile: ErgonomicProfile,
-        epoch: Arc<AtomicU64>,
-        paused: bool,
-    ) -> Sim {
-        let mut state = State::at_rest(&model);
-        state.sleep.enabled = true; // hoses far from the action sleep (SPEC I6)
-        apply_initial(&model, &mut state, &initial);
-        let fasteners = Fasteners::new(&mut state, sites.0.clone(), sites.1.clone());
+    fn new(cell: Workcell, epoch: Arc<AtomicU64>, paused: bool) -> Sim {
         Sim {
-            model,
-            solver,
-            state,
-            sites,
-            initial,
-            fasteners,
-            hand_forces: Vec::with_capacity(16),
+            cell,
             fastener_forces: Vec::new(),
-            hands: BTreeMap::new(),
-            peaks: BTreeMap::new(),
             diverged: None,
             paused,
             epoch,
-            profile,
-            limits: ErgonomicLimits::builtin().ok(),
             notice: None,
-            steps_since_check: 0,
             anchor_wall: Instant::now(),
             anchor_sim: 0.0,
         }
+    }
+
+    fn time(&self) -> f64 {
+        self.cell.state().time
     }
 
     fn run(
@@ -271,9 +298,10 @@ impl Sim {
         publish_every: Duration,
     ) {
         let mut last_publish = Instant::now() - publish_every;
+        let mut last_mark = Instant::now();
         let mut dirty = true;
         // Real-time factor over windows of about half a second.
-        let (mut rtf_wall, mut rtf_sim, mut rtf) = (Instant::now(), self.state.time, 0.0);
+        let (mut rtf_wall, mut rtf_sim, mut rtf) = (Instant::now(), self.time(), 0.0);
         self.rebase();
         while !stop.load(Ordering::Relaxed) {
             while let Ok(c) = commands.try_recv() {
@@ -283,29 +311,35 @@ impl Sim {
             let now = Instant::now();
             let mut wait = Duration::from_millis(5);
             if !self.paused {
-                let dt = self.solver.time_step(&self.model);
+                let dt = self.cell.time_step();
                 let due = self.anchor_sim + now.duration_since(self.anchor_wall).as_secs_f64();
-                if due - self.state.time > MAX_LAG {
+                if due - self.time() > MAX_LAG {
                     // Cannot keep up: run flat out from here.
-                    self.anchor_sim = self.state.time;
+                    self.anchor_sim = self.time();
                     self.anchor_wall = now;
                 }
                 let due = self.anchor_sim + now.duration_since(self.anchor_wall).as_secs_f64();
-                if self.state.time + dt <= due {
-                    while self.state.time + dt <= due && now.elapsed() < BATCH {
-                        self.step();
+                if self.time() + dt <= due {
+                    while self.time() + dt <= due && now.elapsed() < BATCH {
+                        if !self.step() {
+                            break;
+                        }
                     }
                     dirty = true;
                     wait = Duration::ZERO;
                 } else {
-                    wait = Duration::from_secs_f64((self.state.time + dt - due).min(0.002));
+                    wait = Duration::from_secs_f64((self.time() + dt - due).min(0.002));
                 }
+            }
+            if last_mark.elapsed() >= MARK_EVERY {
+                self.cell.log_mark();
+                last_mark = Instant::now();
             }
             let since = rtf_wall.elapsed().as_secs_f64();
             if since >= 0.5 {
-                rtf = (self.state.time - rtf_sim) / since;
+                rtf = (self.time() - rtf_sim) / since;
                 rtf_wall = Instant::now();
-                rtf_sim = self.state.time;
+                rtf_sim = self.time();
             }
             if dirty && last_publish.elapsed() >= publish_every {
                 out.send_replace(Arc::new(self.snapshot(rtf)));
@@ -326,35 +360,31 @@ impl Sim {
                 }
             }
         }
+        self.cell.log_mark();
     }
 
     fn rebase(&mut self) {
         self.anchor_wall = Instant::now();
-        self.anchor_sim = self.state.time;
+        self.anchor_sim = self.time();
+    }
+
+    /// Gives the workcell an input; a refusal becomes the notice the viewer shows.
+    fn give(&mut self, input: Input) {
+        if let Err(r) = self.cell.apply(input) {
+            self.notice = Some(r.to_string());
+        }
     }
 
     fn apply(&mut self, c: Command) {
         match c {
             Command::Grab { hand, position } => {
-                // a grab or a release changes what holds the hoses: let them all move
-                self.state.sleep.wake_all(&self.model);
-                if let Some(old) = self.hands.remove(&hand) {
-                    old.hand.release(&mut self.state);
-                }
-                match Hand::grab(&self.model, &mut self.state, position) {
-                    Some(h) => {
-                        let pose = (position, DQuat::IDENTITY);
-                        self.hands.insert(
-                            hand,
-                            Interactive {
-                                hand: h,
-                                pose,
-                                target: pose,
-                                speed: 0.0,
-                            },
-                        );
+                let known = self.cell.hand(hand).is_ok();
+                match self.cell.apply(Input::Grab { hand, at: position }) {
+                    Ok(_) => self.notice = None,
+                    Err(r) => {
+                        self.notice = Some(format!("hand {hand}: {r}"));
+                        let _ = known;
                     }
-                    None => self.notice = Some(format!("hand {hand}: nothing to grab")),
                 }
             }
             Command::Move {
@@ -362,14 +392,17 @@ impl Sim {
                 position,
                 orientation,
             } => {
-                if let Some(h) = self.hands.get_mut(&hand) {
-                    h.target = (position, orientation.unwrap_or(h.target.1));
+                if self.cell.hand(hand).is_ok() {
+                    self.give(Input::AimHand {
+                        hand,
+                        position,
+                        orientation,
+                    });
                 }
             }
             Command::Release { hand } => {
-                self.state.sleep.wake_all(&self.model);
-                if let Some(h) = self.hands.remove(&hand) {
-                    h.hand.release(&mut self.state);
+                if self.cell.hand(hand).is_ok() {
+                    self.give(Input::ReleaseHand { hand });
                 }
             }
             Command::Pause => self.paused = true,
@@ -385,115 +418,60 @@ impl Sim {
                 }
                 self.rebase();
             }
-            Command::Reset => self.reset(None),
-            Command::SetErgonomics(profile) => self.profile = profile,
+            Command::Reset => {
+                self.give(Input::Reset);
+                self.diverged = None;
+                self.notice = None;
+                self.rebase();
+            }
+            Command::SetErgonomics(profile) => self.give(Input::SetErgonomics { profile }),
+            Command::Log(reply) => {
+                let _ = reply.send((self.cell.log().to_vec(), self.cell.tick()));
+            }
         }
     }
 
-    /// Back to rest, hands released. A client's `reset` has counted the epoch already.
-    fn reset(&mut self, divergence: Option<String>) {
-        self.state = State::at_rest(&self.model);
-        self.state.sleep.enabled = true;
-        self.solver.restart();
-        apply_initial(&self.model, &mut self.state, &self.initial);
-        self.fasteners =
-            Fasteners::new(&mut self.state, self.sites.0.clone(), self.sites.1.clone());
-        self.hands.clear();
-        self.peaks.clear();
-        self.steps_since_check = 0;
-        self.diverged = divergence.clone();
-        if let Some(message) = divergence {
-            self.epoch.fetch_add(1, Ordering::SeqCst);
-            self.notice = Some(format!(
-                "the simulation diverged and was reset, hands released: {message}"
-            ));
-        } else {
-            self.notice = None;
-        }
-        self.rebase();
-    }
-
-    /// One step; false if it diverged (the state is then reset).
+    /// One step; false if it diverged (the workcell is then reset, as an input in the
+    /// log, so that a replay resets at the same tick).
     fn step(&mut self) -> bool {
-        let dt = self.solver.time_step(&self.model);
-        let t = self.state.time + dt;
-        for h in self.hands.values_mut() {
-            // accelerate at most HAND_MAX_ACCEL, and brake so as to stop on the target
-            let to_go = (h.target.0 - h.pose.0).length();
-            let braking = (2.0 * HAND_MAX_ACCEL * to_go).sqrt();
-            h.speed = (h.speed + HAND_MAX_ACCEL * dt)
-                .min(HAND_MAX_SPEED)
-                .min(braking);
-            h.pose.0 = h.pose.0.move_towards(h.target.0, h.speed * dt);
-            h.pose.1 = h.pose.1.rotate_towards(h.target.1, HAND_MAX_TURN_RATE * dt);
-            h.hand.set_pose(h.pose.0, h.pose.1);
-            h.hand.update(&mut self.state, t);
-        }
-        if !self.fasteners.is_empty() {
-            // the hands' loads of the last step (buffer reused: no allocation per step)
-            self.hand_forces.clear();
-            for h in self.hands.values() {
-                self.hand_forces
-                    .push(h.hand.load(&self.model, &self.state).force);
-            }
-            let (hands, forces) = (&self.hands, &self.hand_forces);
-            let holder = |node: usize| hands.values().position(|h| h.hand.holds(node));
-            let held = |node: usize| holder(node).is_some();
-            let force = |node: usize| holder(node).map_or(DVec3::ZERO, |k| forces[k]);
-            self.fasteners
-                .update(&self.model, &mut self.state, &held, &force);
-        }
-        if let Err(e) = self.solver.step(&self.model, &mut self.state) {
-            let d = e.into_divergence(&self.model, &self.state);
-            self.reset(Some(d.to_string()));
-            return false;
-        }
-        self.track_peaks();
-        self.steps_since_check += 1;
-        if self.steps_since_check >= HEALTH_EVERY {
-            self.steps_since_check = 0;
-            if let Err(d) = health::check(&self.model, &self.state) {
-                self.reset(Some(d.to_string()));
-                return false;
-            }
-        }
-        true
-    }
-
-    /// Updates each hand's peak push, pull and torque after a step (no allocation once a
-    /// hand id has been seen).
-    fn track_peaks(&mut self) {
-        let Some(limits) = self.limits else { return };
-        let t = self.state.time;
-        for (&id, h) in &self.hands {
-            let load = h.hand.load(&self.model, &self.state);
-            if let Ok(a) = limits.assess(&self.profile, load.force, load.torque, load.direction) {
-                self.peaks.entry(id).or_default().record(&a, t);
+        match self.cell.step(&mut NoObserver) {
+            Ok(()) => true,
+            Err(d) => {
+                let message = d.to_string();
+                self.give(Input::Reset);
+                self.epoch.fetch_add(1, Ordering::SeqCst);
+                self.notice = Some(format!(
+                    "the simulation diverged and was reset, hands released: {message}"
+                ));
+                self.diverged = Some(message);
+                self.rebase();
+                false
             }
         }
     }
 
     fn snapshot(&mut self, real_time_factor: f64) -> Snapshot {
-        let mut hoses: Vec<HoseSnapshot> = self
-            .model
+        let (model, state) = (self.cell.model(), self.cell.state());
+        let mut hoses: Vec<HoseSnapshot> = model
             .hoses
             .iter()
             .enumerate()
             .map(|(k, h)| HoseSnapshot {
-                positions: h.nodes().map(|n| self.state.x[n].to_array()).collect(),
+                positions: h.nodes().map(|n| state.x[n].to_array()).collect(),
                 colour: 0.0,
-                asleep: self.state.sleep.hose_asleep[k],
+                asleep: state.sleep.hose_asleep[k],
             })
             .collect();
+        let profile = *self.cell.profile();
         let hands = self
-            .hands
-            .iter()
-            .map(|(&id, h)| {
-                let load = h.hand.load(&self.model, &self.state);
-                let assessment: Option<HandAssessment> = self.limits.and_then(|l| {
-                    l.assess(&self.profile, load.force, load.torque, load.direction)
-                        .ok()
-                });
+            .cell
+            .hands()
+            .map(|(id, h)| {
+                let record = self.cell.hand_record(id).ok();
+                let load = record.map(|r| r.load).unwrap_or_default();
+                let assessment: Option<HandAssessment> = record.and_then(|r| r.assessment);
+                let pose = h.pose_at(state.time);
+                let target = h.aim.map_or(pose.0, |a| a.target.0);
                 let worst = assessment.as_ref().map(|a| *a.worst());
                 let ratio = worst.map(|w| w.ratio).filter(|r| r.is_finite());
                 let judged = |c: Option<pliant_assembly::ergonomics::Classification>| {
@@ -508,9 +486,9 @@ impl Sim {
                 HandSnapshot {
                     hand_id: id,
                     hose: load.hose,
-                    position: h.pose.0.to_array(),
-                    orientation: h.pose.1.to_array(),
-                    target: h.target.0.to_array(),
+                    position: pose.0.to_array(),
+                    orientation: pose.1.to_array(),
+                    target: target.to_array(),
                     force: finite(load.force),
                     torque: finite(load.torque),
                     ratio,
@@ -525,11 +503,10 @@ impl Sim {
             })
             .collect();
         self.fastener_forces.clear();
-        self.fasteners
-            .sample(self.state.time, &mut self.fastener_forces);
+        self.cell.fastener_forces(&mut self.fastener_forces);
         let fasteners = self
-            .fasteners
-            .reports()
+            .cell
+            .fastener_reports()
             .into_iter()
             .zip(&self.fastener_forces)
             .map(|(report, sample)| FastenerSnapshot {
@@ -541,68 +518,27 @@ impl Sim {
                 report,
             })
             .collect::<Vec<_>>();
-        let verdict = RunningVerdict::judge(
-            &self.peaks,
-            self.limits,
-            &self.profile,
-            &fasteners,
-            self.diverged.as_deref(),
+        let verdict = Verdict::judge(
+            &self.cell.summary(),
+            self.diverged
+                .as_ref()
+                .map(|d| format!("the simulation diverged and was reset: {d}"))
+                .as_deref(),
+            Stage::Running,
         );
         Snapshot {
-            time: self.state.time,
-            step: self.state.step,
+            time: state.time,
+            step: state.step,
             paused: self.paused,
             real_time_factor,
             epoch: self.epoch.load(Ordering::SeqCst),
             hoses,
             hands,
             fasteners,
-            ergonomics: self.profile,
+            ergonomics: profile,
             verdict,
             notice: self.notice.clone(),
             ..Default::default()
-        }
-    }
-}
-
-/// A scene's initial load cases (SPEC §5): the leading instantaneous actions of its
-/// timeline — fixes and dead loads — up to the first action that takes time or involves a
-/// hand. A live session starts from them; the rest of the timeline is the script of
-/// `pliant run`, not of an interactive session.
-fn initial_actions(scene: &LoadedScene) -> Vec<Action> {
-    scene
-        .timeline
-        .actions
-        .iter()
-        .take_while(|a| matches!(a, Action::Fix { .. } | Action::Load { .. }))
-        .cloned()
-        .collect()
-}
-
-fn apply_initial(model: &Model, state: &mut State, actions: &[Action]) {
-    for a in actions {
-        match a {
-            Action::Fix { node } => {
-                let i = model.hoses[node.hose].node(node.node);
-                state.loads.add(LoadCase::Fix(Fix {
-                    node: i,
-                    position: state.x[i],
-                    orientation: state.q[i],
-                }));
-            }
-            Action::Load {
-                node,
-                force,
-                moment,
-            } => {
-                let i = model.hoses[node.hose].node(node.node);
-                state.loads.add(LoadCase::DeadLoad(DeadLoad {
-                    node: i,
-                    force: *force,
-                    moment: *moment,
-                }));
-            }
-            _ => {}
         }
     }
 }

@@ -185,7 +185,7 @@ pub struct Snapshot {
     /// The ergonomic profile hand loads are judged with now (changed by `set_ergonomics`).
     pub ergonomics: pliant_assembly::ergonomics::ErgonomicProfile,
     /// Feasible so far or not, and why (SPEC I5).
-    pub verdict: crate::verdict::RunningVerdict,
+    pub verdict: pliant_assembly::Verdict,
     /// Something the viewer should tell the user (e.g. the simulation diverged and was
     /// reset).
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -1,21 +1,13 @@
-//! The verdict of a run (SPEC I5): feasible or not and why, peak hand loads against the
+//! The report of a study (SPEC I5): the verdict — feasible or not and why — peak hand loads against the
 //! ergonomic limits, the parts the hoses touched — as `report.json` for machines and a
 //! self-contained `report.html` (inline SVG plots, no scripts) for people.
 
-use crate::recorder::HandSample;
-use anyhow::Context;
-use pliant_assembly::ergonomics::{ErgonomicLimits, ErgonomicProfile};
-use pliant_assembly::RunSummary;
+use super::recorder::HandSample;
+use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};
+use crate::workcell::{RunSummary, Stage, Verdict};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;
-
-#[derive(Serialize)]
-pub struct Verdict {
-    /// `None` when nothing was judged (no hand acted).
-    pub feasible: Option<bool>,
-    pub reasons: Vec<String>,
-}
 
 #[derive(Serialize)]
 pub struct Report<'a> {
@@ -24,61 +16,6 @@ pub struct Report<'a> {
     pub verdict: Verdict,
     pub run: &'a RunSummary,
     pub diverged: Option<&'a str>,
-}
-
-/// Judges a run: infeasible if it diverged or any hand exceeded its limit value.
-pub fn verdict(run: &RunSummary, diverged: Option<&str>) -> Verdict {
-    let mut reasons = Vec::new();
-    if let Some(d) = diverged {
-        reasons.push(format!("the simulation stopped early: {d}"));
-    }
-    for h in &run.hand_peaks {
-        if h.worst_ratio > 1.0 {
-            let kind = h
-                .worst_kind
-                .map(|k| format!("{k:?}").to_lowercase())
-                .unwrap_or_default();
-            reasons.push(format!(
-                "hand {}: {kind} of {:.1} at t = {:.2} s exceeds the limit {:.1} ({:.0} % of it)",
-                h.hand,
-                h.worst_magnitude,
-                h.worst_time,
-                h.worst_limit,
-                100.0 * h.worst_ratio
-            ));
-        }
-    }
-    for f in run.fasteners.iter().filter(|f| !f.assembled) {
-        let wanted = if f.kind == "stub" {
-            "fixed on it"
-        } else {
-            "seated in it"
-        };
-        reasons.push(format!(
-            "{} '{}': the hose did not end {wanted} (final state: {})",
-            f.kind, f.name, f.final_state
-        ));
-    }
-    for c in &run.contacts {
-        reasons.push(format!(
-            "contact with '{}' from t = {:.2} s to {:.2} s",
-            c.part, c.first_time, c.last_time
-        ));
-    }
-    let judged = !run.hand_peaks.is_empty();
-    let feasible = if diverged.is_some() {
-        Some(false)
-    } else if judged {
-        Some(run.feasible())
-    } else {
-        None
-    };
-    if !judged {
-        reasons.push("no hand acted in this scene: there is no hand load to judge".into());
-    } else if feasible == Some(true) {
-        reasons.push("every hand load stayed within its ergonomic limit value, and every stub and clip was fitted".into());
-    }
-    Verdict { feasible, reasons }
 }
 
 /// Writes `report.json` and `report.html` of a run into the folder `out` (which must
@@ -92,18 +29,15 @@ pub fn write_reports(
     diverged: Option<&str>,
     samples: &[HandSample],
     profile: &ErgonomicProfile,
-) -> anyhow::Result<Verdict> {
+) -> std::io::Result<Verdict> {
     let report = Report {
         scene,
         ergonomics: &run.ergonomics,
-        verdict: verdict(run, diverged),
+        verdict: Verdict::judge(run, diverged, Stage::Final),
         run,
         diverged,
     };
-    let write = |name: &str, text: String| {
-        let path = out.join(name);
-        std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))
-    };
+    let write = |name: &str, text: String| super::write_file(&out.join(name), text);
     write("report.json", serde_json::to_string_pretty(&report)?)?;
     let push_limit = ErgonomicLimits::builtin()
         .map(|l| l.push_limit(profile.push_posture, profile.population, profile.duty))

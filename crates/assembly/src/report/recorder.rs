@@ -1,11 +1,9 @@
 //! Records a run: node poses, support reactions and energies as CSV at the scene's record
-//! interval, VTK frames for ParaView, and a progress bar. Only states that passed the
+//! interval and VTK frames for ParaView. Only states that passed the
 //! divergence check reach it, so no NaN is ever written.
 
-use crate::vtk::VtkSeries;
-use indicatif::{ProgressBar, ProgressStyle};
-use pliant_assembly::HandRecord;
-use pliant_assembly::{Action, Observer};
+use super::vtk::VtkSeries;
+use crate::workcell::{HandRecord, Observer};
 use pliant_core::loads::LoadCase;
 use pliant_core::{Model, State};
 use std::fs::File;
@@ -59,8 +57,6 @@ pub struct Recorder {
     next_time: f64,
     vtk_interval: f64,
     next_vtk: f64,
-    progress: ProgressBar,
-    steps_seen: u64,
     last_written: Option<f64>,
     error: Option<std::io::Error>,
     /// Global node → (hose index, local node), built once.
@@ -68,13 +64,13 @@ pub struct Recorder {
 }
 
 impl Recorder {
-    /// Creates the output files in `out`. `planned` is the timeline's planned duration.
+    /// Creates the output files in `out`. `planned` is the study's planned duration
+    /// (it spaces the VTK frames: at most about 200).
     pub fn create(
         out: &Path,
         model: &Model,
         interval: f64,
         planned: f64,
-        quiet: bool,
     ) -> std::io::Result<Self> {
         let open = |name: &str| File::create(out.join(name)).map(BufWriter::new);
         let mut nodes = open("nodes.csv")?;
@@ -95,18 +91,6 @@ impl Recorder {
         writeln!(contacts, "time_s,hose,node,with,fx_n,fy_n,fz_n")?;
         let mut colours = open("colours.csv")?;
         writeln!(colours, "time_s,hose,colour")?;
-        let progress = if quiet {
-            ProgressBar::hidden()
-        } else {
-            ProgressBar::new((planned * 1000.0).ceil() as u64)
-        };
-        progress.set_style(
-            ProgressStyle::with_template(
-                "{spinner} [{bar:40}] {pos}/{len} ms simulated ({elapsed}) {msg}",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> "),
-        );
         let mut node_owner = vec![(0, 0); model.node_count()];
         for (h, info) in model.hoses.iter().enumerate() {
             for (k, g) in info.nodes().enumerate() {
@@ -128,8 +112,6 @@ impl Recorder {
             // at most ~200 VTK frames per run
             vtk_interval: interval.max(planned / 200.0),
             next_vtk: 0.0,
-            progress,
-            steps_seen: 0,
             last_written: None,
             error: None,
             node_owner,
@@ -224,7 +206,6 @@ impl Recorder {
     /// Records the final state and flushes everything.
     /// Returns the hand samples for the report.
     pub fn finish(mut self, model: &Model, state: &State) -> std::io::Result<Vec<HandSample>> {
-        self.progress.finish_and_clear();
         if let Some(e) = self.error.take() {
             return Err(e);
         }
@@ -262,26 +243,12 @@ impl Observer for Recorder {
         };
     }
 
-    fn on_action(&mut self, index: usize, action: &Action, _state: &State) {
-        let name = format!("{action:?}");
-        let short = name.split([' ', '{', '(']).next().unwrap_or("").to_string();
-        self.progress
-            .set_message(format!("action {}: {short}", index + 1));
-    }
-
     fn on_hands(&mut self, time: f64, hands: &[HandRecord]) {
         if self.error.is_some() {
             return;
         }
         if let Err(e) = self.write_hands(time, hands) {
             self.error = Some(e);
-        }
-    }
-
-    fn on_step(&mut self, time: f64) {
-        self.steps_seen += 1;
-        if self.steps_seen % 512 == 0 {
-            self.progress.set_position((time * 1000.0) as u64);
         }
     }
 }

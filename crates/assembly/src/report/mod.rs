@@ -1,0 +1,160 @@
+//! The outputs of a study, the same whichever shell ran it (`pliant run`, `pliant
+//! replay`, a live session's report, Python): the recorder's CSV time series and VTK
+//! frames, `fasteners.csv`, `report.json` and `report.html` with the verdict, and
+//! `summary.json`.
+
+pub mod html;
+pub mod recorder;
+pub mod summary;
+mod vtk;
+
+pub use html::write_reports;
+pub use recorder::{HandSample, Recorder};
+pub use summary::{final_state, peak_rows, FinalHose, PeakRow, Summary};
+
+use crate::ergonomics::ErgonomicProfile;
+use crate::workcell::{RunSummary, Verdict};
+use pliant_core::{Model, SolverKind, State};
+use std::path::Path;
+
+/// Writes `text` to `path`; the error names the file.
+pub(crate) fn write_file(path: &Path, text: String) -> std::io::Result<()> {
+    std::fs::write(path, text)
+        .map_err(|e| std::io::Error::new(e.kind(), format!("writing {}: {e}", path.display())))
+}
+
+/// What a finished study hands to [`write_outputs`].
+pub struct Outputs<'a> {
+    pub scene_name: &'a str,
+    pub source: &'a str,
+    pub model: &'a Model,
+    pub state: &'a State,
+    pub run: &'a RunSummary,
+    /// Why the study stopped early, if it did.
+    pub diverged: Option<&'a str>,
+    /// The recorder's hand samples.
+    pub hand_series: &'a [HandSample],
+    pub profile: &'a ErgonomicProfile,
+    pub solver: SolverKind,
+    /// The step the solver advanced by [s].
+    pub time_step: f64,
+    /// Wall-clock time the study took [s] (for the real-time factor).
+    pub wall_time: f64,
+}
+
+/// Writes `fasteners.csv`, `report.json`, `report.html` and `summary.json` into `out`
+/// (which must exist; the recorder has written the time series there) and returns the
+/// verdict and the summary.
+pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summary)> {
+    let run = o.run;
+    let mut csv = String::from("time_s,kind,name,force_n\n");
+    for x in &run.fastener_series {
+        let f = &run.fasteners[x.fastener];
+        csv.push_str(&format!(
+            "{:.6},{},{},{:.6e}\n",
+            x.time,
+            f.kind,
+            f.name.replace(',', ";"),
+            x.force
+        ));
+    }
+    write_file(&out.join("fasteners.csv"), csv)?;
+    let verdict = write_reports(out, o.scene_name, run, o.diverged, o.hand_series, o.profile)?;
+    let summary = Summary {
+        pliant_version: env!("CARGO_PKG_VERSION"),
+        scene: o.scene_name.to_string(),
+        source: o.source.to_string(),
+        completed: o.diverged.is_none(),
+        diverged: o.diverged.map(str::to_string),
+        steps: run.steps,
+        simulated_time_s: run.simulated_time,
+        time_step_s: o.time_step,
+        time_step: o.model.time_step_report.clone(),
+        solver: o.solver.name(),
+        wall_time_s: o.wall_time,
+        realtime_factor: run.simulated_time / o.wall_time.max(1e-9),
+        elements: o.model.elements.len(),
+        actions_completed: run.actions_completed,
+        settles: run.settles.clone(),
+        newton_iterations_max: run.newton_iterations_max,
+        newton_unconverged_steps: run.newton_unconverged_steps,
+        peaks: peak_rows(o.model, run),
+        final_state: final_state(o.model, o.state),
+    };
+    let text = serde_json::to_string_pretty(&summary).map_err(std::io::Error::other)?;
+    write_file(&out.join("summary.json"), text)?;
+    Ok((verdict, summary))
+}
+
+/// Replays an input log into `cell` (a fresh workcell of the log's scene and options)
+/// with a recorder sampling every `record_interval` seconds into `out`, and writes the
+/// outputs, as `pliant run` does for a timeline: the report of a live session
+/// (SPEC W2). `observer` also sees the replay (progress display).
+pub fn replay_with_outputs(
+    out: &Path,
+    mut cell: crate::Workcell,
+    log: &crate::workcell::log::InputLog,
+    scene_name: &str,
+    record_interval: f64,
+    observer: &mut dyn crate::Observer,
+) -> Result<(Verdict, Summary), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("creating {}: {e}", out.display()))?;
+    let planned = log.end_tick as f64 * cell.time_step();
+    let model = cell.model().clone();
+    let mut recorder = Recorder::create(out, &model, record_interval, planned)
+        .map_err(|e| format!("creating output files in {}: {e}", out.display()))?;
+    let started = std::time::Instant::now();
+    let outcome = {
+        let mut both = Both(&mut recorder, observer);
+        crate::workcell::replay::replay(&mut cell, &log.inputs, log.end_tick, &mut both)
+    };
+    let wall = started.elapsed().as_secs_f64();
+    let hand_series = recorder
+        .finish(&model, cell.state())
+        .map_err(|e| format!("writing outputs: {e}"))?;
+    let diverged = match &outcome {
+        Ok(()) => cell.diverged().map(|d| d.to_string()),
+        Err(e) => Some(e.to_string()),
+    };
+    let mut run = cell.summary();
+    run.actions_completed = log.inputs.len();
+    let outputs = Outputs {
+        scene_name,
+        source: &log.header.scene_source,
+        model: &model,
+        state: cell.state(),
+        run: &run,
+        diverged: diverged.as_deref(),
+        hand_series: &hand_series,
+        profile: cell.profile(),
+        solver: cell.solver().kind(),
+        time_step: cell.time_step(),
+        wall_time: wall,
+    };
+    write_outputs(out, &outputs).map_err(|e| e.to_string())
+}
+
+/// Two observers as one (the first one's wishes decide the sampling).
+pub struct Both<'a>(pub &'a mut dyn crate::Observer, pub &'a mut dyn crate::Observer);
+
+impl crate::Observer for Both<'_> {
+    fn wants_state(&self, time: f64) -> bool {
+        self.0.wants_state(time) || self.1.wants_state(time)
+    }
+    fn on_state(&mut self, model: &Model, state: &State) {
+        self.0.on_state(model, state);
+        self.1.on_state(model, state);
+    }
+    fn on_action(&mut self, index: usize, action: &crate::Action, state: &State) {
+        self.0.on_action(index, action, state);
+        self.1.on_action(index, action, state);
+    }
+    fn on_step(&mut self, time: f64) {
+        self.0.on_step(time);
+        self.1.on_step(time);
+    }
+    fn on_hands(&mut self, time: f64, hands: &[crate::HandRecord]) {
+        self.0.on_hands(time, hands);
+        self.1.on_hands(time, hands);
+    }
+}

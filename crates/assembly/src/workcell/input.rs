@@ -1,0 +1,122 @@
+//! The inputs a workcell takes (SPEC W1): everything a timeline, a live client or a Python
+//! script can do to a running study. Each input takes effect between two steps; the
+//! workcell stamps it with the step count at that moment (its *tick*), which is all a
+//! replay needs to reproduce a session bit for bit (SPEC W2).
+
+use crate::ergonomics::ErgonomicProfile;
+use crate::timeline::NodeRef;
+use glam::{DQuat, DVec3};
+use serde::{Deserialize, Serialize};
+
+/// Hand numbers are chosen by the caller (a timeline's `hand`, a client's `hand_id`).
+pub type HandNumber = u32;
+
+/// One input. Positions in metres, global axes; rotations as rotation vectors [rad].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Input {
+    /// L1: hold the node where it is now (replaces fixes and drives added by inputs on it;
+    /// refused while a hand holds it).
+    Fix { node: NodeRef },
+    /// L2 + L3: drive the node through `waypoints` while turning it by `rotation` over
+    /// `duration` seconds from now (smooth start and stop), then hold it.
+    Drive {
+        node: NodeRef,
+        waypoints: Vec<DVec3>,
+        rotation: DVec3,
+        duration: f64,
+    },
+    /// A constant force [N] and moment [N·m] at the node (adds to others).
+    Load {
+        node: NodeRef,
+        force: DVec3,
+        moment: DVec3,
+    },
+    /// Removes every dead load on the node.
+    Unload { node: NodeRef },
+    /// Removes the fixes and drives inputs put on the node: it moves freely again.
+    Release { node: NodeRef },
+    /// Removes one load case an input added (by the id [`crate::Workcell::apply`] gave).
+    RemoveLoad { id: u64 },
+    /// I1: the hand grabs the beam nearest to `at` (letting go of what it held). Refused
+    /// if another hand holds that beam; the hand then keeps its grip.
+    Grab { hand: HandNumber, at: DVec3 },
+    /// I2, scripted: the hand moves through `waypoints` while turning by `rotation` over
+    /// `duration` seconds from now, with a smooth start and stop.
+    MoveHand {
+        hand: HandNumber,
+        waypoints: Vec<DVec3>,
+        rotation: DVec3,
+        duration: f64,
+    },
+    /// I2, interactive (a pointer, a VR controller): the hand heads for this pose at
+    /// bounded speed, acceleration and turn rate ([`crate::workcell::HandLimits`]);
+    /// `orientation` `None` keeps the orientation it aims at now.
+    AimHand {
+        hand: HandNumber,
+        position: DVec3,
+        orientation: Option<DQuat>,
+    },
+    /// The hand lets go.
+    ReleaseHand { hand: HandNumber },
+    /// Judge hand loads with this profile from now on.
+    SetErgonomics { profile: ErgonomicProfile },
+    /// All velocities set to zero (kinetic damping while relaxing to rest).
+    Arrest,
+    /// The state moved to the static equilibrium under the current loads by the
+    /// quasi-static Newton solver; time does not advance.
+    SolveStatic {
+        force_tolerance: f64,
+        moment_tolerance: f64,
+        max_iterations: usize,
+    },
+    /// Back to the start: rest shape, t = 0, hands released, loads added by inputs
+    /// removed, the scene's initial load cases again, stubs and clips reset. Clears a
+    /// divergence.
+    Reset,
+}
+
+impl Input {
+    /// A short name for messages ("grab", "move_hand", …).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Input::Fix { .. } => "fix",
+            Input::Drive { .. } => "drive",
+            Input::Load { .. } => "load",
+            Input::Unload { .. } => "unload",
+            Input::Release { .. } => "release",
+            Input::RemoveLoad { .. } => "remove_load",
+            Input::Grab { .. } => "grab",
+            Input::MoveHand { .. } => "move_hand",
+            Input::AimHand { .. } => "aim_hand",
+            Input::ReleaseHand { .. } => "release_hand",
+            Input::SetErgonomics { .. } => "set_ergonomics",
+            Input::Arrest => "arrest",
+            Input::SolveStatic { .. } => "solve_static",
+            Input::Reset => "reset",
+        }
+    }
+}
+
+/// An input and the tick (steps since the workcell was built, resets included) before
+/// which it took effect.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StampedInput {
+    pub tick: u64,
+    pub input: Input,
+}
+
+/// Why an input was refused. Nothing changed.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Refusal {
+    /// The input does not fit the current state (a held node, a hand holding nothing, a
+    /// node out of range, …).
+    #[error("{0}")]
+    Invalid(String),
+    /// A load case or hand that is not there.
+    #[error("{0}")]
+    Missing(String),
+    /// The simulation diverged; only `reset` is taken.
+    #[error("the simulation diverged; reset first ({0})")]
+    Diverged(String),
+}

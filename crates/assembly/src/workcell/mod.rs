@@ -1,0 +1,735 @@
+//! The workcell (SPEC W1): one object that owns everything that happens in an assembly
+//! study — the model, the state, the solver, the hands, the stubs and clips, the load
+//! cases inputs added, the ergonomic profile, the peaks and the running verdict — with
+//! one [`Workcell::step`] and one set of inputs ([`Input`]). The timeline runner,
+//! `pliant serve` and the Python `Simulation` are thin shells that feed it inputs; none
+//! of them steps the physics itself, so the same inputs give the same numbers bit for
+//! bit in each of them.
+//!
+//! Every input taken is logged with its tick (steps since the workcell was built), to
+//! memory and, when asked, to a sink as it happens (SPEC W2, [`log`]); replaying the log
+//! into a fresh workcell of the same scene reproduces the study exactly.
+
+pub mod hands;
+pub mod input;
+pub mod log;
+pub mod observer;
+pub mod replay;
+pub mod tally;
+pub mod verdict;
+
+pub use hands::{Aim, HandLimits, HeldHand};
+pub use input::{HandNumber, Input, Refusal, StampedInput};
+pub use observer::{NoObserver, Observer};
+pub use tally::{
+    limit_of, ContactEpisode, HandPeak, HandRecord, NodePeak, Peak, RunSummary, SettleOutcome,
+    Tally,
+};
+pub use verdict::{Stage, Verdict};
+
+use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};
+use crate::fasteners::{ClipSite, FastenerReport, FastenerSample, Fasteners, StubSite};
+use crate::hand::{nearest_beam, Hand};
+use crate::timeline::{Action, NodeRef};
+use glam::{DQuat, DVec3};
+use hands::{holder, Hands};
+use pliant_core::health::{check, Divergence};
+use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId};
+use pliant_core::newton::{StaticReport, StaticSolver};
+use pliant_core::{Model, Solver, SolverKind, SolverSettings, State};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeSet;
+use std::io::Write;
+use std::sync::Arc;
+
+/// How often the state is checked for divergence, in steps.
+pub const HEALTH_CHECK_EVERY: u64 = 16;
+
+/// What a scene gives a workcell: the model, the stubs' and clips' sites on it, the
+/// scene's initial load cases (its timeline's leading fixes and dead loads) and its
+/// ergonomic profile. `pliant_scene::LoadedScene::workcell_setup` makes one.
+#[derive(Clone, Debug)]
+pub struct WorkcellSetup {
+    pub model: Arc<Model>,
+    pub stubs: Vec<StubSite>,
+    pub clips: Vec<ClipSite>,
+    pub initial: Vec<Action>,
+    pub profile: ErgonomicProfile,
+}
+
+/// How a workcell runs: configuration, not state (a reset keeps it).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WorkcellOptions {
+    /// Solver instead of the scene's `[simulation] solver`.
+    pub solver: Option<SolverKind>,
+    /// Hoses at rest sleep until moved or touched (SPEC I6; live sessions).
+    pub sleeping: bool,
+    /// Apply the scene's initial load cases at the start and on reset (a timeline run
+    /// applies them itself, as its first actions).
+    pub initial_loads: bool,
+    /// How fast an aimed hand follows its target.
+    pub hand_limits: HandLimits,
+}
+
+impl Default for WorkcellOptions {
+    fn default() -> Self {
+        WorkcellOptions {
+            solver: None,
+            sleeping: false,
+            initial_loads: true,
+            hand_limits: HandLimits::default(),
+        }
+    }
+}
+
+/// What an input did, where there is something to tell.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Applied {
+    Done,
+    /// The load case an input added (for [`Input::RemoveLoad`]).
+    Load(LoadCaseId),
+    /// The beam a hand grabbed.
+    Grabbed { element: usize },
+    /// The static equilibrium an [`Input::SolveStatic`] reached.
+    Static(StaticReport),
+}
+
+/// One assembly study in progress.
+pub struct Workcell {
+    model: Arc<Model>,
+    state: State,
+    solver: Solver,
+    options: WorkcellOptions,
+    stubs: Vec<StubSite>,
+    clips: Vec<ClipSite>,
+    initial: Vec<Action>,
+    hands: Hands,
+    /// The hands' loads after the last step (buffer reused every step).
+    hand_records: Vec<HandRecord>,
+    fasteners: Fasteners,
+    /// Load cases added by inputs (the ones fix/drive/release/remove_load may replace).
+    user_loads: BTreeSet<LoadCaseId>,
+    profile: ErgonomicProfile,
+    limits: Option<&'static ErgonomicLimits>,
+    tally: Tally,
+    /// Steps since the workcell was built, resets included (the stamp of inputs).
+    tick: u64,
+    log: Vec<StampedInput>,
+    sink: Option<Box<dyn Write + Send>>,
+    sink_error: Option<String>,
+    diverged: Option<Divergence>,
+}
+
+fn finite(v: DVec3, what: &str) -> Result<DVec3, Refusal> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Refusal::Invalid(format!("{what} must be finite, got {v}")))
+    }
+}
+
+fn finite_duration(d: f64) -> Result<f64, Refusal> {
+    if d.is_finite() && d >= 0.0 {
+        Ok(d)
+    } else {
+        Err(Refusal::Invalid(format!(
+            "duration must be finite and ≥ 0 s, got {d}"
+        )))
+    }
+}
+
+impl Workcell {
+    /// A workcell at rest in the rest shape at t = 0, stubs and clips set up, the
+    /// initial load cases applied (unless `options.initial_loads` is false).
+    pub fn new(setup: WorkcellSetup, options: WorkcellOptions) -> Result<Workcell, String> {
+        let model = setup.model;
+        let settings = SolverSettings {
+            kind: options.solver.unwrap_or(model.solver.kind),
+            ..model.solver
+        };
+        let solver = Solver::new(&model, settings).map_err(|e| e.to_string())?;
+        for a in &setup.initial {
+            if !matches!(a, Action::Fix { .. } | Action::Load { .. }) {
+                return Err(format!(
+                    "initial load cases are fixes and dead loads only, not {a:?}"
+                ));
+            }
+        }
+        let mut cell = Workcell {
+            state: State::at_rest(&model),
+            tally: Tally::new(&model),
+            model,
+            solver,
+            options,
+            stubs: setup.stubs,
+            clips: setup.clips,
+            initial: setup.initial,
+            hands: Hands::new(),
+            hand_records: Vec::with_capacity(4),
+            fasteners: Fasteners::default(),
+            user_loads: BTreeSet::new(),
+            profile: setup.profile,
+            limits: ErgonomicLimits::builtin().ok(),
+            tick: 0,
+            log: Vec::new(),
+            sink: None,
+            sink_error: None,
+            diverged: None,
+        };
+        cell.start()?;
+        Ok(cell)
+    }
+
+    /// Rest state, fasteners, initial loads: the start of a study (and of every reset).
+    fn start(&mut self) -> Result<(), String> {
+        self.state = State::at_rest(&self.model);
+        self.state.sleep.enabled = self.options.sleeping;
+        self.solver.restart();
+        self.fasteners = Fasteners::new(&mut self.state, self.stubs.clone(), self.clips.clone());
+        self.hands.clear();
+        self.hand_records.clear();
+        self.user_loads.clear();
+        self.tally = Tally::new(&self.model);
+        self.diverged = None;
+        if self.options.initial_loads {
+            for a in self.initial.clone() {
+                let input = match a {
+                    Action::Fix { node } => Input::Fix { node },
+                    Action::Load {
+                        node,
+                        force,
+                        moment,
+                    } => Input::Load {
+                        node,
+                        force,
+                        moment,
+                    },
+                    _ => continue,
+                };
+                self.perform(&input).map_err(|r| format!("initial load case: {r}"))?;
+            }
+        }
+        Ok(())
+    }
+
+    // ---- reading ---------------------------------------------------------------------
+
+    pub fn model(&self) -> &Arc<Model> {
+        &self.model
+    }
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+    pub fn solver(&self) -> &Solver {
+        &self.solver
+    }
+    pub fn options(&self) -> &WorkcellOptions {
+        &self.options
+    }
+    /// Simulated time one step advances [s].
+    pub fn time_step(&self) -> f64 {
+        self.solver.time_step(&self.model)
+    }
+    /// Steps since the workcell was built, resets included.
+    pub fn tick(&self) -> u64 {
+        self.tick
+    }
+    pub fn profile(&self) -> &ErgonomicProfile {
+        &self.profile
+    }
+    pub fn limits(&self) -> Option<&'static ErgonomicLimits> {
+        self.limits
+    }
+    /// The divergence that stopped the study, until a reset.
+    pub fn diverged(&self) -> Option<&Divergence> {
+        self.diverged.as_ref()
+    }
+    /// Every input taken so far, with its tick.
+    pub fn log(&self) -> &[StampedInput] {
+        &self.log
+    }
+    /// The first error writing the log to its sink, if any (the log stays in memory).
+    pub fn log_error(&self) -> Option<&str> {
+        self.sink_error.as_deref()
+    }
+    /// The hands holding a beam, by number.
+    pub fn hands(&self) -> impl Iterator<Item = (HandNumber, &HeldHand)> {
+        self.hands.iter().map(|(k, h)| (*k, h))
+    }
+    pub fn hand(&self, hand: HandNumber) -> Result<&HeldHand, Refusal> {
+        self.hands
+            .get(&hand)
+            .ok_or_else(|| Refusal::Invalid(format!("hand {hand} holds nothing; grab first")))
+    }
+    /// The hands' loads after the last step and their ergonomic assessment.
+    pub fn hand_records(&self) -> &[HandRecord] {
+        &self.hand_records
+    }
+    /// The load hand `hand` applies now (computed from the last step's reactions) and
+    /// its assessment under the current profile.
+    pub fn hand_record(&self, hand: HandNumber) -> Result<HandRecord, Refusal> {
+        let h = self.hand(hand)?;
+        Ok(self.assess(hand, h))
+    }
+    fn assess(&self, number: HandNumber, h: &HeldHand) -> HandRecord {
+        let load = h.hand.load(&self.model, &self.state);
+        let assessment = self.limits.and_then(|l| {
+            l.assess(&self.profile, load.force, load.torque, load.direction)
+                .ok()
+        });
+        HandRecord {
+            hand: number as usize,
+            load,
+            assessment,
+        }
+    }
+    /// Whether a hand or a drive is still moving.
+    pub fn moving(&self) -> bool {
+        let t = self.state.time;
+        self.state.loads.any_drive_moving(t) || self.hands.values().any(|h| h.moving(t))
+    }
+    /// The load cases inputs added that are still active.
+    pub fn user_loads(&self) -> impl Iterator<Item = (LoadCaseId, &LoadCase)> {
+        self.state
+            .loads
+            .iter()
+            .filter(|(id, _)| self.user_loads.contains(id))
+            .map(|(id, c)| (*id, c))
+    }
+    /// The stubs' and clips' states now.
+    pub fn fastener_reports(&self) -> Vec<FastenerReport> {
+        self.fasteners.reports()
+    }
+    /// Appends each fastener's force now (same order as the reports).
+    pub fn fastener_forces(&self, out: &mut Vec<FastenerSample>) {
+        self.fasteners.sample(self.state.time, out);
+    }
+    /// The peak tables so far, hand peaks judged under the current profile.
+    pub fn summary(&self) -> RunSummary {
+        let t = &self.tally;
+        RunSummary {
+            steps: self.state.step,
+            simulated_time: self.state.time,
+            actions_completed: 0,
+            settles: Vec::new(),
+            peaks: t.node_peaks.iter().map(|(_, p)| p.clone()).collect(),
+            hand_peaks: t.judge_hands(self.limits, &self.profile),
+            contacts: t.contacts.clone(),
+            max_contact_force: t.max_contact_force,
+            max_contact_force_time: t.max_contact_force_time,
+            ergonomics: self.profile.to_string(),
+            fasteners: self.fasteners.reports(),
+            fastener_series: t.fastener_series.clone(),
+            newton_iterations_max: t.newton_iterations_max,
+            newton_unconverged_steps: t.newton_unconverged_steps,
+        }
+    }
+    /// The verdict so far ([`Stage::Running`]) or of the finished study.
+    pub fn verdict(&self, stage: Stage) -> Verdict {
+        let message = self.diverged.as_ref().map(|d| d.to_string());
+        Verdict::judge(&self.summary(), message.as_deref(), stage)
+    }
+    /// The running account (peaks per hand as magnitudes, contacts, …).
+    pub fn tally(&self) -> &Tally {
+        &self.tally
+    }
+
+    // ---- the log -------------------------------------------------------------------
+
+    /// From now on every input is also written to `sink` as one JSON line and flushed
+    /// at once (a crash loses nothing taken before it). The caller writes the header.
+    pub fn log_to(&mut self, sink: Box<dyn Write + Send>) {
+        self.sink = Some(sink);
+    }
+
+    /// Writes a line that only says how far the study has got (the replay then runs to
+    /// this tick); a live session calls it about once a second.
+    pub fn log_mark(&mut self) {
+        let line = log::LogLine::Mark { tick: self.tick };
+        self.write_line(&line);
+    }
+
+    fn write_line(&mut self, line: &log::LogLine) {
+        let Some(sink) = &mut self.sink else { return };
+        let written = serde_json::to_writer(&mut *sink, line)
+            .map_err(|e| e.to_string())
+            .and_then(|_| sink.write_all(b"\n").map_err(|e| e.to_string()))
+            .and_then(|_| sink.flush().map_err(|e| e.to_string()));
+        if let Err(e) = written {
+            self.sink_error.get_or_insert(e);
+            self.sink = None;
+        }
+    }
+
+    // ---- inputs --------------------------------------------------------------------
+
+    /// Takes one input, between two steps. A refused input changes nothing and is not
+    /// logged; a taken one is logged with the current tick.
+    pub fn apply(&mut self, input: Input) -> Result<Applied, Refusal> {
+        if let Some(d) = &self.diverged {
+            if !matches!(input, Input::Reset | Input::SetErgonomics { .. }) {
+                return Err(Refusal::Diverged(d.to_string()));
+            }
+        }
+        let applied = self.perform(&input)?;
+        let stamped = StampedInput {
+            tick: self.tick,
+            input,
+        };
+        self.write_line(&log::LogLine::Input(stamped.clone()));
+        self.log.push(stamped);
+        Ok(applied)
+    }
+
+    fn global(&self, n: NodeRef) -> Result<usize, Refusal> {
+        let hose = self.model.hoses.get(n.hose).ok_or_else(|| {
+            Refusal::Invalid(format!(
+                "hose {} does not exist (the scene has {})",
+                n.hose,
+                self.model.hoses.len()
+            ))
+        })?;
+        if n.node >= hose.node_count {
+            return Err(Refusal::Invalid(format!(
+                "hose '{}' has nodes 0 to {}, not {}",
+                hose.name,
+                hose.node_count - 1,
+                n.node
+            )));
+        }
+        Ok(hose.node(n.node))
+    }
+
+    /// Refuses a node a hand holds, else removes the fixes and drives inputs put on it.
+    fn take_node(&mut self, node: usize) -> Result<(), Refusal> {
+        if let Some(k) = holder(&self.hands, node) {
+            return Err(Refusal::Invalid(format!(
+                "hand {k} holds this node; release the hand first"
+            )));
+        }
+        self.remove_user_loads(node, |c| !matches!(c, LoadCase::DeadLoad(_)));
+        Ok(())
+    }
+
+    fn remove_user_loads(&mut self, node: usize, which: impl Fn(&LoadCase) -> bool) {
+        let user = &mut self.user_loads;
+        let gone: Vec<LoadCaseId> = self
+            .state
+            .loads
+            .iter()
+            .filter(|(id, c)| c.node() == node && which(c) && user.contains(id))
+            .map(|(id, _)| *id)
+            .collect();
+        for id in gone {
+            self.state.loads.remove(id);
+            user.remove(&id);
+        }
+    }
+
+    fn add_user_load(&mut self, case: LoadCase) -> LoadCaseId {
+        let id = self.state.loads.add(case);
+        self.user_loads.insert(id);
+        id
+    }
+
+    fn perform(&mut self, input: &Input) -> Result<Applied, Refusal> {
+        let t = self.state.time;
+        match input {
+            Input::Fix { node } => {
+                let i = self.global(*node)?;
+                self.take_node(i)?;
+                let id = self.add_user_load(LoadCase::Fix(Fix {
+                    node: i,
+                    position: self.state.x[i],
+                    orientation: self.state.q[i],
+                }));
+                self.tally.track_node(i, *node);
+                Ok(Applied::Load(id))
+            }
+            Input::Drive {
+                node,
+                waypoints,
+                rotation,
+                duration,
+            } => {
+                let i = self.global(*node)?;
+                for p in waypoints {
+                    finite(*p, "a waypoint")?;
+                }
+                finite(*rotation, "the rotation")?;
+                let duration = finite_duration(*duration)?;
+                self.take_node(i)?;
+                let start = (self.state.x[i], self.state.q[i]);
+                let drive = Drive::new(i, start, waypoints, *rotation, t, duration);
+                let id = self.add_user_load(LoadCase::Drive(drive));
+                self.tally.track_node(i, *node);
+                Ok(Applied::Load(id))
+            }
+            Input::Load {
+                node,
+                force,
+                moment,
+            } => {
+                let i = self.global(*node)?;
+                let (force, moment) = (finite(*force, "force")?, finite(*moment, "moment")?);
+                let id = self.add_user_load(LoadCase::DeadLoad(DeadLoad {
+                    node: i,
+                    force,
+                    moment,
+                }));
+                Ok(Applied::Load(id))
+            }
+            Input::Unload { node } => {
+                let i = self.global(*node)?;
+                self.remove_user_loads(i, |c| matches!(c, LoadCase::DeadLoad(_)));
+                Ok(Applied::Done)
+            }
+            Input::Release { node } => {
+                let i = self.global(*node)?;
+                self.take_node(i)?;
+                Ok(Applied::Done)
+            }
+            Input::RemoveLoad { id } => {
+                let id = LoadCaseId(*id);
+                if !self.user_loads.remove(&id) || self.state.loads.remove(id).is_none() {
+                    return Err(Refusal::Missing(format!(
+                        "load case {} is not active (removed, replaced by a later fix or drive on its node, or reset)",
+                        id.0
+                    )));
+                }
+                Ok(Applied::Done)
+            }
+            Input::Grab { hand, at } => {
+                let at = finite(*at, "the grab point")?;
+                let element = nearest_beam(&self.model, &self.state, at)
+                    .ok_or_else(|| Refusal::Invalid("there is no beam to grab".into()))?;
+                let el = &self.model.elements[element];
+                let nodes = [el.node_a, el.node_b];
+                if let Some(other) = nodes
+                    .iter()
+                    .find_map(|&n| holder(&self.hands, n).filter(|k| k != hand))
+                {
+                    return Err(Refusal::Invalid(format!(
+                        "hand {other} already holds that beam; release it first"
+                    )));
+                }
+                // a grab or a release changes what holds the hoses: let them all move
+                self.state.sleep.wake_all(&self.model);
+                if let Some(old) = self.hands.remove(hand) {
+                    old.hand.release(&mut self.state);
+                }
+                for n in nodes {
+                    self.remove_user_loads(n, |c| !matches!(c, LoadCase::DeadLoad(_)));
+                }
+                let grabbed = Hand::grab(&self.model, &mut self.state, at)
+                    .ok_or_else(|| Refusal::Invalid("there is no beam to grab".into()))?;
+                let element = grabbed.element;
+                self.hands.insert(
+                    *hand,
+                    HeldHand {
+                        hand: grabbed,
+                        aim: None,
+                    },
+                );
+                self.tally.track_hand(*hand);
+                Ok(Applied::Grabbed { element })
+            }
+            Input::MoveHand {
+                hand,
+                waypoints,
+                rotation,
+                duration,
+            } => {
+                for p in waypoints {
+                    finite(*p, "a waypoint")?;
+                }
+                finite(*rotation, "the rotation")?;
+                let duration = finite_duration(*duration)?;
+                self.hand(*hand)?;
+                if let Some(h) = self.hands.get_mut(hand) {
+                    h.aim = None;
+                    h.hand.move_along(waypoints, *rotation, t, duration);
+                }
+                Ok(Applied::Done)
+            }
+            Input::AimHand {
+                hand,
+                position,
+                orientation,
+            } => {
+                let position = finite(*position, "the hand position")?;
+                let orientation = match orientation {
+                    Some(q) if q.is_finite() && q.length() > 1e-9 => Some(q.normalize()),
+                    Some(q) => {
+                        return Err(Refusal::Invalid(format!(
+                            "the hand orientation must be a finite non-zero quaternion, got {q}"
+                        )))
+                    }
+                    None => None,
+                };
+                self.hand(*hand)?;
+                if let Some(h) = self.hands.get_mut(hand) {
+                    let mut aim = h.aim.unwrap_or_else(|| {
+                        let pose = h.pose_at(t);
+                        Aim {
+                            pose,
+                            target: pose,
+                            speed: 0.0,
+                        }
+                    });
+                    aim.target = (position, orientation.unwrap_or(aim.target.1));
+                    h.aim = Some(aim);
+                }
+                Ok(Applied::Done)
+            }
+            Input::ReleaseHand { hand } => {
+                let h = self
+                    .hands
+                    .remove(hand)
+                    .ok_or_else(|| Refusal::Invalid(format!("hand {hand} holds nothing")))?;
+                self.state.sleep.wake_all(&self.model);
+                h.hand.release(&mut self.state);
+                Ok(Applied::Done)
+            }
+            Input::SetErgonomics { profile } => {
+                self.profile = *profile;
+                Ok(Applied::Done)
+            }
+            Input::Arrest => {
+                let s = &mut self.state;
+                s.v.fill(DVec3::ZERO);
+                s.w.fill(DVec3::ZERO);
+                for b in s.bodies.iter_mut() {
+                    b.velocity = DVec3::ZERO;
+                    b.angular_velocity = DVec3::ZERO;
+                }
+                Ok(Applied::Done)
+            }
+            Input::SolveStatic {
+                force_tolerance,
+                moment_tolerance,
+                max_iterations,
+            } => {
+                let mut solver = StaticSolver::new(&self.model)
+                    .map_err(|e| Refusal::Invalid(e.to_string()))?;
+                solver.options.force_tolerance = *force_tolerance;
+                solver.options.moment_tolerance = *moment_tolerance;
+                solver.options.max_iterations = *max_iterations;
+                let before = self.state.clone();
+                match solver.solve(&self.model, &mut self.state) {
+                    Ok(r) => Ok(Applied::Static(r)),
+                    Err(e) => {
+                        self.state = before;
+                        Err(Refusal::Invalid(format!("static solve failed: {e}")))
+                    }
+                }
+            }
+            Input::Reset => {
+                self.start().map_err(Refusal::Invalid)?;
+                Ok(Applied::Done)
+            }
+        }
+    }
+
+    // ---- stepping ------------------------------------------------------------------
+
+    /// One step: hands move their held nodes, stubs and clips act, the solver advances
+    /// the state, the state is checked every [`HEALTH_CHECK_EVERY`] steps, the peaks are
+    /// taken in. After a divergence every call fails until a reset.
+    pub fn step(&mut self, obs: &mut dyn Observer) -> Result<(), Divergence> {
+        if let Some(d) = &self.diverged {
+            return Err(d.clone());
+        }
+        let dt = self.solver.time_step(&self.model);
+        let t_next = self.state.time + dt;
+        let limits = self.options.hand_limits;
+        for h in self.hands.values_mut() {
+            h.update(&mut self.state, t_next, dt, &limits);
+        }
+        if !self.fasteners.is_empty() {
+            let (hands, records) = (&self.hands, &self.hand_records);
+            let held = |node: usize| holder(hands, node).is_some();
+            let force = |node: usize| {
+                holder(hands, node)
+                    .and_then(|k| records.iter().find(|r| r.hand == k as usize))
+                    .map_or(DVec3::ZERO, |r| r.load.force)
+            };
+            self.fasteners
+                .update(&self.model, &mut self.state, &held, &force);
+        }
+        self.tick += 1;
+        let stats = match self.solver.step(&self.model, &mut self.state) {
+            Ok(stats) => stats,
+            Err(e) => {
+                let d = e.into_divergence(&self.model, &self.state);
+                return Err(self.fail(d));
+            }
+        };
+        // Divergence is declared at fixed steps only, so that it happens at the same
+        // tick whoever watches (a replay with a recorder, a live session without);
+        // an observer is shown checked states only.
+        if self.state.step % HEALTH_CHECK_EVERY == 0 {
+            if let Err(d) = check(&self.model, &self.state) {
+                return Err(self.fail(d));
+            }
+        }
+        let wants = obs.wants_state(self.state.time) && check(&self.model, &self.state).is_ok();
+        self.hand_records.clear();
+        for (&k, h) in &self.hands {
+            let r = self.assess(k, h);
+            self.hand_records.push(r);
+        }
+        self.tally
+            .record(&self.model, &self.state, &stats, &self.hand_records);
+        if wants {
+            obs.on_state(&self.model, &self.state);
+            obs.on_hands(self.state.time, &self.hand_records);
+            if !self.fasteners.is_empty() {
+                self.fasteners
+                    .sample(self.state.time, &mut self.tally.fastener_series);
+            }
+        }
+        obs.on_step(self.state.time);
+        Ok(())
+    }
+
+    fn fail(&mut self, d: Divergence) -> Divergence {
+        self.diverged = Some(d.clone());
+        d
+    }
+
+    /// `n` steps, then a health check, so that a successful call never leaves
+    /// non-finite values behind.
+    pub fn steps(&mut self, n: u64, obs: &mut dyn Observer) -> Result<(), Divergence> {
+        for _ in 0..n {
+            self.step(obs)?;
+        }
+        check(&self.model, &self.state).map_err(|d| self.fail(d))
+    }
+
+    /// Steps in a duration [s] (rounded to whole steps).
+    pub fn steps_in(&self, duration: f64) -> u64 {
+        (duration / self.time_step()).round().max(0.0) as u64
+    }
+}
+
+/// The global node's (hose, node) reference.
+pub fn node_ref(model: &Model, global: usize) -> Option<NodeRef> {
+    model.hoses.iter().enumerate().find_map(|(hose, h)| {
+        h.nodes()
+            .contains(&global)
+            .then(|| NodeRef {
+                hose,
+                node: global - h.first_node,
+            })
+    })
+}
+
+/// The rotation vector that turns `from` into `to` the shorter way.
+pub fn rotation_between_poses(from: DQuat, to: DQuat) -> DVec3 {
+    let mut d = (to * from.conjugate()).normalize();
+    if d.w < 0.0 {
+        d = -d;
+    }
+    d.to_scaled_axis()
+}

@@ -1,0 +1,304 @@
+//! What a workcell keeps account of as it steps (SPEC I2, I5): the peak support loads of
+//! every node a fix or drive held, each hand's peak push, pull and torque (magnitudes, so
+//! that a verdict can be judged again under another ergonomic profile), the rigid parts
+//! the hoses touched, and the Newton solvers' statistics. Nothing here allocates once a
+//! node, hand or part has been seen.
+
+use super::input::HandNumber;
+use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile, HandAssessment, LoadKind};
+use crate::fasteners::{FastenerReport, FastenerSample};
+use crate::hand::HandLoad;
+use glam::DVec3;
+use pliant_core::solver::StepStats;
+use pliant_core::{Model, State};
+use serde::Serialize;
+
+/// One hand's load in one step and how it compares with the ergonomic limits.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct HandRecord {
+    pub hand: usize,
+    pub load: HandLoad,
+    /// `None` only if the load was not finite (the step is then reported as diverged).
+    pub assessment: Option<HandAssessment>,
+}
+
+/// The largest magnitude of one load kind [N or N·m] and when [s].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Peak {
+    pub magnitude: f64,
+    pub time: f64,
+}
+
+impl Peak {
+    fn record(&mut self, magnitude: f64, time: f64) {
+        if magnitude.is_finite() && magnitude > self.magnitude {
+            self.magnitude = magnitude;
+            self.time = time;
+        }
+    }
+}
+
+/// Peak loads of one hand over the run, and its worst moment against the limits.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct HandPeak {
+    pub hand: usize,
+    pub max_force: f64,
+    pub max_force_time: f64,
+    pub max_torque: f64,
+    pub max_torque_time: f64,
+    /// Peak push, pull and torque (SPEC I3 classification).
+    pub push: Peak,
+    pub pull: Peak,
+    pub torque: Peak,
+    /// Largest load/limit ratio under the profile the run is judged with, its kind,
+    /// magnitude, limit and time (filled in by [`Tally::judge_hands`]).
+    pub worst_ratio: f64,
+    pub worst_kind: Option<LoadKind>,
+    pub worst_magnitude: f64,
+    pub worst_limit: f64,
+    pub worst_time: f64,
+}
+
+impl HandPeak {
+    /// The peaks with their kinds.
+    pub fn each(&self) -> [(LoadKind, Peak); 3] {
+        [
+            (LoadKind::Push, self.push),
+            (LoadKind::Pull, self.pull),
+            (LoadKind::Torque, self.torque),
+        ]
+    }
+}
+
+/// The limit value of `kind` under `profile` [N or N·m].
+pub fn limit_of(limits: &ErgonomicLimits, profile: &ErgonomicProfile, kind: LoadKind) -> f64 {
+    let (pop, duty) = (profile.population, profile.duty);
+    match kind {
+        LoadKind::Push => limits.push_limit(profile.push_posture, pop, duty),
+        LoadKind::Pull => limits.pull_limit(profile.pull_posture, pop, duty),
+        LoadKind::Torque => limits.torque_limit(profile.torque_grip, pop, duty),
+    }
+}
+
+/// A rigid part the hoses touched, and when (SPEC I5: where contact blocked the path).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ContactEpisode {
+    pub part: String,
+    pub first_time: f64,
+    pub last_time: f64,
+    /// Steps with at least one contact point on this part.
+    pub steps: u64,
+}
+
+/// Peak support loads at one node that a fix or drive held at some point.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct NodePeak {
+    pub hose: usize,
+    pub node: usize,
+    /// Largest |F| the support applied [N] and when [s].
+    pub max_force: f64,
+    pub max_force_time: f64,
+    /// Largest |M| the support applied [N·m] and when [s].
+    pub max_moment: f64,
+    pub max_moment_time: f64,
+    /// Support force and moment in the last step it held the node.
+    pub last_force: DVec3,
+    pub last_moment: DVec3,
+}
+
+/// Outcome of one `Settle` action.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SettleOutcome {
+    pub action: usize,
+    pub at_rest: bool,
+    pub time: f64,
+    pub kinetic_energy: f64,
+}
+
+/// What a whole run did.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct RunSummary {
+    pub steps: u64,
+    pub simulated_time: f64,
+    pub actions_completed: usize,
+    pub settles: Vec<SettleOutcome>,
+    pub peaks: Vec<NodePeak>,
+    /// Per hand that grabbed at some point.
+    pub hand_peaks: Vec<HandPeak>,
+    /// Parts touched, in the order first touched.
+    pub contacts: Vec<ContactEpisode>,
+    /// Largest total contact force of the parts on the hoses [N] and when.
+    pub max_contact_force: f64,
+    pub max_contact_force_time: f64,
+    /// The ergonomic profile hand loads were judged with.
+    pub ergonomics: String,
+    /// Stubs and clips and whether they ended assembled.
+    pub fasteners: Vec<FastenerReport>,
+    /// Their forces at the recorded times (the observer's sampling).
+    pub fastener_series: Vec<FastenerSample>,
+    /// Newton solvers only: the most iterations one step took, and how many steps ended
+    /// without reaching the tolerance.
+    pub newton_iterations_max: usize,
+    pub newton_unconverged_steps: u64,
+}
+
+impl RunSummary {
+    /// Whether every hand stayed within its limit values and every fastener was fitted.
+    pub fn feasible(&self) -> bool {
+        self.hand_peaks.iter().all(|h| h.worst_ratio <= 1.0)
+            && self.fasteners.iter().all(|f| f.assembled)
+    }
+}
+
+/// The running account of a workcell.
+#[derive(Clone, Debug, Default)]
+pub struct Tally {
+    /// (global node, its peaks), in the order the nodes were first held.
+    pub node_peaks: Vec<(usize, NodePeak)>,
+    pub hand_peaks: Vec<HandPeak>,
+    pub contacts: Vec<ContactEpisode>,
+    /// Per part: index into `contacts` once touched.
+    contact_index: Vec<Option<usize>>,
+    pub max_contact_force: f64,
+    pub max_contact_force_time: f64,
+    pub fastener_series: Vec<FastenerSample>,
+    pub newton_iterations_max: usize,
+    pub newton_unconverged_steps: u64,
+}
+
+impl Tally {
+    pub fn new(model: &Model) -> Self {
+        Tally {
+            contact_index: vec![None; model.environment.parts.len()],
+            ..Default::default()
+        }
+    }
+
+    /// Starts tracking the support loads of `node` (global) at `at`.
+    pub fn track_node(&mut self, node: usize, at: crate::timeline::NodeRef) {
+        if !self.node_peaks.iter().any(|(g, _)| *g == node) {
+            let peak = NodePeak {
+                hose: at.hose,
+                node: at.node,
+                ..Default::default()
+            };
+            self.node_peaks.push((node, peak));
+        }
+    }
+
+    /// Starts a hand's peaks (once per hand number).
+    pub fn track_hand(&mut self, hand: HandNumber) {
+        let hand = hand as usize;
+        if !self.hand_peaks.iter().any(|p| p.hand == hand) {
+            self.hand_peaks.push(HandPeak {
+                hand,
+                ..Default::default()
+            });
+        }
+    }
+
+    /// Takes in one step: solver statistics, hand loads, contacts, support loads.
+    pub fn record(&mut self, model: &Model, state: &State, stats: &StepStats, hands: &[HandRecord]) {
+        self.newton_iterations_max = self.newton_iterations_max.max(stats.iterations);
+        if !stats.converged {
+            self.newton_unconverged_steps += 1;
+        }
+        let t = state.time;
+        for r in hands {
+            let Some(p) = self.hand_peaks.iter_mut().find(|p| p.hand == r.hand) else {
+                continue;
+            };
+            let (f, m) = (r.load.force.length(), r.load.torque.length());
+            if f > p.max_force {
+                p.max_force = f;
+                p.max_force_time = t;
+            }
+            if m > p.max_torque {
+                p.max_torque = m;
+                p.max_torque_time = t;
+            }
+            if let Some(a) = &r.assessment {
+                match a.force.kind {
+                    LoadKind::Pull => p.pull.record(a.force.magnitude, t),
+                    _ => p.push.record(a.force.magnitude, t),
+                }
+                p.torque.record(a.torque.magnitude, t);
+            }
+        }
+        self.record_contacts(model, state);
+        for (i, p) in self.node_peaks.iter_mut() {
+            let i = *i;
+            if !state.held[i] {
+                continue;
+            }
+            let (f, m) = (state.reaction_force[i], state.reaction_moment[i]);
+            if f.length() > p.max_force {
+                p.max_force = f.length();
+                p.max_force_time = t;
+            }
+            if m.length() > p.max_moment {
+                p.max_moment = m.length();
+                p.max_moment_time = t;
+            }
+            p.last_force = f;
+            p.last_moment = m;
+        }
+    }
+
+    /// Which parts the hoses touch this step, and the total contact force.
+    fn record_contacts(&mut self, model: &Model, state: &State) {
+        if self.contact_index.is_empty() {
+            return;
+        }
+        let t = state.time;
+        for c in &state.contact.points {
+            match self.contact_index[c.part] {
+                Some(k) => {
+                    let e = &mut self.contacts[k];
+                    if e.last_time != t {
+                        e.last_time = t;
+                        e.steps += 1;
+                    }
+                }
+                None => {
+                    self.contact_index[c.part] = Some(self.contacts.len());
+                    self.contacts.push(ContactEpisode {
+                        part: model.environment.parts[c.part].name.clone(),
+                        first_time: t,
+                        last_time: t,
+                        steps: 1,
+                    });
+                }
+            }
+        }
+        let total = state.contact_force.iter().map(|f| f.length()).sum::<f64>();
+        if total > self.max_contact_force {
+            self.max_contact_force = total;
+            self.max_contact_force_time = t;
+        }
+    }
+
+    /// The hands' peaks with their worst ratio judged under `profile`.
+    pub fn judge_hands(
+        &self,
+        limits: Option<&ErgonomicLimits>,
+        profile: &ErgonomicProfile,
+    ) -> Vec<HandPeak> {
+        let mut out = self.hand_peaks.clone();
+        let Some(limits) = limits else { return out };
+        for p in &mut out {
+            for (kind, peak) in p.each() {
+                let limit = limit_of(limits, profile, kind);
+                let ratio = peak.magnitude / limit;
+                if ratio.is_finite() && ratio > p.worst_ratio {
+                    p.worst_ratio = ratio;
+                    p.worst_kind = Some(kind);
+                    p.worst_magnitude = peak.magnitude;
+                    p.worst_limit = limit;
+                    p.worst_time = peak.time;
+                }
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,153 @@
+//! The verdict of an assembly study (SPEC I5) — the one implementation behind
+//! `pliant run`, the live session's running verdict and the Python API: feasible or not,
+//! and why. A divergence, or a hand whose peak push, pull or torque exceeds the limit
+//! value of the profile, makes it infeasible; at the end of a study a stub or clip not
+//! fitted does too, while a study still running lists them as still to do.
+
+use super::tally::RunSummary;
+use crate::ergonomics::LoadKind;
+use serde::Serialize;
+
+/// Whether the study is over (every fastener should be fitted) or still running.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    Running,
+    Final,
+}
+
+/// Feasible or not, with reasons.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Verdict {
+    /// `None` while no hand has acted (nothing to judge).
+    pub feasible: Option<bool>,
+    /// Why: each exceeded limit, the fasteners not fitted (final stage), the parts
+    /// touched, or the worst load when all are within limits.
+    pub reasons: Vec<String>,
+    /// Stubs and clips not yet fitted (running stage).
+    pub pending: Vec<String>,
+}
+
+fn kind_name(kind: LoadKind) -> &'static str {
+    match kind {
+        LoadKind::Push => "push",
+        LoadKind::Pull => "pull",
+        LoadKind::Torque => "torque",
+    }
+}
+
+fn unit(kind: LoadKind) -> &'static str {
+    match kind {
+        LoadKind::Torque => "N·m",
+        _ => "N",
+    }
+}
+
+impl Verdict {
+    /// Judges a summary whose hand peaks were judged under the profile of interest
+    /// ([`super::Tally::judge_hands`]).
+    pub fn judge(run: &RunSummary, diverged: Option<&str>, stage: Stage) -> Verdict {
+        let mut reasons = Vec::new();
+        let mut pending = Vec::new();
+        if let Some(d) = diverged {
+            reasons.push(format!("the study stopped early: {d}"));
+        }
+        let mut exceeded = false;
+        for h in &run.hand_peaks {
+            let Some(kind) = h.worst_kind else { continue };
+            if h.worst_ratio > 1.0 {
+                exceeded = true;
+                reasons.push(format!(
+                    "hand {}: {} of {:.1} {u} at t = {:.2} s exceeds the limit {:.1} {u} ({:.0} % of it)",
+                    h.hand,
+                    kind_name(kind),
+                    h.worst_magnitude,
+                    h.worst_time,
+                    h.worst_limit,
+                    100.0 * h.worst_ratio,
+                    u = unit(kind),
+                ));
+            }
+        }
+        let mut unfitted = false;
+        for f in run.fasteners.iter().filter(|f| !f.assembled) {
+            match stage {
+                Stage::Final => {
+                    unfitted = true;
+                    let wanted = if f.kind == "stub" {
+                        "fixed on it"
+                    } else {
+                        "seated in it"
+                    };
+                    reasons.push(format!(
+                        "{} '{}': the hose did not end {wanted} (final state: {})",
+                        f.kind, f.name, f.final_state
+                    ));
+                }
+                Stage::Running => pending.push(format!(
+                    "{} '{}' not yet fitted (state: {})",
+                    f.kind, f.name, f.final_state
+                )),
+            }
+        }
+        if stage == Stage::Final {
+            for c in &run.contacts {
+                reasons.push(format!(
+                    "contact with '{}' from t = {:.2} s to {:.2} s",
+                    c.part, c.first_time, c.last_time
+                ));
+            }
+        }
+        let judged = !run.hand_peaks.is_empty();
+        let feasible = if diverged.is_some() || exceeded || (judged && unfitted) {
+            Some(false)
+        } else if judged {
+            Some(true)
+        } else {
+            None
+        };
+        if !judged {
+            reasons.push(match stage {
+                Stage::Final => "no hand acted in this scene: there is no hand load to judge".into(),
+                Stage::Running => "no hand has acted yet: nothing to judge".into(),
+            });
+        } else if feasible == Some(true) {
+            let worst = run
+                .hand_peaks
+                .iter()
+                .filter(|h| h.worst_kind.is_some())
+                .max_by(|a, b| a.worst_ratio.total_cmp(&b.worst_ratio));
+            let detail = worst
+                .and_then(|h| Some((h, h.worst_kind?)))
+                .map(|(h, kind)| {
+                    format!(
+                        "; the worst is hand {}'s {} of {:.1} {u}, {:.0} % of the limit {:.1} {u}",
+                        h.hand,
+                        kind_name(kind),
+                        h.worst_magnitude,
+                        100.0 * h.worst_ratio,
+                        h.worst_limit,
+                        u = unit(kind)
+                    )
+                })
+                .unwrap_or_default();
+            reasons.push(match stage {
+                Stage::Final => format!("every hand load stayed within its ergonomic limit value, and every stub and clip was fitted{detail}"),
+                Stage::Running => format!("every hand load so far is within its ergonomic limit value{detail}"),
+            });
+        }
+        Verdict {
+            feasible,
+            reasons,
+            pending,
+        }
+    }
+
+    /// "FEASIBLE", "NOT FEASIBLE" or "not assessed".
+    pub fn word(&self) -> &'static str {
+        match self.feasible {
+            Some(true) => "FEASIBLE",
+            Some(false) => "NOT FEASIBLE",
+            None => "not assessed",
+        }
+    }
+}

@@ -1,0 +1,283 @@
+//! Session folders (SPEC W2): a copy of the scene beside the input log of a study, so
+//! that `pliant replay` can rebuild the workcell and reproduce the study bit for bit.
+
+use crate::load::{load_scene_json_str_in, load_scene_str_in};
+use crate::scene::LoadedScene;
+use pliant_assembly::workcell::log::{header_line, InputLog, LogHeader, LOG_FILE};
+use pliant_assembly::{Workcell, WorkcellOptions};
+use std::fs::File;
+use std::io::Write;
+use std::path::Path;
+
+impl LoadedScene {
+    /// Whether the scene was written as JSON (else TOML).
+    pub fn is_json(&self) -> bool {
+        self.text.trim_start().starts_with('{')
+    }
+}
+
+/// Creates the session folder `dir`: the scene's copy (`scene.toml` or `scene.json`) and
+/// the input log's header. Returns the log file for [`Workcell::log_to`].
+pub fn start_session_folder(
+    dir: &Path,
+    scene: &LoadedScene,
+    cell: &Workcell,
+) -> std::io::Result<File> {
+    std::fs::create_dir_all(dir)?;
+    let scene_file = if scene.is_json() {
+        "scene.json"
+    } else {
+        "scene.toml"
+    };
+    std::fs::write(dir.join(scene_file), &scene.text)?;
+    let header = LogHeader::new(
+        &scene.name,
+        &scene.source,
+        scene_file,
+        &scene.base_dir.display().to_string(),
+        *cell.options(),
+        cell.time_step(),
+    );
+    let mut log = File::create(dir.join(LOG_FILE))?;
+    log.write_all(header_line(&header).as_bytes())?;
+    log.flush()?;
+    Ok(log)
+}
+
+/// A session folder read back: its scene, its log, and a fresh workcell to replay it in.
+pub struct Session {
+    pub scene: LoadedScene,
+    pub log: InputLog,
+}
+
+impl Session {
+    /// Reads the session folder `dir` (or its `inputs.jsonl`).
+    pub fn open(path: &Path) -> Result<Session, String> {
+        let log = InputLog::read(path).map_err(|e| e.to_string())?;
+        let dir = if path.is_dir() {
+            path.to_path_buf()
+        } else {
+            path.parent().map(Path::to_path_buf).unwrap_or_default()
+        };
+        let file = dir.join(&log.header.scene_file);
+        let text = std::fs::read_to_string(&file)
+            .map_err(|e| format!("{}: cannot read the session's scene copy: {e}", file.display()))?;
+        let origin = file.display().to_string();
+        let base = Path::new(&log.header.scene_base_dir);
+        let scene = if log.header.scene_file.ends_with(".json") {
+            load_scene_json_str_in(&text, &origin, base)
+        } else {
+            load_scene_str_in(&text, &origin, base)
+        }
+        .map_err(|e| e.to_string())?;
+        Ok(Session { scene, log })
+    }
+
+    /// A fresh workcell with the log's options; its step must be the log's.
+    pub fn workcell(&self) -> Result<Workcell, String> {
+        let options: WorkcellOptions = self.log.header.options;
+        let cell = self.scene.workcell(options)?;
+        if cell.time_step() != self.log.header.time_step {
+            return Err(format!(
+                "the scene gives a time step of {:e} s, the log was made with {:e} s: the scene or this Pliant version differs from the session's",
+                cell.time_step(),
+                self.log.header.time_step
+            ));
+        }
+        Ok(cell)
+    }
+}
+
+/// The session as an ordinary scene file (TOML): the scene with its timeline replaced
+/// by the log's inputs as actions, in the scene's length unit, with `run` actions for
+/// the steps between them. Moves do not wait (the runs carry the time). Inputs a
+/// timeline cannot say (ergonomic profile changes, removing one load case, arresting,
+/// static solves) are listed in comments at the top, and a reset starts the timeline
+/// over. Hands are numbered 0 … 7 in the order they first grab.
+pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Result<String, String> {
+    use pliant_assembly::Input;
+    use toml::value::{Array, Table};
+    use toml::Value;
+    let mut doc: Table = if scene.is_json() {
+        let json: serde_json::Value =
+            serde_json::from_str(&scene.text).map_err(|e| e.to_string())?;
+        Value::try_from(json)
+            .map_err(|e| e.to_string())?
+            .as_table()
+            .cloned()
+            .unwrap_or_default()
+    } else {
+        toml::from_str(&scene.text).map_err(|e| e.to_string())?
+    };
+    let original = doc.remove("timeline");
+    // the initial load cases the session started from: the scene's leading fixes and loads
+    let initial: Array = match (&original, log.header.options.initial_loads) {
+        (Some(Value::Array(a)), true) => a
+            .iter()
+            .take_while(|e| {
+                matches!(e.get("action").and_then(Value::as_str), Some("fix" | "load"))
+            })
+            .cloned()
+            .collect(),
+        _ => Array::new(),
+    };
+    let per_m = 1.0 / scene.length_unit.to_metres();
+    let point = |p: glam::DVec3| Value::Array((p * per_m).to_array().map(Value::Float).to_vec());
+    let points = |ps: &[glam::DVec3]| Value::Array(ps.iter().map(|p| point(*p)).collect());
+    let vector = |v: glam::DVec3| Value::Array(v.to_array().map(Value::Float).to_vec());
+    let rotate = |r: glam::DVec3| {
+        let mut t = Table::new();
+        t.insert("axis".into(), vector(r.normalize_or_zero()));
+        t.insert("angle_deg".into(), Value::Float(r.length().to_degrees()));
+        Value::Table(t)
+    };
+    let node = |t: &mut Table, n: &pliant_assembly::NodeRef| {
+        t.insert("hose".into(), Value::String(scene.hose_names[n.hose].clone()));
+        t.insert("node".into(), Value::Integer(n.node as i64));
+    };
+    let mut hand_numbers: Vec<u32> = Vec::new();
+    let mut hand = |h: u32| -> Result<Value, String> {
+        let k = match hand_numbers.iter().position(|x| *x == h) {
+            Some(k) => k,
+            None => {
+                hand_numbers.push(h);
+                hand_numbers.len() - 1
+            }
+        };
+        if k >= crate::timeline::MAX_HANDS {
+            return Err(format!(
+                "the session used more than {} hands; a timeline has hands 0 … {}",
+                crate::timeline::MAX_HANDS,
+                crate::timeline::MAX_HANDS - 1
+            ));
+        }
+        Ok(Value::Integer(k as i64))
+    };
+    let mut actions = initial.clone();
+    let mut notes = Vec::new();
+    let mut tick = 0u64;
+    let run = |actions: &mut Array, steps: u64| {
+        if steps > 0 {
+            let mut t = Table::new();
+            t.insert("action".into(), Value::String("run".into()));
+            t.insert("duration_s".into(), Value::Float(steps as f64 * time_step));
+            actions.push(Value::Table(t));
+        }
+    };
+    for s in &log.inputs {
+        run(&mut actions, s.tick - tick);
+        tick = s.tick;
+        let time = s.tick as f64 * time_step;
+        let mut t = Table::new();
+        let action = match &s.input {
+            Input::Fix { node: n } => {
+                node(&mut t, n);
+                "fix"
+            }
+            Input::Unload { node: n } => {
+                node(&mut t, n);
+                "unload"
+            }
+            Input::Release { node: n } => {
+                node(&mut t, n);
+                "release"
+            }
+            Input::Load {
+                node: n,
+                force,
+                moment,
+            } => {
+                node(&mut t, n);
+                t.insert("force_n".into(), vector(*force));
+                t.insert("moment_nm".into(), vector(*moment));
+                "load"
+            }
+            Input::Drive {
+                node: n,
+                waypoints,
+                rotation,
+                duration,
+            } => {
+                node(&mut t, n);
+                if !waypoints.is_empty() {
+                    t.insert("to".into(), points(waypoints));
+                }
+                if *rotation != glam::DVec3::ZERO {
+                    t.insert("rotate".into(), rotate(*rotation));
+                }
+                t.insert("duration_s".into(), Value::Float(*duration));
+                t.insert("wait".into(), Value::Boolean(false));
+                "move"
+            }
+            Input::Grab { hand: h, at } => {
+                t.insert("hand".into(), hand(*h)?);
+                t.insert("at".into(), point(*at));
+                "grab"
+            }
+            Input::MoveHand {
+                hand: h,
+                waypoints,
+                rotation,
+                duration,
+            } => {
+                t.insert("hand".into(), hand(*h)?);
+                if !waypoints.is_empty() {
+                    t.insert("to".into(), points(waypoints));
+                }
+                if *rotation != glam::DVec3::ZERO {
+                    t.insert("rotate".into(), rotate(*rotation));
+                }
+                t.insert("duration_s".into(), Value::Float(*duration));
+                t.insert("wait".into(), Value::Boolean(false));
+                "move_hand"
+            }
+            Input::AimHand {
+                hand: h,
+                position,
+                orientation,
+            } => {
+                t.insert("hand".into(), hand(*h)?);
+                t.insert("position".into(), point(*position));
+                if let Some(q) = orientation {
+                    let wxyz = [q.w, q.x, q.y, q.z].map(Value::Float).to_vec();
+                    t.insert("orientation_wxyz".into(), Value::Array(wxyz));
+                }
+                "aim_hand"
+            }
+            Input::ReleaseHand { hand: h } => {
+                t.insert("hand".into(), hand(*h)?);
+                "release_hand"
+            }
+            Input::Reset => {
+                notes.push(format!(
+                    "t = {time:.3} s (tick {}): reset — the timeline starts over here",
+                    s.tick
+                ));
+                actions = initial.clone();
+                continue;
+            }
+            other => {
+                notes.push(format!(
+                    "t = {time:.3} s (tick {}): `{}` has no timeline action and is left out: {}",
+                    s.tick,
+                    other.name(),
+                    serde_json::to_string(other).unwrap_or_default()
+                ));
+                continue;
+            }
+        };
+        t.insert("action".into(), Value::String(action.into()));
+        actions.push(Value::Table(t));
+    }
+    run(&mut actions, log.end_tick.saturating_sub(tick));
+    doc.insert("timeline".into(), Value::Array(actions));
+    let mut text = format!(
+        "# Scene '{}' with the timeline of a recorded session (pliant replay --timeline).\n",
+        scene.name
+    );
+    for n in &notes {
+        text.push_str(&format!("# note: {n}\n"));
+    }
+    text.push_str(&toml::to_string(&doc).map_err(|e| e.to_string())?);
+    Ok(text)
+}
