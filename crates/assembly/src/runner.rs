@@ -148,9 +148,15 @@ pub fn run_timeline(
     obs: &mut dyn Observer,
 ) -> Result<RunSummary, RunError> {
     let mut settles = Vec::new();
-    for (k, action) in timeline.actions.iter().enumerate() {
-        obs.on_action(k, action, cell.state());
-        if let Err(stop) = apply(cell, k, action, obs, &mut settles) {
+    let n = timeline.actions.len();
+    for k in 0..=n {
+        let done = if let Some(action) = timeline.actions.get(k) {
+            obs.on_action(k, action, cell.state());
+            apply(cell, k, action, obs, &mut settles)
+        } else {
+            cell.check().map_err(Stop::Diverged)
+        };
+        if let Err(stop) = done {
             let (divergence, reason) = match stop {
                 Stop::Diverged(d) => (Some(d.clone()), d.to_string()),
                 Stop::Refused(k, name, r) => (None, format!("timeline[{k}] ({name}): {r}")),

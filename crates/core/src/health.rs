@@ -80,7 +80,10 @@ fn likely_cause(model: &Model, state: &State) -> String {
             "the time step {:.3e} s is above the stable limit {:.3e} s; leave time_step unset",
             model.time_step, r.critical
         )
-    } else if state.loads.any_drive_moving(state.time) {
+    } else if state.loads.any_drive_moving(state.time)
+        // the check runs every few steps: a drive that ended since the last one counts
+        || state.loads.any_drive_moving(state.time - 16.0 * model.time_step)
+    {
         "a drive moves or turns a node too fast for the hose to follow; give the move a longer duration".into()
     } else {
         "numerical instability: lower time_step_safety, or check for extreme material values".into()

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 use pliant_assembly::{HandRecord, Observer};
-use pliant_cli::recorder::HandSample;
+use pliant_assembly::report::HandSample;
 use pliant_core::{Model, State};
 
 /// Collects a run.

@@ -1,21 +1,18 @@
-//! The interactive simulation behind `pliant.Simulation`, in plain Rust: the model, the
-//! state, load cases added and removed by the user, hands, the scene's stubs and clips,
-//! and the explicit step with a divergence check. Like the live session of
-//! `pliant serve`, but stepped on request instead of in real time.
+//! The interactive simulation behind `pliant.Simulation`: a thin shell over the scene's
+//! [`Workcell`] — the same step, grab rules, stubs, clips and verdict as `pliant run` and
+//! `pliant serve` — addressed by global node indices and hand numbers, stepped on
+//! request instead of in real time. Every call that changes the study is a workcell
+//! input, so a Python session has an input log like a live one.
 
 use glam::{DQuat, DVec3};
-use pliant_assembly::ergonomics::{ErgonomicLimits, ErgonomicProfile, HandAssessment};
-use pliant_assembly::fasteners::Fasteners;
-use pliant_assembly::{Action, ClipSite, Hand, HandLoad, StubSite};
-use pliant_core::health::{check, Divergence};
-use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId};
-use pliant_core::{Model, Solver, SolverKind, SolverSettings, State};
+use pliant_assembly::ergonomics::HandAssessment;
+use pliant_assembly::workcell::{node_ref, rotation_between_poses, Refusal as CellRefusal};
+use pliant_assembly::{Action, Applied, HandLoad, Input, NoObserver, Workcell, WorkcellOptions};
+use pliant_core::health::Divergence;
+use pliant_core::loads::{LoadCase, LoadCaseId};
+use pliant_core::{Model, Solver, SolverKind, State};
 use pliant_scene::LoadedScene;
-use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
-
-/// Health check interval in steps (as the timeline runner's).
-const HEALTH_CHECK_EVERY: u64 = 16;
 
 /// Why a request was refused (becomes ValueError / KeyError in Python).
 #[derive(Debug, Clone, PartialEq)]
@@ -26,241 +23,144 @@ pub enum Refusal {
     Missing(String),
 }
 
-/// The simulation.
-pub struct Engine {
-    pub model: Arc<Model>,
-    pub state: State,
-    /// Hands by number.
-    hands: BTreeMap<u32, Hand>,
-    fasteners: Fasteners,
-    sites: (Vec<StubSite>, Vec<ClipSite>),
-    /// Load cases the user added (the ones `remove_load` may remove).
-    user_loads: BTreeSet<LoadCaseId>,
-    /// The scene's leading fixes and dead loads, applied at the start and on reset.
-    initial: Vec<Action>,
-    pub profile: ErgonomicProfile,
-    limits: Option<&'static ErgonomicLimits>,
-    /// Hand forces of the last step (scratch for the fasteners).
-    hand_forces: Vec<(u32, DVec3)>,
-    /// Set once the state has diverged; stepping is refused until `reset`.
-    diverged: Option<Divergence>,
-    /// Advances the state: the scene's solver unless chosen otherwise (issue 5).
-    solver: Solver,
+impl From<CellRefusal> for Refusal {
+    fn from(r: CellRefusal) -> Self {
+        match r {
+            CellRefusal::Missing(m) => Refusal::Missing(m),
+            other => Refusal::Invalid(other.to_string()),
+        }
+    }
 }
 
-/// A scene's initial load cases: the leading fixes and dead loads of its timeline, up to
-/// the first action that takes time or involves a hand (as `pliant serve` starts).
+/// The simulation.
+pub struct Engine {
+    cell: Workcell,
+}
+
+/// A scene's initial load cases: the leading fixes and dead loads of its timeline.
 pub fn initial_actions(scene: &LoadedScene) -> Vec<Action> {
-    scene
-        .timeline
-        .actions
-        .iter()
-        .take_while(|a| matches!(a, Action::Fix { .. } | Action::Load { .. }))
-        .cloned()
-        .collect()
+    scene.initial_actions()
 }
 
 impl Engine {
-    /// A simulation of `scene` at rest in its rest shape, with `initial` applied.
+    /// A simulation of `scene` at rest in its rest shape, with `initial` applied,
+    /// advanced by `solver` (the scene's if `None`).
     pub fn new(
         model: Arc<Model>,
         scene: &LoadedScene,
         initial: Vec<Action>,
+        solver: Option<SolverKind>,
     ) -> Result<Engine, String> {
-        let sites = scene.fastener_sites(&model)?;
-        let mut state = State::at_rest(&model);
-        let fasteners = Fasteners::new(&mut state, sites.0.clone(), sites.1.clone());
-        let mut engine = Engine {
-            model: model.clone(),
-            state,
-            hands: BTreeMap::new(),
-            fasteners,
-            sites,
-            user_loads: BTreeSet::new(),
+        let (stubs, clips) = scene.fastener_sites(&model)?;
+        let setup = pliant_assembly::WorkcellSetup {
+            model,
+            stubs,
+            clips,
             initial,
             profile: scene.ergonomics,
-            limits: ErgonomicLimits::builtin().ok(),
-            hand_forces: Vec::new(),
-            diverged: None,
-            solver: Solver::for_model(&model).map_err(|e| e.to_string())?,
         };
-        engine.apply_initial();
-        Ok(engine)
+        let options = WorkcellOptions {
+            solver,
+            ..Default::default()
+        };
+        Ok(Engine {
+            cell: Workcell::new(setup, options)?,
+        })
     }
 
-    fn apply_initial(&mut self) {
-        for a in self.initial.clone() {
-            match a {
-                Action::Fix { node } => {
-                    let i = self.model.hoses[node.hose].node(node.node);
-                    let _ = self.fix(i);
-                }
-                Action::Load {
-                    node,
-                    force,
-                    moment,
-                } => {
-                    let i = self.model.hoses[node.hose].node(node.node);
-                    self.dead_load(i, force, moment);
-                }
-                _ => {}
-            }
-        }
+    pub fn model(&self) -> &Arc<Model> {
+        self.cell.model()
+    }
+
+    pub fn state(&self) -> &State {
+        self.cell.state()
+    }
+
+    pub fn workcell(&self) -> &Workcell {
+        &self.cell
+    }
+
+    fn give(&mut self, input: Input) -> Result<Applied, Refusal> {
+        self.cell.apply(input).map_err(Refusal::from)
+    }
+
+    fn node(&self, global: usize) -> Result<pliant_assembly::NodeRef, Refusal> {
+        node_ref(self.model(), global)
+            .ok_or_else(|| Refusal::Invalid(format!("node {global} does not exist")))
     }
 
     /// Back to rest in the rest shape at t = 0: hands released, user load cases removed,
     /// the initial load cases applied again, stubs and clips reset.
     pub fn reset(&mut self) {
-        self.state = State::at_rest(&self.model);
-        self.fasteners = Fasteners::new(
-            &mut self.state,
-            self.sites.0.clone(),
-            self.sites.1.clone(),
-        );
-        self.hands.clear();
-        self.user_loads.clear();
-        self.diverged = None;
-        self.solver.restart();
-        self.apply_initial();
-    }
-
-    /// Advances with `kind` from now on (explicit, implicit or static).
-    pub fn set_solver(&mut self, kind: SolverKind) -> Result<(), String> {
-        let settings = SolverSettings {
-            kind,
-            ..self.model.solver
-        };
-        self.solver = Solver::new(&self.model, settings).map_err(|e| e.to_string())?;
-        Ok(())
+        let _ = self.give(Input::Reset);
     }
 
     /// The solver in use.
     pub fn solver(&self) -> &Solver {
-        &self.solver
+        self.cell.solver()
     }
 
     /// Simulated time one step advances [s].
     pub fn time_step(&self) -> f64 {
-        self.solver.time_step(&self.model)
+        self.cell.time_step()
     }
 
     /// The divergence that stopped the simulation, if any.
     pub fn diverged(&self) -> Option<&Divergence> {
-        self.diverged.as_ref()
+        self.cell.diverged()
     }
 
-    /// Records the outcome of stepping: a divergence stops the simulation.
-    pub(crate) fn record(&mut self, outcome: &Result<(), Divergence>) {
-        if let Err(d) = outcome {
-            self.diverged = Some(d.clone());
-        }
-    }
-
-    /// One step of the solver: hands move their held nodes, stubs and clips act, the state
-    /// advances; the state is checked every few steps.
+    /// One step of the workcell.
     pub(crate) fn step_once(&mut self) -> Result<(), Divergence> {
-        let t_next = self.state.time + self.solver.time_step(&self.model);
-        for hand in self.hands.values() {
-            hand.update(&mut self.state, t_next);
-        }
-        if !self.fasteners.is_empty() {
-            self.hand_forces.clear();
-            for (&k, h) in &self.hands {
-                self.hand_forces
-                    .push((k, h.load(&self.model, &self.state).force));
-            }
-            let (hands, forces) = (&self.hands, &self.hand_forces);
-            let holder = |node: usize| {
-                hands
-                    .iter()
-                    .find(|(_, h)| h.holds(node))
-                    .map(|(k, _)| *k)
-            };
-            let held = |node: usize| holder(node).is_some();
-            let force = |node: usize| {
-                holder(node)
-                    .and_then(|k| forces.iter().find(|(h, _)| *h == k))
-                    .map_or(DVec3::ZERO, |(_, f)| *f)
-            };
-            self.fasteners
-                .update(&self.model, &mut self.state, &held, &force);
-        }
-        if let Err(e) = self.solver.step(&self.model, &mut self.state) {
-            return Err(e.into_divergence(&self.model, &self.state));
-        }
-        if self.state.step % HEALTH_CHECK_EVERY == 0 {
-            check(&self.model, &self.state)?;
-        }
-        Ok(())
+        self.cell.step(&mut NoObserver)
+    }
+
+    /// Zeroes all velocities (kinetic damping), as a logged input.
+    pub(crate) fn arrest(&mut self) {
+        let _ = self.give(Input::Arrest);
     }
 
     /// `n` steps, then a health check, so that a successful call never leaves non-finite
     /// values behind. After a divergence every call fails until [`Engine::reset`].
     pub fn steps(&mut self, n: u64) -> Result<(), Divergence> {
-        if let Some(d) = &self.diverged {
-            return Err(d.clone());
-        }
-        let run = (|| {
-            for _ in 0..n {
-                self.step_once()?;
-            }
-            check(&self.model, &self.state)
-        })();
-        self.record(&run);
-        run
+        self.cell.steps(n, &mut NoObserver)
     }
 
     /// Whether a hand or a drive is still moving.
     pub fn moving(&self) -> bool {
-        let t = self.state.time;
-        self.state.loads.any_drive_moving(t) || self.hands.values().any(|h| h.moving(t))
+        self.cell.moving()
+    }
+
+    /// The static equilibrium under the current loads (quasi-static Newton).
+    pub fn solve_static(
+        &mut self,
+        force_tolerance: f64,
+        moment_tolerance: f64,
+        max_iterations: usize,
+    ) -> Result<pliant_core::newton::StaticReport, Refusal> {
+        match self.give(Input::SolveStatic {
+            force_tolerance,
+            moment_tolerance,
+            max_iterations,
+        })? {
+            Applied::Static(r) => Ok(r),
+            _ => Err(Refusal::Invalid("the static solve reported nothing".into())),
+        }
     }
 
     // ---- load cases -------------------------------------------------------------
 
-    fn hand_holding(&self, node: usize) -> Option<u32> {
-        self.hands
-            .iter()
-            .find(|(_, h)| h.holds(node))
-            .map(|(k, _)| *k)
-    }
-
-    /// Removes the user's fixes and drives on `node` (the new one replaces them); refuses
-    /// a node a hand holds.
-    fn take_node(&mut self, node: usize) -> Result<(), Refusal> {
-        if let Some(k) = self.hand_holding(node) {
-            return Err(Refusal::Invalid(format!(
-                "hand {k} holds this node; release the hand first"
-            )));
+    fn load_id(applied: Applied) -> Result<LoadCaseId, Refusal> {
+        match applied {
+            Applied::Load(id) => Ok(id),
+            _ => Err(Refusal::Invalid("no load case was added".into())),
         }
-        let replaced: Vec<LoadCaseId> = self
-            .state
-            .loads
-            .iter()
-            .filter(|(id, c)| {
-                c.node() == node
-                    && !matches!(c, LoadCase::DeadLoad(_))
-                    && self.user_loads.contains(id)
-            })
-            .map(|(id, _)| *id)
-            .collect();
-        for id in replaced {
-            self.state.loads.remove(id);
-            self.user_loads.remove(&id);
-        }
-        Ok(())
     }
 
     /// Holds global node `node` where it is now (position and orientation).
     pub fn fix(&mut self, node: usize) -> Result<LoadCaseId, Refusal> {
-        self.take_node(node)?;
-        let id = self.state.loads.add(LoadCase::Fix(Fix {
-            node,
-            position: self.state.x[node],
-            orientation: self.state.q[node],
-        }));
-        self.user_loads.insert(id);
-        Ok(id)
+        let node = self.node(node)?;
+        Self::load_id(self.give(Input::Fix { node })?)
     }
 
     /// Drives global node `node` through `waypoints` and turns it by the rotation vector
@@ -272,80 +172,56 @@ impl Engine {
         rotation: DVec3,
         duration: f64,
     ) -> Result<LoadCaseId, Refusal> {
-        self.take_node(node)?;
-        let start = (self.state.x[node], self.state.q[node]);
-        let drive = Drive::new(node, start, waypoints, rotation, self.state.time, duration);
-        let id = self.state.loads.add(LoadCase::Drive(drive));
-        self.user_loads.insert(id);
-        Ok(id)
+        let node = self.node(node)?;
+        Self::load_id(self.give(Input::Drive {
+            node,
+            waypoints: waypoints.to_vec(),
+            rotation,
+            duration,
+        })?)
     }
 
     /// Adds a constant force and moment (global axes) at global node `node`.
-    pub fn dead_load(&mut self, node: usize, force: DVec3, moment: DVec3) -> LoadCaseId {
-        let id = self.state.loads.add(LoadCase::DeadLoad(DeadLoad {
+    pub fn dead_load(
+        &mut self,
+        node: usize,
+        force: DVec3,
+        moment: DVec3,
+    ) -> Result<LoadCaseId, Refusal> {
+        let node = self.node(node)?;
+        Self::load_id(self.give(Input::Load {
             node,
             force,
             moment,
-        }));
-        self.user_loads.insert(id);
-        id
+        })?)
     }
 
     /// Removes a load case the user added.
     pub fn remove_load(&mut self, id: LoadCaseId) -> Result<LoadCase, Refusal> {
-        if !self.user_loads.remove(&id) {
-            return Err(Refusal::Missing(format!(
-                "load case {} is not active (removed, replaced by a later fix or drive on its node, or reset)",
-                id.0
-            )));
-        }
-        self.state
-            .loads
-            .remove(id)
-            .ok_or_else(|| Refusal::Missing(format!("load case {} is not active", id.0)))
+        let case = self
+            .cell
+            .user_loads()
+            .find(|(i, _)| *i == id)
+            .map(|(_, c)| c.clone());
+        self.give(Input::RemoveLoad { id: id.0 })?;
+        case.ok_or_else(|| Refusal::Missing(format!("load case {} is not active", id.0)))
     }
 
     /// The user's active load cases.
     pub fn user_loads(&self) -> impl Iterator<Item = (LoadCaseId, &LoadCase)> {
-        self.state
-            .loads
-            .iter()
-            .filter(|(id, _)| self.user_loads.contains(id))
-            .map(|(id, c)| (*id, c))
+        self.cell.user_loads()
     }
 
     // ---- hands ------------------------------------------------------------------
 
     /// Hand `hand` grabs the beam nearest to `point` (letting go of what it held);
-    /// returns the beam's element index.
+    /// returns the beam's element index. Refused — the hand keeping its grip — if
+    /// another hand holds that beam.
     pub fn grab(&mut self, hand: u32, point: DVec3) -> Result<usize, Refusal> {
-        if let Some(old) = self.hands.remove(&hand) {
-            old.release(&mut self.state);
+        match self.give(Input::Grab { hand, at: point })? {
+            Applied::Grabbed { element } => Ok(element),
+            _ => Err(Refusal::Invalid("nothing was grabbed".into())),
         }
-        // the hand's fixes replace the user's fixes and drives on the beam's nodes
-        let element = pliant_assembly::hand::nearest_beam(&self.model, &self.state, point)
-            .ok_or_else(|| Refusal::Invalid("there is no beam to grab".into()))?;
-        let el = &self.model.elements[element];
-        let nodes = [el.node_a, el.node_b];
-        if let Some(other) = nodes.iter().find_map(|&n| self.hand_holding(n)) {
-            return Err(Refusal::Invalid(format!(
-                "hand {other} already holds that beam; release it first"
-            )));
-        }
-        for n in nodes {
-            self.take_node(n)?;
-        }
-        let h = Hand::grab(&self.model, &mut self.state, point)
-            .ok_or_else(|| Refusal::Invalid("there is no beam to grab".into()))?;
-        let element = h.element;
-        self.hands.insert(hand, h);
-        Ok(element)
-    }
-
-    fn hand(&self, hand: u32) -> Result<&Hand, Refusal> {
-        self.hands
-            .get(&hand)
-            .ok_or_else(|| Refusal::Invalid(format!("hand {hand} holds nothing; grab first")))
     }
 
     /// Moves hand `hand` through `waypoints` turning by the rotation vector `rotation`
@@ -357,58 +233,62 @@ impl Engine {
         rotation: DVec3,
         duration: f64,
     ) -> Result<(), Refusal> {
-        self.hand(hand)?;
-        let t = self.state.time;
-        if let Some(h) = self.hands.get_mut(&hand) {
-            h.move_along(waypoints, rotation, t, duration);
-        }
-        Ok(())
+        self.give(Input::MoveHand {
+            hand,
+            waypoints: waypoints.to_vec(),
+            rotation,
+            duration,
+        })
+        .map(|_| ())
+    }
+
+    /// Hand `hand` heads for `position` (and `orientation`) at bounded speed and
+    /// acceleration, as a live hand does.
+    pub fn aim_hand(
+        &mut self,
+        hand: u32,
+        position: DVec3,
+        orientation: Option<DQuat>,
+    ) -> Result<(), Refusal> {
+        self.give(Input::AimHand {
+            hand,
+            position,
+            orientation,
+        })
+        .map(|_| ())
     }
 
     /// The rotation vector that turns hand `hand` from its orientation now to `target`
     /// (the shorter way).
     pub fn rotation_to(&self, hand: u32, target: DQuat) -> Result<DVec3, Refusal> {
-        let (_, q) = self.hand(hand)?.pose_at(self.state.time);
-        let mut d = (target * q.conjugate()).normalize();
-        if d.w < 0.0 {
-            d = -d;
-        }
-        Ok(d.to_scaled_axis())
+        let (_, q) = self.cell.hand(hand)?.pose_at(self.state().time);
+        Ok(rotation_between_poses(q, target))
     }
 
     /// Hand `hand` lets go.
     pub fn release(&mut self, hand: u32) -> Result<(), Refusal> {
-        let h = self
-            .hands
-            .remove(&hand)
-            .ok_or_else(|| Refusal::Invalid(format!("hand {hand} holds nothing")))?;
-        h.release(&mut self.state);
-        Ok(())
+        self.give(Input::ReleaseHand { hand }).map(|_| ())
     }
 
     /// Numbers of the hands holding a beam.
     pub fn hands(&self) -> Vec<u32> {
-        self.hands.keys().copied().collect()
+        self.cell.hands().map(|(k, _)| k).collect()
     }
 
     /// The hand's pose now and the beam it holds.
     pub fn hand_pose(&self, hand: u32) -> Result<((DVec3, DQuat), usize), Refusal> {
-        let h = self.hand(hand)?;
-        Ok((h.pose_at(self.state.time), h.element))
+        let h = self.cell.hand(hand)?;
+        Ok((h.pose_at(self.state().time), h.hand.element))
     }
 
     /// The load hand `hand` applied in the last step and its ergonomic assessment.
     pub fn hand_load(&self, hand: u32) -> Result<(HandLoad, Option<HandAssessment>), Refusal> {
-        let load = self.hand(hand)?.load(&self.model, &self.state);
-        let assessment = self.limits.and_then(|l| {
-            l.assess(&self.profile, load.force, load.torque, load.direction)
-                .ok()
-        });
-        Ok((load, assessment))
+        let r = self.cell.hand_record(hand)?;
+        Ok((r.load, r.assessment))
     }
 
     /// The stubs' and clips' states now.
     pub fn fastener_reports(&self) -> Vec<pliant_assembly::FastenerReport> {
-        self.fasteners.reports()
+        self.cell.fastener_reports()
     }
 }

@@ -10,9 +10,9 @@ use crate::scene::Scene;
 use glam::DVec3;
 use numpy::{PyArray1, PyArray3};
 use pliant_assembly::ergonomics::ErgonomicProfile;
-use pliant_assembly::{RunSummary, Runner};
-use pliant_cli::report::{verdict, write_reports};
-use pliant_core::{Model, State};
+use pliant_assembly::report::write_reports;
+use pliant_assembly::{run_timeline as run_on, RunSummary, Runner, Stage, Verdict, WorkcellOptions};
+use pliant_core::{Model, SolverKind};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -57,14 +57,18 @@ pub struct RunResult {
 /// >>> result.hand_series(0)["force"].shape[1]
 /// 3
 #[pyfunction]
-#[pyo3(signature = (scene, ergonomics = None))]
+#[pyo3(signature = (scene, ergonomics = None, solver = None))]
 pub fn run_timeline(
     py: Python<'_>,
     scene: &Bound<'_, Scene>,
     ergonomics: Option<&str>,
+    solver: Option<&str>,
 ) -> PyResult<RunResult> {
     let s = scene.get();
     let (loaded, model) = (s.scene.clone(), s.model.clone());
+    let solver: Option<SolverKind> = solver
+        .map(|t| t.parse().map_err(PyValueError::new_err))
+        .transpose()?;
     let profile: ErgonomicProfile = match ergonomics {
         Some(text) => text
             .parse()
@@ -74,22 +78,32 @@ pub fn run_timeline(
     let (stubs, clips) = loaded
         .fastener_sites(&model)
         .map_err(|e| scene_error_message(py, format!("{}: {e}", loaded.source)))?;
-    let mut data = Collector::new(loaded.record_interval);
-    let (outcome, state) = py.allow_threads(|| {
-        let mut state = State::at_rest(&model);
-        let outcome = Runner::new(&model)
-            .with_ergonomics(profile)
-            .with_fasteners(stubs, clips)
-            .run(&loaded.timeline, &mut state, &mut data);
-        (outcome, state)
-    });
-    data.finish(&state);
-    let (run, divergence) = match outcome {
-        Ok(run) => (run, None),
-        Err(e) => (e.partial.clone(), Some(e.divergence)),
+    let setup = pliant_assembly::WorkcellSetup {
+        model: model.clone(),
+        stubs,
+        clips,
+        initial: loaded.initial_actions(),
+        profile,
     };
-    let message = divergence.as_ref().map(|d| d.to_string());
-    let v = verdict(&run, message.as_deref());
+    let options = WorkcellOptions {
+        solver,
+        ..Default::default()
+    };
+    let mut cell = Runner::from_setup(setup, options)
+        .workcell()
+        .map_err(|e| scene_error_message(py, format!("{}: {e}", loaded.source)))?;
+    let mut data = Collector::new(loaded.record_interval);
+    let outcome = py.allow_threads(|| run_on(&mut cell, &loaded.timeline, &mut data));
+    data.finish(cell.state());
+    let (run, divergence, stopped) = match outcome {
+        Ok(run) => (run, None, None),
+        Err(e) => (e.partial.clone(), e.divergence.clone(), Some(e.reason.clone())),
+    };
+    if let (None, Some(reason)) = (&divergence, &stopped) {
+        return Err(PyValueError::new_err(reason.clone()));
+    }
+    let message = stopped;
+    let v = Verdict::judge(&run, message.as_deref(), Stage::Final);
     let result = RunResult {
         scene_name: loaded.name.clone(),
         model,
@@ -303,7 +317,7 @@ impl RunResult {
                 &self.profile,
             )
             .map(|_| ())
-            .map_err(|e| format!("{e:#}"))
+            .map_err(|e| e.to_string())
         })
         .map_err(PyOSError::new_err)
     }

@@ -6,7 +6,6 @@
 //! implicit or Newton solver.
 
 use crate::engine::{Engine, Refusal};
-use glam::DVec3;
 use pliant_core::health::{check, Divergence};
 use pliant_core::relax::{RelaxOptions, RelaxReport};
 use pliant_core::State;
@@ -54,22 +53,16 @@ impl Engine {
                 for _ in 0..chunk {
                     self.step_once()?;
                     steps += 1;
-                    let energy = self.state.kinetic_energy(&self.model);
+                    let energy = self.state().kinetic_energy(self.model());
                     if opts.kinetic_damping && energy < last_energy {
-                        let s = &mut self.state;
-                        s.v.fill(DVec3::ZERO);
-                        s.w.fill(DVec3::ZERO);
-                        for b in s.bodies.iter_mut() {
-                            b.velocity = DVec3::ZERO;
-                            b.angular_velocity = DVec3::ZERO;
-                        }
+                        self.arrest();
                         last_energy = 0.0;
                     } else {
                         last_energy = energy;
                     }
                 }
-                check(&self.model, &self.state)?;
-                let (f, m) = residual(&self.state);
+                check(self.model(), self.state())?;
+                let (f, m) = residual(self.state());
                 if f <= opts.force_tolerance && m <= opts.moment_tolerance {
                     return Ok(RelaxReport {
                         steps,
@@ -79,8 +72,8 @@ impl Engine {
                     });
                 }
             }
-            check(&self.model, &self.state)?;
-            let (f, m) = residual(&self.state);
+            check(self.model(), self.state())?;
+            let (f, m) = residual(self.state());
             Ok(RelaxReport {
                 steps,
                 residual_force: f,
@@ -88,7 +81,6 @@ impl Engine {
                 converged: false,
             })
         })();
-        self.record(&outcome.as_ref().map(|_| ()).map_err(|d: &Divergence| d.clone()));
         Ok(outcome)
     }
 }

@@ -56,7 +56,7 @@ pub struct Simulation {
 
 impl Simulation {
     fn model(&self) -> &pliant_core::Model {
-        &self.engine.model
+        self.engine.model()
     }
 
     fn nodes(&self, hose: &HoseRef) -> PyResult<Range<usize>> {
@@ -71,7 +71,7 @@ impl Simulation {
         field: impl Fn(&State) -> &[DVec3],
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let r = self.nodes(hose)?;
-        Ok(vectors(py, field(&self.engine.state)[r].iter().copied()))
+        Ok(vectors(py, field(self.engine.state())[r].iter().copied()))
     }
 
     /// (hose name, local node) of a global node.
@@ -176,14 +176,12 @@ impl Simulation {
         } else {
             Vec::new()
         };
-        let mut engine = Engine::new(s.model.clone(), &s.scene, initial)
+        let kind: Option<pliant_core::SolverKind> = solver
+            .map(|name| name.parse())
+            .transpose()
+            .map_err(|e: String| PyValueError::new_err(format!("solver: {e}")))?;
+        let engine = Engine::new(s.model.clone(), &s.scene, initial, kind)
             .map_err(|e| scene_error_message(py, format!("{}: {e}", s.scene.source)))?;
-        if let Some(name) = solver {
-            let kind: pliant_core::SolverKind = name
-                .parse()
-                .map_err(|e: String| PyValueError::new_err(format!("solver: {e}")))?;
-            engine.set_solver(kind).map_err(PyValueError::new_err)?;
-        }
         Ok(Simulation {
             engine,
             scene: scene.unbind(),
@@ -199,7 +197,7 @@ impl Simulation {
     /// Simulated time [s].
     #[getter]
     fn time(&self) -> f64 {
-        self.engine.state.time
+        self.engine.state().time
     }
 
     /// Simulated time one step advances [s]: the explicit stable step, or the implicit /
@@ -225,7 +223,7 @@ impl Simulation {
     /// Steps taken since the start (or the last reset).
     #[getter]
     fn step_count(&self) -> u64 {
-        self.engine.state.step
+        self.engine.state().step
     }
 
     /// Hose names, in index order.
@@ -326,17 +324,13 @@ impl Simulation {
         check_tolerances(force_tolerance, moment_tolerance)?;
         let engine = &mut self.engine;
         let report = py.allow_threads(|| {
-            let mut solver = pliant_core::newton::StaticSolver::new(&engine.model)
-                .map_err(|e| e.to_string())?;
-            solver.options.force_tolerance = force_tolerance;
-            solver.options.moment_tolerance = moment_tolerance;
-            solver.options.max_iterations = max_iterations;
-            solver
-                .solve(&engine.model, &mut engine.state)
-                .map_err(|e| e.to_string())
+            engine.solve_static(force_tolerance, moment_tolerance, max_iterations)
         });
         let r = report.map_err(|e| {
-            pyo3::exceptions::PyRuntimeError::new_err(format!("static solve failed: {e}"))
+            let message = match e {
+                Refusal::Invalid(m) | Refusal::Missing(m) => m,
+            };
+            pyo3::exceptions::PyRuntimeError::new_err(message)
         })?;
         Ok(SettleReport::from(pliant_core::relax::RelaxReport {
             steps: r.iterations as u64,
@@ -390,7 +384,7 @@ impl Simulation {
     ) -> PyResult<LoadId> {
         let (_, i) = hose_node(self.model(), &hose, node)?;
         let duration = seconds(duration, "duration", false)?;
-        let waypoints = Self::waypoints(to, by, self.engine.state.x[i])?;
+        let waypoints = Self::waypoints(to, by, self.engine.state().x[i])?;
         let phi = rotate.map(|r| vec3(r, "rotate")).transpose()?.unwrap_or(DVec3::ZERO);
         let id = self
             .engine
@@ -424,7 +418,7 @@ impl Simulation {
         let (_, i) = hose_node(self.model(), &hose, node)?;
         let f = force.map(|v| vec3(v, "force")).transpose()?.unwrap_or(DVec3::ZERO);
         let m = moment.map(|v| vec3(v, "moment")).transpose()?.unwrap_or(DVec3::ZERO);
-        let id = self.engine.dead_load(i, f, m);
+        let id = self.engine.dead_load(i, f, m).map_err(refused)?;
         Ok(self.new_load(id))
     }
 
@@ -472,7 +466,7 @@ impl Simulation {
             (Some(p), None, None) => vec3(p, "at")?,
             (None, Some(h), Some(n)) => {
                 let (_, i) = hose_node(self.model(), &h, n)?;
-                self.engine.state.x[i]
+                self.engine.state().x[i]
             }
             _ => {
                 return Err(PyValueError::new_err(
@@ -569,6 +563,35 @@ impl Simulation {
         Ok(())
     }
 
+    /// Hand ``hand`` heads for ``position`` [m] (and ``orientation``, a quaternion
+    /// ``[w, x, y, z]``, if given) at bounded speed and acceleration (2 m/s, 20 m/s²) — as
+    /// a hand steered by a pointer or a VR controller in ``pliant serve`` does, and as
+    /// the timeline action ``aim_hand``. Returns at once; :meth:`run` lets it get there.
+    ///
+    /// >>> import pliant
+    /// >>> sim = pliant.Simulation(pliant.demo_scene())
+    /// >>> _ = sim.grab(0, hose="lower", node=-1)
+    /// >>> p = sim.hand_pose(0)[0]
+    /// >>> sim.aim_hand(0, [p[0], p[1], p[2] + 0.01])
+    /// >>> _ = sim.run(0.2)
+    /// >>> round(float(sim.hand_pose(0)[0][2] - p[2]), 6)
+    /// 0.01
+    #[pyo3(signature = (hand, position, orientation = None))]
+    fn aim_hand(
+        &mut self,
+        hand: u32,
+        position: &Bound<'_, PyAny>,
+        orientation: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let position = vec3(position, "position")?;
+        let orientation = orientation
+            .map(|q| quaternion(q, "orientation"))
+            .transpose()?;
+        self.engine
+            .aim_hand(hand, position, orientation)
+            .map_err(refused)
+    }
+
     /// Hand ``hand`` lets go: the beam's nodes move freely again.
     fn release(&mut self, hand: u32) -> PyResult<()> {
         self.engine.release(hand).map_err(refused)
@@ -635,7 +658,7 @@ impl Simulation {
         hose: HoseRef,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let r = self.nodes(&hose)?;
-        Ok(quaternions(py, self.engine.state.q[r].iter().copied()))
+        Ok(quaternions(py, self.engine.state().q[r].iter().copied()))
     }
 
     /// Node velocities [m/s], shape (N, 3).
@@ -686,7 +709,7 @@ impl Simulation {
     /// Whether a support held each node in the last step, shape (N,), bool.
     fn held<'py>(&self, py: Python<'py>, hose: HoseRef) -> PyResult<Bound<'py, PyArray1<bool>>> {
         let r = self.nodes(&hose)?;
-        Ok(PyArray1::from_slice(py, &self.engine.state.held[r]))
+        Ok(PyArray1::from_slice(py, &self.engine.state().held[r]))
     }
 
     /// Force the rigid parts applied to each node by contact in the last step [N], (N, 3).
@@ -727,19 +750,19 @@ impl Simulation {
     /// Kinetic energy [J].
     #[getter]
     fn kinetic_energy(&self) -> f64 {
-        self.engine.state.kinetic_energy(self.model())
+        self.engine.state().kinetic_energy(self.model())
     }
 
     /// Elastic strain energy [J].
     #[getter]
     fn strain_energy(&self) -> f64 {
-        self.engine.state.strain_energy(self.model())
+        self.engine.state().strain_energy(self.model())
     }
 
     /// Potential energy of gravity −Σ m g·x [J].
     #[getter]
     fn gravity_energy(&self) -> f64 {
-        self.engine.state.gravity_energy(self.model())
+        self.engine.state().gravity_energy(self.model())
     }
 
     /// The scene's stubs and clips now: name, kind, max_force [N], max_force_time [s],
@@ -751,8 +774,8 @@ impl Simulation {
     fn __repr__(&self) -> String {
         format!(
             "<pliant.Simulation t = {:.6} s, step {}, {} hose(s), {} hand(s) holding{}>",
-            self.engine.state.time,
-            self.engine.state.step,
+            self.engine.state().time,
+            self.engine.state().step,
             self.model().hoses.len(),
             self.engine.hands().len(),
             if self.engine.diverged().is_some() {

@@ -92,6 +92,7 @@ fn coolant_demo_scene_is_as_described() {
             Action::Unload { .. } => "unload",
             Action::Grab { .. } => "grab",
             Action::MoveHand { .. } => "move_hand",
+            Action::AimHand { .. } => "aim_hand",
             Action::ReleaseHand { .. } => "release_hand",
         })
         .collect();

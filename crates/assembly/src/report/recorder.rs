@@ -203,13 +203,15 @@ impl Recorder {
         Ok(())
     }
 
-    /// Records the final state and flushes everything.
+    /// Records the final state (unless it failed the health check) and flushes
+    /// everything.
     /// Returns the hand samples for the report.
     pub fn finish(mut self, model: &Model, state: &State) -> std::io::Result<Vec<HandSample>> {
         if let Some(e) = self.error.take() {
             return Err(e);
         }
-        if self.last_written != Some(state.time) {
+        let healthy = pliant_core::health::check(model, state).is_ok();
+        if healthy && self.last_written != Some(state.time) {
             self.next_vtk = 0.0; // the final state always gets a VTK frame
             self.write(model, state)?;
         }

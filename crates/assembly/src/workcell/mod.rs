@@ -698,6 +698,15 @@ impl Workcell {
         d
     }
 
+    /// Checks the state now; a divergence found stops the study (as in [`Self::step`]).
+    /// A study's shell calls it at the end, so that no non-finite state is reported.
+    pub fn check(&mut self) -> Result<(), Divergence> {
+        if let Some(d) = &self.diverged {
+            return Err(d.clone());
+        }
+        check(&self.model, &self.state).map_err(|d| self.fail(d))
+    }
+
     /// `n` steps, then a health check, so that a successful call never leaves
     /// non-finite values behind.
     pub fn steps(&mut self, n: u64, obs: &mut dyn Observer) -> Result<(), Divergence> {

@@ -58,7 +58,7 @@ pub fn replay(
             next += 1;
         }
         if cell.tick() >= end {
-            return Ok(());
+            return cell.check().map_err(ReplayError::Diverged);
         }
         if let Err(d) = cell.step(obs) {
             let answered = inputs
