@@ -24,10 +24,18 @@ pub fn run(
         None if Path::new("examples").is_dir() => "examples".into(),
         None => Default::default(),
     };
+    // every session is a recording (SPEC W2): the scene's copy and the input log go into
+    // a fresh folder under out/sessions as the session runs
+    let stamp = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    let folder = Path::new("out").join("sessions").join(format!("session-{stamp}"));
     let session = Session::start(
         &scene,
         SessionOptions {
             solver,
+            folder: Some(folder.clone()),
             ..SessionOptions::default()
         },
     )?;
@@ -55,9 +63,13 @@ pub fn run(
         // Scripts and tests read the URL from stdout: make sure it is not left buffered.
         use std::io::Write as _;
         let _ = std::io::stdout().flush();
+        println!(
+            "Recording the session in {d} — `pliant replay {d}` replays it and writes its report",
+            d = folder.display()
+        );
         tokio::select! {
             r = server.wait() => r.context("server failed")?,
-            _ = tokio::signal::ctrl_c() => println!("stopped"),
+            _ = tokio::signal::ctrl_c() => println!("stopped; the session is in {}", folder.display()),
         }
         Ok(ExitCode::SUCCESS)
     })

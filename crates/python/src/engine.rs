@@ -76,10 +76,6 @@ impl Engine {
         self.cell.state()
     }
 
-    pub fn workcell(&self) -> &Workcell {
-        &self.cell
-    }
-
     fn give(&mut self, input: Input) -> Result<Applied, Refusal> {
         self.cell.apply(input).map_err(Refusal::from)
     }

@@ -101,7 +101,7 @@ impl Simulation {
     fn new_load(&self, id: LoadCaseId) -> LoadId {
         let case = self
             .engine
-            .state
+            .state()
             .loads
             .iter()
             .find(|(i, _)| *i == id)

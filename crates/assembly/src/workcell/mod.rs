@@ -115,7 +115,7 @@ pub struct Workcell {
     /// Steps since the workcell was built, resets included (the stamp of inputs).
     tick: u64,
     log: Vec<StampedInput>,
-    sink: Option<Box<dyn Write + Send>>,
+    sink: Option<Box<dyn Write + Send + Sync>>,
     sink_error: Option<String>,
     diverged: Option<Divergence>,
 }
@@ -338,7 +338,7 @@ impl Workcell {
 
     /// From now on every input is also written to `sink` as one JSON line and flushed
     /// at once (a crash loses nothing taken before it). The caller writes the header.
-    pub fn log_to(&mut self, sink: Box<dyn Write + Send>) {
+    pub fn log_to(&mut self, sink: Box<dyn Write + Send + Sync>) {
         self.sink = Some(sink);
     }
 
