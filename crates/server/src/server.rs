@@ -4,6 +4,11 @@
 //! snapshot at most 60 times a second, skipping stale ones. A slow client only slows its
 //! own task; the simulation never waits. `load_scene` replaces the session for every
 //! client: each connection notices the new generation and sends a new `welcome`.
+//!
+//! One bad request never takes the server down: a panic while handling one client ends that
+//! client's connection only (it is caught, logged and its hands are released), a panic in
+//! the scene loader is an `invalid_scene` reply, and the shared locks recover from a panic
+//! of an earlier holder ([`lock`]).
 
 use crate::limits::{
     Admit, RateLimiter, HARD_MAX_MESSAGE_BYTES, MAX_MESSAGE_BYTES, MAX_SCENE_MESSAGE_BYTES,
@@ -17,12 +22,15 @@ use axum::extract::State;
 use axum::response::IntoResponse;
 use axum::routing::get;
 use axum::Router;
+use futures_util::FutureExt;
 use glam::{DQuat, DVec3};
 use pliant_assembly::ergonomics::{ErgonomicProfile, Posture};
+use std::any::Any;
 use std::net::SocketAddr;
+use std::panic::AssertUnwindSafe;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 use tokio::net::TcpListener;
 use tokio::sync::watch;
@@ -67,20 +75,46 @@ struct Shared {
 }
 
 impl Shared {
-    fn session(&self) -> Arc<Session> {
-        self.session.lock().unwrap().clone()
+    fn new(session: Session, config: &ServerConfig) -> Self {
+        Shared {
+            session: Mutex::new(Arc::new(session)),
+            generation: watch::channel(0).0,
+            ownership: Mutex::new(Ownership::default()),
+            next_client: AtomicU64::new(1),
+            scene_dir: config.scene_dir.clone(),
+        }
     }
+
+    fn session(&self) -> Arc<Session> {
+        lock(&self.session).clone()
+    }
+}
+
+/// Locks `m` even if an earlier holder panicked. A std `Mutex` is poisoned when a thread
+/// panics while holding it, and `lock().unwrap()` would then panic for every later client:
+/// one bad request would refuse all clients after it. Taking the data over is sound here:
+/// the server's locks guard an `Arc<Session>` that is replaced in one assignment and the
+/// hand [`Ownership`] table, changed by single map operations, so a panic cannot leave
+/// either half-updated. Every lock of the server goes through this function.
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// The message of a caught panic, for the log and error replies.
+fn panic_message(payload: &(dyn Any + Send)) -> &str {
+    payload
+        .downcast_ref::<&str>()
+        .copied()
+        .or_else(|| payload.downcast_ref::<String>().map(String::as_str))
+        .unwrap_or("no message")
 }
 
 /// The router for one session.
 pub fn router(session: Session, config: &ServerConfig) -> Router {
-    let shared = Arc::new(Shared {
-        session: Mutex::new(Arc::new(session)),
-        generation: watch::channel(0).0,
-        ownership: Mutex::new(Ownership::default()),
-        next_client: AtomicU64::new(1),
-        scene_dir: config.scene_dir.clone(),
-    });
+    router_on(Arc::new(Shared::new(session, config)))
+}
+
+fn router_on(shared: Arc<Shared>) -> Router {
     Router::new()
         .route("/ws", get(ws_upgrade))
         .fallback(get(crate::assets::static_file))
@@ -139,15 +173,25 @@ async fn ws_upgrade(ws: WebSocketUpgrade, State(shared): State<Arc<Shared>>) -> 
         .max_frame_size(HARD_MAX_MESSAGE_BYTES)
         .on_upgrade(move |socket| async move {
             let client = shared.next_client.fetch_add(1, Ordering::SeqCst);
-            connection(socket, client, &shared).await;
+            // A panic while serving this client ends its connection only: it is caught
+            // here and logged, and the client's hands are released as on a disconnect.
+            // (axum runs this future in its own task, so tokio would contain the panic
+            // too, but silently and with the hands still held.) Unwind safety: what the
+            // connection shares with others is behind `lock`, atomics and watch channels.
+            let served = AssertUnwindSafe(connection(socket, client, &shared))
+                .catch_unwind()
+                .await;
+            if let Err(panic) = served {
+                eprintln!(
+                    "pliant serve: internal error while serving client {client} (panic: {}); \
+                     its connection is closed, other clients carry on",
+                    panic_message(&*panic)
+                );
+            }
             // A disconnecting client's hands are released.
             let session = shared.session();
             let epoch = session.epoch();
-            let mine = shared
-                .ownership
-                .lock()
-                .unwrap()
-                .release_all_of(client, epoch);
+            let mine = lock(&shared.ownership).release_all_of(client, epoch);
             for hand in mine {
                 session.send(Command::Release { hand });
             }
@@ -197,6 +241,16 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
         tokio::select! {
             incoming = socket.recv() => {
                 let Some(Ok(msg)) = incoming else { return };
+                // The reply to a command is the first snapshot published after it, so the
+                // snapshots published so far are marked seen *before* the command reaches
+                // the simulation: marked after, a snapshot published in between (at once,
+                // for a `step` while paused) would be taken for an old one and, paused,
+                // nothing newer would ever come. Restored if the message is refused.
+                let track = welcomed && !input_pending;
+                let unsent = track && snapshots.has_changed().unwrap_or(false);
+                if track {
+                    snapshots.mark_unchanged();
+                }
                 let reply = match msg {
                     Message::Text(text) => match limiter.admit(Instant::now()) {
                         Admit::Yes => handle_text(text.as_str(), client, shared, &mut welcomed),
@@ -214,10 +268,11 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
                     _ => Reply::None,
                 };
                 let accepted = matches!(reply, Reply::None | Reply::LoadScene { .. });
-                if accepted && welcomed && !input_pending {
+                if track && accepted {
                     // wait for a snapshot published after this command, and send it soon
                     input_pending = true;
-                    snapshots.mark_unchanged();
+                } else if unsent {
+                    snapshots.mark_changed();
                 }
                 let reply = match reply {
                     Reply::None => None,
@@ -227,7 +282,15 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
                         match tokio::task::spawn_blocking(move || load_scene(&shared, &text, json, &name)).await {
                             Ok(Ok(())) => None, // the new welcome follows through `generation`
                             Ok(Err(e)) => Some(e),
-                            Err(_) => Some(error_json(ErrorCode::InvalidScene, "the scene loader failed")),
+                            Err(e) => {
+                                // a panic in the loader: this request fails, nothing else
+                                let why = match e.try_into_panic() {
+                                    Ok(panic) => format!("the scene loader failed (panic: {})", panic_message(&*panic)),
+                                    Err(_) => "the scene loader was cancelled".to_owned(),
+                                };
+                                eprintln!("pliant serve: load_scene from client {client}: {why}");
+                                Some(error_json(ErrorCode::InvalidScene, why))
+                            }
                         }
                     }
                 };
@@ -269,6 +332,11 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
 /// Loads a scene sent by a client and makes it the session of every client. On error the
 /// old session keeps running and the error (with the loader's message) is returned.
 fn load_scene(shared: &Shared, text: &str, json: bool, name: &str) -> Result<(), String> {
+    #[cfg(test)]
+    if name == tests::PANIC_IN_LOADER {
+        let _held = shared.session.lock(); // poisons it
+        panic!("test hook: the loader panics");
+    }
     let invalid = |m: String| error_json(ErrorCode::InvalidScene, m);
     let scene = if json {
         pliant_scene::load_scene_json_str_in(text, name, &shared.scene_dir)
@@ -279,8 +347,8 @@ fn load_scene(shared: &Shared, text: &str, json: bool, name: &str) -> Result<(),
     let session =
         Session::start(&scene, SessionOptions::default()).map_err(|e| invalid(e.to_string()))?;
     let old = {
-        let mut current = shared.session.lock().unwrap();
-        shared.ownership.lock().unwrap().clear();
+        let mut current = lock(&shared.session);
+        lock(&shared.ownership).clear();
         std::mem::replace(&mut *current, Arc::new(session))
     };
     shared.generation.send_modify(|g| *g += 1);
@@ -301,6 +369,11 @@ fn handle_text(text: &str, client: ClientId, shared: &Shared, welcomed: &mut boo
     };
     if text.len() > MAX_SCENE_MESSAGE_BYTES {
         return too_large();
+    }
+    #[cfg(test)]
+    if text == tests::PANIC_HOLDING_LOCKS {
+        let _held = (shared.session.lock(), shared.ownership.lock()); // poisons both
+        panic!("test hook: a handler panics");
     }
     let msg: ClientMessage = match serde_json::from_str(text) {
         Ok(m) => m,
@@ -422,10 +495,7 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
         )?),
         ClientMessage::Grab { hand_id, position } => {
             let position = point(position)?;
-            shared
-                .ownership
-                .lock()
-                .unwrap()
+            lock(&shared.ownership)
                 .grab(client, hand_id, session.epoch())
                 .map_err(|r| refusal(r, hand_id))?;
             Command::Grab {
@@ -452,10 +522,7 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
                     Some(q.normalize())
                 }
             };
-            shared
-                .ownership
-                .lock()
-                .unwrap()
+            lock(&shared.ownership)
                 .check(client, hand_id, session.epoch())
                 .map_err(|r| refusal(r, hand_id))?;
             Command::Move {
@@ -465,10 +532,7 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
             }
         }
         ClientMessage::Release { hand_id } => {
-            shared
-                .ownership
-                .lock()
-                .unwrap()
+            lock(&shared.ownership)
                 .release(client, hand_id, session.epoch())
                 .map_err(|r| refusal(r, hand_id))?;
             Command::Release { hand: hand_id }
@@ -485,7 +549,7 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
             Command::Step(n)
         }
         ClientMessage::Reset => {
-            let mut o = shared.ownership.lock().unwrap();
+            let mut o = lock(&shared.ownership);
             o.clear();
             session.bump_epoch();
             Command::Reset
@@ -494,3 +558,6 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
     session.send(command);
     Ok(())
 }
+
+#[cfg(test)]
+mod tests;
