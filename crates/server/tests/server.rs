@@ -1,6 +1,12 @@
 //! The server over real WebSocket connections on the loopback interface (ephemeral port):
 //! welcome and snapshots, hands, bad input, floods, several clients, ownership, slow
-//! clients. Every wait is bounded.
+//! clients.
+//!
+//! No test depends on the machine's speed (they run on two shared, often loaded cores): every
+//! wait is for a condition — a message that shows it, such as a snapshot whose simulated
+//! time or step count has advanced — and [`HANG_GUARD`] only stops a hung test. Nothing here
+//! asserts a wall-clock duration, latency or rate; the latency measurement is an ignored
+//! test that only prints (the viewer's own is `npm run bench:latency` in web/).
 
 use futures_util::{SinkExt, StreamExt};
 use pliant_server::session::SessionOptions;
@@ -12,7 +18,9 @@ use tokio_tungstenite::tungstenite::Message;
 use tokio_tungstenite::{MaybeTlsStream, WebSocketStream};
 
 type Ws = WebSocketStream<MaybeTlsStream<TcpStream>>;
-const WAIT: Duration = Duration::from_secs(10);
+/// The longest any single wait may take before the test fails as hung. A hang guard, not a
+/// performance expectation: it is far above what a slow, loaded machine needs.
+const HANG_GUARD: Duration = Duration::from_secs(300);
 
 async fn server() -> RunningServer {
     server_with(SessionOptions::default()).await
@@ -40,14 +48,14 @@ async fn send(ws: &mut Ws, v: Value) {
     ws.send(Message::text(v.to_string())).await.unwrap();
 }
 
-/// Next message of `type` satisfying `pred`, within WAIT.
+/// Next message of `type` satisfying `pred` (failing only after HANG_GUARD).
 async fn next_where(ws: &mut Ws, ty: &str, pred: impl Fn(&Value) -> bool) -> Value {
-    let deadline = Instant::now() + WAIT;
+    let deadline = Instant::now() + HANG_GUARD;
     loop {
         let left = deadline.saturating_duration_since(Instant::now());
         let msg = tokio::time::timeout(left, ws.next())
             .await
-            .unwrap_or_else(|_| panic!("no {ty} message in time"))
+            .unwrap_or_else(|_| panic!("no {ty} message within the hang guard ({HANG_GUARD:?})"))
             .expect("connection open")
             .expect("message");
         if let Message::Text(t) = msg {
@@ -126,7 +134,7 @@ async fn reqwest_free_get(s: &RunningServer) -> String {
         .await
         .unwrap();
     let mut out = String::new();
-    tokio::time::timeout(WAIT, c.read_to_string(&mut out))
+    tokio::time::timeout(HANG_GUARD, c.read_to_string(&mut out))
         .await
         .unwrap()
         .unwrap();
@@ -226,6 +234,9 @@ async fn a_flood_is_rate_limited_and_the_server_stays_responsive() {
     let s = server().await;
     let mut ws = connect(&s).await;
     hello(&mut ws).await;
+    // 1000 messages in one write: over the limit (a burst of 200, then 200/s) unless the
+    // server took over 4 s to read them — the one wall-clock margin here, by the limit's
+    // nature, and a wide one.
     for _ in 0..1000 {
         ws.feed(Message::text(r#"{"type":"resume"}"#))
             .await
@@ -288,13 +299,16 @@ async fn the_simulation_keeps_stepping_while_a_client_does_not_read() {
     let t0 = next_where(&mut watcher, "snapshot", |_| true).await["time"]
         .as_f64()
         .unwrap();
-    // `slow` reads nothing for a second while snapshots pile up for it.
-    tokio::time::sleep(Duration::from_millis(1000)).await;
-    let t1 = next_where(&mut watcher, "snapshot", |_| true).await["time"]
+    // `slow` reads nothing while the simulation advances a second of simulated time (the
+    // watcher sees it: a condition, however long the machine takes for it) and snapshots
+    // pile up for `slow`.
+    let t1 = next_where(&mut watcher, "snapshot", |v| {
+        v["time"].as_f64().unwrap() >= t0 + 1.0
+    })
+    .await["time"]
         .as_f64()
         .unwrap();
-    assert!(t1 > t0, "{t0} → {t1}");
-    // `slow` then gets snapshots again.
+    // `slow` then gets snapshots again, up to date.
     next_where(&mut slow, "snapshot", |v| v["time"].as_f64().unwrap() >= t1).await;
 }
 
@@ -315,8 +329,10 @@ async fn pause_step_and_reset() {
     next_where(&mut ws, "snapshot", |v| v["step"] == 0 && v["epoch"] == 1).await;
 }
 
-/// Latency from a `move` to the first snapshot that shows the new target (a measurement,
-/// not an assertion). `cargo test --release -p pliant-server -- --ignored --nocapture`.
+/// Latency from a `move` to the first snapshot that shows the new target: a measurement
+/// that asserts nothing about time (it depends on the machine and its load), hence ignored.
+/// `cargo test --release -p pliant-server -- --ignored --nocapture`; the viewer's
+/// end-to-end latency benchmark is `npm run bench:latency` in web/.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 #[ignore]
 async fn measure_move_to_snapshot_latency() {
@@ -530,12 +546,32 @@ async fn resting_hoses_sleep_and_a_grab_wakes_them() {
 /// A hand does not start or stop instantly (acceleration ≤ HAND_MAX_ACCEL): lifting the
 /// lower hose's middle 12 cm at once gives no inertial spike — the largest hand force on
 /// the way stays within 1.5 times the force that holds it there once it has settled.
+///
+/// The session starts paused and advances only by `step` requests, so that the run is the
+/// same however fast the machine is: in real time a loaded machine applies the grab at a
+/// later, different moment of the hose's initial sag (the test once failed so under load,
+/// peak 2.8x the settled force). The force is sampled every 1/120 s of simulated time.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_sudden_move_gives_no_inertial_force_spike() {
-    let s = server().await;
+    let s = server_with(SessionOptions {
+        paused: true,
+        ..SessionOptions::default()
+    })
+    .await;
     let mut ws = connect(&s).await;
     hello(&mut ws).await;
-    let snap = next_where(&mut ws, "snapshot", |v| v["time"].as_f64() > Some(0.5)).await;
+    let paused = next_where(&mut ws, "snapshot", |v| v["paused"] == true).await;
+    // step past 0.5 s of simulated time, where the hose has sagged, and grab there
+    let mut step = paused["step"].as_u64().unwrap();
+    assert_eq!(step, 0);
+    let mut snap = paused;
+    while snap["time"].as_f64().unwrap() <= 0.5 {
+        send(&mut ws, json!({"type": "step", "n": 1000})).await;
+        step += 1000;
+        snap = next_where(&mut ws, "snapshot", |v| v["step"].as_u64() == Some(step)).await;
+    }
+    let dt = snap["time"].as_f64().unwrap() / step as f64;
+    let chunk = ((1.0 / 120.0 / dt).round() as u64).clamp(1, 100_000);
     let n = snap["hoses"][1]["positions"].as_array().unwrap().len();
     let p0 = node(&snap, 1, n / 2);
     send(
@@ -552,10 +588,13 @@ async fn a_sudden_move_gives_no_inertial_force_spike() {
         v["hands"].as_array().is_some_and(|h| h.len() == 1)
     })
     .await;
+    assert_eq!(start["step"].as_u64(), Some(step), "grabbed while paused");
     let t0 = start["time"].as_f64().unwrap();
     let (mut peak, mut last): (f64, f64) = (0.0, 0.0);
     loop {
-        let v = next_where(&mut ws, "snapshot", |_| true).await;
+        send(&mut ws, json!({"type": "step", "n": chunk})).await;
+        step += chunk;
+        let v = next_where(&mut ws, "snapshot", |v| v["step"].as_u64() == Some(step)).await;
         if let Some(h) = v["hands"].as_array().and_then(|h| h.first()) {
             last = force(h);
             peak = peak.max(last);
