@@ -49,7 +49,7 @@ impl Verdict {
         let mut reasons = Vec::new();
         let mut pending = Vec::new();
         if let Some(d) = diverged {
-            reasons.push(format!("the study stopped early: {d}"));
+            reasons.push(format!("the simulation stopped early: {d}"));
         }
         let mut exceeded = false;
         for h in &run.hand_peaks {
@@ -57,14 +57,13 @@ impl Verdict {
             if h.worst_ratio > 1.0 {
                 exceeded = true;
                 reasons.push(format!(
-                    "hand {}: {} of {:.1} {u} at t = {:.2} s exceeds the limit {:.1} {u} ({:.0} % of it)",
+                    "hand {}: {} of {:.1} at t = {:.2} s exceeds the limit {:.1} ({:.0} % of it)",
                     h.hand,
                     kind_name(kind),
                     h.worst_magnitude,
                     h.worst_time,
                     h.worst_limit,
                     100.0 * h.worst_ratio,
-                    u = unit(kind),
                 ));
             }
         }
@@ -131,7 +130,7 @@ impl Verdict {
                 })
                 .unwrap_or_default();
             reasons.push(match stage {
-                Stage::Final => format!("every hand load stayed within its ergonomic limit value, and every stub and clip was fitted{detail}"),
+                Stage::Final => "every hand load stayed within its ergonomic limit value, and every stub and clip was fitted".to_string(),
                 Stage::Running => format!("every hand load so far is within its ergonomic limit value{detail}"),
             });
         }
