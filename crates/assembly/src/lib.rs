@@ -8,10 +8,10 @@ pub mod clip;
 pub mod ergonomics;
 pub mod fasteners;
 pub mod hand;
+pub mod report;
 pub mod runner;
 pub mod stub;
 pub mod timeline;
-pub mod report;
 pub mod workcell;
 
 pub use fasteners::{ClipSite, FastenerReport, FastenerSample, StubSite};
@@ -19,7 +19,6 @@ pub use hand::{Hand, HandLoad};
 pub use runner::{run_timeline, RunError, Runner};
 pub use timeline::{Action, MovePath, NodeRef, Rotation, Timeline};
 pub use workcell::{
-    Applied, ContactEpisode, HandPeak, HandRecord, Input, NoObserver, NodePeak, Observer,
-    Refusal, RunSummary, SettleOutcome, Stage, Verdict, Workcell, WorkcellOptions,
-    WorkcellSetup,
+    Applied, ContactEpisode, HandPeak, HandRecord, Input, NoObserver, NodePeak, Observer, Refusal,
+    RunSummary, SettleOutcome, Stage, Verdict, Workcell, WorkcellOptions, WorkcellSetup,
 };

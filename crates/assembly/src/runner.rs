@@ -17,9 +17,7 @@ use pliant_core::health::Divergence;
 use pliant_core::{Model, SolverKind, State};
 use std::sync::Arc;
 
-pub use crate::workcell::{
-    ContactEpisode, HandPeak, HandRecord, NoObserver, NodePeak,
-};
+pub use crate::workcell::{ContactEpisode, HandPeak, HandRecord, NoObserver, NodePeak};
 
 /// How often `Settle` looks at the kinetic energy, in steps.
 const SETTLE_CHECK_EVERY: u64 = 16;

@@ -10,7 +10,6 @@ mod run_cmd;
 mod serve_cmd;
 mod validate_cmd;
 
-
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -36,7 +36,8 @@ impl Observer for Progress {
     fn on_action(&mut self, index: usize, action: &Action, _state: &State) {
         let name = format!("{action:?}");
         let short = name.split([' ', '{', '(']).next().unwrap_or("").to_string();
-        self.bar.set_message(format!("action {}: {short}", index + 1));
+        self.bar
+            .set_message(format!("action {}: {short}", index + 1));
     }
 
     fn on_step(&mut self, time: f64) {

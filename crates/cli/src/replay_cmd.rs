@@ -23,7 +23,10 @@ pub fn run(
         let text = pliant_scene::session::log_to_scene(&s.scene, &s.log, cell.time_step())
             .map_err(|e| anyhow!(e))?;
         std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))?;
-        eprintln!("pliant: the session as a scene timeline: {}", path.display());
+        eprintln!(
+            "pliant: the session as a scene timeline: {}",
+            path.display()
+        );
     }
     let default_out = if session.is_dir() {
         session.join("replay")

@@ -6,9 +6,9 @@ use anyhow::{anyhow, Context};
 use pliant_assembly::ergonomics::ErgonomicProfile;
 use pliant_assembly::report::{write_outputs, Both, Outputs, Recorder, Summary};
 use pliant_assembly::{run_timeline, Runner, Verdict, WorkcellOptions};
+use pliant_cli::table::peak_table;
 use pliant_core::SolverKind;
 use pliant_scene::{demo_scene, load_scene_file};
-use pliant_cli::table::peak_table;
 use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -54,7 +54,10 @@ pub fn run(
     );
     let solver_kind = cell.solver().kind();
     if solver_kind != SolverKind::Explicit {
-        eprintln!("pliant: solver {solver_kind}, step {:.3e} s", cell.time_step());
+        eprintln!(
+            "pliant: solver {solver_kind}, step {:.3e} s",
+            cell.time_step()
+        );
     }
     let planned = Runner::planned_duration(&scene.timeline);
     let mut recorder = Recorder::create(out, &model, scene.record_interval, planned)
@@ -73,7 +76,10 @@ pub fn run(
         .context("writing outputs")?;
     let (run, stopped) = match outcome {
         Ok(run) => (run, None),
-        Err(e) => (e.partial.clone(), Some((e.reason.clone(), e.divergence.is_some()))),
+        Err(e) => (
+            e.partial.clone(),
+            Some((e.reason.clone(), e.divergence.is_some())),
+        ),
     };
     let outputs = Outputs {
         scene_name: &scene.name,

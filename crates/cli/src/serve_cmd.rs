@@ -30,7 +30,9 @@ pub fn run(
         .duration_since(std::time::UNIX_EPOCH)
         .map(|d| d.as_secs())
         .unwrap_or(0);
-    let folder = Path::new("out").join("sessions").join(format!("session-{stamp}"));
+    let folder = Path::new("out")
+        .join("sessions")
+        .join(format!("session-{stamp}"));
     let session = Session::start(
         &scene,
         SessionOptions {

@@ -36,8 +36,11 @@ pub fn hose_index(model: &Model, hose: &HoseRef) -> PyResult<usize> {
             .iter()
             .position(|h| h.name == *name)
             .ok_or_else(|| {
-                let names: Vec<String> =
-                    model.hoses.iter().map(|h| format!("'{}'", h.name)).collect();
+                let names: Vec<String> = model
+                    .hoses
+                    .iter()
+                    .map(|h| format!("'{}'", h.name))
+                    .collect();
                 PyValueError::new_err(format!(
                     "no hose named '{name}'; the scene's hoses are {}",
                     names.join(", ")
@@ -69,9 +72,9 @@ pub fn hose_node(model: &Model, hose: &HoseRef, node: i64) -> PyResult<(usize, u
 
 /// A finite 3-vector from a sequence or array of three numbers.
 pub fn vec3(value: &Bound<'_, PyAny>, what: &str) -> PyResult<DVec3> {
-    let a: PyArrayLike1<'_, f64, AllowTypeChange> = value.extract().map_err(|_| {
-        PyValueError::new_err(format!("{what} must be three numbers [x, y, z]"))
-    })?;
+    let a: PyArrayLike1<'_, f64, AllowTypeChange> = value
+        .extract()
+        .map_err(|_| PyValueError::new_err(format!("{what} must be three numbers [x, y, z]")))?;
     let v = a.as_array();
     if v.len() != 3 {
         return Err(PyValueError::new_err(format!(
@@ -119,9 +122,9 @@ pub fn points(value: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<DVec3>> {
 
 /// A unit quaternion from (w, x, y, z) (normalised; must not be zero).
 pub fn quaternion(value: &Bound<'_, PyAny>, what: &str) -> PyResult<DQuat> {
-    let a: PyArrayLike1<'_, f64, AllowTypeChange> = value.extract().map_err(|_| {
-        PyValueError::new_err(format!("{what} must be a quaternion (w, x, y, z)"))
-    })?;
+    let a: PyArrayLike1<'_, f64, AllowTypeChange> = value
+        .extract()
+        .map_err(|_| PyValueError::new_err(format!("{what} must be a quaternion (w, x, y, z)")))?;
     let v = a.as_array();
     if v.len() != 4 {
         return Err(PyValueError::new_err(format!(

@@ -3,8 +3,8 @@
 //! samples (same times, so the same fastener series and report plots).
 
 use glam::DVec3;
-use pliant_assembly::{HandRecord, Observer};
 use pliant_assembly::report::HandSample;
+use pliant_assembly::{HandRecord, Observer};
 use pliant_core::{Model, State};
 
 /// Collects a run.

@@ -22,7 +22,10 @@ fn _pliant(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("SceneError", py.get_type::<errors::SceneError>())?;
-    m.add("SimulationDiverged", py.get_type::<errors::SimulationDiverged>())?;
+    m.add(
+        "SimulationDiverged",
+        py.get_type::<errors::SimulationDiverged>(),
+    )?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<simulation::Simulation>()?;
     m.add_class::<load_id::LoadId>()?;

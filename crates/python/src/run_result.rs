@@ -11,7 +11,9 @@ use glam::DVec3;
 use numpy::{PyArray1, PyArray3};
 use pliant_assembly::ergonomics::ErgonomicProfile;
 use pliant_assembly::report::write_reports;
-use pliant_assembly::{run_timeline as run_on, RunSummary, Runner, Stage, Verdict, WorkcellOptions};
+use pliant_assembly::{
+    run_timeline as run_on, RunSummary, Runner, Stage, Verdict, WorkcellOptions,
+};
 use pliant_core::{Model, SolverKind};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
@@ -97,7 +99,11 @@ pub fn run_timeline(
     data.finish(cell.state());
     let (run, divergence, stopped) = match outcome {
         Ok(run) => (run, None, None),
-        Err(e) => (e.partial.clone(), e.divergence.clone(), Some(e.reason.clone())),
+        Err(e) => (
+            e.partial.clone(),
+            e.divergence.clone(),
+            Some(e.reason.clone()),
+        ),
     };
     if let (None, Some(reason)) = (&divergence, &stopped) {
         return Err(PyValueError::new_err(reason.clone()));
@@ -224,7 +230,11 @@ impl RunResult {
     }
 
     /// A hose's node positions at the recorded times [m], shape (K, N, 3).
-    fn positions<'py>(&self, py: Python<'py>, hose: HoseRef) -> PyResult<Bound<'py, PyArray3<f64>>> {
+    fn positions<'py>(
+        &self,
+        py: Python<'py>,
+        hose: HoseRef,
+    ) -> PyResult<Bound<'py, PyArray3<f64>>> {
         let h = hose_index(&self.model, &hose)?;
         let nodes = self.model.hoses[h].nodes();
         let total = self.model.node_count();
@@ -266,23 +276,51 @@ impl RunResult {
         d.set_item("time", scalars(py, mine.iter().map(|(t, _)| *t).collect()))?;
         d.set_item(
             "position",
-            vectors(py, mine.iter().map(|(_, r)| r.load.position).collect::<Vec<DVec3>>().into_iter()),
+            vectors(
+                py,
+                mine.iter()
+                    .map(|(_, r)| r.load.position)
+                    .collect::<Vec<DVec3>>()
+                    .into_iter(),
+            ),
         )?;
         d.set_item(
             "force",
-            vectors(py, mine.iter().map(|(_, r)| r.load.force).collect::<Vec<DVec3>>().into_iter()),
+            vectors(
+                py,
+                mine.iter()
+                    .map(|(_, r)| r.load.force)
+                    .collect::<Vec<DVec3>>()
+                    .into_iter(),
+            ),
         )?;
         d.set_item(
             "torque",
-            vectors(py, mine.iter().map(|(_, r)| r.load.torque).collect::<Vec<DVec3>>().into_iter()),
+            vectors(
+                py,
+                mine.iter()
+                    .map(|(_, r)| r.load.torque)
+                    .collect::<Vec<DVec3>>()
+                    .into_iter(),
+            ),
         )?;
         d.set_item(
             "ratio",
-            scalars(py, mine.iter().map(|(_, r)| worst(r).map_or(0.0, |w| w.ratio)).collect()),
+            scalars(
+                py,
+                mine.iter()
+                    .map(|(_, r)| worst(r).map_or(0.0, |w| w.ratio))
+                    .collect(),
+            ),
         )?;
         d.set_item(
             "limit",
-            scalars(py, mine.iter().map(|(_, r)| worst(r).map_or(0.0, |w| w.limit)).collect()),
+            scalars(
+                py,
+                mine.iter()
+                    .map(|(_, r)| worst(r).map_or(0.0, |w| w.limit))
+                    .collect(),
+            ),
         )?;
         d.set_item(
             "colour",

@@ -6,7 +6,7 @@
 //! one) is one more method here calling its own file's `Engine` method.
 
 use crate::args::{hose_index, hose_node, points, quaternion, seconds, vec3, HoseRef};
-use crate::arrays::{quaternion as quat_array, to_python, vector, vectors, quaternions};
+use crate::arrays::{quaternion as quat_array, quaternions, to_python, vector, vectors};
 use crate::engine::{initial_actions, Engine, Refusal};
 use crate::errors::{diverged, scene_error_message};
 use crate::hand_load::HandLoad;
@@ -80,7 +80,9 @@ impl Simulation {
             .hoses
             .iter()
             .find(|h| h.nodes().contains(&node))
-            .map_or(("?".into(), node), |h| (h.name.clone(), node - h.first_node))
+            .map_or(("?".into(), node), |h| {
+                (h.name.clone(), node - h.first_node)
+            })
     }
 
     fn load_id(&self, id: LoadCaseId, case: &LoadCase) -> LoadId {
@@ -385,7 +387,10 @@ impl Simulation {
         let (_, i) = hose_node(self.model(), &hose, node)?;
         let duration = seconds(duration, "duration", false)?;
         let waypoints = Self::waypoints(to, by, self.engine.state().x[i])?;
-        let phi = rotate.map(|r| vec3(r, "rotate")).transpose()?.unwrap_or(DVec3::ZERO);
+        let phi = rotate
+            .map(|r| vec3(r, "rotate"))
+            .transpose()?
+            .unwrap_or(DVec3::ZERO);
         let id = self
             .engine
             .drive(i, &waypoints, phi, duration)
@@ -416,8 +421,14 @@ impl Simulation {
         moment: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<LoadId> {
         let (_, i) = hose_node(self.model(), &hose, node)?;
-        let f = force.map(|v| vec3(v, "force")).transpose()?.unwrap_or(DVec3::ZERO);
-        let m = moment.map(|v| vec3(v, "moment")).transpose()?.unwrap_or(DVec3::ZERO);
+        let f = force
+            .map(|v| vec3(v, "force"))
+            .transpose()?
+            .unwrap_or(DVec3::ZERO);
+        let m = moment
+            .map(|v| vec3(v, "moment"))
+            .transpose()?
+            .unwrap_or(DVec3::ZERO);
         let id = self.engine.dead_load(i, f, m).map_err(refused)?;
         Ok(self.new_load(id))
     }
@@ -634,11 +645,7 @@ impl Simulation {
     }
 
     /// The torque [N·m] hand ``hand`` applied about its position in the last step, (3,).
-    fn hand_torque<'py>(
-        &self,
-        py: Python<'py>,
-        hand: u32,
-    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    fn hand_torque<'py>(&self, py: Python<'py>, hand: u32) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let (load, _) = self.engine.hand_load(hand).map_err(refused)?;
         Ok(vector(py, load.torque))
     }
@@ -646,7 +653,11 @@ impl Simulation {
     // ---- arrays -----------------------------------------------------------------
 
     /// Node positions of a hose [m], shape (N, 3), float64 (a copy).
-    fn positions<'py>(&self, py: Python<'py>, hose: HoseRef) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn positions<'py>(
+        &self,
+        py: Python<'py>,
+        hose: HoseRef,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         self.vector_field(py, &hose, |s| &s.x)
     }
 
@@ -662,7 +673,11 @@ impl Simulation {
     }
 
     /// Node velocities [m/s], shape (N, 3).
-    fn velocities<'py>(&self, py: Python<'py>, hose: HoseRef) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn velocities<'py>(
+        &self,
+        py: Python<'py>,
+        hose: HoseRef,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         self.vector_field(py, &hose, |s| &s.v)
     }
 

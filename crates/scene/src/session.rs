@@ -60,8 +60,12 @@ impl Session {
             path.parent().map(Path::to_path_buf).unwrap_or_default()
         };
         let file = dir.join(&log.header.scene_file);
-        let text = std::fs::read_to_string(&file)
-            .map_err(|e| format!("{}: cannot read the session's scene copy: {e}", file.display()))?;
+        let text = std::fs::read_to_string(&file).map_err(|e| {
+            format!(
+                "{}: cannot read the session's scene copy: {e}",
+                file.display()
+            )
+        })?;
         let origin = file.display().to_string();
         let base = Path::new(&log.header.scene_base_dir);
         let scene = if log.header.scene_file.ends_with(".json") {
@@ -115,7 +119,10 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
         (Some(Value::Array(a)), true) => a
             .iter()
             .take_while(|e| {
-                matches!(e.get("action").and_then(Value::as_str), Some("fix" | "load"))
+                matches!(
+                    e.get("action").and_then(Value::as_str),
+                    Some("fix" | "load")
+                )
             })
             .cloned()
             .collect(),
@@ -132,7 +139,10 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
         Value::Table(t)
     };
     let node = |t: &mut Table, n: &pliant_assembly::NodeRef| {
-        t.insert("hose".into(), Value::String(scene.hose_names[n.hose].clone()));
+        t.insert(
+            "hose".into(),
+            Value::String(scene.hose_names[n.hose].clone()),
+        );
         t.insert("node".into(), Value::Integer(n.node as i64));
     };
     let mut hand_numbers: Vec<u32> = Vec::new();

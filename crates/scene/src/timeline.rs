@@ -3,8 +3,8 @@
 
 use crate::error::FieldError;
 use crate::format::{
-    ActionEntry, AimHandEntry, GrabEntry, HandEntry, LoadEntry, MoveEntry, MoveHandEntry, NodeEntry, Points,
-    RotateEntry, RunEntry, SettleEntry,
+    ActionEntry, AimHandEntry, GrabEntry, HandEntry, LoadEntry, MoveEntry, MoveHandEntry,
+    NodeEntry, Points, RotateEntry, RunEntry, SettleEntry,
 };
 use crate::units::LengthUnit;
 use crate::validate::{finite, finite_vec, node_index, non_zero_vec, positive};

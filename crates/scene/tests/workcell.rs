@@ -54,16 +54,32 @@ fn assert_same(a: &Workcell, b: &Workcell) {
     assert_eq!(sa.step, sb.step);
     assert_eq!(sa.time.to_bits(), sb.time.to_bits());
     for i in 0..sa.x.len() {
-        assert_eq!(sa.x[i].to_array().map(f64::to_bits), sb.x[i].to_array().map(f64::to_bits), "x[{i}]");
-        assert_eq!(sa.q[i].to_array().map(f64::to_bits), sb.q[i].to_array().map(f64::to_bits), "q[{i}]");
-        assert_eq!(sa.v[i].to_array().map(f64::to_bits), sb.v[i].to_array().map(f64::to_bits), "v[{i}]");
+        assert_eq!(
+            sa.x[i].to_array().map(f64::to_bits),
+            sb.x[i].to_array().map(f64::to_bits),
+            "x[{i}]"
+        );
+        assert_eq!(
+            sa.q[i].to_array().map(f64::to_bits),
+            sb.q[i].to_array().map(f64::to_bits),
+            "q[{i}]"
+        );
+        assert_eq!(
+            sa.v[i].to_array().map(f64::to_bits),
+            sb.v[i].to_array().map(f64::to_bits),
+            "v[{i}]"
+        );
         assert_eq!(
             sa.reaction_force[i].to_array().map(f64::to_bits),
             sb.reaction_force[i].to_array().map(f64::to_bits),
             "reaction at {i}"
         );
     }
-    assert_eq!(a.summary(), b.summary(), "peaks, fasteners and verdict data");
+    assert_eq!(
+        a.summary(),
+        b.summary(),
+        "peaks, fasteners and verdict data"
+    );
     assert_eq!(a.verdict(Stage::Final), b.verdict(Stage::Final));
 }
 
@@ -74,9 +90,14 @@ fn a_two_handed_study_replays_bit_for_bit_for_each_solver() {
         let mut live = scene.workcell(options(solver)).unwrap();
         let run = run_timeline(&mut live, &scene.timeline, &mut NoObserver)
             .unwrap_or_else(|e| panic!("{solver}: {e}"));
-        assert!(live.log().iter().any(|s| matches!(s.input, Input::Grab { hand: 1, .. })));
+        assert!(live
+            .log()
+            .iter()
+            .any(|s| matches!(s.input, Input::Grab { hand: 1, .. })));
         assert!(
-            run.fasteners.iter().any(|f| f.kind == "stub" && f.assembled),
+            run.fasteners
+                .iter()
+                .any(|f| f.kind == "stub" && f.assembled),
             "{solver}: the stub push-on is part of the study: {:?}",
             run.fasteners
         );
@@ -109,7 +130,13 @@ fn a_session_folder_replays_bit_for_bit_and_converts_to_a_timeline() {
     assert_eq!(session.log.inputs.as_slice(), live.log());
     assert_eq!(session.log.end_tick, live.tick());
     let mut again = session.workcell().unwrap();
-    replay(&mut again, &session.log.inputs, session.log.end_tick, &mut NoObserver).unwrap();
+    replay(
+        &mut again,
+        &session.log.inputs,
+        session.log.end_tick,
+        &mut NoObserver,
+    )
+    .unwrap();
     assert_same(&live, &again);
 
     // the log as an editable scene: re-running its timeline re-enacts the study
@@ -163,7 +190,10 @@ fn grab_rules_are_the_workcells() {
     cell.apply(Input::Grab { hand: 0, at: end }).unwrap();
     // another hand may not take the beam hand 0 holds …
     let refused = cell.apply(Input::Grab { hand: 1, at: end }).unwrap_err();
-    assert!(matches!(refused, Refusal::Invalid(ref m) if m.contains("hand 0 already holds")), "{refused}");
+    assert!(
+        matches!(refused, Refusal::Invalid(ref m) if m.contains("hand 0 already holds")),
+        "{refused}"
+    );
     // … and a refused grab leaves the hand's previous grip alone
     let upper = DVec3::new(-0.40, 0.10, 0.53);
     cell.apply(Input::Grab { hand: 1, at: upper }).unwrap();

@@ -121,10 +121,11 @@ impl Session {
         };
         let mut cell = Workcell::new(setup, cell_options).map_err(SessionError::Model)?;
         if let Some(dir) = &options.folder {
-            let file = start_session_folder(dir, scene, &cell).map_err(|e| SessionError::Folder {
-                path: dir.display().to_string(),
-                reason: e.to_string(),
-            })?;
+            let file =
+                start_session_folder(dir, scene, &cell).map_err(|e| SessionError::Folder {
+                    path: dir.display().to_string(),
+                    reason: e.to_string(),
+                })?;
             cell.log_to(Box::new(file));
         }
         let header = LogHeader::new(
@@ -229,7 +230,10 @@ impl Session {
             ..log.header.clone()
         });
         for s in &log.inputs {
-            text.push_str(&serde_json::to_string(&pliant_assembly::workcell::log::LogLine::Input(s.clone())).map_err(|e| e.to_string())?);
+            text.push_str(
+                &serde_json::to_string(&pliant_assembly::workcell::log::LogLine::Input(s.clone()))
+                    .map_err(|e| e.to_string())?,
+            );
             text.push('\n');
         }
         text.push_str(&format!("{{\"tick\":{}}}\n", log.end_tick));
@@ -242,7 +246,10 @@ impl Session {
             write("scene.toml", &self.loaded.text)?;
         } else {
             write("scene.json", &self.loaded.text)?;
-            let fixed = text.replace("\"scene_file\":\"scene.toml\"", "\"scene_file\":\"scene.json\"");
+            let fixed = text.replace(
+                "\"scene_file\":\"scene.toml\"",
+                "\"scene_file\":\"scene.json\"",
+            );
             write(pliant_assembly::workcell::log::LOG_FILE, &fixed)?;
         }
         Ok(result)

@@ -135,7 +135,10 @@ pub fn replay_with_outputs(
 }
 
 /// Two observers as one (the first one's wishes decide the sampling).
-pub struct Both<'a>(pub &'a mut dyn crate::Observer, pub &'a mut dyn crate::Observer);
+pub struct Both<'a>(
+    pub &'a mut dyn crate::Observer,
+    pub &'a mut dyn crate::Observer,
+);
 
 impl crate::Observer for Both<'_> {
     fn wants_state(&self, time: f64) -> bool {

@@ -66,12 +66,7 @@ pub struct Recorder {
 impl Recorder {
     /// Creates the output files in `out`. `planned` is the study's planned duration
     /// (it spaces the VTK frames: at most about 200).
-    pub fn create(
-        out: &Path,
-        model: &Model,
-        interval: f64,
-        planned: f64,
-    ) -> std::io::Result<Self> {
+    pub fn create(out: &Path, model: &Model, interval: f64, planned: f64) -> std::io::Result<Self> {
         let open = |name: &str| File::create(out.join(name)).map(BufWriter::new);
         let mut nodes = open("nodes.csv")?;
         writeln!(nodes, "time_s,hose,node,x_m,y_m,z_m,qw,qx,qy,qz")?;

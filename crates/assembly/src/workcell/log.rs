@@ -92,18 +92,19 @@ impl InputLog {
             path: origin.into(),
             reason,
         };
-        let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty());
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty());
         let (_, first) = lines
             .next()
             .ok_or_else(|| fail("the log is empty (no header line)".into()))?;
         let header = match serde_json::from_str::<LogLine>(first) {
             Ok(LogLine::Header { header }) => header,
-            _ => {
-                return Err(fail(
-                    "line 1: expected the header ({\"header\": {...}}) — is this a Pliant input log?"
-                        .into(),
-                ))
-            }
+            _ => return Err(fail(
+                "line 1: expected the header ({\"header\": {...}}) — is this a Pliant input log?"
+                    .into(),
+            )),
         };
         if header.format != LOG_FORMAT || header.version != LOG_VERSION {
             return Err(fail(format!(
@@ -139,9 +140,7 @@ impl InputLog {
                     inputs.push(i);
                 }
                 LogLine::Mark { tick } => end_tick = end_tick.max(tick),
-                LogLine::Header { .. } => {
-                    return Err(fail(format!("line {n}: a second header")))
-                }
+                LogLine::Header { .. } => return Err(fail(format!("line {n}: a second header"))),
             }
         }
         Ok(InputLog {

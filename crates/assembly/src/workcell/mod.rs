@@ -89,7 +89,9 @@ pub enum Applied {
     /// The load case an input added (for [`Input::RemoveLoad`]).
     Load(LoadCaseId),
     /// The beam a hand grabbed.
-    Grabbed { element: usize },
+    Grabbed {
+        element: usize,
+    },
     /// The static equilibrium an [`Input::SolveStatic`] reached.
     Static(StaticReport),
 }
@@ -206,7 +208,8 @@ impl Workcell {
                     },
                     _ => continue,
                 };
-                self.perform(&input).map_err(|r| format!("initial load case: {r}"))?;
+                self.perform(&input)
+                    .map_err(|r| format!("initial load case: {r}"))?;
             }
         }
         Ok(())
@@ -610,8 +613,8 @@ impl Workcell {
                 moment_tolerance,
                 max_iterations,
             } => {
-                let mut solver = StaticSolver::new(&self.model)
-                    .map_err(|e| Refusal::Invalid(e.to_string()))?;
+                let mut solver =
+                    StaticSolver::new(&self.model).map_err(|e| Refusal::Invalid(e.to_string()))?;
                 solver.options.force_tolerance = *force_tolerance;
                 solver.options.moment_tolerance = *moment_tolerance;
                 solver.options.max_iterations = *max_iterations;
@@ -725,12 +728,10 @@ impl Workcell {
 /// The global node's (hose, node) reference.
 pub fn node_ref(model: &Model, global: usize) -> Option<NodeRef> {
     model.hoses.iter().enumerate().find_map(|(hose, h)| {
-        h.nodes()
-            .contains(&global)
-            .then(|| NodeRef {
-                hose,
-                node: global - h.first_node,
-            })
+        h.nodes().contains(&global).then(|| NodeRef {
+            hose,
+            node: global - h.first_node,
+        })
     })
 }
 

@@ -198,7 +198,13 @@ impl Tally {
     }
 
     /// Takes in one step: solver statistics, hand loads, contacts, support loads.
-    pub fn record(&mut self, model: &Model, state: &State, stats: &StepStats, hands: &[HandRecord]) {
+    pub fn record(
+        &mut self,
+        model: &Model,
+        state: &State,
+        stats: &StepStats,
+        hands: &[HandRecord],
+    ) {
         self.newton_iterations_max = self.newton_iterations_max.max(stats.iterations);
         if !stats.converged {
             self.newton_unconverged_steps += 1;

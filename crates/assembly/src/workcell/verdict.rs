@@ -106,7 +106,9 @@ impl Verdict {
         };
         if !judged {
             reasons.push(match stage {
-                Stage::Final => "no hand acted in this scene: there is no hand load to judge".into(),
+                Stage::Final => {
+                    "no hand acted in this scene: there is no hand load to judge".into()
+                }
                 Stage::Running => "no hand has acted yet: nothing to judge".into(),
             });
         } else if feasible == Some(true) {
