@@ -14,7 +14,7 @@ export interface DebugSources {
   net: Net;
   mouse: MouseHand;
   xr: XrHands;
-  state: { frames: number; snapshots: number; errors: { code: string; message: string }[] };
+  state: { frames: number; snapshots: number; errors: { code: string; message: string }[]; reports: string[] };
   tubes: () => HoseTube[];
   latest: () => Snapshot | null;
   shown: () => Snapshot | null;
@@ -29,6 +29,7 @@ export function installDebugHandle(src: DebugSources): void {
     get frames() { return src.state.frames; },
     get snapshots() { return src.state.snapshots; },
     get errors() { return src.state.errors; },
+    get reports() { return src.state.reports; },
     get connected() { return src.net.open; },
     get clientId() { return src.net.clientId; },
     get welcome() { return src.welcome(); },

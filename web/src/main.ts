@@ -42,7 +42,7 @@ async function main(): Promise<void> {
   let needsFraming = false;
   let player: Player | null = null;
   const recorder = new Recorder();
-  const state = { frames: 0, snapshots: 0, errors: [] as { code: string; message: string }[] };
+  const state = { frames: 0, snapshots: 0, errors: [] as { code: string; message: string }[], reports: [] as string[] };
 
   const wsUrl = params.get('ws') ?? `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws`;
 
@@ -87,6 +87,11 @@ async function main(): Promise<void> {
       if (state.errors.length > 50) state.errors.shift();
       panel.setMessage(`${e.code}: ${e.message}`, true);
     },
+    report(r) {
+      state.reports.push(r.folder);
+      const word = r.verdict.feasible === null ? 'not assessed' : r.verdict.feasible ? 'feasible so far' : 'NOT feasible';
+      panel.setMessage(`report written: ${r.folder}/report.html (${word})`);
+    },
     status(text) {
       panel.setStatus(`${text} · ${wsUrl}`);
     },
@@ -126,6 +131,10 @@ async function main(): Promise<void> {
     pause: (p) => net.send({ type: p ? 'pause' : 'resume' }),
     step: (n) => net.send({ type: 'step', n }),
     reset: () => net.send({ type: 'reset' }),
+    report: () => {
+      panel.setMessage('writing the session report…');
+      net.send({ type: 'report' });
+    },
     ergonomics: (posture, population, duty) => net.send({ type: 'set_ergonomics', posture, population, duty }),
     openScene: (file) => {
       void file.text().then((text) => {

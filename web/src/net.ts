@@ -3,12 +3,13 @@
 // sent so that the latency until the snapshot (and the frame) that shows it can be
 // measured.
 
-import type { ClientMessage, ErrorMessage, Snapshot, Vec3, Welcome } from './protocol';
+import type { ClientMessage, ErrorMessage, ReportMessage, Snapshot, Vec3, Welcome } from './protocol';
 
 export interface NetListener {
   welcome(w: Welcome, raw: string): void;
   snapshot(s: Snapshot, raw: string): void;
   error(e: ErrorMessage): void;
+  report(r: ReportMessage): void;
   status(text: string, connected: boolean): void;
 }
 
@@ -61,6 +62,8 @@ export class Net {
         this.listener.welcome(w, ev.data);
       } else if (msg.type === 'error') {
         this.listener.error(msg as ErrorMessage);
+      } else if (msg.type === 'report') {
+        this.listener.report(msg as ReportMessage);
       }
     };
     ws.onclose = () => {

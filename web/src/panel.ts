@@ -31,6 +31,7 @@ export interface PanelActions {
   pause(paused: boolean): void;
   step(n: number): void;
   reset(): void;
+  report(): void;
   ergonomics(posture: string, population: string, duty: string): void;
   openScene(file: File): void;
   record(on: boolean): void;
@@ -68,12 +69,14 @@ export class Panel {
     const stepBtn = el('button', { id: 'step' }, 'Step');
     const stepN = el('input', { id: 'step-n', type: 'number', min: '1', max: '100000', value: '1000', title: 'steps per click' });
     const resetBtn = el('button', { id: 'reset' }, 'Reset');
+    const reportBtn = el('button', { id: 'report', title: 'write the session report (report.html, CSVs) on the server' }, 'Report');
     this.pauseBtn.onclick = () => {
       this.actions.pause(!this.paused);
     };
     stepBtn.onclick = () => this.actions.step(Math.max(1, Math.min(100000, Number(stepN.value) || 1)));
     resetBtn.onclick = () => this.actions.reset();
-    controls.append(this.pauseBtn, stepBtn, stepN, resetBtn);
+    reportBtn.onclick = () => this.actions.report();
+    controls.append(this.pauseBtn, stepBtn, stepN, resetBtn, reportBtn);
 
     const ergo = el('div', { class: 'row' });
     const opts = (s: HTMLSelectElement, values: string[]) => {

@@ -83,7 +83,9 @@ export interface Snapshot {
   notice?: string;
 }
 export interface ErrorMessage { type: 'error'; code: string; message: string }
-export type ServerMessage = Welcome | Snapshot | ErrorMessage;
+/** The answer to `report`: the folder the report was written to and its verdict. */
+export interface ReportMessage { type: 'report'; folder: string; verdict: { feasible: boolean | null; reasons: string[]; pending: string[] } }
+export type ServerMessage = Welcome | Snapshot | ErrorMessage | ReportMessage;
 
 export type ClientMessage =
   | { type: 'hello'; version: 1 }
@@ -95,7 +97,8 @@ export type ClientMessage =
   | { type: 'step'; n: number }
   | { type: 'reset' }
   | { type: 'set_ergonomics'; posture?: string; population?: string; duty?: string; torque?: string }
-  | { type: 'load_scene'; text: string; format?: 'toml' | 'json'; name?: string };
+  | { type: 'load_scene'; text: string; format?: 'toml' | 'json'; name?: string }
+  | { type: 'report' };
 
 /** |v| */
 export function norm(v: readonly number[]): number {

@@ -5,7 +5,7 @@
 // default timeout): nothing depends on how fast the machine is.
 
 import assert from 'node:assert/strict';
-import { mkdirSync, readFileSync } from 'node:fs';
+import { existsSync, mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
 import { after, before, describe, test } from 'node:test';
 import { framesDrawn, launchBrowser, openViewer, repo, simulated, sleep, startServer } from './harness.mjs';
@@ -307,6 +307,35 @@ describe('panel', () => {
       // back to the demo for the other tests
       await page.setInputFiles('#open-scene', path.join(repo, 'examples', 'engine_bay.toml'));
       await page.waitForFunction((n) => window.pliant.welcome?.session.scene === n, oldName);
+    } finally {
+      await page.close();
+    }
+  });
+
+  test('the Report button writes the session report on the server, replayed from its input log', async () => {
+    const { page } = await openViewer(browser, server.url, LOW);
+    try {
+      await resetSession(page);
+      const id = await page.evaluate(() => window.pliant.mouseHandId);
+      const nodes = await page.evaluate(() => window.pliant.hoseNodes(window.pliant.welcome.session.hoses.length - 1));
+      const end = nodes[nodes.length - 1];
+      await page.evaluate(([p, id]) => {
+        window.pliant.send({ type: 'grab', hand_id: id, position: p });
+        window.pliant.send({ type: 'move', hand_id: id, position: [p[0], p[1], p[2] + 0.05] });
+      }, [end, id]);
+      await page.waitForFunction((id) => window.pliant.snapshot.hands.some((h) => h.hand_id === id), id);
+      await simulated(page, 0.3);
+      const before = await page.evaluate(() => window.pliant.reports.length);
+      await page.click('#report');
+      await page.waitForFunction((n) => window.pliant.reports.length > n, before);
+      const folder = await page.evaluate(() => window.pliant.reports[window.pliant.reports.length - 1]);
+      const dir = path.isAbsolute(folder) ? folder : path.join(repo, folder);
+      for (const f of ['report.html', 'report.json', 'summary.json', 'hands.csv', 'inputs.jsonl']) {
+        assert.ok(existsSync(path.join(dir, f)), `${f} in ${dir}`);
+      }
+      const report = JSON.parse(readFileSync(path.join(dir, 'report.json'), 'utf8'));
+      assert.ok(report.run.hand_peaks.some((h) => h.hand === id), 'the report judges the hand that acted');
+      await page.evaluate((id) => window.pliant.send({ type: 'release', hand_id: id }), id);
     } finally {
       await page.close();
     }

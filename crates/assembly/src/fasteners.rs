@@ -52,6 +52,7 @@ pub struct FastenerReport {
     pub assembled: bool,
 }
 
+#[derive(Clone)]
 struct StubRun {
     site: StubSite,
     tolerance: StubTolerance,
@@ -62,6 +63,7 @@ struct StubRun {
     force_now: f64,
 }
 
+#[derive(Clone)]
 struct ClipRun {
     site: ClipSite,
     tolerance: ClipTolerance,
@@ -74,7 +76,7 @@ struct ClipRun {
 }
 
 /// All fasteners of a run.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Fasteners {
     stubs: Vec<StubRun>,
     clips: Vec<ClipRun>,

@@ -26,13 +26,8 @@ pub fn run(
     };
     // every session is a recording (SPEC W2): the scene's copy and the input log go into
     // a fresh folder under out/sessions as the session runs
-    let stamp = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_secs())
-        .unwrap_or(0);
-    let folder = Path::new("out")
-        .join("sessions")
-        .join(format!("session-{stamp}"));
+    let sessions_dir = Path::new("out").join("sessions");
+    let folder = pliant_server::server::new_session_folder(&sessions_dir);
     let session = Session::start(
         &scene,
         SessionOptions {
@@ -50,8 +45,9 @@ pub fn run(
             host: host.to_string(),
             port,
             scene_dir,
+            sessions_dir: Some(sessions_dir.clone()),
         };
-        let server = pliant_server::start(session, &config)
+        let mut server = pliant_server::start(session, &config)
             .await
             .with_context(|| format!("cannot listen on {host}:{port}"))?;
         println!("Pliant serving '{}' at {}", scene.name, server.url());
@@ -66,12 +62,35 @@ pub fn run(
         use std::io::Write as _;
         let _ = std::io::stdout().flush();
         println!(
-            "Recording the session in {d} — `pliant replay {d}` replays it and writes its report",
-            d = folder.display()
+            "Recording the session in {} (the viewer's Report button, or Ctrl-C, writes its report)",
+            folder.display()
         );
+        let _ = std::io::stdout().flush();
         tokio::select! {
-            r = server.wait() => r.context("server failed")?,
-            _ = tokio::signal::ctrl_c() => println!("stopped; the session is in {}", folder.display()),
+            r = server.wait() => return r.context("server failed").map(|_| ExitCode::SUCCESS),
+            _ = tokio::signal::ctrl_c() => {}
+        }
+        // Stopping the server reports the session as it stands (SPEC W2).
+        let session = server.session();
+        server.stop();
+        println!("stopped; writing the session's report …");
+        let written = tokio::task::spawn_blocking(move || {
+            let out = session
+                .next_report_folder()
+                .ok_or_else(|| "the session records into no folder".to_string())?;
+            session.report(&out).map(|(verdict, _)| (out, verdict))
+        })
+        .await
+        .map_err(|e| anyhow::anyhow!("writing the report failed: {e}"))?;
+        match written {
+            Ok((out, verdict)) => {
+                println!("verdict so far: {}", verdict.word());
+                for r in &verdict.reasons {
+                    println!("  - {r}");
+                }
+                println!("report: {}", out.join("report.html").display());
+            }
+            Err(e) => eprintln!("error: the session's report could not be written: {e}"),
         }
         Ok(ExitCode::SUCCESS)
     })

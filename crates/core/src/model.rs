@@ -1,7 +1,7 @@
 //! The Model: what the world is (topology, rest geometry, stiffness, masses, settings),
 //! fixed after building, in the spirit of MuJoCo's mjModel.
 
-use crate::contact::RigidEnvironment;
+use crate::contact::{HoseContactModel, RigidEnvironment};
 use crate::element::BeamElement;
 use crate::frames::node_frames;
 use crate::mass::half_element_mass;
@@ -62,6 +62,8 @@ pub struct Model {
     pub body_of: Vec<Option<usize>>,
     /// The solver the scene asks for (issue 5); callers may choose another.
     pub solver: SolverSettings,
+    /// Per-beam constants of hose–hose contact (SPEC L5).
+    pub hose_contact: HoseContactModel,
 }
 
 /// Why a world spec could not be built.
@@ -162,6 +164,7 @@ impl Model {
             bodies: Vec::new(),
             body_of: vec![None; total_nodes],
             solver: spec.settings.solver,
+            hose_contact: HoseContactModel::default(),
         };
         for h in &spec.hoses {
             check_hose(h)?;
@@ -171,6 +174,7 @@ impl Model {
         model.damping_stiffness = report.damping_stiffness;
         model.time_step = report.chosen;
         model.time_step_report = report;
+        model.hose_contact = HoseContactModel::new(&model);
         Ok(model)
     }
 
@@ -258,6 +262,7 @@ impl Model {
             }
             self.bodies.push(body);
         }
+        self.hose_contact = HoseContactModel::new(&self);
         Ok(self)
     }
 

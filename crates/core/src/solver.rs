@@ -174,13 +174,6 @@ impl Solver {
         }
     }
 
-    /// Forget history (after the state was replaced from outside, e.g. a reset).
-    pub fn restart(&mut self) {
-        if let Some(s) = &mut self.implicit {
-            s.restart();
-        }
-    }
-
     /// Advances `state` by [`Self::time_step`] and checks its health.
     pub fn step(&mut self, model: &Model, state: &mut State) -> Result<StepStats, SolverError> {
         let time = state.time;

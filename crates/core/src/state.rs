@@ -4,6 +4,7 @@
 
 use crate::contact::{ContactScratch, HoseContactScratch};
 use crate::loads::LoadCases;
+use crate::newton::ImplicitHistory;
 use crate::sleep::Sleep;
 use crate::stiffened::BodyState;
 use crate::Model;
@@ -49,6 +50,8 @@ pub struct State {
     pub hose_contact: HoseContactScratch,
     /// Which hoses sleep (SPEC I6; off unless enabled).
     pub sleep: Sleep,
+    /// What the implicit solver carries from step to step (empty for the others).
+    pub implicit: ImplicitHistory,
 }
 
 impl State {
@@ -83,6 +86,7 @@ impl State {
             hose_contact_force: vec![DVec3::ZERO; n],
             hose_contact: HoseContactScratch::new(model),
             sleep: Sleep::new(model),
+            implicit: ImplicitHistory::default(),
         }
     }
 

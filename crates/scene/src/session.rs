@@ -3,7 +3,7 @@
 
 use crate::load::{load_scene_json_str_in, load_scene_str_in};
 use crate::scene::LoadedScene;
-use pliant_assembly::workcell::log::{header_line, InputLog, LogHeader, LOG_FILE};
+use pliant_assembly::workcell::log::{header_line, InputLog, LogHeader, LogLine, LOG_FILE};
 use pliant_assembly::{Workcell, WorkcellOptions};
 use std::fs::File;
 use std::io::Write;
@@ -23,6 +23,37 @@ pub fn start_session_folder(
     scene: &LoadedScene,
     cell: &Workcell,
 ) -> std::io::Result<File> {
+    start_folder(dir, scene, *cell.options(), cell.time_step())
+}
+
+/// Writes a whole session folder at once: the scene's copy and the log `log` (its header
+/// options and time step, its inputs, a mark at its last tick) — a live session's report
+/// keeps its log beside it this way.
+pub fn write_session_folder(
+    dir: &Path,
+    scene: &LoadedScene,
+    log: &InputLog,
+) -> std::io::Result<()> {
+    let mut file = start_folder(dir, scene, log.header.options, log.header.time_step)?;
+    let mut text = String::new();
+    for s in &log.inputs {
+        text.push_str(&serde_json::to_string(&LogLine::Input(s.clone()))?);
+        text.push('\n');
+    }
+    text.push_str(&serde_json::to_string(&LogLine::Mark {
+        tick: log.end_tick,
+    })?);
+    text.push('\n');
+    file.write_all(text.as_bytes())?;
+    file.flush()
+}
+
+fn start_folder(
+    dir: &Path,
+    scene: &LoadedScene,
+    options: WorkcellOptions,
+    time_step: f64,
+) -> std::io::Result<File> {
     std::fs::create_dir_all(dir)?;
     let scene_file = if scene.is_json() {
         "scene.json"
@@ -35,8 +66,8 @@ pub fn start_session_folder(
         &scene.source,
         scene_file,
         &scene.base_dir.display().to_string(),
-        *cell.options(),
-        cell.time_step(),
+        options,
+        time_step,
     );
     let mut log = File::create(dir.join(LOG_FILE))?;
     log.write_all(header_line(&header).as_bytes())?;
@@ -138,6 +169,18 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
         t.insert("angle_deg".into(), Value::Float(r.length().to_degrees()));
         Value::Table(t)
     };
+    // a move's path, turn and duration; it does not wait (the runs carry the time)
+    let motion =
+        |t: &mut Table, waypoints: &[glam::DVec3], rotation: glam::DVec3, duration: f64| {
+            if !waypoints.is_empty() {
+                t.insert("to".into(), points(waypoints));
+            }
+            if rotation != glam::DVec3::ZERO {
+                t.insert("rotate".into(), rotate(rotation));
+            }
+            t.insert("duration_s".into(), Value::Float(duration));
+            t.insert("wait".into(), Value::Boolean(false));
+        };
     let node = |t: &mut Table, n: &pliant_assembly::NodeRef| {
         t.insert(
             "hose".into(),
@@ -209,14 +252,7 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
                 duration,
             } => {
                 node(&mut t, n);
-                if !waypoints.is_empty() {
-                    t.insert("to".into(), points(waypoints));
-                }
-                if *rotation != glam::DVec3::ZERO {
-                    t.insert("rotate".into(), rotate(*rotation));
-                }
-                t.insert("duration_s".into(), Value::Float(*duration));
-                t.insert("wait".into(), Value::Boolean(false));
+                motion(&mut t, waypoints, *rotation, *duration);
                 "move"
             }
             Input::Grab { hand: h, at } => {
@@ -231,14 +267,7 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
                 duration,
             } => {
                 t.insert("hand".into(), hand(*h)?);
-                if !waypoints.is_empty() {
-                    t.insert("to".into(), points(waypoints));
-                }
-                if *rotation != glam::DVec3::ZERO {
-                    t.insert("rotate".into(), rotate(*rotation));
-                }
-                t.insert("duration_s".into(), Value::Float(*duration));
-                t.insert("wait".into(), Value::Boolean(false));
+                motion(&mut t, waypoints, *rotation, *duration);
                 "move_hand"
             }
             Input::AimHand {

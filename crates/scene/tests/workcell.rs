@@ -223,3 +223,31 @@ fn grab_rules_are_the_workcells() {
         })
         .is_err());
 }
+
+#[test]
+fn a_checkpoint_taken_mid_study_continues_bit_for_bit_for_each_solver() {
+    let scene = two_handed_demo();
+    for solver in SolverKind::ALL {
+        let mut cell = scene.workcell(options(solver)).unwrap();
+        // run the timeline's first half (up to the push onto the stub), then checkpoint
+        let half = scene.timeline.actions.len() / 2;
+        let first = pliant_assembly::Timeline {
+            actions: scene.timeline.actions[..half].to_vec(),
+        };
+        let rest = pliant_assembly::Timeline {
+            actions: scene.timeline.actions[half..].to_vec(),
+        };
+        run_timeline(&mut cell, &first, &mut NoObserver).unwrap();
+        let saved = cell.checkpoint();
+        run_timeline(&mut cell, &rest, &mut NoObserver).unwrap();
+        let end_tick = cell.tick();
+        let once = scene.workcell(options(solver)).unwrap();
+        let mut finished = once;
+        replay(&mut finished, cell.log(), end_tick, &mut NoObserver).unwrap();
+        // back to the checkpoint and on again: the same end, bit for bit
+        cell.restore(&saved).unwrap();
+        assert!(cell.tick() < end_tick);
+        run_timeline(&mut cell, &rest, &mut NoObserver).unwrap();
+        assert_same(&cell, &finished);
+    }
+}

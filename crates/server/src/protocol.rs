@@ -59,6 +59,11 @@ pub enum ClientMessage {
         #[serde(default)]
         name: Option<String>,
     },
+    /// Write the session's report so far (SPEC W2): the same `report.html`,
+    /// `report.json`, `summary.json` and CSVs as `pliant run`, made by replaying the
+    /// session's input log, with the log beside them. The sender gets `report` when it
+    /// is written; the session runs on meanwhile.
+    Report,
 }
 
 /// Error codes of `error` messages.
@@ -87,6 +92,9 @@ pub enum ErrorCode {
     BinaryNotSupported,
     /// A `load_scene` whose scene could not be loaded (the message is the loader's).
     InvalidScene,
+    /// A `report` that could not be written (the session records into no folder, or
+    /// writing failed).
+    ReportFailed,
 }
 
 /// Server → client.
@@ -99,6 +107,11 @@ pub enum ServerMessage<'a> {
         session: &'a SceneData,
     },
     Snapshot(&'a Snapshot),
+    /// The answer to `report`: where the report is and its verdict.
+    Report {
+        folder: String,
+        verdict: &'a pliant_assembly::Verdict,
+    },
     Error {
         code: ErrorCode,
         message: String,

@@ -52,6 +52,9 @@ pub struct ServerConfig {
     /// Relative mesh paths of scenes sent with `load_scene` are resolved against this
     /// folder (the browser sends only the scene text).
     pub scene_dir: PathBuf,
+    /// Sessions started by `load_scene` record into a new folder here (SPEC W2);
+    /// `None`: they keep their log in memory only (a `report` is then refused).
+    pub sessions_dir: Option<PathBuf>,
 }
 
 impl Default for ServerConfig {
@@ -60,8 +63,25 @@ impl Default for ServerConfig {
             host: "127.0.0.1".into(),
             port: 8080,
             scene_dir: PathBuf::new(),
+            sessions_dir: None,
         }
     }
+}
+
+/// A new folder for a session under `dir`: `session-<unix seconds>[-k]`, not yet taken.
+pub fn new_session_folder(dir: &std::path::Path) -> PathBuf {
+    let stamp = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    let first = dir.join(format!("session-{stamp}"));
+    if !first.exists() {
+        return first;
+    }
+    (2..)
+        .map(|k| dir.join(format!("session-{stamp}-{k}")))
+        .find(|p| !p.exists())
+        .unwrap_or(first)
 }
 
 struct Shared {
@@ -72,6 +92,7 @@ struct Shared {
     ownership: Mutex<Ownership>,
     next_client: AtomicU64,
     scene_dir: PathBuf,
+    sessions_dir: Option<PathBuf>,
 }
 
 impl Shared {
@@ -82,6 +103,7 @@ impl Shared {
             ownership: Mutex::new(Ownership::default()),
             next_client: AtomicU64::new(1),
             scene_dir: config.scene_dir.clone(),
+            sessions_dir: config.sessions_dir.clone(),
         }
     }
 
@@ -127,18 +149,23 @@ pub async fn serve(
     session: Session,
     config: ServerConfig,
 ) -> std::io::Result<()> {
+    serve_shared(listener, Arc::new(Shared::new(session, &config))).await
+}
+
+async fn serve_shared(listener: TcpListener, shared: Arc<Shared>) -> std::io::Result<()> {
     use axum::serve::ListenerExt;
     // No Nagle delay: small messages (moves, snapshots) go out at once.
     let listener = listener.tap_io(|tcp| {
         let _ = tcp.set_nodelay(true);
     });
-    axum::serve(listener, router(session, &config)).await
+    axum::serve(listener, router_on(shared)).await
 }
 
 /// A server running on the current tokio runtime.
 pub struct RunningServer {
     pub addr: SocketAddr,
     task: tokio::task::JoinHandle<std::io::Result<()>>,
+    shared: Arc<Shared>,
 }
 
 impl RunningServer {
@@ -151,12 +178,16 @@ impl RunningServer {
         format!("ws://{}/ws", self.addr)
     }
     /// Serves until the server fails.
-    pub async fn wait(self) -> std::io::Result<()> {
-        self.task.await.unwrap_or(Ok(()))
+    pub async fn wait(&mut self) -> std::io::Result<()> {
+        (&mut self.task).await.unwrap_or(Ok(()))
     }
     /// Stops serving (the session stops when its last connection ends).
     pub fn stop(&self) {
         self.task.abort();
+    }
+    /// The session clients talk to now.
+    pub fn session(&self) -> Arc<Session> {
+        self.shared.session()
     }
 }
 
@@ -164,8 +195,9 @@ impl RunningServer {
 pub async fn start(session: Session, config: &ServerConfig) -> std::io::Result<RunningServer> {
     let listener = TcpListener::bind((config.host.as_str(), config.port)).await?;
     let addr = listener.local_addr()?;
-    let task = tokio::spawn(serve(listener, session, config.clone()));
-    Ok(RunningServer { addr, task })
+    let shared = Arc::new(Shared::new(session, config));
+    let task = tokio::spawn(serve_shared(listener, shared.clone()));
+    Ok(RunningServer { addr, task, shared })
 }
 
 async fn ws_upgrade(ws: WebSocketUpgrade, State(shared): State<Arc<Shared>>) -> impl IntoResponse {
@@ -208,6 +240,8 @@ enum Reply {
         json: bool,
         name: String,
     },
+    /// Write the session's report (slow: replays the session off the connection's task).
+    Report,
 }
 
 impl From<Option<String>> for Reply {
@@ -267,7 +301,7 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
                     Message::Close(_) => return,
                     _ => Reply::None,
                 };
-                let accepted = matches!(reply, Reply::None | Reply::LoadScene { .. });
+                let accepted = matches!(reply, Reply::None | Reply::LoadScene { .. } | Reply::Report);
                 if track && accepted {
                     // wait for a snapshot published after this command, and send it soon
                     input_pending = true;
@@ -290,6 +324,20 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
                                 };
                                 eprintln!("pliant serve: load_scene from client {client}: {why}");
                                 Some(error_json(ErrorCode::InvalidScene, why))
+                            }
+                        }
+                    }
+                    Reply::Report => {
+                        let session = session.clone();
+                        match tokio::task::spawn_blocking(move || write_report(&session)).await {
+                            Ok(text) => Some(text),
+                            Err(e) => {
+                                let why = match e.try_into_panic() {
+                                    Ok(panic) => format!("writing the report failed (panic: {})", panic_message(&*panic)),
+                                    Err(_) => "writing the report was cancelled".to_owned(),
+                                };
+                                eprintln!("pliant serve: report for client {client}: {why}");
+                                Some(error_json(ErrorCode::ReportFailed, why))
                             }
                         }
                     }
@@ -344,8 +392,11 @@ fn load_scene(shared: &Shared, text: &str, json: bool, name: &str) -> Result<(),
         pliant_scene::load_scene_str_in(text, name, &shared.scene_dir)
     }
     .map_err(|e| invalid(e.to_string()))?;
-    let session =
-        Session::start(&scene, SessionOptions::default()).map_err(|e| invalid(e.to_string()))?;
+    let options = SessionOptions {
+        folder: shared.sessions_dir.as_deref().map(new_session_folder),
+        ..SessionOptions::default()
+    };
+    let session = Session::start(&scene, options).map_err(|e| invalid(e.to_string()))?;
     let old = {
         let mut current = lock(&shared.session);
         lock(&shared.ownership).clear();
@@ -354,6 +405,25 @@ fn load_scene(shared: &Shared, text: &str, json: bool, name: &str) -> Result<(),
     shared.generation.send_modify(|g| *g += 1);
     drop(old);
     Ok(())
+}
+
+/// Writes the report of `session` into its next report folder; the `report` reply or an
+/// error, as JSON.
+fn write_report(session: &Session) -> String {
+    let Some(out) = session.next_report_folder() else {
+        return error_json(
+            ErrorCode::ReportFailed,
+            "this session records into no folder (start pliant serve with a sessions folder)",
+        );
+    };
+    match session.report(&out) {
+        Ok((verdict, _)) => ServerMessage::Report {
+            folder: out.display().to_string(),
+            verdict: &verdict,
+        }
+        .to_json(),
+        Err(e) => error_json(ErrorCode::ReportFailed, e),
+    }
 }
 
 /// Handles one text message; returns the reply, if any.
@@ -414,6 +484,7 @@ fn handle_text(text: &str, client: ClientId, shared: &Shared, welcomed: &mut boo
                 name: name.unwrap_or_else(|| "scene from the viewer".into()),
             }
         }
+        (ClientMessage::Report, true) => Reply::Report,
         (msg, true) => handle_command(msg, client, shared).err().into(),
     }
 }
@@ -478,7 +549,7 @@ fn point(p: [f64; 3]) -> Result<DVec3, String> {
 fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Result<(), String> {
     let session = &shared.session();
     let command = match msg {
-        ClientMessage::Hello { .. } | ClientMessage::LoadScene { .. } => {
+        ClientMessage::Hello { .. } | ClientMessage::LoadScene { .. } | ClientMessage::Report => {
             return Ok(()); // handled in handle_text
         }
         ClientMessage::SetErgonomics {

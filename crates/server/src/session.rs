@@ -20,7 +20,7 @@ use pliant_assembly::workcell::log::{InputLog, LogHeader};
 use pliant_assembly::workcell::StampedInput;
 use pliant_assembly::{Input, NoObserver, Stage, Verdict, Workcell, WorkcellOptions};
 use pliant_core::SolverKind;
-use pliant_scene::session::start_session_folder;
+use pliant_scene::session::{start_session_folder, write_session_folder};
 use pliant_scene::LoadedScene;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -213,46 +213,30 @@ impl Session {
     /// Writes the session's report so far into `out` — `report.html`, `report.json`,
     /// `summary.json` and the CSVs of `pliant run` — by replaying its input log into a
     /// fresh workcell (the one verdict implementation, bit for bit the live session),
-    /// and the log beside them. Blocks for the replay: call it off the async runtime.
+    /// with the log and the scene's copy beside them (so `pliant replay out` works too).
+    /// Blocks for the replay: call it off the async runtime.
     pub fn report(&self, out: &Path) -> Result<(Verdict, Summary), String> {
         let log = self.input_log()?;
         let cell = self.loaded.workcell(log.header.options)?;
-        let result = replay_with_outputs(
+        write_session_folder(out, &self.loaded, &log)
+            .map_err(|e| format!("writing the session's log into {}: {e}", out.display()))?;
+        replay_with_outputs(
             out,
             cell,
             &log,
             &self.loaded.name,
             self.loaded.record_interval,
             &mut NoObserver,
-        )?;
-        let mut text = pliant_assembly::workcell::log::header_line(&LogHeader {
-            scene_file: "scene.toml".into(),
-            ..log.header.clone()
-        });
-        for s in &log.inputs {
-            text.push_str(
-                &serde_json::to_string(&pliant_assembly::workcell::log::LogLine::Input(s.clone()))
-                    .map_err(|e| e.to_string())?,
-            );
-            text.push('\n');
-        }
-        text.push_str(&format!("{{\"tick\":{}}}\n", log.end_tick));
-        let write = |name: &str, body: &str| {
-            std::fs::write(out.join(name), body)
-                .map_err(|e| format!("writing {}: {e}", out.join(name).display()))
-        };
-        write(pliant_assembly::workcell::log::LOG_FILE, &text)?;
-        if !self.loaded.is_json() {
-            write("scene.toml", &self.loaded.text)?;
-        } else {
-            write("scene.json", &self.loaded.text)?;
-            let fixed = text.replace(
-                "\"scene_file\":\"scene.toml\"",
-                "\"scene_file\":\"scene.json\"",
-            );
-            write(pliant_assembly::workcell::log::LOG_FILE, &fixed)?;
-        }
-        Ok(result)
+        )
+    }
+
+    /// A new folder for a report of this session: `report-N` in the session folder, the
+    /// first N not taken. `None` if the session records into no folder.
+    pub fn next_report_folder(&self) -> Option<PathBuf> {
+        let dir = self.folder.as_ref()?;
+        (1..)
+            .map(|n| dir.join(format!("report-{n}")))
+            .find(|p| !p.exists())
     }
 }
 

@@ -607,3 +607,78 @@ async fn a_sudden_move_gives_no_inertial_force_spike() {
     assert!(last > 1.0, "the lifted hose loads the hand: {last} N");
     assert!(peak < 1.5 * last, "peak {peak} N vs settled {last} N");
 }
+
+/// SPEC W2: `report` writes the session's report — replayed from its input log, with the
+/// log beside it — and answers with the folder and the verdict; the session runs on, and
+/// the report folder replays again to the same numbers. A session without a folder
+/// refuses.
+#[tokio::test]
+async fn report_writes_the_sessions_report_from_its_log() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = server_with(SessionOptions {
+        paused: true,
+        folder: Some(dir.path().join("session")),
+        ..Default::default()
+    })
+    .await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    send(
+        &mut ws,
+        json!({"type": "grab", "hand_id": 0, "position": [-0.17, -0.6, 0.25]}),
+    )
+    .await;
+    send(
+        &mut ws,
+        json!({"type": "move", "hand_id": 0, "position": [-0.17, -0.58, 0.30]}),
+    )
+    .await;
+    send(&mut ws, json!({"type": "step", "n": 2000})).await;
+    next_where(&mut ws, "snapshot", |v| v["step"] == 2000).await;
+    send(&mut ws, json!({"type": "report"})).await;
+    let reply = next_where(&mut ws, "report", |_| true).await;
+    let folder = std::path::PathBuf::from(reply["folder"].as_str().unwrap());
+    assert!(folder.starts_with(dir.path()), "{folder:?}");
+    for f in [
+        "report.html",
+        "report.json",
+        "summary.json",
+        "nodes.csv",
+        "hands.csv",
+        "inputs.jsonl",
+        "scene.toml",
+    ] {
+        assert!(folder.join(f).is_file(), "{f} in {folder:?}");
+    }
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(folder.join("summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(
+        summary["steps"], 2000,
+        "the replay ran as far as the session"
+    );
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(folder.join("report.json")).unwrap())
+            .unwrap();
+    assert_eq!(report["verdict"]["feasible"], reply["verdict"]["feasible"]);
+    assert!(
+        report["run"]["hand_peaks"][0]["max_force"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
+    // the live hose and the replayed final state agree bit for bit
+    let live = next_where(&mut ws, "snapshot", |v| v["step"] == 2000).await;
+    let replayed = &summary["final_state"][1]["positions_m"];
+    assert_eq!(&live["hoses"][1]["positions"], replayed);
+    // the session folder itself records as it goes
+    assert!(dir.path().join("session").join("inputs.jsonl").is_file());
+
+    // without a folder there is nothing to report from
+    let bare = server_with(SessionOptions::default()).await;
+    let mut ws2 = connect(&bare).await;
+    hello(&mut ws2).await;
+    send(&mut ws2, json!({"type": "report"})).await;
+    let e = next_where(&mut ws2, "error", |_| true).await;
+    assert_eq!(e["code"], "report_failed");
+}

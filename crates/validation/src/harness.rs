@@ -218,7 +218,7 @@ fn implicit_to_rest(
         }
         state.v.fill(DVec3::ZERO);
         state.w.fill(DVec3::ZERO);
-        solver.restart_at_rest();
+        state.implicit.restart_at_rest();
     }
     Ok(report)
 }

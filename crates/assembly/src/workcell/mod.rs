@@ -96,6 +96,25 @@ pub enum Applied {
     Static(StaticReport),
 }
 
+/// Everything of a workcell that changes as it runs (SPEC W1: the state is the whole
+/// state): the physics state — positions, velocities, load cases, contact memory,
+/// sleeping hoses, the implicit solver's history — and the hands, the stubs' and clips'
+/// state machines, the load cases inputs added, the profile, the peaks and the tick.
+/// The model, the solver's scratch and the options are not in it: they do not change.
+#[derive(Clone)]
+pub struct Checkpoint {
+    state: State,
+    hands: Hands,
+    hand_records: Vec<HandRecord>,
+    fasteners: Fasteners,
+    user_loads: BTreeSet<LoadCaseId>,
+    profile: ErgonomicProfile,
+    tally: Tally,
+    tick: u64,
+    log_length: usize,
+    diverged: Option<Divergence>,
+}
+
 /// One assembly study in progress.
 pub struct Workcell {
     model: Arc<Model>,
@@ -186,7 +205,6 @@ impl Workcell {
     fn start(&mut self) -> Result<(), String> {
         self.state = State::at_rest(&self.model);
         self.state.sleep.enabled = self.options.sleeping;
-        self.solver.restart();
         self.fasteners = Fasteners::new(&mut self.state, self.stubs.clone(), self.clips.clone());
         self.hands.clear();
         self.hand_records.clear();
@@ -335,6 +353,53 @@ impl Workcell {
     /// The running account (peaks per hand as magnitudes, contacts, …).
     pub fn tally(&self) -> &Tally {
         &self.tally
+    }
+
+    // ---- checkpoints ---------------------------------------------------------------
+
+    /// A copy of everything that changes, to continue from later ([`Self::restore`]).
+    pub fn checkpoint(&self) -> Checkpoint {
+        Checkpoint {
+            state: self.state.clone(),
+            hands: self.hands.clone(),
+            hand_records: self.hand_records.clone(),
+            fasteners: self.fasteners.clone(),
+            user_loads: self.user_loads.clone(),
+            profile: self.profile,
+            tally: self.tally.clone(),
+            tick: self.tick,
+            log_length: self.log.len(),
+            diverged: self.diverged.clone(),
+        }
+    }
+
+    /// Goes back to `checkpoint` (taken from this workcell): the study continues from
+    /// there bit for bit as it did the first time, and the in-memory log is cut back to
+    /// it. Refused while the log is written to a sink — a session's log is append-only.
+    pub fn restore(&mut self, checkpoint: &Checkpoint) -> Result<(), Refusal> {
+        if self.sink.is_some() {
+            return Err(Refusal::Invalid(
+                "this workcell writes its input log as it goes; it cannot go back".into(),
+            ));
+        }
+        if checkpoint.state.x.len() != self.state.x.len() || checkpoint.log_length > self.log.len()
+        {
+            return Err(Refusal::Invalid(
+                "the checkpoint is not one of this workcell's".into(),
+            ));
+        }
+        let c = checkpoint.clone();
+        self.state = c.state;
+        self.hands = c.hands;
+        self.hand_records = c.hand_records;
+        self.fasteners = c.fasteners;
+        self.user_loads = c.user_loads;
+        self.profile = c.profile;
+        self.tally = c.tally;
+        self.tick = c.tick;
+        self.log.truncate(c.log_length);
+        self.diverged = c.diverged;
+        Ok(())
     }
 
     // ---- the log -------------------------------------------------------------------

@@ -58,10 +58,9 @@ use std::f64::consts::PI;
 /// Damping ratio of the contact dashpot, of the pair's critical damping.
 pub const CONTACT_DAMPING_RATIO: f64 = 0.3;
 
-/// Per-beam contact data and the broad phase, allocated once with the state.
+/// Per-beam contact constants, fixed when the model is built (`model.hose_contact`).
 #[derive(Clone, Debug, Default)]
-pub struct HoseContactScratch {
-    pub broad: BroadPhase,
+pub struct HoseContactModel {
     /// Hose index of each beam.
     element_hose: Vec<u32>,
     /// Rest arc length from the hose's first node to each beam's node a and node b [m].
@@ -73,8 +72,15 @@ pub struct HoseContactScratch {
     element_stiffness: Vec<f64>,
     /// ω_lim, the highest frequency the time step was built for [rad/s].
     pub omega_limit: f64,
-    /// Whether any pair of beams may touch at all (false: one short hose).
+    /// Whether any pair of beams may touch at all (false: one short hose; a caller may
+    /// also switch hose contact off for a model).
     pub active: bool,
+}
+
+/// The broad phase and what the last step found, allocated once with the state.
+#[derive(Clone, Debug, Default)]
+pub struct HoseContactScratch {
+    pub broad: BroadPhase,
     /// Beam pairs in contact in the last step.
     pub pairs_in_contact: usize,
     /// Largest penetration in the last step [m] (0 when none).
@@ -85,9 +91,20 @@ pub struct HoseContactScratch {
 
 impl HoseContactScratch {
     pub fn new(model: &Model) -> Self {
+        HoseContactScratch {
+            broad: BroadPhase::new(model.elements.len()),
+            pairs_in_contact: 0,
+            max_penetration: 0.0,
+            energy: 0.0,
+        }
+    }
+}
+
+impl HoseContactModel {
+    /// The constants of `model`'s beams (its elements, radii and time step are built).
+    pub fn new(model: &Model) -> Self {
         let ne = model.elements.len();
-        let mut s = HoseContactScratch {
-            broad: BroadPhase::new(ne),
+        let mut s = HoseContactModel {
             element_hose: vec![0; ne],
             arc_a: vec![0.0; ne],
             arc_b: vec![0.0; ne],
@@ -95,9 +112,6 @@ impl HoseContactScratch {
             element_stiffness: vec![0.0; ne],
             omega_limit: f64::INFINITY,
             active: model.hoses.len() > 1,
-            pairs_in_contact: 0,
-            max_penetration: 0.0,
-            energy: 0.0,
         };
         for (h, hose) in model.hoses.iter().enumerate() {
             let mut arc = 0.0;
@@ -256,12 +270,13 @@ pub fn hose_contact_forces_with(
     scratch.pairs_in_contact = 0;
     scratch.max_penetration = 0.0;
     scratch.energy = 0.0;
-    if !scratch.active {
+    let constants = &model.hose_contact;
+    if !constants.active {
         return;
     }
     for (e, el) in model.elements.iter().enumerate() {
         let (xa, xb) = (x[el.node_a], x[el.node_b]);
-        let r = DVec3::splat(scratch.element_radius[e]);
+        let r = DVec3::splat(constants.element_radius[e]);
         scratch.broad.lo[e] = xa.min(xb) - r;
         scratch.broad.hi[e] = xa.max(xb) + r;
     }
@@ -271,7 +286,7 @@ pub fn hose_contact_forces_with(
     let mut max_pen: f64 = 0.0;
     let mut energy = 0.0;
     sc.broad.for_each_pair(|i, j| {
-        if sc.excluded(i, j) {
+        if constants.excluded(i, j) {
             return;
         }
         let (ei, ej) = (&model.elements[i], &model.elements[j]);
@@ -298,7 +313,7 @@ pub fn hose_contact_forces_with(
             + w[1] * w[1] / model.mass[b]
             + w[2] * w[2] / model.mass[c]
             + w[3] * w[3] / model.mass[d];
-        let k = sc.stiffness(model, i, j);
+        let k = constants.stiffness(model, i, j);
         let damping = 2.0 * CONTACT_DAMPING_RATIO * (k / inv_m_eff).sqrt();
         let v_rel = v[a].lerp(v[b], s) - v[c].lerp(v[d], t);
         let f = (k * pen - damping * v_rel.dot(n)).max(0.0);
@@ -329,7 +344,7 @@ pub fn hose_contact_forces_with(
 /// `state.hose_contact_force` and adds them to `state.force`. Called by
 /// [`crate::explicit::step`] after the body loads. No allocation.
 pub fn add_hose_contact_forces(model: &Model, state: &mut State) {
-    if !state.hose_contact.active {
+    if !model.hose_contact.active {
         return;
     }
     hose_contact_forces(

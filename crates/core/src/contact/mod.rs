@@ -18,7 +18,7 @@ pub use broad_phase::BroadPhase;
 pub use environment::{RigidEnvironment, RigidPart};
 pub use hose_hose::{
     add_hose_contact_forces, hose_contact_forces, hose_contact_forces_with, ContactPair,
-    HoseContactScratch,
+    HoseContactModel, HoseContactScratch,
 };
 pub use resolve::{ContactPoint, ContactScratch};
 pub use segment_triangle::{

@@ -76,19 +76,44 @@ pub enum ImplicitError {
     NotConverged(u32, f64),
 }
 
-/// The implicit solver: Newton buffers, the accelerations and loads of the last step.
-#[derive(Clone, Debug)]
-pub struct ImplicitSolver {
-    pub system: NewtonSystem,
-    pub options: ImplicitOptions,
-    /// a_n, α_n and f_n, m_n of the last converged step (None before the first).
+/// What the HHT-α step carries from one step to the next — a_n, α_n and f_n, m_n of the
+/// last converged step. Part of the [`State`] (`state.implicit`), so that a state saved
+/// and restored continues exactly, and a fresh state (a reset) starts the history anew.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ImplicitHistory {
     acc: Vec<DVec3>,
     ang_acc: Vec<DVec3>,
     f_prev: Vec<DVec3>,
     m_prev: Vec<DVec3>,
+    /// Whether the vectors hold the last step's values (false: initialise them first).
     started: bool,
     /// Initialise with zero accelerations ([`Self::restart_at_rest`]).
     zero_acceleration: bool,
+}
+
+impl ImplicitHistory {
+    /// Forgets the last step's accelerations (after the state was changed from outside).
+    pub fn restart(&mut self) {
+        self.started = false;
+        self.zero_acceleration = false;
+    }
+
+    /// Restarts from a state the caller has just brought to rest (velocities zeroed, as
+    /// kinetic damping does): accelerations start at zero too, so the out-of-balance
+    /// forces act through the next step's equation only, without a kick through the
+    /// Newmark predictor terms.
+    pub fn restart_at_rest(&mut self) {
+        self.started = false;
+        self.zero_acceleration = true;
+    }
+}
+
+/// The implicit solver: its options and Newton buffers (scratch only; the history that
+/// carries over between steps is the state's [`ImplicitHistory`]).
+#[derive(Clone, Debug)]
+pub struct ImplicitSolver {
+    pub system: NewtonSystem,
+    pub options: ImplicitOptions,
     /// Start-of-step state for retries.
     x0: Vec<DVec3>,
     q0: Vec<DQuat>,
@@ -103,33 +128,11 @@ impl ImplicitSolver {
         Ok(Self {
             system: NewtonSystem::new(model)?,
             options,
-            acc: z.clone(),
-            ang_acc: z.clone(),
-            f_prev: z.clone(),
-            m_prev: z.clone(),
-            started: false,
-            zero_acceleration: false,
             x0: z.clone(),
             q0: vec![DQuat::IDENTITY; n],
             v0: z.clone(),
             w0: z,
         })
-    }
-
-    /// Forgets the last step's accelerations (after the state was changed from outside,
-    /// e.g. a reset).
-    pub fn restart(&mut self) {
-        self.started = false;
-        self.zero_acceleration = false;
-    }
-
-    /// Restarts from a state the caller has just brought to rest (velocities zeroed, as
-    /// kinetic damping does): accelerations start at zero too, so the out-of-balance
-    /// forces act through the next step's equation only, without a kick through the
-    /// Newmark predictor terms.
-    pub fn restart_at_rest(&mut self) {
-        self.started = false;
-        self.zero_acceleration = true;
     }
 
     /// Advances `state` by `options.time_step`.
@@ -139,7 +142,19 @@ impl ImplicitSolver {
         state: &mut State,
     ) -> Result<ImplicitReport, ImplicitError> {
         let mut report = ImplicitReport::default();
-        self.advance(model, state, self.options.time_step, 0, &mut report)?;
+        // the history is taken out of the state for the step (no allocation) so that the
+        // state can be borrowed whole while it is updated
+        let mut history = std::mem::take(&mut state.implicit);
+        let done = self.advance(
+            model,
+            state,
+            &mut history,
+            self.options.time_step,
+            0,
+            &mut report,
+        );
+        state.implicit = history;
+        done?;
         report.converged = true;
         state.step += 1;
         Ok(report)
@@ -149,19 +164,20 @@ impl ImplicitSolver {
         &mut self,
         model: &Model,
         state: &mut State,
+        history: &mut ImplicitHistory,
         h: f64,
         depth: u32,
         report: &mut ImplicitReport,
     ) -> Result<(), ImplicitError> {
-        if !self.started {
-            self.initialise(model, state);
+        if !history.started {
+            self.initialise(model, state, history);
         }
         self.x0.copy_from_slice(&state.x);
         self.q0.copy_from_slice(&state.q);
         self.v0.copy_from_slice(&state.v);
         self.w0.copy_from_slice(&state.w);
         let time0 = state.time;
-        if self.try_step(model, state, h, report)? {
+        if self.try_step(model, state, history, h, report)? {
             report.substeps += 1;
             return Ok(());
         }
@@ -173,12 +189,21 @@ impl ImplicitSolver {
         state.v.copy_from_slice(&self.v0);
         state.w.copy_from_slice(&self.w0);
         state.time = time0;
-        self.advance(model, state, 0.5 * h, depth + 1, report)?;
-        self.advance(model, state, 0.5 * h, depth + 1, report)
+        self.advance(model, state, history, 0.5 * h, depth + 1, report)?;
+        self.advance(model, state, history, 0.5 * h, depth + 1, report)
     }
 
     /// Accelerations and loads of the initial state (m a₀ = f₀).
-    fn initialise(&mut self, model: &Model, state: &mut State) {
+    fn initialise(&mut self, model: &Model, state: &mut State, history: &mut ImplicitHistory) {
+        let n = state.x.len();
+        for v in [
+            &mut history.acc,
+            &mut history.ang_acc,
+            &mut history.f_prev,
+            &mut history.m_prev,
+        ] {
+            v.resize(n, DVec3::ZERO); // allocates once per state
+        }
         let sys = &mut self.system;
         // which nodes are prescribed; they are moved onto their targets by the first step
         sys.set_prescribed(state, state.time);
@@ -190,21 +215,21 @@ impl ImplicitSolver {
         }
         sys.assemble(model, state, 0.0);
         for i in 0..state.x.len() {
-            let free = !sys.prescribed[i] && !self.zero_acceleration;
-            self.f_prev[i] = sys.force[i];
-            self.m_prev[i] = sys.moment[i];
-            self.acc[i] = if free {
+            let free = !sys.prescribed[i] && !history.zero_acceleration;
+            history.f_prev[i] = sys.force[i];
+            history.m_prev[i] = sys.moment[i];
+            history.acc[i] = if free {
                 sys.force[i] / model.mass[i]
             } else {
                 DVec3::ZERO
             };
-            self.ang_acc[i] = if free {
+            history.ang_acc[i] = if free {
                 sys.moment[i] / model.inertia[i]
             } else {
                 DVec3::ZERO
             };
         }
-        self.started = true;
+        history.started = true;
     }
 
     /// One HHT step of size h from the saved start state; Ok(false) if Newton did not
@@ -213,6 +238,7 @@ impl ImplicitSolver {
         &mut self,
         model: &Model,
         state: &mut State,
+        history: &mut ImplicitHistory,
         h: f64,
         report: &mut ImplicitReport,
     ) -> Result<bool, ImplicitError> {
@@ -247,7 +273,7 @@ impl ImplicitSolver {
                 if sys.prescribed[i] {
                     continue;
                 }
-                let (a, alp) = (self.acc[i], self.ang_acc[i]);
+                let (a, alp) = (history.acc[i], history.ang_acc[i]);
                 let a_new =
                     c_acc * (state.x[i] - self.x0[i] - h * self.v0[i]) - (0.5 - beta) / beta * a;
                 let theta = log_map(state.q[i] * self.q0[i].conjugate());
@@ -259,14 +285,15 @@ impl ImplicitSolver {
             // residual r = (1+α) f_{n+1} − α f_n − m a_{n+1}; Jacobian (1+α)K + m c_acc
             for i in 0..n {
                 let a_new = c_acc * (state.x[i] - self.x0[i] - h * self.v0[i])
-                    - (0.5 - beta) / beta * self.acc[i];
+                    - (0.5 - beta) / beta * history.acc[i];
                 let theta = log_map(state.q[i] * self.q0[i].conjugate());
                 let alp_new =
-                    c_acc * (theta - h * self.w0[i]) - (0.5 - beta) / beta * self.ang_acc[i];
-                let rf =
-                    (1.0 + alpha) * sys.force[i] - alpha * self.f_prev[i] - model.mass[i] * a_new;
+                    c_acc * (theta - h * self.w0[i]) - (0.5 - beta) / beta * history.ang_acc[i];
+                let rf = (1.0 + alpha) * sys.force[i]
+                    - alpha * history.f_prev[i]
+                    - model.mass[i] * a_new;
                 let rm = (1.0 + alpha) * sys.moment[i]
-                    - alpha * self.m_prev[i]
+                    - alpha * history.m_prev[i]
                     - model.inertia[i] * alp_new;
                 sys.rhs[i] = Vector6::new(rf.x, rf.y, rf.z, rm.x, rm.y, rm.z);
                 let d = &mut sys.matrix.diag[i];
@@ -335,18 +362,18 @@ impl ImplicitSolver {
                 (state.v[i] - self.v0[i]) / h
             } else {
                 c_acc * (state.x[i] - self.x0[i] - h * self.v0[i])
-                    - (0.5 - beta) / beta * self.acc[i]
+                    - (0.5 - beta) / beta * history.acc[i]
             };
             let alp_new = if sys.prescribed[i] {
                 (state.w[i] - self.w0[i]) / h
             } else {
                 let theta = log_map(state.q[i] * self.q0[i].conjugate());
-                c_acc * (theta - h * self.w0[i]) - (0.5 - beta) / beta * self.ang_acc[i]
+                c_acc * (theta - h * self.w0[i]) - (0.5 - beta) / beta * history.ang_acc[i]
             };
-            self.acc[i] = a_new;
-            self.ang_acc[i] = alp_new;
-            self.f_prev[i] = sys.force[i];
-            self.m_prev[i] = sys.moment[i];
+            history.acc[i] = a_new;
+            history.ang_acc[i] = alp_new;
+            history.f_prev[i] = sys.force[i];
+            history.m_prev[i] = sys.moment[i];
             state.force[i] = sys.force[i];
             state.moment[i] = sys.moment[i];
             state.contact_force[i] = sys.contact_force[i];

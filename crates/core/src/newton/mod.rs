@@ -8,6 +8,8 @@ pub mod implicit;
 pub mod statics;
 pub mod system;
 
-pub use implicit::{ImplicitError, ImplicitOptions, ImplicitReport, ImplicitSolver};
+pub use implicit::{
+    ImplicitError, ImplicitHistory, ImplicitOptions, ImplicitReport, ImplicitSolver,
+};
 pub use statics::{StaticError, StaticOptions, StaticReport, StaticSolver};
 pub use system::{NewtonSystem, NotAChain, RIGID_FACTOR};

@@ -159,7 +159,7 @@ impl NewtonSystem {
         if !model.environment.is_empty() {
             self.add_contact(model, state);
         }
-        if state.hose_contact.active {
+        if model.hose_contact.active {
             let (matrix, pairs) = (&mut self.matrix, &mut self.pairs);
             pairs.clear();
             hose_contact_forces_with(
@@ -221,7 +221,7 @@ impl NewtonSystem {
                 e -= d.force.dot(state.x[d.node]);
             }
         }
-        if state.hose_contact.active {
+        if model.hose_contact.active {
             // the penalty springs' energy ½ k pen², computed with the forces
             hose_contact_forces_with(
                 model,
