@@ -288,7 +288,7 @@ fn set_pose_moves_held_nodes_to_the_target_pose() {
     for _ in 0..200 {
         let t = state.time + model.time_step;
         hand.update(&mut state, t);
-        pliant_core::explicit::step(&model, &mut state);
+        pliant_core::integrators::explicit::step(&model, &mut state);
     }
     let tip = state.x[N];
     assert!(

@@ -1,6 +1,6 @@
 //! `pliant bench [--json] [--quick]`: the performance benchmark (SPEC §6, docs/performance.md).
 //!
-//! Every case runs the real explicit step (`pliant_core::explicit::step`) with the model's
+//! Every case runs the real explicit step (`pliant_core::integrators::explicit::step`) with the model's
 //! automatic stable time step (never overridden: the point is the physically correct step,
 //! SPEC P4), gravity on, default damping, one end of every hose fixed and the rest hanging
 //! free from a horizontal start, so that the hoses fall and swing with large rotations.
@@ -18,7 +18,8 @@ use pliant_core::frames::node_frames;
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::RigidPartSpec;
 use pliant_core::{
-    explicit, health, HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec,
+    health, integrators::explicit, HoseSpec, Material, Model, Section, SimSettings, State,
+    WorldSpec,
 };
 use serde::Serialize;
 use std::time::{Duration, Instant};

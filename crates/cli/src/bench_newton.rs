@@ -9,8 +9,8 @@
 use crate::bench::{fit_loglog, material_1, median};
 use anyhow::{Context, Result};
 use glam::DVec3;
+use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::loads::{Fix, LoadCase};
-use pliant_core::newton::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::{HoseSpec, Model, SimSettings, State, WorldSpec};
 use serde::Serialize;
 use std::time::Instant;

@@ -14,12 +14,12 @@
 
 use anyhow::{bail, Result};
 use glam::{DQuat, DVec3};
+use pliant_core::integrators::StaticSolver;
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
-use pliant_core::newton::StaticSolver;
-use pliant_core::relax::{relax, RelaxOptions};
+use pliant_core::settle::{settle, SettleOptions};
 use pliant_core::{
-    explicit, health, HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings, State,
-    WorldSpec,
+    health, integrators::explicit, HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings,
+    State, WorldSpec,
 };
 use serde::Serialize;
 use std::time::Instant;
@@ -30,16 +30,16 @@ use std::time::Instant;
 #[serde(rename_all = "lowercase")]
 pub enum Solver {
     /// Explicit central differences with kinetic damping (dynamic relaxation,
-    /// `pliant_core::relax`), stopped when the out-of-balance force on every free node is
+    /// `pliant_core::settle`), stopped when the out-of-balance force on every free node is
     /// below tol·P (moment below tol·P·L).
     Relax,
     /// Explicit central differences with viscous mass damping at the critical value of
     /// the first cantilever mode (α = 2ω₁), run until every node is slower than
     /// tol·L·ω₁ — the same "damped dynamics to rest" the peers use.
     Damped,
-    /// Quasi-static Newton solver (`pliant_core::newton::StaticSolver`): one solve.
+    /// Quasi-static Newton solver (`pliant_core::integrators::StaticSolver`): one solve.
     Static,
-    /// Implicit HHT-α dynamics (`pliant_core::newton::ImplicitSolver`); not offered for
+    /// Implicit HHT-α dynamics (`pliant_core::integrators::ImplicitSolver`); not offered for
     /// the static cantilever.
     Implicit,
 }
@@ -244,10 +244,10 @@ pub fn solve_cantilever(
     let max_steps: u64 = 200_000_000;
     let (converged, steps, note) = match solver {
         Solver::Relax => {
-            let r = relax(
+            let r = settle(
                 &model,
                 &mut state,
-                &RelaxOptions {
+                &SettleOptions {
                     force_tolerance: tol * p,
                     moment_tolerance: tol * p * len,
                     max_steps,

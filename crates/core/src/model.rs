@@ -4,8 +4,8 @@
 use crate::contact::{HoseContactModel, RigidEnvironment};
 use crate::element::BeamElement;
 use crate::frames::node_frames;
+use crate::integrators::SolverSettings;
 use crate::mass::half_element_mass;
-use crate::solver::SolverSettings;
 use crate::spec::{HoseSpec, SimSettings, WorldSpec};
 use crate::stiffened::{RigidBody, StiffenedSpan};
 use crate::timestep::{stable_time_step, TimeStepReport};
@@ -41,7 +41,7 @@ pub struct Model {
     pub mass: Vec<f64>,
     /// Lumped isotropic rotational inertia per node [kg·m²] (see [`crate::mass`]).
     pub inertia: Vec<f64>,
-    /// Outer radius per node [m] (for drawing and, later, contact).
+    /// Outer radius per node [m] (for drawing and contact).
     pub radius: Vec<f64>,
     /// Rest positions [m] and rest material frames.
     pub rest_x: Vec<DVec3>,

@@ -42,7 +42,7 @@ pub struct SimSettings {
     pub time_step: Option<f64>,
     /// Which solver advances the simulation, and its steps (issue 5).
     #[serde(default)]
-    pub solver: crate::solver::SolverSettings,
+    pub solver: crate::integrators::SolverSettings,
 }
 
 impl Default for SimSettings {

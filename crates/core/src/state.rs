@@ -3,8 +3,8 @@
 //! clone of the State.
 
 use crate::contact::{ContactScratch, HoseContactScratch};
+use crate::integrators::ImplicitHistory;
 use crate::loads::LoadCases;
-use crate::newton::ImplicitHistory;
 use crate::sleep::Sleep;
 use crate::stiffened::BodyState;
 use crate::Model;

@@ -5,9 +5,9 @@
 use glam::{DQuat, DVec3};
 use pliant_core::contact::hose_hose::closest_segment_segment;
 use pliant_core::contact::{hose_contact_forces, BroadPhase};
-use pliant_core::explicit::step;
 use pliant_core::forces::{internal_loads, Config};
 use pliant_core::health::check;
+use pliant_core::integrators::explicit::step;
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
 use pliant_core::math::exp_map;
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};

@@ -2,8 +2,8 @@
 //! against the explicit solver's relaxed state; implicit HHT-α at large steps.
 
 use glam::{DQuat, DVec3};
+use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
-use pliant_core::newton::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 
 fn cantilever(n: usize, material: Material, section: Section, gravity: DVec3) -> (Model, State) {

@@ -3,7 +3,8 @@
 
 use glam::DVec3;
 use pliant_core::{
-    explicit, HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings, State, WorldSpec,
+    integrators::explicit, HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings, State,
+    WorldSpec,
 };
 
 #[test]

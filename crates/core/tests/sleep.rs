@@ -2,7 +2,7 @@
 //! element evaluations; a moving support or a touching hose wakes it.
 
 use glam::DVec3;
-use pliant_core::explicit::step;
+use pliant_core::integrators::explicit::step;
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::sleep::SLEEP_AFTER_STEPS;
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};

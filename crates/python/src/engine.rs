@@ -133,7 +133,7 @@ impl Engine {
         force_tolerance: f64,
         moment_tolerance: f64,
         max_iterations: usize,
-    ) -> Result<pliant_core::newton::StaticReport, Refusal> {
+    ) -> Result<pliant_core::integrators::StaticReport, Refusal> {
         match self.give(Input::SolveStatic {
             force_tolerance,
             moment_tolerance,

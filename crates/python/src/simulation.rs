@@ -16,7 +16,7 @@ use crate::settle_report::SettleReport;
 use glam::DVec3;
 use numpy::{PyArray1, PyArray2};
 use pliant_core::loads::{LoadCase, LoadCaseId};
-use pliant_core::relax::RelaxOptions;
+use pliant_core::settle::SettleOptions;
 use pliant_core::State;
 use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
@@ -290,7 +290,7 @@ impl Simulation {
         kinetic_damping: bool,
     ) -> PyResult<SettleReport> {
         check_tolerances(force_tolerance, moment_tolerance)?;
-        let opts = RelaxOptions {
+        let opts = SettleOptions {
             force_tolerance,
             moment_tolerance,
             max_steps,
@@ -334,7 +334,7 @@ impl Simulation {
             };
             pyo3::exceptions::PyRuntimeError::new_err(message)
         })?;
-        Ok(SettleReport::from(pliant_core::relax::RelaxReport {
+        Ok(SettleReport::from(pliant_core::settle::SettleReport {
             steps: r.iterations as u64,
             residual_force: r.residual_force,
             residual_moment: r.residual_moment,

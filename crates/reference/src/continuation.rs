@@ -18,7 +18,7 @@
 
 use crate::boundary::EndCondition;
 use crate::error::{ReferenceError, Result};
-use crate::shooting::{Globalization, Solver, Unknowns};
+use crate::shooting::{Globalization, ShootingSolver, Unknowns};
 use crate::solution::Solution;
 
 /// A converged point of the path.
@@ -28,7 +28,7 @@ struct PathPoint {
     load_scale: f64,
 }
 
-impl Solver {
+impl ShootingSolver {
     /// Solves each of `targets` in turn by continuation from the unloaded rest
     /// state, returning one solution per target.
     ///
@@ -59,12 +59,12 @@ impl Solver {
         self.follow(start, targets)
     }
 
-    /// Like [`Solver::solve_path`], but continuing from an existing solution of
+    /// Like [`ShootingSolver::solve_path`], but continuing from an existing solution of
     /// this solver (same rod, base and options).
     ///
     /// # Errors
     ///
-    /// As [`Solver::solve_path`]; [`ReferenceError::InvalidBoundaryCondition`] if
+    /// As [`ShootingSolver::solve_path`]; [`ReferenceError::InvalidBoundaryCondition`] if
     /// `start` was computed by a different solver.
     pub fn solve_path_from(
         &self,

@@ -20,7 +20,7 @@ pub enum ReferenceError {
     /// A boundary condition or load contains non-finite values.
     #[error("invalid boundary condition: {0}")]
     InvalidBoundaryCondition(String),
-    /// Solver options are out of range.
+    /// ShootingSolver options are out of range.
     #[error("invalid solver options: {0}")]
     InvalidOptions(String),
     /// A requested sample arc length lies outside `[0, L]` or is not finite.

@@ -42,13 +42,13 @@
 //!
 //! ```
 //! use nalgebra::Vector3;
-//! use pliant_reference::{EndCondition, Rod, Solver, Stiffness};
+//! use pliant_reference::{EndCondition, Rod, ShootingSolver, Stiffness};
 //!
 //! # fn main() -> Result<(), pliant_reference::ReferenceError> {
 //! // Cantilever of length 1 m, EI = 1 N m², tip load P = EI/L² normal to the axis.
 //! let stiffness = Stiffness::new(1e9, 1.0, 1.0)?;
 //! let rod = Rod::new(vec![Vector3::zeros(), Vector3::x()], stiffness)?;
-//! let solver = Solver::new(rod.clone(), rod.rest_base_pose())?;
+//! let solver = ShootingSolver::new(rod.clone(), rod.rest_base_pose())?;
 //! let load = EndCondition::loaded(Vector3::new(0.0, 1.0, 0.0), Vector3::zeros());
 //! let solutions = solver.solve_path(&[load])?;
 //! let tip = solutions[0].end_state().position;
@@ -69,5 +69,5 @@ pub mod solution;
 pub use boundary::{EndCondition, Pose};
 pub use error::{ReferenceError, Result};
 pub use rod::{Rod, Stiffness};
-pub use shooting::{Solver, SolverOptions, Unknowns};
+pub use shooting::{ShootingSolver, SolverOptions, Unknowns};
 pub use solution::{SectionState, Solution, Wrench};

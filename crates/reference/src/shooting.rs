@@ -126,7 +126,7 @@ impl Unknowns {
 
 /// Static reference solver for one rod clamped at its base.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Solver {
+pub struct ShootingSolver {
     rod: Rod,
     base: Pose,
     options: SolverOptions,
@@ -170,8 +170,8 @@ struct Evaluation {
     end: RodState,
 }
 
-impl Solver {
-    /// Solver for `rod` with its base (`s = 0`) clamped at `base` (position and
+impl ShootingSolver {
+    /// A solver for `rod` with its base (`s = 0`) clamped at `base` (position and
     /// material frame; use [`Rod::rest_base_pose`] for the rest pose), default
     /// options.
     ///
@@ -227,7 +227,7 @@ impl Solver {
     }
 
     /// Solves the static problem for `end` by Newton's method starting from
-    /// `guess` (no continuation; see [`Solver::solve_path`] for large loads).
+    /// `guess` (no continuation; see [`ShootingSolver::solve_path`] for large loads).
     ///
     /// # Errors
     ///
@@ -478,7 +478,7 @@ mod tests {
             .unwrap()
             .with_distributed_load(Vector3::new(0.1, -0.3, 0.2))
             .unwrap();
-        let solver = Solver::new(rod.clone(), rod.rest_base_pose()).unwrap();
+        let solver = ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap();
         let x = Vector6::new(0.7, -1.1, 0.4, 0.3, 0.8, -0.6);
         let pose = Pose::new(
             Vector3::new(0.8, 0.2, -0.1),

@@ -5,7 +5,7 @@ use nalgebra::{Rotation3, Vector3};
 use crate::boundary::EndCondition;
 use crate::error::{ReferenceError, Result};
 use crate::ode::{integrate, Augmented};
-use crate::shooting::{Solver, Unknowns};
+use crate::shooting::{ShootingSolver, Unknowns};
 use crate::so3;
 
 /// A force and a moment; the point the moment is taken about is stated where a
@@ -43,7 +43,7 @@ pub struct SectionState {
 /// `−m(0) + m(L) + (r(L) − r(0)) × n(L) + ∫(r − r(0)) × q ds = 0`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Solution {
-    solver: Solver,
+    solver: ShootingSolver,
     end_condition: EndCondition,
     unknowns: Unknowns,
     end_state: SectionState,
@@ -54,7 +54,7 @@ pub struct Solution {
 
 impl Solution {
     pub(crate) fn new(
-        solver: Solver,
+        solver: ShootingSolver,
         end_condition: EndCondition,
         unknowns: Unknowns,
         end_state: SectionState,
@@ -74,7 +74,7 @@ impl Solution {
     }
 
     /// The solver that produced this solution.
-    pub(crate) fn solver(&self) -> &Solver {
+    pub(crate) fn solver(&self) -> &ShootingSolver {
         &self.solver
     }
 

@@ -2,13 +2,13 @@
 //! stiffness) and pure torsion, where the exact solutions are uniform states.
 
 use nalgebra::{Rotation3, Vector3};
-use pliant_reference::{EndCondition, Rod, Solver, Stiffness};
+use pliant_reference::{EndCondition, Rod, ShootingSolver, Stiffness};
 
 const L: f64 = 0.8;
 const EI: f64 = 3.0;
 const GJ: f64 = 2.2;
 
-fn clamped_rod(stiffness: Stiffness) -> Solver {
+fn clamped_rod(stiffness: Stiffness) -> ShootingSolver {
     // Three unequal collinear segments along +x: exercises the segment restarts.
     let nodes = vec![
         Vector3::zeros(),
@@ -17,7 +17,7 @@ fn clamped_rod(stiffness: Stiffness) -> Solver {
         Vector3::new(L, 0.0, 0.0),
     ];
     let rod = Rod::new(nodes, stiffness).unwrap();
-    Solver::new(rod.clone(), rod.rest_base_pose()).unwrap()
+    ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap()
 }
 
 fn relative(a: f64, b: f64) -> f64 {

@@ -2,7 +2,7 @@
 
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use pliant_reference::{
-    EndCondition, Pose, ReferenceError, Rod, Solver, SolverOptions, Stiffness, Unknowns,
+    EndCondition, Pose, ReferenceError, Rod, ShootingSolver, SolverOptions, Stiffness, Unknowns,
 };
 
 fn stiffness() -> Stiffness {
@@ -97,7 +97,7 @@ fn non_finite_loads_and_poses() {
             .with_distributed_load(Vector3::new(0.0, f64::NAN, 0.0)),
         "distributed load",
     );
-    let solver = Solver::new(rod.clone(), rod.rest_base_pose()).unwrap();
+    let solver = ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap();
     let nan_load = EndCondition::loaded(Vector3::new(f64::NAN, 0.0, 0.0), Vector3::zeros());
     expect_message(solver.solve(&nan_load, &Unknowns::zero()), "end load");
     expect_message(solver.solve_path(&[nan_load]), "end load");
@@ -113,7 +113,7 @@ fn non_finite_loads_and_poses() {
         Rotation3::from_matrix_unchecked(Matrix3::identity() * 2.0),
     );
     expect_message(
-        Solver::new(rod.clone(), skewed),
+        ShootingSolver::new(rod.clone(), skewed),
         "base frame is not a rotation",
     );
     let guess = Unknowns {
@@ -127,7 +127,7 @@ fn non_finite_loads_and_poses() {
 #[test]
 fn bad_options_and_sample_points() {
     let rod = Rod::new(straight(), stiffness()).unwrap();
-    let solver = Solver::new(rod.clone(), rod.rest_base_pose()).unwrap();
+    let solver = ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap();
     let options = SolverOptions {
         tolerance: -1.0,
         ..SolverOptions::default()
@@ -148,7 +148,7 @@ fn unreachable_target_reports_failure() {
         max_step_halvings: 4,
         ..SolverOptions::default()
     };
-    let solver = Solver::new(rod.clone(), rod.rest_base_pose())
+    let solver = ShootingSolver::new(rod.clone(), rod.rest_base_pose())
         .unwrap()
         .with_options(options)
         .unwrap();

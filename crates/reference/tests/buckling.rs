@@ -4,7 +4,7 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use nalgebra::Vector3;
-use pliant_reference::{EndCondition, Rod, Solver, Stiffness};
+use pliant_reference::{EndCondition, Rod, ShootingSolver, Stiffness};
 
 const EI: f64 = 1.5;
 
@@ -55,7 +55,7 @@ fn clamped_clamped_buckling_follows_the_elastica() {
     let stiffness = Stiffness::new(1e9 * EI, EI, 0.8 * EI).unwrap();
     let rod = Rod::new(nodes, stiffness).unwrap();
     let l = rod.length();
-    let solver = Solver::new(rod.clone(), rod.rest_base_pose()).unwrap();
+    let solver = ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap();
     let rest_end = solver.unloaded_end_pose();
     // Finely near the bifurcation, then in steps of 0.25 % of L.
     let mut shortenings = vec![1e-6, 1e-5, 1e-4, 1e-3];

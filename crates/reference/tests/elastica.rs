@@ -6,18 +6,18 @@
 use std::f64::consts::PI;
 
 use nalgebra::Vector3;
-use pliant_reference::{EndCondition, Rod, Solver, Stiffness};
+use pliant_reference::{EndCondition, Rod, ShootingSolver, Stiffness};
 
 const L: f64 = 1.0;
 const EI: f64 = 2.0;
 
-fn straight_cantilever(segments: usize) -> Solver {
+fn straight_cantilever(segments: usize) -> ShootingSolver {
     let stiffness = Stiffness::new(1e9 * EI / (L * L), EI, 0.7 * EI).unwrap();
     let nodes = (0..=segments)
         .map(|i| Vector3::new(L * i as f64 / segments as f64, 0.0, 0.0))
         .collect();
     let rod = Rod::new(nodes, stiffness).unwrap();
-    Solver::new(rod.clone(), rod.rest_base_pose()).unwrap()
+    ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap()
 }
 
 /// Mattiasson (1981) / Bisshopp–Drucker: tip deflection w/L and axial shortening
@@ -92,7 +92,7 @@ fn small_distributed_load_matches_linear_beam_theory() {
         .unwrap()
         .with_distributed_load(Vector3::new(0.0, 0.0, -q))
         .unwrap();
-    let solver = Solver::new(rod.clone(), rod.rest_base_pose()).unwrap();
+    let solver = ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap();
     let free = EndCondition::loaded(Vector3::zeros(), Vector3::zeros());
     let solution = &solver.solve_path(&[free]).unwrap()[0];
     let w = solution.end_state().position.z;

@@ -3,7 +3,7 @@
 //! shape along rigidly.
 
 use nalgebra::{Rotation3, Vector3};
-use pliant_reference::{EndCondition, Pose, Rod, Solver, Stiffness, Unknowns};
+use pliant_reference::{EndCondition, Pose, Rod, ShootingSolver, Stiffness, Unknowns};
 
 fn bent_rod() -> Rod {
     let nodes = vec![
@@ -19,7 +19,7 @@ fn bent_rod() -> Rod {
 #[test]
 fn rest_state_reproduces_polyline_and_frames() {
     let rod = bent_rod();
-    let solver = Solver::new(rod.clone(), rod.rest_base_pose()).unwrap();
+    let solver = ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap();
     let free = EndCondition::loaded(Vector3::zeros(), Vector3::zeros());
     let solution = solver.solve(&free, &Unknowns::zero()).unwrap();
     assert_eq!(solution.iterations(), 0);
@@ -46,7 +46,7 @@ fn moved_base_carries_rest_shape_rigidly() {
     let rotation = Rotation3::new(Vector3::new(0.3, -1.2, 2.0));
     let translation = Vector3::new(1.0, -2.0, 0.5);
     let base = rod.rest_base_pose().transformed(&rotation, &translation);
-    let solver = Solver::new(rod.clone(), base).unwrap();
+    let solver = ShootingSolver::new(rod.clone(), base).unwrap();
     let end = EndCondition::clamped(solver.unloaded_end_pose());
     let solution = &solver.solve_path(&[end]).unwrap()[0];
     assert!(solution.base_reaction().force.norm() < 1e-10);
@@ -60,11 +60,11 @@ fn moved_base_carries_rest_shape_rigidly() {
 #[test]
 fn continuing_from_a_solution_of_another_solver_is_rejected() {
     let rod = bent_rod();
-    let a = Solver::new(rod.clone(), rod.rest_base_pose()).unwrap();
+    let a = ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap();
     let moved = rod
         .rest_base_pose()
         .translated(&Vector3::new(0.0, 0.0, 1.0));
-    let b = Solver::new(rod, moved).unwrap();
+    let b = ShootingSolver::new(rod, moved).unwrap();
     let free = EndCondition::loaded(Vector3::zeros(), Vector3::zeros());
     let solution = a.solve(&free, &Unknowns::zero()).unwrap();
     assert!(b.solve_path_from(&solution, &[free]).is_err());

@@ -4,7 +4,7 @@
 //! moved by (−120, +120, +120) mm with its frame held at the rest frame.
 
 use nalgebra::Vector3;
-use pliant_reference::{EndCondition, Rod, Solver, Stiffness};
+use pliant_reference::{EndCondition, Rod, ShootingSolver, Stiffness};
 
 fn thesis_rod() -> Rod {
     let nodes = (0..=20)
@@ -24,7 +24,7 @@ fn thesis_rod() -> Rod {
 #[test]
 fn thesis_case_moved_end_is_in_equilibrium() {
     let rod = thesis_rod();
-    let solver = Solver::new(rod.clone(), rod.rest_base_pose()).unwrap();
+    let solver = ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap();
     let rest_end = rod.rest_end_pose();
     let displacement = Vector3::new(-0.120, 0.120, 0.120);
     let steps = 24;

@@ -1,5 +1,5 @@
 //! Binding a scene's stubs and clips to a built model's nodes (SPEC L6, L7), for the
-//! runner (`pliant run`) and, later, live sessions.
+//! workcell (SPEC W1), whichever shell runs it.
 
 use crate::scene::{HoseEnd, LoadedScene};
 use pliant_assembly::stub::PressFit;

@@ -5,7 +5,7 @@ use crate::centerline::{element_count, Centerline, CurveError, Resolution, Segme
 use crate::error::FieldError;
 use crate::format::{HoseEntry, SectionEntry, SegmentEntry, Vec3};
 use crate::materials::Materials;
-use crate::scene::HoseInfo;
+use crate::scene::HoseDiscretisation;
 use crate::units::{fmt_vec, LengthUnit};
 use crate::validate::{
     finite_vec, node_index, non_negative, non_zero_vec, positive, vec_with_unit, with_unit,
@@ -22,7 +22,7 @@ pub fn build_hose(
     raw: &HoseEntry,
     unit: LengthUnit,
     materials: &Materials,
-) -> Result<(HoseSpec, HoseInfo), FieldError> {
+) -> Result<(HoseSpec, HoseDiscretisation), FieldError> {
     let at = |rest: &str| format!("hoses[{index}].{rest}");
     let u = unit.symbol();
     let scale = unit.to_metres();
@@ -180,7 +180,7 @@ pub fn build_hose(
         stiffened.push((first, last));
     }
 
-    let info = HoseInfo {
+    let info = HoseDiscretisation {
         stiffened,
         name: raw.name.clone(),
         length,

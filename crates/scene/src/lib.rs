@@ -38,6 +38,6 @@ pub use load::{
     load_scene_str, load_scene_str_in, DEMO_SCENE_TOML, FORMAT_TAG, FORMAT_VERSION,
 };
 pub use mesh::{TriMesh, MAX_TRIANGLES};
-pub use scene::{HoseEnd, HoseInfo, LoadedScene, PartInfo, SceneClip, SceneStub};
+pub use scene::{HoseDiscretisation, HoseEnd, LoadedScene, PartInfo, SceneClip, SceneStub};
 pub use schema::scene_schema_json;
 pub use units::LengthUnit;

@@ -52,7 +52,7 @@ pub struct SceneClip {
 
 /// How one hose was discretised.
 #[derive(Clone, Debug, PartialEq)]
-pub struct HoseInfo {
+pub struct HoseDiscretisation {
     /// The hose's name.
     pub name: String,
     /// Arc length of its centre line (m) (before imperfections).
@@ -101,7 +101,7 @@ pub struct LoadedScene {
     /// Hose names by index.
     pub hose_names: Vec<String>,
     /// Discretisation facts per hose, by index.
-    pub hoses: Vec<HoseInfo>,
+    pub hoses: Vec<HoseDiscretisation>,
     /// Facts per rigid part, by index (same order as `world.rigid_parts`).
     pub parts: Vec<PartInfo>,
     /// Connector stubs, in file order.

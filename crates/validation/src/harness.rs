@@ -1,9 +1,9 @@
 //! Shared set-up of the validation cases: straight hoses, clamping, relaxation.
 
 use glam::{DQuat, DVec3};
+use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::loads::{Fix, LoadCase};
-use pliant_core::newton::{ImplicitOptions, ImplicitSolver, StaticSolver};
-use pliant_core::relax::{relax, RelaxOptions, RelaxReport};
+use pliant_core::settle::{settle, SettleOptions, SettleReport};
 use pliant_core::SolverKind;
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 use std::cell::Cell;
@@ -95,12 +95,12 @@ pub fn clamp_at(state: &mut State, i: usize, position: DVec3, orientation: DQuat
 }
 
 thread_local! {
-    /// The solver [`relax_to`] reaches rest with (the `solvers` case runs every case with
+    /// The solver [`settle_to`] reaches rest with (the `solvers` case runs every case with
     /// a rest state under each).
     static SOLVER: Cell<SolverKind> = const { Cell::new(SolverKind::Explicit) };
 }
 
-/// Runs `f` with [`relax_to`] using `kind`.
+/// Runs `f` with [`settle_to`] using `kind`.
 pub fn with_solver<R>(kind: SolverKind, f: impl FnOnce() -> R) -> R {
     let before = SOLVER.with(|s| s.replace(kind));
     let out = f();
@@ -113,27 +113,27 @@ pub fn with_solver<R>(kind: SolverKind, f: impl FnOnce() -> R) -> R {
 /// below `rel · force · length` on every free node.
 ///
 /// * explicit — dynamic relaxation of the explicit step (kinetic damping when the model
-///   has no mass damping; [`pliant_core::relax`]);
-/// * static — one Newton solve ([`pliant_core::newton::StaticSolver`]);
+///   has no mass damping; [`pliant_core::settle`]);
+/// * static — one Newton solve ([`pliant_core::integrators::StaticSolver`]);
 /// * implicit — HHT-α steps of 50 ms with the most numerical damping (α = −⅓), each
 ///   started from rest, until the residual is met ("implicit, damped to rest").
-pub fn relax_to(
+pub fn settle_to(
     model: &Model,
     state: &mut State,
     force: f64,
     length: f64,
     rel: f64,
-) -> Result<RelaxReport, String> {
+) -> Result<SettleReport, String> {
     let (force_tolerance, moment_tolerance) = (rel * force, rel * force * length);
     let report = match SOLVER.with(|s| s.get()) {
         SolverKind::Explicit => {
-            let opts = RelaxOptions {
+            let opts = SettleOptions {
                 force_tolerance,
                 moment_tolerance,
                 max_steps: 1_500_000,
                 kinetic_damping: model.damping_mass == 0.0,
             };
-            relax(model, state, &opts).map_err(|d| d.to_string())?
+            settle(model, state, &opts).map_err(|d| d.to_string())?
         }
         SolverKind::Static => {
             let mut solver = StaticSolver::new(model).map_err(|e| e.to_string())?;
@@ -141,7 +141,7 @@ pub fn relax_to(
             solver.options.moment_tolerance = moment_tolerance;
             solver.options.max_iterations = 200;
             let r = solver.solve(model, state).map_err(|e| e.to_string())?;
-            RelaxReport {
+            SettleReport {
                 steps: r.iterations as u64,
                 residual_force: r.residual_force,
                 residual_moment: r.residual_moment,
@@ -173,7 +173,7 @@ fn implicit_to_rest(
     state: &mut State,
     force_tolerance: f64,
     moment_tolerance: f64,
-) -> Result<RelaxReport, String> {
+) -> Result<SettleReport, String> {
     let options = ImplicitOptions {
         time_step: 0.05,
         alpha: -1.0 / 3.0,
@@ -183,7 +183,7 @@ fn implicit_to_rest(
         ..Default::default()
     };
     let mut solver = ImplicitSolver::new(model, options).map_err(|e| e.to_string())?;
-    let mut report = RelaxReport {
+    let mut report = SettleReport {
         steps: 0,
         residual_force: f64::INFINITY,
         residual_moment: f64::INFINITY,
@@ -197,7 +197,7 @@ fn implicit_to_rest(
         let before = (state.x.clone(), state.q.clone());
         solver.step(model, state).map_err(|e| e.to_string())?;
         report.steps += 1;
-        let (f, m) = pliant_core::relax::residual(state);
+        let (f, m) = pliant_core::settle::residual(state);
         report.residual_force = f;
         report.residual_moment = m;
         // at rest: residual met, or a whole step moved and turned no node beyond

@@ -4,7 +4,7 @@
 use glam::{DQuat, DVec3};
 use nalgebra::{Rotation3, UnitQuaternion, Vector3};
 use pliant_core::Model;
-use pliant_reference::{Pose, Rod, Solver, Stiffness};
+use pliant_reference::{Pose, Rod, ShootingSolver, Stiffness};
 
 pub fn to_na(v: DVec3) -> Vector3<f64> {
     Vector3::new(v.x, v.y, v.z)
@@ -22,7 +22,7 @@ pub fn rotation(q: DQuat) -> Rotation3<f64> {
 /// A reference solver for hose `h` of `model`: same rest polyline, same EA_t, EA_c, EI,
 /// GJ (read from the model's first element — the validation hoses are uniform), base
 /// clamped at the rest pose of node 0.
-pub fn solver_for(model: &Model, h: usize) -> Result<Solver, String> {
+pub fn solver_for(model: &Model, h: usize) -> Result<ShootingSolver, String> {
     let info = &model.hoses[h];
     let e = &model.elements[info.first_element];
     let stiffness = Stiffness::bimodular(
@@ -36,7 +36,7 @@ pub fn solver_for(model: &Model, h: usize) -> Result<Solver, String> {
     let base_frame = rotation(model.rest_q[info.first_node]);
     let rod = Rod::with_base_frame(nodes, base_frame, stiffness).map_err(|e| e.to_string())?;
     let base = rod.rest_base_pose();
-    Solver::new(rod, base).map_err(|e| e.to_string())
+    ShootingSolver::new(rod, base).map_err(|e| e.to_string())
 }
 
 /// The reference end pose matching a model node pose: the model's node frame and the

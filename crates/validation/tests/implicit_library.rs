@@ -4,8 +4,8 @@
 //! step converging without halving, stays finite, and ends hanging below its root.
 
 use glam::DVec3;
+use pliant_core::integrators::{ImplicitOptions, ImplicitSolver};
 use pliant_core::loads::{Fix, LoadCase};
-use pliant_core::newton::{ImplicitOptions, ImplicitSolver};
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 
 fn swing(name: &str, material: Material, section: Section) {

@@ -9,7 +9,7 @@ use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile, HandAssessment, LoadK
 use crate::fasteners::{FastenerReport, FastenerSample};
 use crate::hand::HandLoad;
 use glam::DVec3;
-use pliant_core::solver::StepStats;
+use pliant_core::integrators::StepStats;
 use pliant_core::{Model, State};
 use serde::Serialize;
 

@@ -342,7 +342,7 @@ pub fn hose_contact_forces_with(
 
 /// Computes the hose–hose and self contact forces of the state's configuration into
 /// `state.hose_contact_force` and adds them to `state.force`. Called by
-/// [`crate::explicit::step`] after the body loads. No allocation.
+/// [`crate::integrators::explicit::step`] after the body loads. No allocation.
 pub fn add_hose_contact_forces(model: &Model, state: &mut State) {
     if !model.hose_contact.active {
         return;

@@ -11,7 +11,7 @@ pub mod broad_phase;
 mod environment;
 pub mod hose_hose;
 mod penalty;
-mod resolve;
+mod rigid;
 mod segment_triangle;
 
 pub use broad_phase::BroadPhase;
@@ -20,10 +20,10 @@ pub use hose_hose::{
     add_hose_contact_forces, hose_contact_forces, hose_contact_forces_with, ContactPair,
     HoseContactModel, HoseContactScratch,
 };
-pub use resolve::{ContactPoint, ContactScratch};
+pub use rigid::{ContactPoint, ContactScratch};
 pub use segment_triangle::{
     closest_segment_triangle, closest_segment_triangle_away_from_ends, SegmentTriangleClosest,
 };
 
 pub(crate) use penalty::add_penalty_forces;
-pub(crate) use resolve::{project_positions, resolve_velocities};
+pub(crate) use rigid::{project_positions, resolve_velocities};

@@ -1,7 +1,7 @@
 //! `axial`: the bimodular axial law (SPEC M3). A clamped hose whose end is pulled out by
 //! ΔL carries N = E_t A ΔL/L; pushed in (straight, below buckling) N = E_c A ΔL/L.
 
-use crate::harness::{build, clamp, clamp_at, hose1, relax_to, static_settings, straight_hose};
+use crate::harness::{build, clamp, clamp_at, hose1, settle_to, static_settings, straight_hose};
 use crate::Check;
 use glam::DVec3;
 use pliant_core::State;
@@ -20,7 +20,7 @@ fn end_force(delta: f64) -> Result<f64, String> {
     let q = state.q[ELEMENTS];
     clamp_at(&mut state, ELEMENTS, DVec3::new(len + delta, 0.0, 0.0), q);
     let scale = mat.e_tension * sec.area() * delta.abs() / len;
-    relax_to(&model, &mut state, scale, len, 1e-9)?;
+    settle_to(&model, &mut state, scale, len, 1e-9)?;
     // the support pulls the end by +N along x
     Ok(state.reaction_force[ELEMENTS].x)
 }

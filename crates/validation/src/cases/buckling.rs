@@ -5,7 +5,7 @@
 //! The clamped–free column carries a dead end load; the clamped–clamped one is shortened
 //! by moving its clamped end, and P is the measured support force.
 
-use crate::harness::{build, clamp, clamp_at, hose1, relax_to, static_settings, straight_hose};
+use crate::harness::{build, clamp, clamp_at, hose1, settle_to, static_settings, straight_hose};
 use crate::Check;
 use glam::DVec3;
 use pliant_core::loads::{DeadLoad, LoadCase};
@@ -58,7 +58,7 @@ fn clamped_free(p_exact: f64) -> Result<f64, String> {
             moment: DVec3::ZERO,
         };
         id = Some(state.loads.add(LoadCase::DeadLoad(load)));
-        relax_to(&model, &mut state, p_exact, len, 1e-8)?;
+        settle_to(&model, &mut state, p_exact, len, 1e-8)?;
         let delta = state.x[ELEMENTS].y - rest_tip;
         points.push((delta, delta / p));
     }
@@ -88,7 +88,7 @@ fn clamped_clamped(p_exact: f64) -> Result<f64, String> {
             model.rest_q[ELEMENTS],
         );
         clamp_at(&mut state, ELEMENTS, x, q);
-        relax_to(&model, &mut state, p_exact, len, 1e-8)?;
+        settle_to(&model, &mut state, p_exact, len, 1e-8)?;
         let p = -state.reaction_force[ELEMENTS].x; // support pushes the end towards −x
         let delta = state.x[mid].y - rest_mid;
         points.push((delta, delta / p));

@@ -12,7 +12,7 @@
 use crate::harness::{hose1, straight_hose};
 use crate::Check;
 use glam::{DQuat, DVec3};
-use pliant_core::{explicit, Model, RigidPartSpec, SimSettings, State, WorldSpec};
+use pliant_core::{integrators::explicit, Model, RigidPartSpec, SimSettings, State, WorldSpec};
 
 const G: f64 = 9.81;
 

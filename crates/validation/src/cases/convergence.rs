@@ -9,7 +9,7 @@ use crate::cases::tip_load::tip_deflection;
 use crate::harness::hose1;
 use crate::Check;
 use nalgebra::Vector3;
-use pliant_reference::{EndCondition, Rod, Solver, Stiffness};
+use pliant_reference::{EndCondition, Rod, ShootingSolver, Stiffness};
 
 const LAMBDA: f64 = 2.0;
 const COUNTS: [usize; 4] = [4, 8, 16, 32];
@@ -26,7 +26,7 @@ fn reference_tip() -> Result<f64, String> {
     let rod =
         Rod::new(vec![Vector3::zeros(), Vector3::x()], stiffness).map_err(|e| e.to_string())?;
     let base = rod.rest_base_pose();
-    let solver = Solver::new(rod, base).map_err(|e| e.to_string())?;
+    let solver = ShootingSolver::new(rod, base).map_err(|e| e.to_string())?;
     let p = LAMBDA * mat.bending_modulus() * sec.second_moment();
     let steps: Vec<EndCondition> = (1..=8)
         .map(|k| {

@@ -6,7 +6,7 @@
 use crate::harness::{build, clamp, hose1, straight_hose};
 use crate::Check;
 use glam::DVec3;
-use pliant_core::{explicit, SimSettings, State};
+use pliant_core::{integrators::explicit, SimSettings, State};
 
 const ELEMENTS: usize = 20;
 const DURATION: f64 = 10.0;

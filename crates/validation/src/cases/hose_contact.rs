@@ -4,7 +4,7 @@
 //! exactly the force the contact passes on (static balance, 1 %), and the capsules
 //! interpenetrate by less than 2 % of the radius.
 
-use crate::harness::{hose1, relax_to};
+use crate::harness::{hose1, settle_to};
 use crate::Check;
 use glam::DVec3;
 use pliant_core::contact::hose_hose::closest_segment_segment;
@@ -66,7 +66,7 @@ pub fn run() -> Vec<Check> {
         force: DVec3::new(0.0, 0.0, -f),
         moment: DVec3::ZERO,
     }));
-    if let Err(e) = relax_to(&model, &mut state, f, 0.5, 1e-7) {
+    if let Err(e) = settle_to(&model, &mut state, f, 0.5, 1e-7) {
         return vec![Check::failed("hose_contact", "relaxation", &e)];
     }
     let sum = |h: usize| {

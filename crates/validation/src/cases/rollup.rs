@@ -2,7 +2,7 @@
 //! curvature M/EI. M = 2πEI/L closes a full circle (tip back at the root); M = πEI/L
 //! makes a half circle with the tip at w = 2L/π, u = −L. Self contact is off here.
 
-use crate::harness::{build, clamp, hose1, relax_to, static_settings, straight_hose};
+use crate::harness::{build, clamp, hose1, settle_to, static_settings, straight_hose};
 use crate::Check;
 use glam::DVec3;
 use pliant_core::loads::{DeadLoad, LoadCase};
@@ -38,7 +38,7 @@ fn tip_under_moment(fraction_of_turn: f64) -> Result<DVec3, String> {
             moment: DVec3::new(0.0, 0.0, m),
         };
         id = Some(state.loads.add(LoadCase::DeadLoad(load)));
-        relax_to(&model, &mut state, m_full / len, len, 1e-8)?;
+        settle_to(&model, &mut state, m_full / len, len, 1e-8)?;
     }
     Ok(state.x[ELEMENTS] - state.x[0])
 }

@@ -6,7 +6,7 @@
 //! w = w(a) + b·θ(a). The stiffened span must also stay undeformed (its node distances
 //! unchanged) and move the model's tip within 0.5 % of w.
 
-use crate::harness::{build, clamp, hose1, relax_to, static_settings, straight_hose};
+use crate::harness::{build, clamp, hose1, settle_to, static_settings, straight_hose};
 use crate::Check;
 use glam::DVec3;
 use pliant_core::loads::{DeadLoad, LoadCase};
@@ -47,7 +47,7 @@ pub fn run() -> Vec<Check> {
         force: DVec3::new(0.0, -p, 0.0),
         moment: DVec3::ZERO,
     }));
-    if let Err(e) = relax_to(&model, &mut state, p, len, 1e-6) {
+    if let Err(e) = settle_to(&model, &mut state, p, len, 1e-6) {
         return vec![Check::failed("stiffened", "relaxation", &e)];
     }
     let tip = -state.x[ELEMENTS].y;

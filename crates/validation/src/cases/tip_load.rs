@@ -2,7 +2,7 @@
 //! elastica). Exact tip deflections for λ = PL²/EI from the elliptic-integral solution
 //! (Bisshopp & Drucker 1945; Mattiasson 1981, table 1).
 
-use crate::harness::{build, clamp, hose1, relax_to, static_settings, straight_hose};
+use crate::harness::{build, clamp, hose1, settle_to, static_settings, straight_hose};
 use crate::Check;
 use glam::DVec3;
 use pliant_core::loads::{DeadLoad, LoadCase};
@@ -43,7 +43,7 @@ pub fn tip_deflection(n: usize, lambda: f64) -> Result<(f64, f64), String> {
             force: DVec3::new(0.0, -p, 0.0),
             moment: DVec3::ZERO,
         })));
-        relax_to(&model, &mut state, p_full, len, 1e-9)?;
+        settle_to(&model, &mut state, p_full, len, 1e-9)?;
     }
     let tip = state.x[n];
     Ok((-tip.y / len, (len - tip.x) / len))

@@ -1,7 +1,7 @@
 //! `torsion`: a clamped hose whose end is turned by φ about its axis needs the end torque
 //! G J φ / L, with G = E_b / (2(1 + ν)) (SPEC M2, M3).
 
-use crate::harness::{build, clamp, clamp_at, hose1, relax_to, static_settings, straight_hose};
+use crate::harness::{build, clamp, clamp_at, hose1, settle_to, static_settings, straight_hose};
 use crate::Check;
 use glam::{DQuat, DVec3};
 use pliant_core::State;
@@ -27,7 +27,7 @@ pub fn run() -> Vec<Check> {
         x,
         DQuat::from_axis_angle(DVec3::X, phi) * q,
     );
-    match relax_to(&model, &mut state, exact / len, len, 1e-10) {
+    match settle_to(&model, &mut state, exact / len, len, 1e-10) {
         Ok(_) => vec![Check::relative(
             "torsion",
             "end torque N*m",

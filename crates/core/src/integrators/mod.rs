@@ -11,10 +11,17 @@
 //!   the input step (so rate-dependent laws — stub friction — still see the motion).
 
 use crate::health::{check, Divergence};
-use crate::newton::{
-    ImplicitError, ImplicitOptions, ImplicitSolver, NotAChain, StaticError, StaticSolver,
+pub mod explicit;
+pub mod implicit;
+pub mod statics;
+
+pub use implicit::{
+    ImplicitError, ImplicitHistory, ImplicitOptions, ImplicitReport, ImplicitSolver,
 };
-use crate::{explicit, Model, State};
+pub use statics::{StaticError, StaticOptions, StaticReport, StaticSolver};
+
+use crate::newton::NotAChain;
+use crate::{Model, State};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 

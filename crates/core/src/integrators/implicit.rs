@@ -1,7 +1,7 @@
 //! Implicit dynamics (issue 5, SPEC P5; the dissertation's outlook 7.2): the HHT-α method
 //! (Hilber, Hughes & Taylor 1977, "Improved numerical dissipation for time integration
 //! algorithms in structural dynamics", EESD 5) with Newton iterations on the consistent
-//! tangent, solved in O(N) per iteration ([`super::block_tridiagonal`]).
+//! tangent, solved in O(N) per iteration ([`crate::newton::block_tridiagonal`]).
 //!
 //! With α ∈ [−⅓, 0], β = (1 − α)²/4, γ = ½ − α, per node
 //!   m a_{n+1} = (1 + α) f_{n+1} − α f_n,
@@ -10,7 +10,7 @@
 //! and likewise for rotations on the rotation group (Simo & Vu-Quoc 1988): q_{n+1} =
 //! exp(Θ) q_n with Θ in place of x_{n+1} − x_n, the isotropic inertia I α = m (as in the
 //! explicit solver, [`crate::mass`]). The Jacobian of a node's equations is
-//! (1 + α) K + m/(βΔt²) [𝟙, J_l⁻¹(Θ)], K from [`super::system`] including the damping
+//! (1 + α) K + m/(βΔt²) [𝟙, J_l⁻¹(Θ)], K from [`crate::newton::system`] including the damping
 //! tangent. α < 0 damps the highest modes numerically (α = −0.1 by default); the scheme is
 //! unconditionally stable for linear problems and second-order accurate, so the step is
 //! chosen for accuracy — 10 ms is fine where explicit stepping needs microseconds.
@@ -18,10 +18,12 @@
 //! A step whose Newton iterations do not converge is retried as two half steps (down to
 //! 1/16 of the step) before it is reported.
 
-use super::block_tridiagonal::SingularBlock;
 use super::statics::increment_at_round_off;
-use super::system::{apply_increment, rotation_limited_step, sync_bodies, NewtonSystem, NotAChain};
 use crate::math::{left_jacobian_inverse_transpose_times, log_map};
+use crate::newton::block_tridiagonal::SingularBlock;
+use crate::newton::system::{
+    apply_increment, rotation_limited_step, sync_bodies, NewtonSystem, NotAChain,
+};
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
 use nalgebra::Vector6;

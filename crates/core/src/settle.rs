@@ -1,18 +1,21 @@
-//! Static equilibrium by dynamic relaxation with kinetic damping (Cundall 1976; Barnes
-//! 1999, "Form finding and analysis of tension structures by dynamic relaxation"): the
-//! explicit step runs on, and every time the total kinetic energy passes a peak all
-//! velocities are set to zero. The state walks down the energy landscape to the nearest
-//! equilibrium (optionally with viscous damping only). Used by the validation suite to reach static states of the same explicit
-//! model the user runs (its answer is the model's, not another solver's).
+//! Settling: reaching static equilibrium with the explicit step by dynamic relaxation with
+//! kinetic damping (Cundall 1976; Barnes 1999, "Form finding and analysis of tension
+//! structures by dynamic relaxation"): the explicit step runs on, and every time the
+//! total kinetic energy passes a peak all velocities are set to zero. The state walks
+//! down the energy landscape to the nearest equilibrium (optionally with viscous damping
+//! only). Used by the validation suite and Python's `Simulation.settle` to reach static
+//! states of the same explicit model the user runs (its answer is the model's, not
+//! another solver's). Pliant's one word for reaching rest is *settle*; the quasi-static
+//! Newton solver (`integrators::statics`) solves for the same equilibrium directly.
 
-use crate::explicit::step;
 use crate::health::{check, Divergence};
+use crate::integrators::explicit::step;
 use crate::{Model, State};
 use glam::DVec3;
 
 /// When to stop relaxing.
 #[derive(Clone, Copy, Debug)]
-pub struct RelaxOptions {
+pub struct SettleOptions {
     /// Largest allowed out-of-balance force on a free node [N].
     pub force_tolerance: f64,
     /// Largest allowed out-of-balance moment on a free node [N·m].
@@ -27,7 +30,7 @@ pub struct RelaxOptions {
 
 /// How relaxation ended.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RelaxReport {
+pub struct SettleReport {
     pub steps: u64,
     pub residual_force: f64,
     pub residual_moment: f64,
@@ -48,11 +51,11 @@ pub fn residual(state: &State) -> (f64, f64) {
 }
 
 /// Relaxes `state` to static equilibrium under its current load cases.
-pub fn relax(
+pub fn settle(
     model: &Model,
     state: &mut State,
-    opts: &RelaxOptions,
-) -> Result<RelaxReport, Divergence> {
+    opts: &SettleOptions,
+) -> Result<SettleReport, Divergence> {
     let mut last_energy = 0.0;
     let mut steps = 0;
     while steps < opts.max_steps {
@@ -74,7 +77,7 @@ pub fn relax(
             check(model, state)?;
             let (f, m) = residual(state);
             if f <= opts.force_tolerance && m <= opts.moment_tolerance {
-                return Ok(RelaxReport {
+                return Ok(SettleReport {
                     steps,
                     residual_force: f,
                     residual_moment: m,
@@ -84,7 +87,7 @@ pub fn relax(
         }
     }
     let (f, m) = residual(state);
-    Ok(RelaxReport {
+    Ok(SettleReport {
         steps,
         residual_force: f,
         residual_moment: m,

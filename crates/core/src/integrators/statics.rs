@@ -7,7 +7,7 @@
 //! (round-off near convergence) — when the residual decreases. Velocities are zero: what manual assembly at walking pace
 //! needs, one solve per input.
 
-use super::system::{
+use crate::newton::system::{
     apply_increment, residual_norms, rotation_limited_step, sync_bodies, NewtonSystem,
 };
 use crate::{Model, State};
@@ -52,7 +52,7 @@ pub struct StaticReport {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum StaticError {
     #[error("{0}")]
-    Singular(#[from] super::block_tridiagonal::SingularBlock),
+    Singular(#[from] crate::newton::block_tridiagonal::SingularBlock),
     #[error("the static solve produced non-finite values at iteration {0}")]
     NonFinite(usize),
 }
@@ -68,7 +68,7 @@ pub struct StaticSolver {
 }
 
 impl StaticSolver {
-    pub fn new(model: &Model) -> Result<Self, super::system::NotAChain> {
+    pub fn new(model: &Model) -> Result<Self, crate::newton::system::NotAChain> {
         let n = model.node_count();
         Ok(Self {
             system: NewtonSystem::new(model)?,
