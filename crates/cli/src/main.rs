@@ -116,8 +116,8 @@ enum PeerCase {
     Cantilever {
         #[arg(long, default_value_t = 16)]
         elements: usize,
-        #[arg(long, value_enum, default_value_t = peers::Solver::Relax)]
-        solver: peers::Solver,
+        #[arg(long, value_enum, default_value_t = peers::Method::Relax)]
+        solver: peers::Method,
         #[arg(long, default_value_t = 2.0)]
         lambda: f64,
         /// Convergence tolerance (relative residual for relax; speed for damped).

@@ -28,7 +28,7 @@ use std::time::Instant;
 /// and one arm in [`solve_cantilever`]; `run.py` passes the name given by `--solver`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize)]
 #[serde(rename_all = "lowercase")]
-pub enum Solver {
+pub enum Method {
     /// Explicit central differences with kinetic damping (dynamic relaxation,
     /// `pliant_core::settle`), stopped when the out-of-balance force on every free node is
     /// below tol·P (moment below tol·P·L).
@@ -149,7 +149,7 @@ pub fn params() -> Result<Params> {
 #[derive(Serialize)]
 pub struct CantileverResult {
     pub tool: &'static str,
-    pub solver: Solver,
+    pub solver: Method,
     pub elements: usize,
     pub lambda: f64,
     pub tol: f64,
@@ -198,7 +198,7 @@ fn max_speed(state: &State) -> f64 {
 /// Solves the cantilever with `solver`.
 pub fn solve_cantilever(
     elements: usize,
-    solver: Solver,
+    solver: Method,
     lambda: f64,
     tol: f64,
 ) -> Result<CantileverResult> {
@@ -211,19 +211,19 @@ pub fn solve_cantilever(
     let w1 = omega1(ei, mat.density * sec.area(), len);
     let settings = match solver {
         // as the validation suite's static settings: kinetic damping only, default β
-        Solver::Relax | Solver::Static => SimSettings {
+        Method::Relax | Method::Static => SimSettings {
             gravity: DVec3::ZERO,
             damping_mass: 0.0,
             damping_stiffness: None,
             ..Default::default()
         },
-        Solver::Damped => SimSettings {
+        Method::Damped => SimSettings {
             gravity: DVec3::ZERO,
             damping_mass: 2.0 * w1,
             damping_stiffness: None,
             ..Default::default()
         },
-        Solver::Implicit => {
+        Method::Implicit => {
             bail!("the cantilever is a static problem: use --solver static (Newton) or relax")
         }
     };
@@ -243,7 +243,7 @@ pub fn solve_cantilever(
     }));
     let max_steps: u64 = 200_000_000;
     let (converged, steps, note) = match solver {
-        Solver::Relax => {
+        Method::Relax => {
             let r = settle(
                 &model,
                 &mut state,
@@ -264,7 +264,7 @@ pub fn solve_cantilever(
                 ),
             )
         }
-        Solver::Damped => {
+        Method::Damped => {
             let v_stop = tol * len * w1;
             let mut steps = 0u64;
             let mut done = false;
@@ -289,7 +289,7 @@ pub fn solve_cantilever(
                 ),
             )
         }
-        Solver::Static => {
+        Method::Static => {
             // one Newton solve from the straight rest shape (consistent tangent by AD,
             // O(N) block-tridiagonal solve, energy line search); buffers included in the time
             let mut solver = StaticSolver::new(&model)?;
@@ -308,7 +308,7 @@ pub fn solve_cantilever(
                 ),
             )
         }
-        Solver::Implicit => unreachable!("refused above"),
+        Method::Implicit => unreachable!("refused above"),
     };
     let wall_s = start.elapsed().as_secs_f64();
     let tip = state.x[elements];
