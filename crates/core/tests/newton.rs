@@ -110,7 +110,10 @@ fn implicit_steel_tube_at_10_ms_reaches_the_static_state() {
 #[test]
 fn static_rollup_closes_the_circle() {
     let (mat, sec) = hose1();
-    let (model, mut state) = cantilever(40, mat.clone(), sec, DVec3::ZERO);
+    let (mut model, mut state) = cantilever(40, mat.clone(), sec, DVec3::ZERO);
+    // the full circle brings the tip back onto the root: this tests the element, not
+    // self contact (which would rightly stop the tip short)
+    model.hose_contact.active = false;
     let ei = mat.bending_modulus() * sec.second_moment();
     let mut solver = StaticSolver::new(&model).unwrap();
     let mut id = None;

@@ -313,33 +313,18 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
                     Reply::Text(t) => Some(t),
                     Reply::LoadScene { text, json, name } => {
                         let shared = shared.clone();
-                        match tokio::task::spawn_blocking(move || load_scene(&shared, &text, json, &name)).await {
-                            Ok(Ok(())) => None, // the new welcome follows through `generation`
-                            Ok(Err(e)) => Some(e),
-                            Err(e) => {
-                                // a panic in the loader: this request fails, nothing else
-                                let why = match e.try_into_panic() {
-                                    Ok(panic) => format!("the scene loader failed (panic: {})", panic_message(&*panic)),
-                                    Err(_) => "the scene loader was cancelled".to_owned(),
-                                };
-                                eprintln!("pliant serve: load_scene from client {client}: {why}");
-                                Some(error_json(ErrorCode::InvalidScene, why))
-                            }
-                        }
+                        // on success the new welcome follows through `generation`
+                        off_task(client, "the scene loader", ErrorCode::InvalidScene, move || {
+                            load_scene(&shared, &text, json, &name).err()
+                        })
+                        .await
                     }
                     Reply::Report => {
                         let session = session.clone();
-                        match tokio::task::spawn_blocking(move || write_report(&session)).await {
-                            Ok(text) => Some(text),
-                            Err(e) => {
-                                let why = match e.try_into_panic() {
-                                    Ok(panic) => format!("writing the report failed (panic: {})", panic_message(&*panic)),
-                                    Err(_) => "writing the report was cancelled".to_owned(),
-                                };
-                                eprintln!("pliant serve: report for client {client}: {why}");
-                                Some(error_json(ErrorCode::ReportFailed, why))
-                            }
-                        }
+                        off_task(client, "writing the report", ErrorCode::ReportFailed, move || {
+                            Some(write_report(&session))
+                        })
+                        .await
                     }
                 };
                 if let Some(reply) = reply {
@@ -373,6 +358,27 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
                     return;
                 }
             }
+        }
+    }
+}
+
+/// Runs slow work (loading a scene, writing a report) off the connection's task and
+/// returns its reply; a panic in it fails this request only, with a `code` error reply.
+async fn off_task(
+    client: ClientId,
+    what: &str,
+    code: ErrorCode,
+    work: impl FnOnce() -> Option<String> + Send + 'static,
+) -> Option<String> {
+    match tokio::task::spawn_blocking(work).await {
+        Ok(reply) => reply,
+        Err(e) => {
+            let why = match e.try_into_panic() {
+                Ok(panic) => format!("{what} failed (panic: {})", panic_message(&*panic)),
+                Err(_) => format!("{what} was cancelled"),
+            };
+            eprintln!("pliant serve: {what} for client {client}: {why}");
+            Some(error_json(code, why))
         }
     }
 }

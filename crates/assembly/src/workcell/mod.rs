@@ -149,12 +149,17 @@ fn finite(v: DVec3, what: &str) -> Result<DVec3, Refusal> {
     }
 }
 
-fn finite_duration(d: f64) -> Result<f64, Refusal> {
-    if d.is_finite() && d >= 0.0 {
-        Ok(d)
+/// Checks a motion's waypoints, rotation vector and duration; returns the duration.
+fn checked_motion(waypoints: &[DVec3], rotation: DVec3, duration: f64) -> Result<f64, Refusal> {
+    for p in waypoints {
+        finite(*p, "a waypoint")?;
+    }
+    finite(rotation, "the rotation")?;
+    if duration.is_finite() && duration >= 0.0 {
+        Ok(duration)
     } else {
         Err(Refusal::Invalid(format!(
-            "duration must be finite and ≥ 0 s, got {d}"
+            "duration must be finite and ≥ 0 s, got {duration}"
         )))
     }
 }
@@ -521,11 +526,7 @@ impl Workcell {
                 duration,
             } => {
                 let i = self.global(*node)?;
-                for p in waypoints {
-                    finite(*p, "a waypoint")?;
-                }
-                finite(*rotation, "the rotation")?;
-                let duration = finite_duration(*duration)?;
+                let duration = checked_motion(waypoints, *rotation, *duration)?;
                 self.take_node(i)?;
                 let start = (self.state.x[i], self.state.q[i]);
                 let drive = Drive::new(i, start, waypoints, *rotation, t, duration);
@@ -608,11 +609,7 @@ impl Workcell {
                 rotation,
                 duration,
             } => {
-                for p in waypoints {
-                    finite(*p, "a waypoint")?;
-                }
-                finite(*rotation, "the rotation")?;
-                let duration = finite_duration(*duration)?;
+                let duration = checked_motion(waypoints, *rotation, *duration)?;
                 self.hand(*hand)?;
                 if let Some(h) = self.hands.get_mut(hand) {
                     h.aim = None;
