@@ -369,14 +369,11 @@ impl Sim {
     fn apply(&mut self, c: Command) {
         match c {
             Command::Grab { hand, position } => {
-                let known = self.cell.hand(hand).is_ok();
-                match self.cell.apply(Input::Grab { hand, at: position }) {
-                    Ok(_) => self.notice = None,
-                    Err(r) => {
-                        self.notice = Some(format!("hand {hand}: {r}"));
-                        let _ = known;
-                    }
-                }
+                self.notice = self
+                    .cell
+                    .apply(Input::Grab { hand, at: position })
+                    .err()
+                    .map(|r| format!("hand {hand}: {r}"));
             }
             Command::Move {
                 hand,
