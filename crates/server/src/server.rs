@@ -24,7 +24,7 @@ use axum::routing::get;
 use axum::Router;
 use futures_util::FutureExt;
 use glam::{DQuat, DVec3};
-use pliant_assembly::ergonomics::{ErgonomicProfile, Posture};
+use pliant_assembly::ergonomics::ErgonomicProfile;
 use std::any::Any;
 use std::net::SocketAddr;
 use std::panic::AssertUnwindSafe;
@@ -495,7 +495,7 @@ fn handle_text(text: &str, client: ClientId, shared: &Shared, welcomed: &mut boo
     }
 }
 
-/// Applies a `set_ergonomics` message on top of `profile`.
+/// Applies a `set_ergonomics` message on top of `profile` (omitted fields keep theirs).
 fn ergonomics(
     mut profile: ErgonomicProfile,
     posture: Option<&str>,
@@ -503,22 +503,18 @@ fn ergonomics(
     duty: Option<&str>,
     torque: Option<&str>,
 ) -> Result<ErgonomicProfile, String> {
-    let bad = |e: pliant_assembly::ergonomics::ErgonomicsError| {
-        error_json(ErrorCode::InvalidValue, e.to_string())
-    };
-    if let Some(p) = posture {
-        let p: Posture = p.parse().map_err(bad)?;
-        profile.push_posture = p.push();
-        profile.pull_posture = p.pull();
-    }
-    if let Some(p) = population {
-        profile.population = p.parse().map_err(bad)?;
-    }
-    if let Some(d) = duty {
-        profile.duty = d.parse().map_err(bad)?;
-    }
-    if let Some(t) = torque {
-        profile.torque_grip = t.parse().map_err(bad)?;
+    let given = [
+        ("posture", posture),
+        ("population", population),
+        ("duty", duty),
+        ("torque", torque),
+    ];
+    for (key, value) in given {
+        if let Some(v) = value {
+            profile
+                .set(key, v)
+                .map_err(|e| error_json(ErrorCode::InvalidValue, e.to_string()))?;
+        }
     }
     Ok(profile)
 }

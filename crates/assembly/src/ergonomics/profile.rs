@@ -51,6 +51,38 @@ impl ErgonomicProfile {
 /// e.g. `posture=crouching, population=men, duty=continuous` or
 /// `push=sitting,pull=handle,torque=screwdriver`. Keys: `posture` (sets push and pull),
 /// `push`, `pull`, `torque`, `population`, `duty`. An empty string is the default.
+impl ErgonomicProfile {
+    /// The keys [`Self::set`] takes, in the order a profile is best written.
+    pub const KEYS: [&'static str; 6] = ["posture", "push", "pull", "torque", "population", "duty"];
+
+    /// Sets one named part of the profile — `posture` (both the push and the pull row),
+    /// `push`, `pull`, `torque`, `population` or `duty` — from its name as the tables
+    /// spell it. The one parser behind `--ergonomics`, a scene's `[ergonomics]` and the
+    /// protocol's `set_ergonomics`.
+    pub fn set(&mut self, key: &str, value: &str) -> Result<(), ErgonomicsError> {
+        let value = value.trim();
+        match key.trim().to_ascii_lowercase().as_str() {
+            "posture" => {
+                let posture: Posture = parse_named(value)?;
+                self.push_posture = posture.push();
+                self.pull_posture = posture.pull();
+            }
+            "push" => self.push_posture = parse_named(value)?,
+            "pull" => self.pull_posture = parse_named(value)?,
+            "torque" => self.torque_grip = parse_named(value)?,
+            "population" => self.population = parse_named(value)?,
+            "duty" => self.duty = parse_named(value)?,
+            other => {
+                return Err(ErgonomicsError::Profile {
+                    given: other.to_string(),
+                    reason: format!("unknown key `{other}`; allowed: {}", Self::KEYS.join(", ")),
+                })
+            }
+        }
+        Ok(())
+    }
+}
+
 impl FromStr for ErgonomicProfile {
     type Err = ErgonomicsError;
 
@@ -64,25 +96,10 @@ impl FromStr for ErgonomicProfile {
             let (key, value) = item
                 .split_once('=')
                 .ok_or_else(|| refuse(format!("`{item}` is not of the form key=value")))?;
-            let value = value.trim();
-            let bad = |e: ErgonomicsError| refuse(e.to_string());
-            match key.trim().to_ascii_lowercase().as_str() {
-                "posture" => {
-                    let posture: Posture = parse_named(value).map_err(bad)?;
-                    profile.push_posture = posture.push();
-                    profile.pull_posture = posture.pull();
-                }
-                "push" => profile.push_posture = parse_named(value).map_err(bad)?,
-                "pull" => profile.pull_posture = parse_named(value).map_err(bad)?,
-                "torque" => profile.torque_grip = parse_named(value).map_err(bad)?,
-                "population" => profile.population = parse_named(value).map_err(bad)?,
-                "duty" => profile.duty = parse_named(value).map_err(bad)?,
-                other => {
-                    return Err(refuse(format!(
-                    "unknown key `{other}`; allowed: posture, push, pull, torque, population, duty"
-                )))
-                }
-            }
+            profile.set(key, value).map_err(|e| match e {
+                ErgonomicsError::Profile { reason, .. } => refuse(reason),
+                other => refuse(other.to_string()),
+            })?;
         }
         Ok(profile)
     }
