@@ -121,8 +121,15 @@ pub fn build_stub(
         raw.friction.as_ref(),
         (DEFAULT_STUB_FRICTION_STATIC, DEFAULT_STUB_FRICTION_SLIDING),
     )?;
-    let hose_end = match (&raw.hose, raw.end) {
-        (None, None) => None,
+    // the hose end that goes onto the stub: named, or the only hose's end
+    let (hose, at_end) = match (&raw.hose, raw.end) {
+        (None, None) if hoses.len() > 1 => {
+            return Err(FieldError::about(
+                at("hose"),
+                "the scene has several hoses: name the hose end that goes onto the stub (`hose` and `end`)",
+            ))
+        }
+        (None, None) => (0, true),
         (Some(_), None) => {
             return Err(FieldError::about(
                 at("end"),
@@ -135,26 +142,24 @@ pub fn build_stub(
                 "required with `end`: the hose whose end goes onto the stub",
             ))
         }
-        (Some(name), Some(end)) => {
-            let hose = hose_index(&at("hose"), name, hoses)?;
-            let at_end = end == HoseEndName::End;
-            let spec = &hoses[hose];
-            let node = if at_end { spec.nodes.len() - 1 } else { 0 };
-            let d_outer = d_outer_at(spec, node);
-            if diameter * scale >= d_outer {
-                return Err(FieldError::new(
-                    at("diameter"),
-                    with_unit(diameter, u),
-                    format!(
-                        "must be smaller than the outer diameter of hose \"{name}\" at its {} ({}): the hose could not go on",
-                        if at_end { "end" } else { "start" },
-                        in_unit(d_outer, unit)
-                    ),
-                ));
-            }
-            Some(HoseEnd { hose, at_end })
-        }
+        (Some(name), Some(end)) => (hose_index(&at("hose"), name, hoses)?, end == HoseEndName::End),
     };
+    let hose_spec = &hoses[hose];
+    let node = if at_end { hose_spec.nodes.len() - 1 } else { 0 };
+    let d_outer = d_outer_at(hose_spec, node);
+    if diameter * scale >= d_outer {
+        return Err(FieldError::new(
+            at("diameter"),
+            with_unit(diameter, u),
+            format!(
+                "must be smaller than the outer diameter of hose \"{}\" at its {} ({}): the hose could not go on",
+                hose_spec.name,
+                if at_end { "end" } else { "start" },
+                in_unit(d_outer, unit)
+            ),
+        ));
+    }
+    let hose_end = HoseEnd { hose, at_end };
     let spec = StubSpec::new(
         origin,
         axis,
@@ -213,27 +218,33 @@ pub fn build_clip(
         ));
     }
     let snap_force = non_negative(&at("snap_force_n"), raw.snap_force_n, "N")?;
-    let hose = match &raw.hose {
-        None => None,
-        Some(name) => {
-            let h = hose_index(&at("hose"), name, hoses)?;
-            let spec = &hoses[h];
-            let d_max = (0..spec.nodes.len())
-                .map(|n| d_outer_at(spec, n))
-                .fold(0.0, f64::max);
-            if d_max <= opening_width * scale {
-                return Err(FieldError::new(
-                    at("opening_width"),
-                    with_unit(opening_width, u),
-                    format!(
-                        "must be smaller than the outer diameter of hose \"{name}\" ({}): the hose would pass through the opening and never be held",
-                        in_unit(d_max, unit)
-                    ),
-                ));
-            }
-            Some(h)
+    // the hose that goes into the clip: named, or the only hose
+    let h = match &raw.hose {
+        None if hoses.len() > 1 => {
+            return Err(FieldError::about(
+                at("hose"),
+                "the scene has several hoses: name the hose that goes into the clip",
+            ))
         }
+        None => 0,
+        Some(name) => hose_index(&at("hose"), name, hoses)?,
     };
+    let spec = &hoses[h];
+    let d_max = (0..spec.nodes.len())
+        .map(|n| d_outer_at(spec, n))
+        .fold(0.0, f64::max);
+    if d_max <= opening_width * scale {
+        return Err(FieldError::new(
+            at("opening_width"),
+            with_unit(opening_width, u),
+            format!(
+                "must be smaller than the outer diameter of hose \"{}\" ({}): the hose would pass through the opening and never be held",
+                spec.name,
+                in_unit(d_max, unit)
+            ),
+        ));
+    }
+    let hose = h;
     let spec = ClipSpec::new(
         origin,
         opening,

@@ -35,8 +35,8 @@ pub struct SceneStub {
     pub name: String,
     /// Geometry and friction, SI, axis normalised.
     pub spec: StubSpec,
-    /// The hose end meant to go onto it, if the file names one.
-    pub hose_end: Option<HoseEnd>,
+    /// The hose end meant to go onto it (named, or the end of the scene's only hose).
+    pub hose_end: HoseEnd,
 }
 
 /// A clip of the scene (SPEC L7).
@@ -46,8 +46,8 @@ pub struct SceneClip {
     pub name: String,
     /// Geometry and snap force, SI, directions normalised and perpendicular.
     pub spec: ClipSpec,
-    /// Index of the hose meant to be snapped into it, if the file names one.
-    pub hose: Option<usize>,
+    /// Index of the hose meant to be snapped into it (named, or the scene's only hose).
+    pub hose: usize,
 }
 
 /// How one hose was discretised.

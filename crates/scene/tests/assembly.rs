@@ -51,6 +51,8 @@ axis = [0, 0, -1]
 length = 30
 diameter = 12
 friction = { static = 0.7, sliding = 0.5 }
+hose = "b"
+end = "start"
 
 [[clips]]
 name = "c1"
@@ -70,6 +72,7 @@ orientation = [1, 0, 0]
 opening_width = 12
 inner_diameter = 16
 snap_force_n = 20
+hose = "b"
 
 [[timeline]]
 action = "fix"
@@ -219,13 +222,13 @@ fn stubs_load_in_si_with_their_hose_end() {
     );
     assert_eq!(
         pump.hose_end,
-        Some(HoseEnd {
+        HoseEnd {
             hose: 0,
             at_end: true
-        })
+        }
     );
     let nodes = s.world.hoses[0].nodes.len();
-    assert_eq!(pump.hose_end.unwrap().node(nodes), nodes - 1);
+    assert_eq!(pump.hose_end.node(nodes), nodes - 1);
     let spare = &s.stubs[1];
     assert_eq!(spare.name, "spare");
     assert_eq!(spare.spec.axis(), -DVec3::Z);
@@ -233,18 +236,24 @@ fn stubs_load_in_si_with_their_hose_end() {
         spare.spec.friction(pliant_assembly::stub::Friction::Static),
         0.7
     );
-    assert_eq!(spare.hose_end, None);
+    assert_eq!(
+        spare.hose_end,
+        HoseEnd {
+            hose: 1,
+            at_end: false
+        }
+    );
     // `end = "start"` is the first node.
     let text = BASE.replacen("end = \"end\"", "end = \"start\"", 1);
     let s = load_scene_str(&text, "s.toml").unwrap();
     assert_eq!(
         s.stubs[0].hose_end,
-        Some(HoseEnd {
+        HoseEnd {
             hose: 0,
             at_end: false
-        })
+        }
     );
-    assert_eq!(s.stubs[0].hose_end.unwrap().node(9), 0);
+    assert_eq!(s.stubs[0].hose_end.node(9), 0);
 }
 
 #[test]
@@ -259,8 +268,8 @@ fn clips_load_in_si_with_perpendicular_orientation() {
     assert!((c1.spec.opening_width() - 0.03).abs() < 1e-15);
     assert!((c1.spec.inner_diameter() - 0.036).abs() < 1e-15);
     assert_eq!(c1.spec.snap_force(), 40.0);
-    assert_eq!(c1.hose, Some(0));
-    assert_eq!(s.clips[1].hose, None);
+    assert_eq!(c1.hose, 0);
+    assert_eq!(s.clips[1].hose, 1);
 }
 
 #[test]
@@ -274,7 +283,16 @@ fn metres_give_the_same_stubs_and_clips() {
         .replace("[250, 0, -30]", "[0.25, 0, -0.03]")
         .replace("opening_width = 30", "opening_width = 0.03")
         .replace("inner_diameter = 36", "inner_diameter = 0.036")
-        .replace("[500, 0, 0]", "[0.5, 0, 0]");
+        .replace("[500, 0, 0]", "[0.5, 0, 0]")
+        // the spare stub and clip c2 on hose b
+        .replace("[0, 500, 0]", "[0, 0.5, 0]")
+        .replace("length = 30", "length = 0.03")
+        .replace("diameter = 12", "diameter = 0.012")
+        .replace("[150, 200, -30]", "[0.15, 0.2, -0.03]")
+        .replace("opening_width = 12", "opening_width = 0.012")
+        .replace("inner_diameter = 16", "inner_diameter = 0.016")
+        .replace("[0, 200, 0]", "[0, 0.2, 0]")
+        .replace("[300, 200, 0]", "[0.3, 0.2, 0]");
     let m = load_scene_str(&text, "m.toml").unwrap_or_else(|e| panic!("{e}"));
     let (a, b) = (&mm.stubs[0].spec, &m.stubs[0].spec);
     assert!(close(a.origin(), b.origin()));
@@ -346,6 +364,8 @@ const CASES: &[Case] = &[
     Case { what: "stub friction sliding above static", edits: &[("static = 0.7, sliding = 0.5", "static = 0.4, sliding = 0.5")], field: "stubs[1].friction.sliding", message: &["= 0.5: must not exceed static (0.4)"] },
     Case { what: "stub negative friction", edits: &[("static = 0.7, sliding = 0.5", "static = -0.7, sliding = 0.5")], field: "stubs[1].friction.static", message: &["= -0.7: must not be negative"] },
     Case { what: "stub unknown hose", edits: &[("hose = \"a\"\nend", "hose = \"z\"\nend")], field: "stubs[0].hose", message: &["stubs[0].hose = \"z\": unknown hose; hoses: a, b"] },
+    Case { what: "stub bound to no hose end in a scene of two hoses", edits: &[("hose = \"b\"\nend = \"start\"\n", "")], field: "stubs[1].hose", message: &["several hoses: name the hose end"] },
+    Case { what: "clip bound to no hose in a scene of two hoses", edits: &[("snap_force_n = 20\nhose = \"b\"\n", "snap_force_n = 20\n")], field: "clips[1].hose", message: &["several hoses: name the hose that goes into the clip"] },
     Case { what: "stub hose without end", edits: &[("end = \"end\"\n", "")], field: "stubs[0].end", message: &["required with `hose`"] },
     Case { what: "stub end without hose", edits: &[("hose = \"a\"\nend", "end")], field: "stubs[0].hose", message: &["required with `end`"] },
     Case { what: "stub end not start or end", edits: &[("end = \"end\"", "end = \"middle\"")], field: "stubs[0].end", message: &["unknown variant `middle`", "`start`", "`end`"] },
@@ -365,7 +385,7 @@ const CASES: &[Case] = &[
     Case { what: "clip orientation along the opening", edits: &[("orientation = [1, 0, 0.2]", "orientation = [1, 0, 1]")], field: "clips[0].orientation", message: &["clips[0].orientation = [1, 0, 1]: must be roughly perpendicular to opening [0, 0, 1]: it is 45.0° off"] },
     Case { what: "clip origin not finite", edits: &[("origin = [250, 0, -30]", "origin = [inf, 0, -30]")], field: "clips[0].origin[0]", message: &["= inf mm: must be a finite number"] },
     Case { what: "clip unknown hose", edits: &[("snap_force_n = 40\nhose = \"a\"", "snap_force_n = 40\nhose = \"q\"")], field: "clips[0].hose", message: &["clips[0].hose = \"q\": unknown hose; hoses: a, b"] },
-    Case { what: "clip opening wider than its hose", edits: &[("opening_width = 12", "opening_width = 16"), ("inner_diameter = 16", "inner_diameter = 20"), ("snap_force_n = 20", "snap_force_n = 20\nhose = \"b\"")], field: "clips[1].opening_width", message: &["= 16 mm: must be smaller than the outer diameter of hose \"b\" (16 mm)", "never be held"] },
+    Case { what: "clip opening wider than its hose", edits: &[("opening_width = 12", "opening_width = 16"), ("inner_diameter = 16", "inner_diameter = 20")], field: "clips[1].opening_width", message: &["= 16 mm: must be smaller than the outer diameter of hose \"b\" (16 mm)", "never be held"] },
     Case { what: "duplicate clip names", edits: &[("name = \"c2\"", "name = \"c1\"")], field: "clips[1].name", message: &["\"c1\": duplicate name (also clips[0].name)"] },
     Case { what: "clip named like a stub", edits: &[("name = \"c2\"", "name = \"pump\"")], field: "clips[1].name", message: &["duplicate name (also stubs[0].name); stubs and clips share one set of names"] },
     Case { what: "unknown clip field", edits: &[("snap_force_n = 40", "snap_force = 40")], field: "clips[0].snap_force", message: &["unknown field `snap_force`"] },
@@ -460,13 +480,13 @@ fn engine_bay_is_the_assembly_demo() {
     let stub = &s.stubs[0];
     assert_eq!(
         stub.hose_end,
-        Some(HoseEnd {
+        HoseEnd {
             hose: lower,
             at_end: true
-        })
+        }
     );
     assert_eq!(s.clips.len(), 2);
-    assert!(s.clips.iter().all(|c| c.hose == Some(lower)));
+    assert!(s.clips.iter().all(|c| c.hose == lower));
     // The stub fits the hose: bore < stub < outer diameter.
     let section = s.world.hoses[lower].sections.last().unwrap();
     assert!(section.d_inner < stub.spec.diameter() && stub.spec.diameter() < section.d_outer);
