@@ -53,28 +53,18 @@ fn assert_same(a: &Workcell, b: &Workcell) {
     assert_eq!(a.tick(), b.tick());
     assert_eq!(sa.step, sb.step);
     assert_eq!(sa.time.to_bits(), sb.time.to_bits());
-    for i in 0..sa.x.len() {
-        assert_eq!(
-            sa.x[i].to_array().map(f64::to_bits),
-            sb.x[i].to_array().map(f64::to_bits),
-            "x[{i}]"
-        );
-        assert_eq!(
-            sa.q[i].to_array().map(f64::to_bits),
-            sb.q[i].to_array().map(f64::to_bits),
-            "q[{i}]"
-        );
-        assert_eq!(
-            sa.v[i].to_array().map(f64::to_bits),
-            sb.v[i].to_array().map(f64::to_bits),
-            "v[{i}]"
-        );
-        assert_eq!(
-            sa.reaction_force[i].to_array().map(f64::to_bits),
-            sb.reaction_force[i].to_array().map(f64::to_bits),
-            "reaction at {i}"
-        );
-    }
+    // bit patterns, so that even -0.0 against 0.0 or a NaN counts as a difference
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let vecs = |v: &[glam::DVec3]| bits(&v.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>());
+    assert_eq!(vecs(&sa.x), vecs(&sb.x), "positions");
+    let quats = |q: &[glam::DQuat]| bits(&q.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>());
+    assert_eq!(quats(&sa.q), quats(&sb.q), "orientations");
+    assert_eq!(vecs(&sa.v), vecs(&sb.v), "velocities");
+    assert_eq!(
+        vecs(&sa.reaction_force),
+        vecs(&sb.reaction_force),
+        "reactions"
+    );
     assert_eq!(
         a.summary(),
         b.summary(),
