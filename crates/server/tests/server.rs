@@ -543,7 +543,7 @@ async fn resting_hoses_sleep_and_a_grab_wakes_them() {
     assert_eq!(moved["hoses"][1]["asleep"], false);
 }
 
-/// A hand does not start or stop instantly (acceleration ≤ HAND_MAX_ACCEL): lifting the
+/// A hand does not start or stop instantly (acceleration ≤ `HandLimits::max_acceleration`, 20 m/s²): lifting the
 /// lower hose's middle 12 cm at once gives no inertial spike — the largest hand force on
 /// the way stays within 1.5 times the force that holds it there once it has settled.
 ///
