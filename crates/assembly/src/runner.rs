@@ -227,7 +227,7 @@ fn apply(
             };
             give(cell, index, input)?;
             if *wait {
-                advance(cell, *duration, obs)?;
+                advance_until_done(cell, *duration, obs)?;
             }
         }
         Action::Load {
@@ -293,7 +293,7 @@ fn apply(
             };
             give(cell, index, input)?;
             if *wait {
-                advance(cell, duration, obs)?;
+                advance_until_done(cell, duration, obs)?;
             }
         }
         Action::AimHand {
@@ -329,7 +329,21 @@ fn apply(
 }
 
 fn advance(cell: &mut Workcell, duration: f64, obs: &mut dyn Observer) -> Result<(), Stop> {
-    for _ in 0..cell.steps_in(duration) {
+    steps(cell, cell.steps_in(duration), obs)
+}
+
+/// Steps until a motion of `duration` given now has arrived (at least one step for any
+/// motion: every prescribed motion lands, however short against the solver's step).
+fn advance_until_done(
+    cell: &mut Workcell,
+    duration: f64,
+    obs: &mut dyn Observer,
+) -> Result<(), Stop> {
+    steps(cell, cell.steps_until_done(duration), obs)
+}
+
+fn steps(cell: &mut Workcell, n: u64, obs: &mut dyn Observer) -> Result<(), Stop> {
+    for _ in 0..n {
         cell.step(obs).map_err(Stop::Diverged)?;
     }
     Ok(())

@@ -293,8 +293,8 @@ pub fn solve_cantilever(
             // one Newton solve from the straight rest shape (consistent tangent by AD,
             // O(N) block-tridiagonal solve, energy line search); buffers included in the time
             let mut solver = StaticSolver::new(&model)?;
-            solver.options.force_tolerance = tol * p;
-            solver.options.moment_tolerance = tol * p * len;
+            solver.options.tolerance =
+                pliant_core::newton::Tolerance::absolute(tol * p, tol * p * len);
             solver.options.max_iterations = 200;
             let r = solver.solve(&model, &mut state)?;
             (

@@ -20,7 +20,26 @@ pub struct Divergence {
 /// speed c = √(E/ρ) — no hose point moves that fast in an assembly study, so such a speed
 /// is a numerical blow-up. O(N); call it every few steps.
 pub fn check(model: &Model, state: &State) -> Result<(), Divergence> {
-    let speed_limit = wave_speed_limit(model);
+    check_against(model, state, wave_speed_limit(model))
+}
+
+/// [`check`] for non-finite values only: for the static solver, whose velocities are
+/// displacements over an input step (a correct large-deflection solve may move a soft
+/// hose faster than its wave speed "per step"; that is no blow-up).
+pub fn check_finite(model: &Model, state: &State) -> Result<(), Divergence> {
+    check_against(model, state, f64::INFINITY)
+}
+
+/// The check that makes sense for a solver: [`check`] where velocities are motion
+/// (explicit, implicit), [`check_finite`] for the static solver.
+pub fn check_for(kind: crate::SolverKind, model: &Model, state: &State) -> Result<(), Divergence> {
+    match kind {
+        crate::SolverKind::Static => check_finite(model, state),
+        _ => check(model, state),
+    }
+}
+
+fn check_against(model: &Model, state: &State, speed_limit: f64) -> Result<(), Divergence> {
     for i in 0..state.x.len() {
         let x = state.x[i];
         let v = state.v[i];

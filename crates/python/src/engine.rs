@@ -111,6 +111,16 @@ impl Engine {
         self.cell.step(&mut NoObserver)
     }
 
+    /// The workcell itself (for reading).
+    pub fn cell(&self) -> &Workcell {
+        &self.cell
+    }
+
+    /// The Newton solvers' account so far (unconverged steps, instabilities met).
+    pub fn solver_record(&self) -> &pliant_assembly::workcell::SolverRecord {
+        &self.cell.tally().solver
+    }
+
     /// Zeroes all velocities (kinetic damping), as a logged input.
     pub(crate) fn arrest(&mut self) {
         let _ = self.give(Input::Arrest);

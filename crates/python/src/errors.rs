@@ -29,6 +29,25 @@ create_exception!(
      ``result`` (the :class:`RunResult` up to the last healthy state) as well."
 );
 
+create_exception!(
+    pliant,
+    SolverNotConverged,
+    PyRuntimeError,
+    "A Newton solve ended out of balance, or on an unstable equilibrium it could not \
+     leave (raised instead of :class:`SolverWarning` by a ``Simulation(..., strict=True)``). \
+     The message says when and by how much; the state is kept."
+);
+
+create_exception!(
+    pliant,
+    SolverWarning,
+    pyo3::exceptions::PyRuntimeWarning,
+    "A Newton solve ended out of balance, or on an unstable equilibrium it could not \
+     leave: the forces of those steps are not trustworthy (the verdict says \
+     \"UNCERTAIN\"). ``warnings.simplefilter(\"error\", pliant.SolverWarning)`` or \
+     ``Simulation(..., strict=True)`` makes it an error."
+);
+
 /// A scene loading error as `pliant.SceneError`.
 pub fn scene_error(py: Python<'_>, e: &RustSceneError) -> PyErr {
     let err = SceneError::new_err(e.to_string());

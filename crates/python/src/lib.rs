@@ -26,6 +26,11 @@ fn _pliant(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "SimulationDiverged",
         py.get_type::<errors::SimulationDiverged>(),
     )?;
+    m.add(
+        "SolverNotConverged",
+        py.get_type::<errors::SolverNotConverged>(),
+    )?;
+    m.add("SolverWarning", py.get_type::<errors::SolverWarning>())?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<simulation::Simulation>()?;
     m.add_class::<load_id::LoadId>()?;

@@ -38,6 +38,8 @@ pub struct RunResult {
     diverged: Option<String>,
     feasible: Option<bool>,
     reasons: Vec<String>,
+    word: &'static str,
+    uncertain: bool,
     data: Collector,
 }
 
@@ -117,6 +119,8 @@ pub fn run_timeline(
         run,
         diverged: message,
         feasible: v.feasible,
+        word: v.word(),
+        uncertain: v.uncertain,
         reasons: v.reasons,
         data,
     };
@@ -137,6 +141,14 @@ impl RunResult {
     #[getter]
     fn feasible(&self) -> Option<bool> {
         self.feasible
+    }
+
+    /// True when some Newton solve ended out of balance or on an unstable equilibrium:
+    /// the verdict rests on forces that are not trustworthy there (``reasons`` says
+    /// where; ``summary["warnings"]`` too).
+    #[getter]
+    fn uncertain(&self) -> bool {
+        self.uncertain
     }
 
     /// Why (the lines under ``pliant run``'s verdict).
@@ -361,11 +373,7 @@ impl RunResult {
     }
 
     fn __repr__(&self) -> String {
-        let word = match self.feasible {
-            Some(true) => "FEASIBLE",
-            Some(false) => "NOT FEASIBLE",
-            None => "not assessed",
-        };
+        let word = self.word;
         format!(
             "<pliant.RunResult '{}': {word}, {} steps, {:.3} s simulated{}>",
             self.scene_name,

@@ -52,6 +52,8 @@ fn refused(r: Refusal) -> PyErr {
 pub struct Simulation {
     engine: Engine,
     scene: Py<Scene>,
+    /// Raise `SolverNotConverged` instead of warning.
+    strict: bool,
 }
 
 impl Simulation {
@@ -122,6 +124,10 @@ impl Simulation {
     /// `n` steps with the GIL released, in chunks so that Ctrl-C is honoured.
     fn advance(&mut self, py: Python<'_>, n: u64) -> PyResult<()> {
         let mut left = n;
+        let (unconverged, unstable) = {
+            let r = self.engine.solver_record();
+            (r.unconverged_steps, r.unstable_steps)
+        };
         loop {
             let k = left.min(CHUNK);
             let engine = &mut self.engine;
@@ -129,20 +135,30 @@ impl Simulation {
                 .map_err(|d| diverged(py, &d))?;
             left -= k;
             if left == 0 {
-                return Ok(());
+                break;
             }
             py.check_signals()?;
         }
+        let r = self.engine.solver_record();
+        if r.unconverged_steps > unconverged || r.unstable_steps > unstable {
+            let message = r.warnings().join("; ");
+            if self.strict {
+                return Err(crate::errors::SolverNotConverged::new_err(message));
+            }
+            let category = py.get_type::<crate::errors::SolverWarning>();
+            PyErr::warn(py, &category, &std::ffi::CString::new(message).unwrap_or_default(), 1)?;
+        }
+        Ok(())
     }
 
     /// Whole steps in `duration` (rounded, as the timeline's `run`).
     fn steps_for(&self, duration: f64) -> u64 {
-        (duration / self.engine.time_step()).round() as u64
+        self.engine.cell().steps_in(duration)
     }
 
     /// Steps until a motion of `duration` starting now has ended (rounded up).
     fn steps_until_done(&self, duration: f64) -> u64 {
-        (duration / self.engine.time_step() - 1e-9).ceil().max(0.0) as u64
+        self.engine.cell().steps_until_done(duration)
     }
 
     /// Waypoints from `to` (absolute) or `by` (offsets from `start`); at most one.
@@ -165,12 +181,13 @@ impl Simulation {
 #[pymethods]
 impl Simulation {
     #[new]
-    #[pyo3(signature = (scene, *, initial_loads = true, solver = None))]
+    #[pyo3(signature = (scene, *, initial_loads = true, solver = None, strict = false))]
     fn new(
         py: Python<'_>,
         scene: Bound<'_, Scene>,
         initial_loads: bool,
         solver: Option<&str>,
+        strict: bool,
     ) -> PyResult<Self> {
         let s = scene.get();
         let initial = if initial_loads {
@@ -186,6 +203,7 @@ impl Simulation {
             .map_err(|e| scene_error_message(py, format!("{}: {e}", s.scene.source)))?;
         Ok(Simulation {
             engine,
+            strict,
             scene: scene.unbind(),
         })
     }
@@ -220,6 +238,42 @@ impl Simulation {
     #[getter]
     fn solver(&self) -> &'static str {
         self.engine.solver().kind().name()
+    }
+
+    /// Why the numbers so far are uncertain: Newton steps that ended out of balance or
+    /// on an unstable equilibrium (empty when none did; each such step also warns with
+    /// :class:`SolverWarning`).
+    ///
+    /// >>> pliant.Simulation(pliant.demo_scene(), solver="static").solver_warnings
+    /// []
+    #[getter]
+    fn solver_warnings(&self) -> Vec<String> {
+        self.engine.solver_record().warnings()
+    }
+
+    /// The unstable equilibria (buckling, bifurcations) the static solver met and left
+    /// for the stable branch so far, each a dict: ``time`` [s], ``hose`` (name), ``node``
+    /// (on that hose), ``negative_eigenvalues``, ``energy_drop_j`` and ``mode`` (an
+    /// (n, 3) array: each node's translation in the unstable mode, the largest 1).
+    fn instabilities<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, pyo3::types::PyDict>>> {
+        let model = self.model();
+        self.engine
+            .solver_record()
+            .instabilities
+            .iter()
+            .map(|i| {
+                let d = pyo3::types::PyDict::new(py);
+                d.set_item("time", i.time)?;
+                d.set_item("hose", model.hoses[i.hose].name.clone())?;
+                d.set_item("node", i.node)?;
+                d.set_item("negative_eigenvalues", i.negative_eigenvalues)?;
+                d.set_item("energy_drop_j", i.energy_drop_j)?;
+                let mode = numpy::PyArray2::from_vec2(py, &i.mode.iter().map(|m| m.to_vec()).collect::<Vec<_>>())
+                    .map_err(|e| PyValueError::new_err(e.to_string()))?;
+                d.set_item("mode", mode)?;
+                Ok(d)
+            })
+            .collect()
     }
 
     /// Steps taken since the start (or the last reset).

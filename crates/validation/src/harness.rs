@@ -3,6 +3,7 @@
 use glam::{DQuat, DVec3};
 use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::loads::{Fix, LoadCase};
+use pliant_core::newton::Tolerance;
 use pliant_core::settle::{settle, SettleOptions, SettleReport};
 use pliant_core::SolverKind;
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
@@ -137,8 +138,7 @@ pub fn settle_to(
         }
         SolverKind::Static => {
             let mut solver = StaticSolver::new(model).map_err(|e| e.to_string())?;
-            solver.options.force_tolerance = force_tolerance;
-            solver.options.moment_tolerance = moment_tolerance;
+            solver.options.tolerance = Tolerance::absolute(force_tolerance, moment_tolerance);
             solver.options.max_iterations = 200;
             let r = solver.solve(model, state).map_err(|e| e.to_string())?;
             SettleReport {
@@ -177,8 +177,7 @@ fn implicit_to_rest(
     let options = ImplicitOptions {
         time_step: 0.05,
         alpha: -1.0 / 3.0,
-        force_tolerance: 1e-3 * force_tolerance,
-        moment_tolerance: 1e-3 * moment_tolerance,
+        tolerance: Tolerance::absolute(1e-3 * force_tolerance, 1e-3 * moment_tolerance),
         max_halvings: 10,
         ..Default::default()
     };

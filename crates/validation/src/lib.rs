@@ -4,6 +4,7 @@
 //! docs/validation.md is generated from them.
 
 pub mod cases;
+pub mod elastica;
 pub mod harness;
 pub mod markdown;
 pub mod reference_bridge;

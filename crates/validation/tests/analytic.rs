@@ -26,6 +26,10 @@ fn buckling() {
     assert_case("buckling");
 }
 #[test]
+fn postbuckling() {
+    assert_case("postbuckling");
+}
+#[test]
 fn axial() {
     assert_case("axial");
 }

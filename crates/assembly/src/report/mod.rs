@@ -76,8 +76,8 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
         elements: o.model.elements.len(),
         actions_completed: run.actions_completed,
         settles: run.settles.clone(),
-        newton_iterations_max: run.newton_iterations_max,
-        newton_unconverged_steps: run.newton_unconverged_steps,
+        newton: run.solver.clone(),
+        warnings: run.solver_warnings.clone(),
         peaks: peak_rows(o.model, run),
         final_state: final_state(o.model, o.state),
     };

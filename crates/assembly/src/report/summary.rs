@@ -48,9 +48,11 @@ pub struct Summary {
     pub elements: usize,
     pub actions_completed: usize,
     pub settles: Vec<SettleOutcome>,
-    /// Newton solvers: most iterations in one step; steps that missed the tolerance.
-    pub newton_iterations_max: usize,
-    pub newton_unconverged_steps: u64,
+    /// Newton solvers: most iterations in one step; steps that missed the tolerance
+    /// (first and worst); unstable equilibria met and left, with their mode shapes.
+    pub newton: crate::workcell::SolverRecord,
+    /// Why the numbers are uncertain (unconverged or unstable steps); empty if they are not.
+    pub warnings: Vec<String>,
     pub peaks: Vec<PeakRow>,
     pub final_state: Vec<FinalHose>,
 }

@@ -15,12 +15,14 @@ pub mod input;
 pub mod log;
 pub mod observer;
 pub mod replay;
+pub mod solver_record;
 pub mod tally;
 pub mod verdict;
 
 pub use hands::{Aim, HandLimits, HeldHand};
 pub use input::{HandNumber, Input, Refusal, StampedInput};
 pub use observer::{NoObserver, Observer};
+pub use solver_record::{Instability, SolverRecord, Unconverged};
 pub use tally::{
     limit_of, ContactEpisode, HandPeak, HandRecord, NodePeak, Peak, RunSummary, SettleOutcome,
     Tally,
@@ -33,7 +35,7 @@ use crate::hand::{nearest_beam, Hand};
 use crate::timeline::{Action, NodeRef};
 use glam::{DQuat, DVec3};
 use hands::{holder, Hands};
-use pliant_core::health::{check, Divergence};
+use pliant_core::health::{check_for, Divergence};
 use pliant_core::integrators::{StaticReport, StaticSolver};
 use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId};
 use pliant_core::{Model, Solver, SolverKind, SolverSettings, State};
@@ -346,8 +348,11 @@ impl Workcell {
             ergonomics: self.profile.to_string(),
             fasteners: self.fasteners.reports(),
             fastener_series: t.fastener_series.clone(),
-            newton_iterations_max: t.newton_iterations_max,
-            newton_unconverged_steps: t.newton_unconverged_steps,
+            solver: t.solver.clone(),
+            solver_warnings: t.solver.warnings(),
+            instability_notes: t
+                .solver
+                .instability_notes(|h| self.model.hoses[h].name.clone()),
         }
     }
     /// The verdict so far ([`Stage::Running`]) or of the finished study.
@@ -677,8 +682,8 @@ impl Workcell {
             } => {
                 let mut solver =
                     StaticSolver::new(&self.model).map_err(|e| Refusal::Invalid(e.to_string()))?;
-                solver.options.force_tolerance = *force_tolerance;
-                solver.options.moment_tolerance = *moment_tolerance;
+                solver.options.tolerance =
+                    pliant_core::newton::Tolerance::absolute(*force_tolerance, *moment_tolerance);
                 solver.options.max_iterations = *max_iterations;
                 let before = self.state.clone();
                 match solver.solve(&self.model, &mut self.state) {
@@ -734,18 +739,23 @@ impl Workcell {
         // tick whoever watches (a replay with a recorder, a live session without);
         // an observer is shown checked states only.
         if self.state.step % HEALTH_CHECK_EVERY == 0 {
-            if let Err(d) = check(&self.model, &self.state) {
+            if let Err(d) = check_for(self.solver.kind(), &self.model, &self.state) {
                 return Err(self.fail(d));
             }
         }
-        let wants = obs.wants_state(self.state.time) && check(&self.model, &self.state).is_ok();
+        let wants = obs.wants_state(self.state.time)
+            && check_for(self.solver.kind(), &self.model, &self.state).is_ok();
         self.hand_records.clear();
         for (&k, h) in &self.hands {
             let r = self.assess(k, h);
             self.hand_records.push(r);
         }
-        self.tally
-            .record(&self.model, &self.state, &stats, &self.hand_records);
+        self.tally.record(
+            &self.model,
+            &self.state,
+            (&stats, self.solver.stability_events()),
+            &self.hand_records,
+        );
         if wants {
             obs.on_state(&self.model, &self.state);
             obs.on_hands(self.state.time, &self.hand_records);
@@ -769,7 +779,7 @@ impl Workcell {
         if let Some(d) = &self.diverged {
             return Err(d.clone());
         }
-        check(&self.model, &self.state).map_err(|d| self.fail(d))
+        check_for(self.solver.kind(), &self.model, &self.state).map_err(|d| self.fail(d))
     }
 
     /// `n` steps, then a health check, so that a successful call never leaves
@@ -778,12 +788,19 @@ impl Workcell {
         for _ in 0..n {
             self.step(obs)?;
         }
-        check(&self.model, &self.state).map_err(|d| self.fail(d))
+        check_for(self.solver.kind(), &self.model, &self.state).map_err(|d| self.fail(d))
     }
 
     /// Steps in a duration [s] (rounded to whole steps).
     pub fn steps_in(&self, duration: f64) -> u64 {
         (duration / self.time_step()).round().max(0.0) as u64
+    }
+
+    /// Steps until a motion of `duration` [s] starting now has ended (rounded up, so
+    /// that a motion shorter than a step — 2 ms against the static solver's 10 ms —
+    /// still arrives before the next one starts from where it ended).
+    pub fn steps_until_done(&self, duration: f64) -> u64 {
+        (duration / self.time_step() - 1e-9).ceil().max(0.0) as u64
     }
 }
 

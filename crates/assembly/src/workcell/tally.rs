@@ -5,11 +5,12 @@
 //! node, hand or part has been seen.
 
 use super::input::HandNumber;
+use super::solver_record::SolverRecord;
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile, HandAssessment, LoadKind};
 use crate::fasteners::{FastenerReport, FastenerSample};
 use crate::hand::HandLoad;
 use glam::DVec3;
-use pliant_core::integrators::StepStats;
+use pliant_core::integrators::{StabilityEvent, StepStats};
 use pliant_core::{Model, State};
 use serde::Serialize;
 
@@ -136,10 +137,12 @@ pub struct RunSummary {
     pub fasteners: Vec<FastenerReport>,
     /// Their forces at the recorded times (the observer's sampling).
     pub fastener_series: Vec<FastenerSample>,
-    /// Newton solvers only: the most iterations one step took, and how many steps ended
-    /// without reaching the tolerance.
-    pub newton_iterations_max: usize,
-    pub newton_unconverged_steps: u64,
+    /// Newton solvers only: iterations, steps out of balance, instabilities met.
+    pub solver: SolverRecord,
+    /// Why the study is uncertain ([`SolverRecord::warnings`]); empty when it is not.
+    pub solver_warnings: Vec<String>,
+    /// The instabilities met, in words, hoses named.
+    pub instability_notes: Vec<String>,
 }
 
 impl RunSummary {
@@ -162,8 +165,7 @@ pub struct Tally {
     pub max_contact_force: f64,
     pub max_contact_force_time: f64,
     pub fastener_series: Vec<FastenerSample>,
-    pub newton_iterations_max: usize,
-    pub newton_unconverged_steps: u64,
+    pub solver: SolverRecord,
 }
 
 impl Tally {
@@ -197,19 +199,18 @@ impl Tally {
         }
     }
 
-    /// Takes in one step: solver statistics, hand loads, contacts, support loads.
+    /// Takes in one step: solver statistics and the instabilities it met, hand loads,
+    /// contacts, support loads.
     pub fn record(
         &mut self,
         model: &Model,
         state: &State,
-        stats: &StepStats,
+        (stats, events): (&StepStats, &[StabilityEvent]),
         hands: &[HandRecord],
     ) {
-        self.newton_iterations_max = self.newton_iterations_max.max(stats.iterations);
-        if !stats.converged {
-            self.newton_unconverged_steps += 1;
-        }
         let t = state.time;
+        self.solver.record_step(t, stats);
+        self.solver.record_instabilities(model, events);
         for r in hands {
             let Some(p) = self.hand_peaks.iter_mut().find(|p| p.hand == r.hand) else {
                 continue;

@@ -25,6 +25,9 @@ pub struct Verdict {
     pub reasons: Vec<String>,
     /// Stubs and clips not yet fitted (running stage).
     pub pending: Vec<String>,
+    /// Some step's solve ended out of balance or on an unstable equilibrium: the loads
+    /// the verdict rests on are not trustworthy there (the reasons say where).
+    pub uncertain: bool,
 }
 
 fn kind_name(kind: LoadKind) -> &'static str {
@@ -96,6 +99,9 @@ impl Verdict {
                 ));
             }
         }
+        // the solver's own doubts first: they qualify everything below
+        reasons.splice(0..0, run.solver_warnings.iter().cloned());
+        reasons.extend(run.instability_notes.iter().cloned());
         let judged = !run.hand_peaks.is_empty();
         let feasible = if diverged.is_some() || exceeded || (judged && unfitted) {
             Some(false)
@@ -140,15 +146,20 @@ impl Verdict {
             feasible,
             reasons,
             pending,
+            uncertain: !run.solver_warnings.is_empty(),
         }
     }
 
-    /// "FEASIBLE", "NOT FEASIBLE" or "not assessed".
+    /// "FEASIBLE", "NOT FEASIBLE" or "not assessed", with "(UNCERTAIN)" when a solve
+    /// ended out of balance or unstable.
     pub fn word(&self) -> &'static str {
-        match self.feasible {
-            Some(true) => "FEASIBLE",
-            Some(false) => "NOT FEASIBLE",
-            None => "not assessed",
+        match (self.feasible, self.uncertain) {
+            (Some(true), false) => "FEASIBLE",
+            (Some(false), false) => "NOT FEASIBLE",
+            (None, false) => "not assessed",
+            (Some(true), true) => "FEASIBLE (UNCERTAIN)",
+            (Some(false), true) => "NOT FEASIBLE (UNCERTAIN)",
+            (None, true) => "not assessed (UNCERTAIN)",
         }
     }
 }

@@ -21,6 +21,7 @@
 use super::statics::increment_at_round_off;
 use crate::math::{left_jacobian_inverse_transpose_times, log_map};
 use crate::newton::block_tridiagonal::SingularBlock;
+use crate::newton::convergence::Tolerance;
 use crate::newton::system::{
     apply_increment, rotation_limited_step, sync_bodies, NewtonSystem, NotAChain,
 };
@@ -35,10 +36,9 @@ pub struct ImplicitOptions {
     pub time_step: f64,
     /// HHT α ∈ [−⅓, 0].
     pub alpha: f64,
-    /// Convergence: largest out-of-balance force [N] and moment [N·m] of a node's
-    /// dynamic equation.
-    pub force_tolerance: f64,
-    pub moment_tolerance: f64,
+    /// Convergence: the largest out-of-balance force and moment of a node's dynamic
+    /// equation, against the problem's load scale ([`Tolerance`]).
+    pub tolerance: Tolerance,
     pub max_iterations: usize,
     /// How many times a step may be halved when Newton does not converge.
     pub max_halvings: u32,
@@ -49,8 +49,7 @@ impl Default for ImplicitOptions {
         Self {
             time_step: 0.01,
             alpha: -0.1,
-            force_tolerance: 1e-7,
-            moment_tolerance: 1e-8,
+            tolerance: Tolerance::default(),
             max_iterations: 25,
             max_halvings: 4,
         }
@@ -333,7 +332,7 @@ impl ImplicitSolver {
                 return Ok(false);
             }
             let pending = sys.pending();
-            if !pending && rf <= o.force_tolerance && rm <= o.moment_tolerance {
+            if !pending && o.tolerance.met(sys.scale, rf, rm) {
                 converged = true;
                 break;
             }
@@ -342,7 +341,7 @@ impl ImplicitSolver {
                 sys.add_prescribed_coupling(state);
             }
             sys.eliminate_prescribed();
-            sys.solve_linear()?;
+            sys.solve_linear(false)?;
             let s = rotation_limited_step(&sys.rhs, &sys.prescribed);
             apply_increment(state, &sys.rhs, &sys.prescribed, s);
             report.iterations += 1;

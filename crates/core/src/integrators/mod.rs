@@ -8,16 +8,21 @@
 //! * `static` — the equilibrium at each input ([`crate::newton::statics`]): one Newton
 //!   solve per input step (default 10 ms of the timeline), the way slow manual assembly
 //!   and industrial cable tools see it. Velocities are reported as the displacement over
-//!   the input step (so rate-dependent laws — stub friction — still see the motion).
+//!   the input step (so rate-dependent laws — stub friction — still see the motion). An
+//!   input step whose solve does not converge is retried in 2, 4, … 16 sub-steps
+//!   (adaptive load stepping, so limit points are passed), and every equilibrium is
+//!   checked for stability ([`stability`]).
 
-use crate::health::{check, Divergence};
+use crate::health::{check_for, Divergence};
 pub mod explicit;
 pub mod implicit;
+pub mod stability;
 pub mod statics;
 
 pub use implicit::{
     ImplicitError, ImplicitHistory, ImplicitOptions, ImplicitReport, ImplicitSolver,
 };
+pub use stability::StabilityEvent;
 pub use statics::{StaticError, StaticOptions, StaticReport, StaticSolver};
 
 use crate::newton::NotAChain;
@@ -125,8 +130,18 @@ pub struct StepStats {
     pub iterations: usize,
     pub residual_force: f64,
     pub residual_moment: f64,
+    /// The residual limits of the convergence test [N], [N·m].
+    pub force_limit: f64,
+    pub moment_limit: f64,
     pub converged: bool,
+    /// Static solver: the step ended on an equilibrium known to be unstable.
+    pub unstable: bool,
+    /// Static solver: sub-steps the input step took (1 unless it had to be split).
+    pub substeps: usize,
 }
+
+/// Most sub-steps one static input step may be split into.
+pub const MAX_STATIC_SUBSTEPS: usize = 16;
 
 /// A solver of the chosen kind with its buffers (allocated once).
 #[derive(Clone, Debug)]
@@ -135,6 +150,9 @@ pub struct Solver {
     implicit: Option<Box<ImplicitSolver>>,
     statics: Option<Box<StaticSolver>>,
     previous_x: Vec<DVec3>,
+    previous_q: Vec<glam::DQuat>,
+    /// Unstable equilibria the last step left (static solver).
+    events: Vec<StabilityEvent>,
     pub last: StepStats,
 }
 
@@ -159,6 +177,8 @@ impl Solver {
             implicit,
             statics,
             previous_x: vec![DVec3::ZERO; model.node_count()],
+            previous_q: vec![glam::DQuat::IDENTITY; model.node_count()],
+            events: Vec::new(),
             last: StepStats::default(),
         })
     }
@@ -202,31 +222,81 @@ impl Solver {
                     residual_force: r.residual_force,
                     residual_moment: r.residual_moment,
                     converged: r.converged,
+                    substeps: r.substeps,
+                    ..Default::default()
                 }
             }
-            SolverKind::Static => {
-                let h = self.settings.static_input_step;
-                self.previous_x.copy_from_slice(&state.x);
-                state.time += h;
-                let solver = self.statics.as_mut().expect("built for static");
+            SolverKind::Static => self.static_step(model, state, time)?,
+        };
+        if self.settings.kind != SolverKind::Explicit {
+            check_for(self.settings.kind, model, state)?;
+        }
+        Ok(self.last)
+    }
+
+    /// The unstable equilibria the last [`Self::step`] left (static solver; empty
+    /// otherwise).
+    pub fn stability_events(&self) -> &[StabilityEvent] {
+        &self.events
+    }
+
+    /// One static input step: the equilibrium at t + h, solved in 1, 2, 4, …
+    /// [`MAX_STATIC_SUBSTEPS`] load steps until the solves converge.
+    fn static_step(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        time: f64,
+    ) -> Result<StepStats, SolverError> {
+        let h = self.settings.static_input_step;
+        self.previous_x.copy_from_slice(&state.x);
+        self.previous_q.copy_from_slice(&state.q);
+        self.events.clear();
+        let solver = self.statics.as_mut().expect("built for static");
+        let mut pieces = 1;
+        let (report, iterations) = loop {
+            let mut iterations = 0;
+            let mut last = None;
+            for j in 1..=pieces {
+                state.time = if j == pieces {
+                    time + h
+                } else {
+                    time + h * j as f64 / pieces as f64
+                };
                 let r = solver
                     .solve(model, state)
                     .map_err(|error| SolverError::Static { time, error })?;
-                for i in 0..state.x.len() {
-                    state.v[i] = (state.x[i] - self.previous_x[i]) / h;
-                }
-                state.step += 1;
-                StepStats {
-                    iterations: r.iterations,
-                    residual_force: r.residual_force,
-                    residual_moment: r.residual_moment,
-                    converged: r.converged,
+                iterations += r.iterations;
+                self.events.extend(solver.events.iter().cloned());
+                last = Some(r);
+                if !r.converged {
+                    break;
                 }
             }
+            let r = last.expect("at least one piece");
+            if r.converged || pieces >= MAX_STATIC_SUBSTEPS {
+                break (r, iterations);
+            }
+            // retry from the start of the step in smaller load steps
+            pieces *= 2;
+            state.x.copy_from_slice(&self.previous_x);
+            state.q.copy_from_slice(&self.previous_q);
+            self.events.clear();
         };
-        if self.settings.kind != SolverKind::Explicit {
-            check(model, state)?;
+        state.time = time + h;
+        for i in 0..state.x.len() {
+            state.v[i] = (state.x[i] - self.previous_x[i]) / h;
         }
-        Ok(self.last)
+        state.step += 1;
+        Ok(StepStats {
+            iterations,
+            residual_force: report.residual_force,
+            residual_moment: report.residual_moment,
+            force_limit: report.force_limit,
+            moment_limit: report.moment_limit,
+            converged: report.converged,
+            unstable: report.unstable,
+            substeps: pieces,
+        })
     }
 }

@@ -4,9 +4,15 @@
 //! search (Nocedal & Wright, "Numerical Optimization", 2006, alg. 3.1): a step is
 //! accepted when the potential energy decreases enough (Armijo, c₁ = 1e-4; dead moments
 //! enter with their work along the search line), or — where the energy does not decide
-//! (round-off near convergence) — when the residual decreases. Velocities are zero: what manual assembly at walking pace
+//! (round-off near convergence) — when the residual decreases. Newton runs on a
+//! positive-definite modification of the tangent, so every step descends; balance is
+//! judged against the problem's load scale ([`Tolerance`]); every equilibrium found is
+//! checked for stability and an unstable one is left for the stable branch nearby
+//! ([`super::stability`]). Velocities are zero: what manual assembly at walking pace
 //! needs, one solve per input.
 
+use super::stability::{dead_moment_work, Escape, StabilityEvent};
+use crate::newton::convergence::Tolerance;
 use crate::newton::system::{
     apply_increment, residual_norms, rotation_limited_step, sync_bodies, NewtonSystem,
 };
@@ -16,23 +22,30 @@ use glam::DVec3;
 /// When to stop iterating.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StaticOptions {
-    /// Largest allowed out-of-balance force on a free node [N].
-    pub force_tolerance: f64,
-    /// Largest allowed out-of-balance moment on a free node [N·m].
-    pub moment_tolerance: f64,
+    /// How close to balance the free nodes must come ([`Tolerance`]: relative to the
+    /// problem's loads by default).
+    pub tolerance: Tolerance,
+    /// Newton iterations allowed per equilibrium sought (again after each step off an
+    /// unstable one).
     pub max_iterations: usize,
     /// Largest translation of any node in one iteration [m], as a fraction of the
     /// smallest hose radius when contact is on (keeps contact from being jumped through).
     pub contact_step_fraction: f64,
+    /// Check each equilibrium's stability and leave unstable ones ([`super::stability`]).
+    pub stability: bool,
+    /// Unstable equilibria one solve may step off before it reports the last one as
+    /// unstable.
+    pub max_escapes: usize,
 }
 
 impl Default for StaticOptions {
     fn default() -> Self {
         Self {
-            force_tolerance: 1e-7,
-            moment_tolerance: 1e-8,
+            tolerance: Tolerance::default(),
             max_iterations: 60,
             contact_step_fraction: 0.5,
+            stability: true,
+            max_escapes: 8,
         }
     }
 }
@@ -43,9 +56,18 @@ pub struct StaticReport {
     pub iterations: usize,
     pub residual_force: f64,
     pub residual_moment: f64,
+    /// The residual limits the solve had to meet (from the load scale) [N], [N·m].
+    pub force_limit: f64,
+    pub moment_limit: f64,
+    /// The free nodes are in balance.
     pub converged: bool,
     /// Line-search steps shorter than the full Newton step.
     pub shortened_steps: usize,
+    /// Unstable equilibria stepped off ([`StaticSolver::events`]).
+    pub escapes: usize,
+    /// The equilibrium found is unstable and could not be left (`max_escapes` reached,
+    /// or no step lowered the energy); only with `stability` on.
+    pub unstable: bool,
 }
 
 /// Why the solve failed outright (not just "not converged").
@@ -62,6 +84,9 @@ pub enum StaticError {
 pub struct StaticSolver {
     pub system: NewtonSystem,
     pub options: StaticOptions,
+    /// Unstable equilibria left by the last solve.
+    pub events: Vec<StabilityEvent>,
+    escape: Escape,
     /// Configuration before a trial step (line search).
     saved_x: Vec<DVec3>,
     saved_q: Vec<glam::DQuat>,
@@ -73,17 +98,23 @@ impl StaticSolver {
         Ok(Self {
             system: NewtonSystem::new(model)?,
             options: StaticOptions::default(),
+            events: Vec::new(),
+            escape: Escape::new(n),
             saved_x: vec![DVec3::ZERO; n],
             saved_q: vec![glam::DQuat::IDENTITY; n],
         })
     }
 
-    /// Moves `state` to the equilibrium under its load cases at `state.time`. Writes
-    /// forces, reactions (support loads on prescribed nodes), contact forces and `held`
-    /// as the explicit step does; velocities are zero.
+    /// Moves `state` to a stable equilibrium under its load cases at `state.time`.
+    /// Writes forces, reactions (support loads on prescribed nodes), contact forces and
+    /// `held` as the explicit step does; velocities are zero. Newton runs on a
+    /// positive-definite modification of the tangent (so every step descends in energy);
+    /// at balance the tangent's inertia is checked and an unstable equilibrium is left
+    /// along its unstable mode ([`super::stability`]), each time recorded in
+    /// [`Self::events`].
     pub fn solve(&mut self, model: &Model, state: &mut State) -> Result<StaticReport, StaticError> {
-        let sys = &mut self.system;
-        sys.set_prescribed(state, state.time);
+        self.events.clear();
+        self.system.set_prescribed(state, state.time);
         state.v.fill(DVec3::ZERO);
         state.w.fill(DVec3::ZERO);
         let min_radius = model.radius.iter().cloned().fold(f64::INFINITY, f64::min);
@@ -91,112 +122,169 @@ impl StaticSolver {
             iterations: 0,
             residual_force: f64::INFINITY,
             residual_moment: f64::INFINITY,
+            force_limit: 0.0,
+            moment_limit: 0.0,
             converged: false,
             shortened_steps: 0,
+            escapes: 0,
+            unstable: false,
         };
+        let mut budget = self.options.max_iterations;
+        // Dead moments have no potential (their load stiffness is not symmetric): the
+        // symmetric part of the tangent then says nothing sure about stability, and Newton
+        // runs on the tangent as it is.
+        let conservative = !has_dead_moments(state);
+        let check_stability = self.options.stability && conservative;
         loop {
+            let sys = &mut self.system;
             sys.assemble(model, state, 0.0);
             let (rf, rm) = residual_norms(&sys.force, &sys.moment, &sys.prescribed);
             report.residual_force = rf;
             report.residual_moment = rm;
+            (report.force_limit, report.moment_limit) = self.options.tolerance.limits(sys.scale);
             if !(rf.is_finite() && rm.is_finite()) {
                 return Err(StaticError::NonFinite(report.iterations));
             }
             let pending = sys.pending();
-            if !pending && rf <= self.options.force_tolerance && rm <= self.options.moment_tolerance
-            {
-                report.converged = true;
-                break;
-            }
-            if report.iterations >= self.options.max_iterations {
-                break;
-            }
-            report.iterations += 1;
-            for i in 0..sys.rhs.len() {
-                let (f, m) = (sys.force[i], sys.moment[i]);
-                sys.rhs[i] = nalgebra::Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z);
-            }
-            if pending {
-                sys.add_prescribed_coupling(state);
-            }
-            sys.eliminate_prescribed();
-            sys.solve_linear()?;
-            if pending {
-                // the prescribed motion and the free nodes' linear response to it, taken
-                // whole (the energy before and after the supports moved is not comparable)
-                let s = rotation_limited_step(&sys.rhs, &sys.prescribed);
-                apply_increment(state, &sys.rhs, &sys.prescribed, s);
-                sys.move_prescribed(state);
-                continue;
-            }
-            if increment_at_round_off(&sys.rhs, &sys.prescribed, model) {
-                // the residual left is round-off of the stiff (rigid-factor) elements
-                report.converged = true;
-                break;
-            }
-            // −dΠ/ds along the step = (f, m)·δu (the loads are −∇Π)
-            let mut directional = 0.0;
-            for i in 0..sys.rhs.len() {
-                if !sys.prescribed[i] {
-                    let d = sys.rhs[i];
-                    directional += sys.force[i].dot(DVec3::new(d[0], d[1], d[2]))
-                        + sys.moment[i].dot(DVec3::new(d[3], d[4], d[5]));
+            let mut balanced = !pending && self.options.tolerance.met(sys.scale, rf, rm);
+            let mut inertia = None;
+            if !balanced && report.iterations < budget {
+                report.iterations += 1;
+                for i in 0..sys.rhs.len() {
+                    let (f, m) = (sys.force[i], sys.moment[i]);
+                    sys.rhs[i] = nalgebra::Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z);
                 }
-            }
-            let mut s: f64 = rotation_limited_step(&sys.rhs, &sys.prescribed);
-            if !model.environment.is_empty() {
-                let longest = sys
-                    .rhs
-                    .iter()
-                    .map(|d| d.fixed_rows::<3>(0).norm())
-                    .fold(0.0, f64::max);
-                let cap = self.options.contact_step_fraction * min_radius;
-                if longest > cap {
-                    s = cap / longest;
+                if pending {
+                    sys.add_prescribed_coupling(state);
                 }
-            }
-            // dead moments have no global potential; along this search line their work is
-            // s Σ M·δθ (exact for a fixed axis, first order otherwise)
-            let mut moment_work = 0.0;
-            for (_, case) in state.loads.iter() {
-                if let crate::loads::LoadCase::DeadLoad(d) = case {
-                    let r = sys.rhs[d.node];
-                    moment_work += d.moment.dot(DVec3::new(r[3], r[4], r[5]));
+                sys.eliminate_prescribed();
+                let inertia_here = sys.solve_linear(conservative)?;
+                if pending {
+                    // the prescribed motion and the free nodes' linear response to it,
+                    // taken whole (the energy before and after the supports moved is not
+                    // comparable)
+                    let s = rotation_limited_step(&sys.rhs, &sys.prescribed);
+                    apply_increment(state, &sys.rhs, &sys.prescribed, s);
+                    sys.move_prescribed(state);
+                    continue;
                 }
-            }
-            let energy0 = sys.potential_energy(model, state);
-            let residual0 = rf.max(rm);
-            self.saved_x.copy_from_slice(&state.x);
-            self.saved_q.copy_from_slice(&state.q);
-            let mut tries = 0;
-            loop {
-                apply_increment(state, &sys.rhs, &sys.prescribed, s);
-                let energy = sys.potential_energy(model, state) - s * moment_work;
-                let descent = directional > 0.0;
-                let enough = energy <= energy0 - 1e-4 * s * directional;
-                let accept = if descent && enough {
-                    true
+                if increment_at_round_off(&sys.rhs, &sys.prescribed, model) {
+                    // the residual left is round-off of the stiff (rigid-factor) elements
+                    balanced = true;
+                    inertia = Some(inertia_here);
                 } else {
-                    // the energy does not decide: compare residuals
-                    sys.assemble(model, state, 0.0);
-                    let (f, m) = residual_norms(&sys.force, &sys.moment, &sys.prescribed);
-                    f.max(m) < residual0
-                };
-                if accept || tries >= 12 {
-                    break;
+                    let s = self.line_search(model, state, rf.max(rm), min_radius);
+                    if s < 1.0 {
+                        report.shortened_steps += 1;
+                    }
+                    continue;
                 }
-                tries += 1;
-                s *= 0.5;
-                state.x.copy_from_slice(&self.saved_x);
-                state.q.copy_from_slice(&self.saved_q);
             }
-            if s < 1.0 {
-                report.shortened_steps += 1;
+            if !balanced {
+                break; // out of iterations
+            }
+            report.converged = true;
+            if !check_stability {
+                break;
+            }
+            let sys = &mut self.system;
+            let inertia = match inertia {
+                Some(i) => i,
+                None => {
+                    // the tangent at this very state (the last one factorised was the
+                    // previous iterate's)
+                    sys.eliminate_prescribed();
+                    sys.matrix.factor_modified()?
+                }
+            };
+            if inertia.positive_definite() {
+                break;
+            }
+            if report.escapes >= self.options.max_escapes {
+                report.unstable = true;
+                break;
+            }
+            match self.escape.step_off(model, state, sys, &inertia) {
+                Some(event) => {
+                    self.events.push(event);
+                    report.escapes += 1;
+                    report.converged = false;
+                    budget = report.iterations + self.options.max_iterations;
+                }
+                None => break, // no direction lowers the energy: round-off, not a mode
             }
         }
         finish(model, state, &self.system);
         Ok(report)
     }
+
+    /// Backtracking along the Newton increment in `system.rhs` (Armijo on the potential
+    /// energy, the residual where the energy does not decide); returns the step taken.
+    fn line_search(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        residual0: f64,
+        min_radius: f64,
+    ) -> f64 {
+        let sys = &mut self.system;
+        // −dΠ/ds along the step = (f, m)·δu (the loads are −∇Π)
+        let mut directional = 0.0;
+        for i in 0..sys.rhs.len() {
+            if !sys.prescribed[i] {
+                let d = sys.rhs[i];
+                directional += sys.force[i].dot(DVec3::new(d[0], d[1], d[2]))
+                    + sys.moment[i].dot(DVec3::new(d[3], d[4], d[5]));
+            }
+        }
+        let mut s: f64 = rotation_limited_step(&sys.rhs, &sys.prescribed);
+        if !model.environment.is_empty() {
+            let longest = sys
+                .rhs
+                .iter()
+                .map(|d| d.fixed_rows::<3>(0).norm())
+                .fold(0.0, f64::max);
+            let cap = self.options.contact_step_fraction * min_radius;
+            if longest > cap {
+                s = cap / longest;
+            }
+        }
+        // dead moments have no global potential; along this search line their work is
+        // s Σ M·δθ (exact for a fixed axis, first order otherwise)
+        let moment_work = dead_moment_work(state, &sys.rhs);
+        let energy0 = sys.potential_energy(model, state);
+        self.saved_x.copy_from_slice(&state.x);
+        self.saved_q.copy_from_slice(&state.q);
+        let mut tries = 0;
+        loop {
+            apply_increment(state, &sys.rhs, &sys.prescribed, s);
+            let energy = sys.potential_energy(model, state) - s * moment_work;
+            let descent = directional > 0.0;
+            let enough = energy <= energy0 - 1e-4 * s * directional;
+            let accept = if descent && enough {
+                true
+            } else {
+                // the energy does not decide: compare residuals
+                sys.assemble(model, state, 0.0);
+                let (f, m) = residual_norms(&sys.force, &sys.moment, &sys.prescribed);
+                f.max(m) < residual0
+            };
+            if accept || tries >= 12 {
+                return s;
+            }
+            tries += 1;
+            s *= 0.5;
+            state.x.copy_from_slice(&self.saved_x);
+            state.q.copy_from_slice(&self.saved_q);
+        }
+    }
+}
+
+/// Whether any dead load carries a moment (a load without a potential).
+fn has_dead_moments(state: &State) -> bool {
+    state.loads.iter().any(
+        |(_, case)| matches!(case, crate::loads::LoadCase::DeadLoad(d) if d.moment != DVec3::ZERO),
+    )
 }
 
 /// Whether a Newton increment is below what f64 can resolve for this model: no node

@@ -21,6 +21,26 @@ pub struct BlockTridiagonal {
 
 type BlockLu = nalgebra::LU<f64, nalgebra::Const<6>, nalgebra::Const<6>>;
 
+/// What the elimination of a symmetric tangent says about its definiteness (Sylvester's
+/// law of inertia on the block LDLᵀ factorisation K = L D Lᵀ, D = diag(D'ᵢ): K has as
+/// many negative eigenvalues as the pivot blocks D'ᵢ together).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Inertia {
+    /// Negative eigenvalues of the (symmetric parts of the) pivot blocks.
+    pub negative: usize,
+    /// The first block with a negative eigenvalue: its index, the eigenvalue and the
+    /// eigenvector — the seed of a direction of negative curvature
+    /// ([`BlockTridiagonal::negative_curvature_direction`]).
+    pub first: Option<(usize, f64, Vector6<f64>)>,
+}
+
+impl Inertia {
+    /// Whether the factorised matrix is positive definite.
+    pub fn positive_definite(&self) -> bool {
+        self.negative == 0
+    }
+}
+
 /// The elimination met a singular pivot block (a node with no stiffness and no mass in
 /// some direction — e.g. a free-floating hose in a static solve).
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
@@ -94,6 +114,71 @@ impl BlockTridiagonal {
             self.factors[i] = Some(lu);
         }
         Ok(())
+    }
+
+    /// [`Self::factor`] of a symmetric matrix that also counts its negative eigenvalues
+    /// and factorises a positive-definite neighbour K + E instead (modified LDLᵀ; Gill,
+    /// Murray & Wright, "Practical Optimization", 1981, §4.4.2; Cheng & Higham 1998): a
+    /// pivot block whose symmetric part is not positive definite has each eigenvalue
+    /// λ < δ raised to max(|λ|, δ), δ = 1e-8 of the block's largest |λ|. E = 0 where K is
+    /// positive definite, so Newton keeps its quadratic convergence there; elsewhere the
+    /// step solved with K + E is a descent direction of the energy.
+    pub fn factor_modified(&mut self) -> Result<Inertia, SingularBlock> {
+        let n = self.diag.len();
+        let mut inertia = Inertia::default();
+        for i in 0..n {
+            if i > 0 {
+                let l = self.lower[i - 1];
+                self.diag[i] -= l * self.gain[i - 1];
+            }
+            let symmetric = (self.diag[i] + self.diag[i].transpose()) * 0.5;
+            if symmetric.cholesky().is_none() {
+                let eig = symmetric.symmetric_eigen();
+                let largest = eig.eigenvalues.amax();
+                let floor = 1e-8 * largest;
+                for k in 0..6 {
+                    let lambda = eig.eigenvalues[k];
+                    if lambda >= floor {
+                        continue;
+                    }
+                    let v = eig.eigenvectors.column(k).into_owned();
+                    if lambda < -1e-12 * largest {
+                        inertia.negative += 1;
+                        let more_negative =
+                            inertia.first.is_some_and(|(j, l, _)| j == i && lambda < l);
+                        if inertia.first.is_none() || more_negative {
+                            inertia.first = Some((i, lambda, v));
+                        }
+                    }
+                    let raised = lambda.abs().max(floor);
+                    self.diag[i] += v * v.transpose() * (raised - lambda);
+                }
+            }
+            let lu = self.diag[i].lu();
+            if i + 1 < n {
+                self.gain[i] = lu.solve(&self.upper[i]).ok_or(SingularBlock(i))?;
+            }
+            self.factors[i] = Some(lu);
+        }
+        Ok(inertia)
+    }
+
+    /// A direction d of negative curvature of a symmetric K from its [`Inertia`]:
+    /// Lᵀ d = e, e = the first negative pivot block's eigenvector, so that
+    /// dᵀ K d = eᵀ D e = λ < 0 (the gains of the blocks before it are those of K's own
+    /// factorisation). Call after [`Self::factor_modified`]; `d` has one entry per node.
+    pub fn negative_curvature_direction(
+        &self,
+        block: usize,
+        eigenvector: &Vector6<f64>,
+        d: &mut [Vector6<f64>],
+    ) {
+        d.fill(Vector6::zeros());
+        d[block] = *eigenvector;
+        for j in (0..block).rev() {
+            let next = d[j + 1];
+            d[j] = -(self.gain[j] * next);
+        }
     }
 
     /// Solves with the factors of the last [`Self::factor`] (rhs becomes x).

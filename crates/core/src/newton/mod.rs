@@ -1,9 +1,11 @@
 //! The Newton machinery the implicit and quasi-static integrators share (issue 5, SPEC
 //! P5; the integrators themselves are in [`crate::integrators`]): the assembly of loads
-//! and consistent tangent ([`system`]) and the O(N) block-tridiagonal linear solve
-//! ([`block_tridiagonal`]).
+//! and consistent tangent ([`system`]) the O(N) block-tridiagonal linear solve
+//! ([`block_tridiagonal`]) and the convergence test ([`convergence`]).
 
 pub mod block_tridiagonal;
+pub mod convergence;
 pub mod system;
 
+pub use convergence::{LoadScale, Tolerance};
 pub use system::{NewtonSystem, NotAChain, RIGID_FACTOR};

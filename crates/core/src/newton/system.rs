@@ -20,7 +20,8 @@
 //!
 //! Prescribed nodes (fix, drive, hand) are eliminated: their increment is zero.
 
-use super::block_tridiagonal::{BlockTridiagonal, SingularBlock};
+use super::block_tridiagonal::{BlockTridiagonal, Inertia, SingularBlock};
+use super::convergence::LoadScale;
 use crate::contact::{hose_contact_forces_with, ContactPair};
 use crate::element::{BeamElement, ElementEnds};
 use crate::loads::LoadCase;
@@ -55,6 +56,10 @@ pub struct NewtonSystem {
     /// Hose–hose contact pairs of the last assembly (their cross-beam coupling is applied
     /// iteratively in [`Self::solve_linear`]).
     pub pairs: Vec<ContactPair>,
+    /// Size of the loads of the last assembly (for the convergence test).
+    pub scale: LoadScale,
+    /// Mean rest length of the elements [m].
+    pub mean_length: f64,
     /// Scratch of the linear solve.
     base_rhs: Vec<Vector6<f64>>,
     work: Vec<Vector6<f64>>,
@@ -91,7 +96,11 @@ impl NewtonSystem {
                 e.torsion_stiffness *= RIGID_FACTOR;
             }
         }
+        let mean_length =
+            elements.iter().map(|e| e.rest_length).sum::<f64>() / elements.len().max(1) as f64;
         Ok(Self {
+            scale: LoadScale::default(),
+            mean_length,
             elements,
             matrix: BlockTridiagonal::new(n),
             rhs: vec![Vector6::zeros(); n],
@@ -118,6 +127,7 @@ impl NewtonSystem {
         self.moment.fill(DVec3::ZERO);
         self.contact_force.fill(DVec3::ZERO);
         self.pairs.clear();
+        let mut scale = LoadScale::default();
         let beta = model.damping_stiffness;
         for e in &self.elements {
             let (a, b) = (e.node_a, e.node_b);
@@ -128,6 +138,10 @@ impl NewtonSystem {
                 w: [state.w[a], state.w[b]],
             };
             let (loads, k) = element_tangent(e, &ends, beta, rate_factor);
+            scale.include(
+                loads.force[0].length(),
+                loads.moment[0].length().max(loads.moment[1].length()),
+            );
             self.force[a] += loads.force[0];
             self.force[b] += loads.force[1];
             self.moment[a] += loads.moment[0];
@@ -139,6 +153,7 @@ impl NewtonSystem {
         }
         let alpha = model.damping_mass;
         for i in 0..self.force.len() {
+            scale.include(model.mass[i] * model.gravity.length(), 0.0);
             self.force[i] += model.mass[i] * (model.gravity - alpha * state.v[i]);
             self.moment[i] -= alpha * model.inertia[i] * state.w[i];
             let (dm, di) = (
@@ -154,10 +169,14 @@ impl NewtonSystem {
             if let LoadCase::DeadLoad(d) = case {
                 self.force[d.node] += d.force;
                 self.moment[d.node] += d.moment;
+                scale.include(d.force.length(), d.moment.length());
             }
         }
         if !model.environment.is_empty() {
             self.add_contact(model, state);
+            for f in &self.contact_force {
+                scale.include(f.length(), 0.0);
+            }
         }
         if model.hose_contact.active {
             let (matrix, pairs) = (&mut self.matrix, &mut self.pairs);
@@ -177,8 +196,11 @@ impl NewtonSystem {
             );
             for (f, c) in self.force.iter_mut().zip(&state.hose_contact_force) {
                 *f += *c;
+                scale.include(c.length(), 0.0);
             }
         }
+        scale.include(0.0, scale.force * self.mean_length);
+        self.scale = scale;
     }
 
     /// Penalty contact of node balls with the rigid parts (see the module doc).
@@ -320,11 +342,21 @@ impl NewtonSystem {
     /// fixed-point iteration δu ← T⁻¹ (rhs − C δu) on the factorised T (a block splitting,
     /// convergent since the pair's stiffness also sits on T's diagonal) until δu changes
     /// by less than 1e-12 of its size.
-    pub fn solve_linear(&mut self) -> Result<(), SingularBlock> {
+    ///
+    /// `modified`: factorise a positive-definite neighbour of T where T is not
+    /// ([`BlockTridiagonal::factor_modified`], the static solver) and return T's inertia;
+    /// otherwise T as it is (the implicit solver, whose mass term keeps T definite).
+    pub fn solve_linear(&mut self, modified: bool) -> Result<Inertia, SingularBlock> {
+        let inertia = if modified {
+            self.matrix.factor_modified()?
+        } else {
+            self.matrix.factor()?;
+            Inertia::default()
+        };
         if self.pairs.is_empty() {
-            return self.matrix.solve(&mut self.rhs);
+            self.matrix.solve_factored(&mut self.rhs)?;
+            return Ok(inertia);
         }
-        self.matrix.factor()?;
         self.base_rhs.copy_from_slice(&self.rhs);
         self.matrix.solve_factored(&mut self.rhs)?;
         for _ in 0..MAX_COUPLING_ITERATIONS {
@@ -360,7 +392,7 @@ impl NewtonSystem {
                 break;
             }
         }
-        Ok(())
+        Ok(inertia)
     }
 
     /// Eliminates the prescribed nodes from the matrix and zeroes their right-hand side.

@@ -36,6 +36,12 @@ class SimulationDiverged(RuntimeError):
     cause: str
     result: Optional["RunResult"]
 
+class SolverNotConverged(RuntimeError):
+    """A Newton solve ended out of balance or unstable (``Simulation(..., strict=True)``)."""
+
+class SolverWarning(RuntimeWarning):
+    """A Newton solve ended out of balance or unstable: those steps' forces are not trustworthy."""
+
 class Scene:
     """A loaded, checked scene (SI units) with its physics model built."""
 
@@ -140,8 +146,16 @@ class Simulation:
     """A simulation of a scene, stepped on request."""
 
     def __init__(
-        self, scene: Scene, *, initial_loads: bool = True, solver: str | None = None
+        self,
+        scene: Scene,
+        *,
+        initial_loads: bool = True,
+        solver: str | None = None,
+        strict: bool = False,
     ) -> None: ...
+    @property
+    def solver_warnings(self) -> List[str]: ...
+    def instabilities(self) -> List[Dict[str, Any]]: ...
     @property
     def solver(self) -> str:
         """explicit, implicit or static."""
@@ -257,6 +271,8 @@ class RunResult:
     def feasible(self) -> Optional[bool]: ...
     @property
     def reasons(self) -> List[str]: ...
+    @property
+    def uncertain(self) -> bool: ...
     @property
     def completed(self) -> bool: ...
     @property

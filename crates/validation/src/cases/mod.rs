@@ -8,6 +8,7 @@ mod energy;
 mod fasteners;
 mod hose_contact;
 mod invariance;
+mod postbuckling;
 mod rollup;
 mod solvers;
 mod stiffened;
@@ -22,6 +23,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("rollup", rollup::run),
     ("tip_load", tip_load::run),
     ("buckling", buckling::run),
+    ("postbuckling", postbuckling::run),
     ("axial", axial::run),
     ("torsion", torsion::run),
     ("invariance", invariance::run),

