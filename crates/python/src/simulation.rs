@@ -244,6 +244,7 @@ impl Simulation {
     /// on an unstable equilibrium (empty when none did; each such step also warns with
     /// :class:`SolverWarning`).
     ///
+    /// >>> import pliant
     /// >>> pliant.Simulation(pliant.demo_scene(), solver="static").solver_warnings
     /// []
     #[getter]
