@@ -16,7 +16,9 @@ fi
 .venv/bin/python -m pip install --quiet "maturin>=1.5,<2" numpy pytest
 # share the workspace's target folder (same release profile: dependencies are reused)
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}"
-cargo build --release -p pliant
+# the whole workspace, as test.sh builds it: `-p pliant` alone unifies the dependencies'
+# features differently and would rebuild every crate
+cargo build --release --workspace
 export PLIANT_BIN="$CARGO_TARGET_DIR/release/pliant"
 .venv/bin/python -m pip install --quiet --force-reinstall --no-deps ./crates/python
 cd crates/python

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Builds everything and runs every test: unit tests, scene-format tests, the validation
-# suite (each case a test), the CLI end-to-end tests, a quick benchmark smoke run, and the
-# browser viewer's end-to-end tests in headless Chromium.
+# suite (each case a test; `pliant validate` prints the same table), the CLI end-to-end
+# tests, a quick benchmark smoke run, the Python API's tests and the browser viewer's
+# end-to-end tests in headless Chromium.
 source "$(dirname "$0")/common.sh"
 ./scripts/build-web.sh     # the viewer first: the release build below embeds web/dist
 cargo build --release --workspace
-cargo test --release --workspace
-./target/release/pliant validate
+cargo test --release --workspace   # every validation case is a test here (crates/validation/tests)
 ./target/release/pliant bench --quick --json > /dev/null
 ./scripts/test-python.sh   # the Python API (crates/python): builds it into .venv, runs pytest
 ./scripts/install-browser.sh   # Debian's chromium, only if /usr/bin/chromium is missing
