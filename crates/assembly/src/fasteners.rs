@@ -96,6 +96,7 @@ fn zero_load(state: &mut State, node: usize) -> LoadCaseId {
         node,
         force: DVec3::ZERO,
         moment: DVec3::ZERO,
+        ramp: None,
     }))
 }
 

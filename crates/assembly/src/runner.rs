@@ -234,6 +234,8 @@ fn apply(
             node,
             force,
             moment,
+            ramp,
+            name,
         } => give(
             cell,
             index,
@@ -241,9 +243,18 @@ fn apply(
                 node: *node,
                 force: *force,
                 moment: *moment,
+                ramp: *ramp,
+                name: name.clone(),
             },
         )?,
-        Action::Unload { node } => give(cell, index, Input::Unload { node: *node })?,
+        Action::Unload { node, name } => give(
+            cell,
+            index,
+            Input::Unload {
+                node: *node,
+                name: name.clone(),
+            },
+        )?,
         Action::Release { node } => give(cell, index, Input::Release { node: *node })?,
         Action::Grab { hand, at } => give(
             cell,

@@ -47,14 +47,18 @@ pub enum Action {
         duration: f64,
         wait: bool,
     },
-    /// Dead load: a constant force [N] and moment [N·m] (global frame) added at the node.
+    /// Dead load: a force [N] and moment [N·m] (global frame) added at the node, in full
+    /// at once or rising linearly over `ramp` seconds; `name` lets `unload` remove this
+    /// one alone.
     Load {
         node: NodeRef,
         force: DVec3,
         moment: DVec3,
+        ramp: f64,
+        name: Option<String>,
     },
-    /// Remove all dead loads from the node.
-    Unload { node: NodeRef },
+    /// Remove the dead load called `name` from the node, or all of them.
+    Unload { node: NodeRef, name: Option<String> },
     /// Remove the fix / drive from the node: it moves freely again.
     Release { node: NodeRef },
     /// I1: hand `hand` grabs the beam nearest to `at` [m]; its two nodes follow the hand

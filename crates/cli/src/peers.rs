@@ -240,6 +240,7 @@ pub fn solve_cantilever(
         node: elements,
         force: DVec3::new(0.0, -p, 0.0),
         moment: DVec3::ZERO,
+        ramp: None,
     }));
     let max_steps: u64 = 200_000_000;
     let (converged, steps, note) = match solver {

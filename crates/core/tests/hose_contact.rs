@@ -69,6 +69,7 @@ fn dead_load(state: &mut State, node: usize, force: DVec3) {
         node,
         force,
         moment: DVec3::ZERO,
+        ramp: None,
     }));
 }
 

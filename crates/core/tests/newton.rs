@@ -60,6 +60,7 @@ fn static_tip_load_matches_the_elastica() {
         node: 40,
         force: DVec3::new(0.0, -2.0 * ei, 0.0),
         moment: DVec3::ZERO,
+        ramp: None,
     }));
     let mut solver = StaticSolver::new(&model).unwrap();
     let report = solver.solve(&model, &mut state).unwrap();
@@ -126,6 +127,7 @@ fn static_rollup_closes_the_circle() {
             node: 40,
             force: DVec3::ZERO,
             moment: DVec3::new(0.0, 0.0, m),
+            ramp: None,
         })));
         let r = solver.solve(&model, &mut state).unwrap();
         println!("{k}: {r:?}");

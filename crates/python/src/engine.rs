@@ -187,16 +187,20 @@ impl Engine {
         })?)
     }
 
-    /// Adds a constant force and moment (global axes) at global node `node`.
+    /// Adds a force and moment (global axes) at global node `node`, rising over `ramp`
+    /// seconds (0: at once).
     pub fn dead_load(
         &mut self,
         node: usize,
         force: DVec3,
         moment: DVec3,
+        ramp: f64,
     ) -> Result<LoadCaseId, Refusal> {
         let node = self.node(node)?;
         Self::load_id(self.give(Input::Load {
             node,
+            ramp,
+            name: None,
             force,
             moment,
         })?)

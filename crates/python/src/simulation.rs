@@ -459,7 +459,9 @@ impl Simulation {
     }
 
     /// Adds a constant ``force`` [N] and ``moment`` [N·m] (global axes; they do not turn
-    /// with the hose) at node ``node`` of ``hose``. Dead loads on one node add up.
+    /// with the hose) at node ``node`` of ``hose``, in full at once or rising linearly
+    /// from zero over ``ramp`` seconds from now. Dead loads on one node add up; each can
+    /// be removed alone with :meth:`remove_load`.
     ///
     /// >>> import pliant
     /// >>> sim = pliant.Simulation(pliant.demo_scene())
@@ -467,13 +469,14 @@ impl Simulation {
     /// >>> load.kind, load.node
     /// ('dead_load', 15)
     /// >>> sim.remove_load(load)
-    #[pyo3(signature = (hose, node, force = None, moment = None))]
+    #[pyo3(signature = (hose, node, force = None, moment = None, *, ramp = 0.0))]
     fn add_dead_load(
         &mut self,
         hose: HoseRef,
         node: i64,
         force: Option<&Bound<'_, PyAny>>,
         moment: Option<&Bound<'_, PyAny>>,
+        ramp: f64,
     ) -> PyResult<LoadId> {
         let (_, i) = hose_node(self.model(), &hose, node)?;
         let f = force
@@ -484,7 +487,7 @@ impl Simulation {
             .map(|v| vec3(v, "moment"))
             .transpose()?
             .unwrap_or(DVec3::ZERO);
-        let id = self.engine.dead_load(i, f, m).map_err(refused)?;
+        let id = self.engine.dead_load(i, f, m, ramp).map_err(refused)?;
         Ok(self.new_load(id))
     }
 

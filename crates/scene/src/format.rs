@@ -390,10 +390,10 @@ pub enum ActionEntry {
     Fix(NodeEntry),
     /// Drive the node along waypoints and/or rotate it; it stays held afterwards.
     Move(MoveEntry),
-    /// Add a constant force and/or moment (global frame) at the node.
+    /// Add a force and/or moment (global frame) at the node, at once or over a ramp.
     Load(LoadEntry),
-    /// Remove all loads from the node.
-    Unload(NodeEntry),
+    /// Remove the load called `name` from the node, or all its loads.
+    Unload(UnloadEntry),
     /// Remove the fix / drive from the node.
     Release(NodeEntry),
     /// A hand grabs the beam nearest to `at` (SPEC I1); its two nodes follow the hand.
@@ -531,6 +531,24 @@ pub struct LoadEntry {
     pub force_n: Option<Vec3>,
     /// Moment (N·m) in the global frame. Default zero; give `force_n` and/or `moment_nm`.
     pub moment_nm: Option<Vec3>,
+    /// The load rises linearly from zero to its full value over this many seconds
+    /// (default 0: in full at once).
+    pub ramp_s: Option<f64>,
+    /// A name for this load, so that `unload` with this `name` removes it alone (unique
+    /// among the loads acting at a time).
+    pub name: Option<String>,
+}
+
+/// `unload`: remove the dead load called `name` from the node, or every dead load on it.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct UnloadEntry {
+    /// Hose name.
+    pub hose: String,
+    /// Node index; negative counts from the end (−1 = last).
+    pub node: i64,
+    /// The name an earlier `load` on this node gave; default: remove all its loads.
+    pub name: Option<String>,
 }
 
 /// `run`: simulate for a while.

@@ -227,8 +227,11 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
                 node(&mut t, n);
                 "fix"
             }
-            Input::Unload { node: n } => {
+            Input::Unload { node: n, name } => {
                 node(&mut t, n);
+                if let Some(name) = name {
+                    t.insert("name".into(), Value::String(name.clone()));
+                }
                 "unload"
             }
             Input::Release { node: n } => {
@@ -239,10 +242,18 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
                 node: n,
                 force,
                 moment,
+                ramp,
+                name,
             } => {
                 node(&mut t, n);
                 t.insert("force_n".into(), vector(*force));
                 t.insert("moment_nm".into(), vector(*moment));
+                if *ramp > 0.0 {
+                    t.insert("ramp_s".into(), Value::Float(*ramp));
+                }
+                if let Some(name) = name {
+                    t.insert("name".into(), Value::String(name.clone()));
+                }
                 "load"
             }
             Input::Drive {

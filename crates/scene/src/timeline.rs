@@ -4,10 +4,10 @@
 use crate::error::FieldError;
 use crate::format::{
     ActionEntry, AimHandEntry, GrabEntry, HandEntry, LoadEntry, MoveEntry, MoveHandEntry,
-    NodeEntry, Points, RotateEntry, RunEntry, SettleEntry,
+    NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, UnloadEntry,
 };
 use crate::units::LengthUnit;
-use crate::validate::{finite, finite_vec, node_index, non_zero_vec, positive};
+use crate::validate::{finite, finite_vec, node_index, non_negative, non_zero_vec, positive};
 use glam::DVec3;
 use pliant_assembly::{Action, MovePath, NodeRef, Rotation, Timeline};
 
@@ -38,7 +38,57 @@ pub fn build_timeline(
         .map(|(i, a)| build_action(&format!("timeline[{i}]"), a, hoses, unit))
         .collect::<Result<Vec<_>, _>>()?;
     check_hands(&actions)?;
+    check_load_names(&actions)?;
     Ok(Timeline { actions })
+}
+
+/// Checks that a named load is not named again while it acts, and that an `unload` by
+/// name names a load acting on that node.
+fn check_load_names(actions: &[Action]) -> Result<(), FieldError> {
+    let mut acting: Vec<(&str, NodeRef)> = Vec::new();
+    for (i, a) in actions.iter().enumerate() {
+        match a {
+            Action::Load {
+                name: Some(name),
+                node,
+                ..
+            } => {
+                if acting.iter().any(|(n, _)| n == name) {
+                    return Err(FieldError::new(
+                        format!("timeline[{i}].name"),
+                        format!("\"{name}\""),
+                        "a load of this name is still acting; unload it first or choose another name",
+                    ));
+                }
+                acting.push((name, *node));
+            }
+            Action::Unload { node, name: None } => acting.retain(|(_, n)| n != node),
+            Action::Unload {
+                node,
+                name: Some(name),
+            } => match acting.iter().position(|(n, _)| n == name) {
+                Some(k) if acting[k].1 == *node => {
+                    acting.remove(k);
+                }
+                Some(_) => {
+                    return Err(FieldError::new(
+                        format!("timeline[{i}].name"),
+                        format!("\"{name}\""),
+                        "that load acts on another node",
+                    ))
+                }
+                None => {
+                    return Err(FieldError::new(
+                        format!("timeline[{i}].name"),
+                        format!("\"{name}\""),
+                        "no earlier `load` of this name is acting",
+                    ))
+                }
+            },
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// Checks a hand index: 0 … [`MAX_HANDS`] − 1.
@@ -181,8 +231,9 @@ fn build_action(
         ActionEntry::Fix(NodeEntry { hose, node }) => Action::Fix {
             node: node_ref(field, hose, *node, hoses)?,
         },
-        ActionEntry::Unload(NodeEntry { hose, node }) => Action::Unload {
+        ActionEntry::Unload(UnloadEntry { hose, node, name }) => Action::Unload {
             node: node_ref(field, hose, *node, hoses)?,
+            name: name.clone(),
         },
         ActionEntry::Release(NodeEntry { hose, node }) => Action::Release {
             node: node_ref(field, hose, *node, hoses)?,
@@ -212,6 +263,8 @@ fn build_action(
             node,
             force_n,
             moment_nm,
+            ramp_s,
+            name,
         }) => {
             let node = node_ref(field, hose, *node, hoses)?;
             if force_n.is_none() && moment_nm.is_none() {
@@ -222,10 +275,16 @@ fn build_action(
             }
             let force = finite_vec(&sub("force_n"), force_n.unwrap_or([0.0; 3]), "N")?;
             let moment = finite_vec(&sub("moment_nm"), moment_nm.unwrap_or([0.0; 3]), "N·m")?;
+            let ramp = non_negative(&sub("ramp_s"), ramp_s.unwrap_or(0.0), "s")?;
+            if name.as_deref() == Some("") {
+                return Err(FieldError::new(sub("name"), "\"\"", "must not be empty"));
+            }
             Action::Load {
                 node,
                 force,
                 moment,
+                ramp,
+                name: name.clone(),
             }
         }
         ActionEntry::Grab(GrabEntry { hand, at }) => Action::Grab {

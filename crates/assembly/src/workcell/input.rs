@@ -8,6 +8,10 @@ use crate::timeline::NodeRef;
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
+}
+
 /// Hand numbers are chosen by the caller (a timeline's `hand`, a client's `hand_id`).
 pub type HandNumber = u32;
 
@@ -26,14 +30,25 @@ pub enum Input {
         rotation: DVec3,
         duration: f64,
     },
-    /// A constant force [N] and moment [N·m] at the node (adds to others).
+    /// A force [N] and moment [N·m] at the node (adds to others), in full at once or
+    /// rising linearly from zero over `ramp` seconds from now; a `name` (unique among the
+    /// active loads) lets [`Input::Unload`] remove this one alone.
     Load {
         node: NodeRef,
         force: DVec3,
         moment: DVec3,
+        #[serde(default, skip_serializing_if = "is_zero")]
+        ramp: f64,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        name: Option<String>,
     },
-    /// Removes every dead load on the node.
-    Unload { node: NodeRef },
+    /// Removes the dead load called `name` from the node, or (no name) every dead load
+    /// on it.
+    Unload {
+        node: NodeRef,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        name: Option<String>,
+    },
     /// Removes the fixes and drives inputs put on the node: it moves freely again.
     Release { node: NodeRef },
     /// Removes one load case an input added (by the id [`crate::Workcell::apply`] gave).

@@ -37,10 +37,10 @@ use glam::{DQuat, DVec3};
 use hands::{holder, Hands};
 use pliant_core::health::{check_for, Divergence};
 use pliant_core::integrators::{StaticReport, StaticSolver};
-use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId};
+use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId, LoadRamp};
 use pliant_core::{Model, Solver, SolverKind, SolverSettings, State};
 use serde::{Deserialize, Serialize};
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::io::Write;
 use std::sync::Arc;
 
@@ -110,6 +110,7 @@ pub struct Checkpoint {
     hand_records: Vec<HandRecord>,
     fasteners: Fasteners,
     user_loads: BTreeSet<LoadCaseId>,
+    named_loads: BTreeMap<String, LoadCaseId>,
     profile: ErgonomicProfile,
     tally: Tally,
     tick: u64,
@@ -132,6 +133,8 @@ pub struct Workcell {
     fasteners: Fasteners,
     /// Load cases added by inputs (the ones fix/drive/release/remove_load may replace).
     user_loads: BTreeSet<LoadCaseId>,
+    /// Names given to dead loads that still act ([`Input::Load`]'s `name`).
+    named_loads: BTreeMap<String, LoadCaseId>,
     profile: ErgonomicProfile,
     limits: Option<&'static ErgonomicLimits>,
     tally: Tally,
@@ -196,6 +199,7 @@ impl Workcell {
             hand_records: Vec::with_capacity(4),
             fasteners: Fasteners::default(),
             user_loads: BTreeSet::new(),
+            named_loads: BTreeMap::new(),
             profile: setup.profile,
             limits: ErgonomicLimits::builtin().ok(),
             tick: 0,
@@ -216,6 +220,7 @@ impl Workcell {
         self.hands.clear();
         self.hand_records.clear();
         self.user_loads.clear();
+        self.named_loads.clear();
         self.tally = Tally::new(&self.model);
         self.diverged = None;
         if self.options.initial_loads {
@@ -226,10 +231,14 @@ impl Workcell {
                         node,
                         force,
                         moment,
+                        ramp,
+                        name,
                     } => Input::Load {
                         node,
                         force,
                         moment,
+                        ramp,
+                        name,
                     },
                     _ => continue,
                 };
@@ -375,6 +384,7 @@ impl Workcell {
             hand_records: self.hand_records.clone(),
             fasteners: self.fasteners.clone(),
             user_loads: self.user_loads.clone(),
+            named_loads: self.named_loads.clone(),
             profile: self.profile,
             tally: self.tally.clone(),
             tick: self.tick,
@@ -404,6 +414,7 @@ impl Workcell {
         self.hand_records = c.hand_records;
         self.fasteners = c.fasteners;
         self.user_loads = c.user_loads;
+        self.named_loads = c.named_loads;
         self.profile = c.profile;
         self.tally = c.tally;
         self.tick = c.tick;
@@ -502,6 +513,13 @@ impl Workcell {
             self.state.loads.remove(id);
             user.remove(&id);
         }
+        self.forget_removed_names();
+    }
+
+    /// Drops the names of loads no longer acting.
+    fn forget_removed_names(&mut self) {
+        let user = &self.user_loads;
+        self.named_loads.retain(|_, id| user.contains(id));
     }
 
     fn add_user_load(&mut self, case: LoadCase) -> LoadCaseId {
@@ -543,19 +561,64 @@ impl Workcell {
                 node,
                 force,
                 moment,
+                ramp,
+                name,
             } => {
                 let i = self.global(*node)?;
                 let (force, moment) = (finite(*force, "force")?, finite(*moment, "moment")?);
+                if !(ramp.is_finite() && *ramp >= 0.0) {
+                    return Err(Refusal::Invalid(format!(
+                        "a load's ramp must be finite and ≥ 0 s, got {ramp}"
+                    )));
+                }
+                if let Some(name) = name {
+                    if name.is_empty() {
+                        return Err(Refusal::Invalid("a load's name must not be empty".into()));
+                    }
+                    if self.named_loads.contains_key(name) {
+                        return Err(Refusal::Invalid(format!(
+                            "a load named '{name}' is already acting; unload it first"
+                        )));
+                    }
+                }
+                let ramp = (*ramp > 0.0).then_some(LoadRamp {
+                    start: t,
+                    duration: *ramp,
+                });
                 let id = self.add_user_load(LoadCase::DeadLoad(DeadLoad {
                     node: i,
                     force,
                     moment,
+                    ramp,
                 }));
+                if let Some(name) = name {
+                    self.named_loads.insert(name.clone(), id);
+                }
                 Ok(Applied::Load(id))
             }
-            Input::Unload { node } => {
+            Input::Unload { node, name } => {
                 let i = self.global(*node)?;
-                self.remove_user_loads(i, |c| matches!(c, LoadCase::DeadLoad(_)));
+                match name {
+                    None => self.remove_user_loads(i, |c| matches!(c, LoadCase::DeadLoad(_))),
+                    Some(name) => {
+                        let id = *self.named_loads.get(name).ok_or_else(|| {
+                            Refusal::Invalid(format!("no load named '{name}' is acting"))
+                        })?;
+                        let on_node = self
+                            .state
+                            .loads
+                            .iter()
+                            .any(|(k, c)| *k == id && c.node() == i);
+                        if !on_node {
+                            return Err(Refusal::Invalid(format!(
+                                "the load named '{name}' acts on another node"
+                            )));
+                        }
+                        self.state.loads.remove(id);
+                        self.user_loads.remove(&id);
+                        self.named_loads.remove(name.as_str());
+                    }
+                }
                 Ok(Applied::Done)
             }
             Input::Release { node } => {
@@ -571,6 +634,7 @@ impl Workcell {
                         id.0
                     )));
                 }
+                self.forget_removed_names();
                 Ok(Applied::Done)
             }
             Input::Grab { hand, at } => {

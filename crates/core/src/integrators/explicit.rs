@@ -50,8 +50,9 @@ pub fn step(model: &Model, state: &mut State) {
     state.contact_force.fill(DVec3::ZERO);
     for (_, case) in state.loads.iter() {
         if let LoadCase::DeadLoad(d) = case {
-            state.force[d.node] += d.force;
-            state.moment[d.node] += d.moment;
+            let (force, moment) = d.at(state.time);
+            state.force[d.node] += force;
+            state.moment[d.node] += moment;
         }
     }
     // Kinematic load cases, in order (a later one on the same node wins).

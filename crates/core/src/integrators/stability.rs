@@ -152,7 +152,7 @@ pub(crate) fn dead_moment_work(state: &State, d: &[Vector6<f64>]) -> f64 {
     for (_, case) in state.loads.iter() {
         if let crate::loads::LoadCase::DeadLoad(l) = case {
             let r = d[l.node];
-            work += l.moment.dot(DVec3::new(r[3], r[4], r[5]));
+            work += l.at(state.time).1.dot(DVec3::new(r[3], r[4], r[5]));
         }
     }
     work

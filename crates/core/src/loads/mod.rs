@@ -7,7 +7,7 @@ mod drive;
 mod fix;
 mod motion;
 
-pub use dead_load::DeadLoad;
+pub use dead_load::{DeadLoad, LoadRamp};
 pub use drive::Drive;
 pub use fix::Fix;
 pub use motion::Motion;

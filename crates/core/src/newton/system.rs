@@ -167,9 +167,10 @@ impl NewtonSystem {
         }
         for (_, case) in state.loads.iter() {
             if let LoadCase::DeadLoad(d) = case {
-                self.force[d.node] += d.force;
-                self.moment[d.node] += d.moment;
-                scale.include(d.force.length(), d.moment.length());
+                let (force, moment) = d.at(state.time);
+                self.force[d.node] += force;
+                self.moment[d.node] += moment;
+                scale.include(force.length(), moment.length());
             }
         }
         if !model.environment.is_empty() {
@@ -240,7 +241,7 @@ impl NewtonSystem {
         }
         for (_, case) in state.loads.iter() {
             if let LoadCase::DeadLoad(d) = case {
-                e -= d.force.dot(state.x[d.node]);
+                e -= d.at(state.time).0.dot(state.x[d.node]);
             }
         }
         if model.hose_contact.active {

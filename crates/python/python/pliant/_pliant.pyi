@@ -209,6 +209,8 @@ class Simulation:
         node: int,
         force: Optional[Vector] = None,
         moment: Optional[Vector] = None,
+        *,
+        ramp: float = 0.0,
     ) -> LoadId: ...
     def remove_load(self, load: LoadId) -> None: ...
     @property

@@ -56,6 +56,7 @@ fn clamped_free(p_exact: f64) -> Result<f64, String> {
             node: ELEMENTS,
             force: DVec3::new(-p, 0.0, 0.0),
             moment: DVec3::ZERO,
+            ramp: None,
         };
         id = Some(state.loads.add(LoadCase::DeadLoad(load)));
         settle_to(&model, &mut state, p_exact, len, 1e-8)?;

@@ -65,6 +65,7 @@ pub fn run() -> Vec<Check> {
         node: mid_upper,
         force: DVec3::new(0.0, 0.0, -f),
         moment: DVec3::ZERO,
+        ramp: None,
     }));
     if let Err(e) = settle_to(&model, &mut state, f, 0.5, 1e-7) {
         return vec![Check::failed("hose_contact", "relaxation", &e)];

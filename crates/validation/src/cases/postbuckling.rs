@@ -96,6 +96,7 @@ fn push_gradually(offset: impl Fn(f64) -> DVec3, nudge: bool) -> Result<(f64, f6
             node: ELEMENTS / 2,
             force: DVec3::new(0.0, 0.01 * 4.0 * PI * PI * ei, 0.0),
             moment: DVec3::ZERO,
+            ramp: None,
         }))
     });
     let mut events = 0;
@@ -127,6 +128,7 @@ fn cantilever_in_one_solve() -> Result<(f64, f64, usize), String> {
         node: ELEMENTS,
         force: DVec3::new(-p, 0.0, 0.0),
         moment: DVec3::ZERO,
+        ramp: None,
     }));
     let mut solver = StaticSolver::new(&model).map_err(|e| e.to_string())?;
     solver.options.max_iterations = 200;

@@ -36,6 +36,7 @@ fn tip_under_moment(fraction_of_turn: f64) -> Result<DVec3, String> {
             node: ELEMENTS,
             force: DVec3::ZERO,
             moment: DVec3::new(0.0, 0.0, m),
+            ramp: None,
         };
         id = Some(state.loads.add(LoadCase::DeadLoad(load)));
         settle_to(&model, &mut state, m_full / len, len, 1e-8)?;

@@ -46,6 +46,7 @@ pub fn run() -> Vec<Check> {
         node: ELEMENTS,
         force: DVec3::new(0.0, -p, 0.0),
         moment: DVec3::ZERO,
+        ramp: None,
     }));
     if let Err(e) = settle_to(&model, &mut state, p, len, 1e-6) {
         return vec![Check::failed("stiffened", "relaxation", &e)];

@@ -42,6 +42,7 @@ pub fn tip_deflection(n: usize, lambda: f64) -> Result<(f64, f64), String> {
             node: n,
             force: DVec3::new(0.0, -p, 0.0),
             moment: DVec3::ZERO,
+            ramp: None,
         })));
         settle_to(&model, &mut state, p_full, len, 1e-9)?;
     }
