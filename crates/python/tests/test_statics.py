@@ -143,3 +143,22 @@ def test_newton_solvers_reach_the_same_sag(solver):
 def test_unknown_solver_is_a_value_error():
     with pytest.raises(ValueError, match="unknown solver 'newton'"):
         pliant.Simulation(pliant.Scene.from_dict(cantilever_dict()), solver="newton")
+
+
+def test_a_ramped_dead_load_rises_over_its_ramp(cantilever):
+    p = 0.02  # N, downwards at the tip, reached after 0.2 s
+    cantilever.add_dead_load("beam", -1, force=[0, 0, -p], ramp=0.2)
+    # equilibria at t = 0, 0.1 s and 0.3 s: none, half and all of the load
+    cantilever.solve_static()
+    at_start = tip_deflection(cantilever)
+    cantilever.run(0.1)
+    cantilever.solve_static()
+    half = tip_deflection(cantilever)
+    cantilever.run(0.2)
+    cantilever.solve_static()
+    full = tip_deflection(cantilever)
+    extra = p * LENGTH**3 / (3 * EI)
+    assert half - at_start == pytest.approx(0.5 * extra, rel=0.03)
+    assert full - at_start == pytest.approx(extra, rel=0.03)
+    with pytest.raises(ValueError, match="ramp"):
+        cantilever.add_dead_load("beam", -1, force=[0, 0, -p], ramp=-1.0)
