@@ -59,6 +59,7 @@
 
 pub mod boundary;
 pub mod continuation;
+pub mod elastica;
 pub mod error;
 pub mod ode;
 pub mod rod;

@@ -4,8 +4,10 @@
 //! to no hose end, a span out of range — is an error here, so nothing is half-loaded.
 
 use crate::scene::LoadedScene;
-use pliant_assembly::{Action, Workcell, WorkcellOptions, WorkcellSetup};
-use pliant_core::Model;
+use pliant_assembly::{
+    run_timeline, Action, NoObserver, RunSummary, Workcell, WorkcellOptions, WorkcellSetup,
+};
+use pliant_core::{Model, SolverKind};
 use std::sync::Arc;
 
 impl LoadedScene {
@@ -47,5 +49,17 @@ impl LoadedScene {
     /// A workcell of this scene at rest at t = 0.
     pub fn workcell(&self, options: WorkcellOptions) -> Result<Workcell, String> {
         Workcell::new(self.workcell_setup()?, options)
+    }
+
+    /// The scene's whole timeline run with `solver` (the scene's own if `None`), as
+    /// `pliant run` runs it but writing nothing: the workcell at the end and the summary.
+    pub fn run_with(&self, solver: Option<SolverKind>) -> Result<(Workcell, RunSummary), String> {
+        let mut cell = self.workcell(WorkcellOptions {
+            solver,
+            initial_loads: false,
+            ..Default::default()
+        })?;
+        let run = run_timeline(&mut cell, &self.timeline, &mut NoObserver).map_err(|e| e.reason)?;
+        Ok((cell, run))
     }
 }

@@ -3,7 +3,6 @@
 //! steps), and one load of several on a node removed by name, the others kept. Under
 //! every solver.
 
-use pliant_assembly::{run_timeline, NoObserver, WorkcellOptions};
 use pliant_core::loads::LoadCase;
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str_in;
@@ -74,16 +73,10 @@ fn a_ramped_load_rises_and_a_named_unload_removes_that_load_alone() {
         SolverKind::Implicit,
         SolverKind::Static,
     ] {
-        let options = WorkcellOptions {
-            solver: Some(solver),
-            initial_loads: false,
-            ..Default::default()
-        };
         // up to the end of the first run: the ramp is half way (t = 0.25 s of 0.5 s)
-        let mut cell = scene.workcell(options).unwrap();
-        let mut first = scene.timeline.clone();
-        first.actions.truncate(4);
-        run_timeline(&mut cell, &first, &mut NoObserver).unwrap();
+        let mut first = scene.clone();
+        first.timeline.actions.truncate(4);
+        let (cell, _) = first.run_with(Some(solver)).unwrap();
         let t = cell.state().time;
         let down = cell
             .state()
@@ -99,8 +92,7 @@ fn a_ramped_load_rises_and_a_named_unload_removes_that_load_alone() {
             "{solver:?}: at t = {t} s the ramped load is {down} N"
         );
         // the whole timeline: the support ends up carrying the side load alone
-        let mut cell = scene.workcell(options).unwrap();
-        let run = run_timeline(&mut cell, &scene.timeline, &mut NoObserver).unwrap();
+        let (cell, run) = scene.run_with(Some(solver)).unwrap();
         let clamp = run.peaks.iter().find(|p| p.node == 0).unwrap();
         let f = clamp.last_force;
         assert!(

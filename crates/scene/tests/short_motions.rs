@@ -5,7 +5,6 @@
 //! the 2 ms move).
 
 use glam::DVec3;
-use pliant_assembly::{run_timeline, NoObserver, WorkcellOptions};
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str_in;
 
@@ -53,14 +52,7 @@ fn a_move_shorter_than_a_step_arrives_under_every_solver() {
         SolverKind::Implicit,
         SolverKind::Static,
     ] {
-        let mut cell = scene
-            .workcell(WorkcellOptions {
-                solver: Some(solver),
-                initial_loads: false,
-                ..Default::default()
-            })
-            .unwrap();
-        run_timeline(&mut cell, &scene.timeline, &mut NoObserver).unwrap();
+        let (cell, _) = scene.run_with(Some(solver)).unwrap();
         let end = cell.state().x[10];
         let expected = DVec3::new(0.5, 0.05, 0.4);
         assert!(

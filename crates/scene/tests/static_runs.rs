@@ -4,7 +4,7 @@
 //! solve converged — and a correct large-deflection solve of a soft, heavy hose is not
 //! taken for a divergence (the static solver's displacement per input step is no speed).
 
-use pliant_assembly::{run_timeline, NoObserver, RunSummary, WorkcellOptions};
+use pliant_assembly::RunSummary;
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str_in;
 use std::f64::consts::PI;
@@ -64,14 +64,7 @@ duration_s = 0.05
         tip = -tip_load_n
     );
     let scene = load_scene_str_in(&scene, "cantilever.toml", std::path::Path::new(".")).unwrap();
-    let mut cell = scene
-        .workcell(WorkcellOptions {
-            solver: Some(SolverKind::Static),
-            initial_loads: false,
-            ..Default::default()
-        })
-        .unwrap();
-    let run = run_timeline(&mut cell, &scene.timeline, &mut NoObserver).unwrap();
+    let (cell, run) = scene.run_with(Some(SolverKind::Static)).unwrap();
     (run, cell.state().x.clone())
 }
 

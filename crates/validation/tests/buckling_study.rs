@@ -5,7 +5,6 @@
 //! branch carries thousands of times more), and say in its summary and verdict that the
 //! hose buckled — while the verdict stays certain (every solve converged).
 
-use pliant_assembly::{run_timeline, NoObserver, WorkcellOptions};
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str_in;
 use pliant_validation::elastica::clamped_column;
@@ -45,14 +44,7 @@ duration_s = 1.0
 #[test]
 fn a_clamped_hose_pushed_past_buckling_lands_on_the_elastica_and_says_so() {
     let scene = load_scene_str_in(SCENE, "column.toml", std::path::Path::new(".")).unwrap();
-    let mut cell = scene
-        .workcell(WorkcellOptions {
-            solver: Some(SolverKind::Static),
-            initial_loads: false,
-            ..Default::default()
-        })
-        .unwrap();
-    let run = run_timeline(&mut cell, &scene.timeline, &mut NoObserver).unwrap();
+    let (cell, run) = scene.run_with(Some(SolverKind::Static)).unwrap();
     // the support's end load against the exact elastica (hose 1's bending stiffness;
     // 40 elements and hose 1's own axial compliance make up the 1 %)
     let (mat, sec) = hose1();
