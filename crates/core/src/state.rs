@@ -2,6 +2,7 @@
 //! cases, last reactions). A step reads the Model and writes the State; a snapshot is a
 //! clone of the State.
 
+use crate::contact::friction::FrictionMemory;
 use crate::contact::{ContactScratch, HoseContactScratch};
 use crate::integrators::ImplicitHistory;
 use crate::loads::LoadCases;
@@ -41,6 +42,9 @@ pub struct State {
     pub contact_force: Vec<DVec3>,
     /// Contact memory (sides of surfaces) and per-step contact list.
     pub contact: ContactScratch,
+    /// Where each node's friction spring is anchored, and whether it slides (the Newton
+    /// solvers' friction, [`crate::contact::friction`]).
+    pub friction: FrictionMemory,
     /// Pose and velocity of each stiffened section (SPEC M6).
     pub bodies: Vec<BodyState>,
     /// Force other hoses, or the hose itself, applied to each node by contact in the last
@@ -73,6 +77,7 @@ impl State {
             loads: LoadCases::default(),
             contact_force: vec![DVec3::ZERO; n],
             contact: ContactScratch::new(n, model.elements.len()),
+            friction: FrictionMemory::new(&model.rest_x),
             bodies: model
                 .bodies
                 .iter()

@@ -74,6 +74,10 @@ fn contact_incline() {
     assert_case("contact_incline");
 }
 #[test]
+fn friction_newton() {
+    assert_case("friction_newton");
+}
+#[test]
 fn tunnelling() {
     assert_case("tunnelling");
 }

@@ -4,11 +4,15 @@
 //! reported as contact force), Coulomb friction acts on the tangential velocity, and any
 //! penetration is pushed out over a few steps (position only, never an explosive force).
 //!
+//! The Newton solvers (static, implicit) use penalty springs on the node balls instead,
+//! with Coulomb friction by an elastoplastic tangential spring ([`friction`]).
+//!
 //! Hose–hose and self contact (SPEC L5, [`hose_hose`]): penalty forces between beam
 //! capsules, found by an O(N) uniform-grid broad phase ([`broad_phase`]).
 
 pub mod broad_phase;
 mod environment;
+pub mod friction;
 pub mod hose_hose;
 mod penalty;
 mod rigid;

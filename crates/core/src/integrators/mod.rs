@@ -151,6 +151,7 @@ pub struct Solver {
     statics: Option<Box<StaticSolver>>,
     previous_x: Vec<DVec3>,
     previous_q: Vec<glam::DQuat>,
+    previous_friction: crate::contact::friction::FrictionMemory,
     /// Unstable equilibria the last step left (static solver).
     events: Vec<StabilityEvent>,
     pub last: StepStats,
@@ -178,6 +179,7 @@ impl Solver {
             statics,
             previous_x: vec![DVec3::ZERO; model.node_count()],
             previous_q: vec![glam::DQuat::IDENTITY; model.node_count()],
+            previous_friction: crate::contact::friction::FrictionMemory::new(&model.rest_x),
             events: Vec::new(),
             last: StepStats::default(),
         })
@@ -251,6 +253,7 @@ impl Solver {
         let h = self.settings.static_input_step;
         self.previous_x.copy_from_slice(&state.x);
         self.previous_q.copy_from_slice(&state.q);
+        self.previous_friction.clone_from(&state.friction);
         self.events.clear();
         let solver = self.statics.as_mut().expect("built for static");
         let mut pieces = 1;
@@ -281,6 +284,7 @@ impl Solver {
             pieces *= 2;
             state.x.copy_from_slice(&self.previous_x);
             state.q.copy_from_slice(&self.previous_q);
+            state.friction.clone_from(&self.previous_friction);
             self.events.clear();
         };
         state.time = time + h;

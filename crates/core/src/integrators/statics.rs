@@ -306,7 +306,9 @@ pub(crate) fn increment_at_round_off(
 
 /// Writes the converged loads into the state: forces, support reactions (−f on a
 /// prescribed node, so that support + loads balance), contact forces, body states.
+/// Friction anchors move with the accepted configuration.
 fn finish(model: &Model, state: &mut State, sys: &NewtonSystem) {
+    sys.commit_friction(state);
     for i in 0..state.x.len() {
         state.force[i] = sys.force[i];
         state.moment[i] = sys.moment[i];

@@ -11,8 +11,8 @@
 //!   stiffness × [`RIGID_FACTOR`] (10⁴) — rigid to 1e-4 relative, where the explicit solver
 //!   uses an exact rigid body (its time step forbids stiff springs; Newton does not care);
 //! * rigid parts: a penalty spring per penetrating node ball, f = k (r − d) n with
-//!   k = E_c A / l₀ of the node's elements and tangent k n nᵀ (frictionless: friction is
-//!   the explicit solver's);
+//!   k = E_c A / l₀ of the node's elements and tangent k n nᵀ, and Coulomb friction by an
+//!   elastoplastic tangential spring of the same stiffness ([`crate::contact::friction`]);
 //! * hose–hose contact: the explicit solver's penalty forces at the current positions,
 //!   with each pair's tangent: within the block band (each node with itself, the two nodes
 //!   of a beam with each other) in the matrix, across the two beams by an iteration on the
@@ -22,6 +22,7 @@
 
 use super::block_tridiagonal::{BlockTridiagonal, Inertia, SingularBlock};
 use super::convergence::LoadScale;
+use crate::contact::friction::FrictionResponse;
 use crate::contact::{hose_contact_forces_with, ContactPair};
 use crate::element::{BeamElement, ElementEnds};
 use crate::loads::LoadCase;
@@ -45,8 +46,10 @@ pub struct NewtonSystem {
     pub moment: Vec<DVec3>,
     /// Force of rigid parts on each node (penalty), last assembly.
     pub contact_force: Vec<DVec3>,
-    /// Penalty stiffness per node [N/m].
+    /// Penalty stiffness per node [N/m] (normal and tangential).
     pub contact_stiffness: Vec<f64>,
+    /// Friction of each node touching a part, last assembly (None: not in contact).
+    pub friction: Vec<Option<FrictionResponse>>,
     /// Whether a node's increment is prescribed (zero).
     pub prescribed: Vec<bool>,
     /// Target poses of the prescribed nodes, and whether they still have to be moved.
@@ -108,6 +111,7 @@ impl NewtonSystem {
             moment: vec![DVec3::ZERO; n],
             contact_force: vec![DVec3::ZERO; n],
             contact_stiffness,
+            friction: vec![None; n],
             prescribed: vec![false; n],
             target_x: vec![DVec3::ZERO; n],
             target_q: vec![DQuat::IDENTITY; n],
@@ -204,24 +208,59 @@ impl NewtonSystem {
         self.scale = scale;
     }
 
-    /// Penalty contact of node balls with the rigid parts (see the module doc).
+    /// Penalty contact of node balls with the rigid parts, with friction (see the module
+    /// doc).
     fn add_contact(&mut self, model: &Model, state: &State) {
+        let with_friction = state.friction.fits(self.force.len());
         for i in 0..self.force.len() {
-            let r = model.radius[i];
-            let Some((_, p, d)) = model.environment.closest_point(state.x[i], r) else {
+            self.friction[i] = None;
+            let Some((part, n, depth)) = self.touching(model, state.x[i], i) else {
                 continue;
             };
-            if d >= r || d <= 1e-12 * r {
-                continue;
-            }
-            let n = (state.x[i] - p) / d;
             let k = self.contact_stiffness[i];
-            let f = n * (k * (r - d));
-            self.force[i] += f;
-            self.contact_force[i] += f;
+            let mut f = n * (k * depth);
             let nn = normal_projector(n);
             let mut block = self.matrix.diag[i].fixed_view_mut::<3, 3>(0, 0);
             block += nn * k;
+            if with_friction && !self.prescribed[i] {
+                let p = &model.environment.parts[part];
+                let r = state.friction.response(
+                    i,
+                    state.x[i],
+                    n,
+                    k * depth,
+                    k,
+                    (p.friction_static, p.friction_sliding),
+                );
+                block += r.tangent;
+                f += r.force;
+                self.friction[i] = Some(r);
+            }
+            self.force[i] += f;
+            self.contact_force[i] += f;
+        }
+    }
+
+    /// The part node `i` at `x` penetrates, the unit normal towards the node and the
+    /// depth r − d > 0; None when the node's ball is clear of every part.
+    fn touching(&self, model: &Model, x: DVec3, i: usize) -> Option<(usize, DVec3, f64)> {
+        let r = model.radius[i];
+        let (part, p, d) = model.environment.closest_point(x, r)?;
+        (d < r && d > 1e-12 * r).then(|| (part, (x - p) / d, r - d))
+    }
+
+    /// Accepts the configuration of the last assembly as the end of a step for friction
+    /// ([`crate::contact::friction::FrictionMemory::commit`]).
+    pub fn commit_friction(&self, state: &mut State) {
+        if !state.friction.fits(self.force.len()) {
+            state.friction = crate::contact::friction::FrictionMemory::new(&state.x);
+            return;
+        }
+        for i in 0..self.force.len() {
+            let k = self.contact_stiffness[i];
+            state
+                .friction
+                .commit(i, state.x[i], self.friction[i].as_ref(), k);
         }
     }
 
@@ -257,12 +296,17 @@ impl NewtonSystem {
             e += state.hose_contact.energy;
         }
         if !model.environment.is_empty() {
+            let with_friction = state.friction.fits(state.x.len());
             for i in 0..state.x.len() {
-                let r = model.radius[i];
-                if let Some((_, _, d)) = model.environment.closest_point(state.x[i], r) {
-                    if d < r {
-                        e += 0.5 * self.contact_stiffness[i] * (r - d) * (r - d);
-                    }
+                let Some((part, n, depth)) = self.touching(model, state.x[i], i) else {
+                    continue;
+                };
+                let k = self.contact_stiffness[i];
+                e += 0.5 * k * depth * depth;
+                if with_friction && !self.prescribed[i] {
+                    let p = &model.environment.parts[part];
+                    let mu = (p.friction_static, p.friction_sliding);
+                    e += state.friction.response(i, state.x[i], n, k * depth, k, mu).energy;
                 }
             }
         }

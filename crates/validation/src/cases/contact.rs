@@ -14,10 +14,10 @@ use crate::Check;
 use glam::{DQuat, DVec3};
 use pliant_core::{integrators::explicit, Model, RigidPartSpec, SimSettings, State, WorldSpec};
 
-const G: f64 = 9.81;
+pub(super) const G: f64 = 9.81;
 
 /// A rectangle of two triangles: centre, two half-edge vectors; `flip` reverses winding.
-fn quad(
+pub(super) fn quad(
     name: &str,
     centre: DVec3,
     u: DVec3,
@@ -77,7 +77,7 @@ fn cuboid(name: &str, c: DVec3, h: DVec3) -> RigidPartSpec {
     }
 }
 
-fn world(
+pub(super) fn world(
     hose_nodes: impl Fn(f64) -> DVec3,
     parts: Vec<RigidPartSpec>,
     gravity: DVec3,

@@ -6,6 +6,7 @@ mod contact;
 mod convergence;
 mod energy;
 mod fasteners;
+mod friction;
 mod hose_contact;
 mod invariance;
 mod postbuckling;
@@ -31,6 +32,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("convergence", convergence::run),
     ("contact_rest", contact::run_rest),
     ("contact_incline", contact::run_incline),
+    ("friction_newton", friction::run),
     ("tunnelling", contact::run_tunnelling),
     ("hose_contact", hose_contact::run),
     ("stiffened", stiffened::run),

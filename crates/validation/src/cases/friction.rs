@@ -1,0 +1,148 @@
+//! `friction_newton`: Coulomb friction under the Newton solvers (issue 10), on the incline
+//! of `contact_incline` (μ_s = 0.5, μ_k = 0.4, a 0.5 m hose lying down the slope):
+//! * static, tan φ = 0.8 μ_s: an equilibrium exists; the hose sticks (creep along the
+//!   slope below 10 µm, the elastic give of the friction spring) and the parts carry its
+//!   weight (the total contact force balances gravity within 0.1 %);
+//! * static, tan φ = 1.2 μ_s: no equilibrium exists; the solver must say so (the input
+//!   step does not converge) and must not hold the hose in place;
+//! * implicit, tan φ = 0.8 μ_s: sticks over 0.5 s (creep below 10 µm);
+//! * implicit, tan φ = 1.2 μ_s: slides with g (sin φ − μ_k cos φ) — distance in 0.3 s
+//!   within 2 % of ½ a t², at the implicit solver's default 10 ms step.
+
+use super::contact::{quad, world, G};
+use crate::Check;
+use glam::{DQuat, DVec3};
+use pliant_core::integrators::{Solver, SolverSettings};
+use pliant_core::{SolverKind, State};
+
+const CASE: &str = "friction_newton";
+const MU: (f64, f64) = (0.5, 0.4);
+
+/// What a run on an incline of angle φ gave.
+struct Run {
+    /// Displacement of the middle node along the slope, downwards [m].
+    slid: f64,
+    /// Whether every step converged.
+    converged: bool,
+    /// |Σ contact force + Σ m g| / |Σ m g| at the end.
+    imbalance: f64,
+}
+
+fn incline(phi: f64, kind: SolverKind, step: f64, seconds: f64) -> Result<Run, String> {
+    let r = crate::harness::hose1().1.outer_radius();
+    let tilt = DQuat::from_axis_angle(DVec3::Y, -phi); // slope rises towards +x
+    let down = tilt * DVec3::NEG_X;
+    let normal = tilt * DVec3::Z;
+    let plane = quad(
+        "incline",
+        DVec3::ZERO,
+        tilt * DVec3::X * 2.0,
+        DVec3::Y * 2.0,
+        false,
+        MU,
+    );
+    let model = world(
+        |s| tilt * DVec3::new(0.5 * s - 0.25, 0.0, 0.0) + normal * r,
+        vec![plane],
+        DVec3::new(0.0, 0.0, -G),
+        0.0,
+    );
+    let settings = SolverSettings {
+        kind,
+        implicit_time_step: step,
+        static_input_step: step,
+    };
+    let mut solver = Solver::new(&model, settings).map_err(|e| e.to_string())?;
+    let mut state = State::at_rest(&model);
+    let start = state.x[10];
+    let mut converged = true;
+    for _ in 0..(seconds / step).round() as usize {
+        let stats = solver.step(&model, &mut state).map_err(|e| e.to_string())?;
+        converged &= stats.converged;
+    }
+    let weight: DVec3 = model.mass.iter().map(|m| m * model.gravity).sum();
+    let carried: DVec3 = state.contact_force.iter().copied().sum();
+    Ok(Run {
+        slid: (state.x[10] - start).dot(down),
+        converged,
+        imbalance: (carried + weight).length() / weight.length(),
+    })
+}
+
+pub fn run() -> Vec<Check> {
+    let stick = (0.8 * MU.0).atan();
+    let slide = (1.2 * MU.0).atan();
+    let mut out = Vec::new();
+    match incline(stick, SolverKind::Static, 0.01, 0.1) {
+        Ok(run) if run.converged => {
+            out.push(Check::with_error(
+                CASE,
+                "static, tan(phi)=0.8 mu_s: creep m (abs)",
+                run.slid,
+                0.0,
+                run.slid.abs(),
+                1e-5,
+            ));
+            out.push(Check::with_error(
+                CASE,
+                "static, tan(phi)=0.8 mu_s: |contact force + weight| / weight",
+                run.imbalance,
+                0.0,
+                run.imbalance,
+                1e-3,
+            ));
+        }
+        Ok(_) => out.push(Check::failed(CASE, "static stick", "did not converge")),
+        Err(e) => out.push(Check::failed(CASE, "static stick", &e)),
+    }
+    match incline(slide, SolverKind::Static, 0.01, 0.01) {
+        Ok(run) => {
+            // no equilibrium: the step must not converge (pass = 0 error), and the hose
+            // must not be held where it was (it slides by more than the stick creep)
+            let honest = if run.converged { 1.0 } else { 0.0 };
+            out.push(Check::with_error(
+                CASE,
+                "static, tan(phi)=1.2 mu_s: step reported converged (no equilibrium exists)",
+                honest,
+                0.0,
+                honest,
+                0.0,
+            ));
+            out.push(Check::with_error(
+                CASE,
+                "static, tan(phi)=1.2 mu_s: slid beyond 1 mm (1 = yes)",
+                if run.slid > 1e-3 { 1.0 } else { 0.0 },
+                1.0,
+                if run.slid > 1e-3 { 0.0 } else { 1.0 },
+                0.0,
+            ));
+        }
+        Err(e) => out.push(Check::failed(CASE, "static slide", &e)),
+    }
+    match incline(stick, SolverKind::Implicit, 0.01, 0.5) {
+        Ok(run) => out.push(Check::with_error(
+            CASE,
+            "implicit, tan(phi)=0.8 mu_s: creep over 0.5 s m (abs)",
+            run.slid,
+            0.0,
+            run.slid.abs(),
+            1e-5,
+        )),
+        Err(e) => out.push(Check::failed(CASE, "implicit stick", &e)),
+    }
+    let t = 0.3;
+    match incline(slide, SolverKind::Implicit, 0.01, t) {
+        Ok(run) => {
+            let a = G * (slide.sin() - MU.1 * slide.cos());
+            out.push(Check::relative(
+                CASE,
+                "implicit, tan(phi)=1.2 mu_s: distance in 0.3 s m",
+                run.slid,
+                0.5 * a * t * t,
+                0.02,
+            ));
+        }
+        Err(e) => out.push(Check::failed(CASE, "implicit slide", &e)),
+    }
+    out
+}
