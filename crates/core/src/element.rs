@@ -8,7 +8,7 @@
 //!
 //! * N  = E_{t|c} A · (l − l₀)/l₀                                      (axial, bimodular, M3)
 //! * Mₓ = G J · (θ_bx − θ_ax)/l₀                                       (torsion)
-//! * [M_a; M_b] = (E_b I / l₀) · [[4, 2], [2, 4]] · [θ_a; θ_b]          (each bending plane)
+//! * [M_a; M_b] = (E I_k / l₀) · [[4, 2], [2, 4]] · [θ_a; θ_b]   (about section axis k = 1, 2)
 //!
 //! and the nodal forces are the exact variation of that strain energy through the
 //! co-rotational kinematics: with m_a, m_b the end moments in global axes,
@@ -21,6 +21,7 @@ use crate::autodiff::{Quat, Scalar, V3};
 use crate::math::{
     exp_map, left_jacobian_inverse_transpose_times_of, log_map_of, rotation_between_of,
 };
+use crate::section::SectionProperties;
 use crate::{Material, Section};
 use glam::{DQuat, DVec3};
 
@@ -35,8 +36,9 @@ pub struct BeamElement {
     pub axial_stiffness_tension: f64,
     /// E_c·A [N], used when shortened.
     pub axial_stiffness_compression: f64,
-    /// E_b·I [N·m²].
-    pub bending_stiffness: f64,
+    /// EI₁, EI₂ [N·m²]: bending about the element frame's y and z axes (the section axes
+    /// 1 and 2, [`crate::section`]).
+    pub bending_stiffness: [f64; 2],
     /// G·J [N·m²].
     pub torsion_stiffness: f64,
     /// ρ·A [kg/m].
@@ -97,29 +99,38 @@ pub struct ElementLoadsOf<T> {
 }
 
 impl BeamElement {
-    /// Builds an element between global nodes `a` and `b` from their rest positions and
-    /// rest material frames. The section is the mean of the two nodes' sections.
+    /// Builds an element of a tube `section` made of `material` ([`Self::with_properties`]).
     pub fn new(
-        (a, b): (usize, usize),
+        nodes: (usize, usize),
         rest_x: [DVec3; 2],
         rest_q: [DQuat; 2],
         section: &Section,
         material: &Material,
     ) -> Self {
+        let props = SectionProperties::of(section, material);
+        Self::with_properties(nodes, rest_x, rest_q, &props)
+    }
+
+    /// Builds an element between global nodes `a` and `b` from their rest positions, rest
+    /// material frames and section properties.
+    pub fn with_properties(
+        (a, b): (usize, usize),
+        rest_x: [DVec3; 2],
+        rest_q: [DQuat; 2],
+        props: &SectionProperties,
+    ) -> Self {
         let chord = rest_x[1] - rest_x[0];
         let frame: DQuat =
             aligned_mean_frame(rest_q[0].into(), rest_q[1].into(), chord.normalize().into()).into();
-        let area = section.area();
-        let e_b = material.bending_modulus();
         Self {
             node_a: a,
             node_b: b,
             rest_length: chord.length(),
-            axial_stiffness_tension: material.e_tension * area,
-            axial_stiffness_compression: material.e_compression * area,
-            bending_stiffness: e_b * section.second_moment(),
-            torsion_stiffness: material.shear_modulus() * section.polar_moment(),
-            mass_per_length: material.density * area,
+            axial_stiffness_tension: props.axial_tension,
+            axial_stiffness_compression: props.axial_compression,
+            bending_stiffness: props.bending,
+            torsion_stiffness: props.torsion,
+            mass_per_length: props.mass_per_length,
             rest_offset_a: (rest_q[0].inverse() * frame).normalize(),
             rest_offset_b: (rest_q[1].inverse() * frame).normalize(),
         }
@@ -225,21 +236,24 @@ impl BeamElement {
     }
 
     /// Local end moments (element axes) for end rotations θ_a, θ_b: torsion G J Δθₓ/l₀ and
-    /// the bending law (E I / l₀)·[[4, 2], [2, 4]] in both planes.
+    /// the bending law (E I_k / l₀)·[[4, 2], [2, 4]] about the y (k = 1) and z (k = 2) axes.
     #[inline(always)]
     fn end_moments<T: Scalar>(&self, ta: V3<T>, tb: V3<T>) -> (V3<T>, V3<T>) {
         let l0 = self.rest_length;
-        let kb = self.bending_stiffness / l0;
+        let (k1, k2) = (
+            self.bending_stiffness[0] / l0,
+            self.bending_stiffness[1] / l0,
+        );
         let torque = (tb.x - ta.x) * (self.torsion_stiffness / l0);
         let ma = V3::new(
             -torque,
-            (ta.y * 4.0 + tb.y * 2.0) * kb,
-            (ta.z * 4.0 + tb.z * 2.0) * kb,
+            (ta.y * 4.0 + tb.y * 2.0) * k1,
+            (ta.z * 4.0 + tb.z * 2.0) * k2,
         );
         let mb = V3::new(
             torque,
-            (ta.y * 2.0 + tb.y * 4.0) * kb,
-            (ta.z * 2.0 + tb.z * 4.0) * kb,
+            (ta.y * 2.0 + tb.y * 4.0) * k1,
+            (ta.z * 2.0 + tb.z * 4.0) * k2,
         );
         (ma, mb)
     }
@@ -258,7 +272,9 @@ impl BeamElement {
         let bend = |a: f64, b: f64| 2.0 * (a * a + a * b + b * b);
         let dtx = tb.x - ta.x;
         0.5 * ea * l0 * strain * strain
-            + self.bending_stiffness / l0 * (bend(ta.y, tb.y) + bend(ta.z, tb.z))
+            + (self.bending_stiffness[0] * bend(ta.y, tb.y)
+                + self.bending_stiffness[1] * bend(ta.z, tb.z))
+                / l0
             + 0.5 * self.torsion_stiffness / l0 * dtx * dtx
     }
 }

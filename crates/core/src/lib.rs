@@ -34,6 +34,6 @@ pub use health::Divergence;
 pub use integrators::{Solver, SolverKind, SolverSettings, StepStats};
 pub use material::Material;
 pub use model::{HoseInfo, Model, ModelError};
-pub use section::Section;
+pub use section::{GivenStiffness, Section, SectionProperties};
 pub use spec::{HoseSpec, RigidPartSpec, SimSettings, WorldSpec};
 pub use state::State;

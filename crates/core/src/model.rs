@@ -6,6 +6,7 @@ use crate::element::BeamElement;
 use crate::frames::node_frames;
 use crate::integrators::SolverSettings;
 use crate::mass::half_element_mass;
+use crate::section::SectionProperties;
 use crate::spec::{HoseSpec, SimSettings, WorldSpec};
 use crate::stiffened::{RigidBody, StiffenedSpan};
 use crate::timestep::{stable_time_step, TimeStepReport};
@@ -93,11 +94,11 @@ fn check_hose(h: &HoseSpec) -> Result<(), ModelError> {
     if h.nodes.len() < 2 {
         return err(format!("needs at least 2 nodes, has {}", h.nodes.len()));
     }
-    if h.sections.len() != 1 && h.sections.len() != h.nodes.len() {
+    if h.sections.len() != 1 && h.sections.len() != h.nodes.len() - 1 {
         return err(format!(
-            "has {} sections for {} nodes (give 1 or one per node)",
+            "has {} sections for {} elements (give 1 or one per element)",
             h.sections.len(),
-            h.nodes.len()
+            h.nodes.len() - 1
         ));
     }
     for (i, p) in h.nodes.iter().enumerate() {
@@ -119,6 +120,14 @@ fn check_hose(h: &HoseSpec) -> Result<(), ModelError> {
                 "section {i} invalid: d_inner {} m, d_outer {} m",
                 s.d_inner, s.d_outer
             ));
+        }
+        for (name, value) in s.given.named() {
+            if value.is_some_and(|v| !(v > 0.0 && v.is_finite())) {
+                return err(format!(
+                    "section {i}: {name} must be positive and finite, is {}",
+                    value.unwrap_or_default()
+                ));
+            }
         }
     }
     let m = &h.material;
@@ -182,29 +191,21 @@ impl Model {
         let first_node = self.rest_x.len();
         let first_element = self.elements.len();
         let frames = node_frames(&h.nodes, h.normal_hint);
-        let section = |i: usize| {
-            if h.sections.len() == 1 {
-                h.sections[0]
-            } else {
-                h.sections[i]
-            }
-        };
         for (i, (x, q)) in h.nodes.iter().zip(&frames).enumerate() {
             self.rest_x.push(*x);
             self.rest_q.push(*q);
-            self.radius.push(section(i).outer_radius());
+            self.radius.push(h.node_section(i).outer_radius());
         }
         for i in 0..h.nodes.len() - 1 {
             let (a, b) = (first_node + i, first_node + i + 1);
-            let sec = crate::Section::mean(&section(i), &section(i + 1));
-            let el = BeamElement::new(
+            let props = SectionProperties::of(h.element_section(i), &h.material);
+            let el = BeamElement::with_properties(
                 (a, b),
                 [h.nodes[i], h.nodes[i + 1]],
                 [frames[i], frames[i + 1]],
-                &sec,
-                &h.material,
+                &props,
             );
-            let (m, j) = half_element_mass(&sec, &h.material, 0.5 * el.rest_length);
+            let (m, j) = half_element_mass(&props, 0.5 * el.rest_length);
             for n in [a, b] {
                 self.mass[n] += m;
                 self.inertia[n] += j;

@@ -19,11 +19,31 @@ pub struct HoseSpec {
     pub material: Material,
     /// Rest positions of the nodes [m]; at least 2, consecutive nodes distinct.
     pub nodes: Vec<DVec3>,
-    /// Cross-section per node (same length as `nodes`), or one entry for a uniform hose.
+    /// Cross-section per element (`nodes.len() − 1` entries, element `e` between nodes
+    /// `e` and `e + 1`), or one entry for a uniform hose.
     pub sections: Vec<Section>,
     /// Preferred direction of the first node's local y axis; `None` → any axis normal
     /// to the first tangent. Only affects how orientations are reported.
     pub normal_hint: Option<DVec3>,
+}
+
+impl HoseSpec {
+    /// The section of element `e` (between nodes `e` and `e + 1`).
+    pub fn element_section(&self, e: usize) -> &Section {
+        &self.sections[e.min(self.sections.len() - 1)]
+    }
+
+    /// The section a node sits in: the thicker of its (one or two) elements — what a
+    /// clip or stub at the node grips, and the radius contact sees there.
+    pub fn node_section(&self, i: usize) -> &Section {
+        let before = self.element_section(i.saturating_sub(1));
+        let after = self.element_section(i.min(self.nodes.len().saturating_sub(2)));
+        if after.d_outer > before.d_outer {
+            after
+        } else {
+            before
+        }
+    }
 }
 
 /// Global simulation settings (SPEC P4, P6). All SI.

@@ -137,7 +137,7 @@ impl Coefficients {
             inverse_stiffness: Vector3::new(
                 1.0 / st.torsion(),
                 1.0 / st.bending(),
-                1.0 / st.bending(),
+                1.0 / st.bending_d3(),
             ),
             load: rod.distributed_load() * load_scale,
         }

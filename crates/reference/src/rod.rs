@@ -27,12 +27,15 @@ use crate::error::{ReferenceError, Result};
 /// Constitutive law (Antman, *Nonlinear Problems of Elasticity*, 2nd ed., ch. 8,
 /// linear special case): axial force `N = n·d1`, stretch `ν = 1 + N/EA` with
 /// `EA = EA_t` for `N ≥ 0` and `EA = EA_c` for `N < 0`; body-frame moment
-/// `m_b = (GJ κ₁, EI κ₂, EI κ₃)` (torsion about d1, isotropic bending about d2, d3).
+/// `m_b = (GJ κ₁, EI₂ κ₂, EI₃ κ₃)` (torsion about d1, bending about d2 and d3 — equal
+/// unless set apart by [`Stiffness::with_bending`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stiffness {
     axial_tension: f64,
     axial_compression: f64,
     bending: f64,
+    /// EI about d3 when it differs from `bending` (about d2).
+    bending_d3: f64,
     torsion: f64,
 }
 
@@ -74,6 +77,7 @@ impl Stiffness {
             axial_tension,
             axial_compression,
             bending,
+            bending_d3: bending,
             torsion,
         })
     }
@@ -138,9 +142,33 @@ impl Stiffness {
         self.axial_compression
     }
 
-    /// Bending stiffness `EI` \[N m²\] (about d2 and d3).
+    /// Different bending stiffnesses about d2 (`EI₂`) and d3 (`EI₃`) \[N m²\]: a
+    /// non-round section (ribbon, bundle).
+    ///
+    /// # Errors
+    ///
+    /// [`ReferenceError::InvalidStiffness`] unless both are finite and positive.
+    pub fn with_bending(mut self, about_d2: f64, about_d3: f64) -> Result<Self> {
+        for value in [about_d2, about_d3] {
+            if !value.is_finite() || value <= 0.0 {
+                return Err(ReferenceError::InvalidStiffness(format!(
+                    "bending stiffness must be finite and positive, got {value}"
+                )));
+            }
+        }
+        self.bending = about_d2;
+        self.bending_d3 = about_d3;
+        Ok(self)
+    }
+
+    /// Bending stiffness `EI` \[N m²\] about d2 (and d3 for a round section).
     pub fn bending(&self) -> f64 {
         self.bending
+    }
+
+    /// Bending stiffness about d3 \[N m²\].
+    pub fn bending_d3(&self) -> f64 {
+        self.bending_d3
     }
 
     /// Torsional stiffness `GJ` \[N m²\] (about d1).

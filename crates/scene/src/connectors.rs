@@ -67,12 +67,9 @@ fn hose_index(field: &str, name: &str, hoses: &[HoseSpec]) -> Result<usize, Fiel
     })
 }
 
-/// Outer diameter (m) of a hose at a node (sections are per node, or one for all).
+/// Outer diameter (m) of a hose at a node.
 fn d_outer_at(hose: &HoseSpec, node: usize) -> f64 {
-    hose.sections
-        .get(node)
-        .or(hose.sections.last())
-        .map_or(0.0, |s| s.d_outer)
+    hose.node_section(node).d_outer
 }
 
 /// A length in metres, written in the file's unit (rounded to 1e-9 of it, so that

@@ -17,7 +17,7 @@ impl LoadedScene {
             let spec = &self.world.hoses[end.hose];
             let local = end.node(info.node_count);
             let inner = if end.at_end { local - 1 } else { local + 1 };
-            let section = spec.sections[if spec.sections.len() == 1 { 0 } else { local }];
+            let section = *spec.node_section(local);
             let fit = PressFit::new(&s.spec, &section, &spec.material)
                 .map_err(|e| format!("stub '{}': {e}", s.name))?;
             stubs.push(StubSite {

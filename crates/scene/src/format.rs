@@ -213,13 +213,18 @@ pub struct HoseEntry {
     /// Offsets of rest-shape nodes (length unit), applied after discretisation.
     #[serde(default)]
     pub imperfection: Vec<ImperfectionEntry>,
-    /// Preferred direction of the first node's cross-section y axis; must not be
-    /// parallel to the hose's first tangent. Default: any normal direction.
+    /// Direction of the cross-section's axis 1 (the node frame's y axis) at the first
+    /// node; must not be parallel to the hose's first tangent. Default: any normal
+    /// direction. Required when a section has EI1 ≠ EI2 (it orients the section).
     pub normal_hint: Option<Vec3>,
     /// Stiffened (rigid) sections, e.g. a metal tube joining two flexible parts
     /// (SPEC M6): each a span of nodes that moves as one rigid body.
     #[serde(default)]
     pub stiffened: Vec<StiffenedEntry>,
+    /// Spans with a cross-section of their own (a hose whose section varies along it);
+    /// elsewhere `section` holds. Spans must not overlap.
+    #[serde(default)]
+    pub spans: Vec<SpanEntry>,
 }
 
 /// A stiffened span of a hose: nodes `first` to `last` (inclusive) are rigid together.
@@ -232,7 +237,12 @@ pub struct StiffenedEntry {
     pub last: i64,
 }
 
-/// Inner and outer diameter (length unit).
+/// A cross-section: inner and outer diameter (length unit) — the contact envelope and,
+/// by default, with the material the source of stiffness and mass — and optionally any
+/// of the stiffnesses and the mass per length given directly (SI), for cables, flat
+/// ribbons and bundles. Section axis 1 is the hose's `normal_hint` direction at its
+/// first node, carried along the hose; axis 2 completes the right-handed frame with the
+/// hose tangent.
 #[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SectionEntry {
@@ -240,6 +250,32 @@ pub struct SectionEntry {
     pub d_inner: f64,
     /// Outer diameter d_a, > 0.
     pub d_outer: f64,
+    /// Axial stiffness EA (N), > 0, the same in tension and compression. Default: the
+    /// material's E_t A and E_c A.
+    pub ea_n: Option<f64>,
+    /// Bending stiffness about section axis 1 (N·m²), > 0. Default: E_b I.
+    pub ei1_n_m2: Option<f64>,
+    /// Bending stiffness about section axis 2 (N·m²), > 0. Default: E_b I. A section
+    /// with EI1 ≠ EI2 needs the hose's `normal_hint`.
+    pub ei2_n_m2: Option<f64>,
+    /// Torsional stiffness GJ (N·m²), > 0. Default: G J of the tube.
+    pub gj_n_m2: Option<f64>,
+    /// Mass per length (kg/m), > 0. Default: ρ A.
+    pub mass_kg_m: Option<f64>,
+}
+
+/// A span of a hose with its own cross-section, by arc length along the centre line
+/// (length unit): the elements whose middle lies in `from ≤ s < to` take `section` (a
+/// span end inside an element rounds to the nearer node).
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpanEntry {
+    /// Arc length where the span starts, ≥ 0.
+    pub from: f64,
+    /// Arc length where the span ends, > from and ≤ the hose's length.
+    pub to: f64,
+    /// The span's cross-section.
+    pub section: SectionEntry,
 }
 
 /// One centre-line segment: exactly one of `line`, `arc`, `spline`.

@@ -11,7 +11,7 @@ use crate::validate::{
     finite_vec, node_index, non_negative, non_zero_vec, positive, vec_with_unit, with_unit,
 };
 use glam::DVec3;
-use pliant_core::{HoseSpec, Section};
+use pliant_core::{GivenStiffness, HoseSpec, Section};
 
 /// Default element length as a multiple of the outer diameter (SPEC M1: 1–2 d_a).
 pub const DEFAULT_ELEMENT_LENGTH_PER_D_OUTER: f64 = 1.5;
@@ -180,6 +180,18 @@ pub fn build_hose(
         stiffened.push((first, last));
     }
 
+    let sections = span_sections(index, raw, unit, section, length, nodes.len())?;
+    if normal_hint.is_none() {
+        if let Some(k) = sections.iter().position(non_round) {
+            return Err(FieldError::about(
+                at("normal_hint"),
+                format!(
+                    "required: element {k}'s section has EI1 ≠ EI2, and normal_hint says which way its axis 1 points"
+                ),
+            ));
+        }
+    }
+
     let info = HoseDiscretisation {
         stiffened,
         name: raw.name.clone(),
@@ -193,13 +205,14 @@ pub fn build_hose(
         name: raw.name.clone(),
         material: resolved.material,
         nodes,
-        sections: vec![section],
+        sections,
         normal_hint,
     };
     Ok((spec, info))
 }
 
-/// Checks a cross-section (file units) and converts it to metres.
+/// Checks a cross-section (file units for the diameters, SI for the given stiffnesses)
+/// and converts it to SI.
 fn section(field: &str, s: &SectionEntry, unit: LengthUnit) -> Result<Section, FieldError> {
     let u = unit.symbol();
     let d_outer = positive(&format!("{field}.d_outer"), s.d_outer, u)?;
@@ -212,7 +225,102 @@ fn section(field: &str, s: &SectionEntry, unit: LengthUnit) -> Result<Section, F
         ));
     }
     let scale = unit.to_metres();
-    Ok(Section::new(d_inner * scale, d_outer * scale))
+    let given = |name: &str, v: Option<f64>, unit: &str| {
+        v.map(|v| positive(&format!("{field}.{name}"), v, unit))
+            .transpose()
+    };
+    let mut out = Section::new(d_inner * scale, d_outer * scale);
+    out.given = GivenStiffness {
+        axial: given("ea_n", s.ea_n, "N")?,
+        bending: [
+            given("ei1_n_m2", s.ei1_n_m2, "N·m²")?,
+            given("ei2_n_m2", s.ei2_n_m2, "N·m²")?,
+        ],
+        torsion: given("gj_n_m2", s.gj_n_m2, "N·m²")?,
+        mass_per_length: given("mass_kg_m", s.mass_kg_m, "kg/m")?,
+    };
+    Ok(out)
+}
+
+/// Whether a section bends differently about its two axes (it then needs an orientation).
+fn non_round(s: &Section) -> bool {
+    let [a, b] = s.given.bending;
+    a.is_some() != b.is_some() || a.zip(b).is_some_and(|(a, b)| a != b)
+}
+
+/// The section of every element: `default` except where a span of `raw.spans` holds the
+/// element's midpoint (nodes at equal spacing over `length`). Span ends falling inside an
+/// element are rounded to the nearest node that way.
+fn span_sections(
+    index: usize,
+    raw: &HoseEntry,
+    unit: LengthUnit,
+    default: Section,
+    length: f64,
+    nodes: usize,
+) -> Result<Vec<Section>, FieldError> {
+    if raw.spans.is_empty() {
+        return Ok(vec![default]);
+    }
+    let (u, scale) = (unit.symbol(), unit.to_metres());
+    let elements = nodes - 1;
+    let element_length = length / elements as f64;
+    let mut sections = vec![default; elements];
+    let mut taken: Vec<(f64, f64)> = Vec::with_capacity(raw.spans.len());
+    for (k, span) in raw.spans.iter().enumerate() {
+        let at = |rest: &str| format!("hoses[{index}].spans[{k}].{rest}");
+        let from = non_negative(&at("from"), span.from, u)? * scale;
+        let to = positive(&at("to"), span.to, u)? * scale;
+        if to <= from {
+            return Err(FieldError::new(
+                at("to"),
+                with_unit(span.to, u),
+                format!("must be greater than from ({})", with_unit(span.from, u)),
+            ));
+        }
+        if to > length * (1.0 + 1e-9) {
+            return Err(FieldError::new(
+                at("to"),
+                with_unit(span.to, u),
+                format!(
+                    "lies beyond the hose's end (its length is {})",
+                    with_unit(length / scale, u)
+                ),
+            ));
+        }
+        if let Some(&(a, b)) = taken.iter().find(|&&(a, b)| from < b && a < to) {
+            return Err(FieldError::new(
+                format!("hoses[{index}].spans[{k}]"),
+                format!("{}..{}", with_unit(span.from, u), with_unit(span.to, u)),
+                format!(
+                    "overlaps the span {}..{}",
+                    with_unit(a / scale, u),
+                    with_unit(b / scale, u)
+                ),
+            ));
+        }
+        taken.push((from, to));
+        let section = section(&at("section"), &span.section, unit)?;
+        let mut covered = 0;
+        for (e, s) in sections.iter_mut().enumerate() {
+            let middle = (e as f64 + 0.5) * element_length;
+            if (from..to).contains(&middle) {
+                *s = section;
+                covered += 1;
+            }
+        }
+        if covered == 0 {
+            return Err(FieldError::new(
+                format!("hoses[{index}].spans[{k}]"),
+                format!("{}..{}", with_unit(span.from, u), with_unit(span.to, u)),
+                format!(
+                    "holds no element's middle (elements are {} long): make it longer or the elements shorter",
+                    with_unit(element_length / scale, u)
+                ),
+            ));
+        }
+    }
+    Ok(sections)
 }
 
 /// Checks a path segment's points (file units) and converts them to metres.

@@ -19,18 +19,20 @@ pub fn rotation(q: DQuat) -> Rotation3<f64> {
         .to_rotation_matrix()
 }
 
-/// A reference solver for hose `h` of `model`: same rest polyline, same EA_t, EA_c, EI,
-/// GJ (read from the model's first element — the validation hoses are uniform), base
-/// clamped at the rest pose of node 0.
+/// A reference solver for hose `h` of `model`: same rest polyline, same EA_t, EA_c, EI₁,
+/// EI₂, GJ (read from the model's first element — the validation hoses are uniform; the
+/// model's section axes y, z are the reference's d2, d3 through the common base frame),
+/// base clamped at the rest pose of node 0.
 pub fn solver_for(model: &Model, h: usize) -> Result<ShootingSolver, String> {
     let info = &model.hoses[h];
     let e = &model.elements[info.first_element];
     let stiffness = Stiffness::bimodular(
         e.axial_stiffness_tension,
         e.axial_stiffness_compression,
-        e.bending_stiffness,
+        e.bending_stiffness[0],
         e.torsion_stiffness,
     )
+    .and_then(|s| s.with_bending(e.bending_stiffness[0], e.bending_stiffness[1]))
     .map_err(|e| e.to_string())?;
     let nodes: Vec<Vector3<f64>> = info.nodes().map(|i| to_na(model.rest_x[i])).collect();
     let base_frame = rotation(model.rest_q[info.first_node]);

@@ -93,6 +93,11 @@ fn clip() {
 fn stiffened() {
     assert_case("stiffened");
 }
+
+#[test]
+fn sections() {
+    assert_case("sections");
+}
 #[test]
 fn hose_contact() {
     assert_case("hose_contact");

@@ -95,7 +95,8 @@ impl NewtonSystem {
             if rigid {
                 e.axial_stiffness_tension *= RIGID_FACTOR;
                 e.axial_stiffness_compression *= RIGID_FACTOR;
-                e.bending_stiffness *= RIGID_FACTOR;
+                e.bending_stiffness[0] *= RIGID_FACTOR;
+                e.bending_stiffness[1] *= RIGID_FACTOR;
                 e.torsion_stiffness *= RIGID_FACTOR;
             }
         }

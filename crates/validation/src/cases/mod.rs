@@ -11,6 +11,7 @@ mod hose_contact;
 mod invariance;
 mod postbuckling;
 mod rollup;
+mod sections;
 mod solvers;
 mod stiffened;
 mod thesis;
@@ -36,6 +37,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("tunnelling", contact::run_tunnelling),
     ("hose_contact", hose_contact::run),
     ("stiffened", stiffened::run),
+    ("sections", sections::run),
     ("stub", fasteners::run_stub),
     ("clip", fasteners::run_clip),
     ("thesis_1", thesis::run_1),

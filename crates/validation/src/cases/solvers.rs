@@ -10,7 +10,7 @@
 //! tunnelling at speed, stub and clip timelines, the thesis runs) are dynamic by nature
 //! and are run by the explicit solver only.
 
-use super::{axial, buckling, hose_contact, rollup, stiffened, tip_load, torsion};
+use super::{axial, buckling, hose_contact, rollup, sections, stiffened, tip_load, torsion};
 use crate::harness::with_solver;
 use crate::Check;
 use pliant_core::SolverKind;
@@ -29,6 +29,7 @@ const CASES: &[(&str, crate::CaseFn, &[SolverKind])] = &[
     ("axial", axial::run, BOTH),
     ("torsion", torsion::run, BOTH),
     ("stiffened", stiffened::run, BOTH),
+    ("sections", sections::run, BOTH),
     ("hose_contact", hose_contact::run, &[SolverKind::Static]),
 ];
 
