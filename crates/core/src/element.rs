@@ -6,9 +6,20 @@
 //! two node frames. In E the deformation is small: elongation, torsion and the bending
 //! rotations of each end relative to the chord. The local law is linear (Euler–Bernoulli):
 //!
-//! * N  = E_{t|c} A · (l − l₀)/l₀                                      (axial, bimodular, M3)
+//! * ε  = (l − l₀)/l₀ + Σ_k (2θ_ak² − θ_ak θ_bk + 2θ_bk²)/30      (shallow-arch strain)
+//! * N  = E_{t|c} A · ε                                                (axial, bimodular, M3)
 //! * Mₓ = G J · (θ_bx − θ_ax)/l₀                                       (torsion)
-//! * [M_a; M_b] = (E I_k / l₀) · [[4, 2], [2, 4]] · [θ_a; θ_b]   (about section axis k = 1, 2)
+//! * [M_a; M_b] = (E I_k / l₀) · [[4, 2], [2, 4]] · [θ_a; θ_b]
+//!   + (N l₀ / 30) · [[4, −1], [−1, 4]] · [θ_a; θ_b]              (about section axis k = 1, 2)
+//!
+//! The second strain term is the mean of ½ w'² over the element for the cubic deflection
+//! w with end slopes θ_a, θ_b: the local axial–bending coupling of the "shallow arch"
+//! co-rotational element (Crisfield, *Non-linear Finite Element Analysis of Solids and
+//! Structures* vol. 1, 1991, §7.5; Battini & Pacoste 2002, CMAME 191). Its moment term is
+//! the consistent geometric stiffness of the cubic element: without it the co-rotational
+//! element sees an axial force only through the chord's rotation (the string stiffness
+//! N/l), which makes compressed and post-buckled shapes converge with a large error
+//! constant (issue 10 item 4).
 //!
 //! and the nodal forces are the exact variation of that strain energy through the
 //! co-rotational kinematics: with m_a, m_b the end moments in global axes,
@@ -196,7 +207,7 @@ impl BeamElement {
         let d = self.deformation_of(x, q);
         let e1 = d.chord_dir;
         let l0 = self.rest_length;
-        let strain = (d.length - l0) / l0;
+        let strain = (d.length - l0) / l0 + arch_strain(d.theta[0], d.theta[1]);
 
         // Deformation rates in the element frame (for damping).
         let dv = v[1] - v[0];
@@ -212,11 +223,14 @@ impl BeamElement {
         } else {
             self.axial_stiffness_compression
         };
-        let axial_force = (strain + strain_rate * beta) * ea;
+        let elastic_axial_force = strain * ea;
+        let axial_force = elastic_axial_force + strain_rate * (beta * ea);
 
         let ta = d.theta[0] + rate_a.scale_f(beta);
         let tb = d.theta[1] + rate_b.scale_f(beta);
-        let (ma_local, mb_local) = self.end_moments(ta, tb);
+        let (ma_linear, mb_linear) = self.end_moments(ta, tb);
+        let (ma_arch, mb_arch) = arch_moments(d.theta[0], d.theta[1], elastic_axial_force * l0);
+        let (ma_local, mb_local) = (ma_linear + ma_arch, mb_linear + mb_arch);
 
         // Moments conjugate to spatial rotation increments, in global axes.
         let ma = d.frame.rotate(left_jacobian_inverse_transpose_times_of(
@@ -262,13 +276,13 @@ impl BeamElement {
     pub fn strain_energy(&self, x: [DVec3; 2], q: [DQuat; 2]) -> f64 {
         let d = self.deformation(x, q);
         let l0 = self.rest_length;
-        let strain = (d.length - l0) / l0;
+        let [ta, tb] = d.theta;
+        let strain = (d.length - l0) / l0 + arch_strain::<f64>(ta.into(), tb.into());
         let ea = if strain >= 0.0 {
             self.axial_stiffness_tension
         } else {
             self.axial_stiffness_compression
         };
-        let [ta, tb] = d.theta;
         let bend = |a: f64, b: f64| 2.0 * (a * a + a * b + b * b);
         let dtx = tb.x - ta.x;
         0.5 * ea * l0 * strain * strain
@@ -277,6 +291,26 @@ impl BeamElement {
                 / l0
             + 0.5 * self.torsion_stiffness / l0 * dtx * dtx
     }
+}
+
+/// The strain of the element's axis from its bending, mean of ½ w'² over the element for
+/// the cubic deflections with end slopes θ_a, θ_b in both bending planes:
+/// Σ_k (2θ_ak² − θ_ak θ_bk + 2θ_bk²)/30 (Crisfield 1991, eq. 7.87).
+#[inline(always)]
+fn arch_strain<T: Scalar>(ta: V3<T>, tb: V3<T>) -> T {
+    let plane = |a: T, b: T| (a * a * 2.0 - a * b + b * b * 2.0) * (1.0 / 30.0);
+    plane(ta.y, tb.y) + plane(ta.z, tb.z)
+}
+
+/// The end moments of the arch strain's energy ½ EA l₀ ε², ∂/∂θ = N l₀ ∂ε/∂θ, for
+/// `n_l0` = N l₀: (N l₀/30)·[[4, −1], [−1, 4]]·[θ_a; θ_b] in each bending plane.
+#[inline(always)]
+fn arch_moments<T: Scalar>(ta: V3<T>, tb: V3<T>, n_l0: T) -> (V3<T>, V3<T>) {
+    let k = n_l0 * (1.0 / 30.0);
+    let zero = T::cst(0.0);
+    let ma = V3::new(zero, (ta.y * 4.0 - tb.y) * k, (ta.z * 4.0 - tb.z) * k);
+    let mb = V3::new(zero, (tb.y * 4.0 - ta.y) * k, (tb.z * 4.0 - ta.z) * k);
+    (ma, mb)
 }
 
 /// The element frame: the midpoint rotation of the two end frames (slerp at ½, which for

@@ -55,7 +55,19 @@ fn large_load_in_one_plane_follows_that_planes_elastica() {
         .solve_path(&[EndCondition::loaded(d2 * p, Vector3::zeros())])
         .unwrap()[0];
     let tip = solution.end_state().position;
-    assert!((tip.dot(&d2) / L - 0.493457).abs() < 2e-6, "w/L {}", tip.dot(&d2));
-    assert!((1.0 - tip.x / L - 0.160642).abs() < 2e-6, "−u/L {}", 1.0 - tip.x);
-    assert!(tip.dot(&d3).abs() < 1e-10, "out of plane by {}", tip.dot(&d3));
+    assert!(
+        (tip.dot(&d2) / L - 0.493457).abs() < 2e-6,
+        "w/L {}",
+        tip.dot(&d2)
+    );
+    assert!(
+        (1.0 - tip.x / L - 0.160642).abs() < 2e-6,
+        "−u/L {}",
+        1.0 - tip.x
+    );
+    assert!(
+        tip.dot(&d3).abs() < 1e-10,
+        "out of plane by {}",
+        tip.dot(&d3)
+    );
 }

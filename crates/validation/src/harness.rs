@@ -71,6 +71,16 @@ pub fn build(hose: HoseSpec, settings: SimSettings) -> Model {
     .expect("validation model must build")
 }
 
+/// A dead force and moment on node `node`, acting at once.
+pub fn dead_load(node: usize, force: DVec3, moment: DVec3) -> LoadCase {
+    LoadCase::DeadLoad(pliant_core::loads::DeadLoad {
+        node,
+        force,
+        moment,
+        ramp: None,
+    })
+}
+
 /// Holds node `i` where it is now.
 pub fn clamp(state: &mut State, i: usize) {
     let case = LoadCase::Fix(Fix {

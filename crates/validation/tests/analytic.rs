@@ -95,6 +95,16 @@ fn stiffened() {
 }
 
 #[test]
+fn scale() {
+    assert_case("scale");
+}
+
+#[test]
+fn helix() {
+    assert_case("helix");
+}
+
+#[test]
 fn sections() {
     assert_case("sections");
 }

@@ -153,12 +153,33 @@ mod tests {
         let m = memory();
         let n = DVec3::Z;
         // f_n = 10 N, μ_s = 0.5: the spring k_t = 1000 N/m holds 5 N up to 5 mm
-        let stick = m.response(0, DVec3::new(0.004, 0.0, 0.001), n, 10.0, 1000.0, (0.5, 0.4));
+        let stick = m.response(
+            0,
+            DVec3::new(0.004, 0.0, 0.001),
+            n,
+            10.0,
+            1000.0,
+            (0.5, 0.4),
+        );
         assert!(!stick.slipping);
         assert!((stick.force - DVec3::new(-4.0, 0.0, 0.0)).length() < 1e-12);
-        let held = m.response(0, DVec3::new(0.0, 0.00499, 0.0), n, 10.0, 1000.0, (0.5, 0.4));
+        let held = m.response(
+            0,
+            DVec3::new(0.0, 0.00499, 0.0),
+            n,
+            10.0,
+            1000.0,
+            (0.5, 0.4),
+        );
         assert!(!held.slipping && (held.force.length() - 4.99).abs() < 1e-9);
-        let slip = m.response(0, DVec3::new(0.0, 0.00501, 0.0), n, 10.0, 1000.0, (0.5, 0.4));
+        let slip = m.response(
+            0,
+            DVec3::new(0.0, 0.00501, 0.0),
+            n,
+            10.0,
+            1000.0,
+            (0.5, 0.4),
+        );
         assert!(slip.slipping);
         assert!((slip.force - DVec3::new(0.0, -4.0, 0.0)).length() < 1e-12);
     }

@@ -307,7 +307,10 @@ impl NewtonSystem {
                 if with_friction && !self.prescribed[i] {
                     let p = &model.environment.parts[part];
                     let mu = (p.friction_static, p.friction_sliding);
-                    e += state.friction.response(i, state.x[i], n, k * depth, k, mu).energy;
+                    e += state
+                        .friction
+                        .response(i, state.x[i], n, k * depth, k, mu)
+                        .energy;
                 }
             }
         }

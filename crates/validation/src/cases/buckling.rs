@@ -109,7 +109,7 @@ pub fn run() -> Vec<Check> {
             "clamped-free P_cr N",
             p,
             cf,
-            0.01,
+            0.001,
         )),
         Err(e) => out.push(Check::failed("buckling", "clamped-free", &e)),
     }
@@ -120,7 +120,7 @@ pub fn run() -> Vec<Check> {
             "clamped-clamped P_cr N",
             p,
             cc,
-            0.01,
+            0.001,
         )),
         Err(e) => out.push(Check::failed("buckling", "clamped-clamped", &e)),
     }

@@ -1,9 +1,10 @@
 //! `convergence`: the discretisation error of the tip-load cantilever (λ = PL²/EI = 2)
-//! falls at second order in the element count, as expected of a linear co-rotational
-//! Euler–Bernoulli element. The error is taken against the independent shooting solution
+//! falls at second order or faster in the element count. (The linear co-rotational
+//! element converged at second order; with the shallow-arch coupling of the local element
+//! the measured slope is about −3.8 over N = 4 … 32.) The error is taken against the independent shooting solution
 //! of the same extensible rod (same EA, EI), so the extensibility of the hose does not
 //! pollute the measured rate; the slope of log(error) over log(N) for N = 4, 8, 16, 32 must
-//! lie within 10 % of −2.
+//! be −1.8 or steeper (second order, less 10 %).
 
 use crate::cases::tip_load::tip_deflection;
 use crate::harness::hose1;
@@ -49,7 +50,11 @@ pub fn run() -> Vec<Check> {
     let mut points = Vec::new();
     for n in COUNTS {
         match tip_deflection(n, LAMBDA) {
-            Ok((w, _)) => points.push(((n as f64).ln(), ((w - reference).abs() / reference).ln())),
+            Ok((w, _)) => {
+                let error = (w - reference).abs() / reference;
+                eprintln!("convergence: N = {n}: relative tip error {error:.3e}");
+                points.push(((n as f64).ln(), error.ln()))
+            }
             Err(e) => return vec![Check::failed("convergence", &format!("N={n}"), &e)],
         }
     }
@@ -61,11 +66,13 @@ pub fn run() -> Vec<Check> {
         / points.iter().map(|(x, _)| (x - mx).powi(2)).sum::<f64>();
     let finest = points.last().map(|p| p.1.exp()).unwrap_or(f64::NAN);
     vec![
-        Check::relative(
+        // the error is how far the slope falls short of −2, relative to 2
+        Check::with_error(
             "convergence",
-            "log-log slope of tip error vs N (lambda=2)",
+            "log-log slope of tip error vs N (lambda=2), at most -2",
             slope,
             -2.0,
+            (slope + 2.0).max(0.0) / 2.0,
             0.1,
         ),
         Check::with_error(

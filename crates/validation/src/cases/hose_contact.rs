@@ -4,11 +4,11 @@
 //! exactly the force the contact passes on (static balance, 1 %), and the capsules
 //! interpenetrate by less than 2 % of the radius.
 
-use crate::harness::{hose1, settle_to};
+use crate::harness::{dead_load, hose1, settle_to};
 use crate::Check;
 use glam::DVec3;
 use pliant_core::contact::hose_hose::closest_segment_segment;
-use pliant_core::loads::{DeadLoad, Fix, LoadCase};
+use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::{HoseSpec, Model, SimSettings, State, WorldSpec};
 
 const N: usize = 20;
@@ -61,12 +61,9 @@ pub fn run() -> Vec<Check> {
     }
     let f = 2.0;
     let mid_upper = N + 1 + N / 2;
-    state.loads.add(LoadCase::DeadLoad(DeadLoad {
-        node: mid_upper,
-        force: DVec3::new(0.0, 0.0, -f),
-        moment: DVec3::ZERO,
-        ramp: None,
-    }));
+    state
+        .loads
+        .add(dead_load(mid_upper, DVec3::new(0.0, 0.0, -f), DVec3::ZERO));
     if let Err(e) = settle_to(&model, &mut state, f, 0.5, 1e-7) {
         return vec![Check::failed("hose_contact", "relaxation", &e)];
     }

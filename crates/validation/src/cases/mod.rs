@@ -7,10 +7,12 @@ mod convergence;
 mod energy;
 mod fasteners;
 mod friction;
+mod helix;
 mod hose_contact;
 mod invariance;
 mod postbuckling;
 mod rollup;
+mod scale;
 mod sections;
 mod solvers;
 mod stiffened;
@@ -23,6 +25,7 @@ use crate::CaseFn;
 /// All cases in report order.
 pub const ALL: &[(&str, CaseFn)] = &[
     ("rollup", rollup::run),
+    ("helix", helix::run),
     ("tip_load", tip_load::run),
     ("buckling", buckling::run),
     ("postbuckling", postbuckling::run),
@@ -31,6 +34,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("invariance", invariance::run),
     ("energy", energy::run),
     ("convergence", convergence::run),
+    ("scale", scale::run),
     ("contact_rest", contact::run_rest),
     ("contact_incline", contact::run_incline),
     ("friction_newton", friction::run),

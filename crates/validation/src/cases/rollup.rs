@@ -54,7 +54,7 @@ pub fn run() -> Vec<Check> {
             d.length(),
             0.0,
             len,
-            0.005,
+            0.001,
         )),
         Err(e) => out.push(Check::failed("rollup", "full circle", &e)),
     }
@@ -65,7 +65,7 @@ pub fn run() -> Vec<Check> {
                 "tip w/L at M=pi*EI/L",
                 d.y / len,
                 2.0 / PI,
-                0.005,
+                0.001,
             ));
             out.push(Check::scaled(
                 "rollup",
@@ -73,7 +73,7 @@ pub fn run() -> Vec<Check> {
                 d.x / len,
                 0.0,
                 1.0,
-                0.005,
+                0.001,
             ));
         }
         Err(e) => out.push(Check::failed("rollup", "half circle", &e)),

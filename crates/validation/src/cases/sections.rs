@@ -10,11 +10,10 @@
 //!   under a small tip load by δ = P[(L³ − (L−a)³)/3EI_a + (L−a)³/3EI_b] (integrating
 //!   M(s)(L−s)/EI(s)).
 
-use crate::harness::{clamp, settle_to};
+use crate::harness::{clamp, dead_load, settle_to};
 use crate::reference_bridge::{solver_for, to_glam, to_na};
 use crate::Check;
 use glam::DVec3;
-use pliant_core::loads::{DeadLoad, LoadCase};
 use pliant_core::{Model, State};
 use pliant_reference::EndCondition;
 
@@ -62,8 +61,8 @@ normal_hint = [0, 1, 0]
 {spans}
 "#
     );
-    let scene = pliant_scene::load_scene_str(&text, "sections validation")
-        .map_err(|e| e.to_string())?;
+    let scene =
+        pliant_scene::load_scene_str(&text, "sections validation").map_err(|e| e.to_string())?;
     Model::build(&scene.world).map_err(|e| e.to_string())
 }
 
@@ -85,12 +84,11 @@ fn tip_under(model: &Model, force: DVec3, steps: usize, rel: f64) -> Result<DVec
         if let Some(old) = id {
             state.loads.remove(old);
         }
-        id = Some(state.loads.add(LoadCase::DeadLoad(DeadLoad {
-            node: tip,
-            force: force * (k as f64 / steps as f64),
-            moment: DVec3::ZERO,
-            ramp: None,
-        })));
+        id = Some(state.loads.add(dead_load(
+            tip,
+            force * (k as f64 / steps as f64),
+            DVec3::ZERO,
+        )));
         settle_to(model, &mut state, force.length(), L, rel)?;
     }
     Ok(state.x[tip])
@@ -155,7 +153,8 @@ fn stepped(out: &mut Vec<Check>) -> Result<(), String> {
     let p = LINEAR_LAMBDA * EI_OUTER / (L * L);
     let tip = tip_under(&model, DVec3::Y * p, 1, 1e-6)?;
     let rest = L - STEP_AT;
-    let exact = p * ((L.powi(3) - rest.powi(3)) / (3.0 * EI_INNER) + rest.powi(3) / (3.0 * EI_OUTER));
+    let exact =
+        p * ((L.powi(3) - rest.powi(3)) / (3.0 * EI_INNER) + rest.powi(3) / (3.0 * EI_OUTER));
     out.push(Check::relative(
         "sections",
         "stepped cantilever tip deflection / exact",
@@ -169,7 +168,10 @@ fn stepped(out: &mut Vec<Check>) -> Result<(), String> {
 pub fn run() -> Vec<Check> {
     let mut out = Vec::new();
     for (name, part) in [
-        ("ribbon, small loads", linear_ribbon as fn(&mut Vec<Check>) -> Result<(), String>),
+        (
+            "ribbon, small loads",
+            linear_ribbon as fn(&mut Vec<Check>) -> Result<(), String>,
+        ),
         ("ribbon, oblique load", oblique_ribbon),
         ("stepped cantilever", stepped),
     ] {

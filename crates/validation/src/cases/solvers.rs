@@ -6,6 +6,8 @@
 //! each quantity of the implicit and static runs is also checked against its exact value
 //! with the case's own tolerance.
 //!
+//! `helix` runs under the static and implicit solvers itself (a space-fixed end moment
+//! is not conservative, so explicit dynamic relaxation does not come to rest).
 //! Cases without a rest state (energy drift, wave convergence, sliding on the incline,
 //! tunnelling at speed, stub and clip timelines, the thesis runs) are dynamic by nature
 //! and are run by the explicit solver only.

@@ -6,10 +6,9 @@
 //! w = w(a) + b·θ(a). The stiffened span must also stay undeformed (its node distances
 //! unchanged) and move the model's tip within 0.5 % of w.
 
-use crate::harness::{build, clamp, hose1, settle_to, static_settings, straight_hose};
+use crate::harness::{build, clamp, dead_load, hose1, settle_to, static_settings, straight_hose};
 use crate::Check;
 use glam::DVec3;
-use pliant_core::loads::{DeadLoad, LoadCase};
 use pliant_core::stiffened::StiffenedSpan;
 use pliant_core::State;
 
@@ -42,12 +41,9 @@ pub fn run() -> Vec<Check> {
     let exact = w_a + b * theta_a;
     let mut state = State::at_rest(&model);
     clamp(&mut state, 0);
-    state.loads.add(LoadCase::DeadLoad(DeadLoad {
-        node: ELEMENTS,
-        force: DVec3::new(0.0, -p, 0.0),
-        moment: DVec3::ZERO,
-        ramp: None,
-    }));
+    state
+        .loads
+        .add(dead_load(ELEMENTS, DVec3::new(0.0, -p, 0.0), DVec3::ZERO));
     if let Err(e) = settle_to(&model, &mut state, p, len, 1e-6) {
         return vec![Check::failed("stiffened", "relaxation", &e)];
     }

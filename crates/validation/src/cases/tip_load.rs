@@ -2,10 +2,9 @@
 //! elastica). Exact tip deflections for λ = PL²/EI from the elliptic-integral solution
 //! (Bisshopp & Drucker 1945; Mattiasson 1981, table 1).
 
-use crate::harness::{build, clamp, hose1, settle_to, static_settings, straight_hose};
+use crate::harness::{build, clamp, dead_load, hose1, settle_to, static_settings, straight_hose};
 use crate::Check;
 use glam::DVec3;
-use pliant_core::loads::{DeadLoad, LoadCase};
 use pliant_core::State;
 
 /// (λ, w/L, −u/L), Mattiasson 1981.
@@ -17,7 +16,7 @@ pub const EXACT: [(f64, f64, f64); 4] = [
 ];
 
 const ELEMENTS: usize = 40;
-const TOLERANCE: f64 = 0.005;
+const TOLERANCE: f64 = 0.001;
 
 /// Tip position (w/L, −u/L) of an `n`-element cantilever of length 1 m under λ.
 pub fn tip_deflection(n: usize, lambda: f64) -> Result<(f64, f64), String> {
@@ -38,12 +37,11 @@ pub fn tip_deflection(n: usize, lambda: f64) -> Result<(f64, f64), String> {
             state.loads.remove(old);
         }
         let p = p_full * k as f64 / 4.0;
-        id = Some(state.loads.add(LoadCase::DeadLoad(DeadLoad {
-            node: n,
-            force: DVec3::new(0.0, -p, 0.0),
-            moment: DVec3::ZERO,
-            ramp: None,
-        })));
+        id = Some(
+            state
+                .loads
+                .add(dead_load(n, DVec3::new(0.0, -p, 0.0), DVec3::ZERO)),
+        );
         settle_to(&model, &mut state, p_full, len, 1e-9)?;
     }
     let tip = state.x[n];
