@@ -183,7 +183,7 @@ export class Panel {
           `Force ${fmt(f)} N (${h.force_kind ?? '–'}) / limit ${fmt(h.force_limit)} N`),
         bar(h.force_ratio),
         el('div', { class: 'torque', 'data-value': t.toFixed(4) },
-          `Torque ${fmt(t, 2)} N·m / limit ${fmt(h.torque_limit, 2)} N·m`),
+          `Torque ${fmt(t, 2)} N·m; worst ${h.torque_kind ?? 'moment'} / limit ${fmt(h.torque_limit, 2)} N·m (guidance)`),
         bar(h.torque_ratio),
       );
       rows.push(row);

@@ -38,6 +38,7 @@ pub struct RunResult {
     diverged: Option<String>,
     feasible: Option<bool>,
     reasons: Vec<String>,
+    warnings: Vec<String>,
     word: &'static str,
     uncertain: bool,
     data: Collector,
@@ -122,6 +123,7 @@ pub fn run_timeline(
         word: v.word(),
         uncertain: v.uncertain,
         reasons: v.reasons,
+        warnings: v.warnings,
         data,
     };
     match divergence {
@@ -155,6 +157,14 @@ impl RunResult {
     #[getter]
     fn reasons(&self) -> Vec<String> {
         self.reasons.clone()
+    }
+
+    /// What does not decide feasibility but deserves a look: a hand's twist and bending
+    /// moment above their guide or limit values (dissertation 3.3.3), unless the profile
+    /// has ``moments_decide=true`` (the lines under ``warnings`` in ``pliant run``'s output).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.warnings.clone()
     }
 
     /// Whether every action ran (False after a divergence).

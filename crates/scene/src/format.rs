@@ -105,12 +105,15 @@ pub struct ErgonomicsSection {
     pub push: Option<String>,
     /// Pull row, overriding `posture`: `standing_lever`, `crouching_lever` or `handle`.
     pub pull: Option<String>,
-    /// Torque grip: `screwdriver` (torsion) or `t_handle` (bending). Default `t_handle`.
-    pub torque: Option<String>,
     /// `women` or `men`. Default `women` (the lower limits).
     pub population: Option<String>,
     /// `continuous` (held over a minute) or `occasional`. Default `occasional`.
     pub duty: Option<String>,
+    /// Whether the hand's twist (about the hose axis: screwdriver row of tables 3.10 /
+    /// 3.11) and bending moment (across it: T-handle row) count towards feasibility.
+    /// Default `false`: the dissertation (section 3.3.3) calls them "never reasons for an
+    /// installation to fail"; they are reported as warnings.
+    pub moments_decide: Option<bool>,
 }
 
 /// Which end of a hose: its first node or its last.

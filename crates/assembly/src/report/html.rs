@@ -134,23 +134,28 @@ pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String 
     for r in &v.reasons {
         let _ = write!(s, "<li>{}</li>", escape(r));
     }
+    s.push_str("</ul>");
+    if !v.warnings.is_empty() {
+        s.push_str("<h2>Warnings</h2><p>These do not decide feasibility.</p><ul>");
+        for w in &v.warnings {
+            let _ = write!(s, "<li>{}</li>", escape(w));
+        }
+        s.push_str("</ul>");
+    }
     let _ = write!(
         s,
-        "</ul><p>Ergonomic profile: {}</p>",
+        "<p>Ergonomic profile: {}</p>",
         escape(report.ergonomics)
     );
     let run = report.run;
     if !run.hand_peaks.is_empty() {
-        s.push_str("<h2>Hands</h2><table><tr><th>hand</th><th>peak |F| [N]</th><th>at [s]</th><th>peak |T| [N·m]</th><th>at [s]</th><th>worst</th><th>of limit</th></tr>");
+        s.push_str("<h2>Hands</h2><table><tr><th>hand</th><th>peak |F| [N]</th><th>at [s]</th><th>peak |T| [N·m]</th><th>at [s]</th><th>peak twist [N·m]</th><th>peak bending [N·m]</th><th>worst deciding</th><th>of limit</th></tr>");
         for h in &run.hand_peaks {
-            let kind = h
-                .worst_kind
-                .map(|k| format!("{k:?}").to_lowercase())
-                .unwrap_or_default();
+            let kind = h.worst_kind.map(|k| k.name()).unwrap_or_default();
             let _ = write!(
                 s,
-                "<tr><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.3}</td><td>{:.2}</td><td>{kind}</td><td>{:.0} %</td></tr>",
-                h.hand, h.max_force, h.max_force_time, h.max_torque, h.max_torque_time, 100.0 * h.worst_ratio
+                "<tr><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.3}</td><td>{:.2}</td><td>{:.3}</td><td>{:.3}</td><td>{kind}</td><td>{:.0} %</td></tr>",
+                h.hand, h.max_force, h.max_force_time, h.max_torque, h.max_torque_time, h.twist.magnitude, h.bending.magnitude, 100.0 * h.worst_ratio
             );
         }
         s.push_str("</table>");

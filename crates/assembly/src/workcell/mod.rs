@@ -24,7 +24,8 @@ pub use input::{HandNumber, Input, Refusal, StampedInput};
 pub use observer::{NoObserver, Observer};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
 pub use tally::{
-    limit_of, ContactEpisode, HandPeak, HandRecord, NodePeak, Peak, RunSummary, SettleOutcome,
+    limits_of, ContactEpisode, HandPeak, HandRecord, MomentNote, NodePeak, Peak, RunSummary,
+    SettleOutcome,
     Tally,
 };
 pub use verdict::{Stage, Verdict};
@@ -355,6 +356,7 @@ impl Workcell {
             max_contact_force: t.max_contact_force,
             max_contact_force_time: t.max_contact_force_time,
             ergonomics: self.profile.to_string(),
+            moments_decide: self.profile.moments_decide,
             fasteners: self.fasteners.reports(),
             fastener_series: t.fastener_series.clone(),
             solver: t.solver.clone(),
