@@ -89,6 +89,7 @@ pub fn run_timeline(
         clips,
         initial: loaded.initial_actions(),
         profile,
+        checks: loaded.check_settings(),
     };
     let options = WorkcellOptions {
         solver,
@@ -237,6 +238,21 @@ impl RunResult {
     #[getter]
     fn fasteners<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.run.fasteners)
+    }
+
+    /// Installation-check violations (SPEC V3; dicts: ``check`` — bend_radius, twist,
+    /// tension_at_rest, straight_behind_stub —, ``hose_name``, ``arc_length`` [m],
+    /// ``time`` [s], ``value`` and ``limit`` in SI units, ``first_time``, ``last_time``).
+    #[getter]
+    fn violations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.run.checks.violations)
+    }
+
+    /// Per hose, curvature [1/m] and twist [rad/m] along it at its worst instants, with
+    /// their limits (dicts; the report's plots).
+    #[getter]
+    fn check_profiles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.run.checks.profiles)
     }
 
     /// Rigid parts the hoses touched and when (dicts).

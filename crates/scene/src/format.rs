@@ -47,6 +47,9 @@ pub struct SceneFile {
     /// Which rows and columns of the ergonomic tables judge hand loads (SPEC I3).
     /// Default: standing, women, occasional duty.
     pub ergonomics: Option<ErgonomicsSection>,
+    /// Installation checks (SPEC V3): which run and their limits. Absent: all on, with
+    /// the defaults.
+    pub checks: Option<ChecksSection>,
     /// Scripted actions, executed in order.
     #[serde(default)]
     pub timeline: Vec<ActionEntry>,
@@ -114,6 +117,34 @@ pub struct ErgonomicsSection {
     /// Default `false`: the dissertation (section 3.3.3) calls them "never reasons for an
     /// installation to fail"; they are reported as warnings.
     pub moments_decide: Option<bool>,
+}
+
+/// `[checks]`: the installation checks (SPEC V3; cf. DIN 20066) — which run, their
+/// limits, and whether a violation makes the study infeasible. Every key is optional.
+#[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ChecksSection {
+    /// Bend radius of the centre line ≥ the material's minimum, everywhere and at every
+    /// checked instant. Default true.
+    pub bend_radius: Option<bool>,
+    /// Twist relative to the routed hose ≤ `twist_limit_deg_per_m`. Default true.
+    pub twist: Option<bool>,
+    /// No axial tension at rest after assembly: axial strain at the end ≤
+    /// `rest_strain_limit`. Default true.
+    pub tension_at_rest: Option<bool>,
+    /// A straight length behind each stub at the end. Default true.
+    pub straight_behind_stub: Option<bool>,
+    /// Whether a violation makes the verdict NOT FEASIBLE (else it is a warning).
+    /// Default true.
+    pub decide: Option<bool>,
+    /// Twist limit (°/m), > 0. Default 10.
+    pub twist_limit_deg_per_m: Option<f64>,
+    /// Largest axial strain at rest, > 0. Default 0.005.
+    pub rest_strain_limit: Option<f64>,
+    /// Straight length behind a stub in outer diameters, > 0. Default 1.5.
+    pub straight_length_d_outer: Option<f64>,
+    /// Bend radius that counts as straight, in minimum bend radii, > 0. Default 10.
+    pub straight_radius_factor: Option<f64>,
 }
 
 /// Which end of a hose: its first node or its last.
@@ -190,6 +221,10 @@ pub struct MaterialEntry {
     pub poisson: f64,
     /// Density ρ (kg/m³), > 0.
     pub density_kg_m3: f64,
+    /// Smallest bend radius of the centre line (mm), > 0, for the bend-radius check.
+    /// Default: 6 × d_inner + d_outer / 2 of the hose's section (the rule for
+    /// mandrel-built rubber hoses, 6 × d_inner to the inside of the bend; an assumption).
+    pub min_bend_radius_mm: Option<f64>,
 }
 
 /// `[[hoses]]`: one hose.

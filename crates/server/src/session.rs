@@ -507,8 +507,16 @@ impl Sim {
                 report,
             })
             .collect::<Vec<_>>();
+        let summary = self.cell.summary();
+        let checks = summary
+            .checks
+            .violations
+            .iter()
+            .filter(|v| !v.check.at_end_only())
+            .cloned()
+            .collect();
         let verdict = Verdict::judge(
-            &self.cell.summary(),
+            &summary,
             self.diverged
                 .as_ref()
                 .map(|d| format!("the simulation diverged and was reset: {d}"))
@@ -526,6 +534,7 @@ impl Sim {
             fasteners,
             ergonomics: profile,
             verdict,
+            checks,
             notice: self.notice.clone(),
             ..Default::default()
         }

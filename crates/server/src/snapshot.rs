@@ -186,6 +186,9 @@ pub struct Snapshot {
     pub ergonomics: pliant_assembly::ergonomics::ErgonomicProfile,
     /// Feasible so far or not, and why (SPEC I5).
     pub verdict: pliant_assembly::Verdict,
+    /// Violations of the running installation checks since the last reset (SPEC V3:
+    /// bend radius, twist), each with hose, arc length, time, value and limit.
+    pub checks: Vec<pliant_assembly::checks::Violation>,
     /// Something the viewer should tell the user (e.g. the simulation diverged and was
     /// reset).
     #[serde(skip_serializing_if = "Option::is_none")]

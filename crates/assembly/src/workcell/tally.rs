@@ -180,13 +180,17 @@ pub struct RunSummary {
     pub solver_warnings: Vec<String>,
     /// The instabilities met, in words, hoses named.
     pub instability_notes: Vec<String>,
+    /// The installation checks and their violations (SPEC V3).
+    pub checks: crate::checks::ChecksSummary,
 }
 
 impl RunSummary {
-    /// Whether every hand stayed within its limit values and every fastener was fitted.
+    /// Whether every hand stayed within its limit values, every fastener was fitted
+    /// and — when they decide — no installation check was violated.
     pub fn feasible(&self) -> bool {
         self.hand_peaks.iter().all(|h| h.worst_ratio <= 1.0)
             && self.fasteners.iter().all(|f| f.assembled)
+            && (!self.checks.decide || self.checks.violations.is_empty())
     }
 }
 

@@ -127,6 +127,20 @@ impl Verdict {
                 )),
             }
         }
+        // Installation checks (SPEC V3): the running ones always, the assembled state's
+        // (tension at rest, straight length behind stubs) at the end only.
+        let mut violated = false;
+        for v in &run.checks.violations {
+            if stage == Stage::Running && v.check.at_end_only() {
+                continue;
+            }
+            if run.checks.decide {
+                violated = true;
+                reasons.push(v.describe());
+            } else {
+                warnings.push(v.describe());
+            }
+        }
         if stage == Stage::Final {
             for c in &run.contacts {
                 reasons.push(format!(
@@ -139,7 +153,7 @@ impl Verdict {
         reasons.splice(0..0, run.solver_warnings.iter().cloned());
         reasons.extend(run.instability_notes.iter().cloned());
         let judged = !run.hand_peaks.is_empty();
-        let feasible = if diverged.is_some() || exceeded || (judged && unfitted) {
+        let feasible = if diverged.is_some() || exceeded || violated || (judged && unfitted) {
             Some(false)
         } else if judged {
             Some(true)
@@ -173,8 +187,13 @@ impl Verdict {
                     )
                 })
                 .unwrap_or_default();
+            let checks = if run.checks.enabled.is_empty() {
+                String::new()
+            } else {
+                format!(", and the installation checks ({}) passed", run.checks.enabled.join(", "))
+            };
             reasons.push(match stage {
-                Stage::Final => "every hand load stayed within its ergonomic limit value, and every stub and clip was fitted".to_string(),
+                Stage::Final => format!("every hand load stayed within its ergonomic limit value, every stub and clip was fitted{checks}"),
                 Stage::Running => format!("every hand load so far is within its ergonomic limit value{detail}"),
             });
         }
