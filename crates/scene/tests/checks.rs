@@ -186,3 +186,23 @@ fn bad_check_limits_are_errors_naming_the_field() {
         assert!(err.contains(field), "`{err}` lacks `{field}`");
     }
 }
+
+/// Issue 11 item 8: the built-in demo tells a true story — the hose rests on a part, the
+/// hand's bending moment is a warning only, and what makes it infeasible is the push into
+/// the engine-corner clip and the installation checks.
+#[test]
+fn the_engine_bay_demo_shows_contact_and_follows_the_new_rules() {
+    let scene = pliant_scene::demo_scene().unwrap();
+    let (_, run) = scene.run_with(None).unwrap();
+    assert!(run.contacts.iter().any(|c| c.part == "heat shield"), "{:?}", run.contacts);
+    let verdict = pliant_assembly::Verdict::judge(&run, None, pliant_assembly::Stage::Final);
+    assert_eq!(verdict.feasible, Some(false));
+    assert!(verdict.reasons.iter().any(|r| r.starts_with("hand 0: push of")), "{:?}", verdict.reasons);
+    assert!(verdict.reasons.iter().all(|r| !r.contains("bending moment")));
+    assert!(verdict.warnings.iter().any(|w| w.contains("bending moment")), "{:?}", verdict.warnings);
+    assert!(run
+        .checks
+        .violations
+        .iter()
+        .any(|v| v.check == CheckKind::BendRadius && v.hose_name == "lower"));
+}

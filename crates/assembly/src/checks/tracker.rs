@@ -33,6 +33,12 @@ pub struct HoseProfile {
     pub twist_limit: f64,
     /// Twist rate relative to the routed hose per beam [rad/m] at that instant.
     pub twist: Vec<f64>,
+    /// This hose's first global node and node count.
+    pub first_node: usize,
+    pub node_count: usize,
+    /// Every node of the scene (all hoses) at the instant of this hose's smallest bend
+    /// radius [m] (the report's picture of the scene at the worst instant).
+    pub scene_at_worst: Vec<[f64; 3]>,
 }
 
 /// The checks' account of a study.
@@ -80,6 +86,9 @@ impl InstallationChecks {
                 min_bend_radius: f64::INFINITY,
                 allowed_bend_radius: limits.map_or(0.0, |l| l.min_bend_radius),
                 twist_limit: settings.twist_limit,
+                first_node: info.first_node,
+                node_count: info.node_count,
+                scene_at_worst: vec![[0.0; 3]; model.node_count()],
                 ..Default::default()
             });
         }
@@ -136,6 +145,9 @@ impl InstallationChecks {
                 p.min_bend_radius = radius;
                 p.min_bend_radius_time = time;
                 p.curvature.copy_from_slice(&self.kappa[range.clone()]);
+                for (to, x) in p.scene_at_worst.iter_mut().zip(&state.x) {
+                    *to = x.to_array();
+                }
             }
             if tmax > p.max_twist {
                 p.max_twist = tmax;

@@ -98,6 +98,39 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary) {
         }
         s.push_str("</table>");
     }
+    let hoses: Vec<(usize, usize)> = checks
+        .profiles
+        .iter()
+        .map(|p| (p.first_node, p.node_count))
+        .collect();
+    for v in checks
+        .violations
+        .iter()
+        .filter(|v| v.check == crate::checks::CheckKind::BendRadius)
+    {
+        let Some(p) = checks.profiles.get(v.hose) else { continue };
+        // the worst beam's midpoint at the worst instant
+        let Some(k) = p.arc_length.iter().position(|s| *s == v.arc_length) else { continue };
+        let (a, b) = (p.first_node + k, p.first_node + k + 1);
+        let (Some(xa), Some(xb)) = (p.scene_at_worst.get(a), p.scene_at_worst.get(b)) else {
+            continue;
+        };
+        let mark = [0, 1, 2].map(|i| 0.5 * (xa[i] + xb[i]));
+        s.push_str(&super::scene_picture::scene_picture(
+            &format!(
+                "The scene at t = {:.2} s, when hose '{}' was bent tightest ({:.0} mm at s = {:.0} mm, circled; minimum {:.0} mm):",
+                v.time,
+                v.hose_name,
+                1e3 * v.value,
+                1e3 * v.arc_length,
+                1e3 * v.limit
+            ),
+            &p.scene_at_worst,
+            &hoses,
+            v.hose,
+            mark,
+        ));
+    }
     for p in &checks.profiles {
         if p.arc_length.len() < 2 {
             continue;

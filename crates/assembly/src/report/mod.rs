@@ -5,6 +5,7 @@
 
 pub mod html;
 mod profile_plot;
+mod scene_picture;
 pub mod recorder;
 pub mod summary;
 mod vtk;
