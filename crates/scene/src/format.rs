@@ -180,6 +180,25 @@ pub struct StubEntry {
     pub hose: Option<String>,
     /// Which end of `hose` goes onto the stub: `"start"` or `"end"`. Requires `hose`.
     pub end: Option<HoseEndName>,
+    /// A bead (ring) on the stub that makes pulling off harder than pushing on (SPEC V4).
+    pub bead: Option<BeadEntry>,
+}
+
+/// `bead` of a stub: a ring of `height` on the stub starting `at` from the mouth, a crest
+/// of `width`, a gentle entry flank and a steep back flank (angles to the stub axis).
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BeadEntry {
+    /// Depth of the start of the entry flank from the mouth (length unit), ≥ 0.
+    pub at: f64,
+    /// Radial height above the stub (length unit), > 0.
+    pub height: f64,
+    /// Width of the crest (length unit), > 0.
+    pub width: f64,
+    /// Angle of the entry flank to the axis (degrees), in (0, 90).
+    pub entry_angle_deg: f64,
+    /// Angle of the back flank to the axis (degrees), in (0, 90).
+    pub back_angle_deg: f64,
 }
 
 /// `[[clips]]`: a clip a hose is snapped into (SPEC L7).
