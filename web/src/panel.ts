@@ -207,6 +207,8 @@ export class Panel {
       const list = el('ul');
       for (const r of v.reasons) list.append(el('li', {}, r));
       for (const r of v.pending) list.append(el('li', { class: 'muted' }, r));
+      // twist and bending at the hand: guidance only (dissertation 3.3.3)
+      for (const r of v.warnings ?? []) list.append(el('li', { class: 'muted warning' }, `warning: ${r}`));
       this.verdict.replaceChildren(head, list);
     }
   }

@@ -69,7 +69,7 @@ export interface ErgonomicProfile {
   population: string;
   duty: string;
 }
-export interface RunningVerdict { feasible: boolean | null; reasons: string[]; pending: string[] }
+export interface RunningVerdict { feasible: boolean | null; reasons: string[]; pending: string[]; warnings?: string[] }
 export interface Snapshot {
   type: 'snapshot';
   time: number;
@@ -82,7 +82,15 @@ export interface Snapshot {
   fasteners: FastenerSnapshot[];
   ergonomics?: ErgonomicProfile;
   verdict?: RunningVerdict;
+  /** Violations of the running installation checks (bend radius, twist), SI units. */
+  checks?: CheckViolation[];
   notice?: string;
+}
+export interface CheckViolation {
+  check: 'bend_radius' | 'twist' | 'tension_at_rest' | 'straight_behind_stub';
+  hose: number; hose_name: string; arc_length: number; time: number;
+  value: number; limit: number; first_time: number; last_time: number; instants: number;
+  at: string | null;
 }
 export interface ErrorMessage { type: 'error'; code: string; message: string }
 /** The answer to `report`: the folder the report was written to and its verdict. */

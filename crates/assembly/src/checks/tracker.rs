@@ -208,7 +208,6 @@ impl InstallationChecks {
                 let length = self.settings.straight_length_factor * limits.d_outer;
                 for stub in stubs.iter().filter(|s| info.nodes().contains(&s.end_node)) {
                     let from_start = stub.end_node == info.first_node;
-                    let total: f64 = profile.arc_length.last().copied().unwrap_or(0.0);
                     let mut worst: Option<(f64, f64)> = None; // (radius, s)
                     let mut s0 = 0.0;
                     for k in 0..info.element_count {
@@ -226,7 +225,6 @@ impl InstallationChecks {
                             worst = Some((radius, profile.arc_length[k_el]));
                         }
                     }
-                    let _ = total;
                     if let Some((radius, s)) = worst {
                         out.push(end_violation(
                             CheckKind::StraightBehindStub,
@@ -269,23 +267,12 @@ fn note(
             }
         }
         None => {
-            *slot = Some(Violation {
-                check,
-                hose,
-                hose_name: info.name.clone(),
-                arc_length,
-                time,
-                value,
-                limit,
-                first_time: time,
-                last_time: time,
-                instants: 1,
-                at: None,
-            })
+            *slot = Some(end_violation(check, hose, info, arc_length, time, value, limit, None))
         }
     }
 }
 
+/// A violation seen at one instant (a first one, or one of the assembled state).
 #[allow(clippy::too_many_arguments)]
 fn end_violation(
     check: CheckKind,
