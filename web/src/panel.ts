@@ -183,7 +183,7 @@ export class Panel {
           `Force ${fmt(f)} N (${h.force_kind ?? '–'}) / limit ${fmt(h.force_limit)} N`),
         bar(h.force_ratio),
         el('div', { class: 'torque', 'data-value': t.toFixed(4) },
-          `Torque ${fmt(t, 2)} N·m / limit ${fmt(h.torque_limit, 2)} N·m`),
+          `Torque ${fmt(t, 2)} N·m; worst ${h.torque_kind ?? 'moment'} / limit ${fmt(h.torque_limit, 2)} N·m (guidance)`),
         bar(h.torque_ratio),
       );
       rows.push(row);
@@ -207,6 +207,8 @@ export class Panel {
       const list = el('ul');
       for (const r of v.reasons) list.append(el('li', {}, r));
       for (const r of v.pending) list.append(el('li', { class: 'muted' }, r));
+      // twist and bending at the hand: guidance only (dissertation 3.3.3)
+      for (const r of v.warnings ?? []) list.append(el('li', { class: 'muted warning' }, `warning: ${r}`));
       this.verdict.replaceChildren(head, list);
     }
   }

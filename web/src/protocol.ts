@@ -33,7 +33,7 @@ export interface SceneData {
 }
 export interface Welcome { type: 'welcome'; version: number; client_id: number; session: SceneData }
 
-export type LoadKind = 'push' | 'pull' | 'torque';
+export type LoadKind = 'push' | 'pull' | 'twist' | 'bending';
 export interface HandSnapshot {
   hand_id: number;
   hose: number;
@@ -48,6 +48,8 @@ export interface HandSnapshot {
   force_kind?: LoadKind | null;
   force_limit?: number | null;
   force_ratio?: number | null;
+  /** The moment with the larger ratio: twist (screwdriver row) or bending (T-handle row). */
+  torque_kind?: LoadKind | null;
   torque_limit?: number | null;
   torque_ratio?: number | null;
 }
@@ -63,11 +65,11 @@ export interface FastenerSnapshot {
 export interface ErgonomicProfile {
   push_posture: string;
   pull_posture: string;
-  torque_grip: string;
+  moments_decide: boolean;
   population: string;
   duty: string;
 }
-export interface RunningVerdict { feasible: boolean | null; reasons: string[]; pending: string[] }
+export interface RunningVerdict { feasible: boolean | null; reasons: string[]; pending: string[]; warnings?: string[] }
 export interface Snapshot {
   type: 'snapshot';
   time: number;
@@ -80,7 +82,15 @@ export interface Snapshot {
   fasteners: FastenerSnapshot[];
   ergonomics?: ErgonomicProfile;
   verdict?: RunningVerdict;
+  /** Violations of the running installation checks (bend radius, twist), SI units. */
+  checks?: CheckViolation[];
   notice?: string;
+}
+export interface CheckViolation {
+  check: 'bend_radius' | 'twist' | 'tension_at_rest' | 'straight_behind_stub';
+  hose: number; hose_name: string; arc_length: number; time: number;
+  value: number; limit: number; first_time: number; last_time: number; instants: number;
+  at: string | null;
 }
 export interface ErrorMessage { type: 'error'; code: string; message: string }
 /** The answer to `report`: the folder the report was written to and its verdict. */
@@ -96,7 +106,7 @@ export type ClientMessage =
   | { type: 'resume' }
   | { type: 'step'; n: number }
   | { type: 'reset' }
-  | { type: 'set_ergonomics'; posture?: string; population?: string; duty?: string; torque?: string }
+  | { type: 'set_ergonomics'; posture?: string; population?: string; duty?: string; moments_decide?: boolean }
   | { type: 'load_scene'; text: string; format?: 'toml' | 'json'; name?: string }
   | { type: 'report' };
 

@@ -248,7 +248,12 @@ fn update_stub(
             // friction opposing the axial motion (regularised Coulomb), and the stub's
             // base stopping the end at the stub's length
             let v = state.v[e].dot(axis);
-            let resist = next.resisting_force(&s.site.fit);
+            let sense = if v >= 0.0 {
+                crate::stub::Sense::On
+            } else {
+                crate::stub::Sense::Off
+            };
+            let resist = next.resisting_force_moving(&s.site.fit, sense);
             force -= axis * resist * (v / FRICTION_SPEED).clamp(-1.0, 1.0);
             let over = stub.axial_coordinate(state.x[e]) - stub.length();
             if over > 0.0 {

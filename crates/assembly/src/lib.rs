@@ -4,6 +4,7 @@
 //! verdict, input logs and their replay, and the timeline runner. It knows no input
 //! device and no scene file format.
 
+pub mod checks;
 pub mod clip;
 pub mod ergonomics;
 pub mod fasteners;

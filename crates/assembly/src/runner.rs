@@ -56,6 +56,7 @@ impl Runner {
                 clips: Vec::new(),
                 initial: Vec::new(),
                 profile: ErgonomicProfile::default(),
+                checks: crate::checks::CheckSettings::none(),
             },
             WorkcellOptions::default(),
         )

@@ -240,18 +240,18 @@ fn profiles_parse_from_strings_and_round_trip() {
     let default = ErgonomicProfile::default();
     assert_eq!(default.push_posture, PushPosture::Standing);
     assert_eq!(default.pull_posture, PullPosture::StandingLever);
-    assert_eq!(default.torque_grip, TorqueGrip::THandle);
+    assert!(!default.moments_decide);
     assert_eq!(default.population, Women);
     assert_eq!(default.duty, Occasional);
     assert_eq!("".parse::<ErgonomicProfile>(), Ok(default));
 
     let p: ErgonomicProfile =
-        "posture=sitting, population=men, duty=continuous, torque=screwdriver"
+        "posture=sitting, population=men, duty=continuous, moments_decide=true"
             .parse()
             .expect("valid profile");
     assert_eq!(p.push_posture, PushPosture::Sitting);
     assert_eq!(p.pull_posture, PullPosture::Handle);
-    assert_eq!(p.torque_grip, TorqueGrip::Screwdriver);
+    assert!(p.moments_decide);
     assert_eq!((p.population, p.duty), (Men, Continuous));
     assert_eq!(p.to_string().parse::<ErgonomicProfile>(), Ok(p));
     assert_eq!(
@@ -266,6 +266,8 @@ fn profiles_parse_from_strings_and_round_trip() {
         ("height=tall", "unknown key `height`"),
         ("push=kneeling", "allowed: standing, crouching, sitting"),
         ("duty=sometimes", "allowed: continuous, occasional"),
+        ("moments_decide=maybe", "must be true or false"),
+        ("torque=screwdriver", "twist is judged against the screwdriver row"),
     ] {
         let err = text.parse::<ErgonomicProfile>().unwrap_err();
         assert!(err.to_string().contains(needle), "`{err}` lacks `{needle}`");
@@ -306,33 +308,64 @@ fn force_along_the_reference_direction_is_push_against_it_pull() {
 }
 
 #[test]
-fn hand_verdict_uses_the_worse_ratio() {
+fn hand_torque_splits_into_twist_on_the_screwdriver_row_and_bending_on_the_t_handle_row() {
     let l = limits();
     let profile: ErgonomicProfile = "population=men,duty=continuous".parse().unwrap();
-    let d = DVec3::X;
-    // Push 16 N of 32 N (0.5); torque 0.9 N·m of the T-handle's 1.2 N·m (0.75).
+    // hose axis at the hand along −z (any length); torque 0.3 N·m about it (twist) and
+    // 0.4 N·m across it (bending); force 30 N pushing along −z plus 40 N across.
+    let d = DVec3::new(0.0, 0.0, -3.0);
     let a = l
         .assess(
             &profile,
-            DVec3::new(16.0, 0.0, 0.0),
-            DVec3::new(0.0, 0.9, 0.0),
+            DVec3::new(40.0, 0.0, -30.0),
+            DVec3::new(0.0, 0.4, 0.3),
             d,
         )
         .unwrap();
+    assert_eq!((a.axial_force, a.lateral_force), (30.0, 40.0));
+    assert_eq!(a.force.kind, LoadKind::Push);
+    assert_eq!(a.force.magnitude, 50.0);
+    assert_eq!(a.twist.kind, LoadKind::Twist);
+    assert!((a.twist.magnitude - 0.3).abs() < 1e-15);
+    // screwdriver, continuous, men: guide 0.02–0.12, limit 0.35 (tables 3.10 / 3.11)
+    assert_eq!((a.twist.guide.hi, a.twist.limit), (0.12, 0.35));
+    assert_eq!(a.bending.kind, LoadKind::Bending);
+    assert!((a.bending.magnitude - 0.4).abs() < 1e-15);
+    // T-handle, continuous, men: guide 0.1–0.6, limit 1.2
+    assert_eq!((a.bending.guide.hi, a.bending.limit), (0.6, 1.2));
+    // The twist is above its guide range (0.86 of the limit), the bending within it.
+    assert!(!a.twist.within_guide() && !a.twist.exceeds_limit());
+    assert!(a.bending.within_guide());
+    assert_eq!(a.worst_moment().kind, LoadKind::Twist);
+}
+
+#[test]
+fn moments_are_guidance_unless_the_profile_makes_them_decide() {
+    let l = limits();
+    let d = DVec3::X;
+    // Push 16 N of 32 N (0.5); bending 2.4 N·m, twice the T-handle's 1.2 N·m
+    // (dissertation 3.3.3: bending and twist never make an installation fail).
+    let (f, t) = (DVec3::new(16.0, 0.0, 0.0), DVec3::new(0.0, 2.4, 0.0));
+    let guide: ErgonomicProfile = "population=men,duty=continuous".parse().unwrap();
+    let a = l.assess(&guide, f, t, d).unwrap();
     assert_eq!(a.force.ratio, 0.5);
-    assert_eq!(a.torque.kind, LoadKind::Torque);
-    assert_eq!(a.torque.limit, 1.2);
-    assert_eq!(a.worst().kind, LoadKind::Torque);
+    assert_eq!(a.bending.ratio, 2.0);
+    assert!(a.bending.exceeds_limit());
+    assert_eq!(a.worst().kind, LoadKind::Push);
     assert!(a.feasible());
-    assert_eq!(a.colour_value(), a.torque.ratio);
-    // Pull 82 N of 41 N: infeasible, red.
+    assert_eq!(a.colour_value(), 0.5);
+
+    let decide: ErgonomicProfile = "population=men,duty=continuous,moments_decide=true"
+        .parse()
+        .unwrap();
+    let a = l.assess(&decide, f, t, d).unwrap();
+    assert_eq!(a.worst().kind, LoadKind::Bending);
+    assert!(!a.feasible());
+    assert_eq!(a.colour_value(), 1.0);
+
+    // Pull 82 N of 41 N: infeasible, red, whatever the moments.
     let a = l
-        .assess(
-            &profile,
-            DVec3::new(-82.0, 0.0, 0.0),
-            DVec3::new(0.0, 0.9, 0.0),
-            d,
-        )
+        .assess(&guide, DVec3::new(-82.0, 0.0, 0.0), DVec3::ZERO, d)
         .unwrap();
     assert_eq!(a.worst().kind, LoadKind::Pull);
     assert!(!a.feasible());
@@ -352,7 +385,10 @@ fn bad_hand_inputs_are_errors() {
     assert!(l
         .classify_force(&p, DVec3::X, DVec3::new(0.0, f64::INFINITY, 0.0))
         .is_err());
-    assert!(l.classify_torque(&p, DVec3::splat(f64::NAN)).is_err());
+    assert!(l
+        .classify_moments(&p, DVec3::splat(f64::NAN), DVec3::X)
+        .is_err());
+    assert!(l.classify_moments(&p, DVec3::X, DVec3::ZERO).is_err());
 }
 
 #[test]

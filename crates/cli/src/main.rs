@@ -39,7 +39,7 @@ enum Command {
         #[arg(long)]
         quiet: bool,
         /// Ergonomic profile hand loads are judged with, e.g.
-        /// "posture=standing, population=men, duty=continuous, torque=t_handle".
+        /// "posture=standing, population=men, duty=continuous, moments_decide=true".
         #[arg(long)]
         ergonomics: Option<String>,
         /// Solver instead of the scene's: explicit (the dissertation's central

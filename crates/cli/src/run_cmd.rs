@@ -116,6 +116,12 @@ pub fn print_outcome(verdict: &Verdict, summary: &Summary, out: &Path) {
     for r in &verdict.reasons {
         println!("  - {r}");
     }
+    if !verdict.warnings.is_empty() {
+        println!("warnings (do not decide feasibility):");
+        for w in &verdict.warnings {
+            println!("  - {w}");
+        }
+    }
     println!("{}", peak_table(&summary.peaks));
     for s in &summary.settles {
         let word = if s.at_rest {

@@ -58,6 +58,7 @@ impl Engine {
             clips,
             initial,
             profile: scene.ergonomics,
+            checks: scene.check_settings(),
         };
         let options = WorkcellOptions {
             solver,

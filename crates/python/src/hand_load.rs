@@ -13,9 +13,12 @@ use pyo3::prelude::*;
 ///
 /// Attributes: ``hand``, ``hose`` (name), ``position`` [m], ``force`` [N], ``torque``
 /// [N·m] about the hand position, ``direction`` (unit push direction: along the held
-/// beam towards the nearer hose end) as numpy arrays; ``kind`` of the worst load
-/// (``"push"``, ``"pull"``, ``"torque"`` or None if not assessed), its ``ratio`` to the
-/// ``limit`` value, and the ``colour`` value min(ratio, 1).
+/// beam towards the nearer hose end) as numpy arrays; the force split into
+/// ``axial_force`` (signed, > 0 push) and ``lateral_force`` [N], the torque into
+/// ``twist`` (about the hose axis) and ``bending`` (across it) [N·m]; ``kind`` of the
+/// worst load that decides feasibility (``"push"``, ``"pull"``; ``"twist"`` or
+/// ``"bending"`` only with ``moments_decide=true``; None if not assessed), its ``ratio``
+/// to the ``limit`` value, and the ``colour`` value min(ratio, 1).
 #[pyclass(module = "pliant", name = "HandLoad", frozen)]
 pub struct HandLoad {
     #[pyo3(get)]
@@ -34,6 +37,14 @@ pub struct HandLoad {
     limit: f64,
     #[pyo3(get)]
     colour: f64,
+    #[pyo3(get)]
+    axial_force: f64,
+    #[pyo3(get)]
+    lateral_force: f64,
+    #[pyo3(get)]
+    twist: f64,
+    #[pyo3(get)]
+    bending: f64,
 }
 
 impl HandLoad {
@@ -51,10 +62,14 @@ impl HandLoad {
             force: load.force,
             torque: load.torque,
             direction: load.direction,
-            kind: worst.map(|w| format!("{:?}", w.kind).to_lowercase()),
+            kind: worst.map(|w| w.kind.name().to_string()),
             ratio: worst.map_or(0.0, |w| w.ratio),
             limit: worst.map_or(0.0, |w| w.limit),
             colour: assessment.map_or(0.0, |a| a.colour_value()),
+            axial_force: assessment.map_or(0.0, |a| a.axial_force),
+            lateral_force: assessment.map_or(0.0, |a| a.lateral_force),
+            twist: assessment.map_or(0.0, |a| a.twist.magnitude),
+            bending: assessment.map_or(0.0, |a| a.bending.magnitude),
         }
     }
 }

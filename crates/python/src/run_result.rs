@@ -38,6 +38,7 @@ pub struct RunResult {
     diverged: Option<String>,
     feasible: Option<bool>,
     reasons: Vec<String>,
+    warnings: Vec<String>,
     word: &'static str,
     uncertain: bool,
     data: Collector,
@@ -57,7 +58,7 @@ pub struct RunResult {
 /// >>> result.feasible
 /// False
 /// >>> result.reasons[0]
-/// 'hand 0: torque of 10.5 at t = 8.92 s exceeds the limit 3.2 (327 % of it)'
+/// 'hand 0: push of 200.1 N at t = 9.00 s exceeds the limit 94.0 N (table 3.7; 213 % of it)'
 /// >>> result.hand_series(0)["force"].shape[1]
 /// 3
 #[pyfunction]
@@ -88,6 +89,7 @@ pub fn run_timeline(
         clips,
         initial: loaded.initial_actions(),
         profile,
+        checks: loaded.check_settings(),
     };
     let options = WorkcellOptions {
         solver,
@@ -122,6 +124,7 @@ pub fn run_timeline(
         word: v.word(),
         uncertain: v.uncertain,
         reasons: v.reasons,
+        warnings: v.warnings,
         data,
     };
     match divergence {
@@ -155,6 +158,14 @@ impl RunResult {
     #[getter]
     fn reasons(&self) -> Vec<String> {
         self.reasons.clone()
+    }
+
+    /// What does not decide feasibility but deserves a look: a hand's twist and bending
+    /// moment above their guide or limit values (dissertation 3.3.3), unless the profile
+    /// has ``moments_decide=true`` (the lines under ``warnings`` in ``pliant run``'s output).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.warnings.clone()
     }
 
     /// Whether every action ran (False after a divergence).
@@ -227,6 +238,21 @@ impl RunResult {
     #[getter]
     fn fasteners<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.run.fasteners)
+    }
+
+    /// Installation-check violations (SPEC V3; dicts: ``check`` — bend_radius, twist,
+    /// tension_at_rest, straight_behind_stub —, ``hose_name``, ``arc_length`` [m],
+    /// ``time`` [s], ``value`` and ``limit`` in SI units, ``first_time``, ``last_time``).
+    #[getter]
+    fn violations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.run.checks.violations)
+    }
+
+    /// Per hose, curvature [1/m] and twist [rad/m] along it at its worst instants, with
+    /// their limits (dicts; the report's plots).
+    #[getter]
+    fn check_profiles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.run.checks.profiles)
     }
 
     /// Rigid parts the hoses touched and when (dicts).

@@ -245,7 +245,7 @@ impl Scene {
     }
 
     /// The ergonomic profile hand loads are judged with, as
-    /// ``push=…,pull=…,torque=…,population=…,duty=…``.
+    /// ``push=…,pull=…,population=…,duty=…,moments_decide=…``.
     #[getter]
     fn ergonomics(&self) -> String {
         self.scene.ergonomics.to_string()

@@ -96,3 +96,15 @@ def test_diverging_timeline_raises_with_the_partial_result(tmp_path):
     assert result.reasons[0].startswith("the simulation stopped early: simulation diverged")
     result.write_report(tmp_path)
     assert json.loads((tmp_path / "report.json").read_text())["diverged"] == str(err.value)
+
+
+def test_installation_checks_are_exposed(demo_result):
+    keys = {"check", "hose_name", "arc_length", "time", "value", "limit", "first_time", "last_time"}
+    for v in demo_result.violations:
+        assert keys <= set(v)
+        assert v["check"] in ("bend_radius", "twist", "tension_at_rest", "straight_behind_stub")
+    profiles = demo_result.check_profiles
+    assert [p["hose_name"] for p in profiles] == ["upper", "lower"]
+    for p in profiles:
+        assert len(p["curvature"]) == len(p["arc_length"]) == len(p["twist"])
+        assert p["allowed_bend_radius"] > 0

@@ -166,10 +166,32 @@ pub fn build_stub(
         friction_sliding,
     )
     .map_err(|e| FieldError::about(format!("stubs[{index}]"), e.to_string()))?;
+    let bead = match &raw.bead {
+        None => None,
+        Some(b) => {
+            let at_b = |k: &str| at(&format!("bead.{k}"));
+            let bead = pliant_assembly::stub::Bead::new(
+                non_negative(&at_b("at"), b.at, u)? * scale,
+                positive(&at_b("height"), b.height, u)? * scale,
+                positive(&at_b("width"), b.width, u)? * scale,
+                positive(&at_b("entry_angle_deg"), b.entry_angle_deg, "°")?.to_radians(),
+                positive(&at_b("back_angle_deg"), b.back_angle_deg, "°")?.to_radians(),
+            )
+            .map_err(|e| FieldError::about(at("bead"), e.to_string()))?;
+            if bead.end() > spec.length() {
+                return Err(FieldError::about(
+                    at("bead"),
+                    "the bead must end within the stub's length",
+                ));
+            }
+            Some(bead)
+        }
+    };
     Ok(SceneStub {
         name: raw.name.clone(),
         spec,
         hose_end,
+        bead,
     })
 }
 

@@ -7,18 +7,19 @@ use crate::format::ErgonomicsSection;
 use pliant_assembly::ergonomics::ErgonomicProfile;
 
 /// Checks `[ergonomics]`: the default profile when absent; `posture` first, then the
-/// per-table overrides `push` and `pull`, then `torque`, `population`, `duty` (the
+/// per-table overrides `push` and `pull`, then `population`, `duty`, `moments_decide` (the
 /// assembly layer's [`ErgonomicProfile::set`] parses each; the error names the field).
 pub fn build_ergonomics(raw: Option<&ErgonomicsSection>) -> Result<ErgonomicProfile, FieldError> {
     let mut profile = ErgonomicProfile::default();
     let Some(raw) = raw else { return Ok(profile) };
+    let moments = raw.moments_decide.map(|b| b.to_string());
     let given = [
         &raw.posture,
         &raw.push,
         &raw.pull,
-        &raw.torque,
         &raw.population,
         &raw.duty,
+        &moments,
     ];
     for (key, value) in ErgonomicProfile::KEYS.iter().zip(given) {
         if let Some(v) = value {

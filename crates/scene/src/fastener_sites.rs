@@ -18,8 +18,13 @@ impl LoadedScene {
             let local = end.node(info.node_count);
             let inner = if end.at_end { local - 1 } else { local + 1 };
             let section = *spec.node_section(local);
-            let fit = PressFit::new(&s.spec, &section, &spec.material)
+            let mut fit = PressFit::new(&s.spec, &section, &spec.material)
                 .map_err(|e| format!("stub '{}': {e}", s.name))?;
+            if let Some(bead) = s.bead {
+                fit = fit
+                    .with_bead(bead)
+                    .map_err(|e| format!("stub '{}': {e}", s.name))?;
+            }
             stubs.push(StubSite {
                 name: s.name.clone(),
                 fit,

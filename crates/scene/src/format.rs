@@ -47,6 +47,9 @@ pub struct SceneFile {
     /// Which rows and columns of the ergonomic tables judge hand loads (SPEC I3).
     /// Default: standing, women, occasional duty.
     pub ergonomics: Option<ErgonomicsSection>,
+    /// Installation checks (SPEC V3): which run and their limits. Absent: all on, with
+    /// the defaults.
+    pub checks: Option<ChecksSection>,
     /// Scripted actions, executed in order.
     #[serde(default)]
     pub timeline: Vec<ActionEntry>,
@@ -105,12 +108,43 @@ pub struct ErgonomicsSection {
     pub push: Option<String>,
     /// Pull row, overriding `posture`: `standing_lever`, `crouching_lever` or `handle`.
     pub pull: Option<String>,
-    /// Torque grip: `screwdriver` (torsion) or `t_handle` (bending). Default `t_handle`.
-    pub torque: Option<String>,
     /// `women` or `men`. Default `women` (the lower limits).
     pub population: Option<String>,
     /// `continuous` (held over a minute) or `occasional`. Default `occasional`.
     pub duty: Option<String>,
+    /// Whether the hand's twist (about the hose axis: screwdriver row of tables 3.10 /
+    /// 3.11) and bending moment (across it: T-handle row) count towards feasibility.
+    /// Default `false`: the dissertation (section 3.3.3) calls them "never reasons for an
+    /// installation to fail"; they are reported as warnings.
+    pub moments_decide: Option<bool>,
+}
+
+/// `[checks]`: the installation checks (SPEC V3; cf. DIN 20066) — which run, their
+/// limits, and whether a violation makes the study infeasible. Every key is optional.
+#[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ChecksSection {
+    /// Bend radius of the centre line ≥ the material's minimum, everywhere and at every
+    /// checked instant. Default true.
+    pub bend_radius: Option<bool>,
+    /// Twist relative to the routed hose ≤ `twist_limit_deg_per_m`. Default true.
+    pub twist: Option<bool>,
+    /// No axial tension at rest after assembly: axial strain at the end ≤
+    /// `rest_strain_limit`. Default true.
+    pub tension_at_rest: Option<bool>,
+    /// A straight length behind each stub at the end. Default true.
+    pub straight_behind_stub: Option<bool>,
+    /// Whether a violation makes the verdict NOT FEASIBLE (else it is a warning).
+    /// Default true.
+    pub decide: Option<bool>,
+    /// Twist limit (°/m), > 0. Default 10.
+    pub twist_limit_deg_per_m: Option<f64>,
+    /// Largest axial strain at rest, > 0. Default 0.005.
+    pub rest_strain_limit: Option<f64>,
+    /// Straight length behind a stub in outer diameters, > 0. Default 1.5.
+    pub straight_length_d_outer: Option<f64>,
+    /// Bend radius that counts as straight, in minimum bend radii, > 0. Default 10.
+    pub straight_radius_factor: Option<f64>,
 }
 
 /// Which end of a hose: its first node or its last.
@@ -146,6 +180,25 @@ pub struct StubEntry {
     pub hose: Option<String>,
     /// Which end of `hose` goes onto the stub: `"start"` or `"end"`. Requires `hose`.
     pub end: Option<HoseEndName>,
+    /// A bead (ring) on the stub that makes pulling off harder than pushing on (SPEC V4).
+    pub bead: Option<BeadEntry>,
+}
+
+/// `bead` of a stub: a ring of `height` on the stub starting `at` from the mouth, a crest
+/// of `width`, a gentle entry flank and a steep back flank (angles to the stub axis).
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BeadEntry {
+    /// Depth of the start of the entry flank from the mouth (length unit), ≥ 0.
+    pub at: f64,
+    /// Radial height above the stub (length unit), > 0.
+    pub height: f64,
+    /// Width of the crest (length unit), > 0.
+    pub width: f64,
+    /// Angle of the entry flank to the axis (degrees), in (0, 90).
+    pub entry_angle_deg: f64,
+    /// Angle of the back flank to the axis (degrees), in (0, 90).
+    pub back_angle_deg: f64,
 }
 
 /// `[[clips]]`: a clip a hose is snapped into (SPEC L7).
@@ -187,6 +240,10 @@ pub struct MaterialEntry {
     pub poisson: f64,
     /// Density ρ (kg/m³), > 0.
     pub density_kg_m3: f64,
+    /// Smallest bend radius of the centre line (mm), > 0, for the bend-radius check.
+    /// Default: 6 × d_inner + d_outer / 2 of the hose's section (the rule for
+    /// mandrel-built rubber hoses, 6 × d_inner to the inside of the bend; an assumption).
+    pub min_bend_radius_mm: Option<f64>,
 }
 
 /// `[[hoses]]`: one hose.

@@ -200,6 +200,10 @@ pub fn build_hose(
         requested_elements: count.requested,
         raised_for_arcs: count.raised_for_arcs,
         element_length: length / count.count as f64,
+        min_bend_radius: resolved
+            .min_bend_radius
+            .unwrap_or_else(|| crate::materials::min_bend_radius_rule(&section)),
+        d_outer: section.d_outer,
     };
     let spec = HoseSpec {
         name: raw.name.clone(),

@@ -11,6 +11,7 @@
 
 mod action_de;
 pub mod centerline;
+pub mod checks;
 pub mod connectors;
 pub mod ergonomics;
 pub mod error;

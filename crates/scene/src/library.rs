@@ -42,6 +42,8 @@ pub struct LibraryEntry {
     pub material: Material,
     /// The hose's own cross-section, SI; the default for hoses of this material.
     pub section: Section,
+    /// Smallest bend radius of the centre line [m] (installation check, SPEC V3).
+    pub min_bend_radius: f64,
     /// Every value with its provenance.
     pub values: Vec<LibraryValue>,
 }
@@ -110,6 +112,7 @@ struct RawEntry {
     e_tension_mpa: RawValue,
     density_kg_m3: RawValue,
     poisson: RawValue,
+    min_bend_radius_mm: RawValue,
 }
 
 impl RawValue {
@@ -145,8 +148,15 @@ impl RawEntry {
             self.e_tension_mpa.build(&name, "e_tension_mpa")?,
             self.density_kg_m3.build(&name, "density_kg_m3")?,
             self.poisson.build(&name, "poisson")?,
+            self.min_bend_radius_mm.build(&name, "min_bend_radius_mm")?,
         ];
-        let [d_i, d_a, e_c, e_t, rho, nu] = [0, 1, 2, 3, 4, 5].map(|i| values[i].value);
+        let [d_i, d_a, e_c, e_t, rho, nu, r_min] =
+            [0, 1, 2, 3, 4, 5, 6].map(|i| values[i].value);
+        if !(r_min > 0.5 * d_a) {
+            return Err(format!(
+                "{name}.min_bend_radius_mm: must exceed the outer radius d_outer / 2"
+            ));
+        }
         if !(d_i >= 0.0 && d_a > d_i && e_c > 0.0 && e_t > 0.0 && rho > 0.0) {
             return Err(format!(
                 "{name}: needs 0 <= d_inner < d_outer and positive moduli and density"
@@ -166,6 +176,7 @@ impl RawEntry {
                 density: rho,
             },
             section: Section::new(d_i * 1e-3, d_a * 1e-3),
+            min_bend_radius: r_min * 1e-3,
             values,
         })
     }
@@ -203,6 +214,8 @@ mod tests {
             assert!(close(e.material.e_tension, e_t * 1e6), "{name} E_t");
             assert_eq!(e.material.e_bending, None);
             assert_eq!(e.material.poisson, 0.49);
+            // the rule 6 d_i + d_a / 2 on the centre line (data/materials.toml)
+            assert!(close(e.min_bend_radius, (6.0 * d_i + 0.5 * d_a) * 1e-3), "{name} r_min");
             let expected_density = if name == "hose1" { 940.0 } else { 1100.0 };
             assert_eq!(e.material.density, expected_density, "{name} density");
         }
@@ -212,11 +225,13 @@ mod tests {
     fn provenance_is_recorded_for_every_value() {
         let lib = Library::builtin().expect("library parses");
         for e in lib.entries() {
-            assert_eq!(e.values.len(), 6);
+            assert_eq!(e.values.len(), 7);
             for v in &e.values {
                 let is_assumption = matches!(v.provenance, Provenance::Assumption(_));
-                let should_be =
-                    v.key == "poisson" || (v.key == "density_kg_m3" && e.name != "hose1");
+                // no datasheet gives these hoses' minimum bend radius: a marked rule
+                let should_be = v.key == "poisson"
+                    || v.key == "min_bend_radius_mm"
+                    || (v.key == "density_kg_m3" && e.name != "hose1");
                 assert_eq!(is_assumption, should_be, "{}.{}", e.name, v.key);
                 if let Provenance::Source(s) = &v.provenance {
                     assert!(s.contains("dissertation"), "{}.{}", e.name, v.key);

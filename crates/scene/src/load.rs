@@ -364,6 +364,7 @@ fn build(
     let (rigid_parts, part_infos) = build_parts(&file.parts, file.length_unit, base_dir)?;
     let (stubs, clips) = build_connectors(&file.stubs, &file.clips, &hoses, file.length_unit)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
+    let checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
     let name = match &file.name {
         Some(n) if !n.trim().is_empty() => n.clone(),
         _ => Path::new(origin)
@@ -385,6 +386,7 @@ fn build(
         stubs,
         clips,
         ergonomics,
+        checks,
         length_unit: file.length_unit,
         source: origin.to_string(),
         text: text.to_string(),

@@ -11,7 +11,8 @@ use std::collections::BTreeMap;
 /// Materials a hose may name: the library's and the scene's own.
 pub struct Materials<'a> {
     library: &'a Library,
-    user: BTreeMap<String, Material>,
+    /// The scene's materials and their minimum bend radius [m] if given.
+    user: BTreeMap<String, (Material, Option<f64>)>,
 }
 
 /// A material looked up by name, with the library's default cross-section if it has one.
@@ -20,6 +21,17 @@ pub struct Resolved {
     pub material: Material,
     /// Default cross-section, SI (library hoses only).
     pub default_section: Option<Section>,
+    /// Minimum bend radius of the centre line [m], where the data gives one (library
+    /// hoses; scene materials with `min_bend_radius_mm`).
+    pub min_bend_radius: Option<f64>,
+}
+
+/// The minimum bend radius of the centre line [m] of a hose of section `s` whose
+/// material gives none: 6 × d_inner to the inside of the bend, the rule for
+/// mandrel-built rubber hoses (BTR hose catalogue; an assumption, see
+/// `data/materials.toml`), i.e. 6 d_inner + d_outer / 2.
+pub fn min_bend_radius_rule(s: &Section) -> f64 {
+    6.0 * s.d_inner + 0.5 * s.d_outer
 }
 
 impl<'a> Materials<'a> {
@@ -46,7 +58,11 @@ impl<'a> Materials<'a> {
                     ),
                 ));
             }
-            user.insert(name.clone(), user_material(&field, entry)?);
+            let r_min = match entry.min_bend_radius_mm {
+                Some(r) => Some(positive(&format!("{field}.min_bend_radius_mm"), r, "mm")? * 1e-3),
+                None => None,
+            };
+            user.insert(name.clone(), (user_material(&field, entry)?, r_min));
         }
         Ok(Self { library, user })
     }
@@ -57,12 +73,14 @@ impl<'a> Materials<'a> {
             return Ok(Resolved {
                 material: entry.material.clone(),
                 default_section: Some(entry.section),
+                min_bend_radius: Some(entry.min_bend_radius),
             });
         }
-        if let Some(material) = self.user.get(name) {
+        if let Some((material, r_min)) = self.user.get(name) {
             return Ok(Resolved {
                 material: material.clone(),
                 default_section: None,
+                min_bend_radius: *r_min,
             });
         }
         let user: Vec<&str> = self.user.keys().map(String::as_str).collect();

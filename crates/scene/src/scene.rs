@@ -37,6 +37,8 @@ pub struct SceneStub {
     pub spec: StubSpec,
     /// The hose end meant to go onto it (named, or the end of the scene's only hose).
     pub hose_end: HoseEnd,
+    /// A bead on it (SPEC V4), SI.
+    pub bead: Option<pliant_assembly::stub::Bead>,
 }
 
 /// A clip of the scene (SPEC L7).
@@ -67,6 +69,11 @@ pub struct HoseDiscretisation {
     pub element_length: f64,
     /// Stiffened spans (first, last node, inclusive) (SPEC M6).
     pub stiffened: Vec<(usize, usize)>,
+    /// Smallest bend radius of the centre line (m): the material's, else the rule
+    /// [`crate::materials::min_bend_radius_rule`] for the hose's first section.
+    pub min_bend_radius: f64,
+    /// Outer diameter of the hose's first section (m).
+    pub d_outer: f64,
 }
 
 /// How one rigid part was built.
@@ -111,6 +118,8 @@ pub struct LoadedScene {
     /// The rows and columns of the ergonomic tables hand loads are judged against
     /// (`[ergonomics]`, else the default profile).
     pub ergonomics: ErgonomicProfile,
+    /// The installation checks and their limits (`[checks]`, SPEC V3).
+    pub checks: pliant_assembly::checks::CheckSettings,
     /// The length unit the file was written in.
     pub length_unit: LengthUnit,
     /// Where the scene came from (a path, or a description such as the built-in demo).

@@ -43,7 +43,13 @@ impl LoadedScene {
             clips,
             initial: self.initial_actions(),
             profile: self.ergonomics,
+            checks: self.check_settings(),
         })
+    }
+
+    /// The scene's installation checks (`[checks]`) with each hose's limits.
+    pub fn check_settings(&self) -> pliant_assembly::checks::CheckSettings {
+        self.checks.clone()
     }
 
     /// A workcell of this scene at rest at t = 0.

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 use pliant_assembly::ergonomics::{
-    Duty, ErgonomicProfile, Population, PullPosture, PushPosture, TorqueGrip,
+    Duty, ErgonomicProfile, Population, PullPosture, PushPosture,
 };
 use pliant_assembly::{Action, MovePath};
 use pliant_scene::{load_scene_file, load_scene_str, HoseEnd, LoadedScene};
@@ -19,7 +19,7 @@ length_unit = "mm"
 
 [ergonomics]
 posture = "crouching"
-torque = "screwdriver"
+moments_decide = true
 population = "men"
 duty = "continuous"
 
@@ -173,7 +173,7 @@ fn ergonomics_map_onto_the_profile() {
         ErgonomicProfile {
             push_posture: PushPosture::Crouching,
             pull_posture: PullPosture::CrouchingLever,
-            torque_grip: TorqueGrip::Screwdriver,
+            moments_decide: true,
             population: Population::Men,
             duty: Duty::Continuous,
         }
@@ -187,7 +187,7 @@ fn ergonomics_map_onto_the_profile() {
     let s = load_scene_str(&text, "o.toml").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(s.ergonomics.push_posture, PushPosture::Standing);
     assert_eq!(s.ergonomics.pull_posture, PullPosture::StandingLever);
-    let parsed: ErgonomicProfile = "posture=sitting,push=standing,pull=standing-lever,torque=screwdriver,population=men,duty=continuous"
+    let parsed: ErgonomicProfile = "posture=sitting,push=standing,pull=standing-lever,moments_decide=true,population=men,duty=continuous"
         .parse()
         .unwrap();
     assert_eq!(s.ergonomics, parsed);
@@ -351,7 +351,8 @@ const CASES: &[Case] = &[
     Case { what: "unknown posture", edits: &[("posture = \"crouching\"", "posture = \"kneeling\"")], field: "ergonomics.posture", message: &["ergonomics.posture = \"kneeling\": unknown posture `kneeling`; allowed: standing, crouching, sitting"] },
     Case { what: "unknown push row", edits: &[("posture = \"crouching\"", "push = \"lying\"")], field: "ergonomics.push", message: &["unknown push posture `lying`; allowed: standing, crouching, sitting"] },
     Case { what: "unknown pull row", edits: &[("posture = \"crouching\"", "pull = \"standing\"")], field: "ergonomics.pull", message: &["unknown pull posture `standing`; allowed: standing_lever, crouching_lever, handle"] },
-    Case { what: "unknown torque grip", edits: &[("torque = \"screwdriver\"", "torque = \"wrench\"")], field: "ergonomics.torque", message: &["unknown torque grip `wrench`; allowed: screwdriver, t_handle"] },
+    Case { what: "torque grip no longer chosen", edits: &[("moments_decide = true", "torque = \"screwdriver\"")], field: "ergonomics.torque", message: &["unknown field `torque`"] },
+    Case { what: "moments_decide not a boolean", edits: &[("moments_decide = true", "moments_decide = \"yes\"")], field: "ergonomics.moments_decide", message: &["invalid type"] },
     Case { what: "unknown population", edits: &[("population = \"men\"", "population = \"adults\"")], field: "ergonomics.population", message: &["unknown population `adults`; allowed: women, men"] },
     Case { what: "unknown duty", edits: &[("duty = \"continuous\"", "duty = \"daily\"")], field: "ergonomics.duty", message: &["unknown duty `daily`; allowed: continuous, occasional"] },
     Case { what: "unknown ergonomics key", edits: &[("duty = \"continuous\"", "dutty = \"continuous\"")], field: "ergonomics.dutty", message: &["unknown field `dutty`"] },

@@ -523,7 +523,8 @@ fn engine_bay_example_has_its_parts() {
             "radiator",
             "engine block",
             "fan hub",
-            "expansion tank cap"
+            "expansion tank cap",
+            "heat shield"
         ]
     );
     let block = &scene.world.rigid_parts[2];

@@ -36,8 +36,8 @@ pub enum ClientMessage {
     Reset,
     /// Judge hand loads with another ergonomic profile (SPEC I3) from now on: `posture`
     /// (standing, crouching, sitting), `population` (women, men), `duty` (continuous,
-    /// occasional) and optionally `torque` (screwdriver, t_handle). Omitted fields keep
-    /// their current value. The running verdict is re-judged against the new limits.
+    /// occasional) and optionally `moments_decide` (whether twist and bending at the hand
+    /// count towards feasibility; default false). Omitted fields keep their current value. The running verdict is re-judged against the new limits.
     SetErgonomics {
         #[serde(default)]
         posture: Option<String>,
@@ -46,7 +46,7 @@ pub enum ClientMessage {
         #[serde(default)]
         duty: Option<String>,
         #[serde(default)]
-        torque: Option<String>,
+        moments_decide: Option<bool>,
     },
     /// Replace the session's scene with the scene file `text` (TOML, or JSON when
     /// `format` is `"json"`); `name` names it in messages. On success every client gets a
@@ -161,7 +161,7 @@ mod tests {
                 posture: Some("sitting".into()),
                 population: None,
                 duty: None,
-                torque: None
+                moments_decide: None
             }
         );
         let m: ClientMessage =

@@ -501,13 +501,14 @@ fn ergonomics(
     posture: Option<&str>,
     population: Option<&str>,
     duty: Option<&str>,
-    torque: Option<&str>,
+    moments_decide: Option<bool>,
 ) -> Result<ErgonomicProfile, String> {
+    let moments = moments_decide.map(|b| b.to_string());
     let given = [
         ("posture", posture),
         ("population", population),
         ("duty", duty),
-        ("torque", torque),
+        ("moments_decide", moments.as_deref()),
     ];
     for (key, value) in given {
         if let Some(v) = value {
@@ -558,13 +559,13 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
             posture,
             population,
             duty,
-            torque,
+            moments_decide,
         } => Command::SetErgonomics(ergonomics(
             session.latest().ergonomics,
             posture.as_deref(),
             population.as_deref(),
             duty.as_deref(),
-            torque.as_deref(),
+            moments_decide,
         )?),
         ClientMessage::Grab { hand_id, position } => {
             let position = point(position)?;

@@ -466,7 +466,7 @@ impl Sim {
                     c.filter(|c| c.ratio.is_finite())
                 };
                 let force_c = judged(assessment.map(|a| a.force));
-                let torque_c = judged(assessment.map(|a| a.torque));
+                let torque_c = judged(assessment.map(|a| *a.worst_moment()));
                 let colour = colour_value(ratio.unwrap_or(f64::NAN));
                 if let Some(hs) = hoses.get_mut(load.hose) {
                     hs.colour = hs.colour.max(colour);
@@ -485,6 +485,7 @@ impl Sim {
                     force_kind: force_c.map(|c| c.kind),
                     force_limit: force_c.map(|c| c.limit),
                     force_ratio: force_c.map(|c| c.ratio),
+                    torque_kind: torque_c.map(|c| c.kind),
                     torque_limit: torque_c.map(|c| c.limit),
                     torque_ratio: torque_c.map(|c| c.ratio),
                 }
@@ -506,8 +507,16 @@ impl Sim {
                 report,
             })
             .collect::<Vec<_>>();
+        let summary = self.cell.summary();
+        let checks = summary
+            .checks
+            .violations
+            .iter()
+            .filter(|v| !v.check.at_end_only())
+            .cloned()
+            .collect();
         let verdict = Verdict::judge(
-            &self.cell.summary(),
+            &summary,
             self.diverged
                 .as_ref()
                 .map(|d| format!("the simulation diverged and was reset: {d}"))
@@ -525,6 +534,7 @@ impl Sim {
             fasteners,
             ergonomics: profile,
             verdict,
+            checks,
             notice: self.notice.clone(),
             ..Default::default()
         }

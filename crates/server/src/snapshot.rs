@@ -186,6 +186,9 @@ pub struct Snapshot {
     pub ergonomics: pliant_assembly::ergonomics::ErgonomicProfile,
     /// Feasible so far or not, and why (SPEC I5).
     pub verdict: pliant_assembly::Verdict,
+    /// Violations of the running installation checks since the last reset (SPEC V3:
+    /// bend radius, twist), each with hose, arc length, time, value and limit.
+    pub checks: Vec<pliant_assembly::checks::Violation>,
     /// Something the viewer should tell the user (e.g. the simulation diverged and was
     /// reset).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -220,9 +223,10 @@ pub struct HandSnapshot {
     /// Force [N] and torque about the hand position [N·m] the hand applies.
     pub force: [f64; 3],
     pub torque: [f64; 3],
-    /// The worse of force/limit and torque/limit; NaN-free (`null` if not assessable).
+    /// The worst ratio of the loads that decide feasibility (the force; twist and bending
+    /// too when the profile's `moments_decide`); NaN-free (`null` if not assessable).
     pub ratio: Option<f64>,
-    /// `push`, `pull` or `torque`: which load the ratio belongs to.
+    /// `push`, `pull`, `twist` or `bending`: which load the ratio belongs to.
     pub kind: Option<pliant_assembly::ergonomics::LoadKind>,
     /// Colour value c = min(ratio, 1).
     pub colour: f64,
@@ -230,7 +234,10 @@ pub struct HandSnapshot {
     pub force_kind: Option<pliant_assembly::ergonomics::LoadKind>,
     pub force_limit: Option<f64>,
     pub force_ratio: Option<f64>,
-    /// The torque's limit value [N·m] and |torque| / limit.
+    /// The moment at the hand with the larger ratio: `twist` (about the hose axis,
+    /// screwdriver row of table 3.11) or `bending` (across it, T-handle row), its limit
+    /// value [N·m] and magnitude / limit. Guidance only unless `moments_decide`.
+    pub torque_kind: Option<pliant_assembly::ergonomics::LoadKind>,
     pub torque_limit: Option<f64>,
     pub torque_ratio: Option<f64>,
 }

@@ -2,7 +2,7 @@
 //! picks them once, and every hand load is judged against them.
 
 use super::error::ErgonomicsError;
-use super::names::{parse_named, Duty, Population, Posture, PullPosture, PushPosture, TorqueGrip};
+use super::names::{parse_named, Duty, Population, Posture, PullPosture, PushPosture};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
@@ -10,11 +10,11 @@ use std::str::FromStr;
 /// The table rows and columns that judge a hand load.
 ///
 /// Default: push standing (table 3.7 row 1), pull standing lever (table 3.9 row 1),
-/// torque T-handle (table 3.11 row 2), women, occasional duty. Reasons:
+/// women, occasional duty, moments as guidance only. Reasons:
 /// - standing is the posture of the dissertation's own push-on trials (section 3.3.3);
-/// - a hand holding a hose mostly bends it, which the dissertation equates with the
-///   T-handle (the screwdriver stands for torsion about the hose's own axis; pick it for a
-///   torsion study);
+/// - twist and bending are "never reasons for an installation to fail" (section 3.3.3,
+///   after table 3.11), so by default they are warnings; twist is always judged against
+///   the screwdriver row, bending against the T-handle row (no choice to make);
 /// - every limit for women is below the one for men, so women is the conservative column;
 /// - the critical actions (pushing onto and pulling off a stub) are short, which the
 ///   dissertation puts under occasional duty.
@@ -25,8 +25,10 @@ pub struct ErgonomicProfile {
     pub push_posture: PushPosture,
     /// Row of the pull tables (3.8 / 3.9).
     pub pull_posture: PullPosture,
-    /// Row of the torque tables (3.10 / 3.11).
-    pub torque_grip: TorqueGrip,
+    /// Whether twist (screwdriver row) and bending (T-handle row) of tables 3.10 / 3.11
+    /// count towards feasibility. Default `false`: the dissertation uses them as a rough
+    /// guide only (section 3.3.3); they are reported as warnings.
+    pub moments_decide: bool,
     /// Column: women or men.
     pub population: Population,
     /// Column group: continuous or occasional.
@@ -34,13 +36,13 @@ pub struct ErgonomicProfile {
 }
 
 impl ErgonomicProfile {
-    /// The profile for one posture word ([`Posture::push`], [`Posture::pull`]) with the
-    /// default torque grip.
+    /// The profile for one posture word ([`Posture::push`], [`Posture::pull`]), moments
+    /// as guidance only.
     pub fn for_posture(posture: Posture, population: Population, duty: Duty) -> Self {
         ErgonomicProfile {
             push_posture: posture.push(),
             pull_posture: posture.pull(),
-            torque_grip: TorqueGrip::default(),
+            moments_decide: false,
             population,
             duty,
         }
@@ -49,15 +51,16 @@ impl ErgonomicProfile {
 
 /// Parses `key=value` pairs separated by commas, applied in order on top of the default,
 /// e.g. `posture=crouching, population=men, duty=continuous` or
-/// `push=sitting,pull=handle,torque=screwdriver`. Keys: `posture` (sets push and pull),
-/// `push`, `pull`, `torque`, `population`, `duty`. An empty string is the default.
+/// `push=sitting,pull=handle,moments_decide=true`. Keys: `posture` (sets push and pull),
+/// `push`, `pull`, `population`, `duty`, `moments_decide`. An empty string is the default.
 impl ErgonomicProfile {
     /// The keys [`Self::set`] takes, in the order a profile is best written.
-    pub const KEYS: [&'static str; 6] = ["posture", "push", "pull", "torque", "population", "duty"];
+    pub const KEYS: [&'static str; 6] =
+        ["posture", "push", "pull", "population", "duty", "moments_decide"];
 
     /// Sets one named part of the profile — `posture` (both the push and the pull row),
-    /// `push`, `pull`, `torque`, `population` or `duty` — from its name as the tables
-    /// spell it. The one parser behind `--ergonomics`, a scene's `[ergonomics]` and the
+    /// `push`, `pull`, `population`, `duty` (names as the tables spell them) or
+    /// `moments_decide` (`true` / `false`). The one parser behind `--ergonomics`, a scene's `[ergonomics]` and the
     /// protocol's `set_ergonomics`.
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), ErgonomicsError> {
         let value = value.trim();
@@ -69,7 +72,28 @@ impl ErgonomicProfile {
             }
             "push" => self.push_posture = parse_named(value)?,
             "pull" => self.pull_posture = parse_named(value)?,
-            "torque" => self.torque_grip = parse_named(value)?,
+            "moments_decide" => {
+                self.moments_decide = match value.to_ascii_lowercase().as_str() {
+                    "true" | "yes" => true,
+                    "false" | "no" => false,
+                    _ => {
+                        return Err(ErgonomicsError::Profile {
+                            given: value.to_string(),
+                            reason: "`moments_decide` must be true or false".into(),
+                        })
+                    }
+                }
+            }
+            "torque" => {
+                return Err(ErgonomicsError::Profile {
+                    given: value.to_string(),
+                    reason: "`torque` is no longer chosen: twist is judged against the \
+                             screwdriver row and bending against the T-handle row of tables \
+                             3.10/3.11; use `moments_decide = true` to make them decide \
+                             feasibility"
+                        .into(),
+                })
+            }
             "population" => self.population = parse_named(value)?,
             "duty" => self.duty = parse_named(value)?,
             other => {
@@ -110,8 +134,8 @@ impl fmt::Display for ErgonomicProfile {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "push={},pull={},torque={},population={},duty={}",
-            self.push_posture, self.pull_posture, self.torque_grip, self.population, self.duty
+            "push={},pull={},population={},duty={},moments_decide={}",
+            self.push_posture, self.pull_posture, self.population, self.duty, self.moments_decide
         )
     }
 }

@@ -52,6 +52,124 @@ fn escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
+/// The installation checks' section (SPEC V3, V7): the violations with time and place,
+/// and per hose its curvature against the allowed curvature at the instant of its
+/// smallest bend radius and its twist at the instant of its largest twist.
+fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary) {
+    use super::profile_plot::profile_plot;
+    s.push_str("<h2>Installation checks</h2>");
+    if checks.enabled.is_empty() {
+        s.push_str("<p>No installation check ran (switched off in <code>[checks]</code>).</p>");
+        return;
+    }
+    let _ = write!(
+        s,
+        "<p>Checks run: {}; violations {}.</p>",
+        checks.enabled.join(", "),
+        if checks.decide { "decide feasibility" } else { "are warnings only" }
+    );
+    if checks.violations.is_empty() {
+        s.push_str("<p>No violation.</p>");
+    } else {
+        s.push_str("<table><tr><th>check</th><th>hose</th><th>at s [mm]</th><th>t [s]</th><th>value</th><th>limit</th><th>violated from [s]</th><th>to [s]</th></tr>");
+        for v in &checks.violations {
+            let (value, limit) = match v.check.unit() {
+                "m" => (format!("{:.0} mm", 1e3 * v.value), format!("{:.0} mm", 1e3 * v.limit)),
+                "rad/m" => (
+                    format!("{:.1} °/m", v.value.to_degrees()),
+                    format!("{:.1} °/m", v.limit.to_degrees()),
+                ),
+                _ => (format!("{:.1} N", v.value), format!("{:.1} N", v.limit)),
+            };
+            let name = match &v.at {
+                Some(stub) => format!("{} (stub '{}')", v.check.name(), stub),
+                None => v.check.name().to_string(),
+            };
+            let _ = write!(
+                s,
+                "<tr><td>{}</td><td>{}</td><td>{:.0}</td><td>{:.2}</td><td>{value}</td><td>{limit}</td><td>{:.2}</td><td>{:.2}</td></tr>",
+                escape(&name),
+                escape(&v.hose_name),
+                1e3 * v.arc_length,
+                v.time,
+                v.first_time,
+                v.last_time
+            );
+        }
+        s.push_str("</table>");
+    }
+    let hoses: Vec<(usize, usize)> = checks
+        .profiles
+        .iter()
+        .map(|p| (p.first_node, p.node_count))
+        .collect();
+    for v in checks
+        .violations
+        .iter()
+        .filter(|v| v.check == crate::checks::CheckKind::BendRadius)
+    {
+        let Some(p) = checks.profiles.get(v.hose) else { continue };
+        // the worst beam's midpoint at the worst instant
+        let Some(k) = p.arc_length.iter().position(|s| *s == v.arc_length) else { continue };
+        let (a, b) = (p.first_node + k, p.first_node + k + 1);
+        let (Some(xa), Some(xb)) = (p.scene_at_worst.get(a), p.scene_at_worst.get(b)) else {
+            continue;
+        };
+        let mark = [0, 1, 2].map(|i| 0.5 * (xa[i] + xb[i]));
+        s.push_str(&super::scene_picture::scene_picture(
+            &format!(
+                "The scene at t = {:.2} s, when hose '{}' was bent tightest ({:.0} mm at s = {:.0} mm, circled; minimum {:.0} mm):",
+                v.time,
+                v.hose_name,
+                1e3 * v.value,
+                1e3 * v.arc_length,
+                1e3 * v.limit
+            ),
+            &p.scene_at_worst,
+            &hoses,
+            v.hose,
+            mark,
+        ));
+    }
+    for p in &checks.profiles {
+        if p.arc_length.len() < 2 {
+            continue;
+        }
+        if p.min_bend_radius.is_finite() {
+            s.push_str(&profile_plot(
+                &format!(
+                    "hose '{}': curvature at t = {:.2} s (smallest radius {:.0} mm) against the allowed 1/{:.0} mm (red)",
+                    p.hose_name,
+                    p.min_bend_radius_time,
+                    1e3 * p.min_bend_radius,
+                    1e3 * p.allowed_bend_radius
+                ),
+                &p.arc_length,
+                &p.curvature,
+                1.0 / p.allowed_bend_radius,
+                false,
+                "1/m",
+            ));
+        }
+        if p.max_twist > 0.0 {
+            let deg: Vec<f64> = p.twist.iter().map(|t| t.to_degrees()).collect();
+            s.push_str(&profile_plot(
+                &format!(
+                    "hose '{}': twist against the routed hose at t = {:.2} s, limit ±{:.1} °/m (red)",
+                    p.hose_name,
+                    p.max_twist_time,
+                    p.twist_limit.to_degrees()
+                ),
+                &p.arc_length,
+                &deg,
+                p.twist_limit.to_degrees(),
+                true,
+                "°/m",
+            ));
+        }
+    }
+}
+
 /// An SVG line plot of force over time with the limit drawn as a dashed line; samples are
 /// (time [s], force [N], limit [N]).
 fn plot(title: &str, samples: &[(f64, f64, f64)]) -> String {
@@ -134,23 +252,28 @@ pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String 
     for r in &v.reasons {
         let _ = write!(s, "<li>{}</li>", escape(r));
     }
+    s.push_str("</ul>");
+    if !v.warnings.is_empty() {
+        s.push_str("<h2>Warnings</h2><p>These do not decide feasibility.</p><ul>");
+        for w in &v.warnings {
+            let _ = write!(s, "<li>{}</li>", escape(w));
+        }
+        s.push_str("</ul>");
+    }
     let _ = write!(
         s,
-        "</ul><p>Ergonomic profile: {}</p>",
+        "<p>Ergonomic profile: {}</p>",
         escape(report.ergonomics)
     );
     let run = report.run;
     if !run.hand_peaks.is_empty() {
-        s.push_str("<h2>Hands</h2><table><tr><th>hand</th><th>peak |F| [N]</th><th>at [s]</th><th>peak |T| [N·m]</th><th>at [s]</th><th>worst</th><th>of limit</th></tr>");
+        s.push_str("<h2>Hands</h2><table><tr><th>hand</th><th>peak |F| [N]</th><th>at [s]</th><th>peak |T| [N·m]</th><th>at [s]</th><th>peak twist [N·m]</th><th>peak bending [N·m]</th><th>worst deciding</th><th>of limit</th></tr>");
         for h in &run.hand_peaks {
-            let kind = h
-                .worst_kind
-                .map(|k| format!("{k:?}").to_lowercase())
-                .unwrap_or_default();
+            let kind = h.worst_kind.map(|k| k.name()).unwrap_or_default();
             let _ = write!(
                 s,
-                "<tr><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.3}</td><td>{:.2}</td><td>{kind}</td><td>{:.0} %</td></tr>",
-                h.hand, h.max_force, h.max_force_time, h.max_torque, h.max_torque_time, 100.0 * h.worst_ratio
+                "<tr><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.3}</td><td>{:.2}</td><td>{:.3}</td><td>{:.3}</td><td>{kind}</td><td>{:.0} %</td></tr>",
+                h.hand, h.max_force, h.max_force_time, h.max_torque, h.max_torque_time, h.twist.magnitude, h.bending.magnitude, 100.0 * h.worst_ratio
             );
         }
         s.push_str("</table>");
@@ -209,6 +332,7 @@ pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String 
         }
         s.push_str("</table>");
     }
+    checks_section(&mut s, &run.checks);
     s.push_str("<h2>Contact with parts</h2>");
     if run.contacts.is_empty() {
         s.push_str("<p>No hose touched a part.</p>");

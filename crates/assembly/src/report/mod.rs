@@ -4,6 +4,8 @@
 //! `summary.json`.
 
 pub mod html;
+mod profile_plot;
+mod scene_picture;
 pub mod recorder;
 pub mod summary;
 mod vtk;
@@ -59,6 +61,8 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
         ));
     }
     write_file(&out.join("fasteners.csv"), csv)?;
+    write_file(&out.join("checks.csv"), checks_csv(&run.checks))?;
+    write_file(&out.join("check_profiles.csv"), profiles_csv(&run.checks))?;
     let verdict = write_reports(out, o.scene_name, run, o.diverged, o.hand_series, o.profile)?;
     let summary = Summary {
         pliant_version: env!("CARGO_PKG_VERSION"),
@@ -84,6 +88,54 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
     let text = serde_json::to_string_pretty(&summary).map_err(std::io::Error::other)?;
     write_file(&out.join("summary.json"), text)?;
     Ok((verdict, summary))
+}
+
+/// `checks.csv`: one row per violation of an installation check (SPEC V3), SI units.
+fn checks_csv(checks: &crate::checks::ChecksSummary) -> String {
+    let mut csv = String::from(
+        "check,hose,arc_length_m,time_s,value,limit,unit,first_time_s,last_time_s,instants,stub\n",
+    );
+    for v in &checks.violations {
+        csv.push_str(&format!(
+            "{},{},{:.6},{:.6},{:.6e},{:.6e},{},{:.6},{:.6},{},{}\n",
+            v.check.name(),
+            v.hose_name.replace(',', ";"),
+            v.arc_length,
+            v.time,
+            v.value,
+            v.limit,
+            v.check.unit(),
+            v.first_time,
+            v.last_time,
+            v.instants,
+            v.at.as_deref().unwrap_or("").replace(',', ";"),
+        ));
+    }
+    csv
+}
+
+/// `check_profiles.csv`: per hose and beam, the curvature at the instant of the hose's
+/// smallest bend radius and the twist (relative to the routed hose) at the instant of
+/// its largest twist, with their limits.
+fn profiles_csv(checks: &crate::checks::ChecksSummary) -> String {
+    let mut csv = String::from(
+        "hose,arc_length_m,curvature_1_m,curvature_time_s,allowed_curvature_1_m,twist_rad_m,twist_time_s,twist_limit_rad_m\n",
+    );
+    for p in &checks.profiles {
+        for (k, s) in p.arc_length.iter().enumerate() {
+            csv.push_str(&format!(
+                "{},{s:.6},{:.6e},{:.6},{:.6e},{:.6e},{:.6},{:.6e}\n",
+                p.hose_name.replace(',', ";"),
+                p.curvature[k],
+                p.min_bend_radius_time,
+                1.0 / p.allowed_bend_radius,
+                p.twist[k],
+                p.max_twist_time,
+                p.twist_limit,
+            ));
+        }
+    }
+    csv
 }
 
 /// Replays an input log into `cell` (a fresh workcell of the log's scene and options)

@@ -80,7 +80,7 @@ impl Recorder {
         let mut hands = open("hands.csv")?;
         writeln!(
             hands,
-            "time_s,hand,hose,x_m,y_m,z_m,fx_n,fy_n,fz_n,tx_nm,ty_nm,tz_nm,force_n,torque_nm,kind,ratio,limit,colour"
+            "time_s,hand,hose,x_m,y_m,z_m,fx_n,fy_n,fz_n,tx_nm,ty_nm,tz_nm,force_n,torque_nm,kind,ratio,limit,colour,axial_n,lateral_n,twist_nm,bending_nm"
         )?;
         let mut contacts = open("contacts.csv")?;
         writeln!(contacts, "time_s,hose,node,with,fx_n,fy_n,fz_n")?;
@@ -175,18 +175,16 @@ impl Recorder {
             let (kind, ratio, limit, colour) = match &r.assessment {
                 Some(a) => {
                     let w = a.worst();
-                    (
-                        format!("{:?}", w.kind).to_lowercase(),
-                        w.ratio,
-                        w.limit,
-                        a.colour_value(),
-                    )
+                    (w.kind.name(), w.ratio, w.limit, a.colour_value())
                 }
-                None => ("none".into(), 0.0, 0.0, 0.0),
+                None => ("none", 0.0, 0.0, 0.0),
             };
+            let [axial, lateral, twist, bending] = r.assessment.map_or([0.0; 4], |a| {
+                [a.axial_force, a.lateral_force, a.twist.magnitude, a.bending.magnitude]
+            });
             writeln!(
                 self.hands,
-                "{t:.6},{},{},{:.6},{:.6},{:.6},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{kind},{ratio:.4},{limit},{colour:.4}",
+                "{t:.6},{},{},{:.6},{:.6},{:.6},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{kind},{ratio:.4},{limit},{colour:.4},{axial:.6e},{lateral:.6e},{twist:.6e},{bending:.6e}",
                 r.hand, r.load.hose, p.x, p.y, p.z, f.x, f.y, f.z, m.x, m.y, m.z, f.length(), m.length()
             )?;
             self.hose_colour[r.load.hose] = self.hose_colour[r.load.hose].max(colour);

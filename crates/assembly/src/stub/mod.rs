@@ -2,11 +2,13 @@
 //! 5.3.5): the stub's geometry, the Lamé press fit and its friction force law, and the
 //! state machine of approach, insertion, fixing and pulling off.
 
+mod bead;
 mod error;
 mod press_fit;
 mod spec;
 mod state;
 
+pub use bead::{wedge_factor, Bead, Sense};
 pub use error::StubError;
 pub use press_fit::{contact_pressure, PressFit};
 pub use spec::{Friction, RawStubSpec, StubSpec};

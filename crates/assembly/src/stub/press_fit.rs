@@ -20,6 +20,7 @@
 //! When δ ≤ 0 (the bore is at least as wide as the stub) there is no press fit: p = 0 and
 //! f = 0.
 
+use super::bead::{Bead, Sense};
 use super::error::StubError;
 use super::spec::{Friction, StubSpec};
 use pliant_core::{Material, Section};
@@ -68,6 +69,10 @@ pub struct PressFit {
     stub: StubSpec,
     interference: f64,
     pressure: f64,
+    /// A bead and the Lamé pressure of the hose wall on its crest [Pa] (SPEC V4).
+    bead: Option<(Bead, f64)>,
+    /// Hose radii and material, for the crest pressure.
+    hose: (f64, f64, f64, f64),
 }
 
 impl PressFit {
@@ -90,6 +95,32 @@ impl PressFit {
             stub: *stub,
             interference: r_s - r_i,
             pressure,
+            bead: None,
+            hose: (modulus, poisson, r_i, r_a),
+        })
+    }
+
+    /// The same fit with a bead on the stub (SPEC V4; see [`Bead`]); the crest pressure
+    /// is the Lamé pressure at the crest radius r_s + h.
+    pub fn with_bead(mut self, bead: Bead) -> Result<Self, StubError> {
+        let (e, nu, r_i, r_a) = self.hose;
+        let p = contact_pressure(e, nu, r_i, r_a, self.stub.radius() + bead.height)?;
+        self.bead = Some((bead, p));
+        Ok(self)
+    }
+
+    /// The bead, if the stub has one.
+    pub fn bead(&self) -> Option<&Bead> {
+        self.bead.as_ref().map(|(b, _)| b)
+    }
+
+    /// Axial force [N] to move the hose in `sense` at insertion depth `depth`: the
+    /// cylinder's [`Self::axial_force`] plus the bead's ([`Bead::force`]).
+    pub fn axial_force_moving(&self, depth: f64, friction: Friction, sense: Sense) -> f64 {
+        let base = self.axial_force(depth, friction);
+        let l = self.stub.clamp_depth(depth);
+        base + self.bead.map_or(0.0, |(b, p)| {
+            b.force(l, sense, p, self.stub.radius(), self.stub.friction(friction))
         })
     }
 
@@ -119,5 +150,10 @@ impl PressFit {
     /// The holding force at this depth: the static axial force [N].
     pub fn holding_force(&self, depth: f64) -> f64 {
         self.axial_force(depth, Friction::Static)
+    }
+
+    /// The static force [N] that starts the hose moving in `sense` at this depth.
+    pub fn holding_force_moving(&self, depth: f64, sense: Sense) -> f64 {
+        self.axial_force_moving(depth, Friction::Static, sense)
     }
 }

@@ -18,6 +18,7 @@
 //! - **PulledOff** lasts one step (an event for the report), then behaves as Approach.
 
 use super::error::StubError;
+use super::bead::Sense;
 use super::press_fit::PressFit;
 use super::spec::{Friction, StubSpec};
 use glam::DVec3;
@@ -120,6 +121,13 @@ impl StubState {
             .map_or(0.0, |friction| fit.axial_force(self.depth(), friction))
     }
 
+    /// As [`Self::resisting_force`] for motion in `sense`, a bead included (SPEC V4).
+    pub fn resisting_force_moving(&self, fit: &PressFit, sense: Sense) -> f64 {
+        self.friction().map_or(0.0, |friction| {
+            fit.axial_force_moving(self.depth(), friction, sense)
+        })
+    }
+
     /// The state after one step; see the module's rules.
     pub fn next(
         self,
@@ -177,7 +185,8 @@ impl StubState {
             }
             StubState::Fixed { depth } => {
                 let at_stop = depth >= stub.length();
-                let breaks_loose = obs.axial_force.abs() > fit.holding_force(depth)
+                let sense = if obs.axial_force >= 0.0 { Sense::On } else { Sense::Off };
+                let breaks_loose = obs.axial_force.abs() > fit.holding_force_moving(depth, sense)
                     && !(at_stop && obs.axial_force > 0.0);
                 if obs.grabbed && breaks_loose {
                     StubState::Inserting { depth }

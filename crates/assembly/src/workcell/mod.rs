@@ -24,11 +24,13 @@ pub use input::{HandNumber, Input, Refusal, StampedInput};
 pub use observer::{NoObserver, Observer};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
 pub use tally::{
-    limit_of, ContactEpisode, HandPeak, HandRecord, NodePeak, Peak, RunSummary, SettleOutcome,
+    limits_of, ContactEpisode, HandPeak, HandRecord, MomentNote, NodePeak, Peak, RunSummary,
+    SettleOutcome,
     Tally,
 };
 pub use verdict::{Stage, Verdict};
 
+use crate::checks::{CheckSettings, ChecksSummary, InstallationChecks};
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};
 use crate::fasteners::{ClipSite, FastenerReport, FastenerSample, Fasteners, StubSite};
 use crate::hand::{nearest_beam, Hand};
@@ -57,6 +59,9 @@ pub struct WorkcellSetup {
     pub clips: Vec<ClipSite>,
     pub initial: Vec<Action>,
     pub profile: ErgonomicProfile,
+    /// The installation checks and their limits (SPEC V3; [`CheckSettings::none`] for
+    /// none).
+    pub checks: CheckSettings,
 }
 
 /// How a workcell runs: configuration, not state (a reset keeps it).
@@ -113,6 +118,7 @@ pub struct Checkpoint {
     named_loads: BTreeMap<String, LoadCaseId>,
     profile: ErgonomicProfile,
     tally: Tally,
+    checks: InstallationChecks,
     tick: u64,
     log_length: usize,
     diverged: Option<Divergence>,
@@ -138,6 +144,8 @@ pub struct Workcell {
     profile: ErgonomicProfile,
     limits: Option<&'static ErgonomicLimits>,
     tally: Tally,
+    /// The installation checks' account (SPEC V3).
+    checks: InstallationChecks,
     /// Steps since the workcell was built, resets included (the stamp of inputs).
     tick: u64,
     log: Vec<StampedInput>,
@@ -189,6 +197,7 @@ impl Workcell {
         let mut cell = Workcell {
             state: State::at_rest(&model),
             tally: Tally::new(&model),
+            checks: InstallationChecks::new(&model, setup.checks),
             model,
             solver,
             options,
@@ -222,6 +231,7 @@ impl Workcell {
         self.user_loads.clear();
         self.named_loads.clear();
         self.tally = Tally::new(&self.model);
+        self.checks = InstallationChecks::new(&self.model, self.checks.settings().clone());
         self.diverged = None;
         if self.options.initial_loads {
             for a in self.initial.clone() {
@@ -355,6 +365,7 @@ impl Workcell {
             max_contact_force: t.max_contact_force,
             max_contact_force_time: t.max_contact_force_time,
             ergonomics: self.profile.to_string(),
+            moments_decide: self.profile.moments_decide,
             fasteners: self.fasteners.reports(),
             fastener_series: t.fastener_series.clone(),
             solver: t.solver.clone(),
@@ -362,7 +373,16 @@ impl Workcell {
             instability_notes: t
                 .solver
                 .instability_notes(|h| self.model.hoses[h].name.clone()),
+            checks: ChecksSummary::of(
+                &self.checks,
+                self.checks
+                    .end_violations(&self.model, &self.state, &self.stubs),
+            ),
         }
+    }
+    /// The installation checks' account so far (SPEC V3).
+    pub fn checks(&self) -> &InstallationChecks {
+        &self.checks
     }
     /// The verdict so far ([`Stage::Running`]) or of the finished study.
     pub fn verdict(&self, stage: Stage) -> Verdict {
@@ -387,6 +407,7 @@ impl Workcell {
             named_loads: self.named_loads.clone(),
             profile: self.profile,
             tally: self.tally.clone(),
+            checks: self.checks.clone(),
             tick: self.tick,
             log_length: self.log.len(),
             diverged: self.diverged.clone(),
@@ -416,6 +437,7 @@ impl Workcell {
         self.user_loads = c.user_loads;
         self.named_loads = c.named_loads;
         self.profile = c.profile;
+        self.checks = c.checks;
         self.tally = c.tally;
         self.tick = c.tick;
         self.log.truncate(c.log_length);
@@ -820,6 +842,7 @@ impl Workcell {
             (&stats, self.solver.stability_events()),
             &self.hand_records,
         );
+        self.checks.observe(&self.model, &self.state);
         if wants {
             obs.on_state(&self.model, &self.state);
             obs.on_hands(self.state.time, &self.hand_records);

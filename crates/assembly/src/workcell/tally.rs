@@ -1,12 +1,12 @@
 //! What a workcell keeps account of as it steps (SPEC I2, I5): the peak support loads of
-//! every node a fix or drive held, each hand's peak push, pull and torque (magnitudes, so
+//! every node a fix or drive held, each hand's peak push, pull, twist and bending (magnitudes, so
 //! that a verdict can be judged again under another ergonomic profile), the rigid parts
 //! the hoses touched, and the Newton solvers' statistics. Nothing here allocates once a
 //! node, hand or part has been seen.
 
 use super::input::HandNumber;
 use super::solver_record::SolverRecord;
-use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile, HandAssessment, LoadKind};
+use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile, GuideRange, HandAssessment, LoadKind};
 use crate::fasteners::{FastenerReport, FastenerSample};
 use crate::hand::HandLoad;
 use glam::DVec3;
@@ -39,6 +39,19 @@ impl Peak {
     }
 }
 
+/// A peak moment (twist or bending) above the upper end of its guide range: a warning,
+/// or a reason for infeasibility when it exceeds the limit and moments decide.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct MomentNote {
+    pub kind: LoadKind,
+    /// Peak magnitude [N·m] and when [s].
+    pub magnitude: f64,
+    pub time: f64,
+    /// Upper end of the guide range and the limit value [N·m] (tables 3.10 / 3.11).
+    pub guide_hi: f64,
+    pub limit: f64,
+}
+
 /// Peak loads of one hand over the run, and its worst moment against the limits.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct HandPeak {
@@ -47,37 +60,59 @@ pub struct HandPeak {
     pub max_force_time: f64,
     pub max_torque: f64,
     pub max_torque_time: f64,
-    /// Peak push, pull and torque (SPEC I3 classification).
+    /// Peak push and pull (tables 3.6–3.9), twist and bending (tables 3.10 / 3.11).
     pub push: Peak,
     pub pull: Peak,
-    pub torque: Peak,
-    /// Largest load/limit ratio under the profile the run is judged with, its kind,
-    /// magnitude, limit and time (filled in by [`Tally::judge_hands`]).
+    pub twist: Peak,
+    pub bending: Peak,
+    /// Largest load/limit ratio of the loads that decide feasibility under the profile
+    /// the run is judged with (the force; twist and bending too when `moments_decide`),
+    /// its kind, magnitude, limit and time (filled in by [`Tally::judge_hands`]).
     pub worst_ratio: f64,
     pub worst_kind: Option<LoadKind>,
     pub worst_magnitude: f64,
     pub worst_limit: f64,
     pub worst_time: f64,
+    /// Twist and bending peaks above their guide range (filled in by
+    /// [`Tally::judge_hands`]).
+    pub moment_notes: Vec<MomentNote>,
 }
 
 impl HandPeak {
     /// The peaks with their kinds.
-    pub fn each(&self) -> [(LoadKind, Peak); 3] {
+    pub fn each(&self) -> [(LoadKind, Peak); 4] {
         [
             (LoadKind::Push, self.push),
             (LoadKind::Pull, self.pull),
-            (LoadKind::Torque, self.torque),
+            (LoadKind::Twist, self.twist),
+            (LoadKind::Bending, self.bending),
         ]
     }
 }
 
-/// The limit value of `kind` under `profile` [N or N·m].
-pub fn limit_of(limits: &ErgonomicLimits, profile: &ErgonomicProfile, kind: LoadKind) -> f64 {
+/// The guide range and limit value of `kind` under `profile` [N or N·m].
+pub fn limits_of(
+    limits: &ErgonomicLimits,
+    profile: &ErgonomicProfile,
+    kind: LoadKind,
+) -> (GuideRange, f64) {
     let (pop, duty) = (profile.population, profile.duty);
-    match kind {
-        LoadKind::Push => limits.push_limit(profile.push_posture, pop, duty),
-        LoadKind::Pull => limits.pull_limit(profile.pull_posture, pop, duty),
-        LoadKind::Torque => limits.torque_limit(profile.torque_grip, pop, duty),
+    match (kind, kind.torque_grip()) {
+        (LoadKind::Push, _) => (
+            limits.push_guide(profile.push_posture, pop, duty),
+            limits.push_limit(profile.push_posture, pop, duty),
+        ),
+        (LoadKind::Pull, _) => (
+            limits.pull_guide(profile.pull_posture, pop, duty),
+            limits.pull_limit(profile.pull_posture, pop, duty),
+        ),
+        (_, grip) => {
+            let grip = grip.unwrap_or_default();
+            (
+                limits.torque_guide(grip, pop, duty),
+                limits.torque_limit(grip, pop, duty),
+            )
+        }
     }
 }
 
@@ -133,6 +168,8 @@ pub struct RunSummary {
     pub max_contact_force_time: f64,
     /// The ergonomic profile hand loads were judged with.
     pub ergonomics: String,
+    /// Whether twist and bending decided feasibility (the profile's `moments_decide`).
+    pub moments_decide: bool,
     /// Stubs and clips and whether they ended assembled.
     pub fasteners: Vec<FastenerReport>,
     /// Their forces at the recorded times (the observer's sampling).
@@ -143,13 +180,17 @@ pub struct RunSummary {
     pub solver_warnings: Vec<String>,
     /// The instabilities met, in words, hoses named.
     pub instability_notes: Vec<String>,
+    /// The installation checks and their violations (SPEC V3).
+    pub checks: crate::checks::ChecksSummary,
 }
 
 impl RunSummary {
-    /// Whether every hand stayed within its limit values and every fastener was fitted.
+    /// Whether every hand stayed within its limit values, every fastener was fitted
+    /// and — when they decide — no installation check was violated.
     pub fn feasible(&self) -> bool {
         self.hand_peaks.iter().all(|h| h.worst_ratio <= 1.0)
             && self.fasteners.iter().all(|f| f.assembled)
+            && (!self.checks.decide || self.checks.violations.is_empty())
     }
 }
 
@@ -229,7 +270,8 @@ impl Tally {
                     LoadKind::Pull => p.pull.record(a.force.magnitude, t),
                     _ => p.push.record(a.force.magnitude, t),
                 }
-                p.torque.record(a.torque.magnitude, t);
+                p.twist.record(a.twist.magnitude, t);
+                p.bending.record(a.bending.magnitude, t);
             }
         }
         self.record_contacts(model, state);
@@ -295,8 +337,20 @@ impl Tally {
         let Some(limits) = limits else { return out };
         for p in &mut out {
             for (kind, peak) in p.each() {
-                let limit = limit_of(limits, profile, kind);
+                let (guide, limit) = limits_of(limits, profile, kind);
                 let ratio = peak.magnitude / limit;
+                if kind.is_moment() && peak.magnitude > guide.hi {
+                    p.moment_notes.push(MomentNote {
+                        kind,
+                        magnitude: peak.magnitude,
+                        time: peak.time,
+                        guide_hi: guide.hi,
+                        limit,
+                    });
+                }
+                if kind.is_moment() && !profile.moments_decide {
+                    continue;
+                }
                 if ratio.is_finite() && ratio > p.worst_ratio {
                     p.worst_ratio = ratio;
                     p.worst_kind = Some(kind);

@@ -1,8 +1,11 @@
 //! The verdict of an assembly study (SPEC I5) — the one implementation behind
 //! `pliant run`, the live session's running verdict and the Python API: feasible or not,
-//! and why. A divergence, or a hand whose peak push, pull or torque exceeds the limit
-//! value of the profile, makes it infeasible; at the end of a study a stub or clip not
-//! fitted does too, while a study still running lists them as still to do.
+//! and why. A divergence, or a hand whose peak push or pull exceeds the limit value of
+//! the profile, makes it infeasible; at the end of a study a stub or clip not fitted does
+//! too, while a study still running lists them as still to do. A hand's twist and bending
+//! moment above their guide values are warnings (dissertation section 3.3.3: "never
+//! reasons for an installation to fail"), unless the profile's `moments_decide` makes
+//! them count like the force.
 
 use super::tally::RunSummary;
 use crate::ergonomics::LoadKind;
@@ -25,6 +28,9 @@ pub struct Verdict {
     pub reasons: Vec<String>,
     /// Stubs and clips not yet fitted (running stage).
     pub pending: Vec<String>,
+    /// What an engineer should look at but what does not decide feasibility: twist and
+    /// bending above their guide or limit values when moments do not decide.
+    pub warnings: Vec<String>,
     /// Some step's solve ended out of balance or on an unstable equilibrium: the loads
     /// the verdict rests on are not trustworthy there (the reasons say where).
     pub uncertain: bool,
@@ -32,16 +38,22 @@ pub struct Verdict {
 
 fn kind_name(kind: LoadKind) -> &'static str {
     match kind {
-        LoadKind::Push => "push",
-        LoadKind::Pull => "pull",
-        LoadKind::Torque => "torque",
+        LoadKind::Bending => "bending moment",
+        k => k.name(),
     }
 }
 
 fn unit(kind: LoadKind) -> &'static str {
+    kind.unit()
+}
+
+/// The row of the tables a kind is judged against, for the reasons' text.
+fn table(kind: LoadKind) -> &'static str {
     match kind {
-        LoadKind::Torque => "N·m",
-        _ => "N",
+        LoadKind::Push => "table 3.7",
+        LoadKind::Pull => "table 3.9",
+        LoadKind::Twist => "screwdriver, table 3.11",
+        LoadKind::Bending => "T-handle, table 3.11",
     }
 }
 
@@ -55,18 +67,42 @@ impl Verdict {
             reasons.push(format!("the simulation stopped early: {d}"));
         }
         let mut exceeded = false;
+        let mut warnings = Vec::new();
         for h in &run.hand_peaks {
-            let Some(kind) = h.worst_kind else { continue };
-            if h.worst_ratio > 1.0 {
-                exceeded = true;
-                reasons.push(format!(
-                    "hand {}: {} of {:.1} at t = {:.2} s exceeds the limit {:.1} ({:.0} % of it)",
+            if let Some(kind) = h.worst_kind {
+                if h.worst_ratio > 1.0 {
+                    exceeded = true;
+                    reasons.push(format!(
+                        "hand {}: {} of {:.1} {u} at t = {:.2} s exceeds the limit {:.1} {u} ({}; {:.0} % of it)",
+                        h.hand,
+                        kind_name(kind),
+                        h.worst_magnitude,
+                        h.worst_time,
+                        h.worst_limit,
+                        table(kind),
+                        100.0 * h.worst_ratio,
+                        u = unit(kind),
+                    ));
+                }
+            }
+            for n in h.moment_notes.iter().filter(|n| h.worst_kind != Some(n.kind) || n.magnitude <= n.limit) {
+                let against = if n.magnitude > n.limit {
+                    format!("above the limit {:.2} N·m", n.limit)
+                } else {
+                    format!("above the guide range (up to {:.2} N·m; limit {:.2} N·m)", n.guide_hi, n.limit)
+                };
+                warnings.push(format!(
+                    "hand {}: {} of {:.2} N·m at t = {:.2} s is {against} ({}){}",
                     h.hand,
-                    kind_name(kind),
-                    h.worst_magnitude,
-                    h.worst_time,
-                    h.worst_limit,
-                    100.0 * h.worst_ratio,
+                    kind_name(n.kind),
+                    n.magnitude,
+                    n.time,
+                    table(n.kind),
+                    if n.magnitude > n.limit && !run.moments_decide {
+                        " — guidance only: the dissertation (3.3.3) never fails an installation for twist or bending"
+                    } else {
+                        ""
+                    },
                 ));
             }
         }
@@ -91,6 +127,20 @@ impl Verdict {
                 )),
             }
         }
+        // Installation checks (SPEC V3): the running ones always, the assembled state's
+        // (tension at rest, straight length behind stubs) at the end only.
+        let mut violated = false;
+        for v in &run.checks.violations {
+            if stage == Stage::Running && v.check.at_end_only() {
+                continue;
+            }
+            if run.checks.decide {
+                violated = true;
+                reasons.push(v.describe());
+            } else {
+                warnings.push(v.describe());
+            }
+        }
         if stage == Stage::Final {
             for c in &run.contacts {
                 reasons.push(format!(
@@ -103,7 +153,7 @@ impl Verdict {
         reasons.splice(0..0, run.solver_warnings.iter().cloned());
         reasons.extend(run.instability_notes.iter().cloned());
         let judged = !run.hand_peaks.is_empty();
-        let feasible = if diverged.is_some() || exceeded || (judged && unfitted) {
+        let feasible = if diverged.is_some() || exceeded || violated || (judged && unfitted) {
             Some(false)
         } else if judged {
             Some(true)
@@ -137,8 +187,13 @@ impl Verdict {
                     )
                 })
                 .unwrap_or_default();
+            let checks = if run.checks.enabled.is_empty() {
+                String::new()
+            } else {
+                format!(", and the installation checks ({}) passed", run.checks.enabled.join(", "))
+            };
             reasons.push(match stage {
-                Stage::Final => "every hand load stayed within its ergonomic limit value, and every stub and clip was fitted".to_string(),
+                Stage::Final => format!("every hand load stayed within its ergonomic limit value, every stub and clip was fitted{checks}"),
                 Stage::Running => format!("every hand load so far is within its ergonomic limit value{detail}"),
             });
         }
@@ -146,6 +201,7 @@ impl Verdict {
             feasible,
             reasons,
             pending,
+            warnings,
             uncertain: !run.solver_warnings.is_empty(),
         }
     }

@@ -1,0 +1,58 @@
+//! SPEC V4 in scene files: `[[stubs]] bead` loads in SI onto the stub's press fit, and a
+//! bad bead is an error naming the field.
+
+use pliant_core::Model;
+use pliant_scene::load_scene_str;
+
+fn scene(bead: &str) -> String {
+    format!(
+        r#"
+format = "pliant-scene"
+version = 1
+length_unit = "mm"
+
+[[hoses]]
+name = "h"
+material = "hose3"
+start = [0, 0, 0]
+path = [{{ line = {{ to = [300, 0, 0] }} }}]
+
+[[stubs]]
+name = "s"
+origin = [320, 0, 0]
+axis = [1, 0, 0]
+length = 30
+diameter = 28
+{bead}
+"#
+    )
+}
+
+#[test]
+fn a_bead_loads_onto_the_press_fit() {
+    let s = load_scene_str(
+        &scene("bead = { at = 8, height = 1.5, width = 3, entry_angle_deg = 20, back_angle_deg = 60 }"),
+        "bead.toml",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let b = s.stubs[0].bead.expect("bead");
+    assert_eq!((b.at, b.height, b.width), (0.008, 0.0015, 0.003));
+    assert!((b.back_angle - 60f64.to_radians()).abs() < 1e-15);
+    let model = Model::build(&s.world).unwrap();
+    let (stubs, _) = s.fastener_sites(&model).unwrap();
+    assert_eq!(stubs[0].fit.bead(), Some(&b));
+}
+
+#[test]
+fn bad_beads_name_the_field() {
+    for (bead, field) in [
+        ("bead = { at = -1, height = 1.5, width = 3, entry_angle_deg = 20, back_angle_deg = 60 }", "stubs[0].bead.at"),
+        ("bead = { at = 8, height = 0, width = 3, entry_angle_deg = 20, back_angle_deg = 60 }", "stubs[0].bead.height"),
+        ("bead = { at = 8, height = 1.5, width = 3, entry_angle_deg = 20, back_angle_deg = 90 }", "stubs[0].bead"),
+        ("bead = { at = 28, height = 1.5, width = 3, entry_angle_deg = 20, back_angle_deg = 60 }", "stubs[0].bead"),
+        ("bead = { at = 8, height = 1.5, width = 3, entry = 20, back_angle_deg = 60 }", "stubs[0].bead"),
+    ] {
+        let err = load_scene_str(&scene(bead), "bad.toml").unwrap_err().to_string();
+        assert!(err.contains(field), "`{err}` lacks `{field}`");
+    }
+}
