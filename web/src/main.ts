@@ -44,7 +44,13 @@ async function main(): Promise<void> {
   const recorder = new Recorder();
   const state = { frames: 0, snapshots: 0, errors: [] as { code: string; message: string }[], reports: [] as string[] };
 
-  const wsUrl = params.get('ws') ?? `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws`;
+  // the page URL `pliant serve` prints carries ?token=… when the server requires one
+  // (bound to the network, or --token): the WebSocket passes it on
+  const token = params.get('token');
+  const wsUrl =
+    params.get('ws') ??
+    `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws` +
+      (token ? `?token=${encodeURIComponent(token)}` : '');
 
   const showWelcome = (w: Welcome) => {
     for (const t of tubes) {

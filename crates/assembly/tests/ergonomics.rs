@@ -267,7 +267,10 @@ fn profiles_parse_from_strings_and_round_trip() {
         ("push=kneeling", "allowed: standing, crouching, sitting"),
         ("duty=sometimes", "allowed: continuous, occasional"),
         ("moments_decide=maybe", "must be true or false"),
-        ("torque=screwdriver", "twist is judged against the screwdriver row"),
+        (
+            "torque=screwdriver",
+            "twist is judged against the screwdriver row",
+        ),
     ] {
         let err = text.parse::<ErgonomicProfile>().unwrap_err();
         assert!(err.to_string().contains(needle), "`{err}` lacks `{needle}`");

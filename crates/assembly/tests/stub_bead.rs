@@ -53,10 +53,16 @@ fn forces_over_the_bead_match_the_hand_calculation() {
     let crest_start = 0.008 + 0.0015 / f64::tan(20.0 * PI / 180.0); // 12.12 mm
     let back = crest_start + w; // back flank from here
     let end = back + 0.0015 / f64::tan(60.0 * PI / 180.0); // to here
-    // before the bead: the cylinder alone, either way
+                                                           // before the bead: the cylinder alone, either way
     let l = 0.005;
-    assert!(close(f.axial_force_moving(l, Friction::Sliding, Sense::On), cyl(l)));
-    assert!(close(f.axial_force_moving(l, Friction::Sliding, Sense::Off), cyl(l)));
+    assert!(close(
+        f.axial_force_moving(l, Friction::Sliding, Sense::On),
+        cyl(l)
+    ));
+    assert!(close(
+        f.axial_force_moving(l, Friction::Sliding, Sense::Off),
+        cyl(l)
+    ));
     // pushing on up the entry flank: + N (tan 20° + γ)/(1 − γ tan 20°)
     let l = 0.010;
     let on = f.axial_force_moving(l, Friction::Sliding, Sense::On);
@@ -76,7 +82,12 @@ fn forces_over_the_bead_match_the_hand_calculation() {
             .map(|k| f.axial_force_moving(1e-4 * k as f64, Friction::Sliding, sense))
             .fold(0.0, f64::max)
     };
-    assert!(peak(Sense::Off) > 2.0 * peak(Sense::On), "{} vs {}", peak(Sense::Off), peak(Sense::On));
+    assert!(
+        peak(Sense::Off) > 2.0 * peak(Sense::On),
+        "{} vs {}",
+        peak(Sense::Off),
+        peak(Sense::On)
+    );
 }
 
 #[test]
@@ -103,7 +114,10 @@ fn a_fixed_hose_behind_the_bead_breaks_loose_only_under_the_pull_off_force() {
     // sliding back, the lip meets the back flank: the resistance jumps there
     let at_flank = StubState::Inserting { depth: 0.0155 }; // back flank: 15.1–16.0 mm
     let r = at_flank.resisting_force_moving(&f, Sense::Off);
-    assert!(r > 3.0 * at_flank.resisting_force_moving(&f, Sense::On), "{r}");
+    assert!(
+        r > 3.0 * at_flank.resisting_force_moving(&f, Sense::On),
+        "{r}"
+    );
 }
 
 #[test]

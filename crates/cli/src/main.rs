@@ -84,12 +84,21 @@ enum Command {
         /// Port to listen on (0 picks a free one).
         #[arg(long, default_value_t = 8080)]
         port: u16,
-        /// Address to listen on.
+        /// Address to listen on. Anything but loopback serves the network: a token is then
+        /// required (generated unless --token gives one) and printed in the URL.
         #[arg(long, default_value = "127.0.0.1")]
         host: String,
         /// Solver instead of the scene's: explicit, implicit or static.
         #[arg(long)]
         solver: Option<pliant_core::SolverKind>,
+        /// Require this token (?token=… in the page URL) on every connection, also on
+        /// loopback: ≥ 8 letters, digits, '-', '_', '.'.
+        #[arg(long)]
+        token: Option<String>,
+        /// Also accept WebSocket connections from pages of this origin
+        /// (scheme://host[:port]); repeatable. The server's own pages are always accepted.
+        #[arg(long = "allow-origin")]
+        allow_origin: Vec<String>,
     },
     /// Measure cost per element per step and the real-time factor.
     Bench {
@@ -164,8 +173,10 @@ fn main() -> ExitCode {
             scene,
             port,
             host,
+            token,
+            allow_origin,
             solver,
-        } => serve_cmd::run(scene.as_deref(), &host, port, solver),
+        } => serve_cmd::run(scene.as_deref(), &host, port, solver, token, allow_origin),
         Command::Bench { json, quick } => {
             bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
         }

@@ -1,6 +1,7 @@
 //! `pliant serve`: the interactive server (SPEC I6; protocol in docs/protocol.md).
 
 use anyhow::Context;
+use pliant_server::access::{is_loopback, Access};
 use pliant_server::session::SessionOptions;
 use pliant_server::{ServerConfig, Session};
 use std::path::Path;
@@ -11,7 +12,10 @@ pub fn run(
     host: &str,
     port: u16,
     solver: Option<pliant_core::SolverKind>,
+    token: Option<String>,
+    allow_origin: Vec<String>,
 ) -> anyhow::Result<ExitCode> {
+    let access = Access::for_host(host, token, allow_origin).map_err(anyhow::Error::msg)?;
     let scene = match scene_path {
         Some(p) => pliant_scene::load_scene_file(p)
             .with_context(|| format!("cannot load {}", p.display()))?,
@@ -46,17 +50,31 @@ pub fn run(
             port,
             scene_dir,
             sessions_dir: Some(sessions_dir.clone()),
+            access: access.clone(),
         };
         let mut server = pliant_server::start(session, &config)
             .await
             .with_context(|| format!("cannot listen on {host}:{port}"))?;
-        println!("Pliant serving '{}' at {}", scene.name, server.url());
+        let url = match access.token() {
+            Some(t) => format!("{}?token={t}", server.url()),
+            None => server.url(),
+        };
+        println!("Pliant serving '{}' at {url}", scene.name);
+        if !is_loopback(host) {
+            eprintln!(
+                "WARNING: listening on {host}, reachable from the network: whoever has the URL \
+                 above (with its token) can drive this session and load scenes. Only the \
+                 server's own pages{} may connect.",
+                if access.token().is_some() { " presenting the token" } else { "" }
+            );
+        }
         if !pliant_server::assets::viewer_embedded() {
             println!("(this binary has no browser viewer: run scripts/build-web.sh, then rebuild)");
         }
         println!(
-            "WebSocket (protocol v1): {}  — Ctrl-C stops",
-            server.ws_url()
+            "WebSocket (protocol v1): {}{}  — Ctrl-C stops",
+            server.ws_url(),
+            access.token().map(|t| format!("?token={t}")).unwrap_or_default()
         );
         // Scripts and tests read the URL from stdout: make sure it is not left buffered.
         use std::io::Write as _;

@@ -238,3 +238,55 @@ fn validate_unknown_case_fails_clearly() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("unknown validation case"));
 }
+
+/// `pliant serve` on a network address requires a token, prints it in the URL and warns
+/// that the session is exposed; a token unfit for a URL is refused before serving.
+#[test]
+fn serve_on_the_network_prints_a_token_and_a_warning() {
+    use std::io::{BufRead, BufReader, Read};
+    let dir = tempfile::tempdir().unwrap();
+    let mut child = pliant()
+        .args(["serve", "--host", "0.0.0.0", "--port", "0"])
+        .current_dir(dir.path())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // wait for the line, not for a duration
+    let mut stdout = BufReader::new(child.stdout.take().unwrap());
+    let mut line = String::new();
+    let url = loop {
+        line.clear();
+        assert!(
+            stdout.read_line(&mut line).unwrap() > 0,
+            "serve ended early"
+        );
+        if line.starts_with("Pliant serving") {
+            break line.trim().rsplit(' ').next().unwrap().to_string();
+        }
+    };
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let mut stderr = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut stderr)
+        .unwrap();
+    let token = url.split("?token=").nth(1).expect("a token in the URL");
+    assert_eq!(token.len(), 32, "{url}");
+    assert!(token.bytes().all(|b| b.is_ascii_hexdigit()), "{url}");
+    assert!(
+        stderr.contains("WARNING") && stderr.contains("reachable from the network"),
+        "{stderr}"
+    );
+
+    let refused = pliant()
+        .args(["serve", "--port", "0", "--token", "a b"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--token"));
+}

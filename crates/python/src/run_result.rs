@@ -58,7 +58,7 @@ pub struct RunResult {
 /// >>> result.feasible
 /// False
 /// >>> result.reasons[0]
-/// 'hand 0: push of 200.1 N at t = 9.00 s exceeds the limit 94.0 N (table 3.7; 213 % of it)'
+/// 'hand 0: push of 190.2 N at t = 8.62 s exceeds the limit 94.0 N (table 3.7; 202 % of it)'
 /// >>> result.hand_series(0)["force"].shape[1]
 /// 3
 #[pyfunction]

@@ -150,8 +150,7 @@ impl RawEntry {
             self.poisson.build(&name, "poisson")?,
             self.min_bend_radius_mm.build(&name, "min_bend_radius_mm")?,
         ];
-        let [d_i, d_a, e_c, e_t, rho, nu, r_min] =
-            [0, 1, 2, 3, 4, 5, 6].map(|i| values[i].value);
+        let [d_i, d_a, e_c, e_t, rho, nu, r_min] = [0, 1, 2, 3, 4, 5, 6].map(|i| values[i].value);
         if !(r_min > 0.5 * d_a) {
             return Err(format!(
                 "{name}.min_bend_radius_mm: must exceed the outer radius d_outer / 2"
@@ -215,7 +214,10 @@ mod tests {
             assert_eq!(e.material.e_bending, None);
             assert_eq!(e.material.poisson, 0.49);
             // the rule 6 d_i + d_a / 2 on the centre line (data/materials.toml)
-            assert!(close(e.min_bend_radius, (6.0 * d_i + 0.5 * d_a) * 1e-3), "{name} r_min");
+            assert!(
+                close(e.min_bend_radius, (6.0 * d_i + 0.5 * d_a) * 1e-3),
+                "{name} r_min"
+            );
             let expected_density = if name == "hose1" { 940.0 } else { 1100.0 };
             assert_eq!(e.material.density, expected_density, "{name} density");
         }

@@ -3,9 +3,7 @@
 //! every mistake gives an error naming the field and the reason.
 
 use glam::DVec3;
-use pliant_assembly::ergonomics::{
-    Duty, ErgonomicProfile, Population, PullPosture, PushPosture,
-};
+use pliant_assembly::ergonomics::{Duty, ErgonomicProfile, Population, PullPosture, PushPosture};
 use pliant_assembly::{Action, MovePath};
 use pliant_scene::{load_scene_file, load_scene_str, HoseEnd, LoadedScene};
 use std::panic::{catch_unwind, AssertUnwindSafe};

@@ -89,18 +89,29 @@ fn a_hose_rolled_tighter_than_its_minimum_radius_is_reported_at_kappa_m_over_ei(
     );
     let p = &run.checks.profiles[0];
     for k in &p.curvature {
-        assert!((k * radius - 1.0).abs() < 1e-6, "κ = {k}, 1/R = {}", 1.0 / radius);
+        assert!(
+            (k * radius - 1.0).abs() < 1e-6,
+            "κ = {k}, 1/R = {}",
+            1.0 / radius
+        );
     }
     // no twist in pure bending about a section axis
     assert!(p.max_twist < 1e-6, "twist {}", p.max_twist);
-    assert!(!run.checks.violations.iter().any(|v| v.check == CheckKind::Twist));
+    assert!(!run
+        .checks
+        .violations
+        .iter()
+        .any(|v| v.check == CheckKind::Twist));
     assert!(!run.feasible());
     // the verdict says so, naming the hose, the place and the values
     let verdict = pliant_assembly::Verdict::judge(&run, None, pliant_assembly::Stage::Final);
     assert!(
-        verdict.reasons.iter().any(|r| r.contains("hose 'h': bend_radius check")
-            && r.contains("bend radius 120 mm")
-            && r.contains("the minimum 180 mm")),
+        verdict
+            .reasons
+            .iter()
+            .any(|r| r.contains("hose 'h': bend_radius check")
+                && r.contains("bend radius 120 mm")
+                && r.contains("the minimum 180 mm")),
         "{:?}",
         verdict.reasons
     );
@@ -113,7 +124,11 @@ fn a_gently_rolled_hose_passes_and_its_radius_is_still_reported() {
     let text = scene(&format!("moment_nm = [0, {}, 0]", ei / radius), "");
     let s = load_scene_str(&text, "gentle.toml").unwrap();
     let (_, run) = s.run_with(Some(SolverKind::Static)).unwrap();
-    assert!(run.checks.violations.is_empty(), "{:?}", run.checks.violations);
+    assert!(
+        run.checks.violations.is_empty(),
+        "{:?}",
+        run.checks.violations
+    );
     let p = &run.checks.profiles[0];
     assert!((p.min_bend_radius - radius).abs() < 1e-6 * radius);
 }
@@ -168,15 +183,27 @@ fn checks_switch_off_or_warn_per_scene() {
         .unwrap();
     assert_eq!(run.checks.violations.len(), 1);
     let verdict = pliant_assembly::Verdict::judge(&run, None, pliant_assembly::Stage::Final);
-    assert!(verdict.warnings.iter().any(|w| w.contains("bend_radius check")));
-    assert!(!verdict.reasons.iter().any(|w| w.contains("bend_radius check")));
+    assert!(verdict
+        .warnings
+        .iter()
+        .any(|w| w.contains("bend_radius check")));
+    assert!(!verdict
+        .reasons
+        .iter()
+        .any(|w| w.contains("bend_radius check")));
 }
 
 #[test]
 fn bad_check_limits_are_errors_naming_the_field() {
     for (extra, field) in [
-        ("[checks]\ntwist_limit_deg_per_m = -1\n", "checks.twist_limit_deg_per_m"),
-        ("[checks]\nrest_strain_limit = 0\n", "checks.rest_strain_limit"),
+        (
+            "[checks]\ntwist_limit_deg_per_m = -1\n",
+            "checks.twist_limit_deg_per_m",
+        ),
+        (
+            "[checks]\nrest_strain_limit = 0\n",
+            "checks.rest_strain_limit",
+        ),
         ("[checks]\nbend_radius = 3\n", "checks.bend_radius"),
         ("[checks]\nbend = true\n", "checks.bend"),
     ] {
@@ -194,12 +221,33 @@ fn bad_check_limits_are_errors_naming_the_field() {
 fn the_engine_bay_demo_shows_contact_and_follows_the_new_rules() {
     let scene = pliant_scene::demo_scene().unwrap();
     let (_, run) = scene.run_with(None).unwrap();
-    assert!(run.contacts.iter().any(|c| c.part == "heat shield"), "{:?}", run.contacts);
+    assert!(
+        run.contacts.iter().any(|c| c.part == "heat shield"),
+        "{:?}",
+        run.contacts
+    );
     let verdict = pliant_assembly::Verdict::judge(&run, None, pliant_assembly::Stage::Final);
     assert_eq!(verdict.feasible, Some(false));
-    assert!(verdict.reasons.iter().any(|r| r.starts_with("hand 0: push of")), "{:?}", verdict.reasons);
-    assert!(verdict.reasons.iter().all(|r| !r.contains("bending moment")));
-    assert!(verdict.warnings.iter().any(|w| w.contains("bending moment")), "{:?}", verdict.warnings);
+    assert!(
+        verdict
+            .reasons
+            .iter()
+            .any(|r| r.starts_with("hand 0: push of")),
+        "{:?}",
+        verdict.reasons
+    );
+    assert!(verdict
+        .reasons
+        .iter()
+        .all(|r| !r.contains("bending moment")));
+    assert!(
+        verdict
+            .warnings
+            .iter()
+            .any(|w| w.contains("bending moment")),
+        "{:?}",
+        verdict.warnings
+    );
     assert!(run
         .checks
         .violations

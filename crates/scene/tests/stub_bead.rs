@@ -31,7 +31,9 @@ diameter = 28
 #[test]
 fn a_bead_loads_onto_the_press_fit() {
     let s = load_scene_str(
-        &scene("bead = { at = 8, height = 1.5, width = 3, entry_angle_deg = 20, back_angle_deg = 60 }"),
+        &scene(
+            "bead = { at = 8, height = 1.5, width = 3, entry_angle_deg = 20, back_angle_deg = 60 }",
+        ),
         "bead.toml",
     )
     .unwrap_or_else(|e| panic!("{e}"));

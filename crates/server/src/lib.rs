@@ -2,9 +2,11 @@
 //! at its own rate ([`session`]), publishes the newest snapshot ([`snapshot`]) and takes
 //! hand input from any client — browser, VR, script — through one versioned JSON protocol
 //! over WebSocket ([`protocol`], documented in `docs/protocol.md`), and serves the
-//! browser/VR viewer embedded at compile time ([`assets`]). Misbehaving clients get
+//! browser/VR viewer embedded at compile time ([`assets`]). Only the server's own pages
+//! (and allowed origins, with the token when one is set) may connect ([`access`]); misbehaving clients get
 //! error replies ([`limits`]); hands belong to the client that grabbed them ([`ownership`]).
 
+pub mod access;
 pub mod assets;
 pub mod limits;
 pub mod ownership;

@@ -10,6 +10,7 @@
 //! the scene loader is an `invalid_scene` reply, and the shared locks recover from a panic
 //! of an earlier holder ([`lock`]).
 
+use crate::access::{token_in_query, Access};
 use crate::limits::{
     Admit, RateLimiter, HARD_MAX_MESSAGE_BYTES, MAX_MESSAGE_BYTES, MAX_SCENE_MESSAGE_BYTES,
     MAX_STEPS_PER_REQUEST,
@@ -18,8 +19,9 @@ use crate::ownership::{ClientId, Ownership, Refusal};
 use crate::protocol::{error_json, ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
 use crate::session::{Command, Session, SessionOptions};
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
-use axum::extract::State;
-use axum::response::IntoResponse;
+use axum::extract::{RawQuery, State};
+use axum::http::{header, HeaderMap, StatusCode};
+use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use axum::Router;
 use futures_util::FutureExt;
@@ -55,6 +57,8 @@ pub struct ServerConfig {
     /// Sessions started by `load_scene` record into a new folder here (SPEC W2);
     /// `None`: they keep their log in memory only (a `report` is then refused).
     pub sessions_dir: Option<PathBuf>,
+    /// Who may open the WebSocket ([`crate::access`]).
+    pub access: Access,
 }
 
 impl Default for ServerConfig {
@@ -64,6 +68,7 @@ impl Default for ServerConfig {
             port: 8080,
             scene_dir: PathBuf::new(),
             sessions_dir: None,
+            access: Access::local(),
         }
     }
 }
@@ -93,6 +98,7 @@ struct Shared {
     next_client: AtomicU64,
     scene_dir: PathBuf,
     sessions_dir: Option<PathBuf>,
+    access: Access,
 }
 
 impl Shared {
@@ -104,6 +110,7 @@ impl Shared {
             next_client: AtomicU64::new(1),
             scene_dir: config.scene_dir.clone(),
             sessions_dir: config.sessions_dir.clone(),
+            access: config.access.clone(),
         }
     }
 
@@ -200,7 +207,23 @@ pub async fn start(session: Session, config: &ServerConfig) -> std::io::Result<R
     Ok(RunningServer { addr, task, shared })
 }
 
-async fn ws_upgrade(ws: WebSocketUpgrade, State(shared): State<Arc<Shared>>) -> impl IntoResponse {
+/// The WebSocket handshake: refused with 403/401 and a plain-text reason unless
+/// [`Access::check`] admits it.
+async fn ws_upgrade(
+    ws: WebSocketUpgrade,
+    headers: HeaderMap,
+    RawQuery(query): RawQuery,
+    State(shared): State<Arc<Shared>>,
+) -> Response {
+    let header = |name: header::HeaderName| headers.get(name).and_then(|v| v.to_str().ok());
+    if let Err(refusal) = shared.access.check(
+        header(header::ORIGIN),
+        header(header::HOST),
+        token_in_query(query.as_deref()),
+    ) {
+        let status = StatusCode::from_u16(refusal.status()).unwrap_or(StatusCode::FORBIDDEN);
+        return (status, refusal.message()).into_response();
+    }
     ws.max_message_size(HARD_MAX_MESSAGE_BYTES)
         .max_frame_size(HARD_MAX_MESSAGE_BYTES)
         .on_upgrade(move |socket| async move {
@@ -228,6 +251,7 @@ async fn ws_upgrade(ws: WebSocketUpgrade, State(shared): State<Arc<Shared>>) -> 
                 session.send(Command::Release { hand });
             }
         })
+        .into_response()
 }
 
 /// What to do after a text message.

@@ -54,7 +54,10 @@ impl CheckKind {
 
     /// Whether the check judges the assembled state (end of the study) only.
     pub fn at_end_only(self) -> bool {
-        matches!(self, CheckKind::TensionAtRest | CheckKind::StraightBehindStub)
+        matches!(
+            self,
+            CheckKind::TensionAtRest | CheckKind::StraightBehindStub
+        )
     }
 }
 

@@ -35,7 +35,12 @@ impl ChecksSummary {
     /// The summary of `checks`, with the end-of-study violations `end` appended.
     pub fn of(checks: &InstallationChecks, end: Vec<Violation>) -> Self {
         let s = checks.settings();
-        let on = [s.bend_radius, s.twist, s.tension_at_rest, s.straight_behind_stub];
+        let on = [
+            s.bend_radius,
+            s.twist,
+            s.tension_at_rest,
+            s.straight_behind_stub,
+        ];
         ChecksSummary {
             enabled: CheckKind::ALL
                 .iter()

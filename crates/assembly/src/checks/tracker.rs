@@ -71,8 +71,12 @@ impl InstallationChecks {
             for e in info.first_element..info.first_element + info.element_count {
                 let el = &model.elements[e];
                 beam_hose[e] = h;
-                rest_twist[e] =
-                    bend_and_twist(model.rest_q[el.node_a], model.rest_q[el.node_b], el.rest_length).1;
+                rest_twist[e] = bend_and_twist(
+                    model.rest_q[el.node_a],
+                    model.rest_q[el.node_b],
+                    el.rest_length,
+                )
+                .1;
                 arc.push(s + 0.5 * el.rest_length);
                 s += el.rest_length;
             }
@@ -127,7 +131,9 @@ impl InstallationChecks {
         }
         let time = state.time;
         for (h, info) in model.hoses.iter().enumerate() {
-            let Some(limits) = self.settings.hoses.get(h).copied() else { continue };
+            let Some(limits) = self.settings.hoses.get(h).copied() else {
+                continue;
+            };
             let range = info.first_element..info.first_element + info.element_count;
             let (mut kmax, mut kat) = (0.0, range.start);
             let (mut tmax, mut tat) = (0.0, range.start);
@@ -158,11 +164,29 @@ impl InstallationChecks {
             let arc = |e: usize| p.arc_length[e - first];
             if self.settings.bend_radius && radius < limits.min_bend_radius {
                 let s = arc(kat);
-                note(&mut self.running[h][0], CheckKind::BendRadius, h, info, s, time, radius, limits.min_bend_radius);
+                note(
+                    &mut self.running[h][0],
+                    CheckKind::BendRadius,
+                    h,
+                    info,
+                    s,
+                    time,
+                    radius,
+                    limits.min_bend_radius,
+                );
             }
             if self.settings.twist && tmax > self.settings.twist_limit {
                 let s = arc(tat);
-                note(&mut self.running[h][1], CheckKind::Twist, h, info, s, time, tmax, self.settings.twist_limit);
+                note(
+                    &mut self.running[h][1],
+                    CheckKind::Twist,
+                    h,
+                    info,
+                    s,
+                    time,
+                    tmax,
+                    self.settings.twist_limit,
+                );
             }
         }
     }
@@ -179,15 +203,24 @@ impl InstallationChecks {
 
     /// The checks of the assembled state `state` (the end of a study): no axial
     /// tension at rest; a straight length behind each stub.
-    pub fn end_violations(&self, model: &Model, state: &State, stubs: &[StubSite]) -> Vec<Violation> {
+    pub fn end_violations(
+        &self,
+        model: &Model,
+        state: &State,
+        stubs: &[StubSite],
+    ) -> Vec<Violation> {
         let mut out = Vec::new();
         let time = state.time;
         for (h, info) in model.hoses.iter().enumerate() {
-            let Some(limits) = self.settings.hoses.get(h).copied() else { continue };
+            let Some(limits) = self.settings.hoses.get(h).copied() else {
+                continue;
+            };
             let profile = &self.profiles[h];
             if self.settings.tension_at_rest {
                 let mut worst: Option<(f64, f64, f64)> = None; // (force, strain limit force, s)
-                for (k, e) in (info.first_element..info.first_element + info.element_count).enumerate() {
+                for (k, e) in
+                    (info.first_element..info.first_element + info.element_count).enumerate()
+                {
                     let el = &model.elements[e];
                     let l = (state.x[el.node_b] - state.x[el.node_a]).length();
                     let strain = (l - el.rest_length) / el.rest_length;
@@ -200,7 +233,16 @@ impl InstallationChecks {
                     }
                 }
                 if let Some((force, limit, s)) = worst {
-                    out.push(end_violation(CheckKind::TensionAtRest, h, info, s, time, force, limit, None));
+                    out.push(end_violation(
+                        CheckKind::TensionAtRest,
+                        h,
+                        info,
+                        s,
+                        time,
+                        force,
+                        limit,
+                        None,
+                    ));
                 }
             }
             if self.settings.straight_behind_stub {
@@ -212,7 +254,11 @@ impl InstallationChecks {
                     let mut s0 = 0.0;
                     for k in 0..info.element_count {
                         // beams in order away from the stub end
-                        let k_el = if from_start { k } else { info.element_count - 1 - k };
+                        let k_el = if from_start {
+                            k
+                        } else {
+                            info.element_count - 1 - k
+                        };
                         if s0 >= length {
                             break;
                         }
@@ -261,13 +307,19 @@ fn note(
         Some(v) => {
             v.last_time = time;
             v.instants += 1;
-            let worse = if check.lower_bound() { value < v.value } else { value > v.value };
+            let worse = if check.lower_bound() {
+                value < v.value
+            } else {
+                value > v.value
+            };
             if worse {
                 (v.value, v.arc_length, v.time) = (value, arc_length, time);
             }
         }
         None => {
-            *slot = Some(end_violation(check, hose, info, arc_length, time, value, limit, None))
+            *slot = Some(end_violation(
+                check, hose, info, arc_length, time, value, limit, None,
+            ))
         }
     }
 }

@@ -55,8 +55,14 @@ impl ErgonomicProfile {
 /// `push`, `pull`, `population`, `duty`, `moments_decide`. An empty string is the default.
 impl ErgonomicProfile {
     /// The keys [`Self::set`] takes, in the order a profile is best written.
-    pub const KEYS: [&'static str; 6] =
-        ["posture", "push", "pull", "population", "duty", "moments_decide"];
+    pub const KEYS: [&'static str; 6] = [
+        "posture",
+        "push",
+        "pull",
+        "population",
+        "duty",
+        "moments_decide",
+    ];
 
     /// Sets one named part of the profile — `posture` (both the push and the pull row),
     /// `push`, `pull`, `population`, `duty` (names as the tables spell them) or

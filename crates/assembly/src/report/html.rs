@@ -66,7 +66,11 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary) {
         s,
         "<p>Checks run: {}; violations {}.</p>",
         checks.enabled.join(", "),
-        if checks.decide { "decide feasibility" } else { "are warnings only" }
+        if checks.decide {
+            "decide feasibility"
+        } else {
+            "are warnings only"
+        }
     );
     if checks.violations.is_empty() {
         s.push_str("<p>No violation.</p>");
@@ -74,7 +78,10 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary) {
         s.push_str("<table><tr><th>check</th><th>hose</th><th>at s [mm]</th><th>t [s]</th><th>value</th><th>limit</th><th>violated from [s]</th><th>to [s]</th></tr>");
         for v in &checks.violations {
             let (value, limit) = match v.check.unit() {
-                "m" => (format!("{:.0} mm", 1e3 * v.value), format!("{:.0} mm", 1e3 * v.limit)),
+                "m" => (
+                    format!("{:.0} mm", 1e3 * v.value),
+                    format!("{:.0} mm", 1e3 * v.limit),
+                ),
                 "rad/m" => (
                     format!("{:.1} °/m", v.value.to_degrees()),
                     format!("{:.1} °/m", v.limit.to_degrees()),
@@ -108,9 +115,13 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary) {
         .iter()
         .filter(|v| v.check == crate::checks::CheckKind::BendRadius)
     {
-        let Some(p) = checks.profiles.get(v.hose) else { continue };
+        let Some(p) = checks.profiles.get(v.hose) else {
+            continue;
+        };
         // the worst beam's midpoint at the worst instant
-        let Some(k) = p.arc_length.iter().position(|s| *s == v.arc_length) else { continue };
+        let Some(k) = p.arc_length.iter().position(|s| *s == v.arc_length) else {
+            continue;
+        };
         let (a, b) = (p.first_node + k, p.first_node + k + 1);
         let (Some(xa), Some(xb)) = (p.scene_at_worst.get(a), p.scene_at_worst.get(b)) else {
             continue;
@@ -260,11 +271,7 @@ pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String 
         }
         s.push_str("</ul>");
     }
-    let _ = write!(
-        s,
-        "<p>Ergonomic profile: {}</p>",
-        escape(report.ergonomics)
-    );
+    let _ = write!(s, "<p>Ergonomic profile: {}</p>", escape(report.ergonomics));
     let run = report.run;
     if !run.hand_peaks.is_empty() {
         s.push_str("<h2>Hands</h2><table><tr><th>hand</th><th>peak |F| [N]</th><th>at [s]</th><th>peak |T| [N·m]</th><th>at [s]</th><th>peak twist [N·m]</th><th>peak bending [N·m]</th><th>worst deciding</th><th>of limit</th></tr>");

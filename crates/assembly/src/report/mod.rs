@@ -5,8 +5,8 @@
 
 pub mod html;
 mod profile_plot;
-mod scene_picture;
 pub mod recorder;
+mod scene_picture;
 pub mod summary;
 mod vtk;
 

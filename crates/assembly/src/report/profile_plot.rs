@@ -16,12 +16,20 @@ pub fn profile_plot(
     let (w, h, pad) = (640.0, 220.0, 48.0);
     let s_max = arc.last().copied().unwrap_or(0.0).max(1e-9) * 1.02;
     let v_abs = values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    let top = v_abs.max(if limit.is_finite() { limit } else { 0.0 }).max(1e-12) * 1.1;
+    let top = v_abs
+        .max(if limit.is_finite() { limit } else { 0.0 })
+        .max(1e-12)
+        * 1.1;
     let bottom = if symmetric { -top } else { 0.0 };
     let x = |s: f64| pad + (w - 2.0 * pad) * s / s_max;
     let y = |v: f64| h - pad - (h - 2.0 * pad) * (v - bottom) / (top - bottom);
-    let mut svg = format!("<svg width=\"{w}\" height=\"{h}\" xmlns=\"http://www.w3.org/2000/svg\">");
-    let _ = write!(svg, "<text x=\"{pad}\" y=\"16\" font-size=\"13\">{}</text>", escape(title));
+    let mut svg =
+        format!("<svg width=\"{w}\" height=\"{h}\" xmlns=\"http://www.w3.org/2000/svg\">");
+    let _ = write!(
+        svg,
+        "<text x=\"{pad}\" y=\"16\" font-size=\"13\">{}</text>",
+        escape(title)
+    );
     let _ = write!(
         svg,
         "<line x1=\"{pad}\" y1=\"{0:.1}\" x2=\"{1}\" y2=\"{0:.1}\" stroke=\"#888\"/>\
@@ -42,7 +50,11 @@ pub fn profile_plot(
         escape(unit)
     );
     if limit.is_finite() {
-        for l in if symmetric { vec![limit, -limit] } else { vec![limit] } {
+        for l in if symmetric {
+            vec![limit, -limit]
+        } else {
+            vec![limit]
+        } {
             let _ = write!(
                 svg,
                 "<line x1=\"{pad}\" y1=\"{0:.1}\" x2=\"{1}\" y2=\"{0:.1}\" stroke=\"#c00\" stroke-dasharray=\"6 4\"/>",
@@ -66,5 +78,7 @@ pub fn profile_plot(
 }
 
 fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }

@@ -180,7 +180,12 @@ impl Recorder {
                 None => ("none", 0.0, 0.0, 0.0),
             };
             let [axial, lateral, twist, bending] = r.assessment.map_or([0.0; 4], |a| {
-                [a.axial_force, a.lateral_force, a.twist.magnitude, a.bending.magnitude]
+                [
+                    a.axial_force,
+                    a.lateral_force,
+                    a.twist.magnitude,
+                    a.bending.magnitude,
+                ]
             });
             writeln!(
                 self.hands,

@@ -18,7 +18,10 @@ pub fn scene_picture(
         "<div><p style=\"margin:0.5em 0 0 0\">{}</p>",
         title.replace('&', "&amp;").replace('<', "&lt;")
     );
-    for (name, a, b) in [("from above (x right, y up)", 0, 1), ("from the side (x right, z up)", 0, 2)] {
+    for (name, a, b) in [
+        ("from above (x right, y up)", 0, 1),
+        ("from the side (x right, z up)", 0, 2),
+    ] {
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for p in positions.iter().chain(std::iter::once(&mark)) {
             for (k, axis) in [a, b].into_iter().enumerate() {
@@ -39,7 +42,9 @@ pub fn scene_picture(
             "<svg width=\"{w}\" height=\"{h}\" xmlns=\"http://www.w3.org/2000/svg\" style=\"border:1px solid #ddd;margin-right:8px\"><text x=\"4\" y=\"12\" font-size=\"10\">{name}</text>"
         );
         for (k, &(first, count)) in hoses.iter().enumerate() {
-            let Some(nodes) = positions.get(first..first + count) else { continue };
+            let Some(nodes) = positions.get(first..first + count) else {
+                continue;
+            };
             let points: Vec<String> = nodes
                 .iter()
                 .map(|p| {
@@ -47,7 +52,11 @@ pub fn scene_picture(
                     format!("{x:.1},{y:.1}")
                 })
                 .collect();
-            let (stroke, width) = if k == focus { ("#036", 3.0) } else { ("#999", 1.5) };
+            let (stroke, width) = if k == focus {
+                ("#036", 3.0)
+            } else {
+                ("#999", 1.5)
+            };
             let _ = write!(
                 svg,
                 "<polyline fill=\"none\" stroke=\"{stroke}\" stroke-width=\"{width}\" points=\"{}\"/>",

@@ -111,7 +111,11 @@ impl Bead {
     pub fn force(&self, depth: f64, sense: Sense, p_crest: f64, r_stub: f64, gamma: f64) -> f64 {
         let r_b = r_stub + self.height;
         let n = p_crest * 2.0 * std::f64::consts::PI * r_b * self.width;
-        let crest_friction = if depth > self.crest_start() { n * gamma } else { 0.0 };
+        let crest_friction = if depth > self.crest_start() {
+            n * gamma
+        } else {
+            0.0
+        };
         let back_start = self.crest_start() + self.width;
         let flank = match sense {
             Sense::On if (self.at..=self.crest_start()).contains(&depth) => {

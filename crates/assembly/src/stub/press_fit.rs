@@ -120,7 +120,13 @@ impl PressFit {
         let base = self.axial_force(depth, friction);
         let l = self.stub.clamp_depth(depth);
         base + self.bead.map_or(0.0, |(b, p)| {
-            b.force(l, sense, p, self.stub.radius(), self.stub.friction(friction))
+            b.force(
+                l,
+                sense,
+                p,
+                self.stub.radius(),
+                self.stub.friction(friction),
+            )
         })
     }
 

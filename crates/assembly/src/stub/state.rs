@@ -17,8 +17,8 @@
 //!   at the stop (depth = length), which cannot move it; otherwise stays Fixed.
 //! - **PulledOff** lasts one step (an event for the report), then behaves as Approach.
 
-use super::error::StubError;
 use super::bead::Sense;
+use super::error::StubError;
 use super::press_fit::PressFit;
 use super::spec::{Friction, StubSpec};
 use glam::DVec3;
@@ -185,7 +185,11 @@ impl StubState {
             }
             StubState::Fixed { depth } => {
                 let at_stop = depth >= stub.length();
-                let sense = if obs.axial_force >= 0.0 { Sense::On } else { Sense::Off };
+                let sense = if obs.axial_force >= 0.0 {
+                    Sense::On
+                } else {
+                    Sense::Off
+                };
                 let breaks_loose = obs.axial_force.abs() > fit.holding_force_moving(depth, sense)
                     && !(at_stop && obs.axial_force > 0.0);
                 if obs.grabbed && breaks_loose {

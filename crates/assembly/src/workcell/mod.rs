@@ -25,8 +25,7 @@ pub use observer::{NoObserver, Observer};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
 pub use tally::{
     limits_of, ContactEpisode, HandPeak, HandRecord, MomentNote, NodePeak, Peak, RunSummary,
-    SettleOutcome,
-    Tally,
+    SettleOutcome, Tally,
 };
 pub use verdict::{Stage, Verdict};
 

@@ -85,11 +85,18 @@ impl Verdict {
                     ));
                 }
             }
-            for n in h.moment_notes.iter().filter(|n| h.worst_kind != Some(n.kind) || n.magnitude <= n.limit) {
+            for n in h
+                .moment_notes
+                .iter()
+                .filter(|n| h.worst_kind != Some(n.kind) || n.magnitude <= n.limit)
+            {
                 let against = if n.magnitude > n.limit {
                     format!("above the limit {:.2} N·m", n.limit)
                 } else {
-                    format!("above the guide range (up to {:.2} N·m; limit {:.2} N·m)", n.guide_hi, n.limit)
+                    format!(
+                        "above the guide range (up to {:.2} N·m; limit {:.2} N·m)",
+                        n.guide_hi, n.limit
+                    )
                 };
                 warnings.push(format!(
                     "hand {}: {} of {:.2} N·m at t = {:.2} s is {against} ({}){}",
@@ -190,7 +197,10 @@ impl Verdict {
             let checks = if run.checks.enabled.is_empty() {
                 String::new()
             } else {
-                format!(", and the installation checks ({}) passed", run.checks.enabled.join(", "))
+                format!(
+                    ", and the installation checks ({}) passed",
+                    run.checks.enabled.join(", ")
+                )
             };
             reasons.push(match stage {
                 Stage::Final => format!("every hand load stayed within its ergonomic limit value, every stub and clip was fitted{checks}"),

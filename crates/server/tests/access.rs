@@ -1,0 +1,113 @@
+//! Who may connect (issue 12 item 1), over real handshakes on the loopback interface: a
+//! foreign page's origin, `Origin: null` and a rebound host name are refused; the
+//! server's own pages, allowed origins and non-browser clients are admitted; a token,
+//! when required, must be presented.
+
+use pliant_server::access::Access;
+use pliant_server::session::SessionOptions;
+use pliant_server::{start, RunningServer, ServerConfig, Session};
+use tokio_tungstenite::tungstenite::client::IntoClientRequest;
+use tokio_tungstenite::tungstenite::http::HeaderValue;
+use tokio_tungstenite::tungstenite::Error;
+
+async fn server(access: Access) -> RunningServer {
+    let scene = pliant_scene::demo_scene().unwrap();
+    let session = Session::start(&scene, SessionOptions::default()).unwrap();
+    let config = ServerConfig {
+        host: "127.0.0.1".into(),
+        port: 0,
+        access,
+        ..Default::default()
+    };
+    start(session, &config).await.unwrap()
+}
+
+/// The HTTP status of a handshake to `/ws{query}` with the given headers (101: admitted).
+async fn handshake(s: &RunningServer, query: &str, headers: &[(&'static str, String)]) -> u16 {
+    let mut request = format!("{}{query}", s.ws_url())
+        .into_client_request()
+        .unwrap();
+    for (name, value) in headers {
+        request
+            .headers_mut()
+            .insert(*name, HeaderValue::from_str(value).unwrap());
+    }
+    match tokio_tungstenite::connect_async(request).await {
+        Ok((_, response)) => response.status().as_u16(),
+        Err(Error::Http(response)) => response.status().as_u16(),
+        Err(e) => panic!("handshake failed otherwise: {e}"),
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn loopback_admits_its_own_pages_and_scripts_and_refuses_foreign_origins() {
+    let s = server(Access::local()).await;
+    let own = format!("http://{}", s.addr);
+    // a script (no Origin) and the server's own viewer page
+    assert_eq!(handshake(&s, "", &[]).await, 101);
+    assert_eq!(handshake(&s, "", &[("origin", own.clone())]).await, 101);
+    // any other page the user visits, and sandboxed frames or files
+    for origin in [
+        "http://evil.example",
+        "null",
+        "http://127.0.0.1:1",
+        "https://localhost",
+    ] {
+        assert_eq!(
+            handshake(&s, "", &[("origin", origin.to_string())]).await,
+            403,
+            "{origin}"
+        );
+    }
+    // DNS rebinding: a foreign name resolving to 127.0.0.1 is "same origin" but not loopback
+    let port = s.addr.port();
+    let rebound = [
+        ("host", format!("evil.example:{port}")),
+        ("origin", format!("http://evil.example:{port}")),
+    ];
+    assert_eq!(handshake(&s, "", &rebound).await, 403);
+    assert_eq!(
+        handshake(&s, "", &[("host", format!("localhost:{port}"))]).await,
+        101
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_allowed_origin_is_admitted() {
+    let access = Access::for_host(
+        "127.0.0.1",
+        None,
+        vec!["http://app.example:3000".to_string()],
+    )
+    .unwrap();
+    let s = server(access).await;
+    let ok = [("origin", "http://app.example:3000".to_string())];
+    assert_eq!(handshake(&s, "", &ok).await, 101);
+    let other = [("origin", "http://app.example:3001".to_string())];
+    assert_eq!(handshake(&s, "", &other).await, 403);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_required_token_must_be_presented() {
+    let access = Access::for_host("127.0.0.1", Some("s3cret-token".into()), vec![]).unwrap();
+    let s = server(access).await;
+    assert_eq!(handshake(&s, "", &[]).await, 401);
+    assert_eq!(handshake(&s, "?token=wrong-token1", &[]).await, 401);
+    assert_eq!(handshake(&s, "?token=s3cret-token", &[]).await, 101);
+    // the token does not excuse a foreign page
+    let foreign = [("origin", "http://evil.example".to_string())];
+    assert_eq!(handshake(&s, "?token=s3cret-token", &foreign).await, 403);
+    // with a token, any host name may be used (the server is meant to be shared)
+    let port = s.addr.port();
+    let named = [("host", format!("workstation.lan:{port}"))];
+    assert_eq!(handshake(&s, "?token=s3cret-token", &named).await, 101);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_network_address_gets_a_generated_token() {
+    let access = Access::for_host("0.0.0.0", None, vec![]).unwrap();
+    let token = access.token().expect("a token for the network").to_string();
+    let s = server(access).await;
+    assert_eq!(handshake(&s, "", &[]).await, 401);
+    assert_eq!(handshake(&s, &format!("?token={token}"), &[]).await, 101);
+}
