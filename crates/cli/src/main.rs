@@ -11,6 +11,7 @@ mod serve_cmd;
 mod validate_cmd;
 
 use clap::{Parser, Subcommand};
+use pliant_server::access::Access;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -99,6 +100,9 @@ enum Command {
         /// (scheme://host[:port]); repeatable. The server's own pages are always accepted.
         #[arg(long = "allow-origin")]
         allow_origin: Vec<String>,
+        /// Most clients connected at once (the next is refused until one leaves).
+        #[arg(long = "max-clients", default_value_t = pliant_server::server::MAX_CLIENTS)]
+        max_clients: usize,
     },
     /// Measure cost per element per step and the real-time factor.
     Bench {
@@ -175,8 +179,13 @@ fn main() -> ExitCode {
             host,
             token,
             allow_origin,
+            max_clients,
             solver,
-        } => serve_cmd::run(scene.as_deref(), &host, port, solver, token, allow_origin),
+        } => Access::for_host(&host, token, allow_origin)
+            .map_err(anyhow::Error::msg)
+            .and_then(|access| {
+                serve_cmd::run(scene.as_deref(), &host, port, solver, access, max_clients)
+            }),
         Command::Bench { json, quick } => {
             bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
         }

@@ -12,10 +12,12 @@ pub fn run(
     host: &str,
     port: u16,
     solver: Option<pliant_core::SolverKind>,
-    token: Option<String>,
-    allow_origin: Vec<String>,
+    access: Access,
+    max_clients: usize,
 ) -> anyhow::Result<ExitCode> {
-    let access = Access::for_host(host, token, allow_origin).map_err(anyhow::Error::msg)?;
+    if max_clients == 0 {
+        anyhow::bail!("--max-clients must be at least 1");
+    }
     let scene = match scene_path {
         Some(p) => pliant_scene::load_scene_file(p)
             .with_context(|| format!("cannot load {}", p.display()))?,
@@ -51,6 +53,8 @@ pub fn run(
             scene_dir,
             sessions_dir: Some(sessions_dir.clone()),
             access: access.clone(),
+            max_clients,
+            ..ServerConfig::default()
         };
         let mut server = pliant_server::start(session, &config)
             .await
@@ -59,15 +63,16 @@ pub fn run(
             Some(t) => format!("{}?token={t}", server.url()),
             None => server.url(),
         };
-        println!("Pliant serving '{}' at {url}", scene.name);
+        // before the URL line: scripts that read the URL may stop the server right after
         if !is_loopback(host) {
             eprintln!(
                 "WARNING: listening on {host}, reachable from the network: whoever has the URL \
-                 above (with its token) can drive this session and load scenes. Only the \
+                 below (with its token) can drive this session and load scenes. Only the \
                  server's own pages{} may connect.",
                 if access.token().is_some() { " presenting the token" } else { "" }
             );
         }
+        println!("Pliant serving '{}' at {url}", scene.name);
         if !pliant_server::assets::viewer_embedded() {
             println!("(this binary has no browser viewer: run scripts/build-web.sh, then rebuild)");
         }

@@ -31,7 +31,7 @@ use std::any::Any;
 use std::net::SocketAddr;
 use std::panic::AssertUnwindSafe;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 use tokio::net::TcpListener;
@@ -59,7 +59,16 @@ pub struct ServerConfig {
     pub sessions_dir: Option<PathBuf>,
     /// Who may open the WebSocket ([`crate::access`]).
     pub access: Access,
+    /// A connection that has not said `hello` this long after its handshake is closed.
+    pub hello_timeout: Duration,
+    /// Most connections at once; the next handshake gets 503 until one ends.
+    pub max_clients: usize,
 }
+
+/// Default [`ServerConfig::hello_timeout`].
+pub const HELLO_TIMEOUT: Duration = Duration::from_secs(10);
+/// Default [`ServerConfig::max_clients`].
+pub const MAX_CLIENTS: usize = 64;
 
 impl Default for ServerConfig {
     fn default() -> Self {
@@ -69,6 +78,8 @@ impl Default for ServerConfig {
             scene_dir: PathBuf::new(),
             sessions_dir: None,
             access: Access::local(),
+            hello_timeout: HELLO_TIMEOUT,
+            max_clients: MAX_CLIENTS,
         }
     }
 }
@@ -99,6 +110,28 @@ struct Shared {
     scene_dir: PathBuf,
     sessions_dir: Option<PathBuf>,
     access: Access,
+    hello_timeout: Duration,
+    max_clients: usize,
+    /// Connections open now (slots taken by [`ClientSlot`]).
+    clients: AtomicUsize,
+}
+
+/// One connection's place under [`ServerConfig::max_clients`], given back when dropped —
+/// when the connection ends, or when a handshake is refused or never completes.
+struct ClientSlot(Arc<Shared>);
+
+impl ClientSlot {
+    fn take(shared: &Arc<Shared>) -> Option<Self> {
+        let before = shared.clients.fetch_add(1, Ordering::SeqCst);
+        let slot = ClientSlot(shared.clone());
+        (before < shared.max_clients).then_some(slot)
+    }
+}
+
+impl Drop for ClientSlot {
+    fn drop(&mut self) {
+        self.0.clients.fetch_sub(1, Ordering::SeqCst);
+    }
 }
 
 impl Shared {
@@ -111,6 +144,9 @@ impl Shared {
             scene_dir: config.scene_dir.clone(),
             sessions_dir: config.sessions_dir.clone(),
             access: config.access.clone(),
+            hello_timeout: config.hello_timeout,
+            max_clients: config.max_clients,
+            clients: AtomicUsize::new(0),
         }
     }
 
@@ -224,9 +260,17 @@ async fn ws_upgrade(
         let status = StatusCode::from_u16(refusal.status()).unwrap_or(StatusCode::FORBIDDEN);
         return (status, refusal.message()).into_response();
     }
+    let Some(slot) = ClientSlot::take(&shared) else {
+        let text = format!(
+            "the server is full: {} clients connected (--max-clients); try again later",
+            shared.max_clients
+        );
+        return (StatusCode::SERVICE_UNAVAILABLE, text).into_response();
+    };
     ws.max_message_size(HARD_MAX_MESSAGE_BYTES)
         .max_frame_size(HARD_MAX_MESSAGE_BYTES)
         .on_upgrade(move |socket| async move {
+            let _slot = slot;
             let client = shared.next_client.fetch_add(1, Ordering::SeqCst);
             // A panic while serving this client ends its connection only: it is caught
             // here and logged, and the client's hands are released as on a disconnect.
@@ -295,8 +339,16 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
     let mut last_send = tokio::time::Instant::now() - interval;
     // a command of this client was accepted since the last snapshot sent to it
     let mut input_pending = false;
+    let hello_deadline = tokio::time::Instant::now() + shared.hello_timeout;
     loop {
         tokio::select! {
+            _ = tokio::time::sleep_until(hello_deadline), if !welcomed => {
+                // a connection that says nothing holds a slot and a task: closed
+                let reason = format!("no hello within {:?}", shared.hello_timeout);
+                let close = axum::extract::ws::CloseFrame { code: 1008, reason: reason.into() };
+                let _ = socket.send(Message::Close(Some(close))).await;
+                return;
+            }
             incoming = socket.recv() => {
                 let Some(Ok(msg)) = incoming else { return };
                 // The reply to a command is the first snapshot published after it, so the

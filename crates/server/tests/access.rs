@@ -111,3 +111,76 @@ async fn a_network_address_gets_a_generated_token() {
     assert_eq!(handshake(&s, "", &[]).await, 401);
     assert_eq!(handshake(&s, &format!("?token={token}"), &[]).await, 101);
 }
+
+async fn server_with(config: ServerConfig) -> RunningServer {
+    let scene = pliant_scene::demo_scene().unwrap();
+    let session = Session::start(&scene, SessionOptions::default()).unwrap();
+    start(session, &config).await.unwrap()
+}
+
+/// Sends `hello` and waits for the `welcome`.
+async fn say_hello(
+    ws: &mut tokio_tungstenite::WebSocketStream<
+        tokio_tungstenite::MaybeTlsStream<tokio::net::TcpStream>,
+    >,
+) {
+    use futures_util::{SinkExt, StreamExt};
+    let hello = r#"{"type":"hello","version":1}"#;
+    ws.send(tokio_tungstenite::tungstenite::Message::text(hello))
+        .await
+        .unwrap();
+    while let Some(Ok(m)) = ws.next().await {
+        if m.to_text().is_ok_and(|t| t.contains("\"welcome\"")) {
+            return;
+        }
+    }
+    panic!("no welcome");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_connection_that_never_says_hello_is_closed() {
+    use futures_util::StreamExt;
+    let s = server_with(ServerConfig {
+        host: "127.0.0.1".into(),
+        port: 0,
+        hello_timeout: std::time::Duration::from_millis(200),
+        ..Default::default()
+    })
+    .await;
+    let (mut silent, _) = tokio_tungstenite::connect_async(s.ws_url()).await.unwrap();
+    // the server ends it: a close frame naming the reason, then the end of the stream
+    let mut reason = None;
+    while let Some(Ok(m)) = silent.next().await {
+        if let tokio_tungstenite::tungstenite::Message::Close(Some(frame)) = m {
+            reason = Some(frame.reason.to_string());
+        }
+    }
+    assert!(reason.is_some_and(|r| r.contains("no hello")));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_client_cap_refuses_the_next_until_one_leaves() {
+    let s = server_with(ServerConfig {
+        host: "127.0.0.1".into(),
+        port: 0,
+        max_clients: 2,
+        ..Default::default()
+    })
+    .await;
+    let (mut a, _) = tokio_tungstenite::connect_async(s.ws_url()).await.unwrap();
+    let (mut b, _) = tokio_tungstenite::connect_async(s.ws_url()).await.unwrap();
+    say_hello(&mut a).await;
+    say_hello(&mut b).await;
+    assert_eq!(handshake(&s, "", &[]).await, 503);
+    a.close(None).await.unwrap();
+    drop(a);
+    // the slot comes back when the server has seen the close: wait for that condition
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(300);
+    loop {
+        match handshake(&s, "", &[]).await {
+            101 => break,
+            503 if std::time::Instant::now() < deadline => tokio::task::yield_now().await,
+            other => panic!("handshake after a client left: {other}"),
+        }
+    }
+}
