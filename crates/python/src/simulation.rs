@@ -254,7 +254,7 @@ impl Simulation {
 
     /// The unstable equilibria (buckling, bifurcations) the static solver met and left
     /// for the stable branch so far, each a dict: ``time`` [s], ``hose`` (name), ``node``
-    /// (on that hose), ``negative_eigenvalues``, ``energy_drop_j`` and ``mode`` (an
+    /// (on that hose), ``negative_eigenvalues``, ``limit_point`` (a snap-through), ``energy_drop_j`` and ``mode`` (an
     /// (n, 3) array: each node's translation in the unstable mode, the largest 1).
     fn instabilities<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, pyo3::types::PyDict>>> {
         let model = self.model();
@@ -268,6 +268,7 @@ impl Simulation {
                 d.set_item("hose", model.hoses[i.hose].name.clone())?;
                 d.set_item("node", i.node)?;
                 d.set_item("negative_eigenvalues", i.negative_eigenvalues)?;
+                d.set_item("limit_point", i.limit_point)?;
                 d.set_item("energy_drop_j", i.energy_drop_j)?;
                 let mode = numpy::PyArray2::from_vec2(py, &i.mode.iter().map(|m| m.to_vec()).collect::<Vec<_>>())
                     .map_err(|e| PyValueError::new_err(e.to_string()))?;

@@ -43,6 +43,9 @@ pub struct Instability {
     pub node: usize,
     /// Negative eigenvalues of the tangent there (1: one buckling mode passed).
     pub negative_eigenvalues: usize,
+    /// A limit point: the load path's branch ended and the hose snapped through to a
+    /// distant stable equilibrium (the mode is then the snap's displacement).
+    pub limit_point: bool,
     /// Energy released by the first step off [J].
     pub energy_drop_j: f64,
     /// The mode: each node of that hose's translation, the largest of length 1.
@@ -136,14 +139,25 @@ impl SolverRecord {
             .instabilities
             .iter()
             .map(|i| {
-                format!(
-                    "hose '{}' buckled at t = {:.3} s (node {}, {} negative eigenvalue(s) of the tangent): \
-                     the static solver left the unstable equilibrium for the stable branch",
-                    hose_name(i.hose),
-                    i.time,
-                    i.node,
-                    i.negative_eigenvalues
-                )
+                if i.limit_point {
+                    format!(
+                        "hose '{}' snapped through at t = {:.3} s (node {} moved most): its equilibrium \
+                         branch ended (a limit point) and the static solver followed the snap to the \
+                         next stable equilibrium",
+                        hose_name(i.hose),
+                        i.time,
+                        i.node
+                    )
+                } else {
+                    format!(
+                        "hose '{}' buckled at t = {:.3} s (node {}, {} negative eigenvalue(s) of the tangent): \
+                         the static solver left the unstable equilibrium for the stable branch",
+                        hose_name(i.hose),
+                        i.time,
+                        i.node,
+                        i.negative_eigenvalues
+                    )
+                }
             })
             .collect();
         let more = self
@@ -175,6 +189,7 @@ fn instability(model: &Model, e: &StabilityEvent) -> Instability {
         hose,
         node: e.node - first,
         negative_eigenvalues: e.negative_eigenvalues,
+        limit_point: e.limit_point,
         energy_drop_j: e.energy_drop,
         mode: nodes
             .map(|i| e.mode.get(i).map_or([0.0; 3], |m| (*m * scale).to_array()))

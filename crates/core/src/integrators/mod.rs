@@ -10,12 +10,14 @@
 //!   and industrial cable tools see it. Velocities are reported as the displacement over
 //!   the input step (so rate-dependent laws — stub friction — still see the motion). An
 //!   input step whose solve does not converge is retried in 2, 4, … 16 sub-steps
-//!   (adaptive load stepping, so limit points are passed), and every equilibrium is
-//!   checked for stability ([`stability`]).
+//!   (adaptive load stepping); if it still does not, the load path has passed a limit
+//!   point and the snap to the next stable equilibrium is followed dynamically
+//!   ([`snap`]). Every equilibrium is checked for stability ([`stability`]).
 
 use crate::health::{check_for, Divergence};
 pub mod explicit;
 pub mod implicit;
+pub mod snap;
 pub mod stability;
 pub mod statics;
 
@@ -243,7 +245,8 @@ impl Solver {
     }
 
     /// One static input step: the equilibrium at t + h, solved in 1, 2, 4, …
-    /// [`MAX_STATIC_SUBSTEPS`] load steps until the solves converge.
+    /// [`MAX_STATIC_SUBSTEPS`] load steps until the solves converge, and past a limit
+    /// point by following the snap ([`snap`]).
     fn static_step(
         &mut self,
         model: &Model,
@@ -257,7 +260,7 @@ impl Solver {
         self.events.clear();
         let solver = self.statics.as_mut().expect("built for static");
         let mut pieces = 1;
-        let (report, iterations) = loop {
+        let (mut report, mut iterations) = loop {
             let mut iterations = 0;
             let mut last = None;
             for j in 1..=pieces {
@@ -287,6 +290,47 @@ impl Solver {
             state.friction.clone_from(&self.previous_friction);
             self.events.clear();
         };
+        if !report.converged {
+            state.x.copy_from_slice(&self.previous_x);
+            state.q.copy_from_slice(&self.previous_q);
+            state.friction.clone_from(&self.previous_friction);
+            state.time = time + h;
+            let before = solver.system.potential_energy(model, state);
+            // the failed solve may have stood on an unstable equilibrium and stepped off
+            // it: the snap starts that way (from rest on the unstable state it would not)
+            if let Some(e) = self.events.last() {
+                for (x, m) in state.x.iter_mut().zip(&e.mode) {
+                    *x += *m * e.amplitude;
+                }
+            }
+            self.events.clear();
+            if snap::relax(
+                model,
+                state,
+                time + h,
+                report.force_limit,
+                report.moment_limit,
+            )
+            .is_some()
+            {
+                state.time = time + h;
+                let r = solver
+                    .solve(model, state)
+                    .map_err(|error| SolverError::Static { time, error })?;
+                iterations += r.iterations;
+                if r.converged {
+                    let after = solver.system.potential_energy(model, state);
+                    self.events.push(snap_event(
+                        time + h,
+                        &self.previous_x,
+                        &state.x,
+                        before - after,
+                    ));
+                    self.events.extend(solver.events.iter().cloned());
+                }
+                report = r;
+            }
+        }
         state.time = time + h;
         for i in 0..state.x.len() {
             state.v[i] = (state.x[i] - self.previous_x[i]) / h;
@@ -302,5 +346,31 @@ impl Solver {
             unstable: report.unstable,
             substeps: pieces,
         })
+    }
+}
+
+/// The event of a snap from `before` to `after` (limit point passed at `time`).
+fn snap_event(time: f64, before: &[DVec3], after: &[DVec3], energy_drop: f64) -> StabilityEvent {
+    let mode: Vec<DVec3> = after.iter().zip(before).map(|(a, b)| *a - *b).collect();
+    let (node, amplitude) = mode.iter().enumerate().fold((0, 0.0), |(n, m), (i, d)| {
+        if d.length() > m {
+            (i, d.length())
+        } else {
+            (n, m)
+        }
+    });
+    let scale = if amplitude > 0.0 {
+        1.0 / amplitude
+    } else {
+        0.0
+    };
+    StabilityEvent {
+        time,
+        limit_point: true,
+        negative_eigenvalues: 0,
+        node,
+        energy_drop,
+        amplitude,
+        mode: mode.into_iter().map(|d| d * scale).collect(),
     }
 }

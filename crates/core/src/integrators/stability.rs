@@ -19,11 +19,17 @@ use crate::{Model, State};
 use glam::{DQuat, DVec3};
 use nalgebra::Vector6;
 
-/// An unstable equilibrium met, and left, by the static solver.
+/// An unstable equilibrium met, and left, by the static solver — or a limit point
+/// passed ([`super::snap`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct StabilityEvent {
     /// Input time of the solve [s].
     pub time: f64,
+    /// The load path's equilibrium branch ended here (a limit point): the hose snapped
+    /// through to a distant stable equilibrium, followed dynamically. `mode` is then the
+    /// snap's displacement, `amplitude` its largest translation, `energy_drop` the
+    /// potential energy released, and `negative_eigenvalues` 0.
+    pub limit_point: bool,
     /// Negative eigenvalues of the tangent at the unstable equilibrium (1: a simple
     /// buckling or bifurcation; more: several modes passed at once).
     pub negative_eigenvalues: usize,
@@ -130,6 +136,7 @@ impl Escape {
                 };
                 return Some(StabilityEvent {
                     time: state.time,
+                    limit_point: false,
                     negative_eigenvalues: inertia.negative,
                     node,
                     energy_drop: drop,

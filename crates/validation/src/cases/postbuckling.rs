@@ -23,7 +23,7 @@ use crate::harness::{build, clamp, dead_load, hose1, static_settings, straight_h
 use crate::Check;
 use glam::DVec3;
 use pliant_core::integrators::StaticSolver;
-use pliant_core::loads::{Drive, LoadCase};
+use pliant_core::loads::{DeadLoad, Drive, LoadCase, LoadRamp};
 use pliant_core::{Material, Model, Section, Solver, SolverKind, SolverSettings, State};
 use std::f64::consts::PI;
 
@@ -69,11 +69,26 @@ fn clamped_result(state: &State, ei: f64) -> (f64, f64) {
     )
 }
 
+/// What happens after the push.
+#[derive(Clone, Copy, PartialEq)]
+enum Then {
+    /// Nothing: the column as pushed.
+    Rest,
+    /// A lateral mid-span load against the buckle, rising over 1 s to twice the buckling
+    /// load, snaps the column through to the mirrored shape; it is then removed.
+    SnapThrough,
+}
+
 /// A clamped column whose far end is driven to 70 % of the length over 1 s, one static
 /// solve per 10 ms input (as `pliant run --solver static` does), optionally with a lateral
-/// load of 1 % of the buckling load at mid-span that is removed at the end. Returns the
-/// end load ratio, the mid-span deflection and the stability events met.
-fn push_gradually(offset: impl Fn(f64) -> DVec3, nudge: bool) -> Result<(f64, f64, usize), String> {
+/// load of 1 % of the buckling load at mid-span (+y) that is removed at the end. Returns
+/// the end load ratio, the mid-span deflection (signed by y after a snap-through) and the
+/// stability events met.
+fn push_gradually(
+    offset: impl Fn(f64) -> DVec3,
+    nudge: bool,
+    then: Then,
+) -> Result<(f64, f64, usize), String> {
     let (model, ei) = model(offset);
     let settings = SolverSettings {
         kind: SolverKind::Static,
@@ -92,31 +107,58 @@ fn push_gradually(offset: impl Fn(f64) -> DVec3, nudge: bool) -> Result<(f64, f6
         0.0,
         1.0,
     )));
+    let p_cr = 4.0 * PI * PI * ei;
     let nudge = nudge.then(|| {
         state.loads.add(dead_load(
             ELEMENTS / 2,
-            DVec3::new(0.0, 0.01 * 4.0 * PI * PI * ei, 0.0),
+            DVec3::new(0.0, 0.01 * p_cr, 0.0),
             DVec3::ZERO,
         ))
     });
-    let mut events = 0;
-    for _ in 0..100 {
-        let s = solver.step(&model, &mut state).map_err(|e| e.to_string())?;
-        if !s.converged {
-            return Err(format!("step at t = {:.2} s did not converge", state.time));
-        }
-        events += solver.stability_events().len();
-    }
+    let mut events = static_steps(&model, &mut solver, &mut state, 100)?;
     if let Some(nudge) = nudge {
         state.loads.remove(nudge);
     }
-    let s = solver.step(&model, &mut state).map_err(|e| e.to_string())?;
-    events += solver.stability_events().len();
-    if !s.converged || s.unstable {
-        return Err(format!("final step ended {s:?}"));
+    events += static_steps(&model, &mut solver, &mut state, 1)?;
+    if then == Then::SnapThrough {
+        let push = state.loads.add(LoadCase::DeadLoad(DeadLoad {
+            node: ELEMENTS / 2,
+            force: DVec3::new(0.0, -2.0 * p_cr, 0.0),
+            moment: DVec3::ZERO,
+            ramp: Some(LoadRamp {
+                start: state.time,
+                duration: 1.0,
+            }),
+        }));
+        events += static_steps(&model, &mut solver, &mut state, 100)?;
+        state.loads.remove(push);
+        events += static_steps(&model, &mut solver, &mut state, 1)?;
     }
     let (p, w) = clamped_result(&state, ei);
+    let w = match then {
+        Then::Rest => w,
+        Then::SnapThrough => w.copysign(state.x[ELEMENTS / 2].y),
+    };
     Ok((p, w, events))
+}
+
+/// `n` static input steps, each of which must end converged on a stable equilibrium;
+/// returns the stability events met on the way.
+fn static_steps(
+    model: &Model,
+    solver: &mut Solver,
+    state: &mut State,
+    n: usize,
+) -> Result<usize, String> {
+    let mut events = 0;
+    for _ in 0..n {
+        let s = solver.step(model, state).map_err(|e| e.to_string())?;
+        if !s.converged || s.unstable {
+            return Err(format!("step at t = {:.2} s ended {s:?}", state.time));
+        }
+        events += solver.stability_events().len();
+    }
+    Ok(events)
 }
 
 fn cantilever_in_one_solve() -> Result<(f64, f64, usize), String> {
@@ -165,7 +207,7 @@ fn clamped_checks(out: &mut Vec<Check>, name: &str, run: Result<(f64, f64, usize
 
 pub fn run() -> Vec<Check> {
     let mut out = Vec::new();
-    match push_gradually(|_| DVec3::ZERO, false) {
+    match push_gradually(|_| DVec3::ZERO, false, Then::Rest) {
         Ok((p, w, 0)) => out.push(Check::failed(
             CASE,
             "straight, pushed over 1 s",
@@ -179,13 +221,36 @@ pub fn run() -> Vec<Check> {
     clamped_checks(
         &mut out,
         "1 mm second-mode imperfection, pushed over 1 s",
-        push_gradually(second, false),
+        push_gradually(second, false, Then::Rest),
     );
     clamped_checks(
         &mut out,
         "straight, pushed over 1 s with a 1 % lateral load, removed",
-        push_gradually(|_| DVec3::ZERO, true),
+        push_gradually(|_| DVec3::ZERO, true, Then::Rest),
     );
+    // a limit point: load control past the snap load has no equilibrium nearby; the
+    // input step is split (adaptive load stepping) and the unstable states left until
+    // the column rests on the mirrored branch
+    match push_gradually(|_| DVec3::ZERO, true, Then::SnapThrough) {
+        Ok((p, w, _)) => {
+            let exact = clamped_column(END_DISTANCE);
+            out.push(Check::relative(
+                CASE,
+                "snapped through by a lateral load, removed: end load / 4π²EI/L²",
+                p,
+                exact.load_ratio,
+                TOLERANCE,
+            ));
+            out.push(Check::relative(
+                CASE,
+                "snapped through by a lateral load, removed: mid-span y / L (mirrored)",
+                w,
+                -exact.deflection,
+                TOLERANCE,
+            ));
+        }
+        Err(e) => out.push(Check::failed(CASE, "snap-through", &e)),
+    }
     let exact = cantilever(1.5).expect("above the critical load");
     match cantilever_in_one_solve() {
         Ok((delta, reach, escapes)) => {

@@ -1,0 +1,72 @@
+//! Passing a limit point (snap-through) in the static solver (issue 10 item 1).
+//!
+//! Past a limit point of the load path — a buckled hose pushed sideways until it snaps
+//! into the mirrored shape, a hose jumping over an edge — the equilibrium branch the
+//! solver follows ends: no load step, however small, has an equilibrium nearby, and
+//! Newton cannot converge. The hose then moves dynamically to a distant stable branch.
+//! This follows that motion with the loads frozen at the input's time, by dynamic
+//! relaxation with kinetic damping (Cundall 1976; Barnes 1999): explicit steps of the
+//! model's own stable step, all velocities zeroed at every peak of the kinetic energy, so
+//! the state walks down the energy landscape to a stable equilibrium — the one the real,
+//! damped hose snaps to — from where the Newton solve finishes. Explicit steps rather than
+//! large implicit ones: an implicit step longer than an unstable mode's time scale is
+//! drawn back onto the unstable equilibrium (its effective stiffness 4m/Δt² − k turns
+//! negative), the explicit one never is.
+
+use super::explicit::step;
+use crate::health::check;
+use crate::settle::residual;
+use crate::{Model, State};
+use glam::DVec3;
+
+/// Most explicit steps one snap may take.
+const MAX_RELAXATION_STEPS: usize = 2_000_000;
+/// Out-of-balance, as a multiple of the static convergence limit, from which the Newton
+/// solve takes over: 1, the static limit itself — near the unstable equilibrium the snap
+/// starts from the residual is small too, and a looser hand-over returns Newton to it.
+const HANDOVER: f64 = 1.0;
+/// Steps between residual checks.
+const CHECK_EVERY: usize = 64;
+
+/// Relaxes `state` under its loads at time `time` until the largest out-of-balance force
+/// and moment on free nodes are within [`HANDOVER`] × (`force_limit`, `moment_limit`).
+/// Returns the explicit steps taken, or `None` if the relaxation diverged or did not get
+/// there (the caller then reports the input step unconverged).
+pub fn relax(
+    model: &Model,
+    state: &mut State,
+    time: f64,
+    force_limit: f64,
+    moment_limit: f64,
+) -> Option<usize> {
+    let dt = model.time_step;
+    state.v.fill(DVec3::ZERO);
+    state.w.fill(DVec3::ZERO);
+    let mut last_energy = 0.0;
+    for steps in 1..=MAX_RELAXATION_STEPS {
+        // each step ends at `time`: prescribed motions stay where they are due
+        state.time = time - dt;
+        step(model, state);
+        state.time = time;
+        let energy = state.kinetic_energy(model);
+        if energy < last_energy {
+            state.v.fill(DVec3::ZERO);
+            state.w.fill(DVec3::ZERO);
+            for b in state.bodies.iter_mut() {
+                b.velocity = DVec3::ZERO;
+                b.angular_velocity = DVec3::ZERO;
+            }
+            last_energy = 0.0;
+        } else {
+            last_energy = energy;
+        }
+        if steps % CHECK_EVERY == 0 {
+            check(model, state).ok()?;
+            let (f, m) = residual(state);
+            if f <= HANDOVER * force_limit && m <= HANDOVER * moment_limit {
+                return Some(steps);
+            }
+        }
+    }
+    None
+}
