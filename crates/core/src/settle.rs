@@ -50,6 +50,17 @@ pub fn residual(state: &State) -> (f64, f64) {
     (f, m)
 }
 
+/// Sets every velocity to zero (nodes and stiffened bodies): kinetic damping's reset at a
+/// peak of the kinetic energy.
+pub(crate) fn stop(state: &mut State) {
+    state.v.fill(DVec3::ZERO);
+    state.w.fill(DVec3::ZERO);
+    for b in state.bodies.iter_mut() {
+        b.velocity = DVec3::ZERO;
+        b.angular_velocity = DVec3::ZERO;
+    }
+}
+
 /// Relaxes `state` to static equilibrium under its current load cases.
 pub fn settle(
     model: &Model,
@@ -63,12 +74,7 @@ pub fn settle(
         steps += 1;
         let energy = state.kinetic_energy(model);
         if opts.kinetic_damping && energy < last_energy {
-            state.v.fill(DVec3::ZERO);
-            state.w.fill(DVec3::ZERO);
-            for b in state.bodies.iter_mut() {
-                b.velocity = DVec3::ZERO;
-                b.angular_velocity = DVec3::ZERO;
-            }
+            stop(state);
             last_energy = 0.0;
         } else {
             last_energy = energy;

@@ -3,6 +3,7 @@
 //! self-contained `report.html` (inline SVG plots, no scripts) for people.
 
 use super::recorder::HandSample;
+use super::svg::escape;
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};
 use crate::workcell::{RunSummary, Stage, Verdict};
 use serde::Serialize;
@@ -44,12 +45,6 @@ pub fn write_reports(
         .unwrap_or(f64::NAN);
     write("report.html", html(&report, samples, push_limit))?;
     Ok(report.verdict)
-}
-
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }
 
 /// The installation checks' section (SPEC V3, V7): the violations with time and place,
@@ -196,13 +191,7 @@ fn plot(title: &str, samples: &[(f64, f64, f64)]) -> String {
             .collect::<Vec<_>>()
             .join(" ")
     };
-    let mut svg =
-        format!("<svg width=\"{w}\" height=\"{h}\" xmlns=\"http://www.w3.org/2000/svg\">");
-    let _ = write!(
-        svg,
-        "<text x=\"{pad}\" y=\"16\" font-size=\"13\">{}</text>",
-        escape(title)
-    );
+    let mut svg = super::svg::open(w, h, pad, title);
     let _ = write!(
         svg,
         "<line x1=\"{pad}\" y1=\"{0}\" x2=\"{1}\" y2=\"{0}\" stroke=\"#888\"/>",

@@ -8,6 +8,7 @@ mod profile_plot;
 pub mod recorder;
 mod scene_picture;
 pub mod summary;
+mod svg;
 mod vtk;
 
 pub use html::write_reports;

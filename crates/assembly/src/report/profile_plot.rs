@@ -1,6 +1,7 @@
 //! An inline SVG plot of a quantity along a hose (arc length on x) against its limit
 //! (a dashed line), for the report's installation checks (SPEC V3, V7).
 
+use super::svg::escape;
 use std::fmt::Write as _;
 
 /// `values` per arc length `arc` [m]; `limit` drawn dashed (±limit when `symmetric`,
@@ -23,13 +24,7 @@ pub fn profile_plot(
     let bottom = if symmetric { -top } else { 0.0 };
     let x = |s: f64| pad + (w - 2.0 * pad) * s / s_max;
     let y = |v: f64| h - pad - (h - 2.0 * pad) * (v - bottom) / (top - bottom);
-    let mut svg =
-        format!("<svg width=\"{w}\" height=\"{h}\" xmlns=\"http://www.w3.org/2000/svg\">");
-    let _ = write!(
-        svg,
-        "<text x=\"{pad}\" y=\"16\" font-size=\"13\">{}</text>",
-        escape(title)
-    );
+    let mut svg = super::svg::open(w, h, pad, title);
     let _ = write!(
         svg,
         "<line x1=\"{pad}\" y1=\"{0:.1}\" x2=\"{1}\" y2=\"{0:.1}\" stroke=\"#888\"/>\
@@ -75,10 +70,4 @@ pub fn profile_plot(
     );
     svg.push_str("</svg>");
     svg
-}
-
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }

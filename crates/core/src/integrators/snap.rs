@@ -15,9 +15,8 @@
 
 use super::explicit::step;
 use crate::health::check;
-use crate::settle::residual;
+use crate::settle::{residual, stop};
 use crate::{Model, State};
-use glam::DVec3;
 
 /// Most explicit steps one snap may take.
 const MAX_RELAXATION_STEPS: usize = 2_000_000;
@@ -40,8 +39,7 @@ pub fn relax(
     moment_limit: f64,
 ) -> Option<usize> {
     let dt = model.time_step;
-    state.v.fill(DVec3::ZERO);
-    state.w.fill(DVec3::ZERO);
+    stop(state);
     let mut last_energy = 0.0;
     for steps in 1..=MAX_RELAXATION_STEPS {
         // each step ends at `time`: prescribed motions stay where they are due
@@ -50,12 +48,7 @@ pub fn relax(
         state.time = time;
         let energy = state.kinetic_energy(model);
         if energy < last_energy {
-            state.v.fill(DVec3::ZERO);
-            state.w.fill(DVec3::ZERO);
-            for b in state.bodies.iter_mut() {
-                b.velocity = DVec3::ZERO;
-                b.angular_velocity = DVec3::ZERO;
-            }
+            stop(state);
             last_energy = 0.0;
         } else {
             last_energy = energy;
