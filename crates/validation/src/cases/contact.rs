@@ -186,23 +186,28 @@ pub fn run_rest() -> Vec<Check> {
     out
 }
 
-/// Displacement along the slope after `seconds`, for an incline of angle φ.
-fn slide(phi: f64, seconds: f64) -> (f64, f64) {
-    let (_, sec) = hose1();
-    let r = sec.outer_radius();
-    let tilt = DQuat::from_axis_angle(DVec3::Y, -phi); // slope rises towards +x
-    let down = tilt * DVec3::NEG_X;
-    let normal = tilt * DVec3::Z;
+/// A 2 m × 2 m plane through the origin tilted by `phi` about y, rising towards +x, with
+/// friction coefficients `mu` (static, sliding); with its downhill direction and normal.
+pub(super) fn incline_plane(phi: f64, mu: (f64, f64)) -> (RigidPartSpec, DVec3, DVec3) {
+    let tilt = DQuat::from_axis_angle(DVec3::Y, -phi);
     let plane = quad(
         "incline",
         DVec3::ZERO,
         tilt * DVec3::X * 2.0,
         DVec3::Y * 2.0,
         false,
-        (0.5, 0.4),
+        mu,
     );
+    (plane, tilt * DVec3::NEG_X, tilt * DVec3::Z)
+}
+
+/// Displacement along the slope after `seconds`, for an incline of angle φ.
+fn slide(phi: f64, seconds: f64) -> (f64, f64) {
+    let (_, sec) = hose1();
+    let r = sec.outer_radius();
+    let (plane, down, normal) = incline_plane(phi, (0.5, 0.4));
     let model = world(
-        |s| tilt * DVec3::new(0.5 * s - 0.25, 0.0, 0.0) + normal * r,
+        |s| -down * (0.5 * s - 0.25) + normal * r,
         vec![plane],
         DVec3::new(0.0, 0.0, -G),
         0.0,

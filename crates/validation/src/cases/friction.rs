@@ -9,9 +9,9 @@
 //! * implicit, tan φ = 1.2 μ_s: slides with g (sin φ − μ_k cos φ) — distance in 0.3 s
 //!   within 2 % of ½ a t², at the implicit solver's default 10 ms step.
 
-use super::contact::{quad, world, G};
+use super::contact::{incline_plane, world, G};
 use crate::Check;
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 use pliant_core::integrators::{Solver, SolverSettings};
 use pliant_core::{SolverKind, State};
 
@@ -30,19 +30,9 @@ struct Run {
 
 fn incline(phi: f64, kind: SolverKind, step: f64, seconds: f64) -> Result<Run, String> {
     let r = crate::harness::hose1().1.outer_radius();
-    let tilt = DQuat::from_axis_angle(DVec3::Y, -phi); // slope rises towards +x
-    let down = tilt * DVec3::NEG_X;
-    let normal = tilt * DVec3::Z;
-    let plane = quad(
-        "incline",
-        DVec3::ZERO,
-        tilt * DVec3::X * 2.0,
-        DVec3::Y * 2.0,
-        false,
-        MU,
-    );
+    let (plane, down, normal) = incline_plane(phi, MU);
     let model = world(
-        |s| tilt * DVec3::new(0.5 * s - 0.25, 0.0, 0.0) + normal * r,
+        |s| -down * (0.5 * s - 0.25) + normal * r,
         vec![plane],
         DVec3::new(0.0, 0.0, -G),
         0.0,
