@@ -3,6 +3,7 @@
 
 mod bench;
 mod bench_newton;
+mod limit_args;
 mod peers;
 mod progress;
 mod replay_cmd;
@@ -47,6 +48,8 @@ enum Command {
         /// differences), implicit (HHT-α, 10 ms steps) or static (equilibrium per input).
         #[arg(long)]
         solver: Option<pliant_core::SolverKind>,
+        #[command(flatten)]
+        limits: limit_args::LimitArgs,
     },
     /// Run the validation suite against exact and independent reference solutions.
     /// Replays a session's input log (a folder of `pliant serve`, or its inputs.jsonl)
@@ -103,6 +106,12 @@ enum Command {
         /// Most clients connected at once (the next is refused until one leaves).
         #[arg(long = "max-clients", default_value_t = pliant_server::server::MAX_CLIENTS)]
         max_clients: usize,
+        /// Folder the scenes that clients send may read mesh files from [default: the
+        /// served scene's folder]; nothing outside it is read.
+        #[arg(long)]
+        assets: Option<PathBuf>,
+        #[command(flatten)]
+        limits: limit_args::LimitArgs,
     },
     /// Measure cost per element per step and the real-time factor.
     Bench {
@@ -152,6 +161,7 @@ fn main() -> ExitCode {
         quiet: false,
         ergonomics: None,
         solver: None,
+        limits: Default::default(),
     });
     let result = match command {
         Command::Run {
@@ -160,7 +170,15 @@ fn main() -> ExitCode {
             quiet,
             ergonomics,
             solver,
-        } => run_cmd::run(scene.as_deref(), &out, quiet, ergonomics.as_deref(), solver),
+            limits,
+        } => run_cmd::run(
+            scene.as_deref(),
+            &out,
+            quiet,
+            ergonomics.as_deref(),
+            solver,
+            &limits.load_options(),
+        ),
         Command::Replay {
             session,
             out,
@@ -181,10 +199,21 @@ fn main() -> ExitCode {
             allow_origin,
             max_clients,
             solver,
+            assets,
+            limits,
         } => Access::for_host(&host, token, allow_origin)
             .map_err(anyhow::Error::msg)
             .and_then(|access| {
-                serve_cmd::run(scene.as_deref(), &host, port, solver, access, max_clients)
+                serve_cmd::run(&serve_cmd::ServeArgs {
+                    scene: scene.as_deref(),
+                    host: &host,
+                    port,
+                    solver,
+                    access,
+                    max_clients,
+                    assets: assets.as_deref(),
+                    limits: limits.load_options(),
+                })
             }),
         Command::Bench { json, quick } => {
             bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)

@@ -1,34 +1,58 @@
 //! `pliant serve`: the interactive server (SPEC I6; protocol in docs/protocol.md).
 
 use anyhow::Context;
+use pliant_scene::LoadOptions;
 use pliant_server::access::{is_loopback, Access};
+use pliant_server::limits::ClientScenes;
 use pliant_server::session::SessionOptions;
 use pliant_server::{ServerConfig, Session};
 use std::path::Path;
 use std::process::ExitCode;
 
-pub fn run(
-    scene_path: Option<&Path>,
-    host: &str,
-    port: u16,
-    solver: Option<pliant_core::SolverKind>,
-    access: Access,
-    max_clients: usize,
-) -> anyhow::Result<ExitCode> {
+/// What `pliant serve` was asked for.
+pub struct ServeArgs<'a> {
+    pub scene: Option<&'a Path>,
+    pub host: &'a str,
+    pub port: u16,
+    pub solver: Option<pliant_core::SolverKind>,
+    pub access: Access,
+    pub max_clients: usize,
+    /// The folder client scenes may read meshes from (`--assets`).
+    pub assets: Option<&'a Path>,
+    /// Limits of the served scene; client scenes get [`ClientScenes::within`] these.
+    pub limits: LoadOptions,
+}
+
+pub fn run(args: &ServeArgs) -> anyhow::Result<ExitCode> {
+    let &ServeArgs {
+        scene: scene_path,
+        host,
+        port,
+        solver,
+        max_clients,
+        ..
+    } = args;
+    let access = args.access.clone();
     if max_clients == 0 {
         anyhow::bail!("--max-clients must be at least 1");
     }
     let scene = match scene_path {
-        Some(p) => pliant_scene::load_scene_file(p)
+        Some(p) => pliant_scene::load_scene_file_with(p, &args.limits)
             .with_context(|| format!("cannot load {}", p.display()))?,
         None => pliant_scene::demo_scene().context("cannot load the demo scene")?,
     };
     // Scenes opened in the browser arrive as text: their relative mesh paths are resolved
     // against the served scene's folder (the examples folder for the built-in demo).
-    let scene_dir = match scene_path {
-        Some(p) => p.parent().map(Path::to_path_buf).unwrap_or_default(),
-        None if Path::new("examples").is_dir() => "examples".into(),
-        None => Default::default(),
+    let scene_dir = match (args.assets, scene_path) {
+        (Some(dir), _) => {
+            if !dir.is_dir() {
+                anyhow::bail!("--assets {}: not a folder", dir.display());
+            }
+            dir.to_path_buf()
+        }
+        (None, Some(p)) => p.parent().map(Path::to_path_buf).unwrap_or_default(),
+        (None, None) if Path::new("examples").is_dir() => "examples".into(),
+        (None, None) => Default::default(),
     };
     // every session is a recording (SPEC W2): the scene's copy and the input log go into
     // a fresh folder under out/sessions as the session runs
@@ -54,6 +78,7 @@ pub fn run(
             sessions_dir: Some(sessions_dir.clone()),
             access: access.clone(),
             max_clients,
+            client_scenes: ClientScenes::within(&args.limits),
             ..ServerConfig::default()
         };
         let mut server = pliant_server::start(session, &config)

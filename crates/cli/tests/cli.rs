@@ -290,3 +290,86 @@ fn serve_on_the_network_prints_a_token_and_a_warning() {
     assert!(!refused.status.success());
     assert!(String::from_utf8_lossy(&refused.stderr).contains("--token"));
 }
+
+/// Hardening item 4: a scene beyond `--max-memory` is refused while it loads, naming
+/// the hose and the estimate, with exit code 2; a run says its cost before it starts.
+#[test]
+fn memory_limit_refuses_before_allocating_and_runs_state_their_cost() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_line_scene(dir.path(), "big.toml", 20_000, 20_000.0, "", "");
+    let o = pliant()
+        .args(["run", "--quiet", "--max-memory", "50M"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(dir.path().join("o"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("hoses[0]") && err.contains("20000 elements"),
+        "{err}"
+    );
+    assert!(
+        err.contains("≈ 99 MB") && err.contains("50 MB") && err.contains("--max-memory"),
+        "{err}"
+    );
+    let o = pliant()
+        .args(["run", "--quiet", "--max-memory", "lots"])
+        .arg(&scene)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("not a size"));
+
+    let small = write_line_scene(
+        dir.path(),
+        "small.toml",
+        8,
+        200.0,
+        "",
+        "[[timeline]]\naction = \"run\"\nduration_s = 0.01\n",
+    );
+    let o = pliant()
+        .args(["run", "--quiet"])
+        .arg(&small)
+        .arg("--out")
+        .arg(dir.path().join("s"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("element-steps") && err.contains("memory ≈"),
+        "{err}"
+    );
+}
+
+/// A mesh path naming a FIFO or a device is refused at once, not read forever.
+#[cfg(unix)]
+#[test]
+fn meshes_that_are_not_regular_files_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    std::os::unix::fs::symlink("/dev/zero", dir.path().join("zero.stl")).unwrap();
+    let fifo = dir.path().join("fifo.obj");
+    let made = Command::new("mkfifo").arg(&fifo).status();
+    let mut names = vec!["zero.stl"];
+    if made.is_ok_and(|s| s.success()) {
+        names.push("fifo.obj");
+    }
+    for name in names {
+        let parts = format!("[[parts]]\nname = \"p\"\nmesh = \"{name}\"\n");
+        let scene = write_line_scene(dir.path(), "m.toml", 4, 200.0, &parts, "");
+        let o = pliant()
+            .args(["run", "--quiet"])
+            .arg(&scene)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains("parts[0].mesh") && err.contains("not a regular file"),
+            "{err}"
+        );
+    }
+}

@@ -10,12 +10,14 @@
 //! `docs/scene.schema.json` (see [`scene_schema_json`]).
 
 mod action_de;
+pub mod budget;
 pub mod centerline;
 pub mod checks;
 pub mod connectors;
 pub mod ergonomics;
 pub mod error;
 mod fastener_sites;
+pub mod files;
 pub mod format;
 pub mod hoses;
 pub mod library;
@@ -32,11 +34,14 @@ pub mod units;
 pub mod validate;
 mod workcell;
 
+pub use budget::{Estimate, Limits};
 pub use error::{FieldError, SceneError};
+pub use files::FileAccess;
 pub use library::{Library, LibraryEntry, LibraryValue, Provenance};
 pub use load::{
-    base_dir_of, demo_scene, load_scene_file, load_scene_json_str, load_scene_json_str_in,
-    load_scene_str, load_scene_str_in, DEMO_SCENE_TOML, FORMAT_TAG, FORMAT_VERSION,
+    base_dir_of, demo_scene, load_scene_file, load_scene_file_with, load_scene_json_str,
+    load_scene_json_str_in, load_scene_json_str_with, load_scene_str, load_scene_str_in,
+    load_scene_str_with, LoadOptions, DEMO_SCENE_TOML, FORMAT_TAG, FORMAT_VERSION,
 };
 pub use mesh::{TriMesh, MAX_TRIANGLES};
 pub use scene::{HoseDiscretisation, HoseEnd, LoadedScene, PartInfo, SceneClip, SceneStub};

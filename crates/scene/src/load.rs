@@ -3,9 +3,11 @@
 //! of the text: it returns a complete scene or an error, never part of one.
 
 use crate::action_de::INNER_PATH_PREFIX;
+use crate::budget::{Budget, Limits};
 use crate::connectors::build_connectors;
 use crate::ergonomics::build_ergonomics;
 use crate::error::{FieldError, SceneError};
+use crate::files::{FileAccess, DEFAULT_MAX_FILE_BYTES};
 use crate::format::SceneFile;
 use crate::hoses::build_hose;
 use crate::library::Library;
@@ -26,24 +28,81 @@ pub const FORMAT_VERSION: i64 = 1;
 /// The built-in demo scene's text (`examples/demo.toml`).
 pub const DEMO_SCENE_TOML: &str = include_str!("../../../examples/engine_bay.toml");
 
+/// How a scene is loaded: the resource limits it must stay within and where its files
+/// may come from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoadOptions {
+    /// Memory limit, checked while the scene loads ([`crate::budget`]).
+    pub limits: Limits,
+    /// Largest mesh file read [bytes].
+    pub max_file_bytes: u64,
+    /// Confine mesh files to the scene's folder, and keep paths and file contents out of
+    /// errors (scenes sent by clients of `pliant serve`, [`FileAccess::sandbox`]).
+    pub sandboxed: bool,
+}
+
+impl Default for LoadOptions {
+    fn default() -> Self {
+        LoadOptions {
+            limits: Limits::default(),
+            max_file_bytes: DEFAULT_MAX_FILE_BYTES,
+            sandboxed: false,
+        }
+    }
+}
+
+impl LoadOptions {
+    /// The file access for a scene whose relative names start at `base_dir`.
+    pub fn files(&self, base_dir: &Path) -> FileAccess {
+        let access = if self.sandboxed {
+            FileAccess::sandbox(base_dir)
+        } else {
+            FileAccess::local(base_dir)
+        };
+        access.with_max_file_bytes(self.max_file_bytes)
+    }
+}
+
 /// Loads a scene file; `.json` files are read as JSON, everything else as TOML. Relative
 /// mesh paths are resolved against the file's directory.
 pub fn load_scene_file(path: &Path) -> Result<LoadedScene, SceneError> {
+    load_scene_file_with(path, &LoadOptions::default())
+}
+
+/// [`load_scene_file`] with explicit limits.
+pub fn load_scene_file_with(path: &Path, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
     let origin = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+    let io = |source| SceneError::Io {
         path: origin.clone(),
         source,
-    })?;
+    };
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if !meta.is_file() {
+        return Err(io(std::io::Error::other(
+            "not a regular file (a scene is read from a regular file)",
+        )));
+    }
+    if meta.len() > MAX_SCENE_FILE_BYTES {
+        return Err(io(std::io::Error::other(format!(
+            "the file has {} bytes; a scene file may have at most {MAX_SCENE_FILE_BYTES} (meshes belong in mesh files)",
+            meta.len()
+        ))));
+    }
+    let text = std::fs::read_to_string(path).map_err(io)?;
     let is_json = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"));
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    if is_json {
-        load_scene_json_str_in(&text, &origin, &dir)
+    let file = if is_json {
+        parse_json(&text, &origin)?
     } else {
-        load_scene_str_in(&text, &origin, &dir)
-    }
+        parse_toml(&text, &origin)?
+    };
+    build_scene_with(&file, &text, &origin, &dir, options)
 }
+
+/// Largest scene file read [bytes] (the text; meshes are separate files).
+pub const MAX_SCENE_FILE_BYTES: u64 = 64 * 1024 * 1024;
 
 /// The directory relative mesh paths are resolved against for a scene from `origin`:
 /// the directory of `origin` if it names an existing file, else the current directory
@@ -69,8 +128,18 @@ pub fn load_scene_str_in(
     origin: &str,
     base_dir: &Path,
 ) -> Result<LoadedScene, SceneError> {
+    load_scene_str_with(text, origin, base_dir, &LoadOptions::default())
+}
+
+/// [`load_scene_str_in`] with explicit limits and file access.
+pub fn load_scene_str_with(
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+    options: &LoadOptions,
+) -> Result<LoadedScene, SceneError> {
     let file = parse_toml(text, origin)?;
-    build_scene_in(&file, text, origin, base_dir)
+    build_scene_with(&file, text, origin, base_dir, options)
 }
 
 /// Loads a scene from JSON text (same structure as the TOML format). Relative mesh
@@ -85,8 +154,18 @@ pub fn load_scene_json_str_in(
     origin: &str,
     base_dir: &Path,
 ) -> Result<LoadedScene, SceneError> {
+    load_scene_json_str_with(text, origin, base_dir, &LoadOptions::default())
+}
+
+/// [`load_scene_json_str_in`] with explicit limits and file access.
+pub fn load_scene_json_str_with(
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+    options: &LoadOptions,
+) -> Result<LoadedScene, SceneError> {
     let file = parse_json(text, origin)?;
-    build_scene_in(&file, text, origin, base_dir)
+    build_scene_with(&file, text, origin, base_dir, options)
 }
 
 /// The built-in demo scene.
@@ -319,16 +398,29 @@ pub fn build_scene_in(
     origin: &str,
     base_dir: &Path,
 ) -> Result<LoadedScene, SceneError> {
-    build(file, text, origin, base_dir).map_err(|e| e.at(origin))
+    build_scene_with(file, text, origin, base_dir, &LoadOptions::default())
 }
 
-/// [`build_scene_in`] without the origin attached to errors.
+/// [`build_scene_in`] with explicit limits and file access.
+pub fn build_scene_with(
+    file: &SceneFile,
+    text: &str,
+    origin: &str,
+    base_dir: &Path,
+    options: &LoadOptions,
+) -> Result<LoadedScene, SceneError> {
+    build(file, text, origin, base_dir, options).map_err(|e| e.at(origin))
+}
+
+/// [`build_scene_with`] without the origin attached to errors.
 fn build(
     file: &SceneFile,
     text: &str,
     origin: &str,
     base_dir: &Path,
+    options: &LoadOptions,
 ) -> Result<LoadedScene, FieldError> {
+    let mut budget = Budget::new(options.limits);
     let library = Library::builtin().map_err(|e| FieldError::about("materials", e.to_string()))?;
     let materials = Materials::build(&file.materials, library)?;
     let settings = build_settings(file.simulation.as_ref())?;
@@ -350,6 +442,10 @@ fn build(
             ));
         }
         let (spec, info) = build_hose(i, raw, file.length_unit, &materials)?;
+        budget.add_elements(
+            &format!("hoses[{i}]"),
+            spec.nodes.len().saturating_sub(1) as u64,
+        )?;
         hoses.push(spec);
         infos.push(info);
     }
@@ -361,7 +457,12 @@ fn build(
         })
         .collect();
     let timeline = build_timeline(&file.timeline, &nodes, file.length_unit)?;
-    let (rigid_parts, part_infos) = build_parts(&file.parts, file.length_unit, base_dir)?;
+    let (rigid_parts, part_infos) = build_parts(
+        &file.parts,
+        file.length_unit,
+        &options.files(base_dir),
+        &mut budget,
+    )?;
     let (stubs, clips) = build_connectors(&file.stubs, &file.clips, &hoses, file.length_unit)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
     let checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
@@ -391,6 +492,7 @@ fn build(
         source: origin.to_string(),
         text: text.to_string(),
         base_dir: base_dir.to_path_buf(),
+        estimate: budget.estimate,
     })
 }
 

@@ -3,10 +3,11 @@
 //! (non-empty, finite vertices, indices in range, not only degenerate triangles, at most
 //! [`MAX_TRIANGLES`]). Errors are plain reasons; [`crate::parts`] attaches the field.
 
+use crate::files::FileAccess;
 use glam::{DMat4, DVec3};
 use std::collections::HashMap;
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The most triangles one part may have.
 pub const MAX_TRIANGLES: usize = 5_000_000;
@@ -38,6 +39,15 @@ pub enum MeshFormat {
 }
 
 impl MeshFormat {
+    /// The format's name in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshFormat::Obj => "OBJ",
+            MeshFormat::Stl => "STL",
+            MeshFormat::Gltf => "glTF",
+        }
+    }
+
     /// The format of a path, by its extension (case-insensitive).
     pub fn of(path: &Path) -> Result<MeshFormat, String> {
         let ext = path
@@ -57,18 +67,27 @@ impl MeshFormat {
     }
 }
 
-/// Reads a mesh file (coordinates as stored in the file). Never panics: a reader that
-/// fails unexpectedly is reported as a malformed file.
-pub fn read_mesh_file(path: &Path) -> Result<TriMesh, String> {
-    let format = MeshFormat::of(path)?;
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read: {e}"))?;
-    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+/// Reads the mesh file `name` through `files` (coordinates as stored in the file). Never
+/// panics: a reader that fails unexpectedly is reported as a malformed file. In a
+/// sandbox a reader's complaint is not passed on (it may quote the file).
+pub fn read_mesh_file(files: &FileAccess, name: &str) -> Result<TriMesh, String> {
+    let format = MeshFormat::of(Path::new(name))?;
+    let bytes = files.read(name)?;
+    let dir = files.beside(name);
     let result = std::panic::catch_unwind(|| match format {
         MeshFormat::Obj => read_obj(&bytes),
         MeshFormat::Stl => read_stl(&bytes),
         MeshFormat::Gltf => read_gltf(&bytes, &dir),
     });
-    result.unwrap_or_else(|_| Err("malformed file: the reader failed on it".to_string()))
+    let result =
+        result.unwrap_or_else(|_| Err("malformed file: the reader failed on it".to_string()));
+    match result {
+        Err(_) if files.is_sandboxed() => Err(format!(
+            "is not a valid {} file (the reason is not shown to clients of the server; load the scene with `pliant run` to see it)",
+            format.name()
+        )),
+        other => other,
+    }
 }
 
 /// Wavefront OBJ: all objects and groups, polygons triangulated; points, lines and
@@ -163,7 +182,7 @@ pub fn read_stl(bytes: &[u8]) -> Result<TriMesh, String> {
 /// triangle primitive (triangles, strips, fans) of every mesh instance of the default
 /// scene (else the first scene; else every mesh once), with its node transforms applied.
 /// Points and lines are ignored.
-pub fn read_gltf(bytes: &[u8], dir: &Path) -> Result<TriMesh, String> {
+pub fn read_gltf(bytes: &[u8], dir: &FileAccess) -> Result<TriMesh, String> {
     let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| format!("cannot parse as glTF: {e}"))?;
     let doc = &gltf.document;
     let mut buffers: Vec<Vec<u8>> = Vec::new();
@@ -321,8 +340,9 @@ fn gltf_mesh(
     Ok(())
 }
 
-/// Reads a glTF buffer URI: a `data:…;base64,…` URI, or a path relative to the glTF file.
-fn read_uri(uri: &str, dir: &Path) -> Result<Vec<u8>, String> {
+/// Reads a glTF buffer URI: a `data:…;base64,…` URI, or a path relative to the glTF
+/// file, through the scene's file access (sandbox and size cap).
+fn read_uri(uri: &str, dir: &FileAccess) -> Result<Vec<u8>, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (_, payload) = rest
             .split_once(";base64,")
@@ -332,8 +352,7 @@ fn read_uri(uri: &str, dir: &Path) -> Result<Vec<u8>, String> {
     if uri.contains("://") {
         return Err("only relative file paths and data: URIs are supported".to_string());
     }
-    let path: PathBuf = dir.join(percent_decode(uri)?);
-    std::fs::read(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+    dir.read(&percent_decode(uri)?)
 }
 
 /// Decodes `%XX` escapes in a URI path.

@@ -1,7 +1,9 @@
 //! Building rigid parts (SPEC §5, L4): a mesh file or a primitive, posed, converted to
 //! metres, checked, as a core [`RigidPartSpec`] in world coordinates.
 
+use crate::budget::Budget;
 use crate::error::FieldError;
+use crate::files::FileAccess;
 use crate::format::{FrictionEntry, PartEntry};
 use crate::mesh::{
     bounds, box_mesh, check_mesh, check_triangle_count, cylinder_mesh, cylinder_triangles,
@@ -24,11 +26,12 @@ pub const DEFAULT_FRICTION_SLIDING: f64 = 0.4;
 /// The shape kinds of a part, as written.
 const KINDS: &str = "`mesh`, `box`, `cylinder`, `sphere`";
 
-/// Checks and builds every part; `base_dir` resolves relative mesh paths.
+/// Checks and builds every part; `files` resolves and reads mesh files.
 pub fn build_parts(
     raw: &[PartEntry],
     unit: LengthUnit,
-    base_dir: &Path,
+    files: &FileAccess,
+    budget: &mut Budget,
 ) -> Result<(Vec<RigidPartSpec>, Vec<PartInfo>), FieldError> {
     for (i, p) in raw.iter().enumerate() {
         if p.name.trim().is_empty() {
@@ -49,7 +52,7 @@ pub fn build_parts(
     let mut specs = Vec::with_capacity(raw.len());
     let mut infos = Vec::with_capacity(raw.len());
     for (i, p) in raw.iter().enumerate() {
-        let (spec, info) = build_part(i, p, unit, base_dir)?;
+        let (spec, info) = build_part(i, p, unit, files, budget)?;
         specs.push(spec);
         infos.push(info);
     }
@@ -61,7 +64,8 @@ pub fn build_part(
     index: usize,
     raw: &PartEntry,
     unit: LengthUnit,
-    base_dir: &Path,
+    files: &FileAccess,
+    budget: &mut Budget,
 ) -> Result<(RigidPartSpec, PartInfo), FieldError> {
     let at = |rest: &str| format!("parts[{index}].{rest}");
     let (u, scale) = (unit.symbol(), unit.to_metres());
@@ -130,32 +134,28 @@ pub fn build_part(
         if file.trim().is_empty() {
             return Err(err("must name a mesh file".to_string()));
         }
-        let path = base_dir.join(file);
-        let format = MeshFormat::of(&path).map_err(err)?;
+        let format = MeshFormat::of(Path::new(file)).map_err(err)?;
         let mesh_unit = raw.mesh_unit.unwrap_or(match format {
             MeshFormat::Gltf => LengthUnit::Metre,
             MeshFormat::Obj | MeshFormat::Stl => unit,
         });
-        let mesh = read_mesh_file(&path).map_err(|reason| {
-            if let Some(rest) = reason.strip_prefix("cannot read: ") {
-                err(format!("cannot read {}: {rest}", path.display()))
-            } else {
-                err(reason)
-            }
-        })?;
+        let mesh = read_mesh_file(files, file).map_err(err)?;
         let checked = check_mesh(mesh).map_err(err)?;
+        budget.add_triangles(&field, checked.mesh.triangles.len() as u64)?;
         let s = mesh_unit.to_metres();
         let mut mesh = checked.mesh;
         for v in &mut mesh.vertices {
             *v *= s;
         }
-        (mesh, path.display().to_string(), checked.dropped_degenerate)
+        (mesh, files.shown(file), checked.dropped_degenerate)
     } else if let Some(b) = &raw.box_ {
         let mut size = DVec3::ZERO;
         for k in 0..3 {
             size[k] = positive(&at(&format!("box.size[{k}]")), b.size[k], u)? * scale;
         }
-        (box_mesh(size), "box".to_string(), 0)
+        let mesh = box_mesh(size);
+        budget.add_triangles(&at("box"), mesh.triangles.len() as u64)?;
+        (mesh, "box".to_string(), 0)
     } else if let Some(c) = &raw.cylinder {
         let radius = positive(&at("cylinder.radius"), c.radius, u)? * scale;
         let height = positive(&at("cylinder.height"), c.height, u)? * scale;
@@ -174,6 +174,10 @@ pub fn build_part(
                 format!("gives {r}"),
             )
         })?;
+        budget.add_triangles(
+            &at("cylinder.segments"),
+            cylinder_triangles(segments) as u64,
+        )?;
         (
             cylinder_mesh(radius, height, segments),
             "cylinder".to_string(),
@@ -195,6 +199,7 @@ pub fn build_part(
                 format!("gives {n}; at most {MAX_TRIANGLES} are supported per part"),
             ));
         }
+        budget.add_triangles(&at("sphere.subdivisions"), count as u64)?;
         (sphere_mesh(radius, subdivisions), "sphere".to_string(), 0)
     } else {
         unreachable!("exactly one shape kind was checked above")

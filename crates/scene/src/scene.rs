@@ -128,6 +128,8 @@ pub struct LoadedScene {
     pub text: String,
     /// The folder relative mesh paths were read from.
     pub base_dir: std::path::PathBuf,
+    /// Its size: elements, triangles and the memory a run needs ([`crate::budget`]).
+    pub estimate: crate::budget::Estimate,
 }
 
 impl LoadedScene {

@@ -633,7 +633,7 @@ fn cases() -> Vec<Case> {
             "directory instead of file",
             &p("mesh = \"folder.obj\""),
             "parts[0].mesh",
-            &["= \"folder.obj\": cannot read"],
+            &["= \"folder.obj\": is not a regular file"],
         ),
         case(
             "unknown extension",

@@ -1,6 +1,7 @@
 //! Limits on what one client may send: message size and message rate. Violations get an
 //! error reply; the connection and the server carry on.
 
+use pliant_scene::{Limits, LoadOptions};
 use std::time::{Duration, Instant};
 
 /// Largest text message a client may send [bytes]; larger ones get `message_too_large`.
@@ -17,6 +18,48 @@ pub const MAX_BURST: f64 = 200.0;
 pub const RATE_ERROR_INTERVAL: Duration = Duration::from_millis(500);
 /// Largest `step{n}`.
 pub const MAX_STEPS_PER_REQUEST: u32 = 100_000;
+
+/// Most beam elements of a scene a client sends: one explicit step of 20 000 elements
+/// takes ≈ 10 ms here, so the session stays responsive for everyone.
+pub const MAX_CLIENT_ELEMENTS: u64 = 20_000;
+/// Most part triangles of a scene a client sends: every client receives them in the
+/// `welcome` (≈ 40 bytes of JSON each, ≈ 40 MB at the limit).
+pub const MAX_CLIENT_TRIANGLES: u64 = 1_000_000;
+/// Memory limit of a scene a client sends [bytes] (at most the server's own).
+pub const MAX_CLIENT_MEMORY_BYTES: u64 = 1_000_000_000;
+/// Largest mesh file a client's scene may name [bytes].
+pub const MAX_CLIENT_MESH_BYTES: u64 = 64 * 1024 * 1024;
+
+/// How scenes sent with `load_scene` are loaded: confined to the served folder
+/// (`FileAccess::sandbox`), and checked against limits before anyone receives them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClientScenes {
+    pub options: LoadOptions,
+}
+
+impl ClientScenes {
+    /// The client limits, none above the served scene's own `limits`.
+    pub fn within(server: &LoadOptions) -> ClientScenes {
+        ClientScenes {
+            options: LoadOptions {
+                limits: Limits {
+                    max_memory_bytes: MAX_CLIENT_MEMORY_BYTES.min(server.limits.max_memory_bytes),
+                    max_elements: MAX_CLIENT_ELEMENTS.min(server.limits.max_elements),
+                    max_triangles: MAX_CLIENT_TRIANGLES.min(server.limits.max_triangles),
+                    raise_with: "options of `pliant serve`; or load it there as the served scene",
+                },
+                max_file_bytes: MAX_CLIENT_MESH_BYTES.min(server.max_file_bytes),
+                sandboxed: true,
+            },
+        }
+    }
+}
+
+impl Default for ClientScenes {
+    fn default() -> Self {
+        ClientScenes::within(&LoadOptions::default())
+    }
+}
 
 /// A token bucket: `rate` tokens per second, at most `burst` stored.
 #[derive(Debug)]

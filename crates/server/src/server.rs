@@ -12,8 +12,8 @@
 
 use crate::access::{token_in_query, Access};
 use crate::limits::{
-    Admit, RateLimiter, HARD_MAX_MESSAGE_BYTES, MAX_MESSAGE_BYTES, MAX_SCENE_MESSAGE_BYTES,
-    MAX_STEPS_PER_REQUEST,
+    Admit, ClientScenes, RateLimiter, HARD_MAX_MESSAGE_BYTES, MAX_MESSAGE_BYTES,
+    MAX_SCENE_MESSAGE_BYTES, MAX_STEPS_PER_REQUEST,
 };
 use crate::ownership::{ClientId, Ownership, Refusal};
 use crate::protocol::{error_json, ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
@@ -63,6 +63,8 @@ pub struct ServerConfig {
     pub hello_timeout: Duration,
     /// Most connections at once; the next handshake gets 503 until one ends.
     pub max_clients: usize,
+    /// How scenes sent with `load_scene` are loaded (sandbox, limits).
+    pub client_scenes: ClientScenes,
 }
 
 /// Default [`ServerConfig::hello_timeout`].
@@ -80,6 +82,7 @@ impl Default for ServerConfig {
             access: Access::local(),
             hello_timeout: HELLO_TIMEOUT,
             max_clients: MAX_CLIENTS,
+            client_scenes: ClientScenes::default(),
         }
     }
 }
@@ -112,6 +115,7 @@ struct Shared {
     access: Access,
     hello_timeout: Duration,
     max_clients: usize,
+    client_scenes: ClientScenes,
     /// Connections open now (slots taken by [`ClientSlot`]).
     clients: AtomicUsize,
 }
@@ -146,6 +150,7 @@ impl Shared {
             access: config.access.clone(),
             hello_timeout: config.hello_timeout,
             max_clients: config.max_clients,
+            client_scenes: config.client_scenes,
             clients: AtomicUsize::new(0),
         }
     }
@@ -468,10 +473,11 @@ fn load_scene(shared: &Shared, text: &str, json: bool, name: &str) -> Result<(),
         panic!("test hook: the loader panics");
     }
     let invalid = |m: String| error_json(ErrorCode::InvalidScene, m);
+    let options = &shared.client_scenes.options;
     let scene = if json {
-        pliant_scene::load_scene_json_str_in(text, name, &shared.scene_dir)
+        pliant_scene::load_scene_json_str_with(text, name, &shared.scene_dir, options)
     } else {
-        pliant_scene::load_scene_str_in(text, name, &shared.scene_dir)
+        pliant_scene::load_scene_str_with(text, name, &shared.scene_dir, options)
     }
     .map_err(|e| invalid(e.to_string()))?;
     let options = SessionOptions {

@@ -27,12 +27,17 @@ async fn server() -> RunningServer {
 }
 
 async fn server_with(options: SessionOptions) -> RunningServer {
+    server_config(options, ServerConfig::default()).await
+}
+
+/// The demo served on an ephemeral loopback port with `config`'s other settings.
+async fn server_config(options: SessionOptions, config: ServerConfig) -> RunningServer {
     let scene = pliant_scene::demo_scene().unwrap();
     let session = Session::start(&scene, options).unwrap();
     let config = ServerConfig {
         host: "127.0.0.1".into(),
         port: 0,
-        ..Default::default()
+        ..config
     };
     start(session, &config).await.unwrap()
 }
@@ -495,6 +500,78 @@ async fn ergonomics_and_scene_can_be_changed_and_bad_scenes_are_refused() {
         v["hoses"].as_array().unwrap().len() == n
     })
     .await;
+}
+
+/// Hardening items 2 and 3: a client's scene reads meshes only inside the served folder,
+/// its errors reveal neither outside paths nor file contents, and a scene beyond the
+/// client limits is refused before any client receives it.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn client_scenes_stay_in_their_sandbox_and_within_limits() {
+    let root = std::env::temp_dir().join(format!("pliant-server-sandbox-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    std::fs::create_dir_all(root.join("served")).unwrap();
+    std::fs::create_dir_all(root.join("private")).unwrap();
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::fs::write(root.join("served/tri.obj"), tri).unwrap();
+    std::fs::write(root.join("private/secret.obj"), tri).unwrap();
+    std::fs::write(
+        root.join("served/notes.stl"),
+        "solid\nswordfish is the password\n",
+    )
+    .unwrap();
+    let s = server_config(
+        SessionOptions::default(),
+        ServerConfig {
+            scene_dir: root.join("served"),
+            ..ServerConfig::default()
+        },
+    )
+    .await;
+    let mut ws = connect(&s).await;
+    let old = hello(&mut ws).await["session"]["scene"]
+        .as_str()
+        .unwrap()
+        .to_owned();
+    let scene = |extra: &str| {
+        format!(
+            "format = \"pliant-scene\"\nversion = 1\nname = \"client\"\nlength_unit = \"mm\"\n\
+             [[hoses]]\nname = \"h\"\nmaterial = \"hose3\"\nstart = [0, 0, 0]\n\
+             path = [{{ line = {{ to = [300, 0, 0] }} }}]\n{extra}"
+        )
+    };
+    let part = |file: &str| scene(&format!("[[parts]]\nname = \"p\"\nmesh = \"{file}\"\n"));
+    let secret = root.join("private/secret.obj").display().to_string();
+    for (text, expect) in [
+        (part(&secret), "absolute paths are not allowed"),
+        (part("../private/secret.obj"), "`..` is not allowed"),
+        (
+            part("missing.obj"),
+            "no such file in the served scene's folder",
+        ),
+        (part("notes.stl"), "is not a valid STL file"),
+        (scene("elements = 30000\n"), "at most 20000"),
+    ] {
+        send(
+            &mut ws,
+            json!({"type": "load_scene", "text": text, "name": "client.toml"}),
+        )
+        .await;
+        let e = next_where(&mut ws, "error", |_| true).await;
+        let m = e["message"].as_str().unwrap();
+        assert_eq!(e["code"], "invalid_scene", "{e}");
+        assert!(m.contains(expect), "{m}");
+        for leak in ["swordfish", "No such file", "Not a directory", "served/"] {
+            assert!(!m.contains(leak), "{leak} in {m}");
+        }
+    }
+    // a mesh inside the folder loads; every client gets the new welcome
+    send(
+        &mut ws,
+        json!({"type": "load_scene", "text": part("tri.obj"), "name": "client.toml"}),
+    )
+    .await;
+    let w = next_where(&mut ws, "welcome", |_| true).await;
+    assert_ne!(w["session"]["scene"].as_str().unwrap(), old);
 }
 
 /// SPEC I6: once the demo's hoses have come to rest they sleep (not simulated); a grab

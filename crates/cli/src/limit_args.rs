@@ -1,0 +1,30 @@
+//! Resource limits on the command line (`--max-memory`, `--max-mesh-bytes`): a scene
+//! beyond them is refused while it loads, naming the field and the estimate
+//! (`pliant_scene::budget`).
+
+use pliant_scene::budget::{parse_bytes, DEFAULT_MAX_MEMORY_BYTES};
+use pliant_scene::files::DEFAULT_MAX_FILE_BYTES;
+use pliant_scene::{Limits, LoadOptions};
+
+/// The limits every command that loads a scene takes.
+#[derive(clap::Args, Clone, Debug, Default)]
+pub struct LimitArgs {
+    /// Refuse scenes whose run would need more memory than this (estimated from their
+    /// elements and triangles), e.g. 8G, 512M [default: 4G].
+    #[arg(long = "max-memory", value_parser = parse_bytes)]
+    pub max_memory: Option<u64>,
+    /// Largest mesh file read, e.g. 1G [default: 256M].
+    #[arg(long = "max-mesh-bytes", value_parser = parse_bytes)]
+    pub max_mesh_bytes: Option<u64>,
+}
+
+impl LimitArgs {
+    /// How scenes from the user's own disk are loaded under these limits.
+    pub fn load_options(&self) -> LoadOptions {
+        LoadOptions {
+            limits: Limits::with_memory(self.max_memory.unwrap_or(DEFAULT_MAX_MEMORY_BYTES)),
+            max_file_bytes: self.max_mesh_bytes.unwrap_or(DEFAULT_MAX_FILE_BYTES),
+            sandboxed: false,
+        }
+    }
+}

@@ -1,0 +1,223 @@
+//! What a scene will cost before it is built: the memory its hoses and parts need, from
+//! their element and triangle counts, checked against a limit while the scene loads —
+//! each hose and each part is counted before the next is built, so a scene too big for
+//! the machine is refused with the field and the estimate instead of aborting on a
+//! failed allocation.
+//!
+//! The per-item sizes are measured (peak resident memory of `pliant run`, release build,
+//! slope over 10 000 → 50 000 elements and 0.33 → 1.3 million sphere triangles):
+//! explicit ≈ 1.4 kB per element, implicit and static ≈ 3.7 kB (Newton's banded
+//! matrices); ≈ 380 B per triangle (the mesh, its contact copy and bounding-volume
+//! tree). The estimate takes the larger element size, as the solver may be changed
+//! after loading (`--solver`, the viewer).
+
+use crate::error::FieldError;
+
+/// Memory a run needs per beam element [bytes] (measured, see the module doc; rounded up).
+pub const BYTES_PER_ELEMENT: u64 = 4096;
+/// Memory a run needs per rigid-part triangle [bytes] (measured, rounded up).
+pub const BYTES_PER_TRIANGLE: u64 = 400;
+/// Memory of a run with an empty scene [bytes] (program, library, buffers).
+pub const BASE_BYTES: u64 = 16 * 1024 * 1024;
+/// Default memory limit of a scene [bytes]: 4 GiB.
+pub const DEFAULT_MAX_MEMORY_BYTES: u64 = 4 * 1024 * 1024 * 1024;
+
+/// Limits a scene is checked against while it loads.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limits {
+    /// Largest estimated memory of a run [bytes].
+    pub max_memory_bytes: u64,
+    /// Most beam elements (bounds the cost of one step; `pliant serve` limits the
+    /// scenes its clients send so that no scene stalls the session).
+    pub max_elements: u64,
+    /// Most rigid-part triangles (bounds what a live session sends every client).
+    pub max_triangles: u64,
+    /// Where the limits are raised, for messages (e.g. "--max-memory").
+    pub raise_with: &'static str,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_memory_bytes: DEFAULT_MAX_MEMORY_BYTES,
+            max_elements: u64::MAX,
+            max_triangles: u64::MAX,
+            raise_with: "--max-memory",
+        }
+    }
+}
+
+impl Limits {
+    /// The default limits with another memory limit.
+    pub fn with_memory(max_memory_bytes: u64) -> Limits {
+        Limits {
+            max_memory_bytes,
+            ..Limits::default()
+        }
+    }
+}
+
+/// The running estimate of a scene's size.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Estimate {
+    /// Beam elements of every hose.
+    pub elements: u64,
+    /// Triangles of every rigid part.
+    pub triangles: u64,
+}
+
+impl Estimate {
+    /// Estimated peak memory of a run [bytes].
+    pub fn memory_bytes(&self) -> u64 {
+        BASE_BYTES
+            .saturating_add(self.elements.saturating_mul(BYTES_PER_ELEMENT))
+            .saturating_add(self.triangles.saturating_mul(BYTES_PER_TRIANGLE))
+    }
+}
+
+/// An estimate growing as a scene loads, and the limits it must stay within.
+#[derive(Clone, Copy, Debug)]
+pub struct Budget {
+    pub estimate: Estimate,
+    pub limits: Limits,
+}
+
+impl Budget {
+    pub fn new(limits: Limits) -> Budget {
+        Budget {
+            estimate: Estimate::default(),
+            limits,
+        }
+    }
+
+    /// Adds `elements` from the hose at `field`; fails if the scene no longer fits.
+    pub fn add_elements(&mut self, field: &str, elements: u64) -> Result<(), FieldError> {
+        self.estimate.elements = self.estimate.elements.saturating_add(elements);
+        self.check(field)
+    }
+
+    /// Adds `triangles` from the part at `field` (counted before they are made, where
+    /// possible); fails if the scene no longer fits.
+    pub fn add_triangles(&mut self, field: &str, triangles: u64) -> Result<(), FieldError> {
+        self.estimate.triangles = self.estimate.triangles.saturating_add(triangles);
+        self.check(field)
+    }
+
+    fn check(&self, field: &str) -> Result<(), FieldError> {
+        let (e, l) = (&self.estimate, &self.limits);
+        if e.elements > l.max_elements {
+            return Err(FieldError::about(
+                field,
+                format!(
+                    "the scene up to here has {} elements; at most {} are allowed here (raise with {})",
+                    e.elements, l.max_elements, l.raise_with
+                ),
+            ));
+        }
+        if e.triangles > l.max_triangles {
+            return Err(FieldError::about(
+                field,
+                format!(
+                    "the scene up to here has {} part triangles; at most {} are allowed here (raise with {})",
+                    e.triangles, l.max_triangles, l.raise_with
+                ),
+            ));
+        }
+        let need = self.estimate.memory_bytes();
+        if need <= self.limits.max_memory_bytes {
+            return Ok(());
+        }
+        Err(FieldError::about(
+            field,
+            format!(
+                "the scene up to here ({} elements, {} triangles) needs ≈ {}; the limit is {} (raise it with {})",
+                self.estimate.elements,
+                self.estimate.triangles,
+                human_bytes(need),
+                human_bytes(self.limits.max_memory_bytes),
+                self.limits.raise_with
+            ),
+        ))
+    }
+}
+
+/// `bytes` as "3.2 GB" / "640 MB" / "12 kB" (decimal units).
+pub fn human_bytes(bytes: u64) -> String {
+    let b = bytes as f64;
+    if b >= 1e9 {
+        format!("{:.1} GB", b / 1e9)
+    } else if b >= 1e6 {
+        format!("{:.0} MB", b / 1e6)
+    } else {
+        format!("{:.0} kB", b / 1e3)
+    }
+}
+
+/// Parses a size such as "2G", "512M", "2GB", "1.5 GiB" or a byte count.
+pub fn parse_bytes(text: &str) -> Result<u64, String> {
+    let t = text.trim();
+    let split = t
+        .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .unwrap_or(t.len());
+    let (number, unit) = t.split_at(split);
+    let value: f64 = number
+        .parse()
+        .map_err(|_| format!("\"{text}\" is not a size (e.g. 2G, 512M, 1000000)"))?;
+    let scale = match unit.trim().to_ascii_lowercase().as_str() {
+        "" | "b" => 1.0,
+        "k" | "kb" => 1e3,
+        "kib" => 1024.0,
+        "m" | "mb" => 1e6,
+        "mib" => 1024.0 * 1024.0,
+        "g" | "gb" => 1e9,
+        "gib" => 1024.0 * 1024.0 * 1024.0,
+        "t" | "tb" => 1e12,
+        other => {
+            return Err(format!(
+                "unknown size unit \"{other}\" in \"{text}\"; use k, M, G or T"
+            ))
+        }
+    };
+    let bytes = value * scale;
+    if !bytes.is_finite() || bytes < 1.0 || bytes > u64::MAX as f64 {
+        return Err(format!("\"{text}\" is not a usable size"));
+    }
+    Ok(bytes as u64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_hose_that_breaks_the_limit_is_named_with_the_estimate() {
+        let limits = Limits::with_memory(2_000_000_000);
+        let mut e = Budget::new(limits);
+        e.add_elements("hoses[0]", 100_000).unwrap();
+        let err = e.add_elements("hoses[1]", 400_000).unwrap_err();
+        let text = err.to_string();
+        assert!(
+            text.contains("hoses[1]") && text.contains("500000 elements"),
+            "{text}"
+        );
+        assert!(
+            text.contains("≈ 2.1 GB") && text.contains("2.0 GB") && text.contains("--max-memory"),
+            "{text}"
+        );
+        let mut t = Budget::new(limits);
+        assert!(t
+            .add_triangles("parts[0].sphere.subdivisions", 20 * 4u64.pow(12))
+            .is_err());
+    }
+
+    #[test]
+    fn sizes_parse_with_units() {
+        assert_eq!(parse_bytes("2G").unwrap(), 2_000_000_000);
+        assert_eq!(parse_bytes("512MiB").unwrap(), 512 * 1024 * 1024);
+        assert_eq!(parse_bytes("1.5 GB").unwrap(), 1_500_000_000);
+        assert_eq!(parse_bytes("1000").unwrap(), 1000);
+        assert!(parse_bytes("-1G").is_err());
+        assert!(parse_bytes("2 parsecs").is_err());
+        assert!(parse_bytes("0").is_err());
+    }
+}
