@@ -373,3 +373,123 @@ fn meshes_that_are_not_regular_files_are_refused() {
         );
     }
 }
+
+/// Every output file of a run, as text (CSV, JSON, HTML, VTK).
+fn output_texts(out: &Path) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    let mut dirs = vec![out.to_path_buf()];
+    while let Some(d) = dirs.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if let Ok(t) = std::fs::read_to_string(&p) {
+                files.push((p.display().to_string(), t));
+            }
+        }
+    }
+    files
+}
+
+/// Whether `text` holds a non-finite number as written by Rust, JSON or CSV writers.
+fn has_non_finite(text: &str) -> Option<String> {
+    text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '.' || c == '-' || c == '+'))
+        .find(|w| {
+            let w = w.trim_start_matches(['-', '+']).to_ascii_lowercase();
+            w == "nan" || w == "inf" || w == "infinity"
+        })
+        .map(str::to_string)
+}
+
+/// The engine-bay demo with `edit` applied to its text, in `dir` (meshes from examples/).
+fn demo_variant(dir: &Path, name: &str, edit: impl Fn(&str) -> String) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(examples().join("engine_bay.toml")).unwrap();
+    let meshes = examples().join("meshes").display().to_string();
+    let text = edit(&text).replace("mesh = \"meshes", &format!("mesh = \"{meshes}"));
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Hardening item 5: values that would make the model meaningless are refused at load
+/// with the field named; runs that diverge or carry extreme loads write no NaN or inf
+/// into any output file.
+#[test]
+fn meaningless_values_are_refused_and_outputs_never_hold_non_finite_numbers() {
+    let dir = tempfile::tempdir().unwrap();
+    let refused: [(&str, &str, &str, &str); 3] = [
+        (
+            "length = 50\n",
+            "length = 1e-300\n",
+            "stubs[0].length",
+            "1e-300 mm",
+        ),
+        (
+            "snap_force_n = 40\n",
+            "snap_force_n = 1e300\n",
+            "clips[0].snap_force_n",
+            "1e300 N",
+        ),
+        (
+            "gravity = [0, 0, -9.81]\n",
+            "gravity = [0, 0, -9.81]\ndamping_stiffness_s = 1e300\n",
+            "damping_stiffness_s",
+            "no stable time step",
+        ),
+    ];
+    for (from, to, field, value) in refused {
+        let scene = demo_variant(dir.path(), "refused.toml", |t| t.replacen(from, to, 1));
+        let o = pliant()
+            .args(["run", "--quiet"])
+            .arg(&scene)
+            .arg("--out")
+            .arg(dir.path().join("r"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(field) && err.contains(value), "{err}");
+    }
+    // strong mass damping: the explicit step shrinks to stay stable, the run completes
+    let damped = demo_variant(dir.path(), "damped.toml", |t| {
+        t.replacen(
+            "gravity = [0, 0, -9.81]\n",
+            "gravity = [0, 0, -9.81]\ndamping_mass_per_s = 2e4\n",
+            1,
+        )
+    });
+    let out = dir.path().join("damped");
+    let o = pliant()
+        .args(["run", "--quiet"])
+        .arg(&damped)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // a hand that yanks the hose end 50 m in 1 ms: the run diverges (exit 3)
+    let yank = demo_variant(dir.path(), "yank.toml", |t| {
+        format!("{t}\n[[timeline]]\naction = \"move\"\nhose = \"upper\"\nnode = -1\nby = [0, 0, 50000]\nduration_s = 0.001\n")
+    });
+    let yanked = dir.path().join("yank");
+    let o = pliant()
+        .args(["run", "--quiet"])
+        .arg(&yank)
+        .arg("--out")
+        .arg(&yanked)
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(3),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for out in [out, yanked] {
+        let files = output_texts(&out);
+        assert!(files.len() > 8, "{files:?}");
+        for (name, text) in files {
+            assert_eq!(has_non_finite(&text), None, "{name}");
+        }
+    }
+}

@@ -16,6 +16,11 @@ pub struct Divergence {
     pub cause: String,
 }
 
+/// Largest support force [N] (and moment [N·m]) taken as physical: far beyond anything a
+/// hose, a hand or a clip can carry, so a larger one is a numerical blow-up — also while
+/// every held node stays where its hand puts it.
+pub const MAX_FORCE: f64 = 1e9;
+
 /// Checks the state for non-finite values and for node speeds beyond the material's wave
 /// speed c = √(E/ρ) — no hose point moves that fast in an assembly study, so such a speed
 /// is a numerical blow-up. O(N); call it every few steps.
@@ -44,9 +49,15 @@ fn check_against(model: &Model, state: &State, speed_limit: f64) -> Result<(), D
         let x = state.x[i];
         let v = state.v[i];
         let bad = if !x.is_finite() || !state.q[i].is_finite() {
-            Some(format!("position/orientation is not finite ({x:?})"))
+            Some("position/orientation is not finite".to_string())
         } else if !v.is_finite() || !state.w[i].is_finite() {
             Some("velocity is not finite".to_string())
+        } else if !(state.reaction_force[i].length() <= MAX_FORCE
+            && state.reaction_moment[i].length() <= MAX_FORCE)
+        {
+            Some(format!(
+                "a support force or moment is beyond {MAX_FORCE:e} N (N·m) or not finite"
+            ))
         } else if v.length() > speed_limit {
             Some(format!(
                 "speed {:.3e} m/s exceeds the wave speed {:.3e} m/s",

@@ -3,7 +3,22 @@
 //! tangent operator that turns moments conjugate to a rotation vector into spatial moments.
 
 use crate::autodiff::{Quat, Scalar, V3};
-use glam::{DQuat, DVec3};
+use glam::{DQuat, DVec3, DVec4};
+
+/// The unit quaternion in the direction of `q`, for any finite non-zero `q` — also one
+/// whose squared length overflows ([1e200, 0, 0, 0]) or underflows: it is scaled by its
+/// largest component first. `None` for a zero or non-finite `q`.
+pub fn unit_quaternion(q: DQuat) -> Option<DQuat> {
+    if !q.is_finite() {
+        return None;
+    }
+    let largest = DVec4::from(q).abs().max_element();
+    if largest == 0.0 {
+        return None;
+    }
+    let unit = (DQuat::from_vec4(DVec4::from(q) / largest)).normalize();
+    (unit.is_finite() && (unit.length() - 1.0).abs() < 1e-12).then_some(unit)
+}
 
 /// Exponential map: rotation vector φ (axis · angle, any magnitude) → unit quaternion.
 /// Rodrigues' formula in quaternion form, q = (cos |φ|/2, sin(|φ|/2) φ/|φ|), with a
@@ -100,6 +115,18 @@ pub fn rotation_between_of<T: Scalar>(from: V3<T>, to: V3<T>) -> Quat<T> {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    #[test]
+    fn unit_quaternion_survives_overflow_and_refuses_zero() {
+        let q = unit_quaternion(DQuat::from_xyzw(1e200, 0.0, 0.0, 1e200)).unwrap();
+        assert!((q.length() - 1.0).abs() < 1e-15);
+        assert!((q.x - 0.5f64.sqrt()).abs() < 1e-15 && (q.w - 0.5f64.sqrt()).abs() < 1e-15);
+        let tiny = unit_quaternion(DQuat::from_xyzw(0.0, 3e-320, 0.0, 0.0)).unwrap();
+        assert_eq!(tiny.y, 1.0);
+        assert!(unit_quaternion(DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0)).is_none());
+        assert!(unit_quaternion(DQuat::from_xyzw(f64::NAN, 0.0, 0.0, 1.0)).is_none());
+        assert!(unit_quaternion(DQuat::from_xyzw(f64::INFINITY, 0.0, 0.0, 1.0)).is_none());
+    }
 
     #[test]
     fn exp_log_round_trip_over_all_angles() {

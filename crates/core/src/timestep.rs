@@ -7,8 +7,9 @@
 //! (E = 12.36 MPa, ρ = 940 kg/m³ → c ≈ 115 m/s, Δt ≈ 0.87 ms for l = 100 mm).
 //! Bending and rotation can be stiffer than the axial mode for short elements, so ω_max is
 //! also estimated by power iteration on M⁻¹K (K by finite differences of the element
-//! loads at the rest shape), and the smaller bound is used. Stiffness-proportional damping
-//! β lowers the limit to (2/ω)(√(1+ξ²) − ξ), ξ = βω/2 (Belytschko, Liu & Moran §6.2).
+//! loads at the rest shape), and the smaller bound is used. Mass-proportional damping α
+//! and stiffness-proportional damping β lower the limit to (2/ω)(√(1+ξ²) − ξ), with
+//! ξ = α/2ω + βω/2 the highest mode's damping ratio (Belytschko, Liu & Moran §6.2).
 
 use crate::forces::{internal_loads, Config};
 use crate::math::exp_map;
@@ -37,6 +38,10 @@ pub struct TimeStepReport {
     pub chosen: f64,
 }
 
+/// Largest damping ratio ξ of the highest mode taken as meant: a larger one shortens the
+/// explicit step by about 2ξ and damps every mode of interest to a standstill.
+pub const MAX_DAMPING_RATIO: f64 = 1e4;
+
 /// Default stiffness-proportional damping: damping ratio 5 % at ω_max, fading as 1/ω
 /// towards low modes (negligible on the hose's swinging modes).
 const DEFAULT_HIGH_MODE_DAMPING_RATIO: f64 = 0.05;
@@ -58,9 +63,20 @@ pub fn stable_time_step(
     let beta = settings
         .damping_stiffness
         .unwrap_or(2.0 * DEFAULT_HIGH_MODE_DAMPING_RATIO / omega);
-    let xi = 0.5 * beta * omega;
+    // Rayleigh damping ratio of the highest mode: mass part α/2ω, stiffness part βω/2
+    let xi = 0.5 * settings.damping_mass / omega + 0.5 * beta * omega;
     let undamped = axial_bound.min(eigen_bound);
-    let critical = undamped * ((1.0 + xi * xi).sqrt() - xi);
+    // (2/ω)(√(1+ξ²) − ξ) written as (2/ω)/(√(1+ξ²) + ξ): no overflow or cancellation
+    let critical = undamped / (1.0f64.hypot(xi) + xi);
+    if !(critical > 0.0 && critical.is_finite() && xi <= MAX_DAMPING_RATIO) {
+        return Err(ModelError::Settings(format!(
+            "no stable time step: the damping (simulation.damping_mass_per_s = {}, \
+             simulation.damping_stiffness_s = {beta:e}) gives the highest mode a damping \
+             ratio of {xi:.3e}; above {MAX_DAMPING_RATIO:e} it only makes the explicit step \
+             that many times shorter (lower the damping)",
+            settings.damping_mass
+        )));
+    }
     let safety = settings.time_step_safety;
     let chosen = match settings.time_step {
         Some(dt) if dt > critical => {

@@ -72,6 +72,11 @@ fn d_outer_at(hose: &HoseSpec, node: usize) -> f64 {
     hose.node_section(node).d_outer
 }
 
+/// Shortest stub [m]: shorter ones are meaningless (and their force law divides by it).
+pub const MIN_STUB_LENGTH: f64 = 1e-3;
+/// Largest clip snap force [N]: a hand pushes at most a few hundred newtons.
+pub const MAX_SNAP_FORCE: f64 = 1e4;
+
 /// A length in metres, written in the file's unit (rounded to 1e-9 of it, so that
 /// 0.035 m reads `35 mm`, not `35.00000000000001 mm`).
 fn in_unit(metres: f64, unit: LengthUnit) -> String {
@@ -112,6 +117,13 @@ pub fn build_stub(
     let origin = finite_vec(&at("origin"), raw.origin, u)? * scale;
     let axis = non_zero_vec(&at("axis"), raw.axis, "")?;
     let length = positive(&at("length"), raw.length, u)?;
+    if length * scale < MIN_STUB_LENGTH {
+        return Err(FieldError::new(
+            at("length"),
+            with_unit(raw.length, u),
+            "a stub shorter than 1 mm holds no hose (the press fit needs a length to act over)",
+        ));
+    }
     let diameter = positive(&at("diameter"), raw.diameter, u)?;
     let (friction_static, friction_sliding) = friction(
         &at("friction"),
@@ -237,6 +249,13 @@ pub fn build_clip(
         ));
     }
     let snap_force = non_negative(&at("snap_force_n"), raw.snap_force_n, "N")?;
+    if snap_force > MAX_SNAP_FORCE {
+        return Err(FieldError::new(
+            at("snap_force_n"),
+            with_unit(raw.snap_force_n, "N"),
+            format!("above {MAX_SNAP_FORCE} N no clip is fitted by hand (a fixed clamp is a `fix` in the timeline)"),
+        ));
+    }
     // the hose that goes into the clip: named, or the only hose
     let h = match &raw.hose {
         None if hoses.len() > 1 => {

@@ -67,20 +67,17 @@ impl MeshFormat {
     }
 }
 
-/// Reads the mesh file `name` through `files` (coordinates as stored in the file). Never
-/// panics: a reader that fails unexpectedly is reported as a malformed file. In a
+/// Reads the mesh file `name` through `files` (coordinates as stored in the file). In a
 /// sandbox a reader's complaint is not passed on (it may quote the file).
 pub fn read_mesh_file(files: &FileAccess, name: &str) -> Result<TriMesh, String> {
     let format = MeshFormat::of(Path::new(name))?;
     let bytes = files.read(name)?;
     let dir = files.beside(name);
-    let result = std::panic::catch_unwind(|| match format {
+    let result = match format {
         MeshFormat::Obj => read_obj(&bytes),
         MeshFormat::Stl => read_stl(&bytes),
         MeshFormat::Gltf => read_gltf(&bytes, &dir),
-    });
-    let result =
-        result.unwrap_or_else(|_| Err("malformed file: the reader failed on it".to_string()));
+    };
     match result {
         Err(_) if files.is_sandboxed() => Err(format!(
             "is not a valid {} file (the reason is not shown to clients of the server; load the scene with `pliant run` to see it)",
@@ -90,9 +87,21 @@ pub fn read_mesh_file(files: &FileAccess, name: &str) -> Result<TriMesh, String>
     }
 }
 
+/// Runs a reader; a panic in it (a bug of the parsing library on a malformed file, such
+/// as gltf-json 1.4's index panic on a POSITION accessor that does not exist) is
+/// reported as a malformed file. Every public reader goes through here.
+fn no_panic(read: impl FnOnce() -> Result<TriMesh, String>) -> Result<TriMesh, String> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(read))
+        .unwrap_or_else(|_| Err("malformed file: the reader failed on it".to_string()))
+}
+
 /// Wavefront OBJ: all objects and groups, polygons triangulated; points, lines and
 /// materials ignored.
 pub fn read_obj(bytes: &[u8]) -> Result<TriMesh, String> {
+    no_panic(|| read_obj_unguarded(bytes))
+}
+
+fn read_obj_unguarded(bytes: &[u8]) -> Result<TriMesh, String> {
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
@@ -141,6 +150,10 @@ pub fn read_obj(bytes: &[u8]) -> Result<TriMesh, String> {
 /// STL, ASCII or binary. A binary file whose 80-byte header happens to start with
 /// `solid ` (as some CAD exporters write) is recognised by its size.
 pub fn read_stl(bytes: &[u8]) -> Result<TriMesh, String> {
+    no_panic(|| read_stl_unguarded(bytes))
+}
+
+fn read_stl_unguarded(bytes: &[u8]) -> Result<TriMesh, String> {
     let binary_count = (bytes.len() >= 84)
         .then(|| u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize);
     let looks_ascii = bytes.starts_with(b"solid ");
@@ -183,6 +196,10 @@ pub fn read_stl(bytes: &[u8]) -> Result<TriMesh, String> {
 /// scene (else the first scene; else every mesh once), with its node transforms applied.
 /// Points and lines are ignored.
 pub fn read_gltf(bytes: &[u8], dir: &FileAccess) -> Result<TriMesh, String> {
+    no_panic(|| read_gltf_unguarded(bytes, dir))
+}
+
+fn read_gltf_unguarded(bytes: &[u8], dir: &FileAccess) -> Result<TriMesh, String> {
     let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| format!("cannot parse as glTF: {e}"))?;
     let doc = &gltf.document;
     let mut buffers: Vec<Vec<u8>> = Vec::new();
@@ -718,6 +735,14 @@ mod tests {
         let exact = 4.0 / 3.0 * PI * 8.0;
         assert!(v < exact && (exact - v) / exact < 0.015, "{v} vs {exact}");
         assert_eq!(sphere_triangles(40), None);
+    }
+
+    #[test]
+    fn gltf_position_accessor_out_of_range_is_an_error_not_a_panic() {
+        // found by the fuzzer (crates/fuzz): gltf-json indexes the accessor unchecked
+        let doc = br#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0}"#;
+        let e = read_gltf(doc, &FileAccess::local(Path::new("."))).unwrap_err();
+        assert!(!e.is_empty());
     }
 
     #[test]

@@ -51,6 +51,9 @@ pub fn fmt_num(x: f64) -> String {
         "nan".to_string()
     } else if x.is_infinite() {
         if x > 0.0 { "inf" } else { "-inf" }.to_string()
+    } else if x != 0.0 && !(1e-6..1e15).contains(&x.abs()) {
+        // extreme values as 1e-300, not three hundred digits
+        format!("{x:e}")
     } else {
         format!("{x}")
     }

@@ -27,6 +27,7 @@ use axum::Router;
 use futures_util::FutureExt;
 use glam::{DQuat, DVec3};
 use pliant_assembly::ergonomics::ErgonomicProfile;
+use pliant_core::math::unit_quaternion;
 use std::any::Any;
 use std::net::SocketAddr;
 use std::panic::AssertUnwindSafe;
@@ -667,16 +668,12 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
             let position = point(position)?;
             let orientation = match orientation {
                 None => None,
-                Some(q) => {
-                    let q = DQuat::from_array(q);
-                    if !q.is_finite() || q.length() < 1e-6 {
-                        return Err(error_json(
-                            ErrorCode::InvalidValue,
-                            "orientation must be a non-zero finite quaternion [x, y, z, w]",
-                        ));
-                    }
-                    Some(q.normalize())
-                }
+                Some(q) => Some(unit_quaternion(DQuat::from_array(q)).ok_or_else(|| {
+                    error_json(
+                        ErrorCode::InvalidValue,
+                        "orientation must be a non-zero finite quaternion [x, y, z, w]",
+                    )
+                })?),
             };
             lock(&shared.ownership)
                 .check(client, hand_id, session.epoch())

@@ -115,11 +115,16 @@ impl InstallationChecks {
     /// Checks the state if a checked instant is due (every `interval` seconds of
     /// simulated time, so that every shell checks the same instants).
     pub fn observe(&mut self, model: &Model, state: &State) {
-        if !self.settings.any_running() || state.time + 1e-12 < self.next_time {
+        if !self.due(state.time) {
             return;
         }
         self.next_time = state.time + self.settings.interval;
         self.check_now(model, state);
+    }
+
+    /// Whether [`Self::observe`] would check a state at `time`.
+    pub fn due(&self, time: f64) -> bool {
+        self.settings.any_running() && time + 1e-12 >= self.next_time
     }
 
     /// Checks the state now (curvature and twist of every beam).

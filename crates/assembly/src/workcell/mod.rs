@@ -841,7 +841,12 @@ impl Workcell {
             (&stats, self.solver.stability_events()),
             &self.hand_records,
         );
-        self.checks.observe(&self.model, &self.state);
+        // only checked states are judged (a blow-up between two health checks is not)
+        if self.checks.due(self.state.time)
+            && check_for(self.solver.kind(), &self.model, &self.state).is_ok()
+        {
+            self.checks.observe(&self.model, &self.state);
+        }
         if wants {
             obs.on_state(&self.model, &self.state);
             obs.on_hands(self.state.time, &self.hand_records);

@@ -32,7 +32,7 @@ pub struct Peak {
 
 impl Peak {
     fn record(&mut self, magnitude: f64, time: f64) {
-        if magnitude.is_finite() && magnitude > self.magnitude {
+        if physical(magnitude) && magnitude > self.magnitude {
             self.magnitude = magnitude;
             self.time = time;
         }
@@ -257,11 +257,11 @@ impl Tally {
                 continue;
             };
             let (f, m) = (r.load.force.length(), r.load.torque.length());
-            if f > p.max_force {
+            if physical(f) && f > p.max_force {
                 p.max_force = f;
                 p.max_force_time = t;
             }
-            if m > p.max_torque {
+            if physical(m) && m > p.max_torque {
                 p.max_torque = m;
                 p.max_torque_time = t;
             }
@@ -281,11 +281,11 @@ impl Tally {
                 continue;
             }
             let (f, m) = (state.reaction_force[i], state.reaction_moment[i]);
-            if f.length() > p.max_force {
+            if physical(f.length()) && f.length() > p.max_force {
                 p.max_force = f.length();
                 p.max_force_time = t;
             }
-            if m.length() > p.max_moment {
+            if physical(m.length()) && m.length() > p.max_moment {
                 p.max_moment = m.length();
                 p.max_moment_time = t;
             }
@@ -321,7 +321,7 @@ impl Tally {
             }
         }
         let total = state.contact_force.iter().map(|f| f.length()).sum::<f64>();
-        if total > self.max_contact_force {
+        if physical(total) && total > self.max_contact_force {
             self.max_contact_force = total;
             self.max_contact_force_time = t;
         }
@@ -362,4 +362,11 @@ impl Tally {
         }
         out
     }
+}
+
+/// Whether a force [N] or moment [N·m] is a physical value and may become a peak: the
+/// steps between two health checks ([`super::HEALTH_CHECK_EVERY`]) can hold the first
+/// numbers of a blow-up, which must not reach the report.
+fn physical(x: f64) -> bool {
+    x.is_finite() && x <= pliant_core::health::MAX_FORCE
 }
