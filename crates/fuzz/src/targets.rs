@@ -144,7 +144,8 @@ fn accepted_scene_is_sound(scene: &LoadedScene) -> Result<(), String> {
     for p in &scene.world.rigid_parts {
         mesh_is_sound(&p.vertices, &p.triangles).map_err(|e| format!("part '{}': {e}", p.name))?;
     }
-    if !(scene.record_interval > 0.0 && scene.record_interval.is_finite()) {
+    // 0 is documented: record every step
+    if !(scene.record_interval >= 0.0 && scene.record_interval.is_finite()) {
         return Err(format!("record interval {}", scene.record_interval));
     }
     Ok(())

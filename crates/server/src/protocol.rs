@@ -95,6 +95,8 @@ pub enum ErrorCode {
     /// A `report` that could not be written (the session records into no folder, or
     /// writing failed).
     ReportFailed,
+    /// The session's command queue is full; the command was dropped.
+    Busy,
 }
 
 /// Server → client.

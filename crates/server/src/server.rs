@@ -298,7 +298,7 @@ async fn ws_upgrade(
             let epoch = session.epoch();
             let mine = lock(&shared.ownership).release_all_of(client, epoch);
             for hand in mine {
-                session.send(Command::Release { hand });
+                session.send_waiting(Command::Release { hand });
             }
         })
         .into_response()
@@ -708,8 +708,15 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
             Command::Reset
         }
     };
-    session.send(command);
-    Ok(())
+    session.send(command).map_err(|_| {
+        error_json(
+            ErrorCode::Busy,
+            format!(
+                "the session is busy ({} commands waiting); this one was dropped, send it again",
+                crate::session::COMMAND_QUEUE
+            ),
+        )
+    })
 }
 
 #[cfg(test)]

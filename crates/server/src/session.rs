@@ -24,6 +24,7 @@ use pliant_scene::session::{start_session_folder, write_session_folder};
 use pliant_scene::LoadedScene;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use crate::limits::MAX_STEPS_PER_REQUEST;
 use std::sync::mpsc;
 use std::sync::Arc;
 use std::thread::JoinHandle;
@@ -32,6 +33,12 @@ use tokio::sync::watch;
 
 /// Most wall-clock time spent stepping before commands are looked at again.
 const BATCH: Duration = Duration::from_millis(2);
+/// Commands a session holds before its thread takes them; beyond, `send` refuses.
+pub const COMMAND_QUEUE: usize = 256;
+
+/// The command queue is full.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Busy;
 /// Behind real time by more than this, the thread stops trying to catch up.
 const MAX_LAG: f64 = 0.05;
 /// How often the input log is told how far the session has got (wall clock).
@@ -98,7 +105,7 @@ impl Default for SessionOptions {
 
 /// A running simulation. Dropping it stops the thread.
 pub struct Session {
-    commands: mpsc::Sender<Command>,
+    commands: mpsc::SyncSender<Command>,
     snapshots: watch::Receiver<Arc<Snapshot>>,
     scene: Arc<SceneData>,
     loaded: Arc<LoadedScene>,
@@ -137,7 +144,7 @@ impl Session {
             cell.time_step(),
         );
         let data = Arc::new(SceneData::new(scene, cell.model(), &sites, 60.0));
-        let (tx, rx) = mpsc::channel();
+        let (tx, rx) = mpsc::sync_channel(COMMAND_QUEUE);
         let epoch = Arc::new(AtomicU64::new(0));
         let stop = Arc::new(AtomicBool::new(false));
         let mut sim = Sim::new(cell, epoch.clone(), options.paused);
@@ -161,8 +168,20 @@ impl Session {
         })
     }
 
-    /// Queues a command; it is applied before the next step.
-    pub fn send(&self, command: Command) {
+    /// Queues a command; it is applied before the next step. `Err(Busy)` when the queue
+    /// holds [`COMMAND_QUEUE`] commands the simulation thread has not taken yet (the
+    /// command is dropped; the sender is told).
+    pub fn send(&self, command: Command) -> Result<(), Busy> {
+        match self.commands.try_send(command) {
+            Err(mpsc::TrySendError::Full(_)) => Err(Busy),
+            // a stopped thread takes nothing; the session is being replaced
+            Ok(()) | Err(mpsc::TrySendError::Disconnected(_)) => Ok(()),
+        }
+    }
+
+    /// Queues a command the server itself must not lose (a leaving client's releases, a
+    /// log request), waiting for room: the thread empties the queue every loop.
+    pub fn send_waiting(&self, command: Command) {
         let _ = self.commands.send(command);
     }
 
@@ -199,7 +218,7 @@ impl Session {
     /// The input log so far (inputs and the tick the session has reached).
     pub fn input_log(&self) -> Result<InputLog, String> {
         let (tx, rx) = mpsc::channel();
-        self.send(Command::Log(tx));
+        self.send_waiting(Command::Log(tx));
         let (inputs, end_tick) = rx
             .recv()
             .map_err(|_| "the simulation thread has stopped".to_string())?;
@@ -251,6 +270,11 @@ impl Drop for Session {
 
 struct Sim {
     cell: Workcell,
+    /// Steps asked for with `step` not yet taken; run in batches between snapshots and
+    /// commands, at most [`MAX_STEPS_PER_REQUEST`] at once.
+    pending_steps: u64,
+    /// The command that waits for the pending steps.
+    held: Option<Command>,
     /// Current force of each fastener (buffer reused for every snapshot).
     fastener_forces: Vec<FastenerSample>,
     /// Why the simulation last diverged, until the next client reset.
@@ -267,6 +291,8 @@ impl Sim {
     fn new(cell: Workcell, epoch: Arc<AtomicU64>, paused: bool) -> Sim {
         Sim {
             cell,
+            pending_steps: 0,
+            held: None,
             fastener_forces: Vec::new(),
             diverged: None,
             paused,
@@ -295,13 +321,38 @@ impl Sim {
         let (mut rtf_wall, mut rtf_sim, mut rtf) = (Instant::now(), self.time(), 0.0);
         self.rebase();
         while !stop.load(Ordering::Relaxed) {
-            while let Ok(c) = commands.try_recv() {
+            // Commands keep their order: one after a `step` waits (held, the rest in the
+            // bounded queue) until the steps are taken; snapshots go on meanwhile. Further
+            // `step`s join the pending ones, up to the cap.
+            loop {
+                let c = match self.held.take() {
+                    Some(c) => c,
+                    None => match commands.try_recv() {
+                        Ok(c) => c,
+                        Err(_) => break,
+                    },
+                };
+                if self.pending_steps > 0 && !matches!(c, Command::Step(_)) {
+                    self.held = Some(c);
+                    break;
+                }
                 self.apply(c);
                 dirty = true;
             }
             let now = Instant::now();
             let mut wait = Duration::from_millis(5);
-            if !self.paused {
+            if self.pending_steps > 0 {
+                // requested steps, a batch at a time: commands and snapshots go on
+                while self.pending_steps > 0 && now.elapsed() < BATCH {
+                    self.pending_steps -= 1;
+                    if !self.step() {
+                        self.pending_steps = 0;
+                    }
+                }
+                self.rebase();
+                dirty = true;
+                wait = Duration::ZERO;
+            } else if !self.paused {
                 let dt = self.cell.time_step();
                 let due = self.anchor_sim + now.duration_since(self.anchor_wall).as_secs_f64();
                 if due - self.time() > MAX_LAG {
@@ -399,14 +450,11 @@ impl Sim {
                 self.rebase();
             }
             Command::Step(n) => {
-                for _ in 0..n {
-                    if !self.step() {
-                        break;
-                    }
-                }
-                self.rebase();
+                self.pending_steps =
+                    (self.pending_steps + u64::from(n)).min(u64::from(MAX_STEPS_PER_REQUEST));
             }
             Command::Reset => {
+                self.pending_steps = 0;
                 self.give(Input::Reset);
                 self.diverged = None;
                 self.notice = None;

@@ -103,7 +103,7 @@ async fn runner_server_and_workcell_agree_bit_for_bit_for_each_solver() {
         .unwrap();
         for (steps, input) in script() {
             if steps > 0 {
-                session.send(Command::Step(steps as u32));
+                session.send(Command::Step(steps as u32)).unwrap();
             }
             session.send(match input {
                 Input::Grab { hand, at } => Command::Grab { hand, position: at },
@@ -119,9 +119,10 @@ async fn runner_server_and_workcell_agree_bit_for_bit_for_each_solver() {
                 Input::ReleaseHand { hand } => Command::Release { hand },
                 Input::Reset => Command::Reset,
                 other => panic!("no command for {other:?}"),
-            });
+            })
+            .unwrap();
         }
-        session.send(Command::Step(TAIL as u32));
+        session.send(Command::Step(TAIL as u32)).unwrap();
         let live = snapshot_at_step(&session, cell.state().step).await;
         assert_positions(&live, &cell, &format!("{solver}: server"));
         let log = session.input_log().unwrap();

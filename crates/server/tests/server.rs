@@ -70,8 +70,8 @@ async fn next_where(ws: &mut Ws, ty: &str, pred: impl Fn(&Value) -> bool) -> Val
             }
             if std::env::var("DBG").is_ok() && v["type"] == "snapshot" {
                 eprintln!(
-                    "t {} notice {} hands {}",
-                    v["time"], v["notice"], v["hands"]
+                    "t {} step {} paused {} notice {} hands {}",
+                    v["time"], v["step"], v["paused"], v["notice"], v["hands"]
                 );
             }
         }
@@ -572,6 +572,37 @@ async fn client_scenes_stay_in_their_sandbox_and_within_limits() {
     .await;
     let w = next_where(&mut ws, "welcome", |_| true).await;
     assert_ne!(w["session"]["scene"].as_str().unwrap(), old);
+}
+
+/// Hardening item 3: a flood of `step` requests neither freezes the other clients'
+/// snapshots nor piles up work: steps run in batches between snapshots, and at most
+/// 100 000 are pending however many are asked for.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn step_floods_are_capped_and_snapshots_go_on() {
+    let s = server().await;
+    let mut a = connect(&s).await;
+    let mut b = connect(&s).await;
+    hello(&mut a).await;
+    hello(&mut b).await;
+    send(&mut a, json!({"type": "pause"})).await;
+    // paused: the step count moves only by request
+    let s0 = next_where(&mut b, "snapshot", |v| v["paused"] == true).await["step"]
+        .as_u64()
+        .unwrap();
+    for _ in 0..40 {
+        send(&mut a, json!({"type": "step", "n": 100_000})).await;
+    }
+    // the other client sees the steps go by, not one jump at the end
+    let between = next_where(&mut b, "snapshot", |v| v["step"].as_u64().unwrap() > s0).await;
+    let k = between["step"].as_u64().unwrap();
+    assert!(k < s0 + 100_000, "first snapshot after the flood at step {k} (from {s0})");
+    // a command after the flood waits for the pending steps, then shows in a snapshot:
+    // 40 requests of 100 000 steps made fewer than 200 000 steps (at most 100 000
+    // pending at any time), not 4 million
+    send(&mut a, json!({"type": "set_ergonomics", "posture": "sitting"})).await;
+    let after = next_where(&mut b, "snapshot", |v| v["ergonomics"]["push_posture"] == "sitting").await;
+    let total = after["step"].as_u64().unwrap() - s0;
+    assert!((100_000..200_000).contains(&total), "{total} steps");
 }
 
 /// SPEC I6: once the demo's hoses have come to rest they sleep (not simulated); a grab
