@@ -1,12 +1,12 @@
 //! `pliant study`: variant and tolerance studies (SPEC T1, T2). The study machinery is
-//! Python (the `pliant.study` package: sampling, Dask, Parquet, envelopes, report); this
+//! Python (the `pliant.studies` package: sampling, Dask, Parquet, envelopes, report); this
 //! command finds a Python interpreter that has it and hands the arguments over.
 
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
-/// The options of `pliant study`, passed on to `python -m pliant.study`.
+/// The options of `pliant study`, passed on to `python -m pliant.studies`.
 pub struct StudyOptions<'a> {
     pub study: &'a Path,
     pub out: Option<&'a Path>,
@@ -39,7 +39,7 @@ fn find_python() -> Result<PathBuf> {
     let tried = candidates();
     for python in &tried {
         let ok = Command::new(python)
-            .args(["-c", "import pliant.study"])
+            .args(["-c", "import pliant.studies"])
             .output()
             .map(|o| o.status.success())
             .unwrap_or(false);
@@ -61,7 +61,7 @@ fn find_python() -> Result<PathBuf> {
 pub fn run(o: &StudyOptions) -> Result<ExitCode> {
     let python = find_python()?;
     let mut cmd = Command::new(&python);
-    cmd.args(["-m", "pliant.study"]).arg(o.study);
+    cmd.args(["-m", "pliant.studies"]).arg(o.study);
     if let Some(out) = o.out {
         cmd.arg("--out").arg(out);
     }
