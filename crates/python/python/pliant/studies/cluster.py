@@ -27,7 +27,7 @@ from . import envelope, geometry, sampling, variant
 from .runner import Task, column_name, run_variant
 from .spec import Study, StudyError, load_study
 
-FLUSH_ROWS = 50
+FLUSH_ROWS = 50  # a part is written after this many rows or seconds
 FLUSH_SECONDS = 10.0
 
 
@@ -210,6 +210,7 @@ def run_study(
     processes: bool = True,
     progress: Any = True,
     client: Any = None,
+    flush_rows: int = FLUSH_ROWS,
     log: Callable[[str], None] = lambda s: print(s, file=sys.stderr),
 ):
     """Runs (or resumes) a study; returns a :class:`~pliant.studies.StudyResult`."""
@@ -236,7 +237,8 @@ def run_study(
     union = {h: (np.load(layout.voxels(h)) if os.path.exists(layout.voxels(h)) else np.zeros(0, np.int64))
              for h in hoses}
     sch = schema(study)
-    seq = len(glob.glob(os.path.join(layout.parts, "part-*.parquet")))
+    seq = 1 + max((int(os.path.basename(p)[5:10]) for p in glob.glob(os.path.join(layout.parts, "part-*.parquet"))),
+                  default=-1)
     log(f"study {study.name!r}: {len(samples)} runs ({study.method}), {len(done)} done before, "
         f"{len(pending)} to run; results in {out}")
 
@@ -266,13 +268,14 @@ def run_study(
 
     def record(i: int, res: Dict[str, Any]) -> None:
         row = res["row"]
-        row.update({p.column: samples[i][p.name] for p in study.parameters})
+        row.update({p.column: str(samples[i][p.name]) if p.categorical else samples[i][p.name]
+                    for p in study.parameters})
         if row["status"] != "ok":
             state["failed"] += 1
         buffer.append(row)
         for h, keys in res["voxels"].items():
             union[h] = np.union1d(union[h], keys)
-        if len(buffer) >= FLUSH_ROWS or time.monotonic() - state["flushed"] > FLUSH_SECONDS:
+        if len(buffer) >= flush_rows or time.monotonic() - state["flushed"] > FLUSH_SECONDS:
             flush()
 
     own_client = client is None

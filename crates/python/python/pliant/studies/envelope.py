@@ -40,6 +40,8 @@ def centreline_samples(frames: np.ndarray, spacing: float) -> np.ndarray:
     if len(a) == 0:
         return frames.reshape(-1, 3)
     n = max(1, int(math.ceil(np.linalg.norm(b - a, axis=1).max() / spacing)))
+    if n > 10_000:
+        raise ValueError(f"an element {n * spacing:.3g} m long: not a hose's state")
     t = np.linspace(0.0, 1.0, n + 1)
     return (a[:, None, :] + (b - a)[:, None, :] * t[None, :, None]).reshape(-1, 3)
 
@@ -54,6 +56,8 @@ def voxelize(frames: np.ndarray, radius: float, h: float) -> np.ndarray:
     reach = radius + math.sqrt(3) / 2 * (h + fine) + h / 4
     seeds = np.round(pts / h).astype(np.int64)
     m = int(math.ceil(reach / h)) + 2
+    if np.prod(seeds.max(axis=0) - seeds.min(axis=0) + 2 * m + 1, dtype=float) > 2e8:
+        raise ValueError("the swept region is too large for voxels of this size")
     lo = seeds.min(axis=0) - m
     grid = np.ones(seeds.max(axis=0) - lo + m + 1, dtype=bool)
     grid[tuple((seeds - lo).T)] = False

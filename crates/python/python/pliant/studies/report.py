@@ -159,10 +159,10 @@ def write_report(study: Study, out: str, frame, envelope_info: Dict[str, Any]) -
         if frame["min_bend_radius_ratio"].notna().any():
             parts.append(histogram_svg(frame["min_bend_radius_ratio"], "Smallest bend radius / allowed", "ratio", [1.0]))
     parts.append("<h2>What drives the outcome</h2>")
-    sens = sensitivity(frame, study, [o for o, _ in OUTPUTS]) if n else []
+    sens = sensitivity(ok, study, [o for o, _ in OUTPUTS]) if len(ok) else []
     parts.append(
         "<p>Method: <b>Spearman rank correlation</b> ρ between each numeric parameter and each "
-        "outcome over the runs where both are known (scipy.stats.spearmanr; p-value of no "
+        "outcome over the runs that completed normally (scipy.stats.spearmanr; p-value of no "
         "monotonic relation). Ranked by the largest |ρ|. It measures monotonic influence one "
         "parameter at a time; interactions are not separated (that would need Sobol indices "
         "and a Saltelli design).</p>")

@@ -94,7 +94,7 @@ def _sweep(result, task: Task, row: Dict[str, Any]) -> Dict[str, np.ndarray]:
         if task.voxel > 0:
             voxels[hose] = envelope.voxelize(frames, r, task.voxel)
         mids = 0.5 * (frames[:, 1:] + frames[:, :-1])
-        pts = np.unique(np.round(np.concatenate([frames.reshape(-1, 3), mids.reshape(-1, 3)]) / 1e-4), axis=0) * 1e-4
+        pts = np.concatenate([frames.reshape(-1, 3), mids.reshape(-1, 3)])
         points.append(pts)
         radii.append(np.full(len(pts), r))
     if points:
@@ -131,7 +131,8 @@ def run_variant(task: Task) -> Dict[str, Any]:
             row.update(_result_row(result, task))
             if row["status"] == "diverged":
                 row["feasible"] = False
-            voxels = _sweep(result, task, row)
+            if row["status"] == "ok":  # a diverged run's last states are not physical
+                voxels = _sweep(result, task, row)
         except Exception as e:
             row.update(status="error", message=f"reading the result: {type(e).__name__}: {e}")
     row["wall_time_s"] = time.perf_counter() - start
