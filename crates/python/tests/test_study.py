@@ -390,3 +390,18 @@ def test_cli_runs_a_study_and_reports_bad_input(pliant_bin, scene_path, tmp_path
                          env=env, capture_output=True, text=True, timeout=600)
     assert bad.returncode == 2
     assert "parameters[0].distribution = flat: must be one of" in bad.stderr
+
+
+def test_schema_and_parser_agree_on_the_fields():
+    from pliant.studies import spec
+
+    schema = json.loads((EXAMPLES.parent / "docs" / "study.schema.json").read_text())
+    assert set(schema["properties"]) == spec.TOP_KEYS
+    param = schema["properties"]["parameters"]["items"]
+    assert set(param["properties"]) == spec.PARAMETER_KEYS
+    assert param["properties"]["vary"]["enum"] == list(spec.KINDS)
+    assert param["properties"]["distribution"]["enum"] == list(spec.DISTRIBUTIONS)
+    assert set(param["properties"]["property"]["enum"]) == set(spec.MATERIAL_PROPERTIES)
+    example = tomllib.loads((EXAMPLES / "engine_bay_study.toml").read_text())
+    for p in example["parameters"]:
+        assert set(p) <= spec.PARAMETER_KEYS
