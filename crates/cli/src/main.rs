@@ -110,7 +110,7 @@ enum Command {
     Study {
         /// Study file (TOML, format "pliant-study").
         study: PathBuf,
-        /// Output folder (default: out/study-<study file name>); an interrupted study
+        /// Output folder (default: out/study-<the study's name>); an interrupted study
         /// resumes there.
         #[arg(long)]
         out: Option<PathBuf>,

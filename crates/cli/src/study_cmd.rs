@@ -34,12 +34,15 @@ fn candidates() -> Vec<PathBuf> {
     list
 }
 
-/// The first interpreter that can import `pliant.study`.
+/// What a study imports: the package and its study extras.
+const PROBE: &str = "import pliant.studies, distributed, pyarrow, pandas, scipy, skimage";
+
+/// The first interpreter that can import `pliant.studies` and the study extras.
 fn find_python() -> Result<PathBuf> {
     let tried = candidates();
     for python in &tried {
         let ok = Command::new(python)
-            .args(["-c", "import pliant.studies"])
+            .args(["-c", PROBE])
             .output()
             .map(|o| o.status.success())
             .unwrap_or(false);
@@ -51,7 +54,7 @@ fn find_python() -> Result<PathBuf> {
     bail!(
         "pliant study needs the Python package `pliant` with its study extras, and none of \
          these interpreters has it: {}. Install it with ./scripts/test-python.sh (into .venv), \
-         or `pip install ./crates/python 'dask[distributed]' pyarrow pandas scipy scikit-image`, \
+         or `pip install './crates/python[study]'`, \
          or name an interpreter with PLIANT_PYTHON",
         names.join(", ")
     )

@@ -405,3 +405,23 @@ def test_schema_and_parser_agree_on_the_fields():
     example = tomllib.loads((EXAMPLES / "engine_bay_study.toml").read_text())
     for p in example["parameters"]:
         assert set(p) <= spec.PARAMETER_KEYS
+
+
+def test_profile_solver_and_scene_values_reach_the_scene(scene_path):
+    d = study_dict(scene_path, absurd=False)
+    d["parameters"] += [
+        {"vary": "ergonomics", "choices": ["posture=sitting, population=men, moments_decide=true"]},
+        {"vary": "solver", "choices": ["static"]},
+        {"name": "dur", "vary": "scene_value", "path": "timeline[3].duration_s", "apply": "scale",
+         "distribution": "uniform", "min": 2, "max": 3},
+    ]
+    st = load_study(d)
+    s = samples(st)[0]
+    scene = variant_scene(st, s)
+    assert scene["ergonomics"] == {"posture": "sitting", "population": "men", "moments_decide": True}
+    assert scene["simulation"]["solver"] == "static"
+    assert scene["timeline"][3]["duration_s"] == pytest.approx(0.4 * s["dur"])
+    assert pliant.Scene.from_dict(scene).ergonomics != pliant.Scene.from_dict(tomllib.loads(SCENE)).ergonomics
+    d["parameters"][-1]["path"] = "timeline[3].speed"
+    with pytest.raises(StudyError, match=r"timeline\[3\]\.speed.*no such value"):
+        variant_scene(load_study(d), s)
