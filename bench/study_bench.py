@@ -46,6 +46,7 @@ def main():
         except pliant.SimulationDiverged:
             pass
     results["baseline_runs_per_min"] = nb / (time.perf_counter() - t) * 60
+    results["load_average_before"] = os.getloadavg()[0]
 
     for n in [int(x) for x in a.workers.split(",")]:
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
@@ -57,7 +58,10 @@ def main():
             r = pliant.study(study, out, client=client, progress=False)
             dt = time.perf_counter() - t
             results["workers"][n] = {"seconds": dt, "runs_per_min": a.runs / dt * 60,
-                                     "mean_run_wall_s": float(r.frame["wall_time_s"].mean())}
+                                     "mean_run_wall_s": float(r.frame["wall_time_s"].mean()),
+                                     # runs in progress at once, on average: sum of run times / elapsed
+                                     "concurrency": float(r.frame["wall_time_s"].sum() / dt),
+                                     "load_average_1min": os.getloadavg()[0]}
         finally:
             client.close()
             cluster.close()
@@ -72,7 +76,8 @@ def main():
     print(f"  no Dask, one process: {results['baseline_runs_per_min']:.1f} runs/min")
     for n, w in results["workers"].items():
         print(f"  {n} worker(s): {w['runs_per_min']:.1f} runs/min ({w['seconds']:.1f} s; "
-              f"×{w['speed_up_vs_1_worker']:.2f} vs 1 worker; mean run {w['mean_run_wall_s']:.2f} s)")
+              f"×{w['speed_up_vs_1_worker']:.2f} vs 1 worker; mean run {w['mean_run_wall_s']:.2f} s; "
+              f"{w['concurrency']:.2f} runs at once; load average {w['load_average_1min']:.1f})")
 
 
 if __name__ == "__main__":
