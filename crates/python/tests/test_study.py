@@ -425,3 +425,10 @@ def test_profile_solver_and_scene_values_reach_the_scene(scene_path):
     d["parameters"][-1]["path"] = "timeline[3].speed"
     with pytest.raises(StudyError, match=r"timeline\[3\]\.speed.*no such value"):
         variant_scene(load_study(d), s)
+
+
+def test_an_existing_cluster_by_its_scheduler_address(client, scene_path, tmp_path):
+    result = pliant.study(study_dict(scene_path, runs=3, absurd=False), str(tmp_path / "o"),
+                          scheduler=client.scheduler.address, progress=False)
+    assert list(result.frame["status"]) == ["ok"] * 3
+    assert len(client.scheduler_info()["workers"]) == 2  # the cluster is still there
