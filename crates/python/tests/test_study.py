@@ -432,3 +432,41 @@ def test_an_existing_cluster_by_its_scheduler_address(client, scene_path, tmp_pa
                           scheduler=client.scheduler.address, progress=False)
     assert list(result.frame["status"]) == ["ok"] * 3
     assert len(client.scheduler_info()["workers"]) == 2  # the cluster is still there
+
+
+def test_a_study_stopped_midway_resumes_where_it_stopped(scene_path, tmp_path):
+    """SIGTERM once some rows are on disk; the same command then runs only the rest."""
+    import signal
+    import time
+
+    import pyarrow.parquet as pq
+
+    slow = tmp_path / "slow.toml"  # each run simulates 3 s: the study takes a while
+    slow.write_text(SCENE.replace("duration_s = 0.2", "duration_s = 3.0"))
+    d = study_dict(slow, runs=40, absurd=False)
+    lines = ['format = "pliant-study"', "version = 1", f'scene = "{slow}"', 'length_unit = "mm"',
+             "[sampling]", "runs = 40", "seed = 2"]
+    for p in d["parameters"]:
+        lines.append("[[parameters]]")
+        lines += [f"{k} = {json.dumps(v)}" for k, v in p.items()]
+    study_file = tmp_path / "s.toml"
+    study_file.write_text("\n".join(lines) + "\n")
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "pliant.studies", str(study_file), "--out", str(out), "--workers", "2",
+           "--flush-rows", "2"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    parts = out / "parts"
+    while proc.poll() is None and not (parts.is_dir() and len(list(parts.glob("*.parquet"))) >= 2):
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=300)
+    rows = sum(pq.read_table(p).num_rows for p in parts.glob("*.parquet"))
+    assert proc.returncode in (0, 130), err
+    if proc.returncode == 130:  # stopped midway (not already finished)
+        assert "interrupted" in err and 4 <= rows < 40
+    again = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    assert again.returncode == 0, again.stderr
+    assert f"{rows} done before, {40 - rows} to run" in again.stderr
+    done = pq.read_table(out / "results.parquet").to_pandas()
+    assert list(done["index"]) == list(range(40)) and done["run_id"].is_unique
+    assert (done["status"] == "ok").all()

@@ -2,7 +2,13 @@
 [--runs N] [--quiet]``: what ``pliant study`` runs. Exit codes: 0 done, 2 bad input."""
 
 import argparse
+import signal
 import sys
+
+
+def _interrupt(signum, frame):
+    """SIGTERM (a batch system, kill) stops the study like Ctrl-C: finished rows are written."""
+    raise KeyboardInterrupt
 
 
 def main(argv=None) -> int:
@@ -13,7 +19,9 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, help="workers of the local cluster (default: one per core)")
     ap.add_argument("--runs", type=int, help="number of runs instead of the study file's")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
+    ap.add_argument("--flush-rows", type=int, default=50, help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
+    signal.signal(signal.SIGTERM, _interrupt)
     try:
         from . import StudyError, study
     except ImportError as e:
@@ -22,7 +30,7 @@ def main(argv=None) -> int:
         return 2
     try:
         result = study(a.study, a.out, scheduler=a.scheduler, workers=a.workers, runs=a.runs,
-                       progress=False if a.quiet else "text")
+                       progress=False if a.quiet else "text", flush_rows=a.flush_rows)
     except StudyError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
