@@ -470,3 +470,18 @@ def test_a_study_stopped_midway_resumes_where_it_stopped(scene_path, tmp_path):
     done = pq.read_table(out / "results.parquet").to_pandas()
     assert list(done["index"]) == list(range(40)) and done["run_id"].is_unique
     assert (done["status"] == "ok").all()
+
+
+def test_first_order_index_sees_what_rank_correlation_misses():
+    from scipy.stats import spearmanr
+
+    from pliant.studies.report import first_order_index
+
+    rng = np.random.default_rng(5)
+    x1, x2, x3 = rng.uniform(-1, 1, (3, 2000))
+    y = x1 ** 2 + 0.3 * x2  # x1 acts, but not monotonically; x3 not at all
+    assert abs(spearmanr(x1, y).statistic) < 0.1
+    s1, s2, s3 = (first_order_index(x, y) for x in (x1, x2, x3))
+    # exact: Var(x1²) = 4/45, Var(0.3 x2) = 0.03 → S1 = 0.748, S2 = 0.252
+    assert s1 == pytest.approx(0.748, abs=0.05) and s2 == pytest.approx(0.252, abs=0.05)
+    assert s3 < 0.02
