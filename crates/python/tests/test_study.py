@@ -485,3 +485,15 @@ def test_first_order_index_sees_what_rank_correlation_misses():
     # exact: Var(x1²) = 4/45, Var(0.3 x2) = 0.03 → S1 = 0.748, S2 = 0.252
     assert s1 == pytest.approx(0.748, abs=0.05) and s2 == pytest.approx(0.252, abs=0.05)
     assert s3 < 0.02
+
+
+def test_one_runs_envelope_lies_within_the_studys(done, tmp_path):
+    from pliant.studies import run_envelope
+
+    h = done.envelope["voxel_m"]
+    run_id = done.frame.loc[done.frame["status"] == "ok", "run_id"].iloc[-1]
+    own = run_envelope(done.replay_scene(run_id), str(tmp_path), voxel=h)["h"]
+    union = np.load(os.path.join(done.out, "envelope", "voxels-h.npy"))
+    assert 0 < len(own) < len(union)
+    assert np.isin(own, union).all()
+    assert (tmp_path / "h.stl").stat().st_size > 1000 and (tmp_path / "envelope.glb").is_file()

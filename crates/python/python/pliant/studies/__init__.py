@@ -10,7 +10,7 @@ Needs the study extras: ``pip install 'dask[distributed]' pyarrow pandas scipy s
 from .spec import Study, StudyError, load_study, parse_study
 from .sampling import samples
 from .variant import apply as variant_scene
-from .results import StudyResult, read_rows
+from .results import StudyResult, read_rows, run_envelope
 
 
 def study(study, out=None, *, scheduler=None, workers=None, runs=None, processes=True,
@@ -31,5 +31,5 @@ def study(study, out=None, *, scheduler=None, workers=None, runs=None, processes
                      processes=processes, progress=progress, client=client, flush_rows=flush_rows)
 
 
-__all__ = ["Study", "StudyError", "StudyResult", "load_study", "parse_study", "read_rows",
+__all__ = ["Study", "StudyError", "StudyResult", "load_study", "parse_study", "read_rows", "run_envelope",
            "samples", "study", "variant_scene"]

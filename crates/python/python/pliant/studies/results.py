@@ -7,7 +7,7 @@ import glob
 import json
 import os
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List
+from typing import Any, Callable, Dict, List, Optional
 
 import numpy as np
 
@@ -40,6 +40,32 @@ class StudyResult:
     def replay_scene(self, run_id: str) -> str:
         """The run's scene file: ``pliant run`` or ``pliant serve`` it to see the run."""
         return os.path.join(self.out, "runs", run_id + ".json")
+
+
+def run_envelope(scene_file: str, out: str, voxel: Optional[float] = None,
+                 hoses: Optional[List[str]] = None) -> Dict[str, np.ndarray]:
+    """The swept volume of one run over its timeline (e.g. a study's ``runs/<id>.json``):
+    runs it and writes ``<hose>.stl`` and ``envelope.glb`` into ``out``; returns the voxel
+    keys per hose (same grid as the study's for the same voxel size)."""
+    import pliant
+
+    from .variant import hose_radii
+
+    with open(scene_file) as f:
+        text = f.read()
+    scene = pliant.load_scene(scene_file)
+    raw = json.loads(text) if scene_file.endswith(".json") else __import__("tomllib").loads(text)
+    radii = hose_radii(raw)
+    h = voxel or min(0.005, min(radii.values()) / 2)
+    result = pliant.run_timeline(scene)
+    os.makedirs(out, exist_ok=True)
+    keys, meshes = {}, {}
+    for hose in hoses or list(radii):
+        keys[hose] = envelope.voxelize(np.asarray(result.positions(hose)), radii[hose], h)
+        meshes[hose] = envelope.mesh(keys[hose], h)
+        envelope.write_stl(os.path.join(out, f"{column_name(hose)}.stl"), *meshes[hose], name=f"pliant run envelope {hose}")
+    envelope.write_glb(os.path.join(out, "envelope.glb"), meshes)
+    return keys
 
 
 def read_rows(out: str, schema=None):
