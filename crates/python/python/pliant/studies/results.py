@@ -49,12 +49,12 @@ def run_envelope(scene_file: str, out: str, voxel: Optional[float] = None,
     keys per hose (same grid as the study's for the same voxel size)."""
     import pliant
 
-    from .variant import hose_radii
+    from .variant import _toml, hose_radii
 
     with open(scene_file) as f:
         text = f.read()
     scene = pliant.load_scene(scene_file)
-    raw = json.loads(text) if scene_file.endswith(".json") else __import__("tomllib").loads(text)
+    raw = json.loads(text) if scene_file.endswith(".json") else _toml.loads(text)
     radii = hose_radii(raw)
     h = voxel or min(0.005, min(radii.values()) / 2)
     result = pliant.run_timeline(scene)
