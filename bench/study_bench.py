@@ -59,6 +59,9 @@ def main():
             dt = time.perf_counter() - t
             results["workers"][n] = {"seconds": dt, "runs_per_min": a.runs / dt * 60,
                                      "mean_run_wall_s": float(r.frame["wall_time_s"].mean()),
+                                     "mean_run_cpu_s": float(r.frame["cpu_time_s"].mean()),
+                                     # what n dedicated cores would do: n workers, each busy cpu_s per run
+                                     "dedicated_runs_per_min": n * 60 / float(r.frame["cpu_time_s"].mean()),
                                      # runs in progress at once, on average: sum of run times / elapsed
                                      "concurrency": float(r.frame["wall_time_s"].sum() / dt),
                                      "load_average_1min": os.getloadavg()[0]}
@@ -77,7 +80,8 @@ def main():
     for n, w in results["workers"].items():
         print(f"  {n} worker(s): {w['runs_per_min']:.1f} runs/min ({w['seconds']:.1f} s; "
               f"×{w['speed_up_vs_1_worker']:.2f} vs 1 worker; mean run {w['mean_run_wall_s']:.2f} s; "
-              f"{w['concurrency']:.2f} runs at once; load average {w['load_average_1min']:.1f})")
+              f"{w['concurrency']:.2f} runs at once; load average {w['load_average_1min']:.1f}; "
+              f"CPU {w['mean_run_cpu_s']:.2f} s per run → {w['dedicated_runs_per_min']:.0f} runs/min on dedicated cores)")
 
 
 if __name__ == "__main__":

@@ -232,7 +232,7 @@ def test_parquet_has_one_row_per_run_readable_by_pandas_and_duckdb(done):
     for col in ["run_id", "status", "message", "p_pull", "p_stiffness", "p_grab_x", "p_load_factor",
                 "feasible", "reasons", "peak_hand_force_n", "peak_hand_torque_nm", "worst_hand_ratio",
                 "min_bend_radius_ratio", "max_twist_rad_per_m", "clearance_block_m", "uncertain",
-                "unconverged_steps", "wall_time_s"]:
+                "unconverged_steps", "wall_time_s", "cpu_time_s"]:
         assert col in frame, col
     parts = pd.read_parquet(os.path.join(done.out, "parts"))  # the streamed parts, as a dataset
     assert sorted(parts["run_id"]) == sorted(frame["run_id"])

@@ -57,7 +57,7 @@ def schema(study: Study):
     fields += [
         ("steps", pa.int64()), ("simulated_time_s", pa.float64()), ("solver", pa.string()),
         ("solver_warnings", pa.int64()), ("unconverged_steps", pa.int64()),
-        ("instabilities", pa.int64()), ("wall_time_s", pa.float64()),
+        ("instabilities", pa.int64()), ("wall_time_s", pa.float64()), ("cpu_time_s", pa.float64()),
     ]
     return pa.schema(fields, metadata={"pliant": json.dumps({"units": "SI", "study": study.name})})
 
