@@ -23,7 +23,7 @@ from typing import Any, Callable, Dict, List, Optional
 
 import numpy as np
 
-from . import envelope, geometry, sampling, variant
+from . import geometry, sampling, variant
 from .runner import Task, column_name, run_variant
 from .spec import Study, StudyError, load_study
 

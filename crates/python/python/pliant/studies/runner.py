@@ -9,12 +9,11 @@ state), an unconverged Newton solve sets ``uncertain``; any other exception is
 
 from __future__ import annotations
 
-import math
 import re
 import time
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List
 
 import numpy as np
 
@@ -138,7 +137,3 @@ def run_variant(task: Task) -> Dict[str, Any]:
     row["wall_time_s"] = time.perf_counter() - start
     row["cpu_time_s"] = time.process_time() - cpu  # the worker's CPU: < wall when cores are shared
     return {"row": row, "voxels": voxels}
-
-
-def finite_or_none(x: Any) -> Any:
-    return None if isinstance(x, float) and not math.isfinite(x) else x
