@@ -9,6 +9,7 @@ mod progress;
 mod replay_cmd;
 mod run_cmd;
 mod serve_cmd;
+mod study_cmd;
 mod validate_cmd;
 
 use clap::{Parser, Subcommand};
@@ -113,6 +114,28 @@ enum Command {
         #[command(flatten)]
         limits: limit_args::LimitArgs,
     },
+    /// Run a variant or tolerance study (docs/study.md) on a Dask cluster: Parquet
+    /// results, tolerance envelopes and a study report (needs the Python package).
+    Study {
+        /// Study file (TOML, format "pliant-study").
+        study: PathBuf,
+        /// Output folder (default: out/study-<the study's name>); an interrupted study
+        /// resumes there.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Address of an existing Dask scheduler (default: a local cluster).
+        #[arg(long)]
+        scheduler: Option<String>,
+        /// Workers of the local cluster (default: one per core).
+        #[arg(long)]
+        workers: Option<usize>,
+        /// Number of runs instead of the study file's (Monte Carlo, Latin hypercube).
+        #[arg(long)]
+        runs: Option<usize>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Measure cost per element per step and the real-time factor.
     Bench {
         /// Print one JSON object instead of a table.
@@ -215,6 +238,21 @@ fn main() -> ExitCode {
                     limits: limits.load_options(),
                 })
             }),
+        Command::Study {
+            study,
+            out,
+            scheduler,
+            workers,
+            runs,
+            quiet,
+        } => study_cmd::run(&study_cmd::StudyOptions {
+            study: &study,
+            out: out.as_deref(),
+            scheduler: scheduler.as_deref(),
+            workers,
+            runs,
+            quiet,
+        }),
         Command::Bench { json, quick } => {
             bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
         }

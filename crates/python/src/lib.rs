@@ -40,5 +40,13 @@ fn _pliant(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene::demo_scene, m)?)?;
     m.add_function(wrap_pyfunction!(run_result::run_timeline, m)?)?;
+    m.add_function(wrap_pyfunction!(material_library_toml, m)?)?;
     Ok(())
+}
+
+/// The built-in material library as shipped (TOML text of crates/scene/data/materials.toml):
+/// values in the units their keys name, each with its source or assumption.
+#[pyfunction]
+fn material_library_toml() -> &'static str {
+    pliant_scene::library::LIBRARY_TOML
 }

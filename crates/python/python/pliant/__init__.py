@@ -34,6 +34,18 @@ from ._pliant import (
     run_timeline,
 )
 
+
+
+def study(study, out=None, **options):
+    """Runs (or resumes) a variant or tolerance study on Dask and returns its
+    ``StudyResult`` (``.frame``: pandas DataFrame, one row per run). See
+    ``pliant.studies.study`` for the options and docs/study.md for the format; needs the
+    study extras (dask[distributed], pyarrow, pandas, scipy, scikit-image)."""
+    from .studies import study as run
+
+    return run(study, out, **options)
+
+
 __all__ = [
     "HandLoad",
     "LoadId",
@@ -49,4 +61,5 @@ __all__ = [
     "demo_scene",
     "load_scene",
     "run_timeline",
+    "study",
 ]

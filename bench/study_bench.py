@@ -1,0 +1,88 @@
+"""Study throughput: runs per minute against the number of Dask workers (a benchmark,
+not a test). For each worker count a local cluster of single-threaded worker processes
+is started first (its start-up is not timed), then the same study runs on it from
+scratch; a baseline runs the same variants one after another in this process, without
+Dask. Usage:
+
+    .venv/bin/python bench/study_bench.py [--study examples/engine_bay_study.toml]
+        [--runs 24] [--workers 1,2] [--json]
+
+Results go to docs/performance.md ("Studies") by hand, as ratios: the absolute numbers
+depend on the machine and on what else runs on it.
+"""
+
+import argparse
+import json
+import os
+import shutil
+import tempfile
+import time
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    here = os.path.dirname(os.path.abspath(__file__))
+    ap.add_argument("--study", default=os.path.join(here, "..", "examples", "engine_bay_study.toml"))
+    ap.add_argument("--runs", type=int, default=24)
+    ap.add_argument("--workers", default="1,2")
+    ap.add_argument("--baseline", type=int, default=None, help="runs of the no-Dask baseline (default: --runs / 2)")
+    ap.add_argument("--json", action="store_true")
+    a = ap.parse_args()
+
+    import pliant
+    from distributed import Client, LocalCluster
+    from pliant.studies import load_study, samples, variant_scene
+
+    study = load_study(a.study, runs=a.runs)
+    results = {"study": os.path.basename(a.study), "runs": a.runs, "cores": os.cpu_count(), "workers": {}}
+
+    # baseline: the same variants in this process, one after another, no Dask, no envelope
+    nb = a.baseline or max(1, a.runs // 2)
+    scenes = [json.dumps(variant_scene(study, s)) for s in samples(study)[:nb]]
+    t = time.perf_counter()
+    for text in scenes:
+        try:
+            pliant.run_timeline(pliant.Scene.from_json(text))
+        except pliant.SimulationDiverged:
+            pass
+    results["baseline_runs_per_min"] = nb / (time.perf_counter() - t) * 60
+    results["load_average_before"] = os.getloadavg()[0]
+
+    for n in [int(x) for x in a.workers.split(",")]:
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
+                               silence_logs=40)
+        client = Client(cluster)
+        out = tempfile.mkdtemp(prefix=f"study-bench-{n}-")
+        try:
+            t = time.perf_counter()
+            r = pliant.study(study, out, client=client, progress=False)
+            dt = time.perf_counter() - t
+            results["workers"][n] = {"seconds": dt, "runs_per_min": a.runs / dt * 60,
+                                     "mean_run_wall_s": float(r.frame["wall_time_s"].mean()),
+                                     "mean_run_cpu_s": float(r.frame["cpu_time_s"].mean()),
+                                     # what n dedicated cores would do: n workers, each busy cpu_s per run
+                                     "dedicated_runs_per_min": n * 60 / float(r.frame["cpu_time_s"].mean()),
+                                     # runs in progress at once, on average: sum of run times / elapsed
+                                     "concurrency": float(r.frame["wall_time_s"].sum() / dt),
+                                     "load_average_1min": os.getloadavg()[0]}
+        finally:
+            client.close()
+            cluster.close()
+            shutil.rmtree(out, ignore_errors=True)
+    base = results["workers"].get(1, {}).get("runs_per_min")
+    for n, w in results["workers"].items():
+        w["speed_up_vs_1_worker"] = w["runs_per_min"] / base if base else None
+    if a.json:
+        print(json.dumps(results, indent=2))
+        return
+    print(f"{results['study']}: {a.runs} runs, {results['cores']} cores")
+    print(f"  no Dask, one process: {results['baseline_runs_per_min']:.1f} runs/min")
+    for n, w in results["workers"].items():
+        print(f"  {n} worker(s): {w['runs_per_min']:.1f} runs/min ({w['seconds']:.1f} s; "
+              f"×{w['speed_up_vs_1_worker']:.2f} vs 1 worker; mean run {w['mean_run_wall_s']:.2f} s; "
+              f"{w['concurrency']:.2f} runs at once; load average {w['load_average_1min']:.1f}; "
+              f"CPU {w['mean_run_cpu_s']:.2f} s per run → {w['dedicated_runs_per_min']:.0f} runs/min on dedicated cores)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,87 @@
+//! `pliant study`: variant and tolerance studies (SPEC T1, T2). The study machinery is
+//! Python (the `pliant.studies` package: sampling, Dask, Parquet, envelopes, report); this
+//! command finds a Python interpreter that has it and hands the arguments over.
+
+use anyhow::{bail, Context, Result};
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+/// The options of `pliant study`, passed on to `python -m pliant.studies`.
+pub struct StudyOptions<'a> {
+    pub study: &'a Path,
+    pub out: Option<&'a Path>,
+    pub scheduler: Option<&'a str>,
+    pub workers: Option<usize>,
+    pub runs: Option<usize>,
+    pub quiet: bool,
+}
+
+/// Interpreters to try, in order: `PLIANT_PYTHON`, the repository's `.venv` (where
+/// `scripts/test-python.sh` installs the package), one in the working directory, `python3`.
+fn candidates() -> Vec<PathBuf> {
+    let mut list = Vec::new();
+    if let Some(p) = std::env::var_os("PLIANT_PYTHON") {
+        return vec![PathBuf::from(p)];
+    }
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    for root in [repo, PathBuf::from(".")] {
+        let venv = root.join(".venv/bin/python");
+        if venv.is_file() {
+            list.push(venv);
+        }
+    }
+    list.push(PathBuf::from("python3"));
+    list
+}
+
+/// What a study imports: the package and its study extras.
+const PROBE: &str = "import pliant.studies, distributed, pyarrow, pandas, scipy, skimage";
+
+/// The first interpreter that can import `pliant.studies` and the study extras.
+fn find_python() -> Result<PathBuf> {
+    let tried = candidates();
+    for python in &tried {
+        let ok = Command::new(python)
+            .args(["-c", PROBE])
+            .output()
+            .map(|o| o.status.success())
+            .unwrap_or(false);
+        if ok {
+            return Ok(python.clone());
+        }
+    }
+    let names: Vec<String> = tried.iter().map(|p| p.display().to_string()).collect();
+    bail!(
+        "pliant study needs the Python package `pliant` with its study extras, and none of \
+         these interpreters has it: {}. Install it with ./scripts/test-python.sh (into .venv), \
+         or `pip install './crates/python[study]'`, \
+         or name an interpreter with PLIANT_PYTHON",
+        names.join(", ")
+    )
+}
+
+/// Runs the study; the exit code is the Python module's (0 done, 2 bad input).
+pub fn run(o: &StudyOptions) -> Result<ExitCode> {
+    let python = find_python()?;
+    let mut cmd = Command::new(&python);
+    cmd.args(["-m", "pliant.studies"]).arg(o.study);
+    if let Some(out) = o.out {
+        cmd.arg("--out").arg(out);
+    }
+    if let Some(s) = o.scheduler {
+        cmd.args(["--scheduler", s]);
+    }
+    if let Some(w) = o.workers {
+        cmd.args(["--workers", &w.to_string()]);
+    }
+    if let Some(r) = o.runs {
+        cmd.args(["--runs", &r.to_string()]);
+    }
+    if o.quiet {
+        cmd.arg("--quiet");
+    }
+    let status = cmd
+        .status()
+        .with_context(|| format!("starting {}", python.display()))?;
+    Ok(ExitCode::from(status.code().unwrap_or(1).clamp(0, 255) as u8))
+}

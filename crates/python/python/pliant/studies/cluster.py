@@ -1,0 +1,330 @@
+"""Running a study on Dask: a local cluster (one single-threaded worker process per core)
+or any cluster by its scheduler address. Runs are submitted in a bounded window and
+collected as they finish (``distributed.as_completed``); rows stream to Parquet parts
+(``OUT/parts/part-NNNNN.parquet``, each written whole and renamed into place) and the
+envelope voxels to ``OUT/envelope/voxels-<hose>.npy``. A study started again in the same
+folder skips the runs whose rows are there (resume); the voxel union is idempotent, so a
+run done twice changes nothing.
+
+Layout of OUT: ``study.json`` (what the study is), ``runs/<id>.json`` (each run's scene:
+its replay input), ``parts/`` (rows as they came), ``results.parquet`` (all rows, by
+index), ``envelope/`` (meshes, clearances), ``report.html``.
+"""
+
+from __future__ import annotations
+
+import glob
+import json
+import os
+import sys
+import time
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, List, Optional
+
+import numpy as np
+
+from . import geometry, sampling, variant
+from .runner import Task, column_name, run_variant
+from .spec import Study, StudyError, load_study
+
+FLUSH_ROWS = 50  # a part is written after this many rows or seconds
+FLUSH_SECONDS = 10.0
+
+
+def schema(study: Study):
+    """The Parquet schema of the result rows (fixed columns, then the study's)."""
+    import pyarrow as pa
+
+    strings = pa.list_(pa.string())
+    fields = [
+        ("run_id", pa.string()), ("index", pa.int64()), ("status", pa.string()),
+        ("message", pa.string()),
+    ]
+    fields += [(p.column, pa.string() if p.categorical else pa.float64()) for p in study.parameters]
+    fields += [
+        ("feasible", pa.bool_()), ("uncertain", pa.bool_()), ("completed", pa.bool_()),
+        ("reasons", strings), ("warnings", strings), ("violated_checks", strings),
+        ("peak_hand_force_n", pa.float64()), ("peak_hand_torque_nm", pa.float64()),
+        ("worst_hand_ratio", pa.float64()), ("worst_hand_kind", pa.string()),
+        ("worst_hand_limit_n", pa.float64()),
+    ]
+    for kind, table in (("stub", "stubs"), ("clip", "clips")):
+        for item in study.scene.get(table, []):
+            base = column_name(kind, item["name"])
+            fields += [(base + "_force_n", pa.float64()), (base + "_assembled", pa.bool_())]
+    fields += [("min_bend_radius_ratio", pa.float64()), ("max_twist_rad_per_m", pa.float64())]
+    fields += [(column_name("clearance", p["name"], "m"), pa.float64()) for p in study.scene.get("parts", [])]
+    fields += [
+        ("steps", pa.int64()), ("simulated_time_s", pa.float64()), ("solver", pa.string()),
+        ("solver_warnings", pa.int64()), ("unconverged_steps", pa.int64()),
+        ("instabilities", pa.int64()), ("wall_time_s", pa.float64()), ("cpu_time_s", pa.float64()),
+    ]
+    return pa.schema(fields, metadata={"pliant": json.dumps({"units": "SI", "study": study.name})})
+
+
+class TextProgress:
+    """Runs done, rate and ETA on stderr: one updating line on a terminal, else a line
+    every 10 s."""
+
+    def __init__(self, total: int, done: int, stream=None):
+        self.total, self.start_done = total, done
+        self.stream = stream or sys.stderr
+        self.tty = self.stream.isatty()
+        self.t0 = time.monotonic()
+        self.last = 0.0
+
+    def update(self, done: int, failed: int, final: bool = False) -> None:
+        now = time.monotonic()
+        if not final and not self.tty and now - self.last < 10:
+            return
+        if not final and self.tty and now - self.last < 0.2:
+            return
+        self.last = now
+        new = done - self.start_done
+        rate = new / max(now - self.t0, 1e-9) * 60
+        left = self.total - done
+        eta = left / (rate / 60) if new and rate > 0 else float("nan")
+        width = 30
+        bar = "#" * int(width * done / max(self.total, 1))
+        eta_s = "--:--" if eta != eta else f"{int(eta // 60):d}:{int(eta % 60):02d}"
+        text = (f"[{bar:<{width}}] {done}/{self.total} runs, {rate:.1f} runs/min, ETA {eta_s}"
+                + (f", {failed} not ok" if failed else ""))
+        self.stream.write(("\r" + text) if self.tty else text + "\n")
+        if final and self.tty:
+            self.stream.write("\n")
+        self.stream.flush()
+
+    def close(self) -> None:
+        pass
+
+
+class TqdmProgress:
+    """A notebook-friendly bar (tqdm.auto picks the Jupyter widget in a notebook)."""
+
+    def __init__(self, total: int, done: int):
+        from tqdm.auto import tqdm
+
+        self.bar = tqdm(total=total, initial=done, unit="run")
+
+    def update(self, done: int, failed: int, final: bool = False) -> None:
+        self.bar.n = done
+        self.bar.set_postfix(not_ok=failed, refresh=False)
+        self.bar.refresh()
+
+    def close(self) -> None:
+        self.bar.close()
+
+
+def make_progress(kind: Any, total: int, done: int):
+    if kind is False or kind is None:
+        return None
+    if kind == "text":
+        return TextProgress(total, done)
+    try:
+        return TqdmProgress(total, done)
+    except ImportError:
+        return TextProgress(total, done)
+
+
+def _atomic_write(path: str, write: Callable[[str], None]) -> None:
+    tmp = path + ".tmp"
+    write(tmp)
+    os.replace(tmp, path)
+
+
+@dataclass
+class Layout:
+    out: str
+
+    @property
+    def runs(self) -> str:
+        return os.path.join(self.out, "runs")
+
+    @property
+    def parts(self) -> str:
+        return os.path.join(self.out, "parts")
+
+    @property
+    def envelope(self) -> str:
+        return os.path.join(self.out, "envelope")
+
+    def voxels(self, hose: str) -> str:
+        return os.path.join(self.envelope, f"voxels-{column_name(hose)}.npy")
+
+
+def done_run_ids(layout: Layout) -> set:
+    """Run ids whose rows are already on disk."""
+    import pyarrow.parquet as pq
+
+    ids: set = set()
+    for path in sorted(glob.glob(os.path.join(layout.parts, "part-*.parquet"))):
+        ids.update(pq.read_table(path, columns=["run_id"]).column("run_id").to_pylist())
+    return ids
+
+
+def _prepare(study: Study, out: str) -> Layout:
+    layout = Layout(out)
+    for d in (layout.out, layout.runs, layout.parts, layout.envelope):
+        os.makedirs(d, exist_ok=True)
+    meta_path = os.path.join(out, "study.json")
+    meta = {
+        "format": "pliant-study-output", "name": study.name, "study_file": os.path.abspath(study.origin)
+        if study.origin != "<dict>" else None, "scene": study.scene_path, "fingerprint": study.fingerprint(),
+        "method": study.method, "seed": study.seed,
+        "parameters": [{"name": p.name, "column": p.column, "vary": p.vary, "apply": p.apply, "unit": p.unit,
+                        "distribution": p.distribution.kind, "target": p.target} for p in study.parameters],
+    }
+    if os.path.exists(meta_path):
+        with open(meta_path) as f:
+            old = json.load(f)
+        if old.get("fingerprint") != meta["fingerprint"]:
+            raise StudyError(
+                f"{out}: holds another study (or the same one with other settings or run count); "
+                "choose another --out, or delete the folder to start again")
+    else:
+        _atomic_write(meta_path, lambda p: open(p, "w").write(json.dumps(meta, indent=2, default=str)))
+    return layout
+
+
+def connect(scheduler: Optional[str], workers: Optional[int], processes: bool = True):
+    """A Dask client: to the scheduler at this address, or to a new local cluster."""
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        raise StudyError("studies need Dask: pip install 'dask[distributed]' pyarrow pandas scipy scikit-image") from None
+    if scheduler:
+        return Client(scheduler), None
+    n = workers or os.cpu_count() or 1
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=processes,
+                           dashboard_address=":0", silence_logs=40)
+    return Client(cluster), cluster
+
+
+def run_study(
+    study: Any,
+    out: Optional[str] = None,
+    *,
+    scheduler: Optional[str] = None,
+    workers: Optional[int] = None,
+    runs: Optional[int] = None,
+    processes: bool = True,
+    progress: Any = True,
+    client: Any = None,
+    flush_rows: int = FLUSH_ROWS,
+    log: Callable[[str], None] = lambda s: print(s, file=sys.stderr),
+):
+    """Runs (or resumes) a study; returns a :class:`~pliant.studies.StudyResult`."""
+    from distributed import as_completed
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from .results import StudyResult, finish
+
+    if not isinstance(study, Study):
+        study = load_study(study, runs=runs)
+    out = out or os.path.join("out", "study-" + column_name(study.name))
+    layout = _prepare(study, out)
+    samples = sampling.samples(study)
+    ids = [f"run-{i:05d}" for i in range(len(samples))]
+    done = done_run_ids(layout)
+    pending = [i for i, rid in enumerate(ids) if rid not in done]
+    hoses = study.envelope_hoses or [h["name"] for h in study.scene.get("hoses", [])]
+    base_scene = variant.absolute_meshes(study.scene, os.path.dirname(study.scene_path))
+    radii = variant.hose_radii(base_scene)
+    voxel = study.envelope_voxel_m or min(0.005, min(radii.values()) / 2)
+    parts = geometry.parts(base_scene)
+    fasteners = [s["name"] for s in study.scene.get("stubs", []) + study.scene.get("clips", [])]
+    union = {h: (np.load(layout.voxels(h)) if os.path.exists(layout.voxels(h)) else np.zeros(0, np.int64))
+             for h in hoses}
+    sch = schema(study)
+    seq = 1 + max((int(os.path.basename(p)[5:10]) for p in glob.glob(os.path.join(layout.parts, "part-*.parquet"))),
+                  default=-1)
+    log(f"study {study.name!r}: {len(samples)} runs ({study.method}), {len(done)} done before, "
+        f"{len(pending)} to run; results in {out}")
+
+    def task(i: int) -> Task:
+        scene = variant.apply(study, samples[i])
+        path = os.path.join(layout.runs, ids[i] + ".json")
+        text = json.dumps(variant.relative_meshes(scene, layout.runs), indent=1)
+        if not os.path.exists(path):
+            _atomic_write(path, lambda p: open(p, "w").write(text))
+        solver = scene.get("simulation", {}).get("solver", "explicit")
+        return Task(ids[i], i, text, os.path.abspath(layout.runs), radii, hoses, voxel, parts, fasteners, solver)
+
+    buffer: List[Dict[str, Any]] = []
+    state = {"seq": seq, "flushed": time.monotonic(), "failed": 0}
+
+    def flush() -> None:
+        if not buffer:
+            return
+        for h in hoses:  # voxels first: a row on disk always has its voxels in the union
+            _atomic_write(layout.voxels(h), lambda p, h=h: np.save(open(p, "wb"), union[h]))
+        table = pa.Table.from_pylist(buffer, schema=sch)
+        path = os.path.join(layout.parts, f"part-{state['seq']:05d}.parquet")
+        _atomic_write(path, lambda p: pq.write_table(table, p))
+        state["seq"] += 1
+        state["flushed"] = time.monotonic()
+        buffer.clear()
+
+    def record(i: int, res: Dict[str, Any]) -> None:
+        row = res["row"]
+        row.update({p.column: str(samples[i][p.name]) if p.categorical else samples[i][p.name]
+                    for p in study.parameters})
+        if row["status"] != "ok":
+            state["failed"] += 1
+        buffer.append(row)
+        for h, keys in res["voxels"].items():
+            union[h] = np.union1d(union[h], keys)
+        if len(buffer) >= flush_rows or time.monotonic() - state["flushed"] > FLUSH_SECONDS:
+            flush()
+
+    own_client = client is None
+    cluster = None
+    bar = None
+    try:
+        if pending:
+            if own_client:
+                client, cluster = connect(scheduler, workers, processes)
+            log(f"Dask dashboard: {client.dashboard_link}")
+            nthreads = max(1, sum(client.nthreads().values()))
+            bar = make_progress(progress, len(samples), len(done))
+            count = len(done)
+            window = 4 * nthreads
+            queue = iter(pending)
+            index_of = {}
+
+            def submit():
+                i = next(queue, None)
+                if i is None:
+                    return None
+                fut = client.submit(run_variant, task(i), key=f"pliant-{study.fingerprint()}-{ids[i]}", pure=False)
+                index_of[fut.key] = i
+                return fut
+
+            first = [f for f in (submit() for _ in range(window)) if f is not None]
+            stream = as_completed(first, with_results=True, raise_errors=False)
+            for fut, res in stream:
+                i = index_of.pop(fut.key)
+                if isinstance(res, BaseException):  # the worker died or the task failed outside run_variant
+                    res = {"row": {"run_id": ids[i], "index": i, "status": "error",
+                                   "message": f"{type(res).__name__}: {res}"}, "voxels": {}}
+                record(i, res)
+                fut.release()
+                count += 1
+                if bar:
+                    bar.update(count, state["failed"])
+                nxt = submit()
+                if nxt is not None:
+                    stream.add(nxt)
+            if bar:
+                bar.update(count, state["failed"], final=True)
+    finally:
+        flush()
+        if bar:
+            bar.close()
+        if own_client and client is not None:
+            client.close()
+        if cluster is not None:
+            cluster.close()
+    frame = finish(study, layout, sch, union, voxel, parts, log)
+    return StudyResult(out=os.path.abspath(out), frame=frame, study=study)

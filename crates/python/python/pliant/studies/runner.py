@@ -1,0 +1,139 @@
+"""One run of a study, on a Dask worker: the variant's whole timeline (``run_timeline``,
+its solver), reduced to one result row plus the voxels its hoses swept.
+
+Nothing is lost: a scene the engine refuses is recorded with status ``invalid``, a
+diverged run as ``diverged`` (its metrics are those of the run up to the last healthy
+state), an unconverged Newton solve sets ``uncertain``; any other exception is
+``error``. The message is kept in every case.
+"""
+
+from __future__ import annotations
+
+import re
+import time
+import warnings
+from dataclasses import dataclass, field
+from typing import Any, Dict, List
+
+import numpy as np
+
+from . import envelope
+from .geometry import Part
+
+STATUSES = ("ok", "diverged", "invalid", "error")
+
+
+def column_name(*words: str) -> str:
+    """A SQL-friendly column name: lower case, words joined by '_'."""
+    return re.sub(r"[^0-9a-z]+", "_", "_".join(words).lower()).strip("_")
+
+
+@dataclass
+class Task:
+    """Everything a worker needs for one run (picklable)."""
+
+    run_id: str
+    index: int
+    scene_json: str
+    base_dir: str
+    radii: Dict[str, float]  # outer radius per hose [m]
+    envelope_hoses: List[str]
+    voxel: float  # [m]; 0: no envelope
+    parts: List[Part] = field(default_factory=list)
+    fasteners: List[str] = field(default_factory=list)
+    solver: str = "explicit"
+
+
+def _result_row(result, task: Task) -> Dict[str, Any]:
+    """Peaks, verdict and checks of a RunResult as flat columns (SI)."""
+    row: Dict[str, Any] = {
+        "feasible": result.feasible,
+        "uncertain": bool(result.uncertain),
+        "completed": bool(result.completed),
+        "reasons": list(result.reasons),
+        "warnings": list(result.warnings),
+        "steps": int(result.steps),
+        "simulated_time_s": float(result.simulated_time),
+        "solver": task.solver,
+        "solver_warnings": len(result.summary.get("solver_warnings") or []),
+        "unconverged_steps": int((result.summary.get("solver") or {}).get("unconverged_steps") or 0),
+        "instabilities": int((result.summary.get("solver") or {}).get("instability_count") or 0),
+    }
+    hands = result.hand_peaks
+    row["peak_hand_force_n"] = max((h["max_force"] for h in hands), default=0.0)
+    row["peak_hand_torque_nm"] = max((h["max_torque"] for h in hands), default=0.0)
+    worst = max(hands, key=lambda h: h.get("worst_ratio") or 0.0, default=None)
+    row["worst_hand_ratio"] = worst.get("worst_ratio") if worst else None
+    row["worst_hand_kind"] = worst.get("worst_kind") if worst else None
+    row["worst_hand_limit_n"] = worst.get("worst_limit") if worst else None
+    for f in result.fasteners:
+        base = column_name(f["kind"], f["name"])
+        row[base + "_force_n"] = float(f["max_force"])
+        row[base + "_assembled"] = bool(f.get("assembled"))
+    profiles = result.check_profiles
+    ratios = [p["min_bend_radius"] / p["allowed_bend_radius"] for p in profiles
+              if p.get("allowed_bend_radius") and p.get("min_bend_radius") is not None]
+    twists = [p["max_twist"] for p in profiles if p.get("max_twist") is not None]
+    row["min_bend_radius_ratio"] = min(ratios) if ratios else None
+    row["max_twist_rad_per_m"] = max(twists) if twists else None
+    row["violated_checks"] = sorted({v["check"] for v in result.violations})
+    return row
+
+
+def _sweep(result, task: Task, row: Dict[str, Any]) -> Dict[str, np.ndarray]:
+    """Voxels swept by each envelope hose, and their smallest clearance to each part [m]
+    (nodes and element midpoints of every recorded instant)."""
+    voxels: Dict[str, np.ndarray] = {}
+    points, radii = [], []
+    for hose in task.envelope_hoses:
+        r = task.radii[hose]
+        frames = np.asarray(result.positions(hose))
+        if frames.size == 0:
+            continue
+        if task.voxel > 0:
+            voxels[hose] = envelope.voxelize(frames, r, task.voxel)
+        mids = 0.5 * (frames[:, 1:] + frames[:, :-1])
+        pts = np.concatenate([frames.reshape(-1, 3), mids.reshape(-1, 3)])
+        points.append(pts)
+        radii.append(np.full(len(pts), r))
+    if points:
+        pts, rad = np.concatenate(points), np.concatenate(radii)
+        for part in task.parts:
+            d = part.min_distance(pts, rad)
+            row[column_name("clearance", part.name, "m")] = d if np.isfinite(d) else None
+    return voxels
+
+
+def run_variant(task: Task) -> Dict[str, Any]:
+    """Runs one variant; returns {"row": {...}, "voxels": {hose: keys}}. Never raises for
+    a bad variant: its status and message are in the row."""
+    import pliant
+
+    row: Dict[str, Any] = {"run_id": task.run_id, "index": task.index, "status": "ok", "message": ""}
+    voxels: Dict[str, np.ndarray] = {}
+    start, cpu = time.perf_counter(), time.process_time()
+    result = None
+    try:
+        scene = pliant.Scene.from_json(task.scene_json, origin=f"runs/{task.run_id}.json", base_dir=task.base_dir)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", pliant.SolverWarning)
+            result = pliant.run_timeline(scene)
+    except pliant.SceneError as e:
+        row.update(status="invalid", message=str(e))
+    except pliant.SimulationDiverged as e:
+        row.update(status="diverged", message=str(e))
+        result = e.result
+    except Exception as e:  # recorded, never lost
+        row.update(status="error", message=f"{type(e).__name__}: {e}")
+    if result is not None:
+        try:
+            row.update(_result_row(result, task))
+            if row["status"] == "diverged":
+                row["feasible"] = False
+            if row["status"] == "ok":  # a diverged run's last states are not physical
+                voxels = _sweep(result, task, row)
+        except Exception as e:
+            row.update(status="error", message=f"reading the result: {type(e).__name__}: {e}")
+    row["wall_time_s"] = time.perf_counter() - start
+    row["cpu_time_s"] = time.process_time() - cpu  # the worker's CPU: < wall when cores are shared
+    return {"row": row, "voxels": voxels}

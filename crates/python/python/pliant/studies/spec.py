@@ -1,0 +1,421 @@
+"""The study file (format "pliant-study", docs/study.md): read, check, and hold it.
+
+Errors are :class:`StudyError` (a ``ValueError``) naming the file, the field, the value
+and the reason, like the scene format's: ``study.toml: parameters[2].std = -1: must be > 0``.
+Lengths in the file are in its ``length_unit``, angles in degrees; inside, everything is
+SI (metres, radians, pascals).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Tuple
+
+try:  # Python ≥ 3.11
+    import tomllib as _toml
+except ImportError:  # pragma: no cover - older Pythons need tomli
+    import tomli as _toml  # type: ignore
+
+FORMAT = "pliant-study"
+VERSION = 1
+METHODS = ("monte_carlo", "latin_hypercube", "grid")
+SOLVERS = ("explicit", "implicit", "static")
+DISTRIBUTIONS = ("normal", "uniform", "triangular", "choice")
+UNITS_M = {"m": 1.0, "mm": 1e-3}
+
+# What a parameter varies: its target fields, default way of applying, and the unit of
+# its value inside ("1" a factor or number, "m" a length, "rad" an angle, "" a choice).
+KINDS: Dict[str, Tuple[Tuple[str, ...], str]] = {
+    "material": (("material", "property"), "scale"),
+    "hose_length": (("hose",), "scale"),
+    "clip_position": (("clip", "direction"), "offset"),
+    "stub_position": (("stub", "direction"), "offset"),
+    "clip_rotation": (("clip", "axis"), "offset"),
+    "stub_rotation": (("stub", "axis"), "offset"),
+    "grab_offset": (("action", "direction"), "offset"),
+    "hand_path_offset": (("action", "direction"), "offset"),
+    "ergonomics": ((), "set"),
+    "solver": ((), "set"),
+    "scene_value": (("path",), "set"),
+}
+# Material properties a study may vary, with their factor to SI.
+MATERIAL_PROPERTIES = {
+    "e_mpa": 1e6,  # E_t, E_c (and E_b if given) together: a batch's stiffness
+    "e_tension_mpa": 1e6,
+    "e_compression_mpa": 1e6,
+    "e_bending_mpa": 1e6,
+    "density_kg_m3": 1.0,
+    "poisson": 1.0,
+    "min_bend_radius_mm": 1e-3,
+}
+PARAMETER_KEYS = {
+    "name", "vary", "apply", "distribution", "mean", "std", "min", "max", "mode",
+    "choices", "levels", "material", "property", "hose", "clip", "stub", "direction",
+    "axis", "action", "path",
+}
+
+
+class StudyError(ValueError):
+    """A study file could not be read: the message names the file, the field and why."""
+
+
+@dataclass
+class Distribution:
+    """A bounded or unbounded distribution of one parameter's value (SI inside)."""
+
+    kind: str
+    mean: float = 0.0
+    std: float = 0.0
+    low: float = -math.inf
+    high: float = math.inf
+    mode: float = 0.0
+    choices: Tuple[Any, ...] = ()
+
+    def ppf(self, u):
+        """The values at quantiles ``u`` ∈ (0, 1) (numpy array); a choice gives indices."""
+        import numpy as np
+        from scipy import stats
+
+        u = np.asarray(u, dtype=float)
+        if self.kind == "uniform":
+            return self.low + u * (self.high - self.low)
+        if self.kind == "triangular":
+            scale = self.high - self.low
+            return stats.triang.ppf(u, (self.mode - self.low) / scale, loc=self.low, scale=scale)
+        if self.kind == "normal":  # truncated to [low, high] by the inverse CDF
+            a = stats.norm.cdf((self.low - self.mean) / self.std)
+            b = stats.norm.cdf((self.high - self.mean) / self.std)
+            return self.mean + self.std * stats.norm.ppf(a + u * (b - a))
+        return np.minimum((u * len(self.choices)).astype(int), len(self.choices) - 1)
+
+
+@dataclass
+class Parameter:
+    """One varied quantity: what it acts on, how, and its distribution."""
+
+    name: str
+    vary: str
+    apply: str
+    unit: str
+    distribution: Distribution
+    target: Dict[str, Any] = field(default_factory=dict)
+    levels: Optional[List[Any]] = None  # grid levels (SI), when given explicitly
+
+    @property
+    def categorical(self) -> bool:
+        return self.distribution.kind == "choice"
+
+    @property
+    def column(self) -> str:
+        """The Parquet column of this parameter's value."""
+        return "p_" + self.name
+
+
+@dataclass
+class Study:
+    """A checked study: base scene, parameters, sampling and envelope settings."""
+
+    name: str
+    origin: str
+    base_dir: str
+    scene_path: str
+    scene: Dict[str, Any]
+    parameters: List[Parameter]
+    method: str
+    runs: int
+    seed: int
+    grid_levels: int
+    solver: Optional[str]
+    ergonomics: Optional[str]
+    envelope_voxel_m: Optional[float]
+    envelope_hoses: Optional[List[str]]
+    source: Dict[str, Any] = field(repr=False, default_factory=dict)
+
+    def fingerprint(self) -> str:
+        """Hash of everything that decides the runs: a resumed study must match it."""
+        blob = json.dumps(
+            {"study": self.source, "runs": self.runs, "scene": self.scene},
+            sort_keys=True, default=str,
+        )
+        return hashlib.sha256(blob.encode()).hexdigest()[:16]
+
+
+def _fail(origin: str, where: str, value: Any, why: str) -> StudyError:
+    shown = json.dumps(value, default=str) if not isinstance(value, str) else value
+    return StudyError(f"{origin}: {where} = {shown}: {why}")
+
+
+def _number(origin, where, value, *, positive=False, allow_none=False) -> Optional[float]:
+    if value is None and allow_none:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise _fail(origin, where, value, "must be a number")
+    if not math.isfinite(value):
+        raise _fail(origin, where, value, "must be finite")
+    if positive and value <= 0:
+        raise _fail(origin, where, value, "must be > 0")
+    return float(value)
+
+
+def _vector(origin, where, value) -> List[float]:
+    if not isinstance(value, list) or len(value) != 3:
+        raise _fail(origin, where, value, "must be three numbers [x, y, z]")
+    v = [_number(origin, f"{where}[{i}]", x) for i, x in enumerate(value)]
+    n = math.sqrt(sum(x * x for x in v))
+    if n == 0:
+        raise _fail(origin, where, value, "must not be zero")
+    return [x / n for x in v]
+
+
+def _distribution(origin, where, p: Dict[str, Any], unit_factor: float) -> Distribution:
+    kind = p.get("distribution")
+    if kind not in DISTRIBUTIONS:
+        raise _fail(origin, f"{where}.distribution", kind, f"must be one of {', '.join(DISTRIBUTIONS)}")
+    if kind == "choice":
+        choices = p.get("choices")
+        if not isinstance(choices, list) or not choices:
+            raise _fail(origin, f"{where}.choices", choices, "must be a non-empty list")
+        return Distribution("choice", choices=tuple(choices))
+    f = unit_factor
+
+    def num(key, **kw):
+        return _number(origin, f"{where}.{key}", p.get(key), **kw)
+
+    low = num("min", allow_none=True)
+    high = num("max", allow_none=True)
+    if kind == "normal":
+        mean, std = num("mean"), num("std", positive=True)
+        low = -math.inf if low is None else low
+        high = math.inf if high is None else high
+        if not low < high or not low <= mean <= high:
+            raise _fail(origin, f"{where}.min", p.get("min"), "need min < max with min ≤ mean ≤ max")
+        return Distribution("normal", mean=mean * f, std=std * f, low=low * f, high=high * f)
+    if low is None or high is None:
+        raise _fail(origin, f"{where}.{'min' if low is None else 'max'}", None, f"required for a {kind} distribution")
+    if not low < high:
+        raise _fail(origin, f"{where}.max", high, f"must be greater than min ({low})")
+    if kind == "uniform":
+        return Distribution("uniform", low=low * f, high=high * f)
+    mode = num("mode")
+    if not low <= mode <= high:
+        raise _fail(origin, f"{where}.mode", mode, f"must lie in [min, max] = [{low}, {high}]")
+    return Distribution("triangular", low=low * f, high=high * f, mode=mode * f)
+
+
+def _parameter(origin, i, p, scene, length_factor) -> Parameter:
+    where = f"parameters[{i}]"
+    if not isinstance(p, dict):
+        raise _fail(origin, where, p, "must be a table")
+    for key in p:
+        if key not in PARAMETER_KEYS:
+            raise _fail(origin, f"{where}.{key}", p[key], f"unknown field; expected one of {', '.join(sorted(PARAMETER_KEYS))}")
+    vary = p.get("vary")
+    if vary not in KINDS:
+        raise _fail(origin, f"{where}.vary", vary, f"must be one of {', '.join(KINDS)}")
+    targets, default_apply = KINDS[vary]
+    apply = p.get("apply", default_apply)
+    if apply not in ("scale", "offset", "set"):
+        raise _fail(origin, f"{where}.apply", apply, "must be scale, offset or set")
+    if vary in ("ergonomics", "solver"):
+        if p.get("distribution", "choice") != "choice" or apply != "set":
+            raise _fail(origin, f"{where}.distribution", p.get("distribution"), f"{vary} takes `choices` only")
+        p = dict(p, distribution="choice")
+        if vary == "solver":
+            for j, c in enumerate(p.get("choices") or []):
+                if c not in SOLVERS:
+                    raise _fail(origin, f"{where}.choices[{j}]", c, f"must be one of {', '.join(SOLVERS)}")
+        if vary == "ergonomics":
+            for j, c in enumerate(p.get("choices") or []):
+                if not isinstance(c, str):
+                    raise _fail(origin, f"{where}.choices[{j}]", c, 'must be a profile string like "posture=sitting, population=men"')
+    target: Dict[str, Any] = {}
+    for key in targets:
+        if key not in p:
+            raise _fail(origin, f"{where}.{key}", None, f"required for vary = {vary}")
+        target[key] = p[key]
+    # What the value means inside (SI) and the factor from the file's unit.
+    if vary.endswith("_rotation"):
+        unit, factor = "rad", math.pi / 180.0
+        target["axis"] = _vector(origin, f"{where}.axis", target["axis"])
+    elif vary.endswith("_position") or vary in ("grab_offset", "hand_path_offset"):
+        if apply != "offset":
+            raise _fail(origin, f"{where}.apply", apply, f"{vary} is an offset")
+        unit, factor = "m", length_factor
+        target["direction"] = _vector(origin, f"{where}.direction", target["direction"])
+    elif vary == "material":
+        prop = target["property"]
+        if prop not in MATERIAL_PROPERTIES:
+            raise _fail(origin, f"{where}.property", prop, f"must be one of {', '.join(MATERIAL_PROPERTIES)}")
+        if apply == "offset" or (apply == "set" and prop == "e_mpa"):
+            raise _fail(origin, f"{where}.apply", apply, "materials are scaled (factor) or set (for one property)")
+        unit, factor = ("1", 1.0) if apply == "scale" else ("si", MATERIAL_PROPERTIES[prop])
+    elif vary == "hose_length":
+        if apply != "scale":
+            raise _fail(origin, f"{where}.apply", apply, "hose_length is a factor (scale)")
+        unit, factor = "1", 1.0
+    elif vary == "scene_value":
+        if not isinstance(target["path"], str) or not target["path"]:
+            raise _fail(origin, f"{where}.path", target["path"], 'must be a path like "hoses[0].section.d_outer"')
+        unit, factor = "scene", 1.0
+    else:
+        unit, factor = "", 1.0
+    _check_target(origin, where, vary, target, scene)
+    dist = _distribution(origin, where, p, factor)
+    levels = p.get("levels")
+    if levels is not None:
+        if not isinstance(levels, list) or not levels:
+            raise _fail(origin, f"{where}.levels", levels, "must be a non-empty list")
+        if dist.kind != "choice":
+            levels = [_number(origin, f"{where}.levels[{j}]", v) * factor for j, v in enumerate(levels)]
+    name = p.get("name") or "_".join(
+        [vary] + [str(target[k]) for k in ("material", "property", "hose", "clip", "stub", "action") if k in target]
+    )
+    name = "".join(c if c.isalnum() else "_" for c in str(name)).strip("_").lower()
+    return Parameter(name, vary, apply, unit, dist, target, levels)
+
+
+def _names(scene, key) -> List[str]:
+    return [x.get("name") for x in scene.get(key, []) if isinstance(x, dict)]
+
+
+def _check_target(origin, where, vary, target, scene) -> None:
+    """The named material, hose, clip, stub or action must exist in the base scene."""
+    for key, table in (("hose", "hoses"), ("clip", "clips"), ("stub", "stubs")):
+        if key in target and target[key] not in _names(scene, table):
+            raise _fail(origin, f"{where}.{key}", target[key], f"no such {key} in the scene ({', '.join(map(str, _names(scene, table)))})")
+    if "material" in target:
+        used = {h.get("material") for h in scene.get("hoses", [])}
+        if target["material"] not in used:
+            raise _fail(origin, f"{where}.material", target["material"], f"no hose of the scene is made of it (used: {', '.join(sorted(map(str, used)))})")
+    if "action" in target:
+        timeline = scene.get("timeline", [])
+        a = target["action"]
+        want = "grab" if vary == "grab_offset" else "move_hand"
+        if isinstance(a, bool) or not isinstance(a, int) or not -len(timeline) <= a < len(timeline):
+            raise _fail(origin, f"{where}.action", a, f"must be an index into the scene's timeline (0 … {len(timeline) - 1})")
+        act = timeline[a]
+        if act.get("action") != want:
+            raise _fail(origin, f"{where}.action", a, f"timeline[{a}] is a {act.get('action')!r} action, not {want!r}")
+        if want == "grab" and "at" not in act:
+            raise _fail(origin, f"{where}.action", a, f"timeline[{a}] has no `at` to offset")
+        if want == "move_hand" and "to" not in act and "by" not in act:
+            raise _fail(origin, f"{where}.action", a, f"timeline[{a}] has neither `to` nor `by` to offset")
+
+
+def _read_toml(path: str, what: str) -> Dict[str, Any]:
+    try:
+        with open(path, "rb") as f:
+            return _toml.load(f)
+    except FileNotFoundError:
+        raise StudyError(f"{path}: {what} not found") from None
+    except _toml.TOMLDecodeError as e:
+        raise StudyError(f"{path}: syntax error: {e}") from None
+
+
+def load_study(study: Any, *, runs: Optional[int] = None) -> Study:
+    """Reads and checks a study: a path to a study TOML file or a dict of its content
+    (relative paths in a dict are taken from the current directory)."""
+    if isinstance(study, dict):
+        raw, origin, base_dir = study, "<dict>", os.getcwd()
+    else:
+        origin = os.fspath(study)
+        raw = _read_toml(origin, "study file")
+        base_dir = os.path.dirname(os.path.abspath(origin))
+    return parse_study(raw, origin, base_dir, runs=runs)
+
+
+TOP_KEYS = {"format", "version", "name", "scene", "length_unit", "solver", "ergonomics", "sampling", "parameters", "envelope"}
+
+
+def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Optional[int] = None) -> Study:
+    """Checks a study's content (see :func:`load_study`)."""
+    for key in raw:
+        if key not in TOP_KEYS:
+            raise _fail(origin, key, raw[key], f"unknown field; expected one of {', '.join(sorted(TOP_KEYS))}")
+    if raw.get("format") != FORMAT:
+        raise _fail(origin, "format", raw.get("format"), f'must be "{FORMAT}"')
+    if raw.get("version") != VERSION:
+        raise _fail(origin, "version", raw.get("version"), f"unsupported study format version; this build reads version {VERSION}")
+    unit = raw.get("length_unit", "m")
+    if unit not in UNITS_M:
+        raise _fail(origin, "length_unit", unit, "must be mm or m")
+    scene_ref = raw.get("scene")
+    if not isinstance(scene_ref, str) or not scene_ref:
+        raise _fail(origin, "scene", scene_ref, "required: the base scene file, relative to the study file")
+    scene_path = scene_ref if os.path.isabs(scene_ref) else os.path.join(base_dir, scene_ref)
+    if not os.path.isfile(scene_path):
+        raise _fail(origin, "scene", scene_ref, f"no such file ({scene_path})")
+    if scene_path.endswith(".json"):
+        with open(scene_path) as f:
+            scene = json.load(f)
+    else:
+        scene = _read_toml(scene_path, "scene")
+    solver = raw.get("solver")
+    if solver is not None and solver not in SOLVERS:
+        raise _fail(origin, "solver", solver, f"must be one of {', '.join(SOLVERS)}")
+    ergonomics = raw.get("ergonomics")
+    if ergonomics is not None and not isinstance(ergonomics, str):
+        raise _fail(origin, "ergonomics", ergonomics, 'must be a profile string like "posture=sitting, population=men"')
+    sampling = raw.get("sampling", {})
+    if not isinstance(sampling, dict):
+        raise _fail(origin, "sampling", sampling, "must be a table")
+    for key in sampling:
+        if key not in ("method", "runs", "seed", "levels"):
+            raise _fail(origin, f"sampling.{key}", sampling[key], "unknown field; expected method, runs, seed or levels")
+    method = sampling.get("method", "monte_carlo")
+    if method not in METHODS:
+        raise _fail(origin, "sampling.method", method, f"must be one of {', '.join(METHODS)}")
+    n = runs if runs is not None else sampling.get("runs", 100)
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise _fail(origin, "sampling.runs", n, "must be an integer ≥ 1")
+    seed = sampling.get("seed", 0)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise _fail(origin, "sampling.seed", seed, "must be an integer ≥ 0")
+    levels = sampling.get("levels", 3)
+    if isinstance(levels, bool) or not isinstance(levels, int) or levels < 1:
+        raise _fail(origin, "sampling.levels", levels, "must be an integer ≥ 1")
+    params_raw = raw.get("parameters")
+    if not isinstance(params_raw, list) or not params_raw:
+        raise _fail(origin, "parameters", params_raw, "at least one [[parameters]] table is required")
+    params = [_parameter(origin, i, p, scene, UNITS_M[unit]) for i, p in enumerate(params_raw)]
+    seen = set()
+    for i, p in enumerate(params):
+        if p.name in seen:
+            raise _fail(origin, f"parameters[{i}].name", p.name, "taken by another parameter")
+        seen.add(p.name)
+    env = raw.get("envelope", {})
+    if not isinstance(env, dict):
+        raise _fail(origin, "envelope", env, "must be a table")
+    for key in env:
+        if key not in ("voxel", "hoses"):
+            raise _fail(origin, f"envelope.{key}", env[key], "unknown field; expected voxel or hoses")
+    voxel = _number(origin, "envelope.voxel", env.get("voxel"), positive=True, allow_none=True)
+    hoses = env.get("hoses")
+    if hoses is not None:
+        names = _names(scene, "hoses")
+        if not isinstance(hoses, list):
+            raise _fail(origin, "envelope.hoses", hoses, "must be a list of hose names")
+        for j, h in enumerate(hoses):
+            if h not in names:
+                raise _fail(origin, f"envelope.hoses[{j}]", h, f"no such hose ({', '.join(map(str, names))})")
+    return Study(
+        name=str(raw.get("name") or os.path.splitext(os.path.basename(origin))[0]),
+        origin=origin,
+        base_dir=base_dir,
+        scene_path=os.path.abspath(scene_path),
+        scene=scene,
+        parameters=params,
+        method=method,
+        runs=n,
+        seed=seed,
+        grid_levels=levels,
+        solver=solver,
+        ergonomics=ergonomics,
+        envelope_voxel_m=None if voxel is None else voxel * UNITS_M[unit],
+        envelope_hoses=hoses,
+        source=raw,
+    )

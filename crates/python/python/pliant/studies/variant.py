@@ -1,0 +1,238 @@
+"""One variant: the base scene (as a dict, in the scene file's own units) with one
+sample's parameter values applied. The result is an ordinary scene: written as JSON it
+is the run's replay input (``pliant run runs/<id>.json``).
+
+How each kind acts (values are SI; the scene's ``length_unit`` is respected):
+
+- ``material``: a library material is first copied into ``[materials]`` as
+  ``<name>_study`` (with the library hose's section on the hoses made of it), then the
+  property is scaled or set; ``e_mpa`` scales E_t, E_c (and an explicit E_b) together.
+- ``hose_length``: the hose's centre line (every point of its path) is scaled about its
+  start, so the rest length scales by the factor; ``spans`` scale with it.
+- ``clip_position`` / ``stub_position``: the origin moves by value × direction.
+- ``clip_rotation`` / ``stub_rotation``: the clip's ``opening`` and ``orientation`` (the
+  stub's ``axis``) turn by the angle about ``axis`` through the origin.
+- ``grab_offset``: the grab action's ``at`` moves by value × direction.
+- ``hand_path_offset``: every waypoint of the move_hand action (``to`` or ``by``) moves.
+- ``ergonomics`` / ``solver``: the scene's ``[ergonomics]`` / ``[simulation] solver``.
+- ``scene_value``: any number at a path like ``hoses[0].section.d_outer`` (scene units).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import os
+import re
+from functools import lru_cache
+from typing import Any, Dict, List
+
+from .spec import MATERIAL_PROPERTIES, UNITS_M, Study, StudyError
+
+try:
+    import tomllib as _toml
+except ImportError:  # pragma: no cover
+    import tomli as _toml  # type: ignore
+
+
+@lru_cache(maxsize=1)
+def library() -> Dict[str, Dict[str, Any]]:
+    """The built-in material library: {name: {key: value}} in the keys' units."""
+    from .. import _pliant
+
+    raw = _toml.loads(_pliant.material_library_toml())
+    return {
+        name: {k: (v["value"] if isinstance(v, dict) else v) for k, v in entry.items()}
+        for name, entry in raw.items()
+    }
+
+
+def length_factor(scene: Dict[str, Any]) -> float:
+    """Metres per length unit of the scene."""
+    return UNITS_M.get(scene.get("length_unit", "m"), 1.0)
+
+
+def absolute_meshes(scene: Dict[str, Any], scene_dir: str) -> Dict[str, Any]:
+    """A copy of the scene whose relative mesh paths are made absolute."""
+    scene = copy.deepcopy(scene)
+    for part in scene.get("parts", []):
+        mesh = part.get("mesh")
+        if isinstance(mesh, str) and not os.path.isabs(mesh):
+            part["mesh"] = os.path.normpath(os.path.join(scene_dir, mesh))
+    return scene
+
+
+def relative_meshes(scene: Dict[str, Any], folder: str) -> Dict[str, Any]:
+    """A copy of the scene whose mesh paths are relative to ``folder`` (where it is saved)."""
+    scene = copy.deepcopy(scene)
+    for part in scene.get("parts", []):
+        mesh = part.get("mesh")
+        if isinstance(mesh, str) and os.path.isabs(mesh):
+            part["mesh"] = os.path.relpath(mesh, folder)
+    return scene
+
+
+def _rotate(v: List[float], axis: List[float], angle: float) -> List[float]:
+    """Rodrigues' rotation of v about the unit axis by angle [rad]."""
+    c, s = math.cos(angle), math.sin(angle)
+    kx, ky, kz = axis
+    x, y, z = v
+    dot = kx * x + ky * y + kz * z
+    cross = (ky * z - kz * y, kz * x - kx * z, kx * y - ky * x)
+    return [v[i] * c + cross[i] * s + axis[i] * dot * (1 - c) for i in range(3)]
+
+
+def _shift(points: Any, offset: List[float]) -> Any:
+    """One point [x, y, z] or a list of points, moved by offset."""
+    if points and isinstance(points[0], (list, tuple)):
+        return [[p[i] + offset[i] for i in range(3)] for p in points]
+    return [points[i] + offset[i] for i in range(3)]
+
+
+def _named(scene, table, name) -> Dict[str, Any]:
+    return next(x for x in scene.get(table, []) if x.get("name") == name)
+
+
+def _own_material(scene: Dict[str, Any], name: str) -> Dict[str, Any]:
+    """The scene's own material table for ``name``: a library material is copied in
+    (its hoses then name the copy and carry the library hose's section)."""
+    materials = scene.setdefault("materials", {})
+    if name in materials:
+        return materials[name]
+    lib = library().get(name)
+    if lib is None:
+        raise StudyError(f"material {name!r} is neither in the scene's [materials] nor in the library")
+    copy_name = f"{name}_study"
+    if copy_name not in materials:
+        materials[copy_name] = {
+            k: lib[k]
+            for k in ("e_tension_mpa", "e_compression_mpa", "e_bending_mpa", "poisson",
+                      "density_kg_m3", "min_bend_radius_mm")
+            if k in lib
+        }
+        unit = length_factor(scene)
+        for hose in scene.get("hoses", []):
+            if hose.get("material") == name:
+                hose["material"] = copy_name
+                hose.setdefault("section", {
+                    "d_inner": lib["d_inner_mm"] * 1e-3 / unit,
+                    "d_outer": lib["d_outer_mm"] * 1e-3 / unit,
+                })
+    return materials[copy_name]
+
+
+def _apply_number(old: float, value: float, how: str) -> float:
+    return old * value if how == "scale" else old + value if how == "offset" else value
+
+
+PATH_TOKEN = re.compile(r"([^.\[\]]+)|\[(-?\d+)\]")
+
+
+def _set_path(scene: Dict[str, Any], path: str, value: float, how: str) -> None:
+    keys = [m.group(1) if m.group(1) is not None else int(m.group(2)) for m in PATH_TOKEN.finditer(path)]
+    node: Any = scene
+    try:
+        for k in keys[:-1]:
+            node = node[k]
+        old = node[keys[-1]]
+    except (KeyError, IndexError, TypeError):
+        raise StudyError(f"scene_value path {path!r}: no such value in the scene") from None
+    if how != "set" and (isinstance(old, bool) or not isinstance(old, (int, float))):
+        raise StudyError(f"scene_value path {path!r}: {old!r} is not a number to {how}")
+    node[keys[-1]] = _apply_number(old, value, how)
+
+
+def _scale_hose(hose: Dict[str, Any], s: float) -> None:
+    start = hose["start"]
+
+    def scaled(p):
+        return [start[i] + s * (p[i] - start[i]) for i in range(3)]
+
+    for segment in hose.get("path", []):
+        for body in segment.values():
+            for key in ("to", "via"):
+                if key in body:
+                    body[key] = scaled(body[key])
+            if "through" in body:
+                body["through"] = [scaled(p) for p in body["through"]]
+    for span in hose.get("spans", []):
+        span["from"] *= s
+        span["to"] *= s
+    if "element_length" in hose:
+        hose["element_length"] *= s
+
+
+def parse_ergonomics(profile: str) -> Dict[str, Any]:
+    """"posture=sitting, moments_decide=true" as an [ergonomics] table."""
+    table: Dict[str, Any] = {}
+    for item in filter(None, (x.strip() for x in profile.split(","))):
+        key, sep, value = item.partition("=")
+        if not sep:
+            raise StudyError(f"ergonomics {profile!r}: {item!r} is not key=value")
+        value = value.strip()
+        table[key.strip()] = {"true": True, "false": False}.get(value.lower(), value)
+    return table
+
+
+def apply(study: Study, sample: Dict[str, Any]) -> Dict[str, Any]:
+    """The variant scene (a new dict) for one sample of the study."""
+    scene = absolute_meshes(study.scene, os.path.dirname(study.scene_path))
+    unit = length_factor(scene)
+    if study.solver:
+        scene.setdefault("simulation", {})["solver"] = study.solver
+    if study.ergonomics:
+        scene["ergonomics"] = parse_ergonomics(study.ergonomics)
+    for p in study.parameters:
+        v = sample[p.name]
+        t = p.target
+        if p.vary == "material":
+            mat = _own_material(scene, t["material"])
+            prop = t["property"]
+            keys = ["e_tension_mpa", "e_compression_mpa", "e_bending_mpa"] if prop == "e_mpa" else [prop]
+            for key in keys:
+                if key in mat:
+                    mat[key] = mat[key] * v if p.apply == "scale" else v / MATERIAL_PROPERTIES[prop]
+                elif key == prop:  # e.g. min_bend_radius_mm or e_bending_mpa not given yet
+                    if p.apply == "scale":
+                        raise StudyError(f"parameter {p.name}: material {t['material']} has no {prop} to scale; use apply = \"set\"")
+                    mat[key] = v / MATERIAL_PROPERTIES[prop]
+        elif p.vary == "hose_length":
+            _scale_hose(_named(scene, "hoses", t["hose"]), v)
+        elif p.vary in ("clip_position", "stub_position"):
+            item = _named(scene, p.vary.split("_")[0] + "s", t[p.vary.split("_")[0]])
+            item["origin"] = _shift(item["origin"], [d * v / unit for d in t["direction"]])
+        elif p.vary == "clip_rotation":
+            clip = _named(scene, "clips", t["clip"])
+            for key in ("opening", "orientation"):
+                if key in clip:
+                    clip[key] = _rotate(clip[key], t["axis"], v)
+        elif p.vary == "stub_rotation":
+            stub = _named(scene, "stubs", t["stub"])
+            stub["axis"] = _rotate(stub["axis"], t["axis"], v)
+        elif p.vary in ("grab_offset", "hand_path_offset"):
+            action = scene["timeline"][t["action"]]
+            offset = [d * v / unit for d in t["direction"]]
+            for key in ("at",) if p.vary == "grab_offset" else ("to", "by"):
+                if key in action:
+                    action[key] = _shift(action[key], offset)
+        elif p.vary == "ergonomics":
+            scene["ergonomics"] = parse_ergonomics(v)
+        elif p.vary == "solver":
+            scene.setdefault("simulation", {})["solver"] = v
+        elif p.vary == "scene_value":
+            _set_path(scene, t["path"], v, p.apply)
+    return scene
+
+
+def hose_radii(scene: Dict[str, Any]) -> Dict[str, float]:
+    """Each hose's largest outer radius [m] (sections, spans, or its library hose)."""
+    unit = length_factor(scene)
+    radii = {}
+    for hose in scene.get("hoses", []):
+        sections = [hose.get("section")] + [s.get("section") for s in hose.get("spans", [])]
+        d = [s["d_outer"] * unit for s in sections if isinstance(s, dict) and "d_outer" in s]
+        if not d:
+            lib = library().get(hose.get("material"), {})
+            d = [lib.get("d_outer_mm", 0.0) * 1e-3]
+        radii[hose["name"]] = max(d) / 2
+    return radii

@@ -1,0 +1,499 @@
+"""Studies (SPEC T1, T2): the study format's errors, sampling, variants, and a small study
+on a local Dask cluster — Parquet rows, report, a diverged run kept, resume, envelope."""
+
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tomllib
+
+import numpy as np
+import pytest
+
+pytest.importorskip("distributed")
+pytest.importorskip("pyarrow")
+
+import pliant  # noqa: E402
+from pliant.studies import StudyError, load_study, samples, variant_scene  # noqa: E402
+from pliant.studies import envelope, geometry  # noqa: E402
+from pliant.studies.sampling import unit_samples  # noqa: E402
+
+from conftest import EXAMPLES  # noqa: E402
+
+# A short hose clamped at one end, above a block: a hand pulls its free end along the
+# hose and lets go. How far it pulls (EA·Δ/L) decides the hand force against its limit.
+SCENE = """
+format = "pliant-scene"
+version = 1
+name = "small study scene"
+length_unit = "mm"
+
+[[parts]]
+name = "block"
+box = { size = [100, 100, 100] }
+position = [150, 0, -80]
+
+[[hoses]]
+name = "h"
+material = "hose1"
+elements = 8
+start = [0, 0, 0]
+path = [{ line = { to = [250, 0, 0] } }]
+
+[[timeline]]
+action = "fix"
+hose = "h"
+node = 0
+
+[[timeline]]
+action = "load"
+hose = "h"
+node = 4
+force_n = [0, 0, -0.5]
+
+[[timeline]]
+action = "grab"
+hand = 0
+at = [250, 0, 0]
+
+[[timeline]]
+action = "move_hand"
+hand = 0
+by = [15, 0, 0]
+duration_s = 0.4
+
+[[timeline]]
+action = "release_hand"
+hand = 0
+
+[[timeline]]
+action = "run"
+duration_s = 0.2
+"""
+
+
+def study_dict(scene_path, runs=24, seed=7, method="monte_carlo", absurd=True):
+    params = [
+        {"name": "pull", "vary": "hand_path_offset", "action": 3, "direction": [1, 0, 0],
+         "distribution": "uniform", "min": -10, "max": 10},
+        {"name": "stiffness", "vary": "material", "material": "hose1", "property": "e_mpa",
+         "distribution": "normal", "mean": 1.0, "std": 0.03, "min": 0.9, "max": 1.1},
+        {"name": "grab_x", "vary": "grab_offset", "action": 2, "direction": [1, 0, 0],
+         "distribution": "triangular", "min": -5, "mode": 0, "max": 5},
+    ]
+    if absurd:  # one run in five pulls with 10⁹ times the load: it diverges
+        params.append({"name": "load_factor", "vary": "scene_value", "path": "timeline[1].force_n[2]",
+                       "apply": "scale", "distribution": "choice", "choices": [1, 1, 1, 1, 1e9]})
+    return {"format": "pliant-study", "version": 1, "name": "small", "scene": str(scene_path),
+            "length_unit": "mm", "sampling": {"method": method, "runs": runs, "seed": seed},
+            "envelope": {"voxel": 4}, "parameters": params}
+
+
+@pytest.fixture(scope="module")
+def scene_path(tmp_path_factory):
+    path = tmp_path_factory.mktemp("scene") / "small.toml"
+    path.write_text(SCENE)
+    return path
+
+
+@pytest.fixture(scope="module")
+def client():
+    from distributed import Client, LocalCluster
+
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                           dashboard_address=":0", silence_logs=40)
+    c = Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+@pytest.fixture(scope="module")
+def done(scene_path, client, tmp_path_factory):
+    """The small study, run once on the 2-worker cluster."""
+    out = tmp_path_factory.mktemp("study") / "out"
+    result = pliant.study(study_dict(scene_path), str(out), client=client, progress=False, flush_rows=5)
+    return result
+
+
+# --- the study format ---------------------------------------------------------------
+
+@pytest.mark.parametrize("change, field", [
+    (lambda d: d.update(format="pliant-scene"), "format"),
+    (lambda d: d["sampling"].update(method="sobol"), "sampling.method"),
+    (lambda d: d["sampling"].update(runs=0), "sampling.runs"),
+    (lambda d: d["parameters"][1].update(std=-1), "parameters[1].std"),
+    (lambda d: d["parameters"][1].update(distribution="gauss"), "parameters[1].distribution"),
+    (lambda d: d["parameters"][2].update(mode=9), "parameters[2].mode"),
+    (lambda d: d["parameters"][1].update(material="hose9"), "parameters[1].material"),
+    (lambda d: d["parameters"][0].update(action=2), "parameters[0].action"),
+    (lambda d: d["parameters"][0].update(direction=[0, 0, 0]), "parameters[0].direction"),
+    (lambda d: d["parameters"][0].update(colour="red"), "parameters[0].colour"),
+    (lambda d: d["parameters"][0].update(vary="wind"), "parameters[0].vary"),
+    (lambda d: d.update(scene="nowhere.toml"), "scene"),
+])
+def test_errors_name_the_field(scene_path, change, field):
+    d = study_dict(scene_path)
+    change(d)
+    with pytest.raises(StudyError) as e:
+        load_study(d)
+    assert f": {field} = " in str(e.value), str(e.value)
+
+
+def test_a_study_file_reads_and_its_errors_name_the_file(tmp_path, scene_path):
+    good = load_study(EXAMPLES / "engine_bay_study.toml")
+    assert good.runs == 200 and len(good.parameters) == 6
+    bad = tmp_path / "bad.toml"
+    bad.write_text(f'format = "pliant-study"\nversion = 1\nscene = "{scene_path}"\n'
+                   '[sampling]\nmethod = "grid"\nlevels = 0\n[[parameters]]\nvary = "solver"\nchoices = ["explicit"]\n')
+    with pytest.raises(StudyError, match=r"bad\.toml: sampling\.levels = 0: must be an integer"):
+        load_study(bad)
+
+
+# --- sampling -----------------------------------------------------------------------
+
+@pytest.mark.parametrize("method", ["monte_carlo", "latin_hypercube"])
+def test_same_seed_same_samples(scene_path, method):
+    a = samples(load_study(study_dict(scene_path, method=method, seed=3)))
+    b = samples(load_study(study_dict(scene_path, method=method, seed=3)))
+    c = samples(load_study(study_dict(scene_path, method=method, seed=4)))
+    assert a == b
+    assert a != c
+
+
+def test_latin_hypercube_puts_one_point_in_every_stratum():
+    n = 37
+    u = unit_samples("latin_hypercube", n, 4, seed=11)
+    for j in range(4):
+        assert sorted(np.floor(u[:, j] * n).astype(int)) == list(range(n))
+    mc = unit_samples("monte_carlo", n, 4, seed=11)  # plain Monte Carlo does not
+    assert any(len(set(np.floor(mc[:, j] * n).astype(int))) < n for j in range(4))
+
+
+def test_distributions_respect_their_bounds(scene_path):
+    s = samples(load_study(study_dict(scene_path, runs=500, absurd=False)))
+    pull = np.array([x["pull"] for x in s])
+    stiff = np.array([x["stiffness"] for x in s])
+    grab = np.array([x["grab_x"] for x in s])
+    assert pull.min() >= -0.010 and pull.max() <= 0.010 and pull.max() > 0.0099  # SI: metres
+    assert stiff.min() >= 0.9 and stiff.max() <= 1.1 and abs(stiff.mean() - 1.0) < 0.01
+    assert grab.min() >= -0.005 and grab.max() <= 0.005 and abs(np.median(grab)) < 0.001
+
+
+def test_grid_is_full_factorial(scene_path):
+    d = study_dict(scene_path, method="grid", absurd=False)
+    d["sampling"]["levels"] = 3
+    d["parameters"][2]["levels"] = [-5, 5]
+    s = samples(load_study(d))
+    assert len(s) == 3 * 3 * 2
+    assert len({tuple(x.values()) for x in s}) == 18
+    assert sorted({x["grab_x"] for x in s}) == [-0.005, 0.005]
+
+
+# --- variants -----------------------------------------------------------------------
+
+def test_variants_change_what_they_name():
+    st = load_study(EXAMPLES / "engine_bay_study.toml")
+    nominal = {"stiffness": 1.1, "length": 1.01, "clip_corner_x": 0.003, "clip_corner_y": 0.0,
+               "stub_angle": math.radians(90), "grab_corner": -0.01}
+    scene = variant_scene(st, nominal)
+    base = tomllib.loads((EXAMPLES / "engine_bay.toml").read_text())
+    clip = next(c for c in scene["clips"] if c["name"] == "clip engine corner")
+    assert clip["origin"] == pytest.approx([-162, -369, 250])  # mm: +3 mm along x
+    stub = scene["stubs"][0]
+    assert stub["axis"] == pytest.approx([-1, 0, 0], abs=1e-12)  # (0, 1, 0) turned 90° about z
+    assert scene["timeline"][11]["at"] == pytest.approx([-175, -398, 250])
+    mat = scene["materials"]["hose3_study"]
+    assert mat["e_tension_mpa"] == pytest.approx(6.9442 * 1.1)
+    assert mat["e_compression_mpa"] == pytest.approx(8.6913 * 1.1)
+    lengths = {}
+    for name, s in (("base", base), ("variant", scene)):
+        sc = variant_module().absolute_meshes(s, str(EXAMPLES))
+        lengths[name] = {h["name"]: h["length"] for h in pliant.Scene.from_dict(sc).hoses}
+    assert lengths["variant"]["lower"] == pytest.approx(1.01 * lengths["base"]["lower"], rel=1e-6)
+    assert lengths["variant"]["upper"] == pytest.approx(lengths["base"]["upper"], rel=1e-12)
+
+
+def variant_module():
+    from pliant.studies import variant
+
+    return variant
+
+
+# --- the study on a local cluster ---------------------------------------------------
+
+def test_parquet_has_one_row_per_run_readable_by_pandas_and_duckdb(done):
+    import pandas as pd
+
+    frame = pd.read_parquet(done.results)
+    assert len(frame) == 24 and list(frame["index"]) == list(range(24))
+    for col in ["run_id", "status", "message", "p_pull", "p_stiffness", "p_grab_x", "p_load_factor",
+                "feasible", "reasons", "peak_hand_force_n", "peak_hand_torque_nm", "worst_hand_ratio",
+                "min_bend_radius_ratio", "max_twist_rad_per_m", "clearance_block_m", "uncertain",
+                "unconverged_steps", "wall_time_s", "cpu_time_s"]:
+        assert col in frame, col
+    parts = pd.read_parquet(os.path.join(done.out, "parts"))  # the streamed parts, as a dataset
+    assert sorted(parts["run_id"]) == sorted(frame["run_id"])
+    duckdb = pytest.importorskip("duckdb")
+    [(n, feasible)] = duckdb.sql(
+        f"select count(*), count(*) filter (where feasible) from read_parquet('{done.results}')").fetchall()
+    assert n == 24 and feasible == int(frame["feasible"].fillna(False).sum())
+    ok = frame[frame["status"] == "ok"]
+    assert (ok["peak_hand_force_n"] > 0).all() and ok["feasible"].notna().all()
+
+
+def test_a_diverged_run_is_recorded_with_its_message(done):
+    frame = done.frame
+    absurd = frame["p_load_factor"] == "1000000000.0"
+    assert absurd.any() and (~absurd).any()
+    assert (frame.loc[absurd, "status"] == "diverged").all()
+    assert frame.loc[absurd, "message"].str.contains("diverged").all()
+    assert (frame.loc[absurd, "feasible"] == False).all()  # noqa: E712
+    assert (frame.loc[~absurd, "status"] == "ok").all()
+
+
+def test_every_row_replays_from_its_scene(done):
+    frame = done.frame
+    row = frame[frame["status"] == "ok"].iloc[0]
+    scene = pliant.load_scene(done.replay_scene(row["run_id"]))
+    again = pliant.run_timeline(scene)
+    assert again.feasible == row["feasible"]
+    assert max(h["max_force"] for h in again.hand_peaks) == row["peak_hand_force_n"]  # bit for bit
+    # the clearance to the block, from the recorded centre line, by the box's own formula
+    pos = again.positions("h")
+    pts = np.concatenate([pos.reshape(-1, 3), (0.5 * (pos[:, 1:] + pos[:, :-1])).reshape(-1, 3)])
+    q = np.abs(pts - [0.15, 0, -0.08]) - 0.05
+    d = np.linalg.norm(np.maximum(q, 0), axis=1) + np.minimum(q.max(axis=1), 0)
+    assert row["clearance_block_m"] == pytest.approx(d.min() - 0.008, abs=1e-6)  # hose 1: d_outer 16 mm
+
+
+def test_the_outcome_depends_on_the_hand_path_and_the_report_says_so(done):
+    frame = done.frame
+    ok = frame[frame["status"] == "ok"]
+    assert ok["feasible"].any() and not ok["feasible"].all()  # the pull decides
+    text = open(done.report).read()
+    assert "Wilson score interval" in text and "95 % confidence interval" in text
+    assert "Spearman rank correlation" in text
+    k = int(frame["feasible"].fillna(False).sum())
+    assert f"Feasible in <b>{k} of 24</b>" in text
+    from pliant.studies.report import sensitivity
+
+    ranking = sensitivity(ok, done.study, ["feasible", "worst_hand_ratio"])
+    assert ranking[0]["parameter"] == "pull"
+    assert text.index("<code>pull</code>") < text.index("<code>stiffness</code>", text.index("What drives"))
+    assert 'href="runs/run-' in text
+
+
+def test_wilson_interval():
+    from pliant.studies.report import wilson
+
+    lo, hi = wilson(8, 10)
+    assert (lo, hi) == pytest.approx((0.4902, 0.9433), abs=1e-4)  # textbook values
+    assert wilson(0, 20)[0] == 0.0 and wilson(20, 20)[1] == 1.0
+
+
+def test_resume_does_no_new_work_and_redoes_what_was_lost(done, client, scene_path):
+    parts_dir = os.path.join(done.out, "parts")
+    before = sorted(os.listdir(parts_dir))
+    again = pliant.study(study_dict(scene_path), done.out, client=client, progress=False)
+    assert len(before) >= 5  # parts of 5 rows
+    assert sorted(os.listdir(parts_dir)) == before  # nothing was run
+    assert again.frame.equals(done.frame)
+    # lose a part file (as if the study was stopped before writing it)
+    import pyarrow.parquet as pq
+
+    last = os.path.join(parts_dir, before[len(before) // 2])
+    lost = pq.read_table(last).num_rows
+    os.remove(last)
+    third = pliant.study(study_dict(scene_path), done.out, client=client, progress=False, flush_rows=5)
+    assert len(third.frame) == 24
+    added = [f for f in os.listdir(parts_dir) if f not in before]
+    assert len(os.listdir(parts_dir)) == len(before)
+    assert sum(pq.read_table(os.path.join(parts_dir, f)).num_rows for f in added) == lost
+    cols = ["run_id", "status", "feasible", "peak_hand_force_n"]
+    assert third.frame[cols].equals(done.frame[cols])
+    with pytest.raises(StudyError, match="holds another study"):
+        pliant.study(study_dict(scene_path, seed=99), done.out, client=client, progress=False)
+
+
+def test_envelope_is_closed_and_contains_every_run(done):
+    info = done.envelope
+    assert info["hoses"]["h"]["closed"]
+    keys = np.load(os.path.join(done.out, "envelope", "voxels-h.npy"))
+    h = info["voxel_m"]
+    verts, faces = envelope.mesh(keys, h)
+    assert envelope.is_closed(faces)
+    occupied = set(keys.tolist())
+    rng = np.random.default_rng(0)
+    probe = []
+    for run_id in done.frame.loc[done.frame["status"] == "ok", "run_id"]:
+        pos = pliant.run_timeline(pliant.load_scene(done.replay_scene(run_id))).positions("h")
+        pts = envelope.centreline_samples(pos, h / 2)
+        # every sampled centre-line point: the 8 voxel centres around it are occupied
+        base = np.floor(pts / h).astype(np.int64)
+        for corner in np.array(np.meshgrid([0, 1], [0, 1], [0, 1])).T.reshape(-1, 3):
+            assert np.isin(envelope.pack(base + corner), keys).all(), run_id
+        probe.append(pts[rng.choice(len(pts), 10)])
+    # and the mesh itself encloses them (generalised winding number ≈ 1)
+    w = envelope.winding_number(verts, faces, np.concatenate(probe))
+    assert np.all(np.abs(np.abs(w) - 1) < 1e-6)
+    outside = np.array([[1.0, 1.0, 1.0]])
+    assert abs(envelope.winding_number(verts, faces, outside)[0]) < 1e-6
+    assert len(occupied) == len(keys)
+    for name in ("envelope.glb", "h.stl"):
+        assert os.path.getsize(os.path.join(done.out, "envelope", name)) > 1000
+    with open(os.path.join(done.out, "envelope", "envelope.glb"), "rb") as f:
+        assert f.read(4) == b"glTF"
+
+
+def test_envelope_voxels_hold_the_tube():
+    """A straight tube: the voxels reach r from the axis and no more than r + 1.1 h."""
+    h, r = 0.002, 0.01
+    frames = np.array([[[0, 0, 0], [0.1, 0, 0]]], float)
+    keys = envelope.voxelize(frames, r, h)
+    c = envelope.unpack(keys) * h
+    inside = c[(c[:, 0] > 0.01) & (c[:, 0] < 0.09)]
+    rad = np.hypot(inside[:, 1], inside[:, 2])
+    assert rad.max() <= r + (math.sqrt(3) / 2 * 1.25 + 0.25) * h + 1e-12
+    assert rad.max() >= r
+    g = np.arange(-10, 11) * h  # every grid point within r of the axis is occupied
+    yy, zz = np.meshgrid(g, g)
+    want = np.hypot(yy, zz) <= r
+    ring = envelope.pack(np.stack([np.full(want.sum(), 25), np.round(yy[want] / h), np.round(zz[want] / h)], 1))
+    assert np.isin(ring, keys).all()
+
+
+def test_cli_runs_a_study_and_reports_bad_input(pliant_bin, scene_path, tmp_path):
+    import pyarrow.parquet as pq
+
+    d = study_dict(scene_path, runs=4, absurd=False)
+    lines = [f'format = "pliant-study"', "version = 1", f'scene = "{scene_path}"', 'length_unit = "mm"',
+             "[sampling]", "runs = 4", "seed = 1"]
+    for p in d["parameters"]:
+        lines.append("[[parameters]]")
+        lines += [f"{k} = {json.dumps(v)}" for k, v in p.items()]
+    study_file = tmp_path / "s.toml"
+    study_file.write_text("\n".join(lines) + "\n")
+    env = dict(os.environ, PLIANT_PYTHON=sys.executable)
+    out = tmp_path / "out"
+    run = subprocess.run([pliant_bin, "study", str(study_file), "--out", str(out), "--workers", "1"],
+                         env=env, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    assert "Dask dashboard: http" in run.stderr
+    assert "runs/min" in run.stderr
+    assert pq.read_table(out / "results.parquet").num_rows == 4
+    assert (out / "report.html").is_file() and (out / "runs" / "run-00003.json").is_file()
+    study_file.write_text(study_file.read_text().replace('distribution = "uniform"', 'distribution = "flat"'))
+    bad = subprocess.run([pliant_bin, "study", str(study_file), "--out", str(tmp_path / "o2")],
+                         env=env, capture_output=True, text=True, timeout=600)
+    assert bad.returncode == 2
+    assert "parameters[0].distribution = flat: must be one of" in bad.stderr
+
+
+def test_schema_and_parser_agree_on_the_fields():
+    from pliant.studies import spec
+
+    schema = json.loads((EXAMPLES.parent / "docs" / "study.schema.json").read_text())
+    assert set(schema["properties"]) == spec.TOP_KEYS
+    param = schema["properties"]["parameters"]["items"]
+    assert set(param["properties"]) == spec.PARAMETER_KEYS
+    assert param["properties"]["vary"]["enum"] == list(spec.KINDS)
+    assert param["properties"]["distribution"]["enum"] == list(spec.DISTRIBUTIONS)
+    assert set(param["properties"]["property"]["enum"]) == set(spec.MATERIAL_PROPERTIES)
+    example = tomllib.loads((EXAMPLES / "engine_bay_study.toml").read_text())
+    for p in example["parameters"]:
+        assert set(p) <= spec.PARAMETER_KEYS
+
+
+def test_profile_solver_and_scene_values_reach_the_scene(scene_path):
+    d = study_dict(scene_path, absurd=False)
+    d["parameters"] += [
+        {"vary": "ergonomics", "choices": ["posture=sitting, population=men, moments_decide=true"]},
+        {"vary": "solver", "choices": ["static"]},
+        {"name": "dur", "vary": "scene_value", "path": "timeline[3].duration_s", "apply": "scale",
+         "distribution": "uniform", "min": 2, "max": 3},
+    ]
+    st = load_study(d)
+    s = samples(st)[0]
+    scene = variant_scene(st, s)
+    assert scene["ergonomics"] == {"posture": "sitting", "population": "men", "moments_decide": True}
+    assert scene["simulation"]["solver"] == "static"
+    assert scene["timeline"][3]["duration_s"] == pytest.approx(0.4 * s["dur"])
+    assert pliant.Scene.from_dict(scene).ergonomics != pliant.Scene.from_dict(tomllib.loads(SCENE)).ergonomics
+    d["parameters"][-1]["path"] = "timeline[3].speed"
+    with pytest.raises(StudyError, match=r"timeline\[3\]\.speed.*no such value"):
+        variant_scene(load_study(d), s)
+
+
+def test_an_existing_cluster_by_its_scheduler_address(client, scene_path, tmp_path):
+    result = pliant.study(study_dict(scene_path, runs=3, absurd=False), str(tmp_path / "o"),
+                          scheduler=client.scheduler.address, progress=False)
+    assert list(result.frame["status"]) == ["ok"] * 3
+    assert len(client.scheduler_info()["workers"]) == 2  # the cluster is still there
+
+
+def test_a_study_stopped_midway_resumes_where_it_stopped(scene_path, tmp_path):
+    """SIGTERM once some rows are on disk; the same command then runs only the rest."""
+    import signal
+    import time
+
+    import pyarrow.parquet as pq
+
+    slow = tmp_path / "slow.toml"  # each run simulates 3 s: the study takes a while
+    slow.write_text(SCENE.replace("duration_s = 0.2", "duration_s = 3.0"))
+    d = study_dict(slow, runs=40, absurd=False)
+    lines = ['format = "pliant-study"', "version = 1", f'scene = "{slow}"', 'length_unit = "mm"',
+             "[sampling]", "runs = 40", "seed = 2"]
+    for p in d["parameters"]:
+        lines.append("[[parameters]]")
+        lines += [f"{k} = {json.dumps(v)}" for k, v in p.items()]
+    study_file = tmp_path / "s.toml"
+    study_file.write_text("\n".join(lines) + "\n")
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "pliant.studies", str(study_file), "--out", str(out), "--workers", "2",
+           "--flush-rows", "2"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    parts = out / "parts"
+    while proc.poll() is None and not (parts.is_dir() and len(list(parts.glob("*.parquet"))) >= 2):
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=300)
+    rows = sum(pq.read_table(p).num_rows for p in parts.glob("*.parquet"))
+    assert proc.returncode in (0, 130), err
+    if proc.returncode == 130:  # stopped midway (not already finished)
+        assert "interrupted" in err and 4 <= rows < 40
+    again = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    assert again.returncode == 0, again.stderr
+    assert f"{rows} done before, {40 - rows} to run" in again.stderr
+    done = pq.read_table(out / "results.parquet").to_pandas()
+    assert list(done["index"]) == list(range(40)) and done["run_id"].is_unique
+    assert (done["status"] == "ok").all()
+
+
+def test_first_order_index_sees_what_rank_correlation_misses():
+    from scipy.stats import spearmanr
+
+    from pliant.studies.report import first_order_index
+
+    rng = np.random.default_rng(5)
+    x1, x2, x3 = rng.uniform(-1, 1, (3, 2000))
+    y = x1 ** 2 + 0.3 * x2  # x1 acts, but not monotonically; x3 not at all
+    assert abs(spearmanr(x1, y).statistic) < 0.1
+    s1, s2, s3 = (first_order_index(x, y) for x in (x1, x2, x3))
+    # exact: Var(x1²) = 4/45, Var(0.3 x2) = 0.03 → S1 = 0.748, S2 = 0.252
+    assert s1 == pytest.approx(0.748, abs=0.05) and s2 == pytest.approx(0.252, abs=0.05)
+    assert s3 < 0.02
+
+
+def test_one_runs_envelope_lies_within_the_studys(done, tmp_path):
+    from pliant.studies import run_envelope
+
+    h = done.envelope["voxel_m"]
+    run_id = done.frame.loc[done.frame["status"] == "ok", "run_id"].iloc[-1]
+    own = run_envelope(done.replay_scene(run_id), str(tmp_path), voxel=h)["h"]
+    union = np.load(os.path.join(done.out, "envelope", "voxels-h.npy"))
+    assert 0 < len(own) < len(union)
+    assert np.isin(own, union).all()
+    assert (tmp_path / "h.stl").stat().st_size > 1000 and (tmp_path / "envelope.glb").is_file()
