@@ -83,5 +83,7 @@ pub fn run(o: &StudyOptions) -> Result<ExitCode> {
     let status = cmd
         .status()
         .with_context(|| format!("starting {}", python.display()))?;
-    Ok(ExitCode::from(status.code().unwrap_or(1).clamp(0, 255) as u8))
+    Ok(ExitCode::from(
+        status.code().unwrap_or(1).clamp(0, 255) as u8
+    ))
 }

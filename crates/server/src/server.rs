@@ -201,13 +201,42 @@ pub async fn serve(
     serve_shared(listener, Arc::new(Shared::new(session, &config))).await
 }
 
+/// A connection whose request headers have not all arrived this long after it opened
+/// (or after its last request) is closed: half-sent headers hold no connection open.
+pub const HEADER_READ_TIMEOUT: Duration = Duration::from_secs(10);
+
+/// Accepts connections and serves each on its own task: HTTP/1 (with upgrades for the
+/// WebSocket) or HTTP/2, with [`HEADER_READ_TIMEOUT`].
 async fn serve_shared(listener: TcpListener, shared: Arc<Shared>) -> std::io::Result<()> {
-    use axum::serve::ListenerExt;
-    // No Nagle delay: small messages (moves, snapshots) go out at once.
-    let listener = listener.tap_io(|tcp| {
+    use hyper_util::rt::{TokioExecutor, TokioIo, TokioTimer};
+    use hyper_util::server::conn::auto::Builder;
+    use hyper_util::service::TowerToHyperService;
+    let service = TowerToHyperService::new(router_on(shared));
+    loop {
+        let (tcp, _) = match listener.accept().await {
+            Ok(conn) => conn,
+            // a failed accept (e.g. out of file descriptors) ends no other connection
+            Err(e) => {
+                eprintln!("pliant serve: accept failed: {e}");
+                tokio::time::sleep(Duration::from_millis(50)).await;
+                continue;
+            }
+        };
+        // No Nagle delay: small messages (moves, snapshots) go out at once.
         let _ = tcp.set_nodelay(true);
-    });
-    axum::serve(listener, router_on(shared)).await
+        let service = service.clone();
+        tokio::spawn(async move {
+            let mut builder = Builder::new(TokioExecutor::new());
+            builder
+                .http1()
+                .timer(TokioTimer::new())
+                .header_read_timeout(HEADER_READ_TIMEOUT);
+            // a broken or timed-out connection ends only itself
+            let _ = builder
+                .serve_connection_with_upgrades(TokioIo::new(tcp), service)
+                .await;
+        });
+    }
 }
 
 /// A server running on the current tokio runtime.

@@ -10,6 +10,7 @@
 //! to a copy of the scene; [`Session::report`] replays the log into a fresh workcell and
 //! writes the same report and CSVs as `pliant run`.
 
+use crate::limits::MAX_STEPS_PER_REQUEST;
 use crate::ownership::HandId;
 use crate::snapshot::{FastenerSnapshot, HandSnapshot, HoseSnapshot, SceneData, Snapshot};
 use glam::{DQuat, DVec3};
@@ -24,7 +25,6 @@ use pliant_scene::session::{start_session_folder, write_session_folder};
 use pliant_scene::LoadedScene;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use crate::limits::MAX_STEPS_PER_REQUEST;
 use std::sync::mpsc;
 use std::sync::Arc;
 use std::thread::JoinHandle;

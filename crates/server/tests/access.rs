@@ -184,3 +184,33 @@ async fn the_client_cap_refuses_the_next_until_one_leaves() {
         }
     }
 }
+
+/// Hardening item 7: a connection that sends half its request headers and then nothing is
+/// closed by the server (after `HEADER_READ_TIMEOUT`); the wait is for the close itself.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn half_sent_headers_are_timed_out() {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let s = server_with(ServerConfig {
+        host: "127.0.0.1".into(),
+        port: 0,
+        ..Default::default()
+    })
+    .await;
+    let mut tcp = tokio::net::TcpStream::connect(s.addr).await.unwrap();
+    tcp.write_all(b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ")
+        .await
+        .unwrap();
+    // the server answers (408) or just closes; either way the stream ends
+    let mut rest = Vec::new();
+    let hang_guard = std::time::Duration::from_secs(300);
+    let read = tokio::time::timeout(hang_guard, tcp.read_to_end(&mut rest)).await;
+    assert!(
+        read.is_ok(),
+        "the half-sent request was still open after {hang_guard:?}"
+    );
+    let text = String::from_utf8_lossy(&rest);
+    assert!(
+        rest.is_empty() || text.starts_with("HTTP/1.1 408"),
+        "{text}"
+    );
+}

@@ -105,22 +105,23 @@ async fn runner_server_and_workcell_agree_bit_for_bit_for_each_solver() {
             if steps > 0 {
                 session.send(Command::Step(steps as u32)).unwrap();
             }
-            session.send(match input {
-                Input::Grab { hand, at } => Command::Grab { hand, position: at },
-                Input::AimHand {
-                    hand,
-                    position,
-                    orientation,
-                } => Command::Move {
-                    hand,
-                    position,
-                    orientation,
-                },
-                Input::ReleaseHand { hand } => Command::Release { hand },
-                Input::Reset => Command::Reset,
-                other => panic!("no command for {other:?}"),
-            })
-            .unwrap();
+            session
+                .send(match input {
+                    Input::Grab { hand, at } => Command::Grab { hand, position: at },
+                    Input::AimHand {
+                        hand,
+                        position,
+                        orientation,
+                    } => Command::Move {
+                        hand,
+                        position,
+                        orientation,
+                    },
+                    Input::ReleaseHand { hand } => Command::Release { hand },
+                    Input::Reset => Command::Reset,
+                    other => panic!("no command for {other:?}"),
+                })
+                .unwrap();
         }
         session.send(Command::Step(TAIL as u32)).unwrap();
         let live = snapshot_at_step(&session, cell.state().step).await;

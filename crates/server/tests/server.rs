@@ -595,12 +595,22 @@ async fn step_floods_are_capped_and_snapshots_go_on() {
     // the other client sees the steps go by, not one jump at the end
     let between = next_where(&mut b, "snapshot", |v| v["step"].as_u64().unwrap() > s0).await;
     let k = between["step"].as_u64().unwrap();
-    assert!(k < s0 + 100_000, "first snapshot after the flood at step {k} (from {s0})");
+    assert!(
+        k < s0 + 100_000,
+        "first snapshot after the flood at step {k} (from {s0})"
+    );
     // a command after the flood waits for the pending steps, then shows in a snapshot:
     // 40 requests of 100 000 steps made fewer than 200 000 steps (at most 100 000
     // pending at any time), not 4 million
-    send(&mut a, json!({"type": "set_ergonomics", "posture": "sitting"})).await;
-    let after = next_where(&mut b, "snapshot", |v| v["ergonomics"]["push_posture"] == "sitting").await;
+    send(
+        &mut a,
+        json!({"type": "set_ergonomics", "posture": "sitting"}),
+    )
+    .await;
+    let after = next_where(&mut b, "snapshot", |v| {
+        v["ergonomics"]["push_posture"] == "sitting"
+    })
+    .await;
     let total = after["step"].as_u64().unwrap() - s0;
     assert!((100_000..200_000).contains(&total), "{total} steps");
 }
