@@ -92,6 +92,7 @@ impl Simulation {
             LoadCase::Fix(_) => "fix",
             LoadCase::Drive(_) => "drive",
             LoadCase::DeadLoad(_) => "dead_load",
+            LoadCase::Support(_) => "support",
         };
         let (hose, node) = self.locate(case.node());
         LoadId {

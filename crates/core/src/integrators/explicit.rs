@@ -55,6 +55,13 @@ pub fn step(model: &Model, state: &mut State) {
             state.moment[d.node] += moment;
         }
     }
+    // Fixings' supports: springs in their fixed directions (reaction = their load), the
+    // slip anchors accepted with this step's forces
+    crate::loads::support_reactions(model, state, true);
+    for i in 0..state.x.len() {
+        state.force[i] += state.reaction_force[i];
+        state.moment[i] += state.reaction_moment[i];
+    }
     // Kinematic load cases, in order (a later one on the same node wins).
     let mut moved_any = false;
     for (_, case) in state.loads.iter() {
