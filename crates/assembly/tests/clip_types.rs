@@ -227,3 +227,94 @@ fn friction_only_on_a_sliding_guide() {
         .to_string();
     assert!(err.contains("holding_force"), "{err}");
 }
+
+/// At run time (explicit solver, the workcell's runner): a hand presses hose 1 into a
+/// rotating clip and a sliding guide and lets go; each seats, the seated node is held by
+/// a support (not a fix), and the run stays finite with it.
+#[test]
+fn a_hand_seats_the_hose_in_each_type_and_a_support_holds_it() {
+    use pliant_assembly::{Action, ClipSite, MovePath, NoObserver, Runner, Timeline};
+    let material = Material {
+        e_tension: 11.583e6,
+        e_compression: 13.1363e6,
+        e_bending: None,
+        poisson: 0.49,
+        density: 940.0,
+    };
+    let section = Section::new(0.010, 0.016);
+    let seat = DVec3::new(0.1625, 0.0, 0.0);
+    for kind in [ClipKind::Rotating, ClipKind::Sliding] {
+        let spec = ClipSpec::new(seat, DVec3::Z, DVec3::X, 0.012, 0.017, 20.0)
+            .unwrap()
+            .with_fixing(kind, if kind == ClipKind::Sliding { 0.3 } else { 0.0 }, None)
+            .unwrap();
+        let lift = spec.first_touch(section.outer_radius()).unwrap() + 0.005;
+        let nodes = (0..=20)
+            .map(|i| DVec3::new(0.5 * i as f64 / 20.0, 0.0, lift))
+            .collect();
+        let model = Model::build(&WorldSpec {
+            hoses: vec![HoseSpec {
+                name: "h".into(),
+                material: material.clone(),
+                nodes,
+                sections: vec![section],
+                normal_hint: Some(DVec3::Y),
+            }],
+            rigid_parts: vec![],
+            settings: SimSettings {
+                gravity: DVec3::ZERO,
+                damping_mass: 5.0,
+                ..Default::default()
+            },
+        })
+        .unwrap();
+        let mut state = State::at_rest(&model);
+        let actions = vec![
+            Action::Grab {
+                hand: 0,
+                at: seat + DVec3::new(0.0, 0.0, lift),
+            },
+            Action::MoveHand {
+                hand: 0,
+                path: Some(MovePath::By(vec![DVec3::new(0.0, 0.0, -lift)])),
+                rotation: None,
+                duration: 1.0,
+                speed: None,
+                spline: false,
+                wait: true,
+            },
+            Action::ReleaseHand { hand: 0 },
+            Action::Run { duration: 0.5 },
+        ];
+        let site = ClipSite {
+            name: "clip".into(),
+            spec,
+            hose: 0,
+        };
+        let summary = Runner::new(&model)
+            .with_fasteners(vec![], vec![site])
+            .run(&Timeline { actions }, &mut state, &mut NoObserver)
+            .unwrap();
+        assert!(summary.fasteners[0].assembled, "{kind:?}: {:?}", summary.fasteners[0]);
+        let supports = state
+            .loads
+            .iter()
+            .filter(|(_, c)| matches!(c, LoadCase::Support(_)))
+            .count();
+        let fixes = state
+            .loads
+            .iter()
+            .filter(|(_, c)| matches!(c, LoadCase::Fix(_)))
+            .count();
+        assert_eq!((supports, fixes), (1, 0), "{kind:?}");
+        assert!(state.x.iter().all(|x| x.is_finite()), "{kind:?}");
+        // it stays in the seat
+        let centre = state
+            .x
+            .windows(2)
+            .find_map(|w| spec.centre_on_segment(w[0], w[1]))
+            .expect("the hose crosses the clip");
+        let s = spec.opening_coordinate(centre);
+        assert!(s.abs() <= 0.1 * spec.opening_distance(), "{kind:?}: s = {s}");
+    }
+}

@@ -67,7 +67,8 @@ fn close(a: f64, b: f64) -> bool {
 
 /// Hand calculation of the peaks: pushing on, the force on an entry flank grows with the
 /// depth (the cylinder's friction), so barb j's peak is at its crest's start; pulling off,
-/// barb j's back flank peaks at its deep end. Returns (push peak, pull peak) over the barbs.
+/// barb j's back flank peaks at its deep end; at full depth (30 mm) the cylinder and both
+/// crests rub, either way. Returns (push peak, pull peak) over the whole stroke.
 fn hand_peaks() -> (f64, f64) {
     let (n1, n2) = (radial(0.0012), radial(0.0010));
     let t15 = f64::tan(15.0 * PI / 180.0);
@@ -80,7 +81,8 @@ fn hand_peaks() -> (f64, f64) {
     let push2 = cyl(crest2) + n1 * G + n2 * wedge(15.0);
     let pull1 = cyl(end1) + n1 * G + n1 * wedge(55.0);
     let pull2 = cyl(end2) + (n1 + n2) * G + n2 * wedge(55.0);
-    (push1.max(push2), pull1.max(pull2))
+    let full = cyl(0.030) + (n1 + n2) * G;
+    (push1.max(push2).max(full), pull1.max(pull2).max(full))
 }
 
 #[test]
@@ -91,8 +93,8 @@ fn peaks_over_two_barbs_match_the_hand_calculation() {
     // at the peaks' depths the fit gives the hand calculation to round-off
     let on = |d| f.axial_force_moving(d, Friction::Sliding, Sense::On);
     let off = |d| f.axial_force_moving(d, Friction::Sliding, Sense::Off);
-    let model_push = on(b1.crest_start()).max(on(b2.crest_start()));
-    let model_pull = off(b1.end()).max(off(b2.end()));
+    let model_push = on(b1.crest_start()).max(on(b2.crest_start())).max(on(0.030));
+    let model_pull = off(b1.end()).max(off(b2.end())).max(off(0.030));
     assert!(close(model_push, push), "{model_push} vs {push}");
     assert!(close(model_pull, pull), "{model_pull} vs {pull}");
     // a scan over the whole stub (0.01 mm) finds nothing above the hand peaks
@@ -104,9 +106,10 @@ fn peaks_over_two_barbs_match_the_hand_calculation() {
     let (scan_on, scan_off) = (scan(Sense::On), scan(Sense::Off));
     assert!(scan_on <= push * (1.0 + 1e-12) && scan_on >= 0.99 * push, "{scan_on}");
     assert!(scan_off <= pull * (1.0 + 1e-12) && scan_off >= 0.99 * pull, "{scan_off}");
-    // barbs: pulling off takes several times the push-on force
-    assert!(pull > 3.0 * push, "{pull} vs {push}");
     println!("two barbs: push-on peak {push:.1} N, pull-off peak {pull:.1} N");
+    // barbs: pulling off takes more than pushing on (here the push peak is at full depth,
+    // the pull peak on the second barb's back flank)
+    assert!(pull > 1.5 * push, "{pull} vs {push}");
 }
 
 #[test]
