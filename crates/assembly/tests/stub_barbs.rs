@@ -4,9 +4,10 @@
 //! every crest the lip has passed, plus N_j (tan α + γ)/(1 − γ tan α) on the flank of barb
 //! j under the lip (the entry flank pushing on, the back flank pulling off).
 
+mod common;
+
 use glam::DVec3;
 use pliant_assembly::stub::{Bead, Friction, PressFit, Sense, StubSpec, MAX_PROFILE};
-use pliant_core::{Material, Section};
 use std::f64::consts::PI;
 
 const G: f64 = 0.4; // sliding friction γ_G
@@ -22,16 +23,10 @@ fn barbs() -> [Bead; 2] {
 }
 
 fn fit() -> PressFit {
-    let material = Material {
-        e_tension: 6.9442e6,
-        e_compression: 8.6913e6,
-        e_bending: None,
-        poisson: 0.49,
-        density: 1100.0,
-    };
+    let (material, section) = common::hose3();
     let stub = StubSpec::new(DVec3::ZERO, DVec3::Z, 0.030, 0.028, 0.6, G).unwrap();
     let [b1, b2] = barbs();
-    PressFit::new(&stub, &Section::new(0.027, 0.035), &material)
+    PressFit::new(&stub, &section, &material)
         .unwrap()
         .with_bead(b1)
         .unwrap()
@@ -132,18 +127,8 @@ fn overlapping_or_too_many_barbs_are_refused() {
     let inside = Bead::new(0.0135, 0.001, 0.001, 0.3, 0.9).unwrap();
     let err = f.with_bead(inside).unwrap_err().to_string();
     assert!(err.contains("bead.at"), "{err}");
-    let mut many = PressFit::new(
-        f.stub(),
-        &Section::new(0.027, 0.035),
-        &Material {
-            e_tension: 6.9442e6,
-            e_compression: 8.6913e6,
-            e_bending: None,
-            poisson: 0.49,
-            density: 1100.0,
-        },
-    )
-    .unwrap();
+    let (material, section) = common::hose3();
+    let mut many = PressFit::new(f.stub(), &section, &material).unwrap();
     for k in 0..MAX_PROFILE {
         let b = Bead::new(0.003 * k as f64, 0.0005, 0.0005, 0.5, 1.0).unwrap();
         many = many.with_bead(b).unwrap();
