@@ -224,46 +224,67 @@ fn friction_only_on_a_sliding_guide() {
     assert!(err.contains("holding_force"), "{err}");
 }
 
+/// Hose 3 lying across the seat of a clip at x = 162.5 mm (opening +Z, hose along X),
+/// seated after 0.05 s, then pulled up with `pull` [N] on its node 7 (the seated node) for
+/// 0.05 s (a hose pulled loose flies off: the run stops before it is fast); the run's
+/// final state and the clip's report.
+fn seat_and_pull(spec: ClipSpec, pull: f64) -> (State, pliant_assembly::FastenerReport) {
+    use pliant_assembly::{Action, ClipSite, NoObserver, NodeRef, Runner, Timeline};
+    let (material, section) = common::hose3();
+    let world = WorldSpec {
+        hoses: vec![HoseSpec {
+            name: "h".into(),
+            material,
+            nodes: (0..=20).map(|i| DVec3::X * (0.025 * i as f64)).collect(),
+            sections: vec![section],
+            normal_hint: Some(DVec3::Y),
+        }],
+        rigid_parts: vec![],
+        settings: SimSettings::default(),
+    };
+    let model = Model::build(&world).unwrap();
+    let mut state = State::at_rest(&model);
+    let site = ClipSite {
+        name: "clip".into(),
+        spec,
+        hose: 0,
+    };
+    let timeline = Timeline {
+        actions: vec![
+            Action::Run { duration: 0.05 },
+            Action::Load {
+                node: NodeRef { hose: 0, node: 7 },
+                force: DVec3::Z * pull,
+                moment: DVec3::ZERO,
+                ramp: 0.0,
+                name: None,
+            },
+            Action::Run { duration: 0.05 },
+        ],
+    };
+    let summary = Runner::new(&model)
+        .with_fasteners(vec![], vec![site])
+        .run(&timeline, &mut state, &mut NoObserver)
+        .unwrap();
+    (state, summary.fasteners[0].clone())
+}
+
+fn clip_at_the_seat(kind: ClipKind, holding: Option<f64>) -> ClipSpec {
+    let mu = if kind == ClipKind::Sliding { 0.3 } else { 0.0 };
+    ClipSpec::new(DVec3::new(0.1625, 0.0, 0.0), DVec3::Z, DVec3::X, 0.030, 0.036, 40.0)
+        .and_then(|c| c.with_fixing(kind, mu, holding))
+        .unwrap()
+}
+
 /// At run time (explicit solver, the workcell's runner): hose 3 lying across the seat of
 /// a rotating clip and of a sliding guide seats on its own (no hand: released in the seat),
-/// the seated node is held by a support (not a fix), and half a second of explicit steps
-/// with it stays finite and in the seat.
+/// the seated node is held by a support (not a fix), and the run stays finite and in the
+/// seat.
 #[test]
 fn a_hose_released_in_the_seat_is_held_by_a_support() {
-    use pliant_assembly::{Action, ClipSite, NoObserver, Runner, Timeline};
-    let (material, section) = common::hose3();
-    let seat = DVec3::new(0.1625, 0.0, 0.0);
     for kind in [ClipKind::Rotating, ClipKind::Sliding] {
-        let mu = if kind == ClipKind::Sliding { 0.3 } else { 0.0 };
-        let spec = ClipSpec::new(seat, DVec3::Z, DVec3::X, 0.030, 0.036, 40.0)
-            .and_then(|c| c.with_fixing(kind, mu, None))
-            .unwrap();
-        let world = WorldSpec {
-            hoses: vec![HoseSpec {
-                name: "h".into(),
-                material: material.clone(),
-                nodes: (0..=20).map(|i| DVec3::X * (0.025 * i as f64)).collect(),
-                sections: vec![section],
-                normal_hint: Some(DVec3::Y),
-            }],
-            rigid_parts: vec![],
-            settings: SimSettings::default(),
-        };
-        let model = Model::build(&world).unwrap();
-        let mut state = State::at_rest(&model);
-        let site = ClipSite {
-            name: "clip".into(),
-            spec,
-            hose: 0,
-        };
-        let timeline = Timeline {
-            actions: vec![Action::Run { duration: 0.5 }],
-        };
-        let summary = Runner::new(&model)
-            .with_fasteners(vec![], vec![site])
-            .run(&timeline, &mut state, &mut NoObserver)
-            .unwrap();
-        let report = &summary.fasteners[0];
+        let spec = clip_at_the_seat(kind, None);
+        let (state, report) = seat_and_pull(spec, 0.0);
         assert!(report.assembled, "{kind:?}: {report:?}");
         let kinds: Vec<bool> = state
             .loads
@@ -280,5 +301,27 @@ fn a_hose_released_in_the_seat_is_held_by_a_support() {
             .expect("the hose crosses the clip");
         let s = spec.opening_coordinate(centre);
         assert!(s.abs() <= 0.1 * spec.opening_distance(), "{kind:?}: s = {s}");
+    }
+}
+
+/// Pull-out force 60 N: a seated hose pulled out (along the opening) with 30 N stays
+/// seated; with 100 N — more than the holding force and the snap force 40 N — it comes
+/// loose and leaves the clip. A fixed clip (fix) and a rotating one (support) alike.
+#[test]
+fn a_hose_pulled_harder_than_the_holding_force_comes_loose() {
+    for kind in [ClipKind::Fixed, ClipKind::Rotating] {
+        let spec = clip_at_the_seat(kind, Some(60.0));
+        let (_, held) = seat_and_pull(spec, 30.0);
+        assert!(held.assembled, "{kind:?} 30 N: {held:?}");
+        let (state, loose) = seat_and_pull(spec, 100.0);
+        assert!(!loose.assembled, "{kind:?} 100 N: {loose:?}");
+        let holds = state
+            .loads
+            .iter()
+            .any(|(_, c)| matches!(c, LoadCase::Fix(_) | LoadCase::Support(_)));
+        assert!(!holds, "{kind:?}: still held");
+        // without a holding force the clip keeps it whatever the pull
+        let (_, kept) = seat_and_pull(clip_at_the_seat(kind, None), 100.0);
+        assert!(kept.assembled, "{kind:?} no holding force: {kept:?}");
     }
 }
