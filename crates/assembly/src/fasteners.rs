@@ -332,7 +332,11 @@ fn update_clip(
     // back along −Z): it comes loose and the snap law acts again
     let spec = &c.site.spec;
     if let (ClipState::Seated, Some(id), Some(hold)) = (next, c.fix, spec.holding_force()) {
-        let node = state.loads.iter().find(|(i, _)| *i == id).map(|(_, l)| l.node());
+        let node = state
+            .loads
+            .iter()
+            .find(|(i, _)| *i == id)
+            .map(|(_, l)| l.node());
         if node.is_some_and(|n| -state.reaction_force[n].dot(spec.opening()) > hold) {
             next = ClipState::Snapping;
             c.loosened = true;
@@ -350,7 +354,11 @@ fn update_clip(
         (ClipState::Seated, Some((a, b, t, _))) => {
             let node = if t < 0.5 { a } else { b };
             if c.fix.is_none() {
-                c.fix = Some(state.loads.add(c.site.spec.seat_hold(node, state.x[node], state.q[node])));
+                c.fix = Some(state.loads.add(c.site.spec.seat_hold(
+                    node,
+                    state.x[node],
+                    state.q[node],
+                )));
             }
         }
         _ => {

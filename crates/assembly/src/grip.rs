@@ -21,6 +21,11 @@ pub enum Grip {
 }
 
 impl Grip {
+    /// Whether this is the firm grip (the default, left out when written).
+    pub fn is_firm(&self) -> bool {
+        *self == Grip::Firm
+    }
+
     /// The name used in scenes and the protocol.
     pub fn name(self) -> &'static str {
         match self {

@@ -5,8 +5,8 @@
 //! two supports' forces, and their moments plus the forces' moments about the hand point.
 //! A loose grip ([`Grip`]) holds the node positions only, on supports the hand moves.
 
-use glam::{DQuat, DVec3};
 use crate::grip::Grip;
+use glam::{DQuat, DVec3};
 use pliant_core::loads::{Fix, LoadCase, LoadCaseId, Motion, Support};
 use pliant_core::{Model, State};
 use serde::Serialize;

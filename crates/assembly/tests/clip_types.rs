@@ -90,9 +90,7 @@ fn solve(c: &ClipSpec, clamped: bool, force: DVec3, moment: DVec3) -> State {
             orientation: DQuat::IDENTITY,
         }));
     }
-    state
-        .loads
-        .add(c.seat_hold(N, state.x[N], state.q[N]));
+    state.loads.add(c.seat_hold(N, state.x[N], state.q[N]));
     load(&mut state, N, force, moment);
     let report = StaticSolver::new(&model)
         .unwrap()
@@ -130,7 +128,10 @@ fn free_directions_carry_nothing_and_fixed_ones_carry_the_load() {
             if kind.free_translation()[k] {
                 let s = solve(&c, true, f, DVec3::ZERO);
                 let clip_part = s.reaction_force[N].dot(e[k]);
-                assert!(clip_part.abs() <= 1e-9 * F, "{kind:?} T{k}: clip {clip_part}");
+                assert!(
+                    clip_part.abs() <= 1e-9 * F,
+                    "{kind:?} T{k}: clip {clip_part}"
+                );
                 let root = s.reaction_force[0].dot(e[k]);
                 assert!((root + F).abs() <= 1e-6 * F, "{kind:?} T{k}: root {root}");
             } else {
@@ -147,13 +148,23 @@ fn free_directions_carry_nothing_and_fixed_ones_carry_the_load() {
                 let m = m * 0.02;
                 let s = solve(&c, true, DVec3::ZERO, m);
                 let clip_part = s.reaction_moment[N].dot(e[k]);
-                assert!(clip_part.abs() <= 1e-9 * M, "{kind:?} R{k}: clip {clip_part}");
+                assert!(
+                    clip_part.abs() <= 1e-9 * M,
+                    "{kind:?} R{k}: clip {clip_part}"
+                );
                 let q0 = State::at_rest(&model()).q[N];
                 let turned = pliant_core::math::log_map(s.q[N] * q0.conjugate()).dot(e[k]);
-                let ei = bending_modulus() * std::f64::consts::PI / 64.0 * (0.035f64.powi(4) - 0.027f64.powi(4));
+                let ei = bending_modulus() * std::f64::consts::PI / 64.0
+                    * (0.035f64.powi(4) - 0.027f64.powi(4));
                 let theta = 0.02 * M * 0.3 / (4.0 * ei);
-                println!("{kind:?} R{k}: turned {turned:.6} rad, beam theory {theta:.6} (ratio {:.5})", turned / theta);
-                assert!((turned / theta - 1.0).abs() <= 0.01, "{kind:?} R{k}: {turned} vs {theta}");
+                println!(
+                    "{kind:?} R{k}: turned {turned:.6} rad, beam theory {theta:.6} (ratio {:.5})",
+                    turned / theta
+                );
+                assert!(
+                    (turned / theta - 1.0).abs() <= 0.01,
+                    "{kind:?} R{k}: {turned} vs {theta}"
+                );
             } else {
                 let s = solve(&c, false, DVec3::ZERO, m);
                 let r = s.reaction_moment[N];
@@ -180,9 +191,7 @@ fn the_sliding_guide_resists_with_coulomb_friction() {
     // guide's friction is μ N
     let model = model();
     let mut state = State::at_rest(&model);
-    state
-        .loads
-        .add(c.seat_hold(N, state.x[N], state.q[N]));
+    state.loads.add(c.seat_hold(N, state.x[N], state.q[N]));
     load(&mut state, N, x * p + y * 8.0, DVec3::ZERO);
     let mut solver = ImplicitSolver::new(
         &model,
@@ -271,9 +280,16 @@ fn seat_and_pull(spec: ClipSpec, pull: f64) -> (State, pliant_assembly::Fastener
 
 fn clip_at_the_seat(kind: ClipKind, holding: Option<f64>) -> ClipSpec {
     let mu = if kind == ClipKind::Sliding { 0.3 } else { 0.0 };
-    ClipSpec::new(DVec3::new(0.1625, 0.0, 0.0), DVec3::Z, DVec3::X, 0.030, 0.036, 40.0)
-        .and_then(|c| c.with_fixing(kind, mu, holding))
-        .unwrap()
+    ClipSpec::new(
+        DVec3::new(0.1625, 0.0, 0.0),
+        DVec3::Z,
+        DVec3::X,
+        0.030,
+        0.036,
+        40.0,
+    )
+    .and_then(|c| c.with_fixing(kind, mu, holding))
+    .unwrap()
 }
 
 /// At run time (explicit solver, the workcell's runner): hose 3 lying across the seat of
@@ -300,7 +316,10 @@ fn a_hose_released_in_the_seat_is_held_by_a_support() {
             .find_map(|w| spec.centre_on_segment(w[0], w[1]))
             .expect("the hose crosses the clip");
         let s = spec.opening_coordinate(centre);
-        assert!(s.abs() <= 0.1 * spec.opening_distance(), "{kind:?}: s = {s}");
+        assert!(
+            s.abs() <= 0.1 * spec.opening_distance(),
+            "{kind:?}: s = {s}"
+        );
     }
 }
 

@@ -56,13 +56,33 @@ fn loose_grips_carry_no_moment_about_their_free_axes() {
     let firm = turned(Grip::Firm);
     let twist = |l: &HandLoad| l.torque.dot(l.direction);
     let bending = |l: &HandLoad| (l.torque - twist(l) * l.direction).length();
-    println!("firm: twist {:.4} N m, bending {:.4} N m", twist(&firm), bending(&firm));
-    assert!(twist(&firm).abs() > 0.05, "the firm grip twists the hose: {firm:?}");
+    println!(
+        "firm: twist {:.4} N m, bending {:.4} N m",
+        twist(&firm),
+        bending(&firm)
+    );
+    assert!(
+        twist(&firm).abs() > 0.05,
+        "the firm grip twists the hose: {firm:?}"
+    );
     let axial = turned(Grip::Axial);
-    println!("axial: twist {:.2e} N m, bending {:.4} N m", twist(&axial), bending(&axial));
-    assert!(twist(&axial).abs() <= 1e-6 * twist(&firm).abs(), "{axial:?}");
-    assert!(bending(&axial) > 0.05 * bending(&firm), "the axial grip bends: {axial:?}");
+    println!(
+        "axial: twist {:.2e} N m, bending {:.4} N m",
+        twist(&axial),
+        bending(&axial)
+    );
+    assert!(
+        twist(&axial).abs() <= 1e-6 * twist(&firm).abs(),
+        "{axial:?}"
+    );
+    assert!(
+        bending(&axial) > 0.05 * bending(&firm),
+        "the axial grip bends: {axial:?}"
+    );
     let ball = turned(Grip::Ball);
     println!("ball: |moment| {:.2e} N m", ball.torque.length());
-    assert!(ball.torque.length() <= 1e-6 * firm.torque.length(), "{ball:?}");
+    assert!(
+        ball.torque.length() <= 1e-6 * firm.torque.length(),
+        "{ball:?}"
+    );
 }

@@ -88,7 +88,9 @@ fn peaks_over_two_barbs_match_the_hand_calculation() {
     // at the peaks' depths the fit gives the hand calculation to round-off
     let on = |d| f.axial_force_moving(d, Friction::Sliding, Sense::On);
     let off = |d| f.axial_force_moving(d, Friction::Sliding, Sense::Off);
-    let model_push = on(b1.crest_start()).max(on(b2.crest_start())).max(on(0.030));
+    let model_push = on(b1.crest_start())
+        .max(on(b2.crest_start()))
+        .max(on(0.030));
     let model_pull = off(b1.end()).max(off(b2.end())).max(off(0.030));
     assert!(close(model_push, push), "{model_push} vs {push}");
     assert!(close(model_pull, pull), "{model_pull} vs {pull}");
@@ -99,8 +101,14 @@ fn peaks_over_two_barbs_match_the_hand_calculation() {
             .fold(0.0, f64::max)
     };
     let (scan_on, scan_off) = (scan(Sense::On), scan(Sense::Off));
-    assert!(scan_on <= push * (1.0 + 1e-12) && scan_on >= 0.99 * push, "{scan_on}");
-    assert!(scan_off <= pull * (1.0 + 1e-12) && scan_off >= 0.99 * pull, "{scan_off}");
+    assert!(
+        scan_on <= push * (1.0 + 1e-12) && scan_on >= 0.99 * push,
+        "{scan_on}"
+    );
+    assert!(
+        scan_off <= pull * (1.0 + 1e-12) && scan_off >= 0.99 * pull,
+        "{scan_off}"
+    );
     println!("two barbs: push-on peak {push:.1} N, pull-off peak {pull:.1} N");
     // barbs: pulling off takes more than pushing on (here the push peak is at full depth,
     // the pull peak on the second barb's back flank)

@@ -287,23 +287,28 @@ pub fn build_clip(
         ClipType::Sliding => ClipKind::Sliding,
         ClipType::CableTie => ClipKind::CableTie,
     };
-    let snap_force = match (raw.snap_force_n, kind) {
-        (Some(k), _) => non_negative(&at("snap_force_n"), k, "N")?,
-        (None, ClipKind::CableTie) => 0.0,
-        (None, _) => {
-            return Err(FieldError::about(
+    let snap_force =
+        match (raw.snap_force_n, kind) {
+            (Some(k), _) => non_negative(&at("snap_force_n"), k, "N")?,
+            (None, ClipKind::CableTie) => 0.0,
+            (None, _) => return Err(FieldError::about(
                 at("snap_force_n"),
-                format!("required for a clip of type {}: the force against the hose at the opening (N)", kind.name()),
-            ))
-        }
-    };
+                format!(
+                    "required for a clip of type {}: the force against the hose at the opening (N)",
+                    kind.name()
+                ),
+            )),
+        };
     let friction = match (raw.friction, kind) {
         (Some(mu), ClipKind::Sliding) => non_negative(&at("friction"), mu, "")?,
         (None, ClipKind::Sliding) => DEFAULT_STUB_FRICTION_SLIDING,
         (Some(_), _) => {
             return Err(FieldError::about(
                 at("friction"),
-                format!("only a sliding guide has friction along the hose; this clip is of type {}", kind.name()),
+                format!(
+                    "only a sliding guide has friction along the hose; this clip is of type {}",
+                    kind.name()
+                ),
             ))
         }
         (None, _) => 0.0,

@@ -591,6 +591,24 @@ pub struct GrabEntry {
     /// Where the hand grabs (length unit): the beam nearest to it is taken, and the
     /// hand's frame starts here.
     pub at: Vec3,
+    /// How the hand holds the hose: `firm` (default; the beam turns with the hand),
+    /// `axial` (position held, the hose may turn about its own axis in the hand) or
+    /// `ball` (position held, free to turn about every axis).
+    #[serde(default)]
+    pub grip: GripName,
+}
+
+/// `grip` of a grab.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum GripName {
+    /// Six degrees of freedom.
+    #[default]
+    Firm,
+    /// Free to turn about the hose's own axis.
+    Axial,
+    /// Free to turn about every axis (a ball joint).
+    Ball,
 }
 
 /// `move_hand`: drive a hand along waypoints and/or rotate it.

@@ -80,7 +80,8 @@ fn a_profile_of_barbs_loads_in_order() {
 
 #[test]
 fn bad_profiles_name_the_field() {
-    let bead = "bead = { at = 8, height = 1.5, width = 3, entry_angle_deg = 20, back_angle_deg = 60 }";
+    let bead =
+        "bead = { at = 8, height = 1.5, width = 3, entry_angle_deg = 20, back_angle_deg = 60 }";
     for (entry, field) in [
         (
             format!("profile = [{{ at = 4, {BARB} }}, {{ at = 5, {BARB} }}]"),

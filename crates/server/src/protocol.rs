@@ -14,8 +14,14 @@ pub const PROTOCOL_VERSION: u32 = 1;
 pub enum ClientMessage {
     /// Must come first; the server answers `welcome` and starts sending snapshots.
     Hello { version: u32 },
-    /// Grab the beam nearest to `position` [m] with hand `hand_id`.
-    Grab { hand_id: HandId, position: [f64; 3] },
+    /// Grab the beam nearest to `position` [m] with hand `hand_id`; `grip` "firm"
+    /// (default), "axial" or "ball" (the hose may turn in the hand).
+    Grab {
+        hand_id: HandId,
+        position: [f64; 3],
+        #[serde(default, skip_serializing_if = "pliant_assembly::Grip::is_firm")]
+        grip: pliant_assembly::Grip,
+    },
     /// Set the hand's target pose: position [m], orientation as a unit quaternion
     /// `[x, y, z, w]` (kept when omitted).
     Move {

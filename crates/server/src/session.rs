@@ -43,6 +43,7 @@ pub enum Command {
     Grab {
         hand: HandId,
         position: DVec3,
+        grip: pliant_assembly::Grip,
     },
     Move {
         hand: HandId,
@@ -368,10 +369,18 @@ impl Sim {
 
     fn apply(&mut self, c: Command) {
         match c {
-            Command::Grab { hand, position } => {
+            Command::Grab {
+                hand,
+                position,
+                grip,
+            } => {
                 self.notice = self
                     .cell
-                    .apply(Input::Grab { hand, at: position })
+                    .apply(Input::Grab {
+                        grip,
+                        hand,
+                        at: position,
+                    })
                     .err()
                     .map(|r| format!("hand {hand}: {r}"));
             }

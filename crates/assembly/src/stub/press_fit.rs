@@ -132,7 +132,9 @@ impl PressFit {
             });
         }
         if self.beads().last().is_some_and(|prev| bead.at < prev.end()) {
-            return Err(refuse("must not start before the previous bead's back flank ends"));
+            return Err(refuse(
+                "must not start before the previous bead's back flank ends",
+            ));
         }
         let (e, nu, r_i, r_a) = self.hose;
         let p = contact_pressure(e, nu, r_i, r_a, self.stub.radius() + bead.height)?;

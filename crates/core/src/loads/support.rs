@@ -142,8 +142,9 @@ impl Support {
         let theta = fixed_r * log_map(q * self.orientation.conjugate());
         let held = spring - fixed_t * v * c;
         let mut out = SupportLoad {
-            energy: 0.5 * (spring.length_squared() / k.max(f64::MIN_POSITIVE)
-                + kr * theta.length_squared()),
+            energy: 0.5
+                * (spring.length_squared() / k.max(f64::MIN_POSITIVE)
+                    + kr * theta.length_squared()),
             force: held,
             moment: -theta * kr - fixed_r * w * cr,
             tangent_translation: fixed_t * (k + c * rate_factor),
