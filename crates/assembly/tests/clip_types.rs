@@ -10,7 +10,7 @@ use glam::{DQuat, DVec3};
 use pliant_assembly::clip::{ClipKind, ClipSpec};
 use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
-use pliant_core::{HoseSpec, Model, SimSettings, State, WorldSpec};
+use pliant_core::{Model, SimSettings, State};
 
 const N: usize = 12; // elements
 const F: f64 = 10.0; // test force [N]
@@ -18,25 +18,14 @@ const M: f64 = 0.5; // test moment [N m]
 
 /// Library hose 3, 0.3 m along global X, no gravity.
 fn model() -> Model {
-    let nodes = (0..=N)
-        .map(|i| DVec3::new(0.3 * i as f64 / N as f64, 0.0, 0.0))
-        .collect();
-    let mut model = Model::build(&WorldSpec {
-        hoses: vec![HoseSpec {
-            name: "h".into(),
-            material: common::hose3().0,
-            nodes,
-            sections: vec![common::hose3().1],
-            normal_hint: Some(DVec3::Y),
-        }],
-        rigid_parts: vec![],
-        settings: SimSettings {
+    let mut model = common::hose3_along_x(
+        N,
+        SimSettings {
             gravity: DVec3::ZERO,
             damping_mass: 4.0,
             ..Default::default()
         },
-    })
-    .unwrap();
+    );
     model.hose_contact.active = false;
     model
 }
@@ -239,19 +228,7 @@ fn friction_only_on_a_sliding_guide() {
 /// final state and the clip's report.
 fn seat_and_pull(spec: ClipSpec, pull: f64) -> (State, pliant_assembly::FastenerReport) {
     use pliant_assembly::{Action, ClipSite, NoObserver, NodeRef, Runner, Timeline};
-    let (material, section) = common::hose3();
-    let world = WorldSpec {
-        hoses: vec![HoseSpec {
-            name: "h".into(),
-            material,
-            nodes: (0..=20).map(|i| DVec3::X * (0.025 * i as f64)).collect(),
-            sections: vec![section],
-            normal_hint: Some(DVec3::Y),
-        }],
-        rigid_parts: vec![],
-        settings: SimSettings::default(),
-    };
-    let model = Model::build(&world).unwrap();
+    let model = common::hose3_along_x(20, SimSettings::default());
     let mut state = State::at_rest(&model);
     let site = ClipSite {
         name: "clip".into(),

@@ -9,27 +9,18 @@ use glam::{DQuat, DVec3};
 use pliant_assembly::{Grip, Hand, HandLoad};
 use pliant_core::integrators::StaticSolver;
 use pliant_core::loads::{Fix, LoadCase};
-use pliant_core::{HoseSpec, Model, SimSettings, State, WorldSpec};
+use pliant_core::{SimSettings, State};
 
 /// Library hose 3, 0.3 m along X in 12 elements, clamped at the root, no gravity; a hand
 /// with `grip` grabs the last beam's middle, turns, and the hose settles.
 fn turned(grip: Grip) -> HandLoad {
-    let (material, section) = common::hose3();
-    let mut model = Model::build(&WorldSpec {
-        hoses: vec![HoseSpec {
-            name: "h".into(),
-            material,
-            nodes: (0..=12).map(|i| DVec3::X * (0.025 * i as f64)).collect(),
-            sections: vec![section],
-            normal_hint: Some(DVec3::Y),
-        }],
-        rigid_parts: vec![],
-        settings: SimSettings {
+    let mut model = common::hose3_along_x(
+        12,
+        SimSettings {
             gravity: DVec3::ZERO,
             ..Default::default()
         },
-    })
-    .unwrap();
+    );
     model.hose_contact.active = false;
     let mut state = State::at_rest(&model);
     state.loads.add(LoadCase::Fix(Fix {

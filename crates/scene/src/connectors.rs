@@ -287,18 +287,19 @@ pub fn build_clip(
         ClipType::Sliding => ClipKind::Sliding,
         ClipType::CableTie => ClipKind::CableTie,
     };
-    let snap_force =
-        match (raw.snap_force_n, kind) {
-            (Some(k), _) => non_negative(&at("snap_force_n"), k, "N")?,
-            (None, ClipKind::CableTie) => 0.0,
-            (None, _) => return Err(FieldError::about(
+    let snap_force = match (raw.snap_force_n, kind) {
+        (Some(k), _) => non_negative(&at("snap_force_n"), k, "N")?,
+        (None, ClipKind::CableTie) => 0.0,
+        (None, _) => {
+            return Err(FieldError::about(
                 at("snap_force_n"),
                 format!(
                     "required for a clip of type {}: the force against the hose at the opening (N)",
                     kind.name()
                 ),
-            )),
-        };
+            ))
+        }
+    };
     let friction = match (raw.friction, kind) {
         (Some(mu), ClipKind::Sliding) => non_negative(&at("friction"), mu, "")?,
         (None, ClipKind::Sliding) => DEFAULT_STUB_FRICTION_SLIDING,

@@ -286,10 +286,21 @@ fn clips_load_in_si_with_perpendicular_orientation() {
 /// Issue 11 item 2: a grab's grip (default firm).
 #[test]
 fn grabs_load_their_grip() {
-    for (grip, want) in [("axial", Grip::Axial), ("ball", Grip::Ball), ("firm", Grip::Firm)] {
-        let text = BASE.replacen("at = [500, 0, 0]", &format!("at = [500, 0, 0]\ngrip = \"{grip}\""), 1);
+    for (grip, want) in [
+        ("axial", Grip::Axial),
+        ("ball", Grip::Ball),
+        ("firm", Grip::Firm),
+    ] {
+        let text = BASE.replacen(
+            "at = [500, 0, 0]",
+            &format!("at = [500, 0, 0]\ngrip = \"{grip}\""),
+            1,
+        );
         let s = load_scene_str(&text, "grip.toml").unwrap_or_else(|e| panic!("{grip}: {e}"));
-        assert!(matches!(s.timeline.actions[1], Action::Grab { grip, .. } if grip == want), "{grip}");
+        assert!(
+            matches!(s.timeline.actions[1], Action::Grab { grip, .. } if grip == want),
+            "{grip}"
+        );
     }
 }
 

@@ -81,13 +81,10 @@ fn a_two_handed_study_replays_bit_for_bit_for_each_solver() {
         let mut live = scene.workcell(options(solver)).unwrap();
         let run = run_timeline(&mut live, &scene.timeline, &mut NoObserver)
             .unwrap_or_else(|e| panic!("{solver}: {e}"));
-        assert!(live.log().iter().any(|s| matches!(
-            s.input,
-            Input::Grab {
-                hand: 1,
-                ..
-            }
-        )));
+        assert!(live
+            .log()
+            .iter()
+            .any(|s| matches!(s.input, Input::Grab { hand: 1, .. })));
         assert!(
             run.fasteners
                 .iter()

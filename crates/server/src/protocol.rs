@@ -147,9 +147,21 @@ mod tests {
     fn a_grab_takes_a_grip_firm_by_default() {
         let grab = |text: &str| serde_json::from_str::<ClientMessage>(text).unwrap();
         let m = grab(r#"{"type":"grab","hand_id":1,"position":[0,0,0],"grip":"ball"}"#);
-        assert!(matches!(m, ClientMessage::Grab { grip: pliant_assembly::Grip::Ball, .. }));
+        assert!(matches!(
+            m,
+            ClientMessage::Grab {
+                grip: pliant_assembly::Grip::Ball,
+                ..
+            }
+        ));
         let m = grab(r#"{"type":"grab","hand_id":1,"position":[0,0,0]}"#);
-        assert!(matches!(m, ClientMessage::Grab { grip: pliant_assembly::Grip::Firm, .. }));
+        assert!(matches!(
+            m,
+            ClientMessage::Grab {
+                grip: pliant_assembly::Grip::Firm,
+                ..
+            }
+        ));
         assert!(serde_json::from_str::<ClientMessage>(
             r#"{"type":"grab","hand_id":1,"position":[0,0,0],"grip":"loose"}"#
         )
