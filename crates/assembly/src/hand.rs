@@ -172,7 +172,11 @@ impl Hand {
                     fix.position = p + q * offset;
                     fix.orientation = (q * rotation).normalize();
                 }
-                Some(LoadCase::Support(s)) => s.position = p + q * offset,
+                Some(LoadCase::Support(s)) => {
+                    let target = p + q * offset;
+                    s.moved |= target != s.position;
+                    s.position = target;
+                }
                 _ => {}
             }
         }

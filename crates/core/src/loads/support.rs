@@ -55,6 +55,9 @@ pub struct Support {
     pub friction: f64,
     /// Slip anchor s of the friction spring [m] (moved by [`Support::commit`]).
     pub anchor: DVec3,
+    /// Set by whoever moves `position` (a hand): the explicit step then wakes a sleeping
+    /// hose, as a moving fix does, and clears it.
+    pub moved: bool,
 }
 
 /// The support's load on its node and its tangent −∂(f, m)/∂(δx, δθ) (diagonal blocks;
@@ -106,6 +109,7 @@ impl Support {
             free_rotation,
             friction,
             anchor: position,
+            moved: false,
         }
     }
 
