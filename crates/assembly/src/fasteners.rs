@@ -73,6 +73,9 @@ struct ClipRun {
     fix: Option<LoadCaseId>,
     report: FastenerReport,
     force_now: f64,
+    /// Pulled loose by more than its holding force; it seats again only after the hose
+    /// has left the seat.
+    loosened: bool,
 }
 
 /// All fasteners of a run.
@@ -150,6 +153,7 @@ impl Fasteners {
                     ..Default::default()
                 },
                 force_now: 0.0,
+                loosened: false,
                 site,
             })
             .collect();
@@ -321,20 +325,40 @@ fn update_clip(
         radius,
         grabbed,
     };
-    let Ok(next) = c.state.next(&c.site.spec, &c.tolerance, &obs) else {
+    let Ok(mut next) = c.state.next(&c.site.spec, &c.tolerance, &obs) else {
         return;
     };
+    // pulled out of its seat harder than the clip holds (the support pulling the hose
+    // back along −Z): it comes loose and the snap law acts again
+    let spec = &c.site.spec;
+    if let (ClipState::Seated, Some(id), Some(hold)) = (next, c.fix, spec.holding_force()) {
+        let node = state
+            .loads
+            .iter()
+            .find(|(i, _)| *i == id)
+            .map(|(_, l)| l.node());
+        if node.is_some_and(|n| -state.reaction_force[n].dot(spec.opening()) > hold) {
+            next = ClipState::Snapping;
+            c.loosened = true;
+        }
+    }
+    if c.loosened && cross.is_some_and(|x| spec.opening_coordinate(x.3) > c.tolerance.seat) {
+        c.loosened = false; // out of the seat: it may snap in again
+    }
+    if c.loosened && next == ClipState::Seated {
+        next = ClipState::Snapping;
+    }
     c.state = next;
     let force = next.force(&c.site.spec, &obs);
     match (next, cross) {
         (ClipState::Seated, Some((a, b, t, _))) => {
             let node = if t < 0.5 { a } else { b };
             if c.fix.is_none() {
-                c.fix = Some(state.loads.add(LoadCase::Fix(Fix {
+                c.fix = Some(state.loads.add(c.site.spec.seat_hold(
                     node,
-                    position: state.x[node],
-                    orientation: state.q[node],
-                })));
+                    state.x[node],
+                    state.q[node],
+                )));
             }
         }
         _ => {

@@ -3,9 +3,11 @@
 //! node's offset from the hand at grab time, T = H_t · H_0⁻¹ · T_0 — as fix load cases
 //! whose pose the hand updates every step. The load the hand applies is the sum of the
 //! two supports' forces, and their moments plus the forces' moments about the hand point.
+//! A loose grip ([`Grip`]) holds the node positions only, on supports the hand moves.
 
+use crate::grip::Grip;
 use glam::{DQuat, DVec3};
-use pliant_core::loads::{Fix, LoadCase, LoadCaseId, Motion};
+use pliant_core::loads::{Fix, LoadCase, LoadCaseId, Motion, Support};
 use pliant_core::{Model, State};
 use serde::Serialize;
 
@@ -17,8 +19,11 @@ pub struct Hand {
     /// The hose the beam belongs to.
     pub hose: usize,
     motion: Motion,
-    /// (global node, its fix load case, offset position and rotation in the hand frame).
+    /// (global node, its fix load case, offset position and rotation in the hand frame);
+    /// the first `count` are used.
     held: [(usize, LoadCaseId, DVec3, DQuat); 2],
+    count: usize,
+    grip: Grip,
 }
 
 /// The load a hand applies to the hose in one step (global axes).
@@ -53,43 +58,80 @@ pub fn nearest_beam(model: &Model, state: &State, point: DVec3) -> Option<usize>
 }
 
 impl Hand {
-    /// Grabs the beam nearest to `point`; the hand's frame starts at `point` with the
-    /// global orientation. Any other fix or drive on the two nodes is replaced.
+    /// Grabs the beam nearest to `point` with a firm grip ([`Hand::grab_with`]).
     pub fn grab(model: &Model, state: &mut State, point: DVec3) -> Option<Hand> {
+        Self::grab_with(model, state, point, Grip::Firm)
+    }
+
+    /// Grabs the beam nearest to `point` with `grip`; the hand's frame starts at `point`
+    /// (loose grips: at the nearest point of the beam's chord, `ball` at its nearer node)
+    /// with the global orientation. Any other fix or drive on the held nodes is replaced.
+    /// Firm: each node fixed (L1); loose: each held node on a support holding its
+    /// position only (all rotations free).
+    pub fn grab_with(model: &Model, state: &mut State, point: DVec3, grip: Grip) -> Option<Hand> {
         let element = nearest_beam(model, state, point)?;
         let el = &model.elements[element];
         let hose = model
             .hoses
             .iter()
             .position(|h| h.nodes().contains(&el.node_a))?;
+        let (a, b) = (state.x[el.node_a], state.x[el.node_b]);
+        let t = ((point - a).dot(b - a) / (b - a).length_squared().max(f64::MIN_POSITIVE))
+            .clamp(0.0, 1.0);
+        let (nodes, point): (&[usize], DVec3) = match grip {
+            Grip::Firm => (&[el.node_a, el.node_b], point),
+            Grip::Axial => (&[el.node_a, el.node_b], a + t * (b - a)),
+            Grip::Ball if t < 0.5 => (&[el.node_a], a),
+            Grip::Ball => (&[el.node_b], b),
+        };
         let mut held = [(
             0,
             pliant_core::loads::LoadCaseId(0),
             DVec3::ZERO,
             DQuat::IDENTITY,
         ); 2];
-        for (slot, node) in [el.node_a, el.node_b].into_iter().enumerate() {
+        for (slot, &node) in nodes.iter().enumerate() {
             state
                 .loads
                 .remove_on_node(node, |c| !matches!(c, LoadCase::DeadLoad(_)));
-            let id = state.loads.add(LoadCase::Fix(Fix {
-                node,
-                position: state.x[node],
-                orientation: state.q[node],
-            }));
-            held[slot] = (node, id, state.x[node] - point, state.q[node]);
+            let (position, orientation) = (state.x[node], state.q[node]);
+            let case = match grip {
+                Grip::Firm => LoadCase::Fix(Fix {
+                    node,
+                    position,
+                    orientation,
+                }),
+                Grip::Axial | Grip::Ball => LoadCase::Support(Support::new(
+                    node,
+                    position,
+                    orientation,
+                    DQuat::IDENTITY,
+                    [false; 3],
+                    [true; 3],
+                    0.0,
+                )),
+            };
+            let id = state.loads.add(case);
+            held[slot] = (node, id, position - point, orientation);
         }
         Some(Hand {
             element,
             hose,
             motion: Motion::hold((point, DQuat::IDENTITY)),
             held,
+            count: nodes.len(),
+            grip,
         })
+    }
+
+    /// The hand's grip.
+    pub fn grip(&self) -> Grip {
+        self.grip
     }
 
     /// Whether the hand holds `node`.
     pub fn holds(&self, node: usize) -> bool {
-        self.held.iter().any(|h| h.0 == node)
+        self.held[..self.count].iter().any(|h| h.0 == node)
     }
 
     /// The hand's pose at time `t`.
@@ -124,10 +166,18 @@ impl Hand {
     /// Sets the held nodes' targets for time `t` (call before each step with its end time).
     pub fn update(&self, state: &mut State, t: f64) {
         let (p, q) = self.motion.pose_at(t);
-        for (_, id, offset, rotation) in self.held {
-            if let Some(LoadCase::Fix(fix)) = state.loads.get_mut(id) {
-                fix.position = p + q * offset;
-                fix.orientation = (q * rotation).normalize();
+        for &(_, id, offset, rotation) in &self.held[..self.count] {
+            match state.loads.get_mut(id) {
+                Some(LoadCase::Fix(fix)) => {
+                    fix.position = p + q * offset;
+                    fix.orientation = (q * rotation).normalize();
+                }
+                Some(LoadCase::Support(s)) => {
+                    let target = p + q * offset;
+                    s.moved |= target != s.position;
+                    s.position = target;
+                }
+                _ => {}
             }
         }
     }
@@ -137,7 +187,7 @@ impl Hand {
         let (h, _) = self.motion.pose_at(state.time);
         let mut force = DVec3::ZERO;
         let mut torque = DVec3::ZERO;
-        for (node, ..) in self.held {
+        for &(node, ..) in &self.held[..self.count] {
             let f = state.reaction_force[node];
             force += f;
             torque += state.reaction_moment[node] + (state.x[node] - h).cross(f);
@@ -158,7 +208,7 @@ impl Hand {
 
     /// Lets go: the two nodes move freely again.
     pub fn release(self, state: &mut State) {
-        for (_, id, ..) in self.held {
+        for &(_, id, ..) in &self.held[..self.count] {
             state.loads.remove(id);
         }
     }

@@ -8,6 +8,7 @@ pub mod checks;
 pub mod clip;
 pub mod ergonomics;
 pub mod fasteners;
+pub mod grip;
 pub mod hand;
 pub mod report;
 pub mod runner;
@@ -16,6 +17,7 @@ pub mod timeline;
 pub mod workcell;
 
 pub use fasteners::{ClipSite, FastenerReport, FastenerSample, StubSite};
+pub use grip::Grip;
 pub use hand::{Hand, HandLoad};
 pub use runner::{run_timeline, RunError, Runner};
 pub use timeline::{Action, MovePath, NodeRef, Rotation, Timeline};

@@ -257,10 +257,11 @@ fn apply(
             },
         )?,
         Action::Release { node } => give(cell, index, Input::Release { node: *node })?,
-        Action::Grab { hand, at } => give(
+        Action::Grab { hand, at, grip } => give(
             cell,
             index,
             Input::Grab {
+                grip: *grip,
                 hand: *hand as HandNumber,
                 at: *at,
             },

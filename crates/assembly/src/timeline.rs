@@ -63,7 +63,13 @@ pub enum Action {
     Release { node: NodeRef },
     /// I1: hand `hand` grabs the beam nearest to `at` [m]; its two nodes follow the hand
     /// (replacing any fix or drive on them) until the hand lets go.
-    Grab { hand: usize, at: DVec3 },
+    /// `grip`: firm, or loose — the hose may turn in the hand ([`crate::Grip`]).
+    Grab {
+        hand: usize,
+        at: DVec3,
+        #[serde(default, skip_serializing_if = "crate::Grip::is_firm")]
+        grip: crate::Grip,
+    },
     /// Moves hand `hand` along `path` and/or turns it by `rotation` over `duration`
     /// seconds — or, when `speed` [m/s] is given, over the path's length divided by it —
     /// with a smooth start and stop; through the waypoints as a polyline, or along a

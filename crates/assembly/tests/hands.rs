@@ -68,6 +68,7 @@ fn pulling_hand_feels_the_axial_stiffness_of_the_free_length() {
     let (model, state, obs) = run(vec![
         fix0(),
         Action::Grab {
+            grip: Default::default(),
             hand: 0,
             at: grab_at,
         },
@@ -107,6 +108,7 @@ fn twisting_hand_feels_the_torsional_stiffness() {
     let (model, _, obs) = run(vec![
         fix0(),
         Action::Grab {
+            grip: Default::default(),
             hand: 0,
             at: DVec3::new(L - 0.006, 0.0, 0.0),
         },
@@ -138,10 +140,12 @@ fn two_hands_pull_with_equal_and_opposite_forces() {
     let dl = 0.004;
     let (_, _, obs) = run(vec![
         Action::Grab {
+            grip: Default::default(),
             hand: 0,
             at: DVec3::new(0.006, 0.0, 0.0),
         },
         Action::Grab {
+            grip: Default::default(),
             hand: 1,
             at: DVec3::new(L - 0.006, 0.0, 0.0),
         },
@@ -175,6 +179,7 @@ fn released_hand_applies_nothing_and_hose_relaxes() {
     let (model, state, _) = run(vec![
         fix0(),
         Action::Grab {
+            grip: Default::default(),
             hand: 0,
             at: DVec3::new(L, 0.0, 0.0),
         },
@@ -223,7 +228,11 @@ fn hand_moves_at_a_given_speed_along_a_spline() {
     let end = DVec3::new(0.1, 0.0, 0.0);
     let actions = vec![
         fix0(),
-        Action::Grab { hand: 0, at: start },
+        Action::Grab {
+            grip: Default::default(),
+            hand: 0,
+            at: start,
+        },
         Action::MoveHand {
             hand: 0,
             path: Some(MovePath::By(vec![via, end])),

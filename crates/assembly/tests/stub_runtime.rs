@@ -82,6 +82,7 @@ impl Observer for Trace {
 fn push_on() -> Vec<Action> {
     vec![
         Action::Grab {
+            grip: Default::default(),
             hand: 0,
             at: DVec3::new(L - 0.01, 0.0, 0.0),
         },
@@ -126,6 +127,7 @@ fn released_on_the_stub_it_stays_and_pulling_hard_takes_it_off() {
     // the end comes off
     let mut state2 = State::at_rest(&model);
     actions.push(Action::Grab {
+        grip: Default::default(),
         hand: 0,
         at: DVec3::new(L, 0.0, 0.0),
     });
@@ -165,6 +167,7 @@ fn released_slightly_off_axis_the_end_is_aligned_with_the_stub() {
     let mut state = State::at_rest(&model);
     let actions = vec![
         Action::Grab {
+            grip: Default::default(),
             hand: 0,
             at: DVec3::new(L - 0.01, 0.0, 0.0),
         },

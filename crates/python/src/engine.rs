@@ -228,8 +228,17 @@ impl Engine {
     /// Hand `hand` grabs the beam nearest to `point` (letting go of what it held);
     /// returns the beam's element index. Refused — the hand keeping its grip — if
     /// another hand holds that beam.
-    pub fn grab(&mut self, hand: u32, point: DVec3) -> Result<usize, Refusal> {
-        match self.give(Input::Grab { hand, at: point })? {
+    pub fn grab(
+        &mut self,
+        hand: u32,
+        point: DVec3,
+        grip: pliant_assembly::Grip,
+    ) -> Result<usize, Refusal> {
+        match self.give(Input::Grab {
+            grip,
+            hand,
+            at: point,
+        })? {
             Applied::Grabbed { element } => Ok(element),
             _ => Err(Refusal::Invalid("nothing was grabbed".into())),
         }

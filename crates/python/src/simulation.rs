@@ -92,6 +92,7 @@ impl Simulation {
             LoadCase::Fix(_) => "fix",
             LoadCase::Drive(_) => "drive",
             LoadCase::DeadLoad(_) => "dead_load",
+            LoadCase::Support(_) => "support",
         };
         let (hose, node) = self.locate(case.node());
         LoadId {
@@ -524,14 +525,28 @@ impl Simulation {
     /// >>> sim = pliant.Simulation(pliant.demo_scene())
     /// >>> sim.grab(0, hose="lower", node=-1)
     /// ('lower', 14, 15)
-    #[pyo3(signature = (hand, at = None, *, hose = None, node = None))]
+    ///
+    /// `grip`: "firm" (default: the beam turns with the hand), "axial" (the hose may turn
+    /// about its own axis in the hand) or "ball" (about every axis).
+    #[pyo3(signature = (hand, at = None, *, hose = None, node = None, grip = "firm"))]
     fn grab(
         &mut self,
         hand: u32,
         at: Option<&Bound<'_, PyAny>>,
         hose: Option<HoseRef>,
         node: Option<i64>,
+        grip: &str,
     ) -> PyResult<(String, usize, usize)> {
+        let grip = match grip {
+            "firm" => pliant_assembly::Grip::Firm,
+            "axial" => pliant_assembly::Grip::Axial,
+            "ball" => pliant_assembly::Grip::Ball,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "grip: unknown grip {other:?}; allowed: firm, axial, ball"
+                )))
+            }
+        };
         let point = match (at, hose, node) {
             (Some(p), None, None) => vec3(p, "at")?,
             (None, Some(h), Some(n)) => {
@@ -544,7 +559,7 @@ impl Simulation {
                 ))
             }
         };
-        let element = self.engine.grab(hand, point).map_err(refused)?;
+        let element = self.engine.grab(hand, point, grip).map_err(refused)?;
         let el = &self.model().elements[element];
         let (name, a) = self.locate(el.node_a);
         let (_, b) = self.locate(el.node_b);

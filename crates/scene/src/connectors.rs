@@ -3,13 +3,13 @@
 //! layer's [`StubSpec`] and [`ClipSpec`].
 
 use crate::error::FieldError;
-use crate::format::{ClipEntry, HoseEndName, StubEntry};
+use crate::format::{BeadEntry, ClipEntry, ClipType, HoseEndName, StubEntry};
 use crate::parts::friction;
 use crate::scene::{HoseEnd, SceneClip, SceneStub};
 use crate::units::LengthUnit;
 use crate::validate::{finite_vec, non_negative, non_zero_vec, positive, vec_with_unit, with_unit};
-use pliant_assembly::clip::ClipSpec;
-use pliant_assembly::stub::StubSpec;
+use pliant_assembly::clip::{ClipKind, ClipSpec};
+use pliant_assembly::stub::{Bead, StubSpec, MAX_PROFILE};
 use pliant_core::HoseSpec;
 
 /// Default static friction coefficient of a hose on a stub. Assumption: the
@@ -178,33 +178,78 @@ pub fn build_stub(
         friction_sliding,
     )
     .map_err(|e| FieldError::about(format!("stubs[{index}]"), e.to_string()))?;
-    let bead = match &raw.bead {
-        None => None,
-        Some(b) => {
-            let at_b = |k: &str| at(&format!("bead.{k}"));
-            let bead = pliant_assembly::stub::Bead::new(
-                non_negative(&at_b("at"), b.at, u)? * scale,
-                positive(&at_b("height"), b.height, u)? * scale,
-                positive(&at_b("width"), b.width, u)? * scale,
-                positive(&at_b("entry_angle_deg"), b.entry_angle_deg, "°")?.to_radians(),
-                positive(&at_b("back_angle_deg"), b.back_angle_deg, "°")?.to_radians(),
-            )
-            .map_err(|e| FieldError::about(at("bead"), e.to_string()))?;
-            if bead.end() > spec.length() {
-                return Err(FieldError::about(
-                    at("bead"),
-                    "the bead must end within the stub's length",
-                ));
-            }
-            Some(bead)
+    let (entries, key) = match (&raw.bead, &raw.profile) {
+        (Some(_), Some(_)) => {
+            return Err(FieldError::about(
+                at("bead"),
+                "give either `bead` or `profile` (a list of beads), not both",
+            ))
         }
+        (Some(b), None) => (std::slice::from_ref(b), "bead".to_owned()),
+        (None, Some(list)) => (list.as_slice(), String::new()),
+        (None, None) => (&[][..], String::new()),
     };
+    if entries.len() > MAX_PROFILE {
+        return Err(FieldError::new(
+            at("profile"),
+            format!("{} beads", entries.len()),
+            format!("at most {MAX_PROFILE} beads or barbs on one stub"),
+        ));
+    }
+    let mut profile: Vec<Bead> = Vec::with_capacity(entries.len());
+    for (k, b) in entries.iter().enumerate() {
+        let key = if key.is_empty() {
+            format!("profile[{k}]")
+        } else {
+            key.clone()
+        };
+        let bead = build_bead(&at(&key), b, unit, spec.length(), profile.last())?;
+        profile.push(bead);
+    }
     Ok(SceneStub {
         name: raw.name.clone(),
         spec,
         hose_end,
-        bead,
+        profile,
     })
+}
+
+/// Checks and builds one bead of a stub's profile at `field` (e.g. `stubs[0].profile[1]`),
+/// SI; it must end within the stub's `length` [m] and start after `previous` ends.
+fn build_bead(
+    field: &str,
+    b: &BeadEntry,
+    unit: LengthUnit,
+    length: f64,
+    previous: Option<&Bead>,
+) -> Result<Bead, FieldError> {
+    let at_b = |k: &str| format!("{field}.{k}");
+    let (u, scale) = (unit.symbol(), unit.to_metres());
+    let bead = Bead::new(
+        non_negative(&at_b("at"), b.at, u)? * scale,
+        positive(&at_b("height"), b.height, u)? * scale,
+        positive(&at_b("width"), b.width, u)? * scale,
+        positive(&at_b("entry_angle_deg"), b.entry_angle_deg, "°")?.to_radians(),
+        positive(&at_b("back_angle_deg"), b.back_angle_deg, "°")?.to_radians(),
+    )
+    .map_err(|e| FieldError::about(field, e.to_string()))?;
+    if bead.end() > length {
+        return Err(FieldError::about(
+            field,
+            "the bead must end within the stub's length",
+        ));
+    }
+    if let Some(prev) = previous.filter(|p| bead.at < p.end()) {
+        return Err(FieldError::new(
+            at_b("at"),
+            in_unit(bead.at, unit),
+            format!(
+                "must not lie before the previous bead's end ({}): beads follow one another from the mouth inwards",
+                in_unit(prev.end(), unit)
+            ),
+        ));
+    }
+    Ok(bead)
 }
 
 /// Checks and builds `clips[index]`.
@@ -248,14 +293,53 @@ pub fn build_clip(
             ),
         ));
     }
-    let snap_force = non_negative(&at("snap_force_n"), raw.snap_force_n, "N")?;
-    if snap_force > MAX_SNAP_FORCE {
-        return Err(FieldError::new(
-            at("snap_force_n"),
-            with_unit(raw.snap_force_n, "N"),
-            format!("above {MAX_SNAP_FORCE} N no clip is fitted by hand (a fixed clamp is a `fix` in the timeline)"),
-        ));
-    }
+    let kind = match raw.kind {
+        ClipType::Fixed => ClipKind::Fixed,
+        ClipType::Rotating => ClipKind::Rotating,
+        ClipType::Sliding => ClipKind::Sliding,
+        ClipType::CableTie => ClipKind::CableTie,
+    };
+    let snap_force = match (raw.snap_force_n, kind) {
+        (Some(k), _) => {
+            let k = non_negative(&at("snap_force_n"), k, "N")?;
+            if k > MAX_SNAP_FORCE {
+                return Err(FieldError::new(
+                    at("snap_force_n"),
+                    with_unit(k, "N"),
+                    format!("above {MAX_SNAP_FORCE} N no clip is fitted by hand (a fixed clamp is a `fix` in the timeline)"),
+                ));
+            }
+            k
+        }
+        (None, ClipKind::CableTie) => 0.0,
+        (None, _) => {
+            return Err(FieldError::about(
+                at("snap_force_n"),
+                format!(
+                    "required for a clip of type {}: the force against the hose at the opening (N)",
+                    kind.name()
+                ),
+            ))
+        }
+    };
+    let friction = match (raw.friction, kind) {
+        (Some(mu), ClipKind::Sliding) => non_negative(&at("friction"), mu, "")?,
+        (None, ClipKind::Sliding) => DEFAULT_STUB_FRICTION_SLIDING,
+        (Some(_), _) => {
+            return Err(FieldError::about(
+                at("friction"),
+                format!(
+                    "only a sliding guide has friction along the hose; this clip is of type {}",
+                    kind.name()
+                ),
+            ))
+        }
+        (None, _) => 0.0,
+    };
+    let holding = match raw.holding_force_n {
+        Some(h) => Some(positive(&at("holding_force_n"), h, "N")?),
+        None => None,
+    };
     // the hose that goes into the clip: named, or the only hose
     let h = match &raw.hose {
         None if hoses.len() > 1 => {
@@ -291,6 +375,7 @@ pub fn build_clip(
         inner_diameter * scale,
         snap_force,
     )
+    .and_then(|c| c.with_fixing(kind, friction, holding))
     .map_err(|e| FieldError::about(format!("clips[{index}]"), e.to_string()))?;
     Ok(SceneClip {
         name: raw.name.clone(),

@@ -20,7 +20,7 @@ impl LoadedScene {
             let section = *spec.node_section(local);
             let mut fit = PressFit::new(&s.spec, &section, &spec.material)
                 .map_err(|e| format!("stub '{}': {e}", s.name))?;
-            if let Some(bead) = s.bead {
+            for &bead in &s.profile {
                 fit = fit
                     .with_bead(bead)
                     .map_err(|e| format!("stub '{}': {e}", s.name))?;

@@ -181,7 +181,12 @@ pub struct StubEntry {
     /// Which end of `hose` goes onto the stub: `"start"` or `"end"`. Requires `hose`.
     pub end: Option<HoseEndName>,
     /// A bead (ring) on the stub that makes pulling off harder than pushing on (SPEC V4).
+    /// Shorthand for a `profile` of one; not together with `profile`.
     pub bead: Option<BeadEntry>,
+    /// The stub's profile: beads or barbs along the axis from the mouth inwards (each
+    /// starting after the previous one ends; at most 8), e.g. a barb = a gentle entry
+    /// flank, a narrow crest and a steep back flank.
+    pub profile: Option<Vec<BeadEntry>>,
 }
 
 /// `bead` of a stub: a ring of `height` on the stub starting `at` from the mouth, a crest
@@ -219,10 +224,36 @@ pub struct ClipEntry {
     pub opening_width: f64,
     /// Inner (seat) diameter d₂ (length unit), > 0.
     pub inner_diameter: f64,
-    /// Snap force k (N), ≥ 0: the force against the hose at the opening.
-    pub snap_force_n: f64,
+    /// Snap force k (N), ≥ 0: the force against the hose at the opening. Required except
+    /// for a cable tie (which has no snap; default 0).
+    pub snap_force_n: Option<f64>,
     /// The hose meant to be snapped into this clip. Optional.
     pub hose: Option<String>,
+    /// The fixing's type, which decides the degrees of freedom it leaves free in its VEC
+    /// frame (X = Y × Z, Y = `orientation`, Z = `opening`). Default `fixed`.
+    #[serde(rename = "type", default)]
+    pub kind: ClipType,
+    /// Coulomb coefficient μ of a sliding guide along the hose, ≥ 0. Default 0.4
+    /// (assumption: rubber on plastic, as a stub's sliding friction). Only for `sliding`.
+    pub friction: Option<f64>,
+    /// Pull-out force (N), > 0: a seated hose pulled out of the seat (along `opening`)
+    /// harder than this comes loose. Default: it holds whatever the pull.
+    pub holding_force_n: Option<f64>,
+}
+
+/// `type` of a clip: a fixing by the degrees of freedom it leaves free.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ClipType {
+    /// All six degrees of freedom fixed.
+    #[default]
+    Fixed,
+    /// Free to turn about the clip's Z axis (`opening`): a clip turning on its mount.
+    Rotating,
+    /// Free to slide along the hose (Y, `orientation`) against Coulomb friction.
+    Sliding,
+    /// A cable tie around the hose to a part: all six fixed, no snap.
+    CableTie,
 }
 
 /// `[materials.NAME]`: a user material.
@@ -560,6 +591,24 @@ pub struct GrabEntry {
     /// Where the hand grabs (length unit): the beam nearest to it is taken, and the
     /// hand's frame starts here.
     pub at: Vec3,
+    /// How the hand holds the hose: `firm` (default; the beam turns with the hand),
+    /// `axial` (position held, the hose may turn about its own axis in the hand) or
+    /// `ball` (position held, free to turn about every axis).
+    #[serde(default)]
+    pub grip: GripName,
+}
+
+/// `grip` of a grab.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum GripName {
+    /// Six degrees of freedom.
+    #[default]
+    Firm,
+    /// Free to turn about the hose's own axis.
+    Axial,
+    /// Free to turn about every axis (a ball joint).
+    Ball,
 }
 
 /// `move_hand`: drive a hand along waypoints and/or rotate it.

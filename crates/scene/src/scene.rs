@@ -37,8 +37,9 @@ pub struct SceneStub {
     pub spec: StubSpec,
     /// The hose end meant to go onto it (named, or the end of the scene's only hose).
     pub hose_end: HoseEnd,
-    /// A bead on it (SPEC V4), SI.
-    pub bead: Option<pliant_assembly::stub::Bead>,
+    /// Its profile (SPEC V4): beads or barbs from the mouth inwards, SI (empty: a plain
+    /// cylinder).
+    pub profile: Vec<pliant_assembly::stub::Bead>,
 }
 
 /// A clip of the scene (SPEC L7).

@@ -266,9 +266,12 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
                 motion(&mut t, waypoints, *rotation, *duration);
                 "move"
             }
-            Input::Grab { hand: h, at } => {
+            Input::Grab { hand: h, at, grip } => {
                 t.insert("hand".into(), hand(*h)?);
                 t.insert("at".into(), point(*at));
+                if *grip != pliant_assembly::Grip::Firm {
+                    t.insert("grip".into(), grip.name().into());
+                }
                 "grab"
             }
             Input::MoveHand {

@@ -3,13 +3,13 @@
 
 use crate::error::FieldError;
 use crate::format::{
-    ActionEntry, AimHandEntry, GrabEntry, HandEntry, LoadEntry, MoveEntry, MoveHandEntry,
+    ActionEntry, AimHandEntry, GrabEntry, GripName, HandEntry, LoadEntry, MoveEntry, MoveHandEntry,
     NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, UnloadEntry,
 };
 use crate::units::LengthUnit;
 use crate::validate::{finite, finite_vec, node_index, non_negative, non_zero_vec, positive};
 use glam::DVec3;
-use pliant_assembly::{Action, MovePath, NodeRef, Rotation, Timeline};
+use pliant_assembly::{Action, Grip, MovePath, NodeRef, Rotation, Timeline};
 
 /// Default rest threshold of `settle` (J).
 pub const DEFAULT_SETTLE_KINETIC_ENERGY: f64 = 1e-6;
@@ -287,7 +287,12 @@ fn build_action(
                 name: name.clone(),
             }
         }
-        ActionEntry::Grab(GrabEntry { hand, at }) => Action::Grab {
+        ActionEntry::Grab(GrabEntry { hand, at, grip }) => Action::Grab {
+            grip: match grip {
+                GripName::Firm => Grip::Firm,
+                GripName::Axial => Grip::Axial,
+                GripName::Ball => Grip::Ball,
+            },
             hand: hand_index(&sub("hand"), *hand)?,
             at: finite_vec(&sub("at"), *at, unit.symbol())? * unit.to_metres(),
         },

@@ -3,8 +3,9 @@
 //! every mistake gives an error naming the field and the reason.
 
 use glam::DVec3;
+use pliant_assembly::clip::ClipKind;
 use pliant_assembly::ergonomics::{Duty, ErgonomicProfile, Population, PullPosture, PushPosture};
-use pliant_assembly::{Action, MovePath};
+use pliant_assembly::{Action, Grip, MovePath};
 use pliant_scene::{load_scene_file, load_scene_str, HoseEnd, LoadedScene};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
@@ -127,10 +128,17 @@ fn hand_actions_load_in_si() {
     let a = &s.timeline.actions;
     assert_eq!(a.len(), 8);
     match &a[1] {
-        Action::Grab { hand: 0, at } => assert!(close(*at, DVec3::new(0.5, 0.0, 0.0))),
+        Action::Grab { hand: 0, at, .. } => assert!(close(*at, DVec3::new(0.5, 0.0, 0.0))),
         other => panic!("unexpected {other:?}"),
     }
-    assert!(matches!(a[2], Action::Grab { hand: 7, .. }));
+    assert!(matches!(
+        a[2],
+        Action::Grab {
+            hand: 7,
+            grip: Grip::Firm,
+            ..
+        }
+    ));
     match &a[3] {
         Action::MoveHand {
             hand: 0,
@@ -268,6 +276,59 @@ fn clips_load_in_si_with_perpendicular_orientation() {
     assert_eq!(c1.spec.snap_force(), 40.0);
     assert_eq!(c1.hose, 0);
     assert_eq!(s.clips[1].hose, 1);
+    // no `type`: a fixed clip, as before types existed
+    assert_eq!(
+        (c1.spec.kind(), c1.spec.friction(), c1.spec.holding_force()),
+        (ClipKind::Fixed, 0.0, None)
+    );
+}
+
+/// Issue 11 item 2: a grab's grip (default firm).
+#[test]
+fn grabs_load_their_grip() {
+    for (grip, want) in [
+        ("axial", Grip::Axial),
+        ("ball", Grip::Ball),
+        ("firm", Grip::Firm),
+    ] {
+        let text = BASE.replacen(
+            "at = [500, 0, 0]",
+            &format!("at = [500, 0, 0]\ngrip = \"{grip}\""),
+            1,
+        );
+        let s = load_scene_str(&text, "grip.toml").unwrap_or_else(|e| panic!("{grip}: {e}"));
+        assert!(
+            matches!(s.timeline.actions[1], Action::Grab { grip, .. } if grip == want),
+            "{grip}"
+        );
+    }
+}
+
+/// Issue 11 item 5: clip types, a sliding guide's friction (default 0.4), the pull-out
+/// force, a cable tie without snap force.
+#[test]
+fn clip_types_load_with_friction_and_holding_force() {
+    let load = |to: &str| {
+        let text = BASE.replacen("snap_force_n = 40\n", to, 1);
+        load_scene_str(&text, "types.toml")
+            .unwrap_or_else(|e| panic!("{to}: {e}"))
+            .clips[0]
+            .spec
+    };
+    assert_eq!(
+        load("snap_force_n = 40\ntype = \"rotating\"\n").kind(),
+        ClipKind::Rotating
+    );
+    let guide = load("snap_force_n = 40\ntype = \"sliding\"\n");
+    assert_eq!((guide.kind(), guide.friction()), (ClipKind::Sliding, 0.4));
+    let guide =
+        load("snap_force_n = 40\ntype = \"sliding\"\nfriction = 0.25\nholding_force_n = 120\n");
+    assert_eq!(
+        (guide.friction(), guide.holding_force()),
+        (0.25, Some(120.0))
+    );
+    let tie = load("type = \"cable_tie\"\n");
+    assert_eq!((tie.kind(), tie.snap_force()), (ClipKind::CableTie, 0.0));
 }
 
 #[test]
@@ -328,6 +389,7 @@ const CASES: &[Case] = &[
     Case { what: "hand index out of range in release_hand", edits: &[("action = \"release_hand\"\nhand = 0", "action = \"release_hand\"\nhand = 12")], field: "timeline[5].hand", message: &["= 12: out of range"] },
     Case { what: "hand not a number", edits: &[("hand = 0\nat", "hand = \"left\"\nat")], field: "timeline[1].hand", message: &["invalid type"] },
     Case { what: "grab at a non-finite point", edits: &[("at = [500, 0, 0]", "at = [500, nan, 0]")], field: "timeline[1].at[1]", message: &["= nan mm: must be a finite number"] },
+    Case { what: "unknown grip", edits: &[("at = [500, 0, 0]", "at = [500, 0, 0]\ngrip = \"loose\"")], field: "timeline[1].grip", message: &["unknown variant `loose`"] },
     Case { what: "grab without at", edits: &[("at = [500, 0, 0]\n", "")], field: "timeline[1].at", message: &["missing field `at`"] },
     Case { what: "move_hand of a hand that never grabbed", edits: &[("hand = 0\nto", "hand = 3\nto")], field: "timeline[3].hand", message: &["timeline[3].hand = 3: cannot move a hand that holds nothing: no earlier `grab` with hand = 3"] },
     Case { what: "move_hand before the grab", edits: &[("action = \"grab\"\nhand = 7", "action = \"run\"\nduration_s = 1"), ("at = [300, 200, 0]\n", "")], field: "timeline[4].hand", message: &["cannot move a hand that holds nothing", "no earlier `grab`"] },
@@ -388,6 +450,11 @@ const CASES: &[Case] = &[
     Case { what: "duplicate clip names", edits: &[("name = \"c2\"", "name = \"c1\"")], field: "clips[1].name", message: &["\"c1\": duplicate name (also clips[0].name)"] },
     Case { what: "clip named like a stub", edits: &[("name = \"c2\"", "name = \"pump\"")], field: "clips[1].name", message: &["duplicate name (also stubs[0].name); stubs and clips share one set of names"] },
     Case { what: "unknown clip field", edits: &[("snap_force_n = 40", "snap_force = 40")], field: "clips[0].snap_force", message: &["unknown field `snap_force`"] },
+    Case { what: "unknown clip type", edits: &[("snap_force_n = 40", "snap_force_n = 40\ntype = \"glued\"")], field: "clips[0].type", message: &["unknown variant `glued`"] },
+    Case { what: "friction on a fixed clip", edits: &[("snap_force_n = 40", "snap_force_n = 40\nfriction = 0.3")], field: "clips[0].friction", message: &["only a sliding guide has friction"] },
+    Case { what: "negative guide friction", edits: &[("snap_force_n = 40", "snap_force_n = 40\ntype = \"sliding\"\nfriction = -0.3")], field: "clips[0].friction", message: &["must not be negative"] },
+    Case { what: "zero holding force", edits: &[("snap_force_n = 40", "snap_force_n = 40\nholding_force_n = 0")], field: "clips[0].holding_force_n", message: &["must be greater than 0"] },
+    Case { what: "rotating clip without snap force", edits: &[("snap_force_n = 40\n", "type = \"rotating\"\n")], field: "clips[0].snap_force_n", message: &["required for a clip of type rotating"] },
 ];
 
 fn edited(case: &Case) -> String {

@@ -19,6 +19,7 @@ fn two_handed_demo() -> LoadedScene {
     let mut scene = demo_scene().unwrap();
     let second = [
         Action::Grab {
+            grip: Default::default(),
             hand: 1,
             at: DVec3::new(-0.40, 0.10, 0.53),
         },
@@ -154,6 +155,7 @@ fn a_log_cut_short_by_a_crash_still_reads() {
     let file = start_session_folder(dir.path(), &scene, &cell).unwrap();
     cell.log_to(Box::new(file));
     cell.apply(Input::Grab {
+        grip: Default::default(),
         hand: 3,
         at: DVec3::new(-0.17, -0.6, 0.25),
     })
@@ -177,18 +179,40 @@ fn grab_rules_are_the_workcells() {
     let scene = demo_scene().unwrap();
     let mut cell = scene.workcell(WorkcellOptions::default()).unwrap();
     let end = DVec3::new(-0.17, -0.6, 0.25);
-    cell.apply(Input::Grab { hand: 0, at: end }).unwrap();
+    cell.apply(Input::Grab {
+        grip: Default::default(),
+        hand: 0,
+        at: end,
+    })
+    .unwrap();
     // another hand may not take the beam hand 0 holds …
-    let refused = cell.apply(Input::Grab { hand: 1, at: end }).unwrap_err();
+    let refused = cell
+        .apply(Input::Grab {
+            grip: Default::default(),
+            hand: 1,
+            at: end,
+        })
+        .unwrap_err();
     assert!(
         matches!(refused, Refusal::Invalid(ref m) if m.contains("hand 0 already holds")),
         "{refused}"
     );
     // … and a refused grab leaves the hand's previous grip alone
     let upper = DVec3::new(-0.40, 0.10, 0.53);
-    cell.apply(Input::Grab { hand: 1, at: upper }).unwrap();
+    cell.apply(Input::Grab {
+        grip: Default::default(),
+        hand: 1,
+        at: upper,
+    })
+    .unwrap();
     let before = cell.hand(1).unwrap().hand.element;
-    assert!(cell.apply(Input::Grab { hand: 1, at: end }).is_err());
+    assert!(cell
+        .apply(Input::Grab {
+            grip: Default::default(),
+            hand: 1,
+            at: end
+        })
+        .is_err());
     assert_eq!(cell.hand(1).unwrap().hand.element, before);
     // a fix on a node a hand holds is refused, nothing changes, nothing is logged
     let logged = cell.log().len();
@@ -208,6 +232,7 @@ fn grab_rules_are_the_workcells() {
     // non-finite input is refused
     assert!(cell
         .apply(Input::Grab {
+            grip: Default::default(),
             hand: 2,
             at: DVec3::new(f64::NAN, 0.0, 0.0)
         })

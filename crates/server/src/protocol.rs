@@ -14,8 +14,14 @@ pub const PROTOCOL_VERSION: u32 = 1;
 pub enum ClientMessage {
     /// Must come first; the server answers `welcome` and starts sending snapshots.
     Hello { version: u32 },
-    /// Grab the beam nearest to `position` [m] with hand `hand_id`.
-    Grab { hand_id: HandId, position: [f64; 3] },
+    /// Grab the beam nearest to `position` [m] with hand `hand_id`; `grip` "firm"
+    /// (default), "axial" or "ball" (the hose may turn in the hand).
+    Grab {
+        hand_id: HandId,
+        position: [f64; 3],
+        #[serde(default, skip_serializing_if = "pliant_assembly::Grip::is_firm")]
+        grip: pliant_assembly::Grip,
+    },
     /// Set the hand's target pose: position [m], orientation as a unit quaternion
     /// `[x, y, z, w]` (kept when omitted).
     Move {
@@ -138,6 +144,31 @@ pub fn error_json(code: ErrorCode, message: impl Into<String>) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_grab_takes_a_grip_firm_by_default() {
+        let grab = |text: &str| serde_json::from_str::<ClientMessage>(text).unwrap();
+        let m = grab(r#"{"type":"grab","hand_id":1,"position":[0,0,0],"grip":"ball"}"#);
+        assert!(matches!(
+            m,
+            ClientMessage::Grab {
+                grip: pliant_assembly::Grip::Ball,
+                ..
+            }
+        ));
+        let m = grab(r#"{"type":"grab","hand_id":1,"position":[0,0,0]}"#);
+        assert!(matches!(
+            m,
+            ClientMessage::Grab {
+                grip: pliant_assembly::Grip::Firm,
+                ..
+            }
+        ));
+        assert!(serde_json::from_str::<ClientMessage>(
+            r#"{"type":"grab","hand_id":1,"position":[0,0,0],"grip":"loose"}"#
+        )
+        .is_err());
+    }
 
     #[test]
     fn messages_parse_as_documented() {

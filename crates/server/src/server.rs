@@ -679,7 +679,11 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
             duty.as_deref(),
             moments_decide,
         )?),
-        ClientMessage::Grab { hand_id, position } => {
+        ClientMessage::Grab {
+            hand_id,
+            position,
+            grip,
+        } => {
             let position = point(position)?;
             lock(&shared.ownership)
                 .grab(client, hand_id, session.epoch())
@@ -687,6 +691,7 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
             Command::Grab {
                 hand: hand_id,
                 position,
+                grip,
             }
         }
         ClientMessage::Move {

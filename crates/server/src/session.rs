@@ -50,6 +50,7 @@ pub enum Command {
     Grab {
         hand: HandId,
         position: DVec3,
+        grip: pliant_assembly::Grip,
     },
     Move {
         hand: HandId,
@@ -419,10 +420,18 @@ impl Sim {
 
     fn apply(&mut self, c: Command) {
         match c {
-            Command::Grab { hand, position } => {
+            Command::Grab {
+                hand,
+                position,
+                grip,
+            } => {
                 self.notice = self
                     .cell
-                    .apply(Input::Grab { hand, at: position })
+                    .apply(Input::Grab {
+                        grip,
+                        hand,
+                        at: position,
+                    })
                     .err()
                     .map(|r| format!("hand {hand}: {r}"));
             }

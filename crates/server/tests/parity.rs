@@ -23,7 +23,14 @@ const HANG_GUARD: Duration = Duration::from_secs(300);
 fn script() -> Vec<(u64, Input)> {
     let end = DVec3::new(-0.17, -0.6, 0.25);
     vec![
-        (0, Input::Grab { hand: 7, at: end }),
+        (
+            0,
+            Input::Grab {
+                grip: Default::default(),
+                hand: 7,
+                at: end,
+            },
+        ),
         (
             40,
             Input::AimHand {
@@ -34,7 +41,14 @@ fn script() -> Vec<(u64, Input)> {
         ),
         (60, Input::ReleaseHand { hand: 7 }),
         (30, Input::Reset),
-        (0, Input::Grab { hand: 7, at: end }),
+        (
+            0,
+            Input::Grab {
+                grip: Default::default(),
+                hand: 7,
+                at: end,
+            },
+        ),
     ]
 }
 const TAIL: u64 = 20;
@@ -107,7 +121,11 @@ async fn runner_server_and_workcell_agree_bit_for_bit_for_each_solver() {
             }
             session
                 .send(match input {
-                    Input::Grab { hand, at } => Command::Grab { hand, position: at },
+                    Input::Grab { hand, at, .. } => Command::Grab {
+                        hand,
+                        position: at,
+                        grip: Default::default(),
+                    },
                     Input::AimHand {
                         hand,
                         position,
@@ -151,7 +169,8 @@ async fn runner_server_and_workcell_agree_bit_for_bit_for_each_solver() {
                 });
             }
             actions.push(match input {
-                Input::Grab { hand, at } => Action::Grab {
+                Input::Grab { hand, at, grip } => Action::Grab {
+                    grip,
                     hand: hand as usize,
                     at,
                 },

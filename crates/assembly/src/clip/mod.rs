@@ -4,9 +4,12 @@
 
 mod error;
 mod force;
+mod hold;
+mod kind;
 mod spec;
 mod state;
 
 pub use error::ClipError;
+pub use kind::ClipKind;
 pub use spec::{ClipSpec, RawClipSpec};
 pub use state::{ClipObservation, ClipState, ClipTolerance};

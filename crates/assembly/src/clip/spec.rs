@@ -9,7 +9,8 @@
 //! opening when its centre is at |n| + h from p, h = √(r² − (d₁/2)²) (eq. 4.109).
 
 use super::error::ClipError;
-use glam::DVec3;
+use super::kind::ClipKind;
+use glam::{DMat3, DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
 /// Smallest sine of the angle between `opening` and `orientation` accepted.
@@ -26,6 +27,9 @@ pub struct ClipSpec {
     opening_width: f64,
     inner_diameter: f64,
     snap_force: f64,
+    kind: ClipKind,
+    friction: f64,
+    holding_force: Option<f64>,
 }
 
 /// A clip as written in a file: `opening` may have any non-zero length, `orientation`
@@ -46,6 +50,15 @@ pub struct RawClipSpec {
     /// Snap force k [N]: the force at the opening (dissertation section 5.3.1: the force
     /// needed to stretch the clip open to d₂; given by the user).
     pub snap_force: f64,
+    /// The fixing's type (default fixed).
+    #[serde(default)]
+    pub kind: ClipKind,
+    /// Coulomb coefficient μ along the free translation (sliding guide) [-].
+    #[serde(default)]
+    pub friction: f64,
+    /// Pull-out force [N]: a seated hose pulled out harder comes loose (None: it stays).
+    #[serde(default)]
+    pub holding_force: Option<f64>,
 }
 
 impl TryFrom<RawClipSpec> for ClipSpec {
@@ -58,7 +71,8 @@ impl TryFrom<RawClipSpec> for ClipSpec {
             raw.opening_width,
             raw.inner_diameter,
             raw.snap_force,
-        )
+        )?
+        .with_fixing(raw.kind, raw.friction, raw.holding_force)
     }
 }
 
@@ -71,6 +85,9 @@ impl From<ClipSpec> for RawClipSpec {
             opening_width: c.opening_width,
             inner_diameter: c.inner_diameter,
             snap_force: c.snap_force,
+            kind: c.kind,
+            friction: c.friction,
+            holding_force: c.holding_force,
         }
     }
 }
@@ -123,7 +140,59 @@ impl ClipSpec {
             opening_width,
             inner_diameter,
             snap_force,
+            kind: ClipKind::Fixed,
+            friction: 0.0,
+            holding_force: None,
         })
+    }
+
+    /// The same clip as a fixing of type `kind` (see [`ClipKind`]) with Coulomb
+    /// coefficient `friction` along its free translation (≥ 0; only a sliding guide has
+    /// one) and pull-out force `holding_force` [N] (> 0, or None).
+    pub fn with_fixing(
+        mut self,
+        kind: ClipKind,
+        friction: f64,
+        holding_force: Option<f64>,
+    ) -> Result<Self, ClipError> {
+        if !(friction.is_finite() && friction >= 0.0) {
+            return Err(refuse("friction", "must be finite and >= 0"));
+        }
+        if friction > 0.0 && kind.free_translation() == [false; 3] {
+            return Err(refuse(
+                "friction",
+                "only a sliding guide (free along the hose) has friction",
+            ));
+        }
+        if holding_force.is_some_and(|h| !(h.is_finite() && h > 0.0)) {
+            return Err(refuse("holding_force", "must be finite and positive"));
+        }
+        self.kind = kind;
+        self.friction = friction;
+        self.holding_force = holding_force;
+        Ok(self)
+    }
+
+    /// The fixing's type.
+    pub fn kind(&self) -> ClipKind {
+        self.kind
+    }
+
+    /// Coulomb coefficient μ along the free translation [-].
+    pub fn friction(&self) -> f64 {
+        self.friction
+    }
+
+    /// Pull-out force [N], if the clip has one.
+    pub fn holding_force(&self) -> Option<f64> {
+        self.holding_force
+    }
+
+    /// The fixing's frame in the VEC convention ([`ClipKind`]): X = Y × Z, Y = l (along
+    /// the hose), Z = n (against the mounting direction).
+    pub fn frame(&self) -> DQuat {
+        let (y, z) = (self.orientation, self.opening);
+        DQuat::from_mat3(&DMat3::from_cols(y.cross(z), y, z)).normalize()
     }
 
     /// Seat centre p [m].

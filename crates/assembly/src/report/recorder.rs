@@ -127,6 +127,7 @@ impl Recorder {
             let kind = match case {
                 LoadCase::Fix(_) => "fix",
                 LoadCase::Drive(_) => "drive",
+                LoadCase::Support(_) => "support",
                 LoadCase::DeadLoad(_) => continue,
             };
             let g = case.node();

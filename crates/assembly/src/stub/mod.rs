@@ -10,6 +10,6 @@ mod state;
 
 pub use bead::{wedge_factor, Bead, Sense};
 pub use error::StubError;
-pub use press_fit::{contact_pressure, PressFit};
+pub use press_fit::{contact_pressure, PressFit, MAX_PROFILE};
 pub use spec::{Friction, RawStubSpec, StubSpec};
 pub use state::{StubObservation, StubState, StubTolerance};

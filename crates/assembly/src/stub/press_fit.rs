@@ -26,6 +26,18 @@ use super::spec::{Friction, StubSpec};
 use pliant_core::{Material, Section};
 use std::f64::consts::PI;
 
+/// Most beads or barbs on one stub.
+pub const MAX_PROFILE: usize = 8;
+
+/// Placeholder of an unused profile slot (never read).
+const EMPTY_BEAD: Bead = Bead {
+    at: 0.0,
+    height: 0.0,
+    width: 0.0,
+    entry_angle: 0.0,
+    back_angle: 0.0,
+};
+
 /// Lamé contact pressure p [Pa] of a hose (bore radius `r_inner`, outer radius `r_outer`,
 /// modulus `modulus`, Poisson's ratio `poisson`) on a rigid stub of radius `r_stub`
 /// (SPEC L6). 0 when r_stub ≤ r_inner.
@@ -69,8 +81,11 @@ pub struct PressFit {
     stub: StubSpec,
     interference: f64,
     pressure: f64,
-    /// A bead and the Lamé pressure of the hose wall on its crest [Pa] (SPEC V4).
-    bead: Option<(Bead, f64)>,
+    /// The stub's profile (SPEC V4, issue 11 item 5): beads or barbs along the axis in
+    /// order of depth, each with the Lamé pressure of the hose wall on its crest [Pa];
+    /// the first `profile_len` slots are used (a fixed array keeps the fit `Copy`).
+    profile: [(Bead, f64); MAX_PROFILE],
+    profile_len: usize,
     /// Hose radii and material, for the crest pressure.
     hose: (f64, f64, f64, f64),
 }
@@ -95,39 +110,61 @@ impl PressFit {
             stub: *stub,
             interference: r_s - r_i,
             pressure,
-            bead: None,
+            profile: [(EMPTY_BEAD, 0.0); MAX_PROFILE],
+            profile_len: 0,
             hose: (modulus, poisson, r_i, r_a),
         })
     }
 
-    /// The same fit with a bead on the stub (SPEC V4; see [`Bead`]); the crest pressure
-    /// is the Lamé pressure at the crest radius r_s + h.
+    /// The same fit with one more bead or barb on the stub, deeper than the ones before
+    /// (SPEC V4; see [`Bead`]); its crest pressure is the Lamé pressure at the crest
+    /// radius r_s + h. Errors: more than [`MAX_PROFILE`] beads, or a bead starting before
+    /// the previous one ends (`bead.at`).
     pub fn with_bead(mut self, bead: Bead) -> Result<Self, StubError> {
+        let refuse = |reason| StubError::Spec {
+            field: "bead.at",
+            reason,
+        };
+        if self.profile_len == MAX_PROFILE {
+            return Err(StubError::Spec {
+                field: "profile",
+                reason: "at most 8 beads or barbs",
+            });
+        }
+        if self.beads().last().is_some_and(|prev| bead.at < prev.end()) {
+            return Err(refuse(
+                "must not start before the previous bead's back flank ends",
+            ));
+        }
         let (e, nu, r_i, r_a) = self.hose;
         let p = contact_pressure(e, nu, r_i, r_a, self.stub.radius() + bead.height)?;
-        self.bead = Some((bead, p));
+        self.profile[self.profile_len] = (bead, p);
+        self.profile_len += 1;
         Ok(self)
     }
 
-    /// The bead, if the stub has one.
+    /// The first bead, if the stub has one.
     pub fn bead(&self) -> Option<&Bead> {
-        self.bead.as_ref().map(|(b, _)| b)
+        self.beads().next()
+    }
+
+    /// The profile's beads and barbs, from the mouth inwards.
+    pub fn beads(&self) -> impl Iterator<Item = &Bead> {
+        self.profile[..self.profile_len].iter().map(|(b, _)| b)
     }
 
     /// Axial force [N] to move the hose in `sense` at insertion depth `depth`: the
-    /// cylinder's [`Self::axial_force`] plus the bead's ([`Bead::force`]).
+    /// cylinder's [`Self::axial_force`] plus each bead's ([`Bead::force`]; the forces add:
+    /// crests passed rub, the flank under the lip is climbed).
     pub fn axial_force_moving(&self, depth: f64, friction: Friction, sense: Sense) -> f64 {
         let base = self.axial_force(depth, friction);
         let l = self.stub.clamp_depth(depth);
-        base + self.bead.map_or(0.0, |(b, p)| {
-            b.force(
-                l,
-                sense,
-                p,
-                self.stub.radius(),
-                self.stub.friction(friction),
-            )
-        })
+        let gamma = self.stub.friction(friction);
+        let r_s = self.stub.radius();
+        base + self.profile[..self.profile_len]
+            .iter()
+            .map(|(b, p)| b.force(l, sense, *p, r_s, gamma))
+            .sum::<f64>()
     }
 
     /// The stub.

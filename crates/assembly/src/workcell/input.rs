@@ -55,7 +55,13 @@ pub enum Input {
     RemoveLoad { id: u64 },
     /// I1: the hand grabs the beam nearest to `at` (letting go of what it held). Refused
     /// if another hand holds that beam; the hand then keeps its grip.
-    Grab { hand: HandNumber, at: DVec3 },
+    /// `grip`: firm (six degrees of freedom) or loose ([`crate::Grip`]).
+    Grab {
+        hand: HandNumber,
+        at: DVec3,
+        #[serde(default, skip_serializing_if = "crate::Grip::is_firm")]
+        grip: crate::Grip,
+    },
     /// I2, scripted: the hand moves through `waypoints` while turning by `rotation` over
     /// `duration` seconds from now, with a smooth start and stop.
     MoveHand {

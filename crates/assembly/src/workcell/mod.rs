@@ -658,7 +658,7 @@ impl Workcell {
                 self.forget_removed_names();
                 Ok(Applied::Done)
             }
-            Input::Grab { hand, at } => {
+            Input::Grab { hand, at, grip } => {
                 let at = finite(*at, "the grab point")?;
                 let element = nearest_beam(&self.model, &self.state, at)
                     .ok_or_else(|| Refusal::Invalid("there is no beam to grab".into()))?;
@@ -680,7 +680,7 @@ impl Workcell {
                 for n in nodes {
                     self.remove_user_loads(n, |c| !matches!(c, LoadCase::DeadLoad(_)));
                 }
-                let grabbed = Hand::grab(&self.model, &mut self.state, at)
+                let grabbed = Hand::grab_with(&self.model, &mut self.state, at, *grip)
                     .ok_or_else(|| Refusal::Invalid("there is no beam to grab".into()))?;
                 let element = grabbed.element;
                 self.hands.insert(

@@ -55,8 +55,25 @@ pub fn step(model: &Model, state: &mut State) {
             state.moment[d.node] += moment;
         }
     }
-    // Kinematic load cases, in order (a later one on the same node wins).
+    // a support moved (by a hand) wakes its hose below, as a moving fix does
     let mut moved_any = false;
+    for (_, case) in state.loads.iter_mut() {
+        if let LoadCase::Support(s) = case {
+            if s.moved && state.sleep.enabled {
+                state.sleep.node_asleep[s.node] = false;
+                moved_any = true;
+            }
+            s.moved = false;
+        }
+    }
+    // Fixings' supports: springs in their fixed directions (reaction = their load), the
+    // slip anchors accepted with this step's forces
+    crate::loads::support_reactions(model, state, true);
+    for i in 0..state.x.len() {
+        state.force[i] += state.reaction_force[i];
+        state.moment[i] += state.reaction_moment[i];
+    }
+    // Kinematic load cases, in order (a later one on the same node wins).
     for (_, case) in state.loads.iter() {
         let Some((x_new, q_new)) = case.prescribed_pose(t_next) else {
             continue;

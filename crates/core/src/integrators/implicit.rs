@@ -387,6 +387,7 @@ impl ImplicitSolver {
                 state.reaction_moment[i] = DVec3::ZERO;
             }
         }
+        crate::loads::support_reactions(model, state, true);
         sys.commit_friction(state);
         sync_bodies(model, state);
         state.time = t_next;

@@ -322,5 +322,6 @@ fn finish(model: &Model, state: &mut State, sys: &NewtonSystem) {
             state.reaction_moment[i] = DVec3::ZERO;
         }
     }
+    crate::loads::support_reactions(model, state, true);
     sync_bodies(model, state);
 }

@@ -6,11 +6,13 @@ mod dead_load;
 mod drive;
 mod fix;
 mod motion;
+mod support;
 
 pub use dead_load::{DeadLoad, LoadRamp};
 pub use drive::Drive;
 pub use fix::Fix;
 pub use motion::Motion;
+pub use support::{support_reactions, Support, SupportLoad, SUPPORT_DAMPING, SUPPORT_FACTOR};
 
 use glam::{DQuat, DVec3};
 use serde::Serialize;
@@ -28,6 +30,9 @@ pub enum LoadCase {
     Drive(Drive),
     /// Constant force and moment at a node (global axes).
     DeadLoad(DeadLoad),
+    /// A fixing: node held by springs in some directions of a frame, free in the others
+    /// (not kinematic: the node moves under its loads).
+    Support(Support),
 }
 
 impl LoadCase {
@@ -36,6 +41,7 @@ impl LoadCase {
             LoadCase::Fix(f) => f.node,
             LoadCase::Drive(d) => d.node,
             LoadCase::DeadLoad(d) => d.node,
+            LoadCase::Support(s) => s.node,
         }
     }
 
@@ -44,7 +50,7 @@ impl LoadCase {
         match self {
             LoadCase::Fix(f) => Some((f.position, f.orientation)),
             LoadCase::Drive(d) => Some(d.pose_at(t)),
-            LoadCase::DeadLoad(_) => None,
+            LoadCase::DeadLoad(_) | LoadCase::Support(_) => None,
         }
     }
 }
@@ -91,6 +97,11 @@ impl LoadCases {
         self.cases.iter()
     }
 
+    /// The load cases, for updating them in place (e.g. a support's slip anchor).
+    pub fn iter_mut(&mut self) -> impl Iterator<Item = &mut (LoadCaseId, LoadCase)> {
+        self.cases.iter_mut()
+    }
+
     pub fn is_empty(&self) -> bool {
         self.cases.is_empty()
     }
@@ -99,7 +110,7 @@ impl LoadCases {
     pub fn holds(&self, node: usize) -> bool {
         self.cases
             .iter()
-            .any(|(_, c)| c.node() == node && !matches!(c, LoadCase::DeadLoad(_)))
+            .any(|(_, c)| c.node() == node && c.prescribed_pose(0.0).is_some())
     }
 
     /// Whether any drive is still moving at time `t`.

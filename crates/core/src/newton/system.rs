@@ -7,6 +7,8 @@
 //!   ([`crate::tangent`]), with stiffness-proportional damping through the velocities;
 //! * gravity m g (constant) and mass-proportional damping −α m v, −α I ω;
 //! * dead loads (constant forces and moments in global axes — no tangent);
+//! * fixings' supports ([`crate::loads::Support`]): springs in the fixed directions of
+//!   their frame with their diagonal tangent, friction along the free ones;
 //! * stiffened sections (SPEC M6): their elements with axial, bending and torsion
 //!   stiffness × [`RIGID_FACTOR`] (10⁴) — rigid to 1e-4 relative, where the explicit solver
 //!   uses an exact rigid body (its time step forbids stiff springs; Newton does not care);
@@ -25,7 +27,7 @@ use super::convergence::LoadScale;
 use crate::contact::friction::FrictionResponse;
 use crate::contact::{hose_contact_forces_with, ContactPair};
 use crate::element::{BeamElement, ElementEnds};
-use crate::loads::LoadCase;
+use crate::loads::{LoadCase, Support, SupportLoad};
 use crate::tangent::element_tangent;
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
@@ -66,6 +68,24 @@ pub struct NewtonSystem {
     /// Scratch of the linear solve.
     base_rhs: Vec<Vector6<f64>>,
     work: Vec<Vector6<f64>>,
+}
+
+/// A support's load on its node at the state's configuration ([`Support::load`]).
+fn support_load(model: &Model, state: &State, s: &Support, rate_factor: f64) -> SupportLoad {
+    let i = s.node;
+    s.load(
+        state.x[i],
+        state.q[i],
+        state.v[i],
+        state.w[i],
+        (model.mass[i], model.inertia[i], model.time_step),
+        rate_factor,
+    )
+}
+
+/// A glam 3×3 matrix as nalgebra's.
+fn mat3(m: glam::DMat3) -> Matrix3<f64> {
+    Matrix3::from_column_slice(&m.to_cols_array())
 }
 
 /// Inner iterations of the contact coupling in [`NewtonSystem::solve_linear`].
@@ -171,11 +191,25 @@ impl NewtonSystem {
             }
         }
         for (_, case) in state.loads.iter() {
-            if let LoadCase::DeadLoad(d) = case {
-                let (force, moment) = d.at(state.time);
-                self.force[d.node] += force;
-                self.moment[d.node] += moment;
-                scale.include(force.length(), moment.length());
+            match case {
+                LoadCase::DeadLoad(d) => {
+                    let (force, moment) = d.at(state.time);
+                    self.force[d.node] += force;
+                    self.moment[d.node] += moment;
+                    scale.include(force.length(), moment.length());
+                }
+                LoadCase::Support(s) => {
+                    let i = s.node;
+                    let l = support_load(model, state, s, rate_factor);
+                    self.force[i] += l.force;
+                    self.moment[i] += l.moment;
+                    let mut t = self.matrix.diag[i].fixed_view_mut::<3, 3>(0, 0);
+                    t += mat3(l.tangent_translation);
+                    let mut r = self.matrix.diag[i].fixed_view_mut::<3, 3>(3, 3);
+                    r += mat3(l.tangent_rotation);
+                    scale.include(l.force.length(), l.moment.length());
+                }
+                _ => {}
             }
         }
         if !model.environment.is_empty() {
@@ -280,8 +314,10 @@ impl NewtonSystem {
             e -= model.mass[i] * model.gravity.dot(state.x[i]);
         }
         for (_, case) in state.loads.iter() {
-            if let LoadCase::DeadLoad(d) = case {
-                e -= d.at(state.time).0.dot(state.x[d.node]);
+            match case {
+                LoadCase::DeadLoad(d) => e -= d.at(state.time).0.dot(state.x[d.node]),
+                LoadCase::Support(s) => e += support_load(model, state, s, 0.0).energy,
+                _ => {}
             }
         }
         if model.hose_contact.active {

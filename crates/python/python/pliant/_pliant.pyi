@@ -223,6 +223,7 @@ class Simulation:
         *,
         hose: Optional[HoseRef] = None,
         node: Optional[int] = None,
+        grip: str = "firm",
     ) -> Tuple[str, int, int]: ...
     def move_hand(
         self,

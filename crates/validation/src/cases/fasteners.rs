@@ -95,6 +95,7 @@ pub fn run_stub() -> Vec<Check> {
     };
     let actions = vec![
         Action::Grab {
+            grip: Default::default(),
             hand: 0,
             at: DVec3::new(len - 0.01, 0.0, 0.0),
         },
@@ -208,6 +209,7 @@ pub fn run_clip() -> Vec<Check> {
     let mut state = State::at_rest(&model);
     let actions = vec![
         Action::Grab {
+            grip: Default::default(),
             hand: 0,
             at: seat + DVec3::new(0.0, 0.0, lift),
         },
