@@ -7,6 +7,18 @@ fn pliant() -> Command {
     Command::new(env!("CARGO_BIN_EXE_pliant"))
 }
 
+/// `pliant run --quiet [extra…] SCENE --out OUT`, waited for.
+fn run_scene(scene: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
+    pliant()
+        .args(["run", "--quiet"])
+        .args(extra)
+        .arg(scene)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
 fn examples() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"))
 }
@@ -118,13 +130,7 @@ fn hanging_hose_reaction_equals_its_weight() {
         "[[timeline]]\naction = \"settle\"\nkinetic_energy_j = 1e-14\nmax_duration_s = 60\n",
     );
     let out = dir.path().join("out");
-    let o = pliant()
-        .args(["run", "--quiet"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = run_scene(&scene, &out, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
@@ -147,13 +153,7 @@ fn bad_scene_names_the_field_and_fails() {
         .unwrap()
         .replace("d_inner = 30", "d_inner = 45");
     std::fs::write(&scene, text).unwrap();
-    let o = pliant()
-        .args(["run", "--quiet"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(dir.path().join("o"))
-        .output()
-        .unwrap();
+    let o = run_scene(&scene, &dir.path().join("o"), &[]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("d_inner") && err.contains("d_outer"), "{err}");
@@ -181,13 +181,7 @@ fn diverging_run_stops_with_step_and_cause_and_no_nan() {
         "[[timeline]]\naction = \"move\"\nhose = \"h\"\nnode = -1\nby = [0, 0, 50000]\nduration_s = 0.001\n",
     );
     let out = dir.path().join("out");
-    let o = pliant()
-        .args(["run", "--quiet"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = run_scene(&scene, &out, &[]);
     assert_eq!(
         o.status.code(),
         Some(3),
@@ -297,13 +291,7 @@ fn serve_on_the_network_prints_a_token_and_a_warning() {
 fn memory_limit_refuses_before_allocating_and_runs_state_their_cost() {
     let dir = tempfile::tempdir().unwrap();
     let scene = write_line_scene(dir.path(), "big.toml", 20_000, 20_000.0, "", "");
-    let o = pliant()
-        .args(["run", "--quiet", "--max-memory", "50M"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(dir.path().join("o"))
-        .output()
-        .unwrap();
+    let o = run_scene(&scene, &dir.path().join("o"), &["--max-memory", "50M"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
@@ -330,13 +318,7 @@ fn memory_limit_refuses_before_allocating_and_runs_state_their_cost() {
         "",
         "[[timeline]]\naction = \"run\"\nduration_s = 0.01\n",
     );
-    let o = pliant()
-        .args(["run", "--quiet"])
-        .arg(&small)
-        .arg("--out")
-        .arg(dir.path().join("s"))
-        .output()
-        .unwrap();
+    let o = run_scene(&small, &dir.path().join("s"), &[]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");
     assert!(
@@ -439,13 +421,7 @@ fn meaningless_values_are_refused_and_outputs_never_hold_non_finite_numbers() {
     ];
     for (from, to, field, value) in refused {
         let scene = demo_variant(dir.path(), "refused.toml", |t| t.replacen(from, to, 1));
-        let o = pliant()
-            .args(["run", "--quiet"])
-            .arg(&scene)
-            .arg("--out")
-            .arg(dir.path().join("r"))
-            .output()
-            .unwrap();
+        let o = run_scene(&scene, &dir.path().join("r"), &[]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(err.contains(field) && err.contains(value), "{err}");
@@ -459,26 +435,14 @@ fn meaningless_values_are_refused_and_outputs_never_hold_non_finite_numbers() {
         )
     });
     let out = dir.path().join("damped");
-    let o = pliant()
-        .args(["run", "--quiet"])
-        .arg(&damped)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = run_scene(&damped, &out, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // a hand that yanks the hose end 50 m in 1 ms: the run diverges (exit 3)
     let yank = demo_variant(dir.path(), "yank.toml", |t| {
         format!("{t}\n[[timeline]]\naction = \"move\"\nhose = \"upper\"\nnode = -1\nby = [0, 0, 50000]\nduration_s = 0.001\n")
     });
     let yanked = dir.path().join("yank");
-    let o = pliant()
-        .args(["run", "--quiet"])
-        .arg(&yank)
-        .arg("--out")
-        .arg(&yanked)
-        .output()
-        .unwrap();
+    let o = run_scene(&yank, &yanked, &[]);
     assert_eq!(
         o.status.code(),
         Some(3),

@@ -105,23 +105,19 @@ impl Budget {
 
     fn check(&self, field: &str) -> Result<(), FieldError> {
         let (e, l) = (&self.estimate, &self.limits);
-        if e.elements > l.max_elements {
-            return Err(FieldError::about(
-                field,
-                format!(
-                    "the scene up to here has {} elements; at most {} are allowed here (raise with {})",
-                    e.elements, l.max_elements, l.raise_with
-                ),
-            ));
-        }
-        if e.triangles > l.max_triangles {
-            return Err(FieldError::about(
-                field,
-                format!(
-                    "the scene up to here has {} part triangles; at most {} are allowed here (raise with {})",
-                    e.triangles, l.max_triangles, l.raise_with
-                ),
-            ));
+        for (count, max, what) in [
+            (e.elements, l.max_elements, "elements"),
+            (e.triangles, l.max_triangles, "part triangles"),
+        ] {
+            if count > max {
+                return Err(FieldError::about(
+                    field,
+                    format!(
+                        "the scene up to here has {count} {what}; at most {max} are allowed here (raise with {})",
+                        l.raise_with
+                    ),
+                ));
+            }
         }
         let need = self.estimate.memory_bytes();
         if need <= self.limits.max_memory_bytes {
