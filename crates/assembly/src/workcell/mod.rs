@@ -828,8 +828,15 @@ impl Workcell {
                 return Err(self.fail(d));
             }
         }
-        let wants = obs.wants_state(self.state.time)
-            && check_for(self.solver.kind(), &self.model, &self.state).is_ok();
+        // states shown to the observer or judged by the checks are checked ones (a
+        // blow-up between two health checks is neither), checked once for both
+        let (shown, judged) = (
+            obs.wants_state(self.state.time),
+            self.checks.due(self.state.time),
+        );
+        let healthy =
+            (shown || judged) && check_for(self.solver.kind(), &self.model, &self.state).is_ok();
+        let wants = shown && healthy;
         self.hand_records.clear();
         for (&k, h) in &self.hands {
             let r = self.assess(k, h);
@@ -841,10 +848,7 @@ impl Workcell {
             (&stats, self.solver.stability_events()),
             &self.hand_records,
         );
-        // only checked states are judged (a blow-up between two health checks is not)
-        if self.checks.due(self.state.time)
-            && check_for(self.solver.kind(), &self.model, &self.state).is_ok()
-        {
+        if judged && healthy {
             self.checks.observe(&self.model, &self.state);
         }
         if wants {
