@@ -266,3 +266,108 @@ fn a_checkpoint_taken_mid_study_continues_bit_for_bit_for_each_solver() {
         assert_same(&cell, &finished);
     }
 }
+
+/// Issue 12, item 6: a divergence is rolled back to the newest healthy recovery point;
+/// only the hand on the diverging hose is released, the other holds on, the study goes
+/// on, and a replay of the log (with the rollback in it) is bit for bit the same.
+#[test]
+fn a_divergence_is_rolled_back_and_only_the_hand_involved_lets_go() {
+    let scene = demo_scene().unwrap();
+    let opts = WorkcellOptions {
+        solver: Some(SolverKind::Explicit),
+        recovery: true,
+        ..Default::default()
+    };
+    let mut live = scene.workcell(opts).unwrap();
+    let grab = |hand, at: [f64; 3]| Input::Grab {
+        hand,
+        at: DVec3::from_array(at) * 1e-3,
+        grip: Default::default(),
+    };
+    live.apply(grab(0, [-170.0, -600.0, 250.0])).unwrap(); // the lower hose's free end
+    live.apply(grab(1, [-400.0, 100.0, 530.0])).unwrap(); // the upper hose
+    live.apply(Input::AimHand {
+        hand: 1,
+        position: DVec3::new(-0.40, 0.12, 0.56),
+        orientation: None,
+    })
+    .unwrap();
+    live.steps(live.steps_in(0.6), &mut NoObserver).unwrap();
+    let upper = live.hand(1).unwrap().hand.hose;
+    let lower = live.hand(0).unwrap().hand.hose;
+    assert_ne!(upper, lower);
+    // hand 0 tears its end 1 m away within 0.1 ms: the explicit step cannot follow
+    live.apply(Input::MoveHand {
+        hand: 0,
+        waypoints: vec![DVec3::new(-0.17, -0.6, 1.25)],
+        rotation: DVec3::ZERO,
+        duration: 1e-4,
+    })
+    .unwrap();
+    let before = live.state().time;
+    let divergence = (0..100_000)
+        .find_map(|_| live.step(&mut NoObserver).err())
+        .expect("the tear diverges");
+    assert_eq!(divergence.hose, live.model().hoses[lower].name);
+    assert!(matches!(
+        live.apply(Input::Fix {
+            node: pliant_assembly::NodeRef { hose: 0, node: 0 }
+        }),
+        Err(Refusal::Diverged(_))
+    ));
+    let rolled = match live.apply(Input::Rollback).unwrap() {
+        pliant_assembly::Applied::RolledBack(r) => r,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(rolled.released, vec![0], "only the hand on the diverging hose");
+    assert!(rolled.to_time <= before && rolled.to_time > before - 1.01);
+    assert_eq!(live.state().time, rolled.to_time);
+    assert!(live.hand(0).is_err(), "hand 0 let go");
+    assert_eq!(live.hand(1).unwrap().hand.hose, upper, "hand 1 holds on");
+    live.check().expect("the state rolled back to is healthy");
+    // the session goes on: hand 1 keeps working, the study stays healthy
+    live.apply(Input::AimHand {
+        hand: 1,
+        position: DVec3::new(-0.40, 0.10, 0.58),
+        orientation: None,
+    })
+    .unwrap();
+    live.steps(live.steps_in(0.3), &mut NoObserver).unwrap();
+    assert!(live.log().iter().any(|s| s.input == Input::Rollback));
+    // the replay meets the same divergence at the same tick and rolls back the same way
+    let mut again = scene.workcell(opts).unwrap();
+    replay(&mut again, live.log(), live.tick(), &mut NoObserver).unwrap();
+    assert_same(&live, &again);
+}
+
+/// Without recovery points (a batch run) a rollback is refused, and reset is the way on.
+#[test]
+fn a_rollback_without_recovery_points_is_refused() {
+    let scene = demo_scene().unwrap();
+    let mut cell = scene.workcell(options(SolverKind::Explicit)).unwrap();
+    assert!(matches!(
+        cell.apply(Input::Rollback),
+        Err(Refusal::Invalid(_))
+    ));
+    cell.apply(Input::Grab {
+        hand: 0,
+        at: DVec3::new(-0.17, -0.6, 0.25),
+        grip: Default::default(),
+    })
+    .unwrap();
+    cell.steps(cell.steps_in(0.6), &mut NoObserver).unwrap();
+    cell.apply(Input::MoveHand {
+        hand: 0,
+        waypoints: vec![DVec3::new(-0.17, -0.6, 1.25)],
+        rotation: DVec3::ZERO,
+        duration: 1e-4,
+    })
+    .unwrap();
+    assert!((0..100_000).any(|_| cell.step(&mut NoObserver).is_err()));
+    assert!(matches!(
+        cell.apply(Input::Rollback),
+        Err(Refusal::Missing(_))
+    ));
+    cell.apply(Input::Reset).unwrap();
+    assert_eq!(cell.state().time, 0.0);
+}

@@ -19,7 +19,7 @@ use pliant_assembly::fasteners::FastenerSample;
 use pliant_assembly::report::{replay_with_outputs, Summary};
 use pliant_assembly::workcell::log::{InputLog, LogHeader};
 use pliant_assembly::workcell::StampedInput;
-use pliant_assembly::{Input, NoObserver, Stage, Verdict, Workcell, WorkcellOptions};
+use pliant_assembly::{Applied, Input, NoObserver, Stage, Verdict, Workcell, WorkcellOptions};
 use pliant_core::SolverKind;
 use pliant_scene::session::{start_session_folder, write_session_folder};
 use pliant_scene::LoadedScene;
@@ -125,6 +125,7 @@ impl Session {
         let cell_options = WorkcellOptions {
             solver: options.solver,
             sleeping: true, // hoses far from the action sleep (SPEC I6)
+            recovery: true, // a divergence is rolled back, not reset (issue 12, item 6)
             ..Default::default()
         };
         let mut cell = Workcell::new(setup, cell_options).map_err(SessionError::Model)?;
@@ -280,6 +281,8 @@ struct Sim {
     fastener_forces: Vec<FastenerSample>,
     /// Why the simulation last diverged, until the next client reset.
     diverged: Option<String>,
+    /// Divergences rolled back so far (each also in the log and the notice).
+    rollbacks: u64,
     paused: bool,
     epoch: Arc<AtomicU64>,
     notice: Option<String>,
@@ -296,6 +299,7 @@ impl Sim {
             held: None,
             fastener_forces: Vec::new(),
             diverged: None,
+            rollbacks: 0,
             paused,
             epoch,
             notice: None,
@@ -476,19 +480,42 @@ impl Sim {
         }
     }
 
-    /// One step; false if it diverged (the workcell is then reset, as an input in the
-    /// log, so that a replay resets at the same tick).
+    /// One step; false if it diverged. The workcell then rolls back to its newest
+    /// healthy recovery point, releasing only the hands on the diverging hose; with none
+    /// left it is reset. Either is an input in the log, so that a replay does the same
+    /// at the same tick.
     fn step(&mut self) -> bool {
         match self.cell.step(&mut NoObserver) {
             Ok(()) => true,
             Err(d) => {
                 let message = d.to_string();
-                self.give(Input::Reset);
-                self.epoch.fetch_add(1, Ordering::SeqCst);
-                self.notice = Some(format!(
-                    "the simulation diverged and was reset, hands released: {message}"
-                ));
-                self.diverged = Some(message);
+                match self.cell.apply(Input::Rollback) {
+                    Ok(Applied::RolledBack(r)) => {
+                        let hose = &r.divergence.hose;
+                        let hands = match r.released.as_slice() {
+                            [] => format!("no hand held hose '{hose}'"),
+                            [k] => format!("hand {k} released (it held hose '{hose}')"),
+                            ks => format!(
+                                "hands {} released (they held hose '{hose}')",
+                                ks.iter().map(|k| k.to_string()).collect::<Vec<_>>().join(", ")
+                            ),
+                        };
+                        self.notice = Some(format!(
+                            "the simulation diverged and was rolled back to t = {:.3} s, {hands}; \
+                             the rest of the session goes on: {message}",
+                            r.to_time
+                        ));
+                        self.rollbacks += 1;
+                    }
+                    _ => {
+                        self.give(Input::Reset);
+                        self.epoch.fetch_add(1, Ordering::SeqCst);
+                        self.notice = Some(format!(
+                            "the simulation diverged and was reset, hands released: {message}"
+                        ));
+                        self.diverged = Some(message);
+                    }
+                }
                 self.rebase();
                 false
             }
@@ -593,6 +620,7 @@ impl Sim {
             verdict,
             checks,
             notice: self.notice.clone(),
+            rollbacks: self.rollbacks,
             ..Default::default()
         }
     }

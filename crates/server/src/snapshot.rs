@@ -193,6 +193,10 @@ pub struct Snapshot {
     /// reset).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub notice: Option<String>,
+    /// Divergences rolled back to a healthy recovery point so far in this session
+    /// (the hands on the diverging hose were released; the rest went on).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub rollbacks: u64,
     #[serde(skip)]
     pub(crate) json: OnceLock<String>,
 }
@@ -257,4 +261,8 @@ impl Snapshot {
         self.json
             .get_or_init(|| crate::protocol::ServerMessage::Snapshot(self).to_json())
     }
+}
+
+fn is_zero(n: &u64) -> bool {
+    *n == 0
 }

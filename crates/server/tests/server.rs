@@ -800,3 +800,81 @@ async fn report_writes_the_sessions_report_from_its_log() {
     let e = next_where(&mut ws2, "error", |_| true).await;
     assert_eq!(e["code"], "report_failed");
 }
+
+/// Hardening item 6: a divergence never costs the session. One hose is torn by a load
+/// that grows without bound (a stand-in for any blow-up); the session rolls back to a
+/// healthy recovery point and says so, the hand on the other hose holds on throughout;
+/// only when the recovery points are used up is it reset.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_divergence_is_rolled_back_and_the_other_hands_hold_on() {
+    let text = r#"
+format = "pliant-scene"
+version = 1
+name = "torn hose"
+length_unit = "mm"
+[simulation]
+gravity = [0, 0, -9.81]
+[[hoses]]
+name = "torn"
+material = "hose1"
+start = [0, 0, 0]
+path = [{ line = { to = [300, 0, 0] } }]
+[[hoses]]
+name = "held"
+material = "hose1"
+start = [0, 200, 0]
+path = [{ line = { to = [300, 200, 0] } }]
+[[timeline]]
+action = "fix"
+hose = "torn"
+node = 0
+[[timeline]]
+action = "fix"
+hose = "held"
+node = 0
+[[timeline]]
+action = "load"
+hose = "torn"
+node = -1
+force_n = [0, 0, 1e7]
+ramp_s = 1000
+"#;
+    let dir = tempfile::tempdir().unwrap();
+    let scene = pliant_scene::load_scene_str_in(text, "torn.toml", dir.path()).unwrap();
+    // paused until the hand holds: the tear comes at t ≈ 1.2 s of simulated time
+    let session = Session::start(
+        &scene,
+        SessionOptions {
+            paused: true,
+            ..SessionOptions::default()
+        },
+    )
+    .unwrap();
+    let config = ServerConfig {
+        host: "127.0.0.1".into(),
+        port: 0,
+        ..ServerConfig::default()
+    };
+    let s = start(session, &config).await.unwrap();
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    send(&mut ws, json!({"type": "grab", "hand_id": 1, "position": [0.25, 0.2, 0.0]})).await;
+    next_where(&mut ws, "snapshot", |v| {
+        v["hands"].as_array().is_some_and(|h| h.len() == 1)
+    })
+    .await;
+    send(&mut ws, json!({"type": "resume"})).await;
+    // the first rollback: the hand on the other hose still holds, the time went back
+    let rolled = next_where(&mut ws, "snapshot", |v| v["rollbacks"].as_u64() >= Some(1)).await;
+    let notice = rolled["notice"].as_str().unwrap_or_default().to_owned();
+    assert!(notice.contains("rolled back to t ="), "{notice}");
+    assert!(notice.contains("hose 'torn'"), "{notice}");
+    assert_eq!(rolled["hands"].as_array().unwrap().len(), 1, "{}", rolled["hands"]);
+    assert_eq!(rolled["hands"][0]["hose"], 1);
+    assert_eq!(rolled["epoch"], 0, "no reset");
+    // the same load tears it again at the same time: each rollback goes further back
+    // until no recovery point is left, then the session is reset as before
+    let reset = next_where(&mut ws, "snapshot", |v| v["epoch"].as_u64() >= Some(1)).await;
+    // one rollback per recovery point kept, each further back: no circles
+    assert_eq!(reset["rollbacks"], 4, "{}", reset["notice"]);
+}

@@ -91,6 +91,10 @@ pub enum Input {
         moment_tolerance: f64,
         max_iterations: usize,
     },
+    /// After a divergence: back to the newest healthy recovery point (a fraction of a
+    /// second earlier; [`super::recovery`]), releasing the hands that held the diverging
+    /// hose. Refused when the workcell keeps no recovery points or has none left.
+    Rollback,
     /// Back to the start: rest shape, t = 0, hands released, loads added by inputs
     /// removed, the scene's initial load cases again, stubs and clips reset. Clears a
     /// divergence.
@@ -114,6 +118,7 @@ impl Input {
             Input::SetErgonomics { .. } => "set_ergonomics",
             Input::Arrest => "arrest",
             Input::SolveStatic { .. } => "solve_static",
+            Input::Rollback => "rollback",
             Input::Reset => "reset",
         }
     }

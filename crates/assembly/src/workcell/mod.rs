@@ -14,6 +14,7 @@ pub mod hands;
 pub mod input;
 pub mod log;
 pub mod observer;
+pub mod recovery;
 pub mod replay;
 pub mod solver_record;
 pub mod tally;
@@ -37,6 +38,7 @@ use crate::timeline::{Action, NodeRef};
 use glam::{DQuat, DVec3};
 use hands::{holder, Hands};
 use pliant_core::health::{check_for, Divergence};
+use recovery::Recovery;
 use pliant_core::integrators::{StaticReport, StaticSolver};
 use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId, LoadRamp};
 use pliant_core::{Model, Solver, SolverKind, SolverSettings, State};
@@ -75,6 +77,10 @@ pub struct WorkcellOptions {
     pub initial_loads: bool,
     /// How fast an aimed hand follows its target.
     pub hand_limits: HandLimits,
+    /// Keep recent healthy checkpoints, so that a divergence can be rolled back
+    /// ([`Input::Rollback`]; live sessions).
+    #[serde(default)]
+    pub recovery: bool,
 }
 
 impl Default for WorkcellOptions {
@@ -84,6 +90,7 @@ impl Default for WorkcellOptions {
             sleeping: false,
             initial_loads: true,
             hand_limits: HandLimits::default(),
+            recovery: false,
         }
     }
 }
@@ -100,6 +107,19 @@ pub enum Applied {
     },
     /// The static equilibrium an [`Input::SolveStatic`] reached.
     Static(StaticReport),
+    /// A divergence rolled back ([`Input::Rollback`]).
+    RolledBack(Rollback),
+}
+
+/// What a rollback did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rollback {
+    /// The divergence it undid.
+    pub divergence: Divergence,
+    /// The simulated time the study went back to [s].
+    pub to_time: f64,
+    /// The hands that held the diverging hose, released (the others hold on).
+    pub released: Vec<HandNumber>,
 }
 
 /// Everything of a workcell that changes as it runs (SPEC W1: the state is the whole
@@ -151,6 +171,8 @@ pub struct Workcell {
     sink: Option<Box<dyn Write + Send + Sync>>,
     sink_error: Option<String>,
     diverged: Option<Divergence>,
+    /// Recent healthy checkpoints (with `options.recovery`).
+    recovery: Recovery,
 }
 
 fn finite(v: DVec3, what: &str) -> Result<DVec3, Refusal> {
@@ -186,6 +208,7 @@ impl Workcell {
             ..model.solver
         };
         let solver = Solver::new(&model, settings).map_err(|e| e.to_string())?;
+        let recovery = Recovery::new(solver.time_step(&model), HEALTH_CHECK_EVERY);
         for a in &setup.initial {
             if !matches!(a, Action::Fix { .. } | Action::Load { .. }) {
                 return Err(format!(
@@ -215,6 +238,7 @@ impl Workcell {
             sink: None,
             sink_error: None,
             diverged: None,
+            recovery,
         };
         cell.start()?;
         Ok(cell)
@@ -232,6 +256,7 @@ impl Workcell {
         self.tally = Tally::new(&self.model);
         self.checks = InstallationChecks::new(&self.model, self.checks.settings().clone());
         self.diverged = None;
+        self.recovery.clear();
         if self.options.initial_loads {
             for a in self.initial.clone() {
                 let input = match a {
@@ -477,7 +502,10 @@ impl Workcell {
     /// logged; a taken one is logged with the current tick.
     pub fn apply(&mut self, input: Input) -> Result<Applied, Refusal> {
         if let Some(d) = &self.diverged {
-            if !matches!(input, Input::Reset | Input::SetErgonomics { .. }) {
+            if !matches!(
+                input,
+                Input::Reset | Input::Rollback | Input::SetErgonomics { .. }
+            ) {
                 return Err(Refusal::Diverged(d.to_string()));
             }
         }
@@ -783,7 +811,56 @@ impl Workcell {
                 self.start().map_err(Refusal::Invalid)?;
                 Ok(Applied::Done)
             }
+            Input::Rollback => self.roll_back().map(Applied::RolledBack),
         }
+    }
+
+    /// Goes back from a divergence to the newest recovery point ([`recovery`]) and
+    /// releases the hands that held the diverging hose; the tick and the log go on (the
+    /// rollback is an input like any other, so a replay rolls back the same way).
+    fn roll_back(&mut self) -> Result<Rollback, Refusal> {
+        let Some(divergence) = self.diverged.clone() else {
+            return Err(Refusal::Invalid(
+                "nothing to roll back: the simulation has not diverged".into(),
+            ));
+        };
+        let Some(point) = self.recovery.take_newest(divergence.step) else {
+            return Err(Refusal::Missing(
+                "no healthy checkpoint to roll back to; reset instead".into(),
+            ));
+        };
+        let c = point;
+        self.state = c.state;
+        self.hands = c.hands;
+        self.hand_records = c.hand_records;
+        self.fasteners = c.fasteners;
+        self.user_loads = c.user_loads;
+        self.named_loads = c.named_loads;
+        self.checks = c.checks;
+        self.tally = c.tally;
+        self.diverged = None;
+        let hose = self
+            .model
+            .hoses
+            .iter()
+            .position(|h| h.name == divergence.hose);
+        let released: Vec<HandNumber> = self
+            .hands
+            .iter()
+            .filter(|(_, h)| Some(h.hand.hose) == hose)
+            .map(|(k, _)| *k)
+            .collect();
+        for k in &released {
+            if let Some(h) = self.hands.remove(k) {
+                h.hand.release(&mut self.state);
+            }
+        }
+        self.state.sleep.wake_all(&self.model);
+        Ok(Rollback {
+            to_time: self.state.time,
+            divergence,
+            released,
+        })
     }
 
     // ---- stepping ------------------------------------------------------------------
@@ -860,6 +937,14 @@ impl Workcell {
             }
         }
         obs.on_step(self.state.time);
+        // a recovery point on a health-checked step, once its hands and peaks are in
+        if self.options.recovery
+            && self.state.step % HEALTH_CHECK_EVERY == 0
+            && self.recovery.due(self.state.step)
+        {
+            let point = self.checkpoint();
+            self.recovery.keep(point);
+        }
         Ok(())
     }
 

@@ -63,7 +63,10 @@ pub fn replay(
         if let Err(d) = cell.step(obs) {
             let answered = inputs
                 .get(next)
-                .is_some_and(|s| s.tick == cell.tick() && s.input == super::Input::Reset);
+                .is_some_and(|s| {
+                    s.tick == cell.tick()
+                        && matches!(s.input, super::Input::Reset | super::Input::Rollback)
+                });
             if !answered {
                 return Err(ReplayError::Diverged(d));
             }
