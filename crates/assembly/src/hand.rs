@@ -64,8 +64,12 @@ impl Hand {
     }
 
     /// Grabs the beam nearest to `point` with `grip`; the hand's frame starts at `point`
-    /// (loose grips: at the nearest point of the beam's chord, `ball` at its nearer node)
-    /// with the global orientation. Any other fix or drive on the held nodes is replaced.
+    /// when that lies within the hose (a click on its surface), otherwise at the nearest
+    /// point of the beam's chord — a hand holds the hose where the hose is, never through
+    /// a lever of empty space (a grab beside the hose, e.g. a re-grab at a spot the hose
+    /// has since left, would otherwise hold it at arm's length and drag it further off
+    /// with each re-grab: issue 12, the 10-hand soak). Loose grips: at the nearest point
+    /// of the chord, `ball` at its nearer node; the global orientation. Any other fix or drive on the held nodes is replaced.
     /// Firm: each node fixed (L1); loose: each held node on a support holding its
     /// position only (all rotations free).
     pub fn grab_with(model: &Model, state: &mut State, point: DVec3, grip: Grip) -> Option<Hand> {
@@ -78,9 +82,13 @@ impl Hand {
         let (a, b) = (state.x[el.node_a], state.x[el.node_b]);
         let t = ((point - a).dot(b - a) / (b - a).length_squared().max(f64::MIN_POSITIVE))
             .clamp(0.0, 1.0);
+        let on_chord = a + t * (b - a);
+        let within = (point - on_chord).length()
+            <= model.radius[el.node_a].max(model.radius[el.node_b]);
         let (nodes, point): (&[usize], DVec3) = match grip {
-            Grip::Firm => (&[el.node_a, el.node_b], point),
-            Grip::Axial => (&[el.node_a, el.node_b], a + t * (b - a)),
+            Grip::Firm if within => (&[el.node_a, el.node_b], point),
+            Grip::Firm => (&[el.node_a, el.node_b], on_chord),
+            Grip::Axial => (&[el.node_a, el.node_b], on_chord),
             Grip::Ball if t < 0.5 => (&[el.node_a], a),
             Grip::Ball => (&[el.node_b], b),
         };

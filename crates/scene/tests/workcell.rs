@@ -371,3 +371,40 @@ fn a_rollback_without_recovery_points_is_refused() {
     cell.apply(Input::Reset).unwrap();
     assert_eq!(cell.state().time, 0.0);
 }
+
+/// A hand holds the hose where the hose is: a grab beside the hose (here 10 cm off)
+/// takes it at the nearest point of the beam's chord, a grab within the hose keeps its
+/// point (issue 12: re-grabs at a spot the hose had left dragged it ever further off).
+#[test]
+fn a_grab_beside_the_hose_takes_it_at_the_hose() {
+    let scene = demo_scene().unwrap();
+    let mut cell = scene.workcell(options(SolverKind::Explicit)).unwrap();
+    let node = cell.model().hoses[0].node(6);
+    let on_axis = cell.state().x[node];
+    let beside = on_axis + DVec3::new(0.0, 0.0, 0.10);
+    cell.apply(Input::Grab {
+        hand: 0,
+        at: beside,
+        grip: Default::default(),
+    })
+    .unwrap();
+    let held = cell.hand(0).unwrap();
+    let pose = held.pose_at(0.0).0;
+    let el = &cell.model().elements[held.hand.element];
+    let (a, b) = (cell.state().x[el.node_a], cell.state().x[el.node_b]);
+    let along = ((pose - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+    let off_chord = (pose - (a + along * (b - a))).length();
+    assert!(off_chord < 1e-12, "hand {off_chord} m off the beam's chord");
+    assert!((pose - beside).length() > 0.07, "hand at {pose}, grab point {beside}");
+    let node = cell.model().hoses[1].node(6);
+    let r = cell.model().radius[node];
+    let inside = cell.state().x[node] + DVec3::new(0.0, 0.0, 0.5 * r);
+    cell.apply(Input::Grab {
+        hand: 1,
+        at: inside,
+        grip: Default::default(),
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
+    let pose = cell.hand(1).unwrap().pose_at(0.0).0;
+    assert_eq!(pose, inside, "a click within the hose keeps its point");
+}
