@@ -201,6 +201,12 @@ export class Author {
     const summary = el('div', { id: 'author-summary', class: 'muted' });
     const message = el('div', { id: 'author-message' });
     root.append(el('h2', {}, 'Author'), tools, hoseRow, optRow, editRow, saveRow, summary, message);
+    // a clicked button gives up the focus: Enter then finishes the hose instead of
+    // pressing the button again
+    root.addEventListener('click', (e) => {
+      const t = e.target as HTMLElement;
+      if (t.tagName === 'BUTTON') t.blur();
+    });
     panel.append(root);
     return root;
   }
@@ -745,7 +751,7 @@ export class Author {
   private u(x: number): number {
     const f = this.unit === 'mm' ? 1000 : 1;
     const digits = this.unit === 'mm' ? 3 : 6;
-    return Number((x * f).toFixed(digits));
+    return Number((x * f).toFixed(digits)) + 0; // + 0: no -0 in the file
   }
 
   private uv(p: Vec3): number[] {
@@ -753,7 +759,7 @@ export class Author {
   }
 
   private dir(p: Vec3): number[] {
-    return unit(p).map((x) => Number(x.toFixed(6)));
+    return unit(p).map((x) => Number(x.toFixed(6)) + 0);
   }
 
   /** The scene document: the base scene with the authored hoses, stubs and clips, a

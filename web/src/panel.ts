@@ -113,7 +113,10 @@ export class Panel {
       replay.value = '';
     };
     const authorBtn = el('button', { id: 'author-mode', title: 'author a scene: hoses, stubs and clips by clicking on parts' }, 'Author');
-    authorBtn.onclick = () => this.actions.author();
+    authorBtn.onclick = () => {
+      authorBtn.blur();
+      this.actions.author();
+    };
     this.authorBtn = authorBtn;
     files.append(openBtn, open, this.recordBtn, replayBtn, replay, authorBtn);
 

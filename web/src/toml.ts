@@ -42,11 +42,27 @@ export function tomlInline(v: Json): string {
 const isTableArray = (v: unknown): v is { [key: string]: Json | undefined }[] =>
   Array.isArray(v) && v.length > 0 && v.every(isObject);
 
+/** Keys in the order of the scene format's documentation (the server's document comes
+ *  with its keys sorted): those listed first, in this order, then the rest as they come. */
+const FIRST = ['format', 'version', 'name', 'length_unit', 'action', 'hose', 'hand', 'node', 'material', 'section'];
+const TABLE_ORDER = ['simulation', 'output', 'materials', 'ergonomics', 'checks', 'hoses', 'parts', 'stubs', 'clips', 'timeline'];
+
+function ordered<T>(obj: { [key: string]: T }, first: string[]): [string, T][] {
+  const rank = (k: string) => {
+    const i = first.indexOf(k);
+    return i < 0 ? first.length : i;
+  };
+  return Object.entries(obj)
+    .map((e, i) => [e, i] as const)
+    .sort((a, b) => rank(a[0][0]) - rank(b[0][0]) || a[1] - b[1])
+    .map(([e]) => e);
+}
+
 /** `key = value` lines of a table's plain entries (arrays written one element a line
  *  when long). */
 function entries(obj: { [key: string]: Json | undefined }): string {
   let out = '';
-  for (const [k, v] of Object.entries(obj)) {
+  for (const [k, v] of ordered(obj, FIRST)) {
     if (v === null || v === undefined) continue;
     let text = tomlInline(v);
     if (Array.isArray(v) && text.length > 90) {
@@ -63,7 +79,7 @@ export function toToml(doc: { [key: string]: Json | undefined }, comment = ''): 
   const plain: { [key: string]: Json | undefined } = {};
   const tables: [string, { [key: string]: Json | undefined }][] = [];
   const arrays: [string, { [key: string]: Json | undefined }[]][] = [];
-  for (const [k, v] of Object.entries(doc)) {
+  for (const [k, v] of ordered(doc, [...FIRST, ...TABLE_ORDER])) {
     if (v === null || v === undefined) continue;
     if (isObject(v)) tables.push([k, v]);
     else if (isTableArray(v)) arrays.push([k, v]);

@@ -807,7 +807,12 @@ async fn report_writes_the_sessions_report_from_its_log() {
 /// errors and the connection lives on.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn scene_source_gives_the_scene_document_and_the_library() {
-    let s = server().await;
+    // the demo's mesh is relative to the examples folder, as `pliant serve` serves it
+    let config = ServerConfig {
+        scene_dir: concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples").into(),
+        ..ServerConfig::default()
+    };
+    let s = server_config(SessionOptions::default(), config).await;
     let mut ws = connect(&s).await;
     send(&mut ws, json!({"type": "scene_source"})).await;
     next_where(&mut ws, "error", |v| v["code"] == "hello_required").await;
@@ -841,6 +846,7 @@ async fn scene_source_gives_the_scene_document_and_the_library() {
     )
     .await;
     let w2 = next_where(&mut ws, "welcome", |_| true).await;
+    assert_eq!(w2["type"], "welcome", "{w2}");
     assert_eq!(w2["session"]["scene"], "authored");
     // and a wrong field comes back as the loader's error naming it
     doc["hoses"][0]["sectoin"] = json!({"d_inner": 27, "d_outer": 35});
