@@ -245,7 +245,10 @@ export class Author {
       this.say('the scene file could not be read as a document', true);
       return;
     }
-    if (this.state === null) {
+    // a new document when nothing was edited yet (e.g. another scene was opened since);
+    // edits so far are kept, on the document they started from
+    const untouched = this.state === null || (this.history.length === 0 && this.future.length === 0);
+    if (untouched) {
       this.state = { base: m.document as Doc, hoses: [], stubs: [], clips: [] };
       const name = this.input('author-name');
       name.value = `${m.scene} (authored)`.replace(/[^\w .()-]/g, '_');
@@ -634,15 +637,15 @@ export class Author {
     if (s === null) return;
     const length = 0.03;
     const mouth = add(hit.point, hit.normal, length);
-    const near = this.nearestHose(mouth);
-    let end: { hose: AuthorHose; end: 'start' | 'end' } | null = null;
+    // the nearest end of an authored hose is the one meant to go on
+    let end: { hose: AuthorHose; end: 'start' | 'end'; d: number } | null = null;
     for (const h of s.hoses) {
       if (h.points.length < 2) continue;
       for (const [which, q] of [['start', h.points[0]], ['end', h.points[h.points.length - 1]]] as const) {
-        if (end === null || dist(q, mouth) < dist(end.end === 'start' ? end.hose.points[0] : end.hose.points[end.hose.points.length - 1], mouth)) end = { hose: h, end: which };
+        const d = dist(q, mouth);
+        if (end === null || d < end.d) end = { hose: h, end: which, d };
       }
     }
-    void near;
     const sec = end ? this.hoseSection(end.hose) : this.currentSection();
     const diameter = Math.min(sec.d_inner + 0.002, (sec.d_inner + sec.d_outer) / 2);
     this.change(() => {
@@ -815,7 +818,7 @@ export class Author {
   /** The document as scene-file TOML. */
   toml(name?: string): string {
     const doc = this.document(name);
-    return toToml(doc, `Pliant scene authored in the viewer (docs/authoring.md)${this.state ? '' : ''}`);
+    return toToml(doc, 'Pliant scene authored in the viewer (docs/authoring.md)');
   }
 
   /** Downloads the scene file and sends it to the server to load and run. */
