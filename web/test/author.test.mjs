@@ -104,6 +104,17 @@ describe('author mode', () => {
       assert.deepEqual(stub.axis.map((x) => Math.round(x) + 0), [0, 0, -1], 'axis into the surface');
       assert.equal(stub.end, 'start');
       await page.click('#tool-hose');
+      // "along a CAD curve": with snapping on, a click 3 mm from the bench's front edge
+      // lands on the edge (then undone)
+      await page.check('#author-snap');
+      await clickAt(page, [0.1, -0.147, TOP]);
+      await page.waitForFunction(() => window.pliant.author.state.hoses.length === 2);
+      const snapped = await page.evaluate(() => window.pliant.author.points(1)[0]);
+      assert.ok(Math.abs(snapped[1] + 0.15) < 1e-4 && Math.abs(snapped[2] - (TOP + 0.0075)) < 1e-4, `snapped to the edge: ${snapped}`);
+      assert.ok(Math.abs(snapped[0] - 0.1) < 0.01, `along the edge: ${snapped}`);
+      await page.keyboard.press('Control+z');
+      await page.waitForFunction(() => window.pliant.author.state.hoses.length === 1 && window.pliant.author.state.clips.length === 1);
+      await page.uncheck('#author-snap');
       // a screenshot of the mode for people (docs/authoring.md)
       const dir = path.join(repo, 'target', 'e2e');
       mkdirSync(dir, { recursive: true });
