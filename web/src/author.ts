@@ -226,6 +226,7 @@ export class Author {
     this.active = on;
     this.root.hidden = !on;
     this.group.visible = on;
+    for (const x of ['hose', 'stub', 'clip', 'move']) this.ui[`tool-${x}`].classList.toggle('on', x === this.tool);
     if (on) {
       this.net.send({ type: 'scene_source' });
       this.say('reading the scene…');
