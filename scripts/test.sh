@@ -10,5 +10,6 @@ cargo test --release --workspace   # every validation case is a test here (crate
 ./target/release/pliant bench --quick --json > /dev/null
 ./scripts/test-python.sh   # the Python API (crates/python): builds it into .venv, runs pytest
 ./scripts/install-browser.sh   # Debian's chromium, only if /usr/bin/chromium is missing
+(cd web && npm run --silent test:unit)   # the viewer's TOML writer (scene authoring)
 (cd web && npm run --silent test:e2e)   # viewer end-to-end (target/release/pliant serve)
 echo "all tests passed"

@@ -2,6 +2,7 @@
 // the newest snapshot, hose node positions, screen coordinates of world points, latency
 // samples. Read-only views plus `send` for raw protocol messages.
 
+import type { Author } from './author';
 import type { MouseHand } from './grab';
 import type { HoseTube } from './hoses';
 import type { Net } from './net';
@@ -22,6 +23,7 @@ export interface DebugSources {
   replaying: () => boolean;
   startReplay: (text: string) => void;
   lastRecording: () => string;
+  author: Author;
 }
 
 export function installDebugHandle(src: DebugSources): void {
@@ -81,6 +83,19 @@ export function installDebugHandle(src: DebugSources): void {
       src.startReplay(text);
     },
     get lastRecording() { return src.lastRecording(); },
+    /** Scene authoring: the mode's state, the document's TOML, undo/redo depth, and
+     *  `moveTo` (what a handle drag does). */
+    author: {
+      get active() { return src.author.active; },
+      get tool() { return src.author.tool; },
+      get state() { return src.author.state; },
+      get canUndo() { return src.author.canUndo; },
+      get canRedo() { return src.author.canRedo; },
+      get lastToml() { return src.author.lastToml; },
+      toml(): string { return src.author.toml(); },
+      points(h: number): Vec3[] { return src.author.state?.hoses[h]?.points ?? []; },
+      movePoint(h: number, k: number, p: Vec3): void { src.author.moveTo({ kind: 'hose', i: h, k }, p); },
+    },
     canvasPixels(): { width: number; height: number; data: number[] } {
       const gl = src.stage.renderer.getContext();
       const w = gl.drawingBufferWidth;

@@ -5,6 +5,7 @@
 
 import './style.css';
 import * as THREE from 'three';
+import { Author } from './author';
 import { installDebugHandle } from './debug';
 import { MouseHand } from './grab';
 import { HoseTube } from './hoses';
@@ -78,6 +79,7 @@ async function main(): Promise<void> {
       if (recorder.active) stopRecording();
       if (player === null) showWelcome(w);
       panel.setMessage(newScene ? `loaded scene '${w.session.scene}'` : '');
+      author.welcomed(w.session.scene);
     },
     snapshot(s, raw) {
       state.snapshots++;
@@ -92,6 +94,10 @@ async function main(): Promise<void> {
       state.errors.push(e);
       if (state.errors.length > 50) state.errors.shift();
       panel.setMessage(`${e.code}: ${e.message}`, true);
+      author.error(e.code, e.message);
+    },
+    sceneSource(m) {
+      author.source(m);
     },
     report(r) {
       state.reports.push(r.folder);
@@ -160,6 +166,13 @@ async function main(): Promise<void> {
     },
     replayFile: (file) => void file.text().then(startReplay),
     live: stopReplay,
+    author: () => author.toggle(),
+  });
+  const author = new Author(stage, net, panel.authorSlot, {
+    changed: (on) => {
+      panel.setAuthoring(on);
+      if (on) mouse.drop();
+    },
   });
   panel.replayPlay.onclick = () => {
     if (player === null) return;
@@ -170,7 +183,7 @@ async function main(): Promise<void> {
     if (player !== null) player.seek(Number(panel.replaySlider.value) / 1000, performance.now());
   };
 
-  const mouse = new MouseHand(stage, () => tubes, net, () => player === null);
+  const mouse = new MouseHand(stage, () => tubes, net, () => player === null && !author.active);
   const xr = new XrHands(stage, net, view);
   const labels = new ForceLabels(stage);
 
@@ -225,6 +238,7 @@ async function main(): Promise<void> {
     replaying: () => player !== null,
     startReplay,
     lastRecording: () => lastRecording,
+    author,
   });
   net.connect();
 }

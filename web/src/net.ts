@@ -3,13 +3,14 @@
 // sent so that the latency until the snapshot (and the frame) that shows it can be
 // measured.
 
-import type { ClientMessage, ErrorMessage, ReportMessage, Snapshot, Vec3, Welcome } from './protocol';
+import type { ClientMessage, ErrorMessage, ReportMessage, SceneSourceMessage, Snapshot, Vec3, Welcome } from './protocol';
 
 export interface NetListener {
   welcome(w: Welcome, raw: string): void;
   snapshot(s: Snapshot, raw: string): void;
   error(e: ErrorMessage): void;
   report(r: ReportMessage): void;
+  sceneSource(m: SceneSourceMessage): void;
   status(text: string, connected: boolean): void;
 }
 
@@ -64,6 +65,8 @@ export class Net {
         this.listener.error(msg as ErrorMessage);
       } else if (msg.type === 'report') {
         this.listener.report(msg as ReportMessage);
+      } else if (msg.type === 'scene_source') {
+        this.listener.sceneSource(msg as SceneSourceMessage);
       }
     };
     ws.onclose = () => {

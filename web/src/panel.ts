@@ -37,6 +37,7 @@ export interface PanelActions {
   record(on: boolean): void;
   replayFile(file: File): void;
   live(): void;
+  author(): void;
 }
 
 export class Panel {
@@ -57,7 +58,10 @@ export class Panel {
   private readonly replayBar = el('div', { id: 'replay-bar' });
   readonly replaySlider = el('input', { id: 'replay-slider', type: 'range', min: '0', max: '1000', value: '0' });
   readonly replayPlay = el('button', { id: 'replay-play' }, 'Pause');
+  /** Where the author mode's controls go (author.ts). */
+  readonly authorSlot = el('div', { id: 'author-slot' });
   private paused = false;
+  private authorBtn: HTMLButtonElement | null = null;
   private recording = false;
   private profileShown = '';
 
@@ -108,7 +112,13 @@ export class Panel {
       if (f !== undefined) this.actions.replayFile(f);
       replay.value = '';
     };
-    files.append(openBtn, open, this.recordBtn, replayBtn, replay);
+    const authorBtn = el('button', { id: 'author-mode', title: 'author a scene: hoses, stubs and clips by clicking on parts' }, 'Author');
+    authorBtn.onclick = () => {
+      authorBtn.blur();
+      this.actions.author();
+    };
+    this.authorBtn = authorBtn;
+    files.append(openBtn, open, this.recordBtn, replayBtn, replay, authorBtn);
 
     const liveBtn = el('button', { id: 'live' }, 'Back to live');
     liveBtn.onclick = () => this.actions.live();
@@ -122,7 +132,7 @@ export class Panel {
     this.root.append(
       title, this.status, this.scene, this.clock, controls,
       el('h2', {}, 'Ergonomics'), ergo,
-      el('h2', {}, 'Session'), files, this.replayBar,
+      el('h2', {}, 'Session'), files, this.replayBar, this.authorSlot,
       el('h2', {}, 'Hands'), this.hands, canvas,
       el('h2', {}, 'Stubs and clips'), this.fasteners,
       el('h2', {}, 'Verdict so far'), this.verdict,
@@ -143,6 +153,11 @@ export class Panel {
     this.recording = on;
     this.recordBtn.textContent = on ? `Stop & save (${frames})` : 'Record';
     this.recordBtn.classList.toggle('on', on);
+  }
+
+  setAuthoring(on: boolean): void {
+    this.authorBtn?.classList.toggle('on', on);
+    if (this.authorBtn) this.authorBtn.textContent = on ? 'Leave author mode' : 'Author';
   }
 
   setReplay(on: boolean): void {

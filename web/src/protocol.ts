@@ -95,7 +95,19 @@ export interface CheckViolation {
 export interface ErrorMessage { type: 'error'; code: string; message: string }
 /** The answer to `report`: the folder the report was written to and its verdict. */
 export interface ReportMessage { type: 'report'; folder: string; verdict: { feasible: boolean | null; reasons: string[]; pending: string[] } }
-export type ServerMessage = Welcome | Snapshot | ErrorMessage | ReportMessage;
+/** One built-in library hose (SI). */
+export interface LibraryHose { name: string; description: string; d_inner: number; d_outer: number; min_bend_radius: number }
+/** The answer to `scene_source`: the session's scene file as a document to edit. */
+export interface SceneSourceMessage {
+  type: 'scene_source';
+  scene: string;
+  source: string;
+  length_unit: 'mm' | 'm';
+  text: string;
+  document: unknown;
+  library: LibraryHose[];
+}
+export type ServerMessage = Welcome | Snapshot | ErrorMessage | ReportMessage | SceneSourceMessage;
 
 export type ClientMessage =
   | { type: 'hello'; version: 1 }
@@ -108,7 +120,8 @@ export type ClientMessage =
   | { type: 'reset' }
   | { type: 'set_ergonomics'; posture?: string; population?: string; duty?: string; moments_decide?: boolean }
   | { type: 'load_scene'; text: string; format?: 'toml' | 'json'; name?: string }
-  | { type: 'report' };
+  | { type: 'report' }
+  | { type: 'scene_source' };
 
 /** |v| */
 export function norm(v: readonly number[]): number {

@@ -203,6 +203,11 @@ export class Stage {
     }
   }
 
+  /** The rigid parts' meshes (for picking surfaces: geometry in the world frame). */
+  partMeshes(): THREE.Mesh[] {
+    return this.content.children.filter((c): c is THREE.Mesh => c.name.startsWith('part:') && (c as THREE.Mesh).isMesh);
+  }
+
   get groundObject(): THREE.Object3D | null {
     return this.ground;
   }
@@ -213,7 +218,7 @@ function axisQuaternion(axis: Vec3): THREE.Quaternion {
 }
 
 /** A stub: a cylinder from its mouth along the push-on axis, with a flange at its base. */
-function stubMesh(f: FastenerData): THREE.Object3D {
+export function stubMesh(f: FastenerData): THREE.Object3D {
   const g = new THREE.Group();
   g.name = `stub:${f.name}`;
   const r = f.diameter / 2;
@@ -230,7 +235,7 @@ function stubMesh(f: FastenerData): THREE.Object3D {
 }
 
 /** A clip: an open ring around the seat, the gap facing the opening direction. */
-function clipMesh(f: FastenerData): THREE.Object3D {
+export function clipMesh(f: FastenerData): THREE.Object3D {
   const r = f.diameter / 2;
   const gap = Math.min(Math.asin(Math.min(f.opening_width / f.diameter, 0.99)) * 2, Math.PI);
   const ring = new THREE.TorusGeometry(r + 0.003, 0.003, 8, 32, 2 * Math.PI - gap);

@@ -128,4 +128,5 @@ pub const MESSAGES: &[&str] = &[
     r#"{"type":"set_ergonomics","posture":"sitting","population":"men","duty":"continuous","moments_decide":true}"#,
     r#"{"type":"load_scene","text":"format = \"pliant-scene\"\nversion = 1\n","format":"toml","name":"a.toml"}"#,
     r#"{"type":"report"}"#,
+    r#"{"type":"scene_source"}"#,
 ];

@@ -14,6 +14,7 @@ pub mod budget;
 pub mod centerline;
 pub mod checks;
 pub mod connectors;
+pub mod document;
 pub mod ergonomics;
 pub mod error;
 mod fastener_sites;
@@ -35,6 +36,7 @@ pub mod validate;
 mod workcell;
 
 pub use budget::{Estimate, Limits};
+pub use document::scene_document;
 pub use error::{FieldError, SceneError};
 pub use files::FileAccess;
 pub use library::{Library, LibraryEntry, LibraryValue, Provenance};

@@ -70,6 +70,11 @@ pub enum ClientMessage {
     /// session's input log, with the log beside them. The sender gets `report` when it
     /// is written; the session runs on meanwhile.
     Report,
+    /// Ask for the session's scene file as a document to edit (scene authoring in the
+    /// viewer, docs/authoring.md): the server answers `scene_source` with the file's text,
+    /// its raw structure as JSON and the built-in material library. (A struct variant,
+    /// so that unknown fields are refused as for every other message.)
+    SceneSource {},
 }
 
 /// Error codes of `error` messages.
@@ -124,6 +129,67 @@ pub enum ServerMessage<'a> {
         code: ErrorCode,
         message: String,
     },
+    /// The answer to `scene_source`.
+    SceneSource(&'a SceneSource),
+}
+
+/// The session's scene file, for editing in the viewer (the answer to `scene_source`).
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneSource {
+    /// The scene's name.
+    pub scene: String,
+    /// Where it came from (a path, or the built-in demo).
+    pub source: String,
+    /// The file's `length_unit`: `"mm"` or `"m"`.
+    pub length_unit: &'static str,
+    /// The scene file's text as loaded.
+    pub text: String,
+    /// Its raw structure (lengths in `length_unit`, nothing converted), or `null` when the
+    /// text is neither TOML nor JSON (it always is for a loaded scene).
+    pub document: Option<serde_json::Value>,
+    /// The built-in material library: the materials a hose may name without a
+    /// `[materials]` table.
+    pub library: Vec<LibraryHose>,
+}
+
+/// One built-in library hose (SI units).
+#[derive(Clone, Debug, Serialize)]
+pub struct LibraryHose {
+    pub name: String,
+    pub description: String,
+    /// The library hose's own cross-section [m]: the default `section`.
+    pub d_inner: f64,
+    pub d_outer: f64,
+    /// Smallest bend radius of the centre line [m].
+    pub min_bend_radius: f64,
+}
+
+impl SceneSource {
+    /// The source of a loaded scene, with the built-in library.
+    pub fn of(scene: &pliant_scene::LoadedScene) -> SceneSource {
+        let library = pliant_scene::Library::builtin()
+            .map(|l| {
+                l.entries()
+                    .iter()
+                    .map(|e| LibraryHose {
+                        name: e.name.clone(),
+                        description: e.description.clone(),
+                        d_inner: e.section.d_inner,
+                        d_outer: e.section.d_outer,
+                        min_bend_radius: e.min_bend_radius,
+                    })
+                    .collect()
+            })
+            .unwrap_or_default();
+        SceneSource {
+            scene: scene.name.clone(),
+            source: scene.source.clone(),
+            length_unit: scene.length_unit.symbol(),
+            text: scene.text.clone(),
+            document: pliant_scene::scene_document(&scene.text).ok(),
+            library,
+        }
+    }
 }
 
 impl ServerMessage<'_> {
@@ -166,6 +232,16 @@ mod tests {
         ));
         assert!(serde_json::from_str::<ClientMessage>(
             r#"{"type":"grab","hand_id":1,"position":[0,0,0],"grip":"loose"}"#
+        )
+        .is_err());
+    }
+
+    #[test]
+    fn scene_source_takes_no_fields() {
+        let m: ClientMessage = serde_json::from_str(r#"{"type":"scene_source"}"#).unwrap();
+        assert_eq!(m, ClientMessage::SceneSource {});
+        assert!(serde_json::from_str::<ClientMessage>(
+            r#"{"type":"scene_source","path":"/etc/passwd"}"#
         )
         .is_err());
     }

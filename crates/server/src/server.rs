@@ -16,7 +16,9 @@ use crate::limits::{
     MAX_SCENE_MESSAGE_BYTES, MAX_STEPS_PER_REQUEST,
 };
 use crate::ownership::{ClientId, Ownership, Refusal};
-use crate::protocol::{error_json, ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
+use crate::protocol::{
+    error_json, ClientMessage, ErrorCode, SceneSource, ServerMessage, PROTOCOL_VERSION,
+};
 use crate::session::{Command, Session, SessionOptions};
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::{RawQuery, State};
@@ -603,6 +605,10 @@ fn handle_text(text: &str, client: ClientId, shared: &Shared, welcomed: &mut boo
             }
         }
         (ClientMessage::Report, true) => Reply::Report,
+        (ClientMessage::SceneSource {}, true) => {
+            let source = SceneSource::of(shared.session().loaded());
+            Reply::Text(ServerMessage::SceneSource(&source).to_json())
+        }
         (msg, true) => handle_command(msg, client, shared).err().into(),
     }
 }
@@ -664,7 +670,10 @@ fn point(p: [f64; 3]) -> Result<DVec3, String> {
 fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Result<(), String> {
     let session = &shared.session();
     let command = match msg {
-        ClientMessage::Hello { .. } | ClientMessage::LoadScene { .. } | ClientMessage::Report => {
+        ClientMessage::Hello { .. }
+        | ClientMessage::LoadScene { .. }
+        | ClientMessage::Report
+        | ClientMessage::SceneSource {} => {
             return Ok(()); // handled in handle_text
         }
         ClientMessage::SetErgonomics {

@@ -197,6 +197,11 @@ impl Session {
         self.snapshots.borrow().clone()
     }
 
+    /// The scene as loaded (its file's text included).
+    pub fn loaded(&self) -> &Arc<LoadedScene> {
+        &self.loaded
+    }
+
     /// The static scene data.
     pub fn scene(&self) -> &Arc<SceneData> {
         &self.scene

@@ -878,3 +878,67 @@ ramp_s = 1000
     // one rollback per recovery point kept, each further back: no circles
     assert_eq!(reset["rollbacks"], 4, "{}", reset["notice"]);
 }
+
+/// Scene authoring (issue 13 item 4, docs/authoring.md): `scene_source` answers with the
+/// session's scene file as a document and the material library; the document, sent back
+/// unchanged with `load_scene`, is accepted by the same loader; malformed requests are
+/// errors and the connection lives on.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn scene_source_gives_the_scene_document_and_the_library() {
+    // the demo's mesh is relative to the examples folder, as `pliant serve` serves it
+    let config = ServerConfig {
+        scene_dir: concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples").into(),
+        ..ServerConfig::default()
+    };
+    let s = server_config(SessionOptions::default(), config).await;
+    let mut ws = connect(&s).await;
+    send(&mut ws, json!({"type": "scene_source"})).await;
+    next_where(&mut ws, "error", |v| v["code"] == "hello_required").await;
+    let w = hello(&mut ws).await;
+    send(&mut ws, json!({"type": "scene_source", "path": "/etc/passwd"})).await;
+    let e = next_where(&mut ws, "error", |_| true).await;
+    assert_eq!(e["code"], "malformed", "{e}");
+    send(&mut ws, json!({"type": "scene_source"})).await;
+    let src = next_where(&mut ws, "scene_source", |_| true).await;
+    assert_eq!(src["scene"], w["session"]["scene"]);
+    assert_eq!(src["length_unit"], "mm");
+    assert!(src["text"].as_str().unwrap().contains("pliant-scene"));
+    let doc = &src["document"];
+    assert_eq!(doc["format"], "pliant-scene");
+    assert_eq!(
+        doc["hoses"].as_array().unwrap().len(),
+        w["session"]["hoses"].as_array().unwrap().len()
+    );
+    let lib = src["library"].as_array().unwrap();
+    let hose3 = lib.iter().find(|h| h["name"] == "hose3").expect("hose3");
+    assert!((hose3["d_outer"].as_f64().unwrap() - 0.035).abs() < 1e-12);
+    assert!((hose3["d_inner"].as_f64().unwrap() - 0.027).abs() < 1e-12);
+    assert!(hose3["min_bend_radius"].as_f64().unwrap() > 0.0);
+    assert_eq!(lib.len(), 5);
+    // the document is the file: sent back, the loader takes it
+    let mut doc = doc.clone();
+    doc["name"] = json!("authored");
+    send(
+        &mut ws,
+        json!({"type": "load_scene", "text": doc.to_string(), "format": "json", "name": "authored.json"}),
+    )
+    .await;
+    let w2 = next_where(&mut ws, "welcome", |_| true).await;
+    assert_eq!(w2["type"], "welcome", "{w2}");
+    assert_eq!(w2["session"]["scene"], "authored");
+    // and a wrong field comes back as the loader's error naming it
+    doc["hoses"][0]["sectoin"] = json!({"d_inner": 27, "d_outer": 35});
+    send(
+        &mut ws,
+        json!({"type": "load_scene", "text": doc.to_string(), "format": "json", "name": "authored.json"}),
+    )
+    .await;
+    let e = next_where(&mut ws, "error", |_| true).await;
+    assert_eq!(e["code"], "invalid_scene");
+    let m = e["message"].as_str().unwrap();
+    assert!(m.contains("authored.json") && m.contains("hoses[0].sectoin"), "{m}");
+    // the session after the load answers with its own text
+    send(&mut ws, json!({"type": "scene_source"})).await;
+    let src = next_where(&mut ws, "scene_source", |_| true).await;
+    assert_eq!(src["document"]["name"], "authored");
+}
