@@ -26,6 +26,9 @@ pub struct ImportFacts {
     /// Solid occurrences kept.
     #[serde(default)]
     pub solids: usize,
+    /// Distinct solid shapes (instances of one part share its shape).
+    #[serde(default)]
+    pub distinct_solids: usize,
     /// Triangles of all solids.
     #[serde(default)]
     pub triangles: usize,

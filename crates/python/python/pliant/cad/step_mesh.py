@@ -262,14 +262,16 @@ def mesh_step(path: str, tolerance: float = DEFAULT_TOLERANCE) -> dict:
     mm_to_m = 1e-3  # OCCT's session unit is the millimetre; the file's unit is converted
     skipped = []
     solids = []
-    meshed = set()
+    meshed = {}  # hash → prototypes meshed (a prototype is shared by its instances)
+    distinct = 0
     for name, placed, proto in occurrences(doc):
-        key = proto.TShape().__hash__() if hasattr(proto, "TShape") else id(proto)
+        bucket = meshed.setdefault(hash(proto), [])
         try:
-            if key not in meshed:
+            if not any(p.IsPartner(proto) for p in bucket):
                 BRepMesh_IncrementalMesh(proto, tolerance / mm_to_m, False,
                                          ANGULAR_DEFLECTION, True)
-                meshed.add(key)
+                bucket.append(proto)
+                distinct += 1
             pos, idx, missing = triangulate(placed, mm_to_m)
         except Exception as e:  # OCCT raises Standard_Failure subclasses
             skipped.append("%s: tessellation failed (%s)" % (name, e))
@@ -287,6 +289,7 @@ def mesh_step(path: str, tolerance: float = DEFAULT_TOLERANCE) -> dict:
         raise StepError("no solid could be read: " + why)
     return {
         "solids": solids,
+        "distinct": distinct,
         "skipped": skipped,
         "units": _file_units(reader),
         "seconds": time.perf_counter() - t0,
@@ -356,6 +359,7 @@ def convert(step: str, out: str, tolerance: float = DEFAULT_TOLERANCE) -> dict:
         "converter": CONVERTER_VERSION,
         "file_units": result["units"],
         "solids": len(result["solids"]),
+        "distinct_solids": result["distinct"],
         "triangles": sum(len(i) // 3 for _, _, i in result["solids"]),
         "skipped": result["skipped"],
         "seconds": round(result["seconds"], 3),
@@ -397,16 +401,25 @@ def list_curves(doc):
                 ex.Next()
             return
         wires = TopExp_Explorer(shape, TopAbs_WIRE)
-        if wires.More():
-            while wires.More():
-                out.append((name, wires.Current()))
-                wires.Next()
-            ex = TopExp_Explorer(shape, TopAbs_EDGE, TopAbs_WIRE)
-        else:
-            ex = TopExp_Explorer(shape, TopAbs_EDGE)
+        while wires.More():
+            out.append((name, wires.Current()))
+            wires.Next()
+        loose = []
+        ex = TopExp_Explorer(shape, TopAbs_EDGE, TopAbs_WIRE)
         while ex.More():
-            out.append((name, ex.Current()))
+            loose.append(ex.Current())
             ex.Next()
+        if len(loose) > 1:
+            # STEP stores a wire as a set of edges: join them again, in order
+            from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeWire
+            from OCP.TopoDS import TopoDS
+
+            mw = BRepBuilderAPI_MakeWire()
+            for e in loose:
+                mw.Add(TopoDS.Edge(e))
+            if mw.IsDone():
+                loose = [mw.Wire()]
+        out.extend((name, e) for e in loose)
 
     def walk(label, loc, name, depth):
         if depth > 64:
