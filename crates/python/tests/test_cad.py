@@ -56,6 +56,8 @@ def test_truncated_file_names_the_entity(tmp_path):
     cut.write_bytes(data[: len(data) // 2])
     with pytest.raises(StepError, match=r"truncated.*#\d+ = [A-Z_]+ \(line \d+\)"):
         convert(str(cut), str(tmp_path / "cut.glb"))
+    with pytest.raises(StepError, match=r"no solid could be read.*PRODUCT_DEFINITION"):
+        convert(str(ROUTE), str(tmp_path / "route.glb"))
     with pytest.raises(StepError, match="not a STEP file"):
         check_part21(b"solid x\nendsolid\n")
 

@@ -222,6 +222,10 @@ fn a_truncated_file_is_refused_naming_the_entity_and_line() {
     std::fs::write(&junk, "solid cube\nendsolid\n").unwrap();
     let e = load(&dir, &junk, "").unwrap_err();
     assert!(e.contains("not a STEP file"), "{e}");
+    // a STEP file without solids (only curves) says what it holds
+    let curves = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cad/route.step");
+    let e = load(&dir, &curves, "").unwrap_err();
+    assert!(e.contains("no solid could be read") && e.contains("PRODUCT_DEFINITION"), "{e}");
     // a missing one names the path
     let e = load(&dir, &dir.join("missing.step"), "").unwrap_err();
     assert!(e.contains("missing.step"), "{e}");

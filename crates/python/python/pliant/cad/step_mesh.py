@@ -130,23 +130,19 @@ def read_document(path: str):
     return doc, reader
 
 
-def untransferred_roots(reader) -> list:
-    """Roots of the file OCCT transferred nothing from: "#id = TYPE" each."""
-    r = reader.Reader()
-    ws = r.WS()
-    tr = ws.TransferReader()
-    model = r.Model()
-    out = []
-    for i in range(1, r.NbRootsForTransfer() + 1):
-        ent = r.RootForTransfer(i)
-        try:
-            done = tr.HasResult(ent)
-        except Exception:  # pragma: no cover
-            done = True
-        if not done:
-            label = model.StringLabel(ent).ToCString()
-            out.append("%s = %s" % (label, ent.DynamicType().Name()))
-    return out
+def root_entities(reader) -> str:
+    """The file's root entities by STEP type, e.g. "2 × PRODUCT_DEFINITION", for
+    messages."""
+    try:
+        r = reader.Reader()
+        counts = {}
+        for i in range(1, r.NbRootsForTransfer() + 1):
+            name = r.RootForTransfer(i).DynamicType().Name().split("_", 1)[-1]
+            step = re.sub(r"(?<!^)(?=[A-Z])", "_", name).upper()
+            counts[step] = counts.get(step, 0) + 1
+        return ", ".join("%d × %s" % (n, t) for t, n in counts.items()) or "none"
+    except Exception:  # pragma: no cover - informative only
+        return "unknown"
 
 
 def occurrences(doc):
@@ -286,7 +282,8 @@ def mesh_step(path: str, tolerance: float = DEFAULT_TOLERANCE) -> dict:
         solids.append((name, pos, idx))
     if not solids:
         why = "; ".join(skipped) if skipped else "the file holds no solid or surface"
-        raise StepError("no solid could be read: " + why)
+        raise StepError("no solid could be read: %s (the file's root entities: %s)"
+                        % (why, root_entities(reader)))
     return {
         "solids": solids,
         "distinct": distinct,
