@@ -17,6 +17,8 @@ fi
 # studies (pliant.studies, `pliant study`): Dask (and bokeh for its dashboard), Parquet,
 # statistics, marching cubes; duckdb to check the Parquet is readable by it
 .venv/bin/python -m pip install --quiet "dask[distributed]" bokeh pyarrow pandas scipy scikit-image duckdb
+# STEP import (pliant.cad): OpenCASCADE's Python binding
+./scripts/install-cad.sh
 # share the workspace's target folder (same release profile: dependencies are reused)
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}"
 # the whole workspace, as test.sh builds it: `-p pliant` alone unifies the dependencies'

@@ -5,6 +5,7 @@
 # end-to-end tests in headless Chromium.
 source "$(dirname "$0")/common.sh"
 ./scripts/build-web.sh     # the viewer first: the release build below embeds web/dist
+./scripts/install-cad.sh   # the STEP importer's kernel (OpenCASCADE, PyPI cadquery-ocp-novtk) into .venv
 cargo build --release --workspace
 cargo test --release --workspace   # every validation case is a test here (crates/validation/tests)
 ./target/release/pliant bench --quick --json > /dev/null

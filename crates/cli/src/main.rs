@@ -3,6 +3,7 @@
 
 mod bench;
 mod bench_newton;
+mod import_cmd;
 mod limit_args;
 mod peers;
 mod progress;
@@ -136,6 +137,24 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Convert a STEP assembly (AP203, AP214, AP242) once with OpenCASCADE: into the
+    /// cache a scene beside it reads (`[[parts]] step = …`), or into a GLB (--out).
+    Import {
+        /// The STEP file.
+        step: PathBuf,
+        /// Write this GLB (one named node per solid, metres) instead of the cache entry.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The scene's folder whose .pliant-cache/ receives the entry [default: the STEP
+        /// file's folder].
+        #[arg(long)]
+        cache_dir: Option<PathBuf>,
+        /// Chord tolerance: largest distance of a triangle from the surface, e.g. 0.5mm,
+        /// 0.02in (a bare number is mm) [default: 0.5mm]. A scene's `chord_tolerance`
+        /// must be the same for it to find the entry.
+        #[arg(long)]
+        tolerance: Option<String>,
+    },
     /// Measure cost per element per step and the real-time factor.
     Bench {
         /// Print one JSON object instead of a table.
@@ -252,6 +271,17 @@ fn main() -> ExitCode {
             workers,
             runs,
             quiet,
+        }),
+        Command::Import {
+            step,
+            out,
+            cache_dir,
+            tolerance,
+        } => import_cmd::run(&import_cmd::ImportOptions {
+            step: &step,
+            out: out.as_deref(),
+            cache_dir: cache_dir.as_deref(),
+            tolerance: tolerance.as_deref(),
         }),
         Command::Bench { json, quick } => {
             bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)

@@ -25,6 +25,9 @@ pub fn run(
         Some(p) => load_scene_file_with(p, load)?,
         None => demo_scene()?,
     };
+    for w in &scene.warnings {
+        eprintln!("warning: {w}");
+    }
     let mut setup = scene.workcell_setup().map_err(|e| anyhow!(e))?;
     // the command line's profile, if given, overrides the scene's [ergonomics]
     if let Some(text) = ergonomics {
@@ -106,7 +109,14 @@ pub fn run(
         wall_time: wall,
     };
     let (verdict, summary) = write_outputs(out, &outputs).context("writing outputs")?;
+    note_scene_warnings(out, &scene.warnings).context("writing summary.json")?;
     print_outcome(&verdict, &summary, out);
+    if !scene.warnings.is_empty() {
+        println!("scene warnings (what loading left out, also in summary.json):");
+        for w in &scene.warnings {
+            println!("  - {w}");
+        }
+    }
     match stopped {
         Some((msg, true)) => {
             eprintln!("error: {msg}\n(outputs hold the run up to the last healthy state)");
@@ -196,4 +206,20 @@ fn human_duration(seconds: f64) -> String {
     } else {
         format!("{:.1} h", seconds / 3600.0)
     }
+}
+
+/// Adds the scene's load warnings (e.g. STEP solids that could not be read) to
+/// `summary.json` as `scene_warnings`, so that they reach every reader of the run.
+fn note_scene_warnings(out: &Path, warnings: &[String]) -> anyhow::Result<()> {
+    if warnings.is_empty() {
+        return Ok(());
+    }
+    let path = out.join("summary.json");
+    let text = std::fs::read_to_string(&path)?;
+    let mut value: serde_json::Value = serde_json::from_str(&text)?;
+    if let Some(map) = value.as_object_mut() {
+        map.insert("scene_warnings".to_string(), serde_json::json!(warnings));
+    }
+    std::fs::write(&path, serde_json::to_string_pretty(&value)?)?;
+    Ok(())
 }

@@ -457,3 +457,114 @@ fn meaningless_values_are_refused_and_outputs_never_hold_non_finite_numbers() {
         }
     }
 }
+
+/// A real STEP file from `../shared/cad` (see its README), or PLIANT_CAD_FILES.
+fn cad_file(name: &str) -> std::path::PathBuf {
+    let dir = std::env::var_os("PLIANT_CAD_FILES")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/cad"));
+    let path = dir.join(name);
+    assert!(path.is_file(), "missing real STEP file {} (shared/ beside the repository)", path.display());
+    path
+}
+
+/// `pliant import` fills the cache a scene beside the STEP file reads (then the scene
+/// runs with no importer at all), writes a plain GLB with --out, and the solids the
+/// converter skipped reach stderr and summary.json.
+#[test]
+fn import_fills_the_cache_that_run_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(cad_file("sg1-c5-214.stp"), dir.path().join("sg1.stp")).unwrap();
+    let out = pliant()
+        .args(["import", "--tolerance", "0.2mm"])
+        .arg(dir.path().join("sg1.stp"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("1 solid(s)") && stdout.contains("SG1") && stdout.contains(".pliant-cache"), "{stdout}");
+    let scene = dir.path().join("scene.toml");
+    let text = |part: &str| {
+        format!(
+            r#"format = "pliant-scene"
+version = 1
+length_unit = "mm"
+
+[[parts]]
+name = "sg1"
+{part}
+position = [0, 0, -500]
+
+[[hoses]]
+name = "h"
+material = "hose1"
+start = [0, 0, 300]
+path = [{{ line = {{ to = [300, 0, 300] }} }}]
+
+[[timeline]]
+action = "fix"
+hose = "h"
+node = 0
+
+[[timeline]]
+action = "run"
+duration_s = 0.002
+"#
+        )
+    };
+    std::fs::write(&scene, text("step = \"sg1.stp\"\nchord_tolerance = 0.2")).unwrap();
+    let no_python = dir.path().join("no-python");
+    let run = |scene: &Path| {
+        pliant()
+            .args(["run", "--quiet"])
+            .arg(scene)
+            .arg("--out")
+            .arg(dir.path().join("out"))
+            .env("PLIANT_PYTHON", &no_python)
+            .output()
+            .unwrap()
+    };
+    let r = run(&scene);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    // another tolerance is another entry: without the importer, a clear error
+    std::fs::write(&scene, text("step = \"sg1.stp\"\nchord_tolerance = 0.3")).unwrap();
+    let r = run(&scene);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(!r.status.success() && err.contains("install-cad.sh") && err.contains("parts[0].step"), "{err}");
+    // --out writes a GLB that works as an ordinary mesh
+    let glb = dir.path().join("sg1.glb");
+    let out = pliant().arg("import").arg(dir.path().join("sg1.stp")).arg("--out").arg(&glb).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::write(&scene, text("mesh = \"sg1.glb\"")).unwrap();
+    let r = run(&scene);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    // skipped solids (recorded by the converter in the entry) reach the user
+    let entry = std::fs::read_dir(dir.path().join(".pliant-cache"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|e| e == "glb"))
+        .unwrap();
+    let bytes = std::fs::read(&entry).unwrap();
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json = String::from_utf8(bytes[20..20 + len].to_vec()).unwrap();
+    let patched = json.replacen("\"skipped\":[]", "\"skipped\":[\"SG1/x: broken\"]", 1);
+    assert_ne!(patched, json);
+    let mut text_bytes = patched.into_bytes();
+    while text_bytes.len() % 4 != 0 {
+        text_bytes.push(b' ');
+    }
+    let bin = &bytes[20 + len..];
+    let mut glb2 = bytes[0..8].to_vec();
+    glb2.extend_from_slice(&((20 + text_bytes.len() + bin.len()) as u32).to_le_bytes());
+    glb2.extend_from_slice(&(text_bytes.len() as u32).to_le_bytes());
+    glb2.extend_from_slice(&0x4E4F_534Au32.to_le_bytes());
+    glb2.extend_from_slice(&text_bytes);
+    glb2.extend_from_slice(bin);
+    std::fs::write(&entry, glb2).unwrap();
+    std::fs::write(&scene, text("step = \"sg1.stp\"\nchord_tolerance = 0.2")).unwrap();
+    let r = run(&scene);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(r.status.success() && err.contains("warning: parts[0]") && err.contains("SG1/x: broken"), "{err}");
+    let summary = std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap();
+    assert!(summary.contains("scene_warnings") && summary.contains("SG1/x: broken"), "{summary}");
+}

@@ -293,11 +293,16 @@ pub struct HoseEntry {
     /// Target element length (length unit), > 0. Excludes `elements`. Default when
     /// neither is given: 1.5 × d_outer.
     pub element_length: Option<f64>,
-    /// First point of the centre line (length unit).
-    pub start: Vec3,
-    /// Centre-line segments, each starting where the previous one ended.
-    #[schemars(length(min = 1))]
+    /// First point of the centre line (length unit). Required with `path`; not with
+    /// `route` (the route's first point is the start).
+    pub start: Option<Vec3>,
+    /// Centre-line segments, each starting where the previous one ended. Give either
+    /// `start` and `path`, or `route`.
+    #[serde(default)]
     pub path: Vec<SegmentEntry>,
+    /// The centre line from CAD instead of `start` and `path`: a curve of a STEP file,
+    /// or a list of points in a CSV file.
+    pub route: Option<RouteEntry>,
     /// Offsets of rest-shape nodes (length unit), applied after discretisation.
     #[serde(default)]
     pub imperfection: Vec<ImperfectionEntry>,
@@ -366,6 +371,36 @@ pub struct SpanEntry {
     pub section: SectionEntry,
 }
 
+/// `route = { step = "bay.step", curve = "hose_route" }`, `route = { step = "bay.step",
+/// index = 0 }` or `route = { csv = "route.csv" }`: a hose's centre line from CAD.
+/// The hose's nodes lie on the polyline through the route's points (for `smooth = true`
+/// on a Catmull-Rom spline through them).
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RouteEntry {
+    /// STEP file (AP203/AP214/AP242) holding the curve: an edge or wire that is not
+    /// the boundary of a face (a B-spline, polyline, line, circle…). Excludes `csv`.
+    pub step: Option<String>,
+    /// The curve's name in the STEP file (its product or shape name). Excludes `index`.
+    pub curve: Option<String>,
+    /// The curve's index among the file's free curves (0 = first), when unnamed.
+    pub index: Option<u32>,
+    /// Sampling tolerance of the STEP curve (length unit), > 0: the largest distance of
+    /// the polyline through the samples from the CAD curve. Default 0.01 mm.
+    pub tolerance: Option<f64>,
+    /// CSV file of points, one `x,y,z` per line, in order; an optional header line
+    /// names the columns and may give the unit (`x_mm,y_mm,z_mm` or `x [in],…`).
+    /// Excludes `step`.
+    pub csv: Option<String>,
+    /// Unit of the CSV's coordinates: `"mm"`, `"cm"`, `"m"` or `"in"`. Default: the
+    /// header's unit, else the scene's `length_unit`.
+    pub units: Option<String>,
+    /// Catmull-Rom spline through the points instead of straight lines between them
+    /// (for a few points exported from a sketch). Default false.
+    #[serde(default)]
+    pub smooth: bool,
+}
+
 /// One centre-line segment: exactly one of `line`, `arc`, `spline`.
 #[derive(Clone, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, rename_all = "snake_case")]
@@ -392,8 +427,9 @@ pub enum SegmentEntry {
     },
 }
 
-/// `[[parts]]`: one rigid, fixed part: exactly one of `mesh`, `box`, `cylinder`,
-/// `sphere`, placed by `position` and `rotation`.
+/// `[[parts]]`: one rigid, fixed part: exactly one of `mesh`, `step`, `box`,
+/// `cylinder`, `sphere`, placed by `position` and `rotation` (a STEP assembly gives one
+/// part per solid, all placed together).
 #[derive(Clone, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PartEntry {
@@ -406,6 +442,15 @@ pub struct PartEntry {
     /// (glTF is defined in metres), the scene's `length_unit` for OBJ and STL. Only with
     /// `mesh`.
     pub mesh_unit: Option<LengthUnit>,
+    /// STEP file (AP203, AP214, AP242), relative to the scene file's directory or
+    /// absolute: every solid of the assembly becomes a part named `NAME/solid path`,
+    /// with the file's own names, placements and length unit. Converted once with
+    /// OpenCASCADE into `.pliant-cache/` beside the scene and reused while the STEP
+    /// file is unchanged (`pliant import` converts ahead).
+    pub step: Option<String>,
+    /// Chord tolerance of the STEP tessellation (length unit), > 0: the largest
+    /// distance of a triangle from the CAD surface. Default 0.5 mm. Only with `step`.
+    pub chord_tolerance: Option<f64>,
     /// A box centred at `position`.
     #[serde(rename = "box")]
     pub box_: Option<BoxEntry>,

@@ -3,6 +3,8 @@
 
 use crate::centerline::{element_count, Centerline, CurveError, Resolution, Segment, MAX_ELEMENTS};
 use crate::error::FieldError;
+use crate::files::FileAccess;
+use crate::route::route_segments;
 use crate::format::{HoseEntry, SectionEntry, SegmentEntry, Vec3};
 use crate::materials::Materials;
 use crate::scene::HoseDiscretisation;
@@ -22,6 +24,7 @@ pub fn build_hose(
     raw: &HoseEntry,
     unit: LengthUnit,
     materials: &Materials,
+    files: &FileAccess,
 ) -> Result<(HoseSpec, HoseDiscretisation), FieldError> {
     let at = |rest: &str| format!("hoses[{index}].{rest}");
     let u = unit.symbol();
@@ -66,20 +69,42 @@ pub fn build_hose(
         }
     };
 
-    if raw.path.is_empty() {
-        return Err(FieldError::about(
-            at("path"),
-            "a hose needs at least one segment",
-        ));
-    }
-    let start = finite_vec(&at("start"), raw.start, u)? * scale;
-    let segments = raw
-        .path
-        .iter()
-        .enumerate()
-        .map(|(k, s)| segment(&at(&format!("path[{k}]")), s, unit))
-        .collect::<Result<Vec<_>, _>>()?;
-    let curve = Centerline::new(start, &segments).map_err(|e| curve_error(index, raw, e, unit))?;
+    let curve = if let Some(route) = &raw.route {
+        if raw.start.is_some() || !raw.path.is_empty() {
+            return Err(FieldError::about(
+                at("route"),
+                "give either `route` or `start` and `path`, not both",
+            ));
+        }
+        let (start, segments) = route_segments(&at("route"), route, unit, files)?;
+        Centerline::new(start, &segments).map_err(|e| {
+            FieldError::about(
+                at("route"),
+                format!("point {}: {}", e.segment + 1, e.reason),
+            )
+        })?
+    } else {
+        if raw.path.is_empty() {
+            return Err(FieldError::about(
+                at("path"),
+                "a hose needs at least one segment (or a `route`)",
+            ));
+        }
+        let Some(raw_start) = raw.start else {
+            return Err(FieldError::about(
+                at("start"),
+                "missing; a hose needs `start` and `path`, or a `route`",
+            ));
+        };
+        let start = finite_vec(&at("start"), raw_start, u)? * scale;
+        let segments = raw
+            .path
+            .iter()
+            .enumerate()
+            .map(|(k, s)| segment(&at(&format!("path[{k}]")), s, unit))
+            .collect::<Result<Vec<_>, _>>()?;
+        Centerline::new(start, &segments).map_err(|e| curve_error(index, raw, e, unit))?
+    };
     let length = curve.length();
     let count = element_count(length, resolution, curve.min_arc_radius()).ok_or_else(|| {
         FieldError::about(

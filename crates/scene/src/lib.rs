@@ -11,6 +11,7 @@
 
 mod action_de;
 pub mod budget;
+pub mod cad_converter;
 pub mod centerline;
 pub mod checks;
 pub mod connectors;
@@ -20,16 +21,20 @@ pub mod error;
 mod fastener_sites;
 pub mod files;
 pub mod format;
+pub mod glb_solids;
 pub mod hoses;
 pub mod library;
 pub mod load;
 pub mod materials;
 pub mod mesh;
 pub mod parts;
+pub mod route;
 pub mod scene;
 pub mod schema;
 pub mod session;
 pub mod settings;
+pub mod step_cache;
+pub mod step_parts;
 pub mod timeline;
 pub mod units;
 pub mod validate;

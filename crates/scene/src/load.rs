@@ -431,6 +431,7 @@ fn build(
             "a scene needs at least one hose",
         ));
     }
+    let files = options.files(base_dir);
     let mut hoses = Vec::with_capacity(file.hoses.len());
     let mut infos = Vec::with_capacity(file.hoses.len());
     for (i, raw) in file.hoses.iter().enumerate() {
@@ -441,7 +442,7 @@ fn build(
                 format!("duplicate hose name (also hoses[{first}].name)"),
             ));
         }
-        let (spec, info) = build_hose(i, raw, file.length_unit, &materials)?;
+        let (spec, info) = build_hose(i, raw, file.length_unit, &materials, &files)?;
         budget.add_elements(
             &format!("hoses[{i}]"),
             spec.nodes.len().saturating_sub(1) as u64,
@@ -457,12 +458,7 @@ fn build(
         })
         .collect();
     let timeline = build_timeline(&file.timeline, &nodes, file.length_unit)?;
-    let (rigid_parts, part_infos) = build_parts(
-        &file.parts,
-        file.length_unit,
-        &options.files(base_dir),
-        &mut budget,
-    )?;
+    let parts = build_parts(&file.parts, file.length_unit, &files, &mut budget)?;
     let (stubs, clips) = build_connectors(&file.stubs, &file.clips, &hoses, file.length_unit)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
     let checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
@@ -477,13 +473,14 @@ fn build(
         hose_names: hoses.iter().map(|h| h.name.clone()).collect(),
         world: WorldSpec {
             hoses,
-            rigid_parts,
+            rigid_parts: parts.specs,
             settings,
         },
         timeline,
         record_interval,
         hoses: infos,
-        parts: part_infos,
+        parts: parts.infos,
+        warnings: parts.warnings,
         stubs,
         clips,
         ergonomics,

@@ -90,7 +90,7 @@ pub fn read_mesh_file(files: &FileAccess, name: &str) -> Result<TriMesh, String>
 /// Runs a reader; a panic in it (a bug of the parsing library on a malformed file, such
 /// as gltf-json 1.4's index panic on a POSITION accessor that does not exist) is
 /// reported as a malformed file. Every public reader goes through here.
-fn no_panic(read: impl FnOnce() -> Result<TriMesh, String>) -> Result<TriMesh, String> {
+pub(crate) fn no_panic<T>(read: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(read))
         .unwrap_or_else(|_| Err("malformed file: the reader failed on it".to_string()))
 }
@@ -264,7 +264,7 @@ fn gltf_node(
 }
 
 /// Adds one glTF mesh's triangle primitives, transformed.
-fn gltf_mesh(
+pub(crate) fn gltf_mesh(
     m: &gltf::Mesh,
     transform: DMat4,
     buffers: &[Vec<u8>],

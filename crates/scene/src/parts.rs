@@ -24,15 +24,25 @@ pub const DEFAULT_FRICTION_STATIC: f64 = 0.5;
 pub const DEFAULT_FRICTION_SLIDING: f64 = 0.4;
 
 /// The shape kinds of a part, as written.
-const KINDS: &str = "`mesh`, `box`, `cylinder`, `sphere`";
+const KINDS: &str = "`mesh`, `step`, `box`, `cylinder`, `sphere`";
 
-/// Checks and builds every part; `files` resolves and reads mesh files.
+/// Every part of a scene, built: the core's parts, their facts, and warnings for the
+/// user (e.g. solids of a STEP assembly that could not be read).
+#[derive(Clone, Debug, Default)]
+pub struct BuiltParts {
+    pub specs: Vec<RigidPartSpec>,
+    pub infos: Vec<PartInfo>,
+    pub warnings: Vec<String>,
+}
+
+/// Checks and builds every part; `files` resolves and reads mesh files. A STEP part
+/// gives one part per solid ([`crate::step_parts`]).
 pub fn build_parts(
     raw: &[PartEntry],
     unit: LengthUnit,
     files: &FileAccess,
     budget: &mut Budget,
-) -> Result<(Vec<RigidPartSpec>, Vec<PartInfo>), FieldError> {
+) -> Result<BuiltParts, FieldError> {
     for (i, p) in raw.iter().enumerate() {
         if p.name.trim().is_empty() {
             return Err(FieldError::new(
@@ -49,14 +59,58 @@ pub fn build_parts(
             ));
         }
     }
-    let mut specs = Vec::with_capacity(raw.len());
-    let mut infos = Vec::with_capacity(raw.len());
+    let mut built = BuiltParts::default();
     for (i, p) in raw.iter().enumerate() {
-        let (spec, info) = build_part(i, p, unit, files, budget)?;
-        specs.push(spec);
-        infos.push(info);
+        let only_step = p.step.is_some()
+            && p.mesh.is_none()
+            && p.box_.is_none()
+            && p.cylinder.is_none()
+            && p.sphere.is_none();
+        let first_new = built.specs.len();
+        if only_step {
+            crate::step_parts::build_step_part(i, p, unit, files, budget, &mut built)?;
+        } else {
+            let (spec, info) = build_part(i, p, unit, files, budget)?;
+            built.specs.push(spec);
+            built.infos.push(info);
+        }
+        for spec in &built.specs[first_new..] {
+            if let Some(other) = built.specs[..first_new].iter().position(|q| q.name == spec.name) {
+                return Err(FieldError::new(
+                    format!("parts[{i}].name"),
+                    format!("\"{}\"", p.name),
+                    format!(
+                        "gives the part \"{}\", which an earlier part already is (part {other}); rename one",
+                        spec.name
+                    ),
+                ));
+            }
+        }
     }
-    Ok((specs, infos))
+    Ok(built)
+}
+
+/// The pose of `parts[index]`: position [m] and rotation.
+pub(crate) fn pose(
+    index: usize,
+    raw: &PartEntry,
+    unit: LengthUnit,
+) -> Result<(DVec3, DQuat), FieldError> {
+    let at = |rest: &str| format!("parts[{index}].{rest}");
+    let (u, scale) = (unit.symbol(), unit.to_metres());
+    let position = match raw.position {
+        Some(p) => finite_vec(&at("position"), p, u)? * scale,
+        None => DVec3::ZERO,
+    };
+    let rotation = match &raw.rotation {
+        Some(r) => {
+            let axis = non_zero_vec(&at("rotation.axis"), r.axis, "")?;
+            let angle = finite(&at("rotation.angle_deg"), r.angle_deg, "°")?;
+            DQuat::from_axis_angle(axis.normalize(), angle.to_radians())
+        }
+        None => DQuat::IDENTITY,
+    };
+    Ok((position, rotation))
 }
 
 /// Checks and builds `parts[index]`.
@@ -72,6 +126,7 @@ pub fn build_part(
 
     let given: Vec<&str> = [
         ("mesh", raw.mesh.is_some()),
+        ("step", raw.step.is_some()),
         ("box", raw.box_.is_some()),
         ("cylinder", raw.cylinder.is_some()),
         ("sphere", raw.sphere.is_some()),
@@ -109,18 +164,13 @@ pub fn build_part(
         ));
     }
 
-    let position = match raw.position {
-        Some(p) => finite_vec(&at("position"), p, u)? * scale,
-        None => DVec3::ZERO,
-    };
-    let rotation = match &raw.rotation {
-        Some(r) => {
-            let axis = non_zero_vec(&at("rotation.axis"), r.axis, "")?;
-            let angle = finite(&at("rotation.angle_deg"), r.angle_deg, "°")?;
-            DQuat::from_axis_angle(axis.normalize(), angle.to_radians())
-        }
-        None => DQuat::IDENTITY,
-    };
+    if raw.chord_tolerance.is_some() {
+        return Err(FieldError::about(
+            at("chord_tolerance"),
+            "only allowed with `step` (the tessellation tolerance of a STEP file)",
+        ));
+    }
+    let (position, rotation) = pose(index, raw, unit)?;
     let (friction_static, friction_sliding) = friction(
         &at("friction"),
         raw.friction.as_ref(),

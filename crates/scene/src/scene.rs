@@ -131,6 +131,9 @@ pub struct LoadedScene {
     pub base_dir: std::path::PathBuf,
     /// Its size: elements, triangles and the memory a run needs ([`crate::budget`]).
     pub estimate: crate::budget::Estimate,
+    /// What loading left out or doubts, for the user (e.g. solids of a STEP assembly
+    /// that could not be read); empty when nothing was.
+    pub warnings: Vec<String>,
 }
 
 impl LoadedScene {

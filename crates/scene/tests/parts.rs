@@ -808,7 +808,7 @@ fn cases() -> Vec<Case> {
             "no shape",
             &p("position = [0, 0, 0]"),
             "parts[0]",
-            &["needs exactly one of `mesh`, `box`, `cylinder`, `sphere`"],
+            &["needs exactly one of `mesh`, `step`, `box`, `cylinder`, `sphere`"],
         ),
         case(
             "two shapes",

@@ -1,0 +1,7 @@
+"""``python -m pliant.cad``: see :mod:`pliant.cad`."""
+
+import sys
+
+from .step_mesh import main
+
+sys.exit(main())

@@ -1,0 +1,186 @@
+//! Running the STEP converter: OpenCASCADE through its Python binding `OCP`
+//! (PyPI `cadquery-ocp-novtk`, installed into the repository's `.venv` by
+//! `scripts/install-cad.sh`). The converter's source
+//! (`crates/python/python/pliant/cad/step_mesh.py`) is embedded in this crate and piped
+//! to the interpreter, so the importer works without the `pliant` Python package; its
+//! hash is part of every cache key, so a changed converter never reuses old meshes.
+//!
+//! Only scenes loaded from the user's own disk (and `pliant import`) run it: scenes sent
+//! to `pliant serve` only read meshes already imported (see [`crate::step_cache`]).
+
+use glam::DVec3;
+use serde::Deserialize;
+use sha2::{Digest, Sha256};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::OnceLock;
+
+/// The converter's source, as embedded.
+pub const CONVERTER_SOURCE: &str =
+    include_str!("../../python/python/pliant/cad/step_mesh.py");
+
+/// How to install the importer, for messages.
+pub const INSTALL_HINT: &str = "install it with ./scripts/install-cad.sh (OpenCASCADE's Python binding, PyPI cadquery-ocp-novtk, into the repository's .venv), or name an interpreter that has it with PLIANT_PYTHON";
+
+/// How many conversions this process started (tests check that a cached load runs none).
+static CONVERSIONS: AtomicUsize = AtomicUsize::new(0);
+
+/// Number of converter runs (STEP meshes and curves) started by this process.
+pub fn conversions() -> usize {
+    CONVERSIONS.load(Ordering::SeqCst)
+}
+
+/// SHA-256 (hex) of the embedded converter: the converter's identity in cache keys.
+pub fn converter_id() -> &'static str {
+    static ID: OnceLock<String> = OnceLock::new();
+    ID.get_or_init(|| hex(&Sha256::digest(CONVERTER_SOURCE.as_bytes())))
+}
+
+/// Lower-case hex of bytes.
+pub fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// Interpreters to try, in order: `PLIANT_PYTHON` (alone, if set), the repository's
+/// `.venv`, a `.venv` in the working directory, `python3`.
+fn candidates() -> Vec<PathBuf> {
+    if let Some(p) = std::env::var_os("PLIANT_PYTHON") {
+        return vec![PathBuf::from(p)];
+    }
+    let mut list = Vec::new();
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    for root in [repo, PathBuf::from(".")] {
+        let venv = root.join(".venv/bin/python");
+        if venv.is_file() {
+            list.push(venv);
+        }
+    }
+    list.push(PathBuf::from("python3"));
+    list
+}
+
+/// The first interpreter that has `OCP` (checked without importing it: fast).
+pub fn find_python() -> Result<PathBuf, String> {
+    let probe = "import importlib.util, sys; sys.exit(importlib.util.find_spec('OCP') is None)";
+    let tried = candidates();
+    for python in &tried {
+        let ok = Command::new(python)
+            .args(["-c", probe])
+            .stdin(Stdio::null())
+            .output()
+            .map(|o| o.status.success())
+            .unwrap_or(false);
+        if ok {
+            return Ok(python.clone());
+        }
+    }
+    let names: Vec<String> = tried.iter().map(|p| p.display().to_string()).collect();
+    Err(format!(
+        "the STEP importer is not installed: none of these Python interpreters has OpenCASCADE's binding `OCP`: {}; {INSTALL_HINT}",
+        names.join(", ")
+    ))
+}
+
+/// Runs the embedded converter with `args`; its error line on failure.
+fn run(args: &[&std::ffi::OsStr]) -> Result<String, String> {
+    let python = find_python()?;
+    CONVERSIONS.fetch_add(1, Ordering::SeqCst);
+    let mut child = Command::new(&python)
+        .arg("-")
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot start {}: {e}", python.display()))?;
+    if let Some(mut stdin) = child.stdin.take() {
+        stdin
+            .write_all(CONVERTER_SOURCE.as_bytes())
+            .map_err(|e| format!("cannot start the STEP converter: {e}"))?;
+    }
+    let out = child
+        .wait_with_output()
+        .map_err(|e| format!("the STEP converter did not finish: {e}"))?;
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() {
+        let line = stderr
+            .lines()
+            .rev()
+            .find_map(|l| l.strip_prefix("error: "))
+            .map(str::to_string)
+            .unwrap_or_else(|| {
+                let tail: Vec<&str> = stderr.lines().rev().take(5).collect();
+                format!(
+                    "the STEP converter failed ({}): {}",
+                    out.status,
+                    tail.into_iter().rev().collect::<Vec<_>>().join(" | ")
+                )
+            });
+        return Err(line);
+    }
+    Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// Converts `step` to the GLB `out` (one named node per solid, metres) with a chord
+/// tolerance [m]. The converter writes `out` atomically.
+pub fn import_step(step: &Path, out: &Path, tolerance_m: f64) -> Result<(), String> {
+    let tol = format!("{tolerance_m:e}");
+    run(&[
+        "import".as_ref(),
+        step.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--tolerance".as_ref(),
+        tol.as_ref(),
+    ])
+    .map(|_| ())
+}
+
+/// Which curve of a STEP file.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CurvePick {
+    Name(String),
+    Index(usize),
+}
+
+/// What the converter writes for a curve.
+#[derive(Deserialize)]
+struct CurveFile {
+    points: Vec<[f64; 3]>,
+}
+
+/// Samples one curve of `step` into points within `tolerance_m` [m] of it (metres),
+/// through the JSON file `out` (kept as the cache).
+pub fn sample_curve(
+    step: &Path,
+    pick: &CurvePick,
+    tolerance_m: f64,
+    out: &Path,
+) -> Result<Vec<DVec3>, String> {
+    let tol = format!("{tolerance_m:e}");
+    let (flag, value) = match pick {
+        CurvePick::Name(n) => ("--name", n.clone()),
+        CurvePick::Index(i) => ("--index", i.to_string()),
+    };
+    run(&[
+        "curve".as_ref(),
+        step.as_os_str(),
+        flag.as_ref(),
+        value.as_ref(),
+        "--tolerance".as_ref(),
+        tol.as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ])?;
+    let text = std::fs::read(out).map_err(|e| format!("cannot read {}: {e}", out.display()))?;
+    parse_curve(&text)
+}
+
+/// The points of a curve file written by the converter.
+pub fn parse_curve(bytes: &[u8]) -> Result<Vec<DVec3>, String> {
+    let c: CurveFile = serde_json::from_slice(bytes)
+        .map_err(|e| format!("the sampled curve is not readable: {e}"))?;
+    Ok(c.points.into_iter().map(DVec3::from_array).collect())
+}
