@@ -71,12 +71,33 @@ pub fn calibrate_file(path: &Path) -> Result<Calibration, CalibError> {
 /// Runs a calibration whose CSV paths are relative to `base_dir`; `origin` names it.
 pub fn calibrate(spec: Spec, base_dir: &Path, origin: &str) -> Result<Calibration, CalibError> {
     spec.check(origin)?;
-    let mut fits = Vec::with_capacity(spec.tests.len());
+    let mut curves = Vec::with_capacity(spec.tests.len());
     for t in &spec.tests {
         let path = base_dir.join(&t.csv);
         let shown = path.display().to_string();
         let text = read_text(&path, &shown)?;
-        let table = csv_input::parse(&text, &shown)?;
+        curves.push((shown, text));
+    }
+    calibrate_texts(spec, &curves, origin)
+}
+
+/// Runs a calibration whose curves are given as (file name for messages, CSV text), one
+/// per test of `spec`, in order.
+pub fn calibrate_texts(
+    spec: Spec,
+    curves: &[(String, String)],
+    origin: &str,
+) -> Result<Calibration, CalibError> {
+    spec.check(origin)?;
+    if curves.len() != spec.tests.len() {
+        return Err(CalibError::file(
+            origin,
+            format!("{} tests but {} curves", spec.tests.len(), curves.len()),
+        ));
+    }
+    let mut fits = Vec::with_capacity(spec.tests.len());
+    for (t, (shown, text)) in spec.tests.iter().zip(curves) {
+        let table = csv_input::parse(text, shown)?;
         let g = Geometry {
             d_inner: t.d_inner_mm.unwrap_or(spec.d_inner_mm) * 1e-3,
             d_outer: t.d_outer_mm.unwrap_or(spec.d_outer_mm) * 1e-3,
