@@ -37,6 +37,16 @@ use std::path::{Path, PathBuf};
 /// Most bytes a CSV or calibration file may have.
 pub const MAX_FILE_BYTES: u64 = 256 * 1024 * 1024;
 
+/// A calibration file's name without its folder; any other origin as it is.
+fn short_origin(origin: &str) -> String {
+    if origin.ends_with(".toml") {
+        if let Some(name) = Path::new(origin).file_name() {
+            return name.to_string_lossy().to_string();
+        }
+    }
+    origin.to_string()
+}
+
 /// A finished calibration.
 #[derive(Clone, Debug)]
 pub struct Calibration {
@@ -105,11 +115,7 @@ pub fn calibrate_texts(
         };
         fits.push(fit_test(t.kind, &t.csv, &table, g)?);
     }
-    let origin_name = Path::new(origin)
-        .file_name()
-        .map(|s| s.to_string_lossy().to_string())
-        .unwrap_or_else(|| origin.to_string());
-    let material = material_entry::derive(&spec, &fits, &origin_name);
+    let material = material_entry::derive(&spec, &fits, &short_origin(origin));
     Ok(Calibration {
         origin: origin.to_string(),
         spec,
@@ -120,10 +126,7 @@ pub fn calibrate_texts(
 
 impl Calibration {
     fn origin_name(&self) -> String {
-        Path::new(&self.origin)
-            .file_name()
-            .map(|s| s.to_string_lossy().to_string())
-            .unwrap_or_else(|| self.origin.clone())
+        short_origin(&self.origin)
     }
 
     /// The `[materials.NAME]` table for a scene (material.toml).

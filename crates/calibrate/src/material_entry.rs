@@ -205,7 +205,7 @@ pub fn derive(spec: &Spec, fits: &[TestFit], origin: &str) -> MaterialResult {
     let given_nu = spec.poisson;
     let nu_default = given_nu.unwrap_or(DEFAULT_POISSON);
     let nu_assumption = || match given_nu {
-        Some(_) => format!("given in the calibration file {origin}; no torsion test determines it"),
+        Some(_) => format!("given in {origin}; no torsion test determines it"),
         None => "typical of elastomers (0.48-0.49); no torsion test determines it".to_string(),
     };
     let e_b_text = |v: f64, ci: [f64; 2]| {
@@ -265,7 +265,10 @@ pub fn derive(spec: &Spec, fits: &[TestFit], origin: &str) -> MaterialResult {
         .map(|b| b.0)
         .unwrap_or_else(|| reduced(e_tension.value, e_compression.value));
     let mut gj_held = true;
+    // with neither an axial nor a bending test, E came from G and ν: G cannot give ν too
+    let e_from_g = e_t.is_none() && e_c.is_none() && e_b.is_none();
     let poisson = match g {
+        Some(_) if e_from_g => Derived::assumption(nu_default, nu_assumption()),
         Some((gv, _)) => {
             let nu = e_b_model / (2.0 * gv) - 1.0;
             if nu > -1.0 && nu < 0.5 {
@@ -300,12 +303,12 @@ pub fn derive(spec: &Spec, fits: &[TestFit], origin: &str) -> MaterialResult {
         Some(s) => Derived::source(spec.density_kg_m3, None, s.clone()),
         None => Derived::assumption(
             spec.density_kg_m3,
-            format!("given in the calibration file {origin}; not measured by these tests"),
+            format!("given in {origin}; not measured by these tests"),
         ),
     };
     let min_bend_radius_mm = spec
         .min_bend_radius_mm
-        .map(|r| Derived::source(r, None, format!("given in the calibration file {origin}")));
+        .map(|r| Derived::source(r, None, format!("given in {origin}")));
     let ei = (!fits
         .iter()
         .all(|f| f.property != Property::BendingStiffness))
@@ -446,11 +449,7 @@ impl MaterialResult {
             }
         );
         let _ = writeln!(s, "description = {}", toml_str(&self.description));
-        let geom = Derived::source(
-            0.0,
-            None,
-            format!("the tested specimen, calibration file {origin}"),
-        );
+        let geom = Derived::source(0.0, None, format!("the tested specimen, {origin}"));
         let mut entry = |k: &str, d: &Derived| {
             let (what, text) = d.provenance();
             let _ = writeln!(
@@ -479,6 +478,13 @@ impl MaterialResult {
         entry("density_kg_m3", &self.density_kg_m3);
         entry("poisson", &self.poisson);
         let r_min = self.min_bend_radius_mm.clone().unwrap_or_else(|| {
+            if self.d_inner_mm <= 0.0 {
+                // the library needs r_min > d_outer / 2; no hose rule for a solid rod
+                return Derived::assumption(
+                    self.d_outer_mm,
+                    "one outer diameter (a solid rod: no hose rule applies); no datasheet value".into(),
+                );
+            }
             Derived::assumption(
                 6.0 * self.d_inner_mm + 0.5 * self.d_outer_mm,
                 format!(

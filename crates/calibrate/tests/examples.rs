@@ -10,7 +10,10 @@ const NOISE: f64 = 0.002;
 const SEED: u64 = 1;
 
 fn folder() -> &'static Path {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/calibration"))
+    Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/calibration"
+    ))
 }
 
 #[test]
@@ -24,7 +27,13 @@ fn the_example_recovers_its_known_stiffness() {
         }
     }
     let c = pliant_calibrate::calibrate_file(&folder().join("hose.toml")).unwrap();
-    let want = [truth.e_tension, truth.e_compression, truth.ei(), truth.gj(), truth.ei()];
+    let want = [
+        truth.e_tension,
+        truth.e_compression,
+        truth.ei(),
+        truth.gj(),
+        truth.ei(),
+    ];
     assert_eq!(c.fits.len(), want.len());
     for (f, w) in c.fits.iter().zip(want) {
         let rel = (f.value - w) / w;

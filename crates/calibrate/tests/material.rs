@@ -93,3 +93,30 @@ fn a_torsion_test_the_material_cannot_hold_is_given_in_the_section() {
     );
     assert_eq!(c.material.poisson.value, 0.49);
 }
+
+#[test]
+fn one_test_alone_marks_what_it_does_not_measure_as_assumptions() {
+    let truth = Truth::EXAMPLE;
+    let dir = tempfile::tempdir().unwrap();
+    let (files, _) = example_files(&truth, 0.002, 2);
+    for (name, text) in &files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    // torsion alone: E from G with the default ν, so ν stays an assumption
+    let spec = "name = \"rod\"\nd_inner_mm = 10\nd_outer_mm = 16\ndensity_kg_m3 = 1000\n\
+                [[tests]]\nkind = \"torsion\"\ncsv = \"torsion.csv\"\nlength_mm = 300\n";
+    std::fs::write(dir.path().join("t.toml"), spec).unwrap();
+    let c = calibrate_file(&dir.path().join("t.toml")).unwrap();
+    let m = &c.material;
+    assert!(m.poisson.assumption.is_some() && m.e_tension_mpa.assumption.is_some());
+    assert!(m.gj_n_m2.is_some());
+    // the section line reproduces GJ exactly; the library entry of a solid rod parses
+    let spec = "name = \"rod\"\nd_inner_mm = 0\nd_outer_mm = 16\ndensity_kg_m3 = 1000\n\
+                [[tests]]\nkind = \"three_point_bending\"\ncsv = \"bending.csv\"\nlength_mm = 200\n";
+    std::fs::write(dir.path().join("b.toml"), spec).unwrap();
+    let c = calibrate_file(&dir.path().join("b.toml")).unwrap();
+    let lib = pliant_scene::Library::parse(&c.library_toml()).unwrap();
+    assert!(lib.get("rod").is_some());
+    assert!(c.material_toml().contains("e_bending_mpa"));
+    assert!(c.material.e_compression_mpa.assumption.is_some());
+}
