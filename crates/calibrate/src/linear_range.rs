@@ -237,7 +237,8 @@ pub fn find(x: &[f64], y: &[f64]) -> Result<LinearRange, RangeError> {
     let sigma = noise_std(&sums, y);
     let var = sigma * sigma;
     let min_points = 5.max(n.div_ceil(10));
-    // long curves: every start in the first half would cost O(n²); stride the starts
+    // long curves: every window would cost O(n²) tests; stride starts and ends so that
+    // about 2000 × 1000 windows are tested
     let stride = (n / 2000).max(1);
     let mut best: Option<(usize, usize)> = None;
     let mut start = 0;
@@ -269,7 +270,10 @@ pub fn find(x: &[f64], y: &[f64]) -> Result<LinearRange, RangeError> {
                 best = Some((start, last));
                 break;
             }
-            last -= 1;
+            if last < stride {
+                break;
+            }
+            last -= stride;
         }
         start += stride;
     }

@@ -240,3 +240,20 @@ fn missing_csv_and_bad_spec_are_errors_not_panics() {
     let e = calibrate_file(&dir.path().join("absent.toml")).unwrap_err();
     assert!(e.to_string().contains("absent.toml"), "{e}");
 }
+
+#[test]
+fn a_long_curve_is_fitted() {
+    // 20 000 points (a test machine at a high rate): the search strides, the answer holds
+    let s = synthetic::generate(&Shape {
+        points: 20_000,
+        ..tension_shape(3, 0.002)
+    });
+    let (e, ci, _, last) = fit_stress_strain(&s);
+    assert!((e - 8e6).abs() / 8e6 < 0.002, "{e}");
+    assert!(ci[0] < e && e < ci[1]);
+    assert!(
+        (last as i64 - s.linear_last as i64).abs() < 200,
+        "{last} vs {}",
+        s.linear_last
+    );
+}
