@@ -81,14 +81,17 @@ fn noise_free_curves_give_the_exact_answer_and_the_exact_range() {
 #[test]
 fn larger_noise_widens_the_interval_but_still_covers() {
     let mut covered = 0;
+    let mut worst: f64 = 0.0;
     for seed in 0..100 {
         let s = synthetic::generate(&tension_shape(1000 + seed, 0.01));
         let (e, ci, _, _) = fit_stress_strain(&s);
+        worst = worst.max((e - 8e6).abs() / 8e6);
         assert!((e - 8e6).abs() / 8e6 < 0.03, "seed {seed}: {e}");
         if ci[0] <= 8e6 && 8e6 <= ci[1] {
             covered += 1;
         }
     }
+    eprintln!("tension at 1 % noise: worst relative error {worst:.2e}, CI coverage {covered}/100");
     assert!(covered >= 85, "coverage {covered}/100");
 }
 
