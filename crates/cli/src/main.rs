@@ -4,6 +4,7 @@
 mod bench;
 mod bench_newton;
 mod import_cmd;
+mod calibrate_cmd;
 mod limit_args;
 mod peers;
 mod progress;
@@ -155,6 +156,49 @@ enum Command {
         #[arg(long)]
         tolerance: Option<String>,
     },
+    /// Fit a material's stiffness to measured test curves (docs/calibration.md): E_t and
+    /// E_c from tension and compression, EI from three-point bending, a cantilever or
+    /// ISO 10619-1, GJ from torsion; least squares over the linear range (found
+    /// automatically) with 95 % confidence intervals. Writes material.toml (a scene's
+    /// [materials.NAME]), library_entry.toml, calibration.json and calibration.html.
+    Calibrate {
+        /// Calibration file (TOML, format "pliant-calibration", e.g.
+        /// examples/calibration/hose.toml); or give --kind and --csv for one test.
+        spec: Option<PathBuf>,
+        /// One test's kind: tension, compression, three_point_bending, cantilever,
+        /// torsion, iso10619.
+        #[arg(long)]
+        kind: Option<String>,
+        /// One test's curve (CSV with a header naming quantities and units, e.g.
+        /// force_N,displacement_mm).
+        #[arg(long)]
+        csv: Option<PathBuf>,
+        /// Gauge length (tension, compression), span (three-point bending), free length
+        /// (cantilever), grip distance (torsion) or lever arm (iso10619) [mm].
+        #[arg(long)]
+        length: Option<f64>,
+        /// The specimen's outer diameter [mm].
+        #[arg(long = "d-outer")]
+        d_outer: Option<f64>,
+        /// The specimen's inner diameter [mm] (0: a solid rod).
+        #[arg(long = "d-inner", default_value_t = 0.0)]
+        d_inner: f64,
+        /// Name of the material.
+        #[arg(long, default_value = "calibrated")]
+        name: String,
+        /// Density [kg/m³] (not measured; the material needs one).
+        #[arg(long, default_value_t = 1100.0)]
+        density: f64,
+        /// Poisson's ratio when no torsion test determines it [default: 0.49].
+        #[arg(long)]
+        poisson: Option<f64>,
+        /// Output folder.
+        #[arg(long, default_value = "out/calibration")]
+        out: PathBuf,
+        /// Print calibration.json instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
     /// Measure cost per element per step and the real-time factor.
     Bench {
         /// Print one JSON object instead of a table.
@@ -283,6 +327,33 @@ fn main() -> ExitCode {
             cache_dir: cache_dir.as_deref(),
             tolerance: tolerance.as_deref(),
         }),
+        Command::Calibrate {
+            spec,
+            kind,
+            csv,
+            length,
+            d_outer,
+            d_inner,
+            name,
+            density,
+            poisson,
+            out,
+            json,
+        } => calibrate_cmd::run(
+            spec.as_deref(),
+            &calibrate_cmd::OneTest {
+                kind: kind.as_deref(),
+                csv: csv.as_deref(),
+                length_mm: length,
+                d_inner_mm: d_inner,
+                d_outer_mm: d_outer,
+                name: &name,
+                density_kg_m3: density,
+                poisson,
+            },
+            &out,
+            json,
+        ),
         Command::Bench { json, quick } => {
             bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
         }

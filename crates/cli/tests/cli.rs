@@ -568,3 +568,118 @@ duration_s = 0.002
     let summary = std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap();
     assert!(summary.contains("scene_warnings") && summary.contains("SG1/x: broken"), "{summary}");
 }
+
+#[test]
+fn calibrate_fits_the_example_and_writes_the_material() {
+    let out = tempfile::tempdir().unwrap();
+    let o = pliant()
+        .arg("calibrate")
+        .arg(examples().join("calibration/hose.toml"))
+        .arg("--out")
+        .arg(out.path())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for kind in [
+        "tension",
+        "compression",
+        "three_point_bending",
+        "torsion",
+        "iso10619",
+    ] {
+        assert!(stdout.contains(kind), "{stdout}");
+    }
+    assert!(stdout.contains("E_t = 11.5"), "{stdout}");
+    for f in [
+        "material.toml",
+        "library_entry.toml",
+        "calibration.json",
+        "calibration.html",
+    ] {
+        assert!(out.path().join(f).is_file(), "{f}");
+    }
+    let material = std::fs::read_to_string(out.path().join("material.toml")).unwrap();
+    assert!(
+        material.contains("[materials.calibrated_hose]"),
+        "{material}"
+    );
+    // a scene using the calibrated material runs
+    let scene = out.path().join("scene.toml");
+    std::fs::write(
+        &scene,
+        format!(
+            "format = \"pliant-scene\"\nversion = 1\nlength_unit = \"mm\"\n\n{material}\n\
+             [[hoses]]\nname = \"h\"\nmaterial = \"calibrated_hose\"\nsection = {{ d_inner = 10, d_outer = 16 }}\n\
+             elements = 8\nstart = [0, 0, 0]\npath = [{{ line = {{ to = [300, 0, 0] }} }}]\n\
+             [[timeline]]\naction = \"fix\"\nhose = \"h\"\nnode = 0\n\
+             [[timeline]]\naction = \"run\"\nduration_s = 0.02\n"
+        ),
+    )
+    .unwrap();
+    let run = run_scene(&scene, &out.path().join("run"), &[]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+
+    // one test from the command line
+    let one = pliant()
+        .args([
+            "calibrate",
+            "--kind",
+            "torsion",
+            "--length",
+            "300",
+            "--d-outer",
+            "16",
+            "--d-inner",
+            "10",
+            "--csv",
+        ])
+        .arg(examples().join("calibration/torsion.csv"))
+        .arg("--out")
+        .arg(out.path().join("one"))
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(
+        one.status.success(),
+        "{}",
+        String::from_utf8_lossy(&one.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&one.stdout).unwrap();
+    let gj = json["tests"][0]["value"].as_f64().unwrap();
+    assert!((gj - 0.022561).abs() < 0.0003, "{gj}");
+
+    // bad input: the error names the file and line, exit code 2
+    let bad = out.path().join("bad.csv");
+    std::fs::write(&bad, "force_N,deflection_mm\n0,0\n1,oops\n").unwrap();
+    let e = pliant()
+        .args([
+            "calibrate",
+            "--kind",
+            "cantilever",
+            "--length",
+            "100",
+            "--d-outer",
+            "10",
+            "--csv",
+        ])
+        .arg(&bad)
+        .arg("--out")
+        .arg(out.path().join("bad"))
+        .output()
+        .unwrap();
+    assert_eq!(e.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&e.stderr);
+    assert!(
+        err.contains("bad.csv:3:2") && err.contains("not a number"),
+        "{err}"
+    );
+}

@@ -4,6 +4,7 @@
 
 mod args;
 mod arrays;
+mod calibration;
 mod collector;
 mod engine;
 mod errors;
@@ -31,6 +32,13 @@ fn _pliant(m: &Bound<'_, PyModule>) -> PyResult<()> {
         py.get_type::<errors::SolverNotConverged>(),
     )?;
     m.add("SolverWarning", py.get_type::<errors::SolverWarning>())?;
+    m.add(
+        "CalibrationError",
+        py.get_type::<calibration::CalibrationError>(),
+    )?;
+    m.add_class::<calibration::Calibration>()?;
+    m.add_class::<calibration::CalibrationFit>()?;
+    m.add_function(wrap_pyfunction!(calibration::calibrate, m)?)?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<simulation::Simulation>()?;
     m.add_class::<load_id::LoadId>()?;

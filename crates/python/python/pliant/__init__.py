@@ -18,6 +18,9 @@ See docs/python.md in the repository for a guide.
 """
 
 from ._pliant import (
+    Calibration,
+    CalibrationError,
+    CalibrationFit,
     HandLoad,
     LoadId,
     RunResult,
@@ -29,6 +32,7 @@ from ._pliant import (
     SolverNotConverged,
     SolverWarning,
     __version__,
+    calibrate,
     demo_scene,
     load_scene,
     run_timeline,
@@ -47,6 +51,9 @@ def study(study, out=None, **options):
 
 
 __all__ = [
+    "Calibration",
+    "CalibrationError",
+    "CalibrationFit",
     "HandLoad",
     "LoadId",
     "RunResult",
@@ -58,6 +65,7 @@ __all__ = [
     "SolverNotConverged",
     "SolverWarning",
     "__version__",
+    "calibrate",
     "demo_scene",
     "load_scene",
     "run_timeline",

@@ -312,3 +312,99 @@ class RunResult:
 
 def run_timeline(scene: Scene, ergonomics: Optional[str] = None, solver: Optional[str] = None) -> RunResult:
     """Runs the scene's whole timeline as ``pliant run`` does."""
+
+class CalibrationError(ValueError):
+    """A calibration could not be done; the message is the one ``pliant calibrate``
+    prints (file, line, column, what is wrong)."""
+
+    file: str
+    line: Optional[int]
+    column: Optional[int]
+
+class CalibrationFit:
+    """One fitted test curve (docs/calibration.md)."""
+
+    @property
+    def kind(self) -> str: ...
+    @property
+    def csv(self) -> str: ...
+    @property
+    def symbol(self) -> str:
+        """E_t, E_c, EI or GJ."""
+    @property
+    def unit(self) -> str:
+        """Display unit of ``value_display`` (MPa or N·m²)."""
+    @property
+    def value(self) -> float:
+        """The stiffness in SI: Pa (E_t, E_c) or N·m² (EI, GJ)."""
+    @property
+    def std_error(self) -> float: ...
+    @property
+    def ci95(self) -> Tuple[float, float]:
+        """Two-sided 95 % confidence interval (Student t, n − 2 degrees of freedom), SI."""
+    @property
+    def value_display(self) -> float: ...
+    @property
+    def ci95_display(self) -> Tuple[float, float]: ...
+    @property
+    def slope(self) -> float: ...
+    @property
+    def intercept(self) -> float: ...
+    @property
+    def residual_rms(self) -> float: ...
+    @property
+    def residual_std(self) -> float: ...
+    @property
+    def r_squared(self) -> float: ...
+    @property
+    def range(self) -> Dict[str, Any]:
+        """The linear range: first_row, last_row (0-based), first_line, last_line (CSV),
+        points, total_points, x_from, x_to, y_from, y_to (plot units), x_label, y_label,
+        noise_std."""
+    @property
+    def formula(self) -> str: ...
+    @property
+    def x(self) -> FloatArray:
+        """The fitted curve's abscissa, SI (strain, deflection, angle or curvature)."""
+    @property
+    def y(self) -> FloatArray:
+        """Its ordinate, SI (stress, force or torque)."""
+
+class Calibration:
+    """A finished calibration: fits, the material with its sources, the files."""
+
+    @property
+    def fits(self) -> List[CalibrationFit]: ...
+    @property
+    def material(self) -> Dict[str, Any]: ...
+    @property
+    def warnings(self) -> List[str]: ...
+    @property
+    def material_toml(self) -> str:
+        """The ``[materials.NAME]`` table for a scene file."""
+    @property
+    def library_toml(self) -> str:
+        """The entry in the built-in library's format."""
+    @property
+    def html(self) -> str: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """calibration.json as a dict."""
+    def write(self, out: StrPath) -> List[str]:
+        """Writes material.toml, library_entry.toml, calibration.json, calibration.html."""
+
+def calibrate(
+    spec: Optional[StrPath] = None,
+    *,
+    kind: Optional[str] = None,
+    csv: Optional[StrPath] = None,
+    data: Optional[Dict[str, Sequence[float]]] = None,
+    length_mm: Optional[float] = None,
+    d_outer_mm: Optional[float] = None,
+    d_inner_mm: float = 0.0,
+    name: str = "calibrated",
+    density_kg_m3: float = 1100.0,
+    poisson: Optional[float] = None,
+    out: Optional[StrPath] = None,
+) -> Calibration:
+    """Fits a material's stiffness to measured test curves: a calibration file, or one
+    test (``kind`` with ``csv`` or ``data``). See docs/calibration.md."""
