@@ -16,30 +16,13 @@ pub struct StudyOptions<'a> {
     pub quiet: bool,
 }
 
-/// Interpreters to try, in order: `PLIANT_PYTHON`, the repository's `.venv` (where
-/// `scripts/test-python.sh` installs the package), one in the working directory, `python3`.
-fn candidates() -> Vec<PathBuf> {
-    let mut list = Vec::new();
-    if let Some(p) = std::env::var_os("PLIANT_PYTHON") {
-        return vec![PathBuf::from(p)];
-    }
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    for root in [repo, PathBuf::from(".")] {
-        let venv = root.join(".venv/bin/python");
-        if venv.is_file() {
-            list.push(venv);
-        }
-    }
-    list.push(PathBuf::from("python3"));
-    list
-}
 
 /// What a study imports: the package and its study extras.
 const PROBE: &str = "import pliant.studies, distributed, pyarrow, pandas, scipy, skimage";
 
 /// The first interpreter that can import `pliant.studies` and the study extras.
 fn find_python() -> Result<PathBuf> {
-    let tried = candidates();
+    let tried = pliant_scene::cad_converter::python_candidates();
     for python in &tried {
         let ok = Command::new(python)
             .args(["-c", PROBE])

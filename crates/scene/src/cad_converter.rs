@@ -44,8 +44,9 @@ pub fn hex(bytes: &[u8]) -> String {
 }
 
 /// Interpreters to try, in order: `PLIANT_PYTHON` (alone, if set), the repository's
-/// `.venv`, a `.venv` in the working directory, `python3`.
-fn candidates() -> Vec<PathBuf> {
+/// `.venv` (where the project's scripts install the packages), a `.venv` in the working
+/// directory, `python3`. Shared by every command that runs Python (import, study).
+pub fn python_candidates() -> Vec<PathBuf> {
     if let Some(p) = std::env::var_os("PLIANT_PYTHON") {
         return vec![PathBuf::from(p)];
     }
@@ -64,7 +65,7 @@ fn candidates() -> Vec<PathBuf> {
 /// The first interpreter that has `OCP` (checked without importing it: fast).
 pub fn find_python() -> Result<PathBuf, String> {
     let probe = "import importlib.util, sys; sys.exit(importlib.util.find_spec('OCP') is None)";
-    let tried = candidates();
+    let tried = python_candidates();
     for python in &tried {
         let ok = Command::new(python)
             .args(["-c", probe])

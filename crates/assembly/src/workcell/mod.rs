@@ -454,19 +454,25 @@ impl Workcell {
             ));
         }
         let c = checkpoint.clone();
+        self.profile = c.profile;
+        self.tick = c.tick;
+        self.log.truncate(c.log_length);
+        self.diverged = c.diverged.clone();
+        self.put_back(c);
+        Ok(())
+    }
+
+    /// The physics state, hands, fasteners, load cases and account of `c` (not its
+    /// tick, log, profile or divergence: [`Self::restore`] and a rollback differ there).
+    fn put_back(&mut self, c: Checkpoint) {
         self.state = c.state;
         self.hands = c.hands;
         self.hand_records = c.hand_records;
         self.fasteners = c.fasteners;
         self.user_loads = c.user_loads;
         self.named_loads = c.named_loads;
-        self.profile = c.profile;
         self.checks = c.checks;
         self.tally = c.tally;
-        self.tick = c.tick;
-        self.log.truncate(c.log_length);
-        self.diverged = c.diverged;
-        Ok(())
     }
 
     // ---- the log -------------------------------------------------------------------
@@ -829,15 +835,7 @@ impl Workcell {
                 "no healthy checkpoint to roll back to; reset instead".into(),
             ));
         };
-        let c = point;
-        self.state = c.state;
-        self.hands = c.hands;
-        self.hand_records = c.hand_records;
-        self.fasteners = c.fasteners;
-        self.user_loads = c.user_loads;
-        self.named_loads = c.named_loads;
-        self.checks = c.checks;
-        self.tally = c.tally;
+        self.put_back(point);
         self.diverged = None;
         let hose = self
             .model
