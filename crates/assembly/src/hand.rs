@@ -83,8 +83,8 @@ impl Hand {
         let t = ((point - a).dot(b - a) / (b - a).length_squared().max(f64::MIN_POSITIVE))
             .clamp(0.0, 1.0);
         let on_chord = a + t * (b - a);
-        let within = (point - on_chord).length()
-            <= model.radius[el.node_a].max(model.radius[el.node_b]);
+        let within =
+            (point - on_chord).length() <= model.radius[el.node_a].max(model.radius[el.node_b]);
         let (nodes, point): (&[usize], DVec3) = match grip {
             Grip::Firm if within => (&[el.node_a, el.node_b], point),
             Grip::Firm => (&[el.node_a, el.node_b], on_chord),

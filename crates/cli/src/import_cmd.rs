@@ -24,7 +24,9 @@ pub struct ImportOptions<'a> {
 pub fn parse_length(text: &str) -> Result<f64> {
     let t = text.trim();
     let split = t
-        .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == 'E' || c == '-' || c == '+'))
+        .find(|c: char| {
+            !(c.is_ascii_digit() || c == '.' || c == 'e' || c == 'E' || c == '-' || c == '+')
+        })
         .unwrap_or(t.len());
     let (number, unit) = t.split_at(split);
     let value: f64 = number
@@ -33,7 +35,12 @@ pub fn parse_length(text: &str) -> Result<f64> {
     let scale = if unit.trim().is_empty() {
         1e-3
     } else {
-        unit_scale(unit).ok_or_else(|| anyhow!("unknown unit \"{}\" in \"{text}\"; use mm, cm, m or in", unit.trim()))?
+        unit_scale(unit).ok_or_else(|| {
+            anyhow!(
+                "unknown unit \"{}\" in \"{text}\"; use mm, cm, m or in",
+                unit.trim()
+            )
+        })?
     };
     let metres = value * scale;
     if !(metres.is_finite() && metres > 0.0) {

@@ -3,8 +3,8 @@
 
 mod bench;
 mod bench_newton;
-mod import_cmd;
 mod calibrate_cmd;
+mod import_cmd;
 mod limit_args;
 mod peers;
 mod progress;

@@ -16,7 +16,6 @@ pub struct StudyOptions<'a> {
     pub quiet: bool,
 }
 
-
 /// What a study imports: the package and its study extras.
 const PROBE: &str = "import pliant.studies, distributed, pyarrow, pandas, scipy, skimage";
 

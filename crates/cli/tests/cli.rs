@@ -464,7 +464,11 @@ fn cad_file(name: &str) -> std::path::PathBuf {
         .map(std::path::PathBuf::from)
         .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/cad"));
     let path = dir.join(name);
-    assert!(path.is_file(), "missing real STEP file {} (shared/ beside the repository)", path.display());
+    assert!(
+        path.is_file(),
+        "missing real STEP file {} (shared/ beside the repository)",
+        path.display()
+    );
     path
 }
 
@@ -481,8 +485,15 @@ fn import_fills_the_cache_that_run_reads() {
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
-    assert!(stdout.contains("1 solid(s)") && stdout.contains("SG1") && stdout.contains(".pliant-cache"), "{stdout}");
+    assert!(
+        out.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains("1 solid(s)") && stdout.contains("SG1") && stdout.contains(".pliant-cache"),
+        "{stdout}"
+    );
     let scene = dir.path().join("scene.toml");
     let text = |part: &str| {
         format!(
@@ -530,11 +541,24 @@ duration_s = 0.002
     std::fs::write(&scene, text("step = \"sg1.stp\"\nchord_tolerance = 0.3")).unwrap();
     let r = run(&scene);
     let err = String::from_utf8_lossy(&r.stderr);
-    assert!(!r.status.success() && err.contains("install-cad.sh") && err.contains("parts[0].step"), "{err}");
+    assert!(
+        !r.status.success() && err.contains("install-cad.sh") && err.contains("parts[0].step"),
+        "{err}"
+    );
     // --out writes a GLB that works as an ordinary mesh
     let glb = dir.path().join("sg1.glb");
-    let out = pliant().arg("import").arg(dir.path().join("sg1.stp")).arg("--out").arg(&glb).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = pliant()
+        .arg("import")
+        .arg(dir.path().join("sg1.stp"))
+        .arg("--out")
+        .arg(&glb)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     std::fs::write(&scene, text("mesh = \"sg1.glb\"")).unwrap();
     let r = run(&scene);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
@@ -564,9 +588,15 @@ duration_s = 0.002
     std::fs::write(&scene, text("step = \"sg1.stp\"\nchord_tolerance = 0.2")).unwrap();
     let r = run(&scene);
     let err = String::from_utf8_lossy(&r.stderr);
-    assert!(r.status.success() && err.contains("warning: parts[0]") && err.contains("SG1/x: broken"), "{err}");
+    assert!(
+        r.status.success() && err.contains("warning: parts[0]") && err.contains("SG1/x: broken"),
+        "{err}"
+    );
     let summary = std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap();
-    assert!(summary.contains("scene_warnings") && summary.contains("SG1/x: broken"), "{summary}");
+    assert!(
+        summary.contains("scene_warnings") && summary.contains("SG1/x: broken"),
+        "{summary}"
+    );
 }
 
 #[test]

@@ -251,7 +251,9 @@ pub fn calibrate(
         }
         None => {
             let kind_name = kind.ok_or_else(|| {
-                PyValueError::new_err("give a calibration file (spec) or a test's kind with csv or data")
+                PyValueError::new_err(
+                    "give a calibration file (spec) or a test's kind with csv or data",
+                )
             })?;
             let kind = TestKind::parse(kind_name).ok_or_else(|| {
                 let names: Vec<&str> = TestKind::ALL.iter().map(|k| k.name()).collect();

@@ -147,7 +147,12 @@ impl Simulation {
                 return Err(crate::errors::SolverNotConverged::new_err(message));
             }
             let category = py.get_type::<crate::errors::SolverWarning>();
-            PyErr::warn(py, &category, &std::ffi::CString::new(message).unwrap_or_default(), 1)?;
+            PyErr::warn(
+                py,
+                &category,
+                &std::ffi::CString::new(message).unwrap_or_default(),
+                1,
+            )?;
         }
         Ok(())
     }
@@ -257,7 +262,10 @@ impl Simulation {
     /// for the stable branch so far, each a dict: ``time`` [s], ``hose`` (name), ``node``
     /// (on that hose), ``negative_eigenvalues``, ``limit_point`` (a snap-through), ``energy_drop_j`` and ``mode`` (an
     /// (n, 3) array: each node's translation in the unstable mode, the largest 1).
-    fn instabilities<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, pyo3::types::PyDict>>> {
+    fn instabilities<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<Vec<Bound<'py, pyo3::types::PyDict>>> {
         let model = self.model();
         self.engine
             .solver_record()
@@ -271,8 +279,11 @@ impl Simulation {
                 d.set_item("negative_eigenvalues", i.negative_eigenvalues)?;
                 d.set_item("limit_point", i.limit_point)?;
                 d.set_item("energy_drop_j", i.energy_drop_j)?;
-                let mode = numpy::PyArray2::from_vec2(py, &i.mode.iter().map(|m| m.to_vec()).collect::<Vec<_>>())
-                    .map_err(|e| PyValueError::new_err(e.to_string()))?;
+                let mode = numpy::PyArray2::from_vec2(
+                    py,
+                    &i.mode.iter().map(|m| m.to_vec()).collect::<Vec<_>>(),
+                )
+                .map_err(|e| PyValueError::new_err(e.to_string()))?;
                 d.set_item("mode", mode)?;
                 Ok(d)
             })

@@ -18,8 +18,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::OnceLock;
 
 /// The converter's source, as embedded.
-pub const CONVERTER_SOURCE: &str =
-    include_str!("../../python/python/pliant/cad/step_mesh.py");
+pub const CONVERTER_SOURCE: &str = include_str!("../../python/python/pliant/cad/step_mesh.py");
 
 /// How to install the importer, for messages.
 pub const INSTALL_HINT: &str = "install it with ./scripts/install-cad.sh (OpenCASCADE's Python binding, PyPI cadquery-ocp-novtk, into the repository's .venv), or name an interpreter that has it with PLIANT_PYTHON";

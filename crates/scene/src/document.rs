@@ -10,7 +10,10 @@ pub fn scene_document(text: &str) -> Result<serde_json::Value, String> {
         Ok(v) => Ok(v),
         Err(toml_error) => match serde_json::from_str::<serde_json::Value>(text) {
             Ok(v) => Ok(v),
-            Err(_) => Err(format!("not a TOML or JSON document: {}", toml_error.message())),
+            Err(_) => Err(format!(
+                "not a TOML or JSON document: {}",
+                toml_error.message()
+            )),
         },
     }
 }

@@ -4,9 +4,9 @@
 use crate::centerline::{element_count, Centerline, CurveError, Resolution, Segment, MAX_ELEMENTS};
 use crate::error::FieldError;
 use crate::files::FileAccess;
-use crate::route::route_segments;
 use crate::format::{HoseEntry, SectionEntry, SegmentEntry, Vec3};
 use crate::materials::Materials;
+use crate::route::route_segments;
 use crate::scene::HoseDiscretisation;
 use crate::units::{fmt_vec, LengthUnit};
 use crate::validate::{

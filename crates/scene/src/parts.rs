@@ -75,7 +75,10 @@ pub fn build_parts(
             built.infos.push(info);
         }
         for spec in &built.specs[first_new..] {
-            if let Some(other) = built.specs[..first_new].iter().position(|q| q.name == spec.name) {
+            if let Some(other) = built.specs[..first_new]
+                .iter()
+                .position(|q| q.name == spec.name)
+            {
                 return Err(FieldError::new(
                     format!("parts[{i}].name"),
                     format!("\"{}\"", p.name),

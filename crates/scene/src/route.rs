@@ -111,7 +111,9 @@ pub fn route_segments(
 
 /// Drops points that repeat their predecessor (zero-length segments).
 fn dedup(points: Vec<DVec3>) -> Vec<DVec3> {
-    let extent = points.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+    let extent = points
+        .iter()
+        .fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
     let eps = 1e-12 * extent.max(1e-3);
     let mut out: Vec<DVec3> = Vec::with_capacity(points.len());
     for p in points {
@@ -160,7 +162,10 @@ pub fn parse_csv(text: &str, given: Option<f64>, default: f64) -> Result<Vec<DVe
             .map(|c| c.trim().trim_matches('"'))
             .collect();
         let numbers: Vec<Option<f64>> = cells.iter().map(|c| c.parse::<f64>().ok()).collect();
-        if points.is_empty() && header_scale.is_none() && numbers.iter().take(3).any(Option::is_none) {
+        if points.is_empty()
+            && header_scale.is_none()
+            && numbers.iter().take(3).any(Option::is_none)
+        {
             // the header
             if cells.len() < 3 {
                 return Err(format!(

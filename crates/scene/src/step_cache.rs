@@ -61,7 +61,11 @@ pub fn cache_name(step_name: &str, key: &str, extension: &str) -> String {
 
 /// The mesh cache entry of a STEP file (relative to the scene's folder).
 pub fn mesh_cache_name(step_name: &str, step_bytes: &[u8], tolerance_m: f64) -> String {
-    cache_name(step_name, &cache_key(step_bytes, tolerance_m, "mesh"), "glb")
+    cache_name(
+        step_name,
+        &cache_key(step_bytes, tolerance_m, "mesh"),
+        "glb",
+    )
 }
 
 /// Why a sandboxed scene cannot import.
@@ -90,9 +94,8 @@ pub fn cached_mesh(files: &FileAccess, step: &str, tolerance_m: f64) -> Result<C
     let bytes = files.read(step)?;
     let cache = mesh_cache_name(step, &bytes, tolerance_m);
     let sha = source_sha256(&bytes);
-    let fresh = |glb: &[u8]| {
-        crate::glb_solids::glb_facts(glb).is_ok_and(|(f, _)| f.source_sha256 == sha)
-    };
+    let fresh =
+        |glb: &[u8]| crate::glb_solids::glb_facts(glb).is_ok_and(|(f, _)| f.source_sha256 == sha);
     // a missing entry reads as an error; so does one that is not a file
     if let Ok(glb) = files.read(&cache) {
         if fresh(&glb) {
@@ -142,7 +145,9 @@ pub fn cached_curve(
         return crate::cad_converter::parse_curve(&json);
     }
     if files.is_sandboxed() {
-        return Err(SANDBOX_REFUSAL.replace("STEP_FILE --tolerance …", "… or `pliant run` the scene"));
+        return Err(
+            SANDBOX_REFUSAL.replace("STEP_FILE --tolerance …", "… or `pliant run` the scene")
+        );
     }
     let step_path = files.resolve(step)?;
     let out: PathBuf = files.resolve(&cache)?;

@@ -74,11 +74,19 @@ fn a_step_b_spline_route_is_followed_within_tolerance() {
     }
     let d = dir("step");
     let step = route_step().display().to_string();
-    let s = load(&d, &format!("{{ step = \"{step}\", curve = \"hose_route\" }}")).unwrap();
+    let s = load(
+        &d,
+        &format!("{{ step = \"{step}\", curve = \"hose_route\" }}"),
+    )
+    .unwrap();
     let nodes = &s.world.hoses[0].nodes;
     // one helix turn: length 2π·sqrt(r² + (pitch/2π)²) = 0.6627 m
     let expected = 2.0 * PI * (0.1f64.powi(2) + (0.2 / (2.0 * PI)).powi(2)).sqrt();
-    assert!((s.hoses[0].length - expected).abs() < 1e-4, "{}", s.hoses[0].length);
+    assert!(
+        (s.hoses[0].length - expected).abs() < 1e-4,
+        "{}",
+        s.hoses[0].length
+    );
     assert!(nodes.len() > 60);
     // the stated tolerance: 0.01 mm sampling of the B-spline, which itself
     // interpolates the helix (73 points) to better than 0.01 mm
@@ -104,10 +112,17 @@ fn a_step_polyline_route_by_index_and_bad_picks() {
         assert!(on_leg, "{p}");
     }
     let e = load(&d, &format!("{{ step = \"{step}\", curve = \"nope\" }}")).unwrap_err();
-    assert!(e.contains("hoses[0].route.step") && e.contains("hose_route") && e.contains("guide"), "{e}");
+    assert!(
+        e.contains("hoses[0].route.step") && e.contains("hose_route") && e.contains("guide"),
+        "{e}"
+    );
     let e = load(&d, &format!("{{ step = \"{step}\", index = 7 }}")).unwrap_err();
     assert!(e.contains("out of range") && e.contains("2 curves"), "{e}");
-    let e = load(&d, &format!("{{ step = \"{step}\", curve = \"guide\", index = 1 }}")).unwrap_err();
+    let e = load(
+        &d,
+        &format!("{{ step = \"{step}\", curve = \"guide\", index = 1 }}"),
+    )
+    .unwrap_err();
     assert!(e.contains("hoses[0].route.curve"), "{e}");
 }
 
@@ -140,7 +155,10 @@ fn a_csv_route_in_inches_is_followed() {
     // errors name the field and the line
     std::fs::write(d.join("bad.csv"), "0,0,0\n1,x,0\n").unwrap();
     let e = load(&d, "{ csv = \"bad.csv\" }").unwrap_err();
-    assert!(e.contains("hoses[0].route.csv") && e.contains("line 2"), "{e}");
+    assert!(
+        e.contains("hoses[0].route.csv") && e.contains("line 2"),
+        "{e}"
+    );
     let e = load(&d, "{ csv = \"mm.csv\", units = \"furlong\" }").unwrap_err();
     assert!(e.contains("hoses[0].route.units"), "{e}");
     let e = load(&d, "{ csv = \"mm.csv\", curve = \"a\" }").unwrap_err();
@@ -150,6 +168,11 @@ fn a_csv_route_in_inches_is_followed() {
     assert!(e.contains("fewer than two distinct points"), "{e}");
     // route and start/path together
     let text = scene("{ csv = \"mm.csv\" }").replace("route =", "start = [0, 0, 0]\nroute =");
-    let e = load_scene_str_in(&text, "scene.toml", &d).unwrap_err().to_string();
-    assert!(e.contains("hoses[0].route") && e.contains("not both"), "{e}");
+    let e = load_scene_str_in(&text, "scene.toml", &d)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("hoses[0].route") && e.contains("not both"),
+        "{e}"
+    );
 }

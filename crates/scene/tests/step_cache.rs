@@ -14,7 +14,11 @@ fn cad_file(name: &str) -> PathBuf {
         .map(PathBuf::from)
         .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/cad"));
     let path = dir.join(name);
-    assert!(path.is_file(), "missing real STEP file {} (shared/ beside the repository, or PLIANT_CAD_FILES)", path.display());
+    assert!(
+        path.is_file(),
+        "missing real STEP file {} (shared/ beside the repository, or PLIANT_CAD_FILES)",
+        path.display()
+    );
     path
 }
 
@@ -65,8 +69,14 @@ fn second_load_reads_the_cache_and_sandboxes_never_convert() {
     // a sandboxed scene (sent to `pliant serve`) may not convert
     let before = conversions();
     let e = load(&dir, "as1.stp", true).unwrap_err();
-    assert!(e.contains("pliant import") && e.contains("never start the converter"), "{e}");
-    assert!(!e.contains(&dir.display().to_string()), "no server path in a client's error: {e}");
+    assert!(
+        e.contains("pliant import") && e.contains("never start the converter"),
+        "{e}"
+    );
+    assert!(
+        !e.contains(&dir.display().to_string()),
+        "no server path in a client's error: {e}"
+    );
     assert_eq!(conversions(), before);
 
     // first local load converts, the second reads the cache
@@ -78,8 +88,15 @@ fn second_load_reads_the_cache_and_sandboxes_never_convert() {
     let t = Instant::now();
     let second = load(&dir, "as1.stp", false).unwrap();
     let cached_load = t.elapsed().as_secs_f64();
-    assert_eq!(conversions(), before + 1, "the second load ran the converter");
-    assert_eq!(std::fs::metadata(&entries[0]).unwrap().modified().unwrap(), modified);
+    assert_eq!(
+        conversions(),
+        before + 1,
+        "the second load ran the converter"
+    );
+    assert_eq!(
+        std::fs::metadata(&entries[0]).unwrap().modified().unwrap(),
+        modified
+    );
     assert_eq!(first.world.rigid_parts, second.world.rigid_parts);
     eprintln!("cached load: {cached_load:.3} s");
 
@@ -101,6 +118,9 @@ fn second_load_reads_the_cache_and_sandboxes_never_convert() {
     load(&dir, "as1.stp", false).unwrap();
     std::fs::copy(cad_file("sg1-c5-214.stp"), dir.join("sg1.stp")).unwrap();
     let e = load(&dir, "sg1.stp", false).unwrap_err();
-    assert!(e.contains("parts[0].step") && e.contains("scripts/install-cad.sh"), "{e}");
+    assert!(
+        e.contains("parts[0].step") && e.contains("scripts/install-cad.sh"),
+        "{e}"
+    );
     std::env::remove_var("PLIANT_PYTHON");
 }

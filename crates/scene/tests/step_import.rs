@@ -91,7 +91,12 @@ fn all_seven_files_load_with_their_solids() {
     ];
     for (file, solids) in files {
         let s = load(&dir, &cad.join(file), "").unwrap_or_else(|e| panic!("{file}: {e}"));
-        assert_eq!(s.parts.len(), solids, "{file}: {:?}", s.parts.iter().map(|p| &p.name).collect::<Vec<_>>());
+        assert_eq!(
+            s.parts.len(),
+            solids,
+            "{file}: {:?}",
+            s.parts.iter().map(|p| &p.name).collect::<Vec<_>>()
+        );
         assert!(s.warnings.is_empty(), "{file}: {:?}", s.warnings);
         for p in &s.parts {
             assert!(p.name.starts_with("cad/"), "{}", p.name);
@@ -100,7 +105,11 @@ fn all_seven_files_load_with_their_solids() {
         let (lo, hi) = bbox(&s);
         let size = (hi - lo).max_element();
         assert!(size > 1e-3 && size < 10.0, "{file}: {size} m");
-        eprintln!("{file}: {} solids, {} triangles, {size:.4} m", s.parts.len(), triangles(&s));
+        eprintln!(
+            "{file}: {} solids, {} triangles, {size:.4} m",
+            s.parts.len(),
+            triangles(&s)
+        );
     }
 }
 
@@ -126,14 +135,22 @@ fn assemblies_keep_names_placements_and_the_file_unit() {
                 parts[last].clone()
             }
         };
-        let count = |what: &str| s.parts.iter().filter(|p| leaf(&p.name).starts_with(what)).count();
+        let count = |what: &str| {
+            s.parts
+                .iter()
+                .filter(|p| leaf(&p.name).starts_with(what))
+                .count()
+        };
         assert_eq!(count("bolt"), 6);
         assert_eq!(count("nut"), 8);
         assert_eq!(count("plate"), 1);
         assert_eq!(count("l-bracket"), 2);
         assert_eq!(count("rod"), 1);
     }
-    assert!(oc.parts.iter().any(|p| p.name == "cad/as1/rod-assembly_1/nut_1"));
+    assert!(oc
+        .parts
+        .iter()
+        .any(|p| p.name == "cad/as1/rod-assembly_1/nut_1"));
     // placements differ per instance: the six bolts sit at six places
     let bolts: Vec<DVec3> = oc
         .parts
@@ -143,7 +160,10 @@ fn assemblies_keep_names_placements_and_the_file_unit() {
         .collect();
     for i in 0..bolts.len() {
         for j in 0..i {
-            assert!((bolts[i] - bolts[j]).length() > 1e-3, "bolts {i} and {j} coincide");
+            assert!(
+                (bolts[i] - bolts[j]).length() > 1e-3,
+                "bolts {i} and {j} coincide"
+            );
         }
     }
     // The same model from two writers: Open CASCADE in millimetres, Pro/ENGINEER with
@@ -162,7 +182,11 @@ fn assemblies_keep_names_placements_and_the_file_unit() {
         }
     };
     let extents = |s: &LoadedScene, what: &str| {
-        let p = s.parts.iter().find(|p| leaf(&p.name).starts_with(what)).unwrap();
+        let p = s
+            .parts
+            .iter()
+            .find(|p| leaf(&p.name).starts_with(what))
+            .unwrap();
         let mut e = (p.bounds.1 - p.bounds.0).to_array();
         e.sort_by(f64::total_cmp);
         e
@@ -180,11 +204,17 @@ fn assemblies_keep_names_placements_and_the_file_unit() {
         }
     }
     let plate = extents(&oc, "plate");
-    assert!((plate[2] - 0.18).abs() < 1e-4 && (plate[1] - 0.15).abs() < 1e-4, "{plate:?}");
+    assert!(
+        (plate[2] - 0.18).abs() < 1e-4 && (plate[1] - 0.15).abs() < 1e-4,
+        "{plate:?}"
+    );
     let (lo, hi) = bbox(&oc);
     let (plo, phi) = bbox(&pe);
     let ratio = (phi - plo).max_element() / (hi - lo).max_element();
-    assert!((ratio - 25.4).abs() < 0.05, "whole assemblies: ratio {ratio}");
+    assert!(
+        (ratio - 25.4).abs() < 0.05,
+        "whole assemblies: ratio {ratio}"
+    );
 }
 
 #[test]
@@ -198,12 +228,17 @@ fn chord_tolerance_sets_the_triangle_count() {
     let (c, f) = (triangles(&coarse), triangles(&fine));
     assert!(f > 2 * c, "0.02 mm gives {f} triangles, 1 mm {c}");
     // both entries are cached side by side
-    let entries = std::fs::read_dir(dir.join(".pliant-cache")).unwrap().count();
+    let entries = std::fs::read_dir(dir.join(".pliant-cache"))
+        .unwrap()
+        .count();
     assert!(entries >= 2);
     let e = load(&dir, &file, "chord_tolerance = 0").unwrap_err();
     assert!(e.contains("parts[0].chord_tolerance"), "{e}");
     let e = load(&dir, &file, "chord_tolerance = 1.0\nmesh_unit = \"mm\"").unwrap_err();
-    assert!(e.contains("parts[0].mesh_unit") && e.contains("own length unit"), "{e}");
+    assert!(
+        e.contains("parts[0].mesh_unit") && e.contains("own length unit"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -216,7 +251,10 @@ fn a_truncated_file_is_refused_naming_the_entity_and_line() {
     std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
     let e = load(&dir, &cut, "").unwrap_err();
     assert!(e.contains("parts[0].step"), "{e}");
-    assert!(e.contains("truncated") && e.contains("#") && e.contains("line "), "{e}");
+    assert!(
+        e.contains("truncated") && e.contains("#") && e.contains("line "),
+        "{e}"
+    );
     // not a STEP file at all
     let junk = dir.join("junk.step");
     std::fs::write(&junk, "solid cube\nendsolid\n").unwrap();
@@ -225,7 +263,10 @@ fn a_truncated_file_is_refused_naming_the_entity_and_line() {
     // a STEP file without solids (only curves) says what it holds
     let curves = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cad/route.step");
     let e = load(&dir, &curves, "").unwrap_err();
-    assert!(e.contains("no solid could be read") && e.contains("PRODUCT_DEFINITION"), "{e}");
+    assert!(
+        e.contains("no solid could be read") && e.contains("PRODUCT_DEFINITION"),
+        "{e}"
+    );
     // a missing one names the path
     let e = load(&dir, &dir.join("missing.step"), "").unwrap_err();
     assert!(e.contains("missing.step"), "{e}");
@@ -265,7 +306,11 @@ fn skipped_solids_reach_the_user() {
         .find(|p| p.extension().is_some_and(|e| e == "glb"))
         .unwrap();
     let glb = std::fs::read(&entry).unwrap();
-    std::fs::write(&entry, with_skipped(&glb, &["SG1/bad solid: tessellation failed (BRepMesh)"])).unwrap();
+    std::fs::write(
+        &entry,
+        with_skipped(&glb, &["SG1/bad solid: tessellation failed (BRepMesh)"]),
+    )
+    .unwrap();
     let s = load(&dir, &file, "").unwrap();
     assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
     assert!(

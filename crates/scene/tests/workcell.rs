@@ -319,7 +319,11 @@ fn a_divergence_is_rolled_back_and_only_the_hand_involved_lets_go() {
         pliant_assembly::Applied::RolledBack(r) => r,
         other => panic!("{other:?}"),
     };
-    assert_eq!(rolled.released, vec![0], "only the hand on the diverging hose");
+    assert_eq!(
+        rolled.released,
+        vec![0],
+        "only the hand on the diverging hose"
+    );
     assert!(rolled.to_time <= before && rolled.to_time > before - 1.01);
     assert_eq!(live.state().time, rolled.to_time);
     assert!(live.hand(0).is_err(), "hand 0 let go");
@@ -395,7 +399,10 @@ fn a_grab_beside_the_hose_takes_it_at_the_hose() {
     let along = ((pose - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
     let off_chord = (pose - (a + along * (b - a))).length();
     assert!(off_chord < 1e-12, "hand {off_chord} m off the beam's chord");
-    assert!((pose - beside).length() > 0.07, "hand at {pose}, grab point {beside}");
+    assert!(
+        (pose - beside).length() > 0.07,
+        "hand at {pose}, grab point {beside}"
+    );
     let node = cell.model().hoses[1].node(6);
     let r = cell.model().radius[node];
     let inside = cell.state().x[node] + DVec3::new(0.0, 0.0, 0.5 * r);

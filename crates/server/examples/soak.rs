@@ -50,22 +50,10 @@ fn args() -> Result<Args, String> {
     while let Some(flag) = it.next() {
         let mut value = || it.next().ok_or_else(|| format!("{flag} needs a value"));
         match flag.as_str() {
-            "--clients" => {
-                a.clients = value()?
-                    .parse()
-                    .map_err(|e| format!("--clients: {e}"))?
-            }
-            "--seconds" => {
-                a.seconds = value()?
-                    .parse()
-                    .map_err(|e| format!("--seconds: {e}"))?
-            }
+            "--clients" => a.clients = value()?.parse().map_err(|e| format!("--clients: {e}"))?,
+            "--seconds" => a.seconds = value()?.parse().map_err(|e| format!("--seconds: {e}"))?,
             "--solver" => a.solver = value()?.parse().map_err(|e| format!("--solver: {e}"))?,
-            "--regrab" => {
-                a.regrab = value()?
-                    .parse()
-                    .map_err(|e| format!("--regrab: {e}"))?
-            }
+            "--regrab" => a.regrab = value()?.parse().map_err(|e| format!("--regrab: {e}"))?,
             "--json" => a.json = Some(value()?),
             other => return Err(format!("unknown argument {other}")),
         }
@@ -199,7 +187,9 @@ async fn client(url: String, id: usize, clients: usize, seconds: f64, regrab: f6
             }
         }
     }
-    let _ = tx.send(send(json!({"type": "release", "hand_id": id}))).await;
+    let _ = tx
+        .send(send(json!({"type": "release", "hand_id": id})))
+        .await;
     report
 }
 
@@ -232,10 +222,7 @@ async fn main() {
     let url = server.ws_url();
     eprintln!(
         "soak: {} clients × {RATE_HZ} Hz for {} s on {} ({} solver)",
-        a.clients,
-        a.seconds,
-        url,
-        a.solver
+        a.clients, a.seconds, url, a.solver
     );
     let started = Instant::now();
     let tasks: Vec<_> = (0..a.clients)
@@ -248,7 +235,10 @@ async fn main() {
         let t = started.elapsed().as_secs_f64();
         if t - memory.last().map_or(0.0, |m| m.0) >= 10.0 {
             memory.push((t, rss_kib()));
-            eprintln!("soak: {t:5.0} s  RSS {} MiB", memory.last().unwrap().1 / 1024);
+            eprintln!(
+                "soak: {t:5.0} s  RSS {} MiB",
+                memory.last().unwrap().1 / 1024
+            );
         }
     }
     let wall = started.elapsed().as_secs_f64();

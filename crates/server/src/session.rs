@@ -502,7 +502,10 @@ impl Sim {
                             [k] => format!("hand {k} released (it held hose '{hose}')"),
                             ks => format!(
                                 "hands {} released (they held hose '{hose}')",
-                                ks.iter().map(|k| k.to_string()).collect::<Vec<_>>().join(", ")
+                                ks.iter()
+                                    .map(|k| k.to_string())
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
                             ),
                         };
                         self.notice = Some(format!(

@@ -858,7 +858,11 @@ ramp_s = 1000
     let s = start(session, &config).await.unwrap();
     let mut ws = connect(&s).await;
     hello(&mut ws).await;
-    send(&mut ws, json!({"type": "grab", "hand_id": 1, "position": [0.25, 0.2, 0.0]})).await;
+    send(
+        &mut ws,
+        json!({"type": "grab", "hand_id": 1, "position": [0.25, 0.2, 0.0]}),
+    )
+    .await;
     next_where(&mut ws, "snapshot", |v| {
         v["hands"].as_array().is_some_and(|h| h.len() == 1)
     })
@@ -869,7 +873,12 @@ ramp_s = 1000
     let notice = rolled["notice"].as_str().unwrap_or_default().to_owned();
     assert!(notice.contains("rolled back to t ="), "{notice}");
     assert!(notice.contains("hose 'torn'"), "{notice}");
-    assert_eq!(rolled["hands"].as_array().unwrap().len(), 1, "{}", rolled["hands"]);
+    assert_eq!(
+        rolled["hands"].as_array().unwrap().len(),
+        1,
+        "{}",
+        rolled["hands"]
+    );
     assert_eq!(rolled["hands"][0]["hose"], 1);
     assert_eq!(rolled["epoch"], 0, "no reset");
     // the same load tears it again at the same time: each rollback goes further back
@@ -895,7 +904,11 @@ async fn scene_source_gives_the_scene_document_and_the_library() {
     send(&mut ws, json!({"type": "scene_source"})).await;
     next_where(&mut ws, "error", |v| v["code"] == "hello_required").await;
     let w = hello(&mut ws).await;
-    send(&mut ws, json!({"type": "scene_source", "path": "/etc/passwd"})).await;
+    send(
+        &mut ws,
+        json!({"type": "scene_source", "path": "/etc/passwd"}),
+    )
+    .await;
     let e = next_where(&mut ws, "error", |_| true).await;
     assert_eq!(e["code"], "malformed", "{e}");
     send(&mut ws, json!({"type": "scene_source"})).await;
@@ -936,7 +949,10 @@ async fn scene_source_gives_the_scene_document_and_the_library() {
     let e = next_where(&mut ws, "error", |_| true).await;
     assert_eq!(e["code"], "invalid_scene");
     let m = e["message"].as_str().unwrap();
-    assert!(m.contains("authored.json") && m.contains("hoses[0].sectoin"), "{m}");
+    assert!(
+        m.contains("authored.json") && m.contains("hoses[0].sectoin"),
+        "{m}"
+    );
     // the session after the load answers with its own text
     send(&mut ws, json!({"type": "scene_source"})).await;
     let src = next_where(&mut ws, "scene_source", |_| true).await;

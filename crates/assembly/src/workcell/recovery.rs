@@ -36,7 +36,11 @@ impl Recovery {
     /// checked (multiples of `check_every`).
     pub fn new(dt: f64, check_every: u64) -> Self {
         let checks = (RECOVERY_INTERVAL / (dt * check_every as f64)).round();
-        let checks = if checks.is_finite() { checks.clamp(1.0, 1e6) as u64 } else { 1 };
+        let checks = if checks.is_finite() {
+            checks.clamp(1.0, 1e6) as u64
+        } else {
+            1
+        };
         Recovery {
             points: VecDeque::with_capacity(RECOVERY_POINTS),
             every: checks * check_every,

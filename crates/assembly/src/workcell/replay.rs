@@ -61,12 +61,10 @@ pub fn replay(
             return cell.check().map_err(ReplayError::Diverged);
         }
         if let Err(d) = cell.step(obs) {
-            let answered = inputs
-                .get(next)
-                .is_some_and(|s| {
-                    s.tick == cell.tick()
-                        && matches!(s.input, super::Input::Reset | super::Input::Rollback)
-                });
+            let answered = inputs.get(next).is_some_and(|s| {
+                s.tick == cell.tick()
+                    && matches!(s.input, super::Input::Reset | super::Input::Rollback)
+            });
             if !answered {
                 return Err(ReplayError::Diverged(d));
             }
