@@ -148,7 +148,31 @@ def test_a_study_file_reads_and_its_errors_name_the_file(tmp_path, scene_path):
     bad = tmp_path / "bad.toml"
     bad.write_text(f'format = "pliant-study"\nversion = 1\nscene = "{scene_path}"\n'
                    '[sampling]\nmethod = "grid"\nlevels = 0\n[[parameters]]\nvary = "solver"\nchoices = ["explicit"]\n')
-    with pytest.raises(StudyError, match=r"bad\.toml: sampling\.levels = 0: must be an integer"):
+    with pytest.raises(StudyError, match=r"bad\.toml:6:1: sampling\.levels = 0: must be an integer"):
+        load_study(bad)
+
+
+def test_study_errors_point_at_line_and_column(tmp_path, scene_path):
+    text = (f'format = "pliant-study"\nversion = 1\nscene = "{scene_path}"\n'
+            '[sampling]\nruns = 4\n'
+            '[[parameters]]\nvary = "solver"\nchoices = ["explicit"]\n'
+            '[[parameters]]\nname = "p"\nvary = "grab_offset"\naction = 2\n'
+            'direction = [1, 0, 0]\ndistribution = "normal"\nmean = 0\nstd = -1\n')
+    bad = tmp_path / "s.toml"
+    bad.write_text(text)
+    with pytest.raises(StudyError, match=r"s\.toml:16:1: parameters\[1\]\.std = -1: must be > 0"):
+        load_study(bad)
+    # inside an array: the item's own column
+    bad.write_text(text.replace("direction = [1, 0, 0]", "direction = [0, 0, 0]").replace("std = -1", "std = 1"))
+    with pytest.raises(StudyError, match=r"s\.toml:13:1: parameters\[1\]\.direction = \[0, 0, 0\]"):
+        load_study(bad)
+    # a missing field: the table that lacks it
+    bad.write_text(text.replace('vary = "grab_offset"\n', "").replace("std = -1", "std = 1"))
+    with pytest.raises(StudyError, match=r"s\.toml:9:1: parameters\[1\]\.vary"):
+        load_study(bad)
+    # a TOML syntax error, with tomllib's position
+    bad.write_text(text.replace("runs = 4", "runs = 4 4"))
+    with pytest.raises(StudyError, match=r"s\.toml:5:10: syntax error"):
         load_study(bad)
 
 
@@ -161,6 +185,67 @@ def test_same_seed_same_samples(scene_path, method):
     c = samples(load_study(study_dict(scene_path, method=method, seed=4)))
     assert a == b
     assert a != c
+
+
+def test_saltelli_design_is_a_b_and_a_with_one_column_of_b(scene_path):
+    d = study_dict(scene_path, runs=8, method="saltelli", absurd=False)
+    st = load_study(d)
+    rows = samples(st)
+    names = [p["name"] for p in d["parameters"]]
+    assert len(rows) == 8 * (len(names) + 2)
+    a, b = rows[:8], rows[8:16]
+    for i, name in enumerate(names):
+        ab = rows[(2 + i) * 8:(3 + i) * 8]
+        for j in range(8):
+            for other in names:
+                assert ab[j][other] == (b[j][other] if other == name else a[j][other])
+    assert all(a[j]["pull"] != b[j]["pull"] for j in range(8))
+    assert samples(load_study(d)) == rows  # the same seed, the same design
+
+
+def test_sobol_indices_of_the_ishigami_function_match_the_exact_ones():
+    """Ishigami & Homma (1990) f = sin x₁ + 7 sin² x₂ + 0.1 x₃⁴ sin x₁ on [−π, π]³; exact
+    indices from its variance decomposition (e.g. Saltelli et al. 2008, §4.7)."""
+    from pliant.studies import sobol
+
+    a, b, n = 7.0, 0.1, 2 ** 12
+    u = sobol.unit_design(n, 3, seed=5)
+    x = -math.pi + 2 * math.pi * u
+    y = np.sin(x[:, 0]) + a * np.sin(x[:, 1]) ** 2 + b * x[:, 2] ** 4 * np.sin(x[:, 0])
+    v1 = 0.5 * (1 + b * math.pi ** 4 / 5) ** 2
+    v2 = a * a / 8
+    v13 = b * b * math.pi ** 8 * 8 / 225
+    v = v1 + v2 + v13
+    exact_first = [v1 / v, v2 / v, 0.0]
+    exact_total = [(v1 + v13) / v, v2 / v, v13 / v]
+    got = sobol.indices(y, n, 3, seed=1)
+    for i in range(3):
+        assert abs(got[i].first - exact_first[i]) < 0.02, (i, got[i])
+        assert abs(got[i].total - exact_total[i]) < 0.02, (i, got[i])
+        assert got[i].total_ci[0] - 0.01 <= exact_total[i] <= got[i].total_ci[1] + 0.01, (i, got[i])
+        assert got[i].points == n
+    # x₃ acts only through its interaction with x₁: no first-order share, a total one
+    assert got[2].first < 0.02 < 0.2 < got[2].total
+    # a failed run leaves its base point out of the estimates it belongs to
+    y[2 * n + 5] = np.nan  # AB⁽¹⁾ of point 5
+    y[1] = np.nan  # A of point 1: every parameter loses it
+    again = sobol.indices(y, n, 3, seed=1)
+    assert [g.points for g in again] == [n - 2, n - 1, n - 1]
+
+
+def test_a_saltelli_study_reports_total_effects(scene_path, client, tmp_path):
+    from pliant.studies.report import sobol_estimates
+
+    d = study_dict(scene_path, runs=4, seed=2, method="saltelli", absurd=False)
+    result = pliant.study(d, str(tmp_path / "out"), client=client, progress=False)
+    assert len(result.frame) == 4 * 5 and (result.frame["status"] == "ok").all()
+    est = sobol_estimates(result.frame, load_study(d))["worst_hand_ratio"]
+    pull, stiffness, grab_x = est
+    # how far the hand pulls decides the hand force (EA·Δ/L); a ±3 % stiffness and a ±5 mm
+    # grab point matter far less
+    assert pull.total > 3 * max(stiffness.total, grab_x.total), est
+    page = open(result.report).read()
+    assert "Sobol' indices (Saltelli design)" in page and "S<sub>T</sub> =" in page
 
 
 def test_latin_hypercube_puts_one_point_in_every_stratum():

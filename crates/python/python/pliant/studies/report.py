@@ -12,6 +12,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
+from . import sobol
 from .runner import column_name
 from .spec import Study
 
@@ -54,6 +55,50 @@ def sensitivity(frame, study: Study, outputs: List[str]) -> List[Dict[str, Any]]
         entry["rank_by"] = max([entry["rank_by"]] + [math.sqrt(v) for k, v in entry.items() if k.startswith("s1_") and v])
         rows.append(entry)
     return sorted(rows, key=lambda e: -e["rank_by"])
+
+
+def sobol_estimates(frame, study: Study) -> Optional[Dict[str, List[Optional[sobol.Index]]]]:
+    """The Saltelli design's first-order and total-effect Sobol' indices of every
+    parameter (in study order) for every outcome of :data:`OUTPUTS` (:mod:`.sobol`);
+    ``None`` unless the study is a complete Saltelli design. Runs that did not complete
+    normally count as missing outcomes."""
+    d, base = len(study.parameters), study.runs
+    if study.method != "saltelli" or len(frame) != sobol.runs_of(base, d):
+        return None
+    ordered = frame.sort_values("index")
+    if list(ordered["index"]) != list(range(len(ordered))):
+        return None
+    good = (ordered["status"] == "ok").to_numpy()
+    out: Dict[str, List[Optional[sobol.Index]]] = {}
+    for name, _ in OUTPUTS:
+        if name not in ordered:
+            continue
+        y = np.where(good, ordered[name].astype(float).to_numpy(), np.nan)
+        out[name] = sobol.indices(y, base, d, seed=study.seed)
+    return out
+
+
+def sobol_table(frame, study: Study) -> str:
+    """:func:`sobol_estimates` as an HTML section."""
+    d, base = len(study.parameters), study.runs
+    estimates = sobol_estimates(frame, study)
+    if estimates is None:
+        return (f"<p>Sobol' indices: the study is incomplete ({len(frame)} of "
+                f"{sobol.runs_of(base, d)} runs of the Saltelli design); resume it to get them.</p>")
+    rows = [[f"<code>{html.escape(p.name)}</code>"] for p in study.parameters]
+    for out, _ in OUTPUTS:
+        for j, ix in enumerate(estimates.get(out, [None] * d)):
+            rows[j].append("–" if ix is None else
+                           f"S₁ = {ix.first:.2f} <small>[{ix.first_ci[0]:.2f}, {ix.first_ci[1]:.2f}]</small><br>"
+                           f"S<sub>T</sub> = {ix.total:.2f} <small>[{ix.total_ci[0]:.2f}, {ix.total_ci[1]:.2f}]</small>"
+                           + ("" if ix.points == base else f"<br><small>{ix.points} of {base} points</small>"))
+    return ("<h3>Sobol' indices (Saltelli design)</h3>"
+            f"<p>{base} base points × ({d} + 2) blocks. First-order index S₁ (Saltelli et al. 2010) "
+            "and total-effect index S<sub>T</sub> (Jansen 1999) of each parameter, with 95 % bootstrap "
+            "intervals over the base points: S₁ is the share of the outcome's variance the parameter "
+            "explains alone, S<sub>T</sub> the share it takes part in, interactions included "
+            "(S<sub>T</sub> − S₁ is its interaction share). Failed runs leave their base points out.</p>"
+            + _table(["parameter"] + [label for _, label in OUTPUTS], rows))
 
 
 def first_order_index(x, y, bins: int = 10) -> Optional[float]:
@@ -187,7 +232,8 @@ def write_report(study: Study, out: str, frame, envelope_info: Dict[str, Any]) -
         "estimated from the same runs over 10 quantile bins of the parameter (given-data estimator, "
         "biased up by about 9/n for a parameter without effect): the share of the outcome's variance "
         "the parameter explains alone, non-monotonic effects included. Ranked by the largest of |ρ| "
-        "and √S₁. Interactions (total-effect indices) would need a Saltelli design; not computed.</p>")
+        "and √S₁. Interactions need total-effect indices: run the study with "
+        "<code>sampling.method = \"saltelli\"</code> (table below when it was).</p>")
     srows = []
     for e in sens:
         cells = [f"<code>{html.escape(e['parameter'])}</code>"]
@@ -198,6 +244,8 @@ def write_report(study: Study, out: str, frame, envelope_info: Dict[str, Any]) -
                          + ("" if s1 is None else f"<br>S₁ = {s1:.2f}"))
         srows.append(cells)
     parts.append(_table(["parameter"] + [label for _, label in OUTPUTS], srows))
+    if study.method == "saltelli" and n:
+        parts.append(sobol_table(frame, study))
     for p in study.parameters:
         if p.categorical and n:
             g = frame.groupby(p.column)["feasible"].agg(lambda s: (s == True).mean())  # noqa: E712

@@ -1,5 +1,5 @@
 """The study's samples: one value per parameter and run, as a full-factorial grid, a
-Latin hypercube or plain Monte Carlo. The same study (and seed) gives the same samples.
+Latin hypercube, plain Monte Carlo, or a Saltelli design for Sobol' indices (:mod:`.sobol`). The same study (and seed) gives the same samples.
 
 Monte Carlo and the Latin hypercube draw points u in the unit cube (numpy's PCG64
 generator; scipy.stats.qmc.LatinHypercube) and map each coordinate through its
@@ -15,11 +15,16 @@ from typing import Any, Dict, List
 
 import numpy as np
 
+from . import sobol
 from .spec import Parameter, Study
 
 
 def unit_samples(method: str, runs: int, dims: int, seed: int) -> np.ndarray:
-    """(runs, dims) points in (0, 1)^dims: Monte Carlo or a Latin hypercube."""
+    """Points in (0, 1)^dims: ``runs`` of them by Monte Carlo or a Latin hypercube, or
+    for ``saltelli`` the runs·(dims + 2) rows of a Saltelli design over ``runs`` base
+    points (:mod:`.sobol`)."""
+    if method == "saltelli":
+        return sobol.unit_design(runs, dims, seed)
     if method == "latin_hypercube":
         from scipy.stats import qmc
 
@@ -50,5 +55,5 @@ def samples(study: Study) -> List[Dict[str, Any]]:
     columns = [p.distribution.ppf(u[:, j]) for j, p in enumerate(params)]
     return [
         {p.name: _value(p, columns[j][i]) for j, p in enumerate(params)}
-        for i in range(study.runs)
+        for i in range(len(u))
     ]

@@ -12,8 +12,11 @@ import hashlib
 import json
 import math
 import os
+import re
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
+
+from .toml_positions import locate
 
 try:  # Python ≥ 3.11
     import tomllib as _toml
@@ -22,7 +25,7 @@ except ImportError:  # pragma: no cover - older Pythons need tomli
 
 FORMAT = "pliant-study"
 VERSION = 1
-METHODS = ("monte_carlo", "latin_hypercube", "grid")
+METHODS = ("monte_carlo", "latin_hypercube", "grid", "saltelli")
 SOLVERS = ("explicit", "implicit", "static")
 DISTRIBUTIONS = ("normal", "uniform", "triangular", "choice")
 UNITS_M = {"m": 1.0, "mm": 1e-3}
@@ -60,7 +63,14 @@ PARAMETER_KEYS = {
 
 
 class StudyError(ValueError):
-    """A study file could not be read: the message names the file, the field and why."""
+    """A study file could not be read: the message names the file (with the line and
+    column of the field, when it is written in the file), the field and why.
+    ``where`` is the field's path (``parameters[2].std``), ``None`` for a whole-file
+    problem."""
+
+    def __init__(self, message: str, where: Optional[str] = None):
+        super().__init__(message)
+        self.where = where
 
 
 @dataclass
@@ -146,7 +156,7 @@ class Study:
 
 def _fail(origin: str, where: str, value: Any, why: str) -> StudyError:
     shown = json.dumps(value, default=str) if not isinstance(value, str) else value
-    return StudyError(f"{origin}: {where} = {shown}: {why}")
+    return StudyError(f"{origin}: {where} = {shown}: {why}", where)
 
 
 def _number(origin, where, value, *, positive=False, allow_none=False) -> Optional[float]:
@@ -306,14 +316,29 @@ def _check_target(origin, where, vary, target, scene) -> None:
             raise _fail(origin, f"{where}.action", a, f"timeline[{a}] has neither `to` nor `by` to offset")
 
 
-def _read_toml(path: str, what: str) -> Dict[str, Any]:
+def _read_toml(path: str, what: str) -> Tuple[Dict[str, Any], str]:
+    """The parsed file and its text; a syntax error says ``path:line:column``."""
     try:
         with open(path, "rb") as f:
-            return _toml.load(f)
+            text = f.read().decode("utf-8")
+        return _toml.loads(text), text
     except FileNotFoundError:
         raise StudyError(f"{path}: {what} not found") from None
+    except UnicodeDecodeError as e:
+        raise StudyError(f"{path}: not UTF-8 text (byte {e.start})") from None
     except _toml.TOMLDecodeError as e:
+        m = re.search(r"^(.*) \(at line (\d+), column (\d+)\)$", str(e))
+        if m:
+            raise StudyError(f"{path}:{m.group(2)}:{m.group(3)}: syntax error: {m.group(1)}") from None
         raise StudyError(f"{path}: syntax error: {e}") from None
+
+
+def _with_position(e: StudyError, origin: str, text: str) -> StudyError:
+    """``e`` with ``origin:line:column`` in front, where its field is written."""
+    at = locate(text, e.where) if e.where else None
+    if at is None or not str(e).startswith(origin + ": "):
+        return e
+    return StudyError(f"{origin}:{at[0]}:{at[1]}: {str(e)[len(origin) + 2:]}", e.where)
 
 
 def load_study(study: Any, *, runs: Optional[int] = None) -> Study:
@@ -323,8 +348,12 @@ def load_study(study: Any, *, runs: Optional[int] = None) -> Study:
         raw, origin, base_dir = study, "<dict>", os.getcwd()
     else:
         origin = os.fspath(study)
-        raw = _read_toml(origin, "study file")
+        raw, text = _read_toml(origin, "study file")
         base_dir = os.path.dirname(os.path.abspath(origin))
+        try:
+            return parse_study(raw, origin, base_dir, runs=runs)
+        except StudyError as e:
+            raise _with_position(e, origin, text) from None
     return parse_study(raw, origin, base_dir, runs=runs)
 
 
@@ -353,7 +382,7 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
         with open(scene_path) as f:
             scene = json.load(f)
     else:
-        scene = _read_toml(scene_path, "scene")
+        scene = _read_toml(scene_path, "scene")[0]
     solver = raw.get("solver")
     if solver is not None and solver not in SOLVERS:
         raise _fail(origin, "solver", solver, f"must be one of {', '.join(SOLVERS)}")
