@@ -190,15 +190,21 @@ impl Hand {
         }
     }
 
+    /// The force the hand exerted on the hose in the last step [N].
+    pub fn force(&self, state: &State) -> DVec3 {
+        self.held[..self.count]
+            .iter()
+            .map(|&(node, ..)| state.reaction_force[node])
+            .sum()
+    }
+
     /// The load the hand applied in the last step.
     pub fn load(&self, model: &Model, state: &State) -> HandLoad {
         let (h, _) = self.motion.pose_at(state.time);
-        let mut force = DVec3::ZERO;
+        let force = self.force(state);
         let mut torque = DVec3::ZERO;
         for &(node, ..) in &self.held[..self.count] {
-            let f = state.reaction_force[node];
-            force += f;
-            torque += state.reaction_moment[node] + (state.x[node] - h).cross(f);
+            torque += state.reaction_moment[node] + (state.x[node] - h).cross(state.reaction_force[node]);
         }
         let el = &model.elements[self.element];
         let info = &model.hoses[self.hose];

@@ -221,3 +221,64 @@ fn implicit_hand_lifts_a_stiffened_section() {
     assert!((spacing(3, 4) - rest).abs() < 1e-4 * rest);
     assert!((state.x[4].z - 0.2).abs() < 1e-12);
 }
+
+/// Issue 12 (the implicit soak): a step Newton cannot converge is taken from its start by
+/// the explicit solver in ⌈h/Δt⌉ equal pieces — the same numbers as those pieces taken
+/// directly — with a hand's target approached over the pieces (the held node moves at
+/// the hand's speed, not in one jump), and the implicit solver goes on from there.
+#[test]
+fn an_implicit_step_newton_cannot_converge_is_taken_explicitly() {
+    use pliant_core::integrators::{explicit, Solver, SolverKind, SolverSettings};
+    let (mat, sec) = hose1();
+    let (model, mut start) = cantilever(10, mat, sec, DVec3::new(0.0, 0.0, -9.81));
+    // a hand holds the free end and lifts it 1 cm in this step
+    start.loads.add(LoadCase::Fix(Fix {
+        node: 10,
+        position: DVec3::new(1.0, 0.0, 0.01),
+        orientation: DQuat::IDENTITY,
+    }));
+    let h = 0.01;
+    let mut solver = Solver::new(
+        &model,
+        SolverSettings {
+            kind: SolverKind::Implicit,
+            implicit_time_step: h,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let options = *solver.implicit_options_mut().unwrap();
+    // one iteration, no halving: this first step cannot converge
+    solver.implicit_options_mut().unwrap().max_iterations = 1;
+    solver.implicit_options_mut().unwrap().max_halvings = 0;
+    let mut state = start.clone();
+    let stats = solver.step(&model, &mut state).unwrap();
+    let pieces = (h / model.time_step).ceil() as usize;
+    assert_eq!(stats.explicit_fallback, pieces);
+    assert_eq!((state.time, state.step), (h, 1));
+    assert_eq!(state.x[10], DVec3::new(1.0, 0.0, 0.01), "the hand's target reached");
+    let speed = state.v[10].z;
+    assert!(
+        (speed - 1.0).abs() < 0.1,
+        "the held node moved at the hand's 1 m/s, not in one jump: {speed} m/s"
+    );
+    // the same numbers as the explicit pieces taken directly, the target interpolated
+    let mut reference = start.clone();
+    for k in 1..=pieces {
+        let s = k as f64 / pieces as f64;
+        if let Some((_, LoadCase::Fix(f))) = reference.loads.iter_mut().nth(1) {
+            f.position = DVec3::new(1.0, 0.0, 0.0).lerp(DVec3::new(1.0, 0.0, 0.01), s);
+        }
+        explicit::step_by(&model, &mut reference, h / pieces as f64);
+    }
+    assert_eq!(state.x, reference.x);
+    assert_eq!(state.q, reference.q);
+    // with its usual options the implicit solver goes on converging from there
+    *solver.implicit_options_mut().unwrap() = options;
+    for k in 0..50 {
+        let stats = solver.step(&model, &mut state).unwrap();
+        assert_eq!(stats.explicit_fallback, 0, "step {k}");
+        assert!(stats.converged);
+    }
+    assert!(state.x[5].z < -0.01, "the hose sags between its ends");
+}

@@ -7,7 +7,7 @@
 //!
 //! ```text
 //! cargo run --release -p pliant-server --example soak -- [--clients 10] [--seconds 600]
-//!     [--solver explicit|implicit|static] [--regrab 10] [--json FILE]
+//!     [--solver explicit|implicit|static] [--regrab 10] [--json FILE] [--folder DIR]
 //! ```
 //!
 //! A benchmark, not a test: it measures, it asserts nothing. Traffic goes to a server on
@@ -36,6 +36,8 @@ struct Args {
     /// Re-grab period [s].
     regrab: f64,
     json: Option<String>,
+    /// Session folder: the input log is written there (replayable with `pliant replay`).
+    folder: Option<std::path::PathBuf>,
 }
 
 fn args() -> Result<Args, String> {
@@ -45,6 +47,7 @@ fn args() -> Result<Args, String> {
         solver: SolverKind::Explicit,
         regrab: 10.0,
         json: None,
+        folder: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
@@ -55,6 +58,7 @@ fn args() -> Result<Args, String> {
             "--solver" => a.solver = value()?.parse().map_err(|e| format!("--solver: {e}"))?,
             "--regrab" => a.regrab = value()?.parse().map_err(|e| format!("--regrab: {e}"))?,
             "--json" => a.json = Some(value()?),
+            "--folder" => a.folder = Some(value()?.into()),
             other => return Err(format!("unknown argument {other}")),
         }
     }
@@ -210,6 +214,7 @@ async fn main() {
     let scene = pliant_scene::demo_scene().expect("the built-in demo loads");
     let options = SessionOptions {
         solver: Some(a.solver),
+        folder: a.folder.clone(),
         ..SessionOptions::default()
     };
     let session = Session::start(&scene, options).expect("the demo session starts");

@@ -764,6 +764,7 @@ impl Workcell {
                             pose,
                             target: pose,
                             speed: 0.0,
+                            at_strength: false,
                         }
                     });
                     aim.target = (position, orientation.unwrap_or(aim.target.1));

@@ -67,6 +67,10 @@ pub struct SolverRecord {
     /// them in full.
     pub instability_count: u64,
     pub instabilities: Vec<Instability>,
+    /// Implicit steps Newton could not converge, taken by the explicit solver instead
+    /// (`pliant_core::integrators::fallback`), and the time of the first.
+    pub explicit_fallback_steps: u64,
+    pub first_explicit_fallback: Option<f64>,
 }
 
 impl SolverRecord {
@@ -89,6 +93,10 @@ impl SolverRecord {
         }
         if stats.unstable {
             self.unstable_steps += 1;
+        }
+        if stats.explicit_fallback > 0 {
+            self.explicit_fallback_steps += 1;
+            self.first_explicit_fallback.get_or_insert(time);
         }
     }
 
@@ -128,6 +136,13 @@ impl SolverRecord {
             out.push(format!(
                 "uncertain: {} step(s) ended on an unstable equilibrium the static solver could not leave",
                 self.unstable_steps
+            ));
+        }
+        if let Some(first) = self.first_explicit_fallback {
+            out.push(format!(
+                "{} implicit step(s) did not converge and were taken by the explicit solver \
+                 (in stable steps; first at t = {first:.3} s) — the motion is still a dynamic solution",
+                self.explicit_fallback_steps
             ));
         }
         out

@@ -22,7 +22,12 @@ use glam::DVec3;
 
 /// Advances `state` by one time step of `model.time_step`.
 pub fn step(model: &Model, state: &mut State) {
-    let dt = model.time_step;
+    step_by(model, state, model.time_step);
+}
+
+/// Advances `state` by `dt` ≤ `model.time_step` (the stable step): the implicit
+/// solver's fallback takes a step it could not converge in explicit pieces.
+pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     let t_next = state.time + dt;
     {
         let config = Config {

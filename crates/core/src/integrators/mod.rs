@@ -16,6 +16,7 @@
 
 use crate::health::{check_for, Divergence};
 pub mod explicit;
+pub mod fallback;
 pub mod implicit;
 pub mod snap;
 pub mod stability;
@@ -140,6 +141,9 @@ pub struct StepStats {
     pub unstable: bool,
     /// Static solver: sub-steps the input step took (1 unless it had to be split).
     pub substeps: usize,
+    /// Implicit solver: the step did not converge even halved, and was taken instead in
+    /// this many explicit steps (0: it converged) — [`Solver::step`].
+    pub explicit_fallback: usize,
 }
 
 /// Most sub-steps one static input step may be split into.
@@ -153,6 +157,9 @@ pub struct Solver {
     statics: Option<Box<StaticSolver>>,
     previous_x: Vec<DVec3>,
     previous_q: Vec<glam::DQuat>,
+    previous_v: Vec<DVec3>,
+    previous_w: Vec<DVec3>,
+    fallback_targets: Vec<fallback::Target>,
     previous_friction: crate::contact::friction::FrictionMemory,
     /// Unstable equilibria the last step left (static solver).
     events: Vec<StabilityEvent>,
@@ -181,6 +188,9 @@ impl Solver {
             statics,
             previous_x: vec![DVec3::ZERO; model.node_count()],
             previous_q: vec![glam::DQuat::IDENTITY; model.node_count()],
+            previous_v: vec![DVec3::ZERO; model.node_count()],
+            previous_w: vec![DVec3::ZERO; model.node_count()],
+            fallback_targets: Vec::new(),
             previous_friction: crate::contact::friction::FrictionMemory::new(&model.rest_x),
             events: Vec::new(),
             last: StepStats::default(),
@@ -216,26 +226,78 @@ impl Solver {
                     ..Default::default()
                 }
             }
-            SolverKind::Implicit => {
-                let solver = self.implicit.as_mut().expect("built for implicit");
-                let r = solver
-                    .step(model, state)
-                    .map_err(|error| SolverError::Implicit { time, error })?;
-                StepStats {
-                    iterations: r.iterations,
-                    residual_force: r.residual_force,
-                    residual_moment: r.residual_moment,
-                    converged: r.converged,
-                    substeps: r.substeps,
-                    ..Default::default()
-                }
-            }
+            SolverKind::Implicit => self.implicit_step(model, state, time)?,
             SolverKind::Static => self.static_step(model, state, time)?,
         };
         if self.settings.kind != SolverKind::Explicit {
             check_for(self.settings.kind, model, state)?;
         }
         Ok(self.last)
+    }
+
+    /// One implicit step. A step Newton cannot converge even halved (a contact's active
+    /// set chattering, a grip pulled hard) is taken from its start by the explicit
+    /// solver instead, in ⌈h / Δt_stable⌉ equal steps — a valid dynamic solution of the
+    /// same equations, only with the explicit method's step limit — and the HHT history
+    /// restarts from the state it reaches. A singular tangent (an iterate far off) and a
+    /// converged step that fails the health check (a jump to a distant solution) fall
+    /// back the same way; a state the explicit pieces cannot mend fails the health check.
+    fn implicit_step(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        time: f64,
+    ) -> Result<StepStats, SolverError> {
+        self.previous_x.copy_from_slice(&state.x);
+        self.previous_q.copy_from_slice(&state.q);
+        self.previous_v.copy_from_slice(&state.v);
+        self.previous_w.copy_from_slice(&state.w);
+        self.previous_friction.clone_from(&state.friction);
+        let solver = self.implicit.as_mut().expect("built for implicit");
+        let (step, h) = (state.step, solver.options.time_step);
+        let outcome = solver.step(model, state);
+        match outcome {
+            // a converged step that moves a node faster than the hose's wave speed has
+            // jumped to a far-off solution of its equations (a step too large for what
+            // the hands did): taken explicitly as well
+            Ok(r) if crate::health::check(model, state).is_ok() => Ok(StepStats {
+                iterations: r.iterations,
+                residual_force: r.residual_force,
+                residual_moment: r.residual_moment,
+                converged: r.converged,
+                substeps: r.substeps,
+                ..Default::default()
+            }),
+            failed => {
+                let residual = match failed {
+                    Err(ImplicitError::NotConverged(_, r)) => r,
+                    _ => 0.0,
+                };
+                state.x.copy_from_slice(&self.previous_x);
+                state.q.copy_from_slice(&self.previous_q);
+                state.v.copy_from_slice(&self.previous_v);
+                state.w.copy_from_slice(&self.previous_w);
+                state.friction.clone_from(&self.previous_friction);
+                state.time = time;
+                let pieces =
+                    fallback::explicit_pieces(model, state, h, &mut self.fallback_targets);
+                state.time = time + h; // the implicit grid, free of the pieces' rounding
+                state.step = step + 1;
+                state.implicit.restart();
+                Ok(StepStats {
+                    residual_force: residual,
+                    converged: true,
+                    substeps: pieces,
+                    explicit_fallback: pieces,
+                    ..Default::default()
+                })
+            }
+        }
+    }
+
+    /// The implicit solver's options (`None` for the other kinds), e.g. to tighten them.
+    pub fn implicit_options_mut(&mut self) -> Option<&mut ImplicitOptions> {
+        self.implicit.as_mut().map(|s| &mut s.options)
     }
 
     /// The unstable equilibria the last [`Self::step`] left (static solver; empty
@@ -345,6 +407,7 @@ impl Solver {
             converged: report.converged,
             unstable: report.unstable,
             substeps: pieces,
+            explicit_fallback: 0,
         })
     }
 }
