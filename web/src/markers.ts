@@ -28,6 +28,8 @@ export class ViolationMarkers {
   private readonly ringMaterial = new THREE.MeshBasicMaterial({ color: 0xff2020, depthTest: false, transparent: true, opacity: 0.9 });
   /** Markers under `stage.world` (the world frame, metres). */
   private readonly group = new THREE.Group();
+  /** Labels placed so far per hose in this update (stacked so that they do not overlap). */
+  private readonly stacked = new Map<number, number>();
   visible = true;
 
   constructor(private readonly stage: Stage) {
@@ -42,6 +44,7 @@ export class ViolationMarkers {
   update(checks: readonly CheckViolation[], nodes: (h: number) => ArrayLike<number>, radius: (h: number) => number): void {
     this.group.visible = this.visible;
     const seen = new Set<string>();
+    this.stacked.clear();
     for (const v of checks) {
       if (v.check !== 'bend_radius' && v.check !== 'twist') continue; // the running checks
       const key = `${v.hose}:${v.check}`;
@@ -65,8 +68,10 @@ export class ViolationMarkers {
       const ring = m.group.children[0];
       if (t.lengthSq() > 0) ring.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), t.normalize());
       ring.scale.setScalar(r);
-      m.sprite.position.set(0, 0, 3 * r + 0.02);
       const w = Math.max(this.stage.radius * 0.35, 0.08);
+      const stack = this.stacked.get(v.hose) ?? 0;
+      this.stacked.set(v.hose, stack + 1);
+      m.sprite.position.set(0, 0, 3 * r + 0.02 + stack * 0.15 * w);
       m.sprite.scale.set(w, w / 8, 1);
     }
     for (const [key, m] of this.markers) {

@@ -6,23 +6,11 @@
 import assert from 'node:assert/strict';
 import { mkdirSync } from 'node:fs';
 import path from 'node:path';
-import { after, before, describe, test } from 'node:test';
-import { framesDrawn, launchBrowser, openViewer, repo, startServer } from './harness.mjs';
+import { describe, test } from 'node:test';
+import { framesDrawn, openViewer, repo, sharedSession } from './harness.mjs';
 
 const LOW = { width: 1024, height: 640, query: '?quality=low' };
-
-let server;
-let browser;
-
-before(async () => {
-  server = await startServer();
-  browser = await launchBrowser();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.stop();
-});
+const shared = sharedSession();
 
 /** Distance from `p` to the polyline through `nodes`. */
 function toPolyline(p, nodes) {
@@ -82,7 +70,7 @@ function triangleGlb(name, c, r) {
 
 describe('colour modes and checks', () => {
   test('the colour mode colours hoses along their length, the legend follows, markers sit at the violations', async () => {
-    const { page } = await openViewer(browser, server.url, { width: 1280, height: 800 });
+    const { page } = await openViewer(shared.browser, shared.server.url, { width: 1280, height: 800 });
     try {
       // the demo's lower hose is delivered in a loop tighter than its minimum bend radius
       await page.waitForFunction(() => (window.pliant.shown?.checks ?? []).some((c) => c.check === 'bend_radius'));
@@ -147,7 +135,7 @@ describe('colour modes and checks', () => {
   });
 
   test('the grip chosen in the panel, or by a key held at the grab, reaches the server', async () => {
-    const { page } = await openViewer(browser, server.url, LOW);
+    const { page } = await openViewer(shared.browser, shared.server.url, LOW);
     try {
       const hose = (await page.evaluate(() => window.pliant.welcome.session.hoses.length)) - 1;
       const id = await page.evaluate(() => window.pliant.mouseHandId);
@@ -181,7 +169,7 @@ describe('colour modes and checks', () => {
   });
 
   test('an envelope dropped on the view (STL) or opened (glTF) is shown, toggled and cleared', async () => {
-    const { page, logs } = await openViewer(browser, server.url, LOW);
+    const { page, logs } = await openViewer(shared.browser, shared.server.url, LOW);
     try {
       const nodes = await page.evaluate(() => window.pliant.hoseNodes(0));
       const c = nodes[Math.floor(nodes.length / 2)];
