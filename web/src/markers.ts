@@ -71,7 +71,7 @@ export class ViolationMarkers {
       const w = Math.max(this.stage.radius * 0.35, 0.08);
       const stack = this.stacked.get(v.hose) ?? 0;
       this.stacked.set(v.hose, stack + 1);
-      m.sprite.position.set(0, 0, 3 * r + 0.02 + stack * 0.15 * w);
+      m.sprite.position.set(0, 0, 3 * r + 0.02 + stack * 0.3 * w);
       m.sprite.scale.set(w, w / 8, 1);
     }
     for (const [key, m] of this.markers) {

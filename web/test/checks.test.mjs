@@ -122,7 +122,7 @@ describe('colour modes and checks', () => {
       await page.selectOption('#colour-mode', 'axial_force');
       await page.waitForFunction(() => /N \(tension\)/.test(document.querySelector('#legend').textContent));
       assert.ok((await page.evaluate(() => window.pliant.axialScale)) >= 1);
-      // a picture for people (docs/viewer.md): bend radius colours and the markers
+      // a picture for people (README, docs/colour-modes.png): bend radius colours and markers
       await page.selectOption('#colour-mode', 'bend_radius');
       await framesDrawn(page, 10);
       const dir = path.join(repo, 'target', 'e2e');
