@@ -7,6 +7,7 @@ import * as THREE from 'three';
 import { pointAtArcLength } from './arclength';
 import type { CheckViolation, Vec3 } from './protocol';
 import type { Stage } from './scene';
+import { canvasSprite } from './sprite';
 
 interface Marker { group: THREE.Group; sprite: THREE.Sprite; texture: THREE.CanvasTexture; text: string }
 
@@ -93,13 +94,7 @@ export class ViolationMarkers {
   }
 
   private make(): Marker {
-    const canvas = document.createElement('canvas');
-    canvas.width = 640;
-    canvas.height = 80;
-    const texture = new THREE.CanvasTexture(canvas);
-    texture.colorSpace = THREE.SRGBColorSpace;
-    const sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: texture, depthTest: false, transparent: true }));
-    sprite.renderOrder = 11;
+    const { sprite, texture } = canvasSprite(640, 80, 11);
     const ring = new THREE.Mesh(this.ringGeometry, this.ringMaterial);
     ring.renderOrder = 11;
     const group = new THREE.Group();

@@ -11,6 +11,7 @@ import * as THREE from 'three';
 import { nextGrip, type Grip } from './grips';
 import type { Net } from './net';
 import type { Stage } from './scene';
+import { canvasSprite, type CanvasSprite } from './sprite';
 
 interface XrHand {
   grip: THREE.Group;
@@ -21,7 +22,7 @@ interface XrHand {
   /** How this controller holds a hose (its grip choice). */
   hold: Grip;
   marker: THREE.Mesh<THREE.SphereGeometry, THREE.MeshStandardMaterial>;
-  label: { sprite: THREE.Sprite; canvas: HTMLCanvasElement; texture: THREE.CanvasTexture };
+  label: CanvasSprite;
   gamepad: Gamepad | null;
   /** Whether the cycling button was down at the last frame (edge detection). */
   buttonDown: boolean;
@@ -31,16 +32,11 @@ interface XrHand {
 const GRIP_COLOUR: Record<Grip, number> = { firm: 0xffffff, axial: 0xffd23f, ball: 0xff5fd2 };
 
 /** A small text sprite above a controller, naming its grip. */
-function gripSprite(): XrHand['label'] {
-  const canvas = document.createElement('canvas');
-  canvas.width = 256;
-  canvas.height = 64;
-  const texture = new THREE.CanvasTexture(canvas);
-  texture.colorSpace = THREE.SRGBColorSpace;
-  const sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: texture, depthTest: false, transparent: true }));
-  sprite.position.set(0, 0.045, 0);
-  sprite.scale.set(0.08, 0.02, 1);
-  return { sprite, canvas, texture };
+function gripSprite(): CanvasSprite {
+  const label = canvasSprite(256, 64);
+  label.sprite.position.set(0, 0.045, 0);
+  label.sprite.scale.set(0.08, 0.02, 1);
+  return label;
 }
 
 export class XrHands {

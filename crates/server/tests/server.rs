@@ -973,30 +973,16 @@ format = "pliant-scene"
 version = 1
 name = "bent"
 length_unit = "mm"
-[simulation]
-gravity = [0, 0, 0]
-[[hoses]]
-name = "arc"
-material = "hose1"
-start = [0, 0, 0]
-path = [{ arc = { via = [100, 100, 0], to = [200, 0, 0] } }]
-[[hoses]]
-name = "straight"
-material = "hose1"
-start = [0, 300, 0]
-path = [{ line = { to = [300, 300, 0] } }]
-[[timeline]]
-action = "fix"
-hose = "arc"
-node = 0
-[[timeline]]
-action = "fix"
-hose = "arc"
-node = -1
-[[timeline]]
-action = "fix"
-hose = "straight"
-node = 0
+simulation = { gravity = [0, 0, 0] }
+hoses = [
+  { name = "arc", material = "hose1", start = [0, 0, 0], path = [{ arc = { via = [100, 100, 0], to = [200, 0, 0] } }] },
+  { name = "straight", material = "hose1", start = [0, 300, 0], path = [{ line = { to = [300, 300, 0] } }] },
+]
+timeline = [
+  { action = "fix", hose = "arc", node = 0 },
+  { action = "fix", hose = "arc", node = -1 },
+  { action = "fix", hose = "straight", node = 0 },
+]
 "#;
 
 async fn serve_bent() -> RunningServer {
