@@ -81,7 +81,9 @@ export class Envelopes {
   async loadUrl(url: string): Promise<number> {
     const res = await fetch(url);
     if (!res.ok) throw new Error(`${url}: HTTP ${res.status}`);
-    return this.load(await res.arrayBuffer(), new URL(url, location.href).pathname);
+    const u = new URL(url, location.href);
+    const name = u.protocol === 'data:' ? 'envelope (data URL)' : u.pathname.split('/').pop() || u.href;
+    return this.load(await res.arrayBuffer(), name);
   }
 
   /** Removes every envelope. */

@@ -201,4 +201,17 @@ describe('colour modes and checks', () => {
       await page.close();
     }
   });
+
+  test('?envelope=URL shows an envelope when the page opens', async () => {
+    const glb = triangleGlb('lower', [0, 0, 0.3], 0.1).toString('base64');
+    const query = `?quality=low&envelope=${encodeURIComponent(`data:model/gltf-binary;base64,${glb}`)}`;
+    const { page } = await openViewer(shared.browser, shared.server.url, { ...LOW, query });
+    try {
+      await page.waitForFunction(() => window.pliant.envelopes.loaded.length === 1);
+      assert.deepEqual(await page.evaluate(() => window.pliant.envelopes.loaded), [{ name: 'envelope (data URL)', meshes: 1 }]);
+      assert.ok(await page.isVisible('#envelope-row'));
+    } finally {
+      await page.close();
+    }
+  });
 });
