@@ -3,8 +3,12 @@
 // samples. Read-only views plus `send` for raw protocol messages.
 
 import type { Author } from './author';
+import type { ColourMode } from './colour_modes';
+import type { Envelopes } from './envelope';
+import type { Grip } from './grips';
 import type { MouseHand } from './grab';
 import type { HoseTube } from './hoses';
+import type { ViolationMarkers } from './markers';
 import type { Net } from './net';
 import type { ClientMessage, Snapshot, Vec3, Welcome } from './protocol';
 import type { Stage } from './scene';
@@ -24,6 +28,10 @@ export interface DebugSources {
   startReplay: (text: string) => void;
   lastRecording: () => string;
   author: Author;
+  colouring: { mode: ColourMode; axialScale: number };
+  setColourMode: (mode: ColourMode) => void;
+  markers: ViolationMarkers;
+  envelopes: Envelopes;
 }
 
 export function installDebugHandle(src: DebugSources): void {
@@ -42,6 +50,23 @@ export function installDebugHandle(src: DebugSources): void {
     get lastPick() { return src.mouse.lastPick; },
     get xrHandIds() { return src.xr.hands.map((h) => src.xr.handBase + h.handId); },
     get inVr() { return src.xr.inSession; },
+    /** The colour mode and the axial-force legend's scale [N]; `setColourMode`. */
+    get colourMode() { return src.colouring.mode; },
+    get axialScale() { return src.colouring.axialScale; },
+    setColourMode(mode: ColourMode): void { src.setColourMode(mode); },
+    /** Per-vertex colours of hose `h`'s tube (linear RGB, flattened). */
+    tubeColours(h: number): number[] {
+      const a = src.tubes()[h]?.mesh.geometry.getAttribute('color');
+      return a === undefined ? [] : Array.from(a.array as Float32Array);
+    },
+    /** The violation markers shown (hose:check, world position). */
+    markers(): { key: string; position: Vec3 }[] { return src.markers.positions(); },
+    /** The mouse's grip choice; each controller's grip; cycle controller i's. */
+    get mouseGrip(): Grip { return src.mouse.grip; },
+    get xrGripChoices(): Grip[] { return src.xr.hands.map((h) => h.hold); },
+    cycleXrGrip(i: number): Grip | null { return src.xr.cycleGrip(i); },
+    /** Tolerance envelopes shown: file names and mesh counts, visibility. */
+    get envelopes() { return { loaded: [...src.envelopes.loaded], visible: src.envelopes.visible, meshes: src.envelopes.group.children.length }; },
     /** Node positions of hose `h` as drawn (world frame). */
     hoseNodes(h: number): Vec3[] {
       const t = src.tubes()[h];

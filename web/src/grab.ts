@@ -2,9 +2,11 @@
 // moves the hand in the plane through the grab point facing the camera. Shift-drag or the
 // wheel moves it along the view axis (depth); Alt- or Ctrl-drag turns the hand (about the
 // view's up axis for horizontal motion, about its right axis for vertical motion).
-// Pointer-up releases. Moves are sent at most once per frame.
+// Pointer-up releases. Moves are sent at most once per frame. The grip (grips.ts) is the
+// panel's choice, or the one of a key held at the grab: F firm, A axial, B ball.
 
 import * as THREE from 'three';
+import { gripFor, gripOfKey, type Grip } from './grips';
 import { pickBeam, type HoseTube, type Pick } from './hoses';
 import type { Net } from './net';
 import type { Quat, Vec3 } from './protocol';
@@ -24,6 +26,12 @@ export class MouseHand {
   private dirty = false;
   private readonly raycaster = new THREE.Raycaster();
   lastPick: Pick | null = null;
+  /** The panel's grip for the next grab. */
+  grip: Grip = 'firm';
+  /** The grip of the hand now held (or of the last grab). */
+  heldGrip: Grip = 'firm';
+  /** Grip keys held down now (`KeyboardEvent.code`). */
+  private readonly gripKeys = new Set<string>();
 
   constructor(
     private readonly stage: Stage,
@@ -37,6 +45,11 @@ export class MouseHand {
     window.addEventListener('pointermove', (e) => this.move(e));
     window.addEventListener('pointerup', () => this.up());
     el.addEventListener('wheel', (e) => this.wheel(e), { passive: false, capture: true });
+    window.addEventListener('keydown', (e) => {
+      if (gripOfKey(e.code) !== null && !(e.target instanceof HTMLInputElement)) this.gripKeys.add(e.code);
+    });
+    window.addEventListener('keyup', (e) => this.gripKeys.delete(e.code));
+    window.addEventListener('blur', () => this.gripKeys.clear());
   }
 
   get holding(): boolean {
@@ -74,7 +87,8 @@ export class MouseHand {
     this.last = { x: e.clientX, y: e.clientY };
     const normal = this.stage.camera.getWorldDirection(new THREE.Vector3());
     this.plane.setFromNormalAndCoplanarPoint(normal, this.target);
-    this.net.send({ type: 'grab', hand_id: this.handId, position: pick.point });
+    this.heldGrip = gripFor(this.grip, this.gripKeys);
+    this.net.send({ type: 'grab', hand_id: this.handId, position: pick.point, grip: this.heldGrip });
   }
 
   private move(e: PointerEvent): void {

@@ -2,7 +2,8 @@
 // Catmull-Rom curve through the nodes with the radius interpolated per node. The
 // geometry's buffers are allocated once per session and rewritten in place for every
 // snapshot (no allocation per frame). Each hose is coloured by its force colour value
-// (SPEC I4).
+// (SPEC I4), or along its length by per-node colour values (the colour modes of
+// colour_modes.ts: bend radius, twist, axial force), through per-vertex colours.
 
 import * as THREE from 'three';
 import { colourRgb } from './colour';
@@ -20,6 +21,8 @@ export class HoseTube {
   private readonly rings: number;
   private readonly pos: Float32Array;
   private readonly nrm: Float32Array;
+  private readonly rgb: Float32Array;
+  private readonly scratch = new THREE.Color();
   // scratch (one ring's centre, tangent, normal, binormal, radius per ring)
   private readonly centre: Float32Array;
   private readonly tangent: Float32Array;
@@ -27,13 +30,17 @@ export class HoseTube {
   /** Node positions of the last update (world frame). */
   readonly positions: Float64Array;
   colour = 0;
+  /** The largest outer radius along the hose [m]. */
+  readonly maxRadius: number;
 
   constructor(readonly data: HoseData, readonly index: number) {
     this.nodes = data.radii.length;
+    this.maxRadius = Math.max(0, ...data.radii);
     this.rings = (this.nodes - 1) * SUBDIV + 1;
     const nv = this.rings * (RADIAL + 1);
     this.pos = new Float32Array(nv * 3);
     this.nrm = new Float32Array(nv * 3);
+    this.rgb = new Float32Array(nv * 3);
     this.centre = new Float32Array(this.rings * 3);
     this.tangent = new Float32Array(this.rings * 3);
     this.ringRadius = new Float32Array(this.rings);
@@ -53,8 +60,12 @@ export class HoseTube {
     na.setUsage(THREE.DynamicDrawUsage);
     g.setAttribute('position', pa);
     g.setAttribute('normal', na);
+    const ca = new THREE.BufferAttribute(this.rgb, 3);
+    ca.setUsage(THREE.DynamicDrawUsage);
+    g.setAttribute('color', ca);
     g.setIndex(idx);
-    const m = surface({ color: 0x0000ff, roughness: 0.55, metalness: 0.05 });
+    const m = surface({ color: 0xffffff, roughness: 0.55, metalness: 0.05 });
+    m.vertexColors = true;
     this.mesh = new THREE.Mesh(g, m);
     this.mesh.name = `hose:${data.name}`;
     this.mesh.castShadow = true;
@@ -68,8 +79,12 @@ export class HoseTube {
     return [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
   }
 
-  /** Rewrites the tube through `nodes` [m] (world frame) with colour value `c`. */
-  update(nodes: Vec3[], c: number): void {
+  /**
+   * Rewrites the tube through `nodes` [m] (world frame), coloured by `perNode` colour
+   * values (one per node, interpolated along the tube) or, when null, all in colour
+   * value `c`.
+   */
+  update(nodes: Vec3[], c: number, perNode: Float32Array | null = null): void {
     const n = Math.min(nodes.length, this.nodes);
     if (n < 2) return;
     for (let i = 0; i < n; i++) {
@@ -82,11 +97,33 @@ export class HoseTube {
     const g = this.mesh.geometry;
     g.attributes.position.needsUpdate = true;
     g.attributes.normal.needsUpdate = true;
-    if (c !== this.colour || this.mesh.material.userData.init !== true) {
-      this.colour = c;
-      const [r, gg, b] = colourRgb(c);
-      this.mesh.material.color.setRGB(r, gg, b, THREE.SRGBColorSpace);
-      this.mesh.material.userData.init = true;
+    this.colour = c;
+    this.paint(c, perNode);
+    g.attributes.color.needsUpdate = true;
+  }
+
+  /** Vertex colours: ring by ring, the node values interpolated (or `c` throughout). */
+  private paint(c: number, perNode: Float32Array | null): void {
+    const N = this.nodes;
+    for (let k = 0; k < this.rings; k++) {
+      let v = c;
+      if (perNode !== null && perNode.length >= N) {
+        const i = Math.min(Math.floor(k / SUBDIV), N - 2);
+        const t = (k - i * SUBDIV) / SUBDIV;
+        v = perNode[i] + (perNode[i + 1] - perNode[i]) * t;
+      }
+      if (k > 0 && perNode === null) {
+        this.rgb.copyWithin(k * (RADIAL + 1) * 3, 0, (RADIAL + 1) * 3);
+        continue;
+      }
+      const [r, gg, b] = colourRgb(v);
+      this.scratch.setRGB(r, gg, b, THREE.SRGBColorSpace); // to linear, as three.js draws
+      for (let j = 0; j <= RADIAL; j++) {
+        const o = 3 * (k * (RADIAL + 1) + j);
+        this.rgb[o] = this.scratch.r;
+        this.rgb[o + 1] = this.scratch.g;
+        this.rgb[o + 2] = this.scratch.b;
+      }
     }
   }
 

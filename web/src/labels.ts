@@ -5,6 +5,7 @@
 import * as THREE from 'three';
 import { colourCss } from './colour';
 import { norm, type HandSnapshot } from './protocol';
+import { canvasSprite } from './sprite';
 import type { Stage } from './scene';
 
 interface Label { sprite: THREE.Sprite; canvas: HTMLCanvasElement; texture: THREE.CanvasTexture; text: string }
@@ -20,15 +21,9 @@ export class ForceLabels {
   }
 
   private make(): Label {
-    const canvas = document.createElement('canvas');
-    canvas.width = 512;
-    canvas.height = 128;
-    const texture = new THREE.CanvasTexture(canvas);
-    texture.colorSpace = THREE.SRGBColorSpace;
-    const sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: texture, depthTest: false, transparent: true }));
-    sprite.renderOrder = 10;
-    this.group.add(sprite);
-    return { sprite, canvas, texture, text: '' };
+    const l = canvasSprite(512, 128);
+    this.group.add(l.sprite);
+    return { ...l, text: '' };
   }
 
   update(hands: HandSnapshot[]): void {

@@ -1,15 +1,22 @@
 // Pliant's browser/VR viewer (issue 4): connects to the `pliant serve` that served this
 // page, draws the session (parts, stubs, clips, hoses as force-coloured tubes), lets the
 // mouse or VR controllers grab and move hoses, and shows loads, limits and the verdict.
-// `?xr=emulate` installs an emulated headset (iwer) for tests and development.
+// Colour modes with a legend (hand load, bend radius vs minimum, twist, axial force),
+// markers at the installation checks' violations, tolerance envelopes (dropped files or
+// `?envelope=URL`). `?xr=emulate` installs an emulated headset (iwer) for tests and
+// development.
 
 import './style.css';
 import * as THREE from 'three';
 import { Author } from './author';
+import { beamValues, growAxialScale, legendRange, nodeColourValues, type ColourMode } from './colour_modes';
 import { installDebugHandle } from './debug';
+import { Envelopes } from './envelope';
 import { MouseHand } from './grab';
 import { HoseTube } from './hoses';
 import { ForceLabels } from './labels';
+import { Legend } from './legend';
+import { ViolationMarkers } from './markers';
 import { Net } from './net';
 import { Panel } from './panel';
 import type { Snapshot, Welcome } from './protocol';
@@ -29,10 +36,10 @@ async function main(): Promise<void> {
   const app = document.getElementById('app') as HTMLElement;
   const view = document.getElementById('view') as HTMLElement;
   const stage = new Stage(view, params.get('quality') === 'low' ? 'low' : 'high');
-  const legend = document.createElement('div');
-  legend.id = 'legend';
-  legend.innerHTML = 'hand load / limit<div class="grad"></div>0 &nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp; 50 % &nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp; ≥ 100 %';
-  view.appendChild(legend);
+  const legend = new Legend(view);
+  /** What the hoses are coloured by, and the axial-force scale seen so far [N]. */
+  const colouring = { mode: 'hand_load' as ColourMode, axialScale: 0 };
+  let nodeValues: Float32Array[] = []; // per hose, per node colour values (scratch)
 
   let tubes: HoseTube[] = [];
   let liveWelcome: Welcome | null = null;
@@ -59,6 +66,9 @@ async function main(): Promise<void> {
       t.dispose();
     }
     tubes = w.session.hoses.map((h, i) => new HoseTube(h, i));
+    nodeValues = tubes.map((t) => new Float32Array(t.nodes));
+    colouring.axialScale = 0;
+    markers.clear();
     for (const t of tubes) stage.world.add(t.mesh);
     shownWelcome = w;
     shown = null;
@@ -167,7 +177,40 @@ async function main(): Promise<void> {
     replayFile: (file) => void file.text().then(startReplay),
     live: stopReplay,
     author: () => author.toggle(),
+    colourMode: (mode) => setColourMode(mode),
+    grip: (g) => {
+      mouse.grip = g;
+    },
+    envelopeFile: (file) =>
+      void file.arrayBuffer().then((buf) => showEnvelope(envelopes.load(buf, file.name), file.name)),
+    envelopeVisible: (on) => {
+      envelopes.visible = on;
+    },
+    envelopeClear: () => {
+      envelopes.clear();
+      panel.setEnvelopes([], false);
+    },
   });
+  const envelopes = new Envelopes(stage);
+  const showEnvelope = (loading: Promise<number>, name: string) =>
+    loading
+      .then((n) => {
+        panel.setEnvelopes(envelopes.loaded.map((e) => e.name), envelopes.visible);
+        panel.setMessage(`envelope ${name}: ${n} mesh(es) shown`);
+      })
+      .catch((e: Error) => panel.setMessage(`cannot show the envelope ${name}: ${e.message}`, true));
+  envelopes.acceptDrops(view, (message, error) => {
+    panel.setEnvelopes(envelopes.loaded.map((e) => e.name), envelopes.visible);
+    panel.setMessage(message, error);
+  });
+  const envelopeUrl = params.get('envelope');
+  if (envelopeUrl !== null) void showEnvelope(envelopes.loadUrl(envelopeUrl), envelopeUrl);
+  const markers = new ViolationMarkers(stage);
+  const setColourMode = (mode: ColourMode) => {
+    colouring.mode = mode;
+    panel.colourMode.value = mode;
+    if (shown !== null) apply(shown);
+  };
   const author = new Author(stage, net, panel.authorSlot, {
     changed: (on) => {
       panel.setAuthoring(on);
@@ -188,7 +231,17 @@ async function main(): Promise<void> {
   const labels = new ForceLabels(stage);
 
   const apply = (s: Snapshot) => {
-    s.hoses.forEach((h, i) => tubes[i]?.update(h.positions, h.colour));
+    colouring.axialScale = growAxialScale(colouring.axialScale, s.hoses);
+    const range = legendRange(colouring.mode, shownWelcome?.session.twist_limit, colouring.axialScale);
+    legend.show(range);
+    s.hoses.forEach((h, i) => {
+      const t = tubes[i];
+      if (t === undefined) return;
+      const beams = beamValues(colouring.mode, h);
+      const values = beams === null ? null : nodeColourValues(range, beams, nodeValues[i]);
+      t.update(h.positions, h.colour, values);
+    });
+    markers.update(s.checks ?? [], (h) => tubes[h]?.positions ?? [], (h) => tubes[h]?.maxRadius ?? 0);
     labels.update(s.hands);
     panel.snapshot(s);
     if (needsFraming && shownWelcome !== null) {
@@ -239,6 +292,10 @@ async function main(): Promise<void> {
     startReplay,
     lastRecording: () => lastRecording,
     author,
+    colouring,
+    setColourMode,
+    markers,
+    envelopes,
   });
   net.connect();
 }

@@ -1,8 +1,12 @@
 // The side panel: session status, controls (pause/step/reset, ergonomic profile, open a
 // scene, record/replay), each hand's force and torque against its limit (bars and a live
-// plot), stub and clip forces, and the running verdict.
+// plot), stub and clip forces, the installation checks' violations and the running
+// verdict; the colour mode, the mouse's grip and tolerance envelopes to show.
 
 import { colourCss } from './colour';
+import { COLOUR_MODES, type ColourMode } from './colour_modes';
+import { GRIPS, gripLabel, type Grip } from './grips';
+import { violationText } from './markers';
 import { LoadPlot } from './plot';
 import { norm, type Snapshot, type Welcome } from './protocol';
 
@@ -38,6 +42,11 @@ export interface PanelActions {
   replayFile(file: File): void;
   live(): void;
   author(): void;
+  colourMode(mode: ColourMode): void;
+  grip(grip: Grip): void;
+  envelopeFile(file: File): void;
+  envelopeVisible(on: boolean): void;
+  envelopeClear(): void;
 }
 
 export class Panel {
@@ -48,6 +57,12 @@ export class Panel {
   private readonly hands = el('div', { id: 'hands' });
   private readonly fasteners = el('div', { id: 'fasteners' });
   private readonly verdict = el('div', { id: 'verdict' });
+  private readonly checks = el('div', { id: 'checks' });
+  readonly colourMode = el('select', { id: 'colour-mode', title: 'what the hoses are coloured by' });
+  readonly grip = el('select', { id: 'grip', title: 'how the mouse hand holds the hose (hold F, A or B while grabbing to override)' });
+  private readonly envelopeRow = el('div', { class: 'row', id: 'envelope-row' });
+  readonly envelopeToggle = el('input', { id: 'envelope-toggle', type: 'checkbox' });
+  private readonly envelopeName = el('span', { id: 'envelope-name', class: 'muted' });
   private readonly message = el('div', { id: 'message' });
   readonly plot: LoadPlot;
   private readonly pauseBtn = el('button', { id: 'pause' }, 'Pause');
@@ -120,6 +135,30 @@ export class Panel {
     this.authorBtn = authorBtn;
     files.append(openBtn, open, this.recordBtn, replayBtn, replay, authorBtn);
 
+    for (const m of COLOUR_MODES) this.colourMode.append(el('option', { value: m.id }, m.label));
+    this.colourMode.onchange = () => this.actions.colourMode(this.colourMode.value as ColourMode);
+    for (const g of GRIPS) this.grip.append(el('option', { value: g }, gripLabel(g)));
+    this.grip.onchange = () => this.actions.grip(this.grip.value as Grip);
+    const view = el('div', { class: 'row' });
+    view.append(el('label', {}, 'Colour '), this.colourMode, el('label', {}, ' Grip '), this.grip);
+    const envFile = el('input', { id: 'envelope-file', type: 'file', accept: '.glb,.gltf,.stl' });
+    envFile.style.display = 'none';
+    const envBtn = el('button', { id: 'envelope-open', title: 'a tolerance envelope from `pliant study` (envelope.glb or <hose>.stl); or drop it on the view' }, 'Envelope…');
+    envBtn.onclick = () => envFile.click();
+    envFile.onchange = () => {
+      const f = envFile.files?.[0];
+      if (f !== undefined) this.actions.envelopeFile(f);
+      envFile.value = '';
+    };
+    this.envelopeToggle.onchange = () => this.actions.envelopeVisible(this.envelopeToggle.checked);
+    const envClear = el('button', { id: 'envelope-clear' }, 'Clear');
+    envClear.onclick = () => this.actions.envelopeClear();
+    const envLabel = el('label', {}, ' show ');
+    envLabel.prepend(this.envelopeToggle);
+    this.envelopeRow.append(envLabel, this.envelopeName, envClear);
+    this.envelopeRow.hidden = true;
+    files.append(envBtn, envFile);
+
     const liveBtn = el('button', { id: 'live' }, 'Back to live');
     liveBtn.onclick = () => this.actions.live();
     this.replayBar.append(el('span', {}, 'Replay '), this.replayPlay, this.replaySlider, liveBtn);
@@ -128,13 +167,15 @@ export class Panel {
     const canvas = el('canvas', { id: 'plot', width: '300', height: '130' });
     this.plot = new LoadPlot(canvas);
     const help = el('p', { class: 'help' },
-      'Drag a hose to pull it; Shift-drag or wheel: depth; Alt/Ctrl-drag: turn the hand. Drag elsewhere to orbit.');
+      'Drag a hose to pull it; Shift-drag or wheel: depth; Alt/Ctrl-drag: turn the hand; hold F, A or B while grabbing: firm, axial or ball grip. Drag elsewhere to orbit. Drop a .glb/.stl envelope on the view to show it.');
     this.root.append(
       title, this.status, this.scene, this.clock, controls,
       el('h2', {}, 'Ergonomics'), ergo,
-      el('h2', {}, 'Session'), files, this.replayBar, this.authorSlot,
+      el('h2', {}, 'View'), view,
+      el('h2', {}, 'Session'), files, this.envelopeRow, this.replayBar, this.authorSlot,
       el('h2', {}, 'Hands'), this.hands, canvas,
       el('h2', {}, 'Stubs and clips'), this.fasteners,
+      el('h2', {}, 'Installation checks'), this.checks,
       el('h2', {}, 'Verdict so far'), this.verdict,
       this.message, help,
     );
@@ -158,6 +199,13 @@ export class Panel {
   setAuthoring(on: boolean): void {
     this.authorBtn?.classList.toggle('on', on);
     if (this.authorBtn) this.authorBtn.textContent = on ? 'Leave author mode' : 'Author';
+  }
+
+  /** The envelopes shown (names), or none: the row with the show toggle. */
+  setEnvelopes(names: string[], visible: boolean): void {
+    this.envelopeRow.hidden = names.length === 0;
+    this.envelopeName.textContent = names.join(', ');
+    this.envelopeToggle.checked = visible;
   }
 
   setReplay(on: boolean): void {
@@ -193,7 +241,8 @@ export class Panel {
       const t = norm(h.torque);
       const row = el('div', { class: 'hand', 'data-hand': String(h.hand_id) });
       row.append(
-        el('div', { class: 'hand-title' }, `Hand ${h.hand_id} on hose ${h.hose}${h.kind ? ` — worst: ${h.kind}` : ''}`),
+        el('div', { class: 'hand-title', 'data-grip': h.grip ?? 'firm' },
+          `Hand ${h.hand_id} on hose ${h.hose} · ${h.grip ?? 'firm'} grip${h.kind ? ` — worst: ${h.kind}` : ''}`),
         el('div', { class: 'force', 'data-value': f.toFixed(3) },
           `Force ${fmt(f)} N (${h.force_kind ?? '–'}) / limit ${fmt(h.force_limit)} N`),
         bar(h.force_ratio),
@@ -214,6 +263,14 @@ export class Panel {
     );
     if (frows.length === 0) frows.push(el('div', { class: 'muted' }, 'none in this scene'));
     this.fasteners.replaceChildren(...frows);
+    // installation checks (bend radius, twist): the worst violation per hose and check
+    const crows = (s.checks ?? []).map((c) =>
+      el('div', { class: 'check', 'data-check': c.check, 'data-hose': String(c.hose) },
+        `hose '${c.hose_name}': ${violationText(c)} at s = ${(1e3 * c.arc_length).toFixed(0)} mm, ` +
+        `t = ${c.time.toFixed(2)} s (violated ${c.first_time.toFixed(2)}–${c.last_time.toFixed(2)} s)`),
+    );
+    if (crows.length === 0) crows.push(el('div', { class: 'muted' }, 'no violation so far'));
+    this.checks.replaceChildren(...crows);
     // verdict
     const v = s.verdict;
     if (v !== undefined) {

@@ -1,9 +1,17 @@
 // The messages of Pliant's protocol version 1 (docs/protocol.md), as TypeScript types.
 
+import type { HoseFields } from './colour_modes';
+import type { Grip } from './grips';
+
 export type Vec3 = [number, number, number];
 export type Quat = [number, number, number, number]; // x, y, z, w
 
-export interface HoseData { name: string; radii: number[] }
+export interface HoseData {
+  name: string;
+  radii: number[];
+  /** The bend-radius check's minimum [m] (null: not checked). */
+  min_bend_radius?: number | null;
+}
 export interface PartData {
   name: string;
   bounds_min: Vec3;
@@ -29,6 +37,8 @@ export interface SceneData {
   parts: PartData[];
   fasteners?: FastenerData[];
   ergonomics: string;
+  /** The twist check's limit relative to the routed hose [rad/m] (null: not checked). */
+  twist_limit?: number | null;
   limits: { max_message_bytes: number; max_messages_per_second: number; snapshot_hz: number; max_hands: number };
 }
 export interface Welcome { type: 'welcome'; version: number; client_id: number; session: SceneData }
@@ -37,6 +47,8 @@ export type LoadKind = 'push' | 'pull' | 'twist' | 'bending';
 export interface HandSnapshot {
   hand_id: number;
   hose: number;
+  /** How the hand holds the hose. */
+  grip?: Grip;
   position: Vec3;
   orientation: Quat;
   target: Vec3;
@@ -77,7 +89,8 @@ export interface Snapshot {
   paused: boolean;
   real_time_factor: number;
   epoch: number;
-  hoses: { positions: Vec3[]; colour: number }[];
+  /** Per hose: node positions, the hand-load colour value and per-beam fields (SI). */
+  hoses: (HoseFields & { positions: Vec3[]; asleep?: boolean })[];
   hands: HandSnapshot[];
   fasteners: FastenerSnapshot[];
   ergonomics?: ErgonomicProfile;
@@ -111,7 +124,7 @@ export type ServerMessage = Welcome | Snapshot | ErrorMessage | ReportMessage | 
 
 export type ClientMessage =
   | { type: 'hello'; version: 1 }
-  | { type: 'grab'; hand_id: number; position: Vec3 }
+  | { type: 'grab'; hand_id: number; position: Vec3; grip?: Grip }
   | { type: 'move'; hand_id: number; position: Vec3; orientation?: Quat }
   | { type: 'release'; hand_id: number }
   | { type: 'pause' }

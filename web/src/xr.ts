@@ -1,12 +1,17 @@
 // WebXR (SPEC I1 with VR controllers): an "Enter VR" button starts an immersive-vr session
 // through three.js' renderer.xr. Each controller is a hand of its own: squeeze grabs the
 // beam nearest to the controller's grip, moving sends the grip pose (position, and the
-// rotation since the grab), releasing the squeeze lets go. Both hands work at once. While
-// in VR, the scene is placed in front of the user at working height.
+// rotation since the grab), releasing the squeeze lets go. Both hands work at once. Each
+// controller has its own grip (grips.ts): its A/X button (or thumbstick press) cycles
+// firm → axial → ball, shown by a label and the colour of its marker; cycling while
+// holding re-grabs with the new grip at once. While in VR, the scene is placed in front of
+// the user at working height.
 
 import * as THREE from 'three';
+import { nextGrip, type Grip } from './grips';
 import type { Net } from './net';
 import type { Stage } from './scene';
+import { canvasSprite, type CanvasSprite } from './sprite';
 
 interface XrHand {
   grip: THREE.Group;
@@ -14,6 +19,24 @@ interface XrHand {
   held: boolean;
   grabRotation: THREE.Quaternion;
   handedness: string;
+  /** How this controller holds a hose (its grip choice). */
+  hold: Grip;
+  marker: THREE.Mesh<THREE.SphereGeometry, THREE.MeshStandardMaterial>;
+  label: CanvasSprite;
+  gamepad: Gamepad | null;
+  /** Whether the cycling button was down at the last frame (edge detection). */
+  buttonDown: boolean;
+}
+
+/** Marker colour per grip. */
+const GRIP_COLOUR: Record<Grip, number> = { firm: 0xffffff, axial: 0xffd23f, ball: 0xff5fd2 };
+
+/** A small text sprite above a controller, naming its grip. */
+function gripSprite(): CanvasSprite {
+  const label = canvasSprite(256, 64);
+  label.sprite.position.set(0, 0.045, 0);
+  label.sprite.scale.set(0.08, 0.02, 1);
+  return label;
 }
 
 export class XrHands {
@@ -41,12 +64,21 @@ export class XrHands {
         new THREE.SphereGeometry(0.015, 16, 8),
         new THREE.MeshStandardMaterial({ color: 0xffffff, emissive: 0x333333 }),
       );
-      grip.add(marker);
+      const label = gripSprite();
+      grip.add(marker, label.sprite);
       stage.scene.add(grip);
-      const hand: XrHand = { grip, handId: i + 1, held: false, grabRotation: new THREE.Quaternion(), handedness: '' };
+      const hand: XrHand = {
+        grip, handId: i + 1, held: false, grabRotation: new THREE.Quaternion(), handedness: '',
+        hold: 'firm', marker, label, gamepad: null, buttonDown: false,
+      };
+      this.showGrip(hand);
       grip.addEventListener('connected', (e) => {
         const data = (e as unknown as { data?: XRInputSource }).data;
         hand.handedness = data?.handedness ?? '';
+        hand.gamepad = data?.gamepad ?? null;
+      });
+      grip.addEventListener('disconnected', () => {
+        hand.gamepad = null;
       });
       grip.addEventListener('squeezestart', () => this.grab(hand));
       grip.addEventListener('squeezeend', () => this.release(hand));
@@ -100,7 +132,33 @@ export class XrHands {
     h.grip.getWorldPosition(this.pos);
     h.grip.getWorldQuaternion(h.grabRotation);
     const position = this.stage.toWorld(this.pos);
-    h.held = this.net.send({ type: 'grab', hand_id: this.handBase + h.handId, position });
+    h.held = this.net.send({ type: 'grab', hand_id: this.handBase + h.handId, position, grip: h.hold });
+  }
+
+  /** Controller `i`'s next grip (its A/X button); a held hose is re-grabbed with it. */
+  cycleGrip(i: number): Grip | null {
+    const h = this.hands[i];
+    if (h === undefined) return null;
+    h.hold = nextGrip(h.hold);
+    this.showGrip(h);
+    if (h.held) this.grab(h);
+    return h.hold;
+  }
+
+  /** The controller's marker colour and label show its grip. */
+  private showGrip(h: XrHand): void {
+    h.marker.material.color.setHex(GRIP_COLOUR[h.hold]);
+    const ctx = h.label.canvas.getContext('2d');
+    if (ctx === null) return;
+    ctx.clearRect(0, 0, 256, 64);
+    ctx.fillStyle = 'rgba(13,17,23,0.8)';
+    ctx.fillRect(0, 0, 256, 64);
+    ctx.fillStyle = `#${GRIP_COLOUR[h.hold].toString(16).padStart(6, '0')}`;
+    ctx.font = 'bold 38px sans-serif';
+    ctx.textAlign = 'center';
+    ctx.textBaseline = 'middle';
+    ctx.fillText(`grip: ${h.hold}`, 128, 34);
+    h.label.texture.needsUpdate = true;
   }
 
   private release(h: XrHand): void {
@@ -111,6 +169,13 @@ export class XrHands {
 
   /** Sends each held controller's pose (once per frame). */
   update(): void {
+    this.hands.forEach((h, i) => {
+      // A/X (xr-standard button 4) or the thumbstick press (3): next grip, on the press
+      const b = h.gamepad?.buttons;
+      const down = b !== undefined && ((b[4]?.pressed ?? false) || (b[3]?.pressed ?? false));
+      if (down && !h.buttonDown) this.cycleGrip(i);
+      h.buttonDown = down;
+    });
     for (const h of this.hands) {
       if (!h.held) continue;
       h.grip.getWorldPosition(this.pos);

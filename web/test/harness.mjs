@@ -6,6 +6,7 @@ import { spawn } from 'node:child_process';
 import { existsSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { after, before } from 'node:test';
 import { chromium } from 'playwright-core';
 
 export const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
@@ -54,6 +55,23 @@ export async function startServer(args = []) {
         setTimeout(() => proc.kill('SIGKILL'), 3000).unref();
       }),
   };
+}
+
+/**
+ * One `pliant serve` (with `args`) and one browser for the test file: started before its
+ * tests, stopped after them. Returns { server, browser } filled in once started.
+ */
+export function sharedSession(args = []) {
+  const shared = { server: null, browser: null };
+  before(async () => {
+    shared.server = await startServer(args);
+    shared.browser = await launchBrowser();
+  });
+  after(async () => {
+    await shared.browser?.close();
+    await shared.server?.stop();
+  });
+  return shared;
 }
 
 export async function launchBrowser() {

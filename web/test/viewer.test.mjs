@@ -218,6 +218,12 @@ describe('viewer', () => {
       void offsets;
       const placed = grips.map((g) => Math.min(...Object.values(target).filter(Boolean).map((t) => dist(g.position, t))));
       assert.ok(placed.every((d) => d < 0.05), `grips at ${JSON.stringify(grips)}, wanted ${JSON.stringify(target)}`);
+      // the right controller's A button: its grip goes from firm to axial (the left keeps firm)
+      await page.evaluate(() => window.pliantXrDevice.controllers.right.updateButtonValue('a-button', 1));
+      await page.waitForFunction(() => window.pliant.xrGripChoices.includes('axial'));
+      await page.evaluate(() => window.pliantXrDevice.controllers.right.updateButtonValue('a-button', 0));
+      await framesDrawn(page, 3);
+      assert.deepEqual((await page.evaluate(() => window.pliant.xrGripChoices)).sort(), ['axial', 'firm']);
       // squeeze both
       await page.evaluate((t) => {
         for (const side of ['left', 'right']) if (t[side] !== null) window.pliantXrDevice.controllers[side].updateButtonValue('squeeze', 1);
@@ -242,6 +248,9 @@ describe('viewer', () => {
       assert.ok(dist(nodesBefore[k], nodesAfter[k]) > 0.05, `grabbed node moved ${dist(nodesBefore[k], nodesAfter[k])} m`);
       const hands = await page.evaluate(() => window.pliant.snapshot.hands);
       assert.ok(hands.some((h) => h.hose === lower), JSON.stringify(hands));
+      // the grip chosen on the controller reached the server
+      assert.equal(hands.find((h) => h.hose === lower).grip, 'axial', JSON.stringify(hands));
+      if (target.left !== null) assert.equal(hands.find((h) => h.hose !== lower).grip, 'firm');
       // release both
       await page.evaluate(() => {
         for (const side of ['left', 'right']) window.pliantXrDevice.controllers[side].updateButtonValue('squeeze', 0);

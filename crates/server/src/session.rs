@@ -540,6 +540,7 @@ impl Sim {
                 positions: h.nodes().map(|n| state.x[n].to_array()).collect(),
                 colour: 0.0,
                 asleep: state.sleep.hose_asleep[k],
+                fields: self.cell.checks().beam_fields(model, state, k),
             })
             .collect();
         let profile = *self.cell.profile();
@@ -566,6 +567,7 @@ impl Sim {
                 HandSnapshot {
                     hand_id: id,
                     hose: load.hose,
+                    grip: h.hand.grip(),
                     position: pose.0.to_array(),
                     orientation: pose.1.to_array(),
                     target: target.to_array(),

@@ -21,6 +21,8 @@ pub struct SceneData {
     pub fasteners: Vec<FastenerData>,
     /// The ergonomic profile hand loads are judged with.
     pub ergonomics: String,
+    /// The twist check's limit relative to the routed hose [rad/m] (`null`: not checked).
+    pub twist_limit: Option<f64>,
     pub limits: LimitsData,
 }
 
@@ -30,6 +32,8 @@ pub struct HoseData {
     pub name: String,
     /// Outer radius at each node [m] (the tube is swept through them, SPEC I7).
     pub radii: Vec<f64>,
+    /// The minimum bend radius the checks hold it to [m] (`null`: not checked).
+    pub min_bend_radius: Option<f64>,
 }
 
 /// One rigid part: its bounding box and its triangle mesh (world frame, metres).
@@ -113,9 +117,16 @@ impl SceneData {
         let hoses = model
             .hoses
             .iter()
-            .map(|h| HoseData {
+            .enumerate()
+            .map(|(k, h)| HoseData {
                 name: h.name.clone(),
                 radii: h.nodes().map(|n| model.radius[n]).collect(),
+                min_bend_radius: scene
+                    .checks
+                    .hoses
+                    .get(k)
+                    .filter(|_| scene.checks.bend_radius)
+                    .map(|l| l.min_bend_radius),
             })
             .collect();
         let parts = scene
@@ -155,6 +166,7 @@ impl SceneData {
             parts,
             fasteners: FastenerData::of(&sites.0, &sites.1),
             ergonomics: scene.ergonomics.to_string(),
+            twist_limit: scene.checks.twist.then_some(scene.checks.twist_limit),
             limits: LimitsData {
                 max_message_bytes: crate::limits::MAX_MESSAGE_BYTES,
                 max_messages_per_second: crate::limits::MAX_MESSAGES_PER_SECOND,
@@ -212,6 +224,10 @@ pub struct HoseSnapshot {
     /// The hose is at rest and not simulated until something moves or touches it
     /// (SPEC I6).
     pub asleep: bool,
+    /// Per beam now: `bend_radius_ratio`, `twist` [rad/m], `axial_force` [N] (the viewer's
+    /// colour modes, issue 11).
+    #[serde(flatten)]
+    pub fields: pliant_assembly::checks::BeamFields,
 }
 
 /// One hand's state and load (SPEC I2, I3).
@@ -219,6 +235,8 @@ pub struct HoseSnapshot {
 pub struct HandSnapshot {
     pub hand_id: u32,
     pub hose: usize,
+    /// How the hand holds the hose: firm, axial or ball (issue 11).
+    pub grip: pliant_assembly::Grip,
     /// Hand pose: position [m] and orientation `[x, y, z, w]`.
     pub position: [f64; 3],
     pub orientation: [f64; 4],

@@ -3,11 +3,13 @@
 //! rest after assembly, a straight length behind each stub. Each violation names the
 //! hose, the arc length, the time, the value and the limit.
 
+mod fields;
 mod kind;
 mod settings;
 mod strain;
 mod tracker;
 
+pub use fields::BeamFields;
 pub use kind::{CheckKind, Violation};
 pub use settings::{
     CheckSettings, HoseCheckLimits, DEFAULT_REST_STRAIN_LIMIT, DEFAULT_STRAIGHT_LENGTH_FACTOR,

@@ -112,6 +112,11 @@ impl InstallationChecks {
         &self.settings
     }
 
+    /// Beam `e`'s twist rate in the routed, unloaded hose [rad/m].
+    pub(super) fn rest_twist(&self, e: usize) -> f64 {
+        self.rest_twist[e]
+    }
+
     /// Checks the state if a checked instant is due (every `interval` seconds of
     /// simulated time, so that every shell checks the same instants).
     pub fn observe(&mut self, model: &Model, state: &State) {

@@ -1,0 +1,58 @@
+//! The checked quantities along each hose now, per beam, for the viewer's colour modes
+//! (issue 11 item 4): curvature against the minimum bend radius, twist relative to the
+//! routed hose (as the running checks judge them, `strain.rs`) and the axial force from
+//! the chord strain (as the tension-at-rest check judges it). f32: they are for drawing.
+
+use super::strain::bend_and_twist;
+use super::tracker::InstallationChecks;
+use pliant_core::{Model, State};
+use serde::Serialize;
+
+/// One hose's per-beam fields (beam k joins nodes k and k + 1).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct BeamFields {
+    /// κ · minimum bend radius = minimum / current bend radius (≥ 1 breaks the minimum;
+    /// 0 straight). Empty when the hose has no minimum (checks off).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub bend_radius_ratio: Vec<f32>,
+    /// Twist rate relative to the routed, unloaded hose [rad/m] (signed).
+    pub twist: Vec<f32>,
+    /// Axial force [N]: chord strain × E_t·A stretched, × E_c·A shortened (negative).
+    pub axial_force: Vec<f32>,
+}
+
+impl InstallationChecks {
+    /// Hose `hose`'s fields in `state` (empty if there is no such hose). Allocates the
+    /// three arrays only (called per snapshot, never per step).
+    pub fn beam_fields(&self, model: &Model, state: &State, hose: usize) -> BeamFields {
+        let Some(info) = model.hoses.get(hose) else {
+            return BeamFields::default();
+        };
+        let min_radius = self.settings().hoses.get(hose).map(|l| l.min_bend_radius);
+        let n = info.element_count;
+        let mut out = BeamFields {
+            bend_radius_ratio: Vec::with_capacity(if min_radius.is_some() { n } else { 0 }),
+            twist: Vec::with_capacity(n),
+            axial_force: Vec::with_capacity(n),
+        };
+        let finite = |x: f64| if x.is_finite() { x as f32 } else { 0.0 };
+        for e in info.first_element..info.first_element + n {
+            let el = &model.elements[e];
+            let (kappa, tau) =
+                bend_and_twist(state.q[el.node_a], state.q[el.node_b], el.rest_length);
+            if let Some(r) = min_radius {
+                out.bend_radius_ratio.push(finite(kappa * r));
+            }
+            out.twist.push(finite(tau - self.rest_twist(e)));
+            let length = (state.x[el.node_b] - state.x[el.node_a]).length();
+            let strain = (length - el.rest_length) / el.rest_length;
+            let ea = if strain >= 0.0 {
+                el.axial_stiffness_tension
+            } else {
+                el.axial_stiffness_compression
+            };
+            out.axial_force.push(finite(strain * ea));
+        }
+        out
+    }
+}
