@@ -204,7 +204,8 @@ impl Hand {
         let force = self.force(state);
         let mut torque = DVec3::ZERO;
         for &(node, ..) in &self.held[..self.count] {
-            torque += state.reaction_moment[node] + (state.x[node] - h).cross(state.reaction_force[node]);
+            torque +=
+                state.reaction_moment[node] + (state.x[node] - h).cross(state.reaction_force[node]);
         }
         let el = &model.elements[self.element];
         let info = &model.hoses[self.hose];

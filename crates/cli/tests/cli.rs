@@ -99,6 +99,16 @@ fn demo_run_writes_finite_outputs_and_summary() {
     assert!(report["verdict"]["feasible"].is_boolean());
     let html = std::fs::read_to_string(out.path().join("report.html")).unwrap();
     assert!(html.contains("<svg") && html.contains("FEASIBLE"));
+    // the picture of the worst instant shows the parts (SPEC V7), in three views
+    for view in ["from above", "from the side", "from the front right"] {
+        assert!(html.contains(view), "{view}");
+    }
+    for part in ["floor", "engine block"] {
+        assert!(
+            html.contains(&format!("<title>{part}</title></polygon>")),
+            "part '{part}' drawn"
+        );
+    }
     for file in [
         "nodes.csv",
         "reactions.csv",

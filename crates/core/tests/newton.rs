@@ -256,7 +256,11 @@ fn an_implicit_step_newton_cannot_converge_is_taken_explicitly() {
     let pieces = (h / model.time_step).ceil() as usize;
     assert_eq!(stats.explicit_fallback, pieces);
     assert_eq!((state.time, state.step), (h, 1));
-    assert_eq!(state.x[10], DVec3::new(1.0, 0.0, 0.01), "the hand's target reached");
+    assert_eq!(
+        state.x[10],
+        DVec3::new(1.0, 0.0, 0.01),
+        "the hand's target reached"
+    );
     let speed = state.v[10].z;
     assert!(
         (speed - 1.0).abs() < 0.1,

@@ -452,13 +452,19 @@ fn an_aimed_hand_pulls_no_harder_than_its_strength() {
         (peak, gap, cell.hand_records()[0].load.force.length())
     };
     let (unlimited, gap, _) = peak_and_gap(None);
-    assert!(unlimited > 2000.0, "a kinematic hand drags it to {unlimited} N");
+    assert!(
+        unlimited > 2000.0,
+        "a kinematic hand drags it to {unlimited} N"
+    );
     assert!(gap < 1e-9, "and gets where it was sent ({gap} m short)");
     let (strong, gap, last) = peak_and_gap(Some(600.0));
     // it stops at the step its force passes 600 N (the force of the last step decides);
     // the hose's momentum carries the force on a little (≈ 19 %) before it gives way
     assert!(strong < 600.0 * 1.25, "a 600 N hand peaked at {strong} N");
-    assert!(strong > 600.0 * 0.9, "and did pull as hard as it could ({strong} N)");
+    assert!(
+        strong > 600.0 * 0.9,
+        "and did pull as hard as it could ({strong} N)"
+    );
     assert!(gap > 0.01, "it stopped short of its target ({gap} m)");
     assert!(
         (500.0..700.0).contains(&last),

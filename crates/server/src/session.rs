@@ -601,7 +601,7 @@ impl Sim {
                 report,
             })
             .collect::<Vec<_>>();
-        let summary = self.cell.summary();
+        let summary = self.cell.report_summary();
         let checks = summary
             .checks
             .violations

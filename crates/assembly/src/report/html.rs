@@ -50,7 +50,11 @@ pub fn write_reports(
 /// The installation checks' section (SPEC V3, V7): the violations with time and place,
 /// and per hose its curvature against the allowed curvature at the instant of its
 /// smallest bend radius and its twist at the instant of its largest twist.
-fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary) {
+fn checks_section(
+    s: &mut String,
+    checks: &crate::checks::ChecksSummary,
+    parts: &[super::part_outline::PartOutline],
+) {
     use super::profile_plot::profile_plot;
     s.push_str("<h2>Installation checks</h2>");
     if checks.enabled.is_empty() {
@@ -135,6 +139,7 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary) {
             &hoses,
             v.hose,
             mark,
+            parts,
         ));
     }
     for p in &checks.profiles {
@@ -328,7 +333,7 @@ pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String 
         }
         s.push_str("</table>");
     }
-    checks_section(&mut s, &run.checks);
+    checks_section(&mut s, &run.checks, &run.part_outlines);
     s.push_str("<h2>Contact with parts</h2>");
     if run.contacts.is_empty() {
         s.push_str("<p>No hose touched a part.</p>");

@@ -4,6 +4,7 @@
 //! `summary.json`.
 
 pub mod html;
+pub mod part_outline;
 mod profile_plot;
 pub mod recorder;
 mod scene_picture;
@@ -169,7 +170,7 @@ pub fn replay_with_outputs(
         Ok(()) => cell.diverged().map(|d| d.to_string()),
         Err(e) => Some(e.to_string()),
     };
-    let mut run = cell.summary();
+    let mut run = cell.report_summary();
     run.actions_completed = log.inputs.len();
     let outputs = Outputs {
         scene_name,

@@ -1,61 +1,85 @@
-//! A picture of the scene at a hose's worst instant (SPEC V7): every hose's centre line
-//! projected from above (x–y) and from the side (x–z) as inline SVG, the hose of interest
-//! drawn thick, the worst place marked with a red circle.
+//! A picture of the scene at a hose's worst instant (SPEC V7): the parts' silhouettes
+//! ([`PartOutline`]) and every hose's centre line, seen from above, from the side and
+//! from the front right above, as inline SVG; the hose of interest drawn thick, the
+//! worst place marked with a red circle. Each view is framed on the hoses (the parts are
+//! cut at its border), so a large floor does not shrink the hoses to a dot.
 
+use super::part_outline::{PartOutline, View};
+use glam::DVec3;
 use std::fmt::Write as _;
 
 /// `hoses` are (first node, node count) of every hose in `positions` [m]; `focus` is the
-/// index of the hose of interest; `mark` the point to circle [m].
+/// index of the hose of interest; `mark` the point to circle [m]; `parts` the parts'
+/// outlines.
 pub fn scene_picture(
     title: &str,
     positions: &[[f64; 3]],
     hoses: &[(usize, usize)],
     focus: usize,
     mark: [f64; 3],
+    parts: &[PartOutline],
 ) -> String {
-    let (w, h, pad) = (320.0, 260.0, 16.0);
+    let (w, h, pad) = (300.0, 250.0, 16.0);
     let mut svg = format!(
         "<div><p style=\"margin:0.5em 0 0 0\">{}</p>",
         title.replace('&', "&amp;").replace('<', "&lt;")
     );
-    for (name, a, b) in [
-        ("from above (x right, y up)", 0, 1),
-        ("from the side (x right, z up)", 0, 2),
-    ] {
+    for (k, view) in View::all().iter().enumerate() {
+        let at = |p: &[f64; 3]| view.project(DVec3::from_array(*p));
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for p in positions.iter().chain(std::iter::once(&mark)) {
-            for (k, axis) in [a, b].into_iter().enumerate() {
-                lo[k] = lo[k].min(p[axis]);
-                hi[k] = hi[k].max(p[axis]);
+            let q = at(p);
+            for i in 0..2 {
+                lo[i] = lo[i].min(q[i]);
+                hi[i] = hi[i].max(q[i]);
             }
         }
-        let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-6);
+        // framed on the hoses, with a margin of a fifth for what is around them
+        let span = 1.2 * (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-6);
+        let centre = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
         let scale = ((w - 2.0 * pad) / span).min((h - 2.0 * pad) / span);
-        let px = |p: &[f64; 3]| {
+        let px = |q: [f64; 2]| {
             (
-                pad + (p[a] - lo[0]) * scale,
-                h - pad - (p[b] - lo[1]) * scale,
+                0.5 * w + (q[0] - centre[0]) * scale,
+                0.5 * h - (q[1] - centre[1]) * scale,
             )
         };
         let _ = write!(
             svg,
-            "<svg width=\"{w}\" height=\"{h}\" xmlns=\"http://www.w3.org/2000/svg\" style=\"border:1px solid #ddd;margin-right:8px\"><text x=\"4\" y=\"12\" font-size=\"10\">{name}</text>"
+            "<svg width=\"{w}\" height=\"{h}\" xmlns=\"http://www.w3.org/2000/svg\" style=\"border:1px solid #ddd;margin-right:8px;overflow:hidden\">"
         );
-        for (k, &(first, count)) in hoses.iter().enumerate() {
+        let mut order: Vec<&PartOutline> = parts.iter().collect();
+        order.sort_by(|a, b| a.depth[k].total_cmp(&b.depth[k]));
+        for part in order {
+            let points: Vec<String> = part.hulls[k]
+                .iter()
+                .map(|&q| {
+                    let (x, y) = px(q);
+                    format!("{x:.1},{y:.1}")
+                })
+                .collect();
+            let _ = write!(
+                svg,
+                "<polygon fill=\"#ddd6c8\" stroke=\"#a89f8c\" stroke-width=\"1\" points=\"{}\"><title>{}</title></polygon>",
+                points.join(" "),
+                part.name.replace('&', "&amp;").replace('<', "&lt;")
+            );
+        }
+        for (j, &(first, count)) in hoses.iter().enumerate() {
             let Some(nodes) = positions.get(first..first + count) else {
                 continue;
             };
             let points: Vec<String> = nodes
                 .iter()
                 .map(|p| {
-                    let (x, y) = px(p);
+                    let (x, y) = px(at(p));
                     format!("{x:.1},{y:.1}")
                 })
                 .collect();
-            let (stroke, width) = if k == focus {
+            let (stroke, width) = if j == focus {
                 ("#036", 3.0)
             } else {
-                ("#999", 1.5)
+                ("#777", 1.5)
             };
             let _ = write!(
                 svg,
@@ -63,10 +87,11 @@ pub fn scene_picture(
                 points.join(" ")
             );
         }
-        let (mx, my) = px(&mark);
+        let (mx, my) = px(at(&mark));
         let _ = write!(
             svg,
-            "<circle cx=\"{mx:.1}\" cy=\"{my:.1}\" r=\"8\" fill=\"none\" stroke=\"#c00\" stroke-width=\"2\"/></svg>"
+            "<circle cx=\"{mx:.1}\" cy=\"{my:.1}\" r=\"8\" fill=\"none\" stroke=\"#c00\" stroke-width=\"2\"/><text x=\"4\" y=\"12\" font-size=\"10\">{}</text></svg>",
+            view.name
         );
     }
     svg.push_str("</div>");

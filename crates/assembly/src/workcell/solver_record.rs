@@ -138,17 +138,11 @@ impl SolverRecord {
                 self.unstable_steps
             ));
         }
-        if let Some(first) = self.first_explicit_fallback {
-            out.push(format!(
-                "{} implicit step(s) did not converge and were taken by the explicit solver \
-                 (in stable steps; first at t = {first:.3} s) — the motion is still a dynamic solution",
-                self.explicit_fallback_steps
-            ));
-        }
         out
     }
 
-    /// The instabilities met, in words (buckling is information, not a failure).
+    /// The instabilities met, and the implicit steps taken explicitly, in words (buckling
+    /// and a fallback are information, not a failure).
     pub fn instability_notes(&self, hose_name: impl Fn(usize) -> String) -> Vec<String> {
         let mut out: Vec<String> = self
             .instabilities
@@ -180,6 +174,13 @@ impl SolverRecord {
             .saturating_sub(self.instabilities.len() as u64);
         if more > 0 {
             out.push(format!("… and {more} more instabilities"));
+        }
+        if let Some(first) = self.first_explicit_fallback {
+            out.push(format!(
+                "{} implicit step(s) did not converge and were taken by the explicit solver \
+                 (in stable steps; first at t = {first:.3} s) — the motion is still a dynamic solution",
+                self.explicit_fallback_steps
+            ));
         }
         out
     }

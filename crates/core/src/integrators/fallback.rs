@@ -15,7 +15,12 @@ pub type Target = (usize, (DVec3, DQuat), (DVec3, DQuat));
 
 /// Advances `state` (at the start of the step, its load cases holding the end-of-step
 /// targets) by `h` in explicit pieces; returns how many. `targets` is scratch, reused.
-pub fn explicit_pieces(model: &Model, state: &mut State, h: f64, targets: &mut Vec<Target>) -> usize {
+pub fn explicit_pieces(
+    model: &Model,
+    state: &mut State,
+    h: f64,
+    targets: &mut Vec<Target>,
+) -> usize {
     targets.clear();
     for (i, (_, case)) in state.loads.iter().enumerate() {
         match case {

@@ -279,8 +279,7 @@ impl Solver {
                 state.w.copy_from_slice(&self.previous_w);
                 state.friction.clone_from(&self.previous_friction);
                 state.time = time;
-                let pieces =
-                    fallback::explicit_pieces(model, state, h, &mut self.fallback_targets);
+                let pieces = fallback::explicit_pieces(model, state, h, &mut self.fallback_targets);
                 state.time = time + h; // the implicit grid, free of the pieces' rounding
                 state.step = step + 1;
                 state.implicit.restart();
