@@ -113,6 +113,10 @@ enum Command {
         /// served scene's folder]; nothing outside it is read.
         #[arg(long)]
         assets: Option<PathBuf>,
+        /// Also serve the haptic force stream (SPEC H1, docs/protocol.md): hand pose in,
+        /// force and torque out, over UDP on 127.0.0.1:PORT only (0 picks a free port).
+        #[arg(long = "haptic-port")]
+        haptic_port: Option<u16>,
         #[command(flatten)]
         limits: limit_args::LimitArgs,
     },
@@ -286,6 +290,7 @@ fn main() -> ExitCode {
             max_clients,
             solver,
             assets,
+            haptic_port,
             limits,
         } => Access::for_host(&host, token, allow_origin)
             .map_err(anyhow::Error::msg)
@@ -298,6 +303,7 @@ fn main() -> ExitCode {
                     access,
                     max_clients,
                     assets: assets.as_deref(),
+                    haptic_port,
                     limits: limits.load_options(),
                 })
             }),
