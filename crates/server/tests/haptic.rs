@@ -137,6 +137,11 @@ async fn stream_force_equals_the_sessions() {
     let pose = DVec3::new(0.5, 0.1, 0.08);
     let deadline = Instant::now() + HANG_GUARD;
     let mut arrived: Option<f64> = None;
+    // the first answer for the pose is solved from the session's state before its hand
+    // moved: an equilibrium found from elsewhere
+    let first = c.ask(Kind::Pose, 1, pose);
+    assert_eq!(first.status, Status::Ok, "{first:?}");
+    assert!(first.iterations > 0, "{first:?}");
     let (reply, snap) = loop {
         assert!(Instant::now() < deadline, "the session's hand never settled at the pose");
         let reply = c.ask(Kind::Pose, 1, pose);
@@ -158,11 +163,15 @@ async fn stream_force_equals_the_sessions() {
     let hand = snap.hands.iter().find(|h| h.hand_id == 1).unwrap();
     let (fs, ts) = (DVec3::from_array(hand.force), DVec3::from_array(hand.torque));
     eprintln!(
-        "stream {} N, {} N·m; session {fs} N, {ts} N·m; differences {:.3e} N, {:.3e} N·m",
+        "stream {} N, {} N·m; session {fs} N, {ts} N·m; differences {:.3e} N, {:.3e} N·m \
+         (first answer, {} iterations from the old pose: {:.3e} N, {:.3e} N·m)",
         reply.force,
         reply.torque,
         (reply.force - fs).length(),
-        (reply.torque - ts).length()
+        (reply.torque - ts).length(),
+        first.iterations,
+        (first.force - fs).length(),
+        (first.torque - ts).length()
     );
     assert!(fs.length() > 0.1, "a bent, lifted hose pulls on the hand: {fs}");
     assert!(
@@ -174,6 +183,12 @@ async fn stream_force_equals_the_sessions() {
         close(reply.torque, ts, 1e-3, 1e-4),
         "stream torque {} vs the session's {ts}",
         reply.torque
+    );
+    assert!(
+        close(first.force, fs, 1e-3, 1e-3) && close(first.torque, ts, 1e-3, 1e-4),
+        "the first answer ({} N, {} N·m) is the same equilibrium",
+        first.force,
+        first.torque
     );
     assert_eq!(reply.hose, 0);
     // a pose elsewhere gives another answer at once (the stream solves for the pose
