@@ -2,6 +2,7 @@
 //! solutions, benchmark the solver.
 
 mod bench;
+mod bench_engine_bay;
 mod bench_newton;
 mod calibrate_cmd;
 mod import_cmd;
@@ -211,6 +212,10 @@ enum Command {
         /// Shorter measurements (for smoke tests).
         #[arg(long)]
         quick: bool,
+        /// Only the engine-bay section (20 hoses among ≥ 1 M part triangles, each
+        /// solver with and without sleeping).
+        #[arg(long = "engine-bay")]
+        engine_bay: bool,
     },
     /// Pliant's side of the head-to-head benchmarks with PyElastica and MuJoCo
     /// (bench/peers/run.sh); prints one JSON object.
@@ -360,9 +365,16 @@ fn main() -> ExitCode {
             &out,
             json,
         ),
-        Command::Bench { json, quick } => {
-            bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
-        }
+        Command::Bench {
+            json,
+            quick,
+            engine_bay,
+        } => bench::run(&bench::BenchOptions {
+            json,
+            quick,
+            engine_bay_only: engine_bay,
+        })
+        .map(|_| ExitCode::SUCCESS),
         Command::Peer { case } => match case {
             PeerCase::Params => peers::params().and_then(|p| peers::print(&p)),
             PeerCase::Cantilever {
