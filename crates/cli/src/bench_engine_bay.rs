@@ -22,12 +22,13 @@ use glam::DVec3;
 use pliant_assembly::checks::CheckSettings;
 use pliant_assembly::ergonomics::ErgonomicProfile;
 use pliant_assembly::workcell::WorkcellSetup;
-use pliant_assembly::{Action, Grip, Input, NodeRef, NoObserver, Workcell, WorkcellOptions};
+use pliant_assembly::{Action, Grip, Input, NoObserver, NodeRef, Workcell, WorkcellOptions};
 use pliant_core::sleep::SLEEP_AFTER_STEPS;
 use pliant_core::spec::RigidPartSpec;
 use pliant_core::{HoseSpec, Model, SimSettings, SolverKind, WorldSpec};
 use serde::Serialize;
-use std::sync::Arc;
+use std::sync::{mpsc, Arc, Mutex, PoisonError};
+use std::time::Duration;
 use std::time::Instant;
 
 /// Hoses and elements per hose.
@@ -98,6 +99,16 @@ pub struct EngineBayRow {
     pub stopped: Option<String>,
 }
 
+/// How far a case has got (read when it overruns its wall-time budget).
+#[derive(Clone, Copy, Debug, Default)]
+struct Partial {
+    taken: u64,
+    wall: f64,
+    asleep_sum: usize,
+    peak: f64,
+    time_step: f64,
+}
+
 /// The engine-bay section of `pliant bench`.
 #[derive(Clone, Debug, Serialize)]
 pub struct EngineBayBench {
@@ -155,10 +166,16 @@ fn part(name: &str) -> RigidPartSpec {
 /// (r 3 cm, z 0.05…0.30) at x 0.22 and 0.58, y −0.3, 0, 0.3.
 pub fn parts(t: &Tessellation) -> Vec<RigidPartSpec> {
     let mut shield = part("heat shield");
-    grid(&mut shield, t.shield_quads, t.shield_quads, false, |u, v| {
-        let (x, y) = (0.8 * u, -0.4 + 0.8 * v);
-        DVec3::new(x, y, 0.05 + 0.008 * (23.0 * x).sin() * (19.0 * y).cos())
-    });
+    grid(
+        &mut shield,
+        t.shield_quads,
+        t.shield_quads,
+        false,
+        |u, v| {
+            let (x, y) = (0.8 * u, -0.4 + 0.8 * v);
+            DVec3::new(x, y, 0.05 + 0.008 * (23.0 * x).sin() * (19.0 * y).cos())
+        },
+    );
     let mut block = part("engine block");
     let (lo, hi) = (DVec3::new(0.25, -0.15, 0.06), DVec3::new(0.55, 0.15, 0.30));
     let n = t.block_quads;
@@ -180,10 +197,16 @@ pub fn parts(t: &Tessellation) -> Vec<RigidPartSpec> {
         .enumerate()
     {
         let mut c = part(&format!("cylinder {}", k + 1));
-        grid(&mut c, t.cylinder_segments, t.cylinder_rings, true, |u, v| {
-            let a = std::f64::consts::TAU * u;
-            DVec3::new(x + 0.03 * a.cos(), y + 0.03 * a.sin(), 0.05 + 0.25 * v)
-        });
+        grid(
+            &mut c,
+            t.cylinder_segments,
+            t.cylinder_rings,
+            true,
+            |u, v| {
+                let a = std::f64::consts::TAU * u;
+                DVec3::new(x + 0.03 * a.cos(), y + 0.03 * a.sin(), 0.05 + 0.25 * v)
+            },
+        );
         out.push(c);
     }
     out
@@ -273,6 +296,7 @@ fn case(
     solver: SolverKind,
     sleeping: bool,
     quick: bool,
+    partial: &Mutex<Partial>,
 ) -> Result<(EngineBayRow, f64)> {
     let options = WorkcellOptions {
         solver: Some(solver),
@@ -288,7 +312,8 @@ fn case(
             max_iterations: 200,
         })
         .map_err(|e| anyhow::anyhow!("the engine bay's static pre-settle: {e}"))?;
-        cell.apply(Input::Arrest).map_err(|e| anyhow::anyhow!("{e}"))?;
+        cell.apply(Input::Arrest)
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
     }
     let presettle = start.elapsed().as_secs_f64();
     let end = cell.state().x[model.hoses[ROUTED].node(ELEMENTS_PER_HOSE)];
@@ -349,6 +374,13 @@ fn case(
         if let Some(r) = cell.hand_records().first() {
             peak = peak.max(r.load.force.length());
         }
+        *partial.lock().unwrap_or_else(PoisonError::into_inner) = Partial {
+            taken,
+            wall: start.elapsed().as_secs_f64(),
+            asleep_sum,
+            peak,
+            time_step: cell.time_step(),
+        };
     }
     let wall = start.elapsed().as_secs_f64();
     if diverged.is_none() {
@@ -388,6 +420,7 @@ pub fn run(quick: bool, progress: bool) -> Result<EngineBayBench> {
         .sum();
     let mut rows = Vec::new();
     let mut presettle_s = 0.0;
+    let mut abandoned = false;
     for solver in SolverKind::ALL {
         for sleeping in [false, true] {
             if progress {
@@ -397,11 +430,53 @@ pub fn run(quick: bool, progress: bool) -> Result<EngineBayBench> {
                     if sleeping { "on" } else { "off" }
                 );
             }
-            let (row, presettle) = case(&model, solver, sleeping, quick)?;
-            if rows.is_empty() {
-                presettle_s = presettle;
+            if abandoned {
+                rows.push(not_measured(solver, sleeping));
+                continue;
             }
-            rows.push(row);
+            // each case in a thread of its own: a static step that follows a snap by
+            // dynamic relaxation cannot be interrupted, so an overrunning case is left
+            // behind (it ends with the process) and reported from its progress so far
+            let partial = Arc::new(Mutex::new(Partial::default()));
+            let (tx, rx) = mpsc::channel();
+            let (m, p) = (model.clone(), partial.clone());
+            std::thread::spawn(move || {
+                let _ = tx.send(case(&m, solver, sleeping, quick, &p));
+            });
+            let budget = Duration::from_secs_f64(3.0 * if quick { 2.0 } else { WALL_CAP });
+            match rx.recv_timeout(budget) {
+                Ok(result) => {
+                    let (row, presettle) = result?;
+                    if rows.is_empty() {
+                        presettle_s = presettle;
+                    }
+                    rows.push(row);
+                }
+                Err(_) => {
+                    let why = format!(
+                        "no result within {:.0} s of wall time: a step of this solver overran \
+                         (the static solver follows a snap past a limit point by dynamic \
+                         relaxation); the cases after it are not measured, so that it \
+                         does not slow them",
+                        budget.as_secs_f64()
+                    );
+                    let p = *partial.lock().unwrap_or_else(PoisonError::into_inner);
+                    let sim = p.taken as f64 * p.time_step;
+                    rows.push(EngineBayRow {
+                        solver: solver.name(),
+                        sleeping,
+                        simulated_s: sim,
+                        steps: p.taken,
+                        time_step_s: p.time_step,
+                        wall_s: p.wall,
+                        realtime_factor: if p.wall > 0.0 { sim / p.wall } else { 0.0 },
+                        hoses_asleep_mean: p.asleep_sum as f64 / p.taken.max(1) as f64,
+                        hand_force_peak_n: p.peak,
+                        stopped: Some(why),
+                    });
+                    abandoned = true;
+                }
+            }
         }
     }
     Ok(EngineBayBench {
@@ -414,6 +489,22 @@ pub fn run(quick: bool, progress: bool) -> Result<EngineBayBench> {
         rows,
         quick,
     })
+}
+
+/// A row for a case left out after an overrun.
+fn not_measured(solver: SolverKind, sleeping: bool) -> EngineBayRow {
+    EngineBayRow {
+        solver: solver.name(),
+        sleeping,
+        simulated_s: 0.0,
+        steps: 0,
+        time_step_s: 0.0,
+        wall_s: 0.0,
+        realtime_factor: 0.0,
+        hoses_asleep_mean: 0.0,
+        hand_force_peak_n: 0.0,
+        stopped: Some("not measured: an earlier case overran its wall-time budget".into()),
+    }
 }
 
 /// Text lines for the human-readable report.

@@ -106,7 +106,12 @@ fn args() -> Result<Args, String> {
 fn default_grab(s: &RunningServer) -> DVec3 {
     let session = s.session();
     let snap = session.latest();
-    let names: Vec<&str> = session.scene().hoses.iter().map(|h| h.name.as_str()).collect();
+    let names: Vec<&str> = session
+        .scene()
+        .hoses
+        .iter()
+        .map(|h| h.name.as_str())
+        .collect();
     let k = names
         .iter()
         .position(|n| *n == "lower")
@@ -212,8 +217,7 @@ fn run(a: Args, addr: SocketAddr, grab: DVec3) -> Result<serde_json::Value, Stri
             next = now; // behind by more than a period: no catching up in a burst
         }
         let t = k as f64 / a.rate;
-        let p = grab
-            + a.radius * DVec3::new(1.0 - (omega * t).cos(), (omega * t).sin(), 0.0);
+        let p = grab + a.radius * DVec3::new(1.0 - (omega * t).cos(), (omega * t).sin(), 0.0);
         let sent = Instant::now();
         let reply = link.ask(Kind::Pose, hand, p);
         let took = sent.elapsed();
@@ -355,7 +359,9 @@ fn serve_and_run(a: Args) -> Result<serde_json::Value, String> {
     let server = runtime
         .block_on(start(session, &config))
         .map_err(|e| e.to_string())?;
-    let addr = server.haptic_addr().ok_or("the haptic stream did not start")?;
+    let addr = server
+        .haptic_addr()
+        .ok_or("the haptic stream did not start")?;
     let grab = a.grab.unwrap_or_else(|| default_grab(&server));
     eprintln!(
         "haptic_client: serving '{}' in-process, haptic stream on {addr}, grabbing at {grab}",

@@ -82,7 +82,10 @@ impl Client {
     fn raw(&self, bytes: &[u8]) -> Reply {
         self.socket.send(bytes).unwrap();
         let mut buf = [0u8; 256];
-        let n = self.socket.recv(&mut buf).expect("a reply to every datagram");
+        let n = self
+            .socket
+            .recv(&mut buf)
+            .expect("a reply to every datagram");
         Reply::decode(&buf[..n]).expect("a well-formed reply")
     }
 
@@ -97,7 +100,10 @@ impl Client {
             key: self.key,
         };
         let reply = self.raw(&request.encode());
-        assert_eq!(reply.sequence, self.sequence, "the sequence number is echoed");
+        assert_eq!(
+            reply.sequence, self.sequence,
+            "the sequence number is echoed"
+        );
         assert_eq!(reply.hand, hand);
         reply
     }
@@ -143,7 +149,10 @@ async fn stream_force_equals_the_sessions() {
     assert_eq!(first.status, Status::Ok, "{first:?}");
     assert!(first.iterations > 0, "{first:?}");
     let (reply, snap) = loop {
-        assert!(Instant::now() < deadline, "the session's hand never settled at the pose");
+        assert!(
+            Instant::now() < deadline,
+            "the session's hand never settled at the pose"
+        );
         let reply = c.ask(Kind::Pose, 1, pose);
         assert!(reply.status.has_load(), "{reply:?}");
         let snap = s.session().latest();
@@ -161,7 +170,10 @@ async fn stream_force_equals_the_sessions() {
         }
     };
     let hand = snap.hands.iter().find(|h| h.hand_id == 1).unwrap();
-    let (fs, ts) = (DVec3::from_array(hand.force), DVec3::from_array(hand.torque));
+    let (fs, ts) = (
+        DVec3::from_array(hand.force),
+        DVec3::from_array(hand.torque),
+    );
     eprintln!(
         "stream {} N, {} N·m; session {fs} N, {ts} N·m; differences {:.3e} N, {:.3e} N·m \
          (first answer, {} iterations from the old pose: {:.3e} N, {:.3e} N·m)",
@@ -173,7 +185,10 @@ async fn stream_force_equals_the_sessions() {
         (first.force - fs).length(),
         (first.torque - ts).length()
     );
-    assert!(fs.length() > 0.1, "a bent, lifted hose pulls on the hand: {fs}");
+    assert!(
+        fs.length() > 0.1,
+        "a bent, lifted hose pulls on the hand: {fs}"
+    );
     assert!(
         close(reply.force, fs, 1e-3, 1e-3),
         "stream force {} vs the session's {fs}",
@@ -230,9 +245,18 @@ async fn malformed_datagrams_are_counted_and_answered() {
         (with(4, &[9]).to_vec(), Status::UnsupportedVersion),
         (with(5, &[7]).to_vec(), Status::Malformed),
         (with(5, &[1, 9]).to_vec(), Status::InvalidValue),
-        (with(24, &f64::NAN.to_le_bytes()).to_vec(), Status::InvalidValue),
-        (with(32, &2e3_f64.to_le_bytes()).to_vec(), Status::InvalidValue),
-        (with(48, &f64::INFINITY.to_le_bytes()).to_vec(), Status::InvalidValue),
+        (
+            with(24, &f64::NAN.to_le_bytes()).to_vec(),
+            Status::InvalidValue,
+        ),
+        (
+            with(32, &2e3_f64.to_le_bytes()).to_vec(),
+            Status::InvalidValue,
+        ),
+        (
+            with(48, &f64::INFINITY.to_le_bytes()).to_vec(),
+            Status::InvalidValue,
+        ),
     ];
     for (k, (bytes, status)) in cases.iter().enumerate() {
         let r = c.raw(bytes);
@@ -240,7 +264,10 @@ async fn malformed_datagrams_are_counted_and_answered() {
         assert_eq!(r.malformed, k as u32 + 1, "case {k} counted");
         assert!(!r.status.has_load() && r.force == DVec3::ZERO);
         if bytes.len() >= 24 {
-            assert_eq!(r.sequence, 77, "case {k}: the sequence is echoed where it can be read");
+            assert_eq!(
+                r.sequence, 77,
+                "case {k}: the sequence is echoed where it can be read"
+            );
         }
     }
     // a pose for a hand never grabbed
@@ -288,7 +315,10 @@ async fn hands_keep_their_owner_and_the_token_is_required() {
     // the WebSocket grab is registered when the session shows the hand
     let deadline = Instant::now() + HANG_GUARD;
     while !s.session().latest().hands.iter().any(|h| h.hand_id == 2) {
-        assert!(Instant::now() < deadline, "the WebSocket grab was never taken");
+        assert!(
+            Instant::now() < deadline,
+            "the WebSocket grab was never taken"
+        );
         tokio::time::sleep(Duration::from_millis(1)).await;
     }
     assert_eq!(c.ask(Kind::Pose, 2, end).status, Status::HandOwned);
@@ -297,5 +327,8 @@ async fn hands_keep_their_owner_and_the_token_is_required() {
     assert_eq!(grab.status, Status::HandOwned);
     // another hand is the stream's to take
     c.grab(4, DVec3::new(0.3, 0.0, 0.0));
-    assert!(c.ask(Kind::Pose, 4, DVec3::new(0.3, 0.0, 0.01)).status.has_load());
+    assert!(c
+        .ask(Kind::Pose, 4, DVec3::new(0.3, 0.0, 0.01))
+        .status
+        .has_load());
 }

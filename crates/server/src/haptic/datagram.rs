@@ -210,12 +210,7 @@ impl Request {
         if !(position.is_finite() && position.abs().max_element() < 1e3) {
             return Err(Status::InvalidValue);
         }
-        let q = [
-            f64_at(b, 48),
-            f64_at(b, 56),
-            f64_at(b, 64),
-            f64_at(b, 72),
-        ];
+        let q = [f64_at(b, 48), f64_at(b, 56), f64_at(b, 64), f64_at(b, 72)];
         let orientation = if q == [0.0; 4] {
             None
         } else {
