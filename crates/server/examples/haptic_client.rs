@@ -138,14 +138,7 @@ impl Link {
     /// [`REPLY_TIMEOUT`] (stale replies of earlier requests are skipped).
     fn ask(&mut self, kind: Kind, hand: u32, position: DVec3) -> Option<Reply> {
         self.sequence += 1;
-        let request = Request {
-            kind,
-            hand,
-            sequence: self.sequence,
-            position,
-            orientation: None,
-            key: self.key,
-        };
+        let request = Request::new(kind, hand, self.sequence, position, self.key);
         self.socket.send(&request.encode()).ok()?;
         let deadline = Instant::now() + REPLY_TIMEOUT;
         let mut buf = [0u8; 256];

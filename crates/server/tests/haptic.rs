@@ -18,31 +18,14 @@ use tokio_tungstenite::tungstenite::Message;
 /// A hang guard, not a performance expectation.
 const HANG_GUARD: Duration = Duration::from_secs(300);
 
-/// A 600 mm oil-return hose (library hose 1) clamped at its first node, lying along x.
-const SCENE: &str = r#"
-format = "pliant-scene"
-version = 1
-name = "haptic test hose"
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, -9.81]
-
-[[hoses]]
-name = "hose"
-material = "hose1"
-start = [0, 0, 0]
-path = [ { line = { to = [600, 0, 0] } } ]
-normal_hint = [0, 0, 1]
-
-[[timeline]]
-action = "fix"
-hose = "hose"
-node = 0
-"#;
+/// The built-in demo's scene file: a coolant hose (library hose 3), fixed at its first
+/// node, its free end at [`END`] (the session runs none of its timeline's motions).
+const SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/demo.toml");
+/// The hose's free end [m].
+const END: DVec3 = DVec3::new(0.4, 0.33, 0.3);
 
 async fn server(solver: SolverKind, access: Access) -> RunningServer {
-    let scene = pliant_scene::load_scene_str(SCENE, "haptic.toml").unwrap();
+    let scene = pliant_scene::load_scene_file(std::path::Path::new(SCENE)).unwrap();
     let session = Session::start(
         &scene,
         SessionOptions {
@@ -91,14 +74,7 @@ impl Client {
 
     fn ask(&mut self, kind: Kind, hand: u32, position: DVec3) -> Reply {
         self.sequence += 1;
-        let request = Request {
-            kind,
-            hand,
-            sequence: self.sequence,
-            position,
-            orientation: None,
-            key: self.key,
-        };
+        let request = Request::new(kind, hand, self.sequence, position, self.key);
         let reply = self.raw(&request.encode());
         assert_eq!(
             reply.sequence, self.sequence,
@@ -137,10 +113,9 @@ fn close(a: DVec3, b: DVec3, relative: f64, absolute: f64) -> bool {
 async fn stream_force_equals_the_sessions() {
     let s = server(SolverKind::Static, Access::local()).await;
     let mut c = Client::new(&s);
-    let end = DVec3::new(0.6, 0.0, 0.0);
-    c.grab(1, end);
-    // lift and pull the end in: a bent hose, loads well above round-off
-    let pose = DVec3::new(0.5, 0.1, 0.08);
+    c.grab(1, END);
+    // lift the end and pull it in: a bent hose, loads well above round-off
+    let pose = END + DVec3::new(0.05, -0.1, 0.08);
     let deadline = Instant::now() + HANG_GUARD;
     let mut arrived: Option<f64> = None;
     // the first answer for the pose is solved from the session's state before its hand
@@ -208,7 +183,7 @@ async fn stream_force_equals_the_sessions() {
     assert_eq!(reply.hose, 0);
     // a pose elsewhere gives another answer at once (the stream solves for the pose
     // sent, not the session's lagging hand)
-    let other = c.ask(Kind::Pose, 1, DVec3::new(0.55, -0.05, 0.0));
+    let other = c.ask(Kind::Pose, 1, END + DVec3::new(0.0, -0.05, 0.0));
     assert!(other.status.has_load(), "{other:?}");
     assert!((other.force - reply.force).length() > 1e-3);
     // released: the session lets go, the stream says so
@@ -222,15 +197,7 @@ async fn stream_force_equals_the_sessions() {
 async fn malformed_datagrams_are_counted_and_answered() {
     let s = server(SolverKind::Explicit, Access::local()).await;
     let mut c = Client::new(&s);
-    let valid = Request {
-        kind: Kind::Pose,
-        hand: 3,
-        sequence: 77,
-        position: DVec3::new(0.6, 0.0, 0.0),
-        orientation: None,
-        key: [0; KEY_BYTES],
-    }
-    .encode();
+    let valid = Request::new(Kind::Pose, 3, 77, END, [0; KEY_BYTES]).encode();
     let with = |at: usize, bytes: &[u8]| {
         let mut b = valid;
         b[at..at + bytes.len()].copy_from_slice(bytes);
@@ -274,9 +241,9 @@ async fn malformed_datagrams_are_counted_and_answered() {
     assert_eq!(c.ask(Kind::Pose, 3, DVec3::ZERO).status, Status::NotHeld);
     assert_eq!(c.ask(Kind::Release, 3, DVec3::ZERO).status, Status::NotHeld);
     // and the stream still works: grab, then a run of poses, each echoed
-    c.grab(3, DVec3::new(0.6, 0.0, 0.0));
+    c.grab(3, END);
     for k in 0..20 {
-        let p = DVec3::new(0.6 - 0.001 * k as f64, 0.0, 0.001 * k as f64);
+        let p = END + DVec3::new(0.0, -0.001 * k as f64, 0.001 * k as f64);
         let r = c.ask(Kind::Pose, 3, p);
         assert!(r.status.has_load(), "{r:?}");
         assert!(r.force.is_finite() && r.torque.is_finite());
@@ -292,7 +259,7 @@ async fn hands_keep_their_owner_and_the_token_is_required() {
     let access = Access::for_host("127.0.0.1", Some(token.clone()), vec![]).unwrap();
     let s = server(SolverKind::Explicit, access).await;
     let mut c = Client::new(&s);
-    let end = DVec3::new(0.6, 0.0, 0.0);
+    let end = END;
     assert_eq!(c.ask(Kind::Pose, 2, end).status, Status::Unauthorised);
     let mut wrong = token.clone().into_bytes();
     wrong[0] ^= 1;
@@ -308,7 +275,7 @@ async fn hands_keep_their_owner_and_the_token_is_required() {
         .await
         .unwrap();
     ws.send(send(
-        serde_json::json!({"type": "grab", "hand_id": 2, "position": [0.6, 0.0, 0.0]}),
+        serde_json::json!({"type": "grab", "hand_id": 2, "position": END.to_array()}),
     ))
     .await
     .unwrap();

@@ -185,6 +185,24 @@ pub fn hand_of(b: &[u8]) -> u32 {
 }
 
 impl Request {
+    /// A request keeping the hand's orientation.
+    pub fn new(
+        kind: Kind,
+        hand: u32,
+        sequence: u64,
+        position: DVec3,
+        key: [u8; KEY_BYTES],
+    ) -> Request {
+        Request {
+            kind,
+            hand,
+            sequence,
+            position,
+            orientation: None,
+            key,
+        }
+    }
+
     /// Decodes a request. Layout (little-endian):
     /// magic `PLHP` (0..4), version (4), kind 0 pose / 1 grab / 2 release (5),
     /// grip 0 firm / 1 axial / 2 ball (6), reserved (7), hand id u32 (8..12),
