@@ -58,17 +58,19 @@ pub enum Status {
     /// The hand holds nothing (never grabbed, released, or released by a reset or a
     /// divergence): grab first.
     NotHeld = 3,
-    /// A WebSocket client owns this hand id.
+    /// A WebSocket client owns this hand id (ownership as in the WebSocket protocol).
     HandOwned = 4,
     /// The session already has its maximum number of hands.
     TooManyHands = 5,
-    /// A position not finite or beyond 1 km, a non-finite quaternion, an unknown grip.
+    /// A position not finite or beyond 1 km, a non-finite or zero quaternion, an unknown
+    /// grip.
     InvalidValue = 6,
     /// Wrong size, wrong magic or unknown kind.
     Malformed = 7,
     /// A version other than [`VERSION`].
     UnsupportedVersion = 8,
-    /// The server has a token and the key field does not carry it.
+    /// The server has a token and the key field does not carry it (a token is required
+    /// whenever the WebSocket requires one).
     Unauthorised = 9,
     /// The equilibrium solve failed (singular or non-finite); the mirror was put back
     /// to the session's state. Force and torque are zero.
