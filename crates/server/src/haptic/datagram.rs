@@ -371,7 +371,20 @@ mod tests {
             orientation: Some(DQuat::from_rotation_z(0.5)),
             key: Request::key_for(Some("secret-token")).unwrap(),
         };
-        assert_eq!(Request::decode(&r.encode()), Ok(r));
+        let back = Request::decode(&r.encode()).unwrap();
+        // the orientation is normalised on the way in (equal to round-off)
+        let (q, q_back) = (r.orientation.unwrap(), back.orientation.unwrap());
+        assert!(q.abs_diff_eq(q_back, 1e-12), "{q} vs {q_back}");
+        assert_eq!(
+            Request {
+                orientation: None,
+                ..back
+            },
+            Request {
+                orientation: None,
+                ..r
+            }
+        );
         let reply = Reply {
             status: Status::NotConverged,
             iterations: 3,
