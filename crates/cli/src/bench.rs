@@ -31,6 +31,8 @@ pub struct BenchOptions {
     pub json: bool,
     /// Shrink the measuring time (CI smoke test); every row is still measured.
     pub quick: bool,
+    /// Only the engine-bay section ([`crate::bench_engine_bay`]).
+    pub engine_bay_only: bool,
 }
 
 /// Element length of the benchmark hoses [m]: 1.5 × d_a.
@@ -229,6 +231,8 @@ pub struct MachineInfo {
 pub struct BenchReport {
     /// The Newton solvers' rows (issue 5).
     pub newton: Option<crate::bench_newton::NewtonBench>,
+    /// The full engine bay per solver, with and without sleeping (issue 15).
+    pub engine_bay: Option<crate::bench_engine_bay::EngineBayBench>,
     /// Headline: median ns per element per step on the 100-element hose.
     pub ns_per_element_step: f64,
     /// Simulated seconds per wall second for 5 hoses × 30 elements.
@@ -620,11 +624,21 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
         contact,
         rows,
         newton: None,
+        engine_bay: None,
     })
 }
 
 /// Runs every case and prints the result (table, or one JSON object with `opts.json`).
-pub fn run(opts: &BenchOptions) -> Result<BenchReport> {
+pub fn run(opts: &BenchOptions) -> Result<()> {
+    if opts.engine_bay_only {
+        let b = crate::bench_engine_bay::run(opts.quick, !opts.json)?;
+        if opts.json {
+            println!("{}", serde_json::to_string_pretty(&b)?);
+        } else {
+            print!("{}", crate::bench_engine_bay::render(&b));
+        }
+        return Ok(());
+    }
     let budget = Budget::new(opts.quick);
     let mut cases: Vec<(usize, usize)> = SINGLE_HOSE_ELEMENTS.iter().map(|&n| (1, n)).collect();
     // One hose of 30 is already a single-hose case.
@@ -647,8 +661,10 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport> {
         eprintln!("measuring the Newton solvers …");
     }
     let newton = crate::bench_newton::run(opts.quick)?;
+    let engine_bay = crate::bench_engine_bay::run(opts.quick, !opts.json)?;
     let mut report = report(rows, opts.quick)?;
     report.newton = Some(newton);
+    report.engine_bay = Some(engine_bay);
     if opts.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
@@ -656,8 +672,11 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport> {
         if let Some(n) = &report.newton {
             print!("{}", crate::bench_newton::render(n));
         }
+        if let Some(b) = &report.engine_bay {
+            print!("{}", crate::bench_engine_bay::render(b));
+        }
     }
-    Ok(report)
+    Ok(())
 }
 
 /// The human-readable form of a report: a Markdown-compatible table and a summary.

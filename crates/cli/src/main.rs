@@ -2,6 +2,7 @@
 //! solutions, benchmark the solver.
 
 mod bench;
+mod bench_engine_bay;
 mod bench_newton;
 mod calibrate_cmd;
 mod import_cmd;
@@ -113,6 +114,10 @@ enum Command {
         /// served scene's folder]; nothing outside it is read.
         #[arg(long)]
         assets: Option<PathBuf>,
+        /// Also serve the haptic force stream (SPEC H1, docs/protocol.md): hand pose in,
+        /// force and torque out, over UDP on 127.0.0.1:PORT only (0 picks a free port).
+        #[arg(long = "haptic-port")]
+        haptic_port: Option<u16>,
         #[command(flatten)]
         limits: limit_args::LimitArgs,
     },
@@ -207,6 +212,10 @@ enum Command {
         /// Shorter measurements (for smoke tests).
         #[arg(long)]
         quick: bool,
+        /// Only the engine-bay section (20 hoses among ≥ 1 M part triangles, each
+        /// solver with and without sleeping).
+        #[arg(long = "engine-bay")]
+        engine_bay: bool,
     },
     /// Pliant's side of the head-to-head benchmarks with PyElastica and MuJoCo
     /// (bench/peers/run.sh); prints one JSON object.
@@ -286,6 +295,7 @@ fn main() -> ExitCode {
             max_clients,
             solver,
             assets,
+            haptic_port,
             limits,
         } => Access::for_host(&host, token, allow_origin)
             .map_err(anyhow::Error::msg)
@@ -298,6 +308,7 @@ fn main() -> ExitCode {
                     access,
                     max_clients,
                     assets: assets.as_deref(),
+                    haptic_port,
                     limits: limits.load_options(),
                 })
             }),
@@ -354,9 +365,16 @@ fn main() -> ExitCode {
             &out,
             json,
         ),
-        Command::Bench { json, quick } => {
-            bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
-        }
+        Command::Bench {
+            json,
+            quick,
+            engine_bay,
+        } => bench::run(&bench::BenchOptions {
+            json,
+            quick,
+            engine_bay_only: engine_bay,
+        })
+        .map(|_| ExitCode::SUCCESS),
         Command::Peer { case } => match case {
             PeerCase::Params => peers::params().and_then(|p| peers::print(&p)),
             PeerCase::Cantilever {

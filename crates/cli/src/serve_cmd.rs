@@ -19,6 +19,8 @@ pub struct ServeArgs<'a> {
     pub max_clients: usize,
     /// The folder client scenes may read meshes from (`--assets`).
     pub assets: Option<&'a Path>,
+    /// The haptic stream's UDP port on 127.0.0.1 (`--haptic-port`).
+    pub haptic_port: Option<u16>,
     /// Limits of the served scene; client scenes get [`ClientScenes::within`] these.
     pub limits: LoadOptions,
 }
@@ -79,6 +81,7 @@ pub fn run(args: &ServeArgs) -> anyhow::Result<ExitCode> {
             access: access.clone(),
             max_clients,
             client_scenes: ClientScenes::within(&args.limits),
+            haptic_port: args.haptic_port,
             ..ServerConfig::default()
         };
         let mut server = pliant_server::start(session, &config)
@@ -106,6 +109,12 @@ pub fn run(args: &ServeArgs) -> anyhow::Result<ExitCode> {
             server.ws_url(),
             access.token().map(|t| format!("?token={t}")).unwrap_or_default()
         );
+        if let Some(addr) = server.haptic_addr() {
+            println!(
+                "Haptic force stream (UDP, loopback only, docs/protocol.md): {addr}{}",
+                if access.token().is_some() { " — datagrams carry the token" } else { "" }
+            );
+        }
         // Scripts and tests read the URL from stdout: make sure it is not left buffered.
         use std::io::Write as _;
         let _ = std::io::stdout().flush();

@@ -8,6 +8,7 @@
 
 pub mod access;
 pub mod assets;
+pub mod haptic;
 pub mod limits;
 pub mod ownership;
 pub mod protocol;

@@ -68,6 +68,9 @@ pub struct ServerConfig {
     pub max_clients: usize,
     /// How scenes sent with `load_scene` are loaded (sandbox, limits).
     pub client_scenes: ClientScenes,
+    /// The haptic force stream's UDP port on 127.0.0.1 (0 picks a free one; `None`: no
+    /// stream). Always loopback, whatever `host` is ([`crate::haptic`]).
+    pub haptic_port: Option<u16>,
 }
 
 /// Default [`ServerConfig::hello_timeout`].
@@ -86,6 +89,7 @@ impl Default for ServerConfig {
             hello_timeout: HELLO_TIMEOUT,
             max_clients: MAX_CLIENTS,
             client_scenes: ClientScenes::default(),
+            haptic_port: None,
         }
     }
 }
@@ -106,16 +110,16 @@ pub fn new_session_folder(dir: &std::path::Path) -> PathBuf {
         .unwrap_or(first)
 }
 
-struct Shared {
+pub(crate) struct Shared {
     /// The session every client talks to; replaced by `load_scene`.
     session: Mutex<Arc<Session>>,
     /// Counts session replacements; connections watch it to follow the new session.
     generation: watch::Sender<u64>,
-    ownership: Mutex<Ownership>,
+    pub(crate) ownership: Mutex<Ownership>,
     next_client: AtomicU64,
     scene_dir: PathBuf,
     sessions_dir: Option<PathBuf>,
-    access: Access,
+    pub(crate) access: Access,
     hello_timeout: Duration,
     max_clients: usize,
     client_scenes: ClientScenes,
@@ -158,7 +162,7 @@ impl Shared {
         }
     }
 
-    fn session(&self) -> Arc<Session> {
+    pub(crate) fn session(&self) -> Arc<Session> {
         lock(&self.session).clone()
     }
 }
@@ -169,7 +173,7 @@ impl Shared {
 /// the server's locks guard an `Arc<Session>` that is replaced in one assignment and the
 /// hand [`Ownership`] table, changed by single map operations, so a panic cannot leave
 /// either half-updated. Every lock of the server goes through this function.
-fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+pub(crate) fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
@@ -246,6 +250,7 @@ pub struct RunningServer {
     pub addr: SocketAddr,
     task: tokio::task::JoinHandle<std::io::Result<()>>,
     shared: Arc<Shared>,
+    haptic: Option<crate::haptic::HapticStream>,
 }
 
 impl RunningServer {
@@ -264,6 +269,13 @@ impl RunningServer {
     /// Stops serving (the session stops when its last connection ends).
     pub fn stop(&self) {
         self.task.abort();
+        if let Some(h) = &self.haptic {
+            h.stop();
+        }
+    }
+    /// The haptic stream's address (127.0.0.1:port), if it runs.
+    pub fn haptic_addr(&self) -> Option<SocketAddr> {
+        self.haptic.as_ref().map(|h| h.addr)
     }
     /// The session clients talk to now.
     pub fn session(&self) -> Arc<Session> {
@@ -276,8 +288,17 @@ pub async fn start(session: Session, config: &ServerConfig) -> std::io::Result<R
     let listener = TcpListener::bind((config.host.as_str(), config.port)).await?;
     let addr = listener.local_addr()?;
     let shared = Arc::new(Shared::new(session, config));
+    let haptic = match config.haptic_port {
+        Some(port) => Some(crate::haptic::HapticStream::start(shared.clone(), port)?),
+        None => None,
+    };
     let task = tokio::spawn(serve_shared(listener, shared.clone()));
-    Ok(RunningServer { addr, task, shared })
+    Ok(RunningServer {
+        addr,
+        task,
+        shared,
+        haptic,
+    })
 }
 
 /// The WebSocket handshake: refused with 403/401 and a plain-text reason unless

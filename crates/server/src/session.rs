@@ -10,6 +10,7 @@
 //! to a copy of the scene; [`Session::report`] replays the log into a fresh workcell and
 //! writes the same report and CSVs as `pliant run`.
 
+use crate::haptic::mirror::SessionCopy;
 use crate::limits::MAX_STEPS_PER_REQUEST;
 use crate::ownership::HandId;
 use crate::snapshot::{FastenerSnapshot, HandSnapshot, HoseSnapshot, SceneData, Snapshot};
@@ -26,7 +27,7 @@ use pliant_scene::LoadedScene;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 use tokio::sync::watch;
@@ -107,7 +108,12 @@ impl Default for SessionOptions {
 /// A running simulation. Dropping it stops the thread.
 pub struct Session {
     commands: mpsc::SyncSender<Command>,
+    /// Commands queued so far (counted under the lock, in queue order).
+    sent: Mutex<u64>,
     snapshots: watch::Receiver<Arc<Snapshot>>,
+    /// Copies of the state for the haptic stream's mirror, published while wanted.
+    copies: watch::Receiver<Option<Arc<SessionCopy>>>,
+    copies_wanted: Arc<AtomicBool>,
     scene: Arc<SceneData>,
     loaded: Arc<LoadedScene>,
     header: LogHeader,
@@ -149,7 +155,10 @@ impl Session {
         let (tx, rx) = mpsc::sync_channel(COMMAND_QUEUE);
         let epoch = Arc::new(AtomicU64::new(0));
         let stop = Arc::new(AtomicBool::new(false));
+        let copies_wanted = Arc::new(AtomicBool::new(false));
+        let (copy_tx, copy_rx) = watch::channel(None);
         let mut sim = Sim::new(cell, epoch.clone(), options.paused);
+        sim.copies = Some((copy_tx, copies_wanted.clone()));
         let (snap_tx, snap_rx) = watch::channel(Arc::new(sim.snapshot(0.0)));
         let publish_every = Duration::from_secs_f64(1.0 / options.publish_hz.max(1.0));
         let stop2 = stop.clone();
@@ -159,7 +168,10 @@ impl Session {
             .map_err(|e| SessionError::Model(format!("cannot start the simulation thread: {e}")))?;
         Ok(Session {
             commands: tx,
+            sent: Mutex::new(0),
             snapshots: snap_rx,
+            copies: copy_rx,
+            copies_wanted,
             scene: data,
             loaded: Arc::new(scene.clone()),
             header,
@@ -174,17 +186,38 @@ impl Session {
     /// holds [`COMMAND_QUEUE`] commands the simulation thread has not taken yet (the
     /// command is dropped; the sender is told).
     pub fn send(&self, command: Command) -> Result<(), Busy> {
+        self.send_counted(command).map(|_| ())
+    }
+
+    /// [`Self::send`], returning the command's place in the queue's order (1, 2, …): the
+    /// session has applied it once a [`SessionCopy::taken`] reaches that number.
+    pub fn send_counted(&self, command: Command) -> Result<u64, Busy> {
+        let mut sent = self.sent.lock().unwrap_or_else(PoisonError::into_inner);
         match self.commands.try_send(command) {
             Err(mpsc::TrySendError::Full(_)) => Err(Busy),
             // a stopped thread takes nothing; the session is being replaced
-            Ok(()) | Err(mpsc::TrySendError::Disconnected(_)) => Ok(()),
+            Ok(()) | Err(mpsc::TrySendError::Disconnected(_)) => {
+                *sent += 1;
+                Ok(*sent)
+            }
         }
     }
 
     /// Queues a command the server itself must not lose (a leaving client's releases, a
     /// log request), waiting for room: the thread empties the queue every loop.
     pub fn send_waiting(&self, command: Command) {
-        let _ = self.commands.send(command);
+        let mut sent = self.sent.lock().unwrap_or_else(PoisonError::into_inner);
+        if self.commands.send(command).is_ok() {
+            *sent += 1;
+        }
+    }
+
+    /// The newest copy of the state for the haptic mirror; the first call asks the
+    /// simulation thread to publish copies from now on (at the snapshot rate), so it
+    /// returns `None` until the first one.
+    pub fn state_copy(&self) -> Option<Arc<SessionCopy>> {
+        self.copies_wanted.store(true, Ordering::Relaxed);
+        self.copies.borrow().clone()
     }
 
     /// A receiver of the newest snapshot.
@@ -294,6 +327,10 @@ struct Sim {
     /// Real-time pacing: simulated time `anchor_sim` at wall time `anchor_wall`.
     anchor_wall: Instant,
     anchor_sim: f64,
+    /// Commands applied so far (the order [`Session::send_counted`] numbers them in).
+    taken: u64,
+    /// Where state copies go for the haptic mirror, and whether one is wanted.
+    copies: Option<(watch::Sender<Option<Arc<SessionCopy>>>, Arc<AtomicBool>)>,
 }
 
 impl Sim {
@@ -310,6 +347,8 @@ impl Sim {
             notice: None,
             anchor_wall: Instant::now(),
             anchor_sim: 0.0,
+            taken: 0,
+            copies: None,
         }
     }
 
@@ -395,6 +434,7 @@ impl Sim {
             }
             if dirty && last_publish.elapsed() >= publish_every {
                 out.send_replace(Arc::new(self.snapshot(rtf)));
+                self.publish_copy();
                 last_publish = Instant::now();
                 dirty = false;
             } else if dirty {
@@ -427,7 +467,26 @@ impl Sim {
         }
     }
 
+    /// Publishes a copy of the state for the haptic mirror, if one is wanted.
+    fn publish_copy(&self) {
+        let Some((out, wanted)) = &self.copies else {
+            return;
+        };
+        if !wanted.load(Ordering::Relaxed) {
+            return;
+        }
+        let copy = SessionCopy {
+            model: self.cell.model().clone(),
+            state: self.cell.state().clone(),
+            hands: self.cell.hands().map(|(k, h)| (k, h.clone())).collect(),
+            epoch: self.epoch.load(Ordering::SeqCst),
+            taken: self.taken,
+        };
+        out.send_replace(Some(Arc::new(copy)));
+    }
+
     fn apply(&mut self, c: Command) {
+        self.taken += 1;
         match c {
             Command::Grab {
                 hand,

@@ -1,0 +1,173 @@
+//! The haptic stream's quasi-static mirror of the session (SPEC H1, P5): a copy of the
+//! session's state — every hose, load case (the stubs' and clips' fixes and supports as
+//! the session has them), contact memory and hand — re-synchronised from the session at
+//! its snapshot rate, on which the haptic thread answers a hand pose with the static
+//! equilibrium there (the [`StaticSolver`] the session's `static` solver uses: Newton on
+//! the consistent tangent, Armijo line search, stable branch) and the load the hand
+//! applies in it (dissertation eq. 5.2; [`pliant_assembly::Hand::load`]).
+//!
+//! Between two synchronisations each answer starts from the previous one (the pose moves
+//! a little per millisecond, so Newton needs one or two iterations); a synchronisation
+//! puts the mirror back on the session's newest state, so the two never drift apart by
+//! more than one snapshot interval. The mirror changes nothing in the session: the pose
+//! reaches the session as the hand's `move` (see [`super`]).
+
+use glam::{DQuat, DVec3};
+use pliant_assembly::workcell::{HandNumber, HeldHand};
+use pliant_core::integrators::StaticSolver;
+use pliant_core::{Model, State};
+use std::sync::Arc;
+use std::time::Instant;
+
+use super::datagram::Status;
+
+/// What the session publishes for the mirror: its model, a copy of its state and hands.
+#[derive(Clone)]
+pub struct SessionCopy {
+    pub model: Arc<Model>,
+    pub state: State,
+    pub hands: Vec<(HandNumber, HeldHand)>,
+    /// Resets of the session so far (hands of an older epoch are gone).
+    pub epoch: u64,
+    /// Commands the session had applied when the copy was taken
+    /// ([`crate::Session::send_counted`]).
+    pub taken: u64,
+}
+
+/// The answer to one pose.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Answer {
+    pub status: Status,
+    pub force: DVec3,
+    pub torque: DVec3,
+    pub hose: u32,
+    pub iterations: u16,
+    pub session_time: f64,
+    pub solve_seconds: f64,
+}
+
+impl Answer {
+    fn status(status: Status, session_time: f64) -> Answer {
+        Answer {
+            status,
+            force: DVec3::ZERO,
+            torque: DVec3::ZERO,
+            hose: u32::MAX,
+            iterations: 0,
+            session_time,
+            solve_seconds: 0.0,
+        }
+    }
+}
+
+/// The mirror: the state it solves on, its hands and its solver.
+pub struct Mirror {
+    source: Arc<SessionCopy>,
+    state: State,
+    hands: Vec<(HandNumber, HeldHand)>,
+    solver: StaticSolver,
+}
+
+impl Mirror {
+    /// A mirror of `source` (allocates the solver's buffers once).
+    pub fn new(source: Arc<SessionCopy>) -> Result<Mirror, String> {
+        let solver = StaticSolver::new(&source.model).map_err(|e| e.to_string())?;
+        Ok(Mirror {
+            state: source.state.clone(),
+            hands: source.hands.clone(),
+            source,
+            solver,
+        })
+    }
+
+    /// Whether `source` is of the same model (else a new mirror is needed).
+    pub fn same_model(&self, source: &SessionCopy) -> bool {
+        Arc::ptr_eq(&self.source.model, &source.model)
+    }
+
+    /// Whether this mirror was synchronised from `source` already.
+    pub fn synced_with(&self, source: &Arc<SessionCopy>) -> bool {
+        Arc::ptr_eq(&self.source, source)
+    }
+
+    /// Puts the mirror on the session's newest state (same model).
+    pub fn sync(&mut self, source: Arc<SessionCopy>) {
+        self.state.clone_from(&source.state);
+        self.hands.clone_from(&source.hands);
+        self.source = source;
+    }
+
+    /// Whether the session holds `hand`.
+    pub fn holds(&self, hand: HandNumber) -> bool {
+        self.hands.iter().any(|(k, _)| *k == hand)
+    }
+
+    /// The session's epoch this mirror was synchronised in.
+    pub fn epoch(&self) -> u64 {
+        self.source.epoch
+    }
+
+    /// The static equilibrium with `hand` at `position` (and `orientation`, kept when
+    /// `None`) and the load the hand applies there. A failed solve puts the mirror back
+    /// on the session's state.
+    pub fn answer(
+        &mut self,
+        hand: HandNumber,
+        position: DVec3,
+        orientation: Option<DQuat>,
+    ) -> Answer {
+        let time = self.state.time;
+        let Some((_, held)) = self.hands.iter_mut().find(|(k, _)| *k == hand) else {
+            return Answer::status(Status::NotHeld, self.source.state.time);
+        };
+        let orientation = orientation.unwrap_or_else(|| held.pose_at(time).1);
+        // the pose is held from now on: no aim (the session's speed limits belong to the
+        // session's dynamics, the mirror answers for the pose itself)
+        held.aim = None;
+        held.hand.set_pose(position, orientation);
+        held.hand.update(&mut self.state, time);
+        let start = Instant::now();
+        let solved = self.solver.solve(&self.source.model, &mut self.state);
+        let solve_seconds = start.elapsed().as_secs_f64();
+        let session_time = self.source.state.time;
+        match solved {
+            Ok(report) => {
+                let (_, held) = self
+                    .hands
+                    .iter()
+                    .find(|(k, _)| *k == hand)
+                    .expect("found above");
+                let load = held.hand.load(&self.source.model, &self.state);
+                if !(load.force.is_finite() && load.torque.is_finite()) {
+                    self.put_back();
+                    return Answer::status(Status::SolveFailed, session_time);
+                }
+                Answer {
+                    status: if report.converged {
+                        Status::Ok
+                    } else {
+                        Status::NotConverged
+                    },
+                    force: load.force,
+                    torque: load.torque,
+                    hose: load.hose as u32,
+                    iterations: report.iterations.min(u16::MAX as usize) as u16,
+                    session_time,
+                    solve_seconds,
+                }
+            }
+            Err(_) => {
+                self.put_back();
+                Answer {
+                    solve_seconds,
+                    ..Answer::status(Status::SolveFailed, session_time)
+                }
+            }
+        }
+    }
+
+    fn put_back(&mut self) {
+        self.state.clone_from(&self.source.state);
+        self.hands.clone_from(&self.source.hands);
+    }
+}
