@@ -19,7 +19,7 @@
 //!   rotations;
 //! * the log map uses the half-angle identity θ = 4 atan(y)/y · v/(1 + w) with
 //!   y = |v|/(1 + w) = tan(|θ|/4) for a unit quaternion (v, w), w ≥ 0, and the series of
-//!   atan(y)/y to y¹⁰ (truncation < 5e-18 for y² ≤ 0.035, i.e. |θ| ≤ 0.75 rad); the tangent
+//!   atan(y)/y to y²⁰ (truncation < 5e-18 for y² ≤ 0.035, i.e. |θ| ≤ 0.75 rad); the tangent
 //!   operator's coefficient c(θ) = 1/θ² − (1 + cos θ)/(2 θ sin θ) its Bernoulli series
 //!   Σ (−1)ⁿ⁺¹ B₂ₙ θ²ⁿ⁻²/(2n)! to θ¹⁶ (relative truncation < 3e-16 for θ² ≤ 0.6). Both
 //!   ranges cover an element's relative rotations in any realistic scene, with no
@@ -30,7 +30,7 @@
 
 use crate::element::{BeamElement, ElementEnds};
 use crate::forces::Config;
-use crate::lanes::{F4, M34, M4, Q4, V4};
+use crate::lanes::{gather3, gather4, lane, F4, M34, M4, Q4, V4};
 use crate::model::HoseInfo;
 use glam::{DQuat, DVec3};
 
@@ -200,32 +200,6 @@ fn jacobian_inverse_transpose_times(theta: V4, moment: V4) -> (V4, M4) {
     )
 }
 
-#[inline(always)]
-fn gather3(a: &[DVec3], idx: [usize; 4]) -> V4 {
-    let p = idx.map(|i| a[i]);
-    V4::new(
-        F4([p[0].x, p[1].x, p[2].x, p[3].x]),
-        F4([p[0].y, p[1].y, p[2].y, p[3].y]),
-        F4([p[0].z, p[1].z, p[2].z, p[3].z]),
-    )
-}
-
-#[inline(always)]
-fn gather4(a: &[DQuat], idx: [usize; 4]) -> Q4 {
-    let p = idx.map(|i| a[i]);
-    Q4 {
-        x: F4([p[0].x, p[1].x, p[2].x, p[3].x]),
-        y: F4([p[0].y, p[1].y, p[2].y, p[3].y]),
-        z: F4([p[0].z, p[1].z, p[2].z, p[3].z]),
-        w: F4([p[0].w, p[1].w, p[2].w, p[3].w]),
-    }
-}
-
-#[inline(always)]
-fn lane(v: V4, k: usize) -> DVec3 {
-    DVec3::new(v.x.0[k], v.y.0[k], v.z.0[k])
-}
-
 /// The loads of the four elements of block `b` in the configuration `c` (node indices
 /// less `base` index `c`'s arrays), with stiffness-proportional damping `beta`.
 #[inline(always)]
@@ -365,82 +339,78 @@ fn reference_loads(e: &BeamElement, c: &Config, base: usize, beta: f64) -> [DVec
     [l.force[0], l.force[1], l.moment[0], l.moment[1]]
 }
 
-/// Adds the loads of `blocks` to `force` and `moment`, element after element; `c`,
-/// `force` and `moment` hold nodes `base..`. Elements whose node a `skip` selects (global
-/// index) are left out.
-#[inline(always)]
-fn add_block_loads(
-    blocks: &[ElementBlock],
-    elements: &[BeamElement],
-    c: &Config,
+/// One call of [`add_loads`]: the loads of `blocks` go into `force` and `moment`,
+/// element after element; `c`, `force` and `moment` hold nodes `base..`. Elements whose
+/// node a `skip` selects (global index) are left out.
+struct Job<'a, S> {
+    blocks: &'a [ElementBlock],
+    elements: &'a [BeamElement],
+    c: &'a Config<'a>,
     base: usize,
     beta: f64,
-    force: &mut [DVec3],
-    moment: &mut [DVec3],
-    skip: &impl Fn(usize) -> bool,
-) {
-    for b in blocks {
-        let lanes = b.lanes;
-        let mut active = [false; 4];
-        for (k, a) in active.iter_mut().enumerate().take(lanes) {
-            *a = !skip(b.node_a[k]);
-        }
-        if !active.contains(&true) {
-            continue;
-        }
-        let l = block_loads(b, c, base, beta);
-        for k in 0..lanes {
-            if !active[k] {
+    force: &'a mut [DVec3],
+    moment: &'a mut [DVec3],
+    skip: &'a S,
+}
+
+impl<S: Fn(usize) -> bool> Job<'_, S> {
+    #[inline(always)]
+    fn run(self) {
+        let Job {
+            blocks,
+            elements,
+            c,
+            base,
+            beta,
+            force,
+            moment,
+            skip,
+        } = self;
+        for b in blocks {
+            let lanes = b.lanes;
+            let mut active = [false; 4];
+            for (k, a) in active.iter_mut().enumerate().take(lanes) {
+                *a = !skip(b.node_a[k]);
+            }
+            if !active.contains(&true) {
                 continue;
             }
-            let [fa, fb, ma, mb] = if l.outside.lane(k) {
-                reference_loads(&elements[b.element[k]], c, base, beta)
-            } else {
-                [
-                    lane(l.force_a, k),
-                    lane(l.force_b, k),
-                    lane(l.moment_a, k),
-                    lane(l.moment_b, k),
-                ]
-            };
-            let (na, nb) = (b.node_a[k] - base, b.node_b[k] - base);
-            force[na] += fa;
-            force[nb] += fb;
-            moment[na] += ma;
-            moment[nb] += mb;
+            let l = block_loads(b, c, base, beta);
+            for k in 0..lanes {
+                if !active[k] {
+                    continue;
+                }
+                let [fa, fb, ma, mb] = if l.outside.lane(k) {
+                    reference_loads(&elements[b.element[k]], c, base, beta)
+                } else {
+                    [
+                        lane(l.force_a, k),
+                        lane(l.force_b, k),
+                        lane(l.moment_a, k),
+                        lane(l.moment_b, k),
+                    ]
+                };
+                let (na, nb) = (b.node_a[k] - base, b.node_b[k] - base);
+                force[na] += fa;
+                force[nb] += fb;
+                moment[na] += ma;
+                moment[nb] += mb;
+            }
         }
     }
 }
 
+/// [`Job::run`] compiled for AVX2 + FMA.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn add_block_loads_avx2(
-    blocks: &[ElementBlock],
-    elements: &[BeamElement],
-    c: &Config,
-    base: usize,
-    beta: f64,
-    force: &mut [DVec3],
-    moment: &mut [DVec3],
-    skip: &impl Fn(usize) -> bool,
-) {
-    add_block_loads(blocks, elements, c, base, beta, force, moment, skip)
+unsafe fn run_avx2_fma<S: Fn(usize) -> bool>(job: Job<S>) {
+    job.run()
 }
 
-#[allow(clippy::too_many_arguments)]
+/// [`Job::run`] as portable code.
 #[inline(never)]
-fn add_block_loads_portable(
-    blocks: &[ElementBlock],
-    elements: &[BeamElement],
-    c: &Config,
-    base: usize,
-    beta: f64,
-    force: &mut [DVec3],
-    moment: &mut [DVec3],
-    skip: &impl Fn(usize) -> bool,
-) {
-    add_block_loads(blocks, elements, c, base, beta, force, moment, skip)
+fn run_portable<S: Fn(usize) -> bool>(job: Job<S>) {
+    job.run()
 }
 
 /// Which kernel [`add_loads`] runs.
@@ -485,13 +455,23 @@ pub fn add_loads(
     moment: &mut [DVec3],
     skip: &impl Fn(usize) -> bool,
 ) {
+    let job = Job {
+        blocks,
+        elements,
+        c,
+        base,
+        beta,
+        force,
+        moment,
+        skip,
+    };
     match kernel {
         #[cfg(target_arch = "x86_64")]
         Kernel::Avx2Fma if Kernel::detect() == Kernel::Avx2Fma => {
             // SAFETY: the CPU has AVX2 and FMA (checked just above; the check is cached).
-            unsafe { add_block_loads_avx2(blocks, elements, c, base, beta, force, moment, skip) }
+            unsafe { run_avx2_fma(job) }
         }
-        _ => add_block_loads_portable(blocks, elements, c, base, beta, force, moment, skip),
+        _ => run_portable(job),
     }
 }
 

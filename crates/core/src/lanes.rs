@@ -311,3 +311,32 @@ impl M34 {
         V4::new(self.c[0].dot(v), self.c[1].dot(v), self.c[2].dot(v))
     }
 }
+
+/// The vectors `a[idx[k]]` in lanes k = 0 … 3.
+#[inline(always)]
+pub fn gather3(a: &[glam::DVec3], idx: [usize; 4]) -> V4 {
+    let p = idx.map(|i| a[i]);
+    V4::new(
+        F4([p[0].x, p[1].x, p[2].x, p[3].x]),
+        F4([p[0].y, p[1].y, p[2].y, p[3].y]),
+        F4([p[0].z, p[1].z, p[2].z, p[3].z]),
+    )
+}
+
+/// The quaternions `a[idx[k]]` in lanes k = 0 … 3.
+#[inline(always)]
+pub fn gather4(a: &[glam::DQuat], idx: [usize; 4]) -> Q4 {
+    let p = idx.map(|i| a[i]);
+    Q4 {
+        x: F4([p[0].x, p[1].x, p[2].x, p[3].x]),
+        y: F4([p[0].y, p[1].y, p[2].y, p[3].y]),
+        z: F4([p[0].z, p[1].z, p[2].z, p[3].z]),
+        w: F4([p[0].w, p[1].w, p[2].w, p[3].w]),
+    }
+}
+
+/// Lane `k` of `v`.
+#[inline(always)]
+pub fn lane(v: V4, k: usize) -> glam::DVec3 {
+    glam::DVec3::new(v.x.0[k], v.y.0[k], v.z.0[k])
+}

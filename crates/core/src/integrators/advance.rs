@@ -10,7 +10,7 @@
 //! sin h/(2h), h = |Δt ω|/2 < 0.05 (truncation < 1e-19); a node turning faster in one
 //! step is advanced by the reference [`crate::math::exp_map`] (exact for any angle).
 
-use crate::lanes::{F4, M4, Q4, V4};
+use crate::lanes::{gather3 as gather, gather4, lane, F4, M4, Q4, V4};
 use crate::math::exp_map;
 use glam::{DQuat, DVec3};
 
@@ -36,21 +36,6 @@ pub enum Advance {
     Positions,
     /// Both, in one pass.
     Both,
-}
-
-#[inline(always)]
-fn gather(a: &[DVec3], idx: [usize; 4]) -> V4 {
-    let p = idx.map(|i| a[i]);
-    V4::new(
-        F4([p[0].x, p[1].x, p[2].x, p[3].x]),
-        F4([p[0].y, p[1].y, p[2].y, p[3].y]),
-        F4([p[0].z, p[1].z, p[2].z, p[3].z]),
-    )
-}
-
-#[inline(always)]
-fn lane(v: V4, k: usize) -> DVec3 {
-    DVec3::new(v.x.0[k], v.y.0[k], v.z.0[k])
 }
 
 /// exp(φ) for |φ|/2 < 0.05 (the reference's series), and the lanes inside that range.
@@ -114,13 +99,7 @@ fn advance_lanes(n: &mut Nodes, dt: f64, what: Advance) {
         let mut ok = M4([!0; 4]);
         if what != Advance::Velocities {
             x = v.scale_add(dt4, gather(n.x, idx));
-            let p = idx.map(|j| n.q[j]);
-            let q0 = Q4 {
-                x: F4([p[0].x, p[1].x, p[2].x, p[3].x]),
-                y: F4([p[0].y, p[1].y, p[2].y, p[3].y]),
-                z: F4([p[0].z, p[1].z, p[2].z, p[3].z]),
-                w: F4([p[0].w, p[1].w, p[2].w, p[3].w]),
-            };
+            let q0 = gather4(n.q, idx);
             let (e, inside) = exp_series(w.scale(dt4));
             q = e.mul(q0).normalize();
             ok = inside;
