@@ -102,8 +102,10 @@ pub mod dissertation {
 /// One measured case.
 #[derive(Clone, Debug, Serialize)]
 pub struct BenchRow {
-    /// Case name, e.g. "1 hose × 100" or "5 hoses × 30".
+    /// Case name, e.g. "1 hose × 100" or "5 hoses × 30, 2 threads".
     pub name: String,
+    /// Threads the step used (issue 15; results are the same for any number).
+    pub threads: usize,
     pub hoses: usize,
     pub elements_per_hose: usize,
     /// Elements in the world.
@@ -134,6 +136,8 @@ pub struct BenchRow {
     pub flops_per_element_step: f64,
     /// Achieved arithmetic rate [GFLOP/s] (flops / ns).
     pub gflops: f64,
+    /// `gflops` over the peak of the cores used (`threads` × [`Peak::gflops_per_core`]).
+    pub peak_fraction: f64,
     /// Simulated time covered by warm-up and repeats [s].
     pub simulated_s: f64,
     /// Triangles of the rigid environment (0: no contact).
@@ -216,6 +220,49 @@ pub struct DissertationComparison {
     pub per_beam_update_speedup: f64,
 }
 
+/// A core's peak double-precision rate: FMA units × lanes × 2 flops × clock.
+#[derive(Clone, Debug, Serialize)]
+pub struct Peak {
+    pub gflops_per_core: f64,
+    /// Clock used [GHz] (the first `cpu MHz` of /proc/cpuinfo; 1 GHz if unknown).
+    pub clock_ghz: f64,
+    /// Flops per cycle: 2 FMA units × 4 lanes × 2 with AVX2 + FMA (AMD Zen 2/3, Intel
+    /// Haswell and later), else 2 units × 2 SSE2 lanes.
+    pub flops_per_cycle: f64,
+    pub method: String,
+}
+
+impl Peak {
+    pub fn detect() -> Peak {
+        let clock_ghz = std::fs::read_to_string("/proc/cpuinfo")
+            .ok()
+            .and_then(|s| {
+                s.lines()
+                    .find(|l| l.starts_with("cpu MHz"))
+                    .and_then(|l| l.split(':').nth(1))
+                    .and_then(|m| m.trim().parse::<f64>().ok())
+            })
+            .map_or(1.0, |mhz| mhz / 1000.0);
+        let fma = pliant_core::element_block::Kernel::detect()
+            == pliant_core::element_block::Kernel::Avx2Fma;
+        let flops_per_cycle = if fma { 16.0 } else { 4.0 };
+        Peak {
+            gflops_per_core: flops_per_cycle * clock_ghz,
+            clock_ghz,
+            flops_per_cycle,
+            method: format!(
+                "{} flops/cycle ({}) × {clock_ghz:.2} GHz (/proc/cpuinfo)",
+                flops_per_cycle,
+                if fma {
+                    "2 FMA units × 4 lanes × 2"
+                } else {
+                    "2 units × 2 lanes"
+                }
+            ),
+        }
+    }
+}
+
 /// What the machine is (for reading the numbers, not for comparing them).
 #[derive(Clone, Debug, Serialize)]
 pub struct MachineInfo {
@@ -240,6 +287,10 @@ pub struct BenchReport {
     pub quick: bool,
     pub machine: MachineInfo,
     pub rows: Vec<BenchRow>,
+    /// The core's peak arithmetic rate the rows are compared with.
+    pub peak: Peak,
+    /// The element kernel the step ran ("avx2+fma" or "portable").
+    pub kernel: &'static str,
     pub scaling: Scaling,
     pub flops: FlopSummary,
     pub dissertation: DissertationComparison,
@@ -407,9 +458,11 @@ pub fn measure(
     hoses: usize,
     elements_per_hose: usize,
     floor_quads: usize,
+    threads: usize,
     budget: Budget,
 ) -> Result<BenchRow> {
-    let (model, mut state) = setup(hoses, elements_per_hose, floor_quads)?;
+    let (mut model, mut state) = setup(hoses, elements_per_hose, floor_quads)?;
+    model.threads = threads;
     let elements = model.elements.len();
     let nodes = model.node_count();
     let dt = model.time_step;
@@ -439,15 +492,23 @@ pub fn measure(
     let flops_per_element_step =
         flops::per_step(elements, nodes, model.hoses.len()) as f64 / elements as f64;
     let r = &model.time_step_report;
+    let gflops = flops_per_element_step / ns_per_element_step;
+    let name = match (hoses, floor_quads) {
+        (1, _) => format!("1 hose × {elements_per_hose}"),
+        (_, 0) => format!("{hoses} hoses × {elements_per_hose}"),
+        _ => format!(
+            "{hoses} hoses × {elements_per_hose} on {} triangles",
+            2 * floor_quads * floor_quads
+        ),
+    };
     Ok(BenchRow {
-        name: match (hoses, floor_quads) {
-            (1, _) => format!("1 hose × {elements_per_hose}"),
-            (_, 0) => format!("{hoses} hoses × {elements_per_hose}"),
-            _ => format!(
-                "{hoses} hoses × {elements_per_hose} on {} triangles",
-                2 * floor_quads * floor_quads
-            ),
+        name: if threads > 1 {
+            format!("{name}, {threads} threads")
+        } else {
+            name
         },
+        threads,
+        peak_fraction: gflops / (threads as f64 * Peak::detect().gflops_per_core),
         contact_triangles: 2 * floor_quads * floor_quads,
         contact_points: state.contact.points.len(),
         hoses,
@@ -468,7 +529,7 @@ pub fn measure(
         realtime_factor: realtime_factor(dt, ns_per_step),
         elements_in_real_time: elements_in_real_time(dt, ns_per_element_step),
         flops_per_element_step,
-        gflops: flops_per_element_step / ns_per_element_step,
+        gflops,
         simulated_s: state.time,
     })
 }
@@ -551,13 +612,15 @@ fn machine() -> MachineInfo {
 pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
     let single = |n: usize| {
         rows.iter()
-            .find(|r| r.hoses == 1 && r.elements_per_hose == n)
+            .find(|r| r.hoses == 1 && r.elements_per_hose == n && r.threads == 1)
             .with_context(|| format!("no row for one hose of {n} elements"))
     };
     let headline = single(HEADLINE_ELEMENTS)?.clone();
     let five = rows
         .iter()
-        .find(|r| r.hoses == 5 && r.elements_per_hose == 30 && r.contact_triangles == 0)
+        .find(|r| {
+            r.hoses == 5 && r.elements_per_hose == 30 && r.contact_triangles == 0 && r.threads == 1
+        })
         .context("no row for 5 hoses × 30")?;
     let five_contact = rows
         .iter()
@@ -588,6 +651,8 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
         realtime_factor_5x30: five.realtime_factor,
         quick,
         machine: machine(),
+        peak: Peak::detect(),
+        kernel: pliant_core::element_block::Kernel::detect().name(),
         scaling: Scaling {
             loglog_slope: fit.slope,
             loglog_intercept: fit.intercept,
@@ -640,15 +705,23 @@ pub fn run(opts: &BenchOptions) -> Result<()> {
         return Ok(());
     }
     let budget = Budget::new(opts.quick);
-    let mut cases: Vec<(usize, usize)> = SINGLE_HOSE_ELEMENTS.iter().map(|&n| (1, n)).collect();
-    // One hose of 30 is already a single-hose case.
-    cases.extend(HOSE_COUNTS.iter().filter(|&&h| h != 1).map(|&h| (h, 30)));
-    let mut rows = Vec::with_capacity(cases.len() + 1);
-    for (hoses, elements) in cases {
-        if !opts.json {
-            eprintln!("measuring {hoses} × {elements} …");
+    let mut cases: Vec<(usize, usize, usize)> =
+        SINGLE_HOSE_ELEMENTS.iter().map(|&n| (1, n, 1)).collect();
+    // One hose of 30 is already a single-hose case; the multi-hose cases on one thread
+    // and on every core (issue 15)
+    let cores = pliant_core::parallel::available_cores();
+    for &h in HOSE_COUNTS.iter().filter(|&&h| h != 1) {
+        cases.push((h, 30, 1));
+        if cores > 1 {
+            cases.push((h, 30, cores));
         }
-        rows.push(measure(hoses, elements, 0, budget)?);
+    }
+    let mut rows = Vec::with_capacity(cases.len() + 1);
+    for (hoses, elements, threads) in cases {
+        if !opts.json {
+            eprintln!("measuring {hoses} × {elements} on {threads} thread(s) …");
+        }
+        rows.push(measure(hoses, elements, 0, threads, budget)?);
     }
     if !opts.json {
         eprintln!(
@@ -656,7 +729,7 @@ pub fn run(opts: &BenchOptions) -> Result<()> {
             2 * FLOOR_QUADS * FLOOR_QUADS
         );
     }
-    rows.push(measure(5, 30, FLOOR_QUADS, budget)?);
+    rows.push(measure(5, 30, FLOOR_QUADS, 1, budget)?);
     if !opts.json {
         eprintln!("measuring the Newton solvers …");
     }
@@ -693,6 +766,7 @@ pub fn render(r: &BenchReport) -> String {
         "realtime factor",
         "elements in real time",
         "GFLOP/s",
+        "of peak",
     ]);
     for row in &r.rows {
         t.add_row(vec![
@@ -708,9 +782,10 @@ pub fn render(r: &BenchReport) -> String {
             format!("{:.3}", row.realtime_factor),
             format!("{:.0}", row.elements_in_real_time),
             format!("{:.2}", row.gflops),
+            format!("{:.1} %", 100.0 * row.peak_fraction),
         ]);
     }
-    for i in 1..9 {
+    for i in 1..10 {
         if let Some(c) = t.column_mut(i) {
             c.set_cell_alignment(CellAlignment::Right);
         }
@@ -727,8 +802,14 @@ pub fn render(r: &BenchReport) -> String {
         r.scaling.loglog_slope, r.scaling.elements, r.scaling.r_squared
     );
     s += &format!(
-        "flops: {:.0} per element-step (hand count) + {:.1} libm calls → {:.2} GFLOP/s\n",
-        r.flops.per_element_step, r.flops.transcendental_per_element_step, r.flops.gflops
+        "flops: {:.0} per element-step (hand count of the reference algorithm) → {:.2} GFLOP/s \
+         = {:.1} % of one core's peak {:.1} GFLOP/s ({}); element kernel: {}\n",
+        r.flops.per_element_step,
+        r.flops.gflops,
+        100.0 * r.flops.gflops / r.peak.gflops_per_core,
+        r.peak.gflops_per_core,
+        r.peak.method,
+        r.kernel
     );
     s += &format!(
         "dissertation (SGI Octane, g(x) = {}·x + {} ms, {} ms criterion): {:.1} beams in real time \
@@ -881,7 +962,7 @@ mod tests {
             repeat: Duration::from_millis(2),
             repeats: 3,
         };
-        let row = measure(1, 10, 0, budget).unwrap();
+        let row = measure(1, 10, 0, 1, budget).unwrap();
         assert_eq!(row.repeats, 3);
         assert!(row.ns_per_element_step > 0.0);
         assert!(row.ns_per_element_step_min <= row.ns_per_element_step);

@@ -29,6 +29,10 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// Threads the explicit solver may use (default: 1 for one hose, every core for
+    /// several; results are the same for any number). Sets PLIANT_THREADS.
+    #[arg(long, global = true)]
+    threads: Option<std::num::NonZeroUsize>,
 }
 
 #[derive(Subcommand)]
@@ -250,6 +254,10 @@ enum PeerCase {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Some(n) = cli.threads {
+        // before any thread is started: read by every model built in this process
+        std::env::set_var(pliant_core::model::THREADS_ENV, n.to_string());
+    }
     let command = cli.command.unwrap_or(Command::Run {
         scene: None,
         out: PathBuf::from("out"),

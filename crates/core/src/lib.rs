@@ -1,7 +1,8 @@
 //! Pliant's physics core: co-rotational 3-D Euler–Bernoulli beams (SPEC P1) with
 //! quaternion node frames (P2), lumped masses (P3), explicit central-difference dynamics
 //! (P4), gravity and Rayleigh damping (P6), and the load cases fix, drive and dead load
-//! (L1–L3). Plain data and functions: no files, threads or sockets.
+//! (L1–L3). Plain data and functions: no files or sockets; the explicit step may share
+//! its work with helper threads ([`parallel`]), with the same results on any number.
 //!
 //! Calling convention (as MuJoCo's): a [`Model`] is built once from a [`WorldSpec`]; a
 //! [`State`] holds everything that changes; [`explicit::step`]`(&model, &mut state)`
@@ -11,16 +12,19 @@ pub mod autodiff;
 pub mod contact;
 pub mod curve;
 pub mod element;
+pub mod element_block;
 pub mod forces;
 pub mod frames;
 pub mod health;
 pub mod integrators;
+pub mod lanes;
 pub mod loads;
 pub mod mass;
 pub mod material;
 pub mod math;
 pub mod model;
 pub mod newton;
+pub mod parallel;
 pub mod section;
 pub mod settle;
 pub mod sleep;

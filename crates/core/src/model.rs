@@ -3,6 +3,7 @@
 
 use crate::contact::{HoseContactModel, RigidEnvironment};
 use crate::element::BeamElement;
+use crate::element_block::PackedElements;
 use crate::frames::node_frames;
 use crate::integrators::SolverSettings;
 use crate::mass::half_element_mass;
@@ -65,6 +66,54 @@ pub struct Model {
     pub solver: SolverSettings,
     /// Per-beam constants of hose–hose contact (SPEC L5).
     pub hose_contact: HoseContactModel,
+    /// The elements in blocks of four for the explicit solver's kernel
+    /// ([`crate::element_block`]); built with the model.
+    pub packed: PackedElements,
+    /// Threads the explicit step may use ([`SimSettings::threads`], resolved; a caller
+    /// may change it — results do not depend on it).
+    pub threads: usize,
+    /// Groups of consecutive hoses (ranges of hose indices) that the explicit step hands
+    /// to its threads as one piece of work each.
+    pub hose_chunks: Vec<std::ops::Range<usize>>,
+}
+
+/// The environment variable that sets the explicit step's thread count, overriding the
+/// settings (`pliant … --threads N` sets it).
+pub const THREADS_ENV: &str = "PLIANT_THREADS";
+
+/// Threads for a world of `hoses` hoses: `PLIANT_THREADS` if set to a positive number,
+/// else `setting`, else 1 for one hose and the logical cores for several.
+pub fn resolve_threads(setting: Option<usize>, hoses: usize) -> usize {
+    let env = std::env::var(THREADS_ENV)
+        .ok()
+        .and_then(|v| v.trim().parse::<usize>().ok())
+        .filter(|&n| n > 0);
+    env.or(setting.filter(|&n| n > 0)).unwrap_or(if hoses > 1 {
+        crate::parallel::available_cores()
+    } else {
+        1
+    })
+}
+
+/// Consecutive hoses grouped into pieces of at least max(total/(4 · cores), 32) elements
+/// (the last piece may be smaller): enough pieces to balance two or more threads, few
+/// enough that handing them out costs nothing.
+fn hose_chunks(hoses: &[HoseInfo]) -> Vec<std::ops::Range<usize>> {
+    let total: usize = hoses.iter().map(|h| h.element_count).sum();
+    let target = (total / (4 * crate::parallel::available_cores())).max(32);
+    let mut chunks = Vec::new();
+    let (mut start, mut size) = (0, 0);
+    for (h, info) in hoses.iter().enumerate() {
+        size += info.element_count;
+        if size >= target {
+            chunks.push(start..h + 1);
+            (start, size) = (h + 1, 0);
+        }
+    }
+    if start < hoses.len() {
+        chunks.push(start..hoses.len());
+    }
+    chunks
 }
 
 /// Why a world spec could not be built.
@@ -174,6 +223,9 @@ impl Model {
             body_of: vec![None; total_nodes],
             solver: spec.settings.solver,
             hose_contact: HoseContactModel::default(),
+            packed: PackedElements::default(),
+            threads: 1,
+            hose_chunks: Vec::new(),
         };
         for h in &spec.hoses {
             check_hose(h)?;
@@ -184,6 +236,9 @@ impl Model {
         model.time_step = report.chosen;
         model.time_step_report = report;
         model.hose_contact = HoseContactModel::new(&model);
+        model.packed = PackedElements::new(&model.elements, &model.hoses);
+        model.threads = resolve_threads(spec.settings.threads, model.hoses.len());
+        model.hose_chunks = hose_chunks(&model.hoses);
         Ok(model)
     }
 

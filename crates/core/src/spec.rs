@@ -63,6 +63,11 @@ pub struct SimSettings {
     /// Which solver advances the simulation, and its steps (issue 5).
     #[serde(default)]
     pub solver: crate::integrators::SolverSettings,
+    /// Threads the explicit step may use (issue 15); `None` → 1 for a single hose, the
+    /// machine's logical cores for several. The environment variable `PLIANT_THREADS`
+    /// overrides both. Results are the same for any number ([`crate::parallel`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub threads: Option<usize>,
 }
 
 impl Default for SimSettings {
@@ -74,6 +79,7 @@ impl Default for SimSettings {
             time_step_safety: 0.5,
             time_step: None,
             solver: Default::default(),
+            threads: None,
         }
     }
 }

@@ -80,6 +80,7 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
         time_step_safety,
         time_step,
         solver,
+        threads: default.threads,
     })
 }
 

@@ -48,7 +48,16 @@
 //!
 //! **Broad phase.** [`BroadPhase`]: a uniform grid, O(N), storage allocated once in
 //! [`HoseContactScratch::new`] (called by [`State::at_rest`]). A model with one hose too
-//! short to touch itself skips all of it.
+//! short to touch itself skips all of it. The grid is not rebuilt every step (issue 15):
+//! it files each beam's box grown by a skin s (the smallest beam radius) and keeps
+//! the pairs of such boxes that overlap and are not excluded, with the node positions of
+//! that moment (a Verlet list). While no node has moved by more than s along any axis
+//! since, every beam's true box lies inside its grown one, so every pair whose true boxes
+//! overlap — every pair that can touch — is in the list, and the narrow phase over the
+//! list finds exactly the contacts a fresh broad phase would. The first node to move
+//! farther (or any change of the positions from outside, e.g. a restored snapshot)
+//! triggers a rebuild. The pairs are visited in the list's order: deterministic, given
+//! the state.
 
 use super::broad_phase::BroadPhase;
 use crate::{Model, State};
@@ -75,6 +84,9 @@ pub struct HoseContactModel {
     /// Whether any pair of beams may touch at all (false: one short hose; a caller may
     /// also switch hose contact off for a model).
     pub active: bool,
+    /// Skin of the pair list: how far a node may move along any axis before the broad
+    /// phase is rebuilt [m] (the smallest beam radius).
+    pub skin: f64,
 }
 
 /// The broad phase and what the last step found, allocated once with the state.
@@ -87,6 +99,13 @@ pub struct HoseContactScratch {
     pub max_penetration: f64,
     /// Elastic energy of the contact springs, Σ ½ k δ², in the last step [J].
     pub energy: f64,
+    /// Beam pairs (i < j not required) that may touch while no node has moved more than
+    /// the skin from `anchor` (see the module doc).
+    pub candidates: Vec<(u32, u32)>,
+    /// Node positions when the pair list was built (NaN: never).
+    pub anchor: Vec<DVec3>,
+    /// How often the pair list was built.
+    pub rebuilds: u64,
 }
 
 impl HoseContactScratch {
@@ -96,7 +115,47 @@ impl HoseContactScratch {
             pairs_in_contact: 0,
             max_penetration: 0.0,
             energy: 0.0,
+            candidates: Vec::with_capacity(4 * model.elements.len()),
+            anchor: vec![DVec3::NAN; model.node_count()],
+            rebuilds: 0,
         }
+    }
+
+    /// Whether a node of `x` lies farther than `skin` from where it was when the pair
+    /// list was built, along any axis (or the list was never built).
+    fn stale(&self, x: &[DVec3], skin: f64) -> bool {
+        if self.anchor.len() != x.len() {
+            return true;
+        }
+        // a NaN anywhere (never built, or a diverged state) fails the comparison
+        let mut near = true;
+        for (p, a) in x.iter().zip(&self.anchor) {
+            let d = (*p - *a).abs();
+            near &= d.x <= skin && d.y <= skin && d.z <= skin;
+        }
+        !near
+    }
+
+    /// Files the beams' boxes grown by the skin and lists the pairs that may touch.
+    fn rebuild(&mut self, model: &Model, x: &[DVec3]) {
+        let constants = &model.hose_contact;
+        for (e, el) in model.elements.iter().enumerate() {
+            let (xa, xb) = (x[el.node_a], x[el.node_b]);
+            let r = DVec3::splat(constants.element_radius[e] + constants.skin);
+            self.broad.lo[e] = xa.min(xb) - r;
+            self.broad.hi[e] = xa.max(xb) + r;
+        }
+        self.broad.rebuild();
+        let (broad, candidates) = (&self.broad, &mut self.candidates);
+        candidates.clear();
+        broad.for_each_pair(|i, j| {
+            if !constants.excluded(i, j) {
+                candidates.push((i as u32, j as u32));
+            }
+        });
+        self.anchor.clear();
+        self.anchor.extend_from_slice(x);
+        self.rebuilds += 1;
     }
 }
 
@@ -112,6 +171,7 @@ impl HoseContactModel {
             element_stiffness: vec![0.0; ne],
             omega_limit: f64::INFINITY,
             active: model.hoses.len() > 1,
+            skin: 0.0,
         };
         for (h, hose) in model.hoses.iter().enumerate() {
             let mut arc = 0.0;
@@ -136,6 +196,12 @@ impl HoseContactModel {
                 }
             }
         }
+        let r_min = s
+            .element_radius
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        s.skin = if r_min.is_finite() { r_min } else { 0.0 };
         let r = &model.time_step_report;
         let bound = r.axial_bound.min(r.eigen_bound);
         if bound > 0.0 && bound.is_finite() {
@@ -274,21 +340,14 @@ pub fn hose_contact_forces_with(
     if !constants.active {
         return;
     }
-    for (e, el) in model.elements.iter().enumerate() {
-        let (xa, xb) = (x[el.node_a], x[el.node_b]);
-        let r = DVec3::splat(constants.element_radius[e]);
-        scratch.broad.lo[e] = xa.min(xb) - r;
-        scratch.broad.hi[e] = xa.max(xb) + r;
+    if scratch.stale(x, constants.skin) {
+        scratch.rebuild(model, x);
     }
-    scratch.broad.rebuild();
-    let sc = &*scratch;
     let mut pairs = 0;
     let mut max_pen: f64 = 0.0;
     let mut energy = 0.0;
-    sc.broad.for_each_pair(|i, j| {
-        if constants.excluded(i, j) {
-            return;
-        }
+    for &(i, j) in &scratch.candidates {
+        let (i, j) = (i as usize, j as usize);
         let (ei, ej) = (&model.elements[i], &model.elements[j]);
         let (a, b, c, d) = (ei.node_a, ei.node_b, ej.node_a, ej.node_b);
         let (s, t) = closest_segment_segment(x[a], x[b], x[c], x[d]);
@@ -300,7 +359,7 @@ pub fn hose_contact_forces_with(
         let dist = gap.length();
         let pen = r1 + r2 - dist;
         if pen <= 0.0 {
-            return;
+            continue;
         }
         let n = if dist > 1e-9 * (r1 + r2) {
             gap / dist
@@ -334,7 +393,7 @@ pub fn hose_contact_forces_with(
         pairs += 1;
         max_pen = max_pen.max(pen);
         energy += 0.5 * k * pen * pen;
-    });
+    }
     scratch.pairs_in_contact = pairs;
     scratch.max_penetration = max_pen;
     scratch.energy = energy;

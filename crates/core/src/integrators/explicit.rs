@@ -13,9 +13,11 @@
 use crate::contact::{
     add_hose_contact_forces, add_penalty_forces, project_positions, resolve_velocities,
 };
-use crate::forces::{add_body_loads, internal_loads_except, Config};
+use crate::forces::{chunk_nodes, step_loads, whole_hose_chunks, Config};
+use crate::integrators::advance::{advance, Advance, Nodes};
 use crate::loads::LoadCase;
-use crate::math::{exp_map, log_map};
+use crate::math::log_map;
+use crate::parallel::{Pool, SharedMut};
 use crate::stiffened::step_body;
 use crate::{Model, State};
 use glam::DVec3;
@@ -38,7 +40,7 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
         };
         let asleep = &state.sleep.node_asleep;
         let sleeping = state.sleep.enabled && state.sleep.hose_asleep.contains(&true);
-        internal_loads_except(
+        step_loads(
             model,
             &config,
             model.damping_stiffness,
@@ -46,7 +48,6 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
             &mut state.moment,
             |a| sleeping && asleep[a],
         );
-        add_body_loads(model, &config, &mut state.force, &mut state.moment);
     }
     add_hose_contact_forces(model, state);
     state.held.fill(false);
@@ -140,30 +141,62 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
             }
         }
     }
-    for i in 0..state.x.len() {
-        if !state.held[i] {
-            state.v[i] += dt / model.mass[i] * state.force[i];
-            state.w[i] += dt / model.inertia[i] * state.moment[i];
-        }
-    }
     let contact = !model.environment.is_empty();
     if contact {
+        advance_nodes(model, state, Advance::Velocities);
         resolve_velocities(model, state, dt);
-    }
-    for i in 0..state.x.len() {
-        if !state.held[i] {
-            state.x[i] += dt * state.v[i];
-            state.q[i] = (exp_map(dt * state.w[i]) * state.q[i]).normalize();
-        }
-    }
-    if contact {
+        advance_nodes(model, state, Advance::Positions);
         project_positions(model, state, dt);
+    } else {
+        advance_nodes(model, state, Advance::Both);
     }
     state.time = t_next;
     state.step += 1;
     if state.sleep.enabled {
         update_sleep(model, state, moved_any);
     }
+}
+
+/// The leapfrog update of the nodes not held ([`advance`]), shared between
+/// `model.threads` threads hose group by hose group (each node's update is its own).
+fn advance_nodes(model: &Model, state: &mut State, what: Advance) {
+    let chunks = &model.hose_chunks;
+    if model.threads > 1 && chunks.len() > 1 && whole_hose_chunks(model) {
+        let (x, q) = (SharedMut::new(&mut state.x), SharedMut::new(&mut state.q));
+        let (v, w) = (SharedMut::new(&mut state.v), SharedMut::new(&mut state.w));
+        let (held, force, moment) = (&state.held, &state.force, &state.moment);
+        Pool::global().run(model.threads, chunks.len(), &|k| {
+            let r = chunk_nodes(model, chunks[k].clone());
+            // SAFETY: the chunks' node ranges are disjoint and within the arrays.
+            let mut nodes = unsafe {
+                Nodes {
+                    mass: &model.mass[r.clone()],
+                    inertia: &model.inertia[r.clone()],
+                    held: &held[r.clone()],
+                    force: &force[r.clone()],
+                    moment: &moment[r.clone()],
+                    x: x.slice(r.clone()),
+                    q: q.slice(r.clone()),
+                    v: v.slice(r.clone()),
+                    w: w.slice(r.clone()),
+                }
+            };
+            advance(&mut nodes, model.time_step, what);
+        });
+        return;
+    }
+    let mut nodes = Nodes {
+        mass: &model.mass,
+        inertia: &model.inertia,
+        held: &state.held,
+        force: &state.force,
+        moment: &state.moment,
+        x: &mut state.x,
+        q: &mut state.q,
+        v: &mut state.v,
+        w: &mut state.w,
+    };
+    advance(&mut nodes, model.time_step, what);
 }
 
 /// Sleep bookkeeping after a step: a node whose support moved this step was marked awake

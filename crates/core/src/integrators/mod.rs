@@ -15,6 +15,7 @@
 //!   ([`snap`]). Every equilibrium is checked for stability ([`stability`]).
 
 use crate::health::{check_for, Divergence};
+pub mod advance;
 pub mod explicit;
 pub mod fallback;
 pub mod implicit;
