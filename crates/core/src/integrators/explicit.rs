@@ -143,12 +143,12 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     }
     let contact = !model.environment.is_empty();
     if contact {
-        advance_nodes(model, state, Advance::Velocities);
+        advance_nodes(model, state, dt, Advance::Velocities);
         resolve_velocities(model, state, dt);
-        advance_nodes(model, state, Advance::Positions);
+        advance_nodes(model, state, dt, Advance::Positions);
         project_positions(model, state, dt);
     } else {
-        advance_nodes(model, state, Advance::Both);
+        advance_nodes(model, state, dt, Advance::Both);
     }
     state.time = t_next;
     state.step += 1;
@@ -159,7 +159,7 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
 
 /// The leapfrog update of the nodes not held ([`advance`]), shared between
 /// `model.threads` threads hose group by hose group (each node's update is its own).
-fn advance_nodes(model: &Model, state: &mut State, what: Advance) {
+fn advance_nodes(model: &Model, state: &mut State, dt: f64, what: Advance) {
     let chunks = &model.hose_chunks;
     if model.threads > 1 && chunks.len() > 1 && whole_hose_chunks(model) {
         let (x, q) = (SharedMut::new(&mut state.x), SharedMut::new(&mut state.q));
@@ -181,7 +181,7 @@ fn advance_nodes(model: &Model, state: &mut State, what: Advance) {
                     w: w.slice(r.clone()),
                 }
             };
-            advance(&mut nodes, model.time_step, what);
+            advance(&mut nodes, dt, what);
         });
         return;
     }
@@ -196,7 +196,7 @@ fn advance_nodes(model: &Model, state: &mut State, what: Advance) {
         v: &mut state.v,
         w: &mut state.w,
     };
-    advance(&mut nodes, model.time_step, what);
+    advance(&mut nodes, dt, what);
 }
 
 /// Sleep bookkeeping after a step: a node whose support moved this step was marked awake
