@@ -207,6 +207,10 @@ enum Command {
         /// Shorter measurements (for smoke tests).
         #[arg(long)]
         quick: bool,
+        /// Measure one group of rows only: `contact` (5 × 30 without and with the floor)
+        /// or `newton` (the Newton solvers' rows).
+        #[arg(long, value_enum)]
+        only: Option<bench::BenchOnly>,
     },
     /// Pliant's side of the head-to-head benchmarks with PyElastica and MuJoCo
     /// (bench/peers/run.sh); prints one JSON object.
@@ -354,8 +358,8 @@ fn main() -> ExitCode {
             &out,
             json,
         ),
-        Command::Bench { json, quick } => {
-            bench::run(&bench::BenchOptions { json, quick }).map(|_| ExitCode::SUCCESS)
+        Command::Bench { json, quick, only } => {
+            bench::run(&bench::BenchOptions { json, quick, only }).map(|_| ExitCode::SUCCESS)
         }
         Command::Peer { case } => match case {
             PeerCase::Params => peers::params().and_then(|p| peers::print(&p)),
