@@ -478,7 +478,6 @@ pub fn measure(
         gflops: flops_per_element_step / ns_per_element_step,
         simulated_s: state.time,
     })
-    .inspect(|_| eprintln!("DEBUG steps {} refreshes {} offered {}", state.step, state.contact.candidates.refreshes, state.contact.candidates.offered))
 }
 
 /// Simulated seconds per wall second for a step Δt costing `ns_per_step`.

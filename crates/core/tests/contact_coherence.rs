@@ -10,14 +10,14 @@ use pliant_core::{
     HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings, State, WorldSpec,
 };
 
-/// A floor of `2·quads²` triangles over [−0.3, 1.0] × [−0.4, 0.6] m, bumps ±1 cm.
+/// A floor of `2·quads²` triangles over [−0.3, 1.0] × [−0.4, 0.6] m, bumps ±2 mm.
 fn bumpy_floor(quads: usize) -> RigidPartSpec {
     let mut vertices = Vec::new();
     for j in 0..=quads {
         for i in 0..=quads {
             let x = -0.3 + 1.3 * i as f64 / quads as f64;
             let y = -0.4 + 1.0 * j as f64 / quads as f64;
-            let z = -0.03 + 0.01 * (17.0 * x).sin() * (13.0 * y).cos();
+            let z = -0.02 + 0.002 * (17.0 * x).sin() * (13.0 * y).cos();
             vertices.push(DVec3::new(x, y, z));
         }
     }
@@ -38,8 +38,8 @@ fn bumpy_floor(quads: usize) -> RigidPartSpec {
     }
 }
 
-/// Three hoses of 20 beams (24 mm, d_a 16 mm) 1 cm above the floor, the first node of
-/// each fixed, the last held by a hand (returned) that drags it across the floor.
+/// Three hoses of 20 beams (24 mm, d_a 16 mm) 1 cm above the floor, the last node of
+/// each held by a hand (returned) that drags it across the floor.
 fn world(quads: usize) -> (Model, State, Vec<LoadCaseId>) {
     let hoses = (0..3)
         .map(|h| HoseSpec {
@@ -61,28 +61,24 @@ fn world(quads: usize) -> (Model, State, Vec<LoadCaseId>) {
     let mut state = State::at_rest(&model);
     let mut hands = Vec::new();
     for h in &model.hoses {
-        for n in [h.first_node, h.first_node + h.element_count] {
-            let handle = state.loads.add(LoadCase::Fix(Fix {
-                node: n,
-                position: state.x[n],
-                orientation: state.q[n],
-            }));
-            if n != h.first_node {
-                hands.push(handle);
-            }
-        }
+        let n = h.first_node + h.element_count;
+        hands.push(state.loads.add(LoadCase::Fix(Fix {
+            node: n,
+            position: state.x[n],
+            orientation: state.q[n],
+        })));
     }
     (model, state, hands)
 }
 
-/// Moves every hand: down onto the floor, then across it at 0.5 m/s.
+/// Moves every hand sideways (0.32 m/s), dragging its hose across the floor.
 fn move_hands(model: &Model, state: &mut State, hands: &[LoadCaseId]) {
     let t = state.time;
     for (k, &hand) in hands.iter().enumerate() {
         let h = &model.hoses[k];
         let start = model.rest_x[h.first_node + h.element_count];
         if let Some(LoadCase::Fix(f)) = state.loads.get_mut(hand) {
-            f.position = start + DVec3::new(-0.5 * t, 0.3 * t, -0.2 * t.min(0.1));
+            f.position = start + DVec3::new(-0.1 * t, 0.3 * t, 0.0);
         }
     }
 }
@@ -92,7 +88,7 @@ fn kept_candidates_give_the_same_contacts_as_fresh_queries() {
     let (model, mut kept, hands) = world(120);
     let mut fresh = kept.clone();
     fresh.contact.candidates.enabled = false;
-    let (mut touching_steps, mut queries) = (0, 0u64);
+    let (mut touching, mut queries) = (0, 0u64);
     for _ in 0..3000 {
         move_hands(&model, &mut kept, &hands);
         move_hands(&model, &mut fresh, &hands);
@@ -102,13 +98,11 @@ fn kept_candidates_give_the_same_contacts_as_fresh_queries() {
         assert_eq!(kept.contact_force, fresh.contact_force, "step {}", kept.step);
         assert_eq!(kept.x, fresh.x, "step {}", kept.step);
         assert_eq!(kept.v, fresh.v, "step {}", kept.step);
-        if kept.contact.points.len() >= 10 {
-            touching_steps += 1;
-        }
+        touching += kept.contact.points.len() as u64;
         queries += (model.node_count() + model.elements.len()) as u64;
     }
     // the run exercised contact, and the lists were really kept
-    assert!(touching_steps > 800, "{touching_steps} steps with contact");
+    assert!(touching > 3 * 3000, "{touching} contact points in 3000 steps");
     let refreshes = kept.contact.candidates.refreshes;
     assert!(refreshes > 0 && refreshes * 10 < queries, "{refreshes} of {queries}");
     assert!(kept.contact_force.iter().any(|f| f.length() > 0.0));

@@ -59,7 +59,6 @@ pub struct CandidateCache {
     environment_key: (usize, usize),
     /// Refreshes made (a counter for benchmarks and tests).
     pub refreshes: u64,
-    pub offered: u64,
 }
 
 fn environment_key(env: &RigidEnvironment) -> (usize, usize) {
@@ -105,7 +104,6 @@ impl CandidateCache {
             items: vec![Candidate::default(); slots * SLOT_CAPACITY],
             environment_key: environment_key(env),
             refreshes: 0,
-            offered: 0,
         }
     }
 
@@ -188,7 +186,6 @@ impl CandidateCache {
             }
             let tri = env.parts[r.part as usize].mesh.triangle(r.triangle);
             if boxes_meet(&tri.local_aabb(), query) {
-                self.offered += 1;
                 f(r.part as usize, &tri);
             }
         }
