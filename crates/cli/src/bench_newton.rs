@@ -140,7 +140,11 @@ fn static_update(updates: usize, against_part: bool) -> Result<(f64, f64, f64)> 
         times.push(start.elapsed().as_secs_f64() * 1e3);
         iterations += r.iterations;
         anyhow::ensure!(r.converged, "static update {k} did not converge: {r:?}");
-        touching += state.contact_force.iter().filter(|f| **f != DVec3::ZERO).count();
+        touching += state
+            .contact_force
+            .iter()
+            .filter(|f| **f != DVec3::ZERO)
+            .count();
     }
     let per_update = |n: usize| n as f64 / updates as f64;
     Ok((median(&times), per_update(iterations), per_update(touching)))

@@ -94,17 +94,31 @@ fn kept_candidates_give_the_same_contacts_as_fresh_queries() {
         move_hands(&model, &mut fresh, &hands);
         step(&model, &mut kept);
         step(&model, &mut fresh);
-        assert_eq!(kept.contact.points, fresh.contact.points, "step {}", kept.step);
-        assert_eq!(kept.contact_force, fresh.contact_force, "step {}", kept.step);
+        assert_eq!(
+            kept.contact.points, fresh.contact.points,
+            "step {}",
+            kept.step
+        );
+        assert_eq!(
+            kept.contact_force, fresh.contact_force,
+            "step {}",
+            kept.step
+        );
         assert_eq!(kept.x, fresh.x, "step {}", kept.step);
         assert_eq!(kept.v, fresh.v, "step {}", kept.step);
         touching += kept.contact.points.len() as u64;
         queries += (model.node_count() + model.elements.len()) as u64;
     }
     // the run exercised contact, and the lists were really kept
-    assert!(touching > 3 * 3000, "{touching} contact points in 3000 steps");
+    assert!(
+        touching > 3 * 3000,
+        "{touching} contact points in 3000 steps"
+    );
     let refreshes = kept.contact.candidates.refreshes;
-    assert!(refreshes > 0 && refreshes * 10 < queries, "{refreshes} of {queries}");
+    assert!(
+        refreshes > 0 && refreshes * 10 < queries,
+        "{refreshes} of {queries}"
+    );
     assert!(kept.contact_force.iter().any(|f| f.length() > 0.0));
 }
 

@@ -136,7 +136,11 @@ impl CandidateCache {
             }
             n += 1;
         });
-        self.len[slot] = if n > SLOT_CAPACITY { OVERFLOW } else { n as u32 };
+        self.len[slot] = if n > SLOT_CAPACITY {
+            OVERFLOW
+        } else {
+            n as u32
+        };
         self.anchor_a[slot] = a;
         self.anchor_b[slot] = b;
         self.reach[slot] = reach;

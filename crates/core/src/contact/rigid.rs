@@ -23,8 +23,8 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use super::environment::{closer, cube};
 use super::coherence::may_touch;
+use super::environment::{closer, cube};
 use crate::contact::{closest_segment_triangle_away_from_ends, CandidateCache};
 use crate::{Model, State};
 use glam::DVec3;
