@@ -9,6 +9,8 @@
 //!    closest surface point to the hose point, whatever the triangles' orientation; if that
 //!    direction flips against the one remembered from the last step in contact, the point
 //!    has crossed the surface and the remembered side is kept (SPEC L4, ch. 5.3.3).
+//!    The triangles examined come from lists kept from step to step ([`super::coherence`]),
+//!    which find exactly the contacts fresh BVH queries would.
 //! 2. Velocities: the contact point loses its approaching normal velocity; Coulomb friction
 //!    removes the tangential velocity if it is below μ_s times the normal velocity change
 //!    (sticking), else reduces it by μ_k times that change (sliding). A beam-interior point
