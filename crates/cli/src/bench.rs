@@ -33,6 +33,17 @@ pub struct BenchOptions {
     pub quick: bool,
     /// Only the engine-bay section ([`crate::bench_engine_bay`]).
     pub engine_bay_only: bool,
+    /// Measure only one group of rows (for working on one part of the engine).
+    pub only: Option<BenchOnly>,
+}
+
+/// A group of rows `pliant bench --only` measures on its own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum BenchOnly {
+    /// 5 hoses × 30 without and with the 100 352-triangle floor, back to back.
+    Contact,
+    /// The Newton solvers' rows (quasi-static updates, implicit steps).
+    Newton,
 }
 
 /// Element length of the benchmark hoses [m]: 1.5 × d_a.
@@ -704,6 +715,51 @@ pub fn run(opts: &BenchOptions) -> Result<()> {
         }
         return Ok(());
     }
+    match opts.only {
+        None => run_all(opts),
+        Some(BenchOnly::Contact) => run_contact_only(opts),
+        Some(BenchOnly::Newton) => {
+            let newton = crate::bench_newton::run(opts.quick)?;
+            if opts.json {
+                println!("{}", serde_json::to_string_pretty(&newton)?);
+            } else {
+                print!("{}", crate::bench_newton::render(&newton));
+            }
+            Ok(())
+        }
+    }
+}
+
+/// `--only contact`: the contact-free and the floor rows of 5 × 30, and their ratio.
+fn run_contact_only(opts: &BenchOptions) -> Result<()> {
+    let budget = Budget::new(opts.quick);
+    let free = measure(5, 30, 0, 1, budget)?;
+    let floor = measure(5, 30, FLOOR_QUADS, 1, budget)?;
+    let cost = ContactCost {
+        triangles: floor.contact_triangles,
+        ns_per_step_free: free.ns_per_step,
+        ns_per_step_contact: floor.ns_per_step,
+        ratio: floor.ns_per_step / free.ns_per_step,
+        realtime_factor: floor.realtime_factor,
+        contact_points: floor.contact_points,
+    };
+    if opts.json {
+        println!("{}", serde_json::to_string_pretty(&cost)?);
+    } else {
+        println!(
+            "5 hoses × 30: {:.0} ns/step free, {:.0} ns/step on {} triangles ({} contact points): ×{:.2}, real-time factor {:.2}",
+            cost.ns_per_step_free,
+            cost.ns_per_step_contact,
+            cost.triangles,
+            cost.contact_points,
+            cost.ratio,
+            cost.realtime_factor
+        );
+    }
+    Ok(())
+}
+
+fn run_all(opts: &BenchOptions) -> Result<()> {
     let budget = Budget::new(opts.quick);
     let mut cases: Vec<(usize, usize, usize)> =
         SINGLE_HOSE_ELEMENTS.iter().map(|&n| (1, n, 1)).collect();

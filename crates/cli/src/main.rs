@@ -220,6 +220,10 @@ enum Command {
         /// solver with and without sleeping).
         #[arg(long = "engine-bay")]
         engine_bay: bool,
+        /// Measure one group of rows only: `contact` (5 × 30 without and with the floor)
+        /// or `newton` (the Newton solvers' rows).
+        #[arg(long, value_enum)]
+        only: Option<bench::BenchOnly>,
     },
     /// Pliant's side of the head-to-head benchmarks with PyElastica and MuJoCo
     /// (bench/peers/run.sh); prints one JSON object.
@@ -377,10 +381,12 @@ fn main() -> ExitCode {
             json,
             quick,
             engine_bay,
+            only,
         } => bench::run(&bench::BenchOptions {
             json,
             quick,
             engine_bay_only: engine_bay,
+            only,
         })
         .map(|_| ExitCode::SUCCESS),
         Command::Peer { case } => match case {

@@ -76,7 +76,7 @@ impl State {
             held: vec![false; n],
             loads: LoadCases::default(),
             contact_force: vec![DVec3::ZERO; n],
-            contact: ContactScratch::new(n, model.elements.len()),
+            contact: ContactScratch::new(model),
             friction: FrictionMemory::new(&model.rest_x),
             bodies: model
                 .bodies

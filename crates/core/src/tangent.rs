@@ -10,6 +10,11 @@
 //! With `rate_factor` c ≠ 0 the velocities depend on the increments as v = v₀ + c δx,
 //! ω = ω₀ + c δθ (c = γ/(β Δt) in Newmark's scheme), so the stiffness-proportional
 //! damping's tangent is included too.
+//!
+//! The loads depend on the end positions and velocities only through x_b − x_a and
+//! v_b − v_a (a rigid translation changes nothing), so ∂/∂x_a = −∂/∂x_b: only 9 of the 12
+//! increments are carried as dual components (δx_b, δθ_a, δθ_b), a quarter less work in
+//! every dual operation (issue 15, item 3).
 
 use crate::autodiff::{Dual, Quat, Scalar, V3};
 use crate::element::{BeamElement, ElementEnds, ElementLoads};
@@ -19,11 +24,13 @@ use nalgebra::SMatrix;
 /// 12 × 12 element tangent, rows/columns ordered (x_a, θ_a, x_b, θ_b).
 pub type ElementTangent = SMatrix<f64, 12, 12>;
 
-type D12 = Dual<12>;
+/// Dual components: δx_b (0..3), δθ_a (3..6), δθ_b (6..9).
+const N: usize = 9;
+type D9 = Dual<N>;
 
-fn seeded_vector(value: DVec3, first: usize, factor: f64) -> V3<D12> {
+fn seeded_vector(value: DVec3, first: usize, factor: f64) -> V3<D9> {
     let comp = |k: usize, re: f64| {
-        let mut d = D12::cst(re);
+        let mut d = D9::cst(re);
         d.eps[first + k] = factor;
         d
     };
@@ -31,9 +38,19 @@ fn seeded_vector(value: DVec3, first: usize, factor: f64) -> V3<D12> {
 }
 
 /// exp(δθ) q to first order in δθ: (½ δθ, 1) ⊗ q, exact in its derivative at δθ = 0.
-fn seeded_rotation(q: DQuat, first: usize) -> Quat<D12> {
+fn seeded_rotation(q: DQuat, first: usize) -> Quat<D9> {
     let half = seeded_vector(DVec3::ZERO, first, 0.5);
-    Quat::from_parts(half, D12::cst(1.0)) * Quat::cst(q)
+    Quat::from_parts(half, D9::cst(1.0)) * Quat::cst(q)
+}
+
+/// Dual component and sign of column `j` of the 12 × 12 tangent.
+fn column_source(j: usize) -> (usize, f64) {
+    match j {
+        0..3 => (j, -1.0), // δx_a: minus δx_b (translation invariance)
+        3..6 => (j, 1.0),
+        6..9 => (j - 6, 1.0),
+        _ => (j - 3, 1.0),
+    }
 }
 
 /// The element's loads at `ends` and their tangent K = −∂loads/∂u.
@@ -43,18 +60,12 @@ pub fn element_tangent(
     beta: f64,
     rate_factor: f64,
 ) -> (ElementLoads, ElementTangent) {
-    let x = [
-        seeded_vector(ends.x[0], 0, 1.0),
-        seeded_vector(ends.x[1], 6, 1.0),
-    ];
-    let q = [seeded_rotation(ends.q[0], 3), seeded_rotation(ends.q[1], 9)];
-    let v = [
-        seeded_vector(ends.v[0], 0, rate_factor),
-        seeded_vector(ends.v[1], 6, rate_factor),
-    ];
+    let x = [V3::cst(ends.x[0]), seeded_vector(ends.x[1], 0, 1.0)];
+    let q = [seeded_rotation(ends.q[0], 3), seeded_rotation(ends.q[1], 6)];
+    let v = [V3::cst(ends.v[0]), seeded_vector(ends.v[1], 0, rate_factor)];
     let w = [
         seeded_vector(ends.w[0], 3, rate_factor),
-        seeded_vector(ends.w[1], 9, rate_factor),
+        seeded_vector(ends.w[1], 6, rate_factor),
     ];
     let l = element.loads_of(x, q, v, w, beta);
     let rows = [l.force[0], l.moment[0], l.force[1], l.moment[1]];
@@ -62,7 +73,8 @@ pub fn element_tangent(
     for (block, vec) in rows.iter().enumerate() {
         for (c, comp) in [vec.x, vec.y, vec.z].iter().enumerate() {
             for j in 0..12 {
-                k[(3 * block + c, j)] = -comp.eps[j];
+                let (source, sign) = column_source(j);
+                k[(3 * block + c, j)] = -sign * comp.eps[source];
             }
         }
     }

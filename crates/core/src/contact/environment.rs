@@ -72,30 +72,53 @@ impl RigidEnvironment {
     /// found among the triangles whose bounding boxes meet the cube of half-size
     /// `max_distance` around `p` (anything outside that cube is farther away).
     pub fn closest_point(&self, p: DVec3, max_distance: f64) -> Option<(usize, DVec3, f64)> {
-        let mut best: Option<(usize, DVec3, f64)> = None;
-        let query = Aabb::new(
-            p - DVec3::splat(max_distance),
-            p + DVec3::splat(max_distance),
-        );
-        self.for_each_triangle_near(&query, |k, tri| {
-            let q = tri.project_local_point(p, false).point;
-            let d = (q - p).length();
-            if d <= max_distance && best.is_none_or(|b| d < b.2) {
-                best = Some((k, q, d));
-            }
+        let mut best = None;
+        self.for_each_triangle_near(&cube(p, max_distance), |k, tri| {
+            closer(&mut best, p, max_distance, k, tri)
         });
         best
     }
 
-    /// Calls `f(part, triangle)` for every triangle whose box meets `aabb`.
+    /// Calls `f(part, triangle)` for every triangle whose box meets `aabb`, parts in
+    /// order, each part's triangles in its BVH's depth-first order.
     pub fn for_each_triangle_near(&self, aabb: &Aabb, mut f: impl FnMut(usize, &Triangle)) {
+        self.for_each_triangle_index_near(aabb, |k, _, tri| f(k, tri));
+    }
+
+    /// As [`Self::for_each_triangle_near`], with each triangle's index in its part's mesh.
+    pub fn for_each_triangle_index_near(
+        &self,
+        aabb: &Aabb,
+        mut f: impl FnMut(usize, u32, &Triangle),
+    ) {
         for (k, part) in self.parts.iter().enumerate() {
             if !part.mesh.local_aabb().intersects(aabb) {
                 continue;
             }
             for i in part.mesh.bvh().intersect_aabb(aabb) {
-                f(k, &part.mesh.triangle(i));
+                f(k, i, &part.mesh.triangle(i));
             }
         }
+    }
+}
+
+/// The cube of half-size `h` around `p`.
+pub(crate) fn cube(p: DVec3, h: f64) -> Aabb {
+    Aabb::new(p - DVec3::splat(h), p + DVec3::splat(h))
+}
+
+/// Keeps in `best` the first-found closest (part, point, distance) to `p` within
+/// `max_distance`, offered triangle `tri` of part `k`.
+pub(crate) fn closer(
+    best: &mut Option<(usize, DVec3, f64)>,
+    p: DVec3,
+    max_distance: f64,
+    k: usize,
+    tri: &Triangle,
+) {
+    let q = tri.project_local_point(p, false).point;
+    let d = (q - p).length();
+    if d <= max_distance && best.is_none_or(|b| d < b.2) {
+        *best = Some((k, q, d));
     }
 }

@@ -11,6 +11,7 @@
 //! capsules, found by an O(N) uniform-grid broad phase ([`broad_phase`]).
 
 pub mod broad_phase;
+pub mod coherence;
 mod environment;
 pub mod friction;
 pub mod hose_hose;
@@ -19,6 +20,7 @@ mod rigid;
 mod segment_triangle;
 
 pub use broad_phase::BroadPhase;
+pub use coherence::CandidateCache;
 pub use environment::{RigidEnvironment, RigidPart};
 pub use hose_hose::{
     add_hose_contact_forces, hose_contact_forces, hose_contact_forces_with, ContactPair,

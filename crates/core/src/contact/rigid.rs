@@ -9,6 +9,8 @@
 //!    closest surface point to the hose point, whatever the triangles' orientation; if that
 //!    direction flips against the one remembered from the last step in contact, the point
 //!    has crossed the surface and the remembered side is kept (SPEC L4, ch. 5.3.3).
+//!    The triangles examined come from lists kept from step to step ([`super::coherence`]),
+//!    which find exactly the contacts fresh BVH queries would.
 //! 2. Velocities: the contact point loses its approaching normal velocity; Coulomb friction
 //!    removes the tangential velocity if it is below μ_s times the normal velocity change
 //!    (sticking), else reduces it by μ_k times that change (sliding). A beam-interior point
@@ -23,7 +25,9 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use crate::contact::closest_segment_triangle_away_from_ends;
+use super::coherence::may_touch;
+use super::environment::{closer, cube};
+use crate::contact::{closest_segment_triangle_away_from_ends, CandidateCache};
 use crate::{Model, State};
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
@@ -34,14 +38,6 @@ const SKIN: f64 = 0.01;
 const MAX_PUSH: f64 = 0.1;
 /// Beam-interior contacts are those strictly between the nodes.
 const INTERIOR: f64 = 0.02;
-/// How far a node's distance query looks, in radii: nodes farther away are skipped until
-/// they may have moved that close.
-const QUERY_RANGE: f64 = 3.0;
-
-/// A lower bound on node `i`'s current distance to the environment.
-fn distance_bound(c: &ContactScratch, i: usize, x: DVec3) -> f64 {
-    c.node_distance[i] - (x - c.node_measured_at[i]).length()
-}
 
 /// One active contact in a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -68,21 +64,19 @@ pub struct ContactScratch {
     pub node_normal: Vec<DVec3>,
     /// Normal of each beam's last interior contact (zero when not in contact).
     pub element_normal: Vec<DVec3>,
-    /// Distance from each node to the nearest part when last measured [m], and where the
-    /// node was then: |x − x_measured| bounds how much closer it can have come, so far
-    /// nodes skip the mesh query (conservative advancement).
-    pub node_distance: Vec<f64>,
-    pub node_measured_at: Vec<DVec3>,
+    /// Each node's (slot i) and each beam's (slot nodes + e) candidate triangles, kept
+    /// from step to step ([`CandidateCache`]; the same contacts as fresh queries).
+    pub candidates: CandidateCache,
 }
 
 impl ContactScratch {
-    pub fn new(nodes: usize, elements: usize) -> Self {
+    pub fn new(model: &Model) -> Self {
+        let (nodes, elements) = (model.node_count(), model.elements.len());
         ContactScratch {
             points: Vec::with_capacity(nodes + elements),
             node_normal: vec![DVec3::ZERO; nodes],
             element_normal: vec![DVec3::ZERO; elements],
-            node_distance: vec![0.0; nodes],
-            node_measured_at: vec![DVec3::splat(f64::INFINITY); nodes],
+            candidates: CandidateCache::new(nodes + elements, &model.environment),
         }
     }
 }
@@ -131,20 +125,23 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     let env = &model.environment;
     let contact = &mut state.contact;
     contact.points.clear();
-    for i in 0..state.x.len() {
+    let nodes = state.x.len();
+    for i in 0..nodes {
         let r = model.radius[i];
         let reach = r * (1.0 + SKIN);
-        if distance_bound(contact, i, state.x[i]) > reach {
-            contact.node_normal[i] = DVec3::ZERO;
-            continue; // certainly clear of every part: no query
+        let x = state.x[i];
+        let mut found = None;
+        if !state.held[i] {
+            let query = cube(x, reach);
+            contact
+                .candidates
+                .for_each_near(env, i, x, x, reach, &query, |k, tri| {
+                    closer(&mut found, x, reach, k, tri)
+                });
         }
-        let range = QUERY_RANGE * r;
-        let found = env.closest_point(state.x[i], range);
-        contact.node_distance[i] = found.map_or(range, |f| f.2);
-        contact.node_measured_at[i] = state.x[i];
-        match found.filter(|f| f.2 <= reach && !state.held[i]) {
+        match found {
             Some((part, q, _)) => {
-                let (normal, depth) = side(state.x[i], q, r, contact.node_normal[i]);
+                let (normal, depth) = side(x, q, r, contact.node_normal[i]);
                 contact.node_normal[i] = normal;
                 contact.points.push(ContactPoint {
                     node_a: i,
@@ -166,28 +163,26 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         let r = model.radius[a].max(model.radius[b]);
         let reach = r * (1.0 + SKIN);
         let (xa, xb) = (state.x[a], state.x[b]);
-        // every point of the segment lies within half its length of a node
-        let bound = distance_bound(contact, a, xa).min(distance_bound(contact, b, xb))
-            - 0.5 * (xb - xa).length();
-        if bound > reach {
-            contact.element_normal[e] = DVec3::ZERO;
-            continue;
-        }
         let aabb = Aabb::new(
             xa.min(xb) - DVec3::splat(reach),
             xa.max(xb) + DVec3::splat(reach),
         );
         let mut best: Option<(usize, f64, DVec3, DVec3, f64)> = None;
-        env.for_each_triangle_near(&aabb, |part, tri| {
-            let c = closest_segment_triangle_away_from_ends(xa, xb, tri);
-            if c.t > INTERIOR
-                && c.t < 1.0 - INTERIOR
-                && c.distance < reach
-                && best.is_none_or(|bst| c.distance < bst.4)
-            {
-                best = Some((part, c.t, c.on_segment, c.on_triangle, c.distance));
-            }
-        });
+        contact
+            .candidates
+            .for_each_near(env, nodes + e, xa, xb, reach, &aabb, |part, tri| {
+                if !may_touch(xa, xb, tri, reach) {
+                    return;
+                }
+                let c = closest_segment_triangle_away_from_ends(xa, xb, tri);
+                if c.t > INTERIOR
+                    && c.t < 1.0 - INTERIOR
+                    && c.distance < reach
+                    && best.is_none_or(|bst| c.distance < bst.4)
+                {
+                    best = Some((part, c.t, c.on_segment, c.on_triangle, c.distance));
+                }
+            });
         match best {
             Some((part, t, p, q, _)) => {
                 let (normal, depth) = side(p, q, r, contact.element_normal[e]);
