@@ -38,9 +38,45 @@ fn bumpy_floor(quads: usize) -> RigidPartSpec {
     }
 }
 
+/// A horizontal cylinder of radius `r` along y through (0.2, 0, −0.02 − r) m (its top 2 mm
+/// below the hoses), as a prism of `n` facets 0.8 m long: long, thin triangles, dozens of
+/// them within reach of a beam that lies on it — more than a slot keeps.
+fn fine_cylinder(r: f64, n: usize) -> RigidPartSpec {
+    let mut vertices = Vec::new();
+    for y in [-0.4, 0.4] {
+        for k in 0..n {
+            let phi = std::f64::consts::TAU * k as f64 / n as f64;
+            vertices.push(DVec3::new(
+                0.2 + r * phi.cos(),
+                y,
+                -0.02 - r + r * phi.sin(),
+            ));
+        }
+    }
+    let mut triangles = Vec::new();
+    for k in 0..n {
+        let (a, b) = (k as u32, ((k + 1) % n) as u32);
+        let (c, d) = (a + n as u32, b + n as u32);
+        triangles.push([a, b, d]);
+        triangles.push([a, d, c]);
+    }
+    RigidPartSpec {
+        name: "cylinder".into(),
+        vertices,
+        triangles,
+        friction_static: 0.5,
+        friction_sliding: 0.5,
+    }
+}
+
 /// Three hoses of 20 beams (24 mm, d_a 16 mm) 1 cm above the floor, the last node of
 /// each held by a hand (returned) that drags it across the floor.
 fn world(quads: usize) -> (Model, State, Vec<LoadCaseId>) {
+    world_on(bumpy_floor(quads))
+}
+
+/// The hoses of [`world`] above `part`.
+fn world_on(part: RigidPartSpec) -> (Model, State, Vec<LoadCaseId>) {
     let hoses = (0..3)
         .map(|h| HoseSpec {
             name: format!("h{h}"),
@@ -54,7 +90,7 @@ fn world(quads: usize) -> (Model, State, Vec<LoadCaseId>) {
         .collect();
     let model = Model::build(&WorldSpec {
         hoses,
-        rigid_parts: vec![bumpy_floor(quads)],
+        rigid_parts: vec![part],
         settings: SimSettings::default(),
     })
     .unwrap();
@@ -85,15 +121,39 @@ fn move_hands(model: &Model, state: &mut State, hands: &[LoadCaseId]) {
 
 #[test]
 fn kept_candidates_give_the_same_contacts_as_fresh_queries() {
-    let (model, mut kept, hands) = world(120);
+    let (model, kept, hands) = world(120);
+    same_contacts_as_fresh_queries(&model, kept, &hands, 3 * 3000);
+}
+
+/// On a finely faceted cylinder a beam has more triangles within reach than a slot
+/// keeps: the nearest are kept (and refreshed sooner), and a search the dropped ones could
+/// affect falls back to a fresh query — still the same contacts, bit for bit.
+#[test]
+fn truncated_lists_on_a_fine_mesh_give_the_same_contacts() {
+    let (model, kept, hands) = world_on(fine_cylinder(0.05, 512));
+    // the hoses hang over the cylinder: fewer, but steady, contacts
+    let kept = same_contacts_as_fresh_queries(&model, kept, &hands, 2 * 3000);
+    let truncations = kept.contact.candidates.truncations;
+    assert!(truncations > 0, "no list was ever truncated");
+}
+
+/// Steps `kept` and a copy without kept lists 3000 steps, dragging the hands, and checks
+/// that their contacts, forces and motions agree to the last bit, with more than
+/// `min_touching` contact points in all; returns `kept`.
+fn same_contacts_as_fresh_queries(
+    model: &Model,
+    mut kept: State,
+    hands: &[LoadCaseId],
+    min_touching: u64,
+) -> State {
     let mut fresh = kept.clone();
     fresh.contact.candidates.enabled = false;
     let (mut touching, mut queries) = (0, 0u64);
     for _ in 0..3000 {
-        move_hands(&model, &mut kept, &hands);
-        move_hands(&model, &mut fresh, &hands);
-        step(&model, &mut kept);
-        step(&model, &mut fresh);
+        move_hands(model, &mut kept, hands);
+        move_hands(model, &mut fresh, hands);
+        step(model, &mut kept);
+        step(model, &mut fresh);
         assert_eq!(
             kept.contact.points, fresh.contact.points,
             "step {}",
@@ -111,7 +171,7 @@ fn kept_candidates_give_the_same_contacts_as_fresh_queries() {
     }
     // the run exercised contact, and the lists were really kept
     assert!(
-        touching > 3 * 3000,
+        touching > min_touching,
         "{touching} contact points in 3000 steps"
     );
     let refreshes = kept.contact.candidates.refreshes;
@@ -120,6 +180,7 @@ fn kept_candidates_give_the_same_contacts_as_fresh_queries() {
         "{refreshes} of {queries}"
     );
     assert!(kept.contact_force.iter().any(|f| f.length() > 0.0));
+    kept
 }
 
 /// A state moved elsewhere by hand (a reset, a restored snapshot) re-queries.

@@ -1,6 +1,7 @@
 //! The rigid environment: one parry triangle mesh (with its bounding-volume hierarchy)
 //! per part, built once with the model.
 
+use super::coherence::{scan_fresh, Nearest};
 use crate::spec::RigidPartSpec;
 use glam::DVec3;
 use parry3d_f64::bounding_volume::{Aabb, BoundingVolume};
@@ -72,11 +73,9 @@ impl RigidEnvironment {
     /// found among the triangles whose bounding boxes meet the cube of half-size
     /// `max_distance` around `p` (anything outside that cube is farther away).
     pub fn closest_point(&self, p: DVec3, max_distance: f64) -> Option<(usize, DVec3, f64)> {
-        let mut best = None;
-        self.for_each_triangle_near(&cube(p, max_distance), |k, tri| {
-            closer(&mut best, p, max_distance, k, tri)
-        });
-        best
+        let mut search = ClosestPoint::new(p, max_distance);
+        scan_fresh(self, &cube(p, max_distance), &mut search);
+        search.best.map(|b| (b.part, b.point, b.distance))
     }
 
     /// Calls `f(part, triangle)` for every triangle whose box meets `aabb`, parts in
@@ -107,18 +106,52 @@ pub(crate) fn cube(p: DVec3, h: f64) -> Aabb {
     Aabb::new(p - DVec3::splat(h), p + DVec3::splat(h))
 }
 
-/// Keeps in `best` the first-found closest (part, point, distance) to `p` within
-/// `max_distance`, offered triangle `tri` of part `k`.
-pub(crate) fn closer(
-    best: &mut Option<(usize, DVec3, f64)>,
-    p: DVec3,
-    max_distance: f64,
-    k: usize,
-    tri: &Triangle,
-) {
-    let q = tri.project_local_point(p, false).point;
-    let d = (q - p).length();
-    if d <= max_distance && best.is_none_or(|b| d < b.2) {
-        *best = Some((k, q, d));
+/// The closest point found: part, point, distance, rank.
+#[derive(Clone, Copy)]
+pub(crate) struct PointHit {
+    pub part: usize,
+    pub point: DVec3,
+    pub distance: f64,
+    rank: u32,
+}
+
+/// The search for the closest point of any triangle to `x` within `reach` (equal
+/// distances: the first in the environment's order) — a node's contact.
+pub(crate) struct ClosestPoint {
+    x: DVec3,
+    reach: f64,
+    pub best: Option<PointHit>,
+}
+
+impl ClosestPoint {
+    pub fn new(x: DVec3, reach: f64) -> Self {
+        ClosestPoint {
+            x,
+            reach,
+            best: None,
+        }
+    }
+}
+
+impl Nearest for ClosestPoint {
+    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) {
+        let point = tri.project_local_point(self.x, false).point;
+        let distance = (point - self.x).length();
+        let better =
+            |b: &PointHit| distance < b.distance || (distance == b.distance && rank < b.rank);
+        if distance <= self.reach && self.best.as_ref().is_none_or(better) {
+            self.best = Some(PointHit {
+                part,
+                point,
+                distance,
+                rank,
+            });
+        }
+    }
+    fn bound(&self) -> f64 {
+        self.best.map_or(self.reach, |b| b.distance)
+    }
+    fn reset(&mut self) {
+        self.best = None;
     }
 }

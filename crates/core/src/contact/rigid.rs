@@ -25,12 +25,13 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use super::coherence::may_touch;
-use super::environment::{closer, cube};
+use super::coherence::{may_touch, Nearest};
+use super::environment::{cube, ClosestPoint};
 use crate::contact::{closest_segment_triangle_away_from_ends, CandidateCache};
 use crate::{Model, State};
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
+use parry3d_f64::shape::Triangle;
 
 /// Detection distance beyond touching, as a fraction of the radius.
 const SKIN: f64 = 0.01;
@@ -120,6 +121,57 @@ fn contact_velocity(state: &State, c: &ContactPoint) -> DVec3 {
     (1.0 - c.t) * state.v[c.node_a] + c.t * state.v[c.node_b]
 }
 
+/// A beam-interior contact: part, parameter, points on the beam and the triangle.
+#[derive(Clone, Copy)]
+struct BeamHit {
+    part: usize,
+    t: f64,
+    p: DVec3,
+    q: DVec3,
+    distance: f64,
+    rank: u32,
+}
+
+/// The search for a beam's interior contact: the closest approach strictly inside the
+/// segment (away from its nodes, which have their own contacts) within reach.
+struct BeamSearch {
+    a: DVec3,
+    b: DVec3,
+    reach: f64,
+    best: Option<BeamHit>,
+}
+
+impl Nearest for BeamSearch {
+    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) {
+        if !may_touch(self.a, self.b, tri, self.reach) {
+            return;
+        }
+        let c = closest_segment_triangle_away_from_ends(self.a, self.b, tri);
+        let better =
+            |b: &BeamHit| c.distance < b.distance || (c.distance == b.distance && rank < b.rank);
+        if c.t > INTERIOR
+            && c.t < 1.0 - INTERIOR
+            && c.distance < self.reach
+            && self.best.as_ref().is_none_or(better)
+        {
+            self.best = Some(BeamHit {
+                part,
+                t: c.t,
+                p: c.on_segment,
+                q: c.on_triangle,
+                distance: c.distance,
+                rank,
+            });
+        }
+    }
+    fn bound(&self) -> f64 {
+        self.best.map_or(self.reach, |b| b.distance)
+    }
+    fn reset(&mut self) {
+        self.best = None;
+    }
+}
+
 /// Steps 1 and 2: detect contacts and correct velocities (see the module doc).
 pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     let env = &model.environment;
@@ -130,17 +182,16 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         let r = model.radius[i];
         let reach = r * (1.0 + SKIN);
         let x = state.x[i];
-        let mut found = None;
+        let mut search = ClosestPoint::new(x, reach);
         if !state.held[i] {
             let query = cube(x, reach);
             contact
                 .candidates
-                .for_each_near(env, i, x, x, reach, &query, |k, tri| {
-                    closer(&mut found, x, reach, k, tri)
-                });
+                .scan(env, i, x, x, reach, &query, &mut search);
         }
+        let found = search.best.map(|b| (b.part, b.point));
         match found {
-            Some((part, q, _)) => {
+            Some((part, q)) => {
                 let (normal, depth) = side(x, q, r, contact.node_normal[i]);
                 contact.node_normal[i] = normal;
                 contact.points.push(ContactPoint {
@@ -167,24 +218,18 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
             xa.min(xb) - DVec3::splat(reach),
             xa.max(xb) + DVec3::splat(reach),
         );
-        let mut best: Option<(usize, f64, DVec3, DVec3, f64)> = None;
+        let mut search = BeamSearch {
+            a: xa,
+            b: xb,
+            reach,
+            best: None,
+        };
         contact
             .candidates
-            .for_each_near(env, nodes + e, xa, xb, reach, &aabb, |part, tri| {
-                if !may_touch(xa, xb, tri, reach) {
-                    return;
-                }
-                let c = closest_segment_triangle_away_from_ends(xa, xb, tri);
-                if c.t > INTERIOR
-                    && c.t < 1.0 - INTERIOR
-                    && c.distance < reach
-                    && best.is_none_or(|bst| c.distance < bst.4)
-                {
-                    best = Some((part, c.t, c.on_segment, c.on_triangle, c.distance));
-                }
-            });
+            .scan(env, nodes + e, xa, xb, reach, &aabb, &mut search);
+        let best = search.best;
         match best {
-            Some((part, t, p, q, _)) => {
+            Some(BeamHit { part, t, p, q, .. }) => {
                 let (normal, depth) = side(p, q, r, contact.element_normal[e]);
                 contact.element_normal[e] = normal;
                 contact.points.push(ContactPoint {
