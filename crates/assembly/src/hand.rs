@@ -198,24 +198,15 @@ impl Hand {
             .sum()
     }
 
-    /// The torque the hand exerted on the hose in the last step, about its position at
-    /// `state.time` [N·m]: the held nodes' support moments and the moments of their
-    /// forces (a firm grip holds two nodes, so a couple of forces is a torque too).
-    pub fn torque(&self, state: &State) -> DVec3 {
-        let (h, _) = self.motion.pose_at(state.time);
-        self.held[..self.count]
-            .iter()
-            .map(|&(node, ..)| {
-                state.reaction_moment[node] + (state.x[node] - h).cross(state.reaction_force[node])
-            })
-            .sum()
-    }
-
     /// The load the hand applied in the last step.
     pub fn load(&self, model: &Model, state: &State) -> HandLoad {
         let (h, _) = self.motion.pose_at(state.time);
         let force = self.force(state);
-        let torque = self.torque(state);
+        let mut torque = DVec3::ZERO;
+        for &(node, ..) in &self.held[..self.count] {
+            torque +=
+                state.reaction_moment[node] + (state.x[node] - h).cross(state.reaction_force[node]);
+        }
         let el = &model.elements[self.element];
         let info = &model.hoses[self.hose];
         let towards_start =

@@ -3,7 +3,7 @@
 //! push-on and clips — through a session folder too; a log converts to a scene whose
 //! timeline re-enacts it; the workcell's grab rules.
 
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 use pliant_assembly::workcell::log::InputLog;
 use pliant_assembly::workcell::replay::replay;
 use pliant_assembly::{
@@ -470,59 +470,4 @@ fn an_aimed_hand_pulls_no_harder_than_its_strength() {
         (500.0..700.0).contains(&last),
         "and keeps pulling at about its strength ({last} N)"
     );
-}
-
-/// Issue 12, item 6 (the implicit soak's cause): an aimed hand's wrist is as strong as a
-/// person's, no more ([`pliant_assembly::HandLimits::max_torque`]). Turned 1.5 rad on the
-/// spot while it holds the upper hose (taut between its fixings), a hand without a torque
-/// limit bends it by a couple of forces far beyond any wrist; a hand of 20 N·m gives way
-/// at about its strength. Under each Newton solver too, where a step is 10 ms long.
-#[test]
-fn an_aimed_hand_turns_no_harder_than_its_torque_strength() {
-    let scene = demo_scene().unwrap();
-    let peak = |kind: SolverKind, max_torque: Option<f64>| {
-        let mut opts = options(kind);
-        opts.initial_loads = true; // the hoses' ends held as the demo starts
-        opts.hand_limits.max_torque = max_torque;
-        let mut cell = scene.workcell(opts).unwrap();
-        let at = DVec3::new(-0.36, 0.122, 0.503);
-        cell.apply(Input::Grab {
-            hand: 0,
-            at,
-            grip: Default::default(),
-        })
-        .unwrap();
-        let turned = DQuat::from_rotation_z(1.5) * cell.hand(0).unwrap().pose_at(0.0).1;
-        cell.apply(Input::AimHand {
-            hand: 0,
-            position: at,
-            orientation: Some(turned),
-        })
-        .unwrap();
-        let mut peak: f64 = 0.0;
-        for _ in 0..cell.steps_in(1.0) {
-            cell.step(&mut NoObserver).unwrap();
-            peak = peak.max(cell.hand_records()[0].load.torque.length());
-        }
-        peak
-    };
-    // The hand acts on the torque of the last step: within one step it may still turn
-    // by up to ω_max·Δt (0.13 rad in a Newton solver's 10 ms), so the peak overshoots the
-    // strength by about one step's increase — a quarter at the explicit step, half at 10 ms.
-    for (kind, overshoot) in [
-        (SolverKind::Explicit, 1.25),
-        (SolverKind::Implicit, 1.5),
-        (SolverKind::Static, 1.5),
-    ] {
-        let unlimited = peak(kind, None);
-        assert!(
-            unlimited > 60.0,
-            "{kind}: an unlimited wrist reaches {unlimited} N·m"
-        );
-        let strong = peak(kind, Some(20.0));
-        assert!(
-            strong > 18.0 && strong < 20.0 * overshoot,
-            "{kind}: a 20 N·m wrist peaked at {strong} N·m"
-        );
-    }
 }

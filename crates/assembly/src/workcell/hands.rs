@@ -27,11 +27,6 @@ pub struct HandLimits {
     /// so, bit for bit).
     #[serde(default)]
     pub max_force: Option<f64>,
-    /// The hand's torque strength [N·m]: the largest torque an interactively steered
-    /// hand exerts on the hose (its wrist gives way beyond, [`HeldHand::update`]).
-    /// `None`: unlimited (input logs written before this field replay so, bit for bit).
-    #[serde(default)]
-    pub max_torque: Option<f64>,
 }
 
 /// Default hand strength [N]: of the order of the largest static pulling force of a
@@ -41,14 +36,6 @@ pub struct HandLimits {
 /// the dissertation's tables (≤ 250 N), so it never decides a verdict.
 pub const DEFAULT_HAND_STRENGTH: f64 = 600.0;
 
-/// Default torque strength of a hand [N·m]: of the order of the largest torques a hand
-/// exerts on a gripped handle (maximum action torques of DIN 33411-5: some tens of
-/// newton metres) — an assumption, set per session; far above the dissertation's twist
-/// and bending guide values (table 3.11: ≤ 3.2 N·m), so it never decides a verdict. Without
-/// it a firm grip could hold a hose by a couple of forces of any size: a soak of ten hands
-/// on two hoses saw hundreds of kN·m at one hand before the implicit session diverged.
-pub const DEFAULT_HAND_TORQUE_STRENGTH: f64 = 50.0;
-
 impl Default for HandLimits {
     fn default() -> Self {
         HandLimits {
@@ -56,7 +43,6 @@ impl Default for HandLimits {
             max_acceleration: 20.0,
             max_turn_rate: 4.0 * std::f64::consts::PI,
             max_force: Some(DEFAULT_HAND_STRENGTH),
-            max_torque: Some(DEFAULT_HAND_TORQUE_STRENGTH),
         }
     }
 }
@@ -87,10 +73,7 @@ impl HeldHand {
     /// its strength F_max (the force F it exerted in the last step, |F| > F_max) does not
     /// move further along F, and gives way against F at v_max·min(|F|/F_max − 1, 1)
     /// (gently: a faster yield makes the held nodes' own inertia force oscillate):
-    /// a person cannot drag a hose taut between its fixings by a kilonewton. Likewise a
-    /// hand at its torque strength T_max (|T| > T_max) gives way against T at
-    /// ω_max·min(|T|/T_max − 1, 1) and keeps the orientation it gave way to until it is
-    /// aimed at another (a wrist does not snap back, which would make it chatter).
+    /// a person cannot drag a hose taut between its fixings by a kilonewton.
     pub fn update(&mut self, state: &mut State, t: f64, dt: f64, limits: &HandLimits) {
         if let Some(aim) = &mut self.aim {
             let to_go = (aim.target.0 - aim.pose.0).length();
@@ -112,22 +95,10 @@ impl HeldHand {
                 }
             }
             aim.pose.0 += step;
-            let torque = limits
-                .max_torque
-                .map_or(0.0, |t_max| self.hand.torque(state).length() / t_max);
-            aim.pose.1 = if torque > 1.0 {
-                aim.at_strength = true;
-                let against = -self.hand.torque(state).normalize();
-                let yield_angle = limits.max_turn_rate * dt * (torque - 1.0).min(1.0);
-                let turned =
-                    (DQuat::from_scaled_axis(against * yield_angle) * aim.pose.1).normalize();
-                aim.target.1 = turned; // the wrist gave way: it does not turn back by itself
-                turned
-            } else {
-                aim.pose
-                    .1
-                    .rotate_towards(aim.target.1, limits.max_turn_rate * dt)
-            };
+            aim.pose.1 = aim
+                .pose
+                .1
+                .rotate_towards(aim.target.1, limits.max_turn_rate * dt);
             self.hand.set_pose(aim.pose.0, aim.pose.1);
         }
         self.hand.update(state, t);
