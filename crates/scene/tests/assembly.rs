@@ -182,6 +182,7 @@ fn ergonomics_map_onto_the_profile() {
             moments_decide: true,
             population: Population::Men,
             duty: Duty::Continuous,
+            ..Default::default()
         }
     );
     // Overrides after the posture; the same spellings as the profile's own parser.

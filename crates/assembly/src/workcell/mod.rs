@@ -26,7 +26,7 @@ pub use observer::{NoObserver, Observer};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
 pub use tally::{
     limits_of, ContactEpisode, HandPeak, HandRecord, MomentNote, NodePeak, Peak, RunSummary,
-    SettleOutcome, Tally,
+    SettleOutcome, Tally, ZoneNote,
 };
 pub use verdict::{Stage, Verdict};
 
@@ -390,6 +390,7 @@ impl Workcell {
             max_contact_force_time: t.max_contact_force_time,
             ergonomics: self.profile.to_string(),
             moments_decide: self.profile.moments_decide,
+            standard: self.profile.standard,
             fasteners: self.fasteners.reports(),
             fastener_series: t.fastener_series.clone(),
             solver: t.solver.clone(),
