@@ -589,6 +589,9 @@ pub enum ActionEntry {
     Unload(UnloadEntry),
     /// Remove the fix / drive from the node.
     Release(NodeEntry),
+    /// A cable tie bundles two hoses: the node and `to` are held at the distance they
+    /// have now, for the rest of the run.
+    Tie(TieEntry),
     /// A hand grabs the beam nearest to `at` (SPEC I1); its two nodes follow the hand.
     Grab(GrabEntry),
     /// Move a hand (holding a beam) along waypoints and/or turn it.
@@ -605,12 +608,13 @@ pub enum ActionEntry {
 }
 
 /// The names of the `action` values, in the order of [`ActionEntry`].
-pub const ACTION_NAMES: [&str; 11] = [
+pub const ACTION_NAMES: [&str; 12] = [
     "fix",
     "move",
     "load",
     "unload",
     "release",
+    "tie",
     "grab",
     "move_hand",
     "aim_hand",
@@ -627,6 +631,18 @@ pub struct NodeEntry {
     pub hose: String,
     /// Node index; negative counts from the end (−1 = last).
     pub node: i64,
+}
+
+/// `tie`: a cable tie between a node of one hose and a node of another.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TieEntry {
+    /// Hose name.
+    pub hose: String,
+    /// Node index; negative counts from the end (−1 = last).
+    pub node: i64,
+    /// The node of the other hose it is tied to.
+    pub to: NodeEntry,
 }
 
 /// `move`: drive a node along waypoints and/or rotate it.
