@@ -468,7 +468,7 @@ const CASES: &[Case] = &[
     Case { what: "tie of a node to itself", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0\nto = { hose = \"a\", node = 0 }")], field: "timeline[0].to", message: &["is the tied node itself"] },
     Case { what: "tie to an unknown hose", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0\nto = { hose = \"c\", node = 0 }")], field: "timeline[0].to.hose", message: &["unknown hose; hoses: a, b"] },
     Case { what: "tie to a node out of range", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0\nto = { hose = \"b\", node = 999 }")], field: "timeline[0].to.node", message: &["999"] },
-    Case { what: "tie without to", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0")], field: "timeline[0]", message: &["missing field `to`"] },
+    Case { what: "tie without to", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0")], field: "timeline[0].to", message: &["missing field `to`"] },
     // Stubs.
     Case { what: "stub zero length", edits: &[("length = 40", "length = 0")], field: "stubs[0].length", message: &["stubs[0].length = 0 mm: must be greater than 0"] },
     Case { what: "stub negative diameter", edits: &[("diameter = 29", "diameter = -29")], field: "stubs[0].diameter", message: &["= -29 mm: must be greater than 0"] },
