@@ -26,6 +26,9 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt;
 
+/// Why a frequency or duration range ends: the multiplier tables end there.
+const TABLE_END: &str = " (EN 1005-3's table ends there)";
+
 /// The data file, as shipped.
 pub const EN1005_3_TOML: &str = include_str!("../../data/en1005_3.toml");
 
@@ -135,7 +138,8 @@ impl En1005Params {
             Ok(t) => t,
             Err(e) => return Some(Err(e)),
         };
-        let number = |lo: f64, hi: f64, unit: &str| -> Result<f64, ErgonomicsError> {
+        // `note`: why the range ends where it does
+        let number = |lo: f64, hi: f64, unit: &str, note: &str| -> Result<f64, ErgonomicsError> {
             let refuse = |why: String| ErgonomicsError::Profile {
                 given: value.to_string(),
                 reason: format!("`{key}` {why}"),
@@ -147,7 +151,7 @@ impl En1005Params {
                 Ok(x)
             } else {
                 Err(refuse(format!(
-                    "must lie in [{lo}, {hi}]{unit} (EN 1005-3's tables end there), not {value}"
+                    "must lie in [{lo}, {hi}]{unit}{note}, not {value}"
                 )))
             }
         };
@@ -167,12 +171,17 @@ impl En1005Params {
                     reason: "`use` must be professional or domestic".into(),
                 }),
             },
-            "percentile" => number(1.0, 50.0, "").map(|x| self.percentile = x),
+            "percentile" => number(1.0, 50.0, "", " (the weaker half of the population)")
+                .map(|x| self.percentile = x),
             "velocity" => parse_named(value).map(|v| self.velocity = v),
-            "frequency_per_min" => number(0.0, tables.max_frequency(), " per minute")
+            "frequency_per_min" => number(0.0, tables.max_frequency(), " per minute", TABLE_END)
                 .map(|x| self.frequency_per_min = x),
-            "action_time_s" => number(0.0, 86_400.0, " s").map(|x| self.action_time_s = x),
-            "duration_h" => number(0.0, tables.max_duration(), " h").map(|x| self.duration_h = x),
+            "action_time_s" => {
+                number(0.0, 86_400.0, " s", " (a day)").map(|x| self.action_time_s = x)
+            }
+            "duration_h" => {
+                number(0.0, tables.max_duration(), " h", TABLE_END).map(|x| self.duration_h = x)
+            }
             _ => return None,
         };
         Some(result)
