@@ -211,3 +211,50 @@ fn explicit_solver_through_the_tie_action() {
     assert!(summary.settles[0].at_rest, "{:?}", summary.settles);
     check(&model, &state, 1e-5, "explicit");
 }
+
+/// Sleeping (SPEC I6): two tied hoses at rest fall asleep; a load on one wakes it, and
+/// the tie wakes the other as soon as the first moves.
+#[test]
+fn a_moving_hose_wakes_the_hose_tied_to_it() {
+    use pliant_core::integrators::explicit;
+    let model = model();
+    let mut state = State::at_rest(&model);
+    state.sleep.enabled = true;
+    for h in &model.hoses {
+        let i = h.node(0);
+        state.loads.add(LoadCase::Fix(Fix {
+            node: i,
+            position: state.x[i],
+            orientation: DQuat::IDENTITY,
+        }));
+    }
+    let (a, b) = tips(&model);
+    state.loads.add(LoadCase::Tie(Tie {
+        nodes: [a, b],
+        length: GAP,
+    }));
+    // at rest from the start: wait until both sleep
+    let mut steps = 0;
+    while state.sleep.hose_asleep != [true, true] {
+        explicit::step(&model, &mut state);
+        steps += 1;
+        assert!(steps < 100_000, "the hoses never fell asleep");
+    }
+    state.loads.add(LoadCase::DeadLoad(DeadLoad {
+        node: a,
+        force: -DVec3::Y * F,
+        moment: DVec3::ZERO,
+        ramp: None,
+    }));
+    state.sleep.wake(&model, 0); // as the workcell does when a load case changes
+    explicit::step(&model, &mut state);
+    assert_eq!(state.sleep.hose_asleep, [false, false]);
+    let before = state.x[b];
+    for _ in 0..200 {
+        explicit::step(&model, &mut state);
+    }
+    assert!(
+        (state.x[b] - before).y < 0.0,
+        "b was not dragged after waking"
+    );
+}
