@@ -51,8 +51,8 @@ fn tips(model: &Model) -> (usize, usize) {
     (model.hoses[0].node(N), model.hoses[1].node(N))
 }
 
-/// Roots clamped, tips tied, hose a's tip pulled along −Y (away from b).
-fn set_up(model: &Model) -> State {
+/// At rest, roots clamped, tips tied.
+fn clamped_and_tied(model: &Model) -> State {
     let mut state = State::at_rest(model);
     for h in &model.hoses {
         let i = h.node(0);
@@ -67,12 +67,23 @@ fn set_up(model: &Model) -> State {
         nodes: [a, b],
         length: GAP,
     }));
+    state
+}
+
+/// Hose a's tip pulled along −Y (away from b).
+fn pull(model: &Model, state: &mut State) {
     state.loads.add(LoadCase::DeadLoad(DeadLoad {
-        node: a,
+        node: tips(model).0,
         force: -DVec3::Y * F,
         moment: DVec3::ZERO,
         ramp: None,
     }));
+}
+
+/// Roots clamped, tips tied, hose a's tip pulled.
+fn set_up(model: &Model) -> State {
+    let mut state = clamped_and_tied(model);
+    pull(model, &mut state);
     state
 }
 
@@ -218,21 +229,9 @@ fn explicit_solver_through_the_tie_action() {
 fn a_moving_hose_wakes_the_hose_tied_to_it() {
     use pliant_core::integrators::explicit;
     let model = model();
-    let mut state = State::at_rest(&model);
+    let mut state = clamped_and_tied(&model);
     state.sleep.enabled = true;
-    for h in &model.hoses {
-        let i = h.node(0);
-        state.loads.add(LoadCase::Fix(Fix {
-            node: i,
-            position: state.x[i],
-            orientation: DQuat::IDENTITY,
-        }));
-    }
-    let (a, b) = tips(&model);
-    state.loads.add(LoadCase::Tie(Tie {
-        nodes: [a, b],
-        length: GAP,
-    }));
+    let b = tips(&model).1;
     // at rest from the start: wait until both sleep
     let mut steps = 0;
     while state.sleep.hose_asleep != [true, true] {
@@ -240,12 +239,7 @@ fn a_moving_hose_wakes_the_hose_tied_to_it() {
         steps += 1;
         assert!(steps < 100_000, "the hoses never fell asleep");
     }
-    state.loads.add(LoadCase::DeadLoad(DeadLoad {
-        node: a,
-        force: -DVec3::Y * F,
-        moment: DVec3::ZERO,
-        ramp: None,
-    }));
+    pull(&model, &mut state);
     state.sleep.wake(&model, 0); // as the workcell does when a load case changes
     explicit::step(&model, &mut state);
     assert_eq!(state.sleep.hose_asleep, [false, false]);

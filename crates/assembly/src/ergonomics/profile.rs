@@ -9,17 +9,6 @@ use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
 
-/// The table rows and columns that judge a hand load.
-///
-/// Default: push standing (table 3.7 row 1), pull standing lever (table 3.9 row 1),
-/// women, occasional duty, moments as guidance only. Reasons:
-/// - standing is the posture of the dissertation's own push-on trials (section 3.3.3);
-/// - twist and bending are "never reasons for an installation to fail" (section 3.3.3,
-///   after table 3.11), so by default they are warnings; twist is always judged against
-///   the screwdriver row, bending against the T-handle row (no choice to make);
-/// - every limit for women is below the one for men, so women is the conservative column;
-/// - the critical actions (pushing onto and pulling off a stub) are short, which the
-///   dissertation puts under occasional duty.
 /// Which standard judges the hand force (push and pull).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -45,6 +34,19 @@ impl Standard {
     }
 }
 
+/// The table rows and columns that judge a hand load.
+///
+/// Default: push standing (table 3.7 row 1), pull standing lever (table 3.9 row 1),
+/// women, occasional duty, moments as guidance only. Reasons:
+/// - standing is the posture of the dissertation's own push-on trials (section 3.3.3);
+/// - twist and bending are "never reasons for an installation to fail" (section 3.3.3,
+///   after table 3.11), so by default they are warnings; twist is always judged against
+///   the screwdriver row, bending against the T-handle row (no choice to make);
+/// - every limit for women is below the one for men, so women is the conservative column;
+/// - the critical actions (pushing onto and pulling off a stub) are short, which the
+///   dissertation puts under occasional duty.
+/// - the dissertation's tables judge; EN 1005-3 is chosen with `standard = en1005-3`
+///   (its parameters default to F_R = F_B, see [`En1005Params`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ErgonomicProfile {

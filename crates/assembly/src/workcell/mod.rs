@@ -698,7 +698,7 @@ impl Workcell {
             Input::Tie { node, to } => {
                 let (a, b) = (self.global(*node)?, self.global(*to)?);
                 let length = (self.state.x[b] - self.state.x[a]).length();
-                if a == b || !(length > 0.0) {
+                if a == b || length.is_nan() || length <= 0.0 {
                     return Err(Refusal::Invalid(format!(
                         "a tie needs two nodes apart (hose {} node {}, hose {} node {}: {length:.3e} m)",
                         node.hose, node.node, to.hose, to.node

@@ -102,7 +102,7 @@ impl TieCouplings {
             for k in 0..j {
                 d -= self.s[j * m + k] * self.s[j * m + k];
             }
-            if !(d > 0.0) {
+            if d.is_nan() || d <= 0.0 {
                 return Err(SingularBlock(self.ties[j].0));
             }
             let d = d.sqrt();
