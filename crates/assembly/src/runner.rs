@@ -207,6 +207,14 @@ fn apply(
 ) -> Result<(), Stop> {
     match action {
         Action::Fix { node } => give(cell, index, Input::Fix { node: *node })?,
+        Action::Tie { node, to } => give(
+            cell,
+            index,
+            Input::Tie {
+                node: *node,
+                to: *to,
+            },
+        )?,
         Action::Move {
             node,
             path,

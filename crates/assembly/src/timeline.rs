@@ -61,6 +61,9 @@ pub enum Action {
     Unload { node: NodeRef, name: Option<String> },
     /// Remove the fix / drive from the node: it moves freely again.
     Release { node: NodeRef },
+    /// A cable tie bundles two hoses (issue 11 item 5): `node` and `to` are held at the
+    /// distance they have now ([`pliant_core::loads::Tie`]) for the rest of the run.
+    Tie { node: NodeRef, to: NodeRef },
     /// I1: hand `hand` grabs the beam nearest to `at` [m]; its two nodes follow the hand
     /// (replacing any fix or drive on them) until the hand lets go.
     /// `grip`: firm, or loose — the hose may turn in the hand ([`crate::Grip`]).

@@ -49,7 +49,9 @@ enum Command {
         #[arg(long)]
         quiet: bool,
         /// Ergonomic profile hand loads are judged with, e.g.
-        /// "posture=standing, population=men, duty=continuous, moments_decide=true".
+        /// "posture=standing, population=men, duty=continuous, moments_decide=true", or
+        /// EN 1005-3 instead of the dissertation's tables: "standard=en1005-3,
+        /// action=whole_body, frequency_per_min=1, action_time_s=2, duration_h=4".
         #[arg(long)]
         ergonomics: Option<String>,
         /// Solver instead of the scene's: explicit (the dissertation's central

@@ -723,3 +723,111 @@ fn calibrate_fits_the_example_and_writes_the_material() {
         "{err}"
     );
 }
+
+/// Issue 11 items 5 and 6 through `pliant run`: a second hose tied to the first by the
+/// timeline's `tie`, a hand pulling the first hose's tip sideways, judged by EN 1005-3
+/// from `--ergonomics` — and from the scene's `[ergonomics]`; a bad profile is refused
+/// naming the key.
+#[test]
+fn en1005_profile_and_a_tie_through_pliant_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_line_scene(
+        dir.path(),
+        "tied.toml",
+        8,
+        200.0,
+        "[simulation]\ngravity = [0, 0, 0]\n",
+        r#"[[timeline]]
+action = "fix"
+hose = "g"
+node = 0
+[[timeline]]
+action = "tie"
+hose = "h"
+node = 4
+to = { hose = "g", node = 4 }
+[[timeline]]
+action = "grab"
+hand = 0
+at = [200, 0, 0]
+[[timeline]]
+action = "move_hand"
+hand = 0
+by = [0, -10, 0]
+duration_s = 0.2
+"#,
+    );
+    // a second hose g, 30 mm beside h
+    let text = std::fs::read_to_string(&scene).unwrap().replacen(
+        "[[timeline]]",
+        "[[hoses]]\nname = \"g\"\nmaterial = \"hose1\"\nelements = 8\nstart = [0, 30, 0]\npath = [ { line = { to = [200, 30, 0] } } ]\n[[timeline]]",
+        1,
+    );
+    std::fs::write(&scene, &text).unwrap();
+    let out = dir.path().join("out");
+    let o = run_scene(
+        &scene,
+        &out,
+        &[
+            "--ergonomics",
+            "standard=en1005-3, action=whole_body, frequency_per_min=1",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let verdict = &report["verdict"];
+    assert_eq!(verdict["standard"], "EN 1005-3:2002+A1:2008");
+    let zones = verdict["zones"].as_array().unwrap();
+    assert!(!zones.is_empty(), "{verdict}");
+    assert!(
+        zones[0].as_str().unwrap().contains("m_r = F/F_R"),
+        "{zones:?}"
+    );
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("EN 1005-3 risk zones"));
+    // the tie's reactions on its two nodes, equal and opposite, in reactions.csv
+    let reactions = std::fs::read_to_string(out.join("reactions.csv")).unwrap();
+    let last: Vec<Vec<f64>> = reactions
+        .lines()
+        .rev()
+        .filter(|l| l.contains(",tie,"))
+        .take(2)
+        .map(|l| {
+            l.split(',')
+                .skip(4)
+                .take(3)
+                .map(|x| x.parse().unwrap())
+                .collect()
+        })
+        .collect();
+    assert_eq!(last.len(), 2, "{reactions}");
+    let size = last[0].iter().map(|x| x * x).sum::<f64>().sqrt();
+    assert!(size > 1e-3, "the tie carries nothing: {last:?}");
+    for k in 0..3 {
+        assert!((last[0][k] + last[1][k]).abs() <= 1e-9 * size, "{last:?}");
+    }
+    // the scene's own [ergonomics] does the same
+    let text = text.replacen(
+        "[[hoses]]",
+        "[ergonomics]\nstandard = \"en1005-3\"\nfrequency_per_min = 1\n\n[[hoses]]",
+        1,
+    );
+    std::fs::write(&scene, &text).unwrap();
+    let o = run_scene(&scene, &dir.path().join("out2"), &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let again: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("out2/report.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(again["verdict"]["zones"], verdict["zones"]);
+    // a bad value is refused naming the key
+    let o = run_scene(
+        &scene,
+        &dir.path().join("out3"),
+        &["--ergonomics", "standard=en1005-3, duration_h=12"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("`duration_h` must lie in [0, 8] h"), "{err}");
+}

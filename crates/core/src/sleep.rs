@@ -8,7 +8,8 @@
 //! slower than [`SLEEP_SPEED`], no kinematic load case moves any of its nodes and no other
 //! hose touches it. It wakes when a kinematic load case on one of its nodes moves, when a
 //! load case on it is added or removed ([`Sleep::wake`], called by whoever changes them),
-//! or when an awake hose comes into contact with it.
+//! or when an awake hose comes into contact with it, or when a hose tied to it by a cable
+//! tie ([`crate::loads::Tie`]) moves.
 
 use crate::{Model, State};
 use glam::DVec3;
@@ -105,6 +106,23 @@ pub fn update(model: &Model, state: &mut State, moved: impl Fn(usize) -> bool) {
                 s.contact_at_sleep[i] = state.hose_contact_force[i];
                 state.v[i] = DVec3::ZERO;
                 state.w[i] = DVec3::ZERO;
+            }
+        }
+    }
+    // a moving hose wakes the hoses tied to it (one that is merely awake but calm does
+    // not, or two tied hoses falling asleep a step apart would wake each other forever)
+    let hose_of = |i: usize| model.hoses.iter().position(|h| h.nodes().contains(&i));
+    for (_, case) in state.loads.iter() {
+        let crate::loads::LoadCase::Tie(t) = case else {
+            continue;
+        };
+        let (Some(a), Some(b)) = (hose_of(t.nodes[0]), hose_of(t.nodes[1])) else {
+            continue;
+        };
+        let s = &mut state.sleep;
+        for (from, to) in [(a, b), (b, a)] {
+            if !s.hose_asleep[from] && s.calm[from] == 0 && s.hose_asleep[to] {
+                s.wake(model, to);
             }
         }
     }

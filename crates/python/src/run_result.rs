@@ -39,6 +39,8 @@ pub struct RunResult {
     feasible: Option<bool>,
     reasons: Vec<String>,
     warnings: Vec<String>,
+    standard: String,
+    zones: Vec<String>,
     word: &'static str,
     uncertain: bool,
     data: Collector,
@@ -125,6 +127,8 @@ pub fn run_timeline(
         uncertain: v.uncertain,
         reasons: v.reasons,
         warnings: v.warnings,
+        standard: v.standard,
+        zones: v.zones,
         data,
     };
     match divergence {
@@ -166,6 +170,21 @@ impl RunResult {
     #[getter]
     fn warnings(&self) -> Vec<String> {
         self.warnings.clone()
+    }
+
+    /// The standard that judged the hand forces: ``"dissertation tables 3.6–3.11
+    /// (Schmidtke)"`` or ``"EN 1005-3:2002+A1:2008"`` (profile ``standard=en1005-3``).
+    #[getter]
+    fn standard(&self) -> String {
+        self.standard.clone()
+    }
+
+    /// Under EN 1005-3: each hand's peak push and pull with its risk zone (recommended,
+    /// not recommended, to be avoided), m_r = F/F_R and how F_R came about; empty under
+    /// the dissertation's tables.
+    #[getter]
+    fn zones(&self) -> Vec<String> {
+        self.zones.clone()
     }
 
     /// Whether every action ran (False after a divergence).

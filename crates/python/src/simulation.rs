@@ -93,6 +93,7 @@ impl Simulation {
             LoadCase::Drive(_) => "drive",
             LoadCase::DeadLoad(_) => "dead_load",
             LoadCase::Support(_) => "support",
+            LoadCase::Tie(_) => "tie",
         };
         let (hose, node) = self.locate(case.node());
         LoadId {

@@ -75,6 +75,24 @@ def test_ergonomics_override_and_bad_profile():
         pliant.run_timeline(scene, ergonomics="posture=flying")
 
 
+def test_en1005_profile_judges_with_risk_zones():
+    scene = pliant.demo_scene()
+    r = pliant.run_timeline(
+        scene, ergonomics="standard=en1005-3, action=whole_body, frequency_per_min=1"
+    )
+    assert r.standard == "EN 1005-3:2002+A1:2008"
+    assert "standard=en1005_3" in r.ergonomics and "frequency_per_min=1" in r.ergonomics
+    assert r.zones and all("EN 1005-3" in z for z in r.zones)
+    assert any(
+        w in z for z in r.zones for w in ("RECOMMENDED", "NOT RECOMMENDED", "TO BE AVOIDED")
+    )
+    assert pliant.run_timeline(scene).standard.startswith("dissertation")
+    with pytest.raises(ValueError, match="`frequency_per_min` must lie in"):
+        pliant.run_timeline(scene, ergonomics="standard=en1005-3, frequency_per_min=99")
+    with pytest.raises(ValueError, match="give `standard=en1005-3` first"):
+        pliant.run_timeline(scene, ergonomics="action=arm")
+
+
 def test_no_hand_means_not_assessed():
     d = cantilever_dict()
     d["timeline"].append({"action": "run", "duration_s": 0.01})

@@ -52,6 +52,7 @@ impl<'de> Deserialize<'de> for ActionEntry {
             "load" => ActionEntry::Load(part(table)?),
             "unload" => ActionEntry::Unload(part(table)?),
             "release" => ActionEntry::Release(part(table)?),
+            "tie" => ActionEntry::Tie(part(table)?),
             "grab" => ActionEntry::Grab(part(table)?),
             "move_hand" => ActionEntry::MoveHand(part(table)?),
             "aim_hand" => ActionEntry::AimHand(part(table)?),

@@ -117,6 +117,30 @@ pub struct ErgonomicsSection {
     /// Default `false`: the dissertation (section 3.3.3) calls them "never reasons for an
     /// installation to fail"; they are reported as warnings.
     pub moments_decide: Option<bool>,
+    /// Which standard judges push and pull: `dissertation` (tables 3.6–3.9, default) or
+    /// `en1005-3` (EN 1005-3:2002+A1:2008: recommended force limit F_R and risk zones;
+    /// data with sources in `crates/assembly/data/en1005_3.toml`). The keys below apply
+    /// only to `en1005-3`.
+    pub standard: Option<String>,
+    /// EN 1005-3 action (Table 1 push and pull rows): `whole_body` (standing, default),
+    /// `arm_trunk_support` (sitting, one arm, with trunk support) or `arm` (without).
+    pub action: Option<String>,
+    /// EN 1005-3 user population: `professional` (15th percentile, default) or
+    /// `domestic` (1st percentile).
+    #[serde(rename = "use")]
+    pub user_population: Option<String>,
+    /// EN 1005-3: percentile of the user population whose capacity counts, in [1, 50];
+    /// overrides `use`. Default 15.
+    pub percentile: Option<f64>,
+    /// EN 1005-3 velocity multiplier m_v: `low` (static or slow, default) or `high`.
+    pub velocity: Option<String>,
+    /// EN 1005-3 frequency multiplier m_f: actions per minute, in [0, 20]. Default 0.2.
+    pub frequency_per_min: Option<f64>,
+    /// EN 1005-3 frequency multiplier m_f: duration of one action (s); up to 3 s counts
+    /// as short. Default 3.
+    pub action_time_s: Option<f64>,
+    /// EN 1005-3 duration multiplier m_d: hours of this work per day, in [0, 8]. Default 1.
+    pub duration_h: Option<f64>,
 }
 
 /// `[checks]`: the installation checks (SPEC V3; cf. DIN 20066) — which run, their
@@ -565,6 +589,9 @@ pub enum ActionEntry {
     Unload(UnloadEntry),
     /// Remove the fix / drive from the node.
     Release(NodeEntry),
+    /// A cable tie bundles two hoses: the node and `to` are held at the distance they
+    /// have now, for the rest of the run.
+    Tie(TieEntry),
     /// A hand grabs the beam nearest to `at` (SPEC I1); its two nodes follow the hand.
     Grab(GrabEntry),
     /// Move a hand (holding a beam) along waypoints and/or turn it.
@@ -581,12 +608,13 @@ pub enum ActionEntry {
 }
 
 /// The names of the `action` values, in the order of [`ActionEntry`].
-pub const ACTION_NAMES: [&str; 11] = [
+pub const ACTION_NAMES: [&str; 12] = [
     "fix",
     "move",
     "load",
     "unload",
     "release",
+    "tie",
     "grab",
     "move_hand",
     "aim_hand",
@@ -603,6 +631,18 @@ pub struct NodeEntry {
     pub hose: String,
     /// Node index; negative counts from the end (−1 = last).
     pub node: i64,
+}
+
+/// `tie`: a cable tie between a node of one hose and a node of another.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TieEntry {
+    /// Hose name.
+    pub hose: String,
+    /// Node index; negative counts from the end (−1 = last).
+    pub node: i64,
+    /// The node of the other hose it is tied to.
+    pub to: NodeEntry,
 }
 
 /// `move`: drive a node along waypoints and/or rotate it.

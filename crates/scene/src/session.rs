@@ -238,6 +238,13 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
                 node(&mut t, n);
                 "release"
             }
+            Input::Tie { node: n, to } => {
+                node(&mut t, n);
+                let mut other = Table::new();
+                node(&mut other, to);
+                t.insert("to".into(), Value::Table(other));
+                "tie"
+            }
             Input::Load {
                 node: n,
                 force,

@@ -4,7 +4,7 @@
 use crate::error::FieldError;
 use crate::format::{
     ActionEntry, AimHandEntry, GrabEntry, GripName, HandEntry, LoadEntry, MoveEntry, MoveHandEntry,
-    NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, UnloadEntry,
+    NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, TieEntry, UnloadEntry,
 };
 use crate::units::LengthUnit;
 use crate::validate::{finite, finite_vec, node_index, non_negative, non_zero_vec, positive};
@@ -238,6 +238,20 @@ fn build_action(
         ActionEntry::Release(NodeEntry { hose, node }) => Action::Release {
             node: node_ref(field, hose, *node, hoses)?,
         },
+        ActionEntry::Tie(TieEntry { hose, node, to }) => {
+            let (a, b) = (
+                node_ref(field, hose, *node, hoses)?,
+                node_ref(&sub("to"), &to.hose, to.node, hoses)?,
+            );
+            if a == b {
+                return Err(FieldError::new(
+                    sub("to"),
+                    format!("{{ hose = \"{}\", node = {} }}", to.hose, to.node),
+                    "is the tied node itself; a tie joins two nodes",
+                ));
+            }
+            Action::Tie { node: a, to: b }
+        }
         ActionEntry::Move(MoveEntry {
             hose,
             node,

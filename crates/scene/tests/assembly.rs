@@ -182,6 +182,7 @@ fn ergonomics_map_onto_the_profile() {
             moments_decide: true,
             population: Population::Men,
             duty: Duty::Continuous,
+            ..Default::default()
         }
     );
     // Overrides after the posture; the same spellings as the profile's own parser.
@@ -207,6 +208,46 @@ fn ergonomics_map_onto_the_profile() {
     let text = format!("{}[ergonomics]\n{}", &BASE[..start], &BASE[end..]);
     let s = load_scene_str(&text, "e.toml").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(s.ergonomics, ErgonomicProfile::default());
+}
+
+#[test]
+fn en1005_profile_and_tie_action_load() {
+    use pliant_assembly::ergonomics::{En1005Action, En1005Velocity, Standard};
+    let text = BASE
+        .replacen(
+            "duty = \"continuous\"",
+            "duty = \"continuous\"\nstandard = \"EN1005-3\"\naction = \"arm_trunk_support\"\nuse = \"domestic\"\nvelocity = \"high\"\nfrequency_per_min = 1.5\naction_time_s = 4\nduration_h = 2",
+            1,
+        )
+        .replacen(
+            "action = \"fix\"\nhose = \"a\"\nnode = 0",
+            "action = \"tie\"\nhose = \"a\"\nnode = -1\nto = { hose = \"b\", node = 3 }",
+            1,
+        );
+    let s = load_scene_str(&text, "en.toml").unwrap_or_else(|e| panic!("{e}"));
+    let e = &s.ergonomics;
+    assert_eq!(e.standard, Standard::En1005_3);
+    assert_eq!(e.en1005.action, En1005Action::ArmTrunkSupport);
+    assert_eq!(e.en1005.percentile, 1.0); // domestic use
+    assert_eq!(e.en1005.velocity, En1005Velocity::High);
+    assert_eq!(
+        (
+            e.en1005.frequency_per_min,
+            e.en1005.action_time_s,
+            e.en1005.duration_h
+        ),
+        (1.5, 4.0, 2.0)
+    );
+    // the same profile as the command line's text gives
+    let cli: ErgonomicProfile = "posture=crouching, population=men, duty=continuous, moments_decide=true, standard=en1005-3, action=arm_trunk_support, use=domestic, velocity=high, frequency_per_min=1.5, action_time_s=4, duration_h=2".parse().unwrap();
+    assert_eq!(*e, cli);
+    let last = s.timeline.actions.iter().find_map(|a| match a {
+        Action::Tie { node, to } => Some((*node, *to)),
+        _ => None,
+    });
+    let (node, to) = last.expect("a tie action");
+    assert_eq!((node.hose, to.hose, to.node), (0, 1, 3));
+    assert_eq!(node.node + 1, s.world.hoses[0].nodes.len());
 }
 
 #[test]
@@ -417,6 +458,17 @@ const CASES: &[Case] = &[
     Case { what: "unknown duty", edits: &[("duty = \"continuous\"", "duty = \"daily\"")], field: "ergonomics.duty", message: &["unknown duty `daily`; allowed: continuous, occasional"] },
     Case { what: "unknown ergonomics key", edits: &[("duty = \"continuous\"", "dutty = \"continuous\"")], field: "ergonomics.dutty", message: &["unknown field `dutty`"] },
     Case { what: "ergonomics value not a string", edits: &[("population = \"men\"", "population = 1")], field: "ergonomics.population", message: &["invalid type"] },
+    // EN 1005-3 (issue 11 item 6).
+    Case { what: "EN 1005-3 key without the standard", edits: &[("duty = \"continuous\"", "duty = \"continuous\"\naction = \"arm\"")], field: "ergonomics.action", message: &["`action` is an EN 1005-3 parameter: give `standard=en1005-3` first"] },
+    Case { what: "unknown standard", edits: &[("duty = \"continuous\"", "duty = \"continuous\"\nstandard = \"iso-11228\"")], field: "ergonomics.standard", message: &["unknown standard `iso-11228`; allowed: dissertation, en1005_3"] },
+    Case { what: "unknown EN 1005-3 action", edits: &[("duty = \"continuous\"", "duty = \"continuous\"\nstandard = \"en1005-3\"\naction = \"kneeling\"")], field: "ergonomics.action", message: &["unknown EN 1005-3 action `kneeling`; allowed: whole_body, arm_trunk_support, arm"] },
+    Case { what: "EN 1005-3 frequency beyond the table", edits: &[("duty = \"continuous\"", "duty = \"continuous\"\nstandard = \"en1005-3\"\nfrequency_per_min = 25")], field: "ergonomics.frequency_per_min", message: &["`frequency_per_min` must lie in [0, 20] per minute"] },
+    Case { what: "EN 1005-3 percentile out of range", edits: &[("duty = \"continuous\"", "duty = \"continuous\"\nstandard = \"en1005-3\"\npercentile = 80")], field: "ergonomics.percentile", message: &["`percentile` must lie in [1, 50]"] },
+    // Ties between hoses (issue 11 item 5).
+    Case { what: "tie of a node to itself", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0\nto = { hose = \"a\", node = 0 }")], field: "timeline[0].to", message: &["is the tied node itself"] },
+    Case { what: "tie to an unknown hose", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0\nto = { hose = \"c\", node = 0 }")], field: "timeline[0].to.hose", message: &["unknown hose; hoses: a, b"] },
+    Case { what: "tie to a node out of range", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0\nto = { hose = \"b\", node = 999 }")], field: "timeline[0].to.node", message: &["999"] },
+    Case { what: "tie without to", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0")], field: "timeline[0].to", message: &["missing field `to`"] },
     // Stubs.
     Case { what: "stub zero length", edits: &[("length = 40", "length = 0")], field: "stubs[0].length", message: &["stubs[0].length = 0 mm: must be greater than 0"] },
     Case { what: "stub negative diameter", edits: &[("diameter = 29", "diameter = -29")], field: "stubs[0].diameter", message: &["= -29 mm: must be greater than 0"] },

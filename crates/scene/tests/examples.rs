@@ -90,6 +90,7 @@ fn coolant_demo_scene_is_as_described() {
             Action::Fix { .. } => "fix",
             Action::Move { .. } => "move",
             Action::Release { .. } => "release",
+            Action::Tie { .. } => "tie",
             Action::Settle { .. } => "settle",
             Action::Run { .. } => "run",
             Action::Load { .. } => "load",

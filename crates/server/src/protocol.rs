@@ -45,6 +45,11 @@ pub enum ClientMessage {
     /// occasional) and optionally `moments_decide` (whether twist and bending at the hand
     /// count towards feasibility; default false). Omitted fields keep their current value. The running verdict is re-judged against the new limits.
     SetErgonomics {
+        /// A whole profile in the form of `pliant run --ergonomics` (e.g.
+        /// `standard=en1005-3, action=arm`): replaces the current one before the other
+        /// fields apply.
+        #[serde(default)]
+        profile: Option<String>,
         #[serde(default)]
         posture: Option<String>,
         #[serde(default)]
@@ -267,6 +272,7 @@ mod tests {
         assert_eq!(
             m,
             ClientMessage::SetErgonomics {
+                profile: None,
                 posture: Some("sitting".into()),
                 population: None,
                 duty: None,

@@ -634,14 +634,23 @@ fn handle_text(text: &str, client: ClientId, shared: &Shared, welcomed: &mut boo
     }
 }
 
-/// Applies a `set_ergonomics` message on top of `profile` (omitted fields keep theirs).
+/// Applies a `set_ergonomics` message on top of `profile` (omitted fields keep theirs; a
+/// `whole` profile text replaces it first).
 fn ergonomics(
     mut profile: ErgonomicProfile,
+    whole: Option<&str>,
     posture: Option<&str>,
     population: Option<&str>,
     duty: Option<&str>,
     moments_decide: Option<bool>,
 ) -> Result<ErgonomicProfile, String> {
+    if let Some(text) = whole {
+        profile = text
+            .parse()
+            .map_err(|e: pliant_assembly::ergonomics::ErgonomicsError| {
+                error_json(ErrorCode::InvalidValue, e.to_string())
+            })?;
+    }
     let moments = moments_decide.map(|b| b.to_string());
     let given = [
         ("posture", posture),
@@ -698,12 +707,14 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
             return Ok(()); // handled in handle_text
         }
         ClientMessage::SetErgonomics {
+            profile,
             posture,
             population,
             duty,
             moments_decide,
         } => Command::SetErgonomics(ergonomics(
             session.latest().ergonomics,
+            profile.as_deref(),
             posture.as_deref(),
             population.as_deref(),
             duty.as_deref(),

@@ -484,6 +484,28 @@ async fn ergonomics_and_scene_can_be_changed_and_bad_scenes_are_refused() {
     let e = next_where(&mut ws, "error", |_| true).await;
     assert_eq!(e["code"], "invalid_value");
     assert!(e["message"].as_str().unwrap().contains("sometimes"), "{e}");
+    // a whole profile: EN 1005-3 judges push and pull from now on (issue 11 item 6)
+    send(&mut ws, json!({"type": "set_ergonomics", "profile": "standard=en1005-3, action=arm, frequency_per_min=1"})).await;
+    next_where(&mut ws, "snapshot", |v| {
+        v["ergonomics"]["standard"] == "en1005_3"
+            && v["ergonomics"]["en1005"]["action"] == "arm"
+            && v["verdict"]["standard"] == "EN 1005-3:2002+A1:2008"
+    })
+    .await;
+    send(
+        &mut ws,
+        json!({"type": "set_ergonomics", "profile": "standard=en1005-3, duration_h=9"}),
+    )
+    .await;
+    let e = next_where(&mut ws, "error", |_| true).await;
+    assert_eq!(e["code"], "invalid_value");
+    assert!(
+        e["message"]
+            .as_str()
+            .unwrap()
+            .contains("`duration_h` must lie in [0, 8] h"),
+        "{e}"
+    );
     // a broken scene: the loader's message, the old session runs on
     send(&mut ws, json!({"type": "load_scene", "text": "format = \"pliant-scene\"\nversion = 7\n", "name": "bad.toml"})).await;
     let e = next_where(&mut ws, "error", |_| true).await;

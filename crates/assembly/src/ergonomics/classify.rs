@@ -20,6 +20,7 @@
 //! the profile asks for it ([`ErgonomicProfile::moments_decide`]).
 
 use super::colour::{colour_rgb, colour_value, Rgb};
+use super::en1005::En1005Judgement;
 use super::error::ErgonomicsError;
 use super::limits::{ErgonomicLimits, GuideRange};
 use super::names::TorqueGrip;
@@ -90,6 +91,10 @@ pub struct Classification {
     pub limit: f64,
     /// magnitude / limit; above 1 the limit is exceeded.
     pub ratio: f64,
+    /// Under EN 1005-3 (push and pull only): F_R, the risk multiplier m_r = F / F_R and
+    /// the risk zone. The guide range is then [0, 0.5 F_R] and the limit 0.7 F_R.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub en1005: Option<En1005Judgement>,
 }
 
 impl Classification {
@@ -100,6 +105,7 @@ impl Classification {
             guide,
             limit,
             ratio: magnitude / limit,
+            en1005: None,
         }
     }
 
@@ -215,25 +221,13 @@ impl ErgonomicLimits {
     ) -> Result<Classification, ErgonomicsError> {
         let force = finite(force, "hand force")?;
         let d = unit_direction(direction)?;
-        let (pop, duty) = (profile.population, profile.duty);
         let magnitude = force.length();
-        Ok(if force.dot(d) >= 0.0 {
-            let p = profile.push_posture;
-            Classification::new(
-                LoadKind::Push,
-                magnitude,
-                self.push_guide(p, pop, duty),
-                self.push_limit(p, pop, duty),
-            )
-        } else {
-            let p = profile.pull_posture;
-            Classification::new(
-                LoadKind::Pull,
-                magnitude,
-                self.pull_guide(p, pop, duty),
-                self.pull_limit(p, pop, duty),
-            )
-        })
+        let push = force.dot(d) >= 0.0;
+        let kind = if push { LoadKind::Push } else { LoadKind::Pull };
+        let (guide, limit, en1005) = self.force_limits(profile, push);
+        let mut c = Classification::new(kind, magnitude, guide, limit);
+        c.en1005 = en1005.map(|l| l.judge(magnitude));
+        Ok(c)
     }
 
     /// Splits a hand torque `torque` [N·m] into the twist about the hose axis

@@ -3,8 +3,10 @@
 //! (embedded at build time) with the source of every table; this module only reads and
 //! checks it. Forces are in newtons, torques in newton-metres.
 
+use super::en1005::{En1005Limit, En1005Tables};
 use super::error::ErgonomicsError;
 use super::names::{parse_named, Duty, Named, Population, PullPosture, PushPosture, TorqueGrip};
+use super::profile::{ErgonomicProfile, Standard};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::marker::PhantomData;
@@ -74,6 +76,8 @@ pub struct ErgonomicLimits {
     torque_guide: Table<TorqueGrip, GuideRange>,
     /// Turning, limit values (table 3.11) [N·m].
     torque_limit: Table<TorqueGrip, f64>,
+    /// EN 1005-3, the alternative standard for push and pull (`data/en1005_3.toml`).
+    en1005: En1005Tables,
 }
 
 impl ErgonomicLimits {
@@ -99,11 +103,48 @@ impl ErgonomicLimits {
             pull_limit: raw.pull_limit.build("pull_limit", "N")?,
             torque_guide: raw.torque_guide.build("torque_guide", "N m")?,
             torque_limit: raw.torque_limit.build("torque_limit", "N m")?,
+            en1005: En1005Tables::builtin()?.clone(),
         };
         check_guides_below_limits("push", &limits.push_guide, &limits.push_limit)?;
         check_guides_below_limits("pull", &limits.pull_guide, &limits.pull_limit)?;
         check_guides_below_limits("torque", &limits.torque_guide, &limits.torque_limit)?;
         Ok(limits)
+    }
+
+    /// The EN 1005-3 data.
+    pub fn en1005(&self) -> &En1005Tables {
+        &self.en1005
+    }
+
+    /// The guide range and limit value [N] a push (`push = true`) or a pull is judged
+    /// against under `profile`: the dissertation's tables 3.6–3.9, or under EN 1005-3
+    /// [0, 0.5 F_R] and 0.7 F_R with the F_R they come from (see [`super::en1005`]).
+    pub fn force_limits(
+        &self,
+        profile: &ErgonomicProfile,
+        push: bool,
+    ) -> (GuideRange, f64, Option<En1005Limit>) {
+        let (pop, duty) = (profile.population, profile.duty);
+        match profile.standard {
+            Standard::En1005_3 => {
+                let l = self.en1005.limit(&profile.en1005, push);
+                let guide = GuideRange {
+                    lo: 0.0,
+                    hi: l.recommended(),
+                };
+                (guide, l.limit(), Some(l))
+            }
+            Standard::Dissertation if push => (
+                self.push_guide(profile.push_posture, pop, duty),
+                self.push_limit(profile.push_posture, pop, duty),
+                None,
+            ),
+            Standard::Dissertation => (
+                self.pull_guide(profile.pull_posture, pop, duty),
+                self.pull_limit(profile.pull_posture, pop, duty),
+                None,
+            ),
+        }
     }
 
     /// Push guide range (table 3.6) [N].

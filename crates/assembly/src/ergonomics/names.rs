@@ -5,8 +5,6 @@
 
 use super::error::ErgonomicsError;
 use serde::{Deserialize, Serialize};
-use std::fmt;
-use std::str::FromStr;
 
 /// A closed set of named values, parsable from and printable as text.
 pub trait Named: Copy + Sized + 'static {
@@ -65,14 +63,14 @@ macro_rules! named_enum {
                 self as usize
             }
         }
-        impl FromStr for $ty {
+        impl std::str::FromStr for $ty {
             type Err = ErgonomicsError;
             fn from_str(s: &str) -> Result<Self, Self::Err> {
                 parse_named(s)
             }
         }
-        impl fmt::Display for $ty {
-            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        impl std::fmt::Display for $ty {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
                 f.write_str(self.name())
             }
         }

@@ -1,11 +1,38 @@
-//! Which rows and columns of the ergonomic tables (SPEC I3) apply to a study: the user
-//! picks them once, and every hand load is judged against them.
+//! Which rows and columns of the ergonomic tables (SPEC I3) apply to a study — or, with
+//! `standard = en1005-3`, which EN 1005-3 action and conditions: the user picks them once,
+//! and every hand load is judged against them.
 
+use super::en1005::En1005Params;
 use super::error::ErgonomicsError;
-use super::names::{parse_named, Duty, Population, Posture, PullPosture, PushPosture};
+use super::names::{parse_named, Duty, Named, Population, Posture, PullPosture, PushPosture};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
+
+/// Which standard judges the hand force (push and pull).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Standard {
+    /// The dissertation's tables 3.6–3.9 (Schmidtke's guide and limit values).
+    #[default]
+    Dissertation,
+    /// EN 1005-3:2002+A1:2008 (recommended force limits, risk zones).
+    En1005_3,
+}
+named_enum!(Standard, "standard", [
+    Dissertation => "dissertation",
+    En1005_3 => "en1005_3",
+]);
+
+impl Standard {
+    /// How reports name it.
+    pub fn title(self) -> &'static str {
+        match self {
+            Standard::Dissertation => "dissertation tables 3.6–3.11 (Schmidtke)",
+            Standard::En1005_3 => "EN 1005-3:2002+A1:2008",
+        }
+    }
+}
 
 /// The table rows and columns that judge a hand load.
 ///
@@ -18,7 +45,9 @@ use std::str::FromStr;
 /// - every limit for women is below the one for men, so women is the conservative column;
 /// - the critical actions (pushing onto and pulling off a stub) are short, which the
 ///   dissertation puts under occasional duty.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+/// - the dissertation's tables judge; EN 1005-3 is chosen with `standard = en1005-3`
+///   (its parameters default to F_R = F_B, see [`En1005Params`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ErgonomicProfile {
     /// Row of the push tables (3.6 / 3.7).
@@ -33,6 +62,12 @@ pub struct ErgonomicProfile {
     pub population: Population,
     /// Column group: continuous or occasional.
     pub duty: Duty,
+    /// Which standard judges push and pull. Under EN 1005-3 the push and pull rows above
+    /// are not used; twist and bending are still judged against tables 3.10 / 3.11 in
+    /// the columns `population` and `duty` (EN 1005-3 gives no turning limits).
+    pub standard: Standard,
+    /// The EN 1005-3 action and conditions (used when `standard` is EN 1005-3).
+    pub en1005: En1005Params,
 }
 
 impl ErgonomicProfile {
@@ -45,24 +80,40 @@ impl ErgonomicProfile {
             moments_decide: false,
             population,
             duty,
+            ..Default::default()
         }
     }
 }
 
 /// Parses `key=value` pairs separated by commas, applied in order on top of the default,
 /// e.g. `posture=crouching, population=men, duty=continuous` or
-/// `push=sitting,pull=handle,moments_decide=true`. Keys: `posture` (sets push and pull),
-/// `push`, `pull`, `population`, `duty`, `moments_decide`. An empty string is the default.
+/// `push=sitting,pull=handle,moments_decide=true`, or
+/// `standard=en1005-3, action=whole_body, frequency_per_min=1`. Keys: `posture` (sets push
+/// and pull), `push`, `pull`, `population`, `duty`, `moments_decide`, `standard`, and the
+/// EN 1005-3 parameters ([`En1005Params::KEYS`], only after `standard=en1005-3`). An
+/// empty string is the default.
 impl ErgonomicProfile {
-    /// The keys [`Self::set`] takes, in the order a profile is best written.
-    pub const KEYS: [&'static str; 6] = [
-        "posture",
-        "push",
-        "pull",
-        "population",
-        "duty",
-        "moments_decide",
-    ];
+    /// The keys [`Self::set`] takes, in the order a profile is best written: the
+    /// dissertation's, `standard`, then EN 1005-3's ([`En1005Params::KEYS`]).
+    pub const KEYS: [&'static str; 14] = {
+        let own = [
+            "posture",
+            "push",
+            "pull",
+            "population",
+            "duty",
+            "moments_decide",
+            "standard",
+        ];
+        let mut keys = [""; 14];
+        let mut i = 0;
+        while i < 7 {
+            keys[i] = own[i];
+            keys[i + 7] = En1005Params::KEYS[i];
+            i += 1;
+        }
+        keys
+    };
 
     /// Sets one named part of the profile — `posture` (both the push and the pull row),
     /// `push`, `pull`, `population`, `duty` (names as the tables spell them) or
@@ -70,7 +121,26 @@ impl ErgonomicProfile {
     /// protocol's `set_ergonomics`.
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), ErgonomicsError> {
         let value = value.trim();
-        match key.trim().to_ascii_lowercase().as_str() {
+        let key = key.trim().to_ascii_lowercase();
+        if En1005Params::KEYS.contains(&key.as_str()) {
+            if self.standard != Standard::En1005_3 {
+                return Err(ErgonomicsError::Profile {
+                    given: format!("{key}={value}"),
+                    reason: format!(
+                        "`{key}` is an EN 1005-3 parameter: give `standard=en1005-3` first"
+                    ),
+                });
+            }
+            return self.en1005.set(&key, value).unwrap_or(Ok(()));
+        }
+        match key.as_str() {
+            "standard" => {
+                let standard: Standard = parse_named(value)?;
+                if standard != self.standard {
+                    self.en1005 = En1005Params::default();
+                }
+                self.standard = standard;
+            }
             "posture" => {
                 let posture: Posture = parse_named(value)?;
                 self.push_posture = posture.push();
@@ -142,6 +212,11 @@ impl fmt::Display for ErgonomicProfile {
             f,
             "push={},pull={},population={},duty={},moments_decide={}",
             self.push_posture, self.pull_posture, self.population, self.duty, self.moments_decide
-        )
+        )?;
+        if self.standard != Standard::default() {
+            write!(f, ",standard={},", self.standard.name())?;
+            self.en1005.write(f)?;
+        }
+        Ok(())
     }
 }

@@ -41,7 +41,7 @@ pub fn write_reports(
     let write = |name: &str, text: String| super::write_file(&out.join(name), text);
     write("report.json", serde_json::to_string_pretty(&report)?)?;
     let push_limit = ErgonomicLimits::builtin()
-        .map(|l| l.push_limit(profile.push_posture, profile.population, profile.duty))
+        .map(|l| l.force_limits(profile, true).1)
         .unwrap_or(f64::NAN);
     write("report.html", html(&report, samples, push_limit))?;
     Ok(report.verdict)
@@ -265,7 +265,19 @@ pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String 
         }
         s.push_str("</ul>");
     }
-    let _ = write!(s, "<p>Ergonomic profile: {}</p>", escape(report.ergonomics));
+    let _ = write!(
+        s,
+        "<p>Ergonomic profile: {}</p><p>Hand forces judged by: <b>{}</b></p>",
+        escape(report.ergonomics),
+        escape(&v.standard)
+    );
+    if !v.zones.is_empty() {
+        s.push_str("<h2>EN 1005-3 risk zones</h2><p>Each hand's peak push and pull against the recommended force limit F_R (recommended ≤ 0.5 F_R, not recommended ≤ 0.7 F_R, to be avoided above).</p><ul>");
+        for z in &v.zones {
+            let _ = write!(s, "<li>{}</li>", escape(z));
+        }
+        s.push_str("</ul>");
+    }
     let run = report.run;
     if !run.hand_peaks.is_empty() {
         s.push_str("<h2>Hands</h2><table><tr><th>hand</th><th>peak |F| [N]</th><th>at [s]</th><th>peak |T| [N·m]</th><th>at [s]</th><th>peak twist [N·m]</th><th>peak bending [N·m]</th><th>worst deciding</th><th>of limit</th></tr>");

@@ -129,6 +129,19 @@ impl Recorder {
                 LoadCase::Drive(_) => "drive",
                 LoadCase::Support(_) => "support",
                 LoadCase::DeadLoad(_) => continue,
+                LoadCase::Tie(tie) => {
+                    // the tie's pull on each of its two nodes (equal and opposite)
+                    let pull = tie.load_in(model, state, 0.0).force;
+                    for (g, f) in tie.nodes.into_iter().zip([pull, -pull]) {
+                        let (h, k) = self.node_owner[g];
+                        writeln!(
+                            self.reactions,
+                            "{t:.6},{h},{k},tie,{:.6e},{:.6e},{:.6e},0,0,0",
+                            f.x, f.y, f.z
+                        )?;
+                    }
+                    continue;
+                }
             };
             let g = case.node();
             let (h, k) = self.node_owner[g];

@@ -51,6 +51,10 @@ pub enum Input {
     },
     /// Removes the fixes and drives inputs put on the node: it moves freely again.
     Release { node: NodeRef },
+    /// A cable tie between two hoses: the two nodes are held at the distance they have
+    /// now ([`pliant_core::loads::Tie`]); refused for one node with itself or two nodes at
+    /// the same place.
+    Tie { node: NodeRef, to: NodeRef },
     /// Removes one load case an input added (by the id [`crate::Workcell::apply`] gave).
     RemoveLoad { id: u64 },
     /// I1: the hand grabs the beam nearest to `at` (letting go of what it held). Refused
@@ -110,6 +114,7 @@ impl Input {
             Input::Load { .. } => "load",
             Input::Unload { .. } => "unload",
             Input::Release { .. } => "release",
+            Input::Tie { .. } => "tie",
             Input::RemoveLoad { .. } => "remove_load",
             Input::Grab { .. } => "grab",
             Input::MoveHand { .. } => "move_hand",

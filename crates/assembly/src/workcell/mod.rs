@@ -26,7 +26,7 @@ pub use observer::{NoObserver, Observer};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
 pub use tally::{
     limits_of, ContactEpisode, HandPeak, HandRecord, MomentNote, NodePeak, Peak, RunSummary,
-    SettleOutcome, Tally,
+    SettleOutcome, Tally, ZoneNote,
 };
 pub use verdict::{Stage, Verdict};
 
@@ -39,7 +39,7 @@ use glam::{DQuat, DVec3};
 use hands::{holder, Hands};
 use pliant_core::health::{check_for, Divergence};
 use pliant_core::integrators::{StaticReport, StaticSolver};
-use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId, LoadRamp};
+use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId, LoadRamp, Tie};
 use pliant_core::{Model, Solver, SolverKind, SolverSettings, State};
 use recovery::Recovery;
 use serde::{Deserialize, Serialize};
@@ -390,6 +390,7 @@ impl Workcell {
             max_contact_force_time: t.max_contact_force_time,
             ergonomics: self.profile.to_string(),
             moments_decide: self.profile.moments_decide,
+            standard: self.profile.standard,
             fasteners: self.fasteners.reports(),
             fastener_series: t.fastener_series.clone(),
             solver: t.solver.clone(),
@@ -564,13 +565,17 @@ impl Workcell {
         Ok(())
     }
 
+    /// Removes the loads inputs put on `node` that `which` selects — never a tie (a fix,
+    /// release or grab of a tied node does not cut it; only its handle does).
     fn remove_user_loads(&mut self, node: usize, which: impl Fn(&LoadCase) -> bool) {
         let user = &mut self.user_loads;
         let gone: Vec<LoadCaseId> = self
             .state
             .loads
             .iter()
-            .filter(|(id, c)| c.node() == node && which(c) && user.contains(id))
+            .filter(|(id, c)| {
+                !matches!(c, LoadCase::Tie(_)) && c.node() == node && which(c) && user.contains(id)
+            })
             .map(|(id, _)| *id)
             .collect();
         for id in gone {
@@ -689,6 +694,26 @@ impl Workcell {
                 let i = self.global(*node)?;
                 self.take_node(i)?;
                 Ok(Applied::Done)
+            }
+            Input::Tie { node, to } => {
+                let (a, b) = (self.global(*node)?, self.global(*to)?);
+                let length = (self.state.x[b] - self.state.x[a]).length();
+                if a == b || length.is_nan() || length <= 0.0 {
+                    return Err(Refusal::Invalid(format!(
+                        "a tie needs two nodes apart (hose {} node {}, hose {} node {}: {length:.3e} m)",
+                        node.hose, node.node, to.hose, to.node
+                    )));
+                }
+                for n in [a, b] {
+                    if let Some(h) = self.model.hoses.iter().position(|h| h.nodes().contains(&n)) {
+                        self.state.sleep.wake(&self.model, h);
+                    }
+                }
+                let tie = Tie {
+                    nodes: [a, b],
+                    length,
+                };
+                Ok(Applied::Load(self.add_user_load(LoadCase::Tie(tie))))
             }
             Input::RemoveLoad { id } => {
                 let id = LoadCaseId(*id);

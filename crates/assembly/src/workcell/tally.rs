@@ -6,7 +6,10 @@
 
 use super::input::HandNumber;
 use super::solver_record::SolverRecord;
-use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile, GuideRange, HandAssessment, LoadKind};
+use crate::ergonomics::{
+    En1005Judgement, En1005Limit, ErgonomicLimits, ErgonomicProfile, GuideRange, HandAssessment,
+    LoadKind, Standard,
+};
 use crate::fasteners::{FastenerReport, FastenerSample};
 use crate::hand::HandLoad;
 use glam::DVec3;
@@ -52,6 +55,22 @@ pub struct MomentNote {
     pub limit: f64,
 }
 
+/// A peak push or pull judged by EN 1005-3 (issue 11 item 6): its risk zone and the
+/// recommended force limit it was judged against.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ZoneNote {
+    pub kind: LoadKind,
+    /// Peak magnitude [N] and when [s].
+    pub magnitude: f64,
+    pub time: f64,
+    /// The action, in the data file's words (e.g. "whole body work, standing").
+    pub action: String,
+    /// F_B, F_Br, the multipliers and F_R.
+    pub limit: En1005Limit,
+    /// m_r = F / F_R and the zone.
+    pub judgement: En1005Judgement,
+}
+
 /// Peak loads of one hand over the run, and its worst moment against the limits.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct HandPeak {
@@ -76,6 +95,9 @@ pub struct HandPeak {
     /// Twist and bending peaks above their guide range (filled in by
     /// [`Tally::judge_hands`]).
     pub moment_notes: Vec<MomentNote>,
+    /// Under EN 1005-3: the peak push and pull (those that occurred) with their risk
+    /// zones (filled in by [`Tally::judge_hands`]).
+    pub zones: Vec<ZoneNote>,
 }
 
 impl HandPeak {
@@ -98,14 +120,10 @@ pub fn limits_of(
 ) -> (GuideRange, f64) {
     let (pop, duty) = (profile.population, profile.duty);
     match (kind, kind.torque_grip()) {
-        (LoadKind::Push, _) => (
-            limits.push_guide(profile.push_posture, pop, duty),
-            limits.push_limit(profile.push_posture, pop, duty),
-        ),
-        (LoadKind::Pull, _) => (
-            limits.pull_guide(profile.pull_posture, pop, duty),
-            limits.pull_limit(profile.pull_posture, pop, duty),
-        ),
+        (LoadKind::Push | LoadKind::Pull, _) => {
+            let (guide, limit, _) = limits.force_limits(profile, kind == LoadKind::Push);
+            (guide, limit)
+        }
         (_, grip) => {
             let grip = grip.unwrap_or_default();
             (
@@ -170,6 +188,8 @@ pub struct RunSummary {
     pub ergonomics: String,
     /// Whether twist and bending decided feasibility (the profile's `moments_decide`).
     pub moments_decide: bool,
+    /// The standard that judged push and pull.
+    pub standard: Standard,
     /// Stubs and clips and whether they ended assembled.
     pub fasteners: Vec<FastenerReport>,
     /// Their forces at the recorded times (the observer's sampling).
@@ -342,6 +362,22 @@ impl Tally {
         for p in &mut out {
             for (kind, peak) in p.each() {
                 let (guide, limit) = limits_of(limits, profile, kind);
+                if profile.standard == Standard::En1005_3
+                    && !kind.is_moment()
+                    && peak.magnitude > 0.0
+                {
+                    let l = limits
+                        .en1005()
+                        .limit(&profile.en1005, kind == LoadKind::Push);
+                    p.zones.push(ZoneNote {
+                        kind,
+                        magnitude: peak.magnitude,
+                        time: peak.time,
+                        action: limits.en1005().describe(profile.en1005.action).to_string(),
+                        limit: l,
+                        judgement: l.judge(peak.magnitude),
+                    });
+                }
                 let ratio = peak.magnitude / limit;
                 if kind.is_moment() && peak.magnitude > guide.hi {
                     p.moment_notes.push(MomentNote {

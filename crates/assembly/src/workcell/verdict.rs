@@ -7,8 +7,8 @@
 //! reasons for an installation to fail"), unless the profile's `moments_decide` makes
 //! them count like the force.
 
-use super::tally::RunSummary;
-use crate::ergonomics::LoadKind;
+use super::tally::{RunSummary, ZoneNote};
+use crate::ergonomics::{LoadKind, RiskZone};
 use serde::Serialize;
 
 /// Whether the study is over (every fastener should be fitted) or still running.
@@ -34,6 +34,40 @@ pub struct Verdict {
     /// Some step's solve ended out of balance or on an unstable equilibrium: the loads
     /// the verdict rests on are not trustworthy there (the reasons say where).
     pub uncertain: bool,
+    /// The standard that judged the hand forces (push and pull), e.g.
+    /// "EN 1005-3:2002+A1:2008".
+    pub standard: String,
+    /// Under EN 1005-3: each hand's peak push and pull with its risk zone, in words.
+    pub zones: Vec<String>,
+}
+
+/// A peak push or pull against EN 1005-3, in words: value, zone, m_r and how F_R came.
+fn describe_zone(hand: usize, z: &ZoneNote) -> String {
+    let (l, j) = (&z.limit, &z.judgement);
+    let bound = match j.zone {
+        RiskZone::Recommended => format!("m_r = F/F_R = {:.2} ≤ {}", j.m_r, l.recommended_max),
+        RiskZone::NotRecommended => format!(
+            "{} < m_r = F/F_R = {:.2} ≤ {}",
+            l.recommended_max, j.m_r, l.not_recommended_max
+        ),
+        RiskZone::ToBeAvoided => {
+            format!("m_r = F/F_R = {:.2} > {}", j.m_r, l.not_recommended_max)
+        }
+    };
+    format!(
+        "hand {hand}: {} of {:.1} N at t = {:.2} s is {} ({bound}; EN 1005-3, {}: F_R = {:.1} N = F_Br {:.1} N · m_v {} · m_f {} · m_d {}, F_B = {:.0} N)",
+        kind_name(z.kind),
+        z.magnitude,
+        z.time,
+        j.zone.words().to_uppercase(),
+        z.action,
+        l.f_r,
+        l.f_br,
+        l.m_v,
+        l.m_f,
+        l.m_d,
+        l.f_b,
+    )
 }
 
 fn kind_name(kind: LoadKind) -> &'static str {
@@ -68,11 +102,23 @@ impl Verdict {
         }
         let mut exceeded = false;
         let mut warnings = Vec::new();
+        let mut zones = Vec::new();
         for h in &run.hand_peaks {
+            for z in &h.zones {
+                let line = describe_zone(h.hand, z);
+                if z.judgement.zone == RiskZone::NotRecommended {
+                    warnings.push(line.clone());
+                }
+                zones.push(line);
+            }
             if let Some(kind) = h.worst_kind {
+                let zone = h.zones.iter().find(|z| z.kind == kind);
                 if h.worst_ratio > 1.0 {
                     exceeded = true;
-                    reasons.push(format!(
+                    if let Some(z) = zone {
+                        reasons.push(describe_zone(h.hand, z));
+                    } else {
+                        reasons.push(format!(
                         "hand {}: {} of {:.1} {u} at t = {:.2} s exceeds the limit {:.1} {u} ({}; {:.0} % of it)",
                         h.hand,
                         kind_name(kind),
@@ -83,6 +129,7 @@ impl Verdict {
                         100.0 * h.worst_ratio,
                         u = unit(kind),
                     ));
+                    }
                 }
             }
             for n in h
@@ -203,7 +250,7 @@ impl Verdict {
                 )
             };
             reasons.push(match stage {
-                Stage::Final => format!("every hand load stayed within its ergonomic limit value, every stub and clip was fitted{checks}"),
+                Stage::Final => format!("every hand load stayed within its ergonomic limit value ({}), every stub and clip was fitted{checks}", run.standard.title()),
                 Stage::Running => format!("every hand load so far is within its ergonomic limit value{detail}"),
             });
         }
@@ -213,6 +260,8 @@ impl Verdict {
             pending,
             warnings,
             uncertain: !run.solver_warnings.is_empty(),
+            standard: run.standard.title().to_string(),
+            zones,
         }
     }
 

@@ -35,7 +35,10 @@ pub fn explicit_pieces(
                 (state.x[s.node], s.orientation),
                 (s.position, s.orientation),
             )),
-            LoadCase::Support(_) | LoadCase::Drive(_) | LoadCase::DeadLoad(_) => {}
+            LoadCase::Support(_)
+            | LoadCase::Drive(_)
+            | LoadCase::DeadLoad(_)
+            | LoadCase::Tie(_) => {}
         }
     }
     let pieces = (h / model.time_step).ceil().max(1.0) as usize;
@@ -72,7 +75,7 @@ fn set_targets(state: &mut State, targets: &[Target], s: f64) {
                 sp.moved |= sp.position != x;
                 sp.position = x;
             }
-            LoadCase::Drive(_) | LoadCase::DeadLoad(_) => {}
+            LoadCase::Drive(_) | LoadCase::DeadLoad(_) | LoadCase::Tie(_) => {}
         }
     }
 }

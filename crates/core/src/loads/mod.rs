@@ -7,12 +7,14 @@ mod drive;
 mod fix;
 mod motion;
 mod support;
+mod tie;
 
 pub use dead_load::{DeadLoad, LoadRamp};
 pub use drive::Drive;
 pub use fix::Fix;
 pub use motion::Motion;
 pub use support::{support_reactions, Support, SupportLoad, SUPPORT_DAMPING, SUPPORT_FACTOR};
+pub use tie::{Tie, TieLoad};
 
 use glam::{DQuat, DVec3};
 use serde::Serialize;
@@ -33,6 +35,9 @@ pub enum LoadCase {
     /// A fixing: node held by springs in some directions of a frame, free in the others
     /// (not kinematic: the node moves under its loads).
     Support(Support),
+    /// Two nodes (of two hoses) held at a distance: a cable tie bundling the hoses. Its
+    /// [`LoadCase::node`] is the first node; only its handle removes it.
+    Tie(Tie),
 }
 
 impl LoadCase {
@@ -42,6 +47,7 @@ impl LoadCase {
             LoadCase::Drive(d) => d.node,
             LoadCase::DeadLoad(d) => d.node,
             LoadCase::Support(s) => s.node,
+            LoadCase::Tie(t) => t.nodes[0],
         }
     }
 
@@ -50,7 +56,7 @@ impl LoadCase {
         match self {
             LoadCase::Fix(f) => Some((f.position, f.orientation)),
             LoadCase::Drive(d) => Some(d.pose_at(t)),
-            LoadCase::DeadLoad(_) | LoadCase::Support(_) => None,
+            LoadCase::DeadLoad(_) | LoadCase::Support(_) | LoadCase::Tie(_) => None,
         }
     }
 }
@@ -86,10 +92,12 @@ impl LoadCases {
             .map(|(_, c)| c)
     }
 
-    /// Removes every load case on `node` that `pred` selects; returns how many.
+    /// Removes every load case on `node` that `pred` selects; returns how many. Ties stay
+    /// (a hand grabbing a tied node does not cut the tie): only their handle removes them.
     pub fn remove_on_node(&mut self, node: usize, pred: impl Fn(&LoadCase) -> bool) -> usize {
         let before = self.cases.len();
-        self.cases.retain(|(_, c)| !(c.node() == node && pred(c)));
+        self.cases
+            .retain(|(_, c)| matches!(c, LoadCase::Tie(_)) || !(c.node() == node && pred(c)));
         before - self.cases.len()
     }
 

@@ -187,8 +187,8 @@ impl Support {
 
 /// Each support's load at the state's pose, written as its reaction (what the support
 /// applies to the node, added to `reaction_force` / `reaction_moment`); with `commit`
-/// the slip anchors are then dragged along (the step is accepted). `rate_factor` as in
-/// [`Support::load`].
+/// the slip anchors are then dragged along (the step is accepted). Each tie's load
+/// ([`super::Tie`]) is added the same way, +f on its first node and −f on its second.
 pub fn support_reactions(model: &crate::Model, state: &mut crate::State, commit: bool) {
     let dt = model.time_step;
     let crate::State {
@@ -202,8 +202,22 @@ pub fn support_reactions(model: &crate::Model, state: &mut crate::State, commit:
         ..
     } = state;
     for (_, case) in loads.iter_mut() {
-        let super::LoadCase::Support(s) = case else {
-            continue;
+        let s = match case {
+            super::LoadCase::Support(s) => s,
+            super::LoadCase::Tie(t) => {
+                let [a, b] = t.nodes;
+                let l = t.load(
+                    [x[a], x[b]],
+                    [v[a], v[b]],
+                    [model.mass[a], model.mass[b]],
+                    dt,
+                    0.0,
+                );
+                reaction_force[a] += l.force;
+                reaction_force[b] -= l.force;
+                continue;
+            }
+            _ => continue,
         };
         let i = s.node;
         let (m, inertia) = (model.mass[i], model.inertia[i]);

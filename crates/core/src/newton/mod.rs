@@ -6,6 +6,7 @@
 pub mod block_tridiagonal;
 pub mod convergence;
 pub mod system;
+pub mod ties;
 
 pub use convergence::{LoadScale, Tolerance};
 pub use system::{NewtonSystem, NotAChain, RIGID_FACTOR};

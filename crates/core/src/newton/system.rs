@@ -18,12 +18,15 @@
 //! * hose–hose contact: the explicit solver's penalty forces at the current positions,
 //!   with each pair's tangent: within the block band (each node with itself, the two nodes
 //!   of a beam with each other) in the matrix, across the two beams by an iteration on the
-//!   factorised band ([`NewtonSystem::solve_linear`]).
+//!   factorised band ([`NewtonSystem::solve_linear`]);
+//! * cable ties between hoses ([`crate::loads::Tie`]): their spring along n, the coupling
+//!   of the two nodes solved exactly by a rank-one update per tie ([`super::ties`]).
 //!
 //! Prescribed nodes (fix, drive, hand) are eliminated: their increment is zero.
 
 use super::block_tridiagonal::{BlockTridiagonal, Inertia, SingularBlock};
 use super::convergence::LoadScale;
+use super::ties::TieCouplings;
 use crate::contact::friction::FrictionResponse;
 use crate::contact::{hose_contact_forces_with, ContactPair};
 use crate::element::{BeamElement, ElementEnds};
@@ -61,6 +64,8 @@ pub struct NewtonSystem {
     /// Hose–hose contact pairs of the last assembly (their cross-beam coupling is applied
     /// iteratively in [`Self::solve_linear`]).
     pub pairs: Vec<ContactPair>,
+    /// Ties of the last assembly (their tangent, applied in [`Self::solve_linear`]).
+    pub ties: TieCouplings,
     /// Size of the loads of the last assembly (for the convergence test).
     pub scale: LoadScale,
     /// Mean rest length of the elements [m].
@@ -138,6 +143,7 @@ impl NewtonSystem {
             target_q: vec![DQuat::IDENTITY; n],
             pending: false,
             pairs: Vec::with_capacity(4 * n),
+            ties: TieCouplings::default(),
             base_rhs: vec![Vector6::zeros(); n],
             work: vec![Vector6::zeros(); n],
         })
@@ -152,6 +158,7 @@ impl NewtonSystem {
         self.moment.fill(DVec3::ZERO);
         self.contact_force.fill(DVec3::ZERO);
         self.pairs.clear();
+        self.ties.clear();
         let mut scale = LoadScale::default();
         let beta = model.damping_stiffness;
         for e in &self.elements {
@@ -239,6 +246,17 @@ impl NewtonSystem {
                 scale.include(c.length(), 0.0);
             }
         }
+        // ties: a spring along n between two nodes; the tangent k n nᵀ couples them
+        // outside the band and is applied in the linear solve
+        for (_, case) in state.loads.iter() {
+            let LoadCase::Tie(t) = case else { continue };
+            let [a, b] = t.nodes;
+            let l = t.load_in(model, state, rate_factor);
+            self.force[a] += l.force;
+            self.force[b] -= l.force;
+            scale.include(l.force.length(), 0.0);
+            self.ties.push(a, b, l.normal, l.stiffness);
+        }
         scale.include(0.0, scale.force * self.mean_length);
         self.scale = scale;
     }
@@ -317,6 +335,7 @@ impl NewtonSystem {
             match case {
                 LoadCase::DeadLoad(d) => e -= d.at(state.time).0.dot(state.x[d.node]),
                 LoadCase::Support(s) => e += support_load(model, state, s, 0.0).energy,
+                LoadCase::Tie(t) => e += t.load_in(model, state, 0.0).energy,
                 _ => {}
             }
         }
@@ -438,12 +457,22 @@ impl NewtonSystem {
             self.matrix.factor()?;
             Inertia::default()
         };
+        let tied = !self.ties.is_empty();
+        if tied {
+            self.ties.prepare(&self.matrix, &self.prescribed)?;
+        }
         if self.pairs.is_empty() {
             self.matrix.solve_factored(&mut self.rhs)?;
+            if tied {
+                self.ties.correct(&mut self.rhs, &self.prescribed);
+            }
             return Ok(inertia);
         }
         self.base_rhs.copy_from_slice(&self.rhs);
         self.matrix.solve_factored(&mut self.rhs)?;
+        if tied {
+            self.ties.correct(&mut self.rhs, &self.prescribed);
+        }
         for _ in 0..MAX_COUPLING_ITERATIONS {
             self.work.copy_from_slice(&self.base_rhs);
             for p in &self.pairs {
@@ -466,6 +495,9 @@ impl NewtonSystem {
                 }
             }
             self.matrix.solve_factored(&mut self.work)?;
+            if tied {
+                self.ties.correct(&mut self.work, &self.prescribed);
+            }
             let mut change: f64 = 0.0;
             let mut size: f64 = 0.0;
             for (new, old) in self.work.iter().zip(&self.rhs) {
