@@ -604,30 +604,26 @@ pub const MAX_ROTATION_PER_ITERATION: f64 = 0.25;
 /// The fraction of the Newton increment that keeps every node's rotation within
 /// [`MAX_ROTATION_PER_ITERATION`] (1 when it already does).
 pub fn rotation_limited_step(rhs: &[Vector6<f64>], prescribed: &[bool]) -> f64 {
-    let largest = rhs
-        .iter()
-        .zip(prescribed)
-        .filter(|(_, p)| !**p)
-        .map(|(d, _)| d.fixed_rows::<3>(3).norm())
-        .fold(0.0, f64::max);
-    if largest > MAX_ROTATION_PER_ITERATION {
-        MAX_ROTATION_PER_ITERATION / largest
-    } else {
-        1.0
-    }
+    limited_step(rhs, prescribed, 3, MAX_ROTATION_PER_ITERATION)
 }
 
 /// The fraction of the Newton increment that keeps every free node's translation within
 /// `limit` [m] (1 when it already does).
 pub fn translation_limited_step(rhs: &[Vector6<f64>], prescribed: &[bool], limit: f64) -> f64 {
-    let longest = rhs
+    limited_step(rhs, prescribed, 0, limit)
+}
+
+/// The fraction of the increment that keeps the length of every free node's three
+/// components from `first` (0: translation, 3: rotation) within `limit`.
+fn limited_step(rhs: &[Vector6<f64>], prescribed: &[bool], first: usize, limit: f64) -> f64 {
+    let largest = rhs
         .iter()
         .zip(prescribed)
         .filter(|(_, p)| !**p)
-        .map(|(d, _)| d.fixed_rows::<3>(0).norm())
+        .map(|(d, _)| d.fixed_rows::<3>(first).norm())
         .fold(0.0, f64::max);
-    if longest > limit {
-        limit / longest
+    if largest > limit {
+        limit / largest
     } else {
         1.0
     }
