@@ -10,60 +10,13 @@
 
 use glam::DVec3;
 use pliant_core::integrators::{ImplicitOptions, ImplicitSolver};
-use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::newton::Tolerance;
-use pliant_core::{HoseSpec, Model, SimSettings, State, WorldSpec};
-use pliant_validation::harness::{dead_load, hose1};
-
-const N: usize = 20;
+use pliant_validation::cases::hose_contact::{crossing_hoses, LOAD, N};
 
 #[test]
 fn crossing_hoses_reach_rest_in_a_few_implicit_steps() {
-    let (mat, sec) = hose1();
-    let r = sec.outer_radius();
-    let line = |name: &str, from: DVec3, to: DVec3| HoseSpec {
-        name: name.into(),
-        material: mat.clone(),
-        nodes: (0..=N)
-            .map(|i| from.lerp(to, i as f64 / N as f64))
-            .collect(),
-        sections: vec![sec],
-        normal_hint: None,
-    };
-    let lower = line(
-        "lower",
-        DVec3::new(-0.25, 0.0, 0.0),
-        DVec3::new(0.25, 0.0, 0.0),
-    );
-    let upper = line(
-        "upper",
-        DVec3::new(0.0, -0.25, 2.0 * r),
-        DVec3::new(0.0, 0.25, 2.0 * r),
-    );
-    let settings = SimSettings {
-        gravity: DVec3::ZERO,
-        damping_mass: 0.0,
-        damping_stiffness: None,
-        ..Default::default()
-    };
-    let model = Model::build(&WorldSpec {
-        hoses: vec![lower, upper],
-        rigid_parts: vec![],
-        settings,
-    })
-    .unwrap();
-    let mut state = State::at_rest(&model);
-    for i in [0, N, N + 1, 2 * N + 1] {
-        state.loads.add(LoadCase::Fix(Fix {
-            node: i,
-            position: state.x[i],
-            orientation: state.q[i],
-        }));
-    }
-    let (f, mid) = (2.0, N + 1 + N / 2);
-    state
-        .loads
-        .add(dead_load(mid, DVec3::new(0.0, 0.0, -f), DVec3::ZERO));
+    let (model, mut state) = crossing_hoses().unwrap();
+    let f = LOAD;
     // the harness's settings: residual 1e-7 f at rest, Newton to 1e-3 of that
     let (force_tol, moment_tol) = (1e-7 * f, 1e-7 * f * 0.5);
     let options = ImplicitOptions {
