@@ -688,6 +688,7 @@ impl Sim {
             ergonomics: profile,
             verdict,
             checks,
+            instabilities: summary.solver.instabilities.clone(),
             notice: self.notice.clone(),
             rollbacks: self.rollbacks,
             ..Default::default()

@@ -201,6 +201,12 @@ pub struct Snapshot {
     /// Violations of the running installation checks since the last reset (SPEC V3:
     /// bend radius, twist), each with hose, arc length, time, value and limit.
     pub checks: Vec<pliant_assembly::checks::Violation>,
+    /// Unstable equilibria the static solver met and left since the last reset — buckling
+    /// or a snap-through at input time t, which hose and node, the mode shape (issue 10
+    /// item 1; the verdict's reasons say the same in words). Empty for the dynamic
+    /// solvers.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub instabilities: Vec<pliant_assembly::workcell::Instability>,
     /// Something the viewer should tell the user (e.g. the simulation diverged and was
     /// reset).
     #[serde(skip_serializing_if = "Option::is_none")]

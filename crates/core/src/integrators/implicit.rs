@@ -15,19 +15,31 @@
 //! unconditionally stable for linear problems and second-order accurate, so the step is
 //! chosen for accuracy — 10 ms is fine where explicit stepping needs microseconds.
 //!
-//! A step whose Newton iterations do not converge is retried as two half steps (down to
-//! 1/16 of the step) before it is reported.
+//! Each Newton step is shortened by halving until it lowers the norm of the residual
+//! (backtracking, Nocedal & Wright 2006, §11.2 with the residual norm as merit function;
+//! at most [`MAX_BACKTRACKS`] halvings): a full step that raises it — typically a contact
+//! switching on or off between iterates — is not taken whole. With contact, no iterate
+//! moves a node by more than half the smallest hose radius
+//! (the static solver's step control): a first iterate that has not yet seen a contact
+//! would otherwise carry a hose through the one it lands on, and Newton would balance it
+//! there with the contact normal reversed. A step whose Newton iterations do not
+//! converge is retried as two half steps (down to 1/16 of the step) before it is
+//! reported.
 
 use super::statics::increment_at_round_off;
 use crate::math::{left_jacobian_inverse_transpose_times, log_map};
 use crate::newton::block_tridiagonal::SingularBlock;
 use crate::newton::convergence::Tolerance;
 use crate::newton::system::{
-    apply_increment, rotation_limited_step, sync_bodies, NewtonSystem, NotAChain,
+    apply_increment, contact_translation_limit, rotation_limited_step, sync_bodies,
+    translation_limited_step, NewtonSystem, NotAChain,
 };
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
 use nalgebra::Vector6;
+
+/// Halvings the line search may make of one Newton step.
+const MAX_BACKTRACKS: usize = 10;
 
 /// Settings of the implicit solver.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,6 +54,12 @@ pub struct ImplicitOptions {
     pub max_iterations: usize,
     /// How many times a step may be halved when Newton does not converge.
     pub max_halvings: u32,
+    /// Largest translation of a node in one Newton iteration, as a fraction of the
+    /// smallest hose radius, when the model has contact
+    /// ([`crate::newton::system::contact_translation_limit`]): an iterate must not jump
+    /// through a hose or part it has not yet touched. Only the path of the iterates
+    /// changes, not the step's solution.
+    pub contact_step_fraction: f64,
 }
 
 impl Default for ImplicitOptions {
@@ -52,6 +70,7 @@ impl Default for ImplicitOptions {
             tolerance: Tolerance::default(),
             max_iterations: 25,
             max_halvings: 4,
+            contact_step_fraction: 0.5,
         }
     }
 }
@@ -66,6 +85,8 @@ pub struct ImplicitReport {
     pub residual_force: f64,
     pub residual_moment: f64,
     pub converged: bool,
+    /// Newton steps the line search shortened.
+    pub shortened_steps: usize,
 }
 
 /// Why a step failed.
@@ -120,6 +141,10 @@ pub struct ImplicitSolver {
     q0: Vec<DQuat>,
     v0: Vec<DVec3>,
     w0: Vec<DVec3>,
+    /// The line search's Newton increment and the iterate it starts from.
+    increment: Vec<Vector6<f64>>,
+    trial_x: Vec<DVec3>,
+    trial_q: Vec<DQuat>,
 }
 
 impl ImplicitSolver {
@@ -132,7 +157,10 @@ impl ImplicitSolver {
             x0: z.clone(),
             q0: vec![DQuat::IDENTITY; n],
             v0: z.clone(),
-            w0: z,
+            w0: z.clone(),
+            increment: vec![Vector6::zeros(); n],
+            trial_x: z,
+            trial_q: vec![DQuat::IDENTITY; n],
         })
     }
 
@@ -233,6 +261,84 @@ impl ImplicitSolver {
         history.started = true;
     }
 
+    /// The HHT residual r = (1+α) f_{n+1} − α f_n − m a_{n+1} at the current iterate
+    /// (Newmark kinematics of the free nodes from their positions) into `system.rhs`, and
+    /// its Jacobian (1+α) K + m/(βh²) [𝟙, J_l⁻¹(Θ)] into `system.matrix`. Returns the
+    /// largest force and moment residual on a free node, and the residual's norm
+    /// √(Σ |r_f|² + Σ |r_m|²/ℓ²) (ℓ the mean element length) that the line search
+    /// compares.
+    fn evaluate(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        history: &ImplicitHistory,
+        h: f64,
+    ) -> (f64, f64, f64) {
+        let alpha = self.options.alpha;
+        let beta = 0.25 * (1.0 - alpha) * (1.0 - alpha);
+        let gamma = 0.5 - alpha;
+        let c_acc = 1.0 / (beta * h * h);
+        let c_vel = gamma / (beta * h);
+        let n = state.x.len();
+        let sys = &mut self.system;
+        for i in 0..n {
+            if sys.prescribed[i] {
+                continue;
+            }
+            let (a, alp) = (history.acc[i], history.ang_acc[i]);
+            let a_new =
+                c_acc * (state.x[i] - self.x0[i] - h * self.v0[i]) - (0.5 - beta) / beta * a;
+            let theta = log_map(state.q[i] * self.q0[i].conjugate());
+            let alp_new = c_acc * (theta - h * self.w0[i]) - (0.5 - beta) / beta * alp;
+            state.v[i] = self.v0[i] + h * ((1.0 - gamma) * a + gamma * a_new);
+            state.w[i] = self.w0[i] + h * ((1.0 - gamma) * alp + gamma * alp_new);
+        }
+        sys.assemble(model, state, c_vel);
+        for i in 0..n {
+            let a_new = c_acc * (state.x[i] - self.x0[i] - h * self.v0[i])
+                - (0.5 - beta) / beta * history.acc[i];
+            let theta = log_map(state.q[i] * self.q0[i].conjugate());
+            let alp_new =
+                c_acc * (theta - h * self.w0[i]) - (0.5 - beta) / beta * history.ang_acc[i];
+            let rf =
+                (1.0 + alpha) * sys.force[i] - alpha * history.f_prev[i] - model.mass[i] * a_new;
+            let rm = (1.0 + alpha) * sys.moment[i]
+                - alpha * history.m_prev[i]
+                - model.inertia[i] * alp_new;
+            sys.rhs[i] = Vector6::new(rf.x, rf.y, rf.z, rm.x, rm.y, rm.z);
+            let d = &mut sys.matrix.diag[i];
+            *d *= 1.0 + alpha;
+            let (cm, ci) = (model.mass[i] * c_acc, model.inertia[i] * c_acc);
+            for k in 0..3 {
+                d[(k, k)] += cm;
+                // J_l⁻¹(Θ): row k is (J_l⁻ᵀ e_k)ᵀ
+                let mut e = DVec3::ZERO;
+                e[k] = 1.0;
+                let row = left_jacobian_inverse_transpose_times(theta, e);
+                for c in 0..3 {
+                    d[(3 + k, 3 + c)] += ci * row[c];
+                }
+            }
+        }
+        // the off-diagonal blocks and the contact pairs' coupling outside the band (the
+        // diagonal blocks were scaled above, before the mass term)
+        sys.scale_off_diagonal_tangent(1.0 + alpha);
+        let (mut rf, mut rm, mut sum) = (0.0_f64, 0.0_f64, 0.0);
+        let l2 = sys.mean_length * sys.mean_length;
+        for i in 0..n {
+            if !sys.prescribed[i] {
+                let (f, m) = (
+                    sys.rhs[i].fixed_rows::<3>(0).norm_squared(),
+                    sys.rhs[i].fixed_rows::<3>(3).norm_squared(),
+                );
+                rf = rf.max(f);
+                rm = rm.max(m);
+                sum += f + m / l2;
+            }
+        }
+        (rf.sqrt(), rm.sqrt(), sum.sqrt())
+    }
+
     /// One HHT step of size h from the saved start state; Ok(false) if Newton did not
     /// converge (the caller retries with smaller steps).
     fn try_step(
@@ -246,7 +352,6 @@ impl ImplicitSolver {
         let o = self.options;
         let alpha = o.alpha;
         let beta = 0.25 * (1.0 - alpha) * (1.0 - alpha);
-        let gamma = 0.5 - alpha;
         let t_next = state.time + h;
         let n = state.x.len();
         // predictor: constant velocity for the free nodes (an acceleration predictor
@@ -266,97 +371,67 @@ impl ImplicitSolver {
             }
         }
         let c_acc = 1.0 / (beta * h * h);
-        let c_vel = gamma / (beta * h);
         let mut converged = false;
+        let (mut rf, mut rm, mut merit) = self.evaluate(model, state, history, h);
         for _ in 0..o.max_iterations {
-            // Newmark kinematics of the free nodes from the current iterate
-            for i in 0..n {
-                if sys.prescribed[i] {
-                    continue;
-                }
-                let (a, alp) = (history.acc[i], history.ang_acc[i]);
-                let a_new =
-                    c_acc * (state.x[i] - self.x0[i] - h * self.v0[i]) - (0.5 - beta) / beta * a;
-                let theta = log_map(state.q[i] * self.q0[i].conjugate());
-                let alp_new = c_acc * (theta - h * self.w0[i]) - (0.5 - beta) / beta * alp;
-                state.v[i] = self.v0[i] + h * ((1.0 - gamma) * a + gamma * a_new);
-                state.w[i] = self.w0[i] + h * ((1.0 - gamma) * alp + gamma * alp_new);
-            }
-            sys.assemble(model, state, c_vel);
-            // residual r = (1+α) f_{n+1} − α f_n − m a_{n+1}; Jacobian (1+α)K + m c_acc
-            for i in 0..n {
-                let a_new = c_acc * (state.x[i] - self.x0[i] - h * self.v0[i])
-                    - (0.5 - beta) / beta * history.acc[i];
-                let theta = log_map(state.q[i] * self.q0[i].conjugate());
-                let alp_new =
-                    c_acc * (theta - h * self.w0[i]) - (0.5 - beta) / beta * history.ang_acc[i];
-                let rf = (1.0 + alpha) * sys.force[i]
-                    - alpha * history.f_prev[i]
-                    - model.mass[i] * a_new;
-                let rm = (1.0 + alpha) * sys.moment[i]
-                    - alpha * history.m_prev[i]
-                    - model.inertia[i] * alp_new;
-                sys.rhs[i] = Vector6::new(rf.x, rf.y, rf.z, rm.x, rm.y, rm.z);
-                let d = &mut sys.matrix.diag[i];
-                *d *= 1.0 + alpha;
-                let (cm, ci) = (model.mass[i] * c_acc, model.inertia[i] * c_acc);
-                for k in 0..3 {
-                    d[(k, k)] += cm;
-                    // J_l⁻¹(Θ): row k is (J_l⁻ᵀ e_k)ᵀ
-                    let mut e = DVec3::ZERO;
-                    e[k] = 1.0;
-                    let row = left_jacobian_inverse_transpose_times(theta, e);
-                    for c in 0..3 {
-                        d[(3 + k, 3 + c)] += ci * row[c];
-                    }
-                }
-            }
-            for m in sys
-                .matrix
-                .upper
-                .iter_mut()
-                .chain(sys.matrix.lower.iter_mut())
-            {
-                *m *= 1.0 + alpha;
-            }
-            let (mut rf, mut rm) = (0.0_f64, 0.0_f64);
-            for i in 0..n {
-                if !sys.prescribed[i] {
-                    rf = rf.max(sys.rhs[i].fixed_rows::<3>(0).norm());
-                    rm = rm.max(sys.rhs[i].fixed_rows::<3>(3).norm());
-                }
-            }
             report.residual_force = rf;
             report.residual_moment = rm;
             if !(rf.is_finite() && rm.is_finite()) {
                 return Ok(false);
             }
+            let sys = &mut self.system;
             let pending = sys.pending();
             if !pending && o.tolerance.met(sys.scale, rf, rm) {
                 converged = true;
                 break;
             }
-
             if pending {
                 sys.add_prescribed_coupling(state);
             }
             sys.eliminate_prescribed();
             sys.solve_linear(false)?;
-            let s = rotation_limited_step(&sys.rhs, &sys.prescribed);
-            apply_increment(state, &sys.rhs, &sys.prescribed, s);
+            let mut s = rotation_limited_step(&sys.rhs, &sys.prescribed);
             report.iterations += 1;
             if pending {
+                apply_increment(state, &sys.rhs, &sys.prescribed, s);
                 sys.move_prescribed(state);
+                (rf, rm, merit) = self.evaluate(model, state, history, h);
                 continue;
             }
+            if let Some(limit) = contact_translation_limit(model, state, o.contact_step_fraction) {
+                s = s.min(translation_limited_step(&sys.rhs, &sys.prescribed, limit));
+            }
             if increment_at_round_off(&sys.rhs, &sys.prescribed, model) {
+                apply_increment(state, &sys.rhs, &sys.prescribed, s);
                 converged = true;
                 break;
+            }
+            // backtracking on the residual's norm: a full step that raises it (a contact
+            // switching on or off between iterates) is halved until it does not
+            self.increment.copy_from_slice(&sys.rhs);
+            self.trial_x.copy_from_slice(&state.x);
+            self.trial_q.copy_from_slice(&state.q);
+            let mut tries = 0;
+            loop {
+                apply_increment(state, &self.increment, &self.system.prescribed, s);
+                let trial = self.evaluate(model, state, history, h);
+                if trial.2 < merit || tries >= MAX_BACKTRACKS {
+                    (rf, rm, merit) = trial;
+                    if tries > 0 {
+                        report.shortened_steps += 1;
+                    }
+                    break;
+                }
+                tries += 1;
+                s *= 0.5;
+                state.x.copy_from_slice(&self.trial_x);
+                state.q.copy_from_slice(&self.trial_q);
             }
         }
         if !converged {
             return Ok(false);
         }
+        let sys = &mut self.system;
         // accept: store a_{n+1}, f_{n+1}; reactions on prescribed nodes m a − f
         for i in 0..n {
             let a_new = if sys.prescribed[i] {

@@ -14,7 +14,8 @@
 use super::stability::{dead_moment_work, Escape, StabilityEvent};
 use crate::newton::convergence::Tolerance;
 use crate::newton::system::{
-    apply_increment, residual_norms, rotation_limited_step, sync_bodies, NewtonSystem,
+    apply_increment, contact_translation_limit, residual_norms, rotation_limited_step, sync_bodies,
+    translation_limited_step, NewtonSystem,
 };
 use crate::{Model, State};
 use glam::DVec3;
@@ -29,7 +30,8 @@ pub struct StaticOptions {
     /// unstable one).
     pub max_iterations: usize,
     /// Largest translation of any node in one iteration [m], as a fraction of the
-    /// smallest hose radius when contact is on (keeps contact from being jumped through).
+    /// smallest hose radius when contact — rigid parts or hose–hose — is on (keeps
+    /// contact from being jumped through; [`contact_translation_limit`]).
     pub contact_step_fraction: f64,
     /// Check each equilibrium's stability and leave unstable ones ([`super::stability`]).
     pub stability: bool,
@@ -117,7 +119,6 @@ impl StaticSolver {
         self.system.set_prescribed(state, state.time);
         state.v.fill(DVec3::ZERO);
         state.w.fill(DVec3::ZERO);
-        let min_radius = model.radius.iter().cloned().fold(f64::INFINITY, f64::min);
         let mut report = StaticReport {
             iterations: 0,
             residual_force: f64::INFINITY,
@@ -173,7 +174,7 @@ impl StaticSolver {
                     balanced = true;
                     inertia = Some(inertia_here);
                 } else {
-                    let s = self.line_search(model, state, rf.max(rm), min_radius);
+                    let s = self.line_search(model, state, rf.max(rm));
                     if s < 1.0 {
                         report.shortened_steps += 1;
                     }
@@ -220,13 +221,7 @@ impl StaticSolver {
 
     /// Backtracking along the Newton increment in `system.rhs` (Armijo on the potential
     /// energy, the residual where the energy does not decide); returns the step taken.
-    fn line_search(
-        &mut self,
-        model: &Model,
-        state: &mut State,
-        residual0: f64,
-        min_radius: f64,
-    ) -> f64 {
+    fn line_search(&mut self, model: &Model, state: &mut State, residual0: f64) -> f64 {
         let sys = &mut self.system;
         // −dΠ/ds along the step = (f, m)·δu (the loads are −∇Π)
         let mut directional = 0.0;
@@ -238,16 +233,10 @@ impl StaticSolver {
             }
         }
         let mut s: f64 = rotation_limited_step(&sys.rhs, &sys.prescribed);
-        if !model.environment.is_empty() {
-            let longest = sys
-                .rhs
-                .iter()
-                .map(|d| d.fixed_rows::<3>(0).norm())
-                .fold(0.0, f64::max);
-            let cap = self.options.contact_step_fraction * min_radius;
-            if longest > cap {
-                s = cap / longest;
-            }
+        if let Some(limit) =
+            contact_translation_limit(model, state, self.options.contact_step_fraction)
+        {
+            s = s.min(translation_limited_step(&sys.rhs, &sys.prescribed, limit));
         }
         // dead moments have no global potential; along this search line their work is
         // s Σ M·δθ (exact for a fixed axis, first order otherwise)

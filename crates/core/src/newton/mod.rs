@@ -1,10 +1,12 @@
 //! The Newton machinery the implicit and quasi-static integrators share (issue 5, SPEC
 //! P5; the integrators themselves are in [`crate::integrators`]): the assembly of loads
 //! and consistent tangent ([`system`]) the O(N) block-tridiagonal linear solve
-//! ([`block_tridiagonal`]) and the convergence test ([`convergence`]).
+//! ([`block_tridiagonal`]), GMRES for the hose–hose contact coupling outside its band
+//! ([`gmres`]) and the convergence test ([`convergence`]).
 
 pub mod block_tridiagonal;
 pub mod convergence;
+pub mod gmres;
 pub mod system;
 pub mod ties;
 

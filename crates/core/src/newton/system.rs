@@ -17,7 +17,7 @@
 //!   elastoplastic tangential spring of the same stiffness ([`crate::contact::friction`]);
 //! * hose–hose contact: the explicit solver's penalty forces at the current positions,
 //!   with each pair's tangent: within the block band (each node with itself, the two nodes
-//!   of a beam with each other) in the matrix, across the two beams by an iteration on the
+//!   of a beam with each other) in the matrix, across the two beams by GMRES on the
 //!   factorised band ([`NewtonSystem::solve_linear`]);
 //! * cable ties between hoses ([`crate::loads::Tie`]): their spring along n, the coupling
 //!   of the two nodes solved exactly by a rank-one update per tie ([`super::ties`]).
@@ -26,6 +26,7 @@
 
 use super::block_tridiagonal::{BlockTridiagonal, Inertia, SingularBlock};
 use super::convergence::LoadScale;
+use super::gmres::Gmres;
 use super::ties::TieCouplings;
 use crate::contact::friction::FrictionResponse;
 use crate::contact::{hose_contact_forces_with, ContactPair};
@@ -72,7 +73,8 @@ pub struct NewtonSystem {
     pub mean_length: f64,
     /// Scratch of the linear solve.
     base_rhs: Vec<Vector6<f64>>,
-    work: Vec<Vector6<f64>>,
+    /// The contact coupling's GMRES (buffers only when hose contact is on).
+    coupling: Gmres,
 }
 
 /// A support's load on its node at the state's configuration ([`Support::load`]).
@@ -93,8 +95,9 @@ fn mat3(m: glam::DMat3) -> Matrix3<f64> {
     Matrix3::from_column_slice(&m.to_cols_array())
 }
 
-/// Inner iterations of the contact coupling in [`NewtonSystem::solve_linear`].
-const MAX_COUPLING_ITERATIONS: usize = 200;
+/// Relative residual to which [`NewtonSystem::solve_linear`] solves the contact-coupled
+/// system.
+const COUPLING_TOLERANCE: f64 = 1e-12;
 
 /// Why a Newton solver could not be set up for a model.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -145,7 +148,11 @@ impl NewtonSystem {
             pairs: Vec::with_capacity(4 * n),
             ties: TieCouplings::default(),
             base_rhs: vec![Vector6::zeros(); n],
-            work: vec![Vector6::zeros(); n],
+            coupling: if model.hose_contact.active {
+                Gmres::new(n)
+            } else {
+                Gmres::default()
+            },
         })
     }
 
@@ -442,10 +449,13 @@ impl NewtonSystem {
 
     /// Solves J δu = rhs (rhs becomes δu) for J = T + C: T the block-tridiagonal part in
     /// `matrix`, C the hose–hose contact coupling between the two beams of each pair,
-    /// −k wᵢ wⱼ n nᵀ. Without contact pairs this is one O(N) solve; with them, the
-    /// fixed-point iteration δu ← T⁻¹ (rhs − C δu) on the factorised T (a block splitting,
-    /// convergent since the pair's stiffness also sits on T's diagonal) until δu changes
-    /// by less than 1e-12 of its size.
+    /// −k wᵢ wⱼ n nᵀ (T includes the cable ties, solved exactly by their rank-one updates,
+    /// [`super::ties`]). Without contact pairs this is one O(N) solve; with them, GMRES on
+    /// (I + T⁻¹C) δu = T⁻¹ rhs with the factorised T ([`super::gmres`]), to a relative
+    /// residual of [`COUPLING_TOLERANCE`]. (The fixed-point iteration δu ← T⁻¹(rhs − C δu)
+    /// on the same splitting, used before, converges at the rate k/(k + k_hose) of the
+    /// contact stiffness against the hoses' own stiffness at the contact — 1 − 4·10⁻⁴ for
+    /// two soft hoses pressed together — and left Newton with wrong steps.)
     ///
     /// `modified`: factorise a positive-definite neighbour of T where T is not
     /// ([`BlockTridiagonal::factor_modified`], the static solver) and return T's inertia;
@@ -461,55 +471,65 @@ impl NewtonSystem {
         if tied {
             self.ties.prepare(&self.matrix, &self.prescribed)?;
         }
-        if self.pairs.is_empty() {
-            self.matrix.solve_factored(&mut self.rhs)?;
-            if tied {
-                self.ties.correct(&mut self.rhs, &self.prescribed);
-            }
-            return Ok(inertia);
-        }
-        self.base_rhs.copy_from_slice(&self.rhs);
         self.matrix.solve_factored(&mut self.rhs)?;
         if tied {
             self.ties.correct(&mut self.rhs, &self.prescribed);
         }
-        for _ in 0..MAX_COUPLING_ITERATIONS {
-            self.work.copy_from_slice(&self.base_rhs);
-            for p in &self.pairs {
-                let [a, b, c, d] = p.nodes;
-                for (i, wi) in [(a, p.weights[0]), (b, p.weights[1])] {
-                    for (j, wj) in [(c, p.weights[2]), (d, p.weights[3])] {
-                        let kw = p.stiffness * wi * wj;
-                        let dj = self.rhs[j].fixed_rows::<3>(0).into_owned();
-                        let di = self.rhs[i].fixed_rows::<3>(0).into_owned();
-                        let nv = nalgebra::Vector3::new(p.normal.x, p.normal.y, p.normal.z);
-                        if !self.prescribed[i] {
-                            let mut row = self.work[i].fixed_rows_mut::<3>(0);
-                            row += nv * (kw * nv.dot(&dj));
-                        }
-                        if !self.prescribed[j] {
-                            let mut row = self.work[j].fixed_rows_mut::<3>(0);
-                            row += nv * (kw * nv.dot(&di));
-                        }
-                    }
+        if self.pairs.is_empty() {
+            return Ok(inertia);
+        }
+        // b' = T⁻¹ rhs, also the start (the solution without the coupling)
+        self.base_rhs.copy_from_slice(&self.rhs);
+        if self.coupling.len() != self.rhs.len() {
+            // hose contact switched on after the solver was built: buffers once
+            self.coupling = Gmres::new(self.rhs.len());
+        }
+        let (matrix, pairs, prescribed) = (&self.matrix, &self.pairs, &self.prescribed);
+        let ties = &mut self.ties;
+        let mut failed = None;
+        self.coupling.solve(
+            &self.base_rhs,
+            &mut self.rhs,
+            COUPLING_TOLERANCE,
+            |v, out| {
+                // (I + K⁻¹C) v = v − K⁻¹(−C v), K = T with the ties' rank-one updates
+                out.fill(Vector6::zeros());
+                add_minus_coupling(pairs, prescribed, v, out);
+                if let Err(e) = matrix.solve_factored(out) {
+                    failed = Some(e);
                 }
-            }
-            self.matrix.solve_factored(&mut self.work)?;
-            if tied {
-                self.ties.correct(&mut self.work, &self.prescribed);
-            }
-            let mut change: f64 = 0.0;
-            let mut size: f64 = 0.0;
-            for (new, old) in self.work.iter().zip(&self.rhs) {
-                change = change.max((new - old).amax());
-                size = size.max(new.amax());
-            }
-            self.rhs.copy_from_slice(&self.work);
-            if change <= 1e-12 * size {
-                break;
-            }
+                if tied {
+                    ties.correct(out, prescribed);
+                }
+                for (o, vi) in out.iter_mut().zip(v) {
+                    *o = vi - *o;
+                }
+            },
+        );
+        if let Some(e) = failed {
+            return Err(e);
         }
         Ok(inertia)
+    }
+
+    /// Multiplies the tangent's off-diagonal blocks and the hose–hose contact pairs'
+    /// stiffness (their coupling across the two beams, applied in
+    /// [`Self::solve_linear`]) by `factor` — the HHT-α weight 1 + α of the implicit
+    /// solver's Jacobian, whose diagonal blocks it scales itself. (Leaving the pairs out,
+    /// as before, made the cross-beam coupling 1/(1 + α) times too stiff: the Newton steps
+    /// of two hoses pressed together overshot, and the contact chattered on and off.)
+    pub fn scale_off_diagonal_tangent(&mut self, factor: f64) {
+        for m in self
+            .matrix
+            .upper
+            .iter_mut()
+            .chain(self.matrix.lower.iter_mut())
+        {
+            *m *= factor;
+        }
+        for p in &mut self.pairs {
+            p.stiffness *= factor;
+        }
     }
 
     /// Eliminates the prescribed nodes from the matrix and zeroes their right-hand side.
@@ -518,6 +538,34 @@ impl NewtonSystem {
             if self.prescribed[i] {
                 self.matrix.eliminate(i);
                 self.rhs[i] = Vector6::zeros();
+            }
+        }
+    }
+}
+
+/// out += −C v for the hose–hose contact pairs' coupling across their two beams,
+/// C_ij = −k wᵢ wⱼ n nᵀ (i on one beam, j on the other; translations only), on the free
+/// rows.
+fn add_minus_coupling(
+    pairs: &[ContactPair],
+    prescribed: &[bool],
+    v: &[Vector6<f64>],
+    out: &mut [Vector6<f64>],
+) {
+    for p in pairs {
+        let [a, b, c, d] = p.nodes;
+        let nv = nalgebra::Vector3::new(p.normal.x, p.normal.y, p.normal.z);
+        for (i, wi) in [(a, p.weights[0]), (b, p.weights[1])] {
+            for (j, wj) in [(c, p.weights[2]), (d, p.weights[3])] {
+                let kw = p.stiffness * wi * wj;
+                if !prescribed[i] {
+                    let mut row = out[i].fixed_rows_mut::<3>(0);
+                    row += nv * (kw * nv.dot(&v[j].fixed_rows::<3>(0)));
+                }
+                if !prescribed[j] {
+                    let mut row = out[j].fixed_rows_mut::<3>(0);
+                    row += nv * (kw * nv.dot(&v[i].fixed_rows::<3>(0)));
+                }
             }
         }
     }
@@ -587,17 +635,42 @@ pub const MAX_ROTATION_PER_ITERATION: f64 = 0.25;
 /// The fraction of the Newton increment that keeps every node's rotation within
 /// [`MAX_ROTATION_PER_ITERATION`] (1 when it already does).
 pub fn rotation_limited_step(rhs: &[Vector6<f64>], prescribed: &[bool]) -> f64 {
+    limited_step(rhs, prescribed, 3, MAX_ROTATION_PER_ITERATION)
+}
+
+/// The fraction of the Newton increment that keeps every free node's translation within
+/// `limit` [m] (1 when it already does).
+pub fn translation_limited_step(rhs: &[Vector6<f64>], prescribed: &[bool], limit: f64) -> f64 {
+    limited_step(rhs, prescribed, 0, limit)
+}
+
+/// The fraction of the increment that keeps the length of every free node's three
+/// components from `first` (0: translation, 3: rotation) within `limit`.
+fn limited_step(rhs: &[Vector6<f64>], prescribed: &[bool], first: usize, limit: f64) -> f64 {
     let largest = rhs
         .iter()
         .zip(prescribed)
         .filter(|(_, p)| !**p)
-        .map(|(d, _)| d.fixed_rows::<3>(3).norm())
+        .map(|(d, _)| d.fixed_rows::<3>(first).norm())
         .fold(0.0, f64::max);
-    if largest > MAX_ROTATION_PER_ITERATION {
-        MAX_ROTATION_PER_ITERATION / largest
+    if largest > limit {
+        limit / largest
     } else {
         1.0
     }
+}
+
+/// Largest translation of a node in one Newton iteration near contact [m]: `fraction`
+/// of the smallest node radius when the model has rigid parts, or when two hose
+/// capsules are near each other (the hose–hose pair list of the last assembly is not
+/// empty: some pair is within about a radius of touching); `None` otherwise. A longer
+/// step can carry a node ball or capsule through what it should touch within one
+/// iteration — where no contact force was yet seen — and Newton then balances it on the
+/// far side, pushed by a contact normal that points the wrong way.
+pub fn contact_translation_limit(model: &Model, state: &State, fraction: f64) -> Option<f64> {
+    let hoses_near = model.hose_contact.active && !state.hose_contact.candidates.is_empty();
+    (!model.environment.is_empty() || hoses_near)
+        .then(|| fraction * model.radius.iter().cloned().fold(f64::INFINITY, f64::min))
 }
 
 /// Largest force and moment residual over the free nodes.

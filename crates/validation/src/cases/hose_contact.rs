@@ -11,9 +11,14 @@ use pliant_core::contact::hose_hose::closest_segment_segment;
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::{HoseSpec, Model, SimSettings, State, WorldSpec};
 
-const N: usize = 20;
+/// Elements per hose.
+pub const N: usize = 20;
+/// The dead load pressing the upper hose down at its middle [N].
+pub const LOAD: f64 = 2.0;
 
-pub fn run() -> Vec<Check> {
+/// The two crossing hoses, clamped at both ends, the upper one touching the lower one at
+/// the crossing and loaded by [`LOAD`] at its middle (node N + 1 + N/2), not yet at rest.
+pub fn crossing_hoses() -> Result<(Model, State), String> {
     let (mat, sec) = hose1();
     let r = sec.outer_radius();
     let line = |name: &str, from: DVec3, to: DVec3| HoseSpec {
@@ -42,28 +47,35 @@ pub fn run() -> Vec<Check> {
         damping_stiffness: None,
         ..Default::default()
     };
-    let model = match Model::build(&WorldSpec {
+    let model = Model::build(&WorldSpec {
         hoses: vec![lower, upper],
         rigid_parts: vec![],
         settings,
-    }) {
-        Ok(m) => m,
-        Err(e) => return vec![Check::failed("hose_contact", "model", &e.to_string())],
-    };
+    })
+    .map_err(|e| e.to_string())?;
     let mut state = State::at_rest(&model);
-    let ends = [0, N, N + 1, 2 * N + 1];
-    for &i in &ends {
+    for i in [0, N, N + 1, 2 * N + 1] {
         state.loads.add(LoadCase::Fix(Fix {
             node: i,
             position: state.x[i],
             orientation: state.q[i],
         }));
     }
-    let f = 2.0;
     let mid_upper = N + 1 + N / 2;
-    state
-        .loads
-        .add(dead_load(mid_upper, DVec3::new(0.0, 0.0, -f), DVec3::ZERO));
+    state.loads.add(dead_load(
+        mid_upper,
+        DVec3::new(0.0, 0.0, -LOAD),
+        DVec3::ZERO,
+    ));
+    Ok((model, state))
+}
+
+pub fn run() -> Vec<Check> {
+    let (model, mut state) = match crossing_hoses() {
+        Ok(m) => m,
+        Err(e) => return vec![Check::failed("hose_contact", "model", &e)],
+    };
+    let (f, r) = (LOAD, model.radius[0]);
     if let Err(e) = settle_to(&model, &mut state, f, 0.5, 1e-7) {
         return vec![Check::failed("hose_contact", "relaxation", &e)];
     }

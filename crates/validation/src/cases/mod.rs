@@ -8,7 +8,7 @@ mod energy;
 mod fasteners;
 mod friction;
 mod helix;
-mod hose_contact;
+pub mod hose_contact;
 mod invariance;
 mod postbuckling;
 mod rollup;
