@@ -106,11 +106,13 @@ describe('colour modes and checks', () => {
         const n = (window.pliant.shown.checks ?? []).filter((c) => c.check === 'bend_radius' || c.check === 'twist').length;
         return n > 0 && window.pliant.markers().length === n;
       });
-      const markers = await page.evaluate(() => window.pliant.markers());
-      for (const m of markers) {
+      // markers and hoses read in one evaluation, so from one drawn frame (the session runs on)
+      const markers = await page.evaluate(() => window.pliant.markers().map((m) => {
         const k = Number(m.key.split(':')[0]);
-        const nodes = await page.evaluate((k) => window.pliant.hoseNodes(k), k);
-        assert.ok(toPolyline(m.position, nodes) < 1e-6, `marker ${m.key} at ${m.position} lies on hose ${k}`);
+        return { ...m, hose: k, nodes: window.pliant.hoseNodes(k) };
+      }));
+      for (const m of markers) {
+        assert.ok(toPolyline(m.position, m.nodes) < 1e-6, `marker ${m.key} at ${m.position} lies on hose ${m.hose}`);
       }
       // the panel lists the checks live; the running verdict names them
       assert.ok((await page.locator('#checks .check[data-check="bend_radius"]').count()) >= 1);
