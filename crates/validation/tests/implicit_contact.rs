@@ -11,7 +11,7 @@
 use glam::DVec3;
 use pliant_core::integrators::{ImplicitOptions, ImplicitSolver};
 use pliant_core::newton::Tolerance;
-use pliant_validation::cases::hose_contact::{crossing_hoses, LOAD, N};
+use pliant_validation::cases::hose_contact::{contact_force_on, crossing_hoses, LOAD, N};
 
 #[test]
 fn crossing_hoses_reach_rest_in_a_few_implicit_steps() {
@@ -43,13 +43,10 @@ fn crossing_hoses_reach_rest_in_a_few_implicit_steps() {
     assert!(halved <= 10, "{halved} extra sub-steps (was 511 per step)");
     // at rest the upper hose lies on the lower one: equal and opposite contact forces,
     // the load carried through the contact
-    let sum = |h: usize| {
-        model.hoses[h]
-            .nodes()
-            .map(|i| state.hose_contact_force[i])
-            .sum::<DVec3>()
-    };
-    let (on_lower, on_upper) = (sum(0), sum(1));
+    let (on_lower, on_upper) = (
+        contact_force_on(&model, &state, 0),
+        contact_force_on(&model, &state, 1),
+    );
     assert!((on_lower + on_upper).length() <= 1e-9 * on_lower.length());
     // about half the load goes through the contact into the lower hose (the crossing
     // hoses are alike), and the lower hose's supports carry exactly that

@@ -70,6 +70,14 @@ pub fn crossing_hoses() -> Result<(Model, State), String> {
     Ok((model, state))
 }
 
+/// The total hose–hose contact force on hose `h` [N].
+pub fn contact_force_on(model: &Model, state: &State, h: usize) -> DVec3 {
+    model.hoses[h]
+        .nodes()
+        .map(|i| state.hose_contact_force[i])
+        .sum()
+}
+
 pub fn run() -> Vec<Check> {
     let (model, mut state) = match crossing_hoses() {
         Ok(m) => m,
@@ -79,13 +87,10 @@ pub fn run() -> Vec<Check> {
     if let Err(e) = settle_to(&model, &mut state, f, 0.5, 1e-7) {
         return vec![Check::failed("hose_contact", "relaxation", &e)];
     }
-    let sum = |h: usize| {
-        model.hoses[h]
-            .nodes()
-            .map(|i| state.hose_contact_force[i])
-            .sum::<DVec3>()
-    };
-    let (on_lower, on_upper) = (sum(0), sum(1));
+    let (on_lower, on_upper) = (
+        contact_force_on(&model, &state, 0),
+        contact_force_on(&model, &state, 1),
+    );
     let lower_supports: DVec3 = [0, N].iter().map(|&i| state.reaction_force[i]).sum();
     let mut gap = f64::INFINITY;
     for a in model.hoses[0].first_element..model.hoses[0].first_element + N {
