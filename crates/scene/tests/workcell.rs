@@ -419,12 +419,16 @@ fn a_grab_beside_the_hose_takes_it_at_the_hose() {
 /// Issue 12, item 6 (the soak's cause): an aimed hand is as strong as a person, no more
 /// ([`pliant_assembly::HandLimits::max_force`]). Sent 12 cm sideways across the upper
 /// hose, which is held taut at both ends, a kinematic hand drags it to kilonewtons; a
-/// hand of 600 N stops where the hose holds it, at its strength, short of the target.
+/// hand of 600 N stops where the hose holds it, at its strength, short of the target —
+/// under every solver. Under the implicit and static solvers' 10 ms steps a hand that
+/// gave way at a fixed speed swung between ± kilonewtons from step to step (the soak's
+/// divergences); it must settle at its strength: over the last half second every step's
+/// force is within 20 % of it (within 1 % under the Newton solvers).
 #[test]
 fn an_aimed_hand_pulls_no_harder_than_its_strength() {
     let scene = demo_scene().unwrap();
-    let peak_and_gap = |max_force: Option<f64>| {
-        let mut opts = options(SolverKind::Explicit);
+    let run = |solver: SolverKind, max_force: Option<f64>| {
+        let mut opts = options(solver);
         opts.initial_loads = true; // the hoses' ends held as the demo starts
         opts.hand_limits.max_force = max_force;
         let mut cell = scene.workcell(opts).unwrap();
@@ -442,32 +446,54 @@ fn an_aimed_hand_pulls_no_harder_than_its_strength() {
             orientation: None,
         })
         .unwrap();
-        let mut peak: f64 = 0.0;
-        for _ in 0..cell.steps_in(1.0) {
-            cell.step(&mut NoObserver).unwrap();
-            peak = peak.max(cell.hand_records()[0].load.force.length());
+        let steps = cell.steps_in(1.5);
+        let mut forces = Vec::with_capacity(steps as usize);
+        for _ in 0..steps {
+            cell.step(&mut NoObserver)
+                .unwrap_or_else(|d| panic!("{solver:?}: {d}"));
+            forces.push(cell.hand_records()[0].load.force.length());
         }
         let hand = cell.hand(0).unwrap();
         let gap = (hand.pose_at(cell.state().time).0 - target).length();
-        (peak, gap, cell.hand_records()[0].load.force.length())
+        (forces, gap, cell.steps_in(0.5) as usize)
     };
-    let (unlimited, gap, _) = peak_and_gap(None);
+    let (forces, gap, _) = run(SolverKind::Explicit, None);
+    let unlimited = forces.iter().cloned().fold(0.0, f64::max);
     assert!(
         unlimited > 2000.0,
         "a kinematic hand drags it to {unlimited} N"
     );
     assert!(gap < 1e-9, "and gets where it was sent ({gap} m short)");
-    let (strong, gap, last) = peak_and_gap(Some(600.0));
-    // it stops at the step its force passes 600 N (the force of the last step decides);
-    // the hose's momentum carries the force on a little (≈ 19 %) before it gives way
-    assert!(strong < 600.0 * 1.25, "a 600 N hand peaked at {strong} N");
-    assert!(
-        strong > 600.0 * 0.9,
-        "and did pull as hard as it could ({strong} N)"
-    );
-    assert!(gap > 0.01, "it stopped short of its target ({gap} m)");
-    assert!(
-        (500.0..700.0).contains(&last),
-        "and keeps pulling at about its strength ({last} N)"
-    );
+    for solver in [SolverKind::Explicit, SolverKind::Implicit, SolverKind::Static] {
+        let (forces, gap, last_half_second) = run(solver, Some(600.0));
+        let strong = forces.iter().cloned().fold(0.0, f64::max);
+        // it stops at the step its force passes 600 N (the force of the last step
+        // decides); the hose's momentum carries the force on a little (≈ 19 % under
+        // the explicit solver) before it gives way
+        assert!(
+            strong < 600.0 * 1.25,
+            "{solver:?}: a 600 N hand peaked at {strong} N"
+        );
+        assert!(
+            strong > 600.0 * 0.9,
+            "{solver:?}: and did pull as hard as it could ({strong} N)"
+        );
+        assert!(gap > 0.01, "{solver:?}: it stopped short of its target ({gap} m)");
+        let tail = &forces[forces.len() - last_half_second..];
+        let (low, high) = tail
+            .iter()
+            .fold((f64::MAX, 0.0f64), |(l, h), &f| (l.min(f), h.max(f)));
+        assert!(
+            low > 480.0 && high < 720.0,
+            "{solver:?}: and keeps pulling at its strength, {low}–{high} N in the last 0.5 s"
+        );
+        if solver != SolverKind::Explicit {
+            // a Newton step sees the hose's stiffness without the explicit solver's
+            // step-to-step swing: the secant settles the force on the strength
+            assert!(
+                strong < 600.0 * 1.05 && (low - 600.0).abs() < 6.0 && (high - 600.0).abs() < 6.0,
+                "{solver:?}: settles within 1 % of its strength: peak {strong} N, {low}–{high} N"
+            );
+        }
+    }
 }

@@ -7,7 +7,7 @@
 use super::input::HandNumber;
 use crate::hand::Hand;
 use glam::{DQuat, DVec3};
-use pliant_core::State;
+use pliant_core::{Model, State};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -56,6 +56,27 @@ pub struct Aim {
     pub speed: f64,
     /// Whether the hand was at its strength ([`HandLimits::max_force`]) in the last step.
     pub at_strength: bool,
+    /// What the hand felt in the last step, to size the next ([`Feel`]).
+    pub feel: Feel,
+}
+
+/// What a hand with a strength F_max feels of the hose: the stiffness k along its force
+/// F, from how F changed as the hand moved. The hand moves along F̂ by at most
+/// (F_max − |F|)/k in a step — one secant step towards |F| = F_max — so its force
+/// settles at its strength instead of swinging about it: below it the hand slows as the
+/// hose stiffens, above it it gives way by the excess over k. A hand that moved at a fixed
+/// speed until its force passed F_max and then gave way at a fixed speed overshot once
+/// the hose was stiffer than F_max/(v_max Δt) — a taut hose under the implicit solver's
+/// 10 ms step: ±10 kN within two steps, the soak's divergences.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Feel {
+    /// Force the hand exerted before its last step [N].
+    pub force: DVec3,
+    /// How far the hand moved along that force in its last step [m] (negative: it gave
+    /// way).
+    pub along: f64,
+    /// The stiffness it feels along the force, k [N/m] (0: not yet estimated).
+    pub stiffness: f64,
 }
 
 /// A hand of the workcell.
@@ -69,12 +90,19 @@ pub struct HeldHand {
 impl HeldHand {
     /// Sets the held nodes' targets for the step ending at `t` (length `dt`). An aimed
     /// hand first moves towards its target: it accelerates at most `a_max` and brakes so
-    /// as to stop on the target, v = min(v + a_max Δt, v_max, √(2 a_max d)). A hand at
-    /// its strength F_max (the force F it exerted in the last step, |F| > F_max) does not
-    /// move further along F, and gives way against F at v_max·min(|F|/F_max − 1, 1)
-    /// (gently: a faster yield makes the held nodes' own inertia force oscillate):
-    /// a person cannot drag a hose taut between its fixings by a kilonewton.
-    pub fn update(&mut self, state: &mut State, t: f64, dt: f64, limits: &HandLimits) {
+    /// as to stop on the target, v = min(v + a_max Δt, v_max, √(2 a_max d)). A hand with
+    /// a strength F_max moves along its force F of the last step by at most
+    /// (F_max − |F|)/k ([`Feel`]): at its strength it moves no further along F, and
+    /// gives way by the excess — a person cannot drag a hose taut between its fixings
+    /// by a kilonewton.
+    pub fn update(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        t: f64,
+        dt: f64,
+        limits: &HandLimits,
+    ) {
         if let Some(aim) = &mut self.aim {
             let to_go = (aim.target.0 - aim.pose.0).length();
             let braking = (2.0 * limits.max_acceleration * to_go).sqrt();
@@ -84,16 +112,28 @@ impl HeldHand {
             let mut step = aim.pose.0.move_towards(aim.target.0, aim.speed * dt) - aim.pose.0;
             let force = self.hand.force(state);
             aim.at_strength = false;
-            if let Some(f_max) = limits.max_force {
-                let over = force.length() / f_max;
-                if over > 1.0 {
-                    let along = force / force.length();
-                    step -= step.dot(along).max(0.0) * along;
-                    step -= along * (limits.max_speed * dt * (over - 1.0).min(1.0));
+            let mut feel = Feel::default();
+            if let (Some(f_max), Some(along)) = (limits.max_force, force.try_normalize()) {
+                let reach = limits.max_speed * dt;
+                let k = felt_stiffness(&aim.feel, force, f_max, reach, || {
+                    grip_stiffness(model, self.hand.element, dt)
+                });
+                let room = (f_max - force.length()) / k;
+                let forward = step.dot(along);
+                if forward > room {
+                    step += (room.max(-reach) - forward) * along;
+                }
+                if room < 0.0 {
                     aim.speed = 0.0; // sets off again from rest once the hose gives
                     aim.at_strength = true;
                 }
+                feel = Feel {
+                    force,
+                    along: step.dot(along),
+                    stiffness: k,
+                };
             }
+            aim.feel = feel;
             aim.pose.0 += step;
             aim.pose.1 = aim
                 .pose
@@ -119,6 +159,69 @@ impl HeldHand {
             None => self.hand.pose_at(t),
         }
     }
+}
+
+/// The stiffness k a hand feels along its force `force`, for its next step. After a
+/// move of d along the force F₀ of the step before (d < 0: against it), the secant
+/// k = (F − F₀)·F̂₀ / d: taken at once when it is stiffer than the estimate (an overshoot
+/// is not repeated), approached by halving when softer (what else moved in the step —
+/// other hands, contact, the hose's own swing — blurs it). Moves shorter than 10⁻³ of
+/// the largest step `reach` = v_max Δt are not measured. Never softer than
+/// F_max/`reach`: far below its strength a hand is not slowed. The first estimate is the
+/// grip's own stiffness ([`grip_stiffness`]).
+fn felt_stiffness(
+    last: &Feel,
+    force: DVec3,
+    f_max: f64,
+    reach: f64,
+    grip: impl FnOnce() -> f64,
+) -> f64 {
+    let softest = f_max / reach;
+    let k = if last.stiffness > 0.0 {
+        last.stiffness
+    } else {
+        grip()
+    };
+    let k = if last.along.abs() > 1e-3 * reach {
+        let secant = (force - last.force).dot(last.force.normalize_or_zero()) / last.along;
+        if secant > k {
+            secant
+        } else {
+            (0.5 * k).max(secant)
+        }
+    } else {
+        k
+    };
+    if k.is_finite() {
+        k.max(softest)
+    } else {
+        softest
+    }
+}
+
+/// An upper estimate of the stiffness with which a hose resists moving the grip on
+/// `element` (both its nodes, held) by a small distance in one step of `dt`: the axial
+/// and bending springs of the beams on either side, Σ (EA/l₀ + 12 EI/l₀³) (the clamped
+/// beam's end stiffnesses), plus the held nodes' inertia Σ m/Δt² (a node moved by d
+/// within a step is accelerated by ≈ d/Δt²). Stiffened sections and the rest of the
+/// hose, in series, only make it softer — except a rigid span, which the secant of
+/// [`felt_stiffness`] finds.
+fn grip_stiffness(model: &Model, element: usize, dt: f64) -> f64 {
+    let held = &model.elements[element];
+    let nodes = [held.node_a, held.node_b];
+    let springs: f64 = [element.wrapping_sub(1), element + 1]
+        .into_iter()
+        .filter_map(|e| model.elements.get(e))
+        .filter(|e| nodes.contains(&e.node_a) || nodes.contains(&e.node_b))
+        .map(|e| {
+            let l = e.rest_length;
+            let ea = e.axial_stiffness_tension.max(e.axial_stiffness_compression);
+            let ei = e.bending_stiffness[0].max(e.bending_stiffness[1]);
+            ea / l + 12.0 * ei / (l * l * l)
+        })
+        .sum();
+    let inertia: f64 = nodes.iter().map(|&n| model.mass[n]).sum::<f64>() / (dt * dt);
+    springs + inertia
 }
 
 /// The hands by number.

@@ -20,7 +20,7 @@ pub mod solver_record;
 pub mod tally;
 pub mod verdict;
 
-pub use hands::{Aim, HandLimits, HeldHand};
+pub use hands::{Aim, HandLimits, HeldHand, Feel};
 pub use input::{HandNumber, Input, Refusal, StampedInput};
 pub use observer::{NoObserver, Observer};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
@@ -799,6 +799,7 @@ impl Workcell {
                             target: pose,
                             speed: 0.0,
                             at_strength: false,
+                            feel: Default::default(),
                         }
                     });
                     aim.target = (position, orientation.unwrap_or(aim.target.1));
@@ -909,7 +910,7 @@ impl Workcell {
         let t_next = self.state.time + dt;
         let limits = self.options.hand_limits;
         for h in self.hands.values_mut() {
-            h.update(&mut self.state, t_next, dt, &limits);
+            h.update(&self.model, &mut self.state, t_next, dt, &limits);
         }
         if !self.fasteners.is_empty() {
             let (hands, records) = (&self.hands, &self.hand_records);
