@@ -61,7 +61,6 @@ enum Command {
         #[command(flatten)]
         limits: limit_args::LimitArgs,
     },
-    /// Run the validation suite against exact and independent reference solutions.
     /// Replays a session's input log (a folder of `pliant serve`, or its inputs.jsonl)
     /// bit for bit and writes the same outputs as `run`.
     Replay {
@@ -75,6 +74,7 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Run the validation suite against exact and independent reference solutions.
     Validate {
         /// Print one JSON array of checks instead of a table.
         #[arg(long)]

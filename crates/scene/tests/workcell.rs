@@ -269,7 +269,7 @@ fn a_checkpoint_taken_mid_study_continues_bit_for_bit_for_each_solver() {
 
 /// Issue 12, item 6: a divergence is rolled back to the newest healthy recovery point;
 /// only the hand on the diverging hose is released, the other holds on, the study goes
-/// on, and a replay of the log (with the rollback in it) is bit for bit the same.
+/// on (its record and verdict say what was rolled back), and a replay of the log (with the rollback in it) is bit for bit the same.
 #[test]
 fn a_divergence_is_rolled_back_and_only_the_hand_involved_lets_go() {
     let scene = demo_scene().unwrap();
@@ -338,6 +338,21 @@ fn a_divergence_is_rolled_back_and_only_the_hand_involved_lets_go() {
     .unwrap();
     live.steps(live.steps_in(0.3), &mut NoObserver).unwrap();
     assert!(live.log().iter().any(|s| s.input == Input::Rollback));
+    // and the outputs say so: the record keeps the rollback, the verdict is uncertain
+    let record = &live.tally().solver;
+    assert_eq!(record.rollback_count, 1);
+    let kept = &record.rollbacks[0];
+    assert_eq!(kept.diverged_at, divergence.time);
+    assert_eq!(kept.back_to, rolled.to_time);
+    assert_eq!(kept.released, vec![0]);
+    let summary = live.summary();
+    let said = summary
+        .solver_warnings
+        .iter()
+        .find(|w| w.contains("rolled back"))
+        .unwrap_or_else(|| panic!("no rollback among {:?}", summary.solver_warnings));
+    assert!(said.contains(&divergence.hose), "{said}");
+    assert!(live.verdict(pliant_assembly::Stage::Final).uncertain);
     // the replay meets the same divergence at the same tick and rolls back the same way
     let mut again = scene.workcell(opts).unwrap();
     replay(&mut again, live.log(), live.tick(), &mut NoObserver).unwrap();

@@ -871,7 +871,11 @@ impl Workcell {
                 "no healthy checkpoint to roll back to; reset instead".into(),
             ));
         };
+        // the rollbacks so far stay on record, whatever the recovery point had
+        let record = std::mem::take(&mut self.tally.solver);
         self.put_back(point);
+        self.tally.solver.rollback_count = record.rollback_count;
+        self.tally.solver.rollbacks = record.rollbacks;
         self.diverged = None;
         let hose = self
             .model
@@ -890,6 +894,13 @@ impl Workcell {
             }
         }
         self.state.sleep.wake_all(&self.model);
+        self.tally.solver.record_rollback(solver_record::RolledBack {
+            diverged_at: divergence.time,
+            back_to: self.state.time,
+            hose: divergence.hose.clone(),
+            reason: format!("node {}: {}", divergence.node, divergence.what),
+            released: released.clone(),
+        });
         Ok(Rollback {
             to_time: self.state.time,
             divergence,

@@ -52,6 +52,23 @@ pub struct Instability {
     pub mode: Vec<[f64; 3]>,
 }
 
+/// Rollbacks kept in full (the count goes on past it).
+pub const MAX_ROLLBACKS_KEPT: usize = 32;
+
+/// A divergence a live session rolled back ([`super::Input::Rollback`]): the study goes on
+/// from a healthy state, without the hands that held the diverging hose.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RolledBack {
+    /// When it diverged and the time it went back to [s].
+    pub diverged_at: f64,
+    pub back_to: f64,
+    /// The diverging hose and what was found.
+    pub hose: String,
+    pub reason: String,
+    /// The hands released.
+    pub released: Vec<super::HandNumber>,
+}
+
 /// The Newton solvers' account of a study.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct SolverRecord {
@@ -71,6 +88,10 @@ pub struct SolverRecord {
     /// (`pliant_core::integrators::fallback`), and the time of the first.
     pub explicit_fallback_steps: u64,
     pub first_explicit_fallback: Option<f64>,
+    /// Divergences rolled back (any solver), and the first [`MAX_ROLLBACKS_KEPT`] of
+    /// them in full.
+    pub rollback_count: u64,
+    pub rollbacks: Vec<RolledBack>,
 }
 
 impl SolverRecord {
@@ -110,9 +131,19 @@ impl SolverRecord {
         }
     }
 
-    /// Whether the study's numbers rest on a state out of balance or unstable.
+    /// Takes in a rollback.
+    pub fn record_rollback(&mut self, rollback: RolledBack) {
+        self.rollback_count += 1;
+        if self.rollbacks.len() < MAX_ROLLBACKS_KEPT {
+            self.rollbacks.push(rollback);
+        }
+    }
+
+    /// Whether the study's numbers rest on a state out of balance or unstable, or on a
+    /// session that diverged (rolled back: what the released hands were doing was cut
+    /// short).
     pub fn uncertain(&self) -> bool {
-        self.unconverged_steps > 0 || self.unstable_steps > 0
+        self.unconverged_steps > 0 || self.unstable_steps > 0 || self.rollback_count > 0
     }
 
     /// Why the study is uncertain, in words (empty when it is not).
@@ -136,6 +167,19 @@ impl SolverRecord {
             out.push(format!(
                 "uncertain: {} step(s) ended on an unstable equilibrium the static solver could not leave",
                 self.unstable_steps
+            ));
+        }
+        if let Some(first) = self.rollbacks.first() {
+            out.push(format!(
+                "uncertain: the simulation diverged {} time(s) and was rolled back, each time releasing the \
+                 hands on the diverging hose; first at t = {:.3} s (hose '{}', back to t = {:.3} s, hands {:?} \
+                 released): {}",
+                self.rollback_count,
+                first.diverged_at,
+                first.hose,
+                first.back_to,
+                first.released,
+                first.reason
             ));
         }
         out
