@@ -7,6 +7,7 @@
 use super::input::HandNumber;
 use crate::hand::Hand;
 use glam::{DQuat, DVec3};
+use pliant_core::newton::RIGID_FACTOR;
 use pliant_core::{Model, State};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -60,22 +61,25 @@ pub struct Aim {
     pub feel: Feel,
 }
 
-/// What a hand with a strength F_max feels of the hose: the stiffness k along its force
-/// F, from how F changed as the hand moved. The hand moves along F̂ by at most
-/// (F_max − |F|)/k in a step — one secant step towards |F| = F_max — so its force
-/// settles at its strength instead of swinging about it: below it the hand slows as the
-/// hose stiffens, above it it gives way by the excess over k. A hand that moved at a fixed
-/// speed until its force passed F_max and then gave way at a fixed speed overshot once
-/// the hose was stiffer than F_max/(v_max Δt) — a taut hose under the implicit solver's
-/// 10 ms step: ±10 kN within two steps, the soak's divergences.
+/// What a hand with a strength F_max feels of the hose: the stiffness k with which its
+/// force F changed as it moved. Taking the hose as a spring of 2k (a relaxed secant
+/// step), the force after a step s, F + 2k s, stays within F_max when s lies in the ball
+/// about −F/(2k) of radius F_max/(2k); the hand takes the point of that ball nearest to
+/// where it is heading. Below its strength it slows as the hose stiffens, sideways as
+/// much as along F; above it, it gives way until the force after the step is at most
+/// (|F| + F_max)/2. Relaxed (2k, not k): two hands on one stiff span — a metal tube held
+/// at two points — each remove half of their common excess, not twice all of it (whole
+/// steps swung such a pair between ± meganewtons). A hand that moved at a fixed speed
+/// until its force passed F_max and gave way at a fixed speed overshot once the hose was
+/// stiffer than F_max/(v_max Δt) — a taut hose under the implicit solver's 10 ms step:
+/// ±10 kN within two steps, the soak's divergences.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Feel {
     /// Force the hand exerted before its last step [N].
     pub force: DVec3,
-    /// How far the hand moved along that force in its last step [m] (negative: it gave
-    /// way).
-    pub along: f64,
-    /// The stiffness it feels along the force, k [N/m] (0: not yet estimated).
+    /// How the hand moved in its last step [m].
+    pub step: DVec3,
+    /// The stiffness it feels, k [N/m] (0: not yet estimated).
     pub stiffness: f64,
 }
 
@@ -91,10 +95,9 @@ impl HeldHand {
     /// Sets the held nodes' targets for the step ending at `t` (length `dt`). An aimed
     /// hand first moves towards its target: it accelerates at most `a_max` and brakes so
     /// as to stop on the target, v = min(v + a_max Δt, v_max, √(2 a_max d)). A hand with
-    /// a strength F_max moves along its force F of the last step by at most
-    /// (F_max − |F|)/k ([`Feel`]): at its strength it moves no further along F, and
-    /// gives way by the excess — a person cannot drag a hose taut between its fixings
-    /// by a kilonewton.
+    /// a strength F_max then keeps its next force within F_max by the stiffness it felt
+    /// ([`Feel`]); over its strength it gives way — a person cannot drag a hose taut
+    /// between its fixings by a kilonewton.
     pub fn update(
         &mut self,
         model: &Model,
@@ -113,23 +116,24 @@ impl HeldHand {
             let force = self.hand.force(state);
             aim.at_strength = false;
             let mut feel = Feel::default();
-            if let (Some(f_max), Some(along)) = (limits.max_force, force.try_normalize()) {
+            if let Some(f_max) = limits.max_force {
                 let reach = limits.max_speed * dt;
                 let k = felt_stiffness(&aim.feel, force, f_max, reach, || {
                     grip_stiffness(model, self.hand.element, dt)
                 });
-                let room = (f_max - force.length()) / k;
-                let forward = step.dot(along);
-                if forward > room {
-                    step += (room.max(-reach) - forward) * along;
+                let centre = -force / (2.0 * k);
+                let radius = f_max / (2.0 * k);
+                let off = step - centre;
+                if off.length() > radius {
+                    step = (centre + off * (radius / off.length())).clamp_length_max(reach);
                 }
-                if room < 0.0 {
+                if force.length() > f_max {
                     aim.speed = 0.0; // sets off again from rest once the hose gives
                     aim.at_strength = true;
                 }
                 feel = Feel {
                     force,
-                    along: step.dot(along),
+                    step,
                     stiffness: k,
                 };
             }
@@ -161,14 +165,17 @@ impl HeldHand {
     }
 }
 
-/// The stiffness k a hand feels along its force `force`, for its next step. After a
-/// move of d along the force F₀ of the step before (d < 0: against it), the secant
-/// k = (F − F₀)·F̂₀ / d: taken at once when it is stiffer than the estimate (an overshoot
-/// is not repeated), approached by halving when softer (what else moved in the step —
-/// other hands, contact, the hose's own swing — blurs it). Moves shorter than 10⁻³ of
-/// the largest step `reach` = v_max Δt are not measured. Never softer than
-/// F_max/`reach`: far below its strength a hand is not slowed. The first estimate is the
-/// grip's own stiffness ([`grip_stiffness`]).
+/// The stiffness k a hand feels, for its next step. After a step s (with force F₀
+/// before it), the secant k = (F − F₀)·ŝ / |s|: taken at once when it is stiffer than
+/// the estimate (an overshoot is not repeated), approached by halving when softer, kept
+/// when the force fell as the hand moved into it (what else moved decided it). A
+/// change below the noise of 10⁻³ F_max over a short step (under 10⁻³ of the largest,
+/// `reach` = v_max Δt) measures nothing but bounds k by that noise over |s|, so that a
+/// hand held back by a stiffness it no longer meets gets going again; no step, no news.
+/// What else moved in the step (other hands, contact, the hose's own swing) blurs the
+/// secant; the relaxed step of [`Feel`] absorbs it. Never softer than F_max/`reach`: far
+/// below its strength a hand is not slowed. The first estimate is the grip's own
+/// stiffness ([`grip_stiffness`]).
 fn felt_stiffness(
     last: &Feel,
     force: DVec3,
@@ -182,15 +189,22 @@ fn felt_stiffness(
     } else {
         grip()
     };
-    let k = if last.along.abs() > 1e-3 * reach {
-        let secant = (force - last.force).dot(last.force.normalize_or_zero()) / last.along;
+    let moved = last.step.length();
+    let change = (force - last.force).dot(last.step) / moved.max(f64::MIN_POSITIVE);
+    let noise = 1e-3 * f_max;
+    let k = if moved == 0.0 {
+        k
+    } else if moved > 1e-3 * reach || change.abs() > noise {
+        let secant = change / moved;
         if secant > k {
             secant
-        } else {
+        } else if secant > 0.0 {
             (0.5 * k).max(secant)
+        } else {
+            k // the force fell as the hand moved into it: something else moved
         }
     } else {
-        k
+        (0.5 * k).max(k.min(noise / moved))
     };
     if k.is_finite() {
         k.max(softest)
@@ -203,9 +217,10 @@ fn felt_stiffness(
 /// `element` (both its nodes, held) by a small distance in one step of `dt`: the axial
 /// and bending springs of the beams on either side, Σ (EA/l₀ + 12 EI/l₀³) (the clamped
 /// beam's end stiffnesses), plus the held nodes' inertia Σ m/Δt² (a node moved by d
-/// within a step is accelerated by ≈ d/Δt²). Stiffened sections and the rest of the
-/// hose, in series, only make it softer — except a rigid span, which the secant of
-/// [`felt_stiffness`] finds.
+/// within a step is accelerated by ≈ d/Δt²). A beam of a stiffened section counts as the
+/// Newton solvers make it, [`RIGID_FACTOR`] times stiffer: a hand on a metal tube that
+/// another hand holds too starts out careful. The rest of the hose, in series, only
+/// makes it softer.
 fn grip_stiffness(model: &Model, element: usize, dt: f64) -> f64 {
     let held = &model.elements[element];
     let nodes = [held.node_a, held.node_b];
@@ -217,7 +232,13 @@ fn grip_stiffness(model: &Model, element: usize, dt: f64) -> f64 {
             let l = e.rest_length;
             let ea = e.axial_stiffness_tension.max(e.axial_stiffness_compression);
             let ei = e.bending_stiffness[0].max(e.bending_stiffness[1]);
-            ea / l + 12.0 * ei / (l * l * l)
+            let body = model.body_of[e.node_a];
+            let rigid = if body.is_some() && body == model.body_of[e.node_b] {
+                RIGID_FACTOR
+            } else {
+                1.0
+            };
+            rigid * (ea / l + 12.0 * ei / (l * l * l))
         })
         .sum();
     let inertia: f64 = nodes.iter().map(|&n| model.mass[n]).sum::<f64>() / (dt * dt);
