@@ -512,3 +512,61 @@ fn an_aimed_hand_pulls_no_harder_than_its_strength() {
         }
     }
 }
+
+/// Issue 12, item 6 (the soak's last divergence): two hands on the upper hose's metal
+/// tube (its stiffened span, which the Newton solvers make 10⁴ times stiffer), sent 3 cm
+/// apart along it. Neither can move without the other giving way, and each must stop at
+/// its strength: the tube pulled apart by 600 N from each end, not by meganewtons (each
+/// hand removing all of their common excess swung the pair between ± MN). Under the
+/// implicit and static solvers.
+#[test]
+fn two_hands_on_one_metal_tube_pull_at_their_strength() {
+    let scene = demo_scene().unwrap();
+    for solver in [SolverKind::Implicit, SolverKind::Static] {
+        let mut opts = options(solver);
+        opts.initial_loads = true;
+        let mut cell = scene.workcell(opts).unwrap();
+        let upper = &cell.model().hoses[0];
+        let (a, b) = (upper.node(2), upper.node(6));
+        let xa = 0.5 * (cell.state().x[a] + cell.state().x[upper.node(3)]);
+        let xb = 0.5 * (cell.state().x[b] + cell.state().x[upper.node(5)]);
+        let apart = (xb - xa).normalize() * 0.03;
+        for (hand, at, to) in [(0, xa, xa - apart), (1, xb, xb + apart)] {
+            cell.apply(Input::Grab {
+                hand,
+                at,
+                grip: Default::default(),
+            })
+            .unwrap();
+            cell.apply(Input::AimHand {
+                hand,
+                position: to,
+                orientation: None,
+            })
+            .unwrap();
+        }
+        let mut peak_late: f64 = 0.0;
+        let mut last = [0.0; 2];
+        for step in 0..cell.steps_in(1.0) {
+            cell.step(&mut NoObserver)
+                .unwrap_or_else(|d| panic!("{solver:?}: {d}"));
+            let forces = cell.hand_records().iter().map(|r| r.load.force.length());
+            for (k, f) in forces.enumerate() {
+                last[k] = f;
+                if step >= 20 {
+                    peak_late = peak_late.max(f);
+                }
+            }
+        }
+        assert!(
+            peak_late < 600.0 * 1.25,
+            "{solver:?}: after 0.2 s no hand pulls beyond its strength: {peak_late} N"
+        );
+        for f in last {
+            assert!(
+                (f - 600.0).abs() < 30.0,
+                "{solver:?}: both hands end at their strength: {last:?} N"
+            );
+        }
+    }
+}
