@@ -50,9 +50,6 @@ fn main() -> anyhow::Result<()> {
         truncations,
         fallbacks
     );
-    let st: Vec<f64> = pliant_core::contact::coherence::STATS.iter().map(|a| a.load(std::sync::atomic::Ordering::Relaxed) as f64 / steps as f64).collect();
-    println!("per step: node refresh {:.2} beam refresh {:.2} refresh tris {:.1} refresh dist {:.1} node offers {:.1} beam offers {:.1}", st[0], st[1], st[2], st[3], st[4], st[5]);
-    println!("beam offers: maytouch-reject {:.1} far {:.1} end {:.1} interior {:.1}", st[6], st[7], st[8], st[9]);
     Ok(())
 }
 
