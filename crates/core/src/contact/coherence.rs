@@ -345,10 +345,12 @@ impl CandidateCache {
     }
 
     /// Offers `search` the triangles whose box meets `query` and which may lie within its
-    /// bound of segment [a, b] (a = b for a node), nearest first, until no later one can
-    /// matter; the result is that of [`scan_fresh`] (see the module doc). `query` must
-    /// contain the segment's box grown by `reach`, and `search.bound()` must not exceed
-    /// `reach`.
+    /// bound of `probe` — a point or segment on segment [a, b] of the slot (a = b for a
+    /// point) — nearest first, until no later one can matter; the result is that of
+    /// [`scan_fresh`] (see the module doc). `query` must contain the probe's box grown by
+    /// `search.bound()`, which must not exceed `reach`. A probe on the slot's segment is
+    /// no nearer to any triangle than the segment, so the slot's list serves it (a node
+    /// uses its beam's list).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn scan(
         &mut self,
@@ -357,6 +359,7 @@ impl CandidateCache {
         a: DVec3,
         b: DVec3,
         reach: f64,
+        probe: [DVec3; 2],
         query: &Aabb,
         search: &mut impl Nearest,
     ) {
@@ -384,7 +387,7 @@ impl CandidateCache {
             if !reaches(r.distance, bound) {
                 break; // sorted: no later candidate can reach either
             }
-            if self.planes[k].beyond(a, b, bound) {
+            if self.planes[k].beyond(probe[0], probe[1], bound) {
                 continue; // where it is now, it cannot
             }
             let tri = env.parts[r.part as usize].mesh.triangle(r.triangle);
@@ -480,7 +483,7 @@ mod tests {
             };
             let (mut kept, mut fresh) = (search(x_min), search(x_min));
             let before = cache.fresh_fallbacks;
-            cache.scan(&env, 0, x, x, reach, &query, &mut kept);
+            cache.scan(&env, 0, x, x, reach, [x, x], &query, &mut kept);
             scan_fresh(&env, &query, &mut fresh);
             assert!(fresh.best.is_some(), "search {k} finds nothing");
             // the same triangle and point (ranks count in different queries)
