@@ -26,7 +26,7 @@ fn main() -> anyhow::Result<()> {
     run(&model, &mut state, warm);
     let before = state.contact.candidates.clone();
     let t0 = cpu_seconds();
-    let points = run(&model, &mut state, steps);
+    let points = measured(&model, &mut state, steps);
     let cpu = cpu_seconds() - t0;
     let mut hash = 0xcbf2_9ce4_8422_2325u64;
     for v in state.x.iter().chain(state.v.iter()) {
@@ -53,8 +53,14 @@ fn main() -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `steps` steps (the measured part, for `valgrind --toggle-collect=*run*`); returns the
-/// contact points summed over the steps.
+/// The measured steps, alone in this function for
+/// `valgrind --tool=callgrind --collect-atstart=no --toggle-collect=contact_steps::measured`.
+#[inline(never)]
+fn measured(model: &pliant_core::Model, state: &mut pliant_core::State, steps: u64) -> usize {
+    std::hint::black_box(run(model, state, std::hint::black_box(steps)))
+}
+
+/// `steps` steps; returns the contact points summed over the steps.
 #[inline(never)]
 fn run(model: &pliant_core::Model, state: &mut pliant_core::State, steps: u64) -> usize {
     let mut points = 0;

@@ -1,10 +1,10 @@
-//! Temporal coherence for rigid contact (issue 15): each node's and each beam's nearby
-//! triangles are found once, with a margin, and kept from step to step until the node or
-//! beam has moved by the margin — the idea of Verlet neighbour lists (L. Verlet, Phys.
+//! Temporal coherence for rigid contact (issue 15): each beam's nearby triangles are found
+//! once, with a margin, and kept from step to step until the beam has moved by the margin — the idea of Verlet neighbour lists (L. Verlet, Phys.
 //! Rev. 159, 98, 1967) and of the "enlarged bounding volumes" of collision detection
 //! (Ericson, "Real-Time Collision Detection", §6.6 / §9.6).
 //!
-//! A slot's query is a segment [a, b] (a = b for a node) with a contact reach ρ. On a
+//! A slot's query is a segment [a, b] (a beam; a = b would be a point) with a contact
+//! reach ρ. On a
 //! refresh every triangle whose box meets the segment's box grown by ρ + m is examined,
 //! and those whose distance to the segment is at most ρ + m are kept, in the environment's
 //! own order (parts in order, each part's BVH depth-first). The distance from a segment to
@@ -13,7 +13,17 @@
 //! of where they were, no triangle that was dropped can come within ρ: the kept list
 //! holds every triangle that can touch, in the same order as a fresh query, and the
 //! contact found from it is the same to the last bit. Most slots keep an empty list (the
-//! hose is clear of the parts) and cost one distance check per step.
+//! hose is clear of the parts) and cost one distance check per step; such a slot asks
+//! the BVH, best first, for the nearest triangle box within [`FAR`] reaches and may move
+//! until that box could come within reach. A node searches the list of one of its beams:
+//! a point of the segment is no nearer to any triangle than the segment, and it moves no
+//! more than the segment's end points, so the beam's list, bounds and margin serve it.
+//!
+//! Where they are now: each kept triangle carries its [`Planes`] (unit normal and the
+//! three in-plane edge normals, made at the refresh), whose lower bound on the distance
+//! from the searcher's current point or segment rejects most candidates for ≈ 25 flops
+//! before the exact test. That lets the margin be small (ρ/16): the Lipschitz slack
+//! between refreshes stays tight, and the refreshes stay cheap.
 //!
 //! Nearest first, and only as far as needed: a refresh keeps the slot's candidates sorted
 //! by their distance at the refresh, each with its rank in the environment's own order.
@@ -38,8 +48,10 @@ use parry3d_f64::shape::Triangle;
 
 /// Candidates kept per slot.
 pub const SLOT_CAPACITY: usize = 48;
-/// Margin m as a fraction of the reach ρ: a slot is refreshed after moving ρ/4 (a truncated
-/// list sooner, see [`CandidateCache::refresh`]).
+/// Margin m as a fraction of the reach ρ: a slot is refreshed after moving ρ/16 (a
+/// truncated list sooner, an empty one later, see [`CandidateCache::refresh`]). With the
+/// per-step [`Planes`] bounds, ρ/16 cost fewer instructions than ρ/8 or ρ/32 on the
+/// bench's floor, and ρ/4 (the margin before them) 15 % more.
 pub const MARGIN: f64 = 0.0625;
 /// How far (in reaches) a slot with no candidates looks for the nearest triangle, to
 /// know how far it may move before its next refresh.
@@ -175,7 +187,7 @@ pub(crate) fn scan_fresh(env: &RigidEnvironment, query: &Aabb, search: &mut impl
     });
 }
 
-/// Candidate triangles per slot (one slot per node, then one per beam), allocated once.
+/// Candidate triangles per slot (one slot per beam), allocated once.
 #[derive(Clone, Debug, Default)]
 pub struct CandidateCache {
     /// Whether the lists are used; off, every query goes to the environment's BVH
@@ -231,6 +243,30 @@ pub(crate) fn may_touch(a: DVec3, b: DVec3, tri: &Triangle, reach: f64) -> bool 
     let (da, db) = ((a - tri.a).dot(n), (b - tri.a).dot(n));
     let limit = reach * (1.0 + SLACK) * n.length();
     !(da * db > 0.0 && da.abs().min(db.abs()) > limit)
+}
+
+/// True only if segment [a, b] certainly lies farther than `bound` (with rounding slack)
+/// from each edge of `tri` and does not pierce it, so that
+/// [`super::closest_segment_triangle_away_from_ends`] would find it farther: the distance
+/// between the segment's line and each edge's line bounds the distance between them
+/// (about 25 flops an edge; edges nearly parallel to the segment are not bounded).
+pub(crate) fn edges_beyond(a: DVec3, b: DVec3, tri: &Triangle, bound: f64) -> bool {
+    let normal = (tri.b - tri.a).cross(tri.c - tri.a);
+    if (a - tri.a).dot(normal) * (b - tri.a).dot(normal) < 0.0 {
+        return false; // it may pierce
+    }
+    let d1 = b - a;
+    let limit = bound * (1.0 + SLACK);
+    [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)]
+        .into_iter()
+        .all(|(e0, e1)| {
+            let d2 = e1 - e0;
+            let w = d1.cross(d2);
+            let w2 = w.length_squared();
+            let s = (a - e0).dot(w);
+            // sin θ > 1e-3 between the lines keeps the rounding of s far below the slack
+            w2 > 1e-6 * d1.length_squared() * d2.length_squared() && s * s > limit * limit * w2
+        })
 }
 
 /// The box of segment [a, b] grown by `grow` on every side.

@@ -25,7 +25,7 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use super::coherence::{may_touch, scan_fresh, Nearest};
+use super::coherence::{edges_beyond, may_touch, scan_fresh, Nearest};
 use super::environment::{cube, ClosestPoint};
 use crate::contact::{closest_segment_triangle_away_from_ends, CandidateCache};
 use crate::{Model, State};
@@ -169,7 +169,9 @@ struct BeamSearch {
 
 impl Nearest for BeamSearch {
     fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) {
-        if !may_touch(self.a, self.b, tri, self.reach) {
+        if !may_touch(self.a, self.b, tri, self.reach)
+            || edges_beyond(self.a, self.b, tri, self.bound())
+        {
             return;
         }
         let c = closest_segment_triangle_away_from_ends(self.a, self.b, tri);
