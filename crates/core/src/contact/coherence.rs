@@ -99,7 +99,7 @@ impl Planes {
     fn new(tri: &Triangle) -> Planes {
         let n = (tri.b - tri.a).cross(tri.c - tri.a);
         let len = n.length();
-        if !(len > 0.0) || !len.is_finite() {
+        if !len.is_normal() {
             return Planes::default();
         }
         let normal = n / len;
@@ -115,7 +115,7 @@ impl Planes {
             // counter-clockwise about the normal: the outside lies to the edge's right
             let m = (v1 - v0).cross(normal);
             let len = m.length();
-            if len > 0.0 && len.is_finite() {
+            if len.is_normal() {
                 planes.edge_normal[k] = m / len;
                 planes.edge_offset[k] = planes.edge_normal[k].dot(v0);
             }
