@@ -21,7 +21,7 @@
 //!
 //! Where they are now: each kept triangle carries its [`Planes`] (unit normal and the
 //! three in-plane edge normals, made at the refresh), whose lower bound on the distance
-//! from the searcher's current point or segment rejects most candidates for ≈ 25 flops
+//! from the searcher's current point or segment rejects most candidates for ≈ 40 flops
 //! before the exact test. That lets the margin be small (ρ/16): the Lipschitz slack
 //! between refreshes stays tight, and the refreshes stay cheap.
 //!
