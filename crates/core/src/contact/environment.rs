@@ -101,6 +101,35 @@ impl RigidEnvironment {
     }
 }
 
+impl RigidEnvironment {
+    /// A lower bound on the distance from segment [a, b] to every part, capped at `max`:
+    /// the distance to the nearest triangle's box, found best first down each part's BVH.
+    pub(crate) fn nearest_box(&self, a: DVec3, b: DVec3, max: f64) -> f64 {
+        let segment = Aabb::new(a.min(b), a.max(b));
+        let mut nearest = max;
+        for part in &self.parts {
+            if box_distance(&segment, &part.mesh.local_aabb()) >= nearest {
+                continue;
+            }
+            let best = part.mesh.bvh().find_best(
+                nearest,
+                |node, _| box_distance(&segment, &node.aabb()),
+                |i, _| Some(box_distance(&segment, &part.mesh.triangle(i).local_aabb())),
+            );
+            if let Some((_, d)) = best {
+                nearest = nearest.min(d);
+            }
+        }
+        nearest
+    }
+}
+
+/// The distance between two boxes: no point of one is nearer to a point of the other.
+fn box_distance(p: &Aabb, q: &Aabb) -> f64 {
+    let gap = (p.mins - q.maxs).max(q.mins - p.maxs).max(DVec3::ZERO);
+    gap.length()
+}
+
 /// The cube of half-size `h` around `p`.
 pub(crate) fn cube(p: DVec3, h: f64) -> Aabb {
     Aabb::new(p - DVec3::splat(h), p + DVec3::splat(h))

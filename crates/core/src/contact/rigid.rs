@@ -25,7 +25,7 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use super::coherence::{may_touch, Nearest};
+use super::coherence::{edges_beyond, may_touch, scan_fresh, Nearest};
 use super::environment::{cube, ClosestPoint};
 use crate::contact::{closest_segment_triangle_away_from_ends, CandidateCache};
 use crate::{Model, State};
@@ -65,9 +65,12 @@ pub struct ContactScratch {
     pub node_normal: Vec<DVec3>,
     /// Normal of each beam's last interior contact (zero when not in contact).
     pub element_normal: Vec<DVec3>,
-    /// Each node's (slot i) and each beam's (slot nodes + e) candidate triangles, kept
-    /// from step to step ([`CandidateCache`]; the same contacts as fresh queries).
+    /// Each beam's (slot e) candidate triangles, kept from step to step
+    /// ([`CandidateCache`]; the same contacts as fresh queries). A node searches the list
+    /// of one of its beams.
     pub candidates: CandidateCache,
+    /// The beam whose list each node searches (`u32::MAX`: none, a fresh query).
+    node_beam: Vec<u32>,
 }
 
 impl ContactScratch {
@@ -77,9 +80,32 @@ impl ContactScratch {
             points: Vec::with_capacity(nodes + elements),
             node_normal: vec![DVec3::ZERO; nodes],
             element_normal: vec![DVec3::ZERO; elements],
-            candidates: CandidateCache::new(nodes + elements, &model.environment),
+            candidates: CandidateCache::new(elements, &model.environment),
+            node_beam: node_beams(model),
         }
     }
+}
+
+/// For each node, the first beam that starts at it, else the first that ends at it.
+fn node_beams(model: &Model) -> Vec<u32> {
+    let mut beam = vec![u32::MAX; model.node_count()];
+    for (e, el) in model.elements.iter().enumerate() {
+        if beam[el.node_a] == u32::MAX {
+            beam[el.node_a] = e as u32;
+        }
+    }
+    for (e, el) in model.elements.iter().enumerate() {
+        if beam[el.node_b] == u32::MAX {
+            beam[el.node_b] = e as u32;
+        }
+    }
+    beam
+}
+
+/// Reach of the capsule of beam `e`: its larger end radius plus the skin.
+fn beam_reach(model: &Model, e: usize) -> f64 {
+    let el = &model.elements[e];
+    model.radius[el.node_a].max(model.radius[el.node_b]) * (1.0 + SKIN)
 }
 
 /// Normal and depth from a hose point `p` of radius `r` and the closest surface point `q`,
@@ -143,7 +169,9 @@ struct BeamSearch {
 
 impl Nearest for BeamSearch {
     fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) {
-        if !may_touch(self.a, self.b, tri, self.reach) {
+        if !may_touch(self.a, self.b, tri, self.reach)
+            || edges_beyond(self.a, self.b, tri, self.bound())
+        {
             return;
         }
         let c = closest_segment_triangle_away_from_ends(self.a, self.b, tri);
@@ -185,9 +213,24 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         let mut search = ClosestPoint::new(x, reach);
         if !state.held[i] {
             let query = cube(x, reach);
-            contact
-                .candidates
-                .scan(env, i, x, x, reach, &query, &mut search);
+            match contact.node_beam[i] {
+                u32::MAX => scan_fresh(env, &query, &mut search),
+                e => {
+                    let el = &model.elements[e as usize];
+                    let (xa, xb) = (state.x[el.node_a], state.x[el.node_b]);
+                    let beam = beam_reach(model, e as usize);
+                    contact.candidates.scan(
+                        env,
+                        e as usize,
+                        xa,
+                        xb,
+                        beam,
+                        [x, x],
+                        &query,
+                        &mut search,
+                    );
+                }
+            }
         }
         let found = search.best.map(|b| (b.part, b.point));
         match found {
@@ -212,7 +255,7 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
             continue;
         }
         let r = model.radius[a].max(model.radius[b]);
-        let reach = r * (1.0 + SKIN);
+        let reach = beam_reach(model, e);
         let (xa, xb) = (state.x[a], state.x[b]);
         let aabb = Aabb::new(
             xa.min(xb) - DVec3::splat(reach),
@@ -226,7 +269,7 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         };
         contact
             .candidates
-            .scan(env, nodes + e, xa, xb, reach, &aabb, &mut search);
+            .scan(env, e, xa, xb, reach, [xa, xb], &aabb, &mut search);
         let best = search.best;
         match best {
             Some(BeamHit { part, t, p, q, .. }) => {

@@ -1,0 +1,90 @@
+//! A fixed number of steps of the contact benchmark's world (5 hoses × 30 on the
+//! 100 352-triangle floor, `pliant bench --only contact`), for profilers and instruction
+//! counts (`valgrind --tool=callgrind`), where the bench's timed repeats would vary:
+//!
+//! ```sh
+//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps]
+//! ```
+//!
+//! Prints the CPU time of the steps, the candidate-list counters and a hash of the final
+//! positions and velocities' bits (a change that must keep the results bit for bit keeps
+//! the hash).
+
+#![allow(dead_code)]
+
+use pliant_core::integrators::explicit;
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().collect();
+    let steps: u64 = args.get(1).map_or(Ok(16_500), |s| s.parse())?;
+    let quads: usize = args
+        .get(2)
+        .map_or(Ok(bench::FLOOR_QUADS), |s| s.parse())?;
+    let (mut model, mut state) = bench::setup(5, 30, quads)?;
+    model.threads = 1;
+    let warm: u64 = args.get(3).map_or(Ok(1_500), |s| s.parse())?;
+    run(&model, &mut state, warm);
+    let before = state.contact.candidates.clone();
+    let t0 = cpu_seconds();
+    let points = measured(&model, &mut state, steps);
+    let cpu = cpu_seconds() - t0;
+    let mut hash = 0xcbf2_9ce4_8422_2325u64;
+    for v in state.x.iter().chain(state.v.iter()) {
+        for c in v.to_array() {
+            hash = (hash ^ c.to_bits()).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    let c = &state.contact.candidates;
+    let (refreshes, truncations, fallbacks) = (
+        c.refreshes - before.refreshes,
+        c.truncations - before.truncations,
+        c.fresh_fallbacks - before.fresh_fallbacks,
+    );
+    println!(
+        "{steps} steps on {} triangles: {:.2} µs CPU per step, {:.2} contact points per step, \
+         {} refreshes, {} truncations, {} fresh fallbacks, hash {hash:016x}",
+        2 * quads * quads,
+        cpu * 1e6 / steps as f64,
+        points as f64 / steps as f64,
+        refreshes,
+        truncations,
+        fallbacks
+    );
+    Ok(())
+}
+
+/// The measured steps, alone in this function for
+/// `valgrind --tool=callgrind --collect-atstart=no --toggle-collect=contact_steps::measured`.
+#[inline(never)]
+fn measured(model: &pliant_core::Model, state: &mut pliant_core::State, steps: u64) -> usize {
+    std::hint::black_box(run(model, state, std::hint::black_box(steps)))
+}
+
+/// `steps` steps; returns the contact points summed over the steps.
+#[inline(never)]
+fn run(model: &pliant_core::Model, state: &mut pliant_core::State, steps: u64) -> usize {
+    let mut points = 0;
+    for _ in 0..steps {
+        explicit::step(model, state);
+        points += state.contact.points.len();
+    }
+    points
+}
+
+/// User + system CPU time of this process [s].
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let after = stat.rsplit(')').next().unwrap_or("");
+    let f: Vec<&str> = after.split_whitespace().collect();
+    let ticks = |i: usize| f.get(i).and_then(|s| s.parse::<f64>().ok()).unwrap_or(0.0);
+    // fields 14 and 15 of /proc/pid/stat (utime, stime), counted after the ')' from 3
+    (ticks(11) + ticks(12)) / 100.0
+}
+
+// the bench's own world, as `pliant bench` builds it
+#[path = "../src/bench.rs"]
+mod bench;
+#[path = "../src/bench_engine_bay.rs"]
+mod bench_engine_bay;
+#[path = "../src/bench_newton.rs"]
+mod bench_newton;
