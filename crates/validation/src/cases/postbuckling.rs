@@ -199,7 +199,9 @@ fn solver_steps(
     Ok(events)
 }
 
-fn cantilever_in_one_solve() -> Result<(f64, f64, usize), String> {
+/// The straight clamped–free column under a dead axial tip load of 1.5 × its buckling
+/// load π²EI/4L² (returned as well).
+fn loaded_cantilever() -> (Model, State, f64) {
     let (model, ei) = model(|_| DVec3::ZERO);
     let mut state = State::at_rest(&model);
     clamp(&mut state, 0);
@@ -207,6 +209,17 @@ fn cantilever_in_one_solve() -> Result<(f64, f64, usize), String> {
     state
         .loads
         .add(dead_load(ELEMENTS, DVec3::new(-p, 0.0, 0.0), DVec3::ZERO));
+    (model, state, p)
+}
+
+/// Tip deflection across and reach along the load line, over L (= 1 m).
+fn tip(state: &State) -> (f64, f64) {
+    let tip = state.x[ELEMENTS];
+    (tip.y.hypot(tip.z), tip.x)
+}
+
+fn cantilever_in_one_solve() -> Result<(f64, f64, usize), String> {
+    let (model, mut state, _) = loaded_cantilever();
     let mut solver = StaticSolver::new(&model).map_err(|e| e.to_string())?;
     solver.options.max_iterations = 200;
     let r = solver
@@ -215,21 +228,15 @@ fn cantilever_in_one_solve() -> Result<(f64, f64, usize), String> {
     if !r.converged || r.unstable {
         return Err(format!("static solve ended {r:?}"));
     }
-    let tip = state.x[ELEMENTS];
-    Ok(((tip.y * tip.y + tip.z * tip.z).sqrt(), tip.x, r.escapes))
+    let (delta, reach) = tip(&state);
+    Ok((delta, reach, r.escapes))
 }
 
 /// The clamped–free column under 1.5 × its buckling load with a lateral tip load of 1 %
 /// of it, damped to rest under the solver `kind` ([`settle_to`]), the lateral load then
 /// removed and damped to rest again: tip deflection / L and tip reach / L.
 fn cantilever_to_rest(kind: SolverKind) -> Result<(f64, f64), String> {
-    let (model, ei) = model(|_| DVec3::ZERO);
-    let mut state = State::at_rest(&model);
-    clamp(&mut state, 0);
-    let p = 1.5 * PI * PI * ei / 4.0;
-    state
-        .loads
-        .add(dead_load(ELEMENTS, DVec3::new(-p, 0.0, 0.0), DVec3::ZERO));
+    let (model, mut state, p) = loaded_cantilever();
     let nudge = state.loads.add(dead_load(
         ELEMENTS,
         DVec3::new(0.0, 0.01 * p, 0.0),
@@ -241,8 +248,7 @@ fn cantilever_to_rest(kind: SolverKind) -> Result<(f64, f64), String> {
         settle_to(&model, &mut state, p, 1.0, 1e-7)?;
         Ok(())
     })?;
-    let tip = state.x[ELEMENTS];
-    Ok((tip.y.hypot(tip.z), tip.x))
+    Ok(tip(&state))
 }
 
 /// The checks of a clamped–free column against the exact elastica at 1.5 P_cr.
