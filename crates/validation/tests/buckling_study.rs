@@ -11,8 +11,9 @@
 //! buckles towards +y, is loaded by 1 N against the buckle in one input step — beyond the
 //! snap load of the shallow buckled arch. Its branch ends there and the hose snaps into
 //! the mirrored shape; Newton converges to it within that one step, 0.28 m away where the
-//! linearised response of the step predicted 4 mm: a jump to a distant branch, not the
-//! continuation of the one it stood on ([`pliant_core::integrators::JUMP_RATIO`]).
+//! linearised response of the step predicted 4 mm, through tangents that were not
+//! positive definite: a jump to a distant branch, not the continuation of the one it
+//! stood on ([`pliant_core::integrators::JUMP_RATIO`]).
 //! Before, the step counted as an ordinary converged one and nothing said the hose had
 //! snapped. Pushed to 70 % and loaded by 3 N, no load step of the adaptive stepping
 //! converges and the snap is followed by relaxation, whose hand-over point (a small

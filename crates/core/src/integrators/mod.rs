@@ -327,10 +327,12 @@ impl Solver {
         let mut pieces = 1;
         // the linearised response of the pieces summed: the path-following predictor
         let mut predicted;
+        let mut indefinite;
         let (mut report, mut iterations) = loop {
             let mut iterations = 0;
             let mut last = None;
             predicted = 0.0;
+            indefinite = 0;
             for j in 1..=pieces {
                 state.time = if j == pieces {
                     time + h
@@ -342,6 +344,7 @@ impl Solver {
                     .map_err(|error| SolverError::Static { time, error })?;
                 iterations += r.iterations;
                 predicted += r.first_increment;
+                indefinite += r.indefinite_iterations;
                 self.events.extend(solver.events.iter().cloned());
                 last = Some(r);
                 if !r.converged {
@@ -408,7 +411,7 @@ impl Solver {
         }
         state.time = time + h;
         if report.converged && self.events.is_empty() {
-            self.report_jump(model, state, predicted);
+            self.report_jump(model, state, predicted, indefinite);
         }
         for i in 0..state.x.len() {
             state.v[i] = (state.x[i] - self.previous_x[i]) / h;
@@ -432,15 +435,27 @@ impl Solver {
     /// A converged static input step that landed on a distant branch: a limit point
     /// passed within the step (by Newton from the start, or by the adaptive load steps),
     /// the hose jumping to a stable equilibrium that does not continue the one it stood
-    /// on. On a branch the equilibrium moves with the loads by about the linearised
-    /// response K⁻¹ Δf of each load step (the path-following predictor, summed over the
-    /// pieces: `predicted`, [`statics::StaticReport::first_increment`]) — more where the
-    /// branch softens, but by a bounded factor while K stays positive definite. A free
-    /// node that moved more than [`JUMP_RATIO`] × the predictor, and farther than a mean
-    /// element length (a small step is never a jump), marks a jump; it is reported as
-    /// the snap it is ([`snap_event`]: limit point, the step's displacement as the mode,
-    /// the potential energy released at the step's loads).
-    fn report_jump(&mut self, model: &Model, state: &mut State, predicted: f64) {
+    /// on. Two signs together mark it:
+    ///
+    /// * the step moved a free node more than [`JUMP_RATIO`] × the linearised response
+    ///   K⁻¹ Δf of its load steps (the path-following predictor, summed over the pieces:
+    ///   `predicted`, [`statics::StaticReport::first_increment`]) and farther than a mean
+    ///   element length. On a branch the equilibrium moves by about the predictor — more
+    ///   where the branch softens, by a bounded factor (twice for a step that reaches a
+    ///   square-root fold);
+    /// * Newton met a tangent that was not positive definite on the way (`indefinite`
+    ///   iterations, [`statics::StaticReport::indefinite_iterations`]): its iterates
+    ///   crossed a region where the potential is not convex — between two basins. A
+    ///   small load step on a stable branch starts inside the basin of the minimum it
+    ///   follows and stays there. (The first sign alone also fires where contact makes
+    ///   the first increment a poor predictor: a hose dragged steadily along a part
+    ///   moves 5 cm a step against a predicted 1 cm in the engine bay example.)
+    ///
+    /// The jump is reported as the snap it is ([`snap_event`]: limit point, the step's
+    /// displacement as the mode, the potential energy released at the step's loads).
+    /// With dead moments Newton runs on the unmodified tangent and reads no inertia (as
+    /// the stability check does not): no jump is reported then.
+    fn report_jump(&mut self, model: &Model, state: &mut State, predicted: f64, indefinite: usize) {
         let moved = state
             .x
             .iter()
@@ -450,7 +465,8 @@ impl Solver {
             .map(|((a, b), _)| (*a - *b).length())
             .fold(0.0, f64::max);
         let solver = self.statics.as_mut().expect("built for static");
-        if !(moved > JUMP_RATIO * predicted && moved > solver.system.mean_length) {
+        let far = moved > JUMP_RATIO * predicted && moved > solver.system.mean_length;
+        if !(far && indefinite > 0) {
             return;
         }
         let after = solver.system.potential_energy(model, state);
@@ -469,8 +485,9 @@ impl Solver {
 }
 
 /// A converged static step whose largest free-node motion exceeds this multiple of the
-/// linearised prediction has jumped to a distant branch ([`Solver::report_jump`]).
-pub const JUMP_RATIO: f64 = 3.0;
+/// linearised prediction, through a region where the potential is not convex, has jumped
+/// to a distant branch ([`Solver::report_jump`]).
+pub const JUMP_RATIO: f64 = 5.0;
 
 /// The event of a snap from `before` to `after` (limit point passed at `time`).
 fn snap_event(time: f64, before: &[DVec3], after: &[DVec3], energy_drop: f64) -> StabilityEvent {

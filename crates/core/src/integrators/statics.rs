@@ -76,6 +76,9 @@ pub struct StaticReport {
     /// which the solver judges whether the equilibrium it found continues the branch it
     /// started on ([`crate::integrators::Solver`], a jump to a distant branch).
     pub first_increment: f64,
+    /// Newton iterations whose tangent was not positive definite (factorised with the
+    /// modification): the iterates crossed a region where the potential is not convex.
+    pub indefinite_iterations: usize,
 }
 
 /// Why the solve failed outright (not just "not converged").
@@ -136,6 +139,7 @@ impl StaticSolver {
             escapes: 0,
             unstable: false,
             first_increment: 0.0,
+            indefinite_iterations: 0,
         };
         let mut budget = self.options.max_iterations;
         // Dead moments have no potential (their load stiffness is not symmetric): the
@@ -169,6 +173,9 @@ impl StaticSolver {
                 let inertia_here = sys.solve_linear(conservative)?;
                 if report.iterations == 1 {
                     report.first_increment = largest_free(&sys.rhs, &sys.prescribed, 0);
+                }
+                if !inertia_here.positive_definite() {
+                    report.indefinite_iterations += 1;
                 }
                 if pending {
                     // the prescribed motion and the free nodes' linear response to it,
