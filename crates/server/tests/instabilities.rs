@@ -5,14 +5,11 @@
 //! The session runs paused and advances only by `step` commands; waits are for
 //! conditions, with a hang guard only.
 
-use glam::DVec3;
-use pliant_core::SolverKind;
-use pliant_scene::load_scene_str_in;
-use pliant_server::session::{Command, Session, SessionOptions};
-use std::time::Duration;
+mod static_session;
 
-/// Not a performance expectation: only keeps a broken test from hanging forever.
-const HANG_GUARD: Duration = Duration::from_secs(300);
+use glam::DVec3;
+use pliant_scene::load_scene_str_in;
+use pliant_server::session::Command;
 
 const SCENE: &str = r#"
 format = "pliant-scene"
@@ -36,15 +33,7 @@ const STEPS: u32 = 60;
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_buckling_in_a_live_static_session_reaches_the_snapshot() {
     let scene = load_scene_str_in(SCENE, "column.toml", std::path::Path::new(".")).unwrap();
-    let session = Session::start(
-        &scene,
-        SessionOptions {
-            paused: true,
-            solver: Some(SolverKind::Static),
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let session = static_session::start(&scene);
     let grip = Default::default();
     session
         .send(Command::Grab {
@@ -67,19 +56,7 @@ async fn a_buckling_in_a_live_static_session_reaches_the_snapshot() {
             orientation: None,
         })
         .unwrap();
-    session.send(Command::Step(STEPS)).unwrap();
-    let mut rx = session.subscribe();
-    let snapshot = tokio::time::timeout(HANG_GUARD, async {
-        loop {
-            let s = rx.borrow_and_update().clone();
-            if s.step >= STEPS as u64 {
-                return s;
-            }
-            rx.changed().await.expect("the simulation thread runs");
-        }
-    })
-    .await
-    .expect("the session reaches the step (hang guard)");
+    let snapshot = static_session::step(&session, STEPS).await;
     let end = snapshot.hoses[0].positions[40];
     assert!(
         (end[0] - 0.7).abs() < 1e-6,

@@ -158,7 +158,10 @@ pub fn settle_to(
                 converged: r.converged,
             }
         }
-        SolverKind::Implicit => implicit_to_rest(model, state, force_tolerance, moment_tolerance)?,
+        SolverKind::Implicit => {
+            let newton = Tolerance::absolute(1e-3 * force_tolerance, 1e-3 * moment_tolerance);
+            implicit_to_rest(model, state, newton, force_tolerance, moment_tolerance)?
+        }
     };
     if report.converged {
         Ok(report)
@@ -175,19 +178,21 @@ pub fn settle_to(
 /// Implicit steps, each from rest: after every step the velocities (and accelerations)
 /// are zeroed — kinetic damping at its strongest, a pseudo-transient continuation of the
 /// static problem with the implicit step's mass term as regularisation — until the static
-/// residual is met. (Zeroing only at kinetic-energy peaks lets the large-step scheme's
-/// spurious velocity after a sudden load, e.g. the torsion case's 0.5 rad jump in one
-/// element, spin the hose into an equilibrium whole turns away.)
-fn implicit_to_rest(
+/// residual is met (`force_tolerance`, `moment_tolerance`). Each step's Newton solve
+/// converges to `newton`. (Zeroing only at kinetic-energy peaks lets the large-step
+/// scheme's spurious velocity after a sudden load, e.g. the torsion case's 0.5 rad jump
+/// in one element, spin the hose into an equilibrium whole turns away.)
+pub fn implicit_to_rest(
     model: &Model,
     state: &mut State,
+    newton: Tolerance,
     force_tolerance: f64,
     moment_tolerance: f64,
 ) -> Result<SettleReport, String> {
     let options = ImplicitOptions {
         time_step: 0.05,
         alpha: -1.0 / 3.0,
-        tolerance: Tolerance::absolute(1e-3 * force_tolerance, 1e-3 * moment_tolerance),
+        tolerance: newton,
         max_halvings: 10,
         ..Default::default()
     };

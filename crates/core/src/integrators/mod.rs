@@ -150,6 +150,9 @@ pub struct StepStats {
 /// Most sub-steps one static input step may be split into.
 pub const MAX_STATIC_SUBSTEPS: usize = 16;
 
+/// Relaxations (each followed by a Newton solve) one snap may take ([`snap`]).
+const SNAP_ROUNDS: usize = 4;
+
 /// A solver of the chosen kind with its buffers (allocated once).
 #[derive(Clone, Debug)]
 pub struct Solver {
@@ -322,9 +325,14 @@ impl Solver {
         self.events.clear();
         let solver = self.statics.as_mut().expect("built for static");
         let mut pieces = 1;
+        // the linearised response of the pieces summed: the path-following predictor
+        let mut predicted;
+        let mut indefinite;
         let (mut report, mut iterations) = loop {
             let mut iterations = 0;
             let mut last = None;
+            predicted = 0.0;
+            indefinite = 0;
             for j in 1..=pieces {
                 state.time = if j == pieces {
                     time + h
@@ -335,6 +343,8 @@ impl Solver {
                     .solve(model, state)
                     .map_err(|error| SolverError::Static { time, error })?;
                 iterations += r.iterations;
+                predicted += r.first_increment;
+                indefinite += r.indefinite_iterations;
                 self.events.extend(solver.events.iter().cloned());
                 last = Some(r);
                 if !r.converged {
@@ -366,20 +376,26 @@ impl Solver {
                 }
             }
             self.events.clear();
-            if snap::relax(
-                model,
-                state,
-                time + h,
-                report.force_limit,
-                report.moment_limit,
-            )
-            .is_some()
-            {
+            // the relaxation hands over where the residual is small — near the snap's
+            // saddle too, from where Newton may not converge: relax on from where it left
+            for _ in 0..SNAP_ROUNDS {
+                if snap::relax(
+                    model,
+                    state,
+                    time + h,
+                    report.force_limit,
+                    report.moment_limit,
+                )
+                .is_none()
+                {
+                    break;
+                }
                 state.time = time + h;
                 let r = solver
                     .solve(model, state)
                     .map_err(|error| SolverError::Static { time, error })?;
                 iterations += r.iterations;
+                report = r;
                 if r.converged {
                     let after = solver.system.potential_energy(model, state);
                     self.events.push(snap_event(
@@ -389,11 +405,14 @@ impl Solver {
                         before - after,
                     ));
                     self.events.extend(solver.events.iter().cloned());
+                    break;
                 }
-                report = r;
             }
         }
         state.time = time + h;
+        if report.converged && self.events.is_empty() {
+            self.report_jump(model, state, predicted, indefinite);
+        }
         for i in 0..state.x.len() {
             state.v[i] = (state.x[i] - self.previous_x[i]) / h;
         }
@@ -411,6 +430,64 @@ impl Solver {
         })
     }
 }
+
+impl Solver {
+    /// A converged static input step that landed on a distant branch: a limit point
+    /// passed within the step (by Newton from the start, or by the adaptive load steps),
+    /// the hose jumping to a stable equilibrium that does not continue the one it stood
+    /// on. Two signs together mark it:
+    ///
+    /// * the step moved a free node more than [`JUMP_RATIO`] × the linearised response
+    ///   K⁻¹ Δf of its load steps (the path-following predictor, summed over the pieces:
+    ///   `predicted`, [`statics::StaticReport::first_increment`]) and farther than a mean
+    ///   element length. On a branch the equilibrium moves by about the predictor — more
+    ///   where the branch softens, by a bounded factor (twice for a step that reaches a
+    ///   square-root fold);
+    /// * Newton met a tangent that was not positive definite on the way (`indefinite`
+    ///   iterations, [`statics::StaticReport::indefinite_iterations`]): its iterates
+    ///   crossed a region where the potential is not convex — between two basins. A
+    ///   small load step on a stable branch starts inside the basin of the minimum it
+    ///   follows and stays there. (The first sign alone also fires where contact makes
+    ///   the first increment a poor predictor: a hose dragged steadily along a part
+    ///   moves 5 cm a step against a predicted 1 cm in the engine bay example.)
+    ///
+    /// The jump is reported as the snap it is ([`snap_event`]: limit point, the step's
+    /// displacement as the mode, the potential energy released at the step's loads).
+    /// With dead moments Newton runs on the unmodified tangent and reads no inertia (as
+    /// the stability check does not): no jump is reported then.
+    fn report_jump(&mut self, model: &Model, state: &mut State, predicted: f64, indefinite: usize) {
+        let moved = state
+            .x
+            .iter()
+            .zip(&self.previous_x)
+            .zip(&state.held)
+            .filter(|(_, held)| !**held)
+            .map(|((a, b), _)| (*a - *b).length())
+            .fold(0.0, f64::max);
+        let solver = self.statics.as_mut().expect("built for static");
+        let far = moved > JUMP_RATIO * predicted && moved > solver.system.mean_length;
+        if !(far && indefinite > 0) {
+            return;
+        }
+        let after = solver.system.potential_energy(model, state);
+        std::mem::swap(&mut state.x, &mut self.previous_x);
+        std::mem::swap(&mut state.q, &mut self.previous_q);
+        let before = solver.system.potential_energy(model, state);
+        std::mem::swap(&mut state.x, &mut self.previous_x);
+        std::mem::swap(&mut state.q, &mut self.previous_q);
+        self.events.push(snap_event(
+            state.time,
+            &self.previous_x,
+            &state.x,
+            before - after,
+        ));
+    }
+}
+
+/// A converged static step whose largest free-node motion exceeds this multiple of the
+/// linearised prediction, through a region where the potential is not convex, has jumped
+/// to a distant branch ([`Solver::report_jump`]).
+pub const JUMP_RATIO: f64 = 5.0;
 
 /// The event of a snap from `before` to `after` (limit point passed at `time`).
 fn snap_event(time: f64, before: &[DVec3], after: &[DVec3], energy_drop: f64) -> StabilityEvent {

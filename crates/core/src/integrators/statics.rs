@@ -14,8 +14,8 @@
 use super::stability::{dead_moment_work, Escape, StabilityEvent};
 use crate::newton::convergence::Tolerance;
 use crate::newton::system::{
-    apply_increment, contact_translation_limit, residual_norms, rotation_limited_step, sync_bodies,
-    translation_limited_step, NewtonSystem,
+    apply_increment, contact_translation_limit, largest_free, residual_norms,
+    rotation_limited_step, sync_bodies, translation_limited_step, NewtonSystem,
 };
 use crate::{Model, State};
 use glam::DVec3;
@@ -70,6 +70,15 @@ pub struct StaticReport {
     /// The equilibrium found is unstable and could not be left (`max_escapes` reached,
     /// or no step lowered the energy); only with `stability` on.
     pub unstable: bool,
+    /// Largest translation of a free node in the first Newton increment δu₁ = K(u₀)⁻¹ r₀
+    /// [m]: the linearised response to the change of loads and prescribed motions since
+    /// the state the solve started from — the predictor of a path-following step, against
+    /// which the solver judges whether the equilibrium it found continues the branch it
+    /// started on ([`crate::integrators::Solver`], a jump to a distant branch).
+    pub first_increment: f64,
+    /// Newton iterations whose tangent was not positive definite (factorised with the
+    /// modification): the iterates crossed a region where the potential is not convex.
+    pub indefinite_iterations: usize,
 }
 
 /// Why the solve failed outright (not just "not converged").
@@ -129,6 +138,8 @@ impl StaticSolver {
             shortened_steps: 0,
             escapes: 0,
             unstable: false,
+            first_increment: 0.0,
+            indefinite_iterations: 0,
         };
         let mut budget = self.options.max_iterations;
         // Dead moments have no potential (their load stiffness is not symmetric): the
@@ -160,6 +171,12 @@ impl StaticSolver {
                 }
                 sys.eliminate_prescribed();
                 let inertia_here = sys.solve_linear(conservative)?;
+                if report.iterations == 1 {
+                    report.first_increment = largest_free(&sys.rhs, &sys.prescribed, 0);
+                }
+                if !inertia_here.positive_definite() {
+                    report.indefinite_iterations += 1;
+                }
                 if pending {
                     // the prescribed motion and the free nodes' linear response to it,
                     // taken whole (the energy before and after the supports moved is not

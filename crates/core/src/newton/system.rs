@@ -644,15 +644,20 @@ pub fn translation_limited_step(rhs: &[Vector6<f64>], prescribed: &[bool], limit
     limited_step(rhs, prescribed, 0, limit)
 }
 
-/// The fraction of the increment that keeps the length of every free node's three
-/// components from `first` (0: translation, 3: rotation) within `limit`.
-fn limited_step(rhs: &[Vector6<f64>], prescribed: &[bool], first: usize, limit: f64) -> f64 {
-    let largest = rhs
-        .iter()
+/// The largest length of a free node's three components of an increment from `first`
+/// (0: translation [m], 3: rotation [rad]).
+pub fn largest_free(rhs: &[Vector6<f64>], prescribed: &[bool], first: usize) -> f64 {
+    rhs.iter()
         .zip(prescribed)
         .filter(|(_, p)| !**p)
         .map(|(d, _)| d.fixed_rows::<3>(first).norm())
-        .fold(0.0, f64::max);
+        .fold(0.0, f64::max)
+}
+
+/// The fraction of the increment that keeps the length of every free node's three
+/// components from `first` (0: translation, 3: rotation) within `limit`.
+fn limited_step(rhs: &[Vector6<f64>], prescribed: &[bool], first: usize, limit: f64) -> f64 {
+    let largest = largest_free(rhs, prescribed, first);
     if largest > limit {
         limit / largest
     } else {
