@@ -314,8 +314,24 @@ impl CandidateCache {
     /// for the nearest triangle's box, and may move until that could come within reach.
     fn refresh(&mut self, env: &RigidEnvironment, slot: usize, a: DVec3, b: DVec3, reach: f64) {
         let keep = (reach * (1.0 + MARGIN)) * (1.0 + SLACK);
-        let query = grown_box(a, b, keep);
         let base = slot * SLOT_CAPACITY;
+        // A slot that found nothing last time likely finds nothing again: the nearest
+        // box first, and if it lies beyond `keep` (with room for rounding) no triangle
+        // can be kept, and the box query is skipped.
+        if self.len[slot] == 0 && self.anchor_a[slot].is_finite() {
+            let nearest = env.nearest_box(a, b, FAR * reach);
+            if nearest > keep * (1.0 + SLACK) {
+                self.len[slot] = 0;
+                self.cutoff[slot] = f64::INFINITY;
+                self.margin[slot] = Self::empty_margin(nearest, keep, reach);
+                self.anchor_a[slot] = a;
+                self.anchor_b[slot] = b;
+                self.reach[slot] = reach;
+                self.refreshes += 1;
+                return;
+            }
+        }
+        let query = grown_box(a, b, keep);
         let (mut n, mut cutoff, mut rank) = (0usize, f64::INFINITY, 0u32);
         let items = &mut self.items[base..base + SLOT_CAPACITY];
         let found = &mut self.found;
@@ -368,8 +384,7 @@ impl CandidateCache {
             (MARGIN * reach).min(0.5 * (cutoff - self.items[base].distance))
         } else if n == 0 {
             // every triangle lies beyond `keep`, and beyond its box's distance
-            let nearest = env.nearest_box(a, b, FAR * reach);
-            (nearest.max(keep) / (1.0 + SLACK) - reach).max(MARGIN * reach)
+            Self::empty_margin(env.nearest_box(a, b, FAR * reach), keep, reach)
         } else {
             MARGIN * reach
         };
@@ -378,6 +393,12 @@ impl CandidateCache {
         self.reach[slot] = reach;
         self.refreshes += 1;
         self.truncations += u64::from(cutoff.is_finite());
+    }
+
+    /// How far a slot that keeps no triangle may move: until the nearest triangle box
+    /// (at `nearest`, or beyond `keep`) could come within `reach`.
+    fn empty_margin(nearest: f64, keep: f64, reach: f64) -> f64 {
+        (nearest.max(keep) / (1.0 + SLACK) - reach).max(MARGIN * reach)
     }
 
     /// Offers `search` the triangles whose box meets `query` and which may lie within its
@@ -414,11 +435,15 @@ impl CandidateCache {
             self.refresh(env, slot, a, b, reach);
             moved = 0.0;
         }
+        let len = self.len[slot] as usize;
+        if len == 0 && self.cutoff[slot] == f64::INFINITY {
+            return; // nothing kept, nothing dropped: no triangle within reach (most slots)
+        }
         // a candidate that was d away can be no nearer than d − moved now
         let moved = moved.sqrt();
         let reaches = |distance: f64, bound: f64| distance <= (bound + moved) * (1.0 + SLACK);
         let base = slot * SLOT_CAPACITY;
-        for k in base..base + self.len[slot] as usize {
+        for k in base..base + len {
             let (r, bound) = (&self.items[k], search.bound());
             if !reaches(r.distance, bound) {
                 break; // sorted: no later candidate can reach either

@@ -267,9 +267,13 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
             reach,
             best: None,
         };
+        // an accepted hit lies at t in (INTERIOR, 1 − INTERIOR): the candidates' bounds
+        // are taken from that part of the beam
+        let d = xb - xa;
+        let probe = [xa + INTERIOR * d, xa + (1.0 - INTERIOR) * d];
         contact
             .candidates
-            .scan(env, e, xa, xb, reach, [xa, xb], &aabb, &mut search);
+            .scan(env, e, xa, xb, reach, probe, &aabb, &mut search);
         let best = search.best;
         match best {
             Some(BeamHit { part, t, p, q, .. }) => {
