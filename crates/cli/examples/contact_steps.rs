@@ -17,9 +17,7 @@ use pliant_core::integrators::explicit;
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
     let steps: u64 = args.get(1).map_or(Ok(16_500), |s| s.parse())?;
-    let quads: usize = args
-        .get(2)
-        .map_or(Ok(bench::FLOOR_QUADS), |s| s.parse())?;
+    let quads: usize = args.get(2).map_or(Ok(bench::FLOOR_QUADS), |s| s.parse())?;
     let (mut model, mut state) = bench::setup(5, 30, quads)?;
     model.threads = 1;
     let warm: u64 = args.get(3).map_or(Ok(1_500), |s| s.parse())?;

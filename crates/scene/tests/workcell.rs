@@ -479,7 +479,11 @@ fn an_aimed_hand_pulls_no_harder_than_its_strength() {
         "a kinematic hand drags it to {unlimited} N"
     );
     assert!(gap < 1e-9, "and gets where it was sent ({gap} m short)");
-    for solver in [SolverKind::Explicit, SolverKind::Implicit, SolverKind::Static] {
+    for solver in [
+        SolverKind::Explicit,
+        SolverKind::Implicit,
+        SolverKind::Static,
+    ] {
         let (forces, gap, last_half_second) = run(solver, Some(600.0));
         let strong = forces.iter().cloned().fold(0.0, f64::max);
         // it stops at the step its force passes 600 N (the force of the last step
@@ -493,7 +497,10 @@ fn an_aimed_hand_pulls_no_harder_than_its_strength() {
             strong > 600.0 * 0.9,
             "{solver:?}: and did pull as hard as it could ({strong} N)"
         );
-        assert!(gap > 0.01, "{solver:?}: it stopped short of its target ({gap} m)");
+        assert!(
+            gap > 0.01,
+            "{solver:?}: it stopped short of its target ({gap} m)"
+        );
         let tail = &forces[forces.len() - last_half_second..];
         let (low, high) = tail
             .iter()

@@ -20,7 +20,7 @@ pub mod solver_record;
 pub mod tally;
 pub mod verdict;
 
-pub use hands::{Aim, HandLimits, HeldHand, Feel};
+pub use hands::{Aim, Feel, HandLimits, HeldHand};
 pub use input::{HandNumber, Input, Refusal, StampedInput};
 pub use observer::{NoObserver, Observer};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
@@ -894,13 +894,15 @@ impl Workcell {
             }
         }
         self.state.sleep.wake_all(&self.model);
-        self.tally.solver.record_rollback(solver_record::RolledBack {
-            diverged_at: divergence.time,
-            back_to: self.state.time,
-            hose: divergence.hose.clone(),
-            reason: format!("node {}: {}", divergence.node, divergence.what),
-            released: released.clone(),
-        });
+        self.tally
+            .solver
+            .record_rollback(solver_record::RolledBack {
+                diverged_at: divergence.time,
+                back_to: self.state.time,
+                hose: divergence.hose.clone(),
+                reason: format!("node {}: {}", divergence.node, divergence.what),
+                released: released.clone(),
+            });
         Ok(Rollback {
             to_time: self.state.time,
             divergence,
