@@ -145,6 +145,10 @@ enum Command {
         /// Number of runs instead of the study file's (Monte Carlo, Latin hypercube).
         #[arg(long)]
         runs: Option<usize>,
+        /// Runs per Dask task (default: up to 16, fewer for small studies so that every
+        /// worker gets about eight tasks).
+        #[arg(long)]
+        batch: Option<usize>,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -332,6 +336,7 @@ fn main() -> ExitCode {
             scheduler,
             workers,
             runs,
+            batch,
             quiet,
         } => study_cmd::run(&study_cmd::StudyOptions {
             study: &study,
@@ -339,6 +344,7 @@ fn main() -> ExitCode {
             scheduler: scheduler.as_deref(),
             workers,
             runs,
+            batch,
             quiet,
         }),
         Command::Import {

@@ -13,6 +13,7 @@ pub struct StudyOptions<'a> {
     pub scheduler: Option<&'a str>,
     pub workers: Option<usize>,
     pub runs: Option<usize>,
+    pub batch: Option<usize>,
     pub quiet: bool,
 }
 
@@ -58,6 +59,9 @@ pub fn run(o: &StudyOptions) -> Result<ExitCode> {
     }
     if let Some(r) = o.runs {
         cmd.args(["--runs", &r.to_string()]);
+    }
+    if let Some(b) = o.batch {
+        cmd.args(["--batch", &b.to_string()]);
     }
     if o.quiet {
         cmd.arg("--quiet");

@@ -582,3 +582,31 @@ def test_one_runs_envelope_lies_within_the_studys(done, tmp_path):
     assert 0 < len(own) < len(union)
     assert np.isin(own, union).all()
     assert (tmp_path / "h.stl").stat().st_size > 1000 and (tmp_path / "envelope.glb").is_file()
+
+
+def test_batches_of_runs_give_the_same_rows_and_envelope(done, client, scene_path, tmp_path):
+    """Several runs per Dask task (--batch) change only how the work is shipped: the
+    same rows, the same voxels, and a batch's runs keep their own indices."""
+    from pliant.studies.cluster import batch_size
+
+    batched = pliant.study(study_dict(scene_path), str(tmp_path / "b"), client=client, progress=False,
+                           batch=5)  # 24 runs: four batches of 5 and one of 4
+    cols = ["run_id", "index", "status", "message", "feasible", "peak_hand_force_n", "steps",
+            "min_bend_radius_ratio"]
+    assert batched.frame[cols].equals(done.frame[cols])
+    same = [np.load(os.path.join(r.out, "envelope", "voxels-h.npy")) for r in (done, batched)]
+    assert len(same[0]) > 0 and np.array_equal(same[0], same[1])
+    assert batch_size(24, 2) == 1 and batch_size(10_000, 2) == 16 and batch_size(300, 2, 3) == 3
+    with pytest.raises(StudyError, match="batch = 0"):
+        batch_size(10, 2, 0)
+
+
+def test_sorted_unique_and_union_match_numpy():
+    from pliant.studies import envelope
+
+    rng = np.random.default_rng(5)
+    a, b = rng.integers(-50, 50, 400), rng.integers(-50, 50, 300)
+    assert np.array_equal(envelope.sorted_unique(a), np.unique(a))
+    ua, ub = np.unique(a), np.unique(b)
+    assert np.array_equal(envelope.union(ua, ub), np.union1d(ua, ub))
+    assert len(envelope.sorted_unique(np.zeros(0, np.int64))) == 0

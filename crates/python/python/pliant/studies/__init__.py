@@ -14,7 +14,7 @@ from .results import StudyResult, read_rows, run_envelope
 
 
 def study(study, out=None, *, scheduler=None, workers=None, runs=None, processes=True,
-          progress=True, client=None, flush_rows=50):
+          progress=True, client=None, flush_rows=50, batch=None):
     """Runs (or resumes) a study and returns a :class:`StudyResult` (``.frame`` is a
     pandas DataFrame, one row per run; ``.report`` the HTML report's path).
 
@@ -24,11 +24,14 @@ def study(study, out=None, *, scheduler=None, workers=None, runs=None, processes
     single-threaded processes (default: one per core; ``processes=False``: threads).
     ``client``: an existing ``distributed.Client`` to use instead. ``progress``: a
     notebook-friendly bar (tqdm.auto) if available, ``"text"`` for a plain one, False
-    for none. ``flush_rows``: rows per Parquet part (also written every 10 s)."""
+    for none. ``flush_rows``: rows per Parquet part (also written every 10 s). ``batch``:
+    runs per Dask task (default: up to 16, fewer for small studies so every worker gets
+    about eight tasks)."""
     from .cluster import run_study
 
     return run_study(study, out, scheduler=scheduler, workers=workers, runs=runs,
-                     processes=processes, progress=progress, client=client, flush_rows=flush_rows)
+                     processes=processes, progress=progress, client=client, flush_rows=flush_rows,
+                     batch=batch)
 
 
 __all__ = ["Study", "StudyError", "StudyResult", "load_study", "parse_study", "read_rows", "run_envelope",

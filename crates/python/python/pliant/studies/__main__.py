@@ -18,6 +18,7 @@ def main(argv=None) -> int:
     ap.add_argument("--scheduler", help="address of an existing Dask scheduler (default: a local cluster)")
     ap.add_argument("--workers", type=int, help="workers of the local cluster (default: one per core)")
     ap.add_argument("--runs", type=int, help="number of runs instead of the study file's")
+    ap.add_argument("--batch", type=int, help="runs per Dask task (default: up to 16, so each worker gets about eight tasks)")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
     ap.add_argument("--flush-rows", type=int, default=50, help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
@@ -30,7 +31,8 @@ def main(argv=None) -> int:
         return 2
     try:
         result = study(a.study, a.out, scheduler=a.scheduler, workers=a.workers, runs=a.runs,
-                       progress=False if a.quiet else "text", flush_rows=a.flush_rows)
+                       progress=False if a.quiet else "text", flush_rows=a.flush_rows,
+                       batch=a.batch)
     except StudyError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2

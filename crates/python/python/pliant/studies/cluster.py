@@ -23,12 +23,25 @@ from typing import Any, Callable, Dict, List, Optional
 
 import numpy as np
 
-from . import geometry, sampling, variant
-from .runner import Task, column_name, run_variant
+from . import envelope, geometry, sampling, variant
+from .runner import Task, column_name, run_batch
 from .spec import Study, StudyError, load_study
 
 FLUSH_ROWS = 50  # a part is written after this many rows or seconds
 FLUSH_SECONDS = 10.0
+MAX_BATCH = 16  # runs per Dask task at most
+
+
+def batch_size(pending: int, workers: int, batch: Optional[int] = None) -> int:
+    """Runs per Dask task: ``batch`` if given, else as many as leave every worker about
+    eight tasks (so the last ones finish together and the bar moves), at most
+    :data:`MAX_BATCH`. One task then costs the scheduler, the (de)serialisation and the
+    parts' geometry once for several runs."""
+    if batch is not None:
+        if batch < 1:
+            raise StudyError(f"batch = {batch}: must be at least 1 run per task")
+        return batch
+    return max(1, min(MAX_BATCH, pending // (8 * max(workers, 1))))
 
 
 def schema(study: Study):
@@ -211,6 +224,7 @@ def run_study(
     progress: Any = True,
     client: Any = None,
     flush_rows: int = FLUSH_ROWS,
+    batch: Optional[int] = None,
     log: Callable[[str], None] = lambda s: print(s, file=sys.stderr),
 ):
     """Runs (or resumes) a study; returns a :class:`~pliant.studies.StudyResult`."""
@@ -273,8 +287,6 @@ def run_study(
         if row["status"] != "ok":
             state["failed"] += 1
         buffer.append(row)
-        for h, keys in res["voxels"].items():
-            union[h] = np.union1d(union[h], keys)
         if len(buffer) >= flush_rows or time.monotonic() - state["flushed"] > FLUSH_SECONDS:
             flush()
 
@@ -289,28 +301,43 @@ def run_study(
             nthreads = max(1, sum(client.nthreads().values()))
             bar = make_progress(progress, len(samples), len(done))
             count = len(done)
-            window = 4 * nthreads
-            queue = iter(pending)
-            index_of = {}
+            size = batch_size(len(pending), nthreads, batch)
+            window = 2 * nthreads  # batches in flight: every worker has its next one queued
+            queue = iter(range(0, len(pending), size))
+            batch_of = {}
 
-            def submit():
-                i = next(queue, None)
-                if i is None:
-                    return None
-                fut = client.submit(run_variant, task(i), key=f"pliant-{study.fingerprint()}-{ids[i]}", pure=False)
-                index_of[fut.key] = i
+            def submit(chosen=None):
+                if chosen is None:
+                    first = next(queue, None)
+                    if first is None:
+                        return None
+                    chosen = pending[first:first + size]
+                key = f"pliant-{study.fingerprint()}-{ids[chosen[0]]}-{len(chosen)}"
+                fut = client.submit(run_batch, [task(i) for i in chosen], key=key, pure=False)
+                batch_of[fut.key] = chosen
                 return fut
 
             first = [f for f in (submit() for _ in range(window)) if f is not None]
             stream = as_completed(first, with_results=True, raise_errors=False)
             for fut, res in stream:
-                i = index_of.pop(fut.key)
-                if isinstance(res, BaseException):  # the worker died or the task failed outside run_variant
-                    res = {"row": {"run_id": ids[i], "index": i, "status": "error",
-                                   "message": f"{type(res).__name__}: {res}"}, "voxels": {}}
-                record(i, res)
+                chosen = batch_of.pop(fut.key)
+                if isinstance(res, BaseException) and len(chosen) > 1:
+                    # the worker died or the task failed outside run_variant: each run of
+                    # the batch again on its own, so one bad run costs no other run its row
+                    fut.release()
+                    for i in chosen:
+                        stream.add(submit([i]))
+                    continue
+                if isinstance(res, BaseException):
+                    res = {"results": [{"row": {"run_id": ids[i], "index": i, "status": "error",
+                                                "message": f"{type(res).__name__}: {res}"}} for i in chosen],
+                           "voxels": {}}
+                for h, keys in res["voxels"].items():  # voxels first (see flush)
+                    union[h] = envelope.union(union[h], keys)
+                for i, one in zip(chosen, res["results"]):
+                    record(i, one)
                 fut.release()
-                count += 1
+                count += len(chosen)
                 if bar:
                     bar.update(count, state["failed"])
                 nxt = submit()

@@ -34,6 +34,20 @@ def unpack(keys: np.ndarray) -> np.ndarray:
     return np.stack([(keys >> 42) & mask, (keys >> 21) & mask, keys & mask], axis=1) - OFF
 
 
+def sorted_unique(keys: np.ndarray) -> np.ndarray:
+    """np.unique of int64 keys by sorting (several times faster than its hash table on
+    the ~10⁵ keys of a run)."""
+    keys = np.sort(keys)
+    if len(keys) < 2:
+        return keys
+    return keys[np.concatenate(([True], keys[1:] != keys[:-1]))]
+
+
+def union(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Sorted union of two sorted key sets (np.union1d, by sorting)."""
+    return sorted_unique(np.concatenate([a, b]))
+
+
 def centreline_samples(frames: np.ndarray, spacing: float) -> np.ndarray:
     """Points along every element of every frame (T, N, 3), at most ``spacing`` apart."""
     a, b = frames[:, :-1].reshape(-1, 3), frames[:, 1:].reshape(-1, 3)
@@ -52,7 +66,7 @@ def voxelize(frames: np.ndarray, radius: float, h: float) -> np.ndarray:
     from scipy.spatial import cKDTree
 
     fine = h / 4  # samples deduplicated over time on a grid 4× finer than the voxels
-    pts = unpack(np.unique(pack(np.round(centreline_samples(frames, h / 2) / fine)))) * fine
+    pts = unpack(sorted_unique(pack(np.round(centreline_samples(frames, h / 2) / fine)))) * fine
     reach = radius + math.sqrt(3) / 2 * (h + fine) + h / 4
     seeds = np.round(pts / h).astype(np.int64)
     m = int(math.ceil(reach / h)) + 2
@@ -67,7 +81,10 @@ def voxelize(frames: np.ndarray, radius: float, h: float) -> np.ndarray:
     slack = math.sqrt(3) / 2 * h
     sure = np.argwhere(d_seed <= reach - slack) + lo
     shell = np.argwhere((d_seed > reach - slack) & (d_seed <= reach + slack)) + lo
-    d, _ = cKDTree(pts).query(shell * h, distance_upper_bound=reach * 1.01)
+    # an unbalanced tree with big leaves: the samples lie on a lattice, and a shell voxel
+    # has hundreds of them about as far as the nearest; ~2× faster here, the same answer
+    tree = cKDTree(pts, leafsize=64, balanced_tree=False, compact_nodes=False)
+    d, _ = tree.query(shell * h, distance_upper_bound=reach * 1.01)
     return np.sort(pack(np.concatenate([sure, shell[d <= reach]])))
 
 

@@ -104,6 +104,20 @@ def _sweep(result, task: Task, row: Dict[str, Any]) -> Dict[str, np.ndarray]:
     return voxels
 
 
+def run_batch(tasks: List[Task]) -> Dict[str, Any]:
+    """Runs several variants in one Dask task (each as :func:`run_variant`): the task's
+    scheduling, (de)serialisation and the parts' geometry are paid once per batch, and
+    the batch's voxels are merged on the worker. Returns {"results": [{"row": ...}, ...],
+    "voxels": {hose: sorted keys}}."""
+    results, voxels = [], {}
+    for task in tasks:
+        res = run_variant(task)
+        for h, keys in res.pop("voxels").items():
+            voxels[h] = envelope.union(voxels[h], keys) if h in voxels else keys
+        results.append(res)
+    return {"results": results, "voxels": voxels}
+
+
 def run_variant(task: Task) -> Dict[str, Any]:
     """Runs one variant; returns {"row": {...}, "voxels": {hose: keys}}. Never raises for
     a bad variant: its status and message are in the row."""
