@@ -5,7 +5,7 @@ scratch; a baseline runs the same variants one after another in this process, wi
 Dask. Usage:
 
     .venv/bin/python bench/study_bench.py [--study examples/engine_bay_study.toml]
-        [--runs 24] [--workers 1,2] [--json]
+        [--runs 24] [--workers 1,2] [--batch N] [--json]
 
 Results go to docs/performance.md ("Studies") by hand, as ratios: the absolute numbers
 depend on the machine and on what else runs on it.
@@ -19,6 +19,21 @@ import tempfile
 import time
 
 
+def tree_cpu_s() -> float:
+    """CPU seconds (user + system) of this process and its live children (the workers)."""
+    import psutil
+
+    procs = [psutil.Process()] + psutil.Process().children(recursive=True)
+    total = 0.0
+    for p in procs:
+        try:
+            c = p.cpu_times()
+            total += c.user + c.system
+        except psutil.NoSuchProcess:
+            pass
+    return total
+
+
 def main():
     ap = argparse.ArgumentParser()
     here = os.path.dirname(os.path.abspath(__file__))
@@ -26,6 +41,7 @@ def main():
     ap.add_argument("--runs", type=int, default=24)
     ap.add_argument("--workers", default="1,2")
     ap.add_argument("--baseline", type=int, default=None, help="runs of the no-Dask baseline (default: --runs / 2)")
+    ap.add_argument("--batch", type=int, default=None, help="runs per Dask task (default: the study's choice)")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args()
 
@@ -54,9 +70,12 @@ def main():
         client = Client(cluster)
         out = tempfile.mkdtemp(prefix=f"study-bench-{n}-")
         try:
+            cpu0 = tree_cpu_s()
             t = time.perf_counter()
-            r = pliant.study(study, out, client=client, progress=False)
+            extra = {"batch": a.batch} if a.batch else {}
+            r = pliant.study(study, out, client=client, progress=False, **extra)
             dt = time.perf_counter() - t
+            tree = (tree_cpu_s() - cpu0) / a.runs
             results["workers"][n] = {"seconds": dt, "runs_per_min": a.runs / dt * 60,
                                      "mean_run_wall_s": float(r.frame["wall_time_s"].mean()),
                                      "mean_run_cpu_s": float(r.frame["cpu_time_s"].mean()),
@@ -64,6 +83,10 @@ def main():
                                      "dedicated_runs_per_min": n * 60 / float(r.frame["cpu_time_s"].mean()),
                                      # runs in progress at once, on average: sum of run times / elapsed
                                      "concurrency": float(r.frame["wall_time_s"].sum() / dt),
+                                     # CPU of this process (driver, scheduler) and all workers per
+                                     # run: what the whole study costs, whatever else runs
+                                     "tree_cpu_s_per_run": tree,
+                                     "minutes_for_10000_runs_on_all_cores": 10_000 * tree / (os.cpu_count() * 60),
                                      "load_average_1min": os.getloadavg()[0]}
         finally:
             client.close()
@@ -81,7 +104,9 @@ def main():
         print(f"  {n} worker(s): {w['runs_per_min']:.1f} runs/min ({w['seconds']:.1f} s; "
               f"×{w['speed_up_vs_1_worker']:.2f} vs 1 worker; mean run {w['mean_run_wall_s']:.2f} s; "
               f"{w['concurrency']:.2f} runs at once; load average {w['load_average_1min']:.1f}; "
-              f"CPU {w['mean_run_cpu_s']:.2f} s per run → {w['dedicated_runs_per_min']:.0f} runs/min on dedicated cores)")
+              f"CPU {w['mean_run_cpu_s']:.2f} s per run → {w['dedicated_runs_per_min']:.0f} runs/min on dedicated cores; "
+              f"whole process tree {w['tree_cpu_s_per_run']:.2f} CPU-s per run → 10 000 runs in "
+              f"{w['minutes_for_10000_runs_on_all_cores']:.0f} min on {results['cores']} dedicated cores)")
 
 
 if __name__ == "__main__":

@@ -143,7 +143,7 @@ def drop_once(p, n, cap_s, dt):
     update, st = rest_tracker(p)
     mass = m.body_mass[:, None]
     steps = 0
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     while d.time < p["drop_max_time_s"]:
         mujoco.mj_step(m, d, nstep=chunk)
         steps += chunk
@@ -159,7 +159,7 @@ def drop_once(p, n, cap_s, dt):
             break
         if time.perf_counter() - start > cap_s:
             break
-    wall = time.perf_counter() - start
+    wall, cpu = time.perf_counter() - start, time.process_time() - cpu
     bodies = [i for i in range(m.nbody) if m.body(i).name.startswith("B_")]
     pts = [d.xpos[i].copy() for i in bodies]
     pts.append(d.site_xpos[m.site("S_last").id].copy())
@@ -167,7 +167,7 @@ def drop_once(p, n, cap_s, dt):
     return {
         "tool": "mujoco", "elements": n, "at_rest": st["rest"],
         "rest_time_s": st["quiet_since"] if st["rest"] else None,
-        "simulated_s": float(d.time), "wall_s": wall, "time_step_s": dt, "steps": steps,
+        "simulated_s": float(d.time), "wall_s": wall, "cpu_s": cpu, "time_step_s": dt, "steps": steps,
         "tip_z_m": float(0.5 * (x[0, 2] + x[-1, 2])), "mid_z_m": float(x[n // 2, 2]),
         "half_span_m": float(0.5 * (x[-1, 0] - x[0, 0])),
         "shape_xz": [[float(a), float(b)] for a, b in zip(x[:, 0], x[:, 2])],
