@@ -75,17 +75,25 @@ def voxelize(frames: np.ndarray, radius: float, h: float) -> np.ndarray:
     lo = seeds.min(axis=0) - m
     grid = np.ones(seeds.max(axis=0) - lo + m + 1, dtype=bool)
     grid[tuple((seeds - lo).T)] = False
+    sample_of = np.zeros(grid.shape + (3,))  # one sample in each seed voxel
+    sample_of[tuple((seeds - lo).T)] = pts
     # a sample lies within √3/2 h of its seed voxel's centre: voxels that near a seed are
     # in for sure, those farther than reach + √3/2 h out; the shell between is measured
-    d_seed = distance_transform_edt(grid) * h
+    d_seed, nearest = distance_transform_edt(grid, return_indices=True)
+    d_seed *= h
     slack = math.sqrt(3) / 2 * h
-    sure = np.argwhere(d_seed <= reach - slack) + lo
-    shell = np.argwhere((d_seed > reach - slack) & (d_seed <= reach + slack)) + lo
+    sure = np.argwhere(d_seed <= reach - slack)
+    shell = np.argwhere((d_seed > reach - slack) & (d_seed <= reach + slack))
+    # in if the nearest seed's sample is within reach (about half the shell); the rest
+    # asks for the nearest sample of all
+    seed = nearest[:, shell[:, 0], shell[:, 1], shell[:, 2]]
+    found = np.linalg.norm((shell + lo) * h - sample_of[seed[0], seed[1], seed[2]], axis=1) <= reach
+    rest = shell[~found]
     # an unbalanced tree with big leaves: the samples lie on a lattice, and a shell voxel
     # has hundreds of them about as far as the nearest; ~2× faster here, the same answer
     tree = cKDTree(pts, leafsize=64, balanced_tree=False, compact_nodes=False)
-    d, _ = tree.query(shell * h, distance_upper_bound=reach * 1.01)
-    return np.sort(pack(np.concatenate([sure, shell[d <= reach]])))
+    d, _ = tree.query((rest + lo) * h, distance_upper_bound=reach * 1.01)
+    return np.sort(pack(np.concatenate([sure, shell[found], rest[d <= reach]]) + lo))
 
 
 def mesh(keys: np.ndarray, h: float) -> Tuple[np.ndarray, np.ndarray]:
