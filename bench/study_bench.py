@@ -102,7 +102,8 @@ def main():
     print(f"  no Dask, one process: {results['baseline_runs_per_min']:.1f} runs/min")
     for n, w in results["workers"].items():
         print(f"  {n} worker(s): {w['runs_per_min']:.1f} runs/min ({w['seconds']:.1f} s; "
-              f"×{w['speed_up_vs_1_worker']:.2f} vs 1 worker; mean run {w['mean_run_wall_s']:.2f} s; "
+              + (f"×{w['speed_up_vs_1_worker']:.2f} vs 1 worker; " if w["speed_up_vs_1_worker"] else "")
+              + f"mean run {w['mean_run_wall_s']:.2f} s; "
               f"{w['concurrency']:.2f} runs at once; load average {w['load_average_1min']:.1f}; "
               f"CPU {w['mean_run_cpu_s']:.2f} s per run → {w['dedicated_runs_per_min']:.0f} runs/min on dedicated cores; "
               f"whole process tree {w['tree_cpu_s_per_run']:.2f} CPU-s per run → 10 000 runs in "
