@@ -46,6 +46,8 @@ class Task:
 
 def _result_row(result, task: Task) -> Dict[str, Any]:
     """Peaks, verdict and checks of a RunResult as flat columns (SI)."""
+    summary = result.summary  # decoded once: it holds the fastener series (~0.2 MB)
+    solver = summary.get("solver") or {}
     row: Dict[str, Any] = {
         "feasible": result.feasible,
         "uncertain": bool(result.uncertain),
@@ -55,9 +57,9 @@ def _result_row(result, task: Task) -> Dict[str, Any]:
         "steps": int(result.steps),
         "simulated_time_s": float(result.simulated_time),
         "solver": task.solver,
-        "solver_warnings": len(result.summary.get("solver_warnings") or []),
-        "unconverged_steps": int((result.summary.get("solver") or {}).get("unconverged_steps") or 0),
-        "instabilities": int((result.summary.get("solver") or {}).get("instability_count") or 0),
+        "solver_warnings": len(summary.get("solver_warnings") or []),
+        "unconverged_steps": int(solver.get("unconverged_steps") or 0),
+        "instabilities": int(solver.get("instability_count") or 0),
     }
     hands = result.hand_peaks
     row["peak_hand_force_n"] = max((h["max_force"] for h in hands), default=0.0)
