@@ -9,6 +9,7 @@ state), an unconverged Newton solve sets ``uncertain``; any other exception is
 
 from __future__ import annotations
 
+import os
 import re
 import time
 import warnings
@@ -111,6 +112,10 @@ def run_batch(tasks: List[Task]) -> Dict[str, Any]:
     scheduling, (de)serialisation and the parts' geometry are paid once per batch, and
     the batch's voxels are merged on the worker. Returns {"results": [{"row": ...}, ...],
     "voxels": {hose: sorted keys}}."""
+    # one thread per run: a study keeps every core busy with runs of its own (the
+    # explicit solver would otherwise start a thread per core for a scene of several
+    # hoses, for each worker); a worker started with PLIANT_THREADS set keeps its value
+    os.environ.setdefault("PLIANT_THREADS", "1")
     results, voxels = [], {}
     for task in tasks:
         res = run_variant(task)
