@@ -125,6 +125,8 @@ pub struct HoseContactScratch {
     ranked: Vec<(VisitRank, u32, u32)>,
     /// Build the list with the grid alone (tests: the sweep's list must equal it).
     pub grid_only: bool,
+    /// How often the sweep gave up and the grid built the list.
+    pub grid_fallbacks: u64,
 }
 
 impl HoseContactScratch {
@@ -140,6 +142,7 @@ impl HoseContactScratch {
             sweep: SweepAndPrune::new(model.elements.len()),
             ranked: Vec::with_capacity(4 * model.elements.len()),
             grid_only: false,
+            grid_fallbacks: 0,
         }
     }
 
@@ -192,6 +195,7 @@ impl HoseContactScratch {
             let pairs = self.ranked.iter().map(|&(_, a, b)| (a, b));
             self.candidates.extend(pairs);
         } else {
+            self.grid_fallbacks += !self.grid_only as u64;
             self.broad.rebuild();
             let (broad, candidates) = (&self.broad, &mut self.candidates);
             broad.for_each_pair(|i, j| {
