@@ -131,11 +131,14 @@ impl BroadPhase {
     /// Files the boxes `lo`/`hi` into the grid. O(N), no allocation.
     pub fn rebuild(&mut self) {
         let n = self.lo.len();
-        self.file_cells();
+        self.set_cell_size();
         let buckets = self.start.len() - 1;
         self.start.fill(0);
         for i in 0..n {
-            self.start[self.bucket_of[i] as usize] += 1;
+            let (key, b) = self.cell(i);
+            self.key[i] = key;
+            self.bucket_of[i] = b;
+            self.start[b as usize] += 1;
         }
         // Inclusive prefix sums (bucket ends), then fill backwards: start[b] becomes the
         // bucket's beginning and start[b + 1] its end.
@@ -156,15 +159,14 @@ impl BroadPhase {
         }
     }
 
-    /// Step 1 and 2 of a rebuild without the sort: the cell size of the boxes `lo`/`hi`
-    /// and each box's cell and bucket. O(N), no allocation. Enough for [`Self::visit_rank`].
-    pub fn file_cells(&mut self) {
-        let n = self.lo.len();
+    /// Step 1 of a rebuild: the cell size of the boxes `lo`/`hi`. O(N), no allocation.
+    /// Enough for [`Self::cell`] and [`Self::visit_rank`].
+    pub fn set_cell_size(&mut self) {
         // Cell size per axis: the largest box extent along it (a box elongated along one
         // axis does not coarsen the grid along the others).
         let mut h = DVec3::ZERO;
-        for i in 0..n {
-            h = h.max(self.hi[i] - self.lo[i]);
+        for (lo, hi) in self.lo.iter().zip(&self.hi) {
+            h = h.max(*hi - *lo);
         }
         // Guard against degenerate extents; NaN boxes land in cell 0 (the health check
         // reports the divergence).
@@ -173,23 +175,22 @@ impl BroadPhase {
         } else {
             1.0
         };
-        let h = DVec3::select(
+        self.cell_size = DVec3::select(
             h.cmpgt(DVec3::splat(1e-9 * fallback)) & h.is_finite_mask(),
             h,
             DVec3::splat(fallback),
         );
-        self.cell_size = h;
-        let inv = h.recip();
-        for i in 0..n {
-            let c = (0.5 * (self.lo[i] + self.hi[i]) * inv).floor();
-            let key = pack([c.x as i64, c.y as i64, c.z as i64]);
-            self.key[i] = key;
-            self.bucket_of[i] = hash(key, self.shift);
-        }
     }
 
-    /// Where [`Self::for_each_pair`] reports the pair of boxes `i`, `j` (filed by
-    /// [`Self::file_cells`] or [`Self::rebuild`]): `Some((rank, first, second))`, the pair
+    /// Step 2 for box `i`: its packed cell, floor(c/h) of its centre c, and bucket.
+    pub fn cell(&self, i: usize) -> (u64, u32) {
+        let c = (0.5 * (self.lo[i] + self.hi[i]) * self.cell_size.recip()).floor();
+        let key = pack([c.x as i64, c.y as i64, c.z as i64]);
+        (key, hash(key, self.shift))
+    }
+
+    /// Where [`Self::for_each_pair`] reports the pair of boxes `i`, `j` (after
+    /// [`Self::set_cell_size`] or [`Self::rebuild`]): `Some((rank, first, second))`, the pair
     /// being reported as `f(first, second)` and pairs reported in increasing `rank`;
     /// `None` if it does not report it whether or not the boxes overlap (their cells are
     /// not neighbours). The sorted arrays hold bucket by bucket, each bucket in increasing
@@ -197,13 +198,14 @@ impl BroadPhase {
     /// (bucket, index); a box scans its own cell (rank 0), then the [`FORWARD`] cells in
     /// order (ranks 1–13), each in increasing position.
     pub fn visit_rank(&self, i: usize, j: usize) -> Option<(VisitRank, usize, usize)> {
-        let (ki, kj) = (self.key[i], self.key[j]);
+        let ((ki, bi), (kj, bj)) = (self.cell(i), self.cell(j));
+        let bucket = |k: usize| if k == i { bi } else { bj };
         let at = |first: usize, cell: u8, second: usize| {
             let rank = (
-                self.bucket_of[first],
+                bucket(first),
                 first as u32,
                 cell,
-                self.bucket_of[second],
+                bucket(second),
                 second as u32,
             );
             Some((rank, first, second))

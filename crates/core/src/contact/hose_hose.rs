@@ -65,7 +65,8 @@
 //! ([`SweepAndPrune`]; along the axis of the largest spread a hose's beams overlap only
 //! their neighbours there) and sorted into the order, and given the orientation (which
 //! beam is "beam 1" of the narrow phase), in which the grid reports them:
-//! [`BroadPhase::visit_rank`], from the beams' cells alone (O(N), no counting sort). The
+//! [`BroadPhase::visit_rank`], from the two beams' cells alone (no filing, no counting
+//! sort). The
 //! list is the grid's list pair for pair, so the forces are bit for bit those of the grid
 //! (tests compare lists after random motions and the positions after contact-rich runs).
 //! If the sweep exceeds its budget of 16 N + 1024 comparisons (boxes piled up along every
@@ -175,7 +176,7 @@ impl HoseContactScratch {
         }
         self.candidates.clear();
         let swept = !self.grid_only && {
-            self.broad.file_cells();
+            self.broad.set_cell_size();
             let (broad, ranked) = (&self.broad, &mut self.ranked);
             ranked.clear();
             let budget = 16 * broad.len() + 1024;
