@@ -264,6 +264,7 @@ impl HoseContactModel {
 
     /// Whether beams `i` and `j` are excluded from contact (same hose and closer along it
     /// than π (r_i + r_j)/2 at rest; see the module doc).
+    #[inline]
     pub fn excluded(&self, i: usize, j: usize) -> bool {
         if i == j {
             return true;
