@@ -60,17 +60,16 @@
 //! the state.
 //!
 //! **Building the list cheaply** (issue 15). The grid's 14 bucket look-ups per beam made a
-//! rebuild cost ~2 steps' worth of element work on a long hose, whose free end trips the
-//! skin every ten steps or so. The pairs are instead found by sort and sweep
-//! ([`SweepAndPrune`]; along the axis of the largest spread a hose's beams overlap only
-//! their neighbours there) and sorted into the order, and given the orientation (which
-//! beam is "beam 1" of the narrow phase), in which the grid reports them:
-//! [`BroadPhase::visit_rank`], from the two beams' cells alone (no filing, no counting
-//! sort). The
-//! list is the grid's list pair for pair, so the forces are bit for bit those of the grid
-//! (tests compare lists after random motions and the positions after contact-rich runs).
-//! If the sweep exceeds its budget of 16 N + 1024 comparisons (boxes piled up along every
-//! axis), the grid builds the list as before.
+//! rebuild cost about three steps' worth of element work on a long hose (perf, 1 × 1000),
+//! whose free end trips the skin every ten steps or so. The pairs are instead found by
+//! sort and sweep ([`SweepAndPrune`]; along the axis of the largest spread a hose's beams
+//! overlap only their neighbours there) and sorted into the order, and given the
+//! orientation (which beam is "beam 1" of the narrow phase), in which the grid reports
+//! them: [`BroadPhase::visit_rank`], from the two beams' cells alone (no filing, no
+//! counting sort). The list is the grid's list pair for pair, so the forces are bit for
+//! bit those of the grid (tests compare lists after random motions and the positions after
+//! contact-rich runs). If the sweep exceeds its budget of 16 N + 1024 comparisons (boxes
+//! piled up along every axis), the grid builds the list as before.
 
 use super::broad_phase::{BroadPhase, VisitRank};
 use super::sweep::SweepAndPrune;
