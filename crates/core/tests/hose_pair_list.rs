@@ -11,22 +11,10 @@ use pliant_core::integrators::explicit::step;
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 
-const R: f64 = 0.010; // outer radius [m]
+mod common;
+use common::Lcg;
 
-/// Deterministic pseudo-random numbers in [0, 1).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn vec(&mut self) -> DVec3 {
-        DVec3::new(self.next(), self.next(), self.next())
-    }
-}
+const R: f64 = 0.010; // outer radius [m]
 
 /// `count` hoses of 20 beams of 15 mm, each a random walk that turns by up to ~30° a step, starting at random points of the box
 /// `origin + [0, size]`.
