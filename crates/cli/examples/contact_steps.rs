@@ -1,14 +1,15 @@
 //! A fixed number of steps of the contact benchmark's world (5 hoses × 30 on the
-//! 100 352-triangle floor, `pliant bench --only contact`), for profilers and instruction
+//! 100 352-triangle floor, `pliant bench --only contact`), or of any other bench world
+//! (e.g. `1000 0 1500 1 1000`: the "1 hose × 1000" row), for profilers and instruction
 //! counts (`valgrind --tool=callgrind`), where the bench's timed repeats would vary:
 //!
 //! ```sh
-//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps]
+//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose]
 //! ```
 //!
-//! Prints the CPU time of the steps, the candidate-list counters and a hash of the final
-//! positions and velocities' bits (a change that must keep the results bit for bit keeps
-//! the hash).
+//! Prints the CPU time of the steps (and per element-step), the candidate-list counters,
+//! the hose-contact pair-list rebuilds and a hash of the final positions and velocities'
+//! bits (a change that must keep the results bit for bit keeps the hash).
 
 #![allow(dead_code)]
 
@@ -18,11 +19,14 @@ fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
     let steps: u64 = args.get(1).map_or(Ok(16_500), |s| s.parse())?;
     let quads: usize = args.get(2).map_or(Ok(bench::FLOOR_QUADS), |s| s.parse())?;
-    let (mut model, mut state) = bench::setup(5, 30, quads)?;
-    model.threads = 1;
     let warm: u64 = args.get(3).map_or(Ok(1_500), |s| s.parse())?;
+    let hoses: usize = args.get(4).map_or(Ok(5), |s| s.parse())?;
+    let elements: usize = args.get(5).map_or(Ok(30), |s| s.parse())?;
+    let (mut model, mut state) = bench::setup(hoses, elements, quads)?;
+    model.threads = 1;
     run(&model, &mut state, warm);
     let before = state.contact.candidates.clone();
+    let rebuilds = state.hose_contact.rebuilds;
     let t0 = cpu_seconds();
     let points = measured(&model, &mut state, steps);
     let cpu = cpu_seconds() - t0;
@@ -39,14 +43,17 @@ fn main() -> anyhow::Result<()> {
         c.fresh_fallbacks - before.fresh_fallbacks,
     );
     println!(
-        "{steps} steps on {} triangles: {:.2} µs CPU per step, {:.2} contact points per step, \
-         {} refreshes, {} truncations, {} fresh fallbacks, hash {hash:016x}",
+        "{steps} steps of {hoses} × {elements} on {} triangles: {:.2} µs CPU per step \
+         ({:.1} ns per element-step), {:.2} contact points per step, {} refreshes, \
+         {} truncations, {} fresh fallbacks, {} pair-list rebuilds, hash {hash:016x}",
         2 * quads * quads,
         cpu * 1e6 / steps as f64,
+        cpu * 1e9 / (steps as f64 * model.elements.len() as f64),
         points as f64 / steps as f64,
         refreshes,
         truncations,
-        fallbacks
+        fallbacks,
+        state.hose_contact.rebuilds - rebuilds,
     );
     Ok(())
 }

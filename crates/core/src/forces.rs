@@ -99,9 +99,12 @@ pub fn add_body_loads_of(
 ) {
     let alpha = model.damping_mass;
     let (mass, inertia) = (&model.mass[base..], &model.inertia[base..]);
-    for i in 0..force.len() {
-        force[i] += mass[i] * (model.gravity - alpha * c.v[i]);
-        moment[i] -= alpha * inertia[i] * c.w[i];
+    let n = force.len();
+    let (mass, inertia, v, w) = (&mass[..n], &inertia[..n], &c.v[..n], &c.w[..n]);
+    let moment = &mut moment[..n];
+    for i in 0..n {
+        force[i] += mass[i] * (model.gravity - alpha * v[i]);
+        moment[i] -= alpha * inertia[i] * w[i];
     }
 }
 

@@ -13,6 +13,9 @@ use pliant_core::math::exp_map;
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 use std::f64::consts::PI;
 
+mod common;
+use common::Lcg;
+
 const R: f64 = 0.010; // outer radius [m]
 
 fn material() -> Material {
@@ -463,21 +466,6 @@ fn neighbouring_beams_of_one_hose_give_no_force_at_rest() {
         step(&model, &mut state);
         assert_eq!(state.hose_contact.pairs_in_contact, 0);
         assert!(state.hose_contact_force.iter().all(|f| *f == DVec3::ZERO));
-    }
-}
-
-/// Deterministic pseudo-random numbers in [0, 1).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn vec(&mut self) -> DVec3 {
-        DVec3::new(self.next(), self.next(), self.next())
     }
 }
 

@@ -77,6 +77,25 @@ fn offset(key: u64, d: [i64; 3]) -> u64 {
     f(2 * BITS, d[0]) | f(BITS, d[1]) | f(0, d[2])
 }
 
+/// Cell of key `b` minus cell of key `a`, per axis, each field read as a signed 21-bit
+/// difference (the inverse of [`offset`]: `offset(a, cell_difference(a, b)) == b`).
+fn cell_difference(a: u64, b: u64) -> [i64; 3] {
+    let f = |shift: u32| {
+        let d = ((b >> shift).wrapping_sub(a >> shift) & FIELD) as i64;
+        if d >= 1 << (BITS - 1) {
+            d - (1 << BITS)
+        } else {
+            d
+        }
+    };
+    [f(2 * BITS), f(BITS), f(0)]
+}
+
+/// Order in which [`BroadPhase::for_each_pair`] reports a pair: (bucket, index) of the
+/// box that scans, the cell scanned (0 own, 1–13 [`FORWARD`]), (bucket, index) of the
+/// box found.
+pub type VisitRank = (u32, u32, u8, u32, u32);
+
 /// Fibonacci hashing: the top bits of key·⌊2⁶⁴/φ⌋, which depend on every bit of the key.
 fn hash(key: u64, shift: u32) -> u32 {
     (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> shift) as u32
@@ -112,32 +131,11 @@ impl BroadPhase {
     /// Files the boxes `lo`/`hi` into the grid. O(N), no allocation.
     pub fn rebuild(&mut self) {
         let n = self.lo.len();
-        // Cell size per axis: the largest box extent along it (a box elongated along one
-        // axis does not coarsen the grid along the others).
-        let mut h = DVec3::ZERO;
-        for i in 0..n {
-            h = h.max(self.hi[i] - self.lo[i]);
-        }
-        // Guard against degenerate extents; NaN boxes land in cell 0 (the health check
-        // reports the divergence).
-        let fallback = if h.max_element() > 0.0 && h.max_element().is_finite() {
-            h.max_element()
-        } else {
-            1.0
-        };
-        let h = DVec3::select(
-            h.cmpgt(DVec3::splat(1e-9 * fallback)) & h.is_finite_mask(),
-            h,
-            DVec3::splat(fallback),
-        );
-        self.cell_size = h;
-        let inv = h.recip();
+        self.set_cell_size();
         let buckets = self.start.len() - 1;
         self.start.fill(0);
         for i in 0..n {
-            let c = (0.5 * (self.lo[i] + self.hi[i]) * inv).floor();
-            let key = pack([c.x as i64, c.y as i64, c.z as i64]);
-            let b = hash(key, self.shift);
+            let (key, b) = self.cell(i);
             self.key[i] = key;
             self.bucket_of[i] = b;
             self.start[b as usize] += 1;
@@ -159,6 +157,73 @@ impl BroadPhase {
             self.s_lo[k] = self.lo[i];
             self.s_hi[k] = self.hi[i];
         }
+    }
+
+    /// Step 1 of a rebuild: the cell size of the boxes `lo`/`hi`. O(N), no allocation.
+    /// Enough for [`Self::cell`] and [`Self::visit_rank`].
+    pub fn set_cell_size(&mut self) {
+        // Cell size per axis: the largest box extent along it (a box elongated along one
+        // axis does not coarsen the grid along the others).
+        let mut h = DVec3::ZERO;
+        for (lo, hi) in self.lo.iter().zip(&self.hi) {
+            h = h.max(*hi - *lo);
+        }
+        // Guard against degenerate extents; NaN boxes land in cell 0 (the health check
+        // reports the divergence).
+        let fallback = if h.max_element() > 0.0 && h.max_element().is_finite() {
+            h.max_element()
+        } else {
+            1.0
+        };
+        self.cell_size = DVec3::select(
+            h.cmpgt(DVec3::splat(1e-9 * fallback)) & h.is_finite_mask(),
+            h,
+            DVec3::splat(fallback),
+        );
+    }
+
+    /// Step 2 for box `i`: its packed cell, floor(c/h) of its centre c, and bucket.
+    pub fn cell(&self, i: usize) -> (u64, u32) {
+        let c = (0.5 * (self.lo[i] + self.hi[i]) * self.cell_size.recip()).floor();
+        let key = pack([c.x as i64, c.y as i64, c.z as i64]);
+        (key, hash(key, self.shift))
+    }
+
+    /// Where [`Self::for_each_pair`] reports the pair of boxes `i`, `j` (after
+    /// [`Self::set_cell_size`] or [`Self::rebuild`]): `Some((rank, first, second))`, the pair
+    /// being reported as `f(first, second)` and pairs reported in increasing `rank`;
+    /// `None` if it does not report it whether or not the boxes overlap (their cells are
+    /// not neighbours). The sorted arrays hold bucket by bucket, each bucket in increasing
+    /// box index (the counting sort fills backwards), so a box's position is
+    /// (bucket, index); a box scans its own cell (rank 0), then the [`FORWARD`] cells in
+    /// order (ranks 1–13), each in increasing position.
+    pub fn visit_rank(&self, i: usize, j: usize) -> Option<(VisitRank, usize, usize)> {
+        let ((ki, bi), (kj, bj)) = (self.cell(i), self.cell(j));
+        let bucket = |k: usize| if k == i { bi } else { bj };
+        let at = |first: usize, cell: u8, second: usize| {
+            let rank = (
+                bucket(first),
+                first as u32,
+                cell,
+                bucket(second),
+                second as u32,
+            );
+            Some((rank, first, second))
+        };
+        if ki == kj {
+            // one bucket: the smaller index scans the entries after it
+            let (a, b) = (i.min(j), i.max(j));
+            return at(a, 0, b);
+        }
+        let d = cell_difference(ki, kj);
+        if let Some(f) = FORWARD.iter().position(|&e| e == d) {
+            return at(i, f as u8 + 1, j);
+        }
+        let m = [-d[0], -d[1], -d[2]];
+        FORWARD
+            .iter()
+            .position(|&e| e == m)
+            .and_then(|f| at(j, f as u8 + 1, i))
     }
 
     /// Calls `f(i, j)` (i ≠ j, each unordered pair once) for every pair of overlapping

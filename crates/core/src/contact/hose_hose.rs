@@ -58,8 +58,21 @@
 //! farther (or any change of the positions from outside, e.g. a restored snapshot)
 //! triggers a rebuild. The pairs are visited in the list's order: deterministic, given
 //! the state.
+//!
+//! **Building the list cheaply** (issue 15). The grid's 14 bucket look-ups per beam made a
+//! rebuild cost about three steps' worth of element work on a long hose (perf, 1 × 1000),
+//! whose free end trips the skin every ten steps or so. The pairs are instead found by
+//! sort and sweep ([`SweepAndPrune`]; along the axis of the largest spread a hose's beams
+//! overlap only their neighbours there) and sorted into the order, and given the
+//! orientation (which beam is "beam 1" of the narrow phase), in which the grid reports
+//! them: [`BroadPhase::visit_rank`], from the two beams' cells alone (no filing, no
+//! counting sort). The list is the grid's list pair for pair, so the forces are bit for
+//! bit those of the grid (tests compare lists after random motions and the positions after
+//! contact-rich runs). If the sweep exceeds its budget of 16 N + 1024 comparisons (boxes
+//! piled up along every axis), the grid builds the list as before.
 
-use super::broad_phase::BroadPhase;
+use super::broad_phase::{BroadPhase, VisitRank};
+use super::sweep::SweepAndPrune;
 use crate::{Model, State};
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -106,6 +119,14 @@ pub struct HoseContactScratch {
     pub anchor: Vec<DVec3>,
     /// How often the pair list was built.
     pub rebuilds: u64,
+    /// The sweep that finds the pairs, and the pairs it found with their place in the
+    /// grid's order.
+    sweep: SweepAndPrune,
+    ranked: Vec<(VisitRank, u32, u32)>,
+    /// Build the list with the grid alone (tests: the sweep's list must equal it).
+    pub grid_only: bool,
+    /// How often the sweep gave up and the grid built the list.
+    pub grid_fallbacks: u64,
 }
 
 impl HoseContactScratch {
@@ -118,6 +139,10 @@ impl HoseContactScratch {
             candidates: Vec::with_capacity(4 * model.elements.len()),
             anchor: vec![DVec3::NAN; model.node_count()],
             rebuilds: 0,
+            sweep: SweepAndPrune::new(model.elements.len()),
+            ranked: Vec::with_capacity(4 * model.elements.len()),
+            grid_only: false,
+            grid_fallbacks: 0,
         }
     }
 
@@ -136,7 +161,10 @@ impl HoseContactScratch {
         !near
     }
 
-    /// Files the beams' boxes grown by the skin and lists the pairs that may touch.
+    /// Files the beams' boxes grown by the skin and lists the pairs that may touch, in the
+    /// order and orientation the grid reports them ([`BroadPhase::for_each_pair`]): found
+    /// by the sweep ([`SweepAndPrune`]) and sorted by [`BroadPhase::visit_rank`], or by the
+    /// grid itself if the sweep gives up (see the module doc).
     fn rebuild(&mut self, model: &Model, x: &[DVec3]) {
         let constants = &model.hose_contact;
         for (e, el) in model.elements.iter().enumerate() {
@@ -145,14 +173,37 @@ impl HoseContactScratch {
             self.broad.lo[e] = xa.min(xb) - r;
             self.broad.hi[e] = xa.max(xb) + r;
         }
-        self.broad.rebuild();
-        let (broad, candidates) = (&self.broad, &mut self.candidates);
-        candidates.clear();
-        broad.for_each_pair(|i, j| {
-            if !constants.excluded(i, j) {
-                candidates.push((i as u32, j as u32));
-            }
-        });
+        self.candidates.clear();
+        let swept = !self.grid_only && {
+            self.broad.set_cell_size();
+            let (broad, ranked) = (&self.broad, &mut self.ranked);
+            ranked.clear();
+            let budget = 16 * broad.len() + 1024;
+            let swept = self
+                .sweep
+                .for_each_pair(&broad.lo, &broad.hi, budget, |i, j| {
+                    if !constants.excluded(i, j) {
+                        if let Some((rank, a, b)) = broad.visit_rank(i, j) {
+                            ranked.push((rank, a as u32, b as u32));
+                        }
+                    }
+                });
+            swept.is_ok()
+        };
+        if swept {
+            self.ranked.sort_unstable_by_key(|r| r.0);
+            let pairs = self.ranked.iter().map(|&(_, a, b)| (a, b));
+            self.candidates.extend(pairs);
+        } else {
+            self.grid_fallbacks += !self.grid_only as u64;
+            self.broad.rebuild();
+            let (broad, candidates) = (&self.broad, &mut self.candidates);
+            broad.for_each_pair(|i, j| {
+                if !constants.excluded(i, j) {
+                    candidates.push((i as u32, j as u32));
+                }
+            });
+        }
         self.anchor.clear();
         self.anchor.extend_from_slice(x);
         self.rebuilds += 1;
@@ -212,6 +263,7 @@ impl HoseContactModel {
 
     /// Whether beams `i` and `j` are excluded from contact (same hose and closer along it
     /// than π (r_i + r_j)/2 at rest; see the module doc).
+    #[inline]
     pub fn excluded(&self, i: usize, j: usize) -> bool {
         if i == j {
             return true;

@@ -8,7 +8,8 @@
 //! with Coulomb friction by an elastoplastic tangential spring ([`friction`]).
 //!
 //! Hose–hose and self contact (SPEC L5, [`hose_hose`]): penalty forces between beam
-//! capsules, found by an O(N) uniform-grid broad phase ([`broad_phase`]).
+//! capsules, found by an O(N) uniform-grid broad phase ([`broad_phase`]) or, for boxes
+//! spread along one axis, by sort and sweep ([`sweep`]) in the grid's order.
 
 pub mod broad_phase;
 pub mod coherence;
@@ -18,6 +19,7 @@ pub mod hose_hose;
 mod penalty;
 mod rigid;
 mod segment_triangle;
+pub mod sweep;
 
 pub use broad_phase::BroadPhase;
 pub use coherence::CandidateCache;

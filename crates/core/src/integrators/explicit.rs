@@ -75,9 +75,11 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     // Fixings' supports: springs in their fixed directions (reaction = their load), the
     // slip anchors accepted with this step's forces
     crate::loads::support_reactions(model, state, true);
-    for i in 0..state.x.len() {
-        state.force[i] += state.reaction_force[i];
-        state.moment[i] += state.reaction_moment[i];
+    for (f, r) in state.force.iter_mut().zip(&state.reaction_force) {
+        *f += *r;
+    }
+    for (m, r) in state.moment.iter_mut().zip(&state.reaction_moment) {
+        *m += *r;
     }
     // Kinematic load cases, in order (a later one on the same node wins).
     for (_, case) in state.loads.iter() {
