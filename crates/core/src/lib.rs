@@ -32,6 +32,9 @@ pub mod spec;
 pub mod state;
 pub mod stiffened;
 pub mod tangent;
+pub mod tangent_kernel;
+#[cfg(test)]
+mod test_elements;
 pub mod timestep;
 
 pub use health::Divergence;
