@@ -17,6 +17,7 @@ pub mod forces;
 pub mod frames;
 pub mod health;
 pub mod integrators;
+pub mod lane_arith;
 pub mod lanes;
 pub mod loads;
 pub mod mass;

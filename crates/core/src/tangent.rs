@@ -19,7 +19,7 @@
 use crate::autodiff::{Quat, Scalar, V3};
 use crate::element::{BeamElement, ElementEnds, ElementLoads};
 use crate::element_block::Kernel;
-use crate::tangent_kernel::{kernel_tangent_rows, LoadRows, D9};
+use crate::tangent_kernel::{block_tangent_rows, LoadRows, D9};
 use glam::{DQuat, DVec3};
 use nalgebra::SMatrix;
 
@@ -91,19 +91,39 @@ fn reference_rows(
     )
 }
 
-/// The element's loads at `ends` and their tangent K = −∂loads/∂u: by the kernel's
-/// algebra ([`crate::tangent_kernel`]) where its series cover the element's relative
-/// rotations, by the reference elsewhere.
+/// The loads of four elements at `ends` and their tangents K = −∂loads/∂u: by the
+/// kernel's algebra four at a time ([`crate::tangent_kernel`]), by the reference for
+/// elements whose relative rotations its series do not cover. Fewer than four elements
+/// repeat the last one in the lanes beyond `count`; `out` receives `count` results.
+pub fn block_tangent(
+    elements: [&BeamElement; 4],
+    ends: [&ElementEnds; 4],
+    count: usize,
+    beta: f64,
+    rate_factor: f64,
+    out: &mut [(ElementLoads, ElementTangent); 4],
+) {
+    let rows = block_tangent_rows(Kernel::detect(), elements, ends, beta, rate_factor);
+    for k in 0..count {
+        out[k] = from_rows(if rows.outside.lane(k) {
+            reference_rows(elements[k], ends[k], beta, rate_factor)
+        } else {
+            rows.lane(k)
+        });
+    }
+}
+
+/// The element's loads at `ends` and their tangent K = −∂loads/∂u ([`block_tangent`]
+/// for one element).
 pub fn element_tangent(
     element: &BeamElement,
     ends: &ElementEnds,
     beta: f64,
     rate_factor: f64,
 ) -> (ElementLoads, ElementTangent) {
-    from_rows(
-        kernel_tangent_rows(Kernel::detect(), element, ends, beta, rate_factor)
-            .unwrap_or_else(|| reference_rows(element, ends, beta, rate_factor)),
-    )
+    let mut out = [(ElementLoads::default(), ElementTangent::zeros()); 4];
+    block_tangent([element; 4], [ends; 4], 1, beta, rate_factor, &mut out);
+    out[0]
 }
 
 /// [`element_tangent`] by differentiating the reference [`BeamElement::loads_of`] only.
@@ -124,7 +144,8 @@ pub fn kernel_tangent(
     beta: f64,
     rate_factor: f64,
 ) -> Option<(ElementLoads, ElementTangent)> {
-    kernel_tangent_rows(kernel, element, ends, beta, rate_factor).map(from_rows)
+    let rows = block_tangent_rows(kernel, [element; 4], [ends; 4], beta, rate_factor);
+    (!rows.outside.lane(0)).then(|| from_rows(rows.lane(0)))
 }
 
 #[cfg(test)]
@@ -368,5 +389,43 @@ mod tests {
             tension > 500 && compression > 500,
             "{tension} {compression}"
         );
+    }
+}
+#[cfg(test)]
+mod timing_tmp {
+    use super::*;
+    use crate::test_elements::{random_element, random_ends, Rng};
+    #[test]
+    #[ignore]
+    fn timing() {
+        let mut rng = Rng(5);
+        let mut cases = Vec::new();
+        for _ in 0..64 {
+            let e = random_element(&mut rng, 0);
+            let rest = ([DVec3::ZERO, DVec3::X * e.rest_length], [e.rest_offset_a.inverse().normalize(), e.rest_offset_b.inverse().normalize()]);
+            let ends = random_ends(&mut rng, &e, rest, 0.2);
+            cases.push((e, ends));
+        }
+        for round in 0..3 {
+            for which in 0..2 {
+                let t = std::time::Instant::now();
+                let mut acc = 0.0;
+                let mut out = [(ElementLoads::default(), ElementTangent::zeros()); 4];
+                for _ in 0..2000 {
+                    if which == 0 {
+                    for (e, ends) in &cases {
+                        let (l, k) = reference_tangent(e, ends, 1e-5, 100.0);
+                        acc += l.force[0].x + k[(3, 4)];
+                    }
+                    } else {
+                        for c in cases.chunks(4) {
+                            block_tangent([0,1,2,3].map(|k| &c[k].0), [0,1,2,3].map(|k| &c[k].1), 4, 1e-5, 100.0, &mut out);
+                            for (l, k) in &out { acc += l.force[0].x + k[(3, 4)]; }
+                        }
+                    }
+                }
+                eprintln!("round {round} {}: {:.1} ns/call ({acc:e})", ["reference", "kernel"][which], t.elapsed().as_nanos() as f64 / 128000.0);
+            }
+        }
     }
 }
