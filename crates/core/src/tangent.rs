@@ -15,11 +15,18 @@
 //! v_b − v_a (a rigid translation changes nothing), so ∂/∂x_a = −∂/∂x_b: only 9 of the 12
 //! increments are carried as dual components (δx_b, δθ_a, δθ_b), a quarter less work in
 //! every dual operation (issue 15, item 3).
+//!
+//! The solvers' tangent ([`element_tangent`], [`block_tangent`]) differentiates the same
+//! loads in the algebra of the explicit kernel, four elements at a time
+//! ([`crate::tangent_kernel`]); elements whose relative rotations lie beyond that
+//! kernel's series use the reference differentiation here ([`reference_tangent`]). The
+//! two agree to rounding (≤ 1e-10 of the largest entry of a kind; a test checks this on
+//! random elements).
 
 use crate::autodiff::{Quat, Scalar, V3};
 use crate::element::{BeamElement, ElementEnds, ElementLoads};
 use crate::element_block::Kernel;
-use crate::tangent_kernel::{block_tangent_rows, LoadRows, D9};
+use crate::tangent_kernel::{block_tangent_rows, BlockRows, LoadRows, D9};
 use glam::{DQuat, DVec3};
 use nalgebra::SMatrix;
 
@@ -36,23 +43,56 @@ fn column_source(j: usize) -> (usize, f64) {
     }
 }
 
-/// The loads and K = −∂loads/∂u from the loads as duals on the 9 increments.
-fn from_rows((rows, axial_force): LoadRows) -> (ElementLoads, ElementTangent) {
-    let mut k = ElementTangent::zeros();
-    for (block, vec) in rows.iter().enumerate() {
-        for (c, comp) in [vec.x, vec.y, vec.z].iter().enumerate() {
+/// The loads and K = −∂loads/∂u into `out`, from `value(block, c)` and
+/// `derivative(block, c, source)`: component c of load block (f_a, m_a, f_b, m_b) and its
+/// derivative by dual component `source`.
+#[inline(always)]
+fn fill(
+    value: impl Fn(usize, usize) -> f64,
+    derivative: impl Fn(usize, usize, usize) -> f64,
+    axial_force: f64,
+    out: &mut (ElementLoads, ElementTangent),
+) {
+    let (loads, k) = out;
+    for block in 0..4 {
+        for c in 0..3 {
             for j in 0..12 {
                 let (source, sign) = column_source(j);
-                k[(3 * block + c, j)] = -sign * comp.eps[source];
+                k[(3 * block + c, j)] = -sign * derivative(block, c, source);
             }
         }
     }
-    let loads = ElementLoads {
-        force: [rows[0].re(), rows[2].re()],
-        moment: [rows[1].re(), rows[3].re()],
+    let vector = |block: usize| DVec3::from_array([0, 1, 2].map(|c| value(block, c)));
+    *loads = ElementLoads {
+        force: [vector(0), vector(2)],
+        moment: [vector(1), vector(3)],
         axial_force,
     };
-    (loads, k)
+}
+
+/// [`fill`] from the loads as duals on the 9 increments.
+fn from_rows((rows, axial_force): &LoadRows, out: &mut (ElementLoads, ElementTangent)) {
+    let comp = |block: usize, c: usize| [rows[block].x, rows[block].y, rows[block].z][c];
+    fill(
+        |b, c| comp(b, c).re,
+        |b, c, s| comp(b, c).eps[s],
+        *axial_force,
+        out,
+    );
+}
+
+/// [`fill`] from lane `lane` of the four elements' loads as lane duals.
+fn from_lane(rows: &BlockRows, lane: usize, out: &mut (ElementLoads, ElementTangent)) {
+    let comp = |b: usize, c: usize| {
+        let v = &rows.rows[b];
+        [&v.x, &v.y, &v.z][c]
+    };
+    fill(
+        |b, c| comp(b, c).re.0[lane],
+        |b, c, s| comp(b, c).eps[s].0[lane],
+        rows.axial.0[lane],
+        out,
+    );
 }
 
 /// exp(δθ) q to first order in δθ: (½ δθ, 1) ⊗ q, exact in its derivative at δθ = 0.
@@ -104,12 +144,15 @@ pub fn block_tangent(
     out: &mut [(ElementLoads, ElementTangent); 4],
 ) {
     let rows = block_tangent_rows(Kernel::detect(), elements, ends, beta, rate_factor);
-    for k in 0..count {
-        out[k] = from_rows(if rows.outside.lane(k) {
-            reference_rows(elements[k], ends[k], beta, rate_factor)
+    for (k, out) in out.iter_mut().enumerate().take(count) {
+        if rows.outside.lane(k) {
+            from_rows(
+                &reference_rows(elements[k], ends[k], beta, rate_factor),
+                out,
+            );
         } else {
-            rows.lane(k)
-        });
+            from_lane(&rows, k, out);
+        }
     }
 }
 
@@ -133,7 +176,9 @@ pub fn reference_tangent(
     beta: f64,
     rate_factor: f64,
 ) -> (ElementLoads, ElementTangent) {
-    from_rows(reference_rows(element, ends, beta, rate_factor))
+    let mut out = (ElementLoads::default(), ElementTangent::zeros());
+    from_rows(&reference_rows(element, ends, beta, rate_factor), &mut out);
+    out
 }
 
 /// [`element_tangent`] by the kernel's algebra on `kernel`, `None` outside its series.
@@ -145,7 +190,11 @@ pub fn kernel_tangent(
     rate_factor: f64,
 ) -> Option<(ElementLoads, ElementTangent)> {
     let rows = block_tangent_rows(kernel, [element; 4], [ends; 4], beta, rate_factor);
-    (!rows.outside.lane(0)).then(|| from_rows(rows.lane(0)))
+    (!rows.outside.lane(0)).then(|| {
+        let mut out = (ElementLoads::default(), ElementTangent::zeros());
+        from_lane(&rows, 0, &mut out);
+        out
+    })
 }
 
 #[cfg(test)]
@@ -389,43 +438,5 @@ mod tests {
             tension > 500 && compression > 500,
             "{tension} {compression}"
         );
-    }
-}
-#[cfg(test)]
-mod timing_tmp {
-    use super::*;
-    use crate::test_elements::{random_element, random_ends, Rng};
-    #[test]
-    #[ignore]
-    fn timing() {
-        let mut rng = Rng(5);
-        let mut cases = Vec::new();
-        for _ in 0..64 {
-            let e = random_element(&mut rng, 0);
-            let rest = ([DVec3::ZERO, DVec3::X * e.rest_length], [e.rest_offset_a.inverse().normalize(), e.rest_offset_b.inverse().normalize()]);
-            let ends = random_ends(&mut rng, &e, rest, 0.2);
-            cases.push((e, ends));
-        }
-        for round in 0..3 {
-            for which in 0..2 {
-                let t = std::time::Instant::now();
-                let mut acc = 0.0;
-                let mut out = [(ElementLoads::default(), ElementTangent::zeros()); 4];
-                for _ in 0..2000 {
-                    if which == 0 {
-                    for (e, ends) in &cases {
-                        let (l, k) = reference_tangent(e, ends, 1e-5, 100.0);
-                        acc += l.force[0].x + k[(3, 4)];
-                    }
-                    } else {
-                        for c in cases.chunks(4) {
-                            block_tangent([0,1,2,3].map(|k| &c[k].0), [0,1,2,3].map(|k| &c[k].1), 4, 1e-5, 100.0, &mut out);
-                            for (l, k) in &out { acc += l.force[0].x + k[(3, 4)]; }
-                        }
-                    }
-                }
-                eprintln!("round {round} {}: {:.1} ns/call ({acc:e})", ["reference", "kernel"][which], t.elapsed().as_nanos() as f64 / 128000.0);
-            }
-        }
     }
 }

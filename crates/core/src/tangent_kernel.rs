@@ -30,9 +30,9 @@
 //! ([`block_tangent_rows`]) gives the same bits as the portable one.
 
 use crate::autodiff::{Dual, LaneDual, Quat, Scalar, V3};
-use crate::lane_arith::Lane4;
 use crate::element::{BeamElement, ElementEnds};
 use crate::element_block::{Kernel, ATAN_OVER_Y, JACOBIAN_C, JACOBIAN_T2_MAX, LOG_Y2_MAX};
+use crate::lane_arith::Lane4;
 use crate::lanes::{F4, M4};
 use glam::{DQuat, DVec3};
 
@@ -48,23 +48,9 @@ pub(crate) type LoadRows = ([V3<D9>; 4], f64);
 /// The loads of four elements as lane duals (rows as in [`LoadRows`]), their axial
 /// forces, and the lanes outside the kernel's series.
 pub(crate) struct BlockRows {
-    rows: [V3<L<F4>>; 4],
-    axial: F4,
+    pub rows: [V3<L<F4>>; 4],
+    pub axial: F4,
     pub outside: M4,
-}
-
-impl BlockRows {
-    /// Lane `k` as one element's [`LoadRows`].
-    pub(crate) fn lane(&self, k: usize) -> LoadRows {
-        let one = |d: L<F4>| Dual {
-            re: d.re.0[k],
-            eps: d.eps.map(|e| e.0[k]),
-        };
-        (
-            self.rows.map(|v| V3::new(one(v.x), one(v.y), one(v.z))),
-            self.axial.0[k],
-        )
-    }
 }
 
 /// Σ cₖ tᵏ for the lane duals `t`: value and derivative by Horner.
@@ -240,16 +226,30 @@ fn jacobian_inverse_transpose_times<F: Lane4>(theta: V3<L<F>>, moment: V3<L<F>>)
 /// The loads of four elements as lane duals on their increments, by the kernel's algebra
 /// (the element law of [`crate::element`]).
 #[inline(always)]
-fn rows<F: Lane4>(e: [&BeamElement; 4], ends: [&ElementEnds; 4], beta: f64, rate: f64) -> BlockRows {
+fn rows<F: Lane4>(
+    e: [&BeamElement; 4],
+    ends: [&ElementEnds; 4],
+    beta: f64,
+    rate: f64,
+) -> BlockRows {
     let l0: F = c4(|k| e[k].rest_length);
     let inv_l0 = F::splat(1.0) / l0;
     // chord and end frames
-    let chord = seeded_vector::<F>(ends.map(|n| n.x[1] - n.x[0]), 0, 1.0);
+    let mut chord0 = [DVec3::ZERO; 4];
+    let (mut dv0, mut wa0, mut wb0) = (chord0, chord0, chord0);
+    let (mut ra0, mut rb0) = ([DQuat::IDENTITY; 4], [DQuat::IDENTITY; 4]);
+    for k in 0..4 {
+        let n = ends[k];
+        chord0[k] = n.x[1] - n.x[0];
+        dv0[k] = n.v[1] - n.v[0];
+        (wa0[k], wb0[k]) = (n.w[0], n.w[1]);
+        ra0[k] = n.q[0] * e[k].rest_offset_a;
+        rb0[k] = n.q[1] * e[k].rest_offset_b;
+    }
+    let chord = seeded_vector::<F>(chord0, 0, 1.0);
     let length = chord.dot(chord).sqrt();
     let inv_length = L::<F>::cst(1.0) / length;
     let e1 = chord.scale(inv_length);
-    let ra0 = [0, 1, 2, 3].map(|k| ends[k].q[0] * e[k].rest_offset_a);
-    let rb0 = [0, 1, 2, 3].map(|k| ends[k].q[1] * e[k].rest_offset_b);
     let ra = seeded_frame::<F>(ra0, 3);
     let rb = seeded_frame::<F>(rb0, 6);
     let flip = ra.dot(rb).re.to_f4().lt(F4::ZERO);
@@ -277,9 +277,9 @@ fn rows<F: Lane4>(e: [&BeamElement; 4], ends: [&ElementEnds; 4], beta: f64, rate
     // strain (chord and shallow arch) and the deformation rates
     let arch = plane(theta_a.y, theta_b.y) + plane(theta_a.z, theta_b.z);
     let strain = (length.add4(-l0)).mul4(inv_l0) + arch;
-    let dv = seeded_vector(ends.map(|n| n.v[1] - n.v[0]), 0, rate);
-    let wa = seeded_vector(ends.map(|n| n.w[0]), 3, rate);
-    let wb = seeded_vector(ends.map(|n| n.w[1]), 6, rate);
+    let dv = seeded_vector(dv0, 0, rate);
+    let wa = seeded_vector(wa0, 3, rate);
+    let wb = seeded_vector(wb0, 6, rate);
     let strain_rate = e1.dot(dv).mul4(inv_l0);
     let spin = e1.cross(dv).scale(inv_length) + e1.scale(e1.dot(wa + wb) * 0.5);
     let rate_a = transpose_times(&rot, wa - spin);
@@ -351,12 +351,7 @@ unsafe fn rows_avx2(
 
 /// [`rows`] as portable code.
 #[inline(never)]
-fn rows_portable(
-    e: [&BeamElement; 4],
-    ends: [&ElementEnds; 4],
-    beta: f64,
-    rate: f64,
-) -> BlockRows {
+fn rows_portable(e: [&BeamElement; 4], ends: [&ElementEnds; 4], beta: f64, rate: f64) -> BlockRows {
     rows::<F4>(e, ends, beta, rate)
 }
 

@@ -173,18 +173,24 @@ impl NewtonSystem {
         for chunk in self.elements.chunks(4) {
             let last = chunk.len() - 1;
             let element = |k: usize| &chunk[k.min(last)];
-            let ends = [0, 1, 2, 3].map(|k| {
+            let mut ends = [ElementEnds {
+                x: [DVec3::ZERO; 2],
+                q: [DQuat::IDENTITY; 2],
+                v: [DVec3::ZERO; 2],
+                w: [DVec3::ZERO; 2],
+            }; 4];
+            for (k, ends) in ends.iter_mut().enumerate() {
                 let (a, b) = (element(k).node_a, element(k).node_b);
-                ElementEnds {
+                *ends = ElementEnds {
                     x: [state.x[a], state.x[b]],
                     q: [state.q[a], state.q[b]],
                     v: [state.v[a], state.v[b]],
                     w: [state.w[a], state.w[b]],
-                }
-            });
+                };
+            }
             block_tangent(
-                [0, 1, 2, 3].map(element),
-                [0, 1, 2, 3].map(|k| &ends[k]),
+                [element(0), element(1), element(2), element(3)],
+                [&ends[0], &ends[1], &ends[2], &ends[3]],
                 chunk.len(),
                 beta,
                 rate_factor,
