@@ -35,9 +35,9 @@ use crate::model::HoseInfo;
 use glam::{DQuat, DVec3};
 
 /// Largest y² = tan²(|θ|/4) of the log map's series (|θ| ≤ 0.75 rad).
-const LOG_Y2_MAX: f64 = 0.035;
+pub(crate) const LOG_Y2_MAX: f64 = 0.035;
 /// atan(y)/y = Σ (−1)ᵏ y²ᵏ/(2k + 1), k = 0 … 10.
-const ATAN_OVER_Y: [f64; 11] = [
+pub(crate) const ATAN_OVER_Y: [f64; 11] = [
     1.0,
     -1.0 / 3.0,
     1.0 / 5.0,
@@ -51,9 +51,9 @@ const ATAN_OVER_Y: [f64; 11] = [
     1.0 / 21.0,
 ];
 /// Largest θ² of the tangent operator's series (|θ| ≤ 0.77 rad).
-const JACOBIAN_T2_MAX: f64 = 0.6;
+pub(crate) const JACOBIAN_T2_MAX: f64 = 0.6;
 /// c(θ) = 1/θ² − (1 + cos θ)/(2 θ sin θ) = Σ aₙ θ²ⁿ⁻², aₙ = (−1)ⁿ⁺¹ B₂ₙ/(2n)!, n = 1 … 9.
-const JACOBIAN_C: [f64; 9] = [
+pub(crate) const JACOBIAN_C: [f64; 9] = [
     1.0 / 12.0,
     1.0 / 720.0,
     1.0 / 30240.0,
@@ -478,87 +478,7 @@ pub fn add_loads(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::exp_map;
-    use crate::section::SectionProperties;
-    use crate::{Material, Section};
-
-    /// splitmix64: a small deterministic generator for the random configurations.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn range(&mut self, a: f64, b: f64) -> f64 {
-            a + (b - a) * self.next()
-        }
-        fn vec(&mut self, r: f64) -> DVec3 {
-            DVec3::new(self.range(-r, r), self.range(-r, r), self.range(-r, r))
-        }
-        /// A random rotation vector of length up to `max`.
-        fn rotation(&mut self, max: f64) -> DVec3 {
-            let axis = loop {
-                let v = self.vec(1.0);
-                if v.length() > 0.1 && v.length() <= 1.0 {
-                    break v.normalize();
-                }
-            };
-            axis * self.range(0.0, max)
-        }
-    }
-
-    /// A random element between nodes 2k and 2k+1 (so that lanes are separate elements),
-    /// with a random rest shape, a bimodular material and either a tube or a section with
-    /// given, unequal bending stiffnesses.
-    fn random_element(rng: &mut Rng, k: usize) -> BeamElement {
-        let l0 = rng.range(0.01, 0.2);
-        let rest_a = rng.vec(1.0);
-        let rest_b = rest_a + rng.rotation(std::f64::consts::PI).normalize() * l0;
-        let rest_q = [
-            exp_map(rng.rotation(std::f64::consts::PI)),
-            exp_map(rng.rotation(std::f64::consts::PI)),
-        ];
-        let material = Material {
-            e_tension: rng.range(5e6, 2e7),
-            e_compression: rng.range(5e6, 2e7),
-            e_bending: None,
-            poisson: 0.45,
-            density: 1000.0,
-        };
-        let mut section = Section::new(0.01, 0.016);
-        if rng.next() < 0.5 {
-            section.given.bending = [Some(rng.range(0.01, 0.5)), Some(rng.range(0.01, 0.5))];
-            section.given.torsion = Some(rng.range(0.01, 0.5));
-        }
-        let props = SectionProperties::of(&section, &material);
-        BeamElement::with_properties((2 * k, 2 * k + 1), [rest_a, rest_b], rest_q, &props)
-    }
-
-    /// A deformed, moving configuration of `e`: end rotations relative to the rest frames
-    /// up to `bend` rad, the chord stretched or shortened by up to 20 %, then the whole
-    /// element turned by a random large rotation and moved.
-    fn random_ends(
-        rng: &mut Rng,
-        e: &BeamElement,
-        rest: ([DVec3; 2], [DQuat; 2]),
-        bend: f64,
-    ) -> ElementEnds {
-        let (rest_x, rest_q) = rest;
-        let whole = exp_map(rng.rotation(std::f64::consts::PI));
-        let shift = rng.vec(1.0);
-        let chord = (rest_x[1] - rest_x[0]) * rng.range(0.8, 1.2) + rng.vec(0.05 * e.rest_length);
-        let x = [shift, shift + whole * chord];
-        let q = [0, 1].map(|i| (whole * exp_map(rng.rotation(bend)) * rest_q[i]).normalize());
-        ElementEnds {
-            x,
-            q,
-            v: [rng.vec(2.0), rng.vec(2.0)],
-            w: [rng.vec(50.0), rng.vec(50.0)],
-        }
-    }
+    use crate::test_elements::{random_element, random_ends, Rng};
 
     /// The kernel equals the reference `BeamElement::loads` to rounding: within 1e-12 of
     /// each load's scale (the largest force, the largest moment of the element), on random

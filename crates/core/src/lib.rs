@@ -17,6 +17,7 @@ pub mod forces;
 pub mod frames;
 pub mod health;
 pub mod integrators;
+pub mod lane_arith;
 pub mod lanes;
 pub mod loads;
 pub mod mass;
@@ -32,6 +33,9 @@ pub mod spec;
 pub mod state;
 pub mod stiffened;
 pub mod tangent;
+pub mod tangent_kernel;
+#[cfg(test)]
+mod test_elements;
 pub mod timestep;
 
 pub use health::Divergence;

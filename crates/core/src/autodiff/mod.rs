@@ -10,9 +10,11 @@
 //! handful of operations below is all it uses.
 
 mod dual;
+mod lane_dual;
 mod scalar;
 mod vector;
 
 pub use dual::Dual;
+pub use lane_dual::LaneDual;
 pub use scalar::Scalar;
 pub use vector::{Quat, V3};

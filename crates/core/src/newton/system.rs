@@ -30,9 +30,9 @@ use super::gmres::Gmres;
 use super::ties::TieCouplings;
 use crate::contact::friction::FrictionResponse;
 use crate::contact::{hose_contact_forces_with, ContactPair};
-use crate::element::{BeamElement, ElementEnds};
+use crate::element::{BeamElement, ElementEnds, ElementLoads};
 use crate::loads::{LoadCase, Support, SupportLoad};
-use crate::tangent::element_tangent;
+use crate::tangent::{block_tangent, ElementTangent};
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
 use nalgebra::{Matrix3, Vector6};
@@ -168,27 +168,49 @@ impl NewtonSystem {
         self.ties.clear();
         let mut scale = LoadScale::default();
         let beta = model.damping_stiffness;
-        for e in &self.elements {
-            let (a, b) = (e.node_a, e.node_b);
-            let ends = ElementEnds {
-                x: [state.x[a], state.x[b]],
-                q: [state.q[a], state.q[b]],
-                v: [state.v[a], state.v[b]],
-                w: [state.w[a], state.w[b]],
-            };
-            let (loads, k) = element_tangent(e, &ends, beta, rate_factor);
-            scale.include(
-                loads.force[0].length(),
-                loads.moment[0].length().max(loads.moment[1].length()),
+        // four elements at a time (the tangent kernel's lanes), added in element order
+        let mut tangents = [(ElementLoads::default(), ElementTangent::zeros()); 4];
+        for chunk in self.elements.chunks(4) {
+            let last = chunk.len() - 1;
+            let element = |k: usize| &chunk[k.min(last)];
+            let mut ends = [ElementEnds {
+                x: [DVec3::ZERO; 2],
+                q: [DQuat::IDENTITY; 2],
+                v: [DVec3::ZERO; 2],
+                w: [DVec3::ZERO; 2],
+            }; 4];
+            for (k, ends) in ends.iter_mut().enumerate() {
+                let (a, b) = (element(k).node_a, element(k).node_b);
+                *ends = ElementEnds {
+                    x: [state.x[a], state.x[b]],
+                    q: [state.q[a], state.q[b]],
+                    v: [state.v[a], state.v[b]],
+                    w: [state.w[a], state.w[b]],
+                };
+            }
+            block_tangent(
+                [element(0), element(1), element(2), element(3)],
+                [&ends[0], &ends[1], &ends[2], &ends[3]],
+                chunk.len(),
+                beta,
+                rate_factor,
+                &mut tangents,
             );
-            self.force[a] += loads.force[0];
-            self.force[b] += loads.force[1];
-            self.moment[a] += loads.moment[0];
-            self.moment[b] += loads.moment[1];
-            self.matrix.diag[a] += k.fixed_view::<6, 6>(0, 0);
-            self.matrix.diag[b] += k.fixed_view::<6, 6>(6, 6);
-            self.matrix.upper[a] += k.fixed_view::<6, 6>(0, 6);
-            self.matrix.lower[a] += k.fixed_view::<6, 6>(6, 0);
+            for (e, (loads, k)) in chunk.iter().zip(&tangents) {
+                let (a, b) = (e.node_a, e.node_b);
+                scale.include(
+                    loads.force[0].length(),
+                    loads.moment[0].length().max(loads.moment[1].length()),
+                );
+                self.force[a] += loads.force[0];
+                self.force[b] += loads.force[1];
+                self.moment[a] += loads.moment[0];
+                self.moment[b] += loads.moment[1];
+                self.matrix.diag[a] += k.fixed_view::<6, 6>(0, 0);
+                self.matrix.diag[b] += k.fixed_view::<6, 6>(6, 6);
+                self.matrix.upper[a] += k.fixed_view::<6, 6>(0, 6);
+                self.matrix.lower[a] += k.fixed_view::<6, 6>(6, 0);
+            }
         }
         let alpha = model.damping_mass;
         for i in 0..self.force.len() {
