@@ -167,6 +167,8 @@ pub struct Solver {
     previous_friction: crate::contact::friction::FrictionMemory,
     /// Unstable equilibria the last step left (static solver).
     events: Vec<StabilityEvent>,
+    /// Positions at the snap relaxation's last check ([`snap::relax`]).
+    relax_anchor: Vec<DVec3>,
     pub last: StepStats,
 }
 
@@ -197,6 +199,7 @@ impl Solver {
             fallback_targets: Vec::new(),
             previous_friction: crate::contact::friction::FrictionMemory::new(&model.rest_x),
             events: Vec::new(),
+            relax_anchor: Vec::with_capacity(model.node_count()),
             last: StepStats::default(),
         })
     }
@@ -385,6 +388,7 @@ impl Solver {
                     time + h,
                     report.force_limit,
                     report.moment_limit,
+                    &mut self.relax_anchor,
                 )
                 .is_none()
                 {

@@ -17,6 +17,7 @@ use super::explicit::step;
 use crate::health::check;
 use crate::settle::{residual, stop};
 use crate::{Model, State};
+use glam::DVec3;
 
 /// Most explicit steps one snap may take.
 const MAX_RELAXATION_STEPS: usize = 2_000_000;
@@ -26,20 +27,35 @@ const MAX_RELAXATION_STEPS: usize = 2_000_000;
 const HANDOVER: f64 = 1.0;
 /// Steps between residual checks.
 const CHECK_EVERY: usize = 64;
+/// Consecutive check windows in which no node moved (see [`frozen`]) after which the
+/// relaxation gives up: its residual is then held by a constraint (a sticking stub or
+/// contact) that explicit steps cannot move, and more steps change nothing.
+const FROZEN_WINDOWS: usize = 8;
+/// A node "did not move" in a window when it moved less than this fraction of the
+/// shortest element's rest length (10⁻¹⁰: far below what a free node with a residual at
+/// the static limit moves in one window, far above the positions' round-off).
+const FROZEN_FRACTION: f64 = 1e-10;
 
 /// Relaxes `state` under its loads at time `time` until the largest out-of-balance force
 /// and moment on free nodes are within [`HANDOVER`] × (`force_limit`, `moment_limit`).
-/// Returns the explicit steps taken, or `None` if the relaxation diverged or did not get
-/// there (the caller then reports the input step unconverged).
+/// Returns the explicit steps taken, or `None` if the relaxation diverged, stopped moving
+/// short of the limits ([`FROZEN_WINDOWS`]) or did not get there within
+/// [`MAX_RELAXATION_STEPS`] (the caller then reports the input step unconverged).
+/// `anchor` is scratch space for the positions at the last check (resized to the nodes).
 pub fn relax(
     model: &Model,
     state: &mut State,
     time: f64,
     force_limit: f64,
     moment_limit: f64,
+    anchor: &mut Vec<DVec3>,
 ) -> Option<usize> {
     let dt = model.time_step;
     stop(state);
+    let still = FROZEN_FRACTION * shortest_element(model);
+    anchor.clear();
+    anchor.extend_from_slice(&state.x);
+    let mut frozen_windows = 0;
     let mut last_energy = 0.0;
     for steps in 1..=MAX_RELAXATION_STEPS {
         // each step ends at `time`: prescribed motions stay where they are due
@@ -59,7 +75,35 @@ pub fn relax(
             if f <= HANDOVER * force_limit && m <= HANDOVER * moment_limit {
                 return Some(steps);
             }
+            frozen_windows = if frozen(&state.x, anchor, still) {
+                frozen_windows + 1
+            } else {
+                0
+            };
+            if frozen_windows >= FROZEN_WINDOWS {
+                return None;
+            }
+            anchor.copy_from_slice(&state.x);
         }
     }
     None
+}
+
+/// Whether no node moved more than `still` since `anchor`. A free node with an
+/// out-of-balance force f and mass m moves ½(f/m)T² in a window T even right after a
+/// kinetic-damping reset, so a residual that moves nothing is held by a constraint.
+fn frozen(x: &[DVec3], anchor: &[DVec3], still: f64) -> bool {
+    let still2 = still * still;
+    x.iter()
+        .zip(anchor)
+        .all(|(a, b)| a.distance_squared(*b) <= still2)
+}
+
+/// The shortest element's rest length [m].
+fn shortest_element(model: &Model) -> f64 {
+    model
+        .elements
+        .iter()
+        .map(|e| e.rest_length)
+        .fold(f64::INFINITY, f64::min)
 }
