@@ -154,22 +154,17 @@ impl Planes {
         }
         h * h + g * g
     }
-
-    /// True if segment [a, b] certainly lies farther than `bound` from the triangle, with
-    /// room for rounding: no triangle it rejects can be found at `bound` or nearer.
-    #[inline(always)]
-    fn beyond(&self, a: DVec3, b: DVec3, bound: f64) -> bool {
-        let limit = bound * (1.0 + SLACK);
-        self.lower_bound_squared(a, b) > limit * limit
-    }
 }
 
 /// A search for the nearest triangle that passes the searcher's own test, offered
 /// candidate triangles by [`CandidateCache::scan`] or [`scan_fresh`].
 pub(crate) trait Nearest {
     /// Considers triangle `tri` of part `part`; `rank` orders the triangles as the
-    /// environment does (equal distances: the lower rank wins).
-    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32);
+    /// environment does (equal distances: the lower rank wins). Returns a lower bound on
+    /// the distance at which the search could accept this triangle, 1-Lipschitz in the
+    /// searcher's end-point displacement while the probe stays clear of the triangle (see
+    /// [`CandidateCache::scan`]); 0 if nothing is known.
+    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) -> f64;
     /// The distance beyond which no triangle can change the result any more (the best
     /// found so far, or the reach).
     fn bound(&self) -> f64;
@@ -186,6 +181,19 @@ pub(crate) fn scan_fresh(env: &RigidEnvironment, query: &Aabb, search: &mut impl
         rank += 1;
     });
 }
+
+/// The searches that share a slot's list: the beam's interior, and the node at its start
+/// or its end. Each keeps its own bounds on the list's candidates
+/// ([`CandidateCache::scan`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Searcher {
+    Interior = 0,
+    StartNode = 1,
+    EndNode = 2,
+}
+
+/// Searchers per slot.
+const SEARCHERS: usize = 3;
 
 /// Candidate triangles per slot (one slot per beam), allocated once.
 #[derive(Clone, Debug, Default)]
@@ -210,6 +218,16 @@ pub struct CandidateCache {
     planes: Vec<Planes>,
     /// A refresh's planes while it sorts (`SLOT_CAPACITY` entries).
     found: Vec<Planes>,
+    /// Per searcher of each slot (`SEARCHERS` per slot): the slot's end points when it
+    /// last searched, and the path its end points travelled since the slot's refresh
+    /// (the sum of the larger end-point displacement of each search).
+    seen_a: Vec<DVec3>,
+    seen_b: Vec<DVec3>,
+    travel: Vec<f64>,
+    /// Per searcher and candidate (`SLOT_CAPACITY` per searcher of each slot): lower
+    /// bounds [edge, face] (see [`CandidateCache::scan`]), each plus the searcher's
+    /// travel when it was found, so that subtracting the travel now keeps it valid.
+    lower: Vec<[f64; 2]>,
     /// Parts and triangles of the environment the lists were made for.
     environment_key: (usize, usize),
     /// Refreshes made (a counter for benchmarks and tests).
@@ -223,15 +241,6 @@ pub struct CandidateCache {
 fn environment_key(env: &RigidEnvironment) -> (usize, usize) {
     let triangles = env.parts.iter().map(|p| p.mesh.indices().len()).sum();
     (env.parts.len(), triangles)
-}
-
-/// Distance from segment [a, b] (a point if a = b) to `tri`.
-fn segment_distance(a: DVec3, b: DVec3, tri: &Triangle) -> f64 {
-    if a == b {
-        (tri.project_local_point(a, false).point - a).length()
-    } else {
-        closest_segment_triangle(a, b, tri).distance
-    }
 }
 
 /// False only if segment [a, b] (a point if a = b) certainly lies farther than `reach`
@@ -269,6 +278,15 @@ pub(crate) fn edges_beyond(a: DVec3, b: DVec3, tri: &Triangle, bound: f64) -> bo
         })
 }
 
+/// Distance from segment [a, b] (a point if a = b) to `tri`.
+fn segment_distance(a: DVec3, b: DVec3, tri: &Triangle) -> f64 {
+    if a == b {
+        (tri.project_local_point(a, false).point - a).length()
+    } else {
+        closest_segment_triangle(a, b, tri).distance
+    }
+}
+
 /// The box of segment [a, b] grown by `grow` on every side.
 fn grown_box(a: DVec3, b: DVec3, grow: f64) -> Aabb {
     let grow = DVec3::splat(grow);
@@ -295,6 +313,10 @@ impl CandidateCache {
             items: vec![Candidate::default(); slots * SLOT_CAPACITY],
             planes: vec![Planes::default(); slots * SLOT_CAPACITY],
             found: vec![Planes::default(); SLOT_CAPACITY],
+            seen_a: vec![DVec3::ZERO; slots * SEARCHERS],
+            seen_b: vec![DVec3::ZERO; slots * SEARCHERS],
+            travel: vec![0.0; slots * SEARCHERS],
+            lower: vec![[0.0; 2]; slots * SEARCHERS * SLOT_CAPACITY],
             environment_key: environment_key(env),
             refreshes: 0,
             truncations: 0,
@@ -324,10 +346,7 @@ impl CandidateCache {
                 self.len[slot] = 0;
                 self.cutoff[slot] = f64::INFINITY;
                 self.margin[slot] = Self::empty_margin(nearest, keep, reach);
-                self.anchor_a[slot] = a;
-                self.anchor_b[slot] = b;
-                self.reach[slot] = reach;
-                self.refreshes += 1;
+                self.anchor(slot, a, b, reach);
                 return;
             }
         }
@@ -339,7 +358,7 @@ impl CandidateCache {
             let this_rank = rank;
             rank += 1;
             let planes = Planes::new(tri);
-            if planes.beyond(a, b, keep) {
+            if planes.lower_bound_squared(a, b) > keep * keep {
                 return;
             }
             let distance = segment_distance(a, b, tri);
@@ -388,17 +407,59 @@ impl CandidateCache {
         } else {
             MARGIN * reach
         };
+        self.anchor(slot, a, b, reach);
+        self.truncations += u64::from(cutoff.is_finite());
+    }
+
+    /// Records a refresh of `slot` at [a, b]: every searcher starts from there, with the
+    /// refresh distances (a lower bound for any probe on the segment) as its bounds.
+    fn anchor(&mut self, slot: usize, a: DVec3, b: DVec3, reach: f64) {
         self.anchor_a[slot] = a;
         self.anchor_b[slot] = b;
         self.reach[slot] = reach;
         self.refreshes += 1;
-        self.truncations += u64::from(cutoff.is_finite());
+        let base = slot * SLOT_CAPACITY;
+        let n = self.len[slot] as usize;
+        for s in slot * SEARCHERS..(slot + 1) * SEARCHERS {
+            self.seen_a[s] = a;
+            self.seen_b[s] = b;
+            self.travel[s] = 0.0;
+            for k in 0..n {
+                let d = self.items[base + k].distance;
+                self.lower[s * SLOT_CAPACITY + k] = [d, d];
+            }
+        }
     }
 
     /// How far a slot that keeps no triangle may move: until the nearest triangle box
     /// (at `nearest`, or beyond `keep`) could come within `reach`.
     fn empty_margin(nearest: f64, keep: f64, reach: f64) -> f64 {
         (nearest.max(keep) / (1.0 + SLACK) - reach).max(MARGIN * reach)
+    }
+
+    /// True if [`Self::scan`] of `slot` at [a, b] would offer nothing without a look at
+    /// the list: the list is empty, nothing was dropped, and the slot has not moved past
+    /// its margin (no triangle can be within reach) — most slots, checked before a search
+    /// is set up.
+    pub(crate) fn is_clear(
+        &self,
+        env: &RigidEnvironment,
+        slot: usize,
+        a: DVec3,
+        b: DVec3,
+        reach: f64,
+    ) -> bool {
+        if !self.enabled || slot >= self.len.len() || self.len[slot] != 0 {
+            return false;
+        }
+        let m = self.margin[slot];
+        let moved = (a - self.anchor_a[slot])
+            .length_squared()
+            .max((b - self.anchor_b[slot]).length_squared());
+        moved < m * m
+            && self.reach[slot] == reach
+            && self.cutoff[slot] == f64::INFINITY
+            && self.environment_key == environment_key(env)
     }
 
     /// Offers `search` the triangles whose box meets `query` and which may lie within its
@@ -408,6 +469,19 @@ impl CandidateCache {
     /// `search.bound()`, which must not exceed `reach`. A probe on the slot's segment is
     /// no nearer to any triangle than the segment, so the slot's list serves it (a node
     /// uses its beam's list).
+    ///
+    /// Each `searcher` of the slot keeps, per candidate, two lower bounds from its last
+    /// look at it, less the path `D` its end points travelled since (the distance to a
+    /// fixed set is 1-Lipschitz in the end points' displacement, and the displacements
+    /// of successive steps add up to at most their path): `face` bounds the probe's
+    /// distance to the triangle (the [`Planes`] bound, or the refresh distance), `edge`
+    /// what [`Nearest::offer`] returned (for a beam's interior, the distance from the
+    /// segment to the triangle's edges, which is the distance of any hit that does not
+    /// pierce the face). A candidate is passed over, without its planes, while
+    /// `face − D` exceeds the search's bound, or is positive (the probe cannot have
+    /// reached the face) with `edge − D` beyond the bound: a hose at rest on a surface
+    /// revisits its touching triangles, not all it lies near (a persistent contact
+    /// manifold, re-validated by the Lipschitz bound instead of re-searched).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn scan(
         &mut self,
@@ -416,6 +490,7 @@ impl CandidateCache {
         a: DVec3,
         b: DVec3,
         reach: f64,
+        searcher: Searcher,
         probe: [DVec3; 2],
         query: &Aabb,
         search: &mut impl Nearest,
@@ -442,18 +517,38 @@ impl CandidateCache {
         // a candidate that was d away can be no nearer than d − moved now
         let moved = moved.sqrt();
         let reaches = |distance: f64, bound: f64| distance <= (bound + moved) * (1.0 + SLACK);
+        let s = slot * SEARCHERS + searcher as usize;
+        let step = (a - self.seen_a[s])
+            .length_squared()
+            .max((b - self.seen_b[s]).length_squared())
+            .sqrt();
+        (self.seen_a[s], self.seen_b[s]) = (a, b);
+        self.travel[s] += step;
+        let travel = self.travel[s];
         let base = slot * SLOT_CAPACITY;
-        for k in base..base + len {
-            let (r, bound) = (&self.items[k], search.bound());
+        let lower = s * SLOT_CAPACITY;
+        for k in 0..len {
+            let (r, bound) = (&self.items[base + k], search.bound());
             if !reaches(r.distance, bound) {
                 break; // sorted: no later candidate can reach either
             }
-            if self.planes[k].beyond(probe[0], probe[1], bound) {
-                continue; // where it is now, it cannot
+            let limit = bound * (1.0 + SLACK);
+            let [edge, face] = self.lower[lower + k];
+            let face = face - travel;
+            if face > limit || (face > SLACK * limit && edge - travel > limit) {
+                continue; // as last seen, less the way travelled since, it cannot
+            }
+            let planes = &self.planes[base + k];
+            let bound_squared = planes.lower_bound_squared(probe[0], probe[1]);
+            if bound_squared > limit * limit {
+                // where it is now, it cannot
+                self.lower[lower + k][1] = bound_squared.sqrt() + travel;
+                continue;
             }
             let tri = env.parts[r.part as usize].mesh.triangle(r.triangle);
             if boxes_meet(&tri.local_aabb(), query) {
-                search.offer(r.part as usize, &tri, r.rank);
+                let edge = search.offer(r.part as usize, &tri, r.rank);
+                self.lower[lower + k] = [edge + travel, bound_squared.sqrt() + travel];
             }
         }
         if reaches(self.cutoff[slot], search.bound()) {
@@ -507,9 +602,9 @@ mod tests {
     }
 
     impl Nearest for NearestBeyond {
-        fn offer(&mut self, _part: usize, tri: &Triangle, rank: u32) {
+        fn offer(&mut self, _part: usize, tri: &Triangle, rank: u32) -> f64 {
             if (tri.a.x + tri.b.x + tri.c.x) / 3.0 < self.x_min {
-                return;
+                return 0.0;
             }
             let q = tri.project_local_point(self.x, false).point;
             let d = (q - self.x).length();
@@ -517,6 +612,7 @@ mod tests {
             if d <= self.reach && self.best.as_ref().is_none_or(better) {
                 self.best = Some((d, rank, q, tri.a));
             }
+            d
         }
         fn bound(&self) -> f64 {
             self.best.map_or(self.reach, |b| b.0)
@@ -544,7 +640,8 @@ mod tests {
             };
             let (mut kept, mut fresh) = (search(x_min), search(x_min));
             let before = cache.fresh_fallbacks;
-            cache.scan(&env, 0, x, x, reach, [x, x], &query, &mut kept);
+            let searcher = Searcher::StartNode;
+            cache.scan(&env, 0, x, x, reach, searcher, [x, x], &query, &mut kept);
             scan_fresh(&env, &query, &mut fresh);
             assert!(fresh.best.is_some(), "search {k} finds nothing");
             // the same triangle and point (ranks count in different queries)

@@ -163,7 +163,8 @@ impl ClosestPoint {
 }
 
 impl Nearest for ClosestPoint {
-    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) {
+    /// Returns the point's distance to the triangle.
+    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) -> f64 {
         let point = tri.project_local_point(self.x, false).point;
         let distance = (point - self.x).length();
         let better =
@@ -176,6 +177,7 @@ impl Nearest for ClosestPoint {
                 rank,
             });
         }
+        distance
     }
     fn bound(&self) -> f64 {
         self.best.map_or(self.reach, |b| b.distance)

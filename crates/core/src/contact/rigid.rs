@@ -25,7 +25,7 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use super::coherence::{edges_beyond, may_touch, scan_fresh, Nearest};
+use super::coherence::{edges_beyond, may_touch, scan_fresh, Nearest, Searcher};
 use super::environment::{cube, ClosestPoint};
 use crate::contact::{closest_segment_triangle_away_from_ends, CandidateCache};
 use crate::{Model, State};
@@ -168,11 +168,15 @@ struct BeamSearch {
 }
 
 impl Nearest for BeamSearch {
-    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) {
-        if !may_touch(self.a, self.b, tri, self.reach)
-            || edges_beyond(self.a, self.b, tri, self.bound())
-        {
-            return;
+    /// Returns a lower bound on the distance from the segment to the triangle's edges
+    /// (0 if it pierces the face), the distance of any hit that does not pierce it.
+    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) -> f64 {
+        if !may_touch(self.a, self.b, tri, self.reach) {
+            return self.reach; // the whole triangle lies beyond reach
+        }
+        let bound = self.bound();
+        if edges_beyond(self.a, self.b, tri, bound) {
+            return bound; // every edge lies beyond the bound
         }
         let c = closest_segment_triangle_away_from_ends(self.a, self.b, tri);
         let better =
@@ -191,6 +195,7 @@ impl Nearest for BeamSearch {
                 rank,
             });
         }
+        c.distance
     }
     fn bound(&self) -> f64 {
         self.best.map_or(self.reach, |b| b.distance)
@@ -207,6 +212,17 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     contact.points.clear();
     let nodes = state.x.len();
     for i in 0..nodes {
+        let e = contact.node_beam[i] as usize;
+        if let Some(el) = model.elements.get(e) {
+            let (xa, xb) = (state.x[el.node_a], state.x[el.node_b]);
+            if contact
+                .candidates
+                .is_clear(env, e, xa, xb, beam_reach(model, e))
+            {
+                contact.node_normal[i] = DVec3::ZERO;
+                continue; // no triangle within reach of its beam
+            }
+        }
         let r = model.radius[i];
         let reach = r * (1.0 + SKIN);
         let x = state.x[i];
@@ -219,12 +235,18 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
                     let el = &model.elements[e as usize];
                     let (xa, xb) = (state.x[el.node_a], state.x[el.node_b]);
                     let beam = beam_reach(model, e as usize);
+                    let searcher = if el.node_a == i {
+                        Searcher::StartNode
+                    } else {
+                        Searcher::EndNode
+                    };
                     contact.candidates.scan(
                         env,
                         e as usize,
                         xa,
                         xb,
                         beam,
+                        searcher,
                         [x, x],
                         &query,
                         &mut search,
@@ -254,9 +276,13 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         if state.held[a] && state.held[b] {
             continue;
         }
-        let r = model.radius[a].max(model.radius[b]);
         let reach = beam_reach(model, e);
         let (xa, xb) = (state.x[a], state.x[b]);
+        if contact.candidates.is_clear(env, e, xa, xb, reach) {
+            contact.element_normal[e] = DVec3::ZERO;
+            continue; // no triangle within reach
+        }
+        let r = model.radius[a].max(model.radius[b]);
         let aabb = Aabb::new(
             xa.min(xb) - DVec3::splat(reach),
             xa.max(xb) + DVec3::splat(reach),
@@ -271,9 +297,17 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         // are taken from that part of the beam
         let d = xb - xa;
         let probe = [xa + INTERIOR * d, xa + (1.0 - INTERIOR) * d];
-        contact
-            .candidates
-            .scan(env, e, xa, xb, reach, probe, &aabb, &mut search);
+        contact.candidates.scan(
+            env,
+            e,
+            xa,
+            xb,
+            reach,
+            Searcher::Interior,
+            probe,
+            &aabb,
+            &mut search,
+        );
         let best = search.best;
         match best {
             Some(BeamHit { part, t, p, q, .. }) => {
