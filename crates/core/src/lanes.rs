@@ -123,6 +123,13 @@ impl M4 {
         (a[0] | a[1] | a[2] | a[3]) != 0
     }
 
+    /// Whether every lane is set.
+    #[inline(always)]
+    pub fn all(self) -> bool {
+        let a = self.0;
+        (a[0] & a[1] & a[2] & a[3]) == !0
+    }
+
     /// Whether lane `k` is set.
     #[inline(always)]
     pub fn lane(self, k: usize) -> bool {
@@ -339,4 +346,27 @@ pub fn gather4(a: &[glam::DQuat], idx: [usize; 4]) -> Q4 {
 #[inline(always)]
 pub fn lane(v: V4, k: usize) -> glam::DVec3 {
     glam::DVec3::new(v.x.0[k], v.y.0[k], v.z.0[k])
+}
+
+/// Writes lane k of `v` to `a[k]`, k = 0 … 3 (`a` holds at least four vectors).
+#[inline(always)]
+pub fn scatter3(v: V4, a: &mut [glam::DVec3]) {
+    for (k, p) in a[..4].iter_mut().enumerate() {
+        *p = lane(v, k);
+    }
+}
+
+/// Writes lane k of `q` to `a[k]`, k = 0 … 3 (`a` holds at least four quaternions).
+#[inline(always)]
+pub fn scatter4(q: Q4, a: &mut [glam::DQuat]) {
+    for (k, p) in a[..4].iter_mut().enumerate() {
+        *p = glam::DQuat::from_xyzw(q.x.0[k], q.y.0[k], q.z.0[k], q.w.0[k]);
+    }
+}
+
+/// The lanes of `v` moved up by one, `first` into lane 0 (lane 3 drops out).
+#[inline(always)]
+pub fn shift_up(first: f64, v: V4) -> V4 {
+    let up = |a: F4| F4([first, a.0[0], a.0[1], a.0[2]]);
+    V4::new(up(v.x), up(v.y), up(v.z))
 }

@@ -156,7 +156,8 @@ impl HoseContactScratch {
         let mut near = true;
         for (p, a) in x.iter().zip(&self.anchor) {
             let d = (*p - *a).abs();
-            near &= d.x <= skin && d.y <= skin && d.z <= skin;
+            // `&`, not `&&`: no branch per axis, the loop runs in vector registers
+            near &= (d.x <= skin) & (d.y <= skin) & (d.z <= skin);
         }
         !near
     }

@@ -10,7 +10,7 @@
 //! sin h/(2h), h = |Δt ω|/2 < 0.05 (truncation < 1e-19); a node turning faster in one
 //! step is advanced by the reference [`crate::math::exp_map`] (exact for any angle).
 
-use crate::lanes::{gather3 as gather, gather4, lane, F4, M4, Q4, V4};
+use crate::lanes::{gather3 as gather, gather4, lane, scatter3, scatter4, F4, M4, Q4, V4};
 use crate::math::exp_map;
 use glam::{DQuat, DVec3};
 
@@ -103,6 +103,22 @@ fn advance_lanes(n: &mut Nodes, dt: f64, what: Advance) {
             let (e, inside) = exp_series(w.scale(dt4));
             q = e.mul(q0).normalize();
             ok = inside;
+        }
+        // through memory (see `element_block::Job::run`): stored as vectors, the lanes
+        // stay in 256-bit registers
+        let (v, w, x, q, ok) = std::hint::black_box((v, w, x, q, ok));
+        if free == [true; 4] && ok.all() {
+            // four free nodes in the series' range (the common case): stored at once
+            if what != Advance::Positions {
+                scatter3(v, &mut n.v[i..]);
+                scatter3(w, &mut n.w[i..]);
+            }
+            if what != Advance::Velocities {
+                scatter3(x, &mut n.x[i..]);
+                scatter4(q, &mut n.q[i..]);
+            }
+            i += 4;
+            continue;
         }
         for k in 0..lanes {
             if !free[k] {
