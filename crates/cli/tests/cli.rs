@@ -19,6 +19,16 @@ fn run_scene(scene: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
         .unwrap()
 }
 
+/// The run's summary.json, after asserting the run succeeded (its stderr otherwise).
+fn summary_of(status: &std::process::Output, out: &Path) -> serde_json::Value {
+    assert!(
+        status.status.success(),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
 fn examples() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"))
 }
@@ -63,14 +73,7 @@ fn demo_run_writes_finite_outputs_and_summary() {
         .arg(out.path())
         .output()
         .unwrap();
-    assert!(
-        status.status.success(),
-        "{}",
-        String::from_utf8_lossy(&status.stderr)
-    );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap())
-            .unwrap();
+    let summary = summary_of(&status, out.path());
     assert_eq!(summary["completed"], true);
     assert!(summary["steps"].as_u64().unwrap() > 1000);
     assert!(summary["time_step_s"].as_f64().unwrap() > 0.0);
@@ -138,14 +141,7 @@ fn the_static_demo_gives_up_relaxations_that_stopped_moving() {
         out.path(),
         &["--solver", "static", "--threads", "1"],
     );
-    assert!(
-        status.status.success(),
-        "{}",
-        String::from_utf8_lossy(&status.stderr)
-    );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap())
-            .unwrap();
+    let summary = summary_of(&status, out.path());
     assert_eq!(summary["completed"], true);
     assert_eq!(summary["solver"], "static");
     let steps = summary["steps"].as_u64().unwrap();
