@@ -698,28 +698,12 @@ mod tests {
             outside += l.outside.any() as usize;
         }
         assert!(fast >= 3 && outside >= 1, "{fast} {outside}");
-        let run = |kernel: Kernel, packed: &PackedElements| {
-            let (mut f, mut m) = (vec![DVec3::ONE; n], vec![-DVec3::ONE; n]);
-            add_loads(
-                kernel,
-                &packed.blocks,
-                &elements,
-                &c,
-                0,
-                1e-5,
-                &mut f,
-                &mut m,
-                &|_| false,
-            );
-            let bits = |v: &[DVec3]| -> Vec<u64> {
-                v.iter()
-                    .flat_map(|p| p.to_array().map(f64::to_bits))
-                    .collect()
-            };
-            (bits(&f), bits(&m))
-        };
         for kernel in [Kernel::detect(), Kernel::Portable] {
-            assert_eq!(run(kernel, &chained), run(kernel, &lane_by_lane));
+            let start = [DVec3::ONE, -DVec3::ONE];
+            assert_eq!(
+                load_bits(kernel, &chained, &elements, &c, start),
+                load_bits(kernel, &lane_by_lane, &elements, &c, start)
+            );
         }
     }
 
@@ -765,29 +749,48 @@ mod tests {
             v: &v,
             w: &w,
         };
-        let run = |kernel: Kernel| {
-            let (mut f, mut m) = (vec![DVec3::ZERO; n], vec![DVec3::ZERO; n]);
-            add_loads(
-                kernel,
-                &packed.blocks,
-                &elements,
-                &c,
-                0,
-                1e-5,
-                &mut f,
-                &mut m,
-                &|_| false,
-            );
-            (f, m)
-        };
-        let (a, b) = (run(Kernel::detect()), run(Kernel::Portable));
-        let bits = |v: &[DVec3]| {
+        let start = [DVec3::ZERO; 2];
+        let a = load_bits(Kernel::detect(), &packed, &elements, &c, start);
+        assert_eq!(
+            a,
+            load_bits(Kernel::Portable, &packed, &elements, &c, start)
+        );
+        let force = |p: &[u64]| DVec3::from_array([p[0], p[1], p[2]].map(f64::from_bits));
+        assert!(a
+            .0
+            .chunks(3)
+            .map(force)
+            .all(|f| f.is_finite() && f.length() > 0.0));
+    }
+
+    /// The bits of the forces and moments `add_loads` adds to `start` (force, moment) at
+    /// every node of `c`, damping 1e-5.
+    fn load_bits(
+        kernel: Kernel,
+        packed: &PackedElements,
+        elements: &[BeamElement],
+        c: &Config,
+        start: [DVec3; 2],
+    ) -> (Vec<u64>, Vec<u64>) {
+        let n = c.x.len();
+        let (mut f, mut m) = (vec![start[0]; n], vec![start[1]; n]);
+        let none = |_: usize| false;
+        add_loads(
+            kernel,
+            &packed.blocks,
+            elements,
+            c,
+            0,
+            1e-5,
+            &mut f,
+            &mut m,
+            &none,
+        );
+        let bits = |v: &[DVec3]| -> Vec<u64> {
             v.iter()
                 .flat_map(|p| p.to_array().map(f64::to_bits))
-                .collect::<Vec<u64>>()
+                .collect()
         };
-        assert_eq!(bits(&a.0), bits(&b.0));
-        assert_eq!(bits(&a.1), bits(&b.1));
-        assert!(a.0.iter().all(|f| f.is_finite() && f.length() > 0.0));
+        (bits(&f), bits(&m))
     }
 }
