@@ -11,6 +11,11 @@ const N: usize = 12;
 const L: f64 = 0.3;
 
 fn setup() -> (Model, StubSite, PressFit) {
+    setup_with(SimSettings::default().time_step_safety)
+}
+
+/// The hose and stub, with the explicit time step at `safety` × the stable limit.
+fn setup_with(safety: f64) -> (Model, StubSite, PressFit) {
     // library hose 3, coolant hose EPDM/aramid: d_i 27 mm, d_a 35 mm
     let material = Material {
         e_tension: 6.9442e6,
@@ -33,6 +38,7 @@ fn setup() -> (Model, StubSite, PressFit) {
     let settings = SimSettings {
         gravity: DVec3::ZERO,
         damping_mass: 5.0,
+        time_step_safety: safety,
         ..Default::default()
     };
     let model = Model::build(&WorldSpec {
@@ -198,5 +204,32 @@ fn released_slightly_off_axis_the_end_is_aligned_with_the_stub() {
     assert!(
         tangent.dot(stub.axis()) > 1.0 - 1e-9,
         "end tangent {tangent:?}"
+    );
+}
+
+#[test]
+fn the_stub_force_of_an_end_released_off_axis_does_not_depend_on_the_time_step() {
+    // Released 3 mm beside the axis, the end is carried onto it; done within one step, the
+    // fix's reaction was m·Δx/Δt² (×6.25 from safety 0.5 to 0.2).
+    let peak = |safety: f64| {
+        let (model, site, _) = setup_with(safety);
+        let mut state = State::at_rest(&model);
+        let mut actions = push_on();
+        if let Action::MoveHand { path, .. } = &mut actions[1] {
+            *path = Some(MovePath::By(vec![DVec3::new(0.024, 0.003, 0.0)]));
+        }
+        actions.push(Action::ReleaseHand { hand: 0 });
+        actions.push(Action::Run { duration: 0.5 });
+        let summary = Runner::new(&model)
+            .with_fasteners(vec![site], vec![])
+            .run(&Timeline { actions }, &mut state, &mut Trace::default())
+            .unwrap();
+        assert!(summary.fasteners[0].assembled);
+        summary.fasteners[0].max_force
+    };
+    let (coarse, fine) = (peak(0.5), peak(0.2));
+    assert!(
+        coarse > 0.0 && (coarse / fine - 1.0).abs() < 0.02,
+        "stub peak {coarse} N at safety 0.5, {fine} N at 0.2"
     );
 }

@@ -15,6 +15,7 @@ mod scene;
 mod settle;
 mod settle_report;
 mod simulation;
+mod sweep_samples;
 
 use pyo3::prelude::*;
 
@@ -48,6 +49,7 @@ fn _pliant(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene::demo_scene, m)?)?;
     m.add_function(wrap_pyfunction!(run_result::run_timeline, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_samples::centreline_sample_keys, m)?)?;
     m.add_function(wrap_pyfunction!(material_library_toml, m)?)?;
     Ok(())
 }

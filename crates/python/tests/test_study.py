@@ -403,6 +403,18 @@ def test_resume_does_no_new_work_and_redoes_what_was_lost(done, client, scene_pa
         pliant.study(study_dict(scene_path, seed=99), done.out, client=client, progress=False)
 
 
+def centreline_samples(frames, spacing):
+    """The envelope's centre-line samples, written with numpy as the reference of the Rust
+    ``centreline_sample_keys``: every element of every frame (T, N, 3) at n + 1 points,
+    n from the longest element so they are at most ``spacing`` apart."""
+    a, b = frames[:, :-1].reshape(-1, 3), frames[:, 1:].reshape(-1, 3)
+    if len(a) == 0:
+        return frames.reshape(-1, 3)
+    n = max(1, int(math.ceil(np.linalg.norm(b - a, axis=1).max() / spacing)))
+    t = np.linspace(0.0, 1.0, n + 1)
+    return (a[:, None, :] + (b - a)[:, None, :] * t[None, :, None]).reshape(-1, 3)
+
+
 def test_envelope_is_closed_and_contains_every_run(done):
     info = done.envelope
     assert info["hoses"]["h"]["closed"]
@@ -415,7 +427,7 @@ def test_envelope_is_closed_and_contains_every_run(done):
     probe = []
     for run_id in done.frame.loc[done.frame["status"] == "ok", "run_id"]:
         pos = pliant.run_timeline(pliant.load_scene(done.replay_scene(run_id))).positions("h")
-        pts = envelope.centreline_samples(pos, h / 2)
+        pts = centreline_samples(pos, h / 2)
         # every sampled centre-line point: the 8 voxel centres around it are occupied
         base = np.floor(pts / h).astype(np.int64)
         for corner in np.array(np.meshgrid([0, 1], [0, 1], [0, 1])).T.reshape(-1, 3):
@@ -510,6 +522,26 @@ def test_profile_solver_and_scene_values_reach_the_scene(scene_path):
     d["parameters"][-1]["path"] = "timeline[3].speed"
     with pytest.raises(StudyError, match=r"timeline\[3\]\.speed.*no such value"):
         variant_scene(load_study(d), s)
+
+
+def test_scene_values_are_set_in_every_run_and_checked_on_load(scene_path):
+    d = study_dict(scene_path, absurd=False)
+    d["scene_values"] = {"simulation.time_step_safety": 0.9, "timeline[3].duration_s": 0.5}
+    st = load_study(d)
+    for s in samples(st)[:3]:
+        scene = variant_scene(st, s)
+        assert scene["simulation"]["time_step_safety"] == 0.9
+        assert scene["timeline"][3]["duration_s"] == 0.5
+    assert "time_step_safety" not in tomllib.loads(SCENE).get("simulation", {})
+    for values, message in [
+        ({"simulation.time_step_safety": 1.5}, r"scene_values = .*the scene refuses them: .*time_step_safety"),
+        ({"simulation.time_step_safty": 0.9}, r"scene_values = .*the scene refuses them: .*time_step_safty"),
+        ({"nothing[2].x": 1}, r"scene_values\.nothing\[2\]\.x = 1: path .*no such value"),
+        ({"simulation.gravity": [0, 0, 1]}, r"scene_values\.simulation\.gravity = .*must be a number"),
+        ("fast", r"scene_values = fast: must be a table"),
+    ]:
+        with pytest.raises(StudyError, match=message):
+            load_study(dict(d, scene_values=values))
 
 
 def test_an_existing_cluster_by_its_scheduler_address(client, scene_path, tmp_path):
@@ -625,7 +657,7 @@ def test_voxels_are_exactly_those_within_reach_of_a_sample():
     keys = envelope.voxelize(frames, r, h)
     fine = h / 4
     pts = envelope.unpack(envelope.sorted_unique(envelope.pack(np.round(
-        envelope.centreline_samples(frames, h / 2) / fine)))) * fine
+        centreline_samples(frames, h / 2) / fine)))) * fine
     reach = r + math.sqrt(3) / 2 * (h + fine) + h / 4
     lo = np.floor((pts.min(axis=0) - reach) / h).astype(int) - 1
     hi = np.ceil((pts.max(axis=0) + reach) / h).astype(int) + 1
@@ -633,3 +665,79 @@ def test_voxels_are_exactly_those_within_reach_of_a_sample():
     within = cdist(ijk * h, pts).min(axis=1) <= reach
     assert within.sum() > 100
     assert np.array_equal(keys, np.sort(envelope.pack(ijk[within])))
+
+
+def test_sample_keys_equal_the_numpy_reference():
+    """The Rust sample keys are those of the numpy formulation bit for bit (sampling,
+    rounding ties to even, packing), on a wandering hose whose last frames repeat (the
+    Rust side skips a sample equal to the one of the frame before) and on single nodes."""
+    h = 0.005
+    rng = np.random.default_rng(3)
+    base = np.cumsum(rng.normal(0, 0.02, (12, 3)), axis=0)
+    frames = np.stack([base + k * rng.normal(0, 0.003, (12, 3)) for k in range(40)] + [base] * 5)
+    frames[7, 3] = [0.125, 0.25, -0.375]  # exact multiples of h/8: rounding ties
+    for f in (frames, frames[:, :1], frames[:3]):
+        want = envelope.sorted_unique(envelope.pack(np.round(centreline_samples(f, h / 2) / (h / 4))))
+        assert np.array_equal(envelope.sample_keys(f, h), want)
+    with pytest.raises(ValueError, match="non-finite"):
+        envelope.sample_keys(np.full((2, 3, 3), np.nan), h)
+    with pytest.raises(ValueError, match="too large"):
+        envelope.sample_keys(np.array([[[0.0, 0, 0], [0.01, 0, 0]], [[5e3, 0, 0], [5e3, 0.01, 0]]]), h)
+    with pytest.raises(ValueError, match="not a hose"):
+        envelope.sample_keys(np.array([[[0.0, 0, 0], [100.0, 0, 0]]]), h)
+
+
+def test_a_batch_dilates_its_united_samples_to_the_union_of_its_runs_voxels():
+    """Dilating the united samples of several runs once gives exactly the union of each
+    run's own voxels (a batch's shortcut, runner.run_batch)."""
+    h, r = 0.004, 0.006
+    rng = np.random.default_rng(17)
+    runs = []
+    for _ in range(3):
+        base = np.cumsum(rng.normal(0, 0.01, (8, 3)), axis=0)
+        runs.append(np.stack([base + k * rng.normal(0, 0.003, (8, 3)) for k in range(4)]))
+    each = [envelope.voxelize(f, r, h) for f in runs]
+    united = envelope.sorted_unique(np.concatenate([envelope.sample_keys(f, h) for f in runs]))
+    want = envelope.sorted_unique(np.concatenate(each))
+    assert len(want) > max(len(e) for e in each)
+    assert np.array_equal(envelope.voxels_of_samples(united, r, h), want)
+
+
+def test_part_distances_match_independent_ones():
+    """Clearances: a rotated box's signed distance equals the distance to its 12 triangles
+    outside and minus the nearest face's inside; a cylinder's matches a dense sampling of
+    its surface; a mesh part's min_distance (pruned by its bounding box) equals the brute
+    force minimum over every point."""
+    rng = np.random.default_rng(8)
+    R = geometry._rotation({"axis": [1, 2, 3], "angle_deg": 37})
+    x0, size = np.array([0.1, 0.2, 0.3]), np.array([0.4, 0.3, 0.2])
+    box = geometry.Part("b", "box", x0, R, size=size)
+    pts = x0 + rng.normal(0, 0.4, (2000, 3))
+    corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * size / 2
+    faces = [[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+             [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]]
+    tri = (corners[np.array(faces)] @ R.T) + x0
+    local = (pts - x0) @ R
+    inside = (np.abs(local) < size / 2).all(axis=1)
+    d = box.distance(pts)
+    assert inside.sum() > 20 and (~inside).sum() > 1000
+    assert np.allclose(d[~inside], geometry._mesh_distance(pts[~inside], tri), atol=1e-12)
+    assert np.allclose(d[inside], -(size / 2 - np.abs(local[inside])).min(axis=1), atol=1e-12)
+
+    cyl = geometry.Part("c", "cylinder", x0, R, size=np.array([0.2, 0.5]))
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 720), np.linspace(-0.25, 0.25, 200))
+    side = np.stack([0.2 * np.cos(u), 0.2 * np.sin(u), v], -1).reshape(-1, 3)
+    rr, uu = np.meshgrid(np.linspace(0, 0.2, 100), np.linspace(0, 2 * np.pi, 720))
+    cap = np.stack([rr * np.cos(uu), rr * np.sin(uu), np.full_like(rr, 0.25)], -1).reshape(-1, 3)
+    surface = np.concatenate([side, cap, cap * [1, 1, -1]]) @ R.T + x0
+    far = x0 + rng.normal(0, 0.5, (300, 3))
+    far = far[cyl.distance(far) > 0.01]
+    from scipy.spatial import cKDTree
+    sampled = cKDTree(surface).query(far)[0]
+    assert len(far) > 100 and np.abs(cyl.distance(far) - sampled).max() < 2e-3  # sampling 1.75 mm
+
+    mesh = geometry.Part("m", "mesh", x0, np.eye(3), triangles=tri)
+    offset = np.full(len(pts), 0.01)
+    outside = pts[~inside]
+    brute = (geometry._mesh_distance(outside, tri) - offset[: len(outside)]).min()
+    assert mesh.min_distance(outside, offset[: len(outside)]) == brute

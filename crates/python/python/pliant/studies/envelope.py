@@ -48,25 +48,34 @@ def union(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return sorted_unique(np.concatenate([a, b]))
 
 
-def centreline_samples(frames: np.ndarray, spacing: float) -> np.ndarray:
-    """Points along every element of every frame (T, N, 3), at most ``spacing`` apart."""
-    a, b = frames[:, :-1].reshape(-1, 3), frames[:, 1:].reshape(-1, 3)
-    if len(a) == 0:
-        return frames.reshape(-1, 3)
-    n = max(1, int(math.ceil(np.linalg.norm(b - a, axis=1).max() / spacing)))
-    if n > 10_000:
-        raise ValueError(f"an element {n * spacing:.3g} m long: not a hose's state")
-    t = np.linspace(0.0, 1.0, n + 1)
-    return (a[:, None, :] + (b - a)[:, None, :] * t[None, :, None]).reshape(-1, 3)
+def sample_keys(frames: np.ndarray, h: float) -> np.ndarray:
+    """Sorted keys of the centre-line samples of the frames (T, N, 3) [m]: every element
+    of every frame sampled at n + 1 points at most h/2 apart (the same n for all, from the
+    longest element), merged on the h/4 grid — what :func:`voxels_of_samples` dilates.
+    Samples of several runs may be united (:func:`union`) first and dilated once: the
+    voxel set is the same, because a voxel is in when it is within reach of *any* sample.
+    (In Rust, ``pliant._pliant.centreline_sample_keys``; ValueError for frames no hose
+    has.)"""
+    from .._pliant import centreline_sample_keys
+
+    return centreline_sample_keys(np.ascontiguousarray(frames, dtype=np.float64), float(h))
 
 
 def voxelize(frames: np.ndarray, radius: float, h: float) -> np.ndarray:
     """Sorted keys of the voxels the tube of this radius around the frames touches."""
+    return voxels_of_samples(sample_keys(frames, h), radius, h)
+
+
+def voxels_of_samples(samples: np.ndarray, radius: float, h: float) -> np.ndarray:
+    """Sorted keys of the voxels whose centre lies within reach of a sample (keys of
+    :func:`sample_keys`): the tube of this radius around the sampled centre lines."""
     from scipy.ndimage import distance_transform_edt
     from scipy.spatial import cKDTree
 
+    if len(samples) == 0:
+        return np.zeros(0, np.int64)
     fine = h / 4  # samples deduplicated over time on a grid 4× finer than the voxels
-    pts = unpack(sorted_unique(pack(np.round(centreline_samples(frames, h / 2) / fine)))) * fine
+    pts = unpack(samples) * fine
     reach = radius + math.sqrt(3) / 2 * (h + fine) + h / 4
     seeds = np.round(pts / h).astype(np.int64)
     m = int(math.ceil(reach / h)) + 2

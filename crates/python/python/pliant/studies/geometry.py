@@ -34,15 +34,22 @@ class Part:
     triangles: Optional[np.ndarray] = None  # (F, 3, 3) in world coordinates
 
     def min_distance(self, points: np.ndarray, offset: np.ndarray) -> float:
-        """min over points of (distance − offset), exactly; meshes visit the points in
-        order of their bounding-box distance and stop when no closer one can follow."""
+        """min over points of (distance − offset), exactly; meshes measure the 256 points
+        nearest their bounding box, then the others in order of that distance until no
+        closer one can follow."""
         if self.kind != "mesh":
             d = self.distance(points) - offset
             return float(np.nanmin(d)) if np.isfinite(d).any() else float("nan")
+        if len(points) == 0:
+            return np.inf
         lo, hi = self.triangles.reshape(-1, 3).min(axis=0), self.triangles.reshape(-1, 3).max(axis=0)
-        bound = np.linalg.norm(np.maximum(np.maximum(lo - points, points - hi), 0), axis=1) - offset
-        order = np.argsort(bound)
-        best = np.inf
+        gap = np.maximum(np.maximum(lo - points, points - hi), 0)
+        bound = np.sqrt(np.einsum("ij,ij->i", gap, gap)) - offset
+        # the 256 nearest by the bound first, then only the points that may beat them
+        first = np.argpartition(bound, 255)[:256] if len(bound) > 256 else np.arange(len(bound))
+        best = float((_mesh_distance(points[first], self.triangles) - offset[first]).min())
+        rest = np.flatnonzero(bound < best)
+        order = rest[np.argsort(bound[rest])]
         for s in range(0, len(order), 256):
             idx = order[s:s + 256]
             if bound[idx[0]] >= best:
@@ -56,15 +63,19 @@ class Part:
             return np.full(len(points), np.nan)
         if self.kind == "mesh":
             return _mesh_distance(points, self.triangles)
-        local = (points - self.position) @ self.rotation  # R^T (p − x)
+        # coordinates in the part's frame, R^T (p − x), one contiguous column per axis
+        x, y, z = self.rotation.T @ (points - self.position).T
         if self.kind == "sphere":
-            return np.linalg.norm(local, axis=1) - self.size[0]
+            return np.sqrt(x * x + y * y + z * z) - self.size[0]
         if self.kind == "box":
-            q = np.abs(local) - self.size / 2
-            return np.linalg.norm(np.maximum(q, 0), axis=1) + np.minimum(q.max(axis=1), 0)
-        r, h = self.size
-        q = np.stack([np.hypot(local[:, 0], local[:, 1]) - r, np.abs(local[:, 2]) - h / 2], axis=1)
-        return np.linalg.norm(np.maximum(q, 0), axis=1) + np.minimum(q.max(axis=1), 0)
+            qs = [np.abs(c) - s / 2 for c, s in zip((x, y, z), self.size)]
+        else:
+            r, h = self.size
+            qs = [np.sqrt(x * x + y * y) - r, np.abs(z) - h / 2]
+        # signed distance to the box (or the cylinder's (radius, height) rectangle):
+        # |max(q, 0)| outside, max_i q_i (≤ 0) inside
+        outside = sum(np.maximum(q, 0) ** 2 for q in qs)
+        return np.sqrt(outside) + np.minimum(np.maximum.reduce(qs), 0)
 
 
 def _rotation(rot: Optional[Dict[str, Any]]) -> np.ndarray:

@@ -1,5 +1,6 @@
 """One run of a study, on a Dask worker: the variant's whole timeline (``run_timeline``,
-its solver), reduced to one result row plus the voxels its hoses swept.
+its solver), reduced to one result row plus its hoses' centre-line samples (dilated to
+voxels once per batch).
 
 Nothing is lost: a scene the engine refuses is recorded with status ``invalid``, a
 diverged run as ``diverged`` (its metrics are those of the run up to the last healthy
@@ -84,9 +85,10 @@ def _result_row(result, task: Task) -> Dict[str, Any]:
 
 
 def _sweep(result, task: Task, row: Dict[str, Any]) -> Dict[str, np.ndarray]:
-    """Voxels swept by each envelope hose, and their smallest clearance to each part [m]
-    (nodes and element midpoints of every recorded instant)."""
-    voxels: Dict[str, np.ndarray] = {}
+    """Centre-line samples of each envelope hose (keys of :func:`envelope.sample_keys`;
+    the batch dilates them to voxels once), and the hoses' smallest clearance to each part
+    [m] (nodes and element midpoints of every recorded instant)."""
+    samples: Dict[str, np.ndarray] = {}
     points, radii = [], []
     for hose in task.envelope_hoses:
         r = task.radii[hose]
@@ -94,7 +96,7 @@ def _sweep(result, task: Task, row: Dict[str, Any]) -> Dict[str, np.ndarray]:
         if frames.size == 0:
             continue
         if task.voxel > 0:
-            voxels[hose] = envelope.voxelize(frames, r, task.voxel)
+            samples[hose] = envelope.sample_keys(frames, task.voxel)
         mids = 0.5 * (frames[:, 1:] + frames[:, :-1])
         pts = np.concatenate([frames.reshape(-1, 3), mids.reshape(-1, 3)])
         points.append(pts)
@@ -104,34 +106,38 @@ def _sweep(result, task: Task, row: Dict[str, Any]) -> Dict[str, np.ndarray]:
         for part in task.parts:
             d = part.min_distance(pts, rad)
             row[column_name("clearance", part.name, "m")] = d if np.isfinite(d) else None
-    return voxels
+    return samples
 
 
 def run_batch(tasks: List[Task]) -> Dict[str, Any]:
     """Runs several variants in one Dask task (each as :func:`run_variant`): the task's
     scheduling, (de)serialisation and the parts' geometry are paid once per batch, and
-    the batch's voxels are merged on the worker. Returns {"results": [{"row": ...}, ...],
-    "voxels": {hose: sorted keys}}."""
+    the batch's centre-line samples are united and dilated to voxels once (the same voxels
+    as run by run: see :func:`envelope.sample_keys`). Returns
+    {"results": [{"row": ...}, ...], "voxels": {hose: sorted keys}}."""
     # one thread per run: a study keeps every core busy with runs of its own (the
     # explicit solver would otherwise start a thread per core for a scene of several
     # hoses, for each worker); a worker started with PLIANT_THREADS set keeps its value
     os.environ.setdefault("PLIANT_THREADS", "1")
-    results, voxels = [], {}
+    results, samples = [], {}
     for task in tasks:
         res = run_variant(task)
-        for h, keys in res.pop("voxels").items():
-            voxels[h] = envelope.union(voxels[h], keys) if h in voxels else keys
+        for h, keys in res.pop("samples").items():
+            samples[h] = envelope.union(samples[h], keys) if h in samples else keys
         results.append(res)
+    # every task of a study has the same radii and voxel size (the base scene's)
+    voxels = {h: envelope.voxels_of_samples(keys, tasks[0].radii[h], tasks[0].voxel)
+              for h, keys in samples.items()}
     return {"results": results, "voxels": voxels}
 
 
 def run_variant(task: Task) -> Dict[str, Any]:
-    """Runs one variant; returns {"row": {...}, "voxels": {hose: keys}}. Never raises for
-    a bad variant: its status and message are in the row."""
+    """Runs one variant; returns {"row": {...}, "samples": {hose: centre-line sample
+    keys}}. Never raises for a bad variant: its status and message are in the row."""
     import pliant
 
     row: Dict[str, Any] = {"run_id": task.run_id, "index": task.index, "status": "ok", "message": ""}
-    voxels: Dict[str, np.ndarray] = {}
+    samples: Dict[str, np.ndarray] = {}
     start, cpu = time.perf_counter(), time.process_time()
     result = None
     try:
@@ -152,9 +158,9 @@ def run_variant(task: Task) -> Dict[str, Any]:
             if row["status"] == "diverged":
                 row["feasible"] = False
             if row["status"] == "ok":  # a diverged run's last states are not physical
-                voxels = _sweep(result, task, row)
+                samples = _sweep(result, task, row)
         except Exception as e:
             row.update(status="error", message=f"reading the result: {type(e).__name__}: {e}")
     row["wall_time_s"] = time.perf_counter() - start
     row["cpu_time_s"] = time.process_time() - cpu  # the worker's CPU: < wall when cores are shared
-    return {"row": row, "voxels": voxels}
+    return {"row": row, "samples": samples}

@@ -141,6 +141,7 @@ class Study:
     grid_levels: int
     solver: Optional[str]
     ergonomics: Optional[str]
+    scene_values: Dict[str, Any]
     envelope_voxel_m: Optional[float]
     envelope_hoses: Optional[List[str]]
     source: Dict[str, Any] = field(repr=False, default_factory=dict)
@@ -357,7 +358,33 @@ def load_study(study: Any, *, runs: Optional[int] = None) -> Study:
     return parse_study(raw, origin, base_dir, runs=runs)
 
 
-TOP_KEYS = {"format", "version", "name", "scene", "length_unit", "solver", "ergonomics", "sampling", "parameters", "envelope"}
+TOP_KEYS = {"format", "version", "name", "scene", "length_unit", "solver", "ergonomics", "scene_values", "sampling", "parameters", "envelope"}
+
+
+def _scene_values(origin: str, table: Any, scene: Dict[str, Any], scene_dir: str) -> Dict[str, Any]:
+    """[scene_values]: values set in every run's scene before the parameters vary it
+    ("simulation.time_step_safety" = 0.9), in the scene's own units; each path must lead
+    into a table or list the base scene has, and the engine must accept the result."""
+    import pliant
+
+    from .variant import set_path
+
+    if not isinstance(table, dict):
+        raise _fail(origin, "scene_values", table, 'must be a table of paths and values, e.g. "simulation.time_step_safety" = 0.9')
+    trial = json.loads(json.dumps(scene))
+    for path, value in table.items():
+        if isinstance(value, (dict, list)) or value is None:
+            raise _fail(origin, f"scene_values.{path}", value, "must be a number, a string or a boolean")
+        try:
+            set_path(trial, path, value, "set")
+        except StudyError as e:
+            raise _fail(origin, f"scene_values.{path}", value, str(e)) from None
+    if table:
+        try:
+            pliant.Scene.from_json(json.dumps(trial), origin="the base scene with [scene_values]", base_dir=scene_dir)
+        except pliant.SceneError as e:
+            raise _fail(origin, "scene_values", table, f"the scene refuses them: {e}") from None
+    return dict(table)
 
 
 def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Optional[int] = None) -> Study:
@@ -389,6 +416,7 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
     ergonomics = raw.get("ergonomics")
     if ergonomics is not None and not isinstance(ergonomics, str):
         raise _fail(origin, "ergonomics", ergonomics, 'must be a profile string like "posture=sitting, population=men"')
+    scene_values = _scene_values(origin, raw.get("scene_values", {}), scene, os.path.dirname(scene_path))
     sampling = raw.get("sampling", {})
     if not isinstance(sampling, dict):
         raise _fail(origin, "sampling", sampling, "must be a table")
@@ -444,6 +472,7 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
         grid_levels=levels,
         solver=solver,
         ergonomics=ergonomics,
+        scene_values=scene_values,
         envelope_voxel_m=None if voxel is None else voxel * UNITS_M[unit],
         envelope_hoses=hoses,
         source=raw,

@@ -128,17 +128,29 @@ def _apply_number(old: float, value: float, how: str) -> float:
 PATH_TOKEN = re.compile(r"([^.\[\]]+)|\[(-?\d+)\]")
 
 
-def _set_path(scene: Dict[str, Any], path: str, value: float, how: str) -> None:
+def set_path(scene: Dict[str, Any], path: str, value: Any, how: str) -> None:
+    """Sets (``set``), scales or offsets the value at a path like
+    ``hoses[0].section.d_outer``; ``set`` adds missing table keys on the way
+    (``simulation.time_step_safety`` in a scene without ``[simulation]``; the engine then
+    checks the names), list items must exist."""
     keys = [m.group(1) if m.group(1) is not None else int(m.group(2)) for m in PATH_TOKEN.finditer(path)]
     node: Any = scene
     try:
-        for k in keys[:-1]:
-            node = node[k]
+        if not keys:
+            raise KeyError(path)
+        for k, after in zip(keys[:-1], keys[1:]):
+            if how == "set" and isinstance(node, dict) and isinstance(k, str) and isinstance(after, str):
+                node = node.setdefault(k, {})
+            else:
+                node = node[k]
+        if how == "set" and isinstance(node, dict) and isinstance(keys[-1], str):
+            node[keys[-1]] = value
+            return
         old = node[keys[-1]]
     except (KeyError, IndexError, TypeError):
-        raise StudyError(f"scene_value path {path!r}: no such value in the scene") from None
+        raise StudyError(f"path {path!r}: no such value in the scene") from None
     if how != "set" and (isinstance(old, bool) or not isinstance(old, (int, float))):
-        raise StudyError(f"scene_value path {path!r}: {old!r} is not a number to {how}")
+        raise StudyError(f"path {path!r}: {old!r} is not a number to {how}")
     node[keys[-1]] = _apply_number(old, value, how)
 
 
@@ -182,6 +194,8 @@ def apply(study: Study, sample: Dict[str, Any]) -> Dict[str, Any]:
         scene.setdefault("simulation", {})["solver"] = study.solver
     if study.ergonomics:
         scene["ergonomics"] = parse_ergonomics(study.ergonomics)
+    for path, value in study.scene_values.items():
+        set_path(scene, path, value, "set")
     for p in study.parameters:
         v = sample[p.name]
         t = p.target
@@ -220,7 +234,7 @@ def apply(study: Study, sample: Dict[str, Any]) -> Dict[str, Any]:
         elif p.vary == "solver":
             scene.setdefault("simulation", {})["solver"] = v
         elif p.vary == "scene_value":
-            _set_path(scene, t["path"], v, p.apply)
+            set_path(scene, t["path"], v, p.apply)
     return scene
 
 
