@@ -139,7 +139,12 @@ impl Hand {
 
     /// Whether the hand holds `node`.
     pub fn holds(&self, node: usize) -> bool {
-        self.held[..self.count].iter().any(|h| h.0 == node)
+        self.held_nodes().any(|n| n == node)
+    }
+
+    /// The nodes the hand holds (one or two).
+    pub fn held_nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        self.held[..self.count].iter().map(|h| h.0)
     }
 
     /// The hand's pose at time `t`.

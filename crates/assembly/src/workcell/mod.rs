@@ -155,6 +155,9 @@ pub struct Workcell {
     hands: Hands,
     /// The hands' loads after the last step (buffer reused every step).
     hand_records: Vec<HandRecord>,
+    /// The nodes the hands hold this step, with the hand's force of the last step
+    /// (buffer reused every step: the fasteners ask about every node of their hoses).
+    held_nodes: Vec<(usize, DVec3)>,
     fasteners: Fasteners,
     /// Load cases added by inputs (the ones fix/drive/release/remove_load may replace).
     user_loads: BTreeSet<LoadCaseId>,
@@ -228,6 +231,7 @@ impl Workcell {
             initial: setup.initial,
             hands: Hands::new(),
             hand_records: Vec::with_capacity(4),
+            held_nodes: Vec::with_capacity(8),
             fasteners: Fasteners::default(),
             user_loads: BTreeSet::new(),
             named_loads: BTreeMap::new(),
@@ -926,12 +930,23 @@ impl Workcell {
             h.update(&self.model, &mut self.state, t_next, dt, &limits);
         }
         if !self.fasteners.is_empty() {
-            let (hands, records) = (&self.hands, &self.hand_records);
-            let held = |node: usize| holder(hands, node).is_some();
+            self.held_nodes.clear();
+            for (&k, h) in &self.hands {
+                let force = self
+                    .hand_records
+                    .iter()
+                    .find(|r| r.hand == k as usize)
+                    .map_or(DVec3::ZERO, |r| r.load.force);
+                self.held_nodes
+                    .extend(h.hand.held_nodes().map(|node| (node, force)));
+            }
+            let held_nodes = &self.held_nodes;
+            let held = |node: usize| held_nodes.iter().any(|&(n, _)| n == node);
             let force = |node: usize| {
-                holder(hands, node)
-                    .and_then(|k| records.iter().find(|r| r.hand == k as usize))
-                    .map_or(DVec3::ZERO, |r| r.load.force)
+                held_nodes
+                    .iter()
+                    .find(|&&(n, _)| n == node)
+                    .map_or(DVec3::ZERO, |&(_, f)| f)
             };
             self.fasteners
                 .update(&self.model, &mut self.state, &held, &force);
