@@ -223,6 +223,19 @@ impl RunResult {
         to_python(py, &self.run)
     }
 
+    /// The Newton solvers' record (the summary's ``solver``: iterations, unconverged
+    /// steps, instabilities), without decoding the whole summary.
+    #[getter]
+    fn solver_record<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.run.solver)
+    }
+
+    /// Why the run is uncertain (the summary's ``solver_warnings``); empty when it is not.
+    #[getter]
+    fn solver_warnings(&self) -> Vec<String> {
+        self.run.solver_warnings.clone()
+    }
+
     /// Peak support loads per fixed or driven node: dicts with hose (name), hose_index,
     /// node, max_force [N], max_force_time [s], max_moment [N·m], max_moment_time [s],
     /// last_force, last_moment.

@@ -295,6 +295,10 @@ class RunResult:
     @property
     def summary(self) -> Dict[str, Any]: ...
     @property
+    def solver_record(self) -> Dict[str, Any]: ...
+    @property
+    def solver_warnings(self) -> List[str]: ...
+    @property
     def peaks(self) -> List[Dict[str, Any]]: ...
     @property
     def hand_peaks(self) -> List[Dict[str, Any]]: ...
@@ -312,6 +316,10 @@ class RunResult:
 
 def run_timeline(scene: Scene, ergonomics: Optional[str] = None, solver: Optional[str] = None) -> RunResult:
     """Runs the scene's whole timeline as ``pliant run`` does."""
+
+def centreline_sample_keys(frames: FloatArray, h: float) -> Any:
+    """Sorted unique int64 keys of the centre-line samples of frames (T, N, 3) [m] for
+    voxels of size h [m] (``pliant.studies.envelope.sample_keys``)."""
 
 class CalibrationError(ValueError):
     """A calibration could not be done; the message is the one ``pliant calibrate``

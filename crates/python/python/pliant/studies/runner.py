@@ -48,8 +48,7 @@ class Task:
 
 def _result_row(result, task: Task) -> Dict[str, Any]:
     """Peaks, verdict and checks of a RunResult as flat columns (SI)."""
-    summary = result.summary  # decoded once: it holds the fastener series (~0.2 MB)
-    solver = summary.get("solver") or {}
+    solver = result.solver_record or {}  # not the whole summary: it holds the fastener series
     row: Dict[str, Any] = {
         "feasible": result.feasible,
         "uncertain": bool(result.uncertain),
@@ -59,7 +58,7 @@ def _result_row(result, task: Task) -> Dict[str, Any]:
         "steps": int(result.steps),
         "simulated_time_s": float(result.simulated_time),
         "solver": task.solver,
-        "solver_warnings": len(summary.get("solver_warnings") or []),
+        "solver_warnings": len(result.solver_warnings),
         "unconverged_steps": int(solver.get("unconverged_steps") or 0),
         "instabilities": int(solver.get("instability_count") or 0),
     }
