@@ -61,23 +61,39 @@ pub(crate) fn stop(state: &mut State) {
     }
 }
 
+/// Kinetic damping (Cundall 1976): every velocity set to zero each time the total kinetic
+/// energy passes a peak. Call [`KineticDamping::after_step`] after each explicit step.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct KineticDamping {
+    last_energy: f64,
+}
+
+impl KineticDamping {
+    /// Stops everything if the kinetic energy fell since the last step (a peak passed).
+    pub(crate) fn after_step(&mut self, model: &Model, state: &mut State) {
+        let energy = state.kinetic_energy(model);
+        if energy < self.last_energy {
+            stop(state);
+            self.last_energy = 0.0;
+        } else {
+            self.last_energy = energy;
+        }
+    }
+}
+
 /// Relaxes `state` to static equilibrium under its current load cases.
 pub fn settle(
     model: &Model,
     state: &mut State,
     opts: &SettleOptions,
 ) -> Result<SettleReport, Divergence> {
-    let mut last_energy = 0.0;
+    let mut damping = KineticDamping::default();
     let mut steps = 0;
     while steps < opts.max_steps {
         step(model, state);
         steps += 1;
-        let energy = state.kinetic_energy(model);
-        if opts.kinetic_damping && energy < last_energy {
-            stop(state);
-            last_energy = 0.0;
-        } else {
-            last_energy = energy;
+        if opts.kinetic_damping {
+            damping.after_step(model, state);
         }
         if steps % 64 == 0 {
             check(model, state)?;

@@ -15,7 +15,7 @@
 
 use super::explicit::step;
 use crate::health::check;
-use crate::settle::{residual, stop};
+use crate::settle::{residual, stop, KineticDamping};
 use crate::{Model, State};
 use glam::DVec3;
 
@@ -56,19 +56,13 @@ pub fn relax(
     anchor.clear();
     anchor.extend_from_slice(&state.x);
     let mut frozen_windows = 0;
-    let mut last_energy = 0.0;
+    let mut damping = KineticDamping::default();
     for steps in 1..=MAX_RELAXATION_STEPS {
         // each step ends at `time`: prescribed motions stay where they are due
         state.time = time - dt;
         step(model, state);
         state.time = time;
-        let energy = state.kinetic_energy(model);
-        if energy < last_energy {
-            stop(state);
-            last_energy = 0.0;
-        } else {
-            last_energy = energy;
-        }
+        damping.after_step(model, state);
         if steps % CHECK_EVERY == 0 {
             check(model, state).ok()?;
             let (f, m) = residual(state);
