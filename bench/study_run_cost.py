@@ -13,14 +13,21 @@ import time
 import numpy as np
 
 
-def main():
+def study_arguments(runs: int) -> argparse.ArgumentParser:
+    """--study (default: the demo study) and --runs, for the study benchmarks; one
+    engine thread per run, as on a study's workers."""
+    os.environ.setdefault("PLIANT_THREADS", "1")
     ap = argparse.ArgumentParser()
     here = os.path.dirname(os.path.abspath(__file__))
     ap.add_argument("--study", default=os.path.join(here, "..", "examples", "engine_bay_study.toml"))
-    ap.add_argument("--runs", type=int, default=32)
+    ap.add_argument("--runs", type=int, default=runs)
+    return ap
+
+
+def main():
+    ap = study_arguments(32)
     ap.add_argument("--batch", type=int, default=16)
     a = ap.parse_args()
-    os.environ.setdefault("PLIANT_THREADS", "1")
 
     import pliant
     from pliant.studies import envelope, load_study, runner

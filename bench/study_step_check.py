@@ -6,25 +6,21 @@ verdict and peaks (a benchmark and a convergence check, not a test).
     .venv/bin/python bench/study_step_check.py [--study examples/engine_bay_study.toml] [--runs 48] [--safety 0.9]
 """
 
-import argparse
 import json
 import os
 import time
 
 import numpy as np
+from study_run_cost import study_arguments  # bench/ is the script's folder
 
 COLUMNS = ["peak_hand_force_n", "peak_hand_torque_nm", "min_bend_radius_ratio", "max_twist_rad_per_m"]
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    here = os.path.dirname(os.path.abspath(__file__))
-    ap.add_argument("--study", default=os.path.join(here, "..", "examples", "engine_bay_study.toml"))
-    ap.add_argument("--runs", type=int, default=48)
+    ap = study_arguments(48)
     ap.add_argument("--safety", type=float, default=0.9)
     ap.add_argument("--reference", type=float, default=0.5, help="time_step_safety of the reference runs")
     a = ap.parse_args()
-    os.environ.setdefault("PLIANT_THREADS", "1")
 
     import pliant
     from pliant.studies import load_study, runner, sampling, variant
