@@ -468,6 +468,16 @@ fn build(
             .file_stem()
             .map_or_else(|| origin.to_string(), |s| s.to_string_lossy().into_owned()),
     };
+    let mut warnings = parts.warnings;
+    let safe = pliant_core::loads::largest_safety_with_supports();
+    if settings.time_step_safety > safe {
+        warnings.push(format!(
+            "simulation.time_step_safety = {}: above {safe:.2} the springs that hold nodes in \
+             fixings, loose grips and clips seated as supports (k = 0.5 m/Δt²) can ring or \
+             go unstable; keep it at or below {safe:.2} when any of them acts",
+            settings.time_step_safety
+        ));
+    }
     Ok(LoadedScene {
         name,
         hose_names: hoses.iter().map(|h| h.name.clone()).collect(),
@@ -480,7 +490,7 @@ fn build(
         record_interval,
         hoses: infos,
         parts: parts.infos,
-        warnings: parts.warnings,
+        warnings,
         stubs,
         clips,
         ergonomics,

@@ -327,3 +327,21 @@ fn empty_hose_list_is_rejected() {
     assert_eq!(err.field(), Some("hoses"), "{err}");
     assert!(err.to_string().contains("at least one hose"), "{err}");
 }
+
+#[test]
+fn a_time_step_safety_too_large_for_supports_is_warned_about() {
+    let load = |safety: &str| {
+        load_scene_str(&BASE.replace("time_step_safety = 0.5", safety), "safety.toml")
+            .expect("a valid scene")
+            .warnings
+    };
+    assert!(load("time_step_safety = 0.5").is_empty());
+    assert!(load("time_step_safety = 0.64").is_empty());
+    let warned = load("time_step_safety = 0.9");
+    assert!(
+        warned.len() == 1
+            && warned[0].contains("simulation.time_step_safety = 0.9")
+            && warned[0].contains("0.65"),
+        "{warned:?}"
+    );
+}

@@ -13,7 +13,10 @@ pub use dead_load::{DeadLoad, LoadRamp};
 pub use drive::Drive;
 pub use fix::Fix;
 pub use motion::Motion;
-pub use support::{support_reactions, Support, SupportLoad, SUPPORT_DAMPING, SUPPORT_FACTOR};
+pub use support::{
+    largest_safety_with_supports, support_reactions, Support, SupportLoad, SUPPORT_DAMPING,
+    SUPPORT_FACTOR,
+};
 pub use tie::{Tie, TieLoad};
 
 use glam::{DQuat, DVec3};
