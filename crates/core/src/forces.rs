@@ -1,5 +1,6 @@
 //! Assembly of the nodal loads of all elements, gravity (P6) and damping (P4).
 
+use crate::body_loads::{self, BodyLoad, BodyNodes};
 use crate::element::ElementEnds;
 use crate::element_block::{self, Kernel};
 use crate::parallel::{Pool, SharedMut};
@@ -89,7 +90,8 @@ pub fn add_body_loads(model: &Model, c: &Config, force: &mut [DVec3], moment: &m
     add_body_loads_of(model, 0, c, force, moment);
 }
 
-/// [`add_body_loads`] for the nodes `base..` that `c`, `force` and `moment` hold.
+/// [`add_body_loads`] for the nodes `base..` that `c`, `force` and `moment` hold, four
+/// at a time ([`crate::body_loads`]).
 pub fn add_body_loads_of(
     model: &Model,
     base: usize,
@@ -97,15 +99,21 @@ pub fn add_body_loads_of(
     force: &mut [DVec3],
     moment: &mut [DVec3],
 ) {
-    let alpha = model.damping_mass;
-    let (mass, inertia) = (&model.mass[base..], &model.inertia[base..]);
     let n = force.len();
-    let (mass, inertia, v, w) = (&mass[..n], &inertia[..n], &c.v[..n], &c.w[..n]);
-    let moment = &mut moment[..n];
-    for i in 0..n {
-        force[i] += mass[i] * (model.gravity - alpha * v[i]);
-        moment[i] -= alpha * inertia[i] * w[i];
-    }
+    body_loads::add_body_loads(
+        BodyLoad {
+            gravity: model.gravity,
+            alpha: model.damping_mass,
+        },
+        BodyNodes {
+            mass: &model.mass[base..base + n],
+            inertia: &model.inertia[base..base + n],
+            v: &c.v[..n],
+            w: &c.w[..n],
+            force,
+            moment: &mut moment[..n],
+        },
+    );
 }
 
 /// The explicit step's loads: [`internal_loads_except`] then [`add_body_loads`], shared

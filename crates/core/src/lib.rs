@@ -9,6 +9,7 @@
 //! advances it.
 
 pub mod autodiff;
+pub mod body_loads;
 pub mod contact;
 pub mod curve;
 pub mod element;

@@ -466,6 +466,9 @@ pub fn add_hose_contact_forces(model: &Model, state: &mut State) {
         &mut state.hose_contact,
         &mut state.hose_contact_force,
     );
+    if state.hose_contact.pairs_in_contact == 0 {
+        return; // no pair in contact: the forces are the zeros filled in (issue 15)
+    }
     for (f, c) in state.force.iter_mut().zip(&state.hose_contact_force) {
         *f += *c;
     }

@@ -75,11 +75,19 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     // Fixings' supports: springs in their fixed directions (reaction = their load), the
     // slip anchors accepted with this step's forces
     crate::loads::support_reactions(model, state, true);
-    for (f, r) in state.force.iter_mut().zip(&state.reaction_force) {
-        *f += *r;
-    }
-    for (m, r) in state.moment.iter_mut().zip(&state.reaction_moment) {
-        *m += *r;
+    // Only supports and ties write reactions here; without them the arrays are the zeros
+    // just filled in, and adding them would change nothing (issue 15: two passes saved).
+    let supported = state
+        .loads
+        .iter()
+        .any(|(_, c)| matches!(c, LoadCase::Support(_) | LoadCase::Tie(_)));
+    if supported {
+        for (f, r) in state.force.iter_mut().zip(&state.reaction_force) {
+            *f += *r;
+        }
+        for (m, r) in state.moment.iter_mut().zip(&state.reaction_moment) {
+            *m += *r;
+        }
     }
     // Kinematic load cases, in order (a later one on the same node wins).
     for (_, case) in state.loads.iter() {
