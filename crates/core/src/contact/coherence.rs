@@ -6,7 +6,8 @@
 //! A slot's query is a segment [a, b] (a beam; a = b would be a point) with a contact
 //! reach ρ. On a
 //! refresh every triangle whose box meets the segment's box grown by ρ + m is examined,
-//! and those whose distance to the segment is at most ρ + m are kept, in the environment's
+//! and those whose distance to the segment may be at most ρ + m (by the lower bound of
+//! their [`Planes`]) are kept, in the environment's
 //! own order (parts in order, each part's BVH depth-first). The distance from a segment to
 //! a fixed set is 1-Lipschitz in the largest end-point displacement (each point
 //! (1−t)a + tb moves by at most max(|Δa|, |Δb|)), so while both end points stay within m
@@ -39,11 +40,9 @@
 //! while the search's bound stays below the cutoff less the displacement, the dropped
 //! ones cannot matter, else the slot is searched by a fresh query (still exact, slower).
 
-use super::closest_segment_triangle;
 use super::environment::RigidEnvironment;
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
-use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::Triangle;
 
 /// Candidates kept per slot.
@@ -59,8 +58,12 @@ pub const FAR: f64 = 4.0;
 /// Relative slack on distances for rounding (the kept test errs towards keeping).
 const SLACK: f64 = 1e-9;
 
-/// One triangle of one part, its rank in the environment's order, and its distance from
-/// the slot's segment at the refresh.
+/// One triangle of one part, its rank in the environment's order, and a lower bound on
+/// its distance from the slot's segment at the refresh: its [`Planes`] bound, not the
+/// exact distance (whose closest-point test cost a refresh most of its time). Every use
+/// of `distance` — the kept test, the nearest-first order and its early stop, the
+/// cutoff, the searchers' first bounds — needs only a lower bound, so the contacts found
+/// stay those of a fresh query to the last bit; a list may keep a few more triangles.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Candidate {
     part: u32,
@@ -278,15 +281,6 @@ pub(crate) fn edges_beyond(a: DVec3, b: DVec3, tri: &Triangle, bound: f64) -> bo
         })
 }
 
-/// Distance from segment [a, b] (a point if a = b) to `tri`.
-fn segment_distance(a: DVec3, b: DVec3, tri: &Triangle) -> f64 {
-    if a == b {
-        (tri.project_local_point(a, false).point - a).length()
-    } else {
-        closest_segment_triangle(a, b, tri).distance
-    }
-}
-
 /// The box of segment [a, b] grown by `grow` on every side.
 fn grown_box(a: DVec3, b: DVec3, grow: f64) -> Aabb {
     let grow = DVec3::splat(grow);
@@ -358,13 +352,12 @@ impl CandidateCache {
             let this_rank = rank;
             rank += 1;
             let planes = Planes::new(tri);
-            if planes.lower_bound_squared(a, b) > keep * keep {
+            let bound_squared = planes.lower_bound_squared(a, b);
+            if bound_squared > keep * keep {
                 return;
             }
-            let distance = segment_distance(a, b, tri);
-            if distance > keep {
-                return;
-            }
+            // the planes' lower bound stands in for the distance (see `Candidate`)
+            let distance = bound_squared.sqrt();
             let mut c = Candidate {
                 part: part as u32,
                 triangle,
@@ -437,18 +430,20 @@ impl CandidateCache {
         (nearest.max(keep) / (1.0 + SLACK) - reach).max(MARGIN * reach)
     }
 
+    /// Forgets every list if the environment is not the one they were made for; once a
+    /// step, before [`Self::is_clear`].
+    pub(crate) fn follow(&mut self, env: &RigidEnvironment) {
+        if self.environment_key != environment_key(env) {
+            self.environment_key = environment_key(env);
+            self.clear();
+        }
+    }
+
     /// True if [`Self::scan`] of `slot` at [a, b] would offer nothing without a look at
     /// the list: the list is empty, nothing was dropped, and the slot has not moved past
-    /// its margin (no triangle can be within reach) — most slots, checked before a search
-    /// is set up.
-    pub(crate) fn is_clear(
-        &self,
-        env: &RigidEnvironment,
-        slot: usize,
-        a: DVec3,
-        b: DVec3,
-        reach: f64,
-    ) -> bool {
+    /// its margin (no triangle can be within reach) — most slots, checked once a step per
+    /// beam (after [`Self::follow`]) before a search is set up.
+    pub(crate) fn is_clear(&self, slot: usize, a: DVec3, b: DVec3, reach: f64) -> bool {
         if !self.enabled || slot >= self.len.len() || self.len[slot] != 0 {
             return false;
         }
@@ -456,10 +451,7 @@ impl CandidateCache {
         let moved = (a - self.anchor_a[slot])
             .length_squared()
             .max((b - self.anchor_b[slot]).length_squared());
-        moved < m * m
-            && self.reach[slot] == reach
-            && self.cutoff[slot] == f64::INFINITY
-            && self.environment_key == environment_key(env)
+        moved < m * m && self.reach[slot] == reach && self.cutoff[slot] == f64::INFINITY
     }
 
     /// Offers `search` the triangles whose box meets `query` and which may lie within its
@@ -498,10 +490,7 @@ impl CandidateCache {
         if !self.enabled || slot >= self.len.len() {
             return scan_fresh(env, query, search);
         }
-        if self.environment_key != environment_key(env) {
-            self.environment_key = environment_key(env);
-            self.clear();
-        }
+        self.follow(env);
         let m = self.margin[slot];
         let mut moved = (a - self.anchor_a[slot])
             .length_squared()
@@ -564,6 +553,7 @@ impl CandidateCache {
 mod tests {
     use super::*;
     use crate::spec::RigidPartSpec;
+    use parry3d_f64::query::PointQuery;
 
     /// A prism of `n` facets around the y axis, radius 50 mm, 0.4 m long.
     fn fine_cylinder(n: usize) -> RigidEnvironment {
