@@ -41,6 +41,7 @@
 //! ones cannot matter, else the slot is searched by a fresh query (still exact, slower).
 
 use super::environment::RigidEnvironment;
+use super::planes::Planes;
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
 use parry3d_f64::shape::Triangle;
@@ -70,8 +71,6 @@ struct Candidate {
     triangle: u32,
     rank: u32,
     distance: f64,
-    /// Where the refresh keeps its planes while it sorts.
-    place: u32,
 }
 
 impl Candidate {
@@ -79,83 +78,6 @@ impl Candidate {
     fn before(&self, other: &Candidate) -> bool {
         self.distance < other.distance
             || (self.distance == other.distance && self.rank < other.rank)
-    }
-}
-
-/// Planes that bound a triangle from outside: its own (unit normal, offset) and, in it,
-/// the outward unit normals and offsets of its three edges. A point at height h above the
-/// plane and g_k beyond edge k lies at least √(h² + max(0, max_k g_k)²) from the
-/// triangle (the distance splits into the plane's normal and in-plane parts, and the
-/// in-plane part is at least the distance to any of the edges' half-planes); for a
-/// segment, h and g_k are linear along it, so their smaller end values bound it
-/// (h only if both ends lie on one side). Made once per candidate at a refresh; a
-/// degenerate triangle gets zero planes and bounds nothing.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-struct Planes {
-    normal: DVec3,
-    offset: f64,
-    edge_normal: [DVec3; 3],
-    edge_offset: [f64; 3],
-}
-
-impl Planes {
-    fn new(tri: &Triangle) -> Planes {
-        let n = (tri.b - tri.a).cross(tri.c - tri.a);
-        let len = n.length();
-        if !len.is_normal() {
-            return Planes::default();
-        }
-        let normal = n / len;
-        let mut planes = Planes {
-            normal,
-            offset: normal.dot(tri.a),
-            ..Planes::default()
-        };
-        for (k, (v0, v1)) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)]
-            .into_iter()
-            .enumerate()
-        {
-            // counter-clockwise about the normal: the outside lies to the edge's right
-            let m = (v1 - v0).cross(normal);
-            let len = m.length();
-            if len.is_normal() {
-                planes.edge_normal[k] = m / len;
-                planes.edge_offset[k] = planes.edge_normal[k].dot(v0);
-            }
-        }
-        planes
-    }
-
-    /// A lower bound on the squared distance from segment [a, b] (a point if a = b) to
-    /// the triangle, up to rounding (see [`SLACK`]).
-    #[inline(always)]
-    fn lower_bound_squared(&self, a: DVec3, b: DVec3) -> f64 {
-        let (ha, hb) = (
-            self.normal.dot(a) - self.offset,
-            self.normal.dot(b) - self.offset,
-        );
-        // plain comparisons (no NaN handling: the planes are finite)
-        let h = if ha * hb > 0.0 {
-            let (ha, hb) = (ha.abs(), hb.abs());
-            if ha < hb {
-                ha
-            } else {
-                hb
-            }
-        } else {
-            0.0
-        };
-        let mut g = 0.0f64;
-        for k in 0..3 {
-            let m = self.edge_normal[k];
-            let o = self.edge_offset[k];
-            let (ga, gb) = (m.dot(a) - o, m.dot(b) - o);
-            let gk = if ga < gb { ga } else { gb };
-            if gk > g {
-                g = gk;
-            }
-        }
-        h * h + g * g
     }
 }
 
@@ -219,8 +141,6 @@ pub struct CandidateCache {
     items: Vec<Candidate>,
     /// The bounding planes of each entry's triangle (same places as `items`).
     planes: Vec<Planes>,
-    /// A refresh's planes while it sorts (`SLOT_CAPACITY` entries).
-    found: Vec<Planes>,
     /// Per searcher of each slot (`SEARCHERS` per slot): the slot's end points when it
     /// last searched, and the path its end points travelled since the slot's refresh
     /// (the sum of the larger end-point displacement of each search).
@@ -306,7 +226,6 @@ impl CandidateCache {
             cutoff: vec![f64::INFINITY; slots],
             items: vec![Candidate::default(); slots * SLOT_CAPACITY],
             planes: vec![Planes::default(); slots * SLOT_CAPACITY],
-            found: vec![Planes::default(); SLOT_CAPACITY],
             seen_a: vec![DVec3::ZERO; slots * SEARCHERS],
             seen_b: vec![DVec3::ZERO; slots * SEARCHERS],
             travel: vec![0.0; slots * SEARCHERS],
@@ -347,23 +266,21 @@ impl CandidateCache {
         let query = grown_box(a, b, keep);
         let (mut n, mut cutoff, mut rank) = (0usize, f64::INFINITY, 0u32);
         let items = &mut self.items[base..base + SLOT_CAPACITY];
-        let found = &mut self.found;
-        env.for_each_triangle_index_near(&query, |part, triangle, tri| {
+        env.for_each_triangle_index_near(&query, |part, triangle, _| {
             let this_rank = rank;
             rank += 1;
-            let planes = Planes::new(tri);
+            let planes = &env.parts[part].planes[triangle as usize];
             let bound_squared = planes.lower_bound_squared(a, b);
             if bound_squared > keep * keep {
                 return;
             }
             // the planes' lower bound stands in for the distance (see `Candidate`)
             let distance = bound_squared.sqrt();
-            let mut c = Candidate {
+            let c = Candidate {
                 part: part as u32,
                 triangle,
                 rank: this_rank,
                 distance,
-                place: n as u32,
             };
             // insertion into the sorted list of the nearest SLOT_CAPACITY
             if n == SLOT_CAPACITY {
@@ -373,9 +290,7 @@ impl CandidateCache {
                 }
                 cutoff = cutoff.min(items[n - 1].distance);
                 n -= 1;
-                c.place = items[n].place; // the dropped one's planes make room
             }
-            found[c.place as usize] = planes;
             let mut k = n;
             while k > 0 && c.before(&items[k - 1]) {
                 items[k] = items[k - 1];
@@ -385,7 +300,8 @@ impl CandidateCache {
             n += 1;
         });
         for k in 0..n {
-            self.planes[base + k] = self.found[self.items[base + k].place as usize];
+            let c = &self.items[base + k];
+            self.planes[base + k] = env.parts[c.part as usize].planes[c.triangle as usize];
         }
         self.len[slot] = n as u32;
         self.cutoff[slot] = cutoff;
