@@ -6,8 +6,7 @@
 //! A slot's query is a segment [a, b] (a beam; a = b would be a point) with a contact
 //! reach ρ. On a
 //! refresh every triangle whose box meets the segment's box grown by ρ + m is examined,
-//! and those whose distance to the segment may be at most ρ + m (by the lower bound of
-//! their [`Planes`]) are kept, in the environment's
+//! and those whose distance to the segment is at most ρ + m are kept, in the environment's
 //! own order (parts in order, each part's BVH depth-first). The distance from a segment to
 //! a fixed set is 1-Lipschitz in the largest end-point displacement (each point
 //! (1−t)a + tb moves by at most max(|Δa|, |Δb|)), so while both end points stay within m
@@ -23,7 +22,7 @@
 //! Where they are now: each kept triangle carries its [`Planes`] (unit normal and the
 //! three in-plane edge normals, made at the refresh), whose lower bound on the distance
 //! from the searcher's current point or segment rejects most candidates for ≈ 40 flops
-//! before the exact test. That lets the margin be small (ρ/8): the Lipschitz slack
+//! before the exact test. That lets the margin be small (ρ/16): the Lipschitz slack
 //! between refreshes stays tight, and the refreshes stay cheap.
 //!
 //! Nearest first, and only as far as needed: a refresh keeps the slot's candidates sorted
@@ -40,32 +39,32 @@
 //! while the search's bound stays below the cutoff less the displacement, the dropped
 //! ones cannot matter, else the slot is searched by a fresh query (still exact, slower).
 
+use super::closest_segment_triangle;
 use super::environment::RigidEnvironment;
 use super::planes::Planes;
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
+use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::Triangle;
 
 /// Candidates kept per slot.
 pub const SLOT_CAPACITY: usize = 48;
-/// Margin m as a fraction of the reach ρ: a slot is refreshed after moving ρ/8 (a
+/// Margin m as a fraction of the reach ρ: a slot is refreshed after moving ρ/16 (a
 /// truncated list sooner, an empty one later, see [`CandidateCache::refresh`]). With the
-/// per-step [`Planes`] bounds and the planes made once per triangle (cheap refreshes),
-/// ρ/8 cost 3.5 % fewer instructions than ρ/16 on the bench's floor, ≈ 1 % fewer than
-/// 3ρ/32, and ρ/4 4.6 % more (more lists truncated).
-pub const MARGIN: f64 = 0.125;
+/// per-step [`Planes`] bounds, ρ/16 cost fewer instructions than ρ/8 or ρ/32 on the
+/// bench's floor, and ρ/4 (the margin before them) 15 % more; with the planes made once
+/// per triangle, ρ/8 costs 3.6 % fewer while hoses fall but 3.6 % more at rest.
+pub const MARGIN: f64 = 0.0625;
 /// How far (in reaches) a slot with no candidates looks for the nearest triangle, to
 /// know how far it may move before its next refresh.
 pub const FAR: f64 = 4.0;
 /// Relative slack on distances for rounding (the kept test errs towards keeping).
 const SLACK: f64 = 1e-9;
 
-/// One triangle of one part, its rank in the environment's order, and a lower bound on
-/// its distance from the slot's segment at the refresh: its [`Planes`] bound, not the
-/// exact distance (whose closest-point test cost a refresh most of its time). Every use
-/// of `distance` — the kept test, the nearest-first order and its early stop, the
-/// cutoff, the searchers' first bounds — needs only a lower bound, so the contacts found
-/// stay those of a fresh query to the last bit; a list may keep a few more triangles.
+/// One triangle of one part, its rank in the environment's order, and its distance from
+/// the slot's segment at the refresh. (The planes' lower bound would do in its place and
+/// save the refresh its exact tests, but the looser first bounds cost the searches more:
+/// +14 % instructions with hoses at rest on the bench's floor.)
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Candidate {
     part: u32,
@@ -202,6 +201,15 @@ pub(crate) fn edges_beyond(a: DVec3, b: DVec3, tri: &Triangle, bound: f64) -> bo
         })
 }
 
+/// Distance from segment [a, b] (a point if a = b) to `tri`.
+fn segment_distance(a: DVec3, b: DVec3, tri: &Triangle) -> f64 {
+    if a == b {
+        (tri.project_local_point(a, false).point - a).length()
+    } else {
+        closest_segment_triangle(a, b, tri).distance
+    }
+}
+
 /// The box of segment [a, b] grown by `grow` on every side.
 fn grown_box(a: DVec3, b: DVec3, grow: f64) -> Aabb {
     let grow = DVec3::splat(grow);
@@ -269,16 +277,17 @@ impl CandidateCache {
         let query = grown_box(a, b, keep);
         let (mut n, mut cutoff, mut rank) = (0usize, f64::INFINITY, 0u32);
         let items = &mut self.items[base..base + SLOT_CAPACITY];
-        env.for_each_triangle_index_near(&query, |part, triangle, _| {
+        env.for_each_triangle_index_near(&query, |part, triangle, tri| {
             let this_rank = rank;
             rank += 1;
             let planes = &env.parts[part].planes[triangle as usize];
-            let bound_squared = planes.lower_bound_squared(a, b);
-            if bound_squared > keep * keep {
+            if planes.lower_bound_squared(a, b) > keep * keep {
                 return;
             }
-            // the planes' lower bound stands in for the distance (see `Candidate`)
-            let distance = bound_squared.sqrt();
+            let distance = segment_distance(a, b, tri);
+            if distance > keep {
+                return;
+            }
             let c = Candidate {
                 part: part as u32,
                 triangle,
@@ -473,7 +482,6 @@ impl CandidateCache {
 mod tests {
     use super::*;
     use crate::spec::RigidPartSpec;
-    use parry3d_f64::query::PointQuery;
 
     /// A prism of `n` facets around the y axis, radius 50 mm, 0.4 m long.
     fn fine_cylinder(n: usize) -> RigidEnvironment {
