@@ -41,6 +41,7 @@
 
 use super::closest_segment_triangle;
 use super::environment::RigidEnvironment;
+use super::planes::Planes;
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
 use parry3d_f64::query::PointQuery;
@@ -51,7 +52,8 @@ pub const SLOT_CAPACITY: usize = 48;
 /// Margin m as a fraction of the reach ρ: a slot is refreshed after moving ρ/16 (a
 /// truncated list sooner, an empty one later, see [`CandidateCache::refresh`]). With the
 /// per-step [`Planes`] bounds, ρ/16 cost fewer instructions than ρ/8 or ρ/32 on the
-/// bench's floor, and ρ/4 (the margin before them) 15 % more.
+/// bench's floor, and ρ/4 (the margin before them) 15 % more; with the planes made once
+/// per triangle, ρ/8 costs 3.6 % fewer while hoses fall but 3.6 % more at rest.
 pub const MARGIN: f64 = 0.0625;
 /// How far (in reaches) a slot with no candidates looks for the nearest triangle, to
 /// know how far it may move before its next refresh.
@@ -60,15 +62,15 @@ pub const FAR: f64 = 4.0;
 const SLACK: f64 = 1e-9;
 
 /// One triangle of one part, its rank in the environment's order, and its distance from
-/// the slot's segment at the refresh.
+/// the slot's segment at the refresh. (The planes' lower bound would do in its place and
+/// save the refresh its exact tests, but the looser first bounds cost the searches more:
+/// +14 % instructions with hoses at rest on the bench's floor.)
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Candidate {
     part: u32,
     triangle: u32,
     rank: u32,
     distance: f64,
-    /// Where the refresh keeps its planes while it sorts.
-    place: u32,
 }
 
 impl Candidate {
@@ -76,83 +78,6 @@ impl Candidate {
     fn before(&self, other: &Candidate) -> bool {
         self.distance < other.distance
             || (self.distance == other.distance && self.rank < other.rank)
-    }
-}
-
-/// Planes that bound a triangle from outside: its own (unit normal, offset) and, in it,
-/// the outward unit normals and offsets of its three edges. A point at height h above the
-/// plane and g_k beyond edge k lies at least √(h² + max(0, max_k g_k)²) from the
-/// triangle (the distance splits into the plane's normal and in-plane parts, and the
-/// in-plane part is at least the distance to any of the edges' half-planes); for a
-/// segment, h and g_k are linear along it, so their smaller end values bound it
-/// (h only if both ends lie on one side). Made once per candidate at a refresh; a
-/// degenerate triangle gets zero planes and bounds nothing.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-struct Planes {
-    normal: DVec3,
-    offset: f64,
-    edge_normal: [DVec3; 3],
-    edge_offset: [f64; 3],
-}
-
-impl Planes {
-    fn new(tri: &Triangle) -> Planes {
-        let n = (tri.b - tri.a).cross(tri.c - tri.a);
-        let len = n.length();
-        if !len.is_normal() {
-            return Planes::default();
-        }
-        let normal = n / len;
-        let mut planes = Planes {
-            normal,
-            offset: normal.dot(tri.a),
-            ..Planes::default()
-        };
-        for (k, (v0, v1)) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)]
-            .into_iter()
-            .enumerate()
-        {
-            // counter-clockwise about the normal: the outside lies to the edge's right
-            let m = (v1 - v0).cross(normal);
-            let len = m.length();
-            if len.is_normal() {
-                planes.edge_normal[k] = m / len;
-                planes.edge_offset[k] = planes.edge_normal[k].dot(v0);
-            }
-        }
-        planes
-    }
-
-    /// A lower bound on the squared distance from segment [a, b] (a point if a = b) to
-    /// the triangle, up to rounding (see [`SLACK`]).
-    #[inline(always)]
-    fn lower_bound_squared(&self, a: DVec3, b: DVec3) -> f64 {
-        let (ha, hb) = (
-            self.normal.dot(a) - self.offset,
-            self.normal.dot(b) - self.offset,
-        );
-        // plain comparisons (no NaN handling: the planes are finite)
-        let h = if ha * hb > 0.0 {
-            let (ha, hb) = (ha.abs(), hb.abs());
-            if ha < hb {
-                ha
-            } else {
-                hb
-            }
-        } else {
-            0.0
-        };
-        let mut g = 0.0f64;
-        for k in 0..3 {
-            let m = self.edge_normal[k];
-            let o = self.edge_offset[k];
-            let (ga, gb) = (m.dot(a) - o, m.dot(b) - o);
-            let gk = if ga < gb { ga } else { gb };
-            if gk > g {
-                g = gk;
-            }
-        }
-        h * h + g * g
     }
 }
 
@@ -216,8 +141,6 @@ pub struct CandidateCache {
     items: Vec<Candidate>,
     /// The bounding planes of each entry's triangle (same places as `items`).
     planes: Vec<Planes>,
-    /// A refresh's planes while it sorts (`SLOT_CAPACITY` entries).
-    found: Vec<Planes>,
     /// Per searcher of each slot (`SEARCHERS` per slot): the slot's end points when it
     /// last searched, and the path its end points travelled since the slot's refresh
     /// (the sum of the larger end-point displacement of each search).
@@ -312,7 +235,6 @@ impl CandidateCache {
             cutoff: vec![f64::INFINITY; slots],
             items: vec![Candidate::default(); slots * SLOT_CAPACITY],
             planes: vec![Planes::default(); slots * SLOT_CAPACITY],
-            found: vec![Planes::default(); SLOT_CAPACITY],
             seen_a: vec![DVec3::ZERO; slots * SEARCHERS],
             seen_b: vec![DVec3::ZERO; slots * SEARCHERS],
             travel: vec![0.0; slots * SEARCHERS],
@@ -340,8 +262,10 @@ impl CandidateCache {
         // A slot that found nothing last time likely finds nothing again: the nearest
         // box first, and if it lies beyond `keep` (with room for rounding) no triangle
         // can be kept, and the box query is skipped.
+        let mut nearest_box = None;
         if self.len[slot] == 0 && self.anchor_a[slot].is_finite() {
             let nearest = env.nearest_box(a, b, FAR * reach);
+            nearest_box = Some(nearest); // the same if the list stays empty below
             if nearest > keep * (1.0 + SLACK) {
                 self.len[slot] = 0;
                 self.cutoff[slot] = f64::INFINITY;
@@ -353,11 +277,10 @@ impl CandidateCache {
         let query = grown_box(a, b, keep);
         let (mut n, mut cutoff, mut rank) = (0usize, f64::INFINITY, 0u32);
         let items = &mut self.items[base..base + SLOT_CAPACITY];
-        let found = &mut self.found;
         env.for_each_triangle_index_near(&query, |part, triangle, tri| {
             let this_rank = rank;
             rank += 1;
-            let planes = Planes::new(tri);
+            let planes = &env.parts[part].planes[triangle as usize];
             if planes.lower_bound_squared(a, b) > keep * keep {
                 return;
             }
@@ -365,12 +288,11 @@ impl CandidateCache {
             if distance > keep {
                 return;
             }
-            let mut c = Candidate {
+            let c = Candidate {
                 part: part as u32,
                 triangle,
                 rank: this_rank,
                 distance,
-                place: n as u32,
             };
             // insertion into the sorted list of the nearest SLOT_CAPACITY
             if n == SLOT_CAPACITY {
@@ -380,9 +302,7 @@ impl CandidateCache {
                 }
                 cutoff = cutoff.min(items[n - 1].distance);
                 n -= 1;
-                c.place = items[n].place; // the dropped one's planes make room
             }
-            found[c.place as usize] = planes;
             let mut k = n;
             while k > 0 && c.before(&items[k - 1]) {
                 items[k] = items[k - 1];
@@ -392,7 +312,8 @@ impl CandidateCache {
             n += 1;
         });
         for k in 0..n {
-            self.planes[base + k] = self.found[self.items[base + k].place as usize];
+            let c = &self.items[base + k];
+            self.planes[base + k] = env.parts[c.part as usize].planes[c.triangle as usize];
         }
         self.len[slot] = n as u32;
         self.cutoff[slot] = cutoff;
@@ -403,7 +324,8 @@ impl CandidateCache {
             (MARGIN * reach).min(0.5 * (cutoff - self.items[base].distance))
         } else if n == 0 {
             // every triangle lies beyond `keep`, and beyond its box's distance
-            Self::empty_margin(env.nearest_box(a, b, FAR * reach), keep, reach)
+            let nearest = nearest_box.unwrap_or_else(|| env.nearest_box(a, b, FAR * reach));
+            Self::empty_margin(nearest, keep, reach)
         } else {
             MARGIN * reach
         };
@@ -437,18 +359,20 @@ impl CandidateCache {
         (nearest.max(keep) / (1.0 + SLACK) - reach).max(MARGIN * reach)
     }
 
+    /// Forgets every list if the environment is not the one they were made for; once a
+    /// step, before [`Self::is_clear`].
+    pub(crate) fn follow(&mut self, env: &RigidEnvironment) {
+        if self.environment_key != environment_key(env) {
+            self.environment_key = environment_key(env);
+            self.clear();
+        }
+    }
+
     /// True if [`Self::scan`] of `slot` at [a, b] would offer nothing without a look at
     /// the list: the list is empty, nothing was dropped, and the slot has not moved past
-    /// its margin (no triangle can be within reach) — most slots, checked before a search
-    /// is set up.
-    pub(crate) fn is_clear(
-        &self,
-        env: &RigidEnvironment,
-        slot: usize,
-        a: DVec3,
-        b: DVec3,
-        reach: f64,
-    ) -> bool {
+    /// its margin (no triangle can be within reach) — most slots, checked once a step per
+    /// beam (after [`Self::follow`]) before a search is set up.
+    pub(crate) fn is_clear(&self, slot: usize, a: DVec3, b: DVec3, reach: f64) -> bool {
         if !self.enabled || slot >= self.len.len() || self.len[slot] != 0 {
             return false;
         }
@@ -456,10 +380,7 @@ impl CandidateCache {
         let moved = (a - self.anchor_a[slot])
             .length_squared()
             .max((b - self.anchor_b[slot]).length_squared());
-        moved < m * m
-            && self.reach[slot] == reach
-            && self.cutoff[slot] == f64::INFINITY
-            && self.environment_key == environment_key(env)
+        moved < m * m && self.reach[slot] == reach && self.cutoff[slot] == f64::INFINITY
     }
 
     /// Offers `search` the triangles whose box meets `query` and which may lie within its
@@ -498,10 +419,7 @@ impl CandidateCache {
         if !self.enabled || slot >= self.len.len() {
             return scan_fresh(env, query, search);
         }
-        if self.environment_key != environment_key(env) {
-            self.environment_key = environment_key(env);
-            self.clear();
-        }
+        self.follow(env);
         let m = self.margin[slot];
         let mut moved = (a - self.anchor_a[slot])
             .length_squared()

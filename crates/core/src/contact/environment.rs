@@ -2,6 +2,7 @@
 //! per part, built once with the model.
 
 use super::coherence::{scan_fresh, Nearest};
+use super::planes::Planes;
 use crate::spec::RigidPartSpec;
 use glam::DVec3;
 use parry3d_f64::bounding_volume::{Aabb, BoundingVolume};
@@ -15,6 +16,8 @@ pub struct RigidPart {
     pub mesh: TriMesh,
     pub friction_static: f64,
     pub friction_sliding: f64,
+    /// The bounding planes of each triangle of `mesh` (in its order), made once.
+    pub(crate) planes: Vec<Planes>,
 }
 
 /// All rigid parts of a model.
@@ -55,8 +58,12 @@ impl RigidEnvironment {
             }
             let mesh = TriMesh::new(s.vertices.clone(), s.triangles.clone())
                 .map_err(|e| format!("rigid part '{}': {e:?}", s.name))?;
+            let planes = (0..mesh.indices().len() as u32)
+                .map(|i| Planes::new(&mesh.triangle(i)))
+                .collect();
             parts.push(RigidPart {
                 name: s.name.clone(),
+                planes,
                 mesh,
                 friction_static: s.friction_static,
                 friction_sliding: s.friction_sliding,

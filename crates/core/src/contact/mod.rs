@@ -17,6 +17,7 @@ mod environment;
 pub mod friction;
 pub mod hose_hose;
 mod penalty;
+mod planes;
 mod rigid;
 mod segment_triangle;
 pub mod sweep;

@@ -71,6 +71,9 @@ pub struct ContactScratch {
     pub candidates: CandidateCache,
     /// The beam whose list each node searches (`u32::MAX`: none, a fresh query).
     node_beam: Vec<u32>,
+    /// Per beam, this step: no triangle within reach ([`CandidateCache::is_clear`],
+    /// asked once and read by the beam and its nodes).
+    beam_clear: Vec<bool>,
 }
 
 impl ContactScratch {
@@ -82,6 +85,7 @@ impl ContactScratch {
             element_normal: vec![DVec3::ZERO; elements],
             candidates: CandidateCache::new(elements, &model.environment),
             node_beam: node_beams(model),
+            beam_clear: vec![false; elements],
         }
     }
 }
@@ -210,18 +214,17 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     let env = &model.environment;
     let contact = &mut state.contact;
     contact.points.clear();
+    contact.candidates.follow(env);
+    for (e, el) in model.elements.iter().enumerate() {
+        let (xa, xb) = (state.x[el.node_a], state.x[el.node_b]);
+        contact.beam_clear[e] = contact.candidates.is_clear(e, xa, xb, beam_reach(model, e));
+    }
     let nodes = state.x.len();
     for i in 0..nodes {
         let e = contact.node_beam[i] as usize;
-        if let Some(el) = model.elements.get(e) {
-            let (xa, xb) = (state.x[el.node_a], state.x[el.node_b]);
-            if contact
-                .candidates
-                .is_clear(env, e, xa, xb, beam_reach(model, e))
-            {
-                contact.node_normal[i] = DVec3::ZERO;
-                continue; // no triangle within reach of its beam
-            }
+        if contact.beam_clear.get(e) == Some(&true) {
+            contact.node_normal[i] = DVec3::ZERO;
+            continue; // no triangle within reach of its beam
         }
         let r = model.radius[i];
         let reach = r * (1.0 + SKIN);
@@ -278,7 +281,7 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         }
         let reach = beam_reach(model, e);
         let (xa, xb) = (state.x[a], state.x[b]);
-        if contact.candidates.is_clear(env, e, xa, xb, reach) {
+        if contact.beam_clear[e] {
             contact.element_normal[e] = DVec3::ZERO;
             continue; // no triangle within reach
         }
