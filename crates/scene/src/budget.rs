@@ -8,7 +8,8 @@
 //! slope over 10 000 → 50 000 elements and 0.33 → 1.3 million sphere triangles):
 //! explicit ≈ 1.4 kB per element, implicit and static ≈ 3.7 kB (Newton's banded
 //! matrices); ≈ 380 B per triangle (the mesh, its contact copy and bounding-volume
-//! tree). The estimate takes the larger element size, as the solver may be changed
+//! tree), plus the 128 B of its bounding planes for contact (`contact/planes.rs`, made
+//! once per triangle since 2026-11-27; added by size, not re-measured). The estimate takes the larger element size, as the solver may be changed
 //! after loading (`--solver`, the viewer).
 
 use crate::error::FieldError;
@@ -16,7 +17,7 @@ use crate::error::FieldError;
 /// Memory a run needs per beam element [bytes] (measured, see the module doc; rounded up).
 pub const BYTES_PER_ELEMENT: u64 = 4096;
 /// Memory a run needs per rigid-part triangle [bytes] (measured, rounded up).
-pub const BYTES_PER_TRIANGLE: u64 = 400;
+pub const BYTES_PER_TRIANGLE: u64 = 512;
 /// Memory of a run with an empty scene [bytes] (program, library, buffers).
 pub const BASE_BYTES: u64 = 16 * 1024 * 1024;
 /// Default memory limit of a scene [bytes]: 4 GiB.
