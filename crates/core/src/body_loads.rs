@@ -170,9 +170,7 @@ mod tests {
                 };
                 f(b, nodes);
                 let bits = |a: &[DVec3]| -> Vec<[u64; 3]> {
-                    a.iter()
-                        .map(|p| p.to_array().map(f64::to_bits))
-                        .collect()
+                    a.iter().map(|p| p.to_array().map(f64::to_bits)).collect()
                 };
                 (bits(&force), bits(&moment))
             };

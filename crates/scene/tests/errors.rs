@@ -331,9 +331,12 @@ fn empty_hose_list_is_rejected() {
 #[test]
 fn a_time_step_safety_too_large_for_supports_is_warned_about() {
     let load = |safety: &str| {
-        load_scene_str(&BASE.replace("time_step_safety = 0.5", safety), "safety.toml")
-            .expect("a valid scene")
-            .warnings
+        load_scene_str(
+            &BASE.replace("time_step_safety = 0.5", safety),
+            "safety.toml",
+        )
+        .expect("a valid scene")
+        .warnings
     };
     assert!(load("time_step_safety = 0.5").is_empty());
     assert!(load("time_step_safety = 0.64").is_empty());
