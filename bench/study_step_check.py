@@ -50,7 +50,9 @@ def main():
             continue
         x, y = np.array(pairs, float).T
         rel = np.abs(y - x) / np.maximum(np.abs(x), 1e-12)
-        print(f"  {col:40s} relative difference: median {np.median(rel):.2e}, max {rel.max():.2e}")
+        w = int(np.argmax(rel))
+        print(f"  {col:40s} relative difference: median {np.median(rel):.2e}, max {rel.max():.2e} "
+              f"(variant {w}: {y[w]:.6g} against {x[w]:.6g})")
 
 
 if __name__ == "__main__":
