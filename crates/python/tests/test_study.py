@@ -628,7 +628,7 @@ def test_batches_of_runs_give_the_same_rows_and_envelope(done, client, scene_pat
     assert batched.frame[cols].equals(done.frame[cols])
     same = [np.load(os.path.join(r.out, "envelope", "voxels-h.npy")) for r in (done, batched)]
     assert len(same[0]) > 0 and np.array_equal(same[0], same[1])
-    assert batch_size(24, 2) == 1 and batch_size(10_000, 2) == 16 and batch_size(300, 2, 3) == 3
+    assert batch_size(24, 2) == 1 and batch_size(10_000, 2) == 32 and batch_size(300, 2, 3) == 3
     with pytest.raises(StudyError, match="batch = 0"):
         batch_size(10, 2, 0)
 

@@ -29,7 +29,7 @@ from .spec import Study, StudyError, load_study
 
 FLUSH_ROWS = 50  # a part is written after this many rows or seconds
 FLUSH_SECONDS = 10.0
-MAX_BATCH = 16  # runs per Dask task at most
+MAX_BATCH = 32  # runs per Dask task at most
 
 
 def batch_size(pending: int, workers: int, batch: Optional[int] = None) -> int:
@@ -259,7 +259,8 @@ def run_study(
     def task(i: int) -> Task:
         scene = variant.apply(study, samples[i])
         path = os.path.join(layout.runs, ids[i] + ".json")
-        text = json.dumps(variant.relative_meshes(scene, layout.runs), indent=1)
+        # compact: the C encoder (with an indent json encodes in Python, ~6 ms a run)
+        text = json.dumps(variant.relative_meshes(scene, layout.runs))
         if not os.path.exists(path):
             _atomic_write(path, lambda p: open(p, "w").write(text))
         solver = scene.get("simulation", {}).get("solver", "explicit")

@@ -20,8 +20,8 @@ How each kind acts (values are SI; the scene's ``length_unit`` is respected):
 
 from __future__ import annotations
 
-import copy
 import math
+import pickle
 import os
 import re
 from functools import lru_cache
@@ -52,9 +52,16 @@ def length_factor(scene: Dict[str, Any]) -> float:
     return UNITS_M.get(scene.get("length_unit", "m"), 1.0)
 
 
+def plain_copy(scene: Dict[str, Any]) -> Dict[str, Any]:
+    """A deep copy of a scene — plain data from TOML or JSON: dicts, lists, strings,
+    numbers — by a pickle round trip, ~10× faster than ``copy.deepcopy`` (a study's driver
+    copies the scene twice per run while the workers wait for tasks)."""
+    return pickle.loads(pickle.dumps(scene, protocol=pickle.HIGHEST_PROTOCOL))
+
+
 def absolute_meshes(scene: Dict[str, Any], scene_dir: str) -> Dict[str, Any]:
     """A copy of the scene whose relative mesh paths are made absolute."""
-    scene = copy.deepcopy(scene)
+    scene = plain_copy(scene)
     for part in scene.get("parts", []):
         mesh = part.get("mesh")
         if isinstance(mesh, str) and not os.path.isabs(mesh):
@@ -64,7 +71,7 @@ def absolute_meshes(scene: Dict[str, Any], scene_dir: str) -> Dict[str, Any]:
 
 def relative_meshes(scene: Dict[str, Any], folder: str) -> Dict[str, Any]:
     """A copy of the scene whose mesh paths are relative to ``folder`` (where it is saved)."""
-    scene = copy.deepcopy(scene)
+    scene = plain_copy(scene)
     for part in scene.get("parts", []):
         mesh = part.get("mesh")
         if isinstance(mesh, str) and os.path.isabs(mesh):
