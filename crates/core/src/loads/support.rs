@@ -40,8 +40,6 @@ pub const SUPPORT_DAMPING: f64 = 0.5;
 /// The largest explicit time-step safety factor with which supports stay stable: the hose's
 /// own frequencies reach ω Δt = 2 · safety, a support adds √SUPPORT_FACTOR, and together
 /// they must stay below 2 (the module doc's bound): 1 − √SUPPORT_FACTOR / 2 ≈ 0.65.
-/// (Measured on the engine-bay study: peaks after a release 22 % off at 0.7 in 2 of 48
-/// variants, none at 0.5.)
 pub fn largest_safety_with_supports() -> f64 {
     1.0 - 0.5 * SUPPORT_FACTOR.sqrt()
 }
