@@ -70,6 +70,19 @@ fn static_tip_load_matches_the_elastica() {
     assert!((w - 0.493457).abs() < 0.005 * 0.493457, "w/L = {w}");
     // the support carries the load
     assert!((state.reaction_force[0].y - 2.0 * ei).abs() < 1e-6 * ei);
+    // an ordinary hose's round-off floor lies below a tenth of the limit (1/75–1/20 of it
+    // here, under a light tip load of 0.07 N on an axially stiff hose): the floor only
+    // excuses stiff nodes (a_stiff_section_far_from_the_origin_converges_to_the_same_shape)
+    let sys = &mut solver.system;
+    sys.assemble(&model, &mut state, 0.0);
+    for i in 1..=40 {
+        let (floor, _) = sys.noise_floor(&state, i);
+        assert!(
+            floor < 0.1 * report.force_limit,
+            "node {i}: floor {floor:e} N, limit {:e} N",
+            report.force_limit
+        );
+    }
 }
 
 /// A steel tube (E = 200 GPa) hanging under gravity at Δt = 10 ms: every step converges
@@ -304,4 +317,65 @@ fn a_relaxation_that_stopped_moving_gives_up() {
     let (f, m) = pliant_core::settle::residual(&state);
     assert!(f < 1e-9 && m < 1e-9, "residual {f} N, {m} N·m");
     assert!(state.x[10].z < -0.5, "the tip hangs: {}", state.x[10]);
+}
+
+/// A hose with a stiffened section (stiffness × 10⁴ in Newton) hanging between two fixed
+/// ends, once at the origin and once 40 m away: both static solves converge to the same
+/// shape. Far out, coordinates of 40 m carry round-off of 40 m × 2⁻⁵³ ≈ 4e-15 m, which
+/// the stiff elements turn into residual forces above the relative limit (1e-8 of the
+/// largest element force) that no Newton step can remove; a node within that floor
+/// (`NewtonSystem::noise_floor`) counts as balanced. Before, the solve reported no
+/// convergence (the engine-bay demo under the static solver: "uncertain").
+#[test]
+fn a_stiff_section_far_from_the_origin_converges_to_the_same_shape() {
+    use pliant_core::stiffened::StiffenedSpan;
+    let (mat, sec) = hose1();
+    let n = 8;
+    let solve = |offset: DVec3| {
+        let nodes = (0..=n)
+            .map(|i| offset + DVec3::new(0.5 * i as f64 / n as f64, 0.0, 0.0))
+            .collect();
+        let model = Model::build(&WorldSpec {
+            hoses: vec![HoseSpec {
+                name: "h".into(),
+                material: mat.clone(),
+                nodes,
+                sections: vec![sec],
+                normal_hint: Some(DVec3::Y),
+            }],
+            rigid_parts: vec![],
+            settings: SimSettings {
+                gravity: DVec3::new(0.0, 0.0, -9.81),
+                ..Default::default()
+            },
+        })
+        .unwrap()
+        .with_stiffened_spans(&[StiffenedSpan {
+            hose: 0,
+            first: 3,
+            last: 5,
+        }])
+        .unwrap();
+        let mut state = State::at_rest(&model);
+        for node in [0, n] {
+            state.loads.add(LoadCase::Fix(Fix {
+                node,
+                position: state.x[node],
+                orientation: state.q[node],
+            }));
+        }
+        let mut solver = StaticSolver::new(&model).unwrap();
+        let report = solver.solve(&model, &mut state).unwrap();
+        let shape: Vec<DVec3> = state.x.iter().map(|x| *x - offset).collect();
+        (report, shape)
+    };
+    let (near, at_origin) = solve(DVec3::ZERO);
+    let (far, far_out) = solve(DVec3::new(40.0, -30.0, 20.0));
+    println!("{near:?}\n{far:?}");
+    assert!(near.converged && far.converged, "{near:?}\n{far:?}");
+    assert!(at_origin[4].z < -1e-3, "it sags: {}", at_origin[4].z);
+    for (a, b) in at_origin.iter().zip(&far_out) {
+        // 2.4e-15 m measured: the coordinates' own round-off at 40 m is 4e-15 m
+        assert!((*a - *b).length() < 1e-12, "{a} against {b}");
+    }
 }

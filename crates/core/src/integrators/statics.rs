@@ -158,7 +158,9 @@ impl StaticSolver {
                 return Err(StaticError::NonFinite(report.iterations));
             }
             let pending = sys.pending();
-            let mut balanced = !pending && self.options.tolerance.met(sys.scale, rf, rm);
+            // a node within its round-off floor is as balanced as it can be
+            let (above_f, above_m) = sys.residuals_above_noise(state);
+            let mut balanced = !pending && self.options.tolerance.met(sys.scale, above_f, above_m);
             let mut inertia = None;
             if !balanced && report.iterations < budget {
                 report.iterations += 1;
