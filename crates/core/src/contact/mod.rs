@@ -12,6 +12,7 @@
 //! spread along one axis, by sort and sweep ([`sweep`]) in the grid's order.
 
 pub mod broad_phase;
+mod clearance;
 pub mod coherence;
 mod environment;
 pub mod friction;
@@ -23,6 +24,7 @@ mod segment_triangle;
 pub mod sweep;
 
 pub use broad_phase::BroadPhase;
+pub use clearance::Clearance;
 pub use coherence::CandidateCache;
 pub use environment::{RigidEnvironment, RigidPart};
 pub use hose_hose::{

@@ -74,6 +74,12 @@ pub struct ContactScratch {
     /// Per beam, this step: no triangle within reach ([`CandidateCache::is_clear`],
     /// asked once and read by the beam and its nodes).
     beam_clear: Vec<bool>,
+    /// This step's beams not held at both ends and not clear, in order: the beams whose
+    /// interior is searched (capacity: every beam).
+    beams_near: Vec<u32>,
+    /// When the stiffened sections' nodes are clear of the parts ([`super::Clearance`],
+    /// read by the penalty contact).
+    pub(crate) clearance: super::Clearance,
 }
 
 impl ContactScratch {
@@ -86,6 +92,8 @@ impl ContactScratch {
             candidates: CandidateCache::new(elements, &model.environment),
             node_beam: node_beams(model),
             beam_clear: vec![false; elements],
+            beams_near: Vec::with_capacity(elements),
+            clearance: super::Clearance::new(nodes, &model.environment),
         }
     }
 }
@@ -215,9 +223,24 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     let contact = &mut state.contact;
     contact.points.clear();
     contact.candidates.follow(env);
+    // Most beams are clear: they are settled here (their interior is not in contact, and
+    // a beam not held at both ends forgets its normal), and the beam loop below visits
+    // only the others.
+    contact.beams_near.clear();
     for (e, el) in model.elements.iter().enumerate() {
-        let (xa, xb) = (state.x[el.node_a], state.x[el.node_b]);
-        contact.beam_clear[e] = contact.candidates.is_clear(e, xa, xb, beam_reach(model, e));
+        let (a, b) = (el.node_a, el.node_b);
+        let clear = contact
+            .candidates
+            .is_clear(e, state.x[a], state.x[b], beam_reach(model, e));
+        contact.beam_clear[e] = clear;
+        if state.held[a] && state.held[b] {
+            continue; // a beam held at both ends has no interior contact to find
+        }
+        if clear {
+            contact.element_normal[e] = DVec3::ZERO;
+        } else {
+            contact.beams_near.push(e as u32);
+        }
     }
     let nodes = state.x.len();
     for i in 0..nodes {
@@ -274,17 +297,11 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
             None => contact.node_normal[i] = DVec3::ZERO,
         }
     }
-    for (e, el) in model.elements.iter().enumerate() {
-        let (a, b) = (el.node_a, el.node_b);
-        if state.held[a] && state.held[b] {
-            continue;
-        }
+    for k in 0..contact.beams_near.len() {
+        let e = contact.beams_near[k] as usize;
+        let (a, b) = (model.elements[e].node_a, model.elements[e].node_b);
         let reach = beam_reach(model, e);
         let (xa, xb) = (state.x[a], state.x[b]);
-        if contact.beam_clear[e] {
-            contact.element_normal[e] = DVec3::ZERO;
-            continue; // no triangle within reach
-        }
         let r = model.radius[a].max(model.radius[b]);
         let aabb = Aabb::new(
             xa.min(xb) - DVec3::splat(reach),
