@@ -28,6 +28,7 @@
 use super::coherence::{edges_beyond, may_touch, scan_fresh, Nearest, Searcher};
 use super::environment::{cube, ClosestPoint};
 use crate::contact::{closest_segment_triangle_away_from_ends, CandidateCache};
+use crate::element::BeamElement;
 use crate::{Model, State};
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
@@ -116,7 +117,11 @@ fn node_beams(model: &Model) -> Vec<u32> {
 
 /// Reach of the capsule of beam `e`: its larger end radius plus the skin.
 fn beam_reach(model: &Model, e: usize) -> f64 {
-    let el = &model.elements[e];
+    reach_of(model, &model.elements[e])
+}
+
+/// [`beam_reach`] of beam `el`.
+fn reach_of(model: &Model, el: &BeamElement) -> f64 {
     model.radius[el.node_a].max(model.radius[el.node_b]) * (1.0 + SKIN)
 }
 
@@ -227,17 +232,17 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     // a beam not held at both ends forgets its normal), and the beam loop below visits
     // only the others.
     contact.beams_near.clear();
-    for (e, el) in model.elements.iter().enumerate() {
+    let beams = model.elements.iter().zip(&mut contact.beam_clear);
+    for (e, ((el, clear), normal)) in beams.zip(&mut contact.element_normal).enumerate() {
         let (a, b) = (el.node_a, el.node_b);
-        let clear = contact
+        *clear = contact
             .candidates
-            .is_clear(e, state.x[a], state.x[b], beam_reach(model, e));
-        contact.beam_clear[e] = clear;
+            .is_clear(e, state.x[a], state.x[b], reach_of(model, el));
         if state.held[a] && state.held[b] {
             continue; // a beam held at both ends has no interior contact to find
         }
-        if clear {
-            contact.element_normal[e] = DVec3::ZERO;
+        if *clear {
+            *normal = DVec3::ZERO;
         } else {
             contact.beams_near.push(e as u32);
         }
