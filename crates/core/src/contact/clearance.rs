@@ -73,3 +73,46 @@ impl Clearance {
         };
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spec::RigidPartSpec;
+
+    /// A point walking down onto a plate: whenever its memory calls it clear, a fresh
+    /// query within its reach finds nothing; the memory spares most of the queries above
+    /// the plate.
+    #[test]
+    fn a_point_taken_for_clear_finds_nothing() {
+        let env = RigidEnvironment::build(&[RigidPartSpec {
+            name: "plate".into(),
+            vertices: vec![
+                DVec3::new(-0.5, -0.5, 0.0),
+                DVec3::new(0.5, -0.5, 0.0),
+                DVec3::new(0.5, 0.5, 0.0),
+                DVec3::new(-0.5, 0.5, 0.0),
+            ],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            friction_static: 0.5,
+            friction_sliding: 0.5,
+        }])
+        .unwrap();
+        let reach = 0.01;
+        let mut memory = Clearance::new(1, &env);
+        let (mut clear, mut found) = (0, 0);
+        for k in 0..400 {
+            let s = k as f64 * 0.002;
+            let x = DVec3::new(0.3 * s.sin(), 0.2 * s.cos(), 0.06 - k as f64 * 1.5e-4);
+            let hit = env.closest_point(x, reach);
+            if memory.is_clear(0, x) {
+                assert!(hit.is_none(), "step {k}: taken for clear at {x:?}");
+                clear += 1;
+            } else if hit.is_none() {
+                memory.anchor(&env, 0, x, reach);
+            } else {
+                found += 1;
+            }
+        }
+        assert!(clear > 200 && found > 0, "{clear} clear, {found} found");
+    }
+}

@@ -72,12 +72,15 @@ pub struct ContactScratch {
     pub candidates: CandidateCache,
     /// The beam whose list each node searches (`u32::MAX`: none, a fresh query).
     node_beam: Vec<u32>,
-    /// Per beam, this step: no triangle within reach ([`CandidateCache::is_clear`],
+    /// Per beam, this step: no triangle within reach ([`CandidateCache::clear_slack`],
     /// asked once and read by the beam and its nodes).
     beam_clear: Vec<bool>,
     /// This step's beams not held at both ends and not clear, in order: the beams whose
     /// interior is searched (capacity: every beam).
     beams_near: Vec<u32>,
+    /// The beams that stay clear while the nodes stay near where they were
+    /// ([`super::ClearSkin`]).
+    skin: super::ClearSkin,
     /// When the stiffened sections' nodes are clear of the parts ([`super::Clearance`],
     /// read by the penalty contact).
     pub(crate) clearance: super::Clearance,
@@ -94,6 +97,7 @@ impl ContactScratch {
             node_beam: node_beams(model),
             beam_clear: vec![false; elements],
             beams_near: Vec::with_capacity(elements),
+            skin: super::ClearSkin::new(nodes, elements),
             clearance: super::Clearance::new(nodes, &model.environment),
         }
     }
@@ -232,12 +236,24 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     // a beam not held at both ends forgets its normal), and the beam loop below visits
     // only the others.
     contact.beams_near.clear();
+    // the beams clear at the last full pass are still clear while the skin holds
+    let skin = contact.skin.holds(&contact.candidates, &state.x);
+    if !skin {
+        contact.skin.begin(&contact.candidates, &state.x);
+    }
     let beams = model.elements.iter().zip(&mut contact.beam_clear);
     for (e, ((el, clear), normal)) in beams.zip(&mut contact.element_normal).enumerate() {
         let (a, b) = (el.node_a, el.node_b);
-        *clear = contact
-            .candidates
-            .is_clear(e, state.x[a], state.x[b], reach_of(model, el));
+        if !(skin && contact.skin.is_member(e)) {
+            let slack =
+                contact
+                    .candidates
+                    .clear_slack(e, state.x[a], state.x[b], reach_of(model, el));
+            *clear = slack.is_some();
+            if let (false, Some(slack)) = (skin, slack) {
+                contact.skin.add(e, slack);
+            }
+        }
         if state.held[a] && state.held[b] {
             continue; // a beam held at both ends has no interior contact to find
         }
@@ -246,6 +262,9 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         } else {
             contact.beams_near.push(e as u32);
         }
+    }
+    if !skin {
+        contact.skin.end();
     }
     let nodes = state.x.len();
     for i in 0..nodes {
