@@ -91,3 +91,78 @@ impl ClearSkin {
         };
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::coherence::Searcher;
+    use crate::contact::environment::{cube, ClosestPoint};
+    use crate::contact::RigidEnvironment;
+    use crate::spec::RigidPartSpec;
+
+    /// A beam walking down onto a plate, its list kept by the cache: whenever the skin
+    /// calls it clear, so does the cache's own test; the skin spares most of the tests.
+    #[test]
+    fn the_skin_says_what_the_clear_test_says() {
+        let env = RigidEnvironment::build(&[RigidPartSpec {
+            name: "plate".into(),
+            vertices: vec![
+                DVec3::new(-0.5, -0.5, 0.0),
+                DVec3::new(0.5, -0.5, 0.0),
+                DVec3::new(0.5, 0.5, 0.0),
+                DVec3::new(-0.5, 0.5, 0.0),
+            ],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            friction_static: 0.5,
+            friction_sliding: 0.5,
+        }])
+        .unwrap();
+        let reach = 0.01;
+        let mut cache = CandidateCache::new(1, &env);
+        let mut skin = ClearSkin::new(2, 1);
+        let (mut skipped, mut near) = (0, 0);
+        for k in 0..400 {
+            let s = k as f64 * 0.002;
+            let a = DVec3::new(0.3 * s.sin(), 0.2 * s.cos(), 0.06 - k as f64 * 1.5e-4);
+            let x = [a, a + DVec3::new(0.05, 0.0, 0.01)];
+            // the pass of `rigid::resolve_velocities` for one beam
+            let holds = skin.holds(&cache, &x);
+            if !holds {
+                skin.begin(&cache, &x);
+            }
+            let clear = if holds && skin.is_member(0) {
+                skipped += 1;
+                true
+            } else {
+                let slack = cache.clear_slack(0, x[0], x[1], reach);
+                if let (false, Some(slack)) = (holds, slack) {
+                    skin.add(0, slack);
+                }
+                slack.is_some()
+            };
+            if !holds {
+                skin.end();
+            }
+            let asked = cache.clear_slack(0, x[0], x[1], reach).is_some();
+            assert_eq!(clear, asked, "step {k}");
+            if !clear {
+                near += 1;
+                let mut search = ClosestPoint::new(a, reach);
+                let query = cube(a, reach);
+                let searcher = Searcher::StartNode;
+                cache.scan(
+                    &env,
+                    0,
+                    x[0],
+                    x[1],
+                    reach,
+                    searcher,
+                    [a, a],
+                    &query,
+                    &mut search,
+                );
+            }
+        }
+        assert!(skipped > 200 && near > 0, "{skipped} skipped, {near} near");
+    }
+}
