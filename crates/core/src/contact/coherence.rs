@@ -120,6 +120,28 @@ pub(crate) enum Searcher {
 /// Searchers per slot.
 const SEARCHERS: usize = 3;
 
+/// What [`CandidateCache::clear_slack`] reads of a slot, kept together (one bounds check
+/// and one cache line per beam and step): its anchors and reach, and the square of the
+/// margin if the slot keeps nothing and dropped nothing (−∞ otherwise, so that no
+/// displacement is below it). Written with the slot's fields in
+/// [`CandidateCache::anchor`] and [`CandidateCache::clear`].
+#[derive(Clone, Copy, Debug)]
+struct ClearTest {
+    anchor_a: DVec3,
+    anchor_b: DVec3,
+    reach: f64,
+    margin_squared: f64,
+}
+
+impl ClearTest {
+    const NEVER: ClearTest = ClearTest {
+        anchor_a: DVec3::INFINITY,
+        anchor_b: DVec3::INFINITY,
+        reach: 0.0,
+        margin_squared: f64::NEG_INFINITY,
+    };
+}
+
 /// Candidate triangles per slot (one slot per beam), allocated once.
 #[derive(Clone, Debug, Default)]
 pub struct CandidateCache {
@@ -137,6 +159,11 @@ pub struct CandidateCache {
     /// Refresh distance of the nearest triangle each slot dropped for want of room
     /// (∞: none dropped).
     cutoff: Vec<f64>,
+    /// Each slot's [`ClearTest`] (derived from the fields above).
+    clear_test: Vec<ClearTest>,
+    /// Counts the changes of any slot's anchors (refreshes and clears), so that a
+    /// [`super::ClearSkin`] knows the lists it saw.
+    generation: u64,
     /// `SLOT_CAPACITY` entries per slot.
     items: Vec<Candidate>,
     /// The bounding planes of each entry's triangle (same places as `items`).
@@ -161,7 +188,7 @@ pub struct CandidateCache {
     pub fresh_fallbacks: u64,
 }
 
-fn environment_key(env: &RigidEnvironment) -> (usize, usize) {
+pub(super) fn environment_key(env: &RigidEnvironment) -> (usize, usize) {
     let triangles = env.parts.iter().map(|p| p.mesh.indices().len()).sum();
     (env.parts.len(), triangles)
 }
@@ -233,6 +260,8 @@ impl CandidateCache {
             margin: vec![0.0; slots],
             len: vec![0; slots],
             cutoff: vec![f64::INFINITY; slots],
+            clear_test: vec![ClearTest::NEVER; slots],
+            generation: 0,
             items: vec![Candidate::default(); slots * SLOT_CAPACITY],
             planes: vec![Planes::default(); slots * SLOT_CAPACITY],
             seen_a: vec![DVec3::ZERO; slots * SEARCHERS],
@@ -250,6 +279,15 @@ impl CandidateCache {
     pub fn clear(&mut self) {
         self.anchor_a.fill(DVec3::INFINITY);
         self.anchor_b.fill(DVec3::INFINITY);
+        for t in &mut self.clear_test {
+            (t.anchor_a, t.anchor_b) = (DVec3::INFINITY, DVec3::INFINITY);
+        }
+        self.generation += 1;
+    }
+
+    /// Changes whenever any slot's anchors change ([`Self::clear`], refreshes).
+    pub(crate) fn generation(&self) -> u64 {
+        self.generation
     }
 
     /// Finds the slot's candidates anew around [a, b] (see the module doc), with their
@@ -340,8 +378,20 @@ impl CandidateCache {
         self.anchor_b[slot] = b;
         self.reach[slot] = reach;
         self.refreshes += 1;
+        self.generation += 1;
         let base = slot * SLOT_CAPACITY;
         let n = self.len[slot] as usize;
+        let m = self.margin[slot];
+        self.clear_test[slot] = ClearTest {
+            anchor_a: a,
+            anchor_b: b,
+            reach,
+            margin_squared: if n == 0 && self.cutoff[slot] == f64::INFINITY {
+                m * m
+            } else {
+                f64::NEG_INFINITY
+            },
+        };
         for s in slot * SEARCHERS..(slot + 1) * SEARCHERS {
             self.seen_a[s] = a;
             self.seen_b[s] = b;
@@ -360,7 +410,7 @@ impl CandidateCache {
     }
 
     /// Forgets every list if the environment is not the one they were made for; once a
-    /// step, before [`Self::is_clear`].
+    /// step, before [`Self::clear_slack`].
     pub(crate) fn follow(&mut self, env: &RigidEnvironment) {
         if self.environment_key != environment_key(env) {
             self.environment_key = environment_key(env);
@@ -368,19 +418,20 @@ impl CandidateCache {
         }
     }
 
-    /// True if [`Self::scan`] of `slot` at [a, b] would offer nothing without a look at
+    /// `Some` if [`Self::scan`] of `slot` at [a, b] would offer nothing without a look at
     /// the list: the list is empty, nothing was dropped, and the slot has not moved past
     /// its margin (no triangle can be within reach) — most slots, checked once a step per
-    /// beam (after [`Self::follow`]) before a search is set up.
-    pub(crate) fn is_clear(&self, slot: usize, a: DVec3, b: DVec3, reach: f64) -> bool {
-        if !self.enabled || slot >= self.len.len() || self.len[slot] != 0 {
-            return false;
-        }
-        let m = self.margin[slot];
-        let moved = (a - self.anchor_a[slot])
+    /// beam (after [`Self::follow`]) before a search is set up. The value is how much
+    /// farther (less relative slack for rounding) both end points may move before the
+    /// answer could change: the slot's margin less the larger end-point displacement
+    /// (for [`super::ClearSkin`]).
+    pub(crate) fn clear_slack(&self, slot: usize, a: DVec3, b: DVec3, reach: f64) -> Option<f64> {
+        let t = self.clear_test.get(slot).filter(|_| self.enabled)?;
+        let moved = (a - t.anchor_a)
             .length_squared()
-            .max((b - self.anchor_b[slot]).length_squared());
-        moved < m * m && self.reach[slot] == reach && self.cutoff[slot] == f64::INFINITY
+            .max((b - t.anchor_b).length_squared());
+        (moved < t.margin_squared && t.reach == reach)
+            .then(|| t.margin_squared.sqrt() * (1.0 - SLACK) - moved.sqrt() * (1.0 + SLACK))
     }
 
     /// Offers `search` the triangles whose box meets `query` and which may lie within its

@@ -12,6 +12,8 @@
 //! spread along one axis, by sort and sweep ([`sweep`]) in the grid's order.
 
 pub mod broad_phase;
+mod clear_skin;
+mod clearance;
 pub mod coherence;
 mod environment;
 pub mod friction;
@@ -23,6 +25,8 @@ mod segment_triangle;
 pub mod sweep;
 
 pub use broad_phase::BroadPhase;
+pub use clear_skin::ClearSkin;
+pub use clearance::Clearance;
 pub use coherence::CandidateCache;
 pub use environment::{RigidEnvironment, RigidPart};
 pub use hose_hose::{

@@ -13,12 +13,21 @@ use crate::{Model, State};
 
 /// Adds penalty contact forces on stiffened-section nodes to `state.force` and
 /// `state.contact_force`. Call after the body loads, before the bodies are stepped.
+/// A node known to be clear of the parts ([`super::Clearance`]) is not searched for.
 pub(crate) fn add_penalty_forces(model: &Model, state: &mut State) {
     let omega = model.time_step_report.max_frequency;
+    let env = &model.environment;
+    let clearance = &mut state.contact.clearance;
+    clearance.follow(env);
     for body in &model.bodies {
         for i in body.nodes.clone() {
             let r = model.radius[i];
-            let Some((_, q, d)) = model.environment.closest_point(state.x[i], r) else {
+            let x = state.x[i];
+            if clearance.is_clear(i, x) {
+                continue; // farther than r from every part: nothing to find
+            }
+            let Some((_, q, d)) = env.closest_point(x, r) else {
+                clearance.anchor(env, i, x, r);
                 continue;
             };
             if d >= r || d <= 1e-12 * r {

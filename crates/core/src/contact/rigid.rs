@@ -28,6 +28,7 @@
 use super::coherence::{edges_beyond, may_touch, scan_fresh, Nearest, Searcher};
 use super::environment::{cube, ClosestPoint};
 use crate::contact::{closest_segment_triangle_away_from_ends, CandidateCache};
+use crate::element::BeamElement;
 use crate::{Model, State};
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
@@ -71,9 +72,18 @@ pub struct ContactScratch {
     pub candidates: CandidateCache,
     /// The beam whose list each node searches (`u32::MAX`: none, a fresh query).
     node_beam: Vec<u32>,
-    /// Per beam, this step: no triangle within reach ([`CandidateCache::is_clear`],
+    /// Per beam, this step: no triangle within reach ([`CandidateCache::clear_slack`],
     /// asked once and read by the beam and its nodes).
     beam_clear: Vec<bool>,
+    /// This step's beams not held at both ends and not clear, in order: the beams whose
+    /// interior is searched (capacity: every beam).
+    beams_near: Vec<u32>,
+    /// The beams that stay clear while the nodes stay near where they were
+    /// ([`super::ClearSkin`]).
+    skin: super::ClearSkin,
+    /// When the stiffened sections' nodes are clear of the parts ([`super::Clearance`],
+    /// read by the penalty contact).
+    pub(crate) clearance: super::Clearance,
 }
 
 impl ContactScratch {
@@ -86,6 +96,9 @@ impl ContactScratch {
             candidates: CandidateCache::new(elements, &model.environment),
             node_beam: node_beams(model),
             beam_clear: vec![false; elements],
+            beams_near: Vec::with_capacity(elements),
+            skin: super::ClearSkin::new(nodes, elements),
+            clearance: super::Clearance::new(nodes, &model.environment),
         }
     }
 }
@@ -108,7 +121,11 @@ fn node_beams(model: &Model) -> Vec<u32> {
 
 /// Reach of the capsule of beam `e`: its larger end radius plus the skin.
 fn beam_reach(model: &Model, e: usize) -> f64 {
-    let el = &model.elements[e];
+    reach_of(model, &model.elements[e])
+}
+
+/// [`beam_reach`] of beam `el`.
+fn reach_of(model: &Model, el: &BeamElement) -> f64 {
     model.radius[el.node_a].max(model.radius[el.node_b]) * (1.0 + SKIN)
 }
 
@@ -215,9 +232,39 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     let contact = &mut state.contact;
     contact.points.clear();
     contact.candidates.follow(env);
-    for (e, el) in model.elements.iter().enumerate() {
-        let (xa, xb) = (state.x[el.node_a], state.x[el.node_b]);
-        contact.beam_clear[e] = contact.candidates.is_clear(e, xa, xb, beam_reach(model, e));
+    // Most beams are clear: they are settled here (their interior is not in contact, and
+    // a beam not held at both ends forgets its normal), and the beam loop below visits
+    // only the others.
+    contact.beams_near.clear();
+    // the beams clear at the last full pass are still clear while the skin holds
+    let skin = contact.skin.holds(&contact.candidates, &state.x);
+    if !skin {
+        contact.skin.begin(&contact.candidates, &state.x);
+    }
+    let beams = model.elements.iter().zip(&mut contact.beam_clear);
+    for (e, ((el, clear), normal)) in beams.zip(&mut contact.element_normal).enumerate() {
+        let (a, b) = (el.node_a, el.node_b);
+        if !(skin && contact.skin.is_member(e)) {
+            let slack =
+                contact
+                    .candidates
+                    .clear_slack(e, state.x[a], state.x[b], reach_of(model, el));
+            *clear = slack.is_some();
+            if let (false, Some(slack)) = (skin, slack) {
+                contact.skin.add(e, slack);
+            }
+        }
+        if state.held[a] && state.held[b] {
+            continue; // a beam held at both ends has no interior contact to find
+        }
+        if *clear {
+            *normal = DVec3::ZERO;
+        } else {
+            contact.beams_near.push(e as u32);
+        }
+    }
+    if !skin {
+        contact.skin.end();
     }
     let nodes = state.x.len();
     for i in 0..nodes {
@@ -274,17 +321,11 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
             None => contact.node_normal[i] = DVec3::ZERO,
         }
     }
-    for (e, el) in model.elements.iter().enumerate() {
-        let (a, b) = (el.node_a, el.node_b);
-        if state.held[a] && state.held[b] {
-            continue;
-        }
+    for k in 0..contact.beams_near.len() {
+        let e = contact.beams_near[k] as usize;
+        let (a, b) = (model.elements[e].node_a, model.elements[e].node_b);
         let reach = beam_reach(model, e);
         let (xa, xb) = (state.x[a], state.x[b]);
-        if contact.beam_clear[e] {
-            contact.element_normal[e] = DVec3::ZERO;
-            continue; // no triangle within reach
-        }
         let r = model.radius[a].max(model.radius[b]);
         let aabb = Aabb::new(
             xa.min(xb) - DVec3::splat(reach),

@@ -1,16 +1,18 @@
-//! The explicit step's node update four nodes at a time (issue 15): for each node not
-//! held, v ← v + Δt/m f, ω ← ω + Δt/I M (Euler's equations for the isotropic lumped
-//! inertia), then x ← x + Δt v and q ← normalise(exp(Δt ω) q) — the leapfrog of
-//! [`super::explicit`], in lanes ([`crate::lanes`]) with fused multiply–adds.
+//! The explicit step's node update (issue 15): for each node not held, v ← v + Δt/m f,
+//! ω ← ω + Δt/I M (Euler's equations for the isotropic lumped inertia), then
+//! x ← x + Δt v and q ← normalise(exp(Δt ω) q) — the leapfrog of [`super::explicit`],
+//! with fused multiply–adds.
 //!
-//! Every node goes through the same lane arithmetic (a range's last group repeats its
-//! last node in the unused lanes and writes nothing back from them), so a node's result
-//! depends on nothing but its own data — not on how the nodes are grouped or split
-//! between threads. The exponential map uses the reference's Taylor series of cos h and
+//! Node by node: the operations are those of the four-lane kernel this replaces (issue
+//! 15's [`crate::lanes`] arithmetic, each lane an independent IEEE operation), in the
+//! same order, so the results are the same to the last bit — without gathering the
+//! nodes' vectors into lanes and scattering them back, which cost more than the
+//! arithmetic for a handful of nodes, and with held nodes costing one check. A node's
+//! result depends on nothing but its own data — not on how the nodes are split between
+//! threads. The exponential map uses the reference's Taylor series of cos h and
 //! sin h/(2h), h = |Δt ω|/2 < 0.05 (truncation < 1e-19); a node turning faster in one
 //! step is advanced by the reference [`crate::math::exp_map`] (exact for any angle).
 
-use crate::lanes::{gather3 as gather, gather4, lane, scatter3, scatter4, F4, M4, Q4, V4};
 use crate::math::exp_map;
 use glam::{DQuat, DVec3};
 
@@ -38,120 +40,94 @@ pub enum Advance {
     Both,
 }
 
-/// exp(φ) for |φ|/2 < 0.05 (the reference's series), and the lanes inside that range.
+/// a · s + b, component by component, each correctly rounded (one rounding).
 #[inline(always)]
-fn exp_series(phi: V4) -> (Q4, M4) {
-    let h2 = phi.dot(phi) * 0.25;
-    let ok = h2.lt(F4::splat(2.5e-3));
-    let one = F4::splat(1.0);
-    // cos h = 1 − h²/2 (1 − h²/12 (1 − h²/30 (1 − h²/56)))
-    let c = h2.mul_add(F4::splat(-1.0 / 56.0), one);
-    let c = (h2 * (-1.0 / 30.0)).mul_add(c, one);
-    let c = (h2 * (-1.0 / 12.0)).mul_add(c, one);
-    let c = (h2 * (-0.5)).mul_add(c, one);
-    // sin h/(2h) = ½ (1 − h²/6 (1 − h²/20 (1 − h²/42 (1 − h²/72))))
-    let s = h2.mul_add(F4::splat(-1.0 / 72.0), one);
-    let s = (h2 * (-1.0 / 42.0)).mul_add(s, one);
-    let s = (h2 * (-1.0 / 20.0)).mul_add(s, one);
-    let s = (h2 * (-1.0 / 6.0)).mul_add(s, one) * 0.5;
-    (
-        Q4 {
-            x: phi.x * s,
-            y: phi.y * s,
-            z: phi.z * s,
-            w: c,
-        },
-        ok,
+fn scale_add(a: DVec3, s: f64, b: DVec3) -> DVec3 {
+    DVec3::new(
+        a.x.mul_add(s, b.x),
+        a.y.mul_add(s, b.y),
+        a.z.mul_add(s, b.z),
     )
 }
 
+/// exp(φ) for |φ|/2 < 0.05 (the reference's series), and whether φ is inside that range.
 #[inline(always)]
-fn advance_lanes(n: &mut Nodes, dt: f64, what: Advance) {
+fn exp_series(phi: DVec3) -> (DQuat, bool) {
+    let h2 = phi.x.mul_add(phi.x, phi.y.mul_add(phi.y, phi.z * phi.z)) * 0.25;
+    let ok = h2 < 2.5e-3;
+    // cos h = 1 − h²/2 (1 − h²/12 (1 − h²/30 (1 − h²/56)))
+    let c = h2.mul_add(-1.0 / 56.0, 1.0);
+    let c = (h2 * (-1.0 / 30.0)).mul_add(c, 1.0);
+    let c = (h2 * (-1.0 / 12.0)).mul_add(c, 1.0);
+    let c = (h2 * (-0.5)).mul_add(c, 1.0);
+    // sin h/(2h) = ½ (1 − h²/6 (1 − h²/20 (1 − h²/42 (1 − h²/72))))
+    let s = h2.mul_add(-1.0 / 72.0, 1.0);
+    let s = (h2 * (-1.0 / 42.0)).mul_add(s, 1.0);
+    let s = (h2 * (-1.0 / 20.0)).mul_add(s, 1.0);
+    let s = (h2 * (-1.0 / 6.0)).mul_add(s, 1.0) * 0.5;
+    (DQuat::from_xyzw(phi.x * s, phi.y * s, phi.z * s, c), ok)
+}
+
+/// The Hamilton product a · b with fused multiply–adds, normalised: the operations of
+/// [`crate::lanes::Q4::mul`] and [`crate::lanes::Q4::normalize`] for one quaternion.
+#[inline(always)]
+fn mul_normalize(a: DQuat, b: DQuat) -> DQuat {
+    let w =
+        a.w.mul_add(b.w, -(a.x.mul_add(b.x, a.y.mul_add(b.y, a.z * b.z))));
+    let x =
+        a.w.mul_add(b.x, a.x.mul_add(b.w, a.y.mul_add(b.z, -(a.z * b.y))));
+    let y =
+        a.w.mul_add(b.y, a.y.mul_add(b.w, a.z.mul_add(b.x, -(a.x * b.z))));
+    let z =
+        a.w.mul_add(b.z, a.z.mul_add(b.w, a.x.mul_add(b.y, -(a.y * b.x))));
+    let s = 1.0 / x.mul_add(x, y.mul_add(y, z.mul_add(z, w * w))).sqrt();
+    DQuat::from_xyzw(x * s, y * s, z * s, w * s)
+}
+
+#[inline(always)]
+fn advance_nodes(n: &mut Nodes, dt: f64, what: Advance) {
     let count = n.x.len();
-    let dt4 = F4::splat(dt);
-    let mut i = 0;
-    while i < count {
-        let idx = [0, 1, 2, 3].map(|k| (i + k).min(count - 1));
-        let lanes = (count - i).min(4);
-        let mut free = [false; 4];
-        for (k, f) in free.iter_mut().enumerate().take(lanes) {
-            *f = !n.held[i + k];
-        }
-        if !free.contains(&true) {
-            i += 4;
+    assert!(
+        n.held.len() >= count
+            && n.mass.len() >= count
+            && n.inertia.len() >= count
+            && n.force.len() >= count
+            && n.moment.len() >= count
+            && n.q.len() >= count
+            && n.v.len() >= count
+            && n.w.len() >= count
+    );
+    for j in 0..count {
+        if n.held[j] {
             continue;
         }
-        let mut v = gather(n.v, idx);
-        let mut w = gather(n.w, idx);
         if what != Advance::Positions {
-            let dtm = dt4 / F4(idx.map(|j| n.mass[j]));
-            let dti = dt4 / F4(idx.map(|j| n.inertia[j]));
-            v = gather(n.force, idx).scale_add(dtm, v);
-            w = gather(n.moment, idx).scale_add(dti, w);
+            n.v[j] = scale_add(n.force[j], dt / n.mass[j], n.v[j]);
+            n.w[j] = scale_add(n.moment[j], dt / n.inertia[j], n.w[j]);
         }
-        let mut x = V4::new(F4::ZERO, F4::ZERO, F4::ZERO);
-        let mut q = Q4 {
-            x: F4::ZERO,
-            y: F4::ZERO,
-            z: F4::ZERO,
-            w: F4::ZERO,
-        };
-        let mut ok = M4([!0; 4]);
         if what != Advance::Velocities {
-            x = v.scale_add(dt4, gather(n.x, idx));
-            let q0 = gather4(n.q, idx);
-            let (e, inside) = exp_series(w.scale(dt4));
-            q = e.mul(q0).normalize();
-            ok = inside;
+            n.x[j] = scale_add(n.v[j], dt, n.x[j]);
+            let w = n.w[j];
+            let (e, inside) = exp_series(w * dt);
+            n.q[j] = if inside {
+                mul_normalize(e, n.q[j])
+            } else {
+                // a large turn in one step: the reference exponential map
+                (exp_map(dt * w) * n.q[j]).normalize()
+            };
         }
-        // through memory (see `element_block::Job::run`): stored as vectors, the lanes
-        // stay in 256-bit registers
-        let (v, w, x, q, ok) = std::hint::black_box((v, w, x, q, ok));
-        if free == [true; 4] && ok.all() {
-            // four free nodes in the series' range (the common case): stored at once
-            if what != Advance::Positions {
-                scatter3(v, &mut n.v[i..]);
-                scatter3(w, &mut n.w[i..]);
-            }
-            if what != Advance::Velocities {
-                scatter3(x, &mut n.x[i..]);
-                scatter4(q, &mut n.q[i..]);
-            }
-            i += 4;
-            continue;
-        }
-        for k in 0..lanes {
-            if !free[k] {
-                continue;
-            }
-            let j = i + k;
-            if what != Advance::Positions {
-                n.v[j] = lane(v, k);
-                n.w[j] = lane(w, k);
-            }
-            if what != Advance::Velocities {
-                n.x[j] = lane(x, k);
-                n.q[j] = if ok.lane(k) {
-                    DQuat::from_xyzw(q.x.0[k], q.y.0[k], q.z.0[k], q.w.0[k])
-                } else {
-                    // a large turn in one step: the reference exponential map
-                    (exp_map(dt * n.w[j]) * n.q[j]).normalize()
-                };
-            }
-        }
-        i += 4;
     }
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn advance_avx2(n: &mut Nodes, dt: f64, what: Advance) {
-    advance_lanes(n, dt, what)
+    advance_nodes(n, dt, what)
 }
 
 #[inline(never)]
 fn advance_portable(n: &mut Nodes, dt: f64, what: Advance) {
-    advance_lanes(n, dt, what)
+    advance_nodes(n, dt, what)
 }
 
 /// Advances the nodes of `n` that are not held by one step `dt`.
@@ -168,10 +144,10 @@ pub fn advance(n: &mut Nodes, dt: f64, what: Advance) {
 mod tests {
     use super::*;
 
-    /// The lanes agree with the reference update (explicit.rs before issue 15) to
+    /// The update agrees with the reference update (explicit.rs before issue 15) to
     /// rounding, and the kernels (AVX2 + FMA, portable) agree bit for bit.
     #[test]
-    fn lanes_match_the_reference_update() {
+    fn update_matches_the_reference_update() {
         let n = 11;
         let mut state = 7u64;
         let mut r = || {
