@@ -112,24 +112,25 @@ impl ClipState {
                 reason: "must be finite",
             });
         }
-        let n = clip.opening_distance();
         // Inside the engagement region: in the plane, in line with the opening, between
-        // −|n| and first touch, and thicker than the opening.
-        let engaged = match (obs.centre, clip.first_touch(obs.radius)) {
+        // −|n| and first touch, and thicker than the opening. Asked only where it decides
+        // (a seated hose stays seated until grabbed).
+        let engaged = || match (obs.centre, clip.first_touch(obs.radius)) {
             (Some(m), Some(touch)) => {
-                let s = clip.opening_coordinate(m);
+                let (n, s) = (clip.opening_distance(), clip.opening_coordinate(m));
                 clip.lateral_offset(m) <= tolerance.lateral && s > -n && s < touch
             }
             _ => false,
         };
-        let seated = obs
-            .centre
-            .is_some_and(|m| clip.opening_coordinate(m).abs() <= tolerance.seat);
+        let seated = || {
+            obs.centre
+                .is_some_and(|m| clip.opening_coordinate(m).abs() <= tolerance.seat)
+        };
         Ok(match self {
-            ClipState::Free if engaged => ClipState::Snapping,
+            ClipState::Free if engaged() => ClipState::Snapping,
             ClipState::Free => ClipState::Free,
-            ClipState::Snapping if !engaged => ClipState::Free,
-            ClipState::Snapping if !obs.grabbed && seated => ClipState::Seated,
+            ClipState::Snapping if !engaged() => ClipState::Free,
+            ClipState::Snapping if !obs.grabbed && seated() => ClipState::Seated,
             ClipState::Snapping => ClipState::Snapping,
             ClipState::Seated if obs.grabbed => ClipState::Snapping,
             ClipState::Seated => ClipState::Seated,

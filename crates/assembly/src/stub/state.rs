@@ -149,15 +149,17 @@ impl StubState {
         }
         let stub = fit.stub();
         let s = stub.axial_coordinate(obs.end_position);
-        let angle = direction.dot(stub.axis()).clamp(-1.0, 1.0).acos();
-        let in_reach = stub.lateral_distance(obs.end_position) <= tolerance.lateral
-            && angle <= tolerance.angle;
+        // reach (a distance and an arc cosine) matters only off the stub: asked there only
+        let in_reach = || {
+            let angle = direction.dot(stub.axis()).clamp(-1.0, 1.0).acos();
+            stub.lateral_distance(obs.end_position) <= tolerance.lateral && angle <= tolerance.angle
+        };
         let inserting = StubState::Inserting {
             depth: stub.clamp_depth(s),
         };
         Ok(match self {
             StubState::Approach | StubState::PulledOff => {
-                if !obs.grabbed || !in_reach || s < -tolerance.approach {
+                if !obs.grabbed || !in_reach() || s < -tolerance.approach {
                     StubState::Approach
                 } else if s > 0.0 {
                     inserting
@@ -166,7 +168,7 @@ impl StubState {
                 }
             }
             StubState::Aligned => {
-                if !in_reach || s < -tolerance.approach || !obs.grabbed {
+                if !in_reach() || s < -tolerance.approach || !obs.grabbed {
                     StubState::Approach
                 } else if s > 0.0 {
                     inserting
@@ -184,15 +186,17 @@ impl StubState {
                 }
             }
             StubState::Fixed { depth } => {
-                let at_stop = depth >= stub.length();
-                let sense = if obs.axial_force >= 0.0 {
-                    Sense::On
-                } else {
-                    Sense::Off
+                let breaks_loose = || {
+                    let at_stop = depth >= stub.length();
+                    let sense = if obs.axial_force >= 0.0 {
+                        Sense::On
+                    } else {
+                        Sense::Off
+                    };
+                    obs.axial_force.abs() > fit.holding_force_moving(depth, sense)
+                        && !(at_stop && obs.axial_force > 0.0)
                 };
-                let breaks_loose = obs.axial_force.abs() > fit.holding_force_moving(depth, sense)
-                    && !(at_stop && obs.axial_force > 0.0);
-                if obs.grabbed && breaks_loose {
+                if obs.grabbed && breaks_loose() {
                     StubState::Inserting { depth }
                 } else {
                     StubState::Fixed { depth }
