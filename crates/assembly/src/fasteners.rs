@@ -251,7 +251,7 @@ impl Fasteners {
 
 fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
     let (e, n) = (s.site.end_node, s.site.inner_node);
-    let stub = *s.site.fit.stub();
+    let stub = s.site.fit.stub();
     let axis = stub.axis();
     let grabbed = held_by_hand(held, e) || held_by_hand(held, n);
     let obs = StubObservation {
@@ -325,7 +325,8 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
 }
 
 /// The beam of hose `hose` crossing the clip's plane nearest to its seat: (a, b, t, centre).
-/// A node's distance from the plane is measured once for the two beams that share it.
+/// A hose's beam k joins its nodes k and k + 1 (as the model builds it), so each node's
+/// distance from the plane is measured once, for both beams that share it.
 fn crossing(
     model: &Model,
     state: &State,
@@ -333,26 +334,23 @@ fn crossing(
     hose: usize,
 ) -> Option<(usize, usize, f64, DVec3)> {
     let info = &model.hoses[hose];
+    debug_assert_eq!(info.element_count + 1, info.node_count);
+    let x = &state.x[info.nodes()];
+    let mut distances = x.iter().map(|&p| clip.plane_distance(p));
+    let mut da = distances.next()?;
     let mut best: Option<(usize, usize, f64, DVec3, f64)> = None;
-    let mut last = (usize::MAX, 0.0);
-    let elements = &model.elements[info.first_element..info.first_element + info.element_count];
-    for el in elements {
-        let da = match last {
-            (node, d) if node == el.node_a => d,
-            _ => clip.plane_distance(state.x[el.node_a]),
-        };
-        let db = clip.plane_distance(state.x[el.node_b]);
-        last = (el.node_b, db);
-        if !ClipSpec::crosses(da, db) {
-            continue;
+    for (k, db) in distances.enumerate() {
+        if ClipSpec::crosses(da, db) {
+            let (a, b) = (x[k], x[k + 1]);
+            let m = ClipSpec::crossing_point(a, b, da, db);
+            let d = (m - clip.origin()).length();
+            if best.is_none_or(|x| d < x.4) {
+                let t = ((m - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+                let node = info.first_node + k;
+                best = Some((node, node + 1, t, m, d));
+            }
         }
-        let (a, b) = (state.x[el.node_a], state.x[el.node_b]);
-        let m = ClipSpec::crossing_point(a, b, da, db);
-        let d = (m - clip.origin()).length();
-        if best.is_none_or(|x| d < x.4) {
-            let t = ((m - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
-            best = Some((el.node_a, el.node_b, t, m, d));
-        }
+        da = db;
     }
     best.map(|(a, b, t, m, _)| (a, b, t, m))
 }

@@ -959,19 +959,21 @@ impl Workcell {
         // Divergence is declared at fixed steps only, so that it happens at the same
         // tick whoever watches (a replay with a recorder, a live session without);
         // an observer is shown checked states only.
-        if self.state.step % HEALTH_CHECK_EVERY == 0 {
+        let checked = self.state.step % HEALTH_CHECK_EVERY == 0;
+        if checked {
             if let Err(d) = check_for(self.solver.kind(), &self.model, &self.state) {
                 return Err(self.fail(d));
             }
         }
         // states shown to the observer or judged by the checks are checked ones (a
-        // blow-up between two health checks is neither), checked once for both
+        // blow-up between two health checks is neither), checked once for both (and not
+        // again on a health-check step, which got here healthy)
         let (shown, judged) = (
             obs.wants_state(self.state.time),
             self.checks.due(self.state.time),
         );
-        let healthy =
-            (shown || judged) && check_for(self.solver.kind(), &self.model, &self.state).is_ok();
+        let healthy = (shown || judged)
+            && (checked || check_for(self.solver.kind(), &self.model, &self.state).is_ok());
         let wants = shown && healthy;
         self.hand_records.clear();
         let posed = self.state.time == t_next; // else the solver's grid moved the time
