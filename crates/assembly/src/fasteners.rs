@@ -105,7 +105,9 @@ impl ForceLoad {
 #[derive(Clone)]
 struct StubRun {
     site: StubSite,
-    tolerance: StubTolerance,
+    /// Checked once; `None` if invalid: the stub then never acts (as
+    /// [`StubState::next`] would refuse every step).
+    tolerance: Option<StubTolerance>,
     state: StubState,
     force: ForceLoad,
     fix: Option<LoadCaseId>,
@@ -116,7 +118,9 @@ struct StubRun {
 #[derive(Clone)]
 struct ClipRun {
     site: ClipSite,
-    tolerance: ClipTolerance,
+    /// Checked once; `None` if invalid: the clip then never acts (as
+    /// [`ClipState::next`] would refuse every step).
+    tolerance: Option<ClipTolerance>,
     state: ClipState,
     /// Dead loads on the two nodes of the crossing beam.
     forces: [ForceLoad; 2],
@@ -173,7 +177,7 @@ impl Fasteners {
         let stubs = stubs
             .into_iter()
             .map(|site| StubRun {
-                tolerance: StubTolerance::for_stub(site.fit.stub()),
+                tolerance: StubTolerance::for_stub(site.fit.stub()).checked(),
                 state: StubState::Approach,
                 force: ForceLoad::new(state, site.end_node),
                 fix: None,
@@ -189,7 +193,7 @@ impl Fasteners {
         let clips = clips
             .into_iter()
             .map(|site| ClipRun {
-                tolerance: ClipTolerance::for_clip(&site.spec),
+                tolerance: ClipTolerance::for_clip(&site.spec).checked(),
                 state: ClipState::Free,
                 forces: [ForceLoad::new(state, 0), ForceLoad::new(state, 0)],
                 fix: None,
@@ -260,7 +264,10 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
         axial_force: hand_force(held, e).dot(axis),
         grabbed,
     };
-    let Ok(next) = s.state.next(&s.site.fit, &s.tolerance, &obs) else {
+    let Some(tolerance) = &s.tolerance else {
+        return;
+    };
+    let Ok(next) = s.state.next_within(&s.site.fit, tolerance, &obs) else {
         return;
     };
     s.state = next;
@@ -365,7 +372,10 @@ fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize
         radius,
         grabbed,
     };
-    let Ok(mut next) = c.state.next(&c.site.spec, &c.tolerance, &obs) else {
+    let Some(tolerance) = c.tolerance else {
+        return;
+    };
+    let Ok(mut next) = c.state.next_within(&c.site.spec, &tolerance, &obs) else {
         return;
     };
     // pulled out of its seat harder than the clip holds (the support pulling the hose
@@ -382,7 +392,7 @@ fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize
             c.loosened = true;
         }
     }
-    if c.loosened && cross.is_some_and(|x| spec.opening_coordinate(x.3) > c.tolerance.seat) {
+    if c.loosened && cross.is_some_and(|x| spec.opening_coordinate(x.3) > tolerance.seat) {
         c.loosened = false; // out of the seat: it may snap in again
     }
     if c.loosened && next == ClipState::Seated {

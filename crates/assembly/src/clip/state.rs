@@ -38,6 +38,12 @@ impl ClipTolerance {
         }
     }
 
+    /// The tolerance if it is valid (what [`ClipState::next`] checks every call): a run
+    /// checks its clips' tolerances once and steps them with [`ClipState::next_within`].
+    pub(crate) fn checked(self) -> Option<Self> {
+        self.check().ok().map(|_| self)
+    }
+
     fn check(&self) -> Result<(), ClipError> {
         if self.seat.is_finite()
             && self.seat >= 0.0
@@ -100,6 +106,16 @@ impl ClipState {
         obs: &ClipObservation,
     ) -> Result<ClipState, ClipError> {
         tolerance.check()?;
+        self.next_within(clip, tolerance, obs)
+    }
+
+    /// [`ClipState::next`] under a tolerance already checked ([`ClipTolerance::checked`]).
+    pub(crate) fn next_within(
+        self,
+        clip: &ClipSpec,
+        tolerance: &ClipTolerance,
+        obs: &ClipObservation,
+    ) -> Result<ClipState, ClipError> {
         if !(obs.radius.is_finite() && obs.radius > 0.0) {
             return Err(ClipError::Observation {
                 field: "radius",

@@ -46,6 +46,12 @@ impl StubTolerance {
         }
     }
 
+    /// The tolerance if it is valid (what [`StubState::next`] checks every call): a run
+    /// checks its stubs' tolerances once and steps them with [`StubState::next_within`].
+    pub(crate) fn checked(self) -> Option<Self> {
+        self.check().ok().map(|_| self)
+    }
+
     fn check(&self) -> Result<(), StubError> {
         let ok = self.lateral.is_finite()
             && self.lateral >= 0.0
@@ -136,6 +142,16 @@ impl StubState {
         obs: &StubObservation,
     ) -> Result<StubState, StubError> {
         tolerance.check()?;
+        self.next_within(fit, tolerance, obs)
+    }
+
+    /// [`StubState::next`] under a tolerance already checked ([`StubTolerance::checked`]).
+    pub(crate) fn next_within(
+        self,
+        fit: &PressFit,
+        tolerance: &StubTolerance,
+        obs: &StubObservation,
+    ) -> Result<StubState, StubError> {
         let refuse = |field, reason| StubError::Observation { field, reason };
         if !obs.end_position.is_finite() {
             return Err(refuse("end_position", "must be finite"));
