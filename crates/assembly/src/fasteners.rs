@@ -342,13 +342,13 @@ fn crossing(
 ) -> Option<(usize, usize, f64, DVec3)> {
     let info = &model.hoses[hose];
     debug_assert_eq!(info.element_count + 1, info.node_count);
-    let x = &state.x[info.nodes()];
-    let mut distances = x.iter().map(|&p| clip.plane_distance(p));
+    let xs = &state.x[info.nodes()];
+    let mut distances = xs.iter().map(|&p| clip.plane_distance(p));
     let mut da = distances.next()?;
     let mut best: Option<(usize, usize, f64, DVec3, f64)> = None;
     for (k, db) in distances.enumerate() {
         if ClipSpec::crosses(da, db) {
-            let (a, b) = (x[k], x[k + 1]);
+            let (a, b) = (xs[k], xs[k + 1]);
             let m = ClipSpec::crossing_point(a, b, da, db);
             let d = (m - clip.origin()).length();
             if best.is_none_or(|x| d < x.4) {
