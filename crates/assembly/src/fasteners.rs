@@ -61,12 +61,55 @@ pub struct FastenerReport {
     pub assembled: bool,
 }
 
+/// A fastener's dead load and what was last written to it: a step that would write the
+/// same node and the same bits again leaves the load case alone (a seated clip's and a
+/// fixed stub's force stays zero for most of a run, and finding a load case by its
+/// handle is a search). Only the fastener writes it.
+#[derive(Clone, Copy)]
+struct ForceLoad {
+    id: LoadCaseId,
+    node: usize,
+    force: DVec3,
+}
+
+impl ForceLoad {
+    /// A zero dead load on `node`, added to `state`.
+    fn new(state: &mut State, node: usize) -> Self {
+        let id = state.loads.add(LoadCase::DeadLoad(DeadLoad {
+            node,
+            force: DVec3::ZERO,
+            moment: DVec3::ZERO,
+            ramp: None,
+        }));
+        ForceLoad {
+            id,
+            node,
+            force: DVec3::ZERO,
+        }
+    }
+
+    /// Sets the dead load to `force` on `node`.
+    fn set(&mut self, state: &mut State, node: usize, force: DVec3) {
+        let bits = |v: DVec3| v.to_array().map(f64::to_bits);
+        if node == self.node && bits(force) == bits(self.force) {
+            return;
+        }
+        if let Some(LoadCase::DeadLoad(d)) = state.loads.get_mut(self.id) {
+            d.node = node;
+            d.force = force;
+        }
+        (self.node, self.force) = (node, force);
+    }
+}
+
 #[derive(Clone)]
 struct StubRun {
     site: StubSite,
-    tolerance: StubTolerance,
+    /// Checked once; `None` if invalid: the stub then never acts (as
+    /// [`StubState::next`] would refuse every step).
+    tolerance: Option<StubTolerance>,
     state: StubState,
-    force: LoadCaseId,
+    force: ForceLoad,
     fix: Option<LoadCaseId>,
     report: FastenerReport,
     force_now: f64,
@@ -75,10 +118,12 @@ struct StubRun {
 #[derive(Clone)]
 struct ClipRun {
     site: ClipSite,
-    tolerance: ClipTolerance,
+    /// Checked once; `None` if invalid: the clip then never acts (as
+    /// [`ClipState::next`] would refuse every step).
+    tolerance: Option<ClipTolerance>,
     state: ClipState,
     /// Dead loads on the two nodes of the crossing beam.
-    forces: [LoadCaseId; 2],
+    forces: [ForceLoad; 2],
     fix: Option<LoadCaseId>,
     report: FastenerReport,
     force_now: f64,
@@ -103,20 +148,16 @@ pub struct FastenerSample {
     pub force: f64,
 }
 
-fn zero_load(state: &mut State, node: usize) -> LoadCaseId {
-    state.loads.add(LoadCase::DeadLoad(DeadLoad {
-        node,
-        force: DVec3::ZERO,
-        moment: DVec3::ZERO,
-        ramp: None,
-    }))
+/// Whether a hand holds `node`; `held` lists the held nodes with their hand's force.
+fn held_by_hand(held: &[(usize, DVec3)], node: usize) -> bool {
+    held.iter().any(|&(n, _)| n == node)
 }
 
-fn set_load(state: &mut State, id: LoadCaseId, node: usize, force: DVec3) {
-    if let Some(LoadCase::DeadLoad(d)) = state.loads.get_mut(id) {
-        d.node = node;
-        d.force = force;
-    }
+/// The force of the hand holding `node` (zero if none holds it).
+fn hand_force(held: &[(usize, DVec3)], node: usize) -> DVec3 {
+    held.iter()
+        .find(|&&(n, _)| n == node)
+        .map_or(DVec3::ZERO, |&(_, f)| f)
 }
 
 fn state_name<T: Serialize>(s: &T) -> String {
@@ -136,9 +177,9 @@ impl Fasteners {
         let stubs = stubs
             .into_iter()
             .map(|site| StubRun {
-                tolerance: StubTolerance::for_stub(site.fit.stub()),
+                tolerance: StubTolerance::for_stub(site.fit.stub()).checked(),
                 state: StubState::Approach,
-                force: zero_load(state, site.end_node),
+                force: ForceLoad::new(state, site.end_node),
                 fix: None,
                 report: FastenerReport {
                     name: site.name.clone(),
@@ -152,9 +193,9 @@ impl Fasteners {
         let clips = clips
             .into_iter()
             .map(|site| ClipRun {
-                tolerance: ClipTolerance::for_clip(&site.spec),
+                tolerance: ClipTolerance::for_clip(&site.spec).checked(),
                 state: ClipState::Free,
-                forces: [zero_load(state, 0), zero_load(state, 0)],
+                forces: [ForceLoad::new(state, 0), ForceLoad::new(state, 0)],
                 fix: None,
                 report: FastenerReport {
                     name: site.name.clone(),
@@ -173,20 +214,14 @@ impl Fasteners {
         self.stubs.is_empty() && self.clips.is_empty()
     }
 
-    /// One step's update, before the physics step. `held_by_hand(node)` tells whether a hand
-    /// holds the node; `hand_force(node)` the force of the hand holding it (last step).
-    pub fn update(
-        &mut self,
-        model: &Model,
-        state: &mut State,
-        held_by_hand: &dyn Fn(usize) -> bool,
-        hand_force: &dyn Fn(usize) -> DVec3,
-    ) {
+    /// One step's update, before the physics step. `held` lists the nodes the hands hold,
+    /// each with the force of the hand holding it (last step).
+    pub fn update(&mut self, model: &Model, state: &mut State, held: &[(usize, DVec3)]) {
         for s in &mut self.stubs {
-            update_stub(s, state, held_by_hand, hand_force);
+            update_stub(s, state, held);
         }
         for c in &mut self.clips {
-            update_clip(c, model, state, held_by_hand);
+            update_clip(c, model, state, held);
         }
     }
 
@@ -218,23 +253,21 @@ impl Fasteners {
     }
 }
 
-fn update_stub(
-    s: &mut StubRun,
-    state: &mut State,
-    held_by_hand: &dyn Fn(usize) -> bool,
-    hand_force: &dyn Fn(usize) -> DVec3,
-) {
+fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
     let (e, n) = (s.site.end_node, s.site.inner_node);
-    let stub = *s.site.fit.stub();
+    let stub = s.site.fit.stub();
     let axis = stub.axis();
-    let grabbed = held_by_hand(e) || held_by_hand(n);
+    let grabbed = held_by_hand(held, e) || held_by_hand(held, n);
     let obs = StubObservation {
         end_position: state.x[e],
         end_direction: state.x[e] - state.x[n],
-        axial_force: hand_force(e).dot(axis),
+        axial_force: hand_force(held, e).dot(axis),
         grabbed,
     };
-    let Ok(next) = s.state.next(&s.site.fit, &s.tolerance, &obs) else {
+    let Some(tolerance) = &s.tolerance else {
+        return;
+    };
+    let Ok(next) = s.state.next_within(&s.site.fit, tolerance, &obs) else {
         return;
     };
     s.state = next;
@@ -284,7 +317,7 @@ fn update_stub(
             }
         }
     }
-    set_load(state, s.force, e, force);
+    s.force.set(state, e, force);
     let f = if s.fix.is_some() {
         state.reaction_force[e].length()
     } else {
@@ -299,6 +332,8 @@ fn update_stub(
 }
 
 /// The beam of hose `hose` crossing the clip's plane nearest to its seat: (a, b, t, centre).
+/// A hose's beam k joins its nodes k and k + 1 (as the model builds it), so each node's
+/// distance from the plane is measured once, for both beams that share it.
 fn crossing(
     model: &Model,
     state: &State,
@@ -306,39 +341,41 @@ fn crossing(
     hose: usize,
 ) -> Option<(usize, usize, f64, DVec3)> {
     let info = &model.hoses[hose];
+    debug_assert_eq!(info.element_count + 1, info.node_count);
+    let xs = &state.x[info.nodes()];
+    let mut distances = xs.iter().map(|&p| clip.plane_distance(p));
+    let mut da = distances.next()?;
     let mut best: Option<(usize, usize, f64, DVec3, f64)> = None;
-    for e in info.first_element..info.first_element + info.element_count {
-        let el = &model.elements[e];
-        let (a, b) = (state.x[el.node_a], state.x[el.node_b]);
-        if let Some(m) = clip.centre_on_segment(a, b) {
+    for (k, db) in distances.enumerate() {
+        if ClipSpec::crosses(da, db) {
+            let (a, b) = (xs[k], xs[k + 1]);
+            let m = ClipSpec::crossing_point(a, b, da, db);
             let d = (m - clip.origin()).length();
             if best.is_none_or(|x| d < x.4) {
                 let t = ((m - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
-                best = Some((el.node_a, el.node_b, t, m, d));
+                let node = info.first_node + k;
+                best = Some((node, node + 1, t, m, d));
             }
         }
+        da = db;
     }
     best.map(|(a, b, t, m, _)| (a, b, t, m))
 }
 
-fn update_clip(
-    c: &mut ClipRun,
-    model: &Model,
-    state: &mut State,
-    held_by_hand: &dyn Fn(usize) -> bool,
-) {
+fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize, DVec3)]) {
     let cross = crossing(model, state, &c.site.spec, c.site.hose);
-    let radius = cross.map_or(
-        model.radius[model.hoses[c.site.hose].first_node],
-        |(a, ..)| model.radius[a],
-    );
-    let grabbed = model.hoses[c.site.hose].nodes().any(held_by_hand);
+    let nodes = model.hoses[c.site.hose].nodes();
+    let radius = cross.map_or(model.radius[nodes.start], |(a, ..)| model.radius[a]);
+    let grabbed = held.iter().any(|(n, _)| nodes.contains(n));
     let obs = ClipObservation {
         centre: cross.map(|x| x.3),
         radius,
         grabbed,
     };
-    let Ok(mut next) = c.state.next(&c.site.spec, &c.tolerance, &obs) else {
+    let Some(tolerance) = c.tolerance else {
+        return;
+    };
+    let Ok(mut next) = c.state.next_within(&c.site.spec, &tolerance, &obs) else {
         return;
     };
     // pulled out of its seat harder than the clip holds (the support pulling the hose
@@ -355,7 +392,7 @@ fn update_clip(
             c.loosened = true;
         }
     }
-    if c.loosened && cross.is_some_and(|x| spec.opening_coordinate(x.3) > c.tolerance.seat) {
+    if c.loosened && cross.is_some_and(|x| spec.opening_coordinate(x.3) > tolerance.seat) {
         c.loosened = false; // out of the seat: it may snap in again
     }
     if c.loosened && next == ClipState::Seated {
@@ -381,8 +418,8 @@ fn update_clip(
         }
     }
     let (a, b, t) = cross.map_or((0, 0, 0.0), |(a, b, t, _)| (a, b, t));
-    set_load(state, c.forces[0], a, force * (1.0 - t));
-    set_load(state, c.forces[1], b, force * t);
+    c.forces[0].set(state, a, force * (1.0 - t));
+    c.forces[1].set(state, b, force * t);
     c.force_now = force.length();
     if force.length() > c.report.max_force {
         c.report.max_force = force.length();

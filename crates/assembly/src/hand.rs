@@ -176,8 +176,9 @@ impl Hand {
         !self.motion.finished(t)
     }
 
-    /// Sets the held nodes' targets for time `t` (call before each step with its end time).
-    pub fn update(&self, state: &mut State, t: f64) {
+    /// Sets the held nodes' targets for time `t` (call before each step with its end time);
+    /// returns the hand's pose at `t`.
+    pub fn update(&self, state: &mut State, t: f64) -> (DVec3, DQuat) {
         let (p, q) = self.motion.pose_at(t);
         for &(_, id, offset, rotation) in &self.held[..self.count] {
             match state.loads.get_mut(id) {
@@ -193,6 +194,7 @@ impl Hand {
                 _ => {}
             }
         }
+        (p, q)
     }
 
     /// The force the hand exerted on the hose in the last step [N].
@@ -205,7 +207,12 @@ impl Hand {
 
     /// The load the hand applied in the last step.
     pub fn load(&self, model: &Model, state: &State) -> HandLoad {
-        let (h, _) = self.motion.pose_at(state.time);
+        self.load_at(model, state, self.motion.pose_at(state.time).0)
+    }
+
+    /// [`Hand::load`] with the hand's position now, `h`, already known (the pose
+    /// [`Hand::update`] returned for this time: a step asks for it once).
+    pub fn load_at(&self, model: &Model, state: &State, h: DVec3) -> HandLoad {
         let force = self.force(state);
         let mut torque = DVec3::ZERO;
         for &(node, ..) in &self.held[..self.count] {

@@ -260,14 +260,26 @@ impl ClipSpec {
     /// Where a beam from `a` to `b` crosses the clip's cross-section plane (through p,
     /// normal l) — the hose centre m of eq. 4.110; `None` if it does not cross it.
     pub fn centre_on_segment(&self, a: DVec3, b: DVec3) -> Option<DVec3> {
-        let (da, db) = (
-            (a - self.origin).dot(self.orientation),
-            (b - self.origin).dot(self.orientation),
-        );
-        if !(da.is_finite() && db.is_finite()) || da * db > 0.0 || da == db {
-            return None;
-        }
+        let (da, db) = (self.plane_distance(a), self.plane_distance(b));
+        Self::crosses(da, db).then(|| Self::crossing_point(a, b, da, db))
+    }
+
+    /// Signed distance of `point` from the clip's cross-section plane, (x − p)·l [m].
+    pub fn plane_distance(&self, point: DVec3) -> f64 {
+        (point - self.origin).dot(self.orientation)
+    }
+
+    /// Whether a segment whose ends lie at plane distances `da`, `db`
+    /// ([`ClipSpec::plane_distance`]) crosses the plane: finite, not on one side, not
+    /// in it. Tells the common case (one side) first.
+    pub fn crosses(da: f64, db: f64) -> bool {
+        !(da * db > 0.0 || !(da.is_finite() && db.is_finite()) || da == db)
+    }
+
+    /// Where the segment from `a` to `b` crosses the plane, given that it does
+    /// ([`ClipSpec::crosses`]).
+    pub fn crossing_point(a: DVec3, b: DVec3, da: f64, db: f64) -> DVec3 {
         let t = da / (da - db);
-        Some(a + t * (b - a))
+        a + t * (b - a)
     }
 }

@@ -38,6 +38,12 @@ impl ClipTolerance {
         }
     }
 
+    /// The tolerance if it is valid (what [`ClipState::next`] checks every call): a run
+    /// checks its clips' tolerances once and steps them with [`ClipState::next_within`].
+    pub(crate) fn checked(self) -> Option<Self> {
+        self.check().ok().map(|_| self)
+    }
+
     fn check(&self) -> Result<(), ClipError> {
         if self.seat.is_finite()
             && self.seat >= 0.0
@@ -100,6 +106,16 @@ impl ClipState {
         obs: &ClipObservation,
     ) -> Result<ClipState, ClipError> {
         tolerance.check()?;
+        self.next_within(clip, tolerance, obs)
+    }
+
+    /// [`ClipState::next`] under a tolerance already checked ([`ClipTolerance::checked`]).
+    pub(crate) fn next_within(
+        self,
+        clip: &ClipSpec,
+        tolerance: &ClipTolerance,
+        obs: &ClipObservation,
+    ) -> Result<ClipState, ClipError> {
         if !(obs.radius.is_finite() && obs.radius > 0.0) {
             return Err(ClipError::Observation {
                 field: "radius",
@@ -112,24 +128,25 @@ impl ClipState {
                 reason: "must be finite",
             });
         }
-        let n = clip.opening_distance();
         // Inside the engagement region: in the plane, in line with the opening, between
-        // −|n| and first touch, and thicker than the opening.
-        let engaged = match (obs.centre, clip.first_touch(obs.radius)) {
+        // −|n| and first touch, and thicker than the opening. Asked only where it decides
+        // (a seated hose stays seated until grabbed).
+        let engaged = || match (obs.centre, clip.first_touch(obs.radius)) {
             (Some(m), Some(touch)) => {
-                let s = clip.opening_coordinate(m);
+                let (n, s) = (clip.opening_distance(), clip.opening_coordinate(m));
                 clip.lateral_offset(m) <= tolerance.lateral && s > -n && s < touch
             }
             _ => false,
         };
-        let seated = obs
-            .centre
-            .is_some_and(|m| clip.opening_coordinate(m).abs() <= tolerance.seat);
+        let seated = || {
+            obs.centre
+                .is_some_and(|m| clip.opening_coordinate(m).abs() <= tolerance.seat)
+        };
         Ok(match self {
-            ClipState::Free if engaged => ClipState::Snapping,
+            ClipState::Free if engaged() => ClipState::Snapping,
             ClipState::Free => ClipState::Free,
-            ClipState::Snapping if !engaged => ClipState::Free,
-            ClipState::Snapping if !obs.grabbed && seated => ClipState::Seated,
+            ClipState::Snapping if !engaged() => ClipState::Free,
+            ClipState::Snapping if !obs.grabbed && seated() => ClipState::Seated,
             ClipState::Snapping => ClipState::Snapping,
             ClipState::Seated if obs.grabbed => ClipState::Snapping,
             ClipState::Seated => ClipState::Seated,

@@ -220,14 +220,18 @@ impl ErgonomicLimits {
         direction: DVec3,
     ) -> Result<Classification, ErgonomicsError> {
         let force = finite(force, "hand force")?;
-        let d = unit_direction(direction)?;
+        Ok(self.force_class(profile, force, unit_direction(direction)?))
+    }
+
+    /// [`Self::classify_force`] of a finite force along a unit direction `d`.
+    fn force_class(&self, profile: &ErgonomicProfile, force: DVec3, d: DVec3) -> Classification {
         let magnitude = force.length();
         let push = force.dot(d) >= 0.0;
         let kind = if push { LoadKind::Push } else { LoadKind::Pull };
         let (guide, limit, en1005) = self.force_limits(profile, push);
         let mut c = Classification::new(kind, magnitude, guide, limit);
         c.en1005 = en1005.map(|l| l.judge(magnitude));
-        Ok(c)
+        c
     }
 
     /// Splits a hand torque `torque` [N·m] into the twist about the hose axis
@@ -240,12 +244,21 @@ impl ErgonomicLimits {
         direction: DVec3,
     ) -> Result<(Classification, Classification), ErgonomicsError> {
         let torque = finite(torque, "hand torque")?;
-        let d = unit_direction(direction)?;
+        Ok(self.moment_classes(profile, torque, unit_direction(direction)?))
+    }
+
+    /// [`Self::classify_moments`] of a finite torque about a unit direction `d`.
+    fn moment_classes(
+        &self,
+        profile: &ErgonomicProfile,
+        torque: DVec3,
+        d: DVec3,
+    ) -> (Classification, Classification) {
         let (twist, bending) = split(torque, d);
-        Ok((
+        (
             self.moment(profile, LoadKind::Twist, twist.abs()),
             self.moment(profile, LoadKind::Bending, bending),
-        ))
+        )
     }
 
     fn moment(&self, profile: &ErgonomicProfile, kind: LoadKind, magnitude: f64) -> Classification {
@@ -260,6 +273,8 @@ impl ErgonomicLimits {
     }
 
     /// Judges a hand's force, twist and bending together; see [`HandAssessment::worst`].
+    /// The inputs are checked (and the direction made a unit vector) once, in the order
+    /// [`Self::classify_force`] and [`Self::classify_moments`] check them.
     pub fn assess(
         &self,
         profile: &ErgonomicProfile,
@@ -267,9 +282,12 @@ impl ErgonomicLimits {
         torque: DVec3,
         direction: DVec3,
     ) -> Result<HandAssessment, ErgonomicsError> {
-        let force_c = self.classify_force(profile, force, direction)?;
-        let (axial_force, lateral_force) = split(force, unit_direction(direction)?);
-        let (twist, bending) = self.classify_moments(profile, torque, direction)?;
+        let force = finite(force, "hand force")?;
+        let d = unit_direction(direction)?;
+        let torque = finite(torque, "hand torque")?;
+        let force_c = self.force_class(profile, force, d);
+        let (axial_force, lateral_force) = split(force, d);
+        let (twist, bending) = self.moment_classes(profile, torque, d);
         Ok(HandAssessment {
             force: force_c,
             axial_force,

@@ -46,6 +46,12 @@ impl StubTolerance {
         }
     }
 
+    /// The tolerance if it is valid (what [`StubState::next`] checks every call): a run
+    /// checks its stubs' tolerances once and steps them with [`StubState::next_within`].
+    pub(crate) fn checked(self) -> Option<Self> {
+        self.check().ok().map(|_| self)
+    }
+
     fn check(&self) -> Result<(), StubError> {
         let ok = self.lateral.is_finite()
             && self.lateral >= 0.0
@@ -136,6 +142,16 @@ impl StubState {
         obs: &StubObservation,
     ) -> Result<StubState, StubError> {
         tolerance.check()?;
+        self.next_within(fit, tolerance, obs)
+    }
+
+    /// [`StubState::next`] under a tolerance already checked ([`StubTolerance::checked`]).
+    pub(crate) fn next_within(
+        self,
+        fit: &PressFit,
+        tolerance: &StubTolerance,
+        obs: &StubObservation,
+    ) -> Result<StubState, StubError> {
         let refuse = |field, reason| StubError::Observation { field, reason };
         if !obs.end_position.is_finite() {
             return Err(refuse("end_position", "must be finite"));
@@ -149,15 +165,17 @@ impl StubState {
         }
         let stub = fit.stub();
         let s = stub.axial_coordinate(obs.end_position);
-        let angle = direction.dot(stub.axis()).clamp(-1.0, 1.0).acos();
-        let in_reach = stub.lateral_distance(obs.end_position) <= tolerance.lateral
-            && angle <= tolerance.angle;
+        // reach (a distance and an arc cosine) matters only off the stub: asked there only
+        let in_reach = || {
+            let angle = direction.dot(stub.axis()).clamp(-1.0, 1.0).acos();
+            stub.lateral_distance(obs.end_position) <= tolerance.lateral && angle <= tolerance.angle
+        };
         let inserting = StubState::Inserting {
             depth: stub.clamp_depth(s),
         };
         Ok(match self {
             StubState::Approach | StubState::PulledOff => {
-                if !obs.grabbed || !in_reach || s < -tolerance.approach {
+                if !obs.grabbed || !in_reach() || s < -tolerance.approach {
                     StubState::Approach
                 } else if s > 0.0 {
                     inserting
@@ -166,7 +184,7 @@ impl StubState {
                 }
             }
             StubState::Aligned => {
-                if !in_reach || s < -tolerance.approach || !obs.grabbed {
+                if !in_reach() || s < -tolerance.approach || !obs.grabbed {
                     StubState::Approach
                 } else if s > 0.0 {
                     inserting
@@ -184,15 +202,17 @@ impl StubState {
                 }
             }
             StubState::Fixed { depth } => {
-                let at_stop = depth >= stub.length();
-                let sense = if obs.axial_force >= 0.0 {
-                    Sense::On
-                } else {
-                    Sense::Off
+                let breaks_loose = || {
+                    let at_stop = depth >= stub.length();
+                    let sense = if obs.axial_force >= 0.0 {
+                        Sense::On
+                    } else {
+                        Sense::Off
+                    };
+                    obs.axial_force.abs() > fit.holding_force_moving(depth, sense)
+                        && !(at_stop && obs.axial_force > 0.0)
                 };
-                let breaks_loose = obs.axial_force.abs() > fit.holding_force_moving(depth, sense)
-                    && !(at_stop && obs.axial_force > 0.0);
-                if obs.grabbed && breaks_loose {
+                if obs.grabbed && breaks_loose() {
                     StubState::Inserting { depth }
                 } else {
                     StubState::Fixed { depth }

@@ -97,7 +97,7 @@ impl HeldHand {
     /// as to stop on the target, v = min(v + a_max Δt, v_max, √(2 a_max d)). A hand with
     /// a strength F_max then keeps its next force within F_max by the stiffness it felt
     /// ([`Feel`]); over its strength it gives way — a person cannot drag a hose taut
-    /// between its fixings by a kilonewton.
+    /// between its fixings by a kilonewton. Returns the hand's pose at `t`.
     pub fn update(
         &mut self,
         model: &Model,
@@ -105,7 +105,7 @@ impl HeldHand {
         t: f64,
         dt: f64,
         limits: &HandLimits,
-    ) {
+    ) -> (DVec3, DQuat) {
         if let Some(aim) = &mut self.aim {
             let to_go = (aim.target.0 - aim.pose.0).length();
             let braking = (2.0 * limits.max_acceleration * to_go).sqrt();
@@ -145,7 +145,7 @@ impl HeldHand {
                 .rotate_towards(aim.target.1, limits.max_turn_rate * dt);
             self.hand.set_pose(aim.pose.0, aim.pose.1);
         }
-        self.hand.update(state, t);
+        self.hand.update(state, t)
     }
 
     /// Whether the hand is still on its way at time `t`.

@@ -33,7 +33,7 @@ pub use verdict::{Stage, Verdict};
 use crate::checks::{CheckSettings, ChecksSummary, InstallationChecks};
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};
 use crate::fasteners::{ClipSite, FastenerReport, FastenerSample, Fasteners, StubSite};
-use crate::hand::{nearest_beam, Hand};
+use crate::hand::{nearest_beam, Hand, HandLoad};
 use crate::timeline::{Action, NodeRef};
 use glam::{DQuat, DVec3};
 use hands::{holder, Hands};
@@ -155,6 +155,9 @@ pub struct Workcell {
     hands: Hands,
     /// The hands' loads after the last step (buffer reused every step).
     hand_records: Vec<HandRecord>,
+    /// The hands' positions this step's update set, in the hands' order (buffer reused
+    /// every step: their loads after the step are taken there).
+    hand_positions: Vec<DVec3>,
     /// The nodes the hands hold this step, with the hand's force of the last step
     /// (buffer reused every step: the fasteners ask about every node of their hoses).
     held_nodes: Vec<(usize, DVec3)>,
@@ -231,6 +234,7 @@ impl Workcell {
             initial: setup.initial,
             hands: Hands::new(),
             hand_records: Vec::with_capacity(4),
+            hand_positions: Vec::with_capacity(4),
             held_nodes: Vec::with_capacity(8),
             fasteners: Fasteners::default(),
             user_loads: BTreeSet::new(),
@@ -344,10 +348,9 @@ impl Workcell {
     /// its assessment under the current profile.
     pub fn hand_record(&self, hand: HandNumber) -> Result<HandRecord, Refusal> {
         let h = self.hand(hand)?;
-        Ok(self.assess(hand, h))
+        Ok(self.assess(hand, h.hand.load(&self.model, &self.state)))
     }
-    fn assess(&self, number: HandNumber, h: &HeldHand) -> HandRecord {
-        let load = h.hand.load(&self.model, &self.state);
+    fn assess(&self, number: HandNumber, load: HandLoad) -> HandRecord {
         let assessment = self.limits.and_then(|l| {
             l.assess(&self.profile, load.force, load.torque, load.direction)
                 .ok()
@@ -926,8 +929,10 @@ impl Workcell {
         let dt = self.solver.time_step(&self.model);
         let t_next = self.state.time + dt;
         let limits = self.options.hand_limits;
+        self.hand_positions.clear();
         for h in self.hands.values_mut() {
-            h.update(&self.model, &mut self.state, t_next, dt, &limits);
+            let (position, _) = h.update(&self.model, &mut self.state, t_next, dt, &limits);
+            self.hand_positions.push(position);
         }
         if !self.fasteners.is_empty() {
             self.held_nodes.clear();
@@ -940,16 +945,8 @@ impl Workcell {
                 self.held_nodes
                     .extend(h.hand.held_nodes().map(|node| (node, force)));
             }
-            let held_nodes = &self.held_nodes;
-            let held = |node: usize| held_nodes.iter().any(|&(n, _)| n == node);
-            let force = |node: usize| {
-                held_nodes
-                    .iter()
-                    .find(|&&(n, _)| n == node)
-                    .map_or(DVec3::ZERO, |&(_, f)| f)
-            };
             self.fasteners
-                .update(&self.model, &mut self.state, &held, &force);
+                .update(&self.model, &mut self.state, &self.held_nodes);
         }
         self.tick += 1;
         let stats = match self.solver.step(&self.model, &mut self.state) {
@@ -962,23 +959,31 @@ impl Workcell {
         // Divergence is declared at fixed steps only, so that it happens at the same
         // tick whoever watches (a replay with a recorder, a live session without);
         // an observer is shown checked states only.
-        if self.state.step % HEALTH_CHECK_EVERY == 0 {
+        let checked = self.state.step % HEALTH_CHECK_EVERY == 0;
+        if checked {
             if let Err(d) = check_for(self.solver.kind(), &self.model, &self.state) {
                 return Err(self.fail(d));
             }
         }
         // states shown to the observer or judged by the checks are checked ones (a
-        // blow-up between two health checks is neither), checked once for both
+        // blow-up between two health checks is neither), checked once for both (and not
+        // again on a health-check step, which got here healthy)
         let (shown, judged) = (
             obs.wants_state(self.state.time),
             self.checks.due(self.state.time),
         );
-        let healthy =
-            (shown || judged) && check_for(self.solver.kind(), &self.model, &self.state).is_ok();
+        let healthy = (shown || judged)
+            && (checked || check_for(self.solver.kind(), &self.model, &self.state).is_ok());
         let wants = shown && healthy;
         self.hand_records.clear();
-        for (&k, h) in &self.hands {
-            let r = self.assess(k, h);
+        let posed = self.state.time == t_next; // else the solver's grid moved the time
+        for ((&k, h), &position) in self.hands.iter().zip(&self.hand_positions) {
+            let load = if posed {
+                h.hand.load_at(&self.model, &self.state, position)
+            } else {
+                h.hand.load(&self.model, &self.state)
+            };
+            let r = self.assess(k, load);
             self.hand_records.push(r);
         }
         self.tally.record(
