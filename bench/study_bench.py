@@ -46,7 +46,8 @@ def main():
     a = ap.parse_args()
 
     import pliant
-    from distributed import Client, LocalCluster
+    from distributed import Client
+    from pliant.studies.cluster import local_cluster
     from pliant.studies import load_study, samples, variant_scene
 
     study = load_study(a.study, runs=a.runs)
@@ -65,8 +66,7 @@ def main():
     results["load_average_before"] = os.getloadavg()[0]
 
     for n in [int(x) for x in a.workers.split(",")]:
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
-                               silence_logs=40)
+        cluster = local_cluster(n)  # the study's own kind of local cluster
         client = Client(cluster)
         out = tempfile.mkdtemp(prefix=f"study-bench-{n}-")
         try:

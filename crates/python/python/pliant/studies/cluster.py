@@ -202,15 +202,32 @@ def _prepare(study: Study, out: str) -> Layout:
 def connect(scheduler: Optional[str], workers: Optional[int], processes: bool = True):
     """A Dask client: to the scheduler at this address, or to a new local cluster."""
     try:
-        from distributed import Client, LocalCluster
+        from distributed import Client
     except ImportError:
         raise StudyError("studies need Dask: pip install 'dask[distributed]' pyarrow pandas scipy scikit-image") from None
     if scheduler:
         return Client(scheduler), None
-    n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=processes,
-                           dashboard_address=":0", silence_logs=40)
+    cluster = local_cluster(workers or os.cpu_count() or 1, processes)
     return Client(cluster), cluster
+
+
+def local_cluster(workers: int, processes: bool = True):
+    """A local Dask cluster of single-threaded workers for a study. Its worker processes
+    start without Dask's default ``MALLOC_TRIM_THRESHOLD_`` (65536): setting it switches
+    off glibc's adaptive mmap threshold (mallopt(3)), so every allocation above 128 KiB —
+    a run's recorded frames, the row's numpy arrays — is mapped and unmapped again. On
+    the demo study that cost 13 500 page faults and 0.06 CPU-s per run (1 800 faults
+    without; docs/performance.md, "Studies"). Workers of a cluster started elsewhere
+    (``--scheduler``) keep their own environment: start them without it
+    (docs/study.md)."""
+    import dask
+    from distributed import LocalCluster
+
+    environ = {k: v for k, v in (dask.config.get("distributed.nanny.pre-spawn-environ", None) or {}).items()
+               if k != "MALLOC_TRIM_THRESHOLD_"}
+    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=processes,
+                            dashboard_address=":0", silence_logs=40)
 
 
 def run_study(
