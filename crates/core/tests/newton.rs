@@ -48,6 +48,38 @@ fn hose1() -> (Material, Section) {
     )
 }
 
+/// Library hose 1, 0.5 m in 8 elements along x from `start`, nodes 3–5 a stiffened
+/// section (SPEC M6), under `gravity`.
+fn stiffened_hose(start: DVec3, gravity: DVec3) -> Model {
+    use pliant_core::stiffened::StiffenedSpan;
+    let (mat, sec) = hose1();
+    let n = 8;
+    let nodes = (0..=n)
+        .map(|i| start + DVec3::new(0.5 * i as f64 / n as f64, 0.0, 0.0))
+        .collect();
+    Model::build(&WorldSpec {
+        hoses: vec![HoseSpec {
+            name: "h".into(),
+            material: mat,
+            nodes,
+            sections: vec![sec],
+            normal_hint: Some(DVec3::Y),
+        }],
+        rigid_parts: vec![],
+        settings: SimSettings {
+            gravity,
+            ..Default::default()
+        },
+    })
+    .unwrap()
+    .with_stiffened_spans(&[StiffenedSpan {
+        hose: 0,
+        first: 3,
+        last: 5,
+    }])
+    .unwrap()
+}
+
 /// λ = PL²/EI = 2: exact w/L = 0.493457 (Mattiasson 1981), in one static solve from the
 /// straight rest shape.
 #[test]
@@ -176,30 +208,8 @@ fn implicit_soft_hose_swings_at_10_ms() {
 /// span stays rigid.
 #[test]
 fn implicit_hand_lifts_a_stiffened_section() {
-    use pliant_core::stiffened::StiffenedSpan;
-    let (mat, sec) = hose1();
     let n = 8;
-    let nodes = (0..=n)
-        .map(|i| DVec3::new(0.5 * i as f64 / n as f64, 0.0, 0.0))
-        .collect();
-    let model = Model::build(&WorldSpec {
-        hoses: vec![HoseSpec {
-            name: "h".into(),
-            material: mat,
-            nodes,
-            sections: vec![sec],
-            normal_hint: Some(DVec3::Y),
-        }],
-        rigid_parts: vec![],
-        settings: SimSettings::default(),
-    })
-    .unwrap()
-    .with_stiffened_spans(&[StiffenedSpan {
-        hose: 0,
-        first: 3,
-        last: 5,
-    }])
-    .unwrap();
+    let model = stiffened_hose(DVec3::ZERO, SimSettings::default().gravity);
     let mut state = State::at_rest(&model);
     state.loads.add(LoadCase::Fix(Fix {
         node: 0,
@@ -328,34 +338,9 @@ fn a_relaxation_that_stopped_moving_gives_up() {
 /// convergence (the engine-bay demo under the static solver: "uncertain").
 #[test]
 fn a_stiff_section_far_from_the_origin_converges_to_the_same_shape() {
-    use pliant_core::stiffened::StiffenedSpan;
-    let (mat, sec) = hose1();
     let n = 8;
     let solve = |offset: DVec3| {
-        let nodes = (0..=n)
-            .map(|i| offset + DVec3::new(0.5 * i as f64 / n as f64, 0.0, 0.0))
-            .collect();
-        let model = Model::build(&WorldSpec {
-            hoses: vec![HoseSpec {
-                name: "h".into(),
-                material: mat.clone(),
-                nodes,
-                sections: vec![sec],
-                normal_hint: Some(DVec3::Y),
-            }],
-            rigid_parts: vec![],
-            settings: SimSettings {
-                gravity: DVec3::new(0.0, 0.0, -9.81),
-                ..Default::default()
-            },
-        })
-        .unwrap()
-        .with_stiffened_spans(&[StiffenedSpan {
-            hose: 0,
-            first: 3,
-            last: 5,
-        }])
-        .unwrap();
+        let model = stiffened_hose(offset, DVec3::new(0.0, 0.0, -9.81));
         let mut state = State::at_rest(&model);
         for node in [0, n] {
             state.loads.add(LoadCase::Fix(Fix {

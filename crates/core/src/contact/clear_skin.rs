@@ -96,27 +96,13 @@ impl ClearSkin {
 mod tests {
     use super::*;
     use crate::contact::coherence::Searcher;
-    use crate::contact::environment::{cube, ClosestPoint};
-    use crate::contact::RigidEnvironment;
-    use crate::spec::RigidPartSpec;
+    use crate::contact::environment::{cube, test_plate, ClosestPoint};
 
     /// A beam walking down onto a plate, its list kept by the cache: whenever the skin
     /// calls it clear, so does the cache's own test; the skin spares most of the tests.
     #[test]
     fn the_skin_says_what_the_clear_test_says() {
-        let env = RigidEnvironment::build(&[RigidPartSpec {
-            name: "plate".into(),
-            vertices: vec![
-                DVec3::new(-0.5, -0.5, 0.0),
-                DVec3::new(0.5, -0.5, 0.0),
-                DVec3::new(0.5, 0.5, 0.0),
-                DVec3::new(-0.5, 0.5, 0.0),
-            ],
-            triangles: vec![[0, 1, 2], [0, 2, 3]],
-            friction_static: 0.5,
-            friction_sliding: 0.5,
-        }])
-        .unwrap();
+        let env = test_plate();
         let reach = 0.01;
         let mut cache = CandidateCache::new(1, &env);
         let mut skin = ClearSkin::new(2, 1);

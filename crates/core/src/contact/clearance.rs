@@ -77,26 +77,14 @@ impl Clearance {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::spec::RigidPartSpec;
+    use crate::contact::environment::test_plate;
 
     /// A point walking down onto a plate: whenever its memory calls it clear, a fresh
     /// query within its reach finds nothing; the memory spares most of the queries above
     /// the plate.
     #[test]
     fn a_point_taken_for_clear_finds_nothing() {
-        let env = RigidEnvironment::build(&[RigidPartSpec {
-            name: "plate".into(),
-            vertices: vec![
-                DVec3::new(-0.5, -0.5, 0.0),
-                DVec3::new(0.5, -0.5, 0.0),
-                DVec3::new(0.5, 0.5, 0.0),
-                DVec3::new(-0.5, 0.5, 0.0),
-            ],
-            triangles: vec![[0, 1, 2], [0, 2, 3]],
-            friction_static: 0.5,
-            friction_sliding: 0.5,
-        }])
-        .unwrap();
+        let env = test_plate();
         let reach = 0.01;
         let mut memory = Clearance::new(1, &env);
         let (mut clear, mut found) = (0, 0);

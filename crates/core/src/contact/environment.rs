@@ -137,6 +137,24 @@ fn box_distance(p: &Aabb, q: &Aabb) -> f64 {
     gap.length()
 }
 
+/// A 1 m × 1 m plate in the plane z = 0 about the origin (two triangles), for tests.
+#[cfg(test)]
+pub(crate) fn test_plate() -> RigidEnvironment {
+    RigidEnvironment::build(&[crate::spec::RigidPartSpec {
+        name: "plate".into(),
+        vertices: vec![
+            DVec3::new(-0.5, -0.5, 0.0),
+            DVec3::new(0.5, -0.5, 0.0),
+            DVec3::new(0.5, 0.5, 0.0),
+            DVec3::new(-0.5, 0.5, 0.0),
+        ],
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        friction_static: 0.5,
+        friction_sliding: 0.5,
+    }])
+    .unwrap()
+}
+
 /// The cube of half-size `h` around `p`.
 pub(crate) fn cube(p: DVec3, h: f64) -> Aabb {
     Aabb::new(p - DVec3::splat(h), p + DVec3::splat(h))
