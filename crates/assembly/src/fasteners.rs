@@ -14,6 +14,7 @@ use pliant_core::loads::{DeadLoad, Drive, LoadCase, LoadCaseId};
 use pliant_core::math::{log_map, rotation_between};
 use pliant_core::{Model, State};
 use serde::Serialize;
+use std::ops::Range;
 
 /// Axial speed below which stub friction is regularised linearly [m/s] (a Coulomb law
 /// smoothed over ±1 mm/s so that a hose held still on the stub does not chatter).
@@ -130,6 +131,9 @@ struct ClipRun {
     /// Pulled loose by more than its holding force; it seats again only after the hose
     /// has left the seat.
     loosened: bool,
+    /// The hose centre's coordinate s along the opening in the last step, if it crossed
+    /// the clip's plane.
+    last_coordinate: Option<f64>,
 }
 
 /// All fasteners of a run.
@@ -204,6 +208,7 @@ impl Fasteners {
                 },
                 force_now: 0.0,
                 loosened: false,
+                last_coordinate: None,
                 site,
             })
             .collect();
@@ -362,15 +367,28 @@ fn crossing(
     best.map(|(a, b, t, m, _)| (a, b, t, m))
 }
 
+/// Whether a hand holds the hose at the clip: a node of the beam crossing the clip's
+/// plane (nodes `a`, `b` = a + 1 of the hose's `nodes`) or of the beams on either side
+/// of it. A hand pressing the hose into another clip further along does not lift this
+/// one's seat.
+fn held_at_clip(held: &[(usize, DVec3)], nodes: &Range<usize>, a: usize, b: usize) -> bool {
+    held.iter()
+        .any(|&(n, _)| nodes.contains(&n) && n + 1 >= a && n <= b + 1)
+}
+
 fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize, DVec3)]) {
     let cross = crossing(model, state, &c.site.spec, c.site.hose);
     let nodes = model.hoses[c.site.hose].nodes();
     let radius = cross.map_or(model.radius[nodes.start], |(a, ..)| model.radius[a]);
-    let grabbed = held.iter().any(|(n, _)| nodes.contains(n));
+    let grabbed = cross.is_some_and(|(a, b, ..)| held_at_clip(held, &nodes, a, b));
+    let coordinate = cross.map(|x| c.site.spec.opening_coordinate(x.3));
+    let crossed_seat = matches!((c.last_coordinate, coordinate), (Some(a), Some(b)) if a * b < 0.0);
+    c.last_coordinate = coordinate;
     let obs = ClipObservation {
         centre: cross.map(|x| x.3),
         radius,
         grabbed,
+        crossed_seat,
     };
     let Some(tolerance) = c.tolerance else {
         return;
@@ -426,4 +444,25 @@ fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize
         c.report.max_force_time = state.time;
     }
     c.report.assembled = next == ClipState::Seated;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::held_at_clip;
+    use glam::DVec3;
+
+    #[test]
+    fn only_a_hand_at_the_clip_counts_as_holding_the_hose_there() {
+        let hose = 10..30; // nodes of the clip's hose; the crossing beam joins 15 and 16
+        let hand = |n: usize| [(n, DVec3::ZERO)];
+        for n in 14..=17 {
+            assert!(held_at_clip(&hand(n), &hose, 15, 16), "node {n}");
+        }
+        for n in [13, 18, 25] {
+            assert!(!held_at_clip(&hand(n), &hose, 15, 16), "node {n}");
+        }
+        // a node of the next hose right after this hose's last crossing beam
+        assert!(!held_at_clip(&hand(30), &hose, 28, 29));
+        assert!(!held_at_clip(&[], &hose, 15, 16));
+    }
 }

@@ -141,6 +141,7 @@ fn at(s: f64, grabbed: bool) -> ClipObservation {
         centre: Some(clip().origin() + s * DVec3::Y),
         radius: R,
         grabbed,
+        crossed_seat: false,
     }
 }
 
@@ -236,4 +237,37 @@ fn bad_observations_are_errors() {
     assert!(ClipState::Free.next(&c, &tol, &nan_centre).is_err());
     let bad_tol = ClipTolerance { seat: -1.0, ..tol };
     assert!(ClipState::Free.next(&c, &bad_tol, &at(0.0, true)).is_err());
+}
+
+/// A hose springing back through the seat within one step (a long implicit step, or the
+/// static solver's jump to the next equilibrium) has been in the seat: it is seated, as
+/// one that stops within the seat tolerance is.
+#[test]
+fn a_hose_passing_through_the_seat_is_seated() {
+    let c = clip();
+    let tol = ClipTolerance::for_clip(&c);
+    let n = c.opening_distance();
+    let outside_seat = at(3.0 * tol.seat, false);
+    assert!(3.0 * tol.seat < n);
+    assert_eq!(
+        ClipState::Snapping.next(&c, &tol, &outside_seat).unwrap(),
+        ClipState::Snapping
+    );
+    let passed = ClipObservation {
+        crossed_seat: true,
+        ..outside_seat
+    };
+    assert_eq!(
+        ClipState::Snapping.next(&c, &tol, &passed).unwrap(),
+        ClipState::Seated
+    );
+    // not while a hand still holds it there
+    let held = ClipObservation {
+        grabbed: true,
+        ..passed
+    };
+    assert_eq!(
+        ClipState::Snapping.next(&c, &tol, &held).unwrap(),
+        ClipState::Snapping
+    );
 }

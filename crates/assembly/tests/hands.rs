@@ -308,3 +308,79 @@ fn set_pose_moves_held_nodes_to_the_target_pose() {
     assert!(load.force.length() > 0.0 && load.force.is_finite());
     assert!(!hand.moving(state.time));
 }
+
+/// Tip stretch x − L of the last node after each step, with the step's time.
+#[derive(Default)]
+struct TipTrace(Vec<(f64, f64)>);
+impl Observer for TipTrace {
+    fn wants_state(&self, _t: f64) -> bool {
+        true
+    }
+    fn on_state(&mut self, _model: &Model, state: &State) {
+        self.0.push((state.time, state.x[N].x - L));
+    }
+}
+
+/// A hand opens over `RELEASE_TIME`: the force it held the hose with falls smoothly to
+/// zero (1 − (3s² − 2s³)), so a stretched hose shortens with it instead of springing back
+/// past its rest length as it does when the force vanishes within one step.
+#[test]
+fn a_hand_opens_over_the_release_time() {
+    use pliant_assembly::hand::RELEASE_TIME;
+    let dl = 0.005;
+    let model = model();
+    let mut state = State::at_rest(&model);
+    let mut trace = TipTrace::default();
+    let actions = vec![
+        fix0(),
+        Action::Grab {
+            grip: Default::default(),
+            hand: 0,
+            at: DVec3::new(L - 0.006, 0.0, 0.0),
+        },
+        Action::MoveHand {
+            hand: 0,
+            path: Some(MovePath::By(vec![DVec3::new(dl, 0.0, 0.0)])),
+            rotation: None,
+            duration: 0.5,
+            speed: None,
+            spline: false,
+            wait: true,
+        },
+        Action::Run { duration: 0.5 },
+        Action::ReleaseHand { hand: 0 },
+        Action::Run {
+            duration: 2.0 * RELEASE_TIME,
+        },
+    ];
+    Runner::new(&model)
+        .run(&Timeline { actions }, &mut state, &mut trace)
+        .unwrap();
+    let released = 1.0;
+    let at = |t: f64| {
+        trace
+            .0
+            .iter()
+            .find(|(time, _)| *time >= t)
+            .map(|&(_, s)| s)
+            .unwrap()
+    };
+    assert!((at(released - 0.01) - dl).abs() < 0.01 * dl);
+    // half-way through the opening the hand still holds half its force: the hose, whose
+    // axial period (4L/c ≈ 18 ms) is short against the opening, is stretched about half
+    let half = at(released + 0.5 * RELEASE_TIME) / dl;
+    assert!((0.35..0.65).contains(&half), "stretch {half} × dl half-way");
+    // it never springs back past its rest length (an instant release swings to ≈ −0.5 dl)
+    let least = trace
+        .0
+        .iter()
+        .filter(|(t, _)| *t > released)
+        .map(|&(_, s)| s)
+        .fold(f64::INFINITY, f64::min);
+    assert!(least > -0.1 * dl, "least stretch {} × dl", least / dl);
+    // and once open, nothing is left on the node
+    assert!(state
+        .loads
+        .iter()
+        .all(|(_, c)| c.node() != N - 1 && c.node() != N));
+}

@@ -253,4 +253,9 @@ fn the_engine_bay_demo_shows_contact_and_follows_the_new_rules() {
         .violations
         .iter()
         .any(|v| v.check == CheckKind::BendRadius && v.hose_name == "lower"));
+    // both clips end seated: the hand opens slowly, so each press goes past the seat, and
+    // pressing at the corner clip does not lift the radiator-side clip's seat
+    let clips: Vec<_> = run.fasteners.iter().filter(|f| f.kind == "clip").collect();
+    assert_eq!(clips.len(), 2);
+    assert!(clips.iter().all(|f| f.final_state == "seated"), "{clips:?}");
 }

@@ -8,7 +8,8 @@
 //!   −|n| < s < |n| + h (it touches the jaws or is inside the clip).
 //! - **Snapping**: the force law acts. Out of the clip plane, q > `lateral`, s ≥ |n| + h
 //!   (pulled back out past the opening until the jaws no longer touch) or s ≤ −|n| →
-//!   Free. Released with |s| ≤ `seat` → Seated. Released between the opening and the seat
+//!   Free. Released with |s| ≤ `seat`, or passing through the seat (s changing sign
+//!   between two steps), → Seated. Released between the opening and the seat
 //!   it stays Snapping: the pull-in branch draws it to the seat (the thesis moves it there
 //!   by a translation load case) and it is seated once within `seat`.
 //! - **Seated**: held at the seat by an L1 fix (the force law is not needed: it is 0 at
@@ -69,6 +70,10 @@ pub struct ClipObservation {
     pub radius: f64,
     /// Whether a hand holds the hose near the clip.
     pub grabbed: bool,
+    /// Whether the hose centre crossed the seat (its coordinate s along the opening changed
+    /// sign) since the last step: a hose springing back through the seat within one step
+    /// has been in it, however long the step.
+    pub crossed_seat: bool,
 }
 
 /// Where a hose is relative to a clip.
@@ -139,8 +144,10 @@ impl ClipState {
             _ => false,
         };
         let seated = || {
-            obs.centre
-                .is_some_and(|m| clip.opening_coordinate(m).abs() <= tolerance.seat)
+            obs.crossed_seat
+                || obs
+                    .centre
+                    .is_some_and(|m| clip.opening_coordinate(m).abs() <= tolerance.seat)
         };
         Ok(match self {
             ClipState::Free if engaged() => ClipState::Snapping,

@@ -33,7 +33,7 @@ pub use verdict::{Stage, Verdict};
 use crate::checks::{CheckSettings, ChecksSummary, InstallationChecks};
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};
 use crate::fasteners::{ClipSite, FastenerReport, FastenerSample, Fasteners, StubSite};
-use crate::hand::{nearest_beam, Hand, HandLoad};
+use crate::hand::{nearest_beam, Hand, HandLoad, RELEASE_TIME};
 use crate::timeline::{Action, NodeRef};
 use glam::{DQuat, DVec3};
 use hands::{holder, Hands};
@@ -161,6 +161,9 @@ pub struct Workcell {
     /// The nodes the hands hold this step, with the hand's force of the last step
     /// (buffer reused every step: the fasteners ask about every node of their hoses).
     held_nodes: Vec<(usize, DVec3)>,
+    /// When the last hand that let go has opened ([`RELEASE_TIME`] after it began): what
+    /// hands left fading is taken away then.
+    opening_until: Option<f64>,
     fasteners: Fasteners,
     /// Load cases added by inputs (the ones fix/drive/release/remove_load may replace).
     user_loads: BTreeSet<LoadCaseId>,
@@ -236,6 +239,7 @@ impl Workcell {
             hand_records: Vec::with_capacity(4),
             hand_positions: Vec::with_capacity(4),
             held_nodes: Vec::with_capacity(8),
+            opening_until: None,
             fasteners: Fasteners::default(),
             user_loads: BTreeSet::new(),
             named_loads: BTreeMap::new(),
@@ -255,6 +259,7 @@ impl Workcell {
     /// Rest state, fasteners, initial loads: the start of a study (and of every reset).
     fn start(&mut self) -> Result<(), String> {
         self.state = State::at_rest(&self.model);
+        self.opening_until = None;
         self.state.sleep.enabled = self.options.sleeping;
         self.fasteners = Fasteners::new(&mut self.state, self.stubs.clone(), self.clips.clone());
         self.hands.clear();
@@ -361,10 +366,10 @@ impl Workcell {
             assessment,
         }
     }
-    /// Whether a hand or a drive is still moving.
+    /// Whether a hand or a drive is still moving, or a load still rising or falling.
     pub fn moving(&self) -> bool {
         let t = self.state.time;
-        self.state.loads.any_drive_moving(t) || self.hands.values().any(|h| h.moving(t))
+        self.state.loads.any_changing(t) || self.hands.values().any(|h| h.moving(t))
     }
     /// The load cases inputs added that are still active.
     pub fn user_loads(&self) -> impl Iterator<Item = (LoadCaseId, &LoadCase)> {
@@ -483,6 +488,7 @@ impl Workcell {
     /// tick, log, profile or divergence: [`Self::restore`] and a rollback differ there).
     fn put_back(&mut self, c: Checkpoint) {
         self.state = c.state;
+        self.opening_until = self.state.loads.latest_release_end();
         self.hands = c.hands;
         self.hand_records = c.hand_records;
         self.fasteners = c.fasteners;
@@ -561,6 +567,20 @@ impl Workcell {
         Ok(hose.node(n.node))
     }
 
+    /// A hand lets go: over [`RELEASE_TIME`] under a dynamic solver ([`Hand::let_go`]), at
+    /// once under the static one (each of its inputs is an equilibrium, with no time for a
+    /// hand to open in).
+    fn let_go(&mut self, hand: Hand) {
+        match self.solver.kind() {
+            SolverKind::Static => hand.release(&mut self.state),
+            SolverKind::Explicit | SolverKind::Implicit => {
+                hand.let_go(&mut self.state, RELEASE_TIME);
+                let open = self.state.time + RELEASE_TIME;
+                self.opening_until = Some(self.opening_until.map_or(open, |t| t.max(open)));
+            }
+        }
+    }
+
     /// Refuses a node a hand holds, else removes the fixes and drives inputs put on it.
     fn take_node(&mut self, node: usize) -> Result<(), Refusal> {
         if let Some(k) = holder(&self.hands, node) {
@@ -569,6 +589,11 @@ impl Workcell {
             )));
         }
         self.remove_user_loads(node, |c| !matches!(c, LoadCase::DeadLoad(_)));
+        // and what a hand that let go left fading there
+        self.state.loads.remove_on_node(
+            node,
+            |c| matches!(c, LoadCase::DeadLoad(d) if d.is_release()),
+        );
         Ok(())
     }
 
@@ -657,10 +682,7 @@ impl Workcell {
                         )));
                     }
                 }
-                let ramp = (*ramp > 0.0).then_some(LoadRamp {
-                    start: t,
-                    duration: *ramp,
-                });
+                let ramp = (*ramp > 0.0).then_some(LoadRamp::rise(t, *ramp));
                 let id = self.add_user_load(LoadCase::DeadLoad(DeadLoad {
                     node: i,
                     force,
@@ -750,7 +772,7 @@ impl Workcell {
                 // a grab or a release changes what holds the hoses: let them all move
                 self.state.sleep.wake_all(&self.model);
                 if let Some(old) = self.hands.remove(hand) {
-                    old.hand.release(&mut self.state);
+                    self.let_go(old.hand);
                 }
                 for n in nodes {
                     self.remove_user_loads(n, |c| !matches!(c, LoadCase::DeadLoad(_)));
@@ -820,7 +842,7 @@ impl Workcell {
                     .remove(hand)
                     .ok_or_else(|| Refusal::Invalid(format!("hand {hand} holds nothing")))?;
                 self.state.sleep.wake_all(&self.model);
-                h.hand.release(&mut self.state);
+                self.let_go(h.hand);
                 Ok(Applied::Done)
             }
             Input::SetErgonomics { profile } => {
@@ -956,6 +978,10 @@ impl Workcell {
                 return Err(self.fail(d));
             }
         };
+        if self.opening_until.is_some_and(|t| self.state.time >= t) {
+            self.state.loads.remove_finished_releases(self.state.time);
+            self.opening_until = None;
+        }
         // Divergence is declared at fixed steps only, so that it happens at the same
         // tick whoever watches (a replay with a recorder, a live session without);
         // an observer is shown checked states only.

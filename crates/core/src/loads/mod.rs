@@ -104,6 +104,29 @@ impl LoadCases {
         before - self.cases.len()
     }
 
+    /// Removes what hands that let go left behind once it has fallen to zero by time `t`
+    /// ([`DeadLoad::is_release`]); returns how many.
+    pub fn remove_finished_releases(&mut self, t: f64) -> usize {
+        let before = self.cases.len();
+        self.cases.retain(|(_, c)| {
+            !matches!(c, LoadCase::DeadLoad(d)
+                if d.is_release() && d.ramp.is_some_and(|r| t >= r.start + r.duration))
+        });
+        before - self.cases.len()
+    }
+
+    /// When the last of what hands that let go left behind has fallen to zero, if any
+    /// is left.
+    pub fn latest_release_end(&self) -> Option<f64> {
+        self.cases
+            .iter()
+            .filter_map(|(_, c)| match c {
+                LoadCase::DeadLoad(d) if d.is_release() => d.ramp.map(|r| r.start + r.duration),
+                _ => None,
+            })
+            .reduce(f64::max)
+    }
+
     pub fn iter(&self) -> impl Iterator<Item = &(LoadCaseId, LoadCase)> {
         self.cases.iter()
     }
@@ -122,6 +145,16 @@ impl LoadCases {
         self.cases
             .iter()
             .any(|(_, c)| c.node() == node && c.prescribed_pose(0.0).is_some())
+    }
+
+    /// Whether a load still changes at time `t`: a drive moving, or a dead load rising or
+    /// falling along its ramp (a hand letting go, [`LoadRamp::smooth_fall`]).
+    pub fn any_changing(&self, t: f64) -> bool {
+        self.cases.iter().any(|(_, c)| match c {
+            LoadCase::Drive(d) => !d.finished(t),
+            LoadCase::DeadLoad(d) => d.ramp.is_some_and(|r| t < r.start + r.duration),
+            _ => false,
+        })
     }
 
     /// Whether any drive is still moving at time `t`.

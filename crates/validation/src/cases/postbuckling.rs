@@ -162,10 +162,7 @@ fn push_with(
             node: ELEMENTS / 2,
             force: DVec3::new(0.0, -2.0 * p_cr, 0.0),
             moment: DVec3::ZERO,
-            ramp: Some(LoadRamp {
-                start: state.time,
-                duration: 1.0,
-            }),
+            ramp: Some(LoadRamp::rise(state.time, 1.0)),
         }));
         events += solver_steps(&model, &mut solver, &mut state, second)?;
         state.loads.remove(push);
