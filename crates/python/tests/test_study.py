@@ -755,3 +755,14 @@ def test_local_workers_start_without_a_malloc_trim_threshold(client):
     assert len(env) == 2
     for worker in env.values():
         assert worker == {"MALLOC_TRIM_THRESHOLD_": None, "OMP_NUM_THREADS": "1"}
+
+
+def test_local_workers_run_no_statistical_profiler(client):
+    """Dask's workers sample every thread's stack 100 times a second for the dashboard's
+    Profile page (≈ 4 % of a worker's CPU on the demo study); the study's local cluster
+    switches that off, here and not in the process that started it."""
+    import dask
+
+    assert dask.config.get("distributed.worker.profile.enabled") is True
+    enabled = client.run(lambda: __import__("dask").config.get("distributed.worker.profile.enabled"))
+    assert len(enabled) == 2 and all(v is False for v in enabled.values()), enabled

@@ -217,15 +217,18 @@ def local_cluster(workers: int, processes: bool = True):
     off glibc's adaptive mmap threshold (mallopt(3)), so every allocation above 128 KiB —
     a run's recorded frames, the row's numpy arrays — is mapped and unmapped again. On
     the demo study that cost 13 500 page faults and 0.06 CPU-s per run (1 800 faults
-    without; docs/performance.md, "Studies"). Workers of a cluster started elsewhere
-    (``--scheduler``) keep their own environment: start them without it
-    (docs/study.md)."""
+    without; docs/performance.md, "Studies"). Nor do they run Dask's statistical
+    profiler (``distributed.worker.profile.enabled``), which samples every thread's stack
+    a hundred times a second for the dashboard's Profile page: ≈ 4 % of a worker's CPU
+    on the demo study. Workers of a cluster started elsewhere (``--scheduler``) keep
+    their own environment and settings: start them the same way (docs/study.md)."""
     import dask
     from distributed import LocalCluster
 
     environ = {k: v for k, v in (dask.config.get("distributed.nanny.pre-spawn-environ", None) or {}).items()
                if k != "MALLOC_TRIM_THRESHOLD_"}
-    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
+    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ,
+                          "distributed.worker.profile.enabled": False}):
         return LocalCluster(n_workers=workers, threads_per_worker=1, processes=processes,
                             dashboard_address=":0", silence_logs=40)
 
