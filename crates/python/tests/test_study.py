@@ -705,9 +705,10 @@ def test_a_batch_dilates_its_united_samples_to_the_union_of_its_runs_voxels():
 
 def test_part_distances_match_independent_ones():
     """Clearances: a rotated box's signed distance equals the distance to its 12 triangles
-    outside and minus the nearest face's inside; a cylinder's matches a dense sampling of
-    its surface; a mesh part's min_distance (pruned by its bounding box) equals the brute
-    force minimum over every point."""
+    (a mesh part: the engine's BVH and triangle projection, not the box formula) outside
+    and minus the nearest face's inside; a cylinder's matches a dense sampling of its
+    surface; a mesh part's min_distance (pruned by its bounding box) equals the minimum
+    over every point's distance; a sphere's is |x − c| − r."""
     rng = np.random.default_rng(8)
     R = geometry._rotation({"axis": [1, 2, 3], "angle_deg": 37})
     x0, size = np.array([0.1, 0.2, 0.3]), np.array([0.4, 0.3, 0.2])
@@ -721,7 +722,8 @@ def test_part_distances_match_independent_ones():
     inside = (np.abs(local) < size / 2).all(axis=1)
     d = box.distance(pts)
     assert inside.sum() > 20 and (~inside).sum() > 1000
-    assert np.allclose(d[~inside], geometry._mesh_distance(pts[~inside], tri), atol=1e-12)
+    as_mesh = geometry.Part("t", "mesh", x0, np.eye(3), triangles=tri)
+    assert np.allclose(d[~inside], as_mesh.distance(pts[~inside]), atol=1e-12)
     assert np.allclose(d[inside], -(size / 2 - np.abs(local[inside])).min(axis=1), atol=1e-12)
 
     cyl = geometry.Part("c", "cylinder", x0, R, size=np.array([0.2, 0.5]))
@@ -739,8 +741,14 @@ def test_part_distances_match_independent_ones():
     mesh = geometry.Part("m", "mesh", x0, np.eye(3), triangles=tri)
     offset = np.full(len(pts), 0.01)
     outside = pts[~inside]
-    brute = (geometry._mesh_distance(outside, tri) - offset[: len(outside)]).min()
+    brute = (mesh.distance(outside) - offset[: len(outside)]).min()
     assert mesh.min_distance(outside, offset[: len(outside)]) == brute
+    assert box.min_distance(pts, offset) == (d - offset).min()
+    sphere = geometry.Part("s", "sphere", x0, R, size=np.array([0.15]))
+    assert np.allclose(sphere.distance(pts), np.linalg.norm(pts - x0, axis=1) - 0.15, atol=1e-15)
+    assert mesh.min_distance(outside[:0], offset[:0]) == np.inf
+    with pytest.raises(ValueError, match="3 finite sizes"):
+        geometry.Part("x", "box", x0, R, size=np.array([1.0, 2.0])).distance(pts)
 
 
 def test_local_workers_start_without_a_malloc_trim_threshold(client):

@@ -4,7 +4,8 @@ Primitives (box, sphere, cylinder) use their exact signed distance (negative ins
 engine's cylinder is a prism of ``segments`` sides inscribed in the circle, so this
 distance is up to r (1 − cos π/n) too large). OBJ and STL meshes use the exact unsigned
 distance to their triangles (a point inside a closed mesh reads as its depth, not as a
-negative number). glTF parts are not read here: their clearance is NaN.
+negative number). glTF parts are not read here: their clearance is NaN. The distances are
+measured in Rust (``crates/python/src/part_distance.rs``).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from typing import Any, Dict, List, Optional
 
 import numpy as np
 
+from .. import _pliant
 from .variant import length_factor
 
 UNITS = {"m": 1.0, "mm": 1e-3}
@@ -34,48 +36,28 @@ class Part:
     triangles: Optional[np.ndarray] = None  # (F, 3, 3) in world coordinates
 
     def min_distance(self, points: np.ndarray, offset: np.ndarray) -> float:
-        """min over points of (distance − offset), exactly; meshes measure the 256 points
-        nearest their bounding box, then the others in order of that distance until no
-        closer one can follow."""
-        if self.kind != "mesh":
-            d = self.distance(points) - offset
-            return float(np.nanmin(d)) if np.isfinite(d).any() else float("nan")
+        """min over points of (distance − offset), exactly (NaN if it cannot be told);
+        measured in Rust (``pliant._pliant.part_clearance``: meshes measure only the points
+        whose distance to the mesh's bounding box beats the best so far)."""
+        if self.kind == "unsupported":
+            return float("nan")
         if len(points) == 0:
             return np.inf
-        lo, hi = self.triangles.reshape(-1, 3).min(axis=0), self.triangles.reshape(-1, 3).max(axis=0)
-        gap = np.maximum(np.maximum(lo - points, points - hi), 0)
-        bound = np.sqrt(np.einsum("ij,ij->i", gap, gap)) - offset
-        # the 256 nearest by the bound first, then only the points that may beat them
-        first = np.argpartition(bound, 255)[:256] if len(bound) > 256 else np.arange(len(bound))
-        best = float((_mesh_distance(points[first], self.triangles) - offset[first]).min())
-        rest = np.flatnonzero(bound < best)
-        order = rest[np.argsort(bound[rest])]
-        for s in range(0, len(order), 256):
-            idx = order[s:s + 256]
-            if bound[idx[0]] >= best:
-                break
-            best = min(best, float((_mesh_distance(points[idx], self.triangles) - offset[idx]).min()))
-        return best
+        d = _pliant.part_clearance(np.ascontiguousarray(points, float), np.ascontiguousarray(offset, float),
+                                   *self._shape())
+        return d if np.isfinite(d) else float("nan")
 
     def distance(self, points: np.ndarray) -> np.ndarray:
         """Distance of each point (K, 3) to the part's surface; NaN if it cannot be told."""
         if self.kind == "unsupported":
             return np.full(len(points), np.nan)
-        if self.kind == "mesh":
-            return _mesh_distance(points, self.triangles)
-        # coordinates in the part's frame, R^T (p − x), one contiguous column per axis
-        x, y, z = self.rotation.T @ (points - self.position).T
-        if self.kind == "sphere":
-            return np.sqrt(x * x + y * y + z * z) - self.size[0]
-        if self.kind == "box":
-            qs = [np.abs(c) - s / 2 for c, s in zip((x, y, z), self.size)]
-        else:
-            r, h = self.size
-            qs = [np.sqrt(x * x + y * y) - r, np.abs(z) - h / 2]
-        # signed distance to the box (or the cylinder's (radius, height) rectangle):
-        # |max(q, 0)| outside, max_i q_i (≤ 0) inside
-        outside = sum(np.maximum(q, 0) ** 2 for q in qs)
-        return np.sqrt(outside) + np.minimum(np.maximum.reduce(qs), 0)
+        return _pliant.part_distances(np.ascontiguousarray(points, float), *self._shape())
+
+    def _shape(self) -> tuple:
+        """The arguments after the points of ``part_distances`` / ``part_clearance``."""
+        size = [] if self.size is None else [float(v) for v in self.size]
+        tri = None if self.triangles is None else np.ascontiguousarray(self.triangles, float)
+        return self.kind, self.position.tolist(), self.rotation.tolist(), size, tri
 
 
 def _rotation(rot: Optional[Dict[str, Any]]) -> np.ndarray:
@@ -138,44 +120,4 @@ def parts(scene: Dict[str, Any]) -> List[Part]:
             out.append(Part(p["name"], "mesh", x, R, triangles=tri @ R.T + x))
         else:
             out.append(Part(p["name"], "unsupported", x, R))
-    return out
-
-
-def _mesh_distance(points: np.ndarray, tri: np.ndarray, chunk: int = 2048) -> np.ndarray:
-    """Exact unsigned distance of points (K, 3) to triangles (F, 3, 3) (Ericson's
-    closest-point regions, vectorised over points × triangles in chunks)."""
-    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
-    ab, ac = b - a, c - a
-    best = np.full(len(points), np.inf)
-    for s in range(0, len(points), chunk):
-        p = points[s:s + chunk, None, :]
-        closest = _closest_on_triangles(p, a, b, c, ab, ac)
-        best[s:s + chunk] = np.sqrt(((p - closest) ** 2).sum(-1)).min(axis=1)
-    return best
-
-
-def _closest_on_triangles(p, a, b, c, ab, ac):
-    dot = lambda u, v: (u * v).sum(-1)  # noqa: E731
-    ap, bp, cp = p - a, p - b, p - c
-    d1, d2 = dot(ab, ap), dot(ac, ap)
-    d3, d4 = dot(ab, bp), dot(ac, bp)
-    d5, d6 = dot(ab, cp), dot(ac, cp)
-    va = d3 * d6 - d5 * d4
-    vb = d5 * d2 - d1 * d6
-    vc = d1 * d4 - d3 * d2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        denom = va + vb + vc
-        v = np.where(denom != 0, vb / denom, 0.0)
-        w = np.where(denom != 0, vc / denom, 0.0)
-        out = a + ab * v[..., None] + ac * w[..., None]  # inside the face
-        # edges (later assignments win where regions overlap at vertices, as in Ericson)
-        t_bc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-        out = np.where(((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0))[..., None], b + (c - b) * t_bc[..., None], out)
-        t_ac = d2 / (d2 - d6)
-        out = np.where(((vb <= 0) & (d2 >= 0) & (d6 <= 0))[..., None], a + ac * t_ac[..., None], out)
-        t_ab = d1 / (d1 - d3)
-        out = np.where(((vc <= 0) & (d1 >= 0) & (d3 <= 0))[..., None], a + ab * t_ab[..., None], out)
-        out = np.where(((d6 >= 0) & (d5 <= d6))[..., None], c + 0 * out, out)
-        out = np.where(((d3 >= 0) & (d4 <= d3))[..., None], b + 0 * out, out)
-        out = np.where(((d1 <= 0) & (d2 <= 0))[..., None], a + 0 * out, out)
     return out
