@@ -145,7 +145,7 @@ enum Command {
         /// Number of runs instead of the study file's (Monte Carlo, Latin hypercube).
         #[arg(long)]
         runs: Option<usize>,
-        /// Runs per Dask task (default: up to 16, fewer for small studies so that every
+        /// Runs per Dask task (default: up to 32, fewer for small studies so that every
         /// worker gets about eight tasks).
         #[arg(long)]
         batch: Option<usize>,
