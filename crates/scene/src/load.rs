@@ -14,10 +14,8 @@ use crate::library::Library;
 use crate::materials::Materials;
 use crate::parts::build_parts;
 use crate::scene::LoadedScene;
-use crate::scene::SceneClip;
 use crate::settings::{build_record_interval, build_settings};
 use crate::timeline::{build_timeline, HoseNodes};
-use pliant_assembly::{Action, Timeline};
 use pliant_core::WorldSpec;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -472,11 +470,12 @@ fn build(
     };
     let mut warnings = parts.warnings;
     let safe = pliant_core::loads::largest_safety_with_supports();
-    if settings.time_step_safety > safe && holds_on_supports(&clips, &timeline) {
+    if settings.time_step_safety > safe {
         warnings.push(format!(
             "simulation.time_step_safety = {}: above {safe:.2} the springs that hold nodes in \
              fixings, loose grips and clips seated as supports (k = 0.5 m/Δt²) can ring or \
-             go unstable; keep it at or below {safe:.2} when any of them acts",
+             go unstable, and so can hoses pressing on each other (stable up to about 0.5); \
+             keep it at or below {safe:.2} when any of them acts",
             settings.time_step_safety
         ));
     }
@@ -518,14 +517,4 @@ mod tests {
         assert_eq!(line_column(t, 6), (2, 3));
         assert_eq!(line_column(t, 999), (3, 2));
     }
-}
-
-/// Whether the scene holds a node on a support spring ([`pliant_core::loads::Support`]):
-/// a clip that leaves the seated hose some freedom, or a hand that grabs loosely.
-fn holds_on_supports(clips: &[SceneClip], timeline: &Timeline) -> bool {
-    clips.iter().any(|c| !c.spec.kind().holds_all())
-        || timeline
-            .actions
-            .iter()
-            .any(|a| matches!(a, Action::Grab { grip, .. } if *grip != pliant_assembly::Grip::Firm))
 }
