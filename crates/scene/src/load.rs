@@ -469,16 +469,7 @@ fn build(
             .map_or_else(|| origin.to_string(), |s| s.to_string_lossy().into_owned()),
     };
     let mut warnings = parts.warnings;
-    let safe = pliant_core::loads::largest_safety_with_supports();
-    if settings.time_step_safety > safe {
-        warnings.push(format!(
-            "simulation.time_step_safety = {}: above {safe:.2} the springs that hold nodes in \
-             fixings, loose grips and clips seated as supports (k = 0.5 m/Δt²) can ring or \
-             go unstable, and so can hoses pressing on each other (stable up to about 0.5); \
-             keep it at or below {safe:.2} when any of them acts",
-            settings.time_step_safety
-        ));
-    }
+    warnings.extend(time_step_warning(settings.time_step_safety));
     Ok(LoadedScene {
         name,
         hose_names: hoses.iter().map(|h| h.name.clone()).collect(),
@@ -517,4 +508,29 @@ mod tests {
         assert_eq!(line_column(t, 6), (2, 3));
         assert_eq!(line_column(t, 999), (3, 2));
     }
+}
+
+/// What a time-step safety factor above the defaults' design puts at risk: hoses pressing
+/// on each other above [`SAFETY_FOR_HOSE_CONTACT`] (0.5), and above
+/// [`largest_safety_with_supports`] (≈ 0.65) the support springs too.
+fn time_step_warning(safety: f64) -> Option<String> {
+    let contact = pliant_core::contact::SAFETY_FOR_HOSE_CONTACT;
+    let supports = pliant_core::loads::largest_safety_with_supports();
+    if safety <= contact {
+        return None;
+    }
+    let springs = if safety > supports {
+        format!(
+            "; above {supports:.2} so can the springs that hold nodes in fixings, loose grips \
+             and clips seated as supports (k = 0.5 m/Δt²)"
+        )
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "simulation.time_step_safety = {safety}: above {contact} hoses pressing on each other \
+         (hose–hose contact, whose stiffness is capped for that step) can ring or go \
+         unstable{springs}; keep it at or below {contact} unless no hose touches another \
+         (a divergence is reported, never a wrong number)"
+    ))
 }

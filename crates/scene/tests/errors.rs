@@ -329,7 +329,7 @@ fn empty_hose_list_is_rejected() {
 }
 
 #[test]
-fn a_time_step_safety_too_large_for_supports_is_warned_about() {
+fn a_time_step_safety_too_large_for_contact_or_supports_is_warned_about() {
     let load = |safety: &str| {
         load_scene_str(
             &BASE.replace("time_step_safety = 0.5", safety),
@@ -339,12 +339,21 @@ fn a_time_step_safety_too_large_for_supports_is_warned_about() {
         .warnings
     };
     assert!(load("time_step_safety = 0.5").is_empty());
-    assert!(load("time_step_safety = 0.64").is_empty());
+    // above 0.5: hose–hose contact; above 0.65: supports as well
+    let contact = load("time_step_safety = 0.64");
+    assert!(
+        contact.len() == 1
+            && contact[0].contains("simulation.time_step_safety = 0.64")
+            && contact[0].contains("hoses pressing on each other")
+            && !contact[0].contains("supports"),
+        "{contact:?}"
+    );
     let warned = load("time_step_safety = 0.9");
     assert!(
         warned.len() == 1
             && warned[0].contains("simulation.time_step_safety = 0.9")
-            && warned[0].contains("0.65"),
+            && warned[0].contains("hoses pressing on each other")
+            && warned[0].contains("above 0.65 so can the springs"),
         "{warned:?}"
     );
 }

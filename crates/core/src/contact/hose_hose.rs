@@ -80,6 +80,11 @@ use std::f64::consts::PI;
 /// Damping ratio of the contact dashpot, of the pair's critical damping.
 pub const CONTACT_DAMPING_RATIO: f64 = 0.3;
 
+/// The explicit time-step safety factor the stiffness cap was made for (module doc: up
+/// to 12 pairs on one node at ω_lim Δt ≤ 1). Above it fewer pairs fit: at 0.65 about 4.
+/// The engine-bay demo's free hose falling onto its own loop diverged at 0.65–0.8.
+pub const SAFETY_FOR_HOSE_CONTACT: f64 = 0.5;
+
 /// Per-beam contact constants, fixed when the model is built (`model.hose_contact`).
 #[derive(Clone, Debug, Default)]
 pub struct HoseContactModel {

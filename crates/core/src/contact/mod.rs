@@ -31,7 +31,7 @@ pub use coherence::CandidateCache;
 pub use environment::{RigidEnvironment, RigidPart};
 pub use hose_hose::{
     add_hose_contact_forces, hose_contact_forces, hose_contact_forces_with, ContactPair,
-    HoseContactModel, HoseContactScratch,
+    HoseContactModel, HoseContactScratch, SAFETY_FOR_HOSE_CONTACT,
 };
 pub use rigid::{ContactPoint, ContactScratch};
 pub use segment_triangle::{
