@@ -46,13 +46,38 @@ impl Observer for LastHands {
 }
 
 fn run(actions: Vec<Action>) -> (Model, State, LastHands) {
+    run_observed(actions)
+}
+
+fn run_observed<O: Observer + Default>(actions: Vec<Action>) -> (Model, State, O) {
     let model = model();
     let mut state = State::at_rest(&model);
-    let mut obs = LastHands::default();
+    let mut obs = O::default();
     Runner::new(&model)
         .run(&Timeline { actions }, &mut state, &mut obs)
         .unwrap();
     (model, state, obs)
+}
+
+/// Node 0 fixed, the hand grabbing at `at` and pulling it `dl` along x over 0.5 s.
+fn pull_along_x(at: DVec3, dl: f64) -> Vec<Action> {
+    vec![
+        fix0(),
+        Action::Grab {
+            grip: Default::default(),
+            hand: 0,
+            at,
+        },
+        Action::MoveHand {
+            hand: 0,
+            path: Some(MovePath::By(vec![DVec3::new(dl, 0.0, 0.0)])),
+            rotation: None,
+            duration: 0.5,
+            speed: None,
+            spline: false,
+            wait: true,
+        },
+    ]
 }
 
 fn fix0() -> Action {
@@ -65,24 +90,9 @@ fn fix0() -> Action {
 fn pulling_hand_feels_the_axial_stiffness_of_the_free_length() {
     let dl = 0.005;
     let grab_at = DVec3::new(L - 0.006, 0.001, 0.0); // nearest beam: the last one
-    let (model, state, obs) = run(vec![
-        fix0(),
-        Action::Grab {
-            grip: Default::default(),
-            hand: 0,
-            at: grab_at,
-        },
-        Action::MoveHand {
-            hand: 0,
-            path: Some(MovePath::By(vec![DVec3::new(dl, 0.0, 0.0)])),
-            rotation: None,
-            duration: 0.5,
-            speed: None,
-            spline: false,
-            wait: true,
-        },
-        Action::Run { duration: 1.0 },
-    ]);
+    let mut actions = pull_along_x(grab_at, dl);
+    actions.push(Action::Run { duration: 1.0 });
+    let (model, state, obs) = run(actions);
     let free_length = L - L / N as f64; // the last beam moves rigidly with the hand
     let ea = model.elements[0].axial_stiffness_tension;
     let exact = ea * dl / free_length;
@@ -328,34 +338,15 @@ impl Observer for TipTrace {
 fn a_hand_opens_over_the_release_time() {
     use pliant_assembly::hand::RELEASE_TIME;
     let dl = 0.005;
-    let model = model();
-    let mut state = State::at_rest(&model);
-    let mut trace = TipTrace::default();
-    let actions = vec![
-        fix0(),
-        Action::Grab {
-            grip: Default::default(),
-            hand: 0,
-            at: DVec3::new(L - 0.006, 0.0, 0.0),
-        },
-        Action::MoveHand {
-            hand: 0,
-            path: Some(MovePath::By(vec![DVec3::new(dl, 0.0, 0.0)])),
-            rotation: None,
-            duration: 0.5,
-            speed: None,
-            spline: false,
-            wait: true,
-        },
+    let mut actions = pull_along_x(DVec3::new(L - 0.006, 0.0, 0.0), dl);
+    actions.extend([
         Action::Run { duration: 0.5 },
         Action::ReleaseHand { hand: 0 },
         Action::Run {
             duration: 2.0 * RELEASE_TIME,
         },
-    ];
-    Runner::new(&model)
-        .run(&Timeline { actions }, &mut state, &mut trace)
-        .unwrap();
+    ]);
+    let (_, state, trace): (_, _, TipTrace) = run_observed(actions);
     let released = 1.0;
     let at = |t: f64| {
         trace

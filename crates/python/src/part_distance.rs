@@ -189,6 +189,20 @@ fn box_distance(x: DVec3, lo: DVec3, hi: DVec3) -> f64 {
     (lo - x).max(x - hi).max(DVec3::ZERO).length()
 }
 
+/// The part's shape and the points (K, 3), from the Python arguments (ValueError if bad).
+fn shape_and_points(
+    points: &PyReadonlyArray2<'_, f64>,
+    kind: &str,
+    position: [f64; 3],
+    rotation: [[f64; 3]; 3],
+    size: &[f64],
+    triangles: Option<PyReadonlyArray3<'_, f64>>,
+) -> PyResult<(Shape, Vec<DVec3>)> {
+    let shape =
+        Shape::new(kind, position, rotation, size, triangles).map_err(PyValueError::new_err)?;
+    Ok((shape, points_of(points)?))
+}
+
 fn points_of(points: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<DVec3>> {
     let p = points.as_array();
     if p.shape()[1] != 3 {
@@ -217,9 +231,8 @@ pub fn part_distances<'py>(
     size: Vec<f64>,
     triangles: Option<PyReadonlyArray3<'py, f64>>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let shape =
-        Shape::new(kind, position, rotation, &size, triangles).map_err(PyValueError::new_err)?;
-    let d: Vec<f64> = points_of(&points)?
+    let (shape, points) = shape_and_points(&points, kind, position, rotation, &size, triangles)?;
+    let d: Vec<f64> = points
         .into_iter()
         .map(|x| shape.distance(x, f64::INFINITY).unwrap_or(f64::NAN))
         .collect();
@@ -241,9 +254,7 @@ pub fn part_clearance(
     size: Vec<f64>,
     triangles: Option<PyReadonlyArray3<'_, f64>>,
 ) -> PyResult<f64> {
-    let shape =
-        Shape::new(kind, position, rotation, &size, triangles).map_err(PyValueError::new_err)?;
-    let points = points_of(&points)?;
+    let (shape, points) = shape_and_points(&points, kind, position, rotation, &size, triangles)?;
     let offsets = offsets.as_slice()?;
     if offsets.len() != points.len() {
         return Err(PyValueError::new_err(format!(
