@@ -313,19 +313,26 @@ impl CandidateCache {
             }
         }
         let query = grown_box(a, b, keep);
+        let exact_within = reach * (1.0 + SLACK);
         let (mut n, mut cutoff, mut rank) = (0usize, f64::INFINITY, 0u32);
         let items = &mut self.items[base..base + SLOT_CAPACITY];
         env.for_each_triangle_index_near(&query, |part, triangle, tri| {
             let this_rank = rank;
             rank += 1;
             let planes = &env.parts[part].planes[triangle as usize];
-            if planes.lower_bound_squared(a, b) > keep * keep {
+            let bound_squared = planes.lower_bound_squared(a, b);
+            if bound_squared > keep * keep {
                 return;
             }
-            let distance = segment_distance(a, b, tri);
-            if distance > keep {
-                return;
-            }
+            let distance = if bound_squared > exact_within * exact_within {
+                bound_squared.sqrt()
+            } else {
+                let distance = segment_distance(a, b, tri);
+                if distance > keep {
+                    return;
+                }
+                distance
+            };
             let c = Candidate {
                 part: part as u32,
                 triangle,
