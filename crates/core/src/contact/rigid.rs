@@ -25,7 +25,7 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use super::coherence::{edges_beyond, may_touch, scan_fresh, Nearest, Searcher};
+use super::coherence::{edges_lower_bound, may_touch, scan_fresh, Nearest, Searcher};
 use super::environment::{cube, ClosestPoint};
 use crate::contact::{closest_segment_triangle_away_from_ends, CandidateCache};
 use crate::element::BeamElement;
@@ -38,6 +38,8 @@ use parry3d_f64::shape::Triangle;
 const SKIN: f64 = 0.01;
 /// Largest penetration push-out per step, as a fraction of the radius.
 const MAX_PUSH: f64 = 0.1;
+/// Relative slack for rounding when a lower bound rejects a triangle.
+const BOUND_SLACK: f64 = 1e-9;
 /// Beam-interior contacts are those strictly between the nodes.
 const INTERIOR: f64 = 0.02;
 
@@ -195,9 +197,9 @@ impl Nearest for BeamSearch {
         if !may_touch(self.a, self.b, tri, self.reach) {
             return self.reach; // the whole triangle lies beyond reach
         }
-        let bound = self.bound();
-        if edges_beyond(self.a, self.b, tri, bound) {
-            return bound; // every edge lies beyond the bound
+        let edges = edges_lower_bound(self.a, self.b, tri);
+        if edges > self.bound() * (1.0 + BOUND_SLACK) {
+            return edges; // every edge lies beyond the bound
         }
         let c = closest_segment_triangle_away_from_ends(self.a, self.b, tri);
         let better =
