@@ -419,7 +419,7 @@ impl CandidateCache {
     }
 
     /// Forgets every list if the environment is not the one they were made for; once a
-    /// step, before [`Self::clear_slack`].
+    /// step, before [`Self::clear_slack`] and [`Self::scan`].
     pub(crate) fn follow(&mut self, env: &RigidEnvironment) {
         if self.environment_key != environment_key(env) {
             self.environment_key = environment_key(env);
@@ -446,7 +446,7 @@ impl CandidateCache {
     /// Offers `search` the triangles whose box meets `query` and which may lie within its
     /// bound of `probe` — a point or segment on segment [a, b] of the slot (a = b for a
     /// point) — nearest first, until no later one can matter; the result is that of
-    /// [`scan_fresh`] (see the module doc). `query` must contain the probe's box grown by
+    /// [`scan_fresh`] (see the module doc), if [`Self::follow`] was asked this step. `query` must contain the probe's box grown by
     /// `search.bound()`, which must not exceed `reach`. A probe on the slot's segment is
     /// no nearer to any triangle than the segment, so the slot's list serves it (a node
     /// uses its beam's list).
@@ -479,7 +479,6 @@ impl CandidateCache {
         if !self.enabled || slot >= self.len.len() {
             return scan_fresh(env, query, search);
         }
-        self.follow(env);
         let m = self.margin[slot];
         let mut moved = (a - self.anchor_a[slot])
             .length_squared()
