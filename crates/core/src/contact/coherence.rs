@@ -204,32 +204,6 @@ pub(crate) fn may_touch(a: DVec3, b: DVec3, tri: &Triangle, reach: f64) -> bool 
     !(da * db > 0.0 && da.abs().min(db.abs()) > limit)
 }
 
-/// A lower bound on the distance from segment [a, b] to each edge of `tri` — the distance
-/// of any closest pair [`super::closest_segment_triangle_away_from_ends`] can find unless
-/// the segment pierces the triangle — or 0 if it may pierce it: the distance between the
-/// segment's line and each edge's line bounds the distance between them (about 30 flops
-/// an edge; an edge nearly parallel to the segment is not bounded, and gives 0).
-pub(crate) fn edges_lower_bound(a: DVec3, b: DVec3, tri: &Triangle) -> f64 {
-    let normal = (tri.b - tri.a).cross(tri.c - tri.a);
-    if (a - tri.a).dot(normal) * (b - tri.a).dot(normal) < 0.0 {
-        return 0.0; // it may pierce
-    }
-    let d1 = b - a;
-    let mut nearest_squared = f64::INFINITY;
-    for (e0, e1) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)] {
-        let d2 = e1 - e0;
-        let w = d1.cross(d2);
-        let w2 = w.length_squared();
-        // sin θ > 1e-3 between the lines keeps the rounding of s far below the users' slack
-        if !(w2 > 1e-6 * d1.length_squared() * d2.length_squared()) {
-            return 0.0;
-        }
-        let s = (a - e0).dot(w);
-        nearest_squared = nearest_squared.min(s * s / w2);
-    }
-    nearest_squared.sqrt()
-}
-
 /// Distance from segment [a, b] (a point if a = b) to `tri`.
 fn segment_distance(a: DVec3, b: DVec3, tri: &Triangle) -> f64 {
     if a == b {

@@ -25,9 +25,10 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use super::coherence::{edges_lower_bound, may_touch, scan_fresh, Nearest, Searcher};
+use super::coherence::{may_touch, scan_fresh, Nearest, Searcher};
 use super::environment::{cube, ClosestPoint};
-use crate::contact::{closest_segment_triangle_away_from_ends, CandidateCache};
+use super::segment_triangle::closest_segment_triangle_edges_within;
+use crate::contact::CandidateCache;
 use crate::element::BeamElement;
 use crate::{Model, State};
 use glam::DVec3;
@@ -197,11 +198,11 @@ impl Nearest for BeamSearch {
         if !may_touch(self.a, self.b, tri, self.reach) {
             return self.reach; // the whole triangle lies beyond reach
         }
-        let edges = edges_lower_bound(self.a, self.b, tri);
-        if edges > self.bound() * (1.0 + BOUND_SLACK) {
-            return edges; // every edge lies beyond the bound
-        }
-        let c = closest_segment_triangle_away_from_ends(self.a, self.b, tri);
+        let bound = self.bound() * (1.0 + BOUND_SLACK);
+        let (closest, lower) = closest_segment_triangle_edges_within(self.a, self.b, tri, bound);
+        let Some(c) = closest else {
+            return lower; // every edge lies beyond the bound
+        };
         let better =
             |b: &BeamHit| c.distance < b.distance || (c.distance == b.distance && rank < b.rank);
         if c.t > INTERIOR
@@ -218,7 +219,7 @@ impl Nearest for BeamSearch {
                 rank,
             });
         }
-        c.distance
+        lower
     }
     fn bound(&self) -> f64 {
         self.best.map_or(self.reach, |b| b.distance)
