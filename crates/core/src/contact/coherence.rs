@@ -292,7 +292,7 @@ impl CandidateCache {
         let exact_within = reach * (1.0 + SLACK);
         let (mut n, mut cutoff, mut rank) = (0usize, f64::INFINITY, 0u32);
         let items = &mut self.items[base..base + SLOT_CAPACITY];
-        env.for_each_triangle_index_near(&query, |part, triangle, tri| {
+        env.for_each_index_near(&query, |part, triangle| {
             let this_rank = rank;
             rank += 1;
             let planes = &env.parts[part].planes[triangle as usize];
@@ -303,7 +303,8 @@ impl CandidateCache {
             let distance = if bound_squared > exact_within * exact_within {
                 bound_squared.sqrt()
             } else {
-                let distance = segment_distance(a, b, tri);
+                let tri = env.parts[part].mesh.triangle(triangle);
+                let distance = segment_distance(a, b, &tri);
                 if distance > keep {
                     return;
                 }

@@ -88,21 +88,18 @@ impl RigidEnvironment {
     /// Calls `f(part, triangle)` for every triangle whose box meets `aabb`, parts in
     /// order, each part's triangles in its BVH's depth-first order.
     pub fn for_each_triangle_near(&self, aabb: &Aabb, mut f: impl FnMut(usize, &Triangle)) {
-        self.for_each_triangle_index_near(aabb, |k, _, tri| f(k, tri));
+        self.for_each_index_near(aabb, |k, i| f(k, &self.parts[k].mesh.triangle(i)));
     }
 
-    /// As [`Self::for_each_triangle_near`], with each triangle's index in its part's mesh.
-    pub fn for_each_triangle_index_near(
-        &self,
-        aabb: &Aabb,
-        mut f: impl FnMut(usize, u32, &Triangle),
-    ) {
+    /// As [`Self::for_each_triangle_near`], with only the part and the triangle's index
+    /// in its part's mesh (for callers that need the triangle itself for few of them).
+    pub(crate) fn for_each_index_near(&self, aabb: &Aabb, mut f: impl FnMut(usize, u32)) {
         for (k, part) in self.parts.iter().enumerate() {
             if !part.mesh.local_aabb().intersects(aabb) {
                 continue;
             }
             for i in part.mesh.bvh().intersect_aabb(aabb) {
-                f(k, i, &part.mesh.triangle(i));
+                f(k, i);
             }
         }
     }
