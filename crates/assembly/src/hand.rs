@@ -176,7 +176,7 @@ impl Hand {
     /// hand holds `position` and `orientation` from now on, until the next call or
     /// motion. Takes effect at the next [`Hand::update`].
     pub fn set_pose(&mut self, position: DVec3, orientation: DQuat) {
-        self.motion = Motion::hold((position, orientation.normalize()));
+        self.motion.hold_at((position, orientation.normalize()));
     }
 
     /// Whether the hand is still moving at time `t`.

@@ -64,6 +64,20 @@ impl Motion {
         Motion::new(pose, &[], DVec3::ZERO, 0.0, 1e-12)
     }
 
+    /// Makes this motion [`Motion::hold`] `pose`, in its own storage: interactive input
+    /// (a pointer, a VR controller) sets a hand's pose at every step, and the step loop
+    /// allocates nothing.
+    pub fn hold_at(&mut self, pose: (DVec3, DQuat)) {
+        self.points.clear();
+        self.points.push(pose.0);
+        self.arc.clear();
+        self.arc.push(0.0);
+        self.start_orientation = pose.1;
+        self.rotation = DVec3::ZERO;
+        self.start_time = 0.0;
+        self.duration = 1e-12;
+    }
+
     /// Whether the motion is complete at time `t`.
     pub fn finished(&self, t: f64) -> bool {
         t >= self.start_time + self.duration
@@ -104,6 +118,23 @@ impl Motion {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Holding a pose in place is holding it anew, without new storage.
+    #[test]
+    fn holding_in_place_equals_a_new_hold_and_keeps_the_storage() {
+        let mut m = Motion::new(
+            (DVec3::ZERO, DQuat::IDENTITY),
+            &[DVec3::X, DVec3::Y],
+            DVec3::Z,
+            0.5,
+            1.0,
+        );
+        let storage = (m.points.as_ptr(), m.arc.as_ptr());
+        let pose = (DVec3::new(0.1, 0.2, 0.3), DQuat::from_rotation_y(0.4));
+        m.hold_at(pose);
+        assert_eq!(m, Motion::hold(pose));
+        assert_eq!((m.points.as_ptr(), m.arc.as_ptr()), storage);
+    }
 
     #[test]
     fn drive_reaches_waypoints_and_rotation() {
