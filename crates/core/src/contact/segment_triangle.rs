@@ -112,8 +112,7 @@ pub(crate) fn closest_segment_triangle_edges_within(
             let w = d1.cross(d2);
             let w2 = w.length_squared();
             let s = (a - e0).dot(w);
-            if w2 > 1e-6 * d1.length_squared() * d2.length_squared() && s * s > bound * bound * w2
-            {
+            if w2 > 1e-6 * d1.length_squared() * d2.length_squared() && s * s > bound * bound * w2 {
                 lower = lower.min((s * s / w2).sqrt());
                 continue;
             }
@@ -197,7 +196,11 @@ mod tests {
             let full = closest_segment_triangle_away_from_ends(a, b, &tri);
             let bound = full.distance * (0.5 + 1.5 * (next() + 0.5));
             let (found, lower) = closest_segment_triangle_edges_within(a, b, &tri, bound);
-            assert!(lower <= full.distance * (1.0 + 1e-12), "{lower} > {}", full.distance);
+            assert!(
+                lower <= full.distance * (1.0 + 1e-12),
+                "{lower} > {}",
+                full.distance
+            );
             if full.distance <= bound {
                 within += 1;
                 assert_eq!(found, Some(full), "bound {bound}");
@@ -206,7 +209,10 @@ mod tests {
                 assert!(found.is_none_or(|c| c.distance > bound), "{found:?}");
             }
         }
-        assert!(within > 5_000 && beyond > 5_000, "{within} within, {beyond} beyond");
+        assert!(
+            within > 5_000 && beyond > 5_000,
+            "{within} within, {beyond} beyond"
+        );
     }
 
     /// Brute force over sampled segment points agrees (the minimum over samples can only
