@@ -59,7 +59,7 @@ pub const MARGIN: f64 = 0.0625;
 /// know how far it may move before its next refresh.
 pub const FAR: f64 = 4.0;
 /// Relative slack on distances for rounding (the kept test errs towards keeping).
-const SLACK: f64 = 1e-9;
+pub(crate) const SLACK: f64 = 1e-9;
 
 /// One triangle of one part, its rank in the environment's order, and its distance from
 /// the slot's segment at the refresh. (The planes' lower bound would do in its place and
@@ -421,8 +421,9 @@ impl CandidateCache {
     /// Offers `search` the triangles whose box meets `query` and which may lie within its
     /// bound of `probe` — a point or segment on segment [a, b] of the slot (a = b for a
     /// point) — nearest first, until no later one can matter; the result is that of
-    /// [`scan_fresh`] (see the module doc), if [`Self::follow`] was asked this step. `query` must contain the probe's box grown by
-    /// `search.bound()`, which must not exceed `reach`. A probe on the slot's segment is
+    /// [`scan_fresh`] (see the module doc), if [`Self::follow`] was asked this step.
+    /// `query` must contain the probe's box grown by `search.bound()`, which must not
+    /// exceed `reach`. A probe on the slot's segment is
     /// no nearer to any triangle than the segment, so the slot's list serves it (a node
     /// uses its beam's list).
     ///

@@ -25,7 +25,7 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use super::coherence::{may_touch, scan_fresh, Nearest, Searcher};
+use super::coherence::{may_touch, scan_fresh, Nearest, Searcher, SLACK};
 use super::environment::{cube, ClosestPoint};
 use super::segment_triangle::closest_segment_triangle_edges_within;
 use crate::contact::CandidateCache;
@@ -39,8 +39,6 @@ use parry3d_f64::shape::Triangle;
 const SKIN: f64 = 0.01;
 /// Largest penetration push-out per step, as a fraction of the radius.
 const MAX_PUSH: f64 = 0.1;
-/// Relative slack for rounding when a lower bound rejects a triangle.
-const BOUND_SLACK: f64 = 1e-9;
 /// Beam-interior contacts are those strictly between the nodes.
 const INTERIOR: f64 = 0.02;
 
@@ -198,7 +196,7 @@ impl Nearest for BeamSearch {
         if !may_touch(self.a, self.b, tri, self.reach) {
             return self.reach; // the whole triangle lies beyond reach
         }
-        let bound = self.bound() * (1.0 + BOUND_SLACK);
+        let bound = self.bound() * (1.0 + SLACK);
         let (closest, lower) = closest_segment_triangle_edges_within(self.a, self.b, tri, bound);
         let Some(c) = closest else {
             return lower; // every edge lies beyond the bound

@@ -61,7 +61,16 @@ impl Motion {
 
     /// A motion that stays at `pose`.
     pub fn hold(pose: (DVec3, DQuat)) -> Motion {
-        Motion::new(pose, &[], DVec3::ZERO, 0.0, 1e-12)
+        let mut motion = Motion {
+            points: Vec::with_capacity(1),
+            arc: Vec::with_capacity(1),
+            start_orientation: pose.1,
+            rotation: DVec3::ZERO,
+            start_time: 0.0,
+            duration: 0.0,
+        };
+        motion.hold_at(pose);
+        motion
     }
 
     /// Makes this motion [`Motion::hold`] `pose`, in its own storage: interactive input
@@ -119,7 +128,8 @@ impl Motion {
 mod tests {
     use super::*;
 
-    /// Holding a pose in place is holding it anew, without new storage.
+    /// Holding a pose in place is a motion from it through no waypoints over no time, and
+    /// keeps the storage.
     #[test]
     fn holding_in_place_equals_a_new_hold_and_keeps_the_storage() {
         let mut m = Motion::new(
@@ -133,6 +143,7 @@ mod tests {
         let pose = (DVec3::new(0.1, 0.2, 0.3), DQuat::from_rotation_y(0.4));
         m.hold_at(pose);
         assert_eq!(m, Motion::hold(pose));
+        assert_eq!(m, Motion::new(pose, &[], DVec3::ZERO, 0.0, 1e-12));
         assert_eq!((m.points.as_ptr(), m.arc.as_ptr()), storage);
     }
 
