@@ -34,6 +34,12 @@
 //! ties — would choose, to the last bit. On a fine mesh (a cylinder of 512 facets under a
 //! beam) that examines a handful of triangles instead of a hundred.
 //!
+//! Quiet searchers: a searcher whose last look found nothing and left every candidate's
+//! bound beyond its reach ([`Quiet`]) need not look again while its slot's end points
+//! stay within the room those bounds leave ([`Settled`]) — one displacement test instead
+//! of setting up a search, for the beams and nodes that lie near a part without touching
+//! it (most of a hose lying on a floor).
+//!
 //! Storage is allocated once: a fixed number of candidates per slot. A slot that finds
 //! more keeps the nearest ones and the distance of the nearest it dropped (its cutoff);
 //! while the search's bound stays below the cutoff less the displacement, the dropped
@@ -95,6 +101,8 @@ pub(crate) trait Nearest {
     fn bound(&self) -> f64;
     /// Forgets what was found (the search starts over on a fresh query).
     fn reset(&mut self);
+    /// Whether a triangle was accepted.
+    fn found(&self) -> bool;
 }
 
 /// Offers `search` every triangle whose box meets `query`, ranked in the environment's
@@ -142,6 +150,67 @@ impl ClearTest {
     };
 }
 
+/// What one searcher's last look at its slot's list leaves certain: the least of the
+/// candidates' face bounds, the least of their larger bounds (face or edge), each plus the
+/// travel when found as in [`CandidateCache::scan`], and the refresh distance of the first
+/// candidate it did not reach (∞: it saw them all). While these, less the travel since,
+/// pass every candidate over, a search that starts from the same bound offers nothing —
+/// one test instead of the list (a beam lying near a part but clear of it, most beams
+/// near one).
+#[derive(Clone, Copy, Debug)]
+struct Quiet {
+    face: f64,
+    either: f64,
+    unseen: f64,
+}
+
+impl Quiet {
+    /// Not known: the list must be looked at.
+    const UNKNOWN: Quiet = Quiet {
+        face: f64::NEG_INFINITY,
+        either: f64::NEG_INFINITY,
+        unseen: f64::NEG_INFINITY,
+    };
+
+    /// How much farther than `travel` the searcher may travel, and its slot's end points
+    /// move from their anchors beyond `moved`, before [`CandidateCache::scan`]'s loop,
+    /// started with the search's bound `bound`, could offer a candidate (negative: it
+    /// may now). The loop passes candidate k over while its face bound less the travel is
+    /// positive (beyond the slack) and one of its bounds lies beyond the limit — true of
+    /// all while it is of the least ones — and stops at the first candidate whose refresh
+    /// distance less `moved` lies beyond the bound (see `reaches` there).
+    fn slack(&self, travel: f64, moved: f64, bound: f64) -> f64 {
+        let limit = bound * (1.0 + SLACK);
+        (self.face - travel - SLACK * limit)
+            .min(self.either - travel - limit)
+            .min(self.unseen / (1.0 + SLACK) - bound - moved)
+    }
+}
+
+/// A searcher whose last search found nothing and proved that a search from the same
+/// bound finds nothing while the slot's end points stay within `slack` of where they
+/// were (its anchor margin, cutoff and candidates' bounds all allow for it): it need not
+/// be searched, nor even set up ([`CandidateCache::settled`]). A Verlet skin per
+/// searcher, as [`super::ClearSkin`] is for beams without candidates.
+#[derive(Clone, Copy, Debug)]
+struct Settled {
+    a: DVec3,
+    b: DVec3,
+    /// The search's bound when it started (its reach).
+    bound: f64,
+    /// Square of the displacement allowed (−∞: not settled).
+    slack_squared: f64,
+}
+
+impl Settled {
+    const NOT: Settled = Settled {
+        a: DVec3::INFINITY,
+        b: DVec3::INFINITY,
+        bound: 0.0,
+        slack_squared: f64::NEG_INFINITY,
+    };
+}
+
 /// Candidate triangles per slot (one slot per beam), allocated once.
 #[derive(Clone, Debug, Default)]
 pub struct CandidateCache {
@@ -178,6 +247,11 @@ pub struct CandidateCache {
     /// bounds [edge, face] (see [`CandidateCache::scan`]), each plus the searcher's
     /// travel when it was found, so that subtracting the travel now keeps it valid.
     lower: Vec<[f64; 2]>,
+    /// Per searcher of each slot: what its last look at the list leaves certain
+    /// ([`Quiet`]).
+    quiet: Vec<Quiet>,
+    /// Per searcher of each slot: whether it may skip its search ([`Settled`]).
+    settled: Vec<Settled>,
     /// Parts and triangles of the environment the lists were made for.
     environment_key: (usize, usize),
     /// Refreshes made (a counter for benchmarks and tests).
@@ -244,6 +318,8 @@ impl CandidateCache {
             seen_b: vec![DVec3::ZERO; slots * SEARCHERS],
             travel: vec![0.0; slots * SEARCHERS],
             lower: vec![[0.0; 2]; slots * SEARCHERS * SLOT_CAPACITY],
+            quiet: vec![Quiet::UNKNOWN; slots * SEARCHERS],
+            settled: vec![Settled::NOT; slots * SEARCHERS],
             environment_key: environment_key(env),
             refreshes: 0,
             truncations: 0,
@@ -258,6 +334,7 @@ impl CandidateCache {
         for t in &mut self.clear_test {
             (t.anchor_a, t.anchor_b) = (DVec3::INFINITY, DVec3::INFINITY);
         }
+        self.settled.fill(Settled::NOT);
         self.generation += 1;
     }
 
@@ -376,6 +453,12 @@ impl CandidateCache {
                 f64::NEG_INFINITY
             },
         };
+        // every bound is the refresh distance, the nearest's the least
+        let nearest = if n > 0 {
+            self.items[base].distance
+        } else {
+            f64::INFINITY
+        };
         for s in slot * SEARCHERS..(slot + 1) * SEARCHERS {
             self.seen_a[s] = a;
             self.seen_b[s] = b;
@@ -384,6 +467,11 @@ impl CandidateCache {
                 let d = self.items[base + k].distance;
                 self.lower[s * SLOT_CAPACITY + k] = [d, d];
             }
+            self.quiet[s] = Quiet {
+                face: nearest,
+                either: nearest,
+                unseen: f64::INFINITY,
+            };
         }
     }
 
@@ -455,10 +543,12 @@ impl CandidateCache {
         if !self.enabled || slot >= self.len.len() {
             return scan_fresh(env, query, search);
         }
-        let m = self.margin[slot];
+        let s = slot * SEARCHERS + searcher as usize;
+        self.settled[s] = Settled::NOT;
         let mut moved = (a - self.anchor_a[slot])
             .length_squared()
             .max((b - self.anchor_b[slot]).length_squared());
+        let m = self.margin[slot];
         if !(moved < m * m) || self.reach[slot] != reach {
             self.refresh(env, slot, a, b, reach);
             moved = 0.0;
@@ -470,7 +560,6 @@ impl CandidateCache {
         // a candidate that was d away can be no nearer than d − moved now
         let moved = moved.sqrt();
         let reaches = |distance: f64, bound: f64| distance <= (bound + moved) * (1.0 + SLACK);
-        let s = slot * SEARCHERS + searcher as usize;
         let step = (a - self.seen_a[s])
             .length_squared()
             .max((b - self.seen_b[s]).length_squared())
@@ -478,37 +567,101 @@ impl CandidateCache {
         (self.seen_a[s], self.seen_b[s]) = (a, b);
         self.travel[s] += step;
         let travel = self.travel[s];
+        let start = search.bound();
+        if !(self.quiet[s].slack(travel, moved, start) > 0.0) {
+            self.search_list(env, slot, s, probe, query, moved, search);
+        }
+        let cutoff = self.cutoff[slot];
+        if reaches(cutoff, search.bound()) {
+            // a dropped triangle might still matter: ask the environment
+            search.reset();
+            self.fresh_fallbacks += 1;
+            return scan_fresh(env, query, search);
+        }
+        if !search.found() {
+            let slack = self.quiet[s]
+                .slack(travel, moved, start)
+                .min(cutoff / (1.0 + SLACK) - start - moved)
+                .min(self.margin[slot] - moved)
+                - SLACK * start;
+            if slack > 0.0 {
+                self.settled[s] = Settled {
+                    a,
+                    b,
+                    bound: start,
+                    slack_squared: slack * slack,
+                };
+            }
+        }
+    }
+
+    /// Whether `searcher` of `slot`, its end points now at [a, b] and its search starting
+    /// from `bound`, would find nothing ([`Settled`]): its last search found nothing and
+    /// they moved less than that search allowed. Then [`Self::scan`] need not be asked.
+    pub(crate) fn settled(
+        &self,
+        slot: usize,
+        searcher: Searcher,
+        a: DVec3,
+        b: DVec3,
+        bound: f64,
+    ) -> bool {
+        let Some(q) = self.settled.get(slot * SEARCHERS + searcher as usize) else {
+            return false;
+        };
+        let moved = (a - q.a).length_squared().max((b - q.b).length_squared());
+        self.enabled && moved < q.slack_squared && q.bound == bound
+    }
+
+    /// [`Self::scan`]'s walk through the list of `slot` for searcher `s` (see there),
+    /// nearest first; records what it leaves certain ([`Quiet`]).
+    #[allow(clippy::too_many_arguments)]
+    fn search_list(
+        &mut self,
+        env: &RigidEnvironment,
+        slot: usize,
+        s: usize,
+        probe: [DVec3; 2],
+        query: &Aabb,
+        moved: f64,
+        search: &mut impl Nearest,
+    ) {
+        let reaches = |distance: f64, bound: f64| distance <= (bound + moved) * (1.0 + SLACK);
+        let travel = self.travel[s];
         let base = slot * SLOT_CAPACITY;
         let lower = s * SLOT_CAPACITY;
-        for k in 0..len {
+        let quiet = &mut self.quiet[s];
+        *quiet = Quiet {
+            face: f64::INFINITY,
+            either: f64::INFINITY,
+            unseen: f64::INFINITY,
+        };
+        for k in 0..self.len[slot] as usize {
             let (r, bound) = (&self.items[base + k], search.bound());
             if !reaches(r.distance, bound) {
+                quiet.unseen = r.distance;
                 break; // sorted: no later candidate can reach either
             }
             let limit = bound * (1.0 + SLACK);
             let [edge, face] = self.lower[lower + k];
-            let face = face - travel;
-            if face > limit || (face > SLACK * limit && edge - travel > limit) {
-                continue; // as last seen, less the way travelled since, it cannot
-            }
-            let planes = &self.planes[base + k];
-            let bound_squared = planes.lower_bound_squared(probe[0], probe[1]);
-            if bound_squared > limit * limit {
-                // where it is now, it cannot
-                self.lower[lower + k][1] = bound_squared.sqrt() + travel;
-                continue;
-            }
-            let tri = env.parts[r.part as usize].mesh.triangle(r.triangle);
-            if boxes_meet(&tri.local_aabb(), query) {
-                let edge = search.offer(r.part as usize, &tri, r.rank);
-                self.lower[lower + k] = [edge + travel, bound_squared.sqrt() + travel];
-            }
-        }
-        if reaches(self.cutoff[slot], search.bound()) {
-            // a dropped triangle might still matter: ask the environment
-            search.reset();
-            self.fresh_fallbacks += 1;
-            scan_fresh(env, query, search);
+            if !(face - travel > limit || (face - travel > SLACK * limit && edge - travel > limit))
+            {
+                let planes = &self.planes[base + k];
+                let bound_squared = planes.lower_bound_squared(probe[0], probe[1]);
+                if bound_squared > limit * limit {
+                    // where it is now, it cannot
+                    self.lower[lower + k][1] = bound_squared.sqrt() + travel;
+                } else {
+                    let tri = env.parts[r.part as usize].mesh.triangle(r.triangle);
+                    if boxes_meet(&tri.local_aabb(), query) {
+                        let edge = search.offer(r.part as usize, &tri, r.rank);
+                        self.lower[lower + k] = [edge + travel, bound_squared.sqrt() + travel];
+                    }
+                }
+            } // else: as last seen, less the way travelled since, it cannot
+            let [edge, face] = self.lower[lower + k];
+            quiet.face = quiet.face.min(face);
+            quiet.either = quiet.either.min(face.max(edge));
         }
     }
 }
@@ -573,6 +726,73 @@ mod tests {
         fn reset(&mut self) {
             self.best = None;
         }
+        fn found(&self) -> bool {
+            self.best.is_some()
+        }
+    }
+
+    /// A point that wanders in and out of reach of a fine cylinder, with jitter, searched
+    /// as [`super::super::rigid`] does: whenever its slot is clear or its searcher settled,
+    /// a fresh query finds nothing; otherwise the kept list finds what the fresh query
+    /// finds.
+    #[test]
+    fn a_settled_searcher_would_find_nothing() {
+        let env = fine_cylinder(256);
+        let mut cache = CandidateCache::new(1, &env);
+        let reach = 0.0101;
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut jitter = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2e-6
+        };
+        let (mut settled, mut searched, mut touching) = (0, 0, 0);
+        for step in 0..6000 {
+            let t = step as f64;
+            let radius = 0.0605 + 0.0025 * (t / 1000.0).sin();
+            let phi = 1.0 + 0.2 * (t / 1700.0).sin();
+            let x = DVec3::new(
+                radius * phi.cos(),
+                0.01 * (t / 900.0).cos(),
+                radius * phi.sin(),
+            ) + DVec3::new(jitter(), jitter(), jitter());
+            let query = Aabb::new(x - DVec3::splat(reach), x + DVec3::splat(reach));
+            let search = || NearestBeyond {
+                x,
+                x_min: -1.0,
+                reach,
+                best: None,
+            };
+            let mut fresh = search();
+            scan_fresh(&env, &query, &mut fresh);
+            let found = |s: &NearestBeyond| s.best.map(|(d, _, q, a)| (d, q, a));
+            touching += usize::from(fresh.found());
+            if cache.clear_slack(0, x, x, reach).is_some() {
+                assert!(
+                    !fresh.found(),
+                    "step {step}: clear, but a triangle is within reach"
+                );
+            } else if cache.settled(0, Searcher::StartNode, x, x, reach) {
+                assert!(
+                    !fresh.found(),
+                    "step {step}: settled, but a triangle is within reach"
+                );
+                settled += 1;
+            } else {
+                let mut kept = search();
+                let searcher = Searcher::StartNode;
+                cache.scan(&env, 0, x, x, reach, searcher, [x, x], &query, &mut kept);
+                assert_eq!(found(&kept), found(&fresh), "step {step}");
+                searched += 1;
+            }
+        }
+        assert!(
+            touching > 1000 && touching < 5000,
+            "{touching} steps in reach"
+        );
+        // the band between reach and the kept distance is crossed twice, ≈ 250 steps each
+        assert!(settled > 200, "{settled} settled, {searched} searched");
     }
 
     /// A search the kept nearest triangles cannot answer falls back to a fresh query and

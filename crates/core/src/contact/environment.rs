@@ -207,4 +207,7 @@ impl Nearest for ClosestPoint {
     fn reset(&mut self) {
         self.best = None;
     }
+    fn found(&self) -> bool {
+        self.best.is_some()
+    }
 }

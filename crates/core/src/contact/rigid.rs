@@ -225,6 +225,9 @@ impl Nearest for BeamSearch {
     fn reset(&mut self) {
         self.best = None;
     }
+    fn found(&self) -> bool {
+        self.best.is_some()
+    }
 }
 
 /// Steps 1 and 2: detect contacts and correct velocities (see the module doc).
@@ -258,8 +261,12 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         if state.held[a] && state.held[b] {
             continue; // a beam held at both ends has no interior contact to find
         }
-        if *clear {
-            *normal = DVec3::ZERO;
+        let settled = |cache: &CandidateCache| {
+            let reach = reach_of(model, el);
+            cache.settled(e, Searcher::Interior, state.x[a], state.x[b], reach)
+        };
+        if *clear || settled(&contact.candidates) {
+            *normal = DVec3::ZERO; // no triangle within reach, or its search would find none
         } else {
             contact.beams_near.push(e as u32);
         }
@@ -270,40 +277,42 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     let nodes = state.x.len();
     for i in 0..nodes {
         let e = contact.node_beam[i] as usize;
-        if contact.beam_clear.get(e) == Some(&true) {
+        if contact.beam_clear.get(e) == Some(&true) || state.held[i] {
             contact.node_normal[i] = DVec3::ZERO;
-            continue; // no triangle within reach of its beam
+            continue; // no triangle within reach of its beam, or held (no contact)
         }
         let r = model.radius[i];
         let reach = r * (1.0 + SKIN);
+        let beam = model.elements.get(e).map(|el| {
+            let searcher = if el.node_a == i {
+                Searcher::StartNode
+            } else {
+                Searcher::EndNode
+            };
+            (el, searcher, state.x[el.node_a], state.x[el.node_b])
+        });
+        if let Some((_, searcher, xa, xb)) = beam {
+            if contact.candidates.settled(e, searcher, xa, xb, reach) {
+                contact.node_normal[i] = DVec3::ZERO;
+                continue; // its search would find nothing
+            }
+        }
         let x = state.x[i];
         let mut search = ClosestPoint::new(x, reach);
-        if !state.held[i] {
-            let query = cube(x, reach);
-            match contact.node_beam[i] {
-                u32::MAX => scan_fresh(env, &query, &mut search),
-                e => {
-                    let el = &model.elements[e as usize];
-                    let (xa, xb) = (state.x[el.node_a], state.x[el.node_b]);
-                    let beam = beam_reach(model, e as usize);
-                    let searcher = if el.node_a == i {
-                        Searcher::StartNode
-                    } else {
-                        Searcher::EndNode
-                    };
-                    contact.candidates.scan(
-                        env,
-                        e as usize,
-                        xa,
-                        xb,
-                        beam,
-                        searcher,
-                        [x, x],
-                        &query,
-                        &mut search,
-                    );
-                }
-            }
+        let query = cube(x, reach);
+        match beam {
+            None => scan_fresh(env, &query, &mut search),
+            Some((el, searcher, xa, xb)) => contact.candidates.scan(
+                env,
+                e,
+                xa,
+                xb,
+                reach_of(model, el),
+                searcher,
+                [x, x],
+                &query,
+                &mut search,
+            ),
         }
         let found = search.best.map(|b| (b.part, b.point));
         match found {
