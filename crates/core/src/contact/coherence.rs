@@ -499,6 +499,9 @@ impl CandidateCache {
     /// (for [`super::ClearSkin`]).
     pub(crate) fn clear_slack(&self, slot: usize, a: DVec3, b: DVec3, reach: f64) -> Option<f64> {
         let t = self.clear_test.get(slot).filter(|_| self.enabled)?;
+        if t.margin_squared == f64::NEG_INFINITY {
+            return None; // the slot keeps or dropped triangles
+        }
         let moved = (a - t.anchor_a)
             .length_squared()
             .max((b - t.anchor_b).length_squared());
@@ -527,6 +530,10 @@ impl CandidateCache {
     /// reached the face) with `edge − D` beyond the bound: a hose at rest on a surface
     /// revisits its touching triangles, not all it lies near (a persistent contact
     /// manifold, re-validated by the Lipschitz bound instead of re-searched).
+    ///
+    /// A search that finds nothing leaves its searcher [`Settled`] for as long as those
+    /// bounds, the slot's margin and its cutoff allow: [`Self::settled`] then answers
+    /// for it without a search.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn scan(
         &mut self,
@@ -568,7 +575,8 @@ impl CandidateCache {
         self.travel[s] += step;
         let travel = self.travel[s];
         let start = search.bound();
-        if !(self.quiet[s].slack(travel, moved, start) > 0.0) {
+        let quiet = self.quiet[s].slack(travel, moved, start) > 0.0; // false for NaN
+        if !quiet {
             self.search_list(env, slot, s, probe, query, moved, search);
         }
         let cutoff = self.cutoff[slot];
@@ -609,6 +617,9 @@ impl CandidateCache {
         let Some(q) = self.settled.get(slot * SEARCHERS + searcher as usize) else {
             return false;
         };
+        if q.slack_squared == f64::NEG_INFINITY {
+            return false;
+        }
         let moved = (a - q.a).length_squared().max((b - q.b).length_squared());
         self.enabled && moved < q.slack_squared && q.bound == bound
     }
