@@ -575,9 +575,11 @@ impl CandidateCache {
         self.travel[s] += step;
         let travel = self.travel[s];
         let start = search.bound();
-        let quiet = self.quiet[s].slack(travel, moved, start) > 0.0; // false for NaN
-        if !quiet {
+        let mut room = self.quiet[s].slack(travel, moved, start);
+        if room.is_nan() || room <= 0.0 {
+            // not quiet (or NaN): walk the list, which records what it leaves certain
             self.search_list(env, slot, s, probe, query, moved, search);
+            room = self.quiet[s].slack(travel, moved, start);
         }
         let cutoff = self.cutoff[slot];
         if reaches(cutoff, search.bound()) {
@@ -587,8 +589,7 @@ impl CandidateCache {
             return scan_fresh(env, query, search);
         }
         if !search.found() {
-            let slack = self.quiet[s]
-                .slack(travel, moved, start)
+            let slack = room
                 .min(cutoff / (1.0 + SLACK) - start - moved)
                 .min(self.margin[slot] - moved)
                 - SLACK * start;
