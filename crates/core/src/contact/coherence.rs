@@ -293,11 +293,6 @@ fn grown_box(a: DVec3, b: DVec3, grow: f64) -> Aabb {
     Aabb::new(a.min(b) - grow, a.max(b) + grow)
 }
 
-/// parry's box test (inclusive), as the BVH applies it to its leaves.
-fn boxes_meet(a: &Aabb, b: &Aabb) -> bool {
-    a.mins.cmple(b.maxs).all() && a.maxs.cmpge(b.mins).all()
-}
-
 impl CandidateCache {
     /// A cache of `slots` slots, enabled; empty (and unused) without an environment.
     pub fn new(slots: usize, env: &RigidEnvironment) -> Self {
@@ -642,40 +637,77 @@ impl CandidateCache {
         let travel = self.travel[s];
         let base = slot * SLOT_CAPACITY;
         let lower = s * SLOT_CAPACITY;
-        let quiet = &mut self.quiet[s];
-        *quiet = Quiet {
-            face: f64::INFINITY,
-            either: f64::INFINITY,
-            unseen: f64::INFINITY,
-        };
+        // accumulated in registers and written once: a store per candidate would make
+        // each iteration wait for the last one's
+        let (mut least_face, mut least_either) = (f64::INFINITY, f64::INFINITY);
+        let mut unseen = f64::INFINITY;
         for k in 0..self.len[slot] as usize {
             let (r, bound) = (&self.items[base + k], search.bound());
             if !reaches(r.distance, bound) {
-                quiet.unseen = r.distance;
+                unseen = r.distance;
                 break; // sorted: no later candidate can reach either
             }
             let limit = bound * (1.0 + SLACK);
-            let [edge, face] = self.lower[lower + k];
+            let [mut edge, mut face] = self.lower[lower + k];
             if !(face - travel > limit || (face - travel > SLACK * limit && edge - travel > limit))
             {
                 let planes = &self.planes[base + k];
                 let bound_squared = planes.lower_bound_squared(probe[0], probe[1]);
                 if bound_squared > limit * limit {
                     // where it is now, it cannot
-                    self.lower[lower + k][1] = bound_squared.sqrt() + travel;
+                    face = bound_squared.sqrt() + travel;
+                    self.lower[lower + k][1] = face;
                 } else {
                     let tri = env.parts[r.part as usize].mesh.triangle(r.triangle);
-                    if boxes_meet(&tri.local_aabb(), query) {
-                        let edge = search.offer(r.part as usize, &tri, r.rank);
-                        self.lower[lower + k] = [edge + travel, bound_squared.sqrt() + travel];
+                    if triangle_box_meets(&tri, query) {
+                        let offered = search.offer(r.part as usize, &tri, r.rank);
+                        [edge, face] = [offered + travel, bound_squared.sqrt() + travel];
+                        self.lower[lower + k] = [edge, face];
                     }
                 }
             } // else: as last seen, less the way travelled since, it cannot
-            let [edge, face] = self.lower[lower + k];
-            quiet.face = quiet.face.min(face);
-            quiet.either = quiet.either.min(face.max(edge));
+            least_face = lesser(face, least_face);
+            least_either = lesser(greater(face, edge), least_either);
         }
+        self.quiet[s] = Quiet {
+            face: least_face,
+            either: least_either,
+            unseen,
+        };
     }
+}
+
+/// The lesser of `a` and `b` (`b` if they are unordered): one `minsd`, where `f64::min`'s
+/// NaN rule costs several instructions. (A NaN bound can only come from NaN positions,
+/// whose travel is NaN too: the searcher is then never quiet.)
+#[inline(always)]
+fn lesser(a: f64, b: f64) -> f64 {
+    if a < b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The greater of `a` and `b` (`b` if they are unordered), as [`lesser`].
+#[inline(always)]
+fn greater(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
+/// Whether the box of `tri` meets `query`, inclusively: the answer of parry's
+/// `tri.local_aabb()` and box test, as the BVH applies it to its leaves, for finite
+/// vertices, without the NaN rules of its minima and maxima.
+#[inline(always)]
+fn triangle_box_meets(tri: &Triangle, query: &Aabb) -> bool {
+    let (a, b, c) = (tri.a, tri.b, tri.c);
+    let low = |k: usize| lesser(lesser(a[k], b[k]), c[k]);
+    let high = |k: usize| greater(greater(a[k], b[k]), c[k]);
+    (0..3).all(|k| low(k) <= query.maxs[k] && high(k) >= query.mins[k])
 }
 
 #[cfg(test)]
