@@ -89,6 +89,8 @@ fn cpu_seconds() -> f64 {
 // the bench's own world, as `pliant bench` builds it
 #[path = "../src/bench.rs"]
 mod bench;
+#[path = "../src/bench_contact_phases.rs"]
+mod bench_contact_phases;
 #[path = "../src/bench_engine_bay.rs"]
 mod bench_engine_bay;
 #[path = "../src/bench_newton.rs"]

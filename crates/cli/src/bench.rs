@@ -730,7 +730,17 @@ pub fn run(opts: &BenchOptions) -> Result<()> {
     }
 }
 
-/// `--only contact`: the contact-free and the floor rows of 5 × 30, and their ratio.
+/// `--only contact`: the time-boxed rows and the fixed windows
+/// ([`crate::bench_contact_phases`]).
+#[derive(Clone, Debug, Serialize)]
+pub struct ContactOnly {
+    #[serde(flatten)]
+    pub rows: ContactCost,
+    pub phases: Vec<crate::bench_contact_phases::ContactPhase>,
+}
+
+/// `--only contact`: the contact-free and the floor rows of 5 × 30, and their ratio; then
+/// the same at fixed windows of steps.
 fn run_contact_only(opts: &BenchOptions) -> Result<()> {
     let budget = Budget::new(opts.quick);
     let free = measure(5, 30, 0, 1, budget)?;
@@ -743,9 +753,7 @@ fn run_contact_only(opts: &BenchOptions) -> Result<()> {
         realtime_factor: floor.realtime_factor,
         contact_points: floor.contact_points,
     };
-    if opts.json {
-        println!("{}", serde_json::to_string_pretty(&cost)?);
-    } else {
+    if !opts.json {
         println!(
             "5 hoses × 30: {:.0} ns/step free, {:.0} ns/step on {} triangles ({} contact points): ×{:.2}, real-time factor {:.2}",
             cost.ns_per_step_free,
@@ -755,6 +763,14 @@ fn run_contact_only(opts: &BenchOptions) -> Result<()> {
             cost.ratio,
             cost.realtime_factor
         );
+        println!("the same at fixed steps of its world:");
+    }
+    let phases = crate::bench_contact_phases::measure(opts.quick)?;
+    if opts.json {
+        let out = ContactOnly { rows: cost, phases };
+        println!("{}", serde_json::to_string_pretty(&out)?);
+    } else {
+        print!("{}", crate::bench_contact_phases::render(&phases));
     }
     Ok(())
 }

@@ -2,6 +2,7 @@
 //! solutions, benchmark the solver.
 
 mod bench;
+mod bench_contact_phases;
 mod bench_engine_bay;
 mod bench_newton;
 mod calibrate_cmd;

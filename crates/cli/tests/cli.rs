@@ -261,6 +261,31 @@ fn validate_json_prints_the_documented_fields() {
     }
 }
 
+/// `bench --only contact --json` prints the time-boxed rows and both fixed windows, at
+/// the steps documented, with finite positive times (no timing is judged here).
+#[test]
+fn contact_bench_reports_its_fixed_windows() {
+    let o = pliant()
+        .args(["bench", "--only", "contact", "--quick", "--json"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["ratio"]
+        .as_f64()
+        .is_some_and(|r| r.is_finite() && r > 0.0));
+    let phases = v["phases"].as_array().unwrap();
+    let names: Vec<_> = phases.iter().map(|p| p["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["sliding", "lying"]);
+    for p in phases {
+        for key in ["ns_per_step_free", "ns_per_step_contact", "ratio"] {
+            let x = p[key].as_f64().unwrap();
+            assert!(x.is_finite() && x > 0.0, "{key} = {x}");
+        }
+        assert!(p["first_step"].as_u64().unwrap() > 0 && p["steps"].as_u64().unwrap() > 0);
+    }
+}
+
 #[test]
 fn validate_unknown_case_fails_clearly() {
     let o = pliant()
