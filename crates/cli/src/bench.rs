@@ -456,7 +456,8 @@ pub fn setup(hoses: usize, elements: usize, floor_quads: usize) -> Result<(Model
     Ok((model, state))
 }
 
-fn run_steps(model: &Model, state: &mut State, n: u64) {
+/// `n` explicit steps of `state`.
+pub(crate) fn run_steps(model: &Model, state: &mut State, n: u64) {
     for _ in 0..n {
         explicit::step(model, state);
     }
