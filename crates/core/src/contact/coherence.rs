@@ -267,17 +267,6 @@ pub(super) fn environment_key(env: &RigidEnvironment) -> (usize, usize) {
     (env.parts.len(), triangles)
 }
 
-/// False only if segment [a, b] (a point if a = b) certainly lies farther than `reach`
-/// from `tri`: both end points on one side of its plane, each at least `reach` (plus
-/// rounding slack) from it — a lower bound on the distance, 20 flops instead of the
-/// closest points.
-pub(crate) fn may_touch(a: DVec3, b: DVec3, tri: &Triangle, reach: f64) -> bool {
-    let n = (tri.b - tri.a).cross(tri.c - tri.a);
-    let (da, db) = ((a - tri.a).dot(n), (b - tri.a).dot(n));
-    let limit = reach * (1.0 + SLACK) * n.length();
-    !(da * db > 0.0 && da.abs().min(db.abs()) > limit)
-}
-
 /// Distance from segment [a, b] (a point if a = b) to `tri`.
 fn segment_distance(a: DVec3, b: DVec3, tri: &Triangle) -> f64 {
     if a == b {

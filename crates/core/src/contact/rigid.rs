@@ -25,7 +25,7 @@
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
 
-use super::coherence::{may_touch, scan_fresh, Nearest, Searcher, SLACK};
+use super::coherence::{scan_fresh, Nearest, Searcher, SLACK};
 use super::environment::{cube, ClosestPoint};
 use super::segment_triangle::closest_segment_triangle_edges_within;
 use crate::contact::CandidateCache;
@@ -193,9 +193,6 @@ impl Nearest for BeamSearch {
     /// Returns a lower bound on the distance from the segment to the triangle's edges
     /// (0 if it pierces the face), the distance of any hit that does not pierce it.
     fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) -> f64 {
-        if !may_touch(self.a, self.b, tri, self.reach) {
-            return self.reach; // the whole triangle lies beyond reach
-        }
         let bound = self.bound() * (1.0 + SLACK);
         let (closest, lower) = closest_segment_triangle_edges_within(self.a, self.b, tri, bound);
         let Some(c) = closest else {

@@ -1,14 +1,13 @@
 //! Closest points between a segment (a beam's centre line) and a triangle (one face of a
 //! rigid part), the narrow phase of capsule–mesh contact (SPEC L4). Built from parry's
-//! point–triangle projection and segment–segment closest points (Ericson, "Real-Time
+//! point–triangle projection and its segment–segment closest points, inlined (Ericson, "Real-Time
 //! Collision Detection", §5.1.9–5.1.10): the minimum over the two end points projected
 //! onto the triangle, the segment against the three edges, and — if the segment pierces
 //! the triangle — the piercing point at distance zero.
 
 use glam::DVec3;
-use parry3d_f64::query::closest_points::closest_points_segment_segment_with_locations_nD;
 use parry3d_f64::query::PointQuery;
-use parry3d_f64::shape::{SegmentPointLocation, Triangle};
+use parry3d_f64::shape::Triangle;
 
 /// Closest pair between a segment and a triangle.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,13 +20,6 @@ pub struct SegmentTriangleClosest {
     pub on_triangle: DVec3,
     /// Their distance [m] (0 when the segment pierces the triangle).
     pub distance: f64,
-}
-
-fn location_parameter(loc: SegmentPointLocation) -> f64 {
-    match loc {
-        SegmentPointLocation::OnVertex(i) => i as f64,
-        SegmentPointLocation::OnEdge(w) => w[1],
-    }
 }
 
 /// Closest points between segment [a, b] and `tri`.
@@ -73,7 +65,8 @@ pub fn closest_segment_triangle_away_from_ends(
 
 /// As [`closest_segment_triangle_away_from_ends`], but an edge whose line lies farther than
 /// `bound` from the segment's line — then the edge lies farther from the segment — is not
-/// measured (≈ 30 flops instead of the closest pair). Returns the piercing point or the
+/// measured (≈ 30 flops instead of the closest pair), and no edge is if both end points
+/// lie on one side of the triangle's plane, farther than `bound` from it. Returns the piercing point or the
 /// closest pair among the edges measured (`None` if none was), to the last bit what the
 /// unbounded search finds whenever that lies within `bound`, and a lower bound on the
 /// distance between the segment and every edge (their minimum; 0 if the segment pierces
@@ -100,26 +93,43 @@ pub(crate) fn closest_segment_triangle_edges_within(
             };
             return (Some(pierce), 0.0);
         }
+    } else if da * db > 0.0 && bound.is_finite() {
+        // on one side: every point of the segment is at least the nearer end's height
+        // from the plane, and so from each edge
+        let height = da.abs().min(db.abs());
+        let height_squared = height * height;
+        let normal_squared = normal.length_squared();
+        let limit = bound * (1.0 + TIE_SLACK);
+        if height_squared > limit * limit * normal_squared {
+            return (None, (height_squared / normal_squared).sqrt());
+        }
     }
     let mut best: Option<SegmentTriangleClosest> = None;
     let mut lower = f64::INFINITY;
     let d1 = b - a;
-    for (e0, e1) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)] {
-        if bound.is_finite() {
+    let d1_squared = d1.length_squared();
+    // one edge at a time (a closure, not a loop over an array of edges, which would be
+    // copied on every call)
+    let mut measure = |e0: DVec3, e1: DVec3| {
+        let d2 = e1 - e0;
+        // An edge can replace the best only if it is strictly nearer, so once one is
+        // found, the others are measured only within it (plus a slack far above the
+        // rounding of either distance): the result and the least bound are the same.
+        let within = best.map_or(bound, |b| bound.min(b.distance * (1.0 + TIE_SLACK)));
+        if within.is_finite() {
             // the distance between the lines (sin θ > 1e-3 between them keeps its
             // rounding far below the callers' slack)
-            let d2 = e1 - e0;
             let w = d1.cross(d2);
             let w2 = w.length_squared();
             let s = (a - e0).dot(w);
-            if w2 > 1e-6 * d1.length_squared() * d2.length_squared() && s * s > bound * bound * w2 {
+            let far = s * s > within * within * w2;
+            if w2 > 1e-6 * d1_squared * d2.length_squared() && far {
                 lower = lower.min((s * s / w2).sqrt());
-                continue;
+                return;
             }
         }
-        let (l1, l2) = closest_points_segment_segment_with_locations_nD((&a, &b), (&e0, &e1));
-        let (t, s) = (location_parameter(l1), location_parameter(l2));
-        let (p, q) = (a + t * (b - a), e0 + s * (e1 - e0));
+        let (t, s) = segment_segment_parameters(a, d1, d1_squared, e0, d2);
+        let (p, q) = (a + t * d1, e0 + s * d2);
         let d = (p - q).length();
         lower = lower.min(d);
         if d < best.as_ref().map_or(f64::INFINITY, |b| b.distance) {
@@ -130,13 +140,134 @@ pub(crate) fn closest_segment_triangle_edges_within(
                 distance: d,
             });
         }
-    }
+    };
+    measure(tri.a, tri.b);
+    measure(tri.b, tri.c);
+    measure(tri.c, tri.a);
     (best, lower)
+}
+
+/// Relative slack of the pruning tests: a found distance below which another edge is
+/// still measured, and the margin of the plane test (far above rounding, far below any
+/// gap that matters).
+const TIE_SLACK: f64 = 1e-9;
+
+/// Parameters (t on segment p0 + t·d1, s on segment e0 + s·d2) of the closest points of
+/// two segments (Ericson, "Real-Time Collision Detection", §5.1.9), with |d1|² given:
+/// the arithmetic of parry's `closest_points_segment_segment_with_locations_nD`, step
+/// for step, so that the results agree to the last bit (tested), without its locations
+/// and with the first segment's terms computed once per triangle.
+#[inline(always)]
+fn segment_segment_parameters(p0: DVec3, d1: DVec3, a: f64, e0: DVec3, d2: DVec3) -> (f64, f64) {
+    const EPS: f64 = f64::EPSILON; // parry's DEFAULT_EPSILON
+    let r = p0 - e0;
+    let e = d2.length_squared();
+    let f = d2.dot(r);
+    if a <= EPS && e <= EPS {
+        return (0.0, 0.0);
+    }
+    if a <= EPS {
+        return (0.0, (f / e).clamp(0.0, 1.0));
+    }
+    let c = d1.dot(r);
+    if e <= EPS {
+        return ((-c / a).clamp(0.0, 1.0), 0.0);
+    }
+    let b = d1.dot(d2);
+    let (ae, bb) = (a * e, b * b);
+    let denom = ae - bb;
+    // parry's `ulps_eq!(ae, bb)` where ae − bb > ε: both are non-negative, ae the larger
+    let nearly_parallel = || ae.to_bits() - bb.to_bits() <= 4;
+    let mut t = if denom > EPS && !nearly_parallel() {
+        ((b * f - c * e) / denom).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let mut s = (b * t + f) / e;
+    if s < 0.0 {
+        s = 0.0;
+        t = (-c / a).clamp(0.0, 1.0);
+    } else if s > 1.0 {
+        s = 1.0;
+        t = ((b - c) / a).clamp(0.0, 1.0);
+    }
+    // + 0.0: a clamped −0 becomes 0, as parry's end-point location does
+    (t + 0.0, s + 0.0)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The inlined segment–segment parameters agree with parry's to the last bit, for
+    /// random segments, parallel and nearly parallel ones, and degenerate ones.
+    #[test]
+    fn segment_parameters_are_parrys_to_the_last_bit() {
+        use parry3d_f64::query::closest_points::closest_points_segment_segment_with_locations_nD;
+        use parry3d_f64::shape::SegmentPointLocation;
+        let parameter = |loc| match loc {
+            SegmentPointLocation::OnVertex(i) => i as f64,
+            SegmentPointLocation::OnEdge(w) => w[1],
+        };
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for k in 0..60_000 {
+            let mut point = || DVec3::new(next(), next(), next());
+            let (a, b, e0) = (point(), point(), point());
+            let e1 = match k % 6 {
+                0 => e0 + (b - a) * 0.7,                    // parallel
+                1 => e0 + (b - a) * 0.7 + point() * 1e-9,   // nearly parallel
+                2 => e0 + point() * 1e-9,                   // a degenerate edge
+                3 => e0 + (b - a) * -1.3 + point() * 1e-14, // antiparallel
+                _ => point(),
+            };
+            let (a, b) = if k % 11 == 0 { (a, a) } else { (a, b) };
+            let (l1, l2) = closest_points_segment_segment_with_locations_nD((&a, &b), (&e0, &e1));
+            let d1 = b - a;
+            let (t, s) = segment_segment_parameters(a, d1, d1.length_squared(), e0, e1 - e0);
+            assert_eq!(
+                (t.to_bits(), s.to_bits()),
+                (parameter(l1).to_bits(), parameter(l2).to_bits()),
+                "case {k}: {a} {b} {e0} {e1}"
+            );
+        }
+    }
+
+    /// The piercing point, else the first nearest of the three edges, each measured by
+    /// parry's own segment–segment closest points (no bound, no pruning).
+    fn every_edge(a: DVec3, b: DVec3, tri: &Triangle) -> SegmentTriangleClosest {
+        use parry3d_f64::query::closest_points::closest_points_segment_segment_with_locations_nD;
+        use parry3d_f64::shape::SegmentPointLocation;
+        let pruned = closest_segment_triangle_away_from_ends(a, b, tri);
+        if pruned.distance == 0.0 {
+            return pruned; // pierced: no edge is measured
+        }
+        let parameter = |loc| match loc {
+            SegmentPointLocation::OnVertex(i) => i as f64,
+            SegmentPointLocation::OnEdge(w) => w[1],
+        };
+        let mut best: Option<SegmentTriangleClosest> = None;
+        for (e0, e1) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)] {
+            let (l1, l2) = closest_points_segment_segment_with_locations_nD((&a, &b), (&e0, &e1));
+            let (t, s) = (parameter(l1), parameter(l2));
+            let (p, q) = (a + t * (b - a), e0 + s * (e1 - e0));
+            let distance = (p - q).length();
+            if best.is_none_or(|b| distance < b.distance) {
+                best = Some(SegmentTriangleClosest {
+                    t,
+                    on_segment: p,
+                    on_triangle: q,
+                    distance,
+                });
+            }
+        }
+        best.unwrap()
+    }
 
     fn unit_tri() -> Triangle {
         Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y)
@@ -175,9 +306,11 @@ mod tests {
         assert!(c.distance < 1e-15 && (c.t - 0.25).abs() < 1e-12);
     }
 
-    /// The bounded search finds, to the last bit, what the unbounded one finds whenever
-    /// that lies within the bound, and its lower bound never exceeds the distance to any
-    /// edge (random segments near random triangles, bounds around their distance).
+    /// The unbounded search finds, to the last bit, what measuring every edge finds; the
+    /// bounded one finds the same whenever that lies within the bound, and its lower
+    /// bound never exceeds the distance to any edge (random segments near random
+    /// triangles, bounds around their distance; every fourth segment passes over a
+    /// vertex, where two edges tie).
     #[test]
     fn the_bounded_edge_search_agrees_with_the_unbounded_one() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
@@ -188,12 +321,22 @@ mod tests {
             (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         };
         let (mut within, mut beyond) = (0, 0);
-        for _ in 0..20_000 {
+        for k in 0..20_000 {
             let mut point = || DVec3::new(next(), next(), 0.2 * next());
             let tri = Triangle::new(point(), point(), point());
             let a = DVec3::new(next(), next(), 0.1 + 0.3 * next());
-            let b = a + 0.5 * DVec3::new(next(), next(), 0.2 * next());
+            let (mut a, mut b) = (a, a + 0.5 * DVec3::new(next(), next(), 0.2 * next()));
+            if k % 4 == 0 {
+                // across the line above vertex c, in the direction of its bisector
+                let out = ((tri.c - tri.a).normalize() + (tri.c - tri.b).normalize()).normalize();
+                let above = tri.c + DVec3::new(0.0, 0.0, 0.05 + 0.1 * (next() + 0.5));
+                (a, b) = (
+                    above - 0.3 * out.cross(DVec3::Z),
+                    above + 0.3 * out.cross(DVec3::Z),
+                );
+            }
             let full = closest_segment_triangle_away_from_ends(a, b, &tri);
+            assert_eq!(full, every_edge(a, b, &tri));
             let bound = full.distance * (0.5 + 1.5 * (next() + 0.5));
             let (found, lower) = closest_segment_triangle_edges_within(a, b, &tri, bound);
             assert!(
