@@ -61,3 +61,66 @@ fn deep_penetration_is_pushed_out_gently() {
     let fastest = state.v.iter().map(|v| v.length()).fold(0.0, f64::max);
     assert!(fastest < 1e-6, "fastest node {fastest} m/s");
 }
+
+/// A beam's interior contact is the nearest pair strictly inside the beam between it and
+/// any mesh edge: a beam whose one end lies beside an edge of a triangle (that end is a
+/// node, with its own contact) and whose interior crosses over another edge of the same
+/// triangle, within reach of it, is held at that crossing — even though the triangle's
+/// nearest edge is the first one, at the end.
+#[test]
+fn a_beam_crossing_an_edge_is_held_there_though_another_edge_is_nearer_its_end() {
+    let r = 0.008;
+    let (a, b) = (DVec3::new(0.06, -0.001, 0.0), DVec3::new(0.2, 0.08, 0.0094));
+    let hose = HoseSpec {
+        name: "h".into(),
+        material: Material::isotropic(12e6, 0.49, 940.0),
+        nodes: vec![a, b],
+        sections: vec![Section::new(0.010, 2.0 * r)],
+        normal_hint: None,
+    };
+    let triangle = RigidPartSpec {
+        name: "triangle".into(),
+        vertices: vec![
+            DVec3::ZERO,
+            DVec3::new(0.2, 0.0, 0.0),
+            DVec3::new(0.0, 0.2, 0.0),
+        ],
+        triangles: vec![[0, 1, 2]],
+        friction_static: 0.5,
+        friction_sliding: 0.4,
+    };
+    let settings = SimSettings {
+        gravity: DVec3::ZERO,
+        damping_mass: 0.0,
+        ..Default::default()
+    };
+    let model = Model::build(&WorldSpec {
+        hoses: vec![hose],
+        rigid_parts: vec![triangle],
+        settings,
+    })
+    .unwrap();
+    let mut state = State::at_rest(&model);
+    explicit::step(&model, &mut state);
+    let points = &state.contact.points;
+    assert!(
+        points.iter().any(|c| c.node_a == 0 && c.node_b == 0),
+        "the end beside the first edge touches it: {points:?}"
+    );
+    // the crossing over the hypotenuse x + y = 0.2, 6 mm above it
+    let crossing = (0.2 - (a.x + a.y)) / ((b.x + b.y) - (a.x + a.y));
+    let interior = points
+        .iter()
+        .find(|c| c.node_a != c.node_b)
+        .expect("an interior contact where the beam crosses the hypotenuse");
+    assert!(
+        (interior.t - crossing).abs() < 0.05,
+        "at t = {}, the crossing at {crossing}",
+        interior.t
+    );
+    assert!(
+        interior.depth > r - 0.0061 && interior.depth < r,
+        "depth {} (the beam's axis ≤ 6 mm from the edge)",
+        interior.depth
+    );
+}

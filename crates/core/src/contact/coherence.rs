@@ -91,11 +91,13 @@ impl Candidate {
 /// candidate triangles by [`CandidateCache::scan`] or [`scan_fresh`].
 pub(crate) trait Nearest {
     /// Considers triangle `tri` of part `part`; `rank` orders the triangles as the
-    /// environment does (equal distances: the lower rank wins). Returns a lower bound on
-    /// the distance at which the search could accept this triangle, 1-Lipschitz in the
-    /// searcher's end-point displacement while the probe stays clear of the triangle (see
+    /// environment does (equal distances: the lower rank wins); `edges` are the edges the
+    /// triangle owns (bit k: vertex k to k + 1), the ones a search whose hits lie on
+    /// edges measures ([`super::owned_edges`]). Returns a lower bound on the distance at
+    /// which the search could accept this triangle, 1-Lipschitz in the searcher's
+    /// end-point displacement while the probe stays clear of the triangle (see
     /// [`CandidateCache::scan`]); 0 if nothing is known.
-    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) -> f64;
+    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32, edges: u8) -> f64;
     /// The distance beyond which no triangle can change the result any more (the best
     /// found so far, or the reach).
     fn bound(&self) -> f64;
@@ -109,8 +111,9 @@ pub(crate) trait Nearest {
 /// order.
 pub(crate) fn scan_fresh(env: &RigidEnvironment, query: &Aabb, search: &mut impl Nearest) {
     let mut rank = 0u32;
-    env.for_each_triangle_near(query, |part, tri| {
-        search.offer(part, tri, rank);
+    env.for_each_index_near(query, |part, triangle| {
+        let (tri, edges) = env.triangle_and_edges(part, triangle);
+        search.offer(part, &tri, rank, edges);
         rank += 1;
     });
 }
@@ -508,8 +511,9 @@ impl CandidateCache {
     /// of successive steps add up to at most their path): `face` bounds the probe's
     /// distance to the triangle (the [`Planes`] bound, or the refresh distance), `edge`
     /// what [`Nearest::offer`] returned (for a beam's interior, the distance from the
-    /// segment to the triangle's edges, which is the distance of any hit that does not
-    /// pierce the face). A candidate is passed over, without its planes, while
+    /// segment to the edges the triangle owns, which bounds any hit of it that does not
+    /// pierce the face; a shared edge's other triangles leave it to its owner, so a
+    /// beam lying across it revisits one triangle, not two). A candidate is passed over, without its planes, while
     /// `face − D` exceeds the search's bound, or is positive (the probe cannot have
     /// reached the face) with `edge − D` beyond the bound: a hose at rest on a surface
     /// revisits its touching triangles, not all it lies near (a persistent contact
@@ -647,9 +651,9 @@ impl CandidateCache {
                     face = bound_squared.sqrt() + travel;
                     self.lower[lower + k][1] = face;
                 } else {
-                    let tri = env.parts[r.part as usize].mesh.triangle(r.triangle);
+                    let (tri, edges) = env.triangle_and_edges(r.part as usize, r.triangle);
                     if triangle_box_meets(&tri, query) {
-                        let offered = search.offer(r.part as usize, &tri, r.rank);
+                        let offered = search.offer(r.part as usize, &tri, r.rank, edges);
                         [edge, face] = [offered + travel, bound_squared.sqrt() + travel];
                         self.lower[lower + k] = [edge, face];
                     }
@@ -745,7 +749,7 @@ mod tests {
     }
 
     impl Nearest for NearestBeyond {
-        fn offer(&mut self, _part: usize, tri: &Triangle, rank: u32) -> f64 {
+        fn offer(&mut self, _part: usize, tri: &Triangle, rank: u32, _edges: u8) -> f64 {
             if (tri.a.x + tri.b.x + tri.c.x) / 3.0 < self.x_min {
                 return 0.0;
             }

@@ -2,6 +2,7 @@
 //! per part, built once with the model.
 
 use super::coherence::{scan_fresh, Nearest};
+use super::owned_edges::owned_edges;
 use super::planes::Planes;
 use crate::spec::RigidPartSpec;
 use glam::DVec3;
@@ -18,6 +19,8 @@ pub struct RigidPart {
     pub friction_sliding: f64,
     /// The bounding planes of each triangle of `mesh` (in its order), made once.
     pub(crate) planes: Vec<Planes>,
+    /// The edges each triangle of `mesh` owns ([`owned_edges`]), made once.
+    pub(crate) owned_edges: Vec<u8>,
 }
 
 /// All rigid parts of a model.
@@ -64,6 +67,7 @@ impl RigidEnvironment {
             parts.push(RigidPart {
                 name: s.name.clone(),
                 planes,
+                owned_edges: owned_edges(&mesh),
                 mesh,
                 friction_static: s.friction_static,
                 friction_sliding: s.friction_sliding,
@@ -106,6 +110,16 @@ impl RigidEnvironment {
 }
 
 impl RigidEnvironment {
+    /// Triangle `triangle` of part `part` and the edges it owns ([`owned_edges`]).
+    #[inline(always)]
+    pub(crate) fn triangle_and_edges(&self, part: usize, triangle: u32) -> (Triangle, u8) {
+        let part = &self.parts[part];
+        (
+            part.mesh.triangle(triangle),
+            part.owned_edges[triangle as usize],
+        )
+    }
+
     /// A lower bound on the distance from segment [a, b] to every part, capped at `max`:
     /// the distance to the nearest triangle's box, found best first down each part's BVH.
     pub(crate) fn nearest_box(&self, a: DVec3, b: DVec3, max: f64) -> f64 {
@@ -185,8 +199,9 @@ impl ClosestPoint {
 }
 
 impl Nearest for ClosestPoint {
-    /// Returns the point's distance to the triangle.
-    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) -> f64 {
+    /// Returns the point's distance to the triangle (all of it: `edges` concerns searches
+    /// whose hits lie on edges).
+    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32, _edges: u8) -> f64 {
         let point = tri.project_local_point(self.x, false).point;
         let distance = (point - self.x).length();
         let better =

@@ -3,9 +3,11 @@
 //!
 //! Each step, after the velocities are updated and before positions are:
 //! 1. Detection on the start-of-step positions: every free node against the parts (a ball
-//!    of the node's radius) and every beam's interior against nearby triangles (the
-//!    capsule's closest point strictly inside the segment), so contact holds along the
-//!    whole beam, not only at nodes. Meshes are two-sided: the normal points from the
+//!    of the node's radius) and every beam's interior against nearby triangles: the
+//!    nearest pair strictly inside the segment between it and any mesh edge (each edge
+//!    measured once, by the triangle that owns it, [`super::owned_edges`]), or a point
+//!    where it pierces a face — so contact holds along the whole beam, not only at
+//!    nodes. Meshes are two-sided: the normal points from the
 //!    closest surface point to the hose point, whatever the triangles' orientation; if that
 //!    direction flips against the one remembered from the last step in contact, the point
 //!    has crossed the surface and the remembered side is kept (SPEC L4, ch. 5.3.3).
@@ -180,8 +182,9 @@ struct BeamHit {
     rank: u32,
 }
 
-/// The search for a beam's interior contact: the closest approach strictly inside the
-/// segment (away from its nodes, which have their own contacts) within reach.
+/// The search for a beam's interior contact: the nearest pair strictly inside the
+/// segment (away from its nodes, which have their own contacts) and any mesh edge, or a
+/// piercing point, within reach.
 struct BeamSearch {
     a: DVec3,
     b: DVec3,
@@ -190,21 +193,21 @@ struct BeamSearch {
 }
 
 impl Nearest for BeamSearch {
-    /// Returns a lower bound on the distance from the segment to the triangle's edges
-    /// (0 if it pierces the face), the distance of any hit that does not pierce it.
-    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32) -> f64 {
+    /// Returns a lower bound on the distance from the segment to the triangle's own
+    /// `edges` (0 if it pierces the face), the distance of any hit of it that does not
+    /// pierce it. A hit is the nearest pair strictly inside the segment between it and
+    /// any edge (each measured by the one triangle that owns it), or a piercing point.
+    fn offer(&mut self, part: usize, tri: &Triangle, rank: u32, edges: u8) -> f64 {
         let bound = self.bound() * (1.0 + SLACK);
-        let (closest, lower) = closest_segment_triangle_edges_within(self.a, self.b, tri, bound);
+        let interior = |t: f64| t > INTERIOR && t < 1.0 - INTERIOR;
+        let (closest, lower) =
+            closest_segment_triangle_edges_within(self.a, self.b, tri, bound, edges, interior);
         let Some(c) = closest else {
-            return lower; // every edge lies beyond the bound
+            return lower; // no accepted pair within the bound
         };
         let better =
             |b: &BeamHit| c.distance < b.distance || (c.distance == b.distance && rank < b.rank);
-        if c.t > INTERIOR
-            && c.t < 1.0 - INTERIOR
-            && c.distance < self.reach
-            && self.best.as_ref().is_none_or(better)
-        {
+        if c.distance < self.reach && self.best.as_ref().is_none_or(better) {
             self.best = Some(BeamHit {
                 part,
                 t: c.t,

@@ -5,6 +5,7 @@
 //! onto the triangle, the segment against the three edges, and — if the segment pierces
 //! the triangle — the piercing point at distance zero.
 
+use super::owned_edges::ALL_EDGES;
 use glam::DVec3;
 use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::Triangle;
@@ -54,7 +55,8 @@ pub fn closest_segment_triangle_away_from_ends(
     b: DVec3,
     tri: &Triangle,
 ) -> SegmentTriangleClosest {
-    let (closest, _) = closest_segment_triangle_edges_within(a, b, tri, f64::INFINITY);
+    let (closest, _) =
+        closest_segment_triangle_edges_within(a, b, tri, f64::INFINITY, ALL_EDGES, |_| true);
     closest.unwrap_or(SegmentTriangleClosest {
         t: 0.0,
         on_segment: a,
@@ -63,20 +65,27 @@ pub fn closest_segment_triangle_away_from_ends(
     })
 }
 
-/// As [`closest_segment_triangle_away_from_ends`], but an edge whose line lies farther than
-/// `bound` from the segment's line — then the edge lies farther from the segment — is not
-/// measured (≈ 30 flops instead of the closest pair), and no edge is if both end points
-/// lie on one side of the triangle's plane, farther than `bound` from it. Returns the piercing point or the
-/// closest pair among the edges measured (`None` if none was), to the last bit what the
-/// unbounded search finds whenever that lies within `bound`, and a lower bound on the
-/// distance between the segment and every edge (their minimum; 0 if the segment pierces
-/// the triangle). An edge nearly parallel to the segment is always measured.
+/// As [`closest_segment_triangle_away_from_ends`], but only the pairs whose parameter on
+/// the segment passes `accept`, among the piercing point and the triangle's `edges` (bit
+/// k: vertex k to k + 1; a beam's interior measures the edges its triangle owns,
+/// [`super::owned_edges`]); an edge whose line lies farther than `bound` from the
+/// segment's line — then the edge lies farther from the segment — is not measured (≈ 30
+/// flops instead of the closest pair), and no edge is if both end points lie on one side
+/// of the triangle's plane, farther than `bound` from it. Returns the accepted piercing
+/// point or the nearest accepted pair among the edges measured (`None` if none was), to
+/// the last bit what the unbounded search finds whenever that lies within `bound`, and a
+/// lower bound on the distance between the segment and each of those edges, accepted or
+/// not (their minimum; 0 if the segment pierces the triangle). An edge nearly parallel
+/// to the segment is always measured.
 pub(crate) fn closest_segment_triangle_edges_within(
     a: DVec3,
     b: DVec3,
     tri: &Triangle,
     bound: f64,
+    edges: u8,
+    accept: impl Fn(f64) -> bool,
 ) -> (Option<SegmentTriangleClosest>, f64) {
+    let mut lower = f64::INFINITY;
     // piercing: the end points lie on opposite sides of the triangle's plane
     let normal = (tri.b - tri.a).cross(tri.c - tri.a);
     let (da, db) = ((a - tri.a).dot(normal), (b - tri.a).dot(normal));
@@ -85,13 +94,16 @@ pub(crate) fn closest_segment_triangle_edges_within(
         let p = a + t * (b - a);
         let proj = tri.project_local_point(p, false);
         if (proj.point - p).length_squared() <= 1e-24 * normal.length() {
-            let pierce = SegmentTriangleClosest {
-                t,
-                on_segment: p,
-                on_triangle: proj.point,
-                distance: 0.0,
-            };
-            return (Some(pierce), 0.0);
+            if accept(t) {
+                let pierce = SegmentTriangleClosest {
+                    t,
+                    on_segment: p,
+                    on_triangle: proj.point,
+                    distance: 0.0,
+                };
+                return (Some(pierce), 0.0);
+            }
+            lower = 0.0; // it reaches the face, where no pair is accepted; the edges may be
         }
     } else if da * db > 0.0 && bound.is_finite() {
         // on one side: every point of the segment is at least the nearer end's height
@@ -105,12 +117,14 @@ pub(crate) fn closest_segment_triangle_edges_within(
         }
     }
     let mut best: Option<SegmentTriangleClosest> = None;
-    let mut lower = f64::INFINITY;
     let d1 = b - a;
     let d1_squared = d1.length_squared();
     // one edge at a time (a closure, not a loop over an array of edges, which would be
     // copied on every call)
-    let mut measure = |e0: DVec3, e1: DVec3| {
+    let mut measure = |k: u8, e0: DVec3, e1: DVec3| {
+        if edges & (1 << k) == 0 {
+            return; // another triangle owns it
+        }
         let d2 = e1 - e0;
         // An edge can replace the best only if it is strictly nearer, so once one is
         // found, the others are measured only within it (plus a slack far above the
@@ -132,7 +146,7 @@ pub(crate) fn closest_segment_triangle_edges_within(
         let (p, q) = (a + t * d1, e0 + s * d2);
         let d = (p - q).length();
         lower = lower.min(d);
-        if d < best.as_ref().map_or(f64::INFINITY, |b| b.distance) {
+        if accept(t) && d < best.as_ref().map_or(f64::INFINITY, |b| b.distance) {
             best = Some(SegmentTriangleClosest {
                 t,
                 on_segment: p,
@@ -141,9 +155,9 @@ pub(crate) fn closest_segment_triangle_edges_within(
             });
         }
     };
-    measure(tri.a, tri.b);
-    measure(tri.b, tri.c);
-    measure(tri.c, tri.a);
+    measure(0, tri.a, tri.b);
+    measure(1, tri.b, tri.c);
+    measure(2, tri.c, tri.a);
     (best, lower)
 }
 
@@ -238,26 +252,40 @@ mod tests {
         }
     }
 
-    /// The piercing point, else the first nearest of the three edges, each measured by
-    /// parry's own segment–segment closest points (no bound, no pruning).
-    fn every_edge(a: DVec3, b: DVec3, tri: &Triangle) -> SegmentTriangleClosest {
+    /// The accepted piercing point, else the first nearest accepted pair of the edges in
+    /// `edges`, each measured by parry's own segment–segment closest points (no bound, no
+    /// pruning); and the least distance to those edges, accepted or not (0 if pierced).
+    fn every_edge(
+        a: DVec3,
+        b: DVec3,
+        tri: &Triangle,
+        edges: u8,
+        accept: impl Fn(f64) -> bool,
+    ) -> (Option<SegmentTriangleClosest>, f64) {
         use parry3d_f64::query::closest_points::closest_points_segment_segment_with_locations_nD;
         use parry3d_f64::shape::SegmentPointLocation;
-        let pruned = closest_segment_triangle_away_from_ends(a, b, tri);
-        if pruned.distance == 0.0 {
-            return pruned; // pierced: no edge is measured
+        let any = closest_segment_triangle_away_from_ends(a, b, tri);
+        let pierced = any.distance == 0.0;
+        if pierced && accept(any.t) {
+            return (Some(any), 0.0);
         }
         let parameter = |loc| match loc {
             SegmentPointLocation::OnVertex(i) => i as f64,
             SegmentPointLocation::OnEdge(w) => w[1],
         };
         let mut best: Option<SegmentTriangleClosest> = None;
-        for (e0, e1) in [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)] {
+        let mut least = if pierced { 0.0 } else { f64::INFINITY };
+        let sides = [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)];
+        for (k, (e0, e1)) in sides.into_iter().enumerate() {
+            if edges & (1 << k) == 0 {
+                continue;
+            }
             let (l1, l2) = closest_points_segment_segment_with_locations_nD((&a, &b), (&e0, &e1));
             let (t, s) = (parameter(l1), parameter(l2));
             let (p, q) = (a + t * (b - a), e0 + s * (e1 - e0));
             let distance = (p - q).length();
-            if best.is_none_or(|b| distance < b.distance) {
+            least = least.min(distance);
+            if accept(t) && best.is_none_or(|b| distance < b.distance) {
                 best = Some(SegmentTriangleClosest {
                     t,
                     on_segment: p,
@@ -266,7 +294,7 @@ mod tests {
                 });
             }
         }
-        best.unwrap()
+        (best, least)
     }
 
     fn unit_tri() -> Triangle {
@@ -306,11 +334,12 @@ mod tests {
         assert!(c.distance < 1e-15 && (c.t - 0.25).abs() < 1e-12);
     }
 
-    /// The unbounded search finds, to the last bit, what measuring every edge finds; the
-    /// bounded one finds the same whenever that lies within the bound, and its lower
-    /// bound never exceeds the distance to any edge (random segments near random
-    /// triangles, bounds around their distance; every fourth segment passes over a
-    /// vertex, where two edges tie).
+    /// The unbounded search finds, to the last bit, what measuring each of the given
+    /// edges finds, keeping the accepted pairs; the bounded one finds the same whenever
+    /// that lies within the bound, and its lower bound never exceeds the distance to any
+    /// of those edges (random segments near random triangles, random edge sets, bounds
+    /// around their distance; every fourth segment passes over a vertex, where two edges
+    /// tie).
     #[test]
     fn the_bounded_edge_search_agrees_with_the_unbounded_one() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
@@ -336,20 +365,29 @@ mod tests {
                 );
             }
             let full = closest_segment_triangle_away_from_ends(a, b, &tri);
-            assert_eq!(full, every_edge(a, b, &tri));
-            let bound = full.distance * (0.5 + 1.5 * (next() + 0.5));
-            let (found, lower) = closest_segment_triangle_edges_within(a, b, &tri, bound);
-            assert!(
-                lower <= full.distance * (1.0 + 1e-12),
-                "{lower} > {}",
-                full.distance
-            );
-            if full.distance <= bound {
-                within += 1;
-                assert_eq!(found, Some(full), "bound {bound}");
-            } else {
-                beyond += 1;
-                assert!(found.is_none_or(|c| c.distance > bound), "{found:?}");
+            assert_eq!(Some(full), every_edge(a, b, &tri, ALL_EDGES, |_| true).0);
+            // some edges, some parameters (all, or strictly inside as a beam's interior)
+            let edges = 1 + (k % 7) as u8;
+            let margin = if k % 3 == 0 { -1.0 } else { 0.02 };
+            let accept = |t: f64| t > margin && t < 1.0 - margin;
+            let (reference, least) = every_edge(a, b, &tri, edges, accept);
+            let unbounded =
+                closest_segment_triangle_edges_within(a, b, &tri, f64::INFINITY, edges, accept);
+            assert_eq!(unbounded.0, reference, "unbounded, edges {edges:03b}");
+            let distance = reference.map_or(least, |r| r.distance);
+            let bound = distance * (0.5 + 1.5 * (next() + 0.5));
+            let (found, lower) =
+                closest_segment_triangle_edges_within(a, b, &tri, bound, edges, accept);
+            assert!(lower <= least * (1.0 + 1e-12), "{lower} > {least}");
+            match reference {
+                Some(r) if r.distance <= bound => {
+                    within += 1;
+                    assert_eq!(found, reference, "bound {bound}, edges {edges:03b}");
+                }
+                _ => {
+                    beyond += 1;
+                    assert!(found.is_none_or(|c| c.distance > bound), "{found:?}");
+                }
             }
         }
         assert!(
