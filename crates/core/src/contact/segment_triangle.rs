@@ -119,46 +119,62 @@ pub(crate) fn closest_segment_triangle_edges_within(
     let mut best: Option<SegmentTriangleClosest> = None;
     let d1 = b - a;
     let d1_squared = d1.length_squared();
-    // one edge at a time (a closure, not a loop over an array of edges, which would be
-    // copied on every call)
+    // one edge at a time, inlined (a loop over an array of edges copied the array on
+    // every call, and a closure was not inlined)
+    let segment = (a, d1, d1_squared);
     let mut measure = |k: u8, e0: DVec3, e1: DVec3| {
-        if edges & (1 << k) == 0 {
-            return; // another triangle owns it
-        }
-        let d2 = e1 - e0;
-        // An edge can replace the best only if it is strictly nearer, so once one is
-        // found, the others are measured only within it (plus a slack far above the
-        // rounding of either distance): the result and the least bound are the same.
-        let within = best.map_or(bound, |b| bound.min(b.distance * (1.0 + TIE_SLACK)));
-        if within.is_finite() {
-            // the distance between the lines (sin θ > 1e-3 between them keeps its
-            // rounding far below the callers' slack)
-            let w = d1.cross(d2);
-            let w2 = w.length_squared();
-            let s = (a - e0).dot(w);
-            let far = s * s > within * within * w2;
-            if w2 > 1e-6 * d1_squared * d2.length_squared() && far {
-                lower = lower.min((s * s / w2).sqrt());
-                return;
-            }
-        }
-        let (t, s) = segment_segment_parameters(a, d1, d1_squared, e0, d2);
-        let (p, q) = (a + t * d1, e0 + s * d2);
-        let d = (p - q).length();
-        lower = lower.min(d);
-        if accept(t) && d < best.as_ref().map_or(f64::INFINITY, |b| b.distance) {
-            best = Some(SegmentTriangleClosest {
-                t,
-                on_segment: p,
-                on_triangle: q,
-                distance: d,
-            });
-        }
+        if edges & (1 << k) != 0 {
+            measure_edge(segment, e0, e1, bound, &accept, &mut best, &mut lower);
+        } // else another triangle owns it
     };
     measure(0, tri.a, tri.b);
     measure(1, tri.b, tri.c);
     measure(2, tri.c, tri.a);
     (best, lower)
+}
+
+/// One edge `e0`–`e1` of [`closest_segment_triangle_edges_within`] against the segment
+/// (its start, direction and squared length): lowers `lower` to the edge's distance or a
+/// bound on it, and keeps its pair in `best` if accepted and nearer.
+#[inline(always)]
+fn measure_edge(
+    (a, d1, d1_squared): (DVec3, DVec3, f64),
+    e0: DVec3,
+    e1: DVec3,
+    bound: f64,
+    accept: &impl Fn(f64) -> bool,
+    best: &mut Option<SegmentTriangleClosest>,
+    lower: &mut f64,
+) {
+    let d2 = e1 - e0;
+    // An edge can replace the best only if it is strictly nearer, so once one is found,
+    // the others are measured only within it (plus a slack far above the rounding of
+    // either distance): the result and the least bound are the same.
+    let within = best.map_or(bound, |b| bound.min(b.distance * (1.0 + TIE_SLACK)));
+    if within.is_finite() {
+        // the distance between the lines (sin θ > 1e-3 between them keeps its rounding
+        // far below the callers' slack)
+        let w = d1.cross(d2);
+        let w2 = w.length_squared();
+        let s = (a - e0).dot(w);
+        let far = s * s > within * within * w2;
+        if w2 > 1e-6 * d1_squared * d2.length_squared() && far {
+            *lower = lower.min((s * s / w2).sqrt());
+            return;
+        }
+    }
+    let (t, s) = segment_segment_parameters(a, d1, d1_squared, e0, d2);
+    let (p, q) = (a + t * d1, e0 + s * d2);
+    let d = (p - q).length();
+    *lower = lower.min(d);
+    if accept(t) && d < best.as_ref().map_or(f64::INFINITY, |b| b.distance) {
+        *best = Some(SegmentTriangleClosest {
+            t,
+            on_segment: p,
+            on_triangle: q,
+            distance: d,
+        });
+    }
 }
 
 /// Relative slack of the pruning tests: a found distance below which another edge is
