@@ -4,10 +4,10 @@
 use super::coherence::{scan_fresh, Nearest};
 use super::owned_edges::owned_edges;
 use super::planes::Planes;
+use super::point_triangle::closest_point_on_triangle;
 use crate::spec::RigidPartSpec;
 use glam::DVec3;
 use parry3d_f64::bounding_volume::{Aabb, BoundingVolume};
-use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::{TriMesh, Triangle};
 
 /// One rigid part.
@@ -202,7 +202,7 @@ impl Nearest for ClosestPoint {
     /// Returns the point's distance to the triangle (all of it: `edges` concerns searches
     /// whose hits lie on edges).
     fn offer(&mut self, part: usize, tri: &Triangle, rank: u32, _edges: u8) -> f64 {
-        let point = tri.project_local_point(self.x, false).point;
+        let point = closest_point_on_triangle(self.x, tri);
         let distance = (point - self.x).length();
         let better =
             |b: &PointHit| distance < b.distance || (distance == b.distance && rank < b.rank);

@@ -21,6 +21,7 @@ pub mod hose_hose;
 mod owned_edges;
 mod penalty;
 mod planes;
+mod point_triangle;
 mod rigid;
 mod segment_triangle;
 pub mod sweep;
