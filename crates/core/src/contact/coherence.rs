@@ -628,34 +628,37 @@ impl CandidateCache {
     ) {
         let reaches = |distance: f64, bound: f64| distance <= (bound + moved) * (1.0 + SLACK);
         let travel = self.travel[s];
-        let base = slot * SLOT_CAPACITY;
-        let lower = s * SLOT_CAPACITY;
+        let (base, len) = (slot * SLOT_CAPACITY, self.len[slot] as usize);
+        // the slot's candidates, their planes and the searcher's bounds, side by side
+        // (iterated together: no index is checked per candidate)
+        let items = &self.items[base..base + len];
+        let planes = &self.planes[base..base + len];
+        let bounds = &mut self.lower[s * SLOT_CAPACITY..s * SLOT_CAPACITY + len];
         // accumulated in registers and written once: a store per candidate would make
         // each iteration wait for the last one's
         let (mut least_face, mut least_either) = (f64::INFINITY, f64::INFINITY);
         let mut unseen = f64::INFINITY;
-        for k in 0..self.len[slot] as usize {
-            let (r, bound) = (&self.items[base + k], search.bound());
+        for ((r, planes), lower) in items.iter().zip(planes).zip(bounds) {
+            let bound = search.bound();
             if !reaches(r.distance, bound) {
                 unseen = r.distance;
                 break; // sorted: no later candidate can reach either
             }
             let limit = bound * (1.0 + SLACK);
-            let [mut edge, mut face] = self.lower[lower + k];
+            let [mut edge, mut face] = *lower;
             if !(face - travel > limit || (face - travel > SLACK * limit && edge - travel > limit))
             {
-                let planes = &self.planes[base + k];
                 let bound_squared = planes.lower_bound_squared(probe[0], probe[1]);
                 if bound_squared > limit * limit {
                     // where it is now, it cannot
                     face = bound_squared.sqrt() + travel;
-                    self.lower[lower + k][1] = face;
+                    lower[1] = face;
                 } else {
                     let (tri, edges) = env.triangle_and_edges(r.part as usize, r.triangle);
                     if triangle_box_meets(&tri, query) {
                         let offered = search.offer(r.part as usize, &tri, r.rank, edges);
                         [edge, face] = [offered + travel, bound_squared.sqrt() + travel];
-                        self.lower[lower + k] = [edge, face];
+                        *lower = [edge, face];
                     }
                 }
             } // else: as last seen, less the way travelled since, it cannot
