@@ -69,7 +69,7 @@ mod tests {
             let mut point = || DVec3::new(next(), next(), next());
             let (a, b) = (point(), point());
             let c = match k % 10 {
-                0 => a + (b - a) * 0.3,                   // collinear
+                0 => a + (b - a) * 0.3,                  // collinear
                 1 => a + (b - a) * 0.3 + point() * 1e-7, // a sliver
                 2 => a,                                  // two vertices coincide
                 _ => point(),
@@ -81,11 +81,17 @@ mod tests {
             let (d, e) = ((ours - p).length(), (parry - p).length());
             assert!((d - e).abs() < 1e-12, "case {k}: {d} vs {e}");
             if k % 10 > 2 {
-                assert!((ours - parry).length() < 1e-9, "case {k}: {ours} vs {parry}");
+                assert!(
+                    (ours - parry).length() < 1e-9,
+                    "case {k}: {ours} vs {parry}"
+                );
                 let at = |v: DVec3| (ours - v).length() < 1e-12;
                 let region = if at(a) || at(b) || at(c) {
                     0
-                } else if (ours - p).normalize().dot((b - a).cross(c - a).normalize()).abs()
+                } else if (ours - p)
+                    .normalize()
+                    .dot((b - a).cross(c - a).normalize())
+                    .abs()
                     > 1.0 - 1e-9
                 {
                     2

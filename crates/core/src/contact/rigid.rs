@@ -274,14 +274,15 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
     if !skin {
         contact.skin.end();
     }
-    let nodes = state.x.len();
-    for i in 0..nodes {
-        let e = contact.node_beam[i] as usize;
-        if contact.beam_clear.get(e) == Some(&true) || state.held[i] {
-            contact.node_normal[i] = DVec3::ZERO;
+    // each node with its beam, held flag, radius and remembered normal, side by side
+    let nodes = contact.node_beam.iter().zip(&state.held).zip(&model.radius);
+    let nodes = nodes.zip(contact.node_normal.iter_mut()).enumerate();
+    for (i, (((&e, &held), &r), remembered)) in nodes {
+        let e = e as usize;
+        if contact.beam_clear.get(e) == Some(&true) || held {
+            *remembered = DVec3::ZERO;
             continue; // no triangle within reach of its beam, or held (no contact)
         }
-        let r = model.radius[i];
         let reach = r * (1.0 + SKIN);
         let beam = model.elements.get(e).map(|el| {
             let searcher = if el.node_a == i {
@@ -293,7 +294,7 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         });
         if let Some((_, searcher, xa, xb)) = beam {
             if contact.candidates.settled(e, searcher, xa, xb, reach) {
-                contact.node_normal[i] = DVec3::ZERO;
+                *remembered = DVec3::ZERO;
                 continue; // its search would find nothing
             }
         }
@@ -317,8 +318,8 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         let found = search.best.map(|b| (b.part, b.point));
         match found {
             Some((part, q)) => {
-                let (normal, depth) = side(x, q, r, contact.node_normal[i]);
-                contact.node_normal[i] = normal;
+                let (normal, depth) = side(x, q, r, *remembered);
+                *remembered = normal;
                 contact.points.push(ContactPoint {
                     node_a: i,
                     node_b: i,
@@ -328,7 +329,7 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
                     part,
                 });
             }
-            None => contact.node_normal[i] = DVec3::ZERO,
+            None => *remembered = DVec3::ZERO,
         }
     }
     for k in 0..contact.beams_near.len() {
