@@ -7,10 +7,10 @@
 //!    nearest pair strictly inside the segment between it and any mesh edge (each edge
 //!    measured once, by the triangle that owns it, [`super::owned_edges`]), or a point
 //!    where it pierces a face — so contact holds along the whole beam, not only at
-//!    nodes. Meshes are two-sided: the normal points from the
-//!    closest surface point to the hose point, whatever the triangles' orientation; if that
-//!    direction flips against the one remembered from the last step in contact, the point
-//!    has crossed the surface and the remembered side is kept (SPEC L4, ch. 5.3.3).
+//!    nodes. Meshes are two-sided: the normal points from the closest surface point to
+//!    the hose point, whatever the triangles' orientation; if that direction flips
+//!    against the one remembered from the last step in contact, the point has crossed the
+//!    surface and the remembered side is kept (SPEC L4, ch. 5.3.3).
 //!    The triangles examined come from lists kept from step to step ([`super::coherence`]),
 //!    which find exactly the contacts fresh BVH queries would.
 //! 2. Velocities: the contact point loses its approaching normal velocity; Coulomb friction
