@@ -142,11 +142,25 @@ describe('colour modes and checks', () => {
       const hose = (await page.evaluate(() => window.pliant.welcome.session.hoses.length)) - 1;
       const id = await page.evaluate(() => window.pliant.mouseHandId);
       const grabWith = async (key) => {
-        const nodes = await page.evaluate((k) => window.pliant.hoseNodes(k), hose);
-        const at = await page.evaluate(([p]) => window.pliant.screenOf(p), [nodes[nodes.length - 2]]);
         if (key) await page.keyboard.down(key);
-        await page.mouse.move(at.x, at.y);
-        await page.mouse.down();
+        // The hose may still swing from the last release, so the point read may have moved
+        // on by the press: a press that picks nothing (lastPick null, or not renewed) is
+        // let go and made again where the hose is drawn now.
+        let at = null;
+        for (let attempt = 0; at === null; attempt += 1) {
+          assert.ok(attempt < 100, 'the hose could not be picked in 100 presses');
+          const nodes = await page.evaluate((k) => window.pliant.hoseNodes(k), hose);
+          const p = await page.evaluate(([n]) => window.pliant.screenOf(n), [nodes[nodes.length - 2]]);
+          await page.mouse.move(p.x, p.y);
+          await page.evaluate(() => { window.pickBefore = window.pliant.lastPick; });
+          await page.mouse.down();
+          const picked = await page.evaluate(() => {
+            const pick = window.pliant.lastPick;
+            return pick !== null && pick !== window.pickBefore;
+          });
+          if (picked) at = p;
+          else await page.mouse.up();
+        }
         await page.mouse.move(at.x + 5, at.y - 5);
         if (key) await page.keyboard.up(key);
         await page.waitForFunction((id) => (window.pliant.snapshot?.hands ?? []).some((h) => h.hand_id === id), id);
