@@ -7,12 +7,9 @@ use pliant_core::{
     WorldSpec,
 };
 
-#[test]
-fn deep_penetration_is_pushed_out_gently() {
-    let r = 0.008;
-    let nodes = (0..=20)
-        .map(|i| DVec3::new(0.025 * i as f64, 0.0, 0.5 * r))
-        .collect(); // half a radius too deep
+/// A hose of outer radius `r` through `nodes` and one rigid `part`, without gravity or
+/// mass damping.
+fn hose_of_radius_over(r: f64, nodes: Vec<DVec3>, part: RigidPartSpec) -> Model {
     let hose = HoseSpec {
         name: "h".into(),
         material: Material::isotropic(12e6, 0.49, 940.0),
@@ -20,6 +17,25 @@ fn deep_penetration_is_pushed_out_gently() {
         sections: vec![Section::new(0.010, 2.0 * r)],
         normal_hint: None,
     };
+    let settings = SimSettings {
+        gravity: DVec3::ZERO,
+        damping_mass: 0.0,
+        ..Default::default()
+    };
+    Model::build(&WorldSpec {
+        hoses: vec![hose],
+        rigid_parts: vec![part],
+        settings,
+    })
+    .unwrap()
+}
+
+#[test]
+fn deep_penetration_is_pushed_out_gently() {
+    let r = 0.008;
+    let nodes = (0..=20)
+        .map(|i| DVec3::new(0.025 * i as f64, 0.0, 0.5 * r))
+        .collect(); // half a radius too deep
     let floor = RigidPartSpec {
         name: "floor".into(),
         vertices: vec![
@@ -32,17 +48,7 @@ fn deep_penetration_is_pushed_out_gently() {
         friction_static: 0.5,
         friction_sliding: 0.4,
     };
-    let settings = SimSettings {
-        gravity: DVec3::ZERO,
-        damping_mass: 0.0,
-        ..Default::default()
-    };
-    let model = Model::build(&WorldSpec {
-        hoses: vec![hose],
-        rigid_parts: vec![floor],
-        settings,
-    })
-    .unwrap();
+    let model = hose_of_radius_over(r, nodes, floor);
     let mut state = State::at_rest(&model);
     let mut steps_to_clear = None;
     for k in 0..50 {
@@ -71,13 +77,6 @@ fn deep_penetration_is_pushed_out_gently() {
 fn a_beam_crossing_an_edge_is_held_there_though_another_edge_is_nearer_its_end() {
     let r = 0.008;
     let (a, b) = (DVec3::new(0.06, -0.001, 0.0), DVec3::new(0.2, 0.08, 0.0094));
-    let hose = HoseSpec {
-        name: "h".into(),
-        material: Material::isotropic(12e6, 0.49, 940.0),
-        nodes: vec![a, b],
-        sections: vec![Section::new(0.010, 2.0 * r)],
-        normal_hint: None,
-    };
     let triangle = RigidPartSpec {
         name: "triangle".into(),
         vertices: vec![
@@ -89,17 +88,7 @@ fn a_beam_crossing_an_edge_is_held_there_though_another_edge_is_nearer_its_end()
         friction_static: 0.5,
         friction_sliding: 0.4,
     };
-    let settings = SimSettings {
-        gravity: DVec3::ZERO,
-        damping_mass: 0.0,
-        ..Default::default()
-    };
-    let model = Model::build(&WorldSpec {
-        hoses: vec![hose],
-        rigid_parts: vec![triangle],
-        settings,
-    })
-    .unwrap();
+    let model = hose_of_radius_over(r, vec![a, b], triangle);
     let mut state = State::at_rest(&model);
     explicit::step(&model, &mut state);
     let points = &state.contact.points;

@@ -784,13 +784,8 @@ mod tests {
         let env = fine_cylinder(256);
         let mut cache = CandidateCache::new(1, &env);
         let reach = 0.0101;
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut jitter = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2e-6
-        };
+        let mut uniform = super::super::test_random::uniform(0x9e37_79b9_7f4a_7c15);
+        let mut jitter = || uniform() * 2e-6;
         let (mut settled, mut searched, mut touching) = (0, 0, 0);
         for step in 0..6000 {
             let t = step as f64;

@@ -25,6 +25,8 @@ mod point_triangle;
 mod rigid;
 mod segment_triangle;
 pub mod sweep;
+#[cfg(test)]
+mod test_random;
 
 pub use broad_phase::BroadPhase;
 pub use clear_skin::ClearSkin;

@@ -57,13 +57,7 @@ mod tests {
     /// 10⁻⁹) for random points near random triangles, slivers and degenerate ones.
     #[test]
     fn agrees_with_parrys_projection() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut next = super::super::test_random::uniform(0x9e37_79b9_7f4a_7c15);
         let mut regions = [0usize; 3]; // vertex, edge, face
         for k in 0..50_000 {
             let mut point = || DVec3::new(next(), next(), next());

@@ -186,7 +186,10 @@ const TIE_SLACK: f64 = 1e-9;
 /// two segments (Ericson, "Real-Time Collision Detection", §5.1.9), with |d1|² given:
 /// the arithmetic of parry's `closest_points_segment_segment_with_locations_nD`, step
 /// for step, so that the results agree to the last bit (tested), without its locations
-/// and with the first segment's terms computed once per triangle.
+/// and with the first segment's terms computed once per triangle. (Hose–hose contact's
+/// [`super::hose_hose::closest_segment_segment`] is the same method with another rule for
+/// parallel segments, the middle of their overlap; this one keeps parry's, so rigid
+/// contacts stay what they were.)
 #[inline(always)]
 fn segment_segment_parameters(p0: DVec3, d1: DVec3, a: f64, e0: DVec3, d2: DVec3) -> (f64, f64) {
     const EPS: f64 = f64::EPSILON; // parry's DEFAULT_EPSILON
@@ -227,25 +230,26 @@ fn segment_segment_parameters(p0: DVec3, d1: DVec3, a: f64, e0: DVec3, d2: DVec3
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_random::uniform;
     use super::*;
 
-    /// The inlined segment–segment parameters agree with parry's to the last bit, for
-    /// random segments, parallel and nearly parallel ones, and degenerate ones.
-    #[test]
-    fn segment_parameters_are_parrys_to_the_last_bit() {
+    /// parry's closest points of segments [a, b] and [e0, e1], as parameters (t, s).
+    fn parry_parameters(a: DVec3, b: DVec3, e0: DVec3, e1: DVec3) -> (f64, f64) {
         use parry3d_f64::query::closest_points::closest_points_segment_segment_with_locations_nD;
         use parry3d_f64::shape::SegmentPointLocation;
         let parameter = |loc| match loc {
             SegmentPointLocation::OnVertex(i) => i as f64,
             SegmentPointLocation::OnEdge(w) => w[1],
         };
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let (l1, l2) = closest_points_segment_segment_with_locations_nD((&a, &b), (&e0, &e1));
+        (parameter(l1), parameter(l2))
+    }
+
+    /// The inlined segment–segment parameters agree with parry's to the last bit, for
+    /// random segments, parallel and nearly parallel ones, and degenerate ones.
+    #[test]
+    fn segment_parameters_are_parrys_to_the_last_bit() {
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15);
         for k in 0..60_000 {
             let mut point = || DVec3::new(next(), next(), next());
             let (a, b, e0) = (point(), point(), point());
@@ -257,12 +261,12 @@ mod tests {
                 _ => point(),
             };
             let (a, b) = if k % 11 == 0 { (a, a) } else { (a, b) };
-            let (l1, l2) = closest_points_segment_segment_with_locations_nD((&a, &b), (&e0, &e1));
+            let (t_parry, s_parry) = parry_parameters(a, b, e0, e1);
             let d1 = b - a;
             let (t, s) = segment_segment_parameters(a, d1, d1.length_squared(), e0, e1 - e0);
             assert_eq!(
                 (t.to_bits(), s.to_bits()),
-                (parameter(l1).to_bits(), parameter(l2).to_bits()),
+                (t_parry.to_bits(), s_parry.to_bits()),
                 "case {k}: {a} {b} {e0} {e1}"
             );
         }
@@ -278,17 +282,11 @@ mod tests {
         edges: u8,
         accept: impl Fn(f64) -> bool,
     ) -> (Option<SegmentTriangleClosest>, f64) {
-        use parry3d_f64::query::closest_points::closest_points_segment_segment_with_locations_nD;
-        use parry3d_f64::shape::SegmentPointLocation;
         let any = closest_segment_triangle_away_from_ends(a, b, tri);
         let pierced = any.distance == 0.0;
         if pierced && accept(any.t) {
             return (Some(any), 0.0);
         }
-        let parameter = |loc| match loc {
-            SegmentPointLocation::OnVertex(i) => i as f64,
-            SegmentPointLocation::OnEdge(w) => w[1],
-        };
         let mut best: Option<SegmentTriangleClosest> = None;
         let mut least = if pierced { 0.0 } else { f64::INFINITY };
         let sides = [(tri.a, tri.b), (tri.b, tri.c), (tri.c, tri.a)];
@@ -296,8 +294,7 @@ mod tests {
             if edges & (1 << k) == 0 {
                 continue;
             }
-            let (l1, l2) = closest_points_segment_segment_with_locations_nD((&a, &b), (&e0, &e1));
-            let (t, s) = (parameter(l1), parameter(l2));
+            let (t, s) = parry_parameters(a, b, e0, e1);
             let (p, q) = (a + t * (b - a), e0 + s * (e1 - e0));
             let distance = (p - q).length();
             least = least.min(distance);
@@ -358,13 +355,7 @@ mod tests {
     /// tie).
     #[test]
     fn the_bounded_edge_search_agrees_with_the_unbounded_one() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut next = uniform(0x2545_f491_4f6c_dd1d);
         let (mut within, mut beyond) = (0, 0);
         for k in 0..20_000 {
             let mut point = || DVec3::new(next(), next(), 0.2 * next());
