@@ -18,6 +18,7 @@ pub mod forces;
 pub mod frames;
 pub mod health;
 pub mod integrators;
+pub mod junction;
 pub mod lane_arith;
 pub mod lanes;
 pub mod loads;
@@ -41,6 +42,7 @@ pub mod timestep;
 
 pub use health::Divergence;
 pub use integrators::{Solver, SolverKind, SolverSettings, StepStats};
+pub use junction::{HoseEnd, Junction, JunctionSpec};
 pub use material::Material;
 pub use model::{HoseInfo, Model, ModelError};
 pub use section::{GivenStiffness, Section, SectionProperties};

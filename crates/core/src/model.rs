@@ -6,6 +6,7 @@ use crate::element::BeamElement;
 use crate::element_block::PackedElements;
 use crate::frames::node_frames;
 use crate::integrators::SolverSettings;
+use crate::junction::Junction;
 use crate::mass::half_element_mass;
 use crate::section::SectionProperties;
 use crate::spec::{HoseSpec, SimSettings, WorldSpec};
@@ -62,6 +63,11 @@ pub struct Model {
     /// Stiffened sections (SPEC M6), and for each node the body it belongs to.
     pub bodies: Vec<RigidBody>,
     pub body_of: Vec<Option<usize>>,
+    /// Junctions joining hose ends into networks (SPEC N1; [`crate::junction`]).
+    pub junctions: Vec<Junction>,
+    /// Per hose: its network, the smallest index of the hoses joined to it through
+    /// junctions (its own index when it joins none).
+    pub hose_network: Vec<usize>,
     /// The solver the scene asks for (issue 5); callers may choose another.
     pub solver: SolverSettings,
     /// Per-beam constants of hose–hose contact (SPEC L5).
@@ -127,6 +133,8 @@ pub enum ModelError {
     Empty,
     #[error("{0}")]
     RigidPart(String),
+    #[error("junction '{junction}': {reason}")]
+    Junction { junction: String, reason: String },
 }
 
 fn finite(v: DVec3) -> bool {
@@ -221,6 +229,8 @@ impl Model {
                 .map_err(ModelError::RigidPart)?,
             bodies: Vec::new(),
             body_of: vec![None; total_nodes],
+            junctions: Vec::new(),
+            hose_network: (0..spec.hoses.len()).collect(),
             solver: spec.settings.solver,
             hose_contact: HoseContactModel::default(),
             packed: PackedElements::default(),
@@ -307,7 +317,7 @@ impl Model {
                 ));
             }
             let body = RigidBody::new(
-                nodes.clone(),
+                nodes.clone().collect(),
                 &self.rest_x,
                 &self.rest_q,
                 &self.mass,

@@ -9,7 +9,9 @@
 //! hose touches it. It wakes when a kinematic load case on one of its nodes moves, when a
 //! load case on it is added or removed ([`Sleep::wake`], called by whoever changes them),
 //! or when an awake hose comes into contact with it, or when a hose tied to it by a cable
-//! tie ([`crate::loads::Tie`]) moves.
+//! tie ([`crate::loads::Tie`]) moves. Hoses joined by junctions ([`crate::junction`])
+//! sleep and wake together, as one network: a network falls asleep when all its hoses
+//! are calm, and wakes whole.
 
 use crate::{Model, State};
 use glam::DVec3;
@@ -45,11 +47,18 @@ impl Sleep {
         }
     }
 
-    /// Wakes hose `h` (e.g. a hand grabbed it or a load case on it changed).
+    /// Wakes hose `h` and the hoses of its network (e.g. a hand grabbed it or a load
+    /// case on it changed).
     pub fn wake(&mut self, model: &Model, h: usize) {
-        if let Some(info) = model.hoses.get(h) {
-            self.hose_asleep[h] = false;
-            self.calm[h] = 0;
+        let Some(&network) = model.hose_network.get(h) else {
+            return;
+        };
+        for (k, info) in model.hoses.iter().enumerate() {
+            if k != h && model.hose_network[k] != network {
+                continue;
+            }
+            self.hose_asleep[k] = false;
+            self.calm[k] = 0;
             for i in info.nodes() {
                 self.node_asleep[i] = false;
             }
@@ -99,7 +108,18 @@ pub fn update(model: &Model, state: &mut State, moved: impl Fn(usize) -> bool) {
             });
         let s = &mut state.sleep;
         s.calm[h] = if calm { s.calm[h] + 1 } else { 0 };
-        if s.calm[h] >= SLEEP_AFTER_STEPS {
+    }
+    // calm hoses fall asleep when every hose of their network is calm (or asleep)
+    for (h, info) in model.hoses.iter().enumerate() {
+        let s = &mut state.sleep;
+        if s.hose_asleep[h] || s.calm[h] < SLEEP_AFTER_STEPS {
+            continue;
+        }
+        let network = model.hose_network[h];
+        let all_calm = (0..model.hoses.len()).all(|k| {
+            model.hose_network[k] != network || s.hose_asleep[k] || s.calm[k] >= SLEEP_AFTER_STEPS
+        });
+        if all_calm {
             s.hose_asleep[h] = true;
             for i in info.nodes() {
                 s.node_asleep[i] = true;

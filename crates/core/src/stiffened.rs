@@ -11,7 +11,6 @@
 
 use crate::math::{exp_map, log_map};
 use glam::{DMat3, DQuat, DVec3};
-use std::ops::Range;
 
 /// A span of one hose to make rigid: local node indices `first..=last`.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -24,8 +23,8 @@ pub struct StiffenedSpan {
 /// A rigid body made of a span of nodes.
 #[derive(Clone, Debug)]
 pub struct RigidBody {
-    /// Global node indices of the span.
-    pub nodes: Range<usize>,
+    /// Global node indices: a stiffened span's, or a junction's end nodes.
+    pub nodes: Vec<usize>,
     /// Total mass [kg].
     pub mass: f64,
     /// Principal moments of inertia about the centre of mass [kg·m²], body axes.
@@ -64,16 +63,16 @@ impl RigidBody {
     /// Builds the body of global nodes `nodes` from their rest poses, masses and
     /// (isotropic) rotational inertias.
     pub fn new(
-        nodes: Range<usize>,
+        nodes: Vec<usize>,
         x: &[DVec3],
         q: &[DQuat],
         mass: &[f64],
         inertia: &[f64],
     ) -> RigidBody {
-        let total: f64 = nodes.clone().map(|i| mass[i]).sum();
-        let centre = nodes.clone().map(|i| mass[i] * x[i]).sum::<DVec3>() / total;
+        let total: f64 = nodes.iter().map(|&i| mass[i]).sum();
+        let centre = nodes.iter().map(|&i| mass[i] * x[i]).sum::<DVec3>() / total;
         let mut j = DMat3::ZERO;
-        for i in nodes.clone() {
+        for &i in &nodes {
             let o = x[i] - centre;
             j += DMat3::IDENTITY * (inertia[i] + mass[i] * o.length_squared())
                 - mass[i] * outer(o, o);
@@ -85,8 +84,8 @@ impl RigidBody {
             principal_inertia: principal,
             rest_centre: centre,
             rest_orientation: orientation,
-            offsets: nodes.clone().map(|i| inv * (x[i] - centre)).collect(),
-            frames: nodes.clone().map(|i| (inv * q[i]).normalize()).collect(),
+            offsets: nodes.iter().map(|&i| inv * (x[i] - centre)).collect(),
+            frames: nodes.iter().map(|&i| (inv * q[i]).normalize()).collect(),
             nodes,
         }
     }
@@ -132,13 +131,13 @@ pub fn step_body(
     // total load about the centre of mass
     let mut f = DVec3::ZERO;
     let mut m = DVec3::ZERO;
-    for i in body.nodes.clone() {
+    for &i in &body.nodes {
         f += force[i];
         m += moment[i] + (x[i] - s.centre).cross(force[i]);
     }
     match held_node {
         Some(h) => {
-            let k = h - body.nodes.start;
+            let k = body.nodes.iter().position(|&i| i == h).unwrap_or(0);
             let orientation = (q[h] * body.frames[k].conjugate()).normalize();
             let centre = x[h] - orientation * body.offsets[k];
             let velocity = (centre - s.centre) / dt;
@@ -170,7 +169,7 @@ pub fn step_body(
             s.orientation = (exp_map(dt * s.angular_velocity) * s.orientation).normalize();
         }
     }
-    for (k, i) in body.nodes.clone().enumerate() {
+    for (k, &i) in body.nodes.iter().enumerate() {
         let o = s.orientation * body.offsets[k];
         x[i] = s.centre + o;
         v[i] = s.velocity + s.angular_velocity.cross(o);
@@ -191,7 +190,7 @@ mod tests {
             .map(|i| DVec3::new(0.1 * i as f64, 0.0, 0.0))
             .collect();
         let q = vec![DQuat::IDENTITY; 4];
-        let body = RigidBody::new(0..4, &x, &q, &[1.0; 4], &[1e-4; 4]);
+        let body = RigidBody::new((0..4).collect(), &x, &q, &[1.0; 4], &[1e-4; 4]);
         assert!((body.mass - 4.0).abs() < 1e-15);
         assert!((body.rest_centre - DVec3::new(0.15, 0.0, 0.0)).length() < 1e-15);
         let along: f64 = x.iter().map(|p| (p.x - 0.15).powi(2)).sum::<f64>() + 4e-4;
@@ -218,7 +217,7 @@ mod tests {
             DVec3::new(0.2, 0.0, 0.03),
         ];
         let q = vec![DQuat::IDENTITY; 3];
-        let body = RigidBody::new(0..3, &x, &q, &[1.0, 2.0, 1.5], &[1e-3; 3]);
+        let body = RigidBody::new((0..3).collect(), &x, &q, &[1.0, 2.0, 1.5], &[1e-3; 3]);
         let mut s = BodyState {
             centre: body.rest_centre,
             orientation: body.rest_orientation,

@@ -37,8 +37,8 @@ impl Scene {
     /// Builds the model of a loaded scene; errors as `pliant run` words them.
     pub fn build(py: Python<'_>, loaded: Result<LoadedScene, RustSceneError>) -> PyResult<Scene> {
         let scene = loaded.map_err(|e| scene_error(py, &e))?;
-        let model = Model::build(&scene.world)
-            .and_then(|m| m.with_stiffened_spans(&scene.stiffened_spans()))
+        let model = scene
+            .build_model_typed()
             .map_err(|e| model_error(py, &scene.source, &e))?;
         // stubs and clips must bind to the model's nodes; check now rather than on use
         scene

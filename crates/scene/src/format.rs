@@ -35,6 +35,10 @@ pub struct SceneFile {
     /// The hoses of the scene (at least one).
     #[schemars(length(min = 1))]
     pub hoses: Vec<HoseEntry>,
+    /// Junctions joining hose ends into networks — a harness's branch points, a moulded
+    /// T or Y piece (SPEC N1).
+    #[serde(default)]
+    pub junctions: Vec<JunctionEntry>,
     /// Rigid parts of the environment (triangle meshes from files, or primitives).
     #[serde(default)]
     pub parts: Vec<PartEntry>,
@@ -342,6 +346,44 @@ pub struct HoseEntry {
     /// elsewhere `section` holds. Spans must not overlap.
     #[serde(default)]
     pub spans: Vec<SpanEntry>,
+    /// Minimum bend radius of the centre line (length unit), > 0, for the bend-radius
+    /// check; overrides the material's (e.g. a harness segment's, from its wires and
+    /// protection).
+    pub min_bend_radius: Option<f64>,
+}
+
+/// `[[junctions]]`: hose ends joined into one rigid junction (SPEC N1).
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct JunctionEntry {
+    /// Unique, non-empty name.
+    pub name: String,
+    /// The hose ends joined here, at least two. Without `body` they must meet at one
+    /// point (a welded branch point).
+    #[schemars(length(min = 2))]
+    pub ends: Vec<JunctionEndEntry>,
+    /// A junction body (a moulded T or Y piece) whose outlets are the ends, which may
+    /// then lie apart. Absent: a welded branch point.
+    pub body: Option<JunctionBodyEntry>,
+}
+
+/// One hose end of a junction.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct JunctionEndEntry {
+    /// The hose's name.
+    pub hose: String,
+    /// Which end.
+    pub end: HoseEndName,
+}
+
+/// A junction body.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct JunctionBodyEntry {
+    /// The body's own mass [kg], ≥ 0 (lumped onto its outlets in equal shares).
+    #[serde(default)]
+    pub mass_kg: f64,
 }
 
 /// A stiffened span of a hose: nodes `first` to `last` (inclusive) are rigid together.

@@ -217,6 +217,12 @@ pub fn build_hose(
         }
     }
 
+    let min_bend_radius = match raw.min_bend_radius {
+        Some(r) => crate::validate::positive(&at("min_bend_radius"), r, u)? * scale,
+        None => resolved
+            .min_bend_radius
+            .unwrap_or_else(|| crate::materials::min_bend_radius_rule(&section)),
+    };
     let info = HoseDiscretisation {
         stiffened,
         name: raw.name.clone(),
@@ -225,9 +231,7 @@ pub fn build_hose(
         requested_elements: count.requested,
         raised_for_arcs: count.raised_for_arcs,
         element_length: length / count.count as f64,
-        min_bend_radius: resolved
-            .min_bend_radius
-            .unwrap_or_else(|| crate::materials::min_bend_radius_rule(&section)),
+        min_bend_radius,
         d_outer: section.d_outer,
     };
     let spec = HoseSpec {

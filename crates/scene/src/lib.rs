@@ -23,6 +23,7 @@ pub mod files;
 pub mod format;
 pub mod glb_solids;
 pub mod hoses;
+pub mod junctions;
 pub mod library;
 pub mod load;
 pub mod materials;

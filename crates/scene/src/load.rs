@@ -457,6 +457,7 @@ fn build(
             nodes: h.nodes.len(),
         })
         .collect();
+    let junctions = crate::junctions::build_junctions(&file.junctions, &hoses, file.length_unit)?;
     let timeline = build_timeline(&file.timeline, &nodes, file.length_unit)?;
     let parts = build_parts(&file.parts, file.length_unit, &files, &mut budget)?;
     let (stubs, clips) = build_connectors(&file.stubs, &file.clips, &hoses, file.length_unit)?;
@@ -478,6 +479,7 @@ fn build(
             rigid_parts: parts.specs,
             settings,
         },
+        junctions,
         timeline,
         record_interval,
         hoses: infos,

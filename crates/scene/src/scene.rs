@@ -102,6 +102,8 @@ pub struct LoadedScene {
     pub name: String,
     /// Hoses, rigid parts and global settings for the physics core.
     pub world: WorldSpec,
+    /// Junctions joining hose ends (SPEC N1), for [`pliant_core::Model::with_junctions`].
+    pub junctions: Vec<pliant_core::JunctionSpec>,
     /// Scripted actions, node references resolved to indices.
     pub timeline: Timeline,
     /// Interval between recorded states (s); 0 = every step.

@@ -11,11 +11,17 @@ use pliant_core::{Model, SolverKind};
 use std::sync::Arc;
 
 impl LoadedScene {
-    /// The model of this scene, stiffened sections included.
+    /// The model of this scene, stiffened sections and junctions included.
     pub fn build_model(&self) -> Result<Model, String> {
+        self.build_model_typed()
+            .map_err(|e| format!("{}: cannot build the model: {e}", self.source))
+    }
+
+    /// [`Self::build_model`] with the core's typed error.
+    pub fn build_model_typed(&self) -> Result<Model, pliant_core::ModelError> {
         Model::build(&self.world)
             .and_then(|m| m.with_stiffened_spans(&self.stiffened_spans()))
-            .map_err(|e| format!("{}: cannot build the model: {e}", self.source))
+            .and_then(|m| m.with_junctions(&self.junctions))
     }
 
     /// The scene's initial load cases: the leading instantaneous actions of its timeline

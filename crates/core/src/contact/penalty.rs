@@ -20,7 +20,7 @@ pub(crate) fn add_penalty_forces(model: &Model, state: &mut State) {
     let clearance = &mut state.contact.clearance;
     clearance.follow(env);
     for body in &model.bodies {
-        for i in body.nodes.clone() {
+        for &i in &body.nodes {
             let r = model.radius[i];
             let x = state.x[i];
             if clearance.is_clear(i, x) {

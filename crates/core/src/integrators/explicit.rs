@@ -116,12 +116,12 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
         add_penalty_forces(model, state);
     }
     for (b, body) in model.bodies.iter().enumerate() {
-        if state.sleep.enabled && state.sleep.node_asleep[body.nodes.start] {
+        if state.sleep.enabled && state.sleep.node_asleep[body.nodes[0]] {
             state.bodies[b].velocity = DVec3::ZERO;
             state.bodies[b].angular_velocity = DVec3::ZERO;
             continue; // a sleeping section stays put (its nodes are held below)
         }
-        let held = body.nodes.clone().find(|&i| state.held[i]);
+        let held = body.nodes.iter().copied().find(|&i| state.held[i]);
         step_body(
             body,
             &mut state.bodies[b],
@@ -135,7 +135,7 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
             (&mut state.reaction_force, &mut state.reaction_moment),
             dt,
         );
-        for i in body.nodes.clone() {
+        for &i in &body.nodes {
             state.held[i] = true;
         }
     }

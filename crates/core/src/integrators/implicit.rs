@@ -1,7 +1,7 @@
 //! Implicit dynamics (issue 5, SPEC P5; the dissertation's outlook 7.2): the HHT-α method
 //! (Hilber, Hughes & Taylor 1977, "Improved numerical dissipation for time integration
 //! algorithms in structural dynamics", EESD 5) with Newton iterations on the consistent
-//! tangent, solved in O(N) per iteration ([`crate::newton::block_tridiagonal`]).
+//! tangent, solved in O(N) per iteration ([`crate::newton::block_tree`]).
 //!
 //! With α ∈ [−⅓, 0], β = (1 − α)²/4, γ = ½ − α, per node
 //!   m a_{n+1} = (1 + α) f_{n+1} − α f_n,
@@ -28,11 +28,11 @@
 
 use super::statics::increment_at_round_off;
 use crate::math::{left_jacobian_inverse_transpose_times, log_map};
-use crate::newton::block_tridiagonal::SingularBlock;
+use crate::newton::block_tree::SingularBlock;
 use crate::newton::convergence::Tolerance;
 use crate::newton::system::{
     apply_increment, contact_translation_limit, rotation_limited_step, sync_bodies,
-    translation_limited_step, NewtonSystem, NotAChain,
+    translation_limited_step, NewtonSystem, TopologyError,
 };
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
@@ -148,7 +148,7 @@ pub struct ImplicitSolver {
 }
 
 impl ImplicitSolver {
-    pub fn new(model: &Model, options: ImplicitOptions) -> Result<Self, NotAChain> {
+    pub fn new(model: &Model, options: ImplicitOptions) -> Result<Self, TopologyError> {
         let n = model.node_count();
         let z = vec![DVec3::ZERO; n];
         Ok(Self {
@@ -235,7 +235,7 @@ impl ImplicitSolver {
         }
         let sys = &mut self.system;
         // which nodes are prescribed; they are moved onto their targets by the first step
-        sys.set_prescribed(state, state.time);
+        sys.set_prescribed(model, state, state.time);
         for i in 0..state.x.len() {
             if sys.prescribed[i] {
                 state.v[i] = DVec3::ZERO;
@@ -323,6 +323,7 @@ impl ImplicitSolver {
         // the off-diagonal blocks and the contact pairs' coupling outside the band (the
         // diagonal blocks were scaled above, before the mass term)
         sys.scale_off_diagonal_tangent(1.0 + alpha);
+        sys.fold_rhs();
         let (mut rf, mut rm, mut sum) = (0.0_f64, 0.0_f64, 0.0);
         let l2 = sys.mean_length * sys.mean_length;
         for i in 0..n {
@@ -359,7 +360,7 @@ impl ImplicitSolver {
         // stay where they are until the first iteration carries their motion
         // (NewtonSystem::set_prescribed)
         let sys = &mut self.system;
-        sys.set_prescribed(state, t_next);
+        sys.set_prescribed(model, state, t_next);
         for i in 0..n {
             if sys.prescribed[i] {
                 let (dx, dth) = sys.prescribed_increment(state, i);

@@ -29,7 +29,7 @@ pub use implicit::{
 pub use stability::StabilityEvent;
 pub use statics::{StaticError, StaticOptions, StaticReport, StaticSolver};
 
-use crate::newton::NotAChain;
+use crate::newton::TopologyError;
 use crate::{Model, State};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -173,7 +173,7 @@ pub struct Solver {
 }
 
 impl Solver {
-    pub fn new(model: &Model, settings: SolverSettings) -> Result<Self, NotAChain> {
+    pub fn new(model: &Model, settings: SolverSettings) -> Result<Self, TopologyError> {
         let implicit = match settings.kind {
             SolverKind::Implicit => Some(Box::new(ImplicitSolver::new(
                 model,
@@ -205,7 +205,7 @@ impl Solver {
     }
 
     /// The scene's choice ([`Model::solver`]).
-    pub fn for_model(model: &Model) -> Result<Self, NotAChain> {
+    pub fn for_model(model: &Model) -> Result<Self, TopologyError> {
         Self::new(model, model.solver)
     }
 

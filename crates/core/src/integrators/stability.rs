@@ -4,7 +4,7 @@
 //! An equilibrium is stable when the tangent K = ∂²Π/∂u² of the potential energy is
 //! positive definite on the free nodes. The static solver factorises K anyway; by
 //! Sylvester's law of inertia its block LDLᵀ factors D'ᵢ carry as many negative
-//! eigenvalues as K ([`crate::newton::block_tridiagonal::Inertia`]). A negative one means
+//! eigenvalues as K ([`crate::newton::block_tree::Inertia`]). A negative one means
 //! a buckling or bifurcation point has been passed: the hose stands in an equilibrium no
 //! real hose keeps (a column compressed straight past its Euler load, a post-buckled
 //! shape of a higher mode). The solver then steps off along a direction of negative
@@ -13,7 +13,7 @@
 //! every step descends) find the stable equilibrium nearby — the branch a real hose,
 //! disturbed by anything at all, would take.
 
-use crate::newton::block_tridiagonal::Inertia;
+use crate::newton::block_tree::Inertia;
 use crate::newton::system::{apply_increment, NewtonSystem};
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
@@ -80,8 +80,7 @@ impl Escape {
     ) -> Option<StabilityEvent> {
         let (block, _, eigenvector) = inertia.first?;
         let d = &mut self.direction;
-        sys.matrix
-            .negative_curvature_direction(block, &eigenvector, d);
+        sys.negative_curvature_direction(block, &eigenvector, d);
         let length = sys.mean_length;
         // scale: the largest translation (or rotation × element length) becomes 1 m
         let mut size: f64 = 0.0;

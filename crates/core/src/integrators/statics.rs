@@ -85,7 +85,7 @@ pub struct StaticReport {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum StaticError {
     #[error("{0}")]
-    Singular(#[from] crate::newton::block_tridiagonal::SingularBlock),
+    Singular(#[from] crate::newton::block_tree::SingularBlock),
     #[error("the static solve produced non-finite values at iteration {0}")]
     NonFinite(usize),
 }
@@ -104,7 +104,7 @@ pub struct StaticSolver {
 }
 
 impl StaticSolver {
-    pub fn new(model: &Model) -> Result<Self, crate::newton::system::NotAChain> {
+    pub fn new(model: &Model) -> Result<Self, crate::newton::TopologyError> {
         let n = model.node_count();
         Ok(Self {
             system: NewtonSystem::new(model)?,
@@ -125,7 +125,7 @@ impl StaticSolver {
     /// [`Self::events`].
     pub fn solve(&mut self, model: &Model, state: &mut State) -> Result<StaticReport, StaticError> {
         self.events.clear();
-        self.system.set_prescribed(state, state.time);
+        self.system.set_prescribed(model, state, state.time);
         state.v.fill(DVec3::ZERO);
         state.w.fill(DVec3::ZERO);
         let mut report = StaticReport {
@@ -214,7 +214,7 @@ impl StaticSolver {
                     // the tangent at this very state (the last one factorised was the
                     // previous iterate's)
                     sys.eliminate_prescribed();
-                    sys.matrix.factor_modified()?
+                    sys.factor_modified()?
                 }
             };
             if inertia.positive_definite() {

@@ -1,14 +1,16 @@
 //! The Newton machinery the implicit and quasi-static integrators share (issue 5, SPEC
 //! P5; the integrators themselves are in [`crate::integrators`]): the assembly of loads
-//! and consistent tangent ([`system`]) the O(N) block-tridiagonal linear solve
-//! ([`block_tridiagonal`]), GMRES for the hose–hose contact coupling outside its band
+//! and consistent tangent ([`system`]), the O(N) linear solve of a chain or tree of
+//! nodes ([`block_tree`]), the condensation of junctions onto their master nodes
+//! ([`condensation`]), GMRES for the hose–hose contact coupling outside its band
 //! ([`gmres`]) and the convergence test ([`convergence`]).
 
-pub mod block_tridiagonal;
+pub mod block_tree;
+pub mod condensation;
 pub mod convergence;
 pub mod gmres;
 pub mod system;
 pub mod ties;
 
 pub use convergence::{LoadScale, Tolerance};
-pub use system::{NewtonSystem, NotAChain, RIGID_FACTOR};
+pub use system::{NewtonSystem, TopologyError, RIGID_FACTOR};

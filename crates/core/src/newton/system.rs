@@ -24,7 +24,8 @@
 //!
 //! Prescribed nodes (fix, drive, hand) are eliminated: their increment is zero.
 
-use super::block_tridiagonal::{BlockTridiagonal, Inertia, SingularBlock};
+use super::block_tree::{BlockTree, Inertia, NotATree, SingularBlock};
+use super::condensation::{Condensation, Factored};
 use super::convergence::LoadScale;
 use super::gmres::Gmres;
 use super::ties::TieCouplings;
@@ -45,7 +46,7 @@ pub const RIGID_FACTOR: f64 = 1e4;
 pub struct NewtonSystem {
     /// The model's elements, stiffened-section ones made rigid.
     pub elements: Vec<BeamElement>,
-    pub matrix: BlockTridiagonal,
+    pub matrix: BlockTree,
     /// Right-hand side, then the solution of the linear solve.
     pub rhs: Vec<Vector6<f64>>,
     pub force: Vec<DVec3>,
@@ -75,6 +76,9 @@ pub struct NewtonSystem {
     base_rhs: Vec<Vector6<f64>>,
     /// The contact coupling's GMRES (buffers only when hose contact is on).
     coupling: Gmres,
+    /// The junctions' condensation onto their master nodes (SPEC N1; `None` without
+    /// junctions, when `matrix` is factorised as it is).
+    pub junctions: Option<Condensation>,
 }
 
 /// A support's load on its node at the state's configuration ([`Support::load`]).
@@ -101,17 +105,23 @@ const COUPLING_TOLERANCE: f64 = 1e-12;
 
 /// Why a Newton solver could not be set up for a model.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("the Newton solvers need each element to join consecutive nodes; element {0} does not")]
-pub struct NotAChain(pub usize);
+pub enum TopologyError {
+    #[error(
+        "the Newton solvers need each element to join consecutive nodes; element {0} does not"
+    )]
+    NotAChain(usize),
+    #[error(transparent)]
+    Loop(#[from] NotATree),
+}
 
 impl NewtonSystem {
-    pub fn new(model: &Model) -> Result<Self, NotAChain> {
+    pub fn new(model: &Model) -> Result<Self, TopologyError> {
         let n = model.node_count();
         let mut elements = model.elements.clone();
         let mut contact_stiffness = vec![0.0_f64; n];
         for (k, e) in elements.iter_mut().enumerate() {
             if e.node_b != e.node_a + 1 {
-                return Err(NotAChain(k));
+                return Err(TopologyError::NotAChain(k));
             }
             let axial = e.axial_stiffness_compression / e.rest_length;
             contact_stiffness[e.node_a] = contact_stiffness[e.node_a].max(axial);
@@ -134,7 +144,7 @@ impl NewtonSystem {
             scale: LoadScale::default(),
             mean_length,
             elements,
-            matrix: BlockTridiagonal::new(n),
+            matrix: BlockTree::new(n),
             rhs: vec![Vector6::zeros(); n],
             force: vec![DVec3::ZERO; n],
             moment: vec![DVec3::ZERO; n],
@@ -153,6 +163,7 @@ impl NewtonSystem {
             } else {
                 Gmres::default()
             },
+            junctions: Condensation::new(model)?,
         })
     }
 
@@ -160,6 +171,7 @@ impl NewtonSystem {
     /// ∂v/∂δx (0 for statics, γ/(βΔt) for Newmark). Writes `force`, `moment`,
     /// `contact_force` and `matrix` (prescribed nodes not yet eliminated).
     pub fn assemble(&mut self, model: &Model, state: &mut State, rate_factor: f64) {
+        model.place_junction_nodes(&mut state.x, &mut state.q);
         self.matrix.clear();
         self.force.fill(DVec3::ZERO);
         self.moment.fill(DVec3::ZERO);
@@ -288,6 +300,14 @@ impl NewtonSystem {
         }
         scale.include(0.0, scale.force * self.mean_length);
         self.scale = scale;
+        if let Some(junctions) = &mut self.junctions {
+            junctions.fold_loads(
+                &state.x,
+                &mut self.force,
+                &mut self.moment,
+                &self.prescribed,
+            );
+        }
     }
 
     /// Penalty contact of node balls with the rigid parts, with friction (see the module
@@ -352,6 +372,7 @@ impl NewtonSystem {
     /// static line search. Dead moments have no potential (they are not conservative
     /// under finite rotations) and are left out.
     pub fn potential_energy(&mut self, model: &Model, state: &mut State) -> f64 {
+        model.place_junction_nodes(&mut state.x, &mut state.q);
         let mut e = 0.0;
         for el in &self.elements {
             let (a, b) = (el.node_a, el.node_b);
@@ -407,7 +428,10 @@ impl NewtonSystem {
     /// ([`Self::add_prescribed_coupling`]) — the linear response as predictor — and
     /// [`Self::move_prescribed`] puts them on target. (Jumping them first would start
     /// Newton from a state strained by the whole jump in one element.)
-    pub fn set_prescribed(&mut self, state: &State, t: f64) {
+    ///
+    /// A junction with a held member is held whole: its other members' targets follow
+    /// rigidly from the held one's ([`Model::junction_poses_from`]).
+    pub fn set_prescribed(&mut self, model: &Model, state: &State, t: f64) {
         self.prescribed.fill(false);
         self.pending = false;
         for (_, case) in state.loads.iter() {
@@ -418,7 +442,20 @@ impl NewtonSystem {
             self.target_x[i] = x_new;
             self.target_q[i] = q_new;
             self.prescribed[i] = true;
-            if x_new != state.x[i] || q_new != state.q[i] {
+            if let Some(j) = model.junction_of(i) {
+                for (k, xk, qk) in model.junction_poses_from(j, i, x_new, q_new) {
+                    if k != i {
+                        self.target_x[k] = xk;
+                        self.target_q[k] = qk;
+                        self.prescribed[k] = true;
+                    }
+                }
+            }
+        }
+        for i in 0..self.prescribed.len() {
+            if self.prescribed[i]
+                && (self.target_x[i] != state.x[i] || self.target_q[i] != state.q[i])
+            {
                 self.pending = true;
             }
         }
@@ -480,20 +517,27 @@ impl NewtonSystem {
     /// two soft hoses pressed together — and left Newton with wrong steps.)
     ///
     /// `modified`: factorise a positive-definite neighbour of T where T is not
-    /// ([`BlockTridiagonal::factor_modified`], the static solver) and return T's inertia;
+    /// ([`BlockTree::factor_modified`], the static solver) and return T's inertia;
     /// otherwise T as it is (the implicit solver, whose mass term keeps T definite).
     pub fn solve_linear(&mut self, modified: bool) -> Result<Inertia, SingularBlock> {
         let inertia = if modified {
-            self.matrix.factor_modified()?
+            self.factor_modified()?
         } else {
-            self.matrix.factor()?;
+            match &mut self.junctions {
+                Some(j) => j.factor(&self.matrix)?,
+                None => self.matrix.factor()?,
+            }
             Inertia::default()
+        };
+        let factored = match &self.junctions {
+            Some(j) => Factored::Condensed(j),
+            None => Factored::Chain(&self.matrix),
         };
         let tied = !self.ties.is_empty();
         if tied {
-            self.ties.prepare(&self.matrix, &self.prescribed)?;
+            self.ties.prepare(factored, &self.prescribed)?;
         }
-        self.matrix.solve_factored(&mut self.rhs)?;
+        factored.solve_factored(&mut self.rhs)?;
         if tied {
             self.ties.correct(&mut self.rhs, &self.prescribed);
         }
@@ -506,7 +550,7 @@ impl NewtonSystem {
             // hose contact switched on after the solver was built: buffers once
             self.coupling = Gmres::new(self.rhs.len());
         }
-        let (matrix, pairs, prescribed) = (&self.matrix, &self.pairs, &self.prescribed);
+        let (pairs, prescribed) = (&self.pairs, &self.prescribed);
         let ties = &mut self.ties;
         let mut failed = None;
         self.coupling.solve(
@@ -517,7 +561,7 @@ impl NewtonSystem {
                 // (I + K⁻¹C) v = v − K⁻¹(−C v), K = T with the ties' rank-one updates
                 out.fill(Vector6::zeros());
                 add_minus_coupling(pairs, prescribed, v, out);
-                if let Err(e) = matrix.solve_factored(out) {
+                if let Err(e) = factored.solve_factored(out) {
                     failed = Some(e);
                 }
                 if tied {
@@ -551,6 +595,43 @@ impl NewtonSystem {
         }
         for p in &mut self.pairs {
             p.stiffness *= factor;
+        }
+    }
+
+    /// Factorises a positive-definite neighbour of the tangent (condensed at junctions)
+    /// and returns the tangent's inertia ([`BlockTree::factor_modified`]).
+    pub fn factor_modified(&mut self) -> Result<Inertia, SingularBlock> {
+        match &mut self.junctions {
+            Some(j) => j.factor_modified(&self.matrix),
+            None => self.matrix.factor_modified(),
+        }
+    }
+
+    /// A direction of negative curvature from the last [`Self::factor_modified`]
+    /// ([`BlockTree::negative_curvature_direction`]), junction slaves moving with their
+    /// masters.
+    pub fn negative_curvature_direction(
+        &self,
+        block: usize,
+        eigenvector: &Vector6<f64>,
+        d: &mut [Vector6<f64>],
+    ) {
+        match &self.junctions {
+            Some(j) => {
+                j.tree.negative_curvature_direction(block, eigenvector, d);
+                j.expand(d);
+            }
+            None => self
+                .matrix
+                .negative_curvature_direction(block, eigenvector, d),
+        }
+    }
+
+    /// Folds the right-hand side of junction slaves onto their masters (the implicit
+    /// solver's inertial residual is per node; [`super::condensation`]).
+    pub fn fold_rhs(&mut self) {
+        if let Some(j) = &self.junctions {
+            j.fold_rhs(&mut self.rhs);
         }
     }
 
@@ -612,7 +693,7 @@ fn normal_projector(n: DVec3) -> Matrix3<f64> {
 /// pairs inside the block band: each node with itself and the two nodes of one beam with
 /// each other. The coupling across the two beams (far apart in the chain) is applied by
 /// [`NewtonSystem::solve_linear`].
-fn add_pair_tangent(matrix: &mut BlockTridiagonal, pair: &ContactPair) {
+fn add_pair_tangent(matrix: &mut BlockTree, pair: &ContactPair) {
     let nn = normal_projector(pair.normal) * pair.stiffness;
     let [a, b, c, d] = pair.nodes;
     let w = pair.weights;
@@ -769,17 +850,17 @@ pub fn residual_norms(force: &[DVec3], moment: &[DVec3], prescribed: &[bool]) ->
 /// move the nodes; the explicit solver and the reports read the bodies).
 pub fn sync_bodies(model: &Model, state: &mut State) {
     for (b, body) in model.bodies.iter().enumerate() {
-        let first = body.nodes.start;
+        let first = body.nodes[0];
         let centre = body
             .nodes
-            .clone()
-            .map(|i| model.mass[i] * state.x[i])
+            .iter()
+            .map(|&i| model.mass[i] * state.x[i])
             .sum::<DVec3>()
             / body.mass;
         let velocity = body
             .nodes
-            .clone()
-            .map(|i| model.mass[i] * state.v[i])
+            .iter()
+            .map(|&i| model.mass[i] * state.v[i])
             .sum::<DVec3>()
             / body.mass;
         let orientation: DQuat = (state.q[first] * body.frames[0].conjugate()).normalize();

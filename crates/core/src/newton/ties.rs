@@ -19,7 +19,8 @@
 //! solver's supports on a hose as soft as a rubber cantilever.) Buffers grow with the
 //! number of ties and are reused: no allocation once a run's ties are known.
 
-use super::block_tridiagonal::{BlockTridiagonal, SingularBlock};
+use super::block_tree::SingularBlock;
+use super::condensation::Factored;
 use glam::DVec3;
 use nalgebra::Vector6;
 
@@ -65,7 +66,7 @@ impl TieCouplings {
     /// After T is factorised: Z = T⁻¹ G and the Cholesky factor of S.
     pub fn prepare(
         &mut self,
-        matrix: &BlockTridiagonal,
+        matrix: Factored<'_>,
         prescribed: &[bool],
     ) -> Result<(), SingularBlock> {
         let m = self.ties.len();

@@ -6,6 +6,7 @@ mod contact;
 mod convergence;
 mod energy;
 mod fasteners;
+mod frames;
 mod friction;
 mod helix;
 pub mod hose_contact;
@@ -42,6 +43,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("hose_contact", hose_contact::run),
     ("stiffened", stiffened::run),
     ("sections", sections::run),
+    ("frames", frames::run),
     ("stub", fasteners::run_stub),
     ("clip", fasteners::run_clip),
     ("thesis_1", thesis::run_1),

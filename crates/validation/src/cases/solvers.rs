@@ -12,7 +12,9 @@
 //! tunnelling at speed, stub and clip timelines, the thesis runs) are dynamic by nature
 //! and are run by the explicit solver only.
 
-use super::{axial, buckling, hose_contact, rollup, sections, stiffened, tip_load, torsion};
+use super::{
+    axial, buckling, frames, hose_contact, rollup, sections, stiffened, tip_load, torsion,
+};
 use crate::harness::with_solver;
 use crate::Check;
 use pliant_core::SolverKind;
@@ -32,6 +34,7 @@ const CASES: &[(&str, crate::CaseFn, &[SolverKind])] = &[
     ("torsion", torsion::run, BOTH),
     ("stiffened", stiffened::run, BOTH),
     ("sections", sections::run, BOTH),
+    ("frames", frames::run, BOTH),
     ("hose_contact", hose_contact::run, BOTH),
 ];
 

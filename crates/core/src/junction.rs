@@ -1,0 +1,192 @@
+//! Junctions (SPEC N1): hose ends joined into a network. A *welded branch point* joins
+//! ends that meet at one point — position and rotation shared, each segment keeping the
+//! tangent its data gives it; a *junction body* (a moulded T or Y piece) joins ends that
+//! lie apart, at its outlets. Either way the joined end nodes move as one rigid body
+//! ([`crate::stiffened::RigidBody`]): the explicit solver steps it by Newton–Euler as it
+//! does a stiffened section, the Newton solvers condense its nodes onto one master node
+//! ([`crate::newton::condensation`]). A junction body's own mass is lumped onto its
+//! outlet nodes in equal shares, so its centre of mass is the mean of its outlets and its
+//! rotational inertia that of point masses there — exact for a symmetric piece, an
+//! estimate otherwise.
+
+use crate::model::{Model, ModelError};
+use crate::stiffened::RigidBody;
+use glam::{DQuat, DVec3};
+use serde::{Deserialize, Serialize};
+
+/// Which end of a hose.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HoseEnd {
+    Start,
+    End,
+}
+
+/// What a caller hands [`Model::with_junctions`]: the ends to join.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct JunctionSpec {
+    /// Name shown in outputs.
+    pub name: String,
+    /// The joined ends: hose index and which end.
+    pub ends: Vec<(usize, HoseEnd)>,
+    /// Mass of a junction body beyond the hoses' own [kg] (0 for a welded branch point).
+    #[serde(default)]
+    pub body_mass: f64,
+}
+
+/// A built junction: its end nodes (global indices; the first is the Newton solvers'
+/// master) and the rigid body they form.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Junction {
+    pub name: String,
+    pub nodes: Vec<usize>,
+    /// Index into [`Model::bodies`].
+    pub body: usize,
+}
+
+impl Junction {
+    /// Degree: how many hose ends meet here.
+    pub fn degree(&self) -> usize {
+        self.nodes.len()
+    }
+}
+
+impl Model {
+    /// Joins hose ends into junctions. Each end may belong to one junction, and not to a
+    /// stiffened section; a junction joins at least two ends. (Whether the hoses and
+    /// junctions form a tree is checked by the Newton solvers, which need one; the
+    /// explicit solver steps any network.)
+    pub fn with_junctions(mut self, junctions: &[JunctionSpec]) -> Result<Model, ModelError> {
+        for spec in junctions {
+            let err = |reason: String| {
+                Err(ModelError::Junction {
+                    junction: spec.name.clone(),
+                    reason,
+                })
+            };
+            if spec.ends.len() < 2 {
+                return err(format!(
+                    "joins {} hose end(s); needs at least 2",
+                    spec.ends.len()
+                ));
+            }
+            if !(spec.body_mass >= 0.0 && spec.body_mass.is_finite()) {
+                return err(format!("body mass must be ≥ 0 kg, is {}", spec.body_mass));
+            }
+            let mut nodes = Vec::with_capacity(spec.ends.len());
+            for &(hose, end) in &spec.ends {
+                let Some(info) = self.hoses.get(hose) else {
+                    return err(format!("names hose {hose} of {}", self.hoses.len()));
+                };
+                let node = match end {
+                    HoseEnd::Start => info.first_node,
+                    HoseEnd::End => info.first_node + info.node_count - 1,
+                };
+                if nodes.contains(&node) {
+                    return err(format!("joins the {end:?} of hose '{}' twice", info.name));
+                }
+                if let Some(b) = self.body_of[node] {
+                    let other = self
+                        .junctions
+                        .iter()
+                        .find(|j| j.body == b)
+                        .map(|j| format!("junction '{}'", j.name))
+                        .unwrap_or_else(|| "a stiffened section".into());
+                    return err(format!(
+                        "the {end:?} of hose '{}' already belongs to {other}",
+                        info.name
+                    ));
+                }
+                nodes.push(node);
+            }
+            let share = spec.body_mass / nodes.len() as f64;
+            for &i in &nodes {
+                self.mass[i] += share;
+            }
+            let body = RigidBody::new(
+                nodes.clone(),
+                &self.rest_x,
+                &self.rest_q,
+                &self.mass,
+                &self.inertia,
+            );
+            for &i in &nodes {
+                self.body_of[i] = Some(self.bodies.len());
+            }
+            self.junctions.push(Junction {
+                name: spec.name.clone(),
+                nodes,
+                body: self.bodies.len(),
+            });
+            self.bodies.push(body);
+        }
+        self.hose_network = networks(self.hoses.len(), junctions);
+        self.hose_contact = crate::contact::HoseContactModel::new(&self);
+        Ok(self)
+    }
+
+    /// Puts every junction's other end nodes where the rigid body of its first (master)
+    /// node places them: x_k = c + R o_k, q_k = R f_k with R = q_master f_masterᵀ and
+    /// c = x_master − R o_master (the body's rest offsets o and frames f).
+    pub fn place_junction_nodes(&self, x: &mut [DVec3], q: &mut [DQuat]) {
+        for junction in &self.junctions {
+            let body = &self.bodies[junction.body];
+            let m = junction.nodes[0];
+            let r = (q[m] * body.frames[0].conjugate()).normalize();
+            let centre = x[m] - r * body.offsets[0];
+            for (k, &i) in junction.nodes.iter().enumerate().skip(1) {
+                x[i] = centre + r * body.offsets[k];
+                q[i] = (r * body.frames[k]).normalize();
+            }
+        }
+    }
+
+    /// The poses of all of a junction's nodes when its member `held` (a node index) is
+    /// at (x_held, q_held): the rigid body's placement from that node.
+    pub fn junction_poses_from(
+        &self,
+        junction: usize,
+        held: usize,
+        x_held: DVec3,
+        q_held: DQuat,
+    ) -> impl Iterator<Item = (usize, DVec3, DQuat)> + '_ {
+        let j = &self.junctions[junction];
+        let body = &self.bodies[j.body];
+        let k = j.nodes.iter().position(|&i| i == held).unwrap_or(0);
+        let r = (q_held * body.frames[k].conjugate()).normalize();
+        let centre = x_held - r * body.offsets[k];
+        j.nodes.iter().enumerate().map(move |(k, &i)| {
+            (
+                i,
+                centre + r * body.offsets[k],
+                (r * body.frames[k]).normalize(),
+            )
+        })
+    }
+
+    /// The junction node `i` belongs to, if any.
+    pub fn junction_of(&self, i: usize) -> Option<usize> {
+        let b = self.body_of.get(i).copied().flatten()?;
+        self.junctions.iter().position(|j| j.body == b)
+    }
+}
+
+/// Per hose, the smallest index of the hoses joined to it through `junctions`
+/// (connected components, by union–find with path halving).
+fn networks(hoses: usize, junctions: &[JunctionSpec]) -> Vec<usize> {
+    let mut parent: Vec<usize> = (0..hoses).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for j in junctions {
+        for w in j.ends.windows(2) {
+            let (a, b) = (root(&mut parent, w[0].0), root(&mut parent, w[1].0));
+            parent[a.max(b)] = a.min(b);
+        }
+    }
+    (0..hoses).map(|h| root(&mut parent, h)).collect()
+}

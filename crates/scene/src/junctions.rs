@@ -1,0 +1,114 @@
+//! `[[junctions]]` (SPEC N1): hose ends joined into networks, checked against the hoses
+//! they name. A welded branch point's ends must meet at one point; a junction body's
+//! outlets may lie apart.
+
+use crate::error::FieldError;
+use crate::format::{HoseEndName, JunctionEntry};
+use crate::units::LengthUnit;
+use crate::validate::non_negative;
+use pliant_core::{HoseEnd, HoseSpec, JunctionSpec};
+
+/// How far apart a welded branch point's ends may lie [m]: what a CAD export rounds to.
+pub const WELD_TOLERANCE: f64 = 1e-5;
+
+/// Checks and builds every junction.
+pub fn build_junctions(
+    entries: &[JunctionEntry],
+    hoses: &[HoseSpec],
+    unit: LengthUnit,
+) -> Result<Vec<JunctionSpec>, FieldError> {
+    let mut specs: Vec<JunctionSpec> = Vec::with_capacity(entries.len());
+    // which junction each hose end already belongs to
+    let mut taken: std::collections::HashMap<(usize, HoseEnd), usize> = Default::default();
+    for (j, raw) in entries.iter().enumerate() {
+        let at = |rest: &str| format!("junctions[{j}].{rest}");
+        if raw.name.trim().is_empty() {
+            return Err(FieldError::new(
+                at("name"),
+                "\"\"",
+                "a junction name must not be empty",
+            ));
+        }
+        if let Some(first) = entries[..j].iter().position(|e| e.name == raw.name) {
+            return Err(FieldError::new(
+                at("name"),
+                format!("\"{}\"", raw.name),
+                format!("duplicate junction name (also junctions[{first}].name)"),
+            ));
+        }
+        if raw.ends.len() < 2 {
+            return Err(FieldError::new(
+                at("ends"),
+                format!("{} end(s)", raw.ends.len()),
+                "a junction joins at least two hose ends",
+            ));
+        }
+        let mut ends = Vec::with_capacity(raw.ends.len());
+        for (k, end) in raw.ends.iter().enumerate() {
+            let field = at(&format!("ends[{k}].hose"));
+            let Some(hose) = hoses.iter().position(|h| h.name == end.hose) else {
+                return Err(FieldError::new(
+                    field,
+                    format!("\"{}\"", end.hose),
+                    "no hose of this name",
+                ));
+            };
+            let which = match end.end {
+                HoseEndName::Start => HoseEnd::Start,
+                HoseEndName::End => HoseEnd::End,
+            };
+            if let Some(&other) = taken.get(&(hose, which)) {
+                let place = if other == j {
+                    "this junction".to_string()
+                } else {
+                    format!("junctions[{other}] (\"{}\")", entries[other].name)
+                };
+                return Err(FieldError::new(
+                    at(&format!("ends[{k}]")),
+                    format!("{} {:?}", end.hose, which).to_lowercase(),
+                    format!("this hose end is already joined at {place}"),
+                ));
+            }
+            taken.insert((hose, which), j);
+            ends.push((hose, which));
+        }
+        let point = |&(hose, end): &(usize, HoseEnd)| {
+            let nodes = &hoses[hose].nodes;
+            match end {
+                HoseEnd::Start => nodes[0],
+                HoseEnd::End => nodes[nodes.len() - 1],
+            }
+        };
+        let body_mass = match &raw.body {
+            Some(body) => non_negative(&at("body.mass_kg"), body.mass_kg, "kg")?,
+            None => {
+                let first = point(&ends[0]);
+                for (k, end) in ends.iter().enumerate().skip(1) {
+                    let gap = (point(end) - first).length();
+                    if gap > WELD_TOLERANCE {
+                        return Err(FieldError::new(
+                            at(&format!("ends[{k}]")),
+                            format!(
+                                "{} {}",
+                                gap / unit.to_metres(),
+                                unit.symbol()
+                            ),
+                            format!(
+                                "lies {:.3} mm from ends[0]: a welded branch point's ends must meet at one point (within {} mm); give `body` for a junction body whose outlets lie apart",
+                                gap * 1e3,
+                                WELD_TOLERANCE * 1e3
+                            ),
+                        ));
+                    }
+                }
+                0.0
+            }
+        };
+        specs.push(JunctionSpec {
+            name: raw.name.clone(),
+            ends,
+            body_mass,
+        });
+    }
+    Ok(specs)
+}
