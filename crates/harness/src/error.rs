@@ -1,0 +1,44 @@
+//! Errors of the harness import: every one names the file and, where the problem sits in
+//! the XML, the KBL element, its `id` and its line and column.
+
+use std::path::PathBuf;
+
+/// What went wrong while importing a harness file or writing the scene.
+#[derive(Debug, thiserror::Error)]
+pub enum HarnessError {
+    /// The input file could not be read.
+    #[error("{file}: cannot read: {source}")]
+    Read {
+        file: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// The input is not well-formed XML (e.g. truncated).
+    #[error("{file}:{line}:{column}: not well-formed XML: {reason}")]
+    Xml {
+        file: String,
+        line: u32,
+        column: u32,
+        reason: String,
+    },
+    /// The file is not a format (or version) this importer reads.
+    #[error("{file}: {reason}")]
+    Unsupported { file: String, reason: String },
+    /// A KBL element is malformed or refers to something missing.
+    #[error("{file}:{line}:{column}: {element} id=\"{kbl_id}\": {reason}")]
+    Element {
+        file: String,
+        element: String,
+        kbl_id: String,
+        line: u32,
+        column: u32,
+        reason: String,
+    },
+    /// An output file could not be written.
+    #[error("{path}: cannot write: {source}")]
+    Write {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+}
