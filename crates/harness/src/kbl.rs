@@ -36,7 +36,14 @@ pub const SUPPORTED_VERSIONS: [&str; 3] = ["2.3", "2.4", "2.5"];
 pub fn parse_kbl(file: &str, text: &str) -> Result<Harness, HarnessError> {
     let doc = Document::parse(text).map_err(|e| {
         let pos = e.pos();
-        HarnessError::Xml { file: file.to_string(), line: pos.row, column: pos.col, reason: e.to_string() }
+        let (mut line, mut column, mut reason) = (pos.row, pos.col, e.to_string());
+        if matches!(e, roxmltree::Error::UnclosedRootNode | roxmltree::Error::UnexpectedEndOfStream) {
+            // The parser reports these at 1:1; the place that matters is where the file ends.
+            line = text.lines().count().max(1) as u32;
+            column = text.lines().last().map_or(1, |l| l.chars().count() as u32 + 1);
+            reason = format!("{reason}: the file ends here, inside an element (truncated?)");
+        }
+        HarnessError::Xml { file: file.to_string(), line, column, reason }
     })?;
     let root = doc.root_element();
     let version = check_version(file, root)?;
