@@ -44,7 +44,9 @@ impl BSpline {
         if self.degree == 1 {
             // Degree 0: piecewise constant, Q_i on [i + 1, i + 2).
             let (a, b) = self.domain();
-            let i = (t.clamp(a, b - 1e-12).floor() as usize).saturating_sub(1).min(q.len() - 1);
+            let i = (t.clamp(a, b - 1e-12).floor() as usize)
+                .saturating_sub(1)
+                .min(q.len() - 1);
             return q[i];
         }
         de_boor(self.degree - 1, &q, t, 1.0)
@@ -101,7 +103,12 @@ impl Chain {
 
     /// A straight line from a to b (degree 1, two control points).
     pub fn line(a: DVec3, b: DVec3) -> Self {
-        Chain { splines: vec![BSpline { degree: 1, points: vec![a, b] }] }
+        Chain {
+            splines: vec![BSpline {
+                degree: 1,
+                points: vec![a, b],
+            }],
+        }
     }
 
     /// Parameter range [0, m].
@@ -144,7 +151,9 @@ impl Chain {
         (0..n)
             .map(|i| {
                 let lo = a + i as f64 * h;
-                GL8.iter().map(|(x, w)| w * self.derivative(lo + (x + 1.0) * 0.5 * h).length()).sum::<f64>()
+                GL8.iter()
+                    .map(|(x, w)| w * self.derivative(lo + (x + 1.0) * 0.5 * h).length())
+                    .sum::<f64>()
                     * 0.5
                     * h
             })
@@ -157,14 +166,16 @@ impl Chain {
         let (_, m) = self.range();
         let n = 256 * self.splines.len();
         let d = |u: f64| self.point(u).distance_squared(p);
-        let best = (0..=n).map(|i| m * i as f64 / n as f64).fold((0.0, f64::INFINITY), |acc, u| {
-            let v = d(u);
-            if v < acc.1 {
-                (u, v)
-            } else {
-                acc
-            }
-        });
+        let best = (0..=n)
+            .map(|i| m * i as f64 / n as f64)
+            .fold((0.0, f64::INFINITY), |acc, u| {
+                let v = d(u);
+                if v < acc.1 {
+                    (u, v)
+                } else {
+                    acc
+                }
+            });
         let step = m / n as f64;
         let (mut a, mut b) = ((best.0 - step).max(0.0), (best.0 + step).min(m));
         let g = 0.5 * (5f64.sqrt() - 1.0);
@@ -201,10 +212,16 @@ impl Chain {
     /// Parameter at arc length `s` from u0 towards u1 (Newton on the arc length, started
     /// from the table).
     fn param_at(&self, table: &[(f64, f64)], s: f64) -> f64 {
-        let i = table.partition_point(|&(_, si)| si < s).clamp(1, table.len() - 1);
+        let i = table
+            .partition_point(|&(_, si)| si < s)
+            .clamp(1, table.len() - 1);
         let (ua, sa) = table[i - 1];
         let (ub, sb) = table[i];
-        let mut u = if sb > sa { ua + (ub - ua) * (s - sa) / (sb - sa) } else { ua };
+        let mut u = if sb > sa {
+            ua + (ub - ua) * (s - sa) / (sb - sa)
+        } else {
+            ua
+        };
         let dir = (ub - ua).signum();
         for _ in 0..4 {
             let err = self.arc_length(ua, u) + sa - s;
@@ -213,7 +230,11 @@ impl Chain {
                 break;
             }
             u -= dir * err / speed;
-            u = if ua <= ub { u.clamp(ua, ub) } else { u.clamp(ub, ua) };
+            u = if ua <= ub {
+                u.clamp(ua, ub)
+            } else {
+                u.clamp(ub, ua)
+            };
         }
         u
     }
@@ -262,7 +283,11 @@ mod tests {
     #[test]
     fn quadratic_uniform_spline_starts_at_midpoint() {
         // Uniform quadratic: C starts at (P0 + P1)/2 and ends at (P1 + P2)/2.
-        let p = vec![DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0), DVec3::new(2.0, 0.0, 0.0)];
+        let p = vec![
+            DVec3::ZERO,
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+        ];
         let s = BSpline::new(2, p.clone()).unwrap();
         let (a, b) = s.domain();
         assert!((s.point(a) - (p[0] + p[1]) * 0.5).length() < 1e-14);
@@ -273,7 +298,9 @@ mod tests {
 
     #[test]
     fn derivative_matches_finite_difference() {
-        let p: Vec<DVec3> = (0..7).map(|i| DVec3::new(i as f64, (i * i) as f64 * 0.1, (i as f64).sin())).collect();
+        let p: Vec<DVec3> = (0..7)
+            .map(|i| DVec3::new(i as f64, (i * i) as f64 * 0.1, (i as f64).sin()))
+            .collect();
         let s = BSpline::new(4, p).unwrap();
         for t in [4.1, 5.0, 5.5, 6.9] {
             let h = 1e-6;

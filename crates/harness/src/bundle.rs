@@ -85,7 +85,14 @@ impl BundleData {
     /// Data from TOML text (for calibrated values).
     pub fn from_toml(text: &str) -> Result<Self, String> {
         let d: BundleData = toml::from_str(text).map_err(|e| e.to_string())?;
-        for key in ["none", "tape", "fleece_tape", "corrugated_tube", "sleeve", "other"] {
+        for key in [
+            "none",
+            "tape",
+            "fleece_tape",
+            "corrugated_tube",
+            "sleeve",
+            "other",
+        ] {
             if !d.protection.contains_key(key) {
                 return Err(format!("protection.{key} is missing"));
             }
@@ -120,7 +127,13 @@ pub struct WireSection {
 impl WireSection {
     /// A wire of outer diameter `d` [m] with conductor cross-section `a_c` [m²]; `mass`
     /// [kg/m] from the part if known.
-    pub fn new(data: &BundleData, d: f64, a_c: f64, mass: Option<f64>, bend_radius: Option<f64>) -> Self {
+    pub fn new(
+        data: &BundleData,
+        d: f64,
+        a_c: f64,
+        mass: Option<f64>,
+        bend_radius: Option<f64>,
+    ) -> Self {
         use std::f64::consts::PI;
         let c = &data.conductor;
         let e_cu = c.e_gpa.value * 1e9;
@@ -138,7 +151,9 @@ impl WireSection {
             ei: e_cu * a_c * ds * ds / 16.0 + e_ins * i_ins,
             gj: g_cu * a_c * ds * ds / 8.0 + g_ins * 2.0 * i_ins,
             ga: g_cu * a_c + g_ins * a_ins,
-            mass: mass.unwrap_or(c.density_kg_m3.value * a_c + data.insulation.density_kg_m3.value * a_ins),
+            mass: mass.unwrap_or(
+                c.density_kg_m3.value * a_c + data.insulation.density_kg_m3.value * a_ins,
+            ),
             bend_radius,
         }
     }
@@ -224,11 +239,19 @@ pub struct ProtectionCover {
 }
 
 /// The bundle section of `wires` under an optional protection.
-pub fn bundle_section(data: &BundleData, wires: &[WireSection], protection: Option<ProtectionCover>) -> BundleSection {
+pub fn bundle_section(
+    data: &BundleData,
+    wires: &[WireSection],
+    protection: Option<ProtectionCover>,
+) -> BundleSection {
     let d: Vec<f64> = wires.iter().map(|w| w.d).collect();
     let p = ring_layout(&d);
     let ea: f64 = wires.iter().map(|w| w.ea).sum();
-    let c = if ea > 0.0 { wires.iter().zip(&p).map(|(w, p)| *p * w.ea).sum::<DVec2>() / ea } else { DVec2::ZERO };
+    let c = if ea > 0.0 {
+        wires.iter().zip(&p).map(|(w, p)| *p * w.ea).sum::<DVec2>() / ea
+    } else {
+        DVec2::ZERO
+    };
     let ei_slip: f64 = wires.iter().map(|w| w.ei).sum();
     let gj_slip: f64 = wires.iter().map(|w| w.gj).sum();
     let (mut iyy, mut izz, mut iyz, mut gj_bond) = (0.0, 0.0, 0.0, 0.0);
@@ -247,8 +270,16 @@ pub fn bundle_section(data: &BundleData, wires: &[WireSection], protection: Opti
     let pd = data.protection(kind);
     let (f_ei, f_gj) = (pd.f_ei.value, pd.f_gj.value);
     let ei_bond = mean;
-    let centre = if p.is_empty() { DVec2::ZERO } else { p.iter().sum::<DVec2>() / p.len() as f64 };
-    let mut d_outer = wires.iter().zip(&p).map(|(w, p)| 2.0 * (*p - centre).length() + w.d).fold(0.0, f64::max);
+    let centre = if p.is_empty() {
+        DVec2::ZERO
+    } else {
+        p.iter().sum::<DVec2>() / p.len() as f64
+    };
+    let mut d_outer = wires
+        .iter()
+        .zip(&p)
+        .map(|(w, p)| 2.0 * (*p - centre).length() + w.d)
+        .fold(0.0, f64::max);
     let mut mass: f64 = wires.iter().map(|w| w.mass).sum();
     if let Some(cover) = protection {
         if let Some(da) = cover.outer_diameter {
@@ -257,9 +288,16 @@ pub fn bundle_section(data: &BundleData, wires: &[WireSection], protection: Opti
         // The protection's mass spread over the segment by the share it covers.
         mass += cover.mass_per_length.unwrap_or(0.0) * cover.coverage;
     }
-    let wire_radius = wires.iter().filter_map(|w| w.bend_radius).fold(0.0, f64::max);
+    let wire_radius = wires
+        .iter()
+        .filter_map(|w| w.bend_radius)
+        .fold(0.0, f64::max);
     let min_bend_radius = wire_radius.max(pd.min_bend_radius_d.value * d_outer);
-    let fill = if d_outer > 0.0 { d.iter().map(|x| x * x).sum::<f64>() / (d_outer * d_outer) } else { 0.0 };
+    let fill = if d_outer > 0.0 {
+        d.iter().map(|x| x * x).sum::<f64>() / (d_outer * d_outer)
+    } else {
+        0.0
+    };
     BundleSection {
         wire_count: wires.len(),
         d_outer,
@@ -278,104 +316,6 @@ pub fn bundle_section(data: &BundleData, wires: &[WireSection], protection: Opti
         f_ei,
         f_gj,
         fill,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn rel(a: f64, b: f64) -> f64 {
-        (a - b).abs() / b.abs().max(1e-300)
-    }
-
-    #[test]
-    fn builtin_data_loads() {
-        let d = BundleData::from_toml(BUNDLE_TOML).unwrap();
-        assert_eq!(d.protection.len(), 6);
-        assert!(d.conductor.e_gpa.source.contains("117"));
-    }
-
-    #[test]
-    fn wire_by_hand() {
-        // d = 1.6 mm, A_c = 0.5 mm², E_cu 117 GPa, d_s 0.25 mm, E_ins 200 MPa, φ 0.85.
-        let data = BundleData::builtin();
-        let w = WireSection::new(&data, 1.6e-3, 0.5e-6, None, Some(4.8e-3));
-        let pi = std::f64::consts::PI;
-        let d_c = (4.0 * 0.5e-6 / (pi * 0.85)).sqrt();
-        let ea = 117e9 * 0.5e-6 + 200e6 * pi * (1.6e-3f64.powi(2) - d_c * d_c) / 4.0;
-        let ei = 117e9 * 0.5e-6 * 0.25e-3f64.powi(2) / 16.0 + 200e6 * pi * (1.6e-3f64.powi(4) - d_c.powi(4)) / 64.0;
-        assert!(rel(w.ea, ea) < 1e-12);
-        assert!(rel(w.ei, ei) < 1e-12);
-        // Magnitude: EA ≈ 59 kN; EI ≈ 2.9e-4 N·m² (strands 2.3e-4, insulation 0.6e-4).
-        assert!((5.8e4..6.0e4).contains(&w.ea), "{}", w.ea);
-        assert!((2.5e-4..3.2e-4).contains(&w.ei), "{}", w.ei);
-        let m = 8960.0 * 0.5e-6 + 1400.0 * pi * (1.6e-3f64.powi(2) - d_c * d_c) / 4.0;
-        assert!(rel(w.mass, m) < 1e-12);
-        assert_eq!(WireSection::new(&data, 1.6e-3, 0.5e-6, Some(0.006), None).mass, 0.006);
-    }
-
-    #[test]
-    fn one_wire_both_bounds_are_its_own() {
-        let data = BundleData::builtin();
-        let w = WireSection::new(&data, 2.9e-3, 2.5e-6, Some(0.026), Some(8.7e-3));
-        for kind in [None, Some(ProtectionKind::Tape)] {
-            let cover = kind.map(|kind| ProtectionCover { kind, coverage: 1.0, outer_diameter: None, mass_per_length: None });
-            let b = bundle_section(&data, &[w], cover);
-            assert!(rel(b.ei_slip, w.ei) < 1e-12);
-            assert!(rel(b.ei_bond_max, w.ei) < 1e-12 && rel(b.ei_bond_min, w.ei) < 1e-12);
-            assert!(rel(b.ei, w.ei) < 1e-12);
-            assert!(rel(b.gj, w.gj) < 1e-12 && rel(b.gj_bond, w.gj) < 1e-12);
-            assert!(rel(b.d_outer, 2.9e-3) < 1e-12);
-            assert_eq!(b.ea, w.ea);
-            assert!(rel(b.min_bend_radius, 8.7e-3) < 1e-12);
-        }
-    }
-
-    #[test]
-    fn two_equal_wires_side_by_side() {
-        let data = BundleData::builtin();
-        let d = 1.6e-3;
-        let w = WireSection::new(&data, d, 0.5e-6, None, None);
-        let b = bundle_section(&data, &[w, w], None);
-        // Bonded about the axis across the pair: 2 EI + 2 EA (d/2)²; about the other: 2 EI.
-        assert!(rel(b.ei_bond_max, 2.0 * w.ei + 2.0 * w.ea * (d / 2.0).powi(2)) < 1e-12);
-        assert!(rel(b.ei_bond_min, 2.0 * w.ei) < 1e-12);
-        assert!(rel(b.ei_slip, 2.0 * w.ei) < 1e-12);
-        assert!(rel(b.gj_bond, 2.0 * w.gj + 2.0 * w.ga * (d / 2.0).powi(2)) < 1e-12);
-        assert!(rel(b.d_outer, 2.0 * d) < 1e-12);
-        assert_eq!(b.ei, b.ei_slip, "unprotected: f = 0");
-        // Tape: EI between the bounds by its factor.
-        let cover = ProtectionCover { kind: ProtectionKind::Tape, coverage: 1.0, outer_diameter: None, mass_per_length: Some(0.004) };
-        let t = bundle_section(&data, &[w, w], Some(cover));
-        let f = data.protection(Some(ProtectionKind::Tape)).f_ei.value;
-        assert!(rel(t.ei, t.ei_slip + f * (t.ei_bond - t.ei_slip)) < 1e-12);
-        assert!(t.ei > t.ei_slip && t.ei < t.ei_bond_max);
-        assert!(rel(t.mass, 2.0 * w.mass + 0.004) < 1e-12);
-    }
-
-    #[test]
-    fn seven_wires_hexagonal() {
-        let d = vec![1.0; 7];
-        let p = ring_layout(&d);
-        assert_eq!(p[0], DVec2::ZERO);
-        for q in &p[1..] {
-            assert!((q.length() - 1.0).abs() < 1e-12);
-        }
-        // 19 wires: 1 + 6 + 12.
-        let p = ring_layout(&[1.0; 19]);
-        assert_eq!(p.iter().filter(|q| (q.length() - 2.0).abs() < 1e-9).count(), 12);
-    }
-
-    #[test]
-    fn corrugated_tube_sets_diameter_and_bend_radius() {
-        let data = BundleData::builtin();
-        let w = WireSection::new(&data, 1.6e-3, 0.5e-6, None, Some(4.8e-3));
-        let cover = ProtectionCover { kind: ProtectionKind::CorrugatedTube, coverage: 0.5, outer_diameter: Some(13.4e-3), mass_per_length: Some(0.017) };
-        let b = bundle_section(&data, &[w; 3], Some(cover));
-        assert!(rel(b.d_outer, 13.4e-3) < 1e-12);
-        assert!(rel(b.min_bend_radius, 2.5 * 13.4e-3) < 1e-12);
-        assert!(rel(b.mass, 3.0 * w.mass + 0.0085) < 1e-12);
     }
 }
 
@@ -398,13 +338,29 @@ pub fn segment_wires(
                 .own
                 .cross_section
                 .unwrap_or_else(|| part.cores.iter().filter_map(|c| c.cross_section).sum());
-            let bend = part.own.bend_radius.or_else(|| part.cores.iter().filter_map(|c| c.bend_radius).reduce(f64::max));
+            let bend = part.own.bend_radius.or_else(|| {
+                part.cores
+                    .iter()
+                    .filter_map(|c| c.bend_radius)
+                    .reduce(f64::max)
+            });
             out.push(WireSection::new(data, d, a_c, part.mass_per_length, bend));
-        } else if !part.cores.is_empty() && part.cores.iter().all(|c| c.outer_diameter.is_some_and(|d| d > 0.0)) {
+        } else if !part.cores.is_empty()
+            && part
+                .cores
+                .iter()
+                .all(|c| c.outer_diameter.is_some_and(|d| d > 0.0))
+        {
             let share = part.mass_per_length.map(|m| m / part.cores.len() as f64);
             for c in &part.cores {
                 let d = c.outer_diameter.unwrap_or(0.0);
-                out.push(WireSection::new(data, d, c.cross_section.unwrap_or(0.0), share, c.bend_radius));
+                out.push(WireSection::new(
+                    data,
+                    d,
+                    c.cross_section.unwrap_or(0.0),
+                    share,
+                    c.bend_radius,
+                ));
             }
         } else {
             warnings.push(format!(
@@ -433,4 +389,124 @@ pub fn segment_protection(h: &crate::model::Harness, segment: usize) -> Option<P
             _ => Some(c),
         })
         .filter(|c| c.coverage >= 0.5)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rel(a: f64, b: f64) -> f64 {
+        (a - b).abs() / b.abs().max(1e-300)
+    }
+
+    #[test]
+    fn builtin_data_loads() {
+        let d = BundleData::from_toml(BUNDLE_TOML).unwrap();
+        assert_eq!(d.protection.len(), 6);
+        assert!(d.conductor.e_gpa.source.contains("117"));
+    }
+
+    #[test]
+    fn wire_by_hand() {
+        // d = 1.6 mm, A_c = 0.5 mm², E_cu 117 GPa, d_s 0.25 mm, E_ins 200 MPa, φ 0.85.
+        let data = BundleData::builtin();
+        let w = WireSection::new(&data, 1.6e-3, 0.5e-6, None, Some(4.8e-3));
+        let pi = std::f64::consts::PI;
+        let d_c = (4.0 * 0.5e-6 / (pi * 0.85)).sqrt();
+        let ea = 117e9 * 0.5e-6 + 200e6 * pi * (1.6e-3f64.powi(2) - d_c * d_c) / 4.0;
+        let ei = 117e9 * 0.5e-6 * 0.25e-3f64.powi(2) / 16.0
+            + 200e6 * pi * (1.6e-3f64.powi(4) - d_c.powi(4)) / 64.0;
+        assert!(rel(w.ea, ea) < 1e-12);
+        assert!(rel(w.ei, ei) < 1e-12);
+        // Magnitude: EA ≈ 59 kN; EI ≈ 2.9e-4 N·m² (strands 2.3e-4, insulation 0.6e-4).
+        assert!((5.8e4..6.0e4).contains(&w.ea), "{}", w.ea);
+        assert!((2.5e-4..3.2e-4).contains(&w.ei), "{}", w.ei);
+        let m = 8960.0 * 0.5e-6 + 1400.0 * pi * (1.6e-3f64.powi(2) - d_c * d_c) / 4.0;
+        assert!(rel(w.mass, m) < 1e-12);
+        assert_eq!(
+            WireSection::new(&data, 1.6e-3, 0.5e-6, Some(0.006), None).mass,
+            0.006
+        );
+    }
+
+    #[test]
+    fn one_wire_both_bounds_are_its_own() {
+        let data = BundleData::builtin();
+        let w = WireSection::new(&data, 2.9e-3, 2.5e-6, Some(0.026), Some(8.7e-3));
+        for kind in [None, Some(ProtectionKind::Tape)] {
+            let cover = kind.map(|kind| ProtectionCover {
+                kind,
+                coverage: 1.0,
+                outer_diameter: None,
+                mass_per_length: None,
+            });
+            let b = bundle_section(&data, &[w], cover);
+            assert!(rel(b.ei_slip, w.ei) < 1e-12);
+            assert!(rel(b.ei_bond_max, w.ei) < 1e-12 && rel(b.ei_bond_min, w.ei) < 1e-12);
+            assert!(rel(b.ei, w.ei) < 1e-12);
+            assert!(rel(b.gj, w.gj) < 1e-12 && rel(b.gj_bond, w.gj) < 1e-12);
+            assert!(rel(b.d_outer, 2.9e-3) < 1e-12);
+            assert_eq!(b.ea, w.ea);
+            assert!(rel(b.min_bend_radius, 8.7e-3) < 1e-12);
+        }
+    }
+
+    #[test]
+    fn two_equal_wires_side_by_side() {
+        let data = BundleData::builtin();
+        let d = 1.6e-3;
+        let w = WireSection::new(&data, d, 0.5e-6, None, None);
+        let b = bundle_section(&data, &[w, w], None);
+        // Bonded about the axis across the pair: 2 EI + 2 EA (d/2)²; about the other: 2 EI.
+        assert!(rel(b.ei_bond_max, 2.0 * w.ei + 2.0 * w.ea * (d / 2.0).powi(2)) < 1e-12);
+        assert!(rel(b.ei_bond_min, 2.0 * w.ei) < 1e-12);
+        assert!(rel(b.ei_slip, 2.0 * w.ei) < 1e-12);
+        assert!(rel(b.gj_bond, 2.0 * w.gj + 2.0 * w.ga * (d / 2.0).powi(2)) < 1e-12);
+        assert!(rel(b.d_outer, 2.0 * d) < 1e-12);
+        assert_eq!(b.ei, b.ei_slip, "unprotected: f = 0");
+        // Tape: EI between the bounds by its factor.
+        let cover = ProtectionCover {
+            kind: ProtectionKind::Tape,
+            coverage: 1.0,
+            outer_diameter: None,
+            mass_per_length: Some(0.004),
+        };
+        let t = bundle_section(&data, &[w, w], Some(cover));
+        let f = data.protection(Some(ProtectionKind::Tape)).f_ei.value;
+        assert!(rel(t.ei, t.ei_slip + f * (t.ei_bond - t.ei_slip)) < 1e-12);
+        assert!(t.ei > t.ei_slip && t.ei < t.ei_bond_max);
+        assert!(rel(t.mass, 2.0 * w.mass + 0.004) < 1e-12);
+    }
+
+    #[test]
+    fn seven_wires_hexagonal() {
+        let d = vec![1.0; 7];
+        let p = ring_layout(&d);
+        assert_eq!(p[0], DVec2::ZERO);
+        for q in &p[1..] {
+            assert!((q.length() - 1.0).abs() < 1e-12);
+        }
+        // 19 wires: 1 + 6 + 12.
+        let p = ring_layout(&[1.0; 19]);
+        assert_eq!(
+            p.iter().filter(|q| (q.length() - 2.0).abs() < 1e-9).count(),
+            12
+        );
+    }
+
+    #[test]
+    fn corrugated_tube_sets_diameter_and_bend_radius() {
+        let data = BundleData::builtin();
+        let w = WireSection::new(&data, 1.6e-3, 0.5e-6, None, Some(4.8e-3));
+        let cover = ProtectionCover {
+            kind: ProtectionKind::CorrugatedTube,
+            coverage: 0.5,
+            outer_diameter: Some(13.4e-3),
+            mass_per_length: Some(0.017),
+        };
+        let b = bundle_section(&data, &[w; 3], Some(cover));
+        assert!(rel(b.d_outer, 13.4e-3) < 1e-12);
+        assert!(rel(b.min_bend_radius, 2.5 * 13.4e-3) < 1e-12);
+        assert!(rel(b.mass, 3.0 * w.mass + 0.0085) < 1e-12);
+    }
 }

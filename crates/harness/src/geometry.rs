@@ -37,8 +37,11 @@ impl SegmentCurve {
     pub fn of(h: &Harness, seg: &Segment) -> SegmentCurve {
         let a = h.nodes[seg.start_node].position;
         let b = h.nodes[seg.end_node].position;
-        let splines: Vec<BSpline> =
-            seg.curves.iter().filter_map(|c| BSpline::new(c.degree, c.control_points.clone())).collect();
+        let splines: Vec<BSpline> = seg
+            .curves
+            .iter()
+            .filter_map(|c| BSpline::new(c.degree, c.control_points.clone()))
+            .collect();
         let Some(chain) = Chain::new(splines) else {
             let chain = Chain::line(a, b);
             return SegmentCurve {
@@ -54,15 +57,20 @@ impl SegmentCurve {
         };
         let (lo, hi) = chain.range();
         let (p_lo, p_hi) = (chain.point(lo), chain.point(hi));
-        let (u_start, u_end, trimmed) = if p_lo.distance(a) <= END_TOLERANCE_M && p_hi.distance(b) <= END_TOLERANCE_M {
-            (lo, hi, false)
-        } else if p_lo.distance(b) <= END_TOLERANCE_M && p_hi.distance(a) <= END_TOLERANCE_M {
-            (hi, lo, false)
-        } else {
-            let (us, _) = chain.closest(a);
-            let (ue, _) = chain.closest(b);
-            (us, ue, !(us.min(ue) <= lo + 1e-12 && us.max(ue) >= hi - 1e-12))
-        };
+        let (u_start, u_end, trimmed) =
+            if p_lo.distance(a) <= END_TOLERANCE_M && p_hi.distance(b) <= END_TOLERANCE_M {
+                (lo, hi, false)
+            } else if p_lo.distance(b) <= END_TOLERANCE_M && p_hi.distance(a) <= END_TOLERANCE_M {
+                (hi, lo, false)
+            } else {
+                let (us, _) = chain.closest(a);
+                let (ue, _) = chain.closest(b);
+                (
+                    us,
+                    ue,
+                    !(us.min(ue) <= lo + 1e-12 && us.max(ue) >= hi - 1e-12),
+                )
+            };
         let length = chain.arc_length(u_start, u_end);
         SegmentCurve {
             start_error: chain.point(u_start).distance(a),

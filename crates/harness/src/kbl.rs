@@ -37,13 +37,24 @@ pub fn parse_kbl(file: &str, text: &str) -> Result<Harness, HarnessError> {
     let doc = Document::parse(text).map_err(|e| {
         let pos = e.pos();
         let (mut line, mut column, mut reason) = (pos.row, pos.col, e.to_string());
-        if matches!(e, roxmltree::Error::UnclosedRootNode | roxmltree::Error::UnexpectedEndOfStream) {
+        if matches!(
+            e,
+            roxmltree::Error::UnclosedRootNode | roxmltree::Error::UnexpectedEndOfStream
+        ) {
             // The parser reports these at 1:1; the place that matters is where the file ends.
             line = text.lines().count().max(1) as u32;
-            column = text.lines().last().map_or(1, |l| l.chars().count() as u32 + 1);
+            column = text
+                .lines()
+                .last()
+                .map_or(1, |l| l.chars().count() as u32 + 1);
             reason = format!("{reason}: the file ends here, inside an element (truncated?)");
         }
-        HarnessError::Xml { file: file.to_string(), line, column, reason }
+        HarnessError::Xml {
+            file: file.to_string(),
+            line,
+            column,
+            reason,
+        }
     })?;
     let root = doc.root_element();
     let version = check_version(file, root)?;
@@ -74,7 +85,10 @@ pub fn parse_kbl(file: &str, text: &str) -> Result<Harness, HarnessError> {
 
 /// Check the root element and version; return the version text.
 fn check_version(file: &str, root: XNode) -> Result<String, HarnessError> {
-    let unsupported = |reason: String| HarnessError::Unsupported { file: file.to_string(), reason };
+    let unsupported = |reason: String| HarnessError::Unsupported {
+        file: file.to_string(),
+        reason,
+    };
     if root.tag_name().name() != "KBL_container" {
         return Err(unsupported(format!(
             "not a KBL file: the root element is <{}>, expected <KBL_container>",
@@ -95,9 +109,19 @@ fn check_version(file: &str, root: XNode) -> Result<String, HarnessError> {
             .find_map(|p| p.strip_prefix("KBL"))
             .filter(|v| !v.is_empty() && v.chars().next().is_some_and(|c| c.is_ascii_digit()))
             .map(str::to_string)
-            .ok_or_else(|| unsupported("KBL file without version_id and without a version in its namespace".into()))?,
+            .ok_or_else(|| {
+                unsupported(
+                    "KBL file without version_id and without a version in its namespace".into(),
+                )
+            })?,
     };
-    let major_minor: String = version.split_whitespace().next().unwrap_or("").chars().take(3).collect();
+    let major_minor: String = version
+        .split_whitespace()
+        .next()
+        .unwrap_or("")
+        .chars()
+        .take(3)
+        .collect();
     if !SUPPORTED_VERSIONS.contains(&major_minor.as_str()) {
         return Err(unsupported(format!(
             "KBL version \"{version}\" is not supported; this importer reads KBL {}",
@@ -109,17 +133,25 @@ fn check_version(file: &str, root: XNode) -> Result<String, HarnessError> {
 
 /// The first element child with this local name.
 fn child<'a, 'i>(n: XNode<'a, 'i>, name: &str) -> Option<XNode<'a, 'i>> {
-    n.children().find(|c| c.is_element() && c.tag_name().name() == name)
+    n.children()
+        .find(|c| c.is_element() && c.tag_name().name() == name)
 }
 
 /// All element children with this local name.
-fn children<'a, 'i: 'a>(n: XNode<'a, 'i>, name: &'a str) -> impl Iterator<Item = XNode<'a, 'i>> + 'a {
-    n.children().filter(move |c| c.is_element() && c.tag_name().name() == name)
+fn children<'a, 'i: 'a>(
+    n: XNode<'a, 'i>,
+    name: &'a str,
+) -> impl Iterator<Item = XNode<'a, 'i>> + 'a {
+    n.children()
+        .filter(move |c| c.is_element() && c.tag_name().name() == name)
 }
 
 /// The trimmed text of a child; `None` when absent, empty or KBL's "/NULL".
 fn text<'a>(n: XNode<'a, '_>, name: &str) -> Option<&'a str> {
-    child(n, name).and_then(|c| c.text()).map(str::trim).filter(|t| !t.is_empty() && *t != "/NULL")
+    child(n, name)
+        .and_then(|c| c.text())
+        .map(str::trim)
+        .filter(|t| !t.is_empty() && *t != "/NULL")
 }
 
 fn text_string(n: XNode, name: &str) -> Option<String> {
@@ -187,15 +219,19 @@ impl<'a, 'i> Reader<'a, 'i> {
 
     /// The element with this id, if it has the expected tag name.
     fn lookup(&self, id: &str, names: &[&str]) -> Option<XNode<'a, 'i>> {
-        self.ids.get(id).copied().filter(|n| names.contains(&n.tag_name().name()))
+        self.ids
+            .get(id)
+            .copied()
+            .filter(|n| names.contains(&n.tag_name().name()))
     }
 
     fn read_units(&mut self) {
         for n in self.doc.descendants().filter(|n| is_def(n, "Unit")) {
             let id = Self::id_of(n);
             let unit = if let Some(name) = text(n, "Si_unit_name") {
-                units::si_unit(name, text(n, "Si_prefix"), text(n, "Si_dimension"))
-                    .ok_or_else(|| format!("SI unit \"{name}\" with an unknown prefix or dimension"))
+                units::si_unit(name, text(n, "Si_prefix"), text(n, "Si_dimension")).ok_or_else(
+                    || format!("SI unit \"{name}\" with an unknown prefix or dimension"),
+                )
             } else if let Some(name) = text(n, "Unit_name") {
                 units::named_unit(name).ok_or_else(|| format!("unknown unit name \"{name}\""))
             } else {
@@ -208,7 +244,9 @@ impl<'a, 'i> Reader<'a, 'i> {
     /// A `Value_component` with a `Unit_component`, converted to SI. `Ok(None)` if the
     /// child is absent; `Err(reason)` if present but unusable.
     fn quantity(&mut self, n: XNode, name: &str, want: Dimension) -> Result<Option<f64>, String> {
-        let Some(q) = child(n, name) else { return Ok(None) };
+        let Some(q) = child(n, name) else {
+            return Ok(None);
+        };
         let value: f64 = text(q, "Value_component")
             .ok_or_else(|| format!("{name} without Value_component"))?
             .parse()
@@ -216,7 +254,8 @@ impl<'a, 'i> Reader<'a, 'i> {
         if !value.is_finite() {
             return Err(format!("{name}: value is not finite"));
         }
-        let unit_id = text(q, "Unit_component").ok_or_else(|| format!("{name} without Unit_component"))?;
+        let unit_id =
+            text(q, "Unit_component").ok_or_else(|| format!("{name} without Unit_component"))?;
         let unit = match self.units.get(unit_id) {
             Some(Ok(u)) => *u,
             Some(Err(e)) => return Err(format!("{name}: unit {unit_id}: {e}")),
@@ -235,7 +274,10 @@ impl<'a, 'i> Reader<'a, 'i> {
             }
             return Ok(Some(value * unit.to_si * unit.to_si));
         }
-        Err(format!("{name}: unit {unit_id} is a {:?}, expected a {:?}", unit.dimension, want))
+        Err(format!(
+            "{name}: unit {unit_id} is a {:?}, expected a {:?}",
+            unit.dimension, want
+        ))
     }
 
     /// Quantity or, on error, `None` with the reason listed as skipped for `owner`.
@@ -251,9 +293,12 @@ impl<'a, 'i> Reader<'a, 'i> {
 
     /// A `Cartesian_point` by id, in metres.
     fn point(&self, id: &str, referrer: XNode) -> Result<DVec3, HarnessError> {
-        let p = self
-            .lookup(id, &["Cartesian_point"])
-            .ok_or_else(|| self.err(referrer, format!("refers to Cartesian_point \"{id}\", which does not exist")))?;
+        let p = self.lookup(id, &["Cartesian_point"]).ok_or_else(|| {
+            self.err(
+                referrer,
+                format!("refers to Cartesian_point \"{id}\", which does not exist"),
+            )
+        })?;
         let c: Vec<f64> = children(p, "Coordinates")
             .map(|c| c.text().unwrap_or("").trim().parse::<f64>())
             .collect::<Result<_, _>>()
@@ -269,10 +314,15 @@ impl<'a, 'i> Reader<'a, 'i> {
         let mut index = HashMap::new();
         for n in self.doc.descendants().filter(|n| is_def(n, "Node")) {
             let id = Self::id_of(n);
-            let pid = text(n, "Cartesian_point").ok_or_else(|| self.err(n, "node without Cartesian_point"))?;
+            let pid = text(n, "Cartesian_point")
+                .ok_or_else(|| self.err(n, "node without Cartesian_point"))?;
             let position = self.point(pid, n)?;
             index.insert(id.clone(), h.nodes.len());
-            h.nodes.push(Node { kbl_id: id, name: text_string(n, "Id"), position });
+            h.nodes.push(Node {
+                kbl_id: id,
+                name: text_string(n, "Id"),
+                position,
+            });
         }
         Ok(index)
     }
@@ -294,7 +344,8 @@ impl<'a, 'i> Reader<'a, 'i> {
             let mass = match self.quantity(n, "Mass_information", Dimension::MassPerLength) {
                 Ok(m) => m,
                 Err(reason) => {
-                    self.warnings.push(format!("{}: mass not used: {reason}", Self::id_of(n)));
+                    self.warnings
+                        .push(format!("{}: mass not used: {reason}", Self::id_of(n)));
                     None
                 }
             };
@@ -308,9 +359,16 @@ impl<'a, 'i> Reader<'a, 'i> {
                 cores,
             });
         }
-        let names = ["General_wire_occurrence", "Wire_occurrence", "Special_wire_occurrence"];
-        let occurrences: Vec<XNode> =
-            self.doc.descendants().filter(|n| names.iter().any(|name| is_def(n, name))).collect();
+        let names = [
+            "General_wire_occurrence",
+            "Wire_occurrence",
+            "Special_wire_occurrence",
+        ];
+        let occurrences: Vec<XNode> = self
+            .doc
+            .descendants()
+            .filter(|n| names.iter().any(|name| is_def(n, name)))
+            .collect();
         for n in occurrences {
             let id = Self::id_of(n);
             let Some(part) = text(n, "Part").and_then(|p| part_index.get(p).copied()) else {
@@ -318,7 +376,12 @@ impl<'a, 'i> Reader<'a, 'i> {
                 continue;
             };
             let name = text_string(n, "Wire_number").or_else(|| text_string(n, "Special_wire_id"));
-            h.wires.push(Wire { kbl_id: id, name, part, segments: Vec::new() });
+            h.wires.push(Wire {
+                kbl_id: id,
+                name,
+                part,
+                segments: Vec::new(),
+            });
         }
     }
 
@@ -328,28 +391,38 @@ impl<'a, 'i> Reader<'a, 'i> {
         node_index: &HashMap<String, usize>,
     ) -> Result<HashMap<String, usize>, HarnessError> {
         let mut index = HashMap::new();
-        let segs: Vec<XNode> = self.doc.descendants().filter(|n| is_def(n, "Segment")).collect();
+        let segs: Vec<XNode> = self
+            .doc
+            .descendants()
+            .filter(|n| is_def(n, "Segment"))
+            .collect();
         for n in segs {
             let id = Self::id_of(n);
             let node = |field: &str| -> Result<usize, HarnessError> {
-                let nid = text(n, field).ok_or_else(|| self.err(n, format!("segment without {field}")))?;
-                node_index
-                    .get(nid)
-                    .copied()
-                    .ok_or_else(|| self.err(n, format!("{field} refers to node \"{nid}\", which does not exist")))
+                let nid = text(n, field)
+                    .ok_or_else(|| self.err(n, format!("segment without {field}")))?;
+                node_index.get(nid).copied().ok_or_else(|| {
+                    self.err(
+                        n,
+                        format!("{field} refers to node \"{nid}\", which does not exist"),
+                    )
+                })
             };
             let start_node = node("Start_node")?;
             let end_node = node("End_node")?;
-            let virtual_length =
-                self.quantity(n, "Virtual_length", Dimension::Length).map_err(|r| self.err(n, r))?;
+            let virtual_length = self
+                .quantity(n, "Virtual_length", Dimension::Length)
+                .map_err(|r| self.err(n, r))?;
             let mut curves = Vec::new();
             for c in children(n, "Center_curve") {
                 let degree: usize = text(c, "Degree")
                     .and_then(|d| d.parse().ok())
                     .ok_or_else(|| self.err(c, "Degree missing or not a whole number"))?;
                 let ids = text(c, "Control_points").unwrap_or("");
-                let control_points =
-                    ids.split_whitespace().map(|pid| self.point(pid, c)).collect::<Result<Vec<_>, _>>()?;
+                let control_points = ids
+                    .split_whitespace()
+                    .map(|pid| self.point(pid, c))
+                    .collect::<Result<Vec<_>, _>>()?;
                 if degree == 0 || control_points.len() <= degree {
                     return Err(self.err(
                         c,
@@ -359,10 +432,16 @@ impl<'a, 'i> Reader<'a, 'i> {
                         ),
                     ));
                 }
-                curves.push(CurveData { kbl_id: Self::id_of(c), degree, control_points });
+                curves.push(CurveData {
+                    kbl_id: Self::id_of(c),
+                    degree,
+                    control_points,
+                });
             }
             if curves.is_empty() {
-                self.warnings.push(format!("{id}: no centre curve; a straight line between its nodes is used"));
+                self.warnings.push(format!(
+                    "{id}: no centre curve; a straight line between its nodes is used"
+                ));
             }
             let cross_section_area = match child(n, "Cross_section_area_information") {
                 Some(info) => self.quantity_or_skip(info, "Area", Dimension::Area),
@@ -383,11 +462,17 @@ impl<'a, 'i> Reader<'a, 'i> {
                 line,
             });
             for (k, f) in children(n, "Fixing_assignment").enumerate() {
-                let fid = f.attribute("id").map(str::to_string).unwrap_or_else(|| format!("{id}/Fixing_assignment[{k}]"));
+                let fid = f
+                    .attribute("id")
+                    .map(str::to_string)
+                    .unwrap_or_else(|| format!("{id}/Fixing_assignment[{k}]"));
                 self.read_fixing(h, f, fid, seg_idx);
             }
             for (k, p) in children(n, "Protection_area").enumerate() {
-                let pid = p.attribute("id").map(str::to_string).unwrap_or_else(|| format!("{id}/Protection_area[{k}]"));
+                let pid = p
+                    .attribute("id")
+                    .map(str::to_string)
+                    .unwrap_or_else(|| format!("{id}/Protection_area[{k}]"));
                 self.read_protection(h, p, pid, seg_idx);
             }
         }
@@ -410,11 +495,20 @@ impl<'a, 'i> Reader<'a, 'i> {
             Ok(l) => l,
             Err(r) => return self.skip(fid, r),
         };
-        let o: Vec<f64> = children(f, "Orientation").filter_map(|c| c.text()?.trim().parse().ok()).collect();
-        let orientation = (o.len() == 3).then(|| DVec3::new(o[0], o[1], o[2])).filter(|v| v.is_finite() && v.length() > 1e-9);
-        let Some(occ_id) = text(f, "Fixing") else { return self.skip(fid, "Fixing_assignment without Fixing") };
+        let o: Vec<f64> = children(f, "Orientation")
+            .filter_map(|c| c.text()?.trim().parse().ok())
+            .collect();
+        let orientation = (o.len() == 3)
+            .then(|| DVec3::new(o[0], o[1], o[2]))
+            .filter(|v| v.is_finite() && v.length() > 1e-9);
+        let Some(occ_id) = text(f, "Fixing") else {
+            return self.skip(fid, "Fixing_assignment without Fixing");
+        };
         let Some(occ) = self.lookup(occ_id, &["Fixing_occurrence"]) else {
-            return self.skip(fid, format!("refers to fixing occurrence \"{occ_id}\", which does not exist"));
+            return self.skip(
+                fid,
+                format!("refers to fixing occurrence \"{occ_id}\", which does not exist"),
+            );
         };
         let part = text(occ, "Part").and_then(|p| self.lookup(p, &["Fixing"]));
         h.fixings.push(Fixing {
@@ -431,7 +525,10 @@ impl<'a, 'i> Reader<'a, 'i> {
     }
 
     fn read_protection(&mut self, h: &mut Harness, p: XNode, pid: String, segment: usize) {
-        let (from, to) = match (Self::location(p, "Start_location"), Self::location(p, "End_location")) {
+        let (from, to) = match (
+            Self::location(p, "Start_location"),
+            Self::location(p, "End_location"),
+        ) {
             (Ok(a), Ok(b)) => (a.min(b), a.max(b)),
             (Err(r), _) | (_, Err(r)) => return self.skip(pid, r),
         };
@@ -439,19 +536,33 @@ impl<'a, 'i> Reader<'a, 'i> {
             return self.skip(pid, "Protection_area without Associated_protection");
         };
         let Some(occ) = self.lookup(occ_id, &["Wire_protection_occurrence"]) else {
-            return self.skip(pid, format!("refers to protection occurrence \"{occ_id}\", which does not exist"));
+            return self.skip(
+                pid,
+                format!("refers to protection occurrence \"{occ_id}\", which does not exist"),
+            );
         };
-        let Some(part) = text(occ, "Part").and_then(|p| self.lookup(p, &["Wire_protection"])) else {
-            return self.skip(pid, format!("protection occurrence \"{occ_id}\" has no known Wire_protection part"));
+        let Some(part) = text(occ, "Part").and_then(|p| self.lookup(p, &["Wire_protection"]))
+        else {
+            return self.skip(
+                pid,
+                format!("protection occurrence \"{occ_id}\" has no known Wire_protection part"),
+            );
         };
         let description = text_string(part, "Description");
         let protection_type = text_string(part, "Protection_type");
         let kind = classify_protection(protection_type.as_deref(), description.as_deref());
-        let mass_per_length = match self.quantity(part, "Mass_information", Dimension::MassPerLength) {
-            Ok(m) => m,
-            Err(_) => None,
-        };
-        let outer_diameter = description.as_deref().and_then(outer_diameter_from_description);
+        let mass_per_length =
+            match self.quantity(part, "Mass_information", Dimension::MassPerLength) {
+                Ok(m) => m,
+                Err(reason) => {
+                    self.warnings
+                        .push(format!("{pid}: protection mass not used: {reason}"));
+                    None
+                }
+            };
+        let outer_diameter = description
+            .as_deref()
+            .and_then(outer_diameter_from_description);
         h.protections.push(Protection {
             kbl_id: pid,
             occurrence: occ_id.to_string(),
@@ -470,9 +581,17 @@ impl<'a, 'i> Reader<'a, 'i> {
     /// Routings: which wire (through a `Connection`, or directly) passes which segments.
     /// The cores of a cable resolve to the cable.
     fn read_routings(&mut self, h: &mut Harness, segment_index: &HashMap<String, usize>) {
-        let wire_index: HashMap<String, usize> =
-            h.wires.iter().enumerate().map(|(i, w)| (w.kbl_id.clone(), i)).collect();
-        let routings: Vec<XNode> = self.doc.descendants().filter(|n| is_def(n, "Routing")).collect();
+        let wire_index: HashMap<String, usize> = h
+            .wires
+            .iter()
+            .enumerate()
+            .map(|(i, w)| (w.kbl_id.clone(), i))
+            .collect();
+        let routings: Vec<XNode> = self
+            .doc
+            .descendants()
+            .filter(|n| is_def(n, "Routing"))
+            .collect();
         for r in routings {
             let rid = Self::id_of(r);
             let Some(target) = text(r, "Routed_wire") else {
@@ -480,7 +599,10 @@ impl<'a, 'i> Reader<'a, 'i> {
                 continue;
             };
             let Some(wire) = self.resolve_wire(target, &wire_index) else {
-                self.skip(rid, format!("routed wire \"{target}\" does not lead to a known wire occurrence"));
+                self.skip(
+                    rid,
+                    format!("routed wire \"{target}\" does not lead to a known wire occurrence"),
+                );
                 continue;
             };
             for sid in text(r, "Segments").unwrap_or("").split_whitespace() {
@@ -490,7 +612,10 @@ impl<'a, 'i> Reader<'a, 'i> {
                             h.wires[wire].segments.push(s);
                         }
                     }
-                    None => self.skip(rid.clone(), format!("refers to segment \"{sid}\", which does not exist")),
+                    None => self.skip(
+                        rid.clone(),
+                        format!("refers to segment \"{sid}\", which does not exist"),
+                    ),
                 }
             }
         }
@@ -499,10 +624,17 @@ impl<'a, 'i> Reader<'a, 'i> {
                 h.segments[s].wires.push(i);
             }
         }
-        let unrouted: Vec<String> =
-            h.wires.iter().filter(|w| w.segments.is_empty()).map(|w| w.kbl_id.clone()).collect();
+        let unrouted: Vec<String> = h
+            .wires
+            .iter()
+            .filter(|w| w.segments.is_empty())
+            .map(|w| w.kbl_id.clone())
+            .collect();
         for id in unrouted {
-            self.skip(id, "wire occurrence has no Routing: not part of any segment's bundle");
+            self.skip(
+                id,
+                "wire occurrence has no Routing: not part of any segment's bundle",
+            );
         }
     }
 
@@ -521,7 +653,10 @@ impl<'a, 'i> Reader<'a, 'i> {
                 self.resolve_wire(w, wire_index)
             }
             "Core_occurrence" => {
-                let parent = n.ancestors().skip(1).find(|a| a.attribute("id").is_some())?;
+                let parent = n
+                    .ancestors()
+                    .skip(1)
+                    .find(|a| a.attribute("id").is_some())?;
                 wire_index.get(parent.attribute("id")?).copied()
             }
             _ => None,
@@ -531,21 +666,29 @@ impl<'a, 'i> Reader<'a, 'i> {
     fn read_connectors(&mut self, h: &mut Harness, node_index: &HashMap<String, usize>) {
         let mut on_node: HashMap<&str, usize> = HashMap::new();
         for n in self.doc.descendants().filter(|n| is_def(n, "Node")) {
-            let Some(&ni) = n.attribute("id").and_then(|id| node_index.get(id)) else { continue };
+            let Some(&ni) = n.attribute("id").and_then(|id| node_index.get(id)) else {
+                continue;
+            };
             for c in children(n, "Referenced_components") {
                 for cid in c.text().unwrap_or("").split_whitespace() {
                     on_node.entry(cid).or_insert(ni);
                 }
             }
         }
-        for n in self.doc.descendants().filter(|n| is_def(n, "Connector_occurrence")) {
+        for n in self
+            .doc
+            .descendants()
+            .filter(|n| is_def(n, "Connector_occurrence"))
+        {
             let id = Self::id_of(n);
             // The node refers to the connector itself, or to a part plugged into it (a
             // terminal listed in the connector's `Contact_points/Associated_parts`).
             let associated = children(n, "Contact_points")
                 .flat_map(|c| children(c, "Associated_parts"))
                 .flat_map(|a| a.text().unwrap_or("").split_whitespace());
-            let node = std::iter::once(id.as_str()).chain(associated).find_map(|c| on_node.get(c).copied());
+            let node = std::iter::once(id.as_str())
+                .chain(associated)
+                .find_map(|c| on_node.get(c).copied());
             h.connectors.push(Connector {
                 name: text_string(n, "Id"),
                 description: text_string(n, "Description"),
@@ -559,8 +702,16 @@ impl<'a, 'i> Reader<'a, 'i> {
 /// Protection kind from `Protection_type` and description (German or English terms as
 /// found in KBL files: "WELLROHR" corrugated tube, "PET-Vlies" fleece tape, "PVC-Folie"
 /// film tape, "Schlauch" tube/sleeve).
-pub fn classify_protection(protection_type: Option<&str>, description: Option<&str>) -> ProtectionKind {
-    let t = format!("{} {}", protection_type.unwrap_or(""), description.unwrap_or("")).to_uppercase();
+pub fn classify_protection(
+    protection_type: Option<&str>,
+    description: Option<&str>,
+) -> ProtectionKind {
+    let t = format!(
+        "{} {}",
+        protection_type.unwrap_or(""),
+        description.unwrap_or("")
+    )
+    .to_uppercase();
     let has = |words: &[&str]| words.iter().any(|w| t.contains(w));
     if has(&["WELLROHR", "WELLSCHLAUCH", "CORRUGATED", "CONVOLUTED"]) {
         ProtectionKind::CorrugatedTube
@@ -580,7 +731,10 @@ pub fn classify_protection(protection_type: Option<&str>, description: Option<&s
 pub fn outer_diameter_from_description(d: &str) -> Option<f64> {
     let upper = d.to_uppercase();
     let at = upper.find("D(A)=")? + 5;
-    let num: String = upper[at..].chars().take_while(|c| c.is_ascii_digit() || *c == '.' || *c == ',').collect();
+    let num: String = upper[at..]
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || *c == '.' || *c == ',')
+        .collect();
     let v: f64 = num.replace(',', ".").parse().ok()?;
     (v > 0.0 && v.is_finite()).then_some(v * 1e-3)
 }
@@ -591,21 +745,37 @@ mod tests {
 
     #[test]
     fn protection_kinds() {
-        assert_eq!(classify_protection(Some("TAPE"), Some("PVC-Folie")), ProtectionKind::Tape);
-        assert_eq!(classify_protection(Some("TAPE"), Some("PET-Vlies")), ProtectionKind::FleeceTape);
+        assert_eq!(
+            classify_protection(Some("TAPE"), Some("PVC-Folie")),
+            ProtectionKind::Tape
+        );
+        assert_eq!(
+            classify_protection(Some("TAPE"), Some("PET-Vlies")),
+            ProtectionKind::FleeceTape
+        );
         assert_eq!(
             classify_protection(Some("WELLROHR"), Some("PP-Wellschlauch Gr. 10.0")),
             ProtectionKind::CorrugatedTube
         );
-        assert_eq!(classify_protection(None, Some("Gewebeband")), ProtectionKind::FleeceTape);
-        assert_eq!(classify_protection(None, Some("Gewebeschlauch")), ProtectionKind::Sleeve);
-        assert_eq!(classify_protection(None, Some("Schrumpfschlauch")), ProtectionKind::Sleeve);
+        assert_eq!(
+            classify_protection(None, Some("Gewebeband")),
+            ProtectionKind::FleeceTape
+        );
+        assert_eq!(
+            classify_protection(None, Some("Gewebeschlauch")),
+            ProtectionKind::Sleeve
+        );
+        assert_eq!(
+            classify_protection(None, Some("Schrumpfschlauch")),
+            ProtectionKind::Sleeve
+        );
         assert_eq!(classify_protection(None, None), ProtectionKind::Other);
     }
 
     #[test]
     fn diameter_in_description() {
-        let d = outer_diameter_from_description("PP-Wellschlauch Gr. 10.0 D(i)=8.3 D(a)=13.4").unwrap();
+        let d =
+            outer_diameter_from_description("PP-Wellschlauch Gr. 10.0 D(i)=8.3 D(a)=13.4").unwrap();
         assert!((d - 0.0134).abs() < 1e-12);
         assert!(outer_diameter_from_description("PVC-Folie").is_none());
     }

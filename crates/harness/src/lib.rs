@@ -29,12 +29,17 @@ use geometry::SegmentCurve;
 use scene::{element_count, sanitise, unique, SegmentOut};
 
 fn file_name(path: &Path) -> String {
-    path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_else(|| path.display().to_string())
+    path.file_name()
+        .map(|f| f.to_string_lossy().into_owned())
+        .unwrap_or_else(|| path.display().to_string())
 }
 
 fn read_text(path: &Path) -> Result<(String, String), HarnessError> {
     let file = file_name(path);
-    let text = std::fs::read_to_string(path).map_err(|source| HarnessError::Read { file: file.clone(), source })?;
+    let text = std::fs::read_to_string(path).map_err(|source| HarnessError::Read {
+        file: file.clone(),
+        source,
+    })?;
     Ok((file, text))
 }
 
@@ -50,7 +55,9 @@ pub fn read_kbl(path: &Path) -> Result<Harness, HarnessError> {
 /// The licence line for the scene header: the sample files' README says CC BY-SA 4.0.
 fn licence_note(path: &Path) -> String {
     let readme = path.parent().map(|d| d.join("README.md"));
-    let text = readme.and_then(|r| std::fs::read_to_string(r).ok()).unwrap_or_default();
+    let text = readme
+        .and_then(|r| std::fs::read_to_string(r).ok())
+        .unwrap_or_default();
     if text.contains("CC BY-SA 4.0") {
         "Source data licence: CC BY-SA 4.0 (see README.md beside the source file: Volkswagen AG /\n\
          prostep ivip e.V. test data); a modified copy of the data stays CC BY-SA 4.0."
@@ -67,7 +74,11 @@ pub fn import_kbl(path: &Path, out_dir: &Path) -> Result<ImportReport, HarnessEr
 }
 
 /// [`import_kbl`] with bundle data of one's own (e.g. calibrated factors).
-pub fn import_kbl_with(path: &Path, out_dir: &Path, data: &BundleData) -> Result<ImportReport, HarnessError> {
+pub fn import_kbl_with(
+    path: &Path,
+    out_dir: &Path,
+    data: &BundleData,
+) -> Result<ImportReport, HarnessError> {
     let mut h = read_kbl(path)?;
     let curves: Vec<SegmentCurve> = h.segments.iter().map(|s| SegmentCurve::of(&h, s)).collect();
     let mut sections = Vec::with_capacity(h.segments.len());
@@ -77,7 +88,9 @@ pub fn import_kbl_with(path: &Path, out_dir: &Path, data: &BundleData) -> Result
         warnings.extend(w);
         if wires.is_empty() {
             // No wire: a stand-in wire as thick as the KBL cross-section (or 5 mm).
-            let d = s.cross_section_area.map_or(5e-3, |a| (4.0 * a / std::f64::consts::PI).sqrt());
+            let d = s
+                .cross_section_area
+                .map_or(5e-3, |a| (4.0 * a / std::f64::consts::PI).sqrt());
             warnings.push(format!(
                 "{}: no wire routed through it; section of one stand-in wire {:.1} mm thick",
                 s.kbl_id,
@@ -111,16 +124,35 @@ pub fn import_kbl_with(path: &Path, out_dir: &Path, data: &BundleData) -> Result
         .into_iter()
         .zip(&curves)
         .zip(&sections)
-        .map(|((hose, curve), section)| SegmentOut { hose, curve, section, elements: element_count(curve.length) })
+        .map(|((hose, curve), section)| SegmentOut {
+            hose,
+            curve,
+            section,
+            elements: element_count(curve.length),
+        })
         .collect();
     let note = licence_note(path);
-    std::fs::create_dir_all(out_dir).map_err(|source| HarnessError::Write { path: out_dir.to_path_buf(), source })?;
+    std::fs::create_dir_all(out_dir).map_err(|source| HarnessError::Write {
+        path: out_dir.to_path_buf(),
+        source,
+    })?;
     let scene_path = out_dir.join("scene.toml");
     let text = scene::scene_toml(&h, &segs, &note);
-    std::fs::write(&scene_path, text).map_err(|source| HarnessError::Write { path: scene_path.clone(), source })?;
+    std::fs::write(&scene_path, text).map_err(|source| HarnessError::Write {
+        path: scene_path.clone(),
+        source,
+    })?;
     let json_path = out_dir.join("harness.json");
-    let json = serde_json::to_string_pretty(&scene::harness_json(&h, &segs, &note))
-        .map_err(|e| HarnessError::Write { path: json_path.clone(), source: std::io::Error::other(e) })?;
-    std::fs::write(&json_path, json).map_err(|source| HarnessError::Write { path: json_path.clone(), source })?;
+    let json =
+        serde_json::to_string_pretty(&scene::harness_json(&h, &segs, &note)).map_err(|e| {
+            HarnessError::Write {
+                path: json_path.clone(),
+                source: std::io::Error::other(e),
+            }
+        })?;
+    std::fs::write(&json_path, json).map_err(|source| HarnessError::Write {
+        path: json_path.clone(),
+        source,
+    })?;
     Ok(ImportReport::new(&h, &segs, scene_path, json_path))
 }

@@ -51,7 +51,9 @@ impl ImportReport {
         let mut max_length_error = (0.0, String::new());
         let mut max_end_error_m: f64 = 0.0;
         for (s, o) in h.segments.iter().zip(segs) {
-            max_end_error_m = max_end_error_m.max(o.curve.start_error).max(o.curve.end_error);
+            max_end_error_m = max_end_error_m
+                .max(o.curve.start_error)
+                .max(o.curve.end_error);
             if let Some(v) = s.virtual_length.filter(|v| *v > 0.0) {
                 let rel = (o.curve.length - v).abs() / v;
                 if rel > max_length_error.0 {
@@ -106,10 +108,26 @@ impl fmt::Display for ImportReport {
             "  {} junctions ({} branch points of 3 or more segments, up to {} at one node)",
             self.junctions, self.branch_points, self.max_junction_degree
         )?;
-        writeln!(f, "  {} routed wires/cables (up to {} in one segment)", self.wires, self.max_wires_per_segment)?;
-        writeln!(f, "  {} fixings, {} protection areas", self.fixings, self.protections)?;
-        writeln!(f, "  {} connectors, {} of them on a node", self.connectors, self.connectors_on_nodes)?;
-        writeln!(f, "  timeline: {} fixes, then settle", self.fixes_in_timeline)?;
+        writeln!(
+            f,
+            "  {} routed wires/cables (up to {} in one segment)",
+            self.wires, self.max_wires_per_segment
+        )?;
+        writeln!(
+            f,
+            "  {} fixings, {} protection areas",
+            self.fixings, self.protections
+        )?;
+        writeln!(
+            f,
+            "  {} connectors, {} of them on a node",
+            self.connectors, self.connectors_on_nodes
+        )?;
+        writeln!(
+            f,
+            "  timeline: {} fixes, then settle",
+            self.fixes_in_timeline
+        )?;
         writeln!(
             f,
             "  centre curves: ends within {:.2e} mm of their nodes; length vs Virtual_length up to {:.3} % ({}); {} trimmed: {}",
@@ -131,6 +149,11 @@ impl fmt::Display for ImportReport {
                 writeln!(f, "    {w}")?;
             }
         }
-        writeln!(f, "  wrote {} and {}", self.scene.display(), self.harness_json.display())
+        writeln!(
+            f,
+            "  wrote {} and {}",
+            self.scene.display(),
+            self.harness_json.display()
+        )
     }
 }

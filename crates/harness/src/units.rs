@@ -60,13 +60,30 @@ pub fn si_unit(name: &str, prefix: Option<&str>, dimension: Option<&str>) -> Opt
         "metre" | "meter" => (Dimension::Length, 1.0),
         // The SI base unit of mass is the kilogram; KBL names the gram with prefixes.
         "gram" => (Dimension::Mass, 1e-3),
-        _ => return Some(Unit { dimension: Dimension::Other, to_si: 1.0 }),
+        _ => {
+            return Some(Unit {
+                dimension: Dimension::Other,
+                to_si: 1.0,
+            })
+        }
     };
     match (dim, power) {
-        (Dimension::Length, 1) => Some(Unit { dimension: Dimension::Length, to_si: p }),
-        (Dimension::Length, 2) => Some(Unit { dimension: Dimension::Area, to_si: p * p }),
-        (Dimension::Length, 3) => Some(Unit { dimension: Dimension::Volume, to_si: p * p * p }),
-        (Dimension::Mass, 1) => Some(Unit { dimension: Dimension::Mass, to_si: base * p }),
+        (Dimension::Length, 1) => Some(Unit {
+            dimension: Dimension::Length,
+            to_si: p,
+        }),
+        (Dimension::Length, 2) => Some(Unit {
+            dimension: Dimension::Area,
+            to_si: p * p,
+        }),
+        (Dimension::Length, 3) => Some(Unit {
+            dimension: Dimension::Volume,
+            to_si: p * p * p,
+        }),
+        (Dimension::Mass, 1) => Some(Unit {
+            dimension: Dimension::Mass,
+            to_si: base * p,
+        }),
         _ => None,
     }
 }
@@ -90,7 +107,10 @@ pub fn named_unit(name: &str) -> Option<Unit> {
         "mm2" | "mm²" | "squaremillimetre" | "squaremillimeter" => u(Dimension::Area, 1e-6),
         "g" | "gram" => u(Dimension::Mass, 1e-3),
         "kg" | "kilogram" => u(Dimension::Mass, 1.0),
-        _ => Some(Unit { dimension: Dimension::Other, to_si: 1.0 }),
+        _ => Some(Unit {
+            dimension: Dimension::Other,
+            to_si: 1.0,
+        }),
     }
 }
 
@@ -112,7 +132,10 @@ mod tests {
         let kg = si_unit("gram", Some("kilo"), None).unwrap();
         assert!((kg.to_si - 1.0).abs() < 1e-15);
         assert!(si_unit("metre", Some("bogus"), None).is_none());
-        assert_eq!(si_unit("ampere", None, None).unwrap().dimension, Dimension::Other);
+        assert_eq!(
+            si_unit("ampere", None, None).unwrap().dimension,
+            Dimension::Other
+        );
     }
 
     #[test]

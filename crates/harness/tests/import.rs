@@ -10,16 +10,21 @@ const GENERATOR: &str = "kblxml_2.3sr-1_000971230_ltgs_generator_170718.kbl";
 const BATTERY: &str = "kblxml_2.3sr-1_000971228_ltgs_batterie_plus_170718.kbl";
 
 fn data(file: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/harness").join(file)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data/harness")
+        .join(file)
 }
 
 fn out_dir(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_TARGET_TMPDIR")).join("harness-tests").join(name)
+    Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("harness-tests")
+        .join(name)
 }
 
 fn scene_of(dir: &Path) -> toml::Table {
     let text = std::fs::read_to_string(dir.join("scene.toml")).unwrap();
-    text.parse::<toml::Table>().unwrap_or_else(|e| panic!("scene.toml is not TOML: {e}"))
+    text.parse::<toml::Table>()
+        .unwrap_or_else(|e| panic!("scene.toml is not TOML: {e}"))
 }
 
 fn count(t: &toml::Table, key: &str) -> usize {
@@ -36,15 +41,36 @@ fn main_harness_counts() {
     assert_eq!(r.nodes, 184);
     assert_eq!(r.branch_points, 47, "nodes where 3 or more segments meet");
     assert_eq!(r.max_junction_degree, 16);
-    assert_eq!(r.junctions, 51, "nodes where 2 or more meet (47 branch points + 4 in-line joints)");
-    assert!((r.total_virtual_length_m - 36.665).abs() < 0.001, "{}", r.total_virtual_length_m);
+    assert_eq!(
+        r.junctions, 51,
+        "nodes where 2 or more meet (47 branch points + 4 in-line joints)"
+    );
+    assert!(
+        (r.total_virtual_length_m - 36.665).abs() < 0.001,
+        "{}",
+        r.total_virtual_length_m
+    );
     assert!((r.total_length_m - r.total_virtual_length_m).abs() < 0.005);
     assert_eq!(r.fixings, 16);
-    assert_eq!(r.protections, 114, "Protection_area elements (of 105 protection occurrences)");
-    assert!(r.wires > 150 && r.max_wires_per_segment >= 60, "{} {}", r.wires, r.max_wires_per_segment);
+    assert_eq!(
+        r.protections, 114,
+        "Protection_area elements (of 105 protection occurrences)"
+    );
+    assert!(
+        r.wires > 150 && r.max_wires_per_segment >= 60,
+        "{} {}",
+        r.wires,
+        r.max_wires_per_segment
+    );
     assert!(r.connectors_on_nodes > 50);
     // Every skipped item says which id and why; all are wire occurrences without routing.
-    assert!(r.skipped.iter().all(|(id, why)| !id.is_empty() && why.contains("Routing")), "{:?}", r.skipped);
+    assert!(
+        r.skipped
+            .iter()
+            .all(|(id, why)| !id.is_empty() && why.contains("Routing")),
+        "{:?}",
+        r.skipped
+    );
 
     let t = scene_of(&dir);
     assert_eq!(t["format"].as_str(), Some("pliant-scene"));
@@ -56,18 +82,31 @@ fn main_harness_counts() {
     let timeline = t["timeline"].as_array().unwrap();
     assert_eq!(timeline.last().unwrap()["action"].as_str(), Some("settle"));
     assert_eq!(timeline.len(), r.fixes_in_timeline + 1);
-    let max_degree = t["junctions"].as_array().unwrap().iter().map(|j| j["ends"].as_array().unwrap().len()).max();
+    let max_degree = t["junctions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["ends"].as_array().unwrap().len())
+        .max();
     assert_eq!(max_degree, Some(16));
     for h in t["hoses"].as_array().unwrap() {
         let sec = h["section"].as_table().unwrap();
-        for k in ["d_outer", "ea_n", "ei1_n_m2", "ei2_n_m2", "gj_n_m2", "mass_kg_m"] {
+        for k in [
+            "d_outer",
+            "ea_n",
+            "ei1_n_m2",
+            "ei2_n_m2",
+            "gj_n_m2",
+            "mass_kg_m",
+        ] {
             let v = sec[k].as_float().unwrap();
             assert!(v > 0.0 && v.is_finite(), "{} {k} = {v}", h["name"]);
         }
         assert!(h["elements"].as_integer().unwrap() >= 4);
         assert!(h["min_bend_radius"].as_float().unwrap() > 0.0);
     }
-    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("harness.json")).unwrap()).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("harness.json")).unwrap()).unwrap();
     assert_eq!(json["segments"].as_array().unwrap().len(), 183);
     assert_eq!(json["model"]["fixings"].as_array().unwrap().len(), 16);
 }
@@ -77,7 +116,10 @@ fn generator_is_one_y_junction() {
     let dir = out_dir("generator");
     let r = import_kbl(&data(GENERATOR), &dir).unwrap();
     println!("{r}");
-    assert_eq!((r.segments, r.nodes, r.junctions, r.max_junction_degree), (3, 4, 1, 3));
+    assert_eq!(
+        (r.segments, r.nodes, r.junctions, r.max_junction_degree),
+        (3, 4, 1, 3)
+    );
     assert_eq!((r.fixings, r.protections), (1, 3));
     let t = scene_of(&dir);
     let j = &t["junctions"].as_array().unwrap()[0];
@@ -86,11 +128,20 @@ fn generator_is_one_y_junction() {
         .as_array()
         .unwrap()
         .iter()
-        .map(|e| (e["hose"].as_str().unwrap().to_string(), e["end"].as_str().unwrap().to_string()))
+        .map(|e| {
+            (
+                e["hose"].as_str().unwrap().to_string(),
+                e["end"].as_str().unwrap().to_string(),
+            )
+        })
         .collect();
     assert_eq!(
         ends,
-        [("Segment_1".into(), "end".into()), ("Segment_2".into(), "end".into()), ("Segment_3".into(), "start".into())]
+        [
+            ("Segment_1".into(), "end".into()),
+            ("Segment_2".into(), "end".into()),
+            ("Segment_3".into(), "start".into())
+        ]
     );
     let clip = &t["clips"].as_array().unwrap()[0];
     assert_eq!(clip["hose"].as_str(), Some("Segment_1"));
@@ -103,7 +154,11 @@ fn battery_cable_is_one_segment() {
     let r = import_kbl(&data(BATTERY), &dir).unwrap();
     println!("{r}");
     assert_eq!((r.segments, r.nodes, r.junctions), (1, 2, 0));
-    assert!((r.total_length_m - 1.082).abs() < 0.001, "{}", r.total_length_m);
+    assert!(
+        (r.total_length_m - 1.082).abs() < 0.001,
+        "{}",
+        r.total_length_m
+    );
     let t = scene_of(&dir);
     assert_eq!(count(&t, "hoses"), 1);
     assert!(t.get("junctions").is_none());
@@ -139,7 +194,11 @@ fn centre_curves_end_on_nodes_and_match_virtual_length() {
             }
         }
     }
-    println!("worst end error {:.3e} mm, worst length error {:.3e} (others: {off:?})", worst_end * 1e3, worst_len);
+    println!(
+        "worst end error {:.3e} mm, worst length error {:.3e} (others: {off:?})",
+        worst_end * 1e3,
+        worst_len
+    );
     assert_eq!(off.len(), 1, "{off:?}");
     assert_eq!(off[0].0, "Segment_163");
     assert!(off[0].1 < 2e-3);
@@ -155,26 +214,44 @@ fn truncated_xml_names_the_line() {
     let cut = &text[..text.len() / 2];
     let e = pliant_harness::kbl::parse_kbl("cut.kbl", cut).unwrap_err();
     let msg = e.to_string();
-    assert!(matches!(e, HarnessError::Xml { line, .. } if line > 100), "{msg}");
+    assert!(
+        matches!(e, HarnessError::Xml { line, .. } if line > 100),
+        "{msg}"
+    );
     assert!(msg.starts_with("cut.kbl:"), "{msg}");
 }
 
 #[test]
 fn missing_node_names_the_segment_and_line() {
-    let text = generator_text().replace("<Start_node>Node_3</Start_node>", "<Start_node>Node_99</Start_node>");
+    let text = generator_text().replace(
+        "<Start_node>Node_3</Start_node>",
+        "<Start_node>Node_99</Start_node>",
+    );
     let e = pliant_harness::kbl::parse_kbl("bad.kbl", &text).unwrap_err();
     let msg = e.to_string();
     println!("{msg}");
     match e {
-        HarnessError::Element { kbl_id, line, element, .. } => {
+        HarnessError::Element {
+            kbl_id,
+            line,
+            element,
+            ..
+        } => {
             assert_eq!(kbl_id, "Segment_2");
             assert_eq!(element, "Segment");
-            let expected = text.lines().position(|l| l.contains("<Segment id=\"Segment_2\"")).unwrap() as u32 + 1;
+            let expected = text
+                .lines()
+                .position(|l| l.contains("<Segment id=\"Segment_2\""))
+                .unwrap() as u32
+                + 1;
             assert_eq!(line, expected);
         }
         other => panic!("{other}"),
     }
-    assert!(msg.contains("Node_99") && msg.contains("does not exist"), "{msg}");
+    assert!(
+        msg.contains("Node_99") && msg.contains("does not exist"),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -183,17 +260,26 @@ fn wrong_version_is_refused() {
     let e = pliant_harness::kbl::parse_kbl("old.kbl", &text).unwrap_err();
     let msg = e.to_string();
     assert!(matches!(e, HarnessError::Unsupported { .. }), "{msg}");
-    assert!(msg.contains("\"2.1\"") && msg.contains("2.3, 2.4, 2.5"), "{msg}");
+    assert!(
+        msg.contains("\"2.1\"") && msg.contains("2.3, 2.4, 2.5"),
+        "{msg}"
+    );
     let e = pliant_harness::kbl::parse_kbl("x.kbl", "<?xml version=\"1.0\"?><foo/>").unwrap_err();
     assert!(e.to_string().contains("not a KBL file"), "{e}");
 }
 
 #[test]
 fn bad_control_point_names_the_curve() {
-    let text = generator_text().replace("Cartesian_point_26 Cartesian_point_27", "Cartesian_point_26 Cartesian_point_999");
+    let text = generator_text().replace(
+        "Cartesian_point_26 Cartesian_point_27",
+        "Cartesian_point_26 Cartesian_point_999",
+    );
     let e = pliant_harness::kbl::parse_kbl("bad.kbl", &text).unwrap_err();
     let msg = e.to_string();
-    assert!(msg.contains("Center_curve_4") && msg.contains("Cartesian_point_999"), "{msg}");
+    assert!(
+        msg.contains("Center_curve_4") && msg.contains("Cartesian_point_999"),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -203,7 +289,10 @@ fn vec_files_are_refused_with_a_reason() {
     let topo = dir.join("topology.vec");
     std::fs::write(&topo, "<?xml version=\"1.0\"?><vec:VecContent xmlns:vec=\"http://www.prostep.org/ecad-if/2011/vec\"><DocumentVersion/></vec:VecContent>").unwrap();
     let e = import_kbl(&topo, &dir).unwrap_err().to_string();
-    assert!(e.starts_with("topology.vec: VEC file") && e.contains("without 3-D geometry"), "{e}");
+    assert!(
+        e.starts_with("topology.vec: VEC file") && e.contains("without 3-D geometry"),
+        "{e}"
+    );
     let geo = dir.join("geometry.vec");
     std::fs::write(&geo, "<?xml version=\"1.0\"?><vec:VecContent xmlns:vec=\"x\"><Specification xsi:type=\"vec:PlacementSpecification\"><GeometryNode3D id=\"n\"/></Specification></vec:VecContent>").unwrap();
     let e = import_kbl(&geo, &dir).unwrap_err().to_string();
@@ -213,5 +302,9 @@ fn vec_files_are_refused_with_a_reason() {
 #[test]
 fn missing_file_is_a_read_error() {
     let e = import_kbl(&data("nope.kbl"), &out_dir("nope")).unwrap_err();
-    assert!(matches!(e, HarnessError::Read { .. }) && e.to_string().starts_with("nope.kbl: cannot read"), "{e}");
+    assert!(
+        matches!(e, HarnessError::Read { .. })
+            && e.to_string().starts_with("nope.kbl: cannot read"),
+        "{e}"
+    );
 }
