@@ -142,21 +142,69 @@ impl Chain {
         self.derivative(u).normalize_or_zero()
     }
 
-    /// Arc length between u0 and u1 (u1 < u0 gives the same positive length):
-    /// 8-point Gauss–Legendre on 32 sub-intervals per spline.
-    pub fn arc_length(&self, u0: f64, u1: f64) -> f64 {
+    /// Knot spans of spline k (its speed is smooth only within a span).
+    fn spans(&self, k: usize) -> usize {
+        let s = &self.splines[k];
+        s.points.len() - s.degree
+    }
+
+    /// Quadrature pieces from u0 to u1 (either order): the interval cut at every knot of
+    /// every spline, each knot span split into max(1, ⌈32 / spans⌉) equal parts (a spline
+    /// of one span — the KBL sample curves — gets 32 parts per unit of u; a degree-1 curve
+    /// through many points one part per straight piece, on which 8-point Gauss–Legendre is
+    /// exact).
+    fn pieces(&self, u0: f64, u1: f64) -> Vec<(f64, f64)> {
         let (a, b) = if u0 <= u1 { (u0, u1) } else { (u1, u0) };
-        let n = (((b - a) * SUBDIV as f64).ceil() as usize).max(1);
-        let h = (b - a) / n as f64;
-        (0..n)
-            .map(|i| {
-                let lo = a + i as f64 * h;
-                GL8.iter()
-                    .map(|(x, w)| w * self.derivative(lo + (x + 1.0) * 0.5 * h).length())
-                    .sum::<f64>()
-                    * 0.5
-                    * h
-            })
+        let mut cuts = vec![a];
+        let (_, m) = self.range();
+        let first = (a.floor().max(0.0) as usize).min(self.splines.len() - 1);
+        for k in first..self.splines.len() {
+            if k as f64 >= b {
+                break;
+            }
+            let spans = self.spans(k);
+            let parts = spans * SUBDIV.div_ceil(spans).max(1);
+            for j in 1..=parts {
+                let u = (k as f64 + j as f64 / parts as f64).min(m);
+                if u > a && u < b {
+                    cuts.push(u);
+                }
+            }
+        }
+        cuts.push(b);
+        let mut out: Vec<(f64, f64)> = cuts
+            .windows(2)
+            .filter(|w| w[1] > w[0])
+            .map(|w| (w[0], w[1]))
+            .collect();
+        if out.is_empty() {
+            out.push((a, b));
+        }
+        if u1 < u0 {
+            out.reverse();
+            for p in &mut out {
+                *p = (p.1, p.0);
+            }
+        }
+        out
+    }
+
+    /// 8-point Gauss–Legendre over one piece (either order; positive).
+    fn piece_length(&self, a: f64, b: f64) -> f64 {
+        let h = b - a;
+        GL8.iter()
+            .map(|(x, w)| w * self.derivative(a + (x + 1.0) * 0.5 * h).length())
+            .sum::<f64>()
+            * 0.5
+            * h.abs()
+    }
+
+    /// Arc length between u0 and u1 (u1 < u0 gives the same positive length):
+    /// 8-point Gauss–Legendre on each piece of [`Chain::pieces`].
+    pub fn arc_length(&self, u0: f64, u1: f64) -> f64 {
+        self.pieces(u0, u1)
+            .into_iter()
+            .map(|(a, b)| self.piece_length(a, b))
             .sum()
     }
 
@@ -194,16 +242,15 @@ impl Chain {
         (u, d(u).sqrt())
     }
 
-    /// Cumulative arc-length table from u0 to u1 (either order): pairs (u, s).
+    /// Cumulative arc-length table from u0 to u1 (either order): pairs (u, s), one entry
+    /// per piece of [`Chain::pieces`].
     fn table(&self, u0: f64, u1: f64) -> Vec<(f64, f64)> {
-        let n = (((u1 - u0).abs() * SUBDIV as f64).ceil() as usize).max(1);
-        let mut out = Vec::with_capacity(n + 1);
+        let pieces = self.pieces(u0, u1);
+        let mut out = Vec::with_capacity(pieces.len() + 1);
         let mut s = 0.0;
         out.push((u0, 0.0));
-        for i in 1..=n {
-            let a = u0 + (u1 - u0) * (i - 1) as f64 / n as f64;
-            let b = u0 + (u1 - u0) * i as f64 / n as f64;
-            s += self.arc_length(a, b);
+        for (a, b) in pieces {
+            s += self.piece_length(a, b);
             out.push((b, s));
         }
         out
@@ -278,6 +325,32 @@ mod tests {
         assert!((s.point(1.0) - DVec3::ZERO).length() < 1e-15);
         assert!((s.point(2.0) - DVec3::X).length() < 1e-15);
         assert!((s.point(1.5) - DVec3::X * 0.5).length() < 1e-15);
+    }
+
+    #[test]
+    fn degree_one_interpolates_every_control_point() {
+        // Knots t_i = i, domain [1, n + 1]: C(i + 1) = P_i, so a degree-1 curve is the
+        // polyline through its control points, first and last included (the KBL export
+        // relies on this).
+        let p: Vec<DVec3> = (0..9)
+            .map(|i| DVec3::new(i as f64, (i as f64).sin(), 0.1 * (i * i) as f64))
+            .collect();
+        let s = BSpline::new(1, p.clone()).unwrap();
+        assert_eq!(s.domain(), (1.0, 9.0));
+        for (i, q) in p.iter().enumerate() {
+            assert!((s.point(i as f64 + 1.0) - *q).length() < 1e-14, "P{i}");
+        }
+        // Arc length: exactly the polyline's (one quadrature piece per straight piece).
+        let c = Chain::new(vec![s]).unwrap();
+        let poly: f64 = p.windows(2).map(|w| w[0].distance(w[1])).sum();
+        assert!((c.arc_length(0.0, 1.0) - poly).abs() < 1e-12 * poly);
+        // Equal arc-length samples lie on the polyline, evenly spaced along it.
+        let pts = c.sample(0.0, 1.0, 17);
+        assert!((pts[0] - p[0]).length() < 1e-14 && (pts[16] - p[8]).length() < 1e-14);
+        let back = c.sample(1.0, 0.0, 5);
+        assert!((back[0] - p[8]).length() < 1e-14 && (back[4] - p[0]).length() < 1e-14);
+        let u = c.param_at_fraction(0.0, 1.0, 0.5);
+        assert!((c.arc_length(0.0, u) - 0.5 * poly).abs() < 1e-9 * poly);
     }
 
     #[test]

@@ -34,6 +34,10 @@ pub enum HarnessError {
         column: u32,
         reason: String,
     },
+    /// A settled route handed to an exporter does not fit the harness (unknown segment,
+    /// too few points, segment ends that disagree at a node, …).
+    #[error("settled route of {kbl_id}: {reason}")]
+    Settled { kbl_id: String, reason: String },
     /// An output file could not be written.
     #[error("{path}: cannot write: {source}")]
     Write {

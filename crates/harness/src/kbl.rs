@@ -34,28 +34,7 @@ pub const SUPPORTED_VERSIONS: [&str; 3] = ["2.3", "2.4", "2.5"];
 
 /// Parse KBL text. `file` names the source in errors and in the model.
 pub fn parse_kbl(file: &str, text: &str) -> Result<Harness, HarnessError> {
-    let doc = Document::parse(text).map_err(|e| {
-        let pos = e.pos();
-        let (mut line, mut column, mut reason) = (pos.row, pos.col, e.to_string());
-        if matches!(
-            e,
-            roxmltree::Error::UnclosedRootNode | roxmltree::Error::UnexpectedEndOfStream
-        ) {
-            // The parser reports these at 1:1; the place that matters is where the file ends.
-            line = text.lines().count().max(1) as u32;
-            column = text
-                .lines()
-                .last()
-                .map_or(1, |l| l.chars().count() as u32 + 1);
-            reason = format!("{reason}: the file ends here, inside an element (truncated?)");
-        }
-        HarnessError::Xml {
-            file: file.to_string(),
-            line,
-            column,
-            reason,
-        }
-    })?;
+    let doc = parse_xml(file, text)?;
     let root = doc.root_element();
     let version = check_version(file, root)?;
     let mut r = Reader::new(file, &doc);
@@ -83,8 +62,47 @@ pub fn parse_kbl(file: &str, text: &str) -> Result<Harness, HarnessError> {
     Ok(h)
 }
 
+/// Parse XML text; an error names the file, line and column (a truncated file: where it
+/// ends).
+pub(crate) fn parse_xml<'i>(file: &str, text: &'i str) -> Result<Document<'i>, HarnessError> {
+    Document::parse(text).map_err(|e| {
+        let pos = e.pos();
+        let (mut line, mut column, mut reason) = (pos.row, pos.col, e.to_string());
+        if matches!(
+            e,
+            roxmltree::Error::UnclosedRootNode | roxmltree::Error::UnexpectedEndOfStream
+        ) {
+            // The parser reports these at 1:1; the place that matters is where the file ends.
+            line = text.lines().count().max(1) as u32;
+            column = text
+                .lines()
+                .last()
+                .map_or(1, |l| l.chars().count() as u32 + 1);
+            reason = format!("{reason}: the file ends here, inside an element (truncated?)");
+        }
+        HarnessError::Xml {
+            file: file.to_string(),
+            line,
+            column,
+            reason,
+        }
+    })
+}
+
+/// The unit a KBL `<Unit>` element defines.
+pub(crate) fn unit_of(n: XNode) -> Result<Unit, String> {
+    if let Some(name) = text(n, "Si_unit_name") {
+        units::si_unit(name, text(n, "Si_prefix"), text(n, "Si_dimension"))
+            .ok_or_else(|| format!("SI unit \"{name}\" with an unknown prefix or dimension"))
+    } else if let Some(name) = text(n, "Unit_name") {
+        units::named_unit(name).ok_or_else(|| format!("unknown unit name \"{name}\""))
+    } else {
+        Err("unit without a name".to_string())
+    }
+}
+
 /// Check the root element and version; return the version text.
-fn check_version(file: &str, root: XNode) -> Result<String, HarnessError> {
+pub(crate) fn check_version(file: &str, root: XNode) -> Result<String, HarnessError> {
     let unsupported = |reason: String| HarnessError::Unsupported {
         file: file.to_string(),
         reason,
@@ -132,13 +150,13 @@ fn check_version(file: &str, root: XNode) -> Result<String, HarnessError> {
 }
 
 /// The first element child with this local name.
-fn child<'a, 'i>(n: XNode<'a, 'i>, name: &str) -> Option<XNode<'a, 'i>> {
+pub(crate) fn child<'a, 'i>(n: XNode<'a, 'i>, name: &str) -> Option<XNode<'a, 'i>> {
     n.children()
         .find(|c| c.is_element() && c.tag_name().name() == name)
 }
 
 /// All element children with this local name.
-fn children<'a, 'i: 'a>(
+pub(crate) fn children<'a, 'i: 'a>(
     n: XNode<'a, 'i>,
     name: &'a str,
 ) -> impl Iterator<Item = XNode<'a, 'i>> + 'a {
@@ -147,7 +165,7 @@ fn children<'a, 'i: 'a>(
 }
 
 /// The trimmed text of a child; `None` when absent, empty or KBL's "/NULL".
-fn text<'a>(n: XNode<'a, '_>, name: &str) -> Option<&'a str> {
+pub(crate) fn text<'a>(n: XNode<'a, '_>, name: &str) -> Option<&'a str> {
     child(n, name)
         .and_then(|c| c.text())
         .map(str::trim)
@@ -228,15 +246,7 @@ impl<'a, 'i> Reader<'a, 'i> {
     fn read_units(&mut self) {
         for n in self.doc.descendants().filter(|n| is_def(n, "Unit")) {
             let id = Self::id_of(n);
-            let unit = if let Some(name) = text(n, "Si_unit_name") {
-                units::si_unit(name, text(n, "Si_prefix"), text(n, "Si_dimension")).ok_or_else(
-                    || format!("SI unit \"{name}\" with an unknown prefix or dimension"),
-                )
-            } else if let Some(name) = text(n, "Unit_name") {
-                units::named_unit(name).ok_or_else(|| format!("unknown unit name \"{name}\""))
-            } else {
-                Err("unit without a name".to_string())
-            };
+            let unit = unit_of(n);
             self.units.insert(id, unit);
         }
     }

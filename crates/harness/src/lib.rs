@@ -10,31 +10,35 @@
 pub mod bspline;
 pub mod bundle;
 pub mod error;
+pub mod export;
 pub mod geometry;
 pub mod kbl;
 pub mod model;
 pub mod report;
 pub mod scene;
+pub mod settled;
 pub mod units;
 pub mod vec;
 
 use std::path::Path;
 
 pub use error::HarnessError;
+pub use export::{export_kbl, ExportReport};
 pub use model::Harness;
 pub use report::ImportReport;
+pub use settled::SettledHarness;
 
 use bundle::{bundle_section, segment_protection, segment_wires, BundleData};
 use geometry::SegmentCurve;
 use scene::{element_count, sanitise, unique, SegmentOut};
 
-fn file_name(path: &Path) -> String {
+pub(crate) fn file_name(path: &Path) -> String {
     path.file_name()
         .map(|f| f.to_string_lossy().into_owned())
         .unwrap_or_else(|| path.display().to_string())
 }
 
-fn read_text(path: &Path) -> Result<(String, String), HarnessError> {
+pub(crate) fn read_text(path: &Path) -> Result<(String, String), HarnessError> {
     let file = file_name(path);
     let text = std::fs::read_to_string(path).map_err(|source| HarnessError::Read {
         file: file.clone(),
