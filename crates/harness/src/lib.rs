@@ -17,6 +17,7 @@ pub mod model;
 pub mod report;
 pub mod scene;
 pub mod settled;
+pub mod step;
 pub mod units;
 pub mod vec;
 
@@ -27,6 +28,7 @@ pub use export::{export_kbl, ExportReport};
 pub use model::Harness;
 pub use report::ImportReport;
 pub use settled::SettledHarness;
+pub use step::{export_step, StepNames, StepReport};
 
 use bundle::{bundle_section, segment_protection, segment_wires, BundleData};
 use geometry::SegmentCurve;
