@@ -391,6 +391,49 @@ pub fn segment_protection(h: &crate::model::Harness, segment: usize) -> Option<P
         .filter(|c| c.coverage >= 0.5)
 }
 
+/// One segment's bundle: its wires, the protection that sets its factors, its section.
+#[derive(Debug, Clone)]
+pub struct SegmentBundle {
+    pub kbl_id: String,
+    pub wires: Vec<WireSection>,
+    pub protection: Option<ProtectionCover>,
+    pub section: BundleSection,
+    /// Wires left out, or the stand-in wire used when none is routed.
+    pub warnings: Vec<String>,
+}
+
+/// The bundle of segment `segment` (an index into `h.segments`), as the importer builds
+/// it: a segment without a routed wire gets one stand-in wire as thick as its KBL
+/// cross-section (or 5 mm), with a warning.
+pub fn segment_bundle(
+    data: &BundleData,
+    h: &crate::model::Harness,
+    segment: usize,
+) -> SegmentBundle {
+    let s = &h.segments[segment];
+    let (mut wires, mut warnings) = segment_wires(data, h, s);
+    if wires.is_empty() {
+        let d = s
+            .cross_section_area
+            .map_or(5e-3, |a| (4.0 * a / std::f64::consts::PI).sqrt());
+        warnings.push(format!(
+            "{}: no wire routed through it; section of one stand-in wire {:.1} mm thick",
+            s.kbl_id,
+            d * 1e3
+        ));
+        wires.push(WireSection::new(data, d, 0.0, None, None));
+    }
+    let protection = segment_protection(h, segment);
+    let section = bundle_section(data, &wires, protection);
+    SegmentBundle {
+        kbl_id: s.kbl_id.clone(),
+        wires,
+        protection,
+        section,
+        warnings,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -38,6 +38,13 @@ pub enum HarnessError {
     /// too few points, segment ends that disagree at a node, …).
     #[error("settled route of {kbl_id}: {reason}")]
     Settled { kbl_id: String, reason: String },
+    /// A segment named by the user is not in the harness.
+    #[error("{file}: no segment \"{id}\" (give a Segment's KBL id, e.g. \"{example}\", or its <Id> text)")]
+    UnknownSegment {
+        file: String,
+        id: String,
+        example: String,
+    },
     /// An output file could not be written.
     #[error("{path}: cannot write: {source}")]
     Write {

@@ -9,6 +9,7 @@
 
 pub mod bspline;
 pub mod bundle;
+pub mod calibrate;
 pub mod error;
 pub mod export;
 pub mod geometry;
@@ -23,6 +24,7 @@ pub mod vec;
 
 use std::path::Path;
 
+pub use calibrate::{bundle_of_segment, fit_protection_factor, three_point_bending_ei, Fit};
 pub use error::HarnessError;
 pub use export::{export_kbl, ExportReport};
 pub use model::Harness;
@@ -30,7 +32,7 @@ pub use report::ImportReport;
 pub use settled::SettledHarness;
 pub use step::{export_step, StepNames, StepReport};
 
-use bundle::{bundle_section, segment_protection, segment_wires, BundleData};
+use bundle::{segment_bundle, BundleData};
 use geometry::SegmentCurve;
 use scene::{element_count, sanitise, unique, SegmentOut};
 
@@ -89,22 +91,10 @@ pub fn import_kbl_with(
     let curves: Vec<SegmentCurve> = h.segments.iter().map(|s| SegmentCurve::of(&h, s)).collect();
     let mut sections = Vec::with_capacity(h.segments.len());
     let mut warnings = Vec::new();
-    for (i, s) in h.segments.iter().enumerate() {
-        let (mut wires, w) = segment_wires(data, &h, s);
-        warnings.extend(w);
-        if wires.is_empty() {
-            // No wire: a stand-in wire as thick as the KBL cross-section (or 5 mm).
-            let d = s
-                .cross_section_area
-                .map_or(5e-3, |a| (4.0 * a / std::f64::consts::PI).sqrt());
-            warnings.push(format!(
-                "{}: no wire routed through it; section of one stand-in wire {:.1} mm thick",
-                s.kbl_id,
-                d * 1e3
-            ));
-            wires.push(bundle::WireSection::new(data, d, 0.0, None, None));
-        }
-        sections.push(bundle_section(data, &wires, segment_protection(&h, i)));
+    for i in 0..h.segments.len() {
+        let b = segment_bundle(data, &h, i);
+        warnings.extend(b.warnings);
+        sections.push(b.section);
     }
     for (s, c) in h.segments.iter().zip(&curves) {
         if c.straight_fallback {

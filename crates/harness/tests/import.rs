@@ -168,10 +168,10 @@ fn battery_cable_is_one_segment() {
 }
 
 /// Every segment of all three files: the (trimmed) centre curve ends within 10⁻³ mm of its
-/// nodes and its arc length is within 0.1 % of `Virtual_length` — except Segment_163 of
-/// the main harness (a "Split" segment: its trimmed curve is 295.08 mm, its
-/// Virtual_length 294.54 mm, 0.18 %; both its ends lie on its nodes within 10⁻⁶ mm, so the
-/// difference is in the length the CAD system wrote, not in the trimming).
+/// nodes and its arc length is within 0.01 % of `Virtual_length` (measured: 0.0013 %). The
+/// trimmed "Split" segments included: Segment_163 is 294.544566 mm, as its Virtual_length
+/// (a quadrature whose pieces straddled the joints between the splines of a trimmed chain
+/// once gave 0.18 % here; the pieces now follow the knots).
 #[test]
 fn centre_curves_end_on_nodes_and_match_virtual_length() {
     let mut worst_end: f64 = 0.0;
@@ -199,9 +199,8 @@ fn centre_curves_end_on_nodes_and_match_virtual_length() {
         worst_end * 1e3,
         worst_len
     );
-    assert_eq!(off.len(), 1, "{off:?}");
-    assert_eq!(off[0].0, "Segment_163");
-    assert!(off[0].1 < 2e-3);
+    assert!(off.is_empty(), "{off:?}");
+    assert!(worst_len < 1e-4, "{worst_len}");
 }
 
 fn generator_text() -> String {
