@@ -5,6 +5,8 @@
 //! - [`bundle`] turns the wires routed through a segment into a beam section;
 //! - [`scene`] writes `scene.toml` and `harness.json`;
 //! - [`vec`] recognises VEC files (refused for now);
+//! - [`export`] writes a settled route ([`settled`]) back as KBL, [`step`] as STEP (AP214);
+//! - [`calibrate`] fits a protection's coupling factor from a bending test;
 //! - [`import_kbl`] does all of it and returns an [`ImportReport`].
 
 pub mod bspline;
