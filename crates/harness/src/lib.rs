@@ -1,0 +1,156 @@
+//! Wire-harness import for Pliant (SPEC N2, N3): KBL harness data in, a Pliant scene out.
+//!
+//! - [`kbl`] reads KBL 2.3–2.5 into the plain model of [`model`] (units via [`units`]);
+//! - [`bspline`] and [`geometry`] evaluate and trim the segments' centre curves;
+//! - [`bundle`] turns the wires routed through a segment into a beam section;
+//! - [`scene`] writes `scene.toml` and `harness.json`;
+//! - [`vec`] recognises VEC files (refused for now);
+//! - [`export`] writes a settled route ([`settled`]) back as KBL, [`step`] as STEP (AP214);
+//! - [`calibrate`] fits a protection's coupling factor from a bending test;
+//! - [`import_kbl`] does all of it and returns an [`ImportReport`].
+
+pub mod bspline;
+pub mod bundle;
+pub mod calibrate;
+pub mod error;
+pub mod export;
+pub mod geometry;
+pub mod kbl;
+pub mod model;
+pub mod report;
+pub mod scene;
+pub mod settled;
+pub mod step;
+pub mod units;
+pub mod vec;
+
+use std::path::Path;
+
+pub use calibrate::{bundle_of_segment, fit_protection_factor, three_point_bending_ei, Fit};
+pub use error::HarnessError;
+pub use export::{export_kbl, ExportReport};
+pub use model::Harness;
+pub use report::ImportReport;
+pub use settled::SettledHarness;
+pub use step::{export_step, StepNames, StepReport};
+
+use bundle::{segment_bundle, BundleData};
+use geometry::SegmentCurve;
+use scene::{element_count, sanitise, unique, SegmentOut};
+
+pub(crate) fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|f| f.to_string_lossy().into_owned())
+        .unwrap_or_else(|| path.display().to_string())
+}
+
+pub(crate) fn read_text(path: &Path) -> Result<(String, String), HarnessError> {
+    let file = file_name(path);
+    let text = std::fs::read_to_string(path).map_err(|source| HarnessError::Read {
+        file: file.clone(),
+        source,
+    })?;
+    Ok((file, text))
+}
+
+/// Read a KBL file into the harness model (a VEC file is refused with the reason).
+pub fn read_kbl(path: &Path) -> Result<Harness, HarnessError> {
+    let (file, text) = read_text(path)?;
+    if vec::looks_like_vec(&file, &text) {
+        return Err(vec::refuse_vec(&file, &text));
+    }
+    kbl::parse_kbl(&file, &text)
+}
+
+/// The licence line for the scene header: the sample files' README says CC BY-SA 4.0.
+fn licence_note(path: &Path) -> String {
+    let readme = path.parent().map(|d| d.join("README.md"));
+    let text = readme
+        .and_then(|r| std::fs::read_to_string(r).ok())
+        .unwrap_or_default();
+    if text.contains("CC BY-SA 4.0") {
+        "Source data licence: CC BY-SA 4.0 (see README.md beside the source file: Volkswagen AG /\n\
+         prostep ivip e.V. test data); a modified copy of the data stays CC BY-SA 4.0."
+            .to_string()
+    } else {
+        "Source data licence: as given by the provider of the source file.".to_string()
+    }
+}
+
+/// Import a KBL file: write `out_dir/scene.toml` and `out_dir/harness.json` and report
+/// what was imported, skipped and assumed.
+pub fn import_kbl(path: &Path, out_dir: &Path) -> Result<ImportReport, HarnessError> {
+    import_kbl_with(path, out_dir, &BundleData::builtin())
+}
+
+/// [`import_kbl`] with bundle data of one's own (e.g. calibrated factors).
+pub fn import_kbl_with(
+    path: &Path,
+    out_dir: &Path,
+    data: &BundleData,
+) -> Result<ImportReport, HarnessError> {
+    let mut h = read_kbl(path)?;
+    let curves: Vec<SegmentCurve> = h.segments.iter().map(|s| SegmentCurve::of(&h, s)).collect();
+    let mut sections = Vec::with_capacity(h.segments.len());
+    let mut warnings = Vec::new();
+    for i in 0..h.segments.len() {
+        let b = segment_bundle(data, &h, i);
+        warnings.extend(b.warnings);
+        sections.push(b.section);
+    }
+    for (s, c) in h.segments.iter().zip(&curves) {
+        if c.straight_fallback {
+            continue;
+        }
+        if let Some(v) = s.virtual_length {
+            let rel = (c.length - v).abs() / v;
+            if rel > report::LENGTH_TOLERANCE {
+                warnings.push(format!(
+                    "{}: centre-curve length {:.3} mm differs from Virtual_length {:.3} mm by {:.3} %{}",
+                    s.kbl_id,
+                    c.length * 1e3,
+                    v * 1e3,
+                    rel * 100.0,
+                    if c.trimmed { " (a trimmed Split segment)" } else { "" }
+                ));
+            }
+        }
+    }
+    h.warnings.extend(warnings);
+    let names = unique(h.segments.iter().map(|s| sanitise(&s.kbl_id)));
+    let segs: Vec<SegmentOut> = names
+        .into_iter()
+        .zip(&curves)
+        .zip(&sections)
+        .map(|((hose, curve), section)| SegmentOut {
+            hose,
+            curve,
+            section,
+            elements: element_count(curve.length),
+        })
+        .collect();
+    let note = licence_note(path);
+    std::fs::create_dir_all(out_dir).map_err(|source| HarnessError::Write {
+        path: out_dir.to_path_buf(),
+        source,
+    })?;
+    let scene_path = out_dir.join("scene.toml");
+    let text = scene::scene_toml(&h, &segs, &note);
+    std::fs::write(&scene_path, text).map_err(|source| HarnessError::Write {
+        path: scene_path.clone(),
+        source,
+    })?;
+    let json_path = out_dir.join("harness.json");
+    let json =
+        serde_json::to_string_pretty(&scene::harness_json(&h, &segs, &note)).map_err(|e| {
+            HarnessError::Write {
+                path: json_path.clone(),
+                source: std::io::Error::other(e),
+            }
+        })?;
+    std::fs::write(&json_path, json).map_err(|source| HarnessError::Write {
+        path: json_path.clone(),
+        source,
+    })?;
+    Ok(ImportReport::new(&h, &segs, scene_path, json_path))
+}

@@ -1,0 +1,421 @@
+//! Writing the Pliant scene (`scene.toml`, format v1, docs/scene-format.md) and the
+//! harness model (`harness.json`).
+//!
+//! Mapping:
+//!
+//! - every segment → one `[[hoses]]` named by its KBL id (sanitised), centre line a
+//!   Catmull-Rom `spline` through points sampled every ~10 mm along the trimmed centre
+//!   curve (first and last exactly on the nodes), `elements` = max(4, round(L / 25 mm)),
+//!   `section` given directly from the bundle model (`bundle.rs`), `min_bend_radius`;
+//! - every node where two or more segments meet → `[[junctions]]` (welded branch point);
+//! - every fixing assignment → `[[clips]]` at the curve point at its location;
+//! - timeline: `fix` at the hose node nearest every fixing and at every leaf end that
+//!   carries a connector, then `settle` (the harness held in its installed state).
+
+use std::collections::{HashMap, HashSet};
+use std::fmt::Write as _;
+
+use glam::DVec3;
+use serde::Serialize;
+
+use crate::bundle::BundleSection;
+use crate::geometry::SegmentCurve;
+use crate::model::Harness;
+
+/// Spacing of the sampled centre-line points [m].
+pub const SAMPLE_SPACING_M: f64 = 0.010;
+/// Target element length [m].
+pub const ELEMENT_LENGTH_M: f64 = 0.025;
+/// Fewest elements per segment.
+pub const MIN_ELEMENTS: usize = 4;
+/// Clip snap force [N] — an assumption: harness clips and holders snap on with forces of
+/// a few tens of newtons; calibrate against the part's data sheet.
+pub const SNAP_FORCE_N: f64 = 30.0;
+/// Clip opening width as a share of the seat diameter (assumption: "a bit smaller").
+pub const OPENING_SHARE: f64 = 0.8;
+
+/// What the scene writer needs per segment.
+pub struct SegmentOut<'a> {
+    pub hose: String,
+    pub curve: &'a SegmentCurve,
+    pub section: &'a BundleSection,
+    pub elements: usize,
+}
+
+/// A name usable as a scene name: letters, digits, `_`, `-`, `.`; others become `_`.
+pub fn sanitise(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() {
+        "_".to_string()
+    } else {
+        s
+    }
+}
+
+/// Unique names: the second `x` becomes `x_2`, and so on.
+pub fn unique(names: impl IntoIterator<Item = String>) -> Vec<String> {
+    let mut seen = HashSet::new();
+    names
+        .into_iter()
+        .map(|n| {
+            let mut candidate = n.clone();
+            let mut k = 2;
+            while !seen.insert(candidate.clone()) {
+                candidate = format!("{n}_{k}");
+                k += 1;
+            }
+            candidate
+        })
+        .collect()
+}
+
+/// Number of elements for a centre line of length `len` [m].
+pub fn element_count(len: f64) -> usize {
+    ((len / ELEMENT_LENGTH_M).round() as usize).max(MIN_ELEMENTS)
+}
+
+fn mm(v: f64) -> String {
+    let s = format!("{:.4}", v * 1e3);
+    if s == "-0.0000" {
+        "0.0000".into()
+    } else {
+        s
+    }
+}
+
+fn vec_mm(v: DVec3) -> String {
+    format!("[{}, {}, {}]", mm(v.x), mm(v.y), mm(v.z))
+}
+
+fn unit_vec(v: DVec3) -> String {
+    format!("[{:.6}, {:.6}, {:.6}]", v.x, v.y, v.z)
+}
+
+fn sci(v: f64) -> String {
+    format!("{v:.6e}")
+}
+
+fn quote(s: &str) -> String {
+    // TOML basic string: escape backslash, quote and control characters.
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if c.is_control() => {
+                let _ = write!(out, "\\u{:04X}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// A unit vector perpendicular to `t`.
+fn perpendicular(t: DVec3) -> DVec3 {
+    let a = if t.z.abs() < 0.9 { DVec3::Z } else { DVec3::X };
+    (a - t * a.dot(t)).normalize_or_zero()
+}
+
+/// The clip type from the KBL fixing type and description: cable ties ("KABELBINDER",
+/// "TIE") → `cable_tie`; cable ducts and guides ("DUCT", "KABELFUEHRUNG", "KANAL") →
+/// `sliding`; anything else `fixed`.
+pub fn clip_type(fixing_type: Option<&str>, description: Option<&str>) -> &'static str {
+    let t = format!(
+        "{} {}",
+        fixing_type.unwrap_or(""),
+        description.unwrap_or("")
+    )
+    .to_uppercase();
+    if t.contains("BINDER") || t.contains("TIE") {
+        "cable_tie"
+    } else if t.contains("DUCT")
+        || t.contains("FUEHRUNG")
+        || t.contains("FÜHRUNG")
+        || t.contains("KANAL")
+    {
+        "sliding"
+    } else {
+        "fixed"
+    }
+}
+
+/// Everything the timeline holds: (hose index, node index) pairs, in order, without repeats.
+pub fn held_nodes(h: &Harness, segs: &[SegmentOut]) -> Vec<(usize, i64)> {
+    let mut out: Vec<(usize, i64)> = Vec::new();
+    let mut push = |x: (usize, i64)| {
+        if !out.contains(&x) {
+            out.push(x);
+        }
+    };
+    for f in &h.fixings {
+        let n = segs[f.segment].elements;
+        push((f.segment, (f.location * n as f64).round() as i64));
+    }
+    let at = h.segments_at_nodes();
+    let with_connector: HashSet<usize> = h.connectors.iter().filter_map(|c| c.node).collect();
+    for (node, segments) in at.iter().enumerate() {
+        if segments.len() == 1 && with_connector.contains(&node) {
+            let s = segments[0];
+            let seg = &h.segments[s];
+            push((s, if seg.start_node == node { 0 } else { -1 }));
+        }
+    }
+    out
+}
+
+/// The text of `scene.toml`.
+pub fn scene_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> String {
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "# Pliant scene generated by pliant-harness from the KBL file `{}` (KBL {}).",
+        h.source, h.kbl_version
+    );
+    for line in licence_note.lines() {
+        let _ = writeln!(t, "# {line}");
+    }
+    let _ = writeln!(
+        t,
+        "# One hose per KBL segment (named by its id), a junction per node where segments meet,"
+    );
+    let _ = writeln!(
+        t,
+        "# a clip per fixing; sections from the bundle model (crates/harness/README.md)."
+    );
+    let _ = writeln!(t, "# The model behind it, with KBL ids, wires and skipped items: harness.json beside this file.\n");
+    let _ = writeln!(t, "format = \"pliant-scene\"\nversion = 1");
+    let stem = h.source.trim_end_matches(".kbl").trim_end_matches(".KBL");
+    let _ = writeln!(t, "name = {}\nlength_unit = \"mm\"\n", quote(stem));
+    let _ = writeln!(t, "# Density and Poisson's ratio matter only for what a section does not give (all is given).");
+    let _ = writeln!(t, "[materials.bundle]\ne_tension_mpa = 200\ne_compression_mpa = 200\npoisson = 0.4\ndensity_kg_m3 = 1400\n");
+
+    for (s, out) in h.segments.iter().zip(segs) {
+        let len = out.curve.length;
+        let count = ((len / SAMPLE_SPACING_M).ceil() as usize + 1).max(3);
+        let mut pts = out.curve.sample(count);
+        // Ends exactly on the nodes, so that the hoses of a junction meet.
+        if let Some(p) = pts.first_mut() {
+            *p = h.nodes[s.start_node].position;
+        }
+        if let Some(p) = pts.last_mut() {
+            *p = h.nodes[s.end_node].position;
+        }
+        let sec = out.section;
+        let _ = writeln!(t, "[[hoses]]\nname = {}", quote(&out.hose));
+        if let Some(n) = &s.name {
+            let _ = writeln!(
+                t,
+                "# KBL Segment {} \"{}\", {:.1} mm, {} wires",
+                s.kbl_id,
+                n.replace('\n', " "),
+                len * 1e3,
+                sec.wire_count
+            );
+        }
+        let _ = writeln!(t, "material = \"bundle\"");
+        let _ = writeln!(
+            t,
+            "section = {{ d_inner = 0, d_outer = {}, ea_n = {}, ei1_n_m2 = {}, ei2_n_m2 = {}, gj_n_m2 = {}, mass_kg_m = {} }}",
+            mm(sec.d_outer),
+            sci(sec.ea),
+            sci(sec.ei),
+            sci(sec.ei),
+            sci(sec.gj),
+            sci(sec.mass)
+        );
+        if sec.min_bend_radius > 0.0 {
+            let _ = writeln!(t, "min_bend_radius = {}", mm(sec.min_bend_radius));
+        }
+        let _ = writeln!(t, "elements = {}", out.elements);
+        let _ = writeln!(t, "start = {}", vec_mm(pts[0]));
+        let through: Vec<String> = pts[1..pts.len() - 1].iter().map(|p| vec_mm(*p)).collect();
+        let _ = writeln!(
+            t,
+            "path = [{{ spline = {{ through = [{}], to = {} }} }}]\n",
+            through.join(", "),
+            vec_mm(pts[pts.len() - 1])
+        );
+    }
+
+    let at = h.segments_at_nodes();
+    for (node, segments) in at.iter().enumerate() {
+        if segments.len() < 2 {
+            continue;
+        }
+        let mut ends = Vec::new();
+        for &si in segments {
+            let seg = &h.segments[si];
+            if seg.start_node == node {
+                ends.push(format!(
+                    "{{ hose = {}, end = \"start\" }}",
+                    quote(&segs[si].hose)
+                ));
+            }
+            if seg.end_node == node {
+                ends.push(format!(
+                    "{{ hose = {}, end = \"end\" }}",
+                    quote(&segs[si].hose)
+                ));
+            }
+        }
+        let n = &h.nodes[node];
+        let _ = writeln!(
+            t,
+            "[[junctions]]\nname = {}\nends = [{}]\n",
+            quote(&sanitise(&n.kbl_id)),
+            ends.join(", ")
+        );
+    }
+
+    let clip_names = unique(
+        h.fixings
+            .iter()
+            .map(|f| sanitise(f.name.as_deref().unwrap_or(&f.kbl_id))),
+    );
+    for (f, name) in h.fixings.iter().zip(clip_names) {
+        let out = &segs[f.segment];
+        let (origin, tangent) = out.curve.at_fraction(f.location);
+        let tangent = if tangent.length() > 0.5 {
+            tangent
+        } else {
+            DVec3::X
+        };
+        let opening = f
+            .orientation
+            .map(|o| o.normalize_or_zero())
+            .map(|o| (o - tangent * o.dot(tangent)).normalize_or_zero())
+            .filter(|o| o.length() > 0.5)
+            .unwrap_or_else(|| perpendicular(tangent));
+        let d = out.section.d_outer;
+        let kind = clip_type(f.fixing_type.as_deref(), f.description.as_deref());
+        let _ = writeln!(t, "[[clips]]\nname = {}", quote(&name));
+        let _ = writeln!(
+            t,
+            "# KBL {} ({}), {} on {} at {:.4}",
+            f.kbl_id,
+            f.occurrence,
+            f.description.as_deref().unwrap_or("fixing"),
+            h.segments[f.segment].kbl_id,
+            f.location
+        );
+        let _ = writeln!(t, "type = \"{kind}\"\nhose = {}", quote(&out.hose));
+        let _ = writeln!(
+            t,
+            "origin = {}\nopening = {}\norientation = {}",
+            vec_mm(origin),
+            unit_vec(opening),
+            unit_vec(tangent)
+        );
+        let _ = writeln!(
+            t,
+            "inner_diameter = {}\nopening_width = {}",
+            mm(d),
+            mm(OPENING_SHARE * d)
+        );
+        if kind != "cable_tie" {
+            let _ = writeln!(t, "snap_force_n = {SNAP_FORCE_N}");
+        }
+        t.push('\n');
+    }
+
+    let _ = writeln!(
+        t,
+        "# Installed state: held at every fixing and at every connector end, then at rest."
+    );
+    for (s, node) in held_nodes(h, segs) {
+        let _ = writeln!(
+            t,
+            "[[timeline]]\naction = \"fix\"\nhose = {}\nnode = {node}\n",
+            quote(&segs[s].hose)
+        );
+    }
+    let _ = writeln!(t, "[[timeline]]\naction = \"settle\"");
+    t
+}
+
+/// One segment in `harness.json`.
+#[derive(Debug, Serialize)]
+pub struct SegmentJson<'a> {
+    pub kbl_id: &'a str,
+    pub name: Option<&'a str>,
+    pub hose: &'a str,
+    pub start_node: &'a str,
+    pub end_node: &'a str,
+    pub length_m: f64,
+    pub virtual_length_m: Option<f64>,
+    pub trimmed: bool,
+    pub elements: usize,
+    pub wires: Vec<&'a str>,
+    pub protections: Vec<&'a str>,
+    pub fixings: Vec<&'a str>,
+    pub section: &'a BundleSection,
+}
+
+/// `harness.json`: the segments as written (hose names, sections, wires, protections,
+/// fixings by KBL id) and the whole model.
+#[derive(Debug, Serialize)]
+pub struct HarnessJson<'a> {
+    pub format: &'static str,
+    pub version: u32,
+    pub licence_note: &'a str,
+    pub segments: Vec<SegmentJson<'a>>,
+    pub model: &'a Harness,
+}
+
+pub fn harness_json<'a>(
+    h: &'a Harness,
+    segs: &'a [SegmentOut],
+    licence_note: &'a str,
+) -> HarnessJson<'a> {
+    let mut prot: HashMap<usize, Vec<&str>> = HashMap::new();
+    for p in &h.protections {
+        prot.entry(p.segment).or_default().push(&p.kbl_id);
+    }
+    let mut fix: HashMap<usize, Vec<&str>> = HashMap::new();
+    for f in &h.fixings {
+        fix.entry(f.segment).or_default().push(&f.kbl_id);
+    }
+    let segments = h
+        .segments
+        .iter()
+        .zip(segs)
+        .enumerate()
+        .map(|(i, (s, o))| SegmentJson {
+            kbl_id: &s.kbl_id,
+            name: s.name.as_deref(),
+            hose: &o.hose,
+            start_node: &h.nodes[s.start_node].kbl_id,
+            end_node: &h.nodes[s.end_node].kbl_id,
+            length_m: o.curve.length,
+            virtual_length_m: s.virtual_length,
+            trimmed: o.curve.trimmed,
+            elements: o.elements,
+            wires: s
+                .wires
+                .iter()
+                .map(|&w| h.wires[w].kbl_id.as_str())
+                .collect(),
+            protections: prot.remove(&i).unwrap_or_default(),
+            fixings: fix.remove(&i).unwrap_or_default(),
+            section: o.section,
+        })
+        .collect();
+    HarnessJson {
+        format: "pliant-harness",
+        version: 1,
+        licence_note,
+        segments,
+        model: h,
+    }
+}
