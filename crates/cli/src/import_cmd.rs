@@ -49,8 +49,44 @@ pub fn parse_length(text: &str) -> Result<f64> {
     Ok(metres)
 }
 
+/// Whether `path` names harness data (KBL or VEC) rather than STEP.
+fn is_harness_file(path: &Path) -> bool {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    matches!(ext.as_str(), "kbl" | "vec" | "xml")
+}
+
+/// `pliant import harness.kbl [--out DIR]`: the harness as a scene (see
+/// `pliant_harness::import_kbl`); prints what was imported, skipped and assumed.
+fn run_harness(o: &ImportOptions) -> Result<ExitCode> {
+    if o.cache_dir.is_some() || o.tolerance.is_some() {
+        bail!("--cache-dir and --tolerance are for STEP files; a harness takes --out DIR only");
+    }
+    let out = o.out.map(Path::to_path_buf).unwrap_or_else(|| {
+        let stem = o
+            .step
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "harness".into());
+        o.step.with_file_name(stem)
+    });
+    let report = pliant_harness::import_kbl(o.step, &out).map_err(|e| anyhow!("{e}"))?;
+    print!("{report}");
+    println!(
+        "run it: pliant run {}   inspect it: pliant inspect {}",
+        report.scene.display(),
+        report.scene.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
 /// Runs the import; prints the solids, triangles, skipped solids and the time taken.
 pub fn run(o: &ImportOptions) -> Result<ExitCode> {
+    if is_harness_file(o.step) {
+        return run_harness(o);
+    }
     let tolerance = match o.tolerance {
         Some(t) => parse_length(t).context("--tolerance")?,
         None => DEFAULT_CHORD_TOLERANCE,

@@ -6,7 +6,9 @@ mod bench_contact_phases;
 mod bench_engine_bay;
 mod bench_newton;
 mod calibrate_cmd;
+mod export_cmd;
 mod import_cmd;
+mod inspect_cmd;
 mod limit_args;
 mod peers;
 mod progress;
@@ -154,12 +156,18 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
-    /// Convert a STEP assembly (AP203, AP214, AP242) once with OpenCASCADE: into the
-    /// cache a scene beside it reads (`[[parts]] step = …`), or into a GLB (--out).
+    /// Import CAD or harness data. A STEP assembly (AP203, AP214, AP242) is converted
+    /// once with OpenCASCADE: into the cache a scene beside it reads (`[[parts]] step =
+    /// …`), or into a GLB (--out). A wire harness in KBL 2.3–2.5 (`.kbl`, VDA 4964)
+    /// becomes a scene: `--out DIR` receives scene.toml (segments, junctions, bundle
+    /// sections, fixings, the installed state as timeline) and harness.json
+    /// (docs/harness.md). VEC files (`.vec`) are read where they carry 3-D geometry.
     Import {
-        /// The STEP file.
+        /// The STEP or KBL file.
         step: PathBuf,
-        /// Write this GLB (one named node per solid, metres) instead of the cache entry.
+        /// STEP: write this GLB (one named node per solid, metres) instead of the cache
+        /// entry. KBL: the folder to write the scene into [default: the file's name
+        /// without extension, beside it].
         #[arg(long)]
         out: Option<PathBuf>,
         /// The scene's folder whose .pliant-cache/ receives the entry [default: the STEP
@@ -171,6 +179,33 @@ enum Command {
         /// must be the same for it to find the entry.
         #[arg(long)]
         tolerance: Option<String>,
+    },
+    /// Print what a scene builds: hoses (length, elements, nodes), junctions (degree,
+    /// position), fixings and parts, in metres.
+    Inspect {
+        /// The scene file.
+        scene: PathBuf,
+        /// JSON for scripts: {"hoses": [{"name", "length_m", "elements", "nodes"}],
+        /// "junctions": [{"name", "degree", "position"}], "fixings", "parts"}.
+        #[arg(long)]
+        json: bool,
+    },
+    /// The settled route of an imported harness back to CAD: runs the scene `pliant
+    /// import harness.kbl --out DIR` wrote (its installed state) and writes the segments'
+    /// settled centre lines as KBL (a copy of the original with new centre curves,
+    /// lengths and node positions) and STEP (one named curve per segment).
+    Export {
+        /// The folder `pliant import … --out DIR` wrote (scene.toml, harness.json).
+        dir: PathBuf,
+        /// Where to write harness.kbl and harness.step [default: DIR/export].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Solver for the settling run [default: the scene's].
+        #[arg(long)]
+        solver: Option<pliant_core::SolverKind>,
+        /// The original KBL file [default: the one harness.json names].
+        #[arg(long)]
+        kbl: Option<PathBuf>,
     },
     /// Fit a material's stiffness to measured test curves (docs/calibration.md): E_t and
     /// E_c from tension and compression, EI from three-point bending, a cantilever or
@@ -347,6 +382,18 @@ fn main() -> ExitCode {
             runs,
             batch,
             quiet,
+        }),
+        Command::Inspect { scene, json } => inspect_cmd::run(&scene, json),
+        Command::Export {
+            dir,
+            out,
+            solver,
+            kbl,
+        } => export_cmd::run(&export_cmd::ExportOptions {
+            dir: &dir,
+            out: out.as_deref(),
+            solver,
+            kbl: kbl.as_deref(),
         }),
         Command::Import {
             step,

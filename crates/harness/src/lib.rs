@@ -62,6 +62,14 @@ pub fn read_kbl(path: &Path) -> Result<Harness, HarnessError> {
     kbl::parse_kbl(&file, &text)
 }
 
+/// The absolute path of the imported file (as given when it cannot be resolved).
+fn source_path(path: &Path) -> String {
+    std::fs::canonicalize(path)
+        .unwrap_or_else(|_| path.to_path_buf())
+        .display()
+        .to_string()
+}
+
 /// The licence line for the scene header: the sample files' README says CC BY-SA 4.0.
 fn licence_note(path: &Path) -> String {
     let readme = path.parent().map(|d| d.join("README.md"));
@@ -142,7 +150,7 @@ pub fn import_kbl_with(
     })?;
     let json_path = out_dir.join("harness.json");
     let json =
-        serde_json::to_string_pretty(&scene::harness_json(&h, &segs, &note)).map_err(|e| {
+        serde_json::to_string_pretty(&scene::harness_json(&h, &segs, &note, source_path(path))).map_err(|e| {
             HarnessError::Write {
                 path: json_path.clone(),
                 source: std::io::Error::other(e),

@@ -197,6 +197,9 @@ pub fn scene_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> Strin
     let _ = writeln!(t, "format = \"pliant-scene\"\nversion = 1");
     let stem = h.source.trim_end_matches(".kbl").trim_end_matches(".KBL");
     let _ = writeln!(t, "name = {}\nlength_unit = \"mm\"\n", quote(stem));
+    // thin wires make the explicit step microseconds long; the installed state is an
+    // equilibrium, which the quasi-static solver finds directly
+    let _ = writeln!(t, "[simulation]\nsolver = \"static\"\n");
     let _ = writeln!(t, "# Density and Poisson's ratio matter only for what a section does not give (all is given).");
     let _ = writeln!(t, "[materials.bundle]\ne_tension_mpa = 200\ne_compression_mpa = 200\npoisson = 0.4\ndensity_kg_m3 = 1400\n");
 
@@ -369,6 +372,8 @@ pub struct HarnessJson<'a> {
     pub format: &'static str,
     pub version: u32,
     pub licence_note: &'a str,
+    /// The KBL file imported (absolute path), for `pliant export`.
+    pub source: String,
     pub segments: Vec<SegmentJson<'a>>,
     pub model: &'a Harness,
 }
@@ -377,6 +382,7 @@ pub fn harness_json<'a>(
     h: &'a Harness,
     segs: &'a [SegmentOut],
     licence_note: &'a str,
+    source: String,
 ) -> HarnessJson<'a> {
     let mut prot: HashMap<usize, Vec<&str>> = HashMap::new();
     for p in &h.protections {
@@ -415,6 +421,7 @@ pub fn harness_json<'a>(
         format: "pliant-harness",
         version: 1,
         licence_note,
+        source,
         segments,
         model: h,
     }

@@ -43,8 +43,9 @@
 //! the wall folding into itself; their capsules overlap at rest or in any bend, and a
 //! force between them would be an artefact of the discretisation. On a hose of uniform
 //! radius r and beam length l₀ this excludes beams i, j with |i − j| ≤ ⌈π r / l₀⌉.
-//! Pairs of different hoses are never excluded (hoses that overlap at rest are pushed
-//! apart).
+//! Pairs of different hoses are excluded only where a junction joins them and the same
+//! rule holds along the network (the gap through the junction; [`super::network_gaps`]);
+//! otherwise never (hoses that overlap at rest are pushed apart).
 //!
 //! **Broad phase.** [`BroadPhase`]: a uniform grid, O(N), storage allocated once in
 //! [`HoseContactScratch::new`] (called by [`State::at_rest`]). A model with one hose too
@@ -105,6 +106,10 @@ pub struct HoseContactModel {
     /// Skin of the pair list: how far a node may move along any axis before the broad
     /// phase is rebuilt [m] (the smallest beam radius).
     pub skin: f64,
+    /// Rest length of each hose [m].
+    hose_length: Vec<f64>,
+    /// Distances along the network between ends of hoses joined by junctions.
+    gaps: super::network_gaps::NetworkGaps,
 }
 
 /// The broad phase and what the last step found, allocated once with the state.
@@ -229,6 +234,8 @@ impl HoseContactModel {
             omega_limit: f64::INFINITY,
             active: model.hoses.len() > 1,
             skin: 0.0,
+            hose_length: vec![0.0; model.hoses.len()],
+            gaps: Default::default(),
         };
         for (h, hose) in model.hoses.iter().enumerate() {
             let mut arc = 0.0;
@@ -244,6 +251,7 @@ impl HoseContactModel {
                 r_min = r_min.min(ra.min(rb));
                 s.element_stiffness[e] = 0.5 * el.axial_stiffness_compression / el.rest_length;
             }
+            s.hose_length[h] = arc;
             // Conservative: the longest gap on this hose against the smallest threshold.
             if hose.element_count >= 2 {
                 let first = hose.first_element;
@@ -259,6 +267,8 @@ impl HoseContactModel {
             .copied()
             .fold(f64::INFINITY, f64::min);
         s.skin = if r_min.is_finite() { r_min } else { 0.0 };
+        let r_max = s.element_radius.iter().copied().fold(0.0, f64::max);
+        s.gaps = super::network_gaps::NetworkGaps::new(model, PI * r_max);
         let r = &model.time_step_report;
         let bound = r.axial_bound.min(r.eigen_bound);
         if bound > 0.0 && bound.is_finite() {
@@ -274,8 +284,14 @@ impl HoseContactModel {
         if i == j {
             return true;
         }
-        if self.element_hose[i] != self.element_hose[j] {
-            return false;
+        let (hi, hj) = (self.element_hose[i], self.element_hose[j]);
+        if hi != hj {
+            if self.gaps.is_empty() {
+                return false;
+            }
+            let along = |e: usize, h: u32| (self.arc_a[e], self.hose_length[h as usize] - self.arc_b[e]);
+            let gap = self.gaps.gap(hi, along(i, hi), hj, along(j, hj));
+            return gap < 0.5 * PI * (self.element_radius[i] + self.element_radius[j]);
         }
         let (i, j) = if i < j { (i, j) } else { (j, i) };
         let gap = self.arc_a[j] - self.arc_b[i];

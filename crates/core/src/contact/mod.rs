@@ -18,6 +18,7 @@ pub mod coherence;
 mod environment;
 pub mod friction;
 pub mod hose_hose;
+mod network_gaps;
 mod owned_edges;
 mod penalty;
 mod planes;

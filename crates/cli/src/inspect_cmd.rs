@@ -1,0 +1,161 @@
+//! `pliant inspect SCENE [--json]`: what a scene builds — its hoses (length, elements,
+//! node positions), junctions (degree, position), fixings (stubs and clips) and parts —
+//! in metres, for people (a summary) and scripts (JSON).
+
+use anyhow::{anyhow, Result};
+use pliant_core::Model;
+use pliant_scene::{load_scene_file, LoadedScene};
+use serde_json::{json, Value};
+use std::path::Path;
+use std::process::ExitCode;
+
+/// The scene's contents as JSON (see the module doc).
+pub fn describe(scene: &LoadedScene, model: &Model) -> Value {
+    let hoses: Vec<Value> = model
+        .hoses
+        .iter()
+        .enumerate()
+        .map(|(h, info)| {
+            let nodes: Vec<[f64; 3]> = info.nodes().map(|i| model.rest_x[i].to_array()).collect();
+            json!({
+                "name": info.name,
+                "length_m": scene.hoses[h].length,
+                "elements": info.element_count,
+                "d_outer_m": scene.hoses[h].d_outer,
+                "min_bend_radius_m": scene.hoses[h].min_bend_radius,
+                "nodes": nodes,
+            })
+        })
+        .collect();
+    let junctions: Vec<Value> = model
+        .junctions
+        .iter()
+        .map(|j| {
+            let body = &model.bodies[j.body];
+            let ends: Vec<Value> = j
+                .nodes
+                .iter()
+                .map(|&i| {
+                    let h = model
+                        .hoses
+                        .iter()
+                        .position(|info| info.nodes().contains(&i))
+                        .unwrap_or(0);
+                    let info = &model.hoses[h];
+                    let end = if i == info.first_node { "start" } else { "end" };
+                    json!({ "hose": info.name, "end": end })
+                })
+                .collect();
+            json!({
+                "name": j.name,
+                "degree": j.degree(),
+                "position": body.rest_centre.to_array(),
+                "mass_kg": body.mass,
+                "ends": ends,
+            })
+        })
+        .collect();
+    let mut fixings: Vec<Value> = scene
+        .stubs
+        .iter()
+        .map(|s| {
+            json!({
+                "name": s.name,
+                "kind": "stub",
+                "hose": scene.hose_names[s.hose_end.hose],
+                "spec": s.spec,
+            })
+        })
+        .collect();
+    fixings.extend(scene.clips.iter().map(|c| {
+        json!({
+            "name": c.name,
+            "kind": "clip",
+            "hose": scene.hose_names[c.hose],
+            "spec": c.spec,
+        })
+    }));
+    let parts: Vec<Value> = scene
+        .parts
+        .iter()
+        .map(|p| {
+            json!({
+                "name": p.name,
+                "source": p.source,
+                "triangles": p.triangles,
+                "bounds_m": [p.bounds.0.to_array(), p.bounds.1.to_array()],
+            })
+        })
+        .collect();
+    json!({
+        "scene": scene.name,
+        "source": scene.source,
+        "hoses": hoses,
+        "junctions": junctions,
+        "fixings": fixings,
+        "parts": parts,
+        "elements": model.elements.len(),
+        "nodes": model.node_count(),
+        "time_step_s": model.time_step,
+    })
+}
+
+/// Loads and builds the scene and prints what it holds.
+pub fn run(scene_path: &Path, as_json: bool) -> Result<ExitCode> {
+    let scene = load_scene_file(scene_path).map_err(|e| anyhow!("{e}"))?;
+    let model = scene.build_model().map_err(|e| anyhow!(e))?;
+    let d = describe(&scene, &model);
+    if as_json {
+        println!("{}", serde_json::to_string_pretty(&d)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    let total: f64 = scene.hoses.iter().map(|h| h.length).sum();
+    println!(
+        "{}: {} hose(s), {:.3} m in all, {} elements, {} junction(s), {} stub(s), {} clip(s), {} part(s); explicit time step {:.3e} s",
+        scene.source,
+        model.hoses.len(),
+        total,
+        model.elements.len(),
+        model.junctions.len(),
+        scene.stubs.len(),
+        scene.clips.len(),
+        scene.parts.len(),
+        model.time_step
+    );
+    for (h, info) in model.hoses.iter().enumerate() {
+        let x = |i: usize| model.rest_x[i] * 1e3;
+        let (a, b) = (x(info.first_node), x(info.first_node + info.node_count - 1));
+        println!(
+            "  hose {:<24} {:>9.1} mm  {:>4} elements  d {:>5.1} mm  from ({:.1}, {:.1}, {:.1}) to ({:.1}, {:.1}, {:.1}) mm",
+            info.name,
+            scene.hoses[h].length * 1e3,
+            info.element_count,
+            scene.hoses[h].d_outer * 1e3,
+            a.x,
+            a.y,
+            a.z,
+            b.x,
+            b.y,
+            b.z
+        );
+    }
+    for j in &model.junctions {
+        let p = model.bodies[j.body].rest_centre * 1e3;
+        println!(
+            "  junction {:<20} degree {:>2}  at ({:.1}, {:.1}, {:.1}) mm",
+            j.name, j.nodes.len(), p.x, p.y, p.z
+        );
+    }
+    for f in d["fixings"].as_array().into_iter().flatten() {
+        println!(
+            "  {} {} on hose {}",
+            f["kind"].as_str().unwrap_or(""),
+            f["name"].as_str().unwrap_or(""),
+            f["hose"].as_str().unwrap_or("")
+        );
+    }
+    for p in &scene.parts {
+        println!("  part {} ({} triangles, {})", p.name, p.triangles, p.source);
+    }
+    Ok(ExitCode::SUCCESS)
+}

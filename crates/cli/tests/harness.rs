@@ -1,0 +1,181 @@
+//! End-to-end: a real wire harness (the generator cable of the VOBES sample data, KBL 2.3:
+//! three segments at one Y-junction) imported, inspected, installed and exported, as a
+//! user runs `pliant import`, `inspect`, `run` and `export`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn pliant() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_pliant"))
+}
+
+fn data(name: &str) -> PathBuf {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/harness")).join(name)
+}
+
+const GENERATOR: &str = "kblxml_2.3sr-1_000971230_ltgs_generator_170718.kbl";
+
+fn ok(out: &std::process::Output) -> String {
+    assert!(
+        out.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+#[test]
+fn a_harness_is_imported_inspected_installed_and_exported() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene_dir = dir.path().join("generator");
+    let text = ok(&pliant()
+        .arg("import")
+        .arg(data(GENERATOR))
+        .arg("--out")
+        .arg(&scene_dir)
+        .output()
+        .unwrap());
+    assert!(text.contains("3 segments"), "{text}");
+    let scene = scene_dir.join("scene.toml");
+
+    // inspect: three hoses meeting at one junction of degree 3, on the KBL node
+    let json: serde_json::Value = serde_json::from_str(&ok(&pliant()
+        .args(["inspect", "--json"])
+        .arg(&scene)
+        .output()
+        .unwrap()))
+    .unwrap();
+    let hoses = json["hoses"].as_array().unwrap();
+    assert_eq!(hoses.len(), 3);
+    let junctions = json["junctions"].as_array().unwrap();
+    assert_eq!(junctions.len(), 1);
+    assert_eq!(junctions[0]["degree"], 3);
+    // Node_2 of the file lies at (2500, 100, 500) mm
+    let p: Vec<f64> = junctions[0]["position"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let expected = [2.5, 0.1, 0.5];
+    for k in 0..3 {
+        assert!((p[k] - expected[k]).abs() < 1e-7, "{p:?}");
+    }
+    for h in hoses {
+        let nodes = h["nodes"].as_array().unwrap();
+        assert_eq!(nodes.len() as u64, h["elements"].as_u64().unwrap() + 1);
+    }
+
+    // run: the installed state is reached (the static solver, the scene's own)
+    let out = dir.path().join("run");
+    ok(&pliant()
+        .args(["run", "--quiet"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(summary["completed"], true, "{summary}");
+    let settles = summary["settles"].as_array().unwrap();
+    assert!(!settles.is_empty() && settles.iter().all(|s| s["at_rest"] == true), "{summary}");
+
+    // export: the settled route as KBL and STEP; the KBL imports again with the same
+    // topology and its segments where the run left them
+    let export = dir.path().join("export");
+    let text = ok(&pliant()
+        .arg("export")
+        .arg(&scene_dir)
+        .arg("--out")
+        .arg(&export)
+        .output()
+        .unwrap());
+    assert!(text.contains("3 with the settled route"), "{text}");
+    let step = std::fs::read_to_string(export.join("harness.step")).unwrap();
+    assert!(step.starts_with("ISO-10303-21;") && step.contains("B_SPLINE_CURVE_WITH_KNOTS"));
+    let again = dir.path().join("again");
+    ok(&pliant()
+        .arg("import")
+        .arg(export.join("harness.kbl"))
+        .arg("--out")
+        .arg(&again)
+        .output()
+        .unwrap());
+    let reimported: serde_json::Value = serde_json::from_str(&ok(&pliant()
+        .args(["inspect", "--json"])
+        .arg(again.join("scene.toml"))
+        .output()
+        .unwrap()))
+    .unwrap();
+    assert_eq!(reimported["junctions"].as_array().unwrap().len(), 1);
+    // the settled positions (last row of nodes.csv per hose and node) against the
+    // re-imported centre lines: each settled node within 0.1 mm of the new polyline
+    let csv = std::fs::read_to_string(out.join("nodes.csv")).unwrap();
+    let last_time = csv
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split(',').next()?.parse::<f64>().ok())
+        .fold(f64::MIN, f64::max);
+    for h in reimported["hoses"].as_array().unwrap() {
+        let name = h["name"].as_str().unwrap();
+        let line: Vec<[f64; 3]> = h["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| {
+                let v: Vec<f64> = p.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+                [v[0], v[1], v[2]]
+            })
+            .collect();
+        let settled: Vec<[f64; 3]> = csv
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .filter(|c| {
+                c[0].parse::<f64>().ok() == Some(last_time)
+                    && c[1].parse::<usize>().ok().map(|i| hoses[i]["name"].as_str()) == Some(Some(name))
+            })
+            .map(|c| [c[3].parse().unwrap(), c[4].parse().unwrap(), c[5].parse().unwrap()])
+            .collect();
+        assert!(!settled.is_empty(), "no settled nodes of {name}");
+        for p in &settled {
+            let d = distance_to_polyline(&line, *p);
+            assert!(d < 1e-4, "{name}: settled node {p:?} is {d} m from the exported route");
+        }
+    }
+}
+
+#[test]
+fn a_vec_file_without_geometry_and_a_broken_kbl_are_refused_clearly() {
+    let dir = tempfile::tempdir().unwrap();
+    let broken = dir.path().join("broken.kbl");
+    let text = std::fs::read_to_string(data(GENERATOR)).unwrap();
+    std::fs::write(&broken, &text[..text.len() / 2]).unwrap();
+    let out = pliant()
+        .arg("import")
+        .arg(&broken)
+        .arg("--out")
+        .arg(dir.path().join("x"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("broken.kbl:"), "{err}");
+}
+
+fn distance_to_polyline(line: &[[f64; 3]], p: [f64; 3]) -> f64 {
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    line.windows(2)
+        .map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let ab = sub(b, a);
+            let t = (dot(sub(p, a), ab) / dot(ab, ab).max(1e-300)).clamp(0.0, 1.0);
+            let q = [a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]];
+            dot(sub(p, q), sub(p, q)).sqrt()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
