@@ -521,15 +521,15 @@ fn meaningless_values_are_refused_and_outputs_never_hold_non_finite_numbers() {
     }
 }
 
-/// A real STEP file from `../shared/cad` (see its README), or PLIANT_CAD_FILES.
+/// A real STEP file from the repository's `data/cad` (see its README), or PLIANT_CAD_FILES.
 fn cad_file(name: &str) -> std::path::PathBuf {
     let dir = std::env::var_os("PLIANT_CAD_FILES")
         .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/cad"));
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/cad"));
     let path = dir.join(name);
     assert!(
         path.is_file(),
-        "missing real STEP file {} (shared/ beside the repository)",
+        "missing real STEP file {} (data/cad in the repository, or PLIANT_CAD_FILES)",
         path.display()
     );
     path
