@@ -44,6 +44,8 @@ pub enum BenchOnly {
     Contact,
     /// The Newton solvers' rows (quasi-static updates, implicit steps).
     Newton,
+    /// One live snapshot of `pliant serve` beside a part of 42 and of 163 842 vertices.
+    Snapshot,
 }
 
 /// Element length of the benchmark hoses [m]: 1.5 × d_a.
@@ -725,6 +727,15 @@ pub fn run(opts: &BenchOptions) -> Result<()> {
                 println!("{}", serde_json::to_string_pretty(&newton)?);
             } else {
                 print!("{}", crate::bench_newton::render(&newton));
+            }
+            Ok(())
+        }
+        Some(BenchOnly::Snapshot) => {
+            let rows = crate::bench_snapshot::measure(opts.quick)?;
+            if opts.json {
+                println!("{}", serde_json::to_string_pretty(&rows)?);
+            } else {
+                print!("{}", crate::bench_snapshot::render(&rows));
             }
             Ok(())
         }

@@ -5,6 +5,7 @@ mod bench;
 mod bench_contact_phases;
 mod bench_engine_bay;
 mod bench_newton;
+mod bench_snapshot;
 mod calibrate_cmd;
 mod import_cmd;
 mod limit_args;
@@ -227,8 +228,9 @@ enum Command {
         /// solver with and without sleeping).
         #[arg(long = "engine-bay")]
         engine_bay: bool,
-        /// Measure one group of rows only: `contact` (5 × 30 without and with the floor)
-        /// or `newton` (the Newton solvers' rows).
+        /// Measure one group of rows only: `contact` (5 × 30 without and with the floor),
+        /// `newton` (the Newton solvers' rows) or `snapshot` (a live snapshot's cost beside
+        /// a small and a large part).
         #[arg(long, value_enum)]
         only: Option<bench::BenchOnly>,
     },

@@ -415,15 +415,6 @@ impl Workcell {
                 self.checks
                     .end_violations(&self.model, &self.state, &self.stubs),
             ),
-            part_outlines: Vec::new(),
-        }
-    }
-    /// [`Self::summary`] for a report: with the parts' outlines for its pictures
-    /// (computed here, once: a hull over every vertex of every part).
-    pub fn report_summary(&self) -> RunSummary {
-        RunSummary {
-            part_outlines: crate::report::part_outline::part_outlines(&self.model.environment),
-            ..self.summary()
         }
     }
     /// The installation checks' account so far (SPEC V3).

@@ -202,10 +202,6 @@ pub struct RunSummary {
     pub instability_notes: Vec<String>,
     /// The installation checks and their violations (SPEC V3).
     pub checks: crate::checks::ChecksSummary,
-    /// The parts as the report's pictures draw them (filled by
-    /// [`crate::Workcell::report_summary`]; empty in a running summary).
-    #[serde(skip)]
-    pub part_outlines: Vec<crate::report::part_outline::PartOutline>,
 }
 
 impl RunSummary {
