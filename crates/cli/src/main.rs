@@ -94,6 +94,15 @@ enum Command {
     },
     /// Serve a scene interactively (the built-in demo when no scene is given): the
     /// simulation runs in real time; clients connect over WebSocket (docs/protocol.md).
+    ///
+    /// Every session is recorded as it runs (SPEC W2): a copy of the scene and every input
+    /// (grab, move, release, reset, ergonomics), stamped with the step it took effect at,
+    /// go into out/sessions/session-<unix time>/ under the current directory (the folder
+    /// is printed at start). A report of the session so far — report.html, report.json,
+    /// summary.json and the CSVs of `pliant run`, made by replaying the log — is written
+    /// into report-N/ inside that folder by the viewer's Report button, or on Ctrl-C when
+    /// the server stops. `pliant replay out/sessions/session-<unix time>` replays a session
+    /// bit for bit at any time (`--timeline edited.toml` turns it into an editable scene).
     Serve {
         /// Scene file (TOML or JSON); omit for the built-in demo.
         scene: Option<PathBuf>,

@@ -884,3 +884,21 @@ duration_s = 0.2
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("`duration_h` must lie in [0, 8] h"), "{err}");
 }
+
+/// `pliant serve --help` says that each session is recorded, where, and how to get its
+/// report.
+#[test]
+fn serve_help_says_where_sessions_are_recorded_and_how_to_report_them() {
+    let out = pliant().args(["serve", "--help"]).output().unwrap();
+    assert!(out.status.success());
+    let help = String::from_utf8(out.stdout).unwrap();
+    for needle in [
+        "out/sessions/session-",
+        "Report button",
+        "Ctrl-C",
+        "pliant replay",
+        "report.html",
+    ] {
+        assert!(help.contains(needle), "missing {needle:?} in:\n{help}");
+    }
+}
