@@ -1,5 +1,9 @@
 //! `pliant`: run a scene and write its time series, validate the physics against exact
 //! solutions, benchmark the solver.
+// The doc comments of the command-line types below are clap's --help text, not API
+// docs: units in brackets ("[m]") and placeholders ("<unix time>") are written as users
+// read them there.
+#![allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
 
 mod bench;
 mod bench_contact_phases;

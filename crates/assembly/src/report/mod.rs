@@ -40,9 +40,9 @@ pub struct Outputs<'a> {
     pub hand_series: &'a [HandSample],
     pub profile: &'a ErgonomicProfile,
     pub solver: SolverKind,
-    /// The step the solver advanced by [s].
+    /// The step the solver advanced by \[s\].
     pub time_step: f64,
-    /// Wall-clock time the study took [s] (for the real-time factor).
+    /// Wall-clock time the study took \[s\] (for the real-time factor).
     pub wall_time: f64,
 }
 
