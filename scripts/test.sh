@@ -8,6 +8,7 @@ source "$(dirname "$0")/common.sh"
 ./scripts/build-web.sh     # the viewer first: the release build below embeds web/dist
 ./scripts/install-cad.sh   # the STEP importer's kernel (OpenCASCADE, PyPI cadquery-ocp-novtk) into .venv
 cargo fmt --all --check    # formatting as rustfmt writes it
+(cd crates/python && cargo fmt --check)   # the Python extension is its own workspace
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps   # API docs: every link resolves
 cargo build --release --workspace
 cargo test --release --workspace   # every validation case is a test here (crates/validation/tests)
