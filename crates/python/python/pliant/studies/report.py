@@ -154,7 +154,8 @@ def axis_ticks(lo: float, hi: float, target: int = 5) -> Tuple[float, float, Lis
         labels = [f"{x:.{digits - 1}e}" for x in values]
     else:
         labels = [f"{x:.{max(0, -exponent)}f}" for x in values]
-    return values[0], values[-1], values, labels
+    # the ends cover the values even where k·step rounds a hair inside them
+    return min(values[0], lo), max(values[-1], hi), values, labels
 
 
 def histogram_svg(values, title: str, unit: str, limits: List[float] = (), bins: int = 20) -> str:
