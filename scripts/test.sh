@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# Builds everything and runs every test: unit tests, scene-format tests, the validation
+# Builds everything and runs every test: formatting and the API docs checked (broken
+# intra-doc links fail), unit tests, scene-format tests, the validation
 # suite (each case a test; `pliant validate` prints the same table), the CLI end-to-end
 # tests, a quick benchmark smoke run, the Python API's tests and the browser viewer's
 # end-to-end tests in headless Chromium.
 source "$(dirname "$0")/common.sh"
 ./scripts/build-web.sh     # the viewer first: the release build below embeds web/dist
 ./scripts/install-cad.sh   # the STEP importer's kernel (OpenCASCADE, PyPI cadquery-ocp-novtk) into .venv
+cargo fmt --all --check    # formatting as rustfmt writes it
+(cd crates/python && cargo fmt --check)   # the Python extension is its own workspace
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps   # API docs: every link resolves
 cargo build --release --workspace
 cargo test --release --workspace   # every validation case is a test here (crates/validation/tests)
 ./target/release/pliant bench --quick --json > /dev/null

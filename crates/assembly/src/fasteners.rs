@@ -53,7 +53,7 @@ pub struct FastenerReport {
     pub name: String,
     /// "stub" or "clip".
     pub kind: &'static str,
-    /// Largest force the fastener applied to the hose [N] and when.
+    /// Largest force the fastener applied to the hose \[N\] and when.
     pub max_force: f64,
     pub max_force_time: f64,
     /// State at the end of the run (e.g. "fixed", "seated", "approach").
@@ -148,7 +148,7 @@ pub struct Fasteners {
 pub struct FastenerSample {
     pub time: f64,
     pub fastener: usize,
-    /// Magnitude of the force the fastener applies to the hose [N].
+    /// Magnitude of the force the fastener applies to the hose \[N\].
     pub force: f64,
 }
 

@@ -11,7 +11,7 @@ use pliant_core::loads::{DeadLoad, Fix, LoadCase, LoadCaseId, LoadRamp, Motion, 
 use pliant_core::{Model, State};
 use serde::Serialize;
 
-/// How long a hand takes to let go [s] ([`Hand::let_go`]): the order of a voluntary
+/// How long a hand takes to let go \[s\] ([`Hand::let_go`]): the order of a voluntary
 /// opening of the grip (an assumption), and many periods of a hose's fast axial modes
 /// (≈ 8 ms for the demo's 0.76 m coolant hose: length over wave speed, both ways).
 pub const RELEASE_TIME: f64 = 0.1;
@@ -36,9 +36,9 @@ pub struct Hand {
 pub struct HandLoad {
     /// The hose the hand holds.
     pub hose: usize,
-    /// Hand position [m].
+    /// Hand position \[m\].
     pub position: DVec3,
-    /// Force the hand applies [N].
+    /// Force the hand applies \[N\].
     pub force: DVec3,
     /// Torque the hand applies about its position [N·m].
     pub torque: DVec3,
@@ -205,7 +205,7 @@ impl Hand {
         (p, q)
     }
 
-    /// The force the hand exerted on the hose in the last step [N].
+    /// The force the hand exerted on the hose in the last step \[N\].
     pub fn force(&self, state: &State) -> DVec3 {
         self.held[..self.count]
             .iter()
@@ -249,7 +249,7 @@ impl Hand {
         }
     }
 
-    /// Lets go as a hand opens, over `duration` [s]: each held node is freed, and the force
+    /// Lets go as a hand opens, over `duration` \[s\]: each held node is freed, and the force
     /// and moment the hand held it with in the last step act on as a dead load that falls
     /// smoothly to zero ([`LoadRamp::smooth_fall`]). Dropping a load of ~200 N within one
     /// step sent a stress wave to the stub whose peak depended on the time step (232 N

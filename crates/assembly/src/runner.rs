@@ -160,7 +160,7 @@ pub fn run_timeline(
                 Stop::Diverged(d) => (Some(d.clone()), d.to_string()),
                 Stop::Refused(k, name, r) => (None, format!("timeline[{k}] ({name}): {r}")),
             };
-            let mut partial = cell.report_summary();
+            let mut partial = cell.summary();
             partial.actions_completed = k;
             partial.settles = settles;
             return Err(RunError {
@@ -170,7 +170,7 @@ pub fn run_timeline(
             });
         }
     }
-    let mut summary = cell.report_summary();
+    let mut summary = cell.summary();
     summary.actions_completed = timeline.actions.len();
     summary.settles = settles;
     Ok(summary)

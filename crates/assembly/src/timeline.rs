@@ -15,9 +15,9 @@ pub struct NodeRef {
 /// Where a driven node goes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum MovePath {
-    /// Absolute waypoints [m]; the last one is the target.
+    /// Absolute waypoints \[m\]; the last one is the target.
     To(Vec<DVec3>),
-    /// Waypoints as offsets [m] from the node's position when the action starts.
+    /// Waypoints as offsets \[m\] from the node's position when the action starts.
     By(Vec<DVec3>),
 }
 
@@ -27,7 +27,7 @@ pub enum MovePath {
 pub struct Rotation {
     /// Unit axis (global frame).
     pub axis: DVec3,
-    /// Angle [rad]; may exceed π (several turns are fine).
+    /// Angle \[rad\]; may exceed π (several turns are fine).
     pub angle: f64,
 }
 
@@ -47,7 +47,7 @@ pub enum Action {
         duration: f64,
         wait: bool,
     },
-    /// Dead load: a force [N] and moment [N·m] (global frame) added at the node, in full
+    /// Dead load: a force \[N\] and moment [N·m] (global frame) added at the node, in full
     /// at once or rising linearly over `ramp` seconds; `name` lets `unload` remove this
     /// one alone.
     Load {
@@ -64,7 +64,7 @@ pub enum Action {
     /// A cable tie bundles two hoses (issue 11 item 5): `node` and `to` are held at the
     /// distance they have now ([`pliant_core::loads::Tie`]) for the rest of the run.
     Tie { node: NodeRef, to: NodeRef },
-    /// I1: hand `hand` grabs the beam nearest to `at` [m]; its two nodes follow the hand
+    /// I1: hand `hand` grabs the beam nearest to `at` \[m\]; its two nodes follow the hand
     /// (replacing any fix or drive on them) until the hand lets go.
     /// `grip`: firm, or loose — the hose may turn in the hand ([`crate::Grip`]).
     Grab {
@@ -86,7 +86,7 @@ pub enum Action {
         spline: bool,
         wait: bool,
     },
-    /// Hand `hand` heads for `position` [m] (and `orientation`, if given) at bounded
+    /// Hand `hand` heads for `position` \[m\] (and `orientation`, if given) at bounded
     /// speed and acceleration, as a live hand driven by a pointer or a VR controller
     /// does; the timeline goes on at once.
     AimHand {
@@ -98,7 +98,7 @@ pub enum Action {
     ReleaseHand { hand: usize },
     /// Simulate for `duration` seconds.
     Run { duration: f64 },
-    /// Simulate until the total kinetic energy is below `kinetic_energy_threshold` [J]
+    /// Simulate until the total kinetic energy is below `kinetic_energy_threshold` \[J\]
     /// (or `max_duration` seconds have passed, which is reported as not at rest).
     Settle {
         kinetic_energy_threshold: f64,

@@ -10,21 +10,21 @@ use crate::error::CalibError;
 /// A physical quantity a column may hold.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Quantity {
-    /// Force [N].
+    /// Force \[N\].
     Force,
-    /// Displacement, deflection or extension [m].
+    /// Displacement, deflection or extension \[m\].
     Displacement,
     /// Strain [-].
     Strain,
-    /// Stress [Pa].
+    /// Stress \[Pa\].
     Stress,
     /// Torque or moment [N·m].
     Torque,
-    /// Angle of twist [rad].
+    /// Angle of twist \[rad\].
     Angle,
-    /// Bend radius of the centre line [m].
+    /// Bend radius of the centre line \[m\].
     BendRadius,
-    /// Distance between the plates of ISO 10619-1 (inner bend diameter) [m].
+    /// Distance between the plates of ISO 10619-1 (inner bend diameter) \[m\].
     PlateDistance,
     /// Curvature [1/m].
     Curvature,

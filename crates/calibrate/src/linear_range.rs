@@ -26,7 +26,7 @@
 //!    point: any smooth departure from a line starts as (x − x_e)², a kink as |x − x_e|,
 //!    and the onset x_e (x_t for the toe) of least squares of the line plus that departure,
 //!    fitted over the window and half as many points again beyond it, ends the range
-//!    (see [`refine_ends`]).
+//!    (see `refine_ends`).
 
 use crate::least_squares::PrefixSums;
 use serde::Serialize;

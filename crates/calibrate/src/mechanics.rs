@@ -99,9 +99,9 @@ impl TestKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Property {
-    /// E_t [Pa].
+    /// E_t \[Pa\].
     ETension,
-    /// E_c [Pa].
+    /// E_c \[Pa\].
     ECompression,
     /// EI [N·m²].
     BendingStiffness,
@@ -121,7 +121,7 @@ impl Property {
     }
 }
 
-/// The specimen: a tube of diameters d_inner, d_outer [m], and the test's length [m].
+/// The specimen: a tube of diameters d_inner, d_outer \[m\], and the test's length \[m\].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Geometry {
     pub d_inner: f64,

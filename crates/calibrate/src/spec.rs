@@ -32,9 +32,9 @@ pub struct Spec {
     pub name: String,
     /// What the material is (for the library entry).
     pub description: Option<String>,
-    /// The tested hose's inner diameter [mm] (0 for a solid rod).
+    /// The tested hose's inner diameter \[mm\] (0 for a solid rod).
     pub d_inner_mm: f64,
-    /// Its outer diameter [mm].
+    /// Its outer diameter \[mm\].
     pub d_outer_mm: f64,
     /// Density [kg/m³] (not measured by these tests; required by the material).
     pub density_kg_m3: f64,
@@ -42,7 +42,7 @@ pub struct Spec {
     pub density_source: Option<String>,
     /// Poisson's ratio when no torsion test determines it (default 0.49, an assumption).
     pub poisson: Option<f64>,
-    /// Smallest bend radius of the centre line [mm] (datasheet), passed on.
+    /// Smallest bend radius of the centre line \[mm\] (datasheet), passed on.
     pub min_bend_radius_mm: Option<f64>,
     /// The tests.
     pub tests: Vec<TestSpec>,
@@ -55,10 +55,10 @@ pub struct TestSpec {
     pub kind: TestKind,
     /// The CSV file, relative to the calibration file.
     pub csv: String,
-    /// Gauge length, span, free length, grip distance or lever arm [mm] (see
+    /// Gauge length, span, free length, grip distance or lever arm \[mm\] (see
     /// [`TestKind::length_meaning`]).
     pub length_mm: Option<f64>,
-    /// The specimen's diameters when they differ from the material's [mm].
+    /// The specimen's diameters when they differ from the material's \[mm\].
     pub d_inner_mm: Option<f64>,
     pub d_outer_mm: Option<f64>,
 }

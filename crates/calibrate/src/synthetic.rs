@@ -127,13 +127,13 @@ pub fn csv(
 /// The known answers of [`example_files`].
 #[derive(Clone, Copy, Debug)]
 pub struct Truth {
-    /// E_t, E_c, E_b [Pa].
+    /// E_t, E_c, E_b \[Pa\].
     pub e_tension: f64,
     pub e_compression: f64,
     pub e_bending: f64,
-    /// G [Pa].
+    /// G \[Pa\].
     pub shear: f64,
-    /// Diameters [m].
+    /// Diameters \[m\].
     pub d_inner: f64,
     pub d_outer: f64,
 }
@@ -161,7 +161,7 @@ impl Truth {
     }
 }
 
-/// Gauge length, span, grip distance and lever arm of the example tests [m].
+/// Gauge length, span, grip distance and lever arm of the example tests \[m\].
 pub const EXAMPLE_GAUGE: f64 = 0.100;
 pub const EXAMPLE_SPAN: f64 = 0.200;
 pub const EXAMPLE_TORSION_LENGTH: f64 = 0.300;

@@ -44,9 +44,11 @@ pub enum BenchOnly {
     Contact,
     /// The Newton solvers' rows (quasi-static updates, implicit steps).
     Newton,
+    /// One live snapshot of `pliant serve` beside a part of 42 and of 163 842 vertices.
+    Snapshot,
 }
 
-/// Element length of the benchmark hoses [m]: 1.5 × d_a.
+/// Element length of the benchmark hoses \[m\]: 1.5 × d_a.
 pub const ELEMENT_LENGTH: f64 = 0.024;
 /// Single-hose sizes, fitted for the scaling slope.
 pub const SINGLE_HOSE_ELEMENTS: [usize; 5] = [10, 30, 100, 1000, 10_000];
@@ -122,20 +124,20 @@ pub struct BenchRow {
     /// Elements in the world.
     pub elements: usize,
     pub nodes: usize,
-    /// The automatic stable time step used [s].
+    /// The automatic stable time step used \[s\].
     pub time_step_s: f64,
-    /// Axial (thesis) bound l_min/c and the eigenvalue bound 2/ω_max [s], before damping
+    /// Axial (thesis) bound l_min/c and the eigenvalue bound 2/ω_max \[s\], before damping
     /// reduction and safety factor.
     pub axial_bound_s: f64,
     pub eigen_bound_s: f64,
     /// Steps timed per repeat, and the repeats.
     pub steps_per_repeat: u64,
     pub repeats: usize,
-    /// Median wall time of one step [ns].
+    /// Median wall time of one step \[ns\].
     pub ns_per_step: f64,
-    /// Median wall time per element and step [ns] (= ns_per_step / elements).
+    /// Median wall time per element and step \[ns\] (= ns_per_step / elements).
     pub ns_per_element_step: f64,
-    /// Fastest and slowest repeat, per element-step [ns] (noise indicator).
+    /// Fastest and slowest repeat, per element-step \[ns\] (noise indicator).
     pub ns_per_element_step_min: f64,
     pub ns_per_element_step_max: f64,
     /// Simulated seconds per wall second at the median cost.
@@ -149,7 +151,7 @@ pub struct BenchRow {
     pub gflops: f64,
     /// `gflops` over the peak of the cores used (`threads` × [`Peak::gflops_per_core`]).
     pub peak_fraction: f64,
-    /// Simulated time covered by warm-up and repeats [s].
+    /// Simulated time covered by warm-up and repeats \[s\].
     pub simulated_s: f64,
     /// Triangles of the rigid environment (0: no contact).
     pub contact_triangles: usize,
@@ -235,7 +237,7 @@ pub struct DissertationComparison {
 #[derive(Clone, Debug, Serialize)]
 pub struct Peak {
     pub gflops_per_core: f64,
-    /// Clock used [GHz] (the first `cpu MHz` of /proc/cpuinfo; 1 GHz if unknown).
+    /// Clock used \[GHz\] (the first `cpu MHz` of /proc/cpuinfo; 1 GHz if unknown).
     pub clock_ghz: f64,
     /// Flops per cycle: 2 FMA units × 4 lanes × 2 with AVX2 + FMA (AMD Zen 2/3, Intel
     /// Haswell and later), else 2 units × 2 SSE2 lanes.
@@ -405,7 +407,7 @@ pub fn world_with_floor(hoses: usize, elements: usize, floor_quads: usize) -> Re
     })
 }
 
-/// Amplitude [rad] and wavelength [m] of the tangent angle of the initial bend,
+/// Amplitude \[rad\] and wavelength \[m\] of the tangent angle of the initial bend,
 /// φ(s) = φ₀ sin(2π s / λ): curvature up to φ₀·2π/λ ≈ 7.9 1/m (bend radius ≈ 127 mm ≈ 8 d_a,
 /// a routed hose), about 0.09 rad of bending per element end.
 pub const BEND_AMPLITUDE: f64 = 0.6;
@@ -725,6 +727,15 @@ pub fn run(opts: &BenchOptions) -> Result<()> {
                 println!("{}", serde_json::to_string_pretty(&newton)?);
             } else {
                 print!("{}", crate::bench_newton::render(&newton));
+            }
+            Ok(())
+        }
+        Some(BenchOnly::Snapshot) => {
+            let rows = crate::bench_snapshot::measure(opts.quick)?;
+            if opts.json {
+                println!("{}", serde_json::to_string_pretty(&rows)?);
+            } else {
+                print!("{}", crate::bench_snapshot::render(&rows));
             }
             Ok(())
         }

@@ -34,15 +34,15 @@ use std::time::Instant;
 /// Hoses and elements per hose.
 pub const HOSES: usize = 20;
 pub const ELEMENTS_PER_HOSE: usize = 30;
-/// Hose length [m] (25 mm elements, ≈ 1.6 outer diameters of library hose 1).
+/// Hose length \[m\] (25 mm elements, ≈ 1.6 outer diameters of library hose 1).
 const HOSE_LENGTH: f64 = 0.75;
 /// The routed hose (its last node is free, held by the hand).
 const ROUTED: usize = 4;
-/// Most wall time one case's timed span may take [s] (`--quick`: 2 s); a case stopped
+/// Most wall time one case's timed span may take \[s\] (`--quick`: 2 s); a case stopped
 /// there reports the steps it took (a static step that meets a limit point follows the
 /// snap dynamically, which can take many explicit steps).
 const WALL_CAP: f64 = 40.0;
-/// Duration of the hand's path [s] (≈ 0.2 m at a worker's ≈ 0.2 m/s); the timed span
+/// Duration of the hand's path \[s\] (≈ 0.2 m at a worker's ≈ 0.2 m/s); the timed span
 /// covers all of it or its start.
 const PATH_DURATION: f64 = 1.0;
 
@@ -83,7 +83,7 @@ impl Tessellation {
 pub struct EngineBayRow {
     pub solver: &'static str,
     pub sleeping: bool,
-    /// Simulated time measured [s] and the steps it took.
+    /// Simulated time measured \[s\] and the steps it took.
     pub simulated_s: f64,
     pub steps: u64,
     pub time_step_s: f64,
@@ -92,7 +92,7 @@ pub struct EngineBayRow {
     pub realtime_factor: f64,
     /// Mean number of hoses asleep over the timed steps.
     pub hoses_asleep_mean: f64,
-    /// Peak hand force during the timed span [N].
+    /// Peak hand force during the timed span \[N\].
     pub hand_force_peak_n: f64,
     /// Why the timed span ended early, if it did — a divergence, or the wall-time cap
     /// (the row then measures the steps before it).
@@ -116,9 +116,9 @@ pub struct EngineBayBench {
     pub elements: usize,
     pub triangles: usize,
     pub tessellation: Tessellation,
-    /// Wall time to build the model (contact trees of every part) [s].
+    /// Wall time to build the model (contact trees of every part) \[s\].
     pub build_s: f64,
-    /// Wall time of the untimed static equilibrium at the start [s] (first case).
+    /// Wall time of the untimed static equilibrium at the start \[s\] (first case).
     pub presettle_s: f64,
     pub rows: Vec<EngineBayRow>,
     pub quick: bool,

@@ -21,12 +21,12 @@ use std::time::Instant;
 /// Results of the Newton rows.
 #[derive(Clone, Debug, Serialize)]
 pub struct NewtonBench {
-    /// Median wall time of one quasi-static update of the 30-element hose [ms].
+    /// Median wall time of one quasi-static update of the 30-element hose \[ms\].
     pub static_update_ms_30: f64,
     /// Mean Newton iterations per update.
     pub static_iterations_30: f64,
     pub static_goal_ms: f64,
-    /// The same with the hose held against a part: median [ms], mean iterations, and
+    /// The same with the hose held against a part: median \[ms\], mean iterations, and
     /// mean nodes in contact at the end of an update.
     pub static_update_contact_ms_30: f64,
     pub static_contact_iterations_30: f64,
@@ -38,7 +38,7 @@ pub struct NewtonBench {
     pub implicit_loglog_slope: f64,
 }
 
-/// A block 0.2 m long under the middle of the benchmark hose, its top `top` [m] high.
+/// A block 0.2 m long under the middle of the benchmark hose, its top `top` \[m\] high.
 fn block(top: f64) -> RigidPartSpec {
     let (lo, hi) = (DVec3::new(0.2, -0.3, top - 0.1), DVec3::new(0.4, 0.5, top));
     let v = |i: usize| {

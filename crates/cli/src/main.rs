@@ -1,10 +1,15 @@
 //! `pliant`: run a scene and write its time series, validate the physics against exact
 //! solutions, benchmark the solver.
+// The doc comments of the command-line types below are clap's --help text, not API
+// docs: units in brackets ("[m]") and placeholders ("<unix time>") are written as users
+// read them there.
+#![allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
 
 mod bench;
 mod bench_contact_phases;
 mod bench_engine_bay;
 mod bench_newton;
+mod bench_snapshot;
 mod calibrate_cmd;
 mod export_cmd;
 mod import_cmd;
@@ -95,6 +100,15 @@ enum Command {
     },
     /// Serve a scene interactively (the built-in demo when no scene is given): the
     /// simulation runs in real time; clients connect over WebSocket (docs/protocol.md).
+    ///
+    /// Every session is recorded as it runs (SPEC W2): a copy of the scene and every input
+    /// (grab, move, release, reset, ergonomics), stamped with the step it took effect at,
+    /// go into out/sessions/session-<unix time>/ under the current directory (the folder
+    /// is printed at start). A report of the session so far — report.html, report.json,
+    /// summary.json and the CSVs of `pliant run`, made by replaying the log — is written
+    /// into report-N/ inside that folder by the viewer's Report button, or on Ctrl-C when
+    /// the server stops. `pliant replay out/sessions/session-<unix time>` replays a session
+    /// bit for bit at any time (`--timeline edited.toml` turns it into an editable scene).
     Serve {
         /// Scene file (TOML or JSON); omit for the built-in demo.
         scene: Option<PathBuf>,
@@ -262,8 +276,9 @@ enum Command {
         /// solver with and without sleeping).
         #[arg(long = "engine-bay")]
         engine_bay: bool,
-        /// Measure one group of rows only: `contact` (5 × 30 without and with the floor)
-        /// or `newton` (the Newton solvers' rows).
+        /// Measure one group of rows only: `contact` (5 × 30 without and with the floor),
+        /// `newton` (the Newton solvers' rows) or `snapshot` (a live snapshot's cost beside
+        /// a small and a large part).
         #[arg(long, value_enum)]
         only: Option<bench::BenchOnly>,
     },

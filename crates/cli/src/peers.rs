@@ -44,10 +44,10 @@ pub enum Method {
     Implicit,
 }
 
-/// Length of the cantilever [m].
+/// Length of the cantilever \[m\].
 pub const CANTILEVER_LENGTH: f64 = 1.0;
-/// Hose length of the drop [m], cylinder radius [m] and the gap between the hose's
-/// underside and the top of the cylinder at release [m].
+/// Hose length of the drop \[m\], cylinder radius \[m\] and the gap between the hose's
+/// underside and the top of the cylinder at release \[m\].
 pub const DROP_LENGTH: f64 = 0.5;
 pub const CYLINDER_RADIUS: f64 = 0.05;
 pub const DROP_GAP: f64 = 0.01;
@@ -55,13 +55,13 @@ pub const DROP_GAP: f64 = 0.01;
 /// arm) and the friction coefficient hose–cylinder, used by every tool.
 pub const DROP_DAMPING: f64 = 8.0;
 pub const DROP_FRICTION: f64 = 0.5;
-/// Rest: translational kinetic energy below this [J] …
+/// Rest: translational kinetic energy below this \[J\] …
 pub const REST_ENERGY: f64 = 1e-6;
-/// … for this long of simulated time [s].
+/// … for this long of simulated time \[s\].
 pub const REST_WINDOW: f64 = 0.2;
-/// Give up after this much simulated time [s].
+/// Give up after this much simulated time \[s\].
 pub const DROP_MAX_TIME: f64 = 10.0;
-/// Sampling interval of the rest test [s].
+/// Sampling interval of the rest test \[s\].
 pub const DROP_SAMPLE: f64 = 1e-3;
 
 fn hose1() -> Result<(Material, Section)> {
@@ -160,7 +160,7 @@ pub struct CantileverResult {
     pub steps: u64,
     pub time_step_s: f64,
     pub simulated_s: f64,
-    /// Wall time of the solve (loads applied → converged) [s].
+    /// Wall time of the solve (loads applied → converged) \[s\].
     pub wall_s: f64,
     pub note: String,
 }
@@ -336,20 +336,20 @@ pub struct DropResult {
     pub tool: &'static str,
     pub elements: usize,
     pub at_rest: bool,
-    /// Simulated time at which the kinetic energy fell below the threshold for good [s].
+    /// Simulated time at which the kinetic energy fell below the threshold for good \[s\].
     pub rest_time_s: f64,
-    /// Simulated time run (rest time + the rest window) [s].
+    /// Simulated time run (rest time + the rest window) \[s\].
     pub simulated_s: f64,
-    /// Wall time of the run up to `simulated_s` [s].
+    /// Wall time of the run up to `simulated_s` \[s\].
     pub wall_s: f64,
     pub time_step_s: f64,
     pub steps: u64,
-    /// Final shape: height of the hose ends and the middle above the cylinder axis [m],
-    /// and the horizontal half-span between the ends [m].
+    /// Final shape: height of the hose ends and the middle above the cylinder axis \[m\],
+    /// and the horizontal half-span between the ends \[m\].
     pub tip_z_m: f64,
     pub mid_z_m: f64,
     pub half_span_m: f64,
-    /// Centre line, every node, at rest (x, z) [m].
+    /// Centre line, every node, at rest (x, z) \[m\].
     pub shape_xz: Vec<[f64; 2]>,
     pub note: String,
 }

@@ -521,15 +521,15 @@ fn meaningless_values_are_refused_and_outputs_never_hold_non_finite_numbers() {
     }
 }
 
-/// A real STEP file from `../shared/cad` (see its README), or PLIANT_CAD_FILES.
+/// A real STEP file from the repository's `data/cad` (see its README), or PLIANT_CAD_FILES.
 fn cad_file(name: &str) -> std::path::PathBuf {
     let dir = std::env::var_os("PLIANT_CAD_FILES")
         .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/cad"));
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/cad"));
     let path = dir.join(name);
     assert!(
         path.is_file(),
-        "missing real STEP file {} (shared/ beside the repository)",
+        "missing real STEP file {} (data/cad in the repository, or PLIANT_CAD_FILES)",
         path.display()
     );
     path
@@ -883,4 +883,22 @@ duration_s = 0.2
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("`duration_h` must lie in [0, 8] h"), "{err}");
+}
+
+/// `pliant serve --help` says that each session is recorded, where, and how to get its
+/// report.
+#[test]
+fn serve_help_says_where_sessions_are_recorded_and_how_to_report_them() {
+    let out = pliant().args(["serve", "--help"]).output().unwrap();
+    assert!(out.status.success());
+    let help = String::from_utf8(out.stdout).unwrap();
+    for needle in [
+        "out/sessions/session-",
+        "Report button",
+        "Ctrl-C",
+        "pliant replay",
+        "report.html",
+    ] {
+        assert!(help.contains(needle), "missing {needle:?} in:\n{help}");
+    }
 }

@@ -41,11 +41,11 @@ use glam::{DQuat, DVec3};
 pub struct BeamElement {
     pub node_a: usize,
     pub node_b: usize,
-    /// Rest length l₀ [m].
+    /// Rest length l₀ \[m\].
     pub rest_length: f64,
-    /// E_t·A [N], used when stretched.
+    /// E_t·A \[N\], used when stretched.
     pub axial_stiffness_tension: f64,
-    /// E_c·A [N], used when shortened.
+    /// E_c·A \[N\], used when shortened.
     pub axial_stiffness_compression: f64,
     /// EI₁, EI₂ [N·m²]: bending about the element frame's y and z axes (the section axes
     /// 1 and 2, [`crate::section`]).
@@ -75,7 +75,7 @@ pub struct ElementEnds {
 pub struct Deformation {
     /// Current chord direction e₁.
     pub chord_dir: DVec3,
-    /// Current chord length l [m].
+    /// Current chord length l \[m\].
     pub length: f64,
     /// Current element frame E (local → global).
     pub frame: DQuat,
@@ -88,7 +88,7 @@ pub struct Deformation {
 pub struct ElementLoads {
     pub force: [DVec3; 2],
     pub moment: [DVec3; 2],
-    /// Axial force N (positive in tension) [N], for reporting.
+    /// Axial force N (positive in tension) \[N\], for reporting.
     pub axial_force: f64,
 }
 
@@ -177,7 +177,7 @@ impl BeamElement {
     }
 
     /// Internal nodal loads, including stiffness-proportional Rayleigh damping with
-    /// coefficient `beta` [s] acting on the rates of the same local deformations.
+    /// coefficient `beta` \[s\] acting on the rates of the same local deformations.
     pub fn loads(&self, ends: &ElementEnds, beta: f64) -> ElementLoads {
         let l = self.loads_of::<f64>(
             [ends.x[0].into(), ends.x[1].into()],
@@ -272,7 +272,7 @@ impl BeamElement {
         (ma, mb)
     }
 
-    /// Strain energy of the local law [J].
+    /// Strain energy of the local law \[J\].
     pub fn strain_energy(&self, x: [DVec3; 2], q: [DQuat; 2]) -> f64 {
         let d = self.deformation(x, q);
         let l0 = self.rest_length;

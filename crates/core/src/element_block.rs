@@ -76,7 +76,7 @@ pub struct ElementBlock {
     /// Lanes holding elements (1 … 4).
     pub lanes: usize,
     /// Four elements in a chain: element k joins nodes `node_a[0] + k` and `node_a[0] + k + 1`
-    /// (a hose's interior; their loads are added to the five nodes at once, [`add_chained`]).
+    /// (a hose's interior; their loads are added to the five nodes at once, `add_chained`).
     pub chain: bool,
     rest_length: F4,
     inv_rest_length: F4,

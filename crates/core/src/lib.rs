@@ -5,8 +5,8 @@
 //! its work with helper threads ([`parallel`]), with the same results on any number.
 //!
 //! Calling convention (as MuJoCo's): a [`Model`] is built once from a [`WorldSpec`]; a
-//! [`State`] holds everything that changes; [`explicit::step`]`(&model, &mut state)`
-//! advances it.
+//! [`State`] holds everything that changes; [`integrators::explicit::step`]`(&model, &mut
+//! state)` advances it (the implicit and quasi-static solvers: [`Solver`]).
 
 pub mod autodiff;
 pub mod body_loads;

@@ -5,11 +5,11 @@ use serde::{Deserialize, Serialize};
 /// Elastic material of a hose wall. All values SI: moduli in Pa, density in kg/m³.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Material {
-    /// Young's modulus in tension E_t [Pa]; used for axial extension.
+    /// Young's modulus in tension E_t \[Pa\]; used for axial extension.
     pub e_tension: f64,
-    /// Young's modulus in compression E_c [Pa]; used for axial shortening.
+    /// Young's modulus in compression E_c \[Pa\]; used for axial shortening.
     pub e_compression: f64,
-    /// Explicit bending modulus [Pa]. `None` → the reduced (bimodular) modulus
+    /// Explicit bending modulus \[Pa\]. `None` → the reduced (bimodular) modulus
     /// E_b = 4 E_t E_c / (√E_t + √E_c)² (SPEC M3).
     pub e_bending: Option<f64>,
     /// Poisson's ratio ν [-]; G = E_b / (2 (1 + ν)).

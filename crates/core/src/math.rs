@@ -68,7 +68,7 @@ pub fn log_map_of<T: Scalar>(q: Quat<T>) -> V3<T> {
 
 /// Moment conjugate to a change of the rotation vector θ, mapped to the moment conjugate
 /// to a spatial (left) rotation increment: m = J_l(θ)⁻ᵀ M, with
-/// J_l⁻¹(θ) = I − ½[θ]× + (1/θ² − (1 + cos θ)/(2 θ sin θ)) [θ]×²
+/// J_l⁻¹(θ) = I − ½\[θ\]× + (1/θ² − (1 + cos θ)/(2 θ sin θ)) \[θ\]×²
 /// (e.g. Bullo & Murray 1995; Ibrahimbegović 1997, eq. 2.19).
 pub fn left_jacobian_inverse_transpose_times(theta: DVec3, moment: DVec3) -> DVec3 {
     left_jacobian_inverse_transpose_times_of(V3::from(theta), V3::from(moment)).into()

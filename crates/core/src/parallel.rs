@@ -304,32 +304,38 @@ mod tests {
         assert_eq!(n.load(SeqCst), 8);
     }
 
-    /// With a helper, two chunks really run at the same time.
+    /// With a helper, two chunks really run at the same time: each chunk waits until
+    /// both have started, which only a second thread can bring about (the caller, stuck
+    /// in its chunk, cannot claim the other). A pool of its own, so that no other test's
+    /// job keeps the lock or the helper busy (the pool would then rightly run the job
+    /// alone). Were the chunks run one after the other, the first would wait for ever;
+    /// the bound on the wait only turns that hang into a failure.
     #[test]
-    fn two_threads_run_concurrently() {
-        if Pool::global().helpers() == 0 {
-            return; // one core
-        }
-        let started = AtomicUsize::new(0);
-        let met = AtomicBool::new(false);
-        // the helper may be asleep or busy elsewhere: try a few jobs
-        for _ in 0..20 {
-            started.store(0, SeqCst);
-            Pool::global().run(2, 2, &|_| {
-                started.fetch_add(1, SeqCst);
-                let t = Instant::now();
-                while t.elapsed() < Duration::from_millis(100) {
-                    if started.load(SeqCst) == 2 {
-                        met.store(true, SeqCst);
-                        break;
-                    }
-                    std::hint::spin_loop();
+    fn two_chunks_run_at_the_same_time_on_a_helper() {
+        use std::sync::{Condvar, Mutex};
+        let pool = Pool::start(1);
+        assert_eq!(pool.helpers(), 1);
+        let started = Mutex::new(0usize);
+        let both = Condvar::new();
+        let met = AtomicUsize::new(0);
+        for _ in 0..3 {
+            *started.lock().unwrap() = 0;
+            pool.run(2, 2, &|_| {
+                let mut n = started.lock().unwrap();
+                *n += 1;
+                both.notify_all();
+                let (n, wait) = both
+                    .wait_timeout_while(n, Duration::from_secs(120), |n| *n < 2)
+                    .unwrap();
+                if !wait.timed_out() && *n == 2 {
+                    met.fetch_add(1, SeqCst);
                 }
             });
-            if met.load(SeqCst) {
-                return;
-            }
         }
-        panic!("the two chunks never ran at the same time");
+        assert_eq!(
+            met.load(SeqCst),
+            6,
+            "the two chunks did not run at the same time"
+        );
     }
 }

@@ -15,9 +15,9 @@ use std::f64::consts::PI;
 /// [`Section::given`] says otherwise, the source of stiffness and mass).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Section {
-    /// Inner diameter d_i [m] (0 for a solid rod).
+    /// Inner diameter d_i \[m\] (0 for a solid rod).
     pub d_inner: f64,
-    /// Outer diameter d_a [m].
+    /// Outer diameter d_a \[m\].
     pub d_outer: f64,
     /// Stiffness and mass given directly (each `None` → from the tube and the material).
     #[serde(default)]
@@ -27,7 +27,7 @@ pub struct Section {
 /// Section properties given directly instead of from the tube and the material (S3).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct GivenStiffness {
-    /// Axial stiffness EA [N], the same in tension and compression.
+    /// Axial stiffness EA \[N\], the same in tension and compression.
     pub axial: Option<f64>,
     /// Bending stiffnesses EI₁ (about section axis 1 = y) and EI₂ (about axis 2 = z)
     /// [N·m²].
@@ -60,9 +60,9 @@ impl GivenStiffness {
 /// from a [`Section`] and a [`Material`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SectionProperties {
-    /// E_t·A [N], used when stretched.
+    /// E_t·A \[N\], used when stretched.
     pub axial_tension: f64,
-    /// E_c·A [N], used when shortened.
+    /// E_c·A \[N\], used when shortened.
     pub axial_compression: f64,
     /// EI₁, EI₂ [N·m²] (about section axes 1 = y and 2 = z).
     pub bending: [f64; 2],
@@ -121,22 +121,22 @@ impl Section {
         }
     }
 
-    /// Area A = π/4 (d_a² − d_i²) [m²].
+    /// Area A = π/4 (d_a² − d_i²) \[m²\].
     pub fn area(&self) -> f64 {
         PI / 4.0 * (self.d_outer.powi(2) - self.d_inner.powi(2))
     }
 
-    /// Second moment of area I = π/64 (d_a⁴ − d_i⁴) [m⁴].
+    /// Second moment of area I = π/64 (d_a⁴ − d_i⁴) \[m⁴\].
     pub fn second_moment(&self) -> f64 {
         PI / 64.0 * (self.d_outer.powi(4) - self.d_inner.powi(4))
     }
 
-    /// Polar moment J = 2 I [m⁴].
+    /// Polar moment J = 2 I \[m⁴\].
     pub fn polar_moment(&self) -> f64 {
         2.0 * self.second_moment()
     }
 
-    /// Outer radius [m].
+    /// Outer radius \[m\].
     pub fn outer_radius(&self) -> f64 {
         0.5 * self.d_outer
     }

@@ -16,7 +16,7 @@ use glam::DVec3;
 /// When to stop relaxing.
 #[derive(Clone, Copy, Debug)]
 pub struct SettleOptions {
-    /// Largest allowed out-of-balance force on a free node [N].
+    /// Largest allowed out-of-balance force on a free node \[N\].
     pub force_tolerance: f64,
     /// Largest allowed out-of-balance moment on a free node [N·m].
     pub moment_tolerance: f64,

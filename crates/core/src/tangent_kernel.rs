@@ -27,7 +27,7 @@
 //! rounding (a test checks this on random elements).
 //!
 //! Plain `+ − × ÷ √` only (no fused multiply–add), so the copy compiled for AVX2
-//! ([`block_tangent_rows`]) gives the same bits as the portable one.
+//! (`block_tangent_rows`) gives the same bits as the portable one.
 
 use crate::autodiff::{Dual, LaneDual, Quat, Scalar, V3};
 use crate::element::{BeamElement, ElementEnds};

@@ -28,7 +28,7 @@ pub struct TimeStepReport {
     pub eigen_bound: f64,
     /// The estimated highest natural frequency ω_max [rad/s].
     pub max_frequency: f64,
-    /// The stiffness-proportional damping β used [s].
+    /// The stiffness-proportional damping β used \[s\].
     pub damping_stiffness: f64,
     /// The undamped-safe critical step with damping reduction, before the safety factor.
     pub critical: f64,

@@ -10,6 +10,7 @@ use crate::scene::Scene;
 use glam::DVec3;
 use numpy::{PyArray1, PyArray3};
 use pliant_assembly::ergonomics::ErgonomicProfile;
+use pliant_assembly::report::part_outline::part_outlines;
 use pliant_assembly::report::write_reports;
 use pliant_assembly::{
     run_timeline as run_on, RunSummary, Runner, Stage, Verdict, WorkcellOptions,
@@ -420,6 +421,7 @@ impl RunResult {
                 &out,
                 &self.scene_name,
                 &self.run,
+                &part_outlines(&self.model.environment),
                 self.diverged.as_deref(),
                 &self.data.hand_samples,
                 &self.profile,

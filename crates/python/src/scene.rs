@@ -238,7 +238,8 @@ impl Scene {
         self.scene.record_interval
     }
 
-    /// The explicit time step the model uses [s].
+    /// The explicit solver's stable time step of the model [s]. A simulation with the
+    /// implicit or static solver advances by its own step (``Simulation.time_step``).
     #[getter]
     fn time_step(&self) -> f64 {
         self.model.time_step

@@ -1,9 +1,10 @@
 //! `pliant.Simulation`: step or settle a scene interactively — add and remove load
 //! cases, grab and move hands, read positions, orientations and forces as numpy arrays.
 //!
-//! Solvers are methods: `step`/`run` advance the explicit dynamics, `settle` relaxes to
-//! static equilibrium (settle.rs). A further solver (e.g. an implicit or quasi-static
-//! one) is one more method here calling its own file's `Engine` method.
+//! `step`/`run` advance the simulation with its solver — explicit, implicit or
+//! quasi-static, chosen by the scene or by `Simulation(scene, solver=…)`; `settle` relaxes
+//! to static equilibrium with the explicit step (settle.rs); `solve_static` takes one
+//! equilibrium solve of the quasi-static solver.
 
 use crate::args::{hose_index, hose_node, points, quaternion, seconds, vec3, HoseRef};
 use crate::arrays::{quaternion as quat_array, quaternions, to_python, vector, vectors};
@@ -44,7 +45,7 @@ fn refused(r: Refusal) -> PyErr {
 /// >>> sim = pliant.Simulation(pliant.demo_scene())
 /// >>> sim.time
 /// 0.0
-/// >>> sim.run(0.05)                  # explicit dynamics for 0.05 s; returns the steps
+/// >>> sim.run(0.05)                  # 0.05 s with the scene's solver; returns the steps
 /// 206
 /// >>> sim.positions("lower").shape   # (nodes, 3) [m]
 /// (16, 3)
@@ -310,7 +311,8 @@ impl Simulation {
 
     // ---- stepping ---------------------------------------------------------------
 
-    /// Advances the explicit dynamics by ``n`` time steps.
+    /// Advances the simulation by ``n`` time steps of its solver (:attr:`solver`:
+    /// explicit, implicit or static; :attr:`time_step` long each).
     ///
     /// Raises :class:`SimulationDiverged` (step, node, likely cause) if the state blows
     /// up; the simulation then refuses to step until :meth:`reset`.
@@ -325,8 +327,9 @@ impl Simulation {
         self.advance(py, n)
     }
 
-    /// Advances the explicit dynamics by ``seconds`` of simulated time (rounded to
-    /// whole steps); returns the number of steps taken.
+    /// Advances the simulation by ``seconds`` of simulated time with its solver
+    /// (:attr:`solver`), rounded to whole steps of :attr:`time_step`; returns the number
+    /// of steps taken.
     fn run(&mut self, py: Python<'_>, seconds: f64) -> PyResult<u64> {
         let d = crate::args::seconds(seconds, "seconds", true)?;
         let n = self.steps_for(d);

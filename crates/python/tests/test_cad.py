@@ -1,5 +1,5 @@
 """STEP import (pliant.cad): the converter on real files from several CAD writers
-(``../shared/cad`` beside the repository), its GLB, its errors and curves."""
+(``data/cad`` in the repository), its GLB, its errors and curves."""
 
 import json
 import os
@@ -11,13 +11,13 @@ import pytest
 from pliant.cad import StepError, check_part21, convert, extract_curve
 
 REPO = Path(__file__).resolve().parents[3]
-CAD = Path(os.environ.get("PLIANT_CAD_FILES", REPO.parent / "shared" / "cad"))
+CAD = Path(os.environ.get("PLIANT_CAD_FILES", REPO / "data" / "cad"))
 ROUTE = REPO / "crates" / "scene" / "tests" / "data" / "cad" / "route.step"
 
 
 def cad(name):
     path = CAD / name
-    assert path.is_file(), "missing real STEP file %s (shared/ beside the repository)" % path
+    assert path.is_file(), "missing real STEP file %s (data/cad in the repository, or PLIANT_CAD_FILES)" % path
     return str(path)
 
 

@@ -544,11 +544,25 @@ def test_scene_values_are_set_in_every_run_and_checked_on_load(scene_path):
             load_study(dict(d, scene_values=values))
 
 
-def test_an_existing_cluster_by_its_scheduler_address(client, scene_path, tmp_path):
+def test_an_existing_cluster_by_its_scheduler_address(client, scene_path, tmp_path, capsys):
     result = pliant.study(study_dict(scene_path, runs=3, absurd=False), str(tmp_path / "o"),
                           scheduler=client.scheduler.address, progress=False)
     assert list(result.frame["status"]) == ["ok"] * 3
     assert len(client.scheduler_info()["workers"]) == 2  # the cluster is still there
+    # the dashboard named is that scheduler's own: its host, its dashboard's port
+    host = client.scheduler.address.split("://")[1].rsplit(":", 1)[0]
+    port = client.scheduler_info()["services"]["dashboard"]
+    lines = [s for s in capsys.readouterr().err.splitlines() if s.startswith("Dask dashboard")]
+    assert len(lines) == 1 and f"{host}:{port}/" in lines[0], lines
+
+
+def test_a_scheduler_without_a_dashboard_has_no_dashboard_link():
+    from distributed import Client, LocalCluster
+    from pliant.studies.cluster import dashboard_link
+
+    with LocalCluster(n_workers=0, processes=False, dashboard_address=None) as cluster:
+        with Client(cluster.scheduler_address) as remote:
+            assert dashboard_link(remote) is None
 
 
 def test_a_study_stopped_midway_resumes_where_it_stopped(scene_path, tmp_path):

@@ -14,19 +14,19 @@
 
 use crate::error::FieldError;
 
-/// Memory a run needs per beam element [bytes] (measured, see the module doc; rounded up).
+/// Memory a run needs per beam element \[bytes\] (measured, see the module doc; rounded up).
 pub const BYTES_PER_ELEMENT: u64 = 4096;
-/// Memory a run needs per rigid-part triangle [bytes] (measured, rounded up).
+/// Memory a run needs per rigid-part triangle \[bytes\] (measured, rounded up).
 pub const BYTES_PER_TRIANGLE: u64 = 512;
-/// Memory of a run with an empty scene [bytes] (program, library, buffers).
+/// Memory of a run with an empty scene \[bytes\] (program, library, buffers).
 pub const BASE_BYTES: u64 = 16 * 1024 * 1024;
-/// Default memory limit of a scene [bytes]: 4 GiB.
+/// Default memory limit of a scene \[bytes\]: 4 GiB.
 pub const DEFAULT_MAX_MEMORY_BYTES: u64 = 4 * 1024 * 1024 * 1024;
 
 /// Limits a scene is checked against while it loads.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Limits {
-    /// Largest estimated memory of a run [bytes].
+    /// Largest estimated memory of a run \[bytes\].
     pub max_memory_bytes: u64,
     /// Most beam elements (bounds the cost of one step; `pliant serve` limits the
     /// scenes its clients send so that no scene stalls the session).
@@ -68,7 +68,7 @@ pub struct Estimate {
 }
 
 impl Estimate {
-    /// Estimated peak memory of a run [bytes].
+    /// Estimated peak memory of a run \[bytes\].
     pub fn memory_bytes(&self) -> u64 {
         BASE_BYTES
             .saturating_add(self.elements.saturating_mul(BYTES_PER_ELEMENT))

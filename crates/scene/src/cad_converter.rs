@@ -124,7 +124,7 @@ fn run(args: &[&std::ffi::OsStr]) -> Result<String, String> {
 }
 
 /// Converts `step` to the GLB `out` (one named node per solid, metres) with a chord
-/// tolerance [m]. The converter writes `out` atomically.
+/// tolerance \[m\]. The converter writes `out` atomically.
 pub fn import_step(step: &Path, out: &Path, tolerance_m: f64) -> Result<(), String> {
     let tol = format!("{tolerance_m:e}");
     run(&[
@@ -151,7 +151,7 @@ struct CurveFile {
     points: Vec<[f64; 3]>,
 }
 
-/// Samples one curve of `step` into points within `tolerance_m` [m] of it (metres),
+/// Samples one curve of `step` into points within `tolerance_m` \[m\] of it (metres),
 /// through the JSON file `out` (kept as the cache).
 pub fn sample_curve(
     step: &Path,

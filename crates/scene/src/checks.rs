@@ -8,7 +8,7 @@ use crate::validate::positive;
 use pliant_assembly::checks::{CheckSettings, HoseCheckLimits};
 
 /// Checks `[checks]` (all on with the defaults when absent); `interval` is the scene's
-/// record interval [s] (the checked instants).
+/// record interval \[s\] (the checked instants).
 pub fn build_checks(
     raw: Option<&ChecksSection>,
     hoses: &[HoseDiscretisation],

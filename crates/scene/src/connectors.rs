@@ -72,9 +72,9 @@ fn d_outer_at(hose: &HoseSpec, node: usize) -> f64 {
     hose.node_section(node).d_outer
 }
 
-/// Shortest stub [m]: shorter ones are meaningless (and their force law divides by it).
+/// Shortest stub \[m\]: shorter ones are meaningless (and their force law divides by it).
 pub const MIN_STUB_LENGTH: f64 = 1e-3;
-/// Largest clip snap force [N]: a hand pushes at most a few hundred newtons.
+/// Largest clip snap force \[N\]: a hand pushes at most a few hundred newtons.
 pub const MAX_SNAP_FORCE: f64 = 1e4;
 
 /// A length in metres, written in the file's unit (rounded to 1e-9 of it, so that

@@ -13,7 +13,7 @@
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 
-/// Default cap on one mesh file [bytes] (a 256 MiB STL holds about 5 million triangles,
+/// Default cap on one mesh file \[bytes\] (a 256 MiB STL holds about 5 million triangles,
 /// the per-part limit [`crate::MAX_TRIANGLES`]).
 pub const DEFAULT_MAX_FILE_BYTES: u64 = 256 * 1024 * 1024;
 
@@ -26,7 +26,7 @@ pub struct FileAccess {
     subdir: PathBuf,
     /// Confine every read to `base_dir` and keep errors free of paths and content.
     sandboxed: bool,
-    /// Largest file read [bytes].
+    /// Largest file read \[bytes\].
     pub max_file_bytes: u64,
 }
 

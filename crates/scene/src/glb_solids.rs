@@ -14,7 +14,7 @@ pub struct ImportFacts {
     /// SHA-256 of the STEP file's bytes (hex).
     #[serde(default)]
     pub source_sha256: String,
-    /// Chord tolerance of the tessellation [m].
+    /// Chord tolerance of the tessellation \[m\].
     #[serde(default)]
     pub tolerance_m: f64,
     /// The converter's version.

@@ -42,7 +42,7 @@ pub struct LibraryEntry {
     pub material: Material,
     /// The hose's own cross-section, SI; the default for hoses of this material.
     pub section: Section,
-    /// Smallest bend radius of the centre line [m] (installation check, SPEC V3).
+    /// Smallest bend radius of the centre line \[m\] (installation check, SPEC V3).
     pub min_bend_radius: f64,
     /// Every value with its provenance.
     pub values: Vec<LibraryValue>,

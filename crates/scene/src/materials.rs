@@ -21,12 +21,12 @@ pub struct Resolved {
     pub material: Material,
     /// Default cross-section, SI (library hoses only).
     pub default_section: Option<Section>,
-    /// Minimum bend radius of the centre line [m], where the data gives one (library
+    /// Minimum bend radius of the centre line \[m\], where the data gives one (library
     /// hoses; scene materials with `min_bend_radius_mm`).
     pub min_bend_radius: Option<f64>,
 }
 
-/// The minimum bend radius of the centre line [m] of a hose of section `s` whose
+/// The minimum bend radius of the centre line \[m\] of a hose of section `s` whose
 /// material gives none: 6 × d_inner to the inside of the bend, the rule for
 /// mandrel-built rubber hoses (BTR hose catalogue; an assumption, see
 /// `data/materials.toml`), i.e. 6 d_inner + d_outer / 2.

@@ -17,7 +17,7 @@ use glam::DVec3;
 /// Most points a route may have.
 pub const MAX_ROUTE_POINTS: usize = 1_000_000;
 
-/// The route's start and segments [m]; `field` is `hoses[i].route`.
+/// The route's start and segments \[m\]; `field` is `hoses[i].route`.
 pub fn route_segments(
     field: &str,
     route: &RouteEntry,

@@ -16,16 +16,16 @@ use std::path::{Path, PathBuf};
 /// The cache folder, beside the scene (relative to its base folder).
 pub const CACHE_DIR: &str = ".pliant-cache";
 
-/// Default chord tolerance of a STEP tessellation [m] (0.5 mm: a hose of 10–40 mm
+/// Default chord tolerance of a STEP tessellation \[m\] (0.5 mm: a hose of 10–40 mm
 /// diameter meets a surface within 2–5 % of its radius).
 pub const DEFAULT_CHORD_TOLERANCE: f64 = 0.5e-3;
 
-/// Default tolerance of a sampled STEP route curve [m] (largest distance of the
+/// Default tolerance of a sampled STEP route curve \[m\] (largest distance of the
 /// polyline through the samples from the CAD curve).
 pub const DEFAULT_CURVE_TOLERANCE: f64 = 0.01e-3;
 
 /// The cache key of `what` (e.g. "mesh", "curve name=…") made from a STEP file's bytes
-/// with a tolerance [m]: 16 hex digits.
+/// with a tolerance \[m\]: 16 hex digits.
 pub fn cache_key(step_bytes: &[u8], tolerance_m: f64, what: &str) -> String {
     let mut h = Sha256::new();
     h.update(Sha256::digest(step_bytes));
@@ -127,7 +127,7 @@ pub fn cached_mesh(files: &FileAccess, step: &str, tolerance_m: f64) -> Result<C
     })
 }
 
-/// The points of one curve of the STEP file `step` sampled within `tolerance_m` [m]
+/// The points of one curve of the STEP file `step` sampled within `tolerance_m` \[m\]
 /// (metres), from the cache or by sampling it (never in a sandbox).
 pub fn cached_curve(
     files: &FileAccess,

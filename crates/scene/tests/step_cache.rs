@@ -12,11 +12,11 @@ use std::time::Instant;
 fn cad_file(name: &str) -> PathBuf {
     let dir = std::env::var_os("PLIANT_CAD_FILES")
         .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/cad"));
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/cad"));
     let path = dir.join(name);
     assert!(
         path.is_file(),
-        "missing real STEP file {} (shared/ beside the repository, or PLIANT_CAD_FILES)",
+        "missing real STEP file {} (data/cad in the repository, or PLIANT_CAD_FILES)",
         path.display()
     );
     path

@@ -1,5 +1,5 @@
-//! STEP import on real files from seven CAD writers (`../shared/cad/` beside the
-//! repository, see its README for sources and licences): solids, names, placements,
+//! STEP import on real files from seven CAD writers (`data/cad/` in the repository, see
+//! its README for sources and licences): solids, names, placements,
 //! units, tessellation tolerance, errors on broken files, skipped-solid warnings. Needs
 //! the importer (`scripts/install-cad.sh`, which `scripts/test.sh` runs); without it
 //! these tests fail and say so.
@@ -9,14 +9,14 @@ use pliant_scene::cad_converter::find_python;
 use pliant_scene::{load_scene_str_in, LoadedScene};
 use std::path::{Path, PathBuf};
 
-/// The real STEP files: `PLIANT_CAD_FILES`, else `../shared/cad` beside the repository.
+/// The real STEP files: `PLIANT_CAD_FILES`, else the repository's `data/cad`.
 fn cad_dir() -> PathBuf {
     let dir = std::env::var_os("PLIANT_CAD_FILES")
         .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/cad"));
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/cad"));
     assert!(
         dir.join("README.md").is_file(),
-        "the real STEP files are missing: expected {} (the shared/ folder beside the repository), or set PLIANT_CAD_FILES",
+        "the real STEP files are missing: expected {} (data/cad in the repository), or set PLIANT_CAD_FILES",
         dir.display()
     );
     dir

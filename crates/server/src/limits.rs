@@ -4,11 +4,11 @@
 use pliant_scene::{Limits, LoadOptions};
 use std::time::{Duration, Instant};
 
-/// Largest text message a client may send [bytes]; larger ones get `message_too_large`.
+/// Largest text message a client may send \[bytes\]; larger ones get `message_too_large`.
 pub const MAX_MESSAGE_BYTES: usize = 64 * 1024;
 /// Hard cap on a WebSocket message: above this the connection is closed (protects memory).
 pub const HARD_MAX_MESSAGE_BYTES: usize = 1024 * 1024;
-/// Largest `load_scene` message (a scene file's text) [bytes].
+/// Largest `load_scene` message (a scene file's text) \[bytes\].
 pub const MAX_SCENE_MESSAGE_BYTES: usize = HARD_MAX_MESSAGE_BYTES;
 /// Messages per second a client may send on average.
 pub const MAX_MESSAGES_PER_SECOND: f64 = 200.0;
@@ -25,9 +25,9 @@ pub const MAX_CLIENT_ELEMENTS: u64 = 20_000;
 /// Most part triangles of a scene a client sends: every client receives them in the
 /// `welcome` (≈ 40 bytes of JSON each, ≈ 40 MB at the limit).
 pub const MAX_CLIENT_TRIANGLES: u64 = 1_000_000;
-/// Memory limit of a scene a client sends [bytes] (at most the server's own).
+/// Memory limit of a scene a client sends \[bytes\] (at most the server's own).
 pub const MAX_CLIENT_MEMORY_BYTES: u64 = 1_000_000_000;
-/// Largest mesh file a client's scene may name [bytes].
+/// Largest mesh file a client's scene may name \[bytes\].
 pub const MAX_CLIENT_MESH_BYTES: u64 = 64 * 1024 * 1024;
 
 /// How scenes sent with `load_scene` are loaded: confined to the served folder

@@ -14,7 +14,7 @@ pub const PROTOCOL_VERSION: u32 = 1;
 pub enum ClientMessage {
     /// Must come first; the server answers `welcome` and starts sending snapshots.
     Hello { version: u32 },
-    /// Grab the beam nearest to `position` [m] with hand `hand_id`; `grip` "firm"
+    /// Grab the beam nearest to `position` \[m\] with hand `hand_id`; `grip` "firm"
     /// (default), "axial" or "ball" (the hose may turn in the hand).
     Grab {
         hand_id: HandId,
@@ -22,7 +22,7 @@ pub enum ClientMessage {
         #[serde(default, skip_serializing_if = "pliant_assembly::Grip::is_firm")]
         grip: pliant_assembly::Grip,
     },
-    /// Set the hand's target pose: position [m], orientation as a unit quaternion
+    /// Set the hand's target pose: position \[m\], orientation as a unit quaternion
     /// `[x, y, z, w]` (kept when omitted).
     Move {
         hand_id: HandId,
@@ -162,10 +162,10 @@ pub struct SceneSource {
 pub struct LibraryHose {
     pub name: String,
     pub description: String,
-    /// The library hose's own cross-section [m]: the default `section`.
+    /// The library hose's own cross-section \[m\]: the default `section`.
     pub d_inner: f64,
     pub d_outer: f64,
-    /// Smallest bend radius of the centre line [m].
+    /// Smallest bend radius of the centre line \[m\].
     pub min_bend_radius: f64,
 }
 

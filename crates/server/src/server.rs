@@ -8,7 +8,7 @@
 //! One bad request never takes the server down: a panic while handling one client ends that
 //! client's connection only (it is caught, logged and its hands are released), a panic in
 //! the scene loader is an `invalid_scene` reply, and the shared locks recover from a panic
-//! of an earlier holder ([`lock`]).
+//! of an earlier holder (`lock`).
 
 use crate::access::{token_in_query, Access};
 use crate::limits::{
@@ -43,7 +43,7 @@ use tokio::sync::watch;
 /// Most snapshots sent to one client per second, as a rule.
 pub const SNAPSHOT_HZ: f64 = 60.0;
 /// After a client's accepted command, the first snapshot published after it goes out to
-/// that client without waiting for the 60 Hz pacing, but at most this often [Hz]: the
+/// that client without waiting for the 60 Hz pacing, but at most this often \[Hz\]: the
 /// reply to input comes sooner (lower hand-to-screen latency), and a client gets at most as
 /// many extra snapshots as it sends commands.
 pub const INPUT_SNAPSHOT_HZ: f64 = 240.0;

@@ -20,7 +20,9 @@ use pliant_assembly::fasteners::FastenerSample;
 use pliant_assembly::report::{replay_with_outputs, Summary};
 use pliant_assembly::workcell::log::{InputLog, LogHeader};
 use pliant_assembly::workcell::StampedInput;
-use pliant_assembly::{Applied, Input, NoObserver, Stage, Verdict, Workcell, WorkcellOptions};
+use pliant_assembly::{
+    Applied, ClipSite, Input, NoObserver, Stage, StubSite, Verdict, Workcell, WorkcellOptions,
+};
 use pliant_core::SolverKind;
 use pliant_scene::session::{start_session_folder, write_session_folder};
 use pliant_scene::LoadedScene;
@@ -126,15 +128,7 @@ pub struct Session {
 impl Session {
     /// Builds the workcell of `scene` and starts its simulation thread.
     pub fn start(scene: &LoadedScene, options: SessionOptions) -> Result<Session, SessionError> {
-        let setup = scene.workcell_setup().map_err(SessionError::Model)?;
-        let sites = (setup.stubs.clone(), setup.clips.clone());
-        let cell_options = WorkcellOptions {
-            solver: options.solver,
-            sleeping: true, // hoses far from the action sleep (SPEC I6)
-            recovery: true, // a divergence is rolled back, not reset (issue 12, item 6)
-            ..Default::default()
-        };
-        let mut cell = Workcell::new(setup, cell_options).map_err(SessionError::Model)?;
+        let (mut cell, sites, cell_options) = live_workcell(scene, options.solver)?;
         if let Some(dir) = &options.folder {
             let file =
                 start_session_folder(dir, scene, &cell).map_err(|e| SessionError::Folder {
@@ -297,6 +291,43 @@ impl Session {
             .map(|n| dir.join(format!("report-{n}")))
             .find(|p| !p.exists())
     }
+}
+
+/// The stub and clip sites a workcell was built with.
+type FastenerSites = (Vec<StubSite>, Vec<ClipSite>);
+
+/// The workcell of a live session on `scene`, the fastener sites it was built with and
+/// its options: hoses far from the action sleep (SPEC I6), a divergence is rolled back
+/// rather than reset.
+fn live_workcell(
+    scene: &LoadedScene,
+    solver: Option<SolverKind>,
+) -> Result<(Workcell, FastenerSites, WorkcellOptions), SessionError> {
+    let setup = scene.workcell_setup().map_err(SessionError::Model)?;
+    let sites = (setup.stubs.clone(), setup.clips.clone());
+    let options = WorkcellOptions {
+        solver,
+        sleeping: true,
+        recovery: true,
+        ..Default::default()
+    };
+    let cell = Workcell::new(setup, options).map_err(SessionError::Model)?;
+    Ok((cell, sites, options))
+}
+
+/// The mean wall-clock cost of one snapshot of a live session on `scene` (at rest,
+/// paused, on the calling thread) over `count` snapshots after one warm-up: what the
+/// simulation thread pays up to 240 times a second besides stepping. For `pliant bench
+/// --only snapshot`; nothing asserts a time.
+pub fn snapshot_cost(scene: &LoadedScene, count: u32) -> Result<Duration, SessionError> {
+    let (cell, _, _) = live_workcell(scene, None)?;
+    let mut sim = Sim::new(cell, Arc::new(AtomicU64::new(0)), true);
+    std::hint::black_box(sim.snapshot(0.0));
+    let started = Instant::now();
+    for _ in 0..count {
+        std::hint::black_box(sim.snapshot(0.0));
+    }
+    Ok(started.elapsed() / count.max(1))
 }
 
 impl Drop for Session {
@@ -660,7 +691,7 @@ impl Sim {
                 report,
             })
             .collect::<Vec<_>>();
-        let summary = self.cell.report_summary();
+        let summary = self.cell.summary();
         let checks = summary
             .checks
             .violations
@@ -701,4 +732,67 @@ impl Sim {
 fn finite(v: DVec3) -> [f64; 3] {
     let v = if v.is_finite() { v } else { DVec3::ZERO };
     v.to_array()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use pliant_assembly::report::part_outline::computed_on_this_thread;
+
+    /// A hose above a ball of 1280 triangles.
+    const SCENE: &str = r#"
+format = "pliant-scene"
+version = 1
+length_unit = "mm"
+
+[[parts]]
+name = "ball"
+sphere = { radius = 100, subdivisions = 3 }
+position = [250, 0, -200]
+
+[[hoses]]
+name = "hose"
+material = "hose1"
+start = [0, 0, 0]
+path = [{ line = { to = [500, 0, 0] } }]
+elements = 10
+"#;
+
+    fn scene() -> LoadedScene {
+        pliant_scene::load_scene_str_in(SCENE, "ball.toml", Path::new(".")).unwrap()
+    }
+
+    /// The parts' outlines are presentation: a snapshot (the live path) never computes
+    /// them, a report computes them once.
+    #[test]
+    fn snapshots_never_compute_part_outlines_and_a_report_computes_them_once() {
+        let scene = scene();
+        let (cell, _, _) = live_workcell(&scene, None).unwrap();
+        let mut sim = Sim::new(cell, Arc::new(AtomicU64::new(0)), false);
+        let before = computed_on_this_thread();
+        for _ in 0..5 {
+            assert!(sim.step());
+            let snapshot = sim.snapshot(1.0);
+            assert_eq!(snapshot.hoses.len(), 1);
+        }
+        assert_eq!(
+            computed_on_this_thread(),
+            before,
+            "a snapshot computed outlines"
+        );
+
+        let dir = tempfile::tempdir().unwrap();
+        let session = Session::start(
+            &scene,
+            SessionOptions {
+                paused: true,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        session.send(Command::Step(3)).unwrap();
+        session.report(dir.path()).unwrap();
+        assert_eq!(computed_on_this_thread(), before + 1);
+        assert!(dir.path().join("report.html").is_file());
+    }
 }

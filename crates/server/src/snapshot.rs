@@ -12,7 +12,7 @@ use std::sync::OnceLock;
 pub struct SceneData {
     pub scene: String,
     pub source: String,
-    /// Integrator time step [s].
+    /// Integrator time step \[s\].
     pub time_step: f64,
     pub hoses: Vec<HoseData>,
     pub parts: Vec<PartData>,
@@ -30,9 +30,9 @@ pub struct SceneData {
 #[derive(Clone, Debug, Serialize)]
 pub struct HoseData {
     pub name: String,
-    /// Outer radius at each node [m] (the tube is swept through them, SPEC I7).
+    /// Outer radius at each node \[m\] (the tube is swept through them, SPEC I7).
     pub radii: Vec<f64>,
-    /// The minimum bend radius the checks hold it to [m] (`null`: not checked).
+    /// The minimum bend radius the checks hold it to \[m\] (`null`: not checked).
     pub min_bend_radius: Option<f64>,
 }
 
@@ -180,7 +180,7 @@ impl SceneData {
 /// The newest consistent state, as published by the simulation thread.
 #[derive(Debug, Default, Serialize)]
 pub struct Snapshot {
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub time: f64,
     /// Steps taken since the start or the last reset.
     pub step: u64,
@@ -222,7 +222,7 @@ pub struct Snapshot {
 /// One hose's state.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct HoseSnapshot {
-    /// Node positions [m].
+    /// Node positions \[m\].
     pub positions: Vec<[f64; 3]>,
     /// Colour value c = min(|f| / f_max, 1) of the hands holding it (SPEC I4): 0 blue,
     /// 0.5 green, 1 red; 0 when no hand holds it.
@@ -230,7 +230,7 @@ pub struct HoseSnapshot {
     /// The hose is at rest and not simulated until something moves or touches it
     /// (SPEC I6).
     pub asleep: bool,
-    /// Per beam now: `bend_radius_ratio`, `twist` [rad/m], `axial_force` [N] (the viewer's
+    /// Per beam now: `bend_radius_ratio`, `twist` [rad/m], `axial_force` \[N\] (the viewer's
     /// colour modes, issue 11).
     #[serde(flatten)]
     pub fields: pliant_assembly::checks::BeamFields,
@@ -243,12 +243,12 @@ pub struct HandSnapshot {
     pub hose: usize,
     /// How the hand holds the hose: firm, axial or ball (issue 11).
     pub grip: pliant_assembly::Grip,
-    /// Hand pose: position [m] and orientation `[x, y, z, w]`.
+    /// Hand pose: position \[m\] and orientation `[x, y, z, w]`.
     pub position: [f64; 3],
     pub orientation: [f64; 4],
     /// The pose the hand is moving towards (the last `move`).
     pub target: [f64; 3],
-    /// Force [N] and torque about the hand position [N·m] the hand applies.
+    /// Force \[N\] and torque about the hand position [N·m] the hand applies.
     pub force: [f64; 3],
     pub torque: [f64; 3],
     /// The worst ratio of the loads that decide feasibility (the force; twist and bending
@@ -258,7 +258,7 @@ pub struct HandSnapshot {
     pub kind: Option<pliant_assembly::ergonomics::LoadKind>,
     /// Colour value c = min(ratio, 1).
     pub colour: f64,
-    /// The force judged as `push` or `pull`, its limit value [N] and |force| / limit.
+    /// The force judged as `push` or `pull`, its limit value \[N\] and |force| / limit.
     pub force_kind: Option<pliant_assembly::ergonomics::LoadKind>,
     pub force_limit: Option<f64>,
     pub force_ratio: Option<f64>,
@@ -275,7 +275,7 @@ pub struct HandSnapshot {
 pub struct FastenerSnapshot {
     #[serde(flatten)]
     pub report: pliant_assembly::FastenerReport,
-    /// Magnitude of the force the fastener applies to the hose now [N].
+    /// Magnitude of the force the fastener applies to the hose now \[N\].
     pub force: f64,
 }
 

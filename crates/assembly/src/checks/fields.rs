@@ -17,7 +17,7 @@ pub struct BeamFields {
     pub bend_radius_ratio: Vec<f32>,
     /// Twist rate relative to the routed, unloaded hose [rad/m] (signed).
     pub twist: Vec<f32>,
-    /// Axial force [N]: chord strain × E_t·A stretched, × E_c·A shortened (negative).
+    /// Axial force \[N\]: chord strain × E_t·A stretched, × E_c·A shortened (negative).
     pub axial_force: Vec<f32>,
 }
 

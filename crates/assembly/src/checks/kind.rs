@@ -67,14 +67,14 @@ pub struct Violation {
     pub check: CheckKind,
     pub hose: usize,
     pub hose_name: String,
-    /// Arc length from the hose's first node (rest length) of the worst place [m].
+    /// Arc length from the hose's first node (rest length) of the worst place \[m\].
     pub arc_length: f64,
-    /// Time of the worst value [s].
+    /// Time of the worst value \[s\].
     pub time: f64,
     /// The worst value and the limit it broke ([`CheckKind::unit`]).
     pub value: f64,
     pub limit: f64,
-    /// First and last checked instant the check was violated anywhere on the hose [s].
+    /// First and last checked instant the check was violated anywhere on the hose \[s\].
     pub first_time: f64,
     pub last_time: f64,
     /// Checked instants at which it was violated.

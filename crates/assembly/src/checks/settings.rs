@@ -19,12 +19,12 @@ pub const DEFAULT_STRAIGHT_LENGTH_FACTOR: f64 = 1.5;
 /// Default radius that counts as straight: 10 × the minimum bend radius.
 pub const DEFAULT_STRAIGHT_RADIUS_FACTOR: f64 = 10.0;
 
-/// The limits of one hose [m].
+/// The limits of one hose \[m\].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct HoseCheckLimits {
-    /// Minimum bend radius of the centre line [m] (material data).
+    /// Minimum bend radius of the centre line \[m\] (material data).
     pub min_bend_radius: f64,
-    /// Outer diameter [m] (the straight length is a multiple of it).
+    /// Outer diameter \[m\] (the straight length is a multiple of it).
     pub d_outer: f64,
 }
 
@@ -45,7 +45,7 @@ pub struct CheckSettings {
     pub straight_length_factor: f64,
     /// Bend radius that counts as straight, in minimum bend radii.
     pub straight_radius_factor: f64,
-    /// Interval between checked instants [s] (the scene's record interval; 0 = every
+    /// Interval between checked instants \[s\] (the scene's record interval; 0 = every
     /// step).
     pub interval: f64,
     /// Per hose, by index.

@@ -12,7 +12,7 @@ use glam::{DQuat, DVec3};
 use pliant_core::math::log_map;
 
 /// (curvature κ [1/m], twist rate τ [rad/m]) of a beam of rest length `rest_length`
-/// [m] whose end frames are `qa` and `qb`.
+/// \[m\] whose end frames are `qa` and `qb`.
 pub fn bend_and_twist(qa: DQuat, qb: DQuat, rest_length: f64) -> (f64, f64) {
     let mut rel = (qa.conjugate() * qb).normalize();
     if rel.w < 0.0 {

@@ -18,16 +18,16 @@ use serde::Serialize;
 pub struct HoseProfile {
     pub hose: usize,
     pub hose_name: String,
-    /// Arc length of each beam's midpoint from the first node (rest length) [m].
+    /// Arc length of each beam's midpoint from the first node (rest length) \[m\].
     pub arc_length: Vec<f64>,
-    /// Smallest bend radius met on the hose [m] (∞ when straight throughout), when [s],
-    /// and its minimum allowed [m].
+    /// Smallest bend radius met on the hose \[m\] (∞ when straight throughout), when \[s\],
+    /// and its minimum allowed \[m\].
     pub min_bend_radius: f64,
     pub min_bend_radius_time: f64,
     pub allowed_bend_radius: f64,
     /// Curvature κ per beam [1/m] at that instant.
     pub curvature: Vec<f64>,
-    /// Largest twist rate relative to the routed hose met [rad/m], when [s], its limit.
+    /// Largest twist rate relative to the routed hose met [rad/m], when \[s\], its limit.
     pub max_twist: f64,
     pub max_twist_time: f64,
     pub twist_limit: f64,
@@ -37,7 +37,7 @@ pub struct HoseProfile {
     pub first_node: usize,
     pub node_count: usize,
     /// Every node of the scene (all hoses) at the instant of this hose's smallest bend
-    /// radius [m] (the report's picture of the scene at the worst instant).
+    /// radius \[m\] (the report's picture of the scene at the worst instant).
     pub scene_at_worst: Vec<[f64; 3]>,
 }
 

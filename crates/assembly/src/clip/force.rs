@@ -33,7 +33,7 @@ use super::spec::ClipSpec;
 use glam::DVec3;
 
 impl ClipSpec {
-    /// Force on the hose along +n [N] for a hose of outer radius `radius` whose centre is
+    /// Force on the hose along +n \[N\] for a hose of outer radius `radius` whose centre is
     /// at coordinate `s` along the opening (see the module's table). Non-finite input
     /// gives 0.
     pub fn force_along_opening(&self, s: f64, radius: f64) -> f64 {
@@ -61,7 +61,7 @@ impl ClipSpec {
         }
     }
 
-    /// Force vector on a hose of outer radius `radius` centred at `centre` [N]: the law of
+    /// Force vector on a hose of outer radius `radius` centred at `centre` \[N\]: the law of
     /// [`ClipSpec::force_along_opening`] along n. Whether it applies at all (the hose is
     /// in front of the opening, not beside the clip) is decided by
     /// [`crate::clip::ClipState`].

@@ -37,17 +37,17 @@ pub struct ClipSpec {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawClipSpec {
-    /// Seat centre p [m].
+    /// Seat centre p \[m\].
     pub origin: DVec3,
     /// Opening direction n.
     pub opening: DVec3,
     /// Orientation l about n: the seated hose's axis.
     pub orientation: DVec3,
-    /// Opening width d₁ [m].
+    /// Opening width d₁ \[m\].
     pub opening_width: f64,
-    /// Inner diameter d₂ [m].
+    /// Inner diameter d₂ \[m\].
     pub inner_diameter: f64,
-    /// Snap force k [N]: the force at the opening (dissertation section 5.3.1: the force
+    /// Snap force k \[N\]: the force at the opening (dissertation section 5.3.1: the force
     /// needed to stretch the clip open to d₂; given by the user).
     pub snap_force: f64,
     /// The fixing's type (default fixed).
@@ -56,7 +56,7 @@ pub struct RawClipSpec {
     /// Coulomb coefficient μ along the free translation (sliding guide) [-].
     #[serde(default)]
     pub friction: f64,
-    /// Pull-out force [N]: a seated hose pulled out harder comes loose (None: it stays).
+    /// Pull-out force \[N\]: a seated hose pulled out harder comes loose (None: it stays).
     #[serde(default)]
     pub holding_force: Option<f64>,
 }
@@ -148,7 +148,7 @@ impl ClipSpec {
 
     /// The same clip as a fixing of type `kind` (see [`ClipKind`]) with Coulomb
     /// coefficient `friction` along its free translation (≥ 0; only a sliding guide has
-    /// one) and pull-out force `holding_force` [N] (> 0, or None).
+    /// one) and pull-out force `holding_force` \[N\] (> 0, or None).
     pub fn with_fixing(
         mut self,
         kind: ClipKind,
@@ -183,7 +183,7 @@ impl ClipSpec {
         self.friction
     }
 
-    /// Pull-out force [N], if the clip has one.
+    /// Pull-out force \[N\], if the clip has one.
     pub fn holding_force(&self) -> Option<f64> {
         self.holding_force
     }
@@ -195,7 +195,7 @@ impl ClipSpec {
         DQuat::from_mat3(&DMat3::from_cols(y.cross(z), y, z)).normalize()
     }
 
-    /// Seat centre p [m].
+    /// Seat centre p \[m\].
     pub fn origin(&self) -> DVec3 {
         self.origin
     }
@@ -210,47 +210,47 @@ impl ClipSpec {
         self.orientation
     }
 
-    /// Opening width d₁ [m].
+    /// Opening width d₁ \[m\].
     pub fn opening_width(&self) -> f64 {
         self.opening_width
     }
 
-    /// Inner diameter d₂ [m].
+    /// Inner diameter d₂ \[m\].
     pub fn inner_diameter(&self) -> f64 {
         self.inner_diameter
     }
 
-    /// Snap force k [N].
+    /// Snap force k \[N\].
     pub fn snap_force(&self) -> f64 {
         self.snap_force
     }
 
-    /// Distance from the seat to the opening, |n| = √(d₂² − d₁²)/2 [m] (eq. 4.108).
+    /// Distance from the seat to the opening, |n| = √(d₂² − d₁²)/2 \[m\] (eq. 4.108).
     pub fn opening_distance(&self) -> f64 {
         0.5 * (self.inner_diameter.powi(2) - self.opening_width.powi(2)).sqrt()
     }
 
-    /// h = √(r² − (d₁/2)²) [m] (eq. 4.109) for a hose of outer radius `radius`; `None`
+    /// h = √(r² − (d₁/2)²) \[m\] (eq. 4.109) for a hose of outer radius `radius`; `None`
     /// when r ≤ d₁/2 (the hose passes the opening untouched) or r is not finite.
     pub fn touch_height(&self, radius: f64) -> Option<f64> {
         let half = 0.5 * self.opening_width;
         (radius.is_finite() && radius > half).then(|| (radius * radius - half * half).sqrt())
     }
 
-    /// Distance of the hose centre from the seat at first touch, |n| + h [m]; `None` for a
+    /// Distance of the hose centre from the seat at first touch, |n| + h \[m\]; `None` for a
     /// hose thinner than the opening.
     pub fn first_touch(&self, radius: f64) -> Option<f64> {
         self.touch_height(radius)
             .map(|h| self.opening_distance() + h)
     }
 
-    /// Signed coordinate s = (m − p)·n of a hose centre m along the opening [m]: 0 at the
+    /// Signed coordinate s = (m − p)·n of a hose centre m along the opening \[m\]: 0 at the
     /// seat, |n| at the opening.
     pub fn opening_coordinate(&self, centre: DVec3) -> f64 {
         (centre - self.origin).dot(self.opening)
     }
 
-    /// Distance of a hose centre from the clip's n–l plane (across the opening) [m].
+    /// Distance of a hose centre from the clip's n–l plane (across the opening) \[m\].
     pub fn lateral_offset(&self, centre: DVec3) -> f64 {
         (centre - self.origin)
             .dot(self.opening.cross(self.orientation))
@@ -264,7 +264,7 @@ impl ClipSpec {
         Self::crosses(da, db).then(|| Self::crossing_point(a, b, da, db))
     }
 
-    /// Signed distance of `point` from the clip's cross-section plane, (x − p)·l [m].
+    /// Signed distance of `point` from the clip's cross-section plane, (x − p)·l \[m\].
     pub fn plane_distance(&self, point: DVec3) -> f64 {
         (point - self.origin).dot(self.orientation)
     }

@@ -24,9 +24,9 @@ use serde::{Deserialize, Serialize};
 /// How close a hose must be to engage and to count as seated.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ClipTolerance {
-    /// Largest |s| at which a released hose is seated [m].
+    /// Largest |s| at which a released hose is seated \[m\].
     pub seat: f64,
-    /// Largest lateral offset q at which the hose engages [m].
+    /// Largest lateral offset q at which the hose engages \[m\].
     pub lateral: f64,
 }
 
@@ -66,7 +66,7 @@ impl ClipTolerance {
 pub struct ClipObservation {
     /// The hose centre m in the clip's plane, `None` if the hose does not cross it.
     pub centre: Option<DVec3>,
-    /// The hose's outer radius there [m].
+    /// The hose's outer radius there \[m\].
     pub radius: f64,
     /// Whether a hand holds the hose near the clip.
     pub grabbed: bool,
@@ -95,7 +95,7 @@ impl ClipState {
         matches!(self, ClipState::Snapping)
     }
 
-    /// The clip force on the hose in this state [N] (zero unless Snapping).
+    /// The clip force on the hose in this state \[N\] (zero unless Snapping).
     pub fn force(&self, clip: &ClipSpec, obs: &ClipObservation) -> DVec3 {
         match (self.force_acts(), obs.centre) {
             (true, Some(m)) => clip.force_on_hose(m, obs.radius),

@@ -83,7 +83,7 @@ impl LoadKind {
 pub struct Classification {
     /// Push, pull, twist or bending.
     pub kind: LoadKind,
-    /// |f| [N], |twist| or |bending| [N·m].
+    /// |f| \[N\], |twist| or |bending| [N·m].
     pub magnitude: f64,
     /// The guide range of the profile's row and column [N or N·m].
     pub guide: GuideRange,
@@ -130,9 +130,9 @@ impl Classification {
 pub struct HandAssessment {
     /// The force, as push or pull (decides feasibility).
     pub force: Classification,
-    /// Signed force along the grip axis, f·d [N] (> 0 push).
+    /// Signed force along the grip axis, f·d \[N\] (> 0 push).
     pub axial_force: f64,
-    /// Force across the grip axis, |f − (f·d) d| [N].
+    /// Force across the grip axis, |f − (f·d) d| \[N\].
     pub lateral_force: f64,
     /// Twist about the hose axis against the screwdriver row.
     pub twist: Classification,
@@ -210,7 +210,7 @@ fn split(v: DVec3, d: DVec3) -> (f64, f64) {
 }
 
 impl ErgonomicLimits {
-    /// Classifies a hand force `force` [N] as push or pull relative to the reference
+    /// Classifies a hand force `force` \[N\] as push or pull relative to the reference
     /// direction `direction` (any non-zero length; only its sense matters) and compares
     /// |f| with the profile's limit for that kind (see the module's rule).
     pub fn classify_force(

@@ -98,7 +98,7 @@ pub struct En1005Params {
     pub velocity: En1005Velocity,
     /// Actions per minute (m_f); default 0.2 (at most one every five minutes).
     pub frequency_per_min: f64,
-    /// How long one action lasts [s] (m_f: short up to 3 s); default 3.
+    /// How long one action lasts \[s\] (m_f: short up to 3 s); default 3.
     pub action_time_s: f64,
     /// Hours per day of this work (m_d); default 1.
     pub duration_h: f64,
@@ -205,14 +205,14 @@ impl En1005Params {
 /// The recommended force limit of one push or pull and how it was reached (clause 4.2).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct En1005Limit {
-    /// Basic force capacity F_B of the Table 1 row [N].
+    /// Basic force capacity F_B of the Table 1 row \[N\].
     pub f_b: f64,
-    /// F_B at the profile's percentile [N].
+    /// F_B at the profile's percentile \[N\].
     pub f_br: f64,
     pub m_v: f64,
     pub m_f: f64,
     pub m_d: f64,
-    /// F_R = F_Br · m_v · m_f · m_d [N].
+    /// F_R = F_Br · m_v · m_f · m_d \[N\].
     pub f_r: f64,
     /// Upper bounds of m_r of the recommended and not-recommended zones (0.5, 0.7).
     pub recommended_max: f64,
@@ -220,17 +220,17 @@ pub struct En1005Limit {
 }
 
 impl En1005Limit {
-    /// Upper end of the recommended zone, 0.5 F_R [N] (Pliant's guide value).
+    /// Upper end of the recommended zone, 0.5 F_R \[N\] (Pliant's guide value).
     pub fn recommended(&self) -> f64 {
         self.recommended_max * self.f_r
     }
 
-    /// Upper end of the not-recommended zone, 0.7 F_R [N] (Pliant's limit value).
+    /// Upper end of the not-recommended zone, 0.7 F_R \[N\] (Pliant's limit value).
     pub fn limit(&self) -> f64 {
         self.not_recommended_max * self.f_r
     }
 
-    /// The risk multiplier m_r = F / F_R and its zone for a force `force` [N].
+    /// The risk multiplier m_r = F / F_R and its zone for a force `force` \[N\].
     pub fn judge(&self, force: f64) -> En1005Judgement {
         let m_r = force / self.f_r;
         let zone = if m_r <= self.recommended_max {
@@ -251,7 +251,7 @@ impl En1005Limit {
 /// A force judged by EN 1005-3.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct En1005Judgement {
-    /// Recommended force limit F_R [N].
+    /// Recommended force limit F_R \[N\].
     pub f_r: f64,
     /// Risk multiplier m_r = F / F_R.
     pub m_r: f64,
@@ -432,7 +432,7 @@ impl En1005Tables {
         self.frequency.last().map_or(0.0, |b| b.0)
     }
 
-    /// The longest daily duration the table covers [h].
+    /// The longest daily duration the table covers \[h\].
     pub fn max_duration(&self) -> f64 {
         self.duration.last().map_or(0.0, |b| b.0)
     }
@@ -447,7 +447,7 @@ impl En1005Tables {
         &self.actions[action.index()].describe
     }
 
-    /// F_B of the action's push (`push = true`) or pull row [N].
+    /// F_B of the action's push (`push = true`) or pull row \[N\].
     pub fn basic_force(&self, action: En1005Action, push: bool) -> f64 {
         let rows = &self.actions[action.index()];
         if push {

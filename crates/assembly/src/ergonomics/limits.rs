@@ -116,9 +116,9 @@ impl ErgonomicLimits {
         &self.en1005
     }
 
-    /// The guide range and limit value [N] a push (`push = true`) or a pull is judged
+    /// The guide range and limit value \[N\] a push (`push = true`) or a pull is judged
     /// against under `profile`: the dissertation's tables 3.6–3.9, or under EN 1005-3
-    /// [0, 0.5 F_R] and 0.7 F_R with the F_R they come from (see [`super::en1005`]).
+    /// [0, 0.5 F_R] and 0.7 F_R with the F_R they come from (see `super::en1005`).
     pub fn force_limits(
         &self,
         profile: &ErgonomicProfile,
@@ -147,7 +147,7 @@ impl ErgonomicLimits {
         }
     }
 
-    /// Push guide range (table 3.6) [N].
+    /// Push guide range (table 3.6) \[N\].
     pub fn push_guide(
         &self,
         posture: PushPosture,
@@ -157,12 +157,12 @@ impl ErgonomicLimits {
         self.push_guide.get(posture, population, duty)
     }
 
-    /// Push limit (table 3.7) [N].
+    /// Push limit (table 3.7) \[N\].
     pub fn push_limit(&self, posture: PushPosture, population: Population, duty: Duty) -> f64 {
         self.push_limit.get(posture, population, duty)
     }
 
-    /// Pull guide range (table 3.8) [N].
+    /// Pull guide range (table 3.8) \[N\].
     pub fn pull_guide(
         &self,
         posture: PullPosture,
@@ -172,7 +172,7 @@ impl ErgonomicLimits {
         self.pull_guide.get(posture, population, duty)
     }
 
-    /// Pull limit (table 3.9) [N].
+    /// Pull limit (table 3.9) \[N\].
     pub fn pull_limit(&self, posture: PullPosture, population: Population, duty: Duty) -> f64 {
         self.pull_limit.get(posture, population, duty)
     }

@@ -2,6 +2,7 @@
 //! ergonomic limits, the parts the hoses touched — as `report.json` for machines and a
 //! self-contained `report.html` (inline SVG plots, no scripts) for people.
 
+use super::part_outline::PartOutline;
 use super::recorder::HandSample;
 use super::svg::escape;
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};
@@ -17,16 +18,22 @@ pub struct Report<'a> {
     pub verdict: Verdict,
     pub run: &'a RunSummary,
     pub diverged: Option<&'a str>,
+    /// The parts as the pictures draw them: presentation, made once per report from the
+    /// model ([`super::part_outline::part_outlines`]), not part of the run's record.
+    #[serde(skip)]
+    pub parts: &'a [PartOutline],
 }
 
 /// Writes `report.json` and `report.html` of a run into the folder `out` (which must
-/// exist) and returns the verdict. `samples` are the hand loads at the recorded times;
-/// `profile` is the ergonomic profile the run was judged with (its push limit is drawn
-/// on the stub and clip plots).
+/// exist) and returns the verdict. `parts` are the model's part outlines for the
+/// pictures ([`super::part_outline::part_outlines`]); `samples` are the hand loads at
+/// the recorded times; `profile` is the ergonomic profile the run was judged with (its
+/// push limit is drawn on the stub and clip plots).
 pub fn write_reports(
     out: &Path,
     scene: &str,
     run: &RunSummary,
+    parts: &[PartOutline],
     diverged: Option<&str>,
     samples: &[HandSample],
     profile: &ErgonomicProfile,
@@ -37,6 +44,7 @@ pub fn write_reports(
         verdict: Verdict::judge(run, diverged, Stage::Final),
         run,
         diverged,
+        parts,
     };
     let write = |name: &str, text: String| super::write_file(&out.join(name), text);
     write("report.json", serde_json::to_string_pretty(&report)?)?;
@@ -50,11 +58,7 @@ pub fn write_reports(
 /// The installation checks' section (SPEC V3, V7): the violations with time and place,
 /// and per hose its curvature against the allowed curvature at the instant of its
 /// smallest bend radius and its twist at the instant of its largest twist.
-fn checks_section(
-    s: &mut String,
-    checks: &crate::checks::ChecksSummary,
-    parts: &[super::part_outline::PartOutline],
-) {
+fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, parts: &[PartOutline]) {
     use super::profile_plot::profile_plot;
     s.push_str("<h2>Installation checks</h2>");
     if checks.enabled.is_empty() {
@@ -345,7 +349,7 @@ pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String 
         }
         s.push_str("</table>");
     }
-    checks_section(&mut s, &run.checks, &run.part_outlines);
+    checks_section(&mut s, &run.checks, report.parts);
     s.push_str("<h2>Contact with parts</h2>");
     if run.contacts.is_empty() {
         s.push_str("<p>No hose touched a part.</p>");

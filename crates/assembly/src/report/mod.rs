@@ -40,9 +40,9 @@ pub struct Outputs<'a> {
     pub hand_series: &'a [HandSample],
     pub profile: &'a ErgonomicProfile,
     pub solver: SolverKind,
-    /// The step the solver advanced by [s].
+    /// The step the solver advanced by \[s\].
     pub time_step: f64,
-    /// Wall-clock time the study took [s] (for the real-time factor).
+    /// Wall-clock time the study took \[s\] (for the real-time factor).
     pub wall_time: f64,
 }
 
@@ -65,7 +65,18 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
     write_file(&out.join("fasteners.csv"), csv)?;
     write_file(&out.join("checks.csv"), checks_csv(&run.checks))?;
     write_file(&out.join("check_profiles.csv"), profiles_csv(&run.checks))?;
-    let verdict = write_reports(out, o.scene_name, run, o.diverged, o.hand_series, o.profile)?;
+    // Presentation data, made here once per report: a hull over every vertex of every
+    // part (never on the live path).
+    let parts = part_outline::part_outlines(&o.model.environment);
+    let verdict = write_reports(
+        out,
+        o.scene_name,
+        run,
+        &parts,
+        o.diverged,
+        o.hand_series,
+        o.profile,
+    )?;
     let summary = Summary {
         pliant_version: env!("CARGO_PKG_VERSION"),
         scene: o.scene_name.to_string(),
@@ -170,7 +181,7 @@ pub fn replay_with_outputs(
         Ok(()) => cell.diverged().map(|d| d.to_string()),
         Err(e) => Some(e.to_string()),
     };
-    let mut run = cell.report_summary();
+    let mut run = cell.summary();
     run.actions_completed = log.inputs.len();
     let outputs = Outputs {
         scene_name,

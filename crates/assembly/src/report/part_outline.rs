@@ -2,11 +2,25 @@
 //! [`View`], a part's silhouette is the convex hull of its vertices projected onto the
 //! picture plane (Andrew's monotone chain, Inf. Proc. Letters 9, 1979), drawn far to near
 //! (painter's order by the depth of its farthest vertex, so that a floor under
-//! everything is drawn first). Computed once per model: a
-//! hull of a million vertices is a sort, too slow to repeat for every report.
+//! everything is drawn first). Presentation data: the report writer makes it once per
+//! report from the model; the live path (a server's snapshots, the per-step summary)
+//! never does — a hull of a million vertices is a sort, far too slow for every snapshot.
 
 use glam::DVec3;
 use pliant_core::contact::RigidEnvironment;
+use std::cell::Cell;
+
+thread_local! {
+    /// Calls of [`part_outlines`] on this thread.
+    static COMPUTED: Cell<u64> = const { Cell::new(0) };
+}
+
+/// How many times [`part_outlines`] has run on the calling thread: lets a test check
+/// that a path (a snapshot, a report) computes the outlines as often as it should,
+/// undisturbed by tests running on other threads.
+pub fn computed_on_this_thread() -> u64 {
+    COMPUTED.with(Cell::get)
+}
 
 /// A direction the scene is drawn from: picture axes `right`, `up` and `towards` the
 /// viewer (right-handed, unit).
@@ -64,6 +78,7 @@ pub struct PartOutline {
 
 /// The outlines of every part of `environment`.
 pub fn part_outlines(environment: &RigidEnvironment) -> Vec<PartOutline> {
+    COMPUTED.with(|c| c.set(c.get() + 1));
     let views = View::all();
     environment
         .parts

@@ -21,7 +21,7 @@ pub struct PeakRow {
 #[derive(Serialize)]
 pub struct FinalHose {
     pub name: String,
-    /// Node positions [m].
+    /// Node positions \[m\].
     pub positions_m: Vec<[f64; 3]>,
     /// Node orientations as unit quaternions (w, x, y, z).
     pub orientations: Vec<[f64; 4]>,
@@ -36,7 +36,7 @@ pub struct Summary {
     pub diverged: Option<String>,
     pub steps: u64,
     pub simulated_time_s: f64,
-    /// The step the solver advanced by [s] (the explicit stable step, or the implicit /
+    /// The step the solver advanced by \[s\] (the explicit stable step, or the implicit /
     /// static step).
     pub time_step_s: f64,
     /// How the explicit stable step was chosen (reported for every solver).

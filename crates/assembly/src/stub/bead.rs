@@ -36,19 +36,19 @@ pub enum Sense {
 /// A bead, checked. All SI (m, rad).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Bead {
-    /// Depth of the start of its entry flank from the mouth [m].
+    /// Depth of the start of its entry flank from the mouth \[m\].
     pub at: f64,
-    /// Radial height above the stub [m].
+    /// Radial height above the stub \[m\].
     pub height: f64,
-    /// Width of its crest [m].
+    /// Width of its crest \[m\].
     pub width: f64,
-    /// Angle of the entry flank to the axis [rad], in (0, π/2).
+    /// Angle of the entry flank to the axis \[rad\], in (0, π/2).
     pub entry_angle: f64,
-    /// Angle of the back flank to the axis [rad], in (0, π/2).
+    /// Angle of the back flank to the axis \[rad\], in (0, π/2).
     pub back_angle: f64,
 }
 
-/// Axial force per unit radial force to drive a lip up a flank of angle `alpha` [rad]
+/// Axial force per unit radial force to drive a lip up a flank of angle `alpha` \[rad\]
 /// against friction `gamma`: (tan α + γ) / (1 − γ tan α); ∞ when self-locking.
 pub fn wedge_factor(alpha: f64, gamma: f64) -> f64 {
     let t = alpha.tan();
@@ -95,19 +95,19 @@ impl Bead {
         })
     }
 
-    /// Depth where the crest begins (the end of the entry flank) [m].
+    /// Depth where the crest begins (the end of the entry flank) \[m\].
     pub fn crest_start(&self) -> f64 {
         self.at + self.height / self.entry_angle.tan()
     }
 
-    /// Depth where the back flank ends (the whole bead passed) [m].
+    /// Depth where the back flank ends (the whole bead passed) \[m\].
     pub fn end(&self) -> f64 {
         self.crest_start() + self.width + self.height / self.back_angle.tan()
     }
 
-    /// The extra axial force [N] the bead opposes to moving the hose in `sense` at
-    /// depth `depth` [m], with the crest pressure `p_crest` [Pa] (Lamé at r_s + h), the
-    /// stub radius `r_stub` [m] and friction `gamma` (see the module's hand calculation).
+    /// The extra axial force \[N\] the bead opposes to moving the hose in `sense` at
+    /// depth `depth` \[m\], with the crest pressure `p_crest` \[Pa\] (Lamé at r_s + h), the
+    /// stub radius `r_stub` \[m\] and friction `gamma` (see the module's hand calculation).
     pub fn force(&self, depth: f64, sense: Sense, p_crest: f64, r_stub: f64, gamma: f64) -> f64 {
         let r_b = r_stub + self.height;
         let n = p_crest * 2.0 * std::f64::consts::PI * r_b * self.width;

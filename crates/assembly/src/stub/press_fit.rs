@@ -38,7 +38,7 @@ const EMPTY_BEAD: Bead = Bead {
     back_angle: 0.0,
 };
 
-/// Lamé contact pressure p [Pa] of a hose (bore radius `r_inner`, outer radius `r_outer`,
+/// Lamé contact pressure p \[Pa\] of a hose (bore radius `r_inner`, outer radius `r_outer`,
 /// modulus `modulus`, Poisson's ratio `poisson`) on a rigid stub of radius `r_stub`
 /// (SPEC L6). 0 when r_stub ≤ r_inner.
 ///
@@ -97,7 +97,7 @@ impl PressFit {
         Self::with_modulus(stub, section, material.e_tension, material.poisson)
     }
 
-    /// As [`PressFit::new`] with an explicit modulus E [Pa] and Poisson's ratio ν.
+    /// As [`PressFit::new`] with an explicit modulus E \[Pa\] and Poisson's ratio ν.
     pub fn with_modulus(
         stub: &StubSpec,
         section: &Section,
@@ -153,7 +153,7 @@ impl PressFit {
         self.profile[..self.profile_len].iter().map(|(b, _)| b)
     }
 
-    /// Axial force [N] to move the hose in `sense` at insertion depth `depth`: the
+    /// Axial force \[N\] to move the hose in `sense` at insertion depth `depth`: the
     /// cylinder's [`Self::axial_force`] plus each bead's ([`Bead::force`]; the forces add:
     /// crests passed rub, the flank under the lip is climbed).
     pub fn axial_force_moving(&self, depth: f64, friction: Friction, sense: Sense) -> f64 {
@@ -172,17 +172,17 @@ impl PressFit {
         &self.stub
     }
 
-    /// Radial interference δ = r_s − r_i [m]; ≤ 0 means no press fit.
+    /// Radial interference δ = r_s − r_i \[m\]; ≤ 0 means no press fit.
     pub fn interference(&self) -> f64 {
         self.interference
     }
 
-    /// Contact pressure p [Pa] (0 when δ ≤ 0).
+    /// Contact pressure p \[Pa\] (0 when δ ≤ 0).
     pub fn pressure(&self) -> f64 {
         self.pressure
     }
 
-    /// Axial force f = p · γ · 2π r_s · l [N] needed to move the hose at insertion depth
+    /// Axial force f = p · γ · 2π r_s · l \[N\] needed to move the hose at insertion depth
     /// `depth` (clamped to [0, length]; NaN counts as 0), with γ of the given kind
     /// (eq. 4.107). With `Friction::Static` it is the holding force.
     pub fn axial_force(&self, depth: f64, friction: Friction) -> f64 {
@@ -190,12 +190,12 @@ impl PressFit {
         self.pressure * self.stub.friction(friction) * 2.0 * PI * self.stub.radius() * l
     }
 
-    /// The holding force at this depth: the static axial force [N].
+    /// The holding force at this depth: the static axial force \[N\].
     pub fn holding_force(&self, depth: f64) -> f64 {
         self.axial_force(depth, Friction::Static)
     }
 
-    /// The static force [N] that starts the hose moving in `sense` at this depth.
+    /// The static force \[N\] that starts the hose moving in `sense` at this depth.
     pub fn holding_force_moving(&self, depth: f64, sense: Sense) -> f64 {
         self.axial_force_moving(depth, Friction::Static, sense)
     }

@@ -37,13 +37,13 @@ pub struct StubSpec {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawStubSpec {
-    /// Mouth of the stub [m].
+    /// Mouth of the stub \[m\].
     pub origin: DVec3,
     /// Push-on direction (normalised on reading).
     pub axis: DVec3,
-    /// Length a hose can be pushed on [m].
+    /// Length a hose can be pushed on \[m\].
     pub length: f64,
-    /// Outer diameter d_s [m].
+    /// Outer diameter d_s \[m\].
     pub diameter: f64,
     /// Static friction coefficient γ_H [-].
     pub friction_static: f64,
@@ -120,7 +120,7 @@ impl StubSpec {
         })
     }
 
-    /// The mouth of the stub [m].
+    /// The mouth of the stub \[m\].
     pub fn origin(&self) -> DVec3 {
         self.origin
     }
@@ -130,17 +130,17 @@ impl StubSpec {
         self.axis
     }
 
-    /// Length a hose can be pushed on [m].
+    /// Length a hose can be pushed on \[m\].
     pub fn length(&self) -> f64 {
         self.length
     }
 
-    /// Outer diameter d_s [m].
+    /// Outer diameter d_s \[m\].
     pub fn diameter(&self) -> f64 {
         self.diameter
     }
 
-    /// Outer radius r_s = d_s / 2 [m].
+    /// Outer radius r_s = d_s / 2 \[m\].
     pub fn radius(&self) -> f64 {
         0.5 * self.diameter
     }
@@ -153,13 +153,13 @@ impl StubSpec {
         }
     }
 
-    /// Axial coordinate s = (point − origin)·axis [m]: < 0 in front of the mouth, in
+    /// Axial coordinate s = (point − origin)·axis \[m\]: < 0 in front of the mouth, in
     /// [0, length] along the stub. Not clamped.
     pub fn axial_coordinate(&self, point: DVec3) -> f64 {
         (point - self.origin).dot(self.axis)
     }
 
-    /// Distance of a point from the stub's axis line [m].
+    /// Distance of a point from the stub's axis line \[m\].
     pub fn lateral_distance(&self, point: DVec3) -> f64 {
         let d = point - self.origin;
         (d - d.dot(self.axis) * self.axis).length()

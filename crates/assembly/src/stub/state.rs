@@ -27,11 +27,11 @@ use serde::{Deserialize, Serialize};
 /// How close a hose end must come to be taken onto the stub.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StubTolerance {
-    /// Largest distance of the end from the stub axis [m].
+    /// Largest distance of the end from the stub axis \[m\].
     pub lateral: f64,
-    /// Largest angle between the end's direction and the axis [rad].
+    /// Largest angle between the end's direction and the axis \[rad\].
     pub angle: f64,
-    /// Largest distance in front of the mouth at which the end is aligned [m].
+    /// Largest distance in front of the mouth at which the end is aligned \[m\].
     pub approach: f64,
 }
 
@@ -72,13 +72,13 @@ impl StubTolerance {
 /// What the hose end does in one step.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StubObservation {
-    /// Position of the hose end node [m].
+    /// Position of the hose end node \[m\].
     pub end_position: DVec3,
     /// Direction the end faces: along the hose axis, out of the hose (from the
     /// second-to-last node towards the end node). Any non-zero length.
     pub end_direction: DVec3,
     /// The axial component of the force the hand applies to the hose, along the stub's
-    /// axis [N]: > 0 pushes further on, < 0 pulls off.
+    /// axis \[N\]: > 0 pushes further on, < 0 pulls off.
     pub axial_force: f64,
     /// Whether a hand holds the hose at this end.
     pub grabbed: bool,
@@ -93,16 +93,16 @@ pub enum StubState {
     Approach,
     /// In front of the mouth, aligned with the axis.
     Aligned,
-    /// On the stub and moving with the hand; depth [m] in [0, length].
+    /// On the stub and moving with the hand; depth \[m\] in [0, length].
     Inserting { depth: f64 },
-    /// Released on the stub: held by an L1 fix; depth [m].
+    /// Released on the stub: held by an L1 fix; depth \[m\].
     Fixed { depth: f64 },
     /// Just pulled off (one step).
     PulledOff,
 }
 
 impl StubState {
-    /// Insertion depth [m] (0 when not on the stub).
+    /// Insertion depth \[m\] (0 when not on the stub).
     pub fn depth(&self) -> f64 {
         match *self {
             StubState::Inserting { depth } | StubState::Fixed { depth } => depth,
@@ -120,7 +120,7 @@ impl StubState {
         }
     }
 
-    /// The axial force the stub opposes to motion in this state [N] (eq. 4.107 at the
+    /// The axial force the stub opposes to motion in this state \[N\] (eq. 4.107 at the
     /// current depth with the current friction; 0 off the stub).
     pub fn resisting_force(&self, fit: &PressFit) -> f64 {
         self.friction()

@@ -21,7 +21,7 @@ pub struct HandLimits {
     pub max_acceleration: f64,
     /// Fastest the hand turns [rad/s].
     pub max_turn_rate: f64,
-    /// The hand's strength [N]: the largest force an interactively steered hand exerts on
+    /// The hand's strength \[N\]: the largest force an interactively steered hand exerts on
     /// the hose ([`HeldHand::update`]). A person's strength, not an ergonomic limit: the
     /// verdict judges the loads below it. `None`: unlimited — a kinematic hand that
     /// drags the hose wherever it is sent (input logs written before this field replay
@@ -30,7 +30,7 @@ pub struct HandLimits {
     pub max_force: Option<f64>,
 }
 
-/// Default hand strength [N]: of the order of the largest static pulling force of a
+/// Default hand strength \[N\]: of the order of the largest static pulling force of a
 /// standing adult with both hands (maximum action forces of DIN 33411-5 and
 /// Chaffin et al., *Occupational Biomechanics*, ch. 10: a few hundred newtons, rarely
 /// above 600 N) — an assumption, set per session; far above every ergonomic limit of
@@ -75,9 +75,9 @@ pub struct Aim {
 /// ±10 kN within two steps, the soak's divergences.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Feel {
-    /// Force the hand exerted before its last step [N].
+    /// Force the hand exerted before its last step \[N\].
     pub force: DVec3,
-    /// How the hand moved in its last step [m].
+    /// How the hand moved in its last step \[m\].
     pub step: DVec3,
     /// The stiffness it feels, k [N/m] (0: not yet estimated).
     pub stiffness: f64,

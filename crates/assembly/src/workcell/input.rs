@@ -15,7 +15,7 @@ fn is_zero(x: &f64) -> bool {
 /// Hand numbers are chosen by the caller (a timeline's `hand`, a client's `hand_id`).
 pub type HandNumber = u32;
 
-/// One input. Positions in metres, global axes; rotations as rotation vectors [rad].
+/// One input. Positions in metres, global axes; rotations as rotation vectors \[rad\].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum Input {
@@ -30,7 +30,7 @@ pub enum Input {
         rotation: DVec3,
         duration: f64,
     },
-    /// A force [N] and moment [N·m] at the node (adds to others), in full at once or
+    /// A force \[N\] and moment [N·m] at the node (adds to others), in full at once or
     /// rising linearly from zero over `ramp` seconds from now; a `name` (unique among the
     /// active loads) lets [`Input::Unload`] remove this one alone.
     Load {

@@ -31,7 +31,7 @@ pub struct LogHeader {
     pub scene_base_dir: String,
     /// The workcell's options (solver, sleeping, initial loads, hand limits).
     pub options: WorkcellOptions,
-    /// The step the study advanced by [s] (a replay checks it has the same).
+    /// The step the study advanced by \[s\] (a replay checks it has the same).
     pub time_step: f64,
 }
 

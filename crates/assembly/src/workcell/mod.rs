@@ -116,7 +116,7 @@ pub enum Applied {
 pub struct Rollback {
     /// The divergence it undid.
     pub divergence: Divergence,
-    /// The simulated time the study went back to [s].
+    /// The simulated time the study went back to \[s\].
     pub to_time: f64,
     /// The hands that held the diverging hose, released (the others hold on).
     pub released: Vec<HandNumber>,
@@ -310,7 +310,7 @@ impl Workcell {
     pub fn options(&self) -> &WorkcellOptions {
         &self.options
     }
-    /// Simulated time one step advances [s].
+    /// Simulated time one step advances \[s\].
     pub fn time_step(&self) -> f64 {
         self.solver.time_step(&self.model)
     }
@@ -415,15 +415,6 @@ impl Workcell {
                 self.checks
                     .end_violations(&self.model, &self.state, &self.stubs),
             ),
-            part_outlines: Vec::new(),
-        }
-    }
-    /// [`Self::summary`] for a report: with the parts' outlines for its pictures
-    /// (computed here, once: a hull over every vertex of every part).
-    pub fn report_summary(&self) -> RunSummary {
-        RunSummary {
-            part_outlines: crate::report::part_outline::part_outlines(&self.model.environment),
-            ..self.summary()
         }
     }
     /// The installation checks' account so far (SPEC V3).
@@ -1064,12 +1055,12 @@ impl Workcell {
         check_for(self.solver.kind(), &self.model, &self.state).map_err(|d| self.fail(d))
     }
 
-    /// Steps in a duration [s] (rounded to whole steps).
+    /// Steps in a duration \[s\] (rounded to whole steps).
     pub fn steps_in(&self, duration: f64) -> u64 {
         (duration / self.time_step()).round().max(0.0) as u64
     }
 
-    /// Steps until a motion of `duration` [s] starting now has ended (rounded up, so
+    /// Steps until a motion of `duration` \[s\] starting now has ended (rounded up, so
     /// that a motion shorter than a step — 2 ms against the static solver's 10 ms —
     /// still arrives before the next one starts from where it ended).
     pub fn steps_until_done(&self, duration: f64) -> u64 {

@@ -1,6 +1,6 @@
 //! Recovery points of a live study (issue 12, item 6: a divergence never costs the
 //! session). The workcell keeps the last few healthy [`Checkpoint`]s, one every
-//! [`RECOVERY_EVERY`] steps, each taken right after a health check passed; on a
+//! \[`RECOVERY_EVERY`\] steps, each taken right after a health check passed; on a
 //! divergence [`super::Input::Rollback`] goes back to the newest one, instead of
 //! resetting the whole study.
 //!
@@ -14,7 +14,7 @@
 use super::Checkpoint;
 use std::collections::VecDeque;
 
-/// Simulated time between two recovery points [s] (rounded to whole health-check
+/// Simulated time between two recovery points \[s\] (rounded to whole health-check
 /// periods): with four points kept, a rollback goes back 0.25–1 s.
 pub const RECOVERY_INTERVAL: f64 = 0.25;
 

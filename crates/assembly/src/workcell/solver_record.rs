@@ -14,9 +14,9 @@ pub const MAX_INSTABILITIES_KEPT: usize = 32;
 /// A step whose Newton solve ended out of balance.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Unconverged {
-    /// Simulated (input) time at the end of the step [s].
+    /// Simulated (input) time at the end of the step \[s\].
     pub time: f64,
-    /// Largest out-of-balance force on a free node [N] and the limit it had to meet.
+    /// Largest out-of-balance force on a free node \[N\] and the limit it had to meet.
     pub residual_force: f64,
     pub force_limit: f64,
     /// Largest out-of-balance moment [N·m] and its limit.
@@ -36,7 +36,7 @@ impl Unconverged {
 /// branch nearby ([`pliant_core::integrators::stability`]).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Instability {
-    /// Input time [s].
+    /// Input time \[s\].
     pub time: f64,
     /// The hose (index) and its node where the unstable mode moves most.
     pub hose: usize,
@@ -46,7 +46,7 @@ pub struct Instability {
     /// A limit point: the load path's branch ended and the hose snapped through to a
     /// distant stable equilibrium (the mode is then the snap's displacement).
     pub limit_point: bool,
-    /// Energy released by the first step off [J].
+    /// Energy released by the first step off \[J\].
     pub energy_drop_j: f64,
     /// The mode: each node of that hose's translation, the largest of length 1.
     pub mode: Vec<[f64; 3]>,
@@ -59,7 +59,7 @@ pub const MAX_ROLLBACKS_KEPT: usize = 32;
 /// from a healthy state, without the hands that held the diverging hose.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RolledBack {
-    /// When it diverged and the time it went back to [s].
+    /// When it diverged and the time it went back to \[s\].
     pub diverged_at: f64,
     pub back_to: f64,
     /// The diverging hose and what was found.

@@ -26,7 +26,7 @@ pub struct HandRecord {
     pub assessment: Option<HandAssessment>,
 }
 
-/// The largest magnitude of one load kind [N or N·m] and when [s].
+/// The largest magnitude of one load kind [N or N·m] and when \[s\].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Peak {
     pub magnitude: f64,
@@ -47,7 +47,7 @@ impl Peak {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct MomentNote {
     pub kind: LoadKind,
-    /// Peak magnitude [N·m] and when [s].
+    /// Peak magnitude [N·m] and when \[s\].
     pub magnitude: f64,
     pub time: f64,
     /// Upper end of the guide range and the limit value [N·m] (tables 3.10 / 3.11).
@@ -60,7 +60,7 @@ pub struct MomentNote {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ZoneNote {
     pub kind: LoadKind,
-    /// Peak magnitude [N] and when [s].
+    /// Peak magnitude \[N\] and when \[s\].
     pub magnitude: f64,
     pub time: f64,
     /// The action, in the data file's words (e.g. "whole body work, standing").
@@ -149,10 +149,10 @@ pub struct ContactEpisode {
 pub struct NodePeak {
     pub hose: usize,
     pub node: usize,
-    /// Largest |F| the support applied [N] and when [s].
+    /// Largest |F| the support applied \[N\] and when \[s\].
     pub max_force: f64,
     pub max_force_time: f64,
-    /// Largest |M| the support applied [N·m] and when [s].
+    /// Largest |M| the support applied [N·m] and when \[s\].
     pub max_moment: f64,
     pub max_moment_time: f64,
     /// Support force and moment in the last step it held the node.
@@ -181,7 +181,7 @@ pub struct RunSummary {
     pub hand_peaks: Vec<HandPeak>,
     /// Parts touched, in the order first touched.
     pub contacts: Vec<ContactEpisode>,
-    /// Largest total contact force of the parts on the hoses [N] and when.
+    /// Largest total contact force of the parts on the hoses \[N\] and when.
     pub max_contact_force: f64,
     pub max_contact_force_time: f64,
     /// The ergonomic profile hand loads were judged with.
@@ -202,10 +202,6 @@ pub struct RunSummary {
     pub instability_notes: Vec<String>,
     /// The installation checks and their violations (SPEC V3).
     pub checks: crate::checks::ChecksSummary,
-    /// The parts as the report's pictures draw them (filled by
-    /// [`crate::Workcell::report_summary`]; empty in a running summary).
-    #[serde(skip)]
-    pub part_outlines: Vec<crate::report::part_outline::PartOutline>,
 }
 
 impl RunSummary {

@@ -59,7 +59,7 @@ pub struct BroadPhase {
     s_hi: Vec<DVec3>,
     /// 64 − log₂(number of buckets).
     shift: u32,
-    /// Cell size of the last rebuild along x, y, z [m].
+    /// Cell size of the last rebuild along x, y, z \[m\].
     pub cell_size: DVec3,
 }
 
@@ -92,7 +92,7 @@ fn cell_difference(a: u64, b: u64) -> [i64; 3] {
 }
 
 /// Order in which [`BroadPhase::for_each_pair`] reports a pair: (bucket, index) of the
-/// box that scans, the cell scanned (0 own, 1–13 [`FORWARD`]), (bucket, index) of the
+/// box that scans, the cell scanned (0 own, 1–13 `FORWARD`), (bucket, index) of the
 /// box found.
 pub type VisitRank = (u32, u32, u8, u32, u32);
 
@@ -195,7 +195,7 @@ impl BroadPhase {
     /// `None` if it does not report it whether or not the boxes overlap (their cells are
     /// not neighbours). The sorted arrays hold bucket by bucket, each bucket in increasing
     /// box index (the counting sort fills backwards), so a box's position is
-    /// (bucket, index); a box scans its own cell (rank 0), then the [`FORWARD`] cells in
+    /// (bucket, index); a box scans its own cell (rank 0), then the `FORWARD` cells in
     /// order (ranks 1–13), each in increasing position.
     pub fn visit_rank(&self, i: usize, j: usize) -> Option<(VisitRank, usize, usize)> {
         let ((ki, bi), (kj, bj)) = (self.cell(i), self.cell(j));

@@ -19,7 +19,7 @@
 //! a point of the segment is no nearer to any triangle than the segment, and it moves no
 //! more than the segment's end points, so the beam's list, bounds and margin serve it.
 //!
-//! Where they are now: each kept triangle carries its [`Planes`] (unit normal and the
+//! Where they are now: each kept triangle carries its `Planes` (unit normal and the
 //! three in-plane edge normals, made at the refresh), whose lower bound on the distance
 //! from the searcher's current point or segment rejects most candidates for ≈ 40 flops
 //! before the exact test. That lets the margin be small (ρ/16): the Lipschitz slack
@@ -27,7 +27,7 @@
 //!
 //! Nearest first, and only as far as needed: a refresh keeps the slot's candidates sorted
 //! by their distance at the refresh, each with its rank in the environment's own order.
-//! A search ([`Nearest`]) offered them in that order can stop as soon as the next one's
+//! A search (`Nearest`) offered them in that order can stop as soon as the next one's
 //! lower bound (its recorded distance minus the displacement since) exceeds the best it
 //! has, since no later one can beat it; ties are broken by rank, so the contact chosen is
 //! the one a fresh query — which offers every triangle in rank order, first found winning
@@ -35,8 +35,8 @@
 //! beam) that examines a handful of triangles instead of a hundred.
 //!
 //! Quiet searchers: a searcher whose last look found nothing and left every candidate's
-//! bound beyond its reach ([`Quiet`]) need not look again while its slot's end points
-//! stay within the room those bounds leave ([`Settled`]) — one displacement test instead
+//! bound beyond its reach (`Quiet`) need not look again while its slot's end points
+//! stay within the room those bounds leave (`Settled`) — one displacement test instead
 //! of setting up a search, for the beams and nodes that lie near a part without touching
 //! it (most of a hose lying on a floor).
 //!
@@ -56,8 +56,8 @@ use parry3d_f64::shape::Triangle;
 /// Candidates kept per slot.
 pub const SLOT_CAPACITY: usize = 48;
 /// Margin m as a fraction of the reach ρ: a slot is refreshed after moving ρ/16 (a
-/// truncated list sooner, an empty one later, see [`CandidateCache::refresh`]). With the
-/// per-step [`Planes`] bounds, ρ/16 cost fewer instructions than ρ/8 or ρ/32 on the
+/// truncated list sooner, an empty one later, see `CandidateCache::refresh`). With the
+/// per-step `Planes` bounds, ρ/16 cost fewer instructions than ρ/8 or ρ/32 on the
 /// bench's floor, and ρ/4 (the margin before them) 15 % more; with the planes made once
 /// per triangle, ρ/8 costs 3.6 % fewer while hoses fall but 3.6 % more at rest.
 pub const MARGIN: f64 = 0.0625;

@@ -28,7 +28,7 @@ use nalgebra::Matrix3;
 /// next (allocated once).
 #[derive(Clone, Debug, Default)]
 pub struct FrictionMemory {
-    /// Where each node's tangential spring is anchored [m].
+    /// Where each node's tangential spring is anchored \[m\].
     pub anchor: Vec<DVec3>,
     /// Whether the node slipped in the last accepted step (then μ = μ_k, else μ_s).
     pub sliding: Vec<bool>,
@@ -37,14 +37,14 @@ pub struct FrictionMemory {
 /// One node's friction at a trial configuration.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrictionResponse {
-    /// Tangential force on the node [N].
+    /// Tangential force on the node \[N\].
     pub force: DVec3,
     /// −∂f_t/∂x [N/m] (symmetric).
     pub tangent: Matrix3<f64>,
     /// The force is on the Coulomb limit (slip).
     pub slipping: bool,
     /// Dissipation potential of the trial slip (½ k_t g² while sticking up to
-    /// g_c = μ f_n / k_t, then growing by μ_k f_n per metre) [J]: its gradient is −f_t at
+    /// g_c = μ f_n / k_t, then growing by μ_k f_n per metre) \[J\]: its gradient is −f_t at
     /// fixed f_n, so that the static line search sees friction as it sees a spring.
     pub energy: f64,
 }

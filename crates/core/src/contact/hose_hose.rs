@@ -104,7 +104,7 @@ pub struct HoseContactModel {
     /// also switch hose contact off for a model).
     pub active: bool,
     /// Skin of the pair list: how far a node may move along any axis before the broad
-    /// phase is rebuilt [m] (the smallest beam radius).
+    /// phase is rebuilt \[m\] (the smallest beam radius).
     pub skin: f64,
     /// Rest length of each hose [m].
     hose_length: Vec<f64>,
@@ -118,9 +118,9 @@ pub struct HoseContactScratch {
     pub broad: BroadPhase,
     /// Beam pairs in contact in the last step.
     pub pairs_in_contact: usize,
-    /// Largest penetration in the last step [m] (0 when none).
+    /// Largest penetration in the last step \[m\] (0 when none).
     pub max_penetration: f64,
-    /// Elastic energy of the contact springs, Σ ½ k δ², in the last step [J].
+    /// Elastic energy of the contact springs, Σ ½ k δ², in the last step \[J\].
     pub energy: f64,
     /// Beam pairs (i < j not required) that may touch while no node has moved more than
     /// the skin from `anchor` (see the module doc).
@@ -385,7 +385,7 @@ pub fn hose_contact_forces(
 }
 
 /// One pair of beams in contact: the force k·pen·n acts on beam i's nodes with weights
-/// w[0], w[1] and against beam j's nodes with w[2], w[3] (the Newton solvers build their
+/// w\[0\], w\[1\] and against beam j's nodes with w\[2\], w\[3\] (the Newton solvers build their
 /// contact tangent k wₐ w_b n nᵀ from it).
 #[derive(Clone, Copy, Debug)]
 pub struct ContactPair {

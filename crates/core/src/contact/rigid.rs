@@ -54,7 +54,7 @@ pub struct ContactPoint {
     pub t: f64,
     /// Unit normal from the part towards the hose.
     pub normal: DVec3,
-    /// Penetration depth [m] at detection (negative: still a small gap).
+    /// Penetration depth \[m\] at detection (negative: still a small gap).
     pub depth: f64,
     /// Index of the part touched.
     pub part: usize,

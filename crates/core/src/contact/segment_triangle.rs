@@ -19,7 +19,7 @@ pub struct SegmentTriangleClosest {
     pub on_segment: DVec3,
     /// Closest point on the triangle.
     pub on_triangle: DVec3,
-    /// Their distance [m] (0 when the segment pierces the triangle).
+    /// Their distance \[m\] (0 when the segment pierces the triangle).
     pub distance: f64,
 }
 

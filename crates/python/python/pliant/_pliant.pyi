@@ -321,6 +321,33 @@ def centreline_sample_keys(frames: FloatArray, h: float) -> Any:
     """Sorted unique int64 keys of the centre-line samples of frames (T, N, 3) [m] for
     voxels of size h [m] (``pliant.studies.envelope.sample_keys``)."""
 
+def part_distances(
+    points: FloatArray,
+    kind: str,
+    position: Sequence[float],
+    rotation: Sequence[Sequence[float]],
+    size: Sequence[float],
+    triangles: Optional[FloatArray] = None,
+) -> FloatArray:
+    """The distance of each point (K, 3) [m] to a part's surface: ``kind`` "box",
+    "cylinder", "sphere" (``size``: edges; radius and height; radius) or "mesh"
+    (``triangles`` (F, 3, 3) in world coordinates)."""
+
+def part_clearance(
+    points: FloatArray,
+    offsets: FloatArray,
+    kind: str,
+    position: Sequence[float],
+    rotation: Sequence[Sequence[float]],
+    size: Sequence[float],
+    triangles: Optional[FloatArray] = None,
+) -> float:
+    """min over the points (K, 3) of (distance to the part − offset) [m], as
+    ``part_distances(...) - offsets`` would give; +inf for no points."""
+
+def material_library_toml() -> str:
+    """The built-in material library as shipped (TOML text), each value with its source."""
+
 class CalibrationError(ValueError):
     """A calibration could not be done; the message is the one ``pliant calibrate``
     prints (file, line, column, what is wrong)."""

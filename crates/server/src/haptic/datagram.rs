@@ -13,9 +13,9 @@ pub const VERSION: u8 = 1;
 pub const REQUEST_MAGIC: [u8; 4] = *b"PLHP";
 /// First four bytes of a reply.
 pub const REPLY_MAGIC: [u8; 4] = *b"PLHR";
-/// Size of every request [bytes].
+/// Size of every request \[bytes\].
 pub const REQUEST_BYTES: usize = 112;
-/// Size of every reply [bytes] (smaller than a request: a reply never amplifies).
+/// Size of every reply \[bytes\] (smaller than a request: a reply never amplifies).
 pub const REPLY_BYTES: usize = 96;
 /// Size of the key field (the server's token, zero-padded).
 pub const KEY_BYTES: usize = 32;
@@ -37,7 +37,7 @@ pub struct Request {
     pub kind: Kind,
     pub hand: u32,
     pub sequence: u64,
-    /// [m], world frame.
+    /// \[m\], world frame.
     pub position: DVec3,
     /// Unit quaternion; `None` when the request sent all zeros (keep the orientation).
     pub orientation: Option<DQuat>,
@@ -133,13 +133,13 @@ pub struct Reply {
     /// The hose the hand holds, `u32::MAX` for none.
     pub hose: u32,
     pub sequence: u64,
-    /// Force the hand applies to the hose [N].
+    /// Force the hand applies to the hose \[N\].
     pub force: DVec3,
     /// Torque the hand applies about its position [N·m].
     pub torque: DVec3,
-    /// Simulated time of the session state the answer started from [s].
+    /// Simulated time of the session state the answer started from \[s\].
     pub session_time: f64,
-    /// Wall time of the answer's solve [s].
+    /// Wall time of the answer's solve \[s\].
     pub solve_seconds: f64,
     /// Malformed datagrams received since the stream started (saturating).
     pub malformed: u32,
@@ -208,7 +208,7 @@ impl Request {
     /// Decodes a request. Layout (little-endian):
     /// magic `PLHP` (0..4), version (4), kind 0 pose / 1 grab / 2 release (5),
     /// grip 0 firm / 1 axial / 2 ball (6), reserved (7), hand id u32 (8..12),
-    /// reserved (12..16), sequence u64 (16..24), position f64×3 [m] (24..48),
+    /// reserved (12..16), sequence u64 (16..24), position f64×3 \[m\] (24..48),
     /// orientation f64×4 x, y, z, w (48..80; all zero = keep), key (80..112).
     pub fn decode(b: &[u8]) -> Result<Request, Status> {
         if b.len() != REQUEST_BYTES || b[0..4] != REQUEST_MAGIC {
@@ -310,9 +310,9 @@ impl Reply {
 
     /// Encodes the reply. Layout (little-endian): magic `PLHR` (0..4), version (4),
     /// status (5), Newton iterations u16 (6..8), hand id u32 (8..12), hose u32 (12..16;
-    /// `u32::MAX` none), sequence u64 echoed (16..24), force f64×3 [N] (24..48), torque
-    /// f64×3 [N·m] about the hand position (48..72), session time f64 [s] (72..80),
-    /// solve time f64 [s] (80..88), malformed datagrams so far u32 (88..92), reserved
+    /// `u32::MAX` none), sequence u64 echoed (16..24), force f64×3 \[N\] (24..48), torque
+    /// f64×3 [N·m] about the hand position (48..72), session time f64 \[s\] (72..80),
+    /// solve time f64 \[s\] (80..88), malformed datagrams so far u32 (88..92), reserved
     /// (92..96). Non-finite loads are sent as zeros.
     pub fn encode(&self) -> [u8; REPLY_BYTES] {
         let mut b = [0u8; REPLY_BYTES];

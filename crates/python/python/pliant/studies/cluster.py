@@ -211,6 +211,18 @@ def connect(scheduler: Optional[str], workers: Optional[int], processes: bool = 
     return Client(cluster), cluster
 
 
+def dashboard_link(client) -> Optional[str]:
+    """The address of the dashboard of the scheduler ``client`` is connected to, or
+    ``None`` when that scheduler serves none. For a cluster this process started, its
+    own link; for a scheduler started elsewhere (``--scheduler``), the link that
+    scheduler reports (its host, its dashboard port) — never that of a local cluster."""
+    try:
+        return client.dashboard_link or None
+    except (KeyError, AttributeError, TypeError):
+        # distributed reads the port from the scheduler's services: none without a dashboard
+        return None
+
+
 def local_cluster(workers: int, processes: bool = True):
     """A local Dask cluster of single-threaded workers for a study. Its worker processes
     start without Dask's default ``MALLOC_TRIM_THRESHOLD_`` (65536): setting it switches
@@ -318,7 +330,9 @@ def run_study(
         if pending:
             if own_client:
                 client, cluster = connect(scheduler, workers, processes)
-            log(f"Dask dashboard: {client.dashboard_link}")
+            link = dashboard_link(client)
+            log(f"Dask dashboard: {link}" if link else
+                f"Dask dashboard: none (the scheduler at {client.scheduler.address} serves none)")
             nthreads = max(1, sum(client.nthreads().values()))
             bar = make_progress(progress, len(samples), len(done))
             count = len(done)
