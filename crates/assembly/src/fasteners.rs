@@ -16,11 +16,11 @@ use pliant_core::{Model, State};
 use serde::Serialize;
 use std::ops::Range;
 
-/// Axial speed below which stub friction is regularised linearly [m/s] (a Coulomb law
+/// Axial speed below which stub friction is regularised linearly \[m/s\] (a Coulomb law
 /// smoothed over ±1 mm/s so that a hose held still on the stub does not chatter).
 const FRICTION_SPEED: f64 = 1e-3;
 
-/// Time over which a hose end released on a stub is carried onto the stub's axis [s].
+/// Time over which a hose end released on a stub is carried onto the stub's axis \[s\].
 /// While inserting, the hand may hold the end a little off the axis (up to the stub's
 /// radius). Moved there within one step, the fix's reaction — the stub force reported —
 /// was m·Δx/Δt²: in a variant of the engine-bay study 2 452 N at time-step safety 0.25,

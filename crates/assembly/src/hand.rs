@@ -40,7 +40,7 @@ pub struct HandLoad {
     pub position: DVec3,
     /// Force the hand applies \[N\].
     pub force: DVec3,
-    /// Torque the hand applies about its position [N·m].
+    /// Torque the hand applies about its position \[N·m\].
     pub torque: DVec3,
     /// Reference direction for push/pull: the held beam's axis, pointing towards the
     /// nearer end of the hose (pushing a hose end onto a stub is a push).

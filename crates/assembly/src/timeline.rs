@@ -47,7 +47,7 @@ pub enum Action {
         duration: f64,
         wait: bool,
     },
-    /// Dead load: a force \[N\] and moment [N·m] (global frame) added at the node, in full
+    /// Dead load: a force \[N\] and moment \[N·m\] (global frame) added at the node, in full
     /// at once or rising linearly over `ramp` seconds; `name` lets `unload` remove this
     /// one alone.
     Load {
@@ -74,7 +74,7 @@ pub enum Action {
         grip: crate::Grip,
     },
     /// Moves hand `hand` along `path` and/or turns it by `rotation` over `duration`
-    /// seconds — or, when `speed` [m/s] is given, over the path's length divided by it —
+    /// seconds — or, when `speed` \[m/s\] is given, over the path's length divided by it —
     /// with a smooth start and stop; through the waypoints as a polyline, or along a
     /// Catmull-Rom spline through them when `spline`. `wait` as for `Move`.
     MoveHand {

@@ -223,7 +223,7 @@ fn friction_only_on_a_sliding_guide() {
 }
 
 /// Hose 3 lying across the seat of a clip at x = 162.5 mm (opening +Z, hose along X),
-/// seated after 0.05 s, then pulled up with `pull` [N] on its node 7 (the seated node) for
+/// seated after 0.05 s, then pulled up with `pull` \[N\] on its node 7 (the seated node) for
 /// 0.05 s (a hose pulled loose flies off: the run stops before it is fast); the run's
 /// final state and the clip's report.
 fn seat_and_pull(spec: ClipSpec, pull: f64) -> (State, pliant_assembly::FastenerReport) {

@@ -95,7 +95,7 @@ fn tie_stiffness(model: &Model) -> f64 {
 
 /// Checks an equilibrium: the tie's force on b is ≈ F/2 towards a (to `tol` relative), the
 /// two reactions are equal and opposite, the tips keep their distance to within the tie's
-/// give and both moved by the same amount; returns b's tip displacement [m].
+/// give and both moved by the same amount; returns b's tip displacement \[m\].
 fn check(model: &Model, state: &State, tol: f64, what: &str) -> f64 {
     let (a, b) = tips(model);
     let (ra, rb) = (state.reaction_force[a], state.reaction_force[b]);

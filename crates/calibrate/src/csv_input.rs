@@ -18,7 +18,7 @@ pub enum Quantity {
     Strain,
     /// Stress \[Pa\].
     Stress,
-    /// Torque or moment [N·m].
+    /// Torque or moment \[N·m\].
     Torque,
     /// Angle of twist \[rad\].
     Angle,

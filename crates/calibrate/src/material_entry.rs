@@ -81,7 +81,7 @@ pub struct MaterialResult {
     pub poisson: Derived,
     pub density_kg_m3: Derived,
     pub min_bend_radius_mm: Option<Derived>,
-    /// Measured bending and torsional stiffness of the specimen's section [N·m²].
+    /// Measured bending and torsional stiffness of the specimen's section \[N·m²\].
     pub ei_n_m2: Option<Derived>,
     pub gj_n_m2: Option<Derived>,
     /// Whether the material reproduces the measured GJ (else give it in the section).

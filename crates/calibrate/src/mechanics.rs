@@ -103,9 +103,9 @@ pub enum Property {
     ETension,
     /// E_c \[Pa\].
     ECompression,
-    /// EI [N·m²].
+    /// EI \[N·m²\].
     BendingStiffness,
-    /// GJ [N·m²].
+    /// GJ \[N·m²\].
     TorsionalStiffness,
 }
 

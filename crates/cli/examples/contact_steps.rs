@@ -76,7 +76,7 @@ fn run(model: &pliant_core::Model, state: &mut pliant_core::State, steps: u64) -
     points
 }
 
-/// User + system CPU time of this process [s].
+/// User + system CPU time of this process \[s\].
 fn cpu_seconds() -> f64 {
     let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
     let after = stat.rsplit(')').next().unwrap_or("");

@@ -32,7 +32,12 @@ fn read_sidecar(path: &Path) -> Result<Sidecar> {
         std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
     let v: serde_json::Value =
         serde_json::from_str(&text).with_context(|| format!("{}: not JSON", path.display()))?;
-    let field = |name: &str| anyhow!("{}: no `{name}` (not written by `pliant import`?)", path.display());
+    let field = |name: &str| {
+        anyhow!(
+            "{}: no `{name}` (not written by `pliant import`?)",
+            path.display()
+        )
+    };
     let source = v["source"].as_str().ok_or_else(|| field("source"))?;
     let mut segments = Vec::new();
     for (k, s) in v["segments"]
@@ -56,7 +61,10 @@ fn read_sidecar(path: &Path) -> Result<Sidecar> {
 pub fn run(o: &ExportOptions) -> Result<ExitCode> {
     let scene_path = o.dir.join("scene.toml");
     let sidecar = read_sidecar(&o.dir.join("harness.json"))?;
-    let original = o.kbl.map(Path::to_path_buf).unwrap_or(sidecar.source.clone());
+    let original = o
+        .kbl
+        .map(Path::to_path_buf)
+        .unwrap_or(sidecar.source.clone());
     if !original.is_file() {
         bail!(
             "the original KBL {} is not there; give it with --kbl FILE",
@@ -86,16 +94,23 @@ pub fn run(o: &ExportOptions) -> Result<ExitCode> {
         };
         settled.insert(id.clone(), info.nodes().map(|i| state.x[i]).collect());
     }
-    let out = o.out.map(Path::to_path_buf).unwrap_or_else(|| o.dir.join("export"));
+    let out = o
+        .out
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| o.dir.join("export"));
     std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
-    let kbl = export_kbl(&original, &settled, &out.join("harness.kbl"))
-        .map_err(|e| anyhow!("{e}"))?;
+    let kbl =
+        export_kbl(&original, &settled, &out.join("harness.kbl")).map_err(|e| anyhow!("{e}"))?;
     let product = original
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "harness".into());
-    let step = export_step(&settled, &StepNames::new(product), &out.join("harness.step"))
-        .map_err(|e| anyhow!("{e}"))?;
+    let step = export_step(
+        &settled,
+        &StepNames::new(product),
+        &out.join("harness.step"),
+    )
+    .map_err(|e| anyhow!("{e}"))?;
     print!("{kbl}");
     println!(
         "{}: {} curve(s), {} point(s)",

@@ -143,7 +143,11 @@ pub fn run(scene_path: &Path, as_json: bool) -> Result<ExitCode> {
         let p = model.bodies[j.body].rest_centre * 1e3;
         println!(
             "  junction {:<20} degree {:>2}  at ({:.1}, {:.1}, {:.1}) mm",
-            j.name, j.nodes.len(), p.x, p.y, p.z
+            j.name,
+            j.nodes.len(),
+            p.x,
+            p.y,
+            p.z
         );
     }
     for f in d["fixings"].as_array().into_iter().flatten() {
@@ -155,7 +159,10 @@ pub fn run(scene_path: &Path, as_json: bool) -> Result<ExitCode> {
         );
     }
     for p in &scene.parts {
-        println!("  part {} ({} triangles, {})", p.name, p.triangles, p.source);
+        println!(
+            "  part {} ({} triangles, {})",
+            p.name, p.triangles, p.source
+        );
     }
     Ok(ExitCode::SUCCESS)
 }

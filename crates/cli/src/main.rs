@@ -239,13 +239,13 @@ enum Command {
         #[arg(long)]
         csv: Option<PathBuf>,
         /// Gauge length (tension, compression), span (three-point bending), free length
-        /// (cantilever), grip distance (torsion) or lever arm (iso10619) [mm].
+        /// (cantilever), grip distance (torsion) or lever arm (iso10619) \[mm\].
         #[arg(long)]
         length: Option<f64>,
-        /// The specimen's outer diameter [mm].
+        /// The specimen's outer diameter \[mm\].
         #[arg(long = "d-outer")]
         d_outer: Option<f64>,
-        /// The specimen's inner diameter [mm] (0: a solid rod).
+        /// The specimen's inner diameter \[mm\] (0: a solid rod).
         #[arg(long = "d-inner", default_value_t = 0.0)]
         d_inner: f64,
         /// Name of the material.

@@ -51,7 +51,7 @@ pub const CANTILEVER_LENGTH: f64 = 1.0;
 pub const DROP_LENGTH: f64 = 0.5;
 pub const CYLINDER_RADIUS: f64 = 0.05;
 pub const DROP_GAP: f64 = 0.01;
-/// Mass-proportional damping of the drop [1/s] (ζ ≈ 0.1 for the first mode of a 250 mm
+/// Mass-proportional damping of the drop \[1/s\] (ζ ≈ 0.1 for the first mode of a 250 mm
 /// arm) and the friction coefficient hose–cylinder, used by every tool.
 pub const DROP_DAMPING: f64 = 8.0;
 pub const DROP_FRICTION: f64 = 0.5;
@@ -90,7 +90,7 @@ pub struct Params {
     pub ei_n_m2: f64,
     pub mass_per_length_kg_m: f64,
     pub cantilever_length_m: f64,
-    /// First bending eigenfrequency of the cantilever ω₁ = 1.8751² √(EI/(ρA L⁴)) [rad/s].
+    /// First bending eigenfrequency of the cantilever ω₁ = 1.8751² √(EI/(ρA L⁴)) \[rad/s\].
     pub cantilever_omega1: f64,
     pub drop_length_m: f64,
     pub cylinder_radius_m: f64,
@@ -98,7 +98,7 @@ pub struct Params {
     pub drop_damping_per_s: f64,
     pub drop_friction: f64,
     pub drop_gravity_m_s2: f64,
-    /// First mode of a 250 mm cantilever arm (the damping rule's reference) [rad/s].
+    /// First mode of a 250 mm cantilever arm (the damping rule's reference) \[rad/s\].
     pub drop_arm_omega1: f64,
     pub rest_energy_j: f64,
     pub rest_window_s: f64,

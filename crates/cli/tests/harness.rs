@@ -77,11 +77,13 @@ fn a_harness_is_imported_inspected_installed_and_exported() {
         .output()
         .unwrap());
     let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["completed"], true, "{summary}");
     let settles = summary["settles"].as_array().unwrap();
-    assert!(!settles.is_empty() && settles.iter().all(|s| s["at_rest"] == true), "{summary}");
+    assert!(
+        !settles.is_empty() && settles.iter().all(|s| s["at_rest"] == true),
+        "{summary}"
+    );
 
     // export: the settled route as KBL and STEP; the KBL imports again with the same
     // topology and its segments where the run left them
@@ -126,7 +128,12 @@ fn a_harness_is_imported_inspected_installed_and_exported() {
             .unwrap()
             .iter()
             .map(|p| {
-                let v: Vec<f64> = p.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+                let v: Vec<f64> = p
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|x| x.as_f64().unwrap())
+                    .collect();
                 [v[0], v[1], v[2]]
             })
             .collect();
@@ -136,14 +143,27 @@ fn a_harness_is_imported_inspected_installed_and_exported() {
             .map(|l| l.split(',').collect::<Vec<_>>())
             .filter(|c| {
                 c[0].parse::<f64>().ok() == Some(last_time)
-                    && c[1].parse::<usize>().ok().map(|i| hoses[i]["name"].as_str()) == Some(Some(name))
+                    && c[1]
+                        .parse::<usize>()
+                        .ok()
+                        .map(|i| hoses[i]["name"].as_str())
+                        == Some(Some(name))
             })
-            .map(|c| [c[3].parse().unwrap(), c[4].parse().unwrap(), c[5].parse().unwrap()])
+            .map(|c| {
+                [
+                    c[3].parse().unwrap(),
+                    c[4].parse().unwrap(),
+                    c[5].parse().unwrap(),
+                ]
+            })
             .collect();
         assert!(!settled.is_empty(), "no settled nodes of {name}");
         for p in &settled {
             let d = distance_to_polyline(&line, *p);
-            assert!(d < 1e-4, "{name}: settled node {p:?} is {d} m from the exported route");
+            assert!(
+                d < 1e-4,
+                "{name}: settled node {p:?} is {d} m from the exported route"
+            );
         }
     }
 }

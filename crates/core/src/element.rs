@@ -47,12 +47,12 @@ pub struct BeamElement {
     pub axial_stiffness_tension: f64,
     /// E_c·A \[N\], used when shortened.
     pub axial_stiffness_compression: f64,
-    /// EI₁, EI₂ [N·m²]: bending about the element frame's y and z axes (the section axes
+    /// EI₁, EI₂ \[N·m²\]: bending about the element frame's y and z axes (the section axes
     /// 1 and 2, [`crate::section`]).
     pub bending_stiffness: [f64; 2],
-    /// G·J [N·m²].
+    /// G·J \[N·m²\].
     pub torsion_stiffness: f64,
-    /// ρ·A [kg/m].
+    /// ρ·A \[kg/m\].
     pub mass_per_length: f64,
     /// Rotation from node a's material frame to the element frame at rest (q_a0⁻¹ E₀).
     pub rest_offset_a: DQuat,
@@ -66,7 +66,7 @@ pub struct ElementEnds {
     pub x: [DVec3; 2],
     pub q: [DQuat; 2],
     pub v: [DVec3; 2],
-    /// Angular velocities in global axes [rad/s].
+    /// Angular velocities in global axes \[rad/s\].
     pub w: [DVec3; 2],
 }
 

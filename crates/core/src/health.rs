@@ -16,7 +16,7 @@ pub struct Divergence {
     pub cause: String,
 }
 
-/// Largest support force \[N\] (and moment [N·m]) taken as physical: far beyond anything a
+/// Largest support force \[N\] (and moment \[N·m\]) taken as physical: far beyond anything a
 /// hose, a hand or a clip can carry, so a larger one is a numerical blow-up — also while
 /// every held node stays where its hand puts it.
 pub const MAX_FORCE: f64 = 1e9;

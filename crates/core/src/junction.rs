@@ -29,7 +29,7 @@ pub struct JunctionSpec {
     pub name: String,
     /// The joined ends: hose index and which end.
     pub ends: Vec<(usize, HoseEnd)>,
-    /// Mass of a junction body beyond the hoses' own [kg] (0 for a welded branch point).
+    /// Mass of a junction body beyond the hoses' own \[kg\] (0 for a welded branch point).
     #[serde(default)]
     pub body_mass: f64,
 }

@@ -40,21 +40,21 @@ impl HoseInfo {
 pub struct Model {
     pub hoses: Vec<HoseInfo>,
     pub elements: Vec<BeamElement>,
-    /// Lumped translational mass per node [kg].
+    /// Lumped translational mass per node \[kg\].
     pub mass: Vec<f64>,
-    /// Lumped isotropic rotational inertia per node [kg·m²] (see [`crate::mass`]).
+    /// Lumped isotropic rotational inertia per node \[kg·m²\] (see [`crate::mass`]).
     pub inertia: Vec<f64>,
-    /// Outer radius per node [m] (for drawing and contact).
+    /// Outer radius per node \[m\] (for drawing and contact).
     pub radius: Vec<f64>,
-    /// Rest positions [m] and rest material frames.
+    /// Rest positions \[m\] and rest material frames.
     pub rest_x: Vec<DVec3>,
     pub rest_q: Vec<DQuat>,
     pub gravity: DVec3,
-    /// Mass-proportional Rayleigh damping α [1/s].
+    /// Mass-proportional Rayleigh damping α \[1/s\].
     pub damping_mass: f64,
-    /// Stiffness-proportional Rayleigh damping β [s] (resolved default if not given).
+    /// Stiffness-proportional Rayleigh damping β \[s\] (resolved default if not given).
     pub damping_stiffness: f64,
-    /// The time step used [s].
+    /// The time step used \[s\].
     pub time_step: f64,
     /// How the time step was chosen.
     pub time_step_report: TimeStepReport,

@@ -30,11 +30,11 @@ pub struct GivenStiffness {
     /// Axial stiffness EA \[N\], the same in tension and compression.
     pub axial: Option<f64>,
     /// Bending stiffnesses EI₁ (about section axis 1 = y) and EI₂ (about axis 2 = z)
-    /// [N·m²].
+    /// \[N·m²\].
     pub bending: [Option<f64>; 2],
-    /// Torsional stiffness GJ [N·m²].
+    /// Torsional stiffness GJ \[N·m²\].
     pub torsion: Option<f64>,
-    /// Mass per length μ [kg/m].
+    /// Mass per length μ \[kg/m\].
     pub mass_per_length: Option<f64>,
 }
 
@@ -64,11 +64,11 @@ pub struct SectionProperties {
     pub axial_tension: f64,
     /// E_c·A \[N\], used when shortened.
     pub axial_compression: f64,
-    /// EI₁, EI₂ [N·m²] (about section axes 1 = y and 2 = z).
+    /// EI₁, EI₂ \[N·m²\] (about section axes 1 = y and 2 = z).
     pub bending: [f64; 2],
-    /// G·J [N·m²].
+    /// G·J \[N·m²\].
     pub torsion: f64,
-    /// μ = ρ·A [kg/m].
+    /// μ = ρ·A \[kg/m\].
     pub mass_per_length: f64,
     /// Rotary inertia per length about a transverse axis, ρ·I [kg·m]: for a tube ρ I; for a
     /// section with given stiffness μ·max(I/A, EI/EA) (I/A of the tube envelope, EI the

@@ -18,7 +18,7 @@ use glam::DVec3;
 pub struct SettleOptions {
     /// Largest allowed out-of-balance force on a free node \[N\].
     pub force_tolerance: f64,
-    /// Largest allowed out-of-balance moment on a free node [N·m].
+    /// Largest allowed out-of-balance moment on a free node \[N·m\].
     pub moment_tolerance: f64,
     /// Give up after this many steps.
     pub max_steps: u64,

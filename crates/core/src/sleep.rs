@@ -16,7 +16,7 @@
 use crate::{Model, State};
 use glam::DVec3;
 
-/// Node speed below which a hose counts as at rest [m/s].
+/// Node speed below which a hose counts as at rest \[m/s\].
 pub const SLEEP_SPEED: f64 = 1e-4;
 /// Consecutive calm steps before a hose sleeps.
 pub const SLEEP_AFTER_STEPS: u32 = 2000;
@@ -78,7 +78,7 @@ impl Sleep {
     }
 }
 
-/// Change of contact force that wakes a sleeping node [N] (plus 1 % of the force it slept
+/// Change of contact force that wakes a sleeping node \[N\] (plus 1 % of the force it slept
 /// with).
 const WAKE_FORCE: f64 = 1e-6;
 

@@ -17,7 +17,7 @@ pub struct HoseSpec {
     pub name: String,
     /// Wall material.
     pub material: Material,
-    /// Rest positions of the nodes [m]; at least 2, consecutive nodes distinct.
+    /// Rest positions of the nodes \[m\]; at least 2, consecutive nodes distinct.
     pub nodes: Vec<DVec3>,
     /// Cross-section per element (`nodes.len() − 1` entries, element `e` between nodes
     /// `e` and `e + 1`), or one entry for a uniform hose.
@@ -51,13 +51,13 @@ impl HoseSpec {
 pub struct SimSettings {
     /// Gravitational acceleration [m/s²]; zero vector switches gravity off.
     pub gravity: DVec3,
-    /// Mass-proportional Rayleigh damping α [1/s].
+    /// Mass-proportional Rayleigh damping α \[1/s\].
     pub damping_mass: f64,
-    /// Stiffness-proportional Rayleigh damping β [s]; `None` → automatic default.
+    /// Stiffness-proportional Rayleigh damping β \[s\]; `None` → automatic default.
     pub damping_stiffness: Option<f64>,
     /// Safety factor on the stable time step (the thesis uses 0.5).
     pub time_step_safety: f64,
-    /// Fixed time step [s]; `None` → computed from the model. A fixed step larger than the
+    /// Fixed time step \[s\]; `None` → computed from the model. A fixed step larger than the
     /// stable one is refused when the model is built.
     pub time_step: Option<f64>,
     /// Which solver advances the simulation, and its steps (issue 5).
@@ -90,7 +90,7 @@ impl Default for SimSettings {
 pub struct RigidPartSpec {
     /// Name shown in outputs.
     pub name: String,
-    /// Vertex positions [m], world frame.
+    /// Vertex positions \[m\], world frame.
     pub vertices: Vec<DVec3>,
     /// Triangles as indices into `vertices` (orientation may be inconsistent; contact
     /// must not rely on it).

@@ -13,32 +13,32 @@ use glam::{DQuat, DVec3};
 
 #[derive(Clone, Debug)]
 pub struct State {
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub time: f64,
     /// Steps taken.
     pub step: u64,
-    /// Node positions [m].
+    /// Node positions \[m\].
     pub x: Vec<DVec3>,
     /// Node material frames (local → global), unit quaternions.
     pub q: Vec<DQuat>,
-    /// Node velocities [m/s].
+    /// Node velocities \[m/s\].
     pub v: Vec<DVec3>,
-    /// Node angular velocities, global axes [rad/s].
+    /// Node angular velocities, global axes \[rad/s\].
     pub w: Vec<DVec3>,
-    /// Total force on each node in the last step, support reactions excluded [N].
+    /// Total force on each node in the last step, support reactions excluded \[N\].
     pub force: Vec<DVec3>,
-    /// Total moment on each node in the last step, support reactions excluded [N·m].
+    /// Total moment on each node in the last step, support reactions excluded \[N·m\].
     pub moment: Vec<DVec3>,
-    /// Force the supports (fix / drive) applied to each node in the last step [N]; zero
+    /// Force the supports (fix / drive) applied to each node in the last step \[N\]; zero
     /// for free nodes.
     pub reaction_force: Vec<DVec3>,
-    /// Moment the supports applied to each node in the last step [N·m].
+    /// Moment the supports applied to each node in the last step \[N·m\].
     pub reaction_moment: Vec<DVec3>,
     /// Whether a kinematic load case held the node in the last step.
     pub held: Vec<bool>,
     /// Active load cases.
     pub loads: LoadCases,
-    /// Force the rigid parts applied to each node in the last step [N] (SPEC I2).
+    /// Force the rigid parts applied to each node in the last step \[N\] (SPEC I2).
     pub contact_force: Vec<DVec3>,
     /// Contact memory (sides of surfaces) and per-step contact list.
     pub contact: ContactScratch,
@@ -48,7 +48,7 @@ pub struct State {
     /// Pose and velocity of each stiffened section (SPEC M6).
     pub bodies: Vec<BodyState>,
     /// Force other hoses, or the hose itself, applied to each node by contact in the last
-    /// step [N] (SPEC L5); included in `force`.
+    /// step \[N\] (SPEC L5); included in `force`.
     pub hose_contact_force: Vec<DVec3>,
     /// Hose–hose contact broad phase and per-beam data, allocated once.
     pub hose_contact: HoseContactScratch,
@@ -95,7 +95,7 @@ impl State {
         }
     }
 
-    /// Kinetic energy Σ ½ m v² + ½ I ω² [J].
+    /// Kinetic energy Σ ½ m v² + ½ I ω² \[J\].
     pub fn kinetic_energy(&self, model: &Model) -> f64 {
         let mut e = 0.0;
         for i in 0..self.x.len() {
@@ -106,7 +106,7 @@ impl State {
         e
     }
 
-    /// Elastic strain energy of all elements [J].
+    /// Elastic strain energy of all elements \[J\].
     pub fn strain_energy(&self, model: &Model) -> f64 {
         model
             .elements
@@ -120,7 +120,7 @@ impl State {
             .sum()
     }
 
-    /// Potential energy of gravity −Σ m g·x [J].
+    /// Potential energy of gravity −Σ m g·x \[J\].
     pub fn gravity_energy(&self, model: &Model) -> f64 {
         -(0..self.x.len())
             .map(|i| model.mass[i] * model.gravity.dot(self.x[i]))

@@ -25,9 +25,9 @@ pub struct StiffenedSpan {
 pub struct RigidBody {
     /// Global node indices: a stiffened span's, or a junction's end nodes.
     pub nodes: Vec<usize>,
-    /// Total mass [kg].
+    /// Total mass \[kg\].
     pub mass: f64,
-    /// Principal moments of inertia about the centre of mass [kg·m²], body axes.
+    /// Principal moments of inertia about the centre of mass \[kg·m²\], body axes.
     pub principal_inertia: DVec3,
     /// Centre of mass and body frame (principal axes) at rest.
     pub rest_centre: DVec3,
@@ -107,7 +107,7 @@ pub struct BodyState {
     pub centre: DVec3,
     pub orientation: DQuat,
     pub velocity: DVec3,
-    /// Angular velocity, world axes [rad/s].
+    /// Angular velocity, world axes \[rad/s\].
     pub angular_velocity: DVec3,
 }
 

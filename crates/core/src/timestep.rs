@@ -26,7 +26,7 @@ pub struct TimeStepReport {
     pub axial_bound: f64,
     /// 2 / ω_max from power iteration, without safety factor.
     pub eigen_bound: f64,
-    /// The estimated highest natural frequency ω_max [rad/s].
+    /// The estimated highest natural frequency ω_max \[rad/s\].
     pub max_frequency: f64,
     /// The stiffness-proportional damping β used \[s\].
     pub damping_stiffness: f64,

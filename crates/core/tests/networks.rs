@@ -117,7 +117,10 @@ fn a_y_network_carries_its_weight_and_the_solvers_agree() {
     let w = weight(&model);
     // the clamp carries the whole weight (the explicit step reports its reaction)
     let r = explicit.reaction_force[0];
-    assert!((r + w).length() < 1e-4 * w.length(), "{r:?} vs weight {w:?}");
+    assert!(
+        (r + w).length() < 1e-4 * w.length(),
+        "{r:?} vs weight {w:?}"
+    );
     let size = 0.5;
     for kind in [SolverKind::Static, SolverKind::Implicit] {
         let (_, other) = at_rest(kind);
@@ -127,9 +130,15 @@ fn a_y_network_carries_its_weight_and_the_solvers_agree() {
             .zip(&other.x)
             .map(|(a, b)| (*a - *b).length())
             .fold(0.0, f64::max);
-        assert!(worst < 1e-3 * size, "{kind:?} differs from explicit by {worst} m");
+        assert!(
+            worst < 1e-3 * size,
+            "{kind:?} differs from explicit by {worst} m"
+        );
         let r = other.reaction_force[0];
-        assert!((r + w).length() < 1e-6 * w.length(), "{kind:?}: {r:?} vs {w:?}");
+        assert!(
+            (r + w).length() < 1e-6 * w.length(),
+            "{kind:?}: {r:?} vs {w:?}"
+        );
         // the joined ends stay together and keep their relative rotation
         let ends = &model.junctions[0].nodes;
         for &k in &ends[1..] {
@@ -164,15 +173,26 @@ fn a_fixed_branch_end_at_the_junction_holds_the_whole_junction() {
     for &k in ends {
         assert!((state.x[k] - (model.rest_x[slave] + DVec3::new(0.0, 0.0, 0.05))).length() < 1e-12);
         let rel = (state.q[k] * model.rest_q[k].conjugate()) * turn.conjugate();
-        assert!(rel.angle_between(DQuat::IDENTITY) < 1e-9, "end {k} not turned with the junction");
+        assert!(
+            rel.angle_between(DQuat::IDENTITY) < 1e-9,
+            "end {k} not turned with the junction"
+        );
     }
 }
 
 #[test]
 fn a_loop_is_refused_by_the_newton_solvers_and_stepped_by_the_explicit_one() {
-    let (a, b, c) = (DVec3::ZERO, DVec3::new(0.3, 0.0, 0.0), DVec3::new(0.15, 0.2, 0.0));
+    let (a, b, c) = (
+        DVec3::ZERO,
+        DVec3::new(0.3, 0.0, 0.0),
+        DVec3::new(0.15, 0.2, 0.0),
+    );
     let model = Model::build(&WorldSpec {
-        hoses: vec![hose("ab", a, b, 4), hose("bc", b, c, 4), hose("ca", c, a, 4)],
+        hoses: vec![
+            hose("ab", a, b, 4),
+            hose("bc", b, c, 4),
+            hose("ca", c, a, 4),
+        ],
         rigid_parts: vec![],
         settings: SimSettings::default(),
     })
@@ -230,7 +250,10 @@ fn junction_errors_name_the_junction() {
         },
     ]);
     let e = twice.unwrap_err().to_string();
-    assert!(e.contains("junction 'two'") && e.contains("junction 'one'"), "{e}");
+    assert!(
+        e.contains("junction 'two'") && e.contains("junction 'one'"),
+        "{e}"
+    );
     let lonely = model.with_junctions(&[JunctionSpec {
         name: "lonely".into(),
         ends: vec![(0, HoseEnd::End)],

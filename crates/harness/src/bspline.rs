@@ -200,7 +200,7 @@ impl Chain {
     }
 
     /// Arc length between u0 and u1 (u1 < u0 gives the same positive length):
-    /// 8-point Gauss–Legendre on each piece of [`Chain::pieces`].
+    /// 8-point Gauss–Legendre on each piece of `Chain::pieces`.
     pub fn arc_length(&self, u0: f64, u1: f64) -> f64 {
         self.pieces(u0, u1)
             .into_iter()
@@ -243,7 +243,7 @@ impl Chain {
     }
 
     /// Cumulative arc-length table from u0 to u1 (either order): pairs (u, s), one entry
-    /// per piece of [`Chain::pieces`].
+    /// per piece of `Chain::pieces`.
     fn table(&self, u0: f64, u1: f64) -> Vec<(f64, f64)> {
         let pieces = self.pieces(u0, u1);
         let mut out = Vec::with_capacity(pieces.len() + 1);

@@ -111,22 +111,22 @@ impl BundleData {
 /// Stiffnesses and mass of one wire (SI).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct WireSection {
-    /// Outer diameter [m].
+    /// Outer diameter \[m\].
     pub d: f64,
-    /// EA [N], EI [N·m²], GJ [N·m²], GA [N].
+    /// EA \[N\], EI \[N·m²\], GJ \[N·m²\], GA \[N\].
     pub ea: f64,
     pub ei: f64,
     pub gj: f64,
     pub ga: f64,
-    /// Mass per length [kg/m].
+    /// Mass per length \[kg/m\].
     pub mass: f64,
-    /// Minimum bend radius [m], if known.
+    /// Minimum bend radius \[m\], if known.
     pub bend_radius: Option<f64>,
 }
 
 impl WireSection {
-    /// A wire of outer diameter `d` [m] with conductor cross-section `a_c` [m²]; `mass`
-    /// [kg/m] from the part if known.
+    /// A wire of outer diameter `d` \[m\] with conductor cross-section `a_c` \[m²\]; `mass`
+    /// \[kg/m\] from the part if known.
     pub fn new(
         data: &BundleData,
         d: f64,
@@ -202,7 +202,7 @@ pub fn ring_layout(d: &[f64]) -> Vec<DVec2> {
 #[derive(Debug, Clone, Serialize)]
 pub struct BundleSection {
     pub wire_count: usize,
-    /// Outer diameter [m].
+    /// Outer diameter \[m\].
     pub d_outer: f64,
     pub ea: f64,
     pub ei_slip: f64,
@@ -210,15 +210,15 @@ pub struct BundleSection {
     pub ei_bond_min: f64,
     /// Mean of the bonded principal values, used for the effective EI.
     pub ei_bond: f64,
-    /// Effective EI [N·m²].
+    /// Effective EI \[N·m²\].
     pub ei: f64,
     pub gj_slip: f64,
     pub gj_bond: f64,
-    /// Effective GJ [N·m²].
+    /// Effective GJ \[N·m²\].
     pub gj: f64,
-    /// Mass per length [kg/m], protection included.
+    /// Mass per length \[kg/m\], protection included.
     pub mass: f64,
-    /// Minimum bend radius [m] (0 when neither the wires nor the protection give one).
+    /// Minimum bend radius \[m\] (0 when neither the wires nor the protection give one).
     pub min_bend_radius: f64,
     /// Protection the factors come from (`None`: unprotected).
     pub protection: Option<ProtectionKind>,
@@ -228,8 +228,8 @@ pub struct BundleSection {
     pub fill: f64,
 }
 
-/// The protection that sets a segment's factors: kind, covered share, outer diameter [m]
-/// and mass per length [kg/m] if known.
+/// The protection that sets a segment's factors: kind, covered share, outer diameter \[m\]
+/// and mass per length \[kg/m\] if known.
 #[derive(Debug, Clone, Copy)]
 pub struct ProtectionCover {
     pub kind: ProtectionKind,

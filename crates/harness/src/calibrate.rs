@@ -55,7 +55,7 @@ pub struct Fit {
     /// The factor f_ei ∈ [0, 1].
     pub f_ei: f64,
     pub measured_ei: f64,
-    /// The bounds of the tested bundle [N·m²].
+    /// The bounds of the tested bundle \[N·m²\].
     pub ei_slip: f64,
     pub ei_bond: f64,
     /// The protection the factor belongs to (`None`: unprotected wires).
@@ -83,8 +83,8 @@ impl Fit {
     }
 }
 
-/// EI [N·m²] of a three-point bending test: simply supported span `span` [m], central
-/// force `force` [N], central deflection `deflection` [m]: EI = F L³ / (48 δ).
+/// EI \[N·m²\] of a three-point bending test: simply supported span `span` \[m\], central
+/// force `force` \[N\], central deflection `deflection` \[m\]: EI = F L³ / (48 δ).
 /// Use the slope of the loading curve in its linear range (F/δ), not a single point
 /// after settling: taped bundles creep and show hysteresis.
 pub fn three_point_bending_ei(
@@ -101,7 +101,7 @@ pub fn three_point_bending_ei(
 }
 
 /// Fit the factor f_ei of protection `kind` from the measured bending stiffness
-/// `measured_ei` [N·m²] of a bundle of `wires` (see the module documentation).
+/// `measured_ei` \[N·m²\] of a bundle of `wires` (see the module documentation).
 pub fn fit_protection_factor(
     measured_ei: f64,
     wires: &[WireSection],

@@ -49,7 +49,7 @@ use crate::model::Harness;
 use crate::settled::{clean, polyline_length, SettledHarness, DUPLICATE_M};
 use crate::units::Dimension;
 
-/// Largest distance [m] between settled segment ends meeting at one node (0.1 mm, the
+/// Largest distance \[m\] between settled segment ends meeting at one node (0.1 mm, the
 /// round-trip tolerance of issue 34): Pliant welds the ends at a junction, so a larger
 /// spread means a wrong route (e.g. a polyline given from its end node to its start).
 pub const NODE_SPREAD_LIMIT_M: f64 = 1e-4;
@@ -63,16 +63,16 @@ pub struct ExportReport {
     /// Segments whose centre curve was replaced, and those kept.
     pub segments_replaced: usize,
     pub segments_kept: usize,
-    /// Nodes moved, and the largest move [m].
+    /// Nodes moved, and the largest move \[m\].
     pub nodes_moved: usize,
     pub max_node_move_m: f64,
-    /// Largest distance [m] between settled segment ends at one node (before they were
+    /// Largest distance \[m\] between settled segment ends at one node (before they were
     /// joined at their mean).
     pub max_node_spread_m: f64,
     /// `Cartesian_point` elements added and removed.
     pub points_added: usize,
     pub points_removed: usize,
-    /// Sum of the replaced segments' lengths [m], before (their `Virtual_length`) and after.
+    /// Sum of the replaced segments' lengths \[m\], before (their `Virtual_length`) and after.
     pub length_before_m: f64,
     pub length_after_m: f64,
     pub warnings: Vec<String>,
@@ -655,7 +655,7 @@ impl<'a, 'i: 'a> Writer<'a, 'i> {
         Ok(())
     }
 
-    /// Set a length quantity of the segment to `length` [m] in its own unit.
+    /// Set a length quantity of the segment to `length` \[m\] in its own unit.
     fn set_length(
         &mut self,
         seg: XNode,

@@ -10,7 +10,7 @@ use glam::DVec3;
 use crate::bspline::{BSpline, Chain};
 use crate::model::{Harness, Segment};
 
-/// Distance [m] within which a curve end counts as lying on its node (10⁻³ mm).
+/// Distance \[m\] within which a curve end counts as lying on its node (10⁻³ mm).
 pub const END_TOLERANCE_M: f64 = 1e-6;
 
 /// The centre line of one segment.
@@ -25,10 +25,10 @@ pub struct SegmentCurve {
     pub trimmed: bool,
     /// Whether the segment had no centre curve (a straight line is used).
     pub straight_fallback: bool,
-    /// Distance [m] of the trimmed curve's first and last point from the nodes.
+    /// Distance \[m\] of the trimmed curve's first and last point from the nodes.
     pub start_error: f64,
     pub end_error: f64,
-    /// Arc length [m] between u_start and u_end.
+    /// Arc length \[m\] between u_start and u_end.
     pub length: f64,
 }
 

@@ -3,7 +3,7 @@
 //! Schema: prostep ivip, `prostep-ivip-e-V/vec`, `wiki/content/specifications/kbl/`.
 //! What is read:
 //!
-//! - `Cartesian_point` (mm) → positions [m]; `Node` → its point;
+//! - `Cartesian_point` (mm) → positions \[m\]; `Node` → its point;
 //! - `Segment`: start/end node, `Virtual_length`, `Center_curve`s (degree + control points),
 //!   `Cross_section_area_information/Area` (the files write plain millimetres as its unit
 //!   although the value is mm²: a length unit there is read as that unit squared, with a
@@ -736,7 +736,7 @@ pub fn classify_protection(
     }
 }
 
-/// Outer diameter [m] from a description such as "PP-Wellschlauch Gr. 10.0 D(i)=8.3
+/// Outer diameter \[m\] from a description such as "PP-Wellschlauch Gr. 10.0 D(i)=8.3
 /// D(a)=13.4" (millimetres).
 pub fn outer_diameter_from_description(d: &str) -> Option<f64> {
     let upper = d.to_uppercase();

@@ -4,7 +4,7 @@
 //! - [`bspline`] and [`geometry`] evaluate and trim the segments' centre curves;
 //! - [`bundle`] turns the wires routed through a segment into a beam section;
 //! - [`scene`] writes `scene.toml` and `harness.json`;
-//! - [`vec`] recognises VEC files (refused for now);
+//! - [`mod@vec`] recognises VEC files (refused for now);
 //! - [`export`] writes a settled route ([`settled`]) back as KBL, [`step`] as STEP (AP214);
 //! - [`calibrate`] fits a protection's coupling factor from a bending test;
 //! - [`import_kbl`] does all of it and returns an [`ImportReport`].
@@ -150,12 +150,11 @@ pub fn import_kbl_with(
     })?;
     let json_path = out_dir.join("harness.json");
     let json =
-        serde_json::to_string_pretty(&scene::harness_json(&h, &segs, &note, source_path(path))).map_err(|e| {
-            HarnessError::Write {
+        serde_json::to_string_pretty(&scene::harness_json(&h, &segs, &note, source_path(path)))
+            .map_err(|e| HarnessError::Write {
                 path: json_path.clone(),
                 source: std::io::Error::other(e),
-            }
-        })?;
+            })?;
     std::fs::write(&json_path, json).map_err(|source| HarnessError::Write {
         path: json_path.clone(),
         source,

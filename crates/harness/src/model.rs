@@ -31,12 +31,12 @@ pub struct Node {
     pub kbl_id: String,
     /// The node's `<Id>` text, if any.
     pub name: Option<String>,
-    /// Position [m] in the vehicle frame.
+    /// Position \[m\] in the vehicle frame.
     pub position: DVec3,
 }
 
 /// One B-spline of a segment's centre curve, as written in KBL: a degree and control
-/// points [m]; no knot vector (see `bspline.rs`).
+/// points \[m\]; no knot vector (see `bspline.rs`).
 #[derive(Debug, Clone, Serialize)]
 pub struct CurveData {
     pub kbl_id: String,
@@ -54,11 +54,11 @@ pub struct Segment {
     pub start_node: usize,
     /// Index into `Harness::nodes`.
     pub end_node: usize,
-    /// `Virtual_length` [m].
+    /// `Virtual_length` \[m\].
     pub virtual_length: Option<f64>,
     /// The centre curve: one or more B-splines, in order.
     pub curves: Vec<CurveData>,
-    /// `Cross_section_area_information/Area` [m²].
+    /// `Cross_section_area_information/Area` \[m²\].
     pub cross_section_area: Option<f64>,
     /// Indices into `Harness::wires` routed through this segment.
     pub wires: Vec<usize>,
@@ -69,11 +69,11 @@ pub struct Segment {
 /// A conductor with its insulation: a single wire, or one core of a multi-core cable.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct Conductor {
-    /// Outer diameter of the insulation [m].
+    /// Outer diameter of the insulation \[m\].
     pub outer_diameter: Option<f64>,
-    /// Conductor cross-section [m²].
+    /// Conductor cross-section \[m²\].
     pub cross_section: Option<f64>,
-    /// Minimum bend radius [m].
+    /// Minimum bend radius \[m\].
     pub bend_radius: Option<f64>,
 }
 
@@ -85,7 +85,7 @@ pub struct WirePart {
     pub description: Option<String>,
     /// The part's own diameter, cross-section and bend radius (a cable: its sheath).
     pub own: Conductor,
-    /// Mass per length [kg/m] (`Mass_information` in a mass-per-length unit).
+    /// Mass per length \[kg/m\] (`Mass_information` in a mass-per-length unit).
     pub mass_per_length: Option<f64>,
     /// Cores of a multi-core cable (empty for a single wire).
     pub cores: Vec<Conductor>,
@@ -168,9 +168,9 @@ pub struct Protection {
     /// Start and end location along the segment, in [0, 1].
     pub from: f64,
     pub to: f64,
-    /// Mass per length of the protection [kg/m], if given.
+    /// Mass per length of the protection \[kg/m\], if given.
     pub mass_per_length: Option<f64>,
-    /// Outer diameter [m] when the description states one (`D(a)=13.4`).
+    /// Outer diameter \[m\] when the description states one (`D(a)=13.4`).
     pub outer_diameter: Option<f64>,
 }
 
@@ -197,7 +197,7 @@ impl Harness {
         at
     }
 
-    /// Sum of the segments' virtual lengths [m].
+    /// Sum of the segments' virtual lengths \[m\].
     pub fn total_virtual_length(&self) -> f64 {
         self.segments.iter().filter_map(|s| s.virtual_length).sum()
     }

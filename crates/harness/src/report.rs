@@ -35,7 +35,7 @@ pub struct ImportReport {
     pub fixes_in_timeline: usize,
     /// Segments whose centre curve was trimmed to its nodes.
     pub trimmed_segments: Vec<String>,
-    /// Largest distance [m] of a (trimmed) curve end from its node.
+    /// Largest distance \[m\] of a (trimmed) curve end from its node.
     pub max_end_error_m: f64,
     /// Largest |arc length − Virtual_length| / Virtual_length and its segment.
     pub max_length_error: (f64, String),

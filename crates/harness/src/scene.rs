@@ -22,13 +22,13 @@ use crate::bundle::BundleSection;
 use crate::geometry::SegmentCurve;
 use crate::model::Harness;
 
-/// Spacing of the sampled centre-line points [m].
+/// Spacing of the sampled centre-line points \[m\].
 pub const SAMPLE_SPACING_M: f64 = 0.010;
-/// Target element length [m].
+/// Target element length \[m\].
 pub const ELEMENT_LENGTH_M: f64 = 0.025;
 /// Fewest elements per segment.
 pub const MIN_ELEMENTS: usize = 4;
-/// Clip snap force [N] — an assumption: harness clips and holders snap on with forces of
+/// Clip snap force \[N\] — an assumption: harness clips and holders snap on with forces of
 /// a few tens of newtons; calibrate against the part's data sheet.
 pub const SNAP_FORCE_N: f64 = 30.0;
 /// Clip opening width as a share of the seat diameter (assumption: "a bit smaller").
@@ -78,7 +78,7 @@ pub fn unique(names: impl IntoIterator<Item = String>) -> Vec<String> {
         .collect()
 }
 
-/// Number of elements for a centre line of length `len` [m].
+/// Number of elements for a centre line of length `len` \[m\].
 pub fn element_count(len: f64) -> usize {
     ((len / ELEMENT_LENGTH_M).round() as usize).max(MIN_ELEMENTS)
 }

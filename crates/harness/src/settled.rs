@@ -13,7 +13,7 @@ use glam::DVec3;
 use crate::geometry::SegmentCurve;
 use crate::model::Harness;
 
-/// Points closer than this [m] to the point before them are dropped (10⁻⁹ m: below the
+/// Points closer than this \[m\] to the point before them are dropped (10⁻⁹ m: below the
 /// 10⁻⁶ mm the files are written with, such points would coincide).
 pub const DUPLICATE_M: f64 = 1e-9;
 
@@ -100,12 +100,12 @@ pub fn clean(points: &[DVec3]) -> Vec<DVec3> {
     out
 }
 
-/// Length of a polyline [m].
+/// Length of a polyline \[m\].
 pub fn polyline_length(points: &[DVec3]) -> f64 {
     points.windows(2).map(|w| w[0].distance(w[1])).sum()
 }
 
-/// Distance from `p` to the nearest point of the polyline [m].
+/// Distance from `p` to the nearest point of the polyline \[m\].
 pub fn distance_to_polyline(points: &[DVec3], p: DVec3) -> f64 {
     match points {
         [] => f64::INFINITY,

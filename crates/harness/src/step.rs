@@ -281,7 +281,7 @@ pub fn step_text(
 }
 
 /// `B_SPLINE_CURVE_WITH_KNOTS` of degree 1 through `points` (ids `ids`): clamped knots at
-/// the cumulative chord length [mm] with multiplicities 2, 1, …, 1, 2 (n + 1 points, n + 3
+/// the cumulative chord length \[mm\] with multiplicities 2, 1, …, 1, 2 (n + 1 points, n + 3
 /// knots: ISO 10303-42 `b_spline_curve_with_knots`, upper index of knots = n + 1 distinct
 /// values).
 fn bspline_degree1(name: &str, points: &[DVec3], ids: &[usize]) -> String {

@@ -142,7 +142,7 @@ pub fn quaternion(value: &Bound<'_, PyAny>, what: &str) -> PyResult<DQuat> {
     Ok(q / norm)
 }
 
-/// A duration or time [s] that must be finite and positive (or ≥ 0 with `allow_zero`).
+/// A duration or time \[s\] that must be finite and positive (or ≥ 0 with `allow_zero`).
 pub fn seconds(value: f64, what: &str, allow_zero: bool) -> PyResult<f64> {
     let ok = value.is_finite() && (value > 0.0 || (allow_zero && value == 0.0));
     if !ok {

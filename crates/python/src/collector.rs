@@ -11,7 +11,7 @@ use pliant_core::{Model, State};
 pub struct Collector {
     interval: f64,
     next_time: f64,
-    /// Recorded times [s].
+    /// Recorded times \[s\].
     pub times: Vec<f64>,
     /// All nodes' positions per recorded time, record after record.
     pub positions: Vec<DVec3>,

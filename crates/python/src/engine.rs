@@ -97,7 +97,7 @@ impl Engine {
         self.cell.solver()
     }
 
-    /// Simulated time one step advances [s].
+    /// Simulated time one step advances \[s\].
     pub fn time_step(&self) -> f64 {
         self.cell.time_step()
     }

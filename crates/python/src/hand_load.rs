@@ -11,11 +11,11 @@ use pyo3::prelude::*;
 /// The load one hand applied to the hose in the last step (global axes, SI units), judged
 /// against the simulation's ergonomic profile.
 ///
-/// Attributes: ``hand``, ``hose`` (name), ``position`` [m], ``force`` [N], ``torque``
-/// [N·m] about the hand position, ``direction`` (unit push direction: along the held
+/// Attributes: ``hand``, ``hose`` (name), ``position`` \[m\], ``force`` \[N\], ``torque``
+/// \[N·m\] about the hand position, ``direction`` (unit push direction: along the held
 /// beam towards the nearer hose end) as numpy arrays; the force split into
-/// ``axial_force`` (signed, > 0 push) and ``lateral_force`` [N], the torque into
-/// ``twist`` (about the hose axis) and ``bending`` (across it) [N·m]; ``kind`` of the
+/// ``axial_force`` (signed, > 0 push) and ``lateral_force`` \[N\], the torque into
+/// ``twist`` (about the hose axis) and ``bending`` (across it) \[N·m\]; ``kind`` of the
 /// worst load that decides feasibility (``"push"``, ``"pull"``; ``"twist"`` or
 /// ``"bending"`` only with ``moments_decide=true``; None if not assessed), its ``ratio``
 /// to the ``limit`` value, and the ``colour`` value min(ratio, 1).
@@ -76,17 +76,17 @@ impl HandLoad {
 
 #[pymethods]
 impl HandLoad {
-    /// Hand position [m], shape (3,).
+    /// Hand position \[m\], shape (3,).
     #[getter]
     fn position<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vector(py, self.position)
     }
-    /// Force the hand applies to the hose [N], shape (3,).
+    /// Force the hand applies to the hose \[N\], shape (3,).
     #[getter]
     fn force<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vector(py, self.force)
     }
-    /// Torque the hand applies about its position [N·m], shape (3,).
+    /// Torque the hand applies about its position \[N·m\], shape (3,).
     #[getter]
     fn torque<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         vector(py, self.torque)

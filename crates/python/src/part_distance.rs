@@ -217,7 +217,7 @@ fn points_of(points: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<DVec3>> {
 }
 
 /// `part_distances(points, kind, position, rotation, size, triangles)`: the distance of
-/// each point (K, 3) [m] to a part's surface (module doc). `kind` is "box", "cylinder",
+/// each point (K, 3) \[m\] to a part's surface (module doc). `kind` is "box", "cylinder",
 /// "sphere" (with `size`: edges; radius and height; radius) or "mesh" (with `triangles`
 /// (F, 3, 3) in world coordinates). Raises ValueError for anything else.
 #[pyfunction]
@@ -240,7 +240,7 @@ pub fn part_distances<'py>(
 }
 
 /// `part_clearance(points, offsets, kind, position, rotation, size, triangles)`: min over
-/// the points (K, 3) of (distance to the part − offset) [m], exactly, as
+/// the points (K, 3) of (distance to the part − offset) \[m\], exactly, as
 /// `part_distances(...) - offsets` would give; +∞ for no points.
 #[pyfunction]
 #[pyo3(signature = (points, offsets, kind, position, rotation, size, triangles=None))]

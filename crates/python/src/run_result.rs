@@ -206,7 +206,7 @@ impl RunResult {
         self.run.steps
     }
 
-    /// Simulated time at the end [s].
+    /// Simulated time at the end \[s\].
     #[getter]
     fn simulated_time(&self) -> f64 {
         self.run.simulated_time
@@ -238,7 +238,7 @@ impl RunResult {
     }
 
     /// Peak support loads per fixed or driven node: dicts with hose (name), hose_index,
-    /// node, max_force [N], max_force_time [s], max_moment [N·m], max_moment_time [s],
+    /// node, max_force \[N\], max_force_time \[s\], max_moment \[N·m\], max_moment_time \[s\],
     /// last_force, last_moment.
     #[getter]
     fn peaks<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
@@ -274,8 +274,8 @@ impl RunResult {
     }
 
     /// Installation-check violations (SPEC V3; dicts: ``check`` — bend_radius, twist,
-    /// tension_at_rest, straight_behind_stub —, ``hose_name``, ``arc_length`` [m],
-    /// ``time`` [s], ``value`` and ``limit`` in SI units, ``first_time``, ``last_time``).
+    /// tension_at_rest, straight_behind_stub —, ``hose_name``, ``arc_length`` \[m\],
+    /// ``time`` \[s\], ``value`` and ``limit`` in SI units, ``first_time``, ``last_time``).
     #[getter]
     fn violations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.run.checks.violations)
@@ -294,13 +294,13 @@ impl RunResult {
         to_python(py, &self.run.contacts)
     }
 
-    /// Recorded times [s], shape (K,).
+    /// Recorded times \[s\], shape (K,).
     #[getter]
     fn times<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         scalars(py, self.data.times.clone())
     }
 
-    /// A hose's node positions at the recorded times [m], shape (K, N, 3).
+    /// A hose's node positions at the recorded times \[m\], shape (K, N, 3).
     fn positions<'py>(
         &self,
         py: Python<'py>,
@@ -326,8 +326,8 @@ impl RunResult {
     }
 
     /// Hand ``hand``'s load at the recorded times while it held something, as numpy
-    /// arrays: ``time`` (K,) [s], ``position`` (K, 3) [m], ``force`` (K, 3) [N],
-    /// ``torque`` (K, 3) [N·m], ``ratio`` (K,) to the limit of the worst load kind,
+    /// arrays: ``time`` (K,) \[s\], ``position`` (K, 3) \[m\], ``force`` (K, 3) \[N\],
+    /// ``torque`` (K, 3) \[N·m\], ``ratio`` (K,) to the limit of the worst load kind,
     /// ``limit`` (K,), ``colour`` (K,) = min(ratio, 1).
     fn hand_series<'py>(&self, py: Python<'py>, hand: usize) -> PyResult<Bound<'py, PyDict>> {
         if !self.run.hand_peaks.iter().any(|p| p.hand == hand) {

@@ -194,7 +194,7 @@ impl Scene {
         Ok(self.model.hoses[self.hose(&hose)?].node_count)
     }
 
-    /// Per hose: name, nodes, elements, length [m], element_length [m] and stiffened
+    /// Per hose: name, nodes, elements, length \[m\], element_length \[m\] and stiffened
     /// spans (first, last node).
     #[getter]
     fn hoses<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
@@ -232,13 +232,13 @@ impl Scene {
         self.scene.clips.iter().map(|c| c.name.clone()).collect()
     }
 
-    /// Interval between recorded states of a timeline run [s] (0: every step).
+    /// Interval between recorded states of a timeline run \[s\] (0: every step).
     #[getter]
     fn record_interval(&self) -> f64 {
         self.scene.record_interval
     }
 
-    /// The explicit solver's stable time step of the model [s]. A simulation with the
+    /// The explicit solver's stable time step of the model \[s\]. A simulation with the
     /// implicit or static solver advances by its own step (``Simulation.time_step``).
     #[getter]
     fn time_step(&self) -> f64 {

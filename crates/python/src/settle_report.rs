@@ -6,7 +6,7 @@ use pyo3::prelude::*;
 /// How a relaxation to static equilibrium ended.
 ///
 /// Attributes: ``converged`` (the residuals fell below the tolerances), ``steps`` taken,
-/// and the largest out-of-balance ``residual_force`` [N] and ``residual_moment`` [N·m]
+/// and the largest out-of-balance ``residual_force`` \[N\] and ``residual_moment`` \[N·m\]
 /// on a free node.
 #[pyclass(module = "pliant", name = "SettleReport", frozen)]
 pub struct SettleReport {

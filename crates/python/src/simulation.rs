@@ -47,7 +47,7 @@ fn refused(r: Refusal) -> PyErr {
 /// 0.0
 /// >>> sim.run(0.05)                  # 0.05 s with the scene's solver; returns the steps
 /// 206
-/// >>> sim.positions("lower").shape   # (nodes, 3) [m]
+/// >>> sim.positions("lower").shape   # (nodes, 3) \[m\]
 /// (16, 3)
 #[pyclass(module = "pliant", name = "Simulation")]
 pub struct Simulation {
@@ -222,13 +222,13 @@ impl Simulation {
         self.scene.clone_ref(py)
     }
 
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     #[getter]
     fn time(&self) -> f64 {
         self.engine.state().time
     }
 
-    /// Simulated time one step advances [s]: the explicit stable step, or the implicit /
+    /// Simulated time one step advances \[s\]: the explicit stable step, or the implicit /
     /// static solver's step (see :attr:`solver` and the scene's ``[simulation]``).
     #[getter]
     fn time_step(&self) -> f64 {
@@ -261,7 +261,7 @@ impl Simulation {
     }
 
     /// The unstable equilibria (buckling, bifurcations) the static solver met and left
-    /// for the stable branch so far, each a dict: ``time`` [s], ``hose`` (name), ``node``
+    /// for the stable branch so far, each a dict: ``time`` \[s\], ``hose`` (name), ``node``
     /// (on that hose), ``negative_eigenvalues``, ``limit_point`` (a snap-through), ``energy_drop_j`` and ``mode`` (an
     /// (n, 3) array: each node's translation in the unstable mode, the largest 1).
     fn instabilities<'py>(
@@ -340,8 +340,8 @@ impl Simulation {
     /// Relaxes to static equilibrium under the current load cases and hand poses by
     /// dynamic relaxation with kinetic damping (the explicit step runs on and all
     /// velocities are zeroed whenever the kinetic energy passes a peak) until the largest
-    /// out-of-balance force and moment on a free node are below the tolerances [N],
-    /// [N·m], or ``max_steps`` steps have passed. Simulated time advances by the steps
+    /// out-of-balance force and moment on a free node are below the tolerances \[N\],
+    /// \[N·m\], or ``max_steps`` steps have passed. Simulated time advances by the steps
     /// taken; the motion on the way is not physical, the end state is the equilibrium.
     ///
     /// Returns a :class:`SettleReport` (true if converged). Raises ValueError while a
@@ -437,9 +437,9 @@ impl Simulation {
         Ok(self.new_load(id))
     }
 
-    /// Drives node ``node`` of ``hose`` through the waypoints ``to`` (absolute [m], one
+    /// Drives node ``node`` of ``hose`` through the waypoints ``to`` (absolute \[m\], one
     /// point or a list) or ``by`` (offsets from where it is now), turning it by the
-    /// rotation vector ``rotate`` (axis × angle [rad], global axes; angles beyond π
+    /// rotation vector ``rotate`` (axis × angle \[rad\], global axes; angles beyond π
     /// allowed) over ``duration`` seconds with a smooth start and stop (L2, L3); it stays
     /// held at the end pose until the load case is removed. With ``wait`` the
     /// simulation runs for ``duration``. Replaces fixes and drives you added on the node.
@@ -475,7 +475,7 @@ impl Simulation {
         Ok(load)
     }
 
-    /// Adds a constant ``force`` [N] and ``moment`` [N·m] (global axes; they do not turn
+    /// Adds a constant ``force`` \[N\] and ``moment`` \[N·m\] (global axes; they do not turn
     /// with the hose) at node ``node`` of ``hose``, in full at once or rising linearly
     /// from zero over ``ramp`` seconds from now. Dead loads on one node add up; each can
     /// be removed alone with :meth:`remove_load`.
@@ -530,7 +530,7 @@ impl Simulation {
 
     // ---- hands ------------------------------------------------------------------
 
-    /// Hand ``hand`` (a number ≥ 0) grabs the beam nearest to the point ``at`` [m], or
+    /// Hand ``hand`` (a number ≥ 0) grabs the beam nearest to the point ``at`` \[m\], or
     /// to node ``node`` of ``hose``; the beam's two nodes then follow the hand rigidly
     /// (I1). A hand that holds a beam lets go of it first; fixes and drives you added on
     /// the beam's nodes are replaced. Returns (hose name, first node, second node) of
@@ -581,11 +581,11 @@ impl Simulation {
         Ok((name, a, b))
     }
 
-    /// Moves hand ``hand`` through the waypoints ``to`` (absolute [m], one point or a
+    /// Moves hand ``hand`` through the waypoints ``to`` (absolute \[m\], one point or a
     /// list) or ``by`` (offsets from the hand's position now), and turns it to the
     /// absolute ``orientation`` (quaternion w, x, y, z; the hand starts with the global
     /// orientation when it grabs) or by the rotation vector ``rotate`` (axis × angle
-    /// [rad]), over ``duration`` seconds — or at the mean ``speed`` [m/s] along the path
+    /// \[rad\]), over ``duration`` seconds — or at the mean ``speed`` \[m/s\] along the path
     /// — with a smooth start and stop. The held beam follows rigidly. With ``wait`` the
     /// simulation runs until the motion ends.
     ///
@@ -663,7 +663,7 @@ impl Simulation {
         Ok(())
     }
 
-    /// Hand ``hand`` heads for ``position`` [m] (and ``orientation``, a quaternion
+    /// Hand ``hand`` heads for ``position`` \[m\] (and ``orientation``, a quaternion
     /// ``[w, x, y, z]``, if given) at bounded speed and acceleration (2 m/s, 20 m/s²) — as
     /// a hand steered by a pointer or a VR controller in ``pliant serve`` does, and as
     /// the timeline action ``aim_hand``. Returns at once; :meth:`run` lets it get there.
@@ -703,7 +703,7 @@ impl Simulation {
         self.engine.hands()
     }
 
-    /// The hand's position [m] (3,) and orientation (w, x, y, z) (4,) now.
+    /// The hand's position \[m\] (3,) and orientation (w, x, y, z) (4,) now.
     fn hand_pose<'py>(
         &self,
         py: Python<'py>,
@@ -720,7 +720,7 @@ impl Simulation {
         Ok(HandLoad::new(hand, hose, &load, assessment.as_ref()))
     }
 
-    /// The force [N] hand ``hand`` applied to the hose in the last step, shape (3,).
+    /// The force \[N\] hand ``hand`` applied to the hose in the last step, shape (3,).
     ///
     /// >>> import pliant, numpy as np
     /// >>> sim = pliant.Simulation(pliant.demo_scene())
@@ -733,7 +733,7 @@ impl Simulation {
         Ok(vector(py, load.force))
     }
 
-    /// The torque [N·m] hand ``hand`` applied about its position in the last step, (3,).
+    /// The torque \[N·m\] hand ``hand`` applied about its position in the last step, (3,).
     fn hand_torque<'py>(&self, py: Python<'py>, hand: u32) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let (load, _) = self.engine.hand_load(hand).map_err(refused)?;
         Ok(vector(py, load.torque))
@@ -741,7 +741,7 @@ impl Simulation {
 
     // ---- arrays -----------------------------------------------------------------
 
-    /// Node positions of a hose [m], shape (N, 3), float64 (a copy).
+    /// Node positions of a hose \[m\], shape (N, 3), float64 (a copy).
     fn positions<'py>(
         &self,
         py: Python<'py>,
@@ -761,7 +761,7 @@ impl Simulation {
         Ok(quaternions(py, self.engine.state().q[r].iter().copied()))
     }
 
-    /// Node velocities [m/s], shape (N, 3).
+    /// Node velocities \[m/s\], shape (N, 3).
     fn velocities<'py>(
         &self,
         py: Python<'py>,
@@ -770,7 +770,7 @@ impl Simulation {
         self.vector_field(py, &hose, |s| &s.v)
     }
 
-    /// Node angular velocities [rad/s] (global axes), shape (N, 3).
+    /// Node angular velocities \[rad/s\] (global axes), shape (N, 3).
     fn angular_velocities<'py>(
         &self,
         py: Python<'py>,
@@ -780,19 +780,19 @@ impl Simulation {
     }
 
     /// Net force on each node in the last step — elastic, damping, gravity, dead loads,
-    /// contact — without the supports' reactions [N], shape (N, 3). On a free node at
+    /// contact — without the supports' reactions \[N\], shape (N, 3). On a free node at
     /// static equilibrium it is zero.
     fn forces<'py>(&self, py: Python<'py>, hose: HoseRef) -> PyResult<Bound<'py, PyArray2<f64>>> {
         self.vector_field(py, &hose, |s| &s.force)
     }
 
-    /// Net moment on each node in the last step, without the supports' [N·m], (N, 3).
+    /// Net moment on each node in the last step, without the supports' \[N·m\], (N, 3).
     fn moments<'py>(&self, py: Python<'py>, hose: HoseRef) -> PyResult<Bound<'py, PyArray2<f64>>> {
         self.vector_field(py, &hose, |s| &s.moment)
     }
 
     /// Force the supports (fixes, drives, hands, fitted stubs and clips) applied to each
-    /// node in the last step [N], (N, 3); zero on free nodes (see :meth:`held`).
+    /// node in the last step \[N\], (N, 3); zero on free nodes (see :meth:`held`).
     fn reaction_forces<'py>(
         &self,
         py: Python<'py>,
@@ -801,7 +801,7 @@ impl Simulation {
         self.vector_field(py, &hose, |s| &s.reaction_force)
     }
 
-    /// Moment the supports applied to each node in the last step [N·m], (N, 3).
+    /// Moment the supports applied to each node in the last step \[N·m\], (N, 3).
     fn reaction_moments<'py>(
         &self,
         py: Python<'py>,
@@ -816,7 +816,7 @@ impl Simulation {
         Ok(PyArray1::from_slice(py, &self.engine.state().held[r]))
     }
 
-    /// Force the rigid parts applied to each node by contact in the last step [N], (N, 3).
+    /// Force the rigid parts applied to each node by contact in the last step \[N\], (N, 3).
     fn contact_forces<'py>(
         &self,
         py: Python<'py>,
@@ -826,7 +826,7 @@ impl Simulation {
     }
 
     /// Force other hoses (or the hose itself) applied to each node by contact in the last
-    /// step [N], (N, 3).
+    /// step \[N\], (N, 3).
     fn hose_contact_forces<'py>(
         &self,
         py: Python<'py>,
@@ -835,7 +835,7 @@ impl Simulation {
         self.vector_field(py, &hose, |s| &s.hose_contact_force)
     }
 
-    /// Rest positions of a hose's nodes [m], (N, 3).
+    /// Rest positions of a hose's nodes \[m\], (N, 3).
     fn rest_positions<'py>(
         &self,
         py: Python<'py>,
@@ -845,31 +845,31 @@ impl Simulation {
         Ok(vectors(py, self.model().rest_x[r].iter().copied()))
     }
 
-    /// Lumped node masses [kg], shape (N,).
+    /// Lumped node masses \[kg\], shape (N,).
     fn masses<'py>(&self, py: Python<'py>, hose: HoseRef) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let r = self.nodes(&hose)?;
         Ok(PyArray1::from_slice(py, &self.model().mass[r]))
     }
 
-    /// Kinetic energy [J].
+    /// Kinetic energy \[J\].
     #[getter]
     fn kinetic_energy(&self) -> f64 {
         self.engine.state().kinetic_energy(self.model())
     }
 
-    /// Elastic strain energy [J].
+    /// Elastic strain energy \[J\].
     #[getter]
     fn strain_energy(&self) -> f64 {
         self.engine.state().strain_energy(self.model())
     }
 
-    /// Potential energy of gravity −Σ m g·x [J].
+    /// Potential energy of gravity −Σ m g·x \[J\].
     #[getter]
     fn gravity_energy(&self) -> f64 {
         self.engine.state().gravity_energy(self.model())
     }
 
-    /// The scene's stubs and clips now: name, kind, max_force [N], max_force_time [s],
+    /// The scene's stubs and clips now: name, kind, max_force \[N\], max_force_time \[s\],
     /// final_state (e.g. ``"approach"``, ``"fixed"``, ``"seated"``), assembled.
     fn fasteners<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.engine.fastener_reports())

@@ -24,8 +24,8 @@ fn round_ties_even(x: f64) -> f64 {
     (x + MAGIC) - MAGIC
 }
 
-/// Sorted, unique keys of the centre-line samples of `frames` (T, N, 3) [m] for voxels of
-/// size `h` [m]. Sample k of an element from a to b is a + (b − a)·t_k with t_k = k/n as
+/// Sorted, unique keys of the centre-line samples of `frames` (T, N, 3) \[m\] for voxels of
+/// size `h` \[m\]. Sample k of an element from a to b is a + (b − a)·t_k with t_k = k/n as
 /// numpy's `linspace(0, 1, n + 1)` gives it, and its grid index rint(p / (h/4)) (ties to
 /// even, as `np.round`), so the keys equal those of the numpy formulation bit for bit.
 pub fn sample_keys(frames: ArrayView3<f64>, h: f64) -> Result<Vec<i64>, String> {
@@ -112,7 +112,7 @@ pub fn sample_keys(frames: ArrayView3<f64>, h: f64) -> Result<Vec<i64>, String> 
 }
 
 /// `centreline_sample_keys(frames, h)`: sorted unique int64 keys of the centre-line
-/// samples of frames (T, N, 3) [m] for voxels of size h [m] (see
+/// samples of frames (T, N, 3) \[m\] for voxels of size h \[m\] (see
 /// `pliant.studies.envelope.sample_keys`). Raises ValueError for frames no hose has.
 #[pyfunction]
 pub fn centreline_sample_keys<'py>(

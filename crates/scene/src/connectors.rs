@@ -215,7 +215,7 @@ pub fn build_stub(
 }
 
 /// Checks and builds one bead of a stub's profile at `field` (e.g. `stubs[0].profile[1]`),
-/// SI; it must end within the stub's `length` [m] and start after `previous` ends.
+/// SI; it must end within the stub's `length` \[m\] and start after `previous` ends.
 fn build_bead(
     field: &str,
     b: &BeadEntry,

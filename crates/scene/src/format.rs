@@ -381,7 +381,7 @@ pub struct JunctionEndEntry {
 #[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct JunctionBodyEntry {
-    /// The body's own mass [kg], ≥ 0 (lumped onto its outlets in equal shares).
+    /// The body's own mass \[kg\], ≥ 0 (lumped onto its outlets in equal shares).
     #[serde(default)]
     pub mass_kg: f64,
 }

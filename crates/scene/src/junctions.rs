@@ -8,7 +8,7 @@ use crate::units::LengthUnit;
 use crate::validate::non_negative;
 use pliant_core::{HoseEnd, HoseSpec, JunctionSpec};
 
-/// How far apart a welded branch point's ends may lie [m]: what a CAD export rounds to.
+/// How far apart a welded branch point's ends may lie \[m\]: what a CAD export rounds to.
 pub const WELD_TOLERANCE: f64 = 1e-5;
 
 /// Checks and builds every junction.

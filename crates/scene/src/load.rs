@@ -34,7 +34,7 @@ pub const DEMO_SCENE_TOML: &str = include_str!("../../../examples/engine_bay.tom
 pub struct LoadOptions {
     /// Memory limit, checked while the scene loads ([`crate::budget`]).
     pub limits: Limits,
-    /// Largest mesh file read [bytes].
+    /// Largest mesh file read \[bytes\].
     pub max_file_bytes: u64,
     /// Confine mesh files to the scene's folder, and keep paths and file contents out of
     /// errors (scenes sent by clients of `pliant serve`, [`FileAccess::sandbox`]).
@@ -101,7 +101,7 @@ pub fn load_scene_file_with(path: &Path, options: &LoadOptions) -> Result<Loaded
     build_scene_with(&file, &text, &origin, &dir, options)
 }
 
-/// Largest scene file read [bytes] (the text; meshes are separate files).
+/// Largest scene file read \[bytes\] (the text; meshes are separate files).
 pub const MAX_SCENE_FILE_BYTES: u64 = 64 * 1024 * 1024;
 
 /// The directory relative mesh paths are resolved against for a scene from `origin`:

@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 /// Materials a hose may name: the library's and the scene's own.
 pub struct Materials<'a> {
     library: &'a Library,
-    /// The scene's materials and their minimum bend radius [m] if given.
+    /// The scene's materials and their minimum bend radius \[m\] if given.
     user: BTreeMap<String, (Material, Option<f64>)>,
 }
 

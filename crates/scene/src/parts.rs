@@ -93,7 +93,7 @@ pub fn build_parts(
     Ok(built)
 }
 
-/// The pose of `parts[index]`: position [m] and rotation.
+/// The pose of `parts[index]`: position \[m\] and rotation.
 pub(crate) fn pose(
     index: usize,
     raw: &PartEntry,

@@ -136,7 +136,7 @@ pub fn unit_scale(name: &str) -> Option<f64> {
     })
 }
 
-/// The unit a header cell names: `x_mm`, `x [mm]`, `x (in)`, `X(mm)`.
+/// The unit a header cell names: `x_mm`, `x \[mm\]`, `x (in)`, `X(mm)`.
 fn header_unit(cell: &str) -> Option<f64> {
     let c = cell.trim();
     if let Some(open) = c.find(['[', '(']) {

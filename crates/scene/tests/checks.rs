@@ -47,7 +47,7 @@ duration_s = 1.0
     )
 }
 
-/// EI of the hose [N·m²] and its minimum bend radius [m].
+/// EI of the hose \[N·m²\] and its minimum bend radius \[m\].
 fn stiffness_and_limit() -> (f64, f64) {
     let s = load_scene_str(&scene("moment_nm = [0, 1, 0]", ""), "probe.toml").unwrap();
     let model = Model::build(&s.world).unwrap();

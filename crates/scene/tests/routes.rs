@@ -40,7 +40,7 @@ fn load(dir: &Path, route: &str) -> Result<LoadedScene, String> {
     load_scene_str_in(&scene(route), "scene.toml", dir).map_err(|e| e.to_string())
 }
 
-/// Distance of `p` [m] from the helix of make_route_step.py (radius 100 mm, pitch
+/// Distance of `p` \[m\] from the helix of make_route_step.py (radius 100 mm, pitch
 /// 200 mm, one turn from (100, 0, 0) mm), by a fine search over its parameter.
 fn helix_distance(p: DVec3) -> f64 {
     let (r, pitch) = (0.1, 0.2);

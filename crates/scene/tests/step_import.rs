@@ -62,7 +62,7 @@ fn load(dir: &Path, step: &Path, part: &str) -> Result<LoadedScene, String> {
     load_scene_str_in(&scene_text(step, part), "scene.toml", dir).map_err(|e| e.to_string())
 }
 
-/// Bounding box of all parts [m].
+/// Bounding box of all parts \[m\].
 fn bbox(s: &LoadedScene) -> (DVec3, DVec3) {
     s.parts.iter().fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),

@@ -31,7 +31,7 @@ use std::time::{Duration, Instant};
 
 /// A request not answered within this is counted lost.
 const REPLY_TIMEOUT: Duration = Duration::from_millis(100);
-/// The path's period [s].
+/// The path's period \[s\].
 const PATH_PERIOD: f64 = 4.0;
 
 struct Args {

@@ -23,17 +23,17 @@ use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 use tokio_tungstenite::tungstenite::Message;
 
-/// Circle radius [m] and angular speed [rad/s] (0.03 m × 2 rad/s = 6 cm/s).
+/// Circle radius \[m\] and angular speed \[rad/s\] (0.03 m × 2 rad/s = 6 cm/s).
 const RADIUS: f64 = 0.03;
 const OMEGA: f64 = 2.0;
-/// Input rate [Hz].
+/// Input rate \[Hz\].
 const RATE_HZ: f64 = 30.0;
 
 struct Args {
     clients: usize,
     seconds: f64,
     solver: SolverKind,
-    /// Re-grab period [s].
+    /// Re-grab period \[s\].
     regrab: f64,
     json: Option<String>,
     /// Session folder: the input log is written there (replayable with `pliant replay`).

@@ -248,7 +248,7 @@ pub struct HandSnapshot {
     pub orientation: [f64; 4],
     /// The pose the hand is moving towards (the last `move`).
     pub target: [f64; 3],
-    /// Force \[N\] and torque about the hand position [N·m] the hand applies.
+    /// Force \[N\] and torque about the hand position \[N·m\] the hand applies.
     pub force: [f64; 3],
     pub torque: [f64; 3],
     /// The worst ratio of the loads that decide feasibility (the force; twist and bending
@@ -264,7 +264,7 @@ pub struct HandSnapshot {
     pub force_ratio: Option<f64>,
     /// The moment at the hand with the larger ratio: `twist` (about the hose axis,
     /// screwdriver row of table 3.11) or `bending` (across it, T-handle row), its limit
-    /// value [N·m] and magnitude / limit. Guidance only unless `moments_decide`.
+    /// value \[N·m\] and magnitude / limit. Guidance only unless `moments_decide`.
     pub torque_kind: Option<pliant_assembly::ergonomics::LoadKind>,
     pub torque_limit: Option<f64>,
     pub torque_ratio: Option<f64>,

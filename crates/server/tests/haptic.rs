@@ -21,7 +21,7 @@ const HANG_GUARD: Duration = Duration::from_secs(300);
 /// The built-in demo's scene file: a coolant hose (library hose 3), fixed at its first
 /// node, its free end at [`END`] (the session runs none of its timeline's motions).
 const SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/demo.toml");
-/// The hose's free end [m].
+/// The hose's free end \[m\].
 const END: DVec3 = DVec3::new(0.4, 0.33, 0.3);
 
 async fn server(solver: SolverKind, access: Access) -> RunningServer {

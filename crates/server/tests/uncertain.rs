@@ -17,7 +17,7 @@ use pliant_scene::load_scene_str_in;
 use pliant_server::snapshot::Snapshot;
 use std::sync::Arc;
 const MU_STATIC: f64 = 0.5;
-/// Hose 1's outer radius [mm]: the hose lies on the surface.
+/// Hose 1's outer radius \[mm\]: the hose lies on the surface.
 const RADIUS_MM: f64 = 8.0;
 
 /// The incline's fall line and surface normal (unit vectors).

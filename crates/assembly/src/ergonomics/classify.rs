@@ -83,7 +83,7 @@ impl LoadKind {
 pub struct Classification {
     /// Push, pull, twist or bending.
     pub kind: LoadKind,
-    /// |f| \[N\], |twist| or |bending| [N·m].
+    /// |f| \[N\], |twist| or |bending| \[N·m\].
     pub magnitude: f64,
     /// The guide range of the profile's row and column [N or N·m].
     pub guide: GuideRange,
@@ -234,7 +234,7 @@ impl ErgonomicLimits {
         c
     }
 
-    /// Splits a hand torque `torque` [N·m] into the twist about the hose axis
+    /// Splits a hand torque `torque` \[N·m\] into the twist about the hose axis
     /// `direction` (screwdriver row) and the bending moment across it (T-handle row) and
     /// judges each (dissertation section 3.3.3, tables 3.10 / 3.11).
     pub fn classify_moments(

@@ -64,17 +64,17 @@ pub struct TableInfo<'a> {
 /// All six tables of SPEC I3; look values up with the methods.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ErgonomicLimits {
-    /// Push against a plane, guide values (table 3.6) [N].
+    /// Push against a plane, guide values (table 3.6) \[N\].
     push_guide: Table<PushPosture, GuideRange>,
-    /// Push against a plane, limit values (table 3.7) [N].
+    /// Push against a plane, limit values (table 3.7) \[N\].
     push_limit: Table<PushPosture, f64>,
-    /// Pull, guide values (table 3.8) [N].
+    /// Pull, guide values (table 3.8) \[N\].
     pull_guide: Table<PullPosture, GuideRange>,
-    /// Pull, limit values (table 3.9) [N].
+    /// Pull, limit values (table 3.9) \[N\].
     pull_limit: Table<PullPosture, f64>,
-    /// Turning, guide values (table 3.10) [N·m].
+    /// Turning, guide values (table 3.10) \[N·m\].
     torque_guide: Table<TorqueGrip, GuideRange>,
-    /// Turning, limit values (table 3.11) [N·m].
+    /// Turning, limit values (table 3.11) \[N·m\].
     torque_limit: Table<TorqueGrip, f64>,
     /// EN 1005-3, the alternative standard for push and pull (`data/en1005_3.toml`).
     en1005: En1005Tables,
@@ -177,12 +177,12 @@ impl ErgonomicLimits {
         self.pull_limit.get(posture, population, duty)
     }
 
-    /// Torque guide range (table 3.10) [N·m].
+    /// Torque guide range (table 3.10) \[N·m\].
     pub fn torque_guide(&self, grip: TorqueGrip, population: Population, duty: Duty) -> GuideRange {
         self.torque_guide.get(grip, population, duty)
     }
 
-    /// Torque limit (table 3.11) [N·m].
+    /// Torque limit (table 3.11) \[N·m\].
     pub fn torque_limit(&self, grip: TorqueGrip, population: Population, duty: Duty) -> f64 {
         self.torque_limit.get(grip, population, duty)
     }

@@ -186,7 +186,7 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, parts: 
 }
 
 /// An SVG line plot of force over time with the limit drawn as a dashed line; samples are
-/// (time [s], force [N], limit [N]).
+/// (time \[s\], force \[N\], limit \[N\]).
 fn plot(title: &str, samples: &[(f64, f64, f64)]) -> String {
     let (w, h, pad) = (640.0, 220.0, 40.0);
     let t_max = samples.iter().map(|s| s.0).fold(1e-9, f64::max);

@@ -4,7 +4,7 @@
 use super::svg::escape;
 use std::fmt::Write as _;
 
-/// `values` per arc length `arc` [m]; `limit` drawn dashed (±limit when `symmetric`,
+/// `values` per arc length `arc` \[m\]; `limit` drawn dashed (±limit when `symmetric`,
 /// for signed quantities such as twist); `unit` labels the y axis.
 pub fn profile_plot(
     title: &str,

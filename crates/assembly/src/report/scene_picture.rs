@@ -8,8 +8,8 @@ use super::part_outline::{PartOutline, View};
 use glam::DVec3;
 use std::fmt::Write as _;
 
-/// `hoses` are (first node, node count) of every hose in `positions` [m]; `focus` is the
-/// index of the hose of interest; `mark` the point to circle [m]; `parts` the parts'
+/// `hoses` are (first node, node count) of every hose in `positions` \[m\]; `focus` is the
+/// index of the hose of interest; `mark` the point to circle \[m\]; `parts` the parts'
 /// outlines.
 pub fn scene_picture(
     title: &str,

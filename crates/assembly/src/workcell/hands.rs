@@ -15,11 +15,11 @@ use std::collections::BTreeMap;
 /// How fast an aimed hand may follow its target, and how hard it can pull.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct HandLimits {
-    /// Fastest the hand moves [m/s].
+    /// Fastest the hand moves \[m/s\].
     pub max_speed: f64,
     /// Largest acceleration towards (and braking before) the target [m/s²].
     pub max_acceleration: f64,
-    /// Fastest the hand turns [rad/s].
+    /// Fastest the hand turns \[rad/s\].
     pub max_turn_rate: f64,
     /// The hand's strength \[N\]: the largest force an interactively steered hand exerts on
     /// the hose ([`HeldHand::update`]). A person's strength, not an ergonomic limit: the
@@ -53,7 +53,7 @@ impl Default for HandLimits {
 pub struct Aim {
     pub pose: (DVec3, DQuat),
     pub target: (DVec3, DQuat),
-    /// Speed towards the target now [m/s].
+    /// Speed towards the target now \[m/s\].
     pub speed: f64,
     /// Whether the hand was at its strength ([`HandLimits::max_force`]) in the last step.
     pub at_strength: bool,
@@ -79,7 +79,7 @@ pub struct Feel {
     pub force: DVec3,
     /// How the hand moved in its last step \[m\].
     pub step: DVec3,
-    /// The stiffness it feels, k [N/m] (0: not yet estimated).
+    /// The stiffness it feels, k \[N/m\] (0: not yet estimated).
     pub stiffness: f64,
 }
 

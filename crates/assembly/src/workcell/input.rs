@@ -30,7 +30,7 @@ pub enum Input {
         rotation: DVec3,
         duration: f64,
     },
-    /// A force \[N\] and moment [N·m] at the node (adds to others), in full at once or
+    /// A force \[N\] and moment \[N·m\] at the node (adds to others), in full at once or
     /// rising linearly from zero over `ramp` seconds from now; a `name` (unique among the
     /// active loads) lets [`Input::Unload`] remove this one alone.
     Load {

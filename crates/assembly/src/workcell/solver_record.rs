@@ -19,7 +19,7 @@ pub struct Unconverged {
     /// Largest out-of-balance force on a free node \[N\] and the limit it had to meet.
     pub residual_force: f64,
     pub force_limit: f64,
-    /// Largest out-of-balance moment [N·m] and its limit.
+    /// Largest out-of-balance moment \[N·m\] and its limit.
     pub residual_moment: f64,
     pub moment_limit: f64,
 }

@@ -47,10 +47,10 @@ impl Peak {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct MomentNote {
     pub kind: LoadKind,
-    /// Peak magnitude [N·m] and when \[s\].
+    /// Peak magnitude \[N·m\] and when \[s\].
     pub magnitude: f64,
     pub time: f64,
-    /// Upper end of the guide range and the limit value [N·m] (tables 3.10 / 3.11).
+    /// Upper end of the guide range and the limit value \[N·m\] (tables 3.10 / 3.11).
     pub guide_hi: f64,
     pub limit: f64,
 }
@@ -152,7 +152,7 @@ pub struct NodePeak {
     /// Largest |F| the support applied \[N\] and when \[s\].
     pub max_force: f64,
     pub max_force_time: f64,
-    /// Largest |M| the support applied [N·m] and when \[s\].
+    /// Largest |M| the support applied \[N·m\] and when \[s\].
     pub max_moment: f64,
     pub max_moment_time: f64,
     /// Support force and moment in the last step it held the node.
@@ -400,7 +400,7 @@ impl Tally {
     }
 }
 
-/// Whether a force [N] or moment [N·m] is a physical value and may become a peak: the
+/// Whether a force \[N\] or moment \[N·m\] is a physical value and may become a peak: the
 /// steps between two health checks ([`super::HEALTH_CHECK_EVERY`]) can hold the first
 /// numbers of a blow-up, which must not reach the report.
 fn physical(x: f64) -> bool {

@@ -39,7 +39,7 @@ pub struct FrictionMemory {
 pub struct FrictionResponse {
     /// Tangential force on the node \[N\].
     pub force: DVec3,
-    /// −∂f_t/∂x [N/m] (symmetric).
+    /// −∂f_t/∂x \[N/m\] (symmetric).
     pub tangent: Matrix3<f64>,
     /// The force is on the Coulomb limit (slip).
     pub slipping: bool,

@@ -44,7 +44,7 @@
 //! force between them would be an artefact of the discretisation. On a hose of uniform
 //! radius r and beam length l₀ this excludes beams i, j with |i − j| ≤ ⌈π r / l₀⌉.
 //! Pairs of different hoses are excluded only where a junction joins them and the same
-//! rule holds along the network (the gap through the junction; [`super::network_gaps`]);
+//! rule holds along the network (the gap through the junction; `super::network_gaps`);
 //! otherwise never (hoses that overlap at rest are pushed apart).
 //!
 //! **Broad phase.** [`BroadPhase`]: a uniform grid, O(N), storage allocated once in
@@ -91,14 +91,14 @@ pub const SAFETY_FOR_HOSE_CONTACT: f64 = 0.5;
 pub struct HoseContactModel {
     /// Hose index of each beam.
     element_hose: Vec<u32>,
-    /// Rest arc length from the hose's first node to each beam's node a and node b [m].
+    /// Rest arc length from the hose's first node to each beam's node a and node b \[m\].
     arc_a: Vec<f64>,
     arc_b: Vec<f64>,
-    /// Larger of the two node radii of each beam [m].
+    /// Larger of the two node radii of each beam \[m\].
     element_radius: Vec<f64>,
-    /// k_e = E_c A / (2 l₀) of each beam [N/m].
+    /// k_e = E_c A / (2 l₀) of each beam \[N/m\].
     element_stiffness: Vec<f64>,
-    /// ω_lim, the highest frequency the time step was built for [rad/s].
+    /// ω_lim, the highest frequency the time step was built for \[rad/s\].
     pub omega_limit: f64,
     /// Whether any pair of beams may touch at all (false: one short hose; a caller may
     /// also switch hose contact off for a model).
@@ -106,7 +106,7 @@ pub struct HoseContactModel {
     /// Skin of the pair list: how far a node may move along any axis before the broad
     /// phase is rebuilt \[m\] (the smallest beam radius).
     pub skin: f64,
-    /// Rest length of each hose [m].
+    /// Rest length of each hose \[m\].
     hose_length: Vec<f64>,
     /// Distances along the network between ends of hoses joined by junctions.
     gaps: super::network_gaps::NetworkGaps,
@@ -289,7 +289,8 @@ impl HoseContactModel {
             if self.gaps.is_empty() {
                 return false;
             }
-            let along = |e: usize, h: u32| (self.arc_a[e], self.hose_length[h as usize] - self.arc_b[e]);
+            let along =
+                |e: usize, h: u32| (self.arc_a[e], self.hose_length[h as usize] - self.arc_b[e]);
             let gap = self.gaps.gap(hi, along(i, hi), hj, along(j, hj));
             return gap < 0.5 * PI * (self.element_radius[i] + self.element_radius[j]);
         }
@@ -298,7 +299,7 @@ impl HoseContactModel {
         gap < 0.5 * PI * (self.element_radius[i] + self.element_radius[j])
     }
 
-    /// Contact stiffness of the pair of beams `i`, `j` [N/m]: the mean of their
+    /// Contact stiffness of the pair of beams `i`, `j` \[N/m\]: the mean of their
     /// E_c A/(2 l₀), capped at ω_lim² m_min/8 (see the module doc).
     pub fn stiffness(&self, model: &Model, i: usize, j: usize) -> f64 {
         let (ei, ej) = (&model.elements[i], &model.elements[j]);

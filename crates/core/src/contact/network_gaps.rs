@@ -13,7 +13,7 @@ use std::collections::{BTreeMap, BinaryHeap};
 /// The gaps between the ends of different hoses shorter than a bound.
 #[derive(Clone, Debug, Default)]
 pub struct NetworkGaps {
-    /// (hose a, hose b), a < b → (a's end, b's end, distance along the network [m]);
+    /// (hose a, hose b), a < b → (a's end, b's end, distance along the network \[m\]);
     /// an end is `false` for the first node, `true` for the last.
     pairs: BTreeMap<(u32, u32), Vec<(bool, bool, f64)>>,
 }
@@ -24,7 +24,7 @@ fn end_index(h: usize, at_end: bool) -> usize {
 }
 
 impl NetworkGaps {
-    /// The gaps of `model`'s junctions up to `bound` [m] (none without junctions).
+    /// The gaps of `model`'s junctions up to `bound` \[m\] (none without junctions).
     pub fn new(model: &Model, bound: f64) -> Self {
         let mut gaps = NetworkGaps::default();
         if model.junctions.is_empty() {
@@ -83,10 +83,11 @@ impl NetworkGaps {
             for &t in &touched {
                 let (hb, eb) = (t / 2, t % 2 == 1);
                 if ha < hb {
-                    gaps.pairs
-                        .entry((ha as u32, hb as u32))
-                        .or_default()
-                        .push((ea, eb, distance[t]));
+                    gaps.pairs.entry((ha as u32, hb as u32)).or_default().push((
+                        ea,
+                        eb,
+                        distance[t],
+                    ));
                 }
             }
             for &t in &touched {

@@ -17,7 +17,7 @@
 //!
 //! Each Newton step is shortened by halving until it lowers the norm of the residual
 //! (backtracking, Nocedal & Wright 2006, §11.2 with the residual norm as merit function;
-//! at most [`MAX_BACKTRACKS`] halvings): a full step that raises it — typically a contact
+//! at most `MAX_BACKTRACKS` halvings): a full step that raises it — typically a contact
 //! switching on or off between iterates — is not taken whole. With contact, no iterate
 //! moves a node by more than half the smallest hose radius
 //! (the static solver's step control): a first iterate that has not yet seen a contact
@@ -44,7 +44,7 @@ const MAX_BACKTRACKS: usize = 10;
 /// Settings of the implicit solver.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ImplicitOptions {
-    /// Time step [s].
+    /// Time step \[s\].
     pub time_step: f64,
     /// HHT α ∈ [−⅓, 0].
     pub alpha: f64,

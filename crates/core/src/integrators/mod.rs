@@ -1,11 +1,11 @@
 //! Which solver advances a simulation (issue 5, SPEC P4/P5), chosen per scene
 //! (`[simulation] solver = …`) or per command (`--solver …`):
 //!
-//! * `explicit` — the dissertation's central differences ([`crate::explicit`]) at the
+//! * `explicit` — the dissertation's central differences (`crate::explicit`) at the
 //!   model's stable step: dynamics with contact friction, the reference behaviour;
-//! * `implicit` — HHT-α with Newton ([`crate::newton::implicit`]) at a step chosen for
+//! * `implicit` — HHT-α with Newton (`crate::newton::implicit`) at a step chosen for
 //!   accuracy (default 10 ms), for stiff hoses and tubes;
-//! * `static` — the equilibrium at each input ([`crate::newton::statics`]): one Newton
+//! * `static` — the equilibrium at each input (`crate::newton::statics`): one Newton
 //!   solve per input step (default 10 ms of the timeline), the way slow manual assembly
 //!   and industrial cable tools see it. Velocities are reported as the displacement over
 //!   the input step (so rate-dependent laws — stub friction — still see the motion). An
@@ -84,9 +84,9 @@ impl std::fmt::Display for SolverKind {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SolverSettings {
     pub kind: SolverKind,
-    /// Implicit time step [s] (default 10 ms).
+    /// Implicit time step \[s\] (default 10 ms).
     pub implicit_time_step: f64,
-    /// Static solver: simulated time between two equilibrium solves [s] (default 10 ms).
+    /// Static solver: simulated time between two equilibrium solves \[s\] (default 10 ms).
     pub static_input_step: f64,
 }
 
@@ -134,7 +134,7 @@ pub struct StepStats {
     pub iterations: usize,
     pub residual_force: f64,
     pub residual_moment: f64,
-    /// The residual limits of the convergence test [N], [N·m].
+    /// The residual limits of the convergence test \[N\], \[N·m\].
     pub force_limit: f64,
     pub moment_limit: f64,
     pub converged: bool,
@@ -213,7 +213,7 @@ impl Solver {
         self.settings.kind
     }
 
-    /// Simulated time one [`Self::step`] advances [s].
+    /// Simulated time one [`Self::step`] advances \[s\].
     pub fn time_step(&self, model: &Model) -> f64 {
         match self.settings.kind {
             SolverKind::Explicit => model.time_step,
@@ -490,7 +490,7 @@ impl Solver {
 
 /// A converged static step whose largest free-node motion exceeds this multiple of the
 /// linearised prediction, through a region where the potential is not convex, has jumped
-/// to a distant branch ([`Solver::report_jump`]).
+/// to a distant branch (`Solver::report_jump`).
 pub const JUMP_RATIO: f64 = 5.0;
 
 /// The event of a snap from `before` to `after` (limit point passed at `time`).

@@ -37,10 +37,10 @@ const FROZEN_WINDOWS: usize = 8;
 const FROZEN_FRACTION: f64 = 1e-10;
 
 /// Relaxes `state` under its loads at time `time` until the largest out-of-balance force
-/// and moment on free nodes are within [`HANDOVER`] × (`force_limit`, `moment_limit`).
+/// and moment on free nodes are within `HANDOVER` × (`force_limit`, `moment_limit`).
 /// Returns the explicit steps taken, or `None` if the relaxation diverged, stopped moving
-/// short of the limits ([`FROZEN_WINDOWS`]) or did not get there within
-/// [`MAX_RELAXATION_STEPS`] (the caller then reports the input step unconverged).
+/// short of the limits (`FROZEN_WINDOWS`) or did not get there within
+/// `MAX_RELAXATION_STEPS` (the caller then reports the input step unconverged).
 /// `anchor` is scratch space for the positions at the last check (resized to the nodes).
 pub fn relax(
     model: &Model,
@@ -93,7 +93,7 @@ fn frozen(x: &[DVec3], anchor: &[DVec3], still: f64) -> bool {
         .all(|(a, b)| a.distance_squared(*b) <= still2)
 }
 
-/// The shortest element's rest length [m].
+/// The shortest element's rest length \[m\].
 fn shortest_element(model: &Model) -> f64 {
     model
         .elements

@@ -23,7 +23,7 @@ use nalgebra::Vector6;
 /// passed ([`super::snap`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct StabilityEvent {
-    /// Input time of the solve [s].
+    /// Input time of the solve \[s\].
     pub time: f64,
     /// The load path's equilibrium branch ended here (a limit point): the hose snapped
     /// through to a distant stable equilibrium, followed dynamically. `mode` is then the
@@ -35,10 +35,10 @@ pub struct StabilityEvent {
     pub negative_eigenvalues: usize,
     /// The node where the unstable mode moves most (global index).
     pub node: usize,
-    /// Potential energy released by stepping off, before the new equilibrium [J]
+    /// Potential energy released by stepping off, before the new equilibrium \[J\]
     /// (the whole release is larger).
     pub energy_drop: f64,
-    /// The amplitude of the step off [m].
+    /// The amplitude of the step off \[m\].
     pub amplitude: f64,
     /// The unstable mode: each node's translation, the largest of length 1.
     pub mode: Vec<DVec3>,

@@ -29,7 +29,7 @@ pub struct StaticOptions {
     /// Newton iterations allowed per equilibrium sought (again after each step off an
     /// unstable one).
     pub max_iterations: usize,
-    /// Largest translation of any node in one iteration [m], as a fraction of the
+    /// Largest translation of any node in one iteration \[m\], as a fraction of the
     /// smallest hose radius when contact — rigid parts or hose–hose — is on (keeps
     /// contact from being jumped through; [`contact_translation_limit`]).
     pub contact_step_fraction: f64,
@@ -58,7 +58,7 @@ pub struct StaticReport {
     pub iterations: usize,
     pub residual_force: f64,
     pub residual_moment: f64,
-    /// The residual limits the solve had to meet (from the load scale) [N], [N·m].
+    /// The residual limits the solve had to meet (from the load scale) \[N\], \[N·m\].
     pub force_limit: f64,
     pub moment_limit: f64,
     /// The free nodes are in balance.
@@ -71,7 +71,7 @@ pub struct StaticReport {
     /// or no step lowered the energy); only with `stability` on.
     pub unstable: bool,
     /// Largest translation of a free node in the first Newton increment δu₁ = K(u₀)⁻¹ r₀
-    /// [m]: the linearised response to the change of loads and prescribed motions since
+    /// \[m\]: the linearised response to the change of loads and prescribed motions since
     /// the state the solve started from — the predictor of a path-following step, against
     /// which the solver judges whether the equilibrium it found continues the branch it
     /// started on ([`crate::integrators::Solver`], a jump to a distant branch).

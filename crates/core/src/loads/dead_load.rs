@@ -9,15 +9,15 @@ use glam::DVec3;
 #[derive(Clone, Debug, PartialEq)]
 pub struct DeadLoad {
     pub node: usize,
-    /// Force [N], global axes (the full value, reached at the end of the ramp).
+    /// Force \[N\], global axes (the full value, reached at the end of the ramp).
     pub force: DVec3,
-    /// Moment [N·m], global axes.
+    /// Moment \[N·m\], global axes.
     pub moment: DVec3,
     /// Grows linearly from zero over this ramp; `None` acts in full at once.
     pub ramp: Option<LoadRamp>,
 }
 
-/// A linear rise from zero at `start` [s] to the full load at `start + duration`, or
+/// A linear rise from zero at `start` \[s\] to the full load at `start + duration`, or
 /// (`falls`) a smooth fall from the full load to zero over that time.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LoadRamp {
@@ -94,7 +94,7 @@ impl DeadLoad {
         }
     }
 
-    /// Force [N] and moment [N·m] acting at time `t`.
+    /// Force \[N\] and moment \[N·m\] acting at time `t`.
     pub fn at(&self, t: f64) -> (DVec3, DVec3) {
         let s = self.factor(t);
         (self.force * s, self.moment * s)

@@ -5,7 +5,7 @@ use glam::{DQuat, DVec3};
 #[derive(Clone, Debug, PartialEq)]
 pub struct Fix {
     pub node: usize,
-    /// Held position [m].
+    /// Held position \[m\].
     pub position: DVec3,
     /// Held orientation.
     pub orientation: DQuat,

@@ -13,12 +13,12 @@ use glam::{DQuat, DVec3};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Motion {
-    /// Polyline from the start position through the waypoints [m].
+    /// Polyline from the start position through the waypoints \[m\].
     points: Vec<DVec3>,
-    /// Cumulative arc length at each point [m].
+    /// Cumulative arc length at each point \[m\].
     arc: Vec<f64>,
     start_orientation: DQuat,
-    /// Total rotation vector, global axes [rad].
+    /// Total rotation vector, global axes \[rad\].
     rotation: DVec3,
     start_time: f64,
     duration: f64,
@@ -92,7 +92,7 @@ impl Motion {
         t >= self.start_time + self.duration
     }
 
-    /// End time of the motion [s].
+    /// End time of the motion \[s\].
     pub fn end_time(&self) -> f64 {
         self.start_time + self.duration
     }

@@ -48,7 +48,7 @@ pub fn largest_safety_with_supports() -> f64 {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Support {
     pub node: usize,
-    /// Held position x₀ [m].
+    /// Held position x₀ \[m\].
     pub position: DVec3,
     /// Held orientation q₀.
     pub orientation: DQuat,
@@ -60,7 +60,7 @@ pub struct Support {
     pub free_rotation: [bool; 3],
     /// Coulomb coefficient μ along the free translations [-].
     pub friction: f64,
-    /// Slip anchor s of the friction spring [m] (moved by [`Support::commit`]).
+    /// Slip anchor s of the friction spring \[m\] (moved by [`Support::commit`]).
     pub anchor: DVec3,
     /// Set by whoever moves `position` (a hand): the explicit step then wakes a sleeping
     /// hose, as a moving fix does, and clears it.
@@ -75,12 +75,12 @@ pub struct SupportLoad {
     pub moment: DVec3,
     pub tangent_translation: DMat3,
     pub tangent_rotation: DMat3,
-    /// The friction force along the free translations (part of `force`) [N].
+    /// The friction force along the free translations (part of `force`) \[N\].
     pub friction: DVec3,
     /// Whether the friction slips (the anchor follows on commit).
     pub slipping: bool,
     /// Energy of the springs (½ k |P_f d|² + ½ k_r |P_r θ|², the friction spring's
-    /// elastic part or μN|u| − (μN)²/2k when slipping) [J], for the static line search.
+    /// elastic part or μN|u| − (μN)²/2k when slipping) \[J\], for the static line search.
     pub energy: f64,
 }
 

@@ -25,20 +25,20 @@ use glam::DVec3;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tie {
     pub nodes: [usize; 2],
-    /// Rest distance L between the two nodes [m] (> 0).
+    /// Rest distance L between the two nodes \[m\] (> 0).
     pub length: f64,
 }
 
 /// The tie's load and its tangent along n.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct TieLoad {
-    /// Force on the first node [N]; the second gets −force.
+    /// Force on the first node \[N\]; the second gets −force.
     pub force: DVec3,
     /// Unit vector from the first node to the second.
     pub normal: DVec3,
-    /// −∂f_a/∂x_a along n: k + c · rate_factor [N/m].
+    /// −∂f_a/∂x_a along n: k + c · rate_factor \[N/m\].
     pub stiffness: f64,
-    /// Spring energy ½ k e² [J].
+    /// Spring energy ½ k e² \[J\].
     pub energy: f64,
 }
 

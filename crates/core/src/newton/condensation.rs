@@ -10,7 +10,7 @@
 //! ```
 //!
 //! plus the geometric term of the offset turning with the master: T_sᵀ r_s holds
-//! o × f_s, whose derivative along δθ_m is [f_s]× [o]× δθ_m, so K_θθ,m −= [f_s]× [o]×.
+//! o × f_s, whose derivative along δθ_m is \[f_s\]× \[o\]× δθ_m, so K_θθ,m −= \[f_s\]× \[o\]×.
 //! A welded branch point has o = 0: T_s = I, the slave's rows and columns are added to
 //! the master's. The assembled matrix keeps its chain layout (every element joins
 //! consecutive nodes of one hose); the condensed one is a tree of masters and free nodes

@@ -11,9 +11,9 @@
 /// The size of the loads of an assembly ([`super::NewtonSystem::assemble`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LoadScale {
-    /// Largest force on a node from one element end, its weight, a dead load or contact [N].
+    /// Largest force on a node from one element end, its weight, a dead load or contact \[N\].
     pub force: f64,
-    /// Largest such moment, at least `force` × mean element length [N·m].
+    /// Largest such moment, at least `force` × mean element length \[N·m\].
     pub moment: f64,
 }
 
@@ -30,7 +30,7 @@ impl LoadScale {
 pub struct Tolerance {
     /// ε: the allowed residual as a fraction of the load scale.
     pub relative: f64,
-    /// Absolute floors [N] and [N·m] (0: the relative test alone).
+    /// Absolute floors \[N\] and \[N·m\] (0: the relative test alone).
     pub force: f64,
     pub moment: f64,
 }

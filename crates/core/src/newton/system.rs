@@ -1,4 +1,4 @@
-//! The nonlinear system the Newton solvers ([`super::statics`], [`super::implicit`])
+//! The nonlinear system the Newton solvers (`super::statics`, `super::implicit`)
 //! linearise: the total force and moment on every node for a configuration, and its
 //! tangent K = −∂(f, m)/∂u with respect to the node increments u = (δx, δθ).
 //!
@@ -53,7 +53,7 @@ pub struct NewtonSystem {
     pub moment: Vec<DVec3>,
     /// Force of rigid parts on each node (penalty), last assembly.
     pub contact_force: Vec<DVec3>,
-    /// Penalty stiffness per node [N/m] (normal and tangential).
+    /// Penalty stiffness per node \[N/m\] (normal and tangential).
     pub contact_stiffness: Vec<f64>,
     /// Friction of each node touching a part, last assembly (None: not in contact).
     pub friction: Vec<Option<FrictionResponse>>,
@@ -70,7 +70,7 @@ pub struct NewtonSystem {
     pub ties: TieCouplings,
     /// Size of the loads of the last assembly (for the convergence test).
     pub scale: LoadScale,
-    /// Mean rest length of the elements [m].
+    /// Mean rest length of the elements \[m\].
     pub mean_length: f64,
     /// Scratch of the linear solve.
     base_rhs: Vec<Vector6<f64>>,
@@ -511,7 +511,7 @@ impl NewtonSystem {
     /// −k wᵢ wⱼ n nᵀ (T includes the cable ties, solved exactly by their rank-one updates,
     /// [`super::ties`]). Without contact pairs this is one O(N) solve; with them, GMRES on
     /// (I + T⁻¹C) δu = T⁻¹ rhs with the factorised T ([`super::gmres`]), to a relative
-    /// residual of [`COUPLING_TOLERANCE`]. (The fixed-point iteration δu ← T⁻¹(rhs − C δu)
+    /// residual of `COUPLING_TOLERANCE`. (The fixed-point iteration δu ← T⁻¹(rhs − C δu)
     /// on the same splitting, used before, converges at the rate k/(k + k_hose) of the
     /// contact stiffness against the hoses' own stiffness at the contact — 1 − 4·10⁻⁴ for
     /// two soft hoses pressed together — and left Newton with wrong steps.)
@@ -730,7 +730,7 @@ pub fn apply_increment(state: &mut State, rhs: &[Vector6<f64>], prescribed: &[bo
     }
 }
 
-/// Largest rotation one Newton iteration may give a node [rad]. Newton's step on the
+/// Largest rotation one Newton iteration may give a node \[rad\]. Newton's step on the
 /// rotation group is only a linearisation; a larger turn (a free end spun by a suddenly
 /// released twist) can land in an equilibrium whole turns away. Steps are shortened to it.
 pub const MAX_ROTATION_PER_ITERATION: f64 = 0.25;
@@ -742,13 +742,13 @@ pub fn rotation_limited_step(rhs: &[Vector6<f64>], prescribed: &[bool]) -> f64 {
 }
 
 /// The fraction of the Newton increment that keeps every free node's translation within
-/// `limit` [m] (1 when it already does).
+/// `limit` \[m\] (1 when it already does).
 pub fn translation_limited_step(rhs: &[Vector6<f64>], prescribed: &[bool], limit: f64) -> f64 {
     limited_step(rhs, prescribed, 0, limit)
 }
 
 /// The largest length of a free node's three components of an increment from `first`
-/// (0: translation [m], 3: rotation [rad]).
+/// (0: translation \[m\], 3: rotation \[rad\]).
 pub fn largest_free(rhs: &[Vector6<f64>], prescribed: &[bool], first: usize) -> f64 {
     rhs.iter()
         .zip(prescribed)
@@ -768,7 +768,7 @@ fn limited_step(rhs: &[Vector6<f64>], prescribed: &[bool], first: usize, limit: 
     }
 }
 
-/// Largest translation of a node in one Newton iteration near contact [m]: `fraction`
+/// Largest translation of a node in one Newton iteration near contact \[m\]: `fraction`
 /// of the smallest node radius when the model has rigid parts, or when two hose
 /// capsules are near each other (the hose–hose pair list of the last assembly is not
 /// empty: some pair is within about a radius of touching); `None` otherwise. A longer
@@ -788,7 +788,7 @@ const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
 const NOISE_MARGIN: f64 = 4.0;
 
 impl NewtonSystem {
-    /// The round-off floor of node `i`'s out-of-balance force [N] and moment [N·m] in the
+    /// The round-off floor of node `i`'s out-of-balance force \[N\] and moment \[N·m\] in the
     /// last assembly (call before the prescribed nodes are eliminated). Element loads are
     /// computed from differences of positions of size |x|, each rounded to about u|x|;
     /// the node's stiffness turns that into a force error of u ‖K_tt‖ |x| and a moment

@@ -135,7 +135,7 @@ pub struct Reply {
     pub sequence: u64,
     /// Force the hand applies to the hose \[N\].
     pub force: DVec3,
-    /// Torque the hand applies about its position [N·m].
+    /// Torque the hand applies about its position \[N·m\].
     pub torque: DVec3,
     /// Simulated time of the session state the answer started from \[s\].
     pub session_time: f64,
@@ -311,7 +311,7 @@ impl Reply {
     /// Encodes the reply. Layout (little-endian): magic `PLHR` (0..4), version (4),
     /// status (5), Newton iterations u16 (6..8), hand id u32 (8..12), hose u32 (12..16;
     /// `u32::MAX` none), sequence u64 echoed (16..24), force f64×3 \[N\] (24..48), torque
-    /// f64×3 [N·m] about the hand position (48..72), session time f64 \[s\] (72..80),
+    /// f64×3 \[N·m\] about the hand position (48..72), session time f64 \[s\] (72..80),
     /// solve time f64 \[s\] (80..88), malformed datagrams so far u32 (88..92), reserved
     /// (92..96). Non-finite loads are sent as zeros.
     pub fn encode(&self) -> [u8; REPLY_BYTES] {

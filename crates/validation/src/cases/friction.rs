@@ -20,7 +20,7 @@ const MU: (f64, f64) = (0.5, 0.4);
 
 /// What a run on an incline of angle φ gave.
 struct Run {
-    /// Displacement of the middle node along the slope, downwards [m].
+    /// Displacement of the middle node along the slope, downwards \[m\].
     slid: f64,
     /// Whether every step converged.
     converged: bool,

@@ -13,7 +13,7 @@ use pliant_core::{HoseSpec, Model, SimSettings, State, WorldSpec};
 
 /// Elements per hose.
 pub const N: usize = 20;
-/// The dead load pressing the upper hose down at its middle [N].
+/// The dead load pressing the upper hose down at its middle \[N\].
 pub const LOAD: f64 = 2.0;
 
 /// The two crossing hoses, clamped at both ends, the upper one touching the lower one at
@@ -70,7 +70,7 @@ pub fn crossing_hoses() -> Result<(Model, State), String> {
     Ok((model, state))
 }
 
-/// The total hose–hose contact force on hose `h` [N].
+/// The total hose–hose contact force on hose `h` \[N\].
 pub fn contact_force_on(model: &Model, state: &State, h: usize) -> DVec3 {
     model.hoses[h]
         .nodes()

@@ -34,7 +34,7 @@ const TOLERANCE: f64 = 1e-3;
 /// Static residual at which the dynamic solvers are at rest, over P (and P·L).
 const REST: f64 = 1e-7;
 
-/// A rod: name, material, section, length [m].
+/// A rod: name, material, section, length \[m\].
 struct Rod {
     name: &'static str,
     material: Material,

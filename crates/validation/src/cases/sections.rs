@@ -20,7 +20,7 @@ use pliant_reference::EndCondition;
 const L: f64 = 1.0;
 const ELEMENTS: usize = 40;
 /// The ribbon's stiffnesses about section axis 1 (the hose's `normal_hint`, world y) and
-/// axis 2 (world z) [N·m²].
+/// axis 2 (world z) \[N·m²\].
 const EI1: f64 = 0.02;
 const EI2: f64 = 0.2;
 /// Small-load ratio PL²/EI for the linear checks: the geometric non-linearity is of
