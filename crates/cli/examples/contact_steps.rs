@@ -95,3 +95,5 @@ mod bench_contact_phases;
 mod bench_engine_bay;
 #[path = "../src/bench_newton.rs"]
 mod bench_newton;
+#[path = "../src/bench_snapshot.rs"]
+mod bench_snapshot;
