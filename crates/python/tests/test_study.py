@@ -556,15 +556,6 @@ def test_an_existing_cluster_by_its_scheduler_address(client, scene_path, tmp_pa
     assert len(lines) == 1 and f"{host}:{port}/" in lines[0], lines
 
 
-def test_a_scheduler_without_a_dashboard_has_no_dashboard_link():
-    from distributed import Client, LocalCluster
-    from pliant.studies.cluster import dashboard_link
-
-    with LocalCluster(n_workers=0, processes=False, dashboard_address=None) as cluster:
-        with Client(cluster.scheduler_address) as remote:
-            assert dashboard_link(remote) is None
-
-
 def test_a_study_stopped_midway_resumes_where_it_stopped(scene_path, tmp_path):
     """SIGTERM once some rows are on disk; the same command then runs only the rest."""
     import signal

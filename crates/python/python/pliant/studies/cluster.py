@@ -217,9 +217,12 @@ def dashboard_link(client) -> Optional[str]:
     own link; for a scheduler started elsewhere (``--scheduler``), the link that
     scheduler reports (its host, its dashboard port) — never that of a local cluster."""
     try:
+        # without a dashboard service distributed still fills in its default template
+        # (port 8787), so ask the scheduler what it serves
+        if "dashboard" not in client.scheduler_info().get("services", {}):
+            return None
         return client.dashboard_link or None
     except (KeyError, AttributeError, TypeError):
-        # distributed reads the port from the scheduler's services: none without a dashboard
         return None
 
 
