@@ -3,26 +3,18 @@
 
 use std::collections::HashMap;
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use glam::DVec3;
 use pliant_harness::geometry::SegmentCurve;
 use pliant_harness::settled::{distance_to_polyline, polyline_length};
 use pliant_harness::{export_kbl, import_kbl, read_kbl, Harness, HarnessError, SettledHarness};
 
-const MAIN: &str = "kblxml_2.4sr-1_tab016120_modulare_ltgs._160718.kbl";
-const GENERATOR: &str = "kblxml_2.3sr-1_000971230_ltgs_generator_170718.kbl";
-
-fn data(file: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data/harness")
-        .join(file)
-}
+mod common;
+use common::*;
 
 fn out_dir(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("harness-export-tests")
-        .join(name)
+    common::out_dir("harness-export-tests", name)
 }
 
 /// A smooth displacement field of position: every segment end at a node moves the same.

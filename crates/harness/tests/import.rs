@@ -5,20 +5,11 @@ use std::path::{Path, PathBuf};
 use pliant_harness::geometry::SegmentCurve;
 use pliant_harness::{import_kbl, read_kbl, HarnessError};
 
-const MAIN: &str = "kblxml_2.4sr-1_tab016120_modulare_ltgs._160718.kbl";
-const GENERATOR: &str = "kblxml_2.3sr-1_000971230_ltgs_generator_170718.kbl";
-const BATTERY: &str = "kblxml_2.3sr-1_000971228_ltgs_batterie_plus_170718.kbl";
-
-fn data(file: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data/harness")
-        .join(file)
-}
+mod common;
+use common::*;
 
 fn out_dir(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("harness-tests")
-        .join(name)
+    common::out_dir("harness-tests", name)
 }
 
 fn scene_of(dir: &Path) -> toml::Table {

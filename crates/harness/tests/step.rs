@@ -10,18 +10,11 @@ use glam::DVec3;
 use pliant_harness::step::{export_step, StepNames};
 use pliant_harness::{read_kbl, SettledHarness};
 
-const MAIN: &str = "kblxml_2.4sr-1_tab016120_modulare_ltgs._160718.kbl";
-
-fn data(file: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data/harness")
-        .join(file)
-}
+mod common;
+use common::*;
 
 fn out_dir(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("harness-step-tests")
-        .join(name)
+    common::out_dir("harness-step-tests", name)
 }
 
 /// A Part 21 parameter.
