@@ -177,7 +177,13 @@ fn state_name<T: Serialize>(s: &T) -> String {
 
 impl Fasteners {
     /// Sets up the fasteners; their force load cases are added to `state` (initially zero).
-    pub fn new(state: &mut State, stubs: Vec<StubSite>, clips: Vec<ClipSite>) -> Self {
+    /// A clip whose hose is drawn through its seat starts seated ([`drawn_seated`]).
+    pub fn new(
+        model: &Model,
+        state: &mut State,
+        stubs: Vec<StubSite>,
+        clips: Vec<ClipSite>,
+    ) -> Self {
         let stubs = stubs
             .into_iter()
             .map(|site| StubRun {
@@ -198,7 +204,11 @@ impl Fasteners {
             .into_iter()
             .map(|site| ClipRun {
                 tolerance: ClipTolerance::for_clip(&site.spec).checked(),
-                state: ClipState::Free,
+                state: if drawn_seated(model, state, &site) {
+                    ClipState::Seated
+                } else {
+                    ClipState::Free
+                },
                 forces: [ForceLoad::new(state, 0), ForceLoad::new(state, 0)],
                 fix: None,
                 report: FastenerReport {
@@ -365,6 +375,25 @@ fn crossing(
         da = db;
     }
     best.map(|(a, b, t, m, _)| (a, b, t, m))
+}
+
+/// Whether the clip's hose is drawn in its seat: its centre line crosses the clip's plane
+/// in line with the opening and nearer the seat than the opening (|s| < |n|: inside the
+/// jaws; a route of straight beams through a curved one misses the seat by up to
+/// l²κ/8), and it is thicker than the opening — the route of an installed harness or
+/// hose. Such a clip holds from the first step where the hose lies, as it does once a
+/// hose has snapped in.
+fn drawn_seated(model: &Model, state: &State, site: &ClipSite) -> bool {
+    let spec = &site.spec;
+    let Some(tolerance) = ClipTolerance::for_clip(spec).checked() else {
+        return false;
+    };
+    let Some((a, _, _, centre)) = crossing(model, state, spec, site.hose) else {
+        return false;
+    };
+    spec.first_touch(model.radius[a]).is_some()
+        && spec.lateral_offset(centre) <= tolerance.lateral
+        && spec.opening_coordinate(centre).abs() < spec.opening_distance()
 }
 
 /// Whether a hand holds the hose at the clip: a node of the beam crossing the clip's

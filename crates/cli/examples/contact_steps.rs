@@ -93,6 +93,8 @@ mod bench;
 mod bench_contact_phases;
 #[path = "../src/bench_engine_bay.rs"]
 mod bench_engine_bay;
+#[path = "../src/bench_harness.rs"]
+mod bench_harness;
 #[path = "../src/bench_newton.rs"]
 mod bench_newton;
 #[path = "../src/bench_snapshot.rs"]

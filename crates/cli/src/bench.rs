@@ -33,6 +33,8 @@ pub struct BenchOptions {
     pub quick: bool,
     /// Only the engine-bay section ([`crate::bench_engine_bay`]).
     pub engine_bay_only: bool,
+    /// Only the harness section ([`crate::bench_harness`]).
+    pub harness_only: bool,
     /// Measure only one group of rows (for working on one part of the engine).
     pub only: Option<BenchOnly>,
 }
@@ -715,6 +717,15 @@ pub fn run(opts: &BenchOptions) -> Result<()> {
             println!("{}", serde_json::to_string_pretty(&b)?);
         } else {
             print!("{}", crate::bench_engine_bay::render(&b));
+        }
+        return Ok(());
+    }
+    if opts.harness_only {
+        let b = crate::bench_harness::run(opts.quick)?;
+        if opts.json {
+            println!("{}", serde_json::to_string_pretty(&b)?);
+        } else {
+            print!("{}", crate::bench_harness::render(&b));
         }
         return Ok(());
     }

@@ -8,6 +8,7 @@
 mod bench;
 mod bench_contact_phases;
 mod bench_engine_bay;
+mod bench_harness;
 mod bench_newton;
 mod bench_snapshot;
 mod calibrate_cmd;
@@ -276,6 +277,11 @@ enum Command {
         /// solver with and without sleeping).
         #[arg(long = "engine-bay")]
         engine_bay: bool,
+        /// Only the harness section: the main harness of data/harness/ imported, settled
+        /// and moved by a hand in a quasi-static session (`update_ms`), beside one chain
+        /// of as many elements.
+        #[arg(long)]
+        harness: bool,
         /// Measure one group of rows only: `contact` (5 × 30 without and with the floor),
         /// `newton` (the Newton solvers' rows) or `snapshot` (a live snapshot's cost beside
         /// a small and a large part).
@@ -452,11 +458,13 @@ fn main() -> ExitCode {
             json,
             quick,
             engine_bay,
+            harness,
             only,
         } => bench::run(&bench::BenchOptions {
             json,
             quick,
             engine_bay_only: engine_bay,
+            harness_only: harness,
             only,
         })
         .map(|_| ExitCode::SUCCESS),

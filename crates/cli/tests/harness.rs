@@ -189,3 +189,54 @@ fn distance_to_polyline(line: &[[f64; 3]], p: [f64; 3]) -> f64 {
         })
         .fold(f64::INFINITY, f64::min)
 }
+
+const MAIN: &str = "kblxml_2.4sr-1_tab016120_modulare_ltgs._160718.kbl";
+
+/// The main harness (183 segments, 51 junctions, 16 fixings) settles in its installed
+/// state with the timeline `pliant import` writes: every static solve converges, the
+/// settle ends at rest, every clip holds its segment, and the verdict speaks of the
+/// harness's checks, not of a failed solve or a clip left open.
+#[test]
+fn the_main_harness_settles_in_its_installed_state() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene_dir = dir.path().join("main");
+    ok(&pliant()
+        .arg("import")
+        .arg(data(MAIN))
+        .arg("--out")
+        .arg(&scene_dir)
+        .output()
+        .unwrap());
+    let out = dir.path().join("out");
+    let run = pliant()
+        .args(["run", "--quiet"])
+        .arg(scene_dir.join("scene.toml"))
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let read = |name: &str| -> serde_json::Value {
+        let text = std::fs::read_to_string(out.join(name))
+            .unwrap_or_else(|e| panic!("{name}: {e}\n{}", String::from_utf8_lossy(&run.stderr)));
+        serde_json::from_str(&text).unwrap()
+    };
+    let summary = read("summary.json");
+    assert_eq!(summary["completed"], true, "{summary}");
+    assert!(summary["diverged"].is_null(), "{}", summary["diverged"]);
+    assert_eq!(summary["newton"]["unconverged_steps"], 0);
+    assert_eq!(summary["settles"][0]["at_rest"], true);
+    let report = read("report.json");
+    let fasteners = report["run"]["fasteners"].as_array().unwrap();
+    assert_eq!(fasteners.len(), 16);
+    for f in fasteners {
+        assert_eq!(f["final_state"], "seated", "{f}");
+    }
+    let reasons = report["verdict"]["reasons"].as_array().unwrap();
+    for r in reasons {
+        let r = r.as_str().unwrap();
+        assert!(
+            r.contains("bend_radius check") || r.contains("no hand acted"),
+            "unexpected reason: {r}"
+        );
+    }
+}

@@ -121,7 +121,7 @@ impl Model {
             self.bodies.push(body);
         }
         self.hose_network = networks(self.hoses.len(), junctions);
-        self.hose_contact = crate::contact::HoseContactModel::new(&self);
+        self.hose_contact = crate::contact::HoseContactModel::new(&self, self.hose_contact.rule);
         Ok(self)
     }
 

@@ -87,6 +87,10 @@ pub struct Model {
 /// settings (`pliant … --threads N` sets it).
 pub const THREADS_ENV: &str = "PLIANT_THREADS";
 
+/// Most Newton iterations the static solver may be allowed per equilibrium (each costs
+/// one assembly and factorisation: 10 000 bound the work of one input).
+pub const MAX_STATIC_ITERATIONS: usize = 10_000;
+
 /// Threads for a world of `hoses` hoses: `PLIANT_THREADS` if set to a positive number,
 /// else `setting`, else 1 for one hose and the logical cores for several.
 pub fn resolve_threads(setting: Option<usize>, hoses: usize) -> usize {
@@ -245,7 +249,7 @@ impl Model {
         model.damping_stiffness = report.damping_stiffness;
         model.time_step = report.chosen;
         model.time_step_report = report;
-        model.hose_contact = HoseContactModel::new(&model);
+        model.hose_contact = HoseContactModel::new(&model, spec.settings.hose_contact);
         model.packed = PackedElements::new(&model.elements, &model.hoses);
         model.threads = resolve_threads(spec.settings.threads, model.hoses.len());
         model.hose_chunks = hose_chunks(&model.hoses);
@@ -328,7 +332,7 @@ impl Model {
             }
             self.bodies.push(body);
         }
-        self.hose_contact = HoseContactModel::new(&self);
+        self.hose_contact = HoseContactModel::new(&self, self.hose_contact.rule);
         Ok(self)
     }
 
@@ -368,6 +372,12 @@ fn check_settings(s: &SimSettings) -> Result<(), ModelError> {
         if !(v > 0.0 && v <= 1.0) {
             return bad(format!("{name} must lie in (0, 1] s, is {v}"));
         }
+    }
+    let iterations = s.solver.static_max_iterations;
+    if !(1..=MAX_STATIC_ITERATIONS).contains(&iterations) {
+        return bad(format!(
+            "static solver iterations must lie in 1 … {MAX_STATIC_ITERATIONS}, are {iterations}"
+        ));
     }
     Ok(())
 }

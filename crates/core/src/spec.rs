@@ -1,6 +1,7 @@
 //! What a caller hands the core to build a [`crate::Model`]: plain SI data, already
 //! validated by the scene loader (or by code using the library directly).
 
+use crate::contact::HoseContactRule;
 use crate::{Material, Section};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -68,6 +69,10 @@ pub struct SimSettings {
     /// overrides both. Results are the same for any number ([`crate::parallel`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub threads: Option<usize>,
+    /// Which pairs of beams hose–hose contact considers (all; all but those overlapping
+    /// in the drawn shape; none).
+    #[serde(default, skip_serializing_if = "HoseContactRule::is_default")]
+    pub hose_contact: HoseContactRule,
 }
 
 impl Default for SimSettings {
@@ -80,6 +85,7 @@ impl Default for SimSettings {
             time_step: None,
             solver: Default::default(),
             threads: None,
+            hose_contact: HoseContactRule::All,
         }
     }
 }

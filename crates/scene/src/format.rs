@@ -90,6 +90,12 @@ pub struct SimulationSection {
     pub implicit_time_step_s: Option<f64>,
     /// Static solver: simulated time between equilibrium solves (s), in (0, 1]. Default 0.01.
     pub static_input_step_s: Option<f64>,
+    /// Static solver: Newton iterations allowed per equilibrium, 1 … 10 000. Default 60.
+    pub static_max_iterations: Option<u64>,
+    /// Which pairs of beams press on each other: `all` (default), `apart_at_rest` (all
+    /// but those overlapping in the shape as drawn — bundles a CAD route draws through
+    /// one another) or `off`.
+    pub hose_contact: Option<String>,
 }
 
 /// `[output]`: what to record.

@@ -73,6 +73,23 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
             *target = v;
         }
     }
+    if let Some(n) = raw.static_max_iterations {
+        let most = pliant_core::model::MAX_STATIC_ITERATIONS;
+        if n == 0 || n > most as u64 {
+            return Err(FieldError::new(
+                "simulation.static_max_iterations",
+                n.to_string(),
+                &format!("must lie in 1 … {most}"),
+            ));
+        }
+        solver.static_max_iterations = n as usize;
+    }
+    let hose_contact = match &raw.hose_contact {
+        Some(name) => name.parse().map_err(|reason: String| {
+            FieldError::new("simulation.hose_contact", name.clone(), &reason)
+        })?,
+        None => default.hose_contact,
+    };
     Ok(SimSettings {
         gravity,
         damping_mass,
@@ -81,6 +98,7 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
         time_step,
         solver,
         threads: default.threads,
+        hose_contact,
     })
 }
 
@@ -89,5 +107,27 @@ pub fn build_record_interval(raw: Option<&OutputSection>) -> Result<f64, FieldEr
     match raw.and_then(|o| o.record_interval_s) {
         Some(dt) => non_negative("output.record_interval_s", dt, "s"),
         None => Ok(DEFAULT_RECORD_INTERVAL),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::build_settings;
+    use crate::format::SimulationSection;
+    use pliant_core::contact::HoseContactRule;
+
+    #[test]
+    fn hose_contact_and_static_iterations_reach_the_settings() {
+        let raw = SimulationSection {
+            hose_contact: Some("apart_at_rest".into()),
+            static_max_iterations: Some(5000),
+            ..Default::default()
+        };
+        let s = build_settings(Some(&raw)).unwrap();
+        assert_eq!(s.hose_contact, HoseContactRule::ApartAtRest);
+        assert_eq!(s.solver.static_max_iterations, 5000);
+        let default = build_settings(None).unwrap();
+        assert_eq!(default.hose_contact, HoseContactRule::All);
+        assert_eq!(default.solver.static_max_iterations, 60);
     }
 }

@@ -159,6 +159,9 @@ const CASES: &[Case] = &[
     Case { what: "unknown solver", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\nsolver = \"newton\"")], field: Some("simulation.solver"), message: &["unknown solver 'newton'"] },
     Case { what: "implicit step above 1 s", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\nimplicit_time_step_s = 2.0")], field: Some("simulation.implicit_time_step_s"), message: &["must lie in (0, 1] s"] },
     Case { what: "negative damping", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\ndamping_mass_per_s = -1")], field: Some("simulation.damping_mass_per_s"), message: &["must not be negative"] },
+    Case { what: "unknown hose contact rule", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\nhose_contact = \"some\"")], field: Some("simulation.hose_contact"), message: &["unknown hose contact rule 'some'", "apart_at_rest"] },
+    Case { what: "no static iterations", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\nstatic_max_iterations = 0")], field: Some("simulation.static_max_iterations"), message: &["must lie in 1 … 10000"] },
+    Case { what: "too many static iterations", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\nstatic_max_iterations = 1000000")], field: Some("simulation.static_max_iterations"), message: &["must lie in 1 … 10000"] },
     Case { what: "non-positive fixed time step", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\ntime_step_s = 0")], field: Some("simulation.time_step_s"), message: &["must be greater than 0"] },
 ];
 

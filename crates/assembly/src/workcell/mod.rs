@@ -261,7 +261,12 @@ impl Workcell {
         self.state = State::at_rest(&self.model);
         self.opening_until = None;
         self.state.sleep.enabled = self.options.sleeping;
-        self.fasteners = Fasteners::new(&mut self.state, self.stubs.clone(), self.clips.clone());
+        self.fasteners = Fasteners::new(
+            &self.model,
+            &mut self.state,
+            self.stubs.clone(),
+            self.clips.clone(),
+        );
         self.hands.clear();
         self.hand_records.clear();
         self.user_loads.clear();

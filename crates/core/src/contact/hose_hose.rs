@@ -45,7 +45,8 @@
 //! radius r and beam length l₀ this excludes beams i, j with |i − j| ≤ ⌈π r / l₀⌉.
 //! Pairs of different hoses are excluded only where a junction joins them and the same
 //! rule holds along the network (the gap through the junction; `super::network_gaps`);
-//! otherwise never (hoses that overlap at rest are pushed apart).
+//! otherwise never — hoses that overlap at rest are pushed apart, unless the model's
+//! [`HoseContactRule`] is `ApartAtRest` ([`super::rest_overlap`]).
 //!
 //! **Broad phase.** [`BroadPhase`]: a uniform grid, O(N), storage allocated once in
 //! [`HoseContactScratch::new`] (called by [`State::at_rest`]). A model with one hose too
@@ -73,6 +74,7 @@
 //! piled up along every axis), the grid builds the list as before.
 
 use super::broad_phase::{BroadPhase, VisitRank};
+use super::rest_overlap::HoseContactRule;
 use super::sweep::SweepAndPrune;
 use crate::{Model, State};
 use glam::DVec3;
@@ -110,6 +112,11 @@ pub struct HoseContactModel {
     hose_length: Vec<f64>,
     /// Distances along the network between ends of hoses joined by junctions.
     gaps: super::network_gaps::NetworkGaps,
+    /// Which pairs may touch at all.
+    pub rule: HoseContactRule,
+    /// Under [`HoseContactRule::ApartAtRest`]: the pairs (i < j) overlapping at rest,
+    /// sorted; they never touch ([`super::rest_overlap`]).
+    overlapping_at_rest: Vec<(u32, u32)>,
 }
 
 /// The broad phase and what the last step found, allocated once with the state.
@@ -177,7 +184,17 @@ impl HoseContactScratch {
     /// by the sweep ([`SweepAndPrune`]) and sorted by [`BroadPhase::visit_rank`], or by the
     /// grid itself if the sweep gives up (see the module doc).
     fn rebuild(&mut self, model: &Model, x: &[DVec3]) {
-        let constants = &model.hose_contact;
+        self.rebuild_with(model, &model.hose_contact, x);
+    }
+
+    /// [`Self::rebuild`] with the given contact constants (while the model's own are
+    /// being built).
+    pub(super) fn rebuild_with(
+        &mut self,
+        model: &Model,
+        constants: &HoseContactModel,
+        x: &[DVec3],
+    ) {
         for (e, el) in model.elements.iter().enumerate() {
             let (xa, xb) = (x[el.node_a], x[el.node_b]);
             let r = DVec3::splat(constants.element_radius[e] + constants.skin);
@@ -222,8 +239,9 @@ impl HoseContactScratch {
 }
 
 impl HoseContactModel {
-    /// The constants of `model`'s beams (its elements, radii and time step are built).
-    pub fn new(model: &Model) -> Self {
+    /// The constants of `model`'s beams (its elements, radii and time step are built),
+    /// the pairs that may touch chosen by `rule`.
+    pub fn new(model: &Model, rule: HoseContactRule) -> Self {
         let ne = model.elements.len();
         let mut s = HoseContactModel {
             element_hose: vec![0; ne],
@@ -236,6 +254,8 @@ impl HoseContactModel {
             skin: 0.0,
             hose_length: vec![0.0; model.hoses.len()],
             gaps: Default::default(),
+            rule,
+            overlapping_at_rest: Vec::new(),
         };
         for (h, hose) in model.hoses.iter().enumerate() {
             let mut arc = 0.0;
@@ -274,15 +294,36 @@ impl HoseContactModel {
         if bound > 0.0 && bound.is_finite() {
             s.omega_limit = 2.0 / bound;
         }
+        match rule {
+            HoseContactRule::All => {}
+            HoseContactRule::Off => s.active = false,
+            HoseContactRule::ApartAtRest if s.active => {
+                s.overlapping_at_rest = super::rest_overlap::overlapping_at_rest(model, &s);
+            }
+            HoseContactRule::ApartAtRest => {}
+        }
         s
     }
 
+    /// How many pairs of beams overlap at rest and are left out
+    /// ([`HoseContactRule::ApartAtRest`]).
+    pub fn overlapping_at_rest(&self) -> usize {
+        self.overlapping_at_rest.len()
+    }
+
     /// Whether beams `i` and `j` are excluded from contact (same hose and closer along it
-    /// than π (r_i + r_j)/2 at rest; see the module doc).
+    /// than π (r_i + r_j)/2 at rest; see the module doc; or overlapping at rest under
+    /// [`HoseContactRule::ApartAtRest`]).
     #[inline]
     pub fn excluded(&self, i: usize, j: usize) -> bool {
         if i == j {
             return true;
+        }
+        if !self.overlapping_at_rest.is_empty() {
+            let pair = (i.min(j) as u32, i.max(j) as u32);
+            if self.overlapping_at_rest.binary_search(&pair).is_ok() {
+                return true;
+            }
         }
         let (hi, hj) = (self.element_hose[i], self.element_hose[j]);
         if hi != hj {

@@ -23,6 +23,7 @@ mod owned_edges;
 mod penalty;
 mod planes;
 mod point_triangle;
+mod rest_overlap;
 mod rigid;
 mod segment_triangle;
 pub mod sweep;
@@ -38,6 +39,7 @@ pub use hose_hose::{
     add_hose_contact_forces, hose_contact_forces, hose_contact_forces_with, ContactPair,
     HoseContactModel, HoseContactScratch, SAFETY_FOR_HOSE_CONTACT,
 };
+pub use rest_overlap::HoseContactRule;
 pub use rigid::{ContactPoint, ContactScratch};
 pub use segment_triangle::{
     closest_segment_triangle, closest_segment_triangle_away_from_ends, SegmentTriangleClosest,

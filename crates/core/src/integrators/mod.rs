@@ -88,6 +88,15 @@ pub struct SolverSettings {
     pub implicit_time_step: f64,
     /// Static solver: simulated time between two equilibrium solves \[s\] (default 10 ms).
     pub static_input_step: f64,
+    /// Static solver: Newton iterations allowed per equilibrium sought (default 60,
+    /// [`StaticOptions::max_iterations`]). A route drawn far from its equilibrium — a
+    /// harness from CAD springing out between its fixings — needs more for its first.
+    #[serde(default = "default_static_iterations")]
+    pub static_max_iterations: usize,
+}
+
+fn default_static_iterations() -> usize {
+    StaticOptions::default().max_iterations
 }
 
 impl Default for SolverSettings {
@@ -96,6 +105,7 @@ impl Default for SolverSettings {
             kind: SolverKind::Explicit,
             implicit_time_step: 0.01,
             static_input_step: 0.01,
+            static_max_iterations: default_static_iterations(),
         }
     }
 }
@@ -185,7 +195,11 @@ impl Solver {
             _ => None,
         };
         let statics = match settings.kind {
-            SolverKind::Static => Some(Box::new(StaticSolver::new(model)?)),
+            SolverKind::Static => {
+                let mut solver = StaticSolver::new(model)?;
+                solver.options.max_iterations = settings.static_max_iterations;
+                Some(Box::new(solver))
+            }
             _ => None,
         };
         Ok(Self {

@@ -41,6 +41,7 @@ fn incline(phi: f64, kind: SolverKind, step: f64, seconds: f64) -> Result<Run, S
         kind,
         implicit_time_step: step,
         static_input_step: step,
+        ..Default::default()
     };
     let mut solver = Solver::new(&model, settings).map_err(|e| e.to_string())?;
     let mut state = State::at_rest(&model);

@@ -1,0 +1,195 @@
+//! `pliant bench --harness`: the main harness of `data/harness/` (183 segments, 51
+//! junctions, 1605 elements) in a quasi-static session. It is imported from its KBL file
+//! and settled in its installed state by its own timeline (the first equilibrium: the
+//! drawn route springing out between its fixings); then a hand grabs the middle of its
+//! longest segment and moves 2 mm per update. One update is one step of the workcell —
+//! the equilibrium, fasteners, checks and hand loads a user waits for. Beside it, the
+//! same update on one chain of as many elements (held every 40 elements, the hand in the
+//! middle of a span): the cost per element of a network against a chain. Nothing here
+//! asserts a time.
+
+use crate::bench::median;
+use anyhow::{anyhow, Context, Result};
+use glam::DVec3;
+use pliant_assembly::{run_timeline, Grip, Input, NoObserver, Runner, Workcell, WorkcellOptions};
+use pliant_scene::LoadedScene;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The main harness's KBL file, in the repository's `data/harness/`.
+pub const MAIN_HARNESS: &str = "kblxml_2.4sr-1_tab016120_modulare_ltgs._160718.kbl";
+/// How far the hand moves per update \[m\].
+pub const HAND_STEP: f64 = 0.002;
+/// The goal for one update \[ms\] (the harness issue: interactive on one core).
+pub const GOAL_MS: f64 = 10.0;
+
+/// What `pliant bench --harness` measures.
+#[derive(Clone, Debug, Serialize)]
+pub struct HarnessBench {
+    pub segments: usize,
+    pub junctions: usize,
+    pub elements: usize,
+    /// Wall time of the imported timeline (hold the fixings and connectors, settle) \[s\].
+    pub settle_s: f64,
+    /// Median wall time of one update after the hand moved \[ms\].
+    pub update_ms: f64,
+    pub goal_ms: f64,
+    /// The same update on one chain of as many elements \[ms\].
+    pub chain_update_ms: f64,
+    /// Cost per element of an update, network and chain \[µs\].
+    pub update_us_per_element: f64,
+    pub chain_update_us_per_element: f64,
+    pub updates: usize,
+}
+
+/// The repository's copy of the main harness (this binary was built from the clone).
+fn main_harness() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data/harness")
+        .join(MAIN_HARNESS)
+}
+
+/// Imports the main harness into a scratch folder and loads the scene written there.
+fn import_main_harness() -> Result<LoadedScene> {
+    let kbl = main_harness();
+    let dir = std::env::temp_dir().join(format!("pliant-bench-harness-{}", std::process::id()));
+    pliant_harness::import_kbl(&kbl, &dir)
+        .with_context(|| format!("importing {}", kbl.display()))?;
+    let scene = pliant_scene::load_scene_file(&dir.join("scene.toml"));
+    let _ = std::fs::remove_dir_all(&dir);
+    Ok(scene?)
+}
+
+/// One chain of `elements` elements as long as the harness's segments together, held
+/// every 40 elements, under the static solver.
+fn chain(elements: usize, length_m: f64) -> Result<LoadedScene> {
+    let mut text = format!(
+        r#"format = "pliant-scene"
+version = 1
+name = "chain benchmark"
+length_unit = "m"
+
+[simulation]
+solver = "static"
+
+[[hoses]]
+name = "chain"
+material = "hose1"
+start = [0, 0, 0]
+path = [{{ line = {{ to = [{length_m}, 0, 0] }} }}]
+elements = {elements}
+"#
+    );
+    for node in (0..=elements).step_by(40).chain([elements]) {
+        text.push_str(&format!(
+            "\n[[timeline]]\naction = \"fix\"\nhose = \"chain\"\nnode = {node}\n"
+        ));
+    }
+    text.push_str("\n[[timeline]]\naction = \"settle\"\n");
+    pliant_scene::load_scene_str_in(&text, "chain-bench.toml", Path::new("."))
+        .map_err(|e| anyhow!("{e}"))
+}
+
+/// Runs the scene's timeline; returns the workcell and the wall time \[s\].
+fn settled(scene: &LoadedScene) -> Result<(Workcell, f64)> {
+    let setup = scene.workcell_setup().map_err(|e| anyhow!(e))?;
+    let mut cell = Runner::from_setup(setup, WorkcellOptions::default())
+        .workcell()
+        .map_err(|e| anyhow!(e))?;
+    let start = Instant::now();
+    run_timeline(&mut cell, &scene.timeline, &mut NoObserver)
+        .map_err(|e| anyhow!("settling '{}': {}", scene.name, e.reason))?;
+    Ok((cell, start.elapsed().as_secs_f64()))
+}
+
+/// Median wall time of `updates` updates \[ms\]: a hand grabs `at` and moves by
+/// [`HAND_STEP`] along `direction` before each.
+fn updates(cell: &mut Workcell, at: DVec3, direction: DVec3, updates: usize) -> Result<f64> {
+    let refused = |r| anyhow!("the benchmark hand was refused: {r:?}");
+    cell.apply(Input::Grab {
+        hand: 1,
+        at,
+        grip: Grip::Firm,
+    })
+    .map_err(refused)?;
+    let step = cell.time_step();
+    let mut times = Vec::with_capacity(updates);
+    for k in 1..=updates {
+        cell.apply(Input::MoveHand {
+            hand: 1,
+            waypoints: vec![at + direction * (HAND_STEP * k as f64)],
+            rotation: DVec3::ZERO,
+            duration: step,
+        })
+        .map_err(refused)?;
+        let start = Instant::now();
+        cell.step(&mut NoObserver)
+            .map_err(|d| anyhow!("update {k} diverged: {d}"))?;
+        times.push(start.elapsed().as_secs_f64() * 1e3);
+    }
+    Ok(median(&times))
+}
+
+/// The middle node of the longest hose and a direction across it.
+fn grab_point(cell: &Workcell) -> (DVec3, DVec3) {
+    let model = cell.model();
+    let x = &cell.state().x;
+    let longest = model
+        .hoses
+        .iter()
+        .max_by_key(|h| h.element_count)
+        .expect("a scene has a hose");
+    let nodes = longest.nodes();
+    let mid = nodes.start + (nodes.end - nodes.start) / 2;
+    let along = (x[mid + 1] - x[mid - 1]).normalize_or(DVec3::X);
+    (x[mid], along.any_orthonormal_vector())
+}
+
+/// Measures the rows (`quick`: 3 updates each instead of 30).
+pub fn run(quick: bool) -> Result<HarnessBench> {
+    let count = if quick { 3 } else { 30 };
+    let scene = import_main_harness()?;
+    let (mut cell, settle_s) = settled(&scene)?;
+    let model = cell.model().clone();
+    let length: f64 = model.elements.iter().map(|e| e.rest_length).sum();
+    let (at, across) = grab_point(&cell);
+    let update_ms = updates(&mut cell, at, across, count)?;
+    let elements = model.elements.len();
+    let (mut line, _) = settled(&chain(elements, length)?)?;
+    let span_middle = line.state().x[20];
+    let chain_update_ms = updates(&mut line, span_middle, DVec3::Y, count)?;
+    Ok(HarnessBench {
+        segments: model.hoses.len(),
+        junctions: model.junctions.len(),
+        elements,
+        settle_s,
+        update_ms,
+        goal_ms: GOAL_MS,
+        chain_update_ms,
+        update_us_per_element: update_ms * 1e3 / elements as f64,
+        chain_update_us_per_element: chain_update_ms * 1e3 / elements as f64,
+        updates: count,
+    })
+}
+
+/// The rows as lines of text.
+pub fn render(b: &HarnessBench) -> String {
+    format!(
+        "main harness: {} segments, {} junctions, {} elements (static solver, one core)\n\
+         \x20 settled in its installed state in {:.2} s\n\
+         \x20 one update after the hand moves {} mm: {:.2} ms (goal {} ms), {:.2} µs per element\n\
+         \x20 one chain of as many elements:     {:.2} ms, {:.2} µs per element (network / chain {:.2})\n",
+        b.segments,
+        b.junctions,
+        b.elements,
+        b.settle_s,
+        HAND_STEP * 1e3,
+        b.update_ms,
+        b.goal_ms,
+        b.update_us_per_element,
+        b.chain_update_ms,
+        b.chain_update_us_per_element,
+        b.update_ms / b.chain_update_ms,
+    )
+}
