@@ -240,3 +240,74 @@ fn the_main_harness_settles_in_its_installed_state() {
         );
     }
 }
+
+/// A clip the hose is drawn through (an installed route: 2 mm from the seat, inside the
+/// jaws 5.3 mm deep) holds it from the first step — seated, its snap force never pulling;
+/// a clip the hose passes 30 mm outside stays open.
+#[test]
+fn a_clip_the_hose_is_drawn_through_starts_seated() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(
+        &scene,
+        r#"format = "pliant-scene"
+version = 1
+length_unit = "mm"
+
+[[hoses]]
+name = "hose"
+material = "hose1"
+start = [0, 0, 0]
+path = [{ line = { to = [600, 0, 0] } }]
+elements = 24
+
+[[clips]]
+name = "drawn through"
+origin = [200, 0, 2]
+opening = [0, 0, 1]
+orientation = [1, 0, 0]
+opening_width = 12
+inner_diameter = 16
+snap_force_n = 30
+
+[[clips]]
+name = "beside"
+origin = [400, 0, -30]
+opening = [0, 0, 1]
+orientation = [1, 0, 0]
+opening_width = 12
+inner_diameter = 16
+snap_force_n = 30
+
+[[timeline]]
+action = "fix"
+hose = "hose"
+node = 0
+
+[[timeline]]
+action = "fix"
+hose = "hose"
+node = 24
+
+[[timeline]]
+action = "run"
+duration_s = 0.02
+"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let _ = pliant()
+        .args(["run", "--quiet", "--solver", "static"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let fasteners = report["run"]["fasteners"].as_array().unwrap();
+    let clip = |name: &str| fasteners.iter().find(|f| f["name"] == name).unwrap();
+    assert_eq!(clip("drawn through")["final_state"], "seated");
+    assert_eq!(clip("drawn through")["max_force"], 0.0);
+    assert_eq!(clip("beside")["final_state"], "free");
+}
