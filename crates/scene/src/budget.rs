@@ -17,7 +17,7 @@
 //! size) but every pair for hoses laid on top of each other (5 000 hoses of 4 elements
 //! along one line: 2·10⁸ pairs). They are counted on the rest geometry once all hoses
 //! are built (`pliant_core::contact::rest_pair_count`), at
-//! [`pliant_core::contact::BYTES_PER_CONTACT_PAIR`] each. What the report writer holds
+//! [`pliant_core::contact::BYTES_PER_CONTACT_PAIR`] (16 B) each. What the report writer holds
 //! grows with the elements (one profile per hose, the scene copied for at most
 //! `MAX_SCENE_PICTURES` hoses) and is inside the per-element size; the estimate is
 //! tested against the measured peak in `crates/cli/tests/budget.rs`.
@@ -104,6 +104,8 @@ impl Estimate {
 pub struct Budget {
     pub estimate: Estimate,
     pub limits: Limits,
+    /// The contact pairs were counted only up to what the limit allows (there are more).
+    pairs_capped: bool,
 }
 
 impl Budget {
@@ -111,6 +113,7 @@ impl Budget {
         Budget {
             estimate: Estimate::default(),
             limits,
+            pairs_capped: false,
         }
     }
 
@@ -135,7 +138,9 @@ impl Budget {
             .limits
             .max_memory_bytes
             .saturating_sub(self.estimate.memory_bytes());
-        let pairs = rest_pair_count(hoses, room / BYTES_PER_CONTACT_PAIR + 1);
+        let most = room / BYTES_PER_CONTACT_PAIR + 1;
+        let pairs = rest_pair_count(hoses, most);
+        self.pairs_capped = pairs >= most;
         self.estimate.contact_pairs = self.estimate.contact_pairs.saturating_add(pairs);
         self.check(field)
     }
@@ -163,11 +168,12 @@ impl Budget {
         Err(FieldError::about(
             field,
             format!(
-                "the scene up to here ({} elements, {} triangles, {}{} hose–hose contact pairs at rest) needs ≈ {}; the limit is {} (raise it with {})",
+                "the scene up to here ({} elements, {} triangles, {}{} hose–hose contact pairs at rest) needs {} {}; the limit is {} (raise it with {})",
                 self.estimate.elements,
                 self.estimate.triangles,
-                if need > self.limits.max_memory_bytes && self.estimate.contact_pairs > 0 { "at least " } else { "" },
+                if self.pairs_capped { "more than " } else { "" },
                 self.estimate.contact_pairs,
+                if self.pairs_capped { "more than" } else { "≈" },
                 human_bytes(need),
                 human_bytes(self.limits.max_memory_bytes),
                 self.limits.raise_with
