@@ -394,3 +394,18 @@ fn hoses_laid_on_each_other_are_refused_for_their_contact_pairs() {
     assert_eq!(apart.estimate.contact_pairs, 0);
     assert_eq!(apart.estimate.elements, 2000);
 }
+
+/// Issue 36: an error echoing a user's key of 100 000 characters clips it to its start
+/// and its length.
+#[test]
+fn a_huge_unknown_key_is_echoed_clipped() {
+    let key = "k".repeat(100_000);
+    let text = BASE.replace(
+        "time_step_safety = 0.5",
+        &format!("time_step_safety = 0.5\n{key} = 1"),
+    );
+    let err = load_scene_str(&text, "huge.toml").unwrap_err().to_string();
+    assert!(err.len() < 1000, "{} chars: {}", err.len(), &err[..200]);
+    assert!(err.contains("…(") && err.contains("chars)"), "{err}");
+    assert!(err.contains("unknown field"), "{err}");
+}

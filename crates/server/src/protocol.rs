@@ -214,9 +214,11 @@ impl ServerMessage<'_> {
 
 /// An error message as JSON text.
 pub fn error_json(code: ErrorCode, message: impl Into<String>) -> String {
+    let message = message.into();
     ServerMessage::Error {
         code,
-        message: message.into(),
+        // a client's key or value echoed in the message is clipped (issue 36)
+        message: pliant_scene::clip::clip_words(&message).into_owned(),
     }
     .to_json()
 }

@@ -1281,3 +1281,19 @@ async fn reports_are_rate_limited_and_their_total_size_is_capped() {
     }
     assert_eq!(reports(&dir.path().join("b")), 1);
 }
+
+/// Issue 36: an error echoing a client's key clips it (its start and its length).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_error_echoing_a_huge_key_clips_it() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    let key = "k".repeat(60_000);
+    ws.send(Message::text(format!(r#"{{"type":"pause","{key}":1}}"#)))
+        .await
+        .unwrap();
+    let e = next_where(&mut ws, "error", |_| true).await;
+    let m = e["message"].as_str().unwrap();
+    assert_eq!(e["code"], "malformed", "{e}");
+    assert!(m.len() < 1000 && m.contains("…(60002 chars)"), "{m}");
+}
