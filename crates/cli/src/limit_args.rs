@@ -1,8 +1,8 @@
-//! Resource limits on the command line (`--max-memory`, `--max-mesh-bytes`): a scene
-//! beyond them is refused while it loads, naming the field and the estimate
-//! (`pliant_scene::budget`).
+//! Resource limits on the command line (`--max-memory`, `--max-mesh-bytes`,
+//! `--max-steps`): a scene beyond them is refused while it loads (or, for the steps,
+//! before its run starts), naming the field and the estimate (`pliant_scene::budget`).
 
-use pliant_scene::budget::{parse_bytes, DEFAULT_MAX_MEMORY_BYTES};
+use pliant_scene::budget::{parse_bytes, DEFAULT_MAX_MEMORY_BYTES, DEFAULT_MAX_STEPS};
 use pliant_scene::files::DEFAULT_MAX_FILE_BYTES;
 use pliant_scene::{Limits, LoadOptions};
 
@@ -10,19 +10,26 @@ use pliant_scene::{Limits, LoadOptions};
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct LimitArgs {
     /// Refuse scenes whose run would need more memory than this (estimated from their
-    /// elements and triangles), e.g. 8G, 512M [default: 4G].
+    /// elements, triangles and hose–hose contact pairs), e.g. 8G, 512M [default: 4G].
     #[arg(long = "max-memory", value_parser = parse_bytes)]
     pub max_memory: Option<u64>,
     /// Largest mesh file read, e.g. 1G [default: 256M].
     #[arg(long = "max-mesh-bytes", value_parser = parse_bytes)]
     pub max_mesh_bytes: Option<u64>,
+    /// Refuse runs planned at more steps than this (the timeline's duration over the
+    /// time step) [default: 1000000000].
+    #[arg(long = "max-steps")]
+    pub max_steps: Option<u64>,
 }
 
 impl LimitArgs {
     /// How scenes from the user's own disk are loaded under these limits.
     pub fn load_options(&self) -> LoadOptions {
         LoadOptions {
-            limits: Limits::with_memory(self.max_memory.unwrap_or(DEFAULT_MAX_MEMORY_BYTES)),
+            limits: Limits {
+                max_steps: self.max_steps.unwrap_or(DEFAULT_MAX_STEPS),
+                ..Limits::with_memory(self.max_memory.unwrap_or(DEFAULT_MAX_MEMORY_BYTES))
+            },
             max_file_bytes: self.max_mesh_bytes.unwrap_or(DEFAULT_MAX_FILE_BYTES),
             sandboxed: false,
         }

@@ -64,6 +64,8 @@ pub fn run(
         );
     }
     let planned = Runner::planned_duration(&scene.timeline);
+    pliant_scene::budget::check_steps(planned, cell.time_step(), load.limits.max_steps)
+        .map_err(|e| anyhow!("{}: {e}", scene.source))?;
     eprintln!(
         "pliant: {}",
         cost_hint(

@@ -135,7 +135,7 @@ pub fn run(args: &ServeArgs) -> anyhow::Result<ExitCode> {
             let out = session
                 .next_report_folder()
                 .ok_or_else(|| "the session records into no folder".to_string())?;
-            session.report(&out).map(|(verdict, _)| (out, verdict))
+            session.report(&out).map(|(verdict, _, _)| (out, verdict))
         })
         .await
         .map_err(|e| anyhow::anyhow!("writing the report failed: {e}"))?;

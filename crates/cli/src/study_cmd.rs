@@ -1,6 +1,12 @@
 //! `pliant study`: variant and tolerance studies (SPEC T1, T2). The study machinery is
 //! Python (the `pliant.studies` package: sampling, Dask, Parquet, envelopes, report); this
 //! command finds a Python interpreter that has it and hands the arguments over.
+//!
+//! The driver does not outlive this command (issue 36: `kill -9` of `pliant study` left
+//! the driver and its Dask workers running): on Linux it is started with
+//! `PR_SET_PDEATHSIG` = SIGTERM, so the kernel signals it when this process dies however
+//! it dies, and the driver takes SIGTERM as Ctrl-C — it writes the finished rows and
+//! closes its local cluster, whose workers stop with it.
 
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
@@ -43,6 +49,32 @@ fn find_python() -> Result<PathBuf> {
     )
 }
 
+/// Makes the kernel send SIGTERM to the command's process when this process ends, even
+/// by SIGKILL (Linux `prctl(PR_SET_PDEATHSIG)`, kept across `exec`); elsewhere nothing.
+fn stop_with_this_process(cmd: &mut Command) {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::process::CommandExt;
+        let parent = std::process::id();
+        // SAFETY: between fork and exec the closure calls only async-signal-safe functions
+        // (prctl, getppid, raise) and allocates nothing.
+        unsafe {
+            cmd.pre_exec(move || {
+                if libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGTERM) != 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                // this process may have died before the prctl: then stop at once
+                if libc::getppid() as u32 != parent {
+                    libc::raise(libc::SIGTERM);
+                }
+                Ok(())
+            });
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = cmd;
+}
+
 /// Runs the study; the exit code is the Python module's (0 done, 2 bad input).
 pub fn run(o: &StudyOptions) -> Result<ExitCode> {
     let python = find_python()?;
@@ -66,6 +98,7 @@ pub fn run(o: &StudyOptions) -> Result<ExitCode> {
     if o.quiet {
         cmd.arg("--quiet");
     }
+    stop_with_this_process(&mut cmd);
     let status = cmd
         .status()
         .with_context(|| format!("starting {}", python.display()))?;

@@ -902,3 +902,157 @@ fn serve_help_says_where_sessions_are_recorded_and_how_to_report_them() {
         assert!(help.contains(needle), "missing {needle:?} in:\n{help}");
     }
 }
+
+/// Issue 36: a run planned beyond the step limit is refused before it starts, with its
+/// estimate (a scene planned at 1.6·10¹² steps used to start); `--max-steps` allows
+/// more. A `time_step_safety` of 1e-300 (4.6·10³⁰⁴ steps) is refused at load, naming
+/// the field.
+#[test]
+fn runs_beyond_the_step_limit_are_refused_with_their_estimate() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_line_scene(
+        dir.path(),
+        "steps.toml",
+        4,
+        200.0,
+        "",
+        "[[timeline]]\naction = \"run\"\nduration_s = 0.05\n",
+    );
+    let o = run_scene(&scene, &dir.path().join("a"), &["--max-steps", "10"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert!(
+        err.contains("steps") && err.contains("at most 10") && err.contains("--max-steps"),
+        "{err}"
+    );
+    assert!(!dir.path().join("a").join("summary.json").exists());
+    let o = run_scene(&scene, &dir.path().join("b"), &["--max-steps", "100000000"]);
+    summary_of(&o, &dir.path().join("b"));
+
+    let tiny = write_line_scene(
+        dir.path(),
+        "tiny.toml",
+        4,
+        200.0,
+        "[simulation]\ntime_step_safety = 1e-300\n",
+        "[[timeline]]\naction = \"run\"\nduration_s = 1\n",
+    );
+    let o = run_scene(&tiny, &dir.path().join("c"), &[]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("simulation.time_step_safety") && err.contains("[0.001, 1]"),
+        "{err}"
+    );
+}
+
+/// The processes descended from `pid` (Linux, from /proc).
+#[cfg(target_os = "linux")]
+fn descendants(pid: u32) -> Vec<u32> {
+    let parent_of = |p: u32| -> Option<u32> {
+        let stat = std::fs::read_to_string(format!("/proc/{p}/stat")).ok()?;
+        // "pid (comm) state ppid …": the comm may hold spaces, so split after its ')'
+        stat.rsplit_once(')')?
+            .1
+            .split_whitespace()
+            .nth(1)?
+            .parse()
+            .ok()
+    };
+    let all: Vec<u32> = std::fs::read_dir("/proc")
+        .unwrap()
+        .flatten()
+        .filter_map(|e| e.file_name().to_str()?.parse().ok())
+        .collect();
+    let mut found = vec![pid];
+    let mut k = 0;
+    while k < found.len() {
+        let p = found[k];
+        found.extend(all.iter().filter(|&&c| parent_of(c) == Some(p)));
+        k += 1;
+    }
+    found.remove(0);
+    found
+}
+
+/// Issue 36: `kill -9` of `pliant study` stops its Python driver and the Dask workers
+/// (they used to run on). Needs a Python with the study extras (PLIANT_PYTHON or the
+/// repository's .venv); without one the test says so and passes. Waits for conditions
+/// (workers started, processes gone), never for durations.
+#[cfg(target_os = "linux")]
+#[test]
+fn killing_pliant_study_stops_its_driver_and_workers() {
+    let probe = "import pliant.studies, distributed, pyarrow, pandas, scipy, skimage";
+    let has_extras = |p: &std::path::Path| {
+        Command::new(p)
+            .args(["-c", probe])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    let Some(python) = pliant_scene::cad_converter::python_candidates()
+        .into_iter()
+        .find(|p| has_extras(p))
+    else {
+        eprintln!("skipped: no Python with pliant's study extras (set PLIANT_PYTHON)");
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("long.toml");
+    std::fs::write(
+        &study,
+        format!(
+            "format = \"pliant-study\"\nversion = 1\nscene = \"{}\"\nlength_unit = \"mm\"\n\
+             [sampling]\nruns = 100000\nseed = 1\n\
+             [[parameters]]\nname = \"stiffness\"\nvary = \"material\"\nmaterial = \"hose3\"\n\
+             property = \"e_mpa\"\ndistribution = \"uniform\"\nmin = 0.9\nmax = 1.1\n",
+            examples().join("demo.toml").display()
+        ),
+    )
+    .unwrap();
+    let mut child = pliant()
+        .args(["study", "--quiet", "--workers", "2", "--out"])
+        .arg(dir.path().join("out"))
+        .arg(&study)
+        .env("PLIANT_PYTHON", &python)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let hang_guard = std::time::Duration::from_secs(300);
+    let deadline = std::time::Instant::now() + hang_guard;
+    // the driver and at least one worker process under it
+    let started = loop {
+        let d = descendants(child.id());
+        if d.len() >= 3 {
+            break d;
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the study never started its workers"
+        );
+        assert!(child.try_wait().unwrap().is_none(), "pliant study ended");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    let alive = |p: &u32| {
+        std::path::Path::new(&format!("/proc/{p}")).exists() && {
+            // a zombie waiting for its (dead) parent's reaper has stopped too
+            std::fs::read_to_string(format!("/proc/{p}/stat")).is_ok_and(|s| {
+                s.rsplit_once(')')
+                    .is_some_and(|(_, r)| !r.trim_start().starts_with('Z'))
+            })
+        }
+    };
+    loop {
+        let left: Vec<u32> = started.iter().copied().filter(alive).collect();
+        if left.is_empty() {
+            break;
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "still running {hang_guard:?} after kill -9 of pliant study: {left:?}"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+}

@@ -11,8 +11,20 @@
 //! tree), plus the 128 B of its bounding planes for contact (`contact/planes.rs`, made
 //! once per triangle since 2026-11-27; added by size, not re-measured). The estimate takes the larger element size, as the solver may be changed
 //! after loading (`--solver`, the viewer).
+//!
+//! Hose–hose contact pairs are counted too (issue 36): the pair list holds every pair of
+//! beams whose boxes overlap, a few per beam for hoses laid apart (inside the per-element
+//! size) but every pair for hoses laid on top of each other (5 000 hoses of 4 elements
+//! along one line: 2·10⁸ pairs). They are counted on the rest geometry once all hoses
+//! are built (`pliant_core::contact::rest_pair_count`), at
+//! [`pliant_core::contact::BYTES_PER_CONTACT_PAIR`] (16 B) each. What the report writer holds
+//! grows with the elements (one profile per hose, the scene copied for at most
+//! `MAX_SCENE_PICTURES` hoses) and is inside the per-element size; the estimate is
+//! tested against the measured peak in `crates/cli/tests/budget.rs`.
 
 use crate::error::FieldError;
+use pliant_core::contact::{rest_pair_count, BYTES_PER_CONTACT_PAIR};
+use pliant_core::HoseSpec;
 
 /// Memory a run needs per beam element \[bytes\] (measured, see the module doc; rounded up).
 pub const BYTES_PER_ELEMENT: u64 = 4096;
@@ -22,6 +34,10 @@ pub const BYTES_PER_TRIANGLE: u64 = 512;
 pub const BASE_BYTES: u64 = 16 * 1024 * 1024;
 /// Default memory limit of a scene \[bytes\]: 4 GiB.
 pub const DEFAULT_MAX_MEMORY_BYTES: u64 = 4 * 1024 * 1024 * 1024;
+
+/// Default most steps of a planned run (`pliant run`; `--max-steps` raises it): 10⁹ —
+/// hours of wall time for a single short hose, far more for a large model.
+pub const DEFAULT_MAX_STEPS: u64 = 1_000_000_000;
 
 /// Limits a scene is checked against while it loads.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,6 +49,9 @@ pub struct Limits {
     pub max_elements: u64,
     /// Most rigid-part triangles (bounds what a live session sends every client).
     pub max_triangles: u64,
+    /// Most steps of a planned run: its timeline's duration over the time step
+    /// ([`check_steps`], before the run starts).
+    pub max_steps: u64,
     /// Where the limits are raised, for messages (e.g. "--max-memory").
     pub raise_with: &'static str,
 }
@@ -43,6 +62,7 @@ impl Default for Limits {
             max_memory_bytes: DEFAULT_MAX_MEMORY_BYTES,
             max_elements: u64::MAX,
             max_triangles: u64::MAX,
+            max_steps: DEFAULT_MAX_STEPS,
             raise_with: "--max-memory",
         }
     }
@@ -65,6 +85,8 @@ pub struct Estimate {
     pub elements: u64,
     /// Triangles of every rigid part.
     pub triangles: u64,
+    /// Hose–hose contact pairs listed at rest (counted up to what the limit allows).
+    pub contact_pairs: u64,
 }
 
 impl Estimate {
@@ -73,6 +95,7 @@ impl Estimate {
         BASE_BYTES
             .saturating_add(self.elements.saturating_mul(BYTES_PER_ELEMENT))
             .saturating_add(self.triangles.saturating_mul(BYTES_PER_TRIANGLE))
+            .saturating_add(self.contact_pairs.saturating_mul(BYTES_PER_CONTACT_PAIR))
     }
 }
 
@@ -81,6 +104,8 @@ impl Estimate {
 pub struct Budget {
     pub estimate: Estimate,
     pub limits: Limits,
+    /// The contact pairs were counted only up to what the limit allows (there are more).
+    pairs_capped: bool,
 }
 
 impl Budget {
@@ -88,6 +113,7 @@ impl Budget {
         Budget {
             estimate: Estimate::default(),
             limits,
+            pairs_capped: false,
         }
     }
 
@@ -101,6 +127,21 @@ impl Budget {
     /// possible); fails if the scene no longer fits.
     pub fn add_triangles(&mut self, field: &str, triangles: u64) -> Result<(), FieldError> {
         self.estimate.triangles = self.estimate.triangles.saturating_add(triangles);
+        self.check(field)
+    }
+
+    /// Adds the hose–hose contact pairs of `hoses` at rest (all hoses built; `field`
+    /// names them in errors); fails if the scene no longer fits. Counting stops once the
+    /// limit is passed.
+    pub fn add_contact_pairs(&mut self, field: &str, hoses: &[HoseSpec]) -> Result<(), FieldError> {
+        let room = self
+            .limits
+            .max_memory_bytes
+            .saturating_sub(self.estimate.memory_bytes());
+        let most = room / BYTES_PER_CONTACT_PAIR + 1;
+        let pairs = rest_pair_count(hoses, most);
+        self.pairs_capped = pairs >= most;
+        self.estimate.contact_pairs = self.estimate.contact_pairs.saturating_add(pairs);
         self.check(field)
     }
 
@@ -127,15 +168,41 @@ impl Budget {
         Err(FieldError::about(
             field,
             format!(
-                "the scene up to here ({} elements, {} triangles) needs ≈ {}; the limit is {} (raise it with {})",
+                "the scene up to here ({} elements, {} triangles, {}{} hose–hose contact pairs at rest) needs {} {}; the limit is {} (raise it with {})",
                 self.estimate.elements,
                 self.estimate.triangles,
+                if self.pairs_capped { "more than " } else { "" },
+                self.estimate.contact_pairs,
+                if self.pairs_capped { "more than" } else { "≈" },
                 human_bytes(need),
                 human_bytes(self.limits.max_memory_bytes),
                 self.limits.raise_with
             ),
         ))
     }
+}
+
+/// Refuses a run of `planned` seconds at `time_step` \[s\] beyond `max_steps` steps,
+/// with its estimate (issue 36: a scene planned at 1.6·10¹² steps started anyway).
+/// Returns the planned steps.
+pub fn check_steps(planned: f64, time_step: f64, max_steps: u64) -> Result<u64, String> {
+    let steps = (planned / time_step).ceil();
+    if steps.is_finite() && steps >= 0.0 && steps <= max_steps as f64 {
+        return Ok(steps as u64);
+    }
+    let hours = if steps.is_finite() && time_step > 0.0 {
+        // at a guess of 1 µs per step, the least a step of one short hose costs here
+        format!(
+            " (at least {:.1e} hours of wall time)",
+            steps * 1e-6 / 3600.0
+        )
+    } else {
+        String::new()
+    };
+    Err(format!(
+        "the run is planned at {planned:.3e} s with a time step of {time_step:.3e} s: \
+         {steps:.3e} steps{hours}; at most {max_steps} are allowed (raise with --max-steps)"
+    ))
 }
 
 /// `bytes` as "3.2 GB" / "640 MB" / "12 kB" (decimal units).
@@ -205,6 +272,18 @@ mod tests {
         assert!(t
             .add_triangles("parts[0].sphere.subdivisions", 20 * 4u64.pow(12))
             .is_err());
+    }
+
+    #[test]
+    fn a_run_beyond_the_step_limit_is_refused_with_its_estimate() {
+        assert_eq!(check_steps(1.0, 1e-3, 1000), Ok(1000));
+        let err = check_steps(60.0, 3.7e-11, DEFAULT_MAX_STEPS).unwrap_err();
+        assert!(
+            err.contains("1.622e12 steps") && err.contains("--max-steps"),
+            "{err}"
+        );
+        assert!(check_steps(1.0, 0.0, u64::MAX).is_err());
+        assert!(check_steps(f64::INFINITY, 1e-3, u64::MAX).is_err());
     }
 
     #[test]

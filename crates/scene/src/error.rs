@@ -85,8 +85,19 @@ fn write_origin(
 }
 
 impl fmt::Display for SceneError {
+    /// The message, with echoed user text clipped ([`crate::clip`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
+        let whole = UnclippedScene(self).to_string();
+        f.write_str(&crate::clip::clip_words(&whole))
+    }
+}
+
+/// [`SceneError`]'s message before clipping.
+struct UnclippedScene<'a>(&'a SceneError);
+
+impl fmt::Display for UnclippedScene<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
             SceneError::Io { path, source } => {
                 write!(f, "{path}: cannot read scene file: {source}")
             }
@@ -169,11 +180,13 @@ impl FieldError {
 }
 
 impl fmt::Display for FieldError {
+    /// `field = value: reason`, with echoed user text clipped ([`crate::clip`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match &self.value {
-            Some(value) => write!(f, "{} = {}: {}", self.field, value, self.reason),
-            None => write!(f, "{}: {}", self.field, self.reason),
-        }
+        let whole = match &self.value {
+            Some(value) => format!("{} = {}: {}", self.field, value, self.reason),
+            None => format!("{}: {}", self.field, self.reason),
+        };
+        f.write_str(&crate::clip::clip_words(&whole))
     }
 }
 

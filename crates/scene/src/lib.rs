@@ -14,6 +14,7 @@ pub mod budget;
 pub mod cad_converter;
 pub mod centerline;
 pub mod checks;
+pub mod clip;
 pub mod connectors;
 pub mod document;
 pub mod ergonomics;

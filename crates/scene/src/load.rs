@@ -450,6 +450,7 @@ fn build(
         hoses.push(spec);
         infos.push(info);
     }
+    budget.add_contact_pairs("hoses", &hoses)?;
     let nodes: Vec<HoseNodes> = hoses
         .iter()
         .map(|h| HoseNodes {

@@ -6,6 +6,12 @@ use crate::format::{OutputSection, SimulationSection};
 use crate::validate::{finite_vec, non_negative, positive, with_unit};
 use pliant_core::SimSettings;
 
+/// Smallest `simulation.time_step_safety` taken: the step is this fraction of the stable
+/// step, so smaller factors multiply the steps (and the run time) beyond any use — 10⁻³
+/// is already a thousand times the default's steps (issue 36: 1e-300 ran for ever,
+/// 5e-324 gave a zero step).
+pub const MIN_TIME_STEP_SAFETY: f64 = 1e-3;
+
 /// Default interval between recorded states (s).
 pub const DEFAULT_RECORD_INTERVAL: f64 = 0.01;
 
@@ -28,11 +34,11 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
     let time_step_safety = match raw.time_step_safety {
         Some(f) => {
             let f = positive("simulation.time_step_safety", f, "")?;
-            if f > 1.0 {
+            if !(MIN_TIME_STEP_SAFETY..=1.0).contains(&f) {
                 return Err(FieldError::new(
                     "simulation.time_step_safety",
                     with_unit(f, ""),
-                    "must lie in (0, 1]",
+                    format!("must lie in [{MIN_TIME_STEP_SAFETY}, 1] (a fraction of the stable time step)"),
                 ));
             }
             f

@@ -154,7 +154,9 @@ const CASES: &[Case] = &[
     Case { what: "span section invalid", edits: &[("path = [{ line = { to = [200, 100, 0] } }]", "path = [{ line = { to = [200, 100, 0] } }]\nspans = [{ from = 0, to = 100, section = { d_inner = 30, d_outer = 20 } }]")], field: Some("hoses[1].spans[0].section.d_inner"), message: &["must be smaller than d_outer"] },
     Case { what: "normal hint along the tangent", edits: &[("elements = 4", "elements = 4\nnormal_hint = [2, 0, 0]")], field: Some("hoses[0].normal_hint"), message: &["must not be parallel to the hose's first tangent"] },
     Case { what: "negative record interval", edits: &[("record_interval_s = 0.01", "record_interval_s = -1")], field: Some("output.record_interval_s"), message: &["= -1 s: must not be negative"] },
-    Case { what: "time step safety above 1", edits: &[("time_step_safety = 0.5", "time_step_safety = 1.5")], field: Some("simulation.time_step_safety"), message: &["= 1.5: must lie in (0, 1]"] },
+    Case { what: "time step safety above 1", edits: &[("time_step_safety = 0.5", "time_step_safety = 1.5")], field: Some("simulation.time_step_safety"), message: &["= 1.5: must lie in [0.001, 1]"] },
+    Case { what: "time step safety 1e-300 (runs for ever)", edits: &[("time_step_safety = 0.5", "time_step_safety = 1e-300")], field: Some("simulation.time_step_safety"), message: &["must lie in [0.001, 1]"] },
+    Case { what: "time step safety 5e-324 (a zero step)", edits: &[("time_step_safety = 0.5", "time_step_safety = 5e-324")], field: Some("simulation.time_step_safety"), message: &["must lie in [0.001, 1]"] },
     Case { what: "time step safety zero", edits: &[("time_step_safety = 0.5", "time_step_safety = 0")], field: Some("simulation.time_step_safety"), message: &["= 0: must be greater than 0"] },
     Case { what: "unknown solver", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\nsolver = \"newton\"")], field: Some("simulation.solver"), message: &["unknown solver 'newton'"] },
     Case { what: "implicit step above 1 s", edits: &[("time_step_safety = 0.5", "time_step_safety = 0.5\nimplicit_time_step_s = 2.0")], field: Some("simulation.implicit_time_step_s"), message: &["must lie in (0, 1] s"] },
@@ -359,4 +361,54 @@ fn a_time_step_safety_too_large_for_contact_or_supports_is_warned_about() {
             && warned[0].contains("above 0.65 so can the springs"),
         "{warned:?}"
     );
+}
+
+/// `n` hoses of `elements` elements, 500 mm long, `spacing` mm apart (0: on top of each
+/// other).
+fn many_hoses(n: usize, elements: usize, spacing: f64) -> String {
+    let mut s = String::from("format = \"pliant-scene\"\nversion = 1\nlength_unit = \"mm\"\n");
+    for i in 0..n {
+        let y = i as f64 * spacing;
+        s.push_str(&format!(
+            "[[hoses]]\nname = \"h{i}\"\nmaterial = \"hose1\"\nstart = [0, {y}, 0]\npath = [{{ line = {{ to = [500, {y}, 0] }} }}]\nelements = {elements}\n"
+        ));
+    }
+    s
+}
+
+/// Issue 36: 5 000 hoses of 4 elements laid on one line (640 KB of TOML, 20 000
+/// elements, within every per-field limit) list 2·10⁸ contact pairs — several GB. The
+/// estimate counts them, and the scene is refused naming them, before any is built.
+#[test]
+fn hoses_laid_on_each_other_are_refused_for_their_contact_pairs() {
+    let options = pliant_scene::LoadOptions {
+        limits: pliant_scene::Limits::with_memory(1_000_000_000),
+        ..Default::default()
+    };
+    let load = |text: &str| {
+        pliant_scene::load_scene_str_with(text, "many.toml", std::path::Path::new("."), &options)
+    };
+    let err = load(&many_hoses(5000, 4, 0.0)).unwrap_err().to_string();
+    assert!(
+        err.contains("hoses") && err.contains("contact pairs") && err.contains("1.0 GB"),
+        "{err}"
+    );
+    let apart = load(&many_hoses(500, 4, 100.0)).unwrap();
+    assert_eq!(apart.estimate.contact_pairs, 0);
+    assert_eq!(apart.estimate.elements, 2000);
+}
+
+/// Issue 36: an error echoing a user's key of 100 000 characters clips it to its start
+/// and its length.
+#[test]
+fn a_huge_unknown_key_is_echoed_clipped() {
+    let key = "k".repeat(100_000);
+    let text = BASE.replace(
+        "time_step_safety = 0.5",
+        &format!("time_step_safety = 0.5\n{key} = 1"),
+    );
+    let err = load_scene_str(&text, "huge.toml").unwrap_err().to_string();
+    assert!(err.len() < 1000, "{} chars: {}", err.len(), &err[..200]);
+    assert!(err.contains("…(") && err.contains("chars)"), "{err}");
+    assert!(err.contains("unknown field"), "{err}");
 }

@@ -4,7 +4,8 @@
 //! over WebSocket ([`protocol`], documented in `docs/protocol.md`), and serves the
 //! browser/VR viewer embedded at compile time ([`assets`]). Only the server's own pages
 //! (and allowed origins, with the token when one is set) may connect ([`access`]); misbehaving clients get
-//! error replies ([`limits`]); hands belong to the client that grabbed them ([`ownership`]).
+//! error replies ([`limits`]); hands belong to the client that grabbed them ([`ownership`]); a
+//! session's reports are bounded in rate and size ([`reports`]).
 
 pub mod access;
 pub mod assets;
@@ -12,6 +13,7 @@ pub mod haptic;
 pub mod limits;
 pub mod ownership;
 pub mod protocol;
+pub mod reports;
 pub mod server;
 pub mod session;
 pub mod snapshot;

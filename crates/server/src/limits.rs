@@ -46,6 +46,7 @@ impl ClientScenes {
                     max_memory_bytes: MAX_CLIENT_MEMORY_BYTES.min(server.limits.max_memory_bytes),
                     max_elements: MAX_CLIENT_ELEMENTS.min(server.limits.max_elements),
                     max_triangles: MAX_CLIENT_TRIANGLES.min(server.limits.max_triangles),
+                    max_steps: server.limits.max_steps,
                     raise_with: "options of `pliant serve`; or load it there as the served scene",
                 },
                 max_file_bytes: MAX_CLIENT_MESH_BYTES.min(server.max_file_bytes),

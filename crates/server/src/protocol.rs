@@ -113,6 +113,9 @@ pub enum ErrorCode {
     ReportFailed,
     /// The session's command queue is full; the command was dropped.
     Busy,
+    /// `hello` while the server has its most clients (`--max-clients`); say `hello`
+    /// again later (the connection is closed at the hello deadline meanwhile).
+    ServerFull,
 }
 
 /// Server → client.
@@ -125,10 +128,16 @@ pub enum ServerMessage<'a> {
         session: &'a SceneData,
     },
     Snapshot(&'a Snapshot),
-    /// The answer to `report`: where the report is and its verdict.
+    /// The answer to `report`: where the report is and its verdict, its size, the
+    /// record interval of its time series (raised above the scene's to keep a long
+    /// session's report within its size limit) and the session's older reports removed
+    /// to keep them all within theirs (`crate::reports`).
     Report {
         folder: String,
         verdict: &'a pliant_assembly::Verdict,
+        bytes: u64,
+        record_interval_s: f64,
+        removed: Vec<String>,
     },
     Error {
         code: ErrorCode,
@@ -205,9 +214,11 @@ impl ServerMessage<'_> {
 
 /// An error message as JSON text.
 pub fn error_json(code: ErrorCode, message: impl Into<String>) -> String {
+    let message = message.into();
     ServerMessage::Error {
         code,
-        message: message.into(),
+        // a client's key or value echoed in the message is clipped (issue 36)
+        message: pliant_scene::clip::clip_words(&message).into_owned(),
     }
     .to_json()
 }

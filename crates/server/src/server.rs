@@ -64,7 +64,10 @@ pub struct ServerConfig {
     pub access: Access,
     /// A connection that has not said `hello` this long after its handshake is closed.
     pub hello_timeout: Duration,
-    /// Most connections at once; the next handshake gets 503 until one ends.
+    /// Most clients at once, counting those that have said `hello` (issue 36: sockets
+    /// that never greet must not lock viewers out; they are closed after
+    /// [`Self::hello_timeout`]). With this many, the next handshake gets 503 and a
+    /// `hello` on a connection opened meanwhile gets `server_full`, until one leaves.
     pub max_clients: usize,
     /// How scenes sent with `load_scene` are loaded (sandbox, limits).
     pub client_scenes: ClientScenes,
@@ -123,12 +126,13 @@ pub(crate) struct Shared {
     hello_timeout: Duration,
     max_clients: usize,
     client_scenes: ClientScenes,
-    /// Connections open now (slots taken by [`ClientSlot`]).
+    /// Clients that have said `hello` and are connected now (slots taken by
+    /// [`ClientSlot`]).
     clients: AtomicUsize,
 }
 
-/// One connection's place under [`ServerConfig::max_clients`], given back when dropped —
-/// when the connection ends, or when a handshake is refused or never completes.
+/// One greeted client's place under [`ServerConfig::max_clients`], taken at its `hello`
+/// and given back when dropped (the connection ends).
 struct ClientSlot(Arc<Shared>);
 
 impl ClientSlot {
@@ -136,6 +140,11 @@ impl ClientSlot {
         let before = shared.clients.fetch_add(1, Ordering::SeqCst);
         let slot = ClientSlot(shared.clone());
         (before < shared.max_clients).then_some(slot)
+    }
+
+    /// Whether every slot is taken now.
+    fn all_taken(shared: &Shared) -> bool {
+        shared.clients.load(Ordering::SeqCst) >= shared.max_clients
     }
 }
 
@@ -318,17 +327,12 @@ async fn ws_upgrade(
         let status = StatusCode::from_u16(refusal.status()).unwrap_or(StatusCode::FORBIDDEN);
         return (status, refusal.message()).into_response();
     }
-    let Some(slot) = ClientSlot::take(&shared) else {
-        let text = format!(
-            "the server is full: {} clients connected (--max-clients); try again later",
-            shared.max_clients
-        );
-        return (StatusCode::SERVICE_UNAVAILABLE, text).into_response();
-    };
+    if ClientSlot::all_taken(&shared) {
+        return (StatusCode::SERVICE_UNAVAILABLE, server_full(&shared)).into_response();
+    }
     ws.max_message_size(HARD_MAX_MESSAGE_BYTES)
         .max_frame_size(HARD_MAX_MESSAGE_BYTES)
         .on_upgrade(move |socket| async move {
-            let _slot = slot;
             let client = shared.next_client.fetch_add(1, Ordering::SeqCst);
             // A panic while serving this client ends its connection only: it is caught
             // here and logged, and the client's hands are released as on a disconnect.
@@ -354,6 +358,13 @@ async fn ws_upgrade(
             }
         })
         .into_response()
+}
+
+fn server_full(shared: &Shared) -> String {
+    format!(
+        "the server is full: {} clients connected (--max-clients); try again later",
+        shared.max_clients
+    )
 }
 
 /// What to do after a text message.
@@ -392,6 +403,8 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
     let mut snapshots = session.subscribe();
     let mut limiter = RateLimiter::default();
     let mut welcomed = false;
+    // taken at hello: a connection that never greets holds no client slot
+    let mut slot: Option<ClientSlot> = None;
     let interval = Duration::from_secs_f64(1.0 / SNAPSHOT_HZ);
     let fast_interval = Duration::from_secs_f64(1.0 / INPUT_SNAPSHOT_HZ);
     let mut last_send = tokio::time::Instant::now() - interval;
@@ -421,7 +434,7 @@ async fn connection(mut socket: WebSocket, client: ClientId, shared: &Arc<Shared
                 }
                 let reply = match msg {
                     Message::Text(text) => match limiter.admit(Instant::now()) {
-                        Admit::Yes => handle_text(text.as_str(), client, shared, &mut welcomed),
+                        Admit::Yes => handle_text(text.as_str(), client, shared, &mut welcomed, &mut slot),
                         Admit::Drop => Reply::None,
                         Admit::DropAndReport(n) => Reply::Text(error_json(
                             ErrorCode::RateLimited,
@@ -549,18 +562,39 @@ fn load_scene(shared: &Shared, text: &str, json: bool, name: &str) -> Result<(),
 }
 
 /// Writes the report of `session` into its next report folder; the `report` reply or an
-/// error, as JSON.
+/// error, as JSON. Bounded per session ([`crate::reports`]): one at a time and one per
+/// interval (else `rate_limited`), the oldest reports removed to keep their total size
+/// (listed in the reply).
 fn write_report(session: &Session) -> String {
-    let Some(out) = session.next_report_folder() else {
+    if session.folder().is_none() {
         return error_json(
             ErrorCode::ReportFailed,
             "this session records into no folder (start pliant serve with a sessions folder)",
         );
+    }
+    let limits = *session.report_limits();
+    let _ticket = match session.reports().begin(&limits, Instant::now()) {
+        Ok(t) => t,
+        Err(why) => return error_json(ErrorCode::RateLimited, why),
     };
-    match session.report(&out) {
-        Ok((verdict, _)) => ServerMessage::Report {
+    let removed = session
+        .reports()
+        .make_room(&limits, limits.max_report_bytes);
+    let Some(out) = session.next_report_folder() else {
+        return error_json(
+            ErrorCode::ReportFailed,
+            "this session records into no folder",
+        );
+    };
+    let result = session.report(&out);
+    let bytes = session.reports().written(&out);
+    match result {
+        Ok((verdict, _, interval)) => ServerMessage::Report {
             folder: out.display().to_string(),
             verdict: &verdict,
+            bytes,
+            record_interval_s: interval,
+            removed: removed.iter().map(|p| p.display().to_string()).collect(),
         }
         .to_json(),
         Err(e) => error_json(ErrorCode::ReportFailed, e),
@@ -568,7 +602,13 @@ fn write_report(session: &Session) -> String {
 }
 
 /// Handles one text message; returns the reply, if any.
-fn handle_text(text: &str, client: ClientId, shared: &Shared, welcomed: &mut bool) -> Reply {
+fn handle_text(
+    text: &str,
+    client: ClientId,
+    shared: &Arc<Shared>,
+    welcomed: &mut bool,
+    slot: &mut Option<ClientSlot>,
+) -> Reply {
     let too_large = || {
         Reply::Text(error_json(
             ErrorCode::MessageTooLarge,
@@ -603,6 +643,14 @@ fn handle_text(text: &str, client: ClientId, shared: &Shared, welcomed: &mut boo
                         "this server speaks protocol version {PROTOCOL_VERSION}, not {version}"
                     ),
                 ));
+            }
+            if slot.is_none() {
+                match ClientSlot::take(shared) {
+                    Some(s) => *slot = Some(s),
+                    None => {
+                        return Reply::Text(error_json(ErrorCode::ServerFull, server_full(shared)))
+                    }
+                }
             }
             *welcomed = true;
             Reply::Text(welcome(client, &shared.session()))

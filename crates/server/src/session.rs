@@ -13,6 +13,7 @@
 use crate::haptic::mirror::SessionCopy;
 use crate::limits::MAX_STEPS_PER_REQUEST;
 use crate::ownership::HandId;
+use crate::reports::{record_interval_within, ReportLedger, ReportLimits};
 use crate::snapshot::{FastenerSnapshot, HandSnapshot, HoseSnapshot, SceneData, Snapshot};
 use glam::{DQuat, DVec3};
 use pliant_assembly::ergonomics::{colour_value, ErgonomicProfile, HandAssessment};
@@ -94,6 +95,8 @@ pub struct SessionOptions {
     /// The session folder: the scene's copy and the input log are written there as the
     /// session goes, and reports into its subfolders. `None`: the log stays in memory.
     pub folder: Option<PathBuf>,
+    /// Bounds on the session's reports (rate, size).
+    pub reports: ReportLimits,
 }
 
 impl Default for SessionOptions {
@@ -103,6 +106,7 @@ impl Default for SessionOptions {
             paused: false,
             solver: None,
             folder: None,
+            reports: ReportLimits::default(),
         }
     }
 }
@@ -120,6 +124,8 @@ pub struct Session {
     loaded: Arc<LoadedScene>,
     header: LogHeader,
     folder: Option<PathBuf>,
+    report_limits: ReportLimits,
+    reports: ReportLedger,
     epoch: Arc<AtomicU64>,
     stop: Arc<AtomicBool>,
     thread: Option<JoinHandle<()>>,
@@ -170,6 +176,8 @@ impl Session {
             loaded: Arc::new(scene.clone()),
             header,
             folder: options.folder,
+            report_limits: options.reports,
+            reports: ReportLedger::default(),
             epoch,
             stop,
             thread: Some(thread),
@@ -267,29 +275,47 @@ impl Session {
     /// `summary.json` and the CSVs of `pliant run` — by replaying its input log into a
     /// fresh workcell (the one verdict implementation, bit for bit the live session),
     /// with the log and the scene's copy beside them (so `pliant replay out` works too).
-    /// Blocks for the replay: call it off the async runtime.
-    pub fn report(&self, out: &Path) -> Result<(Verdict, Summary), String> {
+    /// The time series are recorded at the scene's interval, or coarser if a long session
+    /// would otherwise pass [`ReportLimits::max_report_bytes`]; returns that interval
+    /// \[s\] too. Blocks for the replay: call it off the async runtime.
+    pub fn report(&self, out: &Path) -> Result<(Verdict, Summary, f64), String> {
         let log = self.input_log()?;
         let cell = self.loaded.workcell(log.header.options)?;
         write_session_folder(out, &self.loaded, &log)
             .map_err(|e| format!("writing the session's log into {}: {e}", out.display()))?;
-        replay_with_outputs(
+        let nodes = self.loaded.world.hoses.iter().map(|h| h.nodes.len()).sum();
+        let interval = record_interval_within(
+            self.loaded.record_interval,
+            log.end_tick as f64 * log.header.time_step,
+            nodes,
+            self.report_limits.max_report_bytes,
+        );
+        let (verdict, summary) = replay_with_outputs(
             out,
             cell,
             &log,
             &self.loaded.name,
-            self.loaded.record_interval,
+            interval,
             &mut NoObserver,
-        )
+        )?;
+        Ok((verdict, summary, interval))
     }
 
-    /// A new folder for a report of this session: `report-N` in the session folder, the
-    /// first N not taken. `None` if the session records into no folder.
+    /// Bounds on this session's reports.
+    pub fn report_limits(&self) -> &ReportLimits {
+        &self.report_limits
+    }
+
+    /// This session's reports so far (rate and total size, [`crate::reports`]).
+    pub fn reports(&self) -> &ReportLedger {
+        &self.reports
+    }
+
+    /// A new folder for a report of this session: `report-N` in the session folder, N
+    /// counting up. `None` if the session records into no folder.
     pub fn next_report_folder(&self) -> Option<PathBuf> {
         let dir = self.folder.as_ref()?;
-        (1..)
-            .map(|n| dir.join(format!("report-{n}")))
-            .find(|p| !p.exists())
+        Some(self.reports.next_folder(dir))
     }
 }
 

@@ -214,3 +214,51 @@ async fn half_sent_headers_are_timed_out() {
         "{text}"
     );
 }
+
+/// Issue 36: sockets that never say `hello` hold no client slot — a local process that
+/// keeps connecting without greeting locks no viewer out. With a cap of 2, ten silent
+/// connections leave both slots to viewers; a third viewer's `hello` is refused with
+/// `server_full` (and the next handshake with 503) until one leaves.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn sockets_that_never_greet_hold_no_client_slot() {
+    use futures_util::{SinkExt, StreamExt};
+    use tokio_tungstenite::tungstenite::Message;
+    let s = server_with(ServerConfig {
+        host: "127.0.0.1".into(),
+        port: 0,
+        max_clients: 2,
+        ..Default::default()
+    })
+    .await;
+    let mut silent = Vec::new();
+    for _ in 0..10 {
+        silent.push(
+            tokio_tungstenite::connect_async(s.ws_url())
+                .await
+                .unwrap()
+                .0,
+        );
+    }
+    let (mut a, _) = tokio_tungstenite::connect_async(s.ws_url()).await.unwrap();
+    let (mut b, _) = tokio_tungstenite::connect_async(s.ws_url()).await.unwrap();
+    let (mut c, _) = tokio_tungstenite::connect_async(s.ws_url()).await.unwrap();
+    say_hello(&mut a).await;
+    say_hello(&mut b).await;
+    // the third greets too late: refused, its connection open
+    c.send(Message::text(r#"{"type":"hello","version":1}"#))
+        .await
+        .unwrap();
+    let refused = loop {
+        match c.next().await {
+            Some(Ok(Message::Text(t))) => break t.to_string(),
+            Some(Ok(_)) => continue,
+            other => panic!("no reply to hello: {other:?}"),
+        }
+    };
+    assert!(
+        refused.contains("server_full") && refused.contains("--max-clients"),
+        "{refused}"
+    );
+    assert_eq!(handshake(&s, "", &[]).await, 503);
+    drop(silent);
+}

@@ -1,6 +1,6 @@
 //! The haptic force stream (SPEC H1, docs/protocol.md "Haptic force stream"): answers
 //! are the session's static equilibrium for the same pose, sequence numbers are echoed,
-//! malformed datagrams are counted and answered, hands keep their owners, the token is
+//! malformed datagrams are counted (and only requests answered), hands keep their owners, the token is
 //! required when the server has one. Every wait is for a condition (with a hang guard),
 //! never for a duration; nothing here depends on the machine's speed.
 
@@ -191,10 +191,15 @@ async fn stream_force_equals_the_sessions() {
     assert_eq!(c.ask(Kind::Pose, 1, pose).status, Status::NotHeld);
 }
 
-/// Every datagram gets a reply: malformed ones are counted and answered with their
-/// status, and the stream answers valid poses afterwards as before.
+/// Issue 36: only a datagram of a request's size and magic is answered (a reply is
+/// smaller than it: the port amplifies nothing; 0–4-byte datagrams used to get 96-byte
+/// answers); the rest are counted and dropped. A request with a bad value — a position or
+/// an orientation non-finite or absurd (\[1e200, …\]) — is answered with its status. The
+/// stream answers valid poses afterwards as before. Silence is checked without waiting:
+/// each dropped datagram is followed by a valid request, whose reply must come first and
+/// count the dropped one.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn malformed_datagrams_are_counted_and_answered() {
+async fn malformed_datagrams_are_counted_and_only_requests_answered() {
     let s = server(SolverKind::Explicit, Access::local()).await;
     let mut c = Client::new(&s);
     let valid = Request::new(Kind::Pose, 3, 77, END, [0; KEY_BYTES]).encode();
@@ -203,12 +208,16 @@ async fn malformed_datagrams_are_counted_and_answered() {
         b[at..at + bytes.len()].copy_from_slice(bytes);
         b
     };
-    let cases: Vec<(Vec<u8>, Status)> = vec![
-        (vec![], Status::Malformed),
-        (vec![1, 2, 3], Status::Malformed),
-        (valid[..REQUEST_BYTES - 1].to_vec(), Status::Malformed),
-        ([&valid[..], &[0]].concat(), Status::Malformed),
-        (with(0, b"XXXX").to_vec(), Status::Malformed),
+    let absurd: Vec<u8> = (0..4).flat_map(|_| 1e200_f64.to_le_bytes()).collect();
+    let dropped: Vec<Vec<u8>> = vec![
+        vec![],
+        vec![1, 2, 3],
+        b"PLHP".to_vec(),
+        valid[..REQUEST_BYTES - 1].to_vec(),
+        [&valid[..], &[0]].concat(),
+        with(0, b"XXXX").to_vec(),
+    ];
+    let answered: Vec<(Vec<u8>, Status)> = vec![
         (with(4, &[9]).to_vec(), Status::UnsupportedVersion),
         (with(5, &[7]).to_vec(), Status::Malformed),
         (with(5, &[1, 9]).to_vec(), Status::InvalidValue),
@@ -224,18 +233,36 @@ async fn malformed_datagrams_are_counted_and_answered() {
             with(48, &f64::INFINITY.to_le_bytes()).to_vec(),
             Status::InvalidValue,
         ),
+        (with(48, &absurd).to_vec(), Status::InvalidValue),
     ];
-    for (k, (bytes, status)) in cases.iter().enumerate() {
-        let r = c.raw(bytes);
+    let mut counted = 0;
+    for (k, bytes) in dropped.iter().enumerate() {
+        c.socket.send(bytes).unwrap();
+        counted += 1;
+        // the next reply is the release's (hand 3 is not held), counting the dropped one
+        let r = c.ask(Kind::Release, 3, END);
+        assert_eq!(
+            r.status,
+            Status::NotHeld,
+            "case {k}: {bytes:?} was answered"
+        );
+        assert_eq!(r.malformed, counted, "case {k} counted");
+    }
+    for (k, (bytes, status)) in answered.iter().enumerate() {
+        c.socket.send(bytes).unwrap();
+        let mut buf = [0u8; 256];
+        let n = c.socket.recv(&mut buf).expect("a reply to a request");
+        assert!(
+            n < bytes.len(),
+            "case {k}: a reply of {n} bytes to {}",
+            bytes.len()
+        );
+        let r = Reply::decode(&buf[..n]).expect("a well-formed reply");
+        counted += 1;
         assert_eq!(r.status, *status, "case {k}: {bytes:?}");
-        assert_eq!(r.malformed, k as u32 + 1, "case {k} counted");
+        assert_eq!(r.malformed, counted, "case {k} counted");
         assert!(!r.status.has_load() && r.force == DVec3::ZERO);
-        if bytes.len() >= 24 {
-            assert_eq!(
-                r.sequence, 77,
-                "case {k}: the sequence is echoed where it can be read"
-            );
-        }
+        assert_eq!(r.sequence, 77, "case {k}: the sequence is echoed");
     }
     // a pose for a hand never grabbed
     assert_eq!(c.ask(Kind::Pose, 3, DVec3::ZERO).status, Status::NotHeld);
@@ -247,7 +274,7 @@ async fn malformed_datagrams_are_counted_and_answered() {
         let r = c.ask(Kind::Pose, 3, p);
         assert!(r.status.has_load(), "{r:?}");
         assert!(r.force.is_finite() && r.torque.is_finite());
-        assert_eq!(r.malformed, cases.len() as u32);
+        assert_eq!(r.malformed, counted);
     }
 }
 

@@ -1133,3 +1133,167 @@ async fn a_stretched_hose_reports_tension_and_a_hand_its_grip() {
     assert!(middle > 1.0, "axial force {middle} N (stretched: positive)");
     assert_eq!(snap["hands"][0]["grip"], "ball");
 }
+
+/// `n` hoses of 4 elements, 500 mm long, all on one line (issue 36: 5 000 of them are
+/// ≈ 600 KB of TOML within every per-field limit, and list 2·10⁸ contact pairs).
+fn stacked_hoses(n: usize) -> String {
+    let mut s = String::from("format = \"pliant-scene\"\nversion = 1\nlength_unit = \"mm\"\n");
+    for i in 0..n {
+        s.push_str(&format!(
+            "[[hoses]]\nname = \"h{i}\"\nmaterial = \"hose1\"\nstart = [0, 0, 0]\npath = [{{ line = {{ to = [500, 0, 0] }} }}]\nelements = 4\n"
+        ));
+    }
+    s
+}
+
+/// Issue 36: one `load_scene` of 5 000 hoses laid on each other (within every per-field
+/// limit) aborted the server on an allocation. It is refused with its estimate, counting
+/// the contact pairs, and the server runs on: the old session still answers.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_scene_beyond_the_budget_is_refused_and_the_server_runs_on() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    let old = hello(&mut ws).await["session"]["scene"].clone();
+    let text = stacked_hoses(5000);
+    assert!(text.len() > 500_000 && text.len() < 1_000_000);
+    send(
+        &mut ws,
+        json!({"type": "load_scene", "text": text, "name": "stacked.toml"}),
+    )
+    .await;
+    let e = next_where(&mut ws, "error", |_| true).await;
+    let m = e["message"].as_str().unwrap();
+    assert_eq!(e["code"], "invalid_scene", "{e}");
+    assert!(m.contains("contact pairs") && m.contains("1.0 GB"), "{m}");
+    // the server and its session run on
+    let mut other = connect(&s).await;
+    assert_eq!(hello(&mut other).await["session"]["scene"], old);
+    send(&mut ws, json!({"type": "step", "n": 1})).await;
+    next_where(&mut ws, "snapshot", |_| true).await;
+}
+
+/// The next `report` reply or `error`.
+async fn next_report_or_error(ws: &mut Ws) -> Value {
+    let deadline = Instant::now() + HANG_GUARD;
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        let msg = tokio::time::timeout(left, ws.next())
+            .await
+            .expect("a reply within the hang guard")
+            .expect("connection open")
+            .expect("message");
+        if let Message::Text(t) = msg {
+            let v: Value = serde_json::from_str(t.as_str()).unwrap();
+            if v["type"] == "report" || v["type"] == "error" {
+                return v;
+            }
+        }
+    }
+}
+
+/// Issue 36: 200 `report` messages wrote 2.6 GB in 90 s. Reports are one at a time and
+/// at most one per interval (else `rate_limited`, saying when to ask again), and a
+/// session's reports together stay within their size limit: the oldest are removed
+/// before a new one is written, and the reply lists them.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn reports_are_rate_limited_and_their_total_size_is_capped() {
+    use pliant_server::reports::ReportLimits;
+    let dir = tempfile::tempdir().unwrap();
+    // one report per hour: a burst of reports gets one, the rest are refused
+    let s = server_with(SessionOptions {
+        paused: true,
+        folder: Some(dir.path().join("a")),
+        reports: ReportLimits {
+            min_interval: Duration::from_secs(3600),
+            ..Default::default()
+        },
+        ..Default::default()
+    })
+    .await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    send(&mut ws, json!({"type": "step", "n": 50})).await;
+    for _ in 0..20 {
+        send(&mut ws, json!({"type": "report"})).await;
+    }
+    let (mut written, mut refused) = (0, 0);
+    while written + refused < 20 {
+        let v = next_report_or_error(&mut ws).await;
+        if v["type"] == "report" {
+            written += 1;
+            assert!(v["bytes"].as_u64().unwrap() > 0, "{v}");
+            assert!(v["removed"].as_array().unwrap().is_empty(), "{v}");
+        } else {
+            assert_eq!(v["code"], "rate_limited", "{v}");
+            assert!(v["message"].as_str().unwrap().contains("ask again"), "{v}");
+            refused += 1;
+        }
+    }
+    assert_eq!((written, refused), (1, 19));
+    let reports = |d: &std::path::Path| {
+        std::fs::read_dir(d)
+            .unwrap()
+            .flatten()
+            .filter(|e| e.file_name().to_string_lossy().starts_with("report-"))
+            .count()
+    };
+    assert_eq!(reports(&dir.path().join("a")), 1);
+
+    // no interval, a total of 1 byte: each report removes the ones before it
+    let s = server_with(SessionOptions {
+        paused: true,
+        folder: Some(dir.path().join("b")),
+        reports: ReportLimits {
+            min_interval: Duration::ZERO,
+            max_report_bytes: 1,
+            max_session_bytes: 1,
+        },
+        ..Default::default()
+    })
+    .await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    send(&mut ws, json!({"type": "step", "n": 50})).await;
+    let mut previous: Option<String> = None;
+    for k in 0..3 {
+        send(&mut ws, json!({"type": "report"})).await;
+        let v = next_report_or_error(&mut ws).await;
+        assert_eq!(v["type"], "report", "{v}");
+        let folder = v["folder"].as_str().unwrap().to_string();
+        let removed: Vec<String> = v["removed"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| r.as_str().unwrap().to_string())
+            .collect();
+        assert_eq!(
+            removed,
+            previous.iter().cloned().collect::<Vec<_>>(),
+            "report {k}"
+        );
+        for r in &removed {
+            assert!(!std::path::Path::new(r).exists(), "{r} still there");
+        }
+        // a report of a long session would be recorded coarser to fit
+        assert!(v["record_interval_s"].as_f64().unwrap() > 0.01, "{v}");
+        assert!(std::path::Path::new(&folder).join("report.json").is_file());
+        previous = Some(folder);
+    }
+    assert_eq!(reports(&dir.path().join("b")), 1);
+}
+
+/// Issue 36: an error echoing a client's key clips it (its start and its length).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_error_echoing_a_huge_key_clips_it() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    let key = "k".repeat(60_000);
+    ws.send(Message::text(format!(r#"{{"type":"{key}"}}"#)))
+        .await
+        .unwrap();
+    let e = next_where(&mut ws, "error", |_| true).await;
+    let m = e["message"].as_str().unwrap();
+    assert_eq!(e["code"], "malformed", "{e}");
+    assert!(m.len() < 1000 && m.contains("…("), "{m}");
+}

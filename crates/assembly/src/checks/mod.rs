@@ -5,12 +5,14 @@
 
 mod fields;
 mod kind;
+mod pictures;
 mod settings;
 mod strain;
 mod tracker;
 
 pub use fields::BeamFields;
 pub use kind::{CheckKind, Violation};
+pub use pictures::{ScenePicture, ScenePictures, MAX_SCENE_PICTURES};
 pub use settings::{
     CheckSettings, HoseCheckLimits, DEFAULT_REST_STRAIN_LIMIT, DEFAULT_STRAIGHT_LENGTH_FACTOR,
     DEFAULT_STRAIGHT_RADIUS_FACTOR, DEFAULT_TWIST_LIMIT_RAD_PER_M,
@@ -31,6 +33,10 @@ pub struct ChecksSummary {
     pub violations: Vec<Violation>,
     /// Per hose: curvature and twist along it at its worst instants.
     pub profiles: Vec<HoseProfile>,
+    /// The scene at the worst bends of the few hoses bent furthest below their limit
+    /// (the report's pictures; presentation, not written to `report.json`).
+    #[serde(skip)]
+    pub pictures: ScenePictures,
 }
 
 impl ChecksSummary {
@@ -53,6 +59,7 @@ impl ChecksSummary {
             decide: s.decide,
             violations: checks.running_violations().cloned().chain(end).collect(),
             profiles: checks.profiles().to_vec(),
+            pictures: checks.pictures().clone(),
         }
     }
 }

@@ -6,6 +6,7 @@
 //! allocated while checking, except the first time a check is violated on a hose.
 
 use super::kind::{CheckKind, Violation};
+use super::pictures::ScenePictures;
 use super::settings::CheckSettings;
 use super::strain::bend_and_twist;
 use crate::fasteners::StubSite;
@@ -36,9 +37,6 @@ pub struct HoseProfile {
     /// This hose's first global node and node count.
     pub first_node: usize,
     pub node_count: usize,
-    /// Every node of the scene (all hoses) at the instant of this hose's smallest bend
-    /// radius \[m\] (the report's picture of the scene at the worst instant).
-    pub scene_at_worst: Vec<[f64; 3]>,
 }
 
 /// The checks' account of a study.
@@ -55,6 +53,8 @@ pub struct InstallationChecks {
     /// Per hose × running check (bend radius, twist): the worst violation so far.
     running: Vec<[Option<Violation>; 2]>,
     profiles: Vec<HoseProfile>,
+    /// The scene at the worst bends of the few hoses bent furthest below their limit.
+    pictures: ScenePictures,
 }
 
 impl InstallationChecks {
@@ -92,7 +92,6 @@ impl InstallationChecks {
                 twist_limit: settings.twist_limit,
                 first_node: info.first_node,
                 node_count: info.node_count,
-                scene_at_worst: vec![[0.0; 3]; model.node_count()],
                 ..Default::default()
             });
         }
@@ -104,6 +103,7 @@ impl InstallationChecks {
             rest_twist,
             next_time: 0.0,
             profiles,
+            pictures: ScenePictures::default(),
             settings,
         }
     }
@@ -161,8 +161,9 @@ impl InstallationChecks {
                 p.min_bend_radius = radius;
                 p.min_bend_radius_time = time;
                 p.curvature.copy_from_slice(&self.kappa[range.clone()]);
-                for (to, x) in p.scene_at_worst.iter_mut().zip(&state.x) {
-                    *to = x.to_array();
+                if radius < p.allowed_bend_radius {
+                    self.pictures
+                        .note(h, p.allowed_bend_radius / radius, &state.x);
                 }
             }
             if tmax > p.max_twist {
@@ -204,6 +205,11 @@ impl InstallationChecks {
     /// The curvature and twist profiles of every hose at its worst instants.
     pub fn profiles(&self) -> &[HoseProfile] {
         &self.profiles
+    }
+
+    /// The scene at the worst bends of the hoses bent furthest below their limit.
+    pub fn pictures(&self) -> &ScenePictures {
+        &self.pictures
     }
 
     /// The violations of the running checks so far (bend radius, twist), hose by hose.

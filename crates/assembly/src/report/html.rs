@@ -47,7 +47,7 @@ pub fn write_reports(
         parts,
     };
     let write = |name: &str, text: String| super::write_file(&out.join(name), text);
-    write("report.json", serde_json::to_string_pretty(&report)?)?;
+    super::write_json(&out.join("report.json"), &report)?;
     let push_limit = ErgonomicLimits::builtin()
         .map(|l| l.force_limits(profile, true).1)
         .unwrap_or(f64::NAN);
@@ -125,8 +125,11 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, parts: 
         let Some(k) = p.arc_length.iter().position(|s| *s == v.arc_length) else {
             continue;
         };
+        let Some(picture) = checks.pictures.of(v.hose) else {
+            continue; // kept for the most severe hoses only (checks::MAX_SCENE_PICTURES)
+        };
         let (a, b) = (p.first_node + k, p.first_node + k + 1);
-        let (Some(xa), Some(xb)) = (p.scene_at_worst.get(a), p.scene_at_worst.get(b)) else {
+        let (Some(xa), Some(xb)) = (picture.positions.get(a), picture.positions.get(b)) else {
             continue;
         };
         let mark = [0, 1, 2].map(|i| 0.5 * (xa[i] + xb[i]));
@@ -139,7 +142,7 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, parts: 
                 1e3 * v.arc_length,
                 1e3 * v.limit
             ),
-            &p.scene_at_worst,
+            &picture.positions,
             &hoses,
             v.hose,
             mark,

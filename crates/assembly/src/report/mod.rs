@@ -21,6 +21,18 @@ use crate::workcell::{RunSummary, Verdict};
 use pliant_core::{Model, SolverKind, State};
 use std::path::Path;
 
+/// Writes `value` as pretty JSON to `path`, streamed through a buffer (never the whole
+/// text in memory: issue 36); the error names the file.
+pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> std::io::Result<()> {
+    use std::io::Write as _;
+    let named = |e: std::io::Error| {
+        std::io::Error::new(e.kind(), format!("writing {}: {e}", path.display()))
+    };
+    let mut file = std::io::BufWriter::new(std::fs::File::create(path).map_err(named)?);
+    serde_json::to_writer_pretty(&mut file, value).map_err(|e| named(e.into()))?;
+    file.flush().map_err(named)
+}
+
 /// Writes `text` to `path`; the error names the file.
 pub(crate) fn write_file(path: &Path, text: String) -> std::io::Result<()> {
     std::fs::write(path, text)
@@ -98,8 +110,7 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
         peaks: peak_rows(o.model, run),
         final_state: final_state(o.model, o.state),
     };
-    let text = serde_json::to_string_pretty(&summary).map_err(std::io::Error::other)?;
-    write_file(&out.join("summary.json"), text)?;
+    write_json(&out.join("summary.json"), &summary)?;
     Ok((verdict, summary))
 }
 

@@ -22,6 +22,7 @@
 //! stretched element grows h for all (still correct, only slower).
 
 use glam::DVec3;
+use std::ops::ControlFlow;
 
 /// The 13 neighbour offsets with (dz, dy, dx) lexicographically positive, plus none of
 /// their opposites.
@@ -229,6 +230,17 @@ impl BroadPhase {
     /// Calls `f(i, j)` (i ≠ j, each unordered pair once) for every pair of overlapping
     /// boxes, as filed by the last [`Self::rebuild`].
     pub fn for_each_pair(&self, mut f: impl FnMut(usize, usize)) {
+        let _ = self.try_for_each_pair(|i, j| {
+            f(i, j);
+            ControlFlow::Continue(())
+        });
+    }
+
+    /// [`Self::for_each_pair`] until `f` breaks; whether it did.
+    pub fn try_for_each_pair(
+        &self,
+        mut f: impl FnMut(usize, usize) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
         let n = self.items.len();
         for k in 0..n {
             let key = self.s_key[k];
@@ -240,19 +252,21 @@ impl BroadPhase {
                         && lo.cmple(self.s_hi[m]).all()
                         && self.s_lo[m].cmple(hi).all()
                     {
-                        f(i, self.items[m] as usize);
+                        f(i, self.items[m] as usize)?;
                     }
                 }
+                ControlFlow::Continue(())
             };
             // own cell: entries after this one in its bucket
             let b = self.bucket_of[i] as usize;
-            scan(k + 1, self.start[b + 1] as usize, key);
+            scan(k + 1, self.start[b + 1] as usize, key)?;
             for d in FORWARD {
                 let nk = offset(key, d);
                 let b = hash(nk, self.shift) as usize;
-                scan(self.start[b] as usize, self.start[b + 1] as usize, nk);
+                scan(self.start[b] as usize, self.start[b + 1] as usize, nk)?;
             }
         }
+        ControlFlow::Continue(())
     }
 }
 

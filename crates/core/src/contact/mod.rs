@@ -20,6 +20,7 @@ pub mod friction;
 pub mod hose_hose;
 mod network_gaps;
 mod owned_edges;
+mod pair_count;
 mod penalty;
 mod planes;
 mod point_triangle;
@@ -39,6 +40,7 @@ pub use hose_hose::{
     add_hose_contact_forces, hose_contact_forces, hose_contact_forces_with, ContactPair,
     HoseContactModel, HoseContactScratch, SAFETY_FOR_HOSE_CONTACT,
 };
+pub use pair_count::{rest_pair_count, BYTES_PER_CONTACT_PAIR};
 pub use rest_overlap::HoseContactRule;
 pub use rigid::{ContactPoint, ContactScratch};
 pub use segment_triangle::{

@@ -19,6 +19,16 @@ pub const REQUEST_BYTES: usize = 112;
 pub const REPLY_BYTES: usize = 96;
 /// Size of the key field (the server's token, zero-padded).
 pub const KEY_BYTES: usize = 32;
+/// Largest norm of an orientation quaternion taken (it is normalised); with the
+/// smallest, 1/`MAX_QUATERNION_NORM`, it refuses absurd values such as \[1e200, …\]
+/// (issue 36) while leaving room for a device's rounding.
+pub const MAX_QUATERNION_NORM: f64 = 2.0;
+
+/// Whether `b` has a request's size and magic: the only datagrams answered (a reply is
+/// smaller than a request, so the stream never amplifies).
+pub fn is_request_sized(b: &[u8]) -> bool {
+    b.len() == REQUEST_BYTES && b[0..4] == REQUEST_MAGIC
+}
 
 /// What a request asks for.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -231,8 +241,11 @@ impl Request {
             return Err(Status::InvalidValue);
         }
         let q = [f64_at(b, 48), f64_at(b, 56), f64_at(b, 64), f64_at(b, 72)];
+        let norm = q.iter().map(|c| c * c).sum::<f64>().sqrt();
         let orientation = if q == [0.0; 4] {
             None
+        } else if !(1.0 / MAX_QUATERNION_NORM..=MAX_QUATERNION_NORM).contains(&norm) {
+            return Err(Status::InvalidValue);
         } else {
             Some(
                 pliant_core::math::unit_quaternion(DQuat::from_array(q))
@@ -428,6 +441,19 @@ mod tests {
         let mut b = good;
         b[48..56].copy_from_slice(&f64::INFINITY.to_le_bytes());
         assert_eq!(Request::decode(&b), Err(Status::InvalidValue));
+        // issue 36: absurd orientations are refused, not normalised
+        for c in [1e200_f64, 1e-200, 3.0] {
+            let mut b = good;
+            for k in 0..4 {
+                b[48 + 8 * k..56 + 8 * k].copy_from_slice(&c.to_le_bytes());
+            }
+            assert_eq!(Request::decode(&b), Err(Status::InvalidValue), "{c}");
+        }
+        // only a request's size and magic is answered
+        assert!(is_request_sized(&good));
+        for n in [0, 1, 4, 95, 96, 111] {
+            assert!(!is_request_sized(&good[..n]), "{n}");
+        }
         assert_eq!(sequence_of(&good), 5);
         assert_eq!(sequence_of(&good[..10]), 0);
         assert!(Request::key_for(Some(&"x".repeat(33))).is_none());

@@ -16,9 +16,10 @@
 //! Security (SPEC R1): the socket is bound to 127.0.0.1 only, whatever `--host` says, so
 //! only processes on this machine reach it; when the server has a token, every datagram
 //! must carry it in its key field. Hands follow the WebSocket's ownership rules: the
-//! stream is one client, a hand another client holds is refused. Every datagram gets a
-//! reply no larger than itself; one that cannot be decoded is counted and answered with
-//! its status, never a crash. A hand the stream has not heard of for [`IDLE_RELEASE`]
+//! stream is one client, a hand another client holds is refused. Only a datagram of a
+//! request's size with the request magic gets a reply (issue 36: 0–4-byte datagrams got
+//! 96-byte answers, an amplifier), and it is smaller than the request; every other one
+//! is counted and dropped, never a crash. A hand the stream has not heard of for [`IDLE_RELEASE`]
 //! is released (a device that stops sending does not hold a hose for ever).
 
 pub mod datagram;
@@ -146,9 +147,16 @@ impl Stream {
         while !stop.load(Ordering::Relaxed) {
             match socket.recv_from(&mut buf) {
                 Ok((n, from)) => {
-                    let reply = self.handle(&buf[..n]);
-                    // a reply that cannot go out (the client is gone) is the client's loss
-                    let _ = socket.send_to(&reply.encode(), from);
+                    let bytes = &buf[..n];
+                    if !datagram::is_request_sized(bytes) {
+                        // not a request: counted, never answered
+                        self.malformed = self.malformed.saturating_add(1);
+                    } else {
+                        let reply = self.handle(bytes).encode();
+                        debug_assert!(reply.len() <= n);
+                        // a reply that cannot go out (the client is gone) is its loss
+                        let _ = socket.send_to(&reply, from);
+                    }
                 }
                 Err(e)
                     if matches!(
