@@ -58,15 +58,8 @@ pub struct Calibration {
 }
 
 fn read_text(path: &Path, shown: &str) -> Result<String, CalibError> {
-    let meta = std::fs::metadata(path)
-        .map_err(|e| CalibError::file(shown, format!("cannot read: {e}")))?;
-    if meta.len() > MAX_FILE_BYTES {
-        return Err(CalibError::file(
-            shown,
-            format!("larger than {MAX_FILE_BYTES} bytes"),
-        ));
-    }
-    std::fs::read_to_string(path).map_err(|e| CalibError::file(shown, format!("cannot read: {e}")))
+    pliant_files::read_regular_text(path, MAX_FILE_BYTES)
+        .map_err(|e| CalibError::file(shown, format!("cannot read: {}", e.kind.into_io())))
 }
 
 /// Runs the calibration described by the file at `path` (CSV paths relative to it).
@@ -116,6 +109,14 @@ pub fn calibrate_texts(
         fits.push(fit_test(t.kind, &t.csv, &table, g)?);
     }
     let material = material_entry::derive(&spec, &fits, &short_origin(origin));
+    if let Some((key, value)) = material.first_non_finite() {
+        return Err(CalibError::file(
+            origin,
+            format!(
+                "the calibration gives {key} = {value}, not a finite number: the specimen's dimensions or the curves are out of range, and no material is written"
+            ),
+        ));
+    }
     Ok(Calibration {
         origin: origin.to_string(),
         spec,

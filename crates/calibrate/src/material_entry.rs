@@ -89,6 +89,39 @@ pub struct MaterialResult {
     pub warnings: Vec<String>,
 }
 
+impl MaterialResult {
+    /// The first derived value (or confidence bound) that is not finite, by its key:
+    /// such a material is never written (issue 36, item 4).
+    pub fn first_non_finite(&self) -> Option<(&'static str, f64)> {
+        let derived: [(&'static str, Option<&Derived>); 8] = [
+            ("e_tension_mpa", Some(&self.e_tension_mpa)),
+            ("e_compression_mpa", Some(&self.e_compression_mpa)),
+            ("e_bending_mpa", self.e_bending_mpa.as_ref()),
+            ("poisson", Some(&self.poisson)),
+            ("density_kg_m3", Some(&self.density_kg_m3)),
+            ("min_bend_radius_mm", self.min_bend_radius_mm.as_ref()),
+            ("ei_n_m2", self.ei_n_m2.as_ref()),
+            ("gj_n_m2", self.gj_n_m2.as_ref()),
+        ];
+        let plain = [
+            ("d_inner_mm", self.d_inner_mm),
+            ("d_outer_mm", self.d_outer_mm),
+        ];
+        plain
+            .into_iter()
+            .chain(
+                derived
+                    .into_iter()
+                    .filter_map(|(k, d)| d.map(|d| (k, d)))
+                    .flat_map(|(k, d)| {
+                        std::iter::once((k, d.value))
+                            .chain(d.ci95.into_iter().flatten().map(move |b| (k, b)))
+                    }),
+            )
+            .find(|(_, v)| !v.is_finite())
+    }
+}
+
 /// A number with about 6 significant digits, plainly written.
 pub fn num(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {

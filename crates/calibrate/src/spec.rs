@@ -22,6 +22,10 @@ use serde::Deserialize;
 /// The format tag of calibration files.
 pub const FORMAT_TAG: &str = "pliant-calibration";
 
+/// Largest specimen diameter or length \[mm\] (10 m): beyond it a section's moments
+/// overflow and the calibration would give no finite material (issue 36, item 4).
+pub const MAX_SPECIMEN_MM: f64 = 1e4;
+
 /// A calibration: the material to produce and the tests to fit.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -91,7 +95,8 @@ impl Spec {
         Ok(spec)
     }
 
-    /// Checks values that the types cannot.
+    /// Checks values that the types cannot (ranges included: a specimen of 1e308 mm gives no material)
+    /// before any curve is read.
     pub fn check(&self, origin: &str) -> Result<(), CalibError> {
         let bad = |m: String| Err(CalibError::file(origin, m));
         if let Some(f) = &self.format {
@@ -109,6 +114,12 @@ impl Spec {
             return bad(format!(
                 "d_inner_mm = {}, d_outer_mm = {}: need 0 ≤ d_inner < d_outer",
                 self.d_inner_mm, self.d_outer_mm
+            ));
+        }
+        if self.d_outer_mm > MAX_SPECIMEN_MM {
+            return bad(format!(
+                "d_outer_mm = {}: out of range, a specimen is at most {MAX_SPECIMEN_MM} mm across",
+                self.d_outer_mm
             ));
         }
         if !(self.density_kg_m3 > 0.0 && self.density_kg_m3.is_finite()) {
@@ -136,13 +147,20 @@ impl Spec {
                 if !(l > 0.0 && l.is_finite()) {
                     return bad(format!("{field}: length_mm = {l} must be positive"));
                 }
+                if l > MAX_SPECIMEN_MM {
+                    return bad(format!(
+                        "{field}: length_mm = {l} is out of range: a specimen is at most {MAX_SPECIMEN_MM} mm long"
+                    ));
+                }
             }
             let (di, da) = (
                 t.d_inner_mm.unwrap_or(self.d_inner_mm),
                 t.d_outer_mm.unwrap_or(self.d_outer_mm),
             );
-            if !(di >= 0.0 && da > di && da.is_finite()) {
-                return bad(format!("{field}: need 0 ≤ d_inner_mm < d_outer_mm"));
+            if !(di >= 0.0 && da > di && da <= MAX_SPECIMEN_MM) {
+                return bad(format!(
+                    "{field}: need 0 ≤ d_inner_mm < d_outer_mm ≤ {MAX_SPECIMEN_MM}"
+                ));
             }
         }
         Ok(())

@@ -28,8 +28,7 @@ struct Sidecar {
 }
 
 fn read_sidecar(path: &Path) -> Result<Sidecar> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    let text = pliant_files::read_regular_text(path, 64 * 1024 * 1024).map_err(|e| anyhow!(e))?;
     let v: serde_json::Value =
         serde_json::from_str(&text).with_context(|| format!("{}: not JSON", path.display()))?;
     let field = |name: &str| {

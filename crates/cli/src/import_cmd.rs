@@ -91,7 +91,9 @@ pub fn run(o: &ImportOptions) -> Result<ExitCode> {
         Some(t) => parse_length(t).context("--tolerance")?,
         None => DEFAULT_CHORD_TOLERANCE,
     };
-    let bytes = std::fs::read(o.step).with_context(|| format!("reading {}", o.step.display()))?;
+    let bytes =
+        pliant_files::read_regular_file(o.step, pliant_scene::cad_converter::MAX_STEP_BYTES)
+            .map_err(|e| anyhow!(e))?;
     let out: PathBuf = match (o.out, o.cache_dir) {
         (Some(_), Some(_)) => bail!("give either --out or --cache-dir, not both"),
         (Some(out), None) => out.to_path_buf(),

@@ -80,6 +80,10 @@ enum Command {
         /// Also write the session as a scene file whose timeline re-enacts it.
         #[arg(long)]
         timeline: Option<PathBuf>,
+        /// Replay a damaged log up to its first damaged line (exit 4) instead of
+        /// refusing it (exit 2).
+        #[arg(long)]
+        up_to_damage: bool,
         #[arg(long)]
         quiet: bool,
     },
@@ -353,8 +357,15 @@ fn main() -> ExitCode {
             session,
             out,
             timeline,
+            up_to_damage,
             quiet,
-        } => replay_cmd::run(&session, out.as_deref(), timeline.as_deref(), quiet),
+        } => replay_cmd::run(
+            &session,
+            out.as_deref(),
+            timeline.as_deref(),
+            up_to_damage,
+            quiet,
+        ),
         Command::Validate {
             json,
             case,

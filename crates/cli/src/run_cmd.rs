@@ -216,12 +216,21 @@ fn note_scene_warnings(out: &Path, warnings: &[String]) -> anyhow::Result<()> {
     if warnings.is_empty() {
         return Ok(());
     }
+    add_to_summary(out, "scene_warnings", serde_json::json!(warnings))
+}
+
+/// Adds the member `key` to the `summary.json` written into `out`.
+pub(crate) fn add_to_summary(
+    out: &Path,
+    key: &str,
+    value: serde_json::Value,
+) -> anyhow::Result<()> {
     let path = out.join("summary.json");
     let text = std::fs::read_to_string(&path)?;
-    let mut value: serde_json::Value = serde_json::from_str(&text)?;
-    if let Some(map) = value.as_object_mut() {
-        map.insert("scene_warnings".to_string(), serde_json::json!(warnings));
+    let mut summary: serde_json::Value = serde_json::from_str(&text)?;
+    if let Some(map) = summary.as_object_mut() {
+        map.insert(key.to_string(), value);
     }
-    std::fs::write(&path, serde_json::to_string_pretty(&value)?)?;
+    std::fs::write(&path, serde_json::to_string_pretty(&summary)?)?;
     Ok(())
 }

@@ -521,6 +521,155 @@ fn meaningless_values_are_refused_and_outputs_never_hold_non_finite_numbers() {
     }
 }
 
+/// Members of report.json and summary.json that are `null` when they have nothing to say
+/// (an optional value, never a number that was not finite).
+const OPTIONAL_MEMBERS: [&str; 6] = [
+    "first_unconverged",
+    "worst_unconverged",
+    "first_explicit_fallback",
+    "at",
+    "worst_kind",
+    "diverged",
+];
+
+/// Where `value` holds a `null` that is not an optional member left empty: a NaN or an
+/// infinity written by serde_json (issue 36, item 4).
+fn null_number(value: &serde_json::Value, path: &str) -> Option<String> {
+    match value {
+        serde_json::Value::Array(items) => items.iter().enumerate().find_map(|(k, v)| {
+            if v.is_null() {
+                Some(format!("{path}[{k}]"))
+            } else {
+                null_number(v, &format!("{path}[{k}]"))
+            }
+        }),
+        serde_json::Value::Object(map) => map.iter().find_map(|(key, v)| {
+            let here = format!("{path}.{key}");
+            if v.is_null() {
+                (!OPTIONAL_MEMBERS.contains(&key.as_str())).then_some(here)
+            } else {
+                null_number(v, &here)
+            }
+        }),
+        _ => None,
+    }
+}
+
+/// Every file written into `out` holds no non-finite number: no NaN or inf in any text,
+/// no `null` standing for one in any JSON file.
+fn assert_all_finite(out: &Path) {
+    let files = output_texts(out);
+    assert!(files.len() > 8, "{files:?}");
+    for (name, text) in files {
+        assert_eq!(has_non_finite(&text), None, "{name}");
+        if name.ends_with(".json") {
+            let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+            assert_eq!(null_number(&value, ""), None, "{name}");
+        }
+    }
+}
+
+/// Issue 36, item 4: a run that diverges — under every solver — says so (exit 3, the
+/// divergence in summary.json) and writes no non-finite number into any file, JSON
+/// included (a hose whose final state is not finite has it omitted, with the reason).
+#[test]
+fn diverged_runs_under_every_solver_write_no_non_finite_number() {
+    let dir = tempfile::tempdir().unwrap();
+    let yank = demo_variant(dir.path(), "yank.toml", |t| {
+        format!("{t}\n[[timeline]]\naction = \"move\"\nhose = \"upper\"\nnode = -1\nby = [0, 0, 50000]\nduration_s = 0.001\n")
+    });
+    for solver in ["explicit", "implicit", "static"] {
+        let out = dir.path().join(solver);
+        let o = run_scene(&yank, &out, &["--solver", solver]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(3), "{solver}: {err}");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(summary["completed"], false, "{solver}");
+        assert!(summary["diverged"].as_str().is_some(), "{solver}");
+        assert_all_finite(&out);
+    }
+}
+
+/// Issue 36, item 4: a gravity, load or rotation of 1e300 is refused at load, naming the
+/// field, instead of running into NaN.
+#[test]
+fn absurd_gravity_load_and_rotation_are_refused_at_load() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &str); 3] = [
+        ("", "simulation.gravity"),
+        (
+            "\n[[timeline]]\naction = \"load\"\nhose = \"upper\"\nnode = -1\nforce_n = [0, 0, 1e300]\n",
+            "force_n",
+        ),
+        (
+            "\n[[timeline]]\naction = \"move\"\nhose = \"upper\"\nnode = -1\nrotate = { axis = [0, 0, 1], angle_deg = 1e300 }\nduration_s = 1\n",
+            "rotate.angle_deg",
+        ),
+    ];
+    for (extra, field) in cases {
+        let scene = demo_variant(dir.path(), "absurd.toml", |t| {
+            let t = if extra.is_empty() {
+                t.replacen("gravity = [0, 0, -9.81]", "gravity = [0, 0, -1e300]", 1)
+            } else {
+                t.to_string()
+            };
+            format!("{t}{extra}")
+        });
+        let o = run_scene(&scene, &dir.path().join("r"), &[]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains(field) && err.contains("1e300") && err.contains("out of range"),
+            "{err}"
+        );
+    }
+}
+
+/// Issue 36, item 4: `pliant calibrate` never exits 0 with a non-finite number in what
+/// it writes: a 1e308 mm specimen is refused before fitting, and curves that overflow
+/// the fit give an error, not `e_bending_mpa = NaN`.
+#[test]
+fn calibrate_refuses_out_of_range_specimens_and_non_finite_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let huge = dir.path().join("huge.csv");
+    let lines: String = (0..20)
+        .map(|k| format!("{},{}\n", k as f64 * 5e306, k as f64 * 1e-3))
+        .collect();
+    std::fs::write(&huge, format!("force_N,deflection_mm\n{lines}")).unwrap();
+    let cases = [
+        (
+            "1e308",
+            examples().join("calibration/bending.csv"),
+            "d_outer_mm",
+        ),
+        // refused by the fit or by the check of the derived values: never written
+        ("10", huge, "error"),
+    ];
+    for (d_outer, csv, expected) in cases {
+        let out = dir.path().join("out");
+        let o = pliant()
+            .args([
+                "calibrate",
+                "--kind",
+                "three_point_bending",
+                "--length",
+                "200",
+            ])
+            .args(["--d-outer", d_outer, "--csv"])
+            .arg(&csv)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(expected), "{err}");
+        assert!(!out.join("material.toml").exists());
+    }
+}
+
 /// A real STEP file from the repository's `data/cad` (see its README), or PLIANT_CAD_FILES.
 fn cad_file(name: &str) -> std::path::PathBuf {
     let dir = std::env::var_os("PLIANT_CAD_FILES")

@@ -130,3 +130,78 @@ pub const MESSAGES: &[&str] = &[
     r#"{"type":"report"}"#,
     r#"{"type":"scene_source"}"#,
 ];
+
+/// A calibration spec and its curves (`examples/calibration`).
+pub const CALIBRATION_SPEC: &str = include_str!("../../../examples/calibration/hose.toml");
+
+/// The curves the calibration spec names, by file name, in its order.
+pub const CALIBRATION_CURVES: &[(&str, &str)] = &[
+    (
+        "tension.csv",
+        include_str!("../../../examples/calibration/tension.csv"),
+    ),
+    (
+        "compression.csv",
+        include_str!("../../../examples/calibration/compression.csv"),
+    ),
+    (
+        "bending.csv",
+        include_str!("../../../examples/calibration/bending.csv"),
+    ),
+    (
+        "torsion.csv",
+        include_str!("../../../examples/calibration/torsion.csv"),
+    ),
+];
+
+/// The KBL sample files of `data/harness` (see its README).
+pub const KBL: &[&str] = &[include_str!(
+    "../../../data/harness/kblxml_2.3sr-1_000971228_ltgs_batterie_plus_170718.kbl"
+)];
+
+/// Session logs: one of every kind of line, sealed (version 2) and unsealed (version 1).
+pub fn session_logs() -> Vec<Vec<u8>> {
+    use pliant_assembly::timeline::NodeRef;
+    use pliant_assembly::workcell::log::{header_line, line_text, LogHeader, LogLine};
+    use pliant_assembly::workcell::StampedInput;
+    use pliant_assembly::{Input, WorkcellOptions};
+    let header = LogHeader::new(
+        "demo",
+        "demo.toml",
+        "scene.toml",
+        ".",
+        WorkcellOptions::default(),
+        2.5e-4,
+    );
+    let inputs = [
+        Input::Grab {
+            grip: Default::default(),
+            hand: 3,
+            at: glam::DVec3::new(-0.17, -0.6, 0.25),
+        },
+        Input::Fix {
+            node: NodeRef { hose: 0, node: 1 },
+        },
+        Input::Reset,
+        Input::Rollback,
+    ];
+    let mut sealed = header_line(&header);
+    for (k, input) in inputs.iter().enumerate() {
+        sealed.push_str(&line_text(&LogLine::Input(StampedInput {
+            tick: 40 * k as u64,
+            input: input.clone(),
+        })));
+        sealed.push_str(&line_text(&LogLine::Mark {
+            tick: 40 * k as u64 + 20,
+        }));
+    }
+    let unsealed: String = sealed
+        .lines()
+        .map(|l| match l.rfind(",\"crc32\"") {
+            Some(at) => format!("{}}}\n", &l[..at]),
+            None => format!("{l}\n"),
+        })
+        .collect::<String>()
+        .replacen("\"version\":2", "\"version\":1", 1);
+    vec![sealed.into_bytes(), unsealed.into_bytes()]
+}

@@ -16,16 +16,24 @@ pub enum Target {
     Stl,
     Gltf,
     Protocol,
+    SessionLog,
+    CalibrationSpec,
+    CalibrationCsv,
+    Kbl,
 }
 
 impl Target {
-    pub const ALL: [Target; 6] = [
+    pub const ALL: [Target; 10] = [
         Target::SceneToml,
         Target::SceneJson,
         Target::Obj,
         Target::Stl,
         Target::Gltf,
         Target::Protocol,
+        Target::SessionLog,
+        Target::CalibrationSpec,
+        Target::CalibrationCsv,
+        Target::Kbl,
     ];
 
     pub fn name(self) -> &'static str {
@@ -36,6 +44,10 @@ impl Target {
             Target::Stl => "stl",
             Target::Gltf => "gltf",
             Target::Protocol => "protocol",
+            Target::SessionLog => "session-log",
+            Target::CalibrationSpec => "calibration-spec",
+            Target::CalibrationCsv => "calibration-csv",
+            Target::Kbl => "kbl",
         }
     }
 
@@ -62,6 +74,13 @@ impl Target {
                 .iter()
                 .map(|s| s.as_bytes().to_vec())
                 .collect(),
+            Target::SessionLog => seeds::session_logs(),
+            Target::CalibrationSpec => vec![seeds::CALIBRATION_SPEC.as_bytes().to_vec()],
+            Target::CalibrationCsv => seeds::CALIBRATION_CURVES
+                .iter()
+                .map(|(_, c)| c.as_bytes().to_vec())
+                .collect(),
+            Target::Kbl => seeds::KBL.iter().map(|k| k.as_bytes().to_vec()).collect(),
         }
     }
 
@@ -74,6 +93,10 @@ impl Target {
             Target::Stl => mesh(read_stl(input)),
             Target::Gltf => mesh(read_gltf(input, &FileAccess::sandbox(&empty_dir()))),
             Target::Protocol => protocol(input),
+            Target::SessionLog => crate::readers::session_log(input),
+            Target::CalibrationSpec => crate::readers::calibration_spec(input),
+            Target::CalibrationCsv => crate::readers::calibration_csv(input),
+            Target::Kbl => crate::readers::kbl(input),
         }
     }
 }

@@ -84,6 +84,26 @@ fn fuzz_protocol() {
 }
 
 #[test]
+fn fuzz_session_log() {
+    fuzz(Target::SessionLog);
+}
+
+#[test]
+fn fuzz_calibration_spec() {
+    fuzz(Target::CalibrationSpec);
+}
+
+#[test]
+fn fuzz_calibration_csv() {
+    fuzz(Target::CalibrationCsv);
+}
+
+#[test]
+fn fuzz_kbl() {
+    fuzz(Target::Kbl);
+}
+
+#[test]
 fn every_seed_passes_its_target() {
     for t in Target::ALL {
         for (k, s) in t.seeds().iter().enumerate() {

@@ -44,11 +44,16 @@ pub(crate) fn file_name(path: &Path) -> String {
         .unwrap_or_else(|| path.display().to_string())
 }
 
+/// Largest KBL or VEC file read \[bytes\] (a regular file only; issue 36, item 5).
+pub const MAX_HARNESS_FILE_BYTES: u64 = 256 * 1024 * 1024;
+
 pub(crate) fn read_text(path: &Path) -> Result<(String, String), HarnessError> {
     let file = file_name(path);
-    let text = std::fs::read_to_string(path).map_err(|source| HarnessError::Read {
-        file: file.clone(),
-        source,
+    let text = pliant_files::read_regular_text(path, MAX_HARNESS_FILE_BYTES).map_err(|e| {
+        HarnessError::Read {
+            file: file.clone(),
+            source: e.kind.into_io(),
+        }
     })?;
     Ok((file, text))
 }

@@ -779,3 +779,19 @@ def test_local_workers_run_no_statistical_profiler(client):
     assert dask.config.get("distributed.worker.profile.enabled") is True
     enabled = client.run(lambda: __import__("dask").config.get("distributed.worker.profile.enabled"))
     assert len(enabled) == 2 and all(v is False for v in enabled.values()), enabled
+
+
+@pytest.mark.parametrize("kind", ["dev_zero", "fifo", "folder"])
+def test_a_study_file_that_is_not_a_regular_file_is_refused(tmp_path, kind):
+    # issue 36, item 5: a FIFO or a link to /dev/zero hung the reader or ran out of memory
+    path = tmp_path / "study.toml"
+    if kind == "dev_zero":
+        os.symlink("/dev/zero", path)
+    elif kind == "fifo":
+        if not hasattr(os, "mkfifo"):
+            pytest.skip("no FIFOs here")
+        os.mkfifo(path)
+    else:
+        path.mkdir()
+    with pytest.raises(StudyError, match="not a regular file"):
+        load_study(path)

@@ -83,7 +83,29 @@ pub fn find_python() -> Result<PathBuf, String> {
     ))
 }
 
-/// Runs the embedded converter with `args`; its error line on failure.
+/// The environment variable that sets the converter's time limit \[s\].
+pub const TIME_LIMIT_VAR: &str = "PLIANT_CONVERTER_TIME_LIMIT_S";
+
+/// The converter's default time limit \[s\]: ten minutes, several times what the
+/// largest STEP files of the test data take.
+pub const DEFAULT_TIME_LIMIT_S: f64 = 600.0;
+
+/// Largest STEP file converted or read \[bytes\].
+pub const MAX_STEP_BYTES: u64 = 1 << 30;
+
+/// The converter's time limit: [`TIME_LIMIT_VAR`] if set to a positive number of
+/// seconds, else [`DEFAULT_TIME_LIMIT_S`].
+pub fn converter_time_limit() -> std::time::Duration {
+    let seconds = std::env::var(TIME_LIMIT_VAR)
+        .ok()
+        .and_then(|v| v.trim().parse::<f64>().ok())
+        .filter(|s| s.is_finite() && *s > 0.0 && *s < 1e9)
+        .unwrap_or(DEFAULT_TIME_LIMIT_S);
+    std::time::Duration::from_secs_f64(seconds)
+}
+
+/// Runs the embedded converter with `args` (at most [`converter_time_limit`]); its
+/// error line on failure.
 fn run(args: &[&std::ffi::OsStr]) -> Result<String, String> {
     let python = find_python()?;
     CONVERSIONS.fetch_add(1, Ordering::SeqCst);
@@ -96,13 +118,27 @@ fn run(args: &[&std::ffi::OsStr]) -> Result<String, String> {
         .spawn()
         .map_err(|e| format!("cannot start {}: {e}", python.display()))?;
     if let Some(mut stdin) = child.stdin.take() {
-        stdin
-            .write_all(CONVERTER_SOURCE.as_bytes())
-            .map_err(|e| format!("cannot start the STEP converter: {e}"))?;
+        // from a thread: a converter that never reads its source must not block us
+        // before the time limit is even started (a failed write fails the converter)
+        std::thread::spawn(move || {
+            let _ = stdin.write_all(CONVERTER_SOURCE.as_bytes());
+        });
     }
-    let out = child
-        .wait_with_output()
-        .map_err(|e| format!("the STEP converter did not finish: {e}"))?;
+    let limit = converter_time_limit();
+    let out = crate::time_limit::output_within(child, limit)
+        .map_err(|e| format!("the STEP converter did not finish: {e}"))?
+        .map_err(|t| {
+            format!(
+                "the STEP converter did not finish within {} s and was stopped (a file with absurd coordinates, or one too large to convert in time; allow more with {TIME_LIMIT_VAR}=SECONDS){}",
+                t.limit.as_secs_f64(),
+                t.stderr
+                    .lines()
+                    .rev()
+                    .find(|l| !l.trim().is_empty())
+                    .map(|l| format!("; its last words: {l}"))
+                    .unwrap_or_default()
+            )
+        })?;
     let stderr = String::from_utf8_lossy(&out.stderr);
     if !out.status.success() {
         let line = stderr
@@ -174,7 +210,7 @@ pub fn sample_curve(
         "--out".as_ref(),
         out.as_os_str(),
     ])?;
-    let text = std::fs::read(out).map_err(|e| format!("cannot read {}: {e}", out.display()))?;
+    let text = pliant_files::read_regular_file(out, MAX_STEP_BYTES).map_err(|e| e.to_string())?;
     parse_curve(&text)
 }
 

@@ -4,13 +4,13 @@
 //! - only regular files are read (a FIFO, a device such as `/dev/zero` or a folder is
 //!   refused before it is opened, also behind a link), and at most
 //!   [`FileAccess::max_file_bytes`] of them, checked before reading and enforced while
-//!   reading (a file that grows meanwhile is cut off, not followed);
+//!   reading (a file that grows meanwhile is cut off, not followed) — the reading every
+//!   reader shares, [`pliant_files::read_regular_file`];
 //! - a *sandboxed* access (scenes sent by `pliant serve`'s clients) resolves every path
 //!   inside its folder: no absolute paths, no `..`, and links are followed only if
 //!   their target stays inside. Its errors never quote a path outside the sandbox nor
 //!   the content of a file, and do not tell a missing file from an unreadable one.
 
-use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 
 /// Default cap on one mesh file \[bytes\] (a 256 MiB STL holds about 5 million triangles,
@@ -131,24 +131,16 @@ impl FileAccess {
                 format!("cannot read {}: {e}", path.display())
             }
         };
-        // metadata follows links: a link to a device or FIFO is refused here, unopened
-        let meta = std::fs::metadata(&path).map_err(unreadable)?;
-        if !meta.is_file() {
-            return Err("is not a regular file (only regular mesh files are read)".to_string());
-        }
-        let cap = self.max_file_bytes;
-        if meta.len() > cap {
-            return Err(too_large(meta.len(), cap));
-        }
-        let file = std::fs::File::open(&path).map_err(unreadable)?;
-        let mut bytes = Vec::with_capacity(meta.len() as usize);
-        file.take(cap + 1)
-            .read_to_end(&mut bytes)
-            .map_err(unreadable)?;
-        if bytes.len() as u64 > cap {
-            return Err(too_large(bytes.len() as u64, cap));
-        }
-        Ok(bytes)
+        pliant_files::read_regular_file(&path, self.max_file_bytes).map_err(|e| match e.kind {
+            pliant_files::FileErrorKind::NotRegular(_) => {
+                "is not a regular file (only regular mesh files are read)".to_string()
+            }
+            pliant_files::FileErrorKind::TooLarge { len, max } => too_large(len, max),
+            pliant_files::FileErrorKind::Open(e) | pliant_files::FileErrorKind::Read(e) => {
+                unreadable(e)
+            }
+            kind => kind.to_string(),
+        })
     }
 }
 

@@ -76,19 +76,15 @@ pub fn load_scene_file_with(path: &Path, options: &LoadOptions) -> Result<Loaded
         path: origin.clone(),
         source,
     };
-    let meta = std::fs::metadata(path).map_err(io)?;
-    if !meta.is_file() {
-        return Err(io(std::io::Error::other(
-            "not a regular file (a scene is read from a regular file)",
-        )));
-    }
-    if meta.len() > MAX_SCENE_FILE_BYTES {
-        return Err(io(std::io::Error::other(format!(
-            "the file has {} bytes; a scene file may have at most {MAX_SCENE_FILE_BYTES} (meshes belong in mesh files)",
-            meta.len()
-        ))));
-    }
-    let text = std::fs::read_to_string(path).map_err(io)?;
+    // a regular file (never a FIFO or a device) of at most MAX_SCENE_FILE_BYTES
+    let text = pliant_files::read_regular_text(path, MAX_SCENE_FILE_BYTES).map_err(|e| {
+        io(std::io::Error::other(match e.kind {
+            pliant_files::FileErrorKind::TooLarge { len, max } => format!(
+                "the file has {len} bytes; a scene file may have at most {max} (meshes belong in mesh files)"
+            ),
+            kind => return io(kind.into_io()),
+        }))
+    })?;
     let is_json = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"));

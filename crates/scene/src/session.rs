@@ -3,7 +3,11 @@
 
 use crate::load::{load_scene_json_str_in, load_scene_str_in};
 use crate::scene::LoadedScene;
-use pliant_assembly::workcell::log::{header_line, InputLog, LogHeader, LogLine, LOG_FILE};
+use pliant_assembly::workcell::log::log_path;
+use pliant_assembly::workcell::log::{
+    header_line, line_text, InputLog, LogHeader, LogLine, LOG_FILE,
+};
+use pliant_assembly::workcell::log_reading::{LogDamage, TornTail};
 use pliant_assembly::{Workcell, WorkcellOptions};
 use std::fs::File;
 use std::io::Write;
@@ -37,13 +41,9 @@ pub fn write_session_folder(
     let mut file = start_folder(dir, scene, log.header.options, log.header.time_step)?;
     let mut text = String::new();
     for s in &log.inputs {
-        text.push_str(&serde_json::to_string(&LogLine::Input(s.clone()))?);
-        text.push('\n');
+        text.push_str(&line_text(&LogLine::Input(s.clone())));
     }
-    text.push_str(&serde_json::to_string(&LogLine::Mark {
-        tick: log.end_tick,
-    })?);
-    text.push('\n');
+    text.push_str(&line_text(&LogLine::Mark { tick: log.end_tick }));
     file.write_all(text.as_bytes())?;
     file.flush()
 }
@@ -78,25 +78,46 @@ fn start_folder(
 /// A session folder read back: its scene, its log, and a fresh workcell to replay it in.
 pub struct Session {
     pub scene: LoadedScene,
+    /// The log up to its damage, if any (see [`Session::damage`]).
     pub log: InputLog,
+    /// Whether the log's lines carry checksums (a version 1 log does not).
+    pub sealed: bool,
+    /// The log's last line, torn by a writer killed mid-line (the log is read up to it).
+    pub torn_tail: Option<TornTail>,
+    /// The log's first damaged line: `log` stops before it. Only
+    /// [`Session::open_up_to_damage`] opens such a session.
+    pub damage: Option<LogDamage>,
 }
 
 impl Session {
-    /// Reads the session folder `dir` (or its `inputs.jsonl`).
+    /// Reads the session folder `dir` (or its `inputs.jsonl`); a damaged log is an
+    /// error naming the line and what would be lost.
     pub fn open(path: &Path) -> Result<Session, String> {
-        let log = InputLog::read(path).map_err(|e| e.to_string())?;
+        let s = Self::open_up_to_damage(path)?;
+        match &s.damage {
+            Some(d) => Err(format!("{}: {d}", log_path(path).display())),
+            None => Ok(s),
+        }
+    }
+
+    /// Reads the session folder `dir` (or its `inputs.jsonl`), a damaged log up to its
+    /// first damaged line (said in [`Session::damage`]).
+    pub fn open_up_to_damage(path: &Path) -> Result<Session, String> {
+        let reading = InputLog::read(path).map_err(|e| e.to_string())?;
+        let log = reading.log;
         let dir = if path.is_dir() {
             path.to_path_buf()
         } else {
             path.parent().map(Path::to_path_buf).unwrap_or_default()
         };
         let file = dir.join(&log.header.scene_file);
-        let text = std::fs::read_to_string(&file).map_err(|e| {
-            format!(
-                "{}: cannot read the session's scene copy: {e}",
-                file.display()
-            )
-        })?;
+        let text = pliant_files::read_regular_text(&file, crate::load::MAX_SCENE_FILE_BYTES)
+            .map_err(|e| {
+                format!(
+                    "{}: cannot read the session's scene copy: {}",
+                    e.path, e.kind
+                )
+            })?;
         let origin = file.display().to_string();
         let base = Path::new(&log.header.scene_base_dir);
         let scene = if log.header.scene_file.ends_with(".json") {
@@ -105,7 +126,13 @@ impl Session {
             load_scene_str_in(&text, &origin, base)
         }
         .map_err(|e| e.to_string())?;
-        Ok(Session { scene, log })
+        Ok(Session {
+            scene,
+            log,
+            sealed: reading.sealed,
+            torn_tail: reading.torn_tail,
+            damage: reading.damage,
+        })
     }
 
     /// A fresh workcell with the log's options; its step must be the log's.

@@ -20,7 +20,13 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
     let default = SimSettings::default();
     let Some(raw) = raw else { return Ok(default) };
     let gravity = match raw.gravity {
-        Some(g) => finite_vec("simulation.gravity", g, "m/s²")?,
+        Some(g) => crate::ranges::vec_at_most(
+            "simulation.gravity",
+            finite_vec("simulation.gravity", g, "m/s²")?,
+            crate::ranges::MAX_GRAVITY,
+            "m/s²",
+            "gravity",
+        )?,
         None => default.gravity,
     };
     let damping_mass = match raw.damping_mass_per_s {

@@ -6,6 +6,7 @@ use crate::format::{
     ActionEntry, AimHandEntry, GrabEntry, GripName, HandEntry, LoadEntry, MoveEntry, MoveHandEntry,
     NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, TieEntry, UnloadEntry,
 };
+use crate::ranges::{at_most, vec_at_most, MAX_LOAD_FORCE, MAX_LOAD_MOMENT, MAX_ROTATION_DEG};
 use crate::units::LengthUnit;
 use crate::validate::{finite, finite_vec, node_index, non_negative, non_zero_vec, positive};
 use glam::DVec3;
@@ -180,7 +181,9 @@ fn waypoints(field: &str, points: &Points, unit: LengthUnit) -> Result<Vec<DVec3
 /// Checks a rotation and converts it to a unit axis and radians.
 fn rotation(field: &str, r: &RotateEntry) -> Result<Rotation, FieldError> {
     let axis = non_zero_vec(&format!("{field}.axis"), r.axis, "")?.normalize();
-    let angle = finite(&format!("{field}.angle_deg"), r.angle_deg, "°")?.to_radians();
+    let angle_field = format!("{field}.angle_deg");
+    let angle = finite(&angle_field, r.angle_deg, "°")?;
+    let angle = at_most(&angle_field, angle, MAX_ROTATION_DEG, "°", "a rotation")?.to_radians();
     Ok(Rotation { axis, angle })
 }
 
@@ -288,7 +291,15 @@ fn build_action(
                 ));
             }
             let force = finite_vec(&sub("force_n"), force_n.unwrap_or([0.0; 3]), "N")?;
+            let force = vec_at_most(&sub("force_n"), force, MAX_LOAD_FORCE, "N", "a load")?;
             let moment = finite_vec(&sub("moment_nm"), moment_nm.unwrap_or([0.0; 3]), "N·m")?;
+            let moment = vec_at_most(
+                &sub("moment_nm"),
+                moment,
+                MAX_LOAD_MOMENT,
+                "N·m",
+                "a load's moment",
+            )?;
             let ramp = non_negative(&sub("ramp_s"), ramp_s.unwrap_or(0.0), "s")?;
             if name.as_deref() == Some("") {
                 return Err(FieldError::new(sub("name"), "\"\"", "must not be empty"));

@@ -18,13 +18,21 @@ pub struct PeakRow {
     pub final_moment_nm: [f64; 3],
 }
 
+/// One hose's final state. A hose whose state is not finite (a diverged run stopped
+/// after the blow-up) has neither positions nor orientations, only `omitted` saying why:
+/// no output holds a non-finite number (issue 36, item 4).
 #[derive(Serialize)]
 pub struct FinalHose {
     pub name: String,
     /// Node positions \[m\].
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub positions_m: Vec<[f64; 3]>,
     /// Node orientations as unit quaternions (w, x, y, z).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub orientations: Vec<[f64; 4]>,
+    /// Why positions and orientations are left out.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub omitted: Option<String>,
 }
 
 #[derive(Serialize)]
@@ -78,13 +86,29 @@ pub fn final_state(model: &Model, state: &State) -> Vec<FinalHose> {
     model
         .hoses
         .iter()
-        .map(|h| FinalHose {
-            name: h.name.clone(),
-            positions_m: h.nodes().map(|i| state.x[i].to_array()).collect(),
-            orientations: h
+        .map(|h| {
+            let finite = h
                 .nodes()
-                .map(|i| [state.q[i].w, state.q[i].x, state.q[i].y, state.q[i].z])
-                .collect(),
+                .all(|i| state.x[i].is_finite() && state.q[i].is_finite());
+            if !finite {
+                return FinalHose {
+                    name: h.name.clone(),
+                    positions_m: Vec::new(),
+                    orientations: Vec::new(),
+                    omitted: Some(
+                        "the hose's state is not finite (the run diverged): see `diverged`".into(),
+                    ),
+                };
+            }
+            FinalHose {
+                name: h.name.clone(),
+                positions_m: h.nodes().map(|i| state.x[i].to_array()).collect(),
+                orientations: h
+                    .nodes()
+                    .map(|i| [state.q[i].w, state.q[i].x, state.q[i].y, state.q[i].z])
+                    .collect(),
+                omitted: None,
+            }
         })
         .collect()
 }

@@ -3,18 +3,29 @@
 //! effect, and now and then a mark saying how far the study has got. Append-only and
 //! flushed line by line, so a crash or a killed server loses at most the time since the
 //! last mark. A session folder holds the log (`inputs.jsonl`) beside a copy of the scene.
+//!
+//! Version 2 (issue 36, item 3: evidence is never silently lost) seals every line with
+//! its CRC-32: the line's JSON object gets a last member `"crc32":"xxxxxxxx"`, the
+//! CRC-32 (IEEE) in hex of the line as it would read without that member, so each line
+//! stays JSON and a changed byte anywhere in it is found ([`seal`], [`unseal`]).
+//! Version 1 logs (no checksums) are still read, with what can be checked without them.
+//! How a log is read back — damage, torn last lines and absurd ticks included — is
+//! [`super::log_reading`].
 
 use super::input::StampedInput;
 use super::WorkcellOptions;
 use serde::{Deserialize, Serialize};
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 /// The log file's name in a session folder.
 pub const LOG_FILE: &str = "inputs.jsonl";
 /// What the header's `format` says.
 pub const LOG_FORMAT: &str = "pliant-input-log";
-/// The log format's version.
-pub const LOG_VERSION: u32 = 1;
+/// The log format's version this Pliant writes: 2, every line sealed with its CRC-32.
+pub const LOG_VERSION: u32 = 2;
+/// The oldest version still read: 1, the same lines without checksums.
+pub const LOG_VERSION_UNSEALED: u32 = 1;
 
 /// The first line: what the inputs were given to.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -85,82 +96,6 @@ pub struct LogError {
     pub reason: String,
 }
 
-impl InputLog {
-    /// Reads a log from its text; `origin` names it in errors.
-    pub fn parse(text: &str, origin: &str) -> Result<InputLog, LogError> {
-        let fail = |reason: String| LogError {
-            path: origin.into(),
-            reason,
-        };
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| !l.trim().is_empty());
-        let (_, first) = lines
-            .next()
-            .ok_or_else(|| fail("the log is empty (no header line)".into()))?;
-        let header = match serde_json::from_str::<LogLine>(first) {
-            Ok(LogLine::Header { header }) => header,
-            _ => return Err(fail(
-                "line 1: expected the header ({\"header\": {...}}) — is this a Pliant input log?"
-                    .into(),
-            )),
-        };
-        if header.format != LOG_FORMAT || header.version != LOG_VERSION {
-            return Err(fail(format!(
-                "line 1: format '{}' version {} — this Pliant reads '{LOG_FORMAT}' version {LOG_VERSION}",
-                header.format, header.version
-            )));
-        }
-        let mut inputs = Vec::new();
-        let mut end_tick = 0;
-        for (k, line) in lines {
-            let n = k + 1;
-            let value: serde_json::Value = match serde_json::from_str(line) {
-                Ok(v) => v,
-                // a line cut short by a crash can only be the last one
-                Err(e) if e.is_eof() => break,
-                Err(e) => return Err(fail(format!("line {n}: {e}"))),
-            };
-            let entry = if value.get("input").is_some() {
-                serde_json::from_value::<StampedInput>(value).map(LogLine::Input)
-            } else {
-                serde_json::from_value::<LogLine>(value)
-            }
-            .map_err(|e| fail(format!("line {n}: {e}")))?;
-            match entry {
-                LogLine::Input(i) => {
-                    if i.tick < end_tick {
-                        return Err(fail(format!(
-                            "line {n}: tick {} comes after tick {end_tick}: ticks never go back",
-                            i.tick
-                        )));
-                    }
-                    end_tick = i.tick;
-                    inputs.push(i);
-                }
-                LogLine::Mark { tick } => end_tick = end_tick.max(tick),
-                LogLine::Header { .. } => return Err(fail(format!("line {n}: a second header"))),
-            }
-        }
-        Ok(InputLog {
-            header,
-            inputs,
-            end_tick,
-        })
-    }
-
-    /// Reads `inputs.jsonl` of a session folder (or the log file itself).
-    pub fn read(path: &Path) -> Result<InputLog, LogError> {
-        let file = log_path(path);
-        let text = std::fs::read_to_string(&file).map_err(|e| LogError {
-            path: file.display().to_string(),
-            reason: format!("cannot read the input log: {e}"),
-        })?;
-        Self::parse(&text, &file.display().to_string())
-    }
-}
-
 /// The log file of a session folder, or `path` itself when it is a file.
 pub fn log_path(path: &Path) -> PathBuf {
     if path.is_dir() {
@@ -170,12 +105,80 @@ pub fn log_path(path: &Path) -> PathBuf {
     }
 }
 
-/// The header's line (what a shell writes first).
+/// The header's line (what a shell writes first), sealed, with its newline.
 pub fn header_line(header: &LogHeader) -> String {
-    let mut s = serde_json::to_string(&LogLine::Header {
+    line_text(&LogLine::Header {
         header: header.clone(),
     })
-    .expect("a header serialises");
+}
+
+/// One line of the log as written: the entry's JSON sealed with its checksum, and a
+/// newline — written in one piece, so a killed writer can only tear the last line.
+pub fn line_text(line: &LogLine) -> String {
+    let json = serde_json::to_string(line).expect("a log line serialises");
+    let mut s = seal(&json);
     s.push('\n');
     s
+}
+
+/// The member a sealed line ends with, up to the checksum's hex digits.
+const SEAL_KEY: &str = ",\"crc32\":\"";
+/// Length of the seal: the key, eight hex digits, the closing `"}`.
+const SEAL_LEN: usize = SEAL_KEY.len() + 8 + 2;
+
+/// `json` (one JSON object, not empty) with the member `"crc32":"xxxxxxxx"` added last:
+/// the CRC-32 of `json` itself.
+pub fn seal(json: &str) -> String {
+    debug_assert!(json.ends_with('}') && json.len() > 2);
+    let crc = crc32fast::hash(json.as_bytes());
+    format!("{}{SEAL_KEY}{crc:08x}\"}}", &json[..json.len() - 1])
+}
+
+/// A line read back: the JSON its checksum was taken of and whether the line was
+/// sealed at all — or why its seal does not hold.
+pub fn unseal(line: &str) -> Result<(Cow<'_, str>, bool), String> {
+    let n = line.len();
+    let sealed = n > SEAL_LEN
+        && line.ends_with("\"}")
+        && line.is_char_boundary(n - SEAL_LEN)
+        && line[n - SEAL_LEN..].starts_with(SEAL_KEY);
+    if !sealed {
+        return Ok((line.into(), false));
+    }
+    let hex = &line[n - 10..n - 2];
+    let stated = Some(hex)
+        .filter(|h| h.bytes().all(|b| b.is_ascii_hexdigit()))
+        .and_then(|h| u32::from_str_radix(h, 16).ok())
+        .ok_or_else(|| format!("its checksum '{hex}' is not eight hex digits"))?;
+    let body = format!("{}}}", &line[..n - SEAL_LEN]);
+    let actual = crc32fast::hash(body.as_bytes());
+    if actual != stated {
+        return Err(format!(
+            "its checksum does not match (the line says {stated:08x}, its content gives {actual:08x}): the line was changed after it was written"
+        ));
+    }
+    Ok((body.into(), true))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sealed_line_is_json_and_any_changed_byte_is_found() {
+        let line = line_text(&LogLine::Mark { tick: 1234 });
+        assert_eq!(line.matches('\n').count(), 1);
+        let line = line.trim_end();
+        let value: serde_json::Value = serde_json::from_str(line).unwrap();
+        assert_eq!(value["tick"], 1234);
+        let (body, sealed) = unseal(line).unwrap();
+        assert!(sealed);
+        assert_eq!(body, "{\"tick\":1234}");
+        let changed = line.replace("1234", "1235");
+        let e = unseal(&changed).unwrap_err();
+        assert!(e.contains("checksum does not match"), "{e}");
+        // an old line without a seal reads as it is
+        let (old, sealed) = unseal("{\"tick\":5}").unwrap();
+        assert_eq!((old.as_ref(), sealed), ("{\"tick\":5}", false));
+    }
 }

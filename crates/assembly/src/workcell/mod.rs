@@ -13,6 +13,7 @@
 pub mod hands;
 pub mod input;
 pub mod log;
+pub mod log_reading;
 pub mod observer;
 pub mod recovery;
 pub mod replay;
@@ -511,10 +512,11 @@ impl Workcell {
 
     fn write_line(&mut self, line: &log::LogLine) {
         let Some(sink) = &mut self.sink else { return };
-        let written = serde_json::to_writer(&mut *sink, line)
-            .map_err(|e| e.to_string())
-            .and_then(|_| sink.write_all(b"\n").map_err(|e| e.to_string()))
-            .and_then(|_| sink.flush().map_err(|e| e.to_string()));
+        let text = log::line_text(line);
+        let written = sink
+            .write_all(text.as_bytes())
+            .and_then(|_| sink.flush())
+            .map_err(|e| e.to_string());
         if let Err(e) = written {
             self.sink_error.get_or_insert(e);
             self.sink = None;

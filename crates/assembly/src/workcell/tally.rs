@@ -309,8 +309,14 @@ impl Tally {
                 p.max_moment = m.length();
                 p.max_moment_time = t;
             }
-            p.last_force = f;
-            p.last_moment = m;
+            // the last *physical* loads: the steps of a divergence before its health
+            // check (at most 15) never reach the outputs as NaN (issue 36, item 4)
+            if physical(f.length()) {
+                p.last_force = f;
+            }
+            if physical(m.length()) {
+                p.last_moment = m;
+            }
         }
     }
 

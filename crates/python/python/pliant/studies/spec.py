@@ -12,6 +12,7 @@ import hashlib
 import json
 import math
 import os
+import stat
 import re
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
@@ -317,11 +318,39 @@ def _check_target(origin, where, vary, target, scene) -> None:
             raise _fail(origin, f"{where}.action", a, f"timeline[{a}] has neither `to` nor `by` to offset")
 
 
+#: Largest study or scene file read [bytes] (issue 36, item 5), as the engine's scene reader.
+MAX_FILE_BYTES = 64 * 1024 * 1024
+
+
+def read_regular_file(path: str, what: str, limit: int = MAX_FILE_BYTES) -> bytes:
+    """The bytes of the regular file ``path``, at most ``limit`` of them: a FIFO, a device
+    (``/dev/zero``) or a folder is refused before it is opened, also behind a link, and
+    again on the opened file (opened non-blocking, so a FIFO swapped in cannot block)."""
+    def check(st: os.stat_result) -> None:
+        if not stat.S_ISREG(st.st_mode):
+            raise StudyError(f"{path}: the {what} is not a regular file (only regular files are read)")
+        if st.st_size > limit:
+            raise StudyError(f"{path}: the {what} has {st.st_size} bytes; at most {limit} are read")
+
+    try:
+        check(os.stat(path))
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except FileNotFoundError:
+        raise StudyError(f"{path}: {what} not found") from None
+    except OSError as e:
+        raise StudyError(f"{path}: cannot read the {what}: {e.strerror}") from None
+    with os.fdopen(fd, "rb") as f:
+        check(os.fstat(f.fileno()))
+        data = f.read(limit + 1)
+    if len(data) > limit:
+        raise StudyError(f"{path}: the {what} has more than {limit} bytes; at most {limit} are read")
+    return data
+
+
 def _read_toml(path: str, what: str) -> Tuple[Dict[str, Any], str]:
     """The parsed file and its text; a syntax error says ``path:line:column``."""
     try:
-        with open(path, "rb") as f:
-            text = f.read().decode("utf-8")
+        text = read_regular_file(path, what).decode("utf-8")
         return _toml.loads(text), text
     except FileNotFoundError:
         raise StudyError(f"{path}: {what} not found") from None
@@ -406,8 +435,12 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
     if not os.path.isfile(scene_path):
         raise _fail(origin, "scene", scene_ref, f"no such file ({scene_path})")
     if scene_path.endswith(".json"):
-        with open(scene_path) as f:
-            scene = json.load(f)
+        try:
+            scene = json.loads(read_regular_file(scene_path, "scene").decode("utf-8"))
+        except (UnicodeDecodeError, ValueError) as e:
+            if isinstance(e, StudyError):
+                raise
+            raise StudyError(f"{scene_path}: the scene is not JSON: {e}") from None
     else:
         scene = _read_toml(scene_path, "scene")[0]
     solver = raw.get("solver")
