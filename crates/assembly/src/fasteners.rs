@@ -177,7 +177,7 @@ fn state_name<T: Serialize>(s: &T) -> String {
 
 impl Fasteners {
     /// Sets up the fasteners; their force load cases are added to `state` (initially zero).
-    /// A clip whose hose is drawn through its seat starts seated ([`drawn_seated`]).
+    /// A clip whose hose is drawn in its seat (inside its jaws) starts seated.
     pub fn new(
         model: &Model,
         state: &mut State,

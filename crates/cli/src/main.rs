@@ -324,6 +324,13 @@ enum PeerCase {
 }
 
 fn main() -> ExitCode {
+    // `pliant inspect … | head`: a closed pipe ends the process quietly, as it does any
+    // Unix tool, instead of panicking in `println!` (Rust ignores SIGPIPE by default)
+    #[cfg(unix)]
+    // SAFETY: restores the default action of one signal before any thread starts
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     if let Some(n) = cli.threads {
         // before any thread is started: read by every model built in this process

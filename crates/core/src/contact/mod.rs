@@ -24,7 +24,7 @@ mod pair_count;
 mod penalty;
 mod planes;
 mod point_triangle;
-mod rest_overlap;
+pub mod rest_overlap;
 mod rigid;
 mod segment_triangle;
 pub mod sweep;
