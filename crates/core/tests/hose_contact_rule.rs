@@ -4,31 +4,13 @@
 //! under `All`, left alone under `ApartAtRest` — while a third hose, drawn clear of them,
 //! still presses on them when it is moved onto one; `Off` has no hose contact at all.
 
+mod common;
+
 use glam::DVec3;
 use pliant_core::contact::{hose_contact_forces, HoseContactRule, HoseContactScratch};
-use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, WorldSpec};
+use pliant_core::{Model, SimSettings, WorldSpec};
 
-fn material() -> Material {
-    Material {
-        e_tension: 11.583e6,
-        e_compression: 13.1363e6,
-        e_bending: None,
-        poisson: 0.49,
-        density: 940.0,
-    }
-}
-
-fn hose(name: &str, from: DVec3, to: DVec3, n: usize) -> HoseSpec {
-    HoseSpec {
-        name: name.into(),
-        material: material(),
-        nodes: (0..=n)
-            .map(|i| from + (to - from) * (i as f64 / n as f64))
-            .collect(),
-        sections: vec![Section::new(0.010, 0.016)],
-        normal_hint: None,
-    }
-}
+use common::straight_hose1 as hose;
 
 /// `a` along x, `b` along y crossing it 5 mm above (the 16 mm tubes overlap by 11 mm),
 /// `c` parallel to `a` 40 mm above it (clear of both).

@@ -4,35 +4,15 @@
 //! is refused by the Newton solvers with a clear error and stepped by the explicit one,
 //! and the joined ends stay together.
 
+mod common;
+
 use glam::{DQuat, DVec3};
 use pliant_core::integrators::{Solver, SolverKind, SolverSettings, StaticSolver};
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::settle::{settle, SettleOptions};
-use pliant_core::{
-    HoseEnd, HoseSpec, JunctionSpec, Material, Model, Section, SimSettings, State, WorldSpec,
-};
+use pliant_core::{HoseEnd, JunctionSpec, Model, SimSettings, State, WorldSpec};
 
-fn material() -> Material {
-    Material {
-        e_tension: 11.583e6,
-        e_compression: 13.1363e6,
-        e_bending: None,
-        poisson: 0.49,
-        density: 940.0,
-    }
-}
-
-fn hose(name: &str, from: DVec3, to: DVec3, n: usize) -> HoseSpec {
-    HoseSpec {
-        name: name.into(),
-        material: material(),
-        nodes: (0..=n)
-            .map(|i| from + (to - from) * (i as f64 / n as f64))
-            .collect(),
-        sections: vec![Section::new(0.010, 0.016)],
-        normal_hint: None,
-    }
-}
+use common::straight_hose1 as hose;
 
 /// A trunk along x from the origin, two branches leaving its end in the x–y plane at
 /// ±45°, under gravity; the trunk's root clamped.

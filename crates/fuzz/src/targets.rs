@@ -109,6 +109,7 @@ fn fuzz_options() -> LoadOptions {
             max_memory_bytes: 200_000_000,
             max_elements: 2_000,
             max_triangles: 100_000,
+            max_steps: 1_000_000,
             raise_with: "the fuzz target's limits",
         },
         max_file_bytes: 1 << 20,
