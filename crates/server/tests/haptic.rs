@@ -215,7 +215,7 @@ async fn malformed_datagrams_are_counted_and_only_requests_answered() {
         b"PLHP".to_vec(),
         valid[..REQUEST_BYTES - 1].to_vec(),
         [&valid[..], &[0]].concat(),
-        with(0, b"XXXX").to_vec(),
+        with(0, b"NOPE").to_vec(), // a wrong magic
     ];
     let answered: Vec<(Vec<u8>, Status)> = vec![
         (with(4, &[9]).to_vec(), Status::UnsupportedVersion),
