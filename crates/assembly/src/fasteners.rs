@@ -114,6 +114,8 @@ struct StubRun {
     fix: Option<LoadCaseId>,
     report: FastenerReport,
     force_now: f64,
+    /// The node by which a hand holds the hose at the stub this step, if one does.
+    worked_at: Option<usize>,
 }
 
 #[derive(Clone)]
@@ -128,6 +130,8 @@ struct ClipRun {
     fix: Option<LoadCaseId>,
     report: FastenerReport,
     force_now: f64,
+    /// The node by which a hand holds the hose at the clip this step, if one does.
+    worked_at: Option<usize>,
     /// Pulled loose by more than its holding force; it seats again only after the hose
     /// has left the seat.
     loosened: bool,
@@ -197,6 +201,7 @@ impl Fasteners {
                     ..Default::default()
                 },
                 force_now: 0.0,
+                worked_at: None,
                 site,
             })
             .collect();
@@ -217,6 +222,7 @@ impl Fasteners {
                     ..Default::default()
                 },
                 force_now: 0.0,
+                worked_at: None,
                 loosened: false,
                 last_coordinate: None,
                 site,
@@ -254,6 +260,17 @@ impl Fasteners {
         }));
     }
 
+    /// The fastener (its index in [`Fasteners::reports`]) a hand holding `node` works
+    /// this step: one whose hose the hand holds at the fastener while the fastener pushes
+    /// back on it (a hose end being pressed onto a stub, a hose snapping into a clip).
+    pub fn worked_through(&self, node: usize) -> Option<usize> {
+        let stubs = self.stubs.iter().map(|s| (s.worked_at, s.force_now));
+        let clips = self.clips.iter().map(|c| (c.worked_at, c.force_now));
+        stubs
+            .chain(clips)
+            .position(|(at, force)| at == Some(node) && force > 0.0)
+    }
+
     /// Reports at the end of the run (the state names are made here, not every step).
     pub fn reports(&self) -> Vec<FastenerReport> {
         let stubs = self.stubs.iter().map(|s| FastenerReport {
@@ -273,6 +290,7 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
     let stub = s.site.fit.stub();
     let axis = stub.axis();
     let grabbed = held_by_hand(held, e) || held_by_hand(held, n);
+    s.worked_at = [e, n].into_iter().find(|&k| held_by_hand(held, k));
     let obs = StubObservation {
         end_position: state.x[e],
         end_direction: state.x[e] - state.x[n],
@@ -401,8 +419,19 @@ fn drawn_seated(model: &Model, state: &State, site: &ClipSite) -> bool {
 /// of it. A hand pressing the hose into another clip further along does not lift this
 /// one's seat.
 fn held_at_clip(held: &[(usize, DVec3)], nodes: &Range<usize>, a: usize, b: usize) -> bool {
+    held_node_at_clip(held, nodes, a, b).is_some()
+}
+
+/// The node by which a hand holds the hose at the clip ([`held_at_clip`]), if any.
+fn held_node_at_clip(
+    held: &[(usize, DVec3)],
+    nodes: &Range<usize>,
+    a: usize,
+    b: usize,
+) -> Option<usize> {
     held.iter()
-        .any(|&(n, _)| nodes.contains(&n) && n + 1 >= a && n <= b + 1)
+        .map(|&(n, _)| n)
+        .find(|&n| nodes.contains(&n) && n + 1 >= a && n <= b + 1)
 }
 
 fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize, DVec3)]) {
@@ -410,6 +439,7 @@ fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize
     let nodes = model.hoses[c.site.hose].nodes();
     let radius = cross.map_or(model.radius[nodes.start], |(a, ..)| model.radius[a]);
     let grabbed = cross.is_some_and(|(a, b, ..)| held_at_clip(held, &nodes, a, b));
+    c.worked_at = cross.and_then(|(a, b, ..)| held_node_at_clip(held, &nodes, a, b));
     let coordinate = cross.map(|x| c.site.spec.opening_coordinate(x.3));
     let crossed_seat = matches!((c.last_coordinate, coordinate), (Some(a), Some(b)) if a * b < 0.0);
     c.last_coordinate = coordinate;

@@ -244,10 +244,12 @@ fn verdict_names_the_standard_and_the_zone_of_each_hand_load() {
         push: Peak {
             magnitude: 150.0, // m_r 0.75: to be avoided
             time: 2.0,
+            fastener: None,
         },
         pull: Peak {
             magnitude: 80.0, // m_r 0.55: not recommended
             time: 3.0,
+            fastener: None,
         },
         ..Default::default()
     });
@@ -256,6 +258,7 @@ fn verdict_names_the_standard_and_the_zone_of_each_hand_load() {
         push: Peak {
             magnitude: 60.0, // 0.3: recommended
             time: 1.0,
+            fastener: None,
         },
         ..Default::default()
     });

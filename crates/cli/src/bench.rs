@@ -561,6 +561,22 @@ pub fn elements_in_real_time(dt: f64, ns_per_element_step: f64) -> f64 {
     1.0 / (ns_per_element_step * 1e-9 / dt)
 }
 
+/// CPU time this thread has used \[s\]: what a piece of work costs on one core, whatever
+/// else the machine runs (a wall time on a shared machine includes the waits).
+pub fn thread_cpu_seconds() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid timespec for the call to write into.
+    let ok = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) } == 0;
+    if ok {
+        t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+    } else {
+        f64::NAN
+    }
+}
+
 /// Median (mean of the two middle values for an even count). Panics on an empty slice.
 pub fn median(values: &[f64]) -> f64 {
     assert!(!values.is_empty(), "median of nothing");

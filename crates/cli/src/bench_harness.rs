@@ -8,7 +8,7 @@
 //! middle of a span): the cost per element of a network against a chain. Nothing here
 //! asserts a time.
 
-use crate::bench::median;
+use crate::bench::{median, thread_cpu_seconds};
 use anyhow::{anyhow, Context, Result};
 use glam::DVec3;
 use pliant_assembly::{run_timeline, Grip, Input, NoObserver, Runner, Workcell, WorkcellOptions};
@@ -34,10 +34,14 @@ pub struct HarnessBench {
     pub settle_s: f64,
     /// Median wall time of one update after the hand moved \[ms\].
     pub update_ms: f64,
+    /// Median CPU time of the simulating thread for one update \[ms\]: the cost on one
+    /// core, without the waits of a shared machine.
+    pub update_cpu_ms: f64,
     pub goal_ms: f64,
-    /// The same update on one chain of as many elements \[ms\].
+    /// The same update on one chain of as many elements \[ms\] (wall, CPU).
     pub chain_update_ms: f64,
-    /// Cost per element of an update, network and chain \[µs\].
+    pub chain_update_cpu_ms: f64,
+    /// CPU cost per element of an update, network and chain \[µs\].
     pub update_us_per_element: f64,
     pub chain_update_us_per_element: f64,
     pub updates: usize,
@@ -51,7 +55,7 @@ fn main_harness() -> PathBuf {
 }
 
 /// Imports the main harness into a scratch folder and loads the scene written there.
-fn import_main_harness() -> Result<LoadedScene> {
+pub(crate) fn import_main_harness() -> Result<LoadedScene> {
     let kbl = main_harness();
     let dir = std::env::temp_dir().join(format!("pliant-bench-harness-{}", std::process::id()));
     pliant_harness::import_kbl(&kbl, &dir)
@@ -63,7 +67,7 @@ fn import_main_harness() -> Result<LoadedScene> {
 
 /// One chain of `elements` elements as long as the harness's segments together, held
 /// every 40 elements, under the static solver.
-fn chain(elements: usize, length_m: f64) -> Result<LoadedScene> {
+pub(crate) fn chain(elements: usize, length_m: f64) -> Result<LoadedScene> {
     let mut text = format!(
         r#"format = "pliant-scene"
 version = 1
@@ -92,7 +96,7 @@ elements = {elements}
 }
 
 /// Runs the scene's timeline; returns the workcell and the wall time \[s\].
-fn settled(scene: &LoadedScene) -> Result<(Workcell, f64)> {
+pub(crate) fn settled(scene: &LoadedScene) -> Result<(Workcell, f64)> {
     let setup = scene.workcell_setup().map_err(|e| anyhow!(e))?;
     let mut cell = Runner::from_setup(setup, WorkcellOptions::default())
         .workcell()
@@ -103,9 +107,9 @@ fn settled(scene: &LoadedScene) -> Result<(Workcell, f64)> {
     Ok((cell, start.elapsed().as_secs_f64()))
 }
 
-/// Median wall time of `updates` updates \[ms\]: a hand grabs `at` and moves by
+/// Median wall and CPU time of `updates` updates \[ms\]: a hand grabs `at` and moves by
 /// [`HAND_STEP`] along `direction` before each.
-fn updates(cell: &mut Workcell, at: DVec3, direction: DVec3, updates: usize) -> Result<f64> {
+fn updates(cell: &mut Workcell, at: DVec3, direction: DVec3, updates: usize) -> Result<(f64, f64)> {
     let refused = |r| anyhow!("the benchmark hand was refused: {r:?}");
     cell.apply(Input::Grab {
         hand: 1,
@@ -115,6 +119,7 @@ fn updates(cell: &mut Workcell, at: DVec3, direction: DVec3, updates: usize) -> 
     .map_err(refused)?;
     let step = cell.time_step();
     let mut times = Vec::with_capacity(updates);
+    let mut cpu_times = Vec::with_capacity(updates);
     for k in 1..=updates {
         cell.apply(Input::MoveHand {
             hand: 1,
@@ -123,16 +128,17 @@ fn updates(cell: &mut Workcell, at: DVec3, direction: DVec3, updates: usize) -> 
             duration: step,
         })
         .map_err(refused)?;
-        let start = Instant::now();
+        let (start, cpu) = (Instant::now(), thread_cpu_seconds());
         cell.step(&mut NoObserver)
             .map_err(|d| anyhow!("update {k} diverged: {d}"))?;
         times.push(start.elapsed().as_secs_f64() * 1e3);
+        cpu_times.push((thread_cpu_seconds() - cpu) * 1e3);
     }
-    Ok(median(&times))
+    Ok((median(&times), median(&cpu_times)))
 }
 
 /// The middle node of the longest hose and a direction across it.
-fn grab_point(cell: &Workcell) -> (DVec3, DVec3) {
+pub(crate) fn grab_point(cell: &Workcell) -> (DVec3, DVec3) {
     let model = cell.model();
     let x = &cell.state().x;
     let longest = model
@@ -154,21 +160,23 @@ pub fn run(quick: bool) -> Result<HarnessBench> {
     let model = cell.model().clone();
     let length: f64 = model.elements.iter().map(|e| e.rest_length).sum();
     let (at, across) = grab_point(&cell);
-    let update_ms = updates(&mut cell, at, across, count)?;
+    let (update_ms, update_cpu_ms) = updates(&mut cell, at, across, count)?;
     let elements = model.elements.len();
     let (mut line, _) = settled(&chain(elements, length)?)?;
     let span_middle = line.state().x[20];
-    let chain_update_ms = updates(&mut line, span_middle, DVec3::Y, count)?;
+    let (chain_update_ms, chain_update_cpu_ms) = updates(&mut line, span_middle, DVec3::Y, count)?;
     Ok(HarnessBench {
         segments: model.hoses.len(),
         junctions: model.junctions.len(),
         elements,
         settle_s,
         update_ms,
+        update_cpu_ms,
         goal_ms: GOAL_MS,
         chain_update_ms,
-        update_us_per_element: update_ms * 1e3 / elements as f64,
-        chain_update_us_per_element: chain_update_ms * 1e3 / elements as f64,
+        chain_update_cpu_ms,
+        update_us_per_element: update_cpu_ms * 1e3 / elements as f64,
+        chain_update_us_per_element: chain_update_cpu_ms * 1e3 / elements as f64,
         updates: count,
     })
 }
@@ -178,18 +186,20 @@ pub fn render(b: &HarnessBench) -> String {
     format!(
         "main harness: {} segments, {} junctions, {} elements (static solver, one core)\n\
          \x20 settled in its installed state in {:.2} s\n\
-         \x20 one update after the hand moves {} mm: {:.2} ms (goal {} ms), {:.2} µs per element\n\
-         \x20 one chain of as many elements:     {:.2} ms, {:.2} µs per element (network / chain {:.2})\n",
+         \x20 one update after the hand moves {} mm: {:.2} ms CPU, {:.2} ms wall (goal {} ms), {:.2} µs CPU per element\n\
+         \x20 one chain of as many elements:     {:.2} ms CPU, {:.2} ms wall, {:.2} µs CPU per element (network / chain {:.2})\n",
         b.segments,
         b.junctions,
         b.elements,
         b.settle_s,
         HAND_STEP * 1e3,
+        b.update_cpu_ms,
         b.update_ms,
         b.goal_ms,
         b.update_us_per_element,
+        b.chain_update_cpu_ms,
         b.chain_update_ms,
         b.chain_update_us_per_element,
-        b.update_ms / b.chain_update_ms,
+        b.update_cpu_ms / b.chain_update_cpu_ms,
     )
 }

@@ -216,7 +216,7 @@ fn bad_check_limits_are_errors_naming_the_field() {
 
 /// Issue 11 item 8: the built-in demo tells a true story — the hose rests on a part, the
 /// hand's bending moment is a warning only, and what makes it infeasible is the push into
-/// the engine-corner clip and the installation checks.
+/// the engine-corner clip (the reason names it) and the installation checks.
 #[test]
 fn the_engine_bay_demo_shows_contact_and_follows_the_new_rules() {
     let scene = pliant_scene::demo_scene().unwrap();
@@ -228,11 +228,13 @@ fn the_engine_bay_demo_shows_contact_and_follows_the_new_rules() {
     );
     let verdict = pliant_assembly::Verdict::judge(&run, None, pliant_assembly::Stage::Final);
     assert_eq!(verdict.feasible, Some(false));
+    // the reason names the fastener the hand was pressing at its worst moment
     assert!(
         verdict
             .reasons
             .iter()
-            .any(|r| r.starts_with("hand 0: push of")),
+            .any(|r| r.starts_with("hand 0: push of")
+                && r.ends_with("pressing the hose into clip 'clip engine corner'")),
         "{:?}",
         verdict.reasons
     );

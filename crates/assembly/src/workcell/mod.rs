@@ -366,10 +366,16 @@ impl Workcell {
             l.assess(&self.profile, load.force, load.torque, load.direction)
                 .ok()
         });
+        let fastener = self.hands.get(&number).and_then(|h| {
+            h.hand
+                .held_nodes()
+                .find_map(|node| self.fasteners.worked_through(node))
+        });
         HandRecord {
             hand: number as usize,
             load,
             assessment,
+            fastener,
         }
     }
     /// Whether a hand or a drive is still moving, or a load still rising or falling.

@@ -22,6 +22,9 @@ use serde::Serialize;
 pub struct HandRecord {
     pub hand: usize,
     pub load: HandLoad,
+    /// The fastener the hand works this step (its index in the run's fastener
+    /// reports): the stub it presses a hose end onto, the clip it presses a hose into.
+    pub fastener: Option<usize>,
     /// `None` only if the load was not finite (the step is then reported as diverged).
     pub assessment: Option<HandAssessment>,
 }
@@ -31,13 +34,17 @@ pub struct HandRecord {
 pub struct Peak {
     pub magnitude: f64,
     pub time: f64,
+    /// The fastener the hand worked then (index in the run's fastener reports).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fastener: Option<usize>,
 }
 
 impl Peak {
-    fn record(&mut self, magnitude: f64, time: f64) {
+    fn record(&mut self, magnitude: f64, time: f64, fastener: Option<usize>) {
         if physical(magnitude) && magnitude > self.magnitude {
             self.magnitude = magnitude;
             self.time = time;
+            self.fastener = fastener;
         }
     }
 }
@@ -92,6 +99,10 @@ pub struct HandPeak {
     pub worst_magnitude: f64,
     pub worst_limit: f64,
     pub worst_time: f64,
+    /// The fastener the hand worked at its worst moment (index in the run's fastener
+    /// reports).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worst_fastener: Option<usize>,
     /// Twist and bending peaks above their guide range (filled in by
     /// [`Tally::judge_hands`]).
     pub moment_notes: Vec<MomentNote>,
@@ -286,12 +297,13 @@ impl Tally {
                 p.max_torque_time = t;
             }
             if let Some(a) = &r.assessment {
+                let at = r.fastener;
                 match a.force.kind {
-                    LoadKind::Pull => p.pull.record(a.force.magnitude, t),
-                    _ => p.push.record(a.force.magnitude, t),
+                    LoadKind::Pull => p.pull.record(a.force.magnitude, t, at),
+                    _ => p.push.record(a.force.magnitude, t, at),
                 }
-                p.twist.record(a.twist.magnitude, t);
-                p.bending.record(a.bending.magnitude, t);
+                p.twist.record(a.twist.magnitude, t, at);
+                p.bending.record(a.bending.magnitude, t, at);
             }
         }
         self.record_contacts(model, state);
@@ -399,6 +411,7 @@ impl Tally {
                     p.worst_magnitude = peak.magnitude;
                     p.worst_limit = limit;
                     p.worst_time = peak.time;
+                    p.worst_fastener = peak.fastener;
                 }
             }
         }

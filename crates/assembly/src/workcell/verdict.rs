@@ -81,6 +81,16 @@ fn unit(kind: LoadKind) -> &'static str {
     kind.unit()
 }
 
+/// What the hand was doing at its worst moment, for the reasons' text: the fastener it
+/// worked (index in the run's fastener reports), if any.
+fn worked_fastener(run: &RunSummary, fastener: Option<usize>) -> String {
+    match fastener.and_then(|i| run.fasteners.get(i)) {
+        Some(f) if f.kind == "stub" => format!(" — pressing the hose end onto stub '{}'", f.name),
+        Some(f) => format!(" — pressing the hose into {} '{}'", f.kind, f.name),
+        None => String::new(),
+    }
+}
+
 /// The row of the tables a kind is judged against, for the reasons' text.
 fn table(kind: LoadKind) -> &'static str {
     match kind {
@@ -115,11 +125,12 @@ impl Verdict {
                 let zone = h.zones.iter().find(|z| z.kind == kind);
                 if h.worst_ratio > 1.0 {
                     exceeded = true;
+                    let working = worked_fastener(run, h.worst_fastener);
                     if let Some(z) = zone {
-                        reasons.push(describe_zone(h.hand, z));
+                        reasons.push(format!("{}{working}", describe_zone(h.hand, z)));
                     } else {
                         reasons.push(format!(
-                        "hand {}: {} of {:.1} {u} at t = {:.2} s exceeds the limit {:.1} {u} ({}; {:.0} % of it)",
+                        "hand {}: {} of {:.1} {u} at t = {:.2} s exceeds the limit {:.1} {u} ({}; {:.0} % of it){working}",
                         h.hand,
                         kind_name(kind),
                         h.worst_magnitude,

@@ -320,6 +320,12 @@ impl Solver {
         self.implicit.as_mut().map(|s| &mut s.options)
     }
 
+    /// Modified factorisations the static solver skipped because their matrix was the one
+    /// factorised before ([`crate::newton::factor_reuse`]; 0 for the other kinds).
+    pub fn factorizations_reused(&self) -> u64 {
+        self.statics.as_ref().map_or(0, |s| s.system.reuse.reused)
+    }
+
     /// The unstable equilibria the last [`Self::step`] left (static solver; empty
     /// otherwise).
     pub fn stability_events(&self) -> &[StabilityEvent] {

@@ -201,6 +201,13 @@ impl BlockTree {
         }
     }
 
+    /// Zeroes the diagonal blocks only.
+    pub fn clear_diagonal(&mut self) {
+        for m in &mut self.diag {
+            m.fill(0.0);
+        }
+    }
+
     /// Replaces node `i`'s equations by δu_i = 0 (a prescribed node): identity on the
     /// diagonal, its row and column couplings removed.
     pub fn eliminate(&mut self, i: usize) {

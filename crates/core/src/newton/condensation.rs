@@ -134,6 +134,12 @@ impl Condensation {
         }))
     }
 
+    /// What the condensed matrix depends on besides the assembled one: each slave's
+    /// offset, then each slave's force (the geometric term of an offset slave).
+    pub fn fold_inputs(&self) -> impl Iterator<Item = DVec3> + '_ {
+        self.offsets.iter().chain(&self.forces).copied()
+    }
+
     /// Whether node `i` is a slave (its equations live in its master's).
     pub fn is_slave(&self, i: usize) -> bool {
         self.slave_index[i] != usize::MAX
@@ -179,7 +185,10 @@ impl Condensation {
     /// The condensed matrix from the assembled one (chain layout, prescribed nodes already
     /// eliminated there).
     fn fold_matrix(&mut self, assembled: &BlockTree) {
-        self.tree.clear();
+        // each tree edge carries exactly one element (a second would close a loop), so
+        // its off-diagonal blocks are written, not summed; the edges no element maps to
+        // (roots, slaves) keep the zeros they were built with
+        self.tree.clear_diagonal();
         let n = assembled.len();
         for i in 0..n {
             let k = self.slave_index[i];
@@ -218,11 +227,11 @@ impl Condensation {
             }
             let c = slot.child;
             if slot.first_is_child {
-                self.tree.upper[c] += forward;
-                self.tree.lower[c] += backward;
+                self.tree.upper[c] = forward;
+                self.tree.lower[c] = backward;
             } else {
-                self.tree.upper[c] += backward;
-                self.tree.lower[c] += forward;
+                self.tree.upper[c] = backward;
+                self.tree.lower[c] = forward;
             }
         }
     }

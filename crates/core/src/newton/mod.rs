@@ -8,6 +8,7 @@
 pub mod block_tree;
 pub mod condensation;
 pub mod convergence;
+pub mod factor_reuse;
 pub mod gmres;
 pub mod system;
 pub mod ties;

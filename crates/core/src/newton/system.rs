@@ -27,6 +27,7 @@
 use super::block_tree::{BlockTree, Inertia, NotATree, SingularBlock};
 use super::condensation::{Condensation, Factored};
 use super::convergence::LoadScale;
+use super::factor_reuse::FactorReuse;
 use super::gmres::Gmres;
 use super::ties::TieCouplings;
 use crate::contact::friction::FrictionResponse;
@@ -79,6 +80,8 @@ pub struct NewtonSystem {
     /// The junctions' condensation onto their master nodes (SPEC N1; `None` without
     /// junctions, when `matrix` is factorised as it is).
     pub junctions: Option<Condensation>,
+    /// The input of the last modified factorisation, to skip factorising it again.
+    pub reuse: FactorReuse,
 }
 
 /// A support's load on its node at the state's configuration ([`Support::load`]).
@@ -140,7 +143,9 @@ impl NewtonSystem {
         }
         let mean_length =
             elements.iter().map(|e| e.rest_length).sum::<f64>() / elements.len().max(1) as f64;
+        let junctions = Condensation::new(model)?;
         Ok(Self {
+            reuse: FactorReuse::new(n, junctions.as_ref()),
             scale: LoadScale::default(),
             mean_length,
             elements,
@@ -163,7 +168,7 @@ impl NewtonSystem {
             } else {
                 Gmres::default()
             },
-            junctions: Condensation::new(model)?,
+            junctions,
         })
     }
 
@@ -523,6 +528,7 @@ impl NewtonSystem {
         let inertia = if modified {
             self.factor_modified()?
         } else {
+            self.reuse.forget();
             match &mut self.junctions {
                 Some(j) => j.factor(&self.matrix)?,
                 None => self.matrix.factor()?,
@@ -599,12 +605,22 @@ impl NewtonSystem {
     }
 
     /// Factorises a positive-definite neighbour of the tangent (condensed at junctions)
-    /// and returns the tangent's inertia ([`BlockTree::factor_modified`]).
+    /// and returns the tangent's inertia ([`BlockTree::factor_modified`]) — or keeps the
+    /// factors in hand when they were computed from this very matrix ([`FactorReuse`]).
     pub fn factor_modified(&mut self) -> Result<Inertia, SingularBlock> {
-        match &mut self.junctions {
+        if let Some(inertia) = self.reuse.reusable(&self.matrix, self.junctions.as_ref()) {
+            return Ok(inertia);
+        }
+        self.reuse.record(&self.matrix, self.junctions.as_ref());
+        let factored = match &mut self.junctions {
             Some(j) => j.factor_modified(&self.matrix),
             None => self.matrix.factor_modified(),
+        };
+        match factored {
+            Ok(inertia) => self.reuse.factorised(inertia),
+            Err(_) => self.reuse.forget(),
         }
+        factored
     }
 
     /// A direction of negative curvature from the last [`Self::factor_modified`]
