@@ -14,8 +14,8 @@
 use anyhow::{bail, Context, Result};
 use comfy_table::{presets, CellAlignment, Table};
 use glam::DVec3;
-use pliant_core::frames::node_frames;
 use pliant_core::loads::{Fix, LoadCase};
+use pliant_core::rod::frames::node_frames;
 use pliant_core::RigidPartSpec;
 use pliant_core::{
     health, integrators::explicit, HoseSpec, Material, Model, Section, SimSettings, State,
@@ -258,8 +258,8 @@ impl Peak {
                     .and_then(|m| m.trim().parse::<f64>().ok())
             })
             .map_or(1.0, |mhz| mhz / 1000.0);
-        let fma = pliant_core::element_block::Kernel::detect()
-            == pliant_core::element_block::Kernel::Avx2Fma;
+        let fma = pliant_core::rod::element_block::Kernel::detect()
+            == pliant_core::rod::element_block::Kernel::Avx2Fma;
         let flops_per_cycle = if fma { 16.0 } else { 4.0 };
         Peak {
             gflops_per_core: flops_per_cycle * clock_ghz,
@@ -668,7 +668,7 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
         quick,
         machine: machine(),
         peak: Peak::detect(),
-        kernel: pliant_core::element_block::Kernel::detect().name(),
+        kernel: pliant_core::rod::element_block::Kernel::detect().name(),
         scaling: Scaling {
             loglog_slope: fit.slope,
             loglog_intercept: fit.intercept,

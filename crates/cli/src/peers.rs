@@ -16,7 +16,7 @@ use anyhow::{bail, Result};
 use glam::{DQuat, DVec3};
 use pliant_core::integrators::StaticSolver;
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
-use pliant_core::settle::{settle, SettleOptions};
+use pliant_core::relax::{settle, SettleOptions};
 use pliant_core::{
     health, integrators::explicit, HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings,
     State, WorldSpec,
@@ -30,7 +30,7 @@ use std::time::Instant;
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// Explicit central differences with kinetic damping (dynamic relaxation,
-    /// `pliant_core::settle`), stopped when the out-of-balance force on every free node is
+    /// `pliant_core::relax`), stopped when the out-of-balance force on every free node is
     /// below tol·P (moment below tol·P·L).
     Relax,
     /// Explicit central differences with viscous mass damping at the critical value of

@@ -63,7 +63,7 @@ pub struct SimSettings {
     pub time_step: Option<f64>,
     /// Which solver advances the simulation, and its steps (issue 5).
     #[serde(default)]
-    pub solver: crate::integrators::SolverSettings,
+    pub solver: crate::settings::SolverSettings,
     /// Threads the explicit step may use (issue 15); `None` → 1 for a single hose, the
     /// machine's logical cores for several. The environment variable `PLIANT_THREADS`
     /// overrides both. Results are the same for any number ([`crate::parallel`]).

@@ -9,7 +9,7 @@ mod common;
 use glam::{DQuat, DVec3};
 use pliant_core::integrators::{Solver, SolverKind, SolverSettings, StaticSolver};
 use pliant_core::loads::{Fix, LoadCase};
-use pliant_core::settle::{settle, SettleOptions};
+use pliant_core::relax::{settle, SettleOptions};
 use pliant_core::{HoseEnd, JunctionSpec, Model, SimSettings, State, WorldSpec};
 
 use common::straight_hose1 as hose;

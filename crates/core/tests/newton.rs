@@ -51,7 +51,7 @@ fn hose1() -> (Material, Section) {
 /// Library hose 1, 0.5 m in 8 elements along x from `start`, nodes 3–5 a stiffened
 /// section (SPEC M6), under `gravity`.
 fn stiffened_hose(start: DVec3, gravity: DVec3) -> Model {
-    use pliant_core::stiffened::StiffenedSpan;
+    use pliant_core::rod::stiffened::StiffenedSpan;
     let (mat, sec) = hose1();
     let n = 8;
     let nodes = (0..=n)
@@ -324,7 +324,7 @@ fn a_relaxation_that_stopped_moving_gives_up() {
     assert_eq!(outcome, None);
     let taken = state.step - before;
     assert!(taken < 200_000, "{taken} explicit steps");
-    let (f, m) = pliant_core::settle::residual(&state);
+    let (f, m) = pliant_core::relax::residual(&state);
     assert!(f < 1e-9 && m < 1e-9, "residual {f} N, {m} N·m");
     assert!(state.x[10].z < -0.5, "the tip hangs: {}", state.x[10]);
 }

@@ -1,5 +1,5 @@
 //! Static equilibrium by dynamic relaxation with kinetic damping — the method of
-//! `pliant_core::settle` (Cundall 1976; Barnes 1999) run on the full interactive step, so
+//! `pliant_core::relax` (Cundall 1976; Barnes 1999) run on the full interactive step, so
 //! that hands, stubs and clips act while the hose settles: the explicit step runs on, and
 //! whenever the total kinetic energy passes a peak all velocities are set to zero. The
 //! result is the equilibrium of the same explicit model `step` advances; it is not an
@@ -7,14 +7,14 @@
 
 use crate::engine::{Engine, Refusal};
 use pliant_core::health::{check, Divergence};
-use pliant_core::settle::{SettleOptions, SettleReport as CoreSettleReport};
+use pliant_core::relax::{SettleOptions, SettleReport as CoreSettleReport};
 use pliant_core::State;
 
-/// How often the residual is looked at, in steps (as `pliant_core::settle`).
+/// How often the residual is looked at, in steps (as `pliant_core::relax`).
 const CHECK_EVERY: u64 = 64;
 
 /// Largest out-of-balance force and moment on the free nodes after the last step. As
-/// `pliant_core::settle::residual`, but with the rigid parts' contact forces counted (a
+/// `pliant_core::relax::residual`, but with the rigid parts' contact forces counted (a
 /// hose resting on a part is in balance with the part's push, which the explicit step
 /// applies kinematically and reports apart from `force`).
 fn residual(state: &State) -> (f64, f64) {

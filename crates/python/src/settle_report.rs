@@ -1,6 +1,6 @@
 //! `pliant.SettleReport`: how `Simulation.settle` ended.
 
-use pliant_core::settle::SettleReport as CoreSettleReport;
+use pliant_core::relax::SettleReport as CoreSettleReport;
 use pyo3::prelude::*;
 
 /// How a relaxation to static equilibrium ended.

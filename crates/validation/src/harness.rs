@@ -4,7 +4,7 @@ use glam::{DQuat, DVec3};
 use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::newton::Tolerance;
-use pliant_core::settle::{settle, SettleOptions, SettleReport};
+use pliant_core::relax::{settle, SettleOptions, SettleReport};
 use pliant_core::SolverKind;
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 use std::cell::Cell;
@@ -124,7 +124,7 @@ pub fn with_solver<R>(kind: SolverKind, f: impl FnOnce() -> R) -> R {
 /// below `rel · force · length` on every free node.
 ///
 /// * explicit — dynamic relaxation of the explicit step (kinetic damping when the model
-///   has no mass damping; [`pliant_core::settle`]);
+///   has no mass damping; [`pliant_core::relax`]);
 /// * static — one Newton solve ([`pliant_core::integrators::StaticSolver`]);
 /// * implicit — HHT-α steps of 50 ms with the most numerical damping (α = −⅓), each
 ///   started from rest, until the residual is met ("implicit, damped to rest").
@@ -211,7 +211,7 @@ pub fn implicit_to_rest(
         let before = (state.x.clone(), state.q.clone());
         solver.step(model, state).map_err(|e| e.to_string())?;
         report.steps += 1;
-        let (f, m) = pliant_core::settle::residual(state);
+        let (f, m) = pliant_core::relax::residual(state);
         report.residual_force = f;
         report.residual_moment = m;
         // at rest: residual met, or a whole step moved and turned no node beyond

@@ -33,7 +33,7 @@ fn crossing_hoses_reach_rest_in_a_few_implicit_steps() {
             .step(&model, &mut state)
             .expect("every step converges");
         halved += report.substeps - 1;
-        let (rf, rm) = pliant_core::settle::residual(&state);
+        let (rf, rm) = pliant_core::relax::residual(&state);
         state.v.fill(DVec3::ZERO);
         state.w.fill(DVec3::ZERO);
         state.implicit.restart_at_rest();

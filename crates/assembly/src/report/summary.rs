@@ -1,7 +1,7 @@
 //! `summary.json`: what a run did, its peak support loads and its final state.
 
 use crate::workcell::{RunSummary, SettleOutcome};
-use pliant_core::timestep::TimeStepReport;
+use pliant_core::rod::timestep::TimeStepReport;
 use pliant_core::{Model, State};
 use serde::Serialize;
 

@@ -18,7 +18,7 @@
 //! matrix k (w wᵀ) ⊗ (n nᵀ) with w = (1−s, s, −(1−t), −t), whose only frequency is
 //! ω_c² = k Σ wᵢ²/mᵢ ≤ 2k/m_min (Σ wᵢ² ≤ 2, m_min the smallest of the four node masses).
 //! The cap k ≤ ω_lim² m_min / 8, with ω_lim = 2/min(axial bound, eigen bound) the highest
-//! frequency the time step was already built for ([`crate::timestep`]), makes
+//! frequency the time step was already built for ([`crate::rod::timestep`]), makes
 //! **ω_c ≤ ω_lim / 2**. For two interior nodes of the same hose (m = ρ A l₀) the mean
 //! stiffness already satisfies it: 2k/m = E_c/(ρ l₀²) = (ω_axial/2)², ω_axial = 2c/l₀;
 //! the cap only acts at end nodes (half mass) and between dissimilar hoses. By Weyl's

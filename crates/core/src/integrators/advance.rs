@@ -4,7 +4,7 @@
 //! with fused multiply–adds.
 //!
 //! Node by node: the operations are those of the four-lane kernel this replaces (issue
-//! 15's [`crate::lanes`] arithmetic, each lane an independent IEEE operation), in the
+//! 15's [`crate::rod::lanes`] arithmetic, each lane an independent IEEE operation), in the
 //! same order, so the results are the same to the last bit — without gathering the
 //! nodes' vectors into lanes and scattering them back, which cost more than the
 //! arithmetic for a handful of nodes, and with held nodes costing one check. A node's
@@ -69,7 +69,7 @@ fn exp_series(phi: DVec3) -> (DQuat, bool) {
 }
 
 /// The Hamilton product a · b with fused multiply–adds, normalised: the operations of
-/// [`crate::lanes::Q4::mul`] and [`crate::lanes::Q4::normalize`] for one quaternion.
+/// [`crate::rod::lanes::Q4::mul`] and [`crate::rod::lanes::Q4::normalize`] for one quaternion.
 #[inline(always)]
 fn mul_normalize(a: DQuat, b: DQuat) -> DQuat {
     let w =

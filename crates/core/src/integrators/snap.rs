@@ -15,7 +15,7 @@
 
 use super::explicit::step;
 use crate::health::check;
-use crate::settle::{residual, stop, KineticDamping};
+use crate::relax::{residual, stop, KineticDamping};
 use crate::{Model, State};
 use glam::DVec3;
 

@@ -44,7 +44,7 @@ impl Default for StaticOptions {
     fn default() -> Self {
         Self {
             tolerance: Tolerance::default(),
-            max_iterations: 60,
+            max_iterations: crate::settings::DEFAULT_STATIC_MAX_ITERATIONS,
             contact_step_fraction: 0.5,
             stability: true,
             max_escapes: 8,

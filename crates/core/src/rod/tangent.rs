@@ -18,15 +18,15 @@
 //!
 //! The solvers' tangent ([`element_tangent`], [`block_tangent`]) differentiates the same
 //! loads in the algebra of the explicit kernel, four elements at a time
-//! ([`crate::tangent_kernel`]); elements whose relative rotations lie beyond that
+//! ([`crate::rod::tangent_kernel`]); elements whose relative rotations lie beyond that
 //! kernel's series use the reference differentiation here ([`reference_tangent`]). The
 //! two agree to rounding (≤ 1e-10 of the largest entry of a kind; a test checks this on
 //! random elements).
 
 use crate::autodiff::{Quat, Scalar, V3};
-use crate::element::{BeamElement, ElementEnds, ElementLoads};
-use crate::element_block::Kernel;
-use crate::tangent_kernel::{block_tangent_rows, BlockRows, LoadRows, D9};
+use crate::rod::element::{BeamElement, ElementEnds, ElementLoads};
+use crate::rod::element_block::Kernel;
+use crate::rod::tangent_kernel::{block_tangent_rows, BlockRows, LoadRows, D9};
 use glam::{DQuat, DVec3};
 use nalgebra::SMatrix;
 
@@ -132,7 +132,7 @@ fn reference_rows(
 }
 
 /// The loads of four elements at `ends` and their tangents K = −∂loads/∂u: by the
-/// kernel's algebra four at a time ([`crate::tangent_kernel`]), by the reference for
+/// kernel's algebra four at a time ([`crate::rod::tangent_kernel`]), by the reference for
 /// elements whose relative rotations its series do not cover. Fewer than four elements
 /// repeat the last one in the lanes beyond `count`; `out` receives `count` results.
 pub fn block_tangent(
@@ -200,8 +200,8 @@ pub fn kernel_tangent(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::element::rotate;
     use crate::math::exp_map;
+    use crate::rod::element::rotate;
     use crate::{Material, Section};
 
     fn element() -> BeamElement {
@@ -349,7 +349,7 @@ mod tests {
         assert!((k[(5, 5)] - rot).abs() < 1e-9 * rot);
     }
 
-    /// The kernel-algebra tangent ([`crate::tangent_kernel`]) equals the reference tangent
+    /// The kernel-algebra tangent ([`crate::rod::tangent_kernel`]) equals the reference tangent
     /// on random elements: within 1e-10 of the largest entry of the same kind (force or
     /// moment row, translation or rotation column), loads within 1e-12 of their scale.
     /// Large rigid rotations, relative rotations inside and beyond the kernel's series
@@ -358,7 +358,7 @@ mod tests {
     /// sections with unequal E I; the AVX2 and portable copies give the same bits.
     #[test]
     fn kernel_tangent_equals_the_reference() {
-        use crate::test_elements::{random_element, random_ends, Rng};
+        use crate::rod::test_elements::{random_element, random_ends, Rng};
         let mut rng = Rng(27);
         let (mut inside, mut outside, mut tension, mut compression) = (0, 0, 0, 0);
         let mut worst: f64 = 0.0;

@@ -194,7 +194,7 @@ impl BeamElement {
     }
 
     /// [`Self::loads`] over any [`Scalar`]: with dual numbers seeded on the end
-    /// increments it gives the consistent tangent ([`crate::tangent`]).
+    /// increments it gives the consistent tangent ([`crate::rod::tangent`]).
     #[inline(always)]
     pub fn loads_of<T: Scalar>(
         &self,
