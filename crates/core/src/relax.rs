@@ -1,21 +1,29 @@
-//! Settling: reaching static equilibrium with the explicit step by dynamic relaxation with
+//! Relaxing: reaching static equilibrium with the explicit step by dynamic relaxation with
 //! kinetic damping (Cundall 1976; Barnes 1999, "Form finding and analysis of tension
 //! structures by dynamic relaxation"): the explicit step runs on, and every time the
 //! total kinetic energy passes a peak all velocities are set to zero. The state walks
 //! down the energy landscape to the nearest equilibrium (optionally with viscous damping
-//! only). Used by the validation suite and Python's `Simulation.settle` to reach static
-//! states of the same explicit model the user runs (its answer is the model's, not
-//! another solver's). Pliant's one word for reaching rest is *settle*; the quasi-static
-//! Newton solver (`integrators::statics`) solves for the same equilibrium directly.
+//! only). Its answer is the explicit model's own, not another solver's.
+//!
+//! One routine, [`relax_with`], with one residual, [`residual`] (contact with parts and
+//! hoses counted), serves every caller: [`relax`] on a bare model and state (the
+//! validation suite), the static solver's snap-through
+//! ([`crate::integrators::snap`]), and Python's `Simulation.settle`, which steps a whole
+//! workcell (hands, stubs and clips acting). The quasi-static Newton solver
+//! ([`crate::integrators::statics`]) solves for the same equilibrium directly.
 
 use crate::health::{check, Divergence};
 use crate::integrators::explicit::step;
 use crate::{Model, State};
 use glam::DVec3;
+use std::ops::ControlFlow;
+
+/// Steps between two looks at the residual (and health checks).
+pub const CHECK_EVERY: u64 = 64;
 
 /// When to stop relaxing.
 #[derive(Clone, Copy, Debug)]
-pub struct SettleOptions {
+pub struct RelaxOptions {
     /// Largest allowed out-of-balance force on a free node \[N\].
     pub force_tolerance: f64,
     /// Largest allowed out-of-balance moment on a free node \[N·m\].
@@ -30,20 +38,26 @@ pub struct SettleOptions {
 
 /// How relaxation ended.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SettleReport {
+pub struct RelaxReport {
     pub steps: u64,
     pub residual_force: f64,
     pub residual_moment: f64,
     pub converged: bool,
 }
 
-/// Largest out-of-balance force and moment on the free nodes after the last step.
+/// Largest out-of-balance force and moment on the free nodes after the last explicit
+/// step. Contact counts: the parts' push, which the explicit step applies kinematically
+/// and reports apart from `force` (in `contact_force`), is added back; hose–hose contact
+/// is part of `force` already. A hose resting on a part is thus in balance.
+///
+/// The Newton solvers leave `force` with the parts' contact included; for their states
+/// use [`crate::integrators::free_node_residual`].
 pub fn residual(state: &State) -> (f64, f64) {
     let mut f: f64 = 0.0;
     let mut m: f64 = 0.0;
     for i in 0..state.x.len() {
         if !state.held[i] {
-            f = f.max(state.force[i].length());
+            f = f.max((state.force[i] + state.contact_force[i]).length());
             m = m.max(state.moment[i].length());
         }
     }
@@ -52,7 +66,7 @@ pub fn residual(state: &State) -> (f64, f64) {
 
 /// Sets every velocity to zero (nodes and stiffened bodies): kinetic damping's reset at a
 /// peak of the kinetic energy.
-pub(crate) fn stop(state: &mut State) {
+pub fn stop(state: &mut State) {
     state.v.fill(DVec3::ZERO);
     state.w.fill(DVec3::ZERO);
     for b in state.bodies.iter_mut() {
@@ -61,58 +75,89 @@ pub(crate) fn stop(state: &mut State) {
     }
 }
 
-/// Kinetic damping (Cundall 1976): every velocity set to zero each time the total kinetic
-/// energy passes a peak. Call [`KineticDamping::after_step`] after each explicit step.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct KineticDamping {
-    last_energy: f64,
+/// What dynamic relaxation drives: a model and its state, advanced by explicit steps.
+pub trait Relaxing {
+    fn model(&self) -> &Model;
+    fn state(&self) -> &State;
+    /// One explicit step (a divergence found on the way ends the relaxation).
+    fn step(&mut self) -> Result<(), Divergence>;
+    /// Zeroes every velocity ([`stop`]), kinetic damping's reset.
+    fn stop(&mut self);
 }
 
-impl KineticDamping {
-    /// Stops everything if the kinetic energy fell since the last step (a peak passed).
-    pub(crate) fn after_step(&mut self, model: &Model, state: &mut State) {
-        let energy = state.kinetic_energy(model);
-        if energy < self.last_energy {
-            stop(state);
-            self.last_energy = 0.0;
-        } else {
-            self.last_energy = energy;
-        }
+/// A bare model and state, stepped by [`crate::integrators::explicit::step`].
+pub struct Explicit<'a> {
+    pub model: &'a Model,
+    pub state: &'a mut State,
+}
+
+impl Relaxing for Explicit<'_> {
+    fn model(&self) -> &Model {
+        self.model
+    }
+    fn state(&self) -> &State {
+        self.state
+    }
+    fn step(&mut self) -> Result<(), Divergence> {
+        step(self.model, self.state);
+        Ok(())
+    }
+    fn stop(&mut self) {
+        stop(self.state);
     }
 }
 
 /// Relaxes `state` to static equilibrium under its current load cases.
-pub fn settle(
+pub fn relax(
     model: &Model,
     state: &mut State,
-    opts: &SettleOptions,
-) -> Result<SettleReport, Divergence> {
-    let mut damping = KineticDamping::default();
+    opts: &RelaxOptions,
+) -> Result<RelaxReport, Divergence> {
+    relax_with(&mut Explicit { model, state }, opts, |_| {
+        ControlFlow::Continue(())
+    })
+}
+
+/// The relaxation every caller runs: steps `sys`, zeroes the velocities at each peak of
+/// the kinetic energy (if `opts.kinetic_damping`), and every [`CHECK_EVERY`] steps and
+/// after the last checks the state's health and the [`residual`]: converged when it is
+/// within the tolerances. Between checks that fail, `watch` sees the state and may end
+/// the relaxation unconverged ([`ControlFlow::Break`]).
+pub fn relax_with<R: Relaxing + ?Sized>(
+    sys: &mut R,
+    opts: &RelaxOptions,
+    mut watch: impl FnMut(&State) -> ControlFlow<()>,
+) -> Result<RelaxReport, Divergence> {
+    let mut last_energy = 0.0;
     let mut steps = 0;
-    while steps < opts.max_steps {
-        step(model, state);
-        steps += 1;
-        if opts.kinetic_damping {
-            damping.after_step(model, state);
-        }
-        if steps % 64 == 0 {
-            check(model, state)?;
-            let (f, m) = residual(state);
-            if f <= opts.force_tolerance && m <= opts.moment_tolerance {
-                return Ok(SettleReport {
-                    steps,
-                    residual_force: f,
-                    residual_moment: m,
-                    converged: true,
-                });
-            }
-        }
-    }
-    let (f, m) = residual(state);
-    Ok(SettleReport {
+    let report = |steps, (f, m): (f64, f64), converged| RelaxReport {
         steps,
         residual_force: f,
         residual_moment: m,
-        converged: false,
-    })
+        converged,
+    };
+    while steps < opts.max_steps {
+        sys.step()?;
+        steps += 1;
+        if opts.kinetic_damping {
+            let energy = sys.state().kinetic_energy(sys.model());
+            if energy < last_energy {
+                sys.stop();
+                last_energy = 0.0;
+            } else {
+                last_energy = energy;
+            }
+        }
+        if steps % CHECK_EVERY == 0 || steps == opts.max_steps {
+            check(sys.model(), sys.state())?;
+            let (f, m) = residual(sys.state());
+            if f <= opts.force_tolerance && m <= opts.moment_tolerance {
+                return Ok(report(steps, (f, m), true));
+            }
+            if watch(sys.state()).is_break() {
+                return Ok(report(steps, (f, m), false));
+            }
+        }
+    }
+    Ok(report(steps, residual(sys.state()), false))
 }

@@ -1,4 +1,4 @@
-//! Which solver advances a simulation (issue 5, SPEC P4/P5), chosen per scene
+//! Which solver advances a simulation (SPEC P4/P5), chosen per scene
 //! (`[simulation] solver = …`) or per command (`--solver …`):
 //!
 //! * `explicit` — the dissertation's central differences (`crate::explicit`) at the
@@ -34,6 +34,22 @@ pub use crate::settings::{SolverKind, SolverSettings};
 use crate::{Model, State};
 use glam::DVec3;
 use serde::Serialize;
+
+/// Largest out-of-balance force and moment on the free nodes as the Newton solvers
+/// ([`ImplicitSolver`], [`StaticSolver`]) leave the state: their `force` includes the
+/// parts' contact already. After explicit steps use [`crate::relax::residual`], which
+/// adds it back.
+pub fn free_node_residual(state: &State) -> (f64, f64) {
+    let mut f: f64 = 0.0;
+    let mut m: f64 = 0.0;
+    for i in 0..state.x.len() {
+        if !state.held[i] {
+            f = f.max(state.force[i].length());
+            m = m.max(state.moment[i].length());
+        }
+    }
+    (f, m)
+}
 
 /// What went wrong in a step.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
