@@ -68,7 +68,7 @@ pub struct Model {
     /// Per hose: its network, the smallest index of the hoses joined to it through
     /// junctions (its own index when it joins none).
     pub hose_network: Vec<usize>,
-    /// The solver the scene asks for (issue 5); callers may choose another.
+    /// The solver the scene asks for; callers may choose another.
     pub solver: SolverSettings,
     /// Per-beam constants of hose–hose contact (SPEC L5).
     pub hose_contact: HoseContactModel,

@@ -1,4 +1,4 @@
-//! The Newton solvers (issue 5): quasi-static equilibrium against the exact elastica and
+//! The Newton solvers: quasi-static equilibrium against the exact elastica and
 //! against the explicit solver's relaxed state; implicit HHT-α at large steps.
 
 use glam::{DQuat, DVec3};
@@ -245,7 +245,7 @@ fn implicit_hand_lifts_a_stiffened_section() {
     assert!((state.x[4].z - 0.2).abs() < 1e-12);
 }
 
-/// Issue 12 (the implicit soak): a step Newton cannot converge is taken from its start by
+/// A step Newton cannot converge is taken from its start by
 /// the explicit solver in ⌈h/Δt⌉ equal pieces — the same numbers as those pieces taken
 /// directly — with a hand's target approached over the pieces (the held node moves at
 /// the hand's speed, not in one jump), and the implicit solver goes on from there.

@@ -1,4 +1,4 @@
-//! The explicit step gives the same bits on 1, 2 or 3 threads (issue 15): hoses that
+//! The explicit step gives the same bits on 1, 2 or 3 threads: hoses that
 //! fall onto each other (hose–hose contact), a stiffened span, fixed and loaded nodes,
 //! with and without a rigid floor (the step's split velocity/position update), and the
 //! vectorised kernels against the reference element loop.

@@ -20,7 +20,7 @@ pub struct PeakRow {
 
 /// One hose's final state. A hose whose state is not finite (a diverged run stopped
 /// after the blow-up) has neither positions nor orientations, only `omitted` saying why:
-/// no output holds a non-finite number (issue 36, item 4).
+/// no output holds a non-finite number.
 #[derive(Serialize)]
 pub struct FinalHose {
     pub name: String,

@@ -77,7 +77,8 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     // slip anchors accepted with this step's forces
     crate::loads::support_reactions(model, state, true);
     // Only supports and ties write reactions here; without them the arrays are the zeros
-    // just filled in, and adding them would change nothing (issue 15: two passes saved).
+    // just filled in, and adding them would change nothing, so
+    // both passes are skipped.
     let supported = state
         .loads
         .iter()

@@ -1,4 +1,4 @@
-//! Implicit dynamics (issue 5, SPEC P5; the dissertation's outlook 7.2): the HHT-α method
+//! Implicit dynamics (SPEC P5; the dissertation's outlook 7.2): the HHT-α method
 //! (Hilber, Hughes & Taylor 1977, "Improved numerical dissipation for time integration
 //! algorithms in structural dynamics", EESD 5) with Newton iterations on the consistent
 //! tangent, solved in O(N) per iteration ([`crate::newton::block_tree`]).

@@ -1,4 +1,4 @@
-//! The element loads four elements at a time (issue 15): the explicit solver's hot loop.
+//! The element loads four elements at a time: the explicit solver's hot loop.
 //!
 //! [`BeamElement::loads_of`] is the reference — generic over the number type, so that the
 //! Newton solvers differentiate it — and evaluates one element. Here the same element
@@ -415,7 +415,7 @@ impl<S: Fn(usize) -> bool> Job<'_, S> {
             }
             // through memory: stored as vectors, the loads are computed in 256-bit
             // registers; extracted lane by lane for `add_chained` without it, LLVM
-            // computed the whole block lane by lane (1.3× the instructions, callgrind)
+            // computed the whole block lane by lane
             let l = std::hint::black_box(block_loads(b, c, base, beta));
             if b.chain && active == [true; 4] && !l.outside.any() {
                 let n = b.node_a[0] - base;

@@ -3,8 +3,9 @@
 //! compiler may or may not turn into vector instructions), and over [`Avx4`], a 256-bit
 //! AVX register whose every operation is one instruction, for code compiled for AVX2
 //! (chosen at run time). Large kernels need the latter: over `F4` the compiler splits
-//! long chains of lane operations into scalar instructions (issue 15, item 3: the
-//! tangent kernel, [`crate::rod::tangent_kernel`], ran 4 scalar instructions per operation).
+//! long chains of lane operations into scalar instructions (the
+//! tangent kernel, [`crate::rod::tangent_kernel`], would run several scalar instructions
+//! per operation).
 //!
 //! Only `+ − × ÷ √` and lane selection, each correctly rounded, so both give the same
 //! bits.

@@ -1,4 +1,4 @@
-//! The consistent tangent stiffness of one element (issue 5), by forward-mode automatic
+//! The consistent tangent stiffness of one element, by forward-mode automatic
 //! differentiation of the element's own load function ([`BeamElement::loads_of`]):
 //! the 12 inputs are the increments u = (δx_a, δθ_a, δx_b, δθ_b) — translations and
 //! spatial (left) rotation increments, q ← exp(δθ) q — and the result is
@@ -14,7 +14,7 @@
 //! The loads depend on the end positions and velocities only through x_b − x_a and
 //! v_b − v_a (a rigid translation changes nothing), so ∂/∂x_a = −∂/∂x_b: only 9 of the 12
 //! increments are carried as dual components (δx_b, δθ_a, δθ_b), a quarter less work in
-//! every dual operation (issue 15, item 3).
+//! every dual operation.
 //!
 //! The solvers' tangent ([`element_tangent`], [`block_tangent`]) differentiates the same
 //! loads in the algebra of the explicit kernel, four elements at a time

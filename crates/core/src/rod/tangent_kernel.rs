@@ -1,5 +1,4 @@
-//! The element tangent by the explicit kernel's algebra, four elements at a time
-//! (issue 15, item 3).
+//! The element tangent by the explicit kernel's algebra, four elements at a time.
 //!
 //! [`crate::rod::tangent`] differentiates the reference load function
 //! [`BeamElement::loads_of`] (quaternion rotations, the log map by atan2 or its series,
