@@ -1,4 +1,4 @@
-//! How a hand holds the hose (issue 11 item 2): firm — the held beam follows the hand in
+//! How a hand holds the hose: firm — the held beam follows the hand in
 //! all six degrees of freedom, as in SPEC I1 — or loose: the hand holds the position and
 //! the hose may turn in it, about its own axis (`axial`: both nodes of the beam held in
 //! position only, so the hand carries no moment about the beam's axis) or about every axis

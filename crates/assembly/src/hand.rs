@@ -73,7 +73,7 @@ impl Hand {
     /// point of the beam's chord — a hand holds the hose where the hose is, never through
     /// a lever of empty space (a grab beside the hose, e.g. a re-grab at a spot the hose
     /// has since left, would otherwise hold it at arm's length and drag it further off
-    /// with each re-grab: issue 12, the 10-hand soak). Loose grips: at the nearest point
+    /// with each re-grab). Loose grips: at the nearest point
     /// of the chord, `ball` at its nearer node; the global orientation. Any other fix or drive on the held nodes is replaced.
     /// Firm: each node fixed (L1); loose: each held node on a support holding its
     /// position only (all rotations free).

@@ -1,4 +1,4 @@
-//! A scripted timeline of actions (issue 2, SPEC L1–L3 + dead loads): executed in order,
+//! A scripted timeline of actions (SPEC L1–L3 + dead loads): executed in order,
 //! each action starting when the previous one is done (instantaneous actions take no
 //! time; `Move` blocks for its duration unless `wait` is false).
 
@@ -61,7 +61,7 @@ pub enum Action {
     Unload { node: NodeRef, name: Option<String> },
     /// Remove the fix / drive from the node: it moves freely again.
     Release { node: NodeRef },
-    /// A cable tie bundles two hoses (issue 11 item 5): `node` and `to` are held at the
+    /// A cable tie bundles two hoses: `node` and `to` are held at the
     /// distance they have now ([`pliant_core::loads::Tie`]) for the rest of the run.
     Tie { node: NodeRef, to: NodeRef },
     /// I1: hand `hand` grabs the beam nearest to `at` \[m\]; its two nodes follow the hand

@@ -1,4 +1,4 @@
-//! Issue 11 item 5: fixings by type. Each clip type's free directions (in its VEC frame:
+//! Fixings by type. Each clip type's free directions (in its VEC frame:
 //! Y along the hose, Z against the mounting direction, X = Y × Z) carry no reaction and its
 //! fixed ones carry the load — checked by static equilibrium of a hose seated in the clip
 //! ([`ClipSpec::seat_hold`], the load case the runtime puts on a seated node). The sliding

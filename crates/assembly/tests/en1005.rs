@@ -1,4 +1,4 @@
-//! Issue 11 item 6: EN 1005-3 as an alternative ergonomic profile — F_R against a hand
+//! EN 1005-3 as an alternative ergonomic profile — F_R against a hand
 //! calculation, the risk zones, the profile's keys and errors, and the verdict's words.
 
 use glam::DVec3;

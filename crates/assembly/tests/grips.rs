@@ -1,4 +1,4 @@
-//! Issue 11 item 2 (assembly part): grips. A hand holding a clamped hose near its tip
+//! Grips. A hand holding a clamped hose near its tip
 //! turns by 0.3 rad about the hose's axis and 0.2 rad across it; at static equilibrium
 //! the firm grip carries a twist (and bending) moment, the axial grip carries no moment
 //! about the hose's axis, and the ball grip no moment at all.

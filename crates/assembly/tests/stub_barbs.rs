@@ -1,4 +1,4 @@
-//! Issue 11 item 5: a stub with a profile of two barbs — push-on and pull-off peak forces
+//! A stub with a profile of two barbs — push-on and pull-off peak forces
 //! against the hand calculation of the press fit over the profile (docs/physics.md,
 //! "Stub profile"): at depth d the axial force is the cylinder's friction, plus N_i γ for
 //! every crest the lip has passed, plus N_j (tan α + γ)/(1 − γ tan α) on the flank of barb

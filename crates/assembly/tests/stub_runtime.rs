@@ -1,4 +1,4 @@
-//! A hose end pushed onto a connector stub by a hand (SPEC L6, issue 3 item 4): the end
+//! A hose end pushed onto a connector stub by a hand (SPEC L6): the end
 //! stays on the stub when released (fixed), and comes off when pulled harder than the
 //! holding force.
 

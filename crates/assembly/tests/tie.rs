@@ -1,4 +1,4 @@
-//! Issue 11 item 5: a cable tie bundling two hoses ([`pliant_core::loads::Tie`], timeline
+//! A cable tie bundling two hoses ([`pliant_core::loads::Tie`], timeline
 //! action `tie`). Two identical cantilevers of hose 3 side by side, clamped at their roots
 //! and tied at their tips; one tip is pulled away from the other along the line between
 //! them. The tie carries the load across: the two tips move together, so the two

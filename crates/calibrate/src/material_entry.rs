@@ -91,7 +91,7 @@ pub struct MaterialResult {
 
 impl MaterialResult {
     /// The first derived value (or confidence bound) that is not finite, by its key:
-    /// such a material is never written (issue 36, item 4).
+    /// such a material is never written.
     pub fn first_non_finite(&self) -> Option<(&'static str, f64)> {
         let derived: [(&'static str, Option<&Derived>); 8] = [
             ("e_tension_mpa", Some(&self.e_tension_mpa)),

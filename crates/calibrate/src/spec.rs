@@ -23,7 +23,7 @@ use serde::Deserialize;
 pub const FORMAT_TAG: &str = "pliant-calibration";
 
 /// Largest specimen diameter or length \[mm\] (10 m): beyond it a section's moments
-/// overflow and the calibration would give no finite material (issue 36, item 4).
+/// overflow and the calibration would give no finite material.
 pub const MAX_SPECIMEN_MM: f64 = 1e4;
 
 /// A calibration: the material to produce and the tests to fit.

@@ -14,8 +14,8 @@
 use anyhow::{bail, Context, Result};
 use comfy_table::{presets, CellAlignment, Table};
 use glam::DVec3;
-use pliant_core::frames::node_frames;
 use pliant_core::loads::{Fix, LoadCase};
+use pliant_core::rod::frames::node_frames;
 use pliant_core::RigidPartSpec;
 use pliant_core::{
     health, integrators::explicit, HoseSpec, Material, Model, Section, SimSettings, State,
@@ -119,7 +119,7 @@ pub mod dissertation {
 pub struct BenchRow {
     /// Case name, e.g. "1 hose × 100" or "5 hoses × 30, 2 threads".
     pub name: String,
-    /// Threads the step used (issue 15; results are the same for any number).
+    /// Threads the step used (results are the same for any number).
     pub threads: usize,
     pub hoses: usize,
     pub elements_per_hose: usize,
@@ -161,7 +161,7 @@ pub struct BenchRow {
     pub contact_points: usize,
 }
 
-/// The cost of contact with a large rigid environment (issue 3 item 11).
+/// The cost of contact with a large rigid environment.
 #[derive(Clone, Debug, Serialize)]
 pub struct ContactCost {
     pub triangles: usize,
@@ -258,8 +258,8 @@ impl Peak {
                     .and_then(|m| m.trim().parse::<f64>().ok())
             })
             .map_or(1.0, |mhz| mhz / 1000.0);
-        let fma = pliant_core::element_block::Kernel::detect()
-            == pliant_core::element_block::Kernel::Avx2Fma;
+        let fma = pliant_core::rod::element_block::Kernel::detect()
+            == pliant_core::rod::element_block::Kernel::Avx2Fma;
         let flops_per_cycle = if fma { 16.0 } else { 4.0 };
         Peak {
             gflops_per_core: flops_per_cycle * clock_ghz,
@@ -291,9 +291,9 @@ pub struct MachineInfo {
 /// The whole benchmark result.
 #[derive(Clone, Debug, Serialize)]
 pub struct BenchReport {
-    /// The Newton solvers' rows (issue 5).
+    /// The Newton solvers' rows.
     pub newton: Option<crate::bench_newton::NewtonBench>,
-    /// The full engine bay per solver, with and without sleeping (issue 15).
+    /// The full engine bay per solver, with and without sleeping.
     pub engine_bay: Option<crate::bench_engine_bay::EngineBayBench>,
     /// Headline: median ns per element per step on the 100-element hose.
     pub ns_per_element_step: f64,
@@ -684,7 +684,7 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
         quick,
         machine: machine(),
         peak: Peak::detect(),
-        kernel: pliant_core::element_block::Kernel::detect().name(),
+        kernel: pliant_core::rod::element_block::Kernel::detect().name(),
         scaling: Scaling {
             loglog_slope: fit.slope,
             loglog_intercept: fit.intercept,
@@ -819,7 +819,7 @@ fn run_all(opts: &BenchOptions) -> Result<()> {
     let mut cases: Vec<(usize, usize, usize)> =
         SINGLE_HOSE_ELEMENTS.iter().map(|&n| (1, n, 1)).collect();
     // One hose of 30 is already a single-hose case; the multi-hose cases on one thread
-    // and on every core (issue 15)
+    // and on every core
     let cores = pliant_core::parallel::available_cores();
     for &h in HOSE_COUNTS.iter().filter(|&&h| h != 1) {
         cases.push((h, 30, 1));

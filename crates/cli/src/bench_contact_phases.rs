@@ -1,4 +1,4 @@
-//! The contact benchmark at fixed steps of its world (issue 15 item 2).
+//! The contact benchmark at fixed steps of its world.
 //!
 //! The time-boxed rows of `pliant bench --only contact` warm up for a wall time and then
 //! measure for one. A slower or busier machine therefore measures earlier steps, and

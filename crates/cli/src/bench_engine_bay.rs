@@ -1,4 +1,4 @@
-//! The full engine-bay benchmark (issue 15 item 5, SPEC §6 and I6), part of `pliant
+//! The full engine-bay benchmark (SPEC §6 and I6), part of `pliant
 //! bench`: 20 hoses of 30 elements (600 elements) routed among procedural engine-bay
 //! parts of more than a million triangles — a finely tessellated, wavy heat shield, an
 //! engine block (a box with subdivided faces) and six cylinders (pipes, pulleys) — one

@@ -21,7 +21,7 @@ use std::time::Instant;
 pub const MAIN_HARNESS: &str = "kblxml_2.4sr-1_tab016120_modulare_ltgs._160718.kbl";
 /// How far the hand moves per update \[m\].
 pub const HAND_STEP: f64 = 0.002;
-/// The goal for one update \[ms\] (the harness issue: interactive on one core).
+/// The goal for one update \[ms\]: interactive on one core.
 pub const GOAL_MS: f64 = 10.0;
 
 /// What `pliant bench --harness` measures.

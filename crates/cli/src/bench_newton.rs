@@ -1,8 +1,8 @@
-//! The Newton solvers' benchmark rows (issue 5, item 6), part of `pliant bench`:
+//! The Newton solvers' benchmark rows, part of `pliant bench`:
 //! * quasi-static update of a 30-element hose (library material 1, 0.6 m, gravity,
 //!   clamped at one end, the other end held by a hand that moves 2 mm per update): wall
 //!   time per equilibrium solve, goal ≤ 1 ms (haptic rate);
-//! * the same update with the hose held against a part (issue 15, item 3): its middle
+//! * the same update with the hose held against a part: its middle
 //!   pressed onto a block (12 triangles) with friction, the contact active in every
 //!   update, goal ≤ 1 ms;
 //! * implicit HHT-α step (Δt = 10 ms, a hanging hose swinging under gravity) for 10 …

@@ -1,5 +1,5 @@
 //! `pliant peer …`: Pliant's side of the head-to-head benchmarks against PyElastica and
-//! MuJoCo (issue 5 item 5, `bench/peers/`). Each subcommand solves one problem once and
+//! MuJoCo (`bench/peers/`). Each subcommand solves one problem once and
 //! prints one JSON object on stdout; `bench/peers/run.py` sweeps the resolution and the
 //! tolerances and compares with the peers.
 //!
@@ -16,7 +16,7 @@ use anyhow::{bail, Result};
 use glam::{DQuat, DVec3};
 use pliant_core::integrators::StaticSolver;
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
-use pliant_core::settle::{settle, SettleOptions};
+use pliant_core::relax::{relax, RelaxOptions};
 use pliant_core::{
     health, integrators::explicit, HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings,
     State, WorldSpec,
@@ -30,7 +30,7 @@ use std::time::Instant;
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// Explicit central differences with kinetic damping (dynamic relaxation,
-    /// `pliant_core::settle`), stopped when the out-of-balance force on every free node is
+    /// `pliant_core::relax`), stopped when the out-of-balance force on every free node is
     /// below tol·P (moment below tol·P·L).
     Relax,
     /// Explicit central differences with viscous mass damping at the critical value of
@@ -245,10 +245,10 @@ pub fn solve_cantilever(
     let max_steps: u64 = 200_000_000;
     let (converged, steps, note) = match solver {
         Method::Relax => {
-            let r = settle(
+            let r = relax(
                 &model,
                 &mut state,
-                &SettleOptions {
+                &RelaxOptions {
                     force_tolerance: tol * p,
                     moment_tolerance: tol * p * len,
                     max_steps,

@@ -3,7 +3,7 @@
 //! session — and writes the same outputs as `pliant run`; `--timeline` also writes the
 //! log as an ordinary scene file whose timeline re-enacts it.
 //!
-//! A damaged log (issue 36, item 3) is refused, naming the line and what would be lost
+//! A damaged log is refused, naming the line and what would be lost
 //! (exit 2); `--up-to-damage` replays it up to the damaged line, says so in the output
 //! and `summary.json` (`log_damage`) and exits 4. A last line torn by a writer killed
 //! mid-line is no damage: the log replays up to it, and the tear is said (`log_torn_tail`).

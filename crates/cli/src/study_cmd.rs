@@ -2,7 +2,7 @@
 //! Python (the `pliant.studies` package: sampling, Dask, Parquet, envelopes, report); this
 //! command finds a Python interpreter that has it and hands the arguments over.
 //!
-//! The driver does not outlive this command (issue 36: `kill -9` of `pliant study` left
+//! The driver does not outlive this command (`kill -9` of `pliant study` left
 //! the driver and its Dask workers running): on Linux it is started with
 //! `PR_SET_PDEATHSIG` = SIGTERM, so the kernel signals it when this process dies however
 //! it dies, and the driver takes SIGTERM as Ctrl-C — it writes the finished rows and

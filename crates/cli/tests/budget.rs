@@ -1,4 +1,4 @@
-//! The memory estimate against the measured peak (issue 36): `pliant run` of scenes that
+//! The memory estimate against the measured peak: `pliant run` of scenes that
 //! stress each term of the estimate (`pliant_scene::budget`) — beam elements, many hoses
 //! (the report's per-hose profiles and scene pictures), part triangles, hose–hose contact
 //! pairs — in a child process whose peak resident memory is read from the kernel
@@ -9,8 +9,7 @@
 //! [`FACTOR`] times it. Measured (release build, 2026-11-29): 1 hose × 20 000 elements
 //! 100 MB / 48 MB ≈ 2.1×, 1 000 hoses × 20 100 / 54 MB ≈ 1.8×, 327 680 triangles
 //! 184 / 135 MB ≈ 1.4×, 1 000 hoses × 4 on one line (5·10⁶ contact pairs) 113 / 66 MB
-//! ≈ 1.7×. Before issue 36 the 1 000 × 20 run peaked at
-//! 3.3 GB against an estimate of 105 MB, and the pairs were not counted at all.
+//! ≈ 1.7×.
 
 #![cfg(target_os = "linux")]
 

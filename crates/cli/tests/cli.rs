@@ -533,7 +533,7 @@ const OPTIONAL_MEMBERS: [&str; 6] = [
 ];
 
 /// Where `value` holds a `null` that is not an optional member left empty: a NaN or an
-/// infinity written by serde_json (issue 36, item 4).
+/// infinity written by serde_json.
 fn null_number(value: &serde_json::Value, path: &str) -> Option<String> {
     match value {
         serde_json::Value::Array(items) => items.iter().enumerate().find_map(|(k, v)| {
@@ -569,7 +569,7 @@ fn assert_all_finite(out: &Path) {
     }
 }
 
-/// Issue 36, item 4: a run that diverges — under every solver — says so (exit 3, the
+/// A run that diverges — under every solver — says so (exit 3, the
 /// divergence in summary.json) and writes no non-finite number into any file, JSON
 /// included (a hose whose final state is not finite has it omitted, with the reason).
 #[test]
@@ -592,7 +592,7 @@ fn diverged_runs_under_every_solver_write_no_non_finite_number() {
     }
 }
 
-/// Issue 36, item 4: a gravity, load or rotation of 1e300 is refused at load, naming the
+/// A gravity, load or rotation of 1e300 is refused at load, naming the
 /// field, instead of running into NaN.
 #[test]
 fn absurd_gravity_load_and_rotation_are_refused_at_load() {
@@ -627,7 +627,7 @@ fn absurd_gravity_load_and_rotation_are_refused_at_load() {
     }
 }
 
-/// Issue 36, item 4: `pliant calibrate` never exits 0 with a non-finite number in what
+/// `pliant calibrate` never exits 0 with a non-finite number in what
 /// it writes: a 1e308 mm specimen is refused before fitting, and curves that overflow
 /// the fit give an error, not `e_bending_mpa = NaN`.
 #[test]
@@ -926,7 +926,7 @@ fn calibrate_fits_the_example_and_writes_the_material() {
     );
 }
 
-/// Issue 11 items 5 and 6 through `pliant run`: a second hose tied to the first by the
+/// Ties and EN 1005-3 through `pliant run`: a second hose tied to the first by the
 /// timeline's `tie`, a hand pulling the first hose's tip sideways, judged by EN 1005-3
 /// from `--ergonomics` — and from the scene's `[ergonomics]`; a bad profile is refused
 /// naming the key.
@@ -1052,7 +1052,7 @@ fn serve_help_says_where_sessions_are_recorded_and_how_to_report_them() {
     }
 }
 
-/// Issue 36: a run planned beyond the step limit is refused before it starts, with its
+/// A run planned beyond the step limit is refused before it starts, with its
 /// estimate (a scene planned at 1.6·10¹² steps used to start); `--max-steps` allows
 /// more. A `time_step_safety` of 1e-300 (4.6·10³⁰⁴ steps) is refused at load, naming
 /// the field.
@@ -1124,7 +1124,7 @@ fn descendants(pid: u32) -> Vec<u32> {
     found
 }
 
-/// Issue 36: `kill -9` of `pliant study` stops its Python driver and the Dask workers
+/// `kill -9` of `pliant study` stops its Python driver and the Dask workers
 /// (they used to run on). Needs a Python with the study extras (PLIANT_PYTHON or the
 /// repository's .venv); without one the test says so and passes. Waits for conditions
 /// (workers started, processes gone), never for durations.

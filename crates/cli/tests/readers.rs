@@ -1,5 +1,5 @@
-//! Every file reader reads regular files only and the STEP converter has a time limit
-//! (issue 36, item 5), as a user runs `pliant`.
+//! Every file reader reads regular files only and the STEP converter has a time limit,
+//! as a user runs `pliant`.
 
 use std::path::Path;
 use std::process::{Command, Output};

@@ -1,4 +1,4 @@
-//! `pliant replay` of damaged and torn session logs (issue 36, item 3: evidence is never
+//! `pliant replay` of damaged and torn session logs (evidence is never
 //! silently lost), as a user runs it.
 
 use pliant_assembly::workcell::NoObserver;

@@ -2,7 +2,7 @@
 //! ends that meet at one point — position and rotation shared, each segment keeping the
 //! tangent its data gives it; a *junction body* (a moulded T or Y piece) joins ends that
 //! lie apart, at its outlets. Either way the joined end nodes move as one rigid body
-//! ([`crate::stiffened::RigidBody`]): the explicit solver steps it by Newton–Euler as it
+//! ([`crate::rod::stiffened::RigidBody`]): the explicit solver steps it by Newton–Euler as it
 //! does a stiffened section, the Newton solvers condense its nodes onto one master node
 //! ([`crate::newton::condensation`]). A junction body's own mass is lumped onto its
 //! outlet nodes in equal shares, so its centre of mass is the mean of its outlets and its
@@ -10,7 +10,7 @@
 //! estimate otherwise.
 
 use crate::model::{Model, ModelError};
-use crate::stiffened::RigidBody;
+use crate::rod::stiffened::RigidBody;
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 

@@ -7,44 +7,46 @@
 //! Calling convention (as MuJoCo's): a [`Model`] is built once from a [`WorldSpec`]; a
 //! [`State`] holds everything that changes; [`integrators::explicit::step`]`(&model, &mut
 //! state)` advances it (the implicit and quasi-static solvers: [`Solver`]).
+//!
+//! The modules are layered; a module uses only modules of its own layer or below
+//! (`tests/layering.rs` checks the data layer and the kernels):
+//!
+//! 1. plain data — [`spec`], [`settings`], [`model`], [`state`], [`material`],
+//!    [`section`], [`junction`], [`curve`], [`math`];
+//! 2. kernels — [`rod`] (the co-rotational element, its four-lane kernel and tangent,
+//!    masses, frames, stiffened sections, the stable time step), [`autodiff`];
+//! 3. loads and contact — [`loads`], [`contact`];
+//! 4. Newton — [`newton`];
+//! 5. solvers — [`integrators`], [`relax`];
+//!
+//! beside the run support used by several layers: [`health`], [`sleep`], [`parallel`].
 
 pub mod autodiff;
-pub mod body_loads;
 pub mod contact;
 pub mod curve;
-pub mod element;
-pub mod element_block;
-pub mod forces;
-pub mod frames;
 pub mod health;
 pub mod integrators;
 pub mod junction;
-pub mod lane_arith;
-pub mod lanes;
 pub mod loads;
-pub mod mass;
 pub mod material;
 pub mod math;
 pub mod model;
 pub mod newton;
 pub mod parallel;
+pub mod relax;
+pub mod rod;
 pub mod section;
-pub mod settle;
+pub mod settings;
 pub mod sleep;
 pub mod spec;
 pub mod state;
-pub mod stiffened;
-pub mod tangent;
-pub mod tangent_kernel;
-#[cfg(test)]
-mod test_elements;
-pub mod timestep;
 
 pub use health::Divergence;
-pub use integrators::{Solver, SolverKind, SolverSettings, StepStats};
+pub use integrators::{Solver, StepStats};
 pub use junction::{HoseEnd, Junction, JunctionSpec};
 pub use material::Material;
 pub use model::{HoseInfo, Model, ModelError};
 pub use section::{GivenStiffness, Section, SectionProperties};
+pub use settings::{SolverKind, SolverSettings};
 pub use spec::{HoseSpec, RigidPartSpec, SimSettings, WorldSpec};
 pub use state::State;

@@ -2,16 +2,16 @@
 //! fixed after building, in the spirit of MuJoCo's mjModel.
 
 use crate::contact::{HoseContactModel, RigidEnvironment};
-use crate::element::BeamElement;
-use crate::element_block::PackedElements;
-use crate::frames::node_frames;
-use crate::integrators::SolverSettings;
 use crate::junction::Junction;
-use crate::mass::half_element_mass;
+use crate::rod::element::BeamElement;
+use crate::rod::element_block::PackedElements;
+use crate::rod::frames::node_frames;
+use crate::rod::mass::half_element_mass;
+use crate::rod::stiffened::{RigidBody, StiffenedSpan};
+use crate::rod::timestep::{stable_time_step, TimeStepReport};
 use crate::section::SectionProperties;
+use crate::settings::SolverSettings;
 use crate::spec::{HoseSpec, SimSettings, WorldSpec};
-use crate::stiffened::{RigidBody, StiffenedSpan};
-use crate::timestep::{stable_time_step, TimeStepReport};
 use glam::{DQuat, DVec3};
 use serde::Serialize;
 
@@ -42,7 +42,7 @@ pub struct Model {
     pub elements: Vec<BeamElement>,
     /// Lumped translational mass per node \[kg\].
     pub mass: Vec<f64>,
-    /// Lumped isotropic rotational inertia per node \[kg·m²\] (see [`crate::mass`]).
+    /// Lumped isotropic rotational inertia per node \[kg·m²\] (see [`crate::rod::mass`]).
     pub inertia: Vec<f64>,
     /// Outer radius per node \[m\] (for drawing and contact).
     pub radius: Vec<f64>,
@@ -68,12 +68,12 @@ pub struct Model {
     /// Per hose: its network, the smallest index of the hoses joined to it through
     /// junctions (its own index when it joins none).
     pub hose_network: Vec<usize>,
-    /// The solver the scene asks for (issue 5); callers may choose another.
+    /// The solver the scene asks for; callers may choose another.
     pub solver: SolverSettings,
     /// Per-beam constants of hose–hose contact (SPEC L5).
     pub hose_contact: HoseContactModel,
     /// The elements in blocks of four for the explicit solver's kernel
-    /// ([`crate::element_block`]); built with the model.
+    /// ([`crate::rod::element_block`]); built with the model.
     pub packed: PackedElements,
     /// Threads the explicit step may use ([`SimSettings::threads`], resolved; a caller
     /// may change it — results do not depend on it).

@@ -1,4 +1,4 @@
-//! A small persistent pool of helper threads for the explicit step (issue 15): the step
+//! A small persistent pool of helper threads for the explicit step: the step
 //! hands it a job of independent chunks (groups of whole hoses), and the calling thread
 //! and the helpers claim chunks until none is left.
 //!

@@ -73,7 +73,7 @@ pub struct SectionProperties {
     /// Rotary inertia per length about a transverse axis, ρ·I [kg·m]: for a tube ρ I; for a
     /// section with given stiffness μ·max(I/A, EI/EA) (I/A of the tube envelope, EI the
     /// larger bending stiffness) — so that the lumped rotary inertia's floor
-    /// ([`crate::mass::half_element_mass`]) keeps rotations from shrinking the time step.
+    /// ([`crate::rod::mass::half_element_mass`]) keeps rotations from shrinking the time step.
     pub rotary_inertia_per_length: f64,
 }
 

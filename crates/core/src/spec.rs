@@ -61,10 +61,10 @@ pub struct SimSettings {
     /// Fixed time step \[s\]; `None` → computed from the model. A fixed step larger than the
     /// stable one is refused when the model is built.
     pub time_step: Option<f64>,
-    /// Which solver advances the simulation, and its steps (issue 5).
+    /// Which solver advances the simulation, and its steps.
     #[serde(default)]
-    pub solver: crate::integrators::SolverSettings,
-    /// Threads the explicit step may use (issue 15); `None` → 1 for a single hose, the
+    pub solver: crate::settings::SolverSettings,
+    /// Threads the explicit step may use; `None` → 1 for a single hose, the
     /// machine's logical cores for several. The environment variable `PLIANT_THREADS`
     /// overrides both. Results are the same for any number ([`crate::parallel`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -111,7 +111,7 @@ pub struct RigidPartSpec {
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct WorldSpec {
     pub hoses: Vec<HoseSpec>,
-    /// Rigid environment (issue 3, SPEC L4); empty → no contact with parts.
+    /// Rigid environment (SPEC L4); empty → no contact with parts.
     #[serde(default)]
     pub rigid_parts: Vec<RigidPartSpec>,
     pub settings: SimSettings,

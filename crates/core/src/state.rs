@@ -4,10 +4,9 @@
 
 use crate::contact::friction::FrictionMemory;
 use crate::contact::{ContactScratch, HoseContactScratch};
-use crate::integrators::ImplicitHistory;
 use crate::loads::LoadCases;
+use crate::rod::stiffened::BodyState;
 use crate::sleep::Sleep;
-use crate::stiffened::BodyState;
 use crate::Model;
 use glam::{DQuat, DVec3};
 
@@ -125,5 +124,37 @@ impl State {
         -(0..self.x.len())
             .map(|i| model.mass[i] * model.gravity.dot(self.x[i]))
             .sum::<f64>()
+    }
+}
+
+/// What the HHT-α step ([`crate::integrators::implicit`]) carries from one step to the next — a_n, α_n and f_n, m_n of the
+/// last converged step. Part of the [`State`] (`state.implicit`), so that a state saved
+/// and restored continues exactly, and a fresh state (a reset) starts the history anew.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ImplicitHistory {
+    pub(crate) acc: Vec<DVec3>,
+    pub(crate) ang_acc: Vec<DVec3>,
+    pub(crate) f_prev: Vec<DVec3>,
+    pub(crate) m_prev: Vec<DVec3>,
+    /// Whether the vectors hold the last step's values (false: initialise them first).
+    pub(crate) started: bool,
+    /// Initialise with zero accelerations ([`Self::restart_at_rest`]).
+    pub(crate) zero_acceleration: bool,
+}
+
+impl ImplicitHistory {
+    /// Forgets the last step's accelerations (after the state was changed from outside).
+    pub fn restart(&mut self) {
+        self.started = false;
+        self.zero_acceleration = false;
+    }
+
+    /// Restarts from a state the caller has just brought to rest (velocities zeroed, as
+    /// kinetic damping does): accelerations start at zero too, so the out-of-balance
+    /// forces act through the next step's equation only, without a kick through the
+    /// Newmark predictor terms.
+    pub fn restart_at_rest(&mut self) {
+        self.started = false;
+        self.zero_acceleration = true;
     }
 }

@@ -1,4 +1,4 @@
-//! Temporal coherence of rigid contact (issue 15): the candidate triangles kept from step
+//! Temporal coherence of rigid contact: the candidate triangles kept from step
 //! to step give exactly the contacts of fresh BVH queries — same forces, same positions,
 //! to the last bit — over a run where hoses fall onto a fine bumpy floor, lie on it and
 //! are dragged across it.

@@ -5,11 +5,12 @@
 use glam::{DQuat, DVec3};
 use pliant_core::contact::hose_hose::closest_segment_segment;
 use pliant_core::contact::{hose_contact_forces, BroadPhase};
-use pliant_core::forces::{internal_loads, Config};
 use pliant_core::health::check;
 use pliant_core::integrators::explicit::step;
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
 use pliant_core::math::exp_map;
+use pliant_core::rod::forces::internal_loads;
+use pliant_core::rod::node_view::NodeView;
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 use std::f64::consts::PI;
 
@@ -544,7 +545,7 @@ fn broad_phase_finds_exactly_the_brute_force_pairs() {
 }
 
 /// Highest natural frequency of M⁻¹(K_internal + K_contact) linearised at `x0`, by power
-/// iteration with central differences (as `pliant_core::timestep::max_frequency`).
+/// iteration with central differences (as `pliant_core::rod::timestep::max_frequency`).
 fn max_frequency_with_contact(model: &Model, x0: &[DVec3], with_contact: bool) -> f64 {
     let n = model.node_count();
     let mut scratch = State::at_rest(model).hose_contact;
@@ -578,7 +579,7 @@ fn max_frequency_with_contact(model: &Model, x0: &[DVec3], with_contact: bool) -
                 .collect();
             internal_loads(
                 model,
-                &Config {
+                &NodeView {
                     x: &x,
                     q: &q,
                     v: &zero,

@@ -1,4 +1,4 @@
-//! The hose-contact pair list built by sort and sweep (issue 15) is the uniform grid's list
+//! The hose-contact pair list built by sort and sweep is the uniform grid's list
 //! pair for pair — same pairs, same order, same orientation — so that stepping gives the
 //! same bits as with the grid: random boxes, random motions of random hoses, and
 //! contact-rich runs (one and two threads), with the sweep in use and with the grid as its

@@ -9,7 +9,7 @@ mod common;
 use glam::{DQuat, DVec3};
 use pliant_core::integrators::{Solver, SolverKind, SolverSettings, StaticSolver};
 use pliant_core::loads::{Fix, LoadCase};
-use pliant_core::settle::{settle, SettleOptions};
+use pliant_core::relax::{relax, RelaxOptions};
 use pliant_core::{HoseEnd, JunctionSpec, Model, SimSettings, State, WorldSpec};
 
 use common::straight_hose1 as hose;
@@ -55,10 +55,10 @@ fn at_rest(kind: SolverKind) -> (Model, State) {
     let (model, mut state) = y_network();
     match kind {
         SolverKind::Explicit => {
-            let r = settle(
+            let r = relax(
                 &model,
                 &mut state,
-                &SettleOptions {
+                &RelaxOptions {
                     force_tolerance: 1e-9,
                     moment_tolerance: 1e-10,
                     max_steps: 2_000_000,

@@ -1,4 +1,4 @@
-//! The Newton solvers (issue 5): quasi-static equilibrium against the exact elastica and
+//! The Newton solvers: quasi-static equilibrium against the exact elastica and
 //! against the explicit solver's relaxed state; implicit HHT-α at large steps.
 
 use glam::{DQuat, DVec3};
@@ -51,7 +51,7 @@ fn hose1() -> (Material, Section) {
 /// Library hose 1, 0.5 m in 8 elements along x from `start`, nodes 3–5 a stiffened
 /// section (SPEC M6), under `gravity`.
 fn stiffened_hose(start: DVec3, gravity: DVec3) -> Model {
-    use pliant_core::stiffened::StiffenedSpan;
+    use pliant_core::rod::stiffened::StiffenedSpan;
     let (mat, sec) = hose1();
     let n = 8;
     let nodes = (0..=n)
@@ -245,7 +245,7 @@ fn implicit_hand_lifts_a_stiffened_section() {
     assert!((state.x[4].z - 0.2).abs() < 1e-12);
 }
 
-/// Issue 12 (the implicit soak): a step Newton cannot converge is taken from its start by
+/// A step Newton cannot converge is taken from its start by
 /// the explicit solver in ⌈h/Δt⌉ equal pieces — the same numbers as those pieces taken
 /// directly — with a hand's target approached over the pieces (the held node moves at
 /// the hand's speed, not in one jump), and the implicit solver goes on from there.
@@ -324,7 +324,7 @@ fn a_relaxation_that_stopped_moving_gives_up() {
     assert_eq!(outcome, None);
     let taken = state.step - before;
     assert!(taken < 200_000, "{taken} explicit steps");
-    let (f, m) = pliant_core::settle::residual(&state);
+    let (f, m) = pliant_core::relax::residual(&state);
     assert!(f < 1e-9 && m < 1e-9, "residual {f} N, {m} N·m");
     assert!(state.x[10].z < -0.5, "the tip hangs: {}", state.x[10]);
 }

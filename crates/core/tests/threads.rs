@@ -1,13 +1,14 @@
-//! The explicit step gives the same bits on 1, 2 or 3 threads (issue 15): hoses that
+//! The explicit step gives the same bits on 1, 2 or 3 threads: hoses that
 //! fall onto each other (hose–hose contact), a stiffened span, fixed and loaded nodes,
 //! with and without a rigid floor (the step's split velocity/position update), and the
 //! vectorised kernels against the reference element loop.
 
 use glam::{DQuat, DVec3};
-use pliant_core::forces::{add_reference_loads, internal_loads, Config};
 use pliant_core::integrators::explicit::step;
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
-use pliant_core::stiffened::StiffenedSpan;
+use pliant_core::rod::forces::{add_reference_loads, internal_loads};
+use pliant_core::rod::node_view::NodeView;
+use pliant_core::rod::stiffened::StiffenedSpan;
 use pliant_core::{
     HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings, State, WorldSpec,
 };
@@ -164,7 +165,7 @@ fn model_loads_match_the_reference_loop() {
     for _ in 0..300 {
         step(&model, &mut state);
     }
-    let c = Config {
+    let c = NodeView {
         x: &state.x,
         q: &state.q,
         v: &state.v,

@@ -1,4 +1,4 @@
-//! Reading a file a user named (issue 36, item 5: every reader reads regular files only,
+//! Reading a file a user named (every reader reads regular files only,
 //! up to a size limit). Scene files and the files they reference, STEP files, KBL
 //! files, calibration specs and CSVs and session logs all come through
 //! [`read_regular_file`] (or [`read_regular_text`]):

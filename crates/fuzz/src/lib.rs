@@ -1,5 +1,5 @@
-//! Fuzz targets for everything Pliant reads from outside (hardening item 8; issue 36,
-//! item 6): scene files in TOML and JSON, the OBJ, STL and glTF mesh readers, the
+//! Fuzz targets for everything Pliant reads from outside:
+//! scene files in TOML and JSON, the OBJ, STL and glTF mesh readers, the
 //! WebSocket protocol's message parser, session logs, calibration specs and curves and
 //! KBL harness files ([`readers`]). Inputs are seeds (the example scenes, small meshes, protocol
 //! messages) changed by a few [`mutate::Op`]s — byte flips, inserted tokens ("1e300",

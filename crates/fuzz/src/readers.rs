@@ -1,4 +1,4 @@
-//! Fuzz targets of the file readers besides scenes and meshes (issue 36, item 6): session
+//! Fuzz targets of the file readers besides scenes and meshes: session
 //! logs, calibration specs and curves, KBL harness files. Each never panics and checks
 //! what its reader promises.
 

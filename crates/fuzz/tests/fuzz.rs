@@ -1,4 +1,4 @@
-//! The bounded fuzz run of the test command (hardening item 8): for every target,
+//! The bounded fuzz run of the test command: for every target,
 //! `PROPTEST_CASES` inputs (default 1 000; deterministic, so every run of the tests
 //! tries the same inputs — the long job `pliant-fuzz` tries new ones), each a seed with
 //! one to eight edits. A failure is shrunk to a small input and printed; proptest keeps

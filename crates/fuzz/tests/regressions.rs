@@ -1,5 +1,5 @@
-//! Regression inputs for the defects of issue 36 ("Hardening, second round"), run through
-//! the fuzz targets in the bounded slice of the test command: each must hold the
+//! Regression inputs for the defects found by hardening (malformed and absurd inputs), run
+//! through the fuzz targets in the bounded slice of the test command: each must hold the
 //! target's properties (no panic, no broken promise), and the defect's own symptom is
 //! checked where the target can see it.
 

@@ -1,4 +1,4 @@
-//! KBL out (SPEC N3, issue 34 item 8 "back to CAD"): the original KBL file with each
+//! KBL out (SPEC N3, "back to CAD"): the original KBL file with each
 //! settled segment's centre curve, lengths and end vectors replaced and its nodes moved.
 //!
 //! **How the file is edited.** The document is parsed with roxmltree (which keeps each
@@ -50,7 +50,7 @@ use crate::settled::{clean, polyline_length, SettledHarness, DUPLICATE_M};
 use crate::units::Dimension;
 
 /// Largest distance \[m\] between settled segment ends meeting at one node (0.1 mm, the
-/// round-trip tolerance of issue 34): Pliant welds the ends at a junction, so a larger
+/// harness round trip's tolerance): Pliant welds the ends at a junction, so a larger
 /// spread means a wrong route (e.g. a polyline given from its end node to its start).
 pub const NODE_SPREAD_LIMIT_M: f64 = 1e-4;
 

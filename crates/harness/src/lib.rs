@@ -44,7 +44,7 @@ pub(crate) fn file_name(path: &Path) -> String {
         .unwrap_or_else(|| path.display().to_string())
 }
 
-/// Largest KBL or VEC file read \[bytes\] (a regular file only; issue 36, item 5).
+/// Largest KBL or VEC file read \[bytes\] (a regular file only).
 pub const MAX_HARNESS_FILE_BYTES: u64 = 256 * 1024 * 1024;
 
 pub(crate) fn read_text(path: &Path) -> Result<(String, String), HarnessError> {

@@ -1,4 +1,4 @@
-//! STEP out (SPEC N3, issue 34 item 8): the settled centre lines as curves in an
+//! STEP out (SPEC N3): the settled centre lines as curves in an
 //! ISO 10303-21 exchange file of AP214 (ISO 10303-214, schema `AUTOMOTIVE_DESIGN`), so a
 //! designer opens Pliant's route in the CAD system.
 //!

@@ -1,32 +1,30 @@
-//! Static equilibrium by dynamic relaxation with kinetic damping — the method of
-//! `pliant_core::settle` (Cundall 1976; Barnes 1999) run on the full interactive step, so
-//! that hands, stubs and clips act while the hose settles: the explicit step runs on, and
-//! whenever the total kinetic energy passes a peak all velocities are set to zero. The
-//! result is the equilibrium of the same explicit model `step` advances; it is not an
-//! implicit or Newton solver.
+//! `Simulation.settle`: static equilibrium by dynamic relaxation with kinetic damping —
+//! the one routine of `pliant_core::relax` (Cundall 1976; Barnes 1999, its residual
+//! counting contact with parts and hoses), run on the full interactive step, so that
+//! hands, stubs and clips act while the hose settles. The result is the equilibrium of
+//! the same explicit model `step` advances; it is not an implicit or Newton solver.
 
 use crate::engine::{Engine, Refusal};
-use pliant_core::health::{check, Divergence};
-use pliant_core::settle::{SettleOptions, SettleReport as CoreSettleReport};
-use pliant_core::State;
+use pliant_core::health::Divergence;
+use pliant_core::relax::{relax_with, RelaxOptions, RelaxReport, Relaxing};
+use pliant_core::{Model, State};
+use std::ops::ControlFlow;
 
-/// How often the residual is looked at, in steps (as `pliant_core::settle`).
-const CHECK_EVERY: u64 = 64;
-
-/// Largest out-of-balance force and moment on the free nodes after the last step. As
-/// `pliant_core::settle::residual`, but with the rigid parts' contact forces counted (a
-/// hose resting on a part is in balance with the part's push, which the explicit step
-/// applies kinematically and reports apart from `force`).
-fn residual(state: &State) -> (f64, f64) {
-    let mut f: f64 = 0.0;
-    let mut m: f64 = 0.0;
-    for i in 0..state.x.len() {
-        if !state.held[i] {
-            f = f.max((state.force[i] + state.contact_force[i]).length());
-            m = m.max(state.moment[i].length());
-        }
+/// The engine as dynamic relaxation drives it: one workcell step a step, the velocities
+/// zeroed by a logged `Arrest` input.
+impl Relaxing for Engine {
+    fn model(&self) -> &Model {
+        Engine::model(self)
     }
-    (f, m)
+    fn state(&self) -> &State {
+        Engine::state(self)
+    }
+    fn step(&mut self) -> Result<(), Divergence> {
+        self.step_once()
+    }
+    fn stop(&mut self) {
+        self.arrest();
+    }
 }
 
 impl Engine {
@@ -34,8 +32,8 @@ impl Engine {
     /// Refused while a hand or a drive is still moving (there is no equilibrium then).
     pub fn settle(
         &mut self,
-        opts: &SettleOptions,
-    ) -> Result<Result<CoreSettleReport, Divergence>, Refusal> {
+        opts: &RelaxOptions,
+    ) -> Result<Result<RelaxReport, Divergence>, Refusal> {
         if self.moving() {
             return Err(Refusal::Invalid(
                 "a hand or a drive is still moving; let it finish first (run() for its remaining duration)"
@@ -45,42 +43,6 @@ impl Engine {
         if let Some(d) = self.diverged() {
             return Ok(Err(d.clone()));
         }
-        let mut last_energy = 0.0;
-        let mut steps = 0;
-        let outcome = (|| {
-            while steps < opts.max_steps {
-                let chunk = CHECK_EVERY.min(opts.max_steps - steps);
-                for _ in 0..chunk {
-                    self.step_once()?;
-                    steps += 1;
-                    let energy = self.state().kinetic_energy(self.model());
-                    if opts.kinetic_damping && energy < last_energy {
-                        self.arrest();
-                        last_energy = 0.0;
-                    } else {
-                        last_energy = energy;
-                    }
-                }
-                check(self.model(), self.state())?;
-                let (f, m) = residual(self.state());
-                if f <= opts.force_tolerance && m <= opts.moment_tolerance {
-                    return Ok(CoreSettleReport {
-                        steps,
-                        residual_force: f,
-                        residual_moment: m,
-                        converged: true,
-                    });
-                }
-            }
-            check(self.model(), self.state())?;
-            let (f, m) = residual(self.state());
-            Ok(CoreSettleReport {
-                steps,
-                residual_force: f,
-                residual_moment: m,
-                converged: false,
-            })
-        })();
-        Ok(outcome)
+        Ok(relax_with(self, opts, |_| ControlFlow::Continue(())))
     }
 }

@@ -1,6 +1,6 @@
 //! `pliant.SettleReport`: how `Simulation.settle` ended.
 
-use pliant_core::settle::SettleReport as CoreSettleReport;
+use pliant_core::relax::RelaxReport;
 use pyo3::prelude::*;
 
 /// How a relaxation to static equilibrium ended.
@@ -20,8 +20,8 @@ pub struct SettleReport {
     residual_moment: f64,
 }
 
-impl From<CoreSettleReport> for SettleReport {
-    fn from(r: CoreSettleReport) -> Self {
+impl From<RelaxReport> for SettleReport {
+    fn from(r: RelaxReport) -> Self {
         SettleReport {
             converged: r.converged,
             steps: r.steps,

@@ -783,7 +783,7 @@ def test_local_workers_run_no_statistical_profiler(client):
 
 @pytest.mark.parametrize("kind", ["dev_zero", "fifo", "folder"])
 def test_a_study_file_that_is_not_a_regular_file_is_refused(tmp_path, kind):
-    # issue 36, item 5: a FIFO or a link to /dev/zero hung the reader or ran out of memory
+    # a FIFO or a link to /dev/zero hung the reader or ran out of memory
     path = tmp_path / "study.toml"
     if kind == "dev_zero":
         os.symlink("/dev/zero", path)

@@ -12,7 +12,7 @@
 //! once per triangle since 2026-11-27; added by size, not re-measured). The estimate takes the larger element size, as the solver may be changed
 //! after loading (`--solver`, the viewer).
 //!
-//! Hose–hose contact pairs are counted too (issue 36): the pair list holds every pair of
+//! Hose–hose contact pairs are counted too: the pair list holds every pair of
 //! beams whose boxes overlap, a few per beam for hoses laid apart (inside the per-element
 //! size) but every pair for hoses laid on top of each other (5 000 hoses of 4 elements
 //! along one line: 2·10⁸ pairs). They are counted on the rest geometry once all hoses
@@ -183,7 +183,7 @@ impl Budget {
 }
 
 /// Refuses a run of `planned` seconds at `time_step` \[s\] beyond `max_steps` steps,
-/// with its estimate (issue 36: a scene planned at 1.6·10¹² steps started anyway).
+/// with its estimate (a scene planned at 1.6·10¹² steps started anyway).
 /// Returns the planned steps.
 pub fn check_steps(planned: f64, time_step: f64, max_steps: u64) -> Result<u64, String> {
     let steps = (planned / time_step).ceil();

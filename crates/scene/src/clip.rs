@@ -1,5 +1,5 @@
 //! Error messages echo what the user wrote — an unknown key, a name, a value — but never
-//! a whole megabyte of it (issue 36: a 100 000-character key was echoed whole): every
+//! a whole megabyte of it (a 100 000-character key was echoed whole): every
 //! word longer than [`MAX_WORD_CHARS`] (paths fit) is cut to its first [`KEEP_CHARS`]
 //! characters and "…(N chars)", and a message longer than [`MAX_MESSAGE_CHARS`] to its
 //! first [`MAX_MESSAGE_CHARS`] and "…(N chars)".

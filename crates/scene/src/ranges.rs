@@ -1,4 +1,4 @@
-//! The physical ranges of scene values that are finite but absurd (issue 36, item 4: a
+//! The physical ranges of scene values that are finite but absurd (a
 //! gravity, load or rotation of 1e300 gives no study, only a blow-up and NaN): such a
 //! value is refused at load, naming the field, instead of diverging in the first step.
 //! The limits are far beyond any assembly study and stated in docs/scene-format.md.

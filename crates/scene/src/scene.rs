@@ -140,13 +140,13 @@ pub struct LoadedScene {
 
 impl LoadedScene {
     /// All stiffened spans, for [`pliant_core::Model::with_stiffened_spans`].
-    pub fn stiffened_spans(&self) -> Vec<pliant_core::stiffened::StiffenedSpan> {
+    pub fn stiffened_spans(&self) -> Vec<pliant_core::rod::stiffened::StiffenedSpan> {
         self.hoses
             .iter()
             .enumerate()
             .flat_map(|(hose, info)| {
                 info.stiffened.iter().map(move |&(first, last)| {
-                    pliant_core::stiffened::StiffenedSpan { hose, first, last }
+                    pliant_core::rod::stiffened::StiffenedSpan { hose, first, last }
                 })
             })
             .collect()

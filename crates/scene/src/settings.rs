@@ -8,7 +8,7 @@ use pliant_core::SimSettings;
 
 /// Smallest `simulation.time_step_safety` taken: the step is this fraction of the stable
 /// step, so smaller factors multiply the steps (and the run time) beyond any use — 10⁻³
-/// is already a thousand times the default's steps (issue 36: 1e-300 ran for ever,
+/// is already a thousand times the default's steps (1e-300 ran for ever,
 /// 5e-324 gave a zero step).
 pub const MIN_TIME_STEP_SAFETY: f64 = 1e-3;
 

@@ -1,4 +1,4 @@
-//! Waiting for an external program with a time limit (issue 36, item 5: a STEP file
+//! Waiting for an external program with a time limit (a STEP file
 //! with 1e308 or NaN coordinates made the converter run for ever): the child's output
 //! is collected as it comes, and a child still running at the limit is killed.
 

@@ -324,7 +324,7 @@ fn clips_load_in_si_with_perpendicular_orientation() {
     );
 }
 
-/// Issue 11 item 2: a grab's grip (default firm).
+/// A grab's grip (default firm).
 #[test]
 fn grabs_load_their_grip() {
     for (grip, want) in [
@@ -345,7 +345,7 @@ fn grabs_load_their_grip() {
     }
 }
 
-/// Issue 11 item 5: clip types, a sliding guide's friction (default 0.4), the pull-out
+/// Clip types, a sliding guide's friction (default 0.4), the pull-out
 /// force, a cable tie without snap force.
 #[test]
 fn clip_types_load_with_friction_and_holding_force() {
@@ -458,13 +458,13 @@ const CASES: &[Case] = &[
     Case { what: "unknown duty", edits: &[("duty = \"continuous\"", "duty = \"daily\"")], field: "ergonomics.duty", message: &["unknown duty `daily`; allowed: continuous, occasional"] },
     Case { what: "unknown ergonomics key", edits: &[("duty = \"continuous\"", "dutty = \"continuous\"")], field: "ergonomics.dutty", message: &["unknown field `dutty`"] },
     Case { what: "ergonomics value not a string", edits: &[("population = \"men\"", "population = 1")], field: "ergonomics.population", message: &["invalid type"] },
-    // EN 1005-3 (issue 11 item 6).
+    // EN 1005-3.
     Case { what: "EN 1005-3 key without the standard", edits: &[("duty = \"continuous\"", "duty = \"continuous\"\naction = \"arm\"")], field: "ergonomics.action", message: &["`action` is an EN 1005-3 parameter: give `standard=en1005-3` first"] },
     Case { what: "unknown standard", edits: &[("duty = \"continuous\"", "duty = \"continuous\"\nstandard = \"iso-11228\"")], field: "ergonomics.standard", message: &["unknown standard `iso-11228`; allowed: dissertation, en1005_3"] },
     Case { what: "unknown EN 1005-3 action", edits: &[("duty = \"continuous\"", "duty = \"continuous\"\nstandard = \"en1005-3\"\naction = \"kneeling\"")], field: "ergonomics.action", message: &["unknown EN 1005-3 action `kneeling`; allowed: whole_body, arm_trunk_support, arm"] },
     Case { what: "EN 1005-3 frequency beyond the table", edits: &[("duty = \"continuous\"", "duty = \"continuous\"\nstandard = \"en1005-3\"\nfrequency_per_min = 25")], field: "ergonomics.frequency_per_min", message: &["`frequency_per_min` must lie in [0, 20] per minute"] },
     Case { what: "EN 1005-3 percentile out of range", edits: &[("duty = \"continuous\"", "duty = \"continuous\"\nstandard = \"en1005-3\"\npercentile = 80")], field: "ergonomics.percentile", message: &["`percentile` must lie in [1, 50]"] },
-    // Ties between hoses (issue 11 item 5).
+    // Ties between hoses.
     Case { what: "tie of a node to itself", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0\nto = { hose = \"a\", node = 0 }")], field: "timeline[0].to", message: &["is the tied node itself"] },
     Case { what: "tie to an unknown hose", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0\nto = { hose = \"c\", node = 0 }")], field: "timeline[0].to.hose", message: &["unknown hose; hoses: a, b"] },
     Case { what: "tie to a node out of range", edits: &[("action = \"fix\"\nhose = \"a\"\nnode = 0", "action = \"tie\"\nhose = \"a\"\nnode = 0\nto = { hose = \"b\", node = 999 }")], field: "timeline[0].to.node", message: &["999"] },

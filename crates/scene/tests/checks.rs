@@ -214,7 +214,7 @@ fn bad_check_limits_are_errors_naming_the_field() {
     }
 }
 
-/// Issue 11 item 8: the built-in demo tells a true story — the hose rests on a part, the
+/// The built-in demo tells a true story — the hose rests on a part, the
 /// hand's bending moment is a warning only, and what makes it infeasible is the push into
 /// the engine-corner clip (the reason names it) and the installation checks.
 #[test]

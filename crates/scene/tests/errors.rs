@@ -376,7 +376,7 @@ fn many_hoses(n: usize, elements: usize, spacing: f64) -> String {
     s
 }
 
-/// Issue 36: 5 000 hoses of 4 elements laid on one line (640 KB of TOML, 20 000
+/// 5 000 hoses of 4 elements laid on one line (640 KB of TOML, 20 000
 /// elements, within every per-field limit) list 2·10⁸ contact pairs — several GB. The
 /// estimate counts them, and the scene is refused naming them, before any is built.
 #[test]
@@ -398,7 +398,7 @@ fn hoses_laid_on_each_other_are_refused_for_their_contact_pairs() {
     assert_eq!(apart.estimate.elements, 2000);
 }
 
-/// Issue 36: an error echoing a user's key of 100 000 characters clips it to its start
+/// An error echoing a user's key of 100 000 characters clips it to its start
 /// and its length.
 #[test]
 fn a_huge_unknown_key_is_echoed_clipped() {

@@ -1,4 +1,4 @@
-//! Load cases tests and users need (issue 10 item 6): a dead load that rises over a ramp
+//! Load cases tests and users need: a dead load that rises over a ramp
 //! (the static solver follows it step by step — the way to take a large load in load
 //! steps), and one load of several on a node removed by name, the others kept. Under
 //! every solver.

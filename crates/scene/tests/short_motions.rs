@@ -1,8 +1,7 @@
-//! Every prescribed motion arrives, however short against the solver's step (issue 10
-//! item 6): a hose end moved 100 mm up over 2 ms — a fifth of the static solver's 10 ms
-//! input step — and then 50 mm sideways ends 100 mm up and 50 mm over under every
-//! solver (it ended 100 mm too low under the implicit and static solvers, which skipped
-//! the 2 ms move).
+//! Every prescribed motion arrives, however short against the solver's step: a hose end
+//! moved 100 mm up over 2 ms — a fifth of the static solver's 10 ms input step — and then
+//! 50 mm sideways ends 100 mm up and 50 mm over under every solver (it ended 100 mm too low
+//! under the implicit and static solvers, which skipped the 2 ms move).
 
 use glam::DVec3;
 use pliant_core::SolverKind;

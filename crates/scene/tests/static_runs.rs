@@ -1,4 +1,4 @@
-//! Static runs as a user makes them (issue 10, "convergence is honest"): one default
+//! Static runs as a user makes them ("convergence is honest"): one default
 //! setting of the static solver serves a 1 mm silicone tube carrying millinewtons and a
 //! steel pipe carrying kilonewtons — each lands within 0.5 % of beam theory with every
 //! solve converged — and a correct large-deflection solve of a soft, heavy hose is not

@@ -267,7 +267,7 @@ fn a_checkpoint_taken_mid_study_continues_bit_for_bit_for_each_solver() {
     }
 }
 
-/// Issue 12, item 6: a divergence is rolled back to the newest healthy recovery point;
+/// A divergence is rolled back to the newest healthy recovery point;
 /// only the hand on the diverging hose is released, the other holds on, the study goes
 /// on (its record and verdict say what was rolled back), and a replay of the log (with the rollback in it) is bit for bit the same.
 #[test]
@@ -393,7 +393,7 @@ fn a_rollback_without_recovery_points_is_refused() {
 
 /// A hand holds the hose where the hose is: a grab beside the hose (here 10 cm off)
 /// takes it at the nearest point of the beam's chord, a grab within the hose keeps its
-/// point (issue 12: re-grabs at a spot the hose had left dragged it ever further off).
+/// point (re-grabs at a spot the hose had left dragged it ever further off).
 #[test]
 fn a_grab_beside_the_hose_takes_it_at_the_hose() {
     let scene = demo_scene().unwrap();
@@ -431,7 +431,7 @@ fn a_grab_beside_the_hose_takes_it_at_the_hose() {
     assert_eq!(pose, inside, "a click within the hose keeps its point");
 }
 
-/// Issue 12, item 6 (the soak's cause): an aimed hand is as strong as a person, no more
+/// An aimed hand is as strong as a person, no more
 /// ([`pliant_assembly::HandLimits::max_force`]). Sent 12 cm sideways across the upper
 /// hose, which is held taut at both ends, a kinematic hand drags it to kilonewtons; a
 /// hand of 600 N stops where the hose holds it, at its strength, short of the target —
@@ -520,7 +520,7 @@ fn an_aimed_hand_pulls_no_harder_than_its_strength() {
     }
 }
 
-/// Issue 12, item 6 (the soak's last divergence): two hands on the upper hose's metal
+/// Two hands on the upper hose's metal
 /// tube (its stiffened span, which the Newton solvers make 10⁴ times stiffer), sent 3 cm
 /// apart along it. Neither can move without the other giving way, and each must stop at
 /// its strength: the tube pulled apart by 600 N from each end, not by meganewtons (each

@@ -1,4 +1,4 @@
-//! The haptic stream's test client and benchmark (SPEC H1, issue 15 item 4): grabs a hose
+//! The haptic stream's test client and benchmark (SPEC H1): grabs a hose
 //! through the haptic stream, then sends poses along a path at a fixed rate (1 kHz by
 //! default) for a while, one request in flight at a time, and measures the rate held
 //! (answers per second, and the share of periods answered within the period) and the

@@ -1,4 +1,4 @@
-//! The soak benchmark (issue 12, item 9): N clients on one live session, each holding
+//! The soak benchmark: N clients on one live session, each holding
 //! its own grip on the demo's hoses and moving it in slow circles (3 cm radius, ≈ 6 cm/s)
 //! at 30 Hz, taking hold again at its grab point every 10 s (a `grab` while holding,
 //! which moves the grip) — the load under which live sessions used to diverge. It

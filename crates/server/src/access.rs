@@ -1,4 +1,4 @@
-//! Who may open the WebSocket (issue 12 item 1): local by default, safe when shared.
+//! Who may open the WebSocket: local by default, safe when shared.
 //!
 //! * **Origin.** A browser sends the page's `Origin` with every WebSocket handshake, and
 //!   any page the user visits may try `ws://127.0.0.1:8080/ws`. The handshake is accepted

@@ -217,7 +217,7 @@ pub fn error_json(code: ErrorCode, message: impl Into<String>) -> String {
     let message = message.into();
     ServerMessage::Error {
         code,
-        // a client's key or value echoed in the message is clipped (issue 36)
+        // a client's key or value echoed in the message is clipped
         message: pliant_scene::clip::clip_words(&message).into_owned(),
     }
     .to_json()

@@ -1,4 +1,4 @@
-//! Disk and CPU of a live session's reports, bounded (issue 36: 200 `report` messages
+//! Disk and CPU of a live session's reports, bounded (200 `report` messages
 //! wrote 2.6 GB in 90 s, each costing more the longer the session ran). A report replays
 //! the session's whole log and writes its CSVs, so per session:
 //!

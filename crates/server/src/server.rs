@@ -64,7 +64,7 @@ pub struct ServerConfig {
     pub access: Access,
     /// A connection that has not said `hello` this long after its handshake is closed.
     pub hello_timeout: Duration,
-    /// Most clients at once, counting those that have said `hello` (issue 36: sockets
+    /// Most clients at once, counting those that have said `hello` (sockets
     /// that never greet must not lock viewers out; they are closed after
     /// [`Self::hello_timeout`]). With this many, the next handshake gets 503 and a
     /// `hello` on a connection opened meanwhile gets `server_full`, until one leaves.

@@ -90,7 +90,7 @@ pub struct SessionOptions {
     pub publish_hz: f64,
     /// Start paused.
     pub paused: bool,
-    /// Solver instead of the scene's `[simulation] solver` (issue 5).
+    /// Solver instead of the scene's `[simulation] solver`.
     pub solver: Option<SolverKind>,
     /// The session folder: the scene's copy and the input log are written there as the
     /// session goes, and reports into its subfolders. `None`: the log stays in memory.

@@ -202,8 +202,8 @@ pub struct Snapshot {
     /// bend radius, twist), each with hose, arc length, time, value and limit.
     pub checks: Vec<pliant_assembly::checks::Violation>,
     /// Unstable equilibria the static solver met and left since the last reset — buckling
-    /// or a snap-through at input time t, which hose and node, the mode shape (issue 10
-    /// item 1; the verdict's reasons say the same in words). Empty for the dynamic
+    /// or a snap-through at input time t, which hose and node, the mode shape (the
+    /// verdict's reasons say the same in words). Empty for the dynamic
     /// solvers.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub instabilities: Vec<pliant_assembly::workcell::Instability>,
@@ -231,7 +231,7 @@ pub struct HoseSnapshot {
     /// (SPEC I6).
     pub asleep: bool,
     /// Per beam now: `bend_radius_ratio`, `twist` [rad/m], `axial_force` \[N\] (the viewer's
-    /// colour modes, issue 11).
+    /// colour modes).
     #[serde(flatten)]
     pub fields: pliant_assembly::checks::BeamFields,
 }
@@ -241,7 +241,7 @@ pub struct HoseSnapshot {
 pub struct HandSnapshot {
     pub hand_id: u32,
     pub hose: usize,
-    /// How the hand holds the hose: firm, axial or ball (issue 11).
+    /// How the hand holds the hose: firm, axial or ball.
     pub grip: pliant_assembly::Grip,
     /// Hand pose: position \[m\] and orientation `[x, y, z, w]`.
     pub position: [f64; 3],

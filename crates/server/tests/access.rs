@@ -1,4 +1,4 @@
-//! Who may connect (issue 12 item 1), over real handshakes on the loopback interface: a
+//! Who may connect, over real handshakes on the loopback interface: a
 //! foreign page's origin, `Origin: null` and a rebound host name are refused; the
 //! server's own pages, allowed origins and non-browser clients are admitted; a token,
 //! when required, must be presented.
@@ -215,7 +215,7 @@ async fn half_sent_headers_are_timed_out() {
     );
 }
 
-/// Issue 36: sockets that never say `hello` hold no client slot — a local process that
+/// Sockets that never say `hello` hold no client slot — a local process that
 /// keeps connecting without greeting locks no viewer out. With a cap of 2, ten silent
 /// connections leave both slots to viewers; a third viewer's `hello` is refused with
 /// `server_full` (and the next handshake with 503) until one leaves.

@@ -191,7 +191,7 @@ async fn stream_force_equals_the_sessions() {
     assert_eq!(c.ask(Kind::Pose, 1, pose).status, Status::NotHeld);
 }
 
-/// Issue 36: only a datagram of a request's size and magic is answered (a reply is
+/// Only a datagram of a request's size and magic is answered (a reply is
 /// smaller than it: the port amplifies nothing; 0–4-byte datagrams used to get 96-byte
 /// answers); the rest are counted and dropped. A request with a bad value — a position or
 /// an orientation non-finite or absurd (\[1e200, …\]) — is answered with its status. The

@@ -1,4 +1,4 @@
-//! Issue 10 item 1: a buckling met by the static solver in a live session reaches the
+//! A buckling met by the static solver in a live session reaches the
 //! snapshot — time, hose, node and mode shape — as it reaches `summary.json` and Python.
 //! A hose clamped at one end by a hand is pushed by another hand from the far end to
 //! 70 % of its length; past the Euler load the straight hose is unstable and buckles.

@@ -166,7 +166,7 @@ async fn grab_and_move_loads_the_hand_and_moves_the_node() {
     grab_and_move(server().await).await;
 }
 
-/// The same interaction with the Newton solvers chosen per session (issue 5).
+/// The same interaction with the Newton solvers chosen per session.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn grab_and_move_works_with_the_static_and_implicit_solvers() {
     for kind in [
@@ -509,7 +509,7 @@ async fn ergonomics_and_scene_can_be_changed_and_bad_scenes_are_refused() {
     let e = next_where(&mut ws, "error", |_| true).await;
     assert_eq!(e["code"], "invalid_value");
     assert!(e["message"].as_str().unwrap().contains("sometimes"), "{e}");
-    // a whole profile: EN 1005-3 judges push and pull from now on (issue 11 item 6)
+    // a whole profile: EN 1005-3 judges push and pull from now on
     send(&mut ws, json!({"type": "set_ergonomics", "profile": "standard=en1005-3, action=arm, frequency_per_min=1"})).await;
     next_where(&mut ws, "snapshot", |v| {
         v["ergonomics"]["standard"] == "en1005_3"
@@ -937,7 +937,7 @@ ramp_s = 1000
     assert_eq!(reset["rollbacks"], 4, "{}", reset["notice"]);
 }
 
-/// Scene authoring (issue 13 item 4, docs/authoring.md): `scene_source` answers with the
+/// Scene authoring (docs/authoring.md): `scene_source` answers with the
 /// session's scene file as a document and the material library; the document, sent back
 /// unchanged with `load_scene`, is accepted by the same loader; malformed requests are
 /// errors and the connection lives on.
@@ -1008,8 +1008,8 @@ async fn scene_source_gives_the_scene_document_and_the_library() {
     assert_eq!(src["document"]["name"], "authored");
 }
 
-// The snapshot's per-beam fields for the viewer's colour modes (issue 11 item 4) and each
-// hand's grip (issue 11 item 2). The session is paused and advances only by `step`
+// The snapshot's per-beam fields for the viewer's colour modes and each
+// hand's grip. The session is paused and advances only by `step`
 // requests.
 
 /// A hose routed as a half circle of radius 100 mm (library hose1: minimum bend radius
@@ -1134,7 +1134,7 @@ async fn a_stretched_hose_reports_tension_and_a_hand_its_grip() {
     assert_eq!(snap["hands"][0]["grip"], "ball");
 }
 
-/// `n` hoses of 4 elements, 500 mm long, all on one line (issue 36: 5 000 of them are
+/// `n` hoses of 4 elements, 500 mm long, all on one line (5 000 of them are
 /// ≈ 600 KB of TOML within every per-field limit, and list 2·10⁸ contact pairs).
 fn stacked_hoses(n: usize) -> String {
     let mut s = String::from("format = \"pliant-scene\"\nversion = 1\nlength_unit = \"mm\"\n");
@@ -1146,7 +1146,7 @@ fn stacked_hoses(n: usize) -> String {
     s
 }
 
-/// Issue 36: one `load_scene` of 5 000 hoses laid on each other (within every per-field
+/// One `load_scene` of 5 000 hoses laid on each other (within every per-field
 /// limit) aborted the server on an allocation. It is refused with its estimate, counting
 /// the contact pairs, and the server runs on: the old session still answers.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -1191,7 +1191,7 @@ async fn next_report_or_error(ws: &mut Ws) -> Value {
     }
 }
 
-/// Issue 36: 200 `report` messages wrote 2.6 GB in 90 s. Reports are one at a time and
+/// 200 `report` messages wrote 2.6 GB in 90 s. Reports are one at a time and
 /// at most one per interval (else `rate_limited`, saying when to ask again), and a
 /// session's reports together stay within their size limit: the oldest are removed
 /// before a new one is written, and the reply lists them.
@@ -1282,7 +1282,7 @@ async fn reports_are_rate_limited_and_their_total_size_is_capped() {
     assert_eq!(reports(&dir.path().join("b")), 1);
 }
 
-/// Issue 36: an error echoing a client's key clips it (its start and its length).
+/// An error echoing a client's key clips it (its start and its length).
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn an_error_echoing_a_huge_key_clips_it() {
     let s = server().await;

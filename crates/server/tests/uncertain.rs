@@ -1,4 +1,4 @@
-//! Issue 10 item 2 ("convergence is honest"): a static step that ends out of balance
+//! A static step that ends out of balance
 //! makes the live snapshot's verdict uncertain — the flag and the reason, in the JSON the
 //! viewer reads — as it does `summary.json`'s and the report's.
 //!

@@ -4,7 +4,7 @@ use glam::{DQuat, DVec3};
 use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::newton::Tolerance;
-use pliant_core::settle::{settle, SettleOptions, SettleReport};
+use pliant_core::relax::{relax, RelaxOptions, RelaxReport};
 use pliant_core::SolverKind;
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 use std::cell::Cell;
@@ -124,7 +124,7 @@ pub fn with_solver<R>(kind: SolverKind, f: impl FnOnce() -> R) -> R {
 /// below `rel · force · length` on every free node.
 ///
 /// * explicit — dynamic relaxation of the explicit step (kinetic damping when the model
-///   has no mass damping; [`pliant_core::settle`]);
+///   has no mass damping; [`pliant_core::relax`]);
 /// * static — one Newton solve ([`pliant_core::integrators::StaticSolver`]);
 /// * implicit — HHT-α steps of 50 ms with the most numerical damping (α = −⅓), each
 ///   started from rest, until the residual is met ("implicit, damped to rest").
@@ -134,24 +134,24 @@ pub fn settle_to(
     force: f64,
     length: f64,
     rel: f64,
-) -> Result<SettleReport, String> {
+) -> Result<RelaxReport, String> {
     let (force_tolerance, moment_tolerance) = (rel * force, rel * force * length);
     let report = match SOLVER.with(|s| s.get()) {
         SolverKind::Explicit => {
-            let opts = SettleOptions {
+            let opts = RelaxOptions {
                 force_tolerance,
                 moment_tolerance,
                 max_steps: 1_500_000,
                 kinetic_damping: model.damping_mass == 0.0,
             };
-            settle(model, state, &opts).map_err(|d| d.to_string())?
+            relax(model, state, &opts).map_err(|d| d.to_string())?
         }
         SolverKind::Static => {
             let mut solver = StaticSolver::new(model).map_err(|e| e.to_string())?;
             solver.options.tolerance = Tolerance::absolute(force_tolerance, moment_tolerance);
             solver.options.max_iterations = 200;
             let r = solver.solve(model, state).map_err(|e| e.to_string())?;
-            SettleReport {
+            RelaxReport {
                 steps: r.iterations as u64,
                 residual_force: r.residual_force,
                 residual_moment: r.residual_moment,
@@ -188,7 +188,7 @@ pub fn implicit_to_rest(
     newton: Tolerance,
     force_tolerance: f64,
     moment_tolerance: f64,
-) -> Result<SettleReport, String> {
+) -> Result<RelaxReport, String> {
     let options = ImplicitOptions {
         time_step: 0.05,
         alpha: -1.0 / 3.0,
@@ -197,7 +197,7 @@ pub fn implicit_to_rest(
         ..Default::default()
     };
     let mut solver = ImplicitSolver::new(model, options).map_err(|e| e.to_string())?;
-    let mut report = SettleReport {
+    let mut report = RelaxReport {
         steps: 0,
         residual_force: f64::INFINITY,
         residual_moment: f64::INFINITY,
@@ -211,7 +211,7 @@ pub fn implicit_to_rest(
         let before = (state.x.clone(), state.q.clone());
         solver.step(model, state).map_err(|e| e.to_string())?;
         report.steps += 1;
-        let (f, m) = pliant_core::settle::residual(state);
+        let (f, m) = pliant_core::integrators::free_node_residual(state);
         report.residual_force = f;
         report.residual_moment = m;
         // at rest: residual met, or a whole step moved and turned no node beyond

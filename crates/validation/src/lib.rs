@@ -1,4 +1,4 @@
-//! Pliant's validation suite (issue 2, SPEC §7): each case runs the explicit beam model on
+//! Pliant's validation suite (SPEC §7): each case runs the explicit beam model on
 //! a problem with an exact or independently computed answer and reports one row per
 //! compared quantity. `pliant validate` prints them; the tests assert them; the table in
 //! docs/validation.md is generated from them.

@@ -1,11 +1,11 @@
-//! A study as a user runs it (issue 10's first complaint): a straight hose clamped at
+//! A study as a user runs it: a straight hose clamped at
 //! both ends, one end pushed to 70 % of the length under `--solver static`. Past the
 //! Euler load the straight hose is an unstable equilibrium; the workcell must land on the
 //! stable elastica branch (end load within 1 % of the exact value, where the straight
 //! branch carries thousands of times more), and say in its summary and verdict that the
 //! hose buckled — while the verdict stays certain (every solve converged).
 //!
-//! Issue 10 item 1 (limit points): a snap-through under the static solver is an
+//! A snap-through under the static solver is an
 //! instability event in the run's outputs, whichever way the solver passed it. The
 //! column, pushed to 95 % of its length with a 1 % lateral load (removed) so that it
 //! buckles towards +y, is loaded by 1 N against the buckle in one input step — beyond the

@@ -1,5 +1,5 @@
-//! The checked quantities along each hose now, per beam, for the viewer's colour modes
-//! (issue 11 item 4): curvature against the minimum bend radius, twist relative to the
+//! The checked quantities along each hose now, per beam, for the viewer's colour modes:
+//! curvature against the minimum bend radius, twist relative to the
 //! routed hose (as the running checks judge them, `strain.rs`) and the axial force from
 //! the chord strain (as the tension-at-rest check judges it). f32: they are for drawing.
 

@@ -1,5 +1,5 @@
 //! The scene at the worst bend of a few hoses, for the report's pictures (SPEC V7), in
-//! bounded memory (issue 36): a copy of every node is kept for at most
+//! bounded memory: a copy of every node is kept for at most
 //! [`MAX_SCENE_PICTURES`] hoses — those whose bend radius fell furthest below their
 //! limit — instead of one copy per hose (memory and report size grew with hoses × nodes:
 //! a 1 000 × 20 study wrote a 2.3 GB `report.json`). The copies are shared (`Arc`), so a

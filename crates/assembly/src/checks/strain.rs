@@ -1,6 +1,6 @@
 //! Curvature and twist of one beam from its two node frames (SPEC V3).
 //!
-//! The node frames' local x axis is the hose tangent (`pliant_core::frames`). The
+//! The node frames' local x axis is the hose tangent (`pliant_core::rod::frames`). The
 //! rotation vector φ = log(q_a⁻¹ q_b), in node a's axes, turns node a's frame into node
 //! b's over the element's rest length l₀ (a Cosserat rod's discrete Darboux vector,
 //! e.g. Bergou et al. 2008, "Discrete elastic rods", eq. 4): its x part over l₀ is the

@@ -1,4 +1,4 @@
-//! What holds a seated hose (issue 11 item 5): the load case a clip of each type puts on
+//! What holds a seated hose: the load case a clip of each type puts on
 //! the seated node — an L1 fix when it fixes all six degrees of freedom, else a support
 //! ([`pliant_core::loads::Support`]) free in the type's directions of the clip's VEC frame,
 //! with the clip's friction along a free translation.

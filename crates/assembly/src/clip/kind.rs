@@ -1,4 +1,4 @@
-//! Fixings by type (issue 11 item 5), each with the degrees of freedom it leaves free, in
+//! Fixings by type, each with the degrees of freedom it leaves free, in
 //! the VEC convention for fixings: origin on the support (here the seat centre p, where
 //! the seated hose's centre line passes), **Y** along the hose (the clip's `orientation`
 //! l), **Z** against the mounting direction (the clip's `opening` n: the hose is mounted

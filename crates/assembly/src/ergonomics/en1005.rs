@@ -1,5 +1,5 @@
-//! EN 1005-3:2002+A1:2008 as an alternative to the dissertation's tables (issue 11 item
-//! 6): the recommended force limit of an action and the risk zone of a force against it.
+//! EN 1005-3:2002+A1:2008 as an alternative to the dissertation's tables:
+//! the recommended force limit of an action and the risk zone of a force against it.
 //! The numbers live in `data/en1005_3.toml` (embedded at build time) with their sources
 //! and how sure each is; this module reads, checks and applies them.
 //!

@@ -22,7 +22,7 @@ use pliant_core::{Model, SolverKind, State};
 use std::path::Path;
 
 /// Writes `value` as pretty JSON to `path`, streamed through a buffer (never the whole
-/// text in memory: issue 36); the error names the file.
+/// text in memory); the error names the file.
 pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> std::io::Result<()> {
     use std::io::Write as _;
     let named = |e: std::io::Error| {

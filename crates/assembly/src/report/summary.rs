@@ -1,7 +1,7 @@
 //! `summary.json`: what a run did, its peak support loads and its final state.
 
 use crate::workcell::{RunSummary, SettleOutcome};
-use pliant_core::timestep::TimeStepReport;
+use pliant_core::rod::timestep::TimeStepReport;
 use pliant_core::{Model, State};
 use serde::Serialize;
 
@@ -20,7 +20,7 @@ pub struct PeakRow {
 
 /// One hose's final state. A hose whose state is not finite (a diverged run stopped
 /// after the blow-up) has neither positions nor orientations, only `omitted` saying why:
-/// no output holds a non-finite number (issue 36, item 4).
+/// no output holds a non-finite number.
 #[derive(Serialize)]
 pub struct FinalHose {
     pub name: String,

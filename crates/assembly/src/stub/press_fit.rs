@@ -81,7 +81,7 @@ pub struct PressFit {
     stub: StubSpec,
     interference: f64,
     pressure: f64,
-    /// The stub's profile (SPEC V4, issue 11 item 5): beads or barbs along the axis in
+    /// The stub's profile (SPEC V4): beads or barbs along the axis in
     /// order of depth, each with the Lamé pressure of the hose wall on its crest \[Pa\];
     /// the first `profile_len` slots are used (a fixed array keeps the fit `Copy`).
     profile: [(Bead, f64); MAX_PROFILE],

@@ -4,7 +4,7 @@
 //! flushed line by line, so a crash or a killed server loses at most the time since the
 //! last mark. A session folder holds the log (`inputs.jsonl`) beside a copy of the scene.
 //!
-//! Version 2 (issue 36, item 3: evidence is never silently lost) seals every line with
+//! Version 2 (evidence is never silently lost) seals every line with
 //! its CRC-32: the line's JSON object gets a last member `"crc32":"xxxxxxxx"`, the
 //! CRC-32 (IEEE) in hex of the line as it would read without that member, so each line
 //! stays JSON and a changed byte anywhere in it is found ([`seal`], [`unseal`]).

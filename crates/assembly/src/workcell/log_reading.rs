@@ -1,4 +1,4 @@
-//! Reading an input log back (SPEC W2; issue 36, item 3: evidence is never silently
+//! Reading an input log back (SPEC W2; evidence is never silently
 //! lost). A log is read line by line and every line is checked — its checksum (version
 //! 2), its JSON, its entry, its tick — and reading stops at the first line that fails.
 //! Where that line is decides what it means:

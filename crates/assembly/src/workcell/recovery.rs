@@ -1,4 +1,4 @@
-//! Recovery points of a live study (issue 12, item 6: a divergence never costs the
+//! Recovery points of a live study (a divergence never costs the
 //! session). The workcell keeps the last few healthy [`Checkpoint`]s, one every
 //! \[`RECOVERY_EVERY`\] steps, each taken right after a health check passed; on a
 //! divergence [`super::Input::Rollback`] goes back to the newest one, instead of

@@ -1,4 +1,4 @@
-//! What the Newton solvers said while a study ran (issue 10, SPEC S1): the steps that did
+//! What the Newton solvers said while a study ran (SPEC S1): the steps that did
 //! not reach balance, and the unstable equilibria the static solver met and left
 //! (buckling, a bifurcation). They go into `summary.json`, the verdict (an unconverged
 //! step makes it "uncertain"), the live snapshot and Python — a study never hides that

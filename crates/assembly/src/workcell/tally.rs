@@ -62,7 +62,7 @@ pub struct MomentNote {
     pub limit: f64,
 }
 
-/// A peak push or pull judged by EN 1005-3 (issue 11 item 6): its risk zone and the
+/// A peak push or pull judged by EN 1005-3: its risk zone and the
 /// recommended force limit it was judged against.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ZoneNote {
@@ -322,7 +322,7 @@ impl Tally {
                 p.max_moment_time = t;
             }
             // the last *physical* loads: the steps of a divergence before its health
-            // check (at most 15) never reach the outputs as NaN (issue 36, item 4)
+            // check (at most 15) never reach the outputs as NaN
             if physical(f.length()) {
                 p.last_force = f;
             }

@@ -12,8 +12,8 @@
 //! duals branches lane by lane with masks, on [`LaneDual::re`].
 
 use super::Scalar;
-use crate::lane_arith::Lane4;
-use crate::lanes::{F4, M4};
+use crate::rod::lane_arith::Lane4;
+use crate::rod::lanes::{F4, M4};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// Four dual numbers with N derivative components: values `re`, derivatives `eps[k]`.

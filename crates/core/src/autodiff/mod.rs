@@ -1,4 +1,4 @@
-//! Forward-mode automatic differentiation for the consistent tangent stiffness (issue 5):
+//! Forward-mode automatic differentiation for the consistent tangent stiffness:
 //! the element's load function is written once, generic over a [`Scalar`]; evaluated with
 //! `f64` it is the explicit solver's load function, evaluated with [`Dual`] numbers it
 //! also yields the exact derivatives of the loads with respect to the nodes' position and

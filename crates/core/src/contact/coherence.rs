@@ -1,4 +1,4 @@
-//! Temporal coherence for rigid contact (issue 15): each beam's nearby triangles are found
+//! Temporal coherence for rigid contact: each beam's nearby triangles are found
 //! once, with a margin, and kept from step to step until the beam has moved by the margin — the idea of Verlet neighbour lists (L. Verlet, Phys.
 //! Rev. 159, 98, 1967) and of the "enlarged bounding volumes" of collision detection
 //! (Ericson, "Real-Time Collision Detection", §6.6 / §9.6).
@@ -56,10 +56,9 @@ use parry3d_f64::shape::Triangle;
 /// Candidates kept per slot.
 pub const SLOT_CAPACITY: usize = 48;
 /// Margin m as a fraction of the reach ρ: a slot is refreshed after moving ρ/16 (a
-/// truncated list sooner, an empty one later, see `CandidateCache::refresh`). With the
-/// per-step `Planes` bounds, ρ/16 cost fewer instructions than ρ/8 or ρ/32 on the
-/// bench's floor, and ρ/4 (the margin before them) 15 % more; with the planes made once
-/// per triangle, ρ/8 costs 3.6 % fewer while hoses fall but 3.6 % more at rest.
+/// truncated list sooner, an empty one later, see `CandidateCache::refresh`): the margin
+/// of fewest instructions on the bench's floor among ρ/4 … ρ/32 (measurements in
+/// docs/performance.md).
 pub const MARGIN: f64 = 0.0625;
 /// How far (in reaches) a slot with no candidates looks for the nearest triangle, to
 /// know how far it may move before its next refresh.
@@ -69,8 +68,8 @@ pub(crate) const SLACK: f64 = 1e-9;
 
 /// One triangle of one part, its rank in the environment's order, and its distance from
 /// the slot's segment at the refresh. (The planes' lower bound would do in its place and
-/// save the refresh its exact tests, but the looser first bounds cost the searches more:
-/// +14 % instructions with hoses at rest on the bench's floor.)
+/// save the refresh its exact tests, but the looser first bounds send more triangles to
+/// the searches' exact tests every step.)
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Candidate {
     part: u32,

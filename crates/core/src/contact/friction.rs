@@ -1,5 +1,5 @@
 //! Coulomb friction of node contacts with rigid parts in the Newton solvers (static and
-//! implicit; issue 10): an elastoplastic tangential penalty spring with a return mapping
+//! implicit): an elastoplastic tangential penalty spring with a return mapping
 //! (Wriggers, "Computational Contact Mechanics", 2nd ed. 2006, §5.2.2; Simo & Laursen,
 //! Computers & Structures 42, 1992).
 //!

@@ -18,7 +18,7 @@
 //! matrix k (w wᵀ) ⊗ (n nᵀ) with w = (1−s, s, −(1−t), −t), whose only frequency is
 //! ω_c² = k Σ wᵢ²/mᵢ ≤ 2k/m_min (Σ wᵢ² ≤ 2, m_min the smallest of the four node masses).
 //! The cap k ≤ ω_lim² m_min / 8, with ω_lim = 2/min(axial bound, eigen bound) the highest
-//! frequency the time step was already built for ([`crate::timestep`]), makes
+//! frequency the time step was already built for ([`crate::rod::timestep`]), makes
 //! **ω_c ≤ ω_lim / 2**. For two interior nodes of the same hose (m = ρ A l₀) the mean
 //! stiffness already satisfies it: 2k/m = E_c/(ρ l₀²) = (ω_axial/2)², ω_axial = 2c/l₀;
 //! the cap only acts at end nodes (half mass) and between dissimilar hoses. By Weyl's
@@ -50,7 +50,7 @@
 //!
 //! **Broad phase.** [`BroadPhase`]: a uniform grid, O(N), storage allocated once in
 //! [`HoseContactScratch::new`] (called by [`State::at_rest`]). A model with one hose too
-//! short to touch itself skips all of it. The grid is not rebuilt every step (issue 15):
+//! short to touch itself skips all of it. The grid is not rebuilt every step:
 //! it files each beam's box grown by a skin s (the smallest beam radius) and keeps
 //! the pairs of such boxes that overlap and are not excluded, with the node positions of
 //! that moment (a Verlet list). While no node has moved by more than s along any axis
@@ -61,7 +61,7 @@
 //! triggers a rebuild. The pairs are visited in the list's order: deterministic, given
 //! the state.
 //!
-//! **Building the list cheaply** (issue 15). The grid's 14 bucket look-ups per beam made a
+//! **Building the list cheaply.** The grid's 14 bucket look-ups per beam made a
 //! rebuild cost about three steps' worth of element work on a long hose (perf, 1 × 1000),
 //! whose free end trips the skin every ten steps or so. The pairs are instead found by
 //! sort and sweep ([`SweepAndPrune`]; along the axis of the largest spread a hose's beams
@@ -530,7 +530,7 @@ pub fn add_hose_contact_forces(model: &Model, state: &mut State) {
         &mut state.hose_contact_force,
     );
     if state.hose_contact.pairs_in_contact == 0 {
-        return; // no pair in contact: the forces are the zeros filled in (issue 15)
+        return; // no pair in contact: the forces are the zeros filled in
     }
     for (f, c) in state.force.iter_mut().zip(&state.hose_contact_force) {
         *f += *c;

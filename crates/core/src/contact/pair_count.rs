@@ -1,5 +1,5 @@
 //! How many beam pairs hose–hose contact lists at rest, counted before a model is built
-//! (issue 36: the memory estimate must count the pairs). The pair list
+//! (the memory estimate must count the pairs). The pair list
 //! ([`super::HoseContactScratch`]) holds every pair of beams whose boxes, grown by the
 //! skin, overlap and that are not excluded ([`super::hose_hose`] module doc): a few per
 //! beam for hoses laid apart, but every pair for hoses laid on top of each other — 5 000

@@ -31,7 +31,7 @@ use super::coherence::{scan_fresh, Nearest, Searcher, SLACK};
 use super::environment::{cube, ClosestPoint};
 use super::segment_triangle::closest_segment_triangle_edges_within;
 use crate::contact::CandidateCache;
-use crate::element::BeamElement;
+use crate::rod::element::BeamElement;
 use crate::{Model, State};
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;

@@ -1,7 +1,7 @@
 //! Sort and sweep along one axis (Baraff, "Dynamic Simulation of Non-Penetrating Rigid
 //! Bodies", PhD thesis, Cornell 1992, §7.2; Ericson, "Real-Time Collision Detection"
 //! §7.5.1): the pairs of overlapping axis-aligned boxes, cheap when the boxes are spread
-//! along one axis, as the beams of a long hanging hose are (issue 15).
+//! along one axis, as the beams of a long hanging hose are.
 //!
 //! The boxes are sorted by their lower bound along the axis of the largest spread of the
 //! box centres; each box is compared with the boxes after it whose lower bound does not

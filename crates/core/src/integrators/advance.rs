@@ -1,10 +1,10 @@
-//! The explicit step's node update (issue 15): for each node not held, v ← v + Δt/m f,
+//! The explicit step's node update: for each node not held, v ← v + Δt/m f,
 //! ω ← ω + Δt/I M (Euler's equations for the isotropic lumped inertia), then
 //! x ← x + Δt v and q ← normalise(exp(Δt ω) q) — the leapfrog of [`super::explicit`],
 //! with fused multiply–adds.
 //!
 //! Node by node: the operations are those of the four-lane kernel this replaces (issue
-//! 15's [`crate::lanes`] arithmetic, each lane an independent IEEE operation), in the
+//! 15's [`crate::rod::lanes`] arithmetic, each lane an independent IEEE operation), in the
 //! same order, so the results are the same to the last bit — without gathering the
 //! nodes' vectors into lanes and scattering them back, which cost more than the
 //! arithmetic for a handful of nodes, and with held nodes costing one check. A node's
@@ -69,7 +69,7 @@ fn exp_series(phi: DVec3) -> (DQuat, bool) {
 }
 
 /// The Hamilton product a · b with fused multiply–adds, normalised: the operations of
-/// [`crate::lanes::Q4::mul`] and [`crate::lanes::Q4::normalize`] for one quaternion.
+/// [`crate::rod::lanes::Q4::mul`] and [`crate::rod::lanes::Q4::normalize`] for one quaternion.
 #[inline(always)]
 fn mul_normalize(a: DQuat, b: DQuat) -> DQuat {
     let w =
@@ -144,8 +144,8 @@ pub fn advance(n: &mut Nodes, dt: f64, what: Advance) {
 mod tests {
     use super::*;
 
-    /// The update agrees with the reference update (explicit.rs before issue 15) to
-    /// rounding, and the kernels (AVX2 + FMA, portable) agree bit for bit.
+    /// The update agrees with the reference update (the plain per-node loop, written out
+    /// in the test) to rounding, and the kernels (AVX2 + FMA, portable) agree bit for bit.
     #[test]
     fn update_matches_the_reference_update() {
         let n = 11;

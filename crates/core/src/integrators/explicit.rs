@@ -1,6 +1,6 @@
 //! Explicit dynamics (SPEC P4, dissertation §4.2.4 eq. 4.51–4.58): central differences
 //! (Newmark β = 0, γ = ½, in leapfrog form) for the node positions, and Euler's equations
-//! for the node rotations with the isotropic lumped inertia of [`crate::mass`]
+//! for the node rotations with the isotropic lumped inertia of [`crate::rod::mass`]
 //! (I ω̇ = M, the gyroscopic term vanishing for isotropic I), the orientation advanced by
 //! the exponential map q ← exp(ω Δt) q (appendix A.2) — never by adding small angles.
 //!
@@ -13,12 +13,13 @@
 use crate::contact::{
     add_hose_contact_forces, add_penalty_forces, project_positions, resolve_velocities,
 };
-use crate::forces::{chunk_nodes, step_loads, whole_hose_chunks, Config};
 use crate::integrators::advance::{advance, Advance, Nodes};
 use crate::loads::LoadCase;
 use crate::math::log_map;
 use crate::parallel::{Pool, SharedMut};
-use crate::stiffened::step_body;
+use crate::rod::forces::{chunk_nodes, step_loads, whole_hose_chunks};
+use crate::rod::node_view::NodeView;
+use crate::rod::stiffened::step_body;
 use crate::{Model, State};
 use glam::DVec3;
 
@@ -32,7 +33,7 @@ pub fn step(model: &Model, state: &mut State) {
 pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     let t_next = state.time + dt;
     {
-        let config = Config {
+        let config = NodeView {
             x: &state.x,
             q: &state.q,
             v: &state.v,
@@ -76,7 +77,8 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     // slip anchors accepted with this step's forces
     crate::loads::support_reactions(model, state, true);
     // Only supports and ties write reactions here; without them the arrays are the zeros
-    // just filled in, and adding them would change nothing (issue 15: two passes saved).
+    // just filled in, and adding them would change nothing, so
+    // both passes are skipped.
     let supported = state
         .loads
         .iter()

@@ -1,4 +1,4 @@
-//! Implicit dynamics (issue 5, SPEC P5; the dissertation's outlook 7.2): the HHT-α method
+//! Implicit dynamics (SPEC P5; the dissertation's outlook 7.2): the HHT-α method
 //! (Hilber, Hughes & Taylor 1977, "Improved numerical dissipation for time integration
 //! algorithms in structural dynamics", EESD 5) with Newton iterations on the consistent
 //! tangent, solved in O(N) per iteration ([`crate::newton::block_tree`]).
@@ -9,7 +9,7 @@
 //!   v_{n+1} = v_n + Δt ((1 − γ) a_n + γ a_{n+1}),
 //! and likewise for rotations on the rotation group (Simo & Vu-Quoc 1988): q_{n+1} =
 //! exp(Θ) q_n with Θ in place of x_{n+1} − x_n, the isotropic inertia I α = m (as in the
-//! explicit solver, [`crate::mass`]). The Jacobian of a node's equations is
+//! explicit solver, [`crate::rod::mass`]). The Jacobian of a node's equations is
 //! (1 + α) K + m/(βΔt²) [𝟙, J_l⁻¹(Θ)], K from [`crate::newton::system`] including the damping
 //! tangent. α < 0 damps the highest modes numerically (α = −0.1 by default); the scheme is
 //! unconditionally stable for linear problems and second-order accurate, so the step is
@@ -34,6 +34,7 @@ use crate::newton::system::{
     apply_increment, contact_translation_limit, rotation_limited_step, sync_bodies,
     translation_limited_step, NewtonSystem, TopologyError,
 };
+pub use crate::state::ImplicitHistory;
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
 use nalgebra::Vector6;
@@ -96,38 +97,6 @@ pub enum ImplicitError {
     Singular(#[from] SingularBlock),
     #[error("Newton iterations did not converge even with the step halved {0} times (residual {1:.3e} N)")]
     NotConverged(u32, f64),
-}
-
-/// What the HHT-α step carries from one step to the next — a_n, α_n and f_n, m_n of the
-/// last converged step. Part of the [`State`] (`state.implicit`), so that a state saved
-/// and restored continues exactly, and a fresh state (a reset) starts the history anew.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ImplicitHistory {
-    acc: Vec<DVec3>,
-    ang_acc: Vec<DVec3>,
-    f_prev: Vec<DVec3>,
-    m_prev: Vec<DVec3>,
-    /// Whether the vectors hold the last step's values (false: initialise them first).
-    started: bool,
-    /// Initialise with zero accelerations ([`Self::restart_at_rest`]).
-    zero_acceleration: bool,
-}
-
-impl ImplicitHistory {
-    /// Forgets the last step's accelerations (after the state was changed from outside).
-    pub fn restart(&mut self) {
-        self.started = false;
-        self.zero_acceleration = false;
-    }
-
-    /// Restarts from a state the caller has just brought to rest (velocities zeroed, as
-    /// kinetic damping does): accelerations start at zero too, so the out-of-balance
-    /// forces act through the next step's equation only, without a kick through the
-    /// Newmark predictor terms.
-    pub fn restart_at_rest(&mut self) {
-        self.started = false;
-        self.zero_acceleration = true;
-    }
 }
 
 /// The implicit solver: its options and Newton buffers (scratch only; the history that

@@ -1,4 +1,4 @@
-//! Which solver advances a simulation (issue 5, SPEC P4/P5), chosen per scene
+//! Which solver advances a simulation (SPEC P4/P5), chosen per scene
 //! (`[simulation] solver = …`) or per command (`--solver …`):
 //!
 //! * `explicit` — the dissertation's central differences (`crate::explicit`) at the
@@ -30,84 +30,25 @@ pub use stability::StabilityEvent;
 pub use statics::{StaticError, StaticOptions, StaticReport, StaticSolver};
 
 use crate::newton::TopologyError;
+pub use crate::settings::{SolverKind, SolverSettings};
 use crate::{Model, State};
 use glam::DVec3;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
-/// The solver kinds.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum SolverKind {
-    #[default]
-    Explicit,
-    Implicit,
-    Static,
-}
-
-impl SolverKind {
-    pub const ALL: [SolverKind; 3] = [
-        SolverKind::Explicit,
-        SolverKind::Implicit,
-        SolverKind::Static,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            SolverKind::Explicit => "explicit",
-            SolverKind::Implicit => "implicit",
-            SolverKind::Static => "static",
+/// Largest out-of-balance force and moment on the free nodes as the Newton solvers
+/// ([`ImplicitSolver`], [`StaticSolver`]) leave the state: their `force` includes the
+/// parts' contact already. After explicit steps use [`crate::relax::residual`], which
+/// adds it back.
+pub fn free_node_residual(state: &State) -> (f64, f64) {
+    let mut f: f64 = 0.0;
+    let mut m: f64 = 0.0;
+    for i in 0..state.x.len() {
+        if !state.held[i] {
+            f = f.max(state.force[i].length());
+            m = m.max(state.moment[i].length());
         }
     }
-}
-
-impl std::str::FromStr for SolverKind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "explicit" => Ok(SolverKind::Explicit),
-            "implicit" | "hht" => Ok(SolverKind::Implicit),
-            "static" | "quasi-static" | "quasistatic" => Ok(SolverKind::Static),
-            other => Err(format!(
-                "unknown solver '{other}' (choose explicit, implicit or static)"
-            )),
-        }
-    }
-}
-
-impl std::fmt::Display for SolverKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// Solver choice and its step sizes.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SolverSettings {
-    pub kind: SolverKind,
-    /// Implicit time step \[s\] (default 10 ms).
-    pub implicit_time_step: f64,
-    /// Static solver: simulated time between two equilibrium solves \[s\] (default 10 ms).
-    pub static_input_step: f64,
-    /// Static solver: Newton iterations allowed per equilibrium sought (default 60,
-    /// [`StaticOptions::max_iterations`]). A route drawn far from its equilibrium — a
-    /// harness from CAD springing out between its fixings — needs more for its first.
-    #[serde(default = "default_static_iterations")]
-    pub static_max_iterations: usize,
-}
-
-fn default_static_iterations() -> usize {
-    StaticOptions::default().max_iterations
-}
-
-impl Default for SolverSettings {
-    fn default() -> Self {
-        Self {
-            kind: SolverKind::Explicit,
-            implicit_time_step: 0.01,
-            static_input_step: 0.01,
-            static_max_iterations: default_static_iterations(),
-        }
-    }
+    (f, m)
 }
 
 /// What went wrong in a step.
@@ -166,9 +107,26 @@ const SNAP_ROUNDS: usize = 4;
 /// A solver of the chosen kind with its buffers (allocated once).
 #[derive(Clone, Debug)]
 pub struct Solver {
-    pub settings: SolverSettings,
-    implicit: Option<Box<ImplicitSolver>>,
-    statics: Option<Box<StaticSolver>>,
+    settings: SolverSettings,
+    built: Built,
+    buffers: Buffers,
+    pub last: StepStats,
+}
+
+/// The solver [`Solver`] was built for: the kind and the solver's own buffers in one, so
+/// that the kind cannot change without them.
+#[derive(Clone, Debug)]
+enum Built {
+    Explicit,
+    Implicit(Box<ImplicitSolver>),
+    Static(Box<StaticSolver>),
+}
+
+/// What every kind keeps between the parts of one step: the state at its start (to
+/// restart from), the implicit fallback's targets, the static step's stability events
+/// and the snap relaxation's anchor.
+#[derive(Clone, Debug)]
+struct Buffers {
     previous_x: Vec<DVec3>,
     previous_q: Vec<glam::DQuat>,
     previous_v: Vec<DVec3>,
@@ -179,33 +137,26 @@ pub struct Solver {
     events: Vec<StabilityEvent>,
     /// Positions at the snap relaxation's last check ([`snap::relax`]).
     relax_anchor: Vec<DVec3>,
-    pub last: StepStats,
 }
 
 impl Solver {
     pub fn new(model: &Model, settings: SolverSettings) -> Result<Self, TopologyError> {
-        let implicit = match settings.kind {
-            SolverKind::Implicit => Some(Box::new(ImplicitSolver::new(
+        let built = match settings.kind {
+            SolverKind::Explicit => Built::Explicit,
+            SolverKind::Implicit => Built::Implicit(Box::new(ImplicitSolver::new(
                 model,
                 ImplicitOptions {
                     time_step: settings.implicit_time_step,
                     ..Default::default()
                 },
             )?)),
-            _ => None,
-        };
-        let statics = match settings.kind {
             SolverKind::Static => {
                 let mut solver = StaticSolver::new(model)?;
                 solver.options.max_iterations = settings.static_max_iterations;
-                Some(Box::new(solver))
+                Built::Static(Box::new(solver))
             }
-            _ => None,
         };
-        Ok(Self {
-            settings,
-            implicit,
-            statics,
+        let buffers = Buffers {
             previous_x: vec![DVec3::ZERO; model.node_count()],
             previous_q: vec![glam::DQuat::IDENTITY; model.node_count()],
             previous_v: vec![DVec3::ZERO; model.node_count()],
@@ -214,6 +165,11 @@ impl Solver {
             previous_friction: crate::contact::friction::FrictionMemory::new(&model.rest_x),
             events: Vec::new(),
             relax_anchor: Vec::with_capacity(model.node_count()),
+        };
+        Ok(Self {
+            settings,
+            built,
+            buffers,
             last: StepStats::default(),
         })
     }
@@ -223,39 +179,75 @@ impl Solver {
         Self::new(model, model.solver)
     }
 
+    /// The settings it was built with.
+    pub fn settings(&self) -> &SolverSettings {
+        &self.settings
+    }
+
     pub fn kind(&self) -> SolverKind {
-        self.settings.kind
+        match self.built {
+            Built::Explicit => SolverKind::Explicit,
+            Built::Implicit(_) => SolverKind::Implicit,
+            Built::Static(_) => SolverKind::Static,
+        }
     }
 
     /// Simulated time one [`Self::step`] advances \[s\].
     pub fn time_step(&self, model: &Model) -> f64 {
-        match self.settings.kind {
-            SolverKind::Explicit => model.time_step,
-            SolverKind::Implicit => self.settings.implicit_time_step,
-            SolverKind::Static => self.settings.static_input_step,
+        match self.built {
+            Built::Explicit => model.time_step,
+            Built::Implicit(_) => self.settings.implicit_time_step,
+            Built::Static(_) => self.settings.static_input_step,
         }
     }
 
     /// Advances `state` by [`Self::time_step`] and checks its health.
     pub fn step(&mut self, model: &Model, state: &mut State) -> Result<StepStats, SolverError> {
         let time = state.time;
-        self.last = match self.settings.kind {
-            SolverKind::Explicit => {
+        let h = self.settings.static_input_step;
+        self.last = match &mut self.built {
+            Built::Explicit => {
                 explicit::step(model, state);
                 StepStats {
                     converged: true,
                     ..Default::default()
                 }
             }
-            SolverKind::Implicit => self.implicit_step(model, state, time)?,
-            SolverKind::Static => self.static_step(model, state, time)?,
+            Built::Implicit(solver) => self.buffers.implicit_step(solver, model, state, time)?,
+            Built::Static(solver) => self.buffers.static_step(solver, model, state, time, h)?,
         };
-        if self.settings.kind != SolverKind::Explicit {
-            check_for(self.settings.kind, model, state)?;
+        let kind = self.kind();
+        if kind != SolverKind::Explicit {
+            check_for(kind, model, state)?;
         }
         Ok(self.last)
     }
 
+    /// The implicit solver's options (`None` for the other kinds), e.g. to tighten them.
+    pub fn implicit_options_mut(&mut self) -> Option<&mut ImplicitOptions> {
+        match &mut self.built {
+            Built::Implicit(s) => Some(&mut s.options),
+            _ => None,
+        }
+    }
+
+    /// The unstable equilibria the last [`Self::step`] left (static solver; empty
+    /// otherwise).
+    pub fn stability_events(&self) -> &[StabilityEvent] {
+        &self.buffers.events
+    }
+
+    /// Modified factorisations the static solver skipped because their matrix was the one
+    /// factorised before ([`crate::newton::factor_reuse`]; 0 for the other kinds).
+    pub fn factorizations_reused(&self) -> u64 {
+        match &self.built {
+            Built::Static(s) => s.system.reuse.reused,
+            _ => 0,
+        }
+    }
+}
+
+impl Buffers {
     /// One implicit step. A step Newton cannot converge even halved (a contact's active
     /// set chattering, a grip pulled hard) is taken from its start by the explicit
     /// solver instead, in ⌈h / Δt_stable⌉ equal steps — a valid dynamic solution of the
@@ -265,6 +257,7 @@ impl Solver {
     /// back the same way; a state the explicit pieces cannot mend fails the health check.
     fn implicit_step(
         &mut self,
+        solver: &mut ImplicitSolver,
         model: &Model,
         state: &mut State,
         time: f64,
@@ -274,7 +267,6 @@ impl Solver {
         self.previous_v.copy_from_slice(&state.v);
         self.previous_w.copy_from_slice(&state.w);
         self.previous_friction.clone_from(&state.friction);
-        let solver = self.implicit.as_mut().expect("built for implicit");
         let (step, h) = (state.step, solver.options.time_step);
         let outcome = solver.step(model, state);
         match outcome {
@@ -315,38 +307,21 @@ impl Solver {
         }
     }
 
-    /// The implicit solver's options (`None` for the other kinds), e.g. to tighten them.
-    pub fn implicit_options_mut(&mut self) -> Option<&mut ImplicitOptions> {
-        self.implicit.as_mut().map(|s| &mut s.options)
-    }
-
-    /// Modified factorisations the static solver skipped because their matrix was the one
-    /// factorised before ([`crate::newton::factor_reuse`]; 0 for the other kinds).
-    pub fn factorizations_reused(&self) -> u64 {
-        self.statics.as_ref().map_or(0, |s| s.system.reuse.reused)
-    }
-
-    /// The unstable equilibria the last [`Self::step`] left (static solver; empty
-    /// otherwise).
-    pub fn stability_events(&self) -> &[StabilityEvent] {
-        &self.events
-    }
-
     /// One static input step: the equilibrium at t + h, solved in 1, 2, 4, …
     /// [`MAX_STATIC_SUBSTEPS`] load steps until the solves converge, and past a limit
     /// point by following the snap ([`snap`]).
     fn static_step(
         &mut self,
+        solver: &mut StaticSolver,
         model: &Model,
         state: &mut State,
         time: f64,
+        h: f64,
     ) -> Result<StepStats, SolverError> {
-        let h = self.settings.static_input_step;
         self.previous_x.copy_from_slice(&state.x);
         self.previous_q.copy_from_slice(&state.q);
         self.previous_friction.clone_from(&state.friction);
         self.events.clear();
-        let solver = self.statics.as_mut().expect("built for static");
         let mut pieces = 1;
         // the linearised response of the pieces summed: the path-following predictor
         let mut predicted;
@@ -435,7 +410,7 @@ impl Solver {
         }
         state.time = time + h;
         if report.converged && self.events.is_empty() {
-            self.report_jump(model, state, predicted, indefinite);
+            self.report_jump(solver, model, state, predicted, indefinite);
         }
         for i in 0..state.x.len() {
             state.v[i] = (state.x[i] - self.previous_x[i]) / h;
@@ -455,7 +430,7 @@ impl Solver {
     }
 }
 
-impl Solver {
+impl Buffers {
     /// A converged static input step that landed on a distant branch: a limit point
     /// passed within the step (by Newton from the start, or by the adaptive load steps),
     /// the hose jumping to a stable equilibrium that does not continue the one it stood
@@ -479,7 +454,14 @@ impl Solver {
     /// displacement as the mode, the potential energy released at the step's loads).
     /// With dead moments Newton runs on the unmodified tangent and reads no inertia (as
     /// the stability check does not): no jump is reported then.
-    fn report_jump(&mut self, model: &Model, state: &mut State, predicted: f64, indefinite: usize) {
+    fn report_jump(
+        &mut self,
+        solver: &mut StaticSolver,
+        model: &Model,
+        state: &mut State,
+        predicted: f64,
+        indefinite: usize,
+    ) {
         let moved = state
             .x
             .iter()
@@ -488,7 +470,6 @@ impl Solver {
             .filter(|(_, held)| !**held)
             .map(|((a, b), _)| (*a - *b).length())
             .fold(0.0, f64::max);
-        let solver = self.statics.as_mut().expect("built for static");
         let far = moved > JUMP_RATIO * predicted && moved > solver.system.mean_length;
         if !(far && indefinite > 0) {
             return;
@@ -510,7 +491,7 @@ impl Solver {
 
 /// A converged static step whose largest free-node motion exceeds this multiple of the
 /// linearised prediction, through a region where the potential is not convex, has jumped
-/// to a distant branch (`Solver::report_jump`).
+/// to a distant branch (`Buffers::report_jump`).
 pub const JUMP_RATIO: f64 = 5.0;
 
 /// The event of a snap from `before` to `after` (limit point passed at `time`).

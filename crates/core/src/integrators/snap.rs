@@ -1,32 +1,31 @@
-//! Passing a limit point (snap-through) in the static solver (issue 10 item 1).
+//! Passing a limit point (snap-through) in the static solver.
 //!
-//! Past a limit point of the load path — a buckled hose pushed sideways until it snaps
-//! into the mirrored shape, a hose jumping over an edge — the equilibrium branch the
-//! solver follows ends: no load step, however small, has an equilibrium nearby, and
-//! Newton cannot converge. The hose then moves dynamically to a distant stable branch.
-//! This follows that motion with the loads frozen at the input's time, by dynamic
-//! relaxation with kinetic damping (Cundall 1976; Barnes 1999): explicit steps of the
-//! model's own stable step, all velocities zeroed at every peak of the kinetic energy, so
-//! the state walks down the energy landscape to a stable equilibrium — the one the real,
-//! damped hose snaps to — from where the Newton solve finishes. Explicit steps rather than
-//! large implicit ones: an implicit step longer than an unstable mode's time scale is
-//! drawn back onto the unstable equilibrium (its effective stiffness 4m/Δt² − k turns
-//! negative), the explicit one never is.
+//! Past a limit point of the load path — a buckled hose pushed sideways until it snaps into
+//! the mirrored shape, a hose jumping over an edge — the equilibrium branch the solver
+//! follows ends: no load step, however small, has an equilibrium nearby, and Newton cannot
+//! converge. The hose then moves dynamically to a distant stable branch. This follows that
+//! motion with the loads frozen at the input's time, by dynamic relaxation with kinetic
+//! damping ([`crate::relax`]; Cundall 1976; Barnes 1999): explicit steps of the model's own
+//! stable step, all velocities zeroed at every peak of the kinetic energy, so the state
+//! walks down the energy landscape to a stable equilibrium — the one the real, damped hose
+//! snaps to — from where the Newton solve finishes. Explicit steps rather than large
+//! implicit ones: an implicit step longer than an unstable mode's time scale is drawn back
+//! onto the unstable equilibrium (its effective stiffness 4m/Δt² − k turns negative), the
+//! explicit one never is.
 
 use super::explicit::step;
-use crate::health::check;
-use crate::settle::{residual, stop, KineticDamping};
+use crate::health::Divergence;
+use crate::relax::{relax_with, stop, RelaxOptions, Relaxing};
 use crate::{Model, State};
 use glam::DVec3;
+use std::ops::ControlFlow;
 
 /// Most explicit steps one snap may take.
-const MAX_RELAXATION_STEPS: usize = 2_000_000;
+const MAX_RELAXATION_STEPS: u64 = 2_000_000;
 /// Out-of-balance, as a multiple of the static convergence limit, from which the Newton
 /// solve takes over: 1, the static limit itself — near the unstable equilibrium the snap
 /// starts from the residual is small too, and a looser hand-over returns Newton to it.
 const HANDOVER: f64 = 1.0;
-/// Steps between residual checks.
-const CHECK_EVERY: usize = 64;
 /// Consecutive check windows in which no node moved (see [`frozen`]) after which the
 /// relaxation gives up: its residual is then held by a constraint (a sticking stub or
 /// contact) that explicit steps cannot move, and more steps change nothing.
@@ -36,12 +35,39 @@ const FROZEN_WINDOWS: usize = 8;
 /// the static limit moves in one window, far above the positions' round-off).
 const FROZEN_FRACTION: f64 = 1e-10;
 
-/// Relaxes `state` under its loads at time `time` until the largest out-of-balance force
-/// and moment on free nodes are within `HANDOVER` × (`force_limit`, `moment_limit`).
-/// Returns the explicit steps taken, or `None` if the relaxation diverged, stopped moving
-/// short of the limits (`FROZEN_WINDOWS`) or did not get there within
-/// `MAX_RELAXATION_STEPS` (the caller then reports the input step unconverged).
-/// `anchor` is scratch space for the positions at the last check (resized to the nodes).
+/// Explicit steps that each end at `time`: prescribed motions stay where they are due.
+struct AtTime<'a> {
+    model: &'a Model,
+    state: &'a mut State,
+    time: f64,
+}
+
+impl Relaxing for AtTime<'_> {
+    fn model(&self) -> &Model {
+        self.model
+    }
+    fn state(&self) -> &State {
+        self.state
+    }
+    fn step(&mut self) -> Result<(), Divergence> {
+        self.state.time = self.time - self.model.time_step;
+        step(self.model, self.state);
+        self.state.time = self.time;
+        Ok(())
+    }
+    fn stop(&mut self) {
+        stop(self.state);
+    }
+}
+
+/// Relaxes `state` under its loads at time `time` ([`crate::relax::relax_with`], with
+/// kinetic damping, from rest) until the largest out-of-balance force and moment on free
+/// nodes ([`crate::relax::residual`], contact counted) are within `HANDOVER` ×
+/// (`force_limit`, `moment_limit`). Returns the explicit steps taken, or `None` if the
+/// relaxation diverged, stopped moving short of the limits (`FROZEN_WINDOWS`) or did not
+/// get there within `MAX_RELAXATION_STEPS` (the caller then reports the input step
+/// unconverged). `anchor` is scratch space for the positions at the last check (resized
+/// to the nodes).
 pub fn relax(
     model: &Model,
     state: &mut State,
@@ -50,37 +76,31 @@ pub fn relax(
     moment_limit: f64,
     anchor: &mut Vec<DVec3>,
 ) -> Option<usize> {
-    let dt = model.time_step;
     stop(state);
     let still = FROZEN_FRACTION * shortest_element(model);
     anchor.clear();
     anchor.extend_from_slice(&state.x);
     let mut frozen_windows = 0;
-    let mut damping = KineticDamping::default();
-    for steps in 1..=MAX_RELAXATION_STEPS {
-        // each step ends at `time`: prescribed motions stay where they are due
-        state.time = time - dt;
-        step(model, state);
-        state.time = time;
-        damping.after_step(model, state);
-        if steps % CHECK_EVERY == 0 {
-            check(model, state).ok()?;
-            let (f, m) = residual(state);
-            if f <= HANDOVER * force_limit && m <= HANDOVER * moment_limit {
-                return Some(steps);
-            }
-            frozen_windows = if frozen(&state.x, anchor, still) {
-                frozen_windows + 1
-            } else {
-                0
-            };
-            if frozen_windows >= FROZEN_WINDOWS {
-                return None;
-            }
-            anchor.copy_from_slice(&state.x);
+    let options = RelaxOptions {
+        force_tolerance: HANDOVER * force_limit,
+        moment_tolerance: HANDOVER * moment_limit,
+        max_steps: MAX_RELAXATION_STEPS,
+        kinetic_damping: true,
+    };
+    let report = relax_with(&mut AtTime { model, state, time }, &options, |state| {
+        frozen_windows = if frozen(&state.x, anchor, still) {
+            frozen_windows + 1
+        } else {
+            0
+        };
+        if frozen_windows >= FROZEN_WINDOWS {
+            return ControlFlow::Break(());
         }
-    }
-    None
+        anchor.copy_from_slice(&state.x);
+        ControlFlow::Continue(())
+    })
+    .ok()?;
+    report.converged.then_some(report.steps as usize)
 }
 
 /// Whether no node moved more than `still` since `anchor`. A free node with an

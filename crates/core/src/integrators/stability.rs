@@ -1,4 +1,4 @@
-//! Whether a static equilibrium is stable, and leaving it when it is not (issue 10, SPEC
+//! Whether a static equilibrium is stable, and leaving it when it is not (SPEC
 //! S1).
 //!
 //! An equilibrium is stable when the tangent K = ∂²Π/∂u² of the potential energy is

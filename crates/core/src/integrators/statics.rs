@@ -1,4 +1,4 @@
-//! Quasi-static solution (issue 5, SPEC P5): the equilibrium under the current boundary
+//! Quasi-static solution (SPEC P5): the equilibrium under the current boundary
 //! conditions — prescribed nodes where their load cases put them now, gravity, dead loads,
 //! contact — found by Newton's method on the consistent tangent with a backtracking line
 //! search (Nocedal & Wright, "Numerical Optimization", 2006, alg. 3.1): a step is
@@ -44,7 +44,7 @@ impl Default for StaticOptions {
     fn default() -> Self {
         Self {
             tolerance: Tolerance::default(),
-            max_iterations: 60,
+            max_iterations: crate::settings::DEFAULT_STATIC_MAX_ITERATIONS,
             contact_step_fraction: 0.5,
             stability: true,
             max_escapes: 8,

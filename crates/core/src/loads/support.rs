@@ -1,4 +1,4 @@
-//! A fixing's support (issue 11 item 5): a node held to a pose by stiff springs in the
+//! A fixing's support: a node held to a pose by stiff springs in the
 //! directions the fixing fixes and by none in those it leaves free, with Coulomb friction
 //! along its free translations (a sliding guide).
 //!

@@ -1,4 +1,4 @@
-//! A cable tie between two hoses (issue 11 item 5): the tied node of one hose and the
+//! A cable tie between two hoses: the tied node of one hose and the
 //! tied node of the other are held at the distance they had when the tie closed — a stiff
 //! spring and damper along the line between them, the same on both nodes with opposite
 //! signs (a rod with a ball joint at each end):

@@ -1,4 +1,4 @@
-//! When a Newton solve has converged (issue 10, "convergence is honest"): every free
+//! When a Newton solve has converged ("convergence is honest"): every free
 //! node's out-of-balance force and moment, each against the size of the loads in the
 //! problem — so the same setting works for a 1 mm silicone tube carrying millinewtons and
 //! a steel pipe carrying kilonewtons — with optional absolute floors.

@@ -1,4 +1,4 @@
-//! The Newton machinery the implicit and quasi-static integrators share (issue 5, SPEC
+//! The Newton machinery the implicit and quasi-static integrators share (SPEC
 //! P5; the integrators themselves are in [`crate::integrators`]): the assembly of loads
 //! and consistent tangent ([`system`]), the O(N) linear solve of a chain or tree of
 //! nodes ([`block_tree`]), the condensation of junctions onto their master nodes

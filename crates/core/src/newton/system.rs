@@ -4,7 +4,7 @@
 //!
 //! What enters, and how:
 //! * elements: loads and their consistent tangent by automatic differentiation
-//!   ([`crate::tangent`]), with stiffness-proportional damping through the velocities;
+//!   ([`crate::rod::tangent`]), with stiffness-proportional damping through the velocities;
 //! * gravity m g (constant) and mass-proportional damping −α m v, −α I ω;
 //! * dead loads (constant forces and moments in global axes — no tangent);
 //! * fixings' supports ([`crate::loads::Support`]): springs in the fixed directions of
@@ -32,9 +32,9 @@ use super::gmres::Gmres;
 use super::ties::TieCouplings;
 use crate::contact::friction::FrictionResponse;
 use crate::contact::{hose_contact_forces_with, ContactPair};
-use crate::element::{BeamElement, ElementEnds, ElementLoads};
 use crate::loads::{LoadCase, Support, SupportLoad};
-use crate::tangent::{block_tangent, ElementTangent};
+use crate::rod::element::{BeamElement, ElementEnds, ElementLoads};
+use crate::rod::tangent::{block_tangent, ElementTangent};
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
 use nalgebra::{Matrix3, Vector6};

@@ -1,4 +1,4 @@
-//! The long fuzz job (hardening item 8; issue 36, item 6): `pliant-fuzz [--inputs N]
+//! The long fuzz job: `pliant-fuzz [--inputs N]
 //! [--target NAME] [--seed S] [--hang-seconds T]` runs N inputs per target (default
 //! 1 000 000) made from the seeds by random edits, reports inputs per second, the
 //! slowest input, the process's peak memory and every find — a broken property, a panic,

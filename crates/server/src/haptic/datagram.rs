@@ -21,7 +21,7 @@ pub const REPLY_BYTES: usize = 96;
 pub const KEY_BYTES: usize = 32;
 /// Largest norm of an orientation quaternion taken (it is normalised); with the
 /// smallest, 1/`MAX_QUATERNION_NORM`, it refuses absurd values such as \[1e200, …\]
-/// (issue 36) while leaving room for a device's rounding.
+/// while leaving room for a device's rounding.
 pub const MAX_QUATERNION_NORM: f64 = 2.0;
 
 /// Whether `b` has a request's size and magic: the only datagrams answered (a reply is
@@ -441,7 +441,7 @@ mod tests {
         let mut b = good;
         b[48..56].copy_from_slice(&f64::INFINITY.to_le_bytes());
         assert_eq!(Request::decode(&b), Err(Status::InvalidValue));
-        // issue 36: absurd orientations are refused, not normalised
+        // absurd orientations are refused, not normalised
         for c in [1e200_f64, 1e-200, 3.0] {
             let mut b = good;
             for k in 0..4 {

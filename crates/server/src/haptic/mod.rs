@@ -17,7 +17,7 @@
 //! only processes on this machine reach it; when the server has a token, every datagram
 //! must carry it in its key field. Hands follow the WebSocket's ownership rules: the
 //! stream is one client, a hand another client holds is refused. Only a datagram of a
-//! request's size with the request magic gets a reply (issue 36: 0–4-byte datagrams got
+//! request's size with the request magic gets a reply (0–4-byte datagrams got
 //! 96-byte answers, an amplifier), and it is smaller than the request; every other one
 //! is counted and dropped, never a crash. A hand the stream has not heard of for [`IDLE_RELEASE`]
 //! is released (a device that stops sending does not hold a hose for ever).

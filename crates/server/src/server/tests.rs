@@ -1,4 +1,4 @@
-//! One bad request never takes the server down (issue 9): a panic while serving one client
+//! One bad request never takes the server down: a panic while serving one client
 //! — with both shared locks held, so that they are poisoned — ends that client's connection
 //! only, its hands are released, and a later client is served as usual; a panic in the
 //! scene loader is an `invalid_scene` reply and the connection lives on.

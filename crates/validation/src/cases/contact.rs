@@ -129,7 +129,7 @@ fn floor_case(flip: bool, stiffened: bool) -> Vec<Check> {
         5.0,
     );
     if stiffened {
-        let span = pliant_core::stiffened::StiffenedSpan {
+        let span = pliant_core::rod::stiffened::StiffenedSpan {
             hose: 0,
             first: 8,
             last: 12,

@@ -1,4 +1,4 @@
-//! Connector stub and clip (SPEC L6, L7; issue 3 item 10):
+//! Connector stub and clip (SPEC L6, L7):
 //! * `stub`: the press-fit pressure of library hose 3 (d_i 27 mm, d_a 35 mm, E_t
 //!   6.9442 MPa, ν 0.49) on a 28 mm stub against the hand calculation (Lamé, SPEC L6:
 //!   Q = 13.5/17.5, δ = 0.5 mm → p = 55 989.67 Pa); a hand pushing the hose end on at

@@ -1,4 +1,4 @@
-//! `friction_newton`: Coulomb friction under the Newton solvers (issue 10), on the incline
+//! `friction_newton`: Coulomb friction under the Newton solvers, on the incline
 //! of `contact_incline` (μ_s = 0.5, μ_k = 0.4, a 0.5 m hose lying down the slope):
 //! * static, tan φ = 0.8 μ_s: an equilibrium exists; the hose sticks (creep along the
 //!   slope below 10 µm, the elastic give of the friction spring) and the parts carry its

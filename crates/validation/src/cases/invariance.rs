@@ -5,7 +5,8 @@
 use crate::harness::{hose1, static_settings};
 use crate::Check;
 use glam::{DQuat, DVec3};
-use pliant_core::forces::{internal_loads, Config};
+use pliant_core::rod::forces::internal_loads;
+use pliant_core::rod::node_view::NodeView;
 use pliant_core::{HoseSpec, Model, WorldSpec};
 
 pub fn run() -> Vec<Check> {
@@ -49,7 +50,7 @@ pub fn run() -> Vec<Check> {
         let q: Vec<DQuat> = model.rest_q.iter().map(|p| r * *p).collect();
         internal_loads(
             &model,
-            &Config {
+            &NodeView {
                 x: &x,
                 q: &q,
                 v: &zero,

@@ -1,5 +1,5 @@
 //! `scale`: the solvers' default settings work from a millimetre silicone tube to a steel
-//! pipe (issue 10 item 2: convergence tests relative to the problem's loads).
+//! pipe (convergence tests relative to the problem's loads).
 //!
 //! Each rod is a cantilever of 40 elements under a dead tip load λ = PL²/EI = 2, applied
 //! at once; the tip deflection must match the elastica (w/L = 0.493457: the

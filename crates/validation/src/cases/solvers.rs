@@ -1,4 +1,4 @@
-//! `solvers`: every case with a rest state, run under each solver (issue 5): the explicit
+//! `solvers`: every case with a rest state, run under each solver: the explicit
 //! solver damped to rest, implicit HHT-α damped to rest and the quasi-static Newton
 //! solver must agree within 0.1 % on every quantity the case compares (relative to the
 //! quantity's reference scale — the exact value, or the hose length where the exact value

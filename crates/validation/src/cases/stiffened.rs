@@ -9,7 +9,7 @@
 use crate::harness::{build, clamp, dead_load, hose1, settle_to, static_settings, straight_hose};
 use crate::Check;
 use glam::DVec3;
-use pliant_core::stiffened::StiffenedSpan;
+use pliant_core::rod::stiffened::StiffenedSpan;
 use pliant_core::State;
 
 const ELEMENTS: usize = 40;

@@ -318,7 +318,8 @@ def _check_target(origin, where, vary, target, scene) -> None:
             raise _fail(origin, f"{where}.action", a, f"timeline[{a}] has neither `to` nor `by` to offset")
 
 
-#: Largest study or scene file read [bytes] (issue 36, item 5), as the engine's scene reader.
+#: Largest study or scene file read [bytes] (regular files only), as the engine's
+#: scene reader.
 MAX_FILE_BYTES = 64 * 1024 * 1024
 
 

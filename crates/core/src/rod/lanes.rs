@@ -1,5 +1,5 @@
 //! Four f64 lanes — [`F4`] — and 3-vectors and quaternions of them, for the element
-//! kernel that evaluates four elements at once ([`crate::element_block`]).
+//! kernel that evaluates four elements at once ([`crate::rod::element_block`]).
 //!
 //! Plain portable code: every operation is a loop over the four lanes, written so that
 //! inside a function compiled for AVX2 + FMA (`#[target_feature]`, chosen at run time)

@@ -1,11 +1,10 @@
-//! The element tangent by the explicit kernel's algebra, four elements at a time
-//! (issue 15, item 3).
+//! The element tangent by the explicit kernel's algebra, four elements at a time.
 //!
-//! [`crate::tangent`] differentiates the reference load function
+//! [`crate::rod::tangent`] differentiates the reference load function
 //! [`BeamElement::loads_of`] (quaternion rotations, the log map by atan2 or its series,
 //! generic dual arithmetic in which constants are duals too). This module differentiates,
 //! in forward mode with the same 9 dual components (δx_b, δθ_a, δθ_b), the algebra of the
-//! four-element kernel [`crate::element_block`] — the same element law, reorganised but
+//! four-element kernel [`crate::rod::element_block`] — the same element law, reorganised but
 //! not approximated:
 //!
 //! * the end frames' increments are seeded directly: for r = exp(δθ) q c (c the rest
@@ -14,7 +13,7 @@
 //! * the element frame's rotation matrix is formed once and rotates the four vectors;
 //! * the log map is θ = 4 atan(y)/y · v/(1 + w), y² = |v|²/(1 + w)², and the tangent
 //!   operator's coefficient c(θ) of J_l⁻ᵀ is its Bernoulli series (the kernel's series and
-//!   ranges, [`crate::element_block`]); a series f(t) of a dual t is applied by the chain
+//!   ranges, [`crate::rod::element_block`]); a series f(t) of a dual t is applied by the chain
 //!   rule, f(t₀) + f′(t₀) δt, both by Horner in f64;
 //! * products by constants are products by f64, not by constant duals;
 //! * four elements are differentiated at once, one per lane of
@@ -30,13 +29,13 @@
 //! (`block_tangent_rows`) gives the same bits as the portable one.
 
 use crate::autodiff::{Dual, LaneDual, Quat, Scalar, V3};
-use crate::element::{BeamElement, ElementEnds};
-use crate::element_block::{Kernel, ATAN_OVER_Y, JACOBIAN_C, JACOBIAN_T2_MAX, LOG_Y2_MAX};
-use crate::lane_arith::Lane4;
-use crate::lanes::{F4, M4};
+use crate::rod::element::{BeamElement, ElementEnds};
+use crate::rod::element_block::{Kernel, ATAN_OVER_Y, JACOBIAN_C, JACOBIAN_T2_MAX, LOG_Y2_MAX};
+use crate::rod::lane_arith::Lane4;
+use crate::rod::lanes::{F4, M4};
 use glam::{DQuat, DVec3};
 
-/// Dual components: δx_b (0..3), δθ_a (3..6), δθ_b (6..9), as in [`crate::tangent`].
+/// Dual components: δx_b (0..3), δθ_a (3..6), δθ_b (6..9), as in [`crate::rod::tangent`].
 pub(crate) const N: usize = 9;
 pub(crate) type D9 = Dual<N>;
 type L<F> = LaneDual<N, F>;
@@ -224,7 +223,7 @@ fn jacobian_inverse_transpose_times<F: Lane4>(theta: V3<L<F>>, moment: V3<L<F>>)
 }
 
 /// The loads of four elements as lane duals on their increments, by the kernel's algebra
-/// (the element law of [`crate::element`]).
+/// (the element law of [`crate::rod::element`]).
 #[inline(always)]
 fn rows<F: Lane4>(
     e: [&BeamElement; 4],
@@ -346,7 +345,7 @@ unsafe fn rows_avx2(
     beta: f64,
     rate: f64,
 ) -> BlockRows {
-    rows::<crate::lane_arith::Avx4>(e, ends, beta, rate)
+    rows::<crate::rod::lane_arith::Avx4>(e, ends, beta, rate)
 }
 
 /// [`rows`] as portable code.

@@ -1,4 +1,4 @@
-//! The consistent tangent stiffness of one element (issue 5), by forward-mode automatic
+//! The consistent tangent stiffness of one element, by forward-mode automatic
 //! differentiation of the element's own load function ([`BeamElement::loads_of`]):
 //! the 12 inputs are the increments u = (δx_a, δθ_a, δx_b, δθ_b) — translations and
 //! spatial (left) rotation increments, q ← exp(δθ) q — and the result is
@@ -14,19 +14,19 @@
 //! The loads depend on the end positions and velocities only through x_b − x_a and
 //! v_b − v_a (a rigid translation changes nothing), so ∂/∂x_a = −∂/∂x_b: only 9 of the 12
 //! increments are carried as dual components (δx_b, δθ_a, δθ_b), a quarter less work in
-//! every dual operation (issue 15, item 3).
+//! every dual operation.
 //!
 //! The solvers' tangent ([`element_tangent`], [`block_tangent`]) differentiates the same
 //! loads in the algebra of the explicit kernel, four elements at a time
-//! ([`crate::tangent_kernel`]); elements whose relative rotations lie beyond that
+//! ([`crate::rod::tangent_kernel`]); elements whose relative rotations lie beyond that
 //! kernel's series use the reference differentiation here ([`reference_tangent`]). The
 //! two agree to rounding (≤ 1e-10 of the largest entry of a kind; a test checks this on
 //! random elements).
 
 use crate::autodiff::{Quat, Scalar, V3};
-use crate::element::{BeamElement, ElementEnds, ElementLoads};
-use crate::element_block::Kernel;
-use crate::tangent_kernel::{block_tangent_rows, BlockRows, LoadRows, D9};
+use crate::rod::element::{BeamElement, ElementEnds, ElementLoads};
+use crate::rod::element_block::Kernel;
+use crate::rod::tangent_kernel::{block_tangent_rows, BlockRows, LoadRows, D9};
 use glam::{DQuat, DVec3};
 use nalgebra::SMatrix;
 
@@ -132,7 +132,7 @@ fn reference_rows(
 }
 
 /// The loads of four elements at `ends` and their tangents K = −∂loads/∂u: by the
-/// kernel's algebra four at a time ([`crate::tangent_kernel`]), by the reference for
+/// kernel's algebra four at a time ([`crate::rod::tangent_kernel`]), by the reference for
 /// elements whose relative rotations its series do not cover. Fewer than four elements
 /// repeat the last one in the lanes beyond `count`; `out` receives `count` results.
 pub fn block_tangent(
@@ -200,8 +200,8 @@ pub fn kernel_tangent(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::element::rotate;
     use crate::math::exp_map;
+    use crate::rod::element::rotate;
     use crate::{Material, Section};
 
     fn element() -> BeamElement {
@@ -349,7 +349,7 @@ mod tests {
         assert!((k[(5, 5)] - rot).abs() < 1e-9 * rot);
     }
 
-    /// The kernel-algebra tangent ([`crate::tangent_kernel`]) equals the reference tangent
+    /// The kernel-algebra tangent ([`crate::rod::tangent_kernel`]) equals the reference tangent
     /// on random elements: within 1e-10 of the largest entry of the same kind (force or
     /// moment row, translation or rotation column), loads within 1e-12 of their scale.
     /// Large rigid rotations, relative rotations inside and beyond the kernel's series
@@ -358,7 +358,7 @@ mod tests {
     /// sections with unequal E I; the AVX2 and portable copies give the same bits.
     #[test]
     fn kernel_tangent_equals_the_reference() {
-        use crate::test_elements::{random_element, random_ends, Rng};
+        use crate::rod::test_elements::{random_element, random_ends, Rng};
         let mut rng = Rng(27);
         let (mut inside, mut outside, mut tension, mut compression) = (0, 0, 0, 0);
         let mut worst: f64 = 0.0;

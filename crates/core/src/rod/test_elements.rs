@@ -1,8 +1,8 @@
 //! Random elements and configurations for the tests of the element kernel and its
 //! tangent (test builds only).
 
-use crate::element::{BeamElement, ElementEnds};
 use crate::math::exp_map;
+use crate::rod::element::{BeamElement, ElementEnds};
 use crate::section::SectionProperties;
 use crate::{Material, Section};
 use glam::{DQuat, DVec3};

@@ -1,15 +1,16 @@
 //! Arithmetic of four f64 lanes as a trait ([`Lane4`]), for code written once and
-//! compiled two ways: over the portable [`F4`] ([`crate::lanes`], loops that the
+//! compiled two ways: over the portable [`F4`] ([`crate::rod::lanes`], loops that the
 //! compiler may or may not turn into vector instructions), and over [`Avx4`], a 256-bit
 //! AVX register whose every operation is one instruction, for code compiled for AVX2
 //! (chosen at run time). Large kernels need the latter: over `F4` the compiler splits
-//! long chains of lane operations into scalar instructions (issue 15, item 3: the
-//! tangent kernel, [`crate::tangent_kernel`], ran 4 scalar instructions per operation).
+//! long chains of lane operations into scalar instructions (the
+//! tangent kernel, [`crate::rod::tangent_kernel`], would run several scalar instructions
+//! per operation).
 //!
 //! Only `+ − × ÷ √` and lane selection, each correctly rounded, so both give the same
 //! bits.
 
-use crate::lanes::{F4, M4};
+use crate::rod::lanes::{F4, M4};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// Four f64 lanes.
@@ -65,7 +66,7 @@ mod avx {
     ///
     /// Its operations are inline AVX instructions: use it only inside functions compiled
     /// with `#[target_feature(enable = "avx2")]` and called after checking that the CPU
-    /// has AVX2 (as [`crate::element_block::Kernel::detect`] does). Elsewhere its
+    /// has AVX2 (as [`crate::rod::element_block::Kernel::detect`] does). Elsewhere its
     /// operations are calls to AVX code — invalid on CPUs without AVX.
     #[derive(Clone, Copy, Debug)]
     pub struct Avx4(__m256d);

@@ -19,7 +19,7 @@
 //! the consistent geometric stiffness of the cubic element: without it the co-rotational
 //! element sees an axial force only through the chord's rotation (the string stiffness
 //! N/l), which makes compressed and post-buckled shapes converge with a large error
-//! constant (issue 10 item 4).
+//! constant.
 //!
 //! and the nodal forces are the exact variation of that strain energy through the
 //! co-rotational kinematics: with m_a, m_b the end moments in global axes,
@@ -194,7 +194,7 @@ impl BeamElement {
     }
 
     /// [`Self::loads`] over any [`Scalar`]: with dual numbers seeded on the end
-    /// increments it gives the consistent tangent ([`crate::tangent`]).
+    /// increments it gives the consistent tangent ([`crate::rod::tangent`]).
     #[inline(always)]
     pub fn loads_of<T: Scalar>(
         &self,

@@ -1,6 +1,6 @@
 //! Gravity and mass-proportional damping per node (P4, P6): f ← f + m (g − α v),
-//! M ← M − (α I) ω — the explicit step's body-load pass ([`crate::forces::add_body_loads_of`]),
-//! four nodes at a time (issue 15).
+//! M ← M − (α I) ω — the explicit step's body-load pass ([`crate::rod::forces::add_body_loads_of`]),
+//! four nodes at a time.
 //!
 //! Four nodes' 3-vectors are twelve consecutive f64, i.e. three [`F4`]s: the lanes take
 //! the components as they lie in memory, with the node's mass (α I) and the gravity
@@ -8,7 +8,7 @@
 //! reference's order (no fused multiply–add), so the result is bit for bit that of
 //! [`add_body_loads_scalar`], which also does the last `n mod 4` nodes.
 
-use crate::lanes::F4;
+use crate::rod::lanes::F4;
 use glam::DVec3;
 
 /// The constants of the pass: gravity g and the mass-damping coefficient α.

@@ -1,25 +1,19 @@
 //! Assembly of the nodal loads of all elements, gravity (P6) and damping (P4).
 
-use crate::body_loads::{self, BodyLoad, BodyNodes};
-use crate::element::ElementEnds;
-use crate::element_block::{self, Kernel};
 use crate::parallel::{Pool, SharedMut};
+use crate::rod::body_loads::{self, BodyLoad, BodyNodes};
+use crate::rod::element::ElementEnds;
+use crate::rod::element_block::{self, Kernel};
 use crate::Model;
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 
-/// Borrowed node arrays of a configuration.
-pub struct Config<'a> {
-    pub x: &'a [DVec3],
-    pub q: &'a [DQuat],
-    pub v: &'a [DVec3],
-    pub w: &'a [DVec3],
-}
+use super::node_view::NodeView;
 
 /// Writes the internal element loads (with stiffness-proportional damping β) into
 /// `force` and `moment`, overwriting them. No allocation.
 pub fn internal_loads(
     model: &Model,
-    c: &Config,
+    c: &NodeView,
     beta: f64,
     force: &mut [DVec3],
     moment: &mut [DVec3],
@@ -31,7 +25,7 @@ pub fn internal_loads(
 /// elements of sleeping hoses, [`crate::sleep`]).
 pub fn internal_loads_except(
     model: &Model,
-    c: &Config,
+    c: &NodeView,
     beta: f64,
     force: &mut [DVec3],
     moment: &mut [DVec3],
@@ -56,11 +50,11 @@ pub fn internal_loads_except(
     }
 }
 
-/// Adds the internal loads element by element with the reference [`crate::element::BeamElement::loads`]
-/// (what [`crate::element_block`] computes four at a time).
+/// Adds the internal loads element by element with the reference [`crate::rod::element::BeamElement::loads`]
+/// (what [`crate::rod::element_block`] computes four at a time).
 pub fn add_reference_loads(
     model: &Model,
-    c: &Config,
+    c: &NodeView,
     beta: f64,
     force: &mut [DVec3],
     moment: &mut [DVec3],
@@ -86,16 +80,16 @@ pub fn add_reference_loads(
 }
 
 /// Adds gravity m g and mass-proportional damping −α m v, −α I ω.
-pub fn add_body_loads(model: &Model, c: &Config, force: &mut [DVec3], moment: &mut [DVec3]) {
+pub fn add_body_loads(model: &Model, c: &NodeView, force: &mut [DVec3], moment: &mut [DVec3]) {
     add_body_loads_of(model, 0, c, force, moment);
 }
 
 /// [`add_body_loads`] for the nodes `base..` that `c`, `force` and `moment` hold, four
-/// at a time ([`crate::body_loads`]).
+/// at a time ([`crate::rod::body_loads`]).
 pub fn add_body_loads_of(
     model: &Model,
     base: usize,
-    c: &Config,
+    c: &NodeView,
     force: &mut [DVec3],
     moment: &mut [DVec3],
 ) {
@@ -121,7 +115,7 @@ pub fn add_body_loads_of(
 /// each node gets the same sums in the same order as on one thread.
 pub fn step_loads(
     model: &Model,
-    c: &Config,
+    c: &NodeView,
     beta: f64,
     force: &mut [DVec3],
     moment: &mut [DVec3],
@@ -143,7 +137,7 @@ pub fn step_loads(
         let (force, moment) = unsafe { (fp.slice(nodes.clone()), mp.slice(nodes.clone())) };
         force.fill(DVec3::ZERO);
         moment.fill(DVec3::ZERO);
-        let part = Config {
+        let part = NodeView {
             x: &c.x[nodes.clone()],
             q: &c.q[nodes.clone()],
             v: &c.v[nodes.clone()],

@@ -1,14 +1,14 @@
-//! The element loads four elements at a time (issue 15): the explicit solver's hot loop.
+//! The element loads four elements at a time: the explicit solver's hot loop.
 //!
 //! [`BeamElement::loads_of`] is the reference — generic over the number type, so that the
 //! Newton solvers differentiate it — and evaluates one element. Here the same element
 //! law is evaluated for four elements of one hose at once, each in one lane of 256-bit
-//! registers ([`crate::lanes`]): the elements' constants are stored structure-of-arrays
+//! registers ([`crate::rod::lanes`]): the elements' constants are stored structure-of-arrays
 //! in blocks of four ([`PackedElements`], built with the model), the node data are
 //! gathered into lanes, and the loads are added to the nodes lane by lane in element
 //! order — the order of the reference loop. The kernel is compiled twice, for AVX2 + FMA
 //! (chosen at run time when the CPU has both) and portable; both give the same bits (see
-//! [`crate::lanes`]), so results never depend on the machine's instruction set.
+//! [`crate::rod::lanes`]), so results never depend on the machine's instruction set.
 //!
 //! The algebra is the reference's, reorganised for speed but not approximated; results
 //! agree with the reference to rounding (a test checks ≤ 1e-12 of each load's scale on
@@ -28,10 +28,10 @@
 //!   not finite) is recomputed by the reference [`BeamElement::loads`]: exact for any
 //!   configuration, and rare.
 
-use crate::element::{BeamElement, ElementEnds};
-use crate::forces::Config;
-use crate::lanes::{gather3, gather4, lane, scatter3, shift_up, F4, M34, M4, Q4, V4};
 use crate::model::HoseInfo;
+use crate::rod::element::{BeamElement, ElementEnds};
+use crate::rod::lanes::{gather3, gather4, lane, scatter3, shift_up, F4, M34, M4, Q4, V4};
+use crate::rod::node_view::NodeView;
 use glam::{DQuat, DVec3};
 
 /// Largest y² = tan²(|θ|/4) of the log map's series (|θ| ≤ 0.75 rad).
@@ -228,7 +228,7 @@ fn ends<T, L>(
 /// The loads of the four elements of block `b` in the configuration `c` (node indices
 /// less `base` index `c`'s arrays), with stiffness-proportional damping `beta`.
 #[inline(always)]
-pub fn block_loads(b: &ElementBlock, c: &Config, base: usize, beta: f64) -> BlockLoads {
+pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> BlockLoads {
     let na = b.node_a.map(|i| i - base);
     let nb = b.node_b.map(|i| i - base);
     let one = F4::splat(1.0);
@@ -350,7 +350,7 @@ pub fn block_loads(b: &ElementBlock, c: &Config, base: usize, beta: f64) -> Bloc
 /// One element by the reference (lanes outside the kernel's series).
 #[cold]
 #[inline(never)]
-fn reference_loads(e: &BeamElement, c: &Config, base: usize, beta: f64) -> [DVec3; 4] {
+fn reference_loads(e: &BeamElement, c: &NodeView, base: usize, beta: f64) -> [DVec3; 4] {
     let (a, b) = (e.node_a - base, e.node_b - base);
     let l = e.loads(
         &ElementEnds {
@@ -383,7 +383,7 @@ fn add_chained(a: V4, b: V4, out: &mut [DVec3]) {
 struct Job<'a, S> {
     blocks: &'a [ElementBlock],
     elements: &'a [BeamElement],
-    c: &'a Config<'a>,
+    c: &'a NodeView<'a>,
     base: usize,
     beta: f64,
     force: &'a mut [DVec3],
@@ -415,7 +415,7 @@ impl<S: Fn(usize) -> bool> Job<'_, S> {
             }
             // through memory: stored as vectors, the loads are computed in 256-bit
             // registers; extracted lane by lane for `add_chained` without it, LLVM
-            // computed the whole block lane by lane (1.3× the instructions, callgrind)
+            // computed the whole block lane by lane
             let l = std::hint::black_box(block_loads(b, c, base, beta));
             if b.chain && active == [true; 4] && !l.outside.any() {
                 let n = b.node_a[0] - base;
@@ -495,7 +495,7 @@ pub fn add_loads(
     kernel: Kernel,
     blocks: &[ElementBlock],
     elements: &[BeamElement],
-    c: &Config,
+    c: &NodeView,
     base: usize,
     beta: f64,
     force: &mut [DVec3],
@@ -526,7 +526,7 @@ pub fn add_loads(
 mod tests {
     use super::*;
     use crate::math::exp_map;
-    use crate::test_elements::{random_element, random_ends, Rng};
+    use crate::rod::test_elements::{random_element, random_ends, Rng};
 
     /// The kernel equals the reference `BeamElement::loads` to rounding: within 1e-12 of
     /// each load's scale (the largest force, the largest moment of the element), on random
@@ -575,7 +575,7 @@ mod tests {
                     w[2 * k + j] = ends[k].w[j];
                 }
             }
-            let c = Config {
+            let c = NodeView {
                 x: &x,
                 q: &q,
                 v: &v,
@@ -685,7 +685,7 @@ mod tests {
         for b in &mut lane_by_lane.blocks {
             b.chain = false;
         }
-        let c = Config {
+        let c = NodeView {
             x: &x,
             q: &q,
             v: &v,
@@ -743,7 +743,7 @@ mod tests {
             element_count: 7,
         };
         let packed = PackedElements::new(&elements, &[hose]);
-        let c = Config {
+        let c = NodeView {
             x: &x,
             q: &q,
             v: &v,
@@ -769,7 +769,7 @@ mod tests {
         kernel: Kernel,
         packed: &PackedElements,
         elements: &[BeamElement],
-        c: &Config,
+        c: &NodeView,
         start: [DVec3; 2],
     ) -> (Vec<u64>, Vec<u64>) {
         let n = c.x.len();

@@ -11,9 +11,10 @@
 //! and stiffness-proportional damping β lower the limit to (2/ω)(√(1+ξ²) − ξ), with
 //! ξ = α/2ω + βω/2 the highest mode's damping ratio (Belytschko, Liu & Moran §6.2).
 
-use crate::forces::{internal_loads, Config};
 use crate::math::exp_map;
 use crate::model::ModelError;
+use crate::rod::forces::internal_loads;
+use crate::rod::node_view::NodeView;
 use crate::spec::SimSettings;
 use crate::Model;
 use glam::DVec3;
@@ -136,7 +137,7 @@ pub fn max_frequency(model: &Model) -> f64 {
         }
         internal_loads(
             model,
-            &Config {
+            &NodeView {
                 x: &xp,
                 q: &qp,
                 v: &zero,
@@ -148,7 +149,7 @@ pub fn max_frequency(model: &Model) -> f64 {
         );
         internal_loads(
             model,
-            &Config {
+            &NodeView {
                 x: &xm,
                 q: &qm,
                 v: &zero,

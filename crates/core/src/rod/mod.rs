@@ -1,0 +1,25 @@
+//! The rod: the co-rotational 3-D Euler–Bernoulli beam element (SPEC P1, P2) and what
+//! computes with it — the element in scalar form ([`element`]) and four at a time
+//! ([`element_block`], [`lanes`], [`lane_arith`]), its consistent tangent ([`tangent`],
+//! [`tangent_kernel`]), the assembly of element and body loads over a model ([`forces`],
+//! [`body_loads`]) over the node arrays ([`node_view`]), lumped masses ([`mass`]), rest frames ([`frames`]), stiffened
+//! sections ([`stiffened`]) and the stable explicit time step ([`timestep`]).
+//!
+//! The kernels read the plain data of the crate (model, sections, materials) and nothing
+//! above it: no loads, contact or solvers.
+
+pub mod body_loads;
+pub mod element;
+pub mod element_block;
+pub mod forces;
+pub mod frames;
+pub mod lane_arith;
+pub mod lanes;
+pub mod mass;
+pub mod node_view;
+pub mod stiffened;
+pub mod tangent;
+pub mod tangent_kernel;
+#[cfg(test)]
+mod test_elements;
+pub mod timestep;
