@@ -58,6 +58,40 @@ fn peak_of_run(scene: &Path, out: &Path) -> u64 {
     usage.ru_maxrss as u64 * 1024 // kB on Linux
 }
 
+/// One hose of `hands` beams, each beam held at its middle by its own hand, recorded every
+/// step for `steps` steps of the scene's time step: the hands' series grow with the run.
+fn held_scene(dir: &Path, hands: usize, steps: f64) -> String {
+    let length = 10.0 * hands as f64;
+    let with_duration = |duration: f64| {
+        let mut s = String::from(
+            "format = \"pliant-scene\"\nversion = 1\nlength_unit = \"mm\"\n\
+             [output]\nrecord_interval_s = 0\n",
+        );
+        s.push_str(&format!(
+            "[[hoses]]\nname = \"h\"\nmaterial = \"hose1\"\nstart = [0, 0, 0]\n\
+             path = [{{ line = {{ to = [{length}, 0, 0] }} }}]\nelements = {hands}\n"
+        ));
+        for k in 0..hands {
+            let x = 10.0 * k as f64 + 5.0;
+            s.push_str(&format!(
+                "[[timeline]]\naction = \"grab\"\nhand = {k}\nat = [{x}, 0, 0]\n"
+            ));
+        }
+        s.push_str(&format!(
+            "[[timeline]]\naction = \"run\"\nduration_s = {duration}\n"
+        ));
+        s
+    };
+    let probe = dir.join("probe.toml");
+    std::fs::write(&probe, with_duration(1e-3)).unwrap();
+    let dt = pliant_scene::load_scene_file(&probe)
+        .unwrap()
+        .build_model()
+        .unwrap()
+        .time_step;
+    with_duration(steps * dt)
+}
+
 #[test]
 fn the_memory_estimate_bounds_the_measured_peak_within_a_stated_factor() {
     let dir = tempfile::tempdir().unwrap();
@@ -80,15 +114,17 @@ fn the_memory_estimate_bounds_the_measured_peak_within_a_stated_factor() {
             "contact pairs",
             scene(&vec![(0.0, 500.0, 4); 1000], "", 1e-3),
         ),
+        ("recorded series", held_scene(dir.path(), 64, 8_000.0)),
     ];
     let mut report = Vec::new();
     for (what, text) in cases {
         let path = dir.path().join(format!("{}.toml", what.replace(' ', "_")));
         std::fs::write(&path, &text).unwrap();
-        let estimate = pliant_scene::load_scene_file(&path)
-            .unwrap()
-            .estimate
-            .memory_bytes();
+        // the scene's own estimate and the series its run records in memory, as `pliant
+        // run` checks them before it starts
+        let loaded = pliant_scene::load_scene_file(&path).unwrap();
+        let dt = loaded.build_model().unwrap().time_step;
+        let estimate = loaded.estimate.memory_bytes() + loaded.recorded(dt, false).bytes();
         let peak = peak_of_run(&path, &dir.path().join(what.replace(' ', "_")));
         let ratio = estimate as f64 / peak as f64;
         report.push(format!(
