@@ -19,7 +19,7 @@ pub struct Divergence {
 }
 
 /// What diverged, with its numbers; serialised as an object whose `kind` names the
-/// variant (`summary.json` `diverged`). Numbers that are not finite are `null`.
+/// variant (`summary.json` `diverged`). A number that is not finite is left out.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum DivergenceKind {
@@ -27,9 +27,11 @@ pub enum DivergenceKind {
     NonFiniteState,
     /// A node's velocity or angular velocity is not finite.
     NonFiniteVelocity,
-    /// A support force \[N\] or moment \[N·m\] beyond `limit` (or not finite: `null`).
+    /// A support force \[N\] or moment \[N·m\] beyond `limit` (or not finite: left out).
     SupportLoad {
+        #[serde(skip_serializing_if = "Option::is_none")]
         force_n: Option<f64>,
+        #[serde(skip_serializing_if = "Option::is_none")]
         moment_nm: Option<f64>,
         limit: f64,
     },
@@ -40,6 +42,7 @@ pub enum DivergenceKind {
     NotConverged {
         solver: &'static str,
         halvings: u32,
+        #[serde(skip_serializing_if = "Option::is_none")]
         residual_n: Option<f64>,
     },
     /// The static solve produced non-finite values at Newton iteration `iteration`.
@@ -50,7 +53,8 @@ pub enum DivergenceKind {
     ContactPairs { pairs: usize, limit: usize },
 }
 
-/// `x` if it is finite, else `None` (JSON `null`: no output holds a non-finite number).
+/// `x` if it is finite, else `None` (left out of the output: no output holds a non-finite
+/// number).
 pub fn finite_or_none(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
 }

@@ -2,7 +2,8 @@
 //! `pliant.studies.spec.load_study`, docs/study.md) is Python, so this target hands each
 //! input to one long-lived Python worker — an interpreter that has the `pliant` package
 //! (`PLIANT_PYTHON`, the repository's `.venv`, or `python3`; `./scripts/test-python.sh`
-//! installs it) — which writes it to a study file beside nothing else and reads it. The
+//! installs it), running the study reader of this source tree — which writes it to a
+//! study file of its own and reads it. The
 //! reader never raises anything but `StudyError` (anything else is a find, as a panic is
 //! for the Rust readers); a study it accepts has at least one run and one parameter, a
 //! seed ≥ 0, only finite distribution numbers (bounds may be infinite for a normal
@@ -16,7 +17,13 @@ use std::sync::{Mutex, PoisonError};
 
 /// The worker's program: length-prefixed inputs on stdin, one JSON reply line each.
 const HARNESS: &str = r#"
-import json, math, os, struct, sys, tempfile, traceback
+import json, math, os, struct, sys, tempfile, traceback, types
+import pliant  # the engine (Scene.from_json for [scene_values])
+
+# the study reader of this source tree (argv[1]), whatever copy is installed
+studies = types.ModuleType("pliant.studies")
+studies.__path__ = [sys.argv[1]]
+sys.modules["pliant.studies"] = studies
 from pliant.studies.spec import StudyError, load_study
 
 folder = tempfile.mkdtemp(prefix="pliant-fuzz-study-")
@@ -92,7 +99,7 @@ impl Worker {
         let tried = pliant_scene::cad_converter::python_candidates();
         for python in &tried {
             let has = Command::new(python)
-                .args(["-c", "import pliant.studies.spec"])
+                .args(["-c", "import pliant"])
                 .stdin(Stdio::null())
                 .stdout(Stdio::null())
                 .stderr(Stdio::null())
@@ -103,6 +110,7 @@ impl Worker {
             }
             let mut child = Command::new(python)
                 .args(["-c", HARNESS])
+                .arg(studies_source())
                 .stdin(Stdio::piped())
                 .stdout(Stdio::piped())
                 .stderr(Stdio::null())
@@ -157,6 +165,15 @@ impl Drop for Worker {
 }
 
 static WORKER: Mutex<Option<Worker>> = Mutex::new(None);
+
+/// The study reader's source in this tree (`pliant/studies`).
+fn studies_source() -> std::path::PathBuf {
+    std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../python/python/pliant/studies"
+    ))
+    .to_path_buf()
+}
 
 /// The study reader on one input (see the module doc).
 pub fn study(input: &[u8]) -> Result<(), String> {
