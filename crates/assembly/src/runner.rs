@@ -6,6 +6,7 @@
 
 use crate::ergonomics::ErgonomicProfile;
 use crate::fasteners::{ClipSite, StubSite};
+use crate::report::summary::{OtherStop, Stopped};
 use crate::timeline::{Action, MovePath, Timeline};
 use crate::workcell::{
     HandNumber, Input, Observer, Refusal, RunSummary, SettleOutcome, Workcell, WorkcellOptions,
@@ -13,7 +14,6 @@ use crate::workcell::{
 };
 use glam::DVec3;
 use pliant_core::curve::catmull_rom;
-use crate::report::summary::{OtherStop, Stopped};
 use pliant_core::health::Divergence;
 use pliant_core::{Model, SolverKind, State};
 use std::sync::Arc;

@@ -48,8 +48,14 @@ pub fn run(
         );
     }
     let cell = s.workcell().map_err(|e| anyhow!(e))?;
-    pliant_scene::budget::check_step_count(s.log.end_tick, cell.time_step(), max_steps)
-        .map_err(|e| anyhow!("{shown}: replaying to its last tick {}: {e}", s.log.end_tick))?;
+    pliant_scene::budget::check_step_count(s.log.end_tick, cell.time_step(), max_steps).map_err(
+        |e| {
+            anyhow!(
+                "{shown}: replaying to its last tick {}: {e}",
+                s.log.end_tick
+            )
+        },
+    )?;
     if let Some(path) = timeline {
         let text = pliant_scene::session::log_to_scene(&s.scene, &s.log, cell.time_step())
             .map_err(|e| anyhow!(e))?;

@@ -129,7 +129,10 @@ pub fn run(
             Ok(ExitCode::from(3))
         }
         Some((s, false)) => {
-            eprintln!("error: {}\n(outputs hold the run up to that action)", s.message);
+            eprintln!(
+                "error: {}\n(outputs hold the run up to that action)",
+                s.message
+            );
             Ok(ExitCode::from(2))
         }
         None => Ok(ExitCode::SUCCESS),

@@ -590,11 +590,19 @@ fn diverged_runs_under_every_solver_write_no_non_finite_number() {
         // the divergence is typed — `kind` with its numbers, where and when — beside the
         // message `pliant run` prints
         let d = &summary["diverged"];
-        let kind = d["kind"].as_str().unwrap_or_else(|| panic!("{solver}: {d}"));
+        let kind = d["kind"]
+            .as_str()
+            .unwrap_or_else(|| panic!("{solver}: {d}"));
         let message = d["message"].as_str().unwrap();
         assert!(err.contains(message), "{solver}: {err}");
-        assert!(d["step"].as_u64().is_some() && d["time_s"].as_f64().is_some(), "{d}");
-        assert!(["upper", "lower"].contains(&d["hose"].as_str().unwrap()), "{d}");
+        assert!(
+            d["step"].as_u64().is_some() && d["time_s"].as_f64().is_some(),
+            "{d}"
+        );
+        assert!(
+            ["upper", "lower"].contains(&d["hose"].as_str().unwrap()),
+            "{d}"
+        );
         match kind {
             "speed" => assert!(
                 d["speed_m_s"].as_f64().unwrap() > d["wave_speed_m_s"].as_f64().unwrap(),

@@ -46,7 +46,10 @@ pub enum DivergenceKind {
         residual_n: Option<f64>,
     },
     /// The static solve produced non-finite values at Newton iteration `iteration`.
-    NonFiniteIteration { solver: &'static str, iteration: usize },
+    NonFiniteIteration {
+        solver: &'static str,
+        iteration: usize,
+    },
     /// A Newton system had a singular block at `node` (global node index).
     Singular { solver: &'static str, node: usize },
     /// The hose–hose contact pairs found in one search exceed the model's budget.

@@ -245,5 +245,9 @@ fn contact_pairs_that_build_up_beyond_the_cap_stop_the_run_as_diverged() {
             limit: CAP
         }
     );
-    assert!(d.to_string().contains("more than 200 hose–hose contact pairs"), "{d}");
+    assert!(
+        d.to_string()
+            .contains("more than 200 hose–hose contact pairs"),
+        "{d}"
+    );
 }

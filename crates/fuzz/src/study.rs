@@ -198,9 +198,8 @@ pub fn study(input: &[u8]) -> Result<(), String> {
 pub fn seeds() -> Vec<Vec<u8>> {
     let examples = crate::seeds::examples_dir();
     let examples = examples.canonicalize().unwrap_or(examples);
-    let scene = |name: &str| {
-        toml::Value::String(examples.join(name).display().to_string()).to_string()
-    };
+    let scene =
+        |name: &str| toml::Value::String(examples.join(name).display().to_string()).to_string();
     let engine_bay = include_str!("../../../examples/engine_bay_study.toml").replace(
         "scene = \"engine_bay.toml\"",
         &format!("scene = {}", scene("engine_bay.toml")),

@@ -216,10 +216,7 @@ impl RunResult {
     /// divergence ``step``, ``time_s``, ``hose`` and ``node``, and ``message`` — or None.
     #[getter]
     fn divergence<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        self.stopped
-            .as_ref()
-            .map(|s| to_python(py, s))
-            .transpose()
+        self.stopped.as_ref().map(|s| to_python(py, s)).transpose()
     }
 
     /// Steps taken.

@@ -19,8 +19,13 @@
 //! are built (`pliant_core::contact::rest_pair_count`), at
 //! [`pliant_core::contact::BYTES_PER_CONTACT_PAIR`] (16 B) each. What the report writer holds
 //! grows with the elements (one profile per hose, the scene copied for at most
-//! `MAX_SCENE_PICTURES` hoses) and is inside the per-element size; the estimate is
-//! tested against the measured peak in `crates/cli/tests/budget.rs`.
+//! `MAX_SCENE_PICTURES` hoses) and is inside the per-element size. While a run goes,
+//! the pairs listed at once are capped at what the memory limit leaves beside the rest
+//! ([`Budget::contact_pair_room`], `SimSettings::max_contact_pairs`): hoses piling up
+//! beyond it stop the run as diverged. What grows with the run's length — the samples
+//! kept for the report per recorded time ([`Recorded`]) — is checked when the run is
+//! planned (`LoadedScene::check_planned_steps`). The estimate is tested against the
+//! measured peak in `crates/cli/tests/budget.rs`.
 
 use crate::error::FieldError;
 use pliant_assembly::fasteners::FastenerSample;

@@ -5,8 +5,7 @@
 
 use crate::scene::LoadedScene;
 use pliant_assembly::{
-    run_timeline, Action, NoObserver, RunSummary, Runner, Workcell, WorkcellOptions,
-    WorkcellSetup,
+    run_timeline, Action, NoObserver, RunSummary, Runner, Workcell, WorkcellOptions, WorkcellSetup,
 };
 use pliant_core::{Model, SolverKind};
 use std::sync::Arc;

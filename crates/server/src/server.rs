@@ -794,9 +794,7 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
                 Some(q) => Some(near_unit_quaternion(DQuat::from_array(q)).map_err(|e| {
                     error_json(
                         ErrorCode::InvalidValue,
-                        format!(
-                            "orientation {q:?} {e}: it must be a unit quaternion [x, y, z, w]"
-                        ),
+                        format!("orientation {q:?} {e}: it must be a unit quaternion [x, y, z, w]"),
                     )
                 })?),
             };

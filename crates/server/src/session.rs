@@ -306,14 +306,8 @@ impl Session {
             nodes,
             self.report_limits.max_report_bytes,
         );
-        let (verdict, summary) = replay_with_outputs(
-            out,
-            cell,
-            &log,
-            &self.loaded.name,
-            interval,
-            observer,
-        )?;
+        let (verdict, summary) =
+            replay_with_outputs(out, cell, &log, &self.loaded.name, interval, observer)?;
         Ok((verdict, summary, interval))
     }
 

@@ -160,7 +160,11 @@ mod tests {
         assert!((0..10).all(|k| a.shares_chunk_with(&b, k)));
         let all = b.to_vec();
         assert_eq!(all.len(), log.len());
-        assert!(all.iter().enumerate().take(10 * CHUNK + 7).all(|(k, s)| s.tick == k as u64));
+        assert!(all
+            .iter()
+            .enumerate()
+            .take(10 * CHUNK + 7)
+            .all(|(k, s)| s.tick == k as u64));
         assert_eq!(log.last().unwrap().tick, 99_999);
 
         log.truncate(3 * CHUNK + 5);

@@ -78,8 +78,8 @@ use super::rest_overlap::HoseContactRule;
 use super::sweep::SweepAndPrune;
 use crate::{Model, State};
 use glam::DVec3;
-use std::ops::ControlFlow;
 use std::f64::consts::PI;
+use std::ops::ControlFlow;
 
 /// Damping ratio of the contact dashpot, of the pair's critical damping.
 pub const CONTACT_DAMPING_RATIO: f64 = 0.3;
