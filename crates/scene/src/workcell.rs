@@ -66,7 +66,7 @@ impl LoadedScene {
     /// Refuses a run of this scene's timeline at `time_step` \[s\] planned beyond
     /// `max_steps` steps (its duration over the step), or whose estimated memory — the
     /// scene's ([`crate::budget::Estimate`]) plus the series it records in memory for the
-    /// report over the planned run ([`crate::budget::recorded_bytes`]) — exceeds the
+    /// report over the planned run ([`crate::budget::Recorded`]) — exceeds the
     /// memory limit it was loaded under; naming the scene and the estimate. Else the
     /// planned steps. Every command that runs a scene's timeline checks it before the run
     /// starts.
