@@ -6,6 +6,7 @@
 
 use crate::ergonomics::ErgonomicProfile;
 use crate::fasteners::{ClipSite, StubSite};
+use crate::report::summary::{OtherStop, Stopped};
 use crate::timeline::{Action, MovePath, Timeline};
 use crate::workcell::{
     HandNumber, Input, Observer, Refusal, RunSummary, SettleOutcome, Workcell, WorkcellOptions,
@@ -29,6 +30,8 @@ pub struct RunError {
     /// The divergence, if the simulation diverged (else an action was refused).
     pub divergence: Option<Divergence>,
     pub reason: String,
+    /// The same, typed (`summary.json` `diverged`).
+    pub stopped: Stopped,
     /// Everything up to the last healthy state.
     pub partial: RunSummary,
 }
@@ -131,6 +134,7 @@ impl Runner {
     ) -> Result<RunSummary, RunError> {
         let mut cell = self.workcell().map_err(|reason| RunError {
             divergence: None,
+            stopped: Stopped::other(OtherStop::Setup, reason.clone()),
             reason,
             partial: RunSummary::default(),
         })?;
@@ -156,15 +160,23 @@ pub fn run_timeline(
             cell.check().map_err(Stop::Diverged)
         };
         if let Err(stop) = done {
-            let (divergence, reason) = match stop {
-                Stop::Diverged(d) => (Some(d.clone()), d.to_string()),
-                Stop::Refused(k, name, r) => (None, format!("timeline[{k}] ({name}): {r}")),
+            let (divergence, stopped) = match stop {
+                Stop::Diverged(d) => (Some(d.clone()), Stopped::diverged(&d)),
+                Stop::Refused(k, name, r) => (
+                    None,
+                    Stopped::other(
+                        OtherStop::ActionRefused { action: k, name },
+                        format!("timeline[{k}] ({name}): {r}"),
+                    ),
+                ),
             };
+            let reason = stopped.message.clone();
             let mut partial = cell.summary();
             partial.actions_completed = k;
             partial.settles = settles;
             return Err(RunError {
                 divergence,
+                stopped,
                 reason,
                 partial,
             });

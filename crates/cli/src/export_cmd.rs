@@ -19,6 +19,8 @@ pub struct ExportOptions<'a> {
     pub out: Option<&'a Path>,
     pub solver: Option<SolverKind>,
     pub kbl: Option<&'a Path>,
+    /// The settling run is refused when planned beyond this many steps.
+    pub max_steps: u64,
 }
 
 /// Which hose carries which KBL segment, and where the KBL came from (`harness.json`).
@@ -77,7 +79,9 @@ pub fn run(o: &ExportOptions) -> Result<ExitCode> {
         scene.world.hoses.len(),
         scene.junctions.len()
     );
-    let (cell, summary) = scene.run_with(o.solver).map_err(|e| anyhow!(e))?;
+    let (cell, summary) = scene
+        .run_within(o.solver, o.max_steps)
+        .map_err(|e| anyhow!(e))?;
     for s in summary.settles.iter().filter(|s| !s.at_rest) {
         eprintln!(
             "warning: not at rest after the settle of action {} (t = {:.2} s, kinetic energy {:.2e} J); exporting the route as it is",

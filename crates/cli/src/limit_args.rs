@@ -16,10 +16,25 @@ pub struct LimitArgs {
     /// Largest mesh file read, e.g. 1G [default: 256M].
     #[arg(long = "max-mesh-bytes", value_parser = parse_bytes)]
     pub max_mesh_bytes: Option<u64>,
-    /// Refuse runs planned at more steps than this (the timeline's duration over the
-    /// time step) [default: 1000000000].
+    #[command(flatten)]
+    pub steps: StepLimit,
+}
+
+/// `--max-steps`: the step budget of every command that runs a simulation (`run`,
+/// `serve`, `replay`, `export`, `study`), checked before the run starts.
+#[derive(clap::Args, Clone, Copy, Debug, Default)]
+pub struct StepLimit {
+    /// Refuse runs planned at more steps than this (a timeline's duration over the time
+    /// step; a replayed log's last tick) [default: 1000000000].
     #[arg(long = "max-steps")]
     pub max_steps: Option<u64>,
+}
+
+impl StepLimit {
+    /// The limit given, or the default.
+    pub fn get(&self) -> u64 {
+        self.max_steps.unwrap_or(DEFAULT_MAX_STEPS)
+    }
 }
 
 impl LimitArgs {
@@ -27,7 +42,7 @@ impl LimitArgs {
     pub fn load_options(&self) -> LoadOptions {
         LoadOptions {
             limits: Limits {
-                max_steps: self.max_steps.unwrap_or(DEFAULT_MAX_STEPS),
+                max_steps: self.steps.get(),
                 ..Limits::with_memory(self.max_memory.unwrap_or(DEFAULT_MAX_MEMORY_BYTES))
             },
             max_file_bytes: self.max_mesh_bytes.unwrap_or(DEFAULT_MAX_FILE_BYTES),

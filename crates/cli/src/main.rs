@@ -86,6 +86,8 @@ enum Command {
         up_to_damage: bool,
         #[arg(long)]
         quiet: bool,
+        #[command(flatten)]
+        steps: limit_args::StepLimit,
     },
     /// Run the validation suite against exact and independent reference solutions.
     Validate {
@@ -174,6 +176,8 @@ enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        #[command(flatten)]
+        steps: limit_args::StepLimit,
     },
     /// Import CAD or harness data. A STEP assembly (AP203, AP214, AP242) is converted
     /// once with OpenCASCADE: into the cache a scene beside it reads (`[[parts]] step =
@@ -225,6 +229,8 @@ enum Command {
         /// The original KBL file [default: the one harness.json names].
         #[arg(long)]
         kbl: Option<PathBuf>,
+        #[command(flatten)]
+        steps: limit_args::StepLimit,
     },
     /// Fit a material's stiffness to measured test curves (docs/calibration.md): E_t and
     /// E_c from tension and compression, EI from three-point bending, a cantilever or
@@ -366,12 +372,14 @@ fn main() -> ExitCode {
             timeline,
             up_to_damage,
             quiet,
+            steps,
         } => replay_cmd::run(
             &session,
             out.as_deref(),
             timeline.as_deref(),
             up_to_damage,
             quiet,
+            steps.get(),
         ),
         Command::Validate {
             json,
@@ -413,6 +421,7 @@ fn main() -> ExitCode {
             runs,
             batch,
             quiet,
+            steps,
         } => study_cmd::run(&study_cmd::StudyOptions {
             study: &study,
             out: out.as_deref(),
@@ -421,6 +430,7 @@ fn main() -> ExitCode {
             runs,
             batch,
             quiet,
+            max_steps: steps.get(),
         }),
         Command::Inspect { scene, json } => inspect_cmd::run(&scene, json),
         Command::Export {
@@ -428,11 +438,13 @@ fn main() -> ExitCode {
             out,
             solver,
             kbl,
+            steps,
         } => export_cmd::run(&export_cmd::ExportOptions {
             dir: &dir,
             out: out.as_deref(),
             solver,
             kbl: kbl.as_deref(),
+            max_steps: steps.get(),
         }),
         Command::Import {
             step,

@@ -26,6 +26,7 @@ pub fn run(
     timeline: Option<&Path>,
     up_to_damage: bool,
     quiet: bool,
+    max_steps: u64,
 ) -> anyhow::Result<ExitCode> {
     let s = Session::open_up_to_damage(session).map_err(|e| anyhow!(e))?;
     let shown = log_path(session).display().to_string();
@@ -47,6 +48,14 @@ pub fn run(
         );
     }
     let cell = s.workcell().map_err(|e| anyhow!(e))?;
+    pliant_scene::budget::check_step_count(s.log.end_tick, cell.time_step(), max_steps).map_err(
+        |e| {
+            anyhow!(
+                "{shown}: replaying to its last tick {}: {e}",
+                s.log.end_tick
+            )
+        },
+    )?;
     if let Some(path) = timeline {
         let text = pliant_scene::session::log_to_scene(&s.scene, &s.log, cell.time_step())
             .map_err(|e| anyhow!(e))?;
@@ -95,8 +104,8 @@ pub fn run(
         add_to_summary(out, "log_torn_tail", note).context("writing summary.json")?;
     }
     print_outcome(&verdict, &summary, out);
-    if let Some(msg) = &summary.diverged {
-        eprintln!("error: {msg}");
+    if let Some(stopped) = &summary.diverged {
+        eprintln!("error: {}", stopped.message);
         return Ok(ExitCode::from(3));
     }
     if let Some(d) = &s.damage {

@@ -64,8 +64,9 @@ pub fn run(
         );
     }
     let planned = Runner::planned_duration(&scene.timeline);
-    pliant_scene::budget::check_steps(planned, cell.time_step(), load.limits.max_steps)
-        .map_err(|e| anyhow!("{}: {e}", scene.source))?;
+    scene
+        .check_planned_steps(cell.time_step(), load.limits.max_steps)
+        .map_err(|e| anyhow!(e))?;
     eprintln!(
         "pliant: {}",
         cost_hint(
@@ -94,7 +95,7 @@ pub fn run(
         Ok(run) => (run, None),
         Err(e) => (
             e.partial.clone(),
-            Some((e.reason.clone(), e.divergence.is_some())),
+            Some((e.stopped.clone(), e.divergence.is_some())),
         ),
     };
     let outputs = Outputs {
@@ -103,7 +104,7 @@ pub fn run(
         model: &model,
         state: cell.state(),
         run: &run,
-        diverged: stopped.as_ref().map(|(m, _)| m.as_str()),
+        diverged: stopped.as_ref().map(|(s, _)| s),
         hand_series: &hand_series,
         profile: cell.profile(),
         solver: solver_kind,
@@ -120,12 +121,18 @@ pub fn run(
         }
     }
     match stopped {
-        Some((msg, true)) => {
-            eprintln!("error: {msg}\n(outputs hold the run up to the last healthy state)");
+        Some((s, true)) => {
+            eprintln!(
+                "error: {}\n(outputs hold the run up to the last healthy state)",
+                s.message
+            );
             Ok(ExitCode::from(3))
         }
-        Some((msg, false)) => {
-            eprintln!("error: {msg}\n(outputs hold the run up to that action)");
+        Some((s, false)) => {
+            eprintln!(
+                "error: {}\n(outputs hold the run up to that action)",
+                s.message
+            );
             Ok(ExitCode::from(2))
         }
         None => Ok(ExitCode::SUCCESS),

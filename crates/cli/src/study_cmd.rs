@@ -21,6 +21,8 @@ pub struct StudyOptions<'a> {
     pub runs: Option<usize>,
     pub batch: Option<usize>,
     pub quiet: bool,
+    /// Each run is refused (status `invalid`) when planned beyond this many steps.
+    pub max_steps: u64,
 }
 
 /// What a study imports: the package and its study extras.
@@ -98,6 +100,7 @@ pub fn run(o: &StudyOptions) -> Result<ExitCode> {
     if o.quiet {
         cmd.arg("--quiet");
     }
+    cmd.args(["--max-steps", &o.max_steps.to_string()]);
     stop_with_this_process(&mut cmd);
     let status = cmd
         .status()

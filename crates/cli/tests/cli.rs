@@ -587,7 +587,33 @@ fn diverged_runs_under_every_solver_write_no_non_finite_number() {
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
                 .unwrap();
         assert_eq!(summary["completed"], false, "{solver}");
-        assert!(summary["diverged"].as_str().is_some(), "{solver}");
+        // the divergence is typed — `kind` with its numbers, where and when — beside the
+        // message `pliant run` prints
+        let d = &summary["diverged"];
+        let kind = d["kind"]
+            .as_str()
+            .unwrap_or_else(|| panic!("{solver}: {d}"));
+        let message = d["message"].as_str().unwrap();
+        assert!(err.contains(message), "{solver}: {err}");
+        assert!(
+            d["step"].as_u64().is_some() && d["time_s"].as_f64().is_some(),
+            "{d}"
+        );
+        assert!(
+            ["upper", "lower"].contains(&d["hose"].as_str().unwrap()),
+            "{d}"
+        );
+        match kind {
+            "speed" => assert!(
+                d["speed_m_s"].as_f64().unwrap() > d["wave_speed_m_s"].as_f64().unwrap(),
+                "{d}"
+            ),
+            "support_load" => assert_eq!(d["limit"], 1e9, "{d}"),
+            "not_converged" => assert!(d["halvings"].as_u64().is_some(), "{d}"),
+            "non_finite_iteration" => assert!(d["iteration"].as_u64().is_some(), "{d}"),
+            "non_finite_state" | "non_finite_velocity" | "singular" => {}
+            other => panic!("{solver}: unexpected kind {other}: {d}"),
+        }
         assert_all_finite(&out);
     }
 }

@@ -85,6 +85,24 @@ fn a_harness_is_imported_inspected_installed_and_exported() {
         "{summary}"
     );
 
+    // the settling run of an export is planned against --max-steps like `pliant run`:
+    // beyond it, refused before it starts, naming the scene and the estimate
+    let refused = pliant()
+        .arg("export")
+        .arg(&scene_dir)
+        .arg("--out")
+        .arg(dir.path().join("refused"))
+        .args(["--max-steps", "10"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success(), "{err}");
+    assert!(
+        err.contains("scene.toml") && err.contains("at most 10") && err.contains("--max-steps"),
+        "{err}"
+    );
+    assert!(!dir.path().join("refused").join("harness.kbl").exists());
+
     // export: the settled route as KBL and STEP; the KBL imports again with the same
     // topology and its segments where the run left them
     let export = dir.path().join("export");

@@ -117,6 +117,28 @@ fn a_log_with_an_absurd_tick_is_refused_not_replayed_for_ever() {
     }
 }
 
+/// A replay is planned at its log's last tick and checked against `--max-steps` as `pliant
+/// run` checks its timeline: beyond it, refused before it starts with the estimate.
+#[test]
+fn a_replay_beyond_the_step_limit_is_refused_with_its_estimate() {
+    let dir = tempfile::tempdir().unwrap();
+    session_folder(dir.path()); // 120 steps
+    let o = replay(dir.path(), &["--max-steps", "119"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert!(
+        err.contains("inputs.jsonl")
+            && err.contains("last tick 120")
+            && err.contains("at most 119")
+            && err.contains("--max-steps"),
+        "{err}"
+    );
+    assert!(!dir.path().join("out/summary.json").exists());
+    let o = replay(dir.path(), &["--max-steps", "120"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(dir.path().join("out/summary.json").exists());
+}
+
 #[test]
 fn a_log_that_is_not_a_regular_file_is_refused() {
     let dir = tempfile::tempdir().unwrap();

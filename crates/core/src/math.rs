@@ -20,6 +20,51 @@ pub fn unit_quaternion(q: DQuat) -> Option<DQuat> {
     (unit.is_finite() && (unit.length() - 1.0).abs() < 1e-12).then_some(unit)
 }
 
+/// How far the length of an orientation quaternion read from outside (a client's hand
+/// pose) may lie from 1 and still be taken as a rotation: |‖q‖ − 1| ≤ this. Room for
+/// rounding (single-precision devices, printed digits), not for a scale.
+pub const UNIT_QUATERNION_TOLERANCE: f64 = 1e-3;
+
+/// Why a quaternion is not taken as an orientation ([`near_unit_quaternion`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum QuaternionError {
+    /// A component is NaN or infinite.
+    NonFinite,
+    /// All components are zero.
+    Zero,
+    /// Its length lies further from 1 than [`UNIT_QUATERNION_TOLERANCE`].
+    NotUnit { length: f64 },
+}
+
+impl std::fmt::Display for QuaternionError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            QuaternionError::NonFinite => write!(f, "has a non-finite component"),
+            QuaternionError::Zero => write!(f, "is zero"),
+            QuaternionError::NotUnit { length } => write!(
+                f,
+                "has length {length:e}, not 1 (within {UNIT_QUATERNION_TOLERANCE})"
+            ),
+        }
+    }
+}
+
+/// An orientation given from outside: `q` normalised when it is finite and its length
+/// lies within [`UNIT_QUATERNION_TOLERANCE`] of 1, else why not.
+pub fn near_unit_quaternion(q: DQuat) -> Result<DQuat, QuaternionError> {
+    if !q.is_finite() {
+        return Err(QuaternionError::NonFinite);
+    }
+    if q == DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0) {
+        return Err(QuaternionError::Zero);
+    }
+    let length = q.length();
+    if !((length - 1.0).abs() <= UNIT_QUATERNION_TOLERANCE) {
+        return Err(QuaternionError::NotUnit { length });
+    }
+    unit_quaternion(q).ok_or(QuaternionError::NonFinite)
+}
+
 /// Exponential map: rotation vector φ (axis · angle, any magnitude) → unit quaternion.
 /// Rodrigues' formula in quaternion form, q = (cos |φ|/2, sin(|φ|/2) φ/|φ|), with a
 /// Taylor expansion near zero so tiny rotations keep full precision.
@@ -126,6 +171,33 @@ mod tests {
         assert!(unit_quaternion(DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0)).is_none());
         assert!(unit_quaternion(DQuat::from_xyzw(f64::NAN, 0.0, 0.0, 1.0)).is_none());
         assert!(unit_quaternion(DQuat::from_xyzw(f64::INFINITY, 0.0, 0.0, 1.0)).is_none());
+    }
+
+    #[test]
+    fn only_near_unit_quaternions_are_orientations() {
+        let q = near_unit_quaternion(DQuat::from_xyzw(0.0, 0.0, 0.70710, 0.70710)).unwrap();
+        assert!((q.length() - 1.0).abs() < 1e-15);
+        let off = 1.0 + 2.0 * UNIT_QUATERNION_TOLERANCE;
+        assert_eq!(
+            near_unit_quaternion(DQuat::from_xyzw(0.0, 0.0, 0.0, off)),
+            Err(QuaternionError::NotUnit { length: off })
+        );
+        assert!(matches!(
+            near_unit_quaternion(DQuat::from_xyzw(1e200, 0.0, 0.0, 0.0)),
+            Err(QuaternionError::NotUnit { .. })
+        ));
+        assert!(matches!(
+            near_unit_quaternion(DQuat::from_xyzw(0.0, 0.0, 0.0, 0.5)),
+            Err(QuaternionError::NotUnit { .. })
+        ));
+        assert_eq!(
+            near_unit_quaternion(DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0)),
+            Err(QuaternionError::Zero)
+        );
+        assert_eq!(
+            near_unit_quaternion(DQuat::from_xyzw(f64::NAN, 0.0, 0.0, 1.0)),
+            Err(QuaternionError::NonFinite)
+        );
     }
 
     #[test]

@@ -250,6 +250,7 @@ impl Model {
         model.time_step = report.chosen;
         model.time_step_report = report;
         model.hose_contact = HoseContactModel::new(&model, spec.settings.hose_contact);
+        model.hose_contact.max_pairs = spec.settings.max_contact_pairs;
         model.packed = PackedElements::new(&model.elements, &model.hoses);
         model.threads = resolve_threads(spec.settings.threads, model.hoses.len());
         model.hose_chunks = hose_chunks(&model.hoses);
@@ -332,7 +333,9 @@ impl Model {
             }
             self.bodies.push(body);
         }
+        let max_pairs = self.hose_contact.max_pairs;
         self.hose_contact = HoseContactModel::new(&self, self.hose_contact.rule);
+        self.hose_contact.max_pairs = max_pairs;
         Ok(self)
     }
 

@@ -73,6 +73,27 @@ pub struct SimSettings {
     /// in the drawn shape; none).
     #[serde(default, skip_serializing_if = "HoseContactRule::is_default")]
     pub hose_contact: HoseContactRule,
+    /// Most beam pairs hose–hose contact may list at once (16 B each,
+    /// [`crate::contact::BYTES_PER_CONTACT_PAIR`]): a run whose hoses pile up beyond it
+    /// is declared diverged ([`crate::health::DivergenceKind::ContactPairs`]) instead of
+    /// growing the list without bound. A scene loader sets it to what its memory limit
+    /// leaves room for.
+    #[serde(
+        default = "default_max_contact_pairs",
+        skip_serializing_if = "is_default_max_contact_pairs"
+    )]
+    pub max_contact_pairs: usize,
+}
+
+/// Default of [`SimSettings::max_contact_pairs`]: the pairs 4 GiB hold.
+pub const DEFAULT_MAX_CONTACT_PAIRS: usize = 1 << 28;
+
+fn default_max_contact_pairs() -> usize {
+    DEFAULT_MAX_CONTACT_PAIRS
+}
+
+fn is_default_max_contact_pairs(n: &usize) -> bool {
+    *n == DEFAULT_MAX_CONTACT_PAIRS
 }
 
 impl Default for SimSettings {
@@ -86,6 +107,7 @@ impl Default for SimSettings {
             solver: Default::default(),
             threads: None,
             hose_contact: HoseContactRule::All,
+            max_contact_pairs: DEFAULT_MAX_CONTACT_PAIRS,
         }
     }
 }

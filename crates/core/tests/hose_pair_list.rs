@@ -195,3 +195,59 @@ fn stepping_with_the_sweep_gives_the_grids_bits() {
         }
     }
 }
+
+/// Hose–hose contact pairs that build up during a run are capped at the model's
+/// `max_contact_pairs`: hoses laid apart list few pairs; moved onto one line, where every
+/// beam of every hose overlaps every other (the grid builds that list), the list stops
+/// at the cap and the health check declares the run diverged, with the count and the cap.
+#[test]
+fn contact_pairs_that_build_up_beyond_the_cap_stop_the_run_as_diverged() {
+    const CAP: usize = 200;
+    let hoses = (0..40)
+        .map(|k| {
+            let y = 0.1 * k as f64;
+            common::straight_hose1(
+                &format!("h{k}"),
+                DVec3::new(0.0, y, 0.0),
+                DVec3::new(0.2, y, 0.0),
+                4,
+            )
+        })
+        .collect();
+    let model = Model::build(&WorldSpec {
+        hoses,
+        rigid_parts: vec![],
+        settings: SimSettings {
+            gravity: DVec3::ZERO,
+            max_contact_pairs: CAP,
+            ..SimSettings::default()
+        },
+    })
+    .unwrap();
+    let mut state = State::at_rest(&model);
+    step(&model, &mut state);
+    assert!(pliant_core::health::check(&model, &state).is_ok());
+    assert!(state.hose_contact.candidates.len() < CAP);
+
+    // every hose moved onto the line y = 0
+    for h in &model.hoses {
+        for i in h.nodes() {
+            state.x[i].y = 0.0;
+        }
+    }
+    step(&model, &mut state);
+    assert_eq!(state.hose_contact.candidates.len(), CAP);
+    let d = pliant_core::health::check(&model, &state).unwrap_err();
+    assert_eq!(
+        d.kind,
+        pliant_core::health::DivergenceKind::ContactPairs {
+            pairs: CAP + 1,
+            limit: CAP
+        }
+    );
+    assert!(
+        d.to_string()
+            .contains("more than 200 hose–hose contact pairs"),
+        "{d}"
+    );
+}

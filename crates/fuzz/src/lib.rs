@@ -1,7 +1,8 @@
 //! Fuzz targets for everything Pliant reads from outside:
 //! scene files in TOML and JSON, the OBJ, STL and glTF mesh readers, the
 //! WebSocket protocol's message parser, session logs, calibration specs and curves and
-//! KBL harness files ([`readers`]). Inputs are seeds (the example scenes, small meshes, protocol
+//! KBL harness files ([`readers`]), and study files ([`study`], read by the Python
+//! package in a worker process). Inputs are seeds (the example scenes, small meshes, protocol
 //! messages) changed by a few [`mutate::Op`]s — byte flips, inserted tokens ("1e300",
 //! "nan", "[[", …), deleted ranges, repeated lines, numbers swapped for extreme ones,
 //! splices from other seeds — so most inputs get past the parsers into validation.
@@ -14,4 +15,5 @@
 pub mod mutate;
 pub mod readers;
 pub mod seeds;
+pub mod study;
 pub mod targets;

@@ -20,10 +20,11 @@ pub enum Target {
     CalibrationSpec,
     CalibrationCsv,
     Kbl,
+    Study,
 }
 
 impl Target {
-    pub const ALL: [Target; 10] = [
+    pub const ALL: [Target; 11] = [
         Target::SceneToml,
         Target::SceneJson,
         Target::Obj,
@@ -34,6 +35,7 @@ impl Target {
         Target::CalibrationSpec,
         Target::CalibrationCsv,
         Target::Kbl,
+        Target::Study,
     ];
 
     pub fn name(self) -> &'static str {
@@ -48,6 +50,7 @@ impl Target {
             Target::CalibrationSpec => "calibration-spec",
             Target::CalibrationCsv => "calibration-csv",
             Target::Kbl => "kbl",
+            Target::Study => "study",
         }
     }
 
@@ -81,6 +84,7 @@ impl Target {
                 .map(|(_, c)| c.as_bytes().to_vec())
                 .collect(),
             Target::Kbl => seeds::KBL.iter().map(|k| k.as_bytes().to_vec()).collect(),
+            Target::Study => crate::study::seeds(),
         }
     }
 
@@ -97,6 +101,7 @@ impl Target {
             Target::CalibrationSpec => crate::readers::calibration_spec(input),
             Target::CalibrationCsv => crate::readers::calibration_csv(input),
             Target::Kbl => crate::readers::kbl(input),
+            Target::Study => crate::study::study(input),
         }
     }
 }

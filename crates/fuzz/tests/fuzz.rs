@@ -104,6 +104,11 @@ fn fuzz_kbl() {
 }
 
 #[test]
+fn fuzz_study() {
+    fuzz(Target::Study);
+}
+
+#[test]
 fn every_seed_passes_its_target() {
     for t in Target::ALL {
         for (k, s) in t.seeds().iter().enumerate() {

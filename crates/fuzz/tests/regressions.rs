@@ -147,3 +147,20 @@ fn absurd_numbers_in_kbl_and_csv_are_handled() {
         assert_eq!(Target::CalibrationCsv.run(padded.as_bytes()), Ok(()));
     }
 }
+
+/// A study whose numbers are finite as written but overflow once converted to SI (a
+/// material property set in MPa: × 10⁶) was accepted with an infinite mean; it is
+/// refused naming the field, and the study target holds.
+#[test]
+fn a_study_value_that_overflows_in_si_units_is_refused() {
+    let seeds = Target::Study.seeds();
+    let demo = String::from_utf8(seeds[1].clone()).unwrap();
+    let overflowing = demo
+        .replace(
+            "mean = 9.0\nstd = 1.5\nmin = 6\n",
+            "mean = 1e305\nstd = 1.5\nmin = 6\n",
+        )
+        .replace("levels = [7.5, 9.0, 10.5]", "levels = [7.5, 1e305]");
+    assert_ne!(overflowing, demo);
+    assert_eq!(Target::Study.run(overflowing.as_bytes()), Ok(()));
+}

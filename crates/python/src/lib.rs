@@ -24,6 +24,7 @@ use pyo3::prelude::*;
 fn _pliant(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("DEFAULT_MAX_STEPS", pliant_scene::budget::DEFAULT_MAX_STEPS)?;
     m.add("SceneError", py.get_type::<errors::SceneError>())?;
     m.add(
         "SimulationDiverged",

@@ -37,6 +37,7 @@ pub struct RunResult {
     profile: ErgonomicProfile,
     run: RunSummary,
     diverged: Option<String>,
+    stopped: Option<pliant_assembly::report::Stopped>,
     feasible: Option<bool>,
     reasons: Vec<String>,
     warnings: Vec<String>,
@@ -52,6 +53,10 @@ pub struct RunResult {
 /// ergonomic profile, as ``pliant run --ergonomics`` does, e.g.
 /// ``"posture=sitting, population=men"``.
 ///
+/// A run planned at more than ``max_steps`` steps (its timeline's duration over the time
+/// step; default ``DEFAULT_MAX_STEPS``, as ``pliant run --max-steps``) is refused before
+/// it starts with :class:`SceneError` giving the estimate.
+///
 /// Raises :class:`SimulationDiverged` if the run blows up; its ``result`` attribute holds
 /// the run up to the last healthy state (its verdict: not feasible). Raises ValueError
 /// for a bad ``ergonomics`` text.
@@ -65,12 +70,13 @@ pub struct RunResult {
 /// >>> result.hand_series(0)["force"].shape[1]
 /// 3
 #[pyfunction]
-#[pyo3(signature = (scene, ergonomics = None, solver = None))]
+#[pyo3(signature = (scene, ergonomics = None, solver = None, max_steps = pliant_scene::budget::DEFAULT_MAX_STEPS))]
 pub fn run_timeline(
     py: Python<'_>,
     scene: &Bound<'_, Scene>,
     ergonomics: Option<&str>,
     solver: Option<&str>,
+    max_steps: u64,
 ) -> PyResult<RunResult> {
     let s = scene.get();
     let (loaded, model) = (s.scene.clone(), s.model.clone());
@@ -101,15 +107,19 @@ pub fn run_timeline(
     let mut cell = Runner::from_setup(setup, options)
         .workcell()
         .map_err(|e| scene_error_message(py, format!("{}: {e}", loaded.source)))?;
+    loaded
+        .check_planned_run(cell.time_step(), max_steps, true)
+        .map_err(|e| scene_error_message(py, e))?;
     let mut data = Collector::new(loaded.record_interval);
     let outcome = py.allow_threads(|| run_on(&mut cell, &loaded.timeline, &mut data));
     data.finish(cell.state());
-    let (run, divergence, stopped) = match outcome {
-        Ok(run) => (run, None, None),
+    let (run, divergence, stopped, typed) = match outcome {
+        Ok(run) => (run, None, None, None),
         Err(e) => (
             e.partial.clone(),
             e.divergence.clone(),
             Some(e.reason.clone()),
+            Some(e.stopped.clone()),
         ),
     };
     if let (None, Some(reason)) = (&divergence, &stopped) {
@@ -123,6 +133,7 @@ pub fn run_timeline(
         profile,
         run,
         diverged: message,
+        stopped: typed,
         feasible: v.feasible,
         word: v.word(),
         uncertain: v.uncertain,
@@ -198,6 +209,14 @@ impl RunResult {
     #[getter]
     fn diverged(&self) -> Option<String> {
         self.diverged.clone()
+    }
+
+    /// Why the run stopped early as ``summary.json`` holds it — a dict with ``kind``
+    /// (e.g. ``"non_finite_state"``, ``"speed"``, ``"not_converged"``), its numbers, for a
+    /// divergence ``step``, ``time_s``, ``hose`` and ``node``, and ``message`` — or None.
+    #[getter]
+    fn divergence<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.stopped.as_ref().map(|s| to_python(py, s)).transpose()
     }
 
     /// Steps taken.

@@ -120,6 +120,14 @@ def done(scene_path, client, tmp_path_factory):
 
 # --- the study format ---------------------------------------------------------------
 
+def test_runs_planned_beyond_max_steps_are_invalid_with_the_estimate(scene_path, client, tmp_path):
+    d = study_dict(scene_path, runs=2, absurd=False)
+    result = pliant.study(d, str(tmp_path / "out"), client=client, progress=False, max_steps=10)
+    f = result.frame
+    assert len(f) == 2 and set(f["status"]) == {"invalid"}, f[["status", "message"]]
+    assert all("at most 10 are allowed" in m for m in f["message"]), list(f["message"])
+
+
 @pytest.mark.parametrize("change, field", [
     (lambda d: d.update(format="pliant-scene"), "format"),
     (lambda d: d["sampling"].update(method="sobol"), "sampling.method"),
@@ -133,6 +141,9 @@ def done(scene_path, client, tmp_path_factory):
     (lambda d: d["parameters"][0].update(colour="red"), "parameters[0].colour"),
     (lambda d: d["parameters"][0].update(vary="wind"), "parameters[0].vary"),
     (lambda d: d.update(scene="nowhere.toml"), "scene"),
+    # finite as written, beyond the largest number once in SI (× 10⁶ for MPa)
+    (lambda d: d["parameters"][1].update(property="e_tension_mpa", apply="set", mean=1e305, std=1.0,
+                                         min=1e304, max=1e306), "parameters[1].mean"),
 ])
 def test_errors_name_the_field(scene_path, change, field):
     d = study_dict(scene_path)

@@ -114,6 +114,22 @@ def test_diverging_timeline_raises_with_the_partial_result(tmp_path):
     assert result.reasons[0].startswith("the simulation stopped early: simulation diverged")
     result.write_report(tmp_path)
     assert json.loads((tmp_path / "report.json").read_text())["diverged"] == str(err.value)
+    # the typed reason beside the message, as summary.json holds it
+    d = result.divergence
+    assert d["message"] == str(err.value)
+    assert d["kind"] in ("non_finite_state", "non_finite_velocity", "support_load", "speed"), d
+    assert d["hose"] == "beam" and d["step"] > 0 and d["time_s"] > 0
+
+
+def test_a_run_planned_beyond_max_steps_is_refused_before_it_starts():
+    d = cantilever_dict()
+    d["timeline"] = [{"action": "run", "duration_s": 0.01}]
+    scene = pliant.Scene.from_dict(d)
+    steps = int(np.ceil(0.01 / scene.time_step))
+    assert steps > 10 and pliant.DEFAULT_MAX_STEPS == 1_000_000_000
+    with pytest.raises(pliant.SceneError, match="at most 10 are allowed"):
+        pliant.run_timeline(scene, max_steps=10)
+    assert pliant.run_timeline(scene, max_steps=2 * steps).completed
 
 
 def test_installation_checks_are_exposed(demo_result):

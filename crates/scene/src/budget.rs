@@ -19,10 +19,17 @@
 //! are built (`pliant_core::contact::rest_pair_count`), at
 //! [`pliant_core::contact::BYTES_PER_CONTACT_PAIR`] (16 B) each. What the report writer holds
 //! grows with the elements (one profile per hose, the scene copied for at most
-//! `MAX_SCENE_PICTURES` hoses) and is inside the per-element size; the estimate is
-//! tested against the measured peak in `crates/cli/tests/budget.rs`.
+//! `MAX_SCENE_PICTURES` hoses) and is inside the per-element size. While a run goes,
+//! the pairs listed at once are capped at what the memory limit leaves beside the rest
+//! ([`Budget::contact_pair_room`], `SimSettings::max_contact_pairs`): hoses piling up
+//! beyond it stop the run as diverged. What grows with the run's length — the samples
+//! kept for the report per recorded time ([`Recorded`]) — is checked when the run is
+//! planned (`LoadedScene::check_planned_steps`). The estimate is tested against the
+//! measured peak in `crates/cli/tests/budget.rs`.
 
 use crate::error::FieldError;
+use pliant_assembly::fasteners::FastenerSample;
+use pliant_assembly::report::HandSample;
 use pliant_core::contact::{rest_pair_count, BYTES_PER_CONTACT_PAIR};
 use pliant_core::HoseSpec;
 
@@ -145,6 +152,19 @@ impl Budget {
         self.check(field)
     }
 
+    /// The most hose–hose contact pairs a run may list at once: what the memory limit
+    /// leaves beside everything else the estimate counts (at least the pairs at rest),
+    /// for [`pliant_core::SimSettings::max_contact_pairs`].
+    pub fn contact_pair_room(&self) -> usize {
+        let others = Estimate {
+            contact_pairs: 0,
+            ..self.estimate
+        }
+        .memory_bytes();
+        let room = self.limits.max_memory_bytes.saturating_sub(others) / BYTES_PER_CONTACT_PAIR;
+        usize::try_from(room.max(self.estimate.contact_pairs)).unwrap_or(usize::MAX)
+    }
+
     fn check(&self, field: &str) -> Result<(), FieldError> {
         let (e, l) = (&self.estimate, &self.limits);
         for (count, max, what) in [
@@ -183,10 +203,18 @@ impl Budget {
 }
 
 /// Refuses a run of `planned` seconds at `time_step` \[s\] beyond `max_steps` steps,
-/// with its estimate (a scene planned at 1.6·10¹² steps started anyway).
-/// Returns the planned steps.
+/// with its estimate. Returns the planned steps.
 pub fn check_steps(planned: f64, time_step: f64, max_steps: u64) -> Result<u64, String> {
-    let steps = (planned / time_step).ceil();
+    refuse_beyond((planned / time_step).ceil(), planned, time_step, max_steps)
+}
+
+/// Refuses a run of `steps` steps of `time_step` \[s\] (a replayed log's end tick) beyond
+/// `max_steps`, with the same estimate as [`check_steps`]. Returns `steps`.
+pub fn check_step_count(steps: u64, time_step: f64, max_steps: u64) -> Result<u64, String> {
+    refuse_beyond(steps as f64, steps as f64 * time_step, time_step, max_steps)
+}
+
+fn refuse_beyond(steps: f64, planned: f64, time_step: f64, max_steps: u64) -> Result<u64, String> {
     if steps.is_finite() && steps >= 0.0 && steps <= max_steps as f64 {
         return Ok(steps as u64);
     }
@@ -202,6 +230,81 @@ pub fn check_steps(planned: f64, time_step: f64, max_steps: u64) -> Result<u64, 
     Err(format!(
         "the run is planned at {planned:.3e} s with a time step of {time_step:.3e} s: \
          {steps:.3e} steps{hours}; at most {max_steps} are allowed (raise with --max-steps)"
+    ))
+}
+
+/// Memory each recorded time holds until the report is written, per hand \[bytes\]: its
+/// sample for the report's plots, in a growing `Vec` (up to twice its length).
+pub const RECORD_BYTES_PER_HAND: u64 = 2 * std::mem::size_of::<HandSample>() as u64;
+/// The same per stub or clip (its force sample).
+pub const RECORD_BYTES_PER_FASTENER: u64 = 2 * std::mem::size_of::<FastenerSample>() as u64;
+
+/// The times a run of `planned` seconds records at `interval` \[s\] (0: every one of its
+/// `steps` steps), with the first and the last.
+pub fn planned_records(planned: f64, interval: f64, steps: u64) -> u64 {
+    let by_interval = if interval > 0.0 {
+        (planned / interval).ceil()
+    } else {
+        f64::INFINITY
+    };
+    let records = if by_interval.is_finite() && by_interval >= 0.0 {
+        (by_interval as u64).min(steps)
+    } else {
+        steps
+    };
+    records.saturating_add(2)
+}
+
+/// The same per node, for a caller that keeps every node's position at each recorded
+/// time (the Python `RunResult`).
+pub const RECORD_BYTES_PER_NODE: u64 = 2 * std::mem::size_of::<glam::DVec3>() as u64;
+
+/// What a run keeps in memory at each recorded time until its report is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Recorded {
+    /// Recorded times ([`planned_records`]).
+    pub records: u64,
+    /// A sample per hand, per stub or clip, and (when kept) a position per node.
+    pub hands: u64,
+    pub fasteners: u64,
+    pub nodes: u64,
+}
+
+impl Recorded {
+    /// Memory the recorded series take \[bytes\].
+    pub fn bytes(&self) -> u64 {
+        let per_record = self
+            .hands
+            .saturating_mul(RECORD_BYTES_PER_HAND)
+            .saturating_add(self.fasteners.saturating_mul(RECORD_BYTES_PER_FASTENER))
+            .saturating_add(self.nodes.saturating_mul(RECORD_BYTES_PER_NODE));
+        self.records.saturating_mul(per_record)
+    }
+}
+
+/// Refuses a run whose recorded series ([`Recorded::bytes`]) on top of the scene's
+/// estimate exceed the memory limit, with the numbers.
+pub fn check_recorded(estimate: &Estimate, limits: &Limits, kept: &Recorded) -> Result<(), String> {
+    let Recorded {
+        records,
+        hands,
+        fasteners,
+        nodes,
+    } = *kept;
+    let series = kept.bytes();
+    let need = estimate.memory_bytes().saturating_add(series);
+    if need <= limits.max_memory_bytes {
+        return Ok(());
+    }
+    Err(format!(
+        "the run records {records} times ({hands} hand(s), {fasteners} stub(s) and clip(s), {nodes} node position(s) kept): \
+         {} of series for the report on top of the scene's {}; {} in all, the limit is {} \
+         (raise it with {}, or record less often: [output] record_interval_s)",
+        human_bytes(series),
+        human_bytes(estimate.memory_bytes()),
+        human_bytes(need),
+        human_bytes(limits.max_memory_bytes),
+        limits.raise_with
     ))
 }
 

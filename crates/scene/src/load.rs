@@ -419,7 +419,7 @@ fn build(
     let mut budget = Budget::new(options.limits);
     let library = Library::builtin().map_err(|e| FieldError::about("materials", e.to_string()))?;
     let materials = Materials::build(&file.materials, library)?;
-    let settings = build_settings(file.simulation.as_ref())?;
+    let mut settings = build_settings(file.simulation.as_ref())?;
     let record_interval = build_record_interval(file.output.as_ref())?;
     if file.hoses.is_empty() {
         return Err(FieldError::about(
@@ -466,6 +466,7 @@ fn build(
             .file_stem()
             .map_or_else(|| origin.to_string(), |s| s.to_string_lossy().into_owned()),
     };
+    settings.max_contact_pairs = budget.contact_pair_room();
     let mut warnings = parts.warnings;
     warnings.extend(time_step_warning(settings.time_step_safety));
     Ok(LoadedScene {
@@ -491,6 +492,7 @@ fn build(
         text: text.to_string(),
         base_dir: base_dir.to_path_buf(),
         estimate: budget.estimate,
+        limits: options.limits,
     })
 }
 

@@ -133,6 +133,9 @@ pub struct LoadedScene {
     pub base_dir: std::path::PathBuf,
     /// Its size: elements, triangles and the memory a run needs ([`crate::budget`]).
     pub estimate: crate::budget::Estimate,
+    /// The limits it was loaded under (its memory limit also bounds what a run records,
+    /// [`LoadedScene::check_planned_steps`]).
+    pub limits: crate::budget::Limits,
     /// What loading left out or doubts, for the user (e.g. solids of a STEP assembly
     /// that could not be read); empty when nothing was.
     pub warnings: Vec<String>,

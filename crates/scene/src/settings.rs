@@ -111,6 +111,7 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
         solver,
         threads: default.threads,
         hose_contact,
+        max_contact_pairs: default.max_contact_pairs,
     })
 }
 

@@ -5,7 +5,7 @@
 
 use crate::scene::LoadedScene;
 use pliant_assembly::{
-    run_timeline, Action, NoObserver, RunSummary, Workcell, WorkcellOptions, WorkcellSetup,
+    run_timeline, Action, NoObserver, RunSummary, Runner, Workcell, WorkcellOptions, WorkcellSetup,
 };
 use pliant_core::{Model, SolverKind};
 use std::sync::Arc;
@@ -63,14 +63,93 @@ impl LoadedScene {
         Workcell::new(self.workcell_setup()?, options)
     }
 
+    /// Refuses a run of this scene's timeline at `time_step` \[s\] planned beyond
+    /// `max_steps` steps (its duration over the step), or whose estimated memory — the
+    /// scene's ([`crate::budget::Estimate`]) plus the series it records in memory for the
+    /// report over the planned run ([`crate::budget::Recorded`]) — exceeds the
+    /// memory limit it was loaded under; naming the scene and the estimate. Else the
+    /// planned steps. Every command that runs a scene's timeline checks it before the run
+    /// starts.
+    pub fn check_planned_steps(&self, time_step: f64, max_steps: u64) -> Result<u64, String> {
+        self.check_planned_run(time_step, max_steps, false)
+    }
+
+    /// [`Self::check_planned_steps`] for a caller that also keeps every node's position
+    /// at each recorded time in memory (`keeps_positions`: the Python `RunResult`).
+    pub fn check_planned_run(
+        &self,
+        time_step: f64,
+        max_steps: u64,
+        keeps_positions: bool,
+    ) -> Result<u64, String> {
+        let planned = Runner::planned_duration(&self.timeline);
+        let steps = crate::budget::check_steps(planned, time_step, max_steps)
+            .map_err(|e| format!("{}: {e}", self.source))?;
+        let kept = self.recorded(time_step, keeps_positions);
+        crate::budget::check_recorded(&self.estimate, &self.limits, &kept)
+            .map_err(|e| format!("{}: {e}", self.source))?;
+        Ok(steps)
+    }
+
+    /// What a run of the timeline at `time_step` \[s\] keeps in memory per recorded time,
+    /// and how many times it records (`keeps_positions`: also every node's position).
+    pub fn recorded(&self, time_step: f64, keeps_positions: bool) -> crate::budget::Recorded {
+        let planned = Runner::planned_duration(&self.timeline);
+        let steps = (planned / time_step).ceil();
+        let steps = if steps.is_finite() && steps >= 0.0 {
+            steps as u64
+        } else {
+            u64::MAX
+        };
+        let nodes = if keeps_positions {
+            self.world.hoses.iter().map(|h| h.nodes.len() as u64).sum()
+        } else {
+            0
+        };
+        crate::budget::Recorded {
+            records: crate::budget::planned_records(planned, self.record_interval, steps),
+            hands: self.hands_used(),
+            fasteners: (self.stubs.len() + self.clips.len()) as u64,
+            nodes,
+        }
+    }
+
+    /// How many hands the timeline uses (distinct hand numbers it grabs with).
+    pub fn hands_used(&self) -> u64 {
+        let mut hands: Vec<usize> = self
+            .timeline
+            .actions
+            .iter()
+            .filter_map(|a| match a {
+                Action::Grab { hand, .. } => Some(*hand),
+                _ => None,
+            })
+            .collect();
+        hands.sort_unstable();
+        hands.dedup();
+        hands.len() as u64
+    }
+
     /// The scene's whole timeline run with `solver` (the scene's own if `None`), as
     /// `pliant run` runs it but writing nothing: the workcell at the end and the summary.
+    /// Refused beyond the default step limit ([`Self::run_within`]).
     pub fn run_with(&self, solver: Option<SolverKind>) -> Result<(Workcell, RunSummary), String> {
+        self.run_within(solver, crate::budget::DEFAULT_MAX_STEPS)
+    }
+
+    /// [`Self::run_with`], refused before it starts when planned beyond `max_steps`
+    /// ([`Self::check_planned_steps`]).
+    pub fn run_within(
+        &self,
+        solver: Option<SolverKind>,
+        max_steps: u64,
+    ) -> Result<(Workcell, RunSummary), String> {
         let mut cell = self.workcell(WorkcellOptions {
             solver,
             initial_loads: false,
             ..Default::default()
         })?;
+        self.check_planned_steps(cell.time_step(), max_steps)?;
         let run = run_timeline(&mut cell, &self.timeline, &mut NoObserver).map_err(|e| e.reason)?;
         Ok((cell, run))
     }

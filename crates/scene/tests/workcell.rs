@@ -93,7 +93,13 @@ fn a_two_handed_study_replays_bit_for_bit_for_each_solver() {
             run.fasteners
         );
         let mut again = scene.workcell(options(solver)).unwrap();
-        replay(&mut again, live.log(), live.tick(), &mut NoObserver).unwrap();
+        replay(
+            &mut again,
+            &live.log().to_vec(),
+            live.tick(),
+            &mut NoObserver,
+        )
+        .unwrap();
         assert_same(&live, &again);
         eprintln!(
             "{solver}: {} inputs, {} steps replayed bit for bit, verdict {}",
@@ -118,7 +124,7 @@ fn a_session_folder_replays_bit_for_bit_and_converts_to_a_timeline() {
 
     // the folder alone rebuilds the study
     let session = Session::open(dir.path()).unwrap();
-    assert_eq!(session.log.inputs.as_slice(), live.log());
+    assert_eq!(session.log.inputs, live.log().to_vec());
     assert_eq!(session.log.end_tick, live.tick());
     let mut again = session.workcell().unwrap();
     replay(
@@ -258,7 +264,13 @@ fn a_checkpoint_taken_mid_study_continues_bit_for_bit_for_each_solver() {
         let end_tick = cell.tick();
         let once = scene.workcell(options(solver)).unwrap();
         let mut finished = once;
-        replay(&mut finished, cell.log(), end_tick, &mut NoObserver).unwrap();
+        replay(
+            &mut finished,
+            &cell.log().to_vec(),
+            end_tick,
+            &mut NoObserver,
+        )
+        .unwrap();
         // back to the checkpoint and on again: the same end, bit for bit
         cell.restore(&saved).unwrap();
         assert!(cell.tick() < end_tick);
@@ -355,7 +367,13 @@ fn a_divergence_is_rolled_back_and_only_the_hand_involved_lets_go() {
     assert!(live.verdict(pliant_assembly::Stage::Final).uncertain);
     // the replay meets the same divergence at the same tick and rolls back the same way
     let mut again = scene.workcell(opts).unwrap();
-    replay(&mut again, live.log(), live.tick(), &mut NoObserver).unwrap();
+    replay(
+        &mut again,
+        &live.log().to_vec(),
+        live.tick(),
+        &mut NoObserver,
+    )
+    .unwrap();
     assert_same(&live, &again);
 }
 

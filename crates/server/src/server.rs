@@ -29,7 +29,7 @@ use axum::Router;
 use futures_util::FutureExt;
 use glam::{DQuat, DVec3};
 use pliant_assembly::ergonomics::ErgonomicProfile;
-use pliant_core::math::unit_quaternion;
+use pliant_core::math::near_unit_quaternion;
 use std::any::Any;
 use std::net::SocketAddr;
 use std::panic::AssertUnwindSafe;
@@ -791,10 +791,10 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
             let position = point(position)?;
             let orientation = match orientation {
                 None => None,
-                Some(q) => Some(unit_quaternion(DQuat::from_array(q)).ok_or_else(|| {
+                Some(q) => Some(near_unit_quaternion(DQuat::from_array(q)).map_err(|e| {
                     error_json(
                         ErrorCode::InvalidValue,
-                        "orientation must be a non-zero finite quaternion [x, y, z, w]",
+                        format!("orientation {q:?} {e}: it must be a unit quaternion [x, y, z, w]"),
                     )
                 })?),
             };

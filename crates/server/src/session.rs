@@ -20,7 +20,7 @@ use pliant_assembly::ergonomics::{colour_value, ErgonomicProfile, HandAssessment
 use pliant_assembly::fasteners::FastenerSample;
 use pliant_assembly::report::{replay_with_outputs, Summary};
 use pliant_assembly::workcell::log::{InputLog, LogHeader};
-use pliant_assembly::workcell::StampedInput;
+use pliant_assembly::workcell::LogShare;
 use pliant_assembly::{
     Applied, ClipSite, Input, NoObserver, Stage, StubSite, Verdict, Workcell, WorkcellOptions,
 };
@@ -70,8 +70,9 @@ pub enum Command {
     Reset,
     /// Judge hand loads with this profile from now on.
     SetErgonomics(ErgonomicProfile),
-    /// Send back the input log so far (for a report).
-    Log(mpsc::Sender<(Vec<StampedInput>, u64)>),
+    /// Send back the input log so far (for a report): its sealed chunks shared, only the
+    /// open chunk copied, so the simulation thread never copies the whole log.
+    Log(mpsc::Sender<(LogShare, u64)>),
 }
 
 /// A session could not start.
@@ -257,16 +258,22 @@ impl Session {
         self.epoch.fetch_add(1, Ordering::SeqCst) + 1
     }
 
-    /// The input log so far (inputs and the tick the session has reached).
-    pub fn input_log(&self) -> Result<InputLog, String> {
+    /// The input log so far as the simulation thread hands it over (shared chunks, see
+    /// [`Command::Log`]) and the tick the session has reached.
+    pub fn log_share(&self) -> Result<(LogShare, u64), String> {
         let (tx, rx) = mpsc::channel();
         self.send_waiting(Command::Log(tx));
-        let (inputs, end_tick) = rx
-            .recv()
-            .map_err(|_| "the simulation thread has stopped".to_string())?;
+        rx.recv()
+            .map_err(|_| "the simulation thread has stopped".to_string())
+    }
+
+    /// The input log so far (inputs and the tick the session has reached), put together
+    /// on the caller's thread.
+    pub fn input_log(&self) -> Result<InputLog, String> {
+        let (share, end_tick) = self.log_share()?;
         Ok(InputLog {
             header: self.header.clone(),
-            inputs,
+            inputs: share.to_vec(),
             end_tick,
         })
     }
@@ -279,6 +286,15 @@ impl Session {
     /// would otherwise pass [`ReportLimits::max_report_bytes`]; returns that interval
     /// \[s\] too. Blocks for the replay: call it off the async runtime.
     pub fn report(&self, out: &Path) -> Result<(Verdict, Summary, f64), String> {
+        self.report_observed(out, &mut NoObserver)
+    }
+
+    /// [`Self::report`], with `observer` watching the replay.
+    pub fn report_observed(
+        &self,
+        out: &Path,
+        observer: &mut dyn pliant_assembly::Observer,
+    ) -> Result<(Verdict, Summary, f64), String> {
         let log = self.input_log()?;
         let cell = self.loaded.workcell(log.header.options)?;
         write_session_folder(out, &self.loaded, &log)
@@ -290,14 +306,8 @@ impl Session {
             nodes,
             self.report_limits.max_report_bytes,
         );
-        let (verdict, summary) = replay_with_outputs(
-            out,
-            cell,
-            &log,
-            &self.loaded.name,
-            interval,
-            &mut NoObserver,
-        )?;
+        let (verdict, summary) =
+            replay_with_outputs(out, cell, &log, &self.loaded.name, interval, observer)?;
         Ok((verdict, summary, interval))
     }
 
@@ -596,7 +606,7 @@ impl Sim {
             }
             Command::SetErgonomics(profile) => self.give(Input::SetErgonomics { profile }),
             Command::Log(reply) => {
-                let _ = reply.send((self.cell.log().to_vec(), self.cell.tick()));
+                let _ = reply.send((self.cell.log().share(), self.cell.tick()));
             }
         }
     }
@@ -819,6 +829,96 @@ elements = 10
         session.send(Command::Step(3)).unwrap();
         session.report(dir.path()).unwrap();
         assert_eq!(computed_on_this_thread(), before + 1);
+        assert!(dir.path().join("report.html").is_file());
+    }
+
+    /// Waits until `done` holds, looking again whenever the thread is scheduled (a
+    /// condition, not a duration; the guard only fails a hung test).
+    fn wait_until(what: &str, mut done: impl FnMut() -> bool) {
+        let guard = std::time::Instant::now() + Duration::from_secs(300);
+        while !done() {
+            assert!(std::time::Instant::now() < guard, "hung waiting for {what}");
+            std::thread::yield_now();
+        }
+    }
+
+    /// Holds the report's replay at its first step until the test lets it go.
+    struct HeldReplay {
+        started: mpsc::Sender<()>,
+        go: mpsc::Receiver<()>,
+        held: bool,
+    }
+
+    impl pliant_assembly::Observer for HeldReplay {
+        fn on_step(&mut self, _time: f64) {
+            if !self.held {
+                self.held = true;
+                let _ = self.started.send(());
+                let _ = self.go.recv();
+            }
+        }
+    }
+
+    /// A report of a long session does not stall the simulation thread: the thread hands
+    /// its log over in shared chunks — copying at most the open chunk, however long the
+    /// log — and the session steps and publishes snapshots while the report is written.
+    #[test]
+    fn a_report_of_a_long_log_leaves_the_simulation_running() {
+        use pliant_assembly::workcell::chunked_log::CHUNK;
+        let scene = scene();
+        let session = Session::start(
+            &scene,
+            SessionOptions {
+                paused: true,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let profile = session.latest().ergonomics;
+        let inputs = 40 * CHUNK + 3;
+        for _ in 0..inputs {
+            session.send_waiting(Command::SetErgonomics(profile));
+        }
+        let (first, _) = session.log_share().unwrap();
+        assert_eq!(first.len(), inputs);
+        session.send_waiting(Command::SetErgonomics(profile));
+        let (second, _) = session.log_share().unwrap();
+        assert_eq!(second.len(), inputs + 1);
+        // the handoff copied only the open chunk; the sealed ones are shared, not copied
+        assert!(first.copied() < CHUNK && second.copied() < CHUNK);
+        assert!((0..inputs / CHUNK).all(|k| first.shares_chunk_with(&second, k)));
+
+        // steps for the report to replay
+        session.send_waiting(Command::Step(5));
+        wait_until("the first steps", || session.latest().step >= 5);
+
+        let dir = tempfile::tempdir().unwrap();
+        let (started_tx, started) = mpsc::channel();
+        let (go, go_rx) = mpsc::channel();
+        std::thread::scope(|s| {
+            let writer = s.spawn(|| {
+                let mut held = HeldReplay {
+                    started: started_tx,
+                    go: go_rx,
+                    held: false,
+                };
+                session.report_observed(dir.path(), &mut held)
+            });
+            // the report has its log and is replaying it: the session still steps and
+            // publishes a snapshot of every step asked for
+            started.recv().unwrap();
+            for _ in 0..3 {
+                let before = session.latest().step;
+                session.send_waiting(Command::Step(1));
+                wait_until("a snapshot of the next step", || {
+                    session.latest().step > before
+                });
+            }
+            assert!(!writer.is_finished(), "the replay is held until now");
+            go.send(()).unwrap();
+            let (_, summary, _) = writer.join().unwrap().unwrap();
+            assert!(summary.diverged.is_none());
+        });
         assert!(dir.path().join("report.html").is_file());
     }
 }

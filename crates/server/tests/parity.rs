@@ -146,8 +146,8 @@ async fn runner_server_and_workcell_agree_bit_for_bit_for_each_solver() {
         assert_positions(&live, &cell, &format!("{solver}: server"));
         let log = session.input_log().unwrap();
         assert_eq!(
-            log.inputs.as_slice(),
-            cell.log(),
+            log.inputs,
+            cell.log().to_vec(),
             "{solver}: the same inputs at the same ticks"
         );
 

@@ -258,6 +258,73 @@ async fn bad_messages_get_errors_and_the_connection_lives_on() {
     next_where(&mut ws, "snapshot", |v| v["time"].as_f64().unwrap() > a).await;
 }
 
+/// A `move` whose orientation is not a unit quaternion (zero, or its length off 1 by more
+/// than the tolerance, such as a scale of 2 or 1e200) is refused with an error naming the
+/// field; the hand keeps its pose and the server runs on; one within the tolerance is
+/// taken (normalised).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_move_with_a_non_unit_orientation_is_refused_naming_the_field() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    let snap = next_where(&mut ws, "snapshot", |_| true).await;
+    let n = snap["hoses"][0]["positions"].as_array().unwrap().len();
+    let p0 = node(&snap, 0, n / 2);
+    send(
+        &mut ws,
+        json!({"type": "grab", "hand_id": 0, "position": p0}),
+    )
+    .await;
+    next_where(&mut ws, "snapshot", |v| {
+        v["hands"].as_array().is_some_and(|h| h.len() == 1)
+    })
+    .await;
+    let away = [p0[0], p0[1], p0[2] + 0.02];
+    for q in [
+        json!([0.0, 0.0, 0.0, 2.0]),
+        json!([0.0, 0.0, 0.0, 0.5]),
+        json!([1e200, 0.0, 0.0, 1e200]),
+        json!([0.0, 0.0, 0.0, 0.0]),
+        json!([0.0, 0.0, 0.0, 1.0011]),
+    ] {
+        send(
+            &mut ws,
+            json!({"type": "move", "hand_id": 0, "position": away, "orientation": q}),
+        )
+        .await;
+        let e = next_where(&mut ws, "error", |_| true).await;
+        assert_eq!(e["code"], "invalid_value", "{q}: {e}");
+        let message = e["message"].as_str().unwrap();
+        assert!(message.contains("orientation"), "{q}: {message}");
+    }
+    // nothing was taken: the hand does not aim at the refused pose
+    let held = next_where(&mut ws, "snapshot", |_| true).await;
+    assert!(dist(target(&held), away) > 0.01, "{}", held["hands"]);
+    // a quaternion rounded to four digits is within the tolerance and is normalised
+    send(
+        &mut ws,
+        json!({"type": "move", "hand_id": 0, "position": away, "orientation": [0.0, 0.0, 0.0998, 0.995]}),
+    )
+    .await;
+    let moved = next_where(&mut ws, "snapshot", |v| {
+        v["hands"]
+            .as_array()
+            .is_some_and(|h| h.len() == 1 && dist(target(v), away) < 1e-9)
+    })
+    .await;
+    let a = moved["time"].as_f64().unwrap();
+    next_where(&mut ws, "snapshot", |v| v["time"].as_f64().unwrap() > a).await;
+}
+
+fn target(snap: &Value) -> [f64; 3] {
+    let t = &snap["hands"][0]["target"];
+    [
+        t[0].as_f64().unwrap(),
+        t[1].as_f64().unwrap(),
+        t[2].as_f64().unwrap(),
+    ]
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_flood_is_rate_limited_and_the_server_stays_responsive() {
     let s = server().await;

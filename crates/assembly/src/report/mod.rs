@@ -14,7 +14,9 @@ mod vtk;
 
 pub use html::write_reports;
 pub use recorder::{HandSample, Recorder};
-pub use summary::{final_state, peak_rows, FinalHose, PeakRow, Summary};
+pub use summary::{
+    final_state, peak_rows, FinalHose, OtherStop, PeakRow, StopReason, Stopped, Summary,
+};
 
 use crate::ergonomics::ErgonomicProfile;
 use crate::workcell::{RunSummary, Verdict};
@@ -47,7 +49,7 @@ pub struct Outputs<'a> {
     pub state: &'a State,
     pub run: &'a RunSummary,
     /// Why the study stopped early, if it did.
-    pub diverged: Option<&'a str>,
+    pub diverged: Option<&'a Stopped>,
     /// The recorder's hand samples.
     pub hand_series: &'a [HandSample],
     pub profile: &'a ErgonomicProfile,
@@ -85,7 +87,7 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
         o.scene_name,
         run,
         &parts,
-        o.diverged,
+        o.diverged.map(|s| s.message.as_str()),
         o.hand_series,
         o.profile,
     )?;
@@ -94,7 +96,7 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
         scene: o.scene_name.to_string(),
         source: o.source.to_string(),
         completed: o.diverged.is_none(),
-        diverged: o.diverged.map(str::to_string),
+        diverged: o.diverged.cloned(),
         steps: run.steps,
         simulated_time_s: run.simulated_time,
         time_step_s: o.time_step,
@@ -189,8 +191,18 @@ pub fn replay_with_outputs(
         .finish(&model, cell.state())
         .map_err(|e| format!("writing outputs: {e}"))?;
     let diverged = match &outcome {
-        Ok(()) => cell.diverged().map(|d| d.to_string()),
-        Err(e) => Some(e.to_string()),
+        Ok(()) => cell.diverged().map(Stopped::diverged),
+        Err(crate::workcell::replay::ReplayError::Diverged(d)) => Some(Stopped {
+            message: outcome.as_ref().unwrap_err().to_string(),
+            ..Stopped::diverged(d)
+        }),
+        Err(
+            e @ (crate::workcell::replay::ReplayError::Refused { index, .. }
+            | crate::workcell::replay::ReplayError::Late { index, .. }),
+        ) => Some(Stopped::other(
+            OtherStop::ReplayRefused { input: *index },
+            e.to_string(),
+        )),
     };
     let mut run = cell.summary();
     run.actions_completed = log.inputs.len();
@@ -200,7 +212,7 @@ pub fn replay_with_outputs(
         model: &model,
         state: cell.state(),
         run: &run,
-        diverged: diverged.as_deref(),
+        diverged: diverged.as_ref(),
         hand_series: &hand_series,
         profile: cell.profile(),
         solver: cell.solver().kind(),

@@ -1,6 +1,7 @@
 //! `summary.json`: what a run did, its peak support loads and its final state.
 
 use crate::workcell::{RunSummary, SettleOutcome};
+use pliant_core::health::{Divergence, DivergenceKind};
 use pliant_core::rod::timestep::TimeStepReport;
 use pliant_core::{Model, State};
 use serde::Serialize;
@@ -35,13 +36,85 @@ pub struct FinalHose {
     pub omitted: Option<String>,
 }
 
+/// Why a run stopped early (`summary.json` `diverged`): the typed reason — `kind` and
+/// its numbers, and for a divergence where and when — beside the human message.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Stopped {
+    #[serde(flatten)]
+    pub reason: StopReason,
+    /// The same in words (what `pliant run` prints).
+    pub message: String,
+}
+
+/// The typed part of [`Stopped`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum StopReason {
+    /// The simulation diverged at `step` (`time_s`), at node `node` of hose `hose`.
+    Diverged {
+        #[serde(flatten)]
+        kind: DivergenceKind,
+        step: u64,
+        time_s: f64,
+        hose: String,
+        node: usize,
+    },
+    /// The run stopped for a reason other than a divergence.
+    Other(OtherStop),
+}
+
+/// A run stopped without a divergence.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum OtherStop {
+    /// The workcell could not be built.
+    Setup,
+    /// Timeline action `action` (`name`) was refused.
+    ActionRefused { action: usize, name: &'static str },
+    /// A replayed log's input `input` was refused or late.
+    ReplayRefused { input: usize },
+}
+
+impl Stopped {
+    /// A divergence, typed, with its message.
+    pub fn diverged(d: &Divergence) -> Stopped {
+        Stopped {
+            reason: StopReason::Diverged {
+                kind: d.kind.clone(),
+                step: d.step,
+                time_s: d.time,
+                hose: d.hose.clone(),
+                node: d.node,
+            },
+            message: d.to_string(),
+        }
+    }
+
+    /// Another reason, with its message.
+    pub fn other(reason: OtherStop, message: String) -> Stopped {
+        Stopped {
+            reason: StopReason::Other(reason),
+            message,
+        }
+    }
+
+    /// The typed divergence, if it was one.
+    pub fn divergence_kind(&self) -> Option<&DivergenceKind> {
+        match &self.reason {
+            StopReason::Diverged { kind, .. } => Some(kind),
+            StopReason::Other(_) => None,
+        }
+    }
+}
+
 #[derive(Serialize)]
 pub struct Summary {
     pub pliant_version: &'static str,
     pub scene: String,
     pub source: String,
     pub completed: bool,
-    pub diverged: Option<String>,
+    /// Why the run stopped early (`null`: it did not).
+    pub diverged: Option<Stopped>,
     pub steps: u64,
     pub simulated_time_s: f64,
     /// The step the solver advanced by \[s\] (the explicit stable step, or the implicit /

@@ -10,6 +10,7 @@
 //! memory and, when asked, to a sink as it happens (SPEC W2, [`log`]); replaying the log
 //! into a fresh workcell of the same scene reproduces the study exactly.
 
+pub mod chunked_log;
 pub mod hands;
 pub mod input;
 pub mod log;
@@ -21,6 +22,7 @@ pub mod solver_record;
 pub mod tally;
 pub mod verdict;
 
+pub use chunked_log::{ChunkedLog, LogShare};
 pub use hands::{Aim, Feel, HandLimits, HeldHand};
 pub use input::{HandNumber, Input, Refusal, StampedInput};
 pub use observer::{NoObserver, Observer};
@@ -177,7 +179,7 @@ pub struct Workcell {
     checks: InstallationChecks,
     /// Steps since the workcell was built, resets included (the stamp of inputs).
     tick: u64,
-    log: Vec<StampedInput>,
+    log: chunked_log::ChunkedLog,
     sink: Option<Box<dyn Write + Send + Sync>>,
     sink_error: Option<String>,
     diverged: Option<Divergence>,
@@ -247,7 +249,7 @@ impl Workcell {
             profile: setup.profile,
             limits: ErgonomicLimits::builtin().ok(),
             tick: 0,
-            log: Vec::new(),
+            log: Default::default(),
             sink: None,
             sink_error: None,
             diverged: None,
@@ -334,8 +336,9 @@ impl Workcell {
     pub fn diverged(&self) -> Option<&Divergence> {
         self.diverged.as_ref()
     }
-    /// Every input taken so far, with its tick.
-    pub fn log(&self) -> &[StampedInput] {
+    /// Every input taken so far, with its tick (in shared chunks: [`ChunkedLog::share`]
+    /// hands it to another thread without copying it).
+    pub fn log(&self) -> &chunked_log::ChunkedLog {
         &self.log
     }
     /// The first error writing the log to its sink, if any (the log stays in memory).

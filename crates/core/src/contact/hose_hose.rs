@@ -79,6 +79,7 @@ use super::sweep::SweepAndPrune;
 use crate::{Model, State};
 use glam::DVec3;
 use std::f64::consts::PI;
+use std::ops::ControlFlow;
 
 /// Damping ratio of the contact dashpot, of the pair's critical damping.
 pub const CONTACT_DAMPING_RATIO: f64 = 0.3;
@@ -117,6 +118,10 @@ pub struct HoseContactModel {
     /// Under [`HoseContactRule::ApartAtRest`]: the pairs (i < j) overlapping at rest,
     /// sorted; they never touch ([`super::rest_overlap`]).
     overlapping_at_rest: Vec<(u32, u32)>,
+    /// Most pairs the pair list may hold ([`crate::SimSettings::max_contact_pairs`]): a
+    /// search that finds more stops there and says so ([`HoseContactScratch::overflow`]),
+    /// and the health check declares the run diverged.
+    pub max_pairs: usize,
 }
 
 /// The broad phase and what the last step found, allocated once with the state.
@@ -144,6 +149,21 @@ pub struct HoseContactScratch {
     pub grid_only: bool,
     /// How often the sweep gave up and the grid built the list.
     pub grid_fallbacks: u64,
+    /// The last search found more pairs than the model allows
+    /// ([`HoseContactModel::max_pairs`]): the list holds the first `max_pairs`; the count
+    /// it stopped at and a beam of the pair that did not fit.
+    pub overflow: Option<PairOverflow>,
+}
+
+/// A pair search that found more pairs than the model allows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PairOverflow {
+    /// Pairs found when the search stopped (the limit plus one).
+    pub pairs: usize,
+    /// The most pairs allowed.
+    pub limit: usize,
+    /// A beam of the first pair that did not fit.
+    pub element: usize,
 }
 
 impl HoseContactScratch {
@@ -160,6 +180,7 @@ impl HoseContactScratch {
             ranked: Vec::with_capacity(4 * model.elements.len()),
             grid_only: false,
             grid_fallbacks: 0,
+            overflow: None,
         }
     }
 
@@ -218,18 +239,38 @@ impl HoseContactScratch {
                 });
             swept.is_ok()
         };
+        self.overflow = None;
+        let limit = constants.max_pairs;
         if swept {
             self.ranked.sort_unstable_by_key(|r| r.0);
-            let pairs = self.ranked.iter().map(|&(_, a, b)| (a, b));
+            if let Some(&(_, a, _)) = self.ranked.get(limit) {
+                self.overflow = Some(PairOverflow {
+                    pairs: limit + 1,
+                    limit,
+                    element: a as usize,
+                });
+            }
+            let pairs = self.ranked.iter().take(limit).map(|&(_, a, b)| (a, b));
             self.candidates.extend(pairs);
         } else {
             self.grid_fallbacks += !self.grid_only as u64;
             self.broad.rebuild();
-            let (broad, candidates) = (&self.broad, &mut self.candidates);
-            broad.for_each_pair(|i, j| {
-                if !constants.excluded(i, j) {
-                    candidates.push((i as u32, j as u32));
+            let (broad, candidates, overflow) =
+                (&self.broad, &mut self.candidates, &mut self.overflow);
+            let _ = broad.try_for_each_pair(|i, j| {
+                if constants.excluded(i, j) {
+                    return ControlFlow::Continue(());
                 }
+                if candidates.len() == limit {
+                    *overflow = Some(PairOverflow {
+                        pairs: limit + 1,
+                        limit,
+                        element: i,
+                    });
+                    return ControlFlow::Break(());
+                }
+                candidates.push((i as u32, j as u32));
+                ControlFlow::Continue(())
             });
         }
         self.anchor.clear();
@@ -256,6 +297,7 @@ impl HoseContactModel {
             gaps: Default::default(),
             rule,
             overlapping_at_rest: Vec::new(),
+            max_pairs: crate::spec::DEFAULT_MAX_CONTACT_PAIRS,
         };
         for (h, hose) in model.hoses.iter().enumerate() {
             let mut arc = 0.0;

@@ -38,7 +38,7 @@ pub use coherence::CandidateCache;
 pub use environment::{RigidEnvironment, RigidPart};
 pub use hose_hose::{
     add_hose_contact_forces, hose_contact_forces, hose_contact_forces_with, ContactPair,
-    HoseContactModel, HoseContactScratch, SAFETY_FOR_HOSE_CONTACT,
+    HoseContactModel, HoseContactScratch, PairOverflow, SAFETY_FOR_HOSE_CONTACT,
 };
 pub use pair_count::{rest_pair_count, BYTES_PER_CONTACT_PAIR};
 pub use rest_overlap::HoseContactRule;

@@ -63,6 +63,35 @@ pub enum SolverError {
 }
 
 impl SolverError {
+    /// The failure as a typed divergence reason with its numbers.
+    pub fn kind(&self) -> crate::health::DivergenceKind {
+        use crate::health::{finite_or_none, DivergenceKind};
+        match self {
+            SolverError::Diverged(d) => d.kind.clone(),
+            SolverError::Implicit { error, .. } => match error {
+                ImplicitError::Singular(s) => DivergenceKind::Singular {
+                    solver: "implicit",
+                    node: s.0,
+                },
+                ImplicitError::NotConverged(halvings, residual) => DivergenceKind::NotConverged {
+                    solver: "implicit",
+                    halvings: *halvings,
+                    residual_n: finite_or_none(*residual),
+                },
+            },
+            SolverError::Static { error, .. } => match error {
+                StaticError::Singular(s) => DivergenceKind::Singular {
+                    solver: "static",
+                    node: s.0,
+                },
+                StaticError::NonFinite(iteration) => DivergenceKind::NonFiniteIteration {
+                    solver: "static",
+                    iteration: *iteration,
+                },
+            },
+        }
+    }
+
     /// The failure as a [`Divergence`] report (what callers of any solver handle).
     pub fn into_divergence(self, model: &Model, state: &State) -> Divergence {
         match self {
@@ -72,6 +101,7 @@ impl SolverError {
                 time: state.time,
                 hose: model.hoses.first().map(|h| h.name.clone()).unwrap_or_default(),
                 node: 0,
+                kind: other.kind(),
                 what: other.to_string(),
                 cause: "the Newton iterations found no equilibrium (a load beyond what the hose can carry, or a step too large for the contact); try a smaller step or the explicit solver".into(),
             },

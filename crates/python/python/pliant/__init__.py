@@ -18,6 +18,7 @@ See docs/python.md in the repository for a guide.
 """
 
 from ._pliant import (
+    DEFAULT_MAX_STEPS,
     Calibration,
     CalibrationError,
     CalibrationFit,
@@ -51,6 +52,7 @@ def study(study, out=None, **options):
 
 
 __all__ = [
+    "DEFAULT_MAX_STEPS",
     "Calibration",
     "CalibrationError",
     "CalibrationFit",

@@ -7,6 +7,7 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+DEFAULT_MAX_STEPS: int
 
 HoseRef = Union[str, int]
 """A hose by name or by index (negative counts from the end)."""
@@ -295,6 +296,8 @@ class RunResult:
     @property
     def summary(self) -> Dict[str, Any]: ...
     @property
+    def divergence(self) -> Optional[Dict[str, Any]]: ...
+    @property
     def solver_record(self) -> Dict[str, Any]: ...
     @property
     def solver_warnings(self) -> List[str]: ...
@@ -314,8 +317,10 @@ class RunResult:
     def hand_series(self, hand: int) -> Dict[str, FloatArray]: ...
     def write_report(self, out: StrPath) -> None: ...
 
-def run_timeline(scene: Scene, ergonomics: Optional[str] = None, solver: Optional[str] = None) -> RunResult:
-    """Runs the scene's whole timeline as ``pliant run`` does."""
+def run_timeline(scene: Scene, ergonomics: Optional[str] = None, solver: Optional[str] = None,
+                 max_steps: int = ...) -> RunResult:
+    """Runs the scene's whole timeline as ``pliant run`` does; refused with SceneError
+    when planned beyond ``max_steps`` steps (default ``DEFAULT_MAX_STEPS``)."""
 
 def centreline_sample_keys(frames: FloatArray, h: float) -> Any:
     """Sorted unique int64 keys of the centre-line samples of frames (T, N, 3) [m] for

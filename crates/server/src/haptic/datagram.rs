@@ -19,10 +19,6 @@ pub const REQUEST_BYTES: usize = 112;
 pub const REPLY_BYTES: usize = 96;
 /// Size of the key field (the server's token, zero-padded).
 pub const KEY_BYTES: usize = 32;
-/// Largest norm of an orientation quaternion taken (it is normalised); with the
-/// smallest, 1/`MAX_QUATERNION_NORM`, it refuses absurd values such as \[1e200, …\]
-/// while leaving room for a device's rounding.
-pub const MAX_QUATERNION_NORM: f64 = 2.0;
 
 /// Whether `b` has a request's size and magic: the only datagrams answered (a reply is
 /// smaller than a request, so the stream never amplifies).
@@ -241,15 +237,12 @@ impl Request {
             return Err(Status::InvalidValue);
         }
         let q = [f64_at(b, 48), f64_at(b, 56), f64_at(b, 64), f64_at(b, 72)];
-        let norm = q.iter().map(|c| c * c).sum::<f64>().sqrt();
         let orientation = if q == [0.0; 4] {
             None
-        } else if !(1.0 / MAX_QUATERNION_NORM..=MAX_QUATERNION_NORM).contains(&norm) {
-            return Err(Status::InvalidValue);
         } else {
             Some(
-                pliant_core::math::unit_quaternion(DQuat::from_array(q))
-                    .ok_or(Status::InvalidValue)?,
+                pliant_core::math::near_unit_quaternion(DQuat::from_array(q))
+                    .map_err(|_| Status::InvalidValue)?,
             )
         };
         let mut key = [0u8; KEY_BYTES];
@@ -441,8 +434,9 @@ mod tests {
         let mut b = good;
         b[48..56].copy_from_slice(&f64::INFINITY.to_le_bytes());
         assert_eq!(Request::decode(&b), Err(Status::InvalidValue));
-        // absurd orientations are refused, not normalised
-        for c in [1e200_f64, 1e-200, 3.0] {
+        // orientations whose length is not 1 (within the tolerance) are refused, not
+        // normalised
+        for c in [1e200_f64, 1e-200, 3.0, 0.51, 0.6] {
             let mut b = good;
             for k in 0..4 {
                 b[48 + 8 * k..56 + 8 * k].copy_from_slice(&c.to_le_bytes());

@@ -14,7 +14,7 @@ from .results import StudyResult, read_rows, run_envelope
 
 
 def study(study, out=None, *, scheduler=None, workers=None, runs=None, processes=True,
-          progress=True, client=None, flush_rows=50, batch=None):
+          progress=True, client=None, flush_rows=50, batch=None, max_steps=None):
     """Runs (or resumes) a study and returns a :class:`StudyResult` (``.frame`` is a
     pandas DataFrame, one row per run; ``.report`` the HTML report's path).
 
@@ -26,12 +26,14 @@ def study(study, out=None, *, scheduler=None, workers=None, runs=None, processes
     notebook-friendly bar (tqdm.auto) if available, ``"text"`` for a plain one, False
     for none. ``flush_rows``: rows per Parquet part (also written every 10 s). ``batch``:
     runs per Dask task (default: up to 16, fewer for small studies so every worker gets
-    about eight tasks)."""
+    about eight tasks). ``max_steps``: a run planned beyond this many steps (its
+    timeline's duration over the time step) is refused before it starts, with status
+    ``invalid`` and the estimate in its message (default: ``pliant.DEFAULT_MAX_STEPS``)."""
     from .cluster import run_study
 
     return run_study(study, out, scheduler=scheduler, workers=workers, runs=runs,
                      processes=processes, progress=progress, client=client, flush_rows=flush_rows,
-                     batch=batch)
+                     batch=batch, max_steps=max_steps)
 
 
 __all__ = ["Study", "StudyError", "StudyResult", "load_study", "parse_study", "read_rows", "run_envelope",

@@ -20,6 +20,8 @@ def main(argv=None) -> int:
     ap.add_argument("--runs", type=int, help="number of runs instead of the study file's")
     ap.add_argument("--batch", type=int, help="runs per Dask task (default: up to 16, so each worker gets about eight tasks)")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
+    ap.add_argument("--max-steps", type=int, default=None,
+                    help="refuse a run planned beyond this many steps (status invalid; default 1e9)")
     ap.add_argument("--flush-rows", type=int, default=50, help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
     signal.signal(signal.SIGTERM, _interrupt)
@@ -32,7 +34,7 @@ def main(argv=None) -> int:
     try:
         result = study(a.study, a.out, scheduler=a.scheduler, workers=a.workers, runs=a.runs,
                        progress=False if a.quiet else "text", flush_rows=a.flush_rows,
-                       batch=a.batch)
+                       batch=a.batch, max_steps=a.max_steps)
     except StudyError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2

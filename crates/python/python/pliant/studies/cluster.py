@@ -260,6 +260,7 @@ def run_study(
     client: Any = None,
     flush_rows: int = FLUSH_ROWS,
     batch: Optional[int] = None,
+    max_steps: Optional[int] = None,
     log: Callable[[str], None] = lambda s: print(s, file=sys.stderr),
 ):
     """Runs (or resumes) a study; returns a :class:`~pliant.studies.StudyResult`."""
@@ -299,7 +300,8 @@ def run_study(
         if not os.path.exists(path):
             _atomic_write(path, lambda p: open(p, "w").write(text))
         solver = scene.get("simulation", {}).get("solver", "explicit")
-        return Task(ids[i], i, text, os.path.abspath(layout.runs), radii, hoses, voxel, parts, fasteners, solver)
+        return Task(ids[i], i, text, os.path.abspath(layout.runs), radii, hoses, voxel, parts, fasteners, solver,
+                    max_steps)
 
     buffer: List[Dict[str, Any]] = []
     state = {"seq": seq, "flushed": time.monotonic(), "failed": 0}

@@ -15,7 +15,7 @@ import re
 import time
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Optional
 
 import numpy as np
 
@@ -44,6 +44,7 @@ class Task:
     parts: List[Part] = field(default_factory=list)
     fasteners: List[str] = field(default_factory=list)
     solver: str = "explicit"
+    max_steps: Optional[int] = None  # None: pliant.DEFAULT_MAX_STEPS
 
 
 def _result_row(result, task: Task) -> Dict[str, Any]:
@@ -143,7 +144,10 @@ def run_variant(task: Task) -> Dict[str, Any]:
         scene = pliant.Scene.from_json(task.scene_json, origin=f"runs/{task.run_id}.json", base_dir=task.base_dir)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", pliant.SolverWarning)
-            result = pliant.run_timeline(scene)
+            if task.max_steps is None:
+                result = pliant.run_timeline(scene)
+            else:
+                result = pliant.run_timeline(scene, max_steps=task.max_steps)
     except pliant.SceneError as e:
         row.update(status="invalid", message=str(e))
     except pliant.SimulationDiverged as e:

@@ -197,6 +197,15 @@ def _distribution(origin, where, p: Dict[str, Any], unit_factor: float) -> Distr
     def num(key, **kw):
         return _number(origin, f"{where}.{key}", p.get(key), **kw)
 
+    def si(key, value):
+        """``value`` of field ``key`` in SI; refused when the conversion overflows."""
+        if value is None:
+            return None
+        v = value * f
+        if not math.isfinite(v):
+            raise _fail(origin, f"{where}.{key}", value, f"is beyond the largest number once converted to SI units (× {f:g})")
+        return v
+
     low = num("min", allow_none=True)
     high = num("max", allow_none=True)
     if kind == "normal":
@@ -205,17 +214,26 @@ def _distribution(origin, where, p: Dict[str, Any], unit_factor: float) -> Distr
         high = math.inf if high is None else high
         if not low < high or not low <= mean <= high:
             raise _fail(origin, f"{where}.min", p.get("min"), "need min < max with min ≤ mean ≤ max")
-        return Distribution("normal", mean=mean * f, std=std * f, low=low * f, high=high * f)
+        mean, std = si("mean", mean), si("std", std)
+        low = -math.inf if p.get("min") is None else si("min", low)
+        high = math.inf if p.get("max") is None else si("max", high)
+        if not std > 0:
+            raise _fail(origin, f"{where}.std", p.get("std"), "is zero once converted to SI units")
+        if not low < high or not low <= mean <= high:
+            raise _fail(origin, f"{where}.min", p.get("min"), "need min < max with min ≤ mean ≤ max also in SI units")
+        return Distribution("normal", mean=mean, std=std, low=low, high=high)
     if low is None or high is None:
         raise _fail(origin, f"{where}.{'min' if low is None else 'max'}", None, f"required for a {kind} distribution")
     if not low < high:
         raise _fail(origin, f"{where}.max", high, f"must be greater than min ({low})")
+    if not si("min", low) < si("max", high):
+        raise _fail(origin, f"{where}.max", high, f"must be greater than min ({low}) also in SI units")
     if kind == "uniform":
-        return Distribution("uniform", low=low * f, high=high * f)
+        return Distribution("uniform", low=si("min", low), high=si("max", high))
     mode = num("mode")
     if not low <= mode <= high:
         raise _fail(origin, f"{where}.mode", mode, f"must lie in [min, max] = [{low}, {high}]")
-    return Distribution("triangular", low=low * f, high=high * f, mode=mode * f)
+    return Distribution("triangular", low=si("min", low), high=si("max", high), mode=si("mode", mode))
 
 
 def _parameter(origin, i, p, scene, length_factor) -> Parameter:
@@ -283,6 +301,9 @@ def _parameter(origin, i, p, scene, length_factor) -> Parameter:
             raise _fail(origin, f"{where}.levels", levels, "must be a non-empty list")
         if dist.kind != "choice":
             levels = [_number(origin, f"{where}.levels[{j}]", v) * factor for j, v in enumerate(levels)]
+            for j, v in enumerate(levels):
+                if not math.isfinite(v):
+                    raise _fail(origin, f"{where}.levels[{j}]", p["levels"][j], f"is beyond the largest number once converted to SI units (× {factor:g})")
     name = p.get("name") or "_".join(
         [vary] + [str(target[k]) for k in ("material", "property", "hose", "clip", "stub", "action") if k in target]
     )
