@@ -526,7 +526,7 @@ impl NewtonSystem {
     /// otherwise T as it is (the implicit solver, whose mass term keeps T definite).
     pub fn solve_linear(&mut self, modified: bool) -> Result<Inertia, SingularBlock> {
         let inertia = if modified {
-            self.factor_modified()?
+            self.factor_modified_keeping(false)?
         } else {
             self.reuse.forget();
             match &mut self.junctions {
@@ -607,17 +607,31 @@ impl NewtonSystem {
     /// Factorises a positive-definite neighbour of the tangent (condensed at junctions)
     /// and returns the tangent's inertia ([`BlockTree::factor_modified`]) — or keeps the
     /// factors in hand when they were computed from this very matrix ([`FactorReuse`]).
+    /// The factors are kept for reuse: call it for the stability check at an
+    /// equilibrium, the factorisation the next input step's first iteration can reuse.
     pub fn factor_modified(&mut self) -> Result<Inertia, SingularBlock> {
+        self.factor_modified_keeping(true)
+    }
+
+    /// [`Self::factor_modified`]; `keep`: record the matrix so that its factors can be
+    /// reused (a Newton iteration's matrix never recurs: the next one is assembled
+    /// elsewhere).
+    fn factor_modified_keeping(&mut self, keep: bool) -> Result<Inertia, SingularBlock> {
         if let Some(inertia) = self.reuse.reusable(&self.matrix, self.junctions.as_ref()) {
             return Ok(inertia);
         }
-        self.reuse.record(&self.matrix, self.junctions.as_ref());
+        if keep {
+            self.reuse.record(&self.matrix, self.junctions.as_ref());
+        } else {
+            self.reuse.forget();
+        }
         let factored = match &mut self.junctions {
             Some(j) => j.factor_modified(&self.matrix),
             None => self.matrix.factor_modified(),
         };
         match factored {
-            Ok(inertia) => self.reuse.factorised(inertia),
+            Ok(inertia) if keep => self.reuse.factorised(inertia),
+            Ok(_) => {}
             Err(_) => self.reuse.forget(),
         }
         factored
