@@ -21,7 +21,7 @@ export interface PartData {
 }
 export interface FastenerData {
   name: string;
-  kind: 'stub' | 'clip';
+  kind: 'stub' | 'connector' | 'clip';
   origin: Vec3;
   axis: Vec3;
   opening: Vec3;
@@ -67,7 +67,7 @@ export interface HandSnapshot {
 }
 export interface FastenerSnapshot {
   name: string;
-  kind: 'stub' | 'clip';
+  kind: 'stub' | 'connector' | 'clip';
   max_force: number;
   max_force_time: number;
   final_state: string;

@@ -135,7 +135,7 @@ export class Stage {
       box.expandByPoint(new THREE.Vector3(...p.bounds_max));
     });
     for (const f of scene.fasteners ?? []) {
-      this.content.add(f.kind === 'stub' ? stubMesh(f) : clipMesh(f));
+      this.content.add(f.kind === 'clip' ? clipMesh(f) : stubMesh(f));
     }
     if (box.isEmpty()) box.set(new THREE.Vector3(-0.5, -0.5, 0), new THREE.Vector3(0.5, 0.5, 0.5));
     const sphere = box.getBoundingSphere(new THREE.Sphere());

@@ -8,7 +8,7 @@
 //! feels.
 
 use crate::clip::{ClipObservation, ClipSpec, ClipState, ClipTolerance};
-use crate::stub::{PressFit, StubObservation, StubState, StubTolerance};
+use crate::stub::{AxialLaw, StubLaw, StubObservation, StubState, StubTolerance};
 use glam::DVec3;
 use pliant_core::loads::{DeadLoad, Drive, LoadCase, LoadCaseId};
 use pliant_core::math::{log_map, rotation_between};
@@ -29,11 +29,13 @@ const FRICTION_SPEED: f64 = 1e-3;
 /// the hose's elastic reaction.
 const SEATING_TIME: f64 = 0.05;
 
-/// A stub and the hose end meant to go onto it.
+/// A stub and the hose end meant to go onto it, or a connector's counterpart and the hose
+/// end carrying the plug.
 #[derive(Clone, Debug)]
 pub struct StubSite {
     pub name: String,
-    pub fit: PressFit,
+    /// The press fit on the stub, or the connector's mating law.
+    pub fit: StubLaw,
     /// Global index of the hose's end node, and of its neighbour (gives the direction).
     pub end_node: usize,
     pub inner_node: usize,
@@ -51,14 +53,15 @@ pub struct ClipSite {
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct FastenerReport {
     pub name: String,
-    /// "stub" or "clip".
+    /// "stub", "connector" or "clip".
     pub kind: &'static str,
     /// Largest force the fastener applied to the hose \[N\] and when.
     pub max_force: f64,
     pub max_force_time: f64,
     /// State at the end of the run (e.g. "fixed", "seated", "approach").
     pub final_state: String,
-    /// Whether the fastener ended in its assembled state (stub: fixed; clip: seated).
+    /// Whether the fastener ended in its assembled state (stub: fixed; connector: fixed
+    /// and latched; clip: seated).
     pub assembled: bool,
 }
 
@@ -197,7 +200,7 @@ impl Fasteners {
                 fix: None,
                 report: FastenerReport {
                     name: site.name.clone(),
-                    kind: "stub",
+                    kind: site.fit.kind(),
                     ..Default::default()
                 },
                 force_now: 0.0,
@@ -274,7 +277,7 @@ impl Fasteners {
     /// Reports at the end of the run (the state names are made here, not every step).
     pub fn reports(&self) -> Vec<FastenerReport> {
         let stubs = self.stubs.iter().map(|s| FastenerReport {
-            final_state: state_name(&s.state),
+            final_state: stub_state_name(s),
             ..s.report.clone()
         });
         let clips = self.clips.iter().map(|c| FastenerReport {
@@ -282,6 +285,16 @@ impl Fasteners {
             ..c.report.clone()
         });
         stubs.chain(clips).collect()
+    }
+}
+
+/// A stub's state as reports name it; a connector released on its counterpart is
+/// "latched" or "half_mated".
+fn stub_state_name(s: &StubRun) -> String {
+    match (s.state, &s.site.fit) {
+        (StubState::Fixed { depth }, StubLaw::Mating(m)) if m.latched(depth) => "latched".into(),
+        (StubState::Fixed { .. }, StubLaw::Mating(_)) => "half_mated".into(),
+        (state, _) => state_name(&state),
     }
 }
 
@@ -340,8 +353,7 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
             force -= axis * resist * (v / FRICTION_SPEED).clamp(-1.0, 1.0);
             let over = stub.axial_coordinate(state.x[e]) - stub.length();
             if over > 0.0 {
-                force -= axis * over * 1e3 * s.site.fit.holding_force(stub.length()).max(1.0)
-                    / stub.length();
+                force -= axis * over * 1e3 * s.site.fit.stop_force() / stub.length();
             }
         }
         _ => {
@@ -361,7 +373,10 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
         s.report.max_force = f;
         s.report.max_force_time = state.time;
     }
-    s.report.assembled = matches!(next, StubState::Fixed { .. });
+    s.report.assembled = match next {
+        StubState::Fixed { depth } => s.site.fit.assembled_at(depth),
+        _ => false,
+    };
 }
 
 /// The beam of hose `hose` crossing the clip's plane nearest to its seat: (a, b, t, centre).

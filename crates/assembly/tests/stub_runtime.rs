@@ -3,7 +3,7 @@
 //! holding force.
 
 use glam::DVec3;
-use pliant_assembly::stub::{Friction, PressFit, StubSpec};
+use pliant_assembly::stub::{AxialLaw, Friction, PressFit, StubSpec};
 use pliant_assembly::{Action, HandRecord, MovePath, Observer, Runner, StubSite, Timeline};
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 
@@ -60,7 +60,7 @@ fn setup_with(safety: f64) -> (Model, StubSite, PressFit) {
     let fit = PressFit::new(&stub, &section, &material).unwrap();
     let site = StubSite {
         name: "stub".into(),
-        fit,
+        fit: fit.into(),
         end_node: N,
         inner_node: N - 1,
     };

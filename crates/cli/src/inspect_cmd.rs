@@ -67,6 +67,24 @@ pub fn describe(scene: &LoadedScene, model: &Model) -> Value {
             })
         })
         .collect();
+    fixings.extend(scene.connectors.iter().map(|c| {
+        let m = &c.mating;
+        let counterpart = m.counterpart();
+        json!({
+            "name": c.name,
+            "kind": "connector",
+            "hose": scene.hose_names[c.hose_end.hose],
+            "spec": {
+                "origin": counterpart.origin().to_array(),
+                "axis": counterpart.axis().to_array(),
+                "travel": counterpart.length(),
+                "size": counterpart.diameter(),
+                "mating_force": m.curve(),
+                "latch_at": m.latch_at(),
+                "retention_force": m.retention(),
+            },
+        })
+    }));
     fixings.extend(scene.clips.iter().map(|c| {
         json!({
             "name": c.name,
@@ -111,13 +129,14 @@ pub fn run(scene_path: &Path, as_json: bool) -> Result<ExitCode> {
     }
     let total: f64 = scene.hoses.iter().map(|h| h.length).sum();
     println!(
-        "{}: {} hose(s), {:.3} m in all, {} elements, {} junction(s), {} stub(s), {} clip(s), {} part(s); explicit time step {:.3e} s",
+        "{}: {} hose(s), {:.3} m in all, {} elements, {} junction(s), {} stub(s), {} connector(s), {} clip(s), {} part(s); explicit time step {:.3e} s",
         scene.source,
         model.hoses.len(),
         total,
         model.elements.len(),
         model.junctions.len(),
         scene.stubs.len(),
+        scene.connectors.len(),
         scene.clips.len(),
         scene.parts.len(),
         model.time_step

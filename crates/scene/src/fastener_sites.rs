@@ -7,10 +7,10 @@ use pliant_assembly::{ClipSite, StubSite};
 use pliant_core::Model;
 
 impl LoadedScene {
-    /// The scene's stubs and clips, tied to `model`'s nodes (the model built from this
+    /// The scene's stubs, connectors (as stub sites with their mating law) and clips, tied to `model`'s nodes (the model built from this
     /// scene; the loader has bound every stub to a hose end and every clip to a hose).
     pub fn fastener_sites(&self, model: &Model) -> Result<(Vec<StubSite>, Vec<ClipSite>), String> {
-        let mut stubs = Vec::with_capacity(self.stubs.len());
+        let mut stubs = Vec::with_capacity(self.stubs.len() + self.connectors.len());
         for s in &self.stubs {
             let end = s.hose_end;
             let info = &model.hoses[end.hose];
@@ -27,7 +27,19 @@ impl LoadedScene {
             }
             stubs.push(StubSite {
                 name: s.name.clone(),
-                fit,
+                fit: fit.into(),
+                end_node: info.node(local),
+                inner_node: info.node(inner),
+            });
+        }
+        // connectors after the stubs: the same state machine with the mating law
+        for c in &self.connectors {
+            let info = &model.hoses[c.hose_end.hose];
+            let local = c.hose_end.node(info.node_count);
+            let inner = if c.hose_end.at_end { local - 1 } else { local + 1 };
+            stubs.push(StubSite {
+                name: c.name.clone(),
+                fit: c.mating.into(),
                 end_node: info.node(local),
                 inner_node: info.node(inner),
             });

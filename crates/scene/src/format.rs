@@ -45,6 +45,10 @@ pub struct SceneFile {
     /// Connector stubs hose ends are pushed onto (SPEC L6).
     #[serde(default)]
     pub stubs: Vec<StubEntry>,
+    /// Connectors: a plug on a hose end pushed into its counterpart against a measured
+    /// mating force until it latches.
+    #[serde(default)]
+    pub connectors: Vec<ConnectorEntry>,
     /// Clips hoses are snapped into (SPEC L7).
     #[serde(default)]
     pub clips: Vec<ClipEntry>,
@@ -221,6 +225,38 @@ pub struct StubEntry {
     /// starting after the previous one ends; at most 8), e.g. a barb = a gentle entry
     /// flank, a narrow crest and a steep back flank.
     pub profile: Option<Vec<BeadEntry>>,
+}
+
+/// `[[connectors]]`: a plug on a hose end and its counterpart. The plug is pushed from the
+/// counterpart's mouth along `axis` by up to `travel`, against the measured force
+/// `mating_force`, until its latch clicks at `latch_at`; latched, it holds up to
+/// `retention_force_n` against pulling.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ConnectorEntry {
+    /// Unique, non-empty name (shared namespace with stubs and clips).
+    pub name: String,
+    /// The counterpart's mouth: where the plug's end starts to engage (length unit).
+    pub origin: Vec3,
+    /// Mating direction, from the mouth into the counterpart; any non-zero length.
+    pub axis: Vec3,
+    /// Mating travel from the mouth to fully home (length unit), ≥ 1 mm.
+    pub travel: f64,
+    /// The mating force over the travel: `[[travel, force_n], …]`, travel in the length
+    /// unit from the mouth, increasing, within `travel`; 1 to 16 points, linear between
+    /// them (a connector's datasheet or a measured engage-force curve).
+    pub mating_force: Vec<[f64; 2]>,
+    /// Travel at which the latch clicks (length unit), in (0, `travel`]. Default: `travel`.
+    pub latch_at: Option<f64>,
+    /// Force a latched connector holds against pulling out \[N\], ≥ 0.
+    pub retention_force_n: f64,
+    /// The plug's size (length unit), > 0: the plug is taken into the mouth when its end is
+    /// within half of it from the axis. Default: twice the hose's outer diameter there.
+    pub size: Option<f64>,
+    /// The hose whose end carries the plug. Requires `end`.
+    pub hose: Option<String>,
+    /// Which end of `hose` carries the plug: `"start"` or `"end"`. Requires `hose`.
+    pub end: Option<HoseEndName>,
 }
 
 /// `bead` of a stub: a ring of `height` on the stub starting `at` from the mouth, a crest

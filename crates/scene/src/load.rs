@@ -4,7 +4,7 @@
 
 use crate::action_de::INNER_PATH_PREFIX;
 use crate::budget::{Budget, Limits};
-use crate::connectors::build_connectors;
+use crate::fasteners::build_fasteners;
 use crate::ergonomics::build_ergonomics;
 use crate::error::{FieldError, SceneError};
 use crate::files::{FileAccess, DEFAULT_MAX_FILE_BYTES};
@@ -457,7 +457,7 @@ fn build(
     let junctions = crate::junctions::build_junctions(&file.junctions, &hoses, file.length_unit)?;
     let timeline = build_timeline(&file.timeline, &nodes, file.length_unit)?;
     let parts = build_parts(&file.parts, file.length_unit, &files, &mut budget)?;
-    let (stubs, clips) = build_connectors(&file.stubs, &file.clips, &hoses, file.length_unit)?;
+    let (stubs, connectors, clips) = build_fasteners(&file, &hoses)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
     let checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
     let name = match &file.name {
@@ -484,6 +484,7 @@ fn build(
         parts: parts.infos,
         warnings,
         stubs,
+        connectors,
         clips,
         ergonomics,
         checks,

@@ -42,6 +42,17 @@ pub struct SceneStub {
     pub profile: Vec<pliant_assembly::stub::Bead>,
 }
 
+/// A connector of the scene: the plug on a hose end and its counterpart.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneConnector {
+    /// The connector's name.
+    pub name: String,
+    /// The counterpart's geometry and the mating force law, SI.
+    pub mating: pliant_assembly::stub::Mating,
+    /// The hose end carrying the plug.
+    pub hose_end: HoseEnd,
+}
+
 /// A clip of the scene (SPEC L7).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneClip {
@@ -116,6 +127,8 @@ pub struct LoadedScene {
     pub parts: Vec<PartInfo>,
     /// Connector stubs, in file order.
     pub stubs: Vec<SceneStub>,
+    /// Connectors, in file order.
+    pub connectors: Vec<SceneConnector>,
     /// Clips, in file order.
     pub clips: Vec<SceneClip>,
     /// The rows and columns of the ergonomic tables hand loads are judged against

@@ -109,7 +109,7 @@ impl LoadedScene {
         crate::budget::Recorded {
             records: crate::budget::planned_records(planned, self.record_interval, steps),
             hands: self.hands_used(),
-            fasteners: (self.stubs.len() + self.clips.len()) as u64,
+            fasteners: (self.stubs.len() + self.connectors.len() + self.clips.len()) as u64,
             nodes,
         }
     }

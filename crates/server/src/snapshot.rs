@@ -1,6 +1,7 @@
 //! What clients see: the static scene data sent once in `welcome`, and the snapshot of the
 //! newest consistent state the simulation thread published (SPEC I2, I4, I6).
 
+use pliant_assembly::stub::AxialLaw;
 use pliant_assembly::{ClipSite, StubSite};
 use pliant_core::Model;
 use pliant_scene::LoadedScene;
@@ -52,7 +53,7 @@ pub struct PartData {
 #[derive(Clone, Debug, Serialize)]
 pub struct FastenerData {
     pub name: String,
-    /// "stub" or "clip".
+    /// "stub", "connector" or "clip".
     pub kind: &'static str,
     /// Stub: its mouth; clip: its seat centre.
     pub origin: [f64; 3],
@@ -75,7 +76,7 @@ impl FastenerData {
             let spec = s.fit.stub();
             FastenerData {
                 name: s.name.clone(),
-                kind: "stub",
+                kind: s.fit.kind(),
                 origin: spec.origin().to_array(),
                 axis: spec.axis().to_array(),
                 opening: [0.0; 3],

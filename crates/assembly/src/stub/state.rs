@@ -19,7 +19,7 @@
 
 use super::bead::Sense;
 use super::error::StubError;
-use super::press_fit::PressFit;
+use super::law::AxialLaw;
 use super::spec::{Friction, StubSpec};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -122,13 +122,14 @@ impl StubState {
 
     /// The axial force the stub opposes to motion in this state \[N\] (eq. 4.107 at the
     /// current depth with the current friction; 0 off the stub).
-    pub fn resisting_force(&self, fit: &PressFit) -> f64 {
-        self.friction()
-            .map_or(0.0, |friction| fit.axial_force(self.depth(), friction))
+    pub fn resisting_force(&self, fit: &impl AxialLaw) -> f64 {
+        self.friction().map_or(0.0, |friction| {
+            fit.axial_force_moving(self.depth(), friction, Sense::On)
+        })
     }
 
     /// As [`Self::resisting_force`] for motion in `sense`, a bead included (SPEC V4).
-    pub fn resisting_force_moving(&self, fit: &PressFit, sense: Sense) -> f64 {
+    pub fn resisting_force_moving(&self, fit: &impl AxialLaw, sense: Sense) -> f64 {
         self.friction().map_or(0.0, |friction| {
             fit.axial_force_moving(self.depth(), friction, sense)
         })
@@ -137,7 +138,7 @@ impl StubState {
     /// The state after one step; see the module's rules.
     pub fn next(
         self,
-        fit: &PressFit,
+        fit: &impl AxialLaw,
         tolerance: &StubTolerance,
         obs: &StubObservation,
     ) -> Result<StubState, StubError> {
@@ -148,7 +149,7 @@ impl StubState {
     /// [`StubState::next`] under a tolerance already checked ([`StubTolerance::checked`]).
     pub(crate) fn next_within(
         self,
-        fit: &PressFit,
+        fit: &impl AxialLaw,
         tolerance: &StubTolerance,
         obs: &StubObservation,
     ) -> Result<StubState, StubError> {

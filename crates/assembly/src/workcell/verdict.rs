@@ -86,6 +86,7 @@ fn unit(kind: LoadKind) -> &'static str {
 fn worked_fastener(run: &RunSummary, fastener: Option<usize>) -> String {
     match fastener.and_then(|i| run.fasteners.get(i)) {
         Some(f) if f.kind == "stub" => format!(" — pressing the hose end onto stub '{}'", f.name),
+        Some(f) if f.kind == "connector" => format!(" — plugging connector '{}'", f.name),
         Some(f) => format!(" — pressing the hose into {} '{}'", f.kind, f.name),
         None => String::new(),
     }
@@ -176,10 +177,10 @@ impl Verdict {
             match stage {
                 Stage::Final => {
                     unfitted = true;
-                    let wanted = if f.kind == "stub" {
-                        "fixed on it"
-                    } else {
-                        "seated in it"
+                    let wanted = match f.kind {
+                        "stub" => "fixed on it",
+                        "connector" => "plugged and latched",
+                        _ => "seated in it",
                     };
                     reasons.push(format!(
                         "{} '{}': the hose did not end {wanted} (final state: {})",

@@ -89,7 +89,7 @@ pub fn run_stub() -> Vec<Check> {
     let p_hand = 6.9442e6 * (0.5 / 14.0) * (1.0 - q2) / ((1.0 + q2) + 0.49 * (1.0 - q2));
     let site = StubSite {
         name: "stub".into(),
-        fit,
+        fit: fit.into(),
         end_node: n,
         inner_node: n - 1,
     };
