@@ -85,3 +85,23 @@ fn bad_curves_latches_and_retentions_are_refused() {
     let many: Vec<(f64, f64)> = (0..17).map(|k| (k as f64 * 1e-4, 1.0)).collect();
     assert_eq!(refused(&many, 0.005, 1.0), "mating_force");
 }
+
+#[test]
+fn a_plug_found_past_the_mouth_is_not_taken_as_plugged_it_must_come_through_the_mouth() {
+    let m = mating();
+    let tolerance = StubTolerance::for_stub(m.counterpart());
+    let at = |s: f64| StubObservation {
+        end_position: DVec3::new(s, 0.0, 0.0),
+        end_direction: DVec3::X,
+        axial_force: 0.0,
+        grabbed: true,
+    };
+    // drawn home (a harness's route is its plugged shape) and grabbed: still approaching
+    let state = StubState::Approach.next(&m, &tolerance, &at(0.0075)).unwrap();
+    assert_eq!(state, StubState::Approach);
+    // brought out in front of the mouth, then pushed in
+    let state = state.next(&m, &tolerance, &at(-0.002)).unwrap();
+    assert_eq!(state, StubState::Aligned);
+    let state = state.next(&m, &tolerance, &at(0.001)).unwrap();
+    assert_eq!(state, StubState::Inserting { depth: 0.001 });
+}

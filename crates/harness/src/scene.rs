@@ -87,7 +87,7 @@ pub fn element_count(len: f64) -> usize {
     ((len / ELEMENT_LENGTH_M).round() as usize).max(MIN_ELEMENTS)
 }
 
-fn mm(v: f64) -> String {
+pub(crate) fn mm(v: f64) -> String {
     let s = format!("{:.4}", v * 1e3);
     if s == "-0.0000" {
         "0.0000".into()
@@ -96,11 +96,11 @@ fn mm(v: f64) -> String {
     }
 }
 
-fn vec_mm(v: DVec3) -> String {
+pub(crate) fn vec_mm(v: DVec3) -> String {
     format!("[{}, {}, {}]", mm(v.x), mm(v.y), mm(v.z))
 }
 
-fn unit_vec(v: DVec3) -> String {
+pub(crate) fn unit_vec(v: DVec3) -> String {
     format!("[{:.6}, {:.6}, {:.6}]", v.x, v.y, v.z)
 }
 
@@ -108,7 +108,7 @@ fn sci(v: f64) -> String {
     format!("{v:.6e}")
 }
 
-fn quote(s: &str) -> String {
+pub(crate) fn quote(s: &str) -> String {
     // TOML basic string: escape backslash, quote and control characters.
     let mut out = String::from("\"");
     for c in s.chars() {
@@ -178,8 +178,22 @@ pub fn held_nodes(h: &Harness, segs: &[SegmentOut]) -> Vec<(usize, i64)> {
     out
 }
 
-/// The text of `scene.toml`.
-pub fn scene_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> String {
+/// The simulation settings of `scene.toml`: the quasi-static solver (thin wires make the
+/// explicit step microseconds long; the installed state is an equilibrium, which the
+/// quasi-static solver finds directly).
+fn static_simulation() -> String {
+    format!("solver = \"static\"\nstatic_max_iterations = {STATIC_ITERATIONS}")
+}
+
+/// The start of a scene for this harness: the header, the simulation settings
+/// (`simulation`: the `[simulation]` table's lines besides the contact rule), the bundle
+/// material, a hose per segment and a junction per node where segments meet.
+pub(crate) fn network_toml(
+    h: &Harness,
+    segs: &[SegmentOut],
+    licence_note: &str,
+    simulation: &str,
+) -> String {
     let mut t = String::new();
     let _ = writeln!(
         t,
@@ -201,12 +215,12 @@ pub fn scene_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> Strin
     let _ = writeln!(t, "format = \"pliant-scene\"\nversion = 1");
     let stem = h.source.trim_end_matches(".kbl").trim_end_matches(".KBL");
     let _ = writeln!(t, "name = {}\nlength_unit = \"mm\"\n", quote(stem));
-    // thin wires make the explicit step microseconds long; the installed state is an
-    // equilibrium, which the quasi-static solver finds directly
     // bundles the route draws through one another lie side by side in the vehicle
+    let (solver, rest) = simulation.split_once('\n').unwrap_or((simulation, ""));
     let _ = writeln!(
         t,
-        "[simulation]\nsolver = \"static\"\nhose_contact = \"apart_at_rest\"\nstatic_max_iterations = {STATIC_ITERATIONS}\n"
+        "[simulation]\n{solver}\nhose_contact = \"apart_at_rest\"\n{rest}{}",
+        if rest.is_empty() { "" } else { "\n" }
     );
     // the twist check guards a hose's lay line (DIN 20066); a bundle of wires has none
     let _ = writeln!(
@@ -293,58 +307,103 @@ pub fn scene_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> Strin
             ends.join(", ")
         );
     }
+    t
+}
 
+/// A fixing as the scene places it: the curve point at its location, the segment's
+/// direction there and the side the hose enters the clip from.
+pub(crate) struct ClipPlace {
+    pub name: String,
+    pub hose: String,
+    /// The fixing's place on the centre curve \[m\].
+    pub point: DVec3,
+    /// The segment's direction there.
+    pub tangent: DVec3,
+    /// Out through the clip's opening: the fixing's orientation made perpendicular to the
+    /// segment, or any perpendicular.
+    pub opening: DVec3,
+    /// The bundle's outer diameter \[m\].
+    pub d_outer: f64,
+    pub kind: &'static str,
+    /// Where it comes from, for a comment.
+    pub comment: String,
+}
+
+/// Every fixing, placed.
+pub(crate) fn clip_places(h: &Harness, segs: &[SegmentOut]) -> Vec<ClipPlace> {
     let clip_names = unique(
         h.fixings
             .iter()
             .map(|f| sanitise(f.name.as_deref().unwrap_or(&f.kbl_id))),
     );
-    for (f, name) in h.fixings.iter().zip(clip_names) {
-        let out = &segs[f.segment];
-        let (origin, tangent) = out.curve.at_fraction(f.location);
-        let tangent = if tangent.length() > 0.5 {
-            tangent
-        } else {
-            DVec3::X
-        };
-        let opening = f
-            .orientation
-            .map(|o| o.normalize_or_zero())
-            .map(|o| (o - tangent * o.dot(tangent)).normalize_or_zero())
-            .filter(|o| o.length() > 0.5)
-            .unwrap_or_else(|| perpendicular(tangent));
-        let d = out.section.d_outer;
-        let kind = clip_type(f.fixing_type.as_deref(), f.description.as_deref());
-        let _ = writeln!(t, "[[clips]]\nname = {}", quote(&name));
-        let _ = writeln!(
-            t,
-            "# KBL {} ({}), {} on {} at {:.4}",
-            f.kbl_id,
-            f.occurrence,
-            f.description.as_deref().unwrap_or("fixing"),
-            h.segments[f.segment].kbl_id,
-            f.location
-        );
-        let _ = writeln!(t, "type = \"{kind}\"\nhose = {}", quote(&out.hose));
-        let _ = writeln!(
-            t,
-            "origin = {}\nopening = {}\norientation = {}",
-            vec_mm(origin),
-            unit_vec(opening),
-            unit_vec(tangent)
-        );
-        let _ = writeln!(
-            t,
-            "inner_diameter = {}\nopening_width = {}",
-            mm(d),
-            mm(OPENING_SHARE * d)
-        );
-        if kind != "cable_tie" {
-            let _ = writeln!(t, "snap_force_n = {SNAP_FORCE_N}");
-        }
-        t.push('\n');
-    }
+    h.fixings
+        .iter()
+        .zip(clip_names)
+        .map(|(f, name)| {
+            let out = &segs[f.segment];
+            let (point, tangent) = out.curve.at_fraction(f.location);
+            let tangent = if tangent.length() > 0.5 {
+                tangent
+            } else {
+                DVec3::X
+            };
+            let opening = f
+                .orientation
+                .map(|o| o.normalize_or_zero())
+                .map(|o| (o - tangent * o.dot(tangent)).normalize_or_zero())
+                .filter(|o| o.length() > 0.5)
+                .unwrap_or_else(|| perpendicular(tangent));
+            ClipPlace {
+                name,
+                hose: out.hose.clone(),
+                point,
+                tangent,
+                opening,
+                d_outer: out.section.d_outer,
+                kind: clip_type(f.fixing_type.as_deref(), f.description.as_deref()),
+                comment: format!(
+                    "KBL {} ({}), {} on {} at {:.4}",
+                    f.kbl_id,
+                    f.occurrence,
+                    f.description.as_deref().unwrap_or("fixing"),
+                    h.segments[f.segment].kbl_id,
+                    f.location
+                ),
+            }
+        })
+        .collect()
+}
 
+/// A `[[clips]]` entry with its seat at `seat` \[m\].
+pub(crate) fn clip_toml(t: &mut String, c: &ClipPlace, seat: DVec3) {
+    let _ = writeln!(t, "[[clips]]\nname = {}", quote(&c.name));
+    let _ = writeln!(t, "# {}", c.comment);
+    let _ = writeln!(t, "type = \"{}\"\nhose = {}", c.kind, quote(&c.hose));
+    let _ = writeln!(
+        t,
+        "origin = {}\nopening = {}\norientation = {}",
+        vec_mm(seat),
+        unit_vec(c.opening),
+        unit_vec(c.tangent)
+    );
+    let _ = writeln!(
+        t,
+        "inner_diameter = {}\nopening_width = {}",
+        mm(c.d_outer),
+        mm(OPENING_SHARE * c.d_outer)
+    );
+    if c.kind != "cable_tie" {
+        let _ = writeln!(t, "snap_force_n = {SNAP_FORCE_N}");
+    }
+    t.push('\n');
+}
+
+/// The text of `scene.toml`: the harness held in its installed state.
+pub fn scene_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> String {
+    let mut t = network_toml(h, segs, licence_note, &static_simulation());
+    for c in clip_places(h, segs) {
+        clip_toml(&mut t, &c, c.point);
+    }
     let _ = writeln!(
         t,
         "# Installed state: held at every fixing and at every connector end, then at rest."

@@ -26,6 +26,14 @@ pub trait AxialLaw {
     /// stub; a connector: latched).
     fn assembled_at(&self, depth: f64) -> bool;
 
+    /// Whether an end found past the mouth without having come through it (a fast move, a
+    /// hose drawn on the stub) is taken as inserting (a press fit) or left to approach
+    /// (a plug must enter its counterpart through the mouth: a harness is drawn with its
+    /// plugs home, and the worker brings each plug out to the mouth first).
+    fn enters_through_mouth(&self) -> bool {
+        false
+    }
+
     /// A force scale \[N\] for the stop at the stub's length (the penalty that keeps the end
     /// from going further), at least 1 N.
     fn stop_force(&self) -> f64;
@@ -63,6 +71,10 @@ impl AxialLaw for Mating {
 
     fn assembled_at(&self, depth: f64) -> bool {
         self.latched(depth)
+    }
+
+    fn enters_through_mouth(&self) -> bool {
+        true
     }
 
     /// The mating force at full travel.
@@ -127,5 +139,9 @@ impl AxialLaw for StubLaw {
             StubLaw::PressFit(f) => f.stop_force(),
             StubLaw::Mating(m) => m.stop_force(),
         }
+    }
+
+    fn enters_through_mouth(&self) -> bool {
+        matches!(self, StubLaw::Mating(_))
     }
 }

@@ -6,7 +6,9 @@
 //! ("in reach": q ≤ `lateral`, α ≤ `angle`):
 //! - **Approach** (also after **PulledOff**): only a grabbed end engages (a hose that
 //!   starts on its stub is set to Fixed by the scene). In reach with −`approach` ≤ s ≤ 0
-//!   → Aligned; in reach with s > 0 (a fast move past the mouth) → Inserting.
+//!   → Aligned; in reach with s > 0 (a fast move past the mouth) → Inserting, except for
+//!   a law that must be entered through the mouth ([`AxialLaw::enters_through_mouth`]:
+//!   a connector), which stays in Approach.
 //! - **Aligned** (the physics layer aligns the end with the axis, thesis fig. 5.19): out of
 //!   reach, s < −`approach`, or released → Approach; s > 0 → Inserting.
 //! - **Inserting{depth}**, depth = clamp(s, 0, length) (insertion stops at the stub's
@@ -177,6 +179,8 @@ impl StubState {
         Ok(match self {
             StubState::Approach | StubState::PulledOff => {
                 if !obs.grabbed || !in_reach() || s < -tolerance.approach {
+                    StubState::Approach
+                } else if s > 0.0 && fit.enters_through_mouth() {
                     StubState::Approach
                 } else if s > 0.0 {
                     inserting
