@@ -68,20 +68,32 @@ fn a_latched_plug_breaks_loose_only_above_its_retention_force() {
 
 #[test]
 fn bad_curves_latches_and_retentions_are_refused() {
-    let refused = |curve: &[(f64, f64)], latch: f64, retention: f64| {
-        match Mating::new(counterpart(), curve, latch, retention) {
-            Err(StubError::Spec { field, .. }) => field,
-            other => panic!("accepted: {other:?}"),
-        }
+    let refused = |curve: &[(f64, f64)], latch: f64, retention: f64| match Mating::new(
+        counterpart(),
+        curve,
+        latch,
+        retention,
+    ) {
+        Err(StubError::Spec { field, .. }) => field,
+        other => panic!("accepted: {other:?}"),
     };
     assert_eq!(refused(&[], 0.005, 1.0), "mating_force");
-    assert_eq!(refused(&[(0.0, 1.0), (0.0, 2.0)], 0.005, 1.0), "mating_force");
-    assert_eq!(refused(&[(0.0, 1.0), (0.009, 2.0)], 0.005, 1.0), "mating_force");
+    assert_eq!(
+        refused(&[(0.0, 1.0), (0.0, 2.0)], 0.005, 1.0),
+        "mating_force"
+    );
+    assert_eq!(
+        refused(&[(0.0, 1.0), (0.009, 2.0)], 0.005, 1.0),
+        "mating_force"
+    );
     assert_eq!(refused(&[(0.0, -1.0)], 0.005, 1.0), "mating_force");
     assert_eq!(refused(&[(0.0, f64::NAN)], 0.005, 1.0), "mating_force");
     assert_eq!(refused(&[(0.0, 1.0)], 0.0, 1.0), "latch_at");
     assert_eq!(refused(&[(0.0, 1.0)], 0.009, 1.0), "latch_at");
-    assert_eq!(refused(&[(0.0, 1.0)], 0.005, f64::INFINITY), "retention_force");
+    assert_eq!(
+        refused(&[(0.0, 1.0)], 0.005, f64::INFINITY),
+        "retention_force"
+    );
     let many: Vec<(f64, f64)> = (0..17).map(|k| (k as f64 * 1e-4, 1.0)).collect();
     assert_eq!(refused(&many, 0.005, 1.0), "mating_force");
 }
@@ -97,7 +109,9 @@ fn a_plug_found_past_the_mouth_is_not_taken_as_plugged_it_must_come_through_the_
         grabbed: true,
     };
     // drawn home (a harness's route is its plugged shape) and grabbed: still approaching
-    let state = StubState::Approach.next(&m, &tolerance, &at(0.0075)).unwrap();
+    let state = StubState::Approach
+        .next(&m, &tolerance, &at(0.0075))
+        .unwrap();
     assert_eq!(state, StubState::Approach);
     // brought out in front of the mouth, then pushed in
     let state = state.next(&m, &tolerance, &at(-0.002)).unwrap();

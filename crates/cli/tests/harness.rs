@@ -329,3 +329,88 @@ duration_s = 0.02
     assert_eq!(clip("drawn through")["max_force"], 0.0);
     assert_eq!(clip("beside")["final_state"], "free");
 }
+
+/// The generator cable installed by a worker (`install.toml`, written by `pliant import`):
+/// the left hand holds the harness at its clip while the right plugs the first connector,
+/// the bundle is pressed into the clip, the other two connectors plugged. Every connector
+/// ends latched with the mating curve's peak (40 N) as its largest force, the clip seated
+/// at its snap force (30 N), and the hands stay within their limits. With a connector that
+/// takes 150 N to plug, the verdict fails and names it.
+#[test]
+fn a_harness_is_installed_by_hand_connectors_plugged_and_clips_pressed_in() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene_dir = dir.path().join("generator");
+    let text = ok(&pliant()
+        .arg("import")
+        .arg(data(GENERATOR))
+        .arg("--out")
+        .arg(&scene_dir)
+        .output()
+        .unwrap());
+    assert!(text.contains("install.toml"), "{text}");
+    let install = scene_dir.join("install.toml");
+    let run = |scene: &Path, out: &Path| {
+        let o = pliant()
+            .args(["run", "--quiet"])
+            .arg(scene)
+            .arg("--out")
+            .arg(out)
+            .output()
+            .unwrap();
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap())
+                .unwrap();
+        (o.status.code(), report)
+    };
+    let (code, report) = run(&install, &dir.path().join("install"));
+    assert_eq!(report["verdict"]["feasible"], true, "{}", report["verdict"]);
+    assert_eq!(code, Some(0));
+    let fasteners = report["run"]["fasteners"].as_array().unwrap();
+    let connectors: Vec<_> = fasteners
+        .iter()
+        .filter(|f| f["kind"] == "connector")
+        .collect();
+    assert_eq!(connectors.len(), 3, "{fasteners:?}");
+    for c in &connectors {
+        assert_eq!(c["final_state"], "latched", "{c}");
+        let peak = c["max_force"].as_f64().unwrap();
+        assert!((peak / 40.0 - 1.0).abs() < 0.01, "{c}");
+    }
+    let clip = fasteners.iter().find(|f| f["kind"] == "clip").unwrap();
+    assert_eq!(clip["final_state"], "seated", "{clip}");
+    assert!(
+        (clip["max_force"].as_f64().unwrap() / 30.0 - 1.0).abs() < 0.01,
+        "{clip}"
+    );
+    // the hand plugging felt at least the mating force
+    let pushes: Vec<f64> = report["run"]["hand_peaks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| h["push"]["magnitude"].as_f64().unwrap())
+        .collect();
+    assert!(pushes.iter().any(|&p| p >= 40.0), "{pushes:?}");
+
+    // a connector that takes 150 N to plug is more than a hand may push (94 N here)
+    let hard = std::fs::read_to_string(&install)
+        .unwrap()
+        .replace("[6, 40]", "[6, 150]");
+    let hard_scene = scene_dir.join("install_hard.toml");
+    std::fs::write(&hard_scene, hard).unwrap();
+    let (code, report) = run(&hard_scene, &dir.path().join("hard"));
+    // the run completes (the exit code is about the run, the verdict about the work)
+    assert_eq!(code, Some(0));
+    assert_eq!(
+        report["verdict"]["feasible"], false,
+        "{}",
+        report["verdict"]
+    );
+    let reasons = report["verdict"]["reasons"].as_array().unwrap();
+    assert!(
+        reasons.iter().any(|r| {
+            let r = r.as_str().unwrap();
+            r.starts_with("hand 0: push of") && r.contains("— plugging connector '")
+        }),
+        "{reasons:?}"
+    );
+}

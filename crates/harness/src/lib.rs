@@ -3,7 +3,8 @@
 //! - [`kbl`] reads KBL 2.3–2.5 into the plain model of [`model`] (units via [`units`]);
 //! - [`bspline`] and [`geometry`] evaluate and trim the segments' centre curves;
 //! - [`bundle`] turns the wires routed through a segment into a beam section;
-//! - [`scene`] writes `scene.toml` and `harness.json`;
+//! - [`scene`] writes `scene.toml` and `harness.json`, [`install`] `install.toml` (the
+//!   harness installed by a worker);
 //! - [`mod@vec`] recognises VEC files (refused for now);
 //! - [`export`] writes a settled route ([`settled`]) back as KBL, [`step`] as STEP (AP214);
 //! - [`calibrate`] fits a protection's coupling factor from a bending test;
@@ -15,6 +16,7 @@ pub mod calibrate;
 pub mod error;
 pub mod export;
 pub mod geometry;
+pub mod install;
 pub mod kbl;
 pub mod model;
 pub mod report;
@@ -164,5 +166,14 @@ pub fn import_kbl_with(
         path: json_path.clone(),
         source,
     })?;
-    Ok(ImportReport::new(&h, &segs, scene_path, json_path))
+    let mut report = ImportReport::new(&h, &segs, scene_path, json_path);
+    if let Some(text) = install::install_toml(&h, &segs, &note) {
+        let path = out_dir.join("install.toml");
+        std::fs::write(&path, text).map_err(|source| HarnessError::Write {
+            path: path.clone(),
+            source,
+        })?;
+        report.install = Some(path);
+    }
+    Ok(report)
 }

@@ -43,6 +43,9 @@ pub struct ImportReport {
     pub warnings: Vec<String>,
     pub scene: PathBuf,
     pub harness_json: PathBuf,
+    /// The installation by a worker (`install.toml`), when the harness has a connector on
+    /// a leaf end to start from.
+    pub install: Option<PathBuf>,
 }
 
 impl ImportReport {
@@ -91,6 +94,7 @@ impl ImportReport {
             warnings: h.warnings.clone(),
             scene,
             harness_json,
+            install: None,
         }
     }
 }
@@ -154,6 +158,14 @@ impl fmt::Display for ImportReport {
             "  wrote {} and {}",
             self.scene.display(),
             self.harness_json.display()
-        )
+        )?;
+        match &self.install {
+            Some(p) => writeln!(
+                f,
+                "  wrote {}: the harness installed by a worker (connectors plugged, fixings pressed in)",
+                p.display()
+            ),
+            None => writeln!(f, "  no install.toml: no connector on a free end to start from"),
+        }
     }
 }

@@ -30,13 +30,7 @@ pub fn build_connector(
             "a connector's travel must be at least 1 mm",
         ));
     }
-    let hose_end = hose_end(
-        &at,
-        raw.hose.as_ref(),
-        raw.end,
-        hoses,
-        "into the connector",
-    )?;
+    let hose_end = hose_end(&at, raw.hose.as_ref(), raw.end, hoses, "into the connector")?;
     let hose = &hoses[hose_end.hose];
     let size = match raw.size {
         Some(s) => positive(&at("size"), s, u)? * scale,
@@ -55,7 +49,10 @@ pub fn build_connector(
         let s = non_negative(&field, s, u)? * scale;
         let f = non_negative(&field, f, "N")?;
         if s > travel {
-            return Err(FieldError::about(field, "travel beyond the connector's `travel`"));
+            return Err(FieldError::about(
+                field,
+                "travel beyond the connector's `travel`",
+            ));
         }
         if curve.last().is_some_and(|&(prev, _)| s <= prev) {
             return Err(FieldError::about(

@@ -36,7 +36,11 @@ impl LoadedScene {
         for c in &self.connectors {
             let info = &model.hoses[c.hose_end.hose];
             let local = c.hose_end.node(info.node_count);
-            let inner = if c.hose_end.at_end { local - 1 } else { local + 1 };
+            let inner = if c.hose_end.at_end {
+                local - 1
+            } else {
+                local + 1
+            };
             stubs.push(StubSite {
                 name: c.name.clone(),
                 fit: c.mating.into(),

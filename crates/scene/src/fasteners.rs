@@ -2,8 +2,8 @@
 //! clips (SPEC L7): positions and sizes converted to metres, directions normalised, names
 //! and hose references checked, as the assembly layer's [`StubSpec`] and [`ClipSpec`].
 
-use crate::error::FieldError;
 use crate::connectors::build_connector;
+use crate::error::FieldError;
 use crate::format::{BeadEntry, ClipEntry, ClipType, HoseEndName, SceneFile, StubEntry};
 use crate::parts::friction;
 use crate::scene::{HoseEnd, SceneClip, SceneConnector, SceneStub};
@@ -29,12 +29,26 @@ pub const CLIP_ORIENTATION_TOLERANCE_DEG: f64 = 30.0;
 fn check_names(file: &SceneFile) -> Result<(), FieldError> {
     let mut all: Vec<(String, &str)> = Vec::new();
     let lists: [(&str, Vec<&str>); 3] = [
-        ("stubs", file.stubs.iter().map(|s| s.name.as_str()).collect()),
-        ("connectors", file.connectors.iter().map(|c| c.name.as_str()).collect()),
-        ("clips", file.clips.iter().map(|c| c.name.as_str()).collect()),
+        (
+            "stubs",
+            file.stubs.iter().map(|s| s.name.as_str()).collect(),
+        ),
+        (
+            "connectors",
+            file.connectors.iter().map(|c| c.name.as_str()).collect(),
+        ),
+        (
+            "clips",
+            file.clips.iter().map(|c| c.name.as_str()).collect(),
+        ),
     ];
     for (list, names) in lists {
-        all.extend(names.into_iter().enumerate().map(|(i, n)| (format!("{list}[{i}].name"), n)));
+        all.extend(
+            names
+                .into_iter()
+                .enumerate()
+                .map(|(i, n)| (format!("{list}[{i}].name"), n)),
+        );
     }
     for (k, (field, name)) in all.iter().enumerate() {
         if name.trim().is_empty() {

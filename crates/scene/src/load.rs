@@ -4,9 +4,9 @@
 
 use crate::action_de::INNER_PATH_PREFIX;
 use crate::budget::{Budget, Limits};
-use crate::fasteners::build_fasteners;
 use crate::ergonomics::build_ergonomics;
 use crate::error::{FieldError, SceneError};
+use crate::fasteners::build_fasteners;
 use crate::files::{FileAccess, DEFAULT_MAX_FILE_BYTES};
 use crate::format::SceneFile;
 use crate::hoses::build_hose;

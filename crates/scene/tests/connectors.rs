@@ -7,7 +7,13 @@ use pliant_scene::load_scene_str;
 
 /// The mating curve of the scenes below: (travel mm, force N); peak 150 N at 6 mm, the
 /// latch clicks at 6.5 mm.
-const CURVE: [(f64, f64); 5] = [(0.0, 5.0), (5.0, 140.0), (6.0, 150.0), (6.5, 20.0), (8.0, 30.0)];
+const CURVE: [(f64, f64); 5] = [
+    (0.0, 5.0),
+    (5.0, 140.0),
+    (6.0, 150.0),
+    (6.5, 20.0),
+    (8.0, 30.0),
+];
 
 /// A 300 mm hose3 along x, free in space without gravity, its end at the counterpart's
 /// mouth; hand 0 grabs it at the end and pushes `push_mm` along the axis over 2 s, then
@@ -94,7 +100,11 @@ fn a_plug_pushed_past_its_latch_is_latched_and_the_hand_felt_the_mating_curve() 
         hand.push.magnitude
     );
     // and the connector's own largest force is the same
-    assert!((x1.max_force / 150.0 - 1.0).abs() < 0.02, "{}", x1.max_force);
+    assert!(
+        (x1.max_force / 150.0 - 1.0).abs() < 0.02,
+        "{}",
+        x1.max_force
+    );
     // the verdict names the connector the hand was plugging at its worst moment
     let verdict = pliant_assembly::Verdict::judge(&run, None, pliant_assembly::Stage::Final);
     assert!(
@@ -118,12 +128,18 @@ fn a_plug_released_short_of_its_latch_is_half_mated_and_the_verdict_says_so() {
     assert!(!x1.assembled);
     // the hand stopped at 4 mm: it felt the curve there, not the peak beyond
     let felt = run.hand_peaks[0].push.magnitude;
-    assert!((felt / curve_at(4.0) - 1.0).abs() < 0.03, "{felt} N vs {} N", curve_at(4.0));
+    assert!(
+        (felt / curve_at(4.0) - 1.0).abs() < 0.03,
+        "{felt} N vs {} N",
+        curve_at(4.0)
+    );
     let verdict = pliant_assembly::Verdict::judge(&run, None, pliant_assembly::Stage::Final);
     assert_eq!(verdict.feasible, Some(false));
     assert!(
-        verdict.reasons.iter().any(|r| r
-            == "connector 'X1': the hose did not end plugged and latched (final state: half_mated)"),
+        verdict.reasons.iter().any(|r| {
+            r
+            == "connector 'X1': the hose did not end plugged and latched (final state: half_mated)"
+        }),
         "{:?}",
         verdict.reasons
     );
@@ -157,9 +173,17 @@ fn bad_connectors_are_refused_naming_the_field() {
         ("latch_at = 6.5", "latch_at = 9", "connectors[0].latch_at"),
         ("[6.5, 20]", "[6, 20]", "connectors[0].mating_force[3]"),
         ("[8, 30]", "[9, 30]", "connectors[0].mating_force[4]"),
-        ("retention_force_n = 110", "retention_force_n = -1", "connectors[0].retention_force_n"),
+        (
+            "retention_force_n = 110",
+            "retention_force_n = -1",
+            "connectors[0].retention_force_n",
+        ),
         ("name = \"X1\"", "name = \"\"", "connectors[0].name"),
-        ("hose = \"h\"\nend = \"end\"", "hose = \"nope\"\nend = \"end\"", "connectors[0].hose"),
+        (
+            "hose = \"h\"\nend = \"end\"",
+            "hose = \"nope\"\nend = \"end\"",
+            "connectors[0].hose",
+        ),
     ];
     for (from, to, field) in cases {
         let text = scene(7.5, "").replace(from, to);
@@ -179,6 +203,8 @@ inner_diameter = 35
 opening_width = 30
 snap_force_n = 30
 "#;
-    let err = load_scene_str(&scene(7.5, clip), "plug.toml").unwrap_err().to_string();
+    let err = load_scene_str(&scene(7.5, clip), "plug.toml")
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("duplicate name"), "{err}");
 }

@@ -10,6 +10,7 @@ use super::pictures::ScenePictures;
 use super::settings::CheckSettings;
 use super::strain::bend_and_twist;
 use crate::fasteners::StubSite;
+use crate::stub::StubLaw;
 use pliant_core::{Model, State};
 use serde::Serialize;
 
@@ -264,7 +265,13 @@ impl InstallationChecks {
             if self.settings.straight_behind_stub {
                 let straight = self.settings.straight_radius_factor * limits.min_bend_radius;
                 let length = self.settings.straight_length_factor * limits.d_outer;
-                for stub in stubs.iter().filter(|s| info.nodes().contains(&s.end_node)) {
+                // the hose-line rule behind a hose's stub; a connector's bundle is not a hose
+                let on_stub = |s: &&StubSite| matches!(s.fit, StubLaw::PressFit(_));
+                for stub in stubs
+                    .iter()
+                    .filter(on_stub)
+                    .filter(|s| info.nodes().contains(&s.end_node))
+                {
                     let from_start = stub.end_node == info.first_node;
                     let mut worst: Option<(f64, f64)> = None; // (radius, s)
                     let mut s0 = 0.0;

@@ -262,7 +262,7 @@ impl Verdict {
                 )
             };
             reasons.push(match stage {
-                Stage::Final => format!("every hand load stayed within its ergonomic limit value ({}), every stub and clip was fitted{checks}", run.standard.title()),
+                Stage::Final => format!("every hand load stayed within its ergonomic limit value ({}), every stub, connector and clip was fitted{checks}", run.standard.title()),
                 Stage::Running => format!("every hand load so far is within its ergonomic limit value{detail}"),
             });
         }
