@@ -128,5 +128,6 @@ fn user_material(field: &str, m: &MaterialEntry) -> Result<Material, FieldError>
         e_bending,
         poisson,
         density,
+        plasticity: None,
     })
 }
