@@ -326,6 +326,64 @@ mod tests {
         assert!((energy - want).abs() < 1e-9 * want, "{energy} vs {want}");
     }
 
+    /// Past yield the tangent is the derivative of the loads (central differences).
+    #[test]
+    fn past_yield_the_tangent_is_the_derivative_of_the_loads() {
+        use crate::rod::tangent::plastic_tangent;
+        let (hinges, e) = hinge_element(300e6);
+        let hinge = e.plastic.expect("yields");
+        let mut history = vec![0.0; hinges.history_len];
+        let x = [DVec3::ZERO, DVec3::new(0.0199, 0.0003, -0.0002)];
+        let q0 = [
+            exp_map(DVec3::new(0.02, -0.1, 0.05)),
+            exp_map(DVec3::new(-0.02, 0.12, -0.06)),
+        ];
+        hinges.commit(&[e.clone()], &x, &q0, &mut history);
+        let q = [
+            exp_map(DVec3::new(0.05, -0.2, 0.1)),
+            exp_map(DVec3::new(-0.05, 0.25, -0.12)),
+        ];
+        let (loads, k) = plastic_tangent(&hinges, (&e, &hinge), &history, &ends(x, q), 0.0, 0.0);
+        let h = 1e-7;
+        let flat = |l: &ElementLoads| {
+            let mut v = [0.0; 12];
+            for (b, w) in [l.force[0], l.moment[0], l.force[1], l.moment[1]]
+                .iter()
+                .enumerate()
+            {
+                v[3 * b..3 * b + 3].copy_from_slice(&w.to_array());
+            }
+            v
+        };
+        let base = flat(&loads);
+        let scale = base.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let mut worst: f64 = 0.0;
+        for j in 0..12 {
+            let perturbed = |s: f64| {
+                let (mut xp, mut qp) = (x, q);
+                let node = j / 6;
+                let mut d = DVec3::ZERO;
+                d[j % 3] = s;
+                if j % 6 < 3 {
+                    xp[node] += d;
+                } else {
+                    qp[node] = rotate(q[node], d);
+                }
+                flat(&hinges.loads(&e, &hinge, &history, &ends(xp, qp), 0.0))
+            };
+            let (p, m) = (perturbed(h), perturbed(-h));
+            for i in 0..12 {
+                let fd = -(p[i] - m[i]) / (2.0 * h);
+                worst = worst.max((fd - k[(i, j)]).abs());
+            }
+        }
+        let kmax = k.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        assert!(
+            worst < 1e-5 * kmax,
+            "worst {worst:e} of {kmax:e} (loads {scale:e})"
+        );
+    }
+
     /// Past yield the loads are minus the gradient of the incremental potential (so the
     /// static solver's line search and the loads agree).
     #[test]

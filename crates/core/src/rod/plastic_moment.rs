@@ -50,6 +50,44 @@ pub fn bending_moment(ri: f64, ro: f64, e: f64, sy: f64, kappa: f64) -> f64 {
     kappa.signum() * sy * (disc(ro, c) - disc(ri, c))
 }
 
+/// ∫ y² dA over the part |y| < c of a disc of radius `r` \[m⁴\] (its elastic core).
+fn core_second_moment(r: f64, c: f64) -> f64 {
+    if c >= r {
+        return PI * r.powi(4) / 4.0;
+    }
+    let root = (r * r - c * c).sqrt();
+    2.0 * ((c / 4.0) * (2.0 * c * c - r * r) * root + r.powi(4) / 4.0 * (c / r).asin())
+}
+
+/// ∫ |y| dA over the part |y| > c of a disc of radius `r` \[m³\].
+fn outer_first_moment(r: f64, c: f64) -> f64 {
+    if c >= r {
+        return 0.0;
+    }
+    4.0 / 3.0 * (r * r - c * c).powf(1.5)
+}
+
+/// Bending moment \[N·m\] of a tube with linear hardening H (uniaxial stress
+/// σ_y + E_t (ε − ε_y) beyond yield, E_t = E H/(E + H)) bent monotonically to `kappa`:
+/// the perfectly plastic moment plus E_t ∫(κ|y| − ε_y)|y| dA over the yielded part,
+/// = E_t [κ (I − I_core) − ε_y S_outer] for each disc (module doc).
+pub fn hardening_bending_moment(ri: f64, ro: f64, e: f64, sy: f64, h: f64, kappa: f64) -> f64 {
+    let k = kappa.abs();
+    let perfect = bending_moment(ri, ro, e, sy, kappa);
+    if k == 0.0 {
+        return perfect;
+    }
+    let c = sy / (e * k);
+    let et = e * h / (e + h);
+    let disc_extra = |r: f64| {
+        if r <= 0.0 {
+            return 0.0;
+        }
+        k * (PI * r.powi(4) / 4.0 - core_second_moment(r, c)) - sy / e * outer_first_moment(r, c)
+    };
+    perfect + kappa.signum() * et * (disc_extra(ro) - disc_extra(ri))
+}
+
 /// First-yield moment M_e = σ_y I/r_o \[N·m\].
 pub fn first_yield_moment(ri: f64, ro: f64, sy: f64) -> f64 {
     sy * PI * (ro.powi(4) - ri.powi(4)) / (4.0 * ro)
