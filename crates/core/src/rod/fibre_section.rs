@@ -8,8 +8,9 @@
 //! * M_y = Σ σ z A_f, M_z = −Σ σ y A_f, T = Σ τ r A_f — the derivatives of the section's
 //!   energy by κ_y, κ_z and τ (so the element's loads stay a gradient).
 //!
-//! Quadrature: Gauss–Legendre in the radius (weight r dr) and the midpoint rule in the
-//! angle. It integrates A, I and J exactly (polynomials in r of degree ≤ 2n − 1, sin² over
+//! Quadrature: composite Gauss–Legendre in the radius (weight r dr; four points on each
+//! of up to four intervals, one per quarter of the outer radius the wall spans) and the
+//! midpoint rule in the angle. It integrates A, I and J exactly (polynomials in r of degree ≤ 2n − 1, sin² over
 //! n_θ ≥ 3 equal steps), so the elastic section is the tube's EI and GJ to rounding; past
 //! yield the stress has a kink at the elastic core, where the rule is second order (the
 //! validation compares the moment–curvature curve with its closed form,
@@ -21,7 +22,7 @@
 use crate::autodiff::{Scalar, V3};
 use crate::rod::fibre_law::FibreLaw;
 
-/// Radial Gauss–Legendre points.
+/// Radial Gauss–Legendre points per radial interval.
 pub const RADIAL_POINTS: usize = 4;
 /// Angular points (midpoint rule).
 pub const ANGULAR_POINTS: usize = 32;
@@ -62,20 +63,26 @@ impl FibreSection {
     /// `d_outer` \[m\] with the fibre law `law`.
     pub fn tube(d_inner: f64, d_outer: f64, law: FibreLaw) -> Self {
         let (ri, ro) = (0.5 * d_inner, 0.5 * d_outer);
-        let (mid, half) = (0.5 * (ro + ri), 0.5 * (ro - ri));
+        // composite rule: one interval per quarter of the radius the wall spans (a
+        // solid rod's elastic core needs the points a thin wall does not)
+        let intervals = ((4.0 * (ro - ri) / ro).ceil() as usize).clamp(1, 4);
+        let width = (ro - ri) / intervals as f64;
         let step = std::f64::consts::TAU / ANGULAR_POINTS as f64;
-        let mut fibres = Vec::with_capacity(RADIAL_POINTS * ANGULAR_POINTS);
-        for (s, w) in GAUSS_4 {
-            let r = mid + half * s;
-            let area = w * half * r * step;
-            for j in 0..ANGULAR_POINTS {
-                let phi = (j as f64 + 0.5) * step;
-                fibres.push(Fibre {
-                    y: r * phi.cos(),
-                    z: r * phi.sin(),
-                    r,
-                    area,
-                });
+        let mut fibres = Vec::with_capacity(intervals * RADIAL_POINTS * ANGULAR_POINTS);
+        for interval in 0..intervals {
+            let (mid, half) = (ri + (interval as f64 + 0.5) * width, 0.5 * width);
+            for (s, w) in GAUSS_4 {
+                let r = mid + half * s;
+                let area = w * half * r * step;
+                for j in 0..ANGULAR_POINTS {
+                    let phi = (j as f64 + 0.5) * step;
+                    fibres.push(Fibre {
+                        y: r * phi.cos(),
+                        z: r * phi.sin(),
+                        r,
+                        area,
+                    });
+                }
             }
         }
         Self { law, fibres }
