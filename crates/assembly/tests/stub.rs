@@ -17,6 +17,7 @@ fn hose3() -> (Section, Material) {
         e_bending: None,
         poisson: 0.49,
         density: 1100.0,
+        plasticity: None,
     };
     (Section::new(0.027, 0.035), material)
 }

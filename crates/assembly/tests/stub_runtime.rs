@@ -23,6 +23,7 @@ fn setup_with(safety: f64) -> (Model, StubSite, PressFit) {
         e_bending: None,
         poisson: 0.49,
         density: 1100.0,
+        plasticity: None,
     };
     let section = Section::new(0.027, 0.035);
     let nodes = (0..=N)

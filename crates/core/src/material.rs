@@ -1,4 +1,5 @@
-//! Hose material (SPEC M3): bimodular elastic law and density, all SI.
+//! Hose material (SPEC M3): bimodular elastic law and density, all SI; a metal may
+//! also yield ([`YieldLaw`], SPEC X1).
 
 use serde::{Deserialize, Serialize};
 
@@ -16,6 +17,24 @@ pub struct Material {
     pub poisson: f64,
     /// Density ρ [kg/m³].
     pub density: f64,
+    /// How the material yields; `None` → elastic for ever.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plasticity: Option<YieldLaw>,
+}
+
+/// Elastic–plastic behaviour of a metal wall (SPEC X1): von Mises yield of the wall's
+/// fibres under their normal stress σ and torsional shear stress τ,
+/// √(ξ_σ² + 3 ξ_τ²) ≤ σ_y with ξ = stress − back stress, and linear kinematic
+/// hardening (Prager): back stresses H ε_p and (H/3) γ_p (Simo & Hughes, *Computational
+/// Inelasticity*, 1998, §2.3 and §3.3). Unloading is elastic; the permanent set is the
+/// plastic strain left in the fibres ([`crate::rod::fibre_law`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct YieldLaw {
+    /// Initial yield stress in uniaxial tension σ_y \[Pa\].
+    pub yield_stress: f64,
+    /// Linear hardening modulus H \[Pa\]: slope of the uniaxial stress over the plastic
+    /// strain (0 → perfectly plastic); the elastic–plastic tangent is E H/(E + H).
+    pub hardening_modulus: f64,
 }
 
 impl Material {
@@ -27,6 +46,7 @@ impl Material {
             e_bending: None,
             poisson,
             density,
+            plasticity: None,
         }
     }
 
@@ -79,6 +99,7 @@ mod tests {
             e_bending: None,
             poisson: 0.49,
             density: 940.0,
+            plasticity: None,
         };
         let eb = m.bending_modulus();
         assert!(eb > 11.583e6 && eb < 13.1363e6);

@@ -7,6 +7,7 @@ use crate::rod::element::BeamElement;
 use crate::rod::element_block::PackedElements;
 use crate::rod::frames::node_frames;
 use crate::rod::mass::half_element_mass;
+use crate::rod::plastic_hinges::PlasticHinges;
 use crate::rod::stiffened::{RigidBody, StiffenedSpan};
 use crate::rod::timestep::{stable_time_step, TimeStepReport};
 use crate::section::SectionProperties;
@@ -75,6 +76,9 @@ pub struct Model {
     /// The elements in blocks of four for the explicit solver's kernel
     /// ([`crate::rod::element_block`]); built with the model.
     pub packed: PackedElements,
+    /// The yielding elements and their fibre sections (SPEC X1,
+    /// [`crate::rod::plastic_hinges`]); empty when no material yields.
+    pub plastic: PlasticHinges,
     /// Threads the explicit step may use ([`SimSettings::threads`], resolved; a caller
     /// may change it — results do not depend on it).
     pub threads: usize,
@@ -204,6 +208,26 @@ fn check_hose(h: &HoseSpec) -> Result<(), ModelError> {
     if !(m.poisson > -1.0 && m.poisson < 0.5) {
         return err(format!("Poisson's ratio {} outside (−1, 0.5)", m.poisson));
     }
+    if let Some(law) = &m.plasticity {
+        if !positive(law.yield_stress) {
+            return err(format!(
+                "yield stress must be positive and finite, is {} Pa",
+                law.yield_stress
+            ));
+        }
+        if !(law.hardening_modulus >= 0.0 && law.hardening_modulus.is_finite()) {
+            return err(format!(
+                "hardening modulus must be ≥ 0 and finite, is {} Pa",
+                law.hardening_modulus
+            ));
+        }
+        if let Some(i) = h.sections.iter().position(|s| s.given.any()) {
+            return err(format!(
+                "section {i} gives its stiffness or mass directly, but a yielding material \
+                 takes them from the tube (give the diameters only)"
+            ));
+        }
+    }
     Ok(())
 }
 
@@ -238,6 +262,7 @@ impl Model {
             solver: spec.settings.solver,
             hose_contact: HoseContactModel::default(),
             packed: PackedElements::default(),
+            plastic: PlasticHinges::new(),
             threads: 1,
             hose_chunks: Vec::new(),
         };
@@ -282,6 +307,14 @@ impl Model {
             }
             self.elements.push(el);
         }
+        let m = &h.material;
+        self.plastic.add_hose(
+            &mut self.elements,
+            first_element,
+            m.plasticity.as_ref(),
+            (m.bending_modulus(), m.shear_modulus()),
+            |i| *h.element_section(i),
+        );
         self.hoses.push(HoseInfo {
             name: h.name.clone(),
             first_node,

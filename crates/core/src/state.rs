@@ -55,6 +55,10 @@ pub struct State {
     pub sleep: Sleep,
     /// What the implicit solver carries from step to step (empty for the others).
     pub implicit: ImplicitHistory,
+    /// The yielding elements' plastic strains (ε_p, γ_p per fibre), committed at the last
+    /// accepted step or equilibrium ([`crate::rod::plastic_hinges`]); empty when no
+    /// material yields.
+    pub plastic_strain: Vec<f64>,
 }
 
 impl State {
@@ -91,6 +95,7 @@ impl State {
             hose_contact: HoseContactScratch::new(model),
             sleep: Sleep::new(model),
             implicit: ImplicitHistory::default(),
+            plastic_strain: vec![0.0; model.plastic.history_len],
         }
     }
 
@@ -105,16 +110,24 @@ impl State {
         e
     }
 
-    /// Elastic strain energy of all elements \[J\].
+    /// Strain energy stored in all elements \[J\] (a yielding element's with its committed
+    /// plastic strains).
     pub fn strain_energy(&self, model: &Model) -> f64 {
         model
             .elements
             .iter()
             .map(|e| {
-                e.strain_energy(
-                    [self.x[e.node_a], self.x[e.node_b]],
-                    [self.q[e.node_a], self.q[e.node_b]],
-                )
+                let x = [self.x[e.node_a], self.x[e.node_b]];
+                let q = [self.q[e.node_a], self.q[e.node_b]];
+                match &e.plastic {
+                    Some(hinge) => {
+                        let history = &self.plastic_strain;
+                        model
+                            .plastic
+                            .strain_energy(e, hinge, history, (x, q), false)
+                    }
+                    None => e.strain_energy(x, q),
+                }
             })
             .sum()
     }

@@ -51,6 +51,7 @@ const DATA_EXCEPTIONS: &[(&str, &[&str])] = &[
             "rod::element_block::PackedElements",
             "rod::frames::node_frames",
             "rod::mass::half_element_mass",
+            "rod::plastic_hinges::PlasticHinges",
             "rod::stiffened::RigidBody",
             "rod::stiffened::StiffenedSpan",
             "rod::timestep::stable_time_step",

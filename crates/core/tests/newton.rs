@@ -43,6 +43,7 @@ fn hose1() -> (Material, Section) {
             e_bending: None,
             poisson: 0.49,
             density: 940.0,
+            plasticity: None,
         },
         Section::new(0.010, 0.016),
     )

@@ -20,6 +20,7 @@ fn world(floor: bool) -> WorldSpec {
         e_bending: None,
         poisson: 0.49,
         density: 940.0,
+        plasticity: None,
     };
     let hoses = (0..7)
         .map(|h| {
@@ -170,6 +171,7 @@ fn model_loads_match_the_reference_loop() {
         q: &state.q,
         v: &state.v,
         w: &state.w,
+        plastic_strain: &state.plastic_strain,
     };
     let n = model.node_count();
     let beta = model.damping_stiffness;

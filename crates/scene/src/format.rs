@@ -345,6 +345,14 @@ pub struct MaterialEntry {
     /// Default: 6 × d_inner + d_outer / 2 of the hose's section (the rule for
     /// mandrel-built rubber hoses, 6 × d_inner to the inside of the bend; an assumption).
     pub min_bend_radius_mm: Option<f64>,
+    /// Yield stress σ_y in uniaxial tension (MPa), > 0: the material yields (von Mises,
+    /// fibres of the tube wall in bending and torsion) and keeps a permanent set.
+    /// Default: elastic for ever. Needs the section's diameters (no given stiffness).
+    pub yield_stress_mpa: Option<f64>,
+    /// Linear (kinematic) hardening modulus H (MPa), ≥ 0: the slope of the stress over
+    /// the plastic strain past yield. Only with `yield_stress_mpa`. Default: 0 (perfectly
+    /// plastic).
+    pub hardening_modulus_mpa: Option<f64>,
 }
 
 /// `[[hoses]]`: one hose.

@@ -173,6 +173,7 @@ impl RawEntry {
                 e_bending: None,
                 poisson: nu,
                 density: rho,
+                plasticity: None,
             },
             section: Section::new(d_i * 1e-3, d_a * 1e-3),
             min_bend_radius: r_min * 1e-3,

@@ -5,6 +5,7 @@ use crate::error::FieldError;
 use crate::format::MaterialEntry;
 use crate::library::Library;
 use crate::validate::{finite, positive, with_unit};
+use pliant_core::material::YieldLaw;
 use pliant_core::{Material, Section};
 use std::collections::BTreeMap;
 
@@ -122,11 +123,47 @@ fn user_material(field: &str, m: &MaterialEntry) -> Result<Material, FieldError>
         ));
     }
     let density = positive(&format!("{field}.density_kg_m3"), m.density_kg_m3, "kg/m³")?;
+    let plasticity = yield_law(field, m)?;
     Ok(Material {
         e_tension: e_tension * 1e6,
         e_compression: e_compression * 1e6,
         e_bending,
         poisson,
         density,
+        plasticity,
     })
+}
+
+/// The entry's yield law, SI: `yield_stress_mpa` and `hardening_modulus_mpa` checked.
+fn yield_law(field: &str, m: &MaterialEntry) -> Result<Option<YieldLaw>, FieldError> {
+    let hardening_field = format!("{field}.hardening_modulus_mpa");
+    let Some(sy) = m.yield_stress_mpa else {
+        if let Some(h) = m.hardening_modulus_mpa {
+            return Err(FieldError::new(
+                hardening_field,
+                with_unit(h, "MPa"),
+                "a hardening modulus needs `yield_stress_mpa`",
+            ));
+        }
+        return Ok(None);
+    };
+    let yield_stress = positive(&format!("{field}.yield_stress_mpa"), sy, "MPa")? * 1e6;
+    let hardening_modulus = match m.hardening_modulus_mpa {
+        Some(h) => {
+            let h = finite(&hardening_field, h, "MPa")?;
+            if h < 0.0 {
+                return Err(FieldError::new(
+                    hardening_field,
+                    with_unit(h, "MPa"),
+                    "must be ≥ 0",
+                ));
+            }
+            h * 1e6
+        }
+        None => 0.0,
+    };
+    Ok(Some(YieldLaw {
+        yield_stress,
+        hardening_modulus,
+    }))
 }

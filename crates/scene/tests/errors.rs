@@ -105,6 +105,9 @@ const CASES: &[Case] = &[
     Case { what: "nan position", edits: &[("start = [0, 0, 0]", "start = [nan, 0, 0]")], field: Some("hoses[0].start[0]"), message: &["= nan mm: must be a finite number"] },
     Case { what: "inf gravity", edits: &[("gravity = [0, 0, -9.81]", "gravity = [0, 0, -inf]")], field: Some("simulation.gravity[2]"), message: &["= -inf m/s²: must be a finite number"] },
     Case { what: "nan modulus", edits: &[("e_tension_mpa = 10", "e_tension_mpa = nan")], field: Some("materials.rub.e_tension_mpa"), message: &["must be a finite number"] },
+    Case { what: "zero yield stress", edits: &[("density_kg_m3 = 1000", "density_kg_m3 = 1000\nyield_stress_mpa = 0")], field: Some("materials.rub.yield_stress_mpa"), message: &["= 0 MPa: must be greater than 0"] },
+    Case { what: "negative hardening", edits: &[("density_kg_m3 = 1000", "density_kg_m3 = 1000\nyield_stress_mpa = 250\nhardening_modulus_mpa = -1")], field: Some("materials.rub.hardening_modulus_mpa"), message: &["= -1 MPa: must be ≥ 0"] },
+    Case { what: "hardening without yield", edits: &[("density_kg_m3 = 1000", "density_kg_m3 = 1000\nhardening_modulus_mpa = 2000")], field: Some("materials.rub.hardening_modulus_mpa"), message: &["needs `yield_stress_mpa`"] },
     Case { what: "inf waypoint", edits: &[("[600, 100, 0]", "[600, inf, 0]")], field: Some("timeline[1].to[1][1]"), message: &["= inf mm: must be a finite number"] },
     Case { what: "nan angle", edits: &[("angle_deg = 90", "angle_deg = nan")], field: Some("timeline[1].rotate.angle_deg"), message: &["must be a finite number"] },
     Case { what: "zero-length segment", edits: &[("{ line = { to = [300, 0, 0] } }", "{ line = { to = [0, 0, 0] } }")], field: Some("hoses[0].path[0].line.to"), message: &["= [0, 0, 0] mm", "zero length"] },
@@ -411,4 +414,21 @@ fn a_huge_unknown_key_is_echoed_clipped() {
     assert!(err.len() < 1000, "{} chars: {}", err.len(), &err[..200]);
     assert!(err.contains("…(") && err.contains("chars)"), "{err}");
     assert!(err.contains("unknown field"), "{err}");
+}
+
+/// A yielding material's fields are read in MPa and reach the core in Pa.
+#[test]
+fn yield_fields_are_converted_to_si() {
+    let text = BASE.replace(
+        "density_kg_m3 = 1000",
+        "density_kg_m3 = 1000\nyield_stress_mpa = 250\nhardening_modulus_mpa = 2000",
+    );
+    let scene = load_scene_str(&text, "scene.toml").unwrap_or_else(|e| panic!("{e}"));
+    let law = scene.world.hoses[1]
+        .material
+        .plasticity
+        .expect("the material yields");
+    assert_eq!(law.yield_stress, 250e6);
+    assert_eq!(law.hardening_modulus, 2000e6);
+    assert!(scene.world.hoses[0].material.plasticity.is_none());
 }

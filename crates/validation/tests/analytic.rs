@@ -116,3 +116,12 @@ fn hose_contact() {
 fn solvers() {
     assert_case("solvers");
 }
+
+#[test]
+fn plastic_section() {
+    assert_case("plastic_section");
+}
+#[test]
+fn springback() {
+    assert_case("springback");
+}

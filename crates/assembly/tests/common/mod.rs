@@ -14,6 +14,7 @@ pub fn hose3() -> (Material, Section) {
             e_bending: None,
             poisson: 0.49,
             density: 1100.0,
+            plasticity: None,
         },
         Section::new(0.027, 0.035),
     )

@@ -38,6 +38,7 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
             q: &state.q,
             v: &state.v,
             w: &state.w,
+            plastic_strain: &state.plastic_strain,
         };
         let asleep = &state.sleep.node_asleep;
         let sleeping = state.sleep.enabled && state.sleep.hose_asleep.contains(&true);
@@ -164,6 +165,12 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     }
     state.time = t_next;
     state.step += 1;
+    if model.plastic.any() {
+        // the step is accepted: yielding elements keep their plastic strains
+        let elements = &model.elements;
+        let history = &mut state.plastic_strain;
+        model.plastic.commit(elements, &state.x, &state.q, history);
+    }
     if state.sleep.enabled {
         update_sleep(model, state, moved_any);
     }

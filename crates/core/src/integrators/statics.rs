@@ -234,7 +234,7 @@ impl StaticSolver {
                 None => break, // no direction lowers the energy: round-off, not a mode
             }
         }
-        finish(model, state, &self.system);
+        finish(model, state, &self.system, report.converged);
         Ok(report)
     }
 
@@ -314,9 +314,14 @@ pub(crate) fn increment_at_round_off(
 
 /// Writes the converged loads into the state: forces, support reactions (−f on a
 /// prescribed node, so that support + loads balance), contact forces, body states.
-/// Friction anchors move with the accepted configuration.
-fn finish(model: &Model, state: &mut State, sys: &NewtonSystem) {
+/// Friction anchors move with the accepted configuration; plastic strains with a
+/// converged one.
+fn finish(model: &Model, state: &mut State, sys: &NewtonSystem, converged: bool) {
     sys.commit_friction(state);
+    if converged {
+        // an equilibrium: yielding elements keep their plastic strains
+        sys.commit_plastic(model, state);
+    }
     for i in 0..state.x.len() {
         state.force[i] = sys.force[i];
         state.moment[i] = sys.moment[i];

@@ -34,7 +34,7 @@ use crate::contact::friction::FrictionResponse;
 use crate::contact::{hose_contact_forces_with, ContactPair};
 use crate::loads::{LoadCase, Support, SupportLoad};
 use crate::rod::element::{BeamElement, ElementEnds, ElementLoads};
-use crate::rod::tangent::{block_tangent, ElementTangent};
+use crate::rod::tangent::{block_tangent, plastic_tangent, ElementTangent};
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
 use nalgebra::{Matrix3, Vector6};
@@ -134,6 +134,8 @@ impl NewtonSystem {
                 (Some(a), Some(b)) if a == b
             );
             if rigid {
+                // a rigid span does not yield
+                e.plastic = None;
                 e.axial_stiffness_tension *= RIGID_FACTOR;
                 e.axial_stiffness_compression *= RIGID_FACTOR;
                 e.bending_stiffness[0] *= RIGID_FACTOR;
@@ -213,6 +215,20 @@ impl NewtonSystem {
                 rate_factor,
                 &mut tangents,
             );
+            for (e, out) in chunk.iter().zip(&mut tangents) {
+                if let Some(hinge) = &e.plastic {
+                    let (a, b) = (e.node_a, e.node_b);
+                    let ends = ElementEnds {
+                        x: [state.x[a], state.x[b]],
+                        q: [state.q[a], state.q[b]],
+                        v: [state.v[a], state.v[b]],
+                        w: [state.w[a], state.w[b]],
+                    };
+                    let history = &state.plastic_strain;
+                    let hinges = &model.plastic;
+                    *out = plastic_tangent(hinges, (e, hinge), history, &ends, beta, rate_factor);
+                }
+            }
             for (e, (loads, k)) in chunk.iter().zip(&tangents) {
                 let (a, b) = (e.node_a, e.node_b);
                 scale.include(
@@ -356,6 +372,18 @@ impl NewtonSystem {
         (d < r && d > 1e-12 * r).then(|| (part, (x - p) / d, r - d))
     }
 
+    /// Accepts the state's configuration as the end of a step or an equilibrium for the
+    /// yielding elements: their plastic strains move by the return mapping
+    /// ([`crate::rod::plastic_hinges::PlasticHinges::commit`]; rigid spans do not yield).
+    pub fn commit_plastic(&self, model: &Model, state: &mut State) {
+        if model.plastic.any() {
+            let history = &mut state.plastic_strain;
+            model
+                .plastic
+                .commit(&self.elements, &state.x, &state.q, history);
+        }
+    }
+
     /// Accepts the configuration of the last assembly as the end of a step for friction
     /// ([`crate::contact::friction::FrictionMemory::commit`]).
     pub fn commit_friction(&self, state: &mut State) {
@@ -381,7 +409,17 @@ impl NewtonSystem {
         let mut e = 0.0;
         for el in &self.elements {
             let (a, b) = (el.node_a, el.node_b);
-            e += el.strain_energy([state.x[a], state.x[b]], [state.q[a], state.q[b]]);
+            let (x, q) = ([state.x[a], state.x[b]], [state.q[a], state.q[b]]);
+            e += match &el.plastic {
+                // the incremental potential: its gradient is the loads
+                Some(hinge) => {
+                    let history = &state.plastic_strain;
+                    model
+                        .plastic
+                        .strain_energy(el, hinge, history, (x, q), true)
+                }
+                None => el.strain_energy(x, q),
+            };
         }
         for i in 0..state.x.len() {
             e -= model.mass[i] * model.gravity.dot(state.x[i]);

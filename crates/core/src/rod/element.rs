@@ -32,6 +32,7 @@ use crate::autodiff::{Quat, Scalar, V3};
 use crate::math::{
     exp_map, left_jacobian_inverse_transpose_times_of, log_map_of, rotation_between_of,
 };
+use crate::rod::plastic_hinges::PlasticHinge;
 use crate::section::SectionProperties;
 use crate::{Material, Section};
 use glam::{DQuat, DVec3};
@@ -58,6 +59,9 @@ pub struct BeamElement {
     pub rest_offset_a: DQuat,
     /// Rotation from node b's material frame to the element frame at rest (q_b0⁻¹ E₀).
     pub rest_offset_b: DQuat,
+    /// The element's yielding hinge, if its material yields
+    /// ([`crate::rod::plastic_hinges`]); `None` → the linear law above.
+    pub plastic: Option<PlasticHinge>,
 }
 
 /// Positions, orientations and velocities of an element's two end nodes.
@@ -144,6 +148,7 @@ impl BeamElement {
             mass_per_length: props.mass_per_length,
             rest_offset_a: (rest_q[0].inverse() * frame).normalize(),
             rest_offset_b: (rest_q[1].inverse() * frame).normalize(),
+            plastic: None,
         }
     }
 
@@ -204,6 +209,26 @@ impl BeamElement {
         w: [V3<T>; 2],
         beta: f64,
     ) -> ElementLoadsOf<T> {
+        self.loads_with(x, q, v, w, beta, |theta, damped| {
+            self.end_moments(theta[0] + damped[0], theta[1] + damped[1])
+        })
+    }
+
+    /// [`Self::loads_of`] with the local bending and torsion law `local`: from the end
+    /// rotations θ_a, θ_b and their rates times β (element axes) to the end moments
+    /// conjugate to θ_a, θ_b — the linear law, or a yielding hinge's
+    /// ([`crate::rod::plastic_hinges`]). The axial law, the arch coupling and the
+    /// co-rotational transformation are the same for both.
+    #[inline(always)]
+    pub(crate) fn loads_with<T: Scalar>(
+        &self,
+        x: [V3<T>; 2],
+        q: [Quat<T>; 2],
+        v: [V3<T>; 2],
+        w: [V3<T>; 2],
+        beta: f64,
+        local: impl FnOnce([V3<T>; 2], [V3<T>; 2]) -> (V3<T>, V3<T>),
+    ) -> ElementLoadsOf<T> {
         let d = self.deformation_of(x, q);
         let e1 = d.chord_dir;
         let l0 = self.rest_length;
@@ -226,9 +251,8 @@ impl BeamElement {
         let elastic_axial_force = strain * ea;
         let axial_force = elastic_axial_force + strain_rate * (beta * ea);
 
-        let ta = d.theta[0] + rate_a.scale_f(beta);
-        let tb = d.theta[1] + rate_b.scale_f(beta);
-        let (ma_linear, mb_linear) = self.end_moments(ta, tb);
+        let damped = [rate_a.scale_f(beta), rate_b.scale_f(beta)];
+        let (ma_linear, mb_linear) = local(d.theta, damped);
         let (ma_arch, mb_arch) = arch_moments(d.theta[0], d.theta[1], elastic_axial_force * l0);
         let (ma_local, mb_local) = (ma_linear + ma_arch, mb_linear + mb_arch);
 
@@ -252,7 +276,7 @@ impl BeamElement {
     /// Local end moments (element axes) for end rotations θ_a, θ_b: torsion G J Δθₓ/l₀ and
     /// the bending law (E I_k / l₀)·[[4, 2], [2, 4]] about the y (k = 1) and z (k = 2) axes.
     #[inline(always)]
-    fn end_moments<T: Scalar>(&self, ta: V3<T>, tb: V3<T>) -> (V3<T>, V3<T>) {
+    pub(crate) fn end_moments<T: Scalar>(&self, ta: V3<T>, tb: V3<T>) -> (V3<T>, V3<T>) {
         let l0 = self.rest_length;
         let (k1, k2) = (
             self.bending_stiffness[0] / l0,
@@ -277,19 +301,26 @@ impl BeamElement {
         let d = self.deformation(x, q);
         let l0 = self.rest_length;
         let [ta, tb] = d.theta;
+        let bend = |a: f64, b: f64| 2.0 * (a * a + a * b + b * b);
+        let dtx = tb.x - ta.x;
+        self.axial_energy(&d)
+            + (self.bending_stiffness[0] * bend(ta.y, tb.y)
+                + self.bending_stiffness[1] * bend(ta.z, tb.z))
+                / l0
+            + 0.5 * self.torsion_stiffness / l0 * dtx * dtx
+    }
+
+    /// The axial part ½ E_{t|c} A l₀ ε² of the strain energy (arch strain included) \[J\].
+    pub(crate) fn axial_energy(&self, d: &Deformation) -> f64 {
+        let l0 = self.rest_length;
+        let [ta, tb] = d.theta;
         let strain = (d.length - l0) / l0 + arch_strain::<f64>(ta.into(), tb.into());
         let ea = if strain >= 0.0 {
             self.axial_stiffness_tension
         } else {
             self.axial_stiffness_compression
         };
-        let bend = |a: f64, b: f64| 2.0 * (a * a + a * b + b * b);
-        let dtx = tb.x - ta.x;
         0.5 * ea * l0 * strain * strain
-            + (self.bending_stiffness[0] * bend(ta.y, tb.y)
-                + self.bending_stiffness[1] * bend(ta.z, tb.z))
-                / l0
-            + 0.5 * self.torsion_stiffness / l0 * dtx * dtx
     }
 }
 

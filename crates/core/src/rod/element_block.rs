@@ -98,7 +98,8 @@ pub struct PackedElements {
     pub blocks: Vec<ElementBlock>,
     /// The blocks of hose h are `hose_blocks[h]..hose_blocks[h + 1]`.
     pub hose_blocks: Vec<usize>,
-    /// Elements packed (a check that the model's elements are the packed ones).
+    /// Elements the packing was built for, yielding ones (not packed) included (a check
+    /// that the model's elements are the packed ones).
     pub element_count: usize,
 }
 
@@ -110,7 +111,9 @@ impl PackedElements {
         hose_blocks.push(0);
         for h in hoses {
             let range = h.first_element..h.first_element + h.element_count;
-            let ids: Vec<usize> = range.collect();
+            // yielding elements are not packed: their law is the hinge's
+            // ([`crate::rod::plastic_hinges`], added after the blocks)
+            let ids: Vec<usize> = range.filter(|&k| elements[k].plastic.is_none()).collect();
             for chunk in ids.chunks(4) {
                 blocks.push(ElementBlock::new(elements, chunk));
             }
@@ -580,6 +583,7 @@ mod tests {
                 q: &q,
                 v: &v,
                 w: &w,
+                plastic_strain: &[],
             };
             let hose = HoseInfo {
                 name: "h".into(),
@@ -690,6 +694,7 @@ mod tests {
             q: &q,
             v: &v,
             w: &w,
+            plastic_strain: &[],
         };
         let (mut fast, mut outside) = (0, 0);
         for b in &chained.blocks {
@@ -748,6 +753,7 @@ mod tests {
             q: &q,
             v: &v,
             w: &w,
+            plastic_strain: &[],
         };
         let start = [DVec3::ZERO; 2];
         let a = load_bits(Kernel::detect(), &packed, &elements, &c, start);

@@ -45,13 +45,21 @@ pub fn internal_loads_except(
             moment,
             &skip,
         );
+        if model.plastic.any() {
+            let all = 0..model.plastic.elements.len();
+            let elements = &model.elements;
+            model
+                .plastic
+                .add_loads(elements, all, c, 0, beta, force, moment, &skip);
+        }
     } else {
         add_reference_loads(model, c, beta, force, moment, skip);
     }
 }
 
 /// Adds the internal loads element by element with the reference [`crate::rod::element::BeamElement::loads`]
-/// (what [`crate::rod::element_block`] computes four at a time).
+/// (what [`crate::rod::element_block`] computes four at a time), yielding elements by
+/// their hinge ([`crate::rod::plastic_hinges`]).
 pub fn add_reference_loads(
     model: &Model,
     c: &NodeView,
@@ -71,7 +79,10 @@ pub fn add_reference_loads(
             v: [c.v[a], c.v[b]],
             w: [c.w[a], c.w[b]],
         };
-        let l = e.loads(&ends, beta);
+        let l = match &e.plastic {
+            Some(hinge) => model.plastic.loads(e, hinge, c.plastic_strain, &ends, beta),
+            None => e.loads(&ends, beta),
+        };
         force[a] += l.force[0];
         force[b] += l.force[1];
         moment[a] += l.moment[0];
@@ -142,6 +153,7 @@ pub fn step_loads(
             q: &c.q[nodes.clone()],
             v: &c.v[nodes.clone()],
             w: &c.w[nodes.clone()],
+            plastic_strain: c.plastic_strain,
         };
         let hb = &model.packed.hose_blocks;
         element_block::add_loads(
@@ -155,6 +167,21 @@ pub fn step_loads(
             moment,
             &skip,
         );
+        if model.plastic.any() {
+            let hp = &model.plastic.hose_elements;
+            let range = hp[hoses.start]..hp[hoses.end];
+            let elements = &model.elements;
+            model.plastic.add_loads(
+                elements,
+                range,
+                &part,
+                nodes.start,
+                beta,
+                force,
+                moment,
+                &skip,
+            );
+        }
         add_body_loads_of(model, nodes.start, &part, force, moment);
     });
 }

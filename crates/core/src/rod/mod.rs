@@ -3,7 +3,10 @@
 //! ([`element_block`], [`lanes`], [`lane_arith`]), its consistent tangent ([`tangent`],
 //! [`tangent_kernel`]), the assembly of element and body loads over a model ([`forces`],
 //! [`body_loads`]) over the node arrays ([`node_view`]), lumped masses ([`mass`]), rest frames ([`frames`]), stiffened
-//! sections ([`stiffened`]) and the stable explicit time step ([`timestep`]).
+//! sections ([`stiffened`]) and the stable explicit time step ([`timestep`]); yielding
+//! elements (SPEC X1): the fibre law ([`fibre_law`]), the fibre section
+//! ([`fibre_section`]), the yielding hinge of an element ([`plastic_hinges`]) and the
+//! closed forms of the elastic–plastic tube ([`plastic_moment`]).
 //!
 //! The kernels read the plain data of the crate (model, sections, materials) and nothing
 //! above it: no loads, contact or solvers.
@@ -11,12 +14,16 @@
 pub mod body_loads;
 pub mod element;
 pub mod element_block;
+pub mod fibre_law;
+pub mod fibre_section;
 pub mod forces;
 pub mod frames;
 pub mod lane_arith;
 pub mod lanes;
 pub mod mass;
 pub mod node_view;
+pub mod plastic_hinges;
+pub mod plastic_moment;
 pub mod stiffened;
 pub mod tangent;
 pub mod tangent_kernel;

@@ -1,4 +1,5 @@
-//! A borrowed view of the node arrays the element kernels read.
+//! A borrowed view of the node arrays the element kernels read, with the yielding
+//! elements' committed history.
 
 use glam::{DQuat, DVec3};
 
@@ -9,4 +10,7 @@ pub struct NodeView<'a> {
     pub q: &'a [DQuat],
     pub v: &'a [DVec3],
     pub w: &'a [DVec3],
+    /// The yielding elements' committed plastic strains (`State::plastic_strain`;
+    /// [`crate::rod::plastic_hinges`]); empty → never yielded.
+    pub plastic_strain: &'a [f64],
 }

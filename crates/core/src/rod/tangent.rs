@@ -24,8 +24,9 @@
 //! random elements).
 
 use crate::autodiff::{Quat, Scalar, V3};
-use crate::rod::element::{BeamElement, ElementEnds, ElementLoads};
+use crate::rod::element::{BeamElement, ElementEnds, ElementLoads, ElementLoadsOf};
 use crate::rod::element_block::Kernel;
+use crate::rod::plastic_hinges::{PlasticHinge, PlasticHinges};
 use crate::rod::tangent_kernel::{block_tangent_rows, BlockRows, LoadRows, D9};
 use glam::{DQuat, DVec3};
 use nalgebra::SMatrix;
@@ -117,6 +118,20 @@ fn reference_rows(
     beta: f64,
     rate_factor: f64,
 ) -> LoadRows {
+    seeded_rows(ends, rate_factor, |(x, q, v, w)| {
+        element.loads_of(x, q, v, w, beta)
+    })
+}
+
+/// Poses and velocities of an element's ends as duals.
+type SeededEnds = ([V3<D9>; 2], [Quat<D9>; 2], [V3<D9>; 2], [V3<D9>; 2]);
+
+/// The loads `loads` gives at `ends` as duals on the seeded increments.
+fn seeded_rows(
+    ends: &ElementEnds,
+    rate_factor: f64,
+    loads: impl FnOnce(SeededEnds) -> ElementLoadsOf<D9>,
+) -> LoadRows {
     let x = [V3::cst(ends.x[0]), seeded_vector(ends.x[1], 0, 1.0)];
     let q = [seeded_rotation(ends.q[0], 3), seeded_rotation(ends.q[1], 6)];
     let v = [V3::cst(ends.v[0]), seeded_vector(ends.v[1], 0, rate_factor)];
@@ -124,7 +139,7 @@ fn reference_rows(
         seeded_vector(ends.w[0], 3, rate_factor),
         seeded_vector(ends.w[1], 6, rate_factor),
     ];
-    let l = element.loads_of(x, q, v, w, beta);
+    let l = loads((x, q, v, w));
     (
         [l.force[0], l.moment[0], l.force[1], l.moment[1]],
         l.axial_force,
@@ -167,6 +182,25 @@ pub fn element_tangent(
     let mut out = [(ElementLoads::default(), ElementTangent::zeros()); 4];
     block_tangent([element; 4], [ends; 4], 1, beta, rate_factor, &mut out);
     out[0]
+}
+
+/// The loads of yielding `element` (hinge `hinge`, committed plastic strains
+/// `history`) and their tangent K = −∂loads/∂u: the consistent algorithmic tangent of
+/// the return mapping, by differentiating [`PlasticHinges::loads_of`].
+pub fn plastic_tangent(
+    hinges: &PlasticHinges,
+    (element, hinge): (&BeamElement, &PlasticHinge),
+    history: &[f64],
+    ends: &ElementEnds,
+    beta: f64,
+    rate_factor: f64,
+) -> (ElementLoads, ElementTangent) {
+    let rows = seeded_rows(ends, rate_factor, |seeded| {
+        hinges.loads_of(element, hinge, history, seeded, beta)
+    });
+    let mut out = (ElementLoads::default(), ElementTangent::zeros());
+    from_rows(&rows, &mut out);
+    out
 }
 
 /// [`element_tangent`] by differentiating the reference [`BeamElement::loads_of`] only.

@@ -52,6 +52,7 @@ pub fn random_element(rng: &mut Rng, k: usize) -> BeamElement {
         e_bending: None,
         poisson: 0.45,
         density: 1000.0,
+        plasticity: None,
     };
     let mut section = Section::new(0.01, 0.016);
     if rng.next() < 0.5 {

@@ -28,6 +28,7 @@ pub fn hose1_material() -> pliant_core::Material {
         e_bending: None,
         poisson: 0.49,
         density: 940.0,
+        plasticity: None,
     }
 }
 

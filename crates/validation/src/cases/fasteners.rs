@@ -67,6 +67,7 @@ pub fn run_stub() -> Vec<Check> {
         e_bending: None,
         poisson: 0.49,
         density: 1100.0,
+        plasticity: None,
     };
     let section = Section::new(0.027, 0.035);
     let (n, len) = (12, 0.3);
@@ -161,6 +162,7 @@ pub fn run_clip() -> Vec<Check> {
         e_bending: None,
         poisson: 0.49,
         density: 940.0,
+        plasticity: None,
     };
     let section = Section::new(0.010, 0.016);
     let (n, len, k) = (20, 0.5, 20.0);

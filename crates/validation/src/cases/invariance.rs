@@ -55,6 +55,7 @@ pub fn run() -> Vec<Check> {
                 q: &q,
                 v: &zero,
                 w: &zero,
+                plastic_strain: &[],
             },
             0.0,
             &mut f,

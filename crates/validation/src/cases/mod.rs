@@ -11,6 +11,7 @@ mod friction;
 mod helix;
 pub mod hose_contact;
 mod invariance;
+mod plastic_bending;
 mod postbuckling;
 mod rollup;
 mod scale;
@@ -51,4 +52,6 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("thesis_3", thesis::run_3),
     ("thesis_4", thesis::run_4),
     ("solvers", solvers::run),
+    ("plastic_section", plastic_bending::run_section),
+    ("springback", plastic_bending::run_springback),
 ];
