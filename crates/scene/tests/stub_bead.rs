@@ -42,7 +42,7 @@ fn a_bead_loads_onto_the_press_fit() {
     assert!((b.back_angle - 60f64.to_radians()).abs() < 1e-15);
     let model = Model::build(&s.world).unwrap();
     let (stubs, _) = s.fastener_sites(&model).unwrap();
-    assert_eq!(stubs[0].fit.bead(), Some(&b));
+    assert_eq!(stubs[0].fit.press_fit().unwrap().bead(), Some(&b));
 }
 
 #[test]
@@ -75,7 +75,16 @@ fn a_profile_of_barbs_loads_in_order() {
     assert!((p[0].at - 0.004).abs() < 1e-15 && (p[1].at - 0.013).abs() < 1e-15);
     let model = Model::build(&s.world).unwrap();
     let (stubs, _) = s.fastener_sites(&model).unwrap();
-    assert_eq!(stubs[0].fit.beads().copied().collect::<Vec<_>>(), *p);
+    assert_eq!(
+        stubs[0]
+            .fit
+            .press_fit()
+            .unwrap()
+            .beads()
+            .copied()
+            .collect::<Vec<_>>(),
+        *p
+    );
 }
 
 #[test]

@@ -91,6 +91,14 @@ pub enum StubLaw {
 }
 
 impl StubLaw {
+    /// The press fit, if this is a stub.
+    pub fn press_fit(&self) -> Option<&PressFit> {
+        match self {
+            StubLaw::PressFit(f) => Some(f),
+            StubLaw::Mating(_) => None,
+        }
+    }
+
     /// The fastener's kind as reports name it: "stub" or "connector".
     pub fn kind(&self) -> &'static str {
         match self {
