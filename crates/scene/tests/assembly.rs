@@ -500,7 +500,7 @@ const CASES: &[Case] = &[
     Case { what: "clip unknown hose", edits: &[("snap_force_n = 40\nhose = \"a\"", "snap_force_n = 40\nhose = \"q\"")], field: "clips[0].hose", message: &["clips[0].hose = \"q\": unknown hose; hoses: a, b"] },
     Case { what: "clip opening wider than its hose", edits: &[("opening_width = 12", "opening_width = 16"), ("inner_diameter = 16", "inner_diameter = 20")], field: "clips[1].opening_width", message: &["= 16 mm: must be smaller than the outer diameter of hose \"b\" (16 mm)", "never be held"] },
     Case { what: "duplicate clip names", edits: &[("name = \"c2\"", "name = \"c1\"")], field: "clips[1].name", message: &["\"c1\": duplicate name (also clips[0].name)"] },
-    Case { what: "clip named like a stub", edits: &[("name = \"c2\"", "name = \"pump\"")], field: "clips[1].name", message: &["duplicate name (also stubs[0].name); stubs and clips share one set of names"] },
+    Case { what: "clip named like a stub", edits: &[("name = \"c2\"", "name = \"pump\"")], field: "clips[1].name", message: &["duplicate name (also stubs[0].name); stubs, connectors and clips share one set of names"] },
     Case { what: "unknown clip field", edits: &[("snap_force_n = 40", "snap_force = 40")], field: "clips[0].snap_force", message: &["unknown field `snap_force`"] },
     Case { what: "unknown clip type", edits: &[("snap_force_n = 40", "snap_force_n = 40\ntype = \"glued\"")], field: "clips[0].type", message: &["unknown variant `glued`"] },
     Case { what: "friction on a fixed clip", edits: &[("snap_force_n = 40", "snap_force_n = 40\nfriction = 0.3")], field: "clips[0].friction", message: &["only a sliding guide has friction"] },
