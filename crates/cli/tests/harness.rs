@@ -25,10 +25,10 @@ fn ok(out: &std::process::Output) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
-#[test]
-fn a_harness_is_imported_inspected_installed_and_exported() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene_dir = dir.path().join("generator");
+/// `pliant import` of the generator cable into `dir/generator`: the folder and what the
+/// import printed.
+fn import_generator(dir: &Path) -> (PathBuf, String) {
+    let scene_dir = dir.join("generator");
     let text = ok(&pliant()
         .arg("import")
         .arg(data(GENERATOR))
@@ -36,6 +36,13 @@ fn a_harness_is_imported_inspected_installed_and_exported() {
         .arg(&scene_dir)
         .output()
         .unwrap());
+    (scene_dir, text)
+}
+
+#[test]
+fn a_harness_is_imported_inspected_installed_and_exported() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene_dir, text) = import_generator(dir.path());
     assert!(text.contains("3 segments"), "{text}");
     let scene = scene_dir.join("scene.toml");
 
@@ -339,14 +346,7 @@ duration_s = 0.02
 #[test]
 fn a_harness_is_installed_by_hand_connectors_plugged_and_clips_pressed_in() {
     let dir = tempfile::tempdir().unwrap();
-    let scene_dir = dir.path().join("generator");
-    let text = ok(&pliant()
-        .arg("import")
-        .arg(data(GENERATOR))
-        .arg("--out")
-        .arg(&scene_dir)
-        .output()
-        .unwrap());
+    let (scene_dir, text) = import_generator(dir.path());
     assert!(text.contains("install.toml"), "{text}");
     let install = scene_dir.join("install.toml");
     let run = |scene: &Path, out: &Path| {
