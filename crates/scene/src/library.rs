@@ -3,6 +3,7 @@
 //! provenance: a source in the dissertation, or a marked assumption.
 
 use crate::error::SceneError;
+use pliant_core::material::YieldLaw;
 use pliant_core::{Material, Section};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -113,6 +114,10 @@ struct RawEntry {
     density_kg_m3: RawValue,
     poisson: RawValue,
     min_bend_radius_mm: RawValue,
+    /// Metal lines: the yield stress (SPEC X1); absent for elastic materials.
+    yield_stress_mpa: Option<RawValue>,
+    /// Linear kinematic hardening modulus; only with `yield_stress_mpa` (default 0).
+    hardening_modulus_mpa: Option<RawValue>,
 }
 
 impl RawValue {
@@ -151,6 +156,33 @@ impl RawEntry {
             self.min_bend_radius_mm.build(&name, "min_bend_radius_mm")?,
         ];
         let [d_i, d_a, e_c, e_t, rho, nu, r_min] = [0, 1, 2, 3, 4, 5, 6].map(|i| values[i].value);
+        let mut values = values;
+        let plasticity = match (self.yield_stress_mpa, self.hardening_modulus_mpa) {
+            (None, None) => None,
+            (None, Some(_)) => {
+                return Err(format!(
+                    "{name}.hardening_modulus_mpa: needs `yield_stress_mpa`"
+                ))
+            }
+            (Some(sy), h) => {
+                let sy = sy.build(&name, "yield_stress_mpa")?;
+                let h = h
+                    .map(|h| h.build(&name, "hardening_modulus_mpa"))
+                    .transpose()?;
+                let (yield_stress, hardening) = (sy.value, h.as_ref().map_or(0.0, |h| h.value));
+                if !(yield_stress > 0.0 && hardening >= 0.0) {
+                    return Err(format!(
+                        "{name}: needs yield_stress_mpa > 0 and hardening_modulus_mpa >= 0"
+                    ));
+                }
+                values.push(sy);
+                values.extend(h);
+                Some(YieldLaw {
+                    yield_stress: yield_stress * 1e6,
+                    hardening_modulus: hardening * 1e6,
+                })
+            }
+        };
         if !(r_min > 0.5 * d_a) {
             return Err(format!(
                 "{name}.min_bend_radius_mm: must exceed the outer radius d_outer / 2"
@@ -173,7 +205,7 @@ impl RawEntry {
                 e_bending: None,
                 poisson: nu,
                 density: rho,
-                plasticity: None,
+                plasticity,
             },
             section: Section::new(d_i * 1e-3, d_a * 1e-3),
             min_bend_radius: r_min * 1e-3,
@@ -204,7 +236,15 @@ mod tests {
         let lib = Library::builtin().expect("library parses");
         assert_eq!(
             lib.names(),
-            vec!["hose1", "hose2", "hose3", "hose4", "hose5"]
+            vec![
+                "aluminium_tube",
+                "hose1",
+                "hose2",
+                "hose3",
+                "hose4",
+                "hose5",
+                "steel_tube"
+            ]
         );
         for (name, d_i, d_a, e_c, e_t) in SPEC_TABLE {
             let e = lib.get(name).expect("entry exists");
@@ -227,7 +267,8 @@ mod tests {
     #[test]
     fn provenance_is_recorded_for_every_value() {
         let lib = Library::builtin().expect("library parses");
-        for e in lib.entries() {
+        // the dissertation's hoses: their data from the dissertation, the rest marked
+        for e in lib.entries().iter().filter(|e| e.name.starts_with("hose")) {
             assert_eq!(e.values.len(), 7);
             for v in &e.values {
                 let is_assumption = matches!(v.provenance, Provenance::Assumption(_));
@@ -248,5 +289,28 @@ mod tests {
         let text = LIBRARY_TOML.replacen(", source = \"dissertation table 3.2, hose 1\"", "", 1);
         let err = Library::parse(&text).expect_err("must fail");
         assert!(err.contains("hose1.d_inner_mm"), "{err}");
+    }
+
+    #[test]
+    fn metal_lines_yield_and_elastic_hoses_do_not() {
+        let lib = Library::builtin().unwrap();
+        for (name, sy, h, e) in [
+            ("steel_tube", 170e6, 480e6, 210e9),
+            ("aluminium_tube", 170e6, 580e6, 70e9),
+        ] {
+            let entry = lib.get(name).unwrap();
+            let law = entry.material.plasticity.as_ref().unwrap();
+            assert!(
+                close(law.yield_stress, sy) && close(law.hardening_modulus, h),
+                "{name}"
+            );
+            assert!(close(entry.material.e_tension, e), "{name}");
+            // every value says where it comes from
+            assert!(entry.values.iter().any(|v| v.key == "yield_stress_mpa"));
+        }
+        assert!(lib.get("hose3").unwrap().material.plasticity.is_none());
+        let bad = "[x]\ndescription = \"x\"\nd_inner_mm = { value = 1.0, source = \"s\" }\nd_outer_mm = { value = 2.0, source = \"s\" }\ne_compression_mpa = { value = 1.0, source = \"s\" }\ne_tension_mpa = { value = 1.0, source = \"s\" }\ndensity_kg_m3 = { value = 1.0, source = \"s\" }\npoisson = { value = 0.3, source = \"s\" }\nmin_bend_radius_mm = { value = 5.0, source = \"s\" }\nhardening_modulus_mpa = { value = 1.0, source = \"s\" }\n";
+        let err = Library::parse(bad).err().unwrap();
+        assert!(err.contains("x.hardening_modulus_mpa"), "{err}");
     }
 }
