@@ -414,3 +414,54 @@ fn a_harness_is_installed_by_hand_connectors_plugged_and_clips_pressed_in() {
         "{reasons:?}"
     );
 }
+
+/// The battery cable (one segment, a connector at each end, no fixing) is installed with
+/// the left hand holding its far end: both connectors end latched and the verdict is
+/// feasible. The main harness (128 connectors, 16 fixings) gets no `install.toml`, and the
+/// import says why.
+#[test]
+fn a_cable_without_fixings_installs_and_a_large_harness_is_told_why_not() {
+    let dir = tempfile::tempdir().unwrap();
+    let battery = dir.path().join("battery");
+    ok(&pliant()
+        .arg("import")
+        .arg(data(
+            "kblxml_2.3sr-1_000971228_ltgs_batterie_plus_170718.kbl",
+        ))
+        .arg("--out")
+        .arg(&battery)
+        .output()
+        .unwrap());
+    let out = dir.path().join("battery_run");
+    ok(&pliant()
+        .args(["run", "--quiet"])
+        .arg(battery.join("install.toml"))
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap());
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["verdict"]["feasible"], true, "{}", report["verdict"]);
+    let latched = report["run"]["fasteners"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["kind"] == "connector" && f["final_state"] == "latched")
+        .count();
+    assert_eq!(latched, 2, "{}", report["run"]["fasteners"]);
+
+    let main = dir.path().join("main");
+    let text = ok(&pliant()
+        .arg("import")
+        .arg(data(MAIN))
+        .arg("--out")
+        .arg(&main)
+        .output()
+        .unwrap());
+    assert!(
+        text.contains("no install.toml: 128 connectors and 16 fixings"),
+        "{text}"
+    );
+    assert!(!main.join("install.toml").exists());
+}

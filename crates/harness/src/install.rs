@@ -9,7 +9,8 @@
 //!
 //! The worker's sequence, two hands:
 //!
-//! 0. the left hand (1) holds the harness at its first fixing, on the route;
+//! 0. the left hand (1) holds the harness at its first fixing, on the route (without
+//!    fixings: at its second connector's end, which it plugs in step 3);
 //! 1. the right hand (0) plugs the first connector: take the end, bring it [`IN_FRONT`] before the mouth on
 //!    the mating axis and push it [`PUSH`] in, past the latch; let go (the latched
 //!    connector now carries the harness);
@@ -152,38 +153,78 @@ fn step(t: &mut String, fields: &str) {
     let _ = writeln!(t, "[[timeline]]\n{fields}\n");
 }
 
-fn plug(t: &mut String, c: &ConnectorEnd) {
+/// `hand` plugs connector `c`; `holding`: the hand holds its end already (else it takes it).
+fn plug(t: &mut String, c: &ConnectorEnd, hand: usize, holding: bool) {
     let _ = writeln!(t, "# connector {}", c.name);
-    step(
-        t,
-        &format!(
-            "action = \"grab\"\nhand = 0\nat = {}",
-            vec_mm(c.mouth + c.axis * PUSH)
-        ),
-    );
-    step(
-        t,
-        &format!(
-            "action = \"move_hand\"\nhand = 0\nto = {}\nduration_s = {MOVE_S}",
-            vec_mm(c.mouth - c.axis * IN_FRONT)
-        ),
-    );
-    step(
-        t,
-        &format!(
-            "action = \"move_hand\"\nhand = 0\nto = {}\nduration_s = {PUSH_S}",
-            vec_mm(c.mouth + c.axis * PUSH)
-        ),
-    );
-    step(t, "action = \"release_hand\"\nhand = 0");
+    if !holding {
+        step(
+            t,
+            &format!(
+                "action = \"grab\"\nhand = {hand}\nat = {}",
+                vec_mm(c.mouth + c.axis * PUSH)
+            ),
+        );
+    }
+    for (target, duration) in [
+        (c.mouth - c.axis * IN_FRONT, MOVE_S),
+        (c.mouth + c.axis * PUSH, PUSH_S),
+    ] {
+        step(
+            t,
+            &format!(
+                "action = \"move_hand\"\nhand = {hand}\nto = {}\nduration_s = {duration}",
+                vec_mm(target)
+            ),
+        );
+    }
+    step(t, &format!("action = \"release_hand\"\nhand = {hand}"));
 }
 
-/// The text of `install.toml` (see the module's sequence); `None` when the harness has no
-/// connector on a leaf end to start from.
-pub fn install_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> Option<String> {
+/// Most connectors, and most fixings, of a harness `install.toml` is written for: the
+/// sequence runs under the explicit solver, whose step thin wires make microseconds long,
+/// and every connector and fixing adds a second or more (a branch, a small harness; the
+/// generator cable's takes 2.3 million steps).
+pub const MAX_INSTALLED: usize = 8;
+
+/// Why no `install.toml` is written for a harness.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub enum NotInstalled {
+    /// No connector sits on a free end: nothing to start the sequence from.
+    NoConnector,
+    /// More connectors or fixings than [`MAX_INSTALLED`].
+    TooLarge { connectors: usize, fixings: usize },
+}
+
+impl std::fmt::Display for NotInstalled {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NotInstalled::NoConnector => write!(f, "no connector on a free end to start from"),
+            NotInstalled::TooLarge {
+                connectors,
+                fixings,
+            } => write!(
+                f,
+                "{connectors} connectors and {fixings} fixings: the worker's sequence is written for up to {MAX_INSTALLED} of each (a branch or a small harness)"
+            ),
+        }
+    }
+}
+
+/// The text of `install.toml` (see the module's sequence), or why there is none.
+pub fn install_toml(
+    h: &Harness,
+    segs: &[SegmentOut],
+    licence_note: &str,
+) -> Result<String, NotInstalled> {
     let connectors = connector_ends(h, segs);
-    let first = connectors.first()?;
     let clips = clip_places(h, segs);
+    if connectors.len() > MAX_INSTALLED || clips.len() > MAX_INSTALLED {
+        return Err(NotInstalled::TooLarge {
+            connectors: connectors.len(),
+            fixings: clips.len(),
+        });
+    }
+    let first = connectors.first().ok_or(NotInstalled::NoConnector)?;
     // the explicit solver: hands, connectors and clips act through their dynamics (thin
     // wires make its step a few microseconds; the sequence lasts a few seconds)
     let mut t = network_toml(h, segs, licence_note, "solver = \"explicit\"");
@@ -232,10 +273,13 @@ pub fn install_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> Opt
             if c.at_start { "start" } else { "end" }
         );
     }
+    // the left hand (1) holds the harness at its first fixing, or, without fixings, at its
+    // second connector's end, while the right hand (0) plugs the first connector
     let _ = writeln!(
         t,
-        "# The worker: the left hand (1) holds the harness at its first fixing, the right hand\n# (0) plugs the first connector; the fixings are pressed in, the other connectors plugged.\n"
+        "# The worker: the left hand (1) holds the harness at its first fixing (or its second\n# connector's end), the right hand (0) plugs the first connector; the fixings are pressed\n# in, the other connectors plugged.\n"
     );
+    let held_connector = clips.is_empty() && connectors.len() > 1;
     if let Some(c) = clips.first() {
         step(
             &mut t,
@@ -244,8 +288,16 @@ pub fn install_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> Opt
                 vec_mm(c.point)
             ),
         );
+    } else if held_connector {
+        step(
+            &mut t,
+            &format!(
+                "action = \"grab\"\nhand = 1\nat = {}",
+                vec_mm(connectors[1].mouth + connectors[1].axis * PUSH)
+            ),
+        );
     }
-    plug(&mut t, first);
+    plug(&mut t, first, 0, false);
     for (k, c) in clips.iter().enumerate() {
         // the first fixing is pressed in by the hand that has held the harness there
         let hand = if k == 0 { 1 } else { 0 };
@@ -273,9 +325,13 @@ pub fn install_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> Opt
         }
         step(&mut t, &format!("action = \"release_hand\"\nhand = {hand}"));
     }
-    for c in &connectors[1..] {
-        plug(&mut t, c);
+    for (k, c) in connectors.iter().enumerate().skip(1) {
+        if k == 1 && held_connector {
+            plug(&mut t, c, 1, true);
+        } else {
+            plug(&mut t, c, 0, false);
+        }
     }
     step(&mut t, "action = \"settle\"\nmax_duration_s = 5");
-    Some(t)
+    Ok(t)
 }

@@ -167,13 +167,16 @@ pub fn import_kbl_with(
         source,
     })?;
     let mut report = ImportReport::new(&h, &segs, scene_path, json_path);
-    if let Some(text) = install::install_toml(&h, &segs, &note) {
-        let path = out_dir.join("install.toml");
-        std::fs::write(&path, text).map_err(|source| HarnessError::Write {
-            path: path.clone(),
-            source,
-        })?;
-        report.install = Some(path);
-    }
+    report.install = match install::install_toml(&h, &segs, &note) {
+        Ok(text) => {
+            let path = out_dir.join("install.toml");
+            std::fs::write(&path, text).map_err(|source| HarnessError::Write {
+                path: path.clone(),
+                source,
+            })?;
+            Ok(path)
+        }
+        Err(why) => Err(why),
+    };
     Ok(report)
 }

@@ -43,9 +43,8 @@ pub struct ImportReport {
     pub warnings: Vec<String>,
     pub scene: PathBuf,
     pub harness_json: PathBuf,
-    /// The installation by a worker (`install.toml`), when the harness has a connector on
-    /// a leaf end to start from.
-    pub install: Option<PathBuf>,
+    /// The installation by a worker (`install.toml`), or why none was written.
+    pub install: Result<PathBuf, crate::install::NotInstalled>,
 }
 
 impl ImportReport {
@@ -94,7 +93,7 @@ impl ImportReport {
             warnings: h.warnings.clone(),
             scene,
             harness_json,
-            install: None,
+            install: Err(crate::install::NotInstalled::NoConnector),
         }
     }
 }
@@ -160,12 +159,12 @@ impl fmt::Display for ImportReport {
             self.harness_json.display()
         )?;
         match &self.install {
-            Some(p) => writeln!(
+            Ok(p) => writeln!(
                 f,
                 "  wrote {}: the harness installed by a worker (connectors plugged, fixings pressed in)",
                 p.display()
             ),
-            None => writeln!(f, "  no install.toml: no connector on a free end to start from"),
+            Err(why) => writeln!(f, "  no install.toml: {why}"),
         }
     }
 }
