@@ -381,6 +381,8 @@ pub fn bumpy_floor(quads: usize) -> RigidPartSpec {
         triangles,
         friction_static: 0.5,
         friction_sliding: 0.4,
+        motion: None,
+        parent: None,
     }
 }
 
@@ -1051,7 +1053,7 @@ mod tests {
             "the hoses must start deformed"
         );
         for (_, case) in state.loads.iter() {
-            let (x, q) = case.prescribed_pose(0.0).unwrap();
+            let (x, q) = case.prescribed_pose(0.0, &model.kinematics).unwrap();
             assert_eq!(x, state.x[case.node()]);
             assert_eq!(q, state.q[case.node()]);
         }

@@ -285,6 +285,8 @@ pub fn build_part(
         triangles,
         friction_static,
         friction_sliding,
+        motion: None,
+        parent: None,
     };
     Ok((spec, info))
 }
