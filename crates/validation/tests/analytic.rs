@@ -116,3 +116,23 @@ fn hose_contact() {
 fn solvers() {
     assert_case("solvers");
 }
+#[test]
+fn moving_carry() {
+    assert_case("moving_carry");
+}
+#[test]
+fn moving_lift() {
+    assert_case("moving_lift");
+}
+#[test]
+fn moving_drag() {
+    assert_case("moving_drag");
+}
+#[test]
+fn moving_hinge() {
+    assert_case("moving_hinge");
+}
+#[test]
+fn moving_fast() {
+    assert_case("moving_fast");
+}

@@ -11,6 +11,7 @@ mod friction;
 mod helix;
 pub mod hose_contact;
 mod invariance;
+mod moving_parts;
 mod postbuckling;
 mod rollup;
 mod scale;
@@ -51,4 +52,9 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("thesis_3", thesis::run_3),
     ("thesis_4", thesis::run_4),
     ("solvers", solvers::run),
+    ("moving_carry", moving_parts::run_carry),
+    ("moving_lift", moving_parts::run_lift),
+    ("moving_drag", moving_parts::run_drag),
+    ("moving_hinge", moving_parts::run_hinge),
+    ("moving_fast", moving_parts::run_fast),
 ];
