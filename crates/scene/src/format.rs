@@ -697,6 +697,8 @@ pub struct RotateEntry {
 pub enum ActionEntry {
     /// Hold the node in all six degrees of freedom where it is now.
     Fix(NodeEntry),
+    /// Hold the node to a part where it is now; it moves with the part.
+    Mount(MountEntry),
     /// Drive the node along waypoints and/or rotate it; it stays held afterwards.
     Move(MoveEntry),
     /// Add a force and/or moment (global frame) at the node, at once or over a ramp.
@@ -747,6 +749,18 @@ pub struct NodeEntry {
     pub hose: String,
     /// Node index; negative counts from the end (−1 = last).
     pub node: i64,
+}
+
+/// `mount`: a node held to a part, carried with it as the part moves.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MountEntry {
+    /// Hose name.
+    pub hose: String,
+    /// Node index; negative counts from the end (−1 = last).
+    pub node: i64,
+    /// The part's name.
+    pub part: String,
 }
 
 /// `tie`: a cable tie between a node of one hose and a node of another.

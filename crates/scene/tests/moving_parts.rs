@@ -167,3 +167,78 @@ fn broken_motions_name_the_field() {
     let text = load_in(&dir, cycle).unwrap_err().to_string();
     assert!(text.contains("cycle"), "{text}");
 }
+
+/// A hose from a fixed body to a door: the door turns 0 → 60° about a vertical hinge in
+/// 1 s; the hose end mounted on it goes along, under every solver.
+const DOOR: &str = r#"
+format = "pliant-scene"
+version = 1
+length_unit = "mm"
+
+[simulation]
+gravity = [0, 0, 0]
+
+[[hoses]]
+name = "h"
+material = "hose3"
+start = [0, 0, 0]
+path = [{ line = { to = [300, 0, 0] } }]
+
+[[parts]]
+name = "door"
+box = { size = [20, 20, 20] }
+position = [320, 0, -40]
+motion = { kind = "hinge", axis = [0, 0, 1], point = [500, 0, 0], angle_deg = { times_s = [0, 1], values = [0, 60] } }
+
+[[timeline]]
+action = "fix"
+hose = "h"
+node = 0
+
+[[timeline]]
+action = "mount"
+hose = "h"
+node = -1
+part = "door"
+
+[[timeline]]
+action = "run"
+duration_s = 1.2
+"#;
+
+#[test]
+fn a_hose_end_mounted_on_a_door_goes_with_it_under_every_solver() {
+    use pliant_assembly::{run_timeline, NoObserver, WorkcellOptions};
+    use pliant_core::SolverKind;
+    let scene = pliant_scene::load_scene_str(DOOR, "door.toml").unwrap_or_else(|e| panic!("{e}"));
+    for solver in SolverKind::ALL {
+        let options = WorkcellOptions {
+            solver: Some(solver),
+            initial_loads: false, // the runner gives the timeline's fix and mount
+            ..Default::default()
+        };
+        let mut cell = scene.workcell(options).unwrap();
+        run_timeline(&mut cell, &scene.timeline, &mut NoObserver)
+            .unwrap_or_else(|e| panic!("{solver}: {e}"));
+        let state = cell.state();
+        let end = *state.x.last().unwrap();
+        // (0.3, 0, 0) turned by 60° about the vertical through (0.5, 0, 0)
+        let turn = glam::DQuat::from_rotation_z(60f64.to_radians());
+        let expected = DVec3::new(0.5, 0.0, 0.0) + turn * DVec3::new(-0.2, 0.0, 0.0);
+        assert!(
+            (end - expected).length() < 1e-9,
+            "{solver}: end at {end:?}, door carries it to {expected:?}"
+        );
+        assert!(state.x.iter().all(|x| x.is_finite()));
+    }
+    // a part the scene has not is refused with its name
+    let mut cell = scene.workcell(WorkcellOptions::default()).unwrap();
+    let node = pliant_assembly::NodeRef { hose: 0, node: 3 };
+    let e = cell
+        .apply(pliant_assembly::Input::Mount {
+            node,
+            part: "hood".into(),
+        })
+        .unwrap_err();
+    assert!(format!("{e}").contains("hood"), "{e}");
+}
