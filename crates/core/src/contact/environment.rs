@@ -210,22 +210,31 @@ impl RigidEnvironment {
     /// A lower bound on the distance from segment [a, b] to every part, capped at `max`:
     /// the distance to the nearest triangle's box, found best first down each part's BVH.
     pub(crate) fn nearest_box(&self, a: DVec3, b: DVec3, max: f64) -> f64 {
-        let segment = Aabb::new(a.min(b), a.max(b));
         let mut nearest = max;
         for part in &self.parts {
-            if part.moves || box_distance(&segment, &part.mesh.local_aabb()) >= nearest {
-                continue;
-            }
-            let best = part.mesh.bvh().find_best(
-                nearest,
-                |node, _| box_distance(&segment, &node.aabb()),
-                |i, _| Some(box_distance(&segment, &part.mesh.triangle(i).local_aabb())),
-            );
-            if let Some((_, d)) = best {
-                nearest = nearest.min(d);
+            if !part.moves {
+                nearest = part.nearest_box(a, b, nearest);
             }
         }
         nearest
+    }
+}
+
+impl RigidPart {
+    /// A lower bound on the distance from segment [a, b] (in the part's reference
+    /// placement) to the part, capped at `max`: the nearest triangle box, best first down
+    /// the BVH.
+    pub(crate) fn nearest_box(&self, a: DVec3, b: DVec3, max: f64) -> f64 {
+        let segment = Aabb::new(a.min(b), a.max(b));
+        if box_distance(&segment, &self.mesh.local_aabb()) >= max {
+            return max;
+        }
+        let best = self.mesh.bvh().find_best(
+            max,
+            |node, _| box_distance(&segment, &node.aabb()),
+            |i, _| Some(box_distance(&segment, &self.mesh.triangle(i).local_aabb())),
+        );
+        best.map_or(max, |(_, d)| d.min(max))
     }
 }
 

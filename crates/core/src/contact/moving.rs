@@ -18,9 +18,14 @@
 //!   by g in the step, no more — so it stops on the surface wherever the part moves
 //!   within the step, and is not pushed early.
 //!
-//! These searches are fresh BVH queries each step (the candidate lists of
-//! [`super::coherence`] assume parts that stand still); a node or beam far from the
-//! part's swept box costs one box test.
+//! These searches are BVH queries (the candidate lists of [`super::coherence`] assume
+//! parts that stand still); a node or beam far from the part's swept box costs one box
+//! test, and one found clear of a part keeps, in the part's frame, the distance D of the
+//! part's nearest triangle box: while its end points move less than D − ρ_now from
+//! where they were in that frame (distance to a fixed set is 1-Lipschitz in the end
+//! points, as in [`super::clearance`]), nothing lies within its reach ρ_now, and it is
+//! not searched — the same result as searching. A hose resting on a moving part barely
+//! moves in its frame.
 
 use super::coherence::Nearest;
 use super::environment::{cube, ClosestPoint};
@@ -69,6 +74,39 @@ fn meets(b: &Aabb, lo: DVec3, hi: DVec3, grow: f64) -> bool {
     (lo - grow).cmple(b.maxs).all() && b.mins.cmple(hi + grow).all()
 }
 
+/// How far (in reaches) a slot clear of a part looks for the part's nearest box.
+const FAR: f64 = 4.0;
+/// Relative slack on distances for rounding (errs towards searching).
+const SLACK: f64 = 1e-9;
+
+/// Whether search slot `slot` (a node or a beam against one moving part), now at [a, b]
+/// in the part's frame, is certainly farther than `reach` from the part.
+fn known_clear(
+    contact: &super::ContactScratch,
+    slot: usize,
+    a: DVec3,
+    b: DVec3,
+    reach: f64,
+) -> bool {
+    let ([anchor_a, anchor_b], nearest) = contact.moving_clear[slot];
+    let moved = (a - anchor_a).length().max((b - anchor_b).length());
+    moved < nearest / (1.0 + SLACK) - reach * (1.0 + SLACK)
+}
+
+/// Remembers that slot `slot`, at [a, b] in `part`'s frame, found nothing within
+/// `reach`: the distance of the part's nearest box, up to [`FAR`] reaches.
+fn anchor_clear(
+    contact: &mut super::ContactScratch,
+    part: &super::RigidPart,
+    slot: usize,
+    a: DVec3,
+    b: DVec3,
+    reach: f64,
+) {
+    let nearest = part.nearest_box(a, b, FAR * reach);
+    contact.moving_clear[slot] = ([a, b], nearest);
+}
+
 /// Detects the contacts of nodes and beam interiors with the moving parts and appends
 /// them to `state.contact.points` (see the module doc). Before the velocity correction of
 /// [`super::resolve_velocities`], which handles them with the still parts' contacts.
@@ -89,14 +127,19 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
         let (x, r) = (state.x[i], model.radius[i]);
         let own = state.v[i].length() * dt;
         let mut best: Option<(usize, DVec3, f64, f64)> = None; // part, local point, distance, reach
-        for slot in 0..env.moving.len() {
-            let k = env.moving[slot];
-            let reach = r * (1.0 + SKIN) + contact.moving_sweep[slot] + own;
-            if !meets(&contact.moving_box[slot], x, x, reach) {
+        let moving = env.moving.len();
+        for s in 0..moving {
+            let k = env.moving[s];
+            let reach = r * (1.0 + SKIN) + contact.moving_sweep[s] + own;
+            if !meets(&contact.moving_box[s], x, x, reach) {
                 continue;
             }
             let part = &env.parts[k];
             let local = contact.placements[k].pose.inverse_apply(x);
+            let slot = i * moving + s;
+            if known_clear(contact, slot, local, local, reach) {
+                continue;
+            }
             let bound = best.map_or(reach, |b| b.2.min(reach));
             let mut search = ClosestPoint::new(local, bound);
             for (rank, t) in part
@@ -107,10 +150,13 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
             {
                 search.offer(k, &part.mesh.triangle(t), rank as u32, 0);
             }
-            if let Some(hit) = search.best {
-                if best.is_none_or(|b| hit.distance < b.2) {
-                    best = Some((k, hit.point, hit.distance, reach));
+            match search.best {
+                Some(hit) => {
+                    if best.is_none_or(|b| hit.distance < b.2) {
+                        best = Some((k, hit.point, hit.distance, reach));
+                    }
                 }
+                None => anchor_clear(contact, part, slot, local, local, reach),
             }
         }
         let memory = &mut contact.moving_node_normal[i];
@@ -136,27 +182,31 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
     // beam interiors: the nearest pair strictly inside the segment, as for still parts
     for (e, el) in model.elements.iter().enumerate() {
         let (a, b) = (el.node_a, el.node_b);
-        let memory = &mut contact.moving_element_normal[e];
         if (state.held[a] && state.held[b])
             || model.body_of[a].is_some()
             || model.body_of[b].is_some()
         {
-            *memory = (usize::MAX, DVec3::ZERO);
+            contact.moving_element_normal[e] = (usize::MAX, DVec3::ZERO);
             continue;
         }
         let (xa, xb) = (state.x[a], state.x[b]);
         let r = model.radius[a].max(model.radius[b]);
         let own = state.v[a].length().max(state.v[b].length()) * dt;
         let mut best = None;
-        for slot in 0..env.moving.len() {
-            let k = env.moving[slot];
-            let reach = r * (1.0 + SKIN) + contact.moving_sweep[slot] + own;
-            if !meets(&contact.moving_box[slot], xa.min(xb), xa.max(xb), reach) {
+        let moving = env.moving.len();
+        for s in 0..moving {
+            let k = env.moving[s];
+            let reach = r * (1.0 + SKIN) + contact.moving_sweep[s] + own;
+            if !meets(&contact.moving_box[s], xa.min(xb), xa.max(xb), reach) {
                 continue;
             }
             let part = &env.parts[k];
             let pose = contact.placements[k].pose;
             let (la, lb) = (pose.inverse_apply(xa), pose.inverse_apply(xb));
+            let slot = (state.x.len() + e) * moving + s;
+            if known_clear(contact, slot, la, lb, reach) {
+                continue;
+            }
             let mut search = BeamSearch::new(la, lb, reach);
             let grow = DVec3::splat(reach);
             let query = Aabb::new(la.min(lb) - grow, la.max(lb) + grow);
@@ -164,13 +214,18 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
                 let edges = part.owned_edges[t as usize];
                 search.offer(k, &part.mesh.triangle(t), rank as u32, edges);
             }
-            if let Some(hit) = search.best {
-                let nearer = |(_, h): &(usize, super::rigid::BeamHit)| hit.distance < h.distance;
-                if best.as_ref().is_none_or(nearer) {
-                    best = Some((k, hit));
+            match search.best {
+                Some(hit) => {
+                    let nearer =
+                        |(_, h): &(usize, super::rigid::BeamHit)| hit.distance < h.distance;
+                    if best.as_ref().is_none_or(nearer) {
+                        best = Some((k, hit));
+                    }
                 }
+                None => anchor_clear(contact, part, slot, la, lb, reach),
             }
         }
+        let memory = &mut contact.moving_element_normal[e];
         let Some((k, hit)) = best else {
             *memory = (usize::MAX, DVec3::ZERO);
             continue;

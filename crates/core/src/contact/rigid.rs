@@ -102,6 +102,10 @@ pub struct ContactScratch {
     /// Per moving part this step: its box at its placement and how far it moves at most.
     pub(crate) moving_box: Vec<Aabb>,
     pub(crate) moving_sweep: Vec<f64>,
+    /// Per node and beam (nodes first) and moving part: where in the part's frame it was
+    /// found clear, and the distance of the part's nearest box from there
+    /// ([`super::moving`]; 0: not known to be clear).
+    pub(crate) moving_clear: Vec<([DVec3; 2], f64)>,
 }
 
 impl ContactScratch {
@@ -126,6 +130,11 @@ impl ContactScratch {
             moving_element_normal: vec![(usize::MAX, DVec3::ZERO); moving_slots(model, elements)],
             moving_box: vec![Aabb::new_invalid(); model.environment.moving.len()],
             moving_sweep: vec![0.0; model.environment.moving.len()],
+            moving_clear: vec![
+                ([DVec3::ZERO; 2], 0.0);
+                moving_slots(model, nodes + elements)
+                    * model.environment.moving.len()
+            ],
         }
     }
 }
