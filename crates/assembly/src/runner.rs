@@ -219,6 +219,14 @@ fn apply(
 ) -> Result<(), Stop> {
     match action {
         Action::Fix { node } => give(cell, index, Input::Fix { node: *node })?,
+        Action::Mount { node, part } => give(
+            cell,
+            index,
+            Input::Mount {
+                node: *node,
+                part: part.clone(),
+            },
+        )?,
         Action::Tie { node, to } => give(
             cell,
             index,

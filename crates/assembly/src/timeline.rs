@@ -36,6 +36,9 @@ pub struct Rotation {
 pub enum Action {
     /// L1: hold the node in all six degrees of freedom where it is now.
     Fix { node: NodeRef },
+    /// Hold the node to the part named `part` where it is now: it moves with the part
+    /// (a hose end clamped to a door or an engine).
+    Mount { node: NodeRef, part: String },
     /// L2 (+ L3): drive the node along `path` and/or rotate it by `rotation` over
     /// `duration` seconds with a smooth start and stop. While and after moving, the node
     /// stays held (its orientation too) until released. With `wait == false` the

@@ -14,6 +14,7 @@
 use anyhow::{bail, Context, Result};
 use comfy_table::{presets, CellAlignment, Table};
 use glam::DVec3;
+use pliant_core::kinematics::{Oscillation, PartMotion, Periodic};
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::rod::frames::node_frames;
 use pliant_core::RigidPartSpec;
@@ -174,6 +175,29 @@ pub struct ContactCost {
     pub realtime_factor: f64,
     /// Active contact points at the end of the measurement.
     pub contact_points: usize,
+    /// ns per step with the floor moving ([`floor_sway`]), and that over the floor at
+    /// rest (None when not measured).
+    pub ns_per_step_moving: Option<f64>,
+    pub moving_ratio: Option<f64>,
+}
+
+/// The moving floor of the contact rows: a gentle periodic sway (±2 mm vertically at
+/// 1 Hz, ±0.5° roll at 1 Hz about the floor's middle), so the hoses stay on it.
+pub fn floor_sway() -> PartMotion {
+    let swing = |amplitude: f64| Oscillation {
+        amplitude,
+        frequency: 1.0,
+        phase: 0.0,
+    };
+    PartMotion::Periodic(Periodic {
+        centre: DVec3::new(0.35, 0.2, -0.03),
+        translation: [Oscillation::default(), Oscillation::default(), swing(0.002)],
+        rotation: [
+            swing(0.5f64.to_radians()),
+            Oscillation::default(),
+            Oscillation::default(),
+        ],
+    })
 }
 
 /// Least-squares straight line y = slope·x + intercept with its coefficient of
@@ -381,6 +405,8 @@ pub fn bumpy_floor(quads: usize) -> RigidPartSpec {
         triangles,
         friction_static: 0.5,
         friction_sliding: 0.4,
+        motion: None,
+        parent: None,
     }
 }
 
@@ -439,8 +465,21 @@ pub fn bent_shape(origin: DVec3, elements: usize) -> Vec<DVec3> {
 /// in undeformed free fall during the measurement, where the element takes its cheap
 /// small-angle branches and the cost per element looks lower than it is in use.)
 pub fn setup(hoses: usize, elements: usize, floor_quads: usize) -> Result<(Model, State)> {
-    let model = Model::build(&world_with_floor(hoses, elements, floor_quads)?)
-        .context("building the benchmark model")?;
+    setup_moving(hoses, elements, floor_quads, None)
+}
+
+/// [`setup`] with the floor moving by `floor_motion` (None: standing still).
+pub fn setup_moving(
+    hoses: usize,
+    elements: usize,
+    floor_quads: usize,
+    floor_motion: Option<PartMotion>,
+) -> Result<(Model, State)> {
+    let mut world = world_with_floor(hoses, elements, floor_quads)?;
+    for part in &mut world.rigid_parts {
+        part.motion = floor_motion.clone();
+    }
+    let model = Model::build(&world).context("building the benchmark model")?;
     let mut state = State::at_rest(&model);
     for h in &model.hoses {
         let origin = model.rest_x[h.first_node];
@@ -477,7 +516,20 @@ pub fn measure(
     threads: usize,
     budget: Budget,
 ) -> Result<BenchRow> {
-    let (mut model, mut state) = setup(hoses, elements_per_hose, floor_quads)?;
+    measure_moving(hoses, elements_per_hose, floor_quads, threads, budget, None)
+}
+
+/// [`measure`] with the floor moving by `floor_motion`.
+pub fn measure_moving(
+    hoses: usize,
+    elements_per_hose: usize,
+    floor_quads: usize,
+    threads: usize,
+    budget: Budget,
+    floor_motion: Option<PartMotion>,
+) -> Result<BenchRow> {
+    let moving = floor_motion.is_some();
+    let (mut model, mut state) = setup_moving(hoses, elements_per_hose, floor_quads, floor_motion)?;
     model.threads = threads;
     let elements = model.elements.len();
     let nodes = model.node_count();
@@ -513,8 +565,9 @@ pub fn measure(
         (1, _) => format!("1 hose × {elements_per_hose}"),
         (_, 0) => format!("{hoses} hoses × {elements_per_hose}"),
         _ => format!(
-            "{hoses} hoses × {elements_per_hose} on {} triangles",
-            2 * floor_quads * floor_quads
+            "{hoses} hoses × {elements_per_hose} on {} triangles{}",
+            2 * floor_quads * floor_quads,
+            if moving { ", moving" } else { "" }
         ),
     };
     Ok(BenchRow {
@@ -658,6 +711,7 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
         .iter()
         .find(|r| r.hoses == 5 && r.elements_per_hose == 30 && r.contact_triangles > 0)
         .context("no row for 5 hoses × 30 with contact")?;
+    let moving_floor = rows.iter().find(|r| r.name.ends_with(", moving"));
     let contact = ContactCost {
         triangles: five_contact.contact_triangles,
         ns_per_step_free: five.ns_per_step,
@@ -665,6 +719,8 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
         ratio: five_contact.ns_per_step / five.ns_per_step,
         realtime_factor: five_contact.realtime_factor,
         contact_points: five_contact.contact_points,
+        ns_per_step_moving: moving_floor.map(|r| r.ns_per_step),
+        moving_ratio: moving_floor.map(|r| r.ns_per_step / five_contact.ns_per_step),
     };
     let mut fit_sizes = Vec::new();
     let mut fit_points = Vec::new();
@@ -784,6 +840,7 @@ fn run_contact_only(opts: &BenchOptions) -> Result<()> {
     let budget = Budget::new(opts.quick);
     let free = measure(5, 30, 0, 1, budget)?;
     let floor = measure(5, 30, FLOOR_QUADS, 1, budget)?;
+    let moving = measure_moving(5, 30, FLOOR_QUADS, 1, budget, Some(floor_sway()))?;
     let cost = ContactCost {
         triangles: floor.contact_triangles,
         ns_per_step_free: free.ns_per_step,
@@ -791,6 +848,8 @@ fn run_contact_only(opts: &BenchOptions) -> Result<()> {
         ratio: floor.ns_per_step / free.ns_per_step,
         realtime_factor: floor.realtime_factor,
         contact_points: floor.contact_points,
+        ns_per_step_moving: Some(moving.ns_per_step),
+        moving_ratio: Some(moving.ns_per_step / floor.ns_per_step),
     };
     if !opts.json {
         println!(
@@ -801,6 +860,11 @@ fn run_contact_only(opts: &BenchOptions) -> Result<()> {
             cost.contact_points,
             cost.ratio,
             cost.realtime_factor
+        );
+        println!(
+            "the same floor moving (±2 mm at 1 Hz vertically, ±0.5° roll): {:.0} ns/step, ×{:.2} the floor at rest (goal ≤ 1.3)",
+            moving.ns_per_step,
+            moving.ns_per_step / floor.ns_per_step
         );
         println!("the same at fixed steps of its world:");
     }
@@ -841,6 +905,17 @@ fn run_all(opts: &BenchOptions) -> Result<()> {
         );
     }
     rows.push(measure(5, 30, FLOOR_QUADS, 1, budget)?);
+    if !opts.json {
+        eprintln!("measuring 5 × 30 on the same floor, moving …");
+    }
+    rows.push(measure_moving(
+        5,
+        30,
+        FLOOR_QUADS,
+        1,
+        budget,
+        Some(floor_sway()),
+    )?);
     if !opts.json {
         eprintln!("measuring the Newton solvers …");
     }
@@ -1051,7 +1126,7 @@ mod tests {
             "the hoses must start deformed"
         );
         for (_, case) in state.loads.iter() {
-            let (x, q) = case.prescribed_pose(0.0).unwrap();
+            let (x, q) = case.prescribed_pose(0.0, &model.kinematics).unwrap();
             assert_eq!(x, state.x[case.node()]);
             assert_eq!(q, state.q[case.node()]);
         }

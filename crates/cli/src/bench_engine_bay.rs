@@ -158,6 +158,8 @@ fn part(name: &str) -> RigidPartSpec {
         triangles: Vec::new(),
         friction_static: 0.5,
         friction_sliding: 0.4,
+        motion: None,
+        parent: None,
     }
 }
 

@@ -67,6 +67,8 @@ fn block(top: f64) -> RigidPartSpec {
         ],
         friction_static: 0.5,
         friction_sliding: 0.4,
+        motion: None,
+        parent: None,
     }
 }
 

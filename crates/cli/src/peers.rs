@@ -367,6 +367,8 @@ fn cylinder(radius: f64, length: f64, segments: u32) -> RigidPartSpec {
         triangles: mesh.triangles,
         friction_static: DROP_FRICTION,
         friction_sliding: DROP_FRICTION,
+        motion: None,
+        parent: None,
     }
 }
 

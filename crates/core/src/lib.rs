@@ -15,7 +15,7 @@
 //!    [`section`], [`junction`], [`curve`], [`math`];
 //! 2. kernels — [`rod`] (the co-rotational element, its four-lane kernel and tangent,
 //!    masses, frames, stiffened sections, the stable time step), [`autodiff`];
-//! 3. loads and contact — [`loads`], [`contact`];
+//! 3. loads and contact — [`kinematics`] (parts that move), [`loads`], [`contact`];
 //! 4. Newton — [`newton`];
 //! 5. solvers — [`integrators`], [`relax`];
 //!
@@ -27,6 +27,7 @@ pub mod curve;
 pub mod health;
 pub mod integrators;
 pub mod junction;
+pub mod kinematics;
 pub mod loads;
 pub mod material;
 pub mod math;

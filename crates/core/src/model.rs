@@ -3,6 +3,7 @@
 
 use crate::contact::{HoseContactModel, RigidEnvironment};
 use crate::junction::Junction;
+use crate::kinematics::PartKinematics;
 use crate::rod::element::BeamElement;
 use crate::rod::element_block::PackedElements;
 use crate::rod::frames::node_frames;
@@ -12,7 +13,7 @@ use crate::rod::stiffened::{RigidBody, StiffenedSpan};
 use crate::rod::timestep::{stable_time_step, TimeStepReport};
 use crate::section::SectionProperties;
 use crate::settings::SolverSettings;
-use crate::spec::{HoseSpec, SimSettings, WorldSpec};
+use crate::spec::{HoseSpec, RigidPartSpec, SimSettings, WorldSpec};
 use glam::{DQuat, DVec3};
 use serde::Serialize;
 
@@ -61,6 +62,8 @@ pub struct Model {
     pub time_step_report: TimeStepReport,
     /// Rigid parts hoses collide with (SPEC L4); empty when the scene has none.
     pub environment: RigidEnvironment,
+    /// How the parts move (SPEC K1); every part still when none has a motion.
+    pub kinematics: PartKinematics,
     /// Stiffened sections (SPEC M6), and for each node the body it belongs to.
     pub bodies: Vec<RigidBody>,
     pub body_of: Vec<Option<usize>>,
@@ -255,6 +258,7 @@ impl Model {
             time_step_report: TimeStepReport::default(),
             environment: RigidEnvironment::build(&spec.rigid_parts)
                 .map_err(ModelError::RigidPart)?,
+            kinematics: part_kinematics(&spec.rigid_parts).map_err(ModelError::RigidPart)?,
             bodies: Vec::new(),
             body_of: vec![None; total_nodes],
             junctions: Vec::new(),
@@ -416,4 +420,20 @@ fn check_settings(s: &SimSettings) -> Result<(), ModelError> {
         ));
     }
     Ok(())
+}
+
+/// The parts' motions and parents; errors name the part.
+fn part_kinematics(parts: &[RigidPartSpec]) -> Result<PartKinematics, String> {
+    let motions = parts.iter().map(|p| p.motion.clone()).collect();
+    let parents = parts.iter().map(|p| p.parent).collect();
+    PartKinematics::new(motions, parents).map_err(|e| {
+        // "part k: …" → the part's name
+        match e.split_once(':').and_then(|(head, rest)| {
+            let k: usize = head.strip_prefix("part ")?.parse().ok()?;
+            Some(format!("rigid part '{}':{rest}", parts.get(k)?.name))
+        }) {
+            Some(named) => named,
+            None => e,
+        }
+    })
 }

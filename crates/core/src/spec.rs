@@ -112,8 +112,10 @@ impl Default for SimSettings {
     }
 }
 
-/// A rigid, fixed part of the environment (CAD part, sheet, primitive) as a triangle
-/// mesh in world coordinates — the loader has already applied the part's pose and unit.
+/// A rigid part of the environment (CAD part, sheet, primitive) as a triangle mesh in
+/// world coordinates — the loader has already applied the part's pose and unit. That is
+/// its reference placement: a part with a `motion` (or a moving `parent`) is carried from
+/// it by its pose over time ([`crate::kinematics`]).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct RigidPartSpec {
     /// Name shown in outputs.
@@ -127,6 +129,13 @@ pub struct RigidPartSpec {
     pub friction_static: f64,
     /// Coulomb friction coefficient while sliding.
     pub friction_sliding: f64,
+    /// How the part moves (in its parent's reference placement); `None`: it stands still
+    /// (or moves only with its parent).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<crate::kinematics::PartMotion>,
+    /// The part (index into the world's parts) this one is carried by.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parent: Option<usize>,
 }
 
 /// A whole world to simulate.

@@ -35,6 +35,8 @@ fn bumpy_floor(quads: usize) -> RigidPartSpec {
         triangles,
         friction_static: 0.5,
         friction_sliding: 0.4,
+        motion: None,
+        parent: None,
     }
 }
 
@@ -66,6 +68,8 @@ fn fine_cylinder(r: f64, n: usize) -> RigidPartSpec {
         triangles,
         friction_static: 0.5,
         friction_sliding: 0.5,
+        motion: None,
+        parent: None,
     }
 }
 

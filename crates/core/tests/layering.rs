@@ -40,12 +40,16 @@ const SOLVERS: &[&str] = &["integrators", "newton", "relax", "health"];
 /// its contact environment; the state holds the per-step scratch of contact, loads and
 /// sleeping; a spec names the hose contact rule.
 const DATA_EXCEPTIONS: &[(&str, &[&str])] = &[
-    ("spec", &["contact::HoseContactRule"]),
+    (
+        "spec",
+        &["contact::HoseContactRule", "kinematics::PartMotion"],
+    ),
     (
         "model",
         &[
             "contact::HoseContactModel",
             "contact::RigidEnvironment",
+            "kinematics::PartKinematics",
             "parallel::available_cores",
             "rod::element::BeamElement",
             "rod::element_block::PackedElements",

@@ -47,6 +47,8 @@ fn deep_penetration_is_pushed_out_gently() {
         triangles: vec![[0, 1, 2], [0, 2, 3]],
         friction_static: 0.5,
         friction_sliding: 0.4,
+        motion: None,
+        parent: None,
     };
     let model = hose_of_radius_over(r, nodes, floor);
     let mut state = State::at_rest(&model);
@@ -87,6 +89,8 @@ fn a_beam_crossing_an_edge_is_held_there_though_another_edge_is_nearer_its_end()
         triangles: vec![[0, 1, 2]],
         friction_static: 0.5,
         friction_sliding: 0.4,
+        motion: None,
+        parent: None,
     };
     let model = hose_of_radius_over(r, vec![a, b], triangle);
     let mut state = State::at_rest(&model);

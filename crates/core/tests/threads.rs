@@ -57,6 +57,8 @@ fn world(floor: bool) -> WorldSpec {
             triangles: vec![[0, 1, 2], [0, 2, 3]],
             friction_static: 0.5,
             friction_sliding: 0.4,
+            motion: None,
+            parent: None,
         }]
     } else {
         Vec::new()

@@ -91,6 +91,7 @@ impl Simulation {
     fn load_id(&self, id: LoadCaseId, case: &LoadCase) -> LoadId {
         let kind = match case {
             LoadCase::Fix(_) => "fix",
+            LoadCase::Mount(_) => "mount",
             LoadCase::Drive(_) => "drive",
             LoadCase::DeadLoad(_) => "dead_load",
             LoadCase::Support(_) => "support",

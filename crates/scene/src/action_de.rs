@@ -48,6 +48,7 @@ impl<'de> Deserialize<'de> for ActionEntry {
         };
         Ok(match tag.as_str() {
             "fix" => ActionEntry::Fix(part(table)?),
+            "mount" => ActionEntry::Mount(part(table)?),
             "move" => ActionEntry::Move(part(table)?),
             "load" => ActionEntry::Load(part(table)?),
             "unload" => ActionEntry::Unload(part(table)?),

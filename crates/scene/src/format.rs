@@ -581,6 +581,74 @@ pub struct PartEntry {
     pub rotation: Option<RotateEntry>,
     /// Coulomb friction of hoses on this part. Default static 0.5, sliding 0.4.
     pub friction: Option<FrictionEntry>,
+    /// How the part moves over time (a hinge, a slide, a periodic rocking, a sampled
+    /// path), from where `position` and `rotation` put it. Default: it stands still.
+    pub motion: Option<MotionEntry>,
+    /// The name of the part this one moves with (a door on a body): its `motion`, if
+    /// any, is carried by the parent's. Default: none.
+    pub parent: Option<String>,
+}
+
+/// `motion = { kind = "hinge" | "slide" | "periodic" | "path", … }`: the fields each kind
+/// takes are listed with them; lengths in the scene's length unit, angles in degrees,
+/// times in seconds, frequencies in Hz.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MotionEntry {
+    /// `"hinge"` (turns about `axis` through `point` by `angle_deg`), `"slide"` (moves
+    /// along `direction` by `distance`), `"periodic"` (oscillates about `centre`: `x`,
+    /// `y`, `z`, `roll`, `pitch`, `yaw`), `"path"` (follows the poses of the CSV `file`,
+    /// turning about `centre`).
+    pub kind: String,
+    /// Hinge: the axis direction (any non-zero length; right-hand rule).
+    pub axis: Option<Vec3>,
+    /// Hinge: a point on the axis (length unit).
+    pub point: Option<Vec3>,
+    /// Hinge: the angle over time (degrees).
+    pub angle_deg: Option<KeyframesEntry>,
+    /// Slide: the direction of travel (any non-zero length).
+    pub direction: Option<Vec3>,
+    /// Slide: the distance travelled over time (length unit).
+    pub distance: Option<KeyframesEntry>,
+    /// Periodic, path: the point turns are about (length unit). Default `[0, 0, 0]`.
+    pub centre: Option<Vec3>,
+    /// Periodic: oscillation along x, y, z (amplitude in the length unit).
+    pub x: Option<OscillationEntry>,
+    pub y: Option<OscillationEntry>,
+    pub z: Option<OscillationEntry>,
+    /// Periodic: oscillation about x (roll), y (pitch), z (yaw) through `centre`
+    /// (amplitude in degrees), composed as yaw · pitch · roll.
+    pub roll: Option<OscillationEntry>,
+    pub pitch: Option<OscillationEntry>,
+    pub yaw: Option<OscillationEntry>,
+    /// Path: a CSV file, relative to the scene file's directory or absolute, one pose a
+    /// line: `time_s, x, y, z, roll_deg, pitch_deg, yaw_deg` — the displacement of
+    /// `centre` (length unit) and the turn about it (degrees, yaw · pitch · roll). Lines
+    /// that do not start with a number (a header) are skipped; times must increase.
+    pub file: Option<String>,
+}
+
+/// `{ times_s = [...], values = [...], smooth = true }`: a coordinate at increasing
+/// times, held before the first and after the last; between two keyframes linear, or
+/// with `smooth` a quintic smooth-step (at rest at every keyframe). Default `smooth = true`.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct KeyframesEntry {
+    pub times_s: Vec<f64>,
+    pub values: Vec<f64>,
+    pub smooth: Option<bool>,
+}
+
+/// `{ amplitude, frequency_hz, phase_deg }`: amplitude · sin(2π f t + phase).
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OscillationEntry {
+    /// Amplitude (length unit for x, y, z; degrees for roll, pitch, yaw).
+    pub amplitude: f64,
+    /// Frequency (Hz), ≥ 0.
+    pub frequency_hz: f64,
+    /// Phase (degrees). Default 0.
+    pub phase_deg: Option<f64>,
 }
 
 /// `box = { size = [x, y, z] }`.
@@ -673,6 +741,8 @@ pub struct RotateEntry {
 pub enum ActionEntry {
     /// Hold the node in all six degrees of freedom where it is now.
     Fix(NodeEntry),
+    /// Hold the node to a part where it is now; it moves with the part.
+    Mount(MountEntry),
     /// Drive the node along waypoints and/or rotate it; it stays held afterwards.
     Move(MoveEntry),
     /// Add a force and/or moment (global frame) at the node, at once or over a ramp.
@@ -723,6 +793,18 @@ pub struct NodeEntry {
     pub hose: String,
     /// Node index; negative counts from the end (−1 = last).
     pub node: i64,
+}
+
+/// `mount`: a node held to a part, carried with it as the part moves.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MountEntry {
+    /// Hose name.
+    pub hose: String,
+    /// Node index; negative counts from the end (−1 = last).
+    pub node: i64,
+    /// The part's name.
+    pub part: String,
 }
 
 /// `tie`: a cable tie between a node of one hose and a node of another.

@@ -30,6 +30,7 @@ pub mod library;
 pub mod load;
 pub mod materials;
 pub mod mesh;
+pub mod part_motion;
 pub mod parts;
 pub mod ranges;
 pub mod route;

@@ -60,6 +60,8 @@ pub fn build_parts(
         }
     }
     let mut built = BuiltParts::default();
+    // per entry, the parts it gave
+    let mut gave = Vec::with_capacity(raw.len());
     for (i, p) in raw.iter().enumerate() {
         let only_step = p.step.is_some()
             && p.mesh.is_none()
@@ -89,8 +91,69 @@ pub fn build_parts(
                 ));
             }
         }
+        gave.push(first_new..built.specs.len());
     }
+    place_motions(raw, unit, files, &gave, &mut built)?;
     Ok(built)
+}
+
+/// Gives each entry's parts their `motion` and `parent` ([`crate::part_motion`]): a
+/// parent is named by its entry's `name` (a STEP entry's first solid stands for it).
+fn place_motions(
+    raw: &[PartEntry],
+    unit: LengthUnit,
+    files: &FileAccess,
+    gave: &[std::ops::Range<usize>],
+    built: &mut BuiltParts,
+) -> Result<(), FieldError> {
+    for (i, p) in raw.iter().enumerate() {
+        let at = |rest: &str| format!("parts[{i}].motion.{rest}");
+        let motion = match &p.motion {
+            Some(m) => Some(crate::part_motion::build_motion(m, &at, unit, files)?),
+            None => None,
+        };
+        let parent = match &p.parent {
+            None => None,
+            Some(name) => {
+                let Some(j) = raw.iter().position(|q| &q.name == name) else {
+                    let names: Vec<&str> = raw.iter().map(|q| q.name.as_str()).collect();
+                    return Err(FieldError::new(
+                        format!("parts[{i}].parent"),
+                        format!("\"{name}\""),
+                        format!("names no part; parts are: {}", names.join(", ")),
+                    ));
+                };
+                if j == i {
+                    return Err(FieldError::new(
+                        format!("parts[{i}].parent"),
+                        format!("\"{name}\""),
+                        "a part cannot be its own parent",
+                    ));
+                }
+                Some(gave[j].start)
+            }
+        };
+        for k in gave[i].clone() {
+            built.specs[k].motion = motion.clone();
+            built.specs[k].parent = parent;
+        }
+    }
+    // a cycle of parents: named at the first part in it
+    let parts: Vec<_> = built
+        .specs
+        .iter()
+        .map(|s| (s.motion.clone(), s.parent))
+        .collect();
+    let (motions, parents) = parts.into_iter().unzip();
+    if let Err(e) = pliant_core::kinematics::PartKinematics::new(motions, parents) {
+        let part = e
+            .split_once(':')
+            .and_then(|(h, _)| h.strip_prefix("part ")?.parse::<usize>().ok())
+            .and_then(|k| gave.iter().position(|r| r.contains(&k)))
+            .unwrap_or(0);
+        return Err(FieldError::about(format!("parts[{part}].parent"), e));
+    }
+    Ok(())
 }
 
 /// The pose of `parts[index]`: position \[m\] and rotation.
@@ -285,6 +348,8 @@ pub fn build_part(
         triangles,
         friction_static,
         friction_sliding,
+        motion: None,
+        parent: None,
     };
     Ok((spec, info))
 }

@@ -254,6 +254,11 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
                 node(&mut t, n);
                 "fix"
             }
+            Input::Mount { node: n, part } => {
+                node(&mut t, n);
+                t.insert("part".into(), Value::String(part.clone()));
+                "mount"
+            }
             Input::Unload { node: n, name } => {
                 node(&mut t, n);
                 if let Some(name) = name {

@@ -104,6 +104,8 @@ pub fn build_step_part(
             triangles: checked.mesh.triangles,
             friction_static,
             friction_sliding,
+            motion: None,
+            parent: None,
         });
     }
     Ok(())

@@ -3,8 +3,8 @@
 
 use crate::error::FieldError;
 use crate::format::{
-    ActionEntry, AimHandEntry, GrabEntry, GripName, HandEntry, LoadEntry, MoveEntry, MoveHandEntry,
-    NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, TieEntry, UnloadEntry,
+    ActionEntry, AimHandEntry, GrabEntry, GripName, HandEntry, LoadEntry, MountEntry, MoveEntry,
+    MoveHandEntry, NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, TieEntry, UnloadEntry,
 };
 use crate::ranges::{at_most, vec_at_most, MAX_LOAD_FORCE, MAX_LOAD_MOMENT, MAX_ROTATION_DEG};
 use crate::units::LengthUnit;
@@ -233,6 +233,10 @@ fn build_action(
     Ok(match a {
         ActionEntry::Fix(NodeEntry { hose, node }) => Action::Fix {
             node: node_ref(field, hose, *node, hoses)?,
+        },
+        ActionEntry::Mount(MountEntry { hose, node, part }) => Action::Mount {
+            node: node_ref(field, hose, *node, hoses)?,
+            part: part.clone(),
         },
         ActionEntry::Unload(UnloadEntry { hose, node, name }) => Action::Unload {
             node: node_ref(field, hose, *node, hoses)?,

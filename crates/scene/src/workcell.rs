@@ -32,7 +32,12 @@ impl LoadedScene {
         self.timeline
             .actions
             .iter()
-            .take_while(|a| matches!(a, Action::Fix { .. } | Action::Load { .. }))
+            .take_while(|a| {
+                matches!(
+                    a,
+                    Action::Fix { .. } | Action::Mount { .. } | Action::Load { .. }
+                )
+            })
             .cloned()
             .collect()
     }

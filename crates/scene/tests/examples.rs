@@ -88,6 +88,7 @@ fn coolant_demo_scene_is_as_described() {
         .iter()
         .map(|a| match a {
             Action::Fix { .. } => "fix",
+            Action::Mount { .. } => "mount",
             Action::Move { .. } => "move",
             Action::Release { .. } => "release",
             Action::Tie { .. } => "tie",

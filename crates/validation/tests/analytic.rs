@@ -125,3 +125,23 @@ fn plastic_section() {
 fn springback() {
     assert_case("springback");
 }
+#[test]
+fn moving_carry() {
+    assert_case("moving_carry");
+}
+#[test]
+fn moving_lift() {
+    assert_case("moving_lift");
+}
+#[test]
+fn moving_drag() {
+    assert_case("moving_drag");
+}
+#[test]
+fn moving_hinge() {
+    assert_case("moving_hinge");
+}
+#[test]
+fn moving_fast() {
+    assert_case("moving_fast");
+}

@@ -126,6 +126,7 @@ impl Recorder {
         for (_, case) in state.loads.iter() {
             let kind = match case {
                 LoadCase::Fix(_) => "fix",
+                LoadCase::Mount(_) => "mount",
                 LoadCase::Drive(_) => "drive",
                 LoadCase::Support(_) => "support",
                 LoadCase::DeadLoad(_) => continue,

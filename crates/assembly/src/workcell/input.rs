@@ -22,6 +22,9 @@ pub enum Input {
     /// L1: hold the node where it is now (replaces fixes and drives added by inputs on it;
     /// refused while a hand holds it).
     Fix { node: NodeRef },
+    /// Hold the node to the part named `part` where it is now, carried with the part as
+    /// it moves (as [`Input::Fix`] otherwise; refused for a part the scene has not).
+    Mount { node: NodeRef, part: String },
     /// L2 + L3: drive the node through `waypoints` while turning it by `rotation` over
     /// `duration` seconds from now (smooth start and stop), then hold it.
     Drive {
@@ -110,6 +113,7 @@ impl Input {
     pub fn name(&self) -> &'static str {
         match self {
             Input::Fix { .. } => "fix",
+            Input::Mount { .. } => "mount",
             Input::Drive { .. } => "drive",
             Input::Load { .. } => "load",
             Input::Unload { .. } => "unload",

@@ -42,7 +42,7 @@ use glam::{DQuat, DVec3};
 use hands::{holder, Hands};
 use pliant_core::health::{check_for, Divergence};
 use pliant_core::integrators::{StaticReport, StaticSolver};
-use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId, LoadRamp, Tie};
+use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId, LoadRamp, Mount, Tie};
 use pliant_core::{Model, Solver, SolverKind, SolverSettings, State};
 use recovery::Recovery;
 use serde::{Deserialize, Serialize};
@@ -222,9 +222,12 @@ impl Workcell {
         let solver = Solver::new(&model, settings).map_err(|e| e.to_string())?;
         let recovery = Recovery::new(solver.time_step(&model), HEALTH_CHECK_EVERY);
         for a in &setup.initial {
-            if !matches!(a, Action::Fix { .. } | Action::Load { .. }) {
+            if !matches!(
+                a,
+                Action::Fix { .. } | Action::Mount { .. } | Action::Load { .. }
+            ) {
                 return Err(format!(
-                    "initial load cases are fixes and dead loads only, not {a:?}"
+                    "initial load cases are fixes, mounts and dead loads only, not {a:?}"
                 ));
             }
         }
@@ -282,6 +285,7 @@ impl Workcell {
             for a in self.initial.clone() {
                 let input = match a {
                     Action::Fix { node } => Input::Fix { node },
+                    Action::Mount { node, part } => Input::Mount { node, part },
                     Action::Load {
                         node,
                         force,
@@ -646,6 +650,28 @@ impl Workcell {
                     node: i,
                     position: self.state.x[i],
                     orientation: self.state.q[i],
+                }));
+                self.tally.track_node(i, *node);
+                Ok(Applied::Load(id))
+            }
+            Input::Mount { node, part } => {
+                let i = self.global(*node)?;
+                let parts = &self.model.environment.parts;
+                let Some(k) = parts.iter().position(|p| &p.name == part) else {
+                    let names: Vec<&str> = parts.iter().map(|p| p.name.as_str()).collect();
+                    return Err(Refusal::Invalid(format!(
+                        "mount: no part named \"{part}\" (parts: {})",
+                        names.join(", ")
+                    )));
+                };
+                self.take_node(i)?;
+                // the node's pose now, in the part's reference placement
+                let pose = self.model.kinematics.placement_at(k, t).pose;
+                let id = self.add_user_load(LoadCase::Mount(Mount {
+                    node: i,
+                    part: k,
+                    position: pose.inverse_apply(self.state.x[i]),
+                    orientation: (pose.rotation.conjugate() * self.state.q[i]).normalize(),
                 }));
                 self.tally.track_node(i, *node);
                 Ok(Applied::Load(id))

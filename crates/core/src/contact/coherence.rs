@@ -736,6 +736,7 @@ mod tests {
             triangles,
             friction_static: 0.5,
             friction_sliding: 0.5,
+            ..Default::default()
         }])
         .unwrap()
     }

@@ -1,5 +1,12 @@
 //! The rigid environment: one parry triangle mesh (with its bounding-volume hierarchy)
-//! per part, built once with the model.
+//! per part, built once with the model, in the part's reference placement.
+//!
+//! Parts that stand still are searched in world coordinates, through the candidate lists
+//! of [`super::coherence`]; a part that moves ([`crate::kinematics`]) is never rebuilt:
+//! a query point is mapped into its reference placement by the inverse of its pose
+//! (distances are the same in both), and what is found is mapped back
+//! ([`super::moving`]). The still parts' searches skip the moving ones, so a world
+//! without moving parts is searched exactly as before.
 
 use super::coherence::{scan_fresh, Nearest};
 use super::owned_edges::owned_edges;
@@ -21,12 +28,19 @@ pub struct RigidPart {
     pub(crate) planes: Vec<Planes>,
     /// The edges each triangle of `mesh` owns ([`owned_edges`]), made once.
     pub(crate) owned_edges: Vec<u8>,
+    /// Whether the part moves (it has a motion, or a parent that moves).
+    pub moves: bool,
+    /// The largest distance of a vertex from the reference origin \[m\]: a point of the
+    /// part moves at most |Ṫ| + |ω| · this ([`crate::kinematics::Placement::velocity_at`]).
+    pub(crate) extent: f64,
 }
 
 /// All rigid parts of a model.
 #[derive(Clone, Debug, Default)]
 pub struct RigidEnvironment {
     pub parts: Vec<RigidPart>,
+    /// The indices of the parts that move, in order.
+    pub(crate) moving: Vec<usize>,
 }
 
 impl RigidEnvironment {
@@ -64,6 +78,7 @@ impl RigidEnvironment {
             let planes = (0..mesh.indices().len() as u32)
                 .map(|i| Planes::new(&mesh.triangle(i)))
                 .collect();
+            let extent = s.vertices.iter().map(|v| v.length()).fold(0.0, f64::max);
             parts.push(RigidPart {
                 name: s.name.clone(),
                 planes,
@@ -71,16 +86,37 @@ impl RigidEnvironment {
                 mesh,
                 friction_static: s.friction_static,
                 friction_sliding: s.friction_sliding,
+                moves: false,
+                extent,
             });
         }
-        Ok(RigidEnvironment { parts })
+        // a part moves if it or an ancestor has a motion (cycles: the kinematics refuse them)
+        for k in 0..parts.len() {
+            let mut at = Some(k);
+            for _ in 0..=specs.len() {
+                let Some(a) = at else { break };
+                let Some(spec) = specs.get(a) else { break };
+                if spec.motion.is_some() {
+                    parts[k].moves = true;
+                    break;
+                }
+                at = spec.parent;
+            }
+        }
+        let moving = (0..parts.len()).filter(|&k| parts[k].moves).collect();
+        Ok(RigidEnvironment { parts, moving })
+    }
+
+    /// Whether any part moves.
+    pub fn any_moves(&self) -> bool {
+        !self.moving.is_empty()
     }
 
     pub fn is_empty(&self) -> bool {
         self.parts.is_empty()
     }
 
-    /// Closest point to `p` on any part within `max_distance`: (part, point, distance),
+    /// Closest point to `p` on any still part within `max_distance`: (part, point, distance),
     /// found among the triangles whose bounding boxes meet the cube of half-size
     /// `max_distance` around `p` (anything outside that cube is farther away).
     pub fn closest_point(&self, p: DVec3, max_distance: f64) -> Option<(usize, DVec3, f64)> {
@@ -89,7 +125,58 @@ impl RigidEnvironment {
         search.best.map(|b| (b.part, b.point, b.distance))
     }
 
-    /// Calls `f(part, triangle)` for every triangle whose box meets `aabb`, parts in
+    /// [`Self::closest_point`] among every part, the moving ones at `placements` (one per
+    /// part; ignored without moving parts): the nearest, a still part on a tie.
+    pub fn closest_point_placed(
+        &self,
+        p: DVec3,
+        max_distance: f64,
+        placements: &[crate::kinematics::Placement],
+    ) -> Option<(usize, DVec3, f64)> {
+        let still = self.closest_point(p, max_distance);
+        let reach = still.map_or(max_distance, |b| b.2);
+        match self.closest_moving(p, reach, placements) {
+            Some(m) if still.is_none_or(|b| m.2 < b.2) => Some(m),
+            _ => still,
+        }
+    }
+
+    /// Closest point to `p` within `max_distance` on a moving part at `placements` (one
+    /// per part): (part, point, distance), the point in world coordinates. The search runs
+    /// in the part's reference placement (module doc).
+    pub fn closest_moving(
+        &self,
+        p: DVec3,
+        max_distance: f64,
+        placements: &[crate::kinematics::Placement],
+    ) -> Option<(usize, DVec3, f64)> {
+        let mut best: Option<(usize, DVec3, f64)> = None;
+        for &k in &self.moving {
+            let Some(place) = placements.get(k) else {
+                continue;
+            };
+            let reach = best.map_or(max_distance, |b| b.2);
+            let local = place.pose.inverse_apply(p);
+            let mut search = ClosestPoint::new(local, reach);
+            let part = &self.parts[k];
+            for (rank, i) in part
+                .mesh
+                .bvh()
+                .intersect_aabb(&cube(local, reach))
+                .enumerate()
+            {
+                search.offer(k, &part.mesh.triangle(i), rank as u32, 0);
+            }
+            if let Some(hit) = search.best {
+                if best.is_none_or(|b| hit.distance < b.2) {
+                    best = Some((k, place.pose.apply(hit.point), hit.distance));
+                }
+            }
+        }
+        best
+    }
+
+    /// Calls `f(part, triangle)` for every still part's triangle whose box meets `aabb`, parts in
     /// order, each part's triangles in its BVH's depth-first order.
     pub fn for_each_triangle_near(&self, aabb: &Aabb, mut f: impl FnMut(usize, &Triangle)) {
         self.for_each_index_near(aabb, |k, i| f(k, &self.parts[k].mesh.triangle(i)));
@@ -99,7 +186,7 @@ impl RigidEnvironment {
     /// in its part's mesh (for callers that need the triangle itself for few of them).
     pub(crate) fn for_each_index_near(&self, aabb: &Aabb, mut f: impl FnMut(usize, u32)) {
         for (k, part) in self.parts.iter().enumerate() {
-            if !part.mesh.local_aabb().intersects(aabb) {
+            if part.moves || !part.mesh.local_aabb().intersects(aabb) {
                 continue;
             }
             for i in part.mesh.bvh().intersect_aabb(aabb) {
@@ -123,22 +210,31 @@ impl RigidEnvironment {
     /// A lower bound on the distance from segment [a, b] to every part, capped at `max`:
     /// the distance to the nearest triangle's box, found best first down each part's BVH.
     pub(crate) fn nearest_box(&self, a: DVec3, b: DVec3, max: f64) -> f64 {
-        let segment = Aabb::new(a.min(b), a.max(b));
         let mut nearest = max;
         for part in &self.parts {
-            if box_distance(&segment, &part.mesh.local_aabb()) >= nearest {
-                continue;
-            }
-            let best = part.mesh.bvh().find_best(
-                nearest,
-                |node, _| box_distance(&segment, &node.aabb()),
-                |i, _| Some(box_distance(&segment, &part.mesh.triangle(i).local_aabb())),
-            );
-            if let Some((_, d)) = best {
-                nearest = nearest.min(d);
+            if !part.moves {
+                nearest = part.nearest_box(a, b, nearest);
             }
         }
         nearest
+    }
+}
+
+impl RigidPart {
+    /// A lower bound on the distance from segment [a, b] (in the part's reference
+    /// placement) to the part, capped at `max`: the nearest triangle box, best first down
+    /// the BVH.
+    pub(crate) fn nearest_box(&self, a: DVec3, b: DVec3, max: f64) -> f64 {
+        let segment = Aabb::new(a.min(b), a.max(b));
+        if box_distance(&segment, &self.mesh.local_aabb()) >= max {
+            return max;
+        }
+        let best = self.mesh.bvh().find_best(
+            max,
+            |node, _| box_distance(&segment, &node.aabb()),
+            |i, _| Some(box_distance(&segment, &self.mesh.triangle(i).local_aabb())),
+        );
+        best.map_or(max, |(_, d)| d.min(max))
     }
 }
 
@@ -162,6 +258,7 @@ pub(crate) fn test_plate() -> RigidEnvironment {
         triangles: vec![[0, 1, 2], [0, 2, 3]],
         friction_static: 0.5,
         friction_sliding: 0.5,
+        ..Default::default()
     }])
     .unwrap()
 }

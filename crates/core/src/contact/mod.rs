@@ -18,6 +18,7 @@ pub mod coherence;
 mod environment;
 pub mod friction;
 pub mod hose_hose;
+mod moving;
 mod network_gaps;
 mod owned_edges;
 mod pair_count;
@@ -47,5 +48,6 @@ pub use segment_triangle::{
     closest_segment_triangle, closest_segment_triangle_away_from_ends, SegmentTriangleClosest,
 };
 
+pub(crate) use moving::wake_near as wake_near_moving_parts;
 pub(crate) use penalty::add_penalty_forces;
 pub(crate) use rigid::{project_positions, resolve_velocities};

@@ -23,11 +23,23 @@ pub(crate) fn add_penalty_forces(model: &Model, state: &mut State) {
         for &i in &body.nodes {
             let r = model.radius[i];
             let x = state.x[i];
-            if clearance.is_clear(i, x) {
-                continue; // farther than r from every part: nothing to find
-            }
-            let Some((_, q, d)) = env.closest_point(x, r) else {
-                clearance.anchor(env, i, x, r);
+            // farther than r from every still part: nothing to find there
+            let still = if clearance.is_clear(i, x) {
+                None
+            } else {
+                let hit = env.closest_point(x, r);
+                if hit.is_none() {
+                    clearance.anchor(env, i, x, r);
+                }
+                hit
+            };
+            let placements = &state.contact.placements;
+            let moving = if env.any_moves() {
+                env.closest_moving(x, still.map_or(r, |h| h.2), placements)
+            } else {
+                None
+            };
+            let Some((part, q, d)) = moving.or(still) else {
                 continue;
             };
             if d >= r || d <= 1e-12 * r {
@@ -36,7 +48,12 @@ pub(crate) fn add_penalty_forces(model: &Model, state: &mut State) {
             let n = (state.x[i] - q) / d;
             let k = model.mass[i] * 0.25 * omega * omega;
             let c = (k * model.mass[i]).sqrt();
-            let vn = state.v[i].dot(n);
+            // relative to the part's velocity there
+            let v_part = match placements.get(part) {
+                Some(p) if env.parts[part].moves => p.velocity_at(q),
+                _ => glam::DVec3::ZERO,
+            };
+            let vn = (state.v[i] - v_part).dot(n);
             let f = n * (k * (r - d) - c * vn.min(0.0));
             state.force[i] += f;
             state.contact_force[i] += f;

@@ -23,6 +23,9 @@
 //!    at most 10 % of the radius per step — position only, so deep penetration is resolved
 //!    over a few steps without any explosive force.
 //!
+//! Parts that move ([`super::moving`]) are found in their own frames and appended to the
+//! contacts; steps 2 and 3 use the velocity relative to the part's.
+//!
 //! Tunnelling: at hand speeds (≤ 2 m/s) and the explicit step (≈ 0.1 ms) a point moves
 //! ≈ 0.2 mm per step, far less than a hose radius, so a thin sheet is always detected
 //! before it could be crossed.
@@ -38,11 +41,11 @@ use parry3d_f64::bounding_volume::Aabb;
 use parry3d_f64::shape::Triangle;
 
 /// Detection distance beyond touching, as a fraction of the radius.
-const SKIN: f64 = 0.01;
+pub(super) const SKIN: f64 = 0.01;
 /// Largest penetration push-out per step, as a fraction of the radius.
 const MAX_PUSH: f64 = 0.1;
 /// Beam-interior contacts are those strictly between the nodes.
-const INTERIOR: f64 = 0.02;
+pub(super) const INTERIOR: f64 = 0.02;
 
 /// One active contact in a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,6 +61,8 @@ pub struct ContactPoint {
     pub depth: f64,
     /// Index of the part touched.
     pub part: usize,
+    /// The part's velocity at the contact point \[m/s\] (zero for a part standing still).
+    pub part_velocity: DVec3,
 }
 
 /// Contact memory and per-step work space, allocated once with the state.
@@ -87,6 +92,20 @@ pub struct ContactScratch {
     /// When the stiffened sections' nodes are clear of the parts ([`super::Clearance`],
     /// read by the penalty contact).
     pub(crate) clearance: super::Clearance,
+    /// Every part's pose and twist this step ([`crate::kinematics::PartKinematics::place_all`];
+    /// empty when no part moves).
+    pub placements: Vec<crate::kinematics::Placement>,
+    /// Per node and per beam: the moving part of its last contact and the normal there,
+    /// in that part's frame ([`super::moving`]; `usize::MAX`: none).
+    pub(crate) moving_node_normal: Vec<(usize, DVec3)>,
+    pub(crate) moving_element_normal: Vec<(usize, DVec3)>,
+    /// Per moving part this step: its box at its placement and how far it moves at most.
+    pub(crate) moving_box: Vec<Aabb>,
+    pub(crate) moving_sweep: Vec<f64>,
+    /// Per node and beam (nodes first) and moving part: where in the part's frame it was
+    /// found clear, and the distance of the part's nearest box from there
+    /// ([`super::moving`]; 0: not known to be clear).
+    pub(crate) moving_clear: Vec<([DVec3; 2], f64)>,
 }
 
 impl ContactScratch {
@@ -102,7 +121,30 @@ impl ContactScratch {
             beams_near: Vec::with_capacity(elements),
             skin: super::ClearSkin::new(nodes, elements),
             clearance: super::Clearance::new(nodes, &model.environment),
+            placements: if model.environment.any_moves() {
+                vec![Default::default(); model.environment.parts.len()]
+            } else {
+                Vec::new()
+            },
+            moving_node_normal: vec![(usize::MAX, DVec3::ZERO); moving_slots(model, nodes)],
+            moving_element_normal: vec![(usize::MAX, DVec3::ZERO); moving_slots(model, elements)],
+            moving_box: vec![Aabb::new_invalid(); model.environment.moving.len()],
+            moving_sweep: vec![0.0; model.environment.moving.len()],
+            moving_clear: vec![
+                ([DVec3::ZERO; 2], 0.0);
+                moving_slots(model, nodes + elements)
+                    * model.environment.moving.len()
+            ],
         }
+    }
+}
+
+/// `n` when some part moves, else none.
+fn moving_slots(model: &Model, n: usize) -> usize {
+    if model.environment.any_moves() {
+        n
+    } else {
+        0
     }
 }
 
@@ -134,7 +176,7 @@ fn reach_of(model: &Model, el: &BeamElement) -> f64 {
 
 /// Normal and depth from a hose point `p` of radius `r` and the closest surface point `q`,
 /// keeping the remembered side when the point has crossed the surface.
-fn side(p: DVec3, q: DVec3, r: f64, remembered: DVec3) -> (DVec3, f64) {
+pub(super) fn side(p: DVec3, q: DVec3, r: f64, remembered: DVec3) -> (DVec3, f64) {
     let d = (p - q).length();
     let fresh = if d > 1e-12 * r {
         (p - q) / d
@@ -173,23 +215,35 @@ fn contact_velocity(state: &State, c: &ContactPoint) -> DVec3 {
 
 /// A beam-interior contact: part, parameter, points on the beam and the triangle.
 #[derive(Clone, Copy)]
-struct BeamHit {
+pub(super) struct BeamHit {
     part: usize,
-    t: f64,
-    p: DVec3,
-    q: DVec3,
-    distance: f64,
+    pub t: f64,
+    pub p: DVec3,
+    pub q: DVec3,
+    pub distance: f64,
     rank: u32,
 }
 
 /// The search for a beam's interior contact: the nearest pair strictly inside the
 /// segment (away from its nodes, which have their own contacts) and any mesh edge, or a
 /// piercing point, within reach.
-struct BeamSearch {
+pub(super) struct BeamSearch {
     a: DVec3,
     b: DVec3,
     reach: f64,
-    best: Option<BeamHit>,
+    pub best: Option<BeamHit>,
+}
+
+impl BeamSearch {
+    /// A search along [a, b] within `reach`.
+    pub fn new(a: DVec3, b: DVec3, reach: f64) -> Self {
+        BeamSearch {
+            a,
+            b,
+            reach,
+            best: None,
+        }
+    }
 }
 
 impl Nearest for BeamSearch {
@@ -327,6 +381,7 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
                     normal,
                     depth,
                     part,
+                    part_velocity: DVec3::ZERO,
                 });
             }
             None => *remembered = DVec3::ZERO,
@@ -375,23 +430,34 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
                     normal,
                     depth,
                     part,
+                    part_velocity: DVec3::ZERO,
                 });
             }
             None => contact.element_normal[e] = DVec3::ZERO,
         }
+    }
+    if env.any_moves() {
+        super::moving::detect(model, state, dt);
     }
     for k in 0..state.contact.points.len() {
         let c = state.contact.points[k];
         let Some((wa, wb)) = weights(state, &c) else {
             continue;
         };
-        let v_c = contact_velocity(state, &c);
+        let part = &env.parts[c.part];
+        // relative to the part's velocity; a moving part's contact found with a gap lets
+        // the point approach by the gap in this step ([`super::moving`])
+        let v_c = contact_velocity(state, &c) - c.part_velocity;
         let vn = v_c.dot(c.normal);
-        if vn >= 0.0 {
+        let allowed = if part.moves {
+            (-c.depth).max(0.0) / dt
+        } else {
+            0.0
+        };
+        if vn >= -allowed {
             continue;
         }
-        let part = &env.parts[c.part];
-        let dvn = -vn;
+        let dvn = -vn - allowed;
         let vt = v_c - vn * c.normal;
         let speed_t = vt.length();
         let dvt = if speed_t <= part.friction_static * dvn {
@@ -417,7 +483,10 @@ pub(crate) fn project_positions(model: &Model, state: &mut State, dt: f64) {
             continue;
         };
         let r = model.radius[c.node_a].max(model.radius[c.node_b]);
-        let moved_out = contact_velocity(state, &c).dot(c.normal).max(0.0) * dt;
+        let moved_out = (contact_velocity(state, &c) - c.part_velocity)
+            .dot(c.normal)
+            .max(0.0)
+            * dt;
         let push = (c.depth - moved_out).clamp(0.0, MAX_PUSH * r);
         if push > 0.0 {
             state.x[c.node_a] += wa * push * c.normal;

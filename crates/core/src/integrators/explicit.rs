@@ -12,6 +12,7 @@
 
 use crate::contact::{
     add_hose_contact_forces, add_penalty_forces, project_positions, resolve_velocities,
+    wake_near_moving_parts,
 };
 use crate::integrators::advance::{advance, Advance, Nodes};
 use crate::loads::LoadCase;
@@ -32,6 +33,14 @@ pub fn step(model: &Model, state: &mut State) {
 /// solver's fallback takes a step it could not converge in explicit pieces.
 pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     let t_next = state.time + dt;
+    if model.environment.any_moves() {
+        // the parts' poses at the step's start, their twists at mid-step
+        // (crate::contact::moving)
+        let placements = &mut state.contact.placements;
+        model
+            .kinematics
+            .place_all(state.time, state.time + 0.5 * dt, placements);
+    }
     {
         let config = NodeView {
             x: &state.x,
@@ -65,6 +74,9 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     }
     // a support moved (by a hand) wakes its hose below, as a moving fix does
     let mut moved_any = false;
+    if state.sleep.enabled && model.environment.any_moves() {
+        moved_any |= wake_near_moving_parts(model, state, dt);
+    }
     for (_, case) in state.loads.iter_mut() {
         if let LoadCase::Support(s) = case {
             if s.moved && state.sleep.enabled {
@@ -94,7 +106,7 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     }
     // Kinematic load cases, in order (a later one on the same node wins).
     for (_, case) in state.loads.iter() {
-        let Some((x_new, q_new)) = case.prescribed_pose(t_next) else {
+        let Some((x_new, q_new)) = case.prescribed_pose(t_next, &model.kinematics) else {
             continue;
         };
         let i = case.node();

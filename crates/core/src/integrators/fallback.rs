@@ -38,7 +38,8 @@ pub fn explicit_pieces(
             LoadCase::Support(_)
             | LoadCase::Drive(_)
             | LoadCase::DeadLoad(_)
-            | LoadCase::Tie(_) => {}
+            | LoadCase::Tie(_)
+            | LoadCase::Mount(_) => {}
         }
     }
     let pieces = (h / model.time_step).ceil().max(1.0) as usize;
@@ -75,7 +76,7 @@ fn set_targets(state: &mut State, targets: &[Target], s: f64) {
                 sp.moved |= sp.position != x;
                 sp.position = x;
             }
-            LoadCase::Drive(_) | LoadCase::DeadLoad(_) | LoadCase::Tie(_) => {}
+            LoadCase::Drive(_) | LoadCase::DeadLoad(_) | LoadCase::Tie(_) | LoadCase::Mount(_) => {}
         }
     }
 }

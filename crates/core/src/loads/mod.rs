@@ -6,6 +6,7 @@ mod dead_load;
 mod drive;
 mod fix;
 mod motion;
+mod mount;
 mod support;
 mod tie;
 
@@ -13,12 +14,14 @@ pub use dead_load::{DeadLoad, LoadRamp};
 pub use drive::Drive;
 pub use fix::Fix;
 pub use motion::Motion;
+pub use mount::Mount;
 pub use support::{
     largest_safety_with_supports, support_reactions, Support, SupportLoad, SUPPORT_DAMPING,
     SUPPORT_FACTOR,
 };
 pub use tie::{Tie, TieLoad};
 
+use crate::kinematics::PartKinematics;
 use glam::{DQuat, DVec3};
 use serde::Serialize;
 
@@ -41,6 +44,8 @@ pub enum LoadCase {
     /// Two nodes (of two hoses) held at a distance: a cable tie bundling the hoses. Its
     /// [`LoadCase::node`] is the first node; only its handle removes it.
     Tie(Tie),
+    /// A node held to a part, carried with it as the part moves.
+    Mount(Mount),
 }
 
 impl LoadCase {
@@ -51,16 +56,27 @@ impl LoadCase {
             LoadCase::DeadLoad(d) => d.node,
             LoadCase::Support(s) => s.node,
             LoadCase::Tie(t) => t.nodes[0],
+            LoadCase::Mount(m) => m.node,
         }
     }
 
-    /// The pose (position, orientation) a kinematic load case prescribes at time `t`.
-    pub fn prescribed_pose(&self, t: f64) -> Option<(DVec3, DQuat)> {
+    /// The pose (position, orientation) a kinematic load case prescribes at time `t`, with
+    /// the parts moving by `parts`.
+    pub fn prescribed_pose(&self, t: f64, parts: &PartKinematics) -> Option<(DVec3, DQuat)> {
         match self {
             LoadCase::Fix(f) => Some((f.position, f.orientation)),
             LoadCase::Drive(d) => Some(d.pose_at(t)),
+            LoadCase::Mount(m) => Some(m.pose_at(t, parts)),
             LoadCase::DeadLoad(_) | LoadCase::Support(_) | LoadCase::Tie(_) => None,
         }
+    }
+
+    /// Whether the load case holds its node kinematically (fix, drive, mount).
+    pub fn is_kinematic(&self) -> bool {
+        matches!(
+            self,
+            LoadCase::Fix(_) | LoadCase::Drive(_) | LoadCase::Mount(_)
+        )
     }
 }
 
@@ -144,7 +160,7 @@ impl LoadCases {
     pub fn holds(&self, node: usize) -> bool {
         self.cases
             .iter()
-            .any(|(_, c)| c.node() == node && c.prescribed_pose(0.0).is_some())
+            .any(|(_, c)| c.node() == node && c.is_kinematic())
     }
 
     /// Whether a load still changes at time `t`: a drive moving, or a dead load rising or

@@ -58,6 +58,12 @@ pub struct NewtonSystem {
     pub contact_stiffness: Vec<f64>,
     /// Friction of each node touching a part, last assembly (None: not in contact).
     pub friction: Vec<Option<FrictionResponse>>,
+    /// The part each node touched at the last assembly (`usize::MAX`: none).
+    contact_part: Vec<usize>,
+    /// Every part's pose at the time of the solve (empty when no part moves): a moving
+    /// part is a sequence of poses to the Newton solvers, its contact and friction are
+    /// taken in its own frame, so friction acts on the motion relative to it.
+    pub placements: Vec<crate::kinematics::Placement>,
     /// Whether a node's increment is prescribed (zero).
     pub prescribed: Vec<bool>,
     /// Target poses of the prescribed nodes, and whether they still have to be moved.
@@ -158,6 +164,12 @@ impl NewtonSystem {
             contact_force: vec![DVec3::ZERO; n],
             contact_stiffness,
             friction: vec![None; n],
+            contact_part: vec![usize::MAX; n],
+            placements: if model.environment.any_moves() {
+                vec![Default::default(); model.environment.parts.len()]
+            } else {
+                Vec::new()
+            },
             prescribed: vec![false; n],
             target_x: vec![DVec3::ZERO; n],
             target_q: vec![DQuat::IDENTITY; n],
@@ -337,24 +349,21 @@ impl NewtonSystem {
         let with_friction = state.friction.fits(self.force.len());
         for i in 0..self.force.len() {
             self.friction[i] = None;
+            self.contact_part[i] = usize::MAX;
             let Some((part, n, depth)) = self.touching(model, state.x[i], i) else {
                 continue;
             };
+            if model.environment.parts[part].moves {
+                self.contact_part[i] = part;
+            }
             let k = self.contact_stiffness[i];
             let mut f = n * (k * depth);
             let nn = normal_projector(n);
+            let friction = (with_friction && !self.prescribed[i])
+                .then(|| self.friction_response(model, state, i, part, n, k * depth, k));
             let mut block = self.matrix.diag[i].fixed_view_mut::<3, 3>(0, 0);
             block += nn * k;
-            if with_friction && !self.prescribed[i] {
-                let p = &model.environment.parts[part];
-                let r = state.friction.response(
-                    i,
-                    state.x[i],
-                    n,
-                    k * depth,
-                    k,
-                    (p.friction_static, p.friction_sliding),
-                );
+            if let Some(r) = friction {
                 block += r.tangent;
                 f += r.force;
                 self.friction[i] = Some(r);
@@ -364,11 +373,58 @@ impl NewtonSystem {
         }
     }
 
+    /// Friction of node `i` touching `part` with normal `n`: in the part's own frame
+    /// when it moves (its anchor stays on the part), turned back to world axes.
+    #[allow(clippy::too_many_arguments)]
+    fn friction_response(
+        &self,
+        model: &Model,
+        state: &State,
+        i: usize,
+        part: usize,
+        n: DVec3,
+        normal_force: f64,
+        k: f64,
+    ) -> FrictionResponse {
+        let p = &model.environment.parts[part];
+        let mu = (p.friction_static, p.friction_sliding);
+        match self.moving_pose(model, part) {
+            None => state
+                .friction
+                .response(i, state.x[i], n, normal_force, k, mu),
+            Some(pose) => {
+                let back = pose.rotation;
+                let local_x = pose.inverse_apply(state.x[i]);
+                let local_n = back.conjugate() * n;
+                let mut r = state
+                    .friction
+                    .response(i, local_x, local_n, normal_force, k, mu);
+                let turn = mat3(glam::DMat3::from_quat(back));
+                r.force = back * r.force;
+                r.tangent = turn * r.tangent * turn.transpose();
+                r
+            }
+        }
+    }
+
+    /// The pose of `part` at the solve's time if it moves.
+    fn moving_pose(&self, model: &Model, part: usize) -> Option<crate::kinematics::Pose> {
+        if !model.environment.parts.get(part)?.moves {
+            return None;
+        }
+        self.placements.get(part).map(|p| p.pose)
+    }
+
     /// The part node `i` at `x` penetrates, the unit normal towards the node and the
     /// depth r − d > 0; None when the node's ball is clear of every part.
     fn touching(&self, model: &Model, x: DVec3, i: usize) -> Option<(usize, DVec3, f64)> {
         let r = model.radius[i];
-        let (part, p, d) = model.environment.closest_point(x, r)?;
+        let env = &model.environment;
+        let (part, p, d) = if env.any_moves() {
+            env.closest_point_placed(x, r, &self.placements)?
+        } else {
+            env.closest_point(x, r)?
+        };
         (d < r && d > 1e-12 * r).then(|| (part, (x - p) / d, r - d))
     }
 
@@ -393,9 +449,22 @@ impl NewtonSystem {
         }
         for i in 0..self.force.len() {
             let k = self.contact_stiffness[i];
-            state
-                .friction
-                .commit(i, state.x[i], self.friction[i].as_ref(), k);
+            let moving = self.placements.get(self.contact_part[i]);
+            match (moving, self.friction[i].as_ref()) {
+                // a moving part's anchor is kept in its frame (Self::friction_response)
+                (Some(place), Some(r)) => {
+                    let back = place.pose.rotation.conjugate();
+                    let local = FrictionResponse {
+                        force: back * r.force,
+                        ..*r
+                    };
+                    let x = place.pose.inverse_apply(state.x[i]);
+                    state.friction.commit(i, x, Some(&local), k);
+                }
+                _ => state
+                    .friction
+                    .commit(i, state.x[i], self.friction[i].as_ref(), k),
+            }
         }
     }
 
@@ -453,12 +522,8 @@ impl NewtonSystem {
                 let k = self.contact_stiffness[i];
                 e += 0.5 * k * depth * depth;
                 if with_friction && !self.prescribed[i] {
-                    let p = &model.environment.parts[part];
-                    let mu = (p.friction_static, p.friction_sliding);
-                    e += state
-                        .friction
-                        .response(i, state.x[i], n, k * depth, k, mu)
-                        .energy;
+                    let r = self.friction_response(model, state, i, part, n, k * depth, k);
+                    e += r.energy;
                 }
             }
         }
@@ -477,8 +542,11 @@ impl NewtonSystem {
     pub fn set_prescribed(&mut self, model: &Model, state: &State, t: f64) {
         self.prescribed.fill(false);
         self.pending = false;
+        if model.environment.any_moves() {
+            model.kinematics.place_all(t, t, &mut self.placements);
+        }
         for (_, case) in state.loads.iter() {
-            let Some((x_new, q_new)) = case.prescribed_pose(t) else {
+            let Some((x_new, q_new)) = case.prescribed_pose(t, &model.kinematics) else {
                 continue;
             };
             let i = case.node();

@@ -42,6 +42,8 @@ pub(super) fn quad(
         triangles,
         friction_static: mu.0,
         friction_sliding: mu.1,
+        motion: None,
+        parent: None,
     }
 }
 
@@ -74,6 +76,8 @@ fn cuboid(name: &str, c: DVec3, h: DVec3) -> RigidPartSpec {
         triangles,
         friction_static: 0.5,
         friction_sliding: 0.4,
+        motion: None,
+        parent: None,
     }
 }
 

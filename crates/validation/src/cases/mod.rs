@@ -12,6 +12,7 @@ mod helix;
 pub mod hose_contact;
 mod invariance;
 mod plastic_bending;
+mod moving_parts;
 mod postbuckling;
 mod rollup;
 mod scale;
@@ -54,4 +55,9 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("solvers", solvers::run),
     ("plastic_section", plastic_bending::run_section),
     ("springback", plastic_bending::run_springback),
+    ("moving_carry", moving_parts::run_carry),
+    ("moving_lift", moving_parts::run_lift),
+    ("moving_drag", moving_parts::run_drag),
+    ("moving_hinge", moving_parts::run_hinge),
+    ("moving_fast", moving_parts::run_fast),
 ];
