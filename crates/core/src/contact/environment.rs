@@ -157,17 +157,8 @@ impl RigidEnvironment {
             };
             let reach = best.map_or(max_distance, |b| b.2);
             let local = place.pose.inverse_apply(p);
-            let mut search = ClosestPoint::new(local, reach);
-            let part = &self.parts[k];
-            for (rank, i) in part
-                .mesh
-                .bvh()
-                .intersect_aabb(&cube(local, reach))
-                .enumerate()
-            {
-                search.offer(k, &part.mesh.triangle(i), rank as u32, 0);
-            }
-            if let Some(hit) = search.best {
+            let found = self.parts[k].closest_point_local(k, local, reach);
+            if let Some(hit) = found {
                 if best.is_none_or(|b| hit.distance < b.2) {
                     best = Some((k, place.pose.apply(hit.point), hit.distance));
                 }
@@ -221,6 +212,23 @@ impl RigidEnvironment {
 }
 
 impl RigidPart {
+    /// The closest point to `local` (in the part's reference placement) within `reach`,
+    /// offered the triangles whose boxes meet the cube of half-size `reach` around it in
+    /// the BVH's order; `k` is the part's index, recorded in the hit.
+    pub(crate) fn closest_point_local(
+        &self,
+        k: usize,
+        local: DVec3,
+        reach: f64,
+    ) -> Option<PointHit> {
+        let mut search = ClosestPoint::new(local, reach);
+        let query = cube(local, reach);
+        for (rank, i) in self.mesh.bvh().intersect_aabb(&query).enumerate() {
+            search.offer(k, &self.mesh.triangle(i), rank as u32, 0);
+        }
+        search.best
+    }
+
     /// A lower bound on the distance from segment [a, b] (in the part's reference
     /// placement) to the part, capped at `max`: the nearest triangle box, best first down
     /// the BVH.

@@ -28,7 +28,6 @@
 //! moves in its frame.
 
 use super::coherence::Nearest;
-use super::environment::{cube, ClosestPoint};
 use super::rigid::{side, BeamSearch, ContactPoint, INTERIOR, SKIN};
 use crate::{Model, State};
 use glam::DVec3;
@@ -141,16 +140,7 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
                 continue;
             }
             let bound = best.map_or(reach, |b| b.2.min(reach));
-            let mut search = ClosestPoint::new(local, bound);
-            for (rank, t) in part
-                .mesh
-                .bvh()
-                .intersect_aabb(&cube(local, bound))
-                .enumerate()
-            {
-                search.offer(k, &part.mesh.triangle(t), rank as u32, 0);
-            }
-            match search.best {
+            match part.closest_point_local(k, local, bound) {
                 Some(hit) => {
                     if best.is_none_or(|b| hit.distance < b.2) {
                         best = Some((k, hit.point, hit.distance, reach));

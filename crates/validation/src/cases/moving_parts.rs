@@ -433,7 +433,7 @@ fn hinge(kind: SolverKind) -> Vec<Check> {
     let tolerance = if kind == SolverKind::Static {
         1e-6
     } else {
-        0.01
+        1e-4
     };
     let mut out = Vec::new();
     for (t, degrees) in [(5.0, 20.0), (10.0, 40.0), (15.0, 60.0)] {
