@@ -106,7 +106,9 @@ impl Shape {
             vertices,
             friction_static: 0.0,
             friction_sliding: 0.0,
-         motion: None, parent: None, };
+            motion: None,
+            parent: None,
+        };
         let env = RigidEnvironment::build(&[spec])?;
         Ok(Shape::Mesh { env, lo, hi })
     }
