@@ -1043,7 +1043,8 @@ async fn scene_source_gives_the_scene_document_and_the_library() {
     assert!((hose3["d_outer"].as_f64().unwrap() - 0.035).abs() < 1e-12);
     assert!((hose3["d_inner"].as_f64().unwrap() - 0.027).abs() < 1e-12);
     assert!(hose3["min_bend_radius"].as_f64().unwrap() > 0.0);
-    assert_eq!(lib.len(), 5);
+    assert_eq!(lib.len(), 7); // five hoses, two metal lines
+    assert!(lib.iter().any(|m| m["name"] == "steel_tube"));
     // the document is the file: sent back, the loader takes it
     let mut doc = doc.clone();
     doc["name"] = json!("authored");
