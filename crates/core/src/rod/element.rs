@@ -74,6 +74,18 @@ pub struct ElementEnds {
     pub w: [DVec3; 2],
 }
 
+impl ElementEnds {
+    /// Ends at these poses, at rest (no velocity).
+    pub fn still(x: [DVec3; 2], q: [DQuat; 2]) -> Self {
+        ElementEnds {
+            x,
+            q,
+            v: [DVec3::ZERO; 2],
+            w: [DVec3::ZERO; 2],
+        }
+    }
+}
+
 /// The element's deformation measured in its co-rotated frame.
 #[derive(Clone, Copy, Debug)]
 pub struct Deformation {
@@ -380,12 +392,7 @@ mod tests {
     }
 
     fn ends(x: [DVec3; 2], q: [DQuat; 2]) -> ElementEnds {
-        ElementEnds {
-            x,
-            q,
-            v: [DVec3::ZERO; 2],
-            w: [DVec3::ZERO; 2],
-        }
+        ElementEnds::still(x, q)
     }
 
     #[test]

@@ -293,12 +293,7 @@ mod tests {
     }
 
     fn ends(x: [DVec3; 2], q: [DQuat; 2]) -> ElementEnds {
-        ElementEnds {
-            x,
-            q,
-            v: [DVec3::ZERO; 2],
-            w: [DVec3::ZERO; 2],
-        }
+        ElementEnds::still(x, q)
     }
 
     /// Below yield the hinge's loads are the linear element's (the modes split exactly).
