@@ -11,9 +11,10 @@ cargo fmt --all --check    # formatting as rustfmt writes it
 (cd crates/python && cargo fmt --check)   # the Python extension is its own workspace
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps   # API docs: every link resolves
 cargo build --release --workspace
+./scripts/install-python.sh   # the Python package into .venv: some Rust tests drive it
 cargo test --release --workspace   # every validation case is a test here (crates/validation/tests)
 ./target/release/pliant bench --quick --json > /dev/null
-./scripts/test-python.sh   # the Python API (crates/python): builds it into .venv, runs pytest
+./scripts/test-python.sh --installed   # the Python API (crates/python): pytest
 ./scripts/install-browser.sh   # Debian's chromium, only if /usr/bin/chromium is missing
 (cd web && npm run --silent test:unit)   # the viewer's TOML writer (scene authoring)
 (cd web && npm run --silent test:e2e)   # viewer end-to-end (target/release/pliant serve)

@@ -44,7 +44,7 @@ fn find_python() -> Result<PathBuf> {
     let names: Vec<String> = tried.iter().map(|p| p.display().to_string()).collect();
     bail!(
         "pliant study needs the Python package `pliant` with its study extras, and none of \
-         these interpreters has it: {}. Install it with ./scripts/test-python.sh (into .venv), \
+         these interpreters has it: {}. Install it with ./scripts/install-python.sh (into .venv), \
          or `pip install './crates/python[study]'`, \
          or name an interpreter with PLIANT_PYTHON",
         names.join(", ")

@@ -1,7 +1,7 @@
 //! The study file target: the reader of study files (format "pliant-study",
 //! `pliant.studies.spec.load_study`, docs/study.md) is Python, so this target hands each
 //! input to one long-lived Python worker — an interpreter that has the `pliant` package
-//! (`PLIANT_PYTHON`, the repository's `.venv`, or `python3`; `./scripts/test-python.sh`
+//! (`PLIANT_PYTHON`, the repository's `.venv`, or `python3`; `./scripts/install-python.sh`
 //! installs it), running the study reader of this source tree — which writes it to a
 //! study file of its own and reads it. The
 //! reader never raises anything but `StudyError` (anything else is a find, as a panic is
@@ -133,7 +133,7 @@ impl Worker {
         }
         let names: Vec<String> = tried.iter().map(|p| p.display().to_string()).collect();
         Err(format!(
-            "the study target needs a Python with the package `pliant` (./scripts/test-python.sh \
+            "the study target needs a Python with the package `pliant` (./scripts/install-python.sh \
              installs it into .venv, or name one with PLIANT_PYTHON); none of these has it: {}",
             names.join(", ")
         ))
