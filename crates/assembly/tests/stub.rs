@@ -18,6 +18,7 @@ fn hose3() -> (Section, Material) {
         poisson: 0.49,
         density: 1100.0,
         plasticity: None,
+        relaxation: Vec::new(),
     };
     (Section::new(0.027, 0.035), material)
 }

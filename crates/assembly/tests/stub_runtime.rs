@@ -24,6 +24,7 @@ fn setup_with(safety: f64) -> (Model, StubSite, PressFit) {
         poisson: 0.49,
         density: 1100.0,
         plasticity: None,
+        relaxation: Vec::new(),
     };
     let section = Section::new(0.027, 0.035);
     let nodes = (0..=N)

@@ -1,5 +1,5 @@
 //! Hose material (SPEC M3): bimodular elastic law and density, all SI; a metal may
-//! also yield ([`YieldLaw`], SPEC X1).
+//! also yield ([`YieldLaw`], SPEC X1), a rubber relax ([`PronyTerm`], SPEC X2).
 
 use serde::{Deserialize, Serialize};
 
@@ -20,6 +20,31 @@ pub struct Material {
     /// How the material yields; `None` → elastic for ever.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub plasticity: Option<YieldLaw>,
+    /// How the moduli relax under held strain, as a Prony series; empty → elastic for
+    /// ever. The moduli above are the instantaneous ones.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub relaxation: Vec<PronyTerm>,
+}
+
+/// One term of a relaxing modulus (SPEC X2): every modulus of the wall (E_t, E_c, E_b,
+/// G) relaxes as E(t) = E₀ (1 − Σᵢ gᵢ (1 − e^{−t/τᵢ})) under held strain — the
+/// generalised Maxwell solid in the Prony form of Simo & Hughes, *Computational
+/// Inelasticity* (1998), §10.2, with dimensionless weights gᵢ (Σ gᵢ < 1: the long-term
+/// modulus is E₀ (1 − Σ gᵢ)).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PronyTerm {
+    /// Relative weight gᵢ of the term (0, 1).
+    pub weight: f64,
+    /// Relaxation time τᵢ \[s\].
+    pub time: f64,
+}
+
+/// The relaxation function E(t)/E₀ = 1 − Σᵢ gᵢ (1 − e^{−t/τᵢ}) of `terms` at `t` ≥ 0.
+pub fn relaxation_ratio(terms: &[PronyTerm], t: f64) -> f64 {
+    1.0 - terms
+        .iter()
+        .map(|p| p.weight * (1.0 - (-t / p.time).exp()))
+        .sum::<f64>()
 }
 
 /// Elastic–plastic behaviour of a metal wall (SPEC X1): von Mises yield of the wall's
@@ -47,6 +72,7 @@ impl Material {
             poisson,
             density,
             plasticity: None,
+            relaxation: Vec::new(),
         }
     }
 
@@ -100,6 +126,7 @@ mod tests {
             poisson: 0.49,
             density: 940.0,
             plasticity: None,
+            relaxation: Vec::new(),
         };
         let eb = m.bending_modulus();
         assert!(eb > 11.583e6 && eb < 13.1363e6);

@@ -7,8 +7,8 @@ use crate::kinematics::PartKinematics;
 use crate::rod::element::BeamElement;
 use crate::rod::element_block::PackedElements;
 use crate::rod::frames::node_frames;
+use crate::rod::inelastic::InelasticElements;
 use crate::rod::mass::half_element_mass;
-use crate::rod::plastic_hinges::PlasticHinges;
 use crate::rod::stiffened::{RigidBody, StiffenedSpan};
 use crate::rod::timestep::{stable_time_step, TimeStepReport};
 use crate::section::SectionProperties;
@@ -79,9 +79,9 @@ pub struct Model {
     /// The elements in blocks of four for the explicit solver's kernel
     /// ([`crate::rod::element_block`]); built with the model.
     pub packed: PackedElements,
-    /// The yielding elements and their fibre sections (SPEC X1,
-    /// [`crate::rod::plastic_hinges`]); empty when no material yields.
-    pub plastic: PlasticHinges,
+    /// The elements that yield or relax and their laws (SPEC X1, X2,
+    /// [`crate::rod::inelastic`]); empty when every material is elastic.
+    pub inelastic: InelasticElements,
     /// Threads the explicit step may use ([`SimSettings::threads`], resolved; a caller
     /// may change it — results do not depend on it).
     pub threads: usize,
@@ -211,6 +211,25 @@ fn check_hose(h: &HoseSpec) -> Result<(), ModelError> {
     if !(m.poisson > -1.0 && m.poisson < 0.5) {
         return err(format!("Poisson's ratio {} outside (−1, 0.5)", m.poisson));
     }
+    if m.plasticity.is_some() && !m.relaxation.is_empty() {
+        return err("a material either yields or relaxes, not both".into());
+    }
+    for (i, p) in m.relaxation.iter().enumerate() {
+        if !(p.weight > 0.0 && p.weight < 1.0) || !positive(p.time) {
+            return err(format!(
+                "relaxation term {i}: needs a weight in (0, 1) and a positive finite time, \
+                 has {} and {} s",
+                p.weight, p.time
+            ));
+        }
+    }
+    let weights: f64 = m.relaxation.iter().map(|p| p.weight).sum();
+    if weights >= 1.0 {
+        return err(format!(
+            "relaxation weights sum to {weights}: the long-term modulus E₀ (1 − Σ g) must stay \
+             positive (Σ g < 1)"
+        ));
+    }
     if let Some(law) = &m.plasticity {
         if !positive(law.yield_stress) {
             return err(format!(
@@ -266,7 +285,7 @@ impl Model {
             solver: spec.settings.solver,
             hose_contact: HoseContactModel::default(),
             packed: PackedElements::default(),
-            plastic: PlasticHinges::new(),
+            inelastic: InelasticElements::new(),
             threads: 1,
             hose_chunks: Vec::new(),
         };
@@ -311,14 +330,10 @@ impl Model {
             }
             self.elements.push(el);
         }
-        let m = &h.material;
-        self.plastic.add_hose(
-            &mut self.elements,
-            first_element,
-            m.plasticity.as_ref(),
-            (m.bending_modulus(), m.shear_modulus()),
-            |i| *h.element_section(i),
-        );
+        self.inelastic
+            .add_hose(&mut self.elements, first_element, &h.material, |i| {
+                *h.element_section(i)
+            });
         self.hoses.push(HoseInfo {
             name: h.name.clone(),
             first_node,

@@ -5,6 +5,8 @@
 use crate::contact::friction::FrictionMemory;
 use crate::contact::{ContactScratch, HoseContactScratch};
 use crate::loads::LoadCases;
+use crate::rod::element::BeamElement;
+use crate::rod::inelastic::HistoryView;
 use crate::rod::stiffened::BodyState;
 use crate::sleep::Sleep;
 use crate::Model;
@@ -55,10 +57,12 @@ pub struct State {
     pub sleep: Sleep,
     /// What the implicit solver carries from step to step (empty for the others).
     pub implicit: ImplicitHistory,
-    /// The yielding elements' plastic strains (ε_p, γ_p per fibre), committed at the last
-    /// accepted step or equilibrium ([`crate::rod::plastic_hinges`]); empty when no
-    /// material yields.
-    pub plastic_strain: Vec<f64>,
+    /// The inelastic elements' history — a yielding element's plastic strains, a relaxing
+    /// element's viscous strains — committed at the last accepted step or equilibrium
+    /// ([`crate::rod::inelastic`]); empty when no element is inelastic.
+    pub inelastic_history: Vec<f64>,
+    /// When `inelastic_history` was committed \[s\].
+    pub inelastic_time: f64,
 }
 
 impl State {
@@ -95,7 +99,8 @@ impl State {
             hose_contact: HoseContactScratch::new(model),
             sleep: Sleep::new(model),
             implicit: ImplicitHistory::default(),
-            plastic_strain: vec![0.0; model.plastic.history_len],
+            inelastic_history: vec![0.0; model.inelastic.history_len],
+            inelastic_time: 0.0,
         }
     }
 
@@ -110,8 +115,40 @@ impl State {
         e
     }
 
-    /// Strain energy stored in all elements \[J\] (a yielding element's with its committed
-    /// plastic strains).
+    /// The inelastic elements' committed history, aged to the state's time.
+    pub fn inelastic_view(&self) -> HistoryView<'_> {
+        self.inelastic_view_at(self.time)
+    }
+
+    /// The inelastic elements' committed history, aged to time `t`.
+    pub fn inelastic_view_at(&self, t: f64) -> HistoryView<'_> {
+        HistoryView {
+            values: &self.inelastic_history,
+            age: self.inelastic_age(t),
+        }
+    }
+
+    /// Time from the commit of the inelastic elements' history to `t` \[s\] (≥ 0).
+    pub fn inelastic_age(&self, t: f64) -> f64 {
+        (t - self.inelastic_time).max(0.0)
+    }
+
+    /// Commits the inelastic elements' history at the state's configuration as of time
+    /// `t` ([`crate::rod::inelastic::InelasticElements::commit`]) for `elements` (the
+    /// model's, or a solver's copy with rigid spans made elastic).
+    pub fn commit_inelastic(&mut self, model: &Model, elements: &[BeamElement], t: f64) {
+        if model.inelastic.any() {
+            let age = self.inelastic_age(t);
+            let history = &mut self.inelastic_history;
+            model
+                .inelastic
+                .commit(elements, (&self.x, &self.q), age, history);
+            self.inelastic_time = t;
+        }
+    }
+
+    /// Strain energy stored in all elements \[J\] (an inelastic element's with its
+    /// committed history).
     pub fn strain_energy(&self, model: &Model) -> f64 {
         model
             .elements
@@ -119,12 +156,12 @@ impl State {
             .map(|e| {
                 let x = [self.x[e.node_a], self.x[e.node_b]];
                 let q = [self.q[e.node_a], self.q[e.node_b]];
-                match &e.plastic {
-                    Some(hinge) => {
-                        let history = &self.plastic_strain;
+                match &e.inelastic {
+                    Some(inelastic) => {
+                        let history = self.inelastic_view();
                         model
-                            .plastic
-                            .strain_energy(e, hinge, history, (x, q), false)
+                            .inelastic
+                            .strain_energy(e, inelastic, history, (x, q), false)
                     }
                     None => e.strain_energy(x, q),
                 }

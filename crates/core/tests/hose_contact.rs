@@ -584,7 +584,7 @@ fn max_frequency_with_contact(model: &Model, x0: &[DVec3], with_contact: bool) -
                     q: &q,
                     v: &zero,
                     w: &zero,
-                    plastic_strain: &[],
+                    inelastic_history: pliant_core::rod::inelastic::HistoryView::NONE,
                 },
                 0.0,
                 f,

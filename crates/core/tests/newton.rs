@@ -44,6 +44,7 @@ fn hose1() -> (Material, Section) {
             poisson: 0.49,
             density: 940.0,
             plasticity: None,
+            relaxation: Vec::new(),
         },
         Section::new(0.010, 0.016),
     )

@@ -170,9 +170,9 @@ fn below_yield_the_line_springs_back_straight() {
     let ke = SY / (E * 0.5 * DO);
     let (_, after, model, _) = bend_and_release(steel(0.0), 0.8 * ke, 2);
     assert!(after.abs() < 1e-6 * ke, "{after}");
-    assert!(model.plastic.any());
+    assert!(model.inelastic.any());
     let (elastic, _) = line(Material::isotropic(E, 0.3, 7850.0));
-    assert!(!elastic.plastic.any());
+    assert!(!elastic.inelastic.any());
     assert_eq!(elastic.packed.blocks.len(), N.div_ceil(4));
 }
 

@@ -21,6 +21,7 @@ fn world(floor: bool) -> WorldSpec {
         poisson: 0.49,
         density: 940.0,
         plasticity: None,
+        relaxation: Vec::new(),
     };
     let hoses = (0..7)
         .map(|h| {
@@ -173,7 +174,7 @@ fn model_loads_match_the_reference_loop() {
         q: &state.q,
         v: &state.v,
         w: &state.w,
-        plastic_strain: &state.plastic_strain,
+        inelastic_history: state.inelastic_view(),
     };
     let n = model.node_count();
     let beta = model.damping_stiffness;

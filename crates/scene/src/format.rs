@@ -353,6 +353,23 @@ pub struct MaterialEntry {
     /// the plastic strain past yield. Only with `yield_stress_mpa`. Default: 0 (perfectly
     /// plastic).
     pub hardening_modulus_mpa: Option<f64>,
+    /// The moduli relax under held strain (rubber, linear viscoelasticity): every modulus
+    /// above is the instantaneous one E₀ and relaxes as
+    /// E(t) = E₀ (1 − Σ weight (1 − e^{−t/time_s})), a Prony series of up to 8 terms,
+    /// weights in (0, 1) summing below 1. Default: elastic for ever. Not with
+    /// `yield_stress_mpa`.
+    #[serde(default)]
+    pub relaxation: Vec<PronyEntry>,
+}
+
+/// One term of a relaxing modulus (`relaxation` of a material).
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PronyEntry {
+    /// Relative weight g of the term, in (0, 1).
+    pub weight: f64,
+    /// Relaxation time τ (s), > 0.
+    pub time_s: f64,
 }
 
 /// `[[hoses]]`: one hose.

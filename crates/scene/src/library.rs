@@ -206,6 +206,7 @@ impl RawEntry {
                 poisson: nu,
                 density: rho,
                 plasticity,
+                relaxation: Vec::new(),
             },
             section: Section::new(d_i * 1e-3, d_a * 1e-3),
             min_bend_radius: r_min * 1e-3,

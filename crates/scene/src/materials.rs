@@ -5,7 +5,7 @@ use crate::error::FieldError;
 use crate::format::MaterialEntry;
 use crate::library::Library;
 use crate::validate::{finite, positive, with_unit};
-use pliant_core::material::YieldLaw;
+use pliant_core::material::{PronyTerm, YieldLaw};
 use pliant_core::{Material, Section};
 use std::collections::BTreeMap;
 
@@ -124,6 +124,14 @@ fn user_material(field: &str, m: &MaterialEntry) -> Result<Material, FieldError>
     }
     let density = positive(&format!("{field}.density_kg_m3"), m.density_kg_m3, "kg/m³")?;
     let plasticity = yield_law(field, m)?;
+    let relaxation = relaxation(field, m)?;
+    if plasticity.is_some() && !relaxation.is_empty() {
+        return Err(FieldError::new(
+            format!("{field}.relaxation"),
+            format!("{} terms", relaxation.len()),
+            "a material either yields (`yield_stress_mpa`) or relaxes, not both",
+        ));
+    }
     Ok(Material {
         e_tension: e_tension * 1e6,
         e_compression: e_compression * 1e6,
@@ -131,7 +139,48 @@ fn user_material(field: &str, m: &MaterialEntry) -> Result<Material, FieldError>
         poisson,
         density,
         plasticity,
+        relaxation,
     })
+}
+
+/// Most terms a relaxation may have (a Prony series fitted to a test rarely needs more
+/// than one per decade of time).
+const MAX_PRONY_TERMS: usize = 8;
+
+/// The entry's Prony series, SI: every weight in (0, 1), their sum below 1, every time
+/// positive and finite.
+fn relaxation(field: &str, m: &MaterialEntry) -> Result<Vec<PronyTerm>, FieldError> {
+    let list = format!("{field}.relaxation");
+    if m.relaxation.len() > MAX_PRONY_TERMS {
+        return Err(FieldError::new(
+            list,
+            format!("{} terms", m.relaxation.len()),
+            format!("at most {MAX_PRONY_TERMS} terms"),
+        ));
+    }
+    let mut terms = Vec::with_capacity(m.relaxation.len());
+    for (i, p) in m.relaxation.iter().enumerate() {
+        let weight_field = format!("{list}[{i}].weight");
+        let weight = finite(&weight_field, p.weight, "")?;
+        if !(weight > 0.0 && weight < 1.0) {
+            return Err(FieldError::new(
+                weight_field,
+                with_unit(weight, ""),
+                "must lie in (0, 1)",
+            ));
+        }
+        let time = positive(&format!("{list}[{i}].time_s"), p.time_s, "s")?;
+        terms.push(PronyTerm { weight, time });
+    }
+    let sum: f64 = terms.iter().map(|p| p.weight).sum();
+    if sum >= 1.0 {
+        return Err(FieldError::new(
+            list,
+            format!("weights summing to {sum}"),
+            "the weights must sum below 1 (the long-term modulus E₀ (1 − Σ weight) stays positive)",
+        ));
+    }
+    Ok(terms)
 }
 
 /// The entry's yield law, SI: `yield_stress_mpa` and `hardening_modulus_mpa` checked.

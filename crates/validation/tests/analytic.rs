@@ -126,6 +126,14 @@ fn springback() {
     assert_case("springback");
 }
 #[test]
+fn relaxing_bar() {
+    assert_case("relaxing_bar");
+}
+#[test]
+fn relaxing_beam() {
+    assert_case("relaxing_beam");
+}
+#[test]
 fn moving_carry() {
     assert_case("moving_carry");
 }

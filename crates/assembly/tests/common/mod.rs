@@ -15,6 +15,7 @@ pub fn hose3() -> (Material, Section) {
             poisson: 0.49,
             density: 1100.0,
             plasticity: None,
+            relaxation: Vec::new(),
         },
         Section::new(0.027, 0.035),
     )

@@ -19,6 +19,7 @@ use crate::loads::LoadCase;
 use crate::math::log_map;
 use crate::parallel::{Pool, SharedMut};
 use crate::rod::forces::{chunk_nodes, step_loads, whole_hose_chunks};
+use crate::rod::inelastic::HistoryView;
 use crate::rod::node_view::NodeView;
 use crate::rod::stiffened::step_body;
 use crate::{Model, State};
@@ -47,7 +48,10 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
             q: &state.q,
             v: &state.v,
             w: &state.w,
-            plastic_strain: &state.plastic_strain,
+            inelastic_history: HistoryView {
+                values: &state.inelastic_history,
+                age: state.inelastic_age(state.time),
+            },
         };
         let asleep = &state.sleep.node_asleep;
         let sleeping = state.sleep.enabled && state.sleep.hose_asleep.contains(&true);
@@ -177,12 +181,8 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     }
     state.time = t_next;
     state.step += 1;
-    if model.plastic.any() {
-        // the step is accepted: yielding elements keep their plastic strains
-        let elements = &model.elements;
-        let history = &mut state.plastic_strain;
-        model.plastic.commit(elements, &state.x, &state.q, history);
-    }
+    // the step is accepted: inelastic elements keep their history
+    state.commit_inelastic(model, &model.elements, state.time);
     if state.sleep.enabled {
         update_sleep(model, state, moved_any);
     }

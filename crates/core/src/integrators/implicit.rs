@@ -434,7 +434,7 @@ impl ImplicitSolver {
         }
         crate::loads::support_reactions(model, state, true);
         sys.commit_friction(state);
-        sys.commit_plastic(model, state);
+        sys.commit_inelastic(model, state);
         sync_bodies(model, state);
         state.time = t_next;
         Ok(true)

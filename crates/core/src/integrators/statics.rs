@@ -320,7 +320,7 @@ fn finish(model: &Model, state: &mut State, sys: &NewtonSystem, converged: bool)
     sys.commit_friction(state);
     if converged {
         // an equilibrium: yielding elements keep their plastic strains
-        sys.commit_plastic(model, state);
+        sys.commit_inelastic(model, state);
     }
     for i in 0..state.x.len() {
         state.force[i] = sys.force[i];

@@ -34,7 +34,7 @@ use crate::contact::friction::FrictionResponse;
 use crate::contact::{hose_contact_forces_with, ContactPair};
 use crate::loads::{LoadCase, Support, SupportLoad};
 use crate::rod::element::{BeamElement, ElementEnds, ElementLoads};
-use crate::rod::tangent::{block_tangent, plastic_tangent, ElementTangent};
+use crate::rod::tangent::{block_tangent, inelastic_tangent, ElementTangent};
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
 use nalgebra::{Matrix3, Vector6};
@@ -60,6 +60,9 @@ pub struct NewtonSystem {
     pub friction: Vec<Option<FrictionResponse>>,
     /// The part each node touched at the last assembly (`usize::MAX`: none).
     contact_part: Vec<usize>,
+    /// The time the solve is for (set with the prescribed poses): the time the inelastic
+    /// elements' history is aged to and committed at.
+    pub solve_time: f64,
     /// Every part's pose at the time of the solve (empty when no part moves): a moving
     /// part is a sequence of poses to the Newton solvers, its contact and friction are
     /// taken in its own frame, so friction acts on the motion relative to it.
@@ -141,7 +144,7 @@ impl NewtonSystem {
             );
             if rigid {
                 // a rigid span does not yield
-                e.plastic = None;
+                e.inelastic = None;
                 e.axial_stiffness_tension *= RIGID_FACTOR;
                 e.axial_stiffness_compression *= RIGID_FACTOR;
                 e.bending_stiffness[0] *= RIGID_FACTOR;
@@ -165,6 +168,7 @@ impl NewtonSystem {
             contact_stiffness,
             friction: vec![None; n],
             contact_part: vec![usize::MAX; n],
+            solve_time: 0.0,
             placements: if model.environment.any_moves() {
                 vec![Default::default(); model.environment.parts.len()]
             } else {
@@ -228,7 +232,7 @@ impl NewtonSystem {
                 &mut tangents,
             );
             for (e, out) in chunk.iter().zip(&mut tangents) {
-                if let Some(hinge) = &e.plastic {
+                if let Some(hinge) = &e.inelastic {
                     let (a, b) = (e.node_a, e.node_b);
                     let ends = ElementEnds {
                         x: [state.x[a], state.x[b]],
@@ -236,9 +240,9 @@ impl NewtonSystem {
                         v: [state.v[a], state.v[b]],
                         w: [state.w[a], state.w[b]],
                     };
-                    let history = &state.plastic_strain;
-                    let hinges = &model.plastic;
-                    *out = plastic_tangent(hinges, (e, hinge), history, &ends, beta, rate_factor);
+                    let history = state.inelastic_view_at(self.solve_time);
+                    let hinges = &model.inelastic;
+                    *out = inelastic_tangent(hinges, (e, hinge), history, &ends, beta, rate_factor);
                 }
             }
             for (e, (loads, k)) in chunk.iter().zip(&tangents) {
@@ -429,15 +433,10 @@ impl NewtonSystem {
     }
 
     /// Accepts the state's configuration as the end of a step or an equilibrium for the
-    /// yielding elements: their plastic strains move by the return mapping
-    /// ([`crate::rod::plastic_hinges::PlasticHinges::commit`]; rigid spans do not yield).
-    pub fn commit_plastic(&self, model: &Model, state: &mut State) {
-        if model.plastic.any() {
-            let history = &mut state.plastic_strain;
-            model
-                .plastic
-                .commit(&self.elements, &state.x, &state.q, history);
-        }
+    /// inelastic elements at the solve's time ([`State::commit_inelastic`]; rigid spans
+    /// are elastic).
+    pub fn commit_inelastic(&self, model: &Model, state: &mut State) {
+        state.commit_inelastic(model, &self.elements, self.solve_time);
     }
 
     /// Accepts the configuration of the last assembly as the end of a step for friction
@@ -479,13 +478,13 @@ impl NewtonSystem {
         for el in &self.elements {
             let (a, b) = (el.node_a, el.node_b);
             let (x, q) = ([state.x[a], state.x[b]], [state.q[a], state.q[b]]);
-            e += match &el.plastic {
+            e += match &el.inelastic {
                 // the incremental potential: its gradient is the loads
-                Some(hinge) => {
-                    let history = &state.plastic_strain;
+                Some(inelastic) => {
+                    let history = state.inelastic_view_at(self.solve_time);
                     model
-                        .plastic
-                        .strain_energy(el, hinge, history, (x, q), true)
+                        .inelastic
+                        .strain_energy(el, inelastic, history, (x, q), true)
                 }
                 None => el.strain_energy(x, q),
             };
@@ -540,6 +539,7 @@ impl NewtonSystem {
     /// A junction with a held member is held whole: its other members' targets follow
     /// rigidly from the held one's ([`Model::junction_poses_from`]).
     pub fn set_prescribed(&mut self, model: &Model, state: &State, t: f64) {
+        self.solve_time = t;
         self.prescribed.fill(false);
         self.pending = false;
         if model.environment.any_moves() {

@@ -32,7 +32,7 @@ use crate::autodiff::{Quat, Scalar, V3};
 use crate::math::{
     exp_map, left_jacobian_inverse_transpose_times_of, log_map_of, rotation_between_of,
 };
-use crate::rod::plastic_hinges::PlasticHinge;
+use crate::rod::inelastic::Inelastic;
 use crate::section::SectionProperties;
 use crate::{Material, Section};
 use glam::{DQuat, DVec3};
@@ -59,9 +59,25 @@ pub struct BeamElement {
     pub rest_offset_a: DQuat,
     /// Rotation from node b's material frame to the element frame at rest (q_b0⁻¹ E₀).
     pub rest_offset_b: DQuat,
-    /// The element's yielding hinge, if its material yields
-    /// ([`crate::rod::plastic_hinges`]); `None` → the linear law above.
-    pub plastic: Option<PlasticHinge>,
+    /// The element's law with history, if its material yields or relaxes
+    /// ([`crate::rod::inelastic`]); `None` → the linear law above.
+    pub inelastic: Option<Inelastic>,
+}
+
+/// The strain the axial law sees, `scale`·ε − `shift` for the element's strain ε (a
+/// relaxing element's, [`crate::rod::relaxation`]); [`AxialShift::NONE`] for the others.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AxialShift {
+    pub scale: f64,
+    pub shift: f64,
+}
+
+impl AxialShift {
+    /// The axial law at the element's strain.
+    pub const NONE: AxialShift = AxialShift {
+        scale: 1.0,
+        shift: 0.0,
+    };
 }
 
 /// Positions, orientations and velocities of an element's two end nodes.
@@ -160,7 +176,7 @@ impl BeamElement {
             mass_per_length: props.mass_per_length,
             rest_offset_a: (rest_q[0].inverse() * frame).normalize(),
             rest_offset_b: (rest_q[1].inverse() * frame).normalize(),
-            plastic: None,
+            inelastic: None,
         }
     }
 
@@ -221,16 +237,18 @@ impl BeamElement {
         w: [V3<T>; 2],
         beta: f64,
     ) -> ElementLoadsOf<T> {
-        self.loads_with(x, q, v, w, beta, |theta, damped| {
+        self.loads_with(x, q, v, w, beta, AxialShift::NONE, |theta, damped| {
             self.end_moments(theta[0] + damped[0], theta[1] + damped[1])
         })
     }
 
     /// [`Self::loads_of`] with the local bending and torsion law `local`: from the end
     /// rotations θ_a, θ_b and their rates times β (element axes) to the end moments
-    /// conjugate to θ_a, θ_b — the linear law, or a yielding hinge's
-    /// ([`crate::rod::plastic_hinges`]). The axial law, the arch coupling and the
-    /// co-rotational transformation are the same for both.
+    /// conjugate to θ_a, θ_b — the linear law, a yielding hinge's or a relaxing
+    /// element's ([`crate::rod::inelastic`]) — and the axial strain seen by the axial
+    /// law `axial`·ε. The arch coupling and the co-rotational transformation are the
+    /// same for all.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(crate) fn loads_with<T: Scalar>(
         &self,
@@ -239,12 +257,14 @@ impl BeamElement {
         v: [V3<T>; 2],
         w: [V3<T>; 2],
         beta: f64,
+        axial: AxialShift,
         local: impl FnOnce([V3<T>; 2], [V3<T>; 2]) -> (V3<T>, V3<T>),
     ) -> ElementLoadsOf<T> {
         let d = self.deformation_of(x, q);
         let e1 = d.chord_dir;
         let l0 = self.rest_length;
-        let strain = (d.length - l0) / l0 + arch_strain(d.theta[0], d.theta[1]);
+        let geometric = (d.length - l0) / l0 + arch_strain(d.theta[0], d.theta[1]);
+        let strain = geometric * axial.scale - axial.shift;
 
         // Deformation rates in the element frame (for damping).
         let dv = v[1] - v[0];
@@ -311,11 +331,25 @@ impl BeamElement {
     /// Strain energy of the local law \[J\].
     pub fn strain_energy(&self, x: [DVec3; 2], q: [DQuat; 2]) -> f64 {
         let d = self.deformation(x, q);
+        self.energy_at(self.axial_strain(&d), d.theta)
+    }
+
+    /// The axial strain ε = (l − l₀)/l₀ + the arch strain of the end rotations.
+    pub fn axial_strain(&self, d: &Deformation) -> f64 {
         let l0 = self.rest_length;
         let [ta, tb] = d.theta;
+        (d.length - l0) / l0 + arch_strain::<f64>(ta.into(), tb.into())
+    }
+
+    /// The energy of the local law at axial strain `strain` and end rotations `theta`
+    /// \[J\]: ½ E_{t|c} A l₀ ε² + (E I_k/l₀)·2(θ_a² + θ_a θ_b + θ_b²) per bending plane +
+    /// ½ (G J/l₀) Δθₓ².
+    pub(crate) fn energy_at(&self, strain: f64, theta: [DVec3; 2]) -> f64 {
+        let l0 = self.rest_length;
+        let [ta, tb] = theta;
         let bend = |a: f64, b: f64| 2.0 * (a * a + a * b + b * b);
         let dtx = tb.x - ta.x;
-        self.axial_energy(&d)
+        self.axial_energy_at(strain)
             + (self.bending_stiffness[0] * bend(ta.y, tb.y)
                 + self.bending_stiffness[1] * bend(ta.z, tb.z))
                 / l0
@@ -324,15 +358,17 @@ impl BeamElement {
 
     /// The axial part ½ E_{t|c} A l₀ ε² of the strain energy (arch strain included) \[J\].
     pub(crate) fn axial_energy(&self, d: &Deformation) -> f64 {
-        let l0 = self.rest_length;
-        let [ta, tb] = d.theta;
-        let strain = (d.length - l0) / l0 + arch_strain::<f64>(ta.into(), tb.into());
+        self.axial_energy_at(self.axial_strain(d))
+    }
+
+    /// ½ E_{t|c} A l₀ ε² at axial strain `strain` \[J\].
+    fn axial_energy_at(&self, strain: f64) -> f64 {
         let ea = if strain >= 0.0 {
             self.axial_stiffness_tension
         } else {
             self.axial_stiffness_compression
         };
-        0.5 * ea * l0 * strain * strain
+        0.5 * ea * self.rest_length * strain * strain
     }
 }
 

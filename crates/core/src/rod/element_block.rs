@@ -111,9 +111,9 @@ impl PackedElements {
         hose_blocks.push(0);
         for h in hoses {
             let range = h.first_element..h.first_element + h.element_count;
-            // yielding elements are not packed: their law is the hinge's
-            // ([`crate::rod::plastic_hinges`], added after the blocks)
-            let ids: Vec<usize> = range.filter(|&k| elements[k].plastic.is_none()).collect();
+            // inelastic elements are not packed: their law has a history
+            // ([`crate::rod::inelastic`], added after the blocks)
+            let ids: Vec<usize> = range.filter(|&k| elements[k].inelastic.is_none()).collect();
             for chunk in ids.chunks(4) {
                 blocks.push(ElementBlock::new(elements, chunk));
             }
@@ -529,6 +529,7 @@ pub fn add_loads(
 mod tests {
     use super::*;
     use crate::math::exp_map;
+    use crate::rod::inelastic::HistoryView;
     use crate::rod::test_elements::{random_element, random_ends, Rng};
 
     /// The kernel equals the reference `BeamElement::loads` to rounding: within 1e-12 of
@@ -583,7 +584,7 @@ mod tests {
                 q: &q,
                 v: &v,
                 w: &w,
-                plastic_strain: &[],
+                inelastic_history: HistoryView::NONE,
             };
             let hose = HoseInfo {
                 name: "h".into(),
@@ -694,7 +695,7 @@ mod tests {
             q: &q,
             v: &v,
             w: &w,
-            plastic_strain: &[],
+            inelastic_history: HistoryView::NONE,
         };
         let (mut fast, mut outside) = (0, 0);
         for b in &chained.blocks {
@@ -753,7 +754,7 @@ mod tests {
             q: &q,
             v: &v,
             w: &w,
-            plastic_strain: &[],
+            inelastic_history: HistoryView::NONE,
         };
         let start = [DVec3::ZERO; 2];
         let a = load_bits(Kernel::detect(), &packed, &elements, &c, start);

@@ -45,11 +45,11 @@ pub fn internal_loads_except(
             moment,
             &skip,
         );
-        if model.plastic.any() {
-            let all = 0..model.plastic.elements.len();
+        if model.inelastic.any() {
+            let all = 0..model.inelastic.elements.len();
             let elements = &model.elements;
             model
-                .plastic
+                .inelastic
                 .add_loads(elements, all, c, 0, beta, force, moment, &skip);
         }
     } else {
@@ -58,8 +58,8 @@ pub fn internal_loads_except(
 }
 
 /// Adds the internal loads element by element with the reference [`crate::rod::element::BeamElement::loads`]
-/// (what [`crate::rod::element_block`] computes four at a time), yielding elements by
-/// their hinge ([`crate::rod::plastic_hinges`]).
+/// (what [`crate::rod::element_block`] computes four at a time), inelastic elements by
+/// their law ([`crate::rod::inelastic`]).
 pub fn add_reference_loads(
     model: &Model,
     c: &NodeView,
@@ -79,8 +79,10 @@ pub fn add_reference_loads(
             v: [c.v[a], c.v[b]],
             w: [c.w[a], c.w[b]],
         };
-        let l = match &e.plastic {
-            Some(hinge) => model.plastic.loads(e, hinge, c.plastic_strain, &ends, beta),
+        let l = match &e.inelastic {
+            Some(hinge) => model
+                .inelastic
+                .loads(e, hinge, c.inelastic_history, &ends, beta),
             None => e.loads(&ends, beta),
         };
         force[a] += l.force[0];
@@ -153,7 +155,7 @@ pub fn step_loads(
             q: &c.q[nodes.clone()],
             v: &c.v[nodes.clone()],
             w: &c.w[nodes.clone()],
-            plastic_strain: c.plastic_strain,
+            inelastic_history: c.inelastic_history,
         };
         let hb = &model.packed.hose_blocks;
         element_block::add_loads(
@@ -167,11 +169,11 @@ pub fn step_loads(
             moment,
             &skip,
         );
-        if model.plastic.any() {
-            let hp = &model.plastic.hose_elements;
+        if model.inelastic.any() {
+            let hp = &model.inelastic.hose_elements;
             let range = hp[hoses.start]..hp[hoses.end];
             let elements = &model.elements;
-            model.plastic.add_loads(
+            model.inelastic.add_loads(
                 elements,
                 range,
                 &part,

@@ -3,10 +3,11 @@
 //! ([`element_block`], [`lanes`], [`lane_arith`]), its consistent tangent ([`tangent`],
 //! [`tangent_kernel`]), the assembly of element and body loads over a model ([`forces`],
 //! [`body_loads`]) over the node arrays ([`node_view`]), lumped masses ([`mass`]), rest frames ([`frames`]), stiffened
-//! sections ([`stiffened`]) and the stable explicit time step ([`timestep`]); yielding
-//! elements (SPEC X1): the fibre law ([`fibre_law`]), the fibre section
-//! ([`fibre_section`]), the yielding hinge of an element ([`plastic_hinges`]) and the
-//! closed forms of the elastic–plastic tube ([`plastic_moment`]).
+//! sections ([`stiffened`]) and the stable explicit time step ([`timestep`]); elements
+//! with a history ([`inelastic`]): yielding ones (SPEC X1: the fibre law
+//! [`fibre_law`], the fibre section [`fibre_section`], the yielding hinge of an element
+//! [`plastic_hinges`] and the closed forms of the elastic–plastic tube
+//! [`plastic_moment`]) and relaxing ones (SPEC X2, [`relaxation`]).
 //!
 //! The kernels read the plain data of the crate (model, sections, materials) and nothing
 //! above it: no loads, contact or solvers.
@@ -18,12 +19,14 @@ pub mod fibre_law;
 pub mod fibre_section;
 pub mod forces;
 pub mod frames;
+pub mod inelastic;
 pub mod lane_arith;
 pub mod lanes;
 pub mod mass;
 pub mod node_view;
 pub mod plastic_hinges;
 pub mod plastic_moment;
+pub mod relaxation;
 pub mod stiffened;
 pub mod tangent;
 pub mod tangent_kernel;

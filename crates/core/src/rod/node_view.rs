@@ -1,6 +1,7 @@
-//! A borrowed view of the node arrays the element kernels read, with the yielding
+//! A borrowed view of the node arrays the element kernels read, with the inelastic
 //! elements' committed history.
 
+use crate::rod::inelastic::HistoryView;
 use glam::{DQuat, DVec3};
 
 /// The node arrays the element kernels read, borrowed: positions, frames, velocities and
@@ -10,7 +11,7 @@ pub struct NodeView<'a> {
     pub q: &'a [DQuat],
     pub v: &'a [DVec3],
     pub w: &'a [DVec3],
-    /// The yielding elements' committed plastic strains (`State::plastic_strain`;
-    /// [`crate::rod::plastic_hinges`]); empty → never yielded.
-    pub plastic_strain: &'a [f64],
+    /// The inelastic elements' committed history and its age
+    /// ([`crate::rod::inelastic`]); [`HistoryView::NONE`] → virgin.
+    pub inelastic_history: HistoryView<'a>,
 }

@@ -26,7 +26,7 @@
 use crate::autodiff::{Quat, Scalar, V3};
 use crate::rod::element::{BeamElement, ElementEnds, ElementLoads, ElementLoadsOf};
 use crate::rod::element_block::Kernel;
-use crate::rod::plastic_hinges::{PlasticHinge, PlasticHinges};
+use crate::rod::inelastic::{HistoryView, Inelastic, InelasticElements};
 use crate::rod::tangent_kernel::{block_tangent_rows, BlockRows, LoadRows, D9};
 use glam::{DQuat, DVec3};
 use nalgebra::SMatrix;
@@ -184,13 +184,13 @@ pub fn element_tangent(
     out[0]
 }
 
-/// The loads of yielding `element` (hinge `hinge`, committed plastic strains
-/// `history`) and their tangent K = −∂loads/∂u: the consistent algorithmic tangent of
-/// the return mapping, by differentiating [`PlasticHinges::loads_of`].
-pub fn plastic_tangent(
-    hinges: &PlasticHinges,
-    (element, hinge): (&BeamElement, &PlasticHinge),
-    history: &[f64],
+/// The loads of inelastic `element` (law `inelastic`, committed history `history`) and
+/// their tangent K = −∂loads/∂u: the consistent algorithmic tangent of its law, by
+/// differentiating [`InelasticElements::loads_of`].
+pub fn inelastic_tangent(
+    hinges: &InelasticElements,
+    (element, hinge): (&BeamElement, &Inelastic),
+    history: HistoryView,
     ends: &ElementEnds,
     beta: f64,
     rate_factor: f64,

@@ -53,6 +53,7 @@ pub fn random_element(rng: &mut Rng, k: usize) -> BeamElement {
         poisson: 0.45,
         density: 1000.0,
         plasticity: None,
+        relaxation: Vec::new(),
     };
     let mut section = Section::new(0.01, 0.016);
     if rng.next() < 0.5 {

@@ -14,6 +14,7 @@
 use crate::math::exp_map;
 use crate::model::ModelError;
 use crate::rod::forces::internal_loads;
+use crate::rod::inelastic::HistoryView;
 use crate::rod::node_view::NodeView;
 use crate::spec::SimSettings;
 use crate::Model;
@@ -142,7 +143,7 @@ pub fn max_frequency(model: &Model) -> f64 {
                 q: &qp,
                 v: &zero,
                 w: &zero,
-                plastic_strain: &[],
+                inelastic_history: HistoryView::NONE,
             },
             0.0,
             &mut fp,
@@ -155,7 +156,7 @@ pub fn max_frequency(model: &Model) -> f64 {
                 q: &qm,
                 v: &zero,
                 w: &zero,
-                plastic_strain: &[],
+                inelastic_history: HistoryView::NONE,
             },
             0.0,
             &mut fm,

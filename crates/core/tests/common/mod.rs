@@ -29,6 +29,7 @@ pub fn hose1_material() -> pliant_core::Material {
         poisson: 0.49,
         density: 940.0,
         plasticity: None,
+        relaxation: Vec::new(),
     }
 }
 

@@ -68,6 +68,7 @@ pub fn run_stub() -> Vec<Check> {
         poisson: 0.49,
         density: 1100.0,
         plasticity: None,
+        relaxation: Vec::new(),
     };
     let section = Section::new(0.027, 0.035);
     let (n, len) = (12, 0.3);
@@ -163,6 +164,7 @@ pub fn run_clip() -> Vec<Check> {
         poisson: 0.49,
         density: 940.0,
         plasticity: None,
+        relaxation: Vec::new(),
     };
     let section = Section::new(0.010, 0.016);
     let (n, len, k) = (20, 0.5, 20.0);

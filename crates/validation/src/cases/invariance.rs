@@ -6,6 +6,7 @@ use crate::harness::{hose1, static_settings};
 use crate::Check;
 use glam::{DQuat, DVec3};
 use pliant_core::rod::forces::internal_loads;
+use pliant_core::rod::inelastic::HistoryView;
 use pliant_core::rod::node_view::NodeView;
 use pliant_core::{HoseSpec, Model, WorldSpec};
 
@@ -55,7 +56,7 @@ pub fn run() -> Vec<Check> {
                 q: &q,
                 v: &zero,
                 w: &zero,
-                plastic_strain: &[],
+                inelastic_history: HistoryView::NONE,
             },
             0.0,
             &mut f,

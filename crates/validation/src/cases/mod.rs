@@ -14,6 +14,7 @@ mod invariance;
 mod moving_parts;
 mod plastic_bending;
 mod postbuckling;
+mod relaxation;
 mod rollup;
 mod scale;
 mod sections;
@@ -55,6 +56,8 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("solvers", solvers::run),
     ("plastic_section", plastic_bending::run_section),
     ("springback", plastic_bending::run_springback),
+    ("relaxing_bar", relaxation::run_bar),
+    ("relaxing_beam", relaxation::run_beam),
     ("moving_carry", moving_parts::run_carry),
     ("moving_lift", moving_parts::run_lift),
     ("moving_drag", moving_parts::run_drag),
