@@ -135,3 +135,144 @@ pub fn strain_energy(
     ];
     element.energy_at(at(0), theta) / c
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::relaxation_ratio;
+    use crate::math::exp_map;
+    use crate::rod::element::{rotate, ElementEnds, ElementLoads};
+    use crate::rod::inelastic::{HistoryView, InelasticElements};
+    use crate::rod::tangent::inelastic_tangent;
+    use crate::{Material, Section};
+
+    const TERMS: [PronyTerm; 2] = [
+        PronyTerm {
+            weight: 0.3,
+            time: 0.5,
+        },
+        PronyTerm {
+            weight: 0.2,
+            time: 5.0,
+        },
+    ];
+
+    fn relaxing_element() -> (InelasticElements, BeamElement) {
+        let mut mat = Material::isotropic(10e6, 0.45, 1100.0);
+        mat.relaxation = TERMS.to_vec();
+        let sec = Section::new(0.01, 0.016);
+        let e = BeamElement::new(
+            (0, 1),
+            [DVec3::ZERO, DVec3::new(0.02, 0.0, 0.0)],
+            [DQuat::IDENTITY; 2],
+            &sec,
+            &mat,
+        );
+        let mut elements = vec![e];
+        let mut registry = InelasticElements::new();
+        registry.add_hose(&mut elements, 0, &mat, |_| sec);
+        (registry, elements.remove(0))
+    }
+
+    fn bent() -> ([DVec3; 2], [DQuat; 2]) {
+        (
+            [DVec3::ZERO, DVec3::new(0.0201, 0.0003, -0.0002)],
+            [
+                exp_map(DVec3::new(0.05, -0.2, 0.1)),
+                exp_map(DVec3::new(-0.05, 0.25, -0.12)),
+            ],
+        )
+    }
+
+    /// Held strain relaxes as E(t)/E₀: the end moment of an element bent at t = 0 and
+    /// held, committed at uneven steps, is the elastic one times the relaxation ratio.
+    #[test]
+    fn held_strain_relaxes_by_the_prony_series() {
+        let (registry, e) = relaxing_element();
+        let inelastic = e.inelastic.expect("relaxes");
+        let (x, q) = bent();
+        let ends = ElementEnds::still(x, q);
+        let elastic = e.loads(&ends, 0.0);
+        let mut history = vec![0.0; registry.history_len];
+        // the jump at t = 0: no time has passed, nothing relaxes
+        registry.commit(&[e.clone()], (&x[..], &q[..]), 0.0, &mut history);
+        let mut t = 0.0;
+        for h in [0.01, 0.3, 0.02, 1.7, 4.0] {
+            t += h;
+            let view = HistoryView {
+                values: &history,
+                age: h,
+            };
+            let l = registry.loads(&e, &inelastic, view, &ends, 0.0);
+            let ratio = relaxation_ratio(&TERMS, t);
+            for k in 0..2 {
+                let want = elastic.moment[k] * ratio;
+                let err = (l.moment[k] - want).length();
+                assert!(err < 1e-9 * want.length(), "t {t}: {:?} vs {want:?}", l.moment[k]);
+            }
+            registry.commit(&[e.clone()], (&x[..], &q[..]), h, &mut history);
+        }
+    }
+
+    /// The tangent is the derivative of the loads (central differences), and the loads
+    /// are minus the gradient of the potential, mid-step after a commit at another pose.
+    #[test]
+    fn the_tangent_and_the_potential_match_the_loads() {
+        let (registry, e) = relaxing_element();
+        let inelastic = e.inelastic.expect("relaxes");
+        let mut history = vec![0.0; registry.history_len];
+        let (x0, q0) = (
+            [DVec3::ZERO, DVec3::new(0.0199, 0.0001, 0.0)],
+            [exp_map(DVec3::new(0.0, -0.1, 0.02)), DQuat::IDENTITY],
+        );
+        registry.commit(&[e.clone()], (&x0[..], &q0[..]), 0.0, &mut history);
+        registry.commit(&[e.clone()], (&x0[..], &q0[..]), 0.7, &mut history);
+        let (x, q) = bent();
+        let view = HistoryView {
+            values: &history,
+            age: 0.2,
+        };
+        let flat = |l: &ElementLoads| {
+            let mut v = [0.0; 12];
+            for (b, w) in [l.force[0], l.moment[0], l.force[1], l.moment[1]]
+                .iter()
+                .enumerate()
+            {
+                v[3 * b..3 * b + 3].copy_from_slice(&w.to_array());
+            }
+            v
+        };
+        let ends = ElementEnds::still(x, q);
+        let (_, k) = inelastic_tangent(&registry, (&e, &inelastic), view, &ends, 0.0, 0.0);
+        let h = 1e-7;
+        let perturbed = |j: usize, s: f64| {
+            let (mut xp, mut qp) = (x, q);
+            let node = j / 6;
+            let mut d = DVec3::ZERO;
+            d[j % 3] = s;
+            if j % 6 < 3 {
+                xp[node] += d;
+            } else {
+                qp[node] = rotate(q[node], d);
+            }
+            (xp, qp)
+        };
+        let kmax = k.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let base = flat(&registry.loads(&e, &inelastic, view, &ends, 0.0));
+        for j in 0..12 {
+            let at = |s: f64| {
+                let (xp, qp) = perturbed(j, s);
+                let l = registry.loads(&e, &inelastic, view, &ElementEnds::still(xp, qp), 0.0);
+                (flat(&l), registry.strain_energy(&e, &inelastic, view, (xp, qp), true))
+            };
+            let ((p, wp), (m, wm)) = (at(h), at(-h));
+            for i in 0..12 {
+                let fd = -(p[i] - m[i]) / (2.0 * h);
+                assert!((fd - k[(i, j)]).abs() < 1e-5 * kmax, "K[{i},{j}]");
+            }
+            let grad = -(wp - wm) / (2.0 * h);
+            let scale = base.iter().fold(1e-3_f64, |m, v| m.max(v.abs()));
+            assert!((grad - base[j]).abs() < 1e-4 * scale, "load {j}: {} vs {grad}", base[j]);
+        }
+    }
+}

@@ -1,0 +1,109 @@
+//! Rubber that relaxes (SPEC X2): a 200 mm hose of a relaxing material pulled out by 2 mm
+//! and held carries, long after, the long-term share 1 − Σ g of the force the same hose
+//! of the elastic twin material carries; the relaxation data are checked and refused with
+//! the field named.
+
+use pliant_scene::load_scene_str;
+
+/// A scene with the material `relaxation` (TOML array, may be empty), the hose's end
+/// pulled out over 1 s and held for `hold` seconds, under `solver`.
+fn scene(relaxation: &str, hold: f64, solver: &str) -> String {
+    format!(
+        r#"
+format = "pliant-scene"
+version = 1
+length_unit = "mm"
+
+[simulation]
+gravity = [0, 0, 0]
+solver = "{solver}"
+
+[materials.epdm]
+e_tension_mpa = 8
+e_compression_mpa = 8
+poisson = 0.45
+density_kg_m3 = 1150
+relaxation = [{relaxation}]
+
+[[hoses]]
+name = "hose"
+material = "epdm"
+section = {{ d_inner = 10, d_outer = 16 }}
+elements = 8
+start = [0, 0, 0]
+path = [{{ line = {{ to = [200, 0, 0] }} }}]
+
+[[timeline]]
+action = "fix"
+hose = "hose"
+node = 0
+
+[[timeline]]
+action = "move"
+hose = "hose"
+node = -1
+by = [2, 0, 0]
+duration_s = 1
+
+[[timeline]]
+action = "run"
+duration_s = {hold}
+"#
+    )
+}
+
+const TERMS: &str = "{ weight = 0.3, time_s = 0.5 }, { weight = 0.2, time_s = 2 }";
+
+/// The pull on the hose's end at the end of the timeline \[N\].
+fn end_force(text: &str) -> f64 {
+    let scene = load_scene_str(text, "rubber.toml").unwrap();
+    let (cell, run) = scene.run_with(None).unwrap();
+    assert_eq!(run.solver.unconverged_steps, 0, "{:?}", run.solver);
+    let r = &cell.state().reaction_force;
+    r[r.len() - 1].x
+}
+
+#[test]
+fn a_relaxing_hose_held_stretched_keeps_the_long_term_share_of_its_force() {
+    for solver in ["static", "implicit"] {
+        let elastic = end_force(&scene("", 30.0, solver));
+        let relaxed = end_force(&scene(TERMS, 30.0, solver));
+        // 30 s is 15 of the longest relaxation time: e^{-15} of the relaxing share is left
+        let ratio = relaxed / elastic;
+        assert!(
+            (ratio - 0.5).abs() < 1e-3,
+            "{solver}: {relaxed} N of {elastic} N: ratio {ratio}, not 1 − Σ g = 0.5"
+        );
+        // just after the pull it has not relaxed that far
+        let early = end_force(&scene(TERMS, 0.1, solver)) / elastic;
+        assert!(early > 0.6 && early < 1.0, "{solver}: {early}");
+    }
+}
+
+#[test]
+fn relaxation_data_are_checked_with_the_field_named() {
+    let cases = [
+        ("{ weight = 1.2, time_s = 1 }", "materials.epdm.relaxation[0].weight"),
+        (
+            "{ weight = 0.2, time_s = 1 }, { weight = 0.3, time_s = -1 }",
+            "materials.epdm.relaxation[1].time_s",
+        ),
+        (
+            "{ weight = 0.6, time_s = 1 }, { weight = 0.5, time_s = 10 }",
+            "materials.epdm.relaxation",
+        ),
+    ];
+    for (terms, field) in cases {
+        let err = load_scene_str(&scene(terms, 1.0, "static"), "rubber.toml")
+            .err()
+            .unwrap_or_else(|| panic!("{terms} accepted"))
+            .to_string();
+        assert!(err.contains(field), "{terms}: {err}");
+    }
+    let both = scene(TERMS, 1.0, "static").replace(
+        "relaxation = [",
+        "yield_stress_mpa = 10\nrelaxation = [",
+    );
+    let err = load_scene_str(&both, "rubber.toml").err().unwrap().to_string();
+    assert!(err.contains("either yields"), "{err}");
+}
