@@ -8,7 +8,9 @@
 //! feels.
 
 use crate::clip::{ClipObservation, ClipSpec, ClipState, ClipTolerance};
-use crate::stub::{AxialLaw, StubLaw, StubObservation, StubState, StubTolerance};
+use crate::stub::{
+    AxialLaw, FitRelaxation, FitTerms, StubLaw, StubObservation, StubState, StubTolerance,
+};
 use glam::DVec3;
 use pliant_core::loads::{DeadLoad, Drive, LoadCase, LoadCaseId};
 use pliant_core::math::{log_map, rotation_between};
@@ -63,6 +65,10 @@ pub struct FastenerReport {
     /// Whether the fastener ended in its assembled state (stub: fixed; connector: fixed
     /// and latched; clip: seated).
     pub assembled: bool,
+    /// The axial pull that would start the hose off its stub or connector at the end of
+    /// the run \[N\] — a rubber hose's press fit relaxed ([`crate::stub::FitRelaxation`])
+    /// — 0 off it and for clips.
+    pub holding_force: f64,
 }
 
 /// A fastener's dead load and what was last written to it: a step that would write the
@@ -113,6 +119,8 @@ struct StubRun {
     /// [`StubState::next`] would refuse every step).
     tolerance: Option<StubTolerance>,
     state: StubState,
+    /// How far the press fit has relaxed (a hose of a relaxing material).
+    relaxation: FitRelaxation,
     force: ForceLoad,
     fix: Option<LoadCaseId>,
     report: FastenerReport,
@@ -196,6 +204,12 @@ impl Fasteners {
             .map(|site| StubRun {
                 tolerance: StubTolerance::for_stub(site.fit.stub()).checked(),
                 state: StubState::Approach,
+                relaxation: FitRelaxation::new(
+                    site.fit
+                        .press_fit()
+                        .map_or(FitTerms::new(&[]), |f| *f.relaxation()),
+                    state.time,
+                ),
                 force: ForceLoad::new(state, site.end_node),
                 fix: None,
                 report: FastenerReport {
@@ -313,7 +327,9 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
     let Some(tolerance) = &s.tolerance else {
         return;
     };
-    let Ok(next) = s.state.next_within(&s.site.fit, tolerance, &obs) else {
+    s.relaxation.advance(state.time, s.state.depth());
+    let fit = s.site.fit.relaxed(s.relaxation.ratio());
+    let Ok(next) = s.state.next_within(&fit, tolerance, &obs) else {
         return;
     };
     s.state = next;
@@ -349,7 +365,7 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
             } else {
                 crate::stub::Sense::Off
             };
-            let resist = next.resisting_force_moving(&s.site.fit, sense);
+            let resist = next.resisting_force_moving(&fit, sense);
             force -= axis * resist * (v / FRICTION_SPEED).clamp(-1.0, 1.0);
             let over = stub.axial_coordinate(state.x[e]) - stub.length();
             if over > 0.0 {
@@ -373,6 +389,12 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
         s.report.max_force = f;
         s.report.max_force_time = state.time;
     }
+    s.report.holding_force = match next {
+        StubState::Inserting { depth } | StubState::Fixed { depth } => {
+            fit.holding_force_moving(depth, crate::stub::Sense::Off)
+        }
+        _ => 0.0,
+    };
     s.report.assembled = match next {
         StubState::Fixed { depth } => s.site.fit.assembled_at(depth),
         _ => false,

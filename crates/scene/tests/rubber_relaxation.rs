@@ -83,7 +83,10 @@ fn a_relaxing_hose_held_stretched_keeps_the_long_term_share_of_its_force() {
 #[test]
 fn relaxation_data_are_checked_with_the_field_named() {
     let cases = [
-        ("{ weight = 1.2, time_s = 1 }", "materials.epdm.relaxation[0].weight"),
+        (
+            "{ weight = 1.2, time_s = 1 }",
+            "materials.epdm.relaxation[0].weight",
+        ),
         (
             "{ weight = 0.2, time_s = 1 }, { weight = 0.3, time_s = -1 }",
             "materials.epdm.relaxation[1].time_s",
@@ -100,10 +103,100 @@ fn relaxation_data_are_checked_with_the_field_named() {
             .to_string();
         assert!(err.contains(field), "{terms}: {err}");
     }
-    let both = scene(TERMS, 1.0, "static").replace(
-        "relaxation = [",
-        "yield_stress_mpa = 10\nrelaxation = [",
-    );
-    let err = load_scene_str(&both, "rubber.toml").err().unwrap().to_string();
+    let both = scene(TERMS, 1.0, "static")
+        .replace("relaxation = [", "yield_stress_mpa = 10\nrelaxation = [");
+    let err = load_scene_str(&both, "rubber.toml")
+        .err()
+        .unwrap()
+        .to_string();
     assert!(err.contains("either yields"), "{err}");
+}
+
+/// A hose of `material` pushed 20 mm onto a stub in 1 s, let go, and left for `hold`
+/// seconds.
+fn stub_scene(relaxation: &str, hold: f64) -> String {
+    format!(
+        r#"
+format = "pliant-scene"
+version = 1
+length_unit = "mm"
+
+[simulation]
+gravity = [0, 0, 0]
+solver = "static"
+
+[materials.epdm]
+e_tension_mpa = 8
+e_compression_mpa = 8
+poisson = 0.45
+density_kg_m3 = 1150
+relaxation = [{relaxation}]
+
+[[hoses]]
+name = "hose"
+material = "epdm"
+section = {{ d_inner = 10, d_outer = 16 }}
+elements = 10
+start = [0, 0, 0]
+path = [{{ line = {{ to = [300, 0, 0] }} }}]
+
+[[stubs]]
+name = "inlet"
+origin = [305, 0, 0]
+axis = [1, 0, 0]
+length = 30
+diameter = 11
+hose = "hose"
+end = "end"
+
+[[timeline]]
+action = "fix"
+hose = "hose"
+node = 0
+
+[[timeline]]
+action = "grab"
+hand = 0
+at = [300, 0, 0]
+
+[[timeline]]
+action = "move_hand"
+hand = 0
+by = [25, 0, 0]
+duration_s = 1
+
+[[timeline]]
+action = "release_hand"
+hand = 0
+
+[[timeline]]
+action = "run"
+duration_s = {hold}
+"#
+    )
+}
+
+/// The stub's holding force at the end of the timeline \[N\].
+fn holding_force(text: &str) -> f64 {
+    let scene = load_scene_str(text, "stub.toml").unwrap();
+    let (_, run) = scene.run_with(None).unwrap();
+    let stub = &run.fasteners[0];
+    assert_eq!(stub.final_state, "fixed", "{stub:?}");
+    stub.holding_force
+}
+
+#[test]
+fn a_relaxing_hose_on_a_stub_loses_the_relaxing_share_of_its_holding_force() {
+    let elastic = holding_force(&stub_scene("", 30.0));
+    assert!(elastic > 1.0, "{elastic} N");
+    let relaxed = holding_force(&stub_scene(TERMS, 30.0)) / elastic;
+    assert!(
+        (relaxed - 0.5).abs() < 1e-3,
+        "ratio {relaxed}, not 1 − Σ g = 0.5"
+    );
+    let early = holding_force(&stub_scene(TERMS, 0.2)) / elastic;
+    assert!(
+        early > 0.55 && early < 0.95,
+        "ratio {early} right after the push"
+    );
 }

@@ -312,16 +312,17 @@ pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String 
         }
     }
     if !run.fasteners.is_empty() {
-        s.push_str("<h2>Stubs and clips</h2><table><tr><th>kind</th><th>name</th><th>peak force [N]</th><th>at [s]</th><th>final state</th></tr>");
+        s.push_str("<h2>Stubs and clips</h2><table><tr><th>kind</th><th>name</th><th>peak force [N]</th><th>at [s]</th><th>final state</th><th>holding force at the end [N]</th></tr>");
         for f in &run.fasteners {
             let _ = write!(
                 s,
-                "<tr><td>{}</td><td>{}</td><td>{:.1}</td><td>{:.2}</td><td>{}</td></tr>",
+                "<tr><td>{}</td><td>{}</td><td>{:.1}</td><td>{:.2}</td><td>{}</td><td>{:.1}</td></tr>",
                 f.kind,
                 escape(&f.name),
                 f.max_force,
                 f.max_force_time,
-                escape(&f.final_state)
+                escape(&f.final_state),
+                f.holding_force
             );
         }
         s.push_str("</table>");

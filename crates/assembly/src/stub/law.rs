@@ -99,6 +99,15 @@ impl StubLaw {
         }
     }
 
+    /// The law with a press fit's pressures scaled by `ratio` (its relaxation,
+    /// [`super::FitRelaxation`]); a connector's mating force does not relax.
+    pub fn relaxed(&self, ratio: f64) -> StubLaw {
+        match self {
+            StubLaw::PressFit(f) => StubLaw::PressFit(f.relaxed(ratio)),
+            StubLaw::Mating(m) => StubLaw::Mating(*m),
+        }
+    }
+
     /// The fastener's kind as reports name it: "stub" or "connector".
     pub fn kind(&self) -> &'static str {
         match self {

@@ -6,6 +6,7 @@
 
 mod bead;
 mod error;
+mod fit_relaxation;
 mod law;
 mod mating;
 mod press_fit;
@@ -14,6 +15,7 @@ mod state;
 
 pub use bead::{wedge_factor, Bead, Sense};
 pub use error::StubError;
+pub use fit_relaxation::{FitRelaxation, FitTerms};
 pub use law::{AxialLaw, StubLaw};
 pub use mating::{Mating, MAX_MATING_POINTS};
 pub use press_fit::{contact_pressure, PressFit, MAX_PROFILE};

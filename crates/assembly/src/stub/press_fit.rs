@@ -22,6 +22,7 @@
 
 use super::bead::{Bead, Sense};
 use super::error::StubError;
+use super::fit_relaxation::FitTerms;
 use super::spec::{Friction, StubSpec};
 use pliant_core::{Material, Section};
 use std::f64::consts::PI;
@@ -88,13 +89,20 @@ pub struct PressFit {
     profile_len: usize,
     /// Hose radii and material, for the crest pressure.
     hose: (f64, f64, f64, f64),
+    /// How the hose's modulus relaxes (empty: elastic), for the holding force over time
+    /// ([`super::FitRelaxation`]).
+    relaxation: FitTerms,
 }
 
 impl PressFit {
     /// The press fit of a hose with this section and material on `stub`, with E = E_t
     /// (see the module's note on the modulus).
     pub fn new(stub: &StubSpec, section: &Section, material: &Material) -> Result<Self, StubError> {
-        Self::with_modulus(stub, section, material.e_tension, material.poisson)
+        let fit = Self::with_modulus(stub, section, material.e_tension, material.poisson)?;
+        Ok(PressFit {
+            relaxation: FitTerms::new(&material.relaxation),
+            ..fit
+        })
     }
 
     /// As [`PressFit::new`] with an explicit modulus E \[Pa\] and Poisson's ratio ν.
@@ -113,6 +121,7 @@ impl PressFit {
             profile: [(EMPTY_BEAD, 0.0); MAX_PROFILE],
             profile_len: 0,
             hose: (modulus, poisson, r_i, r_a),
+            relaxation: FitTerms::new(&[]),
         })
     }
 
@@ -141,6 +150,22 @@ impl PressFit {
         self.profile[self.profile_len] = (bead, p);
         self.profile_len += 1;
         Ok(self)
+    }
+
+    /// How the hose's modulus relaxes (no terms: elastic).
+    pub fn relaxation(&self) -> &FitTerms {
+        &self.relaxation
+    }
+
+    /// The fit with every contact pressure (cylinder and crests) scaled by `ratio`: the
+    /// relaxed fit ([`super::FitRelaxation::ratio`]).
+    pub fn relaxed(&self, ratio: f64) -> PressFit {
+        let mut fit = *self;
+        fit.pressure *= ratio;
+        for (_, p) in &mut fit.profile[..fit.profile_len] {
+            *p *= ratio;
+        }
+        fit
     }
 
     /// The first bead, if the stub has one.

@@ -208,7 +208,11 @@ mod tests {
             for k in 0..2 {
                 let want = elastic.moment[k] * ratio;
                 let err = (l.moment[k] - want).length();
-                assert!(err < 1e-9 * want.length(), "t {t}: {:?} vs {want:?}", l.moment[k]);
+                assert!(
+                    err < 1e-9 * want.length(),
+                    "t {t}: {:?} vs {want:?}",
+                    l.moment[k]
+                );
             }
             registry.commit(&[e.clone()], (&x[..], &q[..]), h, &mut history);
         }
@@ -263,7 +267,10 @@ mod tests {
             let at = |s: f64| {
                 let (xp, qp) = perturbed(j, s);
                 let l = registry.loads(&e, &inelastic, view, &ElementEnds::still(xp, qp), 0.0);
-                (flat(&l), registry.strain_energy(&e, &inelastic, view, (xp, qp), true))
+                (
+                    flat(&l),
+                    registry.strain_energy(&e, &inelastic, view, (xp, qp), true),
+                )
             };
             let ((p, wp), (m, wm)) = (at(h), at(-h));
             for i in 0..12 {
@@ -272,7 +279,11 @@ mod tests {
             }
             let grad = -(wp - wm) / (2.0 * h);
             let scale = base.iter().fold(1e-3_f64, |m, v| m.max(v.abs()));
-            assert!((grad - base[j]).abs() < 1e-4 * scale, "load {j}: {} vs {grad}", base[j]);
+            assert!(
+                (grad - base[j]).abs() < 1e-4 * scale,
+                "load {j}: {} vs {grad}",
+                base[j]
+            );
         }
     }
 }
