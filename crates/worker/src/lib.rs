@@ -12,7 +12,8 @@
 //! - [`posture`]: joint angles and positions;
 //! - [`ik`]: the inverse kinematics ([`Manikin::solve`]);
 //! - [`capsules`]: the body of capsules of a posture;
-//! - [`rula`], [`reba`]: the two posture scores, their tables in their own files.
+//! - [`rula`], [`reba`]: the two posture scores, their tables in their own files;
+//! - [`scores`]: both scores of a manikin posture with the hands' forces.
 
 pub mod anthropometry;
 pub mod capsules;
@@ -21,6 +22,9 @@ pub mod ik;
 pub mod placement;
 pub mod posture;
 pub mod quantile;
+pub mod reba;
+pub mod rula;
+pub mod scores;
 
 pub use anthropometry::{body, stature, Body, JointLimits, Population, Sex};
 pub use capsules::{capsules, Capsule, Segment, CAPSULE_COUNT};
@@ -28,3 +32,6 @@ pub use error::WorkerError;
 pub use ik::{assign_hands, Manikin};
 pub use placement::Placement;
 pub use posture::{ArmPose, Joints, Posture, Side, TrunkAngles};
+pub use reba::{Coupling, RebaInput, RebaScore};
+pub use rula::{RulaInput, RulaScore};
+pub use scores::{score_posture, PostureScores, ScoreOptions};
