@@ -99,6 +99,7 @@ pub fn run_timeline(
         initial: loaded.initial_actions(),
         profile,
         checks: loaded.check_settings(),
+        worker: loaded.worker,
     };
     let options = WorkcellOptions {
         solver,
