@@ -2,7 +2,7 @@
 //! how often they are posed, and whether what they cannot do decides feasibility.
 
 use glam::DVec3;
-use pliant_worker::{Placement, Population, ScoreOptions, WorkerError};
+use pliant_worker::{Body, Placement, Population, ScoreOptions, WorkerError};
 use serde::Serialize;
 
 /// Where the worker stands.
@@ -12,8 +12,8 @@ pub enum Stance {
     /// At a given placement.
     At(Placement),
     /// In front of the first point a hand holds, facing `facing` (horizontal unit), feet
-    /// on the floor at height `floor` \[m\] along `up`: the grab point is
-    /// [`AUTO_REACH_FRACTION`] of the arm's reach in front of the feet.
+    /// on the floor at height `floor` \[m\] along `up`: the grab point is straight ahead
+    /// of the right shoulder, [`AUTO_REACH_FRACTION`] of the arm's reach in front of it.
     Auto {
         facing: DVec3,
         up: DVec3,
@@ -59,13 +59,15 @@ impl WorkerSettings {
 }
 
 impl Stance {
-    /// The placement for a first grab point at `grab` whose worker's arm reaches
-    /// `arm_reach` \[m\] (a fixed stance ignores both).
-    pub fn place(&self, grab: DVec3, arm_reach: f64) -> Placement {
+    /// The placement for a first grab point at `grab` for `body` (a fixed stance ignores
+    /// both).
+    pub fn place(&self, grab: DVec3, body: &Body) -> Placement {
         match *self {
             Stance::At(p) => p,
             Stance::Auto { facing, up, floor } => {
-                let p = grab - facing * (AUTO_REACH_FRACTION * arm_reach);
+                let left = up.cross(facing);
+                let p = grab - facing * (AUTO_REACH_FRACTION * body.arm_reach())
+                    + left * (0.5 * body.shoulder_width);
                 Placement {
                     position: p - (p.dot(up) - floor) * up,
                     forward: facing,

@@ -110,6 +110,8 @@ pub struct WorkerTrack {
     worst_rula: Option<ScoreAt<RulaScore>>,
     worst_reba: Option<ScoreAt<RebaScore>>,
     last_posture: Option<Posture>,
+    /// The hand each arm followed at the last posed instant (right, left).
+    arm_of: [Option<usize>; 2],
     series: Vec<WorkerSample>,
 }
 
@@ -128,6 +130,7 @@ impl WorkerTrack {
             worst_rula: None,
             worst_reba: None,
             last_posture: None,
+            arm_of: [None; 2],
             series: Vec::with_capacity(1024),
         };
         t.reset();
@@ -147,6 +150,7 @@ impl WorkerTrack {
         self.worst_rula = None;
         self.worst_reba = None;
         self.last_posture = None;
+        self.arm_of = [None; 2];
         self.series.clear();
     }
 
@@ -191,17 +195,16 @@ impl WorkerTrack {
         let manikin = match (self.manikin, records.first()) {
             (Some(m), _) => m,
             (None, Some(first)) => {
-                let p = self
-                    .settings
-                    .stance
-                    .place(first.load.position, self.body.arm_reach());
+                let p = self.settings.stance.place(first.load.position, &self.body);
                 let m = Manikin::new(self.body, p);
                 self.manikin = Some(m);
                 m
             }
             (None, None) => return,
         };
-        // the first two hands; the one further to the worker's right to the right arm
+        // the first two hands; the one further to the worker's right to the right arm; a
+        // single hand to the arm on its side, but it stays with the arm that held it
+        // until it is a quarter shoulder width past the midline
         let mut hand = [None; 2];
         let mut target = [None; 2];
         let mut force = [0.0; 2];
@@ -212,7 +215,14 @@ impl WorkerTrack {
                 picked = [Some(b), Some(a)];
             }
         } else if let [Some(a), None] = picked {
-            if lateral(a.load.position) > 0.0 {
+            let y = lateral(a.load.position);
+            let margin = 0.25 * self.body.shoulder_width;
+            let left = match self.arm_of {
+                [Some(h), _] if h == a.hand => y > margin,
+                [_, Some(h)] if h == a.hand => y > -margin,
+                _ => y > 0.0,
+            };
+            if left {
                 picked = [None, Some(a)];
             }
         }
@@ -223,6 +233,7 @@ impl WorkerTrack {
                 force[i] = r.load.force.length();
             }
         }
+        self.arm_of = hand;
         let posture = manikin.solve(target);
         let options = ScoreOptions {
             static_or_repeated: static_work,
