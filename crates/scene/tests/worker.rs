@@ -228,3 +228,46 @@ fn bad_worker_fields_are_named() {
         assert!(e.contains(field), "{bad}: {e}");
     }
 }
+
+/// The worker is part of the workcell's state: a replay of the log, and a checkpoint
+/// restored mid-study, give the same posed instants bit for bit (explicit and static).
+#[test]
+fn the_worker_replays_and_restores_bit_for_bit() {
+    use pliant_assembly::workcell::replay::replay;
+    use pliant_assembly::{run_timeline, NoObserver, Timeline, WorkcellOptions};
+    let text = scene(1500.0, "[worker]\npopulation = \"female 50\"\n");
+    let s = load_scene_str(&text, "worker.toml").unwrap();
+    for solver in [SolverKind::Static, SolverKind::Explicit] {
+        let options = WorkcellOptions {
+            solver: Some(solver),
+            initial_loads: false,
+            ..Default::default()
+        };
+        let mut live = s.workcell(options).unwrap();
+        let half = s.timeline.actions.len() - 1;
+        let first = Timeline {
+            actions: s.timeline.actions[..half].to_vec(),
+        };
+        let rest = Timeline {
+            actions: s.timeline.actions[half..].to_vec(),
+        };
+        run_timeline(&mut live, &first, &mut NoObserver).unwrap();
+        let saved = live.checkpoint();
+        run_timeline(&mut live, &rest, &mut NoObserver).unwrap();
+        assert!(live.worker_series().len() > 10, "{solver}");
+        let mut again = s.workcell(options).unwrap();
+        replay(
+            &mut again,
+            &live.log().to_vec(),
+            live.tick(),
+            &mut NoObserver,
+        )
+        .unwrap();
+        assert_eq!(again.worker_series(), live.worker_series(), "{solver}");
+        assert_eq!(again.summary().worker, live.summary().worker);
+        let end = live.worker_series().to_vec();
+        live.restore(&saved).unwrap();
+        run_timeline(&mut live, &rest, &mut NoObserver).unwrap();
+        assert_eq!(live.worker_series(), &end[..], "{solver}");
+    }
+}
