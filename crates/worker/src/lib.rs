@@ -11,7 +11,7 @@
 //! - [`placement`]: where the worker stands and faces;
 //! - [`posture`]: joint angles and positions;
 //! - [`ik`]: the inverse kinematics ([`Manikin::solve`]);
-//! - [`capsules`]: the body of capsules of a posture;
+//! - [`mod@capsules`]: the body of capsules of a posture;
 //! - [`rula`], [`reba`]: the two posture scores, their tables in their own files;
 //! - [`scores`]: both scores of a manikin posture with the hands' forces.
 
