@@ -445,6 +445,7 @@ impl RunResult {
                 self.diverged.as_deref(),
                 &self.data.hand_samples,
                 &self.profile,
+                &[],
             )
             .map(|_| ())
             .map_err(|e| e.to_string())

@@ -76,8 +76,8 @@ fn out_of_reach_for_the_small_woman_not_for_the_tall_man() {
     // the shoulder–target distance less the arm, give or take what bending wins
     let shoulder = glam::DVec3::new(
         p.position.x,
-        -0.5 * w.body.shoulder_width,
-        w.body.shoulder_height,
+        -0.5 * w.body.dims.shoulder_width,
+        w.body.dims.shoulder_height,
     );
     let upright_gap = (glam::DVec3::new(0.5, -0.2, 1.9) - shoulder).length() - w.body.arm_reach();
     assert!(

@@ -114,9 +114,9 @@ impl Population {
 #[serde(deny_unknown_fields)]
 struct Table {
     stature: StatureTable,
-    proportions: Proportions,
-    radii: Radii,
-    joint_limits: JointLimitsDeg,
+    proportions: Dimensions,
+    radii: SegmentRadii,
+    joint_limits: JointLimits,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -128,59 +128,32 @@ struct StatureTable {
     male_sd: f64,
 }
 
-/// Segment lengths and heights as fractions of stature (Winter 2009, fig. 4.1).
-#[derive(Clone, Copy, Debug, Deserialize)]
+/// A body's heights, widths and segment lengths \[m\] (in the data table: fractions of
+/// stature after Winter 2009, fig. 4.1; [`Dimensions::scaled`]).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
-struct Proportions {
+pub struct Dimensions {
+    /// Heights above the floor: shoulder joint, hip joint, knee, ankle, chin, eyes.
     pub shoulder_height: f64,
     pub hip_height: f64,
     pub knee_height: f64,
     pub ankle_height: f64,
     pub chin_height: f64,
     pub eye_height: f64,
+    /// Between the shoulder joints and between the hip joints.
     pub shoulder_width: f64,
     pub hip_width: f64,
+    /// Shoulder–elbow, elbow–wrist, wrist–fingertip.
     pub upper_arm: f64,
     pub forearm: f64,
     pub hand: f64,
-}
-
-/// Capsule radii as fractions of stature (the author's estimates, not data).
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Radii {
-    pub head: f64,
-    pub neck: f64,
-    pub trunk: f64,
-    pub pelvis: f64,
-    pub upper_arm: f64,
-    pub forearm: f64,
-    pub hand: f64,
-    pub thigh: f64,
-    pub shank: f64,
-}
-
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct JointLimitsDeg {
-    trunk_flexion: f64,
-    trunk_extension: f64,
-    trunk_lateral: f64,
-    trunk_twist: f64,
-    neck_flexion: f64,
-    neck_extension: f64,
-    neck_lateral: f64,
-    neck_twist: f64,
-    shoulder_flexion: f64,
-    shoulder_extension: f64,
-    shoulder_abduction: f64,
-    shoulder_adduction: f64,
-    elbow_flexion: f64,
 }
 
 /// Joint limits \[rad\] (AAOS 1965 average ranges of motion), each a positive range from
-/// the neutral standing posture.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+/// the neutral standing posture. The data table gives them in degrees
+/// ([`JointLimits::to_radians`]).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct JointLimits {
     pub trunk_flexion: f64,
     pub trunk_extension: f64,
@@ -203,27 +176,18 @@ pub struct Body {
     pub population: Population,
     /// Stature H \[m\].
     pub stature: f64,
-    /// Heights above the floor \[m\]: shoulder joint, hip joint, knee, ankle, chin, eyes.
-    pub shoulder_height: f64,
-    pub hip_height: f64,
-    pub knee_height: f64,
-    pub ankle_height: f64,
-    pub chin_height: f64,
-    pub eye_height: f64,
-    /// Between the shoulder joints and between the hip joints \[m\].
-    pub shoulder_width: f64,
-    pub hip_width: f64,
-    /// Shoulder–elbow, elbow–wrist, wrist–fingertip \[m\].
-    pub upper_arm: f64,
-    pub forearm: f64,
-    pub hand: f64,
+    /// Heights, widths and segment lengths \[m\].
+    #[serde(flatten)]
+    pub dims: Dimensions,
     /// Capsule radii \[m\].
     pub radii: SegmentRadii,
     pub limits: JointLimits,
 }
 
-/// Capsule radii \[m\] of a body.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+/// Capsule radii \[m\] of a body (in the data table: fractions of stature, the author's
+/// estimates, not data; [`SegmentRadii::scaled`]).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct SegmentRadii {
     pub head: f64,
     pub neck: f64,
@@ -236,16 +200,74 @@ pub struct SegmentRadii {
     pub shank: f64,
 }
 
+impl JointLimits {
+    /// Every limit converted from degrees to radians.
+    pub fn to_radians(self) -> JointLimits {
+        let r = f64::to_radians;
+        JointLimits {
+            trunk_flexion: r(self.trunk_flexion),
+            trunk_extension: r(self.trunk_extension),
+            trunk_lateral: r(self.trunk_lateral),
+            trunk_twist: r(self.trunk_twist),
+            neck_flexion: r(self.neck_flexion),
+            neck_extension: r(self.neck_extension),
+            neck_lateral: r(self.neck_lateral),
+            neck_twist: r(self.neck_twist),
+            shoulder_flexion: r(self.shoulder_flexion),
+            shoulder_extension: r(self.shoulder_extension),
+            shoulder_abduction: r(self.shoulder_abduction),
+            shoulder_adduction: r(self.shoulder_adduction),
+            elbow_flexion: r(self.elbow_flexion),
+        }
+    }
+}
+
+impl Dimensions {
+    /// Every dimension times `h` (fractions of stature to metres).
+    pub fn scaled(self, h: f64) -> Dimensions {
+        Dimensions {
+            shoulder_height: self.shoulder_height * h,
+            hip_height: self.hip_height * h,
+            knee_height: self.knee_height * h,
+            ankle_height: self.ankle_height * h,
+            chin_height: self.chin_height * h,
+            eye_height: self.eye_height * h,
+            shoulder_width: self.shoulder_width * h,
+            hip_width: self.hip_width * h,
+            upper_arm: self.upper_arm * h,
+            forearm: self.forearm * h,
+            hand: self.hand * h,
+        }
+    }
+}
+
+impl SegmentRadii {
+    /// Every radius times `h` (fractions of stature to metres).
+    pub fn scaled(self, h: f64) -> SegmentRadii {
+        SegmentRadii {
+            head: self.head * h,
+            neck: self.neck * h,
+            trunk: self.trunk * h,
+            pelvis: self.pelvis * h,
+            upper_arm: self.upper_arm * h,
+            forearm: self.forearm * h,
+            hand: self.hand * h,
+            thigh: self.thigh * h,
+            shank: self.shank * h,
+        }
+    }
+}
+
 impl Body {
     /// The grip centre's distance from the wrist \[m\]: half the hand length (a power
     /// grip closes the fingers round a hose at about mid-hand).
     pub fn grip_offset(&self) -> f64 {
-        0.5 * self.hand
+        0.5 * self.dims.hand
     }
 
     /// Shoulder to grip centre with the arm straight \[m\].
     pub fn arm_reach(&self) -> f64 {
-        self.upper_arm + self.forearm + self.grip_offset()
+        self.dims.upper_arm + self.dims.forearm + self.grip_offset()
     }
 }
 
@@ -271,49 +293,11 @@ pub fn stature(population: Population) -> Result<f64, WorkerError> {
 pub fn body(population: Population) -> Result<Body, WorkerError> {
     let t = table()?;
     let h = stature(population)?;
-    let p = &t.proportions;
-    let r = &t.radii;
-    let l = &t.joint_limits;
-    let rad = f64::to_radians;
     Ok(Body {
         population,
         stature: h,
-        shoulder_height: p.shoulder_height * h,
-        hip_height: p.hip_height * h,
-        knee_height: p.knee_height * h,
-        ankle_height: p.ankle_height * h,
-        chin_height: p.chin_height * h,
-        eye_height: p.eye_height * h,
-        shoulder_width: p.shoulder_width * h,
-        hip_width: p.hip_width * h,
-        upper_arm: p.upper_arm * h,
-        forearm: p.forearm * h,
-        hand: p.hand * h,
-        radii: SegmentRadii {
-            head: r.head * h,
-            neck: r.neck * h,
-            trunk: r.trunk * h,
-            pelvis: r.pelvis * h,
-            upper_arm: r.upper_arm * h,
-            forearm: r.forearm * h,
-            hand: r.hand * h,
-            thigh: r.thigh * h,
-            shank: r.shank * h,
-        },
-        limits: JointLimits {
-            trunk_flexion: rad(l.trunk_flexion),
-            trunk_extension: rad(l.trunk_extension),
-            trunk_lateral: rad(l.trunk_lateral),
-            trunk_twist: rad(l.trunk_twist),
-            neck_flexion: rad(l.neck_flexion),
-            neck_extension: rad(l.neck_extension),
-            neck_lateral: rad(l.neck_lateral),
-            neck_twist: rad(l.neck_twist),
-            shoulder_flexion: rad(l.shoulder_flexion),
-            shoulder_extension: rad(l.shoulder_extension),
-            shoulder_abduction: rad(l.shoulder_abduction),
-            shoulder_adduction: rad(l.shoulder_adduction),
-            elbow_flexion: rad(l.elbow_flexion),
-        },
+        dims: t.proportions.scaled(h),
+        radii: t.radii.scaled(h),
+        limits: t.joint_limits.to_radians(),
     })
 }

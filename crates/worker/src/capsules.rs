@@ -66,7 +66,7 @@ pub fn capsules(body: &Body, posture: &Posture) -> [Capsule; CAPSULE_COUNT] {
     let hand_end = |s: Side| {
         let a = arm(s);
         let d = (a.grip - a.wrist).normalize_or(DVec3::ZERO);
-        a.wrist + d * (body.hand - r.hand).max(0.0)
+        a.wrist + d * (body.dims.hand - r.hand).max(0.0)
     };
     [
         cap(Segment::Head, j.head, j.head, r.head),

@@ -61,7 +61,7 @@ impl Manikin {
     /// The lumbar joint: at hip height above the floor point.
     pub fn lumbar(&self) -> DVec3 {
         self.placement
-            .point(DVec3::new(0.0, 0.0, self.body.hip_height))
+            .point(DVec3::new(0.0, 0.0, self.body.dims.hip_height))
     }
 
     /// Upright standing: where each shoulder joint is \[m\].
@@ -69,8 +69,8 @@ impl Manikin {
         let b = &self.body;
         self.placement.point(DVec3::new(
             0.0,
-            side.outward() * 0.5 * b.shoulder_width,
-            b.shoulder_height,
+            side.outward() * 0.5 * b.dims.shoulder_width,
+            b.dims.shoulder_height,
         ))
     }
 
@@ -89,8 +89,8 @@ impl Manikin {
     fn shoulder(&self, f: &TrunkFrame, side: Side) -> DVec3 {
         let b = &self.body;
         self.lumbar()
-            + f.left * (side.outward() * 0.5 * b.shoulder_width)
-            + f.up * (b.shoulder_height - b.hip_height)
+            + f.left * (side.outward() * 0.5 * b.dims.shoulder_width)
+            + f.up * (b.dims.shoulder_height - b.dims.hip_height)
     }
 
     /// One arm reaching for `target` from its shoulder in trunk frame `f`.
@@ -99,11 +99,11 @@ impl Manikin {
         let s = self.shoulder(f, side);
         let down = -self.placement.up;
         let outward = f.left * side.outward();
-        let (a, c) = (b.upper_arm, b.forearm + b.grip_offset());
+        let (a, c) = (b.dims.upper_arm, b.dims.forearm + b.grip_offset());
         let Some(t) = target else {
             // hanging under gravity
             let elbow = s + down * a;
-            let wrist = elbow + down * b.forearm;
+            let wrist = elbow + down * b.dims.forearm;
             return self.arm_pose(
                 f,
                 side,
@@ -132,7 +132,7 @@ impl Manikin {
         let elbow = s + a * (cos_psi * dir + sin_psi * n);
         let grip = s + dir * d_r;
         let fd = (grip - elbow).normalize_or(dir);
-        let wrist = elbow + fd * b.forearm;
+        let wrist = elbow + fd * b.dims.forearm;
         self.arm_pose(f, side, s, elbow, wrist, grip, Some(t), (d - d_r).abs())
     }
 
@@ -182,7 +182,7 @@ impl Manikin {
             elevation,
             flexion,
             abduction,
-            across_or_out: target.is_some() && (lateral < 0.0 || lateral > b.shoulder_width),
+            across_or_out: target.is_some() && (lateral < 0.0 || lateral > b.dims.shoulder_width),
             residual,
         }
     }
@@ -266,8 +266,8 @@ impl Manikin {
         let f = self.frame(t);
         let arms = Side::BOTH.map(|side| self.arm(&f, side, targets[side.index()]));
         let lumbar = self.lumbar();
-        let neck_base = lumbar + f.up * (b.shoulder_height - b.hip_height);
-        let eyes_upright = neck_base + f.up * (b.eye_height - b.shoulder_height);
+        let neck_base = lumbar + f.up * (b.dims.shoulder_height - b.dims.hip_height);
+        let eyes_upright = neck_base + f.up * (b.dims.eye_height - b.dims.shoulder_height);
         // the head looks at the middle of the targets, within the neck's range
         let mut gaze = DVec3::ZERO;
         let mut count = 0.0;
@@ -294,22 +294,22 @@ impl Manikin {
         let hips = Side::BOTH.map(|s| {
             p.point(DVec3::new(
                 0.0,
-                s.outward() * 0.5 * b.hip_width,
-                b.hip_height,
+                s.outward() * 0.5 * b.dims.hip_width,
+                b.dims.hip_height,
             ))
         });
         let knees = Side::BOTH.map(|s| {
             p.point(DVec3::new(
                 0.0,
-                s.outward() * 0.5 * b.hip_width,
-                b.knee_height,
+                s.outward() * 0.5 * b.dims.hip_width,
+                b.dims.knee_height,
             ))
         });
         let ankles = Side::BOTH.map(|s| {
             p.point(DVec3::new(
                 0.0,
-                s.outward() * 0.5 * b.hip_width,
-                b.ankle_height,
+                s.outward() * 0.5 * b.dims.hip_width,
+                b.dims.ankle_height,
             ))
         });
         Posture {
@@ -320,8 +320,8 @@ impl Manikin {
             joints: Joints {
                 lumbar,
                 neck_base,
-                chin: neck_base + neck_axis * (b.chin_height - b.shoulder_height),
-                head: neck_base + neck_axis * (b.eye_height - b.shoulder_height),
+                chin: neck_base + neck_axis * (b.dims.chin_height - b.dims.shoulder_height),
+                head: neck_base + neck_axis * (b.dims.eye_height - b.dims.shoulder_height),
                 hips,
                 knees,
                 ankles,

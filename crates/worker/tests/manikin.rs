@@ -25,8 +25,8 @@ fn statures_follow_the_table() {
     assert!((m50 - 1.7562).abs() < 1e-9, "{m50}");
     assert!((m95 - (1.7562 + 1.644854 * 0.0686)).abs() < 1e-6, "{m95}");
     let b = body(population(Sex::Male, 50.0)).unwrap();
-    assert!((b.shoulder_height - 0.818 * m50).abs() < 1e-12);
-    assert!((b.upper_arm - 0.186 * m50).abs() < 1e-12);
+    assert!((b.dims.shoulder_height - 0.818 * m50).abs() < 1e-12);
+    assert!((b.dims.upper_arm - 0.186 * m50).abs() < 1e-12);
 }
 
 #[test]
@@ -83,8 +83,8 @@ fn reachable_targets_are_reached() {
             assert!(arm.elbow_flexion <= l.elbow_flexion + 1e-9);
             // the arm's links keep their lengths
             let b = &m.body;
-            assert!(((arm.elbow - arm.shoulder).length() - b.upper_arm).abs() < 1e-9);
-            assert!(((arm.wrist - arm.elbow).length() - b.forearm).abs() < 1e-9);
+            assert!(((arm.elbow - arm.shoulder).length() - b.dims.upper_arm).abs() < 1e-9);
+            assert!(((arm.wrist - arm.elbow).length() - b.dims.forearm).abs() < 1e-9);
         }
     }
 }
@@ -108,9 +108,9 @@ fn the_trunk_bends_only_when_it_must() {
 #[test]
 fn out_of_reach_reports_the_distance() {
     let f5 = manikin(Sex::Female, 5.0);
-    let target = DVec3::new(0.0, -0.5 * f5.body.shoulder_width, 1.9);
+    let target = DVec3::new(0.0, -0.5 * f5.body.dims.shoulder_width, 1.9);
     let pose = f5.solve([Some(target), None]);
-    let highest = f5.body.shoulder_height + f5.body.arm_reach();
+    let highest = f5.body.dims.shoulder_height + f5.body.arm_reach();
     let expected = 1.9 - highest;
     assert!(expected > 0.03, "the test's premise: {highest}");
     let upright = f5.posture(Default::default(), [Some(target), None]);
@@ -121,7 +121,7 @@ fn out_of_reach_reports_the_distance() {
         "residual {r}, upright {expected}"
     );
     let m95 = manikin(Sex::Male, 95.0);
-    let t95 = DVec3::new(0.0, -0.5 * m95.body.shoulder_width, 1.9);
+    let t95 = DVec3::new(0.0, -0.5 * m95.body.dims.shoulder_width, 1.9);
     assert!(m95.solve([Some(t95), None]).arms[0].residual < 1e-4);
     // far in front at shoulder height: beyond arm plus the trunk's bend
     let far = f5.solve([Some(DVec3::new(2.0, -0.2, 1.2)), None]);
@@ -156,7 +156,7 @@ fn placement_rotates_the_manikin() {
     let m = Manikin::new(body, place);
     let s = m.shoulder_upright(Side::Right);
     // facing −y, the right is −x
-    assert!(s.x < 1.0 && (s.z - (0.5 + body.shoulder_height)).abs() < 1e-12);
+    assert!(s.x < 1.0 && (s.z - (0.5 + body.dims.shoulder_height)).abs() < 1e-12);
     let t = place.point(DVec3::new(0.45, -0.2, 1.0));
     let pose = m.solve([Some(t), None]);
     assert!(pose.arms[0].residual < 1e-4);

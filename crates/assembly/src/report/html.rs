@@ -28,22 +28,10 @@ pub struct Report<'a> {
 /// exist) and returns the verdict. `parts` are the model's part outlines for the
 /// pictures ([`super::part_outline::part_outlines`]); `samples` are the hand loads at
 /// the recorded times; `profile` is the ergonomic profile the run was judged with (its
-/// push limit is drawn on the stub and clip plots).
-pub fn write_reports(
-    out: &Path,
-    scene: &str,
-    run: &RunSummary,
-    parts: &[PartOutline],
-    diverged: Option<&str>,
-    samples: &[HandSample],
-    profile: &ErgonomicProfile,
-) -> std::io::Result<Verdict> {
-    write_reports_with(out, scene, run, parts, diverged, samples, profile, &[])
-}
-
-/// [`write_reports`] with the worker's posed instants for the report's worker plot.
+/// push limit is drawn on the stub and clip plots); `worker_series` the worker's posed
+/// instants (SPEC E1–E2; empty without a worker) for the report's worker plot.
 #[allow(clippy::too_many_arguments)]
-pub fn write_reports_with(
+pub fn write_reports(
     out: &Path,
     scene: &str,
     run: &RunSummary,

@@ -13,7 +13,7 @@ mod svg;
 mod vtk;
 pub mod worker_section;
 
-pub use html::{write_reports, write_reports_with};
+pub use html::write_reports;
 pub use recorder::{HandSample, Recorder};
 pub use summary::{
     final_state, peak_rows, FinalHose, OtherStop, PeakRow, StopReason, Stopped, Summary,
@@ -91,7 +91,7 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
     // Presentation data, made here once per report: a hull over every vertex of every
     // part (never on the live path).
     let parts = part_outline::part_outlines(&o.model.environment);
-    let verdict = write_reports_with(
+    let verdict = write_reports(
         out,
         o.scene_name,
         run,

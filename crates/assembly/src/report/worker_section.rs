@@ -90,7 +90,7 @@ pub fn worker_section(s: &mut String, w: &WorkerSummary, series: &[WorkerSample]
         "<p>{} (stature {:.0} mm, shoulder height {:.0} mm, arm reach to the grip {:.0} mm; data/anthropometry.toml), ",
         escape(&w.who),
         1e3 * b.stature,
-        1e3 * b.shoulder_height,
+        1e3 * b.dims.shoulder_height,
         1e3 * b.arm_reach()
     );
     match &w.placement {

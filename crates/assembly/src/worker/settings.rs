@@ -67,7 +67,7 @@ impl Stance {
             Stance::Auto { facing, up, floor } => {
                 let left = up.cross(facing);
                 let p = grab - facing * (AUTO_REACH_FRACTION * body.arm_reach())
-                    + left * (0.5 * body.shoulder_width);
+                    + left * (0.5 * body.dims.shoulder_width);
                 Placement {
                     position: p - (p.dot(up) - floor) * up,
                     forward: facing,

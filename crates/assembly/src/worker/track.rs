@@ -216,7 +216,7 @@ impl WorkerTrack {
             }
         } else if let [Some(a), None] = picked {
             let y = lateral(a.load.position);
-            let margin = 0.25 * self.body.shoulder_width;
+            let margin = 0.25 * self.body.dims.shoulder_width;
             let left = match self.arm_of {
                 [Some(h), _] if h == a.hand => y > margin,
                 [_, Some(h)] if h == a.hand => y > -margin,
