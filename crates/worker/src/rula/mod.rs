@@ -9,9 +9,12 @@
 //! mid-range 1, near the end 2; neck 0–10° 1, 10–20° 2, over 20° 3, in extension 4 (+1
 //! twisted, +1 side-bent); trunk upright 1, 0–20° 2, 20–60° 3, over 60° 4 (+1 twisted,
 //! +1 side-bent); legs supported and balanced 1, else 2. Muscle use +1 when the posture
-//! is mainly static (held over a minute) or repeated over 4 times a minute. Force:
-//! under 2 kg intermittent 0, 2–10 kg intermittent 1, 2–10 kg static or repeated 2,
-//! 10 kg or more or shock 3. A range's upper bound belongs to it (20° is score 1).
+//! is mainly static (held over a minute) or repeated over 4 times a minute. Force, as the
+//! paper words it: under 2 kg intermittent 0; 2–10 kg intermittent 1; 2–10 kg static or
+//! repeated 2, and more than 10 kg intermittent 2 too; more than 10 kg static or repeated
+//! 3, and a shock or a force with a rapid build-up 3 whatever its size (the later
+//! one-page worksheets round this to "more than 10 kg: 3"; the paper is followed). A
+//! range's upper bound belongs to it (20° is score 1, 10 kg is 2–10 kg).
 
 pub mod tables;
 
@@ -80,14 +83,13 @@ pub struct RulaScore {
 
 /// The force/load score for `load_kg` \[kg\].
 pub fn force_score(load_kg: f64, static_or_repeated: bool, shock: bool) -> u8 {
-    if shock || load_kg >= 10.0 {
+    if shock {
         3
     } else if load_kg < 2.0 {
         0
-    } else if static_or_repeated {
-        2
     } else {
-        1
+        let heavy = (load_kg > 10.0) as u8;
+        1 + static_or_repeated as u8 + heavy
     }
 }
 
