@@ -184,6 +184,7 @@ position = [250, 0, 1200]
     assert!(rows[1].ends_with(&format!("{:.6}", c.depth)), "{}", rows[1]);
     let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
     assert!(html.contains("<h2>Worker</h2>") && html.contains("RULA (blue"));
+    assert!(html.contains("The worst posture (RULA ") && html.contains("<title>trunk</title>"));
 }
 
 #[test]

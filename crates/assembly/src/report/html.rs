@@ -365,7 +365,7 @@ pub fn html(
     }
     checks_section(&mut s, &run.checks, report.parts);
     if let Some(w) = &run.worker {
-        super::worker_section::worker_section(&mut s, w, worker_series);
+        super::worker_section::worker_section(&mut s, w, worker_series, report.parts);
     }
     s.push_str("<h2>Contact with parts</h2>");
     if run.contacts.is_empty() {

@@ -11,6 +11,7 @@ mod scene_picture;
 pub mod summary;
 mod svg;
 mod vtk;
+mod worker_picture;
 pub mod worker_section;
 
 pub use html::write_reports;

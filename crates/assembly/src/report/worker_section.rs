@@ -1,6 +1,7 @@
 //! The worker's outputs (SPEC E1–E2): `worker.csv` (one row per posed instant, SI) and
 //! the report's section — who stood where, reach, body collisions, the worst RULA and
-//! REBA with their body-part scores, and both scores plotted over time.
+//! REBA with their body-part scores, both scores plotted over time, and a picture of the
+//! worst posture.
 
 use super::svg::escape;
 use crate::worker::{WorkerSample, WorkerSummary};
@@ -81,8 +82,14 @@ fn score_plot(series: &[WorkerSample]) -> String {
     svg
 }
 
-/// The report's worker section.
-pub fn worker_section(s: &mut String, w: &WorkerSummary, series: &[WorkerSample]) {
+/// The report's worker section; `parts` the parts' outlines for the picture of the worst
+/// posture.
+pub fn worker_section(
+    s: &mut String,
+    w: &WorkerSummary,
+    series: &[WorkerSample],
+    parts: &[super::part_outline::PartOutline],
+) {
     s.push_str("<h2>Worker</h2>");
     let b = &w.body;
     let _ = write!(
@@ -128,5 +135,16 @@ pub fn worker_section(s: &mut String, w: &WorkerSummary, series: &[WorkerSample]
     }
     if series.len() > 1 {
         s.push_str(&score_plot(series));
+    }
+    if let (Some(p), Some(r)) = (&w.worst_posture, w.worst_rula) {
+        s.push_str(&super::worker_picture::worker_picture(
+            &format!(
+                "The worst posture (RULA {} at t = {:.2} s); hand targets circled:",
+                r.score.grand, r.time
+            ),
+            &w.body,
+            p,
+            parts,
+        ));
     }
 }

@@ -94,6 +94,8 @@ pub struct WorkerSummary {
     pub collisions: Vec<BodyCollision>,
     pub worst_rula: Option<ScoreAt<RulaScore>>,
     pub worst_reba: Option<ScoreAt<RebaScore>>,
+    /// The posture at the worst RULA score (the report's picture).
+    pub worst_posture: Option<Posture>,
     pub decide: bool,
 }
 
@@ -109,6 +111,7 @@ pub struct WorkerTrack {
     collisions: Vec<BodyCollision>,
     worst_rula: Option<ScoreAt<RulaScore>>,
     worst_reba: Option<ScoreAt<RebaScore>>,
+    worst_posture: Option<Posture>,
     last_posture: Option<Posture>,
     /// The hand each arm followed at the last posed instant (right, left).
     arm_of: [Option<usize>; 2],
@@ -129,6 +132,7 @@ impl WorkerTrack {
             collisions: Vec::new(),
             worst_rula: None,
             worst_reba: None,
+            worst_posture: None,
             last_posture: None,
             arm_of: [None; 2],
             series: Vec::with_capacity(1024),
@@ -149,6 +153,7 @@ impl WorkerTrack {
         self.collisions.clear();
         self.worst_rula = None;
         self.worst_reba = None;
+        self.worst_posture = None;
         self.last_posture = None;
         self.arm_of = [None; 2];
         self.series.clear();
@@ -275,6 +280,7 @@ impl WorkerTrack {
                 score: scores.rula,
                 time,
             });
+            self.worst_posture = Some(posture);
         }
         if self
             .worst_reba
@@ -347,6 +353,7 @@ impl WorkerTrack {
             collisions: self.collisions.clone(),
             worst_rula: self.worst_rula,
             worst_reba: self.worst_reba,
+            worst_posture: self.worst_posture,
             decide: self.settings.decide,
         }
     }
