@@ -90,7 +90,9 @@ pub fn score_posture(posture: &Posture, forces: [f64; 2], options: &ScoreOptions
     for side in Side::BOTH {
         let working = posture.arms[side.index()].target.is_some();
         let none = posture.arms.iter().all(|a| a.target.is_none());
-        if !working && !(none && side == Side::Right) {
+        // the arms that work; the right one when neither does
+        let scored = working || (none && side == Side::Right);
+        if !scored {
             continue;
         }
         let r = rula::score(&rula_input(posture, side, forces[side.index()], options));
