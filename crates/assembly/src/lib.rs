@@ -15,6 +15,7 @@ pub mod runner;
 pub mod stub;
 pub mod timeline;
 pub mod workcell;
+pub mod worker;
 
 pub use fasteners::{ClipSite, FastenerReport, FastenerSample, StubSite};
 pub use grip::Grip;

@@ -60,6 +60,7 @@ impl Runner {
                 initial: Vec::new(),
                 profile: ErgonomicProfile::default(),
                 checks: crate::checks::CheckSettings::none(),
+                worker: None,
             },
             WorkcellOptions::default(),
         )

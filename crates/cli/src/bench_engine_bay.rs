@@ -280,6 +280,7 @@ fn setup(model: &Arc<Model>) -> WorkcellSetup {
         initial,
         profile: ErgonomicProfile::default(),
         checks: CheckSettings::none(),
+        worker: None,
     }
 }
 

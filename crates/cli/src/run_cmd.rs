@@ -110,6 +110,7 @@ pub fn run(
         solver: solver_kind,
         time_step: cell.time_step(),
         wall_time: wall,
+        worker_series: cell.worker_series(),
     };
     let (verdict, summary) = write_outputs(out, &outputs).context("writing outputs")?;
     note_scene_warnings(out, &scene.warnings).context("writing summary.json")?;

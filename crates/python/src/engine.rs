@@ -59,6 +59,7 @@ impl Engine {
             initial,
             profile: scene.ergonomics,
             checks: scene.check_settings(),
+            worker: scene.worker,
         };
         let options = WorkcellOptions {
             solver,

@@ -99,6 +99,7 @@ pub fn run_timeline(
         initial: loaded.initial_actions(),
         profile,
         checks: loaded.check_settings(),
+        worker: loaded.worker,
     };
     let options = WorkcellOptions {
         solver,
@@ -444,6 +445,7 @@ impl RunResult {
                 self.diverged.as_deref(),
                 &self.data.hand_samples,
                 &self.profile,
+                &[],
             )
             .map(|_| ())
             .map_err(|e| e.to_string())

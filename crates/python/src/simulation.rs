@@ -876,6 +876,44 @@ impl Simulation {
         to_python(py, &self.engine.fastener_reports())
     }
 
+    /// The worker of the scene's ``[worker]`` so far (SPEC E1–E2), or ``None`` without
+    /// one: ``who``, ``body`` (stature and segment lengths [m], joint limits [rad]),
+    /// ``placement``, ``instants``, ``reach`` (per arm, right then left: ``worst``
+    /// residual [m], its ``time`` [s], ``hand``, ``first_out``, ``last_out``),
+    /// ``collisions`` (segment, part, depth [m], times), ``worst_rula`` and
+    /// ``worst_reba`` (every body-part score and the time), ``worst_posture``,
+    /// ``findings`` (out of reach and body collisions, typed) and ``series``: one list per
+    /// column of ``worker.csv`` (``time``, ``right_residual`` and ``left_residual`` —
+    /// ``None`` where the arm has no target —, ``rula``, ``reba``, ``trunk_flexion``, …
+    /// in SI; ``numpy.asarray`` makes arrays of them).
+    fn worker<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let Some(track) = self.engine.cell().worker() else {
+            return Ok(py.None().into_bound(py));
+        };
+        let summary = track.summary();
+        let series = track.series();
+        let column = |f: &dyn Fn(&pliant_assembly::worker::WorkerSample) -> f64| {
+            series.iter().map(f).collect::<Vec<f64>>()
+        };
+        let nan = f64::NAN;
+        let mut value = serde_json::to_value(&summary)
+            .map_err(|e| PyValueError::new_err(format!("internal error serialising: {e}")))?;
+        value["findings"] = serde_json::json!(summary.findings());
+        value["series"] = serde_json::json!({
+                "time": column(&|w| w.time),
+                "right_residual": column(&|w| w.residual[0].unwrap_or(nan)),
+                "left_residual": column(&|w| w.residual[1].unwrap_or(nan)),
+                "rula": column(&|w| w.rula as f64),
+                "reba": column(&|w| w.reba as f64),
+                "trunk_flexion": column(&|w| w.trunk_flexion),
+                "trunk_lateral": column(&|w| w.trunk_lateral),
+                "trunk_twist": column(&|w| w.trunk_twist),
+                "neck_flexion": column(&|w| w.neck_flexion),
+                "collision_depth": column(&|w| w.collision_depth),
+        });
+        to_python(py, &value)
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<pliant.Simulation t = {:.6} s, step {}, {} hose(s), {} hand(s) holding{}>",

@@ -58,6 +58,10 @@ pub struct SceneFile {
     /// Installation checks (SPEC V3): which run and their limits. Absent: all on, with
     /// the defaults.
     pub checks: Option<ChecksSection>,
+    /// The worker who does the assembly (SPEC E1–E2): a manikin that follows the hands,
+    /// whose reach, body collisions and posture (RULA, REBA) are judged. Absent: nobody
+    /// is modelled.
+    pub worker: Option<WorkerSection>,
     /// Scripted actions, executed in order.
     #[serde(default)]
     pub timeline: Vec<ActionEntry>,
@@ -183,6 +187,53 @@ pub struct ChecksSection {
     pub straight_length_d_outer: Option<f64>,
     /// Bend radius that counts as straight, in minimum bend radii, > 0. Default 10.
     pub straight_radius_factor: Option<f64>,
+}
+
+/// `[worker]`: the manikin (SPEC E1–E2; docs/worker.md). Sized from ANSUR II stature and
+/// segment proportions of stature (sources in `crates/worker/data/anthropometry.toml`).
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WorkerSection {
+    /// `female` or `male`, optionally followed by the percentile of stature:
+    /// `"female 5"`, `"male 50"`, `"male 95"`.
+    pub population: String,
+    /// Percentile of stature, in [1, 99], when `population` names only the sex. Default 50.
+    pub percentile: Option<f64>,
+    /// Where the worker stands: `[x, y, z]`, the floor point between the feet (in
+    /// `length_unit`), or `"auto"` (default): in front of the first point a hand holds,
+    /// which is then 0.6 of the arm's reach ahead of the feet.
+    pub position: Option<WorkerPosition>,
+    /// The direction the worker faces (its horizontal part counts). Default `[1, 0, 0]`.
+    pub facing: Option<Vec3>,
+    /// Height of the floor along the vertical (against gravity) for `position = "auto"`,
+    /// in `length_unit`. Default 0.
+    pub floor: Option<f64>,
+    /// `standing`, the only posture modelled (feet on the floor, knees straight).
+    pub posture: Option<String>,
+    /// REBA's coupling, how well the hand holds the hose: `good`, `fair` (default),
+    /// `poor` or `unacceptable`.
+    pub coupling: Option<String>,
+    /// Whether a hand target out of reach or a body segment inside a part makes the study
+    /// NOT FEASIBLE (else they are warnings). Default true.
+    pub decide: Option<bool>,
+}
+
+/// `[worker] position`: a point or `"auto"`.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum WorkerPosition {
+    /// `"auto"`: in front of the first grab point.
+    Auto(AutoWord),
+    /// The floor point between the feet, in `length_unit`.
+    At(Vec3),
+}
+
+/// The word `"auto"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, JsonSchema)]
+pub enum AutoWord {
+    /// The only value.
+    #[serde(rename = "auto")]
+    Auto,
 }
 
 /// Which end of a hose: its first node or its last.

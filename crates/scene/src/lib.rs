@@ -45,6 +45,7 @@ pub mod timeline;
 pub mod units;
 pub mod validate;
 mod workcell;
+pub mod worker;
 
 pub use budget::{Estimate, Limits};
 pub use document::scene_document;

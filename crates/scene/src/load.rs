@@ -460,6 +460,12 @@ fn build(
     let (stubs, connectors, clips) = build_fasteners(&file, &hoses)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
     let checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
+    let worker = crate::worker::build_worker(
+        file.worker.as_ref(),
+        file.length_unit,
+        settings.gravity,
+        record_interval,
+    )?;
     let name = match &file.name {
         Some(n) if !n.trim().is_empty() => n.clone(),
         _ => Path::new(origin)
@@ -488,6 +494,7 @@ fn build(
         clips,
         ergonomics,
         checks,
+        worker,
         length_unit: file.length_unit,
         source: origin.to_string(),
         text: text.to_string(),

@@ -136,6 +136,8 @@ pub struct LoadedScene {
     pub ergonomics: ErgonomicProfile,
     /// The installation checks and their limits (`[checks]`, SPEC V3).
     pub checks: pliant_assembly::checks::CheckSettings,
+    /// The worker (`[worker]`, SPEC E1–E2), if the scene has one.
+    pub worker: Option<pliant_assembly::worker::WorkerSettings>,
     /// The length unit the file was written in.
     pub length_unit: LengthUnit,
     /// Where the scene came from (a path, or a description such as the built-in demo).

@@ -55,6 +55,7 @@ impl LoadedScene {
             initial: self.initial_actions(),
             profile: self.ergonomics,
             checks: self.check_settings(),
+            worker: self.worker,
         })
     }
 

@@ -28,7 +28,9 @@ pub struct Report<'a> {
 /// exist) and returns the verdict. `parts` are the model's part outlines for the
 /// pictures ([`super::part_outline::part_outlines`]); `samples` are the hand loads at
 /// the recorded times; `profile` is the ergonomic profile the run was judged with (its
-/// push limit is drawn on the stub and clip plots).
+/// push limit is drawn on the stub and clip plots); `worker_series` the worker's posed
+/// instants (SPEC E1–E2; empty without a worker) for the report's worker plot.
+#[allow(clippy::too_many_arguments)]
 pub fn write_reports(
     out: &Path,
     scene: &str,
@@ -37,6 +39,7 @@ pub fn write_reports(
     diverged: Option<&str>,
     samples: &[HandSample],
     profile: &ErgonomicProfile,
+    worker_series: &[crate::worker::WorkerSample],
 ) -> std::io::Result<Verdict> {
     let report = Report {
         scene,
@@ -51,7 +54,10 @@ pub fn write_reports(
     let push_limit = ErgonomicLimits::builtin()
         .map(|l| l.force_limits(profile, true).1)
         .unwrap_or(f64::NAN);
-    write("report.html", html(&report, samples, push_limit))?;
+    write(
+        "report.html",
+        html(&report, samples, push_limit, worker_series),
+    )?;
     Ok(report.verdict)
 }
 
@@ -245,7 +251,12 @@ fn plot(title: &str, samples: &[(f64, f64, f64)]) -> String {
 /// The human-readable report.
 /// `push_limit` is the profile's push limit value, drawn on the stub and clip plots (the
 /// worker pushes hoses on and in).
-pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String {
+pub fn html(
+    report: &Report,
+    samples: &[HandSample],
+    push_limit: f64,
+    worker_series: &[crate::worker::WorkerSample],
+) -> String {
     let v = &report.verdict;
     let (word, colour) = match v.feasible {
         Some(true) => ("FEASIBLE", "#070"),
@@ -354,6 +365,9 @@ pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String 
         s.push_str("</table>");
     }
     checks_section(&mut s, &run.checks, report.parts);
+    if let Some(w) = &run.worker {
+        super::worker_section::worker_section(&mut s, w, worker_series, report.parts);
+    }
     s.push_str("<h2>Contact with parts</h2>");
     if run.contacts.is_empty() {
         s.push_str("<p>No hose touched a part.</p>");

@@ -11,6 +11,8 @@ mod scene_picture;
 pub mod summary;
 mod svg;
 mod vtk;
+mod worker_picture;
+pub mod worker_section;
 
 pub use html::write_reports;
 pub use recorder::{HandSample, Recorder};
@@ -58,6 +60,8 @@ pub struct Outputs<'a> {
     pub time_step: f64,
     /// Wall-clock time the study took \[s\] (for the real-time factor).
     pub wall_time: f64,
+    /// The worker's posed instants (`worker.csv`; empty without a worker).
+    pub worker_series: &'a [crate::worker::WorkerSample],
 }
 
 /// Writes `fasteners.csv`, `report.json`, `report.html` and `summary.json` into `out`
@@ -79,6 +83,12 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
     write_file(&out.join("fasteners.csv"), csv)?;
     write_file(&out.join("checks.csv"), checks_csv(&run.checks))?;
     write_file(&out.join("check_profiles.csv"), profiles_csv(&run.checks))?;
+    if run.worker.is_some() {
+        write_file(
+            &out.join("worker.csv"),
+            worker_section::worker_csv(o.worker_series),
+        )?;
+    }
     // Presentation data, made here once per report: a hull over every vertex of every
     // part (never on the live path).
     let parts = part_outline::part_outlines(&o.model.environment);
@@ -90,6 +100,7 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
         o.diverged.map(|s| s.message.as_str()),
         o.hand_series,
         o.profile,
+        o.worker_series,
     )?;
     let summary = Summary {
         pliant_version: env!("CARGO_PKG_VERSION"),
@@ -111,6 +122,10 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
         warnings: run.solver_warnings.clone(),
         peaks: peak_rows(o.model, run),
         final_state: final_state(o.model, o.state),
+        worker: run.worker.as_ref().map(|w| summary::WorkerReport {
+            findings: w.findings(),
+            summary: w.clone(),
+        }),
     };
     write_json(&out.join("summary.json"), &summary)?;
     Ok((verdict, summary))
@@ -218,6 +233,7 @@ pub fn replay_with_outputs(
         solver: cell.solver().kind(),
         time_step: cell.time_step(),
         wall_time: wall,
+        worker_series: cell.worker_series(),
     };
     write_outputs(out, &outputs).map_err(|e| e.to_string())
 }

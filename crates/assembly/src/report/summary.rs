@@ -136,6 +136,18 @@ pub struct Summary {
     pub warnings: Vec<String>,
     pub peaks: Vec<PeakRow>,
     pub final_state: Vec<FinalHose>,
+    /// The worker (SPEC E1–E2), when the scene has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worker: Option<WorkerReport>,
+}
+
+/// `summary.json`'s `worker`: the worker's account and what they could not do.
+#[derive(Serialize)]
+pub struct WorkerReport {
+    #[serde(flatten)]
+    pub summary: crate::worker::WorkerSummary,
+    /// Out of reach and body collisions, typed ([`crate::worker::WorkerFinding`]).
+    pub findings: Vec<crate::worker::WorkerFinding>,
 }
 
 pub fn peak_rows(model: &Model, run: &RunSummary) -> Vec<PeakRow> {

@@ -38,6 +38,7 @@ use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};
 use crate::fasteners::{ClipSite, FastenerReport, FastenerSample, Fasteners, StubSite};
 use crate::hand::{nearest_beam, Hand, HandLoad, RELEASE_TIME};
 use crate::timeline::{Action, NodeRef};
+use crate::worker::{WorkerSample, WorkerSettings, WorkerTrack};
 use glam::{DQuat, DVec3};
 use hands::{holder, Hands};
 use pliant_core::health::{check_for, Divergence};
@@ -66,6 +67,8 @@ pub struct WorkcellSetup {
     /// The installation checks and their limits (SPEC V3; [`CheckSettings::none`] for
     /// none).
     pub checks: CheckSettings,
+    /// The worker who does the study (SPEC E1; `None`: nobody is modelled).
+    pub worker: Option<WorkerSettings>,
 }
 
 /// How a workcell runs: configuration, not state (a reset keeps it).
@@ -141,6 +144,7 @@ pub struct Checkpoint {
     profile: ErgonomicProfile,
     tally: Tally,
     checks: InstallationChecks,
+    worker: Option<WorkerTrack>,
     tick: u64,
     log_length: usize,
     diverged: Option<Divergence>,
@@ -177,6 +181,8 @@ pub struct Workcell {
     tally: Tally,
     /// The installation checks' account (SPEC V3).
     checks: InstallationChecks,
+    /// The worker's account (SPEC E1–E2), if the scene has a worker.
+    worker: Option<WorkerTrack>,
     /// Steps since the workcell was built, resets included (the stamp of inputs).
     tick: u64,
     log: chunked_log::ChunkedLog,
@@ -235,6 +241,11 @@ impl Workcell {
             state: State::at_rest(&model),
             tally: Tally::new(&model),
             checks: InstallationChecks::new(&model, setup.checks),
+            worker: setup
+                .worker
+                .map(WorkerTrack::new)
+                .transpose()
+                .map_err(|e| format!("worker: {e}"))?,
             model,
             solver,
             options,
@@ -279,6 +290,9 @@ impl Workcell {
         self.named_loads.clear();
         self.tally = Tally::new(&self.model);
         self.checks = InstallationChecks::new(&self.model, self.checks.settings().clone());
+        if let Some(w) = &mut self.worker {
+            w.reset();
+        }
         self.diverged = None;
         self.recovery.clear();
         if self.options.initial_loads {
@@ -434,7 +448,16 @@ impl Workcell {
                 self.checks
                     .end_violations(&self.model, &self.state, &self.stubs),
             ),
+            worker: self.worker.as_ref().map(WorkerTrack::summary),
         }
+    }
+    /// The worker's account so far (SPEC E1–E2), if the scene has a worker.
+    pub fn worker(&self) -> Option<&WorkerTrack> {
+        self.worker.as_ref()
+    }
+    /// The worker's posed instants so far (empty without a worker).
+    pub fn worker_series(&self) -> &[WorkerSample] {
+        self.worker.as_ref().map_or(&[], |w| w.series())
     }
     /// The installation checks' account so far (SPEC V3).
     pub fn checks(&self) -> &InstallationChecks {
@@ -464,6 +487,7 @@ impl Workcell {
             profile: self.profile,
             tally: self.tally.clone(),
             checks: self.checks.clone(),
+            worker: self.worker.clone(),
             tick: self.tick,
             log_length: self.log.len(),
             diverged: self.diverged.clone(),
@@ -505,6 +529,7 @@ impl Workcell {
         self.user_loads = c.user_loads;
         self.named_loads = c.named_loads;
         self.checks = c.checks;
+        self.worker = c.worker;
         self.tally = c.tally;
     }
 
@@ -1031,13 +1056,14 @@ impl Workcell {
             obs.wants_state(self.state.time),
             self.checks.due(self.state.time),
         );
-        let healthy = (shown || judged)
+        let posed = self.worker.as_ref().is_some_and(|w| w.due(self.state.time));
+        let healthy = (shown || judged || posed)
             && (checked || check_for(self.solver.kind(), &self.model, &self.state).is_ok());
         let wants = shown && healthy;
         self.hand_records.clear();
-        let posed = self.state.time == t_next; // else the solver's grid moved the time
+        let on_grid = self.state.time == t_next; // else the solver's grid moved the time
         for ((&k, h), &position) in self.hands.iter().zip(&self.hand_positions) {
-            let load = if posed {
+            let load = if on_grid {
                 h.hand.load_at(&self.model, &self.state, position)
             } else {
                 h.hand.load(&self.model, &self.state)
@@ -1053,6 +1079,12 @@ impl Workcell {
         );
         if judged && healthy {
             self.checks.observe(&self.model, &self.state);
+        }
+        if posed && healthy {
+            if let Some(w) = &mut self.worker {
+                let static_work = self.profile.duty == crate::ergonomics::Duty::Continuous;
+                w.observe(&self.model, &self.state, &self.hand_records, static_work);
+            }
         }
         if wants {
             obs.on_state(&self.model, &self.state);

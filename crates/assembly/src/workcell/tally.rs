@@ -213,6 +213,8 @@ pub struct RunSummary {
     pub instability_notes: Vec<String>,
     /// The installation checks and their violations (SPEC V3).
     pub checks: crate::checks::ChecksSummary,
+    /// What the worker did (SPEC E1–E2), if the scene has a worker.
+    pub worker: Option<crate::worker::WorkerSummary>,
 }
 
 impl RunSummary {

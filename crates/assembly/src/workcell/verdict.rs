@@ -5,7 +5,9 @@
 //! too, while a study still running lists them as still to do. A hand's twist and bending
 //! moment above their guide values are warnings (dissertation section 3.3.3: "never
 //! reasons for an installation to fail"), unless the profile's `moments_decide` makes
-//! them count like the force.
+//! them count like the force. With a worker in the scene (SPEC E1), a hand target out of
+//! its reach or a body segment inside a part makes it infeasible too (unless the
+//! worker's `decide` is off), and the worst RULA and REBA scores are reported.
 
 use super::tally::{RunSummary, ZoneNote};
 use crate::ergonomics::{LoadKind, RiskZone};
@@ -39,6 +41,11 @@ pub struct Verdict {
     pub standard: String,
     /// Under EN 1005-3: each hand's peak push and pull with its risk zone, in words.
     pub zones: Vec<String>,
+    /// With a worker in the scene (SPEC E1–E2): who, and the worst RULA and REBA scores
+    /// and when, in words. What the worker could not do (out of reach, body collisions)
+    /// is among the reasons (or the warnings, when the worker does not decide).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub worker: Vec<String>,
 }
 
 /// A peak push or pull against EN 1005-3, in words: value, zone, m_r and how F_R came.
@@ -207,6 +214,29 @@ impl Verdict {
                 warnings.push(v.describe());
             }
         }
+        // The worker (SPEC E1–E2): reach and body collisions decide when the scene says
+        // so; the posture scores are reported, and warned about when they call for change.
+        let mut unworkable = false;
+        let mut worker = Vec::new();
+        if let Some(w) = &run.worker {
+            for f in w.findings() {
+                if w.decide {
+                    unworkable = true;
+                    reasons.push(f.describe());
+                } else {
+                    warnings.push(f.describe());
+                }
+            }
+            match w.posture_line() {
+                Some(line) => {
+                    if w.posture_alarming() {
+                        warnings.push(line.clone());
+                    }
+                    worker.push(line);
+                }
+                None => worker.push(format!("{}: not posed (no hand acted)", w.who)),
+            }
+        }
         if stage == Stage::Final {
             for c in &run.contacts {
                 reasons.push(format!(
@@ -219,13 +249,14 @@ impl Verdict {
         reasons.splice(0..0, run.solver_warnings.iter().cloned());
         reasons.extend(run.instability_notes.iter().cloned());
         let judged = !run.hand_peaks.is_empty();
-        let feasible = if diverged.is_some() || exceeded || violated || (judged && unfitted) {
-            Some(false)
-        } else if judged {
-            Some(true)
-        } else {
-            None
-        };
+        let feasible =
+            if diverged.is_some() || exceeded || violated || unworkable || (judged && unfitted) {
+                Some(false)
+            } else if judged {
+                Some(true)
+            } else {
+                None
+            };
         if !judged {
             reasons.push(match stage {
                 Stage::Final => {
@@ -261,8 +292,16 @@ impl Verdict {
                     run.checks.enabled.join(", ")
                 )
             };
+            let reached = match &run.worker {
+                Some(w) if w.findings().is_empty() => format!(
+                    ", and {} reached every hand target without a body collision",
+                    w.who
+                ),
+                Some(_) => String::new(),
+                None => String::new(),
+            };
             reasons.push(match stage {
-                Stage::Final => format!("every hand load stayed within its ergonomic limit value ({}), every stub, connector and clip was fitted{checks}", run.standard.title()),
+                Stage::Final => format!("every hand load stayed within its ergonomic limit value ({}), every stub, connector and clip was fitted{checks}{reached}", run.standard.title()),
                 Stage::Running => format!("every hand load so far is within its ergonomic limit value{detail}"),
             });
         }
@@ -274,6 +313,7 @@ impl Verdict {
             uncertain: !run.solver_warnings.is_empty(),
             standard: run.standard.title().to_string(),
             zones,
+            worker,
         }
     }
 

@@ -1,0 +1,15 @@
+//! The worker in the workcell (SPEC E1–E2, issue 38): a manikin from `pliant-worker`
+//! that follows the hands, is checked against the parts and is scored for posture as
+//! the study runs; its findings enter the verdict ([`WorkerFinding`]), `summary.json`,
+//! `worker.csv` and the report.
+
+pub mod collisions;
+pub mod finding;
+pub mod settings;
+pub mod track;
+
+pub use finding::WorkerFinding;
+pub use settings::{Stance, WorkerSettings, AUTO_REACH_FRACTION};
+pub use track::{
+    BodyCollision, ReachRecord, ScoreAt, WorkerSample, WorkerSummary, WorkerTrack, REACH_TOLERANCE,
+};

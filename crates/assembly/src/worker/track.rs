@@ -1,0 +1,440 @@
+//! The worker's account of a study (SPEC E1–E2): at every posed instant (the scene's
+//! record interval) the manikin reaches for the hands' positions by inverse kinematics,
+//! its capsules are checked against the parts, and its posture is scored by RULA and
+//! REBA with the hands' forces. Kept: each arm's worst reach residual, each segment's
+//! deepest collision per part, the worst scores and when, and a time series for
+//! `worker.csv`. Nothing is allocated per instant except the series' amortised growth
+//! and the first collision of a segment with a part.
+
+use super::collisions::{checked, deepest};
+use super::finding::WorkerFinding;
+use super::settings::WorkerSettings;
+use crate::workcell::HandRecord;
+use glam::DVec3;
+use pliant_core::{Model, State};
+use pliant_worker::reba::RebaScore;
+use pliant_worker::rula::RulaScore;
+use pliant_worker::{
+    body, capsules, score_posture, Body, Manikin, Placement, Posture, ScoreOptions, Side,
+    WorkerError, CAPSULE_COUNT,
+};
+use serde::Serialize;
+
+/// A hand target farther than this from the grip centre is out of reach \[m\] (1 mm: the
+/// inverse kinematics reaches targets within reach to well under 0.1 mm).
+pub const REACH_TOLERANCE: f64 = 1e-3;
+
+/// One posed instant, a row of `worker.csv`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct WorkerSample {
+    pub time: f64,
+    /// Per arm (right, left): the workcell hand it follows and its reach residual \[m\].
+    pub hand: [Option<usize>; 2],
+    pub residual: [Option<f64>; 2],
+    pub rula: u8,
+    pub reba: u8,
+    /// Trunk flexion, lateral bending, twist; neck flexion \[rad\].
+    pub trunk_flexion: f64,
+    pub trunk_lateral: f64,
+    pub trunk_twist: f64,
+    pub neck_flexion: f64,
+    /// Per arm: upper arm flexion and elbow flexion \[rad\].
+    pub upper_arm: [f64; 2],
+    pub elbow: [f64; 2],
+    /// The deepest body collision at this instant \[m\] (0: none).
+    pub collision_depth: f64,
+}
+
+/// An arm's worst reach.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct ReachRecord {
+    /// Largest residual met \[m\], when, and the hand whose target it was.
+    pub worst: f64,
+    pub time: f64,
+    pub hand: Option<usize>,
+    /// First and last posed instants out of reach \[s\].
+    pub first_out: Option<f64>,
+    pub last_out: Option<f64>,
+}
+
+/// A body segment inside a part.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BodyCollision {
+    pub segment: String,
+    pub part: String,
+    #[serde(skip)]
+    part_index: usize,
+    /// Deepest penetration \[m\] and when; first and last posed instants inside \[s\].
+    pub depth: f64,
+    pub time: f64,
+    pub first_time: f64,
+    pub last_time: f64,
+}
+
+/// A score at its worst and when.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ScoreAt<S> {
+    pub score: S,
+    pub time: f64,
+}
+
+/// What the worker did over a study, for the verdict, `summary.json` and the report
+/// (the time series stays with the track: [`WorkerTrack::series`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WorkerSummary {
+    /// "the 5th-percentile woman".
+    pub who: String,
+    pub body: Body,
+    /// Where the worker stood (`None`: never placed — no hand acted under an automatic
+    /// placement).
+    pub placement: Option<Placement>,
+    pub instants: u64,
+    /// Right arm, then left.
+    pub reach: [ReachRecord; 2],
+    pub collisions: Vec<BodyCollision>,
+    pub worst_rula: Option<ScoreAt<RulaScore>>,
+    pub worst_reba: Option<ScoreAt<RebaScore>>,
+    /// The posture at the worst RULA score (the report's picture).
+    pub worst_posture: Option<Posture>,
+    pub decide: bool,
+}
+
+/// The worker's running account.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WorkerTrack {
+    settings: WorkerSettings,
+    body: Body,
+    manikin: Option<Manikin>,
+    next_time: f64,
+    instants: u64,
+    reach: [ReachRecord; 2],
+    collisions: Vec<BodyCollision>,
+    worst_rula: Option<ScoreAt<RulaScore>>,
+    worst_reba: Option<ScoreAt<RebaScore>>,
+    worst_posture: Option<Posture>,
+    last_posture: Option<Posture>,
+    /// The hand each arm followed at the last posed instant (right, left).
+    arm_of: [Option<usize>; 2],
+    series: Vec<WorkerSample>,
+}
+
+impl WorkerTrack {
+    /// A track for `settings`; the body from the built-in anthropometry.
+    pub fn new(settings: WorkerSettings) -> Result<WorkerTrack, WorkerError> {
+        let body = body(settings.population)?;
+        let mut t = WorkerTrack {
+            settings,
+            body,
+            manikin: None,
+            next_time: 0.0,
+            instants: 0,
+            reach: Default::default(),
+            collisions: Vec::new(),
+            worst_rula: None,
+            worst_reba: None,
+            worst_posture: None,
+            last_posture: None,
+            arm_of: [None; 2],
+            series: Vec::with_capacity(1024),
+        };
+        t.reset();
+        Ok(t)
+    }
+
+    /// Back to the start of a study.
+    pub fn reset(&mut self) {
+        self.manikin = match self.settings.stance {
+            super::settings::Stance::At(p) => Some(Manikin::new(self.body, p)),
+            super::settings::Stance::Auto { .. } => None,
+        };
+        self.next_time = 0.0;
+        self.instants = 0;
+        self.reach = Default::default();
+        self.collisions.clear();
+        self.worst_rula = None;
+        self.worst_reba = None;
+        self.worst_posture = None;
+        self.last_posture = None;
+        self.arm_of = [None; 2];
+        self.series.clear();
+    }
+
+    pub fn settings(&self) -> &WorkerSettings {
+        &self.settings
+    }
+
+    /// The manikin as last posed, if it has been.
+    pub fn posture(&self) -> Option<&Posture> {
+        self.last_posture.as_ref()
+    }
+
+    /// The posed instants so far (the rows of `worker.csv`).
+    pub fn series(&self) -> &[WorkerSample] {
+        &self.series
+    }
+
+    /// Whether [`Self::observe`] would pose the worker at `time`.
+    pub fn due(&self, time: f64) -> bool {
+        time + 1e-12 >= self.next_time
+    }
+
+    /// Poses the worker for the hands in `records` (hand order; the first two are the
+    /// worker's) at `state`'s time, if due; `static_work` whether the work counts as
+    /// static for the scores (the ergonomic profile's continuous duty).
+    pub fn observe(
+        &mut self,
+        model: &Model,
+        state: &State,
+        records: &[HandRecord],
+        static_work: bool,
+    ) {
+        let time = state.time;
+        if !self.due(time) {
+            return;
+        }
+        self.next_time = if self.settings.interval > 0.0 {
+            time + self.settings.interval
+        } else {
+            0.0
+        };
+        let manikin = match (self.manikin, records.first()) {
+            (Some(m), _) => m,
+            (None, Some(first)) => {
+                let p = self.settings.stance.place(first.load.position, &self.body);
+                let m = Manikin::new(self.body, p);
+                self.manikin = Some(m);
+                m
+            }
+            (None, None) => return,
+        };
+        // the first two hands; the one further to the worker's right to the right arm; a
+        // single hand to the arm on its side, but it stays with the arm that held it
+        // until it is a quarter shoulder width past the midline
+        let mut hand = [None; 2];
+        let mut target = [None; 2];
+        let mut force = [0.0; 2];
+        let lateral = |p: DVec3| manikin.placement.local(p - manikin.placement.position).y;
+        let mut picked: [Option<&HandRecord>; 2] = [records.first(), records.get(1)];
+        if let [Some(a), Some(b)] = picked {
+            if lateral(b.load.position) < lateral(a.load.position) {
+                picked = [Some(b), Some(a)];
+            }
+        } else if let [Some(a), None] = picked {
+            let y = lateral(a.load.position);
+            let margin = 0.25 * self.body.dims.shoulder_width;
+            let left = match self.arm_of {
+                [Some(h), _] if h == a.hand => y > margin,
+                [_, Some(h)] if h == a.hand => y > -margin,
+                _ => y > 0.0,
+            };
+            if left {
+                picked = [None, Some(a)];
+            }
+        }
+        for (i, r) in picked.iter().enumerate() {
+            if let Some(r) = r {
+                hand[i] = Some(r.hand);
+                target[i] = Some(r.load.position);
+                force[i] = r.load.force.length();
+            }
+        }
+        self.arm_of = hand;
+        let posture = manikin.solve(target);
+        let options = ScoreOptions {
+            static_or_repeated: static_work,
+            ..self.settings.scores
+        };
+        let scores = score_posture(&posture, force, &options);
+        let mut deepest_now: f64 = 0.0;
+        for c in capsules(&self.body, &posture).iter().take(CAPSULE_COUNT) {
+            if !checked(c.segment) {
+                continue;
+            }
+            if let Some(p) = deepest(&model.environment, c) {
+                deepest_now = deepest_now.max(p.depth);
+                self.note_collision(model, c.segment.name(), p.part, p.depth, time);
+            }
+        }
+        for side in Side::BOTH {
+            let i = side.index();
+            if target[i].is_none() {
+                continue;
+            }
+            let r = posture.arms[i].residual;
+            let rec = &mut self.reach[i];
+            if rec.hand.is_none() || r > rec.worst {
+                rec.worst = r;
+                rec.time = time;
+                rec.hand = hand[i];
+            }
+            if r > REACH_TOLERANCE {
+                rec.first_out.get_or_insert(time);
+                rec.last_out = Some(time);
+            }
+        }
+        if self
+            .worst_rula
+            .is_none_or(|w| scores.rula.grand > w.score.grand)
+        {
+            self.worst_rula = Some(ScoreAt {
+                score: scores.rula,
+                time,
+            });
+            self.worst_posture = Some(posture);
+        }
+        if self
+            .worst_reba
+            .is_none_or(|w| scores.reba.reba > w.score.reba)
+        {
+            self.worst_reba = Some(ScoreAt {
+                score: scores.reba,
+                time,
+            });
+        }
+        self.instants += 1;
+        let arm = |i: usize| &posture.arms[i];
+        self.series.push(WorkerSample {
+            time,
+            hand,
+            residual: [0, 1].map(|i| target[i].map(|_| arm(i).residual)),
+            rula: scores.rula.grand,
+            reba: scores.reba.reba,
+            trunk_flexion: posture.trunk.flexion,
+            trunk_lateral: posture.trunk.lateral,
+            trunk_twist: posture.trunk.twist,
+            neck_flexion: posture.neck_flexion,
+            upper_arm: [0, 1].map(|i| arm(i).flexion),
+            elbow: [0, 1].map(|i| arm(i).elbow_flexion),
+            collision_depth: deepest_now,
+        });
+        self.last_posture = Some(posture);
+    }
+
+    fn note_collision(
+        &mut self,
+        model: &Model,
+        segment: String,
+        part: usize,
+        depth: f64,
+        time: f64,
+    ) {
+        let found = self
+            .collisions
+            .iter_mut()
+            .find(|c| c.part_index == part && c.segment == segment);
+        match found {
+            Some(c) => {
+                if depth > c.depth {
+                    c.depth = depth;
+                    c.time = time;
+                }
+                c.last_time = time;
+            }
+            None => self.collisions.push(BodyCollision {
+                segment,
+                part: model.environment.parts[part].name.clone(),
+                part_index: part,
+                depth,
+                time,
+                first_time: time,
+                last_time: time,
+            }),
+        }
+    }
+
+    /// The account so far.
+    pub fn summary(&self) -> WorkerSummary {
+        WorkerSummary {
+            who: self.settings.population.describe(),
+            body: self.body,
+            placement: self.manikin.map(|m| m.placement),
+            instants: self.instants,
+            reach: self.reach,
+            collisions: self.collisions.clone(),
+            worst_rula: self.worst_rula,
+            worst_reba: self.worst_reba,
+            worst_posture: self.worst_posture,
+            decide: self.settings.decide,
+        }
+    }
+}
+
+impl WorkerSummary {
+    /// What the worker could not do: each arm's worst reach beyond
+    /// [`REACH_TOLERANCE`], each segment's deepest collision with each part.
+    pub fn findings(&self) -> Vec<WorkerFinding> {
+        let mut out = Vec::new();
+        for side in Side::BOTH {
+            let r = &self.reach[side.index()];
+            if let (Some(first), Some(last), Some(hand)) = (r.first_out, r.last_out, r.hand) {
+                out.push(WorkerFinding::OutOfReach {
+                    who: self.who.clone(),
+                    arm: side.name(),
+                    hand,
+                    distance: r.worst,
+                    time: r.time,
+                    first_time: first,
+                    last_time: last,
+                });
+            }
+        }
+        for c in &self.collisions {
+            out.push(WorkerFinding::Collision {
+                who: self.who.clone(),
+                segment: c.segment.clone(),
+                part: c.part.clone(),
+                depth: c.depth,
+                time: c.time,
+                first_time: c.first_time,
+                last_time: c.last_time,
+            });
+        }
+        out
+    }
+
+    /// The worst posture scores in words, e.g. "posture of the 50th-percentile man: RULA
+    /// 6 at t = 2.00 s (action level 3: investigate further and change soon), REBA 8 at
+    /// t = 2.00 s (high risk)".
+    pub fn posture_line(&self) -> Option<String> {
+        let (r, e) = (self.worst_rula?, self.worst_reba?);
+        Some(format!(
+            "posture of {}: RULA {} at t = {:.2} s (action level {}: {}), REBA {} at t = {:.2} s ({} risk)",
+            self.who,
+            r.score.grand,
+            r.time,
+            r.score.action_level,
+            rula_words(r.score.action_level),
+            e.score.reba,
+            e.time,
+            reba_words(e.score.risk_level),
+        ))
+    }
+
+    /// Whether the worst posture calls for change soon (RULA action level 3 or more, or
+    /// REBA high risk or more).
+    pub fn posture_alarming(&self) -> bool {
+        self.worst_rula.is_some_and(|r| r.score.action_level >= 3)
+            || self.worst_reba.is_some_and(|e| e.score.risk_level >= 3)
+    }
+}
+
+/// RULA's action levels in words (McAtamney & Corlett 1993).
+pub fn rula_words(level: u8) -> &'static str {
+    match level {
+        1 => "acceptable",
+        2 => "investigate further",
+        3 => "investigate further and change soon",
+        _ => "investigate and change immediately",
+    }
+}
+
+/// REBA's risk levels in words (Hignett & McAtamney 2000).
+pub fn reba_words(level: u8) -> &'static str {
+    match level {
+        0 => "negligible",
+        1 => "low",
+        2 => "medium",
+        3 => "high",
+        _ => "very high",
+    }
+}
