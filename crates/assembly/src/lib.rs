@@ -10,6 +10,7 @@ pub mod ergonomics;
 pub mod fasteners;
 pub mod grip;
 pub mod hand;
+pub mod part_frame;
 pub mod report;
 pub mod runner;
 pub mod stub;
