@@ -14,6 +14,7 @@ pub mod part_frame;
 pub mod report;
 pub mod runner;
 pub mod stub;
+pub mod sweep;
 pub mod timeline;
 pub mod workcell;
 

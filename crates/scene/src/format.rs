@@ -58,6 +58,9 @@ pub struct SceneFile {
     /// Installation checks (SPEC V3): which run and their limits. Absent: all on, with
     /// the defaults.
     pub checks: Option<ChecksSection>,
+    /// A range-of-motion study (SPEC K2): the checks, fixing forces and clearances
+    /// recorded against a moving part's motion coordinate (`motion.csv`).
+    pub sweep: Option<SweepSection>,
     /// Scripted actions, executed in order.
     #[serde(default)]
     pub timeline: Vec<ActionEntry>,
@@ -155,6 +158,23 @@ pub struct ErgonomicsSection {
     pub action_time_s: Option<f64>,
     /// EN 1005-3 duration multiplier m_d: hours of this work per day, in [0, 8]. Default 1.
     pub duration_h: Option<f64>,
+}
+
+/// `[sweep]`: a range-of-motion study (SPEC K2). The part's own `motion` moves it through
+/// its range as the timeline runs (a static solver sees a sequence of poses, a dynamic
+/// one the speed of its keyframes); every checked instant is recorded against the
+/// part's motion coordinate.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSection {
+    /// The moving part whose coordinate the results are given against (its `name`): a
+    /// hinge's angle, a slide's travel, a periodic motion's phase, a path's time.
+    pub part: String,
+    /// The parts whose clearance to every hose is recorded (names). Default: every part.
+    pub clearance_to: Option<Vec<String>>,
+    /// Smallest clearance allowed between a hose and those parts (length unit): a hose
+    /// coming nearer is a violation, which decides as the installation checks do.
+    pub min_clearance: Option<f64>,
 }
 
 /// `[checks]`: the installation checks (SPEC V3; cf. DIN 20066) — which run, their

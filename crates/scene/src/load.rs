@@ -460,7 +460,8 @@ fn build(
     let part_names: Vec<&str> = parts.specs.iter().map(|p| p.name.as_str()).collect();
     let (stubs, connectors, clips) = build_fasteners(&file, &hoses, &part_names)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
-    let checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
+    let mut checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
+    checks.sweep = crate::sweep::build_sweep(file.sweep.as_ref(), &parts.specs, file.length_unit)?;
     let name = match &file.name {
         Some(n) if !n.trim().is_empty() => n.clone(),
         _ => Path::new(origin)

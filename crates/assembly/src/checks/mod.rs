@@ -37,6 +37,8 @@ pub struct ChecksSummary {
     /// (the report's pictures; presentation, not written to `report.json`).
     #[serde(skip)]
     pub pictures: ScenePictures,
+    /// The range-of-motion study's rows and worst positions, if it sweeps a motion.
+    pub sweep: Option<crate::sweep::SweepSummary>,
 }
 
 impl ChecksSummary {
@@ -60,6 +62,7 @@ impl ChecksSummary {
             violations: checks.running_violations().cloned().chain(end).collect(),
             profiles: checks.profiles().to_vec(),
             pictures: checks.pictures().clone(),
+            sweep: checks.sweep().map(|s| s.summary().clone()),
         }
     }
 }

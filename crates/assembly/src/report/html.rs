@@ -353,6 +353,9 @@ pub fn html(report: &Report, samples: &[HandSample], push_limit: f64) -> String 
         s.push_str("</table>");
     }
     checks_section(&mut s, &run.checks, report.parts);
+    if let Some(sweep) = &run.checks.sweep {
+        super::sweep_plots::sweep_section(&mut s, sweep);
+    }
     s.push_str("<h2>Contact with parts</h2>");
     if run.contacts.is_empty() {
         s.push_str("<p>No hose touched a part.</p>");

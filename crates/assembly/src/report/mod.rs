@@ -10,6 +10,7 @@ pub mod recorder;
 mod scene_picture;
 pub mod summary;
 mod svg;
+mod sweep_plots;
 mod vtk;
 
 pub use html::write_reports;
@@ -79,6 +80,9 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
     write_file(&out.join("fasteners.csv"), csv)?;
     write_file(&out.join("checks.csv"), checks_csv(&run.checks))?;
     write_file(&out.join("check_profiles.csv"), profiles_csv(&run.checks))?;
+    if let Some(sweep) = &run.checks.sweep {
+        write_file(&out.join("motion.csv"), sweep.csv())?;
+    }
     // Presentation data, made here once per report: a hull over every vertex of every
     // part (never on the live path).
     let parts = part_outline::part_outlines(&o.model.environment);

@@ -1,0 +1,49 @@
+//! The gap between a hose and a rigid part: the smallest distance from the hose's surface
+//! to the part's surface, d(x_i, mesh) − r_i over the hose's nodes (centre line points x_i,
+//! outer radius r_i; negative where the hose presses into the part), for the clearance a
+//! range-of-motion study reports. A moving part's mesh stays in its reference placement:
+//! the nodes are mapped into it by the part's pose (as contact does, [`super::moving`]).
+//!
+//! The search is the mesh's bounding-volume tree queried with a shrinking bound (the best
+//! gap so far plus the node's radius, parry's `project_local_point_with_max_dist`): a node
+//! farther than the bound from the part's bounding box costs one box test, and the tree
+//! prunes every subtree farther than the bound, so no triangle far from the hose is
+//! visited. Between nodes the centre line may pass nearer a part by at most the sagitta
+//! of a beam, l²κ/8 (l the beam length, κ the curvature).
+
+use super::environment::RigidEnvironment;
+use crate::kinematics::Pose;
+use glam::DVec3;
+use parry3d_f64::query::PointQuery;
+
+/// The gap between the hose whose nodes are at `x` (outer radii `radius`) and part `part`
+/// of `env`, whose pose is `pose` (`None`: at its reference placement): (gap \[m\], index
+/// into `x` of the nearest node). `(∞, 0)` for no nodes or no such part.
+pub fn hose_part_gap(
+    env: &RigidEnvironment,
+    part: usize,
+    pose: Option<&Pose>,
+    x: &[DVec3],
+    radius: &[f64],
+) -> (f64, usize) {
+    let Some(p) = env.parts.get(part) else {
+        return (f64::INFINITY, 0);
+    };
+    let bounds = p.mesh.local_aabb();
+    let mut best = (f64::INFINITY, 0);
+    for (i, (&xi, &ri)) in x.iter().zip(radius).enumerate() {
+        let local = pose.map_or(xi, |q| q.inverse_apply(xi));
+        let reach = best.0 + ri;
+        if bounds.distance_to_local_point(local, true) >= reach {
+            continue;
+        }
+        let Some(hit) = p.mesh.project_local_point_with_max_dist(local, false, reach) else {
+            continue;
+        };
+        let gap = (hit.point - local).length() - ri;
+        if gap < best.0 {
+            best = (gap, i);
+        }
+    }
+    best
+}
