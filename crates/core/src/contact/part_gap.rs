@@ -47,3 +47,36 @@ pub fn hose_part_gap(
     }
     best
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::environment::test_plate;
+    use glam::DQuat;
+
+    #[test]
+    fn the_gap_is_the_nearest_nodes_distance_less_its_radius_in_the_parts_pose() {
+        let env = test_plate(); // z = 0, |x|, |y| ≤ 0.5
+        let x = [
+            DVec3::new(0.0, 0.0, 0.30),
+            DVec3::new(0.2, 0.1, 0.05), // the nearest: 0.05 − 0.01
+            DVec3::new(0.9, 0.0, 0.02), // beyond the edge: √(0.4² + 0.02²) − 0.01
+        ];
+        let r = [0.01; 3];
+        let (gap, at) = hose_part_gap(&env, 0, None, &x, &r);
+        assert!((gap - 0.04).abs() < 1e-12, "{gap}");
+        assert_eq!(at, 1);
+        // the plate lifted by 0.03 and turned about z: the same node is 0.02 above it
+        let pose = Pose {
+            rotation: DQuat::from_rotation_z(0.4),
+            translation: DVec3::new(0.0, 0.0, 0.03),
+        };
+        let (gap, at) = hose_part_gap(&env, 0, Some(&pose), &x, &r);
+        assert!((gap - 0.01).abs() < 1e-12, "{gap}");
+        assert_eq!(at, 1);
+        // a node pressed 4 mm into the plate's plane: a negative gap
+        let (gap, _) = hose_part_gap(&env, 0, None, &[DVec3::new(0.0, 0.0, 0.006)], &[0.01]);
+        assert!((gap + 0.004).abs() < 1e-12, "{gap}");
+        assert_eq!(hose_part_gap(&env, 3, None, &x, &r).0, f64::INFINITY);
+    }
+}
