@@ -538,12 +538,11 @@ fn update_clip(
         (ClipState::Seated, Some((a, b, t, _))) => {
             let node = if t < 0.5 { a } else { b };
             if c.fix.is_none() && frame.moves() {
-                c.fix = Some(state.loads.add(seat_hold_on_part(
-                    &c.site.spec,
-                    frame,
-                    node,
-                    state,
-                )));
+                c.fix = Some(
+                    state
+                        .loads
+                        .add(seat_hold_on_part(&c.site.spec, frame, node, state)),
+                );
                 c.carried = Some(frame.pose());
             } else if c.fix.is_none() {
                 c.fix = Some(state.loads.add(c.site.spec.seat_hold(

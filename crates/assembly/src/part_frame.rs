@@ -139,7 +139,10 @@ mod tests {
         let still = PartFrame::default();
         assert_eq!(still.point_to_part(x), x);
         assert_eq!(still.velocity_at(x), DVec3::ZERO);
-        assert!(matches!(still.hold(3, x, DQuat::IDENTITY), LoadCase::Fix(_)));
+        assert!(matches!(
+            still.hold(3, x, DQuat::IDENTITY),
+            LoadCase::Fix(_)
+        ));
         assert!(matches!(f.hold(3, x, DQuat::IDENTITY), LoadCase::Mount(m) if m.part == 0));
     }
 }

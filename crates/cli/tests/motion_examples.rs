@@ -32,12 +32,20 @@ fn run_example(name: &str) -> (tempfile::TempDir, Vec<String>, Vec<Vec<f64>>, Ve
         .collect();
     let csv = std::fs::read_to_string(out.path().join("motion.csv")).unwrap();
     let mut lines = csv.lines();
-    let header = lines.next().unwrap().split(',').map(str::to_string).collect();
+    let header = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
     let rows = lines
         .map(|l| l.split(',').map(|v| v.parse::<f64>().unwrap()).collect())
         .collect();
     let html = std::fs::read_to_string(out.path().join("report.html")).unwrap();
-    assert!(html.contains("Range of motion"), "no range-of-motion section");
+    assert!(
+        html.contains("Range of motion"),
+        "no range-of-motion section"
+    );
     (out, reasons, rows, header)
 }
 
@@ -62,8 +70,14 @@ fn the_door_hinge_example_names_the_angle_where_the_hose_bends_tightest() {
     // closed, the hose is far from its minimum bend radius; open, past it
     let closed = rows.iter().find(|r| r[angle] < 1.0).unwrap();
     let open = rows.iter().find(|r| r[angle] == 70.0).unwrap();
-    assert!(closed[ratio] < 0.1 && open[ratio] > 1.0, "{closed:?} {open:?}");
-    assert!(rows.iter().all(|r| r[pillar] > -1e-3), "pressed into the pillar");
+    assert!(
+        closed[ratio] < 0.1 && open[ratio] > 1.0,
+        "{closed:?} {open:?}"
+    );
+    assert!(
+        rows.iter().all(|r| r[pillar] > -1e-3),
+        "pressed into the pillar"
+    );
     // the verdict puts the worst bend at the door's angle, in degrees
     let bend = reasons
         .iter()
@@ -71,7 +85,9 @@ fn the_door_hinge_example_names_the_angle_where_the_hose_bends_tightest() {
         .unwrap_or_else(|| panic!("{reasons:?}"));
     assert!(bend.ends_with("at door angle 70°"), "{bend}");
     assert!(
-        reasons.iter().any(|r| r.starts_with("over the motion of part 'door' (angle 0° … 70°)")),
+        reasons
+            .iter()
+            .any(|r| r.starts_with("over the motion of part 'door' (angle 0° … 70°)")),
         "{reasons:?}"
     );
 }
@@ -100,10 +116,16 @@ fn the_rocking_engine_example_reports_a_cycle_of_phases_and_the_fan_clearance() 
     assert!(hi - lo > 0.01, "upper hose radius {lo}…{hi} m");
     // the fan keeps its 25 mm: no clearance violation
     assert!(rows.iter().all(|r| r[fan] > 0.025));
-    assert!(!reasons.iter().any(|r| r.contains("comes within")), "{reasons:?}");
+    assert!(
+        !reasons.iter().any(|r| r.contains("comes within")),
+        "{reasons:?}"
+    );
     let upper_bend = reasons
         .iter()
         .find(|r| r.starts_with("hose 'upper': bend_radius check"))
         .unwrap_or_else(|| panic!("{reasons:?}"));
-    assert!(upper_bend.contains(", at engine block phase "), "{upper_bend}");
+    assert!(
+        upper_bend.contains(", at engine block phase "),
+        "{upper_bend}"
+    );
 }

@@ -3,8 +3,9 @@
 
 use crate::error::FieldError;
 use crate::format::{
-    ActionEntry, AimHandEntry, FixEntry, GrabEntry, GripName, HandEntry, LoadEntry, MountEntry, MoveEntry,
-    MoveHandEntry, NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, TieEntry, UnloadEntry,
+    ActionEntry, AimHandEntry, FixEntry, GrabEntry, GripName, HandEntry, LoadEntry, MountEntry,
+    MoveEntry, MoveHandEntry, NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, TieEntry,
+    UnloadEntry,
 };
 use crate::ranges::{at_most, vec_at_most, MAX_LOAD_FORCE, MAX_LOAD_MOMENT, MAX_ROTATION_DEG};
 use crate::units::LengthUnit;

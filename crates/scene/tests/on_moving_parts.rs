@@ -1,90 +1,10 @@
-//! What sits on a moving part goes with it: a hose fixed at both ends to one part (`fix`
-//! with `part`) is carried rigidly, and a clip declared on a part (`part = "..."`) carries
-//! the hose it holds, under every solver.
+//! What sits on a moving part goes with it: a clip declared on a part (`part = "..."`)
+//! carries the hose it holds, under every solver (a hose fixed at both ends to one part:
+//! `moving_parts.rs`).
 
-use glam::{DQuat, DVec3};
 use pliant_assembly::{run_timeline, NoObserver, WorkcellOptions};
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str;
-
-/// A hose from (0, 0, 0) to (300, 0, 0) mm with both ends fixed to a door that turns
-/// 0 → 60° about the vertical through (500, 0, 0) in 1 s.
-const FIXED_ON_DOOR: &str = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-
-[[hoses]]
-name = "h"
-material = "hose3"
-start = [0, 0, 0]
-path = [{ line = { to = [300, 0, 0] } }]
-
-[[parts]]
-name = "door"
-box = { size = [20, 20, 20] }
-position = [150, 0, -60]
-motion = { kind = "hinge", axis = [0, 0, 1], point = [500, 0, 0], angle_deg = { times_s = [0, 1], values = [0, 60] } }
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-part = "door"
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = -1
-part = "door"
-
-[[timeline]]
-action = "run"
-duration_s = 1.2
-"#;
-
-#[test]
-fn a_hose_fixed_at_both_ends_to_a_moving_part_moves_rigidly_under_every_solver() {
-    let scene = load_scene_str(FIXED_ON_DOOR, "door.toml").unwrap_or_else(|e| panic!("{e}"));
-    let turn = DQuat::from_rotation_z(60f64.to_radians());
-    let hinge = DVec3::new(0.5, 0.0, 0.0);
-    for solver in SolverKind::ALL {
-        let options = WorkcellOptions {
-            solver: Some(solver),
-            initial_loads: false,
-            ..Default::default()
-        };
-        let mut cell = scene.workcell(options).unwrap();
-        let rest: Vec<DVec3> = cell.state().x.clone();
-        run_timeline(&mut cell, &scene.timeline, &mut NoObserver)
-            .unwrap_or_else(|e| panic!("{solver}: {e}"));
-        let x = &cell.state().x;
-        let worst = rest
-            .iter()
-            .zip(x)
-            .map(|(&r, &now)| (hinge + turn * (r - hinge) - now).length())
-            .fold(0.0, f64::max);
-        // every node where the door carries it: no strain, no sag (no gravity); the
-        // dynamic solvers keep a little of the swing's inertial load (µm over 0.3 m)
-        eprintln!("{solver}: {worst:.3e} m from the carried shape");
-        assert!(worst < 1e-5, "{solver}: {worst} m from the carried shape");
-        let strain = x
-            .windows(2)
-            .zip(rest.windows(2))
-            .map(|(a, b)| ((a[1] - a[0]).length() / (b[1] - b[0]).length() - 1.0).abs())
-            .fold(0.0, f64::max);
-        eprintln!("{solver}: strain {strain:.3e}");
-        assert!(strain < 1e-5, "{solver}: strain {strain}");
-    }
-    // `fix` with `part` is a mount
-    assert!(matches!(
-        &scene.timeline.actions[0],
-        pliant_assembly::Action::Mount { part, .. } if part == "door"
-    ));
-}
 
 /// A hose fixed at its start; its far part lies in the seat of a clip on a carriage that
 /// slides 50 mm up (z) in 1 s. `TYPE` is the clip's type.

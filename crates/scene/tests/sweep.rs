@@ -23,14 +23,21 @@ fn a_sweep_loads_in_si_and_broken_entries_name_the_field() {
         let end = start + text[start..].find("\n\n").unwrap();
         format!("{}{sweep}{}", &text[..start], &text[end..])
     };
-    let ok = load_scene_str(&with("[sweep]\npart = \"door\"\nmin_clearance = 25\n"), "d.toml")
-        .unwrap_or_else(|e| panic!("{e}"));
+    let ok = load_scene_str(
+        &with("[sweep]\npart = \"door\"\nmin_clearance = 25\n"),
+        "d.toml",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let s = ok.checks.sweep.unwrap();
     assert!((s.min_clearance.unwrap() - 0.025).abs() < 1e-15);
     assert!(s.clearance_parts.is_empty(), "every part by default");
     for (sweep, field, message) in [
         ("[sweep]\npart = \"boot\"\n", "sweep.part", "names no part"),
-        ("[sweep]\npart = \"pillar\"\n", "sweep.part", "does not move"),
+        (
+            "[sweep]\npart = \"pillar\"\n",
+            "sweep.part",
+            "does not move",
+        ),
         (
             "[sweep]\npart = \"door\"\nclearance_to = [\"door\", \"fan\"]\n",
             "sweep.clearance_to[1]",
@@ -53,7 +60,9 @@ fn a_slow_door_sweep_is_the_same_quasi_statically_and_dynamically() {
     let scene = door_example();
     let mut worst = Vec::new();
     for solver in [SolverKind::Static, SolverKind::Explicit] {
-        let (_, run) = scene.run_with(Some(solver)).unwrap_or_else(|e| panic!("{e}"));
+        let (_, run) = scene
+            .run_with(Some(solver))
+            .unwrap_or_else(|e| panic!("{e}"));
         let sweep = run.checks.sweep.expect("the sweep's rows");
         let bend = sweep
             .worst()

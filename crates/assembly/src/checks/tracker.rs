@@ -10,8 +10,8 @@ use super::pictures::ScenePictures;
 use super::settings::CheckSettings;
 use super::strain::bend_and_twist;
 use crate::fasteners::StubSite;
-use crate::sweep::MotionSweep;
 use crate::stub::StubLaw;
+use crate::sweep::MotionSweep;
 use pliant_core::{Model, State};
 use serde::Serialize;
 

@@ -16,7 +16,14 @@ pub fn profile_plot(
 ) -> String {
     let s_max = arc.last().copied().unwrap_or(0.0).max(1e-9) * 1.02;
     let label = format!("s = {:.0} mm", 1e3 * s_max);
-    line_plot(title, (arc, 0.0, s_max, &label), values, limit, symmetric, unit)
+    line_plot(
+        title,
+        (arc, 0.0, s_max, &label),
+        values,
+        limit,
+        symmetric,
+        unit,
+    )
 }
 
 /// `values` over `xs` drawn on an x axis from `x_min` to `x_max` labelled `x_label` at

@@ -23,7 +23,9 @@ pub fn sweep_section(s: &mut String, sweep: &SweepSummary) {
     let xs: Vec<f64> = rows.iter().map(|r| r[1] * factor).collect();
     let (lo, hi) = xs
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
     let label = format!("{} {} ({unit})", c.part_name, c.kind.name());
     let axis = (xs.as_slice(), lo, hi.max(lo + 1e-9), label.as_str());
     s.push_str("<h2>Range of motion</h2>");
@@ -53,7 +55,10 @@ pub fn sweep_section(s: &mut String, sweep: &SweepSummary) {
         }
         let twist = series(&|r| SweepSummary::hose_value(r, h, 1).to_degrees());
         s.push_str(&line_plot(
-            &format!("hose '{name}': largest twist, limit {:.1} °/m (red)", sweep.twist_limit.to_degrees()),
+            &format!(
+                "hose '{name}': largest twist, limit {:.1} °/m (red)",
+                sweep.twist_limit.to_degrees()
+            ),
             axis,
             &twist,
             sweep.twist_limit.to_degrees(),
@@ -72,7 +77,10 @@ pub fn sweep_section(s: &mut String, sweep: &SweepSummary) {
     }
     let mut nearest: Vec<(usize, f64)> = (0..sweep.pairs.len())
         .map(|k| {
-            let least = rows.iter().map(|r| sweep.pair_value(r, k)).fold(f64::INFINITY, f64::min);
+            let least = rows
+                .iter()
+                .map(|r| sweep.pair_value(r, k))
+                .fold(f64::INFINITY, f64::min);
             (k, least)
         })
         .collect();
@@ -86,9 +94,10 @@ pub fn sweep_section(s: &mut String, sweep: &SweepSummary) {
                 sweep.hose_names[h],
                 sweep.part_names[p],
                 1e3 * least,
-                sweep
-                    .min_clearance
-                    .map_or(String::new(), |m| format!("; minimum {:.1} mm, red", 1e3 * m))
+                sweep.min_clearance.map_or(String::new(), |m| format!(
+                    "; minimum {:.1} mm, red",
+                    1e3 * m
+                ))
             ),
             axis,
             &gap,

@@ -158,7 +158,9 @@ impl SweepSummary {
         let (lo, hi) = self
             .rows()
             .map(|r| r[1])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(v), b.max(v))
+            });
         if !lo.is_finite() {
             return None;
         }
@@ -180,7 +182,10 @@ impl SweepSummary {
             }
         }
         if let Some((r, gap, k)) = (0..self.pairs.len())
-            .filter_map(|k| self.least(|r| self.pair_value(r, k)).map(|(r, g)| (r, g, k)))
+            .filter_map(|k| {
+                self.least(|r| self.pair_value(r, k))
+                    .map(|(r, g)| (r, g, k))
+            })
             .fold(None, |best: Option<(&[f64], f64, usize)>, x| match best {
                 Some(b) if b.1 <= x.1 => Some(b),
                 _ => Some(x),

@@ -7,6 +7,7 @@
 use super::coordinate::Coordinate;
 use super::settings::SweepSettings;
 use super::summary::SweepSummary;
+use crate::checks::axial_force;
 use pliant_core::contact::part_gap::hose_part_gap;
 use pliant_core::loads::LoadCase;
 use pliant_core::{Model, State};
@@ -71,17 +72,9 @@ impl MotionSweep {
         for info in &model.hoses {
             let (mut k, mut tw, mut force) = (0.0_f64, 0.0_f64, 0.0_f64);
             for e in info.first_element..info.first_element + info.element_count {
-                let el = &model.elements[e];
                 k = k.max(kappa[e]);
                 tw = tw.max(twist[e].abs());
-                let length = (state.x[el.node_b] - state.x[el.node_a]).length();
-                let strain = (length - el.rest_length) / el.rest_length;
-                let ea = if strain >= 0.0 {
-                    el.axial_stiffness_tension
-                } else {
-                    el.axial_stiffness_compression
-                };
-                force = force.max((strain * ea).abs());
+                force = force.max(axial_force(model, state, e).abs());
             }
             rows.extend([1.0 / k, tw, force]);
         }

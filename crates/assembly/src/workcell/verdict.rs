@@ -239,17 +239,14 @@ impl Verdict {
         let judged = !run.hand_peaks.is_empty();
         // a range-of-motion study is judged by its checks, hands or none
         let swept = run.checks.sweep.is_some();
-        let feasible = if diverged.is_some()
-            || exceeded
-            || violated
-            || ((judged || swept) && unfitted)
-        {
-            Some(false)
-        } else if judged || swept {
-            Some(true)
-        } else {
-            None
-        };
+        let feasible =
+            if diverged.is_some() || exceeded || violated || ((judged || swept) && unfitted) {
+                Some(false)
+            } else if judged || swept {
+                Some(true)
+            } else {
+                None
+            };
         if swept && !judged && feasible == Some(true) {
             reasons.push(match stage {
                 Stage::Final => "every stub, connector and clip was fitted, and every installation check passed at every position of the motion".into(),

@@ -37,7 +37,10 @@ pub fn hose_part_gap(
         if bounds.distance_to_local_point(local, true) >= reach {
             continue;
         }
-        let Some(hit) = p.mesh.project_local_point_with_max_dist(local, false, reach) else {
+        let Some(hit) = p
+            .mesh
+            .project_local_point_with_max_dist(local, false, reach)
+        else {
             continue;
         };
         let gap = (hit.point - local).length() - ri;
