@@ -19,7 +19,7 @@ pub struct SweepSummary {
     pub part_names: Vec<String>,
     /// Smallest clearance allowed \[m\], if any.
     pub min_clearance: Option<f64>,
-    /// Values per row ([`super::MotionSweep::stride`]).
+    /// Values per row: time, coordinate, three per hose, one per pair, the fixing force.
     pub stride: usize,
     /// The rows, flat (not in `report.json`: `motion.csv` holds them).
     #[serde(skip)]

@@ -2,7 +2,7 @@
 //! to the part's surface, d(x_i, mesh) − r_i over the hose's nodes (centre line points x_i,
 //! outer radius r_i; negative where the hose presses into the part), for the clearance a
 //! range-of-motion study reports. A moving part's mesh stays in its reference placement:
-//! the nodes are mapped into it by the part's pose (as contact does, [`super::moving`]).
+//! the nodes are mapped into it by the part's pose (as contact with moving parts does).
 //!
 //! The search is the mesh's bounding-volume tree queried with a shrinking bound (the best
 //! gap so far plus the node's radius, parry's `project_local_point_with_max_dist`): a node
