@@ -6,12 +6,20 @@
 //! the beam crossing the clip while it snaps in, an L1 fix of that point once seated.
 //! Forces on a node a hand holds end up in the hand's load, which is what the worker
 //! feels.
+//!
+//! A fastener on a moving part goes with it: it observes the hose in the part's
+//! reference placement ([`PartFrame`]), turns its forces into world axes, measures the
+//! hose's sliding on the stub relative to the part, and holds what it fastens with a
+//! mount (a stub's end and a fixed clip's seat; held where they are when the hold closes)
+//! or a support carried with the part's pose and velocity (a rotating or sliding clip).
 
 use crate::clip::{ClipObservation, ClipSpec, ClipState, ClipTolerance};
+use crate::part_frame::PartFrame;
 use crate::stub::{
     AxialLaw, FitRelaxation, FitTerms, StubLaw, StubObservation, StubState, StubTolerance,
 };
 use glam::DVec3;
+use pliant_core::kinematics::Pose;
 use pliant_core::loads::{DeadLoad, Drive, LoadCase, LoadCaseId};
 use pliant_core::math::{log_map, rotation_between};
 use pliant_core::{Model, State};
@@ -41,6 +49,8 @@ pub struct StubSite {
     /// Global index of the hose's end node, and of its neighbour (gives the direction).
     pub end_node: usize,
     pub inner_node: usize,
+    /// The part the stub sits on (index into the model's parts), if any: it goes with it.
+    pub part: Option<usize>,
 }
 
 /// A clip and the hose meant to go into it.
@@ -49,6 +59,8 @@ pub struct ClipSite {
     pub name: String,
     pub spec: ClipSpec,
     pub hose: usize,
+    /// The part the clip sits on (index into the model's parts), if any: it goes with it.
+    pub part: Option<usize>,
 }
 
 /// How a fastener did over the run.
@@ -149,6 +161,8 @@ struct ClipRun {
     /// The hose centre's coordinate s along the opening in the last step, if it crossed
     /// the clip's plane.
     last_coordinate: Option<f64>,
+    /// The pose of the clip's moving part its support was last placed at.
+    carried: Option<Pose>,
 }
 
 /// All fasteners of a run.
@@ -242,6 +256,7 @@ impl Fasteners {
                 worked_at: None,
                 loosened: false,
                 last_coordinate: None,
+                carried: None,
                 site,
             })
             .collect();
@@ -252,14 +267,25 @@ impl Fasteners {
         self.stubs.is_empty() && self.clips.is_empty()
     }
 
-    /// One step's update, before the physics step. `held` lists the nodes the hands hold,
-    /// each with the force of the hand holding it (last step).
-    pub fn update(&mut self, model: &Model, state: &mut State, held: &[(usize, DVec3)]) {
+    /// One step's update, before the physics step to `t_next`. `held` lists the nodes the
+    /// hands hold, each with the force of the hand holding it (last step).
+    pub fn update(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        held: &[(usize, DVec3)],
+        t_next: f64,
+    ) {
         for s in &mut self.stubs {
-            update_stub(s, state, held);
+            let frame = PartFrame::at(model, s.site.part, state.time);
+            update_stub(s, state, held, &frame);
         }
         for c in &mut self.clips {
-            update_clip(c, model, state, held);
+            let frame = PartFrame::at(model, c.site.part, state.time);
+            update_clip(c, model, state, held, &frame);
+            if frame.moves() {
+                carry_support(c, state, &PartFrame::at(model, c.site.part, t_next));
+            }
         }
     }
 
@@ -312,15 +338,16 @@ fn stub_state_name(s: &StubRun) -> String {
     }
 }
 
-fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
+fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)], frame: &PartFrame) {
     let (e, n) = (s.site.end_node, s.site.inner_node);
     let stub = s.site.fit.stub();
-    let axis = stub.axis();
+    // the stub's axis in world axes (the stub is given in its part's reference placement)
+    let axis = frame.direction_to_world(stub.axis());
     let grabbed = held_by_hand(held, e) || held_by_hand(held, n);
     s.worked_at = [e, n].into_iter().find(|&k| held_by_hand(held, k));
     let obs = StubObservation {
-        end_position: state.x[e],
-        end_direction: state.x[e] - state.x[n],
+        end_position: frame.point_to_part(state.x[e]),
+        end_direction: frame.direction_to_part(state.x[e] - state.x[n]),
         axial_force: hand_force(held, e).dot(axis),
         grabbed,
     };
@@ -336,7 +363,10 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
     let mut force = DVec3::ZERO;
     match next {
         StubState::Fixed { depth } if !grabbed => {
-            if s.fix.is_none() {
+            if s.fix.is_none() && frame.moves() {
+                // on a moving part: held where it was released, carried with the part
+                s.fix = Some(state.loads.add(frame.hold(e, state.x[e], state.q[e])));
+            } else if s.fix.is_none() {
                 // the end sits on the stub: on its axis at the insertion depth, its tangent
                 // turned onto the axis (SPEC L6: the hose end is aligned with the stub),
                 // carried there smoothly from where the hand left it (see SEATING_TIME)
@@ -359,7 +389,7 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
             }
             // friction opposing the axial motion (regularised Coulomb), and the stub's
             // base stopping the end at the stub's length
-            let v = state.v[e].dot(axis);
+            let v = (state.v[e] - frame.velocity_at(state.x[e])).dot(axis);
             let sense = if v >= 0.0 {
                 crate::stub::Sense::On
             } else {
@@ -367,7 +397,7 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
             };
             let resist = next.resisting_force_moving(&fit, sense);
             force -= axis * resist * (v / FRICTION_SPEED).clamp(-1.0, 1.0);
-            let over = stub.axial_coordinate(state.x[e]) - stub.length();
+            let over = stub.axial_coordinate(frame.point_to_part(state.x[e])) - stub.length();
             if over > 0.0 {
                 force -= axis * over * 1e3 * s.site.fit.stop_force() / stub.length();
             }
@@ -401,24 +431,28 @@ fn update_stub(s: &mut StubRun, state: &mut State, held: &[(usize, DVec3)]) {
     };
 }
 
-/// The beam of hose `hose` crossing the clip's plane nearest to its seat: (a, b, t, centre).
-/// A hose's beam k joins its nodes k and k + 1 (as the model builds it), so each node's
-/// distance from the plane is measured once, for both beams that share it.
+/// The beam of hose `hose` crossing the clip's plane nearest to its seat: (a, b, t, centre),
+/// the centre in the clip's part's reference placement (`frame`). A hose's beam k joins
+/// its nodes k and k + 1 (as the model builds it), so each node's distance from the plane
+/// is measured once, for both beams that share it.
 fn crossing(
     model: &Model,
     state: &State,
     clip: &ClipSpec,
     hose: usize,
+    frame: &PartFrame,
 ) -> Option<(usize, usize, f64, DVec3)> {
     let info = &model.hoses[hose];
     debug_assert_eq!(info.element_count + 1, info.node_count);
     let xs = &state.x[info.nodes()];
-    let mut distances = xs.iter().map(|&p| clip.plane_distance(p));
+    let mut distances = xs
+        .iter()
+        .map(|&p| clip.plane_distance(frame.point_to_part(p)));
     let mut da = distances.next()?;
     let mut best: Option<(usize, usize, f64, DVec3, f64)> = None;
     for (k, db) in distances.enumerate() {
         if ClipSpec::crosses(da, db) {
-            let (a, b) = (xs[k], xs[k + 1]);
+            let (a, b) = (frame.point_to_part(xs[k]), frame.point_to_part(xs[k + 1]));
             let m = ClipSpec::crossing_point(a, b, da, db);
             let d = (m - clip.origin()).length();
             if best.is_none_or(|x| d < x.4) {
@@ -443,7 +477,8 @@ fn drawn_seated(model: &Model, state: &State, site: &ClipSite) -> bool {
     let Some(tolerance) = ClipTolerance::for_clip(spec).checked() else {
         return false;
     };
-    let Some((a, _, _, centre)) = crossing(model, state, spec, site.hose) else {
+    let frame = PartFrame::at(model, site.part, state.time);
+    let Some((a, _, _, centre)) = crossing(model, state, spec, site.hose, &frame) else {
         return false;
     };
     spec.first_touch(model.radius[a]).is_some()
@@ -471,8 +506,14 @@ fn held_node_at_clip(
         .find(|&n| nodes.contains(&n) && n + 1 >= a && n <= b + 1)
 }
 
-fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize, DVec3)]) {
-    let cross = crossing(model, state, &c.site.spec, c.site.hose);
+fn update_clip(
+    c: &mut ClipRun,
+    model: &Model,
+    state: &mut State,
+    held: &[(usize, DVec3)],
+    frame: &PartFrame,
+) {
+    let cross = crossing(model, state, &c.site.spec, c.site.hose, frame);
     let nodes = model.hoses[c.site.hose].nodes();
     let radius = cross.map_or(model.radius[nodes.start], |(a, ..)| model.radius[a]);
     let grabbed = cross.is_some_and(|(a, b, ..)| held_at_clip(held, &nodes, a, b));
@@ -501,7 +542,8 @@ fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize
             .iter()
             .find(|(i, _)| *i == id)
             .map(|(_, l)| l.node());
-        if node.is_some_and(|n| -state.reaction_force[n].dot(spec.opening()) > hold) {
+        let opening = frame.direction_to_world(spec.opening());
+        if node.is_some_and(|n| -state.reaction_force[n].dot(opening) > hold) {
             next = ClipState::Snapping;
             c.loosened = true;
         }
@@ -513,11 +555,18 @@ fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize
         next = ClipState::Snapping;
     }
     c.state = next;
-    let force = next.force(&c.site.spec, &obs);
+    let force = frame.direction_to_world(next.force(&c.site.spec, &obs));
     match (next, cross) {
         (ClipState::Seated, Some((a, b, t, _))) => {
             let node = if t < 0.5 { a } else { b };
-            if c.fix.is_none() {
+            if c.fix.is_none() && frame.moves() {
+                c.fix = Some(
+                    state
+                        .loads
+                        .add(seat_hold_on_part(&c.site.spec, frame, node, state)),
+                );
+                c.carried = Some(frame.pose());
+            } else if c.fix.is_none() {
                 c.fix = Some(state.loads.add(c.site.spec.seat_hold(
                     node,
                     state.x[node],
@@ -529,6 +578,7 @@ fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize
             if let Some(id) = c.fix.take() {
                 state.loads.remove(id);
             }
+            c.carried = None;
         }
     }
     let (a, b, t) = cross.map_or((0, 0, 0.0), |(a, b, t, _)| (a, b, t));
@@ -540,6 +590,45 @@ fn update_clip(c: &mut ClipRun, model: &Model, state: &mut State, held: &[(usize
         c.report.max_force_time = state.time;
     }
     c.report.assembled = next == ClipState::Seated;
+}
+
+/// A clip's hold of its seated `node` on a moving part (`frame` now): a mount for a clip
+/// that holds all six degrees of freedom, else its support with the clip's frame turned
+/// with the part ([`carry_support`] keeps it with the part).
+fn seat_hold_on_part(spec: &ClipSpec, frame: &PartFrame, node: usize, state: &State) -> LoadCase {
+    let (x, q) = (state.x[node], state.q[node]);
+    match spec.seat_hold(node, x, q) {
+        LoadCase::Support(mut s) => {
+            s.frame = (frame.pose().rotation * s.frame).normalize();
+            s.velocity = frame.velocity_at(x);
+            s.spin = frame.spin();
+            LoadCase::Support(s)
+        }
+        _ => frame.hold(node, x, q),
+    }
+}
+
+/// Carries a seated clip's support on a moving part from the pose it was placed at to the
+/// part's pose `next` (at the step's end): its held pose, frame and slip anchor by the
+/// part's rigid motion between the two, its velocity the part's there.
+fn carry_support(c: &mut ClipRun, state: &mut State, next: &PartFrame) {
+    let (Some(id), Some(before)) = (c.fix, c.carried) else {
+        return;
+    };
+    let Some(LoadCase::Support(s)) = state.loads.get_mut(id) else {
+        return;
+    };
+    let after = next.pose();
+    let turn = (after.rotation * before.rotation.conjugate()).normalize();
+    let carry = |x: DVec3| after.apply(before.inverse_apply(x));
+    s.position = carry(s.position);
+    s.anchor = carry(s.anchor);
+    s.orientation = (turn * s.orientation).normalize();
+    s.frame = (turn * s.frame).normalize();
+    s.velocity = next.velocity_at(s.position);
+    s.spin = next.spin();
+    s.moved = true;
+    c.carried = Some(after);
 }
 
 #[cfg(test)]

@@ -234,6 +234,7 @@ fn seat_and_pull(spec: ClipSpec, pull: f64) -> (State, pliant_assembly::Fastener
         name: "clip".into(),
         spec,
         hose: 0,
+        part: None,
     };
     let timeline = Timeline {
         actions: vec![

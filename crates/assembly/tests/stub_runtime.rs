@@ -65,6 +65,7 @@ fn setup_with(safety: f64) -> (Model, StubSite, PressFit) {
         fit: fit.into(),
         end_node: N,
         inner_node: N - 1,
+        part: None,
     };
     (model, site, fit)
 }

@@ -268,6 +268,8 @@ pub struct Recorded {
     pub hands: u64,
     pub fasteners: u64,
     pub nodes: u64,
+    /// Values of a range-of-motion row (`[sweep]`), 8 bytes each; 0 without a sweep.
+    pub sweep_values: u64,
 }
 
 impl Recorded {
@@ -277,7 +279,8 @@ impl Recorded {
             .hands
             .saturating_mul(RECORD_BYTES_PER_HAND)
             .saturating_add(self.fasteners.saturating_mul(RECORD_BYTES_PER_FASTENER))
-            .saturating_add(self.nodes.saturating_mul(RECORD_BYTES_PER_NODE));
+            .saturating_add(self.nodes.saturating_mul(RECORD_BYTES_PER_NODE))
+            .saturating_add(self.sweep_values.saturating_mul(8));
         self.records.saturating_mul(per_record)
     }
 }
@@ -290,6 +293,7 @@ pub fn check_recorded(estimate: &Estimate, limits: &Limits, kept: &Recorded) -> 
         hands,
         fasteners,
         nodes,
+        sweep_values,
     } = *kept;
     let series = kept.bytes();
     let need = estimate.memory_bytes().saturating_add(series);
@@ -297,7 +301,7 @@ pub fn check_recorded(estimate: &Estimate, limits: &Limits, kept: &Recorded) -> 
         return Ok(());
     }
     Err(format!(
-        "the run records {records} times ({hands} hand(s), {fasteners} stub(s) and clip(s), {nodes} node position(s) kept): \
+        "the run records {records} times ({hands} hand(s), {fasteners} stub(s) and clip(s), {nodes} node position(s) kept, {sweep_values} range-of-motion value(s)): \
          {} of series for the report on top of the scene's {}; {} in all, the limit is {} \
          (raise it with {}, or record less often: [output] record_interval_s)",
         human_bytes(series),

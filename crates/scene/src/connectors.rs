@@ -3,7 +3,7 @@
 //! [`Mating`].
 
 use crate::error::FieldError;
-use crate::fasteners::{d_outer_at, hose_end, MIN_STUB_LENGTH};
+use crate::fasteners::{d_outer_at, hose_end, part_index, MIN_STUB_LENGTH};
 use crate::format::ConnectorEntry;
 use crate::scene::SceneConnector;
 use crate::units::LengthUnit;
@@ -17,8 +17,10 @@ pub fn build_connector(
     raw: &ConnectorEntry,
     hoses: &[HoseSpec],
     unit: LengthUnit,
+    parts: &[&str],
 ) -> Result<SceneConnector, FieldError> {
     let at = |rest: &str| format!("connectors[{index}].{rest}");
+    let part = part_index(&at("part"), raw.part.as_ref(), parts)?;
     let (u, scale) = (unit.symbol(), unit.to_metres());
     let origin = finite_vec(&at("origin"), raw.origin, u)? * scale;
     let axis = non_zero_vec(&at("axis"), raw.axis, "")?;
@@ -82,5 +84,6 @@ pub fn build_connector(
         name: raw.name.clone(),
         mating,
         hose_end,
+        part,
     })
 }

@@ -30,6 +30,7 @@ impl LoadedScene {
                 fit: fit.into(),
                 end_node: info.node(local),
                 inner_node: info.node(inner),
+                part: s.part,
             });
         }
         // connectors after the stubs: the same state machine with the mating law
@@ -46,6 +47,7 @@ impl LoadedScene {
                 fit: c.mating.into(),
                 end_node: info.node(local),
                 inner_node: info.node(inner),
+                part: c.part,
             });
         }
         let mut clips = Vec::with_capacity(self.clips.len());
@@ -54,6 +56,7 @@ impl LoadedScene {
                 name: c.name.clone(),
                 spec: c.spec,
                 hose: c.hose,
+                part: c.part,
             });
         }
         Ok((stubs, clips))

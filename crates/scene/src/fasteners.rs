@@ -83,6 +83,26 @@ fn hose_index(field: &str, name: &str, hoses: &[HoseSpec]) -> Result<usize, Fiel
     })
 }
 
+/// The part a fastener sits on (`part = "door"` at `field`), as an index into `parts`
+/// (the built parts' names, in the model's order).
+pub(crate) fn part_index(
+    field: &str,
+    name: Option<&String>,
+    parts: &[&str],
+) -> Result<Option<usize>, FieldError> {
+    let Some(name) = name else {
+        return Ok(None);
+    };
+    match parts.iter().position(|p| p == name) {
+        Some(k) => Ok(Some(k)),
+        None => Err(FieldError::new(
+            field,
+            format!("\"{name}\""),
+            format!("names no part; parts are: {}", parts.join(", ")),
+        )),
+    }
+}
+
 /// Outer diameter (m) of a hose at a node.
 pub(crate) fn d_outer_at(hose: &HoseSpec, node: usize) -> f64 {
     hose.node_section(node).d_outer
@@ -104,6 +124,7 @@ pub(crate) fn in_unit(metres: f64, unit: LengthUnit) -> String {
 pub fn build_fasteners(
     file: &SceneFile,
     hoses: &[HoseSpec],
+    parts: &[&str],
 ) -> Result<(Vec<SceneStub>, Vec<SceneConnector>, Vec<SceneClip>), FieldError> {
     check_names(file)?;
     let unit = file.length_unit;
@@ -111,19 +132,19 @@ pub fn build_fasteners(
         .stubs
         .iter()
         .enumerate()
-        .map(|(i, s)| build_stub(i, s, hoses, unit))
+        .map(|(i, s)| build_stub(i, s, hoses, unit, parts))
         .collect::<Result<Vec<_>, _>>()?;
     let connectors = file
         .connectors
         .iter()
         .enumerate()
-        .map(|(i, c)| build_connector(i, c, hoses, unit))
+        .map(|(i, c)| build_connector(i, c, hoses, unit, parts))
         .collect::<Result<Vec<_>, _>>()?;
     let clips = file
         .clips
         .iter()
         .enumerate()
-        .map(|(i, c)| build_clip(i, c, hoses, unit))
+        .map(|(i, c)| build_clip(i, c, hoses, unit, parts))
         .collect::<Result<Vec<_>, _>>()?;
     Ok((stubs, connectors, clips))
 }
@@ -173,8 +194,10 @@ pub fn build_stub(
     raw: &StubEntry,
     hoses: &[HoseSpec],
     unit: LengthUnit,
+    parts: &[&str],
 ) -> Result<SceneStub, FieldError> {
     let at = |rest: &str| format!("stubs[{index}].{rest}");
+    let part = part_index(&at("part"), raw.part.as_ref(), parts)?;
     let (u, scale) = (unit.symbol(), unit.to_metres());
     let origin = finite_vec(&at("origin"), raw.origin, u)? * scale;
     let axis = non_zero_vec(&at("axis"), raw.axis, "")?;
@@ -252,6 +275,7 @@ pub fn build_stub(
         spec,
         hose_end,
         profile,
+        part,
     })
 }
 
@@ -299,8 +323,10 @@ pub fn build_clip(
     raw: &ClipEntry,
     hoses: &[HoseSpec],
     unit: LengthUnit,
+    parts: &[&str],
 ) -> Result<SceneClip, FieldError> {
     let at = |rest: &str| format!("clips[{index}].{rest}");
+    let part = part_index(&at("part"), raw.part.as_ref(), parts)?;
     let (u, scale) = (unit.symbol(), unit.to_metres());
     let origin = finite_vec(&at("origin"), raw.origin, u)? * scale;
     let opening = non_zero_vec(&at("opening"), raw.opening, "")?.normalize();
@@ -422,5 +448,6 @@ pub fn build_clip(
         name: raw.name.clone(),
         spec,
         hose,
+        part,
     })
 }

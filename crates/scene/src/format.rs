@@ -62,6 +62,9 @@ pub struct SceneFile {
     /// whose reach, body collisions and posture (RULA, REBA) are judged. Absent: nobody
     /// is modelled.
     pub worker: Option<WorkerSection>,
+    /// A range-of-motion study (SPEC K2): the checks, fixing forces and clearances
+    /// recorded against a moving part's motion coordinate (`motion.csv`).
+    pub sweep: Option<SweepSection>,
     /// Scripted actions, executed in order.
     #[serde(default)]
     pub timeline: Vec<ActionEntry>,
@@ -161,6 +164,23 @@ pub struct ErgonomicsSection {
     pub duration_h: Option<f64>,
 }
 
+/// `[sweep]`: a range-of-motion study (SPEC K2). The part's own `motion` moves it through
+/// its range as the timeline runs (a static solver sees a sequence of poses, a dynamic
+/// one the speed of its keyframes); every checked instant is recorded against the
+/// part's motion coordinate.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSection {
+    /// The moving part whose coordinate the results are given against (its `name`): a
+    /// hinge's angle, a slide's travel, a periodic motion's phase, a path's time.
+    pub part: String,
+    /// The parts whose clearance to every hose is recorded (names). Default: every part.
+    pub clearance_to: Option<Vec<String>>,
+    /// Smallest clearance allowed between a hose and those parts (length unit): a hose
+    /// coming nearer is a violation, which decides as the installation checks do.
+    pub min_clearance: Option<f64>,
+}
+
 /// `[checks]`: the installation checks (SPEC V3; cf. DIN 20066) — which run, their
 /// limits, and whether a violation makes the study infeasible. Every key is optional.
 #[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
@@ -252,6 +272,11 @@ pub enum HoseEndName {
 pub struct StubEntry {
     /// Unique, non-empty name (shared namespace with clips).
     pub name: String,
+    /// The part the stub sits on (a part's `name`): it goes with the part as the part
+    /// moves; its position and directions are given where the part's `position` and
+    /// `rotation` put it. Default: fixed in the world.
+    #[serde(default)]
+    pub part: Option<String>,
     /// The stub's mouth: the centre of its free end, where a hose first meets it
     /// (length unit).
     pub origin: Vec3,
@@ -287,6 +312,11 @@ pub struct StubEntry {
 pub struct ConnectorEntry {
     /// Unique, non-empty name (shared namespace with stubs and clips).
     pub name: String,
+    /// The part the connector's counterpart sits on (a part's `name`): it goes with the part as the part
+    /// moves; its position and directions are given where the part's `position` and
+    /// `rotation` put it. Default: fixed in the world.
+    #[serde(default)]
+    pub part: Option<String>,
     /// The counterpart's mouth: where the plug's end starts to engage (length unit).
     pub origin: Vec3,
     /// Mating direction, from the mouth into the counterpart; any non-zero length.
@@ -333,6 +363,11 @@ pub struct BeadEntry {
 pub struct ClipEntry {
     /// Unique, non-empty name (shared namespace with stubs).
     pub name: String,
+    /// The part the clip sits on (a part's `name`): it goes with the part as the part
+    /// moves; its position and directions are given where the part's `position` and
+    /// `rotation` put it. Default: fixed in the world.
+    #[serde(default)]
+    pub part: Option<String>,
     /// Seat centre: where a seated hose's centre line passes (length unit).
     pub origin: Vec3,
     /// Direction from the seat out through the opening (the hose comes in against it);
@@ -807,8 +842,9 @@ pub struct RotateEntry {
 #[derive(Clone, Debug, JsonSchema)]
 #[serde(tag = "action", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ActionEntry {
-    /// Hold the node in all six degrees of freedom where it is now.
-    Fix(NodeEntry),
+    /// Hold the node in all six degrees of freedom where it is now (on a part: carried
+    /// with it, as `mount`).
+    Fix(FixEntry),
     /// Hold the node to a part where it is now; it moves with the part.
     Mount(MountEntry),
     /// Drive the node along waypoints and/or rotate it; it stays held afterwards.
@@ -838,8 +874,9 @@ pub enum ActionEntry {
 }
 
 /// The names of the `action` values, in the order of [`ActionEntry`].
-pub const ACTION_NAMES: [&str; 12] = [
+pub const ACTION_NAMES: [&str; 13] = [
     "fix",
+    "mount",
     "move",
     "load",
     "unload",
@@ -853,7 +890,21 @@ pub const ACTION_NAMES: [&str; 12] = [
     "settle",
 ];
 
-/// `fix`, `unload`, `release`: a node of a hose.
+/// `fix`: a node of a hose held where it is, in the world or on a part.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FixEntry {
+    /// Hose name.
+    pub hose: String,
+    /// Node index; negative counts from the end (−1 = last).
+    pub node: i64,
+    /// The part the node is fixed to (a part's `name`): it is carried with the part as
+    /// `mount` carries it. Default: fixed in the world.
+    #[serde(default)]
+    pub part: Option<String>,
+}
+
+/// `unload`, `release`: a node of a hose.
 #[derive(Clone, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NodeEntry {

@@ -40,6 +40,7 @@ pub mod session;
 pub mod settings;
 pub mod step_cache;
 pub mod step_parts;
+pub mod sweep;
 pub mod time_limit;
 pub mod timeline;
 pub mod units;

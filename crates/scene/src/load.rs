@@ -457,9 +457,11 @@ fn build(
     let junctions = crate::junctions::build_junctions(&file.junctions, &hoses, file.length_unit)?;
     let timeline = build_timeline(&file.timeline, &nodes, file.length_unit)?;
     let parts = build_parts(&file.parts, file.length_unit, &files, &mut budget)?;
-    let (stubs, connectors, clips) = build_fasteners(&file, &hoses)?;
+    let part_names: Vec<&str> = parts.specs.iter().map(|p| p.name.as_str()).collect();
+    let (stubs, connectors, clips) = build_fasteners(&file, &hoses, &part_names)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
-    let checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
+    let mut checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
+    checks.sweep = crate::sweep::build_sweep(file.sweep.as_ref(), &parts.specs, file.length_unit)?;
     let worker = crate::worker::build_worker(
         file.worker.as_ref(),
         file.length_unit,

@@ -40,6 +40,8 @@ pub struct SceneStub {
     /// Its profile (SPEC V4): beads or barbs from the mouth inwards, SI (empty: a plain
     /// cylinder).
     pub profile: Vec<pliant_assembly::stub::Bead>,
+    /// The part it sits on (index into the world's parts), if any.
+    pub part: Option<usize>,
 }
 
 /// A connector of the scene: the plug on a hose end and its counterpart.
@@ -51,6 +53,8 @@ pub struct SceneConnector {
     pub mating: pliant_assembly::stub::Mating,
     /// The hose end carrying the plug.
     pub hose_end: HoseEnd,
+    /// The part the counterpart sits on (index into the world's parts), if any.
+    pub part: Option<usize>,
 }
 
 /// A clip of the scene (SPEC L7).
@@ -62,6 +66,8 @@ pub struct SceneClip {
     pub spec: ClipSpec,
     /// Index of the hose meant to be snapped into it (named, or the scene's only hose).
     pub hose: usize,
+    /// The part it sits on (index into the world's parts), if any.
+    pub part: Option<usize>,
 }
 
 /// How one hose was discretised.

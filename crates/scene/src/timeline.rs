@@ -3,8 +3,9 @@
 
 use crate::error::FieldError;
 use crate::format::{
-    ActionEntry, AimHandEntry, GrabEntry, GripName, HandEntry, LoadEntry, MountEntry, MoveEntry,
-    MoveHandEntry, NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, TieEntry, UnloadEntry,
+    ActionEntry, AimHandEntry, FixEntry, GrabEntry, GripName, HandEntry, LoadEntry, MountEntry,
+    MoveEntry, MoveHandEntry, NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, TieEntry,
+    UnloadEntry,
 };
 use crate::ranges::{at_most, vec_at_most, MAX_LOAD_FORCE, MAX_LOAD_MOMENT, MAX_ROTATION_DEG};
 use crate::units::LengthUnit;
@@ -231,8 +232,14 @@ fn build_action(
 ) -> Result<Action, FieldError> {
     let sub = |name: &str| format!("{field}.{name}");
     Ok(match a {
-        ActionEntry::Fix(NodeEntry { hose, node }) => Action::Fix {
-            node: node_ref(field, hose, *node, hoses)?,
+        ActionEntry::Fix(FixEntry { hose, node, part }) => match part {
+            None => Action::Fix {
+                node: node_ref(field, hose, *node, hoses)?,
+            },
+            Some(part) => Action::Mount {
+                node: node_ref(field, hose, *node, hoses)?,
+                part: part.clone(),
+            },
         },
         ActionEntry::Mount(MountEntry { hose, node, part }) => Action::Mount {
             node: node_ref(field, hose, *node, hoses)?,

@@ -3,7 +3,7 @@
 //! routed hose (as the running checks judge them, `strain.rs`) and the axial force from
 //! the chord strain (as the tension-at-rest check judges it). f32: they are for drawing.
 
-use super::strain::bend_and_twist;
+use super::strain::{axial_force, bend_and_twist};
 use super::tracker::InstallationChecks;
 use pliant_core::{Model, State};
 use serde::Serialize;
@@ -44,14 +44,7 @@ impl InstallationChecks {
                 out.bend_radius_ratio.push(finite(kappa * r));
             }
             out.twist.push(finite(tau - self.rest_twist(e)));
-            let length = (state.x[el.node_b] - state.x[el.node_a]).length();
-            let strain = (length - el.rest_length) / el.rest_length;
-            let ea = if strain >= 0.0 {
-                el.axial_stiffness_tension
-            } else {
-                el.axial_stiffness_compression
-            };
-            out.axial_force.push(finite(strain * ea));
+            out.axial_force.push(finite(axial_force(model, state, e)));
         }
         out
     }

@@ -17,7 +17,7 @@ pub use settings::{
     CheckSettings, HoseCheckLimits, DEFAULT_REST_STRAIN_LIMIT, DEFAULT_STRAIGHT_LENGTH_FACTOR,
     DEFAULT_STRAIGHT_RADIUS_FACTOR, DEFAULT_TWIST_LIMIT_RAD_PER_M,
 };
-pub use strain::bend_and_twist;
+pub use strain::{axial_force, bend_and_twist};
 pub use tracker::{HoseProfile, InstallationChecks};
 
 use serde::Serialize;
@@ -37,6 +37,8 @@ pub struct ChecksSummary {
     /// (the report's pictures; presentation, not written to `report.json`).
     #[serde(skip)]
     pub pictures: ScenePictures,
+    /// The range-of-motion study's rows and worst positions, if it sweeps a motion.
+    pub sweep: Option<crate::sweep::SweepSummary>,
 }
 
 impl ChecksSummary {
@@ -60,6 +62,7 @@ impl ChecksSummary {
             violations: checks.running_violations().cloned().chain(end).collect(),
             profiles: checks.profiles().to_vec(),
             pictures: checks.pictures().clone(),
+            sweep: checks.sweep().map(|s| s.summary().clone()),
         }
     }
 }

@@ -50,6 +50,10 @@ pub struct CheckSettings {
     pub interval: f64,
     /// Per hose, by index.
     pub hoses: Vec<HoseCheckLimits>,
+    /// A range-of-motion study: the checks recorded against a part's motion coordinate
+    /// ([`crate::sweep`]), if the scene asks for one.
+    #[serde(default)]
+    pub sweep: Option<crate::sweep::SweepSettings>,
 }
 
 impl CheckSettings {
@@ -67,6 +71,7 @@ impl CheckSettings {
             straight_radius_factor: DEFAULT_STRAIGHT_RADIUS_FACTOR,
             interval: 0.01,
             hoses,
+            sweep: None,
         }
     }
 
@@ -83,6 +88,6 @@ impl CheckSettings {
 
     /// Whether any check runs while the study goes.
     pub fn any_running(&self) -> bool {
-        (self.bend_radius || self.twist) && !self.hoses.is_empty()
+        ((self.bend_radius || self.twist) && !self.hoses.is_empty()) || self.sweep.is_some()
     }
 }

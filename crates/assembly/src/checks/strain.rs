@@ -10,6 +10,7 @@
 
 use glam::{DQuat, DVec3};
 use pliant_core::math::log_map;
+use pliant_core::{Model, State};
 
 /// (curvature κ [1/m], twist rate τ [rad/m]) of a beam of rest length `rest_length`
 /// \[m\] whose end frames are `qa` and `qb`.
@@ -21,4 +22,18 @@ pub fn bend_and_twist(qa: DQuat, qb: DQuat, rest_length: f64) -> (f64, f64) {
     let phi: DVec3 = log_map(rel);
     let bend = (phi.y * phi.y + phi.z * phi.z).sqrt();
     (bend / rest_length, phi.x / rest_length)
+}
+
+/// The axial force \[N\] of element `e` in `state`: its chord strain ε = (l − l₀)/l₀ times
+/// E_t·A stretched, E_c·A shortened (negative).
+pub fn axial_force(model: &Model, state: &State, e: usize) -> f64 {
+    let el = &model.elements[e];
+    let length = (state.x[el.node_b] - state.x[el.node_a]).length();
+    let strain = (length - el.rest_length) / el.rest_length;
+    let ea = if strain >= 0.0 {
+        el.axial_stiffness_tension
+    } else {
+        el.axial_stiffness_compression
+    };
+    strain * ea
 }

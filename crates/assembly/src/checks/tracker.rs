@@ -11,6 +11,7 @@ use super::settings::CheckSettings;
 use super::strain::bend_and_twist;
 use crate::fasteners::StubSite;
 use crate::stub::StubLaw;
+use crate::sweep::MotionSweep;
 use pliant_core::{Model, State};
 use serde::Serialize;
 
@@ -56,6 +57,8 @@ pub struct InstallationChecks {
     profiles: Vec<HoseProfile>,
     /// The scene at the worst bends of the few hoses bent furthest below their limit.
     pictures: ScenePictures,
+    /// The range-of-motion rows, if the study sweeps a motion.
+    sweep: Option<MotionSweep>,
 }
 
 impl InstallationChecks {
@@ -96,7 +99,14 @@ impl InstallationChecks {
                 ..Default::default()
             });
         }
+        let sweep = settings.sweep.as_ref().map(|s| {
+            let allowed = (0..model.hoses.len())
+                .map(|h| settings.hoses.get(h).map_or(0.0, |l| l.min_bend_radius))
+                .collect();
+            MotionSweep::new(model, s, allowed, settings.twist_limit)
+        });
         InstallationChecks {
+            sweep,
             running: vec![[None, None]; model.hoses.len()],
             kappa: vec![0.0; n],
             dtwist: vec![0.0; n],
@@ -139,6 +149,9 @@ impl InstallationChecks {
             let (k, t) = bend_and_twist(state.q[el.node_a], state.q[el.node_b], el.rest_length);
             self.kappa[e] = k;
             self.dtwist[e] = t - self.rest_twist[e];
+        }
+        if let Some(sweep) = &mut self.sweep {
+            sweep.record(model, state, &self.kappa, &self.dtwist);
         }
         let time = state.time;
         for (h, info) in model.hoses.iter().enumerate() {
@@ -206,6 +219,11 @@ impl InstallationChecks {
     /// The curvature and twist profiles of every hose at its worst instants.
     pub fn profiles(&self) -> &[HoseProfile] {
         &self.profiles
+    }
+
+    /// The range-of-motion rows, if the study sweeps a motion.
+    pub fn sweep(&self) -> Option<&MotionSweep> {
+        self.sweep.as_ref()
     }
 
     /// The scene at the worst bends of the hoses bent furthest below their limit.

@@ -368,6 +368,9 @@ pub fn html(
     if let Some(w) = &run.worker {
         super::worker_section::worker_section(&mut s, w, worker_series, report.parts);
     }
+    if let Some(sweep) = &run.checks.sweep {
+        super::sweep_plots::sweep_section(&mut s, sweep);
+    }
     s.push_str("<h2>Contact with parts</h2>");
     if run.contacts.is_empty() {
         s.push_str("<p>No hose touched a part.</p>");

@@ -10,6 +10,7 @@ pub mod recorder;
 mod scene_picture;
 pub mod summary;
 mod svg;
+mod sweep_plots;
 mod vtk;
 mod worker_picture;
 pub mod worker_section;
@@ -88,6 +89,9 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
             &out.join("worker.csv"),
             worker_section::worker_csv(o.worker_series),
         )?;
+    }
+    if let Some(sweep) = &run.checks.sweep {
+        write_file(&out.join("motion.csv"), sweep.csv())?;
     }
     // Presentation data, made here once per report: a hull over every vertex of every
     // part (never on the live path).

@@ -14,15 +14,38 @@ pub fn profile_plot(
     symmetric: bool,
     unit: &str,
 ) -> String {
-    let (w, h, pad) = (640.0, 220.0, 48.0);
     let s_max = arc.last().copied().unwrap_or(0.0).max(1e-9) * 1.02;
+    let label = format!("s = {:.0} mm", 1e3 * s_max);
+    line_plot(
+        title,
+        (arc, 0.0, s_max, &label),
+        values,
+        limit,
+        symmetric,
+        unit,
+    )
+}
+
+/// `values` over `xs` drawn on an x axis from `x_min` to `x_max` labelled `x_label` at
+/// its end; the rest as [`profile_plot`]. A range-of-motion study draws its quantities
+/// over the motion coordinate with it.
+pub fn line_plot(
+    title: &str,
+    (xs, x_min, x_max, x_label): (&[f64], f64, f64, &str),
+    values: &[f64],
+    limit: f64,
+    symmetric: bool,
+    unit: &str,
+) -> String {
+    let (w, h, pad) = (640.0, 220.0, 48.0);
+    let span = (x_max - x_min).max(1e-12);
     let v_abs = values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let top = v_abs
         .max(if limit.is_finite() { limit } else { 0.0 })
         .max(1e-12)
         * 1.1;
     let bottom = if symmetric { -top } else { 0.0 };
-    let x = |s: f64| pad + (w - 2.0 * pad) * s / s_max;
+    let x = |s: f64| pad + (w - 2.0 * pad) * (s - x_min) / span;
     let y = |v: f64| h - pad - (h - 2.0 * pad) * (v - bottom) / (top - bottom);
     let mut svg = super::svg::open(w, h, pad, title);
     let _ = write!(
@@ -35,11 +58,11 @@ pub fn profile_plot(
     );
     let _ = write!(
         svg,
-        "<text x=\"{}\" y=\"{}\" font-size=\"11\">s = {:.0} mm</text>\
+        "<text x=\"{}\" y=\"{}\" font-size=\"11\">{}</text>\
          <text x=\"2\" y=\"{}\" font-size=\"11\">{:.3} {}</text>",
         w - pad - 60.0,
         h - pad + 15.0,
-        1e3 * s_max,
+        escape(x_label),
         pad + 4.0,
         top,
         escape(unit)
@@ -58,7 +81,7 @@ pub fn profile_plot(
             );
         }
     }
-    let points: Vec<String> = arc
+    let points: Vec<String> = xs
         .iter()
         .zip(values)
         .map(|(s, v)| format!("{:.1},{:.1}", x(*s), y(*v)))

@@ -1026,7 +1026,7 @@ impl Workcell {
                     .extend(h.hand.held_nodes().map(|node| (node, force)));
             }
             self.fasteners
-                .update(&self.model, &mut self.state, &self.held_nodes);
+                .update(&self.model, &mut self.state, &self.held_nodes, t_next);
         }
         self.tick += 1;
         let stats = match self.solver.step(&self.model, &mut self.state) {

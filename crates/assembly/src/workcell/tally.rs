@@ -223,7 +223,13 @@ impl RunSummary {
     pub fn feasible(&self) -> bool {
         self.hand_peaks.iter().all(|h| h.worst_ratio <= 1.0)
             && self.fasteners.iter().all(|f| f.assembled)
-            && (!self.checks.decide || self.checks.violations.is_empty())
+            && (!self.checks.decide
+                || (self.checks.violations.is_empty()
+                    && self
+                        .checks
+                        .sweep
+                        .as_ref()
+                        .is_none_or(|s| s.clearance_violations().is_empty())))
     }
 }
 

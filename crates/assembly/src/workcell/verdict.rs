@@ -202,16 +202,23 @@ impl Verdict {
         }
         // Installation checks (SPEC V3): the running ones always, the assembled state's
         // (tension at rest, straight length behind stubs) at the end only.
+        // In a range-of-motion study each violation is placed on the motion coordinate,
+        // and so is the worst of each quantity.
         let mut violated = false;
+        let sweep = run.checks.sweep.as_ref();
         for v in &run.checks.violations {
             if stage == Stage::Running && v.check.at_end_only() {
                 continue;
             }
+            let line = match sweep.and_then(|s| s.position_at(v.time)) {
+                Some(at) => format!("{}, at {at}", v.describe()),
+                None => v.describe(),
+            };
             if run.checks.decide {
                 violated = true;
-                reasons.push(v.describe());
+                reasons.push(line);
             } else {
-                warnings.push(v.describe());
+                warnings.push(line);
             }
         }
         // The worker (SPEC E1–E2): reach and body collisions decide when the scene says
@@ -237,6 +244,17 @@ impl Verdict {
                 None => worker.push(format!("{}: not posed (no hand acted)", w.who)),
             }
         }
+        if let Some(s) = sweep {
+            for line in s.clearance_violations() {
+                if run.checks.decide {
+                    violated = true;
+                    reasons.push(line);
+                } else {
+                    warnings.push(line);
+                }
+            }
+            reasons.extend(s.describe());
+        }
         if stage == Stage::Final {
             for c in &run.contacts {
                 reasons.push(format!(
@@ -249,15 +267,26 @@ impl Verdict {
         reasons.splice(0..0, run.solver_warnings.iter().cloned());
         reasons.extend(run.instability_notes.iter().cloned());
         let judged = !run.hand_peaks.is_empty();
-        let feasible =
-            if diverged.is_some() || exceeded || violated || unworkable || (judged && unfitted) {
-                Some(false)
-            } else if judged {
-                Some(true)
-            } else {
-                None
-            };
-        if !judged {
+        // a range-of-motion study is judged by its checks, hands or none
+        let swept = run.checks.sweep.is_some();
+        let feasible = if diverged.is_some()
+            || exceeded
+            || violated
+            || unworkable
+            || ((judged || swept) && unfitted)
+        {
+            Some(false)
+        } else if judged || swept {
+            Some(true)
+        } else {
+            None
+        };
+        if swept && !judged && feasible == Some(true) {
+            reasons.push(match stage {
+                Stage::Final => "every stub, connector and clip was fitted, and every installation check passed at every position of the motion".into(),
+                Stage::Running => "every installation check has passed so far".into(),
+            });
+        } else if !judged && !swept {
             reasons.push(match stage {
                 Stage::Final => {
                     "no hand acted in this scene: there is no hand load to judge".into()

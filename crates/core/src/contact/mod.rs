@@ -22,6 +22,7 @@ mod moving;
 mod network_gaps;
 mod owned_edges;
 mod pair_count;
+pub mod part_gap;
 mod penalty;
 mod planes;
 mod point_triangle;

@@ -57,6 +57,11 @@ impl PartKinematics {
         })
     }
 
+    /// Part `k`'s own motion (in its parent's reference placement), if it has one.
+    pub fn motion(&self, k: usize) -> Option<&PartMotion> {
+        self.motions.get(k).and_then(Option::as_ref)
+    }
+
     /// Whether part `k` moves.
     pub fn moves(&self, k: usize) -> bool {
         self.moves.get(k).copied().unwrap_or(false)

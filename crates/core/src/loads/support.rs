@@ -10,7 +10,10 @@
 //! f = −k P_f d − c P_f v          m = −k_r P_r θ − c_r P_r ω
 //! ```
 //!
-//! (a zero-length spring and damper per fixed direction). Along the free translations a
+//! (a zero-length spring and damper per fixed direction). A fixing on a moving part is
+//! carried with it: x₀, q₀ and the frame follow the part's pose, and the dampers act on
+//! the velocity relative to the held point's, v − v₀ and ω − ω₀ (v₀, ω₀ from the part's
+//! twist; zero for a fixing that stands still). Along the free translations a
 //! stick spring of the same k pulls towards a slip anchor s; its force is capped at μ N with
 //! N = |−k P_f d − c P_f v| the support's force across the free directions (Coulomb):
 //!
@@ -65,6 +68,10 @@ pub struct Support {
     /// Set by whoever moves `position` (a hand): the explicit step then wakes a sleeping
     /// hose, as a moving fix does, and clears it.
     pub moved: bool,
+    /// Velocity v₀ of the held point \[m/s\] (a fixing on a moving part; else zero).
+    pub velocity: DVec3,
+    /// Angular velocity ω₀ of the fixing's frame \[rad/s\] (a fixing on a moving part).
+    pub spin: DVec3,
 }
 
 /// The support's load on its node and its tangent −∂(f, m)/∂(δx, δθ) (diagonal blocks;
@@ -117,6 +124,8 @@ impl Support {
             friction,
             anchor: position,
             moved: false,
+            velocity: DVec3::ZERO,
+            spin: DVec3::ZERO,
         }
     }
 
@@ -151,13 +160,13 @@ impl Support {
         let fixed_r = projector(r, self.free_rotation.map(|f| !f));
         let spring = -(fixed_t * (x - self.position)) * k;
         let theta = fixed_r * log_map(q * self.orientation.conjugate());
-        let held = spring - fixed_t * v * c;
+        let held = spring - fixed_t * (v - self.velocity) * c;
         let mut out = SupportLoad {
             energy: 0.5
                 * (spring.length_squared() / k.max(f64::MIN_POSITIVE)
                     + kr * theta.length_squared()),
             force: held,
-            moment: -theta * kr - fixed_r * w * cr,
+            moment: -theta * kr - fixed_r * (w - self.spin) * cr,
             tangent_translation: fixed_t * (k + c * rate_factor),
             tangent_rotation: fixed_r * (kr + cr * rate_factor),
             ..Default::default()

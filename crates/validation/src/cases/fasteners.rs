@@ -94,6 +94,7 @@ pub fn run_stub() -> Vec<Check> {
         fit: fit.into(),
         end_node: n,
         inner_node: n - 1,
+        part: None,
     };
     let actions = vec![
         Action::Grab {
@@ -233,6 +234,7 @@ pub fn run_clip() -> Vec<Check> {
         name: "clip".into(),
         spec,
         hose: 0,
+        part: None,
     };
     match Runner::new(&model).with_fasteners(vec![], vec![site]).run(
         &Timeline { actions },

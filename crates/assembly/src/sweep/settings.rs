@@ -1,0 +1,17 @@
+//! What a range-of-motion study records (the scene's `[sweep]`), SI units.
+
+use serde::{Deserialize, Serialize};
+
+/// The part whose motion is swept, and the clearances to watch.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SweepSettings {
+    /// The part whose motion coordinate the rows are given against (index into the
+    /// model's parts).
+    pub part: usize,
+    /// The parts whose clearance to every hose is recorded (indices; all parts when the
+    /// scene names none).
+    pub clearance_parts: Vec<usize>,
+    /// Smallest clearance allowed between a hose and those parts \[m\], if any: a hose
+    /// coming nearer is a violation (it decides as the installation checks do).
+    pub min_clearance: Option<f64>,
+}

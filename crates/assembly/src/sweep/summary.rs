@@ -1,0 +1,268 @@
+//! What a range-of-motion study found: its rows (`motion.csv`), the worst position of
+//! each quantity named by the motion coordinate, and the clearance violations.
+
+use super::coordinate::Coordinate;
+use super::tracker::PER_HOSE;
+use serde::Serialize;
+
+/// The rows of a sweep and what names them.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct SweepSummary {
+    pub coordinate: Option<Coordinate>,
+    pub hose_names: Vec<String>,
+    /// Per hose, its minimum bend radius \[m\] (0: not checked).
+    pub allowed_radius: Vec<f64>,
+    /// The twist limit [rad/m].
+    pub twist_limit: f64,
+    /// (hose, part) pairs whose clearance is recorded, in row order.
+    pub pairs: Vec<(usize, usize)>,
+    pub part_names: Vec<String>,
+    /// Smallest clearance allowed \[m\], if any.
+    pub min_clearance: Option<f64>,
+    /// Values per row: time, coordinate, three per hose, one per pair, the fixing force.
+    pub stride: usize,
+    /// The rows, flat (not in `report.json`: `motion.csv` holds them).
+    #[serde(skip)]
+    pub rows: Vec<f64>,
+}
+
+/// The worst value of one quantity over the sweep and where it was.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Worst {
+    /// The quantity ("bend radius", "clearance", …) and whom it concerns.
+    pub what: String,
+    pub value: f64,
+    pub time: f64,
+    /// The motion coordinate there (SI).
+    pub coordinate: f64,
+}
+
+impl SweepSummary {
+    /// The rows, each [time, coordinate, per hose (radius, twist, force), per pair
+    /// (clearance), fixing force].
+    pub fn rows(&self) -> impl Iterator<Item = &[f64]> {
+        self.rows.chunks_exact(self.stride.max(1))
+    }
+
+    /// Row `row`'s value `k` (0 bend radius, 1 twist, 2 axial force) of hose `hose`.
+    pub fn hose_value(row: &[f64], hose: usize, k: usize) -> f64 {
+        row[2 + PER_HOSE * hose + k]
+    }
+
+    /// Row `row`'s clearance of pair `pair` (index into `pairs`) \[m\].
+    pub fn pair_value(&self, row: &[f64], pair: usize) -> f64 {
+        row[2 + PER_HOSE * self.hose_names.len() + pair]
+    }
+
+    /// The row where `key` is least (the first such), if any row.
+    fn least(&self, key: impl Fn(&[f64]) -> f64) -> Option<(&[f64], f64)> {
+        self.rows()
+            .map(|r| (r, key(r)))
+            .filter(|(_, v)| !v.is_nan())
+            .fold(None, |best, (r, v)| match best {
+                Some((_, b)) if b <= v => best,
+                _ => Some((r, v)),
+            })
+    }
+
+    /// The motion coordinate at the recorded instant nearest to `time` (SI).
+    pub fn coordinate_at(&self, time: f64) -> Option<f64> {
+        self.least(|r| (r[0] - time).abs()).map(|(r, _)| r[1])
+    }
+
+    /// "door angle 68°" for the instant nearest to `time`.
+    pub fn position_at(&self, time: f64) -> Option<String> {
+        let c = self.coordinate.as_ref()?;
+        Some(c.describe(self.coordinate_at(time)?))
+    }
+
+    /// Per hose its smallest bend radius over the sweep, per pair its smallest
+    /// clearance, and the largest fixing force, each with where it was.
+    pub fn worst(&self) -> Vec<Worst> {
+        let mut out = Vec::new();
+        let mut push = |what: String, found: Option<(&[f64], f64)>, sign: f64| {
+            if let Some((r, v)) = found {
+                out.push(Worst {
+                    what,
+                    value: sign * v,
+                    time: r[0],
+                    coordinate: r[1],
+                });
+            }
+        };
+        for (h, name) in self.hose_names.iter().enumerate() {
+            push(
+                format!("hose '{name}': bend radius"),
+                self.least(|r| Self::hose_value(r, h, 0)),
+                1.0,
+            );
+            push(
+                format!("hose '{name}': twist"),
+                self.least(|r| -Self::hose_value(r, h, 1)),
+                -1.0,
+            );
+            push(
+                format!("hose '{name}': axial force"),
+                self.least(|r| -Self::hose_value(r, h, 2)),
+                -1.0,
+            );
+        }
+        for (k, &(h, p)) in self.pairs.iter().enumerate() {
+            push(
+                format!(
+                    "hose '{}' to part '{}': clearance",
+                    self.hose_names[h], self.part_names[p]
+                ),
+                self.least(|r| self.pair_value(r, k)),
+                1.0,
+            );
+        }
+        push(
+            "fixing force".into(),
+            self.least(|r| -r[self.stride - 1]),
+            -1.0,
+        );
+        out
+    }
+
+    /// One line per hose and part that came nearer than the smallest clearance allowed,
+    /// at its nearest position ("hose 'h' comes within 3 mm of part 'fan' (minimum
+    /// 10 mm) at engine phase 212° (t = 1.23 s)").
+    pub fn clearance_violations(&self) -> Vec<String> {
+        let (Some(limit), Some(c)) = (self.min_clearance, &self.coordinate) else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for (k, &(h, p)) in self.pairs.iter().enumerate() {
+            if let Some((r, gap)) = self.least(|r| self.pair_value(r, k)) {
+                if gap < limit {
+                    out.push(format!(
+                        "hose '{}' comes within {:.1} mm of part '{}' (minimum {:.1} mm) at {} (t = {:.2} s)",
+                        self.hose_names[h],
+                        1e3 * gap,
+                        self.part_names[p],
+                        1e3 * limit,
+                        c.describe(r[1]),
+                        r[0]
+                    ));
+                }
+            }
+        }
+        out
+    }
+
+    /// One line for the verdict: over the motion, each hose's smallest bend radius and
+    /// the smallest clearance, with where they were.
+    pub fn describe(&self) -> Option<String> {
+        let c = self.coordinate.as_ref()?;
+        let (lo, hi) = self
+            .rows()
+            .map(|r| r[1])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(v), b.max(v))
+            });
+        if !lo.is_finite() {
+            return None;
+        }
+        let (unit, factor) = c.kind.unit();
+        let unit = if unit == "deg" { "°" } else { unit };
+        let mut parts = Vec::new();
+        for (h, name) in self.hose_names.iter().enumerate() {
+            if let Some((r, radius)) = self.least(|r| Self::hose_value(r, h, 0)) {
+                if radius.is_finite() {
+                    let allowed = self.allowed_radius.get(h).copied().unwrap_or(0.0);
+                    let relation = if radius < allowed { "<" } else { "≥" };
+                    parts.push(format!(
+                        "hose '{name}' bend radius {:.0} mm {relation} {:.0} mm at {}",
+                        1e3 * radius,
+                        1e3 * allowed,
+                        c.describe(r[1])
+                    ));
+                }
+            }
+        }
+        if let Some((r, gap, k)) = (0..self.pairs.len())
+            .filter_map(|k| {
+                self.least(|r| self.pair_value(r, k))
+                    .map(|(r, g)| (r, g, k))
+            })
+            .fold(None, |best: Option<(&[f64], f64, usize)>, x| match best {
+                Some(b) if b.1 <= x.1 => Some(b),
+                _ => Some(x),
+            })
+        {
+            let (h, p) = self.pairs[k];
+            parts.push(format!(
+                "smallest clearance {:.1} mm, hose '{}' to part '{}', at {}",
+                1e3 * gap,
+                self.hose_names[h],
+                self.part_names[p],
+                c.describe(r[1])
+            ));
+        }
+        Some(format!(
+            "over the motion of part '{}' ({} {:.0}{} … {:.0}{}): {}",
+            c.part_name,
+            c.kind.name(),
+            lo * factor,
+            if unit == "°" { "°" } else { "" },
+            hi * factor,
+            unit,
+            parts.join("; ")
+        ))
+    }
+
+    /// `motion.csv`: one row per checked instant (SI, angles in degrees as the scene
+    /// writes them): time, the coordinate, per hose its smallest bend radius, that over
+    /// the minimum (< 1 breaks it), its largest twist and axial force, per hose and part
+    /// the clearance, the largest fixing force.
+    pub fn csv(&self) -> String {
+        let Some(c) = &self.coordinate else {
+            return String::new();
+        };
+        let clean = |s: &str| s.replace([',', '\n', '"'], ";");
+        let mut head = vec!["time_s".to_string(), c.column()];
+        for name in &self.hose_names {
+            let n = clean(name);
+            head.extend([
+                format!("{n}: min_bend_radius_m"),
+                format!("{n}: bend_radius_ratio"),
+                format!("{n}: max_twist_deg_m"),
+                format!("{n}: max_axial_force_n"),
+            ]);
+        }
+        for &(h, p) in &self.pairs {
+            head.push(format!(
+                "clearance_m {} to {}",
+                clean(&self.hose_names[h]),
+                clean(&self.part_names[p])
+            ));
+        }
+        head.push("max_fixing_force_n".into());
+        let mut out = head.join(",");
+        out.push('\n');
+        let factor = c.kind.unit().1;
+        for r in self.rows() {
+            let mut cells = vec![format!("{:.6}", r[0]), format!("{:.6}", r[1] * factor)];
+            for h in 0..self.hose_names.len() {
+                let radius = Self::hose_value(r, h, 0);
+                let allowed = self.allowed_radius.get(h).copied().unwrap_or(0.0);
+                cells.push(format!("{radius:.6e}"));
+                cells.push(if allowed > 0.0 {
+                    format!("{:.6e}", allowed / radius)
+                } else {
+                    String::new()
+                });
+                cells.push(format!("{:.6e}", Self::hose_value(r, h, 1).to_degrees()));
+                cells.push(format!("{:.6e}", Self::hose_value(r, h, 2)));
+            }
+            for k in 0..self.pairs.len() {
+                cells.push(format!("{:.6e}", self.pair_value(r, k)));
+            }
+            cells.push(format!("{:.6e}", r[self.stride - 1]));
+            out.push_str(&cells.join(","));
+            out.push('\n');
+        }
+        out
+    }
+}

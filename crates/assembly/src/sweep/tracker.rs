@@ -1,0 +1,109 @@
+//! Recording a range-of-motion study: at each checked instant one row of the motion
+//! coordinate, per hose its smallest bend radius, largest twist and largest axial force,
+//! per hose and watched part their clearance ([`pliant_core::contact::part_gap`]), and
+//! the largest force with which a fix, mount, support or hand holds a node (the fixing
+//! forces: `State::reaction_force` of the held nodes).
+
+use super::coordinate::Coordinate;
+use super::settings::SweepSettings;
+use super::summary::SweepSummary;
+use crate::checks::axial_force;
+use pliant_core::contact::part_gap::hose_part_gap;
+use pliant_core::loads::LoadCase;
+use pliant_core::{Model, State};
+
+/// Values per hose in a row: smallest bend radius \[m\], largest twist relative to the
+/// routed hose [rad/m], largest axial force \[N\].
+pub(super) const PER_HOSE: usize = 3;
+
+/// The rows recorded so far, with the names and limits a report needs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MotionSweep {
+    coordinate: Coordinate,
+    found: SweepSummary,
+}
+
+impl MotionSweep {
+    /// A sweep of `model` with `settings`; `allowed_radius` per hose \[m\] and
+    /// `twist_limit` [rad/m] are the checks' limits.
+    pub fn new(
+        model: &Model,
+        settings: &SweepSettings,
+        allowed_radius: Vec<f64>,
+        twist_limit: f64,
+    ) -> MotionSweep {
+        let parts: Vec<usize> = if settings.clearance_parts.is_empty() {
+            (0..model.environment.parts.len()).collect()
+        } else {
+            settings.clearance_parts.clone()
+        };
+        let pairs: Vec<(usize, usize)> = (0..model.hoses.len())
+            .flat_map(|h| parts.iter().map(move |&p| (h, p)))
+            .collect();
+        let coordinate = Coordinate::of(model, settings.part);
+        MotionSweep {
+            found: SweepSummary {
+                coordinate: Some(coordinate.clone()),
+                hose_names: model.hoses.iter().map(|h| h.name.clone()).collect(),
+                allowed_radius,
+                twist_limit,
+                stride: 2 + PER_HOSE * model.hoses.len() + pairs.len() + 1,
+                pairs,
+                part_names: model
+                    .environment
+                    .parts
+                    .iter()
+                    .map(|p| p.name.clone())
+                    .collect(),
+                min_clearance: settings.min_clearance,
+                rows: Vec::new(),
+            },
+            coordinate,
+        }
+    }
+
+    /// Records a row for `state`, with the beams' curvature `kappa` [1/m] and twist
+    /// relative to the routed hose `twist` [rad/m] (the checks' values at this instant).
+    pub fn record(&mut self, model: &Model, state: &State, kappa: &[f64], twist: &[f64]) {
+        let t = state.time;
+        let rows = &mut self.found.rows;
+        rows.push(t);
+        rows.push(self.coordinate.at(model, t));
+        for info in &model.hoses {
+            let (mut k, mut tw, mut force) = (0.0_f64, 0.0_f64, 0.0_f64);
+            for e in info.first_element..info.first_element + info.element_count {
+                k = k.max(kappa[e]);
+                tw = tw.max(twist[e].abs());
+                force = force.max(axial_force(model, state, e).abs());
+            }
+            rows.extend([1.0 / k, tw, force]);
+        }
+        for &(h, p) in &self.found.pairs {
+            let nodes = model.hoses[h].nodes();
+            let pose = model
+                .kinematics
+                .moves(p)
+                .then(|| model.kinematics.placement_at(p, t).pose);
+            let (gap, _) = hose_part_gap(
+                &model.environment,
+                p,
+                pose.as_ref(),
+                &state.x[nodes.clone()],
+                &model.radius[nodes],
+            );
+            rows.push(gap);
+        }
+        let fixing = state
+            .loads
+            .iter()
+            .filter(|(_, c)| c.is_kinematic() || matches!(c, LoadCase::Support(_)))
+            .map(|(_, c)| state.reaction_force[c.node()].length())
+            .fold(0.0, f64::max);
+        rows.push(fixing);
+    }
+
+    /// What was recorded.
+    pub fn summary(&self) -> &SweepSummary {
+        &self.found
+    }
+}

@@ -1,0 +1,131 @@
+//! The README's range-of-motion examples run as a user runs them: `pliant run` writes
+//! `motion.csv` against the moving part's coordinate, the report draws it, and the
+//! verdict names the worst position in the motion's own unit.
+
+use std::path::Path;
+use std::process::Command;
+
+fn examples() -> &'static Path {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"))
+}
+
+/// Runs `examples/NAME` into a fresh folder: (the folder, the verdict's reasons, the rows
+/// of motion.csv as numbers, its header).
+fn run_example(name: &str) -> (tempfile::TempDir, Vec<String>, Vec<Vec<f64>>, Vec<String>) {
+    let out = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_pliant"))
+        .args(["run", "--quiet"])
+        .arg(examples().join(name))
+        .arg("--out")
+        .arg(out.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("report.json")).unwrap())
+            .unwrap();
+    let reasons = report["verdict"]["reasons"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r.as_str().unwrap().to_string())
+        .collect();
+    let csv = std::fs::read_to_string(out.path().join("motion.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|v| v.parse::<f64>().unwrap()).collect())
+        .collect();
+    let html = std::fs::read_to_string(out.path().join("report.html")).unwrap();
+    assert!(
+        html.contains("Range of motion"),
+        "no range-of-motion section"
+    );
+    (out, reasons, rows, header)
+}
+
+fn column(header: &[String], name: &str) -> usize {
+    header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name} in {header:?}"))
+}
+
+#[test]
+fn the_door_hinge_example_names_the_angle_where_the_hose_bends_tightest() {
+    let (_out, reasons, rows, header) = run_example("door_hinge.toml");
+    let angle = column(&header, "angle_deg");
+    let ratio = column(&header, "door hose: bend_radius_ratio");
+    let pillar = column(&header, "clearance_m door hose to pillar");
+    column(&header, "max_fixing_force_n");
+    // the door opens 0 → 70° and closes again
+    let most = rows.iter().map(|r| r[angle]).fold(0.0, f64::max);
+    assert!((most - 70.0).abs() < 1e-9, "largest angle {most}");
+    assert!(rows.last().unwrap()[angle].abs() < 1e-9);
+    // closed, the hose is far from its minimum bend radius; open, past it
+    let closed = rows.iter().find(|r| r[angle] < 1.0).unwrap();
+    let open = rows.iter().find(|r| r[angle] == 70.0).unwrap();
+    assert!(
+        closed[ratio] < 0.1 && open[ratio] > 1.0,
+        "{closed:?} {open:?}"
+    );
+    assert!(
+        rows.iter().all(|r| r[pillar] > -1e-3),
+        "pressed into the pillar"
+    );
+    // the verdict puts the worst bend at the door's angle, in degrees
+    let bend = reasons
+        .iter()
+        .find(|r| r.contains("bend_radius check"))
+        .unwrap_or_else(|| panic!("{reasons:?}"));
+    assert!(bend.ends_with("at door angle 70°"), "{bend}");
+    assert!(
+        reasons
+            .iter()
+            .any(|r| r.starts_with("over the motion of part 'door' (angle 0° … 70°)")),
+        "{reasons:?}"
+    );
+}
+
+#[test]
+fn the_rocking_engine_example_reports_a_cycle_of_phases_and_the_fan_clearance() {
+    let (_out, reasons, rows, header) = run_example("engine_rocking.toml");
+    let phase = column(&header, "phase_deg");
+    let upper = column(&header, "upper: min_bend_radius_m");
+    let fan = column(&header, "clearance_m upper to fan hub");
+    column(&header, "clearance_m lower to fan hub");
+    // two cycles at 1.5 Hz sampled every 10 ms: every phase bin of 30° is visited
+    for bin in 0..12 {
+        let lo = 30.0 * bin as f64;
+        assert!(
+            rows.iter().any(|r| r[phase] >= lo && r[phase] < lo + 30.0),
+            "no row in phase {lo}°…{}°",
+            lo + 30.0
+        );
+    }
+    // the engine's rocking changes the upper hose's bend: its radius varies over the cycle
+    let (lo, hi) = rows
+        .iter()
+        .map(|r| r[upper])
+        .fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
+    assert!(hi - lo > 0.01, "upper hose radius {lo}…{hi} m");
+    // the fan keeps its 25 mm: no clearance violation
+    assert!(rows.iter().all(|r| r[fan] > 0.025));
+    assert!(
+        !reasons.iter().any(|r| r.contains("comes within")),
+        "{reasons:?}"
+    );
+    let upper_bend = reasons
+        .iter()
+        .find(|r| r.starts_with("hose 'upper': bend_radius check"))
+        .unwrap_or_else(|| panic!("{reasons:?}"));
+    assert!(
+        upper_bend.contains(", at engine block phase "),
+        "{upper_bend}"
+    );
+}
