@@ -1,13 +1,13 @@
 //! Rubber that relaxes (SPEC X2): a 200 mm hose of a relaxing material pulled out by 2 mm
 //! and held carries, long after, the long-term share 1 − Σ g of the force the same hose
-//! of the elastic twin material carries; the relaxation data are checked and refused with
-//! the field named.
+//! of the elastic twin material carries, and pushed onto a stub keeps that share of its
+//! holding force; the relaxation data are checked and refused with the field named.
 
 use pliant_scene::load_scene_str;
 
-/// A scene with the material `relaxation` (TOML array, may be empty), the hose's end
-/// pulled out over 1 s and held for `hold` seconds, under `solver`.
-fn scene(relaxation: &str, hold: f64, solver: &str) -> String {
+/// The scene's head: a 200 mm hose of `epdm`, whose `relaxation` is a TOML array (may be
+/// empty), fixed at its start, under `solver`.
+fn head(relaxation: &str, solver: &str) -> String {
     format!(
         r#"
 format = "pliant-scene"
@@ -29,7 +29,7 @@ relaxation = [{relaxation}]
 name = "hose"
 material = "epdm"
 section = {{ d_inner = 10, d_outer = 16 }}
-elements = 8
+elements = 10
 start = [0, 0, 0]
 path = [{{ line = {{ to = [200, 0, 0] }} }}]
 
@@ -37,7 +37,15 @@ path = [{{ line = {{ to = [200, 0, 0] }} }}]
 action = "fix"
 hose = "hose"
 node = 0
+"#
+    )
+}
 
+/// The hose's end pulled out by 2 mm over 1 s and held for `hold` seconds.
+fn scene(relaxation: &str, hold: f64, solver: &str) -> String {
+    head(relaxation, solver)
+        + &format!(
+            r#"
 [[timeline]]
 action = "move"
 hose = "hose"
@@ -49,7 +57,7 @@ duration_s = 1
 action = "run"
 duration_s = {hold}
 "#
-    )
+        )
 }
 
 const TERMS: &str = "{ weight = 0.3, time_s = 0.5 }, { weight = 0.2, time_s = 2 }";
@@ -112,37 +120,15 @@ fn relaxation_data_are_checked_with_the_field_named() {
     assert!(err.contains("either yields"), "{err}");
 }
 
-/// A hose of `material` pushed 20 mm onto a stub in 1 s, let go, and left for `hold`
-/// seconds.
+/// The hose pushed 20 mm onto a stub in 1 s by a hand, let go, and left for `hold`
+/// seconds (static solver).
 fn stub_scene(relaxation: &str, hold: f64) -> String {
-    format!(
-        r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-solver = "static"
-
-[materials.epdm]
-e_tension_mpa = 8
-e_compression_mpa = 8
-poisson = 0.45
-density_kg_m3 = 1150
-relaxation = [{relaxation}]
-
-[[hoses]]
-name = "hose"
-material = "epdm"
-section = {{ d_inner = 10, d_outer = 16 }}
-elements = 10
-start = [0, 0, 0]
-path = [{{ line = {{ to = [300, 0, 0] }} }}]
-
+    head(relaxation, "static")
+        + &format!(
+            r#"
 [[stubs]]
 name = "inlet"
-origin = [305, 0, 0]
+origin = [205, 0, 0]
 axis = [1, 0, 0]
 length = 30
 diameter = 11
@@ -150,14 +136,9 @@ hose = "hose"
 end = "end"
 
 [[timeline]]
-action = "fix"
-hose = "hose"
-node = 0
-
-[[timeline]]
 action = "grab"
 hand = 0
-at = [300, 0, 0]
+at = [200, 0, 0]
 
 [[timeline]]
 action = "move_hand"
@@ -173,7 +154,7 @@ hand = 0
 action = "run"
 duration_s = {hold}
 "#
-    )
+        )
 }
 
 /// The stub's holding force at the end of the timeline \[N\].

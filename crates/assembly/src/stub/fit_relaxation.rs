@@ -28,7 +28,7 @@ pub struct FitTerms {
 }
 
 impl FitTerms {
-    /// The first [`MAX_TERMS`] terms of `terms` (a material has at most that many).
+    /// The first `MAX_TERMS` (8) terms of `terms` (a material has at most that many).
     pub fn new(terms: &[PronyTerm]) -> Self {
         let mut out = FitTerms {
             terms: [PronyTerm {

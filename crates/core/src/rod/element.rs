@@ -90,7 +90,31 @@ pub struct ElementEnds {
     pub w: [DVec3; 2],
 }
 
+/// An element's end poses and rates over any [`Scalar`]: positions, orientations,
+/// velocities, angular velocities (the generic loads' arguments).
+pub type EndsOf<T> = ([V3<T>; 2], [Quat<T>; 2], [V3<T>; 2], [V3<T>; 2]);
+
+impl From<ElementLoadsOf<f64>> for ElementLoads {
+    fn from(l: ElementLoadsOf<f64>) -> Self {
+        ElementLoads {
+            force: [l.force[0].into(), l.force[1].into()],
+            moment: [l.moment[0].into(), l.moment[1].into()],
+            axial_force: l.axial_force,
+        }
+    }
+}
+
 impl ElementEnds {
+    /// The ends as the generic loads take them, in `f64`.
+    pub fn lifted(&self) -> EndsOf<f64> {
+        (
+            [self.x[0].into(), self.x[1].into()],
+            [self.q[0].into(), self.q[1].into()],
+            [self.v[0].into(), self.v[1].into()],
+            [self.w[0].into(), self.w[1].into()],
+        )
+    }
+
     /// Ends at these poses, at rest (no velocity).
     pub fn still(x: [DVec3; 2], q: [DQuat; 2]) -> Self {
         ElementEnds {
@@ -122,6 +146,21 @@ pub struct ElementLoads {
     pub moment: [DVec3; 2],
     /// Axial force N (positive in tension) \[N\], for reporting.
     pub axial_force: f64,
+}
+
+impl ElementLoads {
+    /// The loads in the order of the element's increments (f_a, m_a, f_b, m_b), the rows
+    /// of its tangent.
+    pub fn to_array(&self) -> [f64; 12] {
+        let mut out = [0.0; 12];
+        for (b, v) in [self.force[0], self.moment[0], self.force[1], self.moment[1]]
+            .iter()
+            .enumerate()
+        {
+            out[3 * b..3 * b + 3].copy_from_slice(&v.to_array());
+        }
+        out
+    }
 }
 
 /// [`Deformation`] over any [`Scalar`].
@@ -212,18 +251,8 @@ impl BeamElement {
     /// Internal nodal loads, including stiffness-proportional Rayleigh damping with
     /// coefficient `beta` \[s\] acting on the rates of the same local deformations.
     pub fn loads(&self, ends: &ElementEnds, beta: f64) -> ElementLoads {
-        let l = self.loads_of::<f64>(
-            [ends.x[0].into(), ends.x[1].into()],
-            [ends.q[0].into(), ends.q[1].into()],
-            [ends.v[0].into(), ends.v[1].into()],
-            [ends.w[0].into(), ends.w[1].into()],
-            beta,
-        );
-        ElementLoads {
-            force: [l.force[0].into(), l.force[1].into()],
-            moment: [l.moment[0].into(), l.moment[1].into()],
-            axial_force: l.axial_force,
-        }
+        let (x, q, v, w) = ends.lifted();
+        self.loads_of::<f64>(x, q, v, w, beta).into()
     }
 
     /// [`Self::loads`] over any [`Scalar`]: with dual numbers seeded on the end

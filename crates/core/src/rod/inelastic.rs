@@ -11,9 +11,9 @@
 //! leaves no trace. Inelastic elements are computed one at a time, after the four-lane
 //! kernel's linear ones ([`crate::rod::element_block`]).
 
-use crate::autodiff::{Quat, Scalar, V3};
+use crate::autodiff::Scalar;
 use crate::material::PronyTerm;
-use crate::rod::element::{BeamElement, ElementEnds, ElementLoads, ElementLoadsOf};
+use crate::rod::element::{BeamElement, ElementEnds, ElementLoads, ElementLoadsOf, EndsOf};
 use crate::rod::fibre_law::FibreLaw;
 use crate::rod::fibre_section::FibreSection;
 use crate::rod::node_view::NodeView;
@@ -154,7 +154,7 @@ impl InelasticElements {
         element: &BeamElement,
         inelastic: &Inelastic,
         history: HistoryView,
-        ends: ([V3<T>; 2], [Quat<T>; 2], [V3<T>; 2], [V3<T>; 2]),
+        ends: EndsOf<T>,
         beta: f64,
     ) -> ElementLoadsOf<T> {
         let own = self.history_of(inelastic, history.values);
@@ -178,23 +178,8 @@ impl InelasticElements {
         ends: &ElementEnds,
         beta: f64,
     ) -> ElementLoads {
-        let l = self.loads_of::<f64>(
-            element,
-            inelastic,
-            history,
-            (
-                [ends.x[0].into(), ends.x[1].into()],
-                [ends.q[0].into(), ends.q[1].into()],
-                [ends.v[0].into(), ends.v[1].into()],
-                [ends.w[0].into(), ends.w[1].into()],
-            ),
-            beta,
-        );
-        ElementLoads {
-            force: [l.force[0].into(), l.force[1].into()],
-            moment: [l.moment[0].into(), l.moment[1].into()],
-            axial_force: l.axial_force,
-        }
+        self.loads_of::<f64>(element, inelastic, history, ends.lifted(), beta)
+            .into()
     }
 
     /// Adds the loads of the inelastic elements `range` (indices into

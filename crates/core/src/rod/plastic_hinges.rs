@@ -25,8 +25,8 @@
 //! (dual numbers through the return mapping, [`crate::rod::fibre_law`]) is the
 //! consistent algorithmic tangent.
 
-use crate::autodiff::{Quat, Scalar, V3};
-use crate::rod::element::{AxialShift, BeamElement, ElementLoadsOf};
+use crate::autodiff::{Scalar, V3};
+use crate::rod::element::{AxialShift, BeamElement, ElementLoadsOf, EndsOf};
 use crate::rod::fibre_section::FibreSection;
 use glam::{DQuat, DVec3};
 
@@ -38,7 +38,7 @@ pub fn loads_of<T: Scalar>(
     element: &BeamElement,
     section: &FibreSection,
     history: &[f64],
-    (x, q, v, w): ([V3<T>; 2], [Quat<T>; 2], [V3<T>; 2], [V3<T>; 2]),
+    (x, q, v, w): EndsOf<T>,
     beta: f64,
 ) -> ElementLoadsOf<T> {
     let l0 = element.rest_length;
@@ -182,16 +182,7 @@ mod tests {
         let (loads, k) =
             inelastic_tangent(&hinges, (&e, &hinge), view(&history), &ends(x, q), 0.0, 0.0);
         let h = 1e-7;
-        let flat = |l: &ElementLoads| {
-            let mut v = [0.0; 12];
-            for (b, w) in [l.force[0], l.moment[0], l.force[1], l.moment[1]]
-                .iter()
-                .enumerate()
-            {
-                v[3 * b..3 * b + 3].copy_from_slice(&w.to_array());
-            }
-            v
-        };
+        let flat = ElementLoads::to_array;
         let base = flat(&loads);
         let scale = base.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let mut worst: f64 = 0.0;

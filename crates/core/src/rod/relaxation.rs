@@ -24,9 +24,9 @@
 //! converged equilibrium ([`crate::rod::inelastic`]), with h the time since the last
 //! commit; loads and tangents at a later time read it with that age and never write it.
 
-use crate::autodiff::{Quat, Scalar, V3};
+use crate::autodiff::{Scalar, V3};
 use crate::material::PronyTerm;
-use crate::rod::element::{AxialShift, BeamElement, ElementLoadsOf};
+use crate::rod::element::{AxialShift, BeamElement, ElementLoadsOf, EndsOf};
 use glam::{DQuat, DVec3};
 
 /// Strain measures: ε, θ_a (3), θ_b (3).
@@ -72,7 +72,7 @@ pub fn loads_of<T: Scalar>(
     element: &BeamElement,
     terms: &[PronyTerm],
     (history, age): (&[f64], f64),
-    (x, q, v, w): ([V3<T>; 2], [Quat<T>; 2], [V3<T>; 2], [V3<T>; 2]),
+    (x, q, v, w): EndsOf<T>,
     beta: f64,
 ) -> ElementLoadsOf<T> {
     let (c, d) = predictor(terms, history, age);
@@ -236,16 +236,7 @@ mod tests {
             values: &history,
             age: 0.2,
         };
-        let flat = |l: &ElementLoads| {
-            let mut v = [0.0; 12];
-            for (b, w) in [l.force[0], l.moment[0], l.force[1], l.moment[1]]
-                .iter()
-                .enumerate()
-            {
-                v[3 * b..3 * b + 3].copy_from_slice(&w.to_array());
-            }
-            v
-        };
+        let flat = ElementLoads::to_array;
         let ends = ElementEnds::still(x, q);
         let (_, k) = inelastic_tangent(&registry, (&e, &inelastic), view, &ends, 0.0, 0.0);
         let h = 1e-7;

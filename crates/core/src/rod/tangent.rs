@@ -266,16 +266,7 @@ mod tests {
     }
 
     fn flat(l: &ElementLoads) -> [f64; 12] {
-        let mut out = [0.0; 12];
-        for (b, v) in [l.force[0], l.moment[0], l.force[1], l.moment[1]]
-            .iter()
-            .enumerate()
-        {
-            for c in 0..3 {
-                out[3 * b + c] = v[c];
-            }
-        }
-        out
+        l.to_array()
     }
 
     /// The AD tangent equals central finite differences of the load function, for a
