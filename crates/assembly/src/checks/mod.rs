@@ -38,6 +38,7 @@ pub struct ChecksSummary {
     #[serde(skip)]
     pub pictures: ScenePictures,
     /// The range-of-motion study's rows and worst positions, if it sweeps a motion.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub sweep: Option<crate::sweep::SweepSummary>,
 }
 

@@ -52,7 +52,7 @@ pub struct CheckSettings {
     pub hoses: Vec<HoseCheckLimits>,
     /// A range-of-motion study: the checks recorded against a part's motion coordinate
     /// ([`crate::sweep`]), if the scene asks for one.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sweep: Option<crate::sweep::SweepSettings>,
 }
 

@@ -214,6 +214,7 @@ pub struct RunSummary {
     /// The installation checks and their violations (SPEC V3).
     pub checks: crate::checks::ChecksSummary,
     /// What the worker did (SPEC E1–E2), if the scene has a worker.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub worker: Option<crate::worker::WorkerSummary>,
 }
 
