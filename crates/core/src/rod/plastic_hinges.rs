@@ -102,6 +102,7 @@ mod tests {
     use crate::rod::element::rotate;
     use crate::rod::element::{ElementEnds, ElementLoads};
     use crate::rod::inelastic::{HistoryView, InelasticElements};
+    use crate::rod::test_elements::perturbed_pose;
     use crate::Material;
     use crate::Section;
 
@@ -188,15 +189,7 @@ mod tests {
         let mut worst: f64 = 0.0;
         for j in 0..12 {
             let perturbed = |s: f64| {
-                let (mut xp, mut qp) = (x, q);
-                let node = j / 6;
-                let mut d = DVec3::ZERO;
-                d[j % 3] = s;
-                if j % 6 < 3 {
-                    xp[node] += d;
-                } else {
-                    qp[node] = rotate(q[node], d);
-                }
+                let (xp, qp) = perturbed_pose((x, q), j, s);
                 flat(&hinges.loads(&e, &hinge, view(&history), &ends(xp, qp), 0.0))
             };
             let (p, m) = (perturbed(h), perturbed(-h));

@@ -141,9 +141,10 @@ mod tests {
     use super::*;
     use crate::material::relaxation_ratio;
     use crate::math::exp_map;
-    use crate::rod::element::{rotate, ElementEnds, ElementLoads};
+    use crate::rod::element::{ElementEnds, ElementLoads};
     use crate::rod::inelastic::{HistoryView, InelasticElements};
     use crate::rod::tangent::inelastic_tangent;
+    use crate::rod::test_elements::perturbed_pose;
     use crate::{Material, Section};
 
     const TERMS: [PronyTerm; 2] = [
@@ -240,23 +241,11 @@ mod tests {
         let ends = ElementEnds::still(x, q);
         let (_, k) = inelastic_tangent(&registry, (&e, &inelastic), view, &ends, 0.0, 0.0);
         let h = 1e-7;
-        let perturbed = |j: usize, s: f64| {
-            let (mut xp, mut qp) = (x, q);
-            let node = j / 6;
-            let mut d = DVec3::ZERO;
-            d[j % 3] = s;
-            if j % 6 < 3 {
-                xp[node] += d;
-            } else {
-                qp[node] = rotate(q[node], d);
-            }
-            (xp, qp)
-        };
         let kmax = k.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let base = flat(&registry.loads(&e, &inelastic, view, &ends, 0.0));
         for j in 0..12 {
             let at = |s: f64| {
-                let (xp, qp) = perturbed(j, s);
+                let (xp, qp) = perturbed_pose((x, q), j, s);
                 let l = registry.loads(&e, &inelastic, view, &ElementEnds::still(xp, qp), 0.0);
                 (
                     flat(&l),

@@ -2,7 +2,7 @@
 //! tangent (test builds only).
 
 use crate::math::exp_map;
-use crate::rod::element::{BeamElement, ElementEnds};
+use crate::rod::element::{rotate, BeamElement, ElementEnds};
 use crate::section::SectionProperties;
 use crate::{Material, Section};
 use glam::{DQuat, DVec3};
@@ -85,4 +85,23 @@ pub fn random_ends(
         v: [rng.vec(2.0), rng.vec(2.0)],
         w: [rng.vec(50.0), rng.vec(50.0)],
     }
+}
+
+/// The ends' poses with increment `s` in the element's increment `j` (0–11: δx_a, δθ_a,
+/// δx_b, δθ_b), for central differences against the tangent.
+pub fn perturbed_pose(
+    (x, q): ([DVec3; 2], [DQuat; 2]),
+    j: usize,
+    s: f64,
+) -> ([DVec3; 2], [DQuat; 2]) {
+    let (mut xp, mut qp) = (x, q);
+    let node = j / 6;
+    let mut d = DVec3::ZERO;
+    d[j % 3] = s;
+    if j % 6 < 3 {
+        xp[node] += d;
+    } else {
+        qp[node] = rotate(q[node], d);
+    }
+    (xp, qp)
 }
