@@ -19,6 +19,7 @@ fn hose3() -> (Section, Material) {
         density: 1100.0,
         plasticity: None,
         relaxation: Vec::new(),
+        hysteresis: None,
     };
     (Section::new(0.027, 0.035), material)
 }

@@ -21,6 +21,7 @@ fn fit() -> PressFit {
         density: 1100.0,
         plasticity: None,
         relaxation: Vec::new(),
+        hysteresis: None,
     };
     let stub = StubSpec::new(DVec3::ZERO, DVec3::Z, 0.030, 0.028, 0.6, 0.4).unwrap();
     let bead = Bead::new(0.008, 0.0015, 0.003, 20f64.to_radians(), 60f64.to_radians()).unwrap();

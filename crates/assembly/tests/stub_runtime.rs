@@ -25,6 +25,7 @@ fn setup_with(safety: f64) -> (Model, StubSite, PressFit) {
         density: 1100.0,
         plasticity: None,
         relaxation: Vec::new(),
+        hysteresis: None,
     };
     let section = Section::new(0.027, 0.035);
     let nodes = (0..=N)

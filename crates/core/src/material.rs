@@ -1,5 +1,6 @@
 //! Hose material (SPEC M3): bimodular elastic law and density, all SI; a metal may
-//! also yield ([`YieldLaw`], SPEC X1), a rubber relax ([`PronyTerm`], SPEC X2).
+//! also yield ([`YieldLaw`], SPEC X1), a rubber relax ([`PronyTerm`], SPEC X2), a bundle
+//! of wires rub ([`Hysteresis`], SPEC X2).
 
 use serde::{Deserialize, Serialize};
 
@@ -24,6 +25,35 @@ pub struct Material {
     /// ever. The moduli above are the instantaneous ones.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub relaxation: Vec<PronyTerm>,
+    /// Friction between the wall's layers or a bundle's wires in bending and torsion;
+    /// `None` → no hysteresis.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hysteresis: Option<Hysteresis>,
+}
+
+/// Hysteresis in bending and torsion (SPEC X2): a friction moment M per strain
+/// component of the element, added to the elastic one and following Dahl's law
+/// dM/dκ = (M_s/κ_s) (1 − sgn(κ̇) M/M_s) (Dahl 1976, *AIAA Journal* 14(12); the rate-
+/// independent friction model NVIDIA Newton uses for cable bundles), which traces the
+/// loop of a wire bundle or a braided hose bent back and forth: the moment saturates at
+/// ±M_s over a curvature of a few κ_s after each reversal.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Hysteresis {
+    /// Dahl's law of each bending component (about both section axes).
+    pub bending: DahlLaw,
+    /// Dahl's law of the twist rate; `None` → no hysteresis in torsion.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torsion: Option<DahlLaw>,
+}
+
+/// One component of [`Hysteresis`]: the friction moment saturates at `moment` over the
+/// curvature scale `curvature` (its initial stiffness is `moment / curvature`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DahlLaw {
+    /// Saturated friction moment M_s \[N·m\].
+    pub moment: f64,
+    /// Curvature (or twist rate) scale κ_s \[1/m\]: M_s/κ_s is the stiffness at reversal.
+    pub curvature: f64,
 }
 
 /// One term of a relaxing modulus (SPEC X2): every modulus of the wall (E_t, E_c, E_b,
@@ -73,6 +103,7 @@ impl Material {
             density,
             plasticity: None,
             relaxation: Vec::new(),
+            hysteresis: None,
         }
     }
 
@@ -127,6 +158,7 @@ mod tests {
             density: 940.0,
             plasticity: None,
             relaxation: Vec::new(),
+            hysteresis: None,
         };
         let eb = m.bending_modulus();
         assert!(eb > 11.583e6 && eb < 13.1363e6);

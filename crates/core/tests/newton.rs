@@ -45,6 +45,7 @@ fn hose1() -> (Material, Section) {
             density: 940.0,
             plasticity: None,
             relaxation: Vec::new(),
+            hysteresis: None,
         },
         Section::new(0.010, 0.016),
     )

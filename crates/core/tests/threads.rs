@@ -22,6 +22,7 @@ fn world(floor: bool) -> WorldSpec {
         density: 940.0,
         plasticity: None,
         relaxation: Vec::new(),
+        hysteresis: None,
     };
     let hoses = (0..7)
         .map(|h| {

@@ -446,6 +446,27 @@ pub struct MaterialEntry {
     /// `yield_stress_mpa`.
     #[serde(default)]
     pub relaxation: Vec<PronyEntry>,
+    /// Friction in bending and torsion (a wire bundle, a braided hose): a moment per
+    /// element following Dahl's law, which traces a hysteresis loop under cycled
+    /// bending. Default: none. Not with `yield_stress_mpa` or `relaxation`.
+    pub hysteresis: Option<HysteresisEntry>,
+}
+
+/// `hysteresis` of a material: Dahl friction moments (docs/physics.md). The moments are
+/// those of the section the material is used with.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HysteresisEntry {
+    /// Saturated friction moment in bending M_s (N·m), > 0: half the height of a wide
+    /// bending loop.
+    pub bending_moment_n_m: f64,
+    /// Curvature scale κ_s (1/m), > 0: the friction moment builds up over a few κ_s
+    /// after each reversal (its initial stiffness is M_s/κ_s).
+    pub bending_curvature_1_m: f64,
+    /// Saturated friction moment in torsion (N·m), > 0. Default: no friction in torsion.
+    pub torsion_moment_n_m: Option<f64>,
+    /// Twist-rate scale in torsion (1/m), > 0. Required with `torsion_moment_n_m`.
+    pub torsion_curvature_1_m: Option<f64>,
 }
 
 /// One term of a relaxing modulus (`relaxation` of a material).

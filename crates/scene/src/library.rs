@@ -207,6 +207,7 @@ impl RawEntry {
                 density: rho,
                 plasticity,
                 relaxation: Vec::new(),
+                hysteresis: None,
             },
             section: Section::new(d_i * 1e-3, d_a * 1e-3),
             min_bend_radius: r_min * 1e-3,

@@ -5,7 +5,7 @@ use crate::error::FieldError;
 use crate::format::MaterialEntry;
 use crate::library::Library;
 use crate::validate::{finite, positive, with_unit};
-use pliant_core::material::{PronyTerm, YieldLaw};
+use pliant_core::material::{DahlLaw, Hysteresis, PronyTerm, YieldLaw};
 use pliant_core::{Material, Section};
 use std::collections::BTreeMap;
 
@@ -132,6 +132,15 @@ fn user_material(field: &str, m: &MaterialEntry) -> Result<Material, FieldError>
             "a material either yields (`yield_stress_mpa`) or relaxes, not both",
         ));
     }
+    let hysteresis = hysteresis(field, m)?;
+    if hysteresis.is_some() && (plasticity.is_some() || !relaxation.is_empty()) {
+        return Err(FieldError::new(
+            format!("{field}.hysteresis"),
+            "given",
+            "a material has one law with a history: it yields (`yield_stress_mpa`), \
+             relaxes (`relaxation`) or rubs (`hysteresis`)",
+        ));
+    }
     Ok(Material {
         e_tension: e_tension * 1e6,
         e_compression: e_compression * 1e6,
@@ -140,7 +149,43 @@ fn user_material(field: &str, m: &MaterialEntry) -> Result<Material, FieldError>
         density,
         plasticity,
         relaxation,
+        hysteresis,
     })
+}
+
+/// The entry's friction law, SI: moments and curvature scales positive and finite, the
+/// torsion pair given together.
+fn hysteresis(field: &str, m: &MaterialEntry) -> Result<Option<Hysteresis>, FieldError> {
+    let Some(h) = &m.hysteresis else {
+        return Ok(None);
+    };
+    let at = |name: &str| format!("{field}.hysteresis.{name}");
+    let bending = DahlLaw {
+        moment: positive(&at("bending_moment_n_m"), h.bending_moment_n_m, "N·m")?,
+        curvature: positive(&at("bending_curvature_1_m"), h.bending_curvature_1_m, "1/m")?,
+    };
+    let torsion = match (h.torsion_moment_n_m, h.torsion_curvature_1_m) {
+        (None, None) => None,
+        (Some(moment), Some(curvature)) => Some(DahlLaw {
+            moment: positive(&at("torsion_moment_n_m"), moment, "N·m")?,
+            curvature: positive(&at("torsion_curvature_1_m"), curvature, "1/m")?,
+        }),
+        (Some(moment), None) => {
+            return Err(FieldError::new(
+                at("torsion_curvature_1_m"),
+                "missing",
+                format!("required with torsion_moment_n_m = {moment}"),
+            ))
+        }
+        (None, Some(curvature)) => {
+            return Err(FieldError::new(
+                at("torsion_moment_n_m"),
+                "missing",
+                format!("required with torsion_curvature_1_m = {curvature}"),
+            ))
+        }
+    };
+    Ok(Some(Hysteresis { bending, torsion }))
 }
 
 /// Most terms a relaxation may have (a Prony series fitted to a test rarely needs more

@@ -16,6 +16,7 @@ pub fn hose3() -> (Material, Section) {
             density: 1100.0,
             plasticity: None,
             relaxation: Vec::new(),
+            hysteresis: None,
         },
         Section::new(0.027, 0.035),
     )

@@ -155,6 +155,10 @@ impl<const N: usize> Scalar for Dual<N> {
     fn cos(self) -> Self {
         self.chain(self.re.cos(), -self.re.sin())
     }
+    fn exp(self) -> Self {
+        let e = self.re.exp();
+        self.chain(e, e)
+    }
     fn atan2(self, x: Self) -> Self {
         // d atan2(y, x) = (x dy − y dx)/(x² + y²)
         let r2 = self.re * self.re + x.re * x.re;

@@ -194,6 +194,9 @@ impl<const N: usize, F: Lane4> Scalar for LaneDual<N, F> {
     fn cos(self) -> Self {
         panic!("LaneDual: no cos (not needed by the lane kernels)")
     }
+    fn exp(self) -> Self {
+        panic!("LaneDual: no exp (not needed by the lane kernels)")
+    }
     fn atan2(self, _x: Self) -> Self {
         panic!("LaneDual: no atan2 (not needed by the lane kernels)")
     }

@@ -23,6 +23,7 @@ pub trait Scalar:
     fn sqrt(self) -> Self;
     fn sin(self) -> Self;
     fn cos(self) -> Self;
+    fn exp(self) -> Self;
     /// atan2(self, x).
     fn atan2(self, x: Self) -> Self;
 }
@@ -47,6 +48,10 @@ impl Scalar for f64 {
     #[inline(always)]
     fn cos(self) -> Self {
         f64::cos(self)
+    }
+    #[inline(always)]
+    fn exp(self) -> Self {
+        f64::exp(self)
     }
     #[inline(always)]
     fn atan2(self, x: Self) -> Self {

@@ -1,6 +1,7 @@
 //! Elements whose law has a history: yielding metal (SPEC X1, a fibre section with
-//! plastic strains, [`crate::rod::plastic_hinges`]) and relaxing rubber (SPEC X2, a
-//! Prony series with viscous strains, [`crate::rod::relaxation`]). The model lists them
+//! plastic strains, [`crate::rod::plastic_hinges`]), relaxing rubber (SPEC X2, a
+//! Prony series with viscous strains, [`crate::rod::relaxation`]) and rubbing bundles
+//! (SPEC X2, Dahl friction moments, [`crate::rod::hysteresis`]). The model lists them
 //! here with their laws; the state keeps their history in one array
 //! (`State::inelastic_history`) with the time it was committed.
 //!
@@ -12,23 +13,25 @@
 //! kernel's linear ones ([`crate::rod::element_block`]).
 
 use crate::autodiff::Scalar;
-use crate::material::PronyTerm;
+use crate::material::{Hysteresis, PronyTerm};
 use crate::rod::element::{BeamElement, ElementEnds, ElementLoads, ElementLoadsOf, EndsOf};
 use crate::rod::fibre_law::FibreLaw;
 use crate::rod::fibre_section::FibreSection;
 use crate::rod::node_view::NodeView;
-use crate::rod::{plastic_hinges, relaxation};
+use crate::rod::{hysteresis, plastic_hinges, relaxation};
 use crate::{Material, Section};
 use glam::{DQuat, DVec3};
 
-/// The law of an inelastic element: an index into [`InelasticElements::sections`] or
-/// [`InelasticElements::relaxations`].
+/// The law of an inelastic element: an index into [`InelasticElements::sections`],
+/// [`InelasticElements::relaxations`] or [`InelasticElements::hystereses`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum InelasticLaw {
     /// A yielding hinge with this fibre section.
     Yielding(usize),
     /// A relaxing element with these Prony terms.
     Relaxing(usize),
+    /// A hysteretic element with this friction law.
+    Hysteretic(usize),
 }
 
 /// Where an inelastic element finds its law and its history.
@@ -62,6 +65,8 @@ pub struct InelasticElements {
     pub sections: Vec<FibreSection>,
     /// The relaxing elements' Prony series.
     pub relaxations: Vec<Vec<PronyTerm>>,
+    /// The hysteretic elements' friction laws.
+    pub hystereses: Vec<Hysteresis>,
     /// The inelastic elements' indices, in element order.
     pub elements: Vec<usize>,
     /// Hose h's inelastic elements are `elements[hose_elements[h]..hose_elements[h + 1]]`.
@@ -87,8 +92,9 @@ impl InelasticElements {
     }
 
     /// Gives the elements `first..` of `elements` (one hose's, the last ones built) their
-    /// law if the hose's `material` yields or relaxes (sections by `section_of`), and
-    /// closes the hose's range. A material does one or the other (the model checks).
+    /// law if the hose's `material` yields, relaxes or rubs (sections by `section_of`),
+    /// and closes the hose's range. A material does one of these at most (the scene
+    /// checks; yielding comes first, then relaxing).
     pub fn add_hose(
         &mut self,
         elements: &mut [BeamElement],
@@ -110,6 +116,11 @@ impl InelasticElements {
                     self.relaxations.push(material.relaxation.clone());
                 }
                 InelasticLaw::Relaxing(self.relaxations.len() - 1)
+            } else if let Some(law) = material.hysteresis {
+                if self.hystereses.last() != Some(&law) {
+                    self.hystereses.push(law);
+                }
+                InelasticLaw::Hysteretic(self.hystereses.len() - 1)
             } else {
                 break;
             };
@@ -132,6 +143,7 @@ impl InelasticElements {
         match law {
             InelasticLaw::Yielding(s) => self.sections[s].history_len(),
             InelasticLaw::Relaxing(r) => relaxation::history_len(&self.relaxations[r]),
+            InelasticLaw::Hysteretic(_) => hysteresis::HISTORY_LEN,
         }
     }
 
@@ -165,6 +177,9 @@ impl InelasticElements {
             InelasticLaw::Relaxing(r) => {
                 let terms = &self.relaxations[r];
                 relaxation::loads_of(element, terms, (own, history.age), ends, beta)
+            }
+            InelasticLaw::Hysteretic(h) => {
+                hysteresis::loads_of(element, &self.hystereses[h], own, ends, beta)
             }
         }
     }
@@ -248,6 +263,9 @@ impl InelasticElements {
                 InelasticLaw::Relaxing(r) => {
                     relaxation::commit(e, &self.relaxations[r], ends, age, own)
                 }
+                InelasticLaw::Hysteretic(h) => {
+                    hysteresis::commit(e, &self.hystereses[h], ends, own)
+                }
             }
         }
     }
@@ -271,6 +289,9 @@ impl InelasticElements {
             InelasticLaw::Relaxing(r) => {
                 let terms = &self.relaxations[r];
                 relaxation::strain_energy(element, terms, (own, history.age), ends)
+            }
+            InelasticLaw::Hysteretic(h) => {
+                hysteresis::strain_energy(element, &self.hystereses[h], own, ends, incremental)
             }
         }
     }

@@ -7,7 +7,8 @@
 //! with a history ([`inelastic`]): yielding ones (SPEC X1: the fibre law
 //! [`fibre_law`], the fibre section [`fibre_section`], the yielding hinge of an element
 //! [`plastic_hinges`] and the closed forms of the elastic–plastic tube
-//! [`plastic_moment`]) and relaxing ones (SPEC X2, [`relaxation`]).
+//! [`plastic_moment`]), relaxing ones (SPEC X2, [`relaxation`]) and rubbing ones (SPEC
+//! X2, [`hysteresis`]).
 //!
 //! The kernels read the plain data of the crate (model, sections, materials) and nothing
 //! above it: no loads, contact or solvers.
@@ -19,6 +20,7 @@ pub mod fibre_law;
 pub mod fibre_section;
 pub mod forces;
 pub mod frames;
+pub mod hysteresis;
 pub mod inelastic;
 pub mod lane_arith;
 pub mod lanes;

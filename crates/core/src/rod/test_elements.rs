@@ -54,6 +54,7 @@ pub fn random_element(rng: &mut Rng, k: usize) -> BeamElement {
         density: 1000.0,
         plasticity: None,
         relaxation: Vec::new(),
+        hysteresis: None,
     };
     let mut section = Section::new(0.01, 0.016);
     if rng.next() < 0.5 {

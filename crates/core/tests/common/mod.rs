@@ -30,6 +30,7 @@ pub fn hose1_material() -> pliant_core::Material {
         density: 940.0,
         plasticity: None,
         relaxation: Vec::new(),
+        hysteresis: None,
     }
 }
 

@@ -69,6 +69,7 @@ pub fn run_stub() -> Vec<Check> {
         density: 1100.0,
         plasticity: None,
         relaxation: Vec::new(),
+        hysteresis: None,
     };
     let section = Section::new(0.027, 0.035);
     let (n, len) = (12, 0.3);
@@ -166,6 +167,7 @@ pub fn run_clip() -> Vec<Check> {
         density: 940.0,
         plasticity: None,
         relaxation: Vec::new(),
+        hysteresis: None,
     };
     let section = Section::new(0.010, 0.016);
     let (n, len, k) = (20, 0.5, 20.0);

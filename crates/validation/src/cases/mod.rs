@@ -10,6 +10,7 @@ mod frames;
 mod friction;
 mod helix;
 pub mod hose_contact;
+mod hysteresis;
 mod invariance;
 mod moving_parts;
 mod plastic_bending;
@@ -58,6 +59,8 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("springback", plastic_bending::run_springback),
     ("relaxing_bar", relaxation::run_bar),
     ("relaxing_beam", relaxation::run_beam),
+    ("hysteresis_torsion", hysteresis::run_torsion),
+    ("hysteresis_bending", hysteresis::run_bending),
     ("moving_carry", moving_parts::run_carry),
     ("moving_lift", moving_parts::run_lift),
     ("moving_drag", moving_parts::run_drag),
