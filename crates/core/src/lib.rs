@@ -49,5 +49,5 @@ pub use material::Material;
 pub use model::{HoseInfo, Model, ModelError};
 pub use section::{GivenStiffness, Section, SectionProperties};
 pub use settings::{SolverKind, SolverSettings};
-pub use spec::{HoseSpec, RigidPartSpec, SimSettings, WorldSpec};
+pub use spec::{DeliveredShape, HoseSpec, RigidPartSpec, SimSettings, WorldSpec};
 pub use state::State;

@@ -6,14 +6,14 @@ use crate::junction::Junction;
 use crate::kinematics::PartKinematics;
 use crate::rod::element::BeamElement;
 use crate::rod::element_block::PackedElements;
-use crate::rod::frames::node_frames;
+use crate::rod::frames::{curve_frames, node_frames};
 use crate::rod::inelastic::InelasticElements;
 use crate::rod::mass::half_element_mass;
 use crate::rod::stiffened::{RigidBody, StiffenedSpan};
 use crate::rod::timestep::{stable_time_step, TimeStepReport};
 use crate::section::SectionProperties;
 use crate::settings::SolverSettings;
-use crate::spec::{HoseSpec, RigidPartSpec, SimSettings, WorldSpec};
+use crate::spec::{DeliveredShape, HoseSpec, RigidPartSpec, SimSettings, WorldSpec};
 use glam::{DQuat, DVec3};
 use serde::Serialize;
 
@@ -388,6 +388,68 @@ impl Model {
         let max_pairs = self.hose_contact.max_pairs;
         self.hose_contact = HoseContactModel::new(&self, self.hose_contact.rule);
         self.hose_contact.max_pairs = max_pairs;
+        Ok(self)
+    }
+
+    /// Gives hoses the stress-free shape they were delivered in (SPEC X2,
+    /// pre-deformation): each element's rest length and rest frame offsets come from the
+    /// delivered shape, while the hose starts where it is routed (`rest_x`, `rest_q`),
+    /// holding the difference as strain. Lumped masses stay those of the routed elements
+    /// (their lengths differ by the chord–arc difference, (κ l)²/24). The stable time step
+    /// is found again under `settings` (the build's).
+    pub fn with_delivered_shapes(
+        mut self,
+        shapes: &[DeliveredShape],
+        settings: &SimSettings,
+    ) -> Result<Model, ModelError> {
+        if shapes.is_empty() {
+            return Ok(self);
+        }
+        for shape in shapes {
+            let Some(info) = self.hoses.get(shape.hose) else {
+                return Err(ModelError::Settings(format!(
+                    "delivered shape names hose {} of {}",
+                    shape.hose,
+                    self.hoses.len()
+                )));
+            };
+            let err = |reason: String| ModelError::Hose {
+                hose: info.name.clone(),
+                reason,
+            };
+            if shape.nodes.len() != info.node_count {
+                return Err(err(format!(
+                    "its delivered shape has {} nodes, the hose {}",
+                    shape.nodes.len(),
+                    info.node_count
+                )));
+            }
+            if let Some(k) = shape.nodes.windows(2).position(|w| {
+                !(w[0].is_finite() && w[1].is_finite()) || (w[1] - w[0]).length() == 0.0
+            }) {
+                return Err(err(format!(
+                    "its delivered shape's nodes {k} and {} coincide or are not finite",
+                    k + 1
+                )));
+            }
+            // both shapes' frames follow their curves to the ends, so that the end
+            // elements bend as the others do
+            let routed = info.first_node..info.first_node + info.node_count;
+            let routed_frames = curve_frames(&self.rest_x[routed.clone()], shape.normal_hint);
+            self.rest_q[routed].copy_from_slice(&routed_frames);
+            let frames = curve_frames(&shape.nodes, shape.normal_hint);
+            for i in 0..info.element_count {
+                self.elements[info.first_element + i].set_rest_shape(
+                    [shape.nodes[i], shape.nodes[i + 1]],
+                    [frames[i], frames[i + 1]],
+                );
+            }
+        }
+        let report = stable_time_step(&self, settings)?;
+        self.damping_stiffness = report.damping_stiffness;
+        self.time_step = report.chosen;
+        self.time_step_report = report;
+        self.packed = PackedElements::new(&self.elements, &self.hoses);
         Ok(self)
     }
 

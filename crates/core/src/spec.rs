@@ -28,6 +28,21 @@ pub struct HoseSpec {
     pub normal_hint: Option<DVec3>,
 }
 
+/// A hose's stress-free shape when it differs from the shape it is routed in (SPEC X2,
+/// pre-deformation): the hose as delivered — straight stock, a coil, a folded hose —
+/// whose set the routed hose keeps. Applied by [`crate::Model::with_delivered_shapes`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DeliveredShape {
+    /// The hose (index into [`WorldSpec::hoses`]).
+    pub hose: usize,
+    /// The delivered shape's nodes \[m\], as many as the hose's; where it lies does not
+    /// matter, only its shape.
+    pub nodes: Vec<DVec3>,
+    /// Preferred direction of the first node's local y axis in the delivered shape (the
+    /// material frames follow both shapes by parallel transport from it).
+    pub normal_hint: Option<DVec3>,
+}
+
 impl HoseSpec {
     /// The section of element `e` (between nodes `e` and `e + 1`).
     pub fn element_section(&self, e: usize) -> &Section {

@@ -520,6 +520,11 @@ pub struct HoseEntry {
     /// elsewhere `section` holds. Spans must not overlap.
     #[serde(default)]
     pub spans: Vec<SpanEntry>,
+    /// The shape the hose was delivered in, its stress-free shape (pre-deformation):
+    /// `"straight"`, `{ coil = { radius, pitch } }` or `{ path = [...] }` (length unit).
+    /// The hose starts routed along `path`/`route`, holding the difference as strain.
+    /// Default: the routed shape is stress-free.
+    pub delivered: Option<DeliveredEntry>,
     /// Minimum bend radius of the centre line (length unit), > 0, for the bend-radius
     /// check; overrides the material's (e.g. a harness segment's, from its wires and
     /// protection).
@@ -814,6 +819,38 @@ pub struct FrictionEntry {
     pub static_: f64,
     /// Sliding coefficient, ≥ 0 and ≤ `static`.
     pub sliding: f64,
+}
+
+/// `delivered` of a hose: the shape it was delivered in.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum DeliveredEntry {
+    /// `"straight"`: straight stock.
+    Named(DeliveredName),
+    /// `{ coil = { radius, pitch } }`: a coil (a helix; a flat coil with pitch 0).
+    Coil { coil: CoilEntry },
+    /// `{ path = [...] }`: a centre line as `path` gives one (from the origin; only its
+    /// shape counts), of the hose's length within 1 % (scaled to it exactly).
+    Path { path: Vec<SegmentEntry> },
+}
+
+/// A delivered shape by name.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum DeliveredName {
+    /// Straight stock: the routed hose is bent from straight.
+    Straight,
+}
+
+/// `coil` of `delivered`.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CoilEntry {
+    /// Radius of the coil's centre line (length unit), > 0.
+    pub radius: f64,
+    /// Rise per turn (length unit), ≥ 0. Default 0 (a flat coil).
+    #[serde(default)]
+    pub pitch: f64,
 }
 
 /// A rest-shape node offset.

@@ -2,6 +2,7 @@
 //! nodes with imperfections, normal hint (SPEC M1–M3).
 
 use crate::centerline::{element_count, Centerline, CurveError, Resolution, Segment, MAX_ELEMENTS};
+use crate::delivered::delivered_nodes;
 use crate::error::FieldError;
 use crate::files::FileAccess;
 use crate::format::{HoseEntry, SectionEntry, SegmentEntry, Vec3};
@@ -233,6 +234,16 @@ pub fn build_hose(
         element_length: length / count.count as f64,
         min_bend_radius,
         d_outer: section.d_outer,
+        delivered: match &raw.delivered {
+            Some(d) => Some(delivered_nodes(
+                &at("delivered"),
+                d,
+                unit,
+                length,
+                count.count,
+            )?),
+            None => None,
+        },
     };
     let spec = HoseSpec {
         name: raw.name.clone(),
@@ -357,7 +368,11 @@ fn span_sections(
 }
 
 /// Checks a path segment's points (file units) and converts them to metres.
-fn segment(field: &str, s: &SegmentEntry, unit: LengthUnit) -> Result<Segment, FieldError> {
+pub(crate) fn segment(
+    field: &str,
+    s: &SegmentEntry,
+    unit: LengthUnit,
+) -> Result<Segment, FieldError> {
     let (u, scale) = (unit.symbol(), unit.to_metres());
     let point =
         |name: &str, p: Vec3| finite_vec(&format!("{field}.{name}"), p, u).map(|v| v * scale);

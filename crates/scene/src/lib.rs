@@ -16,6 +16,7 @@ pub mod centerline;
 pub mod checks;
 pub mod clip;
 pub mod connectors;
+pub mod delivered;
 pub mod document;
 pub mod ergonomics;
 pub mod error;

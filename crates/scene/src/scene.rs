@@ -92,6 +92,8 @@ pub struct HoseDiscretisation {
     pub min_bend_radius: f64,
     /// Outer diameter of the hose's first section (m).
     pub d_outer: f64,
+    /// The nodes of its delivered, stress-free shape (m), if it is not the routed one.
+    pub delivered: Option<Vec<glam::DVec3>>,
 }
 
 /// How one rigid part was built.
@@ -171,6 +173,23 @@ impl LoadedScene {
             .flat_map(|(hose, info)| {
                 info.stiffened.iter().map(move |&(first, last)| {
                     pliant_core::rod::stiffened::StiffenedSpan { hose, first, last }
+                })
+            })
+            .collect()
+    }
+
+    /// The hoses delivered in a shape of their own, for
+    /// [`pliant_core::Model::with_delivered_shapes`].
+    pub fn delivered_shapes(&self) -> Vec<pliant_core::DeliveredShape> {
+        self.hoses
+            .iter()
+            .enumerate()
+            .filter_map(|(hose, info)| {
+                let nodes = info.delivered.clone()?;
+                Some(pliant_core::DeliveredShape {
+                    hose,
+                    nodes,
+                    normal_hint: self.world.hoses[hose].normal_hint,
                 })
             })
             .collect()

@@ -20,6 +20,7 @@ impl LoadedScene {
     /// [`Self::build_model`] with the core's typed error.
     pub fn build_model_typed(&self) -> Result<Model, pliant_core::ModelError> {
         Model::build(&self.world)
+            .and_then(|m| m.with_delivered_shapes(&self.delivered_shapes(), &self.world.settings))
             .and_then(|m| m.with_stiffened_spans(&self.stiffened_spans()))
             .and_then(|m| m.with_junctions(&self.junctions))
     }

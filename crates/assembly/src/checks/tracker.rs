@@ -12,6 +12,7 @@ use super::strain::bend_and_twist;
 use crate::fasteners::StubSite;
 use crate::stub::StubLaw;
 use crate::sweep::MotionSweep;
+use glam::DQuat;
 use pliant_core::{Model, State};
 use serde::Serialize;
 
@@ -75,12 +76,9 @@ impl InstallationChecks {
             for e in info.first_element..info.first_element + info.element_count {
                 let el = &model.elements[e];
                 beam_hose[e] = h;
-                rest_twist[e] = bend_and_twist(
-                    model.rest_q[el.node_a],
-                    model.rest_q[el.node_b],
-                    el.rest_length,
-                )
-                .1;
+                // the stress-free shape's twist (as routed, or as delivered)
+                let rest = el.rest_relative_rotation();
+                rest_twist[e] = bend_and_twist(DQuat::IDENTITY, rest, el.rest_length).1;
                 arc.push(s + 0.5 * el.rest_length);
                 s += el.rest_length;
             }

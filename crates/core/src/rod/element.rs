@@ -201,22 +201,38 @@ impl BeamElement {
         rest_q: [DQuat; 2],
         props: &SectionProperties,
     ) -> Self {
-        let chord = rest_x[1] - rest_x[0];
-        let frame: DQuat =
-            aligned_mean_frame(rest_q[0].into(), rest_q[1].into(), chord.normalize().into()).into();
-        Self {
+        let mut element = Self {
             node_a: a,
             node_b: b,
-            rest_length: chord.length(),
+            rest_length: 0.0,
             axial_stiffness_tension: props.axial_tension,
             axial_stiffness_compression: props.axial_compression,
             bending_stiffness: props.bending,
             torsion_stiffness: props.torsion,
             mass_per_length: props.mass_per_length,
-            rest_offset_a: (rest_q[0].inverse() * frame).normalize(),
-            rest_offset_b: (rest_q[1].inverse() * frame).normalize(),
+            rest_offset_a: DQuat::IDENTITY,
+            rest_offset_b: DQuat::IDENTITY,
             inelastic: None,
-        }
+        };
+        element.set_rest_shape(rest_x, rest_q);
+        element
+    }
+
+    /// Makes the ends' poses `rest_x`, `rest_q` the element's stress-free shape: its rest
+    /// length and the offsets from its ends' material frames to its element frame.
+    pub fn set_rest_shape(&mut self, rest_x: [DVec3; 2], rest_q: [DQuat; 2]) {
+        let chord = rest_x[1] - rest_x[0];
+        let frame: DQuat =
+            aligned_mean_frame(rest_q[0].into(), rest_q[1].into(), chord.normalize().into()).into();
+        self.rest_length = chord.length();
+        self.rest_offset_a = (rest_q[0].inverse() * frame).normalize();
+        self.rest_offset_b = (rest_q[1].inverse() * frame).normalize();
+    }
+
+    /// The rotation from node a's material frame to node b's in the stress-free shape,
+    /// q_a0⁻¹ q_b0.
+    pub fn rest_relative_rotation(&self) -> DQuat {
+        (self.rest_offset_a * self.rest_offset_b.inverse()).normalize()
     }
 
     /// Co-rotational kinematics: chord, element frame, end rotations relative to it.

@@ -32,13 +32,40 @@ pub fn node_tangents(nodes: &[DVec3]) -> Vec<DVec3> {
         .collect()
 }
 
+/// Unit tangents of the curve through `nodes`: [`node_tangents`] inside, and at each end
+/// the end chord turned back by half the turn to the next chord — exact on a circular
+/// arc, second order on any smooth curve, where the end chord is first order off.
+pub fn curve_tangents(nodes: &[DVec3]) -> Vec<DVec3> {
+    let mut t = node_tangents(nodes);
+    let n = nodes.len();
+    if n >= 3 {
+        let chord = |i: usize| (nodes[i + 1] - nodes[i]).normalize();
+        let half_back =
+            |from: DVec3, to: DVec3| DQuat::IDENTITY.slerp(rotation_between(from, to), 0.5);
+        t[0] = (half_back(chord(1), chord(0)) * chord(0)).normalize();
+        t[n - 1] = (half_back(chord(n - 3), chord(n - 2)) * chord(n - 2)).normalize();
+    }
+    t
+}
+
 /// Node frames (local → global) by parallel transport along the tangents. The first
 /// frame's local y axis is `normal_hint` projected normal to the tangent when given and
 /// not parallel to it; otherwise the shortest rotation of the global x axis onto the
 /// first tangent fixes it.
 pub fn node_frames(nodes: &[DVec3], normal_hint: Option<DVec3>) -> Vec<DQuat> {
-    let tangents = node_tangents(nodes);
-    let mut frames = Vec::with_capacity(nodes.len());
+    frames_along(&node_tangents(nodes), normal_hint)
+}
+
+/// [`node_frames`] along [`curve_tangents`]: frames whose ends follow the curve, as a
+/// hose whose rest shape is another needs (its end elements' bend is then the curve's,
+/// not half of it).
+pub fn curve_frames(nodes: &[DVec3], normal_hint: Option<DVec3>) -> Vec<DQuat> {
+    frames_along(&curve_tangents(nodes), normal_hint)
+}
+
+/// Frames by parallel transport along `tangents` (see [`node_frames`]).
+fn frames_along(tangents: &[DVec3], normal_hint: Option<DVec3>) -> Vec<DQuat> {
+    let mut frames = Vec::with_capacity(tangents.len());
     let t0 = tangents[0];
     let mut q = rotation_between(DVec3::X, t0);
     if let Some(hint) = normal_hint {
@@ -50,7 +77,7 @@ pub fn node_frames(nodes: &[DVec3], normal_hint: Option<DVec3>) -> Vec<DQuat> {
         }
     }
     frames.push(q);
-    for i in 1..nodes.len() {
+    for i in 1..tangents.len() {
         q = (rotation_between(tangents[i - 1], tangents[i]) * q).normalize();
         frames.push(q);
     }
