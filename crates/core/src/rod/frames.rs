@@ -88,6 +88,25 @@ fn frames_along(tangents: &[DVec3], normal_hint: Option<DVec3>) -> Vec<DQuat> {
 mod tests {
     use super::*;
 
+    /// On nodes of a circular arc, the curve's tangents at the ends are exact, where the
+    /// end chords are half an element's turn off.
+    #[test]
+    fn curve_tangents_are_exact_on_an_arc() {
+        let (r, step) = (0.3, 0.1);
+        let nodes: Vec<DVec3> = (0..=6)
+            .map(|i| {
+                let a = i as f64 * step;
+                DVec3::new(r * a.sin(), r * (1.0 - a.cos()), 0.0)
+            })
+            .collect();
+        let exact = |a: f64| DVec3::new(a.cos(), a.sin(), 0.0);
+        let t = curve_tangents(&nodes);
+        assert!((t[0] - exact(0.0)).length() < 1e-12, "{}", t[0]);
+        assert!((t[6] - exact(0.6)).length() < 1e-12, "{}", t[6]);
+        let chord_end = node_tangents(&nodes)[0];
+        assert!((chord_end.angle_between(exact(0.0)) - 0.5 * step).abs() < 1e-12);
+    }
+
     #[test]
     fn frames_follow_tangent_of_an_arc() {
         let nodes: Vec<DVec3> = (0..=8)
