@@ -30,7 +30,7 @@
 
 use crate::autodiff::{Quat, Scalar, V3};
 use crate::math::{
-    exp_map, left_jacobian_inverse_transpose_times_of, log_map_of, rotation_between_of,
+    exp_map, left_jacobian_inverse_transpose_times_of, log_map, log_map_of, rotation_between_of,
 };
 use crate::rod::inelastic::Inelastic;
 use crate::section::SectionProperties;
@@ -59,6 +59,12 @@ pub struct BeamElement {
     pub rest_offset_a: DQuat,
     /// Rotation from node b's material frame to the element frame at rest (q_b0⁻¹ E₀).
     pub rest_offset_b: DQuat,
+    /// The rest shape's end slopes in the element frame, θ₀ = −log(rest offset), y and z
+    /// of a then b: the shallow arch the arch strain is measured from (zero when the
+    /// element is straight at rest).
+    pub rest_slopes: [f64; 4],
+    /// The arch strain of the rest slopes, Σ (2θ₀ₐ² − θ₀ₐθ₀_b + 2θ₀_b²)/30.
+    pub rest_arch: f64,
     /// The element's law with history, if its material yields or relaxes
     /// ([`crate::rod::inelastic`]); `None` → the linear law above.
     pub inelastic: Option<Inelastic>,
@@ -212,6 +218,8 @@ impl BeamElement {
             mass_per_length: props.mass_per_length,
             rest_offset_a: DQuat::IDENTITY,
             rest_offset_b: DQuat::IDENTITY,
+            rest_slopes: [0.0; 4],
+            rest_arch: 0.0,
             inelastic: None,
         };
         element.set_rest_shape(rest_x, rest_q);
@@ -227,6 +235,32 @@ impl BeamElement {
         self.rest_length = chord.length();
         self.rest_offset_a = (rest_q[0].inverse() * frame).normalize();
         self.rest_offset_b = (rest_q[1].inverse() * frame).normalize();
+        let slope_a = -log_map(self.rest_offset_a);
+        let slope_b = -log_map(self.rest_offset_b);
+        self.rest_slopes = [slope_a.y, slope_a.z, slope_b.y, slope_b.z];
+        self.rest_arch = 0.0;
+        self.rest_arch = arch_strain::<f64>(
+            self.arch_rotation(V3::from(DVec3::ZERO), 0),
+            self.arch_rotation(V3::from(DVec3::ZERO), 1),
+        );
+    }
+
+    /// End `end`'s rotation `theta` (from the rest shape) plus the rest slope: its slope
+    /// against the chord, what the arch strain measures (x, the twist, is left as is).
+    #[inline(always)]
+    fn arch_rotation<T: Scalar>(&self, theta: V3<T>, end: usize) -> V3<T> {
+        let [ay, az, by, bz] = self.rest_slopes;
+        let (y, z) = if end == 0 { (ay, az) } else { (by, bz) };
+        V3::new(theta.x, theta.y + y, theta.z + z)
+    }
+
+    /// The axial strain of the shallow arch, measured from the rest shape's:
+    /// arch(θ + θ₀) − arch(θ₀) (exact for a straight rest shape, where θ₀ = 0), so that
+    /// bending an element that is curved at rest without stretching its arc leaves no
+    /// axial strain.
+    #[inline(always)]
+    fn arch_strain_from_rest<T: Scalar>(&self, ta: V3<T>, tb: V3<T>) -> T {
+        arch_strain(self.arch_rotation(ta, 0), self.arch_rotation(tb, 1)) - self.rest_arch
     }
 
     /// The rotation from node a's material frame to node b's in the stress-free shape,
@@ -308,7 +342,7 @@ impl BeamElement {
         let d = self.deformation_of(x, q);
         let e1 = d.chord_dir;
         let l0 = self.rest_length;
-        let geometric = (d.length - l0) / l0 + arch_strain(d.theta[0], d.theta[1]);
+        let geometric = (d.length - l0) / l0 + self.arch_strain_from_rest(d.theta[0], d.theta[1]);
         let strain = geometric * axial.scale - axial.shift;
 
         // Deformation rates in the element frame (for damping).
@@ -330,7 +364,11 @@ impl BeamElement {
 
         let damped = [rate_a.scale_f(beta), rate_b.scale_f(beta)];
         let (ma_linear, mb_linear) = local(d.theta, damped);
-        let (ma_arch, mb_arch) = arch_moments(d.theta[0], d.theta[1], elastic_axial_force * l0);
+        let (ma_arch, mb_arch) = arch_moments(
+            self.arch_rotation(d.theta[0], 0),
+            self.arch_rotation(d.theta[1], 1),
+            elastic_axial_force * l0,
+        );
         let (ma_local, mb_local) = (ma_linear + ma_arch, mb_linear + mb_arch);
 
         // Moments conjugate to spatial rotation increments, in global axes.
@@ -379,11 +417,12 @@ impl BeamElement {
         self.energy_at(self.axial_strain(&d), d.theta)
     }
 
-    /// The axial strain ε = (l − l₀)/l₀ + the arch strain of the end rotations.
+    /// The axial strain ε = (l − l₀)/l₀ + the arch strain of the end rotations (from the
+    /// rest shape's: arch(θ + θ₀) − arch(θ₀)).
     pub fn axial_strain(&self, d: &Deformation) -> f64 {
         let l0 = self.rest_length;
         let [ta, tb] = d.theta;
-        (d.length - l0) / l0 + arch_strain::<f64>(ta.into(), tb.into())
+        (d.length - l0) / l0 + self.arch_strain_from_rest::<f64>(ta.into(), tb.into())
     }
 
     /// The energy of the local law at axial strain `strain` and end rotations `theta`
@@ -474,6 +513,51 @@ mod tests {
 
     fn ends(x: [DVec3; 2], q: [DQuat; 2]) -> ElementEnds {
         ElementEnds::still(x, q)
+    }
+
+    /// The ends of an arc of length `l` and curvature κ in the x–y plane (tangent frames).
+    fn arc_ends(l: f64, kappa: f64) -> ([DVec3; 2], [DQuat; 2]) {
+        let a = kappa * l;
+        (
+            [
+                DVec3::ZERO,
+                DVec3::new(a.sin() / kappa, (1.0 - a.cos()) / kappa, 0.0),
+            ],
+            [DQuat::IDENTITY, DQuat::from_rotation_z(a)],
+        )
+    }
+
+    /// An element that is an arc at rest, bent to another arc of the same length (no
+    /// stretch of its axis), carries no axial force to fourth order in its turn: its arch
+    /// strain is measured from the rest shape's. Measured from the chord, it would carry
+    /// E A κ₀ l δ/12 (δ the extra turn) — here 0.6 % of its bending moment's force scale.
+    #[test]
+    fn bending_an_element_curved_at_rest_does_not_stretch_it() {
+        let mat = Material::isotropic(12e6, 0.49, 940.0);
+        let sec = Section::new(0.01, 0.016);
+        let l = 0.02;
+        let (x0, q0) = arc_ends(l, 10.0);
+        let e = BeamElement::new((0, 1), x0, q0, &sec, &mat);
+        assert!(e.rest_arch > 0.0);
+        let (x, q) = arc_ends(l, 12.0);
+        let loads = e.loads(&ends(x, q), 0.0);
+        let ea = e.axial_stiffness_tension;
+        let turn = 10.0 * l;
+        let extra = 2.0 * l;
+        let chord_measured = ea * turn * extra / 12.0;
+        assert!(
+            loads.axial_force.abs() < 1e-3 * chord_measured,
+            "axial force {} vs the chord-measured {chord_measured}",
+            loads.axial_force
+        );
+        // and the bending moment is E I Δκ, to (κ₀ l)²/24 = 1.7e-3: the element's
+        // stiffness E I/l₀ takes the rest chord l₀ for the arc's length
+        let want = e.bending_stiffness[1] * 2.0;
+        assert!(
+            (loads.moment[1].z.abs() - want).abs() < 2e-3 * want,
+            "{:?} vs {want}",
+            loads.moment
+        );
     }
 
     #[test]

@@ -82,6 +82,10 @@ pub struct ElementBlock {
     inv_rest_length: F4,
     /// l₀/30 (the arch strain's moments).
     rest_length_30: F4,
+    /// The rest slopes θ₀ (a.y, a.z, b.y, b.z) and their arch strain
+    /// ([`BeamElement::rest_slopes`]).
+    rest_slopes: [F4; 4],
+    rest_arch: F4,
     axial_tension: F4,
     axial_compression: F4,
     /// EI₁/l₀, EI₂/l₀, GJ/l₀.
@@ -150,6 +154,8 @@ impl ElementBlock {
             rest_length: lanes(&|e| e.rest_length),
             inv_rest_length: lanes(&|e| 1.0 / e.rest_length),
             rest_length_30: lanes(&|e| e.rest_length / 30.0),
+            rest_slopes: [0, 1, 2, 3].map(|i| lanes(&|e| e.rest_slopes[i])),
+            rest_arch: lanes(&|e| e.rest_arch),
             axial_tension: lanes(&|e| e.axial_stiffness_tension),
             axial_compression: lanes(&|e| e.axial_stiffness_compression),
             bending_1: lanes(&|e| e.bending_stiffness[0] / e.rest_length),
@@ -287,7 +293,13 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
         // (2a² − ab + 2b²)/30
         (a + a).mul_add(a, b.mul_add(b + b, -(a * b))) * (1.0 / 30.0)
     };
-    let arch = plane(theta_a.y, theta_b.y) + plane(theta_a.z, theta_b.z);
+    // the slopes against the chord: from the rest shape, plus its own
+    let [s_ay, s_az, s_by, s_bz] = b.rest_slopes;
+    let (slope_a, slope_b) = (
+        V4::new(theta_a.x, theta_a.y + s_ay, theta_a.z + s_az),
+        V4::new(theta_b.x, theta_b.y + s_by, theta_b.z + s_bz),
+    );
+    let arch = plane(slope_a.y, slope_b.y) + plane(slope_a.z, slope_b.z) - b.rest_arch;
     let l0 = b.rest_length;
     let strain = (length - l0).mul_add(b.inv_rest_length, arch);
     let (va, vb) = ends(c.v, b.chain, na, nb, gather3);
@@ -318,13 +330,13 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
     };
     let ma_local = V4::new(
         -torque,
-        bend(ta.y, tb.y, theta_a.y, theta_b.y, b.bending_1),
-        bend(ta.z, tb.z, theta_a.z, theta_b.z, b.bending_2),
+        bend(ta.y, tb.y, slope_a.y, slope_b.y, b.bending_1),
+        bend(ta.z, tb.z, slope_a.z, slope_b.z, b.bending_2),
     );
     let mb_local = V4::new(
         torque,
-        bend(tb.y, ta.y, theta_b.y, theta_a.y, b.bending_1),
-        bend(tb.z, ta.z, theta_b.z, theta_a.z, b.bending_2),
+        bend(tb.y, ta.y, slope_b.y, slope_a.y, b.bending_1),
+        bend(tb.z, ta.z, slope_b.z, slope_a.z, b.bending_2),
     );
 
     // moments conjugate to spatial rotations, global axes; nodal loads

@@ -274,7 +274,22 @@ fn rows<F: Lane4>(
     let rot = rotation_matrix(frame);
 
     // strain (chord and shallow arch) and the deformation rates
-    let arch = plane(theta_a.y, theta_b.y) + plane(theta_a.z, theta_b.z);
+    // the slopes against the chord: from the rest shape, plus its own
+    let slope = |i: usize| c4::<F>(|k| e[k].rest_slopes[i]);
+    let (slope_a, slope_b) = (
+        V3::new(
+            theta_a.x,
+            theta_a.y.add4(slope(0)),
+            theta_a.z.add4(slope(1)),
+        ),
+        V3::new(
+            theta_b.x,
+            theta_b.y.add4(slope(2)),
+            theta_b.z.add4(slope(3)),
+        ),
+    );
+    let arch = (plane(slope_a.y, slope_b.y) + plane(slope_a.z, slope_b.z))
+        .add4(-c4::<F>(|k| e[k].rest_arch));
     let strain = (length.add4(-l0)).mul4(inv_l0) + arch;
     let dv = seeded_vector(dv0, 0, rate);
     let wa = seeded_vector(wa0, 3, rate);
@@ -302,13 +317,13 @@ fn rows<F: Lane4>(
     // (E I/l₀)(4 tₐ + 2 t_b) + (N l₀/30)(4 θₐ − θ_b), and a ↔ b
     let ma_local = V3::new(
         -torque,
-        bend(ta.y, tb.y, theta_a.y, theta_b.y, k1, k_arch),
-        bend(ta.z, tb.z, theta_a.z, theta_b.z, k2, k_arch),
+        bend(ta.y, tb.y, slope_a.y, slope_b.y, k1, k_arch),
+        bend(ta.z, tb.z, slope_a.z, slope_b.z, k2, k_arch),
     );
     let mb_local = V3::new(
         torque,
-        bend(tb.y, ta.y, theta_b.y, theta_a.y, k1, k_arch),
-        bend(tb.z, ta.z, theta_b.z, theta_a.z, k2, k_arch),
+        bend(tb.y, ta.y, slope_b.y, slope_a.y, k1, k_arch),
+        bend(tb.z, ta.z, slope_b.z, slope_a.z, k2, k_arch),
     );
 
     // moments conjugate to spatial rotation increments, global axes; forces from them
