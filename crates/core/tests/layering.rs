@@ -53,6 +53,7 @@ const DATA_EXCEPTIONS: &[(&str, &[&str])] = &[
             "parallel::available_cores",
             "rod::element::BeamElement",
             "rod::element_block::PackedElements",
+            "rod::frames::curve_frames",
             "rod::frames::node_frames",
             "rod::mass::half_element_mass",
             "rod::inelastic::InelasticElements",
