@@ -119,6 +119,16 @@ impl Runner {
                     wait: true,
                     ..
                 } => *duration,
+                Action::MovePart {
+                    duration,
+                    wait: true,
+                    ..
+                }
+                | Action::RotatePart {
+                    duration,
+                    wait: true,
+                    ..
+                } => *duration,
                 Action::Run { duration } => *duration,
                 Action::Settle { max_duration, .. } => *max_duration,
                 _ => 0.0,
@@ -358,6 +368,46 @@ fn apply(
                 hand: *hand as HandNumber,
             },
         )?,
+        Action::MovePart {
+            part,
+            by,
+            to,
+            duration,
+            wait,
+        } => {
+            let input = Input::MovePart {
+                part: part.clone(),
+                by: *by,
+                to: *to,
+                duration: *duration,
+            };
+            give(cell, index, input)?;
+            if *wait {
+                advance_until_done(cell, *duration, obs)?;
+            }
+        }
+        Action::RotatePart {
+            part,
+            axis,
+            point,
+            by,
+            to,
+            duration,
+            wait,
+        } => {
+            let input = Input::RotatePart {
+                part: part.clone(),
+                axis: *axis,
+                point: *point,
+                by: *by,
+                to: *to,
+                duration: *duration,
+            };
+            give(cell, index, input)?;
+            if *wait {
+                advance_until_done(cell, *duration, obs)?;
+            }
+        }
         Action::Run { duration } => advance(cell, *duration, obs)?,
         Action::Settle {
             kinetic_energy_threshold,

@@ -70,6 +70,8 @@ pub enum Command {
     Reset,
     /// Judge hand loads with this profile from now on.
     SetErgonomics(ErgonomicProfile),
+    /// Move or turn a part ([`Input::MovePart`], [`Input::RotatePart`]).
+    MovePart(Input),
     /// Send back the input log so far (for a report): its sealed chunks shared, only the
     /// open chunk copied, so the simulation thread never copies the whole log.
     Log(mpsc::Sender<(LogShare, u64)>),
@@ -605,6 +607,7 @@ impl Sim {
                 self.rebase();
             }
             Command::SetErgonomics(profile) => self.give(Input::SetErgonomics { profile }),
+            Command::MovePart(input) => self.give(input),
             Command::Log(reply) => {
                 let _ = reply.send((self.cell.log().share(), self.cell.tick()));
             }

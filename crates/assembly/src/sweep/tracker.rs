@@ -83,7 +83,7 @@ impl MotionSweep {
             let pose = model
                 .kinematics
                 .moves(p)
-                .then(|| model.kinematics.placement_at(p, t).pose);
+                .then(|| model.kinematics.placement_at(p, t, &state.part_moves).pose);
             let (gap, _) = hose_part_gap(
                 &model.environment,
                 p,
