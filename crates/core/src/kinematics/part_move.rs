@@ -46,6 +46,12 @@ impl PartMove {
     /// The pose and twist at time `t` (the start pose before the move, the end pose after).
     pub fn placement_at(&self, t: f64) -> Placement {
         let tau = (t - self.start_time) / self.duration;
+        if tau <= 0.0 {
+            return Placement {
+                pose: self.start,
+                twist: Twist::default(),
+            };
+        }
         let (s, ds) = smooth_step(tau);
         let rate = if (0.0..1.0).contains(&tau) {
             ds / self.duration
