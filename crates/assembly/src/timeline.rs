@@ -99,8 +99,8 @@ pub enum Action {
     },
     /// Hand `hand` lets go of its beam.
     ReleaseHand { hand: usize },
-    /// Moves the part called `part` by the offset `by` \[m\] or to the offset `to` from
-    /// where the scene placed it, over `duration` seconds with a smooth start and stop
+    /// Moves the part called `part` by the offset `by` \[m\] or so that its centre is
+    /// `to` from where the scene placed it, over `duration` seconds with a smooth start and stop
     /// ([`crate::Input::MovePart`]); `wait` as for `Move`.
     MovePart {
         part: String,

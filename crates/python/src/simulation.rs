@@ -695,8 +695,8 @@ impl Simulation {
     }
 
     /// Moves the part called ``part`` over ``duration`` seconds with a smooth start and
-    /// stop: to the offset ``to`` \[m\] from where the scene placed it, or ``by`` an
-    /// offset from where it is now — in its parent's axes for a part with a parent.
+    /// stop: so that its centre (its bounding box's) is ``to`` \[m\] from where the scene
+    /// placed it, or ``by`` an offset from where it is now — in its parent's axes for a part with a parent.
     /// Everything mounted or clipped on it goes with it. The part must be movable
     /// (``movable = true`` in the scene, or moved by its timeline) and have no
     /// ``motion``. With ``wait`` the simulation runs until the move ends.

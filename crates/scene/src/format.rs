@@ -1052,8 +1052,8 @@ pub struct MovePartEntry {
     /// Offset from where the part is when the action starts (length unit; the parent's
     /// axes for a part with a parent). Excludes `to`.
     pub by: Option<Vec3>,
-    /// Offset from where the scene placed the part (length unit): `[0, 0, 0]` brings it
-    /// back. Excludes `by`.
+    /// Offset of the part's centre (its bounding box's) from where the scene placed it
+    /// (length unit): `[0, 0, 0]` brings the centre back. Excludes `by`.
     pub to: Option<Vec3>,
     /// Duration of the move (s), > 0.
     pub duration_s: f64,

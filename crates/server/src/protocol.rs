@@ -33,8 +33,8 @@ pub enum ClientMessage {
     /// Let go.
     Release { hand_id: HandId },
     /// Move the part called `part` over `duration_s` seconds (smooth start and stop):
-    /// by the offset `by` \[m\] from where it is, or to the offset `to` \[m\] from where
-    /// the scene placed it (one of the two). The part must be movable (`movable = true`
+    /// by the offset `by` \[m\] from where it is, or so that its centre (its bounding
+    /// box's) is `to` \[m\] from where the scene placed it (one of the two). The part must be movable (`movable = true`
     /// in the scene) and have no scripted motion; a refusal comes back as the
     /// snapshot's `notice`.
     MovePart {

@@ -88,9 +88,9 @@ pub enum Input {
     /// The hand lets go.
     ReleaseHand { hand: HandNumber },
     /// Moves the part called `part` over `duration` seconds from now (smooth start and
-    /// stop): by the offset `by` \[m\], or to the translation `to` \[m\] from where the
-    /// scene placed it — one of the two — in its parent's reference axes (the world's
-    /// for a part without a parent). Refused for a part with a scripted motion or one
+    /// stop): by the offset `by` \[m\], or so that its centre (its bounding box's) is `to`
+    /// \[m\] from where the scene placed it — one of the two — in its parent's reference
+    /// axes (the world's for a part without a parent). Refused for a part with a scripted motion or one
     /// the scene built standing still ([`super::part_inputs`]).
     MovePart {
         part: String,

@@ -37,6 +37,11 @@ pub fn part_named(model: &Model, name: &str, what: &str) -> Result<usize, Refusa
     })
 }
 
+/// The centre of part `k`'s bounding box where the scene placed it.
+fn centre(model: &Model, k: usize) -> DVec3 {
+    model.environment.parts[k].mesh.local_aabb().center()
+}
+
 /// The part called `name`, if inputs may move it.
 fn movable_part(model: &Model, name: &str, what: &str) -> Result<usize, Refusal> {
     let k = part_named(model, name, what)?;
@@ -104,8 +109,9 @@ fn start(model: &Model, state: &mut State, k: usize, last: PartMove, turned: Tur
     state.sleep.wake_all(model);
 }
 
-/// `move_part`: shifts part `name` by `by`, or to the translation `to` from where the
-/// scene placed it, over `duration` \[s\].
+/// `move_part`: shifts part `name` by `by`, or so that its centre (its bounding box's,
+/// where the scene placed it) is `to` from where the scene placed that centre, over
+/// `duration` \[s\].
 pub fn move_part(
     model: &Model,
     state: &mut State,
@@ -127,7 +133,8 @@ pub fn move_part(
     let duration = checked_duration(duration, WHAT)?;
     let (pose, turned) = now(state, k);
     let shift = if absolute {
-        amount - pose.translation
+        let centre = centre(model, k);
+        centre + amount - pose.apply(centre)
     } else {
         amount
     };
@@ -170,7 +177,7 @@ pub fn rotate_part(
     let axis = axis.normalize();
     let point = match point {
         Some(p) => finite_vector(p, &format!("{WHAT}: the point"))?,
-        None => model.environment.parts[k].mesh.local_aabb().center(),
+        None => centre(model, k),
     };
     if point.length() > MAX_PART_SHIFT {
         return Err(Refusal::Invalid(format!(
