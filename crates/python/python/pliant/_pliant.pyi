@@ -240,6 +240,28 @@ class Simulation:
     ) -> None: ...
     def aim_hand(self, hand: int, position: Sequence[float], orientation: Optional[Sequence[float]] = None) -> None: ...
     def release(self, hand: int) -> None: ...
+    # parts moved by the script (movable parts without a `motion`)
+    def move_part(
+        self,
+        part: str,
+        to: Optional[Sequence[float]] = None,
+        *,
+        by: Optional[Sequence[float]] = None,
+        duration: float = 1.0,
+        wait: bool = True,
+    ) -> None: ...
+    def rotate_part(
+        self,
+        part: str,
+        axis: Sequence[float],
+        *,
+        by: Optional[float] = None,
+        to: Optional[float] = None,
+        point: Optional[Sequence[float]] = None,
+        duration: float = 1.0,
+        wait: bool = True,
+    ) -> None: ...
+    def part_pose(self, part: str) -> Tuple[FloatArray, FloatArray]: ...
     @property
     def hands(self) -> List[int]: ...
     def hand_pose(self, hand: int) -> Tuple[FloatArray, FloatArray]: ...
