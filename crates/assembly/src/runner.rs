@@ -206,6 +206,29 @@ fn give(cell: &mut Workcell, index: usize, input: Input) -> Result<(), Stop> {
         .map_err(|r| Stop::Refused(index, name, r))
 }
 
+/// Gives a motion input (a drive, a hand's or a part's move) and, with `wait`, steps
+/// until it has arrived.
+fn give_and_wait(
+    cell: &mut Workcell,
+    index: usize,
+    input: Input,
+    wait: bool,
+    obs: &mut dyn Observer,
+) -> Result<(), Stop> {
+    let duration = match &input {
+        Input::Drive { duration, .. }
+        | Input::MoveHand { duration, .. }
+        | Input::MovePart { duration, .. }
+        | Input::RotatePart { duration, .. } => *duration,
+        _ => 0.0,
+    };
+    give(cell, index, input)?;
+    if wait {
+        advance_until_done(cell, duration, obs)?;
+    }
+    Ok(())
+}
+
 /// Absolute waypoints of a path from `start`.
 fn waypoints(path: &Option<MovePath>, start: DVec3) -> Vec<DVec3> {
     match path {
@@ -265,10 +288,7 @@ fn apply(
                 rotation: rotation_vector(rotation),
                 duration: *duration,
             };
-            give(cell, index, input)?;
-            if *wait {
-                advance_until_done(cell, *duration, obs)?;
-            }
+            give_and_wait(cell, index, input, *wait, obs)?;
         }
         Action::Load {
             node,
@@ -343,10 +363,7 @@ fn apply(
                 rotation: rotation_vector(rotation),
                 duration,
             };
-            give(cell, index, input)?;
-            if *wait {
-                advance_until_done(cell, duration, obs)?;
-            }
+            give_and_wait(cell, index, input, *wait, obs)?;
         }
         Action::AimHand {
             hand,
@@ -381,10 +398,7 @@ fn apply(
                 to: *to,
                 duration: *duration,
             };
-            give(cell, index, input)?;
-            if *wait {
-                advance_until_done(cell, *duration, obs)?;
-            }
+            give_and_wait(cell, index, input, *wait, obs)?;
         }
         Action::RotatePart {
             part,
@@ -403,10 +417,7 @@ fn apply(
                 to: *to,
                 duration: *duration,
             };
-            give(cell, index, input)?;
-            if *wait {
-                advance_until_done(cell, *duration, obs)?;
-            }
+            give_and_wait(cell, index, input, *wait, obs)?;
         }
         Action::Run { duration } => advance(cell, *duration, obs)?,
         Action::Settle {

@@ -166,6 +166,22 @@ impl Simulation {
         self.engine.cell().steps_in(duration)
     }
 
+    /// Gives a part's move and, with `wait`, runs until it has ended.
+    fn give_part_move(
+        &mut self,
+        py: Python<'_>,
+        input: Input,
+        duration: f64,
+        wait: bool,
+    ) -> PyResult<()> {
+        self.engine.move_part(input).map_err(refused)?;
+        if wait {
+            let n = self.steps_until_done(duration);
+            self.advance(py, n)?;
+        }
+        Ok(())
+    }
+
     /// Steps until a motion of `duration` starting now has ended (rounded up).
     fn steps_until_done(&self, duration: f64) -> u64 {
         self.engine.cell().steps_until_done(duration)
@@ -716,12 +732,7 @@ impl Simulation {
             to: to.map(|v| vec3(v, "to")).transpose()?,
             duration,
         };
-        self.engine.move_part(input).map_err(refused)?;
-        if wait {
-            let n = self.steps_until_done(duration);
-            self.advance(py, n)?;
-        }
-        Ok(())
+        self.give_part_move(py, input, duration, wait)
     }
 
     /// Turns the part called ``part`` about ``axis`` through ``point`` \[m\] (a point of
@@ -751,12 +762,7 @@ impl Simulation {
             to,
             duration,
         };
-        self.engine.move_part(input).map_err(refused)?;
-        if wait {
-            let n = self.steps_until_done(duration);
-            self.advance(py, n)?;
-        }
-        Ok(())
+        self.give_part_move(py, input, duration, wait)
     }
 
     /// The part's pose now: where its reference origin went \[m\] (3,) and its rotation
