@@ -211,6 +211,28 @@ duration_s = 0.2
             &v[3..6]
         );
     }
+    // swept against the angle the timeline turns the door by (without the lift)
+    let lift = scene.find("[[timeline]]\naction = \"move_part\"").unwrap();
+    let swept = format!("{}\n[sweep]\npart = \"door\"\n", &scene[..lift]);
+    std::fs::write(&file, swept).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_pliant"))
+        .args(["run", "--quiet"])
+        .arg(&file)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("motion.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    assert_eq!(header[1], "angle_deg", "{header:?}");
+    // the quintic smooth-step of the turn, 45° · s(t / 0.5 s), at every checked instant
+    for line in csv.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let tau = (v[0] / 0.5).clamp(0.0, 1.0);
+        let s = tau.powi(3) * (10.0 - 15.0 * tau + 6.0 * tau * tau);
+        assert!((v[1] - 45.0 * s).abs() < 1e-5, "at {} s: {}°", v[0], v[1]);
+    }
     // a part the scene has not
     std::fs::write(
         &file,

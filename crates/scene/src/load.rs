@@ -462,7 +462,12 @@ fn build(
     let (stubs, connectors, clips) = build_fasteners(&file, &hoses, &part_names)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
     let mut checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
-    checks.sweep = crate::sweep::build_sweep(file.sweep.as_ref(), &parts.specs, file.length_unit)?;
+    checks.sweep = crate::sweep::build_sweep(
+        file.sweep.as_ref(),
+        &parts.specs,
+        &timeline,
+        file.length_unit,
+    )?;
     let worker = crate::worker::build_worker(
         file.worker.as_ref(),
         file.length_unit,
