@@ -850,7 +850,10 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
             };
             Command::MovePart(Input::RotatePart {
                 part,
-                axis: point(axis)?,
+                axis: finite_number(axis[0], "axis")
+                    .and(finite_number(axis[1], "axis"))
+                    .and(finite_number(axis[2], "axis"))
+                    .map(|_| DVec3::from_array(axis))?,
                 point: pivot.map(point).transpose()?,
                 by: angle(by_deg, "by_deg")?,
                 to: angle(to_deg, "to_deg")?,
