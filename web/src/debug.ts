@@ -67,6 +67,14 @@ export function installDebugHandle(src: DebugSources): void {
     cycleXrGrip(i: number): Grip | null { return src.xr.cycleGrip(i); },
     /** Tolerance envelopes shown: file names and mesh counts, visibility. */
     get envelopes() { return { loaded: [...src.envelopes.loaded], visible: src.envelopes.visible, meshes: src.envelopes.group.children.length }; },
+    /** Each part's drawn transform (world frame): where its reference origin went and
+     *  its rotation [x, y, z, w] — the part's pose. */
+    partPoses(): { translation: Vec3; rotation: [number, number, number, number] }[] {
+      return src.stage.partMeshes().map((m) => ({
+        translation: [m.position.x, m.position.y, m.position.z],
+        rotation: [m.quaternion.x, m.quaternion.y, m.quaternion.z, m.quaternion.w],
+      }));
+    },
     /** Node positions of hose `h` as drawn (world frame). */
     hoseNodes(h: number): Vec3[] {
       const t = src.tubes()[h];

@@ -231,6 +231,7 @@ async function main(): Promise<void> {
   const labels = new ForceLabels(stage);
 
   const apply = (s: Snapshot) => {
+    stage.setPartPoses(s.part_poses ?? []);
     colouring.axialScale = growAxialScale(colouring.axialScale, s.hoses);
     const range = legendRange(colouring.mode, shownWelcome?.session.twist_limit, colouring.axialScale);
     legend.show(range);

@@ -91,6 +91,9 @@ export interface Snapshot {
   epoch: number;
   /** Per hose: node positions, the hand-load colour value and per-beam fields (SI). */
   hoses: (HoseFields & { positions: Vec3[]; asleep?: boolean })[];
+  /** The parts that move (a scripted motion, or moved by `move_part` / `rotate_part`):
+   * each part's mesh, sent where the scene placed it, is drawn at rotation · x + translation. */
+  part_poses?: PartPose[];
   hands: HandSnapshot[];
   fasteners: FastenerSnapshot[];
   ergonomics?: ErgonomicProfile;
@@ -99,6 +102,8 @@ export interface Snapshot {
   checks?: CheckViolation[];
   notice?: string;
 }
+/** Where a moving part is: `part` indexes the welcome's `parts`; rotation is [x, y, z, w]. */
+export interface PartPose { part: number; translation: Vec3; rotation: [number, number, number, number] }
 export interface CheckViolation {
   check: 'bend_radius' | 'twist' | 'tension_at_rest' | 'straight_behind_stub';
   hose: number; hose_name: string; arc_length: number; time: number;
@@ -127,6 +132,8 @@ export type ClientMessage =
   | { type: 'grab'; hand_id: number; position: Vec3; grip?: Grip }
   | { type: 'move'; hand_id: number; position: Vec3; orientation?: Quat }
   | { type: 'release'; hand_id: number }
+  | { type: 'move_part'; part: string; by?: Vec3; to?: Vec3; duration_s: number }
+  | { type: 'rotate_part'; part: string; axis: Vec3; point?: Vec3; by_deg?: number; to_deg?: number; duration_s: number }
   | { type: 'pause' }
   | { type: 'resume' }
   | { type: 'step'; n: number }

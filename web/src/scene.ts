@@ -6,7 +6,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { setQuality, surface, type Quality } from './materials';
-import type { FastenerData, SceneData, Vec3 } from './protocol';
+import type { FastenerData, PartPose, SceneData, Vec3 } from './protocol';
 
 const PART_COLOURS = [0xb8b4ac, 0x9aa3ab, 0xc4b59a, 0xa9a9a9, 0xb0a8a0];
 
@@ -203,7 +203,20 @@ export class Stage {
     }
   }
 
-  /** The rigid parts' meshes (for picking surfaces: geometry in the world frame). */
+  /** Draws the moving parts where a snapshot puts them: each part's mesh holds the scene's
+   * placement, so its transform is the part's pose (the others keep the identity). */
+  setPartPoses(poses: readonly PartPose[]): void {
+    const meshes = this.partMeshes();
+    for (const p of poses) {
+      const m = meshes[p.part];
+      if (m === undefined) continue;
+      m.position.set(p.translation[0], p.translation[1], p.translation[2]);
+      m.quaternion.set(p.rotation[0], p.rotation[1], p.rotation[2], p.rotation[3]);
+    }
+  }
+
+  /** The rigid parts' meshes in the welcome's order (for picking surfaces: their world
+   * transforms are the parts' poses). */
   partMeshes(): THREE.Mesh[] {
     return this.content.children.filter((c): c is THREE.Mesh => c.name.startsWith('part:') && (c as THREE.Mesh).isMesh);
   }

@@ -277,14 +277,15 @@ impl Fasteners {
         t_next: f64,
     ) {
         for s in &mut self.stubs {
-            let frame = PartFrame::at(model, s.site.part, state.time);
+            let frame = PartFrame::at(model, state, s.site.part, state.time);
             update_stub(s, state, held, &frame);
         }
         for c in &mut self.clips {
-            let frame = PartFrame::at(model, c.site.part, state.time);
+            let frame = PartFrame::at(model, state, c.site.part, state.time);
             update_clip(c, model, state, held, &frame);
             if frame.moves() {
-                carry_support(c, state, &PartFrame::at(model, c.site.part, t_next));
+                let next = PartFrame::at(model, state, c.site.part, t_next);
+                carry_support(c, state, &next);
             }
         }
     }
@@ -477,7 +478,7 @@ fn drawn_seated(model: &Model, state: &State, site: &ClipSite) -> bool {
     let Some(tolerance) = ClipTolerance::for_clip(spec).checked() else {
         return false;
     };
-    let frame = PartFrame::at(model, site.part, state.time);
+    let frame = PartFrame::at(model, state, site.part, state.time);
     let Some((a, _, _, centre)) = crossing(model, state, spec, site.hose, &frame) else {
         return false;
     };

@@ -10,7 +10,7 @@
 use glam::{DQuat, DVec3};
 use pliant_core::kinematics::{Placement, Pose};
 use pliant_core::loads::{Fix, LoadCase, Mount};
-use pliant_core::Model;
+use pliant_core::{Model, State};
 
 /// Where a fastener's part is and how fast it moves at one instant.
 #[derive(Clone, Copy, Debug, Default)]
@@ -21,13 +21,13 @@ pub struct PartFrame {
 }
 
 impl PartFrame {
-    /// Part `part`'s frame at time `t` (the world's for no part or a part that stands
-    /// still).
-    pub fn at(model: &Model, part: Option<usize>, t: f64) -> PartFrame {
+    /// Part `part`'s frame at time `t`, the parts moved by the state's inputs (the
+    /// world's for no part or a part that stands still).
+    pub fn at(model: &Model, state: &State, part: Option<usize>, t: f64) -> PartFrame {
         match part.filter(|&k| model.kinematics.moves(k)) {
             Some(k) => PartFrame {
                 part: Some(k),
-                placement: model.kinematics.placement_at(k, t),
+                placement: model.kinematics.placement_at(k, t, &state.part_moves),
             },
             None => PartFrame::default(),
         }

@@ -119,6 +119,16 @@ impl Runner {
                     wait: true,
                     ..
                 } => *duration,
+                Action::MovePart {
+                    duration,
+                    wait: true,
+                    ..
+                }
+                | Action::RotatePart {
+                    duration,
+                    wait: true,
+                    ..
+                } => *duration,
                 Action::Run { duration } => *duration,
                 Action::Settle { max_duration, .. } => *max_duration,
                 _ => 0.0,
@@ -196,6 +206,29 @@ fn give(cell: &mut Workcell, index: usize, input: Input) -> Result<(), Stop> {
         .map_err(|r| Stop::Refused(index, name, r))
 }
 
+/// Gives a motion input (a drive, a hand's or a part's move) and, with `wait`, steps
+/// until it has arrived.
+fn give_and_wait(
+    cell: &mut Workcell,
+    index: usize,
+    input: Input,
+    wait: bool,
+    obs: &mut dyn Observer,
+) -> Result<(), Stop> {
+    let duration = match &input {
+        Input::Drive { duration, .. }
+        | Input::MoveHand { duration, .. }
+        | Input::MovePart { duration, .. }
+        | Input::RotatePart { duration, .. } => *duration,
+        _ => 0.0,
+    };
+    give(cell, index, input)?;
+    if wait {
+        advance_until_done(cell, duration, obs)?;
+    }
+    Ok(())
+}
+
 /// Absolute waypoints of a path from `start`.
 fn waypoints(path: &Option<MovePath>, start: DVec3) -> Vec<DVec3> {
     match path {
@@ -255,10 +288,7 @@ fn apply(
                 rotation: rotation_vector(rotation),
                 duration: *duration,
             };
-            give(cell, index, input)?;
-            if *wait {
-                advance_until_done(cell, *duration, obs)?;
-            }
+            give_and_wait(cell, index, input, *wait, obs)?;
         }
         Action::Load {
             node,
@@ -333,10 +363,7 @@ fn apply(
                 rotation: rotation_vector(rotation),
                 duration,
             };
-            give(cell, index, input)?;
-            if *wait {
-                advance_until_done(cell, duration, obs)?;
-            }
+            give_and_wait(cell, index, input, *wait, obs)?;
         }
         Action::AimHand {
             hand,
@@ -358,6 +385,40 @@ fn apply(
                 hand: *hand as HandNumber,
             },
         )?,
+        Action::MovePart {
+            part,
+            by,
+            to,
+            duration,
+            wait,
+        } => {
+            let input = Input::MovePart {
+                part: part.clone(),
+                by: *by,
+                to: *to,
+                duration: *duration,
+            };
+            give_and_wait(cell, index, input, *wait, obs)?;
+        }
+        Action::RotatePart {
+            part,
+            axis,
+            point,
+            by,
+            to,
+            duration,
+            wait,
+        } => {
+            let input = Input::RotatePart {
+                part: part.clone(),
+                axis: *axis,
+                point: *point,
+                by: *by,
+                to: *to,
+                duration: *duration,
+            };
+            give_and_wait(cell, index, input, *wait, obs)?;
+        }
         Action::Run { duration } => advance(cell, *duration, obs)?,
         Action::Settle {
             kinetic_energy_threshold,

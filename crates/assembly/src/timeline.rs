@@ -99,6 +99,28 @@ pub enum Action {
     },
     /// Hand `hand` lets go of its beam.
     ReleaseHand { hand: usize },
+    /// Moves the part called `part` by the offset `by` \[m\] or so that its centre is
+    /// `to` from where the scene placed it, over `duration` seconds with a smooth start and stop
+    /// ([`crate::Input::MovePart`]); `wait` as for `Move`.
+    MovePart {
+        part: String,
+        by: Option<DVec3>,
+        to: Option<DVec3>,
+        duration: f64,
+        wait: bool,
+    },
+    /// Turns the part called `part` about `axis` through `point` by the angle `by` \[rad\]
+    /// or to the angle `to` from where the scene placed it, over `duration` seconds
+    /// ([`crate::Input::RotatePart`]); `wait` as for `Move`.
+    RotatePart {
+        part: String,
+        axis: DVec3,
+        point: Option<DVec3>,
+        by: Option<f64>,
+        to: Option<f64>,
+        duration: f64,
+        wait: bool,
+    },
     /// Simulate for `duration` seconds.
     Run { duration: f64 },
     /// Simulate until the total kinetic energy is below `kinetic_energy_threshold` \[J\]

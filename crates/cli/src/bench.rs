@@ -407,6 +407,7 @@ pub fn bumpy_floor(quads: usize) -> RigidPartSpec {
         friction_sliding: 0.4,
         motion: None,
         parent: None,
+        movable: false,
     }
 }
 
@@ -1126,7 +1127,9 @@ mod tests {
             "the hoses must start deformed"
         );
         for (_, case) in state.loads.iter() {
-            let (x, q) = case.prescribed_pose(0.0, &model.kinematics).unwrap();
+            let (x, q) = case
+                .prescribed_pose(0.0, &model.kinematics, &Default::default())
+                .unwrap();
             assert_eq!(x, state.x[case.node()]);
             assert_eq!(q, state.q[case.node()]);
         }

@@ -160,6 +160,7 @@ fn part(name: &str) -> RigidPartSpec {
         friction_sliding: 0.4,
         motion: None,
         parent: None,
+        movable: false,
     }
 }
 

@@ -69,6 +69,7 @@ fn block(top: f64) -> RigidPartSpec {
         friction_sliding: 0.4,
         motion: None,
         parent: None,
+        movable: false,
     }
 }
 

@@ -369,6 +369,7 @@ fn cylinder(radius: f64, length: f64, segments: u32) -> RigidPartSpec {
         friction_sliding: DROP_FRICTION,
         motion: None,
         parent: None,
+        movable: false,
     }
 }
 

@@ -129,3 +129,127 @@ fn the_rocking_engine_example_reports_a_cycle_of_phases_and_the_fan_clearance() 
         "{upper_bend}"
     );
 }
+
+/// A door opened by the timeline (`rotate_part`, then `move_part`): `pliant run` carries
+/// the hose end mounted on it to the closed form of the turn, and a timeline naming a
+/// part the scene has not is refused with the field and the parts' names.
+#[test]
+fn a_timeline_that_turns_a_part_runs_and_a_wrong_part_is_named() {
+    let scene = r#"
+format = "pliant-scene"
+version = 1
+length_unit = "mm"
+
+[simulation]
+gravity = [0, 0, 0]
+solver = "static"
+
+[[hoses]]
+name = "h"
+material = "hose3"
+start = [0, 0, 0]
+path = [{ line = { to = [300, 0, 0] } }]
+
+[[parts]]
+name = "door"
+box = { size = [20, 20, 20] }
+position = [320, 0, -40]
+
+[[timeline]]
+action = "fix"
+hose = "h"
+node = 0
+
+[[timeline]]
+action = "fix"
+hose = "h"
+node = -1
+part = "door"
+
+[[timeline]]
+action = "rotate_part"
+part = "door"
+axis = [0, 0, 1]
+point = [500, 0, 0]
+by_deg = 45
+duration_s = 0.5
+
+[[timeline]]
+action = "move_part"
+part = "door"
+to = [0, 0, 20]
+duration_s = 0.2
+"#;
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("door.toml");
+    std::fs::write(&file, scene).unwrap();
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_pliant"))
+        .args(["run", "--quiet"])
+        .arg(&file)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // the last recorded pose of the hose's last node
+    let nodes = std::fs::read_to_string(out.join("nodes.csv")).unwrap();
+    let last = nodes
+        .lines()
+        .filter(|l| l.split(',').nth(2) == Some("6"))
+        .last()
+        .unwrap();
+    let v: Vec<f64> = last.split(',').map(|x| x.parse().unwrap()).collect();
+    // turned by 45° about the pin, then the door's centre c = (0.32, 0, −0.04) put 20 mm
+    // above where the scene placed it: the end at c + (0, 0, 0.02) + R (x − c)
+    let (c, s) = (45f64.to_radians().cos(), 45f64.to_radians().sin());
+    let expected = [0.32 - 0.02 * c, -0.02 * s, 0.02];
+    for k in 0..3 {
+        assert!(
+            (v[3 + k] - expected[k]).abs() < 1e-9,
+            "end at {:?}, expected {expected:?}",
+            &v[3..6]
+        );
+    }
+    // swept against the angle the timeline turns the door by (without the lift)
+    let lift = scene.find("[[timeline]]\naction = \"move_part\"").unwrap();
+    let swept = format!("{}\n[sweep]\npart = \"door\"\n", &scene[..lift]);
+    std::fs::write(&file, swept).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_pliant"))
+        .args(["run", "--quiet"])
+        .arg(&file)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("motion.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    assert_eq!(header[1], "angle_deg", "{header:?}");
+    // the quintic smooth-step of the turn, 45° · s(t / 0.5 s), at every checked instant
+    for line in csv.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let tau = (v[0] / 0.5).clamp(0.0, 1.0);
+        let s = tau.powi(3) * (10.0 - 15.0 * tau + 6.0 * tau * tau);
+        assert!((v[1] - 45.0 * s).abs() < 1e-5, "at {} s: {}°", v[0], v[1]);
+    }
+    // a part the scene has not
+    std::fs::write(
+        &file,
+        scene.replace("part = \"door\"\naxis", "part = \"lid\"\naxis"),
+    )
+    .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_pliant"))
+        .args(["run", "--quiet"])
+        .arg(&file)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        said.contains("timeline[2].part") && said.contains("parts are: door"),
+        "{said}"
+    );
+}

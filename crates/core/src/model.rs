@@ -503,7 +503,8 @@ fn check_settings(s: &SimSettings) -> Result<(), ModelError> {
 fn part_kinematics(parts: &[RigidPartSpec]) -> Result<PartKinematics, String> {
     let motions = parts.iter().map(|p| p.motion.clone()).collect();
     let parents = parts.iter().map(|p| p.parent).collect();
-    PartKinematics::new(motions, parents).map_err(|e| {
+    let movable = parts.iter().map(|p| p.movable).collect();
+    PartKinematics::with_movable(motions, parents, movable).map_err(|e| {
         // "part k: …" → the part's name
         match e.split_once(':').and_then(|(head, rest)| {
             let k: usize = head.strip_prefix("part ")?.parse().ok()?;

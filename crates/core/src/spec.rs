@@ -151,6 +151,10 @@ pub struct RigidPartSpec {
     /// The part (index into the world's parts) this one is carried by.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub parent: Option<usize>,
+    /// Whether inputs may move the part ([`crate::kinematics::PartMoves`]): contact
+    /// then treats it as a moving part from the start.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub movable: bool,
 }
 
 /// A whole world to simulate.

@@ -63,6 +63,8 @@ pub struct State {
     pub inelastic_history: Vec<f64>,
     /// When `inelastic_history` was committed \[s\].
     pub inelastic_time: f64,
+    /// The parts inputs moved, and how ([`crate::kinematics::PartMoves`]).
+    pub part_moves: crate::kinematics::PartMoves,
 }
 
 impl State {
@@ -101,6 +103,7 @@ impl State {
             implicit: ImplicitHistory::default(),
             inelastic_history: vec![0.0; model.inelastic.history_len],
             inelastic_time: 0.0,
+            part_moves: Default::default(),
         }
     }
 

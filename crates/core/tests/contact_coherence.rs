@@ -37,6 +37,7 @@ fn bumpy_floor(quads: usize) -> RigidPartSpec {
         friction_sliding: 0.4,
         motion: None,
         parent: None,
+        movable: false,
     }
 }
 
@@ -70,6 +71,7 @@ fn fine_cylinder(r: f64, n: usize) -> RigidPartSpec {
         friction_sliding: 0.5,
         motion: None,
         parent: None,
+        movable: false,
     }
 }
 

@@ -38,7 +38,7 @@ const SOLVERS: &[&str] = &["integrators", "newton", "relax", "health"];
 /// The types of higher layers a data module carries, path by path: the model holds its
 /// built elements, rest frames, masses, stiffened bodies and stable step (kernels) and
 /// its contact environment; the state holds the per-step scratch of contact, loads and
-/// sleeping; a spec names the hose contact rule.
+/// sleeping, and the parts inputs moved; a spec names the hose contact rule.
 const DATA_EXCEPTIONS: &[(&str, &[&str])] = &[
     (
         "spec",
@@ -69,6 +69,7 @@ const DATA_EXCEPTIONS: &[(&str, &[&str])] = &[
             "contact::ContactScratch",
             "contact::HoseContactScratch",
             "contact::friction::FrictionMemory",
+            "kinematics::PartMoves",
             "loads::LoadCases",
             "sleep::Sleep",
             "rod::element::BeamElement",

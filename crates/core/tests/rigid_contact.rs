@@ -49,6 +49,7 @@ fn deep_penetration_is_pushed_out_gently() {
         friction_sliding: 0.4,
         motion: None,
         parent: None,
+        movable: false,
     };
     let model = hose_of_radius_over(r, nodes, floor);
     let mut state = State::at_rest(&model);
@@ -91,6 +92,7 @@ fn a_beam_crossing_an_edge_is_held_there_though_another_edge_is_nearer_its_end()
         friction_sliding: 0.4,
         motion: None,
         parent: None,
+        movable: false,
     };
     let model = hose_of_radius_over(r, vec![a, b], triangle);
     let mut state = State::at_rest(&model);

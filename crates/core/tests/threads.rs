@@ -61,6 +61,7 @@ fn world(floor: bool) -> WorldSpec {
             friction_sliding: 0.4,
             motion: None,
             parent: None,
+            movable: false,
         }]
     } else {
         Vec::new()

@@ -263,6 +263,22 @@ impl Engine {
         .map(|_| ())
     }
 
+    /// Moves or turns a part ([`Input::MovePart`], [`Input::RotatePart`]).
+    pub fn move_part(&mut self, input: Input) -> Result<(), Refusal> {
+        self.give(input).map(|_| ())
+    }
+
+    /// Part `part`'s pose now (identity for a part that stands still).
+    pub fn part_pose(&self, part: &str) -> Result<pliant_core::kinematics::Pose, Refusal> {
+        let k = pliant_assembly::workcell::part_inputs::part_named(self.model(), part, "part")?;
+        let state = self.state();
+        Ok(self
+            .model()
+            .kinematics
+            .placement_at(k, state.time, &state.part_moves)
+            .pose)
+    }
+
     /// Hand `hand` heads for `position` (and `orientation`) at bounded speed and
     /// acceleration, as a live hand does.
     pub fn aim_hand(

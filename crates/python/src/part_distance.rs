@@ -108,6 +108,7 @@ impl Shape {
             friction_sliding: 0.0,
             motion: None,
             parent: None,
+            movable: false,
         };
         let env = RigidEnvironment::build(&[spec])?;
         Ok(Shape::Mesh { env, lo, hi })

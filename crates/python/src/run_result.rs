@@ -156,6 +156,35 @@ pub fn run_timeline(
 
 #[pymethods]
 impl RunResult {
+    /// The range-of-motion table of a scene with a ``[sweep]`` (docs/scene-format.md):
+    /// the columns of ``motion.csv`` as ``pliant run`` writes it — ``time_s``, the motion
+    /// coordinate (``angle_deg``, ``travel_mm``, ``phase_deg`` or ``time_s``), per hose its
+    /// smallest bend radius, its ratio to the minimum, largest twist and axial force, per
+    /// hose and watched part the clearance, the largest fixing force — each a numpy array
+    /// with one value per checked instant; ``None`` without a sweep.
+    fn motion<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(sweep) = &self.run.checks.sweep else {
+            return Ok(None);
+        };
+        let csv = sweep.csv();
+        let mut lines = csv.lines();
+        let Some(head) = lines.next() else {
+            return Ok(None);
+        };
+        let names: Vec<&str> = head.split(',').collect();
+        let mut columns = vec![Vec::new(); names.len()];
+        for line in lines {
+            for (column, value) in columns.iter_mut().zip(line.split(',')) {
+                column.push(value.parse::<f64>().unwrap_or(f64::NAN));
+            }
+        }
+        let table = PyDict::new(py);
+        for (name, column) in names.into_iter().zip(columns) {
+            table.set_item(name, scalars(py, column))?;
+        }
+        Ok(Some(table))
+    }
+
     /// True: every hand load within its limit and every stub and clip fitted; False;
     /// None: no hand acted, nothing to judge.
     #[getter]

@@ -16,6 +16,7 @@ use crate::scene::Scene;
 use crate::settle_report::SettleReport;
 use glam::DVec3;
 use numpy::{PyArray1, PyArray2};
+use pliant_assembly::Input;
 use pliant_core::loads::{LoadCase, LoadCaseId};
 use pliant_core::relax::RelaxOptions;
 use pliant_core::State;
@@ -163,6 +164,22 @@ impl Simulation {
     /// Whole steps in `duration` (rounded, as the timeline's `run`).
     fn steps_for(&self, duration: f64) -> u64 {
         self.engine.cell().steps_in(duration)
+    }
+
+    /// Gives a part's move and, with `wait`, runs until it has ended.
+    fn give_part_move(
+        &mut self,
+        py: Python<'_>,
+        input: Input,
+        duration: f64,
+        wait: bool,
+    ) -> PyResult<()> {
+        self.engine.move_part(input).map_err(refused)?;
+        if wait {
+            let n = self.steps_until_done(duration);
+            self.advance(py, n)?;
+        }
+        Ok(())
     }
 
     /// Steps until a motion of `duration` starting now has ended (rounded up).
@@ -691,6 +708,73 @@ impl Simulation {
         self.engine
             .aim_hand(hand, position, orientation)
             .map_err(refused)
+    }
+
+    /// Moves the part called ``part`` over ``duration`` seconds with a smooth start and
+    /// stop: so that its centre (its bounding box's) is ``to`` \[m\] from where the scene
+    /// placed it, or ``by`` an offset from where it is now — in its parent's axes for a part with a parent.
+    /// Everything mounted or clipped on it goes with it. The part must be movable
+    /// (``movable = true`` in the scene, or moved by its timeline) and have no
+    /// ``motion``. With ``wait`` the simulation runs until the move ends.
+    #[pyo3(signature = (part, to = None, *, by = None, duration = 1.0, wait = true))]
+    fn move_part(
+        &mut self,
+        py: Python<'_>,
+        part: &str,
+        to: Option<&Bound<'_, PyAny>>,
+        by: Option<&Bound<'_, PyAny>>,
+        duration: f64,
+        wait: bool,
+    ) -> PyResult<()> {
+        let input = Input::MovePart {
+            part: part.to_string(),
+            by: by.map(|v| vec3(v, "by")).transpose()?,
+            to: to.map(|v| vec3(v, "to")).transpose()?,
+            duration,
+        };
+        self.give_part_move(py, input, duration, wait)
+    }
+
+    /// Turns the part called ``part`` about ``axis`` through ``point`` \[m\] (a point of
+    /// the part where the scene placed it; default: the centre of its bounding box) ``by``
+    /// an angle \[rad\] from where it is, or ``to`` an angle from where the scene placed
+    /// it, over ``duration`` seconds with a smooth start and stop. As :meth:`move_part`
+    /// otherwise; a turn ``to`` an angle needs every earlier turn of the part to be about
+    /// the same axis.
+    #[pyo3(signature = (part, axis, *, by = None, to = None, point = None, duration = 1.0, wait = true))]
+    #[allow(clippy::too_many_arguments)]
+    fn rotate_part(
+        &mut self,
+        py: Python<'_>,
+        part: &str,
+        axis: &Bound<'_, PyAny>,
+        by: Option<f64>,
+        to: Option<f64>,
+        point: Option<&Bound<'_, PyAny>>,
+        duration: f64,
+        wait: bool,
+    ) -> PyResult<()> {
+        let input = Input::RotatePart {
+            part: part.to_string(),
+            axis: vec3(axis, "axis")?,
+            point: point.map(|v| vec3(v, "point")).transpose()?,
+            by,
+            to,
+            duration,
+        };
+        self.give_part_move(py, input, duration, wait)
+    }
+
+    /// The part's pose now: where its reference origin went \[m\] (3,) and its rotation
+    /// (w, x, y, z) (4,), from where the scene placed it (zero and identity for a part
+    /// that has not moved).
+    fn part_pose<'py>(
+        &self,
+        py: Python<'py>,
+        part: &str,
+    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+        let pose = self.engine.part_pose(part).map_err(refused)?;
+        Ok((vector(py, pose.translation), quat_array(py, pose.rotation)))
     }
 
     /// Hand ``hand`` lets go: the beam's nodes move freely again.

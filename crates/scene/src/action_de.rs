@@ -58,6 +58,8 @@ impl<'de> Deserialize<'de> for ActionEntry {
             "move_hand" => ActionEntry::MoveHand(part(table)?),
             "aim_hand" => ActionEntry::AimHand(part(table)?),
             "release_hand" => ActionEntry::ReleaseHand(part(table)?),
+            "move_part" => ActionEntry::MovePart(part(table)?),
+            "rotate_part" => ActionEntry::RotatePart(part(table)?),
             "run" => ActionEntry::Run(part(table)?),
             "settle" => ActionEntry::Settle(part(table)?),
             other => {

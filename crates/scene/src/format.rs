@@ -716,6 +716,10 @@ pub struct PartEntry {
     /// The name of the part this one moves with (a door on a body): its `motion`, if
     /// any, is carried by the parent's. Default: none.
     pub parent: Option<String>,
+    /// Whether a live client or a script may move the part (`move_part`, `rotate_part`):
+    /// contact then treats it as a moving part from the start. A part the timeline moves
+    /// is movable without it. Not with `motion`. Default false.
+    pub movable: Option<bool>,
 }
 
 /// `motion = { kind = "hinge" | "slide" | "periodic" | "path", … }`: the fields each kind
@@ -925,6 +929,11 @@ pub enum ActionEntry {
     AimHand(AimHandEntry),
     /// A hand lets go of its beam.
     ReleaseHand(HandEntry),
+    /// Move a part (shift it by or to an offset) over a duration, smooth start and stop.
+    MovePart(MovePartEntry),
+    /// Turn a part about an axis (by or to an angle) over a duration, smooth start and
+    /// stop.
+    RotatePart(RotatePartEntry),
     /// Simulate for a while.
     Run(RunEntry),
     /// Simulate until the hoses come to rest.
@@ -932,7 +941,7 @@ pub enum ActionEntry {
 }
 
 /// The names of the `action` values, in the order of [`ActionEntry`].
-pub const ACTION_NAMES: [&str; 13] = [
+pub const ACTION_NAMES: [&str; 15] = [
     "fix",
     "mount",
     "move",
@@ -944,6 +953,8 @@ pub const ACTION_NAMES: [&str; 13] = [
     "move_hand",
     "aim_hand",
     "release_hand",
+    "move_part",
+    "rotate_part",
     "run",
     "settle",
 ];
@@ -1086,6 +1097,51 @@ pub struct AimHandEntry {
     /// Target orientation as a unit quaternion [w, x, y, z] (global frame); omitted: the
     /// orientation the hand aims at now.
     pub orientation_wxyz: Option<[f64; 4]>,
+}
+
+/// `move_part`: a part shifted over a duration (smooth start and stop), with everything
+/// mounted on it and the parts it carries. The part must not have a `motion`; a part a
+/// timeline moves is made `movable` by the loader.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MovePartEntry {
+    /// The part's name.
+    pub part: String,
+    /// Offset from where the part is when the action starts (length unit; the parent's
+    /// axes for a part with a parent). Excludes `to`.
+    pub by: Option<Vec3>,
+    /// Offset of the part's centre (its bounding box's) from where the scene placed it
+    /// (length unit): `[0, 0, 0]` brings the centre back. Excludes `by`.
+    pub to: Option<Vec3>,
+    /// Duration of the move (s), > 0.
+    pub duration_s: f64,
+    /// Whether the timeline waits for the move to end. Default true.
+    pub wait: Option<bool>,
+}
+
+/// `rotate_part`: a part turned about an axis over a duration (smooth start and stop).
+/// The part must not have a `motion`.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RotatePartEntry {
+    /// The part's name.
+    pub part: String,
+    /// Rotation axis (any non-zero length; the parent's axes for a part with a parent).
+    pub axis: Vec3,
+    /// A point on the axis, where the scene placed the part (length unit): it is carried
+    /// with the part, as a hinge pin. Default: the centre of the part's bounding box.
+    pub point: Option<Vec3>,
+    /// Angle to turn by from where the part is (degrees, right-hand rule). Excludes
+    /// `to_deg`.
+    pub by_deg: Option<f64>,
+    /// Angle about `axis` from where the scene placed the part (degrees): `0` turns it
+    /// back. Needs every earlier turn of the part to be about the same axis. Excludes
+    /// `by_deg`.
+    pub to_deg: Option<f64>,
+    /// Duration of the turn (s), > 0.
+    pub duration_s: f64,
+    /// Whether the timeline waits for the turn to end. Default true.
+    pub wait: Option<bool>,
 }
 
 /// `release_hand`: a hand lets go.

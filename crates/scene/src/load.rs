@@ -456,12 +456,18 @@ fn build(
         .collect();
     let junctions = crate::junctions::build_junctions(&file.junctions, &hoses, file.length_unit)?;
     let timeline = build_timeline(&file.timeline, &nodes, file.length_unit)?;
-    let parts = build_parts(&file.parts, file.length_unit, &files, &mut budget)?;
+    let mut parts = build_parts(&file.parts, file.length_unit, &files, &mut budget)?;
+    crate::timeline::make_moved_parts_movable(&timeline, &mut parts.specs)?;
     let part_names: Vec<&str> = parts.specs.iter().map(|p| p.name.as_str()).collect();
     let (stubs, connectors, clips) = build_fasteners(&file, &hoses, &part_names)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
     let mut checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
-    checks.sweep = crate::sweep::build_sweep(file.sweep.as_ref(), &parts.specs, file.length_unit)?;
+    checks.sweep = crate::sweep::build_sweep(
+        file.sweep.as_ref(),
+        &parts.specs,
+        &timeline,
+        file.length_unit,
+    )?;
     let worker = crate::worker::build_worker(
         file.worker.as_ref(),
         file.length_unit,

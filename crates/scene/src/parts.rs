@@ -133,9 +133,18 @@ fn place_motions(
                 Some(gave[j].start)
             }
         };
+        let movable = p.movable.unwrap_or(false);
+        if movable && motion.is_some() {
+            return Err(FieldError::new(
+                format!("parts[{i}].movable"),
+                "true",
+                "a part with a `motion` cannot be moved by inputs as well",
+            ));
+        }
         for k in gave[i].clone() {
             built.specs[k].motion = motion.clone();
             built.specs[k].parent = parent;
+            built.specs[k].movable = movable;
         }
     }
     // a cycle of parents: named at the first part in it
@@ -350,6 +359,7 @@ pub fn build_part(
         friction_sliding,
         motion: None,
         parent: None,
+        movable: false,
     };
     Ok((spec, info))
 }

@@ -340,6 +340,46 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
                 t.insert("hand".into(), hand(*h)?);
                 "release_hand"
             }
+            Input::MovePart {
+                part,
+                by,
+                to,
+                duration,
+            } => {
+                t.insert("part".into(), Value::String(part.clone()));
+                if let Some(by) = by {
+                    t.insert("by".into(), point(*by));
+                }
+                if let Some(to) = to {
+                    t.insert("to".into(), point(*to));
+                }
+                t.insert("duration_s".into(), Value::Float(*duration));
+                t.insert("wait".into(), Value::Boolean(false));
+                "move_part"
+            }
+            Input::RotatePart {
+                part,
+                axis,
+                point: pivot,
+                by,
+                to,
+                duration,
+            } => {
+                t.insert("part".into(), Value::String(part.clone()));
+                t.insert("axis".into(), vector(*axis));
+                if let Some(p) = pivot {
+                    t.insert("point".into(), point(*p));
+                }
+                if let Some(by) = by {
+                    t.insert("by_deg".into(), Value::Float(by.to_degrees()));
+                }
+                if let Some(to) = to {
+                    t.insert("to_deg".into(), Value::Float(to.to_degrees()));
+                }
+                t.insert("duration_s".into(), Value::Float(*duration));
+                t.insert("wait".into(), Value::Boolean(false));
+                "rotate_part"
+            }
             Input::Reset => {
                 notes.push(format!(
                     "t = {time:.3} s (tick {}): reset — the timeline starts over here",

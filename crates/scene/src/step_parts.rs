@@ -106,6 +106,7 @@ pub fn build_step_part(
             friction_sliding,
             motion: None,
             parent: None,
+            movable: false,
         });
     }
     Ok(())

@@ -6,13 +6,17 @@ use crate::fasteners::part_index;
 use crate::format::SweepSection;
 use crate::units::LengthUnit;
 use crate::validate::non_negative;
-use pliant_assembly::sweep::SweepSettings;
+use pliant_assembly::sweep::{CoordinateKind, SweepSettings};
+use pliant_assembly::{Action, Timeline};
 use pliant_core::spec::RigidPartSpec;
 
-/// Checks and builds `[sweep]` against the built `parts` (the swept part must move).
+/// Checks and builds `[sweep]` against the built `parts` (the swept part must move);
+/// a part the `timeline` moves is swept against its angle when the timeline only turns
+/// it, its travel when it only shifts it, else time.
 pub fn build_sweep(
     raw: Option<&SweepSection>,
     parts: &[RigidPartSpec],
+    timeline: &Timeline,
     unit: LengthUnit,
 ) -> Result<Option<SweepSettings>, FieldError> {
     let Some(raw) = raw else {
@@ -25,7 +29,7 @@ pub fn build_sweep(
         let mut found = false;
         for _ in 0..=parts.len() {
             let Some(k) = at else { break };
-            found |= parts[k].motion.is_some();
+            found |= parts[k].motion.is_some() || parts[k].movable;
             at = parts[k].parent;
         }
         found
@@ -34,7 +38,7 @@ pub fn build_sweep(
         return Err(FieldError::new(
             "sweep.part",
             format!("\"{}\"", raw.part),
-            "the part does not move: give it (or its parent) a `motion` to sweep",
+            "the part does not move: give it (or its parent) a `motion`, or move it in the timeline (`rotate_part`, `move_part`), to sweep",
         ));
     }
     let mut clearance_parts = Vec::new();
@@ -46,9 +50,24 @@ pub fn build_sweep(
         Some(m) => Some(non_negative("sweep.min_clearance", m, unit.symbol())? * unit.to_metres()),
         None => None,
     };
+    let name = &parts[part].name;
+    let (turned, shifted) = timeline
+        .actions
+        .iter()
+        .fold((false, false), |(r, m), a| match a {
+            Action::RotatePart { part, .. } if part == name => (true, m),
+            Action::MovePart { part, .. } if part == name => (r, true),
+            _ => (r, m),
+        });
+    let moved_by_inputs = parts[part].movable.then_some(match (turned, shifted) {
+        (true, false) => CoordinateKind::Angle,
+        (false, true) => CoordinateKind::Travel,
+        _ => CoordinateKind::Time,
+    });
     Ok(Some(SweepSettings {
         part,
         clearance_parts,
         min_clearance,
+        moved_by_inputs,
     }))
 }

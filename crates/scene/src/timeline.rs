@@ -4,8 +4,8 @@
 use crate::error::FieldError;
 use crate::format::{
     ActionEntry, AimHandEntry, FixEntry, GrabEntry, GripName, HandEntry, LoadEntry, MountEntry,
-    MoveEntry, MoveHandEntry, NodeEntry, Points, RotateEntry, RunEntry, SettleEntry, TieEntry,
-    UnloadEntry,
+    MoveEntry, MoveHandEntry, MovePartEntry, NodeEntry, Points, RotateEntry, RotatePartEntry,
+    RunEntry, SettleEntry, TieEntry, UnloadEntry,
 };
 use crate::ranges::{at_most, vec_at_most, MAX_LOAD_FORCE, MAX_LOAD_MOMENT, MAX_ROTATION_DEG};
 use crate::units::LengthUnit;
@@ -19,6 +19,49 @@ pub const DEFAULT_SETTLE_KINETIC_ENERGY: f64 = 1e-6;
 pub const DEFAULT_SETTLE_MAX_DURATION: f64 = 30.0;
 /// Number of hands a timeline may use (indices 0 … `MAX_HANDS` − 1).
 pub const MAX_HANDS: usize = 8;
+/// Farthest a `move_part` may shift a part \[m\] (the workcell's limit).
+const MAX_PART_SHIFT: f64 = pliant_assembly::workcell::part_inputs::MAX_PART_SHIFT;
+/// Largest turn of a `rotate_part` \[°\] (the workcell's limit).
+const MAX_PART_TURN_DEG: f64 = 3600.0;
+
+/// Makes the parts the timeline moves (`move_part`, `rotate_part`) movable, after
+/// checking that each names a part without a `motion` of its own; errors name the
+/// action's `part` field and list the parts.
+pub fn make_moved_parts_movable(
+    timeline: &Timeline,
+    parts: &mut [pliant_core::RigidPartSpec],
+) -> Result<(), FieldError> {
+    for (i, a) in timeline.actions.iter().enumerate() {
+        let (Action::MovePart { part, .. } | Action::RotatePart { part, .. }) = a else {
+            continue;
+        };
+        let field = format!("timeline[{i}].part");
+        let Some(k) = parts.iter().position(|p| &p.name == part) else {
+            let names: Vec<&str> = parts.iter().map(|p| p.name.as_str()).collect();
+            return Err(FieldError::new(
+                field,
+                format!("\"{part}\""),
+                format!(
+                    "names no part; parts are: {}",
+                    if names.is_empty() {
+                        "none".into()
+                    } else {
+                        names.join(", ")
+                    }
+                ),
+            ));
+        };
+        if parts[k].motion.is_some() {
+            return Err(FieldError::new(
+                field,
+                format!("\"{part}\""),
+                "has a `motion`; a timeline cannot move it as well (script the motion, or move a part it carries)",
+            ));
+        }
+        parts[k].movable = true;
+    }
+    Ok(())
+}
 
 /// A hose as the timeline sees it: its name and node count.
 pub struct HoseNodes<'a> {
@@ -407,6 +450,74 @@ fn build_action(
         ActionEntry::ReleaseHand(HandEntry { hand }) => Action::ReleaseHand {
             hand: hand_index(&sub("hand"), *hand)?,
         },
+        ActionEntry::MovePart(MovePartEntry {
+            part,
+            by,
+            to,
+            duration_s,
+            wait,
+        }) => {
+            let offset = |name: &str, v: &Option<[f64; 3]>| -> Result<_, FieldError> {
+                v.map(|v| {
+                    let m = finite_vec(&sub(name), v, unit.symbol())? * unit.to_metres();
+                    vec_at_most(&sub(name), m, MAX_PART_SHIFT, "m", "a part's move")
+                })
+                .transpose()
+            };
+            let (by, to) = (offset("by", by)?, offset("to", to)?);
+            if by.is_some() == to.is_some() {
+                return Err(FieldError::about(
+                    field,
+                    "move_part takes either `by` (from where the part is) or `to` (from where the scene placed it)",
+                ));
+            }
+            Action::MovePart {
+                part: part.clone(),
+                by,
+                to,
+                duration: positive(&sub("duration_s"), *duration_s, "s")?,
+                wait: wait.unwrap_or(true),
+            }
+        }
+        ActionEntry::RotatePart(RotatePartEntry {
+            part,
+            axis,
+            point,
+            by_deg,
+            to_deg,
+            duration_s,
+            wait,
+        }) => {
+            let axis = non_zero_vec(&sub("axis"), *axis, "")?.normalize();
+            let point = point
+                .map(|p| finite_vec(&sub("point"), p, unit.symbol()))
+                .transpose()?
+                .map(|p| p * unit.to_metres());
+            let angle = |name: &str, a: &Option<f64>| -> Result<_, FieldError> {
+                a.map(|a| {
+                    let a = finite(&sub(name), a, "°")?;
+                    at_most(&sub(name), a, MAX_PART_TURN_DEG, "°", "a part's turn")
+                        .map(f64::to_radians)
+                })
+                .transpose()
+            };
+            let (by, to) = (angle("by_deg", by_deg)?, angle("to_deg", to_deg)?);
+            if by.is_some() == to.is_some() {
+                return Err(FieldError::about(
+                    field,
+                    "rotate_part takes either `by_deg` (from where the part is) or `to_deg` (from where the scene placed it)",
+                ));
+            }
+            Action::RotatePart {
+                part: part.clone(),
+                axis,
+                point,
+                by,
+                to,
+                duration: positive(&sub("duration_s"), *duration_s, "s")?,
+                wait: wait.unwrap_or(true),
+            }
+        }
         ActionEntry::Run(RunEntry { duration_s }) => Action::Run {
             duration: positive(&sub("duration_s"), *duration_s, "s")?,
         },

@@ -100,6 +100,8 @@ fn coolant_demo_scene_is_as_described() {
             Action::MoveHand { .. } => "move_hand",
             Action::AimHand { .. } => "aim_hand",
             Action::ReleaseHand { .. } => "release_hand",
+            Action::MovePart { .. } => "move_part",
+            Action::RotatePart { .. } => "rotate_part",
         })
         .collect();
     assert_eq!(kinds, ["fix", "move", "run", "release", "settle"]);

@@ -97,8 +97,14 @@ fn every_kind_loads_in_si_and_the_model_builds() {
     assert!(model.kinematics.any_moves());
     assert!((0..4).all(|k| model.kinematics.moves(k)));
     // the door turns with the body: at t = 2 s it is at 70° about the (moving) hinge
-    let door = model.kinematics.placement_at(1, 2.0).pose;
-    let body = model.kinematics.placement_at(0, 2.0).pose;
+    let door = model
+        .kinematics
+        .placement_at(1, 2.0, &Default::default())
+        .pose;
+    let body = model
+        .kinematics
+        .placement_at(0, 2.0, &Default::default())
+        .pose;
     let hinge_point = body.apply(DVec3::new(0.0, 0.6, 0.0));
     assert!((door.apply(DVec3::new(0.0, 0.6, 0.0)) - hinge_point).length() < 1e-12);
 }

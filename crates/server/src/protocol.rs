@@ -32,6 +32,34 @@ pub enum ClientMessage {
     },
     /// Let go.
     Release { hand_id: HandId },
+    /// Move the part called `part` over `duration_s` seconds (smooth start and stop):
+    /// by the offset `by` \[m\] from where it is, or so that its centre (its bounding
+    /// box's) is `to` \[m\] from where the scene placed it (one of the two). The part must be movable (`movable = true`
+    /// in the scene) and have no scripted motion; a refusal comes back as the
+    /// snapshot's `notice`.
+    MovePart {
+        part: String,
+        #[serde(default)]
+        by: Option<[f64; 3]>,
+        #[serde(default)]
+        to: Option<[f64; 3]>,
+        duration_s: f64,
+    },
+    /// Turn the part called `part` about `axis` through `point` \[m\] (a point of the
+    /// part where the scene placed it; default: its bounding box's centre) by `by_deg`
+    /// degrees from where it is, or to `to_deg` degrees from where the scene placed it,
+    /// over `duration_s` seconds. Refused as `move_part`.
+    RotatePart {
+        part: String,
+        axis: [f64; 3],
+        #[serde(default)]
+        point: Option<[f64; 3]>,
+        #[serde(default)]
+        by_deg: Option<f64>,
+        #[serde(default)]
+        to_deg: Option<f64>,
+        duration_s: f64,
+    },
     /// Stop stepping (snapshots keep coming).
     Pause,
     /// Step in real time again.

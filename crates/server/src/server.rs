@@ -29,6 +29,7 @@ use axum::Router;
 use futures_util::FutureExt;
 use glam::{DQuat, DVec3};
 use pliant_assembly::ergonomics::ErgonomicProfile;
+use pliant_assembly::Input;
 use pliant_core::math::near_unit_quaternion;
 use std::any::Any;
 use std::net::SocketAddr;
@@ -745,6 +746,17 @@ fn point(p: [f64; 3]) -> Result<DVec3, String> {
     }
 }
 
+fn finite_number(x: f64, what: &str) -> Result<f64, String> {
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(error_json(
+            ErrorCode::InvalidValue,
+            format!("{what} {x} is not finite"),
+        ))
+    }
+}
+
 fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Result<(), String> {
     let session = &shared.session();
     let command = match msg {
@@ -812,6 +824,41 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
                 .release(client, hand_id, session.epoch())
                 .map_err(|r| refusal(r, hand_id))?;
             Command::Release { hand: hand_id }
+        }
+        ClientMessage::MovePart {
+            part,
+            by,
+            to,
+            duration_s,
+        } => Command::MovePart(Input::MovePart {
+            part,
+            by: by.map(point).transpose()?,
+            to: to.map(point).transpose()?,
+            duration: finite_number(duration_s, "duration_s")?,
+        }),
+        ClientMessage::RotatePart {
+            part,
+            axis,
+            point: pivot,
+            by_deg,
+            to_deg,
+            duration_s,
+        } => {
+            let angle = |a: Option<f64>, what| {
+                a.map(|a| finite_number(a, what).map(f64::to_radians))
+                    .transpose()
+            };
+            Command::MovePart(Input::RotatePart {
+                part,
+                axis: finite_number(axis[0], "axis")
+                    .and(finite_number(axis[1], "axis"))
+                    .and(finite_number(axis[2], "axis"))
+                    .map(|_| DVec3::from_array(axis))?,
+                point: pivot.map(point).transpose()?,
+                by: angle(by_deg, "by_deg")?,
+                to: angle(to_deg, "to_deg")?,
+                duration: finite_number(duration_s, "duration_s")?,
+            })
         }
         ClientMessage::Pause => Command::Pause,
         ClientMessage::Resume => Command::Resume,

@@ -14,7 +14,9 @@ use crate::haptic::mirror::SessionCopy;
 use crate::limits::MAX_STEPS_PER_REQUEST;
 use crate::ownership::HandId;
 use crate::reports::{record_interval_within, ReportLedger, ReportLimits};
-use crate::snapshot::{FastenerSnapshot, HandSnapshot, HoseSnapshot, SceneData, Snapshot};
+use crate::snapshot::{
+    FastenerSnapshot, HandSnapshot, HoseSnapshot, PartPose, SceneData, Snapshot,
+};
 use glam::{DQuat, DVec3};
 use pliant_assembly::ergonomics::{colour_value, ErgonomicProfile, HandAssessment};
 use pliant_assembly::fasteners::FastenerSample;
@@ -70,6 +72,8 @@ pub enum Command {
     Reset,
     /// Judge hand loads with this profile from now on.
     SetErgonomics(ErgonomicProfile),
+    /// Move or turn a part ([`Input::MovePart`], [`Input::RotatePart`]).
+    MovePart(Input),
     /// Send back the input log so far (for a report): its sealed chunks shared, only the
     /// open chunk copied, so the simulation thread never copies the whole log.
     Log(mpsc::Sender<(LogShare, u64)>),
@@ -605,6 +609,7 @@ impl Sim {
                 self.rebase();
             }
             Command::SetErgonomics(profile) => self.give(Input::SetErgonomics { profile }),
+            Command::MovePart(input) => self.give(input),
             Command::Log(reply) => {
                 let _ = reply.send((self.cell.log().share(), self.cell.tick()));
             }
@@ -743,9 +748,24 @@ impl Sim {
                 .as_deref(),
             Stage::Running,
         );
+        let kinematics = &self.cell.model().kinematics;
+        let part_poses = (0..kinematics.len())
+            .filter(|&k| kinematics.moves(k))
+            .map(|k| {
+                let pose = kinematics
+                    .placement_at(k, state.time, &state.part_moves)
+                    .pose;
+                PartPose {
+                    part: k,
+                    translation: pose.translation.to_array(),
+                    rotation: pose.rotation.to_array(),
+                }
+            })
+            .collect();
         Snapshot {
             time: state.time,
             step: state.step,
+            part_poses,
             paused: self.paused,
             real_time_factor,
             epoch: self.epoch.load(Ordering::SeqCst),

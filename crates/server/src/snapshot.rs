@@ -191,6 +191,10 @@ pub struct Snapshot {
     /// Resets so far (a `reset` message, or a divergence).
     pub epoch: u64,
     pub hoses: Vec<HoseSnapshot>,
+    /// The poses of the parts that move (a scripted motion, or moved by `move_part` /
+    /// `rotate_part`), in the welcome's part order; none when every part stands still.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub part_poses: Vec<PartPose>,
     pub hands: Vec<HandSnapshot>,
     /// Stubs and clips (SPEC L6, L7): `final_state` is the state now, `assembled` whether
     /// the hose is fixed on the stub / seated in the clip, `max_force` the peak so far.
@@ -218,6 +222,18 @@ pub struct Snapshot {
     pub rollbacks: u64,
     #[serde(skip)]
     pub(crate) json: OnceLock<String>,
+}
+
+/// Where a moving part is: its mesh (sent in the welcome where the scene placed it) is
+/// drawn at `rotation · x + translation`.
+#[derive(Clone, Debug, Serialize)]
+pub struct PartPose {
+    /// The part's index in the welcome's `parts`.
+    pub part: usize,
+    /// Where the part's reference origin went \[m\].
+    pub translation: [f64; 3],
+    /// The part's rotation as a unit quaternion `[x, y, z, w]`.
+    pub rotation: [f64; 4],
 }
 
 /// One hose's state.

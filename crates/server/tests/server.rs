@@ -1365,3 +1365,51 @@ async fn an_error_echoing_a_huge_key_clips_it() {
     assert_eq!(e["code"], "malformed", "{e}");
     assert!(m.len() < 1000 && m.contains("…("), "{m}");
 }
+
+/// `move_part` and `rotate_part` over the protocol: non-finite values are `invalid_value`
+/// errors; what the simulation refuses (the demo's parts stand still; an unknown part)
+/// comes back as the snapshot's notice, naming the parts; the server runs on.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn part_moves_are_checked_and_refusals_come_back_as_the_notice() {
+    let s = server().await;
+    let mut ws = connect(&s).await;
+    hello(&mut ws).await;
+    send(
+        &mut ws,
+        json!({"type": "rotate_part", "part": "engine", "axis": [0, 0, 1], "point": [5e3, 0, 0], "by_deg": 10, "duration_s": 1}),
+    )
+    .await;
+    next_where(&mut ws, "error", |v| v["code"] == "invalid_value").await;
+    send(
+        &mut ws,
+        json!({"type": "rotate_part", "part": "engine", "axis": [0, 0, 1], "by_deg": "ten", "duration_s": 1}),
+    )
+    .await;
+    next_where(&mut ws, "error", |v| v["code"] == "malformed").await;
+    send(
+        &mut ws,
+        json!({"type": "move_part", "part": "engine", "by": [0, 0, 2e3], "duration_s": 1}),
+    )
+    .await;
+    next_where(&mut ws, "error", |v| v["code"] == "invalid_value").await;
+    send(
+        &mut ws,
+        json!({"type": "move_part", "part": "lid", "by": [0, 0, 0.01], "duration_s": 1}),
+    )
+    .await;
+    let snap = next_where(&mut ws, "snapshot", |v| {
+        v["notice"]
+            .as_str()
+            .is_some_and(|n| n.contains("no part named \"lid\""))
+    })
+    .await;
+    assert!(
+        snap.get("part_poses").is_none(),
+        "the demo's parts stand still"
+    );
+    let welcome_parts = hello(&mut connect(&s).await).await["session"]["parts"]
+        .as_array()
+        .unwrap()
+        .len();
+    assert!(welcome_parts > 0);
+}

@@ -1,9 +1,11 @@
 //! A part's motion coordinate: the one number that says where the part is in its range —
 //! a hinge's angle, a slide's travel, the phase of a periodic motion in its slowest cycle
-//! (2π f t mod 2π), a sampled path's time — computed from the motion at a time.
+//! (2π f t mod 2π), a sampled path's time — computed from the motion at a time; for a part
+//! moved by inputs (`rotate_part`, `move_part`), the angle it has turned or the distance
+//! its centre has travelled from where the scene placed it.
 
-use pliant_core::kinematics::PartMotion;
-use pliant_core::Model;
+use pliant_core::kinematics::{PartMotion, Turns};
+use pliant_core::{Model, State};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -70,8 +72,28 @@ impl Coordinate {
         }
     }
 
-    /// Its value at time `t` (SI: rad, m or s).
-    pub fn at(&self, model: &Model, t: f64) -> f64 {
+    /// Its value at time `t` (SI: rad, m or s), the parts moved by the inputs in `state`.
+    /// A part moved by inputs: the angle it has turned from where the scene placed it
+    /// (its turns all about one axis; else 0), or the distance its centre travelled.
+    pub fn at(&self, model: &Model, state: &State, t: f64) -> f64 {
+        let moved = state.part_moves.get(self.part);
+        match (model.kinematics.motion(self.part), moved, self.kind) {
+            (None, Some(m), CoordinateKind::Angle) => {
+                return match m.turned_at(t) {
+                    Turns::About { angle, .. } => angle,
+                    Turns::Never | Turns::Mixed => 0.0,
+                };
+            }
+            (None, Some(m), CoordinateKind::Travel) => {
+                let centre = model.environment.parts[self.part]
+                    .mesh
+                    .local_aabb()
+                    .center();
+                return (m.last.placement_at(t).pose.apply(centre) - centre).length();
+            }
+            (None, None, CoordinateKind::Angle | CoordinateKind::Travel) => return 0.0,
+            _ => {}
+        }
         match model.kinematics.motion(self.part) {
             Some(PartMotion::Hinge(h)) => h.angle.at(t).0,
             Some(PartMotion::Slide(s)) => s.distance.at(t).0,

@@ -14,4 +14,8 @@ pub struct SweepSettings {
     /// Smallest clearance allowed between a hose and those parts \[m\], if any: a hose
     /// coming nearer is a violation (it decides as the installation checks do).
     pub min_clearance: Option<f64>,
+    /// For a part moved by inputs (no `motion` of its own): how its coordinate is
+    /// measured — its turn's angle, its centre's travel, or time (None: time).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub moved_by_inputs: Option<super::CoordinateKind>,
 }

@@ -40,7 +40,12 @@ impl MotionSweep {
         let pairs: Vec<(usize, usize)> = (0..model.hoses.len())
             .flat_map(|h| parts.iter().map(move |&p| (h, p)))
             .collect();
-        let coordinate = Coordinate::of(model, settings.part);
+        let mut coordinate = Coordinate::of(model, settings.part);
+        if model.kinematics.motion(settings.part).is_none() {
+            if let Some(kind) = settings.moved_by_inputs {
+                coordinate.kind = kind;
+            }
+        }
         MotionSweep {
             found: SweepSummary {
                 coordinate: Some(coordinate.clone()),
@@ -68,7 +73,7 @@ impl MotionSweep {
         let t = state.time;
         let rows = &mut self.found.rows;
         rows.push(t);
-        rows.push(self.coordinate.at(model, t));
+        rows.push(self.coordinate.at(model, state, t));
         for info in &model.hoses {
             let (mut k, mut tw, mut force) = (0.0_f64, 0.0_f64, 0.0_f64);
             for e in info.first_element..info.first_element + info.element_count {
@@ -83,7 +88,7 @@ impl MotionSweep {
             let pose = model
                 .kinematics
                 .moves(p)
-                .then(|| model.kinematics.placement_at(p, t).pose);
+                .then(|| model.kinematics.placement_at(p, t, &state.part_moves).pose);
             let (gap, _) = hose_part_gap(
                 &model.environment,
                 p,

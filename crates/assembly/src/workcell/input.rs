@@ -87,6 +87,34 @@ pub enum Input {
     },
     /// The hand lets go.
     ReleaseHand { hand: HandNumber },
+    /// Moves the part called `part` over `duration` seconds from now (smooth start and
+    /// stop): by the offset `by` \[m\], or so that its centre (its bounding box's) is `to`
+    /// \[m\] from where the scene placed it — one of the two — in its parent's reference
+    /// axes (the world's for a part without a parent). Refused for a part with a scripted motion or one
+    /// the scene built standing still ([`super::part_inputs`]).
+    MovePart {
+        part: String,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        by: Option<DVec3>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        to: Option<DVec3>,
+        duration: f64,
+    },
+    /// Turns the part called `part` about `axis` through `point` (a point of the part
+    /// where the scene placed it; default: its bounding box's centre) by the angle `by`
+    /// \[rad\], or to the angle `to` from where the scene placed it, over `duration`
+    /// seconds from now (smooth start and stop). Refused as [`Input::MovePart`].
+    RotatePart {
+        part: String,
+        axis: DVec3,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        point: Option<DVec3>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        by: Option<f64>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        to: Option<f64>,
+        duration: f64,
+    },
     /// Judge hand loads with this profile from now on.
     SetErgonomics { profile: ErgonomicProfile },
     /// All velocities set to zero (kinetic damping while relaxing to rest).
@@ -124,6 +152,8 @@ impl Input {
             Input::MoveHand { .. } => "move_hand",
             Input::AimHand { .. } => "aim_hand",
             Input::ReleaseHand { .. } => "release_hand",
+            Input::MovePart { .. } => "move_part",
+            Input::RotatePart { .. } => "rotate_part",
             Input::SetErgonomics { .. } => "set_ergonomics",
             Input::Arrest => "arrest",
             Input::SolveStatic { .. } => "solve_static",

@@ -16,6 +16,7 @@ pub mod input;
 pub mod log;
 pub mod log_reading;
 pub mod observer;
+pub mod part_inputs;
 pub mod recovery;
 pub mod replay;
 pub mod solver_record;
@@ -399,10 +400,13 @@ impl Workcell {
             fastener,
         }
     }
-    /// Whether a hand or a drive is still moving, or a load still rising or falling.
+    /// Whether a hand, a drive or a part moved by an input is still moving, or a load
+    /// still rising or falling.
     pub fn moving(&self) -> bool {
         let t = self.state.time;
-        self.state.loads.any_changing(t) || self.hands.values().any(|h| h.moving(t))
+        self.state.loads.any_changing(t)
+            || self.hands.values().any(|h| h.moving(t))
+            || self.state.part_moves.any_moving(t)
     }
     /// The load cases inputs added that are still active.
     pub fn user_loads(&self) -> impl Iterator<Item = (LoadCaseId, &LoadCase)> {
@@ -681,17 +685,14 @@ impl Workcell {
             }
             Input::Mount { node, part } => {
                 let i = self.global(*node)?;
-                let parts = &self.model.environment.parts;
-                let Some(k) = parts.iter().position(|p| &p.name == part) else {
-                    let names: Vec<&str> = parts.iter().map(|p| p.name.as_str()).collect();
-                    return Err(Refusal::Invalid(format!(
-                        "mount: no part named \"{part}\" (parts: {})",
-                        names.join(", ")
-                    )));
-                };
+                let k = part_inputs::part_named(&self.model, part, "mount")?;
                 self.take_node(i)?;
                 // the node's pose now, in the part's reference placement
-                let pose = self.model.kinematics.placement_at(k, t).pose;
+                let pose = self
+                    .model
+                    .kinematics
+                    .placement_at(k, t, &self.state.part_moves)
+                    .pose;
                 let id = self.add_user_load(LoadCase::Mount(Mount {
                     node: i,
                     part: k,
@@ -901,6 +902,35 @@ impl Workcell {
                     .ok_or_else(|| Refusal::Invalid(format!("hand {hand} holds nothing")))?;
                 self.state.sleep.wake_all(&self.model);
                 self.let_go(h.hand);
+                Ok(Applied::Done)
+            }
+            Input::MovePart {
+                part,
+                by,
+                to,
+                duration,
+            } => {
+                part_inputs::move_part(&self.model, &mut self.state, part, *by, *to, *duration)?;
+                Ok(Applied::Done)
+            }
+            Input::RotatePart {
+                part,
+                axis,
+                point,
+                by,
+                to,
+                duration,
+            } => {
+                part_inputs::rotate_part(
+                    &self.model,
+                    &mut self.state,
+                    part,
+                    *axis,
+                    *point,
+                    *by,
+                    *to,
+                    *duration,
+                )?;
                 Ok(Applied::Done)
             }
             Input::SetErgonomics { profile } => {

@@ -28,7 +28,8 @@ pub struct RigidPart {
     pub(crate) planes: Vec<Planes>,
     /// The edges each triangle of `mesh` owns ([`owned_edges`]), made once.
     pub(crate) owned_edges: Vec<u8>,
-    /// Whether the part moves (it has a motion, or a parent that moves).
+    /// Whether the part moves (it has a motion, may be moved by inputs, or has a parent
+    /// that moves).
     pub moves: bool,
     /// The largest distance of a vertex from the reference origin \[m\]: a point of the
     /// part moves at most |Ṫ| + |ω| · this ([`crate::kinematics::Placement::velocity_at`]).
@@ -90,13 +91,14 @@ impl RigidEnvironment {
                 extent,
             });
         }
-        // a part moves if it or an ancestor has a motion (cycles: the kinematics refuse them)
+        // a part moves if it or an ancestor has a motion or may be moved (cycles: the
+        // kinematics refuse them)
         for k in 0..parts.len() {
             let mut at = Some(k);
             for _ in 0..=specs.len() {
                 let Some(a) = at else { break };
                 let Some(spec) = specs.get(a) else { break };
-                if spec.motion.is_some() {
+                if spec.motion.is_some() || spec.movable {
                     parts[k].moves = true;
                     break;
                 }

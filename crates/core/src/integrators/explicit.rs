@@ -38,9 +38,12 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
         // the parts' poses at the step's start, their twists at mid-step
         // (crate::contact::moving)
         let placements = &mut state.contact.placements;
-        model
-            .kinematics
-            .place_all(state.time, state.time + 0.5 * dt, placements);
+        model.kinematics.place_all(
+            state.time,
+            state.time + 0.5 * dt,
+            &state.part_moves,
+            placements,
+        );
     }
     {
         let config = NodeView {
@@ -110,7 +113,9 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     }
     // Kinematic load cases, in order (a later one on the same node wins).
     for (_, case) in state.loads.iter() {
-        let Some((x_new, q_new)) = case.prescribed_pose(t_next, &model.kinematics) else {
+        let Some((x_new, q_new)) =
+            case.prescribed_pose(t_next, &model.kinematics, &state.part_moves)
+        else {
             continue;
         };
         let i = case.node();

@@ -1,8 +1,10 @@
 //! Parts in a hierarchy: a part may move with a parent (a door on a body, a tool on a robot
 //! link). A child's motion is given in its parent's reference placement, so its pose is
 //! the parent's composed with its own, P = P_parent ∘ P_own, and its twist follows
-//! ([`Placement::carrying`]). A part with neither motion nor parent stands still.
+//! ([`Placement::carrying`]). A part moved by inputs ([`PartMoves`]) has those moves as
+//! its own motion. A part with neither motion, moves nor parent stands still.
 
+use super::part_move::PartMoves;
 use super::pose::Placement;
 use super::PartMotion;
 
@@ -11,7 +13,8 @@ use super::PartMotion;
 pub struct PartKinematics {
     motions: Vec<Option<PartMotion>>,
     parents: Vec<Option<usize>>,
-    /// Whether each part moves (it has a motion or an ancestor that has one).
+    /// Whether each part moves (it has a motion, may be moved by inputs, or has an
+    /// ancestor that does).
     moves: Vec<bool>,
 }
 
@@ -23,8 +26,22 @@ impl PartKinematics {
         parents: Vec<Option<usize>>,
     ) -> Result<Self, String> {
         let n = motions.len();
-        if parents.len() != n {
-            return Err(format!("{} parents for {n} parts", parents.len()));
+        Self::with_movable(motions, parents, vec![false; n])
+    }
+
+    /// As [`Self::new`], with the parts inputs may move (`movable`, one per part).
+    pub fn with_movable(
+        motions: Vec<Option<PartMotion>>,
+        parents: Vec<Option<usize>>,
+        movable: Vec<bool>,
+    ) -> Result<Self, String> {
+        let n = motions.len();
+        if parents.len() != n || movable.len() != n {
+            return Err(format!(
+                "{} parents and {} movable flags for {n} parts",
+                parents.len(),
+                movable.len()
+            ));
         }
         for (k, m) in motions.iter().enumerate() {
             if let Some(m) = m {
@@ -36,7 +53,7 @@ impl PartKinematics {
             let mut at = k;
             let mut depth = 0;
             loop {
-                moves[k] |= motions[at].is_some();
+                moves[k] |= motions[at].is_some() || movable[at];
                 match parents[at] {
                     None => break,
                     Some(p) if p >= n => {
@@ -72,32 +89,39 @@ impl PartKinematics {
         self.moves.iter().any(|&m| m)
     }
 
-    /// Part `k`'s pose and twist at time `t` (identity for a part that stands still).
-    pub fn placement_at(&self, k: usize, t: f64) -> Placement {
+    /// Part `k`'s pose and twist at time `t`, moved by `moves` (the state's; identity
+    /// for a part that stands still).
+    pub fn placement_at(&self, k: usize, t: f64, moves: &PartMoves) -> Placement {
         if !self.moves(k) {
             return Placement::default();
         }
-        let own = self.motions[k]
-            .as_ref()
-            .map_or(Placement::default(), |m| m.placement_at(t));
+        let own = match &self.motions[k] {
+            Some(m) => m.placement_at(t),
+            None => moves.placement_at(k, t).unwrap_or_default(),
+        };
         match self.parents[k] {
-            Some(p) => self.placement_at(p, t).carrying(&own),
+            Some(p) => self.placement_at(p, t, moves).carrying(&own),
             None => own,
         }
     }
 
     /// Writes every part's placement at `t` (poses) with the twist at `t_rate` (the
     /// explicit step takes the twist at mid-step) into `out` (one per part).
-    pub fn place_all(&self, t: f64, t_rate: f64, out: &mut [Placement]) {
+    pub fn place_all(&self, t: f64, t_rate: f64, moves: &PartMoves, out: &mut [Placement]) {
         for (k, p) in out.iter_mut().enumerate() {
-            let pose = self.placement_at(k, t).pose;
+            let pose = self.placement_at(k, t, moves).pose;
             let twist = if t_rate == t {
-                self.placement_at(k, t).twist
+                self.placement_at(k, t, moves).twist
             } else {
-                self.placement_at(k, t_rate).twist
+                self.placement_at(k, t_rate, moves).twist
             };
             *p = Placement { pose, twist };
         }
+    }
+
+    /// Part `k`'s parent, if it has one.
+    pub fn parent(&self, k: usize) -> Option<usize> {
+        self.parents.get(k).copied().flatten()
     }
 
     pub fn len(&self) -> usize {

@@ -7,6 +7,7 @@
 
 mod hierarchy;
 mod hinge;
+mod part_move;
 mod periodic;
 mod pose;
 mod profile;
@@ -15,6 +16,7 @@ mod slide;
 
 pub use hierarchy::PartKinematics;
 pub use hinge::Hinge;
+pub use part_move::{MovedPart, PartMove, PartMoves, Turns};
 pub use periodic::{Oscillation, Periodic};
 pub use pose::{Placement, Pose, Twist};
 pub use profile::Profile;
@@ -204,14 +206,15 @@ mod tests {
         let x = DVec3::new(0.7, 0.1, -0.2);
         for t in [0.4, 1.1] {
             let h = 1e-6;
-            let child = kin.placement_at(1, t);
+            let none = &PartMoves::NONE;
+            let child = kin.placement_at(1, t, none);
             let expect = kin
-                .placement_at(0, t)
+                .placement_at(0, t, none)
                 .pose
                 .apply(m[0].placement_at(t).pose.apply(x));
             assert!((child.pose.apply(x) - expect).length() < 1e-12);
-            let numeric = (kin.placement_at(1, t + h).pose.apply(x)
-                - kin.placement_at(1, t - h).pose.apply(x))
+            let numeric = (kin.placement_at(1, t + h, none).pose.apply(x)
+                - kin.placement_at(1, t - h, none).pose.apply(x))
                 / (2.0 * h);
             let analytic = child.velocity_at(child.pose.apply(x));
             assert!((numeric - analytic).length() < 1e-6);

@@ -21,7 +21,7 @@ pub use support::{
 };
 pub use tie::{Tie, TieLoad};
 
-use crate::kinematics::PartKinematics;
+use crate::kinematics::{PartKinematics, PartMoves};
 use glam::{DQuat, DVec3};
 use serde::Serialize;
 
@@ -61,12 +61,17 @@ impl LoadCase {
     }
 
     /// The pose (position, orientation) a kinematic load case prescribes at time `t`, with
-    /// the parts moving by `parts`.
-    pub fn prescribed_pose(&self, t: f64, parts: &PartKinematics) -> Option<(DVec3, DQuat)> {
+    /// the parts moving by `parts` and the inputs' `moves`.
+    pub fn prescribed_pose(
+        &self,
+        t: f64,
+        parts: &PartKinematics,
+        moves: &PartMoves,
+    ) -> Option<(DVec3, DQuat)> {
         match self {
             LoadCase::Fix(f) => Some((f.position, f.orientation)),
             LoadCase::Drive(d) => Some(d.pose_at(t)),
-            LoadCase::Mount(m) => Some(m.pose_at(t, parts)),
+            LoadCase::Mount(m) => Some(m.pose_at(t, parts, moves)),
             LoadCase::DeadLoad(_) | LoadCase::Support(_) | LoadCase::Tie(_) => None,
         }
     }

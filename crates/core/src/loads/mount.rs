@@ -4,7 +4,7 @@
 //! P(t) x₀ and P(t)'s rotation times q₀, P(t) the part's pose ([`crate::kinematics`]);
 //! on a part that stands still it is a [`super::Fix`].
 
-use crate::kinematics::PartKinematics;
+use crate::kinematics::{PartKinematics, PartMoves};
 use glam::{DQuat, DVec3};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -19,12 +19,12 @@ pub struct Mount {
 }
 
 impl Mount {
-    /// The held pose at time `t`.
-    pub fn pose_at(&self, t: f64, parts: &PartKinematics) -> (DVec3, DQuat) {
+    /// The held pose at time `t`, the parts moved by `moves`.
+    pub fn pose_at(&self, t: f64, parts: &PartKinematics, moves: &PartMoves) -> (DVec3, DQuat) {
         if !parts.moves(self.part) {
             return (self.position, self.orientation);
         }
-        let pose = parts.placement_at(self.part, t).pose;
+        let pose = parts.placement_at(self.part, t, moves).pose;
         (
             pose.apply(self.position),
             (pose.rotation * self.orientation).normalize(),

@@ -543,10 +543,15 @@ impl NewtonSystem {
         self.prescribed.fill(false);
         self.pending = false;
         if model.environment.any_moves() {
-            model.kinematics.place_all(t, t, &mut self.placements);
+            let moves = &state.part_moves;
+            model
+                .kinematics
+                .place_all(t, t, moves, &mut self.placements);
         }
         for (_, case) in state.loads.iter() {
-            let Some((x_new, q_new)) = case.prescribed_pose(t, &model.kinematics) else {
+            let Some((x_new, q_new)) =
+                case.prescribed_pose(t, &model.kinematics, &state.part_moves)
+            else {
                 continue;
             };
             let i = case.node();

@@ -44,6 +44,7 @@ pub(super) fn quad(
         friction_sliding: mu.1,
         motion: None,
         parent: None,
+        movable: false,
     }
 }
 
@@ -78,6 +79,7 @@ fn cuboid(name: &str, c: DVec3, h: DVec3) -> RigidPartSpec {
         friction_sliding: 0.4,
         motion: None,
         parent: None,
+        movable: false,
     }
 }
 

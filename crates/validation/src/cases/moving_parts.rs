@@ -50,6 +50,7 @@ fn tab(name: &str, at: DVec3, motion: Option<PartMotion>) -> RigidPartSpec {
         friction_sliding: 0.4,
         motion,
         parent: None,
+        movable: false,
     }
 }
 
@@ -147,7 +148,7 @@ fn carry(kind: SolverKind) -> Vec<Check> {
     let mut history: Vec<(f64, DVec3, DVec3)> = Vec::new();
     let result = run_until(&model, &mut solver, &mut state, CARRY_TIME + 0.2, |s| {
         strain = strain.max(max_strain(&model, s));
-        let pose = model.kinematics.placement_at(1, s.time).pose;
+        let pose = model.kinematics.placement_at(1, s.time, &s.part_moves).pose;
         for (x, x0) in s.x.iter().zip(&start) {
             off = off.max((*x - pose.apply(*x0)).length());
         }
