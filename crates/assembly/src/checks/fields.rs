@@ -1,7 +1,8 @@
 //! The checked quantities along each hose now, per beam, for the viewer's colour modes:
 //! curvature against the minimum bend radius, twist relative to the
 //! routed hose (as the running checks judge them, `strain.rs`) and the axial force from
-//! the chord strain (as the tension-at-rest check judges it). f32: they are for drawing.
+//! the element's axial strain (as the tension-at-rest check judges it). f32: they are for
+//! drawing.
 
 use super::strain::{axial_force, bend_and_twist};
 use super::tracker::InstallationChecks;
@@ -17,7 +18,8 @@ pub struct BeamFields {
     pub bend_radius_ratio: Vec<f32>,
     /// Twist rate relative to the routed, unloaded hose [rad/m] (signed).
     pub twist: Vec<f32>,
-    /// Axial force \[N\]: chord strain × E_t·A stretched, × E_c·A shortened (negative).
+    /// Axial force \[N\]: the element's axial strain × E_t·A stretched, × E_c·A shortened
+    /// (negative).
     pub axial_force: Vec<f32>,
 }
 

@@ -24,12 +24,21 @@ pub fn bend_and_twist(qa: DQuat, qb: DQuat, rest_length: f64) -> (f64, f64) {
     (bend / rest_length, phi.x / rest_length)
 }
 
-/// The axial force \[N\] of element `e` in `state`: its chord strain ε = (l − l₀)/l₀ times
-/// E_t·A stretched, E_c·A shortened (negative).
+/// The axial strain of element `e` in `state`: the element's own, chord and shallow arch
+/// measured from its rest shape ([`pliant_core::rod::element::BeamElement::axial_strain`]) —
+/// the chord alone would read a bent element's shorter chord, or a curved one
+/// straightened, as strain.
+pub fn axial_strain(model: &Model, state: &State, e: usize) -> f64 {
+    let el = &model.elements[e];
+    let (a, b) = (el.node_a, el.node_b);
+    el.axial_strain(&el.deformation([state.x[a], state.x[b]], [state.q[a], state.q[b]]))
+}
+
+/// The axial force \[N\] of element `e` in `state`: its [`axial_strain`] times E_t·A
+/// stretched, E_c·A shortened (negative).
 pub fn axial_force(model: &Model, state: &State, e: usize) -> f64 {
     let el = &model.elements[e];
-    let length = (state.x[el.node_b] - state.x[el.node_a]).length();
-    let strain = (length - el.rest_length) / el.rest_length;
+    let strain = axial_strain(model, state, e);
     let ea = if strain >= 0.0 {
         el.axial_stiffness_tension
     } else {

@@ -8,7 +8,7 @@
 use super::kind::{CheckKind, Violation};
 use super::pictures::ScenePictures;
 use super::settings::CheckSettings;
-use super::strain::bend_and_twist;
+use super::strain::{axial_strain, bend_and_twist};
 use crate::fasteners::StubSite;
 use crate::stub::StubLaw;
 use crate::sweep::MotionSweep;
@@ -255,8 +255,7 @@ impl InstallationChecks {
                     (info.first_element..info.first_element + info.element_count).enumerate()
                 {
                     let el = &model.elements[e];
-                    let l = (state.x[el.node_b] - state.x[el.node_a]).length();
-                    let strain = (l - el.rest_length) / el.rest_length;
+                    let strain = axial_strain(model, state, e);
                     let force = el.axial_stiffness_tension * strain.max(0.0);
                     let limit = el.axial_stiffness_tension * self.settings.rest_strain_limit;
                     if strain > self.settings.rest_strain_limit
