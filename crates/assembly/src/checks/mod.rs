@@ -17,7 +17,7 @@ pub use settings::{
     CheckSettings, HoseCheckLimits, DEFAULT_REST_STRAIN_LIMIT, DEFAULT_STRAIGHT_LENGTH_FACTOR,
     DEFAULT_STRAIGHT_RADIUS_FACTOR, DEFAULT_TWIST_LIMIT_RAD_PER_M,
 };
-pub use strain::{axial_force, bend_and_twist};
+pub use strain::{axial_force, axial_strain, bend_and_twist};
 pub use tracker::{HoseProfile, InstallationChecks};
 
 use serde::Serialize;

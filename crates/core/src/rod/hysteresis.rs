@@ -167,10 +167,9 @@ pub fn strain_energy(
 mod tests {
     use super::*;
     use crate::math::exp_map;
-    use crate::rod::element::{ElementEnds, ElementLoads};
+    use crate::rod::element::ElementEnds;
     use crate::rod::inelastic::{HistoryView, InelasticElements};
-    use crate::rod::tangent::inelastic_tangent;
-    use crate::rod::test_elements::perturbed_pose;
+    use crate::rod::test_elements::check_tangent_and_potential;
     use crate::{Material, Section};
 
     const LAW: Hysteresis = Hysteresis {
@@ -308,33 +307,6 @@ mod tests {
             values: &history,
             age: 0.0,
         };
-        let flat = ElementLoads::to_array;
-        let ends = ElementEnds::still(x, q);
-        let (_, k) = inelastic_tangent(&registry, (&e, &inelastic), view, &ends, 0.0, 0.0);
-        let h = 1e-8;
-        let kmax = k.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let base = flat(&registry.loads(&e, &inelastic, view, &ends, 0.0));
-        for j in 0..12 {
-            let at = |s: f64| {
-                let (xp, qp) = perturbed_pose((x, q), j, s);
-                let l = registry.loads(&e, &inelastic, view, &ElementEnds::still(xp, qp), 0.0);
-                (
-                    flat(&l),
-                    registry.strain_energy(&e, &inelastic, view, (xp, qp), true),
-                )
-            };
-            let ((p, wp), (m, wm)) = (at(h), at(-h));
-            for i in 0..12 {
-                let fd = -(p[i] - m[i]) / (2.0 * h);
-                assert!((fd - k[(i, j)]).abs() < 1e-5 * kmax, "K[{i},{j}]");
-            }
-            let grad = -(wp - wm) / (2.0 * h);
-            let scale = base.iter().fold(1e-3_f64, |m, v| m.max(v.abs()));
-            assert!(
-                (grad - base[j]).abs() < 1e-4 * scale,
-                "load {j}: {} vs {grad}",
-                base[j]
-            );
-        }
+        check_tangent_and_potential(&registry, (&e, &inelastic), view, (x, q), 1e-8);
     }
 }

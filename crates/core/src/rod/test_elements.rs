@@ -106,3 +106,44 @@ pub fn perturbed_pose(
     }
     (xp, qp)
 }
+
+/// Checks an inelastic element at `pose` under `view`: its tangent is the derivative of
+/// its loads (central differences of step `h`, to 1e-5 of the largest entry) and its loads
+/// are minus the gradient of its incremental potential (to 1e-4 of the largest load).
+pub fn check_tangent_and_potential(
+    registry: &crate::rod::inelastic::InelasticElements,
+    (e, inelastic): (&BeamElement, &crate::rod::inelastic::Inelastic),
+    view: crate::rod::inelastic::HistoryView,
+    (x, q): ([DVec3; 2], [DQuat; 2]),
+    h: f64,
+) {
+    use crate::rod::element::ElementLoads;
+    let flat = ElementLoads::to_array;
+    let ends = ElementEnds::still(x, q);
+    let (_, k) =
+        crate::rod::tangent::inelastic_tangent(registry, (e, inelastic), view, &ends, 0.0, 0.0);
+    let kmax = k.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let base = flat(&registry.loads(e, inelastic, view, &ends, 0.0));
+    for j in 0..12 {
+        let at = |s: f64| {
+            let (xp, qp) = perturbed_pose((x, q), j, s);
+            let l = registry.loads(e, inelastic, view, &ElementEnds::still(xp, qp), 0.0);
+            (
+                flat(&l),
+                registry.strain_energy(e, inelastic, view, (xp, qp), true),
+            )
+        };
+        let ((p, wp), (m, wm)) = (at(h), at(-h));
+        for i in 0..12 {
+            let fd = -(p[i] - m[i]) / (2.0 * h);
+            assert!((fd - k[(i, j)]).abs() < 1e-5 * kmax, "K[{i},{j}]");
+        }
+        let grad = -(wp - wm) / (2.0 * h);
+        let scale = base.iter().fold(1e-3_f64, |m, v| m.max(v.abs()));
+        assert!(
+            (grad - base[j]).abs() < 1e-4 * scale,
+            "load {j}: {} vs {grad}",
+            base[j]
+        );
+    }
+}
