@@ -96,8 +96,9 @@ fn coolant_demo_scene_is_as_described() {
             Action::Run { .. } => "run",
             Action::Load { .. } => "load",
             Action::Unload { .. } => "unload",
-            Action::Grab { .. } => "grab",
+            Action::Grab { .. } | Action::GrabNode { .. } => "grab",
             Action::MoveHand { .. } => "move_hand",
+            Action::AlignHand { .. } => "align_hand",
             Action::AimHand { .. } => "aim_hand",
             Action::ReleaseHand { .. } => "release_hand",
         })
