@@ -76,17 +76,21 @@ duration_s = 0.2
         }
         other => panic!("{other:?}"),
     }
-    assert!(matches!(
-        actions[2],
-        Action::AlignHand { path: None, .. }
-    ));
+    assert!(matches!(actions[2], Action::AlignHand { path: None, .. }));
 }
 
 #[test]
 fn mistakes_name_the_field() {
-    let grab = |fields: &str| load(&format!("[[timeline]]\naction = \"grab\"\nhand = 0\n{fields}"));
+    let grab = |fields: &str| {
+        load(&format!(
+            "[[timeline]]\naction = \"grab\"\nhand = 0\n{fields}"
+        ))
+    };
     let e = grab("at = [0, 0, 0]\nhose = \"a\"\nnode = 0").unwrap_err();
-    assert!(e.contains("timeline[0].at") && e.contains("not both"), "{e}");
+    assert!(
+        e.contains("timeline[0].at") && e.contains("not both"),
+        "{e}"
+    );
     let e = grab("hose = \"a\"").unwrap_err();
     assert!(e.contains("needs `node` too"), "{e}");
     let e = grab("node = 3").unwrap_err();
@@ -97,24 +101,35 @@ fn mistakes_name_the_field() {
         "{e}"
     );
     let e = grab("hose = \"b\"\nnode = 0").unwrap_err();
-    assert!(e.contains("timeline[0].hose") && e.contains("unknown hose"), "{e}");
+    assert!(
+        e.contains("timeline[0].hose") && e.contains("unknown hose"),
+        "{e}"
+    );
     let e = grab("hose = \"a\"\nnode = 11").unwrap_err();
-    assert!(e.contains("timeline[0].node = 11") && e.contains("out of range"), "{e}");
+    assert!(
+        e.contains("timeline[0].node = 11") && e.contains("out of range"),
+        "{e}"
+    );
     let align = |fields: &str| {
         load(&format!(
             "[[timeline]]\naction = \"grab\"\nhand = 0\nhose = \"a\"\nnode = 0\n\n[[timeline]]\naction = \"align_hand\"\nhand = 0\n{fields}"
         ))
     };
     let e = align("direction = [0, 0, 0]\nduration_s = 1").unwrap_err();
-    assert!(e.contains("timeline[1].direction") && e.contains("zero vector"), "{e}");
+    assert!(
+        e.contains("timeline[1].direction") && e.contains("zero vector"),
+        "{e}"
+    );
     let e = align("direction = [1, 0, 0]\nduration_s = 0").unwrap_err();
     assert!(e.contains("timeline[1].duration_s"), "{e}");
-    let e = align("direction = [1, 0, 0]\nduration_s = 1\nto = [0, 0, 0]\nby = [0, 0, 0]")
-        .unwrap_err();
+    let e =
+        align("direction = [1, 0, 0]\nduration_s = 1\nto = [0, 0, 0]\nby = [0, 0, 0]").unwrap_err();
     assert!(e.contains("not both"), "{e}");
     // a hand that holds nothing cannot turn
-    let e = load("[[timeline]]\naction = \"align_hand\"\nhand = 2\ndirection = [1, 0, 0]\nduration_s = 1")
-        .unwrap_err();
+    let e = load(
+        "[[timeline]]\naction = \"align_hand\"\nhand = 2\ndirection = [1, 0, 0]\nduration_s = 1",
+    )
+    .unwrap_err();
     assert!(
         e.contains("timeline[0].hand = 2") && e.contains("no earlier `grab` with hand = 2"),
         "{e}"
