@@ -61,6 +61,10 @@ pub struct ClipSite {
     pub hose: usize,
     /// The part the clip sits on (index into the model's parts), if any: it goes with it.
     pub part: Option<usize>,
+    /// The clip takes the hose only when a hand presses it in through its opening (a
+    /// fixing on a harness pushed into its hole): a hose drawn through it, passing by, or
+    /// carried into the jaws from behind is not held.
+    pub by_hand: bool,
 }
 
 /// How a fastener did over the run.
@@ -240,7 +244,7 @@ impl Fasteners {
             .into_iter()
             .map(|site| ClipRun {
                 tolerance: ClipTolerance::for_clip(&site.spec).checked(),
-                state: if drawn_seated(model, state, &site) {
+                state: if !site.by_hand && drawn_seated(model, state, &site) {
                     ClipState::Seated
                 } else {
                     ClipState::Free
@@ -521,6 +525,7 @@ fn update_clip(
     c.worked_at = cross.and_then(|(a, b, ..)| held_node_at_clip(held, &nodes, a, b));
     let coordinate = cross.map(|x| c.site.spec.opening_coordinate(x.3));
     let crossed_seat = matches!((c.last_coordinate, coordinate), (Some(a), Some(b)) if a * b < 0.0);
+    let previous = c.last_coordinate;
     c.last_coordinate = coordinate;
     let obs = ClipObservation {
         centre: cross.map(|x| x.3),
@@ -534,6 +539,17 @@ fn update_clip(
     let Ok(mut next) = c.state.next_within(&c.site.spec, &tolerance, &obs) else {
         return;
     };
+    // a clip pressed in by hand takes the hose only from a hand pressing it in through the
+    // opening: not a hose that hangs or is drawn through it, nor one carried into the
+    // jaws from behind (last step's centre not in front of them)
+    if c.site.by_hand && c.state == ClipState::Free && next != ClipState::Free {
+        let from_front = previous
+            .zip(c.site.spec.first_touch(radius))
+            .is_some_and(|(s, touch)| s >= touch);
+        if !grabbed || !from_front {
+            next = ClipState::Free;
+        }
+    }
     // pulled out of its seat harder than the clip holds (the support pulling the hose
     // back along −Z): it comes loose and the snap law acts again
     let spec = &c.site.spec;

@@ -243,6 +243,48 @@ fn rotation_vector(r: &Option<crate::timeline::Rotation>) -> DVec3 {
         .unwrap_or(DVec3::ZERO)
 }
 
+/// Where a hand takes hose node `node` ([`Action::GrabNode`]): at the node, nudged a
+/// millionth of the beam along the beam it takes — the one to the next node (the last
+/// node: the one to the node before) — so that the nearest beam is that one and no
+/// neighbour sharing the node (another hose's at a junction, the hose's own previous
+/// beam when the two are in line). `None` if the model has no such node.
+fn node_position(cell: &Workcell, node: crate::timeline::NodeRef) -> Option<DVec3> {
+    let h = cell
+        .model()
+        .hoses
+        .get(node.hose)
+        .filter(|h| node.node < h.node_count && h.node_count > 1)?;
+    let x = &cell.state().x;
+    let here = x[h.node(node.node)];
+    let other = if node.node + 1 < h.node_count {
+        x[h.node(node.node + 1)]
+    } else {
+        x[h.node(node.node - 1)]
+    };
+    Some(here + (other - here) * 1e-6)
+}
+
+fn node_refusal(node: crate::timeline::NodeRef) -> Refusal {
+    Refusal::Invalid(format!("hose {} has no node {}", node.hose, node.node))
+}
+
+/// The axis of beam `element`, pointing towards the nearer end of its hose (`None` for a
+/// beam of zero length).
+fn held_beam_direction(model: &Model, state: &State, element: usize) -> Option<DVec3> {
+    let el = model.elements.get(element)?;
+    let (a, b) = (el.node_a, el.node_b);
+    let hose = model.hoses.iter().find(|h| h.nodes().contains(&a))?;
+    let nodes = hose.nodes();
+    // node_b lies further along the hose: towards the end when it is nearer the end
+    let towards_end = (nodes.end - 1 - b) <= (a - nodes.start);
+    let axis = if towards_end {
+        state.x[b] - state.x[a]
+    } else {
+        state.x[a] - state.x[b]
+    };
+    axis.try_normalize()
+}
+
 /// One action: load-case changes are instantaneous, time-taking actions step.
 fn apply(
     cell: &mut Workcell,
@@ -325,6 +367,49 @@ fn apply(
                 at: *at,
             },
         )?,
+        Action::GrabNode { hand, node, grip } => {
+            let at = node_position(cell, *node)
+                .ok_or_else(|| Stop::Refused(index, "grab", node_refusal(*node)))?;
+            give(
+                cell,
+                index,
+                Input::Grab {
+                    grip: *grip,
+                    hand: *hand as HandNumber,
+                    at,
+                },
+            )?
+        }
+        Action::AlignHand {
+            hand,
+            direction,
+            path,
+            duration,
+        } => {
+            let number = *hand as HandNumber;
+            let held = cell
+                .hand(number)
+                .map_err(|r| Stop::Refused(index, "align_hand", r))?;
+            let start = held.hand.pose_at(cell.state().time).0;
+            let now = held_beam_direction(cell.model(), cell.state(), held.hand.element);
+            let turn = match (now, direction.try_normalize()) {
+                (Some(a), Some(b)) => {
+                    pliant_core::math::log_map(pliant_core::math::rotation_between(a, b))
+                }
+                _ => DVec3::ZERO,
+            };
+            give(
+                cell,
+                index,
+                Input::MoveHand {
+                    hand: number,
+                    waypoints: waypoints(path, start),
+                    rotation: turn,
+                    duration: *duration,
+                },
+            )?;
+            advance_until_done(cell, *duration, obs)?;
+        }
         Action::MoveHand {
             hand,
             path,

@@ -76,6 +76,27 @@ pub enum Action {
         #[serde(default, skip_serializing_if = "crate::Grip::is_firm")]
         grip: crate::Grip,
     },
+    /// I1: hand `hand` takes the hose at `node`, wherever it is when the action runs (a
+    /// worker picking up a connector by its housing): as [`Action::Grab`] at the node's
+    /// position then, taking the beam from the node to the next one (from the last node:
+    /// the last beam), the hand's frame at the node.
+    GrabNode {
+        hand: usize,
+        node: NodeRef,
+        #[serde(default, skip_serializing_if = "crate::Grip::is_firm")]
+        grip: crate::Grip,
+    },
+    /// Turns hand `hand` over `duration` seconds (a smooth start and stop) so that the
+    /// beam it holds ends pointing along `direction` — its axis taken towards the nearer
+    /// end of its hose (a plug turned to face its counterpart) — while it moves along
+    /// `path` (if given; else it turns where it is). The turn is the shortest one from
+    /// where the beam points when the action starts.
+    AlignHand {
+        hand: usize,
+        direction: DVec3,
+        path: Option<MovePath>,
+        duration: f64,
+    },
     /// Moves hand `hand` along `path` and/or turns it by `rotation` over `duration`
     /// seconds — or, when `speed` \[m/s\] is given, over the path's length divided by it —
     /// with a smooth start and stop; through the waypoints as a polyline, or along a

@@ -235,6 +235,7 @@ fn seat_and_pull(spec: ClipSpec, pull: f64) -> (State, pliant_assembly::Fastener
         spec,
         hose: 0,
         part: None,
+        by_hand: false,
     };
     let timeline = Timeline {
         actions: vec![

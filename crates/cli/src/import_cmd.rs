@@ -18,6 +18,8 @@ pub struct ImportOptions<'a> {
     pub out: Option<&'a Path>,
     pub cache_dir: Option<&'a Path>,
     pub tolerance: Option<&'a str>,
+    /// KBL: import only the branch beyond this node or segment.
+    pub branch: Option<&'a str>,
 }
 
 /// A length such as "0.5mm", "0.02 in", "0.0005m"; a bare number is millimetres.
@@ -72,7 +74,12 @@ fn run_harness(o: &ImportOptions) -> Result<ExitCode> {
             .unwrap_or_else(|| "harness".into());
         o.step.with_file_name(stem)
     });
-    let report = pliant_harness::import_kbl(o.step, &out).map_err(|e| anyhow!("{e}"))?;
+    let options = pliant_harness::ImportOptions {
+        branch: o.branch.map(str::to_owned),
+        ..Default::default()
+    };
+    let report =
+        pliant_harness::import_kbl_opts(o.step, &out, &options).map_err(|e| anyhow!("{e}"))?;
     print!("{report}");
     println!(
         "run it: pliant run {}   inspect it: pliant inspect {}",
@@ -86,6 +93,9 @@ fn run_harness(o: &ImportOptions) -> Result<ExitCode> {
 pub fn run(o: &ImportOptions) -> Result<ExitCode> {
     if is_harness_file(o.step) {
         return run_harness(o);
+    }
+    if o.branch.is_some() {
+        bail!("--branch is for harness files (KBL); a STEP assembly has no branches");
     }
     let tolerance = match o.tolerance {
         Some(t) => parse_length(t).context("--tolerance")?,

@@ -183,8 +183,10 @@ enum Command {
     /// once with OpenCASCADE: into the cache a scene beside it reads (`[[parts]] step =
     /// …`), or into a GLB (--out). A wire harness in KBL 2.3–2.5 (`.kbl`, VDA 4964)
     /// becomes a scene: `--out DIR` receives scene.toml (segments, junctions, bundle
-    /// sections, fixings, the installed state as timeline) and harness.json
-    /// (docs/harness.md). VEC files (`.vec`) are read where they carry 3-D geometry.
+    /// sections, fixings, the installed state as timeline), harness.json and install.toml
+    /// (the harness installed by two hands: connectors plugged, fixings pressed in;
+    /// crates/harness/README.md). VEC files (`.vec`) are read where they carry 3-D
+    /// geometry.
     Import {
         /// The STEP or KBL file.
         step: PathBuf,
@@ -202,6 +204,12 @@ enum Command {
         /// must be the same for it to find the entry.
         #[arg(long)]
         tolerance: Option<String>,
+        /// KBL: import only the branch beyond this node or segment (its KBL id or <Id>
+        /// text), held fixed where it is cut off (the rest of the harness, installed).
+        /// A node: every outlet of that branch point but the trunk (the part with the most
+        /// segments); a segment: the segment and all beyond it, away from the larger rest.
+        #[arg(long, value_name = "NODE_OR_SEGMENT")]
+        branch: Option<String>,
     },
     /// Print what a scene builds: hoses (length, elements, nodes), junctions (degree,
     /// position), fixings and parts, in metres.
@@ -451,11 +459,13 @@ fn main() -> ExitCode {
             out,
             cache_dir,
             tolerance,
+            branch,
         } => import_cmd::run(&import_cmd::ImportOptions {
             step: &step,
             out: out.as_deref(),
             cache_dir: cache_dir.as_deref(),
             tolerance: tolerance.as_deref(),
+            branch: branch.as_deref(),
         }),
         Command::Calibrate {
             spec,

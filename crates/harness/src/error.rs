@@ -45,6 +45,9 @@ pub enum HarnessError {
         id: String,
         example: String,
     },
+    /// `--branch ID` names nothing that can be cut off as a branch.
+    #[error("--branch {id}: {reason}")]
+    Branch { id: String, reason: String },
     /// An output file could not be written.
     #[error("{path}: cannot write: {source}")]
     Write {

@@ -699,10 +699,17 @@ impl<'a, 'i> Reader<'a, 'i> {
             let node = std::iter::once(id.as_str())
                 .chain(associated)
                 .find_map(|c| on_node.get(c).copied());
+            // the housing's positions: its cavities (a cavity may stay empty), else the
+            // contact points written
+            let cavities = children(n, "Slots")
+                .map(|s| children(s, "Cavities").count())
+                .sum::<usize>();
+            let contacts = children(n, "Contact_points").count();
             h.connectors.push(Connector {
                 name: text_string(n, "Id"),
                 description: text_string(n, "Description"),
                 node,
+                positions: if cavities > 0 { cavities } else { contacts },
                 kbl_id: id,
             });
         }

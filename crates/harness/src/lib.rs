@@ -10,6 +10,7 @@
 //! - [`calibrate`] fits a protection's coupling factor from a bending test;
 //! - [`import_kbl`] does all of it and returns an [`ImportReport`].
 
+pub mod branch;
 pub mod bspline;
 pub mod bundle;
 pub mod calibrate;
@@ -17,6 +18,7 @@ pub mod error;
 pub mod export;
 pub mod geometry;
 pub mod install;
+pub mod install_data;
 pub mod kbl;
 pub mod model;
 pub mod report;
@@ -38,6 +40,7 @@ pub use step::{export_step, StepNames, StepReport};
 
 use bundle::{segment_bundle, BundleData};
 use geometry::SegmentCurve;
+pub use install_data::InstallData;
 use scene::{element_count, sanitise, unique, SegmentOut};
 
 pub(crate) fn file_name(path: &Path) -> String {
@@ -95,7 +98,7 @@ fn licence_note(path: &Path) -> String {
 /// Import a KBL file: write `out_dir/scene.toml` and `out_dir/harness.json` and report
 /// what was imported, skipped and assumed.
 pub fn import_kbl(path: &Path, out_dir: &Path) -> Result<ImportReport, HarnessError> {
-    import_kbl_with(path, out_dir, &BundleData::builtin())
+    import_kbl_opts(path, out_dir, &ImportOptions::default())
 }
 
 /// [`import_kbl`] with bundle data of one's own (e.g. calibrated factors).
@@ -104,7 +107,62 @@ pub fn import_kbl_with(
     out_dir: &Path,
     data: &BundleData,
 ) -> Result<ImportReport, HarnessError> {
+    import_kbl_opts(
+        path,
+        out_dir,
+        &ImportOptions {
+            bundle: data.clone(),
+            ..ImportOptions::default()
+        },
+    )
+}
+
+/// What an import may be told besides the file.
+#[derive(Clone, Debug)]
+pub struct ImportOptions {
+    /// The bundle model's data ([`BundleData::builtin`] by default).
+    pub bundle: BundleData,
+    /// The data `install.toml` is written with: connectors' mating forces, the assembly
+    /// slack ([`InstallData::builtin`]).
+    pub install: InstallData,
+    /// Import only the branch beyond this node or segment (KBL id or `<Id>` text; see
+    /// [`branch`]), held where it was cut off.
+    pub branch: Option<String>,
+}
+
+impl Default for ImportOptions {
+    fn default() -> Self {
+        ImportOptions {
+            bundle: BundleData::builtin(),
+            install: InstallData::builtin(),
+            branch: None,
+        }
+    }
+}
+
+/// [`import_kbl`] with [`ImportOptions`].
+pub fn import_kbl_opts(
+    path: &Path,
+    out_dir: &Path,
+    options: &ImportOptions,
+) -> Result<ImportReport, HarnessError> {
+    let data = &options.bundle;
     let mut h = read_kbl(path)?;
+    let mut cut = None;
+    let mut branch_note = None;
+    if let Some(id) = &options.branch {
+        let b = branch::branch(&h, id)?;
+        branch_note = Some(format!(
+            "branch beyond {} {}: {} of {} segments, held at {} where it was cut off",
+            b.named,
+            b.id,
+            b.harness.segments.len(),
+            b.of_segments,
+            b.harness.nodes[b.cut].kbl_id
+        ));
+        cut = Some(b.cut);
+        h = b.harness;
+    }
     let curves: Vec<SegmentCurve> = h.segments.iter().map(|s| SegmentCurve::of(&h, s)).collect();
     let mut sections = Vec::with_capacity(h.segments.len());
     let mut warnings = Vec::new();
@@ -150,7 +208,7 @@ pub fn import_kbl_with(
         source,
     })?;
     let scene_path = out_dir.join("scene.toml");
-    let text = scene::scene_toml(&h, &segs, &note);
+    let text = scene::scene_toml(&h, &segs, &note, cut);
     std::fs::write(&scene_path, text).map_err(|source| HarnessError::Write {
         path: scene_path.clone(),
         source,
@@ -166,8 +224,9 @@ pub fn import_kbl_with(
         path: json_path.clone(),
         source,
     })?;
-    let mut report = ImportReport::new(&h, &segs, scene_path, json_path);
-    report.install = match install::install_toml(&h, &segs, &note) {
+    let mut report = ImportReport::new(&h, &segs, cut, scene_path, json_path);
+    report.branch = branch_note;
+    report.install = match install::install_toml(&h, &segs, &note, cut, &options.install) {
         Ok(text) => {
             let path = out_dir.join("install.toml");
             std::fs::write(&path, text).map_err(|source| HarnessError::Write {

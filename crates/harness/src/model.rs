@@ -182,6 +182,9 @@ pub struct Connector {
     pub description: Option<String>,
     /// Index into `Harness::nodes`, if a node refers to it.
     pub node: Option<usize>,
+    /// Positions of its housing: the cavities of its `Slots`, else its `Contact_points`
+    /// (0 when the file gives neither).
+    pub positions: usize,
 }
 
 impl Harness {

@@ -45,10 +45,18 @@ pub struct ImportReport {
     pub harness_json: PathBuf,
     /// The installation by a worker (`install.toml`), or why none was written.
     pub install: Result<PathBuf, crate::install::NotInstalled>,
+    /// What was imported of the file when a branch was asked for (`--branch`).
+    pub branch: Option<String>,
 }
 
 impl ImportReport {
-    pub fn new(h: &Harness, segs: &[SegmentOut], scene: PathBuf, harness_json: PathBuf) -> Self {
+    pub fn new(
+        h: &Harness,
+        segs: &[SegmentOut],
+        cut: Option<usize>,
+        scene: PathBuf,
+        harness_json: PathBuf,
+    ) -> Self {
         let degree: Vec<usize> = h.segments_at_nodes().iter().map(Vec::len).collect();
         let mut max_length_error = (0.0, String::new());
         let mut max_end_error_m: f64 = 0.0;
@@ -79,7 +87,7 @@ impl ImportReport {
             protections: h.protections.len(),
             connectors: h.connectors.len(),
             connectors_on_nodes: h.connectors.iter().filter(|c| c.node.is_some()).count(),
-            fixes_in_timeline: held_nodes(h, segs).len(),
+            fixes_in_timeline: held_nodes(h, segs, cut).len(),
             trimmed_segments: h
                 .segments
                 .iter()
@@ -94,6 +102,7 @@ impl ImportReport {
             scene,
             harness_json,
             install: Err(crate::install::NotInstalled::NoConnector),
+            branch: None,
         }
     }
 }
@@ -101,6 +110,9 @@ impl ImportReport {
 impl fmt::Display for ImportReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "{} (KBL {})", self.source, self.kbl_version)?;
+        if let Some(b) = &self.branch {
+            writeln!(f, "  {b}")?;
+        }
         writeln!(
             f,
             "  {} nodes, {} segments ({:.3} m of centre line; virtual length {:.3} m)",

@@ -154,14 +154,20 @@ pub fn clip_type(fixing_type: Option<&str>, description: Option<&str>) -> &'stat
     }
 }
 
-/// Everything the timeline holds: (hose index, node index) pairs, in order, without repeats.
-pub fn held_nodes(h: &Harness, segs: &[SegmentOut]) -> Vec<(usize, i64)> {
+/// Everything the timeline holds: (hose index, node index) pairs, in order, without repeats
+/// — the fixings, the connector ends and `cut`, the node a branch was cut off at.
+pub fn held_nodes(h: &Harness, segs: &[SegmentOut], cut: Option<usize>) -> Vec<(usize, i64)> {
     let mut out: Vec<(usize, i64)> = Vec::new();
     let mut push = |x: (usize, i64)| {
         if !out.contains(&x) {
             out.push(x);
         }
     };
+    if let Some(n) = cut {
+        if let Some(&s) = h.segments_at_nodes()[n].first() {
+            push((s, if h.segments[s].start_node == n { 0 } else { -1 }));
+        }
+    }
     for f in &h.fixings {
         let n = segs[f.segment].elements;
         push((f.segment, (f.location * n as f64).round() as i64));
@@ -193,6 +199,20 @@ pub(crate) fn network_toml(
     segs: &[SegmentOut],
     licence_note: &str,
     simulation: &str,
+) -> String {
+    network_toml_with_slack(h, segs, licence_note, simulation, 0.0)
+}
+
+/// [`network_toml`] with every segment `slack` (a share of its length, ≥ 0) longer than
+/// its route: drawn bowed sideways between its nodes, downwards where it can, by
+/// a·sin²(π s/L) ([`bow`]: the ends and their tangents stay on the route, so junctions and
+/// plugs sit as the route has them).
+pub(crate) fn network_toml_with_slack(
+    h: &Harness,
+    segs: &[SegmentOut],
+    licence_note: &str,
+    simulation: &str,
+    slack: f64,
 ) -> String {
     let mut t = String::new();
     let _ = writeln!(
@@ -240,6 +260,9 @@ pub(crate) fn network_toml(
         }
         if let Some(p) = pts.last_mut() {
             *p = h.nodes[s.end_node].position;
+        }
+        if slack > 0.0 {
+            bow(&mut pts, slack);
         }
         let sec = out.section;
         let _ = writeln!(t, "[[hoses]]\nname = {}", quote(&out.hose));
@@ -310,6 +333,67 @@ pub(crate) fn network_toml(
     t
 }
 
+/// Bows the points of a centre line sideways by a·sin²(π s/L), towards −z where the line
+/// is not vertical (a bundle sags), else across it, with the amplitude a (of either sign)
+/// that makes the polyline through them `slack` longer than it is: a ≈ 2 L √slack / π on a
+/// straight line; a curved line grows or shrinks to first order as it is bowed away from or
+/// towards its centre of curvature, so a is solved for (the length is quadratic in a to
+/// second order: fitted from three bows, then refined by the secant rule).
+fn bow(pts: &mut [DVec3], slack: f64) {
+    let n = pts.len();
+    if n < 3 {
+        return;
+    }
+    let original = pts.to_vec();
+    let shape: Vec<DVec3> = (0..n)
+        .map(|i| {
+            if i == 0 || i == n - 1 {
+                return DVec3::ZERO;
+            }
+            let s = i as f64 / (n - 1) as f64;
+            let t = (original[i + 1] - original[i - 1]).normalize_or(DVec3::X);
+            let down = -DVec3::Z - t * (-DVec3::Z).dot(t);
+            let side = if down.length() > 0.1 {
+                down.normalize()
+            } else {
+                perpendicular(t)
+            };
+            side * (std::f64::consts::PI * s).sin().powi(2)
+        })
+        .collect();
+    let length = |a: f64| -> f64 {
+        let mut l = 0.0;
+        for i in 1..n {
+            l += ((original[i] + shape[i] * a) - (original[i - 1] + shape[i - 1] * a)).length();
+        }
+        l
+    };
+    let l0 = length(0.0);
+    let target = l0 * (1.0 + slack);
+    let a0 = 2.0 * l0 * slack.sqrt() / std::f64::consts::PI;
+    // l(a) ≈ l0 + k a + c a²
+    let (lp, lm) = (length(a0), length(-a0));
+    let k = (lp - lm) / (2.0 * a0);
+    let c = (lp + lm - 2.0 * l0) / (2.0 * a0 * a0);
+    let sign = if k >= 0.0 { 1.0 } else { -1.0 };
+    let (k, c) = (k.abs(), c.max(1e-12));
+    let mut a = (-k + (k * k + 4.0 * c * (target - l0)).sqrt()) / (2.0 * c);
+    // secant refinement on the side chosen
+    let mut prev = (0.0, l0 - target);
+    for _ in 0..8 {
+        let f = length(sign * a) - target;
+        if f.abs() <= 1e-9 * l0 || (f - prev.1).abs() < f64::MIN_POSITIVE {
+            break;
+        }
+        let next = a - f * (a - prev.0) / (f - prev.1);
+        prev = (a, f);
+        a = next.max(0.0);
+    }
+    for (p, (o, d)) in pts.iter_mut().zip(original.iter().zip(&shape)) {
+        *p = *o + *d * (sign * a);
+    }
+}
+
 /// A fixing as the scene places it: the curve point at its location, the segment's
 /// direction there and the side the hose enters the clip from.
 pub(crate) struct ClipPlace {
@@ -374,8 +458,9 @@ pub(crate) fn clip_places(h: &Harness, segs: &[SegmentOut]) -> Vec<ClipPlace> {
         .collect()
 }
 
-/// A `[[clips]]` entry with its seat at `seat` \[m\].
-pub(crate) fn clip_toml(t: &mut String, c: &ClipPlace, seat: DVec3) {
+/// A `[[clips]]` entry with its seat at `seat` \[m\]; `by_hand`: it takes the bundle only
+/// when a hand presses it in (not as it is drawn through it or hangs by).
+pub(crate) fn clip_toml(t: &mut String, c: &ClipPlace, seat: DVec3, by_hand: bool) {
     let _ = writeln!(t, "[[clips]]\nname = {}", quote(&c.name));
     let _ = writeln!(t, "# {}", c.comment);
     let _ = writeln!(t, "type = \"{}\"\nhose = {}", c.kind, quote(&c.hose));
@@ -395,20 +480,34 @@ pub(crate) fn clip_toml(t: &mut String, c: &ClipPlace, seat: DVec3) {
     if c.kind != "cable_tie" {
         let _ = writeln!(t, "snap_force_n = {SNAP_FORCE_N}");
     }
+    if by_hand {
+        let _ = writeln!(t, "by_hand = true");
+    }
     t.push('\n');
 }
 
-/// The text of `scene.toml`: the harness held in its installed state.
-pub fn scene_toml(h: &Harness, segs: &[SegmentOut], licence_note: &str) -> String {
+/// The text of `scene.toml`: the harness held in its installed state (`cut`: the node a
+/// branch was cut off at, held too).
+pub fn scene_toml(
+    h: &Harness,
+    segs: &[SegmentOut],
+    licence_note: &str,
+    cut: Option<usize>,
+) -> String {
     let mut t = network_toml(h, segs, licence_note, &static_simulation());
     for c in clip_places(h, segs) {
-        clip_toml(&mut t, &c, c.point);
+        clip_toml(&mut t, &c, c.point, false);
     }
     let _ = writeln!(
         t,
-        "# Installed state: held at every fixing and at every connector end, then at rest."
+        "# Installed state: held at every fixing and at every connector end{}, then at rest.",
+        if cut.is_some() {
+            " and where the branch was cut off"
+        } else {
+            ""
+        }
     );
-    for (s, node) in held_nodes(h, segs) {
+    for (s, node) in held_nodes(h, segs, cut) {
         let _ = writeln!(
             t,
             "[[timeline]]\naction = \"fix\"\nhose = {}\nnode = {node}\n",

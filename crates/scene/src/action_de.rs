@@ -56,6 +56,7 @@ impl<'de> Deserialize<'de> for ActionEntry {
             "tie" => ActionEntry::Tie(part(table)?),
             "grab" => ActionEntry::Grab(part(table)?),
             "move_hand" => ActionEntry::MoveHand(part(table)?),
+            "align_hand" => ActionEntry::AlignHand(part(table)?),
             "aim_hand" => ActionEntry::AimHand(part(table)?),
             "release_hand" => ActionEntry::ReleaseHand(part(table)?),
             "move_part" => ActionEntry::MovePart(part(table)?),

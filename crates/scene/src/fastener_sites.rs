@@ -57,6 +57,7 @@ impl LoadedScene {
                 spec: c.spec,
                 hose: c.hose,
                 part: c.part,
+                by_hand: c.by_hand,
             });
         }
         Ok((stubs, clips))

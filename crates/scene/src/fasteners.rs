@@ -449,5 +449,6 @@ pub fn build_clip(
         spec,
         hose,
         part,
+        by_hand: raw.by_hand,
     })
 }

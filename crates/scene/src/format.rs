@@ -395,6 +395,12 @@ pub struct ClipEntry {
     /// Pull-out force (N), > 0: a seated hose pulled out of the seat (along `opening`)
     /// harder than this comes loose. Default: it holds whatever the pull.
     pub holding_force_n: Option<f64>,
+    /// The clip takes the hose only when a hand presses it in through its opening: a hose
+    /// drawn through it, passing by, or carried into the jaws from behind is not held — a
+    /// fixing on a harness that the worker pushes into its hole. Default false: a hose
+    /// drawn in the seat starts seated, and one that comes into the jaws snaps in.
+    #[serde(default)]
+    pub by_hand: bool,
 }
 
 /// `type` of a clip: a fixing by the degrees of freedom it leaves free.
@@ -924,6 +930,8 @@ pub enum ActionEntry {
     Grab(GrabEntry),
     /// Move a hand (holding a beam) along waypoints and/or turn it.
     MoveHand(MoveHandEntry),
+    /// Turn a hand so that the beam it holds points along a direction.
+    AlignHand(AlignHandEntry),
     /// A hand heads for a pose at bounded speed, as a live hand does (the timeline goes
     /// on at once; what `pliant replay --timeline` writes for a live session's moves).
     AimHand(AimHandEntry),
@@ -941,7 +949,7 @@ pub enum ActionEntry {
 }
 
 /// The names of the `action` values, in the order of [`ActionEntry`].
-pub const ACTION_NAMES: [&str; 15] = [
+pub const ACTION_NAMES: [&str; 16] = [
     "fix",
     "mount",
     "move",
@@ -951,6 +959,7 @@ pub const ACTION_NAMES: [&str; 15] = [
     "tie",
     "grab",
     "move_hand",
+    "align_hand",
     "aim_hand",
     "release_hand",
     "move_part",
@@ -1028,7 +1037,7 @@ pub struct MoveEntry {
     pub wait: Option<bool>,
 }
 
-/// `grab`: a hand takes hold of the beam nearest to a point.
+/// `grab`: a hand takes hold of the beam nearest to a point, or of a hose at a node.
 #[derive(Clone, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct GrabEntry {
@@ -1036,13 +1045,39 @@ pub struct GrabEntry {
     #[schemars(range(min = 0, max = 7))]
     pub hand: i64,
     /// Where the hand grabs (length unit): the beam nearest to it is taken, and the
-    /// hand's frame starts here.
-    pub at: Vec3,
+    /// hand's frame starts here. Excludes `hose` and `node`.
+    pub at: Option<Vec3>,
+    /// With `node`: the hand takes this hose at that node, wherever the node is when
+    /// the grab runs (for an end node: its end beam). Excludes `at`.
+    pub hose: Option<String>,
+    /// Node index of `hose`; negative counts from the end (−1 = last).
+    pub node: Option<i64>,
     /// How the hand holds the hose: `firm` (default; the beam turns with the hand),
     /// `axial` (position held, the hose may turn about its own axis in the hand) or
     /// `ball` (position held, free to turn about every axis).
     #[serde(default)]
     pub grip: GripName,
+}
+
+/// `align_hand`: turn a hand so that the beam it holds points along a direction, in place
+/// or while moving it.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AlignHandEntry {
+    /// Hand index, 0 … 7; it must be holding a beam.
+    #[schemars(range(min = 0, max = 7))]
+    pub hand: i64,
+    /// Where the held beam's axis ends up pointing (any non-zero length), the axis taken
+    /// towards the nearer end of its hose.
+    pub direction: Vec3,
+    /// Absolute waypoints (length unit) the hand moves through while it turns; the last
+    /// is the target. Excludes `by`. Without either it turns where it is.
+    pub to: Option<Points>,
+    /// Waypoints as offsets from the hand's position when the turn starts (length unit).
+    /// Excludes `to`.
+    pub by: Option<Points>,
+    /// Duration of the turn (s), > 0.
+    pub duration_s: f64,
 }
 
 /// `grip` of a grab.

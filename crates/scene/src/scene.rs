@@ -68,6 +68,8 @@ pub struct SceneClip {
     pub hose: usize,
     /// The part it sits on (index into the world's parts), if any.
     pub part: Option<usize>,
+    /// It takes the hose only when a hand presses it in.
+    pub by_hand: bool,
 }
 
 /// How one hose was discretised.

@@ -3,9 +3,9 @@
 
 use crate::error::FieldError;
 use crate::format::{
-    ActionEntry, AimHandEntry, FixEntry, GrabEntry, GripName, HandEntry, LoadEntry, MountEntry,
-    MoveEntry, MoveHandEntry, MovePartEntry, NodeEntry, Points, RotateEntry, RotatePartEntry,
-    RunEntry, SettleEntry, TieEntry, UnloadEntry,
+    ActionEntry, AimHandEntry, AlignHandEntry, FixEntry, GrabEntry, GripName, HandEntry, LoadEntry,
+    MountEntry, MoveEntry, MoveHandEntry, MovePartEntry, NodeEntry, Points, RotateEntry,
+    RotatePartEntry, RunEntry, SettleEntry, TieEntry, UnloadEntry,
 };
 use crate::ranges::{at_most, vec_at_most, MAX_LOAD_FORCE, MAX_LOAD_MOMENT, MAX_ROTATION_DEG};
 use crate::units::LengthUnit;
@@ -158,12 +158,12 @@ fn check_hands(actions: &[Action]) -> Result<(), FieldError> {
     let mut released = [None::<usize>; MAX_HANDS];
     for (i, a) in actions.iter().enumerate() {
         let (hand, verb) = match a {
-            Action::Grab { hand, .. } => {
+            Action::Grab { hand, .. } | Action::GrabNode { hand, .. } => {
                 holding[*hand] = Some(i);
                 released[*hand] = None;
                 continue;
             }
-            Action::MoveHand { hand, .. } => (*hand, "move"),
+            Action::MoveHand { hand, .. } | Action::AlignHand { hand, .. } => (*hand, "move"),
             Action::ReleaseHand { hand } => (*hand, "release"),
             Action::AimHand { hand, .. } => (*hand, "aim"),
             _ => continue,
@@ -233,16 +233,16 @@ fn rotation(field: &str, r: &RotateEntry) -> Result<Rotation, FieldError> {
 
 /// Checks the `to` / `by` / `rotate` of a `move` or `move_hand`: at most one of `to`
 /// and `by`, at least one of the three. `what` names the action in messages.
-fn path_and_rotation(
+/// The path of a move: `to` or `by` (not both), or none.
+fn move_path(
     field: &str,
     what: &str,
     to: &Option<Points>,
     by: &Option<Points>,
-    rotate: &Option<RotateEntry>,
     unit: LengthUnit,
-) -> Result<(Option<MovePath>, Option<Rotation>), FieldError> {
+) -> Result<Option<MovePath>, FieldError> {
     let sub = |name: &str| format!("{field}.{name}");
-    let path = match (to, by) {
+    Ok(match (to, by) {
         (Some(_), Some(_)) => {
             return Err(FieldError::about(
                 field,
@@ -252,7 +252,19 @@ fn path_and_rotation(
         (Some(p), None) => Some(MovePath::To(waypoints(&sub("to"), p, unit)?)),
         (None, Some(p)) => Some(MovePath::By(waypoints(&sub("by"), p, unit)?)),
         (None, None) => None,
-    };
+    })
+}
+
+fn path_and_rotation(
+    field: &str,
+    what: &str,
+    to: &Option<Points>,
+    by: &Option<Points>,
+    rotate: &Option<RotateEntry>,
+    unit: LengthUnit,
+) -> Result<(Option<MovePath>, Option<Rotation>), FieldError> {
+    let sub = |name: &str| format!("{field}.{name}");
+    let path = move_path(field, what, to, by, unit)?;
     let rotation = match rotate {
         Some(r) => Some(rotation(&sub("rotate"), r)?),
         None => None,
@@ -366,15 +378,72 @@ fn build_action(
                 name: name.clone(),
             }
         }
-        ActionEntry::Grab(GrabEntry { hand, at, grip }) => Action::Grab {
-            grip: match grip {
+        ActionEntry::Grab(GrabEntry {
+            hand,
+            at,
+            hose,
+            node,
+            grip,
+        }) => {
+            let grip = match grip {
                 GripName::Firm => Grip::Firm,
                 GripName::Axial => Grip::Axial,
                 GripName::Ball => Grip::Ball,
-            },
-            hand: hand_index(&sub("hand"), *hand)?,
-            at: finite_vec(&sub("at"), *at, unit.symbol())? * unit.to_metres(),
-        },
+            };
+            let hand = hand_index(&sub("hand"), *hand)?;
+            match (at, hose, node) {
+                (Some(at), None, None) => Action::Grab {
+                    grip,
+                    hand,
+                    at: finite_vec(&sub("at"), *at, unit.symbol())? * unit.to_metres(),
+                },
+                (None, Some(hose), Some(node)) => Action::GrabNode {
+                    grip,
+                    hand,
+                    node: node_ref(field, hose, *node, hoses)?,
+                },
+                (Some(_), _, _) => {
+                    return Err(FieldError::about(
+                        sub("at"),
+                        "give either `at` or `hose` and `node`, not both",
+                    ))
+                }
+                (None, Some(_), None) => {
+                    return Err(FieldError::about(
+                        field.to_string(),
+                        "a grab by `hose` needs `node` too",
+                    ))
+                }
+                (None, None, Some(_)) => {
+                    return Err(FieldError::about(
+                        field.to_string(),
+                        "a grab by `node` needs `hose` too",
+                    ))
+                }
+                (None, None, None) => {
+                    return Err(FieldError::about(
+                        sub("at"),
+                        "missing field `at`: a grab needs `at`, or `hose` and `node`",
+                    ))
+                }
+            }
+        }
+        ActionEntry::AlignHand(AlignHandEntry {
+            hand,
+            direction,
+            to,
+            by,
+            duration_s,
+        }) => {
+            let d = non_zero_vec(&sub("direction"), *direction, "")?;
+            let path = move_path(field, "a hand turn", to, by, unit)?;
+            Action::AlignHand {
+                hand: hand_index(&sub("hand"), *hand)?,
+                direction: d.normalize(),
+                path,
+                duration: positive(&sub("duration_s"), *duration_s, "s")?,
+            }
+        }
         ActionEntry::MoveHand(MoveHandEntry {
             hand,
             to,

@@ -137,7 +137,7 @@ impl LoadedScene {
             .actions
             .iter()
             .filter_map(|a| match a {
-                Action::Grab { hand, .. } => Some(*hand),
+                Action::Grab { hand, .. } | Action::GrabNode { hand, .. } => Some(*hand),
                 _ => None,
             })
             .collect();

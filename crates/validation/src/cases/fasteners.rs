@@ -237,6 +237,7 @@ pub fn run_clip() -> Vec<Check> {
         spec,
         hose: 0,
         part: None,
+        by_hand: false,
     };
     match Runner::new(&model).with_fasteners(vec![], vec![site]).run(
         &Timeline { actions },
