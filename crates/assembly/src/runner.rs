@@ -9,8 +9,8 @@ use crate::fasteners::{ClipSite, StubSite};
 use crate::report::summary::{OtherStop, Stopped};
 use crate::timeline::{Action, MovePath, Timeline};
 use crate::workcell::{
-    HandNumber, Input, Observer, Refusal, RunSummary, SettleOutcome, Workcell, WorkcellOptions,
-    WorkcellSetup,
+    HandNumber, Input, Observer, Refusal, RunSummary, SettleOutcome, Workcell, WorkcellError,
+    WorkcellOptions, WorkcellSetup,
 };
 use glam::DVec3;
 use pliant_core::curve::catmull_rom;
@@ -98,7 +98,7 @@ impl Runner {
     }
 
     /// The workcell this runner runs the timeline on (at rest, t = 0).
-    pub fn workcell(&self) -> Result<Workcell, String> {
+    pub fn workcell(&self) -> Result<Workcell, WorkcellError> {
         Workcell::new(self.setup.clone(), self.options)
     }
 
@@ -143,10 +143,10 @@ impl Runner {
         state: &mut State,
         obs: &mut dyn Observer,
     ) -> Result<RunSummary, RunError> {
-        let mut cell = self.workcell().map_err(|reason| RunError {
+        let mut cell = self.workcell().map_err(|e| RunError {
             divergence: None,
-            stopped: Stopped::other(OtherStop::Setup, reason.clone()),
-            reason,
+            stopped: Stopped::other(OtherStop::Setup, e.to_string()),
+            reason: e.to_string(),
             partial: RunSummary::default(),
         })?;
         let outcome = run_timeline(&mut cell, timeline, obs);

@@ -22,7 +22,7 @@ use glam::DVec3;
 use pliant_assembly::checks::CheckSettings;
 use pliant_assembly::ergonomics::ErgonomicProfile;
 use pliant_assembly::workcell::WorkcellSetup;
-use pliant_assembly::{Action, Grip, Input, NoObserver, NodeRef, Workcell, WorkcellOptions};
+use pliant_assembly::{Grip, InitialLoad, Input, NoObserver, NodeRef, Workcell, WorkcellOptions};
 use pliant_core::sleep::SLEEP_AFTER_STEPS;
 use pliant_core::spec::RigidPartSpec;
 use pliant_core::{HoseSpec, Model, SimSettings, SolverKind, WorldSpec};
@@ -262,11 +262,11 @@ pub fn model(t: &Tessellation) -> Result<Model> {
 fn setup(model: &Arc<Model>) -> WorkcellSetup {
     let mut initial = Vec::new();
     for hose in 0..HOSES {
-        initial.push(Action::Fix {
+        initial.push(InitialLoad::Fix {
             node: NodeRef { hose, node: 0 },
         });
         if hose != ROUTED {
-            initial.push(Action::Fix {
+            initial.push(InitialLoad::Fix {
                 node: NodeRef {
                     hose,
                     node: ELEMENTS_PER_HOSE,

@@ -4,7 +4,7 @@
 //! replay needs to reproduce a session bit for bit (SPEC W2).
 
 use crate::ergonomics::ErgonomicProfile;
-use crate::timeline::NodeRef;
+use crate::timeline::{Action, NodeRef};
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -159,6 +159,74 @@ impl Input {
             Input::SolveStatic { .. } => "solve_static",
             Input::Rollback => "rollback",
             Input::Reset => "reset",
+        }
+    }
+}
+
+/// A load case a study starts from, applied by [`super::Workcell::new`] and by every
+/// reset: the scene's timeline's leading fixes, mounts and dead loads
+/// ([`InitialLoad::from_action`]). Each is the [`Input`] of the same name.
+#[derive(Clone, Debug, PartialEq)]
+pub enum InitialLoad {
+    Fix {
+        node: NodeRef,
+    },
+    Mount {
+        node: NodeRef,
+        part: String,
+    },
+    Load {
+        node: NodeRef,
+        force: DVec3,
+        moment: DVec3,
+        ramp: f64,
+        name: Option<String>,
+    },
+}
+
+impl InitialLoad {
+    /// The initial load case a timeline action states, if it is one (a fix, a mount or a
+    /// dead load).
+    pub fn from_action(action: &Action) -> Option<InitialLoad> {
+        match action.clone() {
+            Action::Fix { node } => Some(InitialLoad::Fix { node }),
+            Action::Mount { node, part } => Some(InitialLoad::Mount { node, part }),
+            Action::Load {
+                node,
+                force,
+                moment,
+                ramp,
+                name,
+            } => Some(InitialLoad::Load {
+                node,
+                force,
+                moment,
+                ramp,
+                name,
+            }),
+            _ => None,
+        }
+    }
+}
+
+impl From<InitialLoad> for Input {
+    fn from(load: InitialLoad) -> Input {
+        match load {
+            InitialLoad::Fix { node } => Input::Fix { node },
+            InitialLoad::Mount { node, part } => Input::Mount { node, part },
+            InitialLoad::Load {
+                node,
+                force,
+                moment,
+                ramp,
+                name,
+            } => Input::Load {
+                node,
+                force,
+                moment,
+                ramp,
+                name,
+            },
         }
     }
 }
