@@ -407,8 +407,11 @@ struct Sim {
     /// Commands applied so far (the order [`Session::send_counted`] numbers them in).
     taken: u64,
     /// Where state copies go for the haptic mirror, and whether one is wanted.
-    copies: Option<(watch::Sender<Option<Arc<SessionCopy>>>, Arc<AtomicBool>)>,
+    copies: Option<(CopySender, Arc<AtomicBool>)>,
 }
+
+/// Where the simulation thread sends its state copies.
+type CopySender = watch::Sender<Option<Arc<SessionCopy>>>;
 
 impl Sim {
     fn new(cell: Workcell, epoch: Arc<AtomicU64>, paused: bool) -> Sim {
