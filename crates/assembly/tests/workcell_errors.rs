@@ -6,10 +6,8 @@ mod common;
 
 use common::hose3_along_x;
 use glam::DVec3;
-use pliant_assembly::checks::CheckSettings;
-use pliant_assembly::ergonomics::ErgonomicProfile;
 use pliant_assembly::{
-    InitialLoad, NodeRef, Refusal, Workcell, WorkcellError, WorkcellOptions, WorkcellSetup,
+    Action, InitialLoad, NodeRef, Refusal, Workcell, WorkcellError, WorkcellOptions, WorkcellSetup,
 };
 use pliant_core::loads::LoadCase;
 use pliant_core::SimSettings;
@@ -17,13 +15,8 @@ use std::sync::Arc;
 
 fn setup(initial: Vec<InitialLoad>) -> WorkcellSetup {
     WorkcellSetup {
-        model: Arc::new(hose3_along_x(4, SimSettings::default())),
-        stubs: Vec::new(),
-        clips: Vec::new(),
         initial,
-        profile: ErgonomicProfile::default(),
-        checks: CheckSettings::none(),
-        worker: None,
+        ..WorkcellSetup::bare(Arc::new(hose3_along_x(4, SimSettings::default())))
     }
 }
 
@@ -42,16 +35,22 @@ fn node(node: usize) -> NodeRef {
 #[test]
 fn initial_load_cases_act_from_the_start_and_after_a_reset() {
     let force = DVec3::new(0.0, 0.0, -2.0);
+    let load = Action::Load {
+        node: node(4),
+        force,
+        moment: DVec3::ZERO,
+        ramp: 0.0,
+        name: Some("weight".into()),
+    };
     let initial = vec![
-        InitialLoad::Fix { node: node(0) },
-        InitialLoad::Load {
-            node: node(4),
-            force,
-            moment: DVec3::ZERO,
-            ramp: 0.0,
-            name: Some("weight".into()),
-        },
+        InitialLoad::fix(node(0)),
+        InitialLoad::from_action(&load).unwrap(),
     ];
+    // a timeline's other actions are no initial load cases
+    assert_eq!(
+        InitialLoad::from_action(&Action::Run { duration: 1.0 }),
+        None
+    );
     let mut cell = Workcell::new(setup(initial), WorkcellOptions::default()).unwrap();
     for round in ["built", "reset"] {
         let cases: Vec<&LoadCase> = cell.state().loads.iter().map(|(_, c)| c).collect();
@@ -71,7 +70,7 @@ fn initial_load_cases_act_from_the_start_and_after_a_reset() {
     }
     // without initial loads, nothing acts
     let bare = Workcell::new(
-        setup(vec![InitialLoad::Fix { node: node(0) }]),
+        setup(vec![InitialLoad::fix(node(0))]),
         WorkcellOptions {
             initial_loads: false,
             ..Default::default()
@@ -83,9 +82,7 @@ fn initial_load_cases_act_from_the_start_and_after_a_reset() {
 
 #[test]
 fn a_workcell_that_cannot_be_built_says_why() {
-    let far = InitialLoad::Fix {
-        node: NodeRef { hose: 3, node: 0 },
-    };
+    let far = InitialLoad::fix(NodeRef { hose: 3, node: 0 });
     let err = refused(vec![far]);
     assert!(
         matches!(err, WorkcellError::InitialLoad(Refusal::Invalid(_))),
@@ -96,10 +93,11 @@ fn a_workcell_that_cannot_be_built_says_why() {
         "initial load case: hose 3 does not exist (the scene has 1)"
     );
 
-    let mount = InitialLoad::Mount {
+    let mount = InitialLoad::from_action(&Action::Mount {
         node: node(0),
         part: "door".into(),
-    };
+    })
+    .unwrap();
     let err = refused(vec![mount]);
     assert_eq!(
         err.to_string(),

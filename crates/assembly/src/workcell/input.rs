@@ -164,70 +164,53 @@ impl Input {
 }
 
 /// A load case a study starts from, applied by [`super::Workcell::new`] and by every
-/// reset: the scene's timeline's leading fixes, mounts and dead loads
-/// ([`InitialLoad::from_action`]). Each is the [`Input`] of the same name.
+/// reset: the scene's timeline's leading fixes, mounts and dead loads. It is the
+/// [`Input`] of the same name, and only one of those three ([`InitialLoad::from_action`]).
 #[derive(Clone, Debug, PartialEq)]
-pub enum InitialLoad {
-    Fix {
-        node: NodeRef,
-    },
-    Mount {
-        node: NodeRef,
-        part: String,
-    },
-    Load {
-        node: NodeRef,
-        force: DVec3,
-        moment: DVec3,
-        ramp: f64,
-        name: Option<String>,
-    },
-}
+pub struct InitialLoad(Input);
 
 impl InitialLoad {
     /// The initial load case a timeline action states, if it is one (a fix, a mount or a
     /// dead load).
     pub fn from_action(action: &Action) -> Option<InitialLoad> {
-        match action.clone() {
-            Action::Fix { node } => Some(InitialLoad::Fix { node }),
-            Action::Mount { node, part } => Some(InitialLoad::Mount { node, part }),
+        let input = match action {
+            Action::Fix { node } => Input::Fix { node: *node },
+            Action::Mount { node, part } => Input::Mount {
+                node: *node,
+                part: part.clone(),
+            },
             Action::Load {
                 node,
                 force,
                 moment,
                 ramp,
                 name,
-            } => Some(InitialLoad::Load {
-                node,
-                force,
-                moment,
-                ramp,
-                name,
-            }),
-            _ => None,
-        }
+            } => Input::Load {
+                node: *node,
+                force: *force,
+                moment: *moment,
+                ramp: *ramp,
+                name: name.clone(),
+            },
+            _ => return None,
+        };
+        Some(InitialLoad(input))
+    }
+
+    /// A fix of `node` where it is at the start.
+    pub fn fix(node: NodeRef) -> InitialLoad {
+        InitialLoad(Input::Fix { node })
+    }
+
+    /// The input that applies it.
+    pub fn input(&self) -> &Input {
+        &self.0
     }
 }
 
 impl From<InitialLoad> for Input {
     fn from(load: InitialLoad) -> Input {
-        match load {
-            InitialLoad::Fix { node } => Input::Fix { node },
-            InitialLoad::Mount { node, part } => Input::Mount { node, part },
-            InitialLoad::Load {
-                node,
-                force,
-                moment,
-                ramp,
-                name,
-            } => Input::Load {
-                node,
-                force,
-                moment,
-                ramp,
-                name,
-            },
-        }
+        load.0
     }
 }
 

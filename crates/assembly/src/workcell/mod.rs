@@ -77,6 +77,22 @@ pub struct WorkcellSetup {
     pub worker: Option<WorkerSettings>,
 }
 
+impl WorkcellSetup {
+    /// A workcell of `model` alone: no stubs, clips or initial load cases, the default
+    /// ergonomic profile, no installation checks, no worker.
+    pub fn bare(model: Arc<Model>) -> WorkcellSetup {
+        WorkcellSetup {
+            model,
+            stubs: Vec::new(),
+            clips: Vec::new(),
+            initial: Vec::new(),
+            profile: ErgonomicProfile::default(),
+            checks: CheckSettings::none(),
+            worker: None,
+        }
+    }
+}
+
 /// How a workcell runs: configuration, not state (a reset keeps it).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct WorkcellOptions {
