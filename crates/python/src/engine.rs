@@ -39,12 +39,6 @@ pub struct Engine {
     cell: Workcell,
 }
 
-/// A scene's initial load cases: the leading fixes, mounts and dead loads of its
-/// timeline.
-pub fn initial_loads(scene: &LoadedScene) -> Vec<InitialLoad> {
-    scene.initial_loads()
-}
-
 impl Engine {
     /// A simulation of `scene` at rest in its rest shape, with `initial` applied,
     /// advanced by `solver` (the scene's if `None`).

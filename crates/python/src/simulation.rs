@@ -8,7 +8,7 @@
 
 use crate::args::{hose_index, hose_node, points, quaternion, seconds, vec3, HoseRef};
 use crate::arrays::{quaternion as quat_array, quaternions, to_python, vector, vectors};
-use crate::engine::{initial_loads, Engine, Refusal};
+use crate::engine::{Engine, Refusal};
 use crate::errors::{diverged, scene_error_message};
 use crate::hand_load::HandLoad;
 use crate::load_id::LoadId;
@@ -217,7 +217,7 @@ impl Simulation {
     ) -> PyResult<Self> {
         let s = scene.get();
         let initial = if initial_loads {
-            initial_loads(&s.scene)
+            s.scene.initial_loads()
         } else {
             Vec::new()
         };
