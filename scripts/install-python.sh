@@ -14,7 +14,7 @@ if [ ! -x .venv/bin/python ]; then
   "$PYTHON" -m venv .venv
 fi
 .venv/bin/python -m pip install --quiet --upgrade pip
-.venv/bin/python -m pip install --quiet "maturin>=1.5,<2" numpy pytest
+.venv/bin/python -m pip install --quiet "maturin>=1.5,<2" numpy pytest mypy   # mypy: stubtest checks _pliant.pyi
 # studies (pliant.studies, `pliant study`): Dask (and bokeh for its dashboard), Parquet,
 # statistics, marching cubes; duckdb to check the Parquet is readable by it
 .venv/bin/python -m pip install --quiet "dask[distributed]" bokeh pyarrow pandas scipy scikit-image duckdb

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds everything and runs every test: formatting and the API docs checked (broken
-# intra-doc links fail), unit tests, scene-format tests, the validation
+# Builds everything and runs every test: formatting, the API docs (broken intra-doc
+# links fail) and clippy's lints checked, unit tests, scene-format tests, the validation
 # suite (each case a test; `pliant validate` prints the same table), the CLI end-to-end
 # tests, a quick benchmark smoke run, the Python API's tests and the browser viewer's
 # end-to-end tests in headless Chromium.
@@ -10,8 +10,10 @@ source "$(dirname "$0")/common.sh"
 cargo fmt --all --check    # formatting as rustfmt writes it
 (cd crates/python && cargo fmt --check)   # the Python extension is its own workspace
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps   # API docs: every link resolves
+cargo clippy --release --workspace --all-targets -- -D warnings   # lints; policy: Cargo.toml [workspace.lints]
 cargo build --release --workspace
 ./scripts/install-python.sh   # the Python package into .venv: some Rust tests drive it
+(cd crates/python && PYO3_PYTHON=../../.venv/bin/python CARGO_TARGET_DIR=../../target cargo clippy --release --features extension-module --all-targets -- -D warnings)   # the extension's lints
 cargo test --release --workspace   # every validation case is a test here (crates/validation/tests)
 ./target/release/pliant bench --quick --json > /dev/null
 ./scripts/test-python.sh --installed   # the Python API (crates/python): pytest

@@ -25,6 +25,7 @@ pub use hand::{Hand, HandLoad};
 pub use runner::{run_timeline, RunError, Runner};
 pub use timeline::{Action, MovePath, NodeRef, Rotation, Timeline};
 pub use workcell::{
-    Applied, ContactEpisode, HandPeak, HandRecord, Input, NoObserver, NodePeak, Observer, Refusal,
-    RunSummary, SettleOutcome, Stage, Verdict, Workcell, WorkcellOptions, WorkcellSetup,
+    Applied, ContactEpisode, HandPeak, HandRecord, InitialLoad, Input, NoObserver, NodePeak,
+    Observer, Refusal, RunSummary, SettleOutcome, Stage, Verdict, Workcell, WorkcellError,
+    WorkcellOptions, WorkcellSetup,
 };

@@ -9,8 +9,8 @@ use crate::fasteners::{ClipSite, StubSite};
 use crate::report::summary::{OtherStop, Stopped};
 use crate::timeline::{Action, MovePath, Timeline};
 use crate::workcell::{
-    HandNumber, Input, Observer, Refusal, RunSummary, SettleOutcome, Workcell, WorkcellOptions,
-    WorkcellSetup,
+    HandNumber, InitialLoad, Input, Observer, Refusal, RunSummary, SettleOutcome, Workcell,
+    WorkcellError, WorkcellOptions, WorkcellSetup,
 };
 use glam::DVec3;
 use pliant_core::curve::catmull_rom;
@@ -53,15 +53,7 @@ impl Runner {
     /// scene's solver).
     pub fn new(model: &Model) -> Self {
         Runner::from_setup(
-            WorkcellSetup {
-                model: Arc::new(model.clone()),
-                stubs: Vec::new(),
-                clips: Vec::new(),
-                initial: Vec::new(),
-                profile: ErgonomicProfile::default(),
-                checks: crate::checks::CheckSettings::none(),
-                worker: None,
-            },
+            WorkcellSetup::bare(Arc::new(model.clone())),
             WorkcellOptions::default(),
         )
     }
@@ -98,7 +90,7 @@ impl Runner {
     }
 
     /// The workcell this runner runs the timeline on (at rest, t = 0).
-    pub fn workcell(&self) -> Result<Workcell, String> {
+    pub fn workcell(&self) -> Result<Workcell, WorkcellError> {
         Workcell::new(self.setup.clone(), self.options)
     }
 
@@ -143,10 +135,10 @@ impl Runner {
         state: &mut State,
         obs: &mut dyn Observer,
     ) -> Result<RunSummary, RunError> {
-        let mut cell = self.workcell().map_err(|reason| RunError {
+        let mut cell = self.workcell().map_err(|e| RunError {
             divergence: None,
-            stopped: Stopped::other(OtherStop::Setup, reason.clone()),
-            reason,
+            stopped: Stopped::other(OtherStop::Setup, e.to_string()),
+            reason: e.to_string(),
             partial: RunSummary::default(),
         })?;
         let outcome = run_timeline(&mut cell, timeline, obs);
@@ -293,16 +285,12 @@ fn apply(
     obs: &mut dyn Observer,
     settles: &mut Vec<SettleOutcome>,
 ) -> Result<(), Stop> {
+    if let Some(load) = InitialLoad::from_action(action) {
+        return give(cell, index, load.into());
+    }
     match action {
-        Action::Fix { node } => give(cell, index, Input::Fix { node: *node })?,
-        Action::Mount { node, part } => give(
-            cell,
-            index,
-            Input::Mount {
-                node: *node,
-                part: part.clone(),
-            },
-        )?,
+        // given above, as the initial load cases they state
+        Action::Fix { .. } | Action::Mount { .. } | Action::Load { .. } => {}
         Action::Tie { node, to } => give(
             cell,
             index,
@@ -332,23 +320,6 @@ fn apply(
             };
             give_and_wait(cell, index, input, *wait, obs)?;
         }
-        Action::Load {
-            node,
-            force,
-            moment,
-            ramp,
-            name,
-        } => give(
-            cell,
-            index,
-            Input::Load {
-                node: *node,
-                force: *force,
-                moment: *moment,
-                ramp: *ramp,
-                name: name.clone(),
-            },
-        )?,
         Action::Unload { node, name } => give(
             cell,
             index,

@@ -9,8 +9,6 @@ mod common;
 
 use common::hose3;
 use glam::{DQuat, DVec3};
-use pliant_assembly::checks::CheckSettings;
-use pliant_assembly::ergonomics::ErgonomicProfile;
 use pliant_assembly::workcell::log::{line_text, InputLog, LogHeader, LogLine};
 use pliant_assembly::workcell::replay::replay;
 use pliant_assembly::{
@@ -64,15 +62,7 @@ fn model(z: f64, parts: Vec<RigidPartSpec>, gravity: DVec3) -> Arc<Model> {
 
 fn workcell(model: Arc<Model>, solver: SolverKind) -> Workcell {
     Workcell::new(
-        WorkcellSetup {
-            model,
-            stubs: Vec::new(),
-            clips: Vec::new(),
-            initial: Vec::new(),
-            profile: ErgonomicProfile::default(),
-            checks: CheckSettings::none(),
-            worker: None,
-        },
+        WorkcellSetup::bare(model),
         WorkcellOptions {
             solver: Some(solver),
             ..Default::default()

@@ -185,7 +185,6 @@ pub fn parse(text: &str, file: &str) -> Result<Table, CalibError> {
     let (header_line, header) = lines
         .next()
         .ok_or_else(|| CalibError::file(file, "empty file: expected a header line naming the columns and units, e.g. force_N,displacement_mm"))?;
-    let header_line = header_line;
     let headers: Vec<&str> = header.split(',').collect();
     let mut columns = Vec::new();
     for (index, h) in headers.iter().enumerate() {

@@ -398,9 +398,9 @@ pub fn page(origin: &str, fits: &[TestFit], m: &MaterialResult, material_toml: &
         }
         s.push_str("</table>");
     }
-    let _ = write!(
+    let _ = writeln!(
         s,
-        "<h2>material.toml</h2><pre>{}</pre></body></html>\n",
+        "<h2>material.toml</h2><pre>{}</pre></body></html>",
         escape(material_toml)
     );
     s

@@ -167,15 +167,16 @@ pub const EXAMPLE_SPAN: f64 = 0.200;
 pub const EXAMPLE_TORSION_LENGTH: f64 = 0.300;
 pub const EXAMPLE_LEVER_ARM: f64 = 0.100;
 
+/// A file's name and its text.
+pub type NamedText = (String, String);
+/// The first and last row of a range.
+pub type RowRange = (usize, usize);
+
 /// The example calibration (examples/calibration/): its TOML and five CSV curves of a
 /// hose with the answers `truth`, noise `noise` (relative to each curve's largest value)
 /// and generator seed `seed`. Returns (file name, text) pairs and each curve's true
 /// linear range (first, last row).
-pub fn example_files(
-    truth: &Truth,
-    noise: f64,
-    seed: u64,
-) -> (Vec<(String, String)>, Vec<(usize, usize)>) {
+pub fn example_files(truth: &Truth, noise: f64, seed: u64) -> (Vec<NamedText>, Vec<RowRange>) {
     let area = truth.section().area();
     let mut files = Vec::new();
     let mut ranges = Vec::new();

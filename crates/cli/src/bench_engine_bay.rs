@@ -19,10 +19,8 @@
 use crate::bench::material_1;
 use anyhow::{Context, Result};
 use glam::DVec3;
-use pliant_assembly::checks::CheckSettings;
-use pliant_assembly::ergonomics::ErgonomicProfile;
 use pliant_assembly::workcell::WorkcellSetup;
-use pliant_assembly::{Action, Grip, Input, NoObserver, NodeRef, Workcell, WorkcellOptions};
+use pliant_assembly::{Grip, InitialLoad, Input, NoObserver, NodeRef, Workcell, WorkcellOptions};
 use pliant_core::sleep::SLEEP_AFTER_STEPS;
 use pliant_core::spec::RigidPartSpec;
 use pliant_core::{HoseSpec, Model, SimSettings, SolverKind, WorldSpec};
@@ -262,26 +260,17 @@ pub fn model(t: &Tessellation) -> Result<Model> {
 fn setup(model: &Arc<Model>) -> WorkcellSetup {
     let mut initial = Vec::new();
     for hose in 0..HOSES {
-        initial.push(Action::Fix {
-            node: NodeRef { hose, node: 0 },
-        });
+        initial.push(InitialLoad::fix(NodeRef { hose, node: 0 }));
         if hose != ROUTED {
-            initial.push(Action::Fix {
-                node: NodeRef {
-                    hose,
-                    node: ELEMENTS_PER_HOSE,
-                },
-            });
+            initial.push(InitialLoad::fix(NodeRef {
+                hose,
+                node: ELEMENTS_PER_HOSE,
+            }));
         }
     }
     WorkcellSetup {
-        model: model.clone(),
-        stubs: Vec::new(),
-        clips: Vec::new(),
         initial,
-        profile: ErgonomicProfile::default(),
-        checks: CheckSettings::none(),
-        worker: None,
+        ..WorkcellSetup::bare(model.clone())
     }
 }
 

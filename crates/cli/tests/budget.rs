@@ -44,6 +44,7 @@ fn scene(hoses: &[(f64, f64, usize)], part: &str, duration: f64) -> String {
 /// banner: no model is built in this process, whose memory a child would inherit).
 fn peak_of_run(scene: &Path, out: &Path) -> (u64, f64) {
     let log = out.with_extension("stderr");
+    #[allow(clippy::zombie_processes)] // waited for by wait4 below, which gives its rusage
     let child = Command::new(env!("CARGO_BIN_EXE_pliant"))
         .args(["run", "--quiet", "--threads", "1"])
         .arg(scene)

@@ -196,8 +196,7 @@ duration_s = 0.2
     let nodes = std::fs::read_to_string(out.join("nodes.csv")).unwrap();
     let last = nodes
         .lines()
-        .filter(|l| l.split(',').nth(2) == Some("6"))
-        .last()
+        .rfind(|l| l.split(',').nth(2) == Some("6"))
         .unwrap();
     let v: Vec<f64> = last.split(',').map(|x| x.parse().unwrap()).collect();
     // turned by 45° about the pin, then the door's centre c = (0.32, 0, −0.04) put 20 mm

@@ -175,7 +175,7 @@ mod tests {
 
     #[test]
     fn only_near_unit_quaternions_are_orientations() {
-        let q = near_unit_quaternion(DQuat::from_xyzw(0.0, 0.0, 0.70710, 0.70710)).unwrap();
+        let q = near_unit_quaternion(DQuat::from_xyzw(0.0, 0.0, 0.6, 0.79999)).unwrap();
         assert!((q.length() - 1.0).abs() < 1e-15);
         let off = 1.0 + 2.0 * UNIT_QUATERNION_TOLERANCE;
         assert_eq!(

@@ -181,8 +181,7 @@ fn check_hose(h: &HoseSpec) -> Result<(), ModelError> {
         }
     }
     for (i, s) in h.sections.iter().enumerate() {
-        if !(s.d_outer > 0.0 && s.d_outer.is_finite())
-            || !(s.d_inner >= 0.0 && s.d_inner < s.d_outer)
+        if !(s.d_outer > 0.0 && s.d_outer.is_finite() && s.d_inner >= 0.0 && s.d_inner < s.d_outer)
         {
             return err(format!(
                 "section {i} invalid: d_inner {} m, d_outer {} m",
@@ -215,7 +214,7 @@ fn check_hose(h: &HoseSpec) -> Result<(), ModelError> {
         return err("a material either yields or relaxes, not both".into());
     }
     for (i, p) in m.relaxation.iter().enumerate() {
-        if !(p.weight > 0.0 && p.weight < 1.0) || !positive(p.time) {
+        if !(p.weight > 0.0 && p.weight < 1.0 && positive(p.time)) {
             return err(format!(
                 "relaxation term {i}: needs a weight in (0, 1) and a positive finite time, \
                  has {} and {} s",

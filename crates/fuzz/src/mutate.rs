@@ -165,7 +165,7 @@ impl Rng {
         Rng(seed.max(1))
     }
 
-    pub fn next(&mut self) -> u64 {
+    pub fn next_u64(&mut self) -> u64 {
         let mut x = self.0;
         x ^= x >> 12;
         x ^= x << 25;
@@ -176,11 +176,11 @@ impl Rng {
 
     /// One to `max` random edits.
     pub fn ops(&mut self, max: usize) -> Vec<Op> {
-        let n = 1 + self.next() as usize % max;
+        let n = 1 + self.next_u64() as usize % max;
         (0..n)
             .map(|_| {
-                let r = self.next();
-                Op::from_parts(r as u8, (r >> 8) as u32, self.next() as u32)
+                let r = self.next_u64();
+                Op::from_parts(r as u8, (r >> 8) as u32, self.next_u64() as u32)
             })
             .collect()
     }

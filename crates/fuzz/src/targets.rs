@@ -152,7 +152,7 @@ fn scene(input: &[u8], json: bool) -> Result<(), String> {
             }
             Ok(())
         }
-        Err(e) => non_empty(&e),
+        Err(e) => non_empty(&e.to_string()),
     }
 }
 

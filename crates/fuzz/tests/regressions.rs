@@ -120,8 +120,7 @@ fn a_scene_of_5000_small_hoses_is_handled() {
         ..Default::default()
     };
     let e = pliant_scene::load_scene_str_with(&text, "many.toml", &seeds::examples_dir(), &options)
-        .err()
-        .expect("refused");
+        .expect_err("refused");
     assert!(e.to_string().contains("element"), "{e}");
 }
 

@@ -7,7 +7,9 @@
 use glam::{DQuat, DVec3};
 use pliant_assembly::ergonomics::HandAssessment;
 use pliant_assembly::workcell::{node_ref, rotation_between_poses, Refusal as CellRefusal};
-use pliant_assembly::{Action, Applied, HandLoad, Input, NoObserver, Workcell, WorkcellOptions};
+use pliant_assembly::{
+    Applied, HandLoad, InitialLoad, Input, NoObserver, Workcell, WorkcellOptions,
+};
 use pliant_core::health::Divergence;
 use pliant_core::loads::{LoadCase, LoadCaseId};
 use pliant_core::{Model, Solver, SolverKind, State};
@@ -37,18 +39,13 @@ pub struct Engine {
     cell: Workcell,
 }
 
-/// A scene's initial load cases: the leading fixes and dead loads of its timeline.
-pub fn initial_actions(scene: &LoadedScene) -> Vec<Action> {
-    scene.initial_actions()
-}
-
 impl Engine {
     /// A simulation of `scene` at rest in its rest shape, with `initial` applied,
     /// advanced by `solver` (the scene's if `None`).
     pub fn new(
         model: Arc<Model>,
         scene: &LoadedScene,
-        initial: Vec<Action>,
+        initial: Vec<InitialLoad>,
         solver: Option<SolverKind>,
     ) -> Result<Engine, String> {
         let (stubs, clips) = scene.fastener_sites(&model)?;
@@ -66,7 +63,7 @@ impl Engine {
             ..Default::default()
         };
         Ok(Engine {
-            cell: Workcell::new(setup, options)?,
+            cell: Workcell::new(setup, options).map_err(|e| e.to_string())?,
         })
     }
 

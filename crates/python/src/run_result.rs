@@ -96,7 +96,7 @@ pub fn run_timeline(
         model: model.clone(),
         stubs,
         clips,
-        initial: loaded.initial_actions(),
+        initial: loaded.initial_loads(),
         profile,
         checks: loaded.check_settings(),
         worker: loaded.worker,

@@ -8,7 +8,7 @@
 
 use crate::args::{hose_index, hose_node, points, quaternion, seconds, vec3, HoseRef};
 use crate::arrays::{quaternion as quat_array, quaternions, to_python, vector, vectors};
-use crate::engine::{initial_actions, Engine, Refusal};
+use crate::engine::{Engine, Refusal};
 use crate::errors::{diverged, scene_error_message};
 use crate::hand_load::HandLoad;
 use crate::load_id::LoadId;
@@ -23,6 +23,9 @@ use pliant_core::State;
 use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
 use std::ops::Range;
+
+/// A pose as numpy arrays: the position \[m\] (3,) and the orientation (w, x, y, z) (4,).
+type PoseArrays<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
 /// Steps run without the GIL before Python gets a chance to handle Ctrl-C.
 const CHUNK: u64 = 4096;
@@ -217,7 +220,7 @@ impl Simulation {
     ) -> PyResult<Self> {
         let s = scene.get();
         let initial = if initial_loads {
-            initial_actions(&s.scene)
+            s.scene.initial_loads()
         } else {
             Vec::new()
         };
@@ -768,11 +771,7 @@ impl Simulation {
     /// The part's pose now: where its reference origin went \[m\] (3,) and its rotation
     /// (w, x, y, z) (4,), from where the scene placed it (zero and identity for a part
     /// that has not moved).
-    fn part_pose<'py>(
-        &self,
-        py: Python<'py>,
-        part: &str,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    fn part_pose<'py>(&self, py: Python<'py>, part: &str) -> PyResult<PoseArrays<'py>> {
         let pose = self.engine.part_pose(part).map_err(refused)?;
         Ok((vector(py, pose.translation), quat_array(py, pose.rotation)))
     }
@@ -789,11 +788,7 @@ impl Simulation {
     }
 
     /// The hand's position \[m\] (3,) and orientation (w, x, y, z) (4,) now.
-    fn hand_pose<'py>(
-        &self,
-        py: Python<'py>,
-        hand: u32,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    fn hand_pose<'py>(&self, py: Python<'py>, hand: u32) -> PyResult<PoseArrays<'py>> {
         let ((p, q), _) = self.engine.hand_pose(hand).map_err(refused)?;
         Ok((vector(py, p), quat_array(py, q)))
     }

@@ -32,7 +32,7 @@ pub fn build_connector(
             "a connector's travel must be at least 1 mm",
         ));
     }
-    let hose_end = hose_end(&at, raw.hose.as_ref(), raw.end, hoses, "into the connector")?;
+    let hose_end = hose_end(at, raw.hose.as_ref(), raw.end, hoses, "into the connector")?;
     let hose = &hoses[hose_end.hose];
     let size = match raw.size {
         Some(s) => positive(&at("size"), s, u)? * scale,

@@ -120,12 +120,15 @@ pub(crate) fn in_unit(metres: f64, unit: LengthUnit) -> String {
     with_unit(v, unit.symbol())
 }
 
+/// A scene's stubs, connectors and clips.
+pub type SceneFasteners = (Vec<SceneStub>, Vec<SceneConnector>, Vec<SceneClip>);
+
 /// Checks and builds every stub, connector and clip (names unique across the three).
 pub fn build_fasteners(
     file: &SceneFile,
     hoses: &[HoseSpec],
     parts: &[&str],
-) -> Result<(Vec<SceneStub>, Vec<SceneConnector>, Vec<SceneClip>), FieldError> {
+) -> Result<SceneFasteners, FieldError> {
     check_names(file)?;
     let unit = file.length_unit;
     let stubs = file
@@ -216,7 +219,7 @@ pub fn build_stub(
         (DEFAULT_STUB_FRICTION_STATIC, DEFAULT_STUB_FRICTION_SLIDING),
     )?;
     // the hose end that goes onto the stub: named, or the only hose's end
-    let hose_end = hose_end(&at, raw.hose.as_ref(), raw.end, hoses, "onto the stub")?;
+    let hose_end = hose_end(at, raw.hose.as_ref(), raw.end, hoses, "onto the stub")?;
     let (hose, at_end) = (hose_end.hose, hose_end.at_end);
     let hose_spec = &hoses[hose];
     let node = if at_end { hose_spec.nodes.len() - 1 } else { 0 };

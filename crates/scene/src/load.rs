@@ -459,7 +459,7 @@ fn build(
     let mut parts = build_parts(&file.parts, file.length_unit, &files, &mut budget)?;
     crate::timeline::make_moved_parts_movable(&timeline, &mut parts.specs)?;
     let part_names: Vec<&str> = parts.specs.iter().map(|p| p.name.as_str()).collect();
-    let (stubs, connectors, clips) = build_fasteners(&file, &hoses, &part_names)?;
+    let (stubs, connectors, clips) = build_fasteners(file, &hoses, &part_names)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;
     let mut checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
     checks.sweep = crate::sweep::build_sweep(
@@ -512,21 +512,6 @@ fn build(
     })
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn line_column_counts_from_one() {
-        let t = "ab\ncdé\nf";
-        assert_eq!(line_column(t, 0), (1, 1));
-        assert_eq!(line_column(t, 3), (2, 1));
-        assert_eq!(line_column(t, 5), (2, 3));
-        assert_eq!(line_column(t, 6), (2, 3));
-        assert_eq!(line_column(t, 999), (3, 2));
-    }
-}
-
 /// What a time-step safety factor above the defaults' design puts at risk: hoses pressing
 /// on each other above [`SAFETY_FOR_HOSE_CONTACT`] (0.5), and above
 /// [`largest_safety_with_supports`] (≈ 0.65) the support springs too.
@@ -550,4 +535,19 @@ fn time_step_warning(safety: f64) -> Option<String> {
          unstable{springs}; keep it at or below {contact} unless no hose touches another \
          (a divergence is reported, never a wrong number)"
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_column_counts_from_one() {
+        let t = "ab\ncdé\nf";
+        assert_eq!(line_column(t, 0), (1, 1));
+        assert_eq!(line_column(t, 3), (2, 1));
+        assert_eq!(line_column(t, 5), (2, 3));
+        assert_eq!(line_column(t, 6), (2, 3));
+        assert_eq!(line_column(t, 999), (3, 2));
+    }
 }

@@ -8,7 +8,7 @@ use pliant_assembly::workcell::log::{
     header_line, line_text, InputLog, LogHeader, LogLine, LOG_FILE,
 };
 use pliant_assembly::workcell::log_reading::{LogDamage, TornTail};
-use pliant_assembly::{Workcell, WorkcellOptions};
+use pliant_assembly::{Workcell, WorkcellError, WorkcellOptions};
 use std::fs::File;
 use std::io::Write;
 use std::path::Path;
@@ -136,15 +136,14 @@ impl Session {
     }
 
     /// A fresh workcell with the log's options; its step must be the log's.
-    pub fn workcell(&self) -> Result<Workcell, String> {
+    pub fn workcell(&self) -> Result<Workcell, WorkcellError> {
         let options: WorkcellOptions = self.log.header.options;
         let cell = self.scene.workcell(options)?;
         if cell.time_step() != self.log.header.time_step {
-            return Err(format!(
-                "the scene gives a time step of {:e} s, the log was made with {:e} s: the scene or this Pliant version differs from the session's",
-                cell.time_step(),
-                self.log.header.time_step
-            ));
+            return Err(WorkcellError::TimeStep {
+                scene: cell.time_step(),
+                log: self.log.header.time_step,
+            });
         }
         Ok(cell)
     }

@@ -91,7 +91,7 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
             return Err(FieldError::new(
                 "simulation.static_max_iterations",
                 n.to_string(),
-                &format!("must lie in 1 … {most}"),
+                format!("must lie in 1 … {most}"),
             ));
         }
         solver.static_max_iterations = n as usize;

@@ -5,7 +5,8 @@
 
 use crate::scene::LoadedScene;
 use pliant_assembly::{
-    run_timeline, Action, NoObserver, RunSummary, Runner, Workcell, WorkcellOptions, WorkcellSetup,
+    run_timeline, Action, InitialLoad, NoObserver, RunSummary, Runner, Workcell, WorkcellError,
+    WorkcellOptions, WorkcellSetup,
 };
 use pliant_core::{Model, SolverKind};
 use std::sync::Arc;
@@ -43,17 +44,33 @@ impl LoadedScene {
             .collect()
     }
 
+    /// [`Self::initial_actions`] typed as the workcell's initial load cases.
+    pub fn initial_loads(&self) -> Vec<InitialLoad> {
+        self.initial_actions()
+            .iter()
+            .filter_map(InitialLoad::from_action)
+            .collect()
+    }
+
     /// Everything a workcell of this scene needs.
-    pub fn workcell_setup(&self) -> Result<WorkcellSetup, String> {
-        let model = self.build_model()?;
-        let (stubs, clips) = self
-            .fastener_sites(&model)
-            .map_err(|e| format!("{}: {e}", self.source))?;
+    pub fn workcell_setup(&self) -> Result<WorkcellSetup, WorkcellError> {
+        let model = self
+            .build_model_typed()
+            .map_err(|error| WorkcellError::Model {
+                scene: self.source.clone(),
+                error,
+            })?;
+        let (stubs, clips) =
+            self.fastener_sites(&model)
+                .map_err(|reason| WorkcellError::Fasteners {
+                    scene: self.source.clone(),
+                    reason,
+                })?;
         Ok(WorkcellSetup {
             model: Arc::new(model),
             stubs,
             clips,
-            initial: self.initial_actions(),
+            initial: self.initial_loads(),
             profile: self.ergonomics,
             checks: self.check_settings(),
             worker: self.worker,
@@ -66,7 +83,7 @@ impl LoadedScene {
     }
 
     /// A workcell of this scene at rest at t = 0.
-    pub fn workcell(&self, options: WorkcellOptions) -> Result<Workcell, String> {
+    pub fn workcell(&self, options: WorkcellOptions) -> Result<Workcell, WorkcellError> {
         Workcell::new(self.workcell_setup()?, options)
     }
 
@@ -160,11 +177,13 @@ impl LoadedScene {
         solver: Option<SolverKind>,
         max_steps: u64,
     ) -> Result<(Workcell, RunSummary), String> {
-        let mut cell = self.workcell(WorkcellOptions {
-            solver,
-            initial_loads: false,
-            ..Default::default()
-        })?;
+        let mut cell = self
+            .workcell(WorkcellOptions {
+                solver,
+                initial_loads: false,
+                ..Default::default()
+            })
+            .map_err(|e| e.to_string())?;
         self.check_planned_steps(cell.time_step(), max_steps)?;
         let run = run_timeline(&mut cell, &self.timeline, &mut NoObserver).map_err(|e| e.reason)?;
         Ok((cell, run))

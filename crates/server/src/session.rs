@@ -24,7 +24,8 @@ use pliant_assembly::report::{replay_with_outputs, Summary};
 use pliant_assembly::workcell::log::{InputLog, LogHeader};
 use pliant_assembly::workcell::LogShare;
 use pliant_assembly::{
-    Applied, ClipSite, Input, NoObserver, Stage, StubSite, Verdict, Workcell, WorkcellOptions,
+    Applied, ClipSite, Input, NoObserver, Stage, StubSite, Verdict, Workcell, WorkcellError,
+    WorkcellOptions,
 };
 use pliant_core::SolverKind;
 use pliant_scene::session::{start_session_folder, write_session_folder};
@@ -84,6 +85,8 @@ pub enum Command {
 pub enum SessionError {
     #[error("cannot build the model: {0}")]
     Model(String),
+    #[error("cannot build the model: {0}")]
+    Workcell(#[from] WorkcellError),
     #[error("cannot create the session folder {path}: {reason}")]
     Folder { path: String, reason: String },
 }
@@ -300,7 +303,10 @@ impl Session {
         observer: &mut dyn pliant_assembly::Observer,
     ) -> Result<(Verdict, Summary, f64), String> {
         let log = self.input_log()?;
-        let cell = self.loaded.workcell(log.header.options)?;
+        let cell = self
+            .loaded
+            .workcell(log.header.options)
+            .map_err(|e| e.to_string())?;
         write_session_folder(out, &self.loaded, &log)
             .map_err(|e| format!("writing the session's log into {}: {e}", out.display()))?;
         let nodes = self.loaded.world.hoses.iter().map(|h| h.nodes.len()).sum();
@@ -343,7 +349,7 @@ fn live_workcell(
     scene: &LoadedScene,
     solver: Option<SolverKind>,
 ) -> Result<(Workcell, FastenerSites, WorkcellOptions), SessionError> {
-    let setup = scene.workcell_setup().map_err(SessionError::Model)?;
+    let setup = scene.workcell_setup()?;
     let sites = (setup.stubs.clone(), setup.clips.clone());
     let options = WorkcellOptions {
         solver,
@@ -351,7 +357,7 @@ fn live_workcell(
         recovery: true,
         ..Default::default()
     };
-    let cell = Workcell::new(setup, options).map_err(SessionError::Model)?;
+    let cell = Workcell::new(setup, options)?;
     Ok((cell, sites, options))
 }
 
@@ -401,8 +407,11 @@ struct Sim {
     /// Commands applied so far (the order [`Session::send_counted`] numbers them in).
     taken: u64,
     /// Where state copies go for the haptic mirror, and whether one is wanted.
-    copies: Option<(watch::Sender<Option<Arc<SessionCopy>>>, Arc<AtomicBool>)>,
+    copies: Option<(CopySender, Arc<AtomicBool>)>,
 }
+
+/// Where the simulation thread sends its state copies.
+type CopySender = watch::Sender<Option<Arc<SessionCopy>>>;
 
 impl Sim {
     fn new(cell: Workcell, epoch: Arc<AtomicU64>, paused: bool) -> Sim {

@@ -85,6 +85,7 @@ impl AxialLaw for Mating {
 
 /// The law of one stub site: a hose end on a stub, or a connector plugged.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)] // one per stub site, and Copy: boxing would cost more
 pub enum StubLaw {
     PressFit(PressFit),
     Mating(Mating),

@@ -178,9 +178,12 @@ impl StubState {
         };
         Ok(match self {
             StubState::Approach | StubState::PulledOff => {
-                if !obs.grabbed || !in_reach() || s < -tolerance.approach {
-                    StubState::Approach
-                } else if s > 0.0 && fit.enters_through_mouth() {
+                // not held, out of reach, or past a mouth it must enter through
+                if !obs.grabbed
+                    || !in_reach()
+                    || s < -tolerance.approach
+                    || (s > 0.0 && fit.enters_through_mouth())
+                {
                     StubState::Approach
                 } else if s > 0.0 {
                     inserting

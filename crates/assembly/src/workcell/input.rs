@@ -4,7 +4,7 @@
 //! replay needs to reproduce a session bit for bit (SPEC W2).
 
 use crate::ergonomics::ErgonomicProfile;
-use crate::timeline::NodeRef;
+use crate::timeline::{Action, NodeRef};
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -160,6 +160,57 @@ impl Input {
             Input::Rollback => "rollback",
             Input::Reset => "reset",
         }
+    }
+}
+
+/// A load case a study starts from, applied by [`super::Workcell::new`] and by every
+/// reset: the scene's timeline's leading fixes, mounts and dead loads. It is the
+/// [`Input`] of the same name, and only one of those three ([`InitialLoad::from_action`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct InitialLoad(Input);
+
+impl InitialLoad {
+    /// The initial load case a timeline action states, if it is one (a fix, a mount or a
+    /// dead load).
+    pub fn from_action(action: &Action) -> Option<InitialLoad> {
+        let input = match action {
+            Action::Fix { node } => Input::Fix { node: *node },
+            Action::Mount { node, part } => Input::Mount {
+                node: *node,
+                part: part.clone(),
+            },
+            Action::Load {
+                node,
+                force,
+                moment,
+                ramp,
+                name,
+            } => Input::Load {
+                node: *node,
+                force: *force,
+                moment: *moment,
+                ramp: *ramp,
+                name: name.clone(),
+            },
+            _ => return None,
+        };
+        Some(InitialLoad(input))
+    }
+
+    /// A fix of `node` where it is at the start.
+    pub fn fix(node: NodeRef) -> InitialLoad {
+        InitialLoad(Input::Fix { node })
+    }
+
+    /// The input that applies it.
+    pub fn input(&self) -> &Input {
+        &self.0
+    }
+}
+
+impl From<InitialLoad> for Input {
+    fn from(load: InitialLoad) -> Input {
+        load.0
     }
 }
 

@@ -11,21 +11,26 @@
 //! into a fresh workcell of the same scene reproduces the study exactly.
 
 pub mod chunked_log;
+pub mod error;
+mod hand_inputs;
 pub mod hands;
 pub mod input;
 pub mod log;
 pub mod log_reading;
+mod node_inputs;
 pub mod observer;
 pub mod part_inputs;
 pub mod recovery;
 pub mod replay;
 pub mod solver_record;
+mod state_inputs;
 pub mod tally;
 pub mod verdict;
 
 pub use chunked_log::{ChunkedLog, LogShare};
+pub use error::WorkcellError;
 pub use hands::{Aim, Feel, HandLimits, HeldHand};
-pub use input::{HandNumber, Input, Refusal, StampedInput};
+pub use input::{HandNumber, InitialLoad, Input, Refusal, StampedInput};
 pub use observer::{NoObserver, Observer};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
 pub use tally::{
@@ -37,14 +42,14 @@ pub use verdict::{Stage, Verdict};
 use crate::checks::{CheckSettings, ChecksSummary, InstallationChecks};
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};
 use crate::fasteners::{ClipSite, FastenerReport, FastenerSample, Fasteners, StubSite};
-use crate::hand::{nearest_beam, Hand, HandLoad, RELEASE_TIME};
-use crate::timeline::{Action, NodeRef};
+use crate::hand::{Hand, HandLoad, RELEASE_TIME};
+use crate::timeline::NodeRef;
 use crate::worker::{WorkerSample, WorkerSettings, WorkerTrack};
 use glam::{DQuat, DVec3};
 use hands::{holder, Hands};
 use pliant_core::health::{check_for, Divergence};
-use pliant_core::integrators::{StaticReport, StaticSolver};
-use pliant_core::loads::{DeadLoad, Drive, Fix, LoadCase, LoadCaseId, LoadRamp, Mount, Tie};
+use pliant_core::integrators::StaticReport;
+use pliant_core::loads::{LoadCase, LoadCaseId};
 use pliant_core::{Model, Solver, SolverKind, SolverSettings, State};
 use recovery::Recovery;
 use serde::{Deserialize, Serialize};
@@ -56,20 +61,36 @@ use std::sync::Arc;
 pub const HEALTH_CHECK_EVERY: u64 = 16;
 
 /// What a scene gives a workcell: the model, the stubs' and clips' sites on it, the
-/// scene's initial load cases (its timeline's leading fixes and dead loads) and its
-/// ergonomic profile. `pliant_scene::LoadedScene::workcell_setup` makes one.
+/// scene's initial load cases (its timeline's leading fixes, mounts and dead loads) and
+/// its ergonomic profile. `pliant_scene::LoadedScene::workcell_setup` makes one.
 #[derive(Clone, Debug)]
 pub struct WorkcellSetup {
     pub model: Arc<Model>,
     pub stubs: Vec<StubSite>,
     pub clips: Vec<ClipSite>,
-    pub initial: Vec<Action>,
+    pub initial: Vec<InitialLoad>,
     pub profile: ErgonomicProfile,
     /// The installation checks and their limits (SPEC V3; [`CheckSettings::none`] for
     /// none).
     pub checks: CheckSettings,
     /// The worker who does the study (SPEC E1; `None`: nobody is modelled).
     pub worker: Option<WorkerSettings>,
+}
+
+impl WorkcellSetup {
+    /// A workcell of `model` alone: no stubs, clips or initial load cases, the default
+    /// ergonomic profile, no installation checks, no worker.
+    pub fn bare(model: Arc<Model>) -> WorkcellSetup {
+        WorkcellSetup {
+            model,
+            stubs: Vec::new(),
+            clips: Vec::new(),
+            initial: Vec::new(),
+            profile: ErgonomicProfile::default(),
+            checks: CheckSettings::none(),
+            worker: None,
+        }
+    }
 }
 
 /// How a workcell runs: configuration, not state (a reset keeps it).
@@ -159,7 +180,7 @@ pub struct Workcell {
     options: WorkcellOptions,
     stubs: Vec<StubSite>,
     clips: Vec<ClipSite>,
-    initial: Vec<Action>,
+    initial: Vec<InitialLoad>,
     hands: Hands,
     /// The hands' loads after the last step (buffer reused every step).
     hand_records: Vec<HandRecord>,
@@ -220,33 +241,19 @@ fn checked_motion(waypoints: &[DVec3], rotation: DVec3, duration: f64) -> Result
 impl Workcell {
     /// A workcell at rest in the rest shape at t = 0, stubs and clips set up, the
     /// initial load cases applied (unless `options.initial_loads` is false).
-    pub fn new(setup: WorkcellSetup, options: WorkcellOptions) -> Result<Workcell, String> {
+    pub fn new(setup: WorkcellSetup, options: WorkcellOptions) -> Result<Workcell, WorkcellError> {
         let model = setup.model;
         let settings = SolverSettings {
             kind: options.solver.unwrap_or(model.solver.kind),
             ..model.solver
         };
-        let solver = Solver::new(&model, settings).map_err(|e| e.to_string())?;
+        let solver = Solver::new(&model, settings)?;
         let recovery = Recovery::new(solver.time_step(&model), HEALTH_CHECK_EVERY);
-        for a in &setup.initial {
-            if !matches!(
-                a,
-                Action::Fix { .. } | Action::Mount { .. } | Action::Load { .. }
-            ) {
-                return Err(format!(
-                    "initial load cases are fixes, mounts and dead loads only, not {a:?}"
-                ));
-            }
-        }
         let mut cell = Workcell {
             state: State::at_rest(&model),
             tally: Tally::new(&model),
             checks: InstallationChecks::new(&model, setup.checks),
-            worker: setup
-                .worker
-                .map(WorkerTrack::new)
-                .transpose()
-                .map_err(|e| format!("worker: {e}"))?,
+            worker: setup.worker.map(WorkerTrack::new).transpose()?,
             model,
             solver,
             options,
@@ -275,7 +282,7 @@ impl Workcell {
     }
 
     /// Rest state, fasteners, initial loads: the start of a study (and of every reset).
-    fn start(&mut self) -> Result<(), String> {
+    fn start(&mut self) -> Result<(), WorkcellError> {
         self.state = State::at_rest(&self.model);
         self.opening_until = None;
         self.state.sleep.enabled = self.options.sleeping;
@@ -297,27 +304,9 @@ impl Workcell {
         self.diverged = None;
         self.recovery.clear();
         if self.options.initial_loads {
-            for a in self.initial.clone() {
-                let input = match a {
-                    Action::Fix { node } => Input::Fix { node },
-                    Action::Mount { node, part } => Input::Mount { node, part },
-                    Action::Load {
-                        node,
-                        force,
-                        moment,
-                        ramp,
-                        name,
-                    } => Input::Load {
-                        node,
-                        force,
-                        moment,
-                        ramp,
-                        name,
-                    },
-                    _ => continue,
-                };
-                self.perform(&input)
-                    .map_err(|r| format!("initial load case: {r}"))?;
+            for load in self.initial.clone() {
+                self.perform(&load.into())
+                    .map_err(WorkcellError::InitialLoad)?;
             }
         }
         Ok(())
@@ -669,241 +658,43 @@ impl Workcell {
         id
     }
 
+    /// Takes one input: each has its own method (the node inputs in [`node_inputs`], the
+    /// hand inputs in [`hand_inputs`], the part moves in [`part_inputs`], the state inputs
+    /// in [`state_inputs`]).
     fn perform(&mut self, input: &Input) -> Result<Applied, Refusal> {
-        let t = self.state.time;
         match input {
-            Input::Fix { node } => {
-                let i = self.global(*node)?;
-                self.take_node(i)?;
-                let id = self.add_user_load(LoadCase::Fix(Fix {
-                    node: i,
-                    position: self.state.x[i],
-                    orientation: self.state.q[i],
-                }));
-                self.tally.track_node(i, *node);
-                Ok(Applied::Load(id))
-            }
-            Input::Mount { node, part } => {
-                let i = self.global(*node)?;
-                let k = part_inputs::part_named(&self.model, part, "mount")?;
-                self.take_node(i)?;
-                // the node's pose now, in the part's reference placement
-                let pose = self
-                    .model
-                    .kinematics
-                    .placement_at(k, t, &self.state.part_moves)
-                    .pose;
-                let id = self.add_user_load(LoadCase::Mount(Mount {
-                    node: i,
-                    part: k,
-                    position: pose.inverse_apply(self.state.x[i]),
-                    orientation: (pose.rotation.conjugate() * self.state.q[i]).normalize(),
-                }));
-                self.tally.track_node(i, *node);
-                Ok(Applied::Load(id))
-            }
+            Input::Fix { node } => self.fix(*node),
+            Input::Mount { node, part } => self.mount(*node, part),
             Input::Drive {
                 node,
                 waypoints,
                 rotation,
                 duration,
-            } => {
-                let i = self.global(*node)?;
-                let duration = checked_motion(waypoints, *rotation, *duration)?;
-                self.take_node(i)?;
-                let start = (self.state.x[i], self.state.q[i]);
-                let drive = Drive::new(i, start, waypoints, *rotation, t, duration);
-                let id = self.add_user_load(LoadCase::Drive(drive));
-                self.tally.track_node(i, *node);
-                Ok(Applied::Load(id))
-            }
+            } => self.drive(*node, waypoints, *rotation, *duration),
             Input::Load {
                 node,
                 force,
                 moment,
                 ramp,
                 name,
-            } => {
-                let i = self.global(*node)?;
-                let (force, moment) = (finite(*force, "force")?, finite(*moment, "moment")?);
-                if !(ramp.is_finite() && *ramp >= 0.0) {
-                    return Err(Refusal::Invalid(format!(
-                        "a load's ramp must be finite and ≥ 0 s, got {ramp}"
-                    )));
-                }
-                if let Some(name) = name {
-                    if name.is_empty() {
-                        return Err(Refusal::Invalid("a load's name must not be empty".into()));
-                    }
-                    if self.named_loads.contains_key(name) {
-                        return Err(Refusal::Invalid(format!(
-                            "a load named '{name}' is already acting; unload it first"
-                        )));
-                    }
-                }
-                let ramp = (*ramp > 0.0).then_some(LoadRamp::rise(t, *ramp));
-                let id = self.add_user_load(LoadCase::DeadLoad(DeadLoad {
-                    node: i,
-                    force,
-                    moment,
-                    ramp,
-                }));
-                if let Some(name) = name {
-                    self.named_loads.insert(name.clone(), id);
-                }
-                Ok(Applied::Load(id))
-            }
-            Input::Unload { node, name } => {
-                let i = self.global(*node)?;
-                match name {
-                    None => self.remove_user_loads(i, |c| matches!(c, LoadCase::DeadLoad(_))),
-                    Some(name) => {
-                        let id = *self.named_loads.get(name).ok_or_else(|| {
-                            Refusal::Invalid(format!("no load named '{name}' is acting"))
-                        })?;
-                        let on_node = self
-                            .state
-                            .loads
-                            .iter()
-                            .any(|(k, c)| *k == id && c.node() == i);
-                        if !on_node {
-                            return Err(Refusal::Invalid(format!(
-                                "the load named '{name}' acts on another node"
-                            )));
-                        }
-                        self.state.loads.remove(id);
-                        self.user_loads.remove(&id);
-                        self.named_loads.remove(name.as_str());
-                    }
-                }
-                Ok(Applied::Done)
-            }
-            Input::Release { node } => {
-                let i = self.global(*node)?;
-                self.take_node(i)?;
-                Ok(Applied::Done)
-            }
-            Input::Tie { node, to } => {
-                let (a, b) = (self.global(*node)?, self.global(*to)?);
-                let length = (self.state.x[b] - self.state.x[a]).length();
-                if a == b || length.is_nan() || length <= 0.0 {
-                    return Err(Refusal::Invalid(format!(
-                        "a tie needs two nodes apart (hose {} node {}, hose {} node {}: {length:.3e} m)",
-                        node.hose, node.node, to.hose, to.node
-                    )));
-                }
-                for n in [a, b] {
-                    if let Some(h) = self.model.hoses.iter().position(|h| h.nodes().contains(&n)) {
-                        self.state.sleep.wake(&self.model, h);
-                    }
-                }
-                let tie = Tie {
-                    nodes: [a, b],
-                    length,
-                };
-                Ok(Applied::Load(self.add_user_load(LoadCase::Tie(tie))))
-            }
-            Input::RemoveLoad { id } => {
-                let id = LoadCaseId(*id);
-                if !self.user_loads.remove(&id) || self.state.loads.remove(id).is_none() {
-                    return Err(Refusal::Missing(format!(
-                        "load case {} is not active (removed, replaced by a later fix or drive on its node, or reset)",
-                        id.0
-                    )));
-                }
-                self.forget_removed_names();
-                Ok(Applied::Done)
-            }
-            Input::Grab { hand, at, grip } => {
-                let at = finite(*at, "the grab point")?;
-                let element = nearest_beam(&self.model, &self.state, at)
-                    .ok_or_else(|| Refusal::Invalid("there is no beam to grab".into()))?;
-                let el = &self.model.elements[element];
-                let nodes = [el.node_a, el.node_b];
-                if let Some(other) = nodes
-                    .iter()
-                    .find_map(|&n| holder(&self.hands, n).filter(|k| k != hand))
-                {
-                    return Err(Refusal::Invalid(format!(
-                        "hand {other} already holds that beam; release it first"
-                    )));
-                }
-                // a grab or a release changes what holds the hoses: let them all move
-                self.state.sleep.wake_all(&self.model);
-                if let Some(old) = self.hands.remove(hand) {
-                    self.let_go(old.hand);
-                }
-                for n in nodes {
-                    self.remove_user_loads(n, |c| !matches!(c, LoadCase::DeadLoad(_)));
-                }
-                let grabbed = Hand::grab_with(&self.model, &mut self.state, at, *grip)
-                    .ok_or_else(|| Refusal::Invalid("there is no beam to grab".into()))?;
-                let element = grabbed.element;
-                self.hands.insert(
-                    *hand,
-                    HeldHand {
-                        hand: grabbed,
-                        aim: None,
-                    },
-                );
-                self.tally.track_hand(*hand);
-                Ok(Applied::Grabbed { element })
-            }
+            } => self.load(*node, *force, *moment, *ramp, name.as_deref()),
+            Input::Unload { node, name } => self.unload(*node, name.as_deref()),
+            Input::Release { node } => self.release(*node),
+            Input::Tie { node, to } => self.tie(*node, *to),
+            Input::RemoveLoad { id } => self.remove_load(LoadCaseId(*id)),
+            Input::Grab { hand, at, grip } => self.grab(*hand, *at, *grip),
             Input::MoveHand {
                 hand,
                 waypoints,
                 rotation,
                 duration,
-            } => {
-                let duration = checked_motion(waypoints, *rotation, *duration)?;
-                self.hand(*hand)?;
-                if let Some(h) = self.hands.get_mut(hand) {
-                    h.aim = None;
-                    h.hand.move_along(waypoints, *rotation, t, duration);
-                }
-                Ok(Applied::Done)
-            }
+            } => self.move_hand(*hand, waypoints, *rotation, *duration),
             Input::AimHand {
                 hand,
                 position,
                 orientation,
-            } => {
-                let position = finite(*position, "the hand position")?;
-                let orientation = match orientation {
-                    Some(q) if q.is_finite() && q.length() > 1e-9 => Some(q.normalize()),
-                    Some(q) => {
-                        return Err(Refusal::Invalid(format!(
-                            "the hand orientation must be a finite non-zero quaternion, got {q}"
-                        )))
-                    }
-                    None => None,
-                };
-                self.hand(*hand)?;
-                if let Some(h) = self.hands.get_mut(hand) {
-                    let mut aim = h.aim.unwrap_or_else(|| {
-                        let pose = h.pose_at(t);
-                        Aim {
-                            pose,
-                            target: pose,
-                            speed: 0.0,
-                            at_strength: false,
-                            feel: Default::default(),
-                        }
-                    });
-                    aim.target = (position, orientation.unwrap_or(aim.target.1));
-                    h.aim = Some(aim);
-                }
-                Ok(Applied::Done)
-            }
-            Input::ReleaseHand { hand } => {
-                let h = self
-                    .hands
-                    .remove(hand)
-                    .ok_or_else(|| Refusal::Invalid(format!("hand {hand} holds nothing")))?;
-                self.state.sleep.wake_all(&self.model);
-                self.let_go(h.hand);
-                Ok(Applied::Done)
-            }
+            } => self.aim_hand(*hand, *position, *orientation),
+            Input::ReleaseHand { hand } => self.release_hand(*hand),
             Input::MovePart {
                 part,
                 by,
@@ -937,37 +728,14 @@ impl Workcell {
                 self.profile = *profile;
                 Ok(Applied::Done)
             }
-            Input::Arrest => {
-                let s = &mut self.state;
-                s.v.fill(DVec3::ZERO);
-                s.w.fill(DVec3::ZERO);
-                for b in s.bodies.iter_mut() {
-                    b.velocity = DVec3::ZERO;
-                    b.angular_velocity = DVec3::ZERO;
-                }
-                Ok(Applied::Done)
-            }
+            Input::Arrest => self.arrest(),
             Input::SolveStatic {
                 force_tolerance,
                 moment_tolerance,
                 max_iterations,
-            } => {
-                let mut solver =
-                    StaticSolver::new(&self.model).map_err(|e| Refusal::Invalid(e.to_string()))?;
-                solver.options.tolerance =
-                    pliant_core::newton::Tolerance::absolute(*force_tolerance, *moment_tolerance);
-                solver.options.max_iterations = *max_iterations;
-                let before = self.state.clone();
-                match solver.solve(&self.model, &mut self.state) {
-                    Ok(r) => Ok(Applied::Static(r)),
-                    Err(e) => {
-                        self.state = before;
-                        Err(Refusal::Invalid(format!("static solve failed: {e}")))
-                    }
-                }
-            }
+            } => self.solve_static(*force_tolerance, *moment_tolerance, *max_iterations),
             Input::Reset => {
-                self.start().map_err(Refusal::Invalid)?;
+                self.start().map_err(|e| Refusal::Invalid(e.to_string()))?;
                 Ok(Applied::Done)
             }
             Input::Rollback => self.roll_back().map(Applied::RolledBack),

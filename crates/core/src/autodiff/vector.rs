@@ -138,15 +138,6 @@ impl<T: Scalar> Quat<T> {
         }
     }
     #[inline(always)]
-    pub fn add(self, o: Self) -> Self {
-        Quat {
-            x: self.x + o.x,
-            y: self.y + o.y,
-            z: self.z + o.z,
-            w: self.w + o.w,
-        }
-    }
-    #[inline(always)]
     pub fn normalize(self) -> Self {
         let inv = T::cst(1.0) / self.dot(self).sqrt();
         Quat {
@@ -166,6 +157,19 @@ impl<T: Scalar> Quat<T> {
 }
 
 /// Hamilton product.
+impl<T: Scalar> Add for Quat<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Quat {
+            x: self.x + o.x,
+            y: self.y + o.y,
+            z: self.z + o.z,
+            w: self.w + o.w,
+        }
+    }
+}
+
 impl<T: Scalar> Mul for Quat<T> {
     type Output = Self;
     #[inline(always)]

@@ -15,8 +15,12 @@ use std::collections::{BTreeMap, BinaryHeap};
 pub struct NetworkGaps {
     /// (hose a, hose b), a < b → (a's end, b's end, distance along the network \[m\]);
     /// an end is `false` for the first node, `true` for the last.
-    pairs: BTreeMap<(u32, u32), Vec<(bool, bool, f64)>>,
+    pairs: BTreeMap<(u32, u32), Vec<EndGap>>,
 }
+
+/// Hose a's end, hose b's end (`false`: the first node, `true`: the last) and the
+/// distance between them along the network \[m\].
+type EndGap = (bool, bool, f64);
 
 /// Index of hose `h`'s end in the graph of ends.
 fn end_index(h: usize, at_end: bool) -> usize {

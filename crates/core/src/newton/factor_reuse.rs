@@ -56,7 +56,7 @@ impl FactorReuse {
         let same = same_bits(diag, &matrix.diag)
             && same_bits(upper, &matrix.upper)
             && same_bits(lower, &matrix.lower)
-            && junctions.map_or(true, |j| {
+            && junctions.is_none_or(|j| {
                 j.fold_inputs()
                     .zip(&self.junction)
                     .all(|(a, b)| a.to_array().map(f64::to_bits) == b.to_array().map(f64::to_bits))

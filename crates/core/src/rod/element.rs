@@ -485,7 +485,7 @@ fn aligned_mean_frame<T: Scalar>(ra: Quat<T>, rb: Quat<T>, chord_dir: V3<T>) -> 
     } else {
         rb
     };
-    let mean = ra.add(rb).normalize();
+    let mean = (ra + rb).normalize();
     let x_axis = mean.rotate(V3::new(T::cst(1.0), T::cst(0.0), T::cst(0.0)));
     (rotation_between_of(x_axis, chord_dir) * mean).normalize()
 }

@@ -249,8 +249,8 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
     let length = chord.dot(chord).sqrt();
     let inv_length = one / length;
     let e1 = chord.scale(inv_length);
-    let ra = qa.mul(b.offset_a);
-    let rb = qb.mul(b.offset_b);
+    let ra = qa * b.offset_a;
+    let rb = qb * b.offset_b;
     let flip = ra.dot(rb).lt(F4::ZERO);
     let rb = Q4 {
         x: flip.select(-rb.x, rb.x),
@@ -283,7 +283,7 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
         w: w_turn,
     }
     .normalize();
-    let frame = turn.mul(mean).normalize();
+    let frame = (turn * mean).normalize();
     let (theta_a, ok_a) = log_map(frame.conj_mul(ra));
     let (theta_b, ok_b) = log_map(frame.conj_mul(rb));
     let rot = M34::from_quat(frame);
@@ -358,7 +358,7 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
         force_b,
         moment_a: twist - ma,
         moment_b: twist - mb,
-        outside: inside.not(),
+        outside: !inside,
     }
 }
 

@@ -25,8 +25,8 @@
 //! mapping exactly (Simo & Taylor 1985, CMAME 48), which the Newton solvers need for
 //! quadratic convergence.
 //!
-//! The incremental potential W(ε, γ) = ½E(ε−ε_p)² + ½G(γ−γ_p)² + ½H ε_p² + (H/6) γ_p²
-//! + σ_y Δλ, evaluated at the returned plastic strains, has σ = ∂W/∂ε and τ = ∂W/∂γ
+//! The incremental potential W(ε, γ) = ½E(ε−ε_p)² + ½G(γ−γ_p)² + ½H ε_p² + (H/6) γ_p² +
+//! σ_y Δλ, evaluated at the returned plastic strains, has σ = ∂W/∂ε and τ = ∂W/∂γ
 //! (the variational form of the return mapping: Ortiz & Stainier 1999, CMAME 171): the
 //! static solver's line search uses it as the energy of a yielding fibre.
 

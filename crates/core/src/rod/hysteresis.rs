@@ -245,7 +245,12 @@ mod tests {
                 (k0, z0, s) = (kappa, z_turn, -s);
             }
             let (x, q) = arc(next);
-            registry.commit(&[e.clone()], (&x[..], &q[..]), 0.0, &mut history);
+            registry.commit(
+                std::slice::from_ref(&e),
+                (&x[..], &q[..]),
+                0.0,
+                &mut history,
+            );
             let view = HistoryView {
                 values: &history,
                 age: 0.0,
@@ -294,7 +299,12 @@ mod tests {
                 [exp_map(DVec3::new(0.004, 0.02, -0.01)), DQuat::IDENTITY],
             ),
         ] {
-            registry.commit(&[e.clone()], (&pose.0[..], &pose.1[..]), 0.0, &mut history);
+            registry.commit(
+                std::slice::from_ref(&e),
+                (&pose.0[..], &pose.1[..]),
+                0.0,
+                &mut history,
+            );
         }
         let (x, q) = (
             [DVec3::ZERO, DVec3::new(0.0201, 0.0003, -0.0002)],

@@ -8,7 +8,7 @@
 //! library's `fma` otherwise — so the kernel gives the same bits on every machine, only
 //! more slowly without FMA hardware.
 
-use std::ops::{Add, Div, Mul, Neg, Sub};
+use std::ops::{Add, Div, Mul, Neg, Not, Sub};
 
 /// Four f64 lanes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -143,10 +143,13 @@ impl M4 {
         let sel = |k: usize| f64::from_bits((m[k] & a.0[k].to_bits()) | (!m[k] & b.0[k].to_bits()));
         F4([sel(0), sel(1), sel(2), sel(3)])
     }
+}
 
+impl Not for M4 {
+    type Output = M4;
     /// Lanes not set.
     #[inline(always)]
-    pub fn not(self) -> M4 {
+    fn not(self) -> M4 {
         let a = self.0;
         M4([!a[0], !a[1], !a[2], !a[3]])
     }
@@ -257,9 +260,23 @@ impl Q4 {
             w: self.w,
         }
     }
+    /// Conjugate of self, times o: self⁻¹ · o for unit self.
+    #[inline(always)]
+    pub fn conj_mul(self, o: Q4) -> Q4 {
+        self.conjugate() * o
+    }
+    /// The quaternion scaled to unit length.
+    #[inline(always)]
+    pub fn normalize(self) -> Q4 {
+        self.scale(F4::splat(1.0) / self.dot(self).sqrt())
+    }
+}
+
+impl Mul for Q4 {
+    type Output = Q4;
     /// Hamilton product self · o.
     #[inline(always)]
-    pub fn mul(self, o: Q4) -> Q4 {
+    fn mul(self, o: Q4) -> Q4 {
         let (a, b) = (self, o);
         Q4 {
             w: a.w
@@ -271,16 +288,6 @@ impl Q4 {
             z: a.w
                 .mul_add(b.z, a.z.mul_add(b.w, a.x.mul_add(b.y, -(a.y * b.x)))),
         }
-    }
-    /// Conjugate of self, times o: self⁻¹ · o for unit self.
-    #[inline(always)]
-    pub fn conj_mul(self, o: Q4) -> Q4 {
-        self.conjugate().mul(o)
-    }
-    /// The quaternion scaled to unit length.
-    #[inline(always)]
-    pub fn normalize(self) -> Q4 {
-        self.scale(F4::splat(1.0) / self.dot(self).sqrt())
     }
 }
 

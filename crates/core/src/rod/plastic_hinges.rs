@@ -175,7 +175,12 @@ mod tests {
             exp_map(DVec3::new(0.02, -0.1, 0.05)),
             exp_map(DVec3::new(-0.02, 0.12, -0.06)),
         ];
-        hinges.commit(&[e.clone()], (&x[..], &q0[..]), 0.0, &mut history);
+        hinges.commit(
+            std::slice::from_ref(&e),
+            (&x[..], &q0[..]),
+            0.0,
+            &mut history,
+        );
         let q = [
             exp_map(DVec3::new(0.05, -0.2, 0.1)),
             exp_map(DVec3::new(-0.05, 0.25, -0.12)),

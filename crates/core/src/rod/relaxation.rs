@@ -195,7 +195,12 @@ mod tests {
         let elastic = e.loads(&ends, 0.0);
         let mut history = vec![0.0; registry.history_len];
         // the jump at t = 0: no time has passed, nothing relaxes
-        registry.commit(&[e.clone()], (&x[..], &q[..]), 0.0, &mut history);
+        registry.commit(
+            std::slice::from_ref(&e),
+            (&x[..], &q[..]),
+            0.0,
+            &mut history,
+        );
         let mut t = 0.0;
         for h in [0.01, 0.3, 0.02, 1.7, 4.0] {
             t += h;
@@ -214,7 +219,7 @@ mod tests {
                     l.moment[k]
                 );
             }
-            registry.commit(&[e.clone()], (&x[..], &q[..]), h, &mut history);
+            registry.commit(std::slice::from_ref(&e), (&x[..], &q[..]), h, &mut history);
         }
     }
 
@@ -229,8 +234,18 @@ mod tests {
             [DVec3::ZERO, DVec3::new(0.0199, 0.0001, 0.0)],
             [exp_map(DVec3::new(0.0, -0.1, 0.02)), DQuat::IDENTITY],
         );
-        registry.commit(&[e.clone()], (&x0[..], &q0[..]), 0.0, &mut history);
-        registry.commit(&[e.clone()], (&x0[..], &q0[..]), 0.7, &mut history);
+        registry.commit(
+            std::slice::from_ref(&e),
+            (&x0[..], &q0[..]),
+            0.0,
+            &mut history,
+        );
+        registry.commit(
+            std::slice::from_ref(&e),
+            (&x0[..], &q0[..]),
+            0.7,
+            &mut history,
+        );
         let (x, q) = bent();
         let view = HistoryView {
             values: &history,

@@ -254,7 +254,7 @@ fn rows<F: Lane4>(
     let flip = ra.dot(rb).re.to_f4().lt(F4::ZERO);
     let rb = select_q(flip, rb.negate(), rb);
     // element frame: the mean of the end frames, turned onto the chord (Crisfield 1990)
-    let sum = ra.add(rb);
+    let sum = ra + rb;
     let mean = scale_q(sum, inv_sqrt(sum.dot(sum)));
     let (y2, z2) = (mean.y * 2.0, mean.z * 2.0);
     let x_axis = V3::new(
@@ -347,7 +347,7 @@ fn rows<F: Lane4>(
             portable(twist - mb),
         ],
         axial: axial.re.to_f4(),
-        outside: inside.not(),
+        outside: !inside,
     }
 }
 

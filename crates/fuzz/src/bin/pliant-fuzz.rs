@@ -52,7 +52,7 @@ fn main() -> std::process::ExitCode {
         let mut found = 0u64;
         let mut slowest = 0.0f64;
         for k in 0..inputs {
-            let s = &seeds[rng.next() as usize % seeds.len()];
+            let s = &seeds[rng.next_u64() as usize % seeds.len()];
             let ops = rng.ops(8);
             let input = apply(s, &ops, &others);
             let one = Instant::now();

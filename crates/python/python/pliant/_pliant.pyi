@@ -1,7 +1,7 @@
 """Type stubs of Pliant's native module (re-exported by ``pliant``)."""
 
 from os import PathLike
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -43,6 +43,7 @@ class SolverNotConverged(RuntimeError):
 class SolverWarning(RuntimeWarning):
     """A Newton solve ended out of balance or unstable: those steps' forces are not trustworthy."""
 
+@final
 class Scene:
     """A loaded, checked scene (SI units) with its physics model built."""
 
@@ -92,6 +93,7 @@ def load_scene(path: StrPath) -> Scene:
 def demo_scene() -> Scene:
     """The built-in engine-bay demo scene."""
 
+@final
 class LoadId:
     """Handle of a load case you added, for ``Simulation.remove_load``."""
 
@@ -103,9 +105,10 @@ class LoadId:
     def hose(self) -> str: ...
     @property
     def node(self) -> int: ...
-    def __eq__(self, other: object) -> bool: ...
+    def __eq__(self, other: object, /) -> bool: ...
     def __hash__(self) -> int: ...
 
+@final
 class HandLoad:
     """The load a hand applied in the last step and its ergonomic assessment."""
 
@@ -129,7 +132,16 @@ class HandLoad:
     def limit(self) -> float: ...
     @property
     def colour(self) -> float: ...
+    @property
+    def axial_force(self) -> float: ...
+    @property
+    def lateral_force(self) -> float: ...
+    @property
+    def twist(self) -> float: ...
+    @property
+    def bending(self) -> float: ...
 
+@final
 class SettleReport:
     """How ``Simulation.settle`` ended; true if it converged."""
 
@@ -143,17 +155,18 @@ class SettleReport:
     def residual_moment(self) -> float: ...
     def __bool__(self) -> bool: ...
 
+@final
 class Simulation:
     """A simulation of a scene, stepped on request."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         scene: Scene,
         *,
         initial_loads: bool = True,
         solver: str | None = None,
         strict: bool = False,
-    ) -> None: ...
+    ) -> "Simulation": ...
     @property
     def solver_warnings(self) -> List[str]: ...
     def instabilities(self) -> List[Dict[str, Any]]: ...
@@ -291,9 +304,14 @@ class Simulation:
     def fasteners(self) -> List[Dict[str, Any]]: ...
     def worker(self) -> Optional[Dict[str, Any]]: ...
 
+@final
 class RunResult:
     """The outcome of ``run_timeline``."""
 
+    @property
+    def standard(self) -> str: ...
+    @property
+    def zones(self) -> List[str]: ...
     @property
     def feasible(self) -> Optional[bool]: ...
     @property
@@ -385,6 +403,7 @@ class CalibrationError(ValueError):
     line: Optional[int]
     column: Optional[int]
 
+@final
 class CalibrationFit:
     """One fitted test curve (docs/calibration.md)."""
 
@@ -434,6 +453,7 @@ class CalibrationFit:
     def y(self) -> FloatArray:
         """Its ordinate, SI (stress, force or torque)."""
 
+@final
 class Calibration:
     """A finished calibration: fits, the material with its sources, the files."""
 

@@ -215,7 +215,8 @@ fn symmetric_t(out: &mut Vec<Check>) -> Result<(), String> {
 
 pub fn run() -> Vec<Check> {
     let mut out = Vec::new();
-    let parts: [(&str, fn(&mut Vec<Check>) -> Result<(), String>); 4] = [
+    type Part = fn(&mut Vec<Check>) -> Result<(), String>;
+    let parts: [(&str, Part); 4] = [
         ("in-plane L-frame", in_plane_l),
         ("out-of-plane L-frame", |out| out_of_plane_l(out, 0.0)),
         ("symmetric T", symmetric_t),

@@ -437,12 +437,12 @@ fn hinge(kind: SolverKind) -> Vec<Check> {
         1e-4
     };
     let mut out = Vec::new();
-    for (t, degrees) in [(5.0, 20.0), (10.0, 40.0), (15.0, 60.0)] {
+    for (t, degrees) in [(5.0, 20.0_f64), (10.0, 40.0), (15.0, 60.0)] {
         if let Err(e) = run_until(&model, &mut solver, &mut state, t, |_| {}) {
             out.push(Check::failed(CASE, name, &e));
             return out;
         }
-        let theta = -(degrees as f64).to_radians();
+        let theta = -degrees.to_radians();
         match reference(theta) {
             Ok(tip) => out.push(Check::scaled(
                 CASE,

@@ -1,0 +1,45 @@
+//! The inputs on the whole state ([`Input::Arrest`](super::Input::Arrest), [`Input::SolveStatic`](super::Input::SolveStatic)): velocities
+//! stopped, or the state moved to the static equilibrium under its loads.
+
+use super::{Applied, Workcell};
+use crate::workcell::Refusal;
+use glam::DVec3;
+use pliant_core::integrators::StaticSolver;
+use pliant_core::newton::Tolerance;
+
+impl Workcell {
+    /// [`Input::Arrest`](super::Input::Arrest): every velocity, of nodes and of free bodies, set to zero.
+    pub(super) fn arrest(&mut self) -> Result<Applied, Refusal> {
+        let s = &mut self.state;
+        s.v.fill(DVec3::ZERO);
+        s.w.fill(DVec3::ZERO);
+        for b in s.bodies.iter_mut() {
+            b.velocity = DVec3::ZERO;
+            b.angular_velocity = DVec3::ZERO;
+        }
+        Ok(Applied::Done)
+    }
+
+    /// [`Input::SolveStatic`](super::Input::SolveStatic): the static equilibrium under the current loads by Newton's
+    /// method to the given residual tolerances \[N, N·m\]; the state is left as it was if
+    /// the solve fails.
+    pub(super) fn solve_static(
+        &mut self,
+        force_tolerance: f64,
+        moment_tolerance: f64,
+        max_iterations: usize,
+    ) -> Result<Applied, Refusal> {
+        let mut solver =
+            StaticSolver::new(&self.model).map_err(|e| Refusal::Invalid(e.to_string()))?;
+        solver.options.tolerance = Tolerance::absolute(force_tolerance, moment_tolerance);
+        solver.options.max_iterations = max_iterations;
+        let before = self.state.clone();
+        match solver.solve(&self.model, &mut self.state) {
+            Ok(r) => Ok(Applied::Static(r)),
+            Err(e) => {
+                self.state = before;
+                Err(Refusal::Invalid(format!("static solve failed: {e}")))
+            }
+        }
+    }
+}
