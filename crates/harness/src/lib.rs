@@ -7,12 +7,14 @@
 //!   harness installed by a worker);
 //! - [`mod@vec`] recognises VEC files (refused for now);
 //! - [`export`] writes a settled route ([`settled`]) back as KBL, [`step`] as STEP (AP214);
-//! - [`calibrate`] fits a protection's coupling factor from a bending test;
+//! - [`calibrate`] fits a protection's coupling factor from a bundle's EI,
+//!   [`bundle_calibration`] from a bending-test curve (`pliant calibrate` for bundles);
 //! - [`import_kbl`] does all of it and returns an [`ImportReport`].
 
 pub mod branch;
 pub mod bspline;
 pub mod bundle;
+pub mod bundle_calibration;
 pub mod calibrate;
 pub mod error;
 pub mod export;

@@ -140,6 +140,24 @@ pub enum ProtectionKind {
 }
 
 impl ProtectionKind {
+    /// Every kind, in the order of the bundle-factor table.
+    pub const ALL: [ProtectionKind; 5] = [
+        ProtectionKind::Tape,
+        ProtectionKind::FleeceTape,
+        ProtectionKind::CorrugatedTube,
+        ProtectionKind::Sleeve,
+        ProtectionKind::Other,
+    ];
+
+    /// The kind of a bundle-factor key (`"none"`: unprotected, `Some(None)`); `None` for
+    /// an unknown key.
+    pub fn from_key(key: &str) -> Option<Option<ProtectionKind>> {
+        if key == "none" {
+            return Some(None);
+        }
+        Self::ALL.into_iter().find(|k| k.key() == key).map(Some)
+    }
+
     /// The key of this kind in the bundle-factor table (`data/bundle.toml`).
     pub fn key(self) -> &'static str {
         match self {
