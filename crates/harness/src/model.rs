@@ -26,6 +26,22 @@ pub struct Harness {
 }
 
 /// A KBL `Node`: a point where segments end (branch point, connector, end).
+impl Harness {
+    /// The source format and version for people: "KBL 2.4", "VEC 2.0.2".
+    pub fn format_version(&self) -> String {
+        format_version(&self.kbl_version)
+    }
+}
+
+/// "KBL 2.4" for a KBL `version_id`; a VEC reader's "VEC 2.0.2" as it is.
+pub fn format_version(version: &str) -> String {
+    if version.starts_with("VEC") {
+        version.to_string()
+    } else {
+        format!("KBL {version}")
+    }
+}
+
 #[derive(Debug, Clone, Serialize)]
 pub struct Node {
     pub kbl_id: String,

@@ -365,15 +365,6 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
             ),
         });
     }
-    let version = text(root, "VecVersion").unwrap_or("").to_string();
-    if !version.starts_with("2.") {
-        return Err(HarnessError::Unsupported {
-            file: file.to_string(),
-            reason: format!(
-                "VEC version \"{version}\": this importer reads VEC 2.x (VecVersion 2.0.0 … 2.2.x)"
-            ),
-        });
-    }
     let mut ids = HashMap::new();
     for n in doc.descendants().filter(|n| n.is_element()) {
         if let Some(id) = n.attribute("id") {
@@ -398,6 +389,15 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
         .all(|b| children(*b, "GeometrySegment").next().is_none())
     {
         return Err(topology_only(file));
+    }
+    let version = text(root, "VecVersion").unwrap_or("").to_string();
+    if !version.starts_with("2.") {
+        return Err(HarnessError::Unsupported {
+            file: file.to_string(),
+            reason: format!(
+                "VEC version \"{version}\": this importer reads VEC 2.x (VecVersion 2.0.0 … 2.2.x)"
+            ),
+        });
     }
     let positionings = r.positionings()?;
     let mut h = Harness {
