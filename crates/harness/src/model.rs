@@ -27,6 +27,23 @@ pub struct Harness {
 
 /// A KBL `Node`: a point where segments end (branch point, connector, end).
 impl Harness {
+    /// A harness with nothing in it yet, read from `source` (format version `version`).
+    pub fn empty(source: &str, version: String) -> Self {
+        Harness {
+            source: source.to_string(),
+            kbl_version: version,
+            nodes: Vec::new(),
+            segments: Vec::new(),
+            wire_parts: Vec::new(),
+            wires: Vec::new(),
+            fixings: Vec::new(),
+            protections: Vec::new(),
+            connectors: Vec::new(),
+            skipped: Vec::new(),
+            warnings: Vec::new(),
+        }
+    }
+
     /// The source format and version for people: "KBL 2.4", "VEC 2.0.2".
     pub fn format_version(&self) -> String {
         format_version(&self.kbl_version)

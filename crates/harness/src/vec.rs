@@ -211,9 +211,14 @@ impl<'a, 'i> Reader<'a, 'i> {
         let mut weights = Vec::new();
         for cp in children(c, "ControlPoint") {
             let p = self.reference(cp, "CartesianPoint3D")?;
-            points.push(place(self.vector(p).map_err(|_| {
-                self.error(cp, "its CartesianPoint3D has no finite X, Y, Z")
-            })?));
+            let placed = place(self.vector(p)?);
+            if !placed.is_finite() {
+                return Err(self.error(
+                    p,
+                    "the placed point is not finite (coordinates or unit too large)",
+                ));
+            }
+            points.push(placed);
             weights.push(match child(cp, "Weight") {
                 Some(_) => self.number(cp, "Weight")?,
                 None => 1.0,
@@ -400,19 +405,7 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
         });
     }
     let positionings = r.positionings()?;
-    let mut h = Harness {
-        source: file.to_string(),
-        kbl_version: format!("VEC {version}"),
-        nodes: Vec::new(),
-        segments: Vec::new(),
-        wire_parts: Vec::new(),
-        wires: Vec::new(),
-        fixings: Vec::new(),
-        protections: Vec::new(),
-        connectors: Vec::new(),
-        skipped: Vec::new(),
-        warnings: Vec::new(),
-    };
+    let mut h = Harness::empty(file, format!("VEC {version}"));
     let mut node_index: HashMap<&str, usize> = HashMap::new();
     for block in blocks {
         let unit = r.reference(block, "BaseUnit")?;
@@ -428,6 +421,12 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
                 .ok_or_else(|| r.error(g, "GeometryNode without id"))?;
             let point = r.reference(g, "CartesianPoint")?;
             let position = place(r.vector(point)?);
+            if !position.is_finite() {
+                return Err(r.error(
+                    point,
+                    "the placed point is not finite (coordinates or unit too large)",
+                ));
+            }
             node_index.insert(id, h.nodes.len());
             h.nodes.push(Node {
                 kbl_id: id.to_string(),
