@@ -234,7 +234,7 @@ impl<'a, 'i> Reader<'a, 'i> {
                 ),
             ));
         }
-        if let Some(w) = weights.iter().find(|w| !(**w > 0.0)) {
+        if let Some(w) = weights.iter().find(|w| **w <= 0.0) {
             return Err(self.error(c, format!("control point weight {w}: must be positive")));
         }
         let mut knots = Vec::new();
