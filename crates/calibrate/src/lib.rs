@@ -163,25 +163,37 @@ impl Calibration {
     /// Writes material.toml, library_entry.toml, calibration.json and calibration.html
     /// into `out` (created) and returns their paths.
     pub fn write(&self, out: &Path) -> Result<Vec<PathBuf>, CalibError> {
-        let shown = out.display().to_string();
-        std::fs::create_dir_all(out)
-            .map_err(|e| CalibError::file(&shown, format!("cannot create the folder: {e}")))?;
-        let json = serde_json::to_string_pretty(&self.json())
-            .map_err(|e| CalibError::file(&shown, format!("JSON: {e}")))?;
-        let files = [
-            ("material.toml", self.material_toml()),
-            ("library_entry.toml", self.library_toml()),
-            ("calibration.json", json + "\n"),
-            ("calibration.html", self.html()),
-        ];
-        let mut paths = Vec::new();
-        for (name, text) in files {
-            let p = out.join(name);
-            std::fs::write(&p, text).map_err(|e| {
-                CalibError::file(&p.display().to_string(), format!("cannot write: {e}"))
-            })?;
-            paths.push(p);
-        }
-        Ok(paths)
+        write_results(
+            out,
+            &self.json(),
+            [
+                ("material.toml", self.material_toml()),
+                ("library_entry.toml", self.library_toml()),
+                ("calibration.html", self.html()),
+            ],
+        )
     }
+}
+
+/// Writes a calibration's files into `out` (created): `calibration.json` from `json`
+/// and the named texts; returns their paths (calibration.json last).
+pub fn write_results<const N: usize>(
+    out: &Path,
+    json: &serde_json::Value,
+    texts: [(&str, String); N],
+) -> Result<Vec<PathBuf>, CalibError> {
+    let shown = out.display().to_string();
+    std::fs::create_dir_all(out)
+        .map_err(|e| CalibError::file(&shown, format!("cannot create the folder: {e}")))?;
+    let json = serde_json::to_string_pretty(json)
+        .map_err(|e| CalibError::file(&shown, format!("JSON: {e}")))?;
+    let mut paths = Vec::with_capacity(N + 1);
+    for (name, text) in texts.into_iter().chain([("calibration.json", json + "\n")]) {
+        let p = out.join(name);
+        std::fs::write(&p, text).map_err(|e| {
+            CalibError::file(&p.display().to_string(), format!("cannot write: {e}"))
+        })?;
+        paths.push(p);
+    }
+    Ok(paths)
 }

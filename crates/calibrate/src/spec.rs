@@ -78,19 +78,22 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// A TOML parse error of the file `origin` (text `text`) at its line and column.
+pub fn toml_error(text: &str, origin: &str, e: &toml::de::Error) -> CalibError {
+    let message = e.message().to_string();
+    match e.span() {
+        Some(span) => {
+            let (l, c) = line_col(text, span.start);
+            CalibError::cell(origin, l, c, message)
+        }
+        None => CalibError::file(origin, message),
+    }
+}
+
 impl Spec {
     /// Parses a calibration file's text (`origin` names it in errors) and checks it.
     pub fn parse(text: &str, origin: &str) -> Result<Spec, CalibError> {
-        let spec: Spec = toml::from_str(text).map_err(|e| {
-            let message = e.message().to_string();
-            match e.span() {
-                Some(span) => {
-                    let (l, c) = line_col(text, span.start);
-                    CalibError::cell(origin, l, c, message)
-                }
-                None => CalibError::file(origin, message),
-            }
-        })?;
+        let spec: Spec = toml::from_str(text).map_err(|e| toml_error(text, origin, &e))?;
         spec.check(origin)?;
         Ok(spec)
     }

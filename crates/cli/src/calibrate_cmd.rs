@@ -1,17 +1,31 @@
 //! `pliant calibrate`: fits a material's stiffnesses to measured test curves (SPEC M5,
 //! D3; docs/calibration.md) and writes material.toml, library_entry.toml,
-//! calibration.json and calibration.html.
+//! calibration.json and calibration.html; for a bundle (`--kind bundle`), a protection's
+//! coupling factor (bundle.toml, calibration.json, calibration.html).
 
 use anyhow::{anyhow, bail};
 use comfy_table::{presets::UTF8_FULL_CONDENSED, Table};
 use pliant_calibrate::material_entry::num;
 use pliant_calibrate::{Spec, TestKind, TestSpec};
+use pliant_harness::bundle_calibration::{
+    calibrate_bundle, calibrate_bundle_file, is_bundle_spec, BundleSpec, FORMAT_TAG,
+};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+/// The bundle's options of one test given on the command line (`--kind bundle`).
+pub struct BundleArgs<'a> {
+    /// `three_point_bending` or `cantilever`.
+    pub bending_test: &'a str,
+    pub kbl: Option<&'a Path>,
+    pub segment: Option<&'a str>,
+    pub protection: Option<&'a str>,
+}
 
 /// One test given on the command line instead of a calibration file.
 pub struct OneTest<'a> {
     pub kind: Option<&'a str>,
+    pub bundle: BundleArgs<'a>,
     pub csv: Option<&'a Path>,
     pub length_mm: Option<f64>,
     pub d_inner_mm: f64,
@@ -21,34 +35,139 @@ pub struct OneTest<'a> {
     pub poisson: Option<f64>,
 }
 
-pub fn run(spec: Option<&Path>, one: &OneTest, out: &Path, json: bool) -> anyhow::Result<ExitCode> {
+/// The folder of `csv` (its CSV path is relative to it) and its file name.
+fn split_csv(csv: &Path) -> anyhow::Result<(PathBuf, String)> {
+    let base = csv
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("."));
+    let file = csv
+        .file_name()
+        .ok_or_else(|| anyhow!("--csv {}: not a file", csv.display()))?
+        .to_string_lossy()
+        .to_string();
+    Ok((base, file))
+}
+
+/// Whether the file at `path` is a bundle calibration ("pliant-bundle-calibration").
+fn is_bundle_file(path: &Path) -> bool {
+    pliant_files::read_regular_text(path, pliant_calibrate::MAX_FILE_BYTES)
+        .is_ok_and(|text| is_bundle_spec(&text))
+}
+
+/// `pliant calibrate` of a bundle: from a file, or from `--kind bundle` and its options.
+fn run_bundle(
+    spec: Option<&Path>,
+    one: &OneTest,
+    out: &Path,
+    json: bool,
+) -> anyhow::Result<ExitCode> {
     let calibration = match spec {
-        Some(path) => {
-            if one.kind.is_some() || one.csv.is_some() {
-                bail!("give either a calibration file or --kind and --csv, not both");
-            }
-            pliant_calibrate::calibrate_file(path).map_err(|e| anyhow!(e))?
+        Some(path) => calibrate_bundle_file(path).map_err(|e| anyhow!(e))?,
+        None => {
+            let b = &one.bundle;
+            let Some(csv) = one.csv else {
+                bail!("--kind bundle needs --csv (the bending test's force_N,deflection_mm curve)");
+            };
+            let Some(length) = one.length_mm else {
+                bail!("--kind bundle needs --length: the span (three_point_bending) or free length (cantilever) [mm]");
+            };
+            let (Some(kbl), Some(segment)) = (b.kbl, b.segment) else {
+                bail!("--kind bundle needs --kbl FILE and --segment ID (the tested bundle's wires); a wire list goes in a calibration file (docs/calibration.md, Bundles)");
+            };
+            let kind = TestKind::parse(b.bending_test).ok_or_else(|| {
+                anyhow!(
+                    "--bending-test {}: expected three_point_bending or cantilever",
+                    b.bending_test
+                )
+            })?;
+            let (base, file) = split_csv(csv)?;
+            let kbl =
+                std::path::absolute(kbl).map_err(|e| anyhow!("--kbl {}: {e}", kbl.display()))?;
+            let spec = BundleSpec {
+                format: FORMAT_TAG.to_string(),
+                kind,
+                csv: file,
+                length_mm: length,
+                protection: b.protection.map(str::to_string),
+                kbl: Some(kbl.display().to_string()),
+                segment: Some(segment.to_string()),
+                wires: Vec::new(),
+            };
+            let origin = format!(
+                "the command line (--kind bundle --csv {} --kbl {} --segment {segment})",
+                csv.display(),
+                kbl.display()
+            );
+            calibrate_bundle(spec, &base, &origin).map_err(|e| anyhow!(e))?
         }
+    };
+    let paths = calibration.write(out).map_err(|e| anyhow!(e))?;
+    if json {
+        println!("{}", serde_json::to_string_pretty(&calibration.json())?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    let f = &calibration.fit;
+    let t = &calibration.test;
+    let r = &t.range;
+    println!(
+        "bundle {} ({} wires), {} test, linear range rows {}–{} of {}, R² {:.5}",
+        calibration.bundle,
+        f.wire_count,
+        t.kind.name(),
+        r.first_row + 1,
+        r.last_row + 1,
+        r.total_points,
+        t.line.r_squared
+    );
+    println!(
+        "EI = {} N·m² (95 % CI {} – {}) between the slip bound {} and the bonded bound {}",
+        num(f.measured_ei),
+        num(t.ci95[0]),
+        num(t.ci95[1]),
+        num(f.ei_slip),
+        num(f.ei_bond)
+    );
+    println!(
+        "protection {}: f_ei = {} (95 % CI {} – {})",
+        f.key(),
+        num(f.f_ei),
+        num(calibration.f_ei_ci95[0]),
+        num(calibration.f_ei_ci95[1])
+    );
+    for p in &paths {
+        println!("  {}", p.display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+pub fn run(spec: Option<&Path>, one: &OneTest, out: &Path, json: bool) -> anyhow::Result<ExitCode> {
+    if spec.is_some() && (one.kind.is_some() || one.csv.is_some()) {
+        bail!("give either a calibration file or --kind and --csv, not both");
+    }
+    if one.kind == Some("bundle") || spec.is_some_and(is_bundle_file) {
+        return run_bundle(spec, one, out, json);
+    }
+    if one.bundle.kbl.is_some() || one.bundle.segment.is_some() || one.bundle.protection.is_some() {
+        bail!("--kbl, --segment and --protection are for --kind bundle");
+    }
+    let calibration = match spec {
+        Some(path) => pliant_calibrate::calibrate_file(path).map_err(|e| anyhow!(e))?,
         None => {
             let (Some(kind), Some(csv)) = (one.kind, one.csv) else {
                 bail!("give a calibration file (docs/calibration.md) or --kind and --csv for one test");
             };
             let kind = TestKind::parse(kind).ok_or_else(|| {
                 let names: Vec<&str> = TestKind::ALL.iter().map(|k| k.name()).collect();
-                anyhow!("--kind {kind}: expected one of {}", names.join(", "))
+                anyhow!(
+                    "--kind {kind}: expected one of {}, bundle",
+                    names.join(", ")
+                )
             })?;
             let Some(d_outer) = one.d_outer_mm else {
                 bail!("--d-outer (mm) is needed: the specimen's outer diameter");
             };
-            let base = csv
-                .parent()
-                .map(Path::to_path_buf)
-                .unwrap_or_else(|| PathBuf::from("."));
-            let file = csv
-                .file_name()
-                .ok_or_else(|| anyhow!("--csv {}: not a file", csv.display()))?
-                .to_string_lossy()
-                .to_string();
+            let (base, file) = split_csv(csv)?;
             let spec = Spec {
                 format: None,
                 name: one.name.to_string(),

@@ -20,6 +20,8 @@ pub struct ImportOptions<'a> {
     pub tolerance: Option<&'a str>,
     /// KBL: import only the branch beyond this node or segment.
     pub branch: Option<&'a str>,
+    /// KBL: the bundle model's data (TOML) instead of the built-in.
+    pub bundle_data: Option<&'a Path>,
 }
 
 /// A length such as "0.5mm", "0.02 in", "0.0005m"; a bare number is millimetres.
@@ -74,8 +76,18 @@ fn run_harness(o: &ImportOptions) -> Result<ExitCode> {
             .unwrap_or_else(|| "harness".into());
         o.step.with_file_name(stem)
     });
+    let bundle = match o.bundle_data {
+        Some(path) => {
+            let text = pliant_files::read_regular_text(path, 16 * 1024 * 1024)
+                .map_err(|e| anyhow!("{}: cannot read: {}", path.display(), e.kind.into_io()))?;
+            pliant_harness::bundle::BundleData::from_toml(&text)
+                .map_err(|e| anyhow!("{}: {e}", path.display()))?
+        }
+        None => pliant_harness::bundle::BundleData::builtin(),
+    };
     let options = pliant_harness::ImportOptions {
         branch: o.branch.map(str::to_owned),
+        bundle,
         ..Default::default()
     };
     let report =
@@ -96,6 +108,9 @@ pub fn run(o: &ImportOptions) -> Result<ExitCode> {
     }
     if o.branch.is_some() {
         bail!("--branch is for harness files (KBL); a STEP assembly has no branches");
+    }
+    if o.bundle_data.is_some() {
+        bail!("--bundle-data is for harness files (KBL); a STEP assembly has no bundles");
     }
     let tolerance = match o.tolerance {
         Some(t) => parse_length(t).context("--tolerance")?,

@@ -185,8 +185,9 @@ enum Command {
     /// becomes a scene: `--out DIR` receives scene.toml (segments, junctions, bundle
     /// sections, fixings, the installed state as timeline), harness.json and install.toml
     /// (the harness installed by two hands: connectors plugged, fixings pressed in;
-    /// crates/harness/README.md). VEC files (`.vec`) are read where they carry 3-D
-    /// geometry.
+    /// crates/harness/README.md). VEC 2.x files (`.vec`) are read where they carry 3-D
+    /// geometry (nodes, segments, centre curves; not their wires, fixings, connectors);
+    /// a topology-only VEC is refused.
     Import {
         /// The STEP or KBL file.
         step: PathBuf,
@@ -210,6 +211,10 @@ enum Command {
         /// segments); a segment: the segment and all beyond it, away from the larger rest.
         #[arg(long, value_name = "NODE_OR_SEGMENT")]
         branch: Option<String>,
+        /// KBL: the bundle model's data to use instead of the built-in (e.g. the
+        /// bundle.toml of `pliant calibrate --kind bundle`, with a fitted factor).
+        #[arg(long = "bundle-data", value_name = "BUNDLE_TOML")]
+        bundle_data: Option<PathBuf>,
     },
     /// Print what a scene builds: hoses (length, elements, nodes), junctions (degree,
     /// position), fixings and parts, in metres.
@@ -245,14 +250,33 @@ enum Command {
     /// ISO 10619-1, GJ from torsion; least squares over the linear range (found
     /// automatically) with 95 % confidence intervals. Writes material.toml (a scene's
     /// [materials.NAME]), library_entry.toml, calibration.json and calibration.html.
+    /// A bundle (--kind bundle, or a "pliant-bundle-calibration" file): a protection's
+    /// coupling factor between the slip and bonded bounds from a bending test of a bundle
+    /// of wires; writes bundle.toml (for `pliant import --bundle-data`), calibration.json
+    /// and calibration.html.
     Calibrate {
         /// Calibration file (TOML, format "pliant-calibration", e.g.
-        /// examples/calibration/hose.toml); or give --kind and --csv for one test.
+        /// examples/calibration/hose.toml, or "pliant-bundle-calibration"); or give
+        /// --kind and --csv for one test.
         spec: Option<PathBuf>,
         /// One test's kind: tension, compression, three_point_bending, cantilever,
-        /// torsion, iso10619.
+        /// torsion, iso10619; or bundle (with --kbl and --segment).
         #[arg(long)]
         kind: Option<String>,
+        /// Bundle: the bending test the curve comes from, three_point_bending (--length:
+        /// span) or cantilever (--length: free length).
+        #[arg(long = "bending-test", default_value = "three_point_bending")]
+        bending_test: String,
+        /// Bundle: the KBL file holding the tested bundle's wires.
+        #[arg(long)]
+        kbl: Option<PathBuf>,
+        /// Bundle: the tested segment (KBL id or <Id> text).
+        #[arg(long)]
+        segment: Option<String>,
+        /// Bundle: the protection whose factor is fitted (none, tape, fleece_tape,
+        /// corrugated_tube, sleeve, other) [default: the segment's].
+        #[arg(long)]
+        protection: Option<String>,
         /// One test's curve (CSV with a header naming quantities and units, e.g.
         /// force_N,displacement_mm).
         #[arg(long)]
@@ -460,16 +484,22 @@ fn main() -> ExitCode {
             cache_dir,
             tolerance,
             branch,
+            bundle_data,
         } => import_cmd::run(&import_cmd::ImportOptions {
             step: &step,
             out: out.as_deref(),
             cache_dir: cache_dir.as_deref(),
             tolerance: tolerance.as_deref(),
             branch: branch.as_deref(),
+            bundle_data: bundle_data.as_deref(),
         }),
         Command::Calibrate {
             spec,
             kind,
+            bending_test,
+            kbl,
+            segment,
+            protection,
             csv,
             length,
             d_outer,
@@ -483,6 +513,12 @@ fn main() -> ExitCode {
             spec.as_deref(),
             &calibrate_cmd::OneTest {
                 kind: kind.as_deref(),
+                bundle: calibrate_cmd::BundleArgs {
+                    bending_test: &bending_test,
+                    kbl: kbl.as_deref(),
+                    segment: segment.as_deref(),
+                    protection: protection.as_deref(),
+                },
                 csv: csv.as_deref(),
                 length_mm: length,
                 d_inner_mm: d_inner,

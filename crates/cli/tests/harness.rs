@@ -185,6 +185,54 @@ fn a_harness_is_imported_inspected_installed_and_exported() {
 }
 
 #[test]
+fn a_vec_file_with_3d_geometry_is_imported_and_inspected() {
+    let dir = tempfile::tempdir().unwrap();
+    let vec = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../harness/tests/data/y_harness_3d.vec"
+    ));
+    let scene_dir = dir.path().join("y");
+    let text = ok(&pliant()
+        .arg("import")
+        .arg(vec)
+        .arg("--out")
+        .arg(&scene_dir)
+        .output()
+        .unwrap());
+    println!("{text}");
+    assert!(text.contains("VEC 2.0.2"), "{text}");
+    let inspect = ok(&pliant()
+        .arg("inspect")
+        .arg(scene_dir.join("scene.toml"))
+        .arg("--json")
+        .output()
+        .unwrap());
+    let json: serde_json::Value = serde_json::from_str(&inspect).unwrap();
+    let hoses = json["hoses"].as_array().unwrap();
+    assert_eq!(hoses.len(), 3);
+    let mut lengths: Vec<f64> = hoses
+        .iter()
+        .map(|h| h["length_m"].as_f64().unwrap())
+        .collect();
+    lengths.sort_by(f64::total_cmp);
+    println!("{lengths:?}");
+    // 100 mm, the quarter circle (50 π mm as 64 chords), 200 mm.
+    assert!((lengths[0] - 0.1).abs() < 1e-6 && (lengths[2] - 0.2).abs() < 1e-6);
+    assert!((lengths[1] / (0.05 * std::f64::consts::PI) - 1.0).abs() < 1e-3);
+    assert_eq!(json["junctions"].as_array().unwrap().len(), 1);
+    // Topology only: refused saying so.
+    let topo = dir.path().join("topology.vec");
+    std::fs::write(&topo, "<?xml version=\"1.0\"?><vec:VecContent xmlns:vec=\"http://www.prostep.org/ecad-if/2011/vec\"><VecVersion>2.0.2</VecVersion></vec:VecContent>").unwrap();
+    let out = pliant().arg("import").arg(&topo).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("topology.vec: VEC file") && err.contains("topology only"),
+        "{err}"
+    );
+}
+
+#[test]
 fn a_vec_file_without_geometry_and_a_broken_kbl_are_refused_clearly() {
     let dir = tempfile::tempdir().unwrap();
     let broken = dir.path().join("broken.kbl");

@@ -80,22 +80,27 @@ pub fn calibration_csv(input: &[u8]) -> Result<(), String> {
     calibration(seeds::CALIBRATION_SPEC, &curves)
 }
 
-/// The KBL reader: never panics; a harness it reads has finite node positions and
-/// segments between existing nodes.
+/// The KBL and VEC readers: never panic; a harness they read has finite node positions
+/// and control points and segments between existing nodes.
 pub fn kbl(input: &[u8]) -> Result<(), String> {
     let text = String::from_utf8_lossy(input);
-    let Ok(h) = pliant_harness::kbl::parse_kbl("fuzz.kbl", &text) else {
-        return Ok(());
-    };
-    if let Some(n) = h.nodes.iter().find(|n| !n.position.is_finite()) {
-        return Err(format!("node {} at {}", n.kbl_id, n.position));
-    }
-    if let Some(s) = h
-        .segments
-        .iter()
-        .find(|s| s.start_node >= h.nodes.len() || s.end_node >= h.nodes.len())
-    {
-        return Err(format!("segment {} between missing nodes", s.kbl_id));
+    let read = [
+        pliant_harness::kbl::parse_kbl("fuzz.kbl", &text).ok(),
+        pliant_harness::vec::parse_vec("fuzz.vec", &text).ok(),
+    ];
+    for h in read.into_iter().flatten() {
+        if let Some(n) = h.nodes.iter().find(|n| !n.position.is_finite()) {
+            return Err(format!("node {} at {}", n.kbl_id, n.position));
+        }
+        for s in &h.segments {
+            if s.start_node >= h.nodes.len() || s.end_node >= h.nodes.len() {
+                return Err(format!("segment {} between missing nodes", s.kbl_id));
+            }
+            let points = s.curves.iter().flat_map(|c| &c.control_points);
+            if let Some(p) = points.into_iter().find(|p| !p.is_finite()) {
+                return Err(format!("segment {} has a control point at {p}", s.kbl_id));
+            }
+        }
     }
     Ok(())
 }

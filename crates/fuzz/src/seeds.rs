@@ -154,10 +154,12 @@ pub const CALIBRATION_CURVES: &[(&str, &str)] = &[
     ),
 ];
 
-/// The KBL sample files of `data/harness` (see its README).
-pub const KBL: &[&str] = &[include_str!(
-    "../../../data/harness/kblxml_2.3sr-1_000971228_ltgs_batterie_plus_170718.kbl"
-)];
+/// A KBL sample file of `data/harness` (see its README) and the hand-written VEC file of
+/// the harness tests.
+pub const KBL: &[&str] = &[
+    include_str!("../../../data/harness/kblxml_2.3sr-1_000971228_ltgs_batterie_plus_170718.kbl"),
+    include_str!("../../harness/tests/data/y_harness_3d.vec"),
+];
 
 /// Session logs: one of every kind of line, sealed (version 2) and unsealed (version 1).
 pub fn session_logs() -> Vec<Vec<u8>> {

@@ -39,19 +39,7 @@ pub fn parse_kbl(file: &str, text: &str) -> Result<Harness, HarnessError> {
     let version = check_version(file, root)?;
     let mut r = Reader::new(file, &doc);
     r.read_units();
-    let mut h = Harness {
-        source: file.to_string(),
-        kbl_version: version,
-        nodes: Vec::new(),
-        segments: Vec::new(),
-        wire_parts: Vec::new(),
-        wires: Vec::new(),
-        fixings: Vec::new(),
-        protections: Vec::new(),
-        connectors: Vec::new(),
-        skipped: Vec::new(),
-        warnings: Vec::new(),
-    };
+    let mut h = Harness::empty(file, version);
     let node_index = r.read_nodes(&mut h)?;
     r.read_wires(&mut h);
     let segment_index = r.read_segments(&mut h, &node_index)?;

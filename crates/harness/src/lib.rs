@@ -5,14 +5,17 @@
 //! - [`bundle`] turns the wires routed through a segment into a beam section;
 //! - [`scene`] writes `scene.toml` and `harness.json`, [`install`] `install.toml` (the
 //!   harness installed by a worker);
-//! - [`mod@vec`] recognises VEC files (refused for now);
+//! - [`mod@vec`] reads VEC 2.x files with 3-D geometry into the same model (topology-only
+//!   ones are refused);
 //! - [`export`] writes a settled route ([`settled`]) back as KBL, [`step`] as STEP (AP214);
-//! - [`calibrate`] fits a protection's coupling factor from a bending test;
+//! - [`calibrate`] fits a protection's coupling factor from a bundle's EI,
+//!   [`bundle_calibration`] from a bending-test curve (`pliant calibrate` for bundles);
 //! - [`import_kbl`] does all of it and returns an [`ImportReport`].
 
 pub mod branch;
 pub mod bspline;
 pub mod bundle;
+pub mod bundle_calibration;
 pub mod calibrate;
 pub mod error;
 pub mod export;
@@ -63,11 +66,12 @@ pub(crate) fn read_text(path: &Path) -> Result<(String, String), HarnessError> {
     Ok((file, text))
 }
 
-/// Read a KBL file into the harness model (a VEC file is refused with the reason).
+/// Read a KBL file, or a VEC 2.x file with 3-D geometry, into the harness model (a VEC
+/// file without 3-D geometry is refused with the reason).
 pub fn read_kbl(path: &Path) -> Result<Harness, HarnessError> {
     let (file, text) = read_text(path)?;
     if vec::looks_like_vec(&file, &text) {
-        return Err(vec::refuse_vec(&file, &text));
+        return vec::parse_vec(&file, &text);
     }
     kbl::parse_kbl(&file, &text)
 }

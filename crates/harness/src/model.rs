@@ -26,6 +26,39 @@ pub struct Harness {
 }
 
 /// A KBL `Node`: a point where segments end (branch point, connector, end).
+impl Harness {
+    /// A harness with nothing in it yet, read from `source` (format version `version`).
+    pub fn empty(source: &str, version: String) -> Self {
+        Harness {
+            source: source.to_string(),
+            kbl_version: version,
+            nodes: Vec::new(),
+            segments: Vec::new(),
+            wire_parts: Vec::new(),
+            wires: Vec::new(),
+            fixings: Vec::new(),
+            protections: Vec::new(),
+            connectors: Vec::new(),
+            skipped: Vec::new(),
+            warnings: Vec::new(),
+        }
+    }
+
+    /// The source format and version for people: "KBL 2.4", "VEC 2.0.2".
+    pub fn format_version(&self) -> String {
+        format_version(&self.kbl_version)
+    }
+}
+
+/// "KBL 2.4" for a KBL `version_id`; a VEC reader's "VEC 2.0.2" as it is.
+pub fn format_version(version: &str) -> String {
+    if version.starts_with("VEC") {
+        version.to_string()
+    } else {
+        format!("KBL {version}")
+    }
+}
+
 #[derive(Debug, Clone, Serialize)]
 pub struct Node {
     pub kbl_id: String,
@@ -140,6 +173,24 @@ pub enum ProtectionKind {
 }
 
 impl ProtectionKind {
+    /// Every kind, in the order of the bundle-factor table.
+    pub const ALL: [ProtectionKind; 5] = [
+        ProtectionKind::Tape,
+        ProtectionKind::FleeceTape,
+        ProtectionKind::CorrugatedTube,
+        ProtectionKind::Sleeve,
+        ProtectionKind::Other,
+    ];
+
+    /// The kind of a bundle-factor key (`"none"`: unprotected, `Some(None)`); `None` for
+    /// an unknown key.
+    pub fn from_key(key: &str) -> Option<Option<ProtectionKind>> {
+        if key == "none" {
+            return Some(None);
+        }
+        Self::ALL.into_iter().find(|k| k.key() == key).map(Some)
+    }
+
     /// The key of this kind in the bundle-factor table (`data/bundle.toml`).
     pub fn key(self) -> &'static str {
         match self {

@@ -109,7 +109,12 @@ impl ImportReport {
 
 impl fmt::Display for ImportReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "{} (KBL {})", self.source, self.kbl_version)?;
+        writeln!(
+            f,
+            "{} ({})",
+            self.source,
+            crate::model::format_version(&self.kbl_version)
+        )?;
         if let Some(b) = &self.branch {
             writeln!(f, "  {b}")?;
         }

@@ -104,6 +104,9 @@ pub fn named_unit(name: &str) -> Option<Unit> {
         "kilogrampermetre" | "kilogrampermeter" | "kg/m" => u(Dimension::MassPerLength, 1.0),
         "mm" | "millimetre" | "millimeter" => u(Dimension::Length, 1e-3),
         "m" | "metre" | "meter" => u(Dimension::Length, 1.0),
+        // International inch and foot (exact by definition, 1959).
+        "in" | "inch" => u(Dimension::Length, 0.0254),
+        "ft" | "foot" => u(Dimension::Length, 0.3048),
         "mm2" | "mm²" | "squaremillimetre" | "squaremillimeter" => u(Dimension::Area, 1e-6),
         "g" | "gram" => u(Dimension::Mass, 1e-3),
         "kg" | "kilogram" => u(Dimension::Mass, 1.0),

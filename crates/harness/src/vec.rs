@@ -1,10 +1,49 @@
-//! VEC (VDA 4968, "Vehicle Electric Container") files: recognised, not yet imported.
+//! Reader of VEC 2.x files (VDA 4968, "Vehicle Electric Container") that carry 3-D
+//! geometry, into the same [`Harness`] the KBL reader fills.
 //!
-//! Most published VEC samples describe topology only (no 3-D placement of the
-//! harness); those are refused saying so. A VEC file with 3-D geometry is refused too,
-//! for now, with a message saying that only KBL is read.
+//! Schema: prostep ivip, `prostep-ivip-e-V/vec`, `wiki/content/specifications/vec/v202/
+//! vec_2.0.2.xsd` and the 2.1.0 pages *3D-Geometry* and *3D Curves*. What is read:
+//!
+//! - every `Specification` of `xsi:type` `BuildingBlockSpecification3D`: its `BaseUnit`
+//!   (a `Unit` of length, by id), its `CartesianPoint`s (X, Y, Z), `GeometryNode`s
+//!   (`GeometryNode3D`: a `CartesianPoint` by id) → nodes, and `GeometrySegment`s
+//!   (`GeometrySegment3D`: `StartNode`, `EndNode`, `Curve`s) → segments;
+//! - a `HarnessGeometrySpecification3D`'s `BuildingBlockPositionings`: a block's
+//!   `Positioning` (`Transformation3D`: the rotation A11 … A33 and an `Origin` point)
+//!   places it, p ↦ A p + o;
+//! - `Curve`s of `xsi:type` `NURBSCurve` (`Degree`, `Knots`, `ControlPoint`s with a
+//!   `CartesianPoint3D` by id and a `Weight`). Without knots, or with equally spaced knots,
+//!   and unit weights, a curve is the unclamped uniform B-spline the KBL reader reads
+//!   (`bspline.rs`), control points as given. Any other knot vector (clamped, non-uniform)
+//!   or weights: the rational curve is evaluated by de Boor's algorithm on homogeneous
+//!   points (Piegl & Tiller, *The NURBS Book*, §4.2) at [`SAMPLES_PER_SPAN`] points per
+//!   knot span and kept as the polyline through them (a degree-1 B-spline);
+//! - names: a node's or segment's `ReferenceNode` / `ReferenceSegment` (its
+//!   `TopologyNode` / `TopologySegment`) gives its `Identification` as the name, else its
+//!   own; a `TopologySegment`'s first `LengthInformation` gives the virtual length.
+//!
+//! Not read (named in the import's warnings): wires and their routing, fixings,
+//! protections and connectors — a VEC segment gets the importer's stand-in bundle.
+//! A VEC without 3-D geometry (topology only) is refused saying so.
+
+use std::collections::HashMap;
+
+use glam::{DMat3, DVec3};
+use roxmltree::{Document, Node as XNode};
 
 use crate::error::HarnessError;
+use crate::kbl::{child, children, parse_xml, text};
+use crate::model::*;
+use crate::units::{self, Dimension};
+
+/// Points per knot span of a NURBS curve kept as a polyline.
+pub const SAMPLES_PER_SPAN: usize = 32;
+
+/// Most knot spans of one curve (a cost bound before sampling).
+const MAX_SPANS: usize = 100_000;
+
+/// The XML Schema instance namespace (`xsi:type`).
+const XSI: &str = "http://www.w3.org/2001/XMLSchema-instance";
 
 /// Whether the text (or file name) looks like VEC: a `.vec` extension or a `VecContent`
 /// root element.
@@ -13,25 +52,428 @@ pub fn looks_like_vec(file: &str, text: &str) -> bool {
     file.to_ascii_lowercase().ends_with(".vec") || head.contains("VecContent")
 }
 
-/// The refusal for a VEC file: says whether it carries 3-D geometry.
-pub fn refuse_vec(file: &str, text: &str) -> HarnessError {
-    // VEC 3-D geometry lives in GeometryNode3D / GeometrySegment3D / CartesianPoint3D
-    // (VEC 1.2+ placement specifications).
-    let has_3d = [
-        "GeometryNode3D",
-        "GeometrySegment3D",
-        "CartesianPoint3D",
-        "Geometry3D",
-    ]
-    .iter()
-    .any(|t| text.contains(t));
-    let reason = if has_3d {
-        "VEC file (VDA 4968) with 3-D geometry: reading VEC geometry is not implemented yet; export the harness as KBL 2.3–2.5 (VDA 4964) instead".to_string()
-    } else {
-        "VEC file (VDA 4968) without 3-D geometry (no GeometryNode3D/GeometrySegment3D/CartesianPoint3D): it describes topology only, so there is no centre line to simulate; export the harness with its 3-D geometry, e.g. as KBL 2.3–2.5".to_string()
-    };
+/// The refusal for a VEC file without 3-D geometry.
+fn topology_only(file: &str) -> HarnessError {
     HarnessError::Unsupported {
         file: file.to_string(),
-        reason,
+        reason: "VEC file (VDA 4968) without 3-D geometry (no BuildingBlockSpecification3D with GeometryNode3D/GeometrySegment3D): it describes topology only, so there is no centre line to simulate; export the harness with its 3-D geometry (VEC 2.x with a BuildingBlockSpecification3D, or KBL 2.3–2.5)".to_string(),
     }
+}
+
+/// The local name of an element's `xsi:type` (`vec:NURBSCurve` → `NURBSCurve`).
+fn xsi_type<'a>(n: XNode<'a, '_>) -> Option<&'a str> {
+    n.attribute((XSI, "type"))
+        .map(|t| t.rsplit(':').next().unwrap_or(t))
+}
+
+struct Reader<'a, 'i> {
+    file: String,
+    doc: &'a Document<'i>,
+    ids: HashMap<&'a str, XNode<'a, 'i>>,
+    sampled_curves: usize,
+}
+
+impl<'a, 'i> Reader<'a, 'i> {
+    fn error(&self, n: XNode, reason: impl Into<String>) -> HarnessError {
+        let pos = self.doc.text_pos_at(n.range().start);
+        HarnessError::Element {
+            file: self.file.clone(),
+            element: n.tag_name().name().to_string(),
+            kbl_id: n.attribute("id").unwrap_or("").to_string(),
+            line: pos.row,
+            column: pos.col,
+            reason: reason.into(),
+        }
+    }
+
+    /// The element a child's IDREF text points to.
+    fn reference(&self, n: XNode<'a, 'i>, field: &str) -> Result<XNode<'a, 'i>, HarnessError> {
+        let id = text(n, field).ok_or_else(|| self.error(n, format!("{field} is missing")))?;
+        self.ids
+            .get(id)
+            .copied()
+            .ok_or_else(|| self.error(n, format!("{field} \"{id}\" refers to no element")))
+    }
+
+    /// A finite number in child `field`.
+    fn number(&self, n: XNode, field: &str) -> Result<f64, HarnessError> {
+        let t = text(n, field).ok_or_else(|| self.error(n, format!("{field} is missing")))?;
+        t.parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| self.error(n, format!("{field} \"{t}\" is not a finite number")))
+    }
+
+    fn vector(&self, n: XNode) -> Result<DVec3, HarnessError> {
+        Ok(DVec3::new(
+            self.number(n, "X")?,
+            self.number(n, "Y")?,
+            self.number(n, "Z")?,
+        ))
+    }
+
+    /// Metres per unit of the `Unit` element `u` (a length).
+    fn length_unit(&self, u: XNode) -> Result<f64, HarnessError> {
+        let kind = xsi_type(u).unwrap_or("");
+        let exponent = text(u, "Exponent").unwrap_or("1");
+        let unit = match kind {
+            "SIUnit" => text(u, "SiUnitName")
+                .and_then(|name| units::si_unit(name, text(u, "SiPrefix"), None)),
+            "ImperialUnit" | "OtherUnit" => text(u, "ImperialUnitName")
+                .or_else(|| text(u, "OtherUnitName"))
+                .and_then(units::named_unit),
+            _ => None,
+        };
+        match unit {
+            Some(unit) if unit.dimension == Dimension::Length && exponent == "1" => Ok(unit.to_si),
+            _ => Err(self.error(
+                u,
+                format!("the base unit of 3-D geometry must be a length (e.g. SIUnit Metre with SiPrefix Milli); this is {kind} with exponent {exponent}"),
+            )),
+        }
+    }
+
+    /// The `Identification` of the topology element `field` refers to, else `n`'s own.
+    fn name(&self, n: XNode<'a, 'i>, field: &str) -> Option<String> {
+        child(n, field)
+            .and_then(|_| self.reference(n, field).ok())
+            .and_then(|t| text(t, "Identification"))
+            .or_else(|| text(n, "Identification"))
+            .map(str::to_string)
+    }
+
+    /// A topology segment's first length \[m\], if it has one in a length unit.
+    fn virtual_length(&self, geometry_segment: XNode<'a, 'i>) -> Option<f64> {
+        let topology = child(geometry_segment, "ReferenceSegment")
+            .and_then(|_| self.reference(geometry_segment, "ReferenceSegment").ok())?;
+        let length = child(child(topology, "LengthInformation")?, "Length")?;
+        let value: f64 = text(length, "ValueComponent")?.parse().ok()?;
+        let unit = self.reference(length, "UnitComponent").ok()?;
+        let scale = self.length_unit(unit).ok()?;
+        Some(value * scale).filter(|v| v.is_finite() && *v > 0.0)
+    }
+
+    /// The placements of building blocks: block id → (rotation, origin point element).
+    fn positionings(&self) -> Result<HashMap<&'a str, (DMat3, XNode<'a, 'i>)>, HarnessError> {
+        let mut out = HashMap::new();
+        let specs = self.doc.descendants().filter(|n| {
+            n.tag_name().name() == "Specification"
+                && xsi_type(*n) == Some("HarnessGeometrySpecification3D")
+        });
+        for spec in specs {
+            for p in children(spec, "BuildingBlockPositionings") {
+                let block = text(p, "Referenced3DBuildingBlock")
+                    .ok_or_else(|| self.error(p, "Referenced3DBuildingBlock is missing"))?;
+                let Some(t) = child(p, "Positioning") else {
+                    continue;
+                };
+                let mut a = [0.0; 9];
+                for (k, v) in a.iter_mut().enumerate() {
+                    *v = self.number(t, &format!("A{}{}", k / 3 + 1, k % 3 + 1))?;
+                }
+                // DMat3 is column-major: column j holds A1j, A2j, A3j.
+                let m =
+                    DMat3::from_cols_array(&[a[0], a[3], a[6], a[1], a[4], a[7], a[2], a[5], a[8]]);
+                let origin = self.reference(t, "Origin")?;
+                out.insert(block, (m, origin));
+            }
+        }
+        Ok(out)
+    }
+
+    /// A NURBS curve as the model's curve data (positions in metres, placed).
+    fn curve(
+        &mut self,
+        c: XNode<'a, 'i>,
+        place: &dyn Fn(DVec3) -> DVec3,
+    ) -> Result<CurveData, HarnessError> {
+        if xsi_type(c) != Some("NURBSCurve") {
+            return Err(self.error(
+                c,
+                format!(
+                    "curve of type {}: VEC 2.x centre lines are NURBSCurve",
+                    xsi_type(c).unwrap_or("(none)")
+                ),
+            ));
+        }
+        let degree_text = text(c, "Degree").unwrap_or("");
+        let degree: usize = degree_text
+            .parse()
+            .ok()
+            .filter(|d| (1..=10).contains(d))
+            .ok_or_else(|| {
+                self.error(
+                    c,
+                    format!("Degree \"{degree_text}\" is not an integer in 1 … 10"),
+                )
+            })?;
+        let mut points = Vec::new();
+        let mut weights = Vec::new();
+        for cp in children(c, "ControlPoint") {
+            let p = self.reference(cp, "CartesianPoint3D")?;
+            let placed = place(self.vector(p)?);
+            if !placed.is_finite() {
+                return Err(self.error(
+                    p,
+                    "the placed point is not finite (coordinates or unit too large)",
+                ));
+            }
+            points.push(placed);
+            weights.push(match child(cp, "Weight") {
+                Some(_) => self.number(cp, "Weight")?,
+                None => 1.0,
+            });
+        }
+        if points.len() <= degree {
+            return Err(self.error(
+                c,
+                format!(
+                    "{} control points: a curve of degree {degree} needs at least {}",
+                    points.len(),
+                    degree + 1
+                ),
+            ));
+        }
+        if let Some(w) = weights.iter().find(|w| **w <= 0.0) {
+            return Err(self.error(c, format!("control point weight {w}: must be positive")));
+        }
+        let mut knots = Vec::new();
+        for k in children(c, "Knots") {
+            let t = k.text().unwrap_or("").trim();
+            knots.push(
+                t.parse::<f64>()
+                    .ok()
+                    .filter(|v| v.is_finite())
+                    .ok_or_else(|| self.error(c, format!("knot \"{t}\" is not a finite number")))?,
+            );
+        }
+        let rational = weights.iter().any(|w| *w != 1.0);
+        let id = c.attribute("id").unwrap_or("").to_string();
+        if knots.is_empty() && !rational {
+            return Ok(CurveData {
+                kbl_id: id,
+                degree,
+                control_points: points,
+            });
+        }
+        let n = points.len();
+        if knots.is_empty() {
+            // Rational without knots: the unclamped uniform knot vector.
+            knots = (0..n + degree + 1).map(|i| i as f64).collect();
+        }
+        if knots.len() != n + degree + 1 {
+            return Err(self.error(
+                c,
+                format!(
+                    "{} knots for {n} control points of degree {degree}: need n + degree + 1 = {}",
+                    knots.len(),
+                    n + degree + 1
+                ),
+            ));
+        }
+        if knots.windows(2).any(|w| w[1] < w[0]) {
+            return Err(self.error(c, "the knots decrease: a knot vector must not"));
+        }
+        let steps: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
+        let uniform = steps
+            .iter()
+            .all(|s| (s - steps[0]).abs() <= 1e-12 * steps[0].abs().max(1e-300));
+        if uniform && steps[0] > 0.0 && !rational {
+            return Ok(CurveData {
+                kbl_id: id,
+                degree,
+                control_points: points,
+            });
+        }
+        let spans = (degree..n).filter(|&i| knots[i + 1] > knots[i]).count();
+        if spans == 0 || spans > MAX_SPANS {
+            return Err(self.error(
+                c,
+                format!("{spans} non-empty knot spans in the curve's domain: need 1 … {MAX_SPANS}"),
+            ));
+        }
+        self.sampled_curves += 1;
+        Ok(CurveData {
+            kbl_id: id,
+            degree: 1,
+            control_points: sample_nurbs(degree, &knots, &points, &weights),
+        })
+    }
+}
+
+/// The point of a NURBS curve at parameter `t` in span `span` (knots[span] ≤ t ≤
+/// knots[span + 1]): de Boor's algorithm on the homogeneous points (w P, w).
+fn nurbs_point(p: usize, knots: &[f64], ctrl: &[DVec3], w: &[f64], span: usize, t: f64) -> DVec3 {
+    let mut d: Vec<(DVec3, f64)> = (0..=p)
+        .map(|j| {
+            let i = span + j - p;
+            (ctrl[i] * w[i], w[i])
+        })
+        .collect();
+    for r in 1..=p {
+        for j in (r..=p).rev() {
+            let i = span + j - p;
+            let denom = knots[i + p + 1 - r] - knots[i];
+            let a = if denom > 0.0 {
+                (t - knots[i]) / denom
+            } else {
+                0.0
+            };
+            d[j] = (
+                d[j - 1].0 * (1.0 - a) + d[j].0 * a,
+                d[j - 1].1 * (1.0 - a) + d[j].1 * a,
+            );
+        }
+    }
+    d[p].0 / d[p].1
+}
+
+/// Points along a NURBS curve over its domain [knots[p], knots[n]]: the start, then
+/// [`SAMPLES_PER_SPAN`] points per non-empty knot span (its end included).
+fn sample_nurbs(p: usize, knots: &[f64], ctrl: &[DVec3], w: &[f64]) -> Vec<DVec3> {
+    let n = ctrl.len();
+    let mut out = vec![nurbs_point(
+        p,
+        knots,
+        ctrl,
+        w,
+        first_span(p, knots, n),
+        knots[p],
+    )];
+    for span in p..n {
+        let (a, b) = (knots[span], knots[span + 1]);
+        if b <= a {
+            continue;
+        }
+        for k in 1..=SAMPLES_PER_SPAN {
+            let t = a + (b - a) * k as f64 / SAMPLES_PER_SPAN as f64;
+            out.push(nurbs_point(p, knots, ctrl, w, span, t));
+        }
+    }
+    out
+}
+
+fn first_span(p: usize, knots: &[f64], n: usize) -> usize {
+    (p..n).find(|&i| knots[i + 1] > knots[i]).unwrap_or(p)
+}
+
+/// Parse VEC text with 3-D geometry. `file` names the source in errors and in the model.
+pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
+    let doc = parse_xml(file, text_in)?;
+    let root = doc.root_element();
+    if root.tag_name().name() != "VecContent" {
+        return Err(HarnessError::Unsupported {
+            file: file.to_string(),
+            reason: format!(
+                "not a VEC file: the root element is <{}>, expected <VecContent>",
+                root.tag_name().name()
+            ),
+        });
+    }
+    let mut ids = HashMap::new();
+    for n in doc.descendants().filter(|n| n.is_element()) {
+        if let Some(id) = n.attribute("id") {
+            ids.entry(id).or_insert(n);
+        }
+    }
+    let mut r = Reader {
+        file: file.to_string(),
+        doc: &doc,
+        ids,
+        sampled_curves: 0,
+    };
+    let blocks: Vec<XNode> = doc
+        .descendants()
+        .filter(|n| {
+            n.tag_name().name() == "Specification"
+                && xsi_type(*n) == Some("BuildingBlockSpecification3D")
+        })
+        .collect();
+    if blocks
+        .iter()
+        .all(|b| children(*b, "GeometrySegment").next().is_none())
+    {
+        return Err(topology_only(file));
+    }
+    let version = text(root, "VecVersion").unwrap_or("").to_string();
+    if !version.starts_with("2.") {
+        return Err(HarnessError::Unsupported {
+            file: file.to_string(),
+            reason: format!(
+                "VEC version \"{version}\": this importer reads VEC 2.x (VecVersion 2.0.0 … 2.2.x)"
+            ),
+        });
+    }
+    let positionings = r.positionings()?;
+    let mut h = Harness::empty(file, format!("VEC {version}"));
+    let mut node_index: HashMap<&str, usize> = HashMap::new();
+    for block in blocks {
+        let unit = r.reference(block, "BaseUnit")?;
+        let scale = r.length_unit(unit)?;
+        let (rotation, origin) = match block.attribute("id").and_then(|id| positionings.get(id)) {
+            Some((m, o)) => (*m, r.vector(*o)? * scale),
+            None => (DMat3::IDENTITY, DVec3::ZERO),
+        };
+        let place = move |p: DVec3| rotation * (p * scale) + origin;
+        for g in children(block, "GeometryNode") {
+            let id = g
+                .attribute("id")
+                .ok_or_else(|| r.error(g, "GeometryNode without id"))?;
+            let point = r.reference(g, "CartesianPoint")?;
+            let position = place(r.vector(point)?);
+            if !position.is_finite() {
+                return Err(r.error(
+                    point,
+                    "the placed point is not finite (coordinates or unit too large)",
+                ));
+            }
+            node_index.insert(id, h.nodes.len());
+            h.nodes.push(Node {
+                kbl_id: id.to_string(),
+                name: r.name(g, "ReferenceNode"),
+                position,
+            });
+        }
+        for g in children(block, "GeometrySegment") {
+            let id = g
+                .attribute("id")
+                .ok_or_else(|| r.error(g, "GeometrySegment without id"))?;
+            let end = |field: &str| -> Result<usize, HarnessError> {
+                let target = text(g, field).unwrap_or("");
+                node_index.get(target).copied().ok_or_else(|| {
+                    r.error(
+                        g,
+                        format!("{field} \"{target}\" is no GeometryNode of this building block"),
+                    )
+                })
+            };
+            let (start_node, end_node) = (end("StartNode")?, end("EndNode")?);
+            let mut curves = Vec::new();
+            for c in children(g, "Curve") {
+                curves.push(r.curve(c, &place)?);
+            }
+            let line = doc.text_pos_at(g.range().start).row;
+            h.segments.push(Segment {
+                kbl_id: id.to_string(),
+                name: r.name(g, "ReferenceSegment"),
+                start_node,
+                end_node,
+                virtual_length: r.virtual_length(g),
+                curves,
+                cross_section_area: None,
+                wires: Vec::new(),
+                line,
+            });
+        }
+    }
+    if r.sampled_curves > 0 {
+        h.warnings.push(format!(
+            "{} NURBS curves with a knot vector other than uniform or with weights are kept as polylines of {SAMPLES_PER_SPAN} points per knot span",
+            r.sampled_curves
+        ));
+    }
+    h.warnings.push(
+        "VEC: wires and their routing, fixings, protections and connectors are not read (3-D geometry only); every segment gets a stand-in bundle".to_string(),
+    );
+    Ok(h)
 }

@@ -284,9 +284,12 @@ fn vec_files_are_refused_with_a_reason() {
         "{e}"
     );
     let geo = dir.join("geometry.vec");
-    std::fs::write(&geo, "<?xml version=\"1.0\"?><vec:VecContent xmlns:vec=\"x\"><Specification xsi:type=\"vec:PlacementSpecification\"><GeometryNode3D id=\"n\"/></Specification></vec:VecContent>").unwrap();
+    std::fs::write(&geo, "<?xml version=\"1.0\"?><vec:VecContent xmlns:vec=\"x\" xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\"><VecVersion>1.2.0</VecVersion><Specification xsi:type=\"vec:BuildingBlockSpecification3D\" id=\"b\"><GeometrySegment id=\"s\"/></Specification></vec:VecContent>").unwrap();
     let e = import_kbl(&geo, &dir).unwrap_err().to_string();
-    assert!(e.contains("not implemented"), "{e}");
+    assert!(
+        e.contains("VEC version \"1.2.0\"") && e.contains("VEC 2.x"),
+        "{e}"
+    );
 }
 
 #[test]
