@@ -8,6 +8,8 @@
 import * as THREE from 'three';
 import { colourRgb } from './colour';
 import { surface, type SurfaceMaterial } from './materials';
+import { tubeIndices } from './protection_geometry';
+import { ProtectionCover } from './protections';
 import type { HoseData, Vec3 } from './protocol';
 
 /** Curve samples per beam. */
@@ -32,6 +34,8 @@ export class HoseTube {
   colour = 0;
   /** The largest outer radius along the hose [m]. */
   readonly maxRadius: number;
+  /** The protections drawn over it (children of `mesh`). */
+  readonly covers: ProtectionCover[] = [];
 
   constructor(readonly data: HoseData, readonly index: number) {
     this.nodes = data.radii.length;
@@ -45,14 +49,7 @@ export class HoseTube {
     this.tangent = new Float32Array(this.rings * 3);
     this.ringRadius = new Float32Array(this.rings);
     this.positions = new Float64Array(this.nodes * 3);
-    const idx: number[] = [];
-    for (let i = 0; i < this.rings - 1; i++) {
-      for (let j = 0; j < RADIAL; j++) {
-        const a = i * (RADIAL + 1) + j;
-        const b = a + RADIAL + 1;
-        idx.push(a, b, a + 1, b, b + 1, a + 1);
-      }
-    }
+    const idx = tubeIndices(this.rings, RADIAL);
     const g = new THREE.BufferGeometry();
     const pa = new THREE.BufferAttribute(this.pos, 3);
     pa.setUsage(THREE.DynamicDrawUsage);
@@ -71,6 +68,12 @@ export class HoseTube {
     this.mesh.castShadow = true;
     this.mesh.frustumCulled = false;
     this.mesh.userData.hose = index;
+    for (const p of data.protections ?? []) {
+      const cover = ProtectionCover.over(p, data.length ?? 0, this.rings, RADIAL, data.name);
+      if (cover === null) continue;
+      this.covers.push(cover);
+      this.mesh.add(cover.mesh);
+    }
   }
 
   /** Node position i (world frame). */
@@ -97,6 +100,7 @@ export class HoseTube {
     const g = this.mesh.geometry;
     g.attributes.position.needsUpdate = true;
     g.attributes.normal.needsUpdate = true;
+    for (const cover of this.covers) cover.update(this.pos, this.nrm, this.centre);
     this.colour = c;
     this.paint(c, perNode);
     g.attributes.color.needsUpdate = true;
@@ -209,6 +213,7 @@ export class HoseTube {
   dispose(): void {
     this.mesh.geometry.dispose();
     this.mesh.material.dispose();
+    for (const cover of this.covers) cover.dispose();
   }
 }
 

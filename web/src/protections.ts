@@ -1,0 +1,78 @@
+// Protections drawn over a hose tube (tape as a banded wrap, corrugated tube as a ribbed,
+// darker, larger tube, sleeve as a matte sleeve): one mesh per protection, its vertices
+// rewritten in place from the hose tube's rings after every update (no allocation per
+// frame). The shapes come from protection_geometry.ts.
+
+import * as THREE from 'three';
+import { surface, type SurfaceMaterial } from './materials';
+import { fillProtection, protectionStyle, ringRange, ringShade, tubeIndices, type ProtectionStyle } from './protection_geometry';
+import type { ProtectionData } from './protocol';
+
+export class ProtectionCover {
+  readonly mesh: THREE.Mesh<THREE.BufferGeometry, SurfaceMaterial>;
+  private readonly style: ProtectionStyle;
+  private readonly pos: Float32Array;
+  private readonly nrm: Float32Array;
+
+  /** Over rings `first..last` of a tube with `radial + 1` vertices per ring. */
+  private constructor(
+    readonly data: ProtectionData,
+    readonly first: number,
+    readonly last: number,
+    private readonly radial: number,
+    hose: string,
+  ) {
+    this.style = protectionStyle(data.kind);
+    const rings = last - first + 1;
+    const per = radial + 1;
+    this.pos = new Float32Array(rings * per * 3);
+    this.nrm = new Float32Array(rings * per * 3);
+    const rgb = new Float32Array(rings * per * 3);
+    const base = new THREE.Color(this.style.colour);
+    for (let k = first; k <= last; k++) {
+      const s = ringShade(this.style, k);
+      for (let j = 0; j < per; j++) {
+        const o = 3 * ((k - first) * per + j);
+        rgb[o] = base.r * s;
+        rgb[o + 1] = base.g * s;
+        rgb[o + 2] = base.b * s;
+      }
+    }
+    const g = new THREE.BufferGeometry();
+    const pa = new THREE.BufferAttribute(this.pos, 3);
+    pa.setUsage(THREE.DynamicDrawUsage);
+    const na = new THREE.BufferAttribute(this.nrm, 3);
+    na.setUsage(THREE.DynamicDrawUsage);
+    g.setAttribute('position', pa);
+    g.setAttribute('normal', na);
+    g.setAttribute('color', new THREE.BufferAttribute(rgb, 3));
+    g.setIndex(tubeIndices(rings, radial));
+    const m = surface({ color: 0xffffff, roughness: this.style.roughness, metalness: 0 });
+    m.vertexColors = true;
+    this.mesh = new THREE.Mesh(g, m);
+    this.mesh.name = `protection:${hose}:${data.kind}`;
+    this.mesh.frustumCulled = false;
+    this.mesh.userData.protection = data.kind;
+  }
+
+  /** The cover of `data` over a tube of `rings` rings along a hose `length` long, if any. */
+  static over(data: ProtectionData, length: number, rings: number, radial: number, hose: string): ProtectionCover | null {
+    const r = ringRange(data.from, data.to, length, rings);
+    return r === null ? null : new ProtectionCover(data, r[0], r[1], radial, hose);
+  }
+
+  /** Follows the hose tube's rings (`pos`, `nrm`: its vertices; `centre`: its ring centres). */
+  update(pos: Float32Array, nrm: Float32Array, centre: Float32Array): void {
+    fillProtection(pos, centre, this.radial, this.first, this.last, this.style, this.pos);
+    const per = 3 * (this.radial + 1);
+    this.nrm.set(nrm.subarray(this.first * per, (this.last + 1) * per));
+    const g = this.mesh.geometry;
+    g.attributes.position.needsUpdate = true;
+    g.attributes.normal.needsUpdate = true;
+  }
+
+  dispose(): void {
+    this.mesh.geometry.dispose();
+    this.mesh.material.dispose();
+  }
+}
