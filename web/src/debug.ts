@@ -92,6 +92,13 @@ export function installDebugHandle(src: DebugSources): void {
       });
       return out;
     },
+    /** Points the camera at world point `p` from `distance` metres away. */
+    lookAt(p: Vec3, distance: number): void {
+      const t = src.stage.toThree(p);
+      src.stage.controls.target.copy(t);
+      src.stage.camera.position.copy(t).add(new THREE.Vector3(0.6, 0.5, 0.6).multiplyScalar(distance));
+      src.stage.controls.update();
+    },
     /** Node positions of hose `h` as drawn (world frame). */
     hoseNodes(h: number): Vec3[] {
       const t = src.tubes()[h];

@@ -9,7 +9,7 @@ import * as THREE from 'three';
 import { colourRgb } from './colour';
 import { surface, type SurfaceMaterial } from './materials';
 import { tubeIndices } from './protection_geometry';
-import { ProtectionCover } from './protections';
+import { ProtectionMesh } from './protections';
 import type { HoseData, Vec3 } from './protocol';
 
 /** Curve samples per beam. */
@@ -35,7 +35,7 @@ export class HoseTube {
   /** The largest outer radius along the hose [m]. */
   readonly maxRadius: number;
   /** The protections drawn over it (children of `mesh`). */
-  readonly covers: ProtectionCover[] = [];
+  readonly covers: ProtectionMesh[] = [];
 
   constructor(readonly data: HoseData, readonly index: number) {
     this.nodes = data.radii.length;
@@ -69,7 +69,7 @@ export class HoseTube {
     this.mesh.frustumCulled = false;
     this.mesh.userData.hose = index;
     for (const p of data.protections ?? []) {
-      const cover = ProtectionCover.over(p, data.length ?? 0, this.rings, RADIAL, data.name);
+      const cover = ProtectionMesh.over(p, data.length ?? 0, this.rings, RADIAL, data.name);
       if (cover === null) continue;
       this.covers.push(cover);
       this.mesh.add(cover.mesh);
@@ -100,10 +100,10 @@ export class HoseTube {
     const g = this.mesh.geometry;
     g.attributes.position.needsUpdate = true;
     g.attributes.normal.needsUpdate = true;
-    for (const cover of this.covers) cover.update(this.pos, this.nrm, this.centre);
     this.colour = c;
     this.paint(c, perNode);
     g.attributes.color.needsUpdate = true;
+    for (const cover of this.covers) cover.update(this.pos, this.nrm, this.rgb, this.centre);
   }
 
   /** Vertex colours: ring by ring, the node values interpolated (or `c` throughout). */

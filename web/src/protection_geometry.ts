@@ -5,24 +5,26 @@
 
 export type ProtectionKind = 'tape' | 'fleece_tape' | 'corrugated_tube' | 'sleeve' | 'other';
 
-/** How one kind looks: radius factor, rib depth (every other ring), colour, bands. */
+/** How one kind looks: radius factor, rib depth (every other ring), shade, bands. */
 export interface ProtectionStyle {
   /** Radius over the bundle's, as a factor. */
   scale: number;
   /** Extra radius factor of every other ring (the ribs of a corrugated tube). */
   rib: number;
-  colour: number;
-  roughness: number;
-  /** Shade of every other ring (1: no bands; tape shows its windings as bands). */
+  /** Factor on the hose's colour under it (its colour mode stays readable, darker). */
+  shade: number;
+  /** Further factor on every other ring (1: no bands; tape shows its windings). */
   band: number;
+  roughness: number;
 }
 
+// shades are factors on linear colour (about their square root in sRGB, as seen)
 const STYLES: Record<ProtectionKind, ProtectionStyle> = {
-  tape: { scale: 1.04, rib: 0, colour: 0x3a3a3a, roughness: 0.45, band: 0.7 },
-  fleece_tape: { scale: 1.05, rib: 0, colour: 0x55524c, roughness: 1, band: 0.8 },
-  corrugated_tube: { scale: 1.1, rib: 0.1, colour: 0x1c1c1c, roughness: 0.7, band: 1 },
-  sleeve: { scale: 1.07, rib: 0, colour: 0x2e3a48, roughness: 1, band: 1 },
-  other: { scale: 1.06, rib: 0, colour: 0x5a5040, roughness: 0.8, band: 1 },
+  tape: { scale: 1.04, rib: 0, shade: 0.7, band: 0.35, roughness: 0.45 },
+  fleece_tape: { scale: 1.05, rib: 0, shade: 0.6, band: 0.5, roughness: 1 },
+  corrugated_tube: { scale: 1.1, rib: 0.1, shade: 0.12, band: 1, roughness: 0.7 },
+  sleeve: { scale: 1.07, rib: 0, shade: 0.3, band: 1, roughness: 1 },
+  other: { scale: 1.06, rib: 0, shade: 0.45, band: 1, roughness: 0.8 },
 };
 
 /** The style of a kind (an unknown kind is drawn as `other`). */
@@ -52,29 +54,32 @@ export function ringScale(style: ProtectionStyle, k: number): number {
   return style.scale + (k % 2 === 1 ? style.rib : 0);
 }
 
-/** Shade of ring `k` under `style` (multiplies its colour). */
+/** Shade of ring `k` under `style` (multiplies the hose's colour there). */
 export function ringShade(style: ProtectionStyle, k: number): number {
-  return k % 2 === 1 ? style.band : 1;
+  return style.shade * (k % 2 === 1 ? style.band : 1);
 }
 
 /**
  * Writes the protection's vertices for rings `first..last` of a tube with `radial + 1`
  * vertices per ring: each the tube's vertex `pos` pushed out from its ring's centre
- * (`centre`, one xyz per ring) by the ring's factor. `out` holds (last − first + 1) ·
- * (radial + 1) · 3 numbers.
+ * (`centre`, one xyz per ring) by the ring's factor, coloured as the tube (`rgb`) by the
+ * ring's shade. `out` and `outRgb` hold (last − first + 1) · (radial + 1) · 3 numbers.
  */
 export function fillProtection(
   pos: ArrayLike<number>,
+  rgb: ArrayLike<number>,
   centre: ArrayLike<number>,
   radial: number,
   first: number,
   last: number,
   style: ProtectionStyle,
   out: Float32Array,
+  outRgb: Float32Array,
 ): void {
   const per = radial + 1;
   for (let k = first; k <= last; k++) {
     const f = ringScale(style, k);
+    const shade = ringShade(style, k);
     const cx = centre[3 * k], cy = centre[3 * k + 1], cz = centre[3 * k + 2];
     for (let j = 0; j < per; j++) {
       const v = 3 * (k * per + j);
@@ -82,18 +87,25 @@ export function fillProtection(
       out[o] = cx + (pos[v] - cx) * f;
       out[o + 1] = cy + (pos[v + 1] - cy) * f;
       out[o + 2] = cz + (pos[v + 2] - cz) * f;
+      outRgb[o] = rgb[v] * shade;
+      outRgb[o + 1] = rgb[v + 1] * shade;
+      outRgb[o + 2] = rgb[v + 2] * shade;
     }
   }
 }
 
-/** Triangle indices of a tube of `rings` rings with `radial + 1` vertices each. */
+/**
+ * Triangle indices of a tube of `rings` rings with `radial + 1` vertices each, facing
+ * outwards when each ring runs round the tangent anticlockwise (n → b, b = t × n, as the
+ * hose sweep lays them): (a+1 − a) × (b − a) ∥ the outward radius.
+ */
 export function tubeIndices(rings: number, radial: number): number[] {
   const idx: number[] = [];
   for (let i = 0; i < rings - 1; i++) {
     for (let j = 0; j < radial; j++) {
       const a = i * (radial + 1) + j;
       const b = a + radial + 1;
-      idx.push(a, b, a + 1, b, b + 1, a + 1);
+      idx.push(a, a + 1, b, b, a + 1, b + 1);
     }
   }
   return idx;

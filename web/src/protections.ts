@@ -1,18 +1,20 @@
 // Protections drawn over a hose tube (tape as a banded wrap, corrugated tube as a ribbed,
-// darker, larger tube, sleeve as a matte sleeve): one mesh per protection, its vertices
+// darker, larger tube, sleeve as a matte sleeve), in the hose's colours shaded (the
+// colour modes stay readable through them): one mesh per protection, its vertices
 // rewritten in place from the hose tube's rings after every update (no allocation per
 // frame). The shapes come from protection_geometry.ts.
 
 import * as THREE from 'three';
 import { surface, type SurfaceMaterial } from './materials';
-import { fillProtection, protectionStyle, ringRange, ringShade, tubeIndices, type ProtectionStyle } from './protection_geometry';
+import { fillProtection, protectionStyle, ringRange, tubeIndices, type ProtectionStyle } from './protection_geometry';
 import type { ProtectionData } from './protocol';
 
-export class ProtectionCover {
+export class ProtectionMesh {
   readonly mesh: THREE.Mesh<THREE.BufferGeometry, SurfaceMaterial>;
   private readonly style: ProtectionStyle;
   private readonly pos: Float32Array;
   private readonly nrm: Float32Array;
+  private readonly rgb: Float32Array;
 
   /** Over rings `first..last` of a tube with `radial + 1` vertices per ring. */
   private constructor(
@@ -27,17 +29,7 @@ export class ProtectionCover {
     const per = radial + 1;
     this.pos = new Float32Array(rings * per * 3);
     this.nrm = new Float32Array(rings * per * 3);
-    const rgb = new Float32Array(rings * per * 3);
-    const base = new THREE.Color(this.style.colour);
-    for (let k = first; k <= last; k++) {
-      const s = ringShade(this.style, k);
-      for (let j = 0; j < per; j++) {
-        const o = 3 * ((k - first) * per + j);
-        rgb[o] = base.r * s;
-        rgb[o + 1] = base.g * s;
-        rgb[o + 2] = base.b * s;
-      }
-    }
+    this.rgb = new Float32Array(rings * per * 3);
     const g = new THREE.BufferGeometry();
     const pa = new THREE.BufferAttribute(this.pos, 3);
     pa.setUsage(THREE.DynamicDrawUsage);
@@ -45,7 +37,9 @@ export class ProtectionCover {
     na.setUsage(THREE.DynamicDrawUsage);
     g.setAttribute('position', pa);
     g.setAttribute('normal', na);
-    g.setAttribute('color', new THREE.BufferAttribute(rgb, 3));
+    const ca = new THREE.BufferAttribute(this.rgb, 3);
+    ca.setUsage(THREE.DynamicDrawUsage);
+    g.setAttribute('color', ca);
     g.setIndex(tubeIndices(rings, radial));
     const m = surface({ color: 0xffffff, roughness: this.style.roughness, metalness: 0 });
     m.vertexColors = true;
@@ -56,19 +50,21 @@ export class ProtectionCover {
   }
 
   /** The cover of `data` over a tube of `rings` rings along a hose `length` long, if any. */
-  static over(data: ProtectionData, length: number, rings: number, radial: number, hose: string): ProtectionCover | null {
+  static over(data: ProtectionData, length: number, rings: number, radial: number, hose: string): ProtectionMesh | null {
     const r = ringRange(data.from, data.to, length, rings);
-    return r === null ? null : new ProtectionCover(data, r[0], r[1], radial, hose);
+    return r === null ? null : new ProtectionMesh(data, r[0], r[1], radial, hose);
   }
 
-  /** Follows the hose tube's rings (`pos`, `nrm`: its vertices; `centre`: its ring centres). */
-  update(pos: Float32Array, nrm: Float32Array, centre: Float32Array): void {
-    fillProtection(pos, centre, this.radial, this.first, this.last, this.style, this.pos);
+  /** Follows the hose tube's rings (`pos`, `nrm`, `rgb`: its vertices; `centre`: its
+   *  ring centres). */
+  update(pos: Float32Array, nrm: Float32Array, rgb: Float32Array, centre: Float32Array): void {
+    fillProtection(pos, rgb, centre, this.radial, this.first, this.last, this.style, this.pos, this.rgb);
     const per = 3 * (this.radial + 1);
     this.nrm.set(nrm.subarray(this.first * per, (this.last + 1) * per));
     const g = this.mesh.geometry;
     g.attributes.position.needsUpdate = true;
     g.attributes.normal.needsUpdate = true;
+    g.attributes.color.needsUpdate = true;
   }
 
   dispose(): void {

@@ -39,7 +39,8 @@ test('kinds look different: the corrugated tube is ribbed and the largest, tape 
   assert.equal(ringScale(tape, 0), ringScale(tape, 1), 'tape is smooth');
   assert.ok(ringShade(tape, 1) < ringShade(tape, 0), 'tape shows bands');
   assert.equal(ringShade(sleeve, 1), ringShade(sleeve, 0), 'a sleeve is plain');
-  assert.ok(tube.colour !== tape.colour && tape.colour !== sleeve.colour);
+  assert.ok(ringShade(tube, 0) < ringShade(sleeve, 0) && ringShade(sleeve, 0) < ringShade(tape, 0), 'the tube darkest');
+  assert.ok(sleeve.roughness > tape.roughness, 'a sleeve is matte');
   assert.deepEqual(protectionStyle('no_such_kind'), protectionStyle('other'));
 });
 
@@ -59,21 +60,40 @@ test('a protection lies over its rings, pushed out from the centres by its facto
       pos[v + 2] = 2 * Math.sin(a);
     }
   }
+  // the hose coloured by ring: red, green, blue, …
+  const rgb = new Float32Array(pos.length);
+  for (let v = 0; v < rgb.length / 3; v++) rgb[3 * v + (Math.floor(v / (radial + 1)) % 3)] = 1;
   const style = protectionStyle('corrugated_tube');
   const out = new Float32Array(3 * (radial + 1) * 3);
-  fillProtection(pos, centre, radial, 1, 3, style, out);
+  const outRgb = new Float32Array(out.length);
+  fillProtection(pos, rgb, centre, radial, 1, 3, style, out, outRgb);
   for (let k = 1; k <= 3; k++) {
     for (let j = 0; j <= radial; j++) {
       const o = 3 * ((k - 1) * (radial + 1) + j);
       assert.ok(Math.abs(out[o] - k) < 1e-6, 'on its ring');
       const r = Math.hypot(out[o + 1], out[o + 2]);
       assert.ok(Math.abs(r - 2 * ringScale(style, k)) < 1e-5, `ring ${k}: radius ${r}`);
+      // the hose's colour there, shaded: the colour mode shows through
+      for (let d = 0; d < 3; d++) {
+        const want = d === k % 3 ? ringShade(style, k) : 0;
+        assert.ok(Math.abs(outRgb[o + d] - want) < 1e-6, `ring ${k} colour ${d}`);
+      }
     }
   }
   // two triangles per quad: (rings − 1) · radial · 6 indices, all within the vertices
   const idx = tubeIndices(3, radial);
   assert.equal(idx.length, 2 * radial * 6);
   assert.ok(Math.max(...idx) === 3 * (radial + 1) - 1 && Math.min(...idx) === 0);
+  // every triangle faces outwards (front faces are drawn): its normal along the radius
+  // (the rings run n → b = t × n; here t = x, n = y, b = z as in the sweep)
+  for (let f = 0; f < idx.length; f += 3) {
+    const v = [0, 1, 2].map((c) => [0, 1, 2].map((d) => out[3 * idx[f + c] + d]));
+    const e1 = v[1].map((x, d) => x - v[0][d]);
+    const e2 = v[2].map((x, d) => x - v[0][d]);
+    const n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+    const mid = [0, 1, 2].map((d) => (v[0][d] + v[1][d] + v[2][d]) / 3);
+    assert.ok(n[1] * mid[1] + n[2] * mid[2] > 0, `triangle ${f / 3} faces inwards`);
+  }
 });
 
 test('a junction body sits at the mean of its outlets, an arm reaching each', () => {
