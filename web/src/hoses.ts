@@ -7,9 +7,9 @@
 
 import * as THREE from 'three';
 import { colourRgb } from './colour';
-import { surface, type SurfaceMaterial } from './materials';
-import { tubeIndices } from './protection_geometry';
+import type { SurfaceMaterial } from './materials';
 import { ProtectionMesh } from './protections';
+import { dynamicTubeMesh } from './tube_mesh';
 import type { HoseData, Vec3 } from './protocol';
 
 /** Curve samples per beam. */
@@ -49,21 +49,7 @@ export class HoseTube {
     this.tangent = new Float32Array(this.rings * 3);
     this.ringRadius = new Float32Array(this.rings);
     this.positions = new Float64Array(this.nodes * 3);
-    const idx = tubeIndices(this.rings, RADIAL);
-    const g = new THREE.BufferGeometry();
-    const pa = new THREE.BufferAttribute(this.pos, 3);
-    pa.setUsage(THREE.DynamicDrawUsage);
-    const na = new THREE.BufferAttribute(this.nrm, 3);
-    na.setUsage(THREE.DynamicDrawUsage);
-    g.setAttribute('position', pa);
-    g.setAttribute('normal', na);
-    const ca = new THREE.BufferAttribute(this.rgb, 3);
-    ca.setUsage(THREE.DynamicDrawUsage);
-    g.setAttribute('color', ca);
-    g.setIndex(idx);
-    const m = surface({ color: 0xffffff, roughness: 0.55, metalness: 0.05 });
-    m.vertexColors = true;
-    this.mesh = new THREE.Mesh(g, m);
+    this.mesh = dynamicTubeMesh(this.pos, this.nrm, this.rgb, this.rings, RADIAL, 0.55, 0.05);
     this.mesh.name = `hose:${data.name}`;
     this.mesh.castShadow = true;
     this.mesh.frustumCulled = false;

@@ -5,9 +5,10 @@
 // frame). The shapes come from protection_geometry.ts.
 
 import * as THREE from 'three';
-import { surface, type SurfaceMaterial } from './materials';
-import { fillProtection, protectionStyle, ringRange, tubeIndices, type ProtectionStyle } from './protection_geometry';
+import type { SurfaceMaterial } from './materials';
+import { fillProtection, protectionStyle, ringRange, type ProtectionStyle } from './protection_geometry';
 import type { ProtectionData } from './protocol';
+import { dynamicTubeMesh } from './tube_mesh';
 
 export class ProtectionMesh {
   readonly mesh: THREE.Mesh<THREE.BufferGeometry, SurfaceMaterial>;
@@ -30,20 +31,7 @@ export class ProtectionMesh {
     this.pos = new Float32Array(rings * per * 3);
     this.nrm = new Float32Array(rings * per * 3);
     this.rgb = new Float32Array(rings * per * 3);
-    const g = new THREE.BufferGeometry();
-    const pa = new THREE.BufferAttribute(this.pos, 3);
-    pa.setUsage(THREE.DynamicDrawUsage);
-    const na = new THREE.BufferAttribute(this.nrm, 3);
-    na.setUsage(THREE.DynamicDrawUsage);
-    g.setAttribute('position', pa);
-    g.setAttribute('normal', na);
-    const ca = new THREE.BufferAttribute(this.rgb, 3);
-    ca.setUsage(THREE.DynamicDrawUsage);
-    g.setAttribute('color', ca);
-    g.setIndex(tubeIndices(rings, radial));
-    const m = surface({ color: 0xffffff, roughness: this.style.roughness, metalness: 0 });
-    m.vertexColors = true;
-    this.mesh = new THREE.Mesh(g, m);
+    this.mesh = dynamicTubeMesh(this.pos, this.nrm, this.rgb, rings, radial, this.style.roughness, 0);
     this.mesh.name = `protection:${hose}:${data.kind}`;
     this.mesh.frustumCulled = false;
     this.mesh.userData.protection = data.kind;
