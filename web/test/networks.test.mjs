@@ -1,7 +1,8 @@
 // End-to-end test of drawing harness networks in the viewer: `pliant serve` (the real
 // binary) on a tee — three hoses joined by a junction body whose outlets lie apart, one
 // hose under tape with a corrugated tube over part of it. The protections are drawn over
-// their stretches and the body at its outlets, following them as the tee sags. Every wait
+// their stretches and the body at its outlets, following them as the tee sags and in a
+// replay. Every wait
 // is for a condition (HANG_GUARD_MS only stops a hung test); nothing depends on the
 // machine's speed.
 
@@ -120,6 +121,22 @@ describe('networks', () => {
       const later = await hubAtOutlets();
       assert.ok(later.time > first.time);
       assert.ok(dist(later.mean, later.hub) < 1e-4, `hub ${later.hub} vs outlets ${later.mean}`);
+
+      // in a replay too: a recording whose last frame has the whole tee 0.1 m higher
+      const liftedTime = await page.evaluate(() => {
+        const s = window.pliant.shown;
+        const lifted = { ...s, time: s.time + 1, hoses: s.hoses.map((h) => ({ ...h, positions: h.positions.map(([x, y, z]) => [x, y, z + 0.1]) })) };
+        const frames = [{ t: 0, snapshot: s }, { t: 0.05, snapshot: lifted }];
+        window.pliant.replay(JSON.stringify({ format: 'pliant-recording', version: 1, welcome: window.pliant.welcome, frames }));
+        return lifted.time;
+      });
+      await page.waitForFunction((t) => window.pliant.replaying && window.pliant.shown?.time === t, liftedTime);
+      await page.waitForFunction(() => window.pliant.frames > 0);
+      const replayed = await hubAtOutlets();
+      assert.ok(dist(replayed.mean, replayed.hub) < 1e-4, `replayed hub ${replayed.hub} vs outlets ${replayed.mean}`);
+      assert.ok(replayed.hub[2] > later.hub[2] + 0.05, `${replayed.hub[2]} vs ${later.hub[2]}`);
+      const replayedCovers = await page.evaluate(() => window.pliant.objects('protection:'));
+      assert.equal(replayedCovers.length, 2);
     } finally {
       await page.close();
     }
