@@ -2,9 +2,8 @@
 // binary) on a tee — three hoses joined by a junction body whose outlets lie apart, one
 // hose under tape with a corrugated tube over part of it. The protections are drawn over
 // their stretches and the body at its outlets, following them as the tee sags and in a
-// replay. Every wait
-// is for a condition (HANG_GUARD_MS only stops a hung test); nothing depends on the
-// machine's speed.
+// replay. Every wait is for a condition (HANG_GUARD_MS only stops a hung test); nothing
+// depends on the machine's speed.
 
 import assert from 'node:assert/strict';
 import { mkdtempSync, writeFileSync } from 'node:fs';
