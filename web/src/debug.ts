@@ -2,6 +2,7 @@
 // the newest snapshot, hose node positions, screen coordinates of world points, latency
 // samples. Read-only views plus `send` for raw protocol messages.
 
+import * as THREE from 'three';
 import type { Author } from './author';
 import type { ColourMode } from './colour_modes';
 import type { Envelopes } from './envelope';
@@ -74,6 +75,29 @@ export function installDebugHandle(src: DebugSources): void {
         translation: [m.position.x, m.position.y, m.position.z],
         rotation: [m.quaternion.x, m.quaternion.y, m.quaternion.z, m.quaternion.w],
       }));
+    },
+    /** The objects drawn in the world frame whose name starts with `prefix` (e.g.
+     *  `protection:`, `junction:`): name, visibility, the centre of their drawn vertices
+     *  (world frame) and how many there are. */
+    objects(prefix: string): { name: string; visible: boolean; centre: Vec3; vertices: number }[] {
+      const out: { name: string; visible: boolean; centre: Vec3; vertices: number }[] = [];
+      src.stage.world.updateMatrixWorld(true);
+      const toWorld = src.stage.world.matrixWorld.clone().invert();
+      src.stage.world.traverse((o) => {
+        if (!o.name.startsWith(prefix) || !(o instanceof THREE.Mesh)) return;
+        const box = new THREE.Box3().setFromObject(o, true).applyMatrix4(toWorld);
+        const c = box.getCenter(new THREE.Vector3());
+        const n = (o.geometry as THREE.BufferGeometry).getAttribute('position')?.count ?? 0;
+        out.push({ name: o.name, visible: o.visible, centre: [c.x, c.y, c.z], vertices: n });
+      });
+      return out;
+    },
+    /** Points the camera at world point `p` from `distance` metres away. */
+    lookAt(p: Vec3, distance: number): void {
+      const t = src.stage.toThree(p);
+      src.stage.controls.target.copy(t);
+      src.stage.camera.position.copy(t).add(new THREE.Vector3(0.6, 0.5, 0.6).multiplyScalar(distance));
+      src.stage.controls.update();
     },
     /** Node positions of hose `h` as drawn (world frame). */
     hoseNodes(h: number): Vec3[] {

@@ -7,7 +7,9 @@
 
 import * as THREE from 'three';
 import { colourRgb } from './colour';
-import { surface, type SurfaceMaterial } from './materials';
+import type { SurfaceMaterial } from './materials';
+import { ProtectionMesh } from './protections';
+import { dynamicTubeMesh } from './tube_mesh';
 import type { HoseData, Vec3 } from './protocol';
 
 /** Curve samples per beam. */
@@ -32,6 +34,8 @@ export class HoseTube {
   colour = 0;
   /** The largest outer radius along the hose [m]. */
   readonly maxRadius: number;
+  /** The protections drawn over it (children of `mesh`). */
+  readonly covers: ProtectionMesh[] = [];
 
   constructor(readonly data: HoseData, readonly index: number) {
     this.nodes = data.radii.length;
@@ -45,32 +49,17 @@ export class HoseTube {
     this.tangent = new Float32Array(this.rings * 3);
     this.ringRadius = new Float32Array(this.rings);
     this.positions = new Float64Array(this.nodes * 3);
-    const idx: number[] = [];
-    for (let i = 0; i < this.rings - 1; i++) {
-      for (let j = 0; j < RADIAL; j++) {
-        const a = i * (RADIAL + 1) + j;
-        const b = a + RADIAL + 1;
-        idx.push(a, b, a + 1, b, b + 1, a + 1);
-      }
-    }
-    const g = new THREE.BufferGeometry();
-    const pa = new THREE.BufferAttribute(this.pos, 3);
-    pa.setUsage(THREE.DynamicDrawUsage);
-    const na = new THREE.BufferAttribute(this.nrm, 3);
-    na.setUsage(THREE.DynamicDrawUsage);
-    g.setAttribute('position', pa);
-    g.setAttribute('normal', na);
-    const ca = new THREE.BufferAttribute(this.rgb, 3);
-    ca.setUsage(THREE.DynamicDrawUsage);
-    g.setAttribute('color', ca);
-    g.setIndex(idx);
-    const m = surface({ color: 0xffffff, roughness: 0.55, metalness: 0.05 });
-    m.vertexColors = true;
-    this.mesh = new THREE.Mesh(g, m);
+    this.mesh = dynamicTubeMesh(this.pos, this.nrm, this.rgb, this.rings, RADIAL, 0.55, 0.05);
     this.mesh.name = `hose:${data.name}`;
     this.mesh.castShadow = true;
     this.mesh.frustumCulled = false;
     this.mesh.userData.hose = index;
+    for (const p of data.protections ?? []) {
+      const cover = ProtectionMesh.over(p, data.length ?? 0, this.rings, RADIAL, data.name);
+      if (cover === null) continue;
+      this.covers.push(cover);
+      this.mesh.add(cover.mesh);
+    }
   }
 
   /** Node position i (world frame). */
@@ -100,6 +89,7 @@ export class HoseTube {
     this.colour = c;
     this.paint(c, perNode);
     g.attributes.color.needsUpdate = true;
+    for (const cover of this.covers) cover.update(this.pos, this.nrm, this.rgb, this.centre);
   }
 
   /** Vertex colours: ring by ring, the node values interpolated (or `c` throughout). */
@@ -209,6 +199,7 @@ export class HoseTube {
   dispose(): void {
     this.mesh.geometry.dispose();
     this.mesh.material.dispose();
+    for (const cover of this.covers) cover.dispose();
   }
 }
 

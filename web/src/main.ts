@@ -14,6 +14,7 @@ import { installDebugHandle } from './debug';
 import { Envelopes } from './envelope';
 import { MouseHand } from './grab';
 import { HoseTube } from './hoses';
+import { JunctionBodies } from './junction_bodies';
 import { ForceLabels } from './labels';
 import { Legend } from './legend';
 import { ViolationMarkers } from './markers';
@@ -42,6 +43,7 @@ async function main(): Promise<void> {
   let nodeValues: Float32Array[] = []; // per hose, per node colour values (scratch)
 
   let tubes: HoseTube[] = [];
+  let bodies: JunctionBodies | null = null;
   let liveWelcome: Welcome | null = null;
   let liveWelcomeRaw = '';
   let shownWelcome: Welcome | null = null;
@@ -70,6 +72,12 @@ async function main(): Promise<void> {
     colouring.axialScale = 0;
     markers.clear();
     for (const t of tubes) stage.world.add(t.mesh);
+    if (bodies !== null) {
+      stage.world.remove(bodies.group);
+      bodies.dispose();
+    }
+    bodies = new JunctionBodies(w.session.junction_bodies ?? [], w.session.hoses.map((h) => h.radii));
+    stage.world.add(bodies.group);
     shownWelcome = w;
     shown = null;
     needsFraming = true;
@@ -242,6 +250,7 @@ async function main(): Promise<void> {
       const values = beams === null ? null : nodeColourValues(range, beams, nodeValues[i]);
       t.update(h.positions, h.colour, values);
     });
+    bodies?.update((h, i) => (tubes[h] !== undefined && i < tubes[h].nodes ? tubes[h].node(i) : null));
     markers.update(s.checks ?? [], (h) => tubes[h]?.positions ?? [], (h) => tubes[h]?.maxRadius ?? 0);
     labels.update(s.hands);
     panel.snapshot(s);

@@ -11,6 +11,22 @@ export interface HoseData {
   radii: number[];
   /** The bend-radius check's minimum [m] (null: not checked). */
   min_bend_radius?: number | null;
+  /** Arc length of the centre line [m]; the nodes lie at equal spacing along it. */
+  length?: number;
+  /** Protections over stretches of the hose. */
+  protections?: ProtectionData[];
+}
+/** A protection over the stretch `from..to` of a hose (arc length, m). */
+export interface ProtectionData {
+  kind: 'tape' | 'fleece_tape' | 'corrugated_tube' | 'sleeve' | 'other';
+  from: number;
+  to: number;
+}
+/** A junction body: the hose ends it joins (hose index, node index of that end). */
+export interface JunctionBodyData {
+  name: string;
+  mass: number;
+  outlets: { hose: number; node: number }[];
 }
 export interface PartData {
   name: string;
@@ -34,6 +50,8 @@ export interface SceneData {
   source: string;
   time_step: number;
   hoses: HoseData[];
+  /** Junction bodies (welded branch points are not listed). */
+  junction_bodies?: JunctionBodyData[];
   parts: PartData[];
   fasteners?: FastenerData[];
   ergonomics: string;

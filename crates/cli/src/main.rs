@@ -185,7 +185,7 @@ enum Command {
     /// becomes a scene: `--out DIR` receives scene.toml (segments, junctions, bundle
     /// sections, fixings, the installed state as timeline), harness.json and install.toml
     /// (the harness installed by two hands: connectors plugged, fixings pressed in;
-    /// crates/harness/README.md). VEC 2.x files (`.vec`) are read where they carry 3-D
+    /// docs/harness.md). VEC 2.x files (`.vec`) are read where they carry 3-D
     /// geometry (nodes, segments, centre curves; not their wires, fixings, connectors);
     /// a topology-only VEC is refused.
     Import {

@@ -391,13 +391,123 @@ pub fn segment_protection(h: &crate::model::Harness, segment: usize) -> Option<P
         .filter(|c| c.coverage >= 0.5)
 }
 
+/// A stretch of a segment under one set of protections, `from..to` as shares of its
+/// length, with its section.
+#[derive(Debug, Clone)]
+pub struct CoveredStretch {
+    pub from: f64,
+    pub to: f64,
+    /// The protections over it, in the order of their keys.
+    pub kinds: Vec<ProtectionKind>,
+    /// The wires' section under them (see [`covered_section`]).
+    pub section: BundleSection,
+}
+
+/// The section of `wires` under the protections `covers` lying over one another (tape
+/// under a corrugated tube), each covering the whole stretch: the coupling factors of the
+/// one binding the wires tightest (largest f_ei), the largest outer diameter given, the
+/// masses of all, and the minimum bend radius the largest of the wires' and every
+/// protection's.
+pub fn covered_section(
+    data: &BundleData,
+    wires: &[WireSection],
+    covers: &[ProtectionCover],
+) -> BundleSection {
+    let f_ei = |c: &&ProtectionCover| data.protection(Some(c.kind)).f_ei.value;
+    let tightest = covers
+        .iter()
+        .max_by(|a, b| f_ei(a).total_cmp(&f_ei(b)))
+        .map(|c| ProtectionCover {
+            kind: c.kind,
+            coverage: 1.0,
+            outer_diameter: covers
+                .iter()
+                .filter_map(|c| c.outer_diameter)
+                .reduce(f64::max),
+            mass_per_length: covers
+                .iter()
+                .filter_map(|c| c.mass_per_length)
+                .reduce(|a, b| a + b),
+        });
+    let mut section = bundle_section(data, wires, tightest);
+    for c in covers {
+        let own = data.protection(Some(c.kind)).min_bend_radius_d.value * section.d_outer;
+        section.min_bend_radius = section.min_bend_radius.max(own);
+    }
+    section
+}
+
+/// The protected stretches of segment `segment`: its protection areas cut at every
+/// start and end, neighbours under the same protections joined.
+pub fn covered_stretches(
+    data: &BundleData,
+    h: &crate::model::Harness,
+    segment: usize,
+    wires: &[WireSection],
+) -> Vec<CoveredStretch> {
+    let areas: Vec<&crate::model::Protection> = h
+        .protections
+        .iter()
+        .filter(|p| p.segment == segment && p.to > p.from)
+        .collect();
+    let mut cuts: Vec<f64> = areas
+        .iter()
+        .flat_map(|p| [p.from.clamp(0.0, 1.0), p.to.clamp(0.0, 1.0)])
+        .collect();
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let mut out: Vec<CoveredStretch> = Vec::new();
+    for w in cuts.windows(2) {
+        let (from, to) = (w[0], w[1]);
+        let middle = 0.5 * (from + to);
+        let mut over: Vec<&crate::model::Protection> = areas
+            .iter()
+            .copied()
+            .filter(|p| p.from <= middle && middle < p.to)
+            .collect();
+        if over.is_empty() {
+            continue;
+        }
+        over.sort_by_key(|p| p.kind.key());
+        let kinds: Vec<ProtectionKind> = over.iter().map(|p| p.kind).collect();
+        if let Some(last) = out.last_mut() {
+            if last.to == from && last.kinds == kinds {
+                last.to = to;
+                continue;
+            }
+        }
+        let covers: Vec<ProtectionCover> = over
+            .iter()
+            .map(|p| ProtectionCover {
+                kind: p.kind,
+                coverage: 1.0,
+                outer_diameter: p.outer_diameter,
+                mass_per_length: p.mass_per_length,
+            })
+            .collect();
+        out.push(CoveredStretch {
+            from,
+            to,
+            kinds,
+            section: covered_section(data, wires, &covers),
+        });
+    }
+    out
+}
+
 /// One segment's bundle: its wires, the protection that sets its factors, its section.
 #[derive(Debug, Clone)]
 pub struct SegmentBundle {
     pub kbl_id: String,
     pub wires: Vec<WireSection>,
     pub protection: Option<ProtectionCover>,
+    /// The section of the segment as one (its factors from the protection covering most
+    /// of it).
     pub section: BundleSection,
+    /// The section of the bare wires, where no protection lies.
+    pub bare: BundleSection,
+    /// Its protected stretches.
+    pub stretches: Vec<CoveredStretch>,
     /// Wires left out, or the stand-in wire used when none is routed.
     pub warnings: Vec<String>,
 }
@@ -425,11 +535,15 @@ pub fn segment_bundle(
     }
     let protection = segment_protection(h, segment);
     let section = bundle_section(data, &wires, protection);
+    let bare = bundle_section(data, &wires, None);
+    let stretches = covered_stretches(data, h, segment, &wires);
     SegmentBundle {
         kbl_id: s.kbl_id.clone(),
         wires,
         protection,
         section,
+        bare,
+        stretches,
         warnings,
     }
 }
@@ -535,6 +649,36 @@ mod tests {
             p.iter().filter(|q| (q.length() - 2.0).abs() < 1e-9).count(),
             12
         );
+    }
+
+    #[test]
+    fn tape_under_a_corrugated_tube() {
+        // The tape binds the wires (its factors), the tube sets the diameter and the bend
+        // radius (2.5 D), both weigh.
+        let data = BundleData::builtin();
+        let w = WireSection::new(&data, 1.6e-3, 0.5e-6, None, Some(4.8e-3));
+        let tape = ProtectionCover {
+            kind: ProtectionKind::Tape,
+            coverage: 1.0,
+            outer_diameter: None,
+            mass_per_length: Some(0.004),
+        };
+        let tube = ProtectionCover {
+            kind: ProtectionKind::CorrugatedTube,
+            coverage: 1.0,
+            outer_diameter: Some(13.4e-3),
+            mass_per_length: Some(0.017),
+        };
+        let both = covered_section(&data, &[w; 3], &[tube, tape]);
+        let taped = bundle_section(&data, &[w; 3], Some(tape));
+        assert!(rel(both.ei, taped.ei) < 1e-12);
+        assert!(rel(both.d_outer, 13.4e-3) < 1e-12);
+        assert!(rel(both.mass, 3.0 * w.mass + 0.021) < 1e-12);
+        let r = data
+            .protection(Some(ProtectionKind::CorrugatedTube))
+            .min_bend_radius_d
+            .value;
+        assert!(rel(both.min_bend_radius, (r * 13.4e-3).max(4.8e-3)) < 1e-12);
     }
 
     #[test]

@@ -398,6 +398,8 @@ pub fn install_toml(
             hose: s.hose.clone(),
             curve: s.curve,
             section: s.section,
+            bare: s.bare,
+            stretches: s.stretches,
             elements: install_elements(s.curve.length),
         })
         .collect();

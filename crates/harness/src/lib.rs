@@ -168,12 +168,12 @@ pub fn import_kbl_opts(
         h = b.harness;
     }
     let curves: Vec<SegmentCurve> = h.segments.iter().map(|s| SegmentCurve::of(&h, s)).collect();
-    let mut sections = Vec::with_capacity(h.segments.len());
+    let mut bundles = Vec::with_capacity(h.segments.len());
     let mut warnings = Vec::new();
     for i in 0..h.segments.len() {
-        let b = segment_bundle(data, &h, i);
-        warnings.extend(b.warnings);
-        sections.push(b.section);
+        let mut b = segment_bundle(data, &h, i);
+        warnings.append(&mut b.warnings);
+        bundles.push(b);
     }
     for (s, c) in h.segments.iter().zip(&curves) {
         if c.straight_fallback {
@@ -198,11 +198,13 @@ pub fn import_kbl_opts(
     let segs: Vec<SegmentOut> = names
         .into_iter()
         .zip(&curves)
-        .zip(&sections)
-        .map(|((hose, curve), section)| SegmentOut {
+        .zip(&bundles)
+        .map(|((hose, curve), b)| SegmentOut {
             hose,
             curve,
-            section,
+            section: &b.section,
+            bare: &b.bare,
+            stretches: &b.stretches,
             elements: element_count(curve.length),
         })
         .collect();

@@ -6,7 +6,10 @@
 //! - every segment → one `[[hoses]]` named by its KBL id (sanitised), centre line a
 //!   Catmull-Rom `spline` through points sampled every ~10 mm along the trimmed centre
 //!   curve (first and last exactly on the nodes), `elements` = max(4, round(L / 25 mm)),
-//!   `section` given directly from the bundle model (`bundle.rs`), `min_bend_radius`;
+//!   `section` given directly from the bundle model (`bundle.rs`) for the bare wires,
+//!   `min_bend_radius`; every protected stretch (`Protection_area` from its start to its
+//!   end location) a `spans` entry with its own section and minimum bend radius, and the
+//!   protections themselves in `protections`;
 //! - every node where two or more segments meet → `[[junctions]]` (welded branch point);
 //! - every fixing assignment → `[[clips]]` at the curve point at its location;
 //! - timeline: `fix` at the hose node nearest every fixing and at every leaf end that
@@ -18,7 +21,7 @@ use std::fmt::Write as _;
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::bundle::BundleSection;
+use crate::bundle::{BundleSection, CoveredStretch};
 use crate::geometry::SegmentCurve;
 use crate::model::Harness;
 
@@ -42,7 +45,11 @@ pub const OPENING_SHARE: f64 = 0.8;
 pub struct SegmentOut<'a> {
     pub hose: String,
     pub curve: &'a SegmentCurve,
+    /// The segment's section as one (clips and connectors take its diameter).
     pub section: &'a BundleSection,
+    /// The hose's section where no protection lies, and its protected stretches (spans).
+    pub bare: &'a BundleSection,
+    pub stretches: &'a [CoveredStretch],
     pub elements: usize,
 }
 
@@ -266,7 +273,7 @@ pub(crate) fn network_toml_with_slack(
     let _ = writeln!(t, "# Density and Poisson's ratio matter only for what a section does not give (all is given).");
     let _ = writeln!(t, "[materials.bundle]\ne_tension_mpa = 200\ne_compression_mpa = 200\npoisson = 0.4\ndensity_kg_m3 = 1400\n");
 
-    for (s, out) in h.segments.iter().zip(segs) {
+    for (index, (s, out)) in h.segments.iter().zip(segs).enumerate() {
         let len = out.curve.length;
         let count = ((len / SAMPLE_SPACING_M).ceil() as usize + 1).max(3);
         let mut pts = out.curve.sample(count);
@@ -280,7 +287,7 @@ pub(crate) fn network_toml_with_slack(
         if slack > 0.0 {
             bow(&mut pts, slack);
         }
-        let sec = out.section;
+        let sec = out.bare;
         let _ = writeln!(t, "[[hoses]]\nname = {}", quote(&out.hose));
         if let Some(n) = &s.name {
             let _ = writeln!(
@@ -293,16 +300,7 @@ pub(crate) fn network_toml_with_slack(
             );
         }
         let _ = writeln!(t, "material = \"bundle\"");
-        let _ = writeln!(
-            t,
-            "section = {{ d_inner = 0, d_outer = {}, ea_n = {}, ei1_n_m2 = {}, ei2_n_m2 = {}, gj_n_m2 = {}, mass_kg_m = {} }}",
-            mm(sec.d_outer),
-            sci(sec.ea),
-            sci(sec.ei),
-            sci(sec.ei),
-            sci(sec.gj),
-            sci(sec.mass)
-        );
+        let _ = writeln!(t, "section = {}", section_toml(sec));
         if sec.min_bend_radius > 0.0 {
             let _ = writeln!(t, "min_bend_radius = {}", mm(sec.min_bend_radius));
         }
@@ -311,10 +309,14 @@ pub(crate) fn network_toml_with_slack(
         let through: Vec<String> = pts[1..pts.len() - 1].iter().map(|p| vec_mm(*p)).collect();
         let _ = writeln!(
             t,
-            "path = [{{ spline = {{ through = [{}], to = {} }} }}]\n",
+            "path = [{{ spline = {{ through = [{}], to = {} }} }}]",
             through.join(", "),
             vec_mm(pts[pts.len() - 1])
         );
+        if !out.stretches.is_empty() {
+            protections_toml(&mut t, h, index, out, written_length(&pts));
+        }
+        t.push('\n');
     }
 
     let at = h.segments_at_nodes();
@@ -347,6 +349,105 @@ pub(crate) fn network_toml_with_slack(
         );
     }
     t
+}
+
+/// A `section = { … }` inline table with every stiffness given.
+fn section_toml(sec: &BundleSection) -> String {
+    format!(
+        "{{ d_inner = 0, d_outer = {}, ea_n = {}, ei1_n_m2 = {}, ei2_n_m2 = {}, gj_n_m2 = {}, mass_kg_m = {} }}",
+        mm(sec.d_outer),
+        sci(sec.ea),
+        sci(sec.ei),
+        sci(sec.ei),
+        sci(sec.gj),
+        sci(sec.mass)
+    )
+}
+
+/// The length \[m\] of the centre line the scene builds from `pts` as written (rounded
+/// to the digits of [`mm`]): the arc length `spans` and `protections` are measured along.
+pub(crate) fn written_length(pts: &[DVec3]) -> f64 {
+    use pliant_scene::centerline::{Centerline, Segment};
+    let scale = pliant_scene::LengthUnit::Millimetre.to_metres();
+    let written = |p: &DVec3| {
+        let c = |v: f64| mm(v).parse::<f64>().unwrap_or(v * 1e3) * scale;
+        DVec3::new(c(p.x), c(p.y), c(p.z))
+    };
+    let n = pts.len();
+    let through: Vec<DVec3> = pts[1..n - 1].iter().map(written).collect();
+    let line = Centerline::new(
+        written(&pts[0]),
+        &[Segment::Spline {
+            through,
+            to: written(&pts[n - 1]),
+        }],
+    );
+    // the scene refuses what it cannot build; the polyline is then as good a measure
+    line.map(|l| l.length())
+        .unwrap_or_else(|_| pts.windows(2).map(|w| (w[1] - w[0]).length()).sum())
+}
+
+/// A position along a hose of length `length` \[m\] at share `share`, in mm, rounded down
+/// so that the end of the hose stays within it.
+fn along(share: f64, length: f64) -> String {
+    format!("{:.4}", (share * length * 1e7).floor() / 1e4)
+}
+
+/// `spans` (every protected stretch holding an element's middle: a section of its own)
+/// and `protections` (the `Protection_area`s, those of one kind joined where they
+/// overlap) of segment `segment`, on a hose `length` \[m\] long.
+fn protections_toml(t: &mut String, h: &Harness, segment: usize, out: &SegmentOut, length: f64) {
+    let element = 1.0 / out.elements as f64;
+    let holds_middle = |from: f64, to: f64| {
+        (0..out.elements).any(|e| (from..to).contains(&((e as f64 + 0.5) * element)))
+    };
+    let spans: Vec<String> = out
+        .stretches
+        .iter()
+        .filter(|c| holds_middle(c.from, c.to))
+        .map(|c| {
+            let radius = if c.section.min_bend_radius > 0.0 {
+                format!("min_bend_radius = {}, ", mm(c.section.min_bend_radius))
+            } else {
+                String::new()
+            };
+            format!(
+                "{{ from = {}, to = {}, {radius}section = {} }}",
+                along(c.from, length),
+                along(c.to, length),
+                section_toml(&c.section)
+            )
+        })
+        .collect();
+    if !spans.is_empty() {
+        let _ = writeln!(t, "spans = [\n  {},\n]", spans.join(",\n  "));
+    }
+    let mut areas: Vec<(crate::model::ProtectionKind, f64, f64)> = h
+        .protections
+        .iter()
+        .filter(|p| p.segment == segment && p.to > p.from)
+        .map(|p| (p.kind, p.from.clamp(0.0, 1.0), p.to.clamp(0.0, 1.0)))
+        .collect();
+    areas.sort_by(|a, b| a.0.key().cmp(b.0.key()).then(a.1.total_cmp(&b.1)));
+    let mut joined: Vec<(crate::model::ProtectionKind, f64, f64)> = Vec::new();
+    for a in areas {
+        match joined.last_mut() {
+            Some(last) if last.0 == a.0 && a.1 <= last.2 => last.2 = last.2.max(a.2),
+            _ => joined.push(a),
+        }
+    }
+    let list: Vec<String> = joined
+        .iter()
+        .map(|(kind, from, to)| {
+            format!(
+                "{{ kind = \"{}\", from = {}, to = {} }}",
+                kind.key(),
+                along(*from, length),
+                along(*to, length)
+            )
+        })
+        .collect();
+    let _ = writeln!(t, "protections = [{}]", list.join(", "));
 }
 
 /// Bows the points of a centre line sideways by a·sin²(π s/L), towards −z where the line

@@ -301,3 +301,80 @@ fn missing_file_is_a_read_error() {
         "{e}"
     );
 }
+
+/// The protections of the imported main harness lie where the KBL's `Protection_area`s
+/// say (Start_location/End_location as written in the file), as the scene loads them,
+/// and the protected stretches are spans with the protection's section and bend radius.
+#[test]
+fn main_harness_protections_are_spans_where_the_file_says() {
+    let dir = out_dir("protections");
+    import_kbl(&data(MAIN), &dir).unwrap();
+    let scene = pliant_scene::load_scene_file(&dir.join("scene.toml")).unwrap();
+    // (segment, kind, Start_location, End_location) from the KBL file
+    let cases = [
+        ("Segment_3", "corrugated_tube", 0.038647, 0.934893), // Protection_area_4
+        ("Segment_3", "tape", 0.0, 1.0),                      // Protection_area_3
+        ("Segment_144", "corrugated_tube", 0.112672, 0.887337), // Protection_area_101
+        ("Segment_133", "tape", 0.0, 0.811619),               // Protection_area_86
+    ];
+    for (segment, kind, from, to) in cases {
+        let h = scene
+            .hoses
+            .iter()
+            .find(|h| h.name == segment)
+            .unwrap_or_else(|| panic!("no hose {segment}"));
+        let p = h
+            .protections
+            .iter()
+            .find(|p| p.kind.key() == kind)
+            .unwrap_or_else(|| panic!("{segment}: no {kind} in {:?}", h.protections));
+        // written to 0.1 µm, rounded down
+        let tol = 1e-7 / h.length + 1e-12;
+        assert!(
+            (p.from / h.length - from).abs() <= tol,
+            "{segment} {kind}: from {} of {}",
+            p.from,
+            h.length
+        );
+        assert!(
+            (p.to / h.length - to).abs() <= tol,
+            "{segment} {kind}: to {} of {}",
+            p.to,
+            h.length
+        );
+    }
+    // Segment_3: under the corrugated tube (D(a) = 13.4 mm in its description) the
+    // elements have the tube's diameter and its bend radius (2.5 D); outside it, the
+    // taped bundle's.
+    let k = scene
+        .hose_names
+        .iter()
+        .position(|n| n == "Segment_3")
+        .unwrap();
+    let h = &scene.hoses[k];
+    let spec = &scene.world.hoses[k];
+    let tube = h
+        .protections
+        .iter()
+        .find(|p| p.kind.key() == "corrugated_tube")
+        .unwrap();
+    let n = h.elements;
+    assert_eq!(h.bend_radii.len(), n);
+    let mut inside = 0;
+    for e in 0..n {
+        let middle = (e as f64 + 0.5) * h.element_length;
+        let d = spec.sections[e].d_outer;
+        if (tube.from..tube.to).contains(&middle) {
+            inside += 1;
+            assert!((d - 13.4e-3).abs() < 1e-9, "element {e}: d_outer {d}");
+            assert!(
+                (h.bend_radii[e] - 2.5 * 13.4e-3).abs() < 1e-9,
+                "element {e}"
+            );
+        } else {
+            assert!(d < 13.4e-3, "element {e} outside the tube: d_outer {d}");
+            assert!(h.bend_radii[e] < 2.5 * 13.4e-3);
+        }
+    }
+    assert!(inside >= n / 2, "{inside} of {n} elements under the tube");
+}

@@ -19,6 +19,7 @@ pub fn build_checks(
         .map(|h| HoseCheckLimits {
             min_bend_radius: h.min_bend_radius,
             d_outer: h.d_outer,
+            bend_radii: h.bend_radii.clone(),
         })
         .collect();
     let mut s = CheckSettings::with_hoses(limits);

@@ -5,7 +5,7 @@
 
 use crate::units::LengthUnit;
 use schemars::JsonSchema;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// A 3-vector `[x, y, z]`.
@@ -526,6 +526,13 @@ pub struct HoseEntry {
     /// elsewhere `section` holds. Spans must not overlap.
     #[serde(default)]
     pub spans: Vec<SpanEntry>,
+    /// Protections over stretches of the hose (a harness segment's tape, corrugated tube
+    /// or sleeve), by arc length as `spans`: what covers the bundle where, for drawing and
+    /// reports. Their stiffness, diameter and mass are a span's `section`. Protections of
+    /// one kind must not overlap; different kinds may lie over one another (tape under a
+    /// corrugated tube).
+    #[serde(default)]
+    pub protections: Vec<ProtectionEntry>,
     /// The shape the hose was delivered in, its stress-free shape (pre-deformation):
     /// `"straight"`, `{ coil = { radius, pitch } }` or `{ path = [...] }` (length unit).
     /// The hose starts routed along `path`/`route`, holding the difference as strain.
@@ -620,6 +627,52 @@ pub struct SpanEntry {
     pub to: f64,
     /// The span's cross-section.
     pub section: SectionEntry,
+    /// Minimum bend radius of the centre line over the span (length unit), > 0, for the
+    /// bend-radius check (a protected stretch of a harness: the larger of its wires' and
+    /// its protection's). Default: the hose's.
+    pub min_bend_radius: Option<f64>,
+}
+
+/// A protection over a stretch of a hose, by arc length along the centre line (length
+/// unit), addressed as a span is.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ProtectionEntry {
+    /// What covers the stretch.
+    pub kind: ProtectionKindName,
+    /// Arc length where it starts, ≥ 0.
+    pub from: f64,
+    /// Arc length where it ends, > from and ≤ the hose's length.
+    pub to: f64,
+}
+
+/// The kinds of protection over a wire bundle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, JsonSchema, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ProtectionKindName {
+    /// Film tape (PVC, …) wound over the bundle.
+    Tape,
+    /// Fleece (textile) tape.
+    FleeceTape,
+    /// Corrugated tube.
+    CorrugatedTube,
+    /// Braided or woven sleeve, or a smooth tube.
+    Sleeve,
+    /// Anything else.
+    Other,
+}
+
+impl ProtectionKindName {
+    /// The name as written in the scene file.
+    pub fn key(self) -> &'static str {
+        match self {
+            ProtectionKindName::Tape => "tape",
+            ProtectionKindName::FleeceTape => "fleece_tape",
+            ProtectionKindName::CorrugatedTube => "corrugated_tube",
+            ProtectionKindName::Sleeve => "sleeve",
+            ProtectionKindName::Other => "other",
+        }
+    }
 }
 
 /// `route = { step = "bay.step", curve = "hose_route" }`, `route = { step = "bay.step",

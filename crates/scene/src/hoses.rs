@@ -206,7 +206,22 @@ pub fn build_hose(
         stiffened.push((first, last));
     }
 
-    let sections = span_sections(index, raw, unit, section, length, nodes.len())?;
+    let min_bend_radius = match raw.min_bend_radius {
+        Some(r) => crate::validate::positive(&at("min_bend_radius"), r, u)? * scale,
+        None => resolved
+            .min_bend_radius
+            .unwrap_or_else(|| crate::materials::min_bend_radius_rule(&section)),
+    };
+    let (sections, bend_radii) = span_sections(
+        index,
+        raw,
+        unit,
+        section,
+        length,
+        nodes.len(),
+        min_bend_radius,
+    )?;
+    let protections = crate::protections::build_protections(index, raw, unit, length)?;
     if normal_hint.is_none() {
         if let Some(k) = sections.iter().position(non_round) {
             return Err(FieldError::about(
@@ -218,13 +233,9 @@ pub fn build_hose(
         }
     }
 
-    let min_bend_radius = match raw.min_bend_radius {
-        Some(r) => crate::validate::positive(&at("min_bend_radius"), r, u)? * scale,
-        None => resolved
-            .min_bend_radius
-            .unwrap_or_else(|| crate::materials::min_bend_radius_rule(&section)),
-    };
     let info = HoseDiscretisation {
+        bend_radii,
+        protections,
         stiffened,
         name: raw.name.clone(),
         length,
@@ -294,7 +305,9 @@ fn non_round(s: &Section) -> bool {
 
 /// The section of every element: `default` except where a span of `raw.spans` holds the
 /// element's midpoint (nodes at equal spacing over `length`). Span ends falling inside an
-/// element are rounded to the nearest node that way.
+/// element are rounded to the nearest node that way. With them, the minimum bend radius
+/// of every element (`hose_bend_radius` where no span gives one), empty when no span
+/// gives one.
 fn span_sections(
     index: usize,
     raw: &HoseEntry,
@@ -302,10 +315,12 @@ fn span_sections(
     default: Section,
     length: f64,
     nodes: usize,
-) -> Result<Vec<Section>, FieldError> {
+    hose_bend_radius: f64,
+) -> Result<(Vec<Section>, Vec<f64>), FieldError> {
     if raw.spans.is_empty() {
-        return Ok(vec![default]);
+        return Ok((vec![default], Vec::new()));
     }
+    let mut bend_radii: Vec<f64> = Vec::new();
     let (u, scale) = (unit.symbol(), unit.to_metres());
     let elements = nodes - 1;
     let element_length = length / elements as f64;
@@ -313,25 +328,7 @@ fn span_sections(
     let mut taken: Vec<(f64, f64)> = Vec::with_capacity(raw.spans.len());
     for (k, span) in raw.spans.iter().enumerate() {
         let at = |rest: &str| format!("hoses[{index}].spans[{k}].{rest}");
-        let from = non_negative(&at("from"), span.from, u)? * scale;
-        let to = positive(&at("to"), span.to, u)? * scale;
-        if to <= from {
-            return Err(FieldError::new(
-                at("to"),
-                with_unit(span.to, u),
-                format!("must be greater than from ({})", with_unit(span.from, u)),
-            ));
-        }
-        if to > length * (1.0 + 1e-9) {
-            return Err(FieldError::new(
-                at("to"),
-                with_unit(span.to, u),
-                format!(
-                    "lies beyond the hose's end (its length is {})",
-                    with_unit(length / scale, u)
-                ),
-            ));
-        }
+        let (from, to) = stretch(&at(""), span.from, span.to, unit, length)?;
         if let Some(&(a, b)) = taken.iter().find(|&&(a, b)| from < b && a < to) {
             return Err(FieldError::new(
                 format!("hoses[{index}].spans[{k}]"),
@@ -345,11 +342,21 @@ fn span_sections(
         }
         taken.push((from, to));
         let section = section(&at("section"), &span.section, unit)?;
+        let bend_radius = match span.min_bend_radius {
+            Some(r) => Some(positive(&at("min_bend_radius"), r, u)? * scale),
+            None => None,
+        };
+        if bend_radius.is_some() && bend_radii.is_empty() {
+            bend_radii = vec![hose_bend_radius; elements];
+        }
         let mut covered = 0;
-        for (e, s) in sections.iter_mut().enumerate() {
+        for e in 0..elements {
             let middle = (e as f64 + 0.5) * element_length;
             if (from..to).contains(&middle) {
-                *s = section;
+                sections[e] = section;
+                if let Some(r) = bend_radius {
+                    bend_radii[e] = r;
+                }
                 covered += 1;
             }
         }
@@ -364,7 +371,40 @@ fn span_sections(
             ));
         }
     }
-    Ok(sections)
+    Ok((sections, bend_radii))
+}
+
+/// Checks a stretch `from..to` of a hose (file units; `field` ends in `.`) against its
+/// `length` \[m\] and returns it in metres.
+pub(crate) fn stretch(
+    field: &str,
+    from: f64,
+    to: f64,
+    unit: LengthUnit,
+    length: f64,
+) -> Result<(f64, f64), FieldError> {
+    let (u, scale) = (unit.symbol(), unit.to_metres());
+    let at = |rest: &str| format!("{field}{rest}");
+    let from_m = non_negative(&at("from"), from, u)? * scale;
+    let to_m = positive(&at("to"), to, u)? * scale;
+    if to_m <= from_m {
+        return Err(FieldError::new(
+            at("to"),
+            with_unit(to, u),
+            format!("must be greater than from ({})", with_unit(from, u)),
+        ));
+    }
+    if to_m > length * (1.0 + 1e-9) {
+        return Err(FieldError::new(
+            at("to"),
+            with_unit(to, u),
+            format!(
+                "lies beyond the hose's end (its length is {})",
+                with_unit(length / scale, u)
+            ),
+        ));
+    }
+    Ok((from_m, to_m.min(length)))
 }
 
 /// Checks a path segment's points (file units) and converts them to metres.

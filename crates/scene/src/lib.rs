@@ -33,6 +33,7 @@ pub mod materials;
 pub mod mesh;
 pub mod part_motion;
 pub mod parts;
+pub mod protections;
 pub mod ranges;
 pub mod route;
 pub mod scene;

@@ -491,6 +491,13 @@ fn build(
             rigid_parts: parts.specs,
             settings,
         },
+        junction_bodies: file
+            .junctions
+            .iter()
+            .enumerate()
+            .filter(|(_, j)| j.body.is_some())
+            .map(|(i, _)| i)
+            .collect(),
         junctions,
         timeline,
         record_interval,

@@ -92,6 +92,11 @@ pub struct HoseDiscretisation {
     /// Smallest bend radius of the centre line (m): the material's, else the rule
     /// [`crate::materials::min_bend_radius_rule`] for the hose's first section.
     pub min_bend_radius: f64,
+    /// Minimum bend radius of every element (m) where spans give their own; empty when
+    /// `min_bend_radius` holds throughout.
+    pub bend_radii: Vec<f64>,
+    /// Protections over stretches of the hose.
+    pub protections: Vec<crate::protections::ProtectionSpan>,
     /// Outer diameter of the hose's first section (m).
     pub d_outer: f64,
     /// The nodes of its delivered, stress-free shape (m), if it is not the routed one.
@@ -125,6 +130,9 @@ pub struct LoadedScene {
     pub world: WorldSpec,
     /// Junctions joining hose ends (SPEC N1), for [`pliant_core::Model::with_junctions`].
     pub junctions: Vec<pliant_core::JunctionSpec>,
+    /// Which of `junctions` are junction bodies (moulded pieces; the others are welded
+    /// branch points), as indices into `junctions`.
+    pub junction_bodies: Vec<usize>,
     /// Scripted actions, node references resolved to indices.
     pub timeline: Timeline,
     /// Interval between recorded states (s); 0 = every step.

@@ -261,3 +261,44 @@ fn the_engine_bay_demo_shows_contact_and_follows_the_new_rules() {
     assert_eq!(clips.len(), 2);
     assert!(clips.iter().all(|f| f.final_state == "seated"), "{clips:?}");
 }
+
+/// A span with a minimum bend radius of its own (a protected stretch of a harness segment)
+/// holds its elements to it: an arc gentler than the hose's minimum but tighter than the
+/// span's is reported there, at the span's limit, and nowhere else.
+#[test]
+fn a_span_is_held_to_its_own_minimum_bend_radius() {
+    let (ei, r_min) = stiffness_and_limit();
+    let radius = 0.25; // m: above the hose's 0.1795 m, below the span's 0.3 m
+    let m = ei / radius;
+    let plain = scene(&format!("moment_nm = [0, {m}, 0]"), "");
+    let path = "path = [{ line = { to = [500, 0, 0] } }]";
+    // hose3's own tube (27/35 mm): the same stiffness over the span, so κ stays M/EI
+    let with_span = plain.replacen(
+        path,
+        &format!("{path}\nspans = [{{ from = 200, to = 300, min_bend_radius = 300, section = {{ d_inner = 27, d_outer = 35 }} }}]"),
+        1,
+    );
+    let bend = |text: &str| {
+        let s = load_scene_str(text, "span.toml").unwrap();
+        let (_, run) = s.run_with(Some(SolverKind::Static)).unwrap();
+        run.checks
+            .violations
+            .into_iter()
+            .filter(|v| v.check == CheckKind::BendRadius)
+            .collect::<Vec<_>>()
+    };
+    assert!(bend(&plain).is_empty(), "gentler than the hose's {r_min} m");
+    let v = bend(&with_span);
+    assert_eq!(v.len(), 1, "{v:?}");
+    assert_eq!(v[0].limit, 0.3);
+    assert!(
+        (v[0].value - radius).abs() < 1e-6 * radius,
+        "{}",
+        v[0].value
+    );
+    assert!(
+        (0.2..0.3).contains(&v[0].arc_length),
+        "at {} m, inside the span",
+        v[0].arc_length
+    );
+}

@@ -51,3 +51,50 @@ fn spans_and_given_stiffness_reach_the_elements() {
     // half of element 0
     assert!((model.mass[0] - 0.3 * 0.025 / 2.0).abs() < 1e-15);
 }
+
+/// A protected stretch: its span's section and minimum bend radius reach the elements whose
+/// middle it holds (and the bend-radius check's limits), its protections are kept in
+/// metres as written.
+#[test]
+fn protections_and_span_bend_radii() {
+    let text = SCENE.replace(
+        "spans = [{ from = 50, to = 150, section = { d_inner = 0, d_outer = 24 } }]",
+        "spans = [{ from = 50, to = 150, min_bend_radius = 60, section = { d_inner = 0, d_outer = 24 } }]\n\
+         protections = [{ kind = \"tape\", from = 0, to = 200 }, { kind = \"corrugated_tube\", from = 50, to = 150 }]",
+    );
+    let scene = load_scene_str(&text, "protections test").expect("scene loads");
+    let info = &scene.hoses[0];
+    let kinds: Vec<(&str, f64, f64)> = info
+        .protections
+        .iter()
+        .map(|p| (p.kind.key(), p.from, p.to))
+        .collect();
+    assert_eq!(
+        kinds,
+        vec![("tape", 0.0, 0.2), ("corrugated_tube", 0.05, 0.15)]
+    );
+    // elements 2 … 5 hold the span: its radius; the others the hose's (hose1's own)
+    let hose_radius = info.min_bend_radius;
+    assert!(hose_radius != 0.06);
+    let expected: Vec<f64> = (0..8)
+        .map(|e| {
+            if (2..=5).contains(&e) {
+                0.06
+            } else {
+                hose_radius
+            }
+        })
+        .collect();
+    assert_eq!(info.bend_radii, expected);
+    let limits = &scene.checks.hoses[0];
+    assert_eq!(limits.bend_radius_at(3), 0.06);
+    assert_eq!(limits.bend_radius_at(0), hose_radius);
+    // without span radii the hose's holds throughout, and nothing is stored per element
+    let plain = load_scene_str(SCENE, "sections test").unwrap();
+    assert!(plain.hoses[0].bend_radii.is_empty());
+    assert!(plain.hoses[0].protections.is_empty());
+    assert_eq!(
+        plain.checks.hoses[0].bend_radius_at(3),
+        plain.hoses[0].min_bend_radius
+    );
+}

@@ -3,7 +3,8 @@
 
 use pliant_assembly::stub::AxialLaw;
 use pliant_assembly::{ClipSite, StubSite};
-use pliant_core::Model;
+use pliant_core::{HoseEnd, Model};
+use pliant_scene::protections::ProtectionSpan;
 use pliant_scene::LoadedScene;
 use serde::Serialize;
 use std::sync::OnceLock;
@@ -16,6 +17,9 @@ pub struct SceneData {
     /// Integrator time step \[s\].
     pub time_step: f64,
     pub hoses: Vec<HoseData>,
+    /// The junction bodies (moulded T and Y pieces joining hose ends; welded branch
+    /// points are not listed): each drawn where its outlets are in every snapshot.
+    pub junction_bodies: Vec<JunctionBodyData>,
     pub parts: Vec<PartData>,
     /// Stubs and clips: where they are, for drawing (same order as the snapshot's
     /// `fasteners`).
@@ -35,6 +39,27 @@ pub struct HoseData {
     pub radii: Vec<f64>,
     /// The minimum bend radius the checks hold it to \[m\] (`null`: not checked).
     pub min_bend_radius: Option<f64>,
+    /// Arc length of its centre line \[m\]; the nodes lie at equal spacing along it.
+    pub length: f64,
+    /// Protections over stretches of it (`from`, `to`: arc length \[m\]).
+    pub protections: Vec<ProtectionSpan>,
+}
+
+/// A junction body: its name, mass and outlets (the hose ends it joins).
+#[derive(Clone, Debug, Serialize)]
+pub struct JunctionBodyData {
+    pub name: String,
+    /// Its own mass \[kg\].
+    pub mass: f64,
+    pub outlets: Vec<OutletData>,
+}
+
+/// One outlet of a junction body: a hose (index into the welcome's `hoses`) and the node
+/// of it that sits in the outlet (its first or its last).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct OutletData {
+    pub hose: usize,
+    pub node: usize,
 }
 
 /// One rigid part: its bounding box and its triangle mesh (world frame, metres).
@@ -128,6 +153,32 @@ impl SceneData {
                     .get(k)
                     .filter(|_| scene.checks.bend_radius)
                     .map(|l| l.min_bend_radius),
+                length: scene.hoses.get(k).map_or(0.0, |d| d.length),
+                protections: scene
+                    .hoses
+                    .get(k)
+                    .map(|d| d.protections.clone())
+                    .unwrap_or_default(),
+            })
+            .collect();
+        let junction_bodies = scene
+            .junction_bodies
+            .iter()
+            .filter_map(|&j| scene.junctions.get(j))
+            .map(|j| JunctionBodyData {
+                name: j.name.clone(),
+                mass: j.body_mass,
+                outlets: j
+                    .ends
+                    .iter()
+                    .map(|&(hose, end)| OutletData {
+                        hose,
+                        node: match end {
+                            HoseEnd::Start => 0,
+                            HoseEnd::End => model.hoses.get(hose).map_or(1, |h| h.node_count) - 1,
+                        },
+                    })
+                    .collect(),
             })
             .collect();
         let parts = scene
@@ -164,6 +215,7 @@ impl SceneData {
             source: scene.source.clone(),
             time_step: model.time_step,
             hoses,
+            junction_bodies,
             parts,
             fasteners: FastenerData::of(&sites.0, &sites.1),
             ergonomics: scene.ergonomics.to_string(),

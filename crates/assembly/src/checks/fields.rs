@@ -30,20 +30,21 @@ impl InstallationChecks {
         let Some(info) = model.hoses.get(hose) else {
             return BeamFields::default();
         };
-        let min_radius = self.settings().hoses.get(hose).map(|l| l.min_bend_radius);
+        let limits = self.settings().hoses.get(hose);
         let n = info.element_count;
         let mut out = BeamFields {
-            bend_radius_ratio: Vec::with_capacity(if min_radius.is_some() { n } else { 0 }),
+            bend_radius_ratio: Vec::with_capacity(if limits.is_some() { n } else { 0 }),
             twist: Vec::with_capacity(n),
             axial_force: Vec::with_capacity(n),
         };
         let finite = |x: f64| if x.is_finite() { x as f32 } else { 0.0 };
-        for e in info.first_element..info.first_element + n {
+        for (k, e) in (info.first_element..info.first_element + n).enumerate() {
             let el = &model.elements[e];
             let (kappa, tau) =
                 bend_and_twist(state.q[el.node_a], state.q[el.node_b], el.rest_length);
-            if let Some(r) = min_radius {
-                out.bend_radius_ratio.push(finite(kappa * r));
+            if let Some(l) = limits {
+                out.bend_radius_ratio
+                    .push(finite(kappa * l.bend_radius_at(k)));
             }
             out.twist.push(finite(tau - self.rest_twist(e)));
             out.axial_force.push(finite(axial_force(model, state, e)));

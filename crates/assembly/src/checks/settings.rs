@@ -20,12 +20,26 @@ pub const DEFAULT_STRAIGHT_LENGTH_FACTOR: f64 = 1.5;
 pub const DEFAULT_STRAIGHT_RADIUS_FACTOR: f64 = 10.0;
 
 /// The limits of one hose \[m\].
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct HoseCheckLimits {
     /// Minimum bend radius of the centre line \[m\] (material data).
     pub min_bend_radius: f64,
     /// Outer diameter \[m\] (the straight length is a multiple of it).
     pub d_outer: f64,
+    /// Minimum bend radius of each element \[m\] where stretches of the hose differ (a
+    /// harness segment under a protection); empty: `min_bend_radius` throughout.
+    #[serde(default)]
+    pub bend_radii: Vec<f64>,
+}
+
+impl HoseCheckLimits {
+    /// The minimum bend radius of the hose's element `k` (counted from its first).
+    pub fn bend_radius_at(&self, k: usize) -> f64 {
+        self.bend_radii
+            .get(k)
+            .copied()
+            .unwrap_or(self.min_bend_radius)
+    }
 }
 
 /// The checks a study runs and their limits.

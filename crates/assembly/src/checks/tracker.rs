@@ -153,15 +153,19 @@ impl InstallationChecks {
         }
         let time = state.time;
         for (h, info) in model.hoses.iter().enumerate() {
-            let Some(limits) = self.settings.hoses.get(h).copied() else {
+            let Some(limits) = self.settings.hoses.get(h) else {
                 continue;
             };
             let range = info.first_element..info.first_element + info.element_count;
-            let (mut kmax, mut kat) = (0.0, range.start);
+            let mut kmax: f64 = 0.0;
+            // the element bent furthest past its own minimum radius: largest κ·r_min
+            let (mut worst, mut wat) = (0.0, range.start);
             let (mut tmax, mut tat) = (0.0, range.start);
             for e in range.clone() {
-                if self.kappa[e] > kmax {
-                    (kmax, kat) = (self.kappa[e], e);
+                kmax = kmax.max(self.kappa[e]);
+                let ratio = self.kappa[e] * limits.bend_radius_at(e - range.start);
+                if ratio > worst {
+                    (worst, wat) = (ratio, e);
                 }
                 if self.dtwist[e].abs() > tmax {
                     (tmax, tat) = (self.dtwist[e].abs(), e);
@@ -185,17 +189,17 @@ impl InstallationChecks {
             }
             let first = info.first_element;
             let arc = |e: usize| p.arc_length[e - first];
-            if self.settings.bend_radius && radius < limits.min_bend_radius {
-                let s = arc(kat);
+            if self.settings.bend_radius && worst > 1.0 {
+                let allowed = limits.bend_radius_at(wat - first);
                 note(
                     &mut self.running[h][0],
                     CheckKind::BendRadius,
                     h,
                     info,
-                    s,
+                    arc(wat),
                     time,
-                    radius,
-                    limits.min_bend_radius,
+                    1.0 / self.kappa[wat],
+                    allowed,
                 );
             }
             if self.settings.twist && tmax > self.settings.twist_limit {
@@ -245,7 +249,7 @@ impl InstallationChecks {
         let mut out = Vec::new();
         let time = state.time;
         for (h, info) in model.hoses.iter().enumerate() {
-            let Some(limits) = self.settings.hoses.get(h).copied() else {
+            let Some(limits) = self.settings.hoses.get(h) else {
                 continue;
             };
             let profile = &self.profiles[h];
