@@ -13,7 +13,7 @@ RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps   # API docs: every l
 cargo clippy --release --workspace --all-targets -- -D warnings   # lints; policy: Cargo.toml [workspace.lints]
 cargo build --release --workspace
 ./scripts/install-python.sh   # the Python package into .venv: some Rust tests drive it
-(cd crates/python && PYO3_PYTHON=../../.venv/bin/python CARGO_TARGET_DIR=../../target cargo clippy --release --features extension-module --all-targets -- -D warnings)   # the extension's lints
+(export PYO3_PYTHON="$PWD/.venv/bin/python" CARGO_TARGET_DIR="$PWD/target"; cd crates/python && cargo clippy --release --features extension-module --all-targets -- -D warnings)   # the extension's lints
 cargo test --release --workspace   # every validation case is a test here (crates/validation/tests)
 ./target/release/pliant bench --quick --json > /dev/null
 ./scripts/test-python.sh --installed   # the Python API (crates/python): pytest

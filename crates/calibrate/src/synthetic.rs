@@ -124,6 +124,22 @@ pub fn csv(
     s
 }
 
+/// A cantilever's exact force–deflection line, F = 3 E I δ / L³ (free length `length`
+/// \[m\], bending stiffness `ei` \[N·m²\]), at ten deflections up to 1 mm, as CSV
+/// `force_N,deflection_mm` with twelve significant digits.
+pub fn cantilever_line(ei: f64, length: f64) -> String {
+    let mut text = format!(
+        "# cantilever, free length {} mm\nforce_N,deflection_mm\n",
+        length * 1e3
+    );
+    for k in 1..=10 {
+        let deflection = 1e-4 * k as f64;
+        let force = 3.0 * ei * deflection / length.powi(3);
+        text.push_str(&format!("{force:.12e},{:.12e}\n", deflection * 1e3));
+    }
+    text
+}
+
 /// The known answers of [`example_files`].
 #[derive(Clone, Copy, Debug)]
 pub struct Truth {

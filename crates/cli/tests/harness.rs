@@ -4,27 +4,10 @@
 //! hands is in `harness_install.rs`.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn pliant() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_pliant"))
-}
+mod common;
 
-fn data(name: &str) -> PathBuf {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/harness")).join(name)
-}
-
-const GENERATOR: &str = "kblxml_2.3sr-1_000971230_ltgs_generator_170718.kbl";
-
-fn ok(out: &std::process::Output) -> String {
-    assert!(
-        out.status.success(),
-        "{}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
+use common::{harness_file as data, ok, pliant, GENERATOR, MAIN};
 
 /// `pliant import` of the generator cable into `dir/generator`: the folder and what the
 /// import printed.
@@ -263,8 +246,6 @@ fn distance_to_polyline(line: &[[f64; 3]], p: [f64; 3]) -> f64 {
         })
         .fold(f64::INFINITY, f64::min)
 }
-
-const MAIN: &str = "kblxml_2.4sr-1_tab016120_modulare_ltgs._160718.kbl";
 
 /// The main harness (183 segments, 51 junctions, 16 fixings) settles in its installed
 /// state with the timeline `pliant import` writes: every static solve converges, the

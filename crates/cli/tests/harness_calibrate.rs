@@ -2,36 +2,22 @@
 //! generator cable (KBL) from a three-point bending curve, and `pliant import --bundle-data` builds
 //! the harness with it; a curve stiffer than the bonded bound is refused, naming it.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use pliant_harness::bundle::BundleData;
 
-fn pliant() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_pliant"))
-}
+mod common;
+
+use common::{harness_file, pliant, GENERATOR};
+use pliant_calibrate::synthetic::cantilever_line;
 
 fn generator() -> PathBuf {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/harness"))
-        .join("kblxml_2.3sr-1_000971230_ltgs_generator_170718.kbl")
+    harness_file(GENERATOR)
 }
 
 /// A cantilever curve (free length 200 mm) of bending stiffness `ei` \[N·m²\].
 fn three_point_csv(ei: f64) -> String {
-    let l: f64 = 0.2;
-    let mut csv = String::from("# cantilever, free length 200 mm\nforce_N,deflection_mm\n");
-    for k in 1..=10 {
-        let delta = 1e-4 * k as f64;
-        writeln!(
-            csv,
-            "{:.12e},{:.12e}",
-            3.0 * ei * delta / l.powi(3),
-            delta * 1e3
-        )
-        .unwrap();
-    }
-    csv
+    cantilever_line(ei, 0.2)
 }
 
 /// `pliant calibrate --kind bundle` of Segment_1 (fleece tape) with a cantilever curve.
@@ -98,7 +84,7 @@ fn a_bundle_factor_is_calibrated_and_used_by_the_import() {
             "{}",
             String::from_utf8_lossy(&run.stderr)
         );
-        segment_1_ei(&std::fs::read_to_string(scene.join("scene.toml")).unwrap())
+        segment_1_taped_ei(&std::fs::read_to_string(scene.join("scene.toml")).unwrap())
     };
     let calibrated = import(&[&out.join("bundle.toml")], "calibrated");
     let builtin = import(&[], "builtin");
@@ -107,13 +93,15 @@ fn a_bundle_factor_is_calibrated_and_used_by_the_import() {
     assert!((builtin / ei - 1.0).abs() > 0.1);
 }
 
-/// The `ei1_n_m2` of Segment_1's hose in an imported scene.toml.
-fn segment_1_ei(scene: &str) -> f64 {
+/// The `ei1_n_m2` of Segment_1's taped stretch (the span its fleece tape covers; the rest
+/// of the segment is bare wires) in an imported scene.toml.
+fn segment_1_taped_ei(scene: &str) -> f64 {
     let at = scene
         .find("# KBL Segment Segment_1 ")
         .expect("Segment_1 in scene.toml");
     let rest = &scene[at..];
-    let v = &rest[rest.find("ei1_n_m2 = ").unwrap() + 11..];
+    let spans = &rest[rest.find("spans = [").expect("Segment_1's taped span")..];
+    let v = &spans[spans.find("ei1_n_m2 = ").unwrap() + 11..];
     v[..v.find(',').unwrap()].trim().parse().unwrap()
 }
 

@@ -8,29 +8,10 @@
 //! its minimum radius. Nothing here depends on the machine's speed.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn pliant() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_pliant"))
-}
+mod common;
 
-fn data(name: &str) -> PathBuf {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/harness")).join(name)
-}
-
-const GENERATOR: &str = "kblxml_2.3sr-1_000971230_ltgs_generator_170718.kbl";
-const BATTERY: &str = "kblxml_2.3sr-1_000971228_ltgs_batterie_plus_170718.kbl";
-const MAIN: &str = "kblxml_2.4sr-1_tab016120_modulare_ltgs._160718.kbl";
-
-fn ok(out: &std::process::Output) -> String {
-    assert!(
-        out.status.success(),
-        "{}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
+use common::{harness_file as data, ok, pliant, BATTERY, GENERATOR, MAIN};
 
 /// `pliant import FILE --out dir/name [extra…]`: the folder and what the import printed.
 fn import(dir: &Path, file: &str, name: &str, extra: &[&str]) -> (PathBuf, String) {

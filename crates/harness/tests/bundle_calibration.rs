@@ -2,6 +2,7 @@
 //! beam (the static solver) at a known coupling factor, gives the factor back; bad input
 //! gives errors that name the file and the reason, and writes nothing.
 
+use std::fmt::Write as _;
 use std::path::Path;
 
 use pliant_harness::bundle::{bundle_section, BundleData, WireSection};
@@ -155,8 +156,6 @@ fn a_cantilever_of_pliants_own_beam_gives_its_factor_back() {
     assert_eq!(html.matches("<svg").count(), 2);
 }
 
-use std::fmt::Write as _;
-
 /// Error text of a calibration that must fail; checks that nothing was written.
 fn refused(csv_name: &str, csv: &str, spec_text: &str) -> String {
     let dir = tempfile::tempdir().unwrap();
@@ -169,19 +168,7 @@ fn refused(csv_name: &str, csv: &str, spec_text: &str) -> String {
 
 /// A straight force–deflection line of a cantilever of EI `ei`, 200 mm.
 fn line_csv(ei: f64) -> String {
-    let l: f64 = 0.2;
-    let mut csv = String::from("force_N,deflection_mm\n");
-    for k in 1..=10 {
-        let delta = 1e-4 * k as f64;
-        writeln!(
-            csv,
-            "{:.12e},{:.12e}",
-            3.0 * ei * delta / l.powi(3),
-            delta * 1e3
-        )
-        .unwrap();
-    }
-    csv
+    pliant_calibrate::synthetic::cantilever_line(ei, 0.2)
 }
 
 #[test]
