@@ -5,10 +5,9 @@
 //! already eliminated leaves a coupling to its parent only, so no block fills in (Parter,
 //! "The use of linear graphs in Gauss elimination", SIAM Review 3, 1961; for a chain this
 //! is the block Thomas algorithm, Golub & Van Loan, "Matrix Computations", §4.5.1). Each
-//! pivot block is factorised by LU with partial pivoting ([`super::block_lu`]). All storage is allocated once; a
+//! pivot block is factorised by LU with partial pivoting. All storage is allocated once; a
 //! solve allocates nothing.
 
-use super::block_lu::BlockLu;
 use nalgebra::{Matrix6, Vector6};
 
 /// No parent: the node is the root of its tree.
@@ -36,6 +35,8 @@ pub struct BlockTree {
     /// LU factors of the eliminated diagonal blocks D'.
     factors: Vec<Option<BlockLu>>,
 }
+
+type BlockLu = nalgebra::LU<f64, nalgebra::Const<6>, nalgebra::Const<6>>;
 
 /// What the elimination of a symmetric tangent says about its definiteness (Sylvester's
 /// law of inertia on the block LDLᵀ factorisation K = L D Lᵀ, D = diag(D'ᵢ): K has as
@@ -235,7 +236,7 @@ impl BlockTree {
     pub fn factor(&mut self) -> Result<(), SingularBlock> {
         for k in 0..self.order.len() {
             let i = self.order[k];
-            let lu = BlockLu::new(&self.diag[i]).ok_or(SingularBlock(i))?;
+            let lu = self.diag[i].lu();
             self.pivot(i, lu)?;
         }
         Ok(())
@@ -246,7 +247,7 @@ impl BlockTree {
     fn pivot(&mut self, i: usize, lu: BlockLu) -> Result<(), SingularBlock> {
         let p = self.parent[i];
         if p != NO_PARENT {
-            self.gain[i] = lu.solve_matrix(&self.upper[i]);
+            self.gain[i] = lu.solve(&self.upper[i]).ok_or(SingularBlock(i))?;
             let l = self.lower[i];
             self.diag[p] -= l * self.gain[i];
         }
@@ -288,7 +289,7 @@ impl BlockTree {
                     self.diag[i] += v * v.transpose() * (raised - lambda);
                 }
             }
-            let lu = BlockLu::new(&self.diag[i]).ok_or(SingularBlock(i))?;
+            let lu = self.diag[i].lu();
             self.pivot(i, lu)?;
         }
         Ok(inertia)
@@ -323,7 +324,7 @@ impl BlockTree {
     pub fn solve_factored(&self, rhs: &mut [Vector6<f64>]) -> Result<(), SingularBlock> {
         for &i in &self.order {
             let lu = self.factors[i].as_ref().ok_or(SingularBlock(i))?;
-            rhs[i] = lu.solve(&rhs[i]);
+            rhs[i] = lu.solve(&rhs[i]).ok_or(SingularBlock(i))?;
             if !rhs[i].iter().all(|v| v.is_finite()) {
                 return Err(SingularBlock(i));
             }

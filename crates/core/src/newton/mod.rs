@@ -1,11 +1,10 @@
 //! The Newton machinery the implicit and quasi-static integrators share (SPEC
 //! P5; the integrators themselves are in [`crate::integrators`]): the assembly of loads
 //! and consistent tangent ([`system`]), the O(N) linear solve of a chain or tree of
-//! nodes ([`block_tree`], its 6 × 6 pivots by [`block_lu`]), the condensation of junctions onto their master nodes
+//! nodes ([`block_tree`]), the condensation of junctions onto their master nodes
 //! ([`condensation`]), GMRES for the hose–hose contact coupling outside its band
 //! ([`gmres`]) and the convergence test ([`convergence`]).
 
-pub mod block_lu;
 pub mod block_tree;
 pub mod condensation;
 pub mod convergence;
