@@ -84,9 +84,10 @@ pub enum Command {
 #[derive(Debug, thiserror::Error)]
 pub enum SessionError {
     #[error("cannot build the model: {0}")]
-    Model(String),
-    #[error("cannot build the model: {0}")]
     Workcell(#[from] WorkcellError),
+    /// The operating system refused the simulation thread.
+    #[error("cannot start the simulation thread: {0}")]
+    Thread(std::io::Error),
     #[error("cannot create the session folder {path}: {reason}")]
     Folder { path: String, reason: String },
 }
@@ -173,7 +174,7 @@ impl Session {
         let thread = std::thread::Builder::new()
             .name("pliant-sim".into())
             .spawn(move || sim.run(rx, snap_tx, stop2, publish_every))
-            .map_err(|e| SessionError::Model(format!("cannot start the simulation thread: {e}")))?;
+            .map_err(SessionError::Thread)?;
         Ok(Session {
             commands: tx,
             sent: Mutex::new(0),
