@@ -9,17 +9,22 @@ fn examples() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples"))
 }
 
+/// `pliant run --quiet SCENE --out OUT`.
+fn pliant_run(scene: &Path, out: &Path) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_pliant"))
+        .args(["run", "--quiet"])
+        .arg(scene)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
 /// Runs `examples/NAME` into a fresh folder: (the folder, the verdict's reasons, the rows
 /// of motion.csv as numbers, its header).
 fn run_example(name: &str) -> (tempfile::TempDir, Vec<String>, Vec<Vec<f64>>, Vec<String>) {
     let out = tempfile::tempdir().unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_pliant"))
-        .args(["run", "--quiet"])
-        .arg(examples().join(name))
-        .arg("--out")
-        .arg(out.path())
-        .output()
-        .unwrap();
+    let o = pliant_run(&examples().join(name), out.path());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.path().join("report.json")).unwrap())
@@ -184,13 +189,7 @@ duration_s = 0.2
     let file = dir.path().join("door.toml");
     std::fs::write(&file, scene).unwrap();
     let out = dir.path().join("out");
-    let o = Command::new(env!("CARGO_BIN_EXE_pliant"))
-        .args(["run", "--quiet"])
-        .arg(&file)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = pliant_run(&file, &out);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // the last recorded pose of the hose's last node
     let nodes = std::fs::read_to_string(out.join("nodes.csv")).unwrap();
@@ -214,13 +213,7 @@ duration_s = 0.2
     let lift = scene.find("[[timeline]]\naction = \"move_part\"").unwrap();
     let swept = format!("{}\n[sweep]\npart = \"door\"\n", &scene[..lift]);
     std::fs::write(&file, swept).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_pliant"))
-        .args(["run", "--quiet"])
-        .arg(&file)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = pliant_run(&file, &out);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(out.join("motion.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
@@ -238,13 +231,7 @@ duration_s = 0.2
         scene.replace("part = \"door\"\naxis", "part = \"lid\"\naxis"),
     )
     .unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_pliant"))
-        .args(["run", "--quiet"])
-        .arg(&file)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = pliant_run(&file, &out);
     assert!(!o.status.success());
     let said = String::from_utf8_lossy(&o.stderr);
     assert!(
