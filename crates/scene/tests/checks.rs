@@ -281,14 +281,30 @@ fn a_span_is_held_to_its_own_minimum_bend_radius() {
     let bend = |text: &str| {
         let s = load_scene_str(text, "span.toml").unwrap();
         let (_, run) = s.run_with(Some(SolverKind::Static)).unwrap();
-        run.checks
+        let violations = run
+            .checks
             .violations
             .into_iter()
             .filter(|v| v.check == CheckKind::BendRadius)
-            .collect::<Vec<_>>()
+            .collect::<Vec<_>>();
+        (violations, run.checks.profiles.into_iter().next().unwrap())
     };
-    assert!(bend(&plain).is_empty(), "gentler than the hose's {r_min} m");
-    let v = bend(&with_span);
+    assert!(
+        bend(&plain).0.is_empty(),
+        "gentler than the hose's {r_min} m"
+    );
+    let (v, profile) = bend(&with_span);
+    // the profile's worst bend is the span's, against the span's limit, and its allowed
+    // curvature steps up over the span only
+    assert_eq!(profile.allowed_bend_radius, 0.3);
+    assert!((profile.worst_bend_ratio - 0.3 / radius).abs() < 1e-6);
+    for (s, allowed) in profile.arc_length.iter().zip(&profile.allowed_curvature) {
+        let expected = if (0.2..0.3).contains(s) { 0.3 } else { r_min };
+        assert!(
+            (allowed * expected - 1.0).abs() < 1e-12,
+            "at s = {s} m: {allowed}"
+        );
+    }
     assert_eq!(v.len(), 1, "{v:?}");
     assert_eq!(v[0].limit, 0.3);
     assert!(

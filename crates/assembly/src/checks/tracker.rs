@@ -24,13 +24,19 @@ pub struct HoseProfile {
     pub hose_name: String,
     /// Arc length of each beam's midpoint from the first node (rest length) \[m\].
     pub arc_length: Vec<f64>,
-    /// Smallest bend radius met on the hose \[m\] (∞ when straight throughout), when \[s\],
-    /// and its minimum allowed \[m\].
+    /// The bend met furthest past its beam's minimum radius (largest κ·r_min; the
+    /// smallest radius where one minimum holds throughout): that beam's radius \[m\] (∞
+    /// when straight throughout), when \[s\], and that beam's minimum allowed \[m\].
     pub min_bend_radius: f64,
     pub min_bend_radius_time: f64,
     pub allowed_bend_radius: f64,
+    /// That bend's ratio κ·r_min = r_min / r (above 1 it breaks the minimum).
+    pub worst_bend_ratio: f64,
     /// Curvature κ per beam [1/m] at that instant.
     pub curvature: Vec<f64>,
+    /// The largest curvature allowed per beam, 1/r_min [1/m] (a protected stretch has
+    /// its own minimum radius).
+    pub allowed_curvature: Vec<f64>,
     /// Largest twist rate relative to the routed hose met [rad/m], when \[s\], its limit.
     pub max_twist: f64,
     pub max_twist_time: f64,
@@ -87,6 +93,9 @@ impl InstallationChecks {
                 hose: h,
                 hose_name: info.name.clone(),
                 curvature: vec![0.0; arc.len()],
+                allowed_curvature: (0..arc.len())
+                    .map(|k| limits.map_or(0.0, |l| 1.0 / l.bend_radius_at(k)))
+                    .collect(),
                 twist: vec![0.0; arc.len()],
                 arc_length: arc,
                 min_bend_radius: f64::INFINITY,
@@ -98,8 +107,15 @@ impl InstallationChecks {
             });
         }
         let sweep = settings.sweep.as_ref().map(|s| {
-            let allowed = (0..model.hoses.len())
-                .map(|h| settings.hoses.get(h).map_or(0.0, |l| l.min_bend_radius))
+            let allowed = model
+                .hoses
+                .iter()
+                .enumerate()
+                .map(|(h, info)| {
+                    (0..info.element_count)
+                        .map(|k| settings.hoses.get(h).map_or(0.0, |l| l.bend_radius_at(k)))
+                        .collect()
+                })
                 .collect();
             MotionSweep::new(model, s, allowed, settings.twist_limit)
         });
@@ -157,12 +173,10 @@ impl InstallationChecks {
                 continue;
             };
             let range = info.first_element..info.first_element + info.element_count;
-            let mut kmax: f64 = 0.0;
-            // the element bent furthest past its own minimum radius: largest κ·r_min
+            // the beam bent furthest past its own minimum radius: largest κ·r_min
             let (mut worst, mut wat) = (0.0, range.start);
             let (mut tmax, mut tat) = (0.0, range.start);
             for e in range.clone() {
-                kmax = kmax.max(self.kappa[e]);
                 let ratio = self.kappa[e] * limits.bend_radius_at(e - range.start);
                 if ratio > worst {
                     (worst, wat) = (ratio, e);
@@ -171,15 +185,15 @@ impl InstallationChecks {
                     (tmax, tat) = (self.dtwist[e].abs(), e);
                 }
             }
-            let radius = 1.0 / kmax; // ∞ when straight
             let p = &mut self.profiles[h];
-            if radius < p.min_bend_radius {
-                p.min_bend_radius = radius;
+            if worst > p.worst_bend_ratio {
+                p.worst_bend_ratio = worst;
+                p.min_bend_radius = 1.0 / self.kappa[wat];
+                p.allowed_bend_radius = limits.bend_radius_at(wat - range.start);
                 p.min_bend_radius_time = time;
                 p.curvature.copy_from_slice(&self.kappa[range.clone()]);
-                if radius < p.allowed_bend_radius {
-                    self.pictures
-                        .note(h, p.allowed_bend_radius / radius, &state.x);
+                if worst > 1.0 {
+                    self.pictures.note(h, worst, &state.x);
                 }
             }
             if tmax > p.max_twist {

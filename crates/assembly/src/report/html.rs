@@ -65,7 +65,7 @@ pub fn write_reports(
 /// and per hose its curvature against the allowed curvature at the instant of its
 /// smallest bend radius and its twist at the instant of its largest twist.
 fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, parts: &[PartOutline]) {
-    use super::profile_plot::profile_plot;
+    use super::profile_plot::{profile_plot, Limit};
     s.push_str("<h2>Installation checks</h2>");
     if checks.enabled.is_empty() {
         s.push_str("<p>No installation check ran (switched off in <code>[checks]</code>).</p>");
@@ -160,17 +160,35 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, parts: 
             continue;
         }
         if p.min_bend_radius.is_finite() {
+            let uniform = p.allowed_curvature.windows(2).all(|w| w[0] == w[1]);
+            let (title, limit) = if uniform {
+                (
+                    format!(
+                        "hose '{}': curvature at t = {:.2} s (smallest radius {:.0} mm) against the allowed 1/{:.0} mm (red)",
+                        p.hose_name,
+                        p.min_bend_radius_time,
+                        1e3 * p.min_bend_radius,
+                        1e3 * p.allowed_bend_radius
+                    ),
+                    Limit::Level(1.0 / p.allowed_bend_radius),
+                )
+            } else {
+                (
+                    format!(
+                        "hose '{}': curvature at t = {:.2} s (furthest past its minimum: radius {:.0} mm where {:.0} mm is allowed) against each stretch's allowed curvature (red)",
+                        p.hose_name,
+                        p.min_bend_radius_time,
+                        1e3 * p.min_bend_radius,
+                        1e3 * p.allowed_bend_radius
+                    ),
+                    Limit::Along(&p.allowed_curvature),
+                )
+            };
             s.push_str(&profile_plot(
-                &format!(
-                    "hose '{}': curvature at t = {:.2} s (smallest radius {:.0} mm) against the allowed 1/{:.0} mm (red)",
-                    p.hose_name,
-                    p.min_bend_radius_time,
-                    1e3 * p.min_bend_radius,
-                    1e3 * p.allowed_bend_radius
-                ),
+                &title,
                 &p.arc_length,
                 &p.curvature,
-                1.0 / p.allowed_bend_radius,
+                limit,
                 false,
                 "1/m",
             ));
@@ -186,7 +204,7 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, parts: 
                 ),
                 &p.arc_length,
                 &deg,
-                p.twist_limit.to_degrees(),
+                Limit::Level(p.twist_limit.to_degrees()),
                 true,
                 "°/m",
             ));

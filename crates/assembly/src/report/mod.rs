@@ -168,12 +168,13 @@ fn profiles_csv(checks: &crate::checks::ChecksSummary) -> String {
     );
     for p in &checks.profiles {
         for (k, s) in p.arc_length.iter().enumerate() {
+            let allowed = p.allowed_curvature.get(k).copied().unwrap_or(0.0);
             csv.push_str(&format!(
                 "{},{s:.6},{:.6e},{:.6},{:.6e},{:.6e},{:.6},{:.6e}\n",
                 p.hose_name.replace(',', ";"),
                 p.curvature[k],
                 p.min_bend_radius_time,
-                1.0 / p.allowed_bend_radius,
+                allowed,
                 p.twist[k],
                 p.max_twist_time,
                 p.twist_limit,

@@ -4,13 +4,41 @@
 use super::svg::escape;
 use std::fmt::Write as _;
 
+/// The limit a plot draws dashed in red.
+#[derive(Clone, Copy, Debug)]
+pub enum Limit<'a> {
+    /// None drawn.
+    None,
+    /// One value throughout (none when not finite).
+    Level(f64),
+    /// One value per point of the x axis (a protected stretch of a harness has its own
+    /// minimum bend radius).
+    Along(&'a [f64]),
+}
+
+impl Limit<'_> {
+    /// The largest finite value drawn (0 when none).
+    fn top(&self) -> f64 {
+        let values: &[f64] = match self {
+            Limit::None => &[],
+            Limit::Level(l) => std::slice::from_ref(l),
+            Limit::Along(ls) => ls,
+        };
+        values
+            .iter()
+            .copied()
+            .filter(|l| l.is_finite())
+            .fold(0.0, f64::max)
+    }
+}
+
 /// `values` per arc length `arc` \[m\]; `limit` drawn dashed (±limit when `symmetric`,
 /// for signed quantities such as twist); `unit` labels the y axis.
 pub fn profile_plot(
     title: &str,
     arc: &[f64],
     values: &[f64],
-    limit: f64,
+    limit: Limit,
     symmetric: bool,
     unit: &str,
 ) -> String {
@@ -33,17 +61,14 @@ pub fn line_plot(
     title: &str,
     (xs, x_min, x_max, x_label): (&[f64], f64, f64, &str),
     values: &[f64],
-    limit: f64,
+    limit: Limit,
     symmetric: bool,
     unit: &str,
 ) -> String {
     let (w, h, pad) = (640.0, 220.0, 48.0);
     let span = (x_max - x_min).max(1e-12);
     let v_abs = values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    let top = v_abs
-        .max(if limit.is_finite() { limit } else { 0.0 })
-        .max(1e-12)
-        * 1.1;
+    let top = v_abs.max(limit.top()).max(1e-12) * 1.1;
     let bottom = if symmetric { -top } else { 0.0 };
     let x = |s: f64| pad + (w - 2.0 * pad) * (s - x_min) / span;
     let y = |v: f64| h - pad - (h - 2.0 * pad) * (v - bottom) / (top - bottom);
@@ -67,18 +92,34 @@ pub fn line_plot(
         top,
         escape(unit)
     );
-    if limit.is_finite() {
-        for l in if symmetric {
-            vec![limit, -limit]
-        } else {
-            vec![limit]
-        } {
-            let _ = write!(
-                svg,
-                "<line x1=\"{pad}\" y1=\"{0:.1}\" x2=\"{1}\" y2=\"{0:.1}\" stroke=\"#c00\" stroke-dasharray=\"6 4\"/>",
-                y(l),
-                w - pad
-            );
+    let signs: &[f64] = if symmetric { &[1.0, -1.0] } else { &[1.0] };
+    match limit {
+        Limit::None => {}
+        Limit::Level(l) if !l.is_finite() => {}
+        Limit::Level(l) => {
+            for sign in signs {
+                let _ = write!(
+                    svg,
+                    "<line x1=\"{pad}\" y1=\"{0:.1}\" x2=\"{1}\" y2=\"{0:.1}\" stroke=\"#c00\" stroke-dasharray=\"6 4\"/>",
+                    y(sign * l),
+                    w - pad
+                );
+            }
+        }
+        Limit::Along(ls) => {
+            for sign in signs {
+                let points: Vec<String> = xs
+                    .iter()
+                    .zip(ls)
+                    .filter(|(_, l)| l.is_finite())
+                    .map(|(s, l)| format!("{:.1},{:.1}", x(*s), y(sign * l)))
+                    .collect();
+                let _ = write!(
+                    svg,
+                    "<polyline fill=\"none\" stroke=\"#c00\" stroke-dasharray=\"6 4\" points=\"{}\"/>",
+                    points.join(" ")
+                );
+            }
         }
     }
     let points: Vec<String> = xs

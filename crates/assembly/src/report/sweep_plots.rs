@@ -2,9 +2,9 @@
 //! (κ · minimum bend radius against 1), twist and axial force, the clearance of the hose
 //! and part pairs that came nearest, and the largest fixing force.
 
-use super::profile_plot::line_plot;
+use super::profile_plot::{line_plot, Limit};
 use super::svg::escape;
-use crate::sweep::SweepSummary;
+use crate::sweep::{SweepSummary, AXIAL_FORCE, BEND_RATIO, TWIST};
 use std::fmt::Write as _;
 
 /// Clearance plots drawn at most (the pairs that came nearest).
@@ -41,19 +41,22 @@ pub fn sweep_section(s: &mut String, sweep: &SweepSummary) {
     s.push_str("</p>");
     let series = |f: &dyn Fn(&[f64]) -> f64| -> Vec<f64> { rows.iter().map(|r| f(r)).collect() };
     for (h, name) in sweep.hose_names.iter().enumerate() {
-        let allowed = sweep.allowed_radius.get(h).copied().unwrap_or(0.0);
-        if allowed > 0.0 {
-            let bend = series(&|r| allowed / SweepSummary::hose_value(r, h, 0));
+        let checked = sweep
+            .allowed_radius
+            .get(h)
+            .is_some_and(|a| a.iter().any(|&r| r > 0.0));
+        if checked {
+            let bend = series(&|r| SweepSummary::hose_value(r, h, BEND_RATIO));
             s.push_str(&line_plot(
-                &format!("hose '{name}': minimum bend radius / smallest bend radius (above 1 breaks it, red)"),
+                &format!("hose '{name}': largest ratio of a beam's minimum bend radius to its radius (above 1 breaks it, red)"),
                 axis,
                 &bend,
-                1.0,
+                Limit::Level(1.0),
                 false,
                 "",
             ));
         }
-        let twist = series(&|r| SweepSummary::hose_value(r, h, 1).to_degrees());
+        let twist = series(&|r| SweepSummary::hose_value(r, h, TWIST).to_degrees());
         s.push_str(&line_plot(
             &format!(
                 "hose '{name}': largest twist, limit {:.1} °/m (red)",
@@ -61,16 +64,16 @@ pub fn sweep_section(s: &mut String, sweep: &SweepSummary) {
             ),
             axis,
             &twist,
-            sweep.twist_limit.to_degrees(),
+            Limit::Level(sweep.twist_limit.to_degrees()),
             false,
             "°/m",
         ));
-        let force = series(&|r| SweepSummary::hose_value(r, h, 2));
+        let force = series(&|r| SweepSummary::hose_value(r, h, AXIAL_FORCE));
         s.push_str(&line_plot(
             &format!("hose '{name}': largest axial force"),
             axis,
             &force,
-            f64::NAN,
+            Limit::None,
             false,
             "N",
         ));
@@ -101,7 +104,9 @@ pub fn sweep_section(s: &mut String, sweep: &SweepSummary) {
             ),
             axis,
             &gap,
-            sweep.min_clearance.map_or(f64::NAN, |m| 1e3 * m),
+            sweep
+                .min_clearance
+                .map_or(Limit::None, |m| Limit::Level(1e3 * m)),
             false,
             "mm",
         ));
@@ -111,7 +116,7 @@ pub fn sweep_section(s: &mut String, sweep: &SweepSummary) {
         "largest fixing force (fixes, mounts, clips, stubs, hands)",
         axis,
         &fixing,
-        f64::NAN,
+        Limit::None,
         false,
         "N",
     ));

@@ -16,5 +16,5 @@ mod tracker;
 
 pub use coordinate::{Coordinate, CoordinateKind};
 pub use settings::SweepSettings;
-pub use summary::{SweepSummary, Worst};
+pub use summary::{SweepSummary, Worst, AXIAL_FORCE, BEND_LIMIT, BEND_RADIUS, BEND_RATIO, TWIST};
 pub use tracker::MotionSweep;

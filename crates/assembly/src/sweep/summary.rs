@@ -5,13 +5,24 @@ use super::coordinate::Coordinate;
 use super::tracker::PER_HOSE;
 use serde::Serialize;
 
+/// A hose's smallest bend radius in a row \[m\].
+pub const BEND_RADIUS: usize = 0;
+/// A hose's largest ratio κ·r_min of a beam's curvature to its allowed one in a row.
+pub const BEND_RATIO: usize = 1;
+/// The minimum bend radius of the beam with that ratio \[m\] (0: not checked).
+pub const BEND_LIMIT: usize = 2;
+/// A hose's largest twist relative to the routed hose in a row [rad/m].
+pub const TWIST: usize = 3;
+/// A hose's largest axial force in a row \[N\].
+pub const AXIAL_FORCE: usize = 4;
+
 /// The rows of a sweep and what names them.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct SweepSummary {
     pub coordinate: Option<Coordinate>,
     pub hose_names: Vec<String>,
-    /// Per hose, its minimum bend radius \[m\] (0: not checked).
-    pub allowed_radius: Vec<f64>,
+    /// Per hose and beam, its minimum bend radius \[m\] (empty: not checked).
+    pub allowed_radius: Vec<Vec<f64>>,
     /// The twist limit [rad/m].
     pub twist_limit: f64,
     /// (hose, part) pairs whose clearance is recorded, in row order.
@@ -19,7 +30,8 @@ pub struct SweepSummary {
     pub part_names: Vec<String>,
     /// Smallest clearance allowed \[m\], if any.
     pub min_clearance: Option<f64>,
-    /// Values per row: time, coordinate, three per hose, one per pair, the fixing force.
+    /// Values per row: time, coordinate, [`PER_HOSE`] per hose, one per pair, the fixing
+    /// force.
     pub stride: usize,
     /// The rows, flat (not in `report.json`: `motion.csv` holds them).
     #[serde(skip)]
@@ -38,13 +50,14 @@ pub struct Worst {
 }
 
 impl SweepSummary {
-    /// The rows, each [time, coordinate, per hose (radius, twist, force), per pair
-    /// (clearance), fixing force].
+    /// The rows, each [time, coordinate, per hose (radius, bend ratio, its minimum radius,
+    /// twist, force), per pair (clearance), fixing force].
     pub fn rows(&self) -> impl Iterator<Item = &[f64]> {
         self.rows.chunks_exact(self.stride.max(1))
     }
 
-    /// Row `row`'s value `k` (0 bend radius, 1 twist, 2 axial force) of hose `hose`.
+    /// Row `row`'s value `k` of hose `hose`: [`BEND_RADIUS`], [`BEND_RATIO`],
+    /// [`BEND_LIMIT`], [`TWIST`] or [`AXIAL_FORCE`].
     pub fn hose_value(row: &[f64], hose: usize, k: usize) -> f64 {
         row[2 + PER_HOSE * hose + k]
     }
@@ -76,7 +89,27 @@ impl SweepSummary {
         Some(c.describe(self.coordinate_at(time)?))
     }
 
-    /// Per hose its smallest bend radius over the sweep, per pair its smallest
+    /// Hose `h`'s worst bend over the sweep: where a minimum radius is checked, the
+    /// row of the beam bent furthest past its own minimum (largest κ·r_min), else the
+    /// row of the smallest radius; with that radius \[m\] and its minimum (0: none).
+    pub fn worst_bend(&self, h: usize) -> Option<(&[f64], f64, f64)> {
+        let checked = self
+            .allowed_radius
+            .get(h)
+            .is_some_and(|a| a.iter().any(|&r| r > 0.0));
+        if checked {
+            self.least(|r| -Self::hose_value(r, h, BEND_RATIO))
+                .map(|(r, ratio)| {
+                    let limit = Self::hose_value(r, h, BEND_LIMIT);
+                    (r, limit / -ratio, limit)
+                })
+        } else {
+            self.least(|r| Self::hose_value(r, h, BEND_RADIUS))
+                .map(|(r, radius)| (r, radius, 0.0))
+        }
+    }
+
+    /// Per hose its worst bend over the sweep ([`Self::worst_bend`]), per pair its smallest
     /// clearance, and the largest fixing force, each with where it was.
     pub fn worst(&self) -> Vec<Worst> {
         let mut out = Vec::new();
@@ -93,17 +126,17 @@ impl SweepSummary {
         for (h, name) in self.hose_names.iter().enumerate() {
             push(
                 format!("hose '{name}': bend radius"),
-                self.least(|r| Self::hose_value(r, h, 0)),
+                self.worst_bend(h).map(|(r, radius, _)| (r, radius)),
                 1.0,
             );
             push(
                 format!("hose '{name}': twist"),
-                self.least(|r| -Self::hose_value(r, h, 1)),
+                self.least(|r| -Self::hose_value(r, h, TWIST)),
                 -1.0,
             );
             push(
                 format!("hose '{name}': axial force"),
-                self.least(|r| -Self::hose_value(r, h, 2)),
+                self.least(|r| -Self::hose_value(r, h, AXIAL_FORCE)),
                 -1.0,
             );
         }
@@ -168,9 +201,8 @@ impl SweepSummary {
         let unit = if unit == "deg" { "°" } else { unit };
         let mut parts = Vec::new();
         for (h, name) in self.hose_names.iter().enumerate() {
-            if let Some((r, radius)) = self.least(|r| Self::hose_value(r, h, 0)) {
+            if let Some((r, radius, allowed)) = self.worst_bend(h) {
                 if radius.is_finite() {
-                    let allowed = self.allowed_radius.get(h).copied().unwrap_or(0.0);
                     let relation = if radius < allowed { "<" } else { "≥" };
                     parts.push(format!(
                         "hose '{name}' bend radius {:.0} mm {relation} {:.0} mm at {}",
@@ -213,8 +245,9 @@ impl SweepSummary {
     }
 
     /// `motion.csv`: one row per checked instant (SI, angles in degrees as the scene
-    /// writes them): time, the coordinate, per hose its smallest bend radius, that over
-    /// the minimum (< 1 breaks it), its largest twist and axial force, per hose and part
+    /// writes them): time, the coordinate, per hose its smallest bend radius, the largest
+    /// ratio of a beam's minimum radius to its radius (above 1 breaks it; empty when not
+    /// checked), its largest twist and axial force, per hose and part
     /// the clearance, the largest fixing force.
     pub fn csv(&self) -> String {
         let Some(c) = &self.coordinate else {
@@ -245,16 +278,17 @@ impl SweepSummary {
         for r in self.rows() {
             let mut cells = vec![format!("{:.6}", r[0]), format!("{:.6}", r[1] * factor)];
             for h in 0..self.hose_names.len() {
-                let radius = Self::hose_value(r, h, 0);
-                let allowed = self.allowed_radius.get(h).copied().unwrap_or(0.0);
-                cells.push(format!("{radius:.6e}"));
-                cells.push(if allowed > 0.0 {
-                    format!("{:.6e}", allowed / radius)
+                cells.push(format!("{:.6e}", Self::hose_value(r, h, BEND_RADIUS)));
+                cells.push(if Self::hose_value(r, h, BEND_LIMIT) > 0.0 {
+                    format!("{:.6e}", Self::hose_value(r, h, BEND_RATIO))
                 } else {
                     String::new()
                 });
-                cells.push(format!("{:.6e}", Self::hose_value(r, h, 1).to_degrees()));
-                cells.push(format!("{:.6e}", Self::hose_value(r, h, 2)));
+                cells.push(format!(
+                    "{:.6e}",
+                    Self::hose_value(r, h, TWIST).to_degrees()
+                ));
+                cells.push(format!("{:.6e}", Self::hose_value(r, h, AXIAL_FORCE)));
             }
             for k in 0..self.pairs.len() {
                 cells.push(format!("{:.6e}", self.pair_value(r, k)));
@@ -264,5 +298,56 @@ impl SweepSummary {
             out.push('\n');
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sweep::CoordinateKind;
+
+    /// One hose, two beams: the first may bend to 0.1 m, the second (a protected
+    /// stretch) only to 0.3 m. Row 1 bends the first beam to 0.2 m (ratio 0.5), row 2
+    /// the second to 0.25 m (ratio 1.2) while the first is at 0.5 m.
+    fn two_rows() -> SweepSummary {
+        let row = |t: f64, angle: f64, radius: f64, ratio: f64, limit: f64| {
+            vec![t, angle, radius, ratio, limit, 0.0, 0.0, 1.0]
+        };
+        SweepSummary {
+            coordinate: Some(Coordinate {
+                part: 0,
+                part_name: "door".into(),
+                kind: CoordinateKind::Angle,
+            }),
+            hose_names: vec!["h".into()],
+            allowed_radius: vec![vec![0.1, 0.3]],
+            stride: 2 + PER_HOSE + 1,
+            rows: [row(0.0, 0.1, 0.2, 0.5, 0.1), row(1.0, 0.2, 0.25, 1.2, 0.3)].concat(),
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn the_worst_bend_is_the_one_furthest_past_its_own_minimum_not_the_tightest() {
+        let s = two_rows();
+        let (row, radius, limit) = s.worst_bend(0).unwrap();
+        assert_eq!(row[0], 1.0);
+        assert!(
+            (radius - 0.25).abs() < 1e-15 && limit == 0.3,
+            "{radius} {limit}"
+        );
+        let line = s.describe().unwrap();
+        assert!(line.contains("bend radius 250 mm < 300 mm at"), "{line}");
+        let csv = s.csv();
+        let cells: Vec<&str> = csv.lines().nth(2).unwrap().split(',').collect();
+        assert_eq!(cells[3], "1.200000e0", "{csv}");
+    }
+
+    #[test]
+    fn an_unchecked_hose_reports_its_smallest_radius() {
+        let mut s = two_rows();
+        s.allowed_radius = vec![Vec::new()];
+        let (row, radius, limit) = s.worst_bend(0).unwrap();
+        assert_eq!((row[0], radius, limit), (0.0, 0.2, 0.0));
     }
 }

@@ -1,5 +1,6 @@
 //! Recording a range-of-motion study: at each checked instant one row of the motion
-//! coordinate, per hose its smallest bend radius, largest twist and largest axial force,
+//! coordinate, per hose its smallest bend radius, its bend furthest past its beam's
+//! minimum radius, its largest twist and largest axial force,
 //! per hose and watched part their clearance ([`pliant_core::contact::part_gap`]), and
 //! the largest force with which a fix, mount, support or hand holds a node (the fixing
 //! forces: `State::reaction_force` of the held nodes).
@@ -12,9 +13,11 @@ use pliant_core::contact::part_gap::hose_part_gap;
 use pliant_core::loads::LoadCase;
 use pliant_core::{Model, State};
 
-/// Values per hose in a row: smallest bend radius \[m\], largest twist relative to the
-/// routed hose [rad/m], largest axial force \[N\].
-pub(super) const PER_HOSE: usize = 3;
+/// Values per hose in a row: smallest bend radius \[m\]; the largest ratio κ·r_min of a
+/// beam's curvature to its allowed one (above 1 it breaks its minimum radius) and that
+/// beam's minimum radius \[m\] (0 when the hose is not checked); largest twist relative to
+/// the routed hose [rad/m]; largest axial force \[N\].
+pub(super) const PER_HOSE: usize = 5;
 
 /// The rows recorded so far, with the names and limits a report needs.
 #[derive(Clone, Debug, PartialEq)]
@@ -24,12 +27,12 @@ pub struct MotionSweep {
 }
 
 impl MotionSweep {
-    /// A sweep of `model` with `settings`; `allowed_radius` per hose \[m\] and
-    /// `twist_limit` [rad/m] are the checks' limits.
+    /// A sweep of `model` with `settings`; `allowed_radius` per hose and beam \[m\] (empty:
+    /// not checked) and `twist_limit` [rad/m] are the checks' limits.
     pub fn new(
         model: &Model,
         settings: &SweepSettings,
-        allowed_radius: Vec<f64>,
+        allowed_radius: Vec<Vec<f64>>,
         twist_limit: f64,
     ) -> MotionSweep {
         let parts: Vec<usize> = if settings.clearance_parts.is_empty() {
@@ -74,14 +77,20 @@ impl MotionSweep {
         let rows = &mut self.found.rows;
         rows.push(t);
         rows.push(self.coordinate.at(model, state, t));
-        for info in &model.hoses {
+        for (info, allowed) in model.hoses.iter().zip(&self.found.allowed_radius) {
             let (mut k, mut tw, mut force) = (0.0_f64, 0.0_f64, 0.0_f64);
-            for e in info.first_element..info.first_element + info.element_count {
+            let (mut ratio, mut limit) = (0.0_f64, allowed.first().copied().unwrap_or(0.0));
+            for (b, e) in (info.first_element..info.first_element + info.element_count).enumerate()
+            {
                 k = k.max(kappa[e]);
+                let r_min = allowed.get(b).copied().unwrap_or(0.0);
+                if kappa[e] * r_min > ratio {
+                    (ratio, limit) = (kappa[e] * r_min, r_min);
+                }
                 tw = tw.max(twist[e].abs());
                 force = force.max(axial_force(model, state, e).abs());
             }
-            rows.extend([1.0 / k, tw, force]);
+            rows.extend([1.0 / k, ratio, limit, tw, force]);
         }
         for &(h, p) in &self.found.pairs {
             let nodes = model.hoses[h].nodes();
