@@ -403,6 +403,17 @@ pub struct CoveredStretch {
     pub section: BundleSection,
 }
 
+/// The bundle's outer diameter \[m\] at `fraction` of a segment's length: the thickest
+/// protected stretch there, else the bare wires' `bare`.
+pub fn d_outer_at(bare: &BundleSection, stretches: &[CoveredStretch], fraction: f64) -> f64 {
+    stretches
+        .iter()
+        .filter(|c| (c.from..=c.to).contains(&fraction))
+        .map(|c| c.section.d_outer)
+        .reduce(f64::max)
+        .unwrap_or(bare.d_outer)
+}
+
 /// The section of `wires` under the protections `covers` lying over one another (tape
 /// under a corrugated tube), each covering the whole stretch: the coupling factors of the
 /// one binding the wires tightest (largest f_ei), the largest outer diameter given, the
@@ -695,5 +706,30 @@ mod tests {
         assert!(rel(b.d_outer, 13.4e-3) < 1e-12);
         assert!(rel(b.min_bend_radius, 2.5 * 13.4e-3) < 1e-12);
         assert!(rel(b.mass, 3.0 * w.mass + 0.0085) < 1e-12);
+    }
+
+    #[test]
+    fn the_diameter_at_a_place_is_its_stretchs_or_the_bare_wires() {
+        let data = BundleData::builtin();
+        let w = WireSection::new(&data, 1.6e-3, 0.5e-6, None, Some(4.8e-3));
+        let tube = ProtectionCover {
+            kind: ProtectionKind::CorrugatedTube,
+            coverage: 1.0,
+            outer_diameter: Some(13.4e-3),
+            mass_per_length: Some(0.017),
+        };
+        let bare = bundle_section(&data, &[w; 3], None);
+        let stretch = CoveredStretch {
+            from: 0.25,
+            to: 0.5,
+            kinds: vec![ProtectionKind::CorrugatedTube],
+            section: covered_section(&data, &[w; 3], &[tube]),
+        };
+        let stretches = [stretch];
+        assert!(bare.d_outer < 13.4e-3);
+        assert_eq!(d_outer_at(&bare, &stretches, 0.1), bare.d_outer);
+        assert!(rel(d_outer_at(&bare, &stretches, 0.3), 13.4e-3) < 1e-12);
+        assert!(rel(d_outer_at(&bare, &stretches, 0.5), 13.4e-3) < 1e-12);
+        assert_eq!(d_outer_at(&bare, &stretches, 0.9), bare.d_outer);
     }
 }

@@ -148,7 +148,7 @@ fn connector_ends(h: &Harness, segs: &[SegmentOut], push: f64) -> Vec<ConnectorE
             at_start,
             mouth: h.nodes[node].position - outward * push,
             axis: outward,
-            d_outer: segs[s].section.d_outer,
+            d_outer: segs[s].d_outer_at(if at_start { 0.0 } else { 1.0 }),
             positions: c.positions,
             node,
         });

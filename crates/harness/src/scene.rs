@@ -45,12 +45,20 @@ pub const OPENING_SHARE: f64 = 0.8;
 pub struct SegmentOut<'a> {
     pub hose: String,
     pub curve: &'a SegmentCurve,
-    /// The segment's section as one (clips and connectors take its diameter).
+    /// The segment's section as one.
     pub section: &'a BundleSection,
     /// The hose's section where no protection lies, and its protected stretches (spans).
     pub bare: &'a BundleSection,
     pub stretches: &'a [CoveredStretch],
     pub elements: usize,
+}
+
+impl SegmentOut<'_> {
+    /// The bundle's outer diameter \[m\] at `fraction` of the segment (a clip or a plug
+    /// takes the bundle as it is where it sits).
+    pub fn d_outer_at(&self, fraction: f64) -> f64 {
+        crate::bundle::d_outer_at(self.bare, self.stretches, fraction)
+    }
 }
 
 /// A name usable as a scene name: letters, digits, `_`, `-`, `.`; others become `_`.
@@ -560,7 +568,7 @@ pub(crate) fn clip_places(h: &Harness, segs: &[SegmentOut]) -> Vec<ClipPlace> {
                 point,
                 tangent,
                 opening,
-                d_outer: out.section.d_outer,
+                d_outer: out.d_outer_at(f.location),
                 kind: clip_type(f.fixing_type.as_deref(), f.description.as_deref()),
                 comment: format!(
                     "KBL {} ({}), {} on {} at {:.4}",

@@ -378,3 +378,50 @@ fn main_harness_protections_are_spans_where_the_file_says() {
     }
     assert!(inside >= n / 2, "{inside} of {n} elements under the tube");
 }
+
+/// A clip takes the bundle as it is where it sits: its seat's diameter is the outer
+/// diameter of the hose's section there (a corrugated tube's over a tubed stretch, the
+/// bare wires' elsewhere), not the segment's as one.
+#[test]
+fn clips_fit_the_bundle_where_they_sit() {
+    let dir = out_dir("clip_diameters");
+    import_kbl(&data(MAIN), &dir).unwrap();
+    let scene = pliant_scene::load_scene_file(&dir.join("scene.toml")).unwrap();
+    let t = scene_of(&dir);
+    let mut protected = 0;
+    for clip in t["clips"].as_array().unwrap() {
+        let hose = clip["hose"].as_str().unwrap();
+        let k = scene.hose_names.iter().position(|n| n == hose).unwrap();
+        let spec = &scene.world.hoses[k];
+        let origin: Vec<f64> = clip["origin"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| 1e-3 * v.as_float().unwrap())
+            .collect();
+        let origin = glam::DVec3::new(origin[0], origin[1], origin[2]);
+        let node = (0..spec.nodes.len())
+            .min_by(|&a, &b| {
+                (spec.nodes[a] - origin)
+                    .length()
+                    .total_cmp(&(spec.nodes[b] - origin).length())
+            })
+            .unwrap();
+        let d = 1e-3 * clip["inner_diameter"].as_float().unwrap();
+        let beside: Vec<f64> = [node.saturating_sub(1), node.min(spec.nodes.len() - 2)]
+            .iter()
+            .map(|&e| spec.element_section(e).d_outer)
+            .collect();
+        assert!(
+            beside.iter().any(|b| (b - d).abs() < 1e-9),
+            "clip {} on {hose}: seat {d} m, bundle {beside:?} m",
+            clip["name"]
+        );
+        let h = &scene.hoses[k];
+        let s = h.element_length * node as f64;
+        if h.protections.iter().any(|p| (p.from..=p.to).contains(&s)) {
+            protected += 1;
+        }
+    }
+    println!("{protected} of 16 clips sit on a protected stretch");
+}
