@@ -136,13 +136,13 @@ impl LoadedScene {
             fasteners: (self.stubs.len() + self.connectors.len() + self.clips.len()) as u64,
             nodes,
             sweep_values: self.checks.sweep.as_ref().map_or(0, |s| {
-                let hoses = self.world.hoses.len() as u64;
+                let hoses = self.world.hoses.len();
                 let parts = if s.clearance_parts.is_empty() {
                     self.world.rigid_parts.len()
                 } else {
                     s.clearance_parts.len()
-                } as u64;
-                3 + 3 * hoses + hoses * parts
+                };
+                pliant_assembly::sweep::row_len(hoses, hoses * parts) as u64
             }),
         }
     }

@@ -17,4 +17,4 @@ mod tracker;
 pub use coordinate::{Coordinate, CoordinateKind};
 pub use settings::SweepSettings;
 pub use summary::{SweepSummary, Worst, AXIAL_FORCE, BEND_LIMIT, BEND_RADIUS, BEND_RATIO, TWIST};
-pub use tracker::MotionSweep;
+pub use tracker::{row_len, MotionSweep};

@@ -30,7 +30,7 @@ pub struct SweepSummary {
     pub part_names: Vec<String>,
     /// Smallest clearance allowed \[m\], if any.
     pub min_clearance: Option<f64>,
-    /// Values per row: time, coordinate, [`PER_HOSE`] per hose, one per pair, the fixing
+    /// Values per row: time, coordinate, five per hose, one per pair, the fixing
     /// force.
     pub stride: usize,
     /// The rows, flat (not in `report.json`: `motion.csv` holds them).

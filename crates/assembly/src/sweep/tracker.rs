@@ -19,6 +19,12 @@ use pliant_core::{Model, State};
 /// the routed hose [rad/m]; largest axial force \[N\].
 pub(super) const PER_HOSE: usize = 5;
 
+/// Values in one row of a sweep of `hoses` hoses and `pairs` watched (hose, part)
+/// pairs: time, coordinate, five per hose, one per pair, the fixing force.
+pub fn row_len(hoses: usize, pairs: usize) -> usize {
+    2 + PER_HOSE * hoses + pairs + 1
+}
+
 /// The rows recorded so far, with the names and limits a report needs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MotionSweep {
@@ -55,7 +61,7 @@ impl MotionSweep {
                 hose_names: model.hoses.iter().map(|h| h.name.clone()).collect(),
                 allowed_radius,
                 twist_limit,
-                stride: 2 + PER_HOSE * model.hoses.len() + pairs.len() + 1,
+                stride: row_len(model.hoses.len(), pairs.len()),
                 pairs,
                 part_names: model
                     .environment
