@@ -1,0 +1,184 @@
+//! `large_frames`: hose networks (SPEC N1) — hoses welded at junctions, written in a scene
+//! file as a user's would be — under tip loads large enough that a tip moves by at least
+//! 30 % of its arm, against the independent Kirchhoff-rod shooting solver of
+//! `crates/reference` (no closed form exists at these loads). Same section as the
+//! small-load `frames` case (EA 2e3 N, EI 0.05 N m², GJ 0.04 N m²), 20 elements per arm:
+//!
+//! * in-plane L-frame: a column of 0.6 m along z clamped at its foot, a beam of 0.8 m
+//!   along x welded to its top, a dead load across the beam's tip in the frame's plane
+//!   (PL_h²/EI = 2); the reference is one rod with a 90° rest kink at the corner;
+//! * out-of-plane L-frame: an arm a of 0.7 m along x clamped at its root, an arm b of
+//!   0.5 m along y welded to its tip, a dead load along z at b's tip (Pb²/EI = 1, the
+//!   first arm twisted by Pb through about half a radian: bending and torsion coupled);
+//!   the reference is again one kinked rod.
+//!
+//! Compared: the loaded tip's position (each coordinate, error relative to the loaded
+//! arm's length L, tolerance 0.1 % of L as SPEC S4) and the moment the clamp applies at
+//! the base (each component, relative to the moment's magnitude, 0.1 %). Each load is
+//! applied in four increments, each brought to rest (residual 1e-6 of the load), so the
+//! solvers follow the equilibrium path the reference's continuation follows.
+
+use super::frames::{at_rest_under, network, tip, weld, EA, EI, GJ};
+use crate::reference_bridge::{to_glam, to_na};
+use crate::Check;
+use glam::DVec3;
+use pliant_reference::{EndCondition, Rod, ShootingSolver, Solution, Stiffness};
+
+const CASE: &str = "large_frames";
+/// Tip position error relative to the loaded arm's length (SPEC S4).
+const POSITION_TOLERANCE: f64 = 1e-3;
+/// Base reaction moment error relative to its magnitude.
+const MOMENT_TOLERANCE: f64 = 1e-3;
+/// Smallest tip displacement, relative to the loaded arm, that makes a frame "large".
+const LARGE: f64 = 0.3;
+/// Load increments of the Pliant run.
+const INCREMENTS: usize = 4;
+
+/// The reference for a frame: one rod along the polyline `corners`, clamped at the
+/// first, with the frame's section.
+fn reference_rod(corners: &[DVec3]) -> Result<ShootingSolver, String> {
+    let stiffness = Stiffness::new(EA, EI, GJ).map_err(|e| e.to_string())?;
+    let rod = Rod::new(corners.iter().map(|&c| to_na(c)).collect(), stiffness)
+        .map_err(|e| e.to_string())?;
+    ShootingSolver::new(rod.clone(), rod.rest_base_pose()).map_err(|e| e.to_string())
+}
+
+/// The reference solution under a dead `force` at the end, by path following.
+fn reference_under(corners: &[DVec3], force: DVec3) -> Result<Solution, String> {
+    let solver = reference_rod(corners)?;
+    let load = EndCondition::loaded(to_na(force), nalgebra::Vector3::zeros());
+    solver
+        .solve_path(&[load])
+        .map_err(|e| e.to_string())?
+        .pop()
+        .ok_or_else(|| "the reference returned no solution".to_string())
+}
+
+/// Rows comparing a loaded tip (Pliant `tip`, reference `reference_tip`, both in metres;
+/// the tip started at `rest_tip`) for an arm of length `arm`.
+fn tip_rows(
+    out: &mut Vec<Check>,
+    frame: &str,
+    tip: DVec3,
+    reference_tip: DVec3,
+    rest_tip: DVec3,
+    arm: f64,
+) {
+    let moved = (reference_tip - rest_tip).length() / arm;
+    out.push(Check::with_error(
+        CASE,
+        &format!("{frame}: reference tip displacement / L (large: at least {LARGE})"),
+        moved,
+        LARGE,
+        if moved >= LARGE { 0.0 } else { f64::INFINITY },
+        0.0,
+    ));
+    for (axis, c, r) in [
+        ("x", tip.x, reference_tip.x),
+        ("y", tip.y, reference_tip.y),
+        ("z", tip.z, reference_tip.z),
+    ] {
+        out.push(Check::scaled(
+            CASE,
+            &format!("{frame}: tip {axis} / L (error relative to L)"),
+            c / arm,
+            r / arm,
+            1.0,
+            POSITION_TOLERANCE,
+        ));
+    }
+}
+
+/// Rows comparing the moment the base clamp applies (about the base point).
+fn base_moment_rows(out: &mut Vec<Check>, frame: &str, moment: DVec3, reference: DVec3) {
+    let magnitude = reference.length();
+    for (axis, c, r) in [
+        ("x", moment.x, reference.x),
+        ("y", moment.y, reference.y),
+        ("z", moment.z, reference.z),
+    ] {
+        out.push(Check::scaled(
+            CASE,
+            &format!("{frame}: base reaction moment {axis} N*m (error relative to |M|)"),
+            c,
+            r,
+            magnitude,
+            MOMENT_TOLERANCE,
+        ));
+    }
+}
+
+/// An L-frame of two welded hoses along `corners` (base, corner, tip), the base clamped,
+/// a dead `force` at the tip: Pliant against the kinked reference rod.
+fn l_frame(
+    out: &mut Vec<Check>,
+    frame: &str,
+    corners: [DVec3; 3],
+    force: DVec3,
+) -> Result<(), String> {
+    let [base, corner, end] = corners;
+    let model = network(
+        &[("first", base, corner), ("second", corner, end)],
+        &weld("corner", &[("first", "end"), ("second", "start")]),
+    )?;
+    let t = tip(&model, 1);
+    let state = at_rest_under(&model, &[(t, force)], INCREMENTS)?;
+    let reference = reference_under(&corners, force)?;
+    let arm = (end - corner).length();
+    tip_rows(
+        out,
+        frame,
+        state.x[t],
+        to_glam(&reference.end_state().position),
+        end,
+        arm,
+    );
+    base_moment_rows(
+        out,
+        frame,
+        state.reaction_moment[0],
+        to_glam(&reference.base_reaction().moment),
+    );
+    Ok(())
+}
+
+fn in_plane_l(out: &mut Vec<Check>) -> Result<(), String> {
+    let (lv, lh) = (0.6, 0.8);
+    let p = 2.0 * EI / (lh * lh);
+    l_frame(
+        out,
+        "in-plane L-frame",
+        [
+            DVec3::ZERO,
+            DVec3::new(0.0, 0.0, lv),
+            DVec3::new(lh, 0.0, lv),
+        ],
+        DVec3::new(0.0, 0.0, -p),
+    )
+}
+
+fn out_of_plane_l(out: &mut Vec<Check>) -> Result<(), String> {
+    let (a, b) = (0.7, 0.5);
+    let p = EI / (b * b);
+    l_frame(
+        out,
+        "out-of-plane L-frame",
+        [DVec3::ZERO, DVec3::new(a, 0.0, 0.0), DVec3::new(a, b, 0.0)],
+        DVec3::new(0.0, 0.0, p),
+    )
+}
+
+pub fn run() -> Vec<Check> {
+    let mut out = Vec::new();
+    type Part = fn(&mut Vec<Check>) -> Result<(), String>;
+    let parts: [(&str, Part); 2] = [
+        ("in-plane L-frame", in_plane_l),
+        ("out-of-plane L-frame", out_of_plane_l),
+    ];
+    for (name, part) in parts {
+        if let Err(e) = part(&mut out) {
+            out.push(Check::failed(CASE, name, &e));
+        }
+    }
+    out
+}
