@@ -10,7 +10,12 @@
 //! * out-of-plane L-frame: an arm a of 0.7 m along x clamped at its root, an arm b of
 //!   0.5 m along y welded to its tip, a dead load along z at b's tip (Pb²/EI = 1, the
 //!   first arm twisted by Pb through about half a radian: bending and torsion coupled);
-//!   the reference is again one kinked rod.
+//!   the reference is again one kinked rod;
+//! * asymmetric T: a stem of 0.6 m along x clamped at its root, two arms of 0.4 m along
+//!   +y and −y welded to its tip, dead loads along z of P on the first arm's tip and
+//!   0.4 P on the second's (PL_a²/EI = 0.5: the stem bent by both and twisted by their
+//!   difference); the reference is the tree solver (a trunk and two branches, force and
+//!   moment balance at the branch point).
 //!
 //! Compared: the loaded tip's position (each coordinate, error relative to the loaded
 //! arm's length L, tolerance 0.1 % of L as SPEC S4) and the moment the clamp applies at
@@ -22,7 +27,9 @@ use super::frames::{at_rest_under, network, tip, weld, EA, EI, GJ};
 use crate::reference_bridge::{to_glam, to_na};
 use crate::Check;
 use glam::DVec3;
-use pliant_reference::{EndCondition, Rod, ShootingSolver, Solution, Stiffness};
+use pliant_reference::{
+    EndCondition, Rod, ShootingSolver, Solution, Stiffness, Tree, TreeSolver, Wrench,
+};
 
 const CASE: &str = "large_frames";
 /// Tip position error relative to the loaded arm's length (SPEC S4).
@@ -34,18 +41,17 @@ const LARGE: f64 = 0.3;
 /// Load increments of the Pliant run.
 const INCREMENTS: usize = 4;
 
-/// The reference for a frame: one rod along the polyline `corners`, clamped at the
-/// first, with the frame's section.
-fn reference_rod(corners: &[DVec3]) -> Result<ShootingSolver, String> {
+/// A reference rod along the polyline `corners` with the frames' section.
+fn reference_rod(corners: &[DVec3]) -> Result<Rod, String> {
     let stiffness = Stiffness::new(EA, EI, GJ).map_err(|e| e.to_string())?;
-    let rod = Rod::new(corners.iter().map(|&c| to_na(c)).collect(), stiffness)
-        .map_err(|e| e.to_string())?;
-    ShootingSolver::new(rod.clone(), rod.rest_base_pose()).map_err(|e| e.to_string())
+    Rod::new(corners.iter().map(|&c| to_na(c)).collect(), stiffness).map_err(|e| e.to_string())
 }
 
 /// The reference solution under a dead `force` at the end, by path following.
 fn reference_under(corners: &[DVec3], force: DVec3) -> Result<Solution, String> {
-    let solver = reference_rod(corners)?;
+    let rod = reference_rod(corners)?;
+    let solver =
+        ShootingSolver::new(rod.clone(), rod.rest_base_pose()).map_err(|e| e.to_string())?;
     let load = EndCondition::loaded(to_na(force), nalgebra::Vector3::zeros());
     solver
         .solve_path(&[load])
@@ -168,12 +174,86 @@ fn out_of_plane_l(out: &mut Vec<Check>) -> Result<(), String> {
     )
 }
 
+fn asymmetric_t(out: &mut Vec<Check>) -> Result<(), String> {
+    let (stem, arm) = (0.6, 0.4);
+    let p = 0.5 * EI / (arm * arm);
+    let joint = DVec3::new(stem, 0.0, 0.0);
+    let arms = [
+        (joint + DVec3::new(0.0, arm, 0.0), DVec3::new(0.0, 0.0, p)),
+        (
+            joint - DVec3::new(0.0, arm, 0.0),
+            DVec3::new(0.0, 0.0, 0.4 * p),
+        ),
+    ];
+    let model = network(
+        &[
+            ("stem", DVec3::ZERO, joint),
+            ("first", joint, arms[0].0),
+            ("second", joint, arms[1].0),
+        ],
+        &weld(
+            "tee",
+            &[("stem", "end"), ("first", "start"), ("second", "start")],
+        ),
+    )?;
+    let tips = [tip(&model, 1), tip(&model, 2)];
+    let state = at_rest_under(
+        &model,
+        &[(tips[0], arms[0].1), (tips[1], arms[1].1)],
+        INCREMENTS,
+    )?;
+
+    let trunk = reference_rod(&[DVec3::ZERO, joint])?;
+    let base = trunk.rest_base_pose();
+    let tree = Tree::new(vec![
+        (trunk, None),
+        (reference_rod(&[joint, arms[0].0])?, Some(0)),
+        (reference_rod(&[joint, arms[1].0])?, Some(0)),
+    ])
+    .map_err(|e| e.to_string())?;
+    let solver = TreeSolver::new(tree, base).map_err(|e| e.to_string())?;
+    let dead = |force: DVec3| Wrench {
+        force: to_na(force),
+        moment: nalgebra::Vector3::zeros(),
+    };
+    let loads = vec![dead(DVec3::ZERO), dead(arms[0].1), dead(arms[1].1)];
+    let reference = solver
+        .solve_path(&[loads])
+        .map_err(|e| e.to_string())?
+        .pop()
+        .ok_or_else(|| "the reference returned no solution".to_string())?;
+    for (k, name) in ["asymmetric T, first arm", "asymmetric T, second arm"]
+        .iter()
+        .enumerate()
+    {
+        let end = reference
+            .end_state(k + 1)
+            .ok_or_else(|| format!("the reference has no branch {}", k + 1))?;
+        tip_rows(
+            out,
+            name,
+            state.x[tips[k]],
+            to_glam(&end.position),
+            arms[k].0,
+            arm,
+        );
+    }
+    base_moment_rows(
+        out,
+        "asymmetric T",
+        state.reaction_moment[0],
+        to_glam(&reference.base_reaction(solver.tree()).moment),
+    );
+    Ok(())
+}
+
 pub fn run() -> Vec<Check> {
     let mut out = Vec::new();
     type Part = fn(&mut Vec<Check>) -> Result<(), String>;
-    let parts: [(&str, Part); 2] = [
+    let parts: [(&str, Part); 3] = [
         ("in-plane L-frame", in_plane_l),
         ("out-of-plane L-frame", out_of_plane_l),
+        ("asymmetric T", asymmetric_t),
     ];
     for (name, part) in parts {
         if let Err(e) = part(&mut out) {
