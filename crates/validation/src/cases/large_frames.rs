@@ -79,39 +79,54 @@ fn tip_rows(
         if moved >= LARGE { 0.0 } else { f64::INFINITY },
         0.0,
     ));
+    component_rows(
+        out,
+        &format!("{frame}: tip"),
+        "/ L (error relative to L)",
+        tip / arm,
+        reference_tip / arm,
+        1.0,
+        POSITION_TOLERANCE,
+    );
+}
+
+/// One row per coordinate, `"{what} {axis} {unit}"`, error relative to `scale`.
+fn component_rows(
+    out: &mut Vec<Check>,
+    what: &str,
+    unit: &str,
+    computed: DVec3,
+    reference: DVec3,
+    scale: f64,
+    tolerance: f64,
+) {
     for (axis, c, r) in [
-        ("x", tip.x, reference_tip.x),
-        ("y", tip.y, reference_tip.y),
-        ("z", tip.z, reference_tip.z),
+        ("x", computed.x, reference.x),
+        ("y", computed.y, reference.y),
+        ("z", computed.z, reference.z),
     ] {
         out.push(Check::scaled(
             CASE,
-            &format!("{frame}: tip {axis} / L (error relative to L)"),
-            c / arm,
-            r / arm,
-            1.0,
-            POSITION_TOLERANCE,
+            &format!("{what} {axis} {unit}"),
+            c,
+            r,
+            scale,
+            tolerance,
         ));
     }
 }
 
 /// Rows comparing the moment the base clamp applies (about the base point).
 fn base_moment_rows(out: &mut Vec<Check>, frame: &str, moment: DVec3, reference: DVec3) {
-    let magnitude = reference.length();
-    for (axis, c, r) in [
-        ("x", moment.x, reference.x),
-        ("y", moment.y, reference.y),
-        ("z", moment.z, reference.z),
-    ] {
-        out.push(Check::scaled(
-            CASE,
-            &format!("{frame}: base reaction moment {axis} N*m (error relative to |M|)"),
-            c,
-            r,
-            magnitude,
-            MOMENT_TOLERANCE,
-        ));
-    }
+    component_rows(
+        out,
+        &format!("{frame}: base reaction moment"),
+        "N*m (error relative to |M|)",
+        moment,
+        reference,
+        reference.length(),
+        MOMENT_TOLERANCE,
+    );
 }
 
 /// An L-frame of two welded hoses along `corners` (base, corner, tip), the base clamped,
