@@ -16,8 +16,8 @@
 //! [`crate::ode`]); for the rotation residual `ψ = log(R_Lᵀ R(L))` it is
 //! `dψ = J_r⁻¹(ψ) · vee(R(L)ᵀ dR(L))`.
 //!
-//! The Newton iteration itself ([`crate::newton`]) is damped by Deuflhard's natural
-//! monotonicity test.
+//! The Newton iteration itself is damped by Deuflhard's natural monotonicity test
+//! (Deuflhard, "Newton Methods for Nonlinear Problems", 2004, §3.3).
 
 use nalgebra::{DMatrix, DVector, Vector3};
 

@@ -63,6 +63,7 @@ pub struct TreeSolver {
 pub struct TreeSolution {
     /// Scaled unknowns (the next continuation guess).
     scaled: DVector<f64>,
+    trunk: usize,
     bases: Vec<SectionState>,
     ends: Vec<SectionState>,
     loads: Vec<Wrench>,
@@ -226,6 +227,7 @@ impl TreeSolver {
                 .map(|b| section(b, true, &states[b].1))
                 .collect(),
             scaled: converged.x,
+            trunk: self.tree.trunk(),
             loads,
             iterations: converged.iterations,
             residual: converged.residual,
@@ -380,8 +382,8 @@ impl TreeSolution {
     }
 
     /// Force and moment the clamp applies to the trunk, moment about the base point.
-    pub fn base_reaction(&self, tree: &Tree) -> Wrench {
-        let base = &self.bases[tree.trunk()];
+    pub fn base_reaction(&self) -> Wrench {
+        let base = &self.bases[self.trunk];
         Wrench {
             force: -base.force,
             moment: -base.moment,
