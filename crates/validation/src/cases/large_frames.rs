@@ -9,8 +9,8 @@
 //!   (PL_h²/EI = 2); the reference is one rod with a 90° rest kink at the corner;
 //! * out-of-plane L-frame: an arm a of 0.7 m along x clamped at its root, an arm b of
 //!   0.5 m along y welded to its tip, a dead load along z at b's tip (Pb²/EI = 1, the
-//!   first arm twisted by Pb through about half a radian: bending and torsion coupled);
-//!   the reference is again one kinked rod;
+//!   first arm twisted by the moment Pb — Pab/GJ = 1.75 rad in the linear estimate —
+//!   bending and torsion coupled); the reference is again one kinked rod;
 //! * asymmetric T: a stem of 0.6 m along x clamped at its root, two arms of 0.4 m along
 //!   +y and −y welded to its tip, dead loads along z of P on the first arm's tip and
 //!   0.4 P on the second's (PL_a²/EI = 0.5: the stem bent by both and twisted by their
@@ -22,9 +22,11 @@
 //! and the moment the clamp applies at the base (distance and each component, relative
 //! to the moment's magnitude, 0.1 %); coordinates that vanish by symmetry or
 //! equilibrium (e.g. the moment about the load's direction) are covered by the distance
-//! only. Each load is
-//! applied in four increments, each brought to rest (residual 1e-6 of the load), so the
-//! solvers follow the equilibrium path the reference's continuation follows.
+//! only. Each load is applied in four increments, each brought to rest (residual 1e-6 of
+//! the load), so the solvers follow the equilibrium path the reference's continuation
+//! follows. Measured (docs/validation.md): tips moved by 0.33–1.53 of their arm, within
+//! 7.6e-5 of it of the reference, base moments within 4.2e-5, under every solver — the
+//! 20-element discretisation at these curvatures.
 
 use super::frames::{at_rest_under, network, tip, weld, EA, EI, GJ};
 use crate::reference_bridge::{to_glam, to_na};
