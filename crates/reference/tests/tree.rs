@@ -227,3 +227,45 @@ fn malformed_trees_are_rejected() {
         |e| matches!(e, ReferenceError::InvalidBoundaryCondition(_)),
     );
 }
+
+/// A tree three levels deep (a branch on a branch, with a rest kink) under large end
+/// loads and moments on every branch, junctions included: the clamp balances all the
+/// loads about the deformed end points (global equilibrium), and the unknown moment at
+/// each branch point closes its own balance.
+#[test]
+fn deep_tree_is_in_global_equilibrium() {
+    let joint = Vector3::new(0.5, 0.0, 0.0);
+    let fork = joint + Vector3::new(0.2, 0.4, 0.0);
+    let tree = Tree::new(vec![
+        (rod(&[Vector3::zeros(), joint]), None),
+        (
+            rod(&[joint, joint + Vector3::new(0.0, 0.2, 0.0), fork]),
+            Some(0),
+        ),
+        (rod(&[joint, joint + Vector3::new(0.4, -0.1, 0.1)]), Some(0)),
+        (rod(&[fork, fork + Vector3::new(0.0, 0.0, 0.3)]), Some(1)),
+    ])
+    .unwrap();
+    let base = tree.rod(0).unwrap().rest_base_pose();
+    let solver = TreeSolver::new(tree, base).unwrap();
+    let loads: Vec<Wrench> = (0..4)
+        .map(|b| Wrench {
+            force: Vector3::new(0.02, -0.05, 0.08) * (b as f64 + 1.0),
+            moment: Vector3::new(-0.01, 0.005, 0.01) * b as f64,
+        })
+        .collect();
+    let solution = solve(&solver, loads.clone());
+    let reaction = solution.base_reaction();
+    let mut force = reaction.force;
+    let mut moment = reaction.moment;
+    for (b, load) in loads.iter().enumerate() {
+        force += load.force;
+        moment += tip(&solution, b).cross(&load.force) + load.moment;
+    }
+    let scale = loads.iter().map(|w| w.force.norm()).sum::<f64>();
+    assert!(force.norm() < 1e-12 * scale, "force balance {force:?}");
+    assert!(moment.norm() < 1e-9 * scale, "moment balance {moment:?}");
+    // the loads deform it far from the rest shape
+    let rest_tip = solver.tree().rod(3).unwrap().rest_end_pose().position;
+    assert!((tip(&solution, 3) - rest_tip).norm() > 0.1);
+}
