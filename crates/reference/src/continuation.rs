@@ -18,7 +18,8 @@
 
 use crate::boundary::EndCondition;
 use crate::error::{ReferenceError, Result};
-use crate::shooting::{Globalization, ShootingSolver, Unknowns};
+use crate::newton::Globalization;
+use crate::shooting::{ShootingSolver, Unknowns};
 use crate::solution::Solution;
 
 /// A converged point of the path.
@@ -88,60 +89,85 @@ impl ShootingSolver {
         for target in targets {
             target.validate()?;
         }
-        let max_halvings = self.options().max_step_halvings;
         let mut solutions = Vec::with_capacity(targets.len());
         for (index, target) in targets.iter().enumerate() {
-            let mut t = 0.0;
-            let mut halvings = 0u32;
-            let mut guess = current.unknowns;
-            loop {
-                let step = (-f64::from(halvings)).exp2();
-                let t_next = (t + step).min(1.0);
-                let (condition, interpolable) = if t_next >= 1.0 {
-                    (*target, true)
-                } else {
-                    match current.condition.interpolate(target, t_next) {
-                        Some(c) => (c, true),
-                        None => (*target, false),
-                    }
-                };
-                let load_scale = current.load_scale + (1.0 - current.load_scale) * t_next;
-                let mut attempt = self.newton(&condition, &guess, load_scale, Globalization::Local);
-                if attempt.is_err() && halvings >= max_halvings {
-                    // Last resort at the smallest step: a damped solve (needed e.g.
-                    // when the path starts exactly at the kink N = 0 of a bimodular
-                    // law, where the local convergence tests cannot hold).
-                    attempt = self.newton(&condition, &guess, load_scale, Globalization::Damped);
-                }
-                match attempt {
-                    Ok(solution) => {
-                        guess = solution.unknowns();
-                        t = t_next;
-                        if t >= 1.0 {
-                            current = PathPoint {
-                                condition: *target,
-                                unknowns: guess,
-                                load_scale: 1.0,
-                            };
-                            solutions.push(solution);
-                            break;
-                        }
-                        halvings = halvings.saturating_sub(1);
-                    }
-                    Err(error) => {
-                        if !interpolable || halvings >= max_halvings {
-                            return Err(ReferenceError::ContinuationFailed {
-                                target: index,
-                                reached: t,
-                                halvings,
-                                last_error: Box::new(error),
-                            });
-                        }
-                        halvings += 1;
-                    }
-                }
-            }
+            let interpolable = current.condition.interpolate(target, 0.5).is_some();
+            let solution = follow_leg(
+                self.options().max_step_halvings,
+                index,
+                interpolable,
+                current.unknowns,
+                |t, guess, globalization| {
+                    let condition = if t >= 1.0 {
+                        *target
+                    } else {
+                        current.condition.interpolate(target, t).unwrap_or(*target)
+                    };
+                    let load_scale = current.load_scale + (1.0 - current.load_scale) * t;
+                    self.newton(&condition, guess, load_scale, globalization)
+                },
+                Solution::unknowns,
+            )?;
+            current = PathPoint {
+                condition: *target,
+                unknowns: solution.unknowns(),
+                load_scale: 1.0,
+            };
+            solutions.push(solution);
         }
         Ok(solutions)
+    }
+}
+
+/// Follows one leg of a path, from parameter `t = 0` (converged, with unknowns
+/// `guess`) to `t = 1`, by step halving: `solve(t, guess, globalization)` solves the
+/// problem at `t` from `guess`, `unknowns_of` reads a solution's unknowns (the next
+/// guess). A leg that is not `interpolable` (its end points are of different kinds) is
+/// tried in one step only. `target` is the leg's index, for the error.
+pub(crate) fn follow_leg<S, U>(
+    max_halvings: u32,
+    target: usize,
+    interpolable: bool,
+    mut guess: U,
+    mut solve: impl FnMut(f64, &U, Globalization) -> Result<S>,
+    unknowns_of: impl Fn(&S) -> U,
+) -> Result<S> {
+    let mut t = 0.0;
+    let mut halvings = 0u32;
+    loop {
+        let step = (-f64::from(halvings)).exp2();
+        let t_next = if interpolable {
+            (t + step).min(1.0)
+        } else {
+            1.0
+        };
+        let mut attempt = solve(t_next, &guess, Globalization::Local);
+        if attempt.is_err() && halvings >= max_halvings {
+            // Last resort at the smallest step: a damped solve (needed e.g. when the
+            // path starts exactly at the kink N = 0 of a bimodular law, where the local
+            // convergence tests cannot hold).
+            attempt = solve(t_next, &guess, Globalization::Damped);
+        }
+        match attempt {
+            Ok(solution) => {
+                guess = unknowns_of(&solution);
+                t = t_next;
+                if t >= 1.0 {
+                    return Ok(solution);
+                }
+                halvings = halvings.saturating_sub(1);
+            }
+            Err(error) => {
+                if !interpolable || halvings >= max_halvings {
+                    return Err(ReferenceError::ContinuationFailed {
+                        target,
+                        reached: t,
+                        halvings,
+                        last_error: Box::new(error),
+                    });
+                }
+                halvings += 1;
+            }
+        }
     }
 }

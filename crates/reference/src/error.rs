@@ -20,6 +20,41 @@ pub enum ReferenceError {
     /// A boundary condition or load contains non-finite values.
     #[error("invalid boundary condition: {0}")]
     InvalidBoundaryCondition(String),
+    /// A tree has no branch or not exactly one root (the trunk, without a parent).
+    #[error("invalid tree: {0}")]
+    InvalidTree(String),
+    /// A tree branch names a parent that does not exist.
+    #[error(
+        "tree branch {branch}: parent {parent} does not exist (the tree has {count} branches)"
+    )]
+    UnknownParent {
+        /// The branch.
+        branch: usize,
+        /// The parent it names.
+        parent: usize,
+        /// Number of branches.
+        count: usize,
+    },
+    /// Following the parents from a branch never reaches the trunk.
+    #[error("tree branch {branch} is on a cycle of parents and never reaches the trunk")]
+    TreeCycle {
+        /// A branch on the cycle.
+        branch: usize,
+    },
+    /// A branch does not start where its parent ends (branches are joined at the
+    /// parent's end point).
+    #[error(
+        "tree branch {branch} dangles: it starts {gap:.3e} m from the end of its parent \
+         {parent}; a branch must start at its parent's end"
+    )]
+    DanglingBranch {
+        /// The branch.
+        branch: usize,
+        /// Its parent.
+        parent: usize,
+        /// Distance between the branch's first rest node and the parent's last.
+        gap: f64,
+    },
     /// ShootingSolver options are out of range.
     #[error("invalid solver options: {0}")]
     InvalidOptions(String),

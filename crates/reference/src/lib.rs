@@ -28,6 +28,11 @@
 //! end loads ([`EndCondition`]). Large deformations are reached by path following
 //! with automatic step halving ([`continuation`]).
 //!
+//! Trees ([`Tree`], [`TreeSolver`]): a trunk clamped at its base and branches welded
+//! to the ends of other branches, solved by shooting with the unknown force and
+//! moment at the base of every branch, force and moment balance at every branch
+//! point and dead loads at every tip ([`tree_shooting`]).
+//!
 //! ## Conventions
 //!
 //! * Frames: `R = [d1 d2 d3]` maps body to global coordinates; d1 is the tangent,
@@ -61,14 +66,19 @@ pub mod boundary;
 pub mod continuation;
 pub mod elastica;
 pub mod error;
+mod newton;
 pub mod ode;
 pub mod rod;
 pub mod shooting;
 mod so3;
 pub mod solution;
+pub mod tree;
+pub mod tree_shooting;
 
 pub use boundary::{EndCondition, Pose};
 pub use error::{ReferenceError, Result};
 pub use rod::{Rod, Stiffness};
 pub use shooting::{ShootingSolver, SolverOptions, Unknowns};
 pub use solution::{SectionState, Solution, Wrench};
+pub use tree::Tree;
+pub use tree_shooting::{TreeSolution, TreeSolver};

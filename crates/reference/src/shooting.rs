@@ -16,18 +16,14 @@
 //! [`crate::ode`]); for the rotation residual `ψ = log(R_Lᵀ R(L))` it is
 //! `dψ = J_r⁻¹(ψ) · vee(R(L)ᵀ dR(L))`.
 //!
-//! The Jacobian is very ill-conditioned for near-inextensible rods (condition
-//! number ~ `EA L² / EI`, e.g. 1e9): a full Newton step can be excellent in the
-//! unknowns yet raise the residual norm through tiny second-order terms. The steps
-//! are therefore damped with Deuflhard's affine-invariant *natural monotonicity
-//! test* (Deuflhard, "Newton Methods for Nonlinear Problems", 2004, §3.3): the step
-//! factor α is halved until the simplified Newton correction
-//! `‖J(x_k)⁻¹ F(x_k + α Δx_k)‖ ≤ (1 − α/4) ‖Δx_k‖` (norms of scaled unknowns).
+//! The Newton iteration itself is damped by Deuflhard's natural monotonicity test
+//! (Deuflhard, "Newton Methods for Nonlinear Problems", 2004, §3.3).
 
-use nalgebra::{Matrix6, Vector3, Vector6};
+use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::boundary::{EndCondition, Pose};
 use crate::error::{ReferenceError, Result};
+use crate::newton::{self, Converged, Evaluation, Globalization};
 use crate::ode::{integrate, Augmented, RodState};
 use crate::rod::Rod;
 use crate::so3;
@@ -62,7 +58,7 @@ impl Default for SolverOptions {
 }
 
 impl SolverOptions {
-    fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         if self.steps_per_length == 0 {
             return Err(ReferenceError::InvalidOptions(
                 "steps_per_length must be positive".to_string(),
@@ -132,42 +128,12 @@ pub struct ShootingSolver {
     options: SolverOptions,
 }
 
-/// How a Newton iteration is kept on track far from the solution.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Globalization {
-    /// Halve the step until the natural monotonicity test holds (single solves).
-    Damped,
-    /// Full steps only, each contracting the simplified correction by at least
-    /// [`LOCAL_MAX_CONTRACTION`]; otherwise fail. Used by continuation: a guess that
-    /// is not inside the quadratic convergence region of the nearby solution is
-    /// rejected (and the step halved) instead of being allowed to wander onto
-    /// another equilibrium branch.
-    Local,
-}
-
-/// Largest accepted contraction `‖Δx̄_{k+1}‖ / ‖Δx_k‖` in [`Globalization::Local`].
-const LOCAL_MAX_CONTRACTION: f64 = 0.5;
-
-/// Largest accepted ratio, in [`Globalization::Local`], between the distance from
-/// the first Newton iterate to the converged solution (corrector) and the first
-/// Newton step (Euler predictor). The ratio is `O(Δt)` along a smooth path, so
-/// small steps always pass; a larger ratio flags strong path curvature or a jump
-/// to another branch, and the continuation step is halved.
-const LOCAL_MAX_CORRECTOR_RATIO: f64 = 0.1;
-
 /// Residual scales (see the module documentation).
 #[derive(Debug, Clone, Copy)]
 struct Scales {
     length: f64,
     force: f64,
     moment: f64,
-}
-
-/// One evaluation of the shooting map.
-struct Evaluation {
-    residual: Vector6<f64>,
-    jacobian: Matrix6<f64>,
-    end: RodState,
 }
 
 impl ShootingSolver {
@@ -250,14 +216,14 @@ impl ShootingSolver {
         }
     }
 
-    fn scale(&self, unknowns: &Unknowns) -> Vector6<f64> {
+    fn scale(&self, unknowns: &Unknowns) -> DVector<f64> {
         let sc = self.scales();
         let f = unknowns.force / sc.force;
         let m = unknowns.moment / sc.moment;
-        Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z)
+        DVector::from_column_slice(&[f.x, f.y, f.z, m.x, m.y, m.z])
     }
 
-    fn unscale(&self, x: &Vector6<f64>) -> Unknowns {
+    fn unscale(&self, x: &DVector<f64>) -> Unknowns {
         let sc = self.scales();
         Unknowns {
             force: Vector3::new(x[0], x[1], x[2]) * sc.force,
@@ -279,10 +245,10 @@ impl ShootingSolver {
     /// end state.
     fn evaluate(
         &self,
-        x: &Vector6<f64>,
+        x: &DVector<f64>,
         end: &EndCondition,
         load_scale: f64,
-    ) -> Result<Evaluation> {
+    ) -> Result<Evaluation<RodState>> {
         let sc = self.scales();
         let mut variations = [RodState::zero(); 6];
         for (j, v) in variations.iter_mut().enumerate() {
@@ -305,8 +271,8 @@ impl ShootingSolver {
             |_, _| {},
         )?;
         let y = &out.state;
-        let mut residual = Vector6::zeros();
-        let mut jacobian = Matrix6::zeros();
+        let mut residual = DVector::zeros(6);
+        let mut jacobian = DMatrix::zeros(6, 6);
         match end {
             EndCondition::Clamped(pose) => {
                 let dr = (y.r - pose.position) / sc.length;
@@ -340,15 +306,12 @@ impl ShootingSolver {
         Ok(Evaluation {
             residual,
             jacobian,
-            end: out.state,
+            detail: out.state,
         })
     }
 
-    /// Newton iteration from `guess`; `load_scale` multiplies the distributed load.
-    ///
-    /// With [`Globalization::Local`] the solve also fails
-    /// ([`ReferenceError::StepRejected`]) when the corrector is large compared with
-    /// the predictor (see [`LOCAL_MAX_CORRECTOR_RATIO`]).
+    /// Newton iteration ([`newton::solve`]) from `guess`; `load_scale` multiplies
+    /// the distributed load.
     pub(crate) fn newton(
         &self,
         end: &EndCondition,
@@ -356,89 +319,20 @@ impl ShootingSolver {
         load_scale: f64,
         globalization: Globalization,
     ) -> Result<Solution> {
-        let tolerance = self.options.tolerance;
-        let (max_backtracks, max_contraction) = match globalization {
-            Globalization::Damped => (self.options.max_backtracks, 1.0),
-            Globalization::Local => (0, LOCAL_MAX_CONTRACTION),
-        };
-        let start = self.scale(guess);
-        let mut x = start;
-        let mut first_iterate: Option<Vector6<f64>> = None;
-        let mut eval = self.evaluate(&x, end, load_scale)?;
-        for iteration in 0..=self.options.max_iterations {
-            let residual_max = eval.residual.amax();
-            if residual_max <= tolerance {
-                if let (Globalization::Local, Some(first)) = (globalization, first_iterate) {
-                    let predictor = (first - start).norm();
-                    let corrector = (x - first).norm();
-                    if corrector > LOCAL_MAX_CORRECTOR_RATIO * predictor {
-                        return Err(ReferenceError::StepRejected {
-                            predictor,
-                            corrector,
-                        });
-                    }
-                }
-                return Ok(self.solution(&x, end, &eval, iteration, residual_max, load_scale));
-            }
-            if iteration == self.options.max_iterations {
-                break;
-            }
-            let lu = eval.jacobian.lu();
-            let step = lu
-                .solve(&(-eval.residual))
-                .filter(|s| s.iter().all(|v| v.is_finite()))
-                .ok_or(ReferenceError::SingularJacobian { iteration })?;
-            let step_norm = step.norm();
-            let mut alpha = 1.0;
-            let mut accepted = None;
-            for _ in 0..=max_backtracks {
-                let trial = x + step * alpha;
-                if let Ok(e) = self.evaluate(&trial, end, load_scale) {
-                    // Natural monotonicity test (Deuflhard): the simplified Newton
-                    // correction J(x_k)⁻¹ F(x_k + α Δx) must shrink.
-                    let simplified = lu.solve(&(-e.residual)).map(|s| s.norm());
-                    let bound = (1.0 - 0.25 * alpha).min(max_contraction) * step_norm;
-                    let monotone = simplified.is_some_and(|norm| norm <= bound);
-                    if monotone || e.residual.amax() <= tolerance {
-                        accepted = Some((trial, e));
-                        break;
-                    }
-                }
-                alpha *= 0.5;
-            }
-            match accepted {
-                Some((trial, e)) => {
-                    x = trial;
-                    eval = e;
-                    first_iterate.get_or_insert(x);
-                }
-                None => {
-                    return Err(ReferenceError::NotConverged {
-                        iterations: iteration + 1,
-                        residual: residual_max,
-                        tolerance,
-                    })
-                }
-            }
-        }
-        Err(ReferenceError::NotConverged {
-            iterations: self.options.max_iterations,
-            residual: eval.residual.amax(),
-            tolerance,
-        })
+        let converged = newton::solve(self.scale(guess), &self.options, globalization, |x| {
+            self.evaluate(x, end, load_scale)
+        })?;
+        Ok(self.solution(&converged, end, load_scale))
     }
 
     fn solution(
         &self,
-        x: &Vector6<f64>,
+        converged: &Converged<RodState>,
         end: &EndCondition,
-        eval: &Evaluation,
-        iterations: usize,
-        residual: f64,
         load_scale: f64,
     ) -> Solution {
-        let unknowns = self.unscale(x);
-        let y = &eval.end;
+        let unknowns = self.unscale(&converged.x);
+        let y = &converged.evaluation.detail;
         let end_state = SectionState {
             arc_length: self.rod.length(),
             position: y.r,
@@ -451,8 +345,8 @@ impl ShootingSolver {
             *end,
             unknowns,
             end_state,
-            iterations,
-            residual,
+            converged.iterations,
+            converged.residual,
             load_scale,
         )
     }
@@ -479,7 +373,7 @@ mod tests {
             .with_distributed_load(Vector3::new(0.1, -0.3, 0.2))
             .unwrap();
         let solver = ShootingSolver::new(rod.clone(), rod.rest_base_pose()).unwrap();
-        let x = Vector6::new(0.7, -1.1, 0.4, 0.3, 0.8, -0.6);
+        let x = DVector::from_column_slice(&[0.7, -1.1, 0.4, 0.3, 0.8, -0.6]);
         let pose = Pose::new(
             Vector3::new(0.8, 0.2, -0.1),
             Rotation3::new(Vector3::new(0.3, -0.9, 0.5)),
@@ -492,9 +386,9 @@ mod tests {
             let eval = solver.evaluate(&x, end, 1.0).unwrap();
             let h = 1e-6;
             for j in 0..6 {
-                let mut xp = x;
+                let mut xp = x.clone();
                 xp[j] += h;
-                let mut xm = x;
+                let mut xm = x.clone();
                 xm[j] -= h;
                 let rp = solver.evaluate(&xp, end, 1.0).unwrap().residual;
                 let rm = solver.evaluate(&xm, end, 1.0).unwrap().residual;

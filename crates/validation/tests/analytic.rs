@@ -105,6 +105,10 @@ fn helix() {
 }
 
 #[test]
+fn large_frames() {
+    assert_case("large_frames");
+}
+#[test]
 fn sections() {
     assert_case("sections");
 }

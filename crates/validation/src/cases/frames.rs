@@ -24,11 +24,11 @@ use glam::DVec3;
 use pliant_core::{Model, State};
 
 /// Elements per segment.
-const ELEMENTS: usize = 20;
+pub(super) const ELEMENTS: usize = 20;
 /// Section stiffnesses [N, N·m²] given directly (a cable-like section).
-const EA: f64 = 2.0e3;
-const EI: f64 = 0.05;
-const GJ: f64 = 0.04;
+pub(super) const EA: f64 = 2.0e3;
+pub(super) const EI: f64 = 0.05;
+pub(super) const GJ: f64 = 0.04;
 /// Small-load ratio PL²/EI with L = 1 m.
 const LAMBDA: f64 = 1e-3;
 /// Linear checks: the element is exact at its nodes, the extrapolation leaves terms of
@@ -37,7 +37,7 @@ const TOLERANCE: f64 = 1e-4;
 
 /// A scene of straight segments `(name, start, end)` (metres) joined by `junctions`
 /// (TOML text), without gravity.
-fn network(segments: &[(&str, DVec3, DVec3)], junctions: &str) -> Result<Model, String> {
+pub(super) fn network(segments: &[(&str, DVec3, DVec3)], junctions: &str) -> Result<Model, String> {
     let mut text = String::from(
         r#"
 format = "pliant-scene"
@@ -70,7 +70,7 @@ path = [{{ line = {{ to = [{}, {}, {}] }} }}]
 }
 
 /// Global index of the last node of hose `h`.
-fn tip(model: &Model, h: usize) -> usize {
+pub(super) fn tip(model: &Model, h: usize) -> usize {
     let info = &model.hoses[h];
     info.first_node + info.node_count - 1
 }
@@ -100,21 +100,40 @@ fn displaced_under(
     loads: &[(usize, DVec3)],
     watch: &[usize],
 ) -> Result<Vec<DVec3>, String> {
-    let mut state = State::at_rest(model);
-    clamp(&mut state, 0);
-    let mut total = 0.0;
-    for &(node, force) in loads {
-        state.loads.add(dead_load(node, force, DVec3::ZERO));
-        total += force.length();
-    }
-    settle_to(model, &mut state, total, 1.0, 1e-6)?;
+    let state = at_rest_under(model, loads, 1)?;
     Ok(watch
         .iter()
         .map(|&i| state.x[i] - model.rest_x[i])
         .collect())
 }
 
-fn weld(name: &str, ends: &[(&str, &str)]) -> String {
+/// The network at rest under dead `loads` (node, force), the first node of hose 0
+/// clamped; the loads grow in `increments` equal steps, each brought to rest, so that the
+/// solver follows the equilibrium path from the rest shape.
+pub(super) fn at_rest_under(
+    model: &Model,
+    loads: &[(usize, DVec3)],
+    increments: usize,
+) -> Result<State, String> {
+    let mut state = State::at_rest(model);
+    clamp(&mut state, 0);
+    let total: f64 = loads.iter().map(|(_, force)| force.length()).sum();
+    let mut active = Vec::with_capacity(loads.len());
+    for k in 1..=increments {
+        for id in active.drain(..) {
+            state.loads.remove(id);
+        }
+        let scale = k as f64 / increments as f64;
+        for &(node, force) in loads {
+            active.push(state.loads.add(dead_load(node, scale * force, DVec3::ZERO)));
+        }
+        settle_to(model, &mut state, total, 1.0, 1e-6)?;
+    }
+    Ok(state)
+}
+
+/// A `[[junctions]]` table welding the given hose ends `(hose, "start" | "end")`.
+pub(super) fn weld(name: &str, ends: &[(&str, &str)]) -> String {
     let ends: Vec<String> = ends
         .iter()
         .map(|(h, e)| format!("{{ hose = \"{h}\", end = \"{e}\" }}"))

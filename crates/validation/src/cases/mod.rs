@@ -12,6 +12,7 @@ mod helix;
 pub mod hose_contact;
 mod hysteresis;
 mod invariance;
+mod large_frames;
 mod moving_parts;
 mod plastic_bending;
 mod postbuckling;
@@ -48,6 +49,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("stiffened", stiffened::run),
     ("sections", sections::run),
     ("frames", frames::run),
+    ("large_frames", large_frames::run),
     ("stub", fasteners::run_stub),
     ("clip", fasteners::run_clip),
     ("thesis_1", thesis::run_1),

@@ -13,7 +13,8 @@
 //! and are run by the explicit solver only.
 
 use super::{
-    axial, buckling, frames, hose_contact, rollup, sections, stiffened, tip_load, torsion,
+    axial, buckling, frames, hose_contact, large_frames, rollup, sections, stiffened, tip_load,
+    torsion,
 };
 use crate::harness::with_solver;
 use crate::Check;
@@ -35,6 +36,7 @@ const CASES: &[(&str, crate::CaseFn, &[SolverKind])] = &[
     ("stiffened", stiffened::run, BOTH),
     ("sections", sections::run, BOTH),
     ("frames", frames::run, BOTH),
+    ("large_frames", large_frames::run, BOTH),
     ("hose_contact", hose_contact::run, BOTH),
 ];
 
