@@ -13,6 +13,7 @@ pub mod hand;
 pub mod part_frame;
 pub mod report;
 pub mod runner;
+pub mod series_cap;
 pub mod stub;
 pub mod sweep;
 pub mod timeline;

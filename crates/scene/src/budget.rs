@@ -24,8 +24,11 @@
 //! ([`Budget::contact_pair_room`], `SimSettings::max_contact_pairs`): hoses piling up
 //! beyond it stop the run as diverged. What grows with the run's length — the samples
 //! kept for the report per recorded time ([`Recorded`]) — is checked when the run is
-//! planned (`LoadedScene::check_planned_steps`). The estimate is tested against the
-//! measured peak in `crates/cli/tests/budget.rs`.
+//! planned (`LoadedScene::check_planned_steps`); the range-of-motion rows and the
+//! worker's samples are capped however long a run goes
+//! ([`pliant_assembly::series_cap`]), and a live session, which has no planned end, is
+//! checked against those caps when it starts (`LoadedScene::check_live_session`). The
+//! estimate is tested against the measured peak in `crates/cli/tests/budget.rs`.
 
 use crate::error::FieldError;
 use pliant_assembly::fasteners::FastenerSample;
@@ -270,7 +273,14 @@ pub struct Recorded {
     pub nodes: u64,
     /// Values of a range-of-motion row (`[sweep]`), 8 bytes each; 0 without a sweep.
     pub sweep_values: u64,
+    /// Whether a worker is posed (a sample per posed instant).
+    pub worker: bool,
 }
+
+/// Most memory one capped series holds \[bytes\]: its cap
+/// ([`pliant_assembly::series_cap::MAX_SERIES_BYTES`]), twice over as its `Vec` may have
+/// grown to twice its length before it was thinned.
+pub const MAX_CAPPED_SERIES_BYTES: u64 = 2 * pliant_assembly::series_cap::MAX_SERIES_BYTES as u64;
 
 impl Recorded {
     /// Memory the recorded series take \[bytes\].
@@ -279,9 +289,23 @@ impl Recorded {
             .hands
             .saturating_mul(RECORD_BYTES_PER_HAND)
             .saturating_add(self.fasteners.saturating_mul(RECORD_BYTES_PER_FASTENER))
-            .saturating_add(self.nodes.saturating_mul(RECORD_BYTES_PER_NODE))
-            .saturating_add(self.sweep_values.saturating_mul(8));
-        self.records.saturating_mul(per_record)
+            .saturating_add(self.nodes.saturating_mul(RECORD_BYTES_PER_NODE));
+        // the range-of-motion rows and the worker's samples are capped however long the
+        // run (pliant_assembly::series_cap)
+        let capped = |bytes_per_record: u64| {
+            self.records
+                .saturating_mul(2 * bytes_per_record)
+                .min(MAX_CAPPED_SERIES_BYTES)
+        };
+        let worker = if self.worker {
+            capped(std::mem::size_of::<pliant_assembly::worker::WorkerSample>() as u64)
+        } else {
+            0
+        };
+        self.records
+            .saturating_mul(per_record)
+            .saturating_add(capped(self.sweep_values.saturating_mul(8)))
+            .saturating_add(worker)
     }
 }
 
@@ -294,6 +318,7 @@ pub fn check_recorded(estimate: &Estimate, limits: &Limits, kept: &Recorded) -> 
         fasteners,
         nodes,
         sweep_values,
+        worker: _,
     } = *kept;
     let series = kept.bytes();
     let need = estimate.memory_bytes().saturating_add(series);

@@ -115,6 +115,22 @@ impl LoadedScene {
         Ok(steps)
     }
 
+    /// Refuses a live session of this scene (which has no planned end) whose series kept
+    /// in memory for as long as it runs — the range-of-motion rows and the worker's
+    /// samples, each capped ([`pliant_assembly::series_cap`]) — would exceed, on top of
+    /// the scene's estimate, the memory limit it was loaded under.
+    pub fn check_live_session(&self) -> Result<(), String> {
+        let forever = crate::budget::Recorded {
+            records: u64::MAX,
+            hands: 0,
+            fasteners: 0,
+            nodes: 0,
+            ..self.recorded(f64::INFINITY, false)
+        };
+        crate::budget::check_recorded(&self.estimate, &self.limits, &forever)
+            .map_err(|e| format!("{}: {e}", self.source))
+    }
+
     /// What a run of the timeline at `time_step` \[s\] keeps in memory per recorded time,
     /// and how many times it records (`keeps_positions`: also every node's position).
     pub fn recorded(&self, time_step: f64, keeps_positions: bool) -> crate::budget::Recorded {
@@ -144,6 +160,7 @@ impl LoadedScene {
                 };
                 pliant_assembly::sweep::row_len(hoses, hoses * parts) as u64
             }),
+            worker: self.worker.is_some(),
         }
     }
 

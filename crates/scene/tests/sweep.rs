@@ -81,3 +81,30 @@ fn a_slow_door_sweep_is_the_same_quasi_statically_and_dynamically() {
     assert!((q.value - d.value).abs() < 0.05 * q.value, "{q:?} {d:?}");
     assert!(q.coordinate.to_degrees() > 60.0 && d.coordinate.to_degrees() > 60.0);
 }
+
+/// A live session has no planned end, so its range-of-motion rows would grow without
+/// bound; they are capped (`pliant_assembly::series_cap`) and the cap is what a live
+/// session is checked against: a scene whose planned run fits its memory limit is refused
+/// as a live session when the cap does not fit beside it.
+#[test]
+fn a_live_session_is_checked_against_its_capped_series() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/door_hinge.toml");
+    let estimate = door_example().estimate.memory_bytes();
+    let with_limit = |bytes: u64| {
+        let options = pliant_scene::LoadOptions {
+            limits: pliant_scene::Limits::with_memory(bytes),
+            ..Default::default()
+        };
+        pliant_scene::load_scene_file_with(&path, &options).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let tight = with_limit(estimate + 4_000_000);
+    tight
+        .check_planned_steps(1e-4, u64::MAX)
+        .unwrap_or_else(|e| panic!("the planned run fits: {e}"));
+    let e = tight.check_live_session().unwrap_err();
+    assert!(e.contains("range-of-motion"), "{e}");
+    let roomy = with_limit(estimate + pliant_scene::budget::MAX_CAPPED_SERIES_BYTES);
+    roomy
+        .check_live_session()
+        .unwrap_or_else(|e| panic!("the capped rows fit: {e}"));
+}

@@ -90,6 +90,9 @@ pub enum SessionError {
     Thread(std::io::Error),
     #[error("cannot create the session folder {path}: {reason}")]
     Folder { path: String, reason: String },
+    /// What the session would keep in memory while it runs exceeds the scene's limit.
+    #[error("{0}")]
+    Budget(String),
 }
 
 /// Options of the simulation thread.
@@ -143,6 +146,7 @@ pub struct Session {
 impl Session {
     /// Builds the workcell of `scene` and starts its simulation thread.
     pub fn start(scene: &LoadedScene, options: SessionOptions) -> Result<Session, SessionError> {
+        scene.check_live_session().map_err(SessionError::Budget)?;
         let (mut cell, sites, cell_options) = live_workcell(scene, options.solver)?;
         if let Some(dir) = &options.folder {
             let file =

@@ -69,13 +69,41 @@ impl SweepSummary {
 
     /// The row where `key` is least (the first such), if any row.
     fn least(&self, key: impl Fn(&[f64]) -> f64) -> Option<(&[f64], f64)> {
+        let (i, v) = self.least_index(key)?;
+        Some((self.rows().nth(i)?, v))
+    }
+
+    /// The index of the row where `key` is least (the first such) and that value.
+    fn least_index(&self, key: impl Fn(&[f64]) -> f64) -> Option<(usize, f64)> {
         self.rows()
-            .map(|r| (r, key(r)))
+            .map(key)
+            .enumerate()
             .filter(|(_, v)| !v.is_nan())
-            .fold(None, |best, (r, v)| match best {
+            .fold(None, |best, (i, v)| match best {
                 Some((_, b)) if b <= v => best,
-                _ => Some((r, v)),
+                _ => Some((i, v)),
             })
+    }
+
+    /// The rows [`Self::worst`] and [`Self::describe`] name: per hose its worst bend, twist
+    /// and axial force, per pair its smallest clearance, the largest fixing force — the
+    /// rows a thinned series keeps ([`crate::series_cap`]).
+    pub fn worst_rows(&self) -> Vec<usize> {
+        let mut out = Vec::new();
+        for h in 0..self.hose_names.len() {
+            out.extend(self.least_index(|r| -Self::hose_value(r, h, BEND_RATIO)));
+            out.extend(self.least_index(|r| Self::hose_value(r, h, BEND_RADIUS)));
+            out.extend(self.least_index(|r| -Self::hose_value(r, h, TWIST)));
+            out.extend(self.least_index(|r| -Self::hose_value(r, h, AXIAL_FORCE)));
+        }
+        for k in 0..self.pairs.len() {
+            out.extend(self.least_index(|r| self.pair_value(r, k)));
+        }
+        out.extend(self.least_index(|r| -r[self.stride - 1]));
+        let mut rows: Vec<usize> = out.into_iter().map(|(i, _)| i).collect();
+        rows.sort_unstable();
+        rows.dedup();
+        rows
     }
 
     /// The motion coordinate at the recorded instant nearest to `time` (SI).
@@ -341,6 +369,14 @@ mod tests {
         let csv = s.csv();
         let cells: Vec<&str> = csv.lines().nth(2).unwrap().split(',').collect();
         assert_eq!(cells[3], "1.200000e0", "{csv}");
+    }
+
+    #[test]
+    fn the_rows_a_thinned_sweep_keeps_are_its_worst() {
+        let s = two_rows();
+        // row 0: the smallest radius and the largest fixing force (the first of equals);
+        // row 1: the largest bend ratio
+        assert_eq!(s.worst_rows(), vec![0, 1]);
     }
 
     #[test]

@@ -9,6 +9,7 @@ use super::coordinate::Coordinate;
 use super::settings::SweepSettings;
 use super::summary::SweepSummary;
 use crate::checks::axial_force;
+use crate::series_cap::{retain_flat, SeriesCap};
 use pliant_core::contact::part_gap::hose_part_gap;
 use pliant_core::loads::LoadCase;
 use pliant_core::{Model, State};
@@ -30,6 +31,9 @@ pub fn row_len(hoses: usize, pairs: usize) -> usize {
 pub struct MotionSweep {
     coordinate: Coordinate,
     found: SweepSummary,
+    /// Keeps the rows within [`crate::series_cap::MAX_SERIES_BYTES`] in a session of any
+    /// length, the worst rows kept.
+    cap: SeriesCap,
 }
 
 impl MotionSweep {
@@ -55,13 +59,15 @@ impl MotionSweep {
                 coordinate.kind = kind;
             }
         }
+        let stride = row_len(model.hoses.len(), pairs.len());
         MotionSweep {
+            cap: SeriesCap::of_rows(stride * std::mem::size_of::<f64>()),
             found: SweepSummary {
                 coordinate: Some(coordinate.clone()),
                 hose_names: model.hoses.iter().map(|h| h.name.clone()).collect(),
                 allowed_radius,
                 twist_limit,
-                stride: row_len(model.hoses.len(), pairs.len()),
+                stride,
                 pairs,
                 part_names: model
                     .environment
@@ -79,6 +85,9 @@ impl MotionSweep {
     /// Records a row for `state`, with the beams' curvature `kappa` [1/m] and twist
     /// relative to the routed hose `twist` [rad/m] (the checks' values at this instant).
     pub fn record(&mut self, model: &Model, state: &State, kappa: &[f64], twist: &[f64]) {
+        if !self.cap.take() {
+            return;
+        }
         let t = state.time;
         let rows = &mut self.found.rows;
         rows.push(t);
@@ -120,6 +129,18 @@ impl MotionSweep {
             .map(|(_, c)| state.reaction_force[c.node()].length())
             .fold(0.0, f64::max);
         rows.push(fixing);
+        let count = rows.len() / self.found.stride;
+        if count >= self.cap.max_rows() {
+            let worst = self.found.worst_rows();
+            if let Some(keep) = self.cap.thin(count, |i| worst.binary_search(&i).is_ok()) {
+                retain_flat(&mut self.found.rows, self.found.stride, &keep);
+            }
+        }
+    }
+
+    /// How many checked instants make one row (1 until the rows first reach their cap).
+    pub fn stride(&self) -> u64 {
+        self.cap.stride()
     }
 
     /// What was recorded.

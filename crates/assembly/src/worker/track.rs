@@ -9,11 +9,13 @@
 use super::collisions::{checked, deepest};
 use super::finding::WorkerFinding;
 use super::settings::WorkerSettings;
+use crate::series_cap::SeriesCap;
 use crate::workcell::HandRecord;
 use glam::DVec3;
 use pliant_core::{Model, State};
 use pliant_worker::reba::RebaScore;
 use pliant_worker::rula::RulaScore;
+use pliant_worker::scores::PostureScores;
 use pliant_worker::{
     body, capsules, score_posture, Body, Manikin, Placement, Posture, ScoreOptions, Side,
     WorkerError, CAPSULE_COUNT,
@@ -116,6 +118,9 @@ pub struct WorkerTrack {
     /// The hand each arm followed at the last posed instant (right, left).
     arm_of: [Option<usize>; 2],
     series: Vec<WorkerSample>,
+    /// Keeps the series within [`crate::series_cap::MAX_SERIES_BYTES`] in a session of
+    /// any length (the worst scores and deepest collision are kept apart anyway).
+    cap: SeriesCap,
 }
 
 impl WorkerTrack {
@@ -136,6 +141,7 @@ impl WorkerTrack {
             last_posture: None,
             arm_of: [None; 2],
             series: Vec::with_capacity(1024),
+            cap: SeriesCap::of_rows(std::mem::size_of::<WorkerSample>()),
         };
         t.reset();
         Ok(t)
@@ -157,6 +163,7 @@ impl WorkerTrack {
         self.last_posture = None;
         self.arm_of = [None; 2];
         self.series.clear();
+        self.cap.reset();
     }
 
     pub fn settings(&self) -> &WorkerSettings {
@@ -292,6 +299,23 @@ impl WorkerTrack {
             });
         }
         self.instants += 1;
+        if self.cap.take() {
+            self.sample(time, hand, &target, &posture, scores, deepest_now);
+        }
+        self.last_posture = Some(posture);
+    }
+
+    /// Adds the instant to the series, thinning it when full (the rows of the highest
+    /// RULA and REBA scores and the deepest collision kept).
+    fn sample(
+        &mut self,
+        time: f64,
+        hand: [Option<usize>; 2],
+        target: &[Option<DVec3>; 2],
+        posture: &Posture,
+        scores: PostureScores,
+        deepest_now: f64,
+    ) {
         let arm = |i: usize| &posture.arms[i];
         self.series.push(WorkerSample {
             time,
@@ -307,7 +331,24 @@ impl WorkerTrack {
             elbow: [0, 1].map(|i| arm(i).elbow_flexion),
             collision_depth: deepest_now,
         });
-        self.last_posture = Some(posture);
+        let worst = |key: fn(&WorkerSample) -> f64| {
+            (0..self.series.len())
+                .max_by(|&a, &b| key(&self.series[a]).total_cmp(&key(&self.series[b])))
+        };
+        if self.series.len() >= self.cap.max_rows() {
+            let kept = [
+                worst(|s| s.rula as f64),
+                worst(|s| s.reba as f64),
+                worst(|s| s.collision_depth),
+            ];
+            if let Some(keep) = self
+                .cap
+                .thin(self.series.len(), |i| kept.contains(&Some(i)))
+            {
+                let mut k = keep.iter();
+                self.series.retain(|_| k.next().copied().unwrap_or(true));
+            }
+        }
     }
 
     fn note_collision(
