@@ -3,11 +3,15 @@
 //! segments; topology-only and malformed VEC files are refused with the element, line and
 //! reason.
 
-use std::fmt::Write as _;
+mod common;
+mod vec_writer;
+
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
+use pliant_harness::bundle::{segment_bundle, BundleData, BundleSection};
 use pliant_harness::geometry::SegmentCurve;
+use pliant_harness::model::Conductor;
 use pliant_harness::{read_kbl, Harness, HarnessError};
 
 fn test_data(file: &str) -> PathBuf {
@@ -60,90 +64,235 @@ fn the_hand_written_y_harness_has_its_exact_geometry() {
     );
     assert!(rel < 0.0 && rel > -2e-4, "{rel}");
     assert!(h.warnings.iter().any(|w| w.contains("polylines")));
-    assert!(h.warnings.iter().any(|w| w.contains("not read")));
 }
 
-/// The harness's nodes and centre curves written as VEC 2.0.2 (millimetres; curves as
-/// NURBS without knots, the convention KBL's centre curves follow).
-fn as_vec(h: &Harness) -> String {
-    let mut points = String::new();
-    let mut point = |id: &str, p: DVec3| {
-        let mm = p * 1e3;
-        let _ = writeln!(
-            points,
-            "<CartesianPoint id=\"{id}\"><X>{}</X><Y>{}</Y><Z>{}</Z></CartesianPoint>",
-            mm.x, mm.y, mm.z
-        );
-    };
-    let mut body = String::new();
-    for n in &h.nodes {
-        point(&format!("P_{}", n.kbl_id), n.position);
-        let _ = writeln!(
-            body,
-            "<GeometryNode id=\"{0}\"><Identification>{0}</Identification><CartesianPoint>P_{0}</CartesianPoint></GeometryNode>",
-            n.kbl_id
-        );
+/// |a − b| ≤ tol · max(|a|, |b|), both absent, or both present.
+fn close(a: Option<f64>, b: Option<f64>, tol: f64) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => (a - b).abs() <= tol * a.abs().max(b.abs()),
+        (None, None) => true,
+        _ => false,
     }
-    for s in &h.segments {
-        let _ = write!(
-            body,
-            "<GeometrySegment id=\"{}\"><Identification>{}</Identification><EndNode>{}</EndNode><StartNode>{}</StartNode>",
-            s.kbl_id, s.kbl_id, h.nodes[s.end_node].kbl_id, h.nodes[s.start_node].kbl_id
-        );
-        for c in &s.curves {
-            let _ = write!(
-                body,
-                "<Curve xsi:type=\"vec:NURBSCurve\" id=\"C_{}\"><Degree>{}</Degree>",
-                c.kbl_id, c.degree
-            );
-            for (k, p) in c.control_points.iter().enumerate() {
-                let id = format!("P_{}_{k}", c.kbl_id);
-                point(&id, *p);
-                let _ = write!(
-                    body,
-                    "<ControlPoint id=\"CP_{}_{k}\"><Weight>1</Weight><CartesianPoint3D>{id}</CartesianPoint3D></ControlPoint>",
-                    c.kbl_id
-                );
-            }
-            body.push_str("</Curve>");
-        }
-        body.push_str("</GeometrySegment>\n");
-    }
-    format!(
-        "<?xml version=\"1.0\"?>\n<vec:VecContent xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" xmlns:vec=\"http://www.prostep.org/ecad-if/2011/vec\" id=\"c\">\n\
-         <VecVersion>2.0.2</VecVersion>\n<DocumentVersion id=\"d\"><CompanyName>test</CompanyName><DocumentNumber>1</DocumentNumber><DocumentVersion>1</DocumentVersion>\n\
-         <Specification xsi:type=\"vec:BuildingBlockSpecification3D\" id=\"b\"><Identification>b</Identification><BaseUnit>mm</BaseUnit>\n{points}{body}</Specification>\n</DocumentVersion>\n\
-         <Unit xsi:type=\"vec:SIUnit\" id=\"mm\"><SiUnitName>Metre</SiUnitName><SiPrefix>Milli</SiPrefix></Unit>\n</vec:VecContent>\n"
-    )
 }
 
-#[test]
-fn the_generator_cable_written_as_vec_imports_to_the_same_segments() {
-    let kbl = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data/harness/kblxml_2.3sr-1_000971230_ltgs_generator_170718.kbl");
-    let k = read_kbl(&kbl).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let vec_path = dir.path().join("generator.vec");
-    std::fs::write(&vec_path, as_vec(&k)).unwrap();
-    let v = read_kbl(&vec_path).unwrap();
-    assert_eq!(v.segments.len(), k.segments.len());
+fn same_conductor(a: &Conductor, b: &Conductor, what: &str) {
+    assert!(
+        close(a.outer_diameter, b.outer_diameter, 1e-12),
+        "{what}: {a:?} vs {b:?}"
+    );
+    assert!(
+        close(a.cross_section, b.cross_section, 1e-12),
+        "{what}: {a:?} vs {b:?}"
+    );
+    assert!(
+        close(a.bend_radius, b.bend_radius, 1e-12),
+        "{what}: {a:?} vs {b:?}"
+    );
+}
+
+fn same_section(a: &BundleSection, b: &BundleSection, what: &str) {
+    let pairs = [
+        ("d_outer", a.d_outer, b.d_outer),
+        ("EA", a.ea, b.ea),
+        ("EI", a.ei, b.ei),
+        ("GJ", a.gj, b.gj),
+        ("mass", a.mass, b.mass),
+        ("min bend radius", a.min_bend_radius, b.min_bend_radius),
+    ];
+    for (name, x, y) in pairs {
+        assert!(close(Some(x), Some(y), 1e-12), "{what} {name}: {x} vs {y}");
+    }
+    assert_eq!(a.wire_count, b.wire_count, "{what}");
+    assert_eq!(a.protection, b.protection, "{what}");
+}
+
+/// Everything the import uses is the same in the KBL reading `k` and the VEC reading
+/// `v` of one harness: segments (geometry, lengths, wires), wire parts, wires, fixings,
+/// protections, connectors, and each segment's bundle sections.
+fn same_content(k: &Harness, v: &Harness) {
     assert_eq!(v.nodes.len(), k.nodes.len());
+    for (a, b) in k.nodes.iter().zip(&v.nodes) {
+        assert_eq!(a.kbl_id, b.kbl_id);
+        assert!((a.position - b.position).length() < 1e-12);
+    }
+    assert_eq!(v.segments.len(), k.segments.len());
     let mut worst: f64 = 0.0;
-    for s in &k.segments {
-        let a = SegmentCurve::of(&k, s);
-        let b = SegmentCurve::of(&v, segment(&v, &s.kbl_id));
-        assert_eq!(a.straight_fallback, b.straight_fallback);
-        worst = worst.max((b.length / a.length - 1.0).abs());
-        let (pa, pb) = (a.sample(20), b.sample(20));
-        for (p, q) in pa.iter().zip(&pb) {
-            assert!((*p - *q).length() < 1e-12, "{}: {p} vs {q}", s.kbl_id);
+    for (a, b) in k.segments.iter().zip(&v.segments) {
+        assert_eq!(
+            (&a.kbl_id, &a.name, a.start_node, a.end_node, &a.wires),
+            (&b.kbl_id, &b.name, b.start_node, b.end_node, &b.wires)
+        );
+        assert!(
+            close(a.virtual_length, b.virtual_length, 1e-12),
+            "{}",
+            a.kbl_id
+        );
+        assert!(
+            close(a.cross_section_area, b.cross_section_area, 1e-12),
+            "{}",
+            a.kbl_id
+        );
+        let (ca, cb) = (SegmentCurve::of(k, a), SegmentCurve::of(v, b));
+        assert_eq!(ca.straight_fallback, cb.straight_fallback);
+        worst = worst.max((cb.length / ca.length - 1.0).abs());
+        for (p, q) in ca.sample(20).iter().zip(&cb.sample(20)) {
+            assert!((*p - *q).length() < 1e-12, "{}: {p} vs {q}", a.kbl_id);
         }
     }
     println!("worst relative length difference KBL vs VEC: {worst:e}");
     assert!(worst < 1e-9);
-    // And the whole import writes a scene.
-    let report = pliant_harness::import_kbl(&vec_path, &dir.path().join("scene")).unwrap();
-    assert!(report.scene.exists());
+    assert_eq!(v.wire_parts.len(), k.wire_parts.len());
+    for (a, b) in k.wire_parts.iter().zip(&v.wire_parts) {
+        assert_eq!(
+            (&a.kbl_id, &a.part_number, &a.description, a.cores.len()),
+            (&b.kbl_id, &b.part_number, &b.description, b.cores.len())
+        );
+        assert!(
+            close(a.mass_per_length, b.mass_per_length, 1e-12),
+            "{}",
+            a.kbl_id
+        );
+        same_conductor(&a.own, &b.own, &a.kbl_id);
+        for (x, y) in a.cores.iter().zip(&b.cores) {
+            same_conductor(x, y, &a.kbl_id);
+        }
+    }
+    assert_eq!(v.wires.len(), k.wires.len());
+    for (a, b) in k.wires.iter().zip(&v.wires) {
+        assert_eq!(
+            (&a.kbl_id, &a.name, a.part, &a.segments),
+            (&b.kbl_id, &b.name, b.part, &b.segments)
+        );
+    }
+    assert_eq!(v.fixings.len(), k.fixings.len());
+    for (a, b) in k.fixings.iter().zip(&v.fixings) {
+        assert_eq!(
+            (
+                &a.kbl_id,
+                &a.occurrence,
+                &a.name,
+                &a.part_number,
+                &a.description
+            ),
+            (
+                &b.kbl_id,
+                &b.occurrence,
+                &b.name,
+                &b.part_number,
+                &b.description
+            )
+        );
+        assert_eq!((&a.fixing_type, a.segment), (&b.fixing_type, b.segment));
+        assert!((a.location - b.location).abs() < 1e-12, "{}", a.kbl_id);
+        let direction = |o: Option<DVec3>| o.map(|o| o.normalize());
+        match (direction(a.orientation), direction(b.orientation)) {
+            (Some(x), Some(y)) => assert!((x - y).length() < 1e-12, "{x} vs {y}"),
+            (x, y) => assert_eq!(x, y),
+        }
+    }
+    assert_eq!(v.protections.len(), k.protections.len());
+    for (a, b) in k.protections.iter().zip(&v.protections) {
+        assert_eq!(
+            (&a.kbl_id, &a.occurrence, &a.part_number, &a.description),
+            (&b.kbl_id, &b.occurrence, &b.part_number, &b.description)
+        );
+        if a.protection_type.is_some() {
+            assert_eq!(a.protection_type, b.protection_type);
+        }
+        assert_eq!((a.kind, a.segment), (b.kind, b.segment));
+        assert!((a.from - b.from).abs() < 1e-12 && (a.to - b.to).abs() < 1e-12);
+        assert!(close(a.mass_per_length, b.mass_per_length, 1e-12));
+        assert!(close(a.outer_diameter, b.outer_diameter, 1e-12));
+    }
+    assert_eq!(v.connectors.len(), k.connectors.len());
+    for (a, b) in k.connectors.iter().zip(&v.connectors) {
+        assert_eq!(
+            (&a.kbl_id, &a.name, &a.description, a.node, a.positions),
+            (&b.kbl_id, &b.name, &b.description, b.node, b.positions)
+        );
+    }
+    let data = BundleData::builtin();
+    for i in 0..k.segments.len() {
+        let (a, b) = (segment_bundle(&data, k, i), segment_bundle(&data, v, i));
+        same_section(&a.section, &b.section, &k.segments[i].kbl_id);
+        same_section(&a.bare, &b.bare, &k.segments[i].kbl_id);
+        assert_eq!(a.stretches.len(), b.stretches.len());
+        for (x, y) in a.stretches.iter().zip(&b.stretches) {
+            assert!((x.from - y.from).abs() < 1e-12 && (x.to - y.to).abs() < 1e-12);
+            same_section(&x.section, &y.section, &k.segments[i].kbl_id);
+        }
+    }
+}
+
+/// The lines of a written file that do not name the source file or format.
+fn content_lines(path: &Path) -> Vec<String> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter(|l| {
+            !l.starts_with('#') && !l.contains("source") && !l.contains("KBL") && !l.contains("VEC")
+        })
+        .map(str::to_string)
+        .collect()
+}
+
+/// Lines equal token by token, numbers as numbers (a printed −0.000000 is 0).
+fn same_line(a: &str, b: &str) -> bool {
+    let split = |l: &str| -> Vec<String> {
+        l.split(|c: char| c.is_whitespace() || ",[]{}=".contains(c))
+            .filter(|t| !t.is_empty())
+            .map(str::to_string)
+            .collect()
+    };
+    let (x, y) = (split(a), split(b));
+    x.len() == y.len()
+        && x.iter()
+            .zip(&y)
+            .all(|(s, t)| match (s.parse::<f64>(), t.parse::<f64>()) {
+                (Ok(u), Ok(v)) => u == v,
+                _ => s == t,
+            })
+}
+
+#[test]
+fn kbl_harnesses_written_as_vec_import_to_the_same_content() {
+    for file in [common::GENERATOR, common::BATTERY, common::MAIN] {
+        let k = read_kbl(&common::data(file)).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let vec_path = dir.path().join(file.replace(".kbl", ".vec"));
+        std::fs::write(&vec_path, vec_writer::as_vec(&k)).unwrap();
+        let v = read_kbl(&vec_path).unwrap();
+        println!(
+            "{file}: {} segments, {} wires, {} fixings, {} protections, {} connectors; VEC skipped: {:?}",
+            v.segments.len(),
+            v.wires.len(),
+            v.fixings.len(),
+            v.protections.len(),
+            v.connectors.len(),
+            v.skipped
+        );
+        same_content(&k, &v);
+        // And the whole import writes the same scene and installation.
+        let kbl_report =
+            pliant_harness::import_kbl(&common::data(file), &dir.path().join("kbl")).unwrap();
+        let vec_report = pliant_harness::import_kbl(&vec_path, &dir.path().join("vec")).unwrap();
+        for name in ["scene.toml", "install.toml"] {
+            let (pa, pb) = (
+                kbl_report.scene.with_file_name(name),
+                vec_report.scene.with_file_name(name),
+            );
+            assert_eq!(pa.exists(), pb.exists(), "{file} {name}");
+            if !pa.exists() {
+                continue;
+            }
+            let a = content_lines(&pa);
+            let b = content_lines(&pb);
+            assert_eq!(a.len(), b.len(), "{file} {name}");
+            for (x, y) in a.iter().zip(&b) {
+                assert!(same_line(x, y), "{file} {name}:\n{x}\n{y}");
+            }
+        }
+    }
 }
 
 fn refusal(name: &str, text: &str) -> HarnessError {
