@@ -214,7 +214,10 @@ impl<'a, 'i> Reader<'a, 'i> {
         if dimension != want {
             return Err(self.error(
                 q,
-                format!("{field}: its unit measures {dimension:?}, expected {want:?}"),
+                format!(
+                    "its unit {} measures {dimension:?}, expected {want:?}",
+                    text(q, "UnitComponent").unwrap_or("")
+                ),
             ));
         }
         Ok(Some(value))
@@ -237,7 +240,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             .map_err(|reason| self.error(q, format!("UnitComponent: {reason}")))?;
         let si = value * unit.to_si;
         if !si.is_finite() {
-            return Err(self.error(q, format!("{field}: {value} in its unit is not finite")));
+            return Err(self.error(q, format!("{value} in its unit is not finite in SI units")));
         }
         Ok(Some((si, unit.dimension, q)))
     }

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use pliant_harness::bundle::{segment_bundle, BundleData, BundleSection};
 use pliant_harness::geometry::SegmentCurve;
-use pliant_harness::model::Conductor;
+use pliant_harness::model::{Conductor, ProtectionKind};
 use pliant_harness::{read_kbl, Harness, HarnessError};
 
 fn test_data(file: &str) -> PathBuf {
@@ -64,6 +64,156 @@ fn the_hand_written_y_harness_has_its_exact_geometry() {
     );
     assert!(rel < 0.0 && rel > -2e-4, "{rel}");
     assert!(h.warnings.iter().any(|w| w.contains("polylines")));
+}
+
+#[test]
+fn the_hand_written_y_harness_has_its_wires_fixings_protections_and_connectors() {
+    let h = read_kbl(&test_data("y_harness_3d.vec")).unwrap();
+    let seg = |i: usize| h.segments[i].kbl_id.as_str();
+    assert_eq!(
+        [seg(0), seg(1), seg(2)],
+        [
+            "GeometrySegment_straight",
+            "GeometrySegment_arc",
+            "GeometrySegment_spline"
+        ]
+    );
+    // Wire parts in SI units: mm → m, mm² (SIUnit, exponent 2) → m², g/m (CompositeUnit
+    // gram × metre⁻¹) → kg/m.
+    assert_eq!(h.wire_parts.len(), 2);
+    let wire = &h.wire_parts[0];
+    assert_eq!(wire.part_number.as_deref(), Some("WIRE-035"));
+    assert_eq!(wire.description.as_deref(), Some("FLRY-B 0.35 mm2"));
+    assert!(close(wire.own.outer_diameter, Some(1.3e-3), 1e-15));
+    assert!(close(wire.own.cross_section, Some(0.35e-6), 1e-15));
+    assert!(close(wire.own.bend_radius, Some(4e-3), 1e-15));
+    assert!(close(wire.mass_per_length, Some(4.5e-3), 1e-15));
+    assert!(wire.cores.is_empty());
+    let cable = &h.wire_parts[1];
+    assert!(close(cable.own.outer_diameter, Some(5e-3), 1e-15));
+    assert_eq!(cable.own.cross_section, None);
+    // Only a dynamic minimum bend radius given: that one.
+    assert!(close(cable.own.bend_radius, Some(25e-3), 1e-15));
+    assert!(close(cable.mass_per_length, Some(40e-3), 1e-15));
+    assert_eq!(cable.cores.len(), 2);
+    for c in &cable.cores {
+        assert!(close(c.outer_diameter, Some(1.6e-3), 1e-15));
+        assert!(close(c.cross_section, Some(0.5e-6), 1e-15));
+    }
+    // Wires and their paths (W2 routed through its connection).
+    let routes: Vec<(&str, Option<&str>, usize, &[usize])> = h
+        .wires
+        .iter()
+        .map(|w| {
+            (
+                w.kbl_id.as_str(),
+                w.name.as_deref(),
+                w.part,
+                &w.segments[..],
+            )
+        })
+        .collect();
+    assert_eq!(
+        routes,
+        [
+            ("WireRole_W1", Some("W1"), 0, &[0, 1][..]),
+            ("WireRole_W2", Some("W2"), 0, &[0, 2][..]),
+            ("WireRole_K1", Some("K1"), 1, &[1, 2][..]),
+        ]
+    );
+    let through: Vec<&[usize]> = h.segments.iter().map(|s| &s.wires[..]).collect();
+    assert_eq!(through, [&[0, 1][..], &[0, 2][..], &[1, 2][..]]);
+    // Fixings: 50 mm before the end of the 200 mm straight segment; 25 mm along the
+    // 100 mm spline (no topology length: its centre curve's).
+    assert_eq!(h.fixings.len(), 2);
+    let clip = &h.fixings[0];
+    assert_eq!(
+        (
+            clip.kbl_id.as_str(),
+            clip.occurrence.as_str(),
+            clip.name.as_deref()
+        ),
+        ("Placement_clip", "PartOccurrence_clip", Some("CL1"))
+    );
+    assert_eq!(
+        (
+            clip.fixing_type.as_deref(),
+            clip.part_number.as_deref(),
+            clip.segment
+        ),
+        (Some("SPT"), Some("CLIP-1"), 0)
+    );
+    assert!((clip.location - 0.75).abs() < 1e-15);
+    // The view's local z axis, the block's x axis, turned a quarter about z: +y.
+    let o = clip.orientation.unwrap();
+    assert!((o - DVec3::Y).length() < 1e-15, "{o}");
+    let tie = &h.fixings[1];
+    assert_eq!(
+        (tie.segment, tie.description.as_deref(), tie.orientation),
+        (2, Some("KABELBINDER"), None)
+    );
+    assert!((tie.location - 0.25).abs() < 1e-9, "{}", tie.location);
+    // Protections: the tape from the middle of the straight segment through the branch
+    // to the middle of the spline; the tube over the whole arc.
+    let spans: Vec<(&str, usize, f64, f64, ProtectionKind)> = h
+        .protections
+        .iter()
+        .map(|p| (p.kbl_id.as_str(), p.segment, p.from, p.to, p.kind))
+        .collect();
+    println!("{spans:?}");
+    assert_eq!(spans.len(), 3);
+    let expected = [
+        ("Placement_tape/0", 0, 0.0, 0.5, ProtectionKind::Tape),
+        (
+            "Placement_tube",
+            1,
+            0.0,
+            1.0,
+            ProtectionKind::CorrugatedTube,
+        ),
+        ("Placement_tape/1", 2, 0.0, 0.5, ProtectionKind::Tape),
+    ];
+    for (got, want) in spans.iter().zip(&expected) {
+        assert_eq!((got.0, got.1, got.4), (want.0, want.1, want.4));
+        assert!((got.2 - want.2).abs() < 1e-9 && (got.3 - want.3).abs() < 1e-9);
+    }
+    let tube = &h.protections[1];
+    assert!(close(tube.outer_diameter, Some(13.4e-3), 1e-15));
+    assert!(close(tube.mass_per_length, Some(17e-3), 1e-15));
+    assert_eq!(tube.protection_type.as_deref(), Some("Tube"));
+    // Connectors at the three ends: 2 cavities, 1 cavity, a modular slot of 4.
+    let node = |id: &str| h.nodes.iter().position(|n| n.kbl_id == id);
+    let held: Vec<(&str, Option<usize>, usize)> = h
+        .connectors
+        .iter()
+        .map(|c| (c.name.as_deref().unwrap(), c.node, c.positions))
+        .collect();
+    assert_eq!(
+        held,
+        [
+            ("X1", node("GeometryNode_a"), 2),
+            ("X2", node("GeometryNode_b"), 1),
+            ("X3", node("GeometryNode_c"), 4),
+        ]
+    );
+    assert_eq!(
+        h.connectors[0].description.as_deref(),
+        Some("2-way connector at End A")
+    );
+    // The terminal is named as skipped.
+    assert!(
+        h.skipped
+            .iter()
+            .any(|(id, why)| id == "PartOccurrence_terminal" && why.contains("TerminalRole")),
+        "{:?}",
+        h.skipped
+    );
+    assert_eq!(h.skipped.len(), 1, "{:?}", h.skipped);
+    // The bare straight segment: two 0.35 mm² wires, 2 × 4.5 g/m.
+    let b = segment_bundle(&BundleData::builtin(), &h, 0);
+    assert_eq!(b.bare.wire_count, 2);
+    assert!((b.bare.mass - 9e-3).abs() < 1e-15);
+    assert!(b.bare.min_bend_radius >= 4e-3);
 }
 
 /// |a − b| ≤ tol · max(|a|, |b|), both absent, or both present.
@@ -354,6 +504,56 @@ fn topology_only_and_malformed_vec_files_are_refused_with_the_place() {
             "<SiPrefix>Milli</SiPrefix><Exponent>2</Exponent>",
             "Unit",
             "must be a length",
+        ),
+        // Wires, fixings, protections, connectors: dangling references, wrong targets,
+        // missing and malformed values.
+        (
+            "<WireSpecification>WireSpecification_cable</WireSpecification>",
+            "<WireSpecification>WireSpecification_none</WireSpecification>",
+            "Role",
+            "WireSpecification \"WireSpecification_none\" refers to no element",
+        ),
+        (
+            "<FixingSpecification>FixingSpecification_clip</FixingSpecification>",
+            "<FixingSpecification>TapeSpecification_pvc</FixingSpecification>",
+            "Role",
+            "is a TapeSpecification, expected a FixingSpecification",
+        ),
+        (
+            "<Segment>TopologySegment_arc TopologySegment_spline</Segment>",
+            "<Segment>TopologySegment_arc TopologySegment_zz</Segment>",
+            "Path",
+            "Segment \"TopologySegment_zz\" refers to no element",
+        ),
+        (
+            "<ValueComponent>50</ValueComponent></Offset>",
+            "</Offset>",
+            "Offset",
+            "ValueComponent is missing",
+        ),
+        (
+            "<Anchor>FromEndNode</Anchor>",
+            "<Anchor>Middle</Anchor>",
+            "Location",
+            "Anchor \"Middle\": expected FromStartNode or FromEndNode",
+        ),
+        (
+            "<MinBendRadiusStatic id=\"Value_2\"><UnitComponent>Unit_mm</UnitComponent>",
+            "<MinBendRadiusStatic id=\"Value_2\"><UnitComponent>Unit_mm2</UnitComponent>",
+            "MinBendRadiusStatic",
+            "its unit Unit_mm2 measures Area, expected Length",
+        ),
+        (
+            "<Factors>Unit_g Unit_per_m</Factors>",
+            "<Factors>Unit_g Unit_kg</Factors>",
+            "Value",
+            "factor \"Unit_kg\" refers to no element",
+        ),
+        (
+            "<NumberOfCavities>4</NumberOfCavities>",
+            "<NumberOfCavities>four</NumberOfCavities>",
+            "Specification",
+            "NumberOfCavities \"four\" is not a finite number",
         ),
     ];
     for (this, that, element, reason) in cases {
