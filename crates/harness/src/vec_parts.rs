@@ -119,12 +119,7 @@ impl<'a, 'i> Reader<'a, 'i> {
         }
         // Fixings and protections in the order of their placements, by segment (as KBL
         // lists them inside its segments).
-        let placements: Vec<XNode<'a, 'i>> = self
-            .doc
-            .descendants()
-            .filter(|n| n.tag_name().name() == "Placement")
-            .collect();
-        for p in placements {
+        for p in self.elements("Placement") {
             for occ in self.placed_occurrences(p)? {
                 for role in children(occ, "Role") {
                     match xsi_type(role).unwrap_or("") {
@@ -192,6 +187,14 @@ impl<'a, 'i> Reader<'a, 'i> {
             }
         }
         Ok(out)
+    }
+
+    /// Every element with this tag name, in document order.
+    fn elements(&self, tag: &str) -> Vec<XNode<'a, 'i>> {
+        self.doc
+            .descendants()
+            .filter(|n| n.tag_name().name() == tag)
+            .collect()
     }
 
     fn specifications(&self, ty: &'static str) -> impl Iterator<Item = XNode<'a, 'i>> + 'a {
@@ -307,12 +310,11 @@ impl<'a, 'i> Reader<'a, 'i> {
             });
         }
         let mut routable = HashMap::new();
-        let roles: Vec<XNode<'a, 'i>> = self
-            .doc
-            .descendants()
-            .filter(|n| n.tag_name().name() == "Role" && xsi_type(*n) == Some("WireRole"))
-            .collect();
-        for role in roles {
+        let roles = self.elements("Role");
+        for role in roles
+            .into_iter()
+            .filter(|r| xsi_type(*r) == Some("WireRole"))
+        {
             let spec = self.specification(role, "WireSpecification", &["WireSpecification"])?;
             let part = part_index[spec.attribute("id").unwrap_or("")];
             let wire = h.wires.len();
@@ -346,12 +348,7 @@ impl<'a, 'i> Reader<'a, 'i> {
         h: &mut Harness,
         routable: &HashMap<&'a str, usize>,
     ) -> Result<(), HarnessError> {
-        let routings: Vec<XNode<'a, 'i>> = self
-            .doc
-            .descendants()
-            .filter(|n| n.tag_name().name() == "Routing")
-            .collect();
-        for r in routings {
+        for r in self.elements("Routing") {
             let rid = id_of(r);
             let target = self.reference(r, "RoutedElement")?;
             let Some(&wire) = routable.get(target.attribute("id").unwrap_or("")) else {
@@ -428,11 +425,7 @@ impl<'a, 'i> Reader<'a, 'i> {
     /// Occurrence id → the placements that place it or one of its roles.
     fn placements(&self) -> Result<HashMap<&'a str, Vec<XNode<'a, 'i>>>, HarnessError> {
         let mut out: HashMap<&str, Vec<XNode>> = HashMap::new();
-        for p in self
-            .doc
-            .descendants()
-            .filter(|n| n.tag_name().name() == "Placement")
-        {
+        for p in self.elements("Placement") {
             for occ in self.placed_occurrences(p)? {
                 out.entry(occ.attribute("id").unwrap_or(""))
                     .or_default()

@@ -112,6 +112,51 @@ fn part(
     }
 }
 
+/// A part occurrence with one role, its specification and its part.
+struct Occurrence<'h> {
+    id: &'h str,
+    name: &'h Option<String>,
+    part_number: &'h Option<String>,
+    description: &'h Option<String>,
+    mass_per_length: Option<f64>,
+    /// The specification's `xsi:type` (without `vec:`) and its content after the part.
+    specification: (&'h str, String),
+    /// Its content before the part (`SpecialPartType`).
+    special: String,
+    /// The role's `xsi:type`, and its id prefix.
+    role: (&'h str, &'h str),
+    /// The role's reference to the specification.
+    field: &'h str,
+}
+
+/// Write an occurrence: its `PartVersion` `PV_<id>` (to `parts`), its specification
+/// `S_<id>` (to `specs`) and its `Component` with the role `<prefix>_<id>`.
+fn occurrence(parts: &mut String, specs: &mut String, components: &mut String, o: Occurrence) {
+    let pv = format!("PV_{}", o.id);
+    part(
+        parts,
+        specs,
+        &pv,
+        o.part_number,
+        o.description,
+        o.mass_per_length,
+    );
+    let _ = writeln!(
+        specs,
+        "<Specification xsi:type=\"vec:{1}\" id=\"S_{0}\"><Identification>{0}</Identification>{2}<DescribedPart>{pv}</DescribedPart>{3}</Specification>",
+        o.id, o.specification.0, o.special, o.specification.1
+    );
+    let _ = writeln!(
+        components,
+        "<Component id=\"{0}\">{1}<Role xsi:type=\"vec:{2}\" id=\"{3}_{0}\"><{4}>S_{0}</{4}></Role><Part>{pv}</Part></Component>",
+        o.id,
+        opt("Identification", o.name),
+        o.role.0,
+        o.role.1,
+        o.field
+    );
+}
+
 /// The harness written as VEC 2.0.2.
 pub fn as_vec(h: &Harness) -> String {
     let mut points = String::new();
@@ -259,26 +304,21 @@ pub fn as_vec(h: &Harness) -> String {
     let mut done = std::collections::HashSet::new();
     for (k, f) in h.fixings.iter().enumerate() {
         if done.insert(f.occurrence.clone()) {
-            let pv = format!("PV_{}", f.occurrence);
-            part(
+            occurrence(
                 &mut parts,
                 &mut specs,
-                &pv,
-                &f.part_number,
-                &f.description,
-                None,
-            );
-            let _ = writeln!(
-                specs,
-                "<Specification xsi:type=\"vec:FixingSpecification\" id=\"FS_{0}\"><Identification>{0}</Identification>{1}<DescribedPart>{pv}</DescribedPart></Specification>",
-                f.occurrence,
-                opt("SpecialPartType", &f.fixing_type)
-            );
-            let _ = writeln!(
-                components,
-                "<Component id=\"{0}\">{1}<Role xsi:type=\"vec:FixingRole\" id=\"FR_{0}\"><FixingSpecification>FS_{0}</FixingSpecification></Role><Part>{pv}</Part></Component>",
-                f.occurrence,
-                opt("Identification", &f.name)
+                &mut components,
+                Occurrence {
+                    id: &f.occurrence,
+                    name: &f.name,
+                    part_number: &f.part_number,
+                    description: &f.description,
+                    mass_per_length: None,
+                    specification: ("FixingSpecification", String::new()),
+                    special: opt("SpecialPartType", &f.fixing_type),
+                    role: ("FixingRole", "FR"),
+                    field: "FixingSpecification",
+                },
             );
             if let Some(o) = f.orientation {
                 // A rotation whose local z axis is the orientation.
@@ -306,16 +346,7 @@ pub fn as_vec(h: &Harness) -> String {
     done.clear();
     for p in &h.protections {
         if done.insert(p.occurrence.clone()) {
-            let pv = format!("PV_{}", p.occurrence);
-            part(
-                &mut parts,
-                &mut specs,
-                &pv,
-                &p.part_number,
-                &p.description,
-                p.mass_per_length,
-            );
-            let (ty, diameter) = match p.kind {
+            let specification = match p.kind {
                 ProtectionKind::Tape | ProtectionKind::FleeceTape => {
                     ("TapeSpecification", String::new())
                 }
@@ -326,16 +357,21 @@ pub fn as_vec(h: &Harness) -> String {
                         .unwrap_or_default(),
                 ),
             };
-            let _ = writeln!(
-                specs,
-                "<Specification xsi:type=\"vec:{ty}\" id=\"WPS_{0}\"><Identification>{0}</Identification>{1}<DescribedPart>{pv}</DescribedPart>{diameter}</Specification>",
-                p.occurrence,
-                opt("SpecialPartType", &p.protection_type)
-            );
-            let _ = writeln!(
-                components,
-                "<Component id=\"{0}\"><Identification>{0}</Identification><Role xsi:type=\"vec:WireProtectionRole\" id=\"WPR_{0}\"><WireProtectionSpecification>WPS_{0}</WireProtectionSpecification></Role><Part>{pv}</Part></Component>",
-                p.occurrence
+            occurrence(
+                &mut parts,
+                &mut specs,
+                &mut components,
+                Occurrence {
+                    id: &p.occurrence,
+                    name: &Some(p.occurrence.clone()),
+                    part_number: &p.part_number,
+                    description: &p.description,
+                    mass_per_length: p.mass_per_length,
+                    specification,
+                    special: opt("SpecialPartType", &p.protection_type),
+                    role: ("WireProtectionRole", "WPR"),
+                    field: "WireProtectionSpecification",
+                },
             );
         }
         let _ = writeln!(
