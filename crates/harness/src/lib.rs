@@ -34,7 +34,9 @@ mod vec_parts;
 
 use std::path::Path;
 
-pub use calibrate::{bundle_of_segment, fit_protection_factor, three_point_bending_ei, Fit};
+pub use calibrate::{
+    bundle_of_segment, fit_protection_factor, three_point_bending_ei, Fit, Stiffness,
+};
 pub use error::HarnessError;
 pub use export::{export_kbl, ExportReport};
 pub use model::Harness;

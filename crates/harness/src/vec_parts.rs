@@ -749,6 +749,13 @@ impl<'a, 'i> Reader<'a, 'i> {
         {
             for loc in children(*p, "Location") {
                 if xsi_type(loc) != Some("NodeLocation") {
+                    self.skipped.push((
+                        id_of(*p),
+                        format!(
+                            "connector placed at a {}: its held end is read from a NodeLocation",
+                            xsi_type(loc).unwrap_or("Location")
+                        ),
+                    ));
                     continue;
                 }
                 let target = self.reference(loc, "ReferencedNode")?;
