@@ -18,14 +18,16 @@ fn tested_wires(data: &BundleData) -> Vec<WireSection> {
     w
 }
 
-/// Tip deflection \[m\] of Pliant's cantilever (static solver, 20 elements, no gravity) of
-/// length `l` \[m\] and bending stiffness `ei` \[N·m²\] under a tip force `f` \[N\].
-fn pliant_cantilever_tip(l: f64, d_outer: f64, ei: f64, f: f64) -> f64 {
+/// The end state of Pliant's beam (static solver, 20 elements, no gravity) of length `l`
+/// \[m\], clamped at node 0, with a bundle's section (`gj` \[N·m²\] if given, else the
+/// material's), under the load `load` at its free end (a `force_n` or `moment_nm` line).
+fn pliant_beam(l: f64, d_outer: f64, ei: f64, gj: Option<f64>, load: &str) -> pliant_core::State {
+    let gj = gj.map(|gj| format!(", gj_n_m2 = {gj}")).unwrap_or_default();
     let scene = format!(
         r#"
 format = "pliant-scene"
 version = 1
-name = "bundle_cantilever"
+name = "bundle_test"
 length_unit = "mm"
 
 [simulation]
@@ -41,7 +43,7 @@ density_kg_m3 = 2000
 [[hoses]]
 name = "bundle"
 material = "m"
-section = {{ d_inner = 0, d_outer = {d}, ei1_n_m2 = {ei}, ei2_n_m2 = {ei} }}
+section = {{ d_inner = 0, d_outer = {d}, ei1_n_m2 = {ei}, ei2_n_m2 = {ei}{gj} }}
 start = [0, 0, 0]
 path = [{{ line = {{ to = [{l}, 0, 0] }} }}]
 elements = 20
@@ -55,7 +57,7 @@ node = 0
 action = "load"
 hose = "bundle"
 node = -1
-force_n = [0, 0, {fz}]
+{load}
 
 [[timeline]]
 action = "run"
@@ -63,7 +65,6 @@ duration_s = 0.05
 "#,
         d = d_outer * 1e3,
         l = l * 1e3,
-        fz = -f
     );
     let scene = pliant_scene::load_scene_str_in(&scene, "bundle.toml", Path::new("."))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -71,63 +72,28 @@ duration_s = 0.05
         .run_with(Some(pliant_core::SolverKind::Static))
         .unwrap();
     assert_eq!(run.solver.unconverged_steps, 0, "{:?}", run.solver);
-    -cell.state().x[20].z
+    cell.state().clone()
 }
 
-/// Twist \[rad\] between the clamped and the free end node of Pliant's beam (static solver,
-/// 20 elements, no gravity, clamped at node 0) of length `l` \[m\] and torsional
-/// stiffness `gj` \[N·m²\] under a torque `t` \[N·m\] about its axis at its free end.
+/// Tip deflection \[m\] of Pliant's cantilever of length `l` \[m\] and bending stiffness
+/// `ei` \[N·m²\] under a tip force `f` \[N\].
+fn pliant_cantilever_tip(l: f64, d_outer: f64, ei: f64, f: f64) -> f64 {
+    let state = pliant_beam(l, d_outer, ei, None, &format!("force_n = [0, 0, {}]", -f));
+    -state.x[20].z
+}
+
+/// Twist \[rad\] between the clamped and the free end node's material frame of Pliant's
+/// beam of length `l` \[m\] and torsional stiffness `gj` \[N·m²\] under a torque `t`
+/// \[N·m\] about its axis at the free end.
 fn pliant_twist(l: f64, d_outer: f64, gj: f64, ei: f64, t: f64) -> f64 {
-    let scene = format!(
-        r#"
-format = "pliant-scene"
-version = 1
-name = "bundle_torsion"
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-solver = "static"
-
-[materials.m]
-e_tension_mpa = 500
-e_compression_mpa = 500
-poisson = 0.4
-density_kg_m3 = 2000
-
-[[hoses]]
-name = "bundle"
-material = "m"
-section = {{ d_inner = 0, d_outer = {d}, ei1_n_m2 = {ei}, ei2_n_m2 = {ei}, gj_n_m2 = {gj} }}
-start = [0, 0, 0]
-path = [{{ line = {{ to = [{l}, 0, 0] }} }}]
-elements = 20
-
-[[timeline]]
-action = "fix"
-hose = "bundle"
-node = 0
-
-[[timeline]]
-action = "load"
-hose = "bundle"
-node = -1
-moment_nm = [{t}, 0, 0]
-
-[[timeline]]
-action = "run"
-duration_s = 0.05
-"#,
-        d = d_outer * 1e3,
-        l = l * 1e3,
+    let state = pliant_beam(
+        l,
+        d_outer,
+        ei,
+        Some(gj),
+        &format!("moment_nm = [{t}, 0, 0]"),
     );
-    let scene = pliant_scene::load_scene_str_in(&scene, "bundle.toml", Path::new("."))
-        .unwrap_or_else(|e| panic!("{e}"));
-    let (cell, run) = scene
-        .run_with(Some(pliant_core::SolverKind::Static))
-        .unwrap();
-    assert_eq!(run.solver.unconverged_steps, 0, "{:?}", run.solver);
-    let q = &cell.state().q;
+    let q = &state.q;
     let (axis, angle) = (q[q.len() - 1] * q[0].conjugate()).to_axis_angle();
     angle * axis.x.signum()
 }
