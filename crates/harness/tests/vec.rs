@@ -216,6 +216,34 @@ fn the_hand_written_y_harness_has_its_wires_fixings_protections_and_connectors()
     assert!(b.bare.min_bend_radius >= 4e-3);
 }
 
+#[test]
+fn imperial_units_scale_geometry_and_part_data() {
+    // The Y harness with its millimetre unit made the inch: every length ×25.4.
+    let y = std::fs::read_to_string(test_data("y_harness_3d.vec")).unwrap();
+    let mm = "<Unit xsi:type=\"vec:SIUnit\" id=\"Unit_mm\">\n    <SiUnitName>Metre</SiUnitName>\n    <SiPrefix>Milli</SiPrefix>";
+    let inch = "<Unit xsi:type=\"vec:ImperialUnit\" id=\"Unit_mm\">\n    <ImperialUnitName>Inch</ImperialUnitName>";
+    assert!(y.contains(mm));
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("inch.vec");
+    std::fs::write(&path, y.replacen(mm, inch, 1)).unwrap();
+    let (a, b) = (
+        read_kbl(&test_data("y_harness_3d.vec")).unwrap(),
+        read_kbl(&path).unwrap(),
+    );
+    for (p, q) in a.nodes.iter().zip(&b.nodes) {
+        assert!((q.position - p.position * 25.4).length() < 1e-12, "{q:?}");
+    }
+    assert!(close(
+        b.wire_parts[0].own.outer_diameter,
+        Some(1.3 * 0.0254),
+        1e-15
+    ));
+    // Fixings sit at the same shares of their segments.
+    for (f, g) in a.fixings.iter().zip(&b.fixings) {
+        assert!((f.location - g.location).abs() < 1e-12);
+    }
+}
+
 /// |a − b| ≤ tol · max(|a|, |b|), both absent, or both present.
 fn close(a: Option<f64>, b: Option<f64>, tol: f64) -> bool {
     match (a, b) {
