@@ -121,19 +121,21 @@ fn run_bundle(
         t.line.r_squared
     );
     println!(
-        "EI = {} N·m² (95 % CI {} – {}) between the slip bound {} and the bonded bound {}",
-        num(f.measured_ei),
+        "{} = {} N·m² (95 % CI {} – {}) between the slip bound {} and the bonded bound {}",
+        f.stiffness.symbol(),
+        num(f.measured),
         num(t.ci95[0]),
         num(t.ci95[1]),
-        num(f.ei_slip),
-        num(f.ei_bond)
+        num(f.slip),
+        num(f.bond)
     );
     println!(
-        "protection {}: f_ei = {} (95 % CI {} – {})",
+        "protection {}: {} = {} (95 % CI {} – {})",
         f.key(),
-        num(f.f_ei),
-        num(calibration.f_ei_ci95[0]),
-        num(calibration.f_ei_ci95[1])
+        f.stiffness.factor(),
+        num(f.factor),
+        num(calibration.factor_ci95[0]),
+        num(calibration.factor_ci95[1])
     );
     for p in &paths {
         println!("  {}", p.display());

@@ -1,19 +1,21 @@
 //! `pliant calibrate` for bundles: a protection's coupling factor f_ei fitted from a
-//! bending test of a bundle (a three-point bending or cantilever force–deflection curve).
+//! bending test of a bundle (a three-point bending or cantilever force–deflection curve),
+//! or f_gj from a torsion test (a torque–twist curve).
 //!
 //! The curve is fitted as the material tests are (`pliant_calibrate`: least squares over
 //! the linear range found automatically, 95 % confidence interval): its slope k gives the
 //! bundle's EI = k L³/48 (three-point bending, span L) or k L³/3 (cantilever, free length
-//! L). [`crate::calibrate::fit_protection_factor`] inverts the bundle model
-//! EI = EI_slip + f_ei (EI_bond − EI_slip) for f_ei; the interval of EI maps onto f_ei
-//! by the same straight line. The bundle's wires come from a KBL segment (its routed wires
+//! L), or GJ = k L (torsion, grips L apart). [`crate::calibrate::fit_protection_factor`]
+//! inverts the bundle model EI = EI_slip + f_ei (EI_bond − EI_slip) for f_ei (GJ and f_gj
+//! likewise); the interval of the stiffness maps onto the factor by the same straight
+//! line. The bundle's wires come from a KBL segment (its routed wires
 //! and, unless given, its protection) or from a list of wires.
 //!
 //! ```toml
 //! format = "pliant-bundle-calibration"
-//! kind = "three_point_bending"    # or "cantilever"
-//! csv = "bend.csv"                # force_N, deflection_mm (relative to this file)
-//! length_mm = 200                 # span, or free length
+//! kind = "three_point_bending"    # or "cantilever", or "torsion"
+//! csv = "bend.csv"                # force_N, deflection_mm (torsion: torque_Nm, angle_deg)
+//! length_mm = 200                 # span, free length, or grip distance
 //! protection = "tape"             # none, tape, fleece_tape, corrugated_tube, sleeve, other
 //! # the wires: a KBL segment …
 //! kbl = "harness.kbl"
@@ -34,7 +36,7 @@ use pliant_calibrate::{csv_input, fit_test, CalibError, Geometry, TestFit, TestK
 use serde::{Deserialize, Serialize};
 
 use crate::bundle::{bundle_section, BundleData, BundleSection, WireSection};
-use crate::calibrate::{bundle_of_segment, fit_protection_factor, Fit};
+use crate::calibrate::{bundle_of_segment, fit_protection_factor, Fit, Stiffness};
 use crate::model::ProtectionKind;
 
 /// The format tag of bundle calibration files.
@@ -64,7 +66,7 @@ pub struct WireSpec {
 pub struct BundleSpec {
     /// `"pliant-bundle-calibration"` (required: it tells this file from a material's).
     pub format: String,
-    /// `three_point_bending` or `cantilever`.
+    /// `three_point_bending` or `cantilever` (f_ei), or `torsion` (f_gj).
     pub kind: TestKind,
     /// The force–deflection curve, relative to the calibration file.
     pub csv: String,
@@ -107,12 +109,9 @@ impl BundleSpec {
                 self.format
             ));
         }
-        if !matches!(
-            self.kind,
-            TestKind::ThreePointBending | TestKind::Cantilever
-        ) {
+        if Stiffness::of_test(self.kind).is_none() {
             return bad(format!(
-                "kind = \"{}\": a bundle is calibrated from a bending test, three_point_bending or cantilever",
+                "kind = \"{}\": a bundle is calibrated from a bending test, three_point_bending or cantilever, or a torsion test",
                 self.kind.name()
             ));
         }
@@ -183,13 +182,14 @@ pub struct BundleCalibration {
     pub spec: BundleSpec,
     /// What was tested ("Segment_12 of harness.kbl" or "7 listed wires").
     pub bundle: String,
-    /// The fitted bending test (EI and its interval).
+    /// The fitted test (EI or GJ and its interval).
     pub test: TestFit,
     /// The factor and the bounds.
     pub fit: Fit,
-    /// 95 % interval of the factor (the interval of EI mapped onto it, not clamped).
-    pub f_ei_ci95: [f64; 2],
-    /// The bundle's section under the fitted factor (its EI is the measured one).
+    /// 95 % interval of the factor (the interval of the stiffness mapped onto it, not
+    /// clamped).
+    pub factor_ci95: [f64; 2],
+    /// The bundle's section under the fitted factor (its EI or GJ is the measured one).
     pub section: BundleSection,
     /// The bundle model's data with the fitted factor.
     pub data: BundleData,
@@ -280,16 +280,20 @@ pub fn calibrate_bundle(
         length: Some(spec.length_mm * 1e-3),
     };
     let test = fit_test(spec.kind, &spec.csv, &table, geometry)?;
-    let fit = fit_protection_factor(test.value, &wires, kind)
+    let stiffness = Stiffness::of_test(spec.kind)
+        .ok_or_else(|| CalibError::file(origin, "not a bending or torsion test"))?;
+    let fit = fit_protection_factor(stiffness, test.value, &wires, kind)
         .map_err(|e| CalibError::file(&shown, format!("bundle {bundle}: {e}")))?;
-    let span = fit.ei_bond - fit.ei_slip;
-    let f_ei_ci95 = test.ci95.map(|ei| (ei - fit.ei_slip) / span);
-    if !(fit.f_ei.is_finite() && f_ei_ci95.iter().all(|f| f.is_finite())) {
+    let span = fit.bond - fit.slip;
+    let factor_ci95 = test.ci95.map(|v| (v - fit.slip) / span);
+    if !(fit.factor.is_finite() && factor_ci95.iter().all(|f| f.is_finite())) {
         return Err(CalibError::file(
             &shown,
             format!(
-                "bundle {bundle}: the fit gives f_ei = {} (95 % CI {:?}), not a finite number; nothing is written",
-                fit.f_ei, f_ei_ci95
+                "bundle {bundle}: the fit gives {} = {} (95 % CI {:?}), not a finite number; nothing is written",
+                stiffness.factor(),
+                fit.factor,
+                factor_ci95
             ),
         ));
     }
@@ -307,7 +311,7 @@ pub fn calibrate_bundle(
         bundle,
         test,
         fit,
-        f_ei_ci95,
+        factor_ci95,
         section,
         data,
     })
@@ -318,30 +322,43 @@ impl BundleCalibration {
     pub fn bundle_toml(&self) -> String {
         let body = toml::to_string(&self.data).unwrap_or_default();
         format!(
-            "# Bundle model data (crates/harness/data/bundle.toml) with protection.{}.f_ei fitted\n\
+            "# Bundle model data (crates/harness/data/bundle.toml) with protection.{}.{} fitted\n\
              # by `pliant calibrate` from {}; use with `pliant import FILE.kbl --bundle-data bundle.toml`.\n\n{body}",
             self.fit.key(),
+            self.fit.stiffness.factor(),
             self.origin
         )
     }
 
     /// Everything as JSON (calibration.json).
     pub fn json(&self) -> serde_json::Value {
-        serde_json::json!({
+        let f = &self.fit;
+        let symbol = f.stiffness.symbol().to_lowercase();
+        let mut json = serde_json::json!({
             "format": "pliant-calibration-result",
             "kind": "bundle",
             "origin": self.origin,
             "bundle": self.bundle,
-            "wire_count": self.fit.wire_count,
-            "protection": self.fit.key(),
-            "f_ei": self.fit.f_ei,
-            "f_ei_ci95": self.f_ei_ci95,
-            "ei_n_m2": self.fit.measured_ei,
-            "ei_slip_n_m2": self.fit.ei_slip,
-            "ei_bond_n_m2": self.fit.ei_bond,
+            "wire_count": f.wire_count,
+            "protection": f.key(),
+            "stiffness": f.stiffness,
             "section": self.section,
             "test": self.test,
-        })
+        });
+        let factor = f.stiffness.factor();
+        for (key, value) in [
+            (factor.to_string(), serde_json::json!(f.factor)),
+            (
+                format!("{factor}_ci95"),
+                serde_json::json!(self.factor_ci95),
+            ),
+            (format!("{symbol}_n_m2"), serde_json::json!(f.measured)),
+            (format!("{symbol}_slip_n_m2"), serde_json::json!(f.slip)),
+            (format!("{symbol}_bond_n_m2"), serde_json::json!(f.bond)),
+        ] {
+            json[key] = value;
+        }
+        json
     }
 
     /// The page (calibration.html): the factor, the bounds and the fitted curve.
@@ -357,25 +374,27 @@ impl BundleCalibration {
             s,
             "<h1>Bundle calibration: protection {}</h1><p>From <code>{}</code>: {} ({} wires), {} test (docs/calibration.md, <em>Bundles</em>).</p>\
              <table><tr><th>quantity</th><th>value</th></tr>\
-             <tr><td>f_ei</td><td>{} (95 % CI {} – {})</td></tr>\
-             <tr><td>EI measured [N·m²]</td><td>{} (95 % CI {} – {})</td></tr>\
-             <tr><td>EI slip bound (f = 0) [N·m²]</td><td>{}</td></tr>\
-             <tr><td>EI bonded bound (f = 1) [N·m²]</td><td>{}</td></tr>\
+             <tr><td>{factor}</td><td>{} (95 % CI {} – {})</td></tr>\
+             <tr><td>{symbol} measured [N·m²]</td><td>{} (95 % CI {} – {})</td></tr>\
+             <tr><td>{symbol} slip bound (f = 0) [N·m²]</td><td>{}</td></tr>\
+             <tr><td>{symbol} bonded bound (f = 1) [N·m²]</td><td>{}</td></tr>\
              <tr><td>formula</td><td>{}</td></tr></table>",
             escape(f.key()),
             escape(&self.origin),
             escape(&self.bundle),
             f.wire_count,
             escape(self.test.kind.name()),
-            num(f.f_ei),
-            num(self.f_ei_ci95[0]),
-            num(self.f_ei_ci95[1]),
-            num(f.measured_ei),
+            num(f.factor),
+            num(self.factor_ci95[0]),
+            num(self.factor_ci95[1]),
+            num(f.measured),
             num(self.test.ci95[0]),
             num(self.test.ci95[1]),
-            num(f.ei_slip),
-            num(f.ei_bond),
+            num(f.slip),
+            num(f.bond),
             escape(&self.test.formula),
+            factor = f.stiffness.factor(),
+            symbol = f.stiffness.symbol(),
         );
         s.push_str(&curve_plot(&self.test));
         s.push_str(&residual_plot(&self.test));

@@ -1,5 +1,5 @@
-//! Calibration of a protection's coupling factor from a bending test of a bundle
-//! (SPEC N2: "`pliant calibrate` fits it from a bending test of a bundle").
+//! Calibration of a protection's coupling factors from a bending or a torsion test of a
+//! bundle (SPEC N2: "`pliant calibrate` fits it from a bending test of a bundle").
 //!
 //! The bundle model (`bundle.rs`) puts a bundle's bending stiffness between two bounds
 //! computed from its wires: the wires sliding freely (EI_slip = Σ EI_i) and bonded into one
@@ -12,12 +12,17 @@
 //! f_ei = (EI_measured − EI_slip) / (EI_bond − EI_slip),
 //!
 //! valid only for EI_slip ≤ EI_measured ≤ EI_bond; outside, the measurement or the wire
-//! data is wrong and the fit is refused. The EI of a three-point bending test (simply
-//! supported span L, central force F, central deflection δ, small deflection, shear
-//! neglected — Euler–Bernoulli beam, e.g. Gere & Goodno, *Mechanics of Materials*,
-//! table of beam deflections) is EI = F L³ / (48 δ): [`three_point_bending_ei`].
+//! data is wrong and the fit is refused. Torsion likewise: GJ = GJ_slip + f_gj (GJ_bond −
+//! GJ_slip), GJ_bond with each wire's GA r² about the centroid ([`Stiffness`]).
+//!
+//! The EI of a three-point bending test (simply supported span L, central force F,
+//! central deflection δ, small deflection, shear neglected — Euler–Bernoulli beam, e.g.
+//! Gere & Goodno, *Mechanics of Materials*, table of beam deflections) is
+//! EI = F L³ / (48 δ): [`three_point_bending_ei`].
 
-use crate::bundle::{bundle_section, BundleData, SegmentBundle, Sourced, WireSection};
+use crate::bundle::{
+    bundle_section, BundleData, BundleSection, SegmentBundle, Sourced, WireSection,
+};
 use crate::error::HarnessError;
 use crate::model::{Harness, ProtectionKind};
 
@@ -32,51 +37,129 @@ pub enum CalibrationError {
     NoWires,
     /// One wire (or wires all on one spot): slip and bonded bound coincide.
     #[error(
-        "the slip and bonded bounds coincide ({ei:.4e} N·m²: a single wire): a bundle of one wire has no coupling factor to fit"
+        "the slip and bonded bounds coincide ({what} {value:.4e} N·m²: a single wire): a bundle of one wire has no coupling factor to fit"
     )]
-    DegenerateBounds { ei: f64 },
+    DegenerateBounds { what: &'static str, value: f64 },
     /// Below the slip bound: softer than the wires alone.
     #[error(
-        "measured EI {measured:.4e} N·m² is below the slip bound {slip:.4e} N·m² (the wires' own stiffness, f = 0; bonded bound {bond:.4e}): \
-         check the test (deflection in the linear range, span, supports) or the wire data (insulation modulus, strand diameter in data/bundle.toml)"
+        "measured {what} {measured:.4e} N·m² is below the slip bound {slip:.4e} N·m² (the wires' own stiffness, f = 0; bonded bound {bond:.4e}): \
+         check the test (the linear range, the length, the supports or grips) or the wire data (insulation modulus, strand diameter in data/bundle.toml)"
     )]
-    BelowSlip { measured: f64, slip: f64, bond: f64 },
+    BelowSlip {
+        what: &'static str,
+        measured: f64,
+        slip: f64,
+        bond: f64,
+    },
     /// Above the bonded bound: stiffer than the wires glued into one section.
     #[error(
-        "measured EI {measured:.4e} N·m² is above the bonded bound {bond:.4e} N·m² (all wires acting as one section, f = 1; slip bound {slip:.4e}): \
+        "measured {what} {measured:.4e} N·m² is above the bonded bound {bond:.4e} N·m² (all wires acting as one section, f = 1; slip bound {slip:.4e}): \
          check the test (a protection with stiffness of its own, e.g. a corrugated tube, is not part of the bundle model) or the wire list"
     )]
-    AboveBond { measured: f64, slip: f64, bond: f64 },
+    AboveBond {
+        what: &'static str,
+        measured: f64,
+        slip: f64,
+        bond: f64,
+    },
+}
+
+/// The stiffness of a bundle a test measures and a coupling factor sets: bending (EI,
+/// f_ei) or torsion (GJ, f_gj).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stiffness {
+    Bending,
+    Torsion,
+}
+
+impl Stiffness {
+    /// The stiffness a test kind measures: bending tests EI, the torsion test GJ.
+    pub fn of_test(kind: pliant_calibrate::TestKind) -> Option<Stiffness> {
+        use pliant_calibrate::TestKind;
+        match kind {
+            TestKind::ThreePointBending | TestKind::Cantilever => Some(Stiffness::Bending),
+            TestKind::Torsion => Some(Stiffness::Torsion),
+            _ => None,
+        }
+    }
+
+    /// "EI" or "GJ".
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Stiffness::Bending => "EI",
+            Stiffness::Torsion => "GJ",
+        }
+    }
+
+    /// The factor's name: "f_ei" or "f_gj".
+    pub fn factor(self) -> &'static str {
+        match self {
+            Stiffness::Bending => "f_ei",
+            Stiffness::Torsion => "f_gj",
+        }
+    }
+
+    /// The slip and bonded bound of a section \[N·m²\].
+    pub fn bounds(self, b: &BundleSection) -> (f64, f64) {
+        match self {
+            Stiffness::Bending => (b.ei_slip, b.ei_bond),
+            Stiffness::Torsion => (b.gj_slip, b.gj_bond),
+        }
+    }
+
+    /// The effective value of a section \[N·m²\].
+    pub fn of(self, b: &BundleSection) -> f64 {
+        match self {
+            Stiffness::Bending => b.ei,
+            Stiffness::Torsion => b.gj,
+        }
+    }
 }
 
 /// A fitted coupling factor and what it came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fit {
-    /// The factor f_ei ∈ [0, 1].
-    pub f_ei: f64,
-    pub measured_ei: f64,
+    /// Which factor: f_ei (bending) or f_gj (torsion).
+    pub stiffness: Stiffness,
+    /// The factor ∈ [0, 1].
+    pub factor: f64,
+    /// The measured stiffness \[N·m²\].
+    pub measured: f64,
     /// The bounds of the tested bundle \[N·m²\].
-    pub ei_slip: f64,
-    pub ei_bond: f64,
+    pub slip: f64,
+    pub bond: f64,
     /// The protection the factor belongs to (`None`: unprotected wires).
     pub kind: Option<ProtectionKind>,
     pub wire_count: usize,
 }
 
 impl Fit {
-    /// The key of the factor in `data/bundle.toml` (`protection.<key>.f_ei`).
+    /// The key of the factor's protection in `data/bundle.toml` (`protection.<key>.f_ei`).
     pub fn key(&self) -> &'static str {
         self.kind.map_or("none", ProtectionKind::key)
     }
 
-    /// Put the factor into `data` (its `f_ei` for this protection kind, with the source).
+    /// Put the factor into `data` (the protection kind's `f_ei` or `f_gj`, with the source).
     pub fn apply(&self, data: &mut BundleData) {
         if let Some(p) = data.protection.get_mut(self.key()) {
-            p.f_ei = Sourced {
-                value: self.f_ei,
+            let factor = match self.stiffness {
+                Stiffness::Bending => &mut p.f_ei,
+                Stiffness::Torsion => &mut p.f_gj,
+            };
+            *factor = Sourced {
+                value: self.factor,
                 source: format!(
-                    "calibrated: bending test of a bundle of {} wires, EI = {:.4e} N·m² between the bounds {:.4e} (slip) and {:.4e} (bonded)",
-                    self.wire_count, self.measured_ei, self.ei_slip, self.ei_bond
+                    "calibrated: {} test of a bundle of {} wires, {} = {:.4e} N·m² between the bounds {:.4e} (slip) and {:.4e} (bonded)",
+                    match self.stiffness {
+                        Stiffness::Bending => "bending",
+                        Stiffness::Torsion => "torsion",
+                    },
+                    self.wire_count,
+                    self.stiffness.symbol(),
+                    self.measured,
+                    self.slip,
+                    self.bond
                 ),
             };
         }
@@ -100,17 +183,22 @@ pub fn three_point_bending_ei(
     Ok(force * span.powi(3) / (48.0 * deflection))
 }
 
-/// Fit the factor f_ei of protection `kind` from the measured bending stiffness
-/// `measured_ei` \[N·m²\] of a bundle of `wires` (see the module documentation).
+/// Fit the factor of protection `kind` for `stiffness` (f_ei or f_gj) from the measured
+/// stiffness `measured` \[N·m²\] of a bundle of `wires` (see the module documentation).
 pub fn fit_protection_factor(
-    measured_ei: f64,
+    stiffness: Stiffness,
+    measured: f64,
     wires: &[WireSection],
     kind: Option<ProtectionKind>,
 ) -> Result<Fit, CalibrationError> {
-    if !(measured_ei > 0.0 && measured_ei.is_finite()) {
+    let what = stiffness.symbol();
+    if !(measured > 0.0 && measured.is_finite()) {
         return Err(CalibrationError::NotPositive {
-            what: "measured EI",
-            value: measured_ei,
+            what: match stiffness {
+                Stiffness::Bending => "measured EI",
+                Stiffness::Torsion => "measured GJ",
+            },
+            value: measured,
         });
     }
     if wires.is_empty() {
@@ -118,31 +206,34 @@ pub fn fit_protection_factor(
     }
     // The bounds do not depend on the factors: the built-in data serve.
     let b = bundle_section(&BundleData::builtin(), wires, None);
-    let (slip, bond) = (b.ei_slip, b.ei_bond);
+    let (slip, bond) = stiffness.bounds(&b);
     if bond - slip <= 1e-9 * bond.abs() {
-        return Err(CalibrationError::DegenerateBounds { ei: slip });
+        return Err(CalibrationError::DegenerateBounds { what, value: slip });
     }
     // Within a relative 10⁻⁹ of a bound counts as on it (rounding of the inputs).
     let tol = 1e-9 * bond;
-    if measured_ei < slip - tol {
+    if measured < slip - tol {
         return Err(CalibrationError::BelowSlip {
-            measured: measured_ei,
+            what,
+            measured,
             slip,
             bond,
         });
     }
-    if measured_ei > bond + tol {
+    if measured > bond + tol {
         return Err(CalibrationError::AboveBond {
-            measured: measured_ei,
+            what,
+            measured,
             slip,
             bond,
         });
     }
     Ok(Fit {
-        f_ei: ((measured_ei - slip) / (bond - slip)).clamp(0.0, 1.0),
-        measured_ei,
-        ei_slip: slip,
-        ei_bond: bond,
+        stiffness,
+        factor: ((measured - slip) / (bond - slip)).clamp(0.0, 1.0),
+        measured,
+        slip,
+        bond,
         kind,
         wire_count: wires.len(),
     })
@@ -199,8 +290,14 @@ mod tests {
         let wires = vec![w; 7];
         let b = bundle_section(&data, &wires, None);
         let measured = b.ei_slip + 0.3 * (b.ei_bond - b.ei_slip);
-        let fit = fit_protection_factor(measured, &wires, Some(ProtectionKind::Tape)).unwrap();
-        assert!((fit.f_ei - 0.3).abs() < 1e-12);
+        let fit = fit_protection_factor(
+            Stiffness::Bending,
+            measured,
+            &wires,
+            Some(ProtectionKind::Tape),
+        )
+        .unwrap();
+        assert!((fit.factor - 0.3).abs() < 1e-12);
         assert_eq!(fit.key(), "tape");
         // Put into the data, the model gives the measured EI back.
         fit.apply(&mut data);
@@ -217,10 +314,12 @@ mod tests {
         let taped = bundle_section(&data, &wires, Some(cover));
         assert!(rel(taped.ei, measured) < 1e-12);
         // The bounds themselves: f = 0 and f = 1.
-        let lo = fit_protection_factor(b.ei_slip, &wires, None).unwrap();
-        assert_eq!((lo.f_ei, lo.key()), (0.0, "none"));
+        let lo = fit_protection_factor(Stiffness::Bending, b.ei_slip, &wires, None).unwrap();
+        assert_eq!((lo.factor, lo.key()), (0.0, "none"));
         assert_eq!(
-            fit_protection_factor(b.ei_bond, &wires, None).unwrap().f_ei,
+            fit_protection_factor(Stiffness::Bending, b.ei_bond, &wires, None)
+                .unwrap()
+                .factor,
             1.0
         );
     }
@@ -231,22 +330,24 @@ mod tests {
         let w = WireSection::new(&data, 1.6e-3, 0.5e-6, None, None);
         let wires = vec![w; 3];
         let b = bundle_section(&data, &wires, None);
-        let e = fit_protection_factor(0.5 * b.ei_slip, &wires, None).unwrap_err();
+        let e =
+            fit_protection_factor(Stiffness::Bending, 0.5 * b.ei_slip, &wires, None).unwrap_err();
         assert!(matches!(e, CalibrationError::BelowSlip { .. }));
         assert!(e.to_string().contains("below the slip bound"), "{e}");
-        let e = fit_protection_factor(2.0 * b.ei_bond, &wires, None).unwrap_err();
+        let e =
+            fit_protection_factor(Stiffness::Bending, 2.0 * b.ei_bond, &wires, None).unwrap_err();
         assert!(matches!(e, CalibrationError::AboveBond { .. }));
         assert!(e.to_string().contains("above the bonded bound"), "{e}");
         assert!(matches!(
-            fit_protection_factor(1e-3, &[w], None),
+            fit_protection_factor(Stiffness::Bending, 1e-3, &[w], None),
             Err(CalibrationError::DegenerateBounds { .. })
         ));
         assert_eq!(
-            fit_protection_factor(1e-3, &[], None),
+            fit_protection_factor(Stiffness::Bending, 1e-3, &[], None),
             Err(CalibrationError::NoWires)
         );
         assert!(matches!(
-            fit_protection_factor(f64::NAN, &wires, None),
+            fit_protection_factor(Stiffness::Bending, f64::NAN, &wires, None),
             Err(CalibrationError::NotPositive { .. })
         ));
     }

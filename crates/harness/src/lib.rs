@@ -5,8 +5,8 @@
 //! - [`bundle`] turns the wires routed through a segment into a beam section;
 //! - [`scene`] writes `scene.toml` and `harness.json`, [`install`] `install.toml` (the
 //!   harness installed by a worker);
-//! - [`mod@vec`] reads VEC 2.x files with 3-D geometry into the same model (topology-only
-//!   ones are refused);
+//! - [`mod@vec`] reads VEC 2.x files with 3-D geometry into the same model, with their
+//!   wires, routings, fixings, protections and connectors (topology-only ones are refused);
 //! - [`export`] writes a settled route ([`settled`]) back as KBL, [`step`] as STEP (AP214);
 //! - [`calibrate`] fits a protection's coupling factor from a bundle's EI,
 //!   [`bundle_calibration`] from a bending-test curve (`pliant calibrate` for bundles);
@@ -30,10 +30,13 @@ pub mod settled;
 pub mod step;
 pub mod units;
 pub mod vec;
+mod vec_parts;
 
 use std::path::Path;
 
-pub use calibrate::{bundle_of_segment, fit_protection_factor, three_point_bending_ei, Fit};
+pub use calibrate::{
+    bundle_of_segment, fit_protection_factor, three_point_bending_ei, Fit, Stiffness,
+};
 pub use error::HarnessError;
 pub use export::{export_kbl, ExportReport};
 pub use model::Harness;

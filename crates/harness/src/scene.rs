@@ -264,7 +264,9 @@ pub(crate) fn network_toml_with_slack(
     );
     let _ = writeln!(t, "# The model behind it, with KBL ids, wires and skipped items: harness.json beside this file.\n");
     let _ = writeln!(t, "format = \"pliant-scene\"\nversion = 1");
-    let stem = h.source.trim_end_matches(".kbl").trim_end_matches(".KBL");
+    let stem = [".kbl", ".KBL", ".vec", ".VEC"]
+        .into_iter()
+        .fold(h.source.as_str(), |s, e| s.strip_suffix(e).unwrap_or(s));
     let _ = writeln!(t, "name = {}\nlength_unit = \"mm\"\n", quote(stem));
     // bundles the route draws through one another lie side by side in the vehicle
     let (solver, rest) = simulation.split_once('\n').unwrap_or((simulation, ""));

@@ -22,11 +22,18 @@
 //!   `TopologyNode` / `TopologySegment`) gives its `Identification` as the name, else its
 //!   own; a `TopologySegment`'s first `LengthInformation` gives the virtual length.
 //!
-//! Not read (named in the import's warnings): wires and their routing, fixings,
-//! protections and connectors — a VEC segment gets the importer's stand-in bundle.
+//! - a `TopologySegment`'s `CrossSectionAreaInformation/Area` (the stand-in bundle's
+//!   size where no wire runs); a `PlacedElementViewItem3D`'s `Orientation`: its local z
+//!   axis (A13, A23, A33), placed with its block, is the orientation of the part
+//!   occurrences it shows (a fixing's orientation, as KBL's `Fixing_assignment`);
+//! - values: a `NumericalValue` (`ValueComponent` in its `UnitComponent`: an `SIUnit`,
+//!   `ImperialUnit` or `CompositeUnit`, each with an `Exponent`) converted to SI.
+//!
+//! Wires, routings, fixings, protections and connectors: `vec_parts.rs`.
+//!
 //! A VEC without 3-D geometry (topology only) is refused saying so.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use glam::{DMat3, DVec3};
 use roxmltree::{Document, Node as XNode};
@@ -34,7 +41,7 @@ use roxmltree::{Document, Node as XNode};
 use crate::error::HarnessError;
 use crate::kbl::{child, children, parse_xml, text};
 use crate::model::*;
-use crate::units::{self, Dimension};
+use crate::units::{self, Dimension, Unit};
 
 /// Points per knot span of a NURBS curve kept as a polyline.
 pub const SAMPLES_PER_SPAN: usize = 32;
@@ -61,20 +68,97 @@ fn topology_only(file: &str) -> HarnessError {
 }
 
 /// The local name of an element's `xsi:type` (`vec:NURBSCurve` → `NURBSCurve`).
-fn xsi_type<'a>(n: XNode<'a, '_>) -> Option<&'a str> {
+pub(crate) fn xsi_type<'a>(n: XNode<'a, '_>) -> Option<&'a str> {
     n.attribute((XSI, "type"))
         .map(|t| t.rsplit(':').next().unwrap_or(t))
 }
 
-struct Reader<'a, 'i> {
-    file: String,
-    doc: &'a Document<'i>,
-    ids: HashMap<&'a str, XNode<'a, 'i>>,
+/// A unit as SI factor and powers of length and mass (`other`: some other quantity).
+#[derive(Clone, Copy)]
+struct UnitPowers {
+    to_si: f64,
+    length: i32,
+    mass: i32,
+    other: bool,
+}
+
+impl UnitPowers {
+    const ONE: UnitPowers = UnitPowers {
+        to_si: 1.0,
+        length: 0,
+        mass: 0,
+        other: false,
+    };
+
+    const OTHER: UnitPowers = UnitPowers {
+        to_si: 1.0,
+        length: 0,
+        mass: 0,
+        other: true,
+    };
+
+    fn length(to_si: f64) -> Self {
+        UnitPowers {
+            to_si,
+            length: 1,
+            mass: 0,
+            other: false,
+        }
+    }
+
+    fn mass(to_si: f64) -> Self {
+        UnitPowers {
+            to_si,
+            length: 0,
+            mass: 1,
+            other: false,
+        }
+    }
+
+    fn times(self, o: UnitPowers) -> Self {
+        UnitPowers {
+            to_si: self.to_si * o.to_si,
+            length: self.length + o.length,
+            mass: self.mass + o.mass,
+            other: self.other || o.other,
+        }
+    }
+
+    fn power(self, e: i32) -> Self {
+        UnitPowers {
+            to_si: self.to_si.powi(e),
+            length: self.length * e,
+            mass: self.mass * e,
+            other: self.other,
+        }
+    }
+}
+
+/// The reader's state: the document, its ids, and what the geometry pass found for the
+/// parts pass (`vec_parts.rs`).
+pub(crate) struct Reader<'a, 'i> {
+    pub(crate) file: String,
+    pub(crate) doc: &'a Document<'i>,
+    pub(crate) ids: HashMap<&'a str, XNode<'a, 'i>>,
     sampled_curves: usize,
+    /// A `GeometryNode`'s id, and the `TopologyNode` id it refers to → index into
+    /// `Harness::nodes`.
+    pub(crate) node_of: HashMap<&'a str, usize>,
+    /// A `GeometrySegment`'s id, and the `TopologySegment` id it refers to → index into
+    /// `Harness::segments`.
+    pub(crate) segment_of: HashMap<&'a str, usize>,
+    /// `TopologySegment`s whose geometry segment runs from their end node to their start
+    /// node (a location anchored at the topology's start is then at the geometry's end).
+    pub(crate) reversed: HashSet<&'a str>,
+    /// A part occurrence's id → its orientation (the local z axis of its
+    /// `PlacedElementViewItem3D`, placed with its building block).
+    pub(crate) orientation_of: HashMap<&'a str, DVec3>,
+    pub(crate) skipped: Vec<(String, String)>,
+    pub(crate) warnings: Vec<String>,
 }
 
 impl<'a, 'i> Reader<'a, 'i> {
-    fn error(&self, n: XNode, reason: impl Into<String>) -> HarnessError {
+    pub(crate) fn error(&self, n: XNode, reason: impl Into<String>) -> HarnessError {
         let pos = self.doc.text_pos_at(n.range().start);
         HarnessError::Element {
             file: self.file.clone(),
@@ -87,7 +171,11 @@ impl<'a, 'i> Reader<'a, 'i> {
     }
 
     /// The element a child's IDREF text points to.
-    fn reference(&self, n: XNode<'a, 'i>, field: &str) -> Result<XNode<'a, 'i>, HarnessError> {
+    pub(crate) fn reference(
+        &self,
+        n: XNode<'a, 'i>,
+        field: &str,
+    ) -> Result<XNode<'a, 'i>, HarnessError> {
         let id = text(n, field).ok_or_else(|| self.error(n, format!("{field} is missing")))?;
         self.ids
             .get(id)
@@ -96,7 +184,7 @@ impl<'a, 'i> Reader<'a, 'i> {
     }
 
     /// A finite number in child `field`.
-    fn number(&self, n: XNode, field: &str) -> Result<f64, HarnessError> {
+    pub(crate) fn number(&self, n: XNode, field: &str) -> Result<f64, HarnessError> {
         let t = text(n, field).ok_or_else(|| self.error(n, format!("{field} is missing")))?;
         t.parse::<f64>()
             .ok()
@@ -112,25 +200,154 @@ impl<'a, 'i> Reader<'a, 'i> {
         ))
     }
 
-    /// Metres per unit of the `Unit` element `u` (a length).
-    fn length_unit(&self, u: XNode) -> Result<f64, HarnessError> {
-        let kind = xsi_type(u).unwrap_or("");
-        let exponent = text(u, "Exponent").unwrap_or("1");
-        let unit = match kind {
-            "SIUnit" => text(u, "SiUnitName")
-                .and_then(|name| units::si_unit(name, text(u, "SiPrefix"), None)),
-            "ImperialUnit" | "OtherUnit" => text(u, "ImperialUnitName")
-                .or_else(|| text(u, "OtherUnitName"))
-                .and_then(units::named_unit),
-            _ => None,
+    /// A `NumericalValue` child `field` in SI units, if present: its `ValueComponent` in
+    /// its `UnitComponent`, which must measure `want`.
+    pub(crate) fn quantity(
+        &self,
+        n: XNode<'a, 'i>,
+        field: &str,
+        want: Dimension,
+    ) -> Result<Option<f64>, HarnessError> {
+        let Some((value, dimension, q)) = self.measured(n, field)? else {
+            return Ok(None);
         };
-        match unit {
-            Some(unit) if unit.dimension == Dimension::Length && exponent == "1" => Ok(unit.to_si),
+        if dimension != want {
+            return Err(self.error(
+                q,
+                format!(
+                    "its unit {} measures {dimension:?}, expected {want:?}",
+                    text(q, "UnitComponent").unwrap_or("")
+                ),
+            ));
+        }
+        Ok(Some(value))
+    }
+
+    /// A `NumericalValue` child `field` in SI units with what its unit measures, and the
+    /// value's element.
+    pub(crate) fn measured(
+        &self,
+        n: XNode<'a, 'i>,
+        field: &str,
+    ) -> Result<Option<(f64, Dimension, XNode<'a, 'i>)>, HarnessError> {
+        let Some(q) = child(n, field) else {
+            return Ok(None);
+        };
+        let value = self.number(q, "ValueComponent")?;
+        let u = self.reference(q, "UnitComponent")?;
+        let unit = self
+            .unit(u)
+            .map_err(|reason| self.error(q, format!("UnitComponent: {reason}")))?;
+        let si = value * unit.to_si;
+        if !si.is_finite() {
+            return Err(self.error(q, format!("{value} in its unit is not finite in SI units")));
+        }
+        Ok(Some((si, unit.dimension, q)))
+    }
+
+    /// Whether geometry segment `g` runs from the end node of its topology segment to the
+    /// start node.
+    fn runs_against(&self, g: XNode<'a, 'i>, topology: XNode<'a, 'i>) -> bool {
+        let start = text(g, "StartNode")
+            .and_then(|id| self.ids.get(id))
+            .and_then(|n| text(*n, "ReferenceNode"));
+        start.is_some()
+            && start == text(topology, "EndNode")
+            && start != text(topology, "StartNode")
+    }
+
+    /// Metres per unit of the `Unit` element `u` (a length).
+    fn length_unit(&self, u: XNode<'a, 'i>) -> Result<f64, HarnessError> {
+        match self.unit(u) {
+            Ok(unit) if unit.dimension == Dimension::Length => Ok(unit.to_si),
             _ => Err(self.error(
                 u,
-                format!("the base unit of 3-D geometry must be a length (e.g. SIUnit Metre with SiPrefix Milli); this is {kind} with exponent {exponent}"),
+                format!(
+                    "the base unit of 3-D geometry must be a length (e.g. SIUnit Metre with SiPrefix Milli); this is {} with exponent {}",
+                    xsi_type(u).unwrap_or(""),
+                    text(u, "Exponent").unwrap_or("1")
+                ),
             )),
         }
+    }
+
+    /// The unit a VEC `Unit` element defines (`SIUnit`, `ImperialUnit`, `OtherUnit`, or a
+    /// `CompositeUnit`: the product of its `Factors`), raised to its `Exponent`.
+    pub(crate) fn unit(&self, u: XNode<'a, 'i>) -> Result<Unit, String> {
+        let p = self.unit_powers(u, 0)?;
+        let dimension = match (p.length, p.mass, p.other) {
+            (1, 0, false) => Dimension::Length,
+            (2, 0, false) => Dimension::Area,
+            (3, 0, false) => Dimension::Volume,
+            (0, 1, false) => Dimension::Mass,
+            (-1, 1, false) => Dimension::MassPerLength,
+            _ => Dimension::Other,
+        };
+        Ok(Unit {
+            dimension,
+            to_si: p.to_si,
+        })
+    }
+
+    fn unit_powers(&self, u: XNode<'a, 'i>, depth: usize) -> Result<UnitPowers, String> {
+        let id = u.attribute("id").unwrap_or("");
+        if u.tag_name().name() != "Unit" {
+            return Err(format!("\"{id}\" is a {}, not a Unit", u.tag_name().name()));
+        }
+        let exponent: i32 = match text(u, "Exponent") {
+            Some(e) => e
+                .parse()
+                .ok()
+                .filter(|e: &i32| e.abs() <= 4)
+                .ok_or_else(|| {
+                    format!("unit {id}: Exponent \"{e}\" is not an integer in -4 … 4")
+                })?,
+            None => 1,
+        };
+        let kind = xsi_type(u).unwrap_or("");
+        let base = match kind {
+            "SIUnit" => {
+                let name = text(u, "SiUnitName").unwrap_or("");
+                let prefix = text(u, "SiPrefix").unwrap_or("");
+                let f = units::si_prefix(prefix)
+                    .ok_or_else(|| format!("unit {id}: unknown SiPrefix \"{prefix}\""))?;
+                match name {
+                    "Metre" => UnitPowers::length(f),
+                    // The SI base unit of mass is the kilogram; VEC names the gram.
+                    "Gram" => UnitPowers::mass(1e-3 * f),
+                    _ => UnitPowers::OTHER,
+                }
+            }
+            "ImperialUnit" => match text(u, "ImperialUnitName").unwrap_or("") {
+                // International yard and pound (1959): exact by definition.
+                "Thou" => UnitPowers::length(2.54e-5),
+                "Inch" => UnitPowers::length(0.0254),
+                "Foot" => UnitPowers::length(0.3048),
+                "Yard" => UnitPowers::length(0.9144),
+                "Mile" => UnitPowers::length(1609.344),
+                "Grain" => UnitPowers::mass(6.479891e-5),
+                "Ounce" => UnitPowers::mass(0.028349523125),
+                "Pound" => UnitPowers::mass(0.45359237),
+                _ => UnitPowers::OTHER,
+            },
+            "CompositeUnit" => {
+                if depth >= 4 {
+                    return Err(format!("unit {id}: CompositeUnit nested more than 4 deep"));
+                }
+                let factors = text(u, "Factors").unwrap_or("");
+                let mut p = UnitPowers::ONE;
+                for f in factors.split_whitespace() {
+                    let n =
+                        self.ids.get(f).copied().ok_or_else(|| {
+                            format!("unit {id}: factor \"{f}\" refers to no element")
+                        })?;
+                    p = p.times(self.unit_powers(n, depth + 1)?);
+                }
+                p
+            }
+            _ => UnitPowers::OTHER,
+        };
+        Ok(base.power(exponent))
     }
 
     /// The `Identification` of the topology element `field` refers to, else `n`'s own.
@@ -381,6 +598,12 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
         doc: &doc,
         ids,
         sampled_curves: 0,
+        node_of: HashMap::new(),
+        segment_of: HashMap::new(),
+        reversed: HashSet::new(),
+        orientation_of: HashMap::new(),
+        skipped: Vec::new(),
+        warnings: Vec::new(),
     };
     let blocks: Vec<XNode> = doc
         .descendants()
@@ -406,7 +629,6 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
     }
     let positionings = r.positionings()?;
     let mut h = Harness::empty(file, format!("VEC {version}"));
-    let mut node_index: HashMap<&str, usize> = HashMap::new();
     for block in blocks {
         let unit = r.reference(block, "BaseUnit")?;
         let scale = r.length_unit(unit)?;
@@ -427,7 +649,10 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
                     "the placed point is not finite (coordinates or unit too large)",
                 ));
             }
-            node_index.insert(id, h.nodes.len());
+            r.node_of.insert(id, h.nodes.len());
+            if let Some(t) = text(g, "ReferenceNode") {
+                r.node_of.entry(t).or_insert(h.nodes.len());
+            }
             h.nodes.push(Node {
                 kbl_id: id.to_string(),
                 name: r.name(g, "ReferenceNode"),
@@ -440,7 +665,7 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
                 .ok_or_else(|| r.error(g, "GeometrySegment without id"))?;
             let end = |field: &str| -> Result<usize, HarnessError> {
                 let target = text(g, field).unwrap_or("");
-                node_index.get(target).copied().ok_or_else(|| {
+                r.node_of.get(target).copied().ok_or_else(|| {
                     r.error(
                         g,
                         format!("{field} \"{target}\" is no GeometryNode of this building block"),
@@ -453,6 +678,24 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
                 curves.push(r.curve(c, &place)?);
             }
             let line = doc.text_pos_at(g.range().start).row;
+            let topology = match child(g, "ReferenceSegment") {
+                Some(_) => Some(r.reference(g, "ReferenceSegment")?),
+                None => None,
+            };
+            r.segment_of.insert(id, h.segments.len());
+            if let Some(t) = topology.and_then(|t| t.attribute("id")) {
+                r.segment_of.entry(t).or_insert(h.segments.len());
+            }
+            if let Some(t) = topology {
+                if r.runs_against(g, t) {
+                    r.reversed.insert(t.attribute("id").unwrap_or(""));
+                }
+            }
+            let cross_section_area =
+                match topology.and_then(|t| child(t, "CrossSectionAreaInformation")) {
+                    Some(info) => r.quantity(info, "Area", Dimension::Area)?,
+                    None => None,
+                };
             h.segments.push(Segment {
                 kbl_id: id.to_string(),
                 name: r.name(g, "ReferenceSegment"),
@@ -460,10 +703,30 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
                 end_node,
                 virtual_length: r.virtual_length(g),
                 curves,
-                cross_section_area: None,
+                cross_section_area,
                 wires: Vec::new(),
                 line,
             });
+        }
+        for v in children(block, "PlacedElementViewItem3D") {
+            let Some(t) = child(v, "Orientation") else {
+                continue;
+            };
+            let z = DVec3::new(
+                r.number(t, "A13")?,
+                r.number(t, "A23")?,
+                r.number(t, "A33")?,
+            );
+            let axis = rotation * z;
+            if !(axis.is_finite() && axis.length() > 1e-9) {
+                return Err(r.error(t, "the local z axis (A13, A23, A33) is zero or not finite"));
+            }
+            for o in text(v, "OccurrenceOrUsage")
+                .unwrap_or("")
+                .split_whitespace()
+            {
+                r.orientation_of.insert(o, axis);
+            }
         }
     }
     if r.sampled_curves > 0 {
@@ -472,8 +735,8 @@ pub fn parse_vec(file: &str, text_in: &str) -> Result<Harness, HarnessError> {
             r.sampled_curves
         ));
     }
-    h.warnings.push(
-        "VEC: wires and their routing, fixings, protections and connectors are not read (3-D geometry only); every segment gets a stand-in bundle".to_string(),
-    );
+    r.read_parts(&mut h)?;
+    h.skipped.append(&mut r.skipped);
+    h.warnings.append(&mut r.warnings);
     Ok(h)
 }

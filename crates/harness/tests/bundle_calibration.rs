@@ -1,12 +1,13 @@
-//! `pliant calibrate` for bundles: a cantilever test of a bundle, made with Pliant's own
-//! beam (the static solver) at a known coupling factor, gives the factor back; bad input
-//! gives errors that name the file and the reason, and writes nothing.
+//! `pliant calibrate` for bundles: a cantilever test and a torsion test of a bundle, made
+//! with Pliant's own beam (the static solver) at known coupling factors, give the factors
+//! back; bad input gives errors that name the file and the reason, and writes nothing.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use pliant_harness::bundle::{bundle_section, BundleData, WireSection};
 use pliant_harness::bundle_calibration::{calibrate_bundle_file, is_bundle_spec};
+use pliant_harness::Stiffness;
 
 /// The tested bundle: 7 wires of 0.5 mm² (1.6 mm) and 3 of 2.5 mm² (2.9 mm).
 const WIRES: &str = "wires = [{ outer_diameter_mm = 1.6, cross_section_mm2 = 0.5, count = 7 }, { outer_diameter_mm = 2.9, cross_section_mm2 = 2.5, count = 3 }]";
@@ -17,14 +18,16 @@ fn tested_wires(data: &BundleData) -> Vec<WireSection> {
     w
 }
 
-/// Tip deflection \[m\] of Pliant's cantilever (static solver, 20 elements, no gravity) of
-/// length `l` \[m\] and bending stiffness `ei` \[N·m²\] under a tip force `f` \[N\].
-fn pliant_cantilever_tip(l: f64, d_outer: f64, ei: f64, f: f64) -> f64 {
+/// The end state of Pliant's beam (static solver, 20 elements, no gravity) of length `l`
+/// \[m\], clamped at node 0, with a bundle's section (`gj` \[N·m²\] if given, else the
+/// material's), under the load `load` at its free end (a `force_n` or `moment_nm` line).
+fn pliant_beam(l: f64, d_outer: f64, ei: f64, gj: Option<f64>, load: &str) -> pliant_core::State {
+    let gj = gj.map(|gj| format!(", gj_n_m2 = {gj}")).unwrap_or_default();
     let scene = format!(
         r#"
 format = "pliant-scene"
 version = 1
-name = "bundle_cantilever"
+name = "bundle_test"
 length_unit = "mm"
 
 [simulation]
@@ -40,7 +43,7 @@ density_kg_m3 = 2000
 [[hoses]]
 name = "bundle"
 material = "m"
-section = {{ d_inner = 0, d_outer = {d}, ei1_n_m2 = {ei}, ei2_n_m2 = {ei} }}
+section = {{ d_inner = 0, d_outer = {d}, ei1_n_m2 = {ei}, ei2_n_m2 = {ei}{gj} }}
 start = [0, 0, 0]
 path = [{{ line = {{ to = [{l}, 0, 0] }} }}]
 elements = 20
@@ -54,7 +57,7 @@ node = 0
 action = "load"
 hose = "bundle"
 node = -1
-force_n = [0, 0, {fz}]
+{load}
 
 [[timeline]]
 action = "run"
@@ -62,7 +65,6 @@ duration_s = 0.05
 "#,
         d = d_outer * 1e3,
         l = l * 1e3,
-        fz = -f
     );
     let scene = pliant_scene::load_scene_str_in(&scene, "bundle.toml", Path::new("."))
         .unwrap_or_else(|e| panic!("{e}"));
@@ -70,7 +72,30 @@ duration_s = 0.05
         .run_with(Some(pliant_core::SolverKind::Static))
         .unwrap();
     assert_eq!(run.solver.unconverged_steps, 0, "{:?}", run.solver);
-    -cell.state().x[20].z
+    cell.state().clone()
+}
+
+/// Tip deflection \[m\] of Pliant's cantilever of length `l` \[m\] and bending stiffness
+/// `ei` \[N·m²\] under a tip force `f` \[N\].
+fn pliant_cantilever_tip(l: f64, d_outer: f64, ei: f64, f: f64) -> f64 {
+    let state = pliant_beam(l, d_outer, ei, None, &format!("force_n = [0, 0, {}]", -f));
+    -state.x[20].z
+}
+
+/// Twist \[rad\] between the clamped and the free end node's material frame of Pliant's
+/// beam of length `l` \[m\] and torsional stiffness `gj` \[N·m²\] under a torque `t`
+/// \[N·m\] about its axis at the free end.
+fn pliant_twist(l: f64, d_outer: f64, gj: f64, ei: f64, t: f64) -> f64 {
+    let state = pliant_beam(
+        l,
+        d_outer,
+        ei,
+        Some(gj),
+        &format!("moment_nm = [{t}, 0, 0]"),
+    );
+    let q = &state.q;
+    let (axis, angle) = (q[q.len() - 1] * q[0].conjugate()).to_axis_angle();
+    angle * axis.x.signum()
 }
 
 fn write(dir: &Path, name: &str, text: &str) {
@@ -113,25 +138,25 @@ fn a_cantilever_of_pliants_own_beam_gives_its_factor_back() {
     let c = calibrate_bundle_file(&dir.path().join("bundle.toml")).unwrap();
     println!(
         "fitted f_ei = {:.6} (95 % CI {:.6} – {:.6}), EI = {:.6e} N·m² ({:+.3e} relative); {} of {} points",
-        c.fit.f_ei,
-        c.f_ei_ci95[0],
-        c.f_ei_ci95[1],
-        c.fit.measured_ei,
-        c.fit.measured_ei / ei - 1.0,
+        c.fit.factor,
+        c.factor_ci95[0],
+        c.factor_ci95[1],
+        c.fit.measured,
+        c.fit.measured / ei - 1.0,
         c.test.range.points,
         c.test.range.total_points
     );
     // The bounds are the model's own; the factor comes back within 10⁻⁴ (measured:
     // 2·10⁻⁶; Pliant's beam of 20 elements at ≤ 0.5 % deflection against δ = F L³/(3 EI)).
-    assert!((c.fit.ei_slip / b.ei_slip - 1.0).abs() < 1e-12);
-    assert!((c.fit.ei_bond / b.ei_bond - 1.0).abs() < 1e-12);
+    assert!((c.fit.slip / b.ei_slip - 1.0).abs() < 1e-12);
+    assert!((c.fit.bond / b.ei_bond - 1.0).abs() < 1e-12);
     assert!(
-        (c.fit.f_ei - f_true).abs() < 1e-4,
+        (c.fit.factor - f_true).abs() < 1e-4,
         "f_ei = {} (true {f_true})",
-        c.fit.f_ei
+        c.fit.factor
     );
     assert!((c.section.ei / ei - 1.0).abs() < 1e-4);
-    assert!(c.f_ei_ci95[0] <= c.fit.f_ei && c.fit.f_ei <= c.f_ei_ci95[1]);
+    assert!(c.factor_ci95[0] <= c.fit.factor && c.fit.factor <= c.factor_ci95[1]);
     assert_eq!(c.fit.key(), "tape");
 
     // Written: bundle.toml loads as the bundle model's data and carries the factor.
@@ -140,7 +165,7 @@ fn a_cantilever_of_pliants_own_beam_gives_its_factor_back() {
     assert_eq!(paths.len(), 3);
     let read = |name: &str| std::fs::read_to_string(out.join(name)).unwrap();
     let back = BundleData::from_toml(&read("bundle.toml")).unwrap();
-    assert_eq!(back.protection["tape"].f_ei.value, c.fit.f_ei);
+    assert_eq!(back.protection["tape"].f_ei.value, c.fit.factor);
     assert!(back.protection["tape"]
         .f_ei
         .source
@@ -151,9 +176,78 @@ fn a_cantilever_of_pliants_own_beam_gives_its_factor_back() {
     );
     let json: serde_json::Value = serde_json::from_str(&read("calibration.json")).unwrap();
     assert_eq!(json["kind"], "bundle");
-    assert_eq!(json["f_ei"].as_f64().unwrap(), c.fit.f_ei);
+    assert_eq!(json["f_ei"].as_f64().unwrap(), c.fit.factor);
     let html = read("calibration.html");
     assert_eq!(html.matches("<svg").count(), 2);
+}
+
+#[test]
+fn a_torsion_test_of_pliants_own_beam_gives_its_factor_back() {
+    let data = BundleData::builtin();
+    let wires = tested_wires(&data);
+    let b = bundle_section(&data, &wires, None);
+    let f_true = 0.35;
+    let gj = b.gj_slip + f_true * (b.gj_bond - b.gj_slip);
+    println!(
+        "bundle: GJ slip {:.4e}, bonded {:.4e}, at f = {f_true}: {gj:.4e} N·m²",
+        b.gj_slip, b.gj_bond
+    );
+    // 12 torques up to 5° of twist over 200 mm, the twist read between the material
+    // frames of the end nodes (the grips).
+    let l = 0.2;
+    let grips = l;
+    let t_max = 5f64.to_radians() * gj / grips;
+    let mut csv = String::from("torque_Nm,angle_deg\n");
+    for k in 1..=12 {
+        let t = t_max * k as f64 / 12.0;
+        let theta = pliant_twist(l, b.d_outer, gj, b.ei, t);
+        writeln!(csv, "{t:.9e},{:.9e}", theta.to_degrees()).unwrap();
+    }
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "twist.csv", &csv);
+    let text = spec("twist.csv", "torsion", grips * 1e3, "tape", WIRES);
+    write(dir.path(), "bundle.toml", &text);
+    let c = calibrate_bundle_file(&dir.path().join("bundle.toml")).unwrap();
+    println!(
+        "fitted f_gj = {:.6} (95 % CI {:.6} – {:.6}), GJ = {:.6e} N·m² ({:+.3e} relative); {} of {} points",
+        c.fit.factor,
+        c.factor_ci95[0],
+        c.factor_ci95[1],
+        c.fit.measured,
+        c.fit.measured / gj - 1.0,
+        c.test.range.points,
+        c.test.range.total_points
+    );
+    // Uniform torsion of Pliant's rod is linear in its twist: θ = T L / GJ holds to
+    // rounding (measured: GJ −1.3·10⁻¹⁰ relative), so the factor comes back within 10⁻⁸.
+    assert_eq!(c.fit.stiffness, Stiffness::Torsion);
+    assert!((c.fit.slip / b.gj_slip - 1.0).abs() < 1e-12);
+    assert!((c.fit.bond / b.gj_bond - 1.0).abs() < 1e-12);
+    assert!(
+        (c.fit.factor - f_true).abs() < 1e-8,
+        "f_gj = {} (true {f_true})",
+        c.fit.factor
+    );
+    assert!((c.section.gj / gj - 1.0).abs() < 1e-8);
+    assert!(c.factor_ci95[0] <= c.fit.factor && c.fit.factor <= c.factor_ci95[1]);
+    // Written: f_gj replaced with its source, f_ei as it was.
+    let out = dir.path().join("out");
+    c.write(&out).unwrap();
+    let read = |name: &str| std::fs::read_to_string(out.join(name)).unwrap();
+    let back = BundleData::from_toml(&read("bundle.toml")).unwrap();
+    assert_eq!(back.protection["tape"].f_gj.value, c.fit.factor);
+    assert!(back.protection["tape"]
+        .f_gj
+        .source
+        .starts_with("calibrated: torsion test"));
+    assert_eq!(
+        back.protection["tape"].f_ei.value,
+        data.protection["tape"].f_ei.value
+    );
+    let json: serde_json::Value = serde_json::from_str(&read("calibration.json")).unwrap();
+    assert_eq!(json["f_gj"].as_f64().unwrap(), c.fit.factor);
+    assert_eq!(json["stiffness"], "torsion");
+    assert!(json.get("f_ei").is_none());
 }
 
 /// Error text of a calibration that must fail; checks that nothing was written.
@@ -204,11 +298,11 @@ fn bad_curves_and_specs_are_clear_errors() {
         "wires = [{ outer_diameter_mm = 1.6, cross_section_mm2 = 0.5, count = 10000000 }]";
     let cases: [(&str, &str, &str, &str, &str); 7] = [
         (
-            "torsion",
+            "tension",
             "200",
             "tape",
             WIRES,
-            "three_point_bending or cantilever",
+            "three_point_bending or cantilever, or a torsion test",
         ),
         ("cantilever", "nan", "tape", WIRES, "length_mm = NaN"),
         ("cantilever", "200", "glue", WIRES, "protection = \"glue\""),
@@ -271,7 +365,7 @@ fn a_segment_of_the_main_harness_is_calibrated_by_its_kbl_id() {
     write(dir.path(), "bundle.toml", &text);
     let c = calibrate_bundle_file(&dir.path().join("bundle.toml")).unwrap();
     // A noise-free line: the factor exactly, the protection from the segment.
-    assert!((c.fit.f_ei - 0.1).abs() < 1e-9, "{}", c.fit.f_ei);
+    assert!((c.fit.factor - 0.1).abs() < 1e-9, "{}", c.fit.factor);
     assert_eq!(c.fit.key(), "tape");
     assert_eq!(c.fit.wire_count, best.wires.len());
     assert!(c.bundle.starts_with(&best.kbl_id));

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use pliant_harness::bundle::BundleData;
 use pliant_harness::model::ProtectionKind;
-use pliant_harness::{bundle_of_segment, fit_protection_factor, read_kbl, HarnessError};
+use pliant_harness::{bundle_of_segment, fit_protection_factor, read_kbl, HarnessError, Stiffness};
 
 fn data(file: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -30,8 +30,14 @@ fn taped_segment_of_the_main_harness() {
         "{}: {} wires, EI slip {:.3e}, bonded {:.3e}, taped {:.3e} N·m²",
         best.kbl_id, s.wire_count, s.ei_slip, s.ei_bond, s.ei
     );
-    let fit = fit_protection_factor(s.ei, &best.wires, Some(ProtectionKind::Tape)).unwrap();
-    assert!((fit.f_ei - d.protection["tape"].f_ei.value).abs() < 1e-12);
+    let fit = fit_protection_factor(
+        Stiffness::Bending,
+        s.ei,
+        &best.wires,
+        Some(ProtectionKind::Tape),
+    )
+    .unwrap();
+    assert!((fit.factor - d.protection["tape"].f_ei.value).abs() < 1e-12);
     assert_eq!(fit.key(), "tape");
 
     // By its <Id> text too.
