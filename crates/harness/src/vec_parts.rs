@@ -34,6 +34,9 @@
 
 use std::collections::HashMap;
 
+/// A stretch of a segment a placement covers: (segment, from, to) as shares of its length.
+type WaySpan = (usize, f64, f64);
+
 use roxmltree::Node as XNode;
 
 use crate::error::HarnessError;
@@ -618,14 +621,14 @@ impl<'a, 'i> Reader<'a, 'i> {
         Ok(())
     }
 
-    /// The spans `(segment, from, to)` an `OnWayPlacement` covers: from its
+    /// The spans an `OnWayPlacement` covers: from its
     /// `StartLocation` along the segments of its `Path` (just the start location's segment
     /// without one) to its `EndLocation`.
     fn way(
         &self,
         h: &Harness,
         p: XNode<'a, 'i>,
-    ) -> Result<Result<Vec<(usize, f64, f64)>, String>, HarnessError> {
+    ) -> Result<Result<Vec<WaySpan>, String>, HarnessError> {
         let start =
             child(p, "StartLocation").ok_or_else(|| self.error(p, "StartLocation is missing"))?;
         let end = child(p, "EndLocation").ok_or_else(|| self.error(p, "EndLocation is missing"))?;
