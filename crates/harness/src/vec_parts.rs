@@ -34,9 +34,6 @@
 
 use std::collections::HashMap;
 
-/// A stretch of a segment a placement covers: (segment, from, to) as shares of its length.
-type WaySpan = (usize, f64, f64);
-
 use roxmltree::Node as XNode;
 
 use crate::error::HarnessError;
@@ -45,6 +42,9 @@ use crate::kbl::{child, children, classify_protection, outer_diameter_from_descr
 use crate::model::*;
 use crate::units::Dimension;
 use crate::vec::{xsi_type, Reader};
+
+/// A stretch of a segment a placement covers: (segment, from, to) as shares of its length.
+type WaySpan = (usize, f64, f64);
 
 /// Specification types a `WireProtectionRole` may refer to.
 const PROTECTION_SPECIFICATIONS: [&str; 5] = [
