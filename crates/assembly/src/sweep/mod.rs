@@ -16,5 +16,5 @@ mod tracker;
 
 pub use coordinate::{Coordinate, CoordinateKind};
 pub use settings::SweepSettings;
-pub use summary::{SweepSummary, Worst};
+pub use summary::{ClearanceViolation, SweepSummary, Worst};
 pub use tracker::MotionSweep;

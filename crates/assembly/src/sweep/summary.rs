@@ -4,6 +4,7 @@
 use super::coordinate::Coordinate;
 use super::tracker::PER_HOSE;
 use serde::Serialize;
+use std::fmt;
 
 /// The rows of a sweep and what names them.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -35,6 +36,38 @@ pub struct Worst {
     pub time: f64,
     /// The motion coordinate there (SI).
     pub coordinate: f64,
+}
+
+/// A hose that came nearer to a part than the smallest clearance allowed, at its
+/// nearest position.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ClearanceViolation {
+    pub hose: String,
+    pub part: String,
+    /// The clearance there and the smallest allowed \[m\].
+    pub gap: f64,
+    pub minimum: f64,
+    /// When \[s\], the motion coordinate then (SI) and in words ("door angle 68°").
+    pub time: f64,
+    pub coordinate: f64,
+    pub position: String,
+}
+
+impl fmt::Display for ClearanceViolation {
+    /// "hose 'h' comes within 3.0 mm of part 'fan' (minimum 10.0 mm) at engine phase 212°
+    /// (t = 1.23 s)".
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "hose '{}' comes within {:.1} mm of part '{}' (minimum {:.1} mm) at {} (t = {:.2} s)",
+            self.hose,
+            1e3 * self.gap,
+            self.part,
+            1e3 * self.minimum,
+            self.position,
+            self.time
+        )
+    }
 }
 
 impl SweepSummary {
@@ -125,10 +158,9 @@ impl SweepSummary {
         out
     }
 
-    /// One line per hose and part that came nearer than the smallest clearance allowed,
-    /// at its nearest position ("hose 'h' comes within 3 mm of part 'fan' (minimum
-    /// 10 mm) at engine phase 212° (t = 1.23 s)").
-    pub fn clearance_violations(&self) -> Vec<String> {
+    /// Each hose and part that came nearer than the smallest clearance allowed, at its
+    /// nearest position.
+    pub fn clearance_violations(&self) -> Vec<ClearanceViolation> {
         let (Some(limit), Some(c)) = (self.min_clearance, &self.coordinate) else {
             return Vec::new();
         };
@@ -136,15 +168,15 @@ impl SweepSummary {
         for (k, &(h, p)) in self.pairs.iter().enumerate() {
             if let Some((r, gap)) = self.least(|r| self.pair_value(r, k)) {
                 if gap < limit {
-                    out.push(format!(
-                        "hose '{}' comes within {:.1} mm of part '{}' (minimum {:.1} mm) at {} (t = {:.2} s)",
-                        self.hose_names[h],
-                        1e3 * gap,
-                        self.part_names[p],
-                        1e3 * limit,
-                        c.describe(r[1]),
-                        r[0]
-                    ));
+                    out.push(ClearanceViolation {
+                        hose: self.hose_names[h].clone(),
+                        part: self.part_names[p].clone(),
+                        gap,
+                        minimum: limit,
+                        time: r[0],
+                        coordinate: r[1],
+                        position: c.describe(r[1]),
+                    });
                 }
             }
         }
