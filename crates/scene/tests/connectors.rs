@@ -89,7 +89,7 @@ fn a_plug_pushed_past_its_latch_is_latched_and_the_hand_felt_the_mating_curve() 
     assert_eq!(scene.connectors.len(), 1);
     let (_, run) = scene.run_with(None).unwrap();
     let x1 = run.fasteners.iter().find(|f| f.name == "X1").unwrap();
-    assert_eq!(x1.kind, "connector");
+    assert_eq!(x1.kind, pliant_assembly::FastenerKind::Connector);
     assert_eq!(x1.final_state, FastenerState::Latched);
     assert!(x1.assembled);
     // the hand pushes at ≤ 7 mm/s: inertia and damping are far below a newton, the peak it
