@@ -119,12 +119,12 @@ export interface LoadAgainstLimit { hand: number; load: LoadKind; value: number;
 export type VerdictLine =
   | { kind: 'solver'; doubt: 'out_of_balance' | 'unstable' | 'rolled_back'; [field: string]: unknown }
   | { kind: 'stopped_early'; message: string }
-  | { kind: 'hand_force_zone'; hand: number; zone: { kind: LoadKind; magnitude: number; time: number; [field: string]: unknown }; working: WorkedFastener | null }
-  | ({ kind: 'hand_load_over_limit'; working: WorkedFastener | null } & LoadAgainstLimit)
+  | { kind: 'hand_force_zone'; hand: number; zone: { kind: LoadKind; magnitude: number; time: number; [field: string]: unknown }; working?: WorkedFastener }
+  | ({ kind: 'hand_load_over_limit'; working?: WorkedFastener } & LoadAgainstLimit)
   | { kind: 'moment_above_guide'; hand: number; load: LoadKind; value: number; time: number; guide_hi: number; limit: number; moments_decide: boolean }
   | { kind: 'fastener_not_fitted'; fastener: FastenerKind; name: string; final_state: string }
   | { kind: 'fastener_pending'; fastener: FastenerKind; name: string; state: string }
-  | { kind: 'check_violated'; violation: CheckViolation; position: string | null }
+  | { kind: 'check_violated'; violation: CheckViolation; position?: string }
   | { kind: 'clearance_violated'; hose: string; part: string; gap: number; minimum: number; time: number; coordinate: number; position: string }
   | { kind: 'worker'; finding: { kind: 'out_of_reach' | 'collision'; who: string; time: number; [field: string]: unknown } }
   | { kind: 'posture'; who: string; rula: { score: unknown; time: number }; reba: { score: unknown; time: number } }
@@ -132,8 +132,8 @@ export type VerdictLine =
   | { kind: 'motion_extremes'; summary: string }
   | { kind: 'contact'; part: string; first_time: number; last_time: number }
   | { kind: 'instability'; note: 'snapped_through' | 'buckled' | 'more' | 'explicit_fallback'; [field: string]: unknown }
-  | { kind: 'within_limits'; standard: string; checks: string[]; reached: string | null }
-  | { kind: 'within_limits_so_far'; worst: LoadAgainstLimit | null }
+  | { kind: 'within_limits'; standard: string; checks: string[]; reached?: string }
+  | { kind: 'within_limits_so_far'; worst?: LoadAgainstLimit }
   | { kind: 'checks_passed'; stage: 'running' | 'final' }
   | { kind: 'no_hand_acted'; stage: 'running' | 'final' };
 export interface Snapshot {

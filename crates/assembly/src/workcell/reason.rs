@@ -34,7 +34,8 @@ pub struct LoadAgainstLimit {
 }
 
 /// One line of a verdict: a reason, a warning, a fastener still to fit, a hand's EN 1005-3
-/// zone or a line on the worker. Serialised with its `kind` ("hand_load_over_limit", …).
+/// zone or a line on the worker. Serialised with its `kind` ("hand_load_over_limit", …);
+/// an optional member that is empty is left out.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Reason {
@@ -49,6 +50,7 @@ pub enum Reason {
     HandForceZone {
         hand: usize,
         zone: ZoneNote,
+        #[serde(skip_serializing_if = "Option::is_none")]
         working: Option<WorkedFastener>,
     },
     /// A hand's push, pull (or, when moments decide, twist or bending) over its limit
@@ -56,6 +58,7 @@ pub enum Reason {
     HandLoadOverLimit {
         #[serde(flatten)]
         load: LoadAgainstLimit,
+        #[serde(skip_serializing_if = "Option::is_none")]
         working: Option<WorkedFastener>,
     },
     /// A hand's twist or bending moment above the upper end of its guide range
@@ -85,6 +88,7 @@ pub enum Reason {
     /// range-of-motion study.
     CheckViolated {
         violation: Violation,
+        #[serde(skip_serializing_if = "Option::is_none")]
         position: Option<String>,
     },
     /// A hose came nearer to a part than the smallest clearance allowed (range of motion).
@@ -113,10 +117,14 @@ pub enum Reason {
     WithinLimits {
         standard: Standard,
         checks: Vec<&'static str>,
+        #[serde(skip_serializing_if = "Option::is_none")]
         reached: Option<String>,
     },
     /// Feasible so far: every hand load within its limit value; the worst of them.
-    WithinLimitsSoFar { worst: Option<LoadAgainstLimit> },
+    WithinLimitsSoFar {
+        #[serde(skip_serializing_if = "Option::is_none")]
+        worst: Option<LoadAgainstLimit>,
+    },
     /// A range-of-motion study with no hand: every check passed (and, at the end, every
     /// fastener was fitted).
     ChecksPassed { stage: Stage },
