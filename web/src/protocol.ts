@@ -109,7 +109,6 @@ export interface VerdictFindings {
   reasons: VerdictLine[]; pending: VerdictLine[]; warnings: VerdictLine[]; zones: VerdictLine[];
   worker?: VerdictLine[];
 }
-export type LoadKind = 'push' | 'pull' | 'twist' | 'bending';
 export type FastenerKind = 'stub' | 'connector' | 'clip';
 /** The fastener a hand worked at its worst moment. */
 export interface WorkedFastener { fastener: FastenerKind; name: string }
