@@ -311,3 +311,72 @@ impl Verdict {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fastener_state::{FastenerKind, FastenerState};
+    use crate::fasteners::FastenerReport;
+
+    /// A clip left snapping: at the end a reason (not feasible), while running a pending
+    /// fastener (feasible so far) — each decided as a typed line, worded by `Display`, and
+    /// serialised both ways.
+    #[test]
+    fn a_fastener_not_fitted_decides_at_the_end_and_is_pending_while_running() {
+        let run = RunSummary {
+            hand_peaks: vec![HandPeak::default()],
+            fasteners: vec![FastenerReport {
+                name: "c".into(),
+                kind: FastenerKind::Clip,
+                final_state: FastenerState::Snapping,
+                ..Default::default()
+            }],
+            ..Default::default()
+        };
+        let end = Verdict::judge(&run, None, Stage::Final);
+        assert_eq!(end.feasible, Some(false));
+        assert_eq!(
+            end.findings.reasons,
+            [Reason::FastenerNotFitted {
+                fastener: FastenerKind::Clip,
+                name: "c".into(),
+                final_state: FastenerState::Snapping,
+            }]
+        );
+        assert_eq!(
+            end.reasons,
+            ["clip 'c': the hose did not end seated in it (final state: snapping)"]
+        );
+        let json = serde_json::to_value(&end).unwrap();
+        assert_eq!(json["reasons"][0], end.reasons[0].as_str());
+        assert_eq!(
+            json["findings"]["reasons"][0],
+            serde_json::json!({
+                "kind": "fastener_not_fitted",
+                "fastener": "clip",
+                "name": "c",
+                "final_state": "snapping",
+            })
+        );
+
+        let now = Verdict::judge(&run, None, Stage::Running);
+        assert_eq!(now.feasible, Some(true));
+        assert_eq!(now.pending, ["clip 'c' not yet fitted (state: snapping)"]);
+        assert_eq!(
+            now.findings.pending,
+            [Reason::FastenerPending {
+                fastener: FastenerKind::Clip,
+                name: "c".into(),
+                state: FastenerState::Snapping,
+            }]
+        );
+        assert_eq!(
+            now.findings.reasons,
+            [Reason::WithinLimitsSoFar { worst: None }]
+        );
+        assert_eq!(
+            now.reasons,
+            ["every hand load so far is within its ergonomic limit value"]
+        );
+    }
+}
