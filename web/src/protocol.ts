@@ -128,7 +128,9 @@ export type VerdictLine =
   | { kind: 'worker'; finding: { kind: 'out_of_reach' | 'collision'; who: string; time: number; [field: string]: unknown } }
   | { kind: 'posture'; who: string; rula: { score: unknown; time: number }; reba: { score: unknown; time: number } }
   | { kind: 'not_posed'; who: string }
-  | { kind: 'motion_extremes'; summary: string }
+  | { kind: 'motion_extremes'; coordinate: { part: number; part_name: string; kind: string }; from: number; to: number;
+      bend_radii: { hose: string; radius: number; allowed: number; coordinate: number }[];
+      clearance?: { hose: string; part: string; gap: number; coordinate: number } }
   | { kind: 'contact'; part: string; first_time: number; last_time: number }
   | { kind: 'instability'; note: 'snapped_through' | 'buckled' | 'more' | 'explicit_fallback'; [field: string]: unknown }
   | { kind: 'within_limits'; standard: string; checks: string[]; reached?: string }

@@ -10,11 +10,13 @@
 //! every shell and every replay records the same rows.
 
 mod coordinate;
+mod extremes;
 mod settings;
 mod summary;
 mod tracker;
 
 pub use coordinate::{Coordinate, CoordinateKind};
+pub use extremes::{ClosestApproach, MotionExtremes, RadiusAt};
 pub use settings::SweepSettings;
 pub use summary::{ClearanceViolation, SweepSummary, Worst};
 pub use tracker::MotionSweep;

@@ -2,6 +2,7 @@
 //! each quantity named by the motion coordinate, and the clearance violations.
 
 use super::coordinate::Coordinate;
+use super::extremes::{ClosestApproach, MotionExtremes, RadiusAt};
 use super::tracker::PER_HOSE;
 use serde::Serialize;
 use std::fmt;
@@ -183,37 +184,33 @@ impl SweepSummary {
         out
     }
 
-    /// One line for the verdict: over the motion, each hose's smallest bend radius and
-    /// the smallest clearance, with where they were.
-    pub fn describe(&self) -> Option<String> {
+    /// Over the motion, each hose's smallest bend radius and the smallest clearance,
+    /// with where they were; `None` without a coordinate or rows.
+    pub fn extremes(&self) -> Option<MotionExtremes> {
         let c = self.coordinate.as_ref()?;
-        let (lo, hi) = self
+        let (from, to) = self
             .rows()
             .map(|r| r[1])
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
                 (a.min(v), b.max(v))
             });
-        if !lo.is_finite() {
+        if !from.is_finite() {
             return None;
         }
-        let (unit, factor) = c.kind.unit();
-        let unit = if unit == "deg" { "°" } else { unit };
-        let mut parts = Vec::new();
+        let mut bend_radii = Vec::new();
         for (h, name) in self.hose_names.iter().enumerate() {
             if let Some((r, radius)) = self.least(|r| Self::hose_value(r, h, 0)) {
                 if radius.is_finite() {
-                    let allowed = self.allowed_radius.get(h).copied().unwrap_or(0.0);
-                    let relation = if radius < allowed { "<" } else { "≥" };
-                    parts.push(format!(
-                        "hose '{name}' bend radius {:.0} mm {relation} {:.0} mm at {}",
-                        1e3 * radius,
-                        1e3 * allowed,
-                        c.describe(r[1])
-                    ));
+                    bend_radii.push(RadiusAt {
+                        hose: name.clone(),
+                        radius,
+                        allowed: self.allowed_radius.get(h).copied().unwrap_or(0.0),
+                        coordinate: r[1],
+                    });
                 }
             }
         }
-        if let Some((r, gap, k)) = (0..self.pairs.len())
+        let clearance = (0..self.pairs.len())
             .filter_map(|k| {
                 self.least(|r| self.pair_value(r, k))
                     .map(|(r, g)| (r, g, k))
@@ -222,26 +219,22 @@ impl SweepSummary {
                 Some(b) if b.1 <= x.1 => Some(b),
                 _ => Some(x),
             })
-        {
-            let (h, p) = self.pairs[k];
-            parts.push(format!(
-                "smallest clearance {:.1} mm, hose '{}' to part '{}', at {}",
-                1e3 * gap,
-                self.hose_names[h],
-                self.part_names[p],
-                c.describe(r[1])
-            ));
-        }
-        Some(format!(
-            "over the motion of part '{}' ({} {:.0}{} … {:.0}{}): {}",
-            c.part_name,
-            c.kind.name(),
-            lo * factor,
-            if unit == "°" { "°" } else { "" },
-            hi * factor,
-            unit,
-            parts.join("; ")
-        ))
+            .map(|(r, gap, k)| {
+                let (h, p) = self.pairs[k];
+                ClosestApproach {
+                    hose: self.hose_names[h].clone(),
+                    part: self.part_names[p].clone(),
+                    gap,
+                    coordinate: r[1],
+                }
+            });
+        Some(MotionExtremes {
+            coordinate: c.clone(),
+            from,
+            to,
+            bend_radii,
+            clearance,
+        })
     }
 
     /// `motion.csv`: one row per checked instant (SI, angles in degrees as the scene

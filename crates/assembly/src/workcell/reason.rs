@@ -9,7 +9,7 @@ use super::verdict::Stage;
 use crate::checks::Violation;
 use crate::ergonomics::{LoadKind, RiskZone, Standard};
 use crate::fastener_state::{FastenerKind, FastenerState};
-use crate::sweep::ClearanceViolation;
+use crate::sweep::{ClearanceViolation, MotionExtremes};
 use crate::worker::{PostureNote, WorkerFinding};
 use serde::Serialize;
 use std::fmt;
@@ -100,9 +100,8 @@ pub enum Reason {
     /// A worker in the scene never posed: no hand acted.
     NotPosed { who: String },
     /// Over a range of motion: each hose's smallest bend radius and the smallest
-    /// clearance with where they were, in words ([`crate::sweep::SweepSummary::describe`];
-    /// the numbers are the report's `worst`).
-    MotionExtremes { summary: String },
+    /// clearance with where they were.
+    MotionExtremes(MotionExtremes),
     /// The hoses touched a part over this time span \[s\].
     Contact {
         part: String,
@@ -293,7 +292,7 @@ impl fmt::Display for Reason {
             Reason::Worker { finding } => f.write_str(&finding.describe()),
             Reason::Posture(note) => note.fmt(f),
             Reason::NotPosed { who } => write!(f, "{who}: not posed (no hand acted)"),
-            Reason::MotionExtremes { summary } => f.write_str(summary),
+            Reason::MotionExtremes(extremes) => extremes.fmt(f),
             Reason::Contact {
                 part,
                 first_time,

@@ -211,8 +211,8 @@ impl Verdict {
                 violated |= decide;
                 file(&mut found, decide, Reason::ClearanceViolated(c));
             }
-            if let Some(summary) = s.describe() {
-                found.reasons.push(Reason::MotionExtremes { summary });
+            if let Some(extremes) = s.extremes() {
+                found.reasons.push(Reason::MotionExtremes(extremes));
             }
         }
         if stage == Stage::Final {
