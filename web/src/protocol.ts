@@ -99,7 +99,44 @@ export interface ErgonomicProfile {
   population: string;
   duty: string;
 }
-export interface RunningVerdict { feasible: boolean | null; reasons: string[]; pending: string[]; warnings?: string[] }
+export interface RunningVerdict {
+  feasible: boolean | null; reasons: string[]; pending: string[]; warnings?: string[];
+  /** The same lines as data, list by list (docs/protocol.md, "The verdict's findings"). */
+  findings?: VerdictFindings;
+}
+/** A verdict's lines as data: `reasons[i]` is the verdict's `reasons[i]`, and so on. */
+export interface VerdictFindings {
+  reasons: VerdictLine[]; pending: VerdictLine[]; warnings: VerdictLine[]; zones: VerdictLine[];
+  worker?: VerdictLine[];
+}
+export type FastenerKind = 'stub' | 'connector' | 'clip';
+/** The fastener a hand worked at its worst moment. */
+export interface WorkedFastener { fastener: FastenerKind; name: string }
+/** A hand's load against its limit value (SI), `ratio` = value / limit. */
+export interface LoadAgainstLimit { hand: number; load: LoadKind; value: number; limit: number; ratio: number; time: number }
+/** One line of a verdict, by its `kind`; the fields not typed here are in docs/protocol.md. */
+export type VerdictLine =
+  | { kind: 'solver'; doubt: 'out_of_balance' | 'unstable' | 'rolled_back'; [field: string]: unknown }
+  | { kind: 'stopped_early'; message: string }
+  | { kind: 'hand_force_zone'; hand: number; zone: { kind: LoadKind; magnitude: number; time: number; [field: string]: unknown }; working?: WorkedFastener }
+  | ({ kind: 'hand_load_over_limit'; working?: WorkedFastener } & LoadAgainstLimit)
+  | { kind: 'moment_above_guide'; hand: number; load: LoadKind; value: number; time: number; guide_hi: number; limit: number; moments_decide: boolean }
+  | { kind: 'fastener_not_fitted'; fastener: FastenerKind; name: string; final_state: string }
+  | { kind: 'fastener_pending'; fastener: FastenerKind; name: string; state: string }
+  | { kind: 'check_violated'; violation: CheckViolation; position?: string }
+  | { kind: 'clearance_violated'; hose: string; part: string; gap: number; minimum: number; time: number; coordinate: number; position: string }
+  | { kind: 'worker'; finding: { kind: 'out_of_reach' | 'collision'; who: string; time: number; [field: string]: unknown } }
+  | { kind: 'posture'; who: string; rula: { score: unknown; time: number }; reba: { score: unknown; time: number } }
+  | { kind: 'not_posed'; who: string }
+  | { kind: 'motion_extremes'; coordinate: { part: number; part_name: string; kind: string }; from: number; to: number;
+      bend_radii: { hose: string; radius: number; allowed: number; coordinate: number }[];
+      clearance?: { hose: string; part: string; gap: number; coordinate: number } }
+  | { kind: 'contact'; part: string; first_time: number; last_time: number }
+  | { kind: 'instability'; note: 'snapped_through' | 'buckled' | 'more' | 'explicit_fallback'; [field: string]: unknown }
+  | { kind: 'within_limits'; standard: string; checks: string[]; reached?: string }
+  | { kind: 'within_limits_so_far'; worst?: LoadAgainstLimit }
+  | { kind: 'checks_passed'; stage: 'running' | 'final' }
+  | { kind: 'no_hand_acted'; stage: 'running' | 'final' };
 export interface Snapshot {
   type: 'snapshot';
   time: number;
@@ -130,7 +167,7 @@ export interface CheckViolation {
 }
 export interface ErrorMessage { type: 'error'; code: string; message: string }
 /** The answer to `report`: the folder the report was written to and its verdict. */
-export interface ReportMessage { type: 'report'; folder: string; verdict: { feasible: boolean | null; reasons: string[]; pending: string[] } }
+export interface ReportMessage { type: 'report'; folder: string; verdict: { feasible: boolean | null; reasons: string[]; pending: string[]; findings?: VerdictFindings } }
 /** One built-in library hose (SI). */
 export interface LibraryHose { name: string; description: string; d_inner: number; d_outer: number; min_bend_radius: number }
 /** The answer to `scene_source`: the session's scene file as a document to edit. */

@@ -14,6 +14,7 @@
 //! or a support carried with the part's pose and velocity (a rotating or sliding clip).
 
 use crate::clip::{ClipObservation, ClipSpec, ClipState, ClipTolerance};
+use crate::fastener_state::{FastenerKind, FastenerState};
 use crate::part_frame::PartFrame;
 use crate::stub::{
     AxialLaw, FitRelaxation, FitTerms, StubLaw, StubObservation, StubState, StubTolerance,
@@ -71,13 +72,12 @@ pub struct ClipSite {
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct FastenerReport {
     pub name: String,
-    /// "stub", "connector" or "clip".
-    pub kind: &'static str,
+    pub kind: FastenerKind,
     /// Largest force the fastener applied to the hose \[N\] and when.
     pub max_force: f64,
     pub max_force_time: f64,
-    /// State at the end of the run (e.g. "fixed", "seated", "approach").
-    pub final_state: String,
+    /// State at the end of the run (e.g. fixed, seated, approach).
+    pub final_state: FastenerState,
     /// Whether the fastener ended in its assembled state (stub: fixed; connector: fixed
     /// and latched; clip: seated).
     pub assembled: bool,
@@ -197,17 +197,6 @@ fn hand_force(held: &[(usize, DVec3)], node: usize) -> DVec3 {
         .map_or(DVec3::ZERO, |&(_, f)| f)
 }
 
-fn state_name<T: Serialize>(s: &T) -> String {
-    serde_json::to_value(s)
-        .ok()
-        .and_then(|v| {
-            v.as_str()
-                .map(str::to_owned)
-                .or_else(|| v.as_object().and_then(|o| o.keys().next().cloned()))
-        })
-        .unwrap_or_default()
-}
-
 impl Fasteners {
     /// Sets up the fasteners; their force load cases are added to `state` (initially zero).
     /// A clip whose hose is drawn in its seat (inside its jaws) starts seated.
@@ -253,7 +242,7 @@ impl Fasteners {
                 fix: None,
                 report: FastenerReport {
                     name: site.name.clone(),
-                    kind: "clip",
+                    kind: FastenerKind::Clip,
                     ..Default::default()
                 },
                 force_now: 0.0,
@@ -319,27 +308,29 @@ impl Fasteners {
             .position(|(at, force)| at == Some(node) && force > 0.0)
     }
 
-    /// Reports at the end of the run (the state names are made here, not every step).
+    /// Reports at the end of the run (the final states are set here, not every step).
     pub fn reports(&self) -> Vec<FastenerReport> {
         let stubs = self.stubs.iter().map(|s| FastenerReport {
-            final_state: stub_state_name(s),
+            final_state: stub_final_state(s),
             ..s.report.clone()
         });
         let clips = self.clips.iter().map(|c| FastenerReport {
-            final_state: state_name(&c.state),
+            final_state: c.state.into(),
             ..c.report.clone()
         });
         stubs.chain(clips).collect()
     }
 }
 
-/// A stub's state as reports name it; a connector released on its counterpart is
-/// "latched" or "half_mated".
-fn stub_state_name(s: &StubRun) -> String {
+/// A stub's state as reports give it; a connector released on its counterpart is
+/// latched or half mated.
+fn stub_final_state(s: &StubRun) -> FastenerState {
     match (s.state, &s.site.fit) {
-        (StubState::Fixed { depth }, StubLaw::Mating(m)) if m.latched(depth) => "latched".into(),
-        (StubState::Fixed { .. }, StubLaw::Mating(_)) => "half_mated".into(),
-        (state, _) => state_name(&state),
+        (StubState::Fixed { depth }, StubLaw::Mating(m)) if m.latched(depth) => {
+            FastenerState::Latched
+        }
+        (StubState::Fixed { .. }, StubLaw::Mating(_)) => FastenerState::HalfMated,
+        (state, _) => state.into(),
     }
 }
 

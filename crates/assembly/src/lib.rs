@@ -7,6 +7,7 @@
 pub mod checks;
 pub mod clip;
 pub mod ergonomics;
+pub mod fastener_state;
 pub mod fasteners;
 pub mod grip;
 pub mod hand;
@@ -20,13 +21,14 @@ pub mod timeline;
 pub mod workcell;
 pub mod worker;
 
+pub use fastener_state::{FastenerKind, FastenerState};
 pub use fasteners::{ClipSite, FastenerReport, FastenerSample, StubSite};
 pub use grip::Grip;
 pub use hand::{Hand, HandLoad};
 pub use runner::{run_timeline, RunError, Runner};
 pub use timeline::{Action, MovePath, NodeRef, Rotation, Timeline};
 pub use workcell::{
-    Applied, ContactEpisode, HandPeak, HandRecord, InitialLoad, Input, NoObserver, NodePeak,
-    Observer, Refusal, RunSummary, SettleOutcome, Stage, Verdict, Workcell, WorkcellError,
-    WorkcellOptions, WorkcellSetup,
+    Applied, ContactEpisode, Findings, HandPeak, HandRecord, InitialLoad, Input, InstabilityNote,
+    NoObserver, NodePeak, Observer, Reason, Refusal, RunSummary, SettleOutcome, SolverDoubt, Stage,
+    Verdict, Workcell, WorkcellError, WorkcellOptions, WorkcellSetup,
 };

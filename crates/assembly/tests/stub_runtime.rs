@@ -131,7 +131,10 @@ fn released_on_the_stub_it_stays_and_pulling_hard_takes_it_off() {
         )
         .unwrap();
     let stub = &summary.fasteners[0];
-    assert!(stub.assembled && stub.final_state == "fixed", "{stub:?}");
+    assert!(
+        stub.assembled && stub.final_state == pliant_assembly::FastenerState::Fixed,
+        "{stub:?}"
+    );
     let x_fixed = state.x[N].x;
     // now grab again and pull back 40 mm: more than the holding force is needed, and
     // the end comes off

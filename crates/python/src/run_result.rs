@@ -43,6 +43,7 @@ pub struct RunResult {
     warnings: Vec<String>,
     standard: String,
     zones: Vec<String>,
+    findings: pliant_assembly::Findings,
     word: &'static str,
     uncertain: bool,
     data: Collector,
@@ -142,6 +143,7 @@ pub fn run_timeline(
         warnings: v.warnings,
         standard: v.standard,
         zones: v.zones,
+        findings: v.findings,
         data,
     };
     match divergence {
@@ -204,6 +206,18 @@ impl RunResult {
     #[getter]
     fn reasons(&self) -> Vec<String> {
         self.reasons.clone()
+    }
+
+    /// The verdict's lines as data, list by list as ``reasons``, ``warnings`` and
+    /// ``zones`` word them (plus ``pending`` and, with a worker, ``worker``): a dict of
+    /// lists of dicts, each with its ``kind`` (e.g. ``"hand_load_over_limit"`` with
+    /// ``hand``, ``load``, ``value``, ``limit``, ``ratio``, ``time``; ``"check_violated"``
+    /// with the ``violation``; ``"fastener_not_fitted"`` with ``fastener``, ``name``,
+    /// ``final_state``) — docs/python.md lists them. ``findings["reasons"][i]`` is
+    /// ``reasons[i]`` as data.
+    #[getter]
+    fn findings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.findings)
     }
 
     /// What does not decide feasibility but deserves a look: a hand's twist and bending
@@ -283,7 +297,8 @@ impl RunResult {
     /// Why the run is uncertain (the summary's ``solver_warnings``); empty when it is not.
     #[getter]
     fn solver_warnings(&self) -> Vec<String> {
-        self.run.solver_warnings.clone()
+        let warnings = self.run.solver_warnings.iter();
+        warnings.map(ToString::to_string).collect()
     }
 
     /// Peak support loads per fixed or driven node: dicts with hose (name), hose_index,

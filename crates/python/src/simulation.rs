@@ -149,7 +149,12 @@ impl Simulation {
         }
         let r = self.engine.solver_record();
         if r.unconverged_steps > unconverged || r.unstable_steps > unstable {
-            let message = r.warnings().join("; ");
+            let message = r
+                .warnings()
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("; ");
             if self.strict {
                 return Err(crate::errors::SolverNotConverged::new_err(message));
             }
@@ -278,7 +283,8 @@ impl Simulation {
     /// []
     #[getter]
     fn solver_warnings(&self) -> Vec<String> {
-        self.engine.solver_record().warnings()
+        let warnings = self.engine.solver_record().warnings();
+        warnings.iter().map(ToString::to_string).collect()
     }
 
     /// The unstable equilibria (buckling, bifurcations) the static solver met and left

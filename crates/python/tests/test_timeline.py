@@ -64,7 +64,22 @@ def test_report_files_written(tmp_path, demo_result):
     report = json.loads((out / "report.json").read_text())
     assert report["scene"] == "Engine bay with rigid parts"
     assert report["verdict"]["reasons"] == demo_result.reasons
+    assert report["verdict"]["findings"] == demo_result.findings
     assert (out / "report.html").read_text().startswith("<!doctype html>")
+
+
+def test_findings_are_the_reasons_as_data(demo_result):
+    f = demo_result.findings
+    for words in ("reasons", "warnings", "zones", "pending"):
+        assert len(f[words]) == len(getattr(demo_result, words, f[words]))
+    push = f["reasons"][0]
+    assert push["kind"] == "hand_load_over_limit" and push["load"] == "push"
+    assert push["ratio"] == pytest.approx(push["value"] / push["limit"], rel=1e-12)
+    assert f"push of {push['value']:.1f} N" in demo_result.reasons[0]
+    assert push["working"] == {"fastener": "clip", "name": "clip engine corner"}
+    checks = {r["violation"]["check"] for r in f["reasons"] if r["kind"] == "check_violated"}
+    assert checks == {v["check"] for v in demo_result.violations}
+    assert {w["load"] for w in f["warnings"]} == {"twist", "bending"}
 
 
 def test_ergonomics_override_and_bad_profile():
@@ -100,6 +115,7 @@ def test_no_hand_means_not_assessed():
     assert r.feasible is None
     assert r.hands == []
     assert "no hand acted" in r.reasons[-1]
+    assert r.findings["reasons"][-1] == {"kind": "no_hand_acted", "stage": "final"}
 
 
 def test_diverging_timeline_raises_with_the_partial_result(tmp_path):

@@ -102,9 +102,14 @@ fn a_hose_rolled_tighter_than_its_minimum_radius_is_reported_at_kappa_m_over_ei(
         .violations
         .iter()
         .any(|v| v.check == CheckKind::Twist));
-    assert!(!run.feasible());
     // the verdict says so, naming the hose, the place and the values
     let verdict = pliant_assembly::Verdict::judge(&run, None, pliant_assembly::Stage::Final);
+    assert_eq!(verdict.feasible, Some(false), "{:?}", verdict.reasons);
+    let violated = verdict.findings.reasons.iter().find_map(|r| match r {
+        pliant_assembly::Reason::CheckViolated { violation, .. } => Some(violation),
+        _ => None,
+    });
+    assert_eq!(violated, Some(v), "{:?}", verdict.findings.reasons);
     assert!(
         verdict
             .reasons
@@ -257,9 +262,18 @@ fn the_engine_bay_demo_shows_contact_and_follows_the_new_rules() {
         .any(|v| v.check == CheckKind::BendRadius && v.hose_name == "lower"));
     // both clips end seated: the hand opens slowly, so each press goes past the seat, and
     // pressing at the corner clip does not lift the radiator-side clip's seat
-    let clips: Vec<_> = run.fasteners.iter().filter(|f| f.kind == "clip").collect();
+    let clips: Vec<_> = run
+        .fasteners
+        .iter()
+        .filter(|f| f.kind == pliant_assembly::FastenerKind::Clip)
+        .collect();
     assert_eq!(clips.len(), 2);
-    assert!(clips.iter().all(|f| f.final_state == "seated"), "{clips:?}");
+    assert!(
+        clips
+            .iter()
+            .all(|f| f.final_state == pliant_assembly::FastenerState::Seated),
+        "{clips:?}"
+    );
 }
 
 /// A span with a minimum bend radius of its own (a protected stretch of a harness segment)

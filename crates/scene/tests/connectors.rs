@@ -3,6 +3,7 @@
 //! pushing slowly along the axis feels the mating force curve itself; released past the
 //! latch the plug is latched, released short of it half-mated.
 
+use pliant_assembly::FastenerState;
 use pliant_scene::load_scene_str;
 
 /// The mating curve of the scenes below: (travel mm, force N); peak 150 N at 6 mm, the
@@ -88,8 +89,8 @@ fn a_plug_pushed_past_its_latch_is_latched_and_the_hand_felt_the_mating_curve() 
     assert_eq!(scene.connectors.len(), 1);
     let (_, run) = scene.run_with(None).unwrap();
     let x1 = run.fasteners.iter().find(|f| f.name == "X1").unwrap();
-    assert_eq!(x1.kind, "connector");
-    assert_eq!(x1.final_state, "latched");
+    assert_eq!(x1.kind, pliant_assembly::FastenerKind::Connector);
+    assert_eq!(x1.final_state, FastenerState::Latched);
     assert!(x1.assembled);
     // the hand pushes at ≤ 7 mm/s: inertia and damping are far below a newton, the peak it
     // feels is the curve's peak (150 N at 6 mm) within 2 %
@@ -124,7 +125,7 @@ fn a_plug_released_short_of_its_latch_is_half_mated_and_the_verdict_says_so() {
     let scene = load_scene_str(&scene(4.0, ""), "plug.toml").unwrap();
     let (_, run) = scene.run_with(None).unwrap();
     let x1 = run.fasteners.iter().find(|f| f.name == "X1").unwrap();
-    assert_eq!(x1.final_state, "half_mated");
+    assert_eq!(x1.final_state, FastenerState::HalfMated);
     assert!(!x1.assembled);
     // the hand stopped at 4 mm: it felt the curve there, not the peak beyond
     let felt = run.hand_peaks[0].push.magnitude;
@@ -163,7 +164,7 @@ duration_s = 0.3
     let scene = load_scene_str(&scene(7.5, pull), "plug.toml").unwrap();
     let (_, run) = scene.run_with(None).unwrap();
     let x1 = run.fasteners.iter().find(|f| f.name == "X1").unwrap();
-    assert_eq!(x1.final_state, "latched");
+    assert_eq!(x1.final_state, FastenerState::Latched);
 }
 
 #[test]

@@ -5,7 +5,7 @@
 //! `by_hand` clip the hose is drawn through is not seated until a hand presses it in.
 
 use glam::DVec3;
-use pliant_assembly::{Action, MovePath, NodeRef};
+use pliant_assembly::{Action, FastenerState, MovePath, NodeRef};
 use pliant_scene::load_scene_str;
 
 const HEAD: &str = r#"
@@ -207,7 +207,7 @@ duration_s = 0.3
         .iter()
         .find(|f| f.name == "c")
         .expect("the clip's report");
-    assert_eq!(clip.final_state, "seated");
+    assert_eq!(clip.final_state, FastenerState::Seated);
     assert!((clip.max_force / 40.0 - 1.0).abs() < 0.05, "{clip:?}");
     // the free end hung below the route before the hand took it, and its end beam points
     // up after the turn

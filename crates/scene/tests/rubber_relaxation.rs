@@ -3,6 +3,7 @@
 //! of the elastic twin material carries, and pushed onto a stub keeps that share of its
 //! holding force; the relaxation data are checked and refused with the field named.
 
+use pliant_assembly::FastenerState;
 use pliant_scene::load_scene_str;
 
 /// The scene's head: a 200 mm hose of `epdm`, whose `relaxation` is a TOML array (may be
@@ -162,7 +163,7 @@ fn holding_force(text: &str) -> f64 {
     let scene = load_scene_str(text, "stub.toml").unwrap();
     let (_, run) = scene.run_with(None).unwrap();
     let stub = &run.fasteners[0];
-    assert_eq!(stub.final_state, "fixed", "{stub:?}");
+    assert_eq!(stub.final_state, FastenerState::Fixed, "{stub:?}");
     stub.holding_force
 }
 

@@ -79,7 +79,7 @@ pub struct PartData {
 pub struct FastenerData {
     pub name: String,
     /// "stub", "connector" or "clip".
-    pub kind: &'static str,
+    pub kind: pliant_assembly::FastenerKind,
     /// Stub: its mouth; clip: its seat centre.
     pub origin: [f64; 3],
     /// Stub: the push-on direction (mouth towards base); clip: the seated hose's axis.
@@ -112,7 +112,7 @@ impl FastenerData {
         });
         let clips = clips.iter().map(|c| FastenerData {
             name: c.name.clone(),
-            kind: "clip",
+            kind: pliant_assembly::FastenerKind::Clip,
             origin: c.spec.origin().to_array(),
             axis: c.spec.orientation().to_array(),
             opening: c.spec.opening().to_array(),

@@ -557,6 +557,14 @@ async fn ergonomics_and_scene_can_be_changed_and_bad_scenes_are_refused() {
             .any(|r| r == "no hand has acted yet: nothing to judge"),
         "{verdict}"
     );
+    // the same line as data, beside the words
+    assert!(
+        verdict["findings"]["reasons"]
+            .as_array()
+            .unwrap()
+            .contains(&json!({"kind": "no_hand_acted", "stage": "running"})),
+        "{verdict}"
+    );
     if verdict["feasible"] == false {
         assert!(!snap["checks"].as_array().unwrap().is_empty(), "{snap}");
     }

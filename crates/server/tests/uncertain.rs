@@ -15,6 +15,7 @@ mod static_session;
 use glam::{DQuat, DVec3};
 use pliant_scene::load_scene_str_in;
 use pliant_server::snapshot::Snapshot;
+use serde_json::json;
 use std::sync::Arc;
 const MU_STATIC: f64 = 0.5;
 /// Hose 1's outer radius \[mm\]: the hose lies on the surface.
@@ -87,6 +88,14 @@ async fn an_unconverged_static_step_makes_the_live_verdict_uncertain() {
     );
     let json: serde_json::Value = serde_json::from_str(snapshot.json()).unwrap();
     assert_eq!(json["verdict"]["uncertain"], true, "{}", json["verdict"]);
+    // the same reason as data: the solver's doubt, with the steps it concerns
+    let first = &json["verdict"]["findings"]["reasons"][0];
+    assert_eq!(
+        (&first["kind"], &first["doubt"]),
+        (&json!("solver"), &json!("out_of_balance")),
+        "{first}"
+    );
+    assert!(first["steps"].as_u64().is_some_and(|n| n >= 1), "{first}");
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

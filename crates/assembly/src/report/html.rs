@@ -350,7 +350,7 @@ pub fn html(
                 escape(&f.name),
                 f.max_force,
                 f.max_force_time,
-                escape(&f.final_state),
+                f.final_state,
                 f.holding_force
             );
         }

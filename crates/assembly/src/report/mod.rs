@@ -123,7 +123,11 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
         actions_completed: run.actions_completed,
         settles: run.settles.clone(),
         newton: run.solver.clone(),
-        warnings: run.solver_warnings.clone(),
+        warnings: run
+            .solver_warnings
+            .iter()
+            .map(ToString::to_string)
+            .collect(),
         peaks: peak_rows(o.model, run),
         final_state: final_state(o.model, o.state),
         worker: run.worker.as_ref().map(|w| summary::WorkerReport {

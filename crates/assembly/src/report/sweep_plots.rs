@@ -35,8 +35,8 @@ pub fn sweep_section(s: &mut String, sweep: &SweepSummary) {
         c.kind.name(),
         escape(&c.part_name)
     );
-    if let Some(line) = sweep.describe() {
-        let _ = write!(s, " {}.", escape(&line));
+    if let Some(extremes) = sweep.extremes() {
+        let _ = write!(s, " {}.", escape(&extremes.to_string()));
     }
     s.push_str("</p>");
     let series = |f: &dyn Fn(&[f64]) -> f64| -> Vec<f64> { rows.iter().map(|r| f(r)).collect() };

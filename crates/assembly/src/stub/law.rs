@@ -7,6 +7,7 @@ use super::bead::Sense;
 use super::mating::Mating;
 use super::press_fit::PressFit;
 use super::spec::{Friction, StubSpec};
+use crate::fastener_state::FastenerKind;
 
 /// An axial force law on a stub's geometry.
 pub trait AxialLaw {
@@ -109,11 +110,11 @@ impl StubLaw {
         }
     }
 
-    /// The fastener's kind as reports name it: "stub" or "connector".
-    pub fn kind(&self) -> &'static str {
+    /// The fastener's kind: a stub or a connector.
+    pub fn kind(&self) -> FastenerKind {
         match self {
-            StubLaw::PressFit(_) => "stub",
-            StubLaw::Mating(_) => "connector",
+            StubLaw::PressFit(_) => FastenerKind::Stub,
+            StubLaw::Mating(_) => FastenerKind::Connector,
         }
     }
 }

@@ -10,11 +10,16 @@
 //! every shell and every replay records the same rows.
 
 mod coordinate;
+mod extremes;
 mod settings;
 mod summary;
 mod tracker;
 
 pub use coordinate::{Coordinate, CoordinateKind};
+pub use extremes::{ClosestApproach, MotionExtremes, RadiusAt};
 pub use settings::SweepSettings;
-pub use summary::{SweepSummary, Worst, AXIAL_FORCE, BEND_LIMIT, BEND_RADIUS, BEND_RATIO, TWIST};
+pub use summary::{
+    ClearanceViolation, SweepSummary, Worst, AXIAL_FORCE, BEND_LIMIT, BEND_RADIUS, BEND_RATIO,
+    TWIST,
+};
 pub use tracker::{row_len, MotionSweep};

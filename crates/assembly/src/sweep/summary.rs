@@ -2,8 +2,10 @@
 //! each quantity named by the motion coordinate, and the clearance violations.
 
 use super::coordinate::Coordinate;
+use super::extremes::{ClosestApproach, MotionExtremes, RadiusAt};
 use super::tracker::PER_HOSE;
 use serde::Serialize;
+use std::fmt;
 
 /// A hose's smallest bend radius in a row \[m\].
 pub const BEND_RADIUS: usize = 0;
@@ -47,6 +49,38 @@ pub struct Worst {
     pub time: f64,
     /// The motion coordinate there (SI).
     pub coordinate: f64,
+}
+
+/// A hose that came nearer to a part than the smallest clearance allowed, at its
+/// nearest position.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ClearanceViolation {
+    pub hose: String,
+    pub part: String,
+    /// The clearance there and the smallest allowed \[m\].
+    pub gap: f64,
+    pub minimum: f64,
+    /// When \[s\], the motion coordinate then (SI) and in words ("door angle 68°").
+    pub time: f64,
+    pub coordinate: f64,
+    pub position: String,
+}
+
+impl fmt::Display for ClearanceViolation {
+    /// "hose 'h' comes within 3.0 mm of part 'fan' (minimum 10.0 mm) at engine phase 212°
+    /// (t = 1.23 s)".
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "hose '{}' comes within {:.1} mm of part '{}' (minimum {:.1} mm) at {} (t = {:.2} s)",
+            self.hose,
+            1e3 * self.gap,
+            self.part,
+            1e3 * self.minimum,
+            self.position,
+            self.time
+        )
+    }
 }
 
 impl SweepSummary {
@@ -186,10 +220,9 @@ impl SweepSummary {
         out
     }
 
-    /// One line per hose and part that came nearer than the smallest clearance allowed,
-    /// at its nearest position ("hose 'h' comes within 3 mm of part 'fan' (minimum
-    /// 10 mm) at engine phase 212° (t = 1.23 s)").
-    pub fn clearance_violations(&self) -> Vec<String> {
+    /// Each hose and part that came nearer than the smallest clearance allowed, at its
+    /// nearest position.
+    pub fn clearance_violations(&self) -> Vec<ClearanceViolation> {
         let (Some(limit), Some(c)) = (self.min_clearance, &self.coordinate) else {
             return Vec::new();
         };
@@ -197,51 +230,48 @@ impl SweepSummary {
         for (k, &(h, p)) in self.pairs.iter().enumerate() {
             if let Some((r, gap)) = self.least(|r| self.pair_value(r, k)) {
                 if gap < limit {
-                    out.push(format!(
-                        "hose '{}' comes within {:.1} mm of part '{}' (minimum {:.1} mm) at {} (t = {:.2} s)",
-                        self.hose_names[h],
-                        1e3 * gap,
-                        self.part_names[p],
-                        1e3 * limit,
-                        c.describe(r[1]),
-                        r[0]
-                    ));
+                    out.push(ClearanceViolation {
+                        hose: self.hose_names[h].clone(),
+                        part: self.part_names[p].clone(),
+                        gap,
+                        minimum: limit,
+                        time: r[0],
+                        coordinate: r[1],
+                        position: c.describe(r[1]),
+                    });
                 }
             }
         }
         out
     }
 
-    /// One line for the verdict: over the motion, each hose's smallest bend radius and
-    /// the smallest clearance, with where they were.
-    pub fn describe(&self) -> Option<String> {
+    /// Over the motion, each hose's worst bend ([`Self::worst_bend`]) and the smallest
+    /// clearance, with where they were; `None` without a coordinate or rows.
+    pub fn extremes(&self) -> Option<MotionExtremes> {
         let c = self.coordinate.as_ref()?;
-        let (lo, hi) = self
+        let (from, to) = self
             .rows()
             .map(|r| r[1])
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
                 (a.min(v), b.max(v))
             });
-        if !lo.is_finite() {
+        if !from.is_finite() {
             return None;
         }
-        let (unit, factor) = c.kind.unit();
-        let unit = if unit == "deg" { "°" } else { unit };
-        let mut parts = Vec::new();
+        let mut bend_radii = Vec::new();
         for (h, name) in self.hose_names.iter().enumerate() {
             if let Some((r, radius, allowed)) = self.worst_bend(h) {
                 if radius.is_finite() {
-                    let relation = if radius < allowed { "<" } else { "≥" };
-                    parts.push(format!(
-                        "hose '{name}' bend radius {:.0} mm {relation} {:.0} mm at {}",
-                        1e3 * radius,
-                        1e3 * allowed,
-                        c.describe(r[1])
-                    ));
+                    bend_radii.push(RadiusAt {
+                        hose: name.clone(),
+                        radius,
+                        allowed,
+                        coordinate: r[1],
+                    });
                 }
             }
         }
-        if let Some((r, gap, k)) = (0..self.pairs.len())
+        let clearance = (0..self.pairs.len())
             .filter_map(|k| {
                 self.least(|r| self.pair_value(r, k))
                     .map(|(r, g)| (r, g, k))
@@ -250,26 +280,22 @@ impl SweepSummary {
                 Some(b) if b.1 <= x.1 => Some(b),
                 _ => Some(x),
             })
-        {
-            let (h, p) = self.pairs[k];
-            parts.push(format!(
-                "smallest clearance {:.1} mm, hose '{}' to part '{}', at {}",
-                1e3 * gap,
-                self.hose_names[h],
-                self.part_names[p],
-                c.describe(r[1])
-            ));
-        }
-        Some(format!(
-            "over the motion of part '{}' ({} {:.0}{} … {:.0}{}): {}",
-            c.part_name,
-            c.kind.name(),
-            lo * factor,
-            if unit == "°" { "°" } else { "" },
-            hi * factor,
-            unit,
-            parts.join("; ")
-        ))
+            .map(|(r, gap, k)| {
+                let (h, p) = self.pairs[k];
+                ClosestApproach {
+                    hose: self.hose_names[h].clone(),
+                    part: self.part_names[p].clone(),
+                    gap,
+                    coordinate: r[1],
+                }
+            });
+        Some(MotionExtremes {
+            coordinate: c.clone(),
+            from,
+            to,
+            bend_radii,
+            clearance,
+        })
     }
 
     /// `motion.csv`: one row per checked instant (SI, angles in degrees as the scene
@@ -364,7 +390,7 @@ mod tests {
             (radius - 0.25).abs() < 1e-15 && limit == 0.3,
             "{radius} {limit}"
         );
-        let line = s.describe().unwrap();
+        let line = s.extremes().unwrap().to_string();
         assert!(line.contains("bend radius 250 mm < 300 mm at"), "{line}");
         let csv = s.csv();
         let cells: Vec<&str> = csv.lines().nth(2).unwrap().split(',').collect();

@@ -20,8 +20,10 @@ pub mod log_reading;
 mod node_inputs;
 pub mod observer;
 pub mod part_inputs;
+pub mod reason;
 pub mod recovery;
 pub mod replay;
+pub mod solver_doubt;
 pub mod solver_record;
 mod state_inputs;
 pub mod tally;
@@ -32,12 +34,14 @@ pub use error::WorkcellError;
 pub use hands::{Aim, Feel, HandLimits, HeldHand};
 pub use input::{HandNumber, InitialLoad, Input, Refusal, StampedInput};
 pub use observer::{NoObserver, Observer};
+pub use reason::{Reason, WorkedFastener};
+pub use solver_doubt::{InstabilityNote, SolverDoubt};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
 pub use tally::{
     limits_of, ContactEpisode, HandPeak, HandRecord, MomentNote, NodePeak, Peak, RunSummary,
     SettleOutcome, Tally, ZoneNote,
 };
-pub use verdict::{Stage, Verdict};
+pub use verdict::{Findings, Stage, Verdict};
 
 use crate::checks::{CheckSettings, ChecksSummary, InstallationChecks};
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};

@@ -4,6 +4,7 @@
 //! step makes it "uncertain"), the live snapshot and Python — a study never hides that
 //! its numbers rest on an unbalanced or unstable state.
 
+use super::solver_doubt::{InstabilityNote, SolverDoubt};
 use pliant_core::integrators::{StabilityEvent, StepStats};
 use pliant_core::Model;
 use serde::Serialize;
@@ -146,70 +147,50 @@ impl SolverRecord {
         self.unconverged_steps > 0 || self.unstable_steps > 0 || self.rollback_count > 0
     }
 
-    /// Why the study is uncertain, in words (empty when it is not).
-    pub fn warnings(&self) -> Vec<String> {
+    /// Why the study is uncertain (empty when it is not).
+    pub fn warnings(&self) -> Vec<SolverDoubt> {
         let mut out = Vec::new();
         if let (Some(first), Some(worst)) = (self.first_unconverged, self.worst_unconverged) {
-            out.push(format!(
-                "uncertain: the Newton solver did not reach balance in {} step(s), first at t = {:.3} s; \
-                 worst at t = {:.3} s, residual {:.3e} N / {:.3e} N·m against the limits {:.1e} N / {:.1e} N·m — \
-                 forces at those steps are not trustworthy",
-                self.unconverged_steps,
-                first.time,
-                worst.time,
-                worst.residual_force,
-                worst.residual_moment,
-                worst.force_limit,
-                worst.moment_limit,
-            ));
+            out.push(SolverDoubt::OutOfBalance {
+                steps: self.unconverged_steps,
+                first,
+                worst,
+            });
         }
         if self.unstable_steps > 0 {
-            out.push(format!(
-                "uncertain: {} step(s) ended on an unstable equilibrium the static solver could not leave",
-                self.unstable_steps
-            ));
+            out.push(SolverDoubt::Unstable {
+                steps: self.unstable_steps,
+            });
         }
         if let Some(first) = self.rollbacks.first() {
-            out.push(format!(
-                "uncertain: the simulation diverged {} time(s) and was rolled back, each time releasing the \
-                 hands on the diverging hose; first at t = {:.3} s (hose '{}', back to t = {:.3} s, hands {:?} \
-                 released): {}",
-                self.rollback_count,
-                first.diverged_at,
-                first.hose,
-                first.back_to,
-                first.released,
-                first.reason
-            ));
+            out.push(SolverDoubt::RolledBack {
+                count: self.rollback_count,
+                first: first.clone(),
+            });
         }
         out
     }
 
-    /// The instabilities met, and the implicit steps taken explicitly, in words (buckling
-    /// and a fallback are information, not a failure).
-    pub fn instability_notes(&self, hose_name: impl Fn(usize) -> String) -> Vec<String> {
-        let mut out: Vec<String> = self
+    /// The instabilities met, and the implicit steps taken explicitly (buckling and a
+    /// fallback are information, not a failure).
+    pub fn instability_notes(&self, hose_name: impl Fn(usize) -> String) -> Vec<InstabilityNote> {
+        let mut out: Vec<InstabilityNote> = self
             .instabilities
             .iter()
             .map(|i| {
                 if i.limit_point {
-                    format!(
-                        "hose '{}' snapped through at t = {:.3} s (node {} moved most): its equilibrium \
-                         branch ended (a limit point) and the static solver followed the snap to the \
-                         next stable equilibrium",
-                        hose_name(i.hose),
-                        i.time,
-                        i.node
-                    )
+                    InstabilityNote::SnappedThrough {
+                        hose: hose_name(i.hose),
+                        time: i.time,
+                        node: i.node,
+                    }
                 } else {
-                    format!(
-                        "hose '{}' buckled at t = {:.3} s (node {}, {} negative eigenvalue(s) of the tangent): \
-                         the static solver left the unstable equilibrium for the stable branch",
-                        hose_name(i.hose),
-                        i.time,
-                        i.node,
-                        i.negative_eigenvalues
-                    )
+                    InstabilityNote::Buckled {
+                        hose: hose_name(i.hose),
+                        time: i.time,
+                        node: i.node,
+                        negative_eigenvalues: i.negative_eigenvalues,
+                    }
                 }
             })
             .collect();
@@ -217,14 +198,13 @@ impl SolverRecord {
             .instability_count
             .saturating_sub(self.instabilities.len() as u64);
         if more > 0 {
-            out.push(format!("… and {more} more instabilities"));
+            out.push(InstabilityNote::More { count: more });
         }
-        if let Some(first) = self.first_explicit_fallback {
-            out.push(format!(
-                "{} implicit step(s) did not converge and were taken by the explicit solver \
-                 (in stable steps; first at t = {first:.3} s) — the motion is still a dynamic solution",
-                self.explicit_fallback_steps
-            ));
+        if let Some(first_time) = self.first_explicit_fallback {
+            out.push(InstabilityNote::ExplicitFallback {
+                steps: self.explicit_fallback_steps,
+                first_time,
+            });
         }
         out
     }
@@ -260,7 +240,7 @@ fn instability(model: &Model, e: &StabilityEvent) -> Instability {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::workcell::{RunSummary, Stage, Verdict};
+    use crate::workcell::{Reason, RunSummary, Stage, Verdict};
 
     fn out_of_balance(time: f64, residual_force: f64) -> (f64, StepStats) {
         let stats = StepStats {
@@ -298,7 +278,9 @@ mod tests {
         let warnings = record.warnings();
         assert_eq!(warnings.len(), 1);
         assert!(
-            warnings[0].contains("3 step(s), first at t = 0.020 s"),
+            warnings[0]
+                .to_string()
+                .contains("3 step(s), first at t = 0.020 s"),
             "{warnings:?}"
         );
         let run = RunSummary {
@@ -308,7 +290,11 @@ mod tests {
         let verdict = Verdict::judge(&run, None, Stage::Final);
         assert!(verdict.uncertain);
         assert_eq!(verdict.word(), "not assessed (UNCERTAIN)");
-        assert_eq!(verdict.reasons[0], warnings[0]);
+        assert_eq!(verdict.reasons[0], warnings[0].to_string());
+        assert_eq!(
+            verdict.findings.reasons[0],
+            Reason::Solver(warnings[0].clone())
+        );
         let certain = Verdict::judge(&RunSummary::default(), None, Stage::Final);
         assert!(!certain.uncertain);
         assert_eq!(certain.word(), "not assessed");

@@ -5,6 +5,7 @@
 //! node, hand or part has been seen.
 
 use super::input::HandNumber;
+use super::solver_doubt::{InstabilityNote, SolverDoubt};
 use super::solver_record::SolverRecord;
 use crate::ergonomics::{
     En1005Judgement, En1005Limit, ErgonomicLimits, ErgonomicProfile, GuideRange, HandAssessment,
@@ -15,7 +16,7 @@ use crate::hand::HandLoad;
 use glam::DVec3;
 use pliant_core::integrators::{StabilityEvent, StepStats};
 use pliant_core::{Model, State};
-use serde::Serialize;
+use serde::{Serialize, Serializer};
 
 /// One hand's load in one step and how it compares with the ergonomic limits.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -208,9 +209,12 @@ pub struct RunSummary {
     /// Newton solvers only: iterations, steps out of balance, instabilities met.
     pub solver: SolverRecord,
     /// Why the study is uncertain ([`SolverRecord::warnings`]); empty when it is not.
-    pub solver_warnings: Vec<String>,
-    /// The instabilities met, in words, hoses named.
-    pub instability_notes: Vec<String>,
+    /// Serialised in words.
+    #[serde(serialize_with = "in_words")]
+    pub solver_warnings: Vec<SolverDoubt>,
+    /// The instabilities met, hoses named. Serialised in words.
+    #[serde(serialize_with = "in_words")]
+    pub instability_notes: Vec<InstabilityNote>,
     /// The installation checks and their violations (SPEC V3).
     pub checks: crate::checks::ChecksSummary,
     /// What the worker did (SPEC E1–E2), if the scene has a worker.
@@ -218,20 +222,9 @@ pub struct RunSummary {
     pub worker: Option<crate::worker::WorkerSummary>,
 }
 
-impl RunSummary {
-    /// Whether every hand stayed within its limit values, every fastener was fitted
-    /// and — when they decide — no installation check was violated.
-    pub fn feasible(&self) -> bool {
-        self.hand_peaks.iter().all(|h| h.worst_ratio <= 1.0)
-            && self.fasteners.iter().all(|f| f.assembled)
-            && (!self.checks.decide
-                || (self.checks.violations.is_empty()
-                    && self
-                        .checks
-                        .sweep
-                        .as_ref()
-                        .is_none_or(|s| s.clearance_violations().is_empty())))
-    }
+/// Serialises `lines` as their `Display` text (the form `report.json` has always had).
+fn in_words<T: std::fmt::Display, S: Serializer>(lines: &[T], out: S) -> Result<S::Ok, S::Error> {
+    out.collect_seq(lines.iter().map(T::to_string))
 }
 
 /// The running account of a workcell.

@@ -9,18 +9,21 @@
 //! its reach or a body segment inside a part makes it infeasible too (unless the
 //! worker's `decide` is off), and the worst RULA and REBA scores are reported.
 
-use super::tally::{RunSummary, ZoneNote};
-use crate::ergonomics::{LoadKind, RiskZone};
+use super::reason::{LoadAgainstLimit, Reason, WorkedFastener};
+use super::tally::{HandPeak, RunSummary};
+use crate::ergonomics::RiskZone;
 use serde::Serialize;
 
 /// Whether the study is over (every fastener should be fitted) or still running.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Stage {
     Running,
     Final,
 }
 
-/// Feasible or not, with reasons.
+/// Feasible or not, with reasons: each line in words and, in `findings`, as a typed
+/// value (`reasons[i]` is `findings.reasons[i]` worded, and so on).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Verdict {
     /// `None` while no hand has acted (nothing to judge).
@@ -46,66 +49,49 @@ pub struct Verdict {
     /// is among the reasons (or the warnings, when the worker does not decide).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub worker: Vec<String>,
+    /// The same lines as typed values, for programs: which hand, hose or fastener, the
+    /// value, the limit and when.
+    pub findings: Findings,
 }
 
-/// A peak push or pull against EN 1005-3, in words: value, zone, m_r and how F_R came.
-fn describe_zone(hand: usize, z: &ZoneNote) -> String {
-    let (l, j) = (&z.limit, &z.judgement);
-    let bound = match j.zone {
-        RiskZone::Recommended => format!("m_r = F/F_R = {:.2} ≤ {}", j.m_r, l.recommended_max),
-        RiskZone::NotRecommended => format!(
-            "{} < m_r = F/F_R = {:.2} ≤ {}",
-            l.recommended_max, j.m_r, l.not_recommended_max
-        ),
-        RiskZone::ToBeAvoided => {
-            format!("m_r = F/F_R = {:.2} > {}", j.m_r, l.not_recommended_max)
-        }
-    };
-    format!(
-        "hand {hand}: {} of {:.1} N at t = {:.2} s is {} ({bound}; EN 1005-3, {}: F_R = {:.1} N = F_Br {:.1} N · m_v {} · m_f {} · m_d {}, F_B = {:.0} N)",
-        kind_name(z.kind),
-        z.magnitude,
-        z.time,
-        j.zone.words().to_uppercase(),
-        z.action,
-        l.f_r,
-        l.f_br,
-        l.m_v,
-        l.m_f,
-        l.m_d,
-        l.f_b,
-    )
+/// A verdict's lines as typed values, list by list as [`Verdict`] words them.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Findings {
+    pub reasons: Vec<Reason>,
+    pub pending: Vec<Reason>,
+    pub warnings: Vec<Reason>,
+    pub zones: Vec<Reason>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub worker: Vec<Reason>,
 }
 
-fn kind_name(kind: LoadKind) -> &'static str {
-    match kind {
-        LoadKind::Bending => "bending moment",
-        k => k.name(),
-    }
+/// The fastener a hand worked (index in the run's fastener reports), if any.
+fn worked_fastener(run: &RunSummary, fastener: Option<usize>) -> Option<WorkedFastener> {
+    let f = run.fasteners.get(fastener?)?;
+    Some(WorkedFastener {
+        fastener: f.kind,
+        name: f.name.clone(),
+    })
 }
 
-fn unit(kind: LoadKind) -> &'static str {
-    kind.unit()
+/// A hand's worst load against its limit, if it has one.
+fn worst_load(h: &HandPeak) -> Option<LoadAgainstLimit> {
+    Some(LoadAgainstLimit {
+        hand: h.hand,
+        load: h.worst_kind?,
+        value: h.worst_magnitude,
+        limit: h.worst_limit,
+        ratio: h.worst_ratio,
+        time: h.worst_time,
+    })
 }
 
-/// What the hand was doing at its worst moment, for the reasons' text: the fastener it
-/// worked (index in the run's fastener reports), if any.
-fn worked_fastener(run: &RunSummary, fastener: Option<usize>) -> String {
-    match fastener.and_then(|i| run.fasteners.get(i)) {
-        Some(f) if f.kind == "stub" => format!(" — pressing the hose end onto stub '{}'", f.name),
-        Some(f) if f.kind == "connector" => format!(" — plugging connector '{}'", f.name),
-        Some(f) => format!(" — pressing the hose into {} '{}'", f.kind, f.name),
-        None => String::new(),
-    }
-}
-
-/// The row of the tables a kind is judged against, for the reasons' text.
-fn table(kind: LoadKind) -> &'static str {
-    match kind {
-        LoadKind::Push => "table 3.7",
-        LoadKind::Pull => "table 3.9",
-        LoadKind::Twist => "screwdriver, table 3.11",
-        LoadKind::Bending => "T-handle, table 3.11",
+/// Where a finding goes: among the reasons when it decides, else among the warnings.
+fn file(found: &mut Findings, decides: bool, line: Reason) {
+    if decides {
+        found.reasons.push(line);
+    } else {
+        found.warnings.push(line);
     }
 }
 
@@ -113,70 +99,57 @@ impl Verdict {
     /// Judges a summary whose hand peaks were judged under the profile of interest
     /// ([`super::Tally::judge_hands`]).
     pub fn judge(run: &RunSummary, diverged: Option<&str>, stage: Stage) -> Verdict {
-        let mut reasons = Vec::new();
-        let mut pending = Vec::new();
+        let mut found = Findings::default();
+        // the solver's own doubts first: they qualify everything below
+        found
+            .reasons
+            .extend(run.solver_warnings.iter().cloned().map(Reason::Solver));
         if let Some(d) = diverged {
-            reasons.push(format!("the simulation stopped early: {d}"));
+            found.reasons.push(Reason::StoppedEarly {
+                message: d.to_string(),
+            });
         }
         let mut exceeded = false;
-        let mut warnings = Vec::new();
-        let mut zones = Vec::new();
         for h in &run.hand_peaks {
             for z in &h.zones {
-                let line = describe_zone(h.hand, z);
+                let line = Reason::HandForceZone {
+                    hand: h.hand,
+                    zone: z.clone(),
+                    working: None,
+                };
                 if z.judgement.zone == RiskZone::NotRecommended {
-                    warnings.push(line.clone());
+                    found.warnings.push(line.clone());
                 }
-                zones.push(line);
+                found.zones.push(line);
             }
-            if let Some(kind) = h.worst_kind {
-                let zone = h.zones.iter().find(|z| z.kind == kind);
-                if h.worst_ratio > 1.0 {
-                    exceeded = true;
-                    let working = worked_fastener(run, h.worst_fastener);
-                    if let Some(z) = zone {
-                        reasons.push(format!("{}{working}", describe_zone(h.hand, z)));
-                    } else {
-                        reasons.push(format!(
-                        "hand {}: {} of {:.1} {u} at t = {:.2} s exceeds the limit {:.1} {u} ({}; {:.0} % of it){working}",
-                        h.hand,
-                        kind_name(kind),
-                        h.worst_magnitude,
-                        h.worst_time,
-                        h.worst_limit,
-                        table(kind),
-                        100.0 * h.worst_ratio,
-                        u = unit(kind),
-                    ));
-                    }
-                }
+            if let Some(load) = worst_load(h).filter(|l| l.ratio > 1.0) {
+                exceeded = true;
+                let working = worked_fastener(run, h.worst_fastener);
+                found
+                    .reasons
+                    .push(match h.zones.iter().find(|z| z.kind == load.load) {
+                        Some(z) => Reason::HandForceZone {
+                            hand: h.hand,
+                            zone: z.clone(),
+                            working,
+                        },
+                        None => Reason::HandLoadOverLimit { load, working },
+                    });
             }
             for n in h
                 .moment_notes
                 .iter()
                 .filter(|n| h.worst_kind != Some(n.kind) || n.magnitude <= n.limit)
             {
-                let against = if n.magnitude > n.limit {
-                    format!("above the limit {:.2} N·m", n.limit)
-                } else {
-                    format!(
-                        "above the guide range (up to {:.2} N·m; limit {:.2} N·m)",
-                        n.guide_hi, n.limit
-                    )
-                };
-                warnings.push(format!(
-                    "hand {}: {} of {:.2} N·m at t = {:.2} s is {against} ({}){}",
-                    h.hand,
-                    kind_name(n.kind),
-                    n.magnitude,
-                    n.time,
-                    table(n.kind),
-                    if n.magnitude > n.limit && !run.moments_decide {
-                        " — guidance only: the dissertation (3.3.3) never fails an installation for twist or bending"
-                    } else {
-                        ""
-                    },
-                ));
+                found.warnings.push(Reason::MomentAboveGuide {
+                    hand: h.hand,
+                    load: n.kind,
+                    value: n.magnitude,
+                    time: n.time,
+                    guide_hi: n.guide_hi,
+                    limit: n.limit,
+                    moments_decide: run.moments_decide,
+                });
             }
         }
         let mut unfitted = false;
@@ -184,91 +157,82 @@ impl Verdict {
             match stage {
                 Stage::Final => {
                     unfitted = true;
-                    let wanted = match f.kind {
-                        "stub" => "fixed on it",
-                        "connector" => "plugged and latched",
-                        _ => "seated in it",
-                    };
-                    reasons.push(format!(
-                        "{} '{}': the hose did not end {wanted} (final state: {})",
-                        f.kind, f.name, f.final_state
-                    ));
+                    found.reasons.push(Reason::FastenerNotFitted {
+                        fastener: f.kind,
+                        name: f.name.clone(),
+                        final_state: f.final_state,
+                    });
                 }
-                Stage::Running => pending.push(format!(
-                    "{} '{}' not yet fitted (state: {})",
-                    f.kind, f.name, f.final_state
-                )),
+                Stage::Running => found.pending.push(Reason::FastenerPending {
+                    fastener: f.kind,
+                    name: f.name.clone(),
+                    state: f.final_state,
+                }),
             }
         }
         // Installation checks (SPEC V3): the running ones always, the assembled state's
         // (tension at rest, straight length behind stubs) at the end only.
         // In a range-of-motion study each violation is placed on the motion coordinate,
         // and so is the worst of each quantity.
-        let mut violated = false;
+        let decide = run.checks.decide;
         let sweep = run.checks.sweep.as_ref();
+        let mut violated = false;
         for v in &run.checks.violations {
             if stage == Stage::Running && v.check.at_end_only() {
                 continue;
             }
-            let line = match sweep.and_then(|s| s.position_at(v.time)) {
-                Some(at) => format!("{}, at {at}", v.describe()),
-                None => v.describe(),
+            violated |= decide;
+            let line = Reason::CheckViolated {
+                violation: v.clone(),
+                position: sweep.and_then(|s| s.position_at(v.time)),
             };
-            if run.checks.decide {
-                violated = true;
-                reasons.push(line);
-            } else {
-                warnings.push(line);
-            }
+            file(&mut found, decide, line);
         }
         // The worker (SPEC E1–E2): reach and body collisions decide when the scene says
         // so; the posture scores are reported, and warned about when they call for change.
         let mut unworkable = false;
-        let mut worker = Vec::new();
         if let Some(w) = &run.worker {
-            for f in w.findings() {
-                if w.decide {
-                    unworkable = true;
-                    reasons.push(f.describe());
-                } else {
-                    warnings.push(f.describe());
-                }
+            for finding in w.findings() {
+                unworkable |= w.decide;
+                file(&mut found, w.decide, Reason::Worker { finding });
             }
-            match w.posture_line() {
-                Some(line) => {
-                    if w.posture_alarming() {
-                        warnings.push(line.clone());
+            match w.posture_note() {
+                Some(note) => {
+                    if note.alarming() {
+                        found.warnings.push(Reason::Posture(note.clone()));
                     }
-                    worker.push(line);
+                    found.worker.push(Reason::Posture(note));
                 }
-                None => worker.push(format!("{}: not posed (no hand acted)", w.who)),
+                None => found.worker.push(Reason::NotPosed { who: w.who.clone() }),
             }
         }
         if let Some(s) = sweep {
-            for line in s.clearance_violations() {
-                if run.checks.decide {
-                    violated = true;
-                    reasons.push(line);
-                } else {
-                    warnings.push(line);
-                }
+            for c in s.clearance_violations() {
+                violated |= decide;
+                file(&mut found, decide, Reason::ClearanceViolated(c));
             }
-            reasons.extend(s.describe());
+            if let Some(extremes) = s.extremes() {
+                found.reasons.push(Reason::MotionExtremes(extremes));
+            }
         }
         if stage == Stage::Final {
-            for c in &run.contacts {
-                reasons.push(format!(
-                    "contact with '{}' from t = {:.2} s to {:.2} s",
-                    c.part, c.first_time, c.last_time
-                ));
-            }
+            found
+                .reasons
+                .extend(run.contacts.iter().map(|c| Reason::Contact {
+                    part: c.part.clone(),
+                    first_time: c.first_time,
+                    last_time: c.last_time,
+                }));
         }
-        // the solver's own doubts first: they qualify everything below
-        reasons.splice(0..0, run.solver_warnings.iter().cloned());
-        reasons.extend(run.instability_notes.iter().cloned());
+        found.reasons.extend(
+            run.instability_notes
+                .iter()
+                .cloned()
+                .map(Reason::Instability),
+        );
         let judged = !run.hand_peaks.is_empty();
         // a range-of-motion study is judged by its checks, hands or none
-        let swept = run.checks.sweep.is_some();
+        let swept = sweep.is_some();
         let feasible = if diverged.is_some()
             || exceeded
             || violated
@@ -282,67 +246,55 @@ impl Verdict {
             None
         };
         if swept && !judged && feasible == Some(true) {
-            reasons.push(match stage {
-                Stage::Final => "every stub, connector and clip was fitted, and every installation check passed at every position of the motion".into(),
-                Stage::Running => "every installation check has passed so far".into(),
-            });
+            found.reasons.push(Reason::ChecksPassed { stage });
         } else if !judged && !swept {
-            reasons.push(match stage {
-                Stage::Final => {
-                    "no hand acted in this scene: there is no hand load to judge".into()
-                }
-                Stage::Running => "no hand has acted yet: nothing to judge".into(),
-            });
+            found.reasons.push(Reason::NoHandActed { stage });
         } else if feasible == Some(true) {
-            let worst = run
-                .hand_peaks
-                .iter()
-                .filter(|h| h.worst_kind.is_some())
-                .max_by(|a, b| a.worst_ratio.total_cmp(&b.worst_ratio));
-            let detail = worst
-                .and_then(|h| Some((h, h.worst_kind?)))
-                .map(|(h, kind)| {
-                    format!(
-                        "; the worst is hand {}'s {} of {:.1} {u}, {:.0} % of the limit {:.1} {u}",
-                        h.hand,
-                        kind_name(kind),
-                        h.worst_magnitude,
-                        100.0 * h.worst_ratio,
-                        h.worst_limit,
-                        u = unit(kind)
-                    )
-                })
-                .unwrap_or_default();
-            let checks = if run.checks.enabled.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    ", and the installation checks ({}) passed",
-                    run.checks.enabled.join(", ")
-                )
-            };
-            let reached = match &run.worker {
-                Some(w) if w.findings().is_empty() => format!(
-                    ", and {} reached every hand target without a body collision",
-                    w.who
-                ),
-                Some(_) => String::new(),
-                None => String::new(),
-            };
-            reasons.push(match stage {
-                Stage::Final => format!("every hand load stayed within its ergonomic limit value ({}), every stub, connector and clip was fitted{checks}{reached}", run.standard.title()),
-                Stage::Running => format!("every hand load so far is within its ergonomic limit value{detail}"),
+            found.reasons.push(match stage {
+                Stage::Final => Reason::WithinLimits {
+                    standard: run.standard,
+                    checks: run.checks.enabled.clone(),
+                    reached: run
+                        .worker
+                        .as_ref()
+                        .filter(|w| w.findings().is_empty())
+                        .map(|w| w.who.clone()),
+                },
+                Stage::Running => Reason::WithinLimitsSoFar {
+                    worst: run
+                        .hand_peaks
+                        .iter()
+                        .filter_map(worst_load)
+                        .max_by(|a, b| a.ratio.total_cmp(&b.ratio)),
+                },
             });
         }
+        Verdict::worded(
+            feasible,
+            found,
+            !run.solver_warnings.is_empty(),
+            run.standard.title(),
+        )
+    }
+
+    /// The verdict of `findings`, each line worded by its `Display`.
+    fn worded(
+        feasible: Option<bool>,
+        findings: Findings,
+        uncertain: bool,
+        standard: &str,
+    ) -> Verdict {
+        let words = |lines: &[Reason]| lines.iter().map(Reason::to_string).collect();
         Verdict {
             feasible,
-            reasons,
-            pending,
-            warnings,
-            uncertain: !run.solver_warnings.is_empty(),
-            standard: run.standard.title().to_string(),
-            zones,
-            worker,
+            reasons: words(&findings.reasons),
+            pending: words(&findings.pending),
+            warnings: words(&findings.warnings),
+            uncertain,
+            standard: standard.to_string(),
+            zones: words(&findings.zones),
+            worker: words(&findings.worker),
+            findings,
         }
     }
 
@@ -357,5 +309,74 @@ impl Verdict {
             (Some(false), true) => "NOT FEASIBLE (UNCERTAIN)",
             (None, true) => "not assessed (UNCERTAIN)",
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fastener_state::{FastenerKind, FastenerState};
+    use crate::fasteners::FastenerReport;
+
+    /// A clip left snapping: at the end a reason (not feasible), while running a pending
+    /// fastener (feasible so far) — each decided as a typed line, worded by `Display`, and
+    /// serialised both ways.
+    #[test]
+    fn a_fastener_not_fitted_decides_at_the_end_and_is_pending_while_running() {
+        let run = RunSummary {
+            hand_peaks: vec![HandPeak::default()],
+            fasteners: vec![FastenerReport {
+                name: "c".into(),
+                kind: FastenerKind::Clip,
+                final_state: FastenerState::Snapping,
+                ..Default::default()
+            }],
+            ..Default::default()
+        };
+        let end = Verdict::judge(&run, None, Stage::Final);
+        assert_eq!(end.feasible, Some(false));
+        assert_eq!(
+            end.findings.reasons,
+            [Reason::FastenerNotFitted {
+                fastener: FastenerKind::Clip,
+                name: "c".into(),
+                final_state: FastenerState::Snapping,
+            }]
+        );
+        assert_eq!(
+            end.reasons,
+            ["clip 'c': the hose did not end seated in it (final state: snapping)"]
+        );
+        let json = serde_json::to_value(&end).unwrap();
+        assert_eq!(json["reasons"][0], end.reasons[0].as_str());
+        assert_eq!(
+            json["findings"]["reasons"][0],
+            serde_json::json!({
+                "kind": "fastener_not_fitted",
+                "fastener": "clip",
+                "name": "c",
+                "final_state": "snapping",
+            })
+        );
+
+        let now = Verdict::judge(&run, None, Stage::Running);
+        assert_eq!(now.feasible, Some(true));
+        assert_eq!(now.pending, ["clip 'c' not yet fitted (state: snapping)"]);
+        assert_eq!(
+            now.findings.pending,
+            [Reason::FastenerPending {
+                fastener: FastenerKind::Clip,
+                name: "c".into(),
+                state: FastenerState::Snapping,
+            }]
+        );
+        assert_eq!(
+            now.findings.reasons,
+            [Reason::WithinLimitsSoFar { worst: None }]
+        );
+        assert_eq!(
+            now.reasons,
+            ["every hand load so far is within its ergonomic limit value"]
+        );
     }
 }

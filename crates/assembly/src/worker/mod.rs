@@ -5,10 +5,12 @@
 
 pub mod collisions;
 pub mod finding;
+pub mod posture_note;
 pub mod settings;
 pub mod track;
 
 pub use finding::WorkerFinding;
+pub use posture_note::PostureNote;
 pub use settings::{Stance, WorkerSettings, AUTO_REACH_FRACTION};
 pub use track::{
     BodyCollision, ReachRecord, ScoreAt, WorkerSample, WorkerSummary, WorkerTrack, REACH_TOLERANCE,

@@ -8,6 +8,7 @@
 
 use super::collisions::{checked, deepest};
 use super::finding::WorkerFinding;
+use super::posture_note::PostureNote;
 use super::settings::WorkerSettings;
 use crate::series_cap::SeriesCap;
 use crate::workcell::HandRecord;
@@ -433,49 +434,12 @@ impl WorkerSummary {
         out
     }
 
-    /// The worst posture scores in words, e.g. "posture of the 50th-percentile man: RULA
-    /// 6 at t = 2.00 s (action level 3: investigate further and change soon), REBA 8 at
-    /// t = 2.00 s (high risk)".
-    pub fn posture_line(&self) -> Option<String> {
-        let (r, e) = (self.worst_rula?, self.worst_reba?);
-        Some(format!(
-            "posture of {}: RULA {} at t = {:.2} s (action level {}: {}), REBA {} at t = {:.2} s ({} risk)",
-            self.who,
-            r.score.grand,
-            r.time,
-            r.score.action_level,
-            rula_words(r.score.action_level),
-            e.score.reba,
-            e.time,
-            reba_words(e.score.risk_level),
-        ))
-    }
-
-    /// Whether the worst posture calls for change soon (RULA action level 3 or more, or
-    /// REBA high risk or more).
-    pub fn posture_alarming(&self) -> bool {
-        self.worst_rula.is_some_and(|r| r.score.action_level >= 3)
-            || self.worst_reba.is_some_and(|e| e.score.risk_level >= 3)
-    }
-}
-
-/// RULA's action levels in words (McAtamney & Corlett 1993).
-pub fn rula_words(level: u8) -> &'static str {
-    match level {
-        1 => "acceptable",
-        2 => "investigate further",
-        3 => "investigate further and change soon",
-        _ => "investigate and change immediately",
-    }
-}
-
-/// REBA's risk levels in words (Hignett & McAtamney 2000).
-pub fn reba_words(level: u8) -> &'static str {
-    match level {
-        0 => "negligible",
-        1 => "low",
-        2 => "medium",
-        3 => "high",
-        _ => "very high",
+    /// The worst posture scores and when, if the worker was posed.
+    pub fn posture_note(&self) -> Option<PostureNote> {
+        Some(PostureNote {
+            who: self.who.clone(),
+            rula: self.worst_rula?,
+            reba: self.worst_reba?,
+        })
     }
 }
