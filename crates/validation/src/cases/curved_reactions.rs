@@ -158,7 +158,9 @@ fn moved(x: DVec3, q: DQuat, f: f64) -> (DVec3, DQuat) {
 /// length, the far end moved in [`STEPS`] increments under the current solver.
 fn model_reaction(n: usize) -> Result<Wrench, String> {
     let (mat, sec) = hose1();
-    let nodes = (0..=n).map(|i| point(length() * i as f64 / n as f64)).collect();
+    let nodes = (0..=n)
+        .map(|i| point(length() * i as f64 / n as f64))
+        .collect();
     let mut model = build(
         HoseSpec {
             name: "helix".into(),
@@ -176,13 +178,15 @@ fn model_reaction(n: usize) -> Result<Wrench, String> {
     clamp(&mut state, 0);
     clamp(&mut state, n);
     for step in 1..=STEPS {
-        let (x, q) = moved(
-            model.rest_x[n],
-            model.rest_q[n],
-            step as f64 / STEPS as f64,
-        );
+        let (x, q) = moved(model.rest_x[n], model.rest_q[n], step as f64 / STEPS as f64);
         clamp_at(&mut state, n, x, q);
-        settle_to(&model, &mut state, ei / (length() * length()), length(), 1e-9)?;
+        settle_to(
+            &model,
+            &mut state,
+            ei / (length() * length()),
+            length(),
+            1e-9,
+        )?;
     }
     Ok((state.reaction_force[n], state.reaction_moment[n]))
 }
@@ -193,10 +197,7 @@ fn reference() -> Result<(Wrench, (f64, f64)), String> {
     let coarse = reference_reaction(REFERENCE_SEGMENTS)?;
     let fine = reference_reaction(2 * REFERENCE_SEGMENTS)?;
     let extrapolate = |a: DVec3, b: DVec3| (4.0 * b - a) / 3.0;
-    let smooth = (
-        extrapolate(coarse.0, fine.0),
-        extrapolate(coarse.1, fine.1),
-    );
+    let smooth = (extrapolate(coarse.0, fine.0), extrapolate(coarse.1, fine.1));
     let bound = (
         (fine.0 - coarse.0).length() / 3.0 / smooth.0.length(),
         (fine.1 - coarse.1).length() / 3.0 / smooth.1.length(),
@@ -248,7 +249,10 @@ fn reference_reaction(k: usize) -> Result<Wrench, String> {
         })
         .collect();
     let solutions = solver.solve_path(&targets).map_err(|e| e.to_string())?;
-    let end = solutions.last().ok_or("no reference solution")?.end_reaction();
+    let end = solutions
+        .last()
+        .ok_or("no reference solution")?
+        .end_reaction();
     Ok((to_glam(&end.force), to_glam(&end.moment)))
 }
 
