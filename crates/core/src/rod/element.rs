@@ -590,14 +590,46 @@ mod tests {
             "axial force {} vs the chord-measured {chord_measured}",
             loads.axial_force
         );
-        // and the bending moment is E I Δκ, to (κ₀ l)²/24 = 1.7e-3: the element's
-        // stiffness E I/l₀ takes the rest chord l₀ for the arc's length
+        // and the bending moment is E I Δκ (the stiffness acting over the rest chord l₀
+        // instead of the axis's length l_s, it was (κ₀ l)²/24 = 1.7e-3 too large)
         let want = e.bending_stiffness[1] * 2.0;
         assert!(
             (loads.moment[1].z.abs() - want).abs() < 2e-3 * want,
             "{:?} vs {want}",
             loads.moment
         );
+    }
+
+    /// An element that is an arc at rest, its ends turned by ∓δ/2 about their own
+    /// tangents (nodes in place), is twisted, not bent: the moment on each end lies
+    /// along its tangent to second order in δ and is G J δ/l_s. Read in the chord's axes,
+    /// the turns bend both ends by δ κ₀ l/4, a moment across the tangent of
+    /// 3 (E I/G J)(κ₀ l/2) ≈ 0.45 times the torque here.
+    #[test]
+    fn twisting_an_element_curved_at_rest_does_not_bend_it() {
+        let mat = Material::isotropic(12e6, 0.49, 940.0);
+        let sec = Section::new(0.01, 0.016);
+        let (l, kappa, delta) = (0.02, 10.0, 1e-5);
+        let (x, q) = arc_ends(l, kappa);
+        let e = BeamElement::new((0, 1), x, q, &sec, &mat);
+        let tangent = [q[0] * DVec3::X, q[1] * DVec3::X];
+        let turned = [
+            rotate(q[0], tangent[0] * (-0.5 * delta)),
+            rotate(q[1], tangent[1] * (0.5 * delta)),
+        ];
+        let loads = e.loads(&ends(x, turned), 0.0);
+        let want = e.torsion_stiffness * delta / e.bending_length;
+        for (end, sign) in [(0, 1.0), (1, -1.0)] {
+            let moment = loads.moment[end];
+            let torque = moment.dot(tangent[end]);
+            assert!(
+                (torque - sign * want).abs() < 1e-4 * want,
+                "end {end}: torque {torque} vs {}",
+                sign * want
+            );
+            let across = (moment - tangent[end] * torque).length();
+            assert!(across < 1e-4 * want, "end {end}: moment across {across}");
+        }
     }
 
     #[test]

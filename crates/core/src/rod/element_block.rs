@@ -333,24 +333,23 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
     // (E I/l_s)(4 φₐ + 2 φ_b) and (N l₀/30)(4 θₐ − θ_b), and a ↔ b
     let linear = |ta: F4, tb: F4, k: F4| ta.mul_add(four, tb * two) * k;
     let arch_moment = |th_a: F4, th_b: F4| th_a.mul_add(four, -th_b) * k_arch;
-    let ma_local = b.material_a.mul_transpose(V4::new(
-        -torque,
-        linear(ta.y, tb.y, b.bending_1),
-        linear(ta.z, tb.z, b.bending_2),
-    )) + V4::new(
-        F4::ZERO,
-        arch_moment(slope_a.y, slope_b.y),
-        arch_moment(slope_a.z, slope_b.z),
-    );
-    let mb_local = b.material_b.mul_transpose(V4::new(
-        torque,
-        linear(tb.y, ta.y, b.bending_1),
-        linear(tb.z, ta.z, b.bending_2),
-    )) + V4::new(
-        F4::ZERO,
-        arch_moment(slope_b.y, slope_a.y),
-        arch_moment(slope_b.z, slope_a.z),
-    );
+    // the local moments of the end with material axes `m` and rotation φ, slope θ,
+    // against the other end's φ′, θ′
+    let end_moment = |m: &M34, torque: F4, phi: V4, other: V4, slope: V4, other_slope: V4| {
+        let linear = V4::new(
+            torque,
+            linear(phi.y, other.y, b.bending_1),
+            linear(phi.z, other.z, b.bending_2),
+        );
+        let arch = V4::new(
+            F4::ZERO,
+            arch_moment(slope.y, other_slope.y),
+            arch_moment(slope.z, other_slope.z),
+        );
+        m.mul_transpose(linear) + arch
+    };
+    let ma_local = end_moment(&b.material_a, -torque, ta, tb, slope_a, slope_b);
+    let mb_local = end_moment(&b.material_b, torque, tb, ta, slope_b, slope_a);
 
     // moments conjugate to spatial rotations, global axes; nodal loads
     let (ma, okj_a) = jacobian_inverse_transpose_times(theta_a, ma_local);

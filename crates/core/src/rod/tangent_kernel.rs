@@ -345,24 +345,20 @@ fn rows<F: Lane4>(
     let k_arch = elastic_axial.mul4(l0 * F::splat(1.0 / 30.0));
     let k1 = c4::<F>(|k| e[k].bending_stiffness[0]) * inv_ls;
     let k2 = c4::<F>(|k| e[k].bending_stiffness[1]) * inv_ls;
-    let zero = L::<F>::cst(0.0);
     // (E I/l_s)(4 φₐ + 2 φ_b) and (N l₀/30)(4 θₐ − θ_b), and a ↔ b
-    let ma_local = constant_transpose_times(
-        &material_a,
-        V3::new(-torque, bend(ta.y, tb.y, k1), bend(ta.z, tb.z, k2)),
-    ) + V3::new(
-        zero,
-        arch_moment(slope_a.y, slope_b.y, k_arch),
-        arch_moment(slope_a.z, slope_b.z, k_arch),
-    );
-    let mb_local = constant_transpose_times(
-        &material_b,
-        V3::new(torque, bend(tb.y, ta.y, k1), bend(tb.z, ta.z, k2)),
-    ) + V3::new(
-        zero,
-        arch_moment(slope_b.y, slope_a.y, k_arch),
-        arch_moment(slope_b.z, slope_a.z, k_arch),
-    );
+    type V<F> = V3<L<F>>;
+    let end_moment =
+        |m: &[[F; 3]; 3], torque, phi: V<F>, other: V<F>, slope: V<F>, other_slope: V<F>| {
+            let linear = V3::new(torque, bend(phi.y, other.y, k1), bend(phi.z, other.z, k2));
+            let arch = V3::new(
+                L::cst(0.0),
+                arch_moment(slope.y, other_slope.y, k_arch),
+                arch_moment(slope.z, other_slope.z, k_arch),
+            );
+            constant_transpose_times(m, linear) + arch
+        };
+    let ma_local = end_moment(&material_a, -torque, ta, tb, slope_a, slope_b);
+    let mb_local = end_moment(&material_b, torque, tb, ta, slope_b, slope_a);
 
     // moments conjugate to spatial rotation increments, global axes; forces from them
     let (ma, okj_a) = jacobian_inverse_transpose_times(theta_a, ma_local);

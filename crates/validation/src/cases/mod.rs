@@ -3,7 +3,7 @@
 mod axial;
 mod buckling;
 mod contact;
-mod convergence;
+pub(crate) mod convergence;
 mod curved_reactions;
 mod energy;
 mod fasteners;
