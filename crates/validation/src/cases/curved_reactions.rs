@@ -148,7 +148,7 @@ pub fn run() -> Vec<Check> {
         if let Some((_, w, e)) = errors.iter().find(|(n, _, _)| *n == CHECKED) {
             out.push(Check::with_error(
                 "curved_reactions",
-                &format!("end force |F| N at {CHECKED} elements (error |ΔF|/|F|) [{kind}]"),
+                &format!("end force N at {CHECKED} elements (error: vector difference / magnitude) [{kind}]"),
                 w.0.length(),
                 reference.0.length(),
                 e.0,
@@ -156,7 +156,7 @@ pub fn run() -> Vec<Check> {
             ));
             out.push(Check::with_error(
                 "curved_reactions",
-                &format!("end moment |M| N·m at {CHECKED} elements (error |ΔM|/|M|) [{kind}]"),
+                &format!("end moment N·m at {CHECKED} elements (error: vector difference / magnitude) [{kind}]"),
                 w.1.length(),
                 reference.1.length(),
                 e.1,
