@@ -3,7 +3,8 @@
 mod axial;
 mod buckling;
 mod contact;
-mod convergence;
+pub(crate) mod convergence;
+mod curved_reactions;
 mod energy;
 mod fasteners;
 mod frames;
@@ -32,6 +33,7 @@ use crate::CaseFn;
 pub const ALL: &[(&str, CaseFn)] = &[
     ("rollup", rollup::run),
     ("helix", helix::run),
+    ("curved_reactions", curved_reactions::run),
     ("tip_load", tip_load::run),
     ("buckling", buckling::run),
     ("postbuckling", postbuckling::run),
