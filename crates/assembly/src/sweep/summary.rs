@@ -119,7 +119,7 @@ impl SweepSummary {
             })
     }
 
-    /// The rows [`Self::worst`] and [`Self::describe`] name: per hose its worst bend, twist
+    /// The rows [`Self::worst`] and [`Self::extremes`] name: per hose its worst bend, twist
     /// and axial force, per pair its smallest clearance, the largest fixing force — the
     /// rows a thinned series keeps ([`crate::series_cap`]).
     pub fn worst_rows(&self) -> Vec<usize> {
