@@ -273,7 +273,7 @@ impl BeamElement {
     /// End moments conjugate to φ (material axes) as moments conjugate to θ (element
     /// axes): Cᵀ m.
     #[inline(always)]
-    fn moments_in_element_axes<T: Scalar>(&self, moments: (V3<T>, V3<T>)) -> (V3<T>, V3<T>) {
+    fn from_material_axes<T: Scalar>(&self, moments: (V3<T>, V3<T>)) -> (V3<T>, V3<T>) {
         (
             Quat::cst(self.rest_offset_a).conjugate().rotate(moments.0),
             Quat::cst(self.rest_offset_b).conjugate().rotate(moments.1),
@@ -398,7 +398,7 @@ impl BeamElement {
         let axial_force = elastic_axial_force + strain_rate * (beta * ea);
 
         let damped = [rate_a.scale_f(beta), rate_b.scale_f(beta)];
-        let (ma_linear, mb_linear) = self.moments_in_element_axes(local(
+        let (ma_linear, mb_linear) = self.from_material_axes(local(
             self.in_material_axes(d.theta),
             self.in_material_axes(damped),
         ));
