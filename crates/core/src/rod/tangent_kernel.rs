@@ -200,53 +200,18 @@ fn constant_rotation<F: Lane4>(q: [DQuat; 4]) -> [[F; 3]; 3] {
     [0, 1, 2].map(|i| [0, 1, 2].map(|j| c4::<F>(|k| m[k].col(j)[i])))
 }
 
-/// a₀ v.x + a₁ v.y + a₂ v.z for lane constants a. (Functions, not closures, here and
-/// below: a closure is compiled apart from the kernel's vector target and would call
-/// the vector intrinsics out of line.)
-#[inline(always)]
-fn constant_dot<F: Lane4>(a: [F; 3], v: V3<L<F>>) -> L<F> {
-    v.x.mul4(a[0]) + v.y.mul4(a[1]) + v.z.mul4(a[2])
-}
-
 /// M v for lane-constant matrices `m` (rows).
 #[inline(always)]
 fn constant_times<F: Lane4>(m: &[[F; 3]; 3], v: V3<L<F>>) -> V3<L<F>> {
-    V3::new(
-        constant_dot(m[0], v),
-        constant_dot(m[1], v),
-        constant_dot(m[2], v),
-    )
+    let row = |r: &[F; 3]| v.x.mul4(r[0]) + v.y.mul4(r[1]) + v.z.mul4(r[2]);
+    V3::new(row(&m[0]), row(&m[1]), row(&m[2]))
 }
 
 /// Mᵀ v for lane-constant matrices `m` (rows).
 #[inline(always)]
 fn constant_transpose_times<F: Lane4>(m: &[[F; 3]; 3], v: V3<L<F>>) -> V3<L<F>> {
-    V3::new(
-        constant_dot([m[0][0], m[1][0], m[2][0]], v),
-        constant_dot([m[0][1], m[1][1], m[2][1]], v),
-        constant_dot([m[0][2], m[1][2], m[2][2]], v),
-    )
-}
-
-/// The local moments of one end with material axes `m` (rows, element axes → the
-/// end's): the torque and (E I/l_s)(4 φ + 2 φ′) per bending plane (`k` = E I/l_s) in the
-/// material axes, plus the arch term (N l₀/30)(4 θ − θ′) in the chord's.
-#[inline(always)]
-fn end_moment<F: Lane4>(
-    m: &[[F; 3]; 3],
-    torque: L<F>,
-    [phi, other]: [V3<L<F>>; 2],
-    [slope, other_slope]: [V3<L<F>>; 2],
-    [k1, k2]: [F; 2],
-    k_arch: L<F>,
-) -> V3<L<F>> {
-    let linear = V3::new(torque, bend(phi.y, other.y, k1), bend(phi.z, other.z, k2));
-    let arch = V3::new(
-        L::cst(0.0),
-        arch_moment(slope.y, other_slope.y, k_arch),
-        arch_moment(slope.z, other_slope.z, k_arch),
-    );
-    constant_transpose_times(m, linear) + arch
+    let column = |j: usize| v.x.mul4(m[0][j]) + v.y.mul4(m[1][j]) + v.z.mul4(m[2][j]);
+    V3::new(column(0), column(1), column(2))
 }
 
 #[inline(always)]
@@ -381,22 +346,19 @@ fn rows<F: Lane4>(
     let k1 = c4::<F>(|k| e[k].bending_stiffness[0]) * inv_ls;
     let k2 = c4::<F>(|k| e[k].bending_stiffness[1]) * inv_ls;
     // (E I/l_s)(4 φₐ + 2 φ_b) and (N l₀/30)(4 θₐ − θ_b), and a ↔ b
-    let ma_local = end_moment(
-        &material_a,
-        -torque,
-        [ta, tb],
-        [slope_a, slope_b],
-        [k1, k2],
-        k_arch,
-    );
-    let mb_local = end_moment(
-        &material_b,
-        torque,
-        [tb, ta],
-        [slope_b, slope_a],
-        [k1, k2],
-        k_arch,
-    );
+    type V<F> = V3<L<F>>;
+    let end_moment =
+        |m: &[[F; 3]; 3], torque, phi: V<F>, other: V<F>, slope: V<F>, other_slope: V<F>| {
+            let linear = V3::new(torque, bend(phi.y, other.y, k1), bend(phi.z, other.z, k2));
+            let arch = V3::new(
+                L::cst(0.0),
+                arch_moment(slope.y, other_slope.y, k_arch),
+                arch_moment(slope.z, other_slope.z, k_arch),
+            );
+            constant_transpose_times(m, linear) + arch
+        };
+    let ma_local = end_moment(&material_a, -torque, ta, tb, slope_a, slope_b);
+    let mb_local = end_moment(&material_b, torque, tb, ta, slope_b, slope_a);
 
     // moments conjugate to spatial rotation increments, global axes; forces from them
     let (ma, okj_a) = jacobian_inverse_transpose_times(theta_a, ma_local);
