@@ -240,34 +240,6 @@ fn ends<T, L>(
     }
 }
 
-/// The local moments of one end with material axes `m` (element axes → the end's): the
-/// bending law (E I/l_s)(4 φ + 2 φ′) and the torque, read in the ends' material axes, plus
-/// the arch term (N l₀/30)(4 θ − θ′) in the chord's; `phi` = [this end's rotation, the
-/// other's], `slope` likewise, `k_arch` = N l₀/30. A function, not a closure, so that it
-/// is inlined into the kernel compiled for the CPU's vector instructions.
-#[inline(always)]
-fn end_moment(
-    b: &ElementBlock,
-    m: &M34,
-    torque: F4,
-    [phi, other]: [V4; 2],
-    [slope, other_slope]: [V4; 2],
-    k_arch: F4,
-) -> V4 {
-    let (two, four) = (F4::splat(2.0), F4::splat(4.0));
-    let linear = V4::new(
-        torque,
-        phi.y.mul_add(four, other.y * two) * b.bending_1,
-        phi.z.mul_add(four, other.z * two) * b.bending_2,
-    );
-    let arch = V4::new(
-        F4::ZERO,
-        slope.y.mul_add(four, -other_slope.y) * k_arch,
-        slope.z.mul_add(four, -other_slope.z) * k_arch,
-    );
-    m.mul_transpose(linear) + arch
-}
-
 /// The loads of the four elements of block `b` in the configuration `c` (node indices
 /// less `base` index `c`'s arrays), with stiffness-proportional damping `beta`.
 #[inline(always)]
@@ -357,22 +329,27 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
     let tb = b.material_b.mul(rate_b.scale_add(beta4, theta_b));
     let torque = (tb.x - ta.x) * b.torsion;
     let k_arch = elastic_axial * b.rest_length_30;
-    let ma_local = end_moment(
-        b,
-        &b.material_a,
-        -torque,
-        [ta, tb],
-        [slope_a, slope_b],
-        k_arch,
-    );
-    let mb_local = end_moment(
-        b,
-        &b.material_b,
-        torque,
-        [tb, ta],
-        [slope_b, slope_a],
-        k_arch,
-    );
+    let (two, four) = (F4::splat(2.0), F4::splat(4.0));
+    // (E I/l_s)(4 φₐ + 2 φ_b) and (N l₀/30)(4 θₐ − θ_b), and a ↔ b
+    let linear = |ta: F4, tb: F4, k: F4| ta.mul_add(four, tb * two) * k;
+    let arch_moment = |th_a: F4, th_b: F4| th_a.mul_add(four, -th_b) * k_arch;
+    // the local moments of the end with material axes `m` and rotation φ, slope θ,
+    // against the other end's φ′, θ′
+    let end_moment = |m: &M34, torque: F4, phi: V4, other: V4, slope: V4, other_slope: V4| {
+        let linear = V4::new(
+            torque,
+            linear(phi.y, other.y, b.bending_1),
+            linear(phi.z, other.z, b.bending_2),
+        );
+        let arch = V4::new(
+            F4::ZERO,
+            arch_moment(slope.y, other_slope.y),
+            arch_moment(slope.z, other_slope.z),
+        );
+        m.mul_transpose(linear) + arch
+    };
+    let ma_local = end_moment(&b.material_a, -torque, ta, tb, slope_a, slope_b);
+    let mb_local = end_moment(&b.material_b, torque, tb, ta, slope_b, slope_a);
 
     // moments conjugate to spatial rotations, global axes; nodal loads
     let (ma, okj_a) = jacobian_inverse_transpose_times(theta_a, ma_local);
