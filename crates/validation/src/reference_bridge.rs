@@ -3,7 +3,7 @@
 
 use glam::{DQuat, DVec3};
 use nalgebra::{Rotation3, UnitQuaternion, Vector3};
-use pliant_core::{Material, Model, Section};
+use pliant_core::Model;
 use pliant_reference::{Pose, Rod, ShootingSolver, Stiffness};
 
 pub fn to_na(v: DVec3) -> Vector3<f64> {
@@ -17,18 +17,6 @@ pub fn to_glam(v: &Vector3<f64>) -> DVec3 {
 pub fn rotation(q: DQuat) -> Rotation3<f64> {
     UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z))
         .to_rotation_matrix()
-}
-
-/// The reference rod's stiffnesses of a tube `section` of `material`: E_t A, E_c A,
-/// E_b I, G J.
-pub fn tube_stiffness(material: &Material, section: &Section) -> Result<Stiffness, String> {
-    Stiffness::bimodular(
-        material.e_tension * section.area(),
-        material.e_compression * section.area(),
-        material.bending_modulus() * section.second_moment(),
-        material.shear_modulus() * section.polar_moment(),
-    )
-    .map_err(|e| e.to_string())
 }
 
 /// A reference solver for hose `h` of `model`: same rest polyline, same EA_t, EA_c, EI₁,

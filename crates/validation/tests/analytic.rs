@@ -18,10 +18,6 @@ fn rollup() {
     assert_case("rollup");
 }
 #[test]
-fn curved_reactions() {
-    assert_case("curved_reactions");
-}
-#[test]
 fn tip_load() {
     assert_case("tip_load");
 }

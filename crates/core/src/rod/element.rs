@@ -8,19 +8,9 @@
 //!
 //! * ε  = (l − l₀)/l₀ + Σ_k (2θ_ak² − θ_ak θ_bk + 2θ_bk²)/30      (shallow-arch strain)
 //! * N  = E_{t|c} A · ε                                                (axial, bimodular, M3)
-//! * Mₓ = G J · (φ_bx − φ_ax)/l_s                                       (torsion)
-//! * [M_a; M_b] = (E I_k / l_s) · [[4, 2], [2, 4]] · [φ_a; φ_b]
+//! * Mₓ = G J · (θ_bx − θ_ax)/l₀                                       (torsion)
+//! * [M_a; M_b] = (E I_k / l₀) · [[4, 2], [2, 4]] · [θ_a; θ_b]
 //!   + (N l₀ / 30) · [[4, −1], [−1, 4]] · [θ_a; θ_b]              (about section axis k = 1, 2)
-//!
-//! The twist and bending law reads each end's rotation φ = C θ in that end's own rest
-//! material axes (C the rest offset from the end's material frame to the element frame):
-//! in an element curved at rest the ends' tangents lean against the chord by the rest
-//! slopes, and a twist about an end's tangent, read in the chord's axes, would bend it
-//! (and a bend about its normal twist it) — a spurious twist–bend coupling of order
-//! (κ₀ l)² that made a helix's end reactions converge with a large constant. l_s is the
-//! rest length of the element's axis, l₀ (1 + arch₀) — the chord l₀ plus the rest
-//! slopes' arch strain, (κ₀ l)²/24 on an arc — over which the curvature acts (for a
-//! straight element φ = θ and l_s = l₀). The arch terms stay in the chord's axes.
 //!
 //! The second strain term is the mean of ½ w'² over the element for the cubic deflection
 //! w with end slopes θ_a, θ_b: the local axial–bending coupling of the "shallow arch"
@@ -75,9 +65,6 @@ pub struct BeamElement {
     pub rest_slopes: [f64; 4],
     /// The arch strain of the rest slopes, Σ (2θ₀ₐ² − θ₀ₐθ₀_b + 2θ₀_b²)/30.
     pub rest_arch: f64,
-    /// Rest length of the element's axis l_s = l₀ (1 + arch₀) \[m\]: the length the
-    /// bending and torsion stiffness act over (l₀ for a straight element).
-    pub bending_length: f64,
     /// The element's law with history, if its material yields or relaxes
     /// ([`crate::rod::inelastic`]); `None` → the linear law above.
     pub inelastic: Option<Inelastic>,
@@ -233,7 +220,6 @@ impl BeamElement {
             rest_offset_b: DQuat::IDENTITY,
             rest_slopes: [0.0; 4],
             rest_arch: 0.0,
-            bending_length: 0.0,
             inelastic: None,
         };
         element.set_rest_shape(rest_x, rest_q);
@@ -257,27 +243,6 @@ impl BeamElement {
             self.arch_rotation(V3::from(DVec3::ZERO), 0),
             self.arch_rotation(V3::from(DVec3::ZERO), 1),
         );
-        self.bending_length = self.rest_length * (1.0 + self.rest_arch);
-    }
-
-    /// The end rotations `theta` (element axes) in each end's rest material axes,
-    /// φ = C θ with C the end's rest offset: what the twist and bending law reads.
-    #[inline(always)]
-    pub fn in_material_axes<T: Scalar>(&self, theta: [V3<T>; 2]) -> [V3<T>; 2] {
-        [
-            Quat::cst(self.rest_offset_a).rotate(theta[0]),
-            Quat::cst(self.rest_offset_b).rotate(theta[1]),
-        ]
-    }
-
-    /// End moments conjugate to φ (material axes) as moments conjugate to θ (element
-    /// axes): Cᵀ m.
-    #[inline(always)]
-    fn from_material_axes<T: Scalar>(&self, moments: (V3<T>, V3<T>)) -> (V3<T>, V3<T>) {
-        (
-            Quat::cst(self.rest_offset_a).conjugate().rotate(moments.0),
-            Quat::cst(self.rest_offset_b).conjugate().rotate(moments.1),
-        )
     }
 
     /// End `end`'s rotation `theta` (from the rest shape) plus the rest slope: its slope
@@ -357,11 +322,11 @@ impl BeamElement {
     }
 
     /// [`Self::loads_of`] with the local bending and torsion law `local`: from the end
-    /// rotations φ_a, φ_b and their rates times β (each in its end's rest material axes,
-    /// [`Self::in_material_axes`]) to the end moments conjugate to them — the linear
-    /// law, a yielding hinge's or a relaxing element's ([`crate::rod::inelastic`]) — and
-    /// the axial strain seen by the axial law `axial`·ε. The arch coupling and the
-    /// co-rotational transformation are the same for all.
+    /// rotations θ_a, θ_b and their rates times β (element axes) to the end moments
+    /// conjugate to θ_a, θ_b — the linear law, a yielding hinge's or a relaxing
+    /// element's ([`crate::rod::inelastic`]) — and the axial strain seen by the axial
+    /// law `axial`·ε. The arch coupling and the co-rotational transformation are the
+    /// same for all.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(crate) fn loads_with<T: Scalar>(
@@ -398,10 +363,7 @@ impl BeamElement {
         let axial_force = elastic_axial_force + strain_rate * (beta * ea);
 
         let damped = [rate_a.scale_f(beta), rate_b.scale_f(beta)];
-        let (ma_linear, mb_linear) = self.from_material_axes(local(
-            self.in_material_axes(d.theta),
-            self.in_material_axes(damped),
-        ));
+        let (ma_linear, mb_linear) = local(d.theta, damped);
         let (ma_arch, mb_arch) = arch_moments(
             self.arch_rotation(d.theta[0], 0),
             self.arch_rotation(d.theta[1], 1),
@@ -426,12 +388,11 @@ impl BeamElement {
         }
     }
 
-    /// Local end moments (material axes) for end rotations φ_a, φ_b: torsion
-    /// G J Δφₓ/l_s and the bending law (E I_k / l_s)·[[4, 2], [2, 4]] about the y (k = 1)
-    /// and z (k = 2) axes.
+    /// Local end moments (element axes) for end rotations θ_a, θ_b: torsion G J Δθₓ/l₀ and
+    /// the bending law (E I_k / l₀)·[[4, 2], [2, 4]] about the y (k = 1) and z (k = 2) axes.
     #[inline(always)]
     pub(crate) fn end_moments<T: Scalar>(&self, ta: V3<T>, tb: V3<T>) -> (V3<T>, V3<T>) {
-        let l0 = self.bending_length;
+        let l0 = self.rest_length;
         let (k1, k2) = (
             self.bending_stiffness[0] / l0,
             self.bending_stiffness[1] / l0,
@@ -465,12 +426,11 @@ impl BeamElement {
     }
 
     /// The energy of the local law at axial strain `strain` and end rotations `theta`
-    /// (element axes) \[J\]: ½ E_{t|c} A l₀ ε² + (E I_k/l_s)·2(φ_a² + φ_a φ_b + φ_b²) per
-    /// bending plane + ½ (G J/l_s) Δφₓ², φ the rotations in material axes.
+    /// \[J\]: ½ E_{t|c} A l₀ ε² + (E I_k/l₀)·2(θ_a² + θ_a θ_b + θ_b²) per bending plane +
+    /// ½ (G J/l₀) Δθₓ².
     pub(crate) fn energy_at(&self, strain: f64, theta: [DVec3; 2]) -> f64 {
-        let l0 = self.bending_length;
-        let [ta, tb] = self.in_material_axes([theta[0].into(), theta[1].into()]);
-        let [ta, tb]: [DVec3; 2] = [ta.into(), tb.into()];
+        let l0 = self.rest_length;
+        let [ta, tb] = theta;
         let bend = |a: f64, b: f64| 2.0 * (a * a + a * b + b * b);
         let dtx = tb.x - ta.x;
         self.axial_energy_at(strain)
@@ -590,46 +550,14 @@ mod tests {
             "axial force {} vs the chord-measured {chord_measured}",
             loads.axial_force
         );
-        // and the bending moment is E I Δκ (the stiffness acting over the rest chord l₀
-        // instead of the axis's length l_s, it was (κ₀ l)²/24 = 1.7e-3 too large)
+        // and the bending moment is E I Δκ, to (κ₀ l)²/24 = 1.7e-3: the element's
+        // stiffness E I/l₀ takes the rest chord l₀ for the arc's length
         let want = e.bending_stiffness[1] * 2.0;
         assert!(
             (loads.moment[1].z.abs() - want).abs() < 2e-3 * want,
             "{:?} vs {want}",
             loads.moment
         );
-    }
-
-    /// An element that is an arc at rest, its ends turned by ∓δ/2 about their own
-    /// tangents (nodes in place), is twisted, not bent: the moment on each end lies
-    /// along its tangent to second order in δ and is G J δ/l_s. Read in the chord's axes,
-    /// the turns bend both ends by δ κ₀ l/4, a moment across the tangent of
-    /// 3 (E I/G J)(κ₀ l/2) ≈ 0.45 times the torque here.
-    #[test]
-    fn twisting_an_element_curved_at_rest_does_not_bend_it() {
-        let mat = Material::isotropic(12e6, 0.49, 940.0);
-        let sec = Section::new(0.01, 0.016);
-        let (l, kappa, delta) = (0.02, 10.0, 1e-5);
-        let (x, q) = arc_ends(l, kappa);
-        let e = BeamElement::new((0, 1), x, q, &sec, &mat);
-        let tangent = [q[0] * DVec3::X, q[1] * DVec3::X];
-        let turned = [
-            rotate(q[0], tangent[0] * (-0.5 * delta)),
-            rotate(q[1], tangent[1] * (0.5 * delta)),
-        ];
-        let loads = e.loads(&ends(x, turned), 0.0);
-        let want = e.torsion_stiffness * delta / e.bending_length;
-        for (end, sign) in [(0, 1.0), (1, -1.0)] {
-            let moment = loads.moment[end];
-            let torque = moment.dot(tangent[end]);
-            assert!(
-                (torque - sign * want).abs() < 1e-4 * want,
-                "end {end}: torque {torque} vs {}",
-                sign * want
-            );
-            let across = (moment - tangent[end] * torque).length();
-            assert!(across < 1e-4 * want, "end {end}: moment across {across}");
-        }
     }
 
     #[test]

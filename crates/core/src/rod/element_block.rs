@@ -88,16 +88,12 @@ pub struct ElementBlock {
     rest_arch: F4,
     axial_tension: F4,
     axial_compression: F4,
-    /// EI₁/l_s, EI₂/l_s, GJ/l_s ([`BeamElement::bending_length`]).
+    /// EI₁/l₀, EI₂/l₀, GJ/l₀.
     bending_1: F4,
     bending_2: F4,
     torsion: F4,
     offset_a: Q4,
     offset_b: Q4,
-    /// The rest offsets as rotation matrices: element axes → the ends' material axes
-    /// ([`BeamElement::in_material_axes`]).
-    material_a: M34,
-    material_b: M34,
 }
 
 /// The model's elements in blocks of four, hose by hose (built with the model).
@@ -162,13 +158,11 @@ impl ElementBlock {
             rest_arch: lanes(&|e| e.rest_arch),
             axial_tension: lanes(&|e| e.axial_stiffness_tension),
             axial_compression: lanes(&|e| e.axial_stiffness_compression),
-            bending_1: lanes(&|e| e.bending_stiffness[0] / e.bending_length),
-            bending_2: lanes(&|e| e.bending_stiffness[1] / e.bending_length),
-            torsion: lanes(&|e| e.torsion_stiffness / e.bending_length),
+            bending_1: lanes(&|e| e.bending_stiffness[0] / e.rest_length),
+            bending_2: lanes(&|e| e.bending_stiffness[1] / e.rest_length),
+            torsion: lanes(&|e| e.torsion_stiffness / e.rest_length),
             offset_a: quat(&|e| e.rest_offset_a),
             offset_b: quat(&|e| e.rest_offset_b),
-            material_a: M34::from_quat(quat(&|e| e.rest_offset_a)),
-            material_b: M34::from_quat(quat(&|e| e.rest_offset_b)),
         }
     }
 }
@@ -324,32 +318,26 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
     let elastic_axial = strain * ea;
     let beta4 = F4::splat(beta);
     let axial = strain_rate.mul_add(ea * beta4, elastic_axial);
-    // twist and bending in the ends' material axes, arch in the chord's
-    let ta = b.material_a.mul(rate_a.scale_add(beta4, theta_a));
-    let tb = b.material_b.mul(rate_b.scale_add(beta4, theta_b));
+    let ta = rate_a.scale_add(beta4, theta_a);
+    let tb = rate_b.scale_add(beta4, theta_b);
     let torque = (tb.x - ta.x) * b.torsion;
     let k_arch = elastic_axial * b.rest_length_30;
     let (two, four) = (F4::splat(2.0), F4::splat(4.0));
-    // (E I/l_s)(4 φₐ + 2 φ_b) and (N l₀/30)(4 θₐ − θ_b), and a ↔ b
-    let linear = |ta: F4, tb: F4, k: F4| ta.mul_add(four, tb * two) * k;
-    let arch_moment = |th_a: F4, th_b: F4| th_a.mul_add(four, -th_b) * k_arch;
-    // the local moments of the end with material axes `m` and rotation φ, slope θ,
-    // against the other end's φ′, θ′
-    let end_moment = |m: &M34, torque: F4, phi: V4, other: V4, slope: V4, other_slope: V4| {
-        let linear = V4::new(
-            torque,
-            linear(phi.y, other.y, b.bending_1),
-            linear(phi.z, other.z, b.bending_2),
-        );
-        let arch = V4::new(
-            F4::ZERO,
-            arch_moment(slope.y, other_slope.y),
-            arch_moment(slope.z, other_slope.z),
-        );
-        m.mul_transpose(linear) + arch
+    // (E I/l₀)(4 tₐ + 2 t_b) + (N l₀/30)(4 θₐ − θ_b), and a ↔ b
+    let bend = |ta: F4, tb: F4, th_a: F4, th_b: F4, k: F4| {
+        let linear = ta.mul_add(four, tb * two) * k;
+        th_a.mul_add(four, -th_b).mul_add(k_arch, linear)
     };
-    let ma_local = end_moment(&b.material_a, -torque, ta, tb, slope_a, slope_b);
-    let mb_local = end_moment(&b.material_b, torque, tb, ta, slope_b, slope_a);
+    let ma_local = V4::new(
+        -torque,
+        bend(ta.y, tb.y, slope_a.y, slope_b.y, b.bending_1),
+        bend(ta.z, tb.z, slope_a.z, slope_b.z, b.bending_2),
+    );
+    let mb_local = V4::new(
+        torque,
+        bend(tb.y, ta.y, slope_b.y, slope_a.y, b.bending_1),
+        bend(tb.z, ta.z, slope_b.z, slope_a.z, b.bending_2),
+    );
 
     // moments conjugate to spatial rotations, global axes; nodal loads
     let (ma, okj_a) = jacobian_inverse_transpose_times(theta_a, ma_local);

@@ -148,16 +148,10 @@ fn plane<F: Lane4>(a: L<F>, b: L<F>) -> L<F> {
     (a * a * 2.0 - a * b + b * b * 2.0) * (1.0 / 30.0)
 }
 
-/// An end moment of one bending plane's linear law: (E I/l_s)(4 φₐ + 2 φ_b).
+/// An end moment of one bending plane: (E I/l₀)(4 tₐ + 2 t_b) + (N l₀/30)(4 θₐ − θ_b).
 #[inline(always)]
-fn bend<F: Lane4>(ta: L<F>, tb: L<F>, k: F) -> L<F> {
-    (ta * 4.0 + tb * 2.0).mul4(k)
-}
-
-/// An end moment of one bending plane's arch coupling: (N l₀/30)(4 θₐ − θ_b).
-#[inline(always)]
-fn arch_moment<F: Lane4>(th_a: L<F>, th_b: L<F>, k_arch: L<F>) -> L<F> {
-    (th_a * 4.0 - th_b) * k_arch
+fn bend<F: Lane4>(ta: L<F>, tb: L<F>, th_a: L<F>, th_b: L<F>, k: F, k_arch: L<F>) -> L<F> {
+    (ta * 4.0 + tb * 2.0).mul4(k) + (th_a * 4.0 - th_b) * k_arch
 }
 
 #[inline(always)]
@@ -191,27 +185,6 @@ fn rotation_matrix<F: Lane4>(q: Quat<L<F>>) -> [V3<L<F>>; 3] {
         V3::new(xy + wz, one - (xx + zz), yz - wx),
         V3::new(xz - wy, yz + wx, one - (xx + yy)),
     ]
-}
-
-/// Rows of the rotation matrices of four constant unit quaternions, one per lane.
-#[inline(always)]
-fn constant_rotation<F: Lane4>(q: [DQuat; 4]) -> [[F; 3]; 3] {
-    let m = q.map(glam::DMat3::from_quat);
-    [0, 1, 2].map(|i| [0, 1, 2].map(|j| c4::<F>(|k| m[k].col(j)[i])))
-}
-
-/// M v for lane-constant matrices `m` (rows).
-#[inline(always)]
-fn constant_times<F: Lane4>(m: &[[F; 3]; 3], v: V3<L<F>>) -> V3<L<F>> {
-    let row = |r: &[F; 3]| v.x.mul4(r[0]) + v.y.mul4(r[1]) + v.z.mul4(r[2]);
-    V3::new(row(&m[0]), row(&m[1]), row(&m[2]))
-}
-
-/// Mᵀ v for lane-constant matrices `m` (rows).
-#[inline(always)]
-fn constant_transpose_times<F: Lane4>(m: &[[F; 3]; 3], v: V3<L<F>>) -> V3<L<F>> {
-    let column = |j: usize| v.x.mul4(m[0][j]) + v.y.mul4(m[1][j]) + v.z.mul4(m[2][j]);
-    V3::new(column(0), column(1), column(2))
 }
 
 #[inline(always)]
@@ -335,30 +308,23 @@ fn rows<F: Lane4>(
     );
     let elastic_axial = strain.mul4(ea);
     let axial = elastic_axial + strain_rate.mul4(ea * F::splat(beta));
-    // twist and bending in the ends' material axes, arch in the chord's
-    let material_a = constant_rotation::<F>(e.map(|e| e.rest_offset_a));
-    let material_b = constant_rotation::<F>(e.map(|e| e.rest_offset_b));
-    let ta = constant_times(&material_a, theta_a + rate_a.scale_f(beta));
-    let tb = constant_times(&material_b, theta_b + rate_b.scale_f(beta));
-    let inv_ls = F::splat(1.0) / c4::<F>(|k| e[k].bending_length);
-    let torque = (tb.x - ta.x).mul4(c4::<F>(|k| e[k].torsion_stiffness) * inv_ls);
+    let ta = theta_a + rate_a.scale_f(beta);
+    let tb = theta_b + rate_b.scale_f(beta);
+    let torque = (tb.x - ta.x).mul4(c4::<F>(|k| e[k].torsion_stiffness) * inv_l0);
     let k_arch = elastic_axial.mul4(l0 * F::splat(1.0 / 30.0));
-    let k1 = c4::<F>(|k| e[k].bending_stiffness[0]) * inv_ls;
-    let k2 = c4::<F>(|k| e[k].bending_stiffness[1]) * inv_ls;
-    // (E I/l_s)(4 φₐ + 2 φ_b) and (N l₀/30)(4 θₐ − θ_b), and a ↔ b
-    type V<F> = V3<L<F>>;
-    let end_moment =
-        |m: &[[F; 3]; 3], torque, phi: V<F>, other: V<F>, slope: V<F>, other_slope: V<F>| {
-            let linear = V3::new(torque, bend(phi.y, other.y, k1), bend(phi.z, other.z, k2));
-            let arch = V3::new(
-                L::cst(0.0),
-                arch_moment(slope.y, other_slope.y, k_arch),
-                arch_moment(slope.z, other_slope.z, k_arch),
-            );
-            constant_transpose_times(m, linear) + arch
-        };
-    let ma_local = end_moment(&material_a, -torque, ta, tb, slope_a, slope_b);
-    let mb_local = end_moment(&material_b, torque, tb, ta, slope_b, slope_a);
+    let k1 = c4::<F>(|k| e[k].bending_stiffness[0]) * inv_l0;
+    let k2 = c4::<F>(|k| e[k].bending_stiffness[1]) * inv_l0;
+    // (E I/l₀)(4 tₐ + 2 t_b) + (N l₀/30)(4 θₐ − θ_b), and a ↔ b
+    let ma_local = V3::new(
+        -torque,
+        bend(ta.y, tb.y, slope_a.y, slope_b.y, k1, k_arch),
+        bend(ta.z, tb.z, slope_a.z, slope_b.z, k2, k_arch),
+    );
+    let mb_local = V3::new(
+        torque,
+        bend(tb.y, ta.y, slope_b.y, slope_a.y, k1, k_arch),
+        bend(tb.z, ta.z, slope_b.z, slope_a.z, k2, k_arch),
+    );
 
     // moments conjugate to spatial rotation increments, global axes; forces from them
     let (ma, okj_a) = jacobian_inverse_transpose_times(theta_a, ma_local);

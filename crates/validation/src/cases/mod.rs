@@ -3,8 +3,7 @@
 mod axial;
 mod buckling;
 mod contact;
-pub(crate) mod convergence;
-mod curved_reactions;
+mod convergence;
 mod energy;
 mod fasteners;
 mod frames;
@@ -33,7 +32,6 @@ use crate::CaseFn;
 pub const ALL: &[(&str, CaseFn)] = &[
     ("rollup", rollup::run),
     ("helix", helix::run),
-    ("curved_reactions", curved_reactions::run),
     ("tip_load", tip_load::run),
     ("buckling", buckling::run),
     ("postbuckling", postbuckling::run),
