@@ -3,39 +3,22 @@
 // samples. Read-only views plus `send` for raw protocol messages.
 
 import * as THREE from 'three';
-import type { Author } from './author';
+import type { App } from './app';
 import type { ColourMode } from './colour_modes';
-import type { Envelopes } from './envelope';
+import type { FindingRow } from './findings';
 import type { Grip } from './grips';
-import type { MouseHand } from './grab';
-import type { HoseTube } from './hoses';
-import type { ViolationMarkers } from './markers';
-import type { Net } from './net';
-import type { ClientMessage, Snapshot, Vec3, Welcome } from './protocol';
-import type { Stage } from './scene';
-import type { XrHands } from './xr';
+import type { ClientMessage, Vec3 } from './protocol';
 
-export interface DebugSources {
-  stage: Stage;
-  net: Net;
-  mouse: MouseHand;
-  xr: XrHands;
-  state: { frames: number; snapshots: number; errors: { code: string; message: string }[]; reports: string[] };
-  tubes: () => HoseTube[];
-  latest: () => Snapshot | null;
-  shown: () => Snapshot | null;
-  welcome: () => Welcome | null;
-  replaying: () => boolean;
-  startReplay: (text: string) => void;
-  lastRecording: () => string;
-  author: Author;
-  colouring: { mode: ColourMode; axialScale: number };
-  setColourMode: (mode: ColourMode) => void;
-  markers: ViolationMarkers;
-  envelopes: Envelopes;
-}
-
-export function installDebugHandle(src: DebugSources): void {
+export function installDebugHandle(app: App): void {
+  const src = {
+    stage: app.stage,
+    net: app.net,
+    mouse: app.mouse,
+    xr: app.xr,
+    author: app.author,
+    colouring: app.colouring,
+    state: app.counters,
+  };
   const handle = {
     get frames() { return src.state.frames; },
     get snapshots() { return src.state.snapshots; },
@@ -43,10 +26,12 @@ export function installDebugHandle(src: DebugSources): void {
     get reports() { return src.state.reports; },
     get connected() { return src.net.open; },
     get clientId() { return src.net.clientId; },
-    get welcome() { return src.welcome(); },
-    get snapshot() { return src.latest(); },
-    get shown() { return src.shown(); },
-    get replaying() { return src.replaying(); },
+    get welcome() { return app.shownWelcome; },
+    get snapshot() { return app.latest; },
+    get shown() { return app.shown; },
+    get replaying() { return app.replaying; },
+    /** The mode: live, replay or author (app_mode.ts). */
+    get mode() { return app.mode; },
     get mouseHandId() { return src.mouse.handId; },
     get lastPick() { return src.mouse.lastPick; },
     get xrHandIds() { return src.xr.hands.map((h) => src.xr.handBase + h.handId); },
@@ -54,20 +39,20 @@ export function installDebugHandle(src: DebugSources): void {
     /** The colour mode and the axial-force legend's scale [N]; `setColourMode`. */
     get colourMode() { return src.colouring.mode; },
     get axialScale() { return src.colouring.axialScale; },
-    setColourMode(mode: ColourMode): void { src.setColourMode(mode); },
+    setColourMode(mode: ColourMode): void { app.setColourMode(mode); },
     /** Per-vertex colours of hose `h`'s tube (linear RGB, flattened). */
     tubeColours(h: number): number[] {
-      const a = src.tubes()[h]?.mesh.geometry.getAttribute('color');
+      const a = app.tubes[h]?.mesh.geometry.getAttribute('color');
       return a === undefined ? [] : Array.from(a.array as Float32Array);
     },
     /** The violation markers shown (hose:check, world position). */
-    markers(): { key: string; position: Vec3 }[] { return src.markers.positions(); },
+    markers(): { key: string; position: Vec3 }[] { return app.markerPositions(); },
     /** The mouse's grip choice; each controller's grip; cycle controller i's. */
     get mouseGrip(): Grip { return src.mouse.grip; },
     get xrGripChoices(): Grip[] { return src.xr.hands.map((h) => h.hold); },
     cycleXrGrip(i: number): Grip | null { return src.xr.cycleGrip(i); },
     /** Tolerance envelopes shown: file names and mesh counts, visibility. */
-    get envelopes() { return { loaded: [...src.envelopes.loaded], visible: src.envelopes.visible, meshes: src.envelopes.group.children.length }; },
+    get envelopes() { return app.envelopeState(); },
     /** Each part's drawn transform (world frame): where its reference origin went and
      *  its rotation [x, y, z, w] — the part's pose. */
     partPoses(): { translation: Vec3; rotation: [number, number, number, number] }[] {
@@ -101,7 +86,7 @@ export function installDebugHandle(src: DebugSources): void {
     },
     /** Node positions of hose `h` as drawn (world frame). */
     hoseNodes(h: number): Vec3[] {
-      const t = src.tubes()[h];
+      const t = app.tubes[h];
       if (t === undefined) return [];
       return Array.from({ length: t.nodes }, (_, i) => t.node(i));
     },
@@ -137,9 +122,24 @@ export function installDebugHandle(src: DebugSources): void {
       return src.net.send(msg);
     },
     replay(text: string): void {
-      src.startReplay(text);
+      app.startReplay(text);
     },
-    get lastRecording() { return src.lastRecording(); },
+    get lastRecording() { return app.lastRecording; },
+    /** The moving parts' rows: joint coordinate (deg or m) and slider position. */
+    partControls() { return app.parts.shown(); },
+    /** The stubs, connectors and clips as drawn (world frame). */
+    fasteners() { return app.stage.fastenersDrawn(); },
+    /** The verdict's findings as listed; `focusFinding(i)` does what a click on row i does. */
+    findings(): FindingRow[] { return app.findings(); },
+    focusFinding(i: number): void { const r = app.findings()[i]; if (r !== undefined) app.focusFinding(r); },
+    /** Whether hose h / part k is drawn highlighted. */
+    highlighted(): { hoses: number[]; parts: number[] } {
+      const glow = (m: THREE.Mesh) => (m.material as THREE.MeshLambertMaterial).emissive.getHex() !== 0;
+      return {
+        hoses: app.tubes.flatMap((t, i) => (glow(t.mesh) ? [i] : [])),
+        parts: app.stage.partMeshes().flatMap((m, i) => (glow(m) ? [i] : [])),
+      };
+    },
     /** Scene authoring: the mode's state, the document's TOML, undo/redo depth, and
      *  `moveTo` (what a handle drag does). */
     author: {

@@ -7,7 +7,7 @@
 
 import * as THREE from 'three';
 import { colourRgb } from './colour';
-import type { SurfaceMaterial } from './materials';
+import { HIGHLIGHT_GLOW, type SurfaceMaterial } from './materials';
 import { ProtectionMesh } from './protections';
 import { dynamicTubeMesh } from './tube_mesh';
 import type { HoseData, Vec3 } from './protocol';
@@ -60,6 +60,11 @@ export class HoseTube {
       this.covers.push(cover);
       this.mesh.add(cover.mesh);
     }
+  }
+
+  /** Lights the tube up (a finding clicked in the panel names this hose). */
+  setHighlighted(on: boolean): void {
+    this.mesh.material.emissive.setHex(on ? HIGHLIGHT_GLOW : 0x000000);
   }
 
   /** Node position i (world frame). */

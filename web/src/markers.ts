@@ -5,23 +5,12 @@
 
 import * as THREE from 'three';
 import { pointAtArcLength } from './arclength';
+import { violationText } from './findings';
 import type { CheckViolation, Vec3 } from './protocol';
 import type { Stage } from './scene';
 import { canvasSprite } from './sprite';
 
 interface Marker { group: THREE.Group; sprite: THREE.Sprite; texture: THREE.CanvasTexture; text: string }
-
-/** The label text of a violation (display units: mm, °/m). */
-export function violationText(v: CheckViolation): string {
-  switch (v.check) {
-    case 'bend_radius':
-      return `bend radius ${(1e3 * v.value).toFixed(0)} mm < ${(1e3 * v.limit).toFixed(0)} mm`;
-    case 'twist':
-      return `twist ${((v.value * 180) / Math.PI).toFixed(1)} °/m > ${((v.limit * 180) / Math.PI).toFixed(1)} °/m`;
-    default:
-      return `${v.check} ${v.value.toPrecision(3)} (limit ${v.limit.toPrecision(3)})`;
-  }
-}
 
 export class ViolationMarkers {
   private readonly markers = new Map<string, Marker>();

@@ -21,3 +21,6 @@ export function surface(p: { color: number; roughness?: number; metalness?: numb
     side: p.side ?? THREE.FrontSide,
   });
 }
+
+/** The glow of a highlighted hose or part (emissive colour). */
+export const HIGHLIGHT_GLOW = 0x5a4a00;

@@ -6,7 +6,7 @@
 import { colourCss } from './colour';
 import { COLOUR_MODES, type ColourMode } from './colour_modes';
 import { GRIPS, gripLabel, type Grip } from './grips';
-import { violationText } from './markers';
+import { violationText, type FindingRow } from './findings';
 import { LoadPlot } from './plot';
 import { norm, type Snapshot, type Welcome } from './protocol';
 
@@ -47,6 +47,8 @@ export interface PanelActions {
   envelopeFile(file: File): void;
   envelopeVisible(on: boolean): void;
   envelopeClear(): void;
+  /** A finding of the verdict clicked: highlight what it names, go to its time. */
+  finding(row: FindingRow): void;
 }
 
 export class Panel {
@@ -73,6 +75,11 @@ export class Panel {
   private readonly replayBar = el('div', { id: 'replay-bar' });
   readonly replaySlider = el('input', { id: 'replay-slider', type: 'range', min: '0', max: '1000', value: '0' });
   readonly replayPlay = el('button', { id: 'replay-play' }, 'Pause');
+  /** Where the moving parts' sliders go (part_controls.ts). */
+  readonly partsSlot = el('div', { id: 'parts' });
+  private readonly findings = el('div', { id: 'findings' });
+  /** The findings listed, to skip rebuilding the list when they did not change. */
+  private findingsShown = '';
   /** Where the author mode's controls go (author.ts). */
   readonly authorSlot = el('div', { id: 'author-slot' });
   private paused = false;
@@ -173,10 +180,12 @@ export class Panel {
       el('h2', {}, 'Ergonomics'), ergo,
       el('h2', {}, 'View'), view,
       el('h2', {}, 'Session'), files, this.envelopeRow, this.replayBar, this.authorSlot,
+      el('h2', {}, 'Parts that move'), this.partsSlot,
       el('h2', {}, 'Hands'), this.hands, canvas,
       el('h2', {}, 'Stubs and clips'), this.fasteners,
       el('h2', {}, 'Installation checks'), this.checks,
       el('h2', {}, 'Verdict so far'), this.verdict,
+      el('h2', {}, 'Findings'), this.findings,
       this.message, help,
     );
   }
@@ -217,9 +226,11 @@ export class Panel {
     this.scene.title = w.session.source;
     this.plot.clear();
     this.profileShown = '';
+    this.findingsShown = '';
   }
 
-  snapshot(s: Snapshot): void {
+  /** A snapshot drawn, and its verdict's findings (findings.ts). */
+  snapshot(s: Snapshot, findings: readonly FindingRow[] = []): void {
     this.paused = s.paused;
     this.pauseBtn.textContent = s.paused ? 'Resume' : 'Pause';
     this.clock.textContent = `t = ${s.time.toFixed(2)} s · step ${s.step} · real-time factor ${s.real_time_factor.toFixed(2)}${s.paused ? ' · paused' : ''}`;
@@ -283,5 +294,31 @@ export class Panel {
       for (const r of v.warnings ?? []) list.append(el('li', { class: 'muted warning' }, `warning: ${r}`));
       this.verdict.replaceChildren(head, list);
     }
+    this.showFindings(findings);
+  }
+
+  /** The findings, one row each: kind, whom it names, value against limit, time; a
+   *  click highlights what it names (and seeks a replay to its time). */
+  private showFindings(rows: readonly FindingRow[]): void {
+    const key = JSON.stringify(rows);
+    if (key === this.findingsShown) return;
+    this.findingsShown = key;
+    const items = rows.map((r, i) => {
+      const item = el('li', { class: `finding ${r.list}`, 'data-kind': r.kind, 'data-index': String(i) });
+      if (r.hose !== null) item.dataset.hose = String(r.hose);
+      if (r.part !== null) item.dataset.part = String(r.part);
+      if (r.time !== null) item.dataset.time = String(r.time);
+      item.append(
+        el('span', { class: 'finding-kind' }, r.kind.replace(/_/g, ' ')),
+        el('span', {}, [r.subject, r.measure].filter((x) => x !== '').join(': ')),
+        el('span', { class: 'muted' }, r.time === null ? '' : ` t = ${r.time.toFixed(2)} s`),
+      );
+      item.title = r.list === 'reasons' ? 'a reason of the verdict' : `${r.list}`;
+      item.onclick = () => this.actions.finding(r);
+      return item;
+    });
+    const list = el('ul');
+    list.append(...items);
+    this.findings.replaceChildren(items.length === 0 ? el('div', { class: 'muted' }, 'none') : list);
   }
 }

@@ -102,6 +102,17 @@ export class Player {
     this.index = 0;
   }
 
+  /** Goes to the first frame whose snapshot is at simulated time `time` [s] or later
+   *  (the last frame when none is). */
+  seekSimulated(time: number, now: number): void {
+    const f = this.recording.frames;
+    if (f.length === 0) return;
+    const k = frameAtSimulated(f, time);
+    this.offset = f[k].t;
+    this.t0 = now;
+    this.index = 0;
+  }
+
   /** The last frame at or before the current recording time. */
   frame(now: number): Snapshot | null {
     const f = this.recording.frames;
@@ -111,4 +122,12 @@ export class Player {
     while (this.index + 1 < f.length && f[this.index + 1].t <= t) this.index++;
     return f[this.index].snapshot;
   }
+}
+
+/** The index of the first frame whose snapshot's simulated time is at least `time` [s]
+ *  (the last frame when none is; 0 for no frames). A reset starts time again: the first
+ *  such frame counts. */
+export function frameAtSimulated(frames: readonly { snapshot: { time: number } }[], time: number): number {
+  const k = frames.findIndex((f) => f.snapshot.time >= time);
+  return k < 0 ? Math.max(0, frames.length - 1) : k;
 }

@@ -5,7 +5,8 @@
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { setQuality, surface, type Quality } from './materials';
+import { HIGHLIGHT_GLOW, setQuality, surface, type Quality, type SurfaceMaterial } from './materials';
+import { carry } from './part_joints';
 import type { FastenerData, PartPose, SceneData, Vec3 } from './protocol';
 
 const PART_COLOURS = [0xb8b4ac, 0x9aa3ab, 0xc4b59a, 0xa9a9a9, 0xb0a8a0];
@@ -20,6 +21,12 @@ export class Stage {
   /** Parts, stubs, clips and ground of the current session. */
   private content = new THREE.Group();
   private ground: THREE.Object3D | null = null;
+  /** The stubs, connectors and clips drawn, in the welcome's order, with their origin and
+   *  turn where the scene placed them. */
+  private fastenerObjects: { object: THREE.Object3D; origin: Vec3; rest: THREE.Quaternion }[] = [];
+  /** Per fastener, the index of the part it sits on (-1: none): it is drawn at that
+   *  part's pose. */
+  private carriers: number[] = [];
   /** Centre and radius of the current session's scene, in the world frame. */
   centre = new THREE.Vector3();
   private readonly sun = new THREE.DirectionalLight(0xffffff, 2.2);
@@ -134,9 +141,11 @@ export class Stage {
       box.expandByPoint(new THREE.Vector3(...p.bounds_min));
       box.expandByPoint(new THREE.Vector3(...p.bounds_max));
     });
-    for (const f of scene.fasteners ?? []) {
-      this.content.add(f.kind === 'clip' ? clipMesh(f) : stubMesh(f));
-    }
+    this.fastenerObjects = (scene.fasteners ?? []).map((f) => {
+      const object = f.kind === 'clip' ? clipMesh(f) : stubMesh(f);
+      this.content.add(object);
+      return { object, origin: f.origin, rest: object.quaternion.clone() };
+    });
     if (box.isEmpty()) box.set(new THREE.Vector3(-0.5, -0.5, 0), new THREE.Vector3(0.5, 0.5, 0.5));
     const sphere = box.getBoundingSphere(new THREE.Sphere());
     this.centre.copy(sphere.center);
@@ -204,15 +213,40 @@ export class Stage {
   }
 
   /** Draws the moving parts where a snapshot puts them: each part's mesh holds the scene's
-   * placement, so its transform is the part's pose (the others keep the identity). */
+   * placement, so its transform is the part's pose (the others keep the identity); the
+   * stubs, connectors and clips on a moving part go with it. */
   setPartPoses(poses: readonly PartPose[]): void {
     const meshes = this.partMeshes();
+    const turn = new THREE.Quaternion();
     for (const p of poses) {
       const m = meshes[p.part];
       if (m === undefined) continue;
       m.position.set(p.translation[0], p.translation[1], p.translation[2]);
       m.quaternion.set(p.rotation[0], p.rotation[1], p.rotation[2], p.rotation[3]);
+      turn.set(p.rotation[0], p.rotation[1], p.rotation[2], p.rotation[3]);
+      this.fastenerObjects.forEach((f, i) => {
+        if (this.carriers[i] !== p.part) return;
+        f.object.position.set(...carry(p, f.origin));
+        f.object.quaternion.multiplyQuaternions(turn, f.rest);
+      });
     }
+  }
+
+  /** Which part each fastener sits on (index into the welcome's parts, -1: none), in the
+   *  welcome's order of `fasteners`; they follow those parts' poses from the next
+   *  `setPartPoses`. */
+  setFastenerCarriers(carriers: readonly number[]): void {
+    this.carriers = [...carriers];
+  }
+
+  /** The stubs, connectors and clips as drawn (world frame): name and origin. */
+  fastenersDrawn(): { name: string; origin: Vec3 }[] {
+    return this.fastenerObjects.map((f) => ({ name: f.object.name, origin: [f.object.position.x, f.object.position.y, f.object.position.z] }));
+  }
+
+  /** Lights part `k` up (index into the welcome's parts; null: none). */
+  highlightPart(k: number | null): void {
+    this.partMeshes().forEach((m, i) => (m.material as SurfaceMaterial).emissive.setHex(i === k ? HIGHLIGHT_GLOW : 0x000000));
   }
 
   /** The rigid parts' meshes in the welcome's order (for picking surfaces: their world

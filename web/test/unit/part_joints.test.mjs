@@ -1,0 +1,145 @@
+// Unit tests of how parts move in the viewer (web/src/part_joints.ts): the joints read
+// from a scene document, the slider ↔ joint coordinate mapping, the coordinate of a part
+// pose, the messages a slider sends, and where a stub or clip on a moving part is drawn.
+
+import assert from 'node:assert/strict';
+import path from 'node:path';
+import { test } from 'node:test';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const J = await import(pathToFileURL(path.join(here, '..', '..', '..', 'target', 'web-unit', 'part_joints.js')).href);
+
+/** A unit quaternion [x, y, z, w] turning `deg` about the unit axis `a`. */
+const quat = (a, deg) => {
+  const h = (deg * Math.PI) / 360;
+  return [a[0] * Math.sin(h), a[1] * Math.sin(h), a[2] * Math.sin(h), Math.cos(h)];
+};
+const close = (a, b, tol, what) => {
+  assert.equal(a.length, b.length, what);
+  a.forEach((x, i) => assert.ok(Math.abs(x - b[i]) <= tol, `${what}: ${a} vs ${b}`));
+};
+
+const doc = {
+  length_unit: 'mm',
+  parts: [
+    { name: 'body', box: { size: [10, 10, 10] } },
+    { name: 'lid', box: { size: [10, 10, 10] }, motion: { kind: 'hinge', axis: [0, 0, 2], point: [600, 0, 300], angle_deg: { times_s: [0, 2, 4], values: [0, 70, 0] } } },
+    { name: 'seat', box: { size: [10, 10, 10] }, motion: { kind: 'slide', direction: [0, 3, 0], distance: { times_s: [0, 3], values: [0, 250] } } },
+    { name: 'door', box: { size: [10, 10, 10] }, movable: true },
+    { name: 'drawer', box: { size: [10, 10, 10] } },
+    { name: 'flap', box: { size: [10, 10, 10] }, movable: true },
+    { name: 'not-in-welcome', box: { size: [10, 10, 10] }, movable: true },
+  ],
+  timeline: [
+    { action: 'rotate_part', part: 'door', axis: [0, 0, 1], point: [500, 0, 300], to_deg: 70, duration_s: 2 },
+    { action: 'rotate_part', part: 'door', axis: [0, 0, -1], to_deg: 20, duration_s: 1 },
+    { action: 'move_part', part: 'drawer', by: [0, 0, 120], duration_s: 1 },
+    { action: 'move_part', part: 'drawer', to: [0, 0, -30], duration_s: 1 },
+  ],
+  stubs: [{ name: 's1', part: 'door' }, { name: 's2' }],
+  clips: [{ name: 'c1', part: 'seat' }, { name: 'c2', part: 'nowhere' }],
+};
+const names = ['body', 'lid', 'seat', 'door', 'drawer', 'flap'];
+
+test('joints are read from the scene document: scripted hinge and slide, timeline-moved and movable parts', () => {
+  const c = J.partControls(doc, 'mm', names);
+  assert.deepEqual(c.map((x) => x.name), ['lid', 'seat', 'door', 'drawer', 'flap'], 'still parts and parts outside the welcome are left out');
+  const [lid, seat, door, drawer, flap] = c;
+  assert.deepEqual([lid.part, lid.scripted, lid.movable], [1, true, false]);
+  assert.equal(lid.joint.kind, 'hinge');
+  close(lid.joint.axis, [0, 0, 1], 1e-15, 'hinge axis normalised');
+  close(lid.joint.point, [0.6, 0, 0.3], 1e-15, 'hinge point in metres');
+  assert.deepEqual([lid.joint.min, lid.joint.max], [0, 70]);
+  assert.equal(seat.joint.kind, 'slide');
+  close(seat.joint.direction, [0, 1, 0], 1e-15, 'slide direction normalised');
+  close([seat.joint.min, seat.joint.max], [0, 0.25], 1e-15, 'slide travel in metres');
+  // the door: movable, its hinge from the timeline; a turn about −z to 20° is −20° about +z
+  assert.deepEqual([door.part, door.scripted, door.movable], [3, false, true]);
+  close(door.joint.axis, [0, 0, 1], 0, 'first rotate_part axis');
+  close(door.joint.point, [0.5, 0, 0.3], 1e-15, 'first rotate_part point');
+  assert.deepEqual([door.joint.min, door.joint.max], [-20, 70]);
+  // the drawer: moved by the timeline along z over −30..120 mm
+  assert.equal(drawer.joint.kind, 'slide');
+  close(drawer.joint.direction, [0, 0, 1], 0, 'move_part direction');
+  close([drawer.joint.min, drawer.joint.max], [-0.03, 0.12], 1e-15, 'move_part range');
+  // movable without a hint: a free handle, no slider
+  assert.equal(flap.joint, null);
+  assert.equal(flap.movable, true);
+});
+
+test('a scene in metres, and documents that are not scenes', () => {
+  const c = J.partControls({ parts: [{ name: 'lid', motion: { kind: 'hinge', axis: [1, 0, 0], point: [1, 2, 3], angle_deg: { times_s: [0], values: [0] } } }] }, 'm', ['lid']);
+  close(c[0].joint.point, [1, 2, 3], 0, 'metres stay metres');
+  assert.deepEqual([c[0].joint.min, c[0].joint.max], [-J.DEFAULT_HINGE_RANGE_DEG, J.DEFAULT_HINGE_RANGE_DEG], 'no angle but 0: the default range');
+  assert.deepEqual(J.partControls(null, 'mm', ['lid']), []);
+  assert.deepEqual(J.partControls([], 'mm', ['lid']), []);
+  assert.deepEqual(J.partControls({ parts: 'x' }, 'mm', ['lid']), []);
+  const bad = J.partControls({ parts: [{ name: 'lid', motion: { kind: 'hinge', axis: [0, 0, 0] } }] }, 'mm', ['lid']);
+  assert.equal(bad[0].joint, null, 'a zero axis makes no joint');
+});
+
+test('the slider maps linearly onto the joint range, clamped, and back', () => {
+  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: null, min: -20, max: 70 };
+  assert.equal(J.sliderToCoordinate(hinge, 0), -20);
+  assert.equal(J.sliderToCoordinate(hinge, J.SLIDER_STEPS), 70);
+  assert.equal(J.sliderToCoordinate(hinge, J.SLIDER_STEPS / 2), 25);
+  assert.equal(J.sliderToCoordinate(hinge, -5), -20, 'clamped below');
+  assert.equal(J.sliderToCoordinate(hinge, 2 * J.SLIDER_STEPS), 70, 'clamped above');
+  assert.equal(J.coordinateToSlider(hinge, 0), Math.round((20 / 90) * J.SLIDER_STEPS));
+  assert.equal(J.coordinateToSlider(hinge, 100), J.SLIDER_STEPS);
+  assert.equal(J.coordinateToSlider(hinge, -100), 0);
+  for (let v = 0; v <= J.SLIDER_STEPS; v += 37) assert.equal(J.coordinateToSlider(hinge, J.sliderToCoordinate(hinge, v)), v, `round trip at ${v}`);
+});
+
+test('the coordinate of a pose: the turn about the hinge axis, the travel along the slide', () => {
+  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: null, min: 0, max: 90 };
+  const pose = (rotation, translation = [0, 0, 0]) => ({ part: 0, translation, rotation });
+  assert.equal(J.coordinateOfPose(hinge, null), 0);
+  for (const deg of [0, 30, 60, 89.5, -45, 179]) {
+    assert.ok(Math.abs(J.coordinateOfPose(hinge, pose(quat([0, 0, 1], deg))) - deg) < 1e-9, `${deg}°`);
+  }
+  assert.ok(Math.abs(J.coordinateOfPose(hinge, pose(quat([0, 0, -1], 30))) + 30) < 1e-9, 'a turn about −z is negative about +z');
+  assert.ok(Math.abs(J.coordinateOfPose(hinge, pose(quat([0, 0, 1], 200))) + 160) < 1e-9, 'wrapped into (−180, 180]');
+  const slide = { kind: 'slide', direction: [0, 1, 0], min: 0, max: 0.25 };
+  assert.equal(J.coordinateOfPose(slide, pose([0, 0, 0, 1], [0.1, 0.12, 0])), 0.12);
+});
+
+test('a slider sends rotate_part to the angle, or move_part to the offset, at the joint speed', () => {
+  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: [0.5, 0, 0.3], min: 0, max: 90 };
+  assert.deepEqual(J.jointMessage('door', hinge, 45, 0), {
+    type: 'rotate_part', part: 'door', axis: [0, 0, 1], to_deg: 45, duration_s: 45 / J.HINGE_SPEED_DEG_S, point: [0.5, 0, 0.3],
+  });
+  const m = J.jointMessage('door', { ...hinge, point: null }, 44, 43.9);
+  assert.equal(m.duration_s, J.MIN_MOVE_S, 'a small step still takes the shortest move');
+  assert.equal('point' in m, false, 'no point: the server turns about the part centre');
+  const slide = { kind: 'slide', direction: [0, 1, 0], min: 0, max: 0.25 };
+  const s = J.jointMessage('seat', slide, 0.2, 0.05);
+  assert.deepEqual(s.to, [0, 0.2, 0]);
+  assert.equal(s.type, 'move_part');
+  assert.ok(Math.abs(s.duration_s - 0.15 / J.SLIDE_SPEED_M_S) < 1e-12);
+});
+
+test('a stub or clip on a part is carried by its pose: R·p + t', () => {
+  // 90° about z moves x onto y
+  close(J.carry({ part: 0, translation: [1, 2, 3], rotation: quat([0, 0, 1], 90) }, [1, 0, 0]), [1, 3, 3], 1e-12, '90° about z');
+  // against the rotation matrix of a general unit quaternion
+  const a = [1, 2, -2].map((x) => x / 3);
+  const [x, y, z, w] = quat(a, 73);
+  const R = [
+    [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+    [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+    [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+  ];
+  const p = [0.3, -0.7, 1.1];
+  const t = [0.01, 0.02, -0.5];
+  const want = R.map((row, i) => row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + t[i]);
+  close(J.carry({ part: 0, translation: t, rotation: [x, y, z, w] }, p), want, 1e-12, 'general rotation');
+  close(J.carry({ part: 0, translation: [0, 0, 0], rotation: [0, 0, 0, 1] }, p), p, 0, 'identity');
+});
+
+test('each fastener is carried by the part its entry names', () => {
+  const fasteners = [{ name: 's1' }, { name: 's2' }, { name: 'c1' }, { name: 'c2' }, { name: 'other' }];
+  assert.deepEqual(J.fastenerCarriers(doc, fasteners, names), [3, -1, 2, -1, -1]);
+  assert.deepEqual(J.fastenerCarriers(null, fasteners, names), [-1, -1, -1, -1, -1]);
+});
