@@ -25,9 +25,6 @@ import { download, parseRecording, Player, Recorder } from './record';
 import { Stage } from './scene';
 import { XrHands } from './xr';
 
-/** How long a clicked finding's hose or part stays highlighted [ms]. */
-const HIGHLIGHT_MS = 2500;
-
 export class App {
   mode: Mode = 'live';
   readonly stage: Stage;
@@ -63,8 +60,8 @@ export class App {
   private player: Player | null = null;
   lastRecording = '';
   private lastRecordingShown = -1;
-  /** The hose or part a clicked finding highlights, until when (performance.now, ms). */
-  private highlight: { hose: number | null; part: number | null; until: number } | null = null;
+  /** The hose and part the finding clicked last names (indices; null: none). */
+  private highlight: { hose: number | null; part: number | null } | null = null;
   readonly counters = { frames: 0, snapshots: 0, errors: [] as { code: string; message: string }[], reports: [] as string[] };
 
   constructor(root: HTMLElement, view: HTMLElement, readonly params: URLSearchParams) {
@@ -226,7 +223,7 @@ export class App {
   }
 
   private sceneSource(m: SceneSourceMessage): void {
-    if (this.mode === 'author') this.author.source(m);
+    this.author.source(m);
     this.liveSource = m;
     if (this.shownWelcome !== null) this.useSource(this.shownWelcome);
   }
@@ -237,7 +234,7 @@ export class App {
     const m = this.liveSource;
     if (m === null || m.scene !== w.session.scene) return;
     const partNames = w.session.parts.map((p) => p.name);
-    if (w === this.liveWelcome) this.parts.source(m.document, m.length_unit, partNames);
+    this.parts.source(m.document, m.length_unit, partNames);
     this.stage.setFastenerCarriers(fastenerCarriers(m.document, w.session.fasteners ?? [], partNames));
   }
 
@@ -315,18 +312,17 @@ export class App {
     return { loaded: [...this.envelopes.loaded], visible: this.envelopes.visible, meshes: this.envelopes.group.children.length };
   }
 
-  /** A finding clicked in the panel: its hose or part lights up for a while, and a
-   *  replay goes to its time. */
+  /** A finding clicked in the panel: its hose or part lights up (until another finding
+   *  is clicked, or this one again), and a replay goes to its time. */
   focusFinding(row: FindingRow): void {
-    this.highlight = { hose: row.hose, part: row.part, until: performance.now() + HIGHLIGHT_MS };
+    const same = this.highlight !== null && this.highlight.hose === row.hose && this.highlight.part === row.part;
+    this.highlight = same ? null : { hose: row.hose, part: row.part };
     if (this.player !== null && row.time !== null) this.player.seekSimulated(row.time, performance.now());
-    this.showHighlight(performance.now());
+    this.showHighlight();
   }
 
-  /** The highlighted hose and part, or none once the highlight is over. */
-  private showHighlight(now: number): void {
-    const h = this.highlight !== null && now < this.highlight.until ? this.highlight : null;
-    if (this.highlight !== null && h === null) this.highlight = null;
+  private showHighlight(): void {
+    const h = this.highlight;
     this.tubes.forEach((t, i) => t.setHighlighted(h !== null && h.hose === i));
     this.stage.highlightPart(h?.part ?? null);
   }
@@ -345,6 +341,7 @@ export class App {
       const box = new THREE.Box3();
       for (const h of s.hoses) for (const p of h.positions) box.expandByPoint(new THREE.Vector3(...p));
       this.stage.load(this.shownWelcome.session, box);
+      this.showHighlight();
       if (this.xr.inSession) this.xr.place(true);
     }
     this.stage.setPartPoses(s.part_poses ?? []);
@@ -378,7 +375,6 @@ export class App {
       this.apply(this.latest);
       drewLive = true;
     }
-    if (this.highlight !== null) this.showHighlight(now);
     this.mouse.flush();
     this.xr.update();
     this.stage.renderer.render(this.stage.scene, this.stage.camera);

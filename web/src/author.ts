@@ -6,9 +6,10 @@
 // parts' feature edges; a stub stands on the clicked surface with its axis along the
 // normal; a clip sits where a hose would rest, opening along the normal and oriented along
 // the nearest hose. Points move with handles (TransformControls); every change is a step of
-// an undo/redo history. "Save & run" writes the document as TOML (toml.ts), downloads it
-// and sends it with `load_scene`: the server's loader checks it (its errors, naming the
-// field, are shown here) and the session runs it.
+// an undo/redo history (the document and its history: author_document.ts). "Save & run"
+// writes the document as TOML (toml.ts), downloads it and sends it with `load_scene`: the
+// server's loader checks it (its errors, naming the field, are shown here) and the session
+// runs it.
 
 import * as THREE from 'three';
 import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
@@ -16,29 +17,12 @@ import type { Net } from './net';
 import type { FastenerData, LibraryHose, SceneSourceMessage, Vec3 } from './protocol';
 import { download } from './record';
 import { clipMesh, disposeTree, stubMesh, type Stage } from './scene';
-import { toToml, type Json } from './toml';
+import { EditHistory, sceneDocument, type AuthorHose, type AuthorState, type ClipType, type Doc } from './author_document';
+import { toToml } from './toml';
 
-type Doc = { [key: string]: Json | undefined };
+export type { AuthorClip, AuthorHose, AuthorState, AuthorStub, ClipType } from './author_document';
 
 export type Tool = 'hose' | 'stub' | 'clip' | 'move';
-export type ClipType = 'fixed' | 'rotating' | 'sliding' | 'cable_tie';
-
-/** All lengths in metres, world frame (converted to the file's unit when written). */
-export interface AuthorHose {
-  name: string;
-  material: string;
-  /** null: the library hose's own section. */
-  section: { d_inner: number; d_outer: number } | null;
-  points: Vec3[];
-  /** Fix the first node (a leading `fix` action: the live session starts with it). */
-  fixStart: boolean;
-}
-export interface AuthorStub { name: string; origin: Vec3; axis: Vec3; length: number; diameter: number; hose: string | null; end: 'start' | 'end' }
-export interface AuthorClip {
-  name: string; origin: Vec3; opening: Vec3; orientation: Vec3; type: ClipType;
-  opening_width: number; inner_diameter: number; snap_force_n: number; hose: string | null;
-}
-export interface AuthorState { base: Doc; hoses: AuthorHose[]; stubs: AuthorStub[]; clips: AuthorClip[] }
 
 /** What a handle moves. */
 type HandleRef = { kind: 'hose'; i: number; k: number } | { kind: 'stub'; i: number } | { kind: 'clip'; i: number };
@@ -53,7 +37,6 @@ const cross = (a: Vec3, b: Vec3): Vec3 => [a[1] * b[2] - a[2] * b[1], a[2] * b[0
 const len = (a: Vec3) => Math.sqrt(dot(a, a));
 const unit = (a: Vec3): Vec3 => { const l = len(a) || 1; return [a[0] / l, a[1] / l, a[2] / l]; };
 const dist = (a: Vec3, b: Vec3) => len(sub(a, b));
-const clone = <T>(x: T): T => JSON.parse(JSON.stringify(x)) as T;
 
 /** Points closer than this [m] to the previous one are not added (the loader refuses
  *  equal consecutive spline points). */
@@ -79,8 +62,7 @@ export class Author {
   /** The library from `scene_source`. */
   library: LibraryHose[] = [];
   unit = 'mm';
-  private history: string[] = [];
-  private future: string[] = [];
+  private readonly history = new EditHistory();
   /** Index of the hose being drawn (more clicks add points to it), or null. */
   drawing: number | null = null;
   /** The hose the material and section controls act on. */
@@ -101,6 +83,8 @@ export class Author {
   private readonly raycaster = new THREE.Raycaster();
   private edgeCache = new Map<string, Float32Array>();
   private readonly ui: Record<string, HTMLElement> = {};
+  /** A `scene_source` was asked for by this mode and not answered yet. */
+  private asked = false;
 
   constructor(private readonly stage: Stage, private readonly net: Net, panel: HTMLElement, private readonly cb: AuthorCallbacks) {
     this.group.name = 'author';
@@ -228,9 +212,11 @@ export class Author {
     this.group.visible = on;
     for (const x of ['hose', 'stub', 'clip', 'move']) this.ui[`tool-${x}`].classList.toggle('on', x === this.tool);
     if (on) {
+      this.asked = true;
       this.net.send({ type: 'scene_source' });
       this.say('reading the scene…');
     } else {
+      this.asked = false;
       this.gizmo.detach();
       this.drawing = null;
     }
@@ -240,6 +226,10 @@ export class Author {
   /** The answer to `scene_source`: the document authoring starts from (authored hoses,
    *  stubs and clips so far are kept on top of it). */
   source(m: SceneSourceMessage): void {
+    // the viewer asks for the document after every welcome too: only an answer to the
+    // author's own question starts (or restarts) authoring
+    if (!this.asked) return;
+    this.asked = false;
     this.library = m.library;
     this.unit = m.length_unit;
     if (m.document === null || typeof m.document !== 'object' || Array.isArray(m.document)) {
@@ -248,7 +238,7 @@ export class Author {
     }
     // a new document when nothing was edited yet (e.g. another scene was opened since);
     // edits so far are kept, on the document they started from
-    const untouched = this.state === null || (this.history.length === 0 && this.future.length === 0);
+    const untouched = this.state === null || this.history.untouched;
     if (untouched) {
       this.state = { base: m.document as Doc, hoses: [], stubs: [], clips: [] };
       const name = this.input('author-name');
@@ -381,28 +371,22 @@ export class Author {
     if (this.state === null) return;
     const before = this.snapshot();
     edit();
-    this.history.push(before);
-    if (this.history.length > 200) this.history.shift();
-    this.future = [];
+    this.history.record(before);
     this.redraw();
   }
 
   undo(): void {
-    const prev = this.history.pop();
-    if (prev === undefined) return;
-    this.future.push(this.snapshot());
-    this.restore(prev);
+    const prev = this.history.undo(this.snapshot());
+    if (prev !== null) this.restore(prev);
   }
 
   redo(): void {
-    const next = this.future.pop();
-    if (next === undefined) return;
-    this.history.push(this.snapshot());
-    this.restore(next);
+    const next = this.history.redo(this.snapshot());
+    if (next !== null) this.restore(next);
   }
 
-  get canUndo(): boolean { return this.history.length > 0; }
-  get canRedo(): boolean { return this.future.length > 0; }
+  get canUndo(): boolean { return this.history.canUndo; }
+  get canRedo(): boolean { return this.history.canRedo; }
 
   private key(e: KeyboardEvent): void {
     if (!this.active) return;
@@ -705,8 +689,7 @@ export class Author {
     if (h === undefined || this.state === null) return;
     const p: Vec3 = [obj!.position.x, obj!.position.y, obj!.position.z]; // parent = world frame
     this.place(h.ref, p);
-    this.history.push(this.dragBefore);
-    this.future = [];
+    this.history.record(this.dragBefore);
     this.redraw();
   }
 
@@ -753,69 +736,12 @@ export class Author {
 
   // ---------------------------------------------------------------- the file
 
-  /** Length in metres → the file's unit, rounded to a micrometre. */
-  private u(x: number): number {
-    const f = this.unit === 'mm' ? 1000 : 1;
-    const digits = this.unit === 'mm' ? 3 : 6;
-    return Number((x * f).toFixed(digits)) + 0; // + 0: no -0 in the file
-  }
-
-  private uv(p: Vec3): number[] {
-    return p.map((x) => this.u(x));
-  }
-
-  private dir(p: Vec3): number[] {
-    return unit(p).map((x) => Number(x.toFixed(6)) + 0);
-  }
-
   /** The scene document: the base scene with the authored hoses, stubs and clips, a
-   *  leading `fix` for each hose whose start is fixed. */
+   *  leading `fix` for each hose whose start is fixed (author_document.ts). */
   document(name = this.input('author-name').value.trim() || 'authored'): Doc {
     const s = this.state;
     if (s === null) throw new Error('no scene document yet');
-    const doc = clone(s.base);
-    doc.name = name;
-    const arr = (k: string): Json[] => (Array.isArray(doc[k]) ? (doc[k] as Json[]) : []);
-    const hoses = arr('hoses');
-    const fixes: Json[] = [];
-    for (const h of s.hoses) {
-      if (h.points.length < 2) continue;
-      const pts = h.points;
-      const last = pts[pts.length - 1];
-      const path = pts.length === 2
-        ? [{ line: { to: this.uv(last) } }]
-        : [{ spline: { through: pts.slice(1, -1).map((p) => this.uv(p)), to: this.uv(last) } }];
-      const entry: Doc = { name: h.name, material: h.material };
-      if (h.section !== null) entry.section = { d_inner: this.u(h.section.d_inner), d_outer: this.u(h.section.d_outer) };
-      entry.start = this.uv(pts[0]);
-      entry.path = path;
-      hoses.push(entry);
-      if (h.fixStart) fixes.push({ action: 'fix', hose: h.name, node: 0 });
-    }
-    doc.hoses = hoses;
-    const stubs = arr('stubs');
-    for (const st of s.stubs) {
-      const e: Doc = { name: st.name, origin: this.uv(st.origin), axis: this.dir(st.axis), length: this.u(st.length), diameter: this.u(st.diameter) };
-      if (st.hose !== null) { e.hose = st.hose; e.end = st.end; }
-      stubs.push(e);
-    }
-    if (stubs.length > 0) doc.stubs = stubs;
-    const clips = arr('clips');
-    for (const c of s.clips) {
-      const e: Doc = {
-        name: c.name, origin: this.uv(c.origin), opening: this.dir(c.opening), orientation: this.dir(c.orientation),
-        opening_width: this.u(c.opening_width), inner_diameter: this.u(c.inner_diameter),
-      };
-      if (c.type !== 'cable_tie') e.snap_force_n = c.snap_force_n;
-      if (c.hose !== null) e.hose = c.hose;
-      e.type = c.type;
-      clips.push(e);
-    }
-    if (clips.length > 0) doc.clips = clips;
-    const timeline = [...fixes, ...arr('timeline')];
-    if (timeline.length > 0) doc.timeline = timeline;
-    else delete doc.timeline;
-    return doc;
+    return sceneDocument(s, name, this.unit);
   }
 
   /** The document as scene-file TOML. */

@@ -118,6 +118,15 @@ describe('colour modes and checks', () => {
       assert.ok((await page.locator('#checks .check[data-check="bend_radius"]').count()) >= 1);
       assert.match(await page.textContent('#checks'), /bend radius \d+ mm < \d+ mm at s = \d+ mm/);
       assert.match(await page.textContent('#verdict'), /bend_radius check/);
+      // the verdict's findings: a row per finding, naming the hose, the value against the
+      // limit and the time; a click lights the hose up, a second click puts it out
+      const row = page.locator(`#findings .finding[data-kind="check_violated"][data-hose="${hose}"]`).first();
+      await row.scrollIntoViewIfNeeded();
+      assert.match(await row.textContent(), /check violated.*hose '.+': bend radius \d+ mm < \d+ mm at s = \d+ mm.*t = \d+\.\d\d s/);
+      await row.click();
+      assert.deepEqual(await page.evaluate(() => window.pliant.highlighted()), { hoses: [hose], parts: [] });
+      await page.locator(`#findings .finding[data-kind="check_violated"][data-hose="${hose}"]`).first().click();
+      assert.deepEqual(await page.evaluate(() => window.pliant.highlighted()), { hoses: [], parts: [] });
       // twist and axial force: the legend's units
       await page.selectOption('#colour-mode', 'twist');
       await page.waitForFunction(() => /°\/m/.test(document.querySelector('#legend').textContent));

@@ -1,8 +1,10 @@
 // End-to-end test of moving parts in the viewer: `pliant serve` (the real binary) on a
 // door that a client turns with `rotate_part` and lifts with `move_part`; the snapshots
 // carry the door's pose, the viewer draws the door's mesh at it and the hose end mounted
-// on the door with it. Every wait is for a condition (HANG_GUARD_MS only stops a hung
-// test); nothing depends on the machine's speed.
+// on the door with it. A hatch the timeline opens gets a hinge slider in the panel:
+// dragging it turns the hatch in the server's snapshot, and the stub on the hatch is drawn
+// with it. Every wait is for a condition (HANG_GUARD_MS only stops a hung test); nothing
+// depends on the machine's speed.
 
 import assert from 'node:assert/strict';
 import { mkdtempSync, writeFileSync } from 'node:fs';
@@ -10,6 +12,12 @@ import os from 'node:os';
 import path from 'node:path';
 import { describe, test } from 'node:test';
 import { openViewer, sharedSession } from './harness.mjs';
+
+/** The hatch's turn about +x [deg] in the newest snapshot's part poses (null: no pose). */
+function hatchAngle() {
+  const p = (window.pliant.snapshot?.part_poses ?? []).find((q) => q.part === 2);
+  return p === undefined ? null : (2 * Math.atan2(p.rotation[0], p.rotation[3]) * 180) / Math.PI;
+}
 
 const dir = mkdtempSync(path.join(os.tmpdir(), 'pliant-parts-'));
 const scene = path.join(dir, 'door.toml');
@@ -48,6 +56,28 @@ action = "fix"
 hose = "h"
 node = -1
 part = "door"
+
+[[parts]]
+name = "hatch"
+box = { size = [100, 100, 10] }
+position = [150, 250, 300]
+
+[[stubs]]
+name = "hatch stub"
+origin = [150, 250, 320]
+axis = [0, 0, -1]
+length = 20
+diameter = 30
+part = "hatch"
+
+[[timeline]]
+action = "rotate_part"      # the timeline opens the hatch: a hinge about x, 0 … 40°
+part = "hatch"
+axis = [1, 0, 0]
+point = [150, 200, 300]
+to_deg = 40
+duration_s = 0.5
+wait = false
 `);
 
 const shared = sharedSession([scene]);
@@ -81,7 +111,46 @@ describe('moving parts', () => {
     await page.waitForFunction(() => Math.abs(window.pliant.hoseNodes(0).at(-1)[2] - 0.31) < 1e-4);
     // an unknown part: the simulation's refusal comes back as the notice
     assert.ok(await page.evaluate(() => window.pliant.send({ type: 'move_part', part: 'lid', by: [0, 0, 0.01], duration_s: 0.2 })));
-    await page.waitForFunction(() => (window.pliant.snapshot?.notice ?? '').includes('no part named "lid" (parts: body, door)'));
+    await page.waitForFunction(() => (window.pliant.snapshot?.notice ?? '').includes('no part named "lid" (parts: body, door, hatch)'));
+    await page.close();
+  });
+
+  test('dragging the hatch's hinge slider turns it in the server's snapshot; its stub goes with it', async () => {
+    const { page } = await openViewer(shared.browser, shared.server.url, { width: 1000, height: 700, query: '?quality=low' });
+    await page.addScriptTag({ content: `window.hatchAngle = ${hatchAngle.toString()};` });
+    // the timeline opens the hatch to 40°; its row's slider spans 0 … 40°
+    await page.waitForFunction(() => { const a = window.hatchAngle(); return a !== null && Math.abs(a - 40) < 1e-6; });
+    const slider = page.locator('input.part-slider[data-part="hatch"]');
+    await slider.scrollIntoViewIfNeeded();
+    await page.waitForFunction(() => window.pliant.partControls().some((c) => c.part === 'hatch' && c.slider === 1000));
+    assert.equal(await slider.isDisabled(), false);
+    // drag the thumb from its right end to a quarter of the way
+    const box = await slider.boundingBox();
+    const y = box.y + box.height / 2;
+    await page.mouse.move(box.x + box.width - 4, y);
+    await page.mouse.down();
+    for (let k = 1; k <= 10; k++) await page.mouse.move(box.x + box.width - 4 - k * (box.width * 0.75 - 4) / 10, y);
+    await page.mouse.up();
+    const value = Number(await slider.inputValue());
+    assert.ok(value > 150 && value < 350, `slider at ${value}`);
+    const target = (40 * value) / 1000;
+    // the server turns the hatch to the slider's angle (the snapshot, not the viewer, says so)
+    await page.waitForFunction((t) => { const a = window.hatchAngle(); return a !== null && Math.abs(a - t) < 1e-6; }, target);
+    // the stub on the hatch is drawn where the hatch's pose carries it
+    await page.waitForFunction((t) => {
+      const p = (window.pliant.shown?.part_poses ?? []).find((q) => q.part === 2);
+      return p !== undefined && Math.abs((2 * Math.atan2(p.rotation[0], p.rotation[3]) * 180) / Math.PI - t) < 1e-6;
+    }, target);
+    const { stub, pose } = await page.evaluate(() => ({
+      stub: window.pliant.fasteners().find((f) => f.name === 'stub:hatch stub').origin,
+      pose: window.pliant.shown.part_poses.find((q) => q.part === 2),
+    }));
+    // a turn by a about x through the hinge point [0.15, 0.2, 0.3] takes the mouth
+    // [0.15, 0.25, 0.32] to the point + R(a)·[0, 0.05, 0.02]
+    assert.ok(Math.abs(pose.rotation[1]) + Math.abs(pose.rotation[2]) < 1e-12, 'a turn about x only');
+    const a = 2 * Math.atan2(pose.rotation[0], pose.rotation[3]);
+    const expected = [0.15, 0.2 + 0.05 * Math.cos(a) - 0.02 * Math.sin(a), 0.3 + 0.05 * Math.sin(a) + 0.02 * Math.cos(a)];
+    assert.ok(Math.hypot(...stub.map((x, k) => x - expected[k])) < 1e-9, `stub at ${stub}, expected ${expected} (pose ${JSON.stringify(pose)})`);
     await page.close();
   });
 });
