@@ -8,6 +8,7 @@
 import * as THREE from 'three';
 import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
 import type { Net } from './net';
+import { el } from './panel';
 import {
   carry, coordinateOfPose, coordinateToSlider, jointMessage, partControls, SLIDER_STEPS, sliderToCoordinate,
   SLIDE_SPEED_M_S, HINGE_SPEED_DEG_S, MIN_MOVE_S, type Joint, type PartControl,
@@ -23,15 +24,10 @@ interface Row {
   root: HTMLElement;
   readout: HTMLElement;
   slider: HTMLInputElement | null;
-  /** The user holds the slider: snapshots do not move it. */
+  /** The user holds the slider, or the part is on its way to where it was let go
+   *  (until `settles`, performance.now ms): snapshots do not move it meanwhile. */
   held: boolean;
-}
-
-function el<K extends keyof HTMLElementTagNameMap>(tag: K, attrs: Record<string, string> = {}, text?: string): HTMLElementTagNameMap[K] {
-  const e = document.createElement(tag);
-  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
-  if (text !== undefined) e.textContent = text;
-  return e;
+  settles: number;
 }
 
 const coordinateText = (joint: Joint, x: number) =>
@@ -121,7 +117,7 @@ export class PartControls {
     const readout = el('div', { class: 'part-readout' });
     const j = control.joint;
     let slider: HTMLInputElement | null = null;
-    const r: Row = { control, root, readout, slider: null, held: false };
+    const r: Row = { control, root, readout, slider: null, held: false, settles: 0 };
     root.append(readout);
     if (j !== null) {
       slider = el('input', { type: 'range', min: '0', max: String(SLIDER_STEPS), value: String(coordinateToSlider(j, 0)), class: 'part-slider', 'data-part': control.name });
@@ -174,7 +170,7 @@ export class PartControls {
       }
       const x = coordinateOfPose(j, pose);
       r.readout.textContent = `${c.name}: ${j.kind} ${coordinateText(j, x)} (${coordinateText(j, j.min)} … ${coordinateText(j, j.max)}; ${how})`;
-      if (r.slider !== null && !r.held) r.slider.value = String(coordinateToSlider(j, x));
+      if (r.slider !== null && !r.held && performance.now() >= r.settles) r.slider.value = String(coordinateToSlider(j, x));
     }
     if (this.selected !== null && this.drag === null) this.place(this.selected, false);
   }
@@ -186,7 +182,9 @@ export class PartControls {
     if (!final && now - this.lastSent < SEND_INTERVAL_MS) return;
     this.lastSent = now;
     const from = coordinateOfPose(j, this.poses.get(r.control.part) ?? null);
-    this.net.send(jointMessage(r.control.name, j, sliderToCoordinate(j, Number(r.slider.value)), from));
+    const message = jointMessage(r.control.name, j, sliderToCoordinate(j, Number(r.slider.value)), from);
+    this.net.send(message);
+    r.settles = now + message.duration_s * 1000;
   }
 
   private select(r: Row | null): void {

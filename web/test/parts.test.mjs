@@ -1,9 +1,10 @@
 // End-to-end test of moving parts in the viewer: `pliant serve` (the real binary) on a
 // door that a client turns with `rotate_part` and lifts with `move_part`; the snapshots
 // carry the door's pose, the viewer draws the door's mesh at it and the hose end mounted
-// on the door with it. A hatch the timeline opens gets a hinge slider in the panel:
-// dragging it turns the hatch in the server's snapshot, and the stub on the hatch is drawn
-// with it. Every wait is for a condition (HANG_GUARD_MS only stops a hung test); nothing
+// on the door with it. A hatch whose hinge the scene's timeline describes (a live session
+// starts from the timeline's leading fixes only: the hatch stays shut) gets a hinge slider
+// in the panel: dragging it turns the hatch in the server's snapshot, and the stub on the
+// hatch is drawn with it. Every wait is for a condition (HANG_GUARD_MS only stops a hung test); nothing
 // depends on the machine's speed.
 
 import assert from 'node:assert/strict';
@@ -71,7 +72,7 @@ diameter = 30
 part = "hatch"
 
 [[timeline]]
-action = "rotate_part"      # the timeline opens the hatch: a hinge about x, 0 … 40°
+action = "rotate_part"      # a run opens the hatch on this hinge (about x, 0 … 40°); a live session starts shut
 part = "hatch"
 axis = [1, 0, 0]
 point = [150, 200, 300]
@@ -115,24 +116,25 @@ describe('moving parts', () => {
     await page.close();
   });
 
-  test('dragging the hatch's hinge slider turns it in the server's snapshot; its stub goes with it', async () => {
+  test("dragging the hatch's hinge slider turns it in the server's snapshot; its stub goes with it", async () => {
     const { page } = await openViewer(shared.browser, shared.server.url, { width: 1000, height: 700, query: '?quality=low' });
     await page.addScriptTag({ content: `window.hatchAngle = ${hatchAngle.toString()};` });
-    // the timeline opens the hatch to 40°; its row's slider spans 0 … 40°
-    await page.waitForFunction(() => { const a = window.hatchAngle(); return a !== null && Math.abs(a - 40) < 1e-6; });
+    // the hatch's row: a slider over the timeline's hinge, 0 … 40°, at 0° (shut)
     const slider = page.locator('input.part-slider[data-part="hatch"]');
     await slider.scrollIntoViewIfNeeded();
-    await page.waitForFunction(() => window.pliant.partControls().some((c) => c.part === 'hatch' && c.slider === 1000));
+    await page.waitForFunction(() => window.pliant.partControls().some((c) => c.part === 'hatch' && c.slider === 0 && c.coordinate === 0));
     assert.equal(await slider.isDisabled(), false);
-    // drag the thumb from its right end to a quarter of the way
+    // drag the thumb from its left end three quarters of the way; the value let go at
+    // (read when the slider reports the change: the panel's own listener ran before)
+    await slider.evaluate((s) => s.addEventListener('change', () => (window.sliderLetGo = Number(s.value))));
     const box = await slider.boundingBox();
     const y = box.y + box.height / 2;
-    await page.mouse.move(box.x + box.width - 4, y);
+    await page.mouse.move(box.x + 4, y);
     await page.mouse.down();
-    for (let k = 1; k <= 10; k++) await page.mouse.move(box.x + box.width - 4 - k * (box.width * 0.75 - 4) / 10, y);
+    for (let k = 1; k <= 10; k++) await page.mouse.move(box.x + 4 + (k * (box.width * 0.75 - 4)) / 10, y);
     await page.mouse.up();
-    const value = Number(await slider.inputValue());
-    assert.ok(value > 150 && value < 350, `slider at ${value}`);
+    const value = await page.evaluate(() => window.sliderLetGo);
+    assert.ok(value > 650 && value < 850, `slider at ${value}`);
     const target = (40 * value) / 1000;
     // the server turns the hatch to the slider's angle (the snapshot, not the viewer, says so)
     await page.waitForFunction((t) => { const a = window.hatchAngle(); return a !== null && Math.abs(a - t) < 1e-6; }, target);
