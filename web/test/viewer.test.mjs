@@ -388,8 +388,25 @@ describe('panel', () => {
         [Math.min(...recordedTimes), Math.max(...recordedTimes)],
       );
       assert.ok(await page.isVisible('#replay-bar'));
+      // paused at the end of the recording, a click on a finding with a time goes back to
+      // the first recorded snapshot at or after that time
+      await page.click('#replay-play');
+      await page.$eval('#replay-slider', (el) => { el.value = '1000'; el.dispatchEvent(new Event('input')); });
+      const last = rec.frames[rec.frames.length - 1].snapshot.time;
+      await page.waitForFunction((t) => window.pliant.shown.time === t, last);
+      // the earliest finding
+      const times = await page.$$eval('#findings .finding[data-time]', (rows) => rows.map((r) => Number(r.dataset.time)));
+      assert.ok(times.length > 0, 'findings with a time');
+      const findingTime = Math.min(...times);
+      const k = rec.frames.findIndex((f) => f.snapshot.time >= findingTime);
+      const sameInstant = rec.frames.filter((f) => f.t === rec.frames[k].t).map((f) => f.snapshot.time);
+      assert.ok(!sameInstant.includes(last), `the finding (t = ${findingTime} s) is before the recording's end (${last} s)`);
+      await page.locator(`#findings .finding[data-time="${findingTime}"]`).first().click();
+      await page.waitForFunction((ts) => ts.includes(window.pliant.shown.time), sameInstant);
+      assert.equal(await page.evaluate(() => window.pliant.mode), 'replay');
       await page.click('#live');
       await page.waitForFunction(() => !window.pliant.replaying && window.pliant.shown !== null);
+      assert.equal(await page.evaluate(() => window.pliant.mode), 'live');
     } finally {
       await page.close();
     }
