@@ -10,7 +10,7 @@ import { TransformControls } from 'three/examples/jsm/controls/TransformControls
 import type { Net } from './net';
 import { el } from './panel';
 import {
-  carry, coordinateOfPose, coordinateToSlider, jointMessage, partControls, SLIDER_STEPS, sliderToCoordinate,
+  carry, coordinateOfPose, coordinateToSlider, draggedCoordinate, jointMessage, partControls, SLIDER_STEPS, sliderToCoordinate,
   SLIDE_SPEED_M_S, HINGE_SPEED_DEG_S, MIN_MOVE_S, type Joint, type PartControl,
 } from './part_joints';
 import type { PartData, PartPose, Vec3 } from './protocol';
@@ -267,12 +267,9 @@ export class PartControls {
     const turn = this.proxy.quaternion.clone().multiply(d.quaternion.clone().invert());
     const shift = this.proxy.position.clone().sub(d.position);
     if (j !== null) {
-      const x =
-        j.kind === 'hinge'
-          ? d.coordinate + coordinateOfPose(j, { part: c.part, translation: [0, 0, 0], rotation: [turn.x, turn.y, turn.z, turn.w] })
-          : d.coordinate + shift.dot(new THREE.Vector3(...j.direction));
+      const x = draggedCoordinate(j, d.coordinate, [turn.x, turn.y, turn.z, turn.w], [shift.x, shift.y, shift.z]);
       this.lastSent = now;
-      this.net.send(jointMessage(c.name, j, Math.min(j.max, Math.max(j.min, x)), coordinateOfPose(j, pose)));
+      this.net.send(jointMessage(c.name, j, x, coordinateOfPose(j, pose)));
       return;
     }
     if (this.freeMode === 'translate') {

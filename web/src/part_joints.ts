@@ -188,6 +188,17 @@ export function coordinateOfPose(joint: Joint, pose: PartPose | null): number {
   return t[0] * d[0] + t[1] * d[1] + t[2] * d[2];
 }
 
+/** The joint coordinate a handle dragged from coordinate `start` reaches, clamped to
+ *  the joint's range: plus the drag's turn about the hinge axis (`turn` [x, y, z, w],
+ *  world frame), or plus its shift along the slide (`shift` [m]). */
+export function draggedCoordinate(joint: Joint, start: number, turn: readonly [number, number, number, number], shift: Vec3): number {
+  const by =
+    joint.kind === 'hinge'
+      ? coordinateOfPose(joint, { part: 0, translation: [0, 0, 0], rotation: [turn[0], turn[1], turn[2], turn[3]] })
+      : shift[0] * joint.direction[0] + shift[1] * joint.direction[1] + shift[2] * joint.direction[2];
+  return Math.min(joint.max, Math.max(joint.min, start + by));
+}
+
 /** Turning speed of a slider-driven hinge [deg/s] and travel speed of a slide [m/s]: a
  *  door swung by hand. */
 export const HINGE_SPEED_DEG_S = 90;

@@ -120,6 +120,21 @@ test('a slider sends rotate_part to the angle, or move_part to the offset, at th
   assert.ok(Math.abs(s.duration_s - 0.15 / J.SLIDE_SPEED_M_S) < 1e-12);
 });
 
+test('a handle dragged adds its turn about the hinge axis, or its shift along the slide, within the range', () => {
+  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: null, min: -20, max: 70 };
+  assert.ok(Math.abs(J.draggedCoordinate(hinge, 10, quat([0, 0, 1], 30), [0, 0, 0]) - 40) < 1e-9);
+  assert.ok(Math.abs(J.draggedCoordinate(hinge, 10, quat([0, 0, -1], 15), [0.3, 0, 0]) + 5) < 1e-9, 'a shift does not turn a hinge');
+  assert.equal(J.draggedCoordinate(hinge, 60, quat([0, 0, 1], 30), [0, 0, 0]), 70, 'clamped to the range');
+  // a turn about a tilted axis counts with its part about the hinge axis: 2·atan2(q⃗·â, w)
+  const tilted = [0, Math.sin(0.3), Math.cos(0.3)];
+  const q = quat(tilted, 40);
+  const want = (2 * Math.atan2(q[2], q[3]) * 180) / Math.PI;
+  assert.ok(Math.abs(J.draggedCoordinate(hinge, 0, q, [0, 0, 0]) - want) < 1e-9);
+  const slide = { kind: 'slide', direction: [0, 1, 0], min: 0, max: 0.25 };
+  assert.ok(Math.abs(J.draggedCoordinate(slide, 0.1, [0, 0, 0, 1], [0.5, 0.05, 0]) - 0.15) < 1e-12, 'only the shift along the slide counts');
+  assert.equal(J.draggedCoordinate(slide, 0.1, [0, 0, 0, 1], [0, -1, 0]), 0, 'clamped to the range');
+});
+
 test('a stub or clip on a part is carried by its pose: R·p + t', () => {
   // 90° about z moves x onto y
   close(J.carry({ part: 0, translation: [1, 2, 3], rotation: quat([0, 0, 1], 90) }, [1, 0, 0]), [1, 3, 3], 1e-12, '90° about z');
