@@ -127,6 +127,17 @@ export function installDebugHandle(app: App): void {
     get lastRecording() { return app.lastRecording; },
     /** The moving parts' rows: joint coordinate (deg or m) and slider position. */
     partControls() { return app.parts.shown(); },
+    /** The last move a slider or handle sent; client coordinates of points on the part
+     *  handle named `axis` ("Z": a hinge's ring, "X": a slide's arrow). */
+    get lastPartMove() { return app.parts.lastMove; },
+    get partHandleHovered() { return app.parts.onHandle; },
+    partHandlePoints(axis: string): { x: number; y: number }[] {
+      const r = src.stage.renderer.domElement.getBoundingClientRect();
+      return app.parts.handlePoints(axis).map((v) => {
+        const p = v.project(src.stage.camera);
+        return { x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height };
+      });
+    },
     /** The stubs, connectors and clips as drawn (world frame). */
     fasteners() { return app.stage.fastenersDrawn(); },
     /** The verdict's findings as listed; `focusFinding(i)` does what a click on row i does. */

@@ -13,7 +13,7 @@ import {
   carry, coordinateOfPose, coordinateToSlider, draggedCoordinate, jointMessage, partControls, SLIDER_STEPS, sliderToCoordinate,
   SLIDE_SPEED_M_S, HINGE_SPEED_DEG_S, MIN_MOVE_S, type Joint, type PartControl,
 } from './part_joints';
-import type { PartData, PartPose, Vec3 } from './protocol';
+import type { ClientMessage, PartData, PartPose, Vec3 } from './protocol';
 import type { Stage } from './scene';
 
 /** Least time between two moves sent while a slider or handle is dragged [ms]. */
@@ -112,6 +112,28 @@ export class PartControls {
     }));
   }
 
+  /** The last move sent by a slider or the handle. */
+  lastMove: Extract<ClientMessage, { type: 'move_part' | 'rotate_part' }> | null = null;
+
+  /** Points (three.js space) on the shown parts of the handle whose name is `axis`
+   *  ("Z" a hinge's ring, "X" a slide's arrow): where a pointer grabs it. */
+  handlePoints(axis: string): THREE.Vector3[] {
+    if (this.gizmo.object === undefined) return [];
+    const helper = this.gizmo.getHelper();
+    helper.updateMatrixWorld(true);
+    const out: THREE.Vector3[] = [];
+    helper.traverse((o) => {
+      const m = o as THREE.Mesh;
+      if (o.name !== axis || !m.isMesh) return;
+      let shown = true;
+      o.traverseAncestors((a) => (shown &&= a.visible));
+      if (!shown || !o.visible) return;
+      const p = m.geometry.getAttribute('position');
+      for (let i = 0; i < p.count; i += 7) out.push(new THREE.Vector3().fromBufferAttribute(p, i).applyMatrix4(o.matrixWorld));
+    });
+    return out;
+  }
+
   private row(control: PartControl): Row {
     const root = el('div', { class: 'part-control', 'data-part': control.name });
     const readout = el('div', { class: 'part-readout' });
@@ -183,8 +205,13 @@ export class PartControls {
     this.lastSent = now;
     const from = coordinateOfPose(j, this.poses.get(r.control.part) ?? null);
     const message = jointMessage(r.control.name, j, sliderToCoordinate(j, Number(r.slider.value)), from);
-    this.net.send(message);
+    this.send(message);
     r.settles = now + message.duration_s * 1000;
+  }
+
+  private send(m: Extract<ClientMessage, { type: 'move_part' | 'rotate_part' }>): void {
+    this.net.send(m);
+    this.lastMove = m;
   }
 
   private select(r: Row | null): void {
@@ -269,7 +296,7 @@ export class PartControls {
     if (j !== null) {
       const x = draggedCoordinate(j, d.coordinate, [turn.x, turn.y, turn.z, turn.w], [shift.x, shift.y, shift.z]);
       this.lastSent = now;
-      this.net.send(jointMessage(c.name, j, x, coordinateOfPose(j, pose)));
+      this.send(jointMessage(c.name, j, x, coordinateOfPose(j, pose)));
       return;
     }
     if (this.freeMode === 'translate') {
@@ -278,7 +305,7 @@ export class PartControls {
       const here = this.pivot(r);
       const way = Math.hypot(this.proxy.position.x - here[0], this.proxy.position.y - here[1], this.proxy.position.z - here[2]);
       this.lastSent = now;
-      this.net.send({ type: 'move_part', part: c.name, to, duration_s: Math.max(MIN_MOVE_S, way / SLIDE_SPEED_M_S) });
+      this.send({ type: 'move_part', part: c.name, to, duration_s: Math.max(MIN_MOVE_S, way / SLIDE_SPEED_M_S) });
       return;
     }
     if (!final) return;
@@ -288,6 +315,6 @@ export class PartControls {
     const axis: Vec3 = [turn.x * s, turn.y * s, turn.z * s];
     const deg = (angle * 180) / Math.PI;
     this.lastSent = now;
-    this.net.send({ type: 'rotate_part', part: c.name, axis, by_deg: deg, duration_s: Math.max(MIN_MOVE_S, deg / HINGE_SPEED_DEG_S) });
+    this.send({ type: 'rotate_part', part: c.name, axis, by_deg: deg, duration_s: Math.max(MIN_MOVE_S, deg / HINGE_SPEED_DEG_S) });
   }
 }

@@ -3,8 +3,8 @@
 // carry the door's pose, the viewer draws the door's mesh at it and the hose end mounted
 // on the door with it. A hatch whose hinge the scene's timeline describes (a live session
 // starts from the timeline's leading fixes only: the hatch stays shut) gets a hinge slider
-// in the panel: dragging it turns the hatch in the server's snapshot, and the stub on the
-// hatch is drawn with it. Every wait is for a condition (HANG_GUARD_MS only stops a hung test); nothing
+// in the panel and a handle (a ring about the hinge) in the view: dragging either turns the
+// hatch in the server's snapshot, and the stub on the hatch is drawn with it. Every wait is for a condition (HANG_GUARD_MS only stops a hung test); nothing
 // depends on the machine's speed.
 
 import assert from 'node:assert/strict';
@@ -12,7 +12,7 @@ import { mkdtempSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { describe, test } from 'node:test';
-import { openViewer, sharedSession } from './harness.mjs';
+import { framesDrawn, openViewer, sharedSession } from './harness.mjs';
 
 /** The hatch's turn about +x [deg] in the newest snapshot's part poses (null: no pose). */
 function hatchAngle() {
@@ -116,7 +116,7 @@ describe('moving parts', () => {
     await page.close();
   });
 
-  test("dragging the hatch's hinge slider turns it in the server's snapshot; its stub goes with it", async () => {
+  test("dragging the hatch's hinge slider, or its handle in the view, turns it in the server's snapshot; its stub goes with it", async () => {
     const { page } = await openViewer(shared.browser, shared.server.url, { width: 1000, height: 700, query: '?quality=low' });
     await page.addScriptTag({ content: `window.hatchAngle = ${hatchAngle.toString()};` });
     // the hatch's row: a slider over the timeline's hinge, 0 … 40°, at 0° (shut)
@@ -153,6 +153,34 @@ describe('moving parts', () => {
     const a = 2 * Math.atan2(pose.rotation[0], pose.rotation[3]);
     const expected = [0.15, 0.2 + 0.05 * Math.cos(a) - 0.02 * Math.sin(a), 0.3 + 0.05 * Math.sin(a) + 0.02 * Math.cos(a)];
     assert.ok(Math.hypot(...stub.map((x, k) => x - expected[k])) < 1e-9, `stub at ${stub}, expected ${expected} (pose ${JSON.stringify(pose)})`);
+    // the hatch's handle in the view: a ring about the hinge axis; dragging it along the
+    // ring turns the hatch too, in the server's snapshot
+    await page.click('.part-control[data-part="hatch"] .part-handle-button');
+    await page.evaluate(() => window.pliant.lookAt([0.15, 0.2, 0.3], 0.5));
+    await framesDrawn(page, 3);
+    const view = await page.evaluate(() => document.querySelector('#view').getBoundingClientRect().toJSON());
+    const ring = await page.evaluate(() => window.pliant.partHandlePoints('Z'));
+    assert.ok(ring.length > 0, 'the handle is shown');
+    const centre = { x: ring.reduce((a, p) => a + p.x, 0) / ring.length, y: ring.reduce((a, p) => a + p.y, 0) / ring.length };
+    const inside = ring.filter((p) => p.x > view.left + 40 && p.x < view.right - 40 && p.y > view.top + 40 && p.y < view.bottom - 40);
+    assert.ok(inside.length > 0, 'the ring is in the view');
+    // the ring's point farthest from its centre on screen: a drag across the radius there
+    // moves along the ring
+    const grip = inside.reduce((b, p) => (Math.hypot(p.x - centre.x, p.y - centre.y) > Math.hypot(b.x - centre.x, b.y - centre.y) ? p : b));
+    const r = Math.hypot(grip.x - centre.x, grip.y - centre.y);
+    const along = { x: -(grip.y - centre.y) / r, y: (grip.x - centre.x) / r };
+    const before = await page.evaluate(() => window.hatchAngle());
+    await page.mouse.move(grip.x, grip.y);
+    await page.waitForFunction(() => window.pliant.partHandleHovered);
+    await page.mouse.down();
+    for (let k = 1; k <= 10; k++) await page.mouse.move(grip.x + along.x * 6 * k, grip.y + along.y * 6 * k);
+    await page.mouse.up();
+    const move = await page.evaluate(() => window.pliant.lastPartMove);
+    assert.equal(move.type, 'rotate_part');
+    assert.equal(move.part, 'hatch');
+    assert.deepEqual(move.axis, [1, 0, 0]);
+    assert.ok(move.to_deg >= 0 && move.to_deg <= 40 && Math.abs(move.to_deg - before) > 1, `the handle turned the hatch from ${before}° to ${move.to_deg}°`);
+    await page.waitForFunction((t) => Math.abs(window.hatchAngle() - t) < 1e-6, move.to_deg);
     await page.close();
   });
 });
