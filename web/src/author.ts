@@ -12,7 +12,7 @@
 // runs it.
 
 import * as THREE from 'three';
-import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
+import type { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
 import type { Net } from './net';
 import type { FastenerData, LibraryHose, SceneSourceMessage, Vec3 } from './protocol';
 import { download } from './record';
@@ -89,13 +89,8 @@ export class Author {
   constructor(private readonly stage: Stage, private readonly net: Net, panel: HTMLElement, private readonly cb: AuthorCallbacks) {
     this.group.name = 'author';
     stage.world.add(this.group);
-    this.gizmo = new TransformControls(stage.camera, stage.renderer.domElement);
-    this.gizmo.setSize(0.7);
-    stage.scene.add(this.gizmo.getHelper());
-    this.gizmo.addEventListener('dragging-changed', (e) => {
-      const on = (e as unknown as { value: boolean }).value;
+    this.gizmo = stage.handle(0.7, (on) => {
       this.gizmoDragging = on;
-      stage.controls.enabled = !on;
       if (on) {
         this.gizmoUsed = true;
         this.dragBefore = this.snapshot();

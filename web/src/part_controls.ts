@@ -6,7 +6,7 @@
 // Which parts move and how is read from the scene document (part_joints.ts).
 
 import * as THREE from 'three';
-import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
+import type { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
 import type { Net } from './net';
 import { el } from './panel';
 import {
@@ -51,15 +51,7 @@ export class PartControls {
   constructor(stage: Stage, private readonly net: Net, private readonly slot: HTMLElement) {
     this.proxy.name = 'part-handle';
     stage.world.add(this.proxy);
-    this.gizmo = new TransformControls(stage.camera, stage.renderer.domElement);
-    this.gizmo.setSize(0.8);
-    stage.scene.add(this.gizmo.getHelper());
-    this.gizmo.addEventListener('dragging-changed', (e) => {
-      const on = (e as unknown as { value: boolean }).value;
-      stage.controls.enabled = !on;
-      if (on) this.startDrag();
-      else this.endDrag();
-    });
+    this.gizmo = stage.handle(0.8, (on) => (on ? this.startDrag() : this.endDrag()));
     this.gizmo.addEventListener('objectChange', () => this.dragged(false));
     this.showRows();
   }

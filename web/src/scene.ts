@@ -5,6 +5,7 @@
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
 import { HIGHLIGHT_GLOW, setQuality, surface, type Quality, type SurfaceMaterial } from './materials';
 import { carry } from './part_joints';
 import type { FastenerData, PartPose, SceneData, Vec3 } from './protocol';
@@ -253,6 +254,20 @@ export class Stage {
    * transforms are the parts' poses). */
   partMeshes(): THREE.Mesh[] {
     return this.content.children.filter((c): c is THREE.Mesh => c.name.startsWith('part:') && (c as THREE.Mesh).isMesh);
+  }
+
+  /** A drag handle (TransformControls) of `size` in this stage: the view does not orbit
+   *  while it is dragged; `dragging(on)` is told when a drag starts and ends. */
+  handle(size: number, dragging: (on: boolean) => void): TransformControls {
+    const gizmo = new TransformControls(this.camera, this.renderer.domElement);
+    gizmo.setSize(size);
+    this.scene.add(gizmo.getHelper());
+    gizmo.addEventListener('dragging-changed', (e) => {
+      const on = (e as unknown as { value: boolean }).value;
+      this.controls.enabled = !on;
+      dragging(on);
+    });
+    return gizmo;
   }
 
   get groundObject(): THREE.Object3D | null {
