@@ -66,10 +66,13 @@ pub const MAX_INTERVAL_RATIO: f64 = 100.0;
 
 const MAX_ITERATIONS: usize = 500;
 
-fn to_value(scale: Scale, u: f64) -> f64 {
+/// The parameter's value from its search variable u: e^u, or u × `typical` (a linear
+/// parameter is searched in units of its start's magnitude, so that every column of the
+/// Jacobian has a like scale).
+fn to_value(scale: Scale, typical: f64, u: f64) -> f64 {
     match scale {
         Scale::Log => u.exp(),
-        Scale::Linear { .. } => u,
+        Scale::Linear { .. } => u * typical,
     }
 }
 
@@ -93,11 +96,21 @@ where
     if n <= m || m == 0 {
         return None;
     }
+    // a linear parameter's unit: its start's magnitude
+    let typical: Vec<f64> = parameters
+        .iter()
+        .map(|p| match p.scale {
+            Scale::Log => 1.0,
+            Scale::Linear { .. } if p.start != 0.0 => p.start.abs(),
+            Scale::Linear { .. } => 1.0,
+        })
+        .collect();
     let values = |u: &[f64]| -> Vec<f64> {
         parameters
             .iter()
             .zip(u)
-            .map(|(p, u)| to_value(p.scale, *u))
+            .zip(&typical)
+            .map(|((p, u), t)| to_value(p.scale, *t, *u))
             .collect()
     };
     let clamp = |u: &mut [f64]| {
@@ -109,28 +122,21 @@ where
     };
     let mut u: Vec<f64> = parameters
         .iter()
-        .map(|p| match p.scale {
+        .zip(&typical)
+        .map(|(p, t)| match p.scale {
             Scale::Log => p.start.ln(),
-            Scale::Linear { .. } => p.start,
+            Scale::Linear { .. } => p.start / t,
         })
         .collect();
     if u.iter().any(|u| !u.is_finite()) {
         return None;
     }
-    // a linear parameter's step scale: its start's magnitude (or the largest one's)
-    let typical: Vec<f64> = parameters
-        .iter()
-        .map(|p| match p.scale {
-            Scale::Log => 1.0,
-            Scale::Linear { .. } => p.start.abs().max(1e-300),
-        })
-        .collect();
     let predict = |u: &[f64]| model(&values(u));
     let mut cost = ssr_of(&model, y, &values(&u))?;
     let jacobian = |u: &[f64]| -> Option<DMatrix<f64>> {
         let mut j = DMatrix::zeros(n, m);
         for k in 0..m {
-            let h = 1e-6 * typical[k].max(u[k].abs() * 1e-3).max(1e-300);
+            let h = 1e-6 * u[k].abs().max(1e-3);
             let mut up = u.to_vec();
             let mut down = u.to_vec();
             up[k] += h;
@@ -172,8 +178,7 @@ where
                     let small = trial
                         .iter()
                         .zip(&u)
-                        .zip(&typical)
-                        .all(|((t, u), s)| (t - u).abs() <= 1e-13 * s.max(u.abs()));
+                        .all(|(t, u)| (t - u).abs() <= 1e-13 * u.abs().max(1.0));
                     let gain = cost - c;
                     u = trial;
                     lambda = (lambda / 3.0).max(1e-12);
@@ -223,9 +228,14 @@ where
                     (ci, se.is_finite() && ci[1] <= MAX_INTERVAL_RATIO * ci[0])
                 }
                 Scale::Linear { .. } => {
+                    let se = se * typical[k];
                     let ci = [v[k] - t * se, v[k] + t * se];
                     (ci, se.is_finite())
                 }
+            };
+            let se = match p.scale {
+                Scale::Log => se,
+                Scale::Linear { .. } => se * typical[k],
             };
             Estimate {
                 name: p.name.to_string(),
