@@ -367,3 +367,101 @@ fn no_fit_of_a_law_yields_a_non_finite_number() {
         }
     }
 }
+
+/// A calibration of `tests` (kind, CSV text) on the 10/12 mm tube, its material.toml
+/// loaded into a scene: the hose's material as the simulator gets it.
+fn calibrated_material(tests: &[(TestKind, String)]) -> pliant_core::Material {
+    let mut toml = format!(
+        "name = \"calibrated\"\nd_inner_mm = {}\nd_outer_mm = {}\ndensity_kg_m3 = 2700\n",
+        D_INNER * 1e3,
+        D_OUTER * 1e3
+    );
+    let mut curves = Vec::new();
+    for (i, (kind, csv)) in tests.iter().enumerate() {
+        toml.push_str(&format!(
+            "[[tests]]\nkind = \"{}\"\ncsv = \"c{i}.csv\"\n",
+            kind.name()
+        ));
+        curves.push((format!("c{i}.csv"), csv.clone()));
+    }
+    let spec = pliant_calibrate::Spec::parse(&toml, "cal.toml").unwrap();
+    let c = pliant_calibrate::calibrate_texts(spec, &curves, "cal.toml").unwrap();
+    let scene = format!(
+        "format = \"pliant-scene\"\nversion = 1\nlength_unit = \"mm\"\n\n{}\n\
+         [[hoses]]\nname = \"h\"\nmaterial = \"calibrated\"\nsection = {{ d_inner = 10, d_outer = 12 }}\n\
+         elements = 10\nstart = [0, 0, 0]\npath = [{{ line = {{ to = [500, 0, 0] }} }}]\n",
+        c.material_toml()
+    );
+    assert!(c.html().matches("<svg").count() >= 2 * tests.len());
+    let loaded = pliant_scene::load_scene_str(&scene, "calibrated.toml")
+        .unwrap_or_else(|e| panic!("{e}\n{scene}"));
+    loaded.world.hoses[0].material.clone()
+}
+
+#[test]
+fn the_fitted_laws_load_into_a_scene() {
+    // yield: the material as written (6 significant digits) is the truth
+    let section = syn::fine_section(D_INNER, D_OUTER, E_ALU, POISSON, &YIELD, (64, 4096));
+    let (kappa, m) = plastic_curve(&section);
+    let mat = calibrated_material(&[(
+        TestKind::PlasticBending,
+        two_column_csv(PLASTIC_HEADER, &kappa, &m, 0.0, 1),
+    )]);
+    let law = mat.plasticity.expect("yields");
+    assert!(rel(law.yield_stress, YIELD.yield_stress) < 1e-5, "{law:?}");
+    assert!(
+        rel(law.hardening_modulus, YIELD.hardening_modulus) < 1e-5,
+        "{law:?}"
+    );
+    assert!(rel(mat.bending_modulus(), E_ALU) < 1e-5);
+    // Dahl friction, with EI
+    let sec = Section::new(D_INNER, D_OUTER);
+    let kappa = syn::cycles(5.0, 2, 120);
+    let m = syn::cyclic_moments(&syn::hysteretic_material(10e6, hysteresis()), &sec, &kappa);
+    let mat = calibrated_material(&[(
+        TestKind::CyclicBending,
+        two_column_csv("curvature_1_m,moment_Nm", &kappa, &m, 0.0, 1),
+    )]);
+    let h = mat.hysteresis.expect("rubs");
+    assert!(
+        rel(h.bending.moment, DAHL.moment) < 1e-5
+            && rel(h.bending.curvature, DAHL.curvature) < 1e-5
+    );
+    assert!(rel(mat.bending_modulus(), 10e6) < 1e-5);
+    // relaxation, with a tension test for the instantaneous modulus
+    let (t, force) = relaxation_curve(&TERMS);
+    let strain: Vec<f64> = (0..50).map(|i| i as f64 * 1e-3).collect();
+    let stress: Vec<f64> = strain.iter().map(|e| 10e6 * e * 1e-6).collect();
+    let mat = calibrated_material(&[
+        (
+            TestKind::Tension,
+            two_column_csv("strain,stress_MPa", &strain, &stress, 1e-4, 2),
+        ),
+        (
+            TestKind::Relaxation,
+            two_column_csv("time_s,force_N", &t, &force, 0.0, 1),
+        ),
+    ]);
+    assert_eq!(mat.relaxation.len(), 2);
+    for (got, want) in mat.relaxation.iter().zip(TERMS) {
+        assert!(
+            rel(got.weight, want.weight) < 1e-5 && rel(got.time, want.time) < 1e-5,
+            "{got:?}"
+        );
+    }
+    // two laws in one material: an error naming the rule
+    let e = pliant_calibrate::calibrate_texts(
+        pliant_calibrate::Spec::parse(
+            "name = \"x\"\nd_inner_mm = 10\nd_outer_mm = 12\ndensity_kg_m3 = 1\n[[tests]]\nkind = \"cyclic_bending\"\ncsv = \"a.csv\"\n[[tests]]\nkind = \"relaxation\"\ncsv = \"b.csv\"\n",
+            "two.toml",
+        )
+        .unwrap(),
+        &[
+            ("a.csv".into(), two_column_csv("curvature_1_m,moment_Nm", &kappa, &m, 0.0, 1)),
+            ("b.csv".into(), two_column_csv("time_s,force_N", &t, &force, 0.0, 1)),
+        ],
+        "two.toml",
+    )
+    .unwrap_err();
+    assert!(e.message.contains("not two of these"), "{e}");
+}
