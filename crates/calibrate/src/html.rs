@@ -221,7 +221,18 @@ pub fn residual_plot(t: &TestFit) -> String {
         c.x_label,
         &format!("residual [{}]", unit_of(c.y_label)),
     );
-    for s in [2.0 * r.noise_std, -2.0 * r.noise_std] {
+    residual_marks(&mut svg, &f, (&xs, &res), 2.0 * r.noise_std);
+    let _ = write!(
+        svg,
+        "<text x=\"{:.1}\" y=\"16\" font-size=\"12\">residuals in the linear range; dashed: ±2σ of the scatter estimated from the whole curve</text></svg>",
+        f.left
+    );
+    svg
+}
+
+/// The residuals `res` at `xs` as points, between dashed lines at ±`band`.
+pub(crate) fn residual_marks(svg: &mut String, f: &Frame, (xs, res): (&[f64], &[f64]), band: f64) {
+    for s in [band, -band] {
         let _ = write!(
             svg,
             "<line x1=\"{}\" y1=\"{1:.1}\" x2=\"{2}\" y2=\"{1:.1}\" stroke=\"#c80\" stroke-dasharray=\"4 3\"/>",
@@ -238,12 +249,6 @@ pub fn residual_plot(t: &TestFit) -> String {
             f.py(res[i])
         );
     }
-    let _ = write!(
-        svg,
-        "<text x=\"{:.1}\" y=\"16\" font-size=\"12\">residuals in the linear range; dashed: ±2σ of the scatter estimated from the whole curve</text></svg>",
-        f.left
-    );
-    svg
 }
 
 pub(crate) fn unit_of(label: &str) -> &str {

@@ -2,7 +2,7 @@
 //! through them, the residuals along the curve with ±2 s, and the table of the
 //! parameters with their intervals and the checks.
 
-use crate::html::{escape, min_max, row, thin, unit_of, Frame};
+use crate::html::{escape, min_max, residual_marks, row, thin, unit_of, Frame};
 use crate::law_fit::LawFit;
 use std::fmt::Write as _;
 
@@ -90,23 +90,7 @@ pub fn residual_plot(l: &LawFit) -> String {
         "data row",
         &format!("residual [{}]", unit_of(&l.y_label)),
     );
-    for s in [band, -band] {
-        let _ = write!(
-            svg,
-            "<line x1=\"{}\" y1=\"{1:.1}\" x2=\"{2}\" y2=\"{1:.1}\" stroke=\"#c80\" stroke-dasharray=\"4 3\"/>",
-            f.left,
-            f.py(s),
-            f.w - f.right
-        );
-    }
-    for i in thin(res.len(), 3000) {
-        let _ = write!(
-            svg,
-            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"2\" fill=\"#1f4e99\"/>",
-            f.px(idx[i]),
-            f.py(res[i])
-        );
-    }
+    residual_marks(&mut svg, &f, (&idx, &res), band);
     let _ = write!(
         svg,
         "<text x=\"{:.1}\" y=\"16\" font-size=\"12\">residuals along the curve (in the order recorded); dashed: ±2 s of the fit</text></svg>",

@@ -12,8 +12,9 @@
 //! least squares: the yield stress and hardening from a bending test past yield with
 //! unloading ([`yield_fit`]), Prony terms from a relaxation test ([`relaxation_fit`]),
 //! Dahl's friction pair from a cyclic bending or torsion test ([`dahl_fit`]), each with
-//! its intervals ([`nonlinear_least_squares`], shared parts in [`law_fit`]; curves from
-//! the simulator's own laws in [`synthetic_laws`]).
+//! its intervals ([`nonlinear_least_squares`], shared parts in [`law_fit`], the
+//! material's entries in [`law_entry`], the page's part in [`law_html`]; curves from the
+//! simulator's own laws in [`synthetic_laws`]).
 //!
 //! One concept per module: [`csv_input`] (reading curves, units to SI), [`linear_range`]
 //! (finding the range), [`least_squares`] and [`student_t`] (the fit and its interval),

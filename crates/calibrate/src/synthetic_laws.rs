@@ -173,10 +173,16 @@ pub fn held_strain_force(
         .collect()
 }
 
-/// The bending moment \[N·m\] of a hysteretic element of `material` and `section`
-/// (length 1 mm) bent uniformly through the curvatures `kappa` in order (end rotations
-/// ∓κ l/2 about the section's y axis), each committed as an accepted step.
-pub fn cyclic_moments(material: &Material, section: &Section, kappa: &[f64]) -> Vec<f64> {
+/// The moment \[N·m\] of a hysteretic element of `material` and `section` (length
+/// 1 mm) bent (`axis` 1: about the section's y axis) or twisted (`axis` 0) uniformly
+/// through the curvatures or twist rates `kappa` in order (end rotations ∓κ l/2), each
+/// committed as an accepted step.
+pub fn cyclic_moments(
+    material: &Material,
+    section: &Section,
+    kappa: &[f64],
+    axis: usize,
+) -> Vec<f64> {
     let length = 0.001;
     let (registry, e) = element(material, section, length);
     let Some(inelastic) = e.inelastic else {
@@ -186,18 +192,19 @@ pub fn cyclic_moments(material: &Material, section: &Section, kappa: &[f64]) -> 
     kappa
         .iter()
         .map(|k| {
-            let half = 0.5 * k * length;
+            let mut half = DVec3::ZERO;
+            half[axis.min(2)] = 0.5 * k * length;
             let x = [DVec3::ZERO, DVec3::new(length, 0.0, 0.0)];
             let q = [
-                pliant_core::math::exp_map(DVec3::new(0.0, -half, 0.0)),
-                pliant_core::math::exp_map(DVec3::new(0.0, half, 0.0)),
+                pliant_core::math::exp_map(-half),
+                pliant_core::math::exp_map(half),
             ];
             let ends = ElementEnds::still(x, q);
             let view = HistoryView {
                 values: &history,
                 age: 0.0,
             };
-            let m = registry.loads(&e, &inelastic, view, &ends, 0.0).moment[1].y;
+            let m = registry.loads(&e, &inelastic, view, &ends, 0.0).moment[1][axis.min(2)];
             registry.commit(
                 std::slice::from_ref(&e),
                 (&x[..], &q[..]),

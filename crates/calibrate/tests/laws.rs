@@ -301,6 +301,7 @@ fn dahls_pair_is_recovered_from_a_hysteretic_element() {
         &syn::hysteretic_material(e_rubber, hysteresis()),
         &section,
         &kappa,
+        1,
     );
     let csv = two_column_csv("curvature_1_m,moment_Nm", &kappa, &m, 0.0, 1);
     let f = fit(TestKind::CyclicBending, &csv, None).unwrap();
@@ -417,7 +418,12 @@ fn the_fitted_laws_load_into_a_scene() {
     // Dahl friction, with EI
     let sec = Section::new(D_INNER, D_OUTER);
     let kappa = syn::cycles(5.0, 2, 120);
-    let m = syn::cyclic_moments(&syn::hysteretic_material(10e6, hysteresis()), &sec, &kappa);
+    let m = syn::cyclic_moments(
+        &syn::hysteretic_material(10e6, hysteresis()),
+        &sec,
+        &kappa,
+        1,
+    );
     let mat = calibrated_material(&[(
         TestKind::CyclicBending,
         two_column_csv("curvature_1_m,moment_Nm", &kappa, &m, 0.0, 1),
@@ -464,4 +470,38 @@ fn the_fitted_laws_load_into_a_scene() {
     )
     .unwrap_err();
     assert!(e.message.contains("not two of these"), "{e}");
+}
+
+#[test]
+fn dahls_pair_in_torsion_is_recovered_from_a_twisted_element() {
+    let section = Section::new(D_INNER, D_OUTER);
+    let torsion = DahlLaw {
+        moment: 0.01,
+        curvature: 0.8,
+    };
+    let law = Hysteresis {
+        bending: DAHL,
+        torsion: Some(torsion),
+    };
+    let material = syn::hysteretic_material(10e6, law);
+    let gj = pliant_core::SectionProperties::of(&section, &material).torsion;
+    let rate = syn::cycles(6.0, 2, 120);
+    let torque = syn::cyclic_moments(&material, &section, &rate, 0);
+    // the rig's angle over grips 250 mm apart, in degrees
+    let length = 0.25;
+    let angle: Vec<f64> = rate
+        .iter()
+        .map(|r| r * length * 180.0 / std::f64::consts::PI)
+        .collect();
+    let csv = two_column_csv("angle_deg,torque_Nm", &angle, &torque, 0.0, 1);
+    let f = fit(TestKind::CyclicTorsion, &csv, Some(length)).unwrap();
+    let errors = [
+        rel(value(&f, "GJ"), gj),
+        rel(value(&f, "M_s_torsion"), torsion.moment),
+        rel(value(&f, "kappa_s_torsion"), torsion.curvature),
+    ];
+    println!("cyclic torsion: relative errors GJ, M_s, κ_s = {errors:?}");
+    assert!(errors.iter().all(|e| *e < EXACT_TOLERANCE), "{errors:?}");
+    let e = fit(TestKind::CyclicTorsion, &csv, None).unwrap_err();
+    assert!(e.message.contains("length_mm"), "{e}");
 }
