@@ -1,9 +1,9 @@
 //! Reading a test curve from CSV. The header names each column's quantity and unit
 //! (`force_N`, `displacement_mm`, `stress_MPa`, `strain`, `strain_percent`,
-//! `torque_Nm`, `angle_deg`, `bend_radius_mm`, `plate_distance_mm`, `curvature_1_m`, …);
-//! values are converted to SI here, at the file boundary, and nowhere else. Columns of
-//! other quantities (e.g. `time_s`) are allowed and ignored. Blank lines and lines
-//! starting with `#` are skipped.
+//! `torque_Nm`, `angle_deg`, `bend_radius_mm`, `plate_distance_mm`, `curvature_1_m`,
+//! `time_s`, …); values are converted to SI here, at the file boundary, and nowhere else.
+//! Columns of other quantities are allowed and ignored, as is a time column where the
+//! test does not use it. Blank lines and lines starting with `#` are skipped.
 
 use crate::error::CalibError;
 
@@ -28,10 +28,12 @@ pub enum Quantity {
     PlateDistance,
     /// Curvature [1/m].
     Curvature,
+    /// Time since the strain was applied \[s\] (relaxation tests).
+    Time,
 }
 
 /// Names (header prefixes) of each quantity, longest first where they overlap.
-const NAMES: [(&str, Quantity); 17] = [
+const NAMES: [(&str, Quantity); 18] = [
     ("plate_distance", Quantity::PlateDistance),
     ("bend_radius", Quantity::BendRadius),
     ("displacement", Quantity::Displacement),
@@ -49,6 +51,7 @@ const NAMES: [(&str, Quantity); 17] = [
     ("force", Quantity::Force),
     ("angle", Quantity::Angle),
     ("twist", Quantity::Angle),
+    ("time", Quantity::Time),
 ];
 
 impl Quantity {
@@ -83,6 +86,7 @@ impl Quantity {
             Quantity::Torque => &[("nm", 1.0), ("nmm", 1e-3)],
             Quantity::Angle => &[("rad", 1.0), ("deg", std::f64::consts::PI / 180.0)],
             Quantity::Curvature => &[("1m", 1.0), ("perm", 1.0), ("1mm", 1e3), ("permm", 1e3)],
+            Quantity::Time => &[("s", 1.0), ("ms", 1e-3), ("min", 60.0), ("h", 3600.0)],
         }
     }
 
@@ -98,6 +102,7 @@ impl Quantity {
             Quantity::BendRadius => "bend_radius_mm",
             Quantity::PlateDistance => "plate_distance_mm",
             Quantity::Curvature => "curvature_1_m",
+            Quantity::Time => "time_s",
         }
     }
 }

@@ -93,7 +93,12 @@ pub fn fit_test(
             "the linear range's points all share one x: nothing to fit",
         )
     })?;
-    let property = kind.property();
+    let property = kind.property().ok_or_else(|| {
+        CalibError::file(
+            file,
+            format!("a {} test measures no stiffness", kind.name()),
+        )
+    })?;
     let (symbol, unit, scale) = property.display();
     let f = curve.factor;
     let value = f * line.slope;

@@ -3,6 +3,7 @@
 //! One self-contained HTML file, no scripts.
 
 use crate::fit::TestFit;
+use crate::law_fit::LawFit;
 use crate::material_entry::{num, Derived, MaterialResult};
 use std::fmt::Write as _;
 
@@ -34,31 +35,31 @@ fn ticks(lo: f64, hi: f64) -> Vec<f64> {
 }
 
 /// Plot frame: maps data (display units) to pixels.
-struct Frame {
-    w: f64,
-    h: f64,
-    left: f64,
-    right: f64,
-    top: f64,
-    bottom: f64,
-    x0: f64,
-    x1: f64,
-    y0: f64,
-    y1: f64,
+pub(crate) struct Frame {
+    pub(crate) w: f64,
+    pub(crate) h: f64,
+    pub(crate) left: f64,
+    pub(crate) right: f64,
+    pub(crate) top: f64,
+    pub(crate) bottom: f64,
+    pub(crate) x0: f64,
+    pub(crate) x1: f64,
+    pub(crate) y0: f64,
+    pub(crate) y1: f64,
 }
 
 impl Frame {
-    fn px(&self, x: f64) -> f64 {
+    pub(crate) fn px(&self, x: f64) -> f64 {
         self.left + (self.w - self.left - self.right) * (x - self.x0) / (self.x1 - self.x0)
     }
-    fn py(&self, y: f64) -> f64 {
+    pub(crate) fn py(&self, y: f64) -> f64 {
         self.h
             - self.bottom
             - (self.h - self.top - self.bottom) * (y - self.y0) / (self.y1 - self.y0)
     }
 
     /// Axes, grid, ticks and labels.
-    fn axes(&self, svg: &mut String, x_label: &str, y_label: &str) {
+    pub(crate) fn axes(&self, svg: &mut String, x_label: &str, y_label: &str) {
         let (l, r, t, b) = (
             self.left,
             self.w - self.right,
@@ -102,7 +103,7 @@ impl Frame {
 }
 
 /// Every k-th index so that at most `max` points are drawn (the range's ends always).
-fn thin(n: usize, max: usize) -> Vec<usize> {
+pub(crate) fn thin(n: usize, max: usize) -> Vec<usize> {
     let k = n.div_ceil(max).max(1);
     (0..n).filter(|i| i % k == 0 || *i == n - 1).collect()
 }
@@ -220,7 +221,18 @@ pub fn residual_plot(t: &TestFit) -> String {
         c.x_label,
         &format!("residual [{}]", unit_of(c.y_label)),
     );
-    for s in [2.0 * r.noise_std, -2.0 * r.noise_std] {
+    residual_marks(&mut svg, &f, (&xs, &res), 2.0 * r.noise_std);
+    let _ = write!(
+        svg,
+        "<text x=\"{:.1}\" y=\"16\" font-size=\"12\">residuals in the linear range; dashed: ±2σ of the scatter estimated from the whole curve</text></svg>",
+        f.left
+    );
+    svg
+}
+
+/// The residuals `res` at `xs` as points, between dashed lines at ±`band`.
+pub(crate) fn residual_marks(svg: &mut String, f: &Frame, (xs, res): (&[f64], &[f64]), band: f64) {
+    for s in [band, -band] {
         let _ = write!(
             svg,
             "<line x1=\"{}\" y1=\"{1:.1}\" x2=\"{2}\" y2=\"{1:.1}\" stroke=\"#c80\" stroke-dasharray=\"4 3\"/>",
@@ -237,33 +249,27 @@ pub fn residual_plot(t: &TestFit) -> String {
             f.py(res[i])
         );
     }
-    let _ = write!(
-        svg,
-        "<text x=\"{:.1}\" y=\"16\" font-size=\"12\">residuals in the linear range; dashed: ±2σ of the scatter estimated from the whole curve</text></svg>",
-        f.left
-    );
-    svg
 }
 
-fn unit_of(label: &str) -> &str {
+pub(crate) fn unit_of(label: &str) -> &str {
     label
         .rfind('[')
         .map(|i| label[i + 1..].trim_end_matches(']'))
         .unwrap_or("")
 }
 
-fn min_max(v: &[f64]) -> (f64, f64) {
+pub(crate) fn min_max(v: &[f64]) -> (f64, f64) {
     v.iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
             (a.min(*x), b.max(*x))
         })
 }
 
-fn row(s: &mut String, k: &str, v: &str) {
+pub(crate) fn row(s: &mut String, k: &str, v: &str) {
     let _ = write!(s, "<tr><th>{}</th><td>{}</td></tr>", escape(k), escape(v));
 }
 
-fn material_row(s: &mut String, key: &str, d: &Derived) {
+pub(crate) fn material_row(s: &mut String, key: &str, d: &Derived) {
     let (what, text) = match (&d.source, &d.assumption) {
         (Some(t), _) => ("source", t.as_str()),
         (None, Some(a)) => ("assumption", a.as_str()),
@@ -286,7 +292,13 @@ fn material_row(s: &mut String, key: &str, d: &Derived) {
 }
 
 /// The whole page.
-pub fn page(origin: &str, fits: &[TestFit], m: &MaterialResult, material_toml: &str) -> String {
+pub fn page(
+    origin: &str,
+    fits: &[TestFit],
+    laws: &[LawFit],
+    m: &MaterialResult,
+    material_toml: &str,
+) -> String {
     let mut s = String::from(
         "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>Pliant calibration</title><style>\
          body{font-family:sans-serif;margin:24px;max-width:1000px;color:#222}\
@@ -296,10 +308,10 @@ pub fn page(origin: &str, fits: &[TestFit], m: &MaterialResult, material_toml: &
     );
     let _ = write!(
         s,
-        "<h1>Material calibration: {}</h1><p>From <code>{}</code>: {} test(s); tested section d<sub>i</sub> = {} mm, d<sub>a</sub> = {} mm. Method: least squares over the linear range, found automatically (docs/calibration.md).</p>",
+        "<h1>Material calibration: {}</h1><p>From <code>{}</code>: {} test(s); tested section d<sub>i</sub> = {} mm, d<sub>a</sub> = {} mm. Method: least squares over the linear range, found automatically; inelastic laws fitted to the whole curve by nonlinear least squares (docs/calibration.md).</p>",
         escape(&m.name),
         escape(origin),
-        fits.len(),
+        fits.len() + laws.len(),
         num(m.d_inner_mm),
         num(m.d_outer_mm)
     );
@@ -323,7 +335,13 @@ pub fn page(origin: &str, fits: &[TestFit], m: &MaterialResult, material_toml: &
     if let Some(g) = &m.gj_n_m2 {
         material_row(&mut s, "GJ of the tested section [N·m²]", g);
     }
+    for (k, d) in m.laws.values() {
+        material_row(&mut s, k, d);
+    }
     s.push_str("</table>");
+    for f in laws {
+        s.push_str(&crate::law_html::section(f));
+    }
     for t in fits {
         let r = &t.range;
         let _ = write!(

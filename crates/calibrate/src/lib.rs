@@ -8,6 +8,14 @@
 //! and the fits plotted (`calibration.html`). The method is documented in
 //! docs/calibration.md.
 //!
+//! The inelastic laws (SPEC X1, X2) are fitted whole to their test curves by nonlinear
+//! least squares: the yield stress and hardening from a bending test past yield with
+//! unloading ([`yield_fit`]), Prony terms from a relaxation test ([`relaxation_fit`]),
+//! Dahl's friction pair from a cyclic bending or torsion test ([`dahl_fit`]), each with
+//! its intervals ([`nonlinear_least_squares`], shared parts in [`law_fit`], the
+//! material's entries in [`law_entry`], the page's part in [`law_html`]; curves from the
+//! simulator's own laws in [`synthetic_laws`]).
+//!
 //! One concept per module: [`csv_input`] (reading curves, units to SI), [`linear_range`]
 //! (finding the range), [`least_squares`] and [`student_t`] (the fit and its interval),
 //! [`mechanics`] (each test's formula), [`fit`] (one test), [`material_entry`] (the
@@ -15,19 +23,28 @@
 //! [`synthetic`] (curves with known answers).
 
 pub mod csv_input;
+pub mod dahl_fit;
 pub mod error;
 pub mod fit;
 pub mod html;
+pub mod law_entry;
+pub mod law_fit;
+pub mod law_html;
 pub mod least_squares;
 pub mod linear_range;
 pub mod material_entry;
 pub mod mechanics;
+pub mod nonlinear_least_squares;
+pub mod relaxation_fit;
 pub mod spec;
 pub mod student_t;
 pub mod synthetic;
+pub mod synthetic_laws;
+pub mod yield_fit;
 
 pub use error::CalibError;
 pub use fit::{fit_test, RangeReport, TestFit};
+pub use law_fit::{fit_law, LawFit};
 pub use material_entry::MaterialResult;
 pub use mechanics::{Geometry, Property, TestKind};
 pub use spec::{Spec, TestSpec};
@@ -53,7 +70,10 @@ pub struct Calibration {
     /// The calibration file (or a description of the inputs), for messages and sources.
     pub origin: String,
     pub spec: Spec,
+    /// The stiffness tests' fits.
     pub fits: Vec<TestFit>,
+    /// The inelastic laws' fits.
+    pub laws: Vec<LawFit>,
     pub material: MaterialResult,
 }
 
@@ -99,6 +119,7 @@ pub fn calibrate_texts(
         ));
     }
     let mut fits = Vec::with_capacity(spec.tests.len());
+    let mut laws = Vec::new();
     for (t, (shown, text)) in spec.tests.iter().zip(curves) {
         let table = csv_input::parse(text, shown)?;
         let g = Geometry {
@@ -106,9 +127,14 @@ pub fn calibrate_texts(
             d_outer: t.d_outer_mm.unwrap_or(spec.d_outer_mm) * 1e-3,
             length: t.length_mm.map(|l| l * 1e-3),
         };
-        fits.push(fit_test(t.kind, &t.csv, &table, g)?);
+        if t.kind.is_law() {
+            laws.push(fit_law(t.kind, &t.csv, &table, g)?);
+        } else {
+            fits.push(fit_test(t.kind, &t.csv, &table, g)?);
+        }
     }
-    let material = material_entry::derive(&spec, &fits, &short_origin(origin));
+    let material = material_entry::derive(&spec, &fits, &laws, &short_origin(origin))
+        .map_err(|m| CalibError::file(origin, m))?;
     if let Some((key, value)) = material.first_non_finite() {
         return Err(CalibError::file(
             origin,
@@ -121,6 +147,7 @@ pub fn calibrate_texts(
         origin: origin.to_string(),
         spec,
         fits,
+        laws,
         material,
     })
 }
@@ -147,6 +174,7 @@ impl Calibration {
             "origin": self.origin,
             "material": self.material,
             "tests": self.fits,
+            "laws": self.laws,
         })
     }
 
@@ -155,6 +183,7 @@ impl Calibration {
         html::page(
             &self.origin,
             &self.fits,
+            &self.laws,
             &self.material,
             &self.material_toml(),
         )

@@ -22,7 +22,9 @@
 //! standard error 1/√Σwᵢ, and a 95 % interval ±1.96 se (normal approximation).
 
 use crate::fit::TestFit;
-use crate::mechanics::{Property, TestKind};
+use crate::law_entry::{self, LawEntries};
+use crate::law_fit::LawFit;
+use crate::mechanics::{Geometry, Property, TestKind};
 use crate::spec::Spec;
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -43,7 +45,7 @@ pub struct Derived {
 }
 
 impl Derived {
-    fn source(value: f64, ci95: Option<[f64; 2]>, s: String) -> Self {
+    pub(crate) fn source(value: f64, ci95: Option<[f64; 2]>, s: String) -> Self {
         Self {
             value,
             ci95,
@@ -59,7 +61,7 @@ impl Derived {
             assumption: Some(a),
         }
     }
-    fn provenance(&self) -> (&'static str, &str) {
+    pub(crate) fn provenance(&self) -> (&'static str, &str) {
         match (&self.source, &self.assumption) {
             (Some(s), _) => ("source", s),
             (None, Some(a)) => ("assumption", a),
@@ -86,6 +88,9 @@ pub struct MaterialResult {
     pub gj_n_m2: Option<Derived>,
     /// Whether the material reproduces the measured GJ (else give it in the section).
     pub gj_held_by_material: bool,
+    /// The inelastic law fitted (yield, relaxation or hysteresis), if any.
+    #[serde(flatten)]
+    pub laws: LawEntries,
     pub warnings: Vec<String>,
 }
 
@@ -113,6 +118,7 @@ impl MaterialResult {
                 derived
                     .into_iter()
                     .filter_map(|(k, d)| d.map(|d| (k, d)))
+                    .chain(self.laws.values())
                     .flat_map(|(k, d)| {
                         std::iter::once((k, d.value))
                             .chain(d.ci95.into_iter().flatten().map(move |b| (k, b)))
@@ -138,6 +144,32 @@ pub fn num(v: f64) -> String {
         s.trim_end_matches('.').to_string()
     } else {
         s
+    }
+}
+
+/// A stiffness one test measured (a stiffness test's slope, or the elastic part of a
+/// law fit), with the test's description for a source line.
+#[derive(Clone, Debug)]
+pub struct Measured {
+    pub property: Property,
+    /// SI, with its standard error and 95 % interval.
+    pub value: f64,
+    pub std_error: f64,
+    pub ci95: [f64; 2],
+    pub geometry: Geometry,
+    pub description: String,
+}
+
+impl Measured {
+    fn of_test(t: &TestFit) -> Self {
+        Self {
+            property: t.property,
+            value: t.value,
+            std_error: t.std_error,
+            ci95: t.ci95,
+            geometry: t.geometry,
+            description: describe(t),
+        }
     }
 }
 
@@ -187,14 +219,34 @@ fn reduced(e_t: f64, e_c: f64) -> f64 {
     4.0 * e_t * e_c / (s * s)
 }
 
-/// Builds the material from the fits (`origin` names the calibration file).
-pub fn derive(spec: &Spec, fits: &[TestFit], origin: &str) -> MaterialResult {
+/// Builds the material from the stiffness tests' `fits` and the `laws` (`origin` names
+/// the calibration file); an error when the laws cannot make one material.
+pub fn derive(
+    spec: &Spec,
+    fits: &[TestFit],
+    laws: &[LawFit],
+    origin: &str,
+) -> Result<MaterialResult, String> {
     let mut warnings = Vec::new();
+    let law_entries = law_entry::entries(laws)?;
+    let measured: Vec<Measured> = fits
+        .iter()
+        .map(Measured::of_test)
+        .chain(laws.iter().filter_map(law_entry::measured))
+        .collect();
+    if measured.is_empty() {
+        return Err(
+            "a relaxation test gives ratios of moduli only: add a tension, compression, bending or torsion test (or a plastic_bending or cyclic_bending one) for the instantaneous moduli".into(),
+        );
+    }
+    if !law_entries.relaxation.is_empty() {
+        warnings.push("relaxation: the moduli above are the relaxation law's instantaneous ones E0; measure them faster than the shortest relaxation time".into());
+    }
     let sec = pliant_core::Section::new(spec.d_inner_mm * 1e-3, spec.d_outer_mm * 1e-3);
     let (i_spec, j_spec) = (sec.second_moment(), sec.polar_moment());
-    let of = |p: Property| fits.iter().filter(move |f| f.property == p);
+    let of = |p: Property| measured.iter().filter(move |f| f.property == p);
     let sources = |p: Property| {
-        let d: Vec<String> = of(p).map(describe).collect();
+        let d: Vec<String> = of(p).map(|m| m.description.clone()).collect();
         let n = d.len();
         let joined = d.join("; ");
         if n > 1 {
@@ -342,7 +394,7 @@ pub fn derive(spec: &Spec, fits: &[TestFit], origin: &str) -> MaterialResult {
     let min_bend_radius_mm = spec
         .min_bend_radius_mm
         .map(|r| Derived::source(r, None, format!("given in {origin}")));
-    let ei = (!fits
+    let ei = (!measured
         .iter()
         .all(|f| f.property != Property::BendingStiffness))
     .then(|| {
@@ -363,7 +415,7 @@ pub fn derive(spec: &Spec, fits: &[TestFit], origin: &str) -> MaterialResult {
     if fits.iter().any(|f| f.kind == TestKind::Iso10619) {
         warnings.push("EI from the ISO 10619-1 test rests on the lever-arm model M = F a (docs/calibration.md): an estimate".into());
     }
-    MaterialResult {
+    Ok(MaterialResult {
         name: spec.name.clone(),
         description: spec
             .description
@@ -380,8 +432,9 @@ pub fn derive(spec: &Spec, fits: &[TestFit], origin: &str) -> MaterialResult {
         ei_n_m2: ei,
         gj_n_m2: gj,
         gj_held_by_material: gj_held,
+        laws: law_entries,
         warnings,
-    }
+    })
 }
 
 fn toml_str(s: &str) -> String {
@@ -430,6 +483,7 @@ impl MaterialResult {
         if let Some(r) = &self.min_bend_radius_mm {
             line("min_bend_radius_mm", r);
         }
+        self.laws.scene_lines(&mut s);
         if self.ei_n_m2.is_some() || self.gj_n_m2.is_some() {
             let mut parts = vec![
                 format!("d_inner = {}", num(self.d_inner_mm)),
@@ -528,6 +582,7 @@ impl MaterialResult {
             )
         });
         entry("min_bend_radius_mm", &r_min);
+        self.laws.library_lines(&mut s);
         s
     }
 }

@@ -38,16 +38,29 @@ pub enum TestKind {
     /// ISO 10619-1 methods A2/C2: force to reach a bend radius.
     #[serde(rename = "iso10619")]
     Iso10619,
+    /// A metal line bent past yield and unloaded: moment against curvature
+    /// ([`crate::yield_fit`]).
+    PlasticBending,
+    /// Force (or stress) against time at a held strain ([`crate::relaxation_fit`]).
+    Relaxation,
+    /// Moment against curvature, bent back and forth ([`crate::dahl_fit`]).
+    CyclicBending,
+    /// Torque against angle of twist, twisted back and forth ([`crate::dahl_fit`]).
+    CyclicTorsion,
 }
 
 impl TestKind {
-    pub const ALL: [TestKind; 6] = [
+    pub const ALL: [TestKind; 10] = [
         TestKind::Tension,
         TestKind::Compression,
         TestKind::ThreePointBending,
         TestKind::Cantilever,
         TestKind::Torsion,
         TestKind::Iso10619,
+        TestKind::PlasticBending,
+        TestKind::Relaxation,
+        TestKind::CyclicBending,
+        TestKind::CyclicTorsion,
     ];
 
     /// The name in calibration files and on the command line.
@@ -59,7 +72,23 @@ impl TestKind {
             TestKind::Cantilever => "cantilever",
             TestKind::Torsion => "torsion",
             TestKind::Iso10619 => "iso10619",
+            TestKind::PlasticBending => "plastic_bending",
+            TestKind::Relaxation => "relaxation",
+            TestKind::CyclicBending => "cyclic_bending",
+            TestKind::CyclicTorsion => "cyclic_torsion",
         }
+    }
+
+    /// Whether the test measures an inelastic law (fitted whole by
+    /// [`crate::law_fit`]) rather than a stiffness over a linear range.
+    pub fn is_law(self) -> bool {
+        matches!(
+            self,
+            TestKind::PlasticBending
+                | TestKind::Relaxation
+                | TestKind::CyclicBending
+                | TestKind::CyclicTorsion
+        )
     }
 
     /// Parses a name (as [`TestKind::name`]).
@@ -79,18 +108,26 @@ impl TestKind {
             TestKind::Iso10619 => {
                 "the lever arm a from the force's line of action to the apex of the bend"
             }
+            TestKind::PlasticBending | TestKind::CyclicBending | TestKind::Relaxation => {
+                "nothing (the curve is moment against curvature, or force against time)"
+            }
+            TestKind::CyclicTorsion => "the length L between the grips",
         }
     }
 
-    /// The stiffness the test measures.
-    pub fn property(self) -> Property {
+    /// The stiffness the test measures (the relaxation test measures none: it gives
+    /// ratios of moduli).
+    pub fn property(self) -> Option<Property> {
         match self {
-            TestKind::Tension => Property::ETension,
-            TestKind::Compression => Property::ECompression,
-            TestKind::ThreePointBending | TestKind::Cantilever | TestKind::Iso10619 => {
-                Property::BendingStiffness
-            }
-            TestKind::Torsion => Property::TorsionalStiffness,
+            TestKind::Tension => Some(Property::ETension),
+            TestKind::Compression => Some(Property::ECompression),
+            TestKind::ThreePointBending
+            | TestKind::Cantilever
+            | TestKind::Iso10619
+            | TestKind::PlasticBending
+            | TestKind::CyclicBending => Some(Property::BendingStiffness),
+            TestKind::Torsion | TestKind::CyclicTorsion => Some(Property::TorsionalStiffness),
+            TestKind::Relaxation => None,
         }
     }
 }
@@ -329,6 +366,18 @@ pub fn prepare(kind: TestKind, table: &Table, g: &Geometry) -> Result<Curve, Cal
                 a,
                 format!("EI = (dF/dκ) a: F a = EI κ (assumed model, docs/calibration.md), {how}, lever arm a = {:.2} mm", a * 1e3),
             )
+        }
+        TestKind::PlasticBending
+        | TestKind::Relaxation
+        | TestKind::CyclicBending
+        | TestKind::CyclicTorsion => {
+            return Err(CalibError::file(
+                file,
+                format!(
+                    "a {} test is fitted as a whole law, not over a linear range: run it through a calibration file (calibrate_file) or `pliant calibrate`",
+                    kind.name()
+                ),
+            ))
         }
     };
     let mut x = x;

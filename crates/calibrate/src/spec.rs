@@ -11,7 +11,8 @@
 //!
 //! [[tests]]
 //! kind = "tension"                # tension, compression, three_point_bending,
-//! csv = "tension.csv"             # cantilever, torsion, iso10619
+//! csv = "tension.csv"             # cantilever, torsion, iso10619; plastic_bending,
+//!                                 # relaxation, cyclic_bending, cyclic_torsion
 //! length_mm = 100                 # gauge length / span / free length / grip distance / lever arm
 //! ```
 

@@ -157,6 +157,14 @@ impl Calibration {
             .map(|f| CalibrationFit { fit: f.clone() })
             .collect()
     }
+    /// The inelastic laws fitted (one dict per plastic_bending, relaxation,
+    /// cyclic_bending or cyclic_torsion test): ``kind``, ``csv``, ``fit`` (``estimates``:
+    /// each parameter's ``name``, SI ``value``, ``ci95``, ``identified``; ``ssr``,
+    /// ``residual_std``, ``points``), ``formula`` and ``checks``.
+    #[getter]
+    fn laws<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.inner.laws)
+    }
     #[getter]
     fn material<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.inner.material)
@@ -190,9 +198,10 @@ impl Calibration {
     }
     fn __repr__(&self) -> String {
         format!(
-            "Calibration({:?}: {} fits)",
+            "Calibration({:?}: {} fits, {} laws)",
             self.inner.material.name,
-            self.inner.fits.len()
+            self.inner.fits.len(),
+            self.inner.laws.len()
         )
     }
 }
@@ -216,8 +225,9 @@ fn columns_csv(data: &BTreeMap<String, Vec<f64>>) -> Result<String, String> {
 /// Fits a material's stiffness to measured test curves (docs/calibration.md).
 ///
 /// Either ``spec``, a calibration file (TOML, format "pliant-calibration"), or one test:
-/// ``kind`` (tension, compression, three_point_bending, cantilever, torsion, iso10619)
-/// with its curve as ``csv`` (a file) or ``data`` (a dict of columns named with units,
+/// ``kind`` (tension, compression, three_point_bending, cantilever, torsion, iso10619;
+/// or an inelastic law: plastic_bending, cyclic_bending, cyclic_torsion — relaxation
+/// needs a stiffness test beside it, so a calibration file) with its curve as ``csv`` (a file) or ``data`` (a dict of columns named with units,
 /// e.g. ``{"force_N": f, "displacement_mm": d}``), ``length_mm`` (gauge length, span,
 /// free length, grip distance or lever arm), the specimen's ``d_outer_mm`` and
 /// ``d_inner_mm``, and the material's ``name``, ``density_kg_m3`` and ``poisson``.

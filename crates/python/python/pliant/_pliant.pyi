@@ -462,6 +462,11 @@ class Calibration:
     @property
     def fits(self) -> List[CalibrationFit]: ...
     @property
+    def laws(self) -> List[Dict[str, Any]]:
+        """The inelastic laws fitted (plastic_bending, relaxation, cyclic_bending,
+        cyclic_torsion): kind, csv, fit (estimates with name, value, ci95, identified),
+        formula, checks."""
+    @property
     def material(self) -> Dict[str, Any]: ...
     @property
     def warnings(self) -> List[str]: ...

@@ -1,0 +1,158 @@
+"""Inelastic materials through the Python API: the new calibration kinds (Dahl loops,
+relaxation) fitted from arrays and files and written as scene materials, and a material
+dict with `hysteresis` and a hose dict with `delivered` carried into simulations that show
+their effect (docs/calibration.md, docs/scene-format.md)."""
+
+import math
+
+import numpy as np
+import pytest
+
+import pliant
+from conftest import D_INNER, D_OUTER, SECOND_MOMENT, cantilever_dict
+
+E_RUBBER = 10e6
+EI_RUBBER = E_RUBBER * SECOND_MOMENT
+M_S, KAPPA_S = 0.02, 0.5  # Dahl's pair [N m, 1/m]
+
+
+def dahl_loop(kappa, ei=EI_RUBBER, m_s=M_S, kappa_s=KAPPA_S):
+    """Moments of M = EI kappa + z, z by Dahl's closed form between the points, from a
+    virgin start (the law of docs/calibration.md, written out for the test)."""
+    z, out = 0.0, [ei * kappa[0]]
+    for a, b in zip(kappa[:-1], kappa[1:]):
+        if b != a:
+            s = math.copysign(1.0, b - a)
+            z = s * m_s - (s * m_s - z) * math.exp(-s * (b - a) / kappa_s)
+        out.append(ei * b + z)
+    return np.array(out)
+
+
+def triangle(amplitude=5.0, cycles=2, per_cycle=120):
+    phase = np.arange(cycles * per_cycle + 1) / per_cycle
+    tri = np.mod(4 * phase + 1, 4)
+    return amplitude * np.where(tri < 2, tri - 1, 3 - tri)
+
+
+def test_a_dahl_loop_is_calibrated_from_arrays_and_loads_in_a_scene():
+    kappa = triangle()
+    c = pliant.calibrate(
+        kind="cyclic_bending",
+        data={"curvature_1_m": kappa, "moment_Nm": dahl_loop(kappa)},
+        d_inner_mm=D_INNER * 1e3,
+        d_outer_mm=D_OUTER * 1e3,
+        name="bundle",
+    )
+    assert c.fits == [] and len(c.laws) == 1
+    law = c.laws[0]
+    assert law["kind"] == "cyclic_bending"
+    est = {e["name"]: e for e in law["fit"]["estimates"]}
+    for name, truth in [("EI", EI_RUBBER), ("M_s", M_S), ("kappa_s", KAPPA_S)]:
+        assert est[name]["value"] == pytest.approx(truth, rel=1e-6)
+        assert est[name]["identified"]
+    assert c.material["hysteresis"]["bending_moment_n_m"]["value"] == pytest.approx(M_S, rel=1e-5)
+    assert "hysteresis = { bending_moment_n_m = 0.02, bending_curvature_1_m = 0.5 }" in c.material_toml
+    assert c.html.count("<svg") == 2  # the loop with the law, and the residuals
+    scene = pliant.Scene.from_toml(
+        'format = "pliant-scene"\nversion = 1\nlength_unit = "mm"\n'
+        + c.material_toml
+        + '\n[[hoses]]\nname = "h"\nmaterial = "bundle"\n'
+        "section = { d_inner = 10, d_outer = 16 }\nelements = 4\nstart = [0, 0, 0]\n"
+        "path = [{ line = { to = [200, 0, 0] } }]\n"
+    )
+    assert scene.hose_names == ["h"]
+
+
+def test_an_elastic_loop_is_reported_not_identified():
+    kappa = triangle()
+    rng = np.random.default_rng(3)
+    moment = EI_RUBBER * kappa + 1e-4 * rng.standard_normal(kappa.size)
+    with pytest.raises(pliant.CalibrationError, match="not identified"):
+        pliant.calibrate(
+            kind="cyclic_bending",
+            data={"curvature_1_m": kappa, "moment_Nm": moment},
+            d_outer_mm=16,
+        )
+
+
+def write_relaxation_calibration(tmp_path, times):
+    rng = np.random.default_rng(1)
+    strain = np.linspace(0.0, 0.05, 60)
+    stress = E_RUBBER * strain * (1 + 1e-4 * rng.standard_normal(strain.size))
+    (tmp_path / "tension.csv").write_text(
+        "strain,stress_MPa\n" + "".join(f"{e:.10e},{s / 1e6:.10e}\n" for e, s in zip(strain, stress))
+    )
+    force = 12.0 * (1 - 0.3 * (1 - np.exp(-times / 2.0)) - 0.2 * (1 - np.exp(-times / 60.0)))
+    (tmp_path / "relax.csv").write_text(
+        "time_s,force_N\n" + "".join(f"{t:.10e},{f:.10e}\n" for t, f in zip(times, force))
+    )
+    (tmp_path / "rubber.toml").write_text(
+        'name = "rubber"\nd_inner_mm = 10\nd_outer_mm = 16\ndensity_kg_m3 = 1100\n'
+        '[[tests]]\nkind = "tension"\ncsv = "tension.csv"\n'
+        '[[tests]]\nkind = "relaxation"\ncsv = "relax.csv"\n'
+    )
+    return tmp_path / "rubber.toml"
+
+
+def test_a_relaxation_test_gives_prony_terms_in_the_scene_format(tmp_path):
+    times = np.concatenate([[0.0], 0.05 * 10 ** np.linspace(0, 4.6, 90)])
+    c = pliant.calibrate(write_relaxation_calibration(tmp_path, times))
+    terms = c.material["relaxation"]
+    assert len(terms) == 2
+    got = sorted((t["time_s"]["value"], t["weight"]["value"]) for t in terms)
+    assert got[0] == pytest.approx((2.0, 0.3), rel=1e-6)
+    assert got[1] == pytest.approx((60.0, 0.2), rel=1e-6)
+    scene = pliant.Scene.from_toml(
+        'format = "pliant-scene"\nversion = 1\nlength_unit = "mm"\n'
+        + c.material_toml
+        + '\n[[hoses]]\nname = "h"\nmaterial = "rubber"\n'
+        "section = { d_inner = 10, d_outer = 16 }\nelements = 4\nstart = [0, 0, 0]\n"
+        "path = [{ line = { to = [200, 0, 0] } }]\n"
+    )
+    assert scene.hose_names == ["h"]
+
+
+def test_time_going_backwards_names_the_line(tmp_path):
+    times = np.array([0.0, 1.0, 2.0, 1.5, 3.0, 4.0, 5.0, 6.0])
+    with pytest.raises(pliant.CalibrationError) as e:
+        pliant.calibrate(write_relaxation_calibration(tmp_path, times))
+    assert "not monotonic" in str(e.value)
+    assert e.value.file.endswith("relax.csv") and e.value.line == 5
+
+
+def tip(sim):
+    return sim.positions("beam")[-1]
+
+
+def test_a_hysteresis_material_dict_stiffens_the_first_loading():
+    """Under its weight, a cantilever whose material rubs (Dahl friction opposing the
+    motion from the virgin state) deflects less than the same cantilever without it."""
+    deflections = []
+    for hysteresis in [None, {"bending_moment_n_m": 0.01, "bending_curvature_1_m": 0.2}]:
+        scene = cantilever_dict()
+        if hysteresis:
+            scene["materials"]["test_rubber"]["hysteresis"] = hysteresis
+        sim = pliant.Simulation(pliant.Scene.from_dict(scene))
+        report = sim.solve_static(force_tolerance=1e-7, moment_tolerance=1e-9)
+        assert report.converged, report
+        deflections.append(-tip(sim)[2])
+    elastic, rubbing = deflections
+    assert elastic > 0.005
+    # friction adds up to M_s / kappa_s = 0.05 N m^2 to EI = 0.033 N m^2 on first loading
+    assert rubbing < 0.9 * elastic, deflections
+
+
+def test_a_delivered_coil_is_the_stress_free_shape():
+    """A hose delivered as a flat coil of radius R, clamped at one end, routed straight and
+    left without loads, springs back into its delivered arc: the tip lies at the chord
+    2 R sin(L / 2R) from the clamp."""
+    length, radius = 0.2, 0.2
+    scene = cantilever_dict(length=length, gravity=(0.0, 0.0, 0.0))
+    scene["hoses"][0]["delivered"] = {"coil": {"radius": radius}}
+    sim = pliant.Simulation(pliant.Scene.from_dict(scene))
+    assert np.linalg.norm(tip(sim) - [length, 0, 0]) < 1e-12  # starts as routed
+    report = sim.solve_static(force_tolerance=1e-8, moment_tolerance=1e-10)
+    assert report.converged, report
+    chord = 2 * radius * math.sin(length / (2 * radius))
+    assert np.linalg.norm(tip(sim)) == pytest.approx(chord, rel=1e-3)
+    assert np.linalg.norm(tip(sim) - [length, 0, 0]) > 0.05
