@@ -331,6 +331,21 @@ impl RunResult {
         to_python(py, &self.run.hand_peaks)
     }
 
+    /// What the worker of the scene's ``[worker]`` did (SPEC E1–E2), or ``None`` without
+    /// one: the summary of ``Simulation.worker()`` without its ``series`` — ``who``,
+    /// ``reach`` per arm, ``collisions``, ``worst_rula``, ``worst_reba``,
+    /// ``class_instants``, ``findings`` (typed).
+    #[getter]
+    fn worker<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let Some(w) = &self.run.worker else {
+            return Ok(py.None().into_bound(py));
+        };
+        let mut value = serde_json::to_value(w)
+            .map_err(|e| PyValueError::new_err(format!("internal error serialising: {e}")))?;
+        value["findings"] = serde_json::json!(w.findings());
+        to_python(py, &value)
+    }
+
     /// Stubs and clips: peak force, final state, assembled (dicts).
     #[getter]
     fn fasteners<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {

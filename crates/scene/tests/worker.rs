@@ -181,7 +181,15 @@ position = [250, 0, 1200]
     let rows: Vec<&str> = csv.lines().collect();
     assert!(rows[0].starts_with("time_s,right_hand,right_residual_m,"));
     assert_eq!(rows.len() as u64, w.instants + 1);
-    assert!(rows[1].ends_with(&format!("{:.6}", c.depth)), "{}", rows[1]);
+    let cells: Vec<&str> = rows[1].split(',').collect();
+    assert_eq!(
+        cells[cells.len() - 2],
+        format!("{:.6}", c.depth),
+        "{}",
+        rows[1]
+    );
+    // reaching at chest height, upright
+    assert_eq!(cells[cells.len() - 1], "upright", "{}", rows[1]);
     let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
     assert!(html.contains("<h2>Worker</h2>") && html.contains("RULA (blue"));
     assert!(html.contains("The worst posture (RULA ") && html.contains("<title>trunk</title>"));

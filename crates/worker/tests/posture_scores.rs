@@ -345,3 +345,88 @@ fn manikin_postures_are_scored() {
     assert_eq!(heavy.reba.load, 2);
     assert!(heavy.rula.grand >= se.rula.grand);
 }
+
+/// What the RULA paper says of its table C in words (McAtamney & Corlett 1993, "Stage 3:
+/// development of the grand score and action list"): "For a grand score of 1 or 2, the
+/// working posture would have scored 2 or less for both body segment groups A and B".
+/// Read on the table: a grand score of at most 2 exactly where scores C and D are both at
+/// most 2. (The sentence goes on "and the scores for muscle use and force would be 0",
+/// which the table does not hold exactly: posture scores A = B = 1 with muscle use 1 give
+/// C = D = 2 and a grand score of 2 — checked below, so that a change of either is seen.)
+#[test]
+fn rula_grand_score_of_1_or_2_as_the_paper_words_it() {
+    for (c, row) in ut::TABLE_C.iter().enumerate() {
+        for (d, &grand) in row.iter().enumerate() {
+            let (c, d) = (c + 1, d + 1);
+            assert_eq!(grand <= 2, c <= 2 && d <= 2, "table C[{c}][{d}] = {grand}");
+        }
+    }
+    // the best posture, held static: muscle use 1 on both groups, grand score still 2
+    let s = rula::score(&RulaInput {
+        lower_arm: rad(80.0),
+        legs_balanced: true,
+        static_or_repeated: true,
+        ..Default::default()
+    });
+    assert_eq!((s.posture_a, s.posture_b, s.muscle_use), (1, 1, 1));
+    assert_eq!((s.wrist_and_arm, s.neck_trunk_leg, s.grand), (2, 2, 2));
+}
+
+/// REBA's body-part ranges as published (Hignett & McAtamney 2000, table 1; restated by
+/// the authors as table 42.2 of "Fundamentals and Assessment Tools for Occupational
+/// Ergonomics", ch. 42): trunk upright 1, 0–20° flexion or extension 2, 20–60° flexion or
+/// more than 20° extension 3, more than 60° flexion 4; neck 0–20° flexion 1, more than
+/// 20° flexion or in extension 2; legs bilateral 1, unilateral 2, +1 for knees at
+/// 30–60°, +2 beyond 60°; load under 5 kg 0, 5–10 kg 1, more than 10 kg 2, +1 for a
+/// shock. Each band checked on both sides of its edges.
+#[test]
+fn reba_body_part_ranges_as_published() {
+    for (deg, score) in [
+        (0.0, 1),
+        (0.1, 2),
+        (20.0, 2),
+        (20.1, 3),
+        (60.0, 3),
+        (60.1, 4),
+        (-0.1, 2),
+        (-20.0, 2),
+        (-20.1, 3),
+    ] {
+        assert_eq!(reba::trunk_position(deg), score, "trunk {deg}°");
+    }
+    let neck = |deg: f64| {
+        reba::score(&RebaInput {
+            neck: rad(deg),
+            ..Default::default()
+        })
+        .neck
+    };
+    // (through radians and back: the edges themselves are not exact, so a tenth of a
+    // degree either side)
+    assert_eq!([0.0, 19.9, 20.1, -0.1].map(neck), [1, 1, 2, 2]);
+    let legs = |unilateral: bool, knee: f64| {
+        reba::score(&RebaInput {
+            unilateral,
+            knee_flexion: rad(knee),
+            ..Default::default()
+        })
+        .legs
+    };
+    assert_eq!(
+        [
+            legs(false, 0.0),
+            legs(true, 0.0),
+            legs(false, 29.9),
+            legs(false, 30.1),
+            legs(false, 59.9),
+            legs(false, 60.1),
+            legs(true, 60.1),
+        ],
+        [1, 2, 1, 2, 2, 3, 4]
+    );
+    assert_eq!(
+        [4.99, 5.0, 10.0, 10.01].map(|kg| reba::load_score(kg, false)),
+        [0, 1, 1, 2]
+    );
+    assert_eq!(reba::load_score(0.0, true), 1);
+}

@@ -1,7 +1,8 @@
 //! Ergonomics (SPEC I3–I5): the guide and limit values of one-handed push, pull and
 //! torque (dissertation tables 3.6–3.11, as data), EN 1005-3 as an alternative standard
 //! for the push and pull (data too), the user's choice of rows, columns and standard, the
-//! classification of a hand load against them, and the colour feedback. Limits live
+//! classification of a hand load against them, the worker's posture class choosing the
+//! rows (SPEC E2), and the colour feedback. Limits live
 //! here, in the interaction layer, never in the physics (SPEC I4).
 
 #[macro_use]
@@ -11,6 +12,7 @@ mod colour;
 mod en1005;
 mod error;
 mod limits;
+mod posture_class;
 mod profile;
 mod quantile;
 
@@ -25,5 +27,6 @@ pub use limits::{ErgonomicLimits, GuideRange, TableInfo, ERGONOMICS_TOML};
 pub use names::{
     allowed_names, Duty, Named, Population, Posture, PullPosture, PushPosture, TorqueGrip,
 };
+pub use posture_class::table_posture;
 pub use profile::{ErgonomicProfile, Standard};
 pub use quantile::normal_quantile;

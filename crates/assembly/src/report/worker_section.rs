@@ -9,17 +9,18 @@ use std::fmt::Write as _;
 
 /// `worker.csv`: time, per arm the hand it follows and its reach residual (empty without
 /// a target), RULA grand score, REBA score, trunk and neck angles, per arm the upper arm
-/// and elbow flexion, the deepest body collision.
+/// and elbow flexion, the deepest body collision, the posture class (whose rows judge
+/// the hand forces).
 pub fn worker_csv(series: &[WorkerSample]) -> String {
     let mut s = String::from(
-        "time_s,right_hand,right_residual_m,left_hand,left_residual_m,rula,reba,trunk_flexion_rad,trunk_lateral_rad,trunk_twist_rad,neck_flexion_rad,right_upper_arm_rad,left_upper_arm_rad,right_elbow_rad,left_elbow_rad,collision_depth_m\n",
+        "time_s,right_hand,right_residual_m,left_hand,left_residual_m,rula,reba,trunk_flexion_rad,trunk_lateral_rad,trunk_twist_rad,neck_flexion_rad,right_upper_arm_rad,left_upper_arm_rad,right_elbow_rad,left_elbow_rad,collision_depth_m,posture_class\n",
     );
     let opt = |v: Option<usize>| v.map_or(String::new(), |h| h.to_string());
     let optf = |v: Option<f64>| v.map_or(String::new(), |r| format!("{r:.6}"));
     for w in series {
         let _ = writeln!(
             s,
-            "{:.6},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}",
+            "{:.6},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{}",
             w.time,
             opt(w.hand[0]),
             optf(w.residual[0]),
@@ -35,7 +36,8 @@ pub fn worker_csv(series: &[WorkerSample]) -> String {
             w.upper_arm[1],
             w.elbow[0],
             w.elbow[1],
-            w.collision_depth
+            w.collision_depth,
+            w.posture_class.name()
         );
     }
     s
@@ -109,6 +111,14 @@ pub fn worker_section(
             );
         }
         None => s.push_str("never placed: no hand acted.</p>"),
+    }
+    let c = &w.class_instants;
+    if w.instants > 0 {
+        let _ = write!(
+            s,
+            "<p>Posture class (it chooses the rows of the push and pull tables): standing upright at {} instants, bent trunk at {}, arms above shoulder at {}.</p>",
+            c.upright, c.bent_trunk, c.arms_above_shoulder
+        );
     }
     let findings = w.findings();
     if findings.is_empty() {

@@ -376,9 +376,14 @@ impl Workcell {
         let h = self.hand(hand)?;
         Ok(self.assess(hand, h.hand.load(&self.model, &self.state)))
     }
+    /// The hand's load judged under the profile, its push and pull rows those of the
+    /// worker's posture class as last posed (SPEC E2; the profile's own rows without a
+    /// worker or before the first posed instant).
     fn assess(&self, number: HandNumber, load: HandLoad) -> HandRecord {
+        let posture_class = self.worker.as_ref().and_then(WorkerTrack::posture_class);
+        let profile = posture_class.map_or(self.profile, |c| self.profile.for_class(c));
         let assessment = self.limits.and_then(|l| {
-            l.assess(&self.profile, load.force, load.torque, load.direction)
+            l.assess(&profile, load.force, load.torque, load.direction)
                 .ok()
         });
         let fastener = self.hands.get(&number).and_then(|h| {
@@ -391,6 +396,7 @@ impl Workcell {
             load,
             assessment,
             fastener,
+            posture_class,
         }
     }
     /// Whether a hand, a drive or a part moved by an input is still moving, or a load
@@ -873,6 +879,22 @@ impl Workcell {
             let r = self.assess(k, load);
             self.hand_records.push(r);
         }
+        // the worker posed before the tally takes the hands in: a new posture class
+        // judges this step's forces already
+        if posed && healthy {
+            if let Some(w) = &mut self.worker {
+                let class = w.posture_class();
+                let static_work = self.profile.duty == crate::ergonomics::Duty::Continuous;
+                w.observe(&self.model, &self.state, &self.hand_records, static_work);
+                if w.posture_class() != class {
+                    let mut records = std::mem::take(&mut self.hand_records);
+                    for r in &mut records {
+                        *r = self.assess(r.hand as HandNumber, r.load);
+                    }
+                    self.hand_records = records;
+                }
+            }
+        }
         self.tally.record(
             &self.model,
             &self.state,
@@ -881,12 +903,6 @@ impl Workcell {
         );
         if judged && healthy {
             self.checks.observe(&self.model, &self.state);
-        }
-        if posed && healthy {
-            if let Some(w) = &mut self.worker {
-                let static_work = self.profile.duty == crate::ergonomics::Duty::Continuous;
-                w.observe(&self.model, &self.state, &self.hand_records, static_work);
-            }
         }
         if wants {
             obs.on_state(&self.model, &self.state);

@@ -7,10 +7,11 @@ use super::solver_doubt::{InstabilityNote, SolverDoubt};
 use super::tally::ZoneNote;
 use super::verdict::Stage;
 use crate::checks::Violation;
-use crate::ergonomics::{LoadKind, RiskZone, Standard};
+use crate::ergonomics::{table_posture, LoadKind, RiskZone, Standard};
 use crate::fastener_state::{FastenerKind, FastenerState};
 use crate::sweep::{ClearanceViolation, MotionExtremes};
 use crate::worker::{PostureNote, WorkerFinding};
+use pliant_worker::PostureClass;
 use serde::Serialize;
 use std::fmt;
 
@@ -31,6 +32,10 @@ pub struct LoadAgainstLimit {
     pub limit: f64,
     pub ratio: f64,
     pub time: f64,
+    /// The worker's posture class whose rows gave the limit (SPEC E2), if a worker was
+    /// posed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub posture_class: Option<PostureClass>,
 }
 
 /// One line of a verdict: a reason, a warning, a fastener still to fit, a hand's EN 1005-3
@@ -140,6 +145,16 @@ fn load_name(kind: LoadKind) -> &'static str {
 }
 
 /// The row of the tables a load is judged against.
+/// The table row a posture class judges a push or pull by: ", crouching row".
+fn row_of(class: PostureClass, kind: LoadKind) -> String {
+    let posture = table_posture(class);
+    let row = match kind {
+        LoadKind::Pull => posture.pull().to_string(),
+        _ => posture.push().to_string(),
+    };
+    format!(", {} row", row.replace('_', " "))
+}
+
 fn table(kind: LoadKind) -> &'static str {
     match kind {
         LoadKind::Push => "table 3.7",
@@ -217,19 +232,25 @@ impl fmt::Display for Reason {
                 write_zone(f, *hand, zone)?;
                 Working(working).fmt(f)
             }
-            Reason::HandLoadOverLimit { load: l, working } => write!(
-                f,
-                "hand {}: {} of {:.1} {u} at t = {:.2} s exceeds the limit {:.1} {u} ({}; {:.0} % of it){}",
-                l.hand,
-                load_name(l.load),
-                l.value,
-                l.time,
-                l.limit,
-                table(l.load),
-                100.0 * l.ratio,
-                Working(working),
-                u = l.load.unit(),
-            ),
+            Reason::HandLoadOverLimit { load: l, working } => {
+                let (allowed, row) = match l.posture_class {
+                    Some(class) => (format!(" allowed for {class}"), row_of(class, l.load)),
+                    None => (String::new(), String::new()),
+                };
+                write!(
+                    f,
+                    "hand {}: {} of {:.1} {u} at t = {:.2} s exceeds the limit {:.1} {u}{allowed} ({}{row}; {:.0} % of it){}",
+                    l.hand,
+                    load_name(l.load),
+                    l.value,
+                    l.time,
+                    l.limit,
+                    table(l.load),
+                    100.0 * l.ratio,
+                    Working(working),
+                    u = l.load.unit(),
+                )
+            }
             Reason::MomentAboveGuide {
                 hand,
                 load,

@@ -16,6 +16,7 @@ use crate::hand::HandLoad;
 use glam::DVec3;
 use pliant_core::integrators::{StabilityEvent, StepStats};
 use pliant_core::{Model, State};
+use pliant_worker::PostureClass;
 use serde::{Serialize, Serializer};
 
 /// One hand's load in one step and how it compares with the ergonomic limits.
@@ -28,6 +29,10 @@ pub struct HandRecord {
     pub fastener: Option<usize>,
     /// `None` only if the load was not finite (the step is then reported as diverged).
     pub assessment: Option<HandAssessment>,
+    /// The worker's posture class whose rows judged the force (SPEC E2; `None`: no
+    /// worker, or not posed yet — the profile's own rows judged it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub posture_class: Option<PostureClass>,
 }
 
 /// The largest magnitude of one load kind [N or N·m] and when \[s\].
@@ -48,6 +53,15 @@ impl Peak {
             self.fastener = fastener;
         }
     }
+}
+
+/// A hand's peak push and pull while the worker was in one posture class (`None`: no
+/// worker, or not posed yet), so that a verdict can judge each against its class's rows.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ClassPeaks {
+    pub class: Option<PostureClass>,
+    pub push: Peak,
+    pub pull: Peak,
 }
 
 /// A peak moment (twist or bending) above the upper end of its guide range: a warning,
@@ -100,6 +114,14 @@ pub struct HandPeak {
     pub worst_magnitude: f64,
     pub worst_limit: f64,
     pub worst_time: f64,
+    /// The worker's posture class whose rows gave the worst limit (SPEC E2; `None`: the
+    /// profile's own rows, or a moment).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worst_class: Option<PostureClass>,
+    /// The peak push and pull per posture class met (at most one entry per class and
+    /// one for no class).
+    #[serde(skip)]
+    pub class_peaks: Vec<ClassPeaks>,
     /// The fastener the hand worked at its worst moment (index in the run's fastener
     /// reports).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -300,9 +322,30 @@ impl Tally {
             }
             if let Some(a) = &r.assessment {
                 let at = r.fastener;
+                let class = match p
+                    .class_peaks
+                    .iter()
+                    .position(|c| c.class == r.posture_class)
+                {
+                    Some(i) => &mut p.class_peaks[i],
+                    None => {
+                        p.class_peaks.push(ClassPeaks {
+                            class: r.posture_class,
+                            push: Peak::default(),
+                            pull: Peak::default(),
+                        });
+                        p.class_peaks.last_mut().expect("just pushed")
+                    }
+                };
                 match a.force.kind {
-                    LoadKind::Pull => p.pull.record(a.force.magnitude, t, at),
-                    _ => p.push.record(a.force.magnitude, t, at),
+                    LoadKind::Pull => {
+                        p.pull.record(a.force.magnitude, t, at);
+                        class.pull.record(a.force.magnitude, t, at);
+                    }
+                    _ => {
+                        p.push.record(a.force.magnitude, t, at);
+                        class.push.record(a.force.magnitude, t, at);
+                    }
                 }
                 p.twist.record(a.twist.magnitude, t, at);
                 p.bending.record(a.bending.magnitude, t, at);
@@ -394,7 +437,6 @@ impl Tally {
                         judgement: l.judge(peak.magnitude),
                     });
                 }
-                let ratio = peak.magnitude / limit;
                 if kind.is_moment() && peak.magnitude > guide.hi {
                     p.moment_notes.push(MomentNote {
                         kind,
@@ -407,17 +449,37 @@ impl Tally {
                 if kind.is_moment() && !profile.moments_decide {
                     continue;
                 }
-                if ratio.is_finite() && ratio > p.worst_ratio {
-                    p.worst_ratio = ratio;
-                    p.worst_kind = Some(kind);
-                    p.worst_magnitude = peak.magnitude;
-                    p.worst_limit = limit;
-                    p.worst_time = peak.time;
-                    p.worst_fastener = peak.fastener;
+                if kind.is_moment() || p.class_peaks.is_empty() {
+                    p.note_worst(kind, peak, limit, None);
+                }
+            }
+            // each posture class's peak push and pull against its class's rows
+            for i in 0..p.class_peaks.len() {
+                let c = p.class_peaks[i];
+                let judged_by = c.class.map_or(*profile, |class| profile.for_class(class));
+                for (kind, peak) in [(LoadKind::Push, c.push), (LoadKind::Pull, c.pull)] {
+                    let (_, limit) = limits_of(limits, &judged_by, kind);
+                    p.note_worst(kind, peak, limit, c.class);
                 }
             }
         }
         out
+    }
+}
+
+impl HandPeak {
+    /// Takes `peak` of `kind` against `limit` as the worst if its ratio is the largest yet.
+    fn note_worst(&mut self, kind: LoadKind, peak: Peak, limit: f64, class: Option<PostureClass>) {
+        let ratio = peak.magnitude / limit;
+        if ratio.is_finite() && ratio > self.worst_ratio {
+            self.worst_ratio = ratio;
+            self.worst_kind = Some(kind);
+            self.worst_magnitude = peak.magnitude;
+            self.worst_limit = limit;
+            self.worst_time = peak.time;
+            self.worst_fastener = peak.fastener;
+            self.worst_class = class;
+        }
     }
 }
 

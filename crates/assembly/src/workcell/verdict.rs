@@ -83,6 +83,7 @@ fn worst_load(h: &HandPeak) -> Option<LoadAgainstLimit> {
         limit: h.worst_limit,
         ratio: h.worst_ratio,
         time: h.worst_time,
+        posture_class: h.worst_class,
     })
 }
 

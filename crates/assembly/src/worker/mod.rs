@@ -13,5 +13,6 @@ pub use finding::WorkerFinding;
 pub use posture_note::PostureNote;
 pub use settings::{Stance, WorkerSettings, AUTO_REACH_FRACTION};
 pub use track::{
-    BodyCollision, ReachRecord, ScoreAt, WorkerSample, WorkerSummary, WorkerTrack, REACH_TOLERANCE,
+    BodyCollision, ClassInstants, ReachRecord, ScoreAt, WorkerSample, WorkerSummary, WorkerTrack,
+    REACH_TOLERANCE,
 };

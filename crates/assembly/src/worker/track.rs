@@ -1,7 +1,8 @@
 //! The worker's account of a study (SPEC E1–E2): at every posed instant (the scene's
 //! record interval) the manikin reaches for the hands' positions by inverse kinematics,
 //! its capsules are checked against the parts, and its posture is scored by RULA and
-//! REBA with the hands' forces. Kept: each arm's worst reach residual, each segment's
+//! REBA with the hands' forces, and classed (upright, bent trunk, arms above shoulder) for
+//! the hand-force limits until the next posed instant. Kept: each arm's worst reach residual, each segment's
 //! deepest collision per part, the worst scores and when, and a time series for
 //! `worker.csv`. Nothing is allocated per instant except the series' amortised growth
 //! and the first collision of a segment with a part.
@@ -18,8 +19,8 @@ use pliant_worker::reba::RebaScore;
 use pliant_worker::rula::RulaScore;
 use pliant_worker::scores::PostureScores;
 use pliant_worker::{
-    body, capsules, score_posture, Body, Manikin, Placement, Posture, ScoreOptions, Side,
-    WorkerError, CAPSULE_COUNT,
+    body, capsules, score_posture, Body, Manikin, Placement, Posture, PostureClass, ScoreOptions,
+    Side, WorkerError, CAPSULE_COUNT,
 };
 use serde::Serialize;
 
@@ -46,6 +47,8 @@ pub struct WorkerSample {
     pub elbow: [f64; 2],
     /// The deepest body collision at this instant \[m\] (0: none).
     pub collision_depth: f64,
+    /// The posture class, whose rows judge the hand forces until the next instant.
+    pub posture_class: PostureClass,
 }
 
 /// An arm's worst reach.
@@ -99,7 +102,17 @@ pub struct WorkerSummary {
     pub worst_reba: Option<ScoreAt<RebaScore>>,
     /// The posture at the worst RULA score (the report's picture).
     pub worst_posture: Option<Posture>,
+    /// Posed instants per posture class: upright, bent trunk, arms above shoulder.
+    pub class_instants: ClassInstants,
     pub decide: bool,
+}
+
+/// How many posed instants the worker spent in each posture class.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct ClassInstants {
+    pub upright: u64,
+    pub bent_trunk: u64,
+    pub arms_above_shoulder: u64,
 }
 
 /// The worker's running account.
@@ -116,6 +129,10 @@ pub struct WorkerTrack {
     worst_reba: Option<ScoreAt<RebaScore>>,
     worst_posture: Option<Posture>,
     last_posture: Option<Posture>,
+    /// The class of the last posture (SPEC E2: it chooses the force limits' rows).
+    last_class: Option<PostureClass>,
+    /// Posed instants per class, in the order of [`PostureClass::ALL`].
+    class_instants: [u64; 3],
     /// The hand each arm followed at the last posed instant (right, left).
     arm_of: [Option<usize>; 2],
     series: Vec<WorkerSample>,
@@ -140,6 +157,8 @@ impl WorkerTrack {
             worst_reba: None,
             worst_posture: None,
             last_posture: None,
+            last_class: None,
+            class_instants: [0; 3],
             arm_of: [None; 2],
             series: Vec::with_capacity(1024),
             cap: SeriesCap::of_rows(std::mem::size_of::<WorkerSample>()),
@@ -162,6 +181,8 @@ impl WorkerTrack {
         self.worst_reba = None;
         self.worst_posture = None;
         self.last_posture = None;
+        self.last_class = None;
+        self.class_instants = [0; 3];
         self.arm_of = [None; 2];
         self.series.clear();
         self.cap.reset();
@@ -174,6 +195,12 @@ impl WorkerTrack {
     /// The manikin as last posed, if it has been.
     pub fn posture(&self) -> Option<&Posture> {
         self.last_posture.as_ref()
+    }
+
+    /// The class of the posture as last posed, if it has been: the rows of the push and
+    /// pull tables that judge the hand forces now ([`crate::ergonomics::table_posture`]).
+    pub fn posture_class(&self) -> Option<PostureClass> {
+        self.last_class
     }
 
     /// The posed instants so far (the rows of `worker.csv`).
@@ -253,6 +280,8 @@ impl WorkerTrack {
             ..self.settings.scores
         };
         let scores = score_posture(&posture, force, &options);
+        let class = PostureClass::of(&posture, manikin.placement.up);
+        self.class_instants[class.index()] += 1;
         let mut deepest_now: f64 = 0.0;
         for c in capsules(&self.body, &posture).iter().take(CAPSULE_COUNT) {
             if !checked(c.segment) {
@@ -301,13 +330,15 @@ impl WorkerTrack {
         }
         self.instants += 1;
         if self.cap.take() {
-            self.sample(time, hand, &target, &posture, scores, deepest_now);
+            self.sample(time, hand, &target, &posture, scores, deepest_now, class);
         }
         self.last_posture = Some(posture);
+        self.last_class = Some(class);
     }
 
     /// Adds the instant to the series, thinning it when full (the rows of the highest
     /// RULA and REBA scores and the deepest collision kept).
+    #[allow(clippy::too_many_arguments)]
     fn sample(
         &mut self,
         time: f64,
@@ -316,6 +347,7 @@ impl WorkerTrack {
         posture: &Posture,
         scores: PostureScores,
         deepest_now: f64,
+        posture_class: PostureClass,
     ) {
         let arm = |i: usize| &posture.arms[i];
         self.series.push(WorkerSample {
@@ -331,6 +363,7 @@ impl WorkerTrack {
             upper_arm: [0, 1].map(|i| arm(i).flexion),
             elbow: [0, 1].map(|i| arm(i).elbow_flexion),
             collision_depth: deepest_now,
+            posture_class,
         });
         let worst = |key: fn(&WorkerSample) -> f64| {
             (0..self.series.len())
@@ -396,6 +429,11 @@ impl WorkerTrack {
             worst_rula: self.worst_rula,
             worst_reba: self.worst_reba,
             worst_posture: self.worst_posture,
+            class_instants: ClassInstants {
+                upright: self.class_instants[PostureClass::Upright.index()],
+                bent_trunk: self.class_instants[PostureClass::BentTrunk.index()],
+                arms_above_shoulder: self.class_instants[PostureClass::ArmsAboveShoulder.index()],
+            },
             decide: self.settings.decide,
         }
     }

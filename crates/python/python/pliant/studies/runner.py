@@ -81,7 +81,26 @@ def _result_row(result, task: Task) -> Dict[str, Any]:
     row["min_bend_radius_ratio"] = min(ratios) if ratios else None
     row["max_twist_rad_per_m"] = max(twists) if twists else None
     row["violated_checks"] = sorted({v["check"] for v in result.violations})
+    worker = result.worker
+    if worker is not None:
+        row.update(_worker_columns(worker))
+        row["worst_hand_posture_class"] = worst.get("worst_class") if worst else None
     return row
+
+
+def _worker_columns(worker: Dict[str, Any]) -> Dict[str, Any]:
+    """The worker's columns (SPEC E1–E2): worst RULA and REBA (None if never posed), the
+    reach shortfall [m] — the larger arm's worst residual among targets out of reach, 0
+    when every target was reached — and the number of body collisions (segment–part
+    pairs)."""
+    rula, reba = worker.get("worst_rula"), worker.get("worst_reba")
+    out = [r["worst"] for r in worker["reach"] if r.get("first_out") is not None]
+    return {
+        "worst_rula": rula["score"]["grand"] if rula else None,
+        "worst_reba": reba["score"]["reba"] if reba else None,
+        "reach_shortfall_m": float(max(out, default=0.0)),
+        "body_collisions": len(worker["collisions"]),
+    }
 
 
 def _sweep(result, task: Task, row: Dict[str, Any]) -> Dict[str, np.ndarray]:
