@@ -77,7 +77,7 @@ impl VoxelGrid {
         let cells = dims.iter().map(|&d| d as u64).product::<u64>();
         if cells > MAX_CELLS {
             return Err(format!(
-                "the swept region needs {cells} voxels of {:.1} mm (at most {MAX_CELLS}): choose larger voxels",
+                "the swept region is too large for voxels of this size: {cells} voxels of {:.2} mm (at most {MAX_CELLS}); choose larger voxels",
                 1e3 * h
             ));
         }
