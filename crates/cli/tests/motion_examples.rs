@@ -239,3 +239,173 @@ duration_s = 0.2
         "{said}"
     );
 }
+
+/// Whether `p` lies inside the closed triangle mesh `mesh`: the parity of a ray's
+/// crossings (Möller–Trumbore), the ray off every axis so that it meets no edge of the
+/// axis-aligned faces.
+fn inside(mesh: &stl_io::IndexedMesh, p: [f64; 3]) -> bool {
+    let dir = [1.0, 0.012_345, 0.006_789];
+    let v = |i: usize| mesh.vertices[i].0.map(f64::from);
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let mut crossings = 0;
+    for f in &mesh.faces {
+        let (a, b, c) = (v(f.vertices[0]), v(f.vertices[1]), v(f.vertices[2]));
+        let (e1, e2) = (sub(b, a), sub(c, a));
+        let q = cross(dir, e2);
+        let det = dot(e1, q);
+        if det.abs() < 1e-18 {
+            continue;
+        }
+        let s = sub(p, a);
+        let u = dot(s, q) / det;
+        let r = cross(s, e1);
+        let w = dot(dir, r) / det;
+        if u < 0.0 || w < 0.0 || u + w > 1.0 {
+            continue;
+        }
+        if dot(e2, r) / det > 0.0 {
+            crossings += 1;
+        }
+    }
+    crossings % 2 == 1
+}
+
+/// The door-hinge example's swept envelope: one closed STL per hose, in summary.json
+/// with its clearance to the pillar (which stands still; the door's is per instant in
+/// motion.csv), that clearance no more than the smallest recorded over time and less by
+/// at most the envelope's bound (2.42 voxels), and every recorded tube inside the mesh.
+#[test]
+fn the_door_hinge_example_writes_the_hose_envelope_with_its_clearance_to_the_pillar() {
+    let (out, _reasons, rows, header) = run_example("door_hinge.toml");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap())
+            .unwrap();
+    let envelopes = &summary["envelopes"];
+    let h = envelopes["voxel_m"].as_f64().unwrap();
+    // hose1: d 10/16 mm, so voxels of min(5 mm, 8 mm / 2)
+    assert!((h - 0.004).abs() < 1e-12, "{envelopes}");
+    assert_eq!(envelopes["moving_parts"], serde_json::json!(["door"]));
+    let hose = &envelopes["hoses"][0];
+    assert_eq!(hose["hose"], "door hose");
+    assert_eq!(hose["closed"], true);
+    let clearance = hose["clearance"].as_array().unwrap();
+    assert!(clearance.iter().all(|c| c["part"] != "door"), "{hose}");
+    let pillar = clearance
+        .iter()
+        .find(|c| c["part"] == "pillar")
+        .unwrap_or_else(|| panic!("{hose}"))["clearance_m"]
+        .as_f64()
+        .unwrap();
+    let column = header
+        .iter()
+        .position(|c| c == "clearance_m door hose to pillar")
+        .unwrap();
+    let recorded = rows.iter().map(|r| r[column]).fold(f64::INFINITY, f64::min);
+    println!(
+        "door hinge envelope: {} voxels, clearance to the pillar {:.2} mm, smallest recorded {:.2} mm ({:.2} voxels less)",
+        hose["voxels"],
+        1e3 * pillar,
+        1e3 * recorded,
+        (recorded - pillar) / h
+    );
+    assert!(pillar <= recorded + 1e-9, "{pillar} > {recorded}");
+    assert!(
+        pillar >= recorded - 2.42 * h,
+        "{pillar} < {recorded} − 2.42 h"
+    );
+    // the mesh holds every recorded tube: the nodes of nodes.csv at the checked instants,
+    // 8 mm (the outer radius) from each in 14 directions
+    let stl = out.path().join(hose["stl"].as_str().unwrap());
+    let mesh = stl_io::read_stl(&mut std::fs::File::open(&stl).unwrap()).unwrap();
+    assert_eq!(mesh.faces.len() as u64, hose["triangles"].as_u64().unwrap());
+    let checked: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    let nodes = std::fs::read_to_string(out.path().join("nodes.csv")).unwrap();
+    let r = 0.008 * (1.0 - 1e-9);
+    let s = 1.0 / 3f64.sqrt();
+    let mut directions = vec![
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
+    for i in [-s, s] {
+        for j in [-s, s] {
+            for k in [-s, s] {
+                directions.push([i, j, k]);
+            }
+        }
+    }
+    let mut tested = 0;
+    for line in nodes.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        if !checked.iter().any(|&t| (t - v[0]).abs() < 5e-7) {
+            continue;
+        }
+        for d in &directions {
+            let p = [v[3] + r * d[0], v[4] + r * d[1], v[5] + r * d[2]];
+            assert!(
+                inside(&mesh, p),
+                "t = {} s node {}: {p:?} outside",
+                v[0],
+                v[2]
+            );
+            tested += 1;
+        }
+    }
+    assert!(tested > 1000, "{tested} points");
+    let html = std::fs::read_to_string(out.path().join("report.html")).unwrap();
+    assert!(html.contains("Swept envelopes") && html.contains(hose["stl"].as_str().unwrap()));
+}
+
+/// The picture at the worst bend draws the door where it was then (opened 70°), not
+/// where the scene placed it: seen from above, its outline reaches along +y.
+#[test]
+fn the_worst_bend_picture_draws_the_door_at_its_angle() {
+    let (out, ..) = run_example("door_hinge.toml");
+    let html = std::fs::read_to_string(out.path().join("report.html")).unwrap();
+    let picture = html
+        .find("when hose 'door hose' was bent tightest")
+        .map(|at| &html[at..])
+        .unwrap_or_else(|| panic!("no picture of the worst bend"));
+    assert!(picture.contains("the parts where they were then"));
+    // the first view (from above): the door's polygon, in pixels, y down
+    let view = &picture[..picture.find("</svg>").unwrap()];
+    let door = view
+        .split("<polygon")
+        .find(|p| p.contains("<title>door</title>"))
+        .unwrap();
+    let points: Vec<[f64; 2]> = door
+        .split("points=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap()
+        .split(' ')
+        .map(|xy| {
+            let mut c = xy.split(',').map(|v| v.parse::<f64>().unwrap());
+            [c.next().unwrap(), c.next().unwrap()]
+        })
+        .collect();
+    let span = |k: usize| {
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p[k]), b.max(p[k]))
+            });
+        hi - lo
+    };
+    // closed the door (800 × 30 mm from above) is long in x; at 70° its length is
+    // mostly along y: |sin 70°| · 800 > |cos 70°| · 800 + 30
+    assert!(span(1) > 1.5 * span(0), "door outline {points:?}");
+}

@@ -10,6 +10,7 @@ mod engine;
 mod errors;
 mod hand_load;
 mod load_id;
+mod motion_table;
 mod part_distance;
 mod run_result;
 mod scene;
@@ -52,6 +53,7 @@ fn _pliant(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::demo_scene, m)?)?;
     m.add_function(wrap_pyfunction!(run_result::run_timeline, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_samples::centreline_sample_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_samples::swept_voxel_keys, m)?)?;
     m.add_function(wrap_pyfunction!(part_distance::part_distances, m)?)?;
     m.add_function(wrap_pyfunction!(part_distance::part_clearance, m)?)?;
     m.add_function(wrap_pyfunction!(material_library_toml, m)?)?;

@@ -10,8 +10,7 @@ use crate::scene::Scene;
 use glam::DVec3;
 use numpy::{PyArray1, PyArray3};
 use pliant_assembly::ergonomics::ErgonomicProfile;
-use pliant_assembly::report::part_outline::part_outlines;
-use pliant_assembly::report::write_reports;
+use pliant_assembly::report::{write_reports, Drawing};
 use pliant_assembly::{
     run_timeline as run_on, RunSummary, Runner, Stage, Verdict, WorkcellOptions,
 };
@@ -165,26 +164,10 @@ impl RunResult {
     /// hose and watched part the clearance, the largest fixing force — each a numpy array
     /// with one value per checked instant; ``None`` without a sweep.
     fn motion<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
-        let Some(sweep) = &self.run.checks.sweep else {
-            return Ok(None);
-        };
-        let csv = sweep.csv();
-        let mut lines = csv.lines();
-        let Some(head) = lines.next() else {
-            return Ok(None);
-        };
-        let names: Vec<&str> = head.split(',').collect();
-        let mut columns = vec![Vec::new(); names.len()];
-        for line in lines {
-            for (column, value) in columns.iter_mut().zip(line.split(',')) {
-                column.push(value.parse::<f64>().unwrap_or(f64::NAN));
-            }
+        match &self.run.checks.sweep {
+            Some(sweep) => crate::motion_table::motion_columns(py, sweep),
+            None => Ok(None),
         }
-        let table = PyDict::new(py);
-        for (name, column) in names.into_iter().zip(columns) {
-            table.set_item(name, scalars(py, column))?;
-        }
-        Ok(Some(table))
     }
 
     /// True: every hand load within its limit and every stub and clip fitted; False;
@@ -500,7 +483,7 @@ impl RunResult {
                 &out,
                 &self.scene_name,
                 &self.run,
-                &part_outlines(&self.model.environment),
+                &Drawing::of(&self.model, &self.run),
                 self.diverged.as_deref(),
                 &self.data.hand_samples,
                 &self.profile,

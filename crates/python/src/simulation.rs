@@ -999,6 +999,21 @@ impl Simulation {
         to_python(py, &value)
     }
 
+    /// The range-of-motion study of the scene's ``[sweep]`` so far, or ``None`` without
+    /// one: ``columns`` — the columns of ``motion.csv`` as ``pliant run`` writes them
+    /// (``time_s``, the motion coordinate such as ``angle_deg``, per hose its bend radius,
+    /// ratio, twist and axial force, per hose and part the clearance, the largest fixing
+    /// force), each a numpy array with one value per checked instant, the same as
+    /// ``RunResult.motion()``; ``worst`` — each quantity's worst value with its ``time``,
+    /// ``coordinate`` (SI) and ``position`` in words ("door angle 70°");
+    /// ``clearance_violations``; ``over_the_motion`` — the verdict's sentence.
+    fn sweep<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, pyo3::types::PyDict>>> {
+        match self.engine.cell().checks().sweep() {
+            Some(sweep) => crate::motion_table::sweep_findings(py, sweep.summary()),
+            None => Ok(None),
+        }
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<pliant.Simulation t = {:.6} s, step {}, {} hose(s), {} hand(s) holding{}>",

@@ -6,6 +6,7 @@
 //! run summary taken while the study goes on (a live snapshot) does not copy them.
 
 use glam::DVec3;
+use pliant_core::kinematics::Pose;
 use std::sync::Arc;
 
 /// Most hoses whose scene at their worst bend is kept for the report.
@@ -21,6 +22,11 @@ pub struct ScenePicture {
     pub severity: f64,
     /// Every node of the scene (all hoses) at that instant \[m\].
     pub positions: Arc<Vec<[f64; 3]>>,
+    /// When \[s\].
+    pub time: f64,
+    /// Every part's pose then (the identity for a part that stands still), so that the
+    /// picture draws a moving part where it was.
+    pub part_poses: Arc<Vec<Pose>>,
 }
 
 /// The pictures of at most [`MAX_SCENE_PICTURES`] hoses, the most severe kept.
@@ -30,11 +36,19 @@ pub struct ScenePictures {
 }
 
 impl ScenePictures {
-    /// Notes hose `hose`'s new smallest bend radius, `severity` times below its limit,
-    /// when the nodes were at `x`: kept if the hose has a picture already or is among the most severe.
+    /// Notes hose `hose`'s new smallest bend radius, `severity` times below its limit, at
+    /// `time`, when the nodes were at `x` and the parts at `poses`: kept if the hose has a
+    /// picture already or is among the most severe.
     /// Allocates only while fewer than [`MAX_SCENE_PICTURES`] pictures are held (and
     /// when a summary still shares the copy being replaced).
-    pub fn note(&mut self, hose: usize, severity: f64, x: &[DVec3]) {
+    pub fn note(
+        &mut self,
+        hose: usize,
+        severity: f64,
+        time: f64,
+        x: &[DVec3],
+        poses: impl Iterator<Item = Pose>,
+    ) {
         let slot = match self.pictures.iter().position(|p| p.hose == hose) {
             Some(k) => k,
             None if self.pictures.len() < MAX_SCENE_PICTURES => {
@@ -42,6 +56,8 @@ impl ScenePictures {
                     hose,
                     severity,
                     positions: Arc::new(Vec::with_capacity(x.len())),
+                    time,
+                    part_poses: Arc::default(),
                 });
                 self.pictures.len() - 1
             }
@@ -64,6 +80,10 @@ impl ScenePictures {
         let positions = Arc::make_mut(&mut p.positions);
         positions.clear();
         positions.extend(x.iter().map(|p| p.to_array()));
+        p.time = time;
+        let part_poses = Arc::make_mut(&mut p.part_poses);
+        part_poses.clear();
+        part_poses.extend(poses);
     }
 
     /// The picture of hose `hose`, if it is kept.
@@ -86,16 +106,16 @@ mod tests {
         let x = vec![DVec3::ONE; 10];
         let mut pictures = ScenePictures::default();
         for hose in 0..100 {
-            pictures.note(hose, 1.0 + hose as f64, &x);
+            pictures.note(hose, 1.0 + hose as f64, 0.0, &x, std::iter::empty());
         }
         assert_eq!(pictures.all().len(), MAX_SCENE_PICTURES);
         for hose in 100 - MAX_SCENE_PICTURES..100 {
             assert!(pictures.of(hose).is_some(), "hose {hose}");
         }
         // a milder one does not displace them; a worse bend of a kept hose updates it
-        pictures.note(3, 1.5, &x);
+        pictures.note(3, 1.5, 0.0, &x, std::iter::empty());
         assert!(pictures.of(3).is_none());
-        pictures.note(99, 500.0, &x);
+        pictures.note(99, 500.0, 0.0, &x, std::iter::empty());
         assert_eq!(pictures.of(99).unwrap().severity, 500.0);
         assert_eq!(pictures.all().len(), MAX_SCENE_PICTURES);
     }

@@ -193,7 +193,13 @@ impl InstallationChecks {
                 p.min_bend_radius_time = time;
                 p.curvature.copy_from_slice(&self.kappa[range.clone()]);
                 if worst > 1.0 {
-                    self.pictures.note(h, worst, &state.x);
+                    let poses = (0..model.environment.parts.len()).map(|k| {
+                        model
+                            .kinematics
+                            .placement_at(k, time, &state.part_moves)
+                            .pose
+                    });
+                    self.pictures.note(h, worst, time, &state.x, poses);
                 }
             }
             if tmax > p.max_twist {

@@ -2,7 +2,7 @@
 //! ergonomic limits, the parts the hoses touched — as `report.json` for machines and a
 //! self-contained `report.html` (inline SVG plots, no scripts) for people.
 
-use super::part_outline::PartOutline;
+use super::drawing::Drawing;
 use super::recorder::HandSample;
 use super::svg::escape;
 use crate::ergonomics::{ErgonomicLimits, ErgonomicProfile};
@@ -18,15 +18,15 @@ pub struct Report<'a> {
     pub verdict: Verdict,
     pub run: &'a RunSummary,
     pub diverged: Option<&'a str>,
-    /// The parts as the pictures draw them: presentation, made once per report from the
-    /// model ([`super::part_outline::part_outlines`]), not part of the run's record.
+    /// The parts and envelopes as the pictures draw them: presentation, made once per
+    /// report from the model ([`Drawing::of`]), not part of the run's record.
     #[serde(skip)]
-    pub parts: &'a [PartOutline],
+    pub drawing: &'a Drawing,
 }
 
 /// Writes `report.json` and `report.html` of a run into the folder `out` (which must
-/// exist) and returns the verdict. `parts` are the model's part outlines for the
-/// pictures ([`super::part_outline::part_outlines`]); `samples` are the hand loads at
+/// exist), and the swept envelopes' STL files if it has any, and returns the verdict.
+/// `drawing` holds the parts and envelopes for the pictures ([`Drawing::of`]); `samples` are the hand loads at
 /// the recorded times; `profile` is the ergonomic profile the run was judged with (its
 /// push limit is drawn on the stub and clip plots); `worker_series` the worker's posed
 /// instants (SPEC E1–E2; empty without a worker) for the report's worker plot.
@@ -35,7 +35,7 @@ pub fn write_reports(
     out: &Path,
     scene: &str,
     run: &RunSummary,
-    parts: &[PartOutline],
+    drawing: &Drawing,
     diverged: Option<&str>,
     samples: &[HandSample],
     profile: &ErgonomicProfile,
@@ -47,8 +47,11 @@ pub fn write_reports(
         verdict: Verdict::judge(run, diverged, Stage::Final),
         run,
         diverged,
-        parts,
+        drawing,
     };
+    if let Some(envelopes) = &drawing.envelopes {
+        envelopes.write_stl(out)?;
+    }
     let write = |name: &str, text: String| super::write_file(&out.join(name), text);
     super::write_json(&out.join("report.json"), &report)?;
     let push_limit = ErgonomicLimits::builtin()
@@ -64,7 +67,7 @@ pub fn write_reports(
 /// The installation checks' section (SPEC V3, V7): the violations with time and place,
 /// and per hose its curvature against the allowed curvature at the instant of its
 /// smallest bend radius and its twist at the instant of its largest twist.
-fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, parts: &[PartOutline]) {
+fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, drawing: &Drawing) {
     use super::profile_plot::{profile_plot, Limit};
     s.push_str("<h2>Installation checks</h2>");
     if checks.enabled.is_empty() {
@@ -141,7 +144,7 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, parts: 
         let mark = [0, 1, 2].map(|i| 0.5 * (xa[i] + xb[i]));
         s.push_str(&super::scene_picture::scene_picture(
             &format!(
-                "The scene at t = {:.2} s, when hose '{}' was bent tightest ({:.0} mm at s = {:.0} mm, circled; minimum {:.0} mm):",
+                "The scene at t = {:.2} s, when hose '{}' was bent tightest ({:.0} mm at s = {:.0} mm, circled; minimum {:.0} mm), the parts where they were then:",
                 v.time,
                 v.hose_name,
                 1e3 * v.value,
@@ -152,7 +155,7 @@ fn checks_section(s: &mut String, checks: &crate::checks::ChecksSummary, parts: 
             &hoses,
             v.hose,
             mark,
-            parts,
+            drawing.parts_for_picture(v.hose),
         ));
     }
     for p in &checks.profiles {
@@ -382,12 +385,20 @@ pub fn html(
         }
         s.push_str("</table>");
     }
-    checks_section(&mut s, &run.checks, report.parts);
+    checks_section(&mut s, &run.checks, report.drawing);
     if let Some(w) = &run.worker {
-        super::worker_section::worker_section(&mut s, w, worker_series, report.parts);
+        super::worker_section::worker_section(&mut s, w, worker_series, &report.drawing.parts);
     }
     if let Some(sweep) = &run.checks.sweep {
         super::sweep_plots::sweep_section(&mut s, sweep);
+        if let Some(envelopes) = &report.drawing.envelopes {
+            super::envelope_section::envelope_section(
+                &mut s,
+                envelopes,
+                sweep,
+                &report.drawing.parts,
+            );
+        }
     }
     s.push_str("<h2>Contact with parts</h2>");
     if run.contacts.is_empty() {

@@ -1,8 +1,11 @@
 //! The outputs of a study, the same whichever shell ran it (`pliant run`, `pliant
 //! replay`, a live session's report, Python): the recorder's CSV time series and VTK
-//! frames, `fasteners.csv`, `report.json` and `report.html` with the verdict, and
-//! `summary.json`.
+//! frames, `fasteners.csv`, `report.json` and `report.html` with the verdict,
+//! `summary.json`, and a range-of-motion study's `motion.csv` and swept envelopes
+//! (`envelope-<hose>.stl`).
 
+pub mod drawing;
+mod envelope_section;
 pub mod html;
 pub mod part_outline;
 mod profile_plot;
@@ -15,6 +18,7 @@ mod vtk;
 mod worker_picture;
 pub mod worker_section;
 
+pub use drawing::Drawing;
 pub use html::write_reports;
 pub use recorder::{HandSample, Recorder};
 pub use summary::{
@@ -94,13 +98,13 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
         write_file(&out.join("motion.csv"), sweep.csv())?;
     }
     // Presentation data, made here once per report: a hull over every vertex of every
-    // part (never on the live path).
-    let parts = part_outline::part_outlines(&o.model.environment);
+    // part, the swept envelopes (never on the live path).
+    let drawing = Drawing::of(o.model, run);
     let verdict = write_reports(
         out,
         o.scene_name,
         run,
-        &parts,
+        &drawing,
         o.diverged.map(|s| s.message.as_str()),
         o.hand_series,
         o.profile,
@@ -134,6 +138,7 @@ pub fn write_outputs(out: &Path, o: &Outputs) -> std::io::Result<(Verdict, Summa
             findings: w.findings(),
             summary: w.clone(),
         }),
+        envelopes: drawing.envelopes,
     };
     write_json(&out.join("summary.json"), &summary)?;
     Ok((verdict, summary))

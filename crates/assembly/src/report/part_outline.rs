@@ -7,7 +7,8 @@
 //! never does — a hull of a million vertices is a sort, far too slow for every snapshot.
 
 use glam::DVec3;
-use pliant_core::contact::RigidEnvironment;
+use pliant_core::contact::{RigidEnvironment, RigidPart};
+use pliant_core::kinematics::Pose;
 use std::cell::Cell;
 
 thread_local! {
@@ -76,33 +77,55 @@ pub struct PartOutline {
     pub depth: [f64; 3],
 }
 
-/// The outlines of every part of `environment`.
+/// The outlines of every part of `environment`, where the scene placed it.
 pub fn part_outlines(environment: &RigidEnvironment) -> Vec<PartOutline> {
     COMPUTED.with(|c| c.set(c.get() + 1));
-    let views = View::all();
     environment
         .parts
         .iter()
-        .map(|part| {
-            let vertices = part.mesh.vertices();
-            let mut out = PartOutline {
-                name: part.name.clone(),
-                ..Default::default()
-            };
-            for (k, view) in views.iter().enumerate() {
-                let projected: Vec<[f64; 2]> = vertices
-                    .iter()
-                    .map(|v| view.project(DVec3::new(v.x, v.y, v.z)))
-                    .collect();
-                out.hulls[k] = convex_hull(projected);
-                out.depth[k] = vertices
-                    .iter()
-                    .map(|v| DVec3::new(v.x, v.y, v.z).dot(view.towards))
-                    .fold(f64::INFINITY, f64::min);
-            }
-            out
+        .map(|part| outline_at(part, &Pose::IDENTITY))
+        .collect()
+}
+
+/// The outlines of every part of `environment` at its pose in `poses` (one per part):
+/// those of `at_rest` for a part at the identity, the others made anew.
+pub fn posed_outlines(
+    environment: &RigidEnvironment,
+    at_rest: &[PartOutline],
+    poses: &[Pose],
+) -> Vec<PartOutline> {
+    environment
+        .parts
+        .iter()
+        .zip(at_rest)
+        .enumerate()
+        .map(|(k, (part, rest))| match poses.get(k) {
+            Some(pose) if *pose != Pose::IDENTITY => outline_at(part, pose),
+            _ => rest.clone(),
         })
         .collect()
+}
+
+/// The outline of `part` moved by `pose`.
+fn outline_at(part: &RigidPart, pose: &Pose) -> PartOutline {
+    let vertices: Vec<DVec3> = part
+        .mesh
+        .vertices()
+        .iter()
+        .map(|v| pose.apply(DVec3::new(v.x, v.y, v.z)))
+        .collect();
+    let mut out = PartOutline {
+        name: part.name.clone(),
+        ..Default::default()
+    };
+    for (k, view) in View::all().iter().enumerate() {
+        out.hulls[k] = convex_hull(vertices.iter().map(|&v| view.project(v)).collect());
+        out.depth[k] = vertices
+            .iter()
+            .map(|v| v.dot(view.towards))
+            .fold(f64::INFINITY, f64::min);
+    }
+    out
 }
 
 /// The convex hull of `points`, counter-clockwise, without collinear points.
@@ -169,5 +192,56 @@ mod tests {
             assert!((v.right.length() - 1.0).abs() < 1e-12);
             assert!((v.up.length() - 1.0).abs() < 1e-12);
         }
+    }
+}
+
+#[cfg(test)]
+mod posed_tests {
+    use super::*;
+    use glam::DQuat;
+    use pliant_core::spec::RigidPartSpec;
+
+    /// A flat door 1 × 0.5 m in the plane y = 0 (x from 0 to 1), hinged about z.
+    fn door() -> RigidEnvironment {
+        let vertices = vec![
+            glam::DVec3::new(0.0, 0.0, 0.0),
+            glam::DVec3::new(1.0, 0.0, 0.0),
+            glam::DVec3::new(1.0, 0.0, 0.5),
+            glam::DVec3::new(0.0, 0.0, 0.5),
+        ];
+        RigidEnvironment::build(&[RigidPartSpec {
+            name: "door".into(),
+            vertices,
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            friction_static: 0.5,
+            friction_sliding: 0.4,
+            motion: None,
+            parent: None,
+            movable: true,
+        }])
+        .unwrap()
+    }
+
+    #[test]
+    fn a_turned_part_is_drawn_where_it_was() {
+        let env = door();
+        let rest = part_outlines(&env);
+        // seen from above, the door closed is the segment x ∈ [0, 1] on y = 0
+        let above = |o: &PartOutline| {
+            o.hulls[0].iter().fold([f64::NEG_INFINITY; 2], |m, p| {
+                [m[0].max(p[0]), m[1].max(p[1])]
+            })
+        };
+        assert!((above(&rest[0])[0] - 1.0).abs() < 1e-12 && above(&rest[0])[1].abs() < 1e-12);
+        // opened 90° about z: along y
+        let open = Pose {
+            rotation: DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2),
+            translation: glam::DVec3::ZERO,
+        };
+        let posed = posed_outlines(&env, &rest, &[open]);
+        let m = above(&posed[0]);
+        assert!(m[0].abs() < 1e-12 && (m[1] - 1.0).abs() < 1e-12, "{m:?}");
+        // at the identity, the outline at rest
+        assert_eq!(posed_outlines(&env, &rest, &[Pose::IDENTITY]), rest);
     }
 }

@@ -139,6 +139,10 @@ pub struct Summary {
     /// The worker (SPEC E1–E2), when the scene has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub worker: Option<WorkerReport>,
+    /// The hoses' swept envelopes over a range of motion (`[sweep]`): files, volumes,
+    /// clearance to the parts that stand still.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub envelopes: Option<crate::sweep::envelope::SweptEnvelopes>,
 }
 
 /// `summary.json`'s `worker`: the worker's account and what they could not do.

@@ -8,12 +8,20 @@
 //! sequence of poses (quasi-static sweep), a dynamic one at the speed its keyframes give.
 //! The sweep is sampled at the installation checks' instants, from the state alone, so
 //! every shell and every replay records the same rows.
+//!
+//! Each hose's swept envelope over the motion — the volume its tube took at some checked
+//! instant — is a voxel set and its closed surface ([`envelope`]), with its clearance to
+//! every part that stands still.
 
+pub mod centreline_samples;
 mod coordinate;
+pub mod envelope;
 mod extremes;
 mod settings;
 mod summary;
 mod tracker;
+pub mod voxel_surface;
+pub mod voxels;
 
 pub use coordinate::{Coordinate, CoordinateKind};
 pub use extremes::{ClosestApproach, MotionExtremes, RadiusAt};

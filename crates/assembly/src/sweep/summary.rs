@@ -38,6 +38,10 @@ pub struct SweepSummary {
     /// The rows, flat (not in `report.json`: `motion.csv` holds them).
     #[serde(skip)]
     pub rows: Vec<f64>,
+    /// Every hose's centre-line samples at the checked instants, for the swept
+    /// envelopes (shared: a summary taken while the sweep goes on does not copy them).
+    #[serde(skip)]
+    pub swept: Option<std::sync::Arc<super::envelope::SweptHoses>>,
 }
 
 /// The worst value of one quantity over the sweep and where it was.

@@ -3,9 +3,11 @@
 //! minimum radius, its largest twist and largest axial force,
 //! per hose and watched part their clearance ([`pliant_core::contact::part_gap`]), and
 //! the largest force with which a fix, mount, support or hand holds a node (the fixing
-//! forces: `State::reaction_force` of the held nodes).
+//! forces: `State::reaction_force` of the held nodes); and every hose's centre-line
+//! samples for its swept envelope ([`super::envelope`]).
 
 use super::coordinate::Coordinate;
+use super::envelope::SweptHoses;
 use super::settings::SweepSettings;
 use super::summary::SweepSummary;
 use crate::checks::axial_force;
@@ -77,6 +79,7 @@ impl MotionSweep {
                     .collect(),
                 min_clearance: settings.min_clearance,
                 rows: Vec::new(),
+                swept: Some(std::sync::Arc::new(SweptHoses::new(model))),
             },
             coordinate,
         }
@@ -129,6 +132,9 @@ impl MotionSweep {
             .map(|(_, c)| state.reaction_force[c.node()].length())
             .fold(0.0, f64::max);
         rows.push(fixing);
+        if let Some(swept) = &mut self.found.swept {
+            std::sync::Arc::make_mut(swept).add(model, state);
+        }
         let count = rows.len() / self.found.stride;
         if count >= self.cap.max_rows() {
             let worst = self.found.worst_rows();

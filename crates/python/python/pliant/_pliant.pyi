@@ -303,6 +303,7 @@ class Simulation:
     def gravity_energy(self) -> float: ...
     def fasteners(self) -> List[Dict[str, Any]]: ...
     def worker(self) -> Optional[Dict[str, Any]]: ...
+    def sweep(self) -> Optional[Dict[str, Any]]: ...
 
 @final
 class RunResult:
@@ -371,6 +372,11 @@ def run_timeline(scene: Scene, ergonomics: Optional[str] = None, solver: Optiona
 def centreline_sample_keys(frames: FloatArray, h: float) -> Any:
     """Sorted unique int64 keys of the centre-line samples of frames (T, N, 3) [m] for
     voxels of size h [m] (``pliant.studies.envelope.sample_keys``)."""
+
+def swept_voxel_keys(samples: Any, radius: float, h: float) -> Any:
+    """Sorted int64 keys of the voxels of size h [m] within reach of the samples (keys of
+    ``centreline_sample_keys``) for a tube of outer radius ``radius`` [m]
+    (``pliant.studies.envelope.voxels_of_samples``)."""
 
 def part_distances(
     points: FloatArray,

@@ -1,10 +1,11 @@
 """Tolerance envelopes (SPEC T2): the volume each hose sweeps over all runs and all
 recorded instants, as a voxel occupancy set and as a closed triangle mesh (STL, GLB).
 
-Method: the recorded centre line of a run (nodes at the record interval) is sampled at
-most h/2 apart (h the voxel size, samples merged on an h/4 grid); a voxel (centre on the
-grid i·h) is occupied when its centre lies within r + (√3/2)(h + h/4) + h/4 of a sample (r the hose's outer radius), i.e. it
-touches the tube, allowing for the sampling. The union over runs is an exact set
+Method (shared with ``pliant run``'s swept envelopes, pliant_assembly::sweep): the
+recorded centre line of a run (nodes at the record interval) is sampled at most h/2 apart
+(h the voxel size, samples merged on an h/4 grid); a voxel (centre on the grid i·h) is
+occupied when its centre lies within r + (√3/2)(h + h/4) + h/4 of a sample (r the hose's
+outer radius), i.e. it touches the tube, allowing for the sampling. The union over runs is an exact set
 operation, so the envelope does not depend on the order runs finish in. The mesh is the
 0.5 iso-surface of the occupancy (marching cubes, scikit-image, Lewiner), closed because
 the grid is padded: it contains every sampled centre-line point of every run while
@@ -68,41 +69,14 @@ def voxelize(frames: np.ndarray, radius: float, h: float) -> np.ndarray:
 
 def voxels_of_samples(samples: np.ndarray, radius: float, h: float) -> np.ndarray:
     """Sorted keys of the voxels whose centre lies within reach of a sample (keys of
-    :func:`sample_keys`): the tube of this radius around the sampled centre lines."""
-    from scipy.ndimage import distance_transform_edt
-    from scipy.spatial import cKDTree
+    :func:`sample_keys`): the tube of this radius around the sampled centre lines. (In
+    Rust, ``pliant._pliant.swept_voxel_keys``, the voxels of ``pliant run``'s swept
+    envelopes too; ValueError for a region too large for voxels of this size.)"""
+    from .._pliant import swept_voxel_keys
 
     if len(samples) == 0:
         return np.zeros(0, np.int64)
-    fine = h / 4  # samples deduplicated over time on a grid 4× finer than the voxels
-    pts = unpack(samples) * fine
-    reach = radius + math.sqrt(3) / 2 * (h + fine) + h / 4
-    seeds = np.round(pts / h).astype(np.int64)
-    m = int(math.ceil(reach / h)) + 2
-    if np.prod(seeds.max(axis=0) - seeds.min(axis=0) + 2 * m + 1, dtype=float) > 2e8:
-        raise ValueError("the swept region is too large for voxels of this size")
-    lo = seeds.min(axis=0) - m
-    grid = np.ones(seeds.max(axis=0) - lo + m + 1, dtype=bool)
-    grid[tuple((seeds - lo).T)] = False
-    sample_of = np.zeros(grid.shape + (3,))  # one sample in each seed voxel
-    sample_of[tuple((seeds - lo).T)] = pts
-    # a sample lies within √3/2 h of its seed voxel's centre: voxels that near a seed are
-    # in for sure, those farther than reach + √3/2 h out; the shell between is measured
-    d_seed, nearest = distance_transform_edt(grid, return_indices=True)
-    d_seed *= h
-    slack = math.sqrt(3) / 2 * h
-    sure = np.argwhere(d_seed <= reach - slack)
-    shell = np.argwhere((d_seed > reach - slack) & (d_seed <= reach + slack))
-    # in if the nearest seed's sample is within reach (about half the shell); the rest
-    # asks for the nearest sample of all
-    seed = nearest[:, shell[:, 0], shell[:, 1], shell[:, 2]]
-    found = np.linalg.norm((shell + lo) * h - sample_of[seed[0], seed[1], seed[2]], axis=1) <= reach
-    rest = shell[~found]
-    # an unbalanced tree with big leaves: the samples lie on a lattice, and a shell voxel
-    # has hundreds of them about as far as the nearest; ~2× faster here, the same answer
-    tree = cKDTree(pts, leafsize=64, balanced_tree=False, compact_nodes=False)
-    d, _ = tree.query((rest + lo) * h, distance_upper_bound=reach * 1.01)
-    return np.sort(pack(np.concatenate([sure, shell[found], rest[d <= reach]]) + lo))
+    return swept_voxel_keys(np.ascontiguousarray(samples, dtype=np.int64), float(radius), float(h))
 
 
 def mesh(keys: np.ndarray, h: float) -> Tuple[np.ndarray, np.ndarray]:
