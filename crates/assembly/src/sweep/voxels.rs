@@ -37,7 +37,7 @@ impl VoxelGrid {
     /// tube of outer radius `radius` \[m\], voxel size `h` \[m\]. Refuses a grid of more than
     /// [`MAX_CELLS`] cells (the error says so).
     pub fn of_samples(samples: &[i64], radius: f64, h: f64) -> Result<VoxelGrid, String> {
-        if !(h > 0.0 && h.is_finite()) || !(radius >= 0.0 && radius.is_finite()) {
+        if !(h > 0.0 && h.is_finite() && radius >= 0.0 && radius.is_finite()) {
             return Err(format!(
                 "voxel size {h} m and radius {radius} m: must be positive and finite"
             ));
