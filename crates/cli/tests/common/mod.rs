@@ -1,7 +1,7 @@
 //! What the CLI's end-to-end tests share: the binary, the real harness files of
 //! `data/harness/` (from the workspace's test kit), and a check that a command succeeded.
 // Each test binary compiles this module and uses only some of it.
-#![allow(dead_code)]
+#![allow(dead_code, unused_imports)]
 
 use std::process::{Command, Output};
 

@@ -1,6 +1,6 @@
 //! What the harness tests share: the real KBL files of data/harness/ (CC BY-SA 4.0, see
 //! the README there) and a scratch folder per test.
-#![allow(dead_code)] // each test file uses part of it
+#![allow(dead_code, unused_imports)] // each test file uses part of it
 
 use std::path::{Path, PathBuf};
 
