@@ -11,6 +11,7 @@ pub mod fastener_state;
 pub mod fasteners;
 pub mod grip;
 pub mod hand;
+pub mod move_speed;
 pub mod part_frame;
 pub mod report;
 pub mod runner;

@@ -402,17 +402,10 @@ fn apply(
                 through.extend_from_slice(&points);
                 points = catmull_rom(&through, 16).split_off(1);
             }
-            let mut duration = *duration;
-            if let Some(v) = speed {
-                let mut length = 0.0;
-                let mut at = start;
-                for p in &points {
-                    length += (*p - at).length();
-                    at = *p;
-                }
-                // the smooth step's mean speed is the given one
-                duration = (length / v).max(1e-3);
-            }
+            let duration = match speed {
+                Some(v) => crate::move_speed::duration_at_speed(start, &points, *v),
+                None => *duration,
+            };
             let input = Input::MoveHand {
                 hand: number,
                 waypoints: points,

@@ -4,8 +4,6 @@
 //! ([`ClipSpec::seat_hold`], the load case the runtime puts on a seated node). The sliding
 //! guide's friction is Coulomb, μ N.
 
-mod common;
-
 use glam::{DQuat, DVec3};
 use pliant_assembly::clip::{ClipKind, ClipSpec};
 use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
@@ -18,7 +16,7 @@ const M: f64 = 0.5; // test moment [N m]
 
 /// Library hose 3, 0.3 m along global X, no gravity.
 fn model() -> Model {
-    let mut model = common::hose3_along_x(
+    let mut model = pliant_testkit::hose3_along_x(
         N,
         SimSettings {
             gravity: DVec3::ZERO,
@@ -228,7 +226,7 @@ fn friction_only_on_a_sliding_guide() {
 /// final state and the clip's report.
 fn seat_and_pull(spec: ClipSpec, pull: f64) -> (State, pliant_assembly::FastenerReport) {
     use pliant_assembly::{Action, ClipSite, NoObserver, NodeRef, Runner, Timeline};
-    let model = common::hose3_along_x(20, SimSettings::default());
+    let model = pliant_testkit::hose3_along_x(20, SimSettings::default());
     let mut state = State::at_rest(&model);
     let site = ClipSite {
         name: "clip".into(),

@@ -3,8 +3,6 @@
 //! the firm grip carries a twist (and bending) moment, the axial grip carries no moment
 //! about the hose's axis, and the ball grip no moment at all.
 
-mod common;
-
 use glam::{DQuat, DVec3};
 use pliant_assembly::{Grip, Hand, HandLoad};
 use pliant_core::integrators::StaticSolver;
@@ -14,7 +12,7 @@ use pliant_core::{SimSettings, State};
 /// Library hose 3, 0.3 m along X in 12 elements, clamped at the root, no gravity; a hand
 /// with `grip` grabs the last beam's middle, turns, and the hose settles.
 fn turned(grip: Grip) -> HandLoad {
-    let mut model = common::hose3_along_x(
+    let mut model = pliant_testkit::hose3_along_x(
         12,
         SimSettings {
             gravity: DVec3::ZERO,

@@ -5,9 +5,6 @@
 //! continues bit for bit from a checkpoint taken mid-move; bad moves are refused with
 //! the reason.
 
-mod common;
-
-use common::hose3;
 use glam::{DQuat, DVec3};
 use pliant_assembly::workcell::log::{line_text, InputLog, LogHeader, LogLine};
 use pliant_assembly::workcell::replay::replay;
@@ -16,6 +13,7 @@ use pliant_assembly::{
 };
 use pliant_core::kinematics::{Hinge, PartMotion, Profile};
 use pliant_core::{HoseSpec, Model, RigidPartSpec, SimSettings, SolverKind, WorldSpec};
+use pliant_testkit::hose3;
 use std::sync::Arc;
 
 /// A flat square plate of half-size `h` at height `z`, centred on (cx, 0).

@@ -5,24 +5,7 @@ use pliant_assembly::stub::{
     contact_pressure, Friction, PressFit, StubError, StubObservation, StubSpec, StubState,
     StubTolerance,
 };
-use pliant_core::{Material, Section};
 use std::f64::consts::PI;
-
-/// Library hose 3 (SPEC M4): coolant hose, d_i 27 mm, d_a 35 mm, E_t 6.9442 MPa,
-/// E_c 8.6913 MPa, ν 0.49 (density irrelevant here).
-fn hose3() -> (Section, Material) {
-    let material = Material {
-        e_tension: 6.9442e6,
-        e_compression: 8.6913e6,
-        e_bending: None,
-        poisson: 0.49,
-        density: 1100.0,
-        plasticity: None,
-        relaxation: Vec::new(),
-        hysteresis: None,
-    };
-    (Section::new(0.027, 0.035), material)
-}
 
 /// A 28 mm stub, 30 mm long, mouth at the origin, pushed on along +z; friction
 /// coefficients γ_H = 0.6, γ_G = 0.4 (test values: dry elastomer on plastic).
@@ -44,7 +27,7 @@ fn close(a: f64, b: f64, rel: f64) -> bool {
 
 #[test]
 fn hose3_on_a_28mm_stub_matches_the_hand_calculation() {
-    let (section, material) = hose3();
+    let (material, section) = pliant_testkit::hose3();
     let fit = PressFit::new(&stub28(), &section, &material).unwrap();
 
     // r_i = 13.5 mm, r_a = 17.5 mm, r_s = 14 mm.
@@ -89,7 +72,7 @@ fn hose3_on_a_28mm_stub_matches_the_hand_calculation() {
 
 #[test]
 fn the_modulus_is_a_choice_and_can_be_given() {
-    let (section, material) = hose3();
+    let (material, section) = pliant_testkit::hose3();
     let with_ec =
         PressFit::with_modulus(&stub28(), &section, material.e_compression, 0.49).unwrap();
     let with_et = PressFit::new(&stub28(), &section, &material).unwrap();
@@ -103,7 +86,7 @@ fn the_modulus_is_a_choice_and_can_be_given() {
 
 #[test]
 fn insertion_depth_is_clamped_to_the_stub() {
-    let (section, material) = hose3();
+    let (material, section) = pliant_testkit::hose3();
     let fit = PressFit::new(&stub28(), &section, &material).unwrap();
     let full = fit.axial_force(0.030, Friction::Static);
     assert_eq!(fit.axial_force(0.050, Friction::Static), full);
@@ -119,7 +102,7 @@ fn insertion_depth_is_clamped_to_the_stub() {
 
 #[test]
 fn no_press_fit_when_the_bore_is_as_wide_as_the_stub() {
-    let (section, material) = hose3();
+    let (material, section) = pliant_testkit::hose3();
     for d_s in [0.027, 0.020] {
         let stub = StubSpec::new(DVec3::ZERO, DVec3::Z, 0.03, d_s, 0.6, 0.4).unwrap();
         let fit = PressFit::new(&stub, &section, &material).unwrap();
@@ -171,7 +154,7 @@ fn observe(z: f64, force: f64, grabbed: bool) -> StubObservation {
 
 #[test]
 fn push_on_release_and_pull_off() {
-    let (section, material) = hose3();
+    let (material, section) = pliant_testkit::hose3();
     let stub = stub28();
     let fit = PressFit::new(&stub, &section, &material).unwrap();
     let tol = StubTolerance::for_stub(&stub);
@@ -236,7 +219,7 @@ fn push_on_release_and_pull_off() {
 
 #[test]
 fn a_push_at_the_stop_cannot_move_a_fixed_hose() {
-    let (section, material) = hose3();
+    let (material, section) = pliant_testkit::hose3();
     let stub = stub28();
     let fit = PressFit::new(&stub, &section, &material).unwrap();
     let tol = StubTolerance::for_stub(&stub);
@@ -254,7 +237,7 @@ fn a_push_at_the_stop_cannot_move_a_fixed_hose() {
 
 #[test]
 fn bad_observations_are_errors() {
-    let (section, material) = hose3();
+    let (material, section) = pliant_testkit::hose3();
     let stub = stub28();
     let fit = PressFit::new(&stub, &section, &material).unwrap();
     let tol = StubTolerance::for_stub(&stub);

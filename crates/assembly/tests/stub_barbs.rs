@@ -4,8 +4,6 @@
 //! every crest the lip has passed, plus N_j (tan α + γ)/(1 − γ tan α) on the flank of barb
 //! j under the lip (the entry flank pushing on, the back flank pulling off).
 
-mod common;
-
 use glam::DVec3;
 use pliant_assembly::stub::{Bead, Friction, PressFit, Sense, StubSpec, MAX_PROFILE};
 use std::f64::consts::PI;
@@ -23,7 +21,7 @@ fn barbs() -> [Bead; 2] {
 }
 
 fn fit() -> PressFit {
-    let (material, section) = common::hose3();
+    let (material, section) = pliant_testkit::hose3();
     let stub = StubSpec::new(DVec3::ZERO, DVec3::Z, 0.030, 0.028, 0.6, G).unwrap();
     let [b1, b2] = barbs();
     PressFit::new(&stub, &section, &material)
@@ -135,7 +133,7 @@ fn overlapping_or_too_many_barbs_are_refused() {
     let inside = Bead::new(0.0135, 0.001, 0.001, 0.3, 0.9).unwrap();
     let err = f.with_bead(inside).unwrap_err().to_string();
     assert!(err.contains("bead.at"), "{err}");
-    let (material, section) = common::hose3();
+    let (material, section) = pliant_testkit::hose3();
     let mut many = PressFit::new(f.stub(), &section, &material).unwrap();
     for k in 0..MAX_PROFILE {
         let b = Bead::new(0.003 * k as f64, 0.0005, 0.0005, 0.5, 1.0).unwrap();

@@ -6,26 +6,16 @@ use glam::DVec3;
 use pliant_assembly::stub::{
     Bead, Friction, PressFit, Sense, StubObservation, StubSpec, StubState, StubTolerance,
 };
-use pliant_core::{Material, Section};
 use std::f64::consts::PI;
 
 /// Library hose 3 (d 27/35 mm, E_t 6.9442 MPa, ν 0.49) on a 28 mm stub, 30 mm long,
 /// γ_H 0.6, γ_G 0.4, with a bead 1.5 mm high starting 8 mm from the mouth: entry flank
 /// 20°, crest 3 mm, back flank 60°.
 fn fit() -> PressFit {
-    let material = Material {
-        e_tension: 6.9442e6,
-        e_compression: 8.6913e6,
-        e_bending: None,
-        poisson: 0.49,
-        density: 1100.0,
-        plasticity: None,
-        relaxation: Vec::new(),
-        hysteresis: None,
-    };
+    let (material, section) = pliant_testkit::hose3();
     let stub = StubSpec::new(DVec3::ZERO, DVec3::Z, 0.030, 0.028, 0.6, 0.4).unwrap();
     let bead = Bead::new(0.008, 0.0015, 0.003, 20f64.to_radians(), 60f64.to_radians()).unwrap();
-    PressFit::new(&stub, &Section::new(0.027, 0.035), &material)
+    PressFit::new(&stub, &section, &material)
         .unwrap()
         .with_bead(bead)
         .unwrap()

@@ -5,9 +5,10 @@
 use glam::DVec3;
 use pliant_assembly::stub::{AxialLaw, Friction, PressFit, StubSpec};
 use pliant_assembly::{Action, HandRecord, MovePath, Observer, Runner, StubSite, Timeline};
-use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
+use pliant_core::{Model, SimSettings, State};
 
 const N: usize = 12;
+/// The hose's length \[m\]: N beams of 25 mm.
 const L: f64 = 0.3;
 
 fn setup() -> (Model, StubSite, PressFit) {
@@ -16,40 +17,15 @@ fn setup() -> (Model, StubSite, PressFit) {
 
 /// The hose and stub, with the explicit time step at `safety` × the stable limit.
 fn setup_with(safety: f64) -> (Model, StubSite, PressFit) {
-    // library hose 3, coolant hose EPDM/aramid: d_i 27 mm, d_a 35 mm
-    let material = Material {
-        e_tension: 6.9442e6,
-        e_compression: 8.6913e6,
-        e_bending: None,
-        poisson: 0.49,
-        density: 1100.0,
-        plasticity: None,
-        relaxation: Vec::new(),
-        hysteresis: None,
-    };
-    let section = Section::new(0.027, 0.035);
-    let nodes = (0..=N)
-        .map(|i| DVec3::new(L * i as f64 / N as f64, 0.0, 0.0))
-        .collect();
-    let hose = HoseSpec {
-        name: "h".into(),
-        material: material.clone(),
-        nodes,
-        sections: vec![section],
-        normal_hint: Some(DVec3::Y),
-    };
     let settings = SimSettings {
         gravity: DVec3::ZERO,
         damping_mass: 5.0,
         time_step_safety: safety,
         ..Default::default()
     };
-    let model = Model::build(&WorldSpec {
-        hoses: vec![hose],
-        rigid_parts: vec![],
-        settings,
-    })
-    .unwrap();
+    // library hose 3, coolant hose EPDM/aramid: d_i 27 mm, d_a 35 mm, in 25 mm beams
+    let model = pliant_testkit::hose3_along_x(N, settings);
+    let (material, section) = pliant_testkit::hose3();
     // 28 mm stub, mouth 2 mm in front of the hose end, 30 mm long, along +x
     let stub = StubSpec::new(
         DVec3::new(L + 0.002, 0.0, 0.0),

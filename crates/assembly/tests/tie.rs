@@ -7,8 +7,6 @@
 //! give T/k. Checked under the quasi-static, implicit and explicit solvers (the explicit
 //! one through the workcell's runner and the `tie` action).
 
-mod common;
-
 use glam::{DQuat, DVec3};
 use pliant_assembly::{Action, NoObserver, NodeRef, Runner, Timeline};
 use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
@@ -22,7 +20,7 @@ const F: f64 = 0.5; // pull on hose a's tip [N]: tip deflection ≈ 3 % of the l
 /// Hoses a (along X from the origin) and b (the same, GAP further along +Y), no gravity,
 /// no hose contact (the tie alone couples them).
 fn model() -> Model {
-    let (material, section) = common::hose3();
+    let (material, section) = pliant_testkit::hose3();
     let hose = |name: &str, y: f64| HoseSpec {
         name: name.into(),
         material: material.clone(),

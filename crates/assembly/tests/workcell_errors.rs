@@ -2,15 +2,13 @@
 //! same name (a fix holds its node, a dead load acts), and a workcell that cannot be
 //! built says why with a typed error whose text names the node, the part or the worker.
 
-mod common;
-
-use common::hose3_along_x;
 use glam::DVec3;
 use pliant_assembly::{
     Action, InitialLoad, NodeRef, Refusal, Workcell, WorkcellError, WorkcellOptions, WorkcellSetup,
 };
 use pliant_core::loads::LoadCase;
 use pliant_core::SimSettings;
+use pliant_testkit::hose3_along_x;
 use std::sync::Arc;
 
 fn setup(initial: Vec<InitialLoad>) -> WorkcellSetup {

@@ -1,5 +1,6 @@
 //! End-to-end tests of the `pliant` binary, as a user runs it.
 
+use pliant_testkit::files::cad_file;
 use std::path::Path;
 use std::process::Command;
 
@@ -694,20 +695,6 @@ fn calibrate_refuses_out_of_range_specimens_and_non_finite_results() {
         assert!(err.contains(expected), "{err}");
         assert!(!out.join("material.toml").exists());
     }
-}
-
-/// A real STEP file from the repository's `data/cad` (see its README), or PLIANT_CAD_FILES.
-fn cad_file(name: &str) -> std::path::PathBuf {
-    let dir = std::env::var_os("PLIANT_CAD_FILES")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/cad"));
-    let path = dir.join(name);
-    assert!(
-        path.is_file(),
-        "missing real STEP file {} (data/cad in the repository, or PLIANT_CAD_FILES)",
-        path.display()
-    );
-    path
 }
 
 /// `pliant import` fills the cache a scene beside the STEP file reads (then the scene

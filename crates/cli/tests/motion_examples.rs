@@ -2,6 +2,7 @@
 //! `motion.csv` against the moving part's coordinate, the report draws it, and the
 //! verdict names the worst position in the motion's own unit.
 
+use pliant_testkit::scenes::{DOOR, HOSE3_300, WEIGHTLESS_MM};
 use std::path::Path;
 use std::process::Command;
 
@@ -140,26 +141,7 @@ fn the_rocking_engine_example_reports_a_cycle_of_phases_and_the_fan_clearance() 
 /// part the scene has not is refused with the field and the parts' names.
 #[test]
 fn a_timeline_that_turns_a_part_runs_and_a_wrong_part_is_named() {
-    let scene = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-solver = "static"
-
-[[hoses]]
-name = "h"
-material = "hose3"
-start = [0, 0, 0]
-path = [{ line = { to = [300, 0, 0] } }]
-
-[[parts]]
-name = "door"
-box = { size = [20, 20, 20] }
-position = [320, 0, -40]
-
+    let timeline = r#"
 [[timeline]]
 action = "fix"
 hose = "h"
@@ -185,9 +167,10 @@ part = "door"
 to = [0, 0, 20]
 duration_s = 0.2
 "#;
+    let scene = format!("{WEIGHTLESS_MM}solver = \"static\"\n{HOSE3_300}{DOOR}{timeline}");
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("door.toml");
-    std::fs::write(&file, scene).unwrap();
+    std::fs::write(&file, &scene).unwrap();
     let out = dir.path().join("out");
     let o = pliant_run(&file, &out);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

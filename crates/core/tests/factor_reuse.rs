@@ -5,14 +5,12 @@
 //! are the same to the last bit as those of a solver that factorises every time, and
 //! the factors are reused once per step.
 
-mod common;
-
 use glam::DVec3;
 use pliant_core::integrators::StaticSolver;
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::{HoseEnd, JunctionSpec, Model, SimSettings, State, WorldSpec};
 
-use common::straight_hose1 as hose;
+use pliant_testkit::straight_hose1 as hose;
 
 /// A trunk along x, clamped at its root; with `branches`, two branches leave its end at
 /// ±45° from a junction.

@@ -14,8 +14,7 @@ use pliant_core::rod::node_view::NodeView;
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 use std::f64::consts::PI;
 
-mod common;
-use common::Lcg;
+use pliant_testkit::Lcg;
 
 const R: f64 = 0.010; // outer radius [m]
 

@@ -4,13 +4,11 @@
 //! under `All`, left alone under `ApartAtRest` — while a third hose, drawn clear of them,
 //! still presses on them when it is moved onto one; `Off` has no hose contact at all.
 
-mod common;
-
 use glam::DVec3;
 use pliant_core::contact::{hose_contact_forces, HoseContactRule, HoseContactScratch};
 use pliant_core::{Model, SimSettings, WorldSpec};
 
-use common::straight_hose1 as hose;
+use pliant_testkit::straight_hose1 as hose;
 
 /// `a` along x, `b` along y crossing it 5 mm above (the 16 mm tubes overlap by 11 mm),
 /// `c` parallel to `a` 40 mm above it (clear of both).

@@ -11,8 +11,7 @@ use pliant_core::integrators::explicit::step;
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 
-mod common;
-use common::Lcg;
+use pliant_testkit::Lcg;
 
 const R: f64 = 0.010; // outer radius [m]
 
@@ -206,7 +205,7 @@ fn contact_pairs_that_build_up_beyond_the_cap_stop_the_run_as_diverged() {
     let hoses = (0..40)
         .map(|k| {
             let y = 0.1 * k as f64;
-            common::straight_hose1(
+            pliant_testkit::straight_hose1(
                 &format!("h{k}"),
                 DVec3::new(0.0, y, 0.0),
                 DVec3::new(0.2, y, 0.0),

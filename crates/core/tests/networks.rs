@@ -4,15 +4,13 @@
 //! is refused by the Newton solvers with a clear error and stepped by the explicit one,
 //! and the joined ends stay together.
 
-mod common;
-
 use glam::{DQuat, DVec3};
 use pliant_core::integrators::{Solver, SolverKind, SolverSettings, StaticSolver};
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::relax::{relax, RelaxOptions};
 use pliant_core::{HoseEnd, JunctionSpec, Model, SimSettings, State, WorldSpec};
 
-use common::straight_hose1 as hose;
+use pliant_testkit::straight_hose1 as hose;
 
 /// A trunk along x from the origin, two branches leaving its end in the x–y plane at
 /// ±45°, under gravity; the trunk's root clamped.

@@ -5,6 +5,7 @@ use glam::{DQuat, DVec3};
 use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
+use pliant_testkit::hose1;
 
 fn cantilever(n: usize, material: Material, section: Section, gravity: DVec3) -> (Model, State) {
     let nodes = (0..=n)
@@ -33,22 +34,6 @@ fn cantilever(n: usize, material: Material, section: Section, gravity: DVec3) ->
         orientation: DQuat::IDENTITY,
     }));
     (model, state)
-}
-
-fn hose1() -> (Material, Section) {
-    (
-        Material {
-            e_tension: 11.583e6,
-            e_compression: 13.1363e6,
-            e_bending: None,
-            poisson: 0.49,
-            density: 940.0,
-            plasticity: None,
-            relaxation: Vec::new(),
-            hysteresis: None,
-        },
-        Section::new(0.010, 0.016),
-    )
 }
 
 /// Library hose 1, 0.5 m in 8 elements along x from `start`, nodes 3–5 a stiffened

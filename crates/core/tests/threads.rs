@@ -9,21 +9,10 @@ use pliant_core::loads::{DeadLoad, Fix, LoadCase};
 use pliant_core::rod::forces::{add_reference_loads, internal_loads};
 use pliant_core::rod::node_view::NodeView;
 use pliant_core::rod::stiffened::StiffenedSpan;
-use pliant_core::{
-    HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings, State, WorldSpec,
-};
+use pliant_core::{HoseSpec, Model, RigidPartSpec, SimSettings, State, WorldSpec};
 
 fn world(floor: bool) -> WorldSpec {
-    let material = Material {
-        e_tension: 11.583e6,
-        e_compression: 13.1363e6,
-        e_bending: None,
-        poisson: 0.49,
-        density: 940.0,
-        plasticity: None,
-        relaxation: Vec::new(),
-        hysteresis: None,
-    };
+    let material = pliant_testkit::hose1_material();
     let hoses = (0..7)
         .map(|h| {
             // wavy hoses stacked closely: they fall onto each other and touch
@@ -42,7 +31,7 @@ fn world(floor: bool) -> WorldSpec {
                 name: format!("h{h}"),
                 material: material.clone(),
                 nodes,
-                sections: vec![Section::new(0.010, 0.016)],
+                sections: vec![pliant_testkit::hose1_section()],
                 normal_hint: Some(DVec3::Z),
             }
         })

@@ -8,7 +8,8 @@ use glam::{DQuat, DVec3};
 use pliant_assembly::ergonomics::HandAssessment;
 use pliant_assembly::workcell::{node_ref, rotation_between_poses, Refusal as CellRefusal};
 use pliant_assembly::{
-    Applied, HandLoad, InitialLoad, Input, NoObserver, Workcell, WorkcellOptions,
+    Applied, HandLoad, InitialLoad, Input, NoObserver, Workcell, WorkcellError, WorkcellOptions,
+    WorkcellSetup,
 };
 use pliant_core::health::Divergence;
 use pliant_core::loads::{LoadCase, LoadCaseId};
@@ -48,16 +49,12 @@ impl Engine {
         initial: Vec<InitialLoad>,
         solver: Option<SolverKind>,
     ) -> Result<Engine, String> {
-        let (stubs, clips) = scene.fastener_sites(&model)?;
-        let setup = pliant_assembly::WorkcellSetup {
-            model,
-            stubs,
-            clips,
-            initial,
-            profile: scene.ergonomics,
-            checks: scene.check_settings(),
-            worker: scene.worker,
-        };
+        let setup = scene.workcell_setup_of(model).map_err(|e| match e {
+            // the caller names the scene
+            WorkcellError::Fasteners { reason, .. } => reason,
+            e => e.to_string(),
+        })?;
+        let setup = WorkcellSetup { initial, ..setup };
         let options = WorkcellOptions {
             solver,
             ..Default::default()

@@ -89,18 +89,10 @@ pub fn run_timeline(
             .map_err(|e| PyValueError::new_err(format!("ergonomics '{text}': {e}")))?,
         None => loaded.ergonomics,
     };
-    let (stubs, clips) = loaded
-        .fastener_sites(&model)
-        .map_err(|e| scene_error_message(py, format!("{}: {e}", loaded.source)))?;
-    let setup = pliant_assembly::WorkcellSetup {
-        model: model.clone(),
-        stubs,
-        clips,
-        initial: loaded.initial_loads(),
-        profile,
-        checks: loaded.check_settings(),
-        worker: loaded.worker,
-    };
+    let setup = loaded
+        .workcell_setup_of(model.clone())
+        .map_err(|e| scene_error_message(py, e.to_string()))?;
+    let setup = pliant_assembly::WorkcellSetup { profile, ..setup };
     let options = WorkcellOptions {
         solver,
         ..Default::default()

@@ -2,6 +2,7 @@
 
 use crate::arrays::to_python;
 use crate::errors::{model_error, scene_error, scene_error_message};
+use pliant_assembly::WorkcellError;
 use pliant_core::Model;
 use pliant_scene::{
     demo_scene as rust_demo_scene, load_scene_file, load_scene_json_str_in, load_scene_str_in,
@@ -37,16 +38,15 @@ impl Scene {
     /// Builds the model of a loaded scene; errors as `pliant run` words them.
     pub fn build(py: Python<'_>, loaded: Result<LoadedScene, RustSceneError>) -> PyResult<Scene> {
         let scene = loaded.map_err(|e| scene_error(py, &e))?;
-        let model = scene
-            .build_model_typed()
-            .map_err(|e| model_error(py, &scene.source, &e))?;
-        // stubs and clips must bind to the model's nodes; check now rather than on use
-        scene
-            .fastener_sites(&model)
-            .map_err(|e| scene_error_message(py, format!("{}: {e}", scene.source)))?;
+        // the workcell's setup, as `pliant run` makes it: the model, and the stubs and
+        // clips bound to its nodes — checked now rather than on use
+        let setup = scene.workcell_setup().map_err(|e| match e {
+            WorkcellError::Model { error, .. } => model_error(py, &scene.source, &error),
+            e => scene_error_message(py, e.to_string()),
+        })?;
         Ok(Scene {
             scene: Arc::new(scene),
-            model: Arc::new(model),
+            model: setup.model,
         })
     }
 

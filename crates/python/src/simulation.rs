@@ -670,13 +670,7 @@ impl Simulation {
                         "`speed` needs a path: give `to` or `by`",
                     ));
                 }
-                let mut length = 0.0;
-                let mut at = start;
-                for p in &waypoints {
-                    length += (*p - at).length();
-                    at = *p;
-                }
-                (length / v).max(1e-3)
+                pliant_assembly::move_speed::duration_at_speed(start, &waypoints, v)
             }
             (None, None) => 1.0,
         };

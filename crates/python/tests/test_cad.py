@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
+from conftest import REPO
 from pliant.cad import StepError, check_part21, convert, extract_curve
 
-REPO = Path(__file__).resolve().parents[3]
 CAD = Path(os.environ.get("PLIANT_CAD_FILES", REPO / "data" / "cad"))
 ROUTE = REPO / "crates" / "scene" / "tests" / "data" / "cad" / "route.step"
 

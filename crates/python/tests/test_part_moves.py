@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import pliant
-from conftest import cantilever_dict
+from conftest import EXAMPLES, cantilever_dict
 
 PIN = [0.5, 0.0, 0.0]
 
@@ -75,9 +75,7 @@ def test_bad_part_moves_raise_with_the_reason():
 def test_a_sweep_gives_its_motion_table():
     """The door-hinge example's range of motion as columns: the angle runs 0 → 70° → 0,
     and the hose's bend radius ratio passes 1 where the door is open."""
-    import pathlib
-
-    example = pathlib.Path(__file__).resolve().parents[3] / "examples" / "door_hinge.toml"
+    example = EXAMPLES / "door_hinge.toml"
     result = pliant.run_timeline(pliant.load_scene(example))
     table = result.motion()
     angle = table["angle_deg"]

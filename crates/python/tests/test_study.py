@@ -91,6 +91,18 @@ def study_dict(scene_path, runs=24, seed=7, method="monte_carlo", absurd=True):
             "envelope": {"voxel": 4}, "parameters": params}
 
 
+def write_study_toml(path, scene_path, runs, seed):
+    """The study file of :func:`study_dict` (without the absurd load) as TOML at ``path``,
+    sampling ``runs`` runs from ``seed``; returns ``path``."""
+    lines = ['format = "pliant-study"', "version = 1", f'scene = "{scene_path}"', 'length_unit = "mm"',
+             "[sampling]", f"runs = {runs}", f"seed = {seed}"]
+    for p in study_dict(scene_path, runs=runs, seed=seed, absurd=False)["parameters"]:
+        lines.append("[[parameters]]")
+        lines += [f"{k} = {json.dumps(v)}" for k, v in p.items()]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
 @pytest.fixture(scope="module")
 def scene_path(tmp_path_factory):
     path = tmp_path_factory.mktemp("scene") / "small.toml"
@@ -476,14 +488,7 @@ def test_envelope_voxels_hold_the_tube():
 def test_cli_runs_a_study_and_reports_bad_input(pliant_bin, scene_path, tmp_path):
     import pyarrow.parquet as pq
 
-    d = study_dict(scene_path, runs=4, absurd=False)
-    lines = [f'format = "pliant-study"', "version = 1", f'scene = "{scene_path}"', 'length_unit = "mm"',
-             "[sampling]", "runs = 4", "seed = 1"]
-    for p in d["parameters"]:
-        lines.append("[[parameters]]")
-        lines += [f"{k} = {json.dumps(v)}" for k, v in p.items()]
-    study_file = tmp_path / "s.toml"
-    study_file.write_text("\n".join(lines) + "\n")
+    study_file = write_study_toml(tmp_path / "s.toml", scene_path, runs=4, seed=1)
     env = dict(os.environ, PLIANT_PYTHON=sys.executable)
     out = tmp_path / "out"
     run = subprocess.run([pliant_bin, "study", str(study_file), "--out", str(out), "--workers", "1"],
@@ -576,14 +581,7 @@ def test_a_study_stopped_midway_resumes_where_it_stopped(scene_path, tmp_path):
 
     slow = tmp_path / "slow.toml"  # each run simulates 3 s: the study takes a while
     slow.write_text(SCENE.replace("duration_s = 0.2", "duration_s = 3.0"))
-    d = study_dict(slow, runs=40, absurd=False)
-    lines = ['format = "pliant-study"', "version = 1", f'scene = "{slow}"', 'length_unit = "mm"',
-             "[sampling]", "runs = 40", "seed = 2"]
-    for p in d["parameters"]:
-        lines.append("[[parameters]]")
-        lines += [f"{k} = {json.dumps(v)}" for k, v in p.items()]
-    study_file = tmp_path / "s.toml"
-    study_file.write_text("\n".join(lines) + "\n")
+    study_file = write_study_toml(tmp_path / "s.toml", slow, runs=40, seed=2)
     out = tmp_path / "out"
     cmd = [sys.executable, "-m", "pliant.studies", str(study_file), "--out", str(out), "--workers", "2",
            "--flush-rows", "2"]

@@ -60,6 +60,13 @@ impl LoadedScene {
                 scene: self.source.clone(),
                 error,
             })?;
+        self.workcell_setup_of(Arc::new(model))
+    }
+
+    /// [`Self::workcell_setup`] on `model`, already built from this scene
+    /// ([`Self::build_model_typed`]): the stubs and clips bound to its nodes, the initial
+    /// load cases, the ergonomic profile, the checks and the worker.
+    pub fn workcell_setup_of(&self, model: Arc<Model>) -> Result<WorkcellSetup, WorkcellError> {
         let (stubs, clips) =
             self.fastener_sites(&model)
                 .map_err(|reason| WorkcellError::Fasteners {
@@ -67,7 +74,7 @@ impl LoadedScene {
                     reason,
                 })?;
         Ok(WorkcellSetup {
-            model: Arc::new(model),
+            model,
             stubs,
             clips,
             initial: self.initial_loads(),

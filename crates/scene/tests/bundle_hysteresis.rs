@@ -5,19 +5,13 @@
 //! refused with the field named.
 
 use pliant_scene::load_scene_str;
+use pliant_testkit::scenes::WEIGHTLESS_MM;
 
 /// A 200 mm bundle of `wires` (whose `hysteresis` is the TOML given, or none), fixed at
 /// its start, its end turned about the axis by `angle_deg` over 1 s and let go.
 fn scene(hysteresis: &str, angle_deg: f64) -> String {
     format!(
-        r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-solver = "static"
+        r#"{WEIGHTLESS_MM}solver = "static"
 
 [materials.wires]
 e_tension_mpa = 50

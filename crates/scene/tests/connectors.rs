@@ -5,6 +5,7 @@
 
 use pliant_assembly::FastenerState;
 use pliant_scene::load_scene_str;
+use pliant_testkit::scenes::WEIGHTLESS_MM;
 
 /// The mating curve of the scenes below: (travel mm, force N); peak 150 N at 6 mm, the
 /// latch clicks at 6.5 mm.
@@ -22,14 +23,7 @@ const CURVE: [(f64, f64); 5] = [
 fn scene(push_mm: f64, extra: &str) -> String {
     let curve: Vec<String> = CURVE.iter().map(|(s, f)| format!("[{s}, {f}]")).collect();
     format!(
-        r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-
+        r#"{WEIGHTLESS_MM}
 [[hoses]]
 name = "h"
 material = "hose3"

@@ -6,6 +6,7 @@
 
 use glam::DVec3;
 use pliant_scene::load_scene_str;
+use pliant_testkit::scenes::{EPDM, WEIGHTLESS_MM};
 
 /// E I of the 16/10 mm tube of E = 8 MPa \[N·m²\].
 const EI: f64 = 8e6 * std::f64::consts::PI * (6.5536e-8 - 1e-8) / 64.0;
@@ -14,21 +15,8 @@ const EI: f64 = 8e6 * std::f64::consts::PI * (6.5536e-8 - 1e-8) / 64.0;
 /// at both ends as routed, under the static solver.
 fn scene(delivered: &str, start: &str, path: &str) -> String {
     format!(
-        r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-solver = "static"
-
-[materials.epdm]
-e_tension_mpa = 8
-e_compression_mpa = 8
-poisson = 0.45
-density_kg_m3 = 1150
-
+        r#"{WEIGHTLESS_MM}solver = "static"
+{EPDM}
 [[hoses]]
 name = "hose"
 material = "epdm"

@@ -4,19 +4,13 @@
 //! bend; the same line with the same elastic data but no yield stress springs straight.
 
 use pliant_scene::load_scene_str;
+use pliant_testkit::scenes::WEIGHTLESS_MM;
 
 /// The line fixed at its start, its end moved onto the quarter circle and turned with it,
 /// then released; `material` names the line's material, `extra` goes before the hoses.
 fn scene(material: &str, extra: &str) -> String {
     format!(
-        r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-solver = "static"
+        r#"{WEIGHTLESS_MM}solver = "static"
 {extra}
 [[hoses]]
 name = "line"

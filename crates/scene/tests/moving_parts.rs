@@ -6,28 +6,15 @@ use pliant_assembly::{run_timeline, NoObserver, WorkcellOptions};
 use pliant_core::kinematics::PartMotion;
 use pliant_core::{Model, SolverKind};
 use pliant_scene::{load_scene_str_in, LoadedScene, SceneError};
+use pliant_testkit::scenes::{DOOR, HOSE3_300, RAISED_HOSE3_300, WEIGHTLESS_MM};
 use std::path::{Path, PathBuf};
 
-const HEADER: &str = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[[hoses]]
-name = "h"
-material = "hose3"
-start = [0, 0, 2000]
-path = [{ line = { to = [300, 0, 2000] } }]
-"#;
-
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("pliant-moving-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    pliant_testkit::files::scratch_dir("moving", name)
 }
 
 fn load_in(dir: &Path, parts: &str) -> Result<LoadedScene, SceneError> {
-    load_scene_str_in(&format!("{HEADER}\n{parts}"), "scene.toml", dir)
+    load_scene_str_in(&format!("{RAISED_HOSE3_300}\n{parts}"), "scene.toml", dir)
 }
 
 const MOVING: &str = r#"
@@ -177,25 +164,8 @@ fn broken_motions_name_the_field() {
 
 /// A hose from a fixed body to a door: the door turns 0 → 60° about a vertical hinge in
 /// 1 s; the hose end mounted on it goes along, under every solver.
-const DOOR: &str = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-
-[[hoses]]
-name = "h"
-material = "hose3"
-start = [0, 0, 0]
-path = [{ line = { to = [300, 0, 0] } }]
-
-[[parts]]
-name = "door"
-box = { size = [20, 20, 20] }
-position = [320, 0, -40]
-motion = { kind = "hinge", axis = [0, 0, 1], point = [500, 0, 0], angle_deg = { times_s = [0, 1], values = [0, 60] } }
+fn door() -> String {
+    let rest = r#"motion = { kind = "hinge", axis = [0, 0, 1], point = [500, 0, 0], angle_deg = { times_s = [0, 1], values = [0, 60] } }
 
 [[timeline]]
 action = "fix"
@@ -212,10 +182,13 @@ part = "door"
 action = "run"
 duration_s = 1.2
 "#;
+    format!("{WEIGHTLESS_MM}{HOSE3_300}{DOOR}{rest}")
+}
 
 #[test]
 fn a_hose_end_mounted_on_a_door_goes_with_it_under_every_solver() {
-    let scene = pliant_scene::load_scene_str(DOOR, "door.toml").unwrap_or_else(|e| panic!("{e}"));
+    let scene =
+        pliant_scene::load_scene_str(&door(), "door.toml").unwrap_or_else(|e| panic!("{e}"));
     for solver in SolverKind::ALL {
         let options = WorkcellOptions {
             solver: Some(solver),
@@ -251,8 +224,8 @@ fn a_hose_end_mounted_on_a_door_goes_with_it_under_every_solver() {
 /// A hose fixed at both ends to one moving part is carried rigidly, under every solver.
 #[test]
 fn a_hose_fixed_at_both_ends_to_a_moving_part_moves_rigidly_under_every_solver() {
-    // DOOR with both ends fixed to the door: `fix` with `part` (a mount) at each end
-    let text = DOOR
+    // the door scene with both ends fixed to the door: `fix` with `part` (a mount) at each end
+    let text = door()
         .replacen("node = 0\n", "node = 0\npart = \"door\"\n", 1)
         .replace("action = \"mount\"", "action = \"fix\"");
     let scene = pliant_scene::load_scene_str(&text, "door.toml").unwrap_or_else(|e| panic!("{e}"));

@@ -5,17 +5,12 @@
 use pliant_assembly::{run_timeline, NoObserver, WorkcellOptions};
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str;
+use pliant_testkit::scenes::WEIGHTLESS_MM;
 
 /// A hose fixed at its start; its far part lies in the seat of a clip on a carriage that
 /// slides 50 mm up (z) in 1 s. `TYPE` is the clip's type.
-const CLIP_ON_CARRIAGE: &str = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-
+fn clip_on_carriage() -> String {
+    let rest = r#"
 [[hoses]]
 name = "h"
 material = "hose3"
@@ -48,6 +43,8 @@ node = 0
 action = "run"
 duration_s = 1.6
 "#;
+    format!("{WEIGHTLESS_MM}{rest}")
+}
 
 #[test]
 fn a_hose_in_a_clip_on_a_moving_part_goes_with_the_clip() {
@@ -55,7 +52,7 @@ fn a_hose_in_a_clip_on_a_moving_part_goes_with_the_clip() {
         ("fixed", &SolverKind::ALL[..]),
         ("rotating", &[SolverKind::Explicit][..]),
     ] {
-        let text = CLIP_ON_CARRIAGE.replace("TYPE", kind);
+        let text = clip_on_carriage().replace("TYPE", kind);
         let scene = load_scene_str(&text, "clip.toml").unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(scene.clips[0].part, Some(0));
         for &solver in solvers {
@@ -86,7 +83,7 @@ fn a_hose_in_a_clip_on_a_moving_part_goes_with_the_clip() {
         }
     }
     // a clip on a part the scene has not names the field
-    let text = CLIP_ON_CARRIAGE
+    let text = clip_on_carriage()
         .replace("TYPE", "fixed")
         .replace("part = \"carriage\"", "part = \"sled\"");
     let e = load_scene_str(&text, "clip.toml").unwrap_err();

@@ -10,31 +10,15 @@ use pliant_assembly::{run_timeline, Input, NoObserver, Stage, WorkcellOptions};
 use pliant_core::SolverKind;
 use pliant_scene::session::{log_to_scene, start_session_folder, Session};
 use pliant_scene::{load_scene_str, load_scene_str_in};
+use pliant_testkit::scenes::{DOOR, HOSE3_300, WEIGHTLESS_MM};
 
-const HEAD: &str = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-
-[[hoses]]
-name = "h"
-material = "hose3"
-start = [0, 0, 0]
-path = [{ line = { to = [300, 0, 0] } }]
-
-[[parts]]
-name = "body"
-box = { size = [20, 20, 20] }
-position = [-40, 0, -40]
-
-[[parts]]
-name = "door"
-box = { size = [20, 20, 20] }
-position = [320, 0, -40]
-"#;
+/// A weightless 300 mm hose from a part "body" to a part "door" (parts[1], neither
+/// moved by a motion of its own; a test may add the door's next line).
+fn head() -> String {
+    let body =
+        "\n[[parts]]\nname = \"body\"\nbox = { size = [20, 20, 20] }\nposition = [-40, 0, -40]\n";
+    format!("{WEIGHTLESS_MM}{HOSE3_300}{body}{DOOR}")
+}
 
 /// The door opened 0 → 60° about the vertical through (500, 0, 0) mm in 1 s, lifted by
 /// 10 mm, then turned back to 0°.
@@ -92,7 +76,7 @@ fn options(solver: SolverKind) -> WorkcellOptions {
 
 #[test]
 fn a_door_turned_by_the_timeline_carries_the_hose_end_under_every_solver() {
-    let text = format!("{HEAD}{TIMELINE}");
+    let text = format!("{}{TIMELINE}", head());
     let scene = load_scene_str(&text, "door.toml").unwrap_or_else(|e| panic!("{e}"));
     assert!(scene.world.rigid_parts[1].movable, "moved by the timeline");
     assert!(!scene.world.rigid_parts[0].movable);
@@ -184,7 +168,7 @@ duration_s = 1"#,
         ),
     ];
     for (entry, field, message) in cases {
-        let text = format!("{HEAD}\n[[timeline]]\n{entry}\n");
+        let text = format!("{}\n[[timeline]]\n{entry}\n", head());
         let e = match load_scene_str(&text, "scene.toml") {
             Ok(_) => panic!("{entry}: loaded"),
             Err(e) => e,
@@ -196,19 +180,24 @@ duration_s = 1"#,
     // a part with a motion is not moved by a timeline, nor declared movable
     let hinge = r#"motion = { kind = "hinge", axis = [0, 0, 1], point = [0, 0, 0], angle_deg = { times_s = [0], values = [0] } }"#;
     let text = format!(
-        "{HEAD}{hinge}\n[[timeline]]\naction = \"move_part\"\npart = \"door\"\nby = [0, 0, 1]\nduration_s = 1\n"
+        "{}{hinge}\n[[timeline]]\naction = \"move_part\"\npart = \"door\"\nby = [0, 0, 1]\nduration_s = 1\n",
+        head()
     );
     let e = load_scene_str(&text, "scene.toml").unwrap_err();
     assert_eq!(e.field(), Some("timeline[0].part"), "{e}");
     assert!(e.to_string().contains("has a `motion`"), "{e}");
-    let e = load_scene_str(&format!("{HEAD}{hinge}\nmovable = true\n"), "scene.toml").unwrap_err();
+    let e = load_scene_str(
+        &format!("{}{hinge}\nmovable = true\n", head()),
+        "scene.toml",
+    )
+    .unwrap_err();
     assert_eq!(e.field(), Some("parts[1].movable"), "{e}");
 }
 
 #[test]
 fn a_live_session_moving_a_part_replays_bit_for_bit_and_converts_to_a_timeline() {
     // the door movable for live inputs (no timeline moves it)
-    let text = format!("{HEAD}movable = true\n");
+    let text = format!("{}movable = true\n", head());
     let scene = load_scene_str(&text, "door.toml").unwrap();
     let dir = tempfile::tempdir().unwrap();
     let opts = options(SolverKind::Explicit);

@@ -7,9 +7,10 @@ use pliant_scene::{
     load_scene_file, load_scene_json_str_in, load_scene_str, load_scene_str_in, LoadedScene,
     SceneError, MAX_TRIANGLES,
 };
+use pliant_testkit::bad_inputs::{check_refusals, Refusal};
+use pliant_testkit::scenes::RAISED_HOSE3_300;
 use std::collections::HashMap;
 use std::f64::consts::PI;
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
 // ---------------------------------------------------------------------------------------
@@ -187,30 +188,14 @@ fn glb(s: f64) -> Vec<u8> {
 
 /// A fresh directory for one test's files.
 fn temp_dir(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("pliant-scene-parts-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+    pliant_testkit::files::scratch_dir("scene-parts", name)
 }
 
 // ---------------------------------------------------------------------------------------
 // Scenes.
 
-const HEADER: &str = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[[hoses]]
-name = "h"
-material = "hose3"
-start = [0, 0, 2000]
-path = [{ line = { to = [300, 0, 2000] } }]
-"#;
-
 fn scene_with(parts: &str) -> String {
-    format!("{HEADER}\n{parts}")
+    format!("{RAISED_HOSE3_300}\n{parts}")
 }
 
 fn load_in(dir: &Path, parts: &str) -> Result<LoadedScene, SceneError> {
@@ -892,47 +877,19 @@ fn cases() -> Vec<Case> {
 fn every_broken_part_is_named_and_explained() {
     let dir = temp_dir("errors");
     write_broken_meshes(&dir);
-    let mut failures = Vec::new();
     let cases = cases();
-    for c in &cases {
-        let text = scene_with(&c.parts);
-        let result = catch_unwind(AssertUnwindSafe(|| {
-            load_scene_str_in(&text, "scene.toml", &dir)
-        }));
-        let err = match result {
-            Err(_) => {
-                failures.push(format!("{}: PANICKED", c.what));
-                continue;
-            }
-            Ok(Ok(_)) => {
-                failures.push(format!("{}: loaded without error", c.what));
-                continue;
-            }
-            Ok(Err(e)) => e,
-        };
-        let shown = err.to_string();
-        if !shown.starts_with("scene.toml") {
-            failures.push(format!("{}: does not name the file: {shown}", c.what));
-        }
-        if err.field() != Some(c.field) || !shown.contains(c.field) {
-            failures.push(format!(
-                "{}: field {:?}, expected {:?}: {shown}",
-                c.what,
-                err.field(),
-                c.field
-            ));
-        }
-        for piece in c.message {
-            if !shown.contains(piece) {
-                failures.push(format!("{}: message lacks {piece:?}: {shown}", c.what));
-            }
-        }
-    }
-    assert!(
-        failures.is_empty(),
-        "{} failures:\n{}",
-        failures.len(),
-        failures.join("\n")
+    check_refusals(
+        cases.iter().map(|c| {
+            let expected = Refusal {
+                what: c.what,
+                field: Some(c.field),
+                message: c.message,
+            };
+            (scene_with(&c.parts), expected)
+        }),
+        "scene.toml",
+        |text| load_scene_str_in(text, "scene.toml", &dir),
+        |e| e.field(),
     );
     assert!(cases.len() >= 30);
 }

@@ -5,26 +5,14 @@
 
 use pliant_assembly::FastenerState;
 use pliant_scene::load_scene_str;
+use pliant_testkit::scenes::{EPDM, WEIGHTLESS_MM};
 
 /// The scene's head: a 200 mm hose of `epdm`, whose `relaxation` is a TOML array (may be
 /// empty), fixed at its start, under `solver`.
 fn head(relaxation: &str, solver: &str) -> String {
     format!(
-        r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-solver = "{solver}"
-
-[materials.epdm]
-e_tension_mpa = 8
-e_compression_mpa = 8
-poisson = 0.45
-density_kg_m3 = 1150
-relaxation = [{relaxation}]
+        r#"{WEIGHTLESS_MM}solver = "{solver}"
+{EPDM}relaxation = [{relaxation}]
 
 [[hoses]]
 name = "hose"

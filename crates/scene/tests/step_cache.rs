@@ -6,21 +6,9 @@
 
 use pliant_scene::cad_converter::{conversions, find_python};
 use pliant_scene::{load_scene_str_with, LoadOptions, LoadedScene};
+use pliant_testkit::files::cad_file;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-
-fn cad_file(name: &str) -> PathBuf {
-    let dir = std::env::var_os("PLIANT_CAD_FILES")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/cad"));
-    let path = dir.join(name);
-    assert!(
-        path.is_file(),
-        "missing real STEP file {} (data/cad in the repository, or PLIANT_CAD_FILES)",
-        path.display()
-    );
-    path
-}
 
 fn scene(step: &str) -> String {
     format!(

@@ -1,0 +1,59 @@
+//! Pieces of mini-scenes in the scene format (docs/scene-format.md), for the tests that
+//! write a scene file in a few lines: put together with `format!` and the test's own
+//! tables. Each piece starts and ends with a newline.
+
+/// The scene format's head in millimetres (kept a macro so the pieces below can start
+/// with it).
+macro_rules! head_mm {
+    () => {
+        "\nformat = \"pliant-scene\"\nversion = 1\nlength_unit = \"mm\"\n"
+    };
+}
+
+/// The head of a scene in millimetres: format, version and length unit.
+pub const HEAD_MM: &str = head_mm!();
+
+/// [`HEAD_MM`] and a `[simulation]` table without gravity (a test may add its own
+/// `solver = …` line after it).
+pub const WEIGHTLESS_MM: &str = concat!(head_mm!(), "\n[simulation]\ngravity = [0, 0, 0]\n");
+
+/// [`HEAD_MM`] (gravity on) and a 300 mm hose "h" of library hose 3 along +x, 2 m above
+/// the origin: a scene a test gives its parts.
+pub const RAISED_HOSE3_300: &str = concat!(
+    head_mm!(),
+    r#"
+[[hoses]]
+name = "h"
+material = "hose3"
+start = [0, 0, 2000]
+path = [{ line = { to = [300, 0, 2000] } }]
+"#
+);
+
+/// A 300 mm hose "h" of library hose 3 along +x from the origin (mm).
+pub const HOSE3_300: &str = r#"
+[[hoses]]
+name = "h"
+material = "hose3"
+start = [0, 0, 0]
+path = [{ line = { to = [300, 0, 0] } }]
+"#;
+
+/// A part "door": a 20 mm box below and beyond the far end of [`HOSE3_300`] (mm), which
+/// a test may give a `motion` or `movable` line next.
+pub const DOOR: &str = r#"
+[[parts]]
+name = "door"
+box = { size = [20, 20, 20] }
+position = [320, 0, -40]
+"#;
+
+/// An EPDM of E = 8 MPa in tension and compression, ν 0.45, ρ 1150 kg/m³, called
+/// "epdm" (a test may add its own `relaxation = …` line after it).
+pub const EPDM: &str = r#"
+[materials.epdm]
+e_tension_mpa = 8
+e_compression_mpa = 8
+poisson = 0.45
+density_kg_m3 = 1150
+"#;
