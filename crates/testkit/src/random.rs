@@ -8,7 +8,7 @@ pub struct Lcg(pub u64);
 
 impl Lcg {
     /// The next number in \[0, 1).
-    pub fn next(&mut self) -> f64 {
+    pub fn unit(&mut self) -> f64 {
         self.0 = self
             .0
             .wrapping_mul(6364136223846793005)
@@ -18,6 +18,6 @@ impl Lcg {
 
     /// A vector of the next three numbers.
     pub fn vec(&mut self) -> DVec3 {
-        DVec3::new(self.next(), self.next(), self.next())
+        DVec3::new(self.unit(), self.unit(), self.unit())
     }
 }
