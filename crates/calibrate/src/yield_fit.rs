@@ -15,7 +15,7 @@
 //! (Masing 1926; Lubliner, *Plasticity Theory*, 1990, §8.2), and the section's moment is
 //! the integral of the fibres' stresses at strains κ y. The unloading branch is the
 //! springback check: the curvature left at M = 0, measured and predicted, is reported
-//! beside the elastic estimate κ_max − M_max/EI (issue's 1/R_after = 1/R − M/EI).
+//! beside the elastic estimate κ_max − M_max/EI (1/R_after = 1/R − M/EI).
 //!
 //! A curve that never yields (the fitted first-yield curvature beyond the data, or an
 //! elastic line explaining the curve as well: ΔBIC below [`crate::law_fit::BIC_MARGIN`])

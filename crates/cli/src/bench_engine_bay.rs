@@ -503,7 +503,7 @@ fn not_measured(solver: SolverKind, sleeping: bool) -> EngineBayRow {
 /// Text lines for the human-readable report.
 pub fn render(b: &EngineBayBench) -> String {
     let mut s = format!(
-        "\nEngine bay (issue 15): {} hoses, {} elements, {} part triangles (built in {:.2} s; static pre-settle {:.2} s), one hand routing one hose{}:\n",
+        "\nEngine bay: {} hoses, {} elements, {} part triangles (built in {:.2} s; static pre-settle {:.2} s), one hand routing one hose{}:\n",
         b.hoses,
         b.elements,
         b.triangles,

@@ -213,7 +213,7 @@ pub fn run(quick: bool) -> Result<NewtonBench> {
 /// Text lines for the human-readable report.
 pub fn render(b: &NewtonBench) -> String {
     let mut s = format!(
-        "\nNewton solvers (issue 5):\n  quasi-static update, 30-element hose: {:.3} ms median ({:.1} Newton iterations; goal ≤ {} ms)\n",
+        "\nNewton solvers:\n  quasi-static update, 30-element hose: {:.3} ms median ({:.1} Newton iterations; goal ≤ {} ms)\n",
         b.static_update_ms_30, b.static_iterations_30, b.static_goal_ms
     );
     s.push_str(&format!(

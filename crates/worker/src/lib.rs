@@ -1,4 +1,4 @@
-//! Pliant's worker model (SPEC E1–E2, issue 38): a manikin sized from cited
+//! Pliant's worker model (SPEC E1–E2): a manikin sized from cited
 //! anthropometric data, its hands brought to the session's hand targets by inverse
 //! kinematics within joint limits, its body as capsules for collision checks, and its
 //! posture scored by RULA and REBA.

@@ -1,4 +1,4 @@
-//! The worker in the workcell (SPEC E1–E2, issue 38): a manikin from `pliant-worker`
+//! The worker in the workcell (SPEC E1–E2): a manikin from `pliant-worker`
 //! that follows the hands, is checked against the parts and is scored for posture as
 //! the study runs; its findings enter the verdict ([`WorkerFinding`]), `summary.json`,
 //! `worker.csv` and the report.

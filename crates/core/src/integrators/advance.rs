@@ -3,8 +3,8 @@
 //! x ← x + Δt v and q ← normalise(exp(Δt ω) q) — the leapfrog of [`super::explicit`],
 //! with fused multiply–adds.
 //!
-//! Node by node: the operations are those of the four-lane kernel this replaces (issue
-//! 15's [`crate::rod::lanes`] arithmetic, each lane an independent IEEE operation), in the
+//! Node by node: the operations are those of the four-lane kernel this replaces
+//! ([`crate::rod::lanes`] arithmetic, each lane an independent IEEE operation), in the
 //! same order, so the results are the same to the last bit — without gathering the
 //! nodes' vectors into lanes and scattering them back, which cost more than the
 //! arithmetic for a handful of nodes, and with held nodes costing one check. A node's
