@@ -2,19 +2,25 @@
 not a test). For each worker count a local cluster of single-threaded worker processes
 is started first (its start-up is not timed), then the same study runs on it from
 scratch; a baseline runs the same variants one after another in this process, without
-Dask. Usage:
+Dask. ``--cluster tcp`` starts the cluster as on separate machines instead: a
+``dask scheduler`` process and ``dask worker --nworkers N`` (single-threaded workers
+under a nanny, in their own working directory; the scene's files are sent to them).
+``--solver`` runs every variant with that solver. Usage:
 
     .venv/bin/python bench/study_bench.py [--study examples/engine_bay_study.toml]
-        [--runs 24] [--workers 1,2] [--batch N] [--json]
+        [--runs 24] [--workers 1,2] [--batch N] [--cluster local|tcp] [--solver S] [--json]
 
 Results go to docs/performance.md ("Studies") by hand, as ratios: the absolute numbers
 depend on the machine and on what else runs on it.
 """
 
 import argparse
+import contextlib
 import json
 import os
 import shutil
+import subprocess
+import sys
 import tempfile
 import time
 
@@ -34,6 +40,53 @@ def tree_cpu_s() -> float:
     return total
 
 
+@contextlib.contextmanager
+def tcp_cluster(workers: int):
+    """A ``dask scheduler`` and ``dask worker`` processes, as docs/study.md starts them
+    (no malloc trim threshold, no statistical profiler); yields a client."""
+    from distributed import Client
+
+    folder = tempfile.mkdtemp(prefix="study-bench-cluster-")
+    info = os.path.join(folder, "scheduler.json")
+    env = dict(os.environ, DASK_DISTRIBUTED__NANNY__PRE_SPAWN_ENVIRON="{'MALLOC_TRIM_THRESHOLD_': None}",
+               DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED="False")
+    quiet = {"cwd": folder, "env": env, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    procs = [subprocess.Popen([sys.executable, "-m", "dask", "scheduler", "--port", "0", "--dashboard-address", ":0",
+                               "--scheduler-file", info], **quiet)]
+    try:
+        while not (os.path.exists(info) and os.path.getsize(info)):
+            time.sleep(0.05)
+        with open(info) as f:
+            address = json.load(f)["address"]
+        procs.append(subprocess.Popen([sys.executable, "-m", "dask", "worker", address, "--nworkers", str(workers),
+                                       "--nthreads", "1", "--local-directory", folder], **quiet))
+        client = Client(address)
+        client.wait_for_workers(workers)
+        try:
+            yield client
+        finally:
+            client.close()
+    finally:
+        for p in reversed(procs):
+            p.terminate()
+            p.wait()
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def local_client(workers: int):
+    from distributed import Client
+    from pliant.studies.cluster import local_cluster
+
+    cluster = local_cluster(workers)  # the study's own kind of local cluster
+    client = Client(cluster)
+    try:
+        yield client
+    finally:
+        client.close()
+        cluster.close()
+
+
 def main():
     ap = argparse.ArgumentParser()
     here = os.path.dirname(os.path.abspath(__file__))
@@ -42,19 +95,23 @@ def main():
     ap.add_argument("--workers", default="1,2")
     ap.add_argument("--baseline", type=int, default=None, help="runs of the no-Dask baseline (default: --runs / 2)")
     ap.add_argument("--batch", type=int, default=None, help="runs per Dask task (default: the study's choice)")
+    ap.add_argument("--cluster", choices=("local", "tcp"), default="local")
+    ap.add_argument("--solver", choices=("explicit", "implicit", "static"), default=None,
+                    help="every run with this solver (default: the study's)")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args()
 
     import pliant
-    from distributed import Client
-    from pliant.studies.cluster import local_cluster
     from pliant.studies import load_study, samples, variant_scene
 
     study = load_study(a.study, runs=a.runs)
-    results = {"study": os.path.basename(a.study), "runs": a.runs, "cores": os.cpu_count(), "workers": {}}
+    if a.solver:
+        study.solver = a.solver
+    results = {"study": os.path.basename(a.study), "runs": a.runs, "cores": os.cpu_count(), "workers": {},
+               "cluster": a.cluster, "solver": a.solver}
 
     # baseline: the same variants in this process, one after another, no Dask, no envelope
-    nb = a.baseline or max(1, a.runs // 2)
+    nb = max(1, a.runs // 2) if a.baseline is None else a.baseline
     scenes = [json.dumps(variant_scene(study, s)) for s in samples(study)[:nb]]
     t = time.perf_counter()
     for text in scenes:
@@ -62,14 +119,12 @@ def main():
             pliant.run_timeline(pliant.Scene.from_json(text))
         except pliant.SimulationDiverged:
             pass
-    results["baseline_runs_per_min"] = nb / (time.perf_counter() - t) * 60
+    results["baseline_runs_per_min"] = nb / (time.perf_counter() - t) * 60 if nb else None
     results["load_average_before"] = os.getloadavg()[0]
 
     for n in [int(x) for x in a.workers.split(",")]:
-        cluster = local_cluster(n)  # the study's own kind of local cluster
-        client = Client(cluster)
         out = tempfile.mkdtemp(prefix=f"study-bench-{n}-")
-        try:
+        with (tcp_cluster(n) if a.cluster == "tcp" else local_client(n)) as client:
             cpu0 = tree_cpu_s()
             t = time.perf_counter()
             extra = {"batch": a.batch} if a.batch else {}
@@ -88,10 +143,7 @@ def main():
                                      "tree_cpu_s_per_run": tree,
                                      "minutes_for_10000_runs_on_all_cores": 10_000 * tree / (os.cpu_count() * 60),
                                      "load_average_1min": os.getloadavg()[0]}
-        finally:
-            client.close()
-            cluster.close()
-            shutil.rmtree(out, ignore_errors=True)
+        shutil.rmtree(out, ignore_errors=True)
     base = results["workers"].get(1, {}).get("runs_per_min")
     for n, w in results["workers"].items():
         w["speed_up_vs_1_worker"] = w["runs_per_min"] / base if base else None
@@ -99,7 +151,8 @@ def main():
         print(json.dumps(results, indent=2))
         return
     print(f"{results['study']}: {a.runs} runs, {results['cores']} cores")
-    print(f"  no Dask, one process: {results['baseline_runs_per_min']:.1f} runs/min")
+    if results["baseline_runs_per_min"]:
+        print(f"  no Dask, one process: {results['baseline_runs_per_min']:.1f} runs/min")
     for n, w in results["workers"].items():
         print(f"  {n} worker(s): {w['runs_per_min']:.1f} runs/min ({w['seconds']:.1f} s; "
               + (f"×{w['speed_up_vs_1_worker']:.2f} vs 1 worker; " if w["speed_up_vs_1_worker"] else "")

@@ -176,6 +176,13 @@ enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Afterwards, run N of the runs again (drawn at random) with the reference solver
+        /// and report the share of equal verdicts with its 95 % interval (agreement.json).
+        #[arg(long, value_name = "N", default_value_t = 0)]
+        check_agreement: usize,
+        /// Solver of the --check-agreement runs (default explicit).
+        #[arg(long, value_parser = ["explicit", "implicit", "static"])]
+        reference_solver: Option<String>,
         #[command(flatten)]
         steps: limit_args::StepLimit,
     },
@@ -453,6 +460,8 @@ fn main() -> ExitCode {
             runs,
             batch,
             quiet,
+            check_agreement,
+            reference_solver,
             steps,
         } => study_cmd::run(&study_cmd::StudyOptions {
             study: &study,
@@ -462,6 +471,8 @@ fn main() -> ExitCode {
             runs,
             batch,
             quiet,
+            check_agreement,
+            reference_solver: reference_solver.as_deref(),
             max_steps: steps.get(),
         }),
         Command::Inspect { scene, json } => inspect_cmd::run(&scene, json),

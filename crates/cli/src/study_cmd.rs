@@ -21,6 +21,11 @@ pub struct StudyOptions<'a> {
     pub runs: Option<usize>,
     pub batch: Option<usize>,
     pub quiet: bool,
+    /// Afterwards, this many runs again with `reference_solver` to measure how often the
+    /// verdicts agree (0: none).
+    pub check_agreement: usize,
+    /// The solver of the agreement check's runs.
+    pub reference_solver: Option<&'a str>,
     /// Each run is refused (status `invalid`) when planned beyond this many steps.
     pub max_steps: u64,
 }
@@ -99,6 +104,12 @@ pub fn run(o: &StudyOptions) -> Result<ExitCode> {
     }
     if o.quiet {
         cmd.arg("--quiet");
+    }
+    if o.check_agreement > 0 {
+        cmd.args(["--check-agreement", &o.check_agreement.to_string()]);
+    }
+    if let Some(s) = o.reference_solver {
+        cmd.args(["--reference-solver", s]);
     }
     cmd.args(["--max-steps", &o.max_steps.to_string()]);
     stop_with_this_process(&mut cmd);

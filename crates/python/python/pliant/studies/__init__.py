@@ -14,7 +14,8 @@ from .results import StudyResult, read_rows, run_envelope
 
 
 def study(study, out=None, *, scheduler=None, workers=None, runs=None, processes=True,
-          progress=True, client=None, flush_rows=50, batch=None, max_steps=None):
+          progress=True, client=None, flush_rows=50, batch=None, max_steps=None, check_agreement=0,
+          reference_solver="explicit"):
     """Runs (or resumes) a study and returns a :class:`StudyResult` (``.frame`` is a
     pandas DataFrame, one row per run; ``.report`` the HTML report's path).
 
@@ -28,12 +29,17 @@ def study(study, out=None, *, scheduler=None, workers=None, runs=None, processes
     runs per Dask task (default: up to 16, fewer for small studies so every worker gets
     about eight tasks). ``max_steps``: a run planned beyond this many steps (its
     timeline's duration over the time step) is refused before it starts, with status
-    ``invalid`` and the estimate in its message (default: ``pliant.DEFAULT_MAX_STEPS``)."""
+    ``invalid`` and the estimate in its message (default: ``pliant.DEFAULT_MAX_STEPS``).
+    ``check_agreement`` N: then N of the runs, drawn at random, are run again with
+    ``reference_solver`` (explicit) and the share of equal verdicts is written with its
+    95 % interval (``agreement.json``, the report, ``StudyResult.agreement``). The scene's
+    files reach the workers as bytes (no shared file system needed)."""
     from .cluster import run_study
 
     return run_study(study, out, scheduler=scheduler, workers=workers, runs=runs,
                      processes=processes, progress=progress, client=client, flush_rows=flush_rows,
-                     batch=batch, max_steps=max_steps)
+                     batch=batch, max_steps=max_steps, check_agreement=check_agreement,
+                     reference_solver=reference_solver)
 
 
 __all__ = ["Study", "StudyError", "StudyResult", "load_study", "parse_study", "read_rows", "run_envelope",

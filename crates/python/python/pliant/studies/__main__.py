@@ -1,5 +1,5 @@
 """``python -m pliant.studies STUDY.toml [--out DIR] [--scheduler ADDR] [--workers N]
-[--runs N] [--quiet]``: what ``pliant study`` runs. Exit codes: 0 done, 2 bad input."""
+[--runs N] [--check-agreement N] [--quiet]``: what ``pliant study`` runs. Exit codes: 0 done, 2 bad input."""
 
 import argparse
 import signal
@@ -22,6 +22,10 @@ def main(argv=None) -> int:
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
     ap.add_argument("--max-steps", type=int, default=None,
                     help="refuse a run planned beyond this many steps (status invalid; default 1e9)")
+    ap.add_argument("--check-agreement", type=int, default=0, metavar="N",
+                    help="afterwards run N of the runs again with the explicit solver and report the share of equal verdicts")
+    ap.add_argument("--reference-solver", default="explicit", choices=("explicit", "implicit", "static"),
+                    help="the solver of --check-agreement's runs (default explicit)")
     ap.add_argument("--flush-rows", type=int, default=50, help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
     signal.signal(signal.SIGTERM, _interrupt)
@@ -34,7 +38,8 @@ def main(argv=None) -> int:
     try:
         result = study(a.study, a.out, scheduler=a.scheduler, workers=a.workers, runs=a.runs,
                        progress=False if a.quiet else "text", flush_rows=a.flush_rows,
-                       batch=a.batch, max_steps=a.max_steps)
+                       batch=a.batch, max_steps=a.max_steps, check_agreement=a.check_agreement,
+                       reference_solver=a.reference_solver)
     except StudyError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
@@ -45,6 +50,10 @@ def main(argv=None) -> int:
     n = len(f)
     k = int((f["feasible"] == True).sum()) if n else 0  # noqa: E712
     print(f"{k} of {n} runs feasible; results {result.results}; report {result.report}")
+    if a.check_agreement and result.agreement:
+        from .agreement import sentence
+
+        print(sentence(result.agreement))
     return 0
 
 

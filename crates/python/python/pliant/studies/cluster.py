@@ -23,9 +23,9 @@ from typing import Any, Callable, Dict, List, Optional
 
 import numpy as np
 
-from . import envelope, geometry, sampling, variant
+from . import agreement, envelope, geometry, sampling, scene_files, variant
 from .runner import Task, column_name, run_batch
-from .spec import Study, StudyError, load_study
+from .spec import SOLVERS, Study, StudyError, load_study
 
 FLUSH_ROWS = 50  # a part is written after this many rows or seconds
 FLUSH_SECONDS = 10.0
@@ -248,6 +248,51 @@ def local_cluster(workers: int, processes: bool = True):
                             dashboard_address=":0", silence_logs=40)
 
 
+def stream_batches(client, runs: List[int], make_task: Callable[[int], Task], size: int, window: int,
+                   name: str, on_batch: Callable[[List[int], Dict[str, Any]], None]) -> None:
+    """Runs ``runs`` (study run indices) on the cluster, ``size`` runs per Dask task and
+    ``window`` tasks in flight, and hands each finished batch's result (as
+    :func:`run_batch` returns it) to ``on_batch`` as it comes (``distributed.as_completed``).
+    A batch that fails outside the engine — its worker died more often than the
+    scheduler retries, or the task failed outside ``run_variant`` — is submitted again run
+    by run, so one bad run costs no other run its row; a single run that fails so is
+    handed on as status ``error`` with the reason. A worker that dies mid-batch loses
+    nothing: the scheduler runs its tasks again on the others (and on the worker its
+    nanny starts instead)."""
+    from distributed import as_completed
+
+    queue = iter(range(0, len(runs), size))
+    batch_of: Dict[str, List[int]] = {}
+
+    def submit(chosen=None):
+        if chosen is None:
+            first = next(queue, None)
+            if first is None:
+                return None
+            chosen = runs[first:first + size]
+        fut = client.submit(run_batch, [make_task(i) for i in chosen], key=f"{name}-{chosen[0]:05d}-{len(chosen)}",
+                            pure=False)
+        batch_of[fut.key] = chosen
+        return fut
+
+    first = [f for f in (submit() for _ in range(window)) if f is not None]
+    stream = as_completed(first, with_results=True, raise_errors=False)
+    for fut, res in stream:
+        chosen = batch_of.pop(fut.key)
+        fut.release()
+        if isinstance(res, BaseException) and len(chosen) > 1:
+            for i in chosen:
+                stream.add(submit([i]))
+            continue
+        if isinstance(res, BaseException):
+            res = {"results": [{"row": {"status": "error", "message": f"{type(res).__name__}: {res}"}}],
+                   "voxels": {}}
+        on_batch(chosen, res)
+        nxt = submit()
+        if nxt is not None:
+            stream.add(nxt)
+
+
 def run_study(
     study: Any,
     out: Optional[str] = None,
@@ -261,17 +306,24 @@ def run_study(
     flush_rows: int = FLUSH_ROWS,
     batch: Optional[int] = None,
     max_steps: Optional[int] = None,
+    check_agreement: int = 0,
+    reference_solver: str = "explicit",
     log: Callable[[str], None] = lambda s: print(s, file=sys.stderr),
 ):
-    """Runs (or resumes) a study; returns a :class:`~pliant.studies.StudyResult`."""
-    from distributed import as_completed
+    """Runs (or resumes) a study; returns a :class:`~pliant.studies.StudyResult`.
+    ``check_agreement`` N > 0: afterwards N of its runs are run again with
+    ``reference_solver`` and their verdicts compared (:mod:`.agreement`)."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    from .results import StudyResult, finish
+    from .results import StudyResult, finish, read_rows
 
     if not isinstance(study, Study):
         study = load_study(study, runs=runs)
+    if check_agreement < 0:
+        raise StudyError(f"check_agreement = {check_agreement}: must be a number of runs, at least 0")
+    if reference_solver not in SOLVERS:
+        raise StudyError(f"reference_solver = {reference_solver}: must be one of {', '.join(SOLVERS)}")
     out = out or os.path.join("out", "study-" + column_name(study.name))
     layout = _prepare(study, out)
     samples = sampling.samples(study)
@@ -292,19 +344,29 @@ def run_study(
     log(f"study {study.name!r}: {len(samples)} runs ({study.method}), {len(done)} done before, "
         f"{len(pending)} to run; results in {out}")
 
-    def task(i: int) -> Task:
+    upload = scene_files.collect(base_scene, os.path.dirname(study.scene_path))
+
+    def task(i: int, reference: bool = False) -> Task:
+        """Run i's task: its scene with the paths of the files the workers were sent. The
+        study's own run also writes the replay file; a reference run (agreement) has
+        ``reference_solver`` and no envelope."""
         scene = variant.apply(study, samples[i])
-        path = os.path.join(layout.runs, ids[i] + ".json")
-        # compact: the C encoder (with an indent json encodes in Python, ~6 ms a run)
-        text = json.dumps(variant.relative_meshes(scene, layout.runs))
-        if not os.path.exists(path):
-            _atomic_write(path, lambda p: open(p, "w").write(text))
+        if not reference:
+            path = os.path.join(layout.runs, ids[i] + ".json")
+            if not os.path.exists(path):
+                # compact: the C encoder (with an indent json encodes in Python, ~6 ms a run)
+                text = json.dumps(variant.relative_meshes(scene, layout.runs))
+                _atomic_write(path, lambda p: open(p, "w").write(text))
+        else:
+            scene.setdefault("simulation", {})["solver"] = reference_solver
         solver = scene.get("simulation", {}).get("solver", "explicit")
-        return Task(ids[i], i, text, os.path.abspath(layout.runs), radii, hoses, voxel, parts, fasteners, solver,
-                    max_steps)
+        text = json.dumps(upload.scene_for_workers(scene))
+        if reference:
+            return Task(ids[i], i, text, "", radii, [], 0.0, [], fasteners, solver, max_steps, upload.key)
+        return Task(ids[i], i, text, "", radii, hoses, voxel, parts, fasteners, solver, max_steps, upload.key)
 
     buffer: List[Dict[str, Any]] = []
-    state = {"seq": seq, "flushed": time.monotonic(), "failed": 0}
+    state = {"seq": seq, "flushed": time.monotonic(), "failed": 0, "count": len(done)}
 
     def flush() -> None:
         if not buffer:
@@ -318,73 +380,64 @@ def run_study(
         state["flushed"] = time.monotonic()
         buffer.clear()
 
-    def record(i: int, res: Dict[str, Any]) -> None:
-        row = res["row"]
-        row.update({p.column: str(samples[i][p.name]) if p.categorical else samples[i][p.name]
-                    for p in study.parameters})
-        if row["status"] != "ok":
-            state["failed"] += 1
-        buffer.append(row)
-        if len(buffer) >= flush_rows or time.monotonic() - state["flushed"] > FLUSH_SECONDS:
-            flush()
+    def with_ids(chosen: List[int], res: Dict[str, Any]) -> List[Dict[str, Any]]:
+        rows = [one["row"] for one in res["results"]]
+        if len(rows) == 1 and len(chosen) == 1:
+            rows[0].setdefault("run_id", ids[chosen[0]])
+            rows[0].setdefault("index", chosen[0])
+        return rows
+
+    def record(chosen: List[int], res: Dict[str, Any]) -> None:
+        for h, keys in res["voxels"].items():  # voxels first (see flush)
+            union[h] = envelope.union(union[h], keys)
+        for i, row in zip(chosen, with_ids(chosen, res)):
+            row.update({p.column: str(samples[i][p.name]) if p.categorical else samples[i][p.name]
+                        for p in study.parameters})
+            if row["status"] != "ok":
+                state["failed"] += 1
+            buffer.append(row)
+            if len(buffer) >= flush_rows or time.monotonic() - state["flushed"] > FLUSH_SECONDS:
+                flush()
+        state["count"] += len(chosen)
+        if bar:
+            bar.update(state["count"], state["failed"])
 
     own_client = client is None
     cluster = None
     bar = None
+    measured = None
     try:
-        if pending:
+        if pending or check_agreement:
             if own_client:
                 client, cluster = connect(scheduler, workers, processes)
             link = dashboard_link(client)
             log(f"Dask dashboard: {link}" if link else
                 f"Dask dashboard: none (the scheduler at {client.scheduler.address} serves none)")
+            if upload.files:
+                log(f"sending the scene's {len(upload.files)} files ({upload.size / 2**20:.1f} MiB) to the workers")
+            scene_files.upload(client, upload)
             nthreads = max(1, sum(client.nthreads().values()))
+        if pending:
             bar = make_progress(progress, len(samples), len(done))
-            count = len(done)
-            size = batch_size(len(pending), nthreads, batch)
-            window = 2 * nthreads  # batches in flight: every worker has its next one queued
-            queue = iter(range(0, len(pending), size))
-            batch_of = {}
-
-            def submit(chosen=None):
-                if chosen is None:
-                    first = next(queue, None)
-                    if first is None:
-                        return None
-                    chosen = pending[first:first + size]
-                key = f"pliant-{study.fingerprint()}-{ids[chosen[0]]}-{len(chosen)}"
-                fut = client.submit(run_batch, [task(i) for i in chosen], key=key, pure=False)
-                batch_of[fut.key] = chosen
-                return fut
-
-            first = [f for f in (submit() for _ in range(window)) if f is not None]
-            stream = as_completed(first, with_results=True, raise_errors=False)
-            for fut, res in stream:
-                chosen = batch_of.pop(fut.key)
-                if isinstance(res, BaseException) and len(chosen) > 1:
-                    # the worker died or the task failed outside run_variant: each run of
-                    # the batch again on its own, so one bad run costs no other run its row
-                    fut.release()
-                    for i in chosen:
-                        stream.add(submit([i]))
-                    continue
-                if isinstance(res, BaseException):
-                    res = {"results": [{"row": {"run_id": ids[i], "index": i, "status": "error",
-                                                "message": f"{type(res).__name__}: {res}"}} for i in chosen],
-                           "voxels": {}}
-                for h, keys in res["voxels"].items():  # voxels first (see flush)
-                    union[h] = envelope.union(union[h], keys)
-                for i, one in zip(chosen, res["results"]):
-                    record(i, one)
-                fut.release()
-                count += len(chosen)
-                if bar:
-                    bar.update(count, state["failed"])
-                nxt = submit()
-                if nxt is not None:
-                    stream.add(nxt)
+            stream_batches(client, pending, task, batch_size(len(pending), nthreads, batch), 2 * nthreads,
+                           f"pliant-{study.fingerprint()}", record)
             if bar:
-                bar.update(count, state["failed"], final=True)
+                bar.update(state["count"], state["failed"], final=True)
+        flush()
+        if check_agreement:
+            rows = {r["index"]: r for r in read_rows(layout.out, sch).to_pylist()}
+            chosen = agreement.choose(sorted(rows), check_agreement, study.seed)
+            log(f"checking the verdicts of {len(chosen)} runs against the {reference_solver} solver")
+            reference: Dict[int, Dict[str, Any]] = {}
+            stream_batches(client, chosen, lambda i: task(i, reference=True),
+                           batch_size(len(chosen), nthreads, batch), 2 * nthreads,
+                           f"pliant-{study.fingerprint()}-{reference_solver}",
+                           lambda c, res: reference.update(zip(c, with_ids(c, res))))
+            solvers = sorted({str(rows[i].get("solver")) for i in chosen})
+            measured = agreement.compare({i: rows[i] for i in chosen}, reference, ",".join(solvers),
+                                         reference_solver)
+            agreement.write(layout.out, measured)
+            log(agreement.sentence(measured["summary"]))
     finally:
         flush()
         if bar:

@@ -213,12 +213,30 @@ def _table(head: List[str], rows: List[List[str]]) -> str:
     return f"<table><thead><tr>{h}</tr></thead><tbody>{b}</tbody></table>"
 
 
+def agreement_section(summary: Dict[str, Any]) -> str:
+    """The report's paragraph on the verdicts checked against a reference solver."""
+    from .agreement import sentence
+
+    text = (f"<h3>Verdicts checked against the {html.escape(summary['reference_solver'])} solver</h3>"
+            f"<p>{html.escape(sentence(summary))}. A verdict is the run's "
+            + ", ".join(f"<code>{html.escape(c)}</code>" for c in summary["verdict_columns"])
+            + "; the checked runs were drawn at random (the study's seed); "
+            "<code>agreement.parquet</code> holds both verdicts of each.</p>")
+    if summary["disagreeing"]:
+        text += _table(["run", "differs in"], [
+            [f'<a href="runs/{html.escape(d["run_id"])}.json">{html.escape(d["run_id"])}</a>',
+             html.escape(", ".join(d["columns"]))] for d in summary["disagreeing"][:50]])
+    return text
+
+
 OUTPUTS = [("worst_hand_ratio", "worst hand load / limit"), ("feasible", "feasible (1) or not (0)"),
            ("peak_hand_force_n", "peak hand force"), ("min_bend_radius_ratio", "smallest bend radius / allowed")]
 
 
-def write_report(study: Study, out: str, frame, envelope_info: Dict[str, Any]) -> str:
-    """Writes OUT/report.html; returns its path."""
+def write_report(study: Study, out: str, frame, envelope_info: Dict[str, Any],
+                 agreement: Optional[Dict[str, Any]] = None) -> str:
+    """Writes OUT/report.html; returns its path. ``agreement``: the summary of
+    :func:`pliant.studies.agreement.compare`, when the verdicts were checked."""
     n = len(frame)
     feasible = int((frame["feasible"] == True).sum()) if n else 0  # noqa: E712
     status = frame["status"].value_counts().to_dict() if n else {}
@@ -239,6 +257,8 @@ def write_report(study: Study, out: str, frame, envelope_info: Dict[str, Any]) -
         f"<p>Among the {len(ok)} runs that completed normally: {k_ok} feasible, "
         f"{100 * k_ok / max(len(ok), 1):.1f} % (95 % CI {100 * lo_ok:.1f} % – {100 * hi_ok:.1f} %).</p>")
     parts.append(_table(["status", "runs"], [[html.escape(s), str(c)] for s, c in sorted(status.items())]))
+    if agreement:
+        parts.append(agreement_section(agreement))
     if n and frame["uncertain"].fillna(False).any():
         parts.append(f"<p>{int(frame['uncertain'].fillna(False).sum())} runs are UNCERTAIN (a Newton solve ended out of balance).</p>")
     parts.append("<h2>Parameters</h2>")

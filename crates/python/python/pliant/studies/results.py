@@ -37,6 +37,14 @@ class StudyResult:
         with open(os.path.join(self.out, "envelope", "envelope.json")) as f:
             return json.load(f)
 
+    @property
+    def agreement(self) -> Optional[Dict[str, Any]]:
+        """The verdicts' agreement with a reference solver (``agreement.json``), or None
+        when the study was not checked (``check_agreement``)."""
+        from . import agreement
+
+        return agreement.read(self.out)
+
     def replay_scene(self, run_id: str) -> str:
         """The run's scene file: ``pliant run`` or ``pliant serve`` it to see the run."""
         return os.path.join(self.out, "runs", run_id + ".json")
@@ -128,13 +136,14 @@ def finish(study: Study, layout, schema, union, voxel, parts, log: Callable[[str
     """Writes results.parquet, the envelope and report.html; returns the rows (pandas)."""
     import pyarrow.parquet as pq
 
+    from . import agreement
     from .report import write_report
 
     table = read_rows(layout.out, schema)
     pq.write_table(table, os.path.join(layout.out, "results.parquet"))
     frame = table.to_pandas()
     info = envelope_outputs(study, layout.out, union, voxel, parts, frame)
-    write_report(study, layout.out, frame, info)
+    write_report(study, layout.out, frame, info, agreement.read(layout.out))
     log(f"{len(frame)} runs in {os.path.join(layout.out, 'results.parquet')}; "
         f"report {os.path.join(layout.out, 'report.html')}")
     return frame

@@ -19,7 +19,7 @@ from typing import Any, Dict, List, Optional
 
 import numpy as np
 
-from . import envelope
+from . import envelope, scene_files
 from .geometry import Part
 
 STATUSES = ("ok", "diverged", "invalid", "error")
@@ -37,7 +37,7 @@ class Task:
     run_id: str
     index: int
     scene_json: str
-    base_dir: str
+    base_dir: str  # the folder the scene's relative paths start from (see files_key)
     radii: Dict[str, float]  # outer radius per hose [m]
     envelope_hoses: List[str]
     voxel: float  # [m]; 0: no envelope
@@ -45,6 +45,7 @@ class Task:
     fasteners: List[str] = field(default_factory=list)
     solver: str = "explicit"
     max_steps: Optional[int] = None  # None: pliant.DEFAULT_MAX_STEPS
+    files_key: Optional[str] = None  # the scene's files were sent to the workers: paths start there
 
 
 def _result_row(result, task: Task) -> Dict[str, Any]:
@@ -160,7 +161,8 @@ def run_variant(task: Task) -> Dict[str, Any]:
     start, cpu = time.perf_counter(), time.process_time()
     result = None
     try:
-        scene = pliant.Scene.from_json(task.scene_json, origin=f"runs/{task.run_id}.json", base_dir=task.base_dir)
+        base_dir = scene_files.folder(task.files_key) if task.files_key else task.base_dir
+        scene = pliant.Scene.from_json(task.scene_json, origin=f"runs/{task.run_id}.json", base_dir=base_dir)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", pliant.SolverWarning)
             if task.max_steps is None:

@@ -27,6 +27,7 @@ import re
 from functools import lru_cache
 from typing import Any, Dict, List
 
+from . import scene_files
 from .spec import MATERIAL_PROPERTIES, UNITS_M, Study, StudyError
 
 try:
@@ -60,23 +61,15 @@ def plain_copy(scene: Dict[str, Any]) -> Dict[str, Any]:
 
 
 def absolute_meshes(scene: Dict[str, Any], scene_dir: str) -> Dict[str, Any]:
-    """A copy of the scene whose relative mesh paths are made absolute."""
-    scene = plain_copy(scene)
-    for part in scene.get("parts", []):
-        mesh = part.get("mesh")
-        if isinstance(mesh, str) and not os.path.isabs(mesh):
-            part["mesh"] = os.path.normpath(os.path.join(scene_dir, mesh))
-    return scene
+    """A copy of the scene whose relative file paths (meshes, STEP files, route and
+    motion files: :func:`scene_files.references`) are made absolute."""
+    return scene_files.change_paths(
+        plain_copy(scene), lambda p: p if os.path.isabs(p) else os.path.normpath(os.path.join(scene_dir, p)))
 
 
 def relative_meshes(scene: Dict[str, Any], folder: str) -> Dict[str, Any]:
-    """A copy of the scene whose mesh paths are relative to ``folder`` (where it is saved)."""
-    scene = plain_copy(scene)
-    for part in scene.get("parts", []):
-        mesh = part.get("mesh")
-        if isinstance(mesh, str) and os.path.isabs(mesh):
-            part["mesh"] = os.path.relpath(mesh, folder)
-    return scene
+    """A copy of the scene whose file paths are relative to ``folder`` (where it is saved)."""
+    return scene_files.change_paths(plain_copy(scene), lambda p: os.path.relpath(p, folder) if os.path.isabs(p) else p)
 
 
 def _rotate(v: List[float], axis: List[float], angle: float) -> List[float]:
