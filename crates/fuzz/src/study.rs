@@ -17,14 +17,59 @@ use std::sync::{Mutex, PoisonError};
 
 /// The worker's program: length-prefixed inputs on stdin, one JSON reply line each.
 const HARNESS: &str = r#"
-import json, math, os, struct, sys, tempfile, traceback, types
+import collections, json, math, os, pickle, struct, sys, tempfile, traceback, types
 import pliant  # the engine (Scene.from_json for [scene_values])
 
 # the study reader of this source tree (argv[1]), whatever copy is installed
 studies = types.ModuleType("pliant.studies")
 studies.__path__ = [sys.argv[1]]
 sys.modules["pliant.studies"] = studies
+from pliant.studies import spec
 from pliant.studies.spec import StudyError, load_study
+
+# The inputs are study files; the scenes they name do not change while fuzzing. So each
+# scene file is parsed once (keyed by path, size and modification time; a copy handed
+# out each time), and the engine's check of a scene with [scene_values] runs once per
+# distinct scene text (the last 256 kept): the engine-bay seed's every input otherwise
+# parsed and built its whole scene again.
+read_file = spec._read_toml
+files = {}
+
+
+def read_once(path, what):
+    try:
+        st = os.stat(path)
+    except OSError:
+        return read_file(path, what)  # its own message
+    key = (os.path.abspath(path), what, st.st_size, st.st_mtime_ns)
+    if key not in files:
+        files[key] = read_file(path, what)
+    raw, text = files[key]
+    return pickle.loads(pickle.dumps(raw)), text  # plain data: a quick deep copy
+
+
+spec._read_toml = read_once
+build = pliant.Scene.from_json
+checked = collections.OrderedDict()
+
+
+def build_once(text, *args, **kwargs):
+    key = (text, args, tuple(sorted(kwargs.items())))
+    if key not in checked:
+        try:
+            checked[key] = (build(text, *args, **kwargs), None)
+        except Exception as e:
+            checked[key] = (None, e)
+        if len(checked) > 256:
+            checked.popitem(last=False)
+    checked.move_to_end(key)
+    scene, error = checked[key]
+    if error is not None:
+        raise error
+    return scene
+
+
+pliant.Scene.from_json = staticmethod(build_once)
 
 folder = tempfile.mkdtemp(prefix="pliant-fuzz-study-")
 path = os.path.join(folder, "study.toml")
