@@ -136,8 +136,8 @@ def sentence(summary: Dict[str, Any]) -> str:
     lo, hi = summary["ci95"]
     speed = ""
     if summary.get("cpu_time_s") and summary.get("reference_cpu_time_s"):
-        speed = (f"; a run cost {summary['cpu_time_s']:.3g} CPU-s against {summary['reference_cpu_time_s']:.3g} "
-                 f"with the {summary['reference_solver']} solver")
+        speed = (f"; a run cost {summary['cpu_time_s']:.3g} CPU-s (envelope and clearances included) against "
+                 f"{summary['reference_cpu_time_s']:.3g} with the {summary['reference_solver']} solver (without them)")
     return (f"verdicts agree with the {summary['reference_solver']} solver's in {summary['agreeing']} of "
             f"{summary['checked']} checked runs ({100 * (summary['share'] or 0):.1f} %, 95 % CI "
             f"{100 * lo:.1f} – {100 * hi:.1f} %){speed}")
