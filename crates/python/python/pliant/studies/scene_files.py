@@ -75,7 +75,13 @@ class SceneFiles:
     def scene_for_workers(self, scene: Dict[str, Any]) -> Dict[str, Any]:
         """The scene (absolute paths, changed in place) with its paths relative to the
         workers' folder."""
-        return change_paths(scene, lambda p: self.names[os.path.normpath(p)])
+        def sent(path: str) -> str:
+            name = self.names.get(os.path.normpath(path))
+            if name is None:  # a variant names a file its base scene does not
+                raise StudyError(f"{path}: a file the base scene does not name, so the workers were not sent it")
+            return name
+
+        return change_paths(scene, sent)
 
 
 def collect(scene: Dict[str, Any], scene_dir: str) -> SceneFiles:
