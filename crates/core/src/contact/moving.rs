@@ -18,17 +18,17 @@
 //!   by g in the step, no more — so it stops on the surface wherever the part moves
 //!   within the step, and is not pushed early.
 //!
-//! These searches are BVH queries (the candidate lists of [`super::coherence`] assume
-//! parts that stand still); a node or beam far from the part's swept box costs one box
-//! test, and one found clear of a part keeps, in the part's frame, the distance D of the
-//! part's nearest triangle box: while its end points move less than D − ρ_now from
-//! where they were in that frame (distance to a fixed set is 1-Lipschitz in the end
-//! points, as in [`super::clearance`]), nothing lies within its reach ρ_now, and it is
-//! not searched — the same result as searching. A hose resting on a moving part barely
-//! moves in its frame.
+//! The searches keep candidate lists from step to step as for the still parts
+//! ([`super::coherence`]), one list per beam and moving part, in the part's own frame:
+//! there a hose resting on the part barely moves, so its lists last, and a beam clear of
+//! the part costs one displacement test. The lists give the contacts a fresh query of the
+//! part's BVH gives, to the last bit. Their reach is this step's search reach rounded up
+//! (it grows with the speeds), so that it need not be made anew each step.
 
-use super::coherence::Nearest;
+use super::coherence::{CandidateCache, Searcher};
+use super::environment::{cube, ClosestPoint};
 use super::rigid::{side, BeamSearch, ContactPoint, INTERIOR, SKIN};
+use super::triangle_set::PartFrame;
 use crate::{Model, State};
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
@@ -73,37 +73,54 @@ fn meets(b: &Aabb, lo: DVec3, hi: DVec3, grow: f64) -> bool {
     (lo - grow).cmple(b.maxs).all() && b.mins.cmple(hi + grow).all()
 }
 
-/// How far (in reaches) a slot clear of a part looks for the part's nearest box.
-const FAR: f64 = 4.0;
-/// Relative slack on distances for rounding (errs towards searching).
-const SLACK: f64 = 1e-9;
+/// Memory the moving parts' candidate lists may take together; the parts beyond it
+/// are searched by fresh BVH queries (the same contacts, dearer).
+const LIST_BUDGET_BYTES: usize = 512 << 20;
 
-/// Whether search slot `slot` (a node or a beam against one moving part), now at [a, b]
-/// in the part's frame, is certainly farther than `reach` from the part.
-fn known_clear(
-    contact: &super::ContactScratch,
-    slot: usize,
-    a: DVec3,
-    b: DVec3,
-    reach: f64,
-) -> bool {
-    let ([anchor_a, anchor_b], nearest) = contact.moving_clear[slot];
-    let moved = (a - anchor_a).length().max((b - anchor_b).length());
-    moved < nearest / (1.0 + SLACK) - reach * (1.0 + SLACK)
+/// One candidate list per moving part with a slot per beam ([`CandidateCache`], in the
+/// part's frame), while [`LIST_BUDGET_BYTES`] allows.
+pub(super) fn candidate_lists(model: &Model) -> Vec<CandidateCache> {
+    let env = &model.environment;
+    let slots = model.elements.len();
+    let per_part = slots.saturating_mul(CandidateCache::BYTES_PER_SLOT);
+    let mut left = LIST_BUDGET_BYTES;
+    env.moving
+        .iter()
+        .map(|&k| {
+            let frame = PartFrame {
+                part: &env.parts[k],
+                index: k,
+            };
+            if per_part <= left {
+                left -= per_part;
+                CandidateCache::for_set(slots, &frame)
+            } else {
+                CandidateCache::for_set(0, &frame)
+            }
+        })
+        .collect()
 }
 
-/// Remembers that slot `slot`, at [a, b] in `part`'s frame, found nothing within
-/// `reach`: the distance of the part's nearest box, up to [`FAR`] reaches.
-fn anchor_clear(
-    contact: &mut super::ContactScratch,
-    part: &super::RigidPart,
-    slot: usize,
-    a: DVec3,
-    b: DVec3,
-    reach: f64,
-) {
-    let nearest = part.nearest_box(a, b, FAR * reach);
-    contact.moving_clear[slot] = ([a, b], nearest);
+/// The reach a beam's list of a moving part is kept for: at least `need`, this step's
+/// reach of the beam's search (which grows with the part's and the beam's speeds), so
+/// that its nodes' searches and its own are served by it. A list made for up to `base`/8
+/// more is kept; else it is made anew for `base`/16 more (`base`: the reach at rest), so
+/// that speeds changing from step to step do not remake it every step.
+fn list_reach(current: f64, need: f64, base: f64) -> f64 {
+    if need <= current && current <= need + base / 8.0 {
+        current
+    } else {
+        need + base / 16.0
+    }
+}
+
+/// Beam `e`'s reach at rest and this step's (node velocities `v`), against a part moving
+/// by up to `sweep` in the step of `dt`.
+fn beam_reach(model: &Model, v: &[DVec3], e: usize, sweep: f64, dt: f64) -> (f64, f64) {
+    let (a, b) = (model.elements[e].node_a, model.elements[e].node_b);
+    let base = model.radius[a].max(model.radius[b]) * (1.0 + SKIN);
+    let own = v[a].length().max(v[b].length()) * dt;
+    (base, base + sweep + own)
 }
 
 /// Detects the contacts of nodes and beam interiors with the moving parts and appends
@@ -117,6 +134,14 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
         state.contact.moving_sweep[slot] = part_sweep(model, state, k, dt);
     }
     let contact = &mut state.contact;
+    let moving = env.moving.len();
+    let frame = |s: usize| PartFrame {
+        part: &env.parts[env.moving[s]],
+        index: env.moving[s],
+    };
+    for s in 0..moving {
+        contact.moving_candidates[s].follow(&frame(s));
+    }
     // nodes: the nearest moving part's closest point within reach
     for i in 0..state.x.len() {
         if state.held[i] || model.body_of[i].is_some() {
@@ -125,32 +150,66 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
         }
         let (x, r) = (state.x[i], model.radius[i]);
         let own = state.v[i].length() * dt;
-        let mut best: Option<(usize, DVec3, f64, f64)> = None; // part, local point, distance, reach
-        let moving = env.moving.len();
+        let mut best: Option<(usize, DVec3, f64)> = None; // part, local point, distance
         for s in 0..moving {
             let k = env.moving[s];
-            let reach = r * (1.0 + SKIN) + contact.moving_sweep[s] + own;
+            let sweep = contact.moving_sweep[s];
+            let reach = r * (1.0 + SKIN) + sweep + own;
             if !meets(&contact.moving_box[s], x, x, reach) {
                 continue;
             }
-            let part = &env.parts[k];
-            let local = contact.placements[k].pose.inverse_apply(x);
-            let slot = i * moving + s;
-            if known_clear(contact, slot, local, local, reach) {
-                continue;
-            }
+            let pose = contact.placements[k].pose;
+            let local = pose.inverse_apply(x);
             let bound = best.map_or(reach, |b| b.2.min(reach));
-            match part.closest_point_local(k, local, bound) {
-                Some(hit) => {
-                    if best.is_none_or(|b| hit.distance < b.2) {
-                        best = Some((k, hit.point, hit.distance, reach));
+            let e = contact.node_beam[i] as usize;
+            let hit = match model.elements.get(e) {
+                None => env.parts[k].closest_point_local(k, local, bound),
+                Some(el) => {
+                    // the node searches its beam's list: a point of the segment is no
+                    // nearer to any triangle than the segment (as for still parts)
+                    let searcher = if el.node_a == i {
+                        Searcher::StartNode
+                    } else {
+                        Searcher::EndNode
+                    };
+                    let (la, lb) = (
+                        pose.inverse_apply(state.x[el.node_a]),
+                        pose.inverse_apply(state.x[el.node_b]),
+                    );
+                    let (base, need) = beam_reach(model, &state.v, e, sweep, dt);
+                    let lists = &mut contact.moving_candidates[s];
+                    let list = list_reach(lists.slot_reach(e), need, base);
+                    if lists.clear_slack(e, la, lb, list).is_some()
+                        || lists.settled(e, searcher, la, lb, bound)
+                    {
+                        None // no triangle within reach, or its search would find none
+                    } else {
+                        let mut search = ClosestPoint::new(local, bound);
+                        let query = cube(local, bound);
+                        let probe = [local, local];
+                        lists.scan(
+                            &frame(s),
+                            e,
+                            la,
+                            lb,
+                            list,
+                            searcher,
+                            probe,
+                            &query,
+                            &mut search,
+                        );
+                        search.best
                     }
                 }
-                None => anchor_clear(contact, part, slot, local, local, reach),
+            };
+            if let Some(hit) = hit {
+                if best.is_none_or(|b| hit.distance < b.2) {
+                    best = Some((k, hit.point, hit.distance));
+                }
             }
         }
         let memory = &mut contact.moving_node_normal[i];
-        let Some((k, q_local, _, _)) = best else {
+        let Some((k, q_local, _)) = best else {
             *memory = (usize::MAX, DVec3::ZERO);
             continue;
         };
@@ -181,38 +240,46 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
         }
         let (xa, xb) = (state.x[a], state.x[b]);
         let r = model.radius[a].max(model.radius[b]);
-        let own = state.v[a].length().max(state.v[b].length()) * dt;
         let mut best = None;
-        let moving = env.moving.len();
         for s in 0..moving {
             let k = env.moving[s];
-            let reach = r * (1.0 + SKIN) + contact.moving_sweep[s] + own;
+            let (base, reach) = beam_reach(model, &state.v, e, contact.moving_sweep[s], dt);
             if !meets(&contact.moving_box[s], xa.min(xb), xa.max(xb), reach) {
                 continue;
             }
-            let part = &env.parts[k];
             let pose = contact.placements[k].pose;
             let (la, lb) = (pose.inverse_apply(xa), pose.inverse_apply(xb));
-            let slot = (state.x.len() + e) * moving + s;
-            if known_clear(contact, slot, la, lb, reach) {
+            let lists = &mut contact.moving_candidates[s];
+            let list = list_reach(lists.slot_reach(e), reach, base);
+            if lists.clear_slack(e, la, lb, list).is_some()
+                || lists.settled(e, Searcher::Interior, la, lb, reach)
+            {
                 continue;
             }
             let mut search = BeamSearch::new(la, lb, reach);
             let grow = DVec3::splat(reach);
             let query = Aabb::new(la.min(lb) - grow, la.max(lb) + grow);
-            for (rank, t) in part.mesh.bvh().intersect_aabb(&query).enumerate() {
-                let edges = part.owned_edges[t as usize];
-                search.offer(k, &part.mesh.triangle(t), rank as u32, edges);
-            }
-            match search.best {
-                Some(hit) => {
-                    let nearer =
-                        |(_, h): &(usize, super::rigid::BeamHit)| hit.distance < h.distance;
-                    if best.as_ref().is_none_or(nearer) {
-                        best = Some((k, hit));
-                    }
+            // an accepted hit lies at t in (INTERIOR, 1 − INTERIOR): the candidates'
+            // bounds are taken from that part of the beam
+            let d = lb - la;
+            let probe = [la + INTERIOR * d, la + (1.0 - INTERIOR) * d];
+            let interior = Searcher::Interior;
+            lists.scan(
+                &frame(s),
+                e,
+                la,
+                lb,
+                list,
+                interior,
+                probe,
+                &query,
+                &mut search,
+            );
+            if let Some(hit) = search.best {
+                let nearer = |(_, h): &(usize, super::rigid::BeamHit)| hit.distance < h.distance;
+                if best.as_ref().is_none_or(nearer) {
+                    best = Some((k, hit));
                 }
-                None => anchor_clear(contact, part, slot, la, lb, reach),
             }
         }
         let memory = &mut contact.moving_element_normal[e];
