@@ -81,6 +81,8 @@ def test_a_grid_over_the_door_angle_reports_the_worst_bend_of_each_run(tmp_path)
     assert np.degrees(frame["p_opening"].to_numpy()) == pytest.approx(ANGLES, abs=1e-9)
     assert set(frame["motion_coordinate"]) == {"angle_rad"}
     radii = frame["motion_min_bend_radius_m"].to_numpy()
+    print("door opened to", ANGLES, "deg: smallest bend radius", np.round(1e3 * radii, 2), "mm at",
+          np.round(np.degrees(frame["motion_worst_position"].to_numpy()), 2), "deg")
     # the wider the door opens, the tighter the hose bends behind its clip
     assert radii[0] > radii[1] > radii[2], radii
     for (_, row), angle in zip(frame.iterrows(), ANGLES):
