@@ -66,7 +66,12 @@ pub fn write_glb(
         index_bytes,
         json::buffer::Target::ElementArrayBuffer,
     );
-    let accessor = |root: &mut json::Root, view, count, component, type_, bounds: Option<_>| {
+    let accessor = |root: &mut json::Root,
+                    view,
+                    count,
+                    component,
+                    type_,
+                    bounds: Option<([f32; 3], [f32; 3])>| {
         let (min, max) = match bounds {
             Some(([a, b, c], [d, e, f])) => (
                 Some(json::Value::from(vec![a, b, c])),
