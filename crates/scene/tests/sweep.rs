@@ -69,11 +69,12 @@ fn the_envelope_voxel_is_the_scenes_and_one_too_fine_for_its_grid_is_refused() {
     let scene =
         load_scene_str(&door_with(&sweep("2.5")), "d.toml").unwrap_or_else(|e| panic!("{e}"));
     let settings = scene.checks.sweep.as_ref().unwrap();
-    assert_eq!(settings.envelope_voxel, Some(0.0025), "mm to m");
+    let voxel = settings.envelope_voxel.expect("the scene's voxel");
+    assert!((voxel - 0.0025).abs() < 1e-15, "{voxel}: mm to m");
     // the run's envelopes are made of voxels of that size
     let (_, run) = scene.run_with(None).unwrap_or_else(|e| panic!("{e}"));
     let swept = run.checks.sweep.unwrap().swept.unwrap();
-    assert_eq!(swept.voxel, 0.0025);
+    assert_eq!(swept.voxel, voxel);
     assert!(swept.refused.is_none(), "{:?}", swept.refused);
     // the default when none is given: half the thinnest outer radius, at most 5 mm
     let plain = load_scene_str(&door_with("[sweep]\npart = \"door\"\n"), "d.toml").unwrap();
