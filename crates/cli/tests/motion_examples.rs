@@ -348,6 +348,17 @@ fn the_door_hinge_example_writes_the_hose_envelope_with_its_clearance_to_the_pil
     assert!(tested > 1000, "{tested} points");
     let html = std::fs::read_to_string(out.path().join("report.html")).unwrap();
     assert!(html.contains("Swept envelopes") && html.contains(hose["stl"].as_str().unwrap()));
+    // the same surface as GLB (its contents are checked in pliant-assembly's sweep::glb):
+    // a binary glTF 2.0 whose header gives its length, linked from the report
+    let glb_name = hose["glb"].as_str().unwrap();
+    let glb = std::fs::read(out.path().join(glb_name)).unwrap();
+    assert_eq!(&glb[..4], b"glTF");
+    assert_eq!(u32::from_le_bytes(glb[4..8].try_into().unwrap()), 2);
+    assert_eq!(
+        u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize,
+        glb.len()
+    );
+    assert!(html.contains(glb_name));
 }
 
 /// The picture at the worst bend draws the door where it was then (opened 70°), not

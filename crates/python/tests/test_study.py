@@ -514,7 +514,7 @@ def test_schema_and_parser_agree_on_the_fields():
     assert set(param["properties"]) == spec.PARAMETER_KEYS
     assert param["properties"]["vary"]["enum"] == list(spec.KINDS)
     assert param["properties"]["distribution"]["enum"] == list(spec.DISTRIBUTIONS)
-    assert set(param["properties"]["property"]["enum"]) == set(spec.MATERIAL_PROPERTIES)
+    assert set(param["properties"]["property"]["enum"]) == set(spec.MATERIAL_PROPERTIES) | set(spec.MOTION_PROPERTIES)
     example = tomllib.loads((EXAMPLES / "engine_bay_study.toml").read_text())
     for p in example["parameters"]:
         assert set(p) <= spec.PARAMETER_KEYS

@@ -179,6 +179,10 @@ pub struct SweepSection {
     /// Smallest clearance allowed between a hose and those parts (length unit): a hose
     /// coming nearer is a violation, which decides as the installation checks do.
     pub min_clearance: Option<f64>,
+    /// Voxel size of the swept envelopes (length unit), > 0. Default: the smaller of
+    /// 5 mm and half the thinnest hose's outer radius. Refused when the envelopes' grid
+    /// over the hoses as placed would already exceed 400 million cells.
+    pub envelope_voxel: Option<f64>,
 }
 
 /// `[checks]`: the installation checks (SPEC V3; cf. DIN 20066) — which run, their

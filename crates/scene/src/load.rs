@@ -464,6 +464,7 @@ fn build(
     let mut checks = crate::checks::build_checks(file.checks.as_ref(), &infos, record_interval)?;
     checks.sweep = crate::sweep::build_sweep(
         file.sweep.as_ref(),
+        &hoses,
         &parts.specs,
         &timeline,
         file.length_unit,

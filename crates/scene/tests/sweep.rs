@@ -55,6 +55,53 @@ fn a_sweep_loads_in_si_and_broken_entries_name_the_field() {
     }
 }
 
+/// The door example with its `[sweep]` section replaced by `sweep`.
+fn door_with(sweep: &str) -> String {
+    let text = std::fs::read_to_string(door_example().source.as_str()).unwrap();
+    let start = text.find("\n[sweep]\n").unwrap() + 1;
+    let end = start + text[start..].find("\n\n").unwrap();
+    format!("{}{sweep}{}", &text[..start], &text[end..])
+}
+
+#[test]
+fn the_envelope_voxel_is_the_scenes_and_one_too_fine_for_its_grid_is_refused() {
+    let sweep = |voxel: &str| format!("[sweep]\npart = \"door\"\nenvelope_voxel = {voxel}\n");
+    let scene =
+        load_scene_str(&door_with(&sweep("2.5")), "d.toml").unwrap_or_else(|e| panic!("{e}"));
+    let settings = scene.checks.sweep.as_ref().unwrap();
+    let voxel = settings.envelope_voxel.expect("the scene's voxel");
+    assert!((voxel - 0.0025).abs() < 1e-15, "{voxel}: mm to m");
+    // the run's envelopes are made of voxels of that size
+    let (_, run) = scene.run_with(None).unwrap_or_else(|e| panic!("{e}"));
+    let swept = run.checks.sweep.unwrap().swept.unwrap();
+    assert_eq!(swept.voxel, voxel);
+    assert!(swept.refused.is_none(), "{:?}", swept.refused);
+    // the default when none is given: half the thinnest outer radius, at most 5 mm
+    let plain = load_scene_str(&door_with("[sweep]\npart = \"door\"\n"), "d.toml").unwrap();
+    assert_eq!(plain.checks.sweep.unwrap().envelope_voxel, None);
+    for (voxel, message) in [
+        ("0", "greater than 0"),
+        ("-1", "greater than 0"),
+        // 1 µm voxels over a door-sized hose: ≫ 400 million cells
+        ("0.001", "choose a voxel of at least"),
+    ] {
+        let e = load_scene_str(&door_with(&sweep(voxel)), "d.toml").unwrap_err();
+        assert_eq!(e.field(), Some("sweep.envelope_voxel"), "{voxel}: {e}");
+        assert!(e.to_string().contains(message), "{voxel}: {e}");
+    }
+    // the smallest voxel the error offers is accepted
+    let e = load_scene_str(&door_with(&sweep("0.001")), "d.toml").unwrap_err();
+    let text = e.to_string();
+    let offered: f64 = text
+        .split("at least ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("{text}"));
+    load_scene_str(&door_with(&sweep(&format!("{offered}"))), "d.toml")
+        .unwrap_or_else(|e| panic!("{offered} mm refused: {e}"));
+}
+
 #[test]
 fn a_slow_door_sweep_is_the_same_quasi_statically_and_dynamically() {
     let scene = door_example();

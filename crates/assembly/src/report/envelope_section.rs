@@ -53,17 +53,18 @@ pub fn envelope_section(
             names.join(", ")
         );
     }
-    s.push_str("<table><tr><th>hose</th><th>file</th><th>voxels</th><th>volume [cm³]</th><th>triangles</th><th>closed</th></tr>");
+    s.push_str("<table><tr><th>hose</th><th>files</th><th>voxels</th><th>volume [cm³]</th><th>triangles</th><th>closed</th></tr>");
     for e in &envelopes.hoses {
         let _ = write!(
             s,
-            "<tr><td>{}</td><td><a href=\"{stl}\">{stl}</a></td><td>{}</td><td>{:.1}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td><a href=\"{stl}\">{stl}</a>, <a href=\"{glb}\">{glb}</a></td><td>{}</td><td>{:.1}</td><td>{}</td><td>{}</td></tr>",
             escape(&e.hose),
             e.voxels,
             1e6 * e.volume_m3,
             e.triangles,
             if e.closed { "yes" } else { "no" },
             stl = escape(&e.stl),
+            glb = escape(&e.glb),
         );
     }
     s.push_str("</table>");

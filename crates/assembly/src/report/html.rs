@@ -50,7 +50,7 @@ pub fn write_reports(
         drawing,
     };
     if let Some(envelopes) = &drawing.envelopes {
-        envelopes.write_stl(out)?;
+        envelopes.write_surfaces(out)?;
     }
     let write = |name: &str, text: String| super::write_file(&out.join(name), text);
     super::write_json(&out.join("report.json"), &report)?;

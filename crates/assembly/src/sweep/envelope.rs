@@ -21,10 +21,26 @@ pub const MAX_VOXEL: f64 = 0.005;
 /// Most centre-line samples kept over all hoses (≈ 40 bytes each in their sets).
 pub const MAX_SAMPLES: usize = 5_000_000;
 
+/// The voxel size of a sweep \[m\]: `chosen`, else the smaller of [`MAX_VOXEL`] and half
+/// the thinnest hose's outer radius `thinnest`.
+pub fn voxel_size(chosen: Option<f64>, thinnest: f64) -> f64 {
+    chosen.unwrap_or(MAX_VOXEL.min(thinnest / 2.0))
+}
+
+/// The cells of the dense grid ([`VoxelGrid`]) over the box [lo, hi] \[m\] grown by the
+/// voxels' reach for a tube of outer radius `radius`, at voxel size `h`: a lower bound on
+/// the grid of any set of instants whose tubes span that box (as f64: it may be huge).
+pub fn grid_cells(lo: DVec3, hi: DVec3, radius: f64, h: f64) -> f64 {
+    let grow = super::voxels::reach(radius, h);
+    let size = (hi - lo + DVec3::splat(2.0 * grow)) / h;
+    size.x.ceil() * size.y.ceil() * size.z.ceil()
+}
+
 /// The centre-line samples of every hose over the checked instants so far.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SweptHoses {
-    /// Voxel size \[m\]: min([`MAX_VOXEL`], thinnest outer radius / 2), as the studies'.
+    /// Voxel size \[m\]: the scene's, else min([`MAX_VOXEL`], thinnest outer radius / 2),
+    /// as the studies' ([`voxel_size`]).
     pub voxel: f64,
     /// Each hose's largest outer radius \[m\].
     pub radius: Vec<f64>,
@@ -34,8 +50,9 @@ pub struct SweptHoses {
 }
 
 impl SweptHoses {
-    /// Empty sets for the hoses of `model`.
-    pub fn new(model: &Model) -> SweptHoses {
+    /// Empty sets for the hoses of `model`, voxels of size `voxel` \[m\] (None: the
+    /// default of [`voxel_size`]).
+    pub fn new(model: &Model, voxel: Option<f64>) -> SweptHoses {
         let radius: Vec<f64> = model
             .hoses
             .iter()
@@ -43,7 +60,7 @@ impl SweptHoses {
             .collect();
         let thinnest = radius.iter().copied().fold(f64::INFINITY, f64::min);
         SweptHoses {
-            voxel: MAX_VOXEL.min(thinnest / 2.0),
+            voxel: voxel_size(voxel, thinnest),
             samples: vec![SweptSamples::default(); radius.len()],
             radius,
             refused: None,
@@ -87,8 +104,9 @@ pub struct PartClearance {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct HoseEnvelope {
     pub hose: String,
-    /// Its surface's file, in the output folder.
+    /// Its surface's files, in the output folder: binary STL and GLB (binary glTF).
     pub stl: String,
+    pub glb: String,
     pub voxels: usize,
     /// The enclosed volume: voxels · h³ \[m³\].
     pub volume_m3: f64,
@@ -171,6 +189,7 @@ pub fn swept_envelopes(model: &Model, swept: &SweptHoses) -> SweptEnvelopes {
         out.hoses.push(HoseEnvelope {
             hose: info.name.clone(),
             stl: format!("envelope-{}.stl", file_word(&info.name)),
+            glb: format!("envelope-{}.glb", file_word(&info.name)),
             voxels: grid.count(),
             volume_m3: grid.count() as f64 * h.powi(3),
             bounds_m: [lo, hi],
@@ -198,19 +217,30 @@ fn file_word(name: &str) -> String {
 }
 
 impl SweptEnvelopes {
-    /// Writes each envelope's surface as binary STL into `out`; the error names the file.
-    pub fn write_stl(&self, out: &std::path::Path) -> std::io::Result<()> {
+    /// Writes each envelope's surface as binary STL and as GLB into `out`; the error
+    /// names the file.
+    pub fn write_surfaces(&self, out: &std::path::Path) -> std::io::Result<()> {
         for e in &self.hoses {
-            let path = out.join(&e.stl);
-            let named = |err: std::io::Error| {
-                std::io::Error::new(err.kind(), format!("writing {}: {err}", path.display()))
-            };
-            let mut file = std::io::BufWriter::new(std::fs::File::create(&path).map_err(named)?);
-            e.mesh.write_stl(&mut file).map_err(named)?;
-            std::io::Write::flush(&mut file).map_err(named)?;
+            write_file(&out.join(&e.stl), |file| e.mesh.write_stl(file))?;
+            write_file(&out.join(&e.glb), |file| {
+                super::glb::write_glb(&e.mesh, &format!("envelope of {}", e.hose), file)
+            })?;
         }
         Ok(())
     }
+}
+
+/// Creates `path` and writes it with `write`; the error names the file.
+fn write_file(
+    path: &std::path::Path,
+    write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let named = |err: std::io::Error| {
+        std::io::Error::new(err.kind(), format!("writing {}: {err}", path.display()))
+    };
+    let mut file = std::io::BufWriter::new(std::fs::File::create(path).map_err(named)?);
+    write(&mut file).map_err(named)?;
+    std::io::Write::flush(&mut file).map_err(named)
 }
 
 #[cfg(test)]

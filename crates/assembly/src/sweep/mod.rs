@@ -11,12 +11,13 @@
 //!
 //! Each hose's swept envelope over the motion — the volume its tube took at some checked
 //! instant — is a voxel set and its closed surface ([`envelope`]), with its clearance to
-//! every part that stands still.
+//! every part that stands still, written as STL and GLB ([`glb`]).
 
 pub mod centreline_samples;
 mod coordinate;
 pub mod envelope;
 mod extremes;
+pub mod glb;
 mod settings;
 mod summary;
 mod tracker;

@@ -18,4 +18,8 @@ pub struct SweepSettings {
     /// measured — its turn's angle, its centre's travel, or time (None: time).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub moved_by_inputs: Option<super::CoordinateKind>,
+    /// Voxel size of the swept envelopes \[m\] (None: [`super::envelope::voxel_size`]'s
+    /// default).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub envelope_voxel: Option<f64>,
 }

@@ -79,7 +79,10 @@ impl MotionSweep {
                     .collect(),
                 min_clearance: settings.min_clearance,
                 rows: Vec::new(),
-                swept: Some(std::sync::Arc::new(SweptHoses::new(model))),
+                swept: Some(std::sync::Arc::new(SweptHoses::new(
+                    model,
+                    settings.envelope_voxel,
+                ))),
             },
             coordinate,
         }

@@ -10,8 +10,8 @@
 //! rounding) is farther than `ρ` from every triangle: a query within `ρ` would find
 //! nothing, and is skipped — the same result as asking, to the last bit.
 
-use super::coherence::environment_key;
 use super::environment::RigidEnvironment;
+use super::triangle_set::TriangleSet;
 use glam::DVec3;
 
 /// How far (in reaches) a point looks for the nearest triangle box when anchored.
@@ -34,15 +34,15 @@ impl Clearance {
         Clearance {
             anchor: vec![DVec3::ZERO; points],
             margin_squared: vec![f64::NEG_INFINITY; points],
-            environment_key: environment_key(env),
+            environment_key: env.key(),
         }
     }
 
     /// Forgets every point's clearance if the environment is not the one it was found
     /// for; once a step, before [`Self::is_clear`].
     pub(crate) fn follow(&mut self, env: &RigidEnvironment) {
-        if self.environment_key != environment_key(env) {
-            self.environment_key = environment_key(env);
+        if self.environment_key != env.key() {
+            self.environment_key = env.key();
             self.margin_squared.fill(f64::NEG_INFINITY);
         }
     }

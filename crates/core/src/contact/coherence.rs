@@ -48,6 +48,7 @@
 use super::closest_segment_triangle;
 use super::environment::RigidEnvironment;
 use super::planes::Planes;
+use super::triangle_set::TriangleSet;
 use glam::DVec3;
 use parry3d_f64::bounding_volume::Aabb;
 use parry3d_f64::query::PointQuery;
@@ -108,7 +109,7 @@ pub(crate) trait Nearest {
 
 /// Offers `search` every triangle whose box meets `query`, ranked in the environment's
 /// order.
-pub(crate) fn scan_fresh(env: &RigidEnvironment, query: &Aabb, search: &mut impl Nearest) {
+pub(crate) fn scan_fresh(env: &impl TriangleSet, query: &Aabb, search: &mut impl Nearest) {
     let mut rank = 0u32;
     env.for_each_index_near(query, |part, triangle| {
         let (tri, edges) = env.triangle_and_edges(part, triangle);
@@ -264,11 +265,6 @@ pub struct CandidateCache {
     pub fresh_fallbacks: u64,
 }
 
-pub(super) fn environment_key(env: &RigidEnvironment) -> (usize, usize) {
-    let triangles = env.parts.iter().map(|p| p.mesh.indices().len()).sum();
-    (env.parts.len(), triangles)
-}
-
 /// Distance from segment [a, b] (a point if a = b) to `tri`.
 fn segment_distance(a: DVec3, b: DVec3, tri: &Triangle) -> f64 {
     if a == b {
@@ -287,7 +283,11 @@ fn grown_box(a: DVec3, b: DVec3, grow: f64) -> Aabb {
 impl CandidateCache {
     /// A cache of `slots` slots, enabled; empty (and unused) without an environment.
     pub fn new(slots: usize, env: &RigidEnvironment) -> Self {
-        let slots = if env.is_empty() { 0 } else { slots };
+        Self::for_set(if env.is_empty() { 0 } else { slots }, env)
+    }
+
+    /// A cache of `slots` slots for the triangles of `set`, enabled.
+    pub(crate) fn for_set(slots: usize, set: &impl TriangleSet) -> Self {
         CandidateCache {
             enabled: true,
             anchor_a: vec![DVec3::INFINITY; slots],
@@ -306,7 +306,7 @@ impl CandidateCache {
             lower: vec![[0.0; 2]; slots * SEARCHERS * SLOT_CAPACITY],
             quiet: vec![Quiet::UNKNOWN; slots * SEARCHERS],
             settled: vec![Settled::NOT; slots * SEARCHERS],
-            environment_key: environment_key(env),
+            environment_key: set.key(),
             refreshes: 0,
             truncations: 0,
             fresh_fallbacks: 0,
@@ -324,6 +324,22 @@ impl CandidateCache {
         self.generation += 1;
     }
 
+    /// The reach `slot`'s list was last made for (0: never).
+    pub(crate) fn slot_reach(&self, slot: usize) -> f64 {
+        self.reach.get(slot).copied().unwrap_or(0.0)
+    }
+
+    /// Bytes a slot takes ([`Self::for_set`] allocates this per slot).
+    pub(crate) const BYTES_PER_SLOT: usize = SLOT_CAPACITY
+        * (std::mem::size_of::<Candidate>()
+            + std::mem::size_of::<Planes>()
+            + SEARCHERS * std::mem::size_of::<[f64; 2]>())
+        + SEARCHERS * (2 * std::mem::size_of::<DVec3>() + std::mem::size_of::<f64>())
+        + SEARCHERS * (std::mem::size_of::<Quiet>() + std::mem::size_of::<Settled>())
+        + std::mem::size_of::<ClearTest>()
+        + 2 * std::mem::size_of::<DVec3>()
+        + 4 * std::mem::size_of::<f64>();
+
     /// Changes whenever any slot's anchors change ([`Self::clear`], refreshes).
     pub(crate) fn generation(&self) -> u64 {
         self.generation
@@ -333,7 +349,7 @@ impl CandidateCache {
     /// [`Planes`] (which also reject most triangles beyond the kept distance before the
     /// exact distance is taken). A slot that finds none looks up to [`FAR`] reaches out
     /// for the nearest triangle's box, and may move until that could come within reach.
-    fn refresh(&mut self, env: &RigidEnvironment, slot: usize, a: DVec3, b: DVec3, reach: f64) {
+    fn refresh(&mut self, env: &impl TriangleSet, slot: usize, a: DVec3, b: DVec3, reach: f64) {
         let keep = (reach * (1.0 + MARGIN)) * (1.0 + SLACK);
         let base = slot * SLOT_CAPACITY;
         // A slot that found nothing last time likely finds nothing again: the nearest
@@ -358,7 +374,7 @@ impl CandidateCache {
         env.for_each_index_near(&query, |part, triangle| {
             let this_rank = rank;
             rank += 1;
-            let planes = &env.parts[part].planes[triangle as usize];
+            let planes = env.planes(part, triangle);
             let bound_squared = planes.lower_bound_squared(a, b);
             if bound_squared > keep * keep {
                 return;
@@ -366,7 +382,7 @@ impl CandidateCache {
             let distance = if bound_squared > exact_within * exact_within {
                 bound_squared.sqrt()
             } else {
-                let tri = env.parts[part].mesh.triangle(triangle);
+                let (tri, _) = env.triangle_and_edges(part, triangle);
                 let distance = segment_distance(a, b, &tri);
                 if distance > keep {
                     return;
@@ -398,7 +414,7 @@ impl CandidateCache {
         });
         for k in 0..n {
             let c = &self.items[base + k];
-            self.planes[base + k] = env.parts[c.part as usize].planes[c.triangle as usize];
+            self.planes[base + k] = *env.planes(c.part as usize, c.triangle);
         }
         self.len[slot] = n as u32;
         self.cutoff[slot] = cutoff;
@@ -469,9 +485,9 @@ impl CandidateCache {
 
     /// Forgets every list if the environment is not the one they were made for; once a
     /// step, before [`Self::clear_slack`] and [`Self::scan`].
-    pub(crate) fn follow(&mut self, env: &RigidEnvironment) {
-        if self.environment_key != environment_key(env) {
-            self.environment_key = environment_key(env);
+    pub(crate) fn follow(&mut self, env: &impl TriangleSet) {
+        if self.environment_key != env.key() {
+            self.environment_key = env.key();
             self.clear();
         }
     }
@@ -524,7 +540,7 @@ impl CandidateCache {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn scan(
         &mut self,
-        env: &RigidEnvironment,
+        env: &impl TriangleSet,
         slot: usize,
         a: DVec3,
         b: DVec3,
@@ -609,7 +625,8 @@ impl CandidateCache {
             return false;
         }
         let moved = (a - q.a).length_squared().max((b - q.b).length_squared());
-        self.enabled && moved < q.slack_squared && q.bound == bound
+        // a search from a smaller bound accepts less: it finds nothing too
+        self.enabled && moved < q.slack_squared && bound <= q.bound
     }
 
     /// [`Self::scan`]'s walk through the list of `slot` for searcher `s` (see there),
@@ -617,7 +634,7 @@ impl CandidateCache {
     #[allow(clippy::too_many_arguments)]
     fn search_list(
         &mut self,
-        env: &RigidEnvironment,
+        env: &impl TriangleSet,
         slot: usize,
         s: usize,
         probe: [DVec3; 2],

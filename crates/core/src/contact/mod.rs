@@ -32,6 +32,7 @@ mod segment_triangle;
 pub mod sweep;
 #[cfg(test)]
 mod test_random;
+mod triangle_set;
 
 pub use broad_phase::BroadPhase;
 pub use clear_skin::ClearSkin;

@@ -78,8 +78,6 @@ pub struct ContactScratch {
     /// ([`CandidateCache`]; the same contacts as fresh queries). A node searches the list
     /// of one of its beams.
     pub candidates: CandidateCache,
-    /// The beam whose list each node searches (`u32::MAX`: none, a fresh query).
-    node_beam: Vec<u32>,
     /// Per beam, this step: no triangle within reach ([`CandidateCache::clear_slack`],
     /// asked once and read by the beam and its nodes).
     beam_clear: Vec<bool>,
@@ -102,10 +100,12 @@ pub struct ContactScratch {
     /// Per moving part this step: its box at its placement and how far it moves at most.
     pub(crate) moving_box: Vec<Aabb>,
     pub(crate) moving_sweep: Vec<f64>,
-    /// Per node and beam (nodes first) and moving part: where in the part's frame it was
-    /// found clear, and the distance of the part's nearest box from there
-    /// ([`super::moving`]; 0: not known to be clear).
-    pub(crate) moving_clear: Vec<([DVec3; 2], f64)>,
+    /// Per moving part: each beam's candidate triangles of that part, in the part's own
+    /// frame ([`super::moving`]; no slots beyond the memory budget, then fresh queries).
+    pub(crate) moving_candidates: Vec<CandidateCache>,
+    /// The beam whose list each node searches (`u32::MAX`: none, a fresh query), in the
+    /// still parts' lists and the moving parts' ([`super::moving`]).
+    pub(crate) node_beam: Vec<u32>,
 }
 
 impl ContactScratch {
@@ -130,11 +130,7 @@ impl ContactScratch {
             moving_element_normal: vec![(usize::MAX, DVec3::ZERO); moving_slots(model, elements)],
             moving_box: vec![Aabb::new_invalid(); model.environment.moving.len()],
             moving_sweep: vec![0.0; model.environment.moving.len()],
-            moving_clear: vec![
-                ([DVec3::ZERO; 2], 0.0);
-                moving_slots(model, nodes + elements)
-                    * model.environment.moving.len()
-            ],
+            moving_candidates: super::moving::candidate_lists(model),
         }
     }
 }

@@ -23,7 +23,7 @@ from typing import Any, Callable, Dict, List, Optional
 
 import numpy as np
 
-from . import agreement, envelope, geometry, sampling, scene_files, variant
+from . import agreement, envelope, geometry, motion, sampling, scene_files, variant
 from .runner import Task, column_name, run_batch
 from .spec import SOLVERS, Study, StudyError, load_study
 
@@ -67,6 +67,7 @@ def schema(study: Study):
             fields += [(base + "_force_n", pa.float64()), (base + "_assembled", pa.bool_())]
     fields += [("min_bend_radius_ratio", pa.float64()), ("max_twist_rad_per_m", pa.float64())]
     fields += [(column_name("clearance", p["name"], "m"), pa.float64()) for p in study.scene.get("parts", [])]
+    fields += [(name, pa.float64() if kind == "float" else pa.string()) for name, kind in motion.fields(study.scene)]
     fields += [
         ("steps", pa.int64()), ("simulated_time_s", pa.float64()), ("solver", pa.string()),
         ("solver_warnings", pa.int64()), ("unconverged_steps", pa.int64()),

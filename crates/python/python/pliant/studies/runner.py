@@ -19,7 +19,7 @@ from typing import Any, Dict, List, Optional
 
 import numpy as np
 
-from . import envelope, scene_files
+from . import envelope, motion, scene_files
 from .geometry import Part
 
 STATUSES = ("ok", "diverged", "invalid", "error")
@@ -82,6 +82,7 @@ def _result_row(result, task: Task) -> Dict[str, Any]:
     row["min_bend_radius_ratio"] = min(ratios) if ratios else None
     row["max_twist_rad_per_m"] = max(twists) if twists else None
     row["violated_checks"] = sorted({v["check"] for v in result.violations})
+    row.update(motion.columns(result))
     worker = result.worker
     if worker is not None:
         row.update(_worker_columns(worker))

@@ -45,7 +45,10 @@ KINDS: Dict[str, Tuple[Tuple[str, ...], str]] = {
     "ergonomics": ((), "set"),
     "solver": ((), "set"),
     "scene_value": (("path",), "set"),
+    "motion": (("part", "property"), "scale"),
 }
+# What a `motion` parameter changes of a part's `motion` (docs/study.md).
+MOTION_PROPERTIES = ("range", "speed")
 # Material properties a study may vary, with their factor to SI.
 MATERIAL_PROPERTIES = {
     "e_mpa": 1e6,  # E_t, E_c (and E_b if given) together: a batch's stiffness
@@ -58,7 +61,7 @@ MATERIAL_PROPERTIES = {
 }
 PARAMETER_KEYS = {
     "name", "vary", "apply", "distribution", "mean", "std", "min", "max", "mode",
-    "choices", "levels", "material", "property", "hose", "clip", "stub", "direction",
+    "choices", "levels", "material", "property", "hose", "clip", "stub", "part", "direction",
     "axis", "action", "path",
 }
 
@@ -291,6 +294,8 @@ def _parameter(origin, i, p, scene, length_factor) -> Parameter:
         if not isinstance(target["path"], str) or not target["path"]:
             raise _fail(origin, f"{where}.path", target["path"], 'must be a path like "hoses[0].section.d_outer"')
         unit, factor = "scene", 1.0
+    elif vary == "motion":
+        unit, factor = _motion_unit(origin, where, target, apply, scene, length_factor)
     else:
         unit, factor = "", 1.0
     _check_target(origin, where, vary, target, scene)
@@ -305,10 +310,36 @@ def _parameter(origin, i, p, scene, length_factor) -> Parameter:
                 if not math.isfinite(v):
                     raise _fail(origin, f"{where}.levels[{j}]", p["levels"][j], f"is beyond the largest number once converted to SI units (× {factor:g})")
     name = p.get("name") or "_".join(
-        [vary] + [str(target[k]) for k in ("material", "property", "hose", "clip", "stub", "action") if k in target]
+        [vary] + [str(target[k]) for k in ("part", "material", "property", "hose", "clip", "stub", "action") if k in target]
     )
     name = "".join(c if c.isalnum() else "_" for c in str(name)).strip("_").lower()
     return Parameter(name, vary, apply, unit, dist, target, levels)
+
+
+def _motion_unit(origin, where, target, apply, scene, length_factor) -> Tuple[str, float]:
+    """The unit and file factor of a `motion` parameter on a part of the base scene: a
+    factor (`scale`) on its range or speed, or (`set`) the largest excursion of a hinge
+    (degrees in the file, radians inside) or a slide (length unit, metres inside)."""
+    prop = target["property"]
+    if prop not in MOTION_PROPERTIES:
+        raise _fail(origin, f"{where}.property", prop, f"must be one of {', '.join(MOTION_PROPERTIES)}")
+    parts = [x for x in scene.get("parts", []) if isinstance(x, dict) and x.get("name") == target["part"]]
+    if not parts:
+        raise _fail(origin, f"{where}.part", target["part"], f"no such part in the scene ({', '.join(map(str, _names(scene, 'parts')))})")
+    motion = parts[0].get("motion")
+    kind = motion.get("kind") if isinstance(motion, dict) else None
+    if kind not in ("hinge", "slide", "periodic"):
+        raise _fail(origin, f"{where}.part", target["part"],
+                    "has no hinge, slide or periodic `motion` to vary" if kind is None else f"its {kind} motion has no range or speed to vary")
+    target["kind"] = kind
+    if apply == "scale":
+        return "1", 1.0
+    if apply == "set" and prop == "range" and kind == "hinge":
+        return "rad", math.pi / 180.0
+    if apply == "set" and prop == "range" and kind == "slide":
+        return "m", length_factor
+    raise _fail(origin, f"{where}.apply", apply,
+                "a motion's range is scaled (factor) or set (a hinge's or slide's largest excursion); its speed is scaled")
 
 
 def _names(scene, key) -> List[str]:

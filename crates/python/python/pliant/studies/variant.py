@@ -235,7 +235,38 @@ def apply(study: Study, sample: Dict[str, Any]) -> Dict[str, Any]:
             scene.setdefault("simulation", {})["solver"] = v
         elif p.vary == "scene_value":
             set_path(scene, t["path"], v, p.apply)
+        elif p.vary == "motion":
+            _vary_motion(_named(scene, "parts", t["part"])["motion"], t["property"], v, p.apply, unit)
     return scene
+
+
+def _vary_motion(motion: Dict[str, Any], prop: str, v: float, how: str, unit: float) -> None:
+    """A part's `motion` with its range or speed changed (docs/study.md): `range` scales
+    every keyframe value (a periodic motion's every amplitude) by `v`, or (`set`) so that
+    the largest excursion becomes `v` (rad for a hinge, m for a slide); `speed` runs the
+    motion `v` times as fast (keyframe times over `v`, frequencies times `v`)."""
+    kind = motion["kind"]
+    if prop == "speed" and not v > 0:
+        raise StudyError(f"a motion's speed factor must be greater than 0, not {v}")
+    if kind == "periodic":
+        axes = [motion[k] for k in ("x", "y", "z", "roll", "pitch", "yaw") if isinstance(motion.get(k), dict)]
+        for axis in axes:
+            key = "amplitude" if prop == "range" else "frequency_hz"
+            if key in axis:
+                axis[key] = axis[key] * v
+        return
+    frames = motion["angle_deg" if kind == "hinge" else "distance"]
+    if prop == "speed":
+        frames["times_s"] = [t / v for t in frames["times_s"]]
+        return
+    values = frames["values"]
+    if how == "set":
+        largest = max((abs(x) for x in values), default=0.0)
+        if largest == 0.0:
+            raise StudyError(f"the {kind}'s keyframes never leave 0: nothing to set the range of")
+        target = math.degrees(v) if kind == "hinge" else v / unit
+        v = target / largest
+    frames["values"] = [x * v for x in values]
 
 
 def hose_radii(scene: Dict[str, Any]) -> Dict[str, float]:
