@@ -1,5 +1,5 @@
 // End-to-end test of the worker in the viewer and of AR: `pliant serve` (the real binary)
-// on a scene with a `[worker]` standing behind a bar that reaches into his trunk. A hand
+// on a scene with a `[worker]` (test/fixtures/worker_bar.toml) standing behind a bar that reaches into his trunk. A hand
 // grabbing the hose poses the worker on the server; the viewer draws his capsules (the
 // trunk red: it is inside the bar), follows the hand as it moves, and lists reach and the
 // posture scores in the panel. The emulated headset (iwer) offers `immersive-ar`: the
@@ -8,44 +8,11 @@
 // stops a hung test); nothing depends on the machine's speed.
 
 import assert from 'node:assert/strict';
-import { mkdtempSync, writeFileSync } from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 import { describe, test } from 'node:test';
-import { framesDrawn, openViewer, sharedSession } from './harness.mjs';
+import { framesDrawn, openViewer, repo, sharedSession } from './harness.mjs';
 
-const dir = mkdtempSync(path.join(os.tmpdir(), 'pliant-worker-'));
-const scene = path.join(dir, 'worker.toml');
-writeFileSync(scene, `
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-
-[worker]
-population = "male"
-percentile = 50
-position = [0, 0, 0]
-facing = [1, 0, 0]
-
-[[parts]]
-name = "bar"
-box = { size = [20, 100, 100] }
-position = [100, 0, 1150]
-
-[[hoses]]
-name = "h"
-material = "hose3"
-start = [300, -250, 1100]
-path = [{ line = { to = [500, -250, 1100] } }]
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-`);
+const scene = path.join(repo, 'web', 'test', 'fixtures', 'worker_bar.toml');
 
 const shared = sharedSession([scene]);
 const END = [0.5, -0.25, 1.1];

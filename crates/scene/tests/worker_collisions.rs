@@ -63,6 +63,14 @@ fn run(text: &str) -> (pliant_assembly::Workcell, pliant_assembly::RunSummary) {
     s.run_with(Some(SolverKind::Static)).unwrap()
 }
 
+/// The trunk's collision.
+fn trunk(w: &pliant_assembly::worker::WorkerSummary) -> &pliant_assembly::worker::BodyCollision {
+    w.collisions
+        .iter()
+        .find(|c| c.segment == "trunk")
+        .unwrap_or_else(|| panic!("{:?}", w.collisions))
+}
+
 /// A plate 20 mm thick, 200 mm wide (y), 300 mm high (z from 1000 to 1300 mm) slides
 /// 500 mm towards the worker in the first 0.3 s: its front face ends at x = 50 mm, a
 /// trunk radius less 50 mm into the trunk. At its start (x ≥ 550 mm) it touches nobody:
@@ -78,11 +86,7 @@ motion = { kind = "slide", direction = [-1, 0, 0], distance = { times_s = [0, 0.
 "#;
     let (_, run) = run(&scene(plate));
     let w = run.worker.as_ref().unwrap();
-    let c = w
-        .collisions
-        .iter()
-        .find(|c| c.segment == "trunk")
-        .unwrap_or_else(|| panic!("{:?}", w.collisions));
+    let c = trunk(w);
     assert_eq!((c.part.as_str(), c.obstacle), ("plate", "part"));
     assert!(
         (c.depth - (w.body.radii.trunk - 0.05)).abs() < 1e-9,
@@ -126,11 +130,7 @@ node = -1
 "#;
     let (cell, run) = run(&scene(across));
     let w = run.worker.as_ref().unwrap();
-    let c = w
-        .collisions
-        .iter()
-        .find(|c| c.segment == "trunk")
-        .unwrap_or_else(|| panic!("{:?}", w.collisions));
+    let c = trunk(w);
     assert_eq!((c.part.as_str(), c.obstacle), ("across", "hose"));
     let model = cell.model();
     let hose = model.hoses.iter().find(|h| h.name == "across").unwrap();

@@ -12,7 +12,7 @@ use pliant_assembly::{Input, NoObserver, WorkcellOptions};
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str;
 use pliant_scene::session::{start_session_folder, Session};
-use pliant_worker::HeadTarget;
+use pliant_worker::{body, HeadTarget, Manikin, Placement, Population, Sex, TrunkAngles};
 
 const SCENE: &str = r#"
 format = "pliant-scene"
@@ -38,15 +38,30 @@ hose = "h"
 node = 0
 "#;
 
-/// A headset bending forward and looking round, the left controller waving: one pose
-/// per 20 steps.
+/// The 5th-percentile woman of the scene, where the scene stands her.
+fn manikin() -> Manikin {
+    Manikin::new(
+        body(Population::new(Sex::Female, 5.0).unwrap()).unwrap(),
+        Placement::new(DVec3::ZERO, DVec3::X, DVec3::Z).unwrap(),
+    )
+}
+
+/// A headset bending forward (her eyes where they are at 10° + k° of trunk flexion)
+/// and looking round, the left controller waving: one pose per 20 ms.
 fn pose(k: usize) -> BodyPose {
     let s = k as f64 * 0.1;
+    let gaze = DVec3::new(1.0, 0.3 * s.cos(), -0.6);
+    let bent = TrunkAngles {
+        flexion: (10.0 + k as f64).to_radians(),
+        ..TrunkAngles::default()
+    };
+    let head = |eyes| Some(HeadTarget { eyes, gaze });
+    let eyes = manikin()
+        .posture_with_head(bent, [None, None], head(DVec3::ZERO))
+        .joints
+        .head;
     BodyPose {
-        head: Some(HeadTarget {
-            eyes: DVec3::new(0.1 + 0.02 * s.sin(), 0.01 * s, 1.35 - 0.03 * s),
-            gaze: DVec3::new(1.0, 0.3 * s.cos(), -0.6),
-        }),
+        head: head(eyes),
         hands: [None, Some(DVec3::new(0.3, 0.2 + 0.05 * s.sin(), 1.0))],
     }
 }
@@ -76,7 +91,8 @@ fn live_session(vr: bool, dir: &std::path::Path) -> pliant_assembly::Workcell {
         if vr {
             live.apply(Input::WorkerPose { pose: pose(k) }).unwrap();
         }
-        live.steps(20, &mut NoObserver).unwrap();
+        let n = live.steps_in(0.02);
+        live.steps(n, &mut NoObserver).unwrap();
     }
     live.log_mark();
     assert!(live.log_error().is_none());
@@ -89,9 +105,14 @@ fn headset_inputs_are_logged_and_replay_bit_for_bit() {
     let live = live_session(true, dir.path());
     let series = live.worker_series();
     assert!(series.len() > 5, "{}", series.len());
-    // the headset bends the trunk; the left arm follows its controller
-    assert!(series.iter().any(|s| s.trunk_flexion > 5f64.to_radians()));
+    // the manikin's eyes are where the headset is; the left arm follows its controller
     let now = live.worker().unwrap().now().unwrap();
+    let eyes = pose(11).head.unwrap().eyes;
+    assert!(
+        (now.posture.joints.head - eyes).length() < 2e-3,
+        "eyes {} for the headset's {eyes}",
+        now.posture.joints.head
+    );
     let left = now.posture.arms[1];
     assert!(left.target.is_some() && left.residual < 1e-3, "{left:?}");
 

@@ -1422,38 +1422,9 @@ async fn part_moves_are_checked_and_refusals_come_back_as_the_notice() {
     assert!(welcome_parts > 0);
 }
 
-/// A worker standing at the origin facing +x behind a bar that reaches 90 mm from his
-/// trunk's axis, and a weightless hose in front of his right hip (docs/worker.md).
-const WORKER_SCENE: &str = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-
-[worker]
-population = "male"
-percentile = 50
-position = [0, 0, 0]
-facing = [1, 0, 0]
-
-[[parts]]
-name = "bar"
-box = { size = [20, 100, 100] }
-position = [100, 0, 1150]
-
-[[hoses]]
-name = "h"
-material = "hose3"
-start = [300, -250, 1100]
-path = [{ line = { to = [500, -250, 1100] } }]
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-"#;
+/// A worker behind a bar that reaches into his trunk, a hose to grab (the viewer's test
+/// scene too).
+const WORKER_SCENE: &str = include_str!("../../../web/test/fixtures/worker_bar.toml");
 
 /// The worker's capsule `i` in a snapshot: end points a, b.
 fn capsule(snap: &Value, i: usize) -> ([f64; 3], [f64; 3]) {
