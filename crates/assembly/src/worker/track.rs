@@ -129,7 +129,7 @@ pub struct WorkerNow {
     pub hand: [Option<usize>; 2],
     pub scores: PostureScores,
     pub class: PostureClass,
-    /// Per capsule, in [`capsules`]' order: the deepest penetration at this instant.
+    /// Per capsule, in [`capsules()`]' order: the deepest penetration at this instant.
     pub contacts: [Option<Penetration>; CAPSULE_COUNT],
 }
 
