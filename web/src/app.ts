@@ -15,6 +15,7 @@ import { HoseTube } from './hoses';
 import { JunctionBodies } from './junction_bodies';
 import { ForceLabels } from './labels';
 import { Legend } from './legend';
+import { ManikinView } from './manikin';
 import { ViolationMarkers } from './markers';
 import { Net } from './net';
 import { Panel } from './panel';
@@ -34,6 +35,7 @@ export class App {
   readonly mouse: MouseHand;
   readonly xr: XrHands;
   readonly parts: PartControls;
+  readonly manikin: ManikinView;
   private readonly legend: Legend;
   private readonly labels: ForceLabels;
   private readonly markers: ViolationMarkers;
@@ -143,6 +145,8 @@ export class App {
       },
     });
     this.parts = new PartControls(this.stage, this.net, this.panel.partsSlot);
+    this.manikin = new ManikinView(this.panel.workerSlot);
+    this.stage.world.add(this.manikin.group);
     this.panel.replayPlay.onclick = () => {
       if (this.player === null) return;
       this.player.setPlaying(!this.player.playing, performance.now());
@@ -201,6 +205,7 @@ export class App {
     this.liveSource = null;
     this.mouse.handId = w.client_id * 4;
     this.xr.handBase = w.client_id * 4;
+    this.xr.worker = w.session.worker !== undefined;
     this.mouse.drop();
     this.xr.drop();
     this.latest = null;
@@ -260,6 +265,7 @@ export class App {
     this.highlight = null;
     this.panel.welcome(w);
     this.parts.welcome(w.session.parts);
+    this.manikin.welcome(w.session.worker);
     this.stage.setFastenerCarriers([]);
     this.useSource(w);
   }
@@ -359,6 +365,10 @@ export class App {
     this.bodies?.update((h, i) => (this.tubes[h] !== undefined && i < this.tubes[h].nodes ? this.tubes[h].node(i) : null));
     this.markers.update(s.checks ?? [], (h) => this.tubes[h]?.positions ?? [], (h) => this.tubes[h]?.maxRadius ?? 0);
     this.labels.update(s.hands);
+    if (this.shownWelcome !== null) {
+      const session = this.shownWelcome.session;
+      this.manikin.update(s.worker, { parts: session.parts.map((p) => p.name), hoses: session.hoses.map((h) => h.name) });
+    }
     this.shown = s;
     this.panel.snapshot(s, this.findings());
   }

@@ -7,6 +7,7 @@ import type { App } from './app';
 import type { ColourMode } from './colour_modes';
 import type { FindingRow } from './findings';
 import type { Grip } from './grips';
+import type { ManikinCapsule } from './manikin_model';
 import type { ClientMessage, Vec3 } from './protocol';
 
 export function installDebugHandle(app: App): void {
@@ -36,6 +37,16 @@ export function installDebugHandle(app: App): void {
     get lastPick() { return src.mouse.lastPick; },
     get xrHandIds() { return src.xr.hands.map((h) => src.xr.handBase + h.handId); },
     get inVr() { return src.xr.inSession; },
+    get xrMode() { return src.xr.mode; },
+    /** The worker drawn: shown or not, its capsules (manikin_model.ts), the panel's lines. */
+    manikin(): { visible: boolean; capsules: ManikinCapsule[]; lines: string[] } {
+      const lines = [...document.querySelectorAll('#worker div')].map((d) => d.textContent ?? '');
+      return { visible: app.manikin.group.visible, capsules: app.manikin.drawn, lines };
+    },
+    /** The scene's lowest height in three.js space (y up; in AR, the real floor is 0) and
+     *  whether its own background is drawn. */
+    get sceneLowest(): number { return new THREE.Box3().setFromObject(src.stage.world).min.y; },
+    get backgroundShown(): boolean { return src.stage.scene.background !== null; },
     /** The colour mode and the axial-force legend's scale [N]; `setColourMode`. */
     get colourMode() { return src.colouring.mode; },
     get axialScale() { return src.colouring.axialScale; },

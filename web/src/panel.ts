@@ -78,6 +78,8 @@ export class Panel {
   readonly replayPlay = el('button', { id: 'replay-play' }, 'Pause');
   /** Where the moving parts' sliders go (part_controls.ts). */
   readonly partsSlot = el('div', { id: 'parts' });
+  /** Where the worker's reach, contacts and posture scores go (manikin.ts). */
+  readonly workerSlot = el('div', { id: 'worker' });
   private readonly findings = el('div', { id: 'findings' });
   /** The findings listed, to skip rebuilding the list when they did not change. */
   private findingsShown = '';
@@ -183,6 +185,7 @@ export class Panel {
       el('h2', {}, 'Session'), files, this.envelopeRow, this.replayBar, this.authorSlot,
       el('h2', {}, 'Parts that move'), this.partsSlot,
       el('h2', {}, 'Hands'), this.hands, canvas,
+      el('h2', {}, 'Worker'), this.workerSlot,
       el('h2', {}, 'Stubs and clips'), this.fasteners,
       el('h2', {}, 'Installation checks'), this.checks,
       el('h2', {}, 'Verdict so far'), this.verdict,

@@ -58,6 +58,24 @@ export interface SceneData {
   /** The twist check's limit relative to the routed hose [rad/m] (null: not checked). */
   twist_limit?: number | null;
   limits: { max_message_bytes: number; max_messages_per_second: number; snapshot_hz: number; max_hands: number };
+  /** The worker (`[worker]`): who, and per capsule its segment and radius [m]. */
+  worker?: WorkerData;
+}
+/** The worker's fixed data: `segments[i]` has radius `radii[i]` and is the snapshot's
+ *  capsule i. */
+export interface WorkerData { who: string; stature: number; segments: string[]; radii: number[] }
+/** The worker as last posed: capsule i's axis runs from capsules[6i..6i+3] to
+ *  capsules[6i+3..6i+6] (world frame, m). */
+export interface WorkerSnapshot {
+  time: number;
+  capsules: number[];
+  /** Segments inside a part or hose now: `index` into the welcome's parts or hoses. */
+  contacts: { segment: number; obstacle: 'part' | 'hose'; index: number; depth: number }[];
+  /** Right arm, left arm: the hand followed and how far the grip stays short of it [m]. */
+  arms: ({ hand: number; shortfall: number } | null)[];
+  rula: number;
+  reba: number;
+  posture_class: 'upright' | 'bent_trunk' | 'arms_above_shoulder';
 }
 export interface Welcome { type: 'welcome'; version: number; client_id: number; session: SceneData }
 
@@ -149,6 +167,8 @@ export interface Snapshot {
   /** The parts that move (a scripted motion, or moved by `move_part` / `rotate_part`):
    * each part's mesh, sent where the scene placed it, is drawn at rotation · x + translation. */
   part_poses?: PartPose[];
+  /** The worker as last posed (absent without a worker). */
+  worker?: WorkerSnapshot;
   hands: HandSnapshot[];
   fasteners: FastenerSnapshot[];
   ergonomics?: ErgonomicProfile;
@@ -187,6 +207,7 @@ export type ClientMessage =
   | { type: 'grab'; hand_id: number; position: Vec3; grip?: Grip }
   | { type: 'move'; hand_id: number; position: Vec3; orientation?: Quat }
   | { type: 'release'; hand_id: number }
+  | { type: 'worker_pose'; head?: { position: Vec3; gaze: Vec3 }; hands: [Vec3 | null, Vec3 | null] }
   | { type: 'move_part'; part: string; by?: Vec3; to?: Vec3; duration_s: number }
   | { type: 'rotate_part'; part: string; axis: Vec3; point?: Vec3; by_deg?: number; to_deg?: number; duration_s: number }
   | { type: 'pause' }

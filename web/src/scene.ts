@@ -40,7 +40,7 @@ export class Stage {
   constructor(readonly container: HTMLElement, readonly quality: Quality = 'high') {
     setQuality(quality);
     const low = quality === 'low';
-    this.renderer = new THREE.WebGLRenderer({ antialias: !low, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias: !low, preserveDrawingBuffer: true, alpha: true });
     this.renderer.setPixelRatio(low ? 1 : Math.min(window.devicePixelRatio, 2));
     this.renderer.setSize(container.clientWidth, container.clientHeight);
     this.renderer.outputColorSpace = THREE.SRGBColorSpace;

@@ -5,13 +5,17 @@
 // controller has its own grip (grips.ts): its A/X button (or thumbstick press) cycles
 // firm → axial → ball, shown by a label and the colour of its marker; cycling while
 // holding re-grabs with the new grip at once. While in VR, the scene is placed in front of
-// the user at working height.
+// the user at working height. An "Enter AR" button, where the device supports
+// `immersive-ar`, starts the same with the real world behind: the scene stands on the real
+// floor (xr_placement.ts), without its own background, fog and ground.
 
 import * as THREE from 'three';
 import { nextGrip, type Grip } from './grips';
 import type { Net } from './net';
 import type { Stage } from './scene';
 import { canvasSprite, type CanvasSprite } from './sprite';
+import { bodyPoseDue, bodyPoseMessage } from './xr_body';
+import { xrOffset, type XrMode } from './xr_placement';
 
 interface XrHand {
   grip: THREE.Group;
@@ -42,11 +46,20 @@ function gripSprite(): CanvasSprite {
 export class XrHands {
   readonly hands: XrHand[] = [];
   readonly button: HTMLButtonElement;
+  readonly arButton: HTMLButtonElement;
   private session: XRSession | null = null;
+  /** The mode of the session running (null: none). */
+  mode: XrMode | null = null;
   private readonly pos = new THREE.Vector3();
   private readonly rot = new THREE.Quaternion();
   /** Base of hand ids (set from the client id so that viewers do not clash). */
   handBase = 1;
+  /** Whether the scene has a worker: the headset and controllers then pose him
+   *  (xr_body.ts). */
+  worker = false;
+  /** When the last `worker_pose` was sent [ms]. */
+  private lastBodyPose = -Infinity;
+  private readonly ahead = new THREE.Vector3();
 
   constructor(private readonly stage: Stage, private readonly net: Net, parent: HTMLElement) {
     const xr = stage.renderer.xr;
@@ -55,9 +68,14 @@ export class XrHands {
     this.button.id = 'enter-vr';
     this.button.textContent = 'VR not available';
     this.button.disabled = true;
-    parent.appendChild(this.button);
+    this.arButton = document.createElement('button');
+    this.arButton.id = 'enter-ar';
+    this.arButton.textContent = 'AR not available';
+    this.arButton.disabled = true;
+    parent.append(this.button, this.arButton);
     void this.checkSupport();
-    this.button.onclick = () => void this.toggle();
+    this.button.onclick = () => void this.toggle('immersive-vr');
+    this.arButton.onclick = () => void this.toggle('immersive-ar');
     for (let i = 0; i < 2; i++) {
       const grip = xr.getControllerGrip(i);
       const marker = new THREE.Mesh(
@@ -87,43 +105,68 @@ export class XrHands {
   }
 
   private async checkSupport(): Promise<void> {
-    const supported = navigator.xr !== undefined && (await navigator.xr.isSessionSupported('immersive-vr').catch(() => false));
-    this.button.disabled = !supported;
-    this.button.textContent = supported ? 'Enter VR' : 'VR not available';
+    const supports = async (mode: XrMode) => navigator.xr !== undefined && (await navigator.xr.isSessionSupported(mode).catch(() => false));
+    const [vr, ar] = [await supports('immersive-vr'), await supports('immersive-ar')];
+    this.button.disabled = !vr;
+    this.button.textContent = vr ? 'Enter VR' : 'VR not available';
+    this.arButton.disabled = !ar;
+    this.arButton.textContent = ar ? 'Enter AR' : 'AR not available';
   }
 
   get inSession(): boolean {
     return this.session !== null;
   }
 
-  private async toggle(): Promise<void> {
+  private async toggle(mode: XrMode): Promise<void> {
     if (this.session !== null) {
       await this.session.end();
       return;
     }
     if (navigator.xr === undefined) return;
-    const session = await navigator.xr.requestSession('immersive-vr', { optionalFeatures: ['local-floor'] });
+    const session = await navigator.xr.requestSession(mode, { optionalFeatures: ['local-floor'] });
     this.stage.renderer.xr.setReferenceSpaceType('local-floor');
     await this.stage.renderer.xr.setSession(session);
     this.session = session;
-    this.button.textContent = 'Exit VR';
+    this.mode = mode;
+    const button = mode === 'immersive-ar' ? this.arButton : this.button;
+    const word = mode === 'immersive-ar' ? 'AR' : 'VR';
+    button.textContent = `Exit ${word}`;
+    const backdrop = { background: this.stage.scene.background, fog: this.stage.scene.fog };
+    if (mode === 'immersive-ar') this.showBackdrop(false);
     this.place(true);
     session.addEventListener('end', () => {
       for (const h of this.hands) this.release(h);
       this.session = null;
-      this.button.textContent = 'Enter VR';
+      this.mode = null;
+      button.textContent = `Enter ${word}`;
+      this.stage.scene.background = backdrop.background;
+      this.stage.scene.fog = backdrop.fog;
+      this.showBackdrop(true);
       this.place(false);
     });
   }
 
-  /** In VR: the scene's centre 1 m high, 0.6 m in front of the user; else at the origin. */
-  place(inVr: boolean): void {
+  /** The scene's own backdrop (background, fog, ground) shown or, in AR, left to the
+   *  real world. */
+  private showBackdrop(on: boolean): void {
+    if (!on) {
+      this.stage.scene.background = null;
+      this.stage.scene.fog = null;
+    }
+    const ground = this.stage.world.getObjectByName('ground');
+    if (ground !== undefined) ground.visible = on;
+  }
+
+  /** In a session: where xr_placement.ts puts the scene for its mode; else at the origin. */
+  place(inSession: boolean): void {
     const w = this.stage.world;
     w.position.set(0, 0, 0);
-    if (inVr) {
-      w.updateMatrixWorld(true);
+    w.updateMatrixWorld(true);
+    if (inSession && this.mode !== null) {
       const c = this.stage.toThree([this.stage.centre.x, this.stage.centre.y, this.stage.centre.z]);
-      w.position.set(-c.x, 1.0 - c.y, -0.6 - c.z);
+      const lowest = new THREE.Box3().setFromObject(w).min.y;
+      w.position.set(...xrOffset(this.mode, [c.x, c.y, c.z], Number.isFinite(lowest) ? lowest : c.y));
+      if (this.mode === 'immersive-ar') this.showBackdrop(false);
     }
     w.updateMatrixWorld(true);
   }
@@ -176,6 +219,7 @@ export class XrHands {
       if (down && !h.buttonDown) this.cycleGrip(i);
       h.buttonDown = down;
     });
+    this.sendBodyPose();
     for (const h of this.hands) {
       if (!h.held) continue;
       h.grip.getWorldPosition(this.pos);
@@ -189,6 +233,22 @@ export class XrHands {
         orientation: this.stage.toWorldRotation(delta),
       });
     }
+  }
+
+  /** In a session with a worker: the headset's eyes and gaze and the controllers'
+   *  grips, at most BODY_POSE_HZ a second. */
+  private sendBodyPose(): void {
+    const now = performance.now();
+    if (this.session === null || !this.worker || !bodyPoseDue(now, this.lastBodyPose)) return;
+    const camera = this.stage.renderer.xr.getCamera();
+    camera.getWorldPosition(this.pos);
+    camera.getWorldDirection(this.ahead).add(this.pos);
+    const grips = this.hands.map((h) => ({
+      handedness: h.handedness,
+      position: h.gamepad === null ? null : this.stage.toWorld(h.grip.getWorldPosition(new THREE.Vector3())),
+    }));
+    const message = bodyPoseMessage(this.stage.toWorld(this.pos), this.stage.toWorld(this.ahead), grips);
+    if (message !== null && this.net.send(message)) this.lastBodyPose = now;
   }
 
   /** Forget held hands (the server released them: reset, new scene). */

@@ -7,6 +7,9 @@
 //! follows the posture class: the standing row of table 3.7 upright, the crouching row
 //! bent or overhead (`ergonomics::table_posture`); the profile's column is men,
 //! occasional. Without the worker all three are judged by the profile's standing row.
+//! The chest-height hose lies to the worker's left (his left hand draws it), out of the
+//! way of his head when he bends to the knee-height one on his right: a hose is an
+//! obstacle to the body too.
 
 use pliant_assembly::ergonomics::{
     ErgonomicLimits, ErgonomicProfile, LoadKind, Population, Posture,
@@ -17,23 +20,23 @@ use pliant_core::SolverKind;
 use pliant_scene::load_scene_str;
 use pliant_worker::PostureClass;
 
-/// Hose `name` at height `z` mm, from x = 1000 (fixed) to x = 400 mm (grabbed).
-fn hose_at(name: &str, z: f64) -> String {
+/// Hose `name` at `y`, height `z` mm, from x = 1000 (fixed) to x = 400 mm (grabbed).
+fn hose_at(name: &str, y: f64, z: f64) -> String {
     format!(
         r#"
 [[hoses]]
 name = "{name}"
 material = "hose3"
 elements = 12
-start = [1000, -200, {z}]
-path = [{{ line = {{ to = [400, -200, {z}] }} }}]
+start = [1000, {y}, {z}]
+path = [{{ line = {{ to = [400, {y}, {z}] }} }}]
 "#
     )
 }
 
-/// A pause, then hand `hand` grabs the end at height `z` mm, draws it 36 mm towards the
-/// worker and lets go.
-fn draw(hand: usize, z: f64) -> String {
+/// A pause, then hand `hand` grabs the end at `y`, height `z` mm, draws it 36 mm towards
+/// the worker and lets go.
+fn draw(hand: usize, y: f64, z: f64) -> String {
     format!(
         r#"
 [[timeline]]
@@ -43,7 +46,7 @@ duration_s = 0.1
 [[timeline]]
 action = "grab"
 hand = {hand}
-at = [400, -200, {z}]
+at = [400, {y}, {z}]
 
 [[timeline]]
 action = "move_hand"
@@ -60,22 +63,26 @@ hand = {hand}
 
 /// The three draws; `worker` the `[worker]` section or nothing.
 fn scene(worker: &str) -> String {
-    let heights = [("chest", 1200.0), ("knee", 500.0), ("overhead", 1950.0)];
+    let heights = [
+        ("chest", 200.0, 1200.0),
+        ("knee", -200.0, 500.0),
+        ("overhead", -200.0, 1950.0),
+    ];
     let mut s = String::from(
         "format = \"pliant-scene\"\nversion = 1\nlength_unit = \"mm\"\n\n[simulation]\nsolver = \"static\"\n\n[ergonomics]\npopulation = \"men\"\n\n",
     );
     s.push_str(worker);
-    for (name, z) in heights {
-        s.push_str(&hose_at(name, z));
+    for (name, y, z) in heights {
+        s.push_str(&hose_at(name, y, z));
     }
     // every hose held from the start (the static solver needs each one supported)
-    for (name, _) in heights {
+    for (name, _, _) in heights {
         s.push_str(&format!(
             "\n[[timeline]]\naction = \"fix\"\nhose = \"{name}\"\nnode = 0\n"
         ));
     }
-    for (hand, (_, z)) in heights.iter().enumerate() {
-        s.push_str(&draw(hand, *z));
+    for (hand, (_, y, z)) in heights.iter().enumerate() {
+        s.push_str(&draw(hand, *y, *z));
     }
     // the last release runs out
     s.push_str("\n[[timeline]]\naction = \"run\"\nduration_s = 0.1\n");

@@ -60,6 +60,17 @@ pub enum ClientMessage {
         to_deg: Option<f64>,
         duration_s: f64,
     },
+    /// The VR user's body poses the worker (docs/worker.md; only in a scene with a
+    /// `[worker]`): `head` the headset's eyes (`position` \[m\]) and where it looks
+    /// (`gaze`, a direction of any non-zero length), `hands` the controllers' grips
+    /// (right, left; `null`: not tracked) \[m\]. Send it at most 20 times a second;
+    /// it is recorded in the session's log like every input.
+    WorkerPose {
+        #[serde(default)]
+        head: Option<HeadPose>,
+        #[serde(default)]
+        hands: [Option<[f64; 3]>; 2],
+    },
     /// Stop stepping (snapshots keep coming).
     Pause,
     /// Step in real time again.
@@ -108,6 +119,14 @@ pub enum ClientMessage {
     /// its raw structure as JSON and the built-in material library. (A struct variant,
     /// so that unknown fields are refused as for every other message.)
     SceneSource {},
+}
+
+/// A headset's pose in `worker_pose`: where the eyes are and where they look.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HeadPose {
+    pub position: [f64; 3],
+    pub gaze: [f64; 3],
 }
 
 /// Error codes of `error` messages.

@@ -860,6 +860,40 @@ fn handle_command(msg: ClientMessage, client: ClientId, shared: &Shared) -> Resu
                 duration: finite_number(duration_s, "duration_s")?,
             })
         }
+        ClientMessage::WorkerPose { head, hands } => {
+            if session.scene().worker.is_none() {
+                return Err(error_json(
+                    ErrorCode::InvalidValue,
+                    "worker_pose: the scene has no [worker] to pose",
+                ));
+            }
+            let head = match head {
+                None => None,
+                Some(h) => {
+                    let gaze = DVec3::from_array(h.gaze);
+                    if !gaze.is_finite() || gaze.length_squared() < 1e-18 {
+                        return Err(error_json(
+                            ErrorCode::InvalidValue,
+                            format!(
+                                "head.gaze {:?} must be a finite, non-zero direction",
+                                h.gaze
+                            ),
+                        ));
+                    }
+                    Some(pliant_worker::HeadTarget {
+                        eyes: point(h.position)?,
+                        gaze,
+                    })
+                }
+            };
+            let [right, left] = hands;
+            Command::WorkerPose(Input::WorkerPose {
+                pose: pliant_assembly::worker::BodyPose {
+                    head,
+                    hands: [right.map(point).transpose()?, left.map(point).transpose()?],
+                },
+            })
+        }
         ClientMessage::Pause => Command::Pause,
         ClientMessage::Resume => Command::Resume,
         ClientMessage::Step { n } => {

@@ -75,6 +75,8 @@ pub enum Command {
     SetErgonomics(ErgonomicProfile),
     /// Move or turn a part ([`Input::MovePart`], [`Input::RotatePart`]).
     MovePart(Input),
+    /// The VR user's body poses the worker ([`Input::WorkerPose`]).
+    WorkerPose(Input),
     /// Send back the input log so far (for a report): its sealed chunks shared, only the
     /// open chunk copied, so the simulation thread never copies the whole log.
     Log(mpsc::Sender<(LogShare, u64)>),
@@ -623,7 +625,7 @@ impl Sim {
                 self.rebase();
             }
             Command::SetErgonomics(profile) => self.give(Input::SetErgonomics { profile }),
-            Command::MovePart(input) => self.give(input),
+            Command::MovePart(input) | Command::WorkerPose(input) => self.give(input),
             Command::Log(reply) => {
                 let _ = reply.send((self.cell.log().share(), self.cell.tick()));
             }
@@ -776,10 +778,15 @@ impl Sim {
                 }
             })
             .collect();
+        let worker = self.cell.worker().and_then(|w| {
+            w.now()
+                .map(|now| crate::snapshot::WorkerSnapshot::of(w.body(), now))
+        });
         Snapshot {
             time: state.time,
             step: state.step,
             part_poses,
+            worker,
             paused: self.paused,
             real_time_factor,
             epoch: self.epoch.load(Ordering::SeqCst),

@@ -29,6 +29,41 @@ pub struct SceneData {
     /// The twist check's limit relative to the routed hose [rad/m] (`null`: not checked).
     pub twist_limit: Option<f64>,
     pub limits: LimitsData,
+    /// The worker (`[worker]`, docs/worker.md): who, and the segments of the body the
+    /// snapshot's `worker` poses; absent without a worker.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worker: Option<WorkerData>,
+}
+
+/// The worker's fixed data: who, and per capsule its segment and radius.
+#[derive(Clone, Debug, Serialize)]
+pub struct WorkerData {
+    /// "the 5th-percentile woman".
+    pub who: String,
+    /// Stature \[m\].
+    pub stature: f64,
+    /// The body's segments ("head", "right forearm", …), in the order of the snapshot's
+    /// `worker.capsules`.
+    pub segments: Vec<String>,
+    /// Each segment's capsule radius \[m\].
+    pub radii: Vec<f64>,
+}
+
+impl WorkerData {
+    /// The data of `settings`' body; `None` if the built-in table cannot make it (the
+    /// scene would not have loaded).
+    pub fn of(settings: &pliant_assembly::worker::WorkerSettings) -> Option<WorkerData> {
+        let body = pliant_worker::body(settings.population).ok()?;
+        Some(WorkerData {
+            who: settings.population.describe(),
+            stature: body.stature,
+            segments: pliant_worker::SEGMENTS.iter().map(|s| s.name()).collect(),
+            radii: pliant_worker::SEGMENTS
+                .iter()
+                .map(|s| s.radius(&body.radii))
+                .collect(),
+        })
+    }
 }
 
 /// One hose's fixed data.
@@ -220,6 +255,7 @@ impl SceneData {
             fasteners: FastenerData::of(&sites.0, &sites.1),
             ergonomics: scene.ergonomics.to_string(),
             twist_limit: scene.checks.twist.then_some(scene.checks.twist_limit),
+            worker: scene.worker.as_ref().and_then(WorkerData::of),
             limits: LimitsData {
                 max_message_bytes: crate::limits::MAX_MESSAGE_BYTES,
                 max_messages_per_second: crate::limits::MAX_MESSAGES_PER_SECOND,
@@ -264,6 +300,11 @@ pub struct Snapshot {
     /// solvers.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub instabilities: Vec<pliant_assembly::workcell::Instability>,
+    /// The worker as last posed (docs/worker.md): absent without a worker or before it
+    /// was first posed. Sent in every snapshot while there is one: a client that skipped
+    /// stale snapshots still draws the newest pose.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worker: Option<WorkerSnapshot>,
     /// Something the viewer should tell the user (e.g. the simulation diverged and was
     /// reset).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -286,6 +327,91 @@ pub struct PartPose {
     pub translation: [f64; 3],
     /// The part's rotation as a unit quaternion `[x, y, z, w]`.
     pub rotation: [f64; 4],
+}
+
+/// The worker's posed body, its contacts, reach and posture scores at its last posed
+/// instant.
+#[derive(Clone, Debug, Serialize)]
+pub struct WorkerSnapshot {
+    /// When it was posed \[s\].
+    pub time: f64,
+    /// Per segment of the welcome's `worker.segments`: the end points a, b of its
+    /// capsule's axis, six numbers `[ax, ay, az, bx, by, bz]` each, flattened \[m\].
+    pub capsules: Vec<f64>,
+    /// The segments inside a part or a hose at this instant.
+    pub contacts: Vec<WorkerContact>,
+    /// Per arm (right, left): the hand it follows and how far its grip stays short of
+    /// the hand \[m\] (`null`: the arm hangs).
+    pub arms: [Option<ArmReach>; 2],
+    /// RULA's grand score (1–7) and REBA's score (1–15).
+    pub rula: u8,
+    pub reba: u8,
+    /// The posture class whose rows judge the hand forces.
+    pub posture_class: pliant_worker::PostureClass,
+}
+
+/// A body segment inside a part or a hose now.
+#[derive(Clone, Debug, Serialize)]
+pub struct WorkerContact {
+    /// Index into the welcome's `worker.segments`.
+    pub segment: usize,
+    /// `"part"` (index into the welcome's `parts`) or `"hose"` (into its `hoses`).
+    pub obstacle: &'static str,
+    pub index: usize,
+    /// How deep \[m\].
+    pub depth: f64,
+}
+
+/// An arm reaching for a hand.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ArmReach {
+    pub hand: usize,
+    /// How far the grip centre stays from the hand \[m\] (0: reached).
+    pub shortfall: f64,
+}
+
+impl WorkerSnapshot {
+    /// The snapshot of the worker's last posed instant `now`, its body `body`.
+    pub fn of(body: &pliant_worker::Body, now: &pliant_assembly::worker::WorkerNow) -> Self {
+        use pliant_assembly::worker::Obstacle;
+        let capsules = pliant_worker::capsules(body, &now.posture)
+            .iter()
+            .flat_map(|c| [c.a.x, c.a.y, c.a.z, c.b.x, c.b.y, c.b.z])
+            .collect();
+        let contacts = now
+            .contacts
+            .iter()
+            .enumerate()
+            .filter_map(|(segment, c)| {
+                let c = c.as_ref()?;
+                let (obstacle, index) = match c.obstacle {
+                    Obstacle::Part(k) => ("part", k),
+                    Obstacle::Hose(h) => ("hose", h),
+                };
+                Some(WorkerContact {
+                    segment,
+                    obstacle,
+                    index,
+                    depth: c.depth,
+                })
+            })
+            .collect();
+        let arms = [0, 1].map(|i| {
+            now.hand[i].map(|hand| ArmReach {
+                hand,
+                shortfall: now.posture.arms[i].residual,
+            })
+        });
+        WorkerSnapshot {
+            time: now.time,
+            capsules,
+            contacts,
+            arms,
+            rula: now.scores.rula.grand,
+            reba: now.scores.reba.reba,
+            posture_class: now.class,
+        }
+    }
 }
 
 /// One hose's state.

@@ -1421,3 +1421,162 @@ async fn part_moves_are_checked_and_refusals_come_back_as_the_notice() {
         .len();
     assert!(welcome_parts > 0);
 }
+
+/// A worker behind a bar that reaches into his trunk, a hose to grab (the viewer's test
+/// scene too).
+const WORKER_SCENE: &str = include_str!("../../../web/test/fixtures/worker_bar.toml");
+
+/// The worker's capsule `i` in a snapshot: end points a, b.
+fn capsule(snap: &Value, i: usize) -> ([f64; 3], [f64; 3]) {
+    let c = floats_of(&snap["worker"]["capsules"]);
+    let at = |k: usize| [c[6 * i + k], c[6 * i + k + 1], c[6 * i + k + 2]];
+    (at(0), at(3))
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_worker_is_posed_by_the_hands_and_by_a_vr_body_and_bad_poses_are_refused() {
+    use pliant_worker::{body, HeadTarget, Manikin, Placement, Population, Sex, TrunkAngles};
+    let dir = tempfile::tempdir().unwrap();
+    let scene = pliant_scene::load_scene_str_in(WORKER_SCENE, "worker.toml", dir.path()).unwrap();
+    let s = serve_paused(&scene).await;
+    let mut ws = connect(&s).await;
+    let welcome = hello(&mut ws).await;
+    let w = &welcome["session"]["worker"];
+    assert_eq!(w["who"], "the 50th-percentile man");
+    let segments: Vec<&str> = w["segments"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s.as_str().unwrap())
+        .collect();
+    assert_eq!(segments.len(), 14);
+    assert_eq!(
+        (segments[0], segments[2], segments[8]),
+        ("head", "trunk", "right hand")
+    );
+    let radii = floats_of(&w["radii"]);
+    // steps for 20 ms: two of the worker's posed instants (10 ms apart)
+    let n = (0.02 / welcome["session"]["time_step"].as_f64().unwrap()).ceil() as u64;
+    // not posed before the first step: no `worker` in the snapshot
+    let snap = next_where(&mut ws, "snapshot", |_| true).await;
+    assert!(snap.get("worker").is_none(), "{}", snap["worker"]);
+
+    // a hand on the hose's end: the right arm reaches it, the trunk is in the bar
+    let end = [0.5, -0.25, 1.1];
+    send(
+        &mut ws,
+        json!({"type": "grab", "hand_id": 1, "position": end}),
+    )
+    .await;
+    send(&mut ws, json!({"type": "step", "n": n})).await;
+    let snap = next_where(&mut ws, "snapshot", |v| v.get("worker").is_some()).await;
+    let worker = &snap["worker"];
+    let c = floats_of(&worker["capsules"]);
+    assert_eq!(c.len(), 6 * 14);
+    assert!(c.iter().all(|x| x.is_finite()));
+    assert_eq!(worker["arms"][0]["hand"], 1);
+    assert!(worker["arms"][0]["shortfall"].as_f64().unwrap() < 1e-3);
+    assert!(worker["arms"][1].is_null());
+    let rula = worker["rula"].as_u64().unwrap();
+    assert!((1..=7).contains(&rula), "{rula}");
+    let contacts = worker["contacts"].as_array().unwrap();
+    let trunk = contacts
+        .iter()
+        .find(|k| k["segment"] == 2)
+        .unwrap_or_else(|| panic!("{contacts:?}"));
+    assert_eq!(
+        (trunk["obstacle"].as_str(), trunk["index"].as_u64()),
+        (Some("part"), Some(0))
+    );
+    // the trunk's axis is the vertical through the feet, the bar's face at x = 90 mm
+    assert!(
+        (trunk["depth"].as_f64().unwrap() - (radii[2] - 0.09)).abs() < 1e-9,
+        "{trunk}"
+    );
+
+    // a VR body: eyes where the manikin's are at 20° of trunk flexion looking ahead and
+    // down, the left controller in front of the left hip
+    let man = Manikin::new(
+        body(Population::new(Sex::Male, 50.0).unwrap()).unwrap(),
+        Placement::new(glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::Z).unwrap(),
+    );
+    let gaze = glam::DVec3::new(1.0, 0.0, -1.0);
+    let bent = TrunkAngles {
+        flexion: 20f64.to_radians(),
+        ..TrunkAngles::default()
+    };
+    let eyes = man
+        .posture_with_head(
+            bent,
+            [None, None],
+            Some(HeadTarget {
+                eyes: glam::DVec3::ZERO,
+                gaze,
+            }),
+        )
+        .joints
+        .head;
+    let left = [0.35, 0.2, 1.0];
+    let pose = json!({"type": "worker_pose", "head": {"position": eyes.to_array(), "gaze": gaze.to_array()}, "hands": [null, left]});
+    send(&mut ws, pose).await;
+    send(&mut ws, json!({"type": "step", "n": n})).await;
+    // posed by it once the steps are done: the head where the headset is
+    let snap = next_where(&mut ws, "snapshot", |v| v["step"].as_u64() >= Some(2 * n)).await;
+    let head = capsule(&snap, 0).0;
+    assert!(
+        dist(head, eyes.to_array()) < 1e-3,
+        "head {head:?}, eyes {eyes}"
+    );
+    // the left arm reaches the controller (no hand of the workcell in it: no `arms` entry)
+    assert!(snap["worker"]["arms"][1].is_null());
+    let wrist = capsule(&snap, 9).0;
+    assert!(dist(wrist, left) < 0.1, "left wrist {wrist:?}");
+
+    // malformed poses are refused with a reason, the connection lives on
+    for (bad, code, words) in [
+        (
+            json!({"type": "worker_pose", "head": {"position": [0, 0, 1.6], "gaze": [0, 0, 0]}}),
+            "invalid_value",
+            "head.gaze",
+        ),
+        (
+            json!({"type": "worker_pose", "hands": [[0, 0, 1e9], null]}),
+            "invalid_value",
+            "beyond 1 km",
+        ),
+        (
+            json!({"type": "worker_pose", "hands": ["left"]}),
+            "malformed",
+            "",
+        ),
+        (
+            json!({"type": "worker_pose", "head": {"position": [0, 0, 1.6], "gaze": [1, 0, 0], "roll": 3}}),
+            "malformed",
+            "",
+        ),
+    ] {
+        send(&mut ws, bad.clone()).await;
+        let e = next_where(&mut ws, "error", |_| true).await;
+        assert_eq!(e["code"], code, "{bad}: {e}");
+        assert!(e["message"].as_str().unwrap().contains(words), "{bad}: {e}");
+    }
+    let step = snap["step"].as_u64().unwrap();
+    send(&mut ws, json!({"type": "step", "n": 1})).await;
+    next_where(&mut ws, "snapshot", |v| v["step"].as_u64() > Some(step)).await;
+
+    // a scene without a worker refuses a pose
+    let demo = server().await;
+    let mut ws = connect(&demo).await;
+    hello(&mut ws).await;
+    send(
+        &mut ws,
+        json!({"type": "worker_pose", "hands": [[0.3, 0, 1], null]}),
+    )
+    .await;
+    let e = next_where(&mut ws, "error", |_| true).await;
+    assert_eq!(e["code"], "invalid_value");
+    assert!(
+        e["message"].as_str().unwrap().contains("no [worker]"),
+        "{e}"
+    );
+}

@@ -3,7 +3,7 @@
 //! forearms, hands, thighs, shanks. The radii are the data table's (estimates, see its
 //! header); feet are left out (they stand on the floor).
 
-use crate::anthropometry::Body;
+use crate::anthropometry::{Body, SegmentRadii};
 use crate::posture::{Posture, Side};
 use glam::DVec3;
 
@@ -37,6 +37,21 @@ impl Segment {
             Segment::Shank(s) => format!("{} shank", s.name()),
         }
     }
+
+    /// The segment's capsule radius among `radii` \[m\].
+    pub fn radius(self, radii: &SegmentRadii) -> f64 {
+        match self {
+            Segment::Head => radii.head,
+            Segment::Neck => radii.neck,
+            Segment::Trunk => radii.trunk,
+            Segment::Pelvis => radii.pelvis,
+            Segment::UpperArm(_) => radii.upper_arm,
+            Segment::Forearm(_) => radii.forearm,
+            Segment::Hand(_) => radii.hand,
+            Segment::Thigh(_) => radii.thigh,
+            Segment::Shank(_) => radii.shank,
+        }
+    }
 }
 
 /// One capsule: the points within `radius` of segment [a, b] \[m\].
@@ -51,7 +66,25 @@ pub struct Capsule {
 /// How many capsules a body has.
 pub const CAPSULE_COUNT: usize = 14;
 
-/// The capsules of `body` in `posture`, in a fixed order.
+/// The segments in the order [`capsules`] gives their capsules.
+pub const SEGMENTS: [Segment; CAPSULE_COUNT] = [
+    Segment::Head,
+    Segment::Neck,
+    Segment::Trunk,
+    Segment::Pelvis,
+    Segment::UpperArm(Side::Right),
+    Segment::UpperArm(Side::Left),
+    Segment::Forearm(Side::Right),
+    Segment::Forearm(Side::Left),
+    Segment::Hand(Side::Right),
+    Segment::Hand(Side::Left),
+    Segment::Thigh(Side::Right),
+    Segment::Thigh(Side::Left),
+    Segment::Shank(Side::Right),
+    Segment::Shank(Side::Left),
+];
+
+/// The capsules of `body` in `posture`, in the order of [`SEGMENTS`].
 pub fn capsules(body: &Body, posture: &Posture) -> [Capsule; CAPSULE_COUNT] {
     let r = &body.radii;
     let j = &posture.joints;

@@ -11,8 +11,10 @@
 //! fixed grid over their ranges of motion followed by a pattern search (Hooke & Jeeves
 //! 1961) with a fixed number of halvings, minimising
 //!
-//!   cost = Σ_arms r² + λ (α² + β² + γ²),   λ = 10⁻⁸ m²/rad²,
+//!   cost = Σ_arms r² + |e − e*|² + λ (α² + β² + γ²),   λ = 10⁻⁸ m²/rad²,
 //!
+//! the middle term only with a head target (a VR headset: e the manikin's eyes, e* the
+//! headset's; the neck then turns the head along the headset's gaze within its range),
 //! r an arm's residual (how far its grip centre stays from the target, an excess over
 //! the shoulder's extension limit counted as its arc at full reach): reaching comes
 //! first, an upright trunk second (10⁻⁸ m²/rad² trades 30° of bending for 0.05 mm of
@@ -37,6 +39,14 @@ const GRID: [usize; 3] = [11, 7, 5];
 
 /// Halvings of the pattern search's step.
 const HALVINGS: usize = 12;
+
+/// Where the user's head is and where it looks (a VR headset), for
+/// [`Manikin::solve_with_head`]: the eyes' midpoint \[m\] and the gaze direction.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct HeadTarget {
+    pub eyes: DVec3,
+    pub gaze: DVec3,
+}
 
 /// A worker's body standing at a placement.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -187,10 +197,16 @@ impl Manikin {
         }
     }
 
-    fn cost(&self, t: TrunkAngles, targets: &[Option<DVec3>; 2]) -> f64 {
+    fn cost(&self, t: TrunkAngles, targets: &[Option<DVec3>; 2], head: Option<HeadTarget>) -> f64 {
         let f = self.frame(t);
         let mut c =
             TRUNK_WEIGHT * (t.flexion * t.flexion + t.lateral * t.lateral + t.twist * t.twist);
+        if let Some(h) = head {
+            let neck_base = self.neck_base(&f);
+            let (flexion, twist) = self.neck_angles(&f, Some(h.gaze));
+            let (_, eyes) = self.head_points(&f, neck_base, flexion, twist);
+            c += (eyes - h.eyes).length_squared();
+        }
         for side in Side::BOTH {
             if let Some(target) = targets[side.index()] {
                 let r = self.arm(&f, side, Some(target)).residual;
@@ -202,20 +218,25 @@ impl Manikin {
 
     /// The posture reaching `targets` (right hand, left hand; `None`: the arm hangs).
     pub fn solve(&self, targets: [Option<DVec3>; 2]) -> Posture {
+        self.solve_with_head(targets, None)
+    }
+
+    /// [`Self::solve`] with the eyes drawn towards a head target too, and the head
+    /// looking along its gaze (module doc).
+    pub fn solve_with_head(
+        &self,
+        targets: [Option<DVec3>; 2],
+        head: Option<HeadTarget>,
+    ) -> Posture {
         let l = &self.body.limits;
         let ranges = [
             (-l.trunk_extension, l.trunk_flexion),
             (-l.trunk_twist, l.trunk_twist),
             (-l.trunk_lateral, l.trunk_lateral),
         ];
-        let angles = |x: [f64; 3]| TrunkAngles {
-            flexion: x[0],
-            twist: x[1],
-            lateral: x[2],
-        };
         let mut best = [0.0; 3];
-        let mut best_cost = self.cost(angles(best), &targets);
-        if targets.iter().any(Option::is_some) && best_cost > 0.0 {
+        let mut best_cost = self.cost(trunk_angles(best), &targets, head);
+        if (targets.iter().any(Option::is_some) || head.is_some()) && best_cost > 0.0 {
             for i in 0..GRID[0] {
                 for j in 0..GRID[1] {
                     for k in 0..GRID[2] {
@@ -224,7 +245,7 @@ impl Manikin {
                             let (lo, hi) = ranges[axis];
                             x[axis] = lo + (hi - lo) * n as f64 / (GRID[axis] - 1) as f64;
                         }
-                        let c = self.cost(angles(x), &targets);
+                        let c = self.cost(trunk_angles(x), &targets, head);
                         if c < best_cost {
                             best_cost = c;
                             best = x;
@@ -237,60 +258,138 @@ impl Manikin {
                 let (lo, hi) = ranges[axis];
                 *s = 0.5 * (hi - lo) / (GRID[axis] - 1) as f64;
             }
-            for _ in 0..HALVINGS {
-                for axis in 0..3 {
-                    for sign in [1.0, -1.0] {
-                        let mut x = best;
-                        let (lo, hi) = ranges[axis];
-                        x[axis] = (x[axis] + sign * step[axis]).clamp(lo, hi);
-                        let c = self.cost(angles(x), &targets);
-                        if c < best_cost {
-                            best_cost = c;
-                            best = x;
-                        }
-                    }
-                }
-                for s in &mut step {
-                    *s *= 0.5;
+            (best, best_cost) = self.refine(best, best_cost, step, 1, &ranges, &targets, head);
+            // the eyes can be met by many trunks (a lean made up by a twist): a second
+            // search from upright, with long strides, finds the least bent one the grid's
+            // cell may miss
+            if head.is_some() {
+                let upright = self.cost(trunk_angles([0.0; 3]), &targets, head);
+                let step = ranges.map(|(lo, hi)| 0.25 * (hi - lo));
+                let (x, c) = self.refine([0.0; 3], upright, step, 4, &ranges, &targets, head);
+                if c < best_cost {
+                    best = x;
                 }
             }
         }
-        self.posture(angles(best), targets)
+        self.posture_with_head(trunk_angles(best), targets, head)
+    }
+
+    /// The pattern search from trunk angles `x` of cost `cost`: each of [`HALVINGS`]
+    /// rounds tries a step up and down each axis in turn, keeping the first of equal
+    /// costs, and sweeps again (up to `sweeps` times) while that helped; then the steps
+    /// halve.
+    #[allow(clippy::too_many_arguments)]
+    fn refine(
+        &self,
+        mut x: [f64; 3],
+        mut cost: f64,
+        mut step: [f64; 3],
+        sweeps: usize,
+        ranges: &[(f64, f64); 3],
+        targets: &[Option<DVec3>; 2],
+        head: Option<HeadTarget>,
+    ) -> ([f64; 3], f64) {
+        for _ in 0..HALVINGS {
+            for _ in 0..sweeps {
+                let before = cost;
+                for axis in 0..3 {
+                    for sign in [1.0, -1.0] {
+                        let mut y = x;
+                        let (lo, hi) = ranges[axis];
+                        y[axis] = (y[axis] + sign * step[axis]).clamp(lo, hi);
+                        let c = self.cost(trunk_angles(y), targets, head);
+                        if c < cost {
+                            cost = c;
+                            x = y;
+                        }
+                    }
+                }
+                if cost == before {
+                    break;
+                }
+            }
+            for s in &mut step {
+                *s *= 0.5;
+            }
+        }
+        (x, cost)
+    }
+
+    /// The base of the neck (the middle of the shoulder line) in trunk frame `f`.
+    fn neck_base(&self, f: &TrunkFrame) -> DVec3 {
+        let b = &self.body;
+        self.lumbar() + f.up * (b.dims.shoulder_height - b.dims.hip_height)
+    }
+
+    /// The neck's flexion and twist that turn the head to look along `gaze` (`None`:
+    /// straight ahead), within the neck's range.
+    fn neck_angles(&self, f: &TrunkFrame, gaze: Option<DVec3>) -> (f64, f64) {
+        let l = &self.body.limits;
+        let Some(g) = gaze else {
+            return (0.0, 0.0);
+        };
+        let (ahead, aside) = (g.dot(f.forward), g.dot(f.left));
+        // below the trunk's transverse plane, and round the trunk's axis
+        let pitch = (-g.dot(f.up)).atan2(ahead.hypot(aside));
+        let yaw = aside.atan2(ahead);
+        (
+            pitch.clamp(-l.neck_extension, l.neck_flexion),
+            yaw.clamp(-l.neck_twist, l.neck_twist),
+        )
+    }
+
+    /// The chin and the eyes' midpoint (the head joint) for the neck's angles.
+    fn head_points(
+        &self,
+        f: &TrunkFrame,
+        neck_base: DVec3,
+        neck_flexion: f64,
+        neck_twist: f64,
+    ) -> (DVec3, DVec3) {
+        let b = &self.body;
+        let neck_q =
+            DQuat::from_axis_angle(f.up, neck_twist) * DQuat::from_axis_angle(f.left, neck_flexion);
+        let neck_axis = neck_q * f.up;
+        (
+            neck_base + neck_axis * (b.dims.chin_height - b.dims.shoulder_height),
+            neck_base + neck_axis * (b.dims.eye_height - b.dims.shoulder_height),
+        )
     }
 
     /// The whole posture at trunk angles `t` with the arms reaching for `targets`.
     pub fn posture(&self, t: TrunkAngles, targets: [Option<DVec3>; 2]) -> Posture {
+        self.posture_with_head(t, targets, None)
+    }
+
+    /// [`Self::posture`], the head looking along `head`'s gaze if given (else at the
+    /// middle of the targets).
+    pub fn posture_with_head(
+        &self,
+        t: TrunkAngles,
+        targets: [Option<DVec3>; 2],
+        head: Option<HeadTarget>,
+    ) -> Posture {
         let b = &self.body;
         let p = &self.placement;
-        let l = &b.limits;
         let f = self.frame(t);
         let arms = Side::BOTH.map(|side| self.arm(&f, side, targets[side.index()]));
         let lumbar = self.lumbar();
-        let neck_base = lumbar + f.up * (b.dims.shoulder_height - b.dims.hip_height);
+        let neck_base = self.neck_base(&f);
         let eyes_upright = neck_base + f.up * (b.dims.eye_height - b.dims.shoulder_height);
-        // the head looks at the middle of the targets, within the neck's range
-        let mut gaze = DVec3::ZERO;
+        // the headset's gaze, else the middle of the targets
+        let mut middle = DVec3::ZERO;
         let mut count = 0.0;
         for target in targets.iter().flatten() {
-            gaze += *target;
+            middle += *target;
             count += 1.0;
         }
-        let (neck_flexion, neck_twist) = if count > 0.0 {
-            let g = gaze / count - eyes_upright;
-            let (ahead, aside) = (g.dot(f.forward), g.dot(f.left));
-            // below the trunk's transverse plane, and round the trunk's axis
-            let pitch = (-g.dot(f.up)).atan2(ahead.hypot(aside));
-            let yaw = aside.atan2(ahead);
-            (
-                pitch.clamp(-l.neck_extension, l.neck_flexion),
-                yaw.clamp(-l.neck_twist, l.neck_twist),
-            )
-        } else {
-            (0.0, 0.0)
+        let gaze = match head {
+            Some(h) => Some(h.gaze),
+            None if count > 0.0 => Some(middle / count - eyes_upright),
+            None => None,
         };
-        let neck_q =
-            DQuat::from_axis_angle(f.up, neck_twist) * DQuat::from_axis_angle(f.left, neck_flexion);
-        let neck_axis = neck_q * f.up;
+        let (neck_flexion, neck_twist) = self.neck_angles(&f, gaze);
+        let (chin, head_joint) = self.head_points(&f, neck_base, neck_flexion, neck_twist);
         let hips = Side::BOTH.map(|s| {
             p.point(DVec3::new(
                 0.0,
@@ -320,13 +419,22 @@ impl Manikin {
             joints: Joints {
                 lumbar,
                 neck_base,
-                chin: neck_base + neck_axis * (b.dims.chin_height - b.dims.shoulder_height),
-                head: neck_base + neck_axis * (b.dims.eye_height - b.dims.shoulder_height),
+                chin,
+                head: head_joint,
                 hips,
                 knees,
                 ankles,
             },
         }
+    }
+}
+
+/// Trunk angles from the search's coordinates (flexion, twist, lateral).
+fn trunk_angles(x: [f64; 3]) -> TrunkAngles {
+    TrunkAngles {
+        flexion: x[0],
+        twist: x[1],
+        lateral: x[2],
     }
 }
 

@@ -29,9 +29,9 @@ pub mod rula;
 pub mod scores;
 
 pub use anthropometry::{body, stature, Body, JointLimits, Population, Sex};
-pub use capsules::{capsules, Capsule, Segment, CAPSULE_COUNT};
+pub use capsules::{capsules, Capsule, Segment, CAPSULE_COUNT, SEGMENTS};
 pub use error::WorkerError;
-pub use ik::{assign_hands, Manikin};
+pub use ik::{assign_hands, HeadTarget, Manikin};
 pub use placement::Placement;
 pub use posture::{ArmPose, Joints, Posture, Side, TrunkAngles};
 pub use posture_class::PostureClass;

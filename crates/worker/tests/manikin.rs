@@ -161,3 +161,67 @@ fn placement_rotates_the_manikin() {
     let pose = m.solve([Some(t), None]);
     assert!(pose.arms[0].residual < 1e-4);
 }
+
+/// The capsules come in the order of `SEGMENTS`, each with its segment's radius.
+#[test]
+fn capsules_follow_the_segment_list() {
+    let m = manikin(Sex::Female, 5.0);
+    let posture = m.solve([Some(DVec3::new(0.4, -0.2, 1.2)), None]);
+    let caps = pliant_worker::capsules(&m.body, &posture);
+    for (c, s) in caps.iter().zip(pliant_worker::SEGMENTS) {
+        assert_eq!(c.segment, s);
+        assert_eq!(c.radius, s.radius(&m.body.radii), "{}", s.name());
+    }
+}
+
+/// A headset's eyes where the manikin's are at 30° of trunk flexion, looking ahead and
+/// down: the search bends the trunk to put his eyes there and the head looks along the
+/// headset's gaze.
+#[test]
+fn a_head_target_bends_the_trunk_to_the_headset() {
+    use pliant_worker::{HeadTarget, TrunkAngles};
+    let m = manikin(Sex::Male, 50.0);
+    let gaze = DVec3::new(1.0, 0.0, -0.5);
+    let bent = TrunkAngles {
+        flexion: 30f64.to_radians(),
+        lateral: 0.0,
+        twist: 0.0,
+    };
+    let aim = |eyes| Some(HeadTarget { eyes, gaze });
+    let eyes = m
+        .posture_with_head(bent, [None, None], aim(DVec3::ZERO))
+        .joints
+        .head;
+    let p = m.solve_with_head([None, None], aim(eyes));
+    assert!(
+        (p.joints.head - eyes).length() < 1e-3,
+        "{:?}",
+        p.joints.head
+    );
+    assert!(
+        (p.trunk.flexion - bent.flexion).abs() < 1f64.to_radians(),
+        "{:?}",
+        p.trunk
+    );
+    assert_eq!(
+        p,
+        m.solve_with_head([None, None], aim(eyes)),
+        "deterministic"
+    );
+    // the upright eyes, looking 45° to the left: the neck turns, the trunk stays upright
+    let upright = m.posture(TrunkAngles::default(), [None, None]).joints.head;
+    let p = m.solve_with_head(
+        [None, None],
+        Some(HeadTarget {
+            eyes: upright,
+            gaze: DVec3::new(1.0, 1.0, 0.0),
+        }),
+    );
+    assert_eq!(p.trunk, TrunkAngles::default());
+    assert!(
+        (p.neck_twist - 45f64.to_radians()).abs() < 1e-12,
+        "{}",
+        p.neck_twist
+    );
+    assert!(p.neck_flexion.abs() < 1e-12);
+}

@@ -117,6 +117,10 @@ pub enum Input {
     },
     /// Judge hand loads with this profile from now on.
     SetErgonomics { profile: ErgonomicProfile },
+    /// A VR user's body poses the worker from now on (SPEC E1): the headset's eyes and
+    /// gaze, and the controllers' positions (right, left) \[m\] as the hands' targets
+    /// ([`crate::worker::BodyPose`]). Refused without a worker or for non-finite values.
+    WorkerPose { pose: crate::worker::BodyPose },
     /// All velocities set to zero (kinetic damping while relaxing to rest).
     Arrest,
     /// The state moved to the static equilibrium under the current loads by the
@@ -155,6 +159,7 @@ impl Input {
             Input::MovePart { .. } => "move_part",
             Input::RotatePart { .. } => "rotate_part",
             Input::SetErgonomics { .. } => "set_ergonomics",
+            Input::WorkerPose { .. } => "worker_pose",
             Input::Arrest => "arrest",
             Input::SolveStatic { .. } => "solve_static",
             Input::Rollback => "rollback",

@@ -738,6 +738,15 @@ impl Workcell {
                 self.profile = *profile;
                 Ok(Applied::Done)
             }
+            Input::WorkerPose { pose } => {
+                pose.check().map_err(Refusal::Invalid)?;
+                let worker = self
+                    .worker
+                    .as_mut()
+                    .ok_or_else(|| Refusal::Invalid("the scene has no [worker] to pose".into()))?;
+                worker.set_body_pose(*pose);
+                Ok(Applied::Done)
+            }
             Input::Arrest => self.arrest(),
             Input::SolveStatic {
                 force_tolerance,

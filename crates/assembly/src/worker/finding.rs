@@ -22,11 +22,15 @@ pub enum WorkerFinding {
         first_time: f64,
         last_time: f64,
     },
-    /// A body segment inside a part, `depth` \[m\] at its deepest, at `time` \[s\].
+    /// A body segment inside a part or a hose, `depth` \[m\] at its deepest, at `time`
+    /// \[s\].
     Collision {
         who: String,
         segment: String,
+        /// The part's or hose's name.
         part: String,
+        /// "part" or "hose".
+        obstacle: &'static str,
         depth: f64,
         time: f64,
         first_time: f64,
@@ -63,15 +67,19 @@ impl WorkerFinding {
                 who,
                 segment,
                 part,
+                obstacle,
                 depth,
                 time,
                 first_time,
                 last_time,
-            } => format!(
-                "body collision: {who}'s {segment} is {:.0} mm inside '{part}' at t = {time:.2} s{}",
+            } => {
+                format!(
+                "body collision: {who}'s {segment} is {:.0} mm {} '{part}' at t = {time:.2} s{}",
                 depth * 1e3,
+                if *obstacle == "hose" { "into hose" } else { "inside" },
                 span(*first_time, *last_time)
-            ),
+            )
+            }
         }
     }
 }

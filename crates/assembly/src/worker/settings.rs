@@ -59,6 +59,23 @@ impl WorkerSettings {
 }
 
 impl Stance {
+    /// The placement under a VR user's head before any hand acted: the feet below the
+    /// eyes, facing the gaze's horizontal direction (the stance's facing when it looks
+    /// straight up or down); a fixed stance ignores it.
+    pub fn place_under(&self, head: pliant_worker::HeadTarget) -> Placement {
+        match *self {
+            Stance::At(p) => p,
+            Stance::Auto { facing, up, floor } => {
+                let ahead = head.gaze - head.gaze.dot(up) * up;
+                Placement {
+                    position: head.eyes - (head.eyes.dot(up) - floor) * up,
+                    forward: ahead.try_normalize().unwrap_or(facing),
+                    up,
+                }
+            }
+        }
+    }
+
     /// The placement for a first grab point at `grab` for `body` (a fixed stance ignores
     /// both).
     pub fn place(&self, grab: DVec3, body: &Body) -> Placement {

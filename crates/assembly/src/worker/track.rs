@@ -1,13 +1,14 @@
 //! The worker's account of a study (SPEC E1–E2): at every posed instant (the scene's
 //! record interval) the manikin reaches for the hands' positions by inverse kinematics,
-//! its capsules are checked against the parts, and its posture is scored by RULA and
+//! its capsules are checked against the parts and the hoses, and its posture is scored by RULA and
 //! REBA with the hands' forces, and classed (upright, bent trunk, arms above shoulder) for
 //! the hand-force limits until the next posed instant. Kept: each arm's worst reach residual, each segment's
 //! deepest collision per part, the worst scores and when, and a time series for
 //! `worker.csv`. Nothing is allocated per instant except the series' amortised growth
 //! and the first collision of a segment with a part.
 
-use super::collisions::{checked, deepest};
+use super::body_pose::BodyPose;
+use super::collisions::{checked, deepest, Obstacle, Penetration};
 use super::finding::WorkerFinding;
 use super::posture_note::PostureNote;
 use super::settings::WorkerSettings;
@@ -63,13 +64,16 @@ pub struct ReachRecord {
     pub last_out: Option<f64>,
 }
 
-/// A body segment inside a part.
+/// A body segment inside a part or a hose.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BodyCollision {
     pub segment: String,
+    /// The part's or hose's name.
     pub part: String,
+    /// "part" or "hose".
+    pub obstacle: &'static str,
     #[serde(skip)]
-    part_index: usize,
+    with: Obstacle,
     /// Deepest penetration \[m\] and when; first and last posed instants inside \[s\].
     pub depth: f64,
     pub time: f64,
@@ -115,6 +119,20 @@ pub struct ClassInstants {
     pub arms_above_shoulder: u64,
 }
 
+/// The manikin at its last posed instant (what the live viewer draws).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorkerNow {
+    /// When it was posed \[s\].
+    pub time: f64,
+    pub posture: Posture,
+    /// Per arm (right, left): the workcell hand it follows.
+    pub hand: [Option<usize>; 2],
+    pub scores: PostureScores,
+    pub class: PostureClass,
+    /// Per capsule, in [`capsules()`]' order: the deepest penetration at this instant.
+    pub contacts: [Option<Penetration>; CAPSULE_COUNT],
+}
+
 /// The worker's running account.
 #[derive(Clone, Debug, PartialEq)]
 pub struct WorkerTrack {
@@ -128,9 +146,10 @@ pub struct WorkerTrack {
     worst_rula: Option<ScoreAt<RulaScore>>,
     worst_reba: Option<ScoreAt<RebaScore>>,
     worst_posture: Option<Posture>,
-    last_posture: Option<Posture>,
-    /// The class of the last posture (SPEC E2: it chooses the force limits' rows).
-    last_class: Option<PostureClass>,
+    /// The last posed instant; its class chooses the force limits' rows (SPEC E2).
+    now: Option<WorkerNow>,
+    /// A VR user's body posing the worker (the last [`crate::Input::WorkerPose`]).
+    body_pose: Option<BodyPose>,
     /// Posed instants per class, in the order of [`PostureClass::ALL`].
     class_instants: [u64; 3],
     /// The hand each arm followed at the last posed instant (right, left).
@@ -156,8 +175,8 @@ impl WorkerTrack {
             worst_rula: None,
             worst_reba: None,
             worst_posture: None,
-            last_posture: None,
-            last_class: None,
+            now: None,
+            body_pose: None,
             class_instants: [0; 3],
             arm_of: [None; 2],
             series: Vec::with_capacity(1024),
@@ -180,8 +199,8 @@ impl WorkerTrack {
         self.worst_rula = None;
         self.worst_reba = None;
         self.worst_posture = None;
-        self.last_posture = None;
-        self.last_class = None;
+        self.now = None;
+        self.body_pose = None;
         self.class_instants = [0; 3];
         self.arm_of = [None; 2];
         self.series.clear();
@@ -194,13 +213,29 @@ impl WorkerTrack {
 
     /// The manikin as last posed, if it has been.
     pub fn posture(&self) -> Option<&Posture> {
-        self.last_posture.as_ref()
+        self.now.as_ref().map(|n| &n.posture)
+    }
+
+    /// From now on the worker is posed by a VR user's body: the headset draws the eyes,
+    /// each controller its arm (a controller not tracked leaves its arm to the hands).
+    pub fn set_body_pose(&mut self, pose: BodyPose) {
+        self.body_pose = Some(pose);
+    }
+
+    /// The manikin's body (its dimensions and capsule radii).
+    pub fn body(&self) -> &Body {
+        &self.body
+    }
+
+    /// The last posed instant: posture, scores, class and contacts, if posed yet.
+    pub fn now(&self) -> Option<&WorkerNow> {
+        self.now.as_ref()
     }
 
     /// The class of the posture as last posed, if it has been: the rows of the push and
     /// pull tables that judge the hand forces now ([`crate::ergonomics::table_posture`]).
     pub fn posture_class(&self) -> Option<PostureClass> {
-        self.last_class
+        self.now.map(|n| n.class)
     }
 
     /// The posed instants so far (the rows of `worker.csv`).
@@ -232,15 +267,21 @@ impl WorkerTrack {
         } else {
             0.0
         };
-        let manikin = match (self.manikin, records.first()) {
-            (Some(m), _) => m,
-            (None, Some(first)) => {
+        let head = self.body_pose.and_then(|b| b.head);
+        let manikin = match (self.manikin, records.first(), head) {
+            (Some(m), _, _) => m,
+            (None, Some(first), _) => {
                 let p = self.settings.stance.place(first.load.position, &self.body);
                 let m = Manikin::new(self.body, p);
                 self.manikin = Some(m);
                 m
             }
-            (None, None) => return,
+            (None, None, Some(h)) => {
+                let m = Manikin::new(self.body, self.settings.stance.place_under(h));
+                self.manikin = Some(m);
+                m
+            }
+            (None, None, None) => return,
         };
         // the first two hands; the one further to the worker's right to the right arm; a
         // single hand to the arm on its side, but it stays with the arm that held it
@@ -274,7 +315,14 @@ impl WorkerTrack {
             }
         }
         self.arm_of = hand;
-        let posture = manikin.solve(target);
+        if let Some(body) = self.body_pose {
+            for (t, controller) in target.iter_mut().zip(body.hands) {
+                if controller.is_some() {
+                    *t = controller;
+                }
+            }
+        }
+        let posture = manikin.solve_with_head(target, head);
         let options = ScoreOptions {
             static_or_repeated: static_work,
             ..self.settings.scores
@@ -283,18 +331,20 @@ impl WorkerTrack {
         let class = PostureClass::of(&posture, manikin.placement.up);
         self.class_instants[class.index()] += 1;
         let mut deepest_now: f64 = 0.0;
-        for c in capsules(&self.body, &posture).iter().take(CAPSULE_COUNT) {
+        let mut contacts = [None; CAPSULE_COUNT];
+        for (c, contact) in capsules(&self.body, &posture).iter().zip(&mut contacts) {
             if !checked(c.segment) {
                 continue;
             }
-            if let Some(p) = deepest(&model.environment, c) {
+            *contact = deepest(model, state, c, &target, self.body.dims.hand);
+            if let Some(p) = *contact {
                 deepest_now = deepest_now.max(p.depth);
-                self.note_collision(model, c.segment.name(), p.part, p.depth, time);
+                self.note_collision(model, c.segment.name(), p.obstacle, p.depth, time);
             }
         }
         for side in Side::BOTH {
             let i = side.index();
-            if target[i].is_none() {
+            if hand[i].is_none() {
                 continue;
             }
             let r = posture.arms[i].residual;
@@ -332,8 +382,14 @@ impl WorkerTrack {
         if self.cap.take() {
             self.sample(time, hand, &target, &posture, scores, deepest_now, class);
         }
-        self.last_posture = Some(posture);
-        self.last_class = Some(class);
+        self.now = Some(WorkerNow {
+            time,
+            posture,
+            hand,
+            scores,
+            class,
+            contacts,
+        });
     }
 
     /// Adds the instant to the series, thinning it when full (the rows of the highest
@@ -389,14 +445,14 @@ impl WorkerTrack {
         &mut self,
         model: &Model,
         segment: String,
-        part: usize,
+        with: Obstacle,
         depth: f64,
         time: f64,
     ) {
         let found = self
             .collisions
             .iter_mut()
-            .find(|c| c.part_index == part && c.segment == segment);
+            .find(|c| c.with == with && c.segment == segment);
         match found {
             Some(c) => {
                 if depth > c.depth {
@@ -407,8 +463,9 @@ impl WorkerTrack {
             }
             None => self.collisions.push(BodyCollision {
                 segment,
-                part: model.environment.parts[part].name.clone(),
-                part_index: part,
+                part: with.name(model),
+                obstacle: with.kind(),
+                with,
                 depth,
                 time,
                 first_time: time,
@@ -463,6 +520,7 @@ impl WorkerSummary {
                 who: self.who.clone(),
                 segment: c.segment.clone(),
                 part: c.part.clone(),
+                obstacle: c.obstacle,
                 depth: c.depth,
                 time: c.time,
                 first_time: c.first_time,

@@ -1,0 +1,97 @@
+// The worker drawn (docs/worker.md): one capsule per body segment — a cylinder on the
+// axis and a ball at each end, shared unit geometry scaled per frame — placed from each
+// snapshot's `worker` (live and in replays); a segment inside a part or hose is red, and
+// the panel lists reach, contacts and the posture scores (manikin_model.ts).
+
+import * as THREE from 'three';
+import { el } from './panel';
+import { manikinCapsules, manikinLines, type ManikinCapsule } from './manikin_model';
+import type { Snapshot, WorkerData } from './protocol';
+
+const BODY_COLOUR = 0xc8b08c;
+const CONTACT_COLOUR = 0xe5484d;
+const Y = new THREE.Vector3(0, 1, 0);
+
+interface DrawnSegment {
+  shaft: THREE.Mesh;
+  ends: [THREE.Mesh, THREE.Mesh];
+  material: THREE.MeshStandardMaterial;
+}
+
+export class ManikinView {
+  readonly group = new THREE.Group();
+  private readonly cylinder = new THREE.CylinderGeometry(1, 1, 1, 16, 1);
+  private readonly sphere = new THREE.SphereGeometry(1, 16, 12);
+  private segments: DrawnSegment[] = [];
+  private data: WorkerData | null = null;
+  private readonly dir = new THREE.Vector3();
+  /** The capsules drawn last (for tests and the panel). */
+  drawn: ManikinCapsule[] = [];
+  private linesShown = '';
+
+  constructor(private readonly slot: HTMLElement) {
+    this.group.name = 'manikin';
+    this.group.visible = false;
+  }
+
+  /** A new session: its worker's segments (none: nothing is drawn). */
+  welcome(data: WorkerData | undefined): void {
+    this.clear();
+    this.data = data ?? null;
+    this.linesShown = '';
+    if (this.data === null) {
+      this.slot.replaceChildren(el('div', { class: 'muted' }, 'no worker in this scene'));
+      return;
+    }
+    this.segments = this.data.segments.map((name) => {
+      const material = new THREE.MeshStandardMaterial({ color: BODY_COLOUR, roughness: 0.7, transparent: true, opacity: 0.85 });
+      const shaft = new THREE.Mesh(this.cylinder, material);
+      const ends: [THREE.Mesh, THREE.Mesh] = [new THREE.Mesh(this.sphere, material), new THREE.Mesh(this.sphere, material)];
+      shaft.name = `manikin:${name}`;
+      for (const m of [shaft, ...ends]) m.castShadow = true;
+      this.group.add(shaft, ...ends);
+      return { shaft, ends, material };
+    });
+    this.update(undefined, { parts: [], hoses: [] });
+  }
+
+  /** Places the capsules from the snapshot's worker (hidden until it is posed) and
+   *  writes the panel's lines. */
+  update(pose: Snapshot['worker'], names: { parts: readonly string[]; hoses: readonly string[] }): void {
+    const data = this.data;
+    if (data === null) return;
+    this.drawn = pose === undefined ? [] : manikinCapsules(data, pose, names);
+    this.group.visible = this.drawn.length > 0;
+    this.drawn.forEach((c, i) => {
+      const d = this.segments[i];
+      if (d === undefined) return;
+      const r = Math.max(c.radius, 1e-4);
+      this.dir.set(c.b[0] - c.a[0], c.b[1] - c.a[1], c.b[2] - c.a[2]);
+      const length = this.dir.length();
+      d.shaft.visible = length > 1e-9;
+      if (d.shaft.visible) {
+        d.shaft.quaternion.setFromUnitVectors(Y, this.dir.multiplyScalar(1 / length));
+        d.shaft.scale.set(r, length, r);
+        d.shaft.position.set(0.5 * (c.a[0] + c.b[0]), 0.5 * (c.a[1] + c.b[1]), 0.5 * (c.a[2] + c.b[2]));
+      }
+      d.ends[0].position.set(...c.a);
+      d.ends[1].position.set(...c.b);
+      for (const e of d.ends) e.scale.setScalar(r);
+      d.material.color.setHex(c.contact === null ? BODY_COLOUR : CONTACT_COLOUR);
+      d.shaft.userData.contact = c.contact !== null;
+    });
+    const lines = manikinLines(data, pose, this.drawn);
+    const key = lines.join('\n');
+    if (key === this.linesShown) return;
+    this.linesShown = key;
+    this.slot.replaceChildren(...lines.map((l, i) => el('div', { class: i === 0 ? 'worker-scores' : 'worker-line' }, l)));
+  }
+
+  private clear(): void {
+    for (const d of this.segments) d.material.dispose();
+    this.group.clear();
+    this.segments = [];
+    this.drawn = [];
+    this.group.visible = false;
+  }
+}
