@@ -60,9 +60,8 @@ fn a_slow_door_sweep_is_the_same_quasi_statically_and_dynamically() {
     let scene = door_example();
     let mut worst = Vec::new();
     for solver in [SolverKind::Static, SolverKind::Explicit] {
-        let (_, run) = scene
-            .run_with(Some(solver))
-            .unwrap_or_else(|e| panic!("{e}"));
+        let (_, run) =
+            pliant_runs::run_with(&scene, Some(solver)).unwrap_or_else(|e| panic!("{e}"));
         let sweep = run.checks.sweep.expect("the sweep's rows");
         let bend = sweep
             .worst()
