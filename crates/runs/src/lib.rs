@@ -4,8 +4,9 @@
 //! converter the scene loader calls to fill its cache ([`cad_converter`]), handed to the
 //! loader by [`load_options`].
 //!
-//! The scene crate reads and checks files and never starts a process or writes a
-//! folder; everything here does one or the other.
+//! The scene crate reads and checks files and never starts a process, runs a timeline or
+//! writes a file (it only makes the cache folder a converter writes into); everything
+//! here does one of those.
 
 pub mod cad_converter;
 pub mod load;
