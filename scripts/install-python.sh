@@ -16,8 +16,9 @@ fi
 .venv/bin/python -m pip install --quiet --upgrade pip
 .venv/bin/python -m pip install --quiet "maturin>=1.5,<2" numpy pytest mypy   # mypy: stubtest checks _pliant.pyi
 # studies (pliant.studies, `pliant study`): Dask (and bokeh for its dashboard), Parquet,
-# statistics, marching cubes; duckdb to check the Parquet is readable by it
-.venv/bin/python -m pip install --quiet "dask[distributed]" bokeh pyarrow pandas scipy scikit-image duckdb
+# statistics, marching cubes, the report's plots (matplotlib); duckdb to check the Parquet is
+# readable by it
+.venv/bin/python -m pip install --quiet "dask[distributed]" bokeh pyarrow pandas scipy scikit-image matplotlib duckdb
 # STEP import (pliant.cad): OpenCASCADE's Python binding
 ./scripts/install-cad.sh
 # share the workspace's target folder (same release profile: dependencies are reused)

@@ -14,3 +14,5 @@ cd crates/python
 # against the compiled module; the allowlist says what may differ and why
 ../../.venv/bin/python -m mypy.stubtest pliant._pliant --allowlist stubtest-allowlist.txt
 ../../.venv/bin/python -m pytest -q
+# the scripts' own tests (scripts/tests: the performance table)
+../../.venv/bin/python -m pytest -q ../../scripts/tests

@@ -9,7 +9,7 @@
 use anyhow::{anyhow, bail, Context, Result};
 use pliant_core::SolverKind;
 use pliant_harness::{export_kbl, export_step, SettledHarness, StepNames};
-use pliant_scene::load_scene_file;
+use pliant_scene::load_scene_file_with;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -72,16 +72,16 @@ pub fn run(o: &ExportOptions) -> Result<ExitCode> {
             original.display()
         );
     }
-    let scene = load_scene_file(&scene_path).map_err(|e| anyhow!("{e}"))?;
+    let scene = load_scene_file_with(&scene_path, &pliant_runs::load_options())
+        .map_err(|e| anyhow!("{e}"))?;
     eprintln!(
         "settling {} ({} segments, {} junctions) …",
         scene_path.display(),
         scene.world.hoses.len(),
         scene.junctions.len()
     );
-    let (cell, summary) = scene
-        .run_within(o.solver, o.max_steps)
-        .map_err(|e| anyhow!(e))?;
+    let (cell, summary) =
+        pliant_runs::run_within(&scene, o.solver, o.max_steps).map_err(|e| anyhow!(e))?;
     for s in summary.settles.iter().filter(|s| !s.at_rest) {
         eprintln!(
             "warning: not at rest after the settle of action {} (t = {:.2} s, kinetic energy {:.2e} J); exporting the route as it is",

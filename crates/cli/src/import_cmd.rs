@@ -1,10 +1,10 @@
 //! `pliant import FILE.step`: converts a STEP assembly once with OpenCASCADE (see
-//! `pliant_scene::cad_converter`) into the cache entry a scene beside it will read
+//! `pliant_runs::cad_converter`) into the cache entry a scene beside it will read
 //! (`.pliant-cache/` in the STEP file's folder, or `--cache-dir`), or into a plain GLB
 //! (`--out`, usable as `mesh = "…"`: all solids as one part), and prints what it read.
 
 use anyhow::{anyhow, bail, Context, Result};
-use pliant_scene::cad_converter::import_step;
+use pliant_runs::cad_converter::{converter_id, import_step, MAX_STEP_BYTES};
 use pliant_scene::glb_solids::{glb_facts, read_glb_solids};
 use pliant_scene::route::unit_scale;
 use pliant_scene::step_cache::{mesh_cache_name, DEFAULT_CHORD_TOLERANCE};
@@ -116,9 +116,7 @@ pub fn run(o: &ImportOptions) -> Result<ExitCode> {
         Some(t) => parse_length(t).context("--tolerance")?,
         None => DEFAULT_CHORD_TOLERANCE,
     };
-    let bytes =
-        pliant_files::read_regular_file(o.step, pliant_scene::cad_converter::MAX_STEP_BYTES)
-            .map_err(|e| anyhow!(e))?;
+    let bytes = pliant_files::read_regular_file(o.step, MAX_STEP_BYTES).map_err(|e| anyhow!(e))?;
     let out: PathBuf = match (o.out, o.cache_dir) {
         (Some(_), Some(_)) => bail!("give either --out or --cache-dir, not both"),
         (Some(out), None) => out.to_path_buf(),
@@ -132,7 +130,7 @@ pub fn run(o: &ImportOptions) -> Result<ExitCode> {
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default();
             // the entry a scene in `dir` naming the file finds (the key ignores the folder)
-            dir.join(mesh_cache_name(&name, &bytes, tolerance))
+            dir.join(mesh_cache_name(&name, &bytes, tolerance, converter_id()))
         }
     };
     if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {

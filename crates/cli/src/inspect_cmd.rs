@@ -4,7 +4,7 @@
 
 use anyhow::{anyhow, Result};
 use pliant_core::Model;
-use pliant_scene::{load_scene_file, LoadedScene};
+use pliant_scene::{load_scene_file_with, LoadedScene};
 use serde_json::{json, Value};
 use std::path::Path;
 use std::process::ExitCode;
@@ -120,7 +120,8 @@ pub fn describe(scene: &LoadedScene, model: &Model) -> Value {
 
 /// Loads and builds the scene and prints what it holds.
 pub fn run(scene_path: &Path, as_json: bool) -> Result<ExitCode> {
-    let scene = load_scene_file(scene_path).map_err(|e| anyhow!("{e}"))?;
+    let scene = load_scene_file_with(scene_path, &pliant_runs::load_options())
+        .map_err(|e| anyhow!("{e}"))?;
     let model = scene.build_model().map_err(|e| anyhow!(e))?;
     let d = describe(&scene, &model);
     if as_json {

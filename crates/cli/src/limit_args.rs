@@ -47,6 +47,7 @@ impl LimitArgs {
             },
             max_file_bytes: self.max_mesh_bytes.unwrap_or(DEFAULT_MAX_FILE_BYTES),
             sandboxed: false,
+            ..pliant_runs::load_options()
         }
     }
 }

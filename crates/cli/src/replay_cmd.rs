@@ -13,7 +13,7 @@ use crate::run_cmd::{add_to_summary, print_outcome};
 use anyhow::{anyhow, bail, Context};
 use pliant_assembly::report::replay_with_outputs;
 use pliant_assembly::workcell::log::log_path;
-use pliant_scene::session::Session;
+use pliant_runs::session::Session;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -57,7 +57,7 @@ pub fn run(
         },
     )?;
     if let Some(path) = timeline {
-        let text = pliant_scene::session::log_to_scene(&s.scene, &s.log, cell.time_step())
+        let text = pliant_runs::session::log_to_scene(&s.scene, &s.log, cell.time_step())
             .map_err(|e| anyhow!(e))?;
         std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))?;
         eprintln!(

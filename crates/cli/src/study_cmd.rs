@@ -35,7 +35,7 @@ const PROBE: &str = "import pliant.studies, distributed, pyarrow, pandas, scipy,
 
 /// The first interpreter that can import `pliant.studies` and the study extras.
 fn find_python() -> Result<PathBuf> {
-    let tried = pliant_scene::cad_converter::python_candidates();
+    let tried = pliant_runs::cad_converter::python_candidates();
     for python in &tried {
         let ok = Command::new(python)
             .args(["-c", PROBE])

@@ -1151,7 +1151,7 @@ fn killing_pliant_study_stops_its_driver_and_workers() {
             .output()
             .is_ok_and(|o| o.status.success())
     };
-    let Some(python) = pliant_scene::cad_converter::python_candidates()
+    let Some(python) = pliant_runs::cad_converter::python_candidates()
         .into_iter()
         .find(|p| has_extras(p))
     else {

@@ -3,7 +3,7 @@
 
 use pliant_assembly::workcell::NoObserver;
 use pliant_assembly::{Input, WorkcellOptions};
-use pliant_scene::session::start_session_folder;
+use pliant_runs::session::start_session_folder;
 use std::path::Path;
 use std::process::{Command, Output};
 

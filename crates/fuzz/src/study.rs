@@ -141,7 +141,7 @@ struct Worker {
 
 impl Worker {
     fn start() -> Result<Worker, String> {
-        let tried = pliant_scene::cad_converter::python_candidates();
+        let tried = pliant_runs::cad_converter::python_candidates();
         for python in &tried {
             let has = Command::new(python)
                 .args(["-c", "import pliant"])

@@ -119,6 +119,7 @@ fn fuzz_options() -> LoadOptions {
         },
         max_file_bytes: 1 << 20,
         sandboxed: true,
+        ..pliant_runs::load_options()
     }
 }
 

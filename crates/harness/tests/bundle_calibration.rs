@@ -68,9 +68,7 @@ duration_s = 0.05
     );
     let scene = pliant_scene::load_scene_str_in(&scene, "bundle.toml", Path::new("."))
         .unwrap_or_else(|e| panic!("{e}"));
-    let (cell, run) = scene
-        .run_with(Some(pliant_core::SolverKind::Static))
-        .unwrap();
+    let (cell, run) = pliant_runs::run_with(&scene, Some(pliant_core::SolverKind::Static)).unwrap();
     assert_eq!(run.solver.unconverged_steps, 0, "{:?}", run.solver);
     cell.state().clone()
 }

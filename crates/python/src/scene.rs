@@ -4,10 +4,8 @@ use crate::arrays::to_python;
 use crate::errors::{model_error, scene_error, scene_error_message};
 use pliant_assembly::WorkcellError;
 use pliant_core::Model;
-use pliant_scene::{
-    demo_scene as rust_demo_scene, load_scene_file, load_scene_json_str_in, load_scene_str_in,
-    LoadedScene, SceneError as RustSceneError,
-};
+use pliant_runs::load::{load_scene_file, load_scene_json_str_in, load_scene_str_in};
+use pliant_scene::{demo_scene as rust_demo_scene, LoadedScene, SceneError as RustSceneError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;

@@ -11,6 +11,7 @@
 //!   their target stays inside. Its errors never quote a path outside the sandbox nor
 //!   the content of a file, and do not tell a missing file from an unreadable one.
 
+use crate::step_cache::ConverterChoice;
 use std::path::{Component, Path, PathBuf};
 
 /// Default cap on one mesh file \[bytes\] (a 256 MiB STL holds about 5 million triangles,
@@ -28,6 +29,8 @@ pub struct FileAccess {
     sandboxed: bool,
     /// Largest file read \[bytes\].
     pub max_file_bytes: u64,
+    /// What converts a STEP file the cache lacks ([`crate::step_cache`]).
+    converter: ConverterChoice,
 }
 
 impl FileAccess {
@@ -39,6 +42,7 @@ impl FileAccess {
             subdir: PathBuf::new(),
             sandboxed: false,
             max_file_bytes: DEFAULT_MAX_FILE_BYTES,
+            converter: ConverterChoice::default(),
         }
     }
 
@@ -49,6 +53,7 @@ impl FileAccess {
             subdir: PathBuf::new(),
             sandboxed: true,
             max_file_bytes: DEFAULT_MAX_FILE_BYTES,
+            converter: ConverterChoice::default(),
         }
     }
 
@@ -56,6 +61,17 @@ impl FileAccess {
     pub fn with_max_file_bytes(mut self, bytes: u64) -> FileAccess {
         self.max_file_bytes = bytes;
         self
+    }
+
+    /// The same access converting STEP files with `converter`.
+    pub fn with_converter(mut self, converter: ConverterChoice) -> FileAccess {
+        self.converter = converter;
+        self
+    }
+
+    /// What converts a STEP file the cache lacks.
+    pub fn converter(&self) -> ConverterChoice {
+        self.converter
     }
 
     /// The folder relative names are resolved against.

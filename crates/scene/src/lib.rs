@@ -11,7 +11,6 @@
 
 mod action_de;
 pub mod budget;
-pub mod cad_converter;
 pub mod centerline;
 pub mod checks;
 pub mod clip;
@@ -38,12 +37,10 @@ pub mod ranges;
 pub mod route;
 pub mod scene;
 pub mod schema;
-pub mod session;
 pub mod settings;
 pub mod step_cache;
 pub mod step_parts;
 pub mod sweep;
-pub mod time_limit;
 pub mod timeline;
 pub mod units;
 pub mod validate;

@@ -15,6 +15,7 @@ use crate::materials::Materials;
 use crate::parts::build_parts;
 use crate::scene::LoadedScene;
 use crate::settings::{build_record_interval, build_settings};
+use crate::step_cache::ConverterChoice;
 use crate::timeline::{build_timeline, HoseNodes};
 use pliant_core::WorldSpec;
 use serde::Deserialize;
@@ -39,6 +40,9 @@ pub struct LoadOptions {
     /// Confine mesh files to the scene's folder, and keep paths and file contents out of
     /// errors (scenes sent by clients of `pliant serve`, [`FileAccess::sandbox`]).
     pub sandboxed: bool,
+    /// What converts a STEP part or route the cache lacks (and names the cache's
+    /// entries); none refuses STEP files.
+    pub converter: ConverterChoice,
 }
 
 impl Default for LoadOptions {
@@ -47,6 +51,7 @@ impl Default for LoadOptions {
             limits: Limits::default(),
             max_file_bytes: DEFAULT_MAX_FILE_BYTES,
             sandboxed: false,
+            converter: ConverterChoice::default(),
         }
     }
 }
@@ -59,7 +64,9 @@ impl LoadOptions {
         } else {
             FileAccess::local(base_dir)
         };
-        access.with_max_file_bytes(self.max_file_bytes)
+        access
+            .with_max_file_bytes(self.max_file_bytes)
+            .with_converter(self.converter)
     }
 }
 

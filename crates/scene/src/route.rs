@@ -4,11 +4,11 @@
 //! on the polyline through the points, so they stay within the sampling tolerance of the
 //! CAD curve (for a CSV: on the exported polyline itself).
 
-use crate::cad_converter::CurvePick;
 use crate::centerline::Segment;
 use crate::error::FieldError;
 use crate::files::FileAccess;
 use crate::format::RouteEntry;
+use crate::step_cache::CurvePick;
 use crate::step_cache::{cached_curve, DEFAULT_CURVE_TOLERANCE};
 use crate::units::LengthUnit;
 use crate::validate::positive;

@@ -175,6 +175,11 @@ pub struct LoadedScene {
 }
 
 impl LoadedScene {
+    /// Whether the scene was written as JSON (else TOML).
+    pub fn is_json(&self) -> bool {
+        self.text.trim_start().starts_with('{')
+    }
+
     /// All stiffened spans, for [`pliant_core::Model::with_stiffened_spans`].
     pub fn stiffened_spans(&self) -> Vec<pliant_core::rod::stiffened::StiffenedSpan> {
         self.hoses

@@ -1,17 +1,94 @@
-//! The STEP cache: a STEP file is converted once (by [`crate::cad_converter`]) into a
-//! GLB in `.pliant-cache/` beside the scene, named after the STEP file and a key — the
-//! SHA-256 of the STEP file's bytes, the chord tolerance and the converter's own hash —
-//! and reused while all three are unchanged, so the second load reads only the GLB.
+//! The STEP cache: a STEP file is converted once (by a [`StepConverter`], the program's
+//! choice) into a GLB in `.pliant-cache/` beside the scene, named after the STEP file and
+//! a key — the SHA-256 of the STEP file's bytes, the chord tolerance and the converter's
+//! own identity ([`StepConverter::id`]) — and reused while all three are unchanged, so
+//! the second load reads only the GLB.
 //!
 //! A scene from the user's disk converts a missing or stale entry; a sandboxed scene
 //! (sent to `pliant serve`) never starts the converter: it reads an existing entry, or
-//! is refused with a message saying how to make one (`pliant import`).
+//! is refused with a message saying how to make one (`pliant import`). This crate only
+//! names and reads the entries; the process that converts lives with the programs that
+//! run scenes (`pliant-runs`), which hand it to the loader in [`crate::LoadOptions`].
 
-use crate::cad_converter::{converter_id, hex, import_step, sample_curve, CurvePick};
 use crate::files::FileAccess;
 use glam::DVec3;
+use serde::Deserialize;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
+
+/// What converts STEP files into the cache's entries: a mesh (GLB, one named node per
+/// solid, metres, recording the STEP file's SHA-256) or one curve's samples (JSON
+/// `{"points": [[x, y, z], …]}` in metres). Both write `out` atomically.
+pub trait StepConverter: Send + Sync {
+    /// The converter's identity (e.g. a hash of its source): part of every cache key,
+    /// so a changed converter never reuses old entries.
+    fn id(&self) -> &str;
+    /// Converts `step` to the GLB `out` with a chord tolerance \[m\].
+    fn convert_mesh(&self, step: &Path, out: &Path, tolerance_m: f64) -> Result<(), String>;
+    /// Samples one curve of `step` within `tolerance_m` \[m\] into the JSON file `out`.
+    fn sample_curve(
+        &self,
+        step: &Path,
+        pick: &CurvePick,
+        tolerance_m: f64,
+        out: &Path,
+    ) -> Result<(), String>;
+}
+
+/// The converter a load may use, if any: a reference the loader's options can copy.
+/// Options compare equal when their converters have the same [`StepConverter::id`].
+#[derive(Clone, Copy, Default)]
+pub struct ConverterChoice(pub Option<&'static dyn StepConverter>);
+
+impl ConverterChoice {
+    /// The converter, or the refusal of a load that was given none.
+    pub fn converter(&self) -> Result<&'static dyn StepConverter, String> {
+        self.0.ok_or_else(|| NO_CONVERTER.to_string())
+    }
+}
+
+impl std::fmt::Debug for ConverterChoice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0 {
+            Some(c) => write!(f, "ConverterChoice({})", c.id()),
+            None => f.write_str("ConverterChoice(none)"),
+        }
+    }
+}
+
+impl PartialEq for ConverterChoice {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.map(|c| c.id()) == other.0.map(|c| c.id())
+    }
+}
+
+/// Why a load without a converter cannot read a STEP file.
+const NO_CONVERTER: &str = "this program loads scenes without a STEP converter, so it cannot read STEP files (load the scene with `pliant run`, or through `pliant_runs::load_options`)";
+
+/// Which curve of a STEP file.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CurvePick {
+    Name(String),
+    Index(usize),
+}
+
+/// What the converter writes for a curve.
+#[derive(Deserialize)]
+struct CurveFile {
+    points: Vec<[f64; 3]>,
+}
+
+/// The points of a curve file written by the converter.
+pub fn parse_curve(bytes: &[u8]) -> Result<Vec<DVec3>, String> {
+    let c: CurveFile = serde_json::from_slice(bytes)
+        .map_err(|e| format!("the sampled curve is not readable: {e}"))?;
+    Ok(c.points.into_iter().map(DVec3::from_array).collect())
+}
+
+/// Lower-case hex of bytes.
+pub fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
 
 /// The cache folder, beside the scene (relative to its base folder).
 pub const CACHE_DIR: &str = ".pliant-cache";
@@ -25,12 +102,12 @@ pub const DEFAULT_CHORD_TOLERANCE: f64 = 0.5e-3;
 pub const DEFAULT_CURVE_TOLERANCE: f64 = 0.01e-3;
 
 /// The cache key of `what` (e.g. "mesh", "curve name=…") made from a STEP file's bytes
-/// with a tolerance \[m\]: 16 hex digits.
-pub fn cache_key(step_bytes: &[u8], tolerance_m: f64, what: &str) -> String {
+/// with a tolerance \[m\] by the converter `converter_id`: 16 hex digits.
+pub fn cache_key(step_bytes: &[u8], tolerance_m: f64, converter_id: &str, what: &str) -> String {
     let mut h = Sha256::new();
     h.update(Sha256::digest(step_bytes));
     h.update(tolerance_m.to_bits().to_le_bytes());
-    h.update(converter_id().as_bytes());
+    h.update(converter_id.as_bytes());
     h.update(what.as_bytes());
     hex(&h.finalize())[..16].to_string()
 }
@@ -59,11 +136,17 @@ pub fn cache_name(step_name: &str, key: &str, extension: &str) -> String {
     format!("{CACHE_DIR}/{stem}-{key}.{extension}")
 }
 
-/// The mesh cache entry of a STEP file (relative to the scene's folder).
-pub fn mesh_cache_name(step_name: &str, step_bytes: &[u8], tolerance_m: f64) -> String {
+/// The mesh cache entry of a STEP file (relative to the scene's folder) made by the
+/// converter `converter_id`.
+pub fn mesh_cache_name(
+    step_name: &str,
+    step_bytes: &[u8],
+    tolerance_m: f64,
+    converter_id: &str,
+) -> String {
     cache_name(
         step_name,
-        &cache_key(step_bytes, tolerance_m, "mesh"),
+        &cache_key(step_bytes, tolerance_m, converter_id, "mesh"),
         "glb",
     )
 }
@@ -92,7 +175,8 @@ pub struct CachedMesh {
 /// See [`CachedMesh`].
 pub fn cached_mesh(files: &FileAccess, step: &str, tolerance_m: f64) -> Result<CachedMesh, String> {
     let bytes = files.read(step)?;
-    let cache = mesh_cache_name(step, &bytes, tolerance_m);
+    let converter = files.converter().converter()?;
+    let cache = mesh_cache_name(step, &bytes, tolerance_m, converter.id());
     let sha = source_sha256(&bytes);
     let fresh =
         |glb: &[u8]| crate::glb_solids::glb_facts(glb).is_ok_and(|(f, _)| f.source_sha256 == sha);
@@ -112,7 +196,7 @@ pub fn cached_mesh(files: &FileAccess, step: &str, tolerance_m: f64) -> Result<C
     let step_path = files.resolve(step)?;
     let out = files.resolve(&cache)?;
     make_parent(&out)?;
-    import_step(&step_path, &out, tolerance_m)?;
+    converter.convert_mesh(&step_path, &out, tolerance_m)?;
     let glb = files.read(&cache)?;
     if !fresh(&glb) {
         return Err(format!(
@@ -136,13 +220,18 @@ pub fn cached_curve(
     tolerance_m: f64,
 ) -> Result<Vec<DVec3>, String> {
     let bytes = files.read(step)?;
+    let converter = files.converter().converter()?;
     let what = match pick {
         CurvePick::Name(n) => format!("curve name={n}"),
         CurvePick::Index(i) => format!("curve index={i}"),
     };
-    let cache = cache_name(step, &cache_key(&bytes, tolerance_m, &what), "json");
+    let cache = cache_name(
+        step,
+        &cache_key(&bytes, tolerance_m, converter.id(), &what),
+        "json",
+    );
     if let Ok(json) = files.read(&cache) {
-        return crate::cad_converter::parse_curve(&json);
+        return parse_curve(&json);
     }
     if files.is_sandboxed() {
         return Err(
@@ -152,5 +241,6 @@ pub fn cached_curve(
     let step_path = files.resolve(step)?;
     let out: PathBuf = files.resolve(&cache)?;
     make_parent(&out)?;
-    sample_curve(&step_path, pick, tolerance_m, &out)
+    converter.sample_curve(&step_path, pick, tolerance_m, &out)?;
+    parse_curve(&files.read(&cache)?)
 }

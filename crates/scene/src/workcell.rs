@@ -5,10 +5,9 @@
 
 use crate::scene::LoadedScene;
 use pliant_assembly::{
-    run_timeline, Action, InitialLoad, NoObserver, RunSummary, Runner, Workcell, WorkcellError,
-    WorkcellOptions, WorkcellSetup,
+    Action, InitialLoad, Runner, Workcell, WorkcellError, WorkcellOptions, WorkcellSetup,
 };
-use pliant_core::{Model, SolverKind};
+use pliant_core::Model;
 use std::sync::Arc;
 
 impl LoadedScene {
@@ -185,31 +184,5 @@ impl LoadedScene {
         hands.sort_unstable();
         hands.dedup();
         hands.len() as u64
-    }
-
-    /// The scene's whole timeline run with `solver` (the scene's own if `None`), as
-    /// `pliant run` runs it but writing nothing: the workcell at the end and the summary.
-    /// Refused beyond the default step limit ([`Self::run_within`]).
-    pub fn run_with(&self, solver: Option<SolverKind>) -> Result<(Workcell, RunSummary), String> {
-        self.run_within(solver, crate::budget::DEFAULT_MAX_STEPS)
-    }
-
-    /// [`Self::run_with`], refused before it starts when planned beyond `max_steps`
-    /// ([`Self::check_planned_steps`]).
-    pub fn run_within(
-        &self,
-        solver: Option<SolverKind>,
-        max_steps: u64,
-    ) -> Result<(Workcell, RunSummary), String> {
-        let mut cell = self
-            .workcell(WorkcellOptions {
-                solver,
-                initial_loads: false,
-                ..Default::default()
-            })
-            .map_err(|e| e.to_string())?;
-        self.check_planned_steps(cell.time_step(), max_steps)?;
-        let run = run_timeline(&mut cell, &self.timeline, &mut NoObserver).map_err(|e| e.reason)?;
-        Ok((cell, run))
     }
 }

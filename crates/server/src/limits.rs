@@ -51,6 +51,7 @@ impl ClientScenes {
                 },
                 max_file_bytes: MAX_CLIENT_MESH_BYTES.min(server.max_file_bytes),
                 sandboxed: true,
+                converter: server.converter,
             },
         }
     }
@@ -58,7 +59,7 @@ impl ClientScenes {
 
 impl Default for ClientScenes {
     fn default() -> Self {
-        ClientScenes::within(&LoadOptions::default())
+        ClientScenes::within(&pliant_runs::load_options())
     }
 }
 

@@ -28,7 +28,7 @@ use pliant_assembly::{
     WorkcellOptions,
 };
 use pliant_core::SolverKind;
-use pliant_scene::session::{start_session_folder, write_session_folder};
+use pliant_runs::session::{start_session_folder, write_session_folder};
 use pliant_scene::LoadedScene;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};

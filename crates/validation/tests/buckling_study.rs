@@ -67,7 +67,7 @@ duration_s = 1.0
 fn a_clamped_hose_pushed_past_buckling_lands_on_the_elastica_and_says_so() {
     let text = column_scene(700.0, "", "");
     let scene = load_scene_str_in(&text, "column.toml", std::path::Path::new(".")).unwrap();
-    let (cell, run) = scene.run_with(Some(SolverKind::Static)).unwrap();
+    let (cell, run) = pliant_runs::run_with(&scene, Some(SolverKind::Static)).unwrap();
     // the support's end load against the exact elastica (hose 1's bending stiffness;
     // 40 elements and hose 1's own axial compliance make up the 1 %)
     let (mat, sec) = hose1();
@@ -142,7 +142,7 @@ duration_s = 0.2
     );
     let text = column_scene(end_mm, nudge, &after);
     let scene = load_scene_str_in(&text, "snap.toml", std::path::Path::new(".")).unwrap();
-    let (cell, run) = scene.run_with(Some(SolverKind::Static)).unwrap();
+    let (cell, run) = pliant_runs::run_with(&scene, Some(SolverKind::Static)).unwrap();
     let mid_y = cell.state().x[20].y;
     assert!(
         mid_y < -depth,

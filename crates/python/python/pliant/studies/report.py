@@ -1,4 +1,5 @@
-"""The study report (``OUT/report.html``, one self-contained page with inline SVG):
+"""The study report (``OUT/report.html``, one self-contained page with inline SVG drawn
+by matplotlib, :mod:`pliant.studies.histogram`):
 feasibility rate with its Wilson 95 % interval, histograms of peak loads against their
 limits, a sensitivity ranking (Spearman rank correlation), the worst variants with links
 to their replay scenes, and the tolerance envelope with its clearances."""
@@ -13,6 +14,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 
 from . import sobol
+from .histogram import histogram_svg
 from .runner import column_name
 from .spec import Study
 
@@ -117,86 +119,6 @@ def first_order_index(x, y, bins: int = 10) -> Optional[float]:
     total = ((y - y.mean()) ** 2).sum()
     between = sum(((b == i).sum() * (y[b == i].mean() - y.mean()) ** 2) for i in range(k) if (b == i).any())
     return float(between / total)
-
-
-def _nice_step(span: float, target: int) -> float:
-    """A step of 1, 2 or 5 × 10ⁿ that cuts ``span`` into about ``target`` intervals
-    (Heckbert, "Nice numbers for graph labels", Graphics Gems, 1990)."""
-    raw = span / target
-    power = 10.0 ** math.floor(math.log10(raw))
-    for m in (1.0, 2.0, 5.0, 10.0):
-        if raw <= m * power * (1 + 1e-9):
-            return m * power
-    return 10.0 * power
-
-
-def axis_ticks(lo: float, hi: float, target: int = 5) -> Tuple[float, float, List[float], List[str]]:
-    """The axis for values in [lo, hi]: its ends widened to whole steps, the tick values
-    (multiples of a 1-2-5 step) and their labels, each with as many decimals as the step
-    needs — so the labels are distinct and read exactly (in powers of ten when the
-    values are tiny or huge). A degenerate range (every value the same, or the same to six
-    significant digits) is widened to ±5 % around it (±1 around zero)."""
-    if not (math.isfinite(lo) and math.isfinite(hi)):
-        raise ValueError(f"axis range [{lo}, {hi}] is not finite")
-    if hi < lo:
-        lo, hi = hi, lo
-    centre = 0.5 * (lo + hi)
-    if hi - lo <= 1e-6 * max(abs(lo), abs(hi)) or hi == lo:
-        half = 0.05 * abs(centre) if centre != 0 else 1.0
-        lo, hi = centre - half, centre + half
-    step = _nice_step(hi - lo, target)
-    first, last = math.floor(lo / step + 1e-9), math.ceil(hi / step - 1e-9)
-    values = [k * step if k else 0.0 for k in range(first, last + 1)]
-    exponent = math.floor(math.log10(step) + 1e-9)  # of the step's leading digit
-    largest = max(abs(values[0]), abs(values[-1]))
-    if exponent < -4 or largest >= 1e7:
-        digits = max(1, math.floor(math.log10(largest) + 1e-9) - exponent + 1)
-        labels = [f"{x:.{digits - 1}e}" for x in values]
-    else:
-        labels = [f"{x:.{max(0, -exponent)}f}" for x in values]
-    # the ends cover the values even where k·step rounds a hair inside them
-    return min(values[0], lo), max(values[-1], hi), values, labels
-
-
-def histogram_svg(values, title: str, unit: str, limits: List[float] = (), bins: int = 20) -> str:
-    """A histogram as inline SVG, with vertical lines at the limits and an axis of
-    1-2-5 ticks (:func:`axis_ticks`) whose labels fit inside the picture."""
-    v = np.asarray([x for x in values if x is not None and np.isfinite(x)], dtype=float)
-    if len(v) == 0:
-        return f"<p>{html.escape(title)}: no values.</p>"
-    lo = min(v.min(), *limits) if limits else v.min()
-    hi = max(v.max(), *limits) if limits else v.max()
-    lo, hi, tick_values, tick_labels = axis_ticks(float(lo), float(hi))
-    counts, edges = np.histogram(v, bins=bins, range=(lo, hi))
-    # margins wide enough for a centred label of ~12 characters at each end
-    W, H, L, R, B = 560, 200, 45, 45, 30
-    sx = lambda x: L + (x - lo) / (hi - lo) * (W - L - R)  # noqa: E731
-    top = counts.max()
-    bars = "".join(
-        f'<rect x="{sx(edges[i]):.1f}" y="{H - B - (H - B - 10) * c / top:.1f}" '
-        f'width="{max(sx(edges[i + 1]) - sx(edges[i]) - 1, 1):.1f}" height="{(H - B - 10) * c / top:.1f}" fill="#4a7fb5"/>'
-        for i, c in enumerate(counts) if c
-    )
-    lines = "".join(
-        f'<line x1="{sx(x):.1f}" x2="{sx(x):.1f}" y1="5" y2="{H - B}" stroke="#c0392b" stroke-width="2"/>'
-        # the label on the side of the line with room for it
-        + (f'<text x="{sx(x) + 3:.1f}" y="15" fill="#c0392b" font-size="11">limit {x:.4g}</text>'
-           if sx(x) < W / 2 else
-           f'<text x="{sx(x) - 3:.1f}" y="15" fill="#c0392b" font-size="11" text-anchor="end">limit {x:.4g}</text>')
-        for x in limits
-    )
-    ticks = "".join(
-        f'<line x1="{sx(x):.1f}" x2="{sx(x):.1f}" y1="{H - B}" y2="{H - B + 4}" stroke="#333"/>'
-        f'<text class="tick" x="{sx(x):.1f}" y="{H - B + 15}" font-size="10" text-anchor="middle">{label}</text>'
-        for x, label in zip(tick_values, tick_labels)
-    )
-    return (
-        f'<figure><svg width="{W}" height="{H}" role="img" aria-label="{html.escape(title)}">'
-        f'<line x1="{L}" x2="{W - R}" y1="{H - B}" y2="{H - B}" stroke="#333"/>'
-        f'<text x="5" y="15" font-size="10">{top}</text>{bars}{lines}{ticks}'
-        f'<text x="{W / 2}" y="{H - 2}" font-size="11" text-anchor="middle">{html.escape(unit)}</text></svg>'
-        f"<figcaption>{html.escape(title)} ({len(v)} runs)</figcaption></figure>"
-    )
 
 
 def _fmt(x: Any, digits: int = 4) -> str:

@@ -6,10 +6,10 @@
 //! hash is part of every cache key, so a changed converter never reuses old meshes.
 //!
 //! Only scenes loaded from the user's own disk (and `pliant import`) run it: scenes sent
-//! to `pliant serve` only read meshes already imported (see [`crate::step_cache`]).
+//! to `pliant serve` only read meshes already imported (see [`pliant_scene::step_cache`]).
 
-use glam::DVec3;
-use serde::Deserialize;
+use pliant_scene::step_cache::{hex, ConverterChoice, CurvePick, StepConverter};
+use pliant_scene::LoadOptions;
 use sha2::{Digest, Sha256};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -35,11 +35,6 @@ pub fn conversions() -> usize {
 pub fn converter_id() -> &'static str {
     static ID: OnceLock<String> = OnceLock::new();
     ID.get_or_init(|| hex(&Sha256::digest(CONVERTER_SOURCE.as_bytes())))
-}
-
-/// Lower-case hex of bytes.
-pub fn hex(bytes: &[u8]) -> String {
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
 /// Interpreters to try, in order: `PLIANT_PYTHON` (alone, if set), the repository's
@@ -174,27 +169,14 @@ pub fn import_step(step: &Path, out: &Path, tolerance_m: f64) -> Result<(), Stri
     .map(|_| ())
 }
 
-/// Which curve of a STEP file.
-#[derive(Clone, Debug, PartialEq)]
-pub enum CurvePick {
-    Name(String),
-    Index(usize),
-}
-
-/// What the converter writes for a curve.
-#[derive(Deserialize)]
-struct CurveFile {
-    points: Vec<[f64; 3]>,
-}
-
 /// Samples one curve of `step` into points within `tolerance_m` \[m\] of it (metres),
-/// through the JSON file `out` (kept as the cache).
+/// written to the JSON file `out` (kept as the cache).
 pub fn sample_curve(
     step: &Path,
     pick: &CurvePick,
     tolerance_m: f64,
     out: &Path,
-) -> Result<Vec<DVec3>, String> {
+) -> Result<(), String> {
     let tol = format!("{tolerance_m:e}");
     let (flag, value) = match pick {
         CurvePick::Name(n) => ("--name", n.clone()),
@@ -209,14 +191,46 @@ pub fn sample_curve(
         tol.as_ref(),
         "--out".as_ref(),
         out.as_os_str(),
-    ])?;
-    let text = pliant_files::read_regular_file(out, MAX_STEP_BYTES).map_err(|e| e.to_string())?;
-    parse_curve(&text)
+    ])
+    .map(|_| ())
 }
 
-/// The points of a curve file written by the converter.
-pub fn parse_curve(bytes: &[u8]) -> Result<Vec<DVec3>, String> {
-    let c: CurveFile = serde_json::from_slice(bytes)
-        .map_err(|e| format!("the sampled curve is not readable: {e}"))?;
-    Ok(c.points.into_iter().map(DVec3::from_array).collect())
+/// The embedded converter run by a Python interpreter that has `OCP` ([`find_python`]).
+pub struct PythonStepConverter;
+
+/// The converter every program of Pliant loads scenes with.
+pub static PYTHON_STEP_CONVERTER: PythonStepConverter = PythonStepConverter;
+
+impl StepConverter for PythonStepConverter {
+    fn id(&self) -> &str {
+        converter_id()
+    }
+
+    fn convert_mesh(&self, step: &Path, out: &Path, tolerance_m: f64) -> Result<(), String> {
+        import_step(step, out, tolerance_m)
+    }
+
+    fn sample_curve(
+        &self,
+        step: &Path,
+        pick: &CurvePick,
+        tolerance_m: f64,
+        out: &Path,
+    ) -> Result<(), String> {
+        sample_curve(step, pick, tolerance_m, out)
+    }
+}
+
+/// `options` with STEP files converted by [`PYTHON_STEP_CONVERTER`].
+pub fn converting(options: LoadOptions) -> LoadOptions {
+    LoadOptions {
+        converter: ConverterChoice(Some(&PYTHON_STEP_CONVERTER)),
+        ..options
+    }
+}
+
+/// The default load options ([`LoadOptions::default`]) with STEP files converted by
+/// [`PYTHON_STEP_CONVERTER`]: how every program loads a scene from the user's disk.
+pub fn load_options() -> LoadOptions {
+    converting(LoadOptions::default())
 }

@@ -4,8 +4,9 @@
 //! tolerance (default 0.01 mm) of the CAD curve.
 
 use glam::DVec3;
-use pliant_scene::cad_converter::find_python;
-use pliant_scene::{load_scene_str_in, LoadedScene};
+use pliant_runs::cad_converter::find_python;
+use pliant_runs::load::load_scene_str_in;
+use pliant_scene::LoadedScene;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 

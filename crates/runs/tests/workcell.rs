@@ -10,7 +10,7 @@ use pliant_assembly::{
     run_timeline, Action, Input, NoObserver, Refusal, Stage, Workcell, WorkcellOptions,
 };
 use pliant_core::SolverKind;
-use pliant_scene::session::{log_to_scene, start_session_folder, Session};
+use pliant_runs::session::{log_to_scene, start_session_folder, Session};
 use pliant_scene::{demo_scene, load_scene_str_in, LoadedScene};
 
 /// The demo engine bay with a second hand that takes the upper hose and aims it about

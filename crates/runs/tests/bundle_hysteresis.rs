@@ -58,7 +58,7 @@ const FRICTION: &str = "hysteresis = { bending_moment_n_m = 0.01, bending_curvat
 /// The end's twist at the end of the timeline \[rad\].
 fn end_twist(text: &str) -> f64 {
     let scene = load_scene_str(text, "bundle.toml").unwrap();
-    let (cell, run) = scene.run_with(None).unwrap();
+    let (cell, run) = pliant_runs::run_with(&scene, None).unwrap();
     assert_eq!(run.solver.unconverged_steps, 0, "{:?}", run.solver);
     let q = cell.state().q[cell.state().q.len() - 1];
     2.0 * q.x.atan2(q.w)

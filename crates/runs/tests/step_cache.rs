@@ -4,7 +4,7 @@
 //! message. One test, run alone in this binary, as it counts conversions and sets
 //! PLIANT_PYTHON.
 
-use pliant_scene::cad_converter::{conversions, find_python};
+use pliant_runs::cad_converter::{conversions, find_python};
 use pliant_scene::{load_scene_str_with, LoadOptions, LoadedScene};
 use pliant_testkit::files::cad_file;
 use std::path::{Path, PathBuf};
@@ -32,7 +32,7 @@ path = [{{ line = {{ to = [300, 0, 5000] }} }}]
 fn load(dir: &Path, step: &str, sandboxed: bool) -> Result<LoadedScene, String> {
     let options = LoadOptions {
         sandboxed,
-        ..Default::default()
+        ..pliant_runs::load_options()
     };
     load_scene_str_with(&scene(step), "scene.toml", dir, &options).map_err(|e| e.to_string())
 }

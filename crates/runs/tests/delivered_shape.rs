@@ -64,7 +64,7 @@ fn straight(delivered: &str) -> String {
 /// Reaction force and moment at the start and the end clamp.
 fn reactions(text: &str) -> [(DVec3, DVec3); 2] {
     let scene = load_scene_str(text, "delivered.toml").unwrap();
-    let (cell, run) = scene.run_with(None).unwrap();
+    let (cell, run) = pliant_runs::run_with(&scene, None).unwrap();
     assert_eq!(run.solver.unconverged_steps, 0, "{:?}", run.solver);
     let s = cell.state();
     let last = s.x.len() - 1;

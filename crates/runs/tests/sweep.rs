@@ -72,7 +72,7 @@ fn the_envelope_voxel_is_the_scenes_and_one_too_fine_for_its_grid_is_refused() {
     let voxel = settings.envelope_voxel.expect("the scene's voxel");
     assert!((voxel - 0.0025).abs() < 1e-15, "{voxel}: mm to m");
     // the run's envelopes are made of voxels of that size
-    let (_, run) = scene.run_with(None).unwrap_or_else(|e| panic!("{e}"));
+    let (_, run) = pliant_runs::run_with(&scene, None).unwrap_or_else(|e| panic!("{e}"));
     let swept = run.checks.sweep.unwrap().swept.unwrap();
     assert_eq!(swept.voxel, voxel);
     assert!(swept.refused.is_none(), "{:?}", swept.refused);
@@ -107,9 +107,8 @@ fn a_slow_door_sweep_is_the_same_quasi_statically_and_dynamically() {
     let scene = door_example();
     let mut worst = Vec::new();
     for solver in [SolverKind::Static, SolverKind::Explicit] {
-        let (_, run) = scene
-            .run_with(Some(solver))
-            .unwrap_or_else(|e| panic!("{e}"));
+        let (_, run) =
+            pliant_runs::run_with(&scene, Some(solver)).unwrap_or_else(|e| panic!("{e}"));
         let sweep = run.checks.sweep.expect("the sweep's rows");
         let bend = sweep
             .worst()

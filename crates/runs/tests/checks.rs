@@ -70,7 +70,7 @@ fn a_hose_rolled_tighter_than_its_minimum_radius_is_reported_at_kappa_m_over_ei(
     let m = ei / radius;
     let text = scene(&format!("moment_nm = [0, {m}, 0]"), "");
     let s = load_scene_str(&text, "rolled.toml").unwrap();
-    let (_, run) = s.run_with(Some(SolverKind::Static)).unwrap();
+    let (_, run) = pliant_runs::run_with(&s, Some(SolverKind::Static)).unwrap();
     let v: Vec<_> = run
         .checks
         .violations
@@ -128,7 +128,7 @@ fn a_gently_rolled_hose_passes_and_its_radius_is_still_reported() {
     let radius = 0.6;
     let text = scene(&format!("moment_nm = [0, {}, 0]", ei / radius), "");
     let s = load_scene_str(&text, "gentle.toml").unwrap();
-    let (_, run) = s.run_with(Some(SolverKind::Static)).unwrap();
+    let (_, run) = pliant_runs::run_with(&s, Some(SolverKind::Static)).unwrap();
     assert!(
         run.checks.violations.is_empty(),
         "{:?}",
@@ -146,7 +146,7 @@ fn a_cantilever_bent_hard_breaks_the_radius_first_at_its_root() {
     let f = 3.0 * ei / r_min / 0.5;
     let text = scene(&format!("force_n = [0, 0, {}]", -f), "");
     let s = load_scene_str(&text, "cantilever.toml").unwrap();
-    let (cell, run) = s.run_with(Some(SolverKind::Static)).unwrap();
+    let (cell, run) = pliant_runs::run_with(&s, Some(SolverKind::Static)).unwrap();
     let v = run
         .checks
         .violations
@@ -175,17 +175,19 @@ fn checks_switch_off_or_warn_per_scene() {
     let (ei, _) = stiffness_and_limit();
     let load = format!("moment_nm = [0, {}, 0]", ei / 0.12);
     let off = scene(&load, "[checks]\nbend_radius = false\n");
-    let (_, run) = load_scene_str(&off, "off.toml")
-        .unwrap()
-        .run_with(Some(SolverKind::Static))
-        .unwrap();
+    let (_, run) = pliant_runs::run_with(
+        &load_scene_str(&off, "off.toml").unwrap(),
+        Some(SolverKind::Static),
+    )
+    .unwrap();
     assert!(run.checks.violations.is_empty());
     assert!(!run.checks.enabled.contains(&"bend_radius"));
     let warn = scene(&load, "[checks]\ndecide = false\n");
-    let (_, run) = load_scene_str(&warn, "warn.toml")
-        .unwrap()
-        .run_with(Some(SolverKind::Static))
-        .unwrap();
+    let (_, run) = pliant_runs::run_with(
+        &load_scene_str(&warn, "warn.toml").unwrap(),
+        Some(SolverKind::Static),
+    )
+    .unwrap();
     assert_eq!(run.checks.violations.len(), 1);
     let verdict = pliant_assembly::Verdict::judge(&run, None, pliant_assembly::Stage::Final);
     assert!(verdict
@@ -225,7 +227,7 @@ fn bad_check_limits_are_errors_naming_the_field() {
 #[test]
 fn the_engine_bay_demo_shows_contact_and_follows_the_new_rules() {
     let scene = pliant_scene::demo_scene().unwrap();
-    let (_, run) = scene.run_with(None).unwrap();
+    let (_, run) = pliant_runs::run_with(&scene, None).unwrap();
     assert!(
         run.contacts.iter().any(|c| c.part == "heat shield"),
         "{:?}",
@@ -294,7 +296,7 @@ fn a_span_is_held_to_its_own_minimum_bend_radius() {
     );
     let bend = |text: &str| {
         let s = load_scene_str(text, "span.toml").unwrap();
-        let (_, run) = s.run_with(Some(SolverKind::Static)).unwrap();
+        let (_, run) = pliant_runs::run_with(&s, Some(SolverKind::Static)).unwrap();
         let violations = run
             .checks
             .violations

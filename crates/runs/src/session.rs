@@ -1,24 +1,19 @@
 //! Session folders (SPEC W2): a copy of the scene beside the input log of a study, so
 //! that `pliant replay` can rebuild the workcell and reproduce the study bit for bit.
 
-use crate::load::{load_scene_json_str_in, load_scene_str_in};
-use crate::scene::LoadedScene;
+use crate::cad_converter::load_options;
 use pliant_assembly::workcell::log::log_path;
 use pliant_assembly::workcell::log::{
     header_line, line_text, InputLog, LogHeader, LogLine, LOG_FILE,
 };
 use pliant_assembly::workcell::log_reading::{LogDamage, TornTail};
 use pliant_assembly::{Workcell, WorkcellError, WorkcellOptions};
+use pliant_scene::load::MAX_SCENE_FILE_BYTES;
+use pliant_scene::timeline::MAX_HANDS;
+use pliant_scene::{load_scene_json_str_with, load_scene_str_with, LoadedScene};
 use std::fs::File;
 use std::io::Write;
 use std::path::Path;
-
-impl LoadedScene {
-    /// Whether the scene was written as JSON (else TOML).
-    pub fn is_json(&self) -> bool {
-        self.text.trim_start().starts_with('{')
-    }
-}
 
 /// Creates the session folder `dir`: the scene's copy (`scene.toml` or `scene.json`) and
 /// the input log's header. Returns the log file for [`Workcell::log_to`].
@@ -111,19 +106,18 @@ impl Session {
             path.parent().map(Path::to_path_buf).unwrap_or_default()
         };
         let file = dir.join(&log.header.scene_file);
-        let text = pliant_files::read_regular_text(&file, crate::load::MAX_SCENE_FILE_BYTES)
-            .map_err(|e| {
-                format!(
-                    "{}: cannot read the session's scene copy: {}",
-                    e.path, e.kind
-                )
-            })?;
+        let text = pliant_files::read_regular_text(&file, MAX_SCENE_FILE_BYTES).map_err(|e| {
+            format!(
+                "{}: cannot read the session's scene copy: {}",
+                e.path, e.kind
+            )
+        })?;
         let origin = file.display().to_string();
         let base = Path::new(&log.header.scene_base_dir);
         let scene = if log.header.scene_file.ends_with(".json") {
-            load_scene_json_str_in(&text, &origin, base)
+            load_scene_json_str_with(&text, &origin, base, &load_options())
         } else {
-            load_scene_str_in(&text, &origin, base)
+            load_scene_str_with(&text, &origin, base, &load_options())
         }
         .map_err(|e| e.to_string())?;
         Ok(Session {
@@ -223,11 +217,11 @@ pub fn log_to_scene(scene: &LoadedScene, log: &InputLog, time_step: f64) -> Resu
                 hand_numbers.len() - 1
             }
         };
-        if k >= crate::timeline::MAX_HANDS {
+        if k >= MAX_HANDS {
             return Err(format!(
                 "the session used more than {} hands; a timeline has hands 0 … {}",
-                crate::timeline::MAX_HANDS,
-                crate::timeline::MAX_HANDS - 1
+                MAX_HANDS,
+                MAX_HANDS - 1
             ));
         }
         Ok(Value::Integer(k as i64))

@@ -76,7 +76,7 @@ fn a_ramped_load_rises_and_a_named_unload_removes_that_load_alone() {
         // up to the end of the first run: the ramp is half way (t = 0.25 s of 0.5 s)
         let mut first = scene.clone();
         first.timeline.actions.truncate(4);
-        let (cell, _) = first.run_with(Some(solver)).unwrap();
+        let (cell, _) = pliant_runs::run_with(&first, Some(solver)).unwrap();
         let t = cell.state().time;
         let down = cell
             .state()
@@ -92,7 +92,7 @@ fn a_ramped_load_rises_and_a_named_unload_removes_that_load_alone() {
             "{solver:?}: at t = {t} s the ramped load is {down} N"
         );
         // the whole timeline: the support ends up carrying the side load alone
-        let (cell, run) = scene.run_with(Some(solver)).unwrap();
+        let (cell, run) = pliant_runs::run_with(&scene, Some(solver)).unwrap();
         let clamp = run.peaks.iter().find(|p| p.node == 0).unwrap();
         let f = clamp.last_force;
         assert!(

@@ -54,7 +54,7 @@ const TERMS: &str = "{ weight = 0.3, time_s = 0.5 }, { weight = 0.2, time_s = 2 
 /// The pull on the hose's end at the end of the timeline \[N\].
 fn end_force(text: &str) -> f64 {
     let scene = load_scene_str(text, "rubber.toml").unwrap();
-    let (cell, run) = scene.run_with(None).unwrap();
+    let (cell, run) = pliant_runs::run_with(&scene, None).unwrap();
     assert_eq!(run.solver.unconverged_steps, 0, "{:?}", run.solver);
     let r = &cell.state().reaction_force;
     r[r.len() - 1].x
@@ -149,7 +149,7 @@ duration_s = {hold}
 /// The stub's holding force at the end of the timeline \[N\].
 fn holding_force(text: &str) -> f64 {
     let scene = load_scene_str(text, "stub.toml").unwrap();
-    let (_, run) = scene.run_with(None).unwrap();
+    let (_, run) = pliant_runs::run_with(&scene, None).unwrap();
     let stub = &run.fasteners[0];
     assert_eq!(stub.final_state, FastenerState::Fixed, "{stub:?}");
     stub.holding_force

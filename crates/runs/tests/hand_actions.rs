@@ -201,7 +201,7 @@ duration_s = 0.3
 "
     );
     let scene = load_scene_str(&text, "scene.toml").unwrap();
-    let (cell, summary) = scene.run_with(None).unwrap();
+    let (cell, summary) = pliant_runs::run_with(&scene, None).unwrap();
     let clip = summary
         .fasteners
         .iter()

@@ -5,8 +5,9 @@
 //! these tests fail and say so.
 
 use glam::DVec3;
-use pliant_scene::cad_converter::find_python;
-use pliant_scene::{load_scene_str_in, LoadedScene};
+use pliant_runs::cad_converter::find_python;
+use pliant_runs::load::load_scene_str_in;
+use pliant_scene::LoadedScene;
 use std::path::{Path, PathBuf};
 
 /// The real STEP files: `PLIANT_CAD_FILES`, else the repository's `data/cad`.

@@ -48,7 +48,7 @@ duration_s = 0.2
 /// The end's height after the release \[m\].
 fn end_height(text: &str) -> f64 {
     let scene = load_scene_str(text, "line.toml").unwrap();
-    let (cell, run) = scene.run_with(None).unwrap();
+    let (cell, run) = pliant_runs::run_with(&scene, None).unwrap();
     assert_eq!(run.solver.unconverged_steps, 0, "{:?}", run.solver);
     let x = &cell.state().x;
     x[x.len() - 1].z

@@ -64,7 +64,7 @@ duration_s = 0.05
         tip = -tip_load_n
     );
     let scene = load_scene_str_in(&scene, "cantilever.toml", std::path::Path::new(".")).unwrap();
-    let (cell, run) = scene.run_with(Some(SolverKind::Static)).unwrap();
+    let (cell, run) = pliant_runs::run_with(&scene, Some(SolverKind::Static)).unwrap();
     (run, cell.state().x.clone())
 }
 

@@ -8,7 +8,7 @@ use glam::{DQuat, DVec3};
 use pliant_assembly::workcell::replay::replay;
 use pliant_assembly::{run_timeline, Input, NoObserver, Stage, WorkcellOptions};
 use pliant_core::SolverKind;
-use pliant_scene::session::{log_to_scene, start_session_folder, Session};
+use pliant_runs::session::{log_to_scene, start_session_folder, Session};
 use pliant_scene::{load_scene_str, load_scene_str_in};
 use pliant_testkit::scenes::{DOOR, HOSE3_300, WEIGHTLESS_MM};
 

@@ -47,7 +47,7 @@ duration_s = 0.2
 /// round-off).
 fn arrives(solver: SolverKind) {
     let scene = load_scene_str_in(SCENE, "short.toml", std::path::Path::new(".")).unwrap();
-    let (cell, _) = scene.run_with(Some(solver)).unwrap();
+    let (cell, _) = pliant_runs::run_with(&scene, Some(solver)).unwrap();
     let end = cell.state().x[10];
     let expected = DVec3::new(0.5, 0.05, 0.4);
     assert!(

@@ -94,7 +94,7 @@ const WORKER: &str =
 
 fn run(text: &str) -> (pliant_assembly::Workcell, RunSummary) {
     let s = load_scene_str(text, "force_limits.toml").unwrap();
-    s.run_with(Some(SolverKind::Static)).unwrap()
+    pliant_runs::run_with(&s, Some(SolverKind::Static)).unwrap()
 }
 
 /// The push limit of table 3.7 for men, occasional duty (the default), in the row of

@@ -81,7 +81,7 @@ fn curve_at(s: f64) -> f64 {
 fn a_plug_pushed_past_its_latch_is_latched_and_the_hand_felt_the_mating_curve() {
     let scene = load_scene_str(&scene(7.5, ""), "plug.toml").unwrap();
     assert_eq!(scene.connectors.len(), 1);
-    let (_, run) = scene.run_with(None).unwrap();
+    let (_, run) = pliant_runs::run_with(&scene, None).unwrap();
     let x1 = run.fasteners.iter().find(|f| f.name == "X1").unwrap();
     assert_eq!(x1.kind, pliant_assembly::FastenerKind::Connector);
     assert_eq!(x1.final_state, FastenerState::Latched);
@@ -117,7 +117,7 @@ fn a_plug_pushed_past_its_latch_is_latched_and_the_hand_felt_the_mating_curve() 
 #[test]
 fn a_plug_released_short_of_its_latch_is_half_mated_and_the_verdict_says_so() {
     let scene = load_scene_str(&scene(4.0, ""), "plug.toml").unwrap();
-    let (_, run) = scene.run_with(None).unwrap();
+    let (_, run) = pliant_runs::run_with(&scene, None).unwrap();
     let x1 = run.fasteners.iter().find(|f| f.name == "X1").unwrap();
     assert_eq!(x1.final_state, FastenerState::HalfMated);
     assert!(!x1.assembled);
@@ -156,7 +156,7 @@ action = "run"
 duration_s = 0.3
 "#;
     let scene = load_scene_str(&scene(7.5, pull), "plug.toml").unwrap();
-    let (_, run) = scene.run_with(None).unwrap();
+    let (_, run) = pliant_runs::run_with(&scene, None).unwrap();
     let x1 = run.fasteners.iter().find(|f| f.name == "X1").unwrap();
     assert_eq!(x1.final_state, FastenerState::Latched);
 }

@@ -1,4 +1,4 @@
-//! SPEC E1–E2 (issue 38): a scene's `[worker]`. A hand target 1.9 m up is beyond the
+//! SPEC E1–E2: a scene's `[worker]`. A hand target 1.9 m up is beyond the
 //! 5th-percentile woman (shoulder 0.818 H, arm to the grip 0.386 H at H = 1.523 m: 1.83 m
 //! at most) and within the 95th-percentile man's reach; a shelf at chest height in front
 //! of a fixed worker is inside his trunk; the verdict says so with distance, part and
@@ -52,7 +52,7 @@ duration_s = 0.3
 
 fn run(text: &str) -> (pliant_assembly::Workcell, pliant_assembly::RunSummary) {
     let s = load_scene_str(text, "worker.toml").unwrap();
-    s.run_with(Some(SolverKind::Static)).unwrap()
+    pliant_runs::run_with(&s, Some(SolverKind::Static)).unwrap()
 }
 
 #[test]

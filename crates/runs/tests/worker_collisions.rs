@@ -60,7 +60,7 @@ duration_s = 0.5
 
 fn run(text: &str) -> (pliant_assembly::Workcell, pliant_assembly::RunSummary) {
     let s = load_scene_str(text, "worker_collisions.toml").unwrap();
-    s.run_with(Some(SolverKind::Static)).unwrap()
+    pliant_runs::run_with(&s, Some(SolverKind::Static)).unwrap()
 }
 
 /// The trunk's collision.
