@@ -10,8 +10,8 @@ use pliant_assembly::workcell::replay::replay;
 use pliant_assembly::worker::BodyPose;
 use pliant_assembly::{Input, NoObserver, WorkcellOptions};
 use pliant_core::SolverKind;
-use pliant_scene::load_scene_str;
 use pliant_runs::session::{start_session_folder, Session};
+use pliant_scene::load_scene_str;
 use pliant_worker::{body, HeadTarget, Manikin, Placement, Population, Sex, TrunkAngles};
 
 const SCENE: &str = r#"
