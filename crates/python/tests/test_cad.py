@@ -12,7 +12,7 @@ from conftest import REPO
 from pliant.cad import StepError, check_part21, convert, extract_curve
 
 CAD = Path(os.environ.get("PLIANT_CAD_FILES", REPO / "data" / "cad"))
-ROUTE = REPO / "crates" / "scene" / "tests" / "data" / "cad" / "route.step"
+ROUTE = REPO / "crates" / "runs" / "tests" / "data" / "cad" / "route.step"
 
 
 def cad(name):
