@@ -376,14 +376,16 @@ export class App {
   private frame(): void {
     const now = performance.now();
     let drewLive = false;
-    if (this.player !== null) {
+    if (drawsLive(this.mode)) {
+      if (this.latest !== null && this.latest !== this.shown) {
+        this.apply(this.latest);
+        drewLive = true;
+      }
+    } else if (this.player !== null) {
       const s = this.player.frame(now);
       if (s !== null && s !== this.shown) this.apply(s);
       const d = this.player.duration;
       if (d > 0) this.panel.replaySlider.value = String(Math.round((this.player.time(now) / d) * 1000));
-    } else if (this.latest !== null && this.latest !== this.shown) {
-      this.apply(this.latest);
-      drewLive = true;
     }
     this.mouse.flush();
     this.xr.update();
