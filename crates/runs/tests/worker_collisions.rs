@@ -1,4 +1,4 @@
-//! SPEC E1 (issue 38, "against the parts (and the hoses)"): the worker's body against a
+//! SPEC E1 ("against the parts (and the hoses)"): the worker's body against a
 //! part that moves, where it is at each posed instant, and against a hose's tube — each
 //! reported with segment, part or hose, depth and time, the depth against exact
 //! geometry.

@@ -1,4 +1,4 @@
-//! SPEC E1 (issue 38, "in VR the user's headset and controllers drive it (their real
+//! SPEC E1 ("in VR the user's headset and controllers drive it (their real
 //! posture recorded in the session log and replayed bit for bit)"): a live session whose
 //! worker is posed by headset and controller inputs writes them into its log, and the
 //! session folder replays to the same worker — every posed instant, every score —
