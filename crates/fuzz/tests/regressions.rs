@@ -163,3 +163,29 @@ fn a_study_value_that_overflows_in_si_units_is_refused() {
     assert_ne!(overflowing, demo);
     assert_eq!(Target::Study.run(overflowing.as_bytes()), Ok(()));
 }
+
+/// A study whose `vary`, `property` or `length_unit` is a list instead of a name made the
+/// reader look the list up as a key (Python's TypeError, found by the study target at
+/// input 41 179 of seed 42); it is refused naming the field, and the study target holds.
+#[test]
+fn a_list_where_a_study_names_a_kind_is_refused() {
+    let seeds = Target::Study.seeds();
+    let demo = String::from_utf8(seeds[1].clone()).unwrap();
+    for (name, list) in [
+        ("vary = \"", "vary = [\""),
+        ("length_unit = \"", "length_unit = [\""),
+        ("property = \"", "property = [\""),
+    ] {
+        let at = demo.find(name).expect(name);
+        let end = demo[at + name.len()..].find('"').unwrap() + at + name.len() + 1;
+        let listed = format!(
+            "{}{}{}]{}",
+            &demo[..at],
+            list,
+            &demo[at + name.len()..end],
+            &demo[end..]
+        );
+        assert_ne!(listed, demo);
+        assert_eq!(Target::Study.run(listed.as_bytes()), Ok(()), "{name}");
+    }
+}

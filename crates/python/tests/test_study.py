@@ -152,6 +152,10 @@ def test_runs_planned_beyond_max_steps_are_invalid_with_the_estimate(scene_path,
     (lambda d: d["parameters"][0].update(direction=[0, 0, 0]), "parameters[0].direction"),
     (lambda d: d["parameters"][0].update(colour="red"), "parameters[0].colour"),
     (lambda d: d["parameters"][0].update(vary="wind"), "parameters[0].vary"),
+    # a list where a name belongs is refused, not looked up (fuzzing found a TypeError)
+    (lambda d: d["parameters"][0].update(vary=["grab_offset"]), "parameters[0].vary"),
+    (lambda d: d["parameters"][1].update(property=["e_mpa"]), "parameters[1].property"),
+    (lambda d: d.update(length_unit=["mm"]), "length_unit"),
     (lambda d: d.update(scene="nowhere.toml"), "scene"),
     # finite as written, beyond the largest number once in SI (× 10⁶ for MPa)
     (lambda d: d["parameters"][1].update(property="e_tension_mpa", apply="set", mean=1e305, std=1.0,

@@ -186,6 +186,12 @@ def _vector(origin, where, value) -> List[float]:
     return [x / n for x in v]
 
 
+def _is_one_of(value: Any, names) -> bool:
+    """Whether a value read from the file is one of the given names: a list or table where a
+    name belongs is not (and is no key to look up)."""
+    return isinstance(value, str) and value in names
+
+
 def _distribution(origin, where, p: Dict[str, Any], unit_factor: float) -> Distribution:
     kind = p.get("distribution")
     if kind not in DISTRIBUTIONS:
@@ -247,7 +253,7 @@ def _parameter(origin, i, p, scene, length_factor) -> Parameter:
         if key not in PARAMETER_KEYS:
             raise _fail(origin, f"{where}.{key}", p[key], f"unknown field; expected one of {', '.join(sorted(PARAMETER_KEYS))}")
     vary = p.get("vary")
-    if vary not in KINDS:
+    if not _is_one_of(vary, KINDS):
         raise _fail(origin, f"{where}.vary", vary, f"must be one of {', '.join(KINDS)}")
     targets, default_apply = KINDS[vary]
     apply = p.get("apply", default_apply)
@@ -281,7 +287,7 @@ def _parameter(origin, i, p, scene, length_factor) -> Parameter:
         target["direction"] = _vector(origin, f"{where}.direction", target["direction"])
     elif vary == "material":
         prop = target["property"]
-        if prop not in MATERIAL_PROPERTIES:
+        if not _is_one_of(prop, MATERIAL_PROPERTIES):
             raise _fail(origin, f"{where}.property", prop, f"must be one of {', '.join(MATERIAL_PROPERTIES)}")
         if apply == "offset" or (apply == "set" and prop == "e_mpa"):
             raise _fail(origin, f"{where}.apply", apply, "materials are scaled (factor) or set (for one property)")
@@ -479,7 +485,7 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
     if raw.get("version") != VERSION:
         raise _fail(origin, "version", raw.get("version"), f"unsupported study format version; this build reads version {VERSION}")
     unit = raw.get("length_unit", "m")
-    if unit not in UNITS_M:
+    if not _is_one_of(unit, UNITS_M):
         raise _fail(origin, "length_unit", unit, "must be mm or m")
     scene_ref = raw.get("scene")
     if not isinstance(scene_ref, str) or not scene_ref:
