@@ -30,21 +30,35 @@ from pliant.studies.spec import StudyError, load_study
 # The inputs are study files; the scenes they name do not change while fuzzing. So each
 # scene file is parsed once (keyed by path, size and modification time; a copy handed
 # out each time), and the engine's check of a scene with [scene_values] runs once per
-# distinct scene text (the last 256 kept): the engine-bay seed's every input otherwise
-# parsed and built its whole scene again.
+# distinct scene text. Both caches keep the last 256 entries, so the worker's memory stays
+# bounded however many inputs it reads; the fuzzed study file itself is never cached.
+CACHED = 256
+
+
+def remember(cache, key, make):
+    """The value for `key` in `cache` (an OrderedDict of at most CACHED entries, the least
+    recently used dropped first), made by `make()` when absent."""
+    if key not in cache:
+        cache[key] = make()
+        if len(cache) > CACHED:
+            cache.popitem(last=False)
+    cache.move_to_end(key)
+    return cache[key]
+
+
 read_file = spec._read_toml
-files = {}
+files = collections.OrderedDict()
 
 
 def read_once(path, what):
+    if what != "scene":
+        return read_file(path, what)
     try:
         st = os.stat(path)
     except OSError:
         return read_file(path, what)  # its own message
     key = (os.path.abspath(path), what, st.st_size, st.st_mtime_ns)
-    if key not in files:
-        files[key] = read_file(path, what)
-    raw, text = files[key]
+    raw, text = remember(files, key, lambda: read_file(path, what))
     return pickle.loads(pickle.dumps(raw)), text  # plain data: a quick deep copy
 
 
@@ -54,16 +68,13 @@ checked = collections.OrderedDict()
 
 
 def build_once(text, *args, **kwargs):
-    key = (text, args, tuple(sorted(kwargs.items())))
-    if key not in checked:
+    def check():
         try:
-            checked[key] = (build(text, *args, **kwargs), None)
+            return build(text, *args, **kwargs), None
         except Exception as e:
-            checked[key] = (None, e)
-        if len(checked) > 256:
-            checked.popitem(last=False)
-    checked.move_to_end(key)
-    scene, error = checked[key]
+            return None, e
+
+    scene, error = remember(checked, (text, args, tuple(sorted(kwargs.items()))), check)
     if error is not None:
         raise error
     return scene
