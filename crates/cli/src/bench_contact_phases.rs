@@ -5,7 +5,7 @@
 //! those are dearer: the hoses still slide over the floor there. The ratio moves with the
 //! machine's load as much as with the code.
 //!
-//! These windows are fixed step numbers of the same world ([`bench::setup`]), so every
+//! These windows are fixed step numbers of the same world ([`bench::setup_moving`]), so every
 //! machine measures the same simulated states:
 //! - **sliding**: steps 10 000–15 000, the hoses still moving over the floor;
 //! - **lying**: steps 55 000–60 000, the hoses at rest on it.
