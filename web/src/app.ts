@@ -50,8 +50,6 @@ export class App {
   /** The live session's welcome (and its text, for recordings). */
   private liveWelcome: Welcome | null = null;
   private liveWelcomeRaw = '';
-  /** The live session's scene document (`scene_source`). */
-  private liveSource: SceneSourceMessage | null = null;
   /** The welcome drawn: the live one, or the recording's in a replay. */
   shownWelcome: Welcome | null = null;
   /** The newest live snapshot, and the one drawn last. */
@@ -202,7 +200,6 @@ export class App {
     const newScene = this.liveWelcome !== null;
     this.liveWelcome = w;
     this.liveWelcomeRaw = raw;
-    this.liveSource = null;
     this.mouse.handId = w.client_id * 4;
     this.xr.handBase = w.client_id * 4;
     this.xr.worker = w.session.worker !== undefined;
@@ -211,8 +208,6 @@ export class App {
     this.latest = null;
     if (this.recorder.active) this.stopRecording();
     if (drawsLive(this.mode)) this.showWelcome(w);
-    // which parts move and what sits on them: from the scene document
-    this.net.send({ type: 'scene_source' });
     this.panel.setMessage(newScene ? `loaded scene '${w.session.scene}'` : '');
     this.author.welcomed(w.session.scene);
   }
@@ -229,18 +224,6 @@ export class App {
 
   private sceneSource(m: SceneSourceMessage): void {
     this.author.source(m);
-    this.liveSource = m;
-    if (this.shownWelcome !== null) this.useSource(this.shownWelcome);
-  }
-
-  /** The live scene document's parts that move and the parts stubs and clips sit on,
-   *  for the welcome `w` drawn — when the document is that scene's. */
-  private useSource(w: Welcome): void {
-    const m = this.liveSource;
-    if (m === null || m.scene !== w.session.scene) return;
-    const partNames = w.session.parts.map((p) => p.name);
-    this.parts.source(m.document, m.length_unit, partNames);
-    this.stage.setFastenerCarriers(fastenerCarriers(m.document, w.session.fasteners ?? [], partNames));
   }
 
   private showWelcome(w: Welcome): void {
@@ -266,8 +249,7 @@ export class App {
     this.panel.welcome(w);
     this.parts.welcome(w.session.parts);
     this.manikin.welcome(w.session.worker);
-    this.stage.setFastenerCarriers([]);
-    this.useSource(w);
+    this.stage.setFastenerCarriers(fastenerCarriers(w.session.fasteners ?? []));
   }
 
   private stopRecording(): void {

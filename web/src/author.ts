@@ -221,8 +221,7 @@ export class Author {
   /** The answer to `scene_source`: the document authoring starts from (authored hoses,
    *  stubs and clips so far are kept on top of it). */
   source(m: SceneSourceMessage): void {
-    // the viewer asks for the document after every welcome too: only an answer to the
-    // author's own question starts (or restarts) authoring
+    // only an answer to the author's own question starts (or restarts) authoring
     if (!this.asked) return;
     this.asked = false;
     this.library = m.library;

@@ -3,7 +3,7 @@
 // it) or a slide (its travel, `move_part`) — and a handle (three.js TransformControls) on
 // the part: about the hinge axis, along the slide, or free (move, or turn about the part's
 // centre). A scripted motion's row follows the motion (inputs cannot move such a part).
-// Which parts move and how is read from the scene document (part_joints.ts).
+// Which parts move and how is what the welcome tells (part_joints.ts).
 
 import * as THREE from 'three';
 import type { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
@@ -56,20 +56,13 @@ export class PartControls {
     this.showRows();
   }
 
-  /** A new session: its parts (their reference bounding boxes); the rows wait for the
-   *  scene document. */
+  /** A new session: its parts (their reference bounding boxes) and which of them move
+   *  and how (a row each). */
   welcome(parts: readonly PartData[]): void {
     this.centres = parts.map((p) => [0, 1, 2].map((k) => (p.bounds_min[k] + p.bounds_max[k]) / 2) as Vec3);
     this.poses.clear();
     this.select(null);
-    this.rows = [];
-    this.showRows();
-  }
-
-  /** The scene document (`scene_source`): which parts move and how. */
-  source(doc: unknown, lengthUnit: string, partNames: readonly string[]): void {
-    this.select(null);
-    this.rows = partControls(doc, lengthUnit, partNames).map((c) => this.row(c));
+    this.rows = partControls(parts).map((c) => this.row(c));
     this.showRows();
     this.refresh();
   }
@@ -179,7 +172,7 @@ export class PartControls {
       const pose = this.poses.get(c.part) ?? null;
       const how = c.scripted ? 'scripted motion' : 'moved by you or the timeline';
       if (j === null) {
-        r.readout.textContent = `${c.name}: ${c.scripted ? 'scripted motion' : 'drag its handle'}`;
+        r.readout.textContent = `${c.name}: ${c.scripted ? c.motion || 'scripted motion' : 'drag its handle'}`;
         continue;
       }
       const x = coordinateOfPose(j, pose);
@@ -223,7 +216,7 @@ export class PartControls {
     const c = r.control;
     const pose = this.poses.get(c.part);
     const j = c.joint;
-    const p = j !== null && j.kind === 'hinge' && j.point !== null ? j.point : this.centres[c.part] ?? [0, 0, 0];
+    const p = j !== null && j.kind === 'hinge' ? j.point : this.centres[c.part] ?? [0, 0, 0];
     return pose === undefined ? p : carry(pose, p);
   }
 

@@ -34,7 +34,24 @@ export interface PartData {
   bounds_max: Vec3;
   vertices: number[];
   triangles: number[];
+  /** How it moves (null: it stands still, or inputs move it freely); absent in
+   *  recordings made before the welcome carried it. */
+  joint?: JointData | null;
+  /** The joint is its scripted `motion`: inputs cannot move it. */
+  scripted?: boolean;
+  /** Inputs (`move_part`, `rotate_part`, the timeline) may move it. */
+  movable?: boolean;
+  /** The part that carries it (index into the welcome's parts). */
+  parent?: number | null;
 }
+/** One sine of a periodic motion: A sin(2π f t + φ). */
+export interface Oscillation { amplitude: number; frequency: number; phase: number }
+/** A part's joint (SI: m, rad, s; `range` from where the scene placed it, null: no end). */
+export type JointData =
+  | { kind: 'hinge'; axis: Vec3; point: Vec3; range: [number, number] | null }
+  | { kind: 'slide'; direction: Vec3; range: [number, number] | null }
+  | { kind: 'sampled_path'; centre: Vec3; time_range: [number, number] }
+  | { kind: 'periodic'; centre: Vec3; translation: Oscillation[]; rotation: Oscillation[] };
 export interface FastenerData {
   name: string;
   kind: 'stub' | 'connector' | 'clip';
@@ -44,6 +61,8 @@ export interface FastenerData {
   length: number;
   diameter: number;
   opening_width: number;
+  /** The part it sits on and moves with (null or absent: it stands in the world). */
+  part?: number | null;
 }
 export interface SceneData {
   scene: string;

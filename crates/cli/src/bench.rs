@@ -465,11 +465,8 @@ pub fn bent_shape(origin: DVec3, elements: usize) -> Vec<DVec3> {
 /// (Starting from the stress-free straight shape instead would leave most of a long hose
 /// in undeformed free fall during the measurement, where the element takes its cheap
 /// small-angle branches and the cost per element looks lower than it is in use.)
-pub fn setup(hoses: usize, elements: usize, floor_quads: usize) -> Result<(Model, State)> {
-    setup_moving(hoses, elements, floor_quads, None)
-}
-
-/// [`setup`] with the floor moving by `floor_motion` (None: standing still).
+///
+/// The floor moves by `floor_motion` (None: it stands still).
 pub fn setup_moving(
     hoses: usize,
     elements: usize,
@@ -1083,7 +1080,7 @@ mod tests {
 
     #[test]
     fn benchmark_world_matches_the_brief() {
-        let (model, state) = setup(5, 30, 0).unwrap();
+        let (model, state) = setup_moving(5, 30, 0, None).unwrap();
         assert_eq!(model.elements.len(), 150);
         assert_eq!(model.hoses.len(), 5);
         assert!(model.gravity.length() > 9.0, "gravity must be on");
@@ -1121,7 +1118,7 @@ mod tests {
 
     #[test]
     fn initial_state_is_bent_and_held_where_it_lies() {
-        let (model, state) = setup(2, 30, 0).unwrap();
+        let (model, state) = setup_moving(2, 30, 0, None).unwrap();
         assert!(
             state.strain_energy(&model) > 1e-4,
             "the hoses must start deformed"

@@ -5,16 +5,19 @@
 //! those are dearer: the hoses still slide over the floor there. The ratio moves with the
 //! machine's load as much as with the code.
 //!
-//! These windows are fixed step numbers of the same world ([`bench::setup`]), so every
+//! These windows are fixed step numbers of the same world ([`bench::setup_moving`]), so every
 //! machine measures the same simulated states:
 //! - **sliding**: steps 10 000–15 000, the hoses still moving over the floor;
 //! - **lying**: steps 55 000–60 000, the hoses at rest on it.
 //!
 //! Each window is timed in five chunks; the per-step time is their median, and the ratio
-//! compares the floor's world with the contact-free one at the same steps.
+//! compares the floor's world with the contact-free one at the same steps. The same
+//! windows of the world whose floor sways ([`bench::floor_sway`]) give the moving floor's
+//! cost over the floor at rest, at the same steps every run.
 
 use crate::bench::{self, median, FLOOR_QUADS};
 use anyhow::{bail, Result};
+use pliant_core::kinematics::PartMotion;
 use pliant_core::{health, integrators::explicit};
 use serde::Serialize;
 use std::time::Instant;
@@ -33,6 +36,12 @@ pub struct ContactPhase {
     pub ratio: f64,
     /// Active contact points per step with the floor, over the window.
     pub contact_points_per_step: f64,
+    /// Wall ns per step with the floor swaying ([`bench::floor_sway`]), and that over the
+    /// floor at rest at the same steps.
+    pub ns_per_step_moving: f64,
+    pub moving_ratio: f64,
+    /// Active contact points per step with the floor swaying.
+    pub moving_contact_points_per_step: f64,
 }
 
 /// The windows: name, first step, steps (`quick`: a smoke-test size).
@@ -47,9 +56,14 @@ fn windows(quick: bool) -> [(&'static str, u64, u64); 2] {
 /// Chunks each window is timed in.
 const CHUNKS: u64 = 5;
 
-/// Per window: wall ns per step (median over the chunks) and contact points per step.
-fn time_windows(floor_quads: usize, quick: bool) -> Result<Vec<(f64, f64)>> {
-    let (mut model, mut state) = bench::setup(5, 30, floor_quads)?;
+/// Per window: wall ns per step (median over the chunks) and contact points per step, the
+/// floor moving by `floor_motion` (None: at rest).
+fn time_windows(
+    floor_quads: usize,
+    floor_motion: Option<PartMotion>,
+    quick: bool,
+) -> Result<Vec<(f64, f64)>> {
+    let (mut model, mut state) = bench::setup_moving(5, 30, floor_quads, floor_motion)?;
     model.threads = 1;
     let mut step = 0u64;
     let mut out = Vec::new();
@@ -75,22 +89,28 @@ fn time_windows(floor_quads: usize, quick: bool) -> Result<Vec<(f64, f64)>> {
     Ok(out)
 }
 
-/// Measures both windows without and with the 100 352-triangle floor.
+/// Measures both windows without, with the 100 352-triangle floor and with it swaying.
 pub fn measure(quick: bool) -> Result<Vec<ContactPhase>> {
-    let free = time_windows(0, quick)?;
-    let floor = time_windows(FLOOR_QUADS, quick)?;
+    let free = time_windows(0, None, quick)?;
+    let floor = time_windows(FLOOR_QUADS, None, quick)?;
+    let moving = time_windows(FLOOR_QUADS, Some(bench::floor_sway()), quick)?;
     Ok(windows(quick)
         .iter()
-        .zip(free.iter().zip(&floor))
+        .zip(free.iter().zip(floor.iter().zip(&moving)))
         .map(
-            |(&(name, first_step, steps), (&(f, _), &(c, points)))| ContactPhase {
-                name,
-                first_step,
-                steps,
-                ns_per_step_free: f,
-                ns_per_step_contact: c,
-                ratio: c / f,
-                contact_points_per_step: points,
+            |(&(name, first_step, steps), (&(f, _), (&(c, points), &(m, moving_points))))| {
+                ContactPhase {
+                    name,
+                    first_step,
+                    steps,
+                    ns_per_step_free: f,
+                    ns_per_step_contact: c,
+                    ratio: c / f,
+                    contact_points_per_step: points,
+                    ns_per_step_moving: m,
+                    moving_ratio: m / c,
+                    moving_contact_points_per_step: moving_points,
+                }
             },
         )
         .collect())
@@ -103,14 +123,18 @@ pub fn render(phases: &[ContactPhase]) -> String {
         .map(|p| {
             format!(
                 "  {} (steps {}–{}): {:.0} ns/step free, {:.0} ns/step on the floor \
-                 ({:.1} contact points): ×{:.2}\n",
+                 ({:.1} contact points): ×{:.2}; swaying {:.0} ns/step ({:.1} contact \
+                 points): ×{:.2} the floor at rest (goal ≤ 1.3)\n",
                 p.name,
                 p.first_step,
                 p.first_step + p.steps,
                 p.ns_per_step_free,
                 p.ns_per_step_contact,
                 p.contact_points_per_step,
-                p.ratio
+                p.ratio,
+                p.ns_per_step_moving,
+                p.moving_contact_points_per_step,
+                p.moving_ratio
             )
         })
         .collect()

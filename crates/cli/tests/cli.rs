@@ -263,7 +263,8 @@ fn validate_json_prints_the_documented_fields() {
 }
 
 /// `bench --only contact --json` prints the time-boxed rows and both fixed windows, at
-/// the steps documented, with finite positive times (no timing is judged here).
+/// the steps documented, without, with the floor and with it swaying, with finite
+/// positive times (no timing is judged here).
 #[test]
 fn contact_bench_reports_its_fixed_windows() {
     let o = pliant()
@@ -279,7 +280,13 @@ fn contact_bench_reports_its_fixed_windows() {
     let names: Vec<_> = phases.iter().map(|p| p["name"].as_str().unwrap()).collect();
     assert_eq!(names, ["sliding", "lying"]);
     for p in phases {
-        for key in ["ns_per_step_free", "ns_per_step_contact", "ratio"] {
+        for key in [
+            "ns_per_step_free",
+            "ns_per_step_contact",
+            "ratio",
+            "ns_per_step_moving",
+            "moving_ratio",
+        ] {
             let x = p[key].as_f64().unwrap();
             assert!(x.is_finite() && x > 0.0, "{key} = {x}");
         }

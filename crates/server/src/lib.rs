@@ -10,6 +10,7 @@
 pub mod access;
 pub mod assets;
 pub mod haptic;
+pub mod joints;
 pub mod limits;
 pub mod ownership;
 pub mod protocol;

@@ -1,6 +1,7 @@
 //! What clients see: the static scene data sent once in `welcome`, and the snapshot of the
 //! newest consistent state the simulation thread published (SPEC I2, I4, I6).
 
+use crate::joints::PartMotionData;
 use pliant_assembly::stub::AxialLaw;
 use pliant_assembly::{ClipSite, StubSite};
 use pliant_core::{HoseEnd, Model};
@@ -97,10 +98,13 @@ pub struct OutletData {
     pub node: usize,
 }
 
-/// One rigid part: its bounding box and its triangle mesh (world frame, metres).
+/// One rigid part: its bounding box and its triangle mesh (world frame, metres, where the
+/// scene placed it) and how it moves (`joint`, `scripted`, `movable`, `parent`).
 #[derive(Clone, Debug, Serialize)]
 pub struct PartData {
     pub name: String,
+    #[serde(flatten)]
+    pub motion: PartMotionData,
     pub bounds_min: [f64; 3],
     pub bounds_max: [f64; 3],
     /// x, y, z of each vertex, flattened.
@@ -127,6 +131,9 @@ pub struct FastenerData {
     pub diameter: f64,
     /// Clip: width of the opening; stub: zero.
     pub opening_width: f64,
+    /// The part it sits on and moves with (index into the welcome's `parts`); `null`: it
+    /// stands in the world.
+    pub part: Option<usize>,
 }
 
 impl FastenerData {
@@ -143,6 +150,7 @@ impl FastenerData {
                 length: spec.length(),
                 diameter: spec.diameter(),
                 opening_width: 0.0,
+                part: s.part,
             }
         });
         let clips = clips.iter().map(|c| FastenerData {
@@ -154,6 +162,7 @@ impl FastenerData {
             length: 0.0,
             diameter: c.spec.inner_diameter(),
             opening_width: c.spec.opening_width(),
+            part: c.part,
         });
         stubs.chain(clips).collect()
     }
@@ -216,12 +225,14 @@ impl SceneData {
                     .collect(),
             })
             .collect();
+        let motions = PartMotionData::of(&scene.world.rigid_parts, &scene.timeline);
         let parts = scene
             .world
             .rigid_parts
             .iter()
+            .zip(motions)
             .enumerate()
-            .map(|(i, p)| {
+            .map(|(i, (p, motion))| {
                 let (lo, hi) = scene
                     .parts
                     .get(i)
@@ -234,6 +245,7 @@ impl SceneData {
                     });
                 PartData {
                     name: p.name.clone(),
+                    motion,
                     bounds_min: lo.to_array(),
                     bounds_max: hi.to_array(),
                     vertices: p

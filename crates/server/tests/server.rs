@@ -1422,6 +1422,192 @@ async fn part_moves_are_checked_and_refusals_come_back_as_the_notice() {
     assert!(welcome_parts > 0);
 }
 
+/// The welcome tells each part's joint and each fastener's part: a scripted hinge door
+/// (range over its keyframes, radians), a scripted slide (metres), a periodic engine, a
+/// handle carried by the door (`parent`), a hatch the timeline turns (its hinge from the
+/// `rotate_part`s: `to` sets the angle, `by` adds to it) and a still body; a clip on the
+/// door, a stub on the hatch and a clip in the world.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_welcome_gives_each_parts_joint_and_each_fasteners_part() {
+    let text = r#"
+format = "pliant-scene"
+version = 1
+length_unit = "mm"
+[simulation]
+gravity = [0, 0, 0]
+[[hoses]]
+name = "h"
+material = "hose3"
+start = [0, -20, 0]
+path = [{ line = { to = [400, -20, 0] } }]
+[[parts]]
+name = "body"
+box = { size = [40, 40, 40] }
+position = [-100, -100, 0]
+[[parts]]
+name = "door"
+box = { size = [800, 30, 600] }
+position = [420, 15, 0]
+motion = { kind = "hinge", axis = [0, 0, 2], point = [0, 0, 0], angle_deg = { times_s = [0, 1, 2], values = [0, 70, -10] } }
+[[parts]]
+name = "handle"
+box = { size = [20, 20, 20] }
+position = [700, 40, 0]
+parent = "door"
+[[parts]]
+name = "seat"
+box = { size = [100, 100, 100] }
+position = [0, 500, 0]
+motion = { kind = "slide", direction = [0, 3, 0], distance = { times_s = [0, 3], values = [0, 250] } }
+[[parts]]
+name = "engine"
+box = { size = [100, 100, 100] }
+position = [0, -500, 0]
+motion = { kind = "periodic", centre = [0, -500, 0], z = { amplitude = 2, frequency_hz = 25 }, roll = { amplitude = 1.5, frequency_hz = 12 } }
+[[parts]]
+name = "hatch"
+box = { size = [100, 100, 10] }
+position = [150, 250, 300]
+[[clips]]
+name = "door clip"
+part = "door"
+origin = [300, -20, 0]
+opening = [0, -1, 0]
+orientation = [1, 0, 0]
+opening_width = 12
+inner_diameter = 17
+snap_force_n = 30
+[[clips]]
+name = "world clip"
+origin = [100, -20, 0]
+opening = [0, -1, 0]
+orientation = [1, 0, 0]
+opening_width = 12
+inner_diameter = 17
+snap_force_n = 30
+[[stubs]]
+name = "hatch stub"
+origin = [150, 250, 320]
+axis = [0, 0, -1]
+length = 20
+diameter = 30
+part = "hatch"
+[[timeline]]
+action = "rotate_part"
+part = "hatch"
+axis = [-1, 0, 0]
+to_deg = 40
+duration_s = 0.5
+[[timeline]]
+action = "rotate_part"
+part = "hatch"
+axis = [1, 0, 0]
+by_deg = -10
+duration_s = 0.5
+"#;
+    let dir = tempfile::tempdir().unwrap();
+    let scene = pliant_scene::load_scene_str_in(text, "joints.toml", dir.path()).unwrap();
+    let s = serve_paused(&scene).await;
+    let welcome = hello(&mut connect(&s).await).await;
+    let parts = welcome["session"]["parts"].as_array().unwrap();
+    let part = |name: &str| parts.iter().find(|p| p["name"] == name).unwrap();
+    let close = |v: &Value, expected: &[f64], what: &str| {
+        let got = v.as_f64().map_or_else(|| floats_of(v), |x| vec![x]);
+        assert_eq!(got.len(), expected.len(), "{what}: {v}");
+        for (g, e) in got.iter().zip(expected) {
+            assert!((g - e).abs() < 1e-12, "{what}: {v} vs {expected:?}");
+        }
+    };
+    let deg = std::f64::consts::PI / 180.0;
+    // the door: a scripted hinge about +z through the origin, −10° … 70°
+    let door = part("door");
+    assert_eq!(door["joint"]["kind"], "hinge", "{}", door["joint"]);
+    close(&door["joint"]["axis"], &[0.0, 0.0, 1.0], "door axis (unit)");
+    close(&door["joint"]["point"], &[0.0, 0.0, 0.0], "door point");
+    close(
+        &door["joint"]["range"],
+        &[-10.0 * deg, 70.0 * deg],
+        "door range",
+    );
+    assert_eq!(
+        (&door["scripted"], &door["movable"]),
+        (&json!(true), &json!(false))
+    );
+    assert!(door["parent"].is_null());
+    // the handle: no joint of its own, carried by the door (index 1)
+    let handle = part("handle");
+    assert!(handle["joint"].is_null(), "{handle:?}");
+    assert_eq!(handle["parent"], 1);
+    // the seat: a scripted slide along +y over 0 … 0.25 m
+    let seat = part("seat");
+    assert_eq!(seat["joint"]["kind"], "slide");
+    close(
+        &seat["joint"]["direction"],
+        &[0.0, 1.0, 0.0],
+        "seat direction (unit)",
+    );
+    close(&seat["joint"]["range"], &[0.0, 0.25], "seat range [m]");
+    // the engine: its oscillations in SI (2 mm along z at 25 Hz; 1.5° of roll at 12 Hz)
+    let engine = part("engine");
+    assert_eq!(engine["joint"]["kind"], "periodic");
+    close(
+        &engine["joint"]["centre"],
+        &[0.0, -0.5, 0.0],
+        "engine centre",
+    );
+    close(
+        &engine["joint"]["translation"][2]["amplitude"],
+        &[0.002],
+        "z amplitude [m]",
+    );
+    close(
+        &engine["joint"]["translation"][2]["frequency"],
+        &[25.0],
+        "z frequency",
+    );
+    close(
+        &engine["joint"]["rotation"][0]["amplitude"],
+        &[1.5 * deg],
+        "roll amplitude [rad]",
+    );
+    // the hatch: movable, the timeline's hinge about −x (its first turn's axis) through its
+    // box centre: to 40° about −x reaches 40°, then by −10° about +x adds 10°: 50°
+    let hatch = part("hatch");
+    assert_eq!(
+        (&hatch["scripted"], &hatch["movable"]),
+        (&json!(false), &json!(true))
+    );
+    assert_eq!(hatch["joint"]["kind"], "hinge");
+    close(&hatch["joint"]["axis"], &[-1.0, 0.0, 0.0], "hatch axis");
+    close(
+        &hatch["joint"]["point"],
+        &[0.15, 0.25, 0.3],
+        "hatch point: its box centre",
+    );
+    close(&hatch["joint"]["range"], &[0.0, 50.0 * deg], "hatch range");
+    // the body stands still
+    let body = part("body");
+    assert!(body["joint"].is_null());
+    assert_eq!(
+        (&body["scripted"], &body["movable"]),
+        (&json!(false), &json!(false))
+    );
+    // the fasteners' parts: stubs first, then clips
+    let fasteners = welcome["session"]["fasteners"].as_array().unwrap();
+    let on: Vec<(&str, &Value)> = fasteners
+        .iter()
+        .map(|f| (f["name"].as_str().unwrap(), &f["part"]))
+        .collect();
+    assert_eq!(
+        on,
+        vec![
+            ("hatch stub", &json!(5)),
+            ("door clip", &json!(1)),
+            ("world clip", &Value::Null)
+        ]
+    );
+}
+
 /// A worker behind a bar that reaches into his trunk, a hose to grab (the viewer's test
 /// scene too).
 const WORKER_SCENE: &str = include_str!("../../../web/test/fixtures/worker_bar.toml");

@@ -1,5 +1,5 @@
-// Unit tests of how parts move in the viewer (web/src/part_joints.ts): the joints read
-// from a scene document, the slider ↔ joint coordinate mapping, the coordinate of a part
+// Unit tests of how parts move in the viewer (web/src/part_joints.ts): the sliders made
+// from the welcome's joints, the slider ↔ joint coordinate mapping, the coordinate of a part
 // pose, the messages a slider sends, and where a stub or clip on a moving part is drawn.
 
 import assert from 'node:assert/strict';
@@ -20,67 +20,60 @@ const close = (a, b, tol, what) => {
   a.forEach((x, i) => assert.ok(Math.abs(x - b[i]) <= tol, `${what}: ${a} vs ${b}`));
 };
 
-const doc = {
-  length_unit: 'mm',
-  parts: [
-    { name: 'body', box: { size: [10, 10, 10] } },
-    { name: 'lid', box: { size: [10, 10, 10] }, motion: { kind: 'hinge', axis: [0, 0, 2], point: [600, 0, 300], angle_deg: { times_s: [0, 2, 4], values: [0, 70, 0] } } },
-    { name: 'seat', box: { size: [10, 10, 10] }, motion: { kind: 'slide', direction: [0, 3, 0], distance: { times_s: [0, 3], values: [0, 250] } } },
-    { name: 'door', box: { size: [10, 10, 10] }, movable: true },
-    { name: 'drawer', box: { size: [10, 10, 10] } },
-    { name: 'flap', box: { size: [10, 10, 10] }, movable: true },
-    { name: 'not-in-welcome', box: { size: [10, 10, 10] }, movable: true },
-  ],
-  timeline: [
-    { action: 'rotate_part', part: 'door', axis: [0, 0, 1], point: [500, 0, 300], to_deg: 70, duration_s: 2 },
-    { action: 'rotate_part', part: 'door', axis: [0, 0, -1], to_deg: 20, duration_s: 1 },
-    { action: 'move_part', part: 'drawer', by: [0, 0, 120], duration_s: 1 },
-    { action: 'move_part', part: 'drawer', to: [0, 0, -30], duration_s: 1 },
-  ],
-  stubs: [{ name: 's1', part: 'door' }, { name: 's2' }],
-  clips: [{ name: 'c1', part: 'seat' }, { name: 'c2', part: 'nowhere' }],
-};
-const names = ['body', 'lid', 'seat', 'door', 'drawer', 'flap'];
+const D = Math.PI / 180;
+const box = { bounds_min: [0, 0, 0], bounds_max: [0.01, 0.01, 0.01], vertices: [], triangles: [] };
+/** A welcome's parts as the server sends them (docs/protocol.md "welcome"): SI units. */
+const parts = [
+  { name: 'body', ...box, joint: null, scripted: false, movable: false, parent: null },
+  { name: 'lid', ...box, joint: { kind: 'hinge', axis: [0, 0, 1], point: [0.6, 0, 0.3], range: [-10 * D, 70 * D] }, scripted: true, movable: false, parent: null },
+  { name: 'seat', ...box, joint: { kind: 'slide', direction: [0, 1, 0], range: [0, 0.25] }, scripted: true, movable: false, parent: null },
+  { name: 'door', ...box, joint: { kind: 'hinge', axis: [0, 0, 1], point: [0.5, 0, 0.3], range: [-20 * D, 70 * D] }, scripted: false, movable: true, parent: null },
+  { name: 'drawer', ...box, joint: { kind: 'slide', direction: [0, 0, 1], range: [-0.03, 0.12] }, scripted: false, movable: true, parent: null },
+  { name: 'flap', ...box, joint: null, scripted: false, movable: true, parent: null },
+  { name: 'handle', ...box, joint: null, scripted: false, movable: false, parent: 1 },
+  {
+    name: 'engine', ...box, scripted: true, movable: false, parent: null,
+    joint: { kind: 'periodic', centre: [0, 0, 0], translation: [{ amplitude: 0, frequency: 0, phase: 0 }, { amplitude: 0, frequency: 0, phase: 0 }, { amplitude: 0.002, frequency: 25, phase: 0 }], rotation: [{ amplitude: 0.02, frequency: 12, phase: 0 }, { amplitude: 0, frequency: 0, phase: 0 }, { amplitude: 0, frequency: 0, phase: 0 }] },
+  },
+  { name: 'arm', ...box, joint: { kind: 'sampled_path', centre: [0, 0, 0], time_range: [0.5, 4] }, scripted: true, movable: false, parent: null },
+];
 
-test('joints are read from the scene document: scripted hinge and slide, timeline-moved and movable parts', () => {
-  const c = J.partControls(doc, 'mm', names);
-  assert.deepEqual(c.map((x) => x.name), ['lid', 'seat', 'door', 'drawer', 'flap'], 'still parts and parts outside the welcome are left out');
-  const [lid, seat, door, drawer, flap] = c;
+test("the welcome's joints make the sliders: hinge ranges in degrees, slides in metres, scripted motions shown", () => {
+  const c = J.partControls(parts);
+  assert.deepEqual(c.map((x) => x.name), ['lid', 'seat', 'door', 'drawer', 'flap', 'engine', 'arm'], 'still parts and parts carried only by their parent have no row');
+  const [lid, seat, door, drawer, flap, engine, arm] = c;
   assert.deepEqual([lid.part, lid.scripted, lid.movable], [1, true, false]);
   assert.equal(lid.joint.kind, 'hinge');
-  close(lid.joint.axis, [0, 0, 1], 1e-15, 'hinge axis normalised');
-  close(lid.joint.point, [0.6, 0, 0.3], 1e-15, 'hinge point in metres');
-  assert.deepEqual([lid.joint.min, lid.joint.max], [0, 70]);
+  close(lid.joint.point, [0.6, 0, 0.3], 0, 'hinge point as sent');
+  close([lid.joint.min, lid.joint.max], [-10, 70], 1e-12, 'hinge range in degrees');
   assert.equal(seat.joint.kind, 'slide');
-  close(seat.joint.direction, [0, 1, 0], 1e-15, 'slide direction normalised');
-  close([seat.joint.min, seat.joint.max], [0, 0.25], 1e-15, 'slide travel in metres');
-  // the door: movable, its hinge from the timeline; a turn about −z to 20° is −20° about +z
+  close([seat.joint.min, seat.joint.max], [0, 0.25], 0, 'slide travel in metres');
   assert.deepEqual([door.part, door.scripted, door.movable], [3, false, true]);
-  close(door.joint.axis, [0, 0, 1], 0, 'first rotate_part axis');
-  close(door.joint.point, [0.5, 0, 0.3], 1e-15, 'first rotate_part point');
-  assert.deepEqual([door.joint.min, door.joint.max], [-20, 70]);
-  // the drawer: moved by the timeline along z over −30..120 mm
-  assert.equal(drawer.joint.kind, 'slide');
-  close(drawer.joint.direction, [0, 0, 1], 0, 'move_part direction');
-  close([drawer.joint.min, drawer.joint.max], [-0.03, 0.12], 1e-15, 'move_part range');
-  // movable without a hint: a free handle, no slider
-  assert.equal(flap.joint, null);
-  assert.equal(flap.movable, true);
+  close([door.joint.min, door.joint.max], [-20, 70], 1e-12, "the timeline's hinge range");
+  close(drawer.joint.direction, [0, 0, 1], 0, 'slide direction');
+  close([drawer.joint.min, drawer.joint.max], [-0.03, 0.12], 0, "the timeline's slide range");
+  // movable without a joint: a free handle, no slider
+  assert.deepEqual([flap.joint, flap.movable], [null, true]);
+  // a periodic motion and a sampled path: no slider, described
+  assert.equal(engine.joint, null);
+  assert.equal(engine.motion, 'periodic motion, 25 Hz, 12 Hz');
+  assert.equal(arm.joint, null);
+  assert.equal(arm.motion, 'sampled path, 0.50 … 4.00 s');
 });
 
-test('a scene in metres, and documents that are not scenes', () => {
-  const c = J.partControls({ parts: [{ name: 'lid', motion: { kind: 'hinge', axis: [1, 0, 0], point: [1, 2, 3], angle_deg: { times_s: [0], values: [0] } } }] }, 'm', ['lid']);
-  close(c[0].joint.point, [1, 2, 3], 0, 'metres stay metres');
-  assert.deepEqual([c[0].joint.min, c[0].joint.max], [-J.DEFAULT_HINGE_RANGE_DEG, J.DEFAULT_HINGE_RANGE_DEG], 'no angle but 0: the default range');
-  assert.deepEqual(J.partControls(null, 'mm', ['lid']), []);
-  assert.deepEqual(J.partControls([], 'mm', ['lid']), []);
-  assert.deepEqual(J.partControls({ parts: 'x' }, 'mm', ['lid']), []);
-  const bad = J.partControls({ parts: [{ name: 'lid', motion: { kind: 'hinge', axis: [0, 0, 0] } }] }, 'mm', ['lid']);
-  assert.equal(bad[0].joint, null, 'a zero axis makes no joint');
+test('a range that is a point or has no end gives the default slider range; old welcomes give no rows', () => {
+  const still = { ...parts[1], joint: { ...parts[1].joint, range: [0, 0] } };
+  const endless = { ...parts[2], joint: { ...parts[2].joint, range: null } };
+  const [h, s] = J.partControls([still, endless]);
+  assert.deepEqual([h.joint.min, h.joint.max], [-J.DEFAULT_HINGE_RANGE_DEG, J.DEFAULT_HINGE_RANGE_DEG]);
+  assert.deepEqual([s.joint.min, s.joint.max], [-J.DEFAULT_SLIDE_RANGE_M, J.DEFAULT_SLIDE_RANGE_M]);
+  // a recording made before the welcome carried joints
+  assert.deepEqual(J.partControls([{ name: 'door', ...box }]), []);
+  assert.deepEqual(J.partControls([]), []);
 });
 
 test('the slider maps linearly onto the joint range, clamped, and back', () => {
-  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: null, min: -20, max: 70 };
+  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: [0, 0, 0], min: -20, max: 70 };
   assert.equal(J.sliderToCoordinate(hinge, 0), -20);
   assert.equal(J.sliderToCoordinate(hinge, J.SLIDER_STEPS), 70);
   assert.equal(J.sliderToCoordinate(hinge, J.SLIDER_STEPS / 2), 25);
@@ -93,7 +86,7 @@ test('the slider maps linearly onto the joint range, clamped, and back', () => {
 });
 
 test('the coordinate of a pose: the turn about the hinge axis, the travel along the slide', () => {
-  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: null, min: 0, max: 90 };
+  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: [0, 0, 0], min: 0, max: 90 };
   const pose = (rotation, translation = [0, 0, 0]) => ({ part: 0, translation, rotation });
   assert.equal(J.coordinateOfPose(hinge, null), 0);
   for (const deg of [0, 30, 60, 89.5, -45, 179]) {
@@ -110,9 +103,8 @@ test('a slider sends rotate_part to the angle, or move_part to the offset, at th
   assert.deepEqual(J.jointMessage('door', hinge, 45, 0), {
     type: 'rotate_part', part: 'door', axis: [0, 0, 1], to_deg: 45, duration_s: 45 / J.HINGE_SPEED_DEG_S, point: [0.5, 0, 0.3],
   });
-  const m = J.jointMessage('door', { ...hinge, point: null }, 44, 43.9);
+  const m = J.jointMessage('door', hinge, 44, 43.9);
   assert.equal(m.duration_s, J.MIN_MOVE_S, 'a small step still takes the shortest move');
-  assert.equal('point' in m, false, 'no point: the server turns about the part centre');
   const slide = { kind: 'slide', direction: [0, 1, 0], min: 0, max: 0.25 };
   const s = J.jointMessage('seat', slide, 0.2, 0.05);
   assert.deepEqual(s.to, [0, 0.2, 0]);
@@ -121,7 +113,7 @@ test('a slider sends rotate_part to the angle, or move_part to the offset, at th
 });
 
 test('a handle dragged adds its turn about the hinge axis, or its shift along the slide, within the range', () => {
-  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: null, min: -20, max: 70 };
+  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: [0, 0, 0], min: -20, max: 70 };
   assert.ok(Math.abs(J.draggedCoordinate(hinge, 10, quat([0, 0, 1], 30), [0, 0, 0]) - 40) < 1e-9);
   assert.ok(Math.abs(J.draggedCoordinate(hinge, 10, quat([0, 0, -1], 15), [0.3, 0, 0]) + 5) < 1e-9, 'a shift does not turn a hinge');
   assert.equal(J.draggedCoordinate(hinge, 60, quat([0, 0, 1], 30), [0, 0, 0]), 70, 'clamped to the range');
@@ -153,8 +145,7 @@ test('a stub or clip on a part is carried by its pose: R·p + t', () => {
   close(J.carry({ part: 0, translation: [0, 0, 0], rotation: [0, 0, 0, 1] }, p), p, 0, 'identity');
 });
 
-test('each fastener is carried by the part its entry names', () => {
-  const fasteners = [{ name: 's1' }, { name: 's2' }, { name: 'c1' }, { name: 'c2' }, { name: 'other' }];
-  assert.deepEqual(J.fastenerCarriers(doc, fasteners, names), [3, -1, 2, -1, -1]);
-  assert.deepEqual(J.fastenerCarriers(null, fasteners, names), [-1, -1, -1, -1, -1]);
+test("each fastener is carried by the part the welcome names for it", () => {
+  const fasteners = [{ name: 's1', part: 3 }, { name: 's2', part: null }, { name: 'c1', part: 2 }, { name: 'old' }];
+  assert.deepEqual(J.fastenerCarriers(fasteners), [3, -1, 2, -1]);
 });

@@ -1,8 +1,9 @@
 //! What a report's pictures draw besides the hoses, made once per report from the model
 //! (presentation, never on the live path): the parts' outlines where the scene placed
-//! them, every part's outline at its pose at the instant of each scene picture (a door
-//! drawn at the angle where the hose bent tightest), and the swept envelopes of a
-//! range-of-motion study.
+//! them, every part's outline at its pose at the instant of each picture — each scene
+//! picture's (a door drawn at the angle where the hose bent tightest), the worker's worst
+//! posture's and the swept envelopes' (the sweep's worst bend) — and the swept envelopes
+//! of a range-of-motion study.
 
 use super::part_outline::{part_outlines, posed_outlines, PartOutline};
 use crate::sweep::envelope::{swept_envelopes, SweptEnvelopes};
@@ -15,8 +16,13 @@ pub struct Drawing {
     pub parts: Vec<PartOutline>,
     /// Per scene picture (by its hose), every part at its pose at the picture's instant.
     pub posed: Vec<(usize, Vec<PartOutline>)>,
+    /// Every part at its pose at the worker's worst posture (none without a worker).
+    pub worker_parts: Option<Vec<PartOutline>>,
     /// The hoses' swept envelopes, when the run swept a motion.
     pub envelopes: Option<SweptEnvelopes>,
+    /// The instant the envelope picture draws the parts at (the sweep's worst bend) and
+    /// every part at its pose then.
+    pub envelope_parts: Option<(f64, Vec<PartOutline>)>,
 }
 
 impl Drawing {
@@ -37,10 +43,23 @@ impl Drawing {
             .as_ref()
             .and_then(|s| s.swept.as_ref())
             .map(|swept| swept_envelopes(model, swept));
+        let worker_parts = run
+            .worker
+            .as_ref()
+            .map(|w| posed_outlines(env, &parts, &w.worst_part_poses));
+        let envelope_parts = run
+            .checks
+            .sweep
+            .as_ref()
+            .and_then(|s| s.worst_bend_poses.as_ref())
+            .filter(|_| envelopes.is_some())
+            .map(|w| (w.time, posed_outlines(env, &parts, &w.poses)));
         Drawing {
             parts,
             posed,
+            worker_parts,
             envelopes,
+            envelope_parts,
         }
     }
 

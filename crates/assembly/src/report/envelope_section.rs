@@ -18,12 +18,15 @@ const PIXELS: (usize, usize) = (300, 250);
 /// The envelopes' colours, hose by hose.
 const COLOURS: [&str; 4] = ["#036", "#a40", "#070", "#707"];
 
-/// Appends the section for `envelopes` of `sweep` to `s`, the parts drawn from `parts`.
+/// Appends the section for `envelopes` of `sweep` to `s`, the parts drawn at `posed`
+/// (an instant and every part's outline at its pose then), else `at_rest` where the scene
+/// placed them.
 pub fn envelope_section(
     s: &mut String,
     envelopes: &SweptEnvelopes,
     sweep: &SweepSummary,
-    parts: &[PartOutline],
+    posed: Option<&(f64, Vec<PartOutline>)>,
+    at_rest: &[PartOutline],
 ) {
     s.push_str("<h2>Swept envelopes</h2>");
     if let Some(why) = &envelopes.refused {
@@ -98,7 +101,22 @@ pub fn envelope_section(
     if envelopes.hoses.is_empty() {
         return;
     }
-    s.push_str("<div><p style=\"margin:0.5em 0 0 0\">The envelopes over the parts (where the scene placed them):</p>");
+    let parts = match posed {
+        Some((time, parts)) => {
+            let at = sweep
+                .position_at(*time)
+                .map_or(String::new(), |p| format!(", {}", escape(&p)));
+            let _ = write!(
+                s,
+                "<div><p style=\"margin:0.5em 0 0 0\">The envelopes over the parts, drawn where they were at the worst bend (t = {time:.2} s{at}):</p>"
+            );
+            parts.as_slice()
+        }
+        None => {
+            s.push_str("<div><p style=\"margin:0.5em 0 0 0\">The envelopes over the parts (where the scene placed them):</p>");
+            at_rest
+        }
+    };
     for (k, view) in View::all().iter().enumerate() {
         let centre = |v: [i64; 3]| view.project(DVec3::from_array(v.map(|x| x as f64 * h)));
         let frame = Frame::around(

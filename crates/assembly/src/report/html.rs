@@ -387,7 +387,13 @@ pub fn html(
     }
     checks_section(&mut s, &run.checks, report.drawing);
     if let Some(w) = &run.worker {
-        super::worker_section::worker_section(&mut s, w, worker_series, &report.drawing.parts);
+        let parts = report.drawing.worker_parts.as_deref();
+        super::worker_section::worker_section(
+            &mut s,
+            w,
+            worker_series,
+            parts.unwrap_or(&report.drawing.parts),
+        );
     }
     if let Some(sweep) = &run.checks.sweep {
         super::sweep_plots::sweep_section(&mut s, sweep);
@@ -396,6 +402,7 @@ pub fn html(
                 &mut s,
                 envelopes,
                 sweep,
+                report.drawing.envelope_parts.as_ref(),
                 &report.drawing.parts,
             );
         }

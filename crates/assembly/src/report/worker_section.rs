@@ -149,7 +149,7 @@ pub fn worker_section(
     if let (Some(p), Some(r)) = (&w.worst_posture, w.worst_rula) {
         s.push_str(&super::worker_picture::worker_picture(
             &format!(
-                "The worst posture (RULA {} at t = {:.2} s); hand targets circled:",
+                "The worst posture (RULA {} at t = {:.2} s; the parts where they were then); hand targets circled:",
                 r.score.grand, r.time
             ),
             &w.body,

@@ -42,6 +42,23 @@ pub struct SweepSummary {
     /// envelopes (shared: a summary taken while the sweep goes on does not copy them).
     #[serde(skip)]
     pub swept: Option<std::sync::Arc<super::envelope::SweptHoses>>,
+    /// The checked instant the hoses bent furthest past their minimum (the tightest,
+    /// when no minimum is checked) and every part's pose then (the identity for a part
+    /// that stands still): the envelope picture draws the parts there.
+    #[serde(skip)]
+    pub worst_bend_poses: Option<PosedInstant>,
+}
+
+/// Every part's pose at one instant.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PosedInstant {
+    /// When \[s\].
+    pub time: f64,
+    /// How far past its minimum the worst bend was (κ·r_min; the curvature \[1/m\] when
+    /// no minimum is checked): a later instant replaces this one only if it is worse.
+    pub severity: f64,
+    /// One per part.
+    pub poses: Vec<pliant_core::kinematics::Pose>,
 }
 
 /// The worst value of one quantity over the sweep and where it was.

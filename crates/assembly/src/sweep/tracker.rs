@@ -83,6 +83,7 @@ impl MotionSweep {
                     model,
                     settings.envelope_voxel,
                 ))),
+                worst_bend_poses: None,
             },
             coordinate,
         }
@@ -98,6 +99,14 @@ impl MotionSweep {
         let rows = &mut self.found.rows;
         rows.push(t);
         rows.push(self.coordinate.at(model, state, t));
+        // the worst bend of this instant over every hose: κ·r_min where a minimum is
+        // checked, else κ
+        let checked = self
+            .found
+            .allowed_radius
+            .iter()
+            .any(|a| a.iter().any(|&r| r > 0.0));
+        let mut severity = 0.0_f64;
         for (info, allowed) in model.hoses.iter().zip(&self.found.allowed_radius) {
             let (mut k, mut tw, mut force) = (0.0_f64, 0.0_f64, 0.0_f64);
             let (mut ratio, mut limit) = (0.0_f64, allowed.first().copied().unwrap_or(0.0));
@@ -112,7 +121,27 @@ impl MotionSweep {
                 force = force.max(axial_force(model, state, e).abs());
             }
             rows.extend([1.0 / k, ratio, limit, tw, force]);
+            severity = severity.max(if checked { ratio } else { k });
         }
+        let worse = self
+            .found
+            .worst_bend_poses
+            .as_ref()
+            .is_none_or(|w| severity > w.severity);
+        if worse {
+            let w = self
+                .found
+                .worst_bend_poses
+                .get_or_insert_with(Default::default);
+            w.time = t;
+            w.severity = severity;
+            w.poses.clear();
+            w.poses.extend(
+                (0..model.environment.parts.len())
+                    .map(|k| model.kinematics.placement_at(k, t, &state.part_moves).pose),
+            );
+        }
+        let rows = &mut self.found.rows;
         for &(h, p) in &self.found.pairs {
             let nodes = model.hoses[h].nodes();
             let pose = model

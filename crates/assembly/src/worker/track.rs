@@ -15,6 +15,7 @@ use super::settings::WorkerSettings;
 use crate::series_cap::SeriesCap;
 use crate::workcell::HandRecord;
 use glam::DVec3;
+use pliant_core::kinematics::Pose;
 use pliant_core::{Model, State};
 use pliant_worker::reba::RebaScore;
 use pliant_worker::rula::RulaScore;
@@ -106,6 +107,10 @@ pub struct WorkerSummary {
     pub worst_reba: Option<ScoreAt<RebaScore>>,
     /// The posture at the worst RULA score (the report's picture).
     pub worst_posture: Option<Posture>,
+    /// Every part's pose at that instant (the identity for a part that stands still), so
+    /// that the picture draws a moving part where it was.
+    #[serde(skip)]
+    pub worst_part_poses: Vec<Pose>,
     /// Posed instants per posture class: upright, bent trunk, arms above shoulder.
     pub class_instants: ClassInstants,
     pub decide: bool,
@@ -146,6 +151,7 @@ pub struct WorkerTrack {
     worst_rula: Option<ScoreAt<RulaScore>>,
     worst_reba: Option<ScoreAt<RebaScore>>,
     worst_posture: Option<Posture>,
+    worst_part_poses: Vec<Pose>,
     /// The last posed instant; its class chooses the force limits' rows (SPEC E2).
     now: Option<WorkerNow>,
     /// A VR user's body posing the worker (the last [`crate::Input::WorkerPose`]).
@@ -175,6 +181,7 @@ impl WorkerTrack {
             worst_rula: None,
             worst_reba: None,
             worst_posture: None,
+            worst_part_poses: Vec::new(),
             now: None,
             body_pose: None,
             class_instants: [0; 3],
@@ -199,6 +206,7 @@ impl WorkerTrack {
         self.worst_rula = None;
         self.worst_reba = None;
         self.worst_posture = None;
+        self.worst_part_poses.clear();
         self.now = None;
         self.body_pose = None;
         self.class_instants = [0; 3];
@@ -368,6 +376,14 @@ impl WorkerTrack {
                 time,
             });
             self.worst_posture = Some(posture);
+            self.worst_part_poses.clear();
+            self.worst_part_poses
+                .extend((0..model.environment.parts.len()).map(|k| {
+                    model
+                        .kinematics
+                        .placement_at(k, time, &state.part_moves)
+                        .pose
+                }));
         }
         if self
             .worst_reba
@@ -486,6 +502,7 @@ impl WorkerTrack {
             worst_rula: self.worst_rula,
             worst_reba: self.worst_reba,
             worst_posture: self.worst_posture,
+            worst_part_poses: self.worst_part_poses.clone(),
             class_instants: ClassInstants {
                 upright: self.class_instants[PostureClass::Upright.index()],
                 bent_trunk: self.class_instants[PostureClass::BentTrunk.index()],
