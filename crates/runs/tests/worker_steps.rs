@@ -104,7 +104,8 @@ fn a_target_just_beyond_reach_is_reached_after_one_step() {
     assert!(
         v.worker
             .iter()
-            .any(|l| l == "the 50th-percentile man steps 0.25 m forward at t = 0.00 s (to reach hand 0)"),
+            .any(|l| l
+                == "the 50th-percentile man steps 0.25 m forward at t = 0.00 s (to reach hand 0)"),
         "{:?}",
         v.worker
     );
@@ -131,7 +132,10 @@ fn a_far_target_is_still_out_of_reach_after_the_longest_step() {
     }
     let v = Verdict::judge(&run, None, Stage::Final);
     assert_eq!(v.feasible, Some(false));
-    let words = format!("out of reach for the 50th-percentile man by {:.0} mm", expected * 1e3);
+    let words = format!(
+        "out of reach for the 50th-percentile man by {:.0} mm",
+        expected * 1e3
+    );
     assert!(
         v.reasons.iter().any(|r| r.starts_with(&words)),
         "{words}: {:?}",
@@ -154,7 +158,13 @@ fn stepping_replays_bit_for_bit() {
     run_timeline(&mut live, &s.timeline, &mut NoObserver).unwrap();
     assert_eq!(live.summary().worker.unwrap().step_count, 1);
     let mut again = s.workcell(options).unwrap();
-    replay(&mut again, &live.log().to_vec(), live.tick(), &mut NoObserver).unwrap();
+    replay(
+        &mut again,
+        &live.log().to_vec(),
+        live.tick(),
+        &mut NoObserver,
+    )
+    .unwrap();
     assert_eq!(again.worker_series(), live.worker_series());
     assert_eq!(again.summary().worker, live.summary().worker);
 }

@@ -12,10 +12,12 @@
 //! to reach with the trunk upright — people step rather than bend at the waist when a
 //! step is possible (a modelling choice).
 //!
-//! Walking (VR): the stance follows the headset's floor projection when that lies more
-//! than [`lean_reach`] from it — the eyes' horizontal travel when the trunk bends
-//! through RULA's first band (20°; McAtamney & Corlett 1993): a smaller offset is a lean,
-//! a larger one a step.
+//! Walking (VR): the trunk is a rod of length L = eye height − hip height pivoting at
+//! the lumbar joint, so a lean that puts the eyes at height h above the hips moves them
+//! at most √(L² − h²) horizontally; the head turning on the neck adds at most the
+//! head's length above the shoulders. A headset further from the stance than that
+//! ([`lean_reach`]) cannot be reached by leaning: the user stepped, and the stance moves
+//! under the headset (the pelvis under the head).
 
 use crate::anthropometry::Body;
 use crate::placement::Placement;
@@ -34,10 +36,13 @@ pub fn max_step(body: &Body) -> f64 {
     STEP_FRACTION * body.stature
 }
 
-/// The horizontal distance the eyes travel when the trunk bends forward by 20° at the
-/// lumbar joint \[m\] (module doc): offsets of the head smaller than this are leans.
-pub fn lean_reach(body: &Body) -> f64 {
-    (body.dims.eye_height - body.dims.hip_height) * 20f64.to_radians().sin()
+/// How far from the stance, horizontally, leaning can bring the eyes when they are
+/// `height` above the floor \[m\] (module doc): offsets of the head within this are leans.
+pub fn lean_reach(body: &Body, height: f64) -> f64 {
+    let d = &body.dims;
+    let trunk = d.eye_height - d.hip_height;
+    let above_hips = height - d.hip_height;
+    (trunk * trunk - above_hips * above_hips).max(0.0).sqrt() + (d.eye_height - d.shoulder_height)
 }
 
 /// The step (a horizontal displacement of the stance \[m\]) that brings `target` within
@@ -69,8 +74,9 @@ pub fn reach_step(body: &Body, placement: &Placement, side: Side, target: DVec3)
 /// below them), `None` while they are within [`lean_reach`] of it (module doc).
 pub fn walk_step(body: &Body, placement: &Placement, eyes: DVec3) -> Option<DVec3> {
     let offset = eyes - placement.position;
-    let horizontal = offset - offset.dot(placement.up) * placement.up;
-    (horizontal.length() > lean_reach(body)).then_some(horizontal)
+    let height = offset.dot(placement.up);
+    let horizontal = offset - height * placement.up;
+    (horizontal.length() > lean_reach(body, height)).then_some(horizontal)
 }
 
 /// A step in words relative to the stance it was taken from: its length and the nearest

@@ -105,10 +105,32 @@ fn a_step_sideways_is_worded_sideways() {
 fn the_stance_walks_with_the_headset_beyond_a_lean() {
     let m = man();
     let b = &m.body;
+    let head = b.dims.eye_height - b.dims.shoulder_height;
+    // eyes where a lean of the manikin puts them, the neck bent or not: no step
+    for flexion in [0.0f64, 20.0, 45.0, 80.0] {
+        for neck in [-40.0f64, 0.0, 45.0] {
+            let t = pliant_worker::TrunkAngles {
+                flexion: flexion.to_radians(),
+                ..Default::default()
+            };
+            let gaze = DVec3::new(1.0, 0.0, -neck.to_radians().tan());
+            let h = pliant_worker::HeadTarget {
+                eyes: DVec3::ZERO,
+                gaze,
+            };
+            let eyes = m.posture_with_head(t, [None; 2], Some(h)).joints.head;
+            assert!(
+                walk_step(b, &m.placement, eyes).is_none(),
+                "{flexion}° {neck}°: {eyes}"
+            );
+        }
+    }
+    // upright eyes: a step once they are more than the head's length away
     let eye = b.dims.eye_height;
-    // a lean of 20° at the lumbar joint moves the eyes this far forward
-    let lean = (b.dims.eye_height - b.dims.hip_height) * 20f64.to_radians().sin();
-    assert!(walk_step(b, &m.placement, DVec3::new(0.99 * lean, 0.0, eye)).is_none());
-    let step = walk_step(b, &m.placement, DVec3::new(-0.5, 0.3, eye - 0.2)).unwrap();
-    assert_eq!(step, DVec3::new(-0.5, 0.3, 0.0));
+    assert!(walk_step(b, &m.placement, DVec3::new(0.99 * head, 0.0, eye)).is_none());
+    let step = walk_step(b, &m.placement, DVec3::new(-0.3, 0.2, eye)).unwrap();
+    assert_eq!(step, DVec3::new(-0.3, 0.2, 0.0));
+    // a taller user's eyes: still a step only beyond the head's length
+    assert!(walk_step(b, &m.placement, DVec3::new(0.99 * head, 0.0, eye + 0.2)).is_none());
+    assert!(walk_step(b, &m.placement, DVec3::new(1.01 * head, 0.0, eye + 0.2)).is_some());
 }
