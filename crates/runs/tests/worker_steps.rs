@@ -105,7 +105,7 @@ fn a_target_just_beyond_reach_is_reached_after_one_step() {
         v.worker
             .iter()
             .any(|l| l
-                == "the 50th-percentile man steps 0.25 m forward at t = 0.00 s (to reach hand 0)"),
+                == "the 50th-percentile man steps 0.25 m forward at t = 0.01 s (to reach hand 0)"),
         "{:?}",
         v.worker
     );
