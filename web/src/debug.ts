@@ -38,6 +38,9 @@ export function installDebugHandle(app: App): void {
     get xrHandIds() { return src.xr.hands.map((h) => src.xr.handBase + h.handId); },
     get inVr() { return src.xr.inSession; },
     get xrMode() { return src.xr.mode; },
+    get xrHitTest() { return src.xr.hitTest; },
+    /** AR: stands the scene on a real surface at `hit` (three.js space), as select on the reticle does. */
+    xrStandOn(hit: [number, number, number]) { src.xr.standOn(hit); },
     /** The worker drawn: shown or not, its capsules (manikin_model.ts), the panel's lines. */
     manikin(): { visible: boolean; capsules: ManikinCapsule[]; lines: string[] } {
       const lines = [...document.querySelectorAll('#worker div')].map((d) => d.textContent ?? '');

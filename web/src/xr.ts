@@ -7,7 +7,9 @@
 // holding re-grabs with the new grip at once. While in VR, the scene is placed in front of
 // the user at working height. An "Enter AR" button, where the device supports
 // `immersive-ar`, starts the same with the real world behind: the scene stands on the real
-// floor (xr_placement.ts), without its own background, fog and ground.
+// floor (xr_placement.ts), without its own background, fog and ground; where the device
+// has the WebXR hit test (`hit-test`), a reticle shows where the view's ray meets a real
+// surface facing up, and select stands the scene's lowest point there (a table).
 
 import * as THREE from 'three';
 import { nextGrip, type Grip } from './grips';
@@ -15,7 +17,8 @@ import type { Net } from './net';
 import type { Stage } from './scene';
 import { canvasSprite, type CanvasSprite } from './sprite';
 import { bodyPoseDue, bodyPoseMessage } from './xr_body';
-import { xrOffset, type XrMode } from './xr_placement';
+import type { Vec3 } from './protocol';
+import { facesUp, hitOffset, xrOffset, type XrMode } from './xr_placement';
 
 interface XrHand {
   grip: THREE.Group;
@@ -60,6 +63,14 @@ export class XrHands {
   /** When the last `worker_pose` was sent [ms]. */
   private lastBodyPose = -Infinity;
   private readonly ahead = new THREE.Vector3();
+  /** AR's hit test: requested, running, or not offered by the device or browser (the
+   *  scene then stays on the floor); null outside AR. */
+  hitTest: 'pending' | 'available' | 'unavailable' | null = null;
+  private hitSource: XRHitTestSource | null = null;
+  /** Where the view's ray meets a real surface facing up (shown when it does). */
+  private readonly reticle: THREE.Mesh;
+  /** The surface point the scene stands on in AR (three.js space); null: the floor. */
+  private surface: Vec3 | null = null;
 
   constructor(private readonly stage: Stage, private readonly net: Net, parent: HTMLElement) {
     const xr = stage.renderer.xr;
@@ -73,6 +84,13 @@ export class XrHands {
     this.arButton.textContent = 'AR not available';
     this.arButton.disabled = true;
     parent.append(this.button, this.arButton);
+    this.reticle = new THREE.Mesh(
+      new THREE.RingGeometry(0.04, 0.05, 32).rotateX(-Math.PI / 2),
+      new THREE.MeshBasicMaterial({ color: 0x3fb950 }),
+    );
+    this.reticle.matrixAutoUpdate = false;
+    this.reticle.visible = false;
+    stage.scene.add(this.reticle);
     void this.checkSupport();
     this.button.onclick = () => void this.toggle('immersive-vr');
     this.arButton.onclick = () => void this.toggle('immersive-ar');
@@ -123,7 +141,8 @@ export class XrHands {
       return;
     }
     if (navigator.xr === undefined) return;
-    const session = await navigator.xr.requestSession(mode, { optionalFeatures: ['local-floor'] });
+    const optionalFeatures = mode === 'immersive-ar' ? ['local-floor', 'hit-test'] : ['local-floor'];
+    const session = await navigator.xr.requestSession(mode, { optionalFeatures });
     this.stage.renderer.xr.setReferenceSpaceType('local-floor');
     await this.stage.renderer.xr.setSession(session);
     this.session = session;
@@ -134,8 +153,19 @@ export class XrHands {
     const backdrop = { background: this.stage.scene.background, fog: this.stage.scene.fog };
     if (mode === 'immersive-ar') this.showBackdrop(false);
     this.place(true);
+    if (mode === 'immersive-ar') {
+      void this.startHitTest(session);
+      session.addEventListener('select', () => {
+        if (this.reticle.visible) this.standOn(this.reticle.position.toArray());
+      });
+    }
     session.addEventListener('end', () => {
       for (const h of this.hands) this.release(h);
+      this.hitSource?.cancel();
+      this.hitSource = null;
+      this.hitTest = null;
+      this.surface = null;
+      this.reticle.visible = false;
       this.session = null;
       this.mode = null;
       button.textContent = `Enter ${word}`;
@@ -165,10 +195,57 @@ export class XrHands {
     if (inSession && this.mode !== null) {
       const c = this.stage.toThree([this.stage.centre.x, this.stage.centre.y, this.stage.centre.z]);
       const lowest = new THREE.Box3().setFromObject(w).min.y;
-      w.position.set(...xrOffset(this.mode, [c.x, c.y, c.z], Number.isFinite(lowest) ? lowest : c.y));
+      const low = Number.isFinite(lowest) ? lowest : c.y;
+      const onSurface = this.mode === 'immersive-ar' && this.surface !== null;
+      w.position.set(...(onSurface && this.surface !== null ? hitOffset([c.x, c.y, c.z], low, this.surface) : xrOffset(this.mode, [c.x, c.y, c.z], low)));
       if (this.mode === 'immersive-ar') this.showBackdrop(false);
     }
     w.updateMatrixWorld(true);
+  }
+
+  /** AR: asks for a hit test along the view's ray; a device or browser without it
+   *  (NotSupportedError, or an emulator without a synthetic environment) leaves the scene
+   *  on the floor. */
+  private async startHitTest(session: XRSession): Promise<void> {
+    this.hitTest = 'pending';
+    try {
+      if (session.requestHitTestSource === undefined) throw new Error('no hit test');
+      const viewer = await session.requestReferenceSpace('viewer');
+      const source = await session.requestHitTestSource({ space: viewer });
+      if (this.session !== session || source === undefined) {
+        source?.cancel();
+        return;
+      }
+      this.hitSource = source;
+      this.hitTest = 'available';
+    } catch {
+      if (this.session === session) this.hitTest = 'unavailable';
+    }
+  }
+
+  /** AR: the scene's lowest point onto the real surface at `hit` (three.js space), its
+   *  centre above it. */
+  standOn(hit: Vec3): void {
+    if (this.mode !== 'immersive-ar') return;
+    this.surface = hit;
+    this.place(true);
+  }
+
+  /** The reticle where this frame's first hit on a surface facing up is. */
+  private showReticle(): void {
+    const frame = this.stage.renderer.xr.getFrame();
+    const space = this.stage.renderer.xr.getReferenceSpace();
+    this.reticle.visible = false;
+    if (this.hitSource === null || frame === null || space === null) return;
+    for (const hit of frame.getHitTestResults(this.hitSource)) {
+      const pose = hit.getPose(space);
+      const q = pose?.transform.orientation;
+      if (pose === undefined || q === undefined || !facesUp([q.x, q.y, q.z, q.w])) continue;
+      this.reticle.matrix.fromArray(pose.transform.matrix);
+      this.reticle.matrix.decompose(this.reticle.position, this.reticle.quaternion, this.reticle.scale);
+      this.reticle.visible = true;
+      return;
+    }
   }
 
   private grab(h: XrHand): void {
@@ -220,6 +297,7 @@ export class XrHands {
       h.buttonDown = down;
     });
     this.sendBodyPose();
+    this.showReticle();
     for (const h of this.hands) {
       if (!h.held) continue;
       h.grip.getWorldPosition(this.pos);

@@ -4,7 +4,8 @@
 // trunk red: it is inside the bar), follows the hand as it moves, and lists reach and the
 // posture scores in the panel. The emulated headset (iwer) offers `immersive-ar`: the
 // viewer enters it, drops its own backdrop, stands the scene on the real floor, and a
-// controller grabs a hose as in VR. Every wait is for a condition (HANG_GUARD_MS only
+// controller grabs a hose as in VR; the emulator has no surfaces to hit (no synthetic
+// environment), so the floor placement stays and the table placement is driven directly. Every wait is for a condition (HANG_GUARD_MS only
 // stops a hung test); nothing depends on the machine's speed.
 
 import assert from 'node:assert/strict';
@@ -78,6 +79,14 @@ describe('worker and AR', () => {
       await page.waitForFunction((ids) => (window.pliant.snapshot?.hands ?? []).some((h) => ids.includes(h.hand_id) && h.hose === 0), ids);
       await page.evaluate(() => window.pliantXrDevice.controllers.right.updateButtonValue('squeeze', 0));
       await page.waitForFunction((ids) => !(window.pliant.snapshot?.hands ?? []).some((h) => ids.includes(h.hand_id)), ids);
+      // the emulated device offers `hit-test` but, without a synthetic environment (IWER's
+      // SEM), no surface: the scene stays on the floor; standing it on a surface as select
+      // on the reticle does puts its lowest point there
+      await page.waitForFunction(() => window.pliant.xrHitTest === 'unavailable');
+      assert.ok(Math.abs(await page.evaluate(() => window.pliant.sceneLowest)) < 1e-6, 'still on the floor');
+      await page.evaluate(() => window.pliant.xrStandOn([0.2, 0.75, -1.0]));
+      assert.ok(Math.abs((await page.evaluate(() => window.pliant.sceneLowest)) - 0.75) < 1e-6, 'on the table');
+      assert.ok(!logs.some((l) => l.startsWith('pageerror')), logs.join('\n'));
       // leaving AR brings the backdrop back
       await page.evaluate(() => document.getElementById('enter-ar').click());
       await page.waitForFunction(() => !window.pliant.inVr && window.pliant.backgroundShown);

@@ -49,6 +49,8 @@ pub enum BenchOnly {
     Newton,
     /// One live snapshot of `pliant serve` beside a part of 42 and of 163 842 vertices.
     Snapshot,
+    /// One posed instant of the worker without and with 5 hoses × 30 across the body.
+    Worker,
 }
 
 /// Element length of the benchmark hoses \[m\]: 1.5 × d_a.
@@ -808,6 +810,15 @@ pub fn run(opts: &BenchOptions) -> Result<()> {
                 println!("{}", serde_json::to_string_pretty(&newton)?);
             } else {
                 print!("{}", crate::bench_newton::render(&newton));
+            }
+            Ok(())
+        }
+        Some(BenchOnly::Worker) => {
+            let cost = crate::bench_worker::measure(opts.quick)?;
+            if opts.json {
+                println!("{}", serde_json::to_string_pretty(&cost)?);
+            } else {
+                print!("{}", crate::bench_worker::render(&cost));
             }
             Ok(())
         }

@@ -11,6 +11,7 @@ mod bench_engine_bay;
 mod bench_harness;
 mod bench_newton;
 mod bench_snapshot;
+mod bench_worker;
 mod calibrate_cmd;
 mod export_cmd;
 mod import_cmd;

@@ -960,7 +960,8 @@ impl Simulation {
     /// ``placement``, ``instants``, ``reach`` (per arm, right then left: ``worst``
     /// residual [m], its ``time`` [s], ``hand``, ``first_out``, ``last_out``),
     /// ``collisions`` (segment, part, depth [m], times), ``worst_rula`` and
-    /// ``worst_reba`` (every body-part score and the time), ``worst_posture``,
+    /// ``worst_reba`` (every body-part score and the time), ``worst_posture``, ``steps``
+    /// and ``step_count`` (the steps taken, ``[worker] steps``),
     /// ``findings`` (out of reach and body collisions, typed) and ``series``: one list per
     /// column of ``worker.csv`` (``time``, ``right_residual`` and ``left_residual`` —
     /// ``None`` where the arm has no target —, ``rula``, ``reba``, ``trunk_flexion``, …

@@ -66,8 +66,23 @@ fn pose(k: usize) -> BodyPose {
     }
 }
 
-/// The live session: a hand holds the hose end, and (with `vr`) headset poses arrive.
-fn live_session(vr: bool, dir: &std::path::Path) -> pliant_assembly::Workcell {
+/// The headset walking forward upright, 50 mm per pose, looking ahead.
+fn walking(k: usize) -> BodyPose {
+    let eye = manikin().body.dims.eye_height;
+    BodyPose {
+        head: Some(HeadTarget {
+            eyes: DVec3::new(0.05 * k as f64, 0.0, eye),
+            gaze: DVec3::X,
+        }),
+        hands: [None, None],
+    }
+}
+
+/// The live session: a hand holds the hose end, and (with `poses`) headset poses arrive.
+fn live_session(
+    poses: Option<fn(usize) -> BodyPose>,
+    dir: &std::path::Path,
+) -> pliant_assembly::Workcell {
     let scene = load_scene_str(SCENE, "vr.toml").unwrap();
     let options = WorkcellOptions {
         solver: Some(SolverKind::Explicit),
@@ -88,7 +103,7 @@ fn live_session(vr: bool, dir: &std::path::Path) -> pliant_assembly::Workcell {
     })
     .unwrap();
     for k in 0..12 {
-        if vr {
+        if let Some(pose) = poses {
             live.apply(Input::WorkerPose { pose: pose(k) }).unwrap();
         }
         let n = live.steps_in(0.02);
@@ -102,7 +117,7 @@ fn live_session(vr: bool, dir: &std::path::Path) -> pliant_assembly::Workcell {
 #[test]
 fn headset_inputs_are_logged_and_replay_bit_for_bit() {
     let dir = tempfile::tempdir().unwrap();
-    let live = live_session(true, dir.path());
+    let live = live_session(Some(pose), dir.path());
     let series = live.worker_series();
     assert!(series.len() > 5, "{}", series.len());
     // the manikin's eyes are where the headset is; the left arm follows its controller
@@ -143,8 +158,54 @@ fn headset_inputs_are_logged_and_replay_bit_for_bit() {
 
     // without the headset: another posture
     let other = tempfile::tempdir().unwrap();
-    let plain = live_session(false, other.path());
+    let plain = live_session(None, other.path());
     assert_ne!(plain.worker_series(), live.worker_series());
+    // a headset that leans does not move the feet
+    assert_eq!(live.summary().worker.unwrap().step_count, 0);
+}
+
+/// The feet walk with the user: a headset walking 0.55 m forward upright moves the
+/// stance under it in steps just longer than a lean reaches (the head's length above
+/// the shoulders, upright), reported, and replayed bit for bit.
+#[test]
+fn the_feet_walk_with_the_headset_and_replay_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let live = live_session(Some(walking), dir.path());
+    let w = live.summary().worker.unwrap();
+    let b = manikin().body;
+    let head = b.dims.eye_height - b.dims.shoulder_height;
+    assert!(w.step_count >= 2, "{:?}", w.steps);
+    for s in &w.steps {
+        assert_eq!(s.cause, pliant_assembly::worker::StepCause::Walk);
+        assert!(s.length > head && s.length <= head + 0.05 + 1e-12, "{s:?}");
+        assert!(s.words.ends_with(" m forward"), "{s:?}");
+        assert_eq!(s.to.y, 0.0);
+        assert_eq!(s.to.z, 0.0);
+    }
+    // the last step put the pelvis under the headset then: within one lean of the last pose
+    let last = w.placement.unwrap().position;
+    assert!(0.55 - last.x <= head, "{last}");
+    let v = pliant_assembly::Verdict::judge(&live.summary(), None, pliant_assembly::Stage::Final);
+    assert!(
+        v.worker
+            .iter()
+            .any(|l| l.starts_with("the 5th-percentile woman steps ")
+                && l.ends_with("(with the VR user)")),
+        "{:?}",
+        v.worker
+    );
+    let session = Session::open(dir.path()).unwrap();
+    let mut again = session.workcell().unwrap();
+    replay(
+        &mut again,
+        &session.log.inputs,
+        session.log.end_tick,
+        &mut NoObserver,
+    )
+    .unwrap();
+    assert_eq!(again.worker_series(), live.worker_series());
+    assert_eq!(again.summary().worker, live.summary().worker);
+    assert_eq!(again.worker().unwrap().now(), live.worker().unwrap().now());
 }
 
 #[test]

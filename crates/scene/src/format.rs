@@ -240,6 +240,10 @@ pub struct WorkerSection {
     /// Whether a hand target out of reach or a body segment inside a part makes the study
     /// NOT FEASIBLE (else they are warnings). Default true.
     pub decide: Option<bool>,
+    /// Whether the worker may step towards a hand target out of reach with the feet
+    /// kept: at most one step (0.4 of stature) from where it was placed, reported as a
+    /// step; out of reach only when still so after it. Default false.
+    pub steps: Option<bool>,
 }
 
 /// `[worker] position`: a point or `"auto"`.

@@ -89,6 +89,7 @@ pub fn build_worker(
         stance,
         interval,
         decide: raw.decide.unwrap_or(true),
+        steps: raw.steps.unwrap_or(false),
         scores: ScoreOptions {
             static_or_repeated: false,
             coupling,

@@ -21,8 +21,8 @@
 //! reach, and biases a reached target by well under a micrometre). The same targets always give the same posture bit for bit: the search
 //! visits its points in a fixed order and keeps the first of equal costs.
 //!
-//! What the model does not do: knees and hips stay straight (no squatting, kneeling or
-//! stepping — the feet stay where the worker was placed), the wrist stays straight, the
+//! What the model does not do: knees and hips stay straight (no squatting or kneeling;
+//! the feet stay where the worker was placed — a step moves the placement, [`crate::step`]), the wrist stays straight, the
 //! shoulder girdle does not move (no shoulder raising or protraction), and the shoulder's
 //! adduction and rotation are not limited.
 

@@ -13,6 +13,7 @@
 //! - [`posture_class`]: upright, bent trunk or arms above shoulder, for the force limits;
 //! - [`ik`]: the inverse kinematics ([`Manikin::solve`]);
 //! - [`mod@capsules`]: the body of capsules of a posture;
+//! - [`step`]: where the feet step when a target is out of reach or a VR user walks;
 //! - [`rula`], [`reba`]: the two posture scores, their tables in their own files;
 //! - [`scores`]: both scores of a manikin posture with the hands' forces.
 
@@ -27,6 +28,7 @@ pub mod quantile;
 pub mod reba;
 pub mod rula;
 pub mod scores;
+pub mod step;
 
 pub use anthropometry::{body, stature, Body, JointLimits, Population, Sex};
 pub use capsules::{capsules, Capsule, Segment, CAPSULE_COUNT, SEGMENTS};
@@ -38,3 +40,4 @@ pub use posture_class::PostureClass;
 pub use reba::{Coupling, RebaInput, RebaScore};
 pub use rula::{RulaInput, RulaScore};
 pub use scores::{score_posture, PostureScores, ScoreOptions};
+pub use step::{describe_step, max_step, reach_step, walk_step, STEP_FRACTION};

@@ -10,7 +10,7 @@ use crate::checks::Violation;
 use crate::ergonomics::{table_posture, LoadKind, RiskZone, Standard};
 use crate::fastener_state::{FastenerKind, FastenerState};
 use crate::sweep::{ClearanceViolation, MotionExtremes};
-use crate::worker::{PostureNote, WorkerFinding};
+use crate::worker::{PostureNote, StepNote, WorkerFinding};
 use pliant_worker::PostureClass;
 use serde::Serialize;
 use std::fmt;
@@ -104,6 +104,10 @@ pub enum Reason {
     Posture(PostureNote),
     /// A worker in the scene never posed: no hand acted.
     NotPosed { who: String },
+    /// A step the worker took (to reach, or with a VR user).
+    Step(StepNote),
+    /// How many more steps the worker took than are listed.
+    MoreSteps { count: u64 },
     /// Over a range of motion: each hose's smallest bend radius and the smallest
     /// clearance with where they were.
     MotionExtremes(MotionExtremes),
@@ -313,6 +317,8 @@ impl fmt::Display for Reason {
             Reason::Worker { finding } => f.write_str(&finding.describe()),
             Reason::Posture(note) => note.fmt(f),
             Reason::NotPosed { who } => write!(f, "{who}: not posed (no hand acted)"),
+            Reason::Step(note) => note.fmt(f),
+            Reason::MoreSteps { count } => write!(f, "and {count} more steps"),
             Reason::MotionExtremes(extremes) => extremes.fmt(f),
             Reason::Contact {
                 part,

@@ -206,6 +206,13 @@ impl Verdict {
                 }
                 None => found.worker.push(Reason::NotPosed { who: w.who.clone() }),
             }
+            found
+                .worker
+                .extend(w.steps.iter().cloned().map(Reason::Step));
+            let unlisted = w.step_count.saturating_sub(w.steps.len() as u64);
+            if unlisted > 0 {
+                found.worker.push(Reason::MoreSteps { count: unlisted });
+            }
         }
         if let Some(s) = sweep {
             for c in s.clearance_violations() {

@@ -8,6 +8,7 @@ pub mod collisions;
 pub mod finding;
 pub mod posture_note;
 pub mod settings;
+pub mod step_note;
 pub mod track;
 
 pub use body_pose::BodyPose;
@@ -15,7 +16,8 @@ pub use collisions::{Obstacle, Penetration};
 pub use finding::WorkerFinding;
 pub use posture_note::PostureNote;
 pub use settings::{Stance, WorkerSettings, AUTO_REACH_FRACTION};
+pub use step_note::{StepCause, StepNote};
 pub use track::{
     BodyCollision, ClassInstants, ReachRecord, ScoreAt, WorkerNow, WorkerSample, WorkerSummary,
-    WorkerTrack, REACH_TOLERANCE,
+    WorkerTrack, MAX_STEP_NOTES, REACH_TOLERANCE,
 };

@@ -37,6 +37,9 @@ pub struct WorkerSettings {
     /// Whether a hand target out of reach or a body segment inside a part makes the
     /// study NOT FEASIBLE (else they are warnings).
     pub decide: bool,
+    /// Whether the worker may step towards a hand target out of reach with the feet
+    /// kept ([`pliant_worker::step`]); a VR user's walking moves the stance either way.
+    pub steps: bool,
     /// What the posture scores need beyond the posture (REBA's coupling; whether the
     /// work is static is taken from the ergonomic profile's duty as the study runs).
     pub scores: ScoreOptions,

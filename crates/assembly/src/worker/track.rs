@@ -12,6 +12,7 @@ use super::collisions::{checked, deepest, Obstacle, Penetration};
 use super::finding::WorkerFinding;
 use super::posture_note::PostureNote;
 use super::settings::WorkerSettings;
+use super::step_note::{StepCause, StepNote};
 use crate::series_cap::SeriesCap;
 use crate::workcell::HandRecord;
 use glam::DVec3;
@@ -21,14 +22,21 @@ use pliant_worker::reba::RebaScore;
 use pliant_worker::rula::RulaScore;
 use pliant_worker::scores::PostureScores;
 use pliant_worker::{
-    body, capsules, score_posture, Body, Manikin, Placement, Posture, PostureClass, ScoreOptions,
-    Side, WorkerError, CAPSULE_COUNT,
+    body, capsules, describe_step, reach_step, score_posture, walk_step, Body, Manikin, Placement,
+    Posture, PostureClass, ScoreOptions, Segment, Side, TrunkAngles, WorkerError, CAPSULE_COUNT,
 };
 use serde::Serialize;
 
 /// A hand target farther than this from the grip centre is out of reach \[m\] (1 mm: the
 /// inverse kinematics reaches targets within reach to well under 0.1 mm).
 pub const REACH_TOLERANCE: f64 = 1e-3;
+
+/// The steps kept for the verdict and the summary (the first ones; all are counted).
+pub const MAX_STEP_NOTES: usize = 100;
+
+/// How many times a step that would put the legs into a part or hose is halved before
+/// the worker keeps the feet instead.
+const STEP_HALVINGS: usize = 3;
 
 /// One posed instant, a row of `worker.csv`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
@@ -113,6 +121,9 @@ pub struct WorkerSummary {
     pub worst_part_poses: Vec<Pose>,
     /// Posed instants per posture class: upright, bent trunk, arms above shoulder.
     pub class_instants: ClassInstants,
+    /// The first [`MAX_STEP_NOTES`] steps the worker took, and how many in all.
+    pub steps: Vec<StepNote>,
+    pub step_count: u64,
     pub decide: bool,
 }
 
@@ -144,6 +155,10 @@ pub struct WorkerTrack {
     settings: WorkerSettings,
     body: Body,
     manikin: Option<Manikin>,
+    /// Where the worker was first placed: a step to reach goes at most one step from it.
+    home: Option<Placement>,
+    steps: Vec<StepNote>,
+    step_count: u64,
     next_time: f64,
     instants: u64,
     reach: [ReachRecord; 2],
@@ -174,6 +189,9 @@ impl WorkerTrack {
             settings,
             body,
             manikin: None,
+            home: None,
+            steps: Vec::new(),
+            step_count: 0,
             next_time: 0.0,
             instants: 0,
             reach: Default::default(),
@@ -199,6 +217,9 @@ impl WorkerTrack {
             super::settings::Stance::At(p) => Some(Manikin::new(self.body, p)),
             super::settings::Stance::Auto { .. } => None,
         };
+        self.home = self.manikin.map(|m| m.placement);
+        self.steps.clear();
+        self.step_count = 0;
         self.next_time = 0.0;
         self.instants = 0;
         self.reach = Default::default();
@@ -276,7 +297,7 @@ impl WorkerTrack {
             0.0
         };
         let head = self.body_pose.and_then(|b| b.head);
-        let manikin = match (self.manikin, records.first(), head) {
+        let mut manikin = match (self.manikin, records.first(), head) {
             (Some(m), _, _) => m,
             (None, Some(first), _) => {
                 let p = self.settings.stance.place(first.load.position, &self.body);
@@ -291,6 +312,10 @@ impl WorkerTrack {
             }
             (None, None, None) => return,
         };
+        self.home.get_or_insert(manikin.placement);
+        if let Some(step) = head.and_then(|h| walk_step(&self.body, &manikin.placement, h.eyes)) {
+            self.take_step(&mut manikin, step, time, StepCause::Walk);
+        }
         // the first two hands; the one further to the worker's right to the right arm; a
         // single hand to the arm on its side, but it stays with the arm that held it
         // until it is a quarter shoulder width past the midline
@@ -330,7 +355,13 @@ impl WorkerTrack {
                 }
             }
         }
-        let posture = manikin.solve_with_head(target, head);
+        let mut posture = manikin.solve_with_head(target, head);
+        if self.settings.steps && head.is_none() {
+            if let Some((step, hand)) = self.reach_step(model, state, &manikin, &posture, hand) {
+                self.take_step(&mut manikin, step, time, StepCause::Reach { hand });
+                posture = manikin.solve_with_head(target, head);
+            }
+        }
         let options = ScoreOptions {
             static_or_repeated: static_work,
             ..self.settings.scores
@@ -406,6 +437,76 @@ impl WorkerTrack {
             class,
             contacts,
         });
+    }
+
+    /// The step towards the target of the arm furthest out of reach, from where the
+    /// worker was first placed ([`pliant_worker::reach_step`]), and that arm's hand;
+    /// `None` when both arms reach, no step helps, the stance is there already, or the
+    /// legs would be inside a part or hose at the new stance even after
+    /// [`STEP_HALVINGS`] halvings of the step.
+    fn reach_step(
+        &self,
+        model: &Model,
+        state: &State,
+        manikin: &Manikin,
+        posture: &Posture,
+        hand: [Option<usize>; 2],
+    ) -> Option<(DVec3, usize)> {
+        let home = self.home?;
+        let side = Side::BOTH
+            .into_iter()
+            .filter(|s| posture.arms[s.index()].residual > REACH_TOLERANCE)
+            .max_by(|a, b| {
+                posture.arms[a.index()]
+                    .residual
+                    .total_cmp(&posture.arms[b.index()].residual)
+            })?;
+        let target = posture.arms[side.index()].target?;
+        let mut offset = reach_step(&self.body, &home, side, target)?;
+        for _ in 0..=STEP_HALVINGS {
+            let position = home.position + offset;
+            let step = position - manikin.placement.position;
+            if step.length() < 1e-9 {
+                return None;
+            }
+            let placed = Manikin::new(self.body, Placement { position, ..home });
+            if !self.legs_inside(model, state, &placed) {
+                return Some((step, hand[side.index()]?));
+            }
+            offset *= 0.5;
+        }
+        None
+    }
+
+    /// Whether the pelvis, a thigh or a shank of `manikin` standing upright is inside a
+    /// part or a hose.
+    fn legs_inside(&self, model: &Model, state: &State, manikin: &Manikin) -> bool {
+        let upright = manikin.posture(TrunkAngles::default(), [None; 2]);
+        capsules(&self.body, &upright).iter().any(|c| {
+            matches!(
+                c.segment,
+                Segment::Pelvis | Segment::Thigh(_) | Segment::Shank(_)
+            ) && deepest(model, state, c, &[None; 2], self.body.dims.hand).is_some()
+        })
+    }
+
+    /// Moves `manikin`'s stance by `step` (horizontal) and notes the step.
+    fn take_step(&mut self, manikin: &mut Manikin, step: DVec3, time: f64, cause: StepCause) {
+        let from = manikin.placement;
+        manikin.placement.position += step;
+        self.manikin = Some(*manikin);
+        self.step_count += 1;
+        if self.steps.len() < MAX_STEP_NOTES {
+            self.steps.push(StepNote {
+                who: self.settings.population.describe(),
+                time,
+                length: step.length(),
+                words: describe_step(&from, step),
+                from: from.position,
+                to: manikin.placement.position,
+                cause,
+            });
+        }
     }
 
     /// Adds the instant to the series, thinning it when full (the rows of the highest
@@ -508,6 +609,8 @@ impl WorkerTrack {
                 bent_trunk: self.class_instants[PostureClass::BentTrunk.index()],
                 arms_above_shoulder: self.class_instants[PostureClass::ArmsAboveShoulder.index()],
             },
+            steps: self.steps.clone(),
+            step_count: self.step_count,
             decide: self.settings.decide,
         }
     }
