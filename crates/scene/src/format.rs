@@ -1001,7 +1001,7 @@ pub enum ActionEntry {
     RotatePart(RotatePartEntry),
     /// Simulate for a while.
     Run(RunEntry),
-    /// Simulate until the hoses come to rest.
+    /// Relax to static equilibrium: the residual force and moment within their tolerances, nothing moving, the kinetic energy below its threshold.
     Settle(SettleEntry),
 }
 
