@@ -23,7 +23,7 @@ fi
 ./scripts/install-cad.sh
 # share the workspace's target folder (same release profile: dependencies are reused)
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}"
-# the whole workspace, as test.sh builds it: `-p pliant` alone unifies the dependencies'
-# features differently and would rebuild every crate
+# the whole workspace, as test.sh builds it (there a no-op); one feature set for every build
+# (crates/features), so the extension's build below reuses pliant-core and the crates above it
 cargo build --release --workspace
 .venv/bin/python -m pip install --quiet --force-reinstall --no-deps ./crates/python

@@ -6,13 +6,12 @@
 # end-to-end tests in headless Chromium.
 source "$(dirname "$0")/common.sh"
 ./scripts/build-web.sh     # the viewer first: the release build below embeds web/dist
-./scripts/install-cad.sh   # the STEP importer's kernel (OpenCASCADE, PyPI cadquery-ocp-novtk) into .venv
 cargo fmt --all --check    # formatting as rustfmt writes it
 (cd crates/python && cargo fmt --check)   # the Python extension is its own workspace
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps   # API docs: every link resolves
 cargo clippy --release --workspace --all-targets -- -D warnings   # lints; policy: Cargo.toml [workspace.lints]
-cargo build --release --workspace
-./scripts/install-python.sh   # the Python package into .venv: some Rust tests drive it
+cargo build --release --workspace   # one feature set (crates/features): the tests and the Python extension below reuse these builds
+./scripts/install-python.sh   # the Python package and the STEP importer's kernel into .venv: some Rust tests drive it
 (export PYO3_PYTHON="$PWD/.venv/bin/python" CARGO_TARGET_DIR="$PWD/target"; cd crates/python && cargo clippy --release --features extension-module --all-targets -- -D warnings)   # the extension's lints
 cargo test --release --workspace   # every validation case is a test here (crates/validation/tests)
 ./target/release/pliant bench --quick --json > /dev/null

@@ -9,19 +9,30 @@ use crate::fasteners::{ClipSite, StubSite};
 use crate::report::summary::{OtherStop, Stopped};
 use crate::timeline::{Action, MovePath, Timeline};
 use crate::workcell::{
-    HandNumber, InitialLoad, Input, Observer, Refusal, RunSummary, SettleOutcome, Workcell,
-    WorkcellError, WorkcellOptions, WorkcellSetup,
+    HandNumber, InitialLoad, Input, Observer, Refusal, RunSummary, SettleOptions, SettleOutcome,
+    Workcell, WorkcellError, WorkcellOptions, WorkcellSetup,
 };
 use glam::DVec3;
 use pliant_core::curve::catmull_rom;
 use pliant_core::health::Divergence;
+use pliant_core::relax::RelaxOptions;
 use pliant_core::{Model, SolverKind, State};
 use std::sync::Arc;
 
 pub use crate::workcell::{ContactEpisode, HandPeak, HandRecord, NoObserver, NodePeak};
 
-/// How often `Settle` looks at the kinetic energy, in steps.
-const SETTLE_CHECK_EVERY: u64 = 16;
+/// Whether the timeline's `settle` zeroes the velocities at each peak of the kinetic
+/// energy. No: a timeline is a history whose every step is tallied, judged and recorded,
+/// so its motion stays the model's own; the hoses come to rest under their damping.
+const SETTLE_KINETIC_DAMPING: bool = false;
+
+/// When a `settle` action is at rest.
+#[derive(Clone, Copy)]
+struct Rest {
+    force: f64,
+    moment: f64,
+    kinetic_energy: f64,
+}
 
 /// A run that stopped early.
 #[derive(Debug, thiserror::Error)]
@@ -471,9 +482,16 @@ fn apply(
         Action::Run { duration } => advance(cell, *duration, obs)?,
         Action::Settle {
             kinetic_energy_threshold,
+            force_tolerance,
+            moment_tolerance,
             max_duration,
         } => {
-            let outcome = settle(cell, index, *kinetic_energy_threshold, *max_duration, obs)?;
+            let rest = Rest {
+                force: *force_tolerance,
+                moment: *moment_tolerance,
+                kinetic_energy: *kinetic_energy_threshold,
+            };
+            let outcome = settle(cell, index, rest, *max_duration, obs)?;
             settles.push(outcome);
         }
     }
@@ -501,30 +519,33 @@ fn steps(cell: &mut Workcell, n: u64, obs: &mut dyn Observer) -> Result<(), Stop
     Ok(())
 }
 
-/// Steps until the kinetic energy is below `threshold` with nothing moving, or for at
-/// most `max_duration`.
+/// The action's settle: [`Workcell::settle`] for at most `max_duration`, ending with
+/// its residual (the timeline's motion stays physical: no kinetic damping, see
+/// [`SETTLE_KINETIC_DAMPING`]).
 fn settle(
     cell: &mut Workcell,
     index: usize,
-    threshold: f64,
+    rest: Rest,
     max_duration: f64,
     obs: &mut dyn Observer,
 ) -> Result<SettleOutcome, Stop> {
-    let end = cell.state().time + max_duration;
-    loop {
-        cell.step(obs).map_err(Stop::Diverged)?;
-        let state = cell.state();
-        let at_check = state.step % SETTLE_CHECK_EVERY == 0 && !cell.moving();
-        if at_check || state.time >= end {
-            let ke = state.kinetic_energy(cell.model());
-            if ke < threshold || state.time >= end {
-                return Ok(SettleOutcome {
-                    action: index,
-                    at_rest: ke < threshold,
-                    time: state.time,
-                    kinetic_energy: ke,
-                });
-            }
-        }
-    }
+    let opts = SettleOptions {
+        relax: RelaxOptions {
+            force_tolerance: rest.force,
+            moment_tolerance: rest.moment,
+            max_steps: cell.steps_until_done(max_duration).max(1),
+            kinetic_damping: SETTLE_KINETIC_DAMPING,
+        },
+        kinetic_energy: rest.kinetic_energy,
+    };
+    let report = cell.settle(&opts, obs).map_err(Stop::Diverged)?;
+    let state = cell.state();
+    Ok(SettleOutcome {
+        action: index,
+        at_rest: report.converged,
+        time: state.time,
+        kinetic_energy: state.kinetic_energy(cell.model()),
+        residual_force: report.residual_force,
+        residual_moment: report.residual_moment,
+    })
 }

@@ -144,10 +144,15 @@ pub enum Action {
     },
     /// Simulate for `duration` seconds.
     Run { duration: f64 },
-    /// Simulate until the total kinetic energy is below `kinetic_energy_threshold` \[J\]
-    /// (or `max_duration` seconds have passed, which is reported as not at rest).
+    /// Relax to static equilibrium ([`Workcell::settle`](crate::Workcell::settle)): at
+    /// rest when the largest out-of-balance force and moment on a free node, contact
+    /// counted, are within `force_tolerance` \[N\] and `moment_tolerance` \[N·m\],
+    /// nothing moves and the total kinetic energy is below `kinetic_energy_threshold`
+    /// \[J\]; after `max_duration` \[s\] it is reported as not at rest.
     Settle {
         kinetic_energy_threshold: f64,
+        force_tolerance: f64,
+        moment_tolerance: f64,
         max_duration: f64,
     },
 }

@@ -205,6 +205,8 @@ fn released_hand_applies_nothing_and_hose_relaxes() {
         Action::ReleaseHand { hand: 0 },
         Action::Settle {
             kinetic_energy_threshold: 1e-12,
+            force_tolerance: 1e-3,
+            moment_tolerance: 1e-4,
             max_duration: 20.0,
         },
     ]);

@@ -210,6 +210,8 @@ fn explicit_solver_through_the_tie_action() {
             },
             Action::Settle {
                 kinetic_energy_threshold: 1e-14,
+                force_tolerance: 1e-3,
+                moment_tolerance: 1e-4,
                 max_duration: 30.0,
             },
         ],

@@ -84,8 +84,8 @@ pub fn run(o: &ExportOptions) -> Result<ExitCode> {
         pliant_runs::run_within(&scene, o.solver, o.max_steps).map_err(|e| anyhow!(e))?;
     for s in summary.settles.iter().filter(|s| !s.at_rest) {
         eprintln!(
-            "warning: not at rest after the settle of action {} (t = {:.2} s, kinetic energy {:.2e} J); exporting the route as it is",
-            s.action, s.time, s.kinetic_energy
+            "warning: not at rest after the settle of action {} (t = {:.2} s, residual {:.2e} N, {:.2e} N·m, kinetic energy {:.2e} J); exporting the route as it is",
+            s.action, s.time, s.residual_force, s.residual_moment, s.kinetic_energy
         );
     }
     let model = cell.model();

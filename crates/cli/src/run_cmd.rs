@@ -161,9 +161,11 @@ pub fn print_outcome(verdict: &Verdict, summary: &Summary, out: &Path) {
             "NOT at rest (max duration reached)"
         };
         println!(
-            "settle (action {}): {word} at t = {:.3} s, kinetic energy {:.3e} J",
+            "settle (action {}): {word} at t = {:.3} s, residual {:.3e} N, {:.3e} N·m, kinetic energy {:.3e} J",
             s.action + 1,
             s.time,
+            s.residual_force,
+            s.residual_moment,
             s.kinetic_energy
         );
     }

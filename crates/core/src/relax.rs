@@ -5,16 +5,18 @@
 //! down the energy landscape to the nearest equilibrium (optionally with viscous damping
 //! only). Its answer is the explicit model's own, not another solver's.
 //!
-//! One routine, [`relax_with`], with one residual, [`residual`] (contact with parts and
-//! hoses counted), serves every caller: [`relax`] on a bare model and state (the
-//! validation suite), the static solver's snap-through
-//! ([`crate::integrators::snap`]), and Python's `Simulation.settle`, which steps a whole
-//! workcell (hands, stubs and clips acting). The quasi-static Newton solver
+//! One routine, [`relax_with`], with one residual, [`residual_after`] (contact with parts
+//! and hoses counted, whichever solver took the last step), serves every caller:
+//! [`relax`] on a bare model and state (the validation suite), the static solver's
+//! snap-through ([`crate::integrators::snap`]), and the workcell's settle (the timeline's
+//! `settle` action and Python's `Simulation.settle`), which steps a whole workcell
+//! (hands, stubs and clips acting) with its own solver. The quasi-static Newton solver
 //! ([`crate::integrators::statics`]) solves for the same equilibrium directly.
 
-use crate::health::{check, Divergence};
+use crate::health::{check_for, Divergence};
 use crate::integrators::explicit::step;
-use crate::{Model, State};
+use crate::integrators::free_node_residual;
+use crate::{Model, SolverKind, State};
 use glam::DVec3;
 use std::ops::ControlFlow;
 
@@ -64,6 +66,16 @@ pub fn residual(state: &State) -> (f64, f64) {
     (f, m)
 }
 
+/// The [`residual`] of a state whose last step `solver` took: the explicit step reports
+/// the parts' contact apart from `force`, the Newton solvers
+/// ([`free_node_residual`]) inside it; either way contact counts once.
+pub fn residual_after(solver: SolverKind, state: &State) -> (f64, f64) {
+    match solver {
+        SolverKind::Explicit => residual(state),
+        SolverKind::Implicit | SolverKind::Static => free_node_residual(state),
+    }
+}
+
 /// Sets every velocity to zero (nodes and stiffened bodies): kinetic damping's reset at a
 /// peak of the kinetic energy.
 pub fn stop(state: &mut State) {
@@ -83,6 +95,20 @@ pub trait Relaxing {
     fn step(&mut self) -> Result<(), Divergence>;
     /// Zeroes every velocity ([`stop`]), kinetic damping's reset.
     fn stop(&mut self);
+    /// The solver that takes the steps (it decides how the [`residual_after`] is read).
+    fn solver(&self) -> SolverKind {
+        SolverKind::Explicit
+    }
+    /// Steps between two looks at the residual: [`CHECK_EVERY`] for cheap explicit steps;
+    /// a system whose steps are Newton solves looks after every one.
+    fn check_every(&self) -> u64 {
+        CHECK_EVERY
+    }
+    /// A condition besides the residual that convergence needs (a settle's: nothing
+    /// moving, the kinetic energy below a threshold).
+    fn at_rest(&self) -> bool {
+        true
+    }
 }
 
 /// A bare model and state, stepped by [`crate::integrators::explicit::step`].
@@ -119,9 +145,10 @@ pub fn relax(
 }
 
 /// The relaxation every caller runs: steps `sys`, zeroes the velocities at each peak of
-/// the kinetic energy (if `opts.kinetic_damping`), and every [`CHECK_EVERY`] steps and
-/// after the last checks the state's health and the [`residual`]: converged when it is
-/// within the tolerances. Between checks that fail, `watch` sees the state and may end
+/// the kinetic energy (if `opts.kinetic_damping`), and every [`Relaxing::check_every`]
+/// steps and after the last checks the state's health and the [`residual_after`] its
+/// solver: converged when it is within the tolerances and the system is
+/// [`Relaxing::at_rest`]. Between checks that fail, `watch` sees the state and may end
 /// the relaxation unconverged ([`ControlFlow::Break`]).
 pub fn relax_with<R: Relaxing + ?Sized>(
     sys: &mut R,
@@ -136,6 +163,7 @@ pub fn relax_with<R: Relaxing + ?Sized>(
         residual_moment: m,
         converged,
     };
+    let every = sys.check_every().max(1);
     while steps < opts.max_steps {
         sys.step()?;
         steps += 1;
@@ -148,10 +176,10 @@ pub fn relax_with<R: Relaxing + ?Sized>(
                 last_energy = energy;
             }
         }
-        if steps % CHECK_EVERY == 0 || steps == opts.max_steps {
-            check(sys.model(), sys.state())?;
-            let (f, m) = residual(sys.state());
-            if f <= opts.force_tolerance && m <= opts.moment_tolerance {
+        if steps % every == 0 || steps == opts.max_steps {
+            check_for(sys.solver(), sys.model(), sys.state())?;
+            let (f, m) = residual_after(sys.solver(), sys.state());
+            if f <= opts.force_tolerance && m <= opts.moment_tolerance && sys.at_rest() {
                 return Ok(report(steps, (f, m), true));
             }
             if watch(sys.state()).is_break() {
@@ -159,5 +187,9 @@ pub fn relax_with<R: Relaxing + ?Sized>(
             }
         }
     }
-    Ok(report(steps, residual(sys.state()), false))
+    Ok(report(
+        steps,
+        residual_after(sys.solver(), sys.state()),
+        false,
+    ))
 }

@@ -102,11 +102,6 @@ impl Engine {
         self.cell.diverged()
     }
 
-    /// One step of the workcell.
-    pub(crate) fn step_once(&mut self) -> Result<(), Divergence> {
-        self.cell.step(&mut NoObserver)
-    }
-
     /// The workcell itself (for reading).
     pub fn cell(&self) -> &Workcell {
         &self.cell
@@ -117,9 +112,9 @@ impl Engine {
         &self.cell.tally().solver
     }
 
-    /// Zeroes all velocities (kinetic damping), as a logged input.
-    pub(crate) fn arrest(&mut self) {
-        let _ = self.give(Input::Arrest);
+    /// The workcell itself (for [`Engine::settle`], which steps it).
+    pub(crate) fn cell_mut(&mut self) -> &mut Workcell {
+        &mut self.cell
     }
 
     /// `n` steps, then a health check, so that a successful call never leaves non-finite

@@ -3,7 +3,8 @@
 //!
 //! `step`/`run` advance the simulation with its solver — explicit, implicit or
 //! quasi-static, chosen by the scene or by `Simulation(scene, solver=…)`; `settle` relaxes
-//! to static equilibrium with the explicit step (settle.rs); `solve_static` takes one
+//! to static equilibrium with the same steps (settle.rs: the workcell's settle, as the
+//! timeline's `settle` action); `solve_static` takes one
 //! equilibrium solve of the quasi-static solver.
 
 use crate::args::{hose_index, hose_node, points, quaternion, seconds, vec3, HoseRef};
@@ -365,11 +366,13 @@ impl Simulation {
     }
 
     /// Relaxes to static equilibrium under the current load cases and hand poses by
-    /// dynamic relaxation with kinetic damping (the explicit step runs on and all
+    /// dynamic relaxation with kinetic damping (the simulation's solver steps on and all
     /// velocities are zeroed whenever the kinetic energy passes a peak) until the largest
-    /// out-of-balance force and moment on a free node are below the tolerances \[N\],
-    /// \[N·m\], or ``max_steps`` steps have passed. Simulated time advances by the steps
-    /// taken; the motion on the way is not physical, the end state is the equilibrium.
+    /// out-of-balance force and moment on a free node, contact with parts and hoses
+    /// counted, are below the tolerances \[N\], \[N·m\], or ``max_steps`` steps have
+    /// passed. Simulated time advances by the steps taken; with ``kinetic_damping`` the
+    /// motion on the way is not physical, the end state is the equilibrium. The
+    /// timeline's ``settle`` action is the same relaxation without kinetic damping.
     ///
     /// Returns a :class:`SettleReport` (true if converged). Raises ValueError while a
     /// hand or drive is still moving, :class:`SimulationDiverged` if it blows up.

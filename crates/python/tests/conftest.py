@@ -1,5 +1,5 @@
-"""Shared fixtures: a cantilever scene built in code, the repository's paths and the
-`pliant` binary (for comparing with the command line)."""
+"""Shared fixtures: a cantilever scene built in code, a worker's held-hose scene, the
+repository's paths and the `pliant` binary (for comparing with the command line)."""
 
 import math
 import os
@@ -21,6 +21,47 @@ AREA = math.pi / 4 * (D_OUTER**2 - D_INNER**2)
 SECOND_MOMENT = math.pi / 64 * (D_OUTER**4 - D_INNER**4)
 EI = E_BENDING * SECOND_MOMENT
 G = 9.81
+
+HELD_HOSE_SCENE = """
+format = "pliant-scene"
+version = 1
+length_unit = "mm"
+
+[simulation]
+solver = "static"
+
+{extra}
+
+[[hoses]]
+name = "h"
+material = "hose3"
+elements = 10
+start = [100, -200, {z}]
+path = [{{ line = {{ to = [500, -200, {z}] }} }}]
+
+[[timeline]]
+action = "fix"
+hose = "h"
+node = 0
+
+[[timeline]]
+action = "grab"
+hand = 0
+at = [500, -200, {z}]
+
+[[timeline]]
+action = "move_hand"
+hand = 0
+by = [0, 0, -20]
+duration_s = 0.3
+"""
+
+
+def held_hose_scene(extra="", z=1900.0):
+    """A worker's scene (mm, the static solver): ``extra`` (a ``[worker]``, parts), then a
+    400 mm hose "h" of library hose 3 along x at height ``z`` mm, fixed at its start, its
+    end grabbed by hand 0 and lowered 20 mm in 0.3 s."""
+    return HELD_HOSE_SCENE.format(extra=extra, z=z)
 
 
 def cantilever_dict(length=0.2, elements=20, gravity=(0.0, 0.0, -G), fixed=True):

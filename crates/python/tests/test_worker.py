@@ -15,49 +15,16 @@ import numpy as np
 import pytest
 
 import pliant
+from conftest import held_hose_scene
 from pliant.studies import load_study, variant_scene
 from pliant.studies.runner import Task, run_variant
-
-SCENE = """
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-solver = "static"
-
-{worker}
-
-[[hoses]]
-name = "h"
-material = "hose3"
-elements = 10
-start = [100, -200, {z}]
-path = [{{ line = {{ to = [500, -200, {z}] }} }}]
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-
-[[timeline]]
-action = "grab"
-hand = 0
-at = [500, -200, {z}]
-
-[[timeline]]
-action = "move_hand"
-hand = 0
-by = [0, 0, -20]
-duration_s = 0.3
-"""
 
 WORKER = '[worker]\npopulation = "female"\npercentile = {percentile}\nfacing = [1, 0, 0]\n'
 
 
 def scene_text(percentile=None, z=1900.0):
     worker = "" if percentile is None else WORKER.format(percentile=percentile)
-    return SCENE.format(worker=worker, z=z)
+    return held_hose_scene(worker, z)
 
 
 def simulate(text):

@@ -111,64 +111,62 @@ fn a_door_turned_by_the_timeline_carries_the_hose_end_under_every_solver() {
     }
 }
 
+/// A timeline entry moving `part` (`action`: `move_part` or `rotate_part`) with `fields`
+/// (TOML lines).
+fn part_move(action: &str, part: &str, fields: &str) -> String {
+    format!("\n[[timeline]]\naction = \"{action}\"\npart = \"{part}\"\n{fields}\n")
+}
+
 #[test]
 fn bad_part_moves_in_a_timeline_name_the_field() {
-    let cases: &[(&str, &str, &str)] = &[
+    // (action, part, its other fields, the field named, what the message says)
+    let cases: &[(&str, &str, &str, &str, &str)] = &[
         (
-            r#"action = "move_part"
-part = "lid"
-by = [0, 0, 1]
-duration_s = 1"#,
+            "move_part",
+            "lid",
+            "by = [0, 0, 1]\nduration_s = 1",
             "timeline[0].part",
             "names no part; parts are: body, door",
         ),
         (
-            r#"action = "move_part"
-part = "door"
-by = [0, 0, 1]
-to = [0, 0, 1]
-duration_s = 1"#,
+            "move_part",
+            "door",
+            "by = [0, 0, 1]\nto = [0, 0, 1]\nduration_s = 1",
             "timeline[0]",
             "either `by`",
         ),
         (
-            r#"action = "move_part"
-part = "door"
-by = [0, 0, 1e9]
-duration_s = 1"#,
+            "move_part",
+            "door",
+            "by = [0, 0, 1e9]\nduration_s = 1",
             "timeline[0].by",
             "out of range",
         ),
         (
-            r#"action = "rotate_part"
-part = "door"
-axis = [0, 0, 0]
-by_deg = 10
-duration_s = 1"#,
+            "rotate_part",
+            "door",
+            "axis = [0, 0, 0]\nby_deg = 10\nduration_s = 1",
             "timeline[0].axis",
             "zero",
         ),
         (
-            r#"action = "rotate_part"
-part = "door"
-axis = [0, 0, 1]
-by_deg = 10
-duration_s = 0"#,
+            "rotate_part",
+            "door",
+            "axis = [0, 0, 1]\nby_deg = 10\nduration_s = 0",
             "timeline[0].duration_s",
             "",
         ),
         (
-            r#"action = "rotate_part"
-part = "door"
-axis = [0, 0, 1]
-by_deg = 1e7
-duration_s = 1"#,
+            "rotate_part",
+            "door",
+            "axis = [0, 0, 1]\nby_deg = 1e7\nduration_s = 1",
             "timeline[0].by_deg",
             "out of range",
         ),
     ];
-    for (entry, field, message) in cases {
-        let text = format!("{}\n[[timeline]]\n{entry}\n", head());
+    for (action, part, fields, field, message) in cases {
+        let entry = part_move(action, part, fields);
+        let text = format!("{}{entry}", head());
         let e = match load_scene_str(&text, "scene.toml") {
             Ok(_) => panic!("{entry}: loaded"),
             Err(e) => e,
@@ -179,10 +177,8 @@ duration_s = 1"#,
     }
     // a part with a motion is not moved by a timeline, nor declared movable
     let hinge = r#"motion = { kind = "hinge", axis = [0, 0, 1], point = [0, 0, 0], angle_deg = { times_s = [0], values = [0] } }"#;
-    let text = format!(
-        "{}{hinge}\n[[timeline]]\naction = \"move_part\"\npart = \"door\"\nby = [0, 0, 1]\nduration_s = 1\n",
-        head()
-    );
+    let entry = part_move("move_part", "door", "by = [0, 0, 1]\nduration_s = 1");
+    let text = format!("{}{hinge}\n{entry}", head());
     let e = load_scene_str(&text, "scene.toml").unwrap_err();
     assert_eq!(e.field(), Some("timeline[0].part"), "{e}");
     assert!(e.to_string().contains("has a `motion`"), "{e}");

@@ -9,45 +9,12 @@ use pliant_assembly::report::{write_outputs, Outputs};
 use pliant_assembly::{Stage, Verdict};
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str;
+use pliant_testkit::scenes::held_hose_lowered;
 
 /// A 400 mm hose along x at height `z` mm, fixed at its start, its end grabbed and
 /// lowered by 20 mm; `extra` added at the top (a `[worker]`, parts).
 fn scene(z: f64, extra: &str) -> String {
-    format!(
-        r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-solver = "static"
-
-{extra}
-
-[[hoses]]
-name = "h"
-material = "hose3"
-elements = 10
-start = [100, -200, {z}]
-path = [{{ line = {{ to = [500, -200, {z}] }} }}]
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-
-[[timeline]]
-action = "grab"
-hand = 0
-at = [500, -200, {z}]
-
-[[timeline]]
-action = "move_hand"
-hand = 0
-by = [0, 0, -20]
-duration_s = 0.3
-"#
-    )
+    held_hose_lowered(extra, "h", [100.0, -200.0, z], [500.0, -200.0, z], 0.3)
 }
 
 fn run(text: &str) -> (pliant_assembly::Workcell, pliant_assembly::RunSummary) {

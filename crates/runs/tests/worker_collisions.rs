@@ -12,49 +12,17 @@
 use pliant_assembly::{Stage, Verdict};
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str;
+use pliant_testkit::scenes::held_hose_lowered;
 
 /// The scene: the worker, the held hose, and `extra` (parts, another hose, its fixings).
 fn scene(extra: &str) -> String {
-    format!(
-        r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-solver = "static"
-
-[worker]
-population = "male"
-percentile = 50
-position = [0, 0, 0]
-facing = [1, 0, 0]
-
-{extra}
-
-[[hoses]]
-name = "held"
-material = "hose3"
-elements = 10
-start = [150, -300, 1100]
-path = [{{ line = {{ to = [350, -300, 1100] }} }}]
-
-[[timeline]]
-action = "fix"
-hose = "held"
-node = 0
-
-[[timeline]]
-action = "grab"
-hand = 0
-at = [350, -300, 1100]
-
-[[timeline]]
-action = "move_hand"
-hand = 0
-by = [0, 0, -20]
-duration_s = 0.5
-"#
+    let worker = "[worker]\npopulation = \"male\"\npercentile = 50\nposition = [0, 0, 0]\nfacing = [1, 0, 0]\n";
+    held_hose_lowered(
+        &format!("{worker}\n{extra}"),
+        "held",
+        [150.0, -300.0, 1100.0],
+        [350.0, -300.0, 1100.0],
+        0.5,
     )
 }
 

@@ -1005,7 +1005,7 @@ pub enum ActionEntry {
     RotatePart(RotatePartEntry),
     /// Simulate for a while.
     Run(RunEntry),
-    /// Simulate until the hoses come to rest.
+    /// Relax to static equilibrium: the residual force and moment within their tolerances, nothing moving, the kinetic energy below its threshold.
     Settle(SettleEntry),
 }
 
@@ -1289,11 +1289,16 @@ pub struct RunEntry {
     pub duration_s: f64,
 }
 
-/// `settle`: simulate until the hoses come to rest.
+/// `settle`: relax to static equilibrium (the residual force and moment within their
+/// tolerances, nothing moving, the kinetic energy below its threshold).
 #[derive(Clone, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SettleEntry {
-    /// Rest threshold on the total kinetic energy (J), > 0. Default 1e-6.
+    /// Largest out-of-balance force on a free node at rest (N), > 0. Default 1e-3.
+    pub force_tolerance_n: Option<f64>,
+    /// Largest out-of-balance moment on a free node at rest (N·m), > 0. Default 1e-4.
+    pub moment_tolerance_nm: Option<f64>,
+    /// Rest also needs the total kinetic energy below this (J), > 0. Default 1e-6.
     pub kinetic_energy_j: Option<f64>,
     /// Give up after this long (s), > 0. Default 30.
     pub max_duration_s: Option<f64>,

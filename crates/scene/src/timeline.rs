@@ -13,6 +13,10 @@ use crate::validate::{finite, finite_vec, node_index, non_negative, non_zero_vec
 use glam::DVec3;
 use pliant_assembly::{Action, Grip, MovePath, NodeRef, Rotation, Timeline};
 
+/// Default residual force tolerance of `settle` (N), as Python's `Simulation.settle`.
+pub const DEFAULT_SETTLE_FORCE_TOLERANCE: f64 = 1e-3;
+/// Default residual moment tolerance of `settle` (N·m), as Python's `Simulation.settle`.
+pub const DEFAULT_SETTLE_MOMENT_TOLERANCE: f64 = 1e-4;
 /// Default rest threshold of `settle` (J).
 pub const DEFAULT_SETTLE_KINETIC_ENERGY: f64 = 1e-6;
 /// Default time limit of `settle` (s).
@@ -591,9 +595,21 @@ fn build_action(
             duration: positive(&sub("duration_s"), *duration_s, "s")?,
         },
         ActionEntry::Settle(SettleEntry {
+            force_tolerance_n,
+            moment_tolerance_nm,
             kinetic_energy_j,
             max_duration_s,
         }) => Action::Settle {
+            force_tolerance: positive(
+                &sub("force_tolerance_n"),
+                force_tolerance_n.unwrap_or(DEFAULT_SETTLE_FORCE_TOLERANCE),
+                "N",
+            )?,
+            moment_tolerance: positive(
+                &sub("moment_tolerance_nm"),
+                moment_tolerance_nm.unwrap_or(DEFAULT_SETTLE_MOMENT_TOLERANCE),
+                "N·m",
+            )?,
             kinetic_energy_threshold: positive(
                 &sub("kinetic_energy_j"),
                 kinetic_energy_j.unwrap_or(DEFAULT_SETTLE_KINETIC_ENERGY),

@@ -57,3 +57,50 @@ e_compression_mpa = 8
 poisson = 0.45
 density_kg_m3 = 1150
 "#;
+
+/// A scene (mm, the static solver) for a worker's tests: `extra` (a `[worker]`, parts,
+/// another hose) and then hose `name` of library hose 3, 10 elements, straight from
+/// `start` to `end`, fixed at its start, its end grabbed by hand 0 and lowered 20 mm over
+/// `duration_s`.
+pub fn held_hose_lowered(
+    extra: &str,
+    name: &str,
+    start: [f64; 3],
+    end: [f64; 3],
+    duration_s: f64,
+) -> String {
+    let [sx, sy, sz] = start;
+    let [ex, ey, ez] = end;
+    format!(
+        r#"{head}
+[simulation]
+solver = "static"
+
+{extra}
+
+[[hoses]]
+name = "{name}"
+material = "hose3"
+elements = 10
+start = [{sx}, {sy}, {sz}]
+path = [{{ line = {{ to = [{ex}, {ey}, {ez}] }} }}]
+
+[[timeline]]
+action = "fix"
+hose = "{name}"
+node = 0
+
+[[timeline]]
+action = "grab"
+hand = 0
+at = [{ex}, {ey}, {ez}]
+
+[[timeline]]
+action = "move_hand"
+hand = 0
+by = [0, 0, -20]
+duration_s = {duration_s}
+"#,
+        head = HEAD_MM
+    )
+}

@@ -23,6 +23,7 @@ pub mod part_inputs;
 pub mod reason;
 pub mod recovery;
 pub mod replay;
+pub mod settle;
 pub mod solver_doubt;
 pub mod solver_record;
 mod state_inputs;
@@ -35,6 +36,7 @@ pub use hands::{Aim, Feel, HandLimits, HeldHand};
 pub use input::{HandNumber, InitialLoad, Input, Refusal, StampedInput};
 pub use observer::{NoObserver, Observer};
 pub use reason::{Reason, WorkedFastener};
+pub use settle::SettleOptions;
 pub use solver_doubt::{InstabilityNote, SolverDoubt};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
 pub use tally::{

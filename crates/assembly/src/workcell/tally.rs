@@ -194,13 +194,22 @@ pub struct NodePeak {
     pub last_moment: DVec3,
 }
 
-/// Outcome of one `Settle` action.
+/// Outcome of one `Settle` action ([`Workcell::settle`](super::Workcell::settle)).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SettleOutcome {
+    /// The action's index in the timeline.
     pub action: usize,
+    /// Converged: the residual within its tolerances, nothing moving, the kinetic energy
+    /// below the threshold — before the action's maximum duration ran out.
     pub at_rest: bool,
+    /// Simulated time when the settle ended \[s\].
     pub time: f64,
+    /// Total kinetic energy then \[J\].
     pub kinetic_energy: f64,
+    /// Largest out-of-balance force on a free node then, contact counted \[N\].
+    pub residual_force: f64,
+    /// Largest out-of-balance moment on a free node then \[N·m\].
+    pub residual_moment: f64,
 }
 
 /// What a whole run did.

@@ -1,0 +1,2 @@
+//! No build step: the build-dependencies only fix the host crates' features.
+fn main() {}
