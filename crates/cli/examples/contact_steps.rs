@@ -22,7 +22,7 @@ fn main() -> anyhow::Result<()> {
     let warm: u64 = args.get(3).map_or(Ok(1_500), |s| s.parse())?;
     let hoses: usize = args.get(4).map_or(Ok(5), |s| s.parse())?;
     let elements: usize = args.get(5).map_or(Ok(30), |s| s.parse())?;
-    let (mut model, mut state) = bench::setup(hoses, elements, quads)?;
+    let (mut model, mut state) = bench::setup_moving(hoses, elements, quads, None)?;
     model.threads = 1;
     run(&model, &mut state, warm);
     let before = state.contact.candidates.clone();
@@ -99,3 +99,5 @@ mod bench_harness;
 mod bench_newton;
 #[path = "../src/bench_snapshot.rs"]
 mod bench_snapshot;
+#[path = "../src/bench_worker.rs"]
+mod bench_worker;

@@ -110,3 +110,5 @@ mod bench_harness;
 mod bench_newton;
 #[path = "../src/bench_snapshot.rs"]
 mod bench_snapshot;
+#[path = "../src/bench_worker.rs"]
+mod bench_worker;
