@@ -294,6 +294,23 @@ fn contact_bench_reports_its_fixed_windows() {
     }
 }
 
+/// `bench --only worker --json` prices a posed instant with and without hoses across the
+/// body: both finite and positive, the ratio their quotient (no timing is judged here).
+#[test]
+fn worker_bench_reports_both_instants() {
+    let o = pliant()
+        .args(["bench", "--only", "worker", "--quick", "--json"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let without = v["us_per_instant_without"].as_f64().unwrap();
+    let with = v["us_per_instant_with"].as_f64().unwrap();
+    assert!(without.is_finite() && without > 0.0 && with.is_finite() && with > 0.0);
+    assert!((v["ratio"].as_f64().unwrap() - with / without).abs() <= 1e-12 * with / without);
+    assert!(v["hoses"].as_u64().unwrap() > 0);
+}
+
 #[test]
 fn validate_unknown_case_fails_clearly() {
     let o = pliant()
