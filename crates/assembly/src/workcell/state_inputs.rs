@@ -3,20 +3,13 @@
 
 use super::{Applied, Workcell};
 use crate::workcell::Refusal;
-use glam::DVec3;
 use pliant_core::integrators::StaticSolver;
 use pliant_core::newton::Tolerance;
 
 impl Workcell {
     /// [`Input::Arrest`](super::Input::Arrest): every velocity, of nodes and of free bodies, set to zero.
     pub(super) fn arrest(&mut self) -> Result<Applied, Refusal> {
-        let s = &mut self.state;
-        s.v.fill(DVec3::ZERO);
-        s.w.fill(DVec3::ZERO);
-        for b in s.bodies.iter_mut() {
-            b.velocity = DVec3::ZERO;
-            b.angular_velocity = DVec3::ZERO;
-        }
+        pliant_core::relax::stop(&mut self.state);
         Ok(Applied::Done)
     }
 
