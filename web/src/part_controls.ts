@@ -10,8 +10,8 @@ import type { TransformControls } from 'three/examples/jsm/controls/TransformCon
 import type { Net } from './net';
 import { el } from './panel';
 import {
-  carry, coordinateOfPose, coordinateToSlider, draggedCoordinate, jointMessage, partControls, SLIDER_STEPS, sliderToCoordinate,
-  SLIDE_SPEED_M_S, HINGE_SPEED_DEG_S, MIN_MOVE_S, type Joint, type PartControl,
+  carry, coordinateOfPose, coordinateToSlider, draggedCoordinate, dragInParent, jointMessage, ownPose, partControls, SLIDER_STEPS,
+  sliderToCoordinate, turned, SLIDE_SPEED_M_S, HINGE_SPEED_DEG_S, MIN_MOVE_S, type Joint, type PartControl,
 } from './part_joints';
 import type { ClientMessage, PartData, PartPose, Vec3 } from './protocol';
 import type { Stage } from './scene';
@@ -37,6 +37,8 @@ export class PartControls {
   private rows: Row[] = [];
   /** Each part's bounding-box centre where the scene placed it (world frame). */
   private centres: Vec3[] = [];
+  /** Each part's parent (index) as the welcome gives it, or null. */
+  private parents: (number | null)[] = [];
   private poses = new Map<number, PartPose>();
   private readonly gizmo: TransformControls;
   /** What the handle drags: a stand-in at the part's pivot, in the world frame. */
@@ -60,6 +62,7 @@ export class PartControls {
    *  and how (a row each). */
   welcome(parts: readonly PartData[]): void {
     this.centres = parts.map((p) => [0, 1, 2].map((k) => (p.bounds_min[k] + p.bounds_max[k]) / 2) as Vec3);
+    this.parents = parts.map((p) => p.parent ?? null);
     this.poses.clear();
     this.select(null);
     this.rows = partControls(parts).map((c) => this.row(c));
@@ -82,6 +85,20 @@ export class PartControls {
     return this.gizmo.object !== undefined && this.gizmo.axis !== null;
   }
 
+  /** The pose of part `k`'s parent in the snapshot drawn (null: it has none, or it stands
+   *  where the scene placed it). */
+  private parentPose(k: number): PartPose | null {
+    const p = this.parents[k];
+    return p === null || p === undefined ? null : this.poses.get(p) ?? null;
+  }
+
+  /** Part `k`'s own pose, in its parent's frame, where its joint is given (null: where
+   *  the scene placed it). */
+  private own(k: number): PartPose | null {
+    const pose = this.poses.get(k);
+    return pose === undefined ? null : ownPose(pose, this.parentPose(k));
+  }
+
   /** The parts' poses of the snapshot drawn. */
   update(poses: readonly PartPose[]): void {
     for (const p of poses) this.poses.set(p.part, p);
@@ -92,7 +109,7 @@ export class PartControls {
   shown(): { part: string; coordinate: number | null; slider: number | null }[] {
     return this.rows.map((r) => ({
       part: r.control.name,
-      coordinate: r.control.joint === null ? null : coordinateOfPose(r.control.joint, this.poses.get(r.control.part) ?? null),
+      coordinate: r.control.joint === null ? null : coordinateOfPose(r.control.joint, this.own(r.control.part)),
       slider: r.slider === null ? null : Number(r.slider.value),
     }));
   }
@@ -169,13 +186,12 @@ export class PartControls {
     for (const r of this.rows) {
       const c = r.control;
       const j = c.joint;
-      const pose = this.poses.get(c.part) ?? null;
       const how = c.scripted ? 'scripted motion' : 'moved by you or the timeline';
       if (j === null) {
         r.readout.textContent = `${c.name}: ${c.scripted ? c.motion || 'scripted motion' : 'drag its handle'}`;
         continue;
       }
-      const x = coordinateOfPose(j, pose);
+      const x = coordinateOfPose(j, this.own(c.part));
       r.readout.textContent = `${c.name}: ${j.kind} ${coordinateText(j, x)} (${coordinateText(j, j.min)} … ${coordinateText(j, j.max)}; ${how})`;
       if (r.slider !== null && !r.held && performance.now() >= r.settles) r.slider.value = String(coordinateToSlider(j, x));
     }
@@ -188,7 +204,7 @@ export class PartControls {
     const now = performance.now();
     if (!final && now - this.lastSent < SEND_INTERVAL_MS) return;
     this.lastSent = now;
-    const from = coordinateOfPose(j, this.poses.get(r.control.part) ?? null);
+    const from = coordinateOfPose(j, this.own(r.control.part));
     const message = jointMessage(r.control.name, j, sliderToCoordinate(j, Number(r.slider.value)), from);
     this.send(message);
     r.settles = now + message.duration_s * 1000;
@@ -230,7 +246,9 @@ export class PartControls {
       if (pose !== undefined) this.proxy.quaternion.set(...pose.rotation);
       else this.proxy.quaternion.identity();
     } else {
-      const along = j.kind === 'hinge' ? j.axis : j.direction;
+      const parent = this.parentPose(r.control.part);
+      const own = j.kind === 'hinge' ? j.axis : j.direction;
+      const along = parent === null ? own : turned(parent.rotation, own);
       const local = j.kind === 'hinge' ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(1, 0, 0);
       this.proxy.quaternion.setFromUnitVectors(local, new THREE.Vector3(...along));
     }
@@ -255,7 +273,7 @@ export class PartControls {
     this.drag = {
       position: this.proxy.position.clone(),
       quaternion: this.proxy.quaternion.clone(),
-      coordinate: j === null ? 0 : coordinateOfPose(j, this.poses.get(r.control.part) ?? null),
+      coordinate: j === null ? 0 : coordinateOfPose(j, this.own(r.control.part)),
     };
   }
 
@@ -274,14 +292,15 @@ export class PartControls {
     if (!final && now - this.lastSent < SEND_INTERVAL_MS) return;
     const c = r.control;
     const j = c.joint;
-    const pose = this.poses.get(c.part) ?? null;
     // the turn and the shift of the stand-in since the drag began (world frame)
     const turn = this.proxy.quaternion.clone().multiply(d.quaternion.clone().invert());
     const shift = this.proxy.position.clone().sub(d.position);
     if (j !== null) {
-      const x = draggedCoordinate(j, d.coordinate, [turn.x, turn.y, turn.z, turn.w], [shift.x, shift.y, shift.z]);
+      // a child's joint is given in its parent's frame
+      const seen = dragInParent(this.parentPose(c.part), [turn.x, turn.y, turn.z, turn.w], [shift.x, shift.y, shift.z]);
+      const x = draggedCoordinate(j, d.coordinate, seen.turn, seen.shift);
       this.lastSent = now;
-      this.send(jointMessage(c.name, j, x, coordinateOfPose(j, pose)));
+      this.send(jointMessage(c.name, j, x, coordinateOfPose(j, this.own(c.part))));
       return;
     }
     if (this.freeMode === 'translate') {

@@ -159,3 +159,51 @@ export function carry(pose: PartPose, p: Vec3): Vec3 {
     p[2] + 2 * (qw * cz + qx * cy - qy * cx) + pose.translation[2],
   ];
 }
+
+type Quat = readonly [number, number, number, number];
+
+/** The Hamilton product a·b of unit quaternions [x, y, z, w]. */
+function product(a: Quat, b: Quat): [number, number, number, number] {
+  return [
+    a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1],
+    a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
+    a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3],
+    a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2],
+  ];
+}
+
+const conjugate = (q: Quat): [number, number, number, number] => [-q[0], -q[1], -q[2], q[3]];
+
+/** `v` turned by the unit quaternion `q`: R(q)·v. */
+export function turned(q: Quat, v: Vec3): Vec3 {
+  return carry({ part: 0, translation: [0, 0, 0], rotation: [q[0], q[1], q[2], q[3]] }, v);
+}
+
+/** A child part's own pose — its motion in its parent's reference placement, the frame
+ *  its joint is given in — from its world pose and its parent's (null: the parent stands
+ *  where the scene placed it). The server composes P = P_parent ∘ P_own (docs/scene-format.md,
+ *  "Parts that move"), so P_own = P_parent⁻¹ ∘ P: q_own = q_p⁻¹ q, t_own = R_p⁻¹ (t − t_p). */
+export function ownPose(pose: PartPose, parent: PartPose | null): PartPose {
+  if (parent === null) return pose;
+  const inverse = conjugate(parent.rotation);
+  const t = pose.translation;
+  const tp = parent.translation;
+  return {
+    part: pose.part,
+    translation: turned(inverse, [t[0] - tp[0], t[1] - tp[1], t[2] - tp[2]]),
+    rotation: product(inverse, pose.rotation),
+  };
+}
+
+/** A handle's drag seen from a child's parent (null: the parent at rest): the world turn
+ *  `turn` as R_p⁻¹ turn R_p and the world shift as R_p⁻¹ shift, so that they compare with
+ *  the child's joint, which is given in the parent's frame. */
+export function dragInParent(
+  parent: PartPose | null,
+  turn: Quat,
+  shift: Vec3,
+): { turn: [number, number, number, number]; shift: Vec3 } {
+  if (parent === null) return { turn: [turn[0], turn[1], turn[2], turn[3]], shift };
+  const inverse = conjugate(parent.rotation);
+  return { turn: product(product(inverse, turn), parent.rotation), shift: turned(inverse, shift) };
+}

@@ -149,3 +149,50 @@ test("each fastener is carried by the part the welcome names for it", () => {
   const fasteners = [{ name: 's1', part: 3 }, { name: 's2', part: null }, { name: 'c1', part: 2 }, { name: 'old' }];
   assert.deepEqual(J.fastenerCarriers(fasteners), [3, -1, 2, -1]);
 });
+
+/** P_parent ∘ P_own, as the server composes a child's world pose. */
+const compose = (parent, own) => {
+  const [ax, ay, az, aw] = parent.rotation;
+  const [bx, by, bz, bw] = own.rotation;
+  return {
+    part: own.part,
+    translation: J.carry(parent, own.translation),
+    rotation: [aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz],
+  };
+};
+
+test("a child's own pose undoes its parent's: the hinge angle is read in the parent's frame", () => {
+  // a door hinged about z at 25° on a body that has itself turned 50° about (1, 1, 1) and moved
+  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: [0.5, 0, 0.3], min: -20, max: 70 };
+  const own = { part: 3, translation: [0.5 - 0.5 * Math.cos(25 * D), -0.5 * Math.sin(25 * D), 0], rotation: quat([0, 0, 1], 25) };
+  const parent = { part: 0, translation: [0.1, -0.2, 0.05], rotation: quat([1, 1, 1].map((x) => x / Math.sqrt(3)), 50) };
+  const world = compose(parent, own);
+  // read from the world pose the angle is wrong (the body's turn leaks in) …
+  assert.ok(Math.abs(J.coordinateOfPose(hinge, world) - 25) > 1, 'world pose read as if the parent were at rest');
+  // … from the own pose it is the door's 25°
+  const back = J.ownPose(world, parent);
+  assert.ok(Math.abs(J.coordinateOfPose(hinge, back) - 25) < 1e-9, `own angle ${J.coordinateOfPose(hinge, back)}`);
+  close(back.translation, own.translation, 1e-12, 'own translation');
+  close(back.rotation, own.rotation, 1e-12, 'own rotation');
+  assert.equal(J.ownPose(world, null), world, 'no parent pose: the world pose is the own pose');
+  // a slide on a parent turned 90° about z: the travel is read along the parent's axes
+  const slide = { kind: 'slide', direction: [1, 0, 0], min: 0, max: 0.3 };
+  const turnedParent = { part: 0, translation: [1, 1, 0], rotation: quat([0, 0, 1], 90) };
+  const slid = compose(turnedParent, { part: 4, translation: [0.2, 0, 0], rotation: [0, 0, 0, 1] });
+  assert.ok(Math.abs(J.coordinateOfPose(slide, J.ownPose(slid, turnedParent)) - 0.2) < 1e-12, 'travel in the parent frame');
+});
+
+test("a handle dragged on a turned parent's child: the drag is seen in the parent's frame", () => {
+  // the body turned 90° about x: the door's hinge axis z (parent frame) points along −y in the world
+  const parent = { part: 0, translation: [0, 0, 0], rotation: quat([1, 0, 0], 90) };
+  const hinge = { kind: 'hinge', axis: [0, 0, 1], point: [0, 0, 0], min: -90, max: 90 };
+  close(J.turned(parent.rotation, [0, 0, 1]), [0, -1, 0], 1e-12, 'the world axis of the hinge');
+  // the user turns the handle 30° about the world axis −y, i.e. about the hinge
+  const seen = J.dragInParent(parent, quat([0, -1, 0], 30), [0, 0.1, 0]);
+  assert.ok(Math.abs(J.draggedCoordinate(hinge, 10, seen.turn, seen.shift) - 40) < 1e-9, 'turned 30° about the hinge');
+  close(seen.shift, [0, 0, -0.1], 1e-12, 'the shift in the parent frame');
+  // read without the parent the same drag turns the door by nothing about z
+  assert.ok(Math.abs(J.draggedCoordinate(hinge, 10, quat([0, -1, 0], 30), [0, 0, 0]) - 10) < 1e-9, 'world drag misread');
+  const none = J.dragInParent(null, quat([0, 0, 1], 15), [1, 2, 3]);
+  assert.ok(Math.abs(J.draggedCoordinate(hinge, 0, none.turn, none.shift) - 15) < 1e-9, 'no parent: unchanged');
+});
