@@ -30,6 +30,13 @@ fn target(v: f64, beyond: f64) -> DVec3 {
 
 /// A 300 mm hose along x ending at `t`, fixed at its start, its end grabbed and held.
 fn scene(t: DVec3, steps: bool) -> String {
+    let fixed = "[[timeline]]\naction = \"fix\"\nhose = \"h\"\nnode = 0\n";
+    scene_with(t, steps, fixed, "")
+}
+
+/// As [`scene`], with `fix` (the start's fixing, or none) and `then` (timeline actions
+/// after the hand is held) given.
+fn scene_with(t: DVec3, steps: bool, fix: &str, then: &str) -> String {
     let mm = t * 1e3;
     format!(
         r#"
@@ -53,11 +60,7 @@ elements = 10
 start = [{x0}, {y}, {z}]
 path = [{{ line = {{ to = [{x}, {y}, {z}] }} }}]
 
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-
+{fix}
 [[timeline]]
 action = "grab"
 hand = 0
@@ -68,7 +71,7 @@ action = "move_hand"
 hand = 0
 by = [0, 0, 0]
 duration_s = 0.1
-"#,
+{then}"#,
         x0 = mm.x + 300.0,
         x = mm.x,
         y = mm.y,
@@ -141,6 +144,39 @@ fn a_far_target_is_still_out_of_reach_after_the_longest_step() {
         "{words}: {:?}",
         v.reasons
     );
+}
+
+/// A worker who stepped to reach steps back to where it was placed once the target comes
+/// back within reach from there, and only then: the hand brings the held (unfixed) hose
+/// 0.35 m back towards the worker, inside the upright reach sphere from the first stance.
+#[test]
+fn the_worker_steps_back_once_the_target_is_within_reach_from_where_it_was_placed() {
+    let t = target(0.45, 0.25);
+    let back = "[[timeline]]\naction = \"move_hand\"\nhand = 0\nby = [-350, 0, 0]\nduration_s = 0.2\n";
+    let (cell, run) = run(&scene_with(t, true, "", back));
+    let w = run.worker.as_ref().unwrap();
+    assert_eq!(w.step_count, 2, "{:?}", w.steps);
+    let (forward, home) = (&w.steps[0], &w.steps[1]);
+    assert_eq!(forward.cause, pliant_assembly::worker::StepCause::Reach { hand: 0 });
+    assert!((forward.to - DVec3::new(0.25, 0.0, 0.0)).length() < 1e-9, "{forward:?}");
+    assert_eq!(home.cause, pliant_assembly::worker::StepCause::Return);
+    assert_eq!(home.from, forward.to);
+    assert_eq!(home.to, DVec3::ZERO, "{home:?}");
+    assert_eq!(home.words, "0.25 m back");
+    assert_eq!(w.placement.unwrap().position, DVec3::ZERO);
+    assert!(home.time > forward.time);
+    // every posed instant reaches: before the return from the stepped stance, after it
+    // from the first one
+    for sample in cell.worker_series() {
+        let r = sample.residual[0].unwrap();
+        assert!(r < 1e-3, "{r} at t = {}", sample.time);
+    }
+    let v = Verdict::judge(&run, None, Stage::Final);
+    let words = format!(
+        "the 50th-percentile man steps 0.25 m back at t = {:.2} s (back to where he was placed)",
+        home.time
+    );
+    assert!(v.worker.iter().any(|l| *l == words), "{words}: {:?}", v.worker);
 }
 
 /// A step is state: a replay of the log gives the same steps and posed instants.

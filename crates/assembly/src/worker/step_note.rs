@@ -1,6 +1,7 @@
 //! A step the worker took (SPEC E1: "the feet kept, or allowed to step, reported as a
 //! step"): when, how far, which way and why — to reach a hand target out of reach with
-//! the feet kept (`[worker] steps = true`), or to stay under a VR user who walked.
+//! the feet kept (`[worker] steps = true`), back once every target is within reach from
+//! where the worker was placed, or to stay under a VR user who walked.
 
 use glam::DVec3;
 use serde::Serialize;
@@ -14,6 +15,9 @@ pub enum StepCause {
     Reach { hand: usize },
     /// The VR user's headset moved away from the stance.
     Walk,
+    /// Back to where the worker was placed, every hand target within reach from there
+    /// again.
+    Return,
 }
 
 /// One step.
@@ -43,6 +47,7 @@ impl fmt::Display for StepNote {
         match self.cause {
             StepCause::Reach { hand } => write!(f, "(to reach hand {hand})"),
             StepCause::Walk => f.write_str("(with the VR user)"),
+            StepCause::Return => f.write_str("(back to where he was placed)"),
         }
     }
 }

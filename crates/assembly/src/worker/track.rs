@@ -360,6 +360,10 @@ impl WorkerTrack {
             if let Some((step, hand)) = self.reach_step(model, state, &manikin, &posture, hand) {
                 self.take_step(&mut manikin, step, time, StepCause::Reach { hand });
                 posture = manikin.solve_with_head(target, head);
+            } else if let Some(step) = self.return_step(model, state, &manikin, &posture, target)
+            {
+                self.take_step(&mut manikin, step, time, StepCause::Return);
+                posture = manikin.solve_with_head(target, head);
             }
         }
         let options = ScoreOptions {
@@ -476,6 +480,31 @@ impl WorkerTrack {
             offset *= 0.5;
         }
         None
+    }
+
+    /// The step back to where the worker was first placed once every arm reaches its
+    /// target from there (the inverse kinematics at that stance leaves each within
+    /// [`REACH_TOLERANCE`]) and the legs would not be inside a part or hose there; `None`
+    /// while the worker stands there, or an arm out of reach at the stance it stepped to
+    /// still needs the step. Taken only when every arm reaches where it stands, so the
+    /// worker never steps back into a stance from which it would have to step again.
+    fn return_step(
+        &self,
+        model: &Model,
+        state: &State,
+        manikin: &Manikin,
+        posture: &Posture,
+        target: [Option<DVec3>; 2],
+    ) -> Option<DVec3> {
+        let home = self.home?;
+        let step = home.position - manikin.placement.position;
+        let reaches = |p: &Posture| p.arms.iter().all(|a| !(a.residual > REACH_TOLERANCE));
+        if step.length() < 1e-9 || !reaches(posture) {
+            return None;
+        }
+        let placed = Manikin::new(self.body, home);
+        (reaches(&placed.solve(target)) && !self.legs_inside(model, state, &placed))
+            .then_some(step)
     }
 
     /// Whether the pelvis, a thigh or a shank of `manikin` standing upright is inside a
