@@ -152,13 +152,20 @@ fn a_far_target_is_still_out_of_reach_after_the_longest_step() {
 #[test]
 fn the_worker_steps_back_once_the_target_is_within_reach_from_where_it_was_placed() {
     let t = target(0.45, 0.25);
-    let back = "[[timeline]]\naction = \"move_hand\"\nhand = 0\nby = [-350, 0, 0]\nduration_s = 0.2\n";
+    let back =
+        "[[timeline]]\naction = \"move_hand\"\nhand = 0\nby = [-350, 0, 0]\nduration_s = 0.2\n";
     let (cell, run) = run(&scene_with(t, true, "", back));
     let w = run.worker.as_ref().unwrap();
     assert_eq!(w.step_count, 2, "{:?}", w.steps);
     let (forward, home) = (&w.steps[0], &w.steps[1]);
-    assert_eq!(forward.cause, pliant_assembly::worker::StepCause::Reach { hand: 0 });
-    assert!((forward.to - DVec3::new(0.25, 0.0, 0.0)).length() < 1e-9, "{forward:?}");
+    assert_eq!(
+        forward.cause,
+        pliant_assembly::worker::StepCause::Reach { hand: 0 }
+    );
+    assert!(
+        (forward.to - DVec3::new(0.25, 0.0, 0.0)).length() < 1e-9,
+        "{forward:?}"
+    );
     assert_eq!(home.cause, pliant_assembly::worker::StepCause::Return);
     assert_eq!(home.from, forward.to);
     assert_eq!(home.to, DVec3::ZERO, "{home:?}");
@@ -176,7 +183,11 @@ fn the_worker_steps_back_once_the_target_is_within_reach_from_where_it_was_place
         "the 50th-percentile man steps 0.25 m back at t = {:.2} s (back to where he was placed)",
         home.time
     );
-    assert!(v.worker.iter().any(|l| *l == words), "{words}: {:?}", v.worker);
+    assert!(
+        v.worker.iter().any(|l| *l == words),
+        "{words}: {:?}",
+        v.worker
+    );
 }
 
 /// A step is state: a replay of the log gives the same steps and posed instants.

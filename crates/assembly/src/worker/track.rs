@@ -360,8 +360,7 @@ impl WorkerTrack {
             if let Some((step, hand)) = self.reach_step(model, state, &manikin, &posture, hand) {
                 self.take_step(&mut manikin, step, time, StepCause::Reach { hand });
                 posture = manikin.solve_with_head(target, head);
-            } else if let Some(step) = self.return_step(model, state, &manikin, &posture, target)
-            {
+            } else if let Some(step) = self.return_step(model, state, &manikin, &posture, target) {
                 self.take_step(&mut manikin, step, time, StepCause::Return);
                 posture = manikin.solve_with_head(target, head);
             }
@@ -503,8 +502,7 @@ impl WorkerTrack {
             return None;
         }
         let placed = Manikin::new(self.body, home);
-        (reaches(&placed.solve(target)) && !self.legs_inside(model, state, &placed))
-            .then_some(step)
+        (reaches(&placed.solve(target)) && !self.legs_inside(model, state, &placed)).then_some(step)
     }
 
     /// Whether the pelvis, a thigh or a shank of `manikin` standing upright is inside a
