@@ -183,11 +183,36 @@ fn the_worker_steps_back_once_the_target_is_within_reach_from_where_it_was_place
         "the 50th-percentile man steps 0.25 m back at t = {:.2} s (back to where he was placed)",
         home.time
     );
-    assert!(
-        v.worker.iter().any(|l| *l == words),
-        "{words}: {:?}",
-        v.worker
+    assert!(v.worker.contains(&words), "{words}: {:?}", v.worker);
+}
+
+/// A target beside the worker, out of reach with the feet kept, makes it turn to face the
+/// target and step towards it (people turn to work beside them rather than reach there
+/// sideways); reached after that one step.
+#[test]
+fn a_target_beside_the_worker_is_reached_after_a_quarter_turn_and_a_step() {
+    let b = man();
+    let (r, v) = (b.arm_reach(), 0.3);
+    let t = DVec3::new(
+        0.0,
+        (r * r - v * v).sqrt() + 0.5 * b.dims.shoulder_width + 0.2,
+        b.dims.shoulder_height + v,
     );
+    let (_, kept) = run(&scene(t, false));
+    assert!(kept.worker.as_ref().unwrap().reach[1].worst > 1e-3);
+    let (_, turned) = run(&scene(t, true));
+    let w = turned.worker.as_ref().unwrap();
+    assert_eq!(w.step_count, 1, "{:?}", w.steps);
+    let s = &w.steps[0];
+    assert!(
+        (s.turn - std::f64::consts::FRAC_PI_2).abs() < 1e-12,
+        "{s:?}"
+    );
+    assert!(s.words.ends_with(", turning 90° to the left"), "{s:?}");
+    let p = w.placement.unwrap();
+    assert!((p.forward - DVec3::Y).length() < 1e-12, "{p:?}");
+    assert!(s.to.y > 0.1 && s.to.z == 0.0, "{s:?}");
+    assert!(w.reach.iter().all(|a| a.worst < 1e-3), "{:?}", w.reach);
 }
 
 /// A step is state: a replay of the log gives the same steps and posed instants.

@@ -40,4 +40,6 @@ pub use posture_class::PostureClass;
 pub use reba::{Coupling, RebaInput, RebaScore};
 pub use rula::{RulaInput, RulaScore};
 pub use scores::{score_posture, PostureScores, ScoreOptions};
-pub use step::{describe_step, max_step, reach_step, walk_step, STEP_FRACTION};
+pub use step::{
+    describe_step, max_step, reach_step, reach_turn, walk_step, STEP_FRACTION, TURN_BEARING,
+};

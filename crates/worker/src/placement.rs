@@ -59,6 +59,23 @@ impl Placement {
         DVec3::new(v.dot(self.forward), v.dot(self.left()), v.dot(self.up))
     }
 
+    /// The same stance turned by `angle` \[rad\] about the vertical through its floor
+    /// point (positive: to the left).
+    pub fn turned(&self, angle: f64) -> Placement {
+        let (sin, cos) = angle.sin_cos();
+        Placement {
+            forward: (cos * self.forward + sin * self.left()).normalize(),
+            ..*self
+        }
+    }
+
+    /// The turn \[rad, in (−π, π\]\] about the vertical from this stance's facing to
+    /// `other`'s (positive: to the left).
+    pub fn turn_to(&self, other: &Placement) -> f64 {
+        let l = self.local(other.forward);
+        l.y.atan2(l.x)
+    }
+
     /// The world point of local coordinates `local` from the floor point.
     pub fn point(&self, local: DVec3) -> DVec3 {
         self.position + self.vector(local)

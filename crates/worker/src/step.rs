@@ -12,6 +12,13 @@
 //! to reach with the trunk upright — people step rather than bend at the waist when a
 //! step is possible (a modelling choice).
 //!
+//! Turning: a target whose horizontal bearing from the stance is more than
+//! [`TURN_BEARING`] off the facing makes the worker turn to face it before the step is
+//! taken, about the vertical through the floor point between the feet — people turn
+//! towards work beside or behind them rather than reach there with a twisted trunk (a
+//! modelling choice; the arm's joint limits leave a target behind the shoulder out of
+//! reach whatever the step).
+//!
 //! Walking (VR): the trunk is a rod of length L = eye height − hip height pivoting at
 //! the lumbar joint, so a lean that puts the eyes at height h above the hips moves them
 //! at most √(L² − h²) horizontally; the head turning on the neck adds at most the
@@ -30,6 +37,19 @@ use glam::DVec3;
 /// against a primary source) — a modelling choice rounded down for a step taken while
 /// reaching.
 pub const STEP_FRACTION: f64 = 0.4;
+
+/// Largest bearing of a target off the facing (either side) the worker steps to without
+/// turning first: 45° (module doc; a modelling choice — half the way to the side).
+pub const TURN_BEARING: f64 = std::f64::consts::FRAC_PI_4;
+
+/// The turn \[rad, positive to the left\] that makes a worker standing at `placement`
+/// face `target` (its horizontal bearing from the floor point), `None` while that
+/// bearing is within ±[`TURN_BEARING`] or the target is right above the stance.
+pub fn reach_turn(placement: &Placement, target: DVec3) -> Option<f64> {
+    let local = placement.local(target - placement.position);
+    let bearing = local.y.atan2(local.x);
+    (local.x.hypot(local.y) > 1e-9 && bearing.abs() > TURN_BEARING).then_some(bearing)
+}
 
 /// The longest step of `body` \[m\].
 pub fn max_step(body: &Body) -> f64 {
@@ -79,9 +99,34 @@ pub fn walk_step(body: &Body, placement: &Placement, eyes: DVec3) -> Option<DVec
     (horizontal.length() > lean_reach(body, height)).then_some(horizontal)
 }
 
-/// A step in words relative to the stance it was taken from: its length and the nearest
-/// of eight directions, e.g. "0.32 m forward", "0.20 m back and to the left".
-pub fn describe_step(placement: &Placement, step: DVec3) -> String {
+/// A step from stance `from` to stance `to` in words: its length and the nearest of
+/// eight directions from `from`'s facing, e.g. "0.32 m forward", "0.20 m back and to the
+/// left", and the turn when the facing changed: "0.30 m to the left, turning 90° to the
+/// left", "in place, turning 45° to the right".
+pub fn describe_step(from: &Placement, to: &Placement) -> String {
+    let step = to.position - from.position;
+    let turn = from.turn_to(to).to_degrees();
+    let turning = match turn {
+        t if t.abs() < 0.5 => String::new(),
+        t => format!(
+            "turning {:.0}° to the {}",
+            t.abs(),
+            if t > 0.0 { "left" } else { "right" }
+        ),
+    };
+    if step.length() < 5e-3 && !turning.is_empty() {
+        return format!("in place, {turning}");
+    }
+    let moved = moved_words(from, step);
+    if turning.is_empty() {
+        moved
+    } else {
+        format!("{moved}, {turning}")
+    }
+}
+
+/// A displacement `step` in words relative to `placement`'s facing (see [`describe_step`]).
+fn moved_words(placement: &Placement, step: DVec3) -> String {
     let local = placement.local(step);
     let bearing = local.y.atan2(local.x).to_degrees();
     let octant = ((bearing + 360.0 + 22.5) / 45.0).floor() as usize % 8;

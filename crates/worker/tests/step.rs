@@ -4,9 +4,17 @@
 
 use glam::DVec3;
 use pliant_worker::{
-    body, describe_step, max_step, reach_step, walk_step, Manikin, Placement, Population, Sex,
-    Side, STEP_FRACTION,
+    body, describe_step, max_step, reach_step, reach_turn, walk_step, Manikin, Placement,
+    Population, Sex, Side, STEP_FRACTION, TURN_BEARING,
 };
+
+/// The stance `p` moved by `step`.
+fn stepped(p: &Placement, step: DVec3) -> Placement {
+    Placement {
+        position: p.position + step,
+        ..*p
+    }
+}
 
 fn man() -> Manikin {
     let place = Placement::new(DVec3::ZERO, DVec3::X, DVec3::Z).unwrap();
@@ -52,7 +60,10 @@ fn a_target_just_beyond_reach_is_reached_after_one_step_of_the_closed_form_lengt
     let p = moved.solve([Some(t), None]);
     assert!(p.arms[0].residual < 1e-4, "{}", p.arms[0].residual);
     assert!(p.trunk.flexion.abs() < 1e-6, "upright: {:?}", p.trunk);
-    assert_eq!(describe_step(&m.placement, step), "0.25 m forward");
+    assert_eq!(
+        describe_step(&m.placement, &stepped(&m.placement, step)),
+        "0.25 m forward"
+    );
 }
 
 #[test]
@@ -97,7 +108,10 @@ fn a_step_sideways_is_worded_sideways() {
     // a target to the left of the left shoulder at its height
     let t = DVec3::new(0.0, 0.5 * b.dims.shoulder_width + b.arm_reach() + 0.1, 1.4);
     let step = reach_step(b, &m.placement, Side::Left, t).unwrap();
-    assert_eq!(describe_step(&m.placement, step), "0.10 m to the left");
+    assert_eq!(
+        describe_step(&m.placement, &stepped(&m.placement, step)),
+        "0.10 m to the left"
+    );
     assert!(step.z == 0.0);
 }
 
@@ -133,4 +147,46 @@ fn the_stance_walks_with_the_headset_beyond_a_lean() {
     // a taller user's eyes: still a step only beyond the head's length
     assert!(walk_step(b, &m.placement, DVec3::new(0.99 * head, 0.0, eye + 0.2)).is_none());
     assert!(walk_step(b, &m.placement, DVec3::new(1.01 * head, 0.0, eye + 0.2)).is_some());
+}
+
+#[test]
+fn a_target_beside_or_behind_makes_the_worker_turn_to_face_it() {
+    let m = man();
+    let p = m.placement;
+    // within ±45° of the facing: no turn
+    assert_eq!(reach_turn(&p, DVec3::new(1.0, 0.99, 1.2)), None);
+    assert_eq!(reach_turn(&p, DVec3::new(1.0, -0.99, 0.3)), None);
+    // beside: a quarter turn; behind and to the right: the bearing
+    let left = reach_turn(&p, DVec3::new(0.0, 1.0, 1.4)).unwrap();
+    assert!((left - std::f64::consts::FRAC_PI_2).abs() < 1e-12, "{left}");
+    let behind = reach_turn(&p, DVec3::new(-1.0, -1.0, 1.0)).unwrap();
+    assert!(
+        (behind + 0.75 * std::f64::consts::PI).abs() < 1e-12,
+        "{behind}"
+    );
+    // just past the bound turns, right above the stance does not
+    let just = TURN_BEARING + 1e-6;
+    assert!(reach_turn(&p, DVec3::new(just.cos(), just.sin(), 1.0)).is_some());
+    assert_eq!(reach_turn(&p, DVec3::new(0.0, 0.0, 2.0)), None);
+    // the turned stance faces the target; the turn and the step in words
+    let turned = p.turned(left);
+    assert!(
+        (turned.forward - DVec3::Y).length() < 1e-12,
+        "{}",
+        turned.forward
+    );
+    assert!((p.turn_to(&turned) - left).abs() < 1e-12);
+    assert_eq!(
+        describe_step(&p, &turned),
+        "in place, turning 90° to the left"
+    );
+    let there = stepped(&turned, DVec3::new(0.0, 0.3, 0.0));
+    assert_eq!(
+        describe_step(&p, &there),
+        "0.30 m to the left, turning 90° to the left"
+    );
+    assert_eq!(
+        describe_step(&p, &p.turned(-0.25 * std::f64::consts::PI)),
+        "in place, turning 45° to the right"
+    );
 }

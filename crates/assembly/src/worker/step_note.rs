@@ -27,8 +27,11 @@ pub struct StepNote {
     pub who: String,
     /// When \[s\].
     pub time: f64,
-    /// Its length \[m\] and, in words, which way from the stance it left: "0.32 m forward".
+    /// Its length \[m\], the turn of the facing \[rad, positive to the left\] and, in words,
+    /// which way from the stance it left: "0.32 m forward", "0.30 m to the left, turning
+    /// 90° to the left".
     pub length: f64,
+    pub turn: f64,
     pub words: String,
     /// The floor point between the feet before and after \[m\].
     pub from: DVec3,

@@ -22,8 +22,9 @@ use pliant_worker::reba::RebaScore;
 use pliant_worker::rula::RulaScore;
 use pliant_worker::scores::PostureScores;
 use pliant_worker::{
-    body, capsules, describe_step, reach_step, score_posture, walk_step, Body, Manikin, Placement,
-    Posture, PostureClass, ScoreOptions, Segment, Side, TrunkAngles, WorkerError, CAPSULE_COUNT,
+    body, capsules, describe_step, reach_step, reach_turn, score_posture, walk_step, Body, Manikin,
+    Placement, Posture, PostureClass, ScoreOptions, Segment, Side, TrunkAngles, WorkerError,
+    CAPSULE_COUNT,
 };
 use serde::Serialize;
 
@@ -314,7 +315,11 @@ impl WorkerTrack {
         };
         self.home.get_or_insert(manikin.placement);
         if let Some(step) = head.and_then(|h| walk_step(&self.body, &manikin.placement, h.eyes)) {
-            self.take_step(&mut manikin, step, time, StepCause::Walk);
+            let to = Placement {
+                position: manikin.placement.position + step,
+                ..manikin.placement
+            };
+            self.take_step(&mut manikin, to, time, StepCause::Walk);
         }
         // the first two hands; the one further to the worker's right to the right arm; a
         // single hand to the arm on its side, but it stays with the arm that held it
@@ -357,11 +362,11 @@ impl WorkerTrack {
         }
         let mut posture = manikin.solve_with_head(target, head);
         if self.settings.steps && head.is_none() {
-            if let Some((step, hand)) = self.reach_step(model, state, &manikin, &posture, hand) {
-                self.take_step(&mut manikin, step, time, StepCause::Reach { hand });
+            if let Some((to, hand)) = self.reach_step(model, state, &manikin, &posture, hand) {
+                self.take_step(&mut manikin, to, time, StepCause::Reach { hand });
                 posture = manikin.solve_with_head(target, head);
-            } else if let Some(step) = self.return_step(model, state, &manikin, &posture, target) {
-                self.take_step(&mut manikin, step, time, StepCause::Return);
+            } else if let Some(to) = self.return_step(model, state, &manikin, &posture, target) {
+                self.take_step(&mut manikin, to, time, StepCause::Return);
                 posture = manikin.solve_with_head(target, head);
             }
         }
@@ -442,9 +447,11 @@ impl WorkerTrack {
         });
     }
 
-    /// The step towards the target of the arm furthest out of reach, from where the
-    /// worker was first placed ([`pliant_worker::reach_step`]), and that arm's hand;
-    /// `None` when both arms reach, no step helps, the stance is there already, or the
+    /// The stance a step towards the target of the arm furthest out of reach leads to,
+    /// from where the worker was first placed — turned first to face a target more than
+    /// [`pliant_worker::TURN_BEARING`] off its facing ([`pliant_worker::reach_turn`]),
+    /// then moved by [`pliant_worker::reach_step`] — and that arm's hand; `None` when both
+    /// arms reach, neither a turn nor a step helps, the stance is there already, or the
     /// legs would be inside a part or hose at the new stance even after
     /// [`STEP_HALVINGS`] halvings of the step.
     fn reach_step(
@@ -454,7 +461,7 @@ impl WorkerTrack {
         manikin: &Manikin,
         posture: &Posture,
         hand: [Option<usize>; 2],
-    ) -> Option<(DVec3, usize)> {
+    ) -> Option<(Placement, usize)> {
         let home = self.home?;
         let side = Side::BOTH
             .into_iter()
@@ -465,28 +472,38 @@ impl WorkerTrack {
                     .total_cmp(&posture.arms[b.index()].residual)
             })?;
         let target = posture.arms[side.index()].target?;
-        let mut offset = reach_step(&self.body, &home, side, target)?;
+        let turn = reach_turn(&home, target);
+        let facing = turn.map_or(home, |angle| home.turned(angle));
+        let mut offset = match reach_step(&self.body, &facing, side, target) {
+            Some(offset) => offset,
+            None if turn.is_some() => DVec3::ZERO,
+            None => return None,
+        };
         for _ in 0..=STEP_HALVINGS {
-            let position = home.position + offset;
-            let step = position - manikin.placement.position;
-            if step.length() < 1e-9 {
+            let to = Placement {
+                position: home.position + offset,
+                ..facing
+            };
+            if same_stance(&to, &manikin.placement) {
                 return None;
             }
-            let placed = Manikin::new(self.body, Placement { position, ..home });
-            if !self.legs_inside(model, state, &placed) {
-                return Some((step, hand[side.index()]?));
+            if !self.legs_inside(model, state, &Manikin::new(self.body, to)) {
+                return Some((to, hand[side.index()]?));
+            }
+            if offset == DVec3::ZERO {
+                return None;
             }
             offset *= 0.5;
         }
         None
     }
 
-    /// The step back to where the worker was first placed once every arm reaches its
-    /// target from there (the inverse kinematics at that stance leaves each within
-    /// [`REACH_TOLERANCE`]) and the legs would not be inside a part or hose there; `None`
-    /// while the worker stands there, or an arm out of reach at the stance it stepped to
-    /// still needs the step. Taken only when every arm reaches where it stands, so the
-    /// worker never steps back into a stance from which it would have to step again.
+    /// The stance where the worker was first placed, to step back to once every arm
+    /// reaches its target from there (the inverse kinematics at that stance leaves each
+    /// within [`REACH_TOLERANCE`]) and the legs would not be inside a part or hose there;
+    /// `None` while the worker stands there, or an arm out of reach at the stance it
+    /// stepped to still needs the step. Taken only when every arm reaches where it
+    /// stands, so the worker never steps back into a stance it would have to leave again.
     fn return_step(
         &self,
         model: &Model,
@@ -494,15 +511,14 @@ impl WorkerTrack {
         manikin: &Manikin,
         posture: &Posture,
         target: [Option<DVec3>; 2],
-    ) -> Option<DVec3> {
+    ) -> Option<Placement> {
         let home = self.home?;
-        let step = home.position - manikin.placement.position;
         let reaches = |p: &Posture| p.arms.iter().all(|a| !(a.residual > REACH_TOLERANCE));
-        if step.length() < 1e-9 || !reaches(posture) {
+        if same_stance(&home, &manikin.placement) || !reaches(posture) {
             return None;
         }
         let placed = Manikin::new(self.body, home);
-        (reaches(&placed.solve(target)) && !self.legs_inside(model, state, &placed)).then_some(step)
+        (reaches(&placed.solve(target)) && !self.legs_inside(model, state, &placed)).then_some(home)
     }
 
     /// Whether the pelvis, a thigh or a shank of `manikin` standing upright is inside a
@@ -517,20 +533,22 @@ impl WorkerTrack {
         })
     }
 
-    /// Moves `manikin`'s stance by `step` (horizontal) and notes the step.
-    fn take_step(&mut self, manikin: &mut Manikin, step: DVec3, time: f64, cause: StepCause) {
+    /// Moves `manikin` to the stance `to` (a step along the floor, a turn about the
+    /// vertical, or both) and notes the step.
+    fn take_step(&mut self, manikin: &mut Manikin, to: Placement, time: f64, cause: StepCause) {
         let from = manikin.placement;
-        manikin.placement.position += step;
+        manikin.placement = to;
         self.manikin = Some(*manikin);
         self.step_count += 1;
         if self.steps.len() < MAX_STEP_NOTES {
             self.steps.push(StepNote {
                 who: self.settings.population.describe(),
                 time,
-                length: step.length(),
-                words: describe_step(&from, step),
+                length: (to.position - from.position).length(),
+                turn: from.turn_to(&to),
+                words: describe_step(&from, &to),
                 from: from.position,
-                to: manikin.placement.position,
+                to: to.position,
                 cause,
             });
         }
@@ -685,4 +703,10 @@ impl WorkerSummary {
             reba: self.worst_reba?,
         })
     }
+}
+
+/// Whether two stances are the same to 1 nm and 1 nrad (a step or turn smaller than that
+/// is none).
+fn same_stance(a: &Placement, b: &Placement) -> bool {
+    (a.position - b.position).length() < 1e-9 && (a.forward - b.forward).length() < 1e-9
 }
