@@ -369,6 +369,7 @@ export class App {
       const d = this.player.duration;
       if (d > 0) this.panel.replaySlider.value = String(Math.round((this.player.time(now) / d) * 1000));
     }
+    this.manikin.tick(now);
     this.mouse.flush();
     this.xr.update();
     this.stage.renderer.render(this.stage.scene, this.stage.camera);

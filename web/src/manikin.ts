@@ -1,11 +1,13 @@
 // The worker drawn (docs/worker.md): one capsule per body segment — a cylinder on the
 // axis and a ball at each end, shared unit geometry scaled per frame — placed from each
 // snapshot's `worker` (live and in replays); a segment inside a part or hose is red, and
-// the panel lists reach, contacts and the posture scores (manikin_model.ts).
+// the panel lists reach, contacts and the posture scores (manikin_model.ts). When the
+// worker steps or turns, the body glides to the new stance over STEP_DRAW_S (`tick`, each
+// frame) instead of jumping there.
 
 import * as THREE from 'three';
 import { el } from './panel';
-import { manikinCapsules, manikinLines, type ManikinCapsule } from './manikin_model';
+import { glide, manikinCapsules, manikinLines, STEP_DRAW_S, stepped, type ManikinCapsule } from './manikin_model';
 import type { Snapshot, WorkerData } from './protocol';
 
 const BODY_COLOUR = 0xc8b08c;
@@ -25,8 +27,13 @@ export class ManikinView {
   private segments: DrawnSegment[] = [];
   private data: WorkerData | null = null;
   private readonly dir = new THREE.Vector3();
-  /** The capsules drawn last (for tests and the panel). */
+  /** The capsules of the last snapshot (for tests and the panel). */
   drawn: ManikinCapsule[] = [];
+  /** The capsules on screen now (`drawn`, or on the way there during a step). */
+  private shown: ManikinCapsule[] = [];
+  private lastPose: Snapshot['worker'] = undefined;
+  /** A step being drawn: the capsules it started from and when [performance.now ms]. */
+  private gliding: { from: ManikinCapsule[]; start: number } | null = null;
   private linesShown = '';
 
   constructor(private readonly slot: HTMLElement) {
@@ -56,13 +63,37 @@ export class ManikinView {
   }
 
   /** Places the capsules from the snapshot's worker (hidden until it is posed) and
-   *  writes the panel's lines. */
+   *  writes the panel's lines; a step or turn starts a glide from what is on screen. */
   update(pose: Snapshot['worker'], names: { parts: readonly string[]; hoses: readonly string[] }): void {
     const data = this.data;
     if (data === null) return;
     this.drawn = pose === undefined ? [] : manikinCapsules(data, pose, names);
     this.group.visible = this.drawn.length > 0;
-    this.drawn.forEach((c, i) => {
+    if (stepped(this.lastPose, pose) && this.shown.length === this.drawn.length) {
+      this.gliding = { from: this.shown, start: performance.now() };
+    }
+    this.lastPose = pose;
+    if (this.gliding === null) this.place(this.drawn);
+    else this.tick(performance.now());
+    const lines = manikinLines(data, pose, this.drawn);
+    const key = lines.join('\n');
+    if (key === this.linesShown) return;
+    this.linesShown = key;
+    this.slot.replaceChildren(...lines.map((l, i) => el('div', { class: i === 0 ? 'worker-scores' : 'worker-line' }, l)));
+  }
+
+  /** Each frame: moves a step being drawn on to time `now` [performance.now ms]. */
+  tick(now: number): void {
+    if (this.gliding === null) return;
+    const f = (now - this.gliding.start) / (1000 * STEP_DRAW_S);
+    if (f >= 1) this.gliding = null;
+    this.place(f >= 1 ? this.drawn : glide(this.gliding?.from ?? this.drawn, this.drawn, f));
+  }
+
+  /** Puts the segments' meshes on the capsules `caps`. */
+  private place(caps: ManikinCapsule[]): void {
+    this.shown = caps;
+    caps.forEach((c, i) => {
       const d = this.segments[i];
       if (d === undefined) return;
       const r = Math.max(c.radius, 1e-4);
@@ -80,11 +111,6 @@ export class ManikinView {
       d.material.color.setHex(c.contact === null ? BODY_COLOUR : CONTACT_COLOUR);
       d.shaft.userData.contact = c.contact !== null;
     });
-    const lines = manikinLines(data, pose, this.drawn);
-    const key = lines.join('\n');
-    if (key === this.linesShown) return;
-    this.linesShown = key;
-    this.slot.replaceChildren(...lines.map((l, i) => el('div', { class: i === 0 ? 'worker-scores' : 'worker-line' }, l)));
   }
 
   private clear(): void {
@@ -92,6 +118,9 @@ export class ManikinView {
     this.group.clear();
     this.segments = [];
     this.drawn = [];
+    this.shown = [];
+    this.lastPose = undefined;
+    this.gliding = null;
     this.group.visible = false;
   }
 }

@@ -73,3 +73,28 @@ export function manikinLines(data: WorkerData, pose: WorkerSnapshot | undefined,
   }
   return lines;
 }
+
+/** How long the viewer takes to draw a step [s]: the body glides from the stance it left
+ *  to the new one (the simulation moves it at once; this only shows the way it went). */
+export const STEP_DRAW_S = 0.5;
+
+/** Whether the worker took a step or turned between two snapshots: its step count or its
+ *  stance changed. Snapshots without a stance (old recordings) never step. */
+export function stepped(before: WorkerSnapshot | undefined, after: WorkerSnapshot | undefined): boolean {
+  if (before?.stance === undefined || after?.stance === undefined) return false;
+  if ((before.steps ?? 0) !== (after.steps ?? 0)) return true;
+  const a = before.stance;
+  const b = after.stance;
+  return [0, 1, 2].some((k) => a.position[k] !== b.position[k] || a.forward[k] !== b.forward[k]);
+}
+
+/** The capsules drawn a fraction `f` (0..1, clamped) through a step from `from` to `to`:
+ *  every end point on the straight line between, with a smooth start and stop
+ *  (3f² − 2f³). Lists of different lengths (another body): `to`. */
+export function glide(from: readonly ManikinCapsule[], to: readonly ManikinCapsule[], f: number): ManikinCapsule[] {
+  if (from.length !== to.length) return to.slice();
+  const g = Math.min(1, Math.max(0, Number.isFinite(f) ? f : 1));
+  const s = g * g * (3 - 2 * g);
+  const mix = (p: Vec3, q: Vec3): Vec3 => [p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1]), p[2] + s * (q[2] - p[2])];
+  return to.map((c, i) => ({ ...c, a: mix(from[i].a, c.a), b: mix(from[i].b, c.b) }));
+}

@@ -95,6 +95,11 @@ export interface WorkerSnapshot {
   rula: number;
   reba: number;
   posture_class: 'upright' | 'bent_trunk' | 'arms_above_shoulder';
+  /** Where it stands: the floor point between the feet [m] and the unit direction it
+   *  faces (absent in recordings made before the snapshot carried it). */
+  stance?: { position: Vec3; forward: Vec3 };
+  /** Steps taken so far. */
+  steps?: number;
 }
 export interface Welcome { type: 'welcome'; version: number; client_id: number; session: SceneData }
 

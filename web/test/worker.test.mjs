@@ -31,6 +31,10 @@ describe('worker and AR', () => {
       const m = await page.evaluate(() => window.pliant.manikin());
       const trunk = m.capsules.find((c) => c.segment === 'trunk');
       assert.equal(trunk.contact?.name, 'bar', JSON.stringify(trunk));
+      // where he stands, as the scene placed him (no steps in this scene)
+      const posed = await page.evaluate(() => window.pliant.snapshot.worker);
+      assert.deepEqual(posed.stance, { position: [0, 0, 0], forward: [1, 0, 0] });
+      assert.equal(posed.steps, 0);
       // the trunk's axis is the vertical through the feet: 90 mm from the bar's face
       assert.ok(Math.abs(trunk.contact.depth - (w.radii[2] - 0.09)) < 1e-6, JSON.stringify(trunk));
       assert.ok(m.lines[0].startsWith('the 50th-percentile man at t = ') && /RULA \d, REBA \d+/.test(m.lines[0]), m.lines.join('\n'));

@@ -360,6 +360,17 @@ pub struct WorkerSnapshot {
     pub reba: u8,
     /// The posture class whose rows judge the hand forces.
     pub posture_class: pliant_worker::PostureClass,
+    /// Where it stands: the floor point between the feet \[m\] and the horizontal unit
+    /// direction it faces; and the steps it took so far (a step or turn changes these).
+    pub stance: WorkerStance,
+    pub steps: u64,
+}
+
+/// The worker's stance.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct WorkerStance {
+    pub position: [f64; 3],
+    pub forward: [f64; 3],
 }
 
 /// A body segment inside a part or a hose now.
@@ -422,6 +433,11 @@ impl WorkerSnapshot {
             rula: now.scores.rula.grand,
             reba: now.scores.reba.reba,
             posture_class: now.class,
+            stance: WorkerStance {
+                position: now.placement.position.to_array(),
+                forward: now.placement.forward.to_array(),
+            },
+            steps: now.steps,
         }
     }
 }

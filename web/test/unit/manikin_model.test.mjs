@@ -64,3 +64,29 @@ test('the panel lines: scores and class, reach shortfall in mm, contacts', () =>
   ]);
   assert.deepEqual(M.manikinLines(data, undefined, []), ['the 5th-percentile woman: not posed yet']);
 });
+
+test('a step or turn is seen from the stance or the step count; old recordings never step', () => {
+  const at = (position, forward = [1, 0, 0], steps = 0) => pose({ stance: { position, forward }, steps });
+  assert.equal(M.stepped(at([0, 0, 0]), at([0, 0, 0])), false, 'same stance');
+  assert.equal(M.stepped(at([0, 0, 0]), at([0.25, 0, 0], [1, 0, 0], 1)), true, 'a step forward');
+  assert.equal(M.stepped(at([0, 0, 0]), at([0, 0, 0], [0, 1, 0], 1)), true, 'a turn in place');
+  assert.equal(M.stepped(at([0, 0, 0], [1, 0, 0], 1), at([0, 0, 0], [1, 0, 0], 2)), true, 'a step there and back between snapshots');
+  assert.equal(M.stepped(pose(), at([1, 0, 0])), false, 'no stance before');
+  assert.equal(M.stepped(undefined, at([1, 0, 0])), false, 'not posed before');
+});
+
+test('a step is drawn as a glide with a smooth start and stop', () => {
+  const from = M.manikinCapsules(data, pose(), names);
+  const to = M.manikinCapsules(data, pose({ capsules: pose().capsules.map((x, i) => (i % 3 === 0 ? x + 0.4 : x)) }), names);
+  assert.deepEqual(M.glide(from, to, 0), from);
+  assert.deepEqual(M.glide(from, to, 1), to);
+  assert.deepEqual(M.glide(from, to, 7), to, 'clamped');
+  const half = M.glide(from, to, 0.5);
+  half.forEach((c, i) => {
+    assert.ok(Math.abs(c.a[0] - (from[i].a[0] + 0.2)) < 1e-12, `half way: ${c.a}`);
+    assert.equal(c.segment, to[i].segment);
+  });
+  // slow at the start: a tenth of the time covers 2.8 % of the way
+  assert.ok(Math.abs(M.glide(from, to, 0.1)[0].a[0] - (from[0].a[0] + 0.4 * 0.028)) < 1e-12);
+  assert.deepEqual(M.glide(from.slice(1), to, 0.5), to, 'another body: no glide');
+});

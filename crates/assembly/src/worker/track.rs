@@ -141,6 +141,9 @@ pub struct ClassInstants {
 pub struct WorkerNow {
     /// When it was posed \[s\].
     pub time: f64,
+    /// Where it stands, and how many steps it took up to now.
+    pub placement: Placement,
+    pub steps: u64,
     pub posture: Posture,
     /// Per arm (right, left): the workcell hand it follows.
     pub hand: [Option<usize>; 2],
@@ -439,6 +442,8 @@ impl WorkerTrack {
         }
         self.now = Some(WorkerNow {
             time,
+            placement: manikin.placement,
+            steps: self.step_count,
             posture,
             hand,
             scores,
