@@ -4,7 +4,7 @@
 //! counts (`valgrind --tool=callgrind`), where the bench's timed repeats would vary:
 //!
 //! ```sh
-//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose]
+//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose] [sway: 1 = the floor sways as in the bench's moving rows]
 //! ```
 //!
 //! Prints the CPU time of the steps (and per element-step), the candidate-list counters,
@@ -22,7 +22,9 @@ fn main() -> anyhow::Result<()> {
     let warm: u64 = args.get(3).map_or(Ok(1_500), |s| s.parse())?;
     let hoses: usize = args.get(4).map_or(Ok(5), |s| s.parse())?;
     let elements: usize = args.get(5).map_or(Ok(30), |s| s.parse())?;
-    let (mut model, mut state) = bench::setup_moving(hoses, elements, quads, None)?;
+    let sway = args.get(6).is_some_and(|s| s == "1");
+    let (mut model, mut state) =
+        bench::setup_moving(hoses, elements, quads, sway.then(bench::floor_sway))?;
     model.threads = 1;
     run(&model, &mut state, warm);
     let before = state.contact.candidates.clone();
