@@ -4,7 +4,7 @@
 //! counts (`valgrind --tool=callgrind`), where the bench's timed repeats would vary:
 //!
 //! ```sh
-//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose] [sway: 1 = the floor sways as in the bench's moving rows]
+//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose] [floor motion: 1 = it sways as in the bench's moving rows, 2 = it glides at 0.05 m/s]
 //! ```
 //!
 //! Prints the CPU time of the steps (and per element-step), the candidate-list counters,
@@ -22,9 +22,12 @@ fn main() -> anyhow::Result<()> {
     let warm: u64 = args.get(3).map_or(Ok(1_500), |s| s.parse())?;
     let hoses: usize = args.get(4).map_or(Ok(5), |s| s.parse())?;
     let elements: usize = args.get(5).map_or(Ok(30), |s| s.parse())?;
-    let sway = args.get(6).is_some_and(|s| s == "1");
-    let (mut model, mut state) =
-        bench::setup_moving(hoses, elements, quads, sway.then(bench::floor_sway))?;
+    let motion = match args.get(6).map(String::as_str) {
+        Some("1") => Some(bench::floor_sway()),
+        Some("2") => Some(bench::floor_glide()),
+        _ => None,
+    };
+    let (mut model, mut state) = bench::setup_moving(hoses, elements, quads, motion)?;
     model.threads = 1;
     run(&model, &mut state, warm);
     let before = state.contact.candidates.clone();
