@@ -785,53 +785,42 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
 pub fn run(opts: &BenchOptions) -> Result<()> {
     if opts.engine_bay_only {
         let b = crate::bench_engine_bay::run(opts.quick, !opts.json)?;
-        if opts.json {
-            println!("{}", serde_json::to_string_pretty(&b)?);
-        } else {
-            print!("{}", crate::bench_engine_bay::render(&b));
-        }
-        return Ok(());
+        return print_result(&b, opts.json, crate::bench_engine_bay::render);
     }
     if opts.harness_only {
         let b = crate::bench_harness::run(opts.quick)?;
-        if opts.json {
-            println!("{}", serde_json::to_string_pretty(&b)?);
-        } else {
-            print!("{}", crate::bench_harness::render(&b));
-        }
-        return Ok(());
+        return print_result(&b, opts.json, crate::bench_harness::render);
     }
     match opts.only {
         None => run_all(opts),
         Some(BenchOnly::Contact) => run_contact_only(opts),
         Some(BenchOnly::Newton) => {
             let newton = crate::bench_newton::run(opts.quick)?;
-            if opts.json {
-                println!("{}", serde_json::to_string_pretty(&newton)?);
-            } else {
-                print!("{}", crate::bench_newton::render(&newton));
-            }
-            Ok(())
+            print_result(&newton, opts.json, crate::bench_newton::render)
         }
         Some(BenchOnly::Worker) => {
             let cost = crate::bench_worker::measure(opts.quick)?;
-            if opts.json {
-                println!("{}", serde_json::to_string_pretty(&cost)?);
-            } else {
-                print!("{}", crate::bench_worker::render(&cost));
-            }
-            Ok(())
+            print_result(&cost, opts.json, crate::bench_worker::render)
         }
         Some(BenchOnly::Snapshot) => {
             let rows = crate::bench_snapshot::measure(opts.quick)?;
-            if opts.json {
-                println!("{}", serde_json::to_string_pretty(&rows)?);
-            } else {
-                print!("{}", crate::bench_snapshot::render(&rows));
-            }
-            Ok(())
+            print_result(&rows[..], opts.json, crate::bench_snapshot::render)
         }
     }
+}
+
+/// Prints one benchmark's `result`: as pretty JSON with `json`, else as `render` words it.
+fn print_result<T: Serialize + ?Sized>(
+    result: &T,
+    json: bool,
+    render: impl Fn(&T) -> String,
+) -> Result<()> {
+    if json {
+        println!("{}", serde_json::to_string_pretty(result)?);
+    } else {
+        print!("{}", render(result));
+    }
+    Ok(())
 }
 
 /// `--only contact`: the time-boxed rows and the fixed windows
