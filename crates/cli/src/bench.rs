@@ -275,14 +275,8 @@ pub struct Peak {
 
 impl Peak {
     pub fn detect() -> Peak {
-        let clock_ghz = std::fs::read_to_string("/proc/cpuinfo")
-            .ok()
-            .and_then(|s| {
-                s.lines()
-                    .find(|l| l.starts_with("cpu MHz"))
-                    .and_then(|l| l.split(':').nth(1))
-                    .and_then(|m| m.trim().parse::<f64>().ok())
-            })
+        let clock_ghz = cpuinfo("cpu MHz")
+            .and_then(|m| m.parse::<f64>().ok())
             .map_or(1.0, |mhz| mhz / 1000.0);
         let fma = pliant_core::rod::element_block::Kernel::detect()
             == pliant_core::rod::element_block::Kernel::Avx2Fma;
@@ -674,16 +668,16 @@ pub fn fit_loglog(sizes_and_costs: &[(f64, f64)]) -> LineFit {
     fit_line(&logs)
 }
 
+/// The value of the first line of /proc/cpuinfo that starts with `key` (trimmed), if the
+/// file and the line are there.
+fn cpuinfo(key: &str) -> Option<String> {
+    let text = std::fs::read_to_string("/proc/cpuinfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with(key))?;
+    line.split(':').nth(1).map(|v| v.trim().to_string())
+}
+
 fn machine() -> MachineInfo {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|m| m.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown".into());
+    let cpu = cpuinfo("model name").unwrap_or_else(|| "unknown".into());
     MachineInfo {
         cpu,
         logical_cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
