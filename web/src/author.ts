@@ -1,4 +1,4 @@
-// Scene authoring in the viewer (issue 13 item 4, docs/authoring.md). The "Author" mode
+// Scene authoring in the viewer (docs/authoring.md). The "Author" mode
 // edits a scene document in the page: the served scene file's own structure (from
 // `scene_source`: parts, settings and all) plus the hoses, stubs and clips made here by
 // clicking on part surfaces. Hoses are splines through clicked points (each lifted off the

@@ -1,4 +1,4 @@
-// What the hoses are coloured by (issue 11 item 4): the hand load (SPEC I4, one colour per
+// What the hoses are coloured by: the hand load (SPEC I4, one colour per
 // hose), or per beam the bend radius against its minimum, the twist relative to the
 // routed hose, the axial force — each mapped to a colour value c in [0, 1] (blue → green →
 // red, colour.ts) over a range the legend shows with its unit. SI inside; display units

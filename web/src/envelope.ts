@@ -1,4 +1,4 @@
-// Tolerance envelopes (issue 14, SPEC T2): the swept volume of a hose over a study's runs,
+// Tolerance envelopes (SPEC T2): the swept volume of a hose over a study's runs,
 // as `pliant study` writes it (`envelope/envelope.glb`, `envelope/<hose>.stl`: metres, z up,
 // the scene's own coordinates — docs/study.md), shown as a translucent mesh in the
 // session's world frame. Loaded by dropping the file on the view or by `?envelope=URL`;

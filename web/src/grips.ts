@@ -1,4 +1,4 @@
-// How a hand holds the hose (issue 11, protocol `grab.grip`): firm (six degrees of
+// How a hand holds the hose (protocol `grab.grip`): firm (six degrees of
 // freedom), axial (position held; the hose may turn about its own axis in the hand) or
 // ball (position held; free to turn about every axis). The panel sets the mouse's grip;
 // a key held at the grab overrides it (F firm, A axial, B ball); each VR controller's

@@ -1,4 +1,4 @@
-// Pliant's browser/VR viewer (issue 4): connects to the `pliant serve` that served this
+// Pliant's browser/VR viewer: connects to the `pliant serve` that served this
 // page, draws the session (parts, stubs, clips, hoses as force-coloured tubes), lets the
 // mouse or VR controllers grab and move hoses and the panel move parts, and shows loads,
 // limits, the verdict and its findings. Colour modes with a legend (hand load, bend radius

@@ -1,4 +1,4 @@
-// Markers at the installation checks' violations (issue 11 item 4): a red ring around the
+// Markers at the installation checks' violations: a red ring around the
 // hose at each violation's arc length (its worst place since the last reset), with a
 // label naming the check, the value and the limit. Markers are kept per hose and check
 // and rebuilt only when the set of violations changes.

@@ -1,4 +1,4 @@
-// Scene authoring in the viewer (issue 13 item 4, docs/authoring.md), end to end: from a
+// Scene authoring in the viewer (docs/authoring.md), end to end: from a
 // scene with a part (a bench) and no hose of its own, the Author mode builds a hose route
 // by clicking points on the part's surface with the mouse, picks its material, undoes and
 // redoes, moves a point, adds a clip and a stub, shows the loader's error for a wrong

@@ -1,5 +1,5 @@
 // End-to-end tests of the viewer's colour modes, violation markers, grips and tolerance
-// envelopes (issues 11 and 14): `pliant serve` (the real binary) on the engine bay demo,
+// envelopes: `pliant serve` (the real binary) on the engine bay demo,
 // driven in headless Chromium. Every wait is for a condition (HANG_GUARD_MS only stops a
 // hung test); nothing depends on the machine's speed.
 

@@ -113,7 +113,7 @@ describe('viewer', () => {
         window.pliant.send({ type: 'move', hand_id: id, position: [p[0] + 0.05, p[1] + 0.1, p[2] + 0.12] });
       }, [end]);
       // the colour follows the hand's force against its push/pull limit (twist and bending
-      // are guidance only, issue 11): a hand lifting the end carries a small share of it
+      // are guidance only, SPEC I4): a hand lifting the end carries a small share of it
       await page.waitForFunction(() => (window.pliant.shown?.hoses ?? []).some((h) => h.colour > 0.02));
       await simulated(page, 1.5);
       const dir = path.join(repo, 'target', 'e2e');

@@ -290,14 +290,8 @@ pub struct Peak {
 
 impl Peak {
     pub fn detect() -> Peak {
-        let clock_ghz = std::fs::read_to_string("/proc/cpuinfo")
-            .ok()
-            .and_then(|s| {
-                s.lines()
-                    .find(|l| l.starts_with("cpu MHz"))
-                    .and_then(|l| l.split(':').nth(1))
-                    .and_then(|m| m.trim().parse::<f64>().ok())
-            })
+        let clock_ghz = cpuinfo("cpu MHz")
+            .and_then(|m| m.parse::<f64>().ok())
             .map_or(1.0, |mhz| mhz / 1000.0);
         let fma = pliant_core::rod::element_block::Kernel::detect()
             == pliant_core::rod::element_block::Kernel::Avx2Fma;
@@ -689,16 +683,16 @@ pub fn fit_loglog(sizes_and_costs: &[(f64, f64)]) -> LineFit {
     fit_line(&logs)
 }
 
+/// The value of the first line of /proc/cpuinfo that starts with `key` (trimmed), if the
+/// file and the line are there.
+fn cpuinfo(key: &str) -> Option<String> {
+    let text = std::fs::read_to_string("/proc/cpuinfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with(key))?;
+    line.split(':').nth(1).map(|v| v.trim().to_string())
+}
+
 fn machine() -> MachineInfo {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|m| m.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown".into());
+    let cpu = cpuinfo("model name").unwrap_or_else(|| "unknown".into());
     MachineInfo {
         cpu,
         logical_cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
@@ -800,53 +794,42 @@ pub fn report(rows: Vec<BenchRow>, quick: bool) -> Result<BenchReport> {
 pub fn run(opts: &BenchOptions) -> Result<()> {
     if opts.engine_bay_only {
         let b = crate::bench_engine_bay::run(opts.quick, !opts.json)?;
-        if opts.json {
-            println!("{}", serde_json::to_string_pretty(&b)?);
-        } else {
-            print!("{}", crate::bench_engine_bay::render(&b));
-        }
-        return Ok(());
+        return print_result(&b, opts.json, crate::bench_engine_bay::render);
     }
     if opts.harness_only {
         let b = crate::bench_harness::run(opts.quick)?;
-        if opts.json {
-            println!("{}", serde_json::to_string_pretty(&b)?);
-        } else {
-            print!("{}", crate::bench_harness::render(&b));
-        }
-        return Ok(());
+        return print_result(&b, opts.json, crate::bench_harness::render);
     }
     match opts.only {
         None => run_all(opts),
         Some(BenchOnly::Contact) => run_contact_only(opts),
         Some(BenchOnly::Newton) => {
             let newton = crate::bench_newton::run(opts.quick)?;
-            if opts.json {
-                println!("{}", serde_json::to_string_pretty(&newton)?);
-            } else {
-                print!("{}", crate::bench_newton::render(&newton));
-            }
-            Ok(())
+            print_result(&newton, opts.json, crate::bench_newton::render)
         }
         Some(BenchOnly::Worker) => {
             let cost = crate::bench_worker::measure(opts.quick)?;
-            if opts.json {
-                println!("{}", serde_json::to_string_pretty(&cost)?);
-            } else {
-                print!("{}", crate::bench_worker::render(&cost));
-            }
-            Ok(())
+            print_result(&cost, opts.json, crate::bench_worker::render)
         }
         Some(BenchOnly::Snapshot) => {
             let rows = crate::bench_snapshot::measure(opts.quick)?;
-            if opts.json {
-                println!("{}", serde_json::to_string_pretty(&rows)?);
-            } else {
-                print!("{}", crate::bench_snapshot::render(&rows));
-            }
-            Ok(())
+            print_result(&rows[..], opts.json, crate::bench_snapshot::render)
         }
     }
+}
+
+/// Prints one benchmark's `result`: as pretty JSON with `json`, else as `render` words it.
+fn print_result<T: Serialize + ?Sized>(
+    result: &T,
+    json: bool,
+    render: impl Fn(&T) -> String,
+) -> Result<()> {
+    if json {
+        println!("{}", serde_json::to_string_pretty(result)?);
+    } else {
+        print!("{}", render(result));
+    }
+    Ok(())
 }
 
 /// `--only contact`: the time-boxed rows and the fixed windows

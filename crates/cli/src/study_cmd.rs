@@ -8,7 +8,7 @@
 //! it dies, and the driver takes SIGTERM as Ctrl-C — it writes the finished rows and
 //! closes its local cluster, whose workers stop with it.
 
-use anyhow::{bail, Context, Result};
+use anyhow::{anyhow, Context, Result};
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
@@ -35,25 +35,14 @@ const PROBE: &str = "import pliant.studies, distributed, pyarrow, pandas, scipy,
 
 /// The first interpreter that can import `pliant.studies` and the study extras.
 fn find_python() -> Result<PathBuf> {
-    let tried = pliant_runs::cad_converter::python_candidates();
-    for python in &tried {
-        let ok = Command::new(python)
-            .args(["-c", PROBE])
-            .output()
-            .map(|o| o.status.success())
-            .unwrap_or(false);
-        if ok {
-            return Ok(python.clone());
-        }
-    }
-    let names: Vec<String> = tried.iter().map(|p| p.display().to_string()).collect();
-    bail!(
-        "pliant study needs the Python package `pliant` with its study extras, and none of \
-         these interpreters has it: {}. Install it with ./scripts/install-python.sh (into .venv), \
-         or `pip install './crates/python[study]'`, \
-         or name an interpreter with PLIANT_PYTHON",
-        names.join(", ")
-    )
+    pliant_runs::cad_converter::first_python_where(PROBE).map_err(|tried| {
+        anyhow!(
+            "pliant study needs the Python package `pliant` with its study extras, and none of \
+             these interpreters has it: {tried}. Install it with ./scripts/install-python.sh (into .venv), \
+             or `pip install './crates/python[study]'`, \
+             or name an interpreter with PLIANT_PYTHON"
+        )
+    })
 }
 
 /// Makes the kernel send SIGTERM to the command's process when this process ends, even

@@ -8,6 +8,13 @@ fn pliant() -> Command {
     Command::new(env!("CARGO_BIN_EXE_pliant"))
 }
 
+/// `pliant ARGS`, which must succeed, and what it printed, read as JSON.
+fn json_of(args: &[&str]) -> serde_json::Value {
+    let o = pliant().args(args).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
 /// `pliant run --quiet [extra…] SCENE --out OUT`, waited for.
 fn run_scene(scene: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
     pliant()
@@ -241,12 +248,7 @@ fn diverging_run_stops_with_step_and_cause_and_no_nan() {
 
 #[test]
 fn validate_json_prints_the_documented_fields() {
-    let o = pliant()
-        .args(["validate", "--json", "--case", "torsion"])
-        .output()
-        .unwrap();
-    assert!(o.status.success());
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let v = json_of(&["validate", "--json", "--case", "torsion"]);
     let rows = v.as_array().unwrap();
     assert!(!rows.is_empty());
     for key in [
@@ -267,12 +269,7 @@ fn validate_json_prints_the_documented_fields() {
 /// positive times (no timing is judged here).
 #[test]
 fn contact_bench_reports_its_fixed_windows() {
-    let o = pliant()
-        .args(["bench", "--only", "contact", "--quick", "--json"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let v = json_of(&["bench", "--only", "contact", "--quick", "--json"]);
     assert!(v["ratio"]
         .as_f64()
         .is_some_and(|r| r.is_finite() && r > 0.0));
@@ -298,12 +295,7 @@ fn contact_bench_reports_its_fixed_windows() {
 /// body: both finite and positive, the ratio their quotient (no timing is judged here).
 #[test]
 fn worker_bench_reports_both_instants() {
-    let o = pliant()
-        .args(["bench", "--only", "worker", "--quick", "--json"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let v = json_of(&["bench", "--only", "worker", "--quick", "--json"]);
     let without = v["us_per_instant_without"].as_f64().unwrap();
     let with = v["us_per_instant_with"].as_f64().unwrap();
     assert!(without.is_finite() && without > 0.0 && with.is_finite() && with > 0.0);

@@ -1,4 +1,4 @@
-//! End-to-end: real wire harnesses installed by a worker's hands (issue 34 item 6), as a user
+//! End-to-end: real wire harnesses installed by a worker's hands, as a user
 //! runs it — `pliant import FILE.kbl --out DIR [--branch ID]`, then `pliant run
 //! DIR/install.toml` — on the VOBES sample files of `data/harness/`: the generator cable
 //! (three segments at a Y-junction, one fixing, three connectors) and a branch of the main

@@ -2,6 +2,7 @@
 //! `motion.csv` against the moving part's coordinate, the report draws it, and the
 //! verdict names the worst position in the motion's own unit.
 
+use pliant_testkit::scene_text::{fix, move_part, rotate_part, SceneText};
 use pliant_testkit::scenes::{DOOR, HOSE3_300, WEIGHTLESS_MM};
 use std::path::Path;
 use std::process::Command;
@@ -141,32 +142,20 @@ fn the_rocking_engine_example_reports_a_cycle_of_phases_and_the_fan_clearance() 
 /// part the scene has not is refused with the field and the parts' names.
 #[test]
 fn a_timeline_that_turns_a_part_runs_and_a_wrong_part_is_named() {
-    let timeline = r#"
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = -1
-part = "door"
-
-[[timeline]]
-action = "rotate_part"
-part = "door"
-axis = [0, 0, 1]
-point = [500, 0, 0]
-by_deg = 45
-duration_s = 0.5
-
-[[timeline]]
-action = "move_part"
-part = "door"
-to = [0, 0, 20]
-duration_s = 0.2
-"#;
+    let timeline: String = SceneText::piece()
+        .with(fix("h", 0))
+        .with(fix("h", -1).text("part", "door"))
+        .with(
+            rotate_part("door", [0.0, 0.0, 1.0], [500.0, 0.0, 0.0])
+                .number("by_deg", 45.0)
+                .number("duration_s", 0.5),
+        )
+        .with(
+            move_part("door")
+                .point("to", [0.0, 0.0, 20.0])
+                .number("duration_s", 0.2),
+        )
+        .into();
     let scene = format!("{WEIGHTLESS_MM}solver = \"static\"\n{HOSE3_300}{DOOR}{timeline}");
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("door.toml");

@@ -1,5 +1,6 @@
-"""Shared fixtures: a cantilever scene built in code, a worker's held-hose scene, the
-repository's paths and the `pliant` binary (for comparing with the command line)."""
+"""Shared fixtures: a cantilever scene built in code, a worker's held-hose scene, a
+calibrated material in a scene, the repository's paths and the `pliant` binary (for
+comparing with the command line)."""
 
 import math
 import os
@@ -62,6 +63,19 @@ def held_hose_scene(extra="", z=1900.0):
     400 mm hose "h" of library hose 3 along x at height ``z`` mm, fixed at its start, its
     end grabbed by hand 0 and lowered 20 mm in 0.3 s."""
     return HELD_HOSE_SCENE.format(extra=extra, z=z)
+
+
+def calibrated_material_scene(material_toml, material):
+    """A scene (mm) of a calibration's ``material_toml`` and a 200 mm hose "h" of 4
+    elements in ``material`` with a 10/16 mm tube section: whether the written material
+    loads in a scene."""
+    return pliant.Scene.from_toml(
+        'format = "pliant-scene"\nversion = 1\nlength_unit = "mm"\n'
+        + material_toml
+        + f'\n[[hoses]]\nname = "h"\nmaterial = "{material}"\n'
+        "section = { d_inner = 10, d_outer = 16 }\nelements = 4\nstart = [0, 0, 0]\n"
+        "path = [{ line = { to = [200, 0, 0] } }]\n"
+    )
 
 
 def cantilever_dict(length=0.2, elements=20, gravity=(0.0, 0.0, -G), fixed=True):

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import pliant
-from conftest import EXAMPLES
+from conftest import EXAMPLES, calibrated_material_scene
 
 # The example's truth (crates/calibrate/src/synthetic.rs, Truth::EXAMPLE)
 D_I, D_A = 0.010, 0.016
@@ -50,13 +50,7 @@ def test_the_example_recovers_its_known_stiffness(tmp_path):
 
 def test_the_material_loads_in_a_scene():
     c = pliant.calibrate(EXAMPLES / "calibration" / "hose.toml")
-    scene = pliant.Scene.from_toml(
-        'format = "pliant-scene"\nversion = 1\nlength_unit = "mm"\n'
-        + c.material_toml
-        + '\n[[hoses]]\nname = "h"\nmaterial = "calibrated_hose"\n'
-        'section = { d_inner = 10, d_outer = 16 }\nelements = 4\nstart = [0, 0, 0]\n'
-        "path = [{ line = { to = [200, 0, 0] } }]\n"
-    )
+    scene = calibrated_material_scene(c.material_toml, "calibrated_hose")
     assert scene.hose_names == ["h"]
 
 

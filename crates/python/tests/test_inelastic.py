@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import pliant
-from conftest import D_INNER, D_OUTER, SECOND_MOMENT, cantilever_dict
+from conftest import D_INNER, D_OUTER, SECOND_MOMENT, calibrated_material_scene, cantilever_dict
 
 E_RUBBER = 10e6
 EI_RUBBER = E_RUBBER * SECOND_MOMENT
@@ -53,13 +53,7 @@ def test_a_dahl_loop_is_calibrated_from_arrays_and_loads_in_a_scene():
     assert c.material["hysteresis"]["bending_moment_n_m"]["value"] == pytest.approx(M_S, rel=1e-5)
     assert "hysteresis = { bending_moment_n_m = 0.02, bending_curvature_1_m = 0.5 }" in c.material_toml
     assert c.html.count("<svg") == 2  # the loop with the law, and the residuals
-    scene = pliant.Scene.from_toml(
-        'format = "pliant-scene"\nversion = 1\nlength_unit = "mm"\n'
-        + c.material_toml
-        + '\n[[hoses]]\nname = "h"\nmaterial = "bundle"\n'
-        "section = { d_inner = 10, d_outer = 16 }\nelements = 4\nstart = [0, 0, 0]\n"
-        "path = [{ line = { to = [200, 0, 0] } }]\n"
-    )
+    scene = calibrated_material_scene(c.material_toml, "bundle")
     assert scene.hose_names == ["h"]
 
 
@@ -102,13 +96,7 @@ def test_a_relaxation_test_gives_prony_terms_in_the_scene_format(tmp_path):
     got = sorted((t["time_s"]["value"], t["weight"]["value"]) for t in terms)
     assert got[0] == pytest.approx((2.0, 0.3), rel=1e-6)
     assert got[1] == pytest.approx((60.0, 0.2), rel=1e-6)
-    scene = pliant.Scene.from_toml(
-        'format = "pliant-scene"\nversion = 1\nlength_unit = "mm"\n'
-        + c.material_toml
-        + '\n[[hoses]]\nname = "h"\nmaterial = "rubber"\n'
-        "section = { d_inner = 10, d_outer = 16 }\nelements = 4\nstart = [0, 0, 0]\n"
-        "path = [{ line = { to = [200, 0, 0] } }]\n"
-    )
+    scene = calibrated_material_scene(c.material_toml, "rubber")
     assert scene.hose_names == ["h"]
 
 

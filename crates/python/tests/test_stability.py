@@ -1,4 +1,4 @@
-"""Stability and honest convergence in Python (issue 10): a clamped hose pushed past its
+"""Stability and honest convergence in Python: a clamped hose pushed past its
 Euler load under the static solver buckles onto the stable branch, the instability is
 reported with its mode shape, and the numbers stay certain (every solve converged)."""
 

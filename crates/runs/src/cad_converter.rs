@@ -56,9 +56,9 @@ pub fn python_candidates() -> Vec<PathBuf> {
     list
 }
 
-/// The first interpreter that has `OCP` (checked without importing it: fast).
-pub fn find_python() -> Result<PathBuf, String> {
-    let probe = "import importlib.util, sys; sys.exit(importlib.util.find_spec('OCP') is None)";
+/// The first of [`python_candidates`] on which `python -c probe` succeeds; if none does,
+/// the candidates tried, comma-separated, for the caller's error message.
+pub fn first_python_where(probe: &str) -> Result<PathBuf, String> {
     let tried = python_candidates();
     for python in &tried {
         let ok = Command::new(python)
@@ -72,10 +72,17 @@ pub fn find_python() -> Result<PathBuf, String> {
         }
     }
     let names: Vec<String> = tried.iter().map(|p| p.display().to_string()).collect();
-    Err(format!(
-        "the STEP importer is not installed: none of these Python interpreters has OpenCASCADE's binding `OCP`: {}; {INSTALL_HINT}",
-        names.join(", ")
-    ))
+    Err(names.join(", "))
+}
+
+/// The first interpreter that has `OCP` (checked without importing it: fast).
+pub fn find_python() -> Result<PathBuf, String> {
+    let probe = "import importlib.util, sys; sys.exit(importlib.util.find_spec('OCP') is None)";
+    first_python_where(probe).map_err(|tried| {
+        format!(
+            "the STEP importer is not installed: none of these Python interpreters has OpenCASCADE's binding `OCP`: {tried}; {INSTALL_HINT}"
+        )
+    })
 }
 
 /// The environment variable that sets the converter's time limit \[s\].

@@ -7,7 +7,8 @@ use pliant_assembly::workcell::log::{
     header_line, line_text, InputLog, LogHeader, LogLine, LOG_FILE,
 };
 use pliant_assembly::workcell::log_reading::{LogDamage, TornTail};
-use pliant_assembly::{Workcell, WorkcellError, WorkcellOptions};
+use pliant_assembly::workcell::replay::replay;
+use pliant_assembly::{NoObserver, Workcell, WorkcellError, WorkcellOptions};
 use pliant_scene::load::MAX_SCENE_FILE_BYTES;
 use pliant_scene::timeline::MAX_HANDS;
 use pliant_scene::{load_scene_json_str_with, load_scene_str_with, LoadedScene};
@@ -139,6 +140,20 @@ impl Session {
                 log: self.log.header.time_step,
             });
         }
+        Ok(cell)
+    }
+
+    /// A fresh workcell ([`Session::workcell`]) with the whole log replayed into it
+    /// (SPEC W2): the session as it ended.
+    pub fn replayed(&self) -> Result<Workcell, String> {
+        let mut cell = self.workcell().map_err(|e| e.to_string())?;
+        replay(
+            &mut cell,
+            &self.log.inputs,
+            self.log.end_tick,
+            &mut NoObserver,
+        )
+        .map_err(|e| e.to_string())?;
         Ok(cell)
     }
 }

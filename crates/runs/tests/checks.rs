@@ -7,49 +7,30 @@
 use pliant_assembly::checks::CheckKind;
 use pliant_core::{Model, SolverKind};
 use pliant_scene::load_scene_str;
+use pliant_testkit::scene_text::{fix, hose, run_for, solver, SceneText};
 
-/// A 500 mm hose3 along x, 20 elements, no gravity, fixed at its start, with `load`
-/// (a TOML `load` action's force/moment lines) at its end; `extra` is added at the top.
-fn scene(load: &str, extra: &str) -> String {
-    format!(
-        r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-{extra}
-[simulation]
-gravity = [0, 0, 0]
-solver = "static"
-
-[[hoses]]
-name = "h"
-material = "hose3"
-elements = 20
-start = [0, 0, 0]
-path = [{{ line = {{ to = [500, 0, 0] }} }}]
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-
-[[timeline]]
-action = "load"
-hose = "h"
-node = -1
-{load}
-ramp_s = 0.5
-
-[[timeline]]
-action = "run"
-duration_s = 1.0
-"#
-    )
+/// A 500 mm hose3 along x, 20 elements, no gravity, fixed at its start, with `load` (a
+/// `load` action's key, `force_n` or `moment_nm`, and its vector) at its end; `extra` is
+/// added at the top.
+fn scene(load: (&str, [f64; 3]), extra: &str) -> String {
+    let (key, vector) = load;
+    SceneText::mm()
+        .raw(extra)
+        .with(solver("static").point("gravity", [0.0; 3]))
+        .with(hose("h", "hose3", [0.0; 3], [500.0, 0.0, 0.0]).number("elements", 20.0))
+        .with(fix("h", 0))
+        .with(
+            pliant_testkit::scene_text::load("h", -1)
+                .point(key, vector)
+                .number("ramp_s", 0.5),
+        )
+        .with(run_for(1.0))
+        .into()
 }
 
 /// EI of the hose \[N·m²\] and its minimum bend radius \[m\].
 fn stiffness_and_limit() -> (f64, f64) {
-    let s = load_scene_str(&scene("moment_nm = [0, 1, 0]", ""), "probe.toml").unwrap();
+    let s = load_scene_str(&scene(("moment_nm", [0.0, 1.0, 0.0]), ""), "probe.toml").unwrap();
     let model = Model::build(&s.world).unwrap();
     let ei = model.elements[0].bending_stiffness;
     assert_eq!(ei[0], ei[1]);
@@ -68,7 +49,7 @@ fn a_hose_rolled_tighter_than_its_minimum_radius_is_reported_at_kappa_m_over_ei(
     let (ei, r_min) = stiffness_and_limit();
     let radius = 0.12; // m, below r_min = 0.1795 m
     let m = ei / radius;
-    let text = scene(&format!("moment_nm = [0, {m}, 0]"), "");
+    let text = scene(("moment_nm", [0.0, m, 0.0]), "");
     let s = load_scene_str(&text, "rolled.toml").unwrap();
     let (_, run) = pliant_runs::run_with(&s, Some(SolverKind::Static)).unwrap();
     let v: Vec<_> = run
@@ -126,7 +107,7 @@ fn a_hose_rolled_tighter_than_its_minimum_radius_is_reported_at_kappa_m_over_ei(
 fn a_gently_rolled_hose_passes_and_its_radius_is_still_reported() {
     let (ei, _) = stiffness_and_limit();
     let radius = 0.6;
-    let text = scene(&format!("moment_nm = [0, {}, 0]", ei / radius), "");
+    let text = scene(("moment_nm", [0.0, ei / radius, 0.0]), "");
     let s = load_scene_str(&text, "gentle.toml").unwrap();
     let (_, run) = pliant_runs::run_with(&s, Some(SolverKind::Static)).unwrap();
     assert!(
@@ -144,7 +125,7 @@ fn a_cantilever_bent_hard_breaks_the_radius_first_at_its_root() {
     // tip force F: root moment ≈ F·L (less as it deflects); F·L = 3 EI / r_min is
     // well past the minimum radius at the root and nowhere near it at the tip.
     let f = 3.0 * ei / r_min / 0.5;
-    let text = scene(&format!("force_n = [0, 0, {}]", -f), "");
+    let text = scene(("force_n", [0.0, 0.0, -f]), "");
     let s = load_scene_str(&text, "cantilever.toml").unwrap();
     let (cell, run) = pliant_runs::run_with(&s, Some(SolverKind::Static)).unwrap();
     let v = run
@@ -173,8 +154,8 @@ fn a_cantilever_bent_hard_breaks_the_radius_first_at_its_root() {
 #[test]
 fn checks_switch_off_or_warn_per_scene() {
     let (ei, _) = stiffness_and_limit();
-    let load = format!("moment_nm = [0, {}, 0]", ei / 0.12);
-    let off = scene(&load, "[checks]\nbend_radius = false\n");
+    let load = ("moment_nm", [0.0, ei / 0.12, 0.0]);
+    let off = scene(load, "[checks]\nbend_radius = false\n");
     let (_, run) = pliant_runs::run_with(
         &load_scene_str(&off, "off.toml").unwrap(),
         Some(SolverKind::Static),
@@ -182,7 +163,7 @@ fn checks_switch_off_or_warn_per_scene() {
     .unwrap();
     assert!(run.checks.violations.is_empty());
     assert!(!run.checks.enabled.contains(&"bend_radius"));
-    let warn = scene(&load, "[checks]\ndecide = false\n");
+    let warn = scene(load, "[checks]\ndecide = false\n");
     let (_, run) = pliant_runs::run_with(
         &load_scene_str(&warn, "warn.toml").unwrap(),
         Some(SolverKind::Static),
@@ -214,7 +195,7 @@ fn bad_check_limits_are_errors_naming_the_field() {
         ("[checks]\nbend_radius = 3\n", "checks.bend_radius"),
         ("[checks]\nbend = true\n", "checks.bend"),
     ] {
-        let err = load_scene_str(&scene("moment_nm = [0, 1, 0]", extra), "bad.toml")
+        let err = load_scene_str(&scene(("moment_nm", [0.0, 1.0, 0.0]), extra), "bad.toml")
             .unwrap_err()
             .to_string();
         assert!(err.contains(field), "`{err}` lacks `{field}`");
@@ -286,7 +267,7 @@ fn a_span_is_held_to_its_own_minimum_bend_radius() {
     let (ei, r_min) = stiffness_and_limit();
     let radius = 0.25; // m: above the hose's 0.1795 m, below the span's 0.3 m
     let m = ei / radius;
-    let plain = scene(&format!("moment_nm = [0, {m}, 0]"), "");
+    let plain = scene(("moment_nm", [0.0, m, 0.0]), "");
     let path = "path = [{ line = { to = [500, 0, 0] } }]";
     // hose3's own tube (27/35 mm): the same stiffness over the span, so κ stays M/EI
     let with_span = plain.replacen(

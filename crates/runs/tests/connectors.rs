@@ -5,6 +5,7 @@
 
 use pliant_assembly::FastenerState;
 use pliant_scene::load_scene_str;
+use pliant_testkit::scene_text::{action, grab, hose, move_hand, run_for, SceneText, Table};
 use pliant_testkit::scenes::WEIGHTLESS_MM;
 
 /// The mating curve of the scenes below: (travel mm, force N); peak 150 N at 6 mm, the
@@ -22,48 +23,26 @@ const CURVE: [(f64, f64); 5] = [
 /// lets go; `extra` goes at the end of the file.
 fn scene(push_mm: f64, extra: &str) -> String {
     let curve: Vec<String> = CURVE.iter().map(|(s, f)| format!("[{s}, {f}]")).collect();
-    format!(
-        r#"{WEIGHTLESS_MM}
-[[hoses]]
-name = "h"
-material = "hose3"
-elements = 10
-start = [0, 0, 0]
-path = [{{ line = {{ to = [300, 0, 0] }} }}]
-
-[[connectors]]
-name = "X1"
-origin = [300, 0, 0]
-axis = [1, 0, 0]
-travel = 8
-mating_force = [{curve}]
-latch_at = 6.5
-retention_force_n = 110
-hose = "h"
-end = "end"
-
-[[timeline]]
-action = "grab"
-hand = 0
-at = [295, 0, 0]
-
-[[timeline]]
-action = "move_hand"
-hand = 0
-by = [{push_mm}, 0, 0]
-duration_s = 2
-
-[[timeline]]
-action = "release_hand"
-hand = 0
-
-[[timeline]]
-action = "run"
-duration_s = 0.2
-{extra}
-"#,
-        curve = curve.join(", ")
-    )
+    let counterpart = Table::entry("connectors")
+        .text("name", "X1")
+        .point("origin", [300.0, 0.0, 0.0])
+        .point("axis", [1.0, 0.0, 0.0])
+        .number("travel", 8.0)
+        .inline("mating_force", &format!("[{}]", curve.join(", ")))
+        .number("latch_at", 6.5)
+        .number("retention_force_n", 110.0)
+        .text("hose", "h")
+        .text("end", "end");
+    let hose = hose("h", "hose3", [0.0; 3], [300.0, 0.0, 0.0]).number("elements", 10.0);
+    let scene = SceneText::piece()
+        .with(hose)
+        .with(counterpart)
+        .with(grab(0, [295.0, 0.0, 0.0]))
+        .with(move_hand(0, [push_mm, 0.0, 0.0], 2.0))
+        .with(action("release_hand").number("hand", 0.0))
+        .with(run_for(0.2))
+        .raw(extra);
+    format!("{WEIGHTLESS_MM}{}", String::from(scene))
 }
 
 /// The curve at travel s \[mm\], linear between its points (N).

@@ -6,68 +6,45 @@
 use pliant_core::loads::LoadCase;
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str_in;
+use pliant_testkit::scene_text::{action, fix, hose, load, run_for, settle, simulation, SceneText};
 
-const SCENE: &str = r#"
-format = "pliant-scene"
-version = 1
-name = "ramped and named loads"
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, 0]
-damping_mass_per_s = 20.0
-
-[[hoses]]
-name = "h"
-material = "hose1"
-start = [0, 0, 0]
-path = [{ line = { to = [300, 0, 0] } }]
-elements = 10
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-
-[[timeline]]
-action = "load"
-hose = "h"
-node = -1
-force_n = [0, 0, -0.2]
-name = "down"
-ramp_s = 0.5
-
-[[timeline]]
-action = "load"
-hose = "h"
-node = -1
-force_n = [0, 0.1, 0]
-name = "side"
-
-[[timeline]]
-action = "run"
-duration_s = 0.25
-
-[[timeline]]
-action = "settle"
-kinetic_energy_j = 1e-12
-max_duration_s = 20
-
-[[timeline]]
-action = "unload"
-hose = "h"
-node = -1
-name = "down"
-
-[[timeline]]
-action = "settle"
-kinetic_energy_j = 1e-12
-max_duration_s = 20
-"#;
+/// A weightless, damped 300 mm hose fixed at its start; its end loaded down (ramped over
+/// 0.5 s, "down") and sideways ("side"), settled, "down" removed, settled again.
+fn scene() -> String {
+    let damped = simulation()
+        .point("gravity", [0.0; 3])
+        .number("damping_mass_per_s", 20.0);
+    let hose = hose("h", "hose1", [0.0; 3], [300.0, 0.0, 0.0]).number("elements", 10.0);
+    SceneText::mm_named("ramped and named loads")
+        .with(damped)
+        .with(hose)
+        .with(fix("h", 0))
+        .with(
+            load("h", -1)
+                .point("force_n", [0.0, 0.0, -0.2])
+                .text("name", "down")
+                .number("ramp_s", 0.5),
+        )
+        .with(
+            load("h", -1)
+                .point("force_n", [0.0, 0.1, 0.0])
+                .text("name", "side"),
+        )
+        .with(run_for(0.25))
+        .with(settle(1e-12, 20.0))
+        .with(
+            action("unload")
+                .text("hose", "h")
+                .number("node", -1.0)
+                .text("name", "down"),
+        )
+        .with(settle(1e-12, 20.0))
+        .into()
+}
 
 #[test]
 fn a_ramped_load_rises_and_a_named_unload_removes_that_load_alone() {
-    let scene = load_scene_str_in(SCENE, "loads.toml", std::path::Path::new(".")).unwrap();
+    let scene = load_scene_str_in(&scene(), "loads.toml", std::path::Path::new(".")).unwrap();
     for solver in [
         SolverKind::Explicit,
         SolverKind::Implicit,

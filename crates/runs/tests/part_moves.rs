@@ -5,11 +5,11 @@
 //! back to a timeline that re-enacts it.
 
 use glam::{DQuat, DVec3};
-use pliant_assembly::workcell::replay::replay;
 use pliant_assembly::{run_timeline, Input, NoObserver, Stage, WorkcellOptions};
 use pliant_core::SolverKind;
 use pliant_runs::session::{log_to_scene, start_session_folder, Session};
 use pliant_scene::{load_scene_str, load_scene_str_in};
+use pliant_testkit::scene_text::{fix, mount, move_part, rotate_part, run_for, SceneText};
 use pliant_testkit::scenes::{DOOR, HOSE3_300, WEIGHTLESS_MM};
 
 /// A weightless 300 mm hose from a part "body" to a part "door" (parts[1], neither
@@ -22,49 +22,31 @@ fn head() -> String {
 
 /// The door opened 0 → 60° about the vertical through (500, 0, 0) mm in 1 s, lifted by
 /// 10 mm, then turned back to 0°.
-const TIMELINE: &str = r#"
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-
-[[timeline]]
-action = "mount"
-hose = "h"
-node = -1
-part = "door"
-
-[[timeline]]
-action = "rotate_part"
-part = "door"
-axis = [0, 0, 2]
-point = [500, 0, 0]
-to_deg = 60
-duration_s = 1.0
-
-[[timeline]]
-action = "move_part"
-part = "door"
-by = [0, 0, 10]
-duration_s = 0.2
-
-[[timeline]]
-action = "run"
-duration_s = 0.1
-
-[[timeline]]
-action = "rotate_part"
-part = "door"
-axis = [0, 0, 1]
-point = [500, 0, 0]
-to_deg = 0
-duration_s = 0.5
-wait = false
-
-[[timeline]]
-action = "run"
-duration_s = 0.25
-"#;
+fn timeline() -> String {
+    let pin = [500.0, 0.0, 0.0];
+    SceneText::piece()
+        .with(fix("h", 0))
+        .with(mount("h", -1, "door"))
+        .with(
+            rotate_part("door", [0.0, 0.0, 2.0], pin)
+                .number("to_deg", 60.0)
+                .number("duration_s", 1.0),
+        )
+        .with(
+            move_part("door")
+                .point("by", [0.0, 0.0, 10.0])
+                .number("duration_s", 0.2),
+        )
+        .with(run_for(0.1))
+        .with(
+            rotate_part("door", [0.0, 0.0, 1.0], pin)
+                .number("to_deg", 0.0)
+                .number("duration_s", 0.5)
+                .flag("wait", false),
+        )
+        .with(run_for(0.25))
+        .into()
+}
 
 fn options(solver: SolverKind) -> WorkcellOptions {
     WorkcellOptions {
@@ -76,7 +58,7 @@ fn options(solver: SolverKind) -> WorkcellOptions {
 
 #[test]
 fn a_door_turned_by_the_timeline_carries_the_hose_end_under_every_solver() {
-    let text = format!("{}{TIMELINE}", head());
+    let text = format!("{}{}", head(), timeline());
     let scene = load_scene_str(&text, "door.toml").unwrap_or_else(|e| panic!("{e}"));
     assert!(scene.world.rigid_parts[1].movable, "moved by the timeline");
     assert!(!scene.world.rigid_parts[0].movable);
@@ -230,14 +212,7 @@ fn a_live_session_moving_a_part_replays_bit_for_bit_and_converts_to_a_timeline()
 
     let session = Session::open(dir.path()).unwrap();
     assert_eq!(session.log.inputs, live.log().to_vec());
-    let mut again = session.workcell().unwrap();
-    replay(
-        &mut again,
-        &session.log.inputs,
-        session.log.end_tick,
-        &mut NoObserver,
-    )
-    .unwrap();
+    let again = session.replayed().unwrap();
     assert_eq!(again.tick(), live.tick());
     assert_eq!(again.state().x, live.state().x, "positions bit for bit");
     assert_eq!(again.state().v, live.state().v, "velocities bit for bit");

@@ -7,6 +7,8 @@ use pliant_assembly::report::part_outline::{PartOutline, View};
 use pliant_assembly::report::Drawing;
 use pliant_core::SolverKind;
 use pliant_scene::{load_scene_file, load_scene_str};
+use pliant_testkit::scene_text::{box_part, solver, worker, SceneText};
+use pliant_testkit::scenes::held_hose;
 use std::path::Path;
 
 /// Asserts that every corner of `drawn` (seen from above) is a corner of `rest` turned by
@@ -41,41 +43,17 @@ fn turned_about_z(drawn: &PartOutline, rest: &PartOutline, theta: f64, pivot: [f
 /// posture draws the door at the angle of that instant, from the keyframes.
 #[test]
 fn the_worst_posture_picture_draws_the_door_at_its_angle_then() {
-    let text = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-[simulation]
-solver = "static"
-[worker]
-population = "male"
-facing = [1, 0, 0]
-[[parts]]
-name = "door"
-box = { size = [800, 30, 600] }
-position = [-1600, 15, 300]
-motion = { kind = "hinge", axis = [0, 0, 1], point = [-2000, 0, 0], angle_deg = { times_s = [0, 0.3], values = [20, 80], smooth = false } }
-[[hoses]]
-name = "h"
-material = "hose3"
-elements = 10
-start = [100, -200, 1000]
-path = [{ line = { to = [500, -200, 1000] } }]
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-[[timeline]]
-action = "grab"
-hand = 0
-at = [500, -200, 1000]
-[[timeline]]
-action = "move_hand"
-hand = 0
-by = [0, 0, -20]
-duration_s = 0.3
-"#;
-    let scene = load_scene_str(text, "worker_door.toml").unwrap_or_else(|e| panic!("{e}"));
+    let door = box_part("door", [800.0, 30.0, 600.0], [-1600.0, 15.0, 300.0]).inline(
+        "motion",
+        r#"{ kind = "hinge", axis = [0, 0, 1], point = [-2000, 0, 0], angle_deg = { times_s = [0, 0.3], values = [20, 80], smooth = false } }"#,
+    );
+    let base = SceneText::mm()
+        .with(solver("static"))
+        .with(worker("male").point("facing", [1.0, 0.0, 0.0]))
+        .with(door);
+    let (start, end) = ([100.0, -200.0, 1000.0], [500.0, -200.0, 1000.0]);
+    let text: String = held_hose(base, "h", start, end, [0.0, 0.0, -20.0], 0.3).into();
+    let scene = load_scene_str(&text, "worker_door.toml").unwrap_or_else(|e| panic!("{e}"));
     let (cell, run) =
         pliant_runs::run_with(&scene, Some(SolverKind::Static)).unwrap_or_else(|e| panic!("{e}"));
     let worker = run.worker.as_ref().expect("the worker's account");

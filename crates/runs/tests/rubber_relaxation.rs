@@ -5,6 +5,7 @@
 
 use pliant_assembly::FastenerState;
 use pliant_scene::load_scene_str;
+use pliant_testkit::scene_text::{action, grab, move_hand, run_for, SceneText, Table};
 use pliant_testkit::scenes::{EPDM, WEIGHTLESS_MM};
 
 /// The scene's head: a 200 mm hose of `epdm`, whose `relaxation` is a TOML array (may be
@@ -112,38 +113,22 @@ fn relaxation_data_are_checked_with_the_field_named() {
 /// The hose pushed 20 mm onto a stub in 1 s by a hand, let go, and left for `hold`
 /// seconds (static solver).
 fn stub_scene(relaxation: &str, hold: f64) -> String {
-    head(relaxation, "static")
-        + &format!(
-            r#"
-[[stubs]]
-name = "inlet"
-origin = [205, 0, 0]
-axis = [1, 0, 0]
-length = 30
-diameter = 11
-hose = "hose"
-end = "end"
-
-[[timeline]]
-action = "grab"
-hand = 0
-at = [200, 0, 0]
-
-[[timeline]]
-action = "move_hand"
-hand = 0
-by = [25, 0, 0]
-duration_s = 1
-
-[[timeline]]
-action = "release_hand"
-hand = 0
-
-[[timeline]]
-action = "run"
-duration_s = {hold}
-"#
-        )
+    let stub = Table::entry("stubs")
+        .text("name", "inlet")
+        .point("origin", [205.0, 0.0, 0.0])
+        .point("axis", [1.0, 0.0, 0.0])
+        .number("length", 30.0)
+        .number("diameter", 11.0)
+        .text("hose", "hose")
+        .text("end", "end");
+    let pushed: String = SceneText::piece()
+        .with(stub)
+        .with(grab(0, [200.0, 0.0, 0.0]))
+        .with(move_hand(0, [25.0, 0.0, 0.0], 1.0))
+        .with(action("release_hand").number("hand", 0.0))
+        .with(run_for(hold))
+        .into();
+    head(relaxation, "static") + &pushed
 }
 
 /// The stub's holding force at the end of the timeline \[N\].

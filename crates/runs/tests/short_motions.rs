@@ -6,47 +6,32 @@
 use glam::DVec3;
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str_in;
+use pliant_testkit::scene_text::{action, fix, hose, simulation, SceneText};
 
-const SCENE: &str = r#"
-format = "pliant-scene"
-version = 1
-name = "a move shorter than a step"
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, -9.81]
-
-[[hoses]]
-name = "hose"
-material = "hose3"
-start = [0, 0, 300]
-path = [{ line = { to = [500, 0, 300] } }]
-elements = 10
-
-[[timeline]]
-action = "fix"
-hose = "hose"
-node = 0
-
-[[timeline]]
-action = "move"
-hose = "hose"
-node = -1
-by = [[0, 0, 100]]
-duration_s = 0.002
-
-[[timeline]]
-action = "move"
-hose = "hose"
-node = -1
-by = [[0, 50, 0]]
-duration_s = 0.2
-"#;
+/// A 500 mm hose 300 mm up, fixed at its start; its end moved 100 mm up over 2 ms, then
+/// 50 mm sideways over 0.2 s.
+fn scene() -> String {
+    let move_end = |by: &str, duration_s: f64| {
+        action("move")
+            .text("hose", "hose")
+            .number("node", -1.0)
+            .inline("by", by)
+            .number("duration_s", duration_s)
+    };
+    let (start, end) = ([0.0, 0.0, 300.0], [500.0, 0.0, 300.0]);
+    SceneText::mm_named("a move shorter than a step")
+        .with(simulation().point("gravity", [0.0, 0.0, -9.81]))
+        .with(hose("hose", "hose3", start, end).number("elements", 10.0))
+        .with(fix("hose", 0))
+        .with(move_end("[[0, 0, 100]]", 0.002))
+        .with(move_end("[[0, 50, 0]]", 0.2))
+        .into()
+}
 
 /// Runs the scene under `solver` and checks the moved end's final position exactly (to
 /// round-off).
 fn arrives(solver: SolverKind) {
-    let scene = load_scene_str_in(SCENE, "short.toml", std::path::Path::new(".")).unwrap();
+    let scene = load_scene_str_in(&scene(), "short.toml", std::path::Path::new(".")).unwrap();
     let (cell, _) = pliant_runs::run_with(&scene, Some(solver)).unwrap();
     let end = cell.state().x[10];
     let expected = DVec3::new(0.5, 0.05, 0.4);

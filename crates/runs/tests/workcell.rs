@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 use pliant_assembly::workcell::log::InputLog;
-use pliant_assembly::workcell::replay::replay;
+use pliant_assembly::workcell::replay::{replay, replay_log_of};
 use pliant_assembly::{
     run_timeline, Action, Input, NoObserver, Refusal, Stage, Workcell, WorkcellOptions,
 };
@@ -93,13 +93,7 @@ fn a_two_handed_study_replays_bit_for_bit_for_each_solver() {
             run.fasteners
         );
         let mut again = scene.workcell(options(solver)).unwrap();
-        replay(
-            &mut again,
-            &live.log().to_vec(),
-            live.tick(),
-            &mut NoObserver,
-        )
-        .unwrap();
+        replay_log_of(&live, &mut again).unwrap();
         assert_same(&live, &again);
         eprintln!(
             "{solver}: {} inputs, {} steps replayed bit for bit, verdict {}",
@@ -126,14 +120,7 @@ fn a_session_folder_replays_bit_for_bit_and_converts_to_a_timeline() {
     let session = Session::open(dir.path()).unwrap();
     assert_eq!(session.log.inputs, live.log().to_vec());
     assert_eq!(session.log.end_tick, live.tick());
-    let mut again = session.workcell().unwrap();
-    replay(
-        &mut again,
-        &session.log.inputs,
-        session.log.end_tick,
-        &mut NoObserver,
-    )
-    .unwrap();
+    let again = session.replayed().unwrap();
     assert_same(&live, &again);
 
     // the log as an editable scene: re-running its timeline re-enacts the study
@@ -378,13 +365,7 @@ fn a_divergence_is_rolled_back_and_only_the_hand_involved_lets_go() {
     assert!(live.verdict(pliant_assembly::Stage::Final).uncertain);
     // the replay meets the same divergence at the same tick and rolls back the same way
     let mut again = scene.workcell(opts).unwrap();
-    replay(
-        &mut again,
-        &live.log().to_vec(),
-        live.tick(),
-        &mut NoObserver,
-    )
-    .unwrap();
+    replay_log_of(&live, &mut again).unwrap();
     assert_same(&live, &again);
 }
 

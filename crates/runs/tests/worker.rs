@@ -209,7 +209,7 @@ fn bad_worker_fields_are_named() {
 /// restored mid-study, give the same posed instants bit for bit (explicit and static).
 #[test]
 fn the_worker_replays_and_restores_bit_for_bit() {
-    use pliant_assembly::workcell::replay::replay;
+    use pliant_assembly::workcell::replay::replay_log_of;
     use pliant_assembly::{run_timeline, NoObserver, Timeline, WorkcellOptions};
     let text = scene(1500.0, "[worker]\npopulation = \"female 50\"\n");
     let s = load_scene_str(&text, "worker.toml").unwrap();
@@ -232,13 +232,7 @@ fn the_worker_replays_and_restores_bit_for_bit() {
         run_timeline(&mut live, &rest, &mut NoObserver).unwrap();
         assert!(live.worker_series().len() > 10, "{solver}");
         let mut again = s.workcell(options).unwrap();
-        replay(
-            &mut again,
-            &live.log().to_vec(),
-            live.tick(),
-            &mut NoObserver,
-        )
-        .unwrap();
+        replay_log_of(&live, &mut again).unwrap();
         assert_eq!(again.worker_series(), live.worker_series(), "{solver}");
         assert_eq!(again.summary().worker, live.summary().worker);
         let end = live.worker_series().to_vec();

@@ -9,6 +9,8 @@ use glam::DVec3;
 use pliant_assembly::{Stage, Verdict};
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str;
+use pliant_testkit::scene_text::{grab, hose, move_hand, solver, worker, SceneText};
+use pliant_testkit::scenes::held_hose;
 use pliant_worker::{body, Manikin, Placement, Population, Sex};
 
 fn man() -> pliant_worker::Body {
@@ -30,53 +32,33 @@ fn target(v: f64, beyond: f64) -> DVec3 {
 
 /// A 300 mm hose along x ending at `t`, fixed at its start, its end grabbed and held.
 fn scene(t: DVec3, steps: bool) -> String {
-    let fixed = "[[timeline]]\naction = \"fix\"\nhose = \"h\"\nnode = 0\n";
-    scene_with(t, steps, fixed, "")
+    let mm = (t * 1e3).to_array();
+    let worker = worker("male 50")
+        .point("position", [0.0, 0.0, 0.0])
+        .point("facing", [1.0, 0.0, 0.0])
+        .flag("steps", steps);
+    let base = SceneText::mm().with(solver("static")).with(worker);
+    let start = [mm[0] + 300.0, mm[1], mm[2]];
+    held_hose(base, "h", start, mm, [0.0; 3], 0.1).into()
 }
 
-/// As [`scene`], with `fix` (the start's fixing, or none) and `then` (timeline actions
-/// after the hand is held) given.
-fn scene_with(t: DVec3, steps: bool, fix: &str, then: &str) -> String {
-    let mm = t * 1e3;
-    format!(
-        r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[simulation]
-solver = "static"
-
-[worker]
-population = "male 50"
-position = [0, 0, 0]
-facing = [1, 0, 0]
-steps = {steps}
-
-[[hoses]]
-name = "h"
-material = "hose3"
-elements = 10
-start = [{x0}, {y}, {z}]
-path = [{{ line = {{ to = [{x}, {y}, {z}] }} }}]
-
-{fix}
-[[timeline]]
-action = "grab"
-hand = 0
-at = [{x}, {y}, {z}]
-
-[[timeline]]
-action = "move_hand"
-hand = 0
-by = [0, 0, 0]
-duration_s = 0.1
-{then}"#,
-        x0 = mm.x + 300.0,
-        x = mm.x,
-        y = mm.y,
-        z = mm.z,
-    )
+/// As [`scene`] with steps on, the start not fixed (the hand carries the hose), and then
+/// the hand moved by `by` \[mm\] over 0.2 s.
+fn scene_then(t: DVec3, by: [f64; 3]) -> String {
+    let mm = (t * 1e3).to_array();
+    let worker = worker("male 50")
+        .point("position", [0.0, 0.0, 0.0])
+        .point("facing", [1.0, 0.0, 0.0])
+        .flag("steps", true);
+    let start = [mm[0] + 300.0, mm[1], mm[2]];
+    SceneText::mm()
+        .with(solver("static"))
+        .with(worker)
+        .with(hose("h", "hose3", start, mm).number("elements", 10.0))
+        .with(grab(0, mm))
+        .with(move_hand(0, [0.0; 3], 0.1))
+        .with(move_hand(0, by, 0.2))
+        .into()
 }
 
 fn run(text: &str) -> (pliant_assembly::Workcell, pliant_assembly::RunSummary) {
@@ -152,9 +134,7 @@ fn a_far_target_is_still_out_of_reach_after_the_longest_step() {
 #[test]
 fn the_worker_steps_back_once_the_target_is_within_reach_from_where_it_was_placed() {
     let t = target(0.45, 0.25);
-    let back =
-        "[[timeline]]\naction = \"move_hand\"\nhand = 0\nby = [-350, 0, 0]\nduration_s = 0.2\n";
-    let (cell, run) = run(&scene_with(t, true, "", back));
+    let (cell, run) = run(&scene_then(t, [-350.0, 0.0, 0.0]));
     let w = run.worker.as_ref().unwrap();
     assert_eq!(w.step_count, 2, "{:?}", w.steps);
     let (forward, home) = (&w.steps[0], &w.steps[1]);
@@ -218,7 +198,7 @@ fn a_target_beside_the_worker_is_reached_after_a_quarter_turn_and_a_step() {
 /// A step is state: a replay of the log gives the same steps and posed instants.
 #[test]
 fn stepping_replays_bit_for_bit() {
-    use pliant_assembly::workcell::replay::replay;
+    use pliant_assembly::workcell::replay::replay_log_of;
     use pliant_assembly::{run_timeline, NoObserver, WorkcellOptions};
     let s = load_scene_str(&scene(target(0.45, 0.25), true), "steps.toml").unwrap();
     let options = WorkcellOptions {
@@ -230,13 +210,7 @@ fn stepping_replays_bit_for_bit() {
     run_timeline(&mut live, &s.timeline, &mut NoObserver).unwrap();
     assert_eq!(live.summary().worker.unwrap().step_count, 1);
     let mut again = s.workcell(options).unwrap();
-    replay(
-        &mut again,
-        &live.log().to_vec(),
-        live.tick(),
-        &mut NoObserver,
-    )
-    .unwrap();
+    replay_log_of(&live, &mut again).unwrap();
     assert_eq!(again.worker_series(), live.worker_series());
     assert_eq!(again.summary().worker, live.summary().worker);
 }

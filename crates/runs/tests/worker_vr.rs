@@ -6,37 +6,28 @@
 //! without it gives another posture.
 
 use glam::DVec3;
-use pliant_assembly::workcell::replay::replay;
 use pliant_assembly::worker::BodyPose;
 use pliant_assembly::{Input, NoObserver, WorkcellOptions};
 use pliant_core::SolverKind;
 use pliant_runs::session::{start_session_folder, Session};
 use pliant_scene::load_scene_str;
+use pliant_testkit::scene_text::{fix, hose, worker, SceneText};
 use pliant_worker::{body, HeadTarget, Manikin, Placement, Population, Sex, TrunkAngles};
 
-const SCENE: &str = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[worker]
-population = "female"
-percentile = 5
-position = [0, 0, 0]
-facing = [1, 0, 0]
-
-[[hoses]]
-name = "h"
-material = "hose3"
-elements = 10
-start = [200, -250, 1000]
-path = [{ line = { to = [450, -250, 1000] } }]
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-"#;
+/// The 5th-percentile woman (or, without `worker`, nobody) beside a 250 mm hose along x
+/// fixed at its start.
+fn vr_scene(with_worker: bool) -> String {
+    let her = worker("female")
+        .number("percentile", 5.0)
+        .point("position", [0.0, 0.0, 0.0])
+        .point("facing", [1.0, 0.0, 0.0]);
+    let (start, end) = ([200.0, -250.0, 1000.0], [450.0, -250.0, 1000.0]);
+    SceneText::mm()
+        .with_all(with_worker.then_some(her))
+        .with(hose("h", "hose3", start, end).number("elements", 10.0))
+        .with(fix("h", 0))
+        .into()
+}
 
 /// The 5th-percentile woman of the scene, where the scene stands her.
 fn manikin() -> Manikin {
@@ -83,7 +74,7 @@ fn live_session(
     poses: Option<fn(usize) -> BodyPose>,
     dir: &std::path::Path,
 ) -> pliant_assembly::Workcell {
-    let scene = load_scene_str(SCENE, "vr.toml").unwrap();
+    let scene = load_scene_str(&vr_scene(true), "vr.toml").unwrap();
     let options = WorkcellOptions {
         solver: Some(SolverKind::Explicit),
         initial_loads: false,
@@ -138,14 +129,7 @@ fn headset_inputs_are_logged_and_replay_bit_for_bit() {
         .inputs
         .iter()
         .any(|s| matches!(s.input, Input::WorkerPose { .. })));
-    let mut again = session.workcell().unwrap();
-    replay(
-        &mut again,
-        &session.log.inputs,
-        session.log.end_tick,
-        &mut NoObserver,
-    )
-    .unwrap();
+    let again = session.replayed().unwrap();
     assert_eq!(again.tick(), live.tick());
     assert_eq!(
         again.worker_series(),
@@ -195,14 +179,7 @@ fn the_feet_walk_with_the_headset_and_replay_bit_for_bit() {
         v.worker
     );
     let session = Session::open(dir.path()).unwrap();
-    let mut again = session.workcell().unwrap();
-    replay(
-        &mut again,
-        &session.log.inputs,
-        session.log.end_tick,
-        &mut NoObserver,
-    )
-    .unwrap();
+    let again = session.replayed().unwrap();
     assert_eq!(again.worker_series(), live.worker_series());
     assert_eq!(again.summary().worker, live.summary().worker);
     assert_eq!(again.worker().unwrap().now(), live.worker().unwrap().now());
@@ -210,7 +187,7 @@ fn the_feet_walk_with_the_headset_and_replay_bit_for_bit() {
 
 #[test]
 fn a_body_pose_is_refused_without_a_worker_or_with_bad_values() {
-    let scene = load_scene_str(SCENE, "vr.toml").unwrap();
+    let scene = load_scene_str(&vr_scene(true), "vr.toml").unwrap();
     let mut cell = scene.workcell(WorkcellOptions::default()).unwrap();
     let logged = cell.log().to_vec().len();
     let bad = BodyPose {
@@ -233,9 +210,7 @@ fn a_body_pose_is_refused_without_a_worker_or_with_bad_values() {
         logged,
         "refused inputs are not logged"
     );
-    let worker = "[worker]\npopulation = \"female\"\npercentile = 5\nposition = [0, 0, 0]\nfacing = [1, 0, 0]\n";
-    assert!(SCENE.contains(worker));
-    let without = load_scene_str(&SCENE.replace(worker, ""), "plain.toml").unwrap();
+    let without = load_scene_str(&vr_scene(false), "plain.toml").unwrap();
     let mut cell = without.workcell(WorkcellOptions::default()).unwrap();
     let e = cell.apply(Input::WorkerPose { pose: pose(0) }).unwrap_err();
     assert!(e.to_string().contains("no [worker]"), "{e}");

@@ -11,6 +11,7 @@
 use futures_util::{SinkExt, StreamExt};
 use pliant_server::session::SessionOptions;
 use pliant_server::{start, RunningServer, ServerConfig, Session};
+use pliant_testkit::scene_text::{action, box_part, hose, simulation, SceneText, Table};
 use serde_json::{json, Value};
 use std::time::{Duration, Instant};
 use tokio::net::TcpStream;
@@ -96,6 +97,17 @@ async fn next_where(ws: &mut Ws, ty: &str, pred: impl Fn(&Value) -> bool) -> Val
 async fn hello(ws: &mut Ws) -> Value {
     send(ws, json!({"type": "hello", "version": 1})).await;
     next_where(ws, "welcome", |_| true).await
+}
+
+/// Hand 0 grabs the hose at `p` and moves straight up by `dz` \[m\].
+async fn grab_and_lift(ws: &mut Ws, p: [f64; 3], dz: f64) {
+    send(ws, json!({"type": "grab", "hand_id": 0, "position": p})).await;
+    let target = [p[0], p[1], p[2] + dz];
+    send(
+        ws,
+        json!({"type": "move", "hand_id": 0, "position": target}),
+    )
+    .await;
 }
 
 fn node(snap: &Value, hose: usize, i: usize) -> [f64; 3] {
@@ -187,17 +199,7 @@ async fn grab_and_move(s: RunningServer) {
     let snap = next_where(&mut ws, "snapshot", |_| true).await;
     let n = snap["hoses"][0]["positions"].as_array().unwrap().len();
     let p0 = node(&snap, 0, n / 2);
-    send(
-        &mut ws,
-        json!({"type": "grab", "hand_id": 0, "position": p0}),
-    )
-    .await;
-    let target = [p0[0], p0[1], p0[2] + 0.03];
-    send(
-        &mut ws,
-        json!({"type": "move", "hand_id": 0, "position": target}),
-    )
-    .await;
+    grab_and_lift(&mut ws, p0, 0.03).await;
     let moved = next_where(&mut ws, "snapshot", |v| {
         v["hands"]
             .as_array()
@@ -783,16 +785,7 @@ async fn resting_hoses_sleep_and_a_grab_wakes_them() {
     let snap = asleep.expect("the demo's hoses come to rest and sleep");
     let n = snap["hoses"][1]["positions"].as_array().unwrap().len();
     let p0 = node(&snap, 1, n / 2);
-    send(
-        &mut ws,
-        json!({"type": "grab", "hand_id": 0, "position": p0}),
-    )
-    .await;
-    send(
-        &mut ws,
-        json!({"type": "move", "hand_id": 0, "position": [p0[0], p0[1], p0[2] + 0.03]}),
-    )
-    .await;
+    grab_and_lift(&mut ws, p0, 0.03).await;
     send(&mut ws, json!({"type": "resume"})).await;
     let moved = next_where(&mut ws, "snapshot", |v| dist(node(v, 1, n / 2), p0) > 0.01).await;
     assert_eq!(moved["hoses"][1]["asleep"], false);
@@ -829,16 +822,7 @@ async fn a_sudden_move_gives_no_inertial_force_spike() {
     let chunk = ((1.0 / 120.0 / dt).round() as u64).clamp(1, 100_000);
     let n = snap["hoses"][1]["positions"].as_array().unwrap().len();
     let p0 = node(&snap, 1, n / 2);
-    send(
-        &mut ws,
-        json!({"type": "grab", "hand_id": 0, "position": p0}),
-    )
-    .await;
-    send(
-        &mut ws,
-        json!({"type": "move", "hand_id": 0, "position": [p0[0], p0[1], p0[2] + 0.12]}),
-    )
-    .await;
+    grab_and_lift(&mut ws, p0, 0.12).await;
     let start = next_where(&mut ws, "snapshot", |v| {
         v["hands"].as_array().is_some_and(|h| h.len() == 1)
     })
@@ -1429,84 +1413,69 @@ async fn part_moves_are_checked_and_refusals_come_back_as_the_notice() {
 /// door, a stub on the hatch and a clip in the world.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_welcome_gives_each_parts_joint_and_each_fasteners_part() {
-    let text = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-[simulation]
-gravity = [0, 0, 0]
-[[hoses]]
-name = "h"
-material = "hose3"
-start = [0, -20, 0]
-path = [{ line = { to = [400, -20, 0] } }]
-[[parts]]
-name = "body"
-box = { size = [40, 40, 40] }
-position = [-100, -100, 0]
-[[parts]]
-name = "door"
-box = { size = [800, 30, 600] }
-position = [420, 15, 0]
-motion = { kind = "hinge", axis = [0, 0, 2], point = [0, 0, 0], angle_deg = { times_s = [0, 1, 2], values = [0, 70, -10] } }
-[[parts]]
-name = "handle"
-box = { size = [20, 20, 20] }
-position = [700, 40, 0]
-parent = "door"
-[[parts]]
-name = "seat"
-box = { size = [100, 100, 100] }
-position = [0, 500, 0]
-motion = { kind = "slide", direction = [0, 3, 0], distance = { times_s = [0, 3], values = [0, 250] } }
-[[parts]]
-name = "engine"
-box = { size = [100, 100, 100] }
-position = [0, -500, 0]
-motion = { kind = "periodic", centre = [0, -500, 0], z = { amplitude = 2, frequency_hz = 25 }, roll = { amplitude = 1.5, frequency_hz = 12 } }
-[[parts]]
-name = "hatch"
-box = { size = [100, 100, 10] }
-position = [150, 250, 300]
-[[clips]]
-name = "door clip"
-part = "door"
-origin = [300, -20, 0]
-opening = [0, -1, 0]
-orientation = [1, 0, 0]
-opening_width = 12
-inner_diameter = 17
-snap_force_n = 30
-[[clips]]
-name = "world clip"
-origin = [100, -20, 0]
-opening = [0, -1, 0]
-orientation = [1, 0, 0]
-opening_width = 12
-inner_diameter = 17
-snap_force_n = 30
-[[stubs]]
-name = "hatch stub"
-origin = [150, 250, 320]
-axis = [0, 0, -1]
-length = 20
-diameter = 30
-part = "hatch"
-[[timeline]]
-action = "rotate_part"
-part = "hatch"
-axis = [-1, 0, 0]
-to_deg = 40
-duration_s = 0.5
-[[timeline]]
-action = "rotate_part"
-part = "hatch"
-axis = [1, 0, 0]
-by_deg = -10
-duration_s = 0.5
-"#;
+    // a clip opening towards −y along +x, as the scene format's example
+    let clip = |name: &str, origin: [f64; 3]| {
+        Table::entry("clips")
+            .text("name", name)
+            .point("origin", origin)
+            .point("opening", [0.0, -1.0, 0.0])
+            .point("orientation", [1.0, 0.0, 0.0])
+            .number("opening_width", 12.0)
+            .number("inner_diameter", 17.0)
+            .number("snap_force_n", 30.0)
+    };
+    let text: String = SceneText::mm()
+        .with(simulation().point("gravity", [0.0; 3]))
+        .with(hose("h", "hose3", [0.0, -20.0, 0.0], [400.0, -20.0, 0.0]))
+        .with(box_part("body", [40.0; 3], [-100.0, -100.0, 0.0]))
+        .with(
+            box_part("door", [800.0, 30.0, 600.0], [420.0, 15.0, 0.0]).inline(
+                "motion",
+                r#"{ kind = "hinge", axis = [0, 0, 2], point = [0, 0, 0], angle_deg = { times_s = [0, 1, 2], values = [0, 70, -10] } }"#,
+            ),
+        )
+        .with(box_part("handle", [20.0; 3], [700.0, 40.0, 0.0]).text("parent", "door"))
+        .with(
+            box_part("seat", [100.0; 3], [0.0, 500.0, 0.0]).inline(
+                "motion",
+                r#"{ kind = "slide", direction = [0, 3, 0], distance = { times_s = [0, 3], values = [0, 250] } }"#,
+            ),
+        )
+        .with(
+            box_part("engine", [100.0; 3], [0.0, -500.0, 0.0]).inline(
+                "motion",
+                r#"{ kind = "periodic", centre = [0, -500, 0], z = { amplitude = 2, frequency_hz = 25 }, roll = { amplitude = 1.5, frequency_hz = 12 } }"#,
+            ),
+        )
+        .with(box_part("hatch", [100.0, 100.0, 10.0], [150.0, 250.0, 300.0]))
+        .with(clip("door clip", [300.0, -20.0, 0.0]).text("part", "door"))
+        .with(clip("world clip", [100.0, -20.0, 0.0]))
+        .with(
+            Table::entry("stubs")
+                .text("name", "hatch stub")
+                .point("origin", [150.0, 250.0, 320.0])
+                .point("axis", [0.0, 0.0, -1.0])
+                .number("length", 20.0)
+                .number("diameter", 30.0)
+                .text("part", "hatch"),
+        )
+        .with(
+            action("rotate_part")
+                .text("part", "hatch")
+                .point("axis", [-1.0, 0.0, 0.0])
+                .number("to_deg", 40.0)
+                .number("duration_s", 0.5),
+        )
+        .with(
+            action("rotate_part")
+                .text("part", "hatch")
+                .point("axis", [1.0, 0.0, 0.0])
+                .number("by_deg", -10.0)
+                .number("duration_s", 0.5),
+        )
+        .into();
     let dir = tempfile::tempdir().unwrap();
-    let scene = pliant_scene::load_scene_str_in(text, "joints.toml", dir.path()).unwrap();
+    let scene = pliant_scene::load_scene_str_in(&text, "joints.toml", dir.path()).unwrap();
     let s = serve_paused(&scene).await;
     let welcome = hello(&mut connect(&s).await).await;
     let parts = welcome["session"]["parts"].as_array().unwrap();

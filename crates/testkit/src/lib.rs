@@ -1,6 +1,7 @@
 //! What the workspace's tests share, in one place: the dissertation's library hoses typed
 //! out as core materials and sections ([`hoses`]), small models built from them
-//! ([`models`]), mini-scenes in the scene format ([`scenes`]), tables of bad inputs a
+//! ([`models`]), mini-scenes in the scene format ([`scenes`]) and a builder of scene text from
+//! typed pieces ([`scene_text`]), tables of bad inputs a
 //! reader must refuse ([`bad_inputs`]), deterministic pseudo-random numbers ([`random`])
 //! and the repository's real data files ([`files`]).
 //! A dev-dependency of the crates' integration tests, never of a library.
@@ -10,6 +11,7 @@ pub mod files;
 pub mod hoses;
 pub mod models;
 pub mod random;
+pub mod scene_text;
 pub mod scenes;
 
 pub use hoses::{hose1, hose1_material, hose1_section, hose3};

@@ -1,6 +1,9 @@
 //! Pieces of mini-scenes in the scene format (docs/scene-format.md), for the tests that
 //! write a scene file in a few lines: put together with `format!` and the test's own
-//! tables. Each piece starts and ends with a newline.
+//! tables. Each piece starts and ends with a newline. Scenes a test builds from typed
+//! pieces: [`crate::scene_text`].
+
+use crate::scene_text::{fix, grab, hose, move_hand, solver, SceneText};
 
 /// The scene format's head in millimetres (kept a macro so the pieces below can start
 /// with it).
@@ -58,10 +61,27 @@ poisson = 0.45
 density_kg_m3 = 1150
 "#;
 
+/// `scene` and then hose `name` of library hose 3, 10 elements, straight from `start` to
+/// `end` (mm), fixed at its start, its end grabbed by hand 0 and moved by `by` (mm) over
+/// `duration_s`: what a worker's tests give him to hold.
+pub fn held_hose(
+    scene: SceneText,
+    name: &str,
+    start: [f64; 3],
+    end: [f64; 3],
+    by: [f64; 3],
+    duration_s: f64,
+) -> SceneText {
+    scene
+        .with(hose(name, "hose3", start, end).number("elements", 10.0))
+        .with(fix(name, 0))
+        .with(grab(0, end))
+        .with(move_hand(0, by, duration_s))
+}
+
 /// A scene (mm, the static solver) for a worker's tests: `extra` (a `[worker]`, parts,
-/// another hose) and then hose `name` of library hose 3, 10 elements, straight from
-/// `start` to `end`, fixed at its start, its end grabbed by hand 0 and lowered 20 mm over
-/// `duration_s`.
+/// another hose) and then the [`held_hose`] `name` from `start` to `end`, lowered 20 mm
+/// over `duration_s`.
 pub fn held_hose_lowered(
     extra: &str,
     name: &str,
@@ -69,38 +89,6 @@ pub fn held_hose_lowered(
     end: [f64; 3],
     duration_s: f64,
 ) -> String {
-    let [sx, sy, sz] = start;
-    let [ex, ey, ez] = end;
-    format!(
-        r#"{head}
-[simulation]
-solver = "static"
-
-{extra}
-
-[[hoses]]
-name = "{name}"
-material = "hose3"
-elements = 10
-start = [{sx}, {sy}, {sz}]
-path = [{{ line = {{ to = [{ex}, {ey}, {ez}] }} }}]
-
-[[timeline]]
-action = "fix"
-hose = "{name}"
-node = 0
-
-[[timeline]]
-action = "grab"
-hand = 0
-at = [{ex}, {ey}, {ez}]
-
-[[timeline]]
-action = "move_hand"
-hand = 0
-by = [0, 0, -20]
-duration_s = {duration_s}
-"#,
-        head = HEAD_MM
-    )
+    let scene = SceneText::mm().with(solver("static")).raw(extra);
+    held_hose(scene, name, start, end, [0.0, 0.0, -20.0], duration_s).into()
 }

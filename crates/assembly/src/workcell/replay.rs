@@ -5,7 +5,7 @@
 //! input means the log does not belong to this scene or options, and is said so.
 
 use super::input::StampedInput;
-use super::observer::Observer;
+use super::observer::{NoObserver, Observer};
 use super::Workcell;
 use pliant_core::Divergence;
 
@@ -70,4 +70,11 @@ pub fn replay(
             }
         }
     }
+}
+
+/// Replays `live`'s own log — every input it took, up to its present tick — into
+/// `fresh`, a new workcell of the same scene and options: the workcell its session folder
+/// would replay to.
+pub fn replay_log_of(live: &Workcell, fresh: &mut Workcell) -> Result<(), ReplayError> {
+    replay(fresh, &live.log().to_vec(), live.tick(), &mut NoObserver)
 }

@@ -126,7 +126,7 @@ impl FrictionMemory {
 }
 
 /// a bᵀ.
-fn outer(a: DVec3, b: DVec3) -> Matrix3<f64> {
+pub(crate) fn outer(a: DVec3, b: DVec3) -> Matrix3<f64> {
     Matrix3::new(
         a.x * b.x,
         a.x * b.y,

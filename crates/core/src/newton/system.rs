@@ -30,7 +30,7 @@ use super::convergence::LoadScale;
 use super::factor_reuse::FactorReuse;
 use super::gmres::Gmres;
 use super::ties::TieCouplings;
-use crate::contact::friction::FrictionResponse;
+use crate::contact::friction::{outer, FrictionResponse};
 use crate::contact::{hose_contact_forces_with, ContactPair};
 use crate::loads::{LoadCase, Support, SupportLoad};
 use crate::rod::element::{BeamElement, ElementEnds, ElementLoads};
@@ -817,17 +817,7 @@ fn add_minus_coupling(
 
 /// n nᵀ: the stiffness direction of a contact spring along the unit normal n.
 fn normal_projector(n: DVec3) -> Matrix3<f64> {
-    Matrix3::new(
-        n.x * n.x,
-        n.x * n.y,
-        n.x * n.z,
-        n.y * n.x,
-        n.y * n.y,
-        n.y * n.z,
-        n.z * n.x,
-        n.z * n.y,
-        n.z * n.z,
-    )
+    outer(n, n)
 }
 
 /// The tangent of one hose–hose contact pair, k wₐ w_b n nᵀ (signs by side), for the node

@@ -159,17 +159,7 @@ pub fn run_stub() -> Vec<Check> {
 
 pub fn run_clip() -> Vec<Check> {
     // hose 1 (d_a 16 mm) into a clip with a 12 mm opening and a 17 mm seat, 20 N snap
-    let material = Material {
-        e_tension: 11.583e6,
-        e_compression: 13.1363e6,
-        e_bending: None,
-        poisson: 0.49,
-        density: 940.0,
-        plasticity: None,
-        relaxation: Vec::new(),
-        hysteresis: None,
-    };
-    let section = Section::new(0.010, 0.016);
+    let (material, section) = crate::harness::hose1();
     let (n, len, k) = (20, 0.5, 20.0);
     let seat = DVec3::new(0.1625, 0.0, 0.0);
     let Ok(spec) = ClipSpec::new(seat, DVec3::Z, DVec3::X, 0.012, 0.017, k) else {
