@@ -163,14 +163,18 @@ mod tests {
     }
 
     /// The hardening torque against the fibre section (one return from the virgin state:
-    /// exact for pure shear with linear hardening) on the simulator's grid.
+    /// exact for pure shear with linear hardening) on the simulator's grid: the 10/12 mm
+    /// tube, elastic or wholly yielded at these twists, to rounding (measured 2.4e-15);
+    /// the solid rod, whose elastic radius ρ cuts through its radial intervals (second
+    /// order there), to the 0.5 % of the validation case `plastic_section` (measured
+    /// 1.2e-3 at 1.5 θ'_e, 5e-6 at 20 θ'_e).
     #[test]
     fn hardening_torque_is_the_fibre_sections() {
         use crate::autodiff::V3;
         use crate::rod::fibre_law::FibreLaw;
         use crate::rod::fibre_section::FibreSection;
         let (e, g, sy, h) = (70e9, 70e9 / 2.6, 170e6, 580e6);
-        for (di, da) in [(0.010, 0.012), (0.0, 0.008)] {
+        for (di, da, tolerance) in [(0.010, 0.012, 1e-12), (0.0, 0.008, 5e-3)] {
             let law = FibreLaw {
                 e,
                 g,
@@ -185,7 +189,7 @@ mod tests {
                 let fibres = s.moments(V3::new(t, 0.0, 0.0), &zero).x;
                 let exact = hardening_torque(0.5 * di, 0.5 * da, g, sy, h, t);
                 assert!(
-                    (fibres - exact).abs() < 1e-5 * exact,
+                    (fibres - exact).abs() < tolerance * exact,
                     "d {di}/{da} at {factor} θ'_e: fibres {fibres}, closed form {exact}"
                 );
             }
