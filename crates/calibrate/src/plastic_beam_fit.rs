@@ -18,7 +18,7 @@ use crate::error::CalibError;
 use crate::law_fit::{self, LawFit};
 use crate::load_unload;
 use crate::mechanics::{Geometry, TestKind};
-use crate::yield_law_fit::YieldCurve;
+use crate::yield_law_fit::{Shown, YieldCurve};
 
 /// Fits a `plastic_cantilever` or `plastic_three_point_bending` table.
 pub fn fit(
@@ -134,14 +134,7 @@ pub fn fit(
             100.0 * d_max / length
         ));
     }
-    if c.flipped {
-        checks.push("the curve was recorded with negative signs: magnitudes were fitted".into());
-    }
-    Ok(LawFit {
-        kind,
-        csv: csv_name.to_string(),
-        geometry: g,
-        fit: f.fit,
+    let shown = Shown {
         formula: format!(
             "δ = ({c}/F²) ∫ κ(M) M dM over 0 … F ℓ on loading (M(κ) the elastic–plastic tube with linear hardening, pliant_core plastic_moment; ℓ = {:.2} mm), δ_mono(F_max) − 2 δ_mono((F_max − F)/2) on unloading (Masing); r_i = {:.3} mm, r_o = {:.3} mm",
             lever * 1e3,
@@ -149,14 +142,9 @@ pub fn fit(
             beam.ro * 1e3,
             c = beam.lever_and_factor().1
         ),
-        x_label: "force [N]".into(),
-        y_label: "deflection [mm]".into(),
-        x_scale: 1.0,
+        x_label: "force [N]",
+        y_label: "deflection [mm]",
         y_scale: 1e3,
-        checks,
-        x: c.x,
-        y: c.y,
-        fitted: f.fitted,
-        lines: c.lines,
-    })
+    };
+    Ok(f.finish((kind, csv_name, g), shown, checks, c))
 }

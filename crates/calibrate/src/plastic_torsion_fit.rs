@@ -16,7 +16,7 @@ use crate::error::CalibError;
 use crate::law_fit::{self, LawFit};
 use crate::load_unload;
 use crate::mechanics::{Geometry, TestKind};
-use crate::yield_law_fit::YieldCurve;
+use crate::yield_law_fit::{Shown, YieldCurve};
 use pliant_core::rod::plastic_moment::{hardening_torque, plastic_torque};
 
 /// Fits a `plastic_torsion` table.
@@ -95,38 +95,17 @@ pub fn fit(csv_name: &str, table: &Table, g: Geometry) -> Result<LawFit, CalibEr
             rate_max - curve.value(p, rate_max, false) / (p[0] * j)
         ),
     ];
-    checks.push(match curve.measured_set() {
-        Some(k) => format!(
-            "springback measured: the curve crosses T = 0 at θ′ = {k:.6} rad/m ({:+.2} % of the predicted set)",
-            100.0 * (k - predicted) / predicted.abs().max(f64::MIN_POSITIVE)
-        ),
-        None => format!(
-            "springback measured: the unloading stops at T = {:.5} N·m, before T = 0",
-            c.y[c.y.len() - 1]
-        ),
-    });
-    if c.flipped {
-        checks.push("the curve was recorded with negative signs: magnitudes were fitted".into());
-    }
-    Ok(LawFit {
-        kind,
-        csv: csv_name.to_string(),
-        geometry: g,
-        fit: f.fit,
+    checks.push(curve.measured_set_check(predicted, ("T", "N·m", "θ′", "rad/m")));
+    let shown = Shown {
         formula: format!(
             "T = T_mono(θ′) on loading, T_mono(θ′_max) − 2 T_mono((θ′_max − θ′)/2) on unloading (Masing); T_mono the von Mises tube with linear kinematic hardening (pliant_core plastic_moment), r_i = {:.3} mm, r_o = {:.3} mm; θ′ = angle / L, L = {:.2} mm",
             ri * 1e3,
             ro * 1e3,
             length * 1e3
         ),
-        x_label: "twist rate [rad/m]".into(),
-        y_label: "torque [N·m]".into(),
-        x_scale: 1.0,
+        x_label: "twist rate [rad/m]",
+        y_label: "torque [N·m]",
         y_scale: 1.0,
-        checks,
-        x: c.x,
-        y: c.y,
-        fitted: f.fitted,
-        lines: c.lines,
-    })
+    };
+    Ok(f.finish((kind, csv_name, g), shown, checks, c))
 }

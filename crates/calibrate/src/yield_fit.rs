@@ -25,7 +25,7 @@ use crate::error::CalibError;
 use crate::law_fit::{self, LawFit};
 use crate::load_unload;
 use crate::mechanics::{Geometry, TestKind};
-use crate::yield_law_fit::YieldCurve;
+use crate::yield_law_fit::{Shown, YieldCurve};
 use pliant_core::rod::plastic_moment::{first_yield_moment, hardening_bending_moment};
 
 /// Fits a `plastic_bending` table.
@@ -90,37 +90,16 @@ pub fn fit(csv_name: &str, table: &Table, g: Geometry) -> Result<LawFit, CalibEr
             kappa_max - curve.value(p, kappa_max, false) / ei
         ),
     ];
-    checks.push(match curve.measured_set() {
-        Some(k) => format!(
-            "springback measured: the curve crosses M = 0 at κ = {k:.6} 1/m ({:+.2} % of the predicted set)",
-            100.0 * (k - predicted) / predicted.abs().max(f64::MIN_POSITIVE)
-        ),
-        None => format!(
-            "springback measured: the unloading stops at M = {:.5} N·m, before M = 0",
-            c.y[c.y.len() - 1]
-        ),
-    });
-    if c.flipped {
-        checks.push("the curve was recorded with negative signs: magnitudes were fitted".into());
-    }
-    Ok(LawFit {
-        kind,
-        csv: csv_name.to_string(),
-        geometry: g,
-        fit: f.fit,
+    checks.push(curve.measured_set_check(predicted, ("M", "N·m", "κ", "1/m")));
+    let shown = Shown {
         formula: format!(
             "M = M_mono(κ) on loading, M_mono(κ_max) − 2 M_mono((κ_max − κ)/2) on unloading (Masing); M_mono the elastic–plastic tube with linear hardening (pliant_core plastic_moment), r_i = {:.3} mm, r_o = {:.3} mm",
             ri * 1e3,
             ro * 1e3
         ),
-        x_label: "curvature [1/m]".into(),
-        y_label: "moment [N·m]".into(),
-        x_scale: 1.0,
+        x_label: "curvature [1/m]",
+        y_label: "moment [N·m]",
         y_scale: 1.0,
-        checks,
-        x: c.x,
-        y: c.y,
-        fitted: f.fitted,
-        lines: c.lines,
-    })
+    };
+    Ok(f.finish((kind, csv_name, g), shown, checks, c))
 }

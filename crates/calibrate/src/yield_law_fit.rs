@@ -9,8 +9,9 @@
 //! is an error, never a yield stress; so is a parameter the curve does not identify.
 
 use crate::error::CalibError;
-use crate::law_fit;
+use crate::law_fit::{self, LawFit, TwoColumns};
 use crate::load_unload;
+use crate::mechanics::{Geometry, TestKind};
 use crate::nonlinear_least_squares::{NonlinearFit, Parameter, Scale};
 
 /// A load–unload curve and the law to fit to it.
@@ -35,6 +36,47 @@ pub struct YieldFit {
     pub fit: NonlinearFit,
     /// The law's values at the curve's points.
     pub fitted: Vec<f64>,
+}
+
+/// How a law fit is shown: its formula, the axes' labels and their factors from SI.
+pub struct Shown {
+    pub formula: String,
+    pub x_label: &'static str,
+    pub y_label: &'static str,
+    pub y_scale: f64,
+}
+
+impl YieldFit {
+    /// The finished [`LawFit`] of a `kind` test on the curve `c` with its `checks` (the
+    /// remark on a curve recorded negative added).
+    pub fn finish(
+        self,
+        (kind, csv_name, geometry): (TestKind, &str, Geometry),
+        shown: Shown,
+        mut checks: Vec<String>,
+        c: TwoColumns,
+    ) -> LawFit {
+        if c.flipped {
+            checks
+                .push("the curve was recorded with negative signs: magnitudes were fitted".into());
+        }
+        LawFit {
+            kind,
+            csv: csv_name.to_string(),
+            geometry,
+            fit: self.fit,
+            formula: shown.formula,
+            x_label: shown.x_label.into(),
+            y_label: shown.y_label.into(),
+            x_scale: 1.0,
+            y_scale: shown.y_scale,
+            checks,
+            x: c.x,
+            y: c.y,
+            fitted: self.fitted,
+            lines: c.lines,
+        }
+    }
 }
 
 impl<M: Fn([f64; 3], f64) -> f64> YieldCurve<'_, M> {
@@ -138,5 +180,24 @@ impl<M: Fn([f64; 3], f64) -> f64> YieldCurve<'_, M> {
             let (x0, x1, y0, y1) = (x[i - 1], x[i], y[i - 1], y[i]);
             x0 + (x1 - x0) * y0 / (y0 - y1)
         })
+    }
+
+    /// The check comparing the measured set with `predicted`, in the curve's symbols
+    /// (`y` "M" in `y_unit`, `x` "κ" in `x_unit`).
+    pub fn measured_set_check(
+        &self,
+        predicted: f64,
+        (y, y_unit, x, x_unit): (&str, &str, &str, &str),
+    ) -> String {
+        match self.measured_set() {
+            Some(k) => format!(
+                "springback measured: the curve crosses {y} = 0 at {x} = {k:.6} {x_unit} ({:+.2} % of the predicted set)",
+                100.0 * (k - predicted) / predicted.abs().max(f64::MIN_POSITIVE)
+            ),
+            None => format!(
+                "springback measured: the unloading stops at {y} = {:.5} {y_unit}, before {y} = 0",
+                self.y[self.y.len() - 1]
+            ),
+        }
     }
 }

@@ -165,24 +165,25 @@ fn curve_difference(a: &[f64], b: &[f64]) -> f64 {
         / scale
 }
 
+/// The steel, the tip forces and the fibre theory's deflections under them.
+fn setup() -> (Steel, Vec<f64>, Vec<f64>) {
+    let st = steel();
+    let force = forces(&st);
+    let law = pliant_core::material::YieldLaw {
+        yield_stress: st.sy,
+        hardening_modulus: st.h,
+    };
+    let section = simulator_section(st.d_inner, st.d_outer, st.e, st.poisson, &law);
+    let theory = fibre_theory_curve(&section, &force);
+    (st, force, theory)
+}
+
 /// Elements of the tested mesh.
 const ELEMENTS: usize = 80;
 
 #[test]
 fn the_static_solvers_cantilever_gives_the_library_law_back() {
-    let st = steel();
-    let force = forces(&st);
-    let section = simulator_section(
-        st.d_inner,
-        st.d_outer,
-        st.e,
-        st.poisson,
-        &pliant_core::material::YieldLaw {
-            yield_stress: st.sy,
-            hardening_modulus: st.h,
-        },
-    );
-    let theory = fibre_theory_curve(&section, &force);
+    let (st, force, theory) = setup();
     let grid = errors(&st, &fit_curve(&st, &force, &theory));
     let solver = solver_curve(ELEMENTS, &force);
     let mesh = curve_difference(&solver, &theory);
@@ -219,19 +220,7 @@ const TOLERANCE: [f64; 3] = [3e-4, 1e-3, 0.2];
 #[test]
 #[ignore]
 fn cantilever_convergence_study() {
-    let st = steel();
-    let force = forces(&st);
-    let section = simulator_section(
-        st.d_inner,
-        st.d_outer,
-        st.e,
-        st.poisson,
-        &pliant_core::material::YieldLaw {
-            yield_stress: st.sy,
-            hardening_modulus: st.h,
-        },
-    );
-    let theory = fibre_theory_curve(&section, &force);
+    let (st, force, theory) = setup();
     let beam = Beam {
         support: Support::Cantilever,
         ri: 0.5 * st.d_inner,

@@ -1258,8 +1258,17 @@ fn calibrate_prints_the_fitted_laws_and_takes_relaxation_options() {
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&o.stderr));
-    for want in ["plastic_cantilever", "sigma_y = ", "H = ", "springback measured"] {
+    assert!(
+        o.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for want in [
+        "plastic_cantilever",
+        "sigma_y = ",
+        "H = ",
+        "springback measured",
+    ] {
         assert!(stdout.contains(want), "{want}: {stdout}");
     }
     let material = std::fs::read_to_string(out.path().join("beam/material.toml")).unwrap();
@@ -1267,7 +1276,15 @@ fn calibrate_prints_the_fitted_laws_and_takes_relaxation_options() {
 
     let relaxation = |extra: &[&str], dir: &str| {
         pliant()
-            .args(["calibrate", "--kind", "relaxation", "--d-inner", "10", "--d-outer", "16"])
+            .args([
+                "calibrate",
+                "--kind",
+                "relaxation",
+                "--d-inner",
+                "10",
+                "--d-outer",
+                "16",
+            ])
             .args(extra)
             .arg("--csv")
             .arg(examples().join("calibration/relaxation.csv"))
@@ -1282,8 +1299,15 @@ fn calibrate_prints_the_fitted_laws_and_takes_relaxation_options() {
     assert!(err.contains("--held-strain"), "{err}");
     let one = relaxation(&["--held-strain", "0.05", "--terms", "1"], "one");
     let stdout = String::from_utf8_lossy(&one.stdout);
-    assert!(one.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&one.stderr));
-    assert!(stdout.contains("E0 = ") && stdout.contains("g1 = "), "{stdout}");
+    assert!(
+        one.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&one.stderr)
+    );
+    assert!(
+        stdout.contains("E0 = ") && stdout.contains("g1 = "),
+        "{stdout}"
+    );
     assert!(!stdout.contains("g2 = "), "{stdout}");
     assert!(stdout.contains("asked for"), "{stdout}");
     let material = std::fs::read_to_string(out.path().join("one/material.toml")).unwrap();

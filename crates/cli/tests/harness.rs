@@ -381,10 +381,18 @@ fn bundle_friction_is_opt_in() {
         }
         ok(&c.output().unwrap());
         let scene = std::fs::read_to_string(out.join("scene.toml")).unwrap();
-        assert_eq!(scene.contains("hysteresis = {"), want, "--bundle-friction {flag}");
+        assert_eq!(
+            scene.contains("hysteresis = {"),
+            want,
+            "--bundle-friction {flag}"
+        );
         if want {
             assert!(scene.contains("material = \"bundle_Segment_3\""));
-            let inspect = pliant().arg("inspect").arg(out.join("scene.toml")).output().unwrap();
+            let inspect = pliant()
+                .arg("inspect")
+                .arg(out.join("scene.toml"))
+                .output()
+                .unwrap();
             ok(&inspect);
         }
     }

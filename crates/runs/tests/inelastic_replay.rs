@@ -129,16 +129,28 @@ fn inelastic_histories_replay_and_restore_bit_for_bit() {
     assert!(history.iter().any(|v| *v != 0.0), "no history yet");
     run_timeline(&mut live, &rest, &mut NoObserver).unwrap();
     let end = live.state().clone();
-    assert_ne!(end.inelastic_history, history, "the rest of the run changes the history");
+    assert_ne!(
+        end.inelastic_history, history,
+        "the rest of the run changes the history"
+    );
     // the line kept a bend: its end stays well above the axis once let go
     let line_end = 6;
     assert!(end.x[line_end].z > 0.1, "{:?}", end.x[line_end]);
 
     // replay of the log: the same state to the bit
     let mut again = s.workcell(options).unwrap();
-    replay(&mut again, &live.log().to_vec(), live.tick(), &mut NoObserver).unwrap();
+    replay(
+        &mut again,
+        &live.log().to_vec(),
+        live.tick(),
+        &mut NoObserver,
+    )
+    .unwrap();
     assert_eq!(again.state().inelastic_history, end.inelastic_history);
-    assert_eq!(again.state().inelastic_time.to_bits(), end.inelastic_time.to_bits());
+    assert_eq!(
+        again.state().inelastic_time.to_bits(),
+        end.inelastic_time.to_bits()
+    );
     assert_eq!(again.state().x, end.x);
     assert_eq!(again.state().q, end.q);
 
