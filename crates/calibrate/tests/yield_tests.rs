@@ -56,7 +56,7 @@ fn torsion_curve_of(
 ) -> (Vec<f64>, Vec<f64>) {
     let tau_y = YIELD.yield_stress / 3f64.sqrt();
     let rate_e = tau_y / (g_alu() * 0.5 * D_OUTER);
-    let rate = syn::load_unload(5.0 * rate_e, -1.0 * rate_e, 80, 60);
+    let rate = syn::load_unload(5.0 * rate_e, -rate_e, 80, 60);
     let torque = syn::twist_section(section, &rate);
     let angle_deg = rate.iter().map(|r| (r * length).to_degrees()).collect();
     (angle_deg, torque)

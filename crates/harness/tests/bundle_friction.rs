@@ -68,7 +68,7 @@ fn the_taped_bundles_loop_dissipates_the_closed_form_energy() {
         let per_cycle = 40_000;
         let kappa = cycles(amplitude, 4, per_cycle);
         let m = cyclic_moments(&material, &section, &kappa, axis);
-        let last = &kappa.len() - per_cycle - 1;
+        let last = kappa.len() - per_cycle - 1;
         // trapezoidal ∮ M dκ over the last cycle: the element's moments are exact at the
         // points (the law integrates in closed form), the rule's error O(Δκ²)
         let w: f64 = (last..kappa.len() - 1)
