@@ -1,6 +1,7 @@
 //! From the fitted laws to the material's inelastic entries, in the scene format
 //! (docs/scene-format.md, `[materials.NAME]`): `yield_stress_mpa` and
-//! `hardening_modulus_mpa` from a plastic bending test, `relaxation = [{ weight, time_s
+//! `hardening_modulus_mpa` from a test past yield (bending or torsion; σ_y = √3 τ_y from
+//! torsion), `relaxation = [{ weight, time_s
 //! }, …]` from a relaxation test, `hysteresis = { bending_moment_n_m, … }` from cyclic
 //! bending (and torsion) tests — every value with its 95 % interval and source — and the
 //! elastic stiffness each law fit measured (E·I, EI or GJ), which joins the stiffness
@@ -66,6 +67,17 @@ pub fn describe(f: &LawFit) -> String {
     )
 }
 
+/// Whether a test measures the yield law (E or G, σ_y or τ_y, H).
+pub fn is_yield_test(kind: TestKind) -> bool {
+    matches!(
+        kind,
+        TestKind::PlasticBending
+            | TestKind::PlasticTorsion
+            | TestKind::PlasticCantilever
+            | TestKind::PlasticThreePointBending
+    )
+}
+
 /// An estimate in a display unit (`scale` from SI) with its interval and the fit as
 /// source.
 fn derived(e: &Estimate, scale: f64, f: &LawFit) -> Derived {
@@ -82,15 +94,25 @@ fn estimate<'a>(f: &'a LawFit, name: &str) -> Result<&'a Estimate, String> {
 }
 
 /// The elastic stiffness a law fit measured, as a stiffness test's would be: E I of the
-/// tested section from a plastic bending test, EI or GJ from a cyclic one.
+/// tested section from a bending test past yield (G J from torsion past yield), EI or GJ
+/// from a cyclic one, E₀ from a relaxation test with its held strain.
 pub fn measured(f: &LawFit) -> Option<Measured> {
     let (name, property, factor) = match f.kind {
-        TestKind::PlasticBending => (
+        TestKind::PlasticBending
+        | TestKind::PlasticCantilever
+        | TestKind::PlasticThreePointBending => (
             "E",
             Property::BendingStiffness,
             f.geometry.section().second_moment(),
         ),
+        TestKind::PlasticTorsion => (
+            "G",
+            Property::TorsionalStiffness,
+            f.geometry.section().polar_moment(),
+        ),
         TestKind::CyclicBending => ("EI", Property::BendingStiffness, 1.0),
+        // E0 from the held strain (else the relaxation gives ratios only)
+        TestKind::Relaxation => ("E0", Property::ETension, 1.0),
         TestKind::CyclicTorsion => ("GJ", Property::TorsionalStiffness, 1.0),
         _ => return None,
     };
@@ -121,7 +143,17 @@ pub fn entries(laws: &[LawFit]) -> Result<LawEntries, String> {
             None => Ok(first),
         }
     };
-    let plastic = of(TestKind::PlasticBending)?;
+    let yield_tests: Vec<&LawFit> = laws.iter().filter(|f| is_yield_test(f.kind)).collect();
+    if let [first, second, ..] = yield_tests[..] {
+        return Err(format!(
+            "two tests past yield ({} {} and {} {}): give one per calibration (the yield law has one σ_y and one H)",
+            first.kind.name(),
+            first.csv,
+            second.kind.name(),
+            second.csv
+        ));
+    }
+    let plastic = yield_tests.first().copied();
     let relaxation = of(TestKind::Relaxation)?;
     let bending = of(TestKind::CyclicBending)?;
     let torsion = of(TestKind::CyclicTorsion)?;
@@ -134,14 +166,19 @@ pub fn entries(laws: &[LawFit]) -> Result<LawEntries, String> {
     .filter(|b| **b)
     .count();
     if count > 1 {
-        return Err("a material either yields (plastic_bending), relaxes (relaxation) or rubs (cyclic_bending, cyclic_torsion), not two of these (docs/scene-format.md): calibrate them as separate materials".into());
+        return Err("a material either yields (plastic_bending, plastic_torsion, plastic_cantilever, plastic_three_point_bending), relaxes (relaxation) or rubs (cyclic_bending, cyclic_torsion), not two of these (docs/scene-format.md): calibrate them as separate materials".into());
     }
     if torsion.is_some() && bending.is_none() {
         return Err("a cyclic_torsion test needs a cyclic_bending test too: the scene's hysteresis has a bending pair and an optional torsion pair".into());
     }
     let mut out = LawEntries::default();
     if let Some(f) = plastic {
-        out.yield_stress_mpa = Some(derived(estimate(f, "sigma_y")?, 1e-6, f));
+        out.yield_stress_mpa = Some(if f.kind == TestKind::PlasticTorsion {
+            // von Mises: σ_y = √3 τ_y
+            derived(estimate(f, "tau_y")?, 3f64.sqrt() * 1e-6, f)
+        } else {
+            derived(estimate(f, "sigma_y")?, 1e-6, f)
+        });
         let h = estimate(f, "H")?;
         let mut h = derived(h, 1e-6, f);
         // a hardening interval reaching below zero means "consistent with perfect

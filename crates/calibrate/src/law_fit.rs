@@ -1,7 +1,8 @@
-//! One inelastic law fitted to a whole test curve (plastic bending, relaxation, cyclic
-//! bending or torsion): the shared result, reading the two columns a law needs, and the
+//! One inelastic law fitted to a whole test curve (bending or torsion past yield,
+//! relaxation, cyclic bending or torsion): the shared result, reading the two columns a law needs, and the
 //! checks every law fit makes (enough points, identified parameters). The laws
-//! themselves: [`crate::yield_fit`], [`crate::relaxation_fit`], [`crate::dahl_fit`].
+//! themselves: [`crate::yield_fit`], [`crate::plastic_torsion_fit`],
+//! [`crate::plastic_beam_fit`], [`crate::relaxation_fit`], [`crate::dahl_fit`].
 
 use crate::csv_input::{Quantity, Table};
 use crate::error::CalibError;
@@ -170,6 +171,15 @@ where
         .min_by(|a, b| a.ssr.total_cmp(&b.ssr))
 }
 
+/// A test's options that some laws take (from its `[[tests]]` entry).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LawOptions {
+    /// Relaxation: the number of Prony terms (else chosen by BIC).
+    pub terms: Option<usize>,
+    /// Relaxation: the held strain, for the instantaneous modulus.
+    pub held_strain: Option<f64>,
+}
+
 /// Fits the law of a `kind` test to its table.
 pub fn fit_law(
     kind: TestKind,
@@ -177,9 +187,24 @@ pub fn fit_law(
     table: &Table,
     g: Geometry,
 ) -> Result<LawFit, CalibError> {
+    fit_law_with(kind, csv_name, table, g, LawOptions::default())
+}
+
+/// [`fit_law`] with a test's options.
+pub fn fit_law_with(
+    kind: TestKind,
+    csv_name: &str,
+    table: &Table,
+    g: Geometry,
+    options: LawOptions,
+) -> Result<LawFit, CalibError> {
     match kind {
         TestKind::PlasticBending => crate::yield_fit::fit(csv_name, table, g),
-        TestKind::Relaxation => crate::relaxation_fit::fit(csv_name, table, g),
+        TestKind::PlasticTorsion => crate::plastic_torsion_fit::fit(csv_name, table, g),
+        TestKind::PlasticCantilever | TestKind::PlasticThreePointBending => {
+            crate::plastic_beam_fit::fit(kind, csv_name, table, g)
+        }
+        TestKind::Relaxation => crate::relaxation_fit::fit(csv_name, table, g, options),
         TestKind::CyclicBending | TestKind::CyclicTorsion => {
             crate::dahl_fit::fit(kind, csv_name, table, g)
         }

@@ -10,7 +10,10 @@
 //!
 //! The inelastic laws (SPEC X1, X2) are fitted whole to their test curves by nonlinear
 //! least squares: the yield stress and hardening from a bending test past yield with
-//! unloading ([`yield_fit`]), Prony terms from a relaxation test ([`relaxation_fit`]),
+//! unloading, moment against curvature ([`yield_fit`]) or force against deflection of a
+//! cantilever or three-point bending ([`plastic_beam_fit`], [`beam_deflection`]), or from
+//! a torsion test past yield ([`plastic_torsion_fit`]) — all by [`yield_law_fit`] with
+//! Masing's unloading ([`load_unload`]) — Prony terms from a relaxation test ([`relaxation_fit`]),
 //! Dahl's friction pair from a cyclic bending or torsion test ([`dahl_fit`]), each with
 //! its intervals ([`nonlinear_least_squares`], shared parts in [`law_fit`], the
 //! material's entries in [`law_entry`], the page's part in [`law_html`]; curves from the
@@ -22,6 +25,7 @@
 //! material and its entries), [`html`] (the page), [`spec`] (the calibration file),
 //! [`synthetic`] (curves with known answers).
 
+pub mod beam_deflection;
 pub mod csv_input;
 pub mod dahl_fit;
 pub mod error;
@@ -32,19 +36,23 @@ pub mod law_fit;
 pub mod law_html;
 pub mod least_squares;
 pub mod linear_range;
+pub mod load_unload;
 pub mod material_entry;
 pub mod mechanics;
 pub mod nonlinear_least_squares;
+pub mod plastic_beam_fit;
+pub mod plastic_torsion_fit;
 pub mod relaxation_fit;
 pub mod spec;
 pub mod student_t;
 pub mod synthetic;
 pub mod synthetic_laws;
 pub mod yield_fit;
+pub mod yield_law_fit;
 
 pub use error::CalibError;
 pub use fit::{fit_test, RangeReport, TestFit};
-pub use law_fit::{fit_law, LawFit};
+pub use law_fit::{fit_law, fit_law_with, LawFit, LawOptions};
 pub use material_entry::MaterialResult;
 pub use mechanics::{Geometry, Property, TestKind};
 pub use spec::{Spec, TestSpec};
@@ -128,7 +136,11 @@ pub fn calibrate_texts(
             length: t.length_mm.map(|l| l * 1e-3),
         };
         if t.kind.is_law() {
-            laws.push(fit_law(t.kind, &t.csv, &table, g)?);
+            let options = LawOptions {
+                terms: t.terms,
+                held_strain: t.held_strain,
+            };
+            laws.push(fit_law_with(t.kind, &t.csv, &table, g, options)?);
         } else {
             fits.push(fit_test(t.kind, &t.csv, &table, g)?);
         }

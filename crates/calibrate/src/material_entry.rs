@@ -236,7 +236,7 @@ pub fn derive(
         .collect();
     if measured.is_empty() {
         return Err(
-            "a relaxation test gives ratios of moduli only: add a tension, compression, bending or torsion test (or a plastic_bending or cyclic_bending one) for the instantaneous moduli".into(),
+            "a relaxation test gives ratios of moduli only: give its held_strain (--held-strain on the command line) for the instantaneous modulus E0, or add a tension, compression, bending or torsion test (or a plastic or cyclic one)".into(),
         );
     }
     if !law_entries.relaxation.is_empty() {

@@ -41,6 +41,15 @@ pub enum TestKind {
     /// A metal line bent past yield and unloaded: moment against curvature
     /// ([`crate::yield_fit`]).
     PlasticBending,
+    /// Torque against angle of twist past yield and unloaded
+    /// ([`crate::plastic_torsion_fit`]).
+    PlasticTorsion,
+    /// Force against deflection of a cantilever bent past yield and unloaded
+    /// ([`crate::plastic_beam_fit`]).
+    PlasticCantilever,
+    /// Force against midspan deflection in three-point bending past yield and unloaded
+    /// ([`crate::plastic_beam_fit`]).
+    PlasticThreePointBending,
     /// Force (or stress) against time at a held strain ([`crate::relaxation_fit`]).
     Relaxation,
     /// Moment against curvature, bent back and forth ([`crate::dahl_fit`]).
@@ -50,7 +59,7 @@ pub enum TestKind {
 }
 
 impl TestKind {
-    pub const ALL: [TestKind; 10] = [
+    pub const ALL: [TestKind; 13] = [
         TestKind::Tension,
         TestKind::Compression,
         TestKind::ThreePointBending,
@@ -58,6 +67,9 @@ impl TestKind {
         TestKind::Torsion,
         TestKind::Iso10619,
         TestKind::PlasticBending,
+        TestKind::PlasticTorsion,
+        TestKind::PlasticCantilever,
+        TestKind::PlasticThreePointBending,
         TestKind::Relaxation,
         TestKind::CyclicBending,
         TestKind::CyclicTorsion,
@@ -73,6 +85,9 @@ impl TestKind {
             TestKind::Torsion => "torsion",
             TestKind::Iso10619 => "iso10619",
             TestKind::PlasticBending => "plastic_bending",
+            TestKind::PlasticTorsion => "plastic_torsion",
+            TestKind::PlasticCantilever => "plastic_cantilever",
+            TestKind::PlasticThreePointBending => "plastic_three_point_bending",
             TestKind::Relaxation => "relaxation",
             TestKind::CyclicBending => "cyclic_bending",
             TestKind::CyclicTorsion => "cyclic_torsion",
@@ -85,6 +100,9 @@ impl TestKind {
         matches!(
             self,
             TestKind::PlasticBending
+                | TestKind::PlasticTorsion
+                | TestKind::PlasticCantilever
+                | TestKind::PlasticThreePointBending
                 | TestKind::Relaxation
                 | TestKind::CyclicBending
                 | TestKind::CyclicTorsion
@@ -102,9 +120,13 @@ impl TestKind {
             TestKind::Tension | TestKind::Compression => {
                 "the gauge length L0 (needed when the CSV gives force and displacement)"
             }
-            TestKind::ThreePointBending => "the span L between the supports",
-            TestKind::Cantilever => "the free length L from the clamp to the load",
-            TestKind::Torsion => "the length L between the grips",
+            TestKind::ThreePointBending | TestKind::PlasticThreePointBending => {
+                "the span L between the supports"
+            }
+            TestKind::Cantilever | TestKind::PlasticCantilever => {
+                "the free length L from the clamp to the load"
+            }
+            TestKind::Torsion | TestKind::PlasticTorsion => "the length L between the grips",
             TestKind::Iso10619 => {
                 "the lever arm a from the force's line of action to the apex of the bend"
             }
@@ -125,8 +147,12 @@ impl TestKind {
             | TestKind::Cantilever
             | TestKind::Iso10619
             | TestKind::PlasticBending
+            | TestKind::PlasticCantilever
+            | TestKind::PlasticThreePointBending
             | TestKind::CyclicBending => Some(Property::BendingStiffness),
-            TestKind::Torsion | TestKind::CyclicTorsion => Some(Property::TorsionalStiffness),
+            TestKind::Torsion | TestKind::PlasticTorsion | TestKind::CyclicTorsion => {
+                Some(Property::TorsionalStiffness)
+            }
             TestKind::Relaxation => None,
         }
     }
@@ -368,6 +394,9 @@ pub fn prepare(kind: TestKind, table: &Table, g: &Geometry) -> Result<Curve, Cal
             )
         }
         TestKind::PlasticBending
+        | TestKind::PlasticTorsion
+        | TestKind::PlasticCantilever
+        | TestKind::PlasticThreePointBending
         | TestKind::Relaxation
         | TestKind::CyclicBending
         | TestKind::CyclicTorsion => {

@@ -12,8 +12,11 @@
 //! [[tests]]
 //! kind = "tension"                # tension, compression, three_point_bending,
 //! csv = "tension.csv"             # cantilever, torsion, iso10619; plastic_bending,
-//!                                 # relaxation, cyclic_bending, cyclic_torsion
+//!                                 # plastic_torsion, plastic_cantilever,
+//!                                 # plastic_three_point_bending, relaxation,
+//!                                 # cyclic_bending, cyclic_torsion
 //! length_mm = 100                 # gauge length / span / free length / grip distance / lever arm
+//! # relaxation only: terms = 2 (Prony terms, default chosen by BIC), held_strain = 0.05
 //! ```
 
 use crate::error::CalibError;
@@ -66,6 +69,12 @@ pub struct TestSpec {
     /// The specimen's diameters when they differ from the material's \[mm\].
     pub d_inner_mm: Option<f64>,
     pub d_outer_mm: Option<f64>,
+    /// Relaxation: the number of Prony terms to fit (default: chosen by BIC among
+    /// 1 … [`crate::relaxation_fit::MAX_TERMS`]).
+    pub terms: Option<usize>,
+    /// Relaxation: the strain held [-], which turns the held force (over the section's
+    /// area) or stress into the instantaneous modulus E₀.
+    pub held_strain: Option<f64>,
 }
 
 /// 1-based line and column of byte `offset` in `text`.
@@ -154,6 +163,28 @@ impl Spec {
                 if l > MAX_SPECIMEN_MM {
                     return bad(format!(
                         "{field}: length_mm = {l} is out of range: a specimen is at most {MAX_SPECIMEN_MM} mm long"
+                    ));
+                }
+            }
+            let relaxation = t.kind == crate::mechanics::TestKind::Relaxation;
+            if let Some(n) = t.terms {
+                if !relaxation {
+                    return bad(format!("{field}: terms is for a relaxation test"));
+                }
+                if !(1..=crate::relaxation_fit::MAX_FORCED_TERMS).contains(&n) {
+                    return bad(format!(
+                        "{field}: terms = {n}: must be 1 to {}",
+                        crate::relaxation_fit::MAX_FORCED_TERMS
+                    ));
+                }
+            }
+            if let Some(e) = t.held_strain {
+                if !relaxation {
+                    return bad(format!("{field}: held_strain is for a relaxation test"));
+                }
+                if !(e > 0.0 && e < 1.0) {
+                    return bad(format!(
+                        "{field}: held_strain = {e}: must lie in (0, 1) (a strain, not percent)"
                     ));
                 }
             }

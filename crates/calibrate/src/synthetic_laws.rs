@@ -1,6 +1,7 @@
 //! Test curves of the inelastic laws made by the simulator itself, not by the fitters'
 //! formulas, for the validation tests and the examples: the yielding tube's fibre
-//! section ([`pliant_core::rod::fibre_section`]) bent and unbent point by point; a
+//! section ([`pliant_core::rod::fibre_section`]) bent or twisted and unloaded point by
+//! point; a
 //! relaxing beam element ([`pliant_core::rod::relaxation`]) stretched and held; a
 //! hysteretic beam element ([`pliant_core::rod::hysteresis`]) bent back and forth — each
 //! committed step by step through [`pliant_core::rod::inelastic::InelasticElements`] or
@@ -76,13 +77,31 @@ pub fn fine_section(
 /// The bending moments of `section` bent through the curvatures `kappa` in order (about
 /// one section axis), each committed as an accepted step.
 pub fn bend_section(section: &FibreSection, kappa: &[f64]) -> Vec<f64> {
+    load_section(section, kappa, 1)
+}
+
+/// The torques of `section` twisted through the twist rates `rate` in order, each
+/// committed as an accepted step.
+pub fn twist_section(section: &FibreSection, rate: &[f64]) -> Vec<f64> {
+    load_section(section, rate, 0)
+}
+
+/// The section's moment about `axis` (0: twist, 1: bending about y) strained through
+/// `values` of that component in order, each committed as an accepted step.
+fn load_section(section: &FibreSection, values: &[f64], axis: usize) -> Vec<f64> {
     let mut history = vec![0.0; section.history_len()];
-    kappa
+    values
         .iter()
-        .map(|k| {
-            let m = section.moments(pliant_core::autodiff::V3::new(0.0, *k, 0.0), &history);
-            section.commit([0.0, *k, 0.0], &mut history);
-            m.y
+        .map(|v| {
+            let mut k = [0.0; 3];
+            k[axis] = *v;
+            let m = section.moments(pliant_core::autodiff::V3::new(k[0], k[1], k[2]), &history);
+            section.commit(k, &mut history);
+            if axis == 0 {
+                m.x
+            } else {
+                m.y
+            }
         })
         .collect()
 }

@@ -33,6 +33,9 @@ pub struct OneTest<'a> {
     pub name: &'a str,
     pub density_kg_m3: f64,
     pub poisson: Option<f64>,
+    /// Relaxation: Prony terms and the held strain.
+    pub terms: Option<usize>,
+    pub held_strain: Option<f64>,
 }
 
 /// The folder of `csv` (its CSV path is relative to it) and its file name.
@@ -143,6 +146,55 @@ fn run_bundle(
     Ok(ExitCode::SUCCESS)
 }
 
+/// The fitted laws: one row per parameter with its 95 % interval, and each fit's
+/// residual.
+fn law_table(laws: &[pliant_calibrate::LawFit]) -> Table {
+    let mut table = Table::new();
+    table.load_preset(UTF8_FULL_CONDENSED);
+    table.set_header(vec![
+        "law test",
+        "csv",
+        "parameter (SI)",
+        "95 % CI",
+        "points",
+        "residual std",
+    ]);
+    for f in laws {
+        for (i, e) in f.fit.estimates.iter().enumerate() {
+            let first = i == 0;
+            table.add_row(vec![
+                if first {
+                    f.kind.name().to_string()
+                } else {
+                    String::new()
+                },
+                if first { f.csv.clone() } else { String::new() },
+                format!("{} = {}", e.name, num(e.value)),
+                format!("{} – {}", num(e.ci95[0]), num(e.ci95[1])),
+                if first {
+                    f.fit.points.to_string()
+                } else {
+                    String::new()
+                },
+                if first {
+                    format!(
+                        "{} {}",
+                        num(f.fit.residual_std * f.y_scale),
+                        f.y_label
+                            .rsplit('[')
+                            .next()
+                            .unwrap_or("")
+                            .trim_end_matches(']')
+                    )
+                } else {
+                    String::new()
+                },
+            ]);
+        }
+    }
+    table
+}
+
 pub fn run(spec: Option<&Path>, one: &OneTest, out: &Path, json: bool) -> anyhow::Result<ExitCode> {
     if spec.is_some() && (one.kind.is_some() || one.csv.is_some()) {
         bail!("give either a calibration file or --kind and --csv, not both");
@@ -152,6 +204,9 @@ pub fn run(spec: Option<&Path>, one: &OneTest, out: &Path, json: bool) -> anyhow
     }
     if one.bundle.kbl.is_some() || one.bundle.segment.is_some() || one.bundle.protection.is_some() {
         bail!("--kbl, --segment and --protection are for --kind bundle");
+    }
+    if spec.is_some() && (one.terms.is_some() || one.held_strain.is_some()) {
+        bail!("--terms and --held-strain are for one relaxation test on the command line; in a calibration file they are the test's terms and held_strain");
     }
     let calibration = match spec {
         Some(path) => pliant_calibrate::calibrate_file(path).map_err(|e| anyhow!(e))?,
@@ -186,6 +241,8 @@ pub fn run(spec: Option<&Path>, one: &OneTest, out: &Path, json: bool) -> anyhow
                     length_mm: one.length_mm,
                     d_inner_mm: None,
                     d_outer_mm: None,
+                    terms: one.terms,
+                    held_strain: one.held_strain,
                 }],
             };
             let origin = format!(
@@ -240,7 +297,17 @@ pub fn run(spec: Option<&Path>, one: &OneTest, out: &Path, json: bool) -> anyhow
             format!("{:.5}", f.line.r_squared),
         ]);
     }
-    println!("{table}");
+    if !calibration.fits.is_empty() {
+        println!("{table}");
+    }
+    if !calibration.laws.is_empty() {
+        println!("{}", law_table(&calibration.laws));
+        for f in &calibration.laws {
+            for c in &f.checks {
+                println!("{} {}: {c}", f.kind.name(), f.csv);
+            }
+        }
+    }
     for w in &calibration.material.warnings {
         println!("warning: {w}");
     }

@@ -22,6 +22,8 @@ pub struct ImportOptions<'a> {
     pub branch: Option<&'a str>,
     /// KBL: the bundle model's data (TOML) instead of the built-in.
     pub bundle_data: Option<&'a Path>,
+    /// KBL: write the protections' default friction between the wires.
+    pub bundle_friction: bool,
 }
 
 /// A length such as "0.5mm", "0.02 in", "0.0005m"; a bare number is millimetres.
@@ -88,6 +90,7 @@ fn run_harness(o: &ImportOptions) -> Result<ExitCode> {
     let options = pliant_harness::ImportOptions {
         branch: o.branch.map(str::to_owned),
         bundle,
+        bundle_friction: o.bundle_friction,
         ..Default::default()
     };
     let report =
@@ -109,8 +112,8 @@ pub fn run(o: &ImportOptions) -> Result<ExitCode> {
     if o.branch.is_some() {
         bail!("--branch is for harness files (KBL); a STEP assembly has no branches");
     }
-    if o.bundle_data.is_some() {
-        bail!("--bundle-data is for harness files (KBL); a STEP assembly has no bundles");
+    if o.bundle_data.is_some() || o.bundle_friction {
+        bail!("--bundle-data and --bundle-friction are for harness files (KBL); a STEP assembly has no bundles");
     }
     let tolerance = match o.tolerance {
         Some(t) => parse_length(t).context("--tolerance")?,

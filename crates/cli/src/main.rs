@@ -223,6 +223,11 @@ enum Command {
         /// bundle.toml of `pliant calibrate --kind bundle`, with a fitted factor).
         #[arg(long = "bundle-data", value_name = "BUNDLE_TOML")]
         bundle_data: Option<PathBuf>,
+        /// KBL: give each bundle the default friction between its wires for its
+        /// protection (Dahl hysteresis; modelling choices of the bundle data, see
+        /// docs/harness.md): each hose then gets a material of its own.
+        #[arg(long = "bundle-friction")]
+        bundle_friction: bool,
     },
     /// Print what a scene builds: hoses (length, elements, nodes), junctions (degree,
     /// position), fixings and parts, in metres.
@@ -268,7 +273,9 @@ enum Command {
         /// --kind and --csv for one test.
         spec: Option<PathBuf>,
         /// One test's kind: tension, compression, three_point_bending, cantilever,
-        /// torsion, iso10619; or bundle (with --kbl and --segment).
+        /// torsion, iso10619; plastic_bending, plastic_torsion, plastic_cantilever,
+        /// plastic_three_point_bending, relaxation (with --held-strain for E0),
+        /// cyclic_bending, cyclic_torsion; or bundle (with --kbl and --segment).
         #[arg(long)]
         kind: Option<String>,
         /// Bundle: the bending test the curve comes from, three_point_bending (--length:
@@ -290,7 +297,8 @@ enum Command {
         #[arg(long)]
         csv: Option<PathBuf>,
         /// Gauge length (tension, compression), span (three-point bending), free length
-        /// (cantilever), grip distance (torsion) or lever arm (iso10619) \[mm\].
+        /// (cantilever), grip distance (torsion) or lever arm (iso10619) \[mm\]; the same
+        /// for the tests past yield and cyclic torsion.
         #[arg(long)]
         length: Option<f64>,
         /// The specimen's outer diameter \[mm\].
@@ -308,6 +316,13 @@ enum Command {
         /// Poisson's ratio when no torsion test determines it [default: 0.49].
         #[arg(long)]
         poisson: Option<f64>,
+        /// Relaxation: the number of Prony terms to fit [default: chosen by BIC].
+        #[arg(long)]
+        terms: Option<usize>,
+        /// Relaxation: the strain held during the test [-], which gives the
+        /// instantaneous modulus E0 from the held force (over the section's area) or stress.
+        #[arg(long = "held-strain")]
+        held_strain: Option<f64>,
         /// Output folder.
         #[arg(long, default_value = "out/calibration")]
         out: PathBuf,
@@ -497,6 +512,7 @@ fn main() -> ExitCode {
             tolerance,
             branch,
             bundle_data,
+            bundle_friction,
         } => import_cmd::run(&import_cmd::ImportOptions {
             step: &step,
             out: out.as_deref(),
@@ -504,6 +520,7 @@ fn main() -> ExitCode {
             tolerance: tolerance.as_deref(),
             branch: branch.as_deref(),
             bundle_data: bundle_data.as_deref(),
+            bundle_friction,
         }),
         Command::Calibrate {
             spec,
@@ -519,6 +536,8 @@ fn main() -> ExitCode {
             name,
             density,
             poisson,
+            terms,
+            held_strain,
             out,
             json,
         } => calibrate_cmd::run(
@@ -538,6 +557,8 @@ fn main() -> ExitCode {
                 name: &name,
                 density_kg_m3: density,
                 poisson,
+                terms,
+                held_strain,
             },
             &out,
             json,

@@ -1234,3 +1234,82 @@ fn killing_pliant_study_stops_its_driver_and_workers() {
         std::thread::sleep(std::time::Duration::from_millis(50));
     }
 }
+
+/// The law kinds through `pliant calibrate`: a test-bench cantilever past yield from its
+/// example file (the law table and the springback check printed), and one relaxation
+/// test on the command line — refused without `--held-strain` (it gives moduli ratios
+/// only), and with it and `--terms 1` fitted with exactly one Prony term.
+#[test]
+fn calibrate_prints_the_fitted_laws_and_takes_relaxation_options() {
+    let out = tempfile::tempdir().unwrap();
+    let o = pliant()
+        .arg("calibrate")
+        .arg(examples().join("calibration/metal_line_cantilever.toml"))
+        .arg("--out")
+        .arg(out.path().join("beam"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for want in [
+        "plastic_cantilever",
+        "sigma_y = ",
+        "H = ",
+        "springback measured",
+    ] {
+        assert!(stdout.contains(want), "{want}: {stdout}");
+    }
+    let material = std::fs::read_to_string(out.path().join("beam/material.toml")).unwrap();
+    assert!(material.contains("yield_stress_mpa = 170."), "{material}");
+
+    let relaxation = |extra: &[&str], dir: &str| {
+        pliant()
+            .args([
+                "calibrate",
+                "--kind",
+                "relaxation",
+                "--d-inner",
+                "10",
+                "--d-outer",
+                "16",
+            ])
+            .args(extra)
+            .arg("--csv")
+            .arg(examples().join("calibration/relaxation.csv"))
+            .arg("--out")
+            .arg(out.path().join(dir))
+            .output()
+            .unwrap()
+    };
+    let refused = relaxation(&[], "none");
+    assert_eq!(refused.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(err.contains("--held-strain"), "{err}");
+    let one = relaxation(&["--held-strain", "0.05", "--terms", "1"], "one");
+    let stdout = String::from_utf8_lossy(&one.stdout);
+    assert!(
+        one.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&one.stderr)
+    );
+    assert!(
+        stdout.contains("E0 = ") && stdout.contains("g1 = "),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("g2 = "), "{stdout}");
+    assert!(stdout.contains("asked for"), "{stdout}");
+    let material = std::fs::read_to_string(out.path().join("one/material.toml")).unwrap();
+    assert_eq!(material.matches("time_s =").count(), 1, "{material}");
+    // the options belong to a lone relaxation test
+    let mixed = pliant()
+        .arg("calibrate")
+        .arg(examples().join("calibration/rubber_relaxation.toml"))
+        .args(["--terms", "2"])
+        .output()
+        .unwrap();
+    assert_eq!(mixed.status.code(), Some(2));
+}

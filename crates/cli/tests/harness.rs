@@ -366,3 +366,34 @@ duration_s = 0.02
     assert_eq!(clip("drawn through")["max_force"], 0.0);
     assert_eq!(clip("beside")["final_state"], "free");
 }
+
+/// `pliant import --bundle-friction` gives the protected bundles their protection's
+/// default friction (a material each, with `hysteresis`); without it the scene has none.
+#[test]
+fn bundle_friction_is_opt_in() {
+    let dir = tempfile::tempdir().unwrap();
+    for (flag, want) in [(false, false), (true, true)] {
+        let out = dir.path().join(if flag { "on" } else { "off" });
+        let mut c = pliant();
+        c.arg("import").arg(data(MAIN)).arg("--out").arg(&out);
+        if flag {
+            c.arg("--bundle-friction");
+        }
+        ok(&c.output().unwrap());
+        let scene = std::fs::read_to_string(out.join("scene.toml")).unwrap();
+        assert_eq!(
+            scene.contains("hysteresis = {"),
+            want,
+            "--bundle-friction {flag}"
+        );
+        if want {
+            assert!(scene.contains("material = \"bundle_Segment_3\""));
+            let inspect = pliant()
+                .arg("inspect")
+                .arg(out.join("scene.toml"))
+                .output()
+                .unwrap();
+            ok(&inspect);
+        }
+    }
+}

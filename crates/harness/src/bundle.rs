@@ -62,6 +62,13 @@ pub struct ProtectionData {
     pub f_ei: Sourced,
     pub f_gj: Sourced,
     pub min_bend_radius_d: Sourced,
+    /// Dahl friction between the wires: M_s/κ_s as a multiple of the effective EI (and
+    /// GJ); absent or 0: none ([`bundle_friction`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dahl_stiffness_ratio: Option<Sourced>,
+    /// κ_s × D: the curvature over which the friction saturates, in 1/D.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dahl_curvature_d: Option<Sourced>,
 }
 
 /// The bundle model's data (`data/bundle.toml`).
@@ -317,6 +324,42 @@ pub fn bundle_section(
         f_gj,
         fill,
     }
+}
+
+/// Dahl's friction pair (M_s \[N·m\], κ_s \[1/m\]) of one stiffness.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DahlPair {
+    pub moment: f64,
+    pub curvature: f64,
+}
+
+/// The friction between a bundle's wires in bending and torsion (Dahl's law, the scene's
+/// `hysteresis`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BundleFriction {
+    pub bending: DahlPair,
+    pub torsion: DahlPair,
+}
+
+/// The default friction of a bundle section under its protection (`data/bundle.toml`,
+/// modelling choices): κ_s = `dahl_curvature_d` / D and M_s = `dahl_stiffness_ratio` ×
+/// EI κ_s (GJ κ_s in torsion); `None` when the protection has none (ratio 0 or absent)
+/// or the section has no size or stiffness.
+pub fn bundle_friction(data: &BundleData, sec: &BundleSection) -> Option<BundleFriction> {
+    let pd = data.protection(sec.protection);
+    let ratio = pd.dahl_stiffness_ratio.as_ref()?.value;
+    let per_d = pd.dahl_curvature_d.as_ref()?.value;
+    let kappa = per_d / sec.d_outer;
+    let pair = |k: f64| DahlPair {
+        moment: ratio * k * kappa,
+        curvature: kappa,
+    };
+    let f = BundleFriction {
+        bending: pair(sec.ei),
+        torsion: pair(sec.gj),
+    };
+    let ok = |p: &DahlPair| p.moment > 0.0 && p.moment.is_finite() && p.curvature.is_finite();
+    (ratio > 0.0 && per_d > 0.0 && ok(&f.bending) && ok(&f.torsion)).then_some(f)
 }
 
 /// The wires of one segment as [`WireSection`]s. A cable whose part gives its own outer

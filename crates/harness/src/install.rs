@@ -401,6 +401,7 @@ pub fn install_toml(
             bare: s.bare,
             stretches: s.stretches,
             elements: install_elements(s.curve.length),
+            friction: s.friction,
         })
         .collect();
     let segs = &fine[..];

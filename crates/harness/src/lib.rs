@@ -135,6 +135,10 @@ pub struct ImportOptions {
     /// Import only the branch beyond this node or segment (KBL id or `<Id>` text; see
     /// [`branch`]), held where it was cut off.
     pub branch: Option<String>,
+    /// Give each bundle the default friction between its wires of its protection
+    /// ([`bundle::bundle_friction`], modelling choices in `data/bundle.toml`): each hose
+    /// then has a material of its own with a `hysteresis`. Off by default.
+    pub bundle_friction: bool,
 }
 
 impl Default for ImportOptions {
@@ -143,6 +147,7 @@ impl Default for ImportOptions {
             bundle: BundleData::builtin(),
             install: InstallData::builtin(),
             branch: None,
+            bundle_friction: false,
         }
     }
 }
@@ -209,6 +214,11 @@ pub fn import_kbl_opts(
             bare: &b.bare,
             stretches: &b.stretches,
             elements: element_count(curve.length),
+            friction: if options.bundle_friction {
+                bundle::bundle_friction(data, &b.section)
+            } else {
+                None
+            },
         })
         .collect();
     let note = licence_note(path);

@@ -51,6 +51,8 @@ pub struct SegmentOut<'a> {
     pub bare: &'a BundleSection,
     pub stretches: &'a [CoveredStretch],
     pub elements: usize,
+    /// The friction between the wires, when the import gives it (`--bundle-friction`).
+    pub friction: Option<crate::bundle::BundleFriction>,
 }
 
 impl SegmentOut<'_> {
@@ -282,6 +284,11 @@ pub(crate) fn network_toml_with_slack(
     );
     let _ = writeln!(t, "# Density and Poisson's ratio matter only for what a section does not give (all is given).");
     let _ = writeln!(t, "[materials.bundle]\ne_tension_mpa = 200\ne_compression_mpa = 200\npoisson = 0.4\ndensity_kg_m3 = 1400\n");
+    for out in segs {
+        if let Some(f) = &out.friction {
+            friction_material_toml(&mut t, out, f);
+        }
+    }
 
     for (index, (s, out)) in h.segments.iter().zip(segs).enumerate() {
         let len = out.curve.length;
@@ -309,7 +316,11 @@ pub(crate) fn network_toml_with_slack(
                 sec.wire_count
             );
         }
-        let _ = writeln!(t, "material = \"bundle\"");
+        if out.friction.is_some() {
+            let _ = writeln!(t, "material = {}", quote(&friction_material(&out.hose)));
+        } else {
+            let _ = writeln!(t, "material = \"bundle\"");
+        }
         let _ = writeln!(t, "section = {}", section_toml(sec));
         if sec.min_bend_radius > 0.0 {
             let _ = writeln!(t, "min_bend_radius = {}", mm(sec.min_bend_radius));
@@ -359,6 +370,35 @@ pub(crate) fn network_toml_with_slack(
         );
     }
     t
+}
+
+/// The name of the material of hose `hose` with friction between its wires.
+fn friction_material(hose: &str) -> String {
+    format!("bundle_{hose}")
+}
+
+/// `[materials."bundle_HOSE"]`: the bundle material with the default friction of the
+/// hose's protection (modelling choices, `data/bundle.toml`).
+fn friction_material_toml(t: &mut String, out: &SegmentOut, f: &crate::bundle::BundleFriction) {
+    let _ = writeln!(
+        t,
+        "# {}: friction between the wires, the default of its protection ({}; modelling choices in the bundle data, not measured)",
+        out.hose,
+        out.section.protection.map_or("none", |p| p.key())
+    );
+    let _ = writeln!(
+        t,
+        "[materials.{}]\ne_tension_mpa = 200\ne_compression_mpa = 200\npoisson = 0.4\ndensity_kg_m3 = 1400",
+        quote(&friction_material(&out.hose))
+    );
+    let _ = writeln!(
+        t,
+        "hysteresis = {{ bending_moment_n_m = {}, bending_curvature_1_m = {}, torsion_moment_n_m = {}, torsion_curvature_1_m = {} }}\n",
+        sci(f.bending.moment),
+        sci(f.bending.curvature),
+        sci(f.torsion.moment),
+        sci(f.torsion.curvature)
+    );
 }
 
 /// A `section = { … }` inline table with every stiffness given.

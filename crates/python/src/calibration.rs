@@ -305,6 +305,8 @@ pub fn calibrate(
                     length_mm,
                     d_inner_mm: None,
                     d_outer_mm: None,
+                    terms: None,
+                    held_strain: None,
                 }],
             };
             let origin = format!("pliant.calibrate(kind={:?})", kind.name());

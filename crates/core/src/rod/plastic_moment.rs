@@ -18,6 +18,9 @@
 //! **Torsion** (von Mises: shear yield τ_y = σ_y/√3; τ = G θ' r up to the elastic radius
 //! ρ = τ_y/(G θ'), τ_y beyond): T = 2π [∫ G θ' r³ dr over the elastic part + ∫ τ_y r² dr
 //! over the plastic part], the fully plastic torque T_p = (2π/3) τ_y (r_o³ − r_i³).
+//! With linear kinematic hardening H (the fibre law's shear back stress (H/3) γ_p) a
+//! yielded fibre's shear stress rises past τ_y with the tangent G_t = G H/(3G + H), which
+//! adds 2π G_t ∫_ρ^{r_o} (θ' r − γ_y) r² dr, γ_y = τ_y/G.
 
 use std::f64::consts::PI;
 
@@ -112,6 +115,22 @@ pub fn torque(ri: f64, ro: f64, g: f64, sy: f64, twist: f64) -> f64 {
     twist.signum() * 2.0 * PI * (elastic + plastic)
 }
 
+/// Torque \[N·m\] of a tube with linear kinematic hardening `h` twisted monotonically at
+/// rate `twist`: the perfectly plastic torque plus the yielded fibres' hardening
+/// 2π G_t [θ' (r_o⁴ − ρ⁴)/4 − γ_y (r_o³ − ρ³)/3] (module doc).
+pub fn hardening_torque(ri: f64, ro: f64, g: f64, sy: f64, h: f64, twist: f64) -> f64 {
+    let perfect = torque(ri, ro, g, sy, twist);
+    let t = twist.abs();
+    if t == 0.0 {
+        return perfect;
+    }
+    let tau_y = sy / 3f64.sqrt();
+    let rho = (tau_y / (g * t)).clamp(ri, ro);
+    let gt = g * h / (3.0 * g + h);
+    let extra = t * (ro.powi(4) - rho.powi(4)) / 4.0 - tau_y / g * (ro.powi(3) - rho.powi(3)) / 3.0;
+    perfect + twist.signum() * 2.0 * PI * gt * extra
+}
+
 /// Fully plastic torque T_p = (2π/3)(σ_y/√3)(r_o³ − r_i³) \[N·m\].
 pub fn plastic_torque(ri: f64, ro: f64, sy: f64) -> f64 {
     2.0 * PI / 3.0 * sy / 3f64.sqrt() * (ro.powi(3) - ri.powi(3))
@@ -141,5 +160,39 @@ mod tests {
             (torque(ri, ro, g, sy, small) - g * PI / 2.0 * (ro.powi(4) - ri.powi(4)) * small).abs()
                 < 1e-9
         );
+    }
+
+    /// The hardening torque against the fibre section (one return from the virgin state:
+    /// exact for pure shear with linear hardening) on the simulator's grid: the 10/12 mm
+    /// tube, elastic or wholly yielded at these twists, to rounding (measured 2.4e-15);
+    /// the solid rod, whose elastic radius ρ cuts through its radial intervals (second
+    /// order there), to the 0.5 % of the validation case `plastic_section` (measured
+    /// 1.2e-3 at 1.5 θ'_e, 5e-6 at 20 θ'_e).
+    #[test]
+    fn hardening_torque_is_the_fibre_sections() {
+        use crate::autodiff::V3;
+        use crate::rod::fibre_law::FibreLaw;
+        use crate::rod::fibre_section::FibreSection;
+        let (e, g, sy, h) = (70e9, 70e9 / 2.6, 170e6, 580e6);
+        for (di, da, tolerance) in [(0.010, 0.012, 1e-12), (0.0, 0.008, 5e-3)] {
+            let law = FibreLaw {
+                e,
+                g,
+                h,
+                yield_stress: sy,
+            };
+            let s = FibreSection::tube(di, da, law);
+            let zero = vec![0.0; s.history_len()];
+            let twist_e = sy / 3f64.sqrt() / (g * 0.5 * da);
+            for factor in [0.5, 1.5, 4.0, 20.0] {
+                let t = factor * twist_e;
+                let fibres = s.moments(V3::new(t, 0.0, 0.0), &zero).x;
+                let exact = hardening_torque(0.5 * di, 0.5 * da, g, sy, h, t);
+                assert!(
+                    (fibres - exact).abs() < tolerance * exact,
+                    "d {di}/{da} at {factor} θ'_e: fibres {fibres}, closed form {exact}"
+                );
+            }
+        }
     }
 }
