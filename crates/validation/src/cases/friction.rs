@@ -8,15 +8,29 @@
 //! * implicit, tan φ = 0.8 μ_s: sticks over 0.5 s (creep below 10 µm);
 //! * implicit, tan φ = 1.2 μ_s: slides with g (sin φ − μ_k cos φ) — distance in 0.3 s
 //!   within 2 % of ½ a t², at the implicit solver's default 10 ms step.
+//!
+//! Stress cases, implicit (10 ms steps, 0.5 s) at tan φ = 0.8 μ_k, where every node
+//! starts slipping towards a friction anchor that the balance sticks at — anchors 2 mm
+//! up-slope, and 2 mm down-slope, of where the hose lies: every step converges by Newton
+//! (no explicit fallback), no node's friction is outside its cone (|f_t| ≤ μ_s f_n, to
+//! round-off) and the hose comes to rest (every node slower than 1 mm/s at the end).
 
 use super::contact::{incline_plane, world, G};
 use crate::Check;
 use glam::DVec3;
+use pliant_core::contact::friction::FrictionMemory;
 use pliant_core::integrators::{Solver, SolverSettings};
 use pliant_core::{SolverKind, State};
 
 const CASE: &str = "friction_newton";
 const MU: (f64, f64) = (0.5, 0.4);
+/// The node the displacements are read at (the hose's middle).
+const MIDDLE: usize = 10;
+
+/// Where the friction anchors start, down the slope from the nodes \[m\].
+type AnchorShift = f64;
+
+const LYING: AnchorShift = 0.0;
 
 /// What a run on an incline of angle φ gave.
 struct Run {
@@ -24,11 +38,23 @@ struct Run {
     slid: f64,
     /// Whether every step converged.
     converged: bool,
+    /// Steps taken by the explicit fallback pieces (implicit).
+    fallback: usize,
     /// |Σ contact force + Σ m g| / |Σ m g| at the end.
     imbalance: f64,
+    /// Largest |f_t| / (μ_s f_n) of a touching node at the end (Coulomb: ≤ 1).
+    cone: f64,
+    /// Largest node speed at the end \[m/s\].
+    speed: f64,
 }
 
-fn incline(phi: f64, kind: SolverKind, step: f64, seconds: f64) -> Result<Run, String> {
+fn incline(
+    phi: f64,
+    kind: SolverKind,
+    step: f64,
+    seconds: f64,
+    anchor_shift: AnchorShift,
+) -> Result<Run, String> {
     let r = crate::harness::hose1().1.outer_radius();
     let (plane, down, normal) = incline_plane(phi, MU);
     let model = world(
@@ -45,18 +71,34 @@ fn incline(phi: f64, kind: SolverKind, step: f64, seconds: f64) -> Result<Run, S
     };
     let mut solver = Solver::new(&model, settings).map_err(|e| e.to_string())?;
     let mut state = State::at_rest(&model);
-    let start = state.x[10];
+    let anchors: Vec<DVec3> = state.x.iter().map(|x| *x + down * anchor_shift).collect();
+    state.friction = FrictionMemory::new(&anchors);
+    let begin = state.x[MIDDLE];
     let mut converged = true;
+    let mut fallback = 0;
     for _ in 0..(seconds / step).round() as usize {
         let stats = solver.step(&model, &mut state).map_err(|e| e.to_string())?;
         converged &= stats.converged;
+        fallback += stats.explicit_fallback;
     }
     let weight: DVec3 = model.mass.iter().map(|m| m * model.gravity).sum();
     let carried: DVec3 = state.contact_force.iter().copied().sum();
+    let cone = state
+        .contact_force
+        .iter()
+        .filter(|f| f.dot(normal) > 0.0)
+        .map(|f| {
+            let f_n = f.dot(normal);
+            (*f - normal * f_n).length() / (MU.0 * f_n)
+        })
+        .fold(0.0, f64::max);
     Ok(Run {
-        slid: (state.x[10] - start).dot(down),
+        slid: (state.x[MIDDLE] - begin).dot(down),
         converged,
+        fallback,
         imbalance: (carried + weight).length() / weight.length(),
+        cone,
+        speed: state.v.iter().map(|v| v.length()).fold(0.0, f64::max),
     })
 }
 
@@ -64,7 +106,7 @@ pub fn run() -> Vec<Check> {
     let stick = (0.8 * MU.0).atan();
     let slide = (1.2 * MU.0).atan();
     let mut out = Vec::new();
-    match incline(stick, SolverKind::Static, 0.01, 0.1) {
+    match incline(stick, SolverKind::Static, 0.01, 0.1, LYING) {
         Ok(run) if run.converged => {
             out.push(Check::with_error(
                 CASE,
@@ -86,7 +128,7 @@ pub fn run() -> Vec<Check> {
         Ok(_) => out.push(Check::failed(CASE, "static stick", "did not converge")),
         Err(e) => out.push(Check::failed(CASE, "static stick", &e)),
     }
-    match incline(slide, SolverKind::Static, 0.01, 0.01) {
+    match incline(slide, SolverKind::Static, 0.01, 0.01, LYING) {
         Ok(run) => {
             // no equilibrium: the step must not converge (pass = 0 error), and the hose
             // must not be held where it was (it slides by more than the stick creep)
@@ -110,7 +152,7 @@ pub fn run() -> Vec<Check> {
         }
         Err(e) => out.push(Check::failed(CASE, "static slide", &e)),
     }
-    match incline(stick, SolverKind::Implicit, 0.01, 0.5) {
+    match incline(stick, SolverKind::Implicit, 0.01, 0.5, LYING) {
         Ok(run) => out.push(Check::with_error(
             CASE,
             "implicit, tan(phi)=0.8 mu_s: creep over 0.5 s m (abs)",
@@ -122,7 +164,7 @@ pub fn run() -> Vec<Check> {
         Err(e) => out.push(Check::failed(CASE, "implicit stick", &e)),
     }
     let t = 0.3;
-    match incline(slide, SolverKind::Implicit, 0.01, t) {
+    match incline(slide, SolverKind::Implicit, 0.01, t, LYING) {
         Ok(run) => {
             let a = G * (slide.sin() - MU.1 * slide.cos());
             out.push(Check::relative(
@@ -135,5 +177,47 @@ pub fn run() -> Vec<Check> {
         }
         Err(e) => out.push(Check::failed(CASE, "implicit slide", &e)),
     }
+    out.extend(back_to_the_apex());
     out
+}
+
+/// The stress cases: every node starts slipping towards an anchor the balance sticks at.
+fn back_to_the_apex() -> Vec<Check> {
+    let phi = (0.8 * MU.1).atan();
+    let offset = 0.002;
+    let mut out = Vec::new();
+    for (name, shift) in [("up-slope", -offset), ("down-slope", offset)] {
+        let label =
+            |what: &str| format!("implicit, tan(phi)=0.8 mu_k, anchors 2 mm {name}: {what}");
+        match incline(phi, SolverKind::Implicit, 0.01, 0.5, shift) {
+            Ok(run) => {
+                let fell_back = run.fallback as f64;
+                out.push(Check::with_error(
+                    CASE,
+                    &label("explicit fallback steps"),
+                    fell_back,
+                    0.0,
+                    fell_back + if run.converged { 0.0 } else { 1.0 },
+                    0.0,
+                ));
+                out.push(coulomb(&label("largest |f_t| / (mu_s f_n)"), run.cone));
+                out.push(Check::with_error(
+                    CASE,
+                    &label("largest node speed at 0.5 s m/s"),
+                    run.speed,
+                    0.0,
+                    run.speed,
+                    1e-3,
+                ));
+            }
+            Err(e) => out.push(Check::failed(CASE, &label("ran"), &e)),
+        }
+    }
+    out
+}
+
+/// Coulomb's law at a balance: no node's friction beyond μ_s f_n (round-off allowed).
+fn coulomb(quantity: &str, cone: f64) -> Check {
+    let beyond = (cone - 1.0).max(0.0);
+    Check::with_error(CASE, quantity, cone, 1.0, beyond, 1e-9)
 }
