@@ -51,7 +51,7 @@ fn rigid_mass_matrix(mass: f64, d: DVec3, j: DMat3) -> Matrix6<f64> {
 }
 
 /// Each junction body with a mass of its own, with its master node.
-fn owned<'a>(model: &'a Model) -> impl Iterator<Item = (usize, &'a RigidBody, &'a AttachedMass)> {
+fn owned(model: &Model) -> impl Iterator<Item = (usize, &RigidBody, &AttachedMass)> {
     model.junctions.iter().filter_map(|j| {
         let body = &model.bodies[j.body];
         body.attached.as_ref().map(|own| (j.nodes[0], body, own))
