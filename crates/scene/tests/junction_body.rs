@@ -3,36 +3,11 @@
 
 use glam::{DMat3, DVec3};
 use pliant_scene::{load_scene_str, SceneError};
-
-/// Two hoses (mm) whose ends a T piece joins 20 mm apart; `BODY` is replaced.
-const SCENE: &str = r#"
-format = "pliant-scene"
-version = 1
-name = "junction body"
-length_unit = "mm"
-
-[[hoses]]
-name = "a"
-material = "hose1"
-elements = 4
-start = [0, 0, 0]
-path = [{ line = { to = [200, 0, 0] } }]
-
-[[hoses]]
-name = "b"
-material = "hose1"
-elements = 4
-start = [220, 0, 0]
-path = [{ line = { to = [400, 0, 0] } }]
-
-[[junctions]]
-name = "tee"
-ends = [{ hose = "a", end = "end" }, { hose = "b", end = "start" }]
-body = BODY
-"#;
+use pliant_testkit::scenes::{HEAD_MM, TEE_MM};
 
 fn load(body: &str) -> Result<pliant_scene::LoadedScene, SceneError> {
-    load_scene_str(&SCENE.replace("BODY", body), "junction_body.toml")
+    let text = format!("{HEAD_MM}{TEE_MM}body = {body}\n");
+    load_scene_str(&text, "junction_body.toml")
 }
 
 fn error(body: &str) -> String {
