@@ -26,6 +26,12 @@ export interface ProtectionData {
 export interface JunctionBodyData {
   name: string;
   mass: number;
+  /** Centre of mass at rest [m] and inertia tensor about it (rows, world axes) [kg·m²];
+   *  absent in recordings made before the welcome carried them. */
+  centre_of_mass?: Vec3;
+  inertia?: [Vec3, Vec3, Vec3];
+  /** Whether the mass is lumped on the outlets (no centre of mass or inertia given). */
+  lumped?: boolean;
   outlets: { hose: number; node: number }[];
 }
 export interface PartData {

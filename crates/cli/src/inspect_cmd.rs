@@ -1,5 +1,6 @@
 //! `pliant inspect SCENE [--json]`: what a scene builds — its hoses (length, elements,
-//! node positions), junctions (degree, position), fixings (stubs and clips) and parts —
+//! node positions), junctions (degree, position; a junction body's own mass, centre of
+//! mass and inertia tensor about it), fixings (stubs and clips) and parts —
 //! in metres, for people (a summary) and scripts (JSON).
 
 use anyhow::{anyhow, Result};
@@ -46,11 +47,21 @@ pub fn describe(scene: &LoadedScene, model: &Model) -> Value {
                     json!({ "hose": info.name, "end": end })
                 })
                 .collect();
+            // a welded branch point has no body of its own
+            let own = (j.own.mass > 0.0 || !j.own.lumped).then(|| {
+                json!({
+                    "mass_kg": j.own.mass,
+                    "centre_of_mass_m": j.own.centre.to_array(),
+                    "inertia_kg_m2": j.own.inertia.transpose().to_cols_array_2d(),
+                    "lumped_on_outlets": j.own.lumped,
+                })
+            });
             json!({
                 "name": j.name,
                 "degree": j.degree(),
                 "position": body.rest_centre.to_array(),
                 "mass_kg": body.mass,
+                "body": own,
                 "ends": ends,
             })
         })

@@ -4,14 +4,18 @@
 //! lie apart, at its outlets. Either way the joined end nodes move as one rigid body
 //! ([`crate::rod::stiffened::RigidBody`]): the explicit solver steps it by Newton–Euler as it
 //! does a stiffened section, the Newton solvers condense its nodes onto one master node
-//! ([`crate::newton::condensation`]). A junction body's own mass is lumped onto its
-//! outlet nodes in equal shares, so its centre of mass is the mean of its outlets and its
-//! rotational inertia that of point masses there — exact for a symmetric piece, an
-//! estimate otherwise.
+//! ([`crate::newton::condensation`]). A junction body's own mass is either lumped onto
+//! its outlet nodes in equal shares — its centre of mass then the mean of its outlets and
+//! its rotational inertia that of point masses there, exact for a symmetric piece, an
+//! estimate otherwise — or, when its centre of mass or inertia is given, carried by the
+//! rigid body as a mass of its own ([`crate::rod::attached`]): its weight acts at its
+//! centre of mass and its inertia tensor joins the outlets' by the parallel-axis theorem
+//! (equal nodal shares could not place a centre of mass outside the outlets' hull).
 
 use crate::model::{Model, ModelError};
+use crate::rod::attached::check_inertia;
 use crate::rod::stiffened::RigidBody;
-use glam::{DQuat, DVec3};
+use glam::{DMat3, DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
 /// Which end of a hose.
@@ -32,6 +36,22 @@ pub struct JunctionSpec {
     /// Mass of a junction body beyond the hoses' own \[kg\] (0 for a welded branch point).
     #[serde(default)]
     pub body_mass: f64,
+    /// The body's own centre of mass at rest \[m\]. Given (or with `body_inertia`), the
+    /// body's mass is its own rigid mass instead of equal shares on its outlets; absent
+    /// then, the outlets' mean.
+    #[serde(default)]
+    pub body_centre: Option<DVec3>,
+    /// The body's own inertia tensor about its centre of mass, world axes at rest
+    /// \[kg·m²\]. Absent with `body_centre` given: zero (a point mass there).
+    #[serde(default)]
+    pub body_inertia: Option<DMat3>,
+}
+
+impl JunctionSpec {
+    /// Whether the body's mass is a rigid mass of its own (centre or inertia given).
+    pub fn has_own_mass(&self) -> bool {
+        self.body_centre.is_some() || self.body_inertia.is_some()
+    }
 }
 
 /// A built junction: its end nodes (global indices; the first is the Newton solvers'
@@ -42,6 +62,24 @@ pub struct Junction {
     pub nodes: Vec<usize>,
     /// Index into [`Model::bodies`].
     pub body: usize,
+    /// The junction body's own mass properties at rest (zero mass for a welded branch
+    /// point).
+    pub own: OwnMass,
+}
+
+/// A junction body's own mass, centre of mass and inertia about it (world axes, at
+/// rest), as the solvers treat it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct OwnMass {
+    /// \[kg\]
+    pub mass: f64,
+    /// \[m\]
+    pub centre: DVec3,
+    /// \[kg·m²\]
+    pub inertia: DMat3,
+    /// Whether the mass is lumped onto the outlets in equal shares (its centre their
+    /// mean, its inertia theirs as point masses) rather than carried as given.
+    pub lumped: bool,
 }
 
 impl Junction {
@@ -99,17 +137,61 @@ impl Model {
                 }
                 nodes.push(node);
             }
-            let share = spec.body_mass / nodes.len() as f64;
-            for &i in &nodes {
-                self.mass[i] += share;
+            let outlets: Vec<DVec3> = nodes.iter().map(|&i| self.rest_x[i]).collect();
+            let mean = outlets.iter().sum::<DVec3>() / nodes.len() as f64;
+            let mut own = OwnMass {
+                mass: spec.body_mass,
+                centre: spec.body_centre.unwrap_or(mean),
+                inertia: spec.body_inertia.unwrap_or(DMat3::ZERO),
+                lumped: !spec.has_own_mass(),
+            };
+            if own.lumped {
+                let share = spec.body_mass / nodes.len() as f64;
+                for p in &outlets {
+                    let o = *p - mean;
+                    own.inertia += share
+                        * (DMat3::IDENTITY * o.length_squared()
+                            - DMat3::from_cols(o * o.x, o * o.y, o * o.z));
+                }
             }
-            let body = RigidBody::new(
-                nodes.clone(),
-                &self.rest_x,
-                &self.rest_q,
-                &self.mass,
-                &self.inertia,
-            );
+            let body = if spec.has_own_mass() {
+                if !(spec.body_mass > 0.0) {
+                    return err(
+                        "a body with its own centre of mass or inertia needs a mass > 0 kg".into(),
+                    );
+                }
+                let centre = own.centre;
+                if !centre.is_finite() {
+                    return err(format!("body centre of mass {centre} is not finite"));
+                }
+                let inertia = own.inertia;
+                if let Some(j) = spec.body_inertia {
+                    check_inertia(j).map_err(|reason| ModelError::Junction {
+                        junction: spec.name.clone(),
+                        reason: format!("body inertia tensor {reason}"),
+                    })?;
+                }
+                RigidBody::with_attached(
+                    nodes.clone(),
+                    (&self.rest_x, &self.rest_q),
+                    (&self.mass, &self.inertia),
+                    spec.body_mass,
+                    centre,
+                    inertia,
+                )
+            } else {
+                let share = spec.body_mass / nodes.len() as f64;
+                for &i in &nodes {
+                    self.mass[i] += share;
+                }
+                RigidBody::new(
+                    nodes.clone(),
+                    &self.rest_x,
+                    &self.rest_q,
+                    &self.mass,
+                    &self.inertia,
+                )
+            };
             for &i in &nodes {
                 self.body_of[i] = Some(self.bodies.len());
             }
@@ -117,6 +199,7 @@ impl Model {
                 name: spec.name.clone(),
                 nodes,
                 body: self.bodies.len(),
+                own,
             });
             self.bodies.push(body);
         }
@@ -162,6 +245,55 @@ impl Model {
                 (r * body.frames[k]).normalize(),
             )
         })
+    }
+
+    /// Each junction body's own mass with its pose: where its master node puts it.
+    fn own_masses<'a>(
+        &'a self,
+        x: &'a [DVec3],
+        q: &'a [DQuat],
+    ) -> impl Iterator<Item = (usize, &'a RigidBody, DVec3, DQuat)> + 'a {
+        self.junctions.iter().filter_map(move |j| {
+            let body = &self.bodies[j.body];
+            let m = j.nodes[0];
+            body.attached.as_ref()?;
+            let (centre, orientation) = body.pose_from_node(0, x[m], q[m]);
+            Some((m, body, centre, orientation))
+        })
+    }
+
+    /// Kinetic energy of the junction bodies' own masses,
+    /// Σ ½ m_b |v_c|² + ½ Ωᵀ J_c Ω \[J\] (their nodes' is the nodes').
+    pub fn own_mass_kinetic_energy(
+        &self,
+        (x, q): (&[DVec3], &[DQuat]),
+        (v, w): (&[DVec3], &[DVec3]),
+    ) -> f64 {
+        self.own_masses(x, q)
+            .filter_map(|(m, body, centre, orientation)| {
+                let own = body.attached.as_ref()?;
+                let c = centre + orientation * own.offset;
+                let v_c = v[m] + w[m].cross(c - x[m]);
+                let j = own.world_inertia(orientation);
+                Some(0.5 * (own.mass * v_c.length_squared() + w[m].dot(j * w[m])))
+            })
+            .sum()
+    }
+
+    /// Potential energy of gravity of the junction bodies' own masses, −Σ m_b g·c \[J\].
+    pub fn own_mass_gravity_energy(&self, x: &[DVec3], q: &[DQuat]) -> f64 {
+        -self
+            .own_masses(x, q)
+            .filter_map(|(_, body, centre, orientation)| {
+                let own = body.attached.as_ref()?;
+                Some(own.mass * self.gravity.dot(centre + orientation * own.offset))
+            })
+            .sum::<f64>()
+    }
+
+    /// Whether any junction body carries a mass of its own.
+    pub fn has_own_masses(&self) -> bool {
+        self.bodies.iter().any(|b| b.attached.is_some())
     }
 
     /// The junction node `i` belongs to, if any.

@@ -44,7 +44,7 @@ pub mod state;
 
 pub use health::Divergence;
 pub use integrators::{Solver, StepStats};
-pub use junction::{HoseEnd, Junction, JunctionSpec};
+pub use junction::{HoseEnd, Junction, JunctionSpec, OwnMass};
 pub use material::Material;
 pub use model::{HoseInfo, Model, ModelError};
 pub use section::{GivenStiffness, Section, SectionProperties};

@@ -115,6 +115,9 @@ impl State {
                 * (model.mass[i] * self.v[i].length_squared()
                     + model.inertia[i] * self.w[i].length_squared());
         }
+        if model.has_own_masses() {
+            e += model.own_mass_kinetic_energy((&self.x, &self.q), (&self.v, &self.w));
+        }
         e
     }
 
@@ -172,11 +175,17 @@ impl State {
             .sum()
     }
 
-    /// Potential energy of gravity −Σ m g·x \[J\].
+    /// Potential energy of gravity −Σ m g·x \[J\] (a junction body's own mass at its
+    /// centre of mass).
     pub fn gravity_energy(&self, model: &Model) -> f64 {
-        -(0..self.x.len())
+        let nodes = -(0..self.x.len())
             .map(|i| model.mass[i] * model.gravity.dot(self.x[i]))
-            .sum::<f64>()
+            .sum::<f64>();
+        if model.has_own_masses() {
+            nodes + model.own_mass_gravity_energy(&self.x, &self.q)
+        } else {
+            nodes
+        }
     }
 }
 

@@ -33,6 +33,8 @@ fn world(branches: bool) -> Model {
                 name: "Y".into(),
                 ends: vec![(0, HoseEnd::End), (1, HoseEnd::Start), (2, HoseEnd::Start)],
                 body_mass: 0.0,
+                body_centre: None,
+                body_inertia: None,
             }])
             .unwrap()
     } else {

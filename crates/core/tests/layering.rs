@@ -79,7 +79,11 @@ const DATA_EXCEPTIONS: &[(&str, &[&str])] = &[
     ),
     (
         "junction",
-        &["contact::HoseContactModel", "rod::stiffened::RigidBody"],
+        &[
+            "contact::HoseContactModel",
+            "rod::attached::check_inertia",
+            "rod::stiffened::RigidBody",
+        ],
     ),
     ("math", &["autodiff"]),
 ];

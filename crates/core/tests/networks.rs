@@ -33,6 +33,8 @@ fn y_network() -> (Model, State) {
         name: "Y".into(),
         ends: vec![(0, HoseEnd::End), (1, HoseEnd::Start), (2, HoseEnd::Start)],
         body_mass: 0.0,
+        body_centre: None,
+        body_inertia: None,
     }])
     .unwrap();
     let mut state = State::at_rest(&model);
@@ -189,16 +191,22 @@ fn a_loop_is_refused_by_the_newton_solvers_and_stepped_by_the_explicit_one() {
             name: "b".into(),
             ends: vec![(0, HoseEnd::End), (1, HoseEnd::Start)],
             body_mass: 0.0,
+            body_centre: None,
+            body_inertia: None,
         },
         JunctionSpec {
             name: "c".into(),
             ends: vec![(1, HoseEnd::End), (2, HoseEnd::Start)],
             body_mass: 0.0,
+            body_centre: None,
+            body_inertia: None,
         },
         JunctionSpec {
             name: "a".into(),
             ends: vec![(2, HoseEnd::End), (0, HoseEnd::Start)],
             body_mass: 0.0,
+            body_centre: None,
+            body_inertia: None,
         },
     ])
     .unwrap();
@@ -229,11 +237,15 @@ fn junction_errors_name_the_junction() {
             name: "one".into(),
             ends: vec![(0, HoseEnd::End), (1, HoseEnd::Start)],
             body_mass: 0.0,
+            body_centre: None,
+            body_inertia: None,
         },
         JunctionSpec {
             name: "two".into(),
             ends: vec![(1, HoseEnd::Start), (0, HoseEnd::Start)],
             body_mass: 0.0,
+            body_centre: None,
+            body_inertia: None,
         },
     ]);
     let e = twice.unwrap_err().to_string();
@@ -245,6 +257,8 @@ fn junction_errors_name_the_junction() {
         name: "lonely".into(),
         ends: vec![(0, HoseEnd::End)],
         body_mass: 0.0,
+        body_centre: None,
+        body_inertia: None,
     }]);
     assert!(lonely.unwrap_err().to_string().contains("at least 2"));
 }

@@ -581,9 +581,29 @@ pub struct JunctionEndEntry {
 #[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct JunctionBodyEntry {
-    /// The body's own mass \[kg\], ≥ 0 (lumped onto its outlets in equal shares).
+    /// The body's own mass \[kg\], ≥ 0; > 0 with `centre_of_mass` or `inertia_kg_m2`.
+    /// Without either, lumped onto its outlets in equal shares.
     #[serde(default)]
     pub mass_kg: f64,
+    /// The body's centre of mass, a point in the scene's coordinates (length unit) as
+    /// the hoses lie at rest. Default with `inertia_kg_m2`: the outlets' mean.
+    pub centre_of_mass: Option<Vec3>,
+    /// The body's inertia about its centre of mass \[kg·m²\], in the scene's axes:
+    /// principal moments `[Jxx, Jyy, Jzz]` or a full symmetric tensor
+    /// `[[Jxx, Jxy, Jxz], [Jxy, Jyy, Jyz], [Jxz, Jyz, Jzz]]`; positive definite, its
+    /// principal moments satisfying the triangle inequality. Default with
+    /// `centre_of_mass`: zero (a point mass there).
+    pub inertia_kg_m2: Option<InertiaEntry>,
+}
+
+/// An inertia tensor \[kg·m²\]: its diagonal or all of it.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum InertiaEntry {
+    /// `[Jxx, Jyy, Jzz]`: the scene's axes are principal axes.
+    Principal(Vec3),
+    /// `[[Jxx, Jxy, Jxz], [Jyx, Jyy, Jyz], [Jzx, Jzy, Jzz]]`, symmetric.
+    Tensor([Vec3; 3]),
 }
 
 /// A stiffened span of a hose: nodes `first` to `last` (inclusive) are rigid together.

@@ -3,9 +3,11 @@
 //! outlets may lie apart.
 
 use crate::error::FieldError;
-use crate::format::{HoseEndName, JunctionEntry};
+use crate::format::{HoseEndName, InertiaEntry, JunctionBodyEntry, JunctionEntry};
 use crate::units::LengthUnit;
-use crate::validate::non_negative;
+use crate::validate::{finite_vec, non_negative};
+use glam::{DMat3, DVec3};
+use pliant_core::rod::attached::check_inertia;
 use pliant_core::{HoseEnd, HoseSpec, JunctionSpec};
 
 /// How far apart a welded branch point's ends may lie \[m\]: what a CAD export rounds to.
@@ -104,11 +106,60 @@ pub fn build_junctions(
                 0.0
             }
         };
+        let (body_centre, body_inertia) = match &raw.body {
+            Some(body) => own_mass(body, body_mass, unit, &at)?,
+            None => (None, None),
+        };
         specs.push(JunctionSpec {
             name: raw.name.clone(),
             ends,
             body_mass,
+            body_centre,
+            body_inertia,
         });
     }
     Ok(specs)
+}
+
+/// A body's own centre of mass \[m\] and inertia tensor, checked (`at` names a field of
+/// this junction).
+fn own_mass(
+    body: &JunctionBodyEntry,
+    mass: f64,
+    unit: LengthUnit,
+    at: &dyn Fn(&str) -> String,
+) -> Result<(Option<DVec3>, Option<DMat3>), FieldError> {
+    let centre = match body.centre_of_mass {
+        Some(c) => {
+            Some(finite_vec(&at("body.centre_of_mass"), c, unit.symbol())? * unit.to_metres())
+        }
+        None => None,
+    };
+    let inertia = match body.inertia_kg_m2 {
+        Some(entry) => {
+            let field = at("body.inertia_kg_m2");
+            let j = match entry {
+                InertiaEntry::Principal(d) => DMat3::from_diagonal(DVec3::from_array(d)),
+                // rows as written; a symmetric tensor is its own transpose
+                InertiaEntry::Tensor(rows) => DMat3::from_cols_array_2d(&rows).transpose(),
+            };
+            check_inertia(j).map_err(|reason| {
+                FieldError::new(
+                    &field,
+                    format!("{:?}", j.transpose().to_cols_array_2d()),
+                    format!("the inertia tensor about the centre of mass {reason}"),
+                )
+            })?;
+            Some(j)
+        }
+        None => None,
+    };
+    if (centre.is_some() || inertia.is_some()) && !(mass > 0.0) {
+        return Err(FieldError::new(
+            at("body.mass_kg"),
+            format!("{mass} kg"),
+            "a body with its own centre of mass or inertia needs a mass > 0 kg",
+        ));
+    }
+    Ok((centre, inertia))
 }

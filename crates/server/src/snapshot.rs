@@ -81,12 +81,19 @@ pub struct HoseData {
     pub protections: Vec<ProtectionSpan>,
 }
 
-/// A junction body: its name, mass and outlets (the hose ends it joins).
+/// A junction body: its name, mass properties and outlets (the hose ends it joins).
 #[derive(Clone, Debug, Serialize)]
 pub struct JunctionBodyData {
     pub name: String,
     /// Its own mass \[kg\].
     pub mass: f64,
+    /// Its centre of mass at rest \[m\] (the outlets' mean when its mass is lumped on
+    /// them).
+    pub centre_of_mass: [f64; 3],
+    /// Its inertia tensor about its centre of mass at rest, world axes, rows \[kg·m²\].
+    pub inertia: [[f64; 3]; 3],
+    /// Whether its mass is lumped on its outlets (no centre of mass or inertia given).
+    pub lumped: bool,
     pub outlets: Vec<OutletData>,
 }
 
@@ -205,6 +212,14 @@ impl SceneData {
                     .unwrap_or_default(),
             })
             .collect();
+        // the built junction of a scene's junction (same name), with its mass properties
+        let own_of = |spec: &pliant_core::JunctionSpec| {
+            model
+                .junctions
+                .iter()
+                .find(|m| m.name == spec.name)
+                .map(|m| m.own)
+        };
         let junction_bodies = scene
             .junction_bodies
             .iter()
@@ -212,6 +227,10 @@ impl SceneData {
             .map(|j| JunctionBodyData {
                 name: j.name.clone(),
                 mass: j.body_mass,
+                centre_of_mass: own_of(j).map_or([0.0; 3], |o| o.centre.to_array()),
+                inertia: own_of(j)
+                    .map_or([[0.0; 3]; 3], |o| o.inertia.transpose().to_cols_array_2d()),
+                lumped: own_of(j).is_none_or(|o| o.lumped),
                 outlets: j
                     .ends
                     .iter()

@@ -42,6 +42,28 @@ start = [0, 0, 0]
 path = [{ line = { to = [300, 0, 0] } }]
 "#;
 
+/// Two 200 mm hoses "a" and "b" of library hose 1 along +x, 20 mm apart (mm), joined
+/// by a junction "tee" at a's end and b's start: a test adds its `body = …` line next.
+pub const TEE_MM: &str = r#"
+[[hoses]]
+name = "a"
+material = "hose1"
+elements = 4
+start = [0, 0, 0]
+path = [{ line = { to = [200, 0, 0] } }]
+
+[[hoses]]
+name = "b"
+material = "hose1"
+elements = 4
+start = [220, 0, 0]
+path = [{ line = { to = [400, 0, 0] } }]
+
+[[junctions]]
+name = "tee"
+ends = [{ hose = "a", end = "end" }, { hose = "b", end = "start" }]
+"#;
+
 /// A part "door": a 20 mm box below and beyond the far end of [`HOSE3_300`] (mm), which
 /// a test may give a `motion` or `movable` line next.
 pub const DOOR: &str = r#"

@@ -109,6 +109,14 @@ fn large_frames() {
     assert_case("large_frames");
 }
 #[test]
+fn junction_body() {
+    assert_case("junction_body");
+}
+#[test]
+fn junction_body_torsion() {
+    assert_case("junction_body_torsion");
+}
+#[test]
 fn sections() {
     assert_case("sections");
 }

@@ -148,6 +148,7 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
         let held = body.nodes.iter().copied().find(|&i| state.held[i]);
         step_body(
             body,
+            (model.gravity, model.damping_mass),
             &mut state.bodies[b],
             held,
             &mut state.x,

@@ -289,6 +289,22 @@ impl ImplicitSolver {
                 }
             }
         }
+        // a junction body's own inertia, on its master (the master's Newmark accelerations)
+        let (x0, v0, w0, q0) = (&self.x0, &self.v0, &self.w0, &self.q0);
+        crate::newton::body_terms::add_body_inertia(
+            model,
+            state,
+            |m| {
+                let a =
+                    c_acc * (state.x[m] - x0[m] - h * v0[m]) - (0.5 - beta) / beta * history.acc[m];
+                let theta = log_map(state.q[m] * q0[m].conjugate());
+                let alp = c_acc * (theta - h * w0[m]) - (0.5 - beta) / beta * history.ang_acc[m];
+                (a, alp)
+            },
+            &mut sys.rhs,
+            &mut sys.matrix.diag,
+            c_acc,
+        );
         // the off-diagonal blocks and the contact pairs' coupling outside the band (the
         // diagonal blocks were scaled above, before the mass term)
         sys.scale_off_diagonal_tangent(1.0 + alpha);

@@ -2,10 +2,11 @@
 //! P5; the integrators themselves are in [`crate::integrators`]): the assembly of loads
 //! and consistent tangent ([`system`]), the O(N) linear solve of a chain or tree of
 //! nodes ([`block_tree`]), the condensation of junctions onto their master nodes
-//! ([`condensation`]), GMRES for the hose–hose contact coupling outside its band
+//! ([`condensation`]), a junction body's own mass on its master ([`body_terms`]), GMRES for the hose–hose contact coupling outside its band
 //! ([`gmres`]) and the convergence test ([`convergence`]).
 
 pub mod block_tree;
+pub mod body_terms;
 pub mod condensation;
 pub mod convergence;
 pub mod factor_reuse;

@@ -275,6 +275,17 @@ impl NewtonSystem {
                 self.matrix.diag[i][(k + 3, k + 3)] += di;
             }
         }
+        if model.has_own_masses() {
+            let weight = super::body_terms::add_body_loads(
+                model,
+                state,
+                &mut self.force,
+                &mut self.moment,
+                &mut self.matrix.diag,
+                rate_factor,
+            );
+            scale.include(weight, 0.0);
+        }
         for (_, case) in state.loads.iter() {
             match case {
                 LoadCase::DeadLoad(d) => {
@@ -491,6 +502,9 @@ impl NewtonSystem {
         }
         for i in 0..state.x.len() {
             e -= model.mass[i] * model.gravity.dot(state.x[i]);
+        }
+        if model.has_own_masses() {
+            e += model.own_mass_gravity_energy(&state.x, &state.q);
         }
         for (_, case) in state.loads.iter() {
             match case {
@@ -982,6 +996,16 @@ pub fn residual_norms(force: &[DVec3], moment: &[DVec3], prescribed: &[bool]) ->
 pub fn sync_bodies(model: &Model, state: &mut State) {
     for (b, body) in model.bodies.iter().enumerate() {
         let first = body.nodes[0];
+        if body.attached.is_some() {
+            // the centre of mass is not the nodes' alone: place it from the first node
+            let (centre, orientation) = body.pose_from_node(0, state.x[first], state.q[first]);
+            let s = &mut state.bodies[b];
+            s.centre = centre;
+            s.orientation = orientation;
+            s.velocity = state.v[first] + state.w[first].cross(centre - state.x[first]);
+            s.angular_velocity = state.w[first];
+            continue;
+        }
         let centre = body
             .nodes
             .iter()

@@ -3,7 +3,7 @@
 //! ([`element_block`], [`lanes`], [`lane_arith`]), its consistent tangent ([`tangent`],
 //! [`tangent_kernel`]), the assembly of element and body loads over a model ([`forces`],
 //! [`body_loads`]) over the node arrays ([`node_view`]), lumped masses ([`mass`]), rest frames ([`frames`]), stiffened
-//! sections ([`stiffened`]) and the stable explicit time step ([`timestep`]); elements
+//! sections ([`stiffened`]) and a body's own mass ([`attached`]) and the stable explicit time step ([`timestep`]); elements
 //! with a history ([`inelastic`]): yielding ones (SPEC X1: the fibre law
 //! [`fibre_law`], the fibre section [`fibre_section`], the yielding hinge of an element
 //! [`plastic_hinges`] and the closed forms of the elastic–plastic tube
@@ -13,6 +13,7 @@
 //! The kernels read the plain data of the crate (model, sections, materials) and nothing
 //! above it: no loads, contact or solvers.
 
+pub mod attached;
 pub mod body_loads;
 pub mod element;
 pub mod element_block;

@@ -9,6 +9,7 @@
 //! m V̇ = F, J_b Ω̇_b + Ω_b × J_b Ω_b = M_b (body axes). The flexible neighbours stay
 //! attached through the elements at the span's end nodes.
 
+use super::attached::AttachedMass;
 use crate::math::{exp_map, log_map};
 use glam::{DMat3, DQuat, DVec3};
 
@@ -36,6 +37,9 @@ pub struct RigidBody {
     pub offsets: Vec<DVec3>,
     /// Each node's rest frame relative to the body frame.
     pub frames: Vec<DQuat>,
+    /// A junction body's own mass, centre and inertia beyond its nodes' (included in
+    /// `mass` and `principal_inertia`), or none.
+    pub attached: Option<AttachedMass>,
 }
 
 /// Principal axes and moments of a symmetric 3×3 tensor (eigen-decomposition), as a
@@ -69,16 +73,60 @@ impl RigidBody {
         mass: &[f64],
         inertia: &[f64],
     ) -> RigidBody {
-        let total: f64 = nodes.iter().map(|&i| mass[i]).sum();
-        let centre = nodes.iter().map(|&i| mass[i] * x[i]).sum::<DVec3>() / total;
+        Self::build(nodes, x, q, mass, inertia, None)
+    }
+
+    /// Builds the body of global nodes `nodes` carrying a mass of its own: `own_mass`
+    /// \[kg\] with its centre of mass `own_centre` and its inertia tensor about that centre
+    /// `own_inertia` (world axes, at rest). The body's mass is the nodes' and its own,
+    /// its centre of mass the common one x_G, its inertia J_b + m_b (|d|² 𝟙 − d dᵀ) with
+    /// d = c − x_G added to the nodes' (parallel-axis theorem).
+    pub fn with_attached(
+        nodes: Vec<usize>,
+        (x, q): (&[DVec3], &[DQuat]),
+        (mass, inertia): (&[f64], &[f64]),
+        own_mass: f64,
+        own_centre: DVec3,
+        own_inertia: DMat3,
+    ) -> RigidBody {
+        Self::build(
+            nodes,
+            x,
+            q,
+            mass,
+            inertia,
+            Some((own_mass, own_centre, own_inertia)),
+        )
+    }
+
+    fn build(
+        nodes: Vec<usize>,
+        x: &[DVec3],
+        q: &[DQuat],
+        mass: &[f64],
+        inertia: &[f64],
+        own: Option<(f64, DVec3, DMat3)>,
+    ) -> RigidBody {
+        let mut total: f64 = nodes.iter().map(|&i| mass[i]).sum();
+        let mut centre = nodes.iter().map(|&i| mass[i] * x[i]).sum::<DVec3>();
+        if let Some((m, c, _)) = own {
+            total += m;
+            centre += m * c;
+        }
+        let centre = centre / total;
         let mut j = DMat3::ZERO;
         for &i in &nodes {
             let o = x[i] - centre;
             j += DMat3::IDENTITY * (inertia[i] + mass[i] * o.length_squared())
                 - mass[i] * outer(o, o);
         }
+        if let Some((m, c, jc)) = own {
+            let d = c - centre;
+            j += jc + DMat3::IDENTITY * (m * d.length_squared()) - m * outer(d, d);
+        }
         let (orientation, principal) = principal_axes(j);
         let inv = orientation.conjugate();
+        let r_inv = DMat3::from_quat(inv);
         RigidBody {
             mass: total,
             principal_inertia: principal,
@@ -87,7 +135,19 @@ impl RigidBody {
             offsets: nodes.iter().map(|&i| inv * (x[i] - centre)).collect(),
             frames: nodes.iter().map(|&i| (inv * q[i]).normalize()).collect(),
             nodes,
+            attached: own.map(|(mass, c, jc)| AttachedMass {
+                mass,
+                offset: inv * (c - centre),
+                inertia: r_inv * jc * r_inv.transpose(),
+            }),
         }
+    }
+
+    /// The body's centre and orientation when its `k`-th node is at (x_k, q_k):
+    /// R = q_k f_kᵀ, centre = x_k − R o_k.
+    pub fn pose_from_node(&self, k: usize, x: DVec3, q: DQuat) -> (DVec3, DQuat) {
+        let orientation = (q * self.frames[k].conjugate()).normalize();
+        (x - orientation * self.offsets[k], orientation)
     }
 
     /// Inertia tensor in world axes for body orientation `q`: R diag(J) Rᵀ.
@@ -114,9 +174,12 @@ pub struct BodyState {
 /// One explicit step of a body (SPEC M6), then its nodes placed as dependent points.
 /// If a kinematic load case holds one of its nodes (`held_node`), the body follows that
 /// node and the node's support reaction becomes the whole body's momentum balance.
+/// `gravity` and `damping` (mass-proportional, 1/s) load the body's own mass, if it
+/// has one ([`AttachedMass::loads`]); its nodes' are in `force` and `moment`.
 #[allow(clippy::too_many_arguments)]
 pub fn step_body(
     body: &RigidBody,
+    (gravity, damping): (DVec3, f64),
     s: &mut BodyState,
     held_node: Option<usize>,
     x: &mut [DVec3],
@@ -134,6 +197,19 @@ pub fn step_body(
     for &i in &body.nodes {
         f += force[i];
         m += moment[i] + (x[i] - s.centre).cross(force[i]);
+    }
+    if let Some(own) = &body.attached {
+        let (fo, mo) = own.loads(
+            s.centre,
+            s.orientation,
+            s.velocity,
+            s.angular_velocity,
+            s.centre,
+            gravity,
+            damping,
+        );
+        f += fo;
+        m += mo;
     }
     match held_node {
         Some(h) => {
@@ -236,6 +312,7 @@ mod tests {
         for _ in 0..10_000 {
             step_body(
                 &body,
+                (DVec3::ZERO, 0.0),
                 &mut s,
                 None,
                 &mut xs,

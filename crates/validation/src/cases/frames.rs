@@ -38,16 +38,28 @@ const TOLERANCE: f64 = 1e-4;
 /// A scene of straight segments `(name, start, end)` (metres) joined by `junctions`
 /// (TOML text), without gravity.
 pub(super) fn network(segments: &[(&str, DVec3, DVec3)], junctions: &str) -> Result<Model, String> {
-    let mut text = String::from(
+    network_with(segments, junctions, DVec3::ZERO, (EA, EI, GJ))
+}
+
+/// [`network`] under `gravity` \[m/s²\], the segments' section stiffnesses `(EA, EI, GJ)`
+/// given.
+pub(super) fn network_with(
+    segments: &[(&str, DVec3, DVec3)],
+    junctions: &str,
+    gravity: DVec3,
+    (ea, ei, gj): (f64, f64, f64),
+) -> Result<Model, String> {
+    let mut text = format!(
         r#"
 format = "pliant-scene"
 version = 1
 name = "frame validation"
 length_unit = "m"
 [simulation]
-gravity = [0, 0, 0]
+gravity = [{}, {}, {}]
 damping_mass_per_s = 0
 "#,
+        gravity.x, gravity.y, gravity.z
     );
     for (name, a, b) in segments {
         text += &format!(
@@ -55,7 +67,7 @@ damping_mass_per_s = 0
 [[hoses]]
 name = "{name}"
 material = "hose1"
-section = {{ d_inner = 0, d_outer = 0.01, ea_n = {EA}, ei1_n_m2 = {EI}, ei2_n_m2 = {EI}, gj_n_m2 = {GJ} }}
+section = {{ d_inner = 0, d_outer = 0.01, ea_n = {ea}, ei1_n_m2 = {ei}, ei2_n_m2 = {ei}, gj_n_m2 = {gj} }}
 elements = {ELEMENTS}
 start = [{}, {}, {}]
 path = [{{ line = {{ to = [{}, {}, {}] }} }}]

@@ -12,6 +12,7 @@ mod helix;
 pub mod hose_contact;
 mod hysteresis;
 mod invariance;
+mod junction_body;
 mod large_frames;
 mod moving_parts;
 mod plastic_bending;
@@ -50,6 +51,8 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("sections", sections::run),
     ("frames", frames::run),
     ("large_frames", large_frames::run),
+    ("junction_body", junction_body::run_static),
+    ("junction_body_torsion", junction_body::run_torsion),
     ("stub", fasteners::run_stub),
     ("clip", fasteners::run_clip),
     ("thesis_1", thesis::run_1),

@@ -13,8 +13,8 @@
 //! and are run by the explicit solver only.
 
 use super::{
-    axial, buckling, frames, hose_contact, large_frames, rollup, sections, stiffened, tip_load,
-    torsion,
+    axial, buckling, frames, hose_contact, junction_body, large_frames, rollup, sections,
+    stiffened, tip_load, torsion,
 };
 use crate::harness::with_solver;
 use crate::Check;
@@ -37,6 +37,7 @@ const CASES: &[(&str, crate::CaseFn, &[SolverKind])] = &[
     ("sections", sections::run, BOTH),
     ("frames", frames::run, BOTH),
     ("large_frames", large_frames::run, BOTH),
+    ("junction_body", junction_body::run_static, BOTH),
     ("hose_contact", hose_contact::run, BOTH),
 ];
 
