@@ -14,7 +14,7 @@
 use anyhow::{bail, Context, Result};
 use comfy_table::{presets, CellAlignment, Table};
 use glam::DVec3;
-use pliant_core::kinematics::{Oscillation, PartMotion, Periodic, Profile, Slide};
+use pliant_core::kinematics::{Oscillation, PartMotion, Periodic};
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::rod::frames::node_frames;
 use pliant_core::RigidPartSpec;
@@ -199,21 +199,6 @@ pub fn floor_sway() -> PartMotion {
             Oscillation::default(),
             Oscillation::default(),
         ],
-    })
-}
-
-/// The floor gliding along x at a constant 0.05 m/s: a moving part whose contacts, in its
-/// own frame, are those of the floor at rest (Galilean invariance) once friction has
-/// brought the hoses to its speed — so the cost over the floor at rest is the moving
-/// contact's own overhead, apart from any change in the contacts themselves.
-pub fn floor_glide() -> PartMotion {
-    PartMotion::Slide(Slide {
-        direction: DVec3::X,
-        distance: Profile::UniformAcceleration {
-            start_time: 0.0,
-            initial_rate: 0.05,
-            acceleration: 0.0,
-        },
     })
 }
 
