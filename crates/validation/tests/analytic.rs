@@ -109,6 +109,10 @@ fn large_frames() {
     assert_case("large_frames");
 }
 #[test]
+fn curved_reactions() {
+    assert_case("curved_reactions");
+}
+#[test]
 fn sections() {
     assert_case("sections");
 }

@@ -32,7 +32,7 @@ use crate::model::HoseInfo;
 use crate::rod::element::{BeamElement, ElementEnds};
 use crate::rod::lanes::{gather3, gather4, lane, scatter3, shift_up, F4, M34, M4, Q4, V4};
 use crate::rod::node_view::NodeView;
-use glam::{DQuat, DVec3};
+use glam::{DMat3, DQuat, DVec3};
 
 /// Largest y² = tan²(|θ|/4) of the log map's series (|θ| ≤ 0.75 rad).
 pub(crate) const LOG_Y2_MAX: f64 = 0.035;
@@ -88,12 +88,19 @@ pub struct ElementBlock {
     rest_arch: F4,
     axial_tension: F4,
     axial_compression: F4,
-    /// EI₁/l₀, EI₂/l₀, GJ/l₀.
+    /// EI₁/l, EI₂/l, GJ/l over the rest axis's length l ([`BeamElement::axis_length`]).
     bending_1: F4,
     bending_2: F4,
     torsion: F4,
     offset_a: Q4,
     offset_b: Q4,
+    /// The lanes whose element is curved at rest, and whether there is one: those read
+    /// their bending and twist in their ends' axes A_a, A_b ([`crate::rod::element::EndAxes`];
+    /// the identity in the other lanes).
+    curved: M4,
+    any_curved: bool,
+    end_axes_a: M34,
+    end_axes_b: M34,
 }
 
 /// The model's elements in blocks of four, hose by hose (built with the model).
@@ -158,12 +165,28 @@ impl ElementBlock {
             rest_arch: lanes(&|e| e.rest_arch),
             axial_tension: lanes(&|e| e.axial_stiffness_tension),
             axial_compression: lanes(&|e| e.axial_stiffness_compression),
-            bending_1: lanes(&|e| e.bending_stiffness[0] / e.rest_length),
-            bending_2: lanes(&|e| e.bending_stiffness[1] / e.rest_length),
-            torsion: lanes(&|e| e.torsion_stiffness / e.rest_length),
+            bending_1: lanes(&|e| e.bending_stiffness[0] / e.axis_length),
+            bending_2: lanes(&|e| e.bending_stiffness[1] / e.axis_length),
+            torsion: lanes(&|e| e.torsion_stiffness / e.axis_length),
             offset_a: quat(&|e| e.rest_offset_a),
             offset_b: quat(&|e| e.rest_offset_b),
+            curved: M4([0, 1, 2, 3].map(|k| if el(k).end_axes.is_some() { !0 } else { 0 })),
+            any_curved: (0..4).any(|k| el(k).end_axes.is_some()),
+            end_axes_a: end_axes(&|k| el(k), 0),
+            end_axes_b: end_axes(&|k| el(k), 1),
         }
+    }
+}
+
+/// End `end`'s axes of the elements `el(0 … 3)` in lanes (the identity for straight ones).
+fn end_axes<'a>(el: &dyn Fn(usize) -> &'a BeamElement, end: usize) -> M34 {
+    let m = |k: usize| el(k).end_axes.map_or(DMat3::IDENTITY, |axes| axes.0[end]);
+    let column = |c: usize| {
+        let v = |i: usize| F4([0, 1, 2, 3].map(|k| m(k).col(c)[i]));
+        V4::new(v(0), v(1), v(2))
+    };
+    M34 {
+        c: [column(0), column(1), column(2)],
     }
 }
 
@@ -338,6 +361,15 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
         bend(tb.y, ta.y, slope_b.y, slope_a.y, b.bending_1),
         bend(tb.z, ta.z, slope_b.z, slope_a.z, b.bending_2),
     );
+    let (ma_local, mb_local) = if b.any_curved {
+        let (ma, mb) = curved_local_moments(b, ta, tb, slope_a, slope_b, k_arch);
+        (
+            V4::select(b.curved, ma, ma_local),
+            V4::select(b.curved, mb, mb_local),
+        )
+    } else {
+        (ma_local, mb_local)
+    };
 
     // moments conjugate to spatial rotations, global axes; nodal loads
     let (ma, okj_a) = jacobian_inverse_transpose_times(theta_a, ma_local);
@@ -360,6 +392,49 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
         moment_b: twist - mb,
         outside: !inside,
     }
+}
+
+/// The local end moments (element frame axes) of elements curved at rest: the linear law
+/// on the end rotations `ta`, `tb` read in the ends' axes (Aₖᵀ θₖ), its moments turned back
+/// (Aₖ Mₖ), plus the shallow arch's moments of the slopes against the chord, `slope_a`,
+/// `slope_b` ([`BeamElement::loads_of`]).
+#[inline(always)]
+fn curved_local_moments(
+    b: &ElementBlock,
+    ta: V4,
+    tb: V4,
+    slope_a: V4,
+    slope_b: V4,
+    k_arch: F4,
+) -> (V4, V4) {
+    let ta = b.end_axes_a.mul_transpose(ta);
+    let tb = b.end_axes_b.mul_transpose(tb);
+    let torque = (tb.x - ta.x) * b.torsion;
+    let (two, four) = (F4::splat(2.0), F4::splat(4.0));
+    let linear_a = V4::new(
+        -torque,
+        ta.y.mul_add(four, tb.y * two) * b.bending_1,
+        ta.z.mul_add(four, tb.z * two) * b.bending_2,
+    );
+    let linear_b = V4::new(
+        torque,
+        tb.y.mul_add(four, ta.y * two) * b.bending_1,
+        tb.z.mul_add(four, ta.z * two) * b.bending_2,
+    );
+    let arch_a = V4::new(
+        F4::ZERO,
+        slope_a.y.mul_add(four, -slope_b.y) * k_arch,
+        slope_a.z.mul_add(four, -slope_b.z) * k_arch,
+    );
+    let arch_b = V4::new(
+        F4::ZERO,
+        slope_b.y.mul_add(four, -slope_a.y) * k_arch,
+        slope_b.z.mul_add(four, -slope_a.z) * k_arch,
+    );
+    (
+        b.end_axes_a.mul(linear_a) + arch_a,
+        b.end_axes_b.mul(linear_b) + arch_b,
+    )
 }
 
 /// One element by the reference (lanes outside the kernel's series).

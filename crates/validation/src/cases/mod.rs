@@ -4,6 +4,7 @@ mod axial;
 mod buckling;
 mod contact;
 mod convergence;
+mod curved_reactions;
 mod energy;
 mod fasteners;
 mod frames;
@@ -50,6 +51,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("sections", sections::run),
     ("frames", frames::run),
     ("large_frames", large_frames::run),
+    ("curved_reactions", curved_reactions::run),
     ("stub", fasteners::run_stub),
     ("clip", fasteners::run_clip),
     ("thesis_1", thesis::run_1),
