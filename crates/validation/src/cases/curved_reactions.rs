@@ -24,10 +24,10 @@
 //! reading its end rotations in the chord's axes was 16 and 13 times further off at 40
 //! elements (4.7e-3 / 5.8e-3), its force error mostly lateral.
 //!
-//! Under the static and the implicit (damped to rest) solvers. The explicit solver's
-//! dynamic relaxation reaches the same rest, but through the helix's slow, stiff
-//! modes it takes minutes: it is left out here (the element it computes with is the
-//! same, checked against the reference element bit by bit in `pliant-core`).
+//! Under the static and the implicit (damped to rest) solvers. The explicit solver is left
+//! out: its dynamic relaxation through the helix's slow, stiff modes took minutes when
+//! tried; its four-lane kernel computes the same element law (checked against the scalar
+//! element to rounding, on random curved elements, in `pliant-core`).
 
 use crate::harness::{clamp, clamp_at, hose1, settle_to, static_settings, with_solver};
 use crate::reference_bridge::{to_glam, to_na};
