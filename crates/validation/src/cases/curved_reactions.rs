@@ -30,12 +30,12 @@
 //! element to rounding, on random curved elements, in `pliant-core`).
 
 use crate::harness::{clamp, clamp_at, hose1, settle_to, static_settings, with_solver};
-use crate::reference_bridge::{to_glam, to_na};
+use crate::reference_bridge::{hose1_stiffness, to_glam, to_na};
 use crate::Check;
 use glam::{DQuat, DVec3};
 use nalgebra::{Rotation3, Vector3};
 use pliant_core::{DeliveredShape, HoseSpec, Model, SolverKind, State, WorldSpec};
-use pliant_reference::{EndCondition, Pose, Rod, ShootingSolver, Stiffness, Wrench};
+use pliant_reference::{EndCondition, Pose, Rod, ShootingSolver, Wrench};
 use std::f64::consts::PI;
 
 const CASE: &str = "curved_reactions";
@@ -151,14 +151,7 @@ fn tangent_polyline(segments: usize) -> Vec<Vector3<f64>> {
 
 /// The reference reactions of the far clamp on the tangent polyline of `segments`.
 fn reference_reactions(segments: usize) -> Result<Wrench, String> {
-    let (mat, sec) = hose1();
-    let stiffness = Stiffness::bimodular(
-        mat.e_tension * sec.area(),
-        mat.e_compression * sec.area(),
-        mat.bending_modulus() * sec.second_moment(),
-        mat.shear_modulus() * sec.polar_moment(),
-    )
-    .map_err(|e| e.to_string())?;
+    let stiffness = hose1_stiffness()?;
     let t0 = to_na(tangent(0.0));
     let base_frame = Rotation3::rotation_between(&Vector3::x(), &t0)
         .ok_or("the helix's first tangent is along -x")?;
