@@ -94,13 +94,22 @@ pub struct ElementBlock {
     torsion: F4,
     offset_a: Q4,
     offset_b: Q4,
-    /// The lanes whose element is curved at rest, and whether there is one: those read
+    /// The lanes whose element is curved at rest, and whether some or all are: those read
     /// their bending and twist in their ends' axes A_a, A_b ([`crate::rod::element::EndAxes`];
     /// the identity in the other lanes).
     curved: M4,
-    any_curved: bool,
+    curved_lanes: CurvedLanes,
     end_axes_a: M34,
     end_axes_b: M34,
+}
+
+/// Which lanes of a block hold elements curved at rest: the kernel computes the
+/// straight law, the curved one, or both and picks lane by lane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CurvedLanes {
+    None,
+    Some,
+    All,
 }
 
 /// The model's elements in blocks of four, hose by hose (built with the model).
@@ -171,7 +180,11 @@ impl ElementBlock {
             offset_a: quat(&|e| e.rest_offset_a),
             offset_b: quat(&|e| e.rest_offset_b),
             curved: M4([0, 1, 2, 3].map(|k| if el(k).end_axes.is_some() { !0 } else { 0 })),
-            any_curved: (0..4).any(|k| el(k).end_axes.is_some()),
+            curved_lanes: match (0..4).filter(|&k| el(k).end_axes.is_some()).count() {
+                0 => CurvedLanes::None,
+                4 => CurvedLanes::All,
+                _ => CurvedLanes::Some,
+            },
             end_axes_a: end_axes(&|k| el(k), 0),
             end_axes_b: end_axes(&|k| el(k), 1),
         }
@@ -351,24 +364,25 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
         let linear = ta.mul_add(four, tb * two) * k;
         th_a.mul_add(four, -th_b).mul_add(k_arch, linear)
     };
-    let ma_local = V4::new(
-        -torque,
-        bend(ta.y, tb.y, slope_a.y, slope_b.y, b.bending_1),
-        bend(ta.z, tb.z, slope_a.z, slope_b.z, b.bending_2),
-    );
-    let mb_local = V4::new(
-        torque,
-        bend(tb.y, ta.y, slope_b.y, slope_a.y, b.bending_1),
-        bend(tb.z, ta.z, slope_b.z, slope_a.z, b.bending_2),
-    );
-    let (ma_local, mb_local) = if b.any_curved {
-        let (ma, mb) = curved_local_moments(b, ta, tb, slope_a, slope_b, k_arch);
-        (
-            V4::select(b.curved, ma, ma_local),
-            V4::select(b.curved, mb, mb_local),
-        )
+    let (ma_local, mb_local) = if b.curved_lanes == CurvedLanes::All {
+        curved_local_moments(b, ta, tb, slope_a, slope_b, k_arch)
     } else {
-        (ma_local, mb_local)
+        let ma = V4::new(
+            -torque,
+            bend(ta.y, tb.y, slope_a.y, slope_b.y, b.bending_1),
+            bend(ta.z, tb.z, slope_a.z, slope_b.z, b.bending_2),
+        );
+        let mb = V4::new(
+            torque,
+            bend(tb.y, ta.y, slope_b.y, slope_a.y, b.bending_1),
+            bend(tb.z, ta.z, slope_b.z, slope_a.z, b.bending_2),
+        );
+        if b.curved_lanes == CurvedLanes::Some {
+            let (ca, cb) = curved_local_moments(b, ta, tb, slope_a, slope_b, k_arch);
+            (V4::select(b.curved, ca, ma), V4::select(b.curved, cb, mb))
+        } else {
+            (ma, mb)
+        }
     };
 
     // moments conjugate to spatial rotations, global axes; nodal loads
@@ -622,7 +636,8 @@ mod tests {
     /// The kernel equals the reference `BeamElement::loads` to rounding: within 1e-12 of
     /// each load's scale (the largest force, the largest moment of the element), on random
     /// large-rotation configurations with tension and compression, damping, tubes and
-    /// given sections, and relative rotations inside and outside the kernel's series.
+    /// given sections, elements curved at rest and straight ones (blocks mixing both), and
+    /// relative rotations inside and outside the kernel's series.
     #[test]
     fn kernel_equals_the_reference() {
         let mut rng = Rng(15);
@@ -632,7 +647,13 @@ mod tests {
             let mut elements = Vec::new();
             let mut rests = Vec::new();
             for k in 0..4 {
-                let e = random_element(&mut rng, k);
+                let mut e = random_element(&mut rng, k);
+                if round % 4 == 1 && k % 2 == 0 {
+                    // blocks mixing straight and curved elements
+                    let l0 = e.rest_length;
+                    e.set_rest_shape([DVec3::ZERO, DVec3::X * l0], [DQuat::IDENTITY; 2]);
+                    assert!(e.end_axes.is_none());
+                }
                 // the rest frames this element was built from: recover them from its offsets
                 // (any frames with the same offsets give the same element)
                 let frame0 = DQuat::IDENTITY;

@@ -407,27 +407,39 @@ fn rows<F: Lane4>(
     let k1 = c4::<F>(|k| e[k].bending_stiffness[0]) * inv_axis;
     let k2 = c4::<F>(|k| e[k].bending_stiffness[1]) * inv_axis;
     // (E I/l₀)(4 tₐ + 2 t_b) + (N l₀/30)(4 θₐ − θ_b), and a ↔ b
-    let ma_local = V3::new(
-        -torque,
-        bend(ta.y, tb.y, slope_a.y, slope_b.y, k1, k_arch),
-        bend(ta.z, tb.z, slope_a.z, slope_b.z, k2, k_arch),
-    );
-    let mb_local = V3::new(
-        torque,
-        bend(tb.y, ta.y, slope_b.y, slope_a.y, k1, k_arch),
-        bend(tb.z, ta.z, slope_b.z, slope_a.z, k2, k_arch),
-    );
-    let (ma_local, mb_local) = if e.iter().any(|e| e.end_axes.is_some()) {
-        let curved = M4([0, 1, 2, 3].map(|k| if e[k].end_axes.is_some() { !0 } else { 0 }));
-        let axes = [end_axes::<F>(e, 0), end_axes::<F>(e, 1)];
-        let (ma, mb) =
-            curved_local_moments(&axes, [ta, tb], [slope_a, slope_b], [k1, k2, kt], k_arch);
-        (
-            select_v(curved, ma, ma_local),
-            select_v(curved, mb, mb_local),
+    let curved_count = e.iter().filter(|e| e.end_axes.is_some()).count();
+    let (ma_local, mb_local) = if curved_count == 4 {
+        curved_local_moments(
+            &[end_axes::<F>(e, 0), end_axes::<F>(e, 1)],
+            [ta, tb],
+            [slope_a, slope_b],
+            [k1, k2, kt],
+            k_arch,
         )
     } else {
-        (ma_local, mb_local)
+        let ma = V3::new(
+            -torque,
+            bend(ta.y, tb.y, slope_a.y, slope_b.y, k1, k_arch),
+            bend(ta.z, tb.z, slope_a.z, slope_b.z, k2, k_arch),
+        );
+        let mb = V3::new(
+            torque,
+            bend(tb.y, ta.y, slope_b.y, slope_a.y, k1, k_arch),
+            bend(tb.z, ta.z, slope_b.z, slope_a.z, k2, k_arch),
+        );
+        if curved_count > 0 {
+            let (ca, cb) = curved_local_moments(
+                &[end_axes::<F>(e, 0), end_axes::<F>(e, 1)],
+                [ta, tb],
+                [slope_a, slope_b],
+                [k1, k2, kt],
+                k_arch,
+            );
+            let curved = M4([0, 1, 2, 3].map(|k| if e[k].end_axes.is_some() { !0 } else { 0 }));
+            (select_v(curved, ca, ma), select_v(curved, cb, mb))
+        } else {
+            (ma, mb)
+        }
     };
 
     // moments conjugate to spatial rotation increments, global axes; forces from them

@@ -109,6 +109,9 @@ pub fn model(n: usize) -> Result<Model, String> {
     Ok(model)
 }
 
+/// The far clamp's force \[N\] and moment about the end node \[N m\].
+pub type Reactions = (DVec3, DVec3);
+
 /// The far end's pose at load fraction `s` of a hose whose far end rests at `x`, `q`.
 fn end_pose(x: DVec3, q: DQuat, s: f64) -> (DVec3, DQuat) {
     (
@@ -119,7 +122,7 @@ fn end_pose(x: DVec3, q: DQuat, s: f64) -> (DVec3, DQuat) {
 
 /// The reactions (force, moment about the node) of the far clamp of the `n`-element hose
 /// at rest under the full end move, solved by `kind`.
-pub fn reactions(n: usize, kind: SolverKind) -> Result<(DVec3, DVec3), String> {
+pub fn reactions(n: usize, kind: SolverKind) -> Result<Reactions, String> {
     let model = model(n)?;
     let mut state = State::at_rest(&model);
     clamp(&mut state, 0);
@@ -181,7 +184,7 @@ fn reference_reactions(segments: usize) -> Result<Wrench, String> {
 /// The reference reactions (force, moment), Richardson-extrapolated from [`FINE`] and
 /// 2 × [`FINE`] segments, and the extrapolation's difference from the finer polyline's
 /// (relative to each magnitude).
-pub fn reference() -> Result<((DVec3, DVec3), (f64, f64)), String> {
+pub fn reference() -> Result<(Reactions, (f64, f64)), String> {
     let coarse = reference_reactions(FINE)?;
     let fine = reference_reactions(2 * FINE)?;
     let extrapolate = |c: &Vector3<f64>, f: &Vector3<f64>| (to_glam(f) * 4.0 - to_glam(c)) / 3.0;
