@@ -158,8 +158,12 @@ fn bend<F: Lane4>(ta: L<F>, tb: L<F>, th_a: L<F>, th_b: L<F>, k: F, k_arch: L<F>
 /// for straight elements, [`crate::rod::element::EndAxes`]).
 #[inline(always)]
 fn end_axes<F: Lane4>(e: [&BeamElement; 4], end: usize) -> [[F; 3]; 3] {
-    let m = |k: usize| e[k].end_axes.map_or(DMat3::IDENTITY, |axes| axes.0[end]);
-    [0, 1, 2].map(|c| [0, 1, 2].map(|i| c4::<F>(|k| m(k).col(c)[i])))
+    let m = e.map(|e| {
+        e.end_axes
+            .as_ref()
+            .map_or(DMat3::IDENTITY, |axes| axes.0[end])
+    });
+    [0, 1, 2].map(|c| [0, 1, 2].map(|i| c4::<F>(|k| m[k].col(c)[i])))
 }
 
 /// Aᵀ v for lane-constant columns `a`.
