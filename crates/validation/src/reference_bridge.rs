@@ -19,6 +19,19 @@ pub fn rotation(q: DQuat) -> Rotation3<f64> {
         .to_rotation_matrix()
 }
 
+/// The reference's stiffness of the validation hose, library hose 1 (bimodular EA, EI,
+/// GJ of its material and section).
+pub fn hose1_stiffness() -> Result<Stiffness, String> {
+    let (mat, sec) = crate::harness::hose1();
+    Stiffness::bimodular(
+        mat.e_tension * sec.area(),
+        mat.e_compression * sec.area(),
+        mat.bending_modulus() * sec.second_moment(),
+        mat.shear_modulus() * sec.polar_moment(),
+    )
+    .map_err(|e| e.to_string())
+}
+
 /// A reference solver for hose `h` of `model`: same rest polyline, same EA_t, EA_c, EI₁,
 /// EI₂, GJ (read from the model's first element — the validation hoses are uniform; the
 /// model's section axes y, z are the reference's d2, d3 through the common base frame),

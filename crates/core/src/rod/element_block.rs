@@ -32,7 +32,7 @@ use crate::model::HoseInfo;
 use crate::rod::element::{BeamElement, ElementEnds};
 use crate::rod::lanes::{gather3, gather4, lane, scatter3, shift_up, F4, M34, M4, Q4, V4};
 use crate::rod::node_view::NodeView;
-use glam::{DQuat, DVec3};
+use glam::{DMat3, DQuat, DVec3};
 
 /// Largest y² = tan²(|θ|/4) of the log map's series (|θ| ≤ 0.75 rad).
 pub(crate) const LOG_Y2_MAX: f64 = 0.035;
@@ -88,12 +88,28 @@ pub struct ElementBlock {
     rest_arch: F4,
     axial_tension: F4,
     axial_compression: F4,
-    /// EI₁/l₀, EI₂/l₀, GJ/l₀.
+    /// EI₁/l, EI₂/l, GJ/l over the rest axis's length l ([`BeamElement::axis_length`]).
     bending_1: F4,
     bending_2: F4,
     torsion: F4,
     offset_a: Q4,
     offset_b: Q4,
+    /// The lanes whose element is curved at rest, and whether some or all are: those read
+    /// their bending and twist in their ends' axes A_a, A_b ([`crate::rod::element::EndAxes`];
+    /// the identity in the other lanes).
+    curved: M4,
+    curved_lanes: CurvedLanes,
+    end_axes_a: M34,
+    end_axes_b: M34,
+}
+
+/// Which lanes of a block hold elements curved at rest: the kernel computes the
+/// straight law, the curved one, or both and picks lane by lane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CurvedLanes {
+    None,
+    Some,
+    All,
 }
 
 /// The model's elements in blocks of four, hose by hose (built with the model).
@@ -158,12 +174,32 @@ impl ElementBlock {
             rest_arch: lanes(&|e| e.rest_arch),
             axial_tension: lanes(&|e| e.axial_stiffness_tension),
             axial_compression: lanes(&|e| e.axial_stiffness_compression),
-            bending_1: lanes(&|e| e.bending_stiffness[0] / e.rest_length),
-            bending_2: lanes(&|e| e.bending_stiffness[1] / e.rest_length),
-            torsion: lanes(&|e| e.torsion_stiffness / e.rest_length),
+            bending_1: lanes(&|e| e.bending_stiffness[0] / e.axis_length),
+            bending_2: lanes(&|e| e.bending_stiffness[1] / e.axis_length),
+            torsion: lanes(&|e| e.torsion_stiffness / e.axis_length),
             offset_a: quat(&|e| e.rest_offset_a),
             offset_b: quat(&|e| e.rest_offset_b),
+            curved: M4([0, 1, 2, 3].map(|k| if el(k).end_axes.is_some() { !0 } else { 0 })),
+            curved_lanes: match (0..4).filter(|&k| el(k).end_axes.is_some()).count() {
+                0 => CurvedLanes::None,
+                4 => CurvedLanes::All,
+                _ => CurvedLanes::Some,
+            },
+            end_axes_a: end_axes(&|k| el(k), 0),
+            end_axes_b: end_axes(&|k| el(k), 1),
         }
+    }
+}
+
+/// End `end`'s axes of the elements `el(0 … 3)` in lanes (the identity for straight ones).
+fn end_axes<'a>(el: &dyn Fn(usize) -> &'a BeamElement, end: usize) -> M34 {
+    let m = |k: usize| el(k).end_axes.map_or(DMat3::IDENTITY, |axes| axes.0[end]);
+    let column = |c: usize| {
+        let v = |i: usize| F4([0, 1, 2, 3].map(|k| m(k).col(c)[i]));
+        V4::new(v(0), v(1), v(2))
+    };
+    M34 {
+        c: [column(0), column(1), column(2)],
     }
 }
 
@@ -328,16 +364,26 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
         let linear = ta.mul_add(four, tb * two) * k;
         th_a.mul_add(four, -th_b).mul_add(k_arch, linear)
     };
-    let ma_local = V4::new(
-        -torque,
-        bend(ta.y, tb.y, slope_a.y, slope_b.y, b.bending_1),
-        bend(ta.z, tb.z, slope_a.z, slope_b.z, b.bending_2),
-    );
-    let mb_local = V4::new(
-        torque,
-        bend(tb.y, ta.y, slope_b.y, slope_a.y, b.bending_1),
-        bend(tb.z, ta.z, slope_b.z, slope_a.z, b.bending_2),
-    );
+    let (ma_local, mb_local) = if b.curved_lanes == CurvedLanes::All {
+        curved_local_moments(b, ta, tb, slope_a, slope_b, k_arch)
+    } else {
+        let ma = V4::new(
+            -torque,
+            bend(ta.y, tb.y, slope_a.y, slope_b.y, b.bending_1),
+            bend(ta.z, tb.z, slope_a.z, slope_b.z, b.bending_2),
+        );
+        let mb = V4::new(
+            torque,
+            bend(tb.y, ta.y, slope_b.y, slope_a.y, b.bending_1),
+            bend(tb.z, ta.z, slope_b.z, slope_a.z, b.bending_2),
+        );
+        if b.curved_lanes == CurvedLanes::Some {
+            let (ca, cb) = curved_local_moments(b, ta, tb, slope_a, slope_b, k_arch);
+            (V4::select(b.curved, ca, ma), V4::select(b.curved, cb, mb))
+        } else {
+            (ma, mb)
+        }
+    };
 
     // moments conjugate to spatial rotations, global axes; nodal loads
     let (ma, okj_a) = jacobian_inverse_transpose_times(theta_a, ma_local);
@@ -360,6 +406,49 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
         moment_b: twist - mb,
         outside: !inside,
     }
+}
+
+/// The local end moments (element frame axes) of elements curved at rest: the linear law
+/// on the end rotations `ta`, `tb` read in the ends' axes (Aₖᵀ θₖ), its moments turned back
+/// (Aₖ Mₖ), plus the shallow arch's moments of the slopes against the chord, `slope_a`,
+/// `slope_b` ([`BeamElement::loads_of`]).
+#[inline(always)]
+fn curved_local_moments(
+    b: &ElementBlock,
+    ta: V4,
+    tb: V4,
+    slope_a: V4,
+    slope_b: V4,
+    k_arch: F4,
+) -> (V4, V4) {
+    let ta = b.end_axes_a.mul_transpose(ta);
+    let tb = b.end_axes_b.mul_transpose(tb);
+    let torque = (tb.x - ta.x) * b.torsion;
+    let (two, four) = (F4::splat(2.0), F4::splat(4.0));
+    let linear_a = V4::new(
+        -torque,
+        ta.y.mul_add(four, tb.y * two) * b.bending_1,
+        ta.z.mul_add(four, tb.z * two) * b.bending_2,
+    );
+    let linear_b = V4::new(
+        torque,
+        tb.y.mul_add(four, ta.y * two) * b.bending_1,
+        tb.z.mul_add(four, ta.z * two) * b.bending_2,
+    );
+    let arch_a = V4::new(
+        F4::ZERO,
+        slope_a.y.mul_add(four, -slope_b.y) * k_arch,
+        slope_a.z.mul_add(four, -slope_b.z) * k_arch,
+    );
+    let arch_b = V4::new(
+        F4::ZERO,
+        slope_b.y.mul_add(four, -slope_a.y) * k_arch,
+        slope_b.z.mul_add(four, -slope_a.z) * k_arch,
+    );
+    (
+        b.end_axes_a.mul(linear_a) + arch_a,
+        b.end_axes_b.mul(linear_b) + arch_b,
+    )
 }
 
 /// One element by the reference (lanes outside the kernel's series).
@@ -547,7 +636,8 @@ mod tests {
     /// The kernel equals the reference `BeamElement::loads` to rounding: within 1e-12 of
     /// each load's scale (the largest force, the largest moment of the element), on random
     /// large-rotation configurations with tension and compression, damping, tubes and
-    /// given sections, and relative rotations inside and outside the kernel's series.
+    /// given sections, elements curved at rest and straight ones (blocks mixing both), and
+    /// relative rotations inside and outside the kernel's series.
     #[test]
     fn kernel_equals_the_reference() {
         let mut rng = Rng(15);
@@ -557,7 +647,13 @@ mod tests {
             let mut elements = Vec::new();
             let mut rests = Vec::new();
             for k in 0..4 {
-                let e = random_element(&mut rng, k);
+                let mut e = random_element(&mut rng, k);
+                if round % 4 == 1 && k % 2 == 0 {
+                    // blocks mixing straight and curved elements
+                    let l0 = e.rest_length;
+                    e.set_rest_shape([DVec3::ZERO, DVec3::X * l0], [DQuat::IDENTITY; 2]);
+                    assert!(e.end_axes.is_none());
+                }
                 // the rest frames this element was built from: recover them from its offsets
                 // (any frames with the same offsets give the same element)
                 let frame0 = DQuat::IDENTITY;

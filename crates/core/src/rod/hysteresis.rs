@@ -94,7 +94,7 @@ pub fn loads_of<T: Scalar>(
     (x, q, v, w): EndsOf<T>,
     beta: f64,
 ) -> ElementLoadsOf<T> {
-    let l0 = element.rest_length;
+    let l0 = element.axis_length;
     element.loads_with(x, q, v, w, beta, AxialShift::NONE, |theta, damped| {
         let (ma, mb) = element.end_moments(theta[0] + damped[0], theta[1] + damped[1]);
         let z = friction_moments(law, l0, history, theta[1] - theta[0]);
@@ -105,7 +105,7 @@ pub fn loads_of<T: Scalar>(
 /// The relative end rotation φ = θ_b − θ_a of `element` at its ends' poses.
 fn relative_rotation(element: &BeamElement, x: [DVec3; 2], q: [DQuat; 2]) -> DVec3 {
     let d = element.deformation(x, q);
-    d.theta[1] - d.theta[0]
+    d.bend_twist[1] - d.bend_twist[0]
 }
 
 /// Accepts the ends' poses as the end of a step: each component's friction moment moves
@@ -121,7 +121,7 @@ pub fn commit(
     for (k, phi) in phi.into_iter().enumerate() {
         let c = committed(history, k);
         let delta = phi - c.rotation;
-        if let Some(dahl) = component(law, k, element.rest_length) {
+        if let Some(dahl) = component(law, k, element.axis_length) {
             if delta != 0.0 {
                 history[3 + k] = friction_moment(phi, c, dahl);
                 history[6 + k] = direction(delta, c);
@@ -143,11 +143,11 @@ pub fn strain_energy(
     incremental: bool,
 ) -> f64 {
     let d = element.deformation(x, q);
-    let elastic = element.energy_at(element.axial_strain(&d), d.theta);
-    let phi = (d.theta[1] - d.theta[0]).to_array();
+    let elastic = element.energy_at(element.axial_strain(&d), d.bend_twist);
+    let phi = (d.bend_twist[1] - d.bend_twist[0]).to_array();
     let mut friction = 0.0;
     for (k, phi) in phi.into_iter().enumerate() {
-        let Some((m, phi_s)) = component(law, k, element.rest_length) else {
+        let Some((m, phi_s)) = component(law, k, element.axis_length) else {
             continue;
         };
         let c = committed(history, k);

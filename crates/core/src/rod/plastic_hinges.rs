@@ -41,7 +41,7 @@ pub fn loads_of<T: Scalar>(
     (x, q, v, w): EndsOf<T>,
     beta: f64,
 ) -> ElementLoadsOf<T> {
-    let l0 = element.rest_length;
+    let l0 = element.axis_length;
     let anti = [
         3.0 * element.bending_stiffness[0] / l0,
         3.0 * element.bending_stiffness[1] / l0,
@@ -60,7 +60,7 @@ pub fn loads_of<T: Scalar>(
 /// The section strains (τ, κ_y, κ_z) of `element` at its ends' poses.
 fn section_strains(element: &BeamElement, x: [DVec3; 2], q: [DQuat; 2]) -> [f64; 3] {
     let d = element.deformation(x, q);
-    ((d.theta[1] - d.theta[0]) / element.rest_length).to_array()
+    ((d.bend_twist[1] - d.bend_twist[0]) / element.axis_length).to_array()
 }
 
 /// Accepts the ends' poses (`x`, `q`) as the end of a step: the fibres' plastic strains
@@ -86,11 +86,11 @@ pub fn strain_energy(
     incremental: bool,
 ) -> f64 {
     let d = element.deformation(x, q);
-    let l0 = element.rest_length;
-    let s = d.theta[0] + d.theta[1];
+    let l0 = element.axis_length;
+    let s = d.bend_twist[0] + d.bend_twist[1];
     let anti = 1.5 / l0
         * (element.bending_stiffness[0] * s.y * s.y + element.bending_stiffness[1] * s.z * s.z);
-    let strains = ((d.theta[1] - d.theta[0]) / l0).to_array();
+    let strains = ((d.bend_twist[1] - d.bend_twist[0]) / l0).to_array();
     element.axial_energy(&d) + anti + l0 * section.energy(strains, history, incremental)
 }
 

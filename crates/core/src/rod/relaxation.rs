@@ -93,7 +93,7 @@ pub fn loads_of<T: Scalar>(
 /// The strain measures s of `element` at its ends' poses.
 fn strains(element: &BeamElement, x: [DVec3; 2], q: [DQuat; 2]) -> [f64; STRAINS] {
     let d = element.deformation(x, q);
-    let [ta, tb] = d.theta;
+    let [ta, tb] = d.bend_twist;
     [element.axial_strain(&d), ta.x, ta.y, ta.z, tb.x, tb.y, tb.z]
 }
 

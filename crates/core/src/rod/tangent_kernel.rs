@@ -33,7 +33,7 @@ use crate::rod::element::{BeamElement, ElementEnds};
 use crate::rod::element_block::{Kernel, ATAN_OVER_Y, JACOBIAN_C, JACOBIAN_T2_MAX, LOG_Y2_MAX};
 use crate::rod::lane_arith::Lane4;
 use crate::rod::lanes::{F4, M4};
-use glam::{DQuat, DVec3};
+use glam::{DMat3, DQuat, DVec3};
 
 /// Dual components: δx_b (0..3), δθ_a (3..6), δθ_b (6..9), as in [`crate::rod::tangent`].
 pub(crate) const N: usize = 9;
@@ -152,6 +152,99 @@ fn plane<F: Lane4>(a: L<F>, b: L<F>) -> L<F> {
 #[inline(always)]
 fn bend<F: Lane4>(ta: L<F>, tb: L<F>, th_a: L<F>, th_b: L<F>, k: F, k_arch: L<F>) -> L<F> {
     (ta * 4.0 + tb * 2.0).mul4(k) + (th_a * 4.0 - th_b) * k_arch
+}
+
+/// End `end`'s axes A of the four elements, by columns, as lane constants (the identity
+/// for straight elements, [`crate::rod::element::EndAxes`]).
+#[inline(always)]
+fn end_axes<F: Lane4>(e: [&BeamElement; 4], end: usize) -> [[F; 3]; 3] {
+    let m = e.map(|e| {
+        e.end_axes
+            .as_ref()
+            .map_or(DMat3::IDENTITY, |axes| axes.0[end])
+    });
+    [0, 1, 2].map(|c| [0, 1, 2].map(|i| c4::<F>(|k| m[k].col(c)[i])))
+}
+
+/// Aᵀ v for lane-constant columns `a`.
+#[inline(always)]
+fn read_axes<F: Lane4>(a: &[[F; 3]; 3], v: V3<L<F>>) -> V3<L<F>> {
+    V3::new(
+        column_dot(&a[0], v),
+        column_dot(&a[1], v),
+        column_dot(&a[2], v),
+    )
+}
+
+/// c · v for a lane-constant column `c`.
+#[inline(always)]
+fn column_dot<F: Lane4>(c: &[F; 3], v: V3<L<F>>) -> L<F> {
+    v.x.mul4(c[0]) + v.y.mul4(c[1]) + v.z.mul4(c[2])
+}
+
+/// c s for a lane-constant column `c`.
+#[inline(always)]
+fn column_times<F: Lane4>(c: &[F; 3], s: L<F>) -> V3<L<F>> {
+    V3::new(s.mul4(c[0]), s.mul4(c[1]), s.mul4(c[2]))
+}
+
+/// A v for lane-constant columns `a`.
+#[inline(always)]
+fn back_axes<F: Lane4>(a: &[[F; 3]; 3], v: V3<L<F>>) -> V3<L<F>> {
+    column_times(&a[0], v.x) + column_times(&a[1], v.y) + column_times(&a[2], v.z)
+}
+
+#[inline(always)]
+fn select_v<F: Lane4>(m: M4, a: V3<L<F>>, b: V3<L<F>>) -> V3<L<F>> {
+    V3::new(
+        L::select(m, a.x, b.x),
+        L::select(m, a.y, b.y),
+        L::select(m, a.z, b.z),
+    )
+}
+
+/// The linear law's end moment at end a for end rotations `ta`, `tb` (their ends' axes):
+/// (−torque, (EI₁/l)(4 tₐ + 2 t_b), (EI₂/l)(4 tₐ + 2 t_b)); `k` = EI₁/l, EI₂/l.
+#[inline(always)]
+fn linear_moment<F: Lane4>(ta: V3<L<F>>, tb: V3<L<F>>, torque: L<F>, k: [F; 2]) -> V3<L<F>> {
+    V3::new(
+        torque,
+        (ta.y * 4.0 + tb.y * 2.0).mul4(k[0]),
+        (ta.z * 4.0 + tb.z * 2.0).mul4(k[1]),
+    )
+}
+
+/// The shallow arch's end moment at end a for the slopes `sa`, `sb`: (N l₀/30)(4 θₐ − θ_b).
+#[inline(always)]
+fn arch_moment<F: Lane4>(sa: V3<L<F>>, sb: V3<L<F>>, k_arch: L<F>) -> V3<L<F>> {
+    V3::new(
+        L::cst(0.0),
+        (sa.y * 4.0 - sb.y) * k_arch,
+        (sa.z * 4.0 - sb.z) * k_arch,
+    )
+}
+
+/// The local end moments (element frame axes) of elements curved at rest: the linear law
+/// on the end rotations `t` read in the ends' `axes` (Aₖᵀ θₖ), its moments turned back
+/// (Aₖ Mₖ), plus the shallow arch's moments of the `slopes` against the chord; `k` holds
+/// EI₁/l, EI₂/l, GJ/l (as the kernel, [`crate::rod::element_block`]).
+#[inline(always)]
+fn curved_local_moments<F: Lane4>(
+    axes: &[[[F; 3]; 3]; 2],
+    t: [V3<L<F>>; 2],
+    slopes: [V3<L<F>>; 2],
+    k: [F; 3],
+    k_arch: L<F>,
+) -> (V3<L<F>>, V3<L<F>>) {
+    let ta = read_axes(&axes[0], t[0]);
+    let tb = read_axes(&axes[1], t[1]);
+    let torque = (tb.x - ta.x).mul4(k[2]);
+    let kb = [k[0], k[1]];
+    let [sa, sb] = slopes;
+    (
+        back_axes(&axes[0], linear_moment(ta, tb, -torque, kb)) + arch_moment(sa, sb, k_arch),
+        back_axes(&axes[1], linear_moment(tb, ta, torque, kb)) + arch_moment(sb, sa, k_arch),
+    )
 }
 
 #[inline(always)]
@@ -310,21 +403,48 @@ fn rows<F: Lane4>(
     let axial = elastic_axial + strain_rate.mul4(ea * F::splat(beta));
     let ta = theta_a + rate_a.scale_f(beta);
     let tb = theta_b + rate_b.scale_f(beta);
-    let torque = (tb.x - ta.x).mul4(c4::<F>(|k| e[k].torsion_stiffness) * inv_l0);
+    // the bending and twist law acts over the rest axis's length
+    let inv_axis = F::splat(1.0) / c4::<F>(|k| e[k].axis_length);
+    let kt = c4::<F>(|k| e[k].torsion_stiffness) * inv_axis;
+    let torque = (tb.x - ta.x).mul4(kt);
     let k_arch = elastic_axial.mul4(l0 * F::splat(1.0 / 30.0));
-    let k1 = c4::<F>(|k| e[k].bending_stiffness[0]) * inv_l0;
-    let k2 = c4::<F>(|k| e[k].bending_stiffness[1]) * inv_l0;
+    let k1 = c4::<F>(|k| e[k].bending_stiffness[0]) * inv_axis;
+    let k2 = c4::<F>(|k| e[k].bending_stiffness[1]) * inv_axis;
     // (E I/l₀)(4 tₐ + 2 t_b) + (N l₀/30)(4 θₐ − θ_b), and a ↔ b
-    let ma_local = V3::new(
-        -torque,
-        bend(ta.y, tb.y, slope_a.y, slope_b.y, k1, k_arch),
-        bend(ta.z, tb.z, slope_a.z, slope_b.z, k2, k_arch),
-    );
-    let mb_local = V3::new(
-        torque,
-        bend(tb.y, ta.y, slope_b.y, slope_a.y, k1, k_arch),
-        bend(tb.z, ta.z, slope_b.z, slope_a.z, k2, k_arch),
-    );
+    let curved_count = e.iter().filter(|e| e.end_axes.is_some()).count();
+    let (ma_local, mb_local) = if curved_count == 4 {
+        curved_local_moments(
+            &[end_axes::<F>(e, 0), end_axes::<F>(e, 1)],
+            [ta, tb],
+            [slope_a, slope_b],
+            [k1, k2, kt],
+            k_arch,
+        )
+    } else {
+        let ma = V3::new(
+            -torque,
+            bend(ta.y, tb.y, slope_a.y, slope_b.y, k1, k_arch),
+            bend(ta.z, tb.z, slope_a.z, slope_b.z, k2, k_arch),
+        );
+        let mb = V3::new(
+            torque,
+            bend(tb.y, ta.y, slope_b.y, slope_a.y, k1, k_arch),
+            bend(tb.z, ta.z, slope_b.z, slope_a.z, k2, k_arch),
+        );
+        if curved_count > 0 {
+            let (ca, cb) = curved_local_moments(
+                &[end_axes::<F>(e, 0), end_axes::<F>(e, 1)],
+                [ta, tb],
+                [slope_a, slope_b],
+                [k1, k2, kt],
+                k_arch,
+            );
+            let curved = M4([0, 1, 2, 3].map(|k| if e[k].end_axes.is_some() { !0 } else { 0 }));
+            (select_v(curved, ca, ma), select_v(curved, cb, mb))
+        } else {
+            (ma, mb)
+        }
+    };
 
     // moments conjugate to spatial rotation increments, global axes; forces from them
     let (ma, okj_a) = jacobian_inverse_transpose_times(theta_a, ma_local);

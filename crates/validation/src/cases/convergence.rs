@@ -8,22 +8,17 @@
 
 use crate::cases::tip_load::tip_deflection;
 use crate::harness::hose1;
+use crate::reference_bridge::hose1_stiffness;
 use crate::Check;
 use nalgebra::Vector3;
-use pliant_reference::{EndCondition, Rod, ShootingSolver, Stiffness};
+use pliant_reference::{EndCondition, Rod, ShootingSolver};
 
 const LAMBDA: f64 = 2.0;
 const COUNTS: [usize; 4] = [4, 8, 16, 32];
 
 fn reference_tip() -> Result<f64, String> {
     let (mat, sec) = hose1();
-    let stiffness = Stiffness::bimodular(
-        mat.e_tension * sec.area(),
-        mat.e_compression * sec.area(),
-        mat.bending_modulus() * sec.second_moment(),
-        mat.shear_modulus() * sec.polar_moment(),
-    )
-    .map_err(|e| e.to_string())?;
+    let stiffness = hose1_stiffness()?;
     let rod =
         Rod::new(vec![Vector3::zeros(), Vector3::x()], stiffness).map_err(|e| e.to_string())?;
     let base = rod.rest_base_pose();

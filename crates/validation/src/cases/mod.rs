@@ -4,6 +4,7 @@ mod axial;
 mod buckling;
 mod contact;
 mod convergence;
+mod curved_reactions;
 mod energy;
 mod fasteners;
 mod frames;
@@ -53,6 +54,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("large_frames", large_frames::run),
     ("junction_body", junction_body::run_static),
     ("junction_body_torsion", junction_body::run_torsion),
+    ("curved_reactions", curved_reactions::run),
     ("stub", fasteners::run_stub),
     ("clip", fasteners::run_clip),
     ("thesis_1", thesis::run_1),
