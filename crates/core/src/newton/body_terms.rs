@@ -19,7 +19,7 @@
 //! ```
 //!
 //! plus the geometric term of the weight's arm turning with the master,
-//! K_θθ −= [F]× [d]× (as for an offset slave in [`super::condensation`]).
+//! K_θθ −= \[F\]× \[d\]× (as for an offset slave in [`super::condensation`]).
 
 use crate::rod::attached::AttachedMass;
 use crate::rod::stiffened::RigidBody;
