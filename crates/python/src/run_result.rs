@@ -66,7 +66,7 @@ pub struct RunResult {
 /// >>> result.feasible
 /// False
 /// >>> result.reasons[0]
-/// "hand 0: push of 281.3 N at t = 8.99 s exceeds the limit 94.0 N (table 3.7; 299 % of it) — pressing the hose into clip 'clip engine corner'"
+/// "hand 0: push of 280.3 N at t = 8.99 s exceeds the limit 94.0 N (table 3.7; 298 % of it) — pressing the hose into clip 'clip engine corner'"
 /// >>> result.hand_series(0)["force"].shape[1]
 /// 3
 #[pyfunction]
