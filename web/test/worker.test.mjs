@@ -27,7 +27,12 @@ describe('worker and AR', () => {
       assert.equal(w.segments.length, 14);
       const id = await page.evaluate(() => window.pliant.mouseHandId);
       assert.ok(await page.evaluate(([id, p]) => window.pliant.send({ type: 'grab', hand_id: id, position: p }), [id, END]));
-      await page.waitForFunction(() => window.pliant.manikin().visible && window.pliant.manikin().capsules.length === 14);
+      // the worker stands where the scene placed him from the start: wait until his right
+      // arm follows the grabbing hand, not only until he is drawn
+      await page.waitForFunction(
+        (id) => window.pliant.manikin().visible && window.pliant.manikin().capsules.length === 14 && window.pliant.manikin().lines.includes('right arm: hand ' + id + ' reached'),
+        id,
+      );
       const m = await page.evaluate(() => window.pliant.manikin());
       const trunk = m.capsules.find((c) => c.segment === 'trunk');
       assert.equal(trunk.contact?.name, 'bar', JSON.stringify(trunk));
