@@ -18,7 +18,7 @@
 use crate::csv_input::{Quantity, Table};
 use crate::error::CalibError;
 use crate::law_fit::{self, LawFit};
-use crate::mechanics::{Geometry, TestKind};
+use crate::mechanics::{need_length, Geometry, TestKind};
 use crate::nonlinear_least_squares::{Parameter, Scale};
 
 /// The moments K κᵢ + zᵢ along the curvatures `kappa` for `p` = (K, M_s, κ_s), from a
@@ -56,18 +56,7 @@ pub fn fit(
         law_fit::two_columns(kind, table, Quantity::Curvature, &[Quantity::Torque], false)?
     };
     if torsion {
-        let l = match g.length {
-            Some(l) if l > 0.0 && l.is_finite() => l,
-            _ => {
-                return Err(CalibError::file(
-                    file,
-                    format!(
-                        "a cyclic_torsion test needs length_mm: {}",
-                        kind.length_meaning()
-                    ),
-                ))
-            }
-        };
+        let l = need_length(kind, &g, file)?;
         c.x.iter_mut().for_each(|a| *a /= l);
     }
     let n = c.x.len();

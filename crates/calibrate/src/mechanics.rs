@@ -221,7 +221,8 @@ pub struct Curve {
     pub flipped: bool,
 }
 
-fn need_length(kind: TestKind, g: &Geometry, file: &str) -> Result<f64, CalibError> {
+/// The test's `length_mm` \[m\], or an error naming the file and what the length means.
+pub(crate) fn need_length(kind: TestKind, g: &Geometry, file: &str) -> Result<f64, CalibError> {
     match g.length {
         Some(l) if l > 0.0 && l.is_finite() => Ok(l),
         _ => Err(CalibError::file(

@@ -17,7 +17,7 @@ use crate::csv_input::{Quantity, Table};
 use crate::error::CalibError;
 use crate::law_fit::{self, LawFit};
 use crate::load_unload;
-use crate::mechanics::{Geometry, TestKind};
+use crate::mechanics::{need_length, Geometry, TestKind};
 use crate::yield_law_fit::{Shown, YieldCurve};
 
 /// Fits a `plastic_cantilever` or `plastic_three_point_bending` table.
@@ -32,19 +32,7 @@ pub fn fit(
         TestKind::PlasticCantilever => Support::Cantilever,
         _ => Support::ThreePoint,
     };
-    let length = match g.length {
-        Some(l) if l > 0.0 && l.is_finite() => l,
-        _ => {
-            return Err(CalibError::file(
-                file,
-                format!(
-                    "a {} test needs length_mm: {}",
-                    kind.name(),
-                    kind.length_meaning()
-                ),
-            ))
-        }
-    };
+    let length = need_length(kind, &g, file)?;
     let c = law_fit::two_columns(
         kind,
         table,

@@ -15,7 +15,7 @@ use crate::csv_input::{Quantity, Table};
 use crate::error::CalibError;
 use crate::law_fit::{self, LawFit};
 use crate::load_unload;
-use crate::mechanics::{Geometry, TestKind};
+use crate::mechanics::{need_length, Geometry, TestKind};
 use crate::yield_law_fit::{Shown, YieldCurve};
 use pliant_core::rod::plastic_moment::{hardening_torque, plastic_torque};
 
@@ -23,18 +23,7 @@ use pliant_core::rod::plastic_moment::{hardening_torque, plastic_torque};
 pub fn fit(csv_name: &str, table: &Table, g: Geometry) -> Result<LawFit, CalibError> {
     let kind = TestKind::PlasticTorsion;
     let file = table.file.as_str();
-    let length = match g.length {
-        Some(l) if l > 0.0 && l.is_finite() => l,
-        _ => {
-            return Err(CalibError::file(
-                file,
-                format!(
-                    "a plastic_torsion test needs length_mm: {}",
-                    kind.length_meaning()
-                ),
-            ))
-        }
-    };
+    let length = need_length(kind, &g, file)?;
     let mut c = law_fit::two_columns(kind, table, Quantity::Angle, &[Quantity::Torque], true)?;
     c.x.iter_mut().for_each(|a| *a /= length);
     let peak = load_unload::peak(kind, file, &c.x, &c.lines, ("twist rate", "rad/m"))?;
