@@ -928,10 +928,15 @@ impl Simulation {
         Ok(vectors(py, self.model().rest_x[r].iter().copied()))
     }
 
-    /// Lumped node masses \[kg\], shape (N,).
+    /// Lumped node masses \[kg\], shape (N,) (physical: without the mass scaling).
     fn masses<'py>(&self, py: Python<'py>, hose: HoseRef) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let r = self.nodes(&hose)?;
-        Ok(PyArray1::from_slice(py, &self.model().mass[r]))
+        let model = self.model();
+        let masses: Vec<f64> = model.mass[r]
+            .iter()
+            .map(|m| m / model.mass_scaling)
+            .collect();
+        Ok(PyArray1::from_vec(py, masses))
     }
 
     /// Kinetic energy \[J\].

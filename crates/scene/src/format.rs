@@ -107,6 +107,10 @@ pub struct SimulationSection {
     /// but those overlapping in the shape as drawn — bundles a CAD route draws through
     /// one another) or `off`.
     pub hose_contact: Option<String>,
+    /// Mass scaling s, 1 … 10 000 (default 1): inertia s times the mass, weight and mass
+    /// damping unchanged, the explicit step √s longer. For quasi-static timelines; the
+    /// equilibria are unchanged, inertial forces s times larger.
+    pub mass_scaling: Option<f64>,
 }
 
 /// `[output]`: what to record.

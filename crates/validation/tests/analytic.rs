@@ -117,6 +117,10 @@ fn junction_body_torsion() {
     assert_case("junction_body_torsion");
 }
 #[test]
+fn mass_scaling() {
+    assert_case("mass_scaling");
+}
+#[test]
 fn curved_reactions() {
     assert_case("curved_reactions");
 }
