@@ -100,6 +100,82 @@ def test_a_relaxation_test_gives_prony_terms_in_the_scene_format(tmp_path):
     assert scene.hose_names == ["h"]
 
 
+RELAX_TIMES = np.concatenate([[0.0], 0.05 * 10 ** np.linspace(0, 4.6, 90)])
+HELD_STRAIN = 0.05
+
+
+def held_force(times=RELAX_TIMES):
+    """The force on the 10/16 mm tube held at 5 % strain: E0 = 10 MPa relaxing by the
+    Prony terms (0.3, 2 s) and (0.2, 60 s), in closed form."""
+    area = math.pi / 4 * (D_OUTER**2 - D_INNER**2)
+    decay = 1 - 0.3 * (1 - np.exp(-times / 2.0)) - 0.2 * (1 - np.exp(-times / 60.0))
+    return E_RUBBER * HELD_STRAIN * area * decay
+
+
+def calibrate_relaxation(**options):
+    return pliant.calibrate(
+        kind="relaxation",
+        data={"time_s": RELAX_TIMES, "force_N": held_force()},
+        d_inner_mm=D_INNER * 1e3,
+        d_outer_mm=D_OUTER * 1e3,
+        name="epdm",
+        **options,
+    )
+
+
+def prony(c):
+    """The material's Prony terms as (time, weight) pairs, shortest first."""
+    return sorted((t["time_s"]["value"], t["weight"]["value"]) for t in c.material["relaxation"])
+
+
+def test_a_relaxation_test_alone_takes_its_held_strain():
+    c = calibrate_relaxation(held_strain=HELD_STRAIN)
+    assert c.fits == [] and len(c.laws) == 1
+    est = {e["name"]: e for e in c.laws[0]["fit"]["estimates"]}
+    assert est["E0"]["value"] == pytest.approx(E_RUBBER, rel=1e-6)
+    assert est["E0"]["identified"]
+    assert c.material["e_tension_mpa"]["value"] == pytest.approx(E_RUBBER / 1e6, rel=1e-6)
+    # BIC chooses the two terms the curve has
+    got = prony(c)
+    assert len(got) == 2
+    assert got[0] == pytest.approx((2.0, 0.3), rel=1e-6)
+    assert got[1] == pytest.approx((60.0, 0.2), rel=1e-6)
+    scene = calibrated_material_scene(c.material_toml, "epdm")
+    assert scene.hose_names == ["h"]
+    # without it the test gives ratios of moduli only: refused, naming the option
+    with pytest.raises(pliant.CalibrationError, match="held_strain"):
+        calibrate_relaxation()
+
+
+def test_terms_forces_the_prony_count():
+    two = calibrate_relaxation(held_strain=HELD_STRAIN, terms=2)
+    # two terms asked for: the two the curve has, as BIC chose them
+    got = prony(two)
+    assert got[0] == pytest.approx((2.0, 0.3), rel=1e-6)
+    assert got[1] == pytest.approx((60.0, 0.2), rel=1e-6)
+    assert "2 Prony term(s) asked for (terms)" in two.laws[0]["checks"][0]
+    one = calibrate_relaxation(held_strain=HELD_STRAIN, terms=1)
+    assert len(prony(one)) == 1
+    # one term cannot follow a two-term curve: its residual is far above the exact fit's
+    assert one.laws[0]["fit"]["residual_std"] > 1e3 * two.laws[0]["fit"]["residual_std"]
+    with pytest.raises(pliant.CalibrationError, match="terms"):
+        calibrate_relaxation(held_strain=HELD_STRAIN, terms=9)
+
+
+def test_relaxation_options_are_refused_where_they_do_not_belong(tmp_path):
+    strain = np.linspace(0.0, 0.05, 60)
+    with pytest.raises(pliant.CalibrationError, match="held_strain is for a relaxation test"):
+        pliant.calibrate(
+            kind="tension",
+            data={"strain": strain, "stress_MPa": 10.0 * strain},
+            d_outer_mm=16,
+            d_inner_mm=10,
+            held_strain=0.05,
+        )
+    with pytest.raises(ValueError, match="terms and held_strain"):
+        pliant.calibrate(write_relaxation_calibration(tmp_path, RELAX_TIMES), terms=2)
+
+
 def test_time_going_backwards_names_the_line(tmp_path):
     times = np.array([0.0, 1.0, 2.0, 1.5, 3.0, 4.0, 5.0, 6.0])
     with pytest.raises(pliant.CalibrationError) as e:
