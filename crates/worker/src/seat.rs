@@ -80,7 +80,7 @@ impl Seat {
         if !(height.is_finite() && height > 0.0) {
             return Err(WorkerError::field(
                 field,
-                height,
+                format!("{height} m"),
                 "the seat height must be a positive length",
             ));
         }
