@@ -186,7 +186,7 @@ fn bad_worker_fields_are_named() {
             "worker.percentile",
         ),
         (
-            "population = \"male\"\nposture = \"sitting\"",
+            "population = \"male\"\nposture = \"kneeling\"",
             "worker.posture",
         ),
         (
