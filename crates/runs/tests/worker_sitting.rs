@@ -103,8 +103,8 @@ fn a_seated_worker_reaches_the_table_and_is_judged_by_the_sitting_rows() {
         assert!(!v.reasons.iter().any(|r| r.starts_with("hand 0")), "{v:?}");
     }
     eprintln!(
-        "push {:.1} N against the sitting row's {sitting:.1} N (standing row {standing:.1} N)",
-        h.push.magnitude
+        "push {:.1} N against the sitting row's {sitting:.1} N (standing row {standing:.1} N): {:?}",
+        h.push.magnitude, v.reasons
     );
     // summary.json carries the seat and the class
     let json = serde_json::to_value(w).unwrap();
