@@ -116,12 +116,16 @@ fn a_seated_worker_reaches_the_table_and_is_judged_by_the_sitting_rows() {
     let (_, en_run) = run_scene(&scene(-150.0, en, true));
     let zones = &en_run.hand_peaks[0].zones;
     let push = zones.iter().find(|z| z.kind == LoadKind::Push).unwrap();
-    assert_eq!(push.action, "arm work, sitting, one arm, with trunk support");
+    assert_eq!(
+        push.action,
+        "arm work, sitting, one arm, with trunk support"
+    );
     assert_eq!(
         push.limit.f_b,
-        limits
-            .en1005()
-            .basic_force(pliant_assembly::ergonomics::En1005Action::ArmTrunkSupport, true)
+        limits.en1005().basic_force(
+            pliant_assembly::ergonomics::En1005Action::ArmTrunkSupport,
+            true
+        )
     );
 }
 
@@ -136,7 +140,10 @@ fn the_same_point_1_2_m_further_is_out_of_reach_and_the_seated_worker_does_not_s
     let reach = &w.reach[0];
     // the hand holds the hose where it grabbed it, still at the end of the run
     let target = cell.hand_records()[0].load.position;
-    assert!((target - DVec3::from_array(AT) * 1e-3).length() < 1e-3, "{target}");
+    assert!(
+        (target - DVec3::from_array(AT) * 1e-3).length() < 1e-3,
+        "{target}"
+    );
     // what the seated manikin at that seat leaves (the inverse kinematics, whose far
     // residual crates/worker/tests/sitting.rs checks against a brute-force search)
     let seat = w.seat.unwrap();
@@ -167,8 +174,9 @@ fn the_same_point_1_2_m_further_is_out_of_reach_and_the_seated_worker_does_not_s
     assert_eq!(v.feasible, Some(false), "{v:?}");
     let mm = format!("{:.0} mm", 1e3 * reach.worst);
     assert!(
-        v.reasons.iter().any(|r| r
-            .starts_with(&format!("out of reach for the 50th-percentile man by {mm}"))),
+        v.reasons
+            .iter()
+            .any(|r| r.starts_with(&format!("out of reach for the 50th-percentile man by {mm}"))),
         "{:?}",
         v.reasons
     );
@@ -207,7 +215,9 @@ fn bad_seated_workers_are_refused() {
             "worker.seat_height",
         ),
     ] {
-        let e = load_scene_str(&with(&extra), "bad.toml").unwrap_err().to_string();
+        let e = load_scene_str(&with(&extra), "bad.toml")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(field), "{extra:?}: {e}");
     }
     assert!(load_scene_str(

@@ -48,7 +48,11 @@ pub fn build_worker(
                 .map_err(|e| field_error("worker.percentile", e))?
         }
     };
-    let sitting = match raw.posture.as_deref().map(|p| p.trim().to_ascii_lowercase()) {
+    let sitting = match raw
+        .posture
+        .as_deref()
+        .map(|p| p.trim().to_ascii_lowercase())
+    {
         None => false,
         Some(p) if p == "standing" => false,
         Some(p) if p == "sitting" => true,
@@ -62,36 +66,35 @@ pub fn build_worker(
     };
     let steps = raw.steps.unwrap_or(false);
     let to_m = unit.to_metres();
-    let seat = match (sitting, raw.seat_height) {
-        (false, None) => None,
-        (false, Some(h)) => {
-            return Err(FieldError::new(
-                "worker.seat_height",
-                h.to_string(),
-                "a seat height needs worker.posture = \"sitting\"",
-            ))
-        }
-        (true, _) if steps => {
-            return Err(FieldError::new(
+    let seat =
+        match (sitting, raw.seat_height) {
+            (false, None) => None,
+            (false, Some(h)) => {
+                return Err(FieldError::new(
+                    "worker.seat_height",
+                    h.to_string(),
+                    "a seat height needs worker.posture = \"sitting\"",
+                ))
+            }
+            (true, _) if steps => return Err(FieldError::new(
                 "worker.steps",
                 "true",
                 "a seated worker does not step (worker.posture = \"sitting\"): a target out of \
                  reach from the seat is out of reach",
-            ))
-        }
-        (true, height) => {
-            let body = pliant_worker::body(population)
-                .map_err(|e| field_error("worker.population", e))?;
-            Some(match height {
-                None => Seat::for_body(&body),
-                Some(h) => {
-                    let h = finite("worker.seat_height", h, unit.symbol())?;
-                    Seat::new(&body, h * to_m, "worker.seat_height")
-                        .map_err(|e| field_error("worker.seat_height", e))?
-                }
-            })
-        }
-    };
+            )),
+            (true, height) => {
+                let body = pliant_worker::body(population)
+                    .map_err(|e| field_error("worker.population", e))?;
+                Some(match height {
+                    None => Seat::for_body(&body),
+                    Some(h) => {
+                        let h = finite("worker.seat_height", h, unit.symbol())?;
+                        Seat::new(&body, h * to_m, "worker.seat_height")
+                            .map_err(|e| field_error("worker.seat_height", e))?
+                    }
+                })
+            }
+        };
     let coupling = match &raw.coupling {
         Some(c) => Coupling::parse(c).ok_or_else(|| {
             FieldError::new(

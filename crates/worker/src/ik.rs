@@ -436,7 +436,11 @@ impl Manikin {
             None => {
                 let leg = |height: f64| {
                     Side::BOTH.map(|s| {
-                        p.point(DVec3::new(0.0, s.outward() * 0.5 * b.dims.hip_width, height))
+                        p.point(DVec3::new(
+                            0.0,
+                            s.outward() * 0.5 * b.dims.hip_width,
+                            height,
+                        ))
                     })
                 };
                 (

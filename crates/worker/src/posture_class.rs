@@ -91,10 +91,7 @@ impl PostureClass {
 
     /// Whether the class is seated.
     pub fn is_sitting(self) -> bool {
-        matches!(
-            self,
-            PostureClass::Sitting | PostureClass::SittingBentTrunk
-        )
+        matches!(self, PostureClass::Sitting | PostureClass::SittingBentTrunk)
     }
 
     /// The class of `posture`, the world's vertical `up` (unit).

@@ -51,11 +51,20 @@ fn the_default_seat_gives_thighs_horizontal_knees_at_right_angles_feet_on_the_fl
         for i in 0..2 {
             let hip_z = b.popliteal_height + (d.knee_height - b.popliteal_height);
             assert!((j.hips[i].z - hip_z).abs() < 1e-12);
-            assert!((j.knees[i].z - j.hips[i].z).abs() < 1e-12, "thigh horizontal");
+            assert!(
+                (j.knees[i].z - j.hips[i].z).abs() < 1e-12,
+                "thigh horizontal"
+            );
             let thigh = j.knees[i] - j.hips[i];
             assert!((thigh.x - (d.hip_height - d.knee_height)).abs() < 1e-12);
-            assert!((j.ankles[i].z - d.ankle_height).abs() < 1e-9, "feet on the floor");
-            assert!((j.ankles[i].x - j.knees[i].x).abs() < 1e-6, "shank vertical");
+            assert!(
+                (j.ankles[i].z - d.ankle_height).abs() < 1e-9,
+                "feet on the floor"
+            );
+            assert!(
+                (j.ankles[i].x - j.knees[i].x).abs() < 1e-6,
+                "shank vertical"
+            );
         }
         assert!((j.lumbar.z - j.hips[0].z).abs() < 1e-12);
         let shoulder = m.shoulder_upright(Side::Right);
@@ -114,7 +123,9 @@ fn seat_heights_change_the_legs_and_bad_ones_are_refused() {
 
     let limit = d.hip_height - thigh_clearance(&b);
     for bad in [0.0, -0.2, f64::NAN, limit, limit + 0.1] {
-        let e = Seat::new(&b, bad, "worker.seat_height").unwrap_err().to_string();
+        let e = Seat::new(&b, bad, "worker.seat_height")
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("worker.seat_height = "), "{bad}: {e}");
     }
     assert!(Seat::new(&b, limit - 1e-3, "s").is_ok());
@@ -156,7 +167,11 @@ fn a_seated_worker_does_not_reach_a_point_far_beyond_the_table() {
     let l = &b.limits;
     let lumbar = m.lumbar();
     let d = &b.dims;
-    let local = DVec3::new(0.0, -0.5 * d.shoulder_width, d.shoulder_height - d.hip_height);
+    let local = DVec3::new(
+        0.0,
+        -0.5 * d.shoulder_width,
+        d.shoulder_height - d.hip_height,
+    );
     let n = 80;
     let mut best = f64::INFINITY;
     for i in 0..=n {
@@ -174,10 +189,19 @@ fn a_seated_worker_does_not_reach_a_point_far_beyond_the_table() {
         }
     }
     assert!(best > 0.3, "the premise: out of reach by {best}");
-    assert!(r <= best + 1e-9 && r > best - 2e-3, "IK {r}, brute force {best}");
-    assert_eq!(PostureClass::of(&pose, DVec3::Z), PostureClass::SittingBentTrunk);
+    assert!(
+        r <= best + 1e-9 && r > best - 2e-3,
+        "IK {r}, brute force {best}"
+    );
+    assert_eq!(
+        PostureClass::of(&pose, DVec3::Z),
+        PostureClass::SittingBentTrunk
+    );
     assert!(pose.trunk.flexion > 20f64.to_radians(), "{:?}", pose.trunk);
-    eprintln!("out of reach by {r} m (brute force {best} m), trunk {:?}", pose.trunk);
+    eprintln!(
+        "out of reach by {r} m (brute force {best} m), trunk {:?}",
+        pose.trunk
+    );
 }
 
 /// Every class, in order, with its name and words; sitting whatever the arms do.

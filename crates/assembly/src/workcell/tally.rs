@@ -515,7 +515,11 @@ fn en1005_peaks(
             .class
             .and_then(en1005_action)
             .unwrap_or(profile.en1005.action);
-        let peak = if kind == LoadKind::Pull { c.pull } else { c.push };
+        let peak = if kind == LoadKind::Pull {
+            c.pull
+        } else {
+            c.push
+        };
         let slot = &mut by_action[action.index()];
         if peak.magnitude > 0.0 && slot.is_none_or(|s| peak.magnitude > s.magnitude) {
             *slot = Some(peak);
