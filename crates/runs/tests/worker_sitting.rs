@@ -8,6 +8,8 @@
 //! reach — by the distance no trunk rotation over the seat can close, to 1 µm — and he
 //! does not step.
 
+mod support;
+
 use glam::DVec3;
 use pliant_assembly::ergonomics::{
     ErgonomicLimits, ErgonomicProfile, LoadKind, Population, Posture,
@@ -61,7 +63,8 @@ fn run_scene(text: &str) -> (pliant_assembly::Workcell, RunSummary) {
 
 #[test]
 fn a_seated_worker_reaches_the_table_and_is_judged_by_the_sitting_rows() {
-    let (cell, run) = run_scene(&scene(-150.0, men(), true));
+    let text = scene(-150.0, men(), true);
+    let (cell, run) = run_scene(&text);
     let w = run.worker.as_ref().unwrap();
     assert!(w.findings().is_empty(), "{:?}", w.findings());
     assert!(w.reach[0].worst < 1e-3, "{:?}", w.reach);
@@ -106,10 +109,23 @@ fn a_seated_worker_reaches_the_table_and_is_judged_by_the_sitting_rows() {
         "push {:.1} N against the sitting row's {sitting:.1} N (standing row {standing:.1} N): {:?}",
         h.push.magnitude, v.reasons
     );
-    // summary.json carries the seat and the class
-    let json = serde_json::to_value(w).unwrap();
+    // summary.json carries the seat and the class, worker.csv each instant's class, the
+    // report the seat
+    let dir = support::static_outputs(&text, "sitting.toml", &cell, &run);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("summary.json")).unwrap())
+            .unwrap();
+    let json = &summary["worker"];
     assert_eq!(json["seat"]["height"], w.body.popliteal_height);
     assert_eq!(json["class_instants"]["sitting"], w.instants);
+    let csv = std::fs::read_to_string(dir.path().join("worker.csv")).unwrap();
+    assert!(
+        csv.lines().skip(1).all(|row| row.ends_with(",sitting")),
+        "{csv}"
+    );
+    let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
+    assert!(html.contains("seated on a seat 435 mm high"));
+    assert!(html.contains(&format!("sitting at {}", w.instants)));
 
     // under EN 1005-3 the seated class chooses the arm-work row with trunk support
     let en = men().text("standard", "en1005-3");
