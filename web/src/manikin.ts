@@ -101,6 +101,12 @@ export class ManikinView {
     this.place(f >= 1 ? this.drawn : glide(this.gliding?.from ?? this.drawn, this.drawn, f));
   }
 
+  /** The seat as drawn: shown or not, its mesh's centre and scale (its full lengths). */
+  seatDrawn(): { visible: boolean; centre: number[]; size: number[] } {
+    const s = this.seat;
+    return { visible: s.visible && this.group.visible, centre: s.position.toArray(), size: s.scale.toArray() };
+  }
+
   /** Puts the seat box where the snapshot says (hidden without one). */
   private placeSeat(pose: Snapshot['worker']): void {
     const box = seatBox(pose);
