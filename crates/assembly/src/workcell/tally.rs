@@ -506,7 +506,7 @@ fn en1005_peaks(
     kind: LoadKind,
     overall: Peak,
 ) -> Vec<(En1005Action, Peak)> {
-    let mut by_action = [None::<Peak>; 3];
+    let mut by_action = [None::<Peak>; En1005Action::ALL.len()];
     if p.class_peaks.is_empty() {
         by_action[profile.en1005.action.index()] = Some(overall);
     }
