@@ -124,7 +124,7 @@ fn a_seated_worker_reaches_the_table_and_is_judged_by_the_sitting_rows() {
         "{csv}"
     );
     let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
-    assert!(html.contains("seated on a seat 435 mm high"));
+    assert!(html.contains("seated on a seat 430 mm high"));
     assert!(html.contains(&format!("sitting at {}", w.instants)));
 
     // under EN 1005-3 the seated class chooses the arm-work row with trunk support

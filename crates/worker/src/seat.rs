@@ -85,7 +85,10 @@ impl Seat {
             ));
         }
         let seat = Seat { height };
-        if seat.hip_height(body) >= body.dims.hip_height {
+        // the bound as the message states it (seat + clearance ≥ hip height rounds either
+        // way at the bound itself)
+        let highest = body.dims.hip_height - thigh_clearance(body);
+        if height >= highest {
             return Err(WorkerError::field(
                 field,
                 format!("{height} m"),
@@ -94,7 +97,7 @@ impl Seat {
                      (the seat must be lower than {:.3} m)",
                     body.population.describe(),
                     body.dims.hip_height,
-                    body.dims.hip_height - thigh_clearance(body)
+                    highest
                 ),
             ));
         }
