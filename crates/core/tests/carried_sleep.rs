@@ -6,6 +6,7 @@
 use glam::DVec3;
 use pliant_core::integrators::explicit::step;
 use pliant_core::kinematics::{PartMotion, Profile, Slide};
+use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::{
     HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings, State, WorldSpec,
 };
@@ -35,6 +36,12 @@ fn slide(start_time: f64, initial_rate: f64, acceleration: f64) -> Option<PartMo
 /// the plate accelerates along x at `acceleration` on the carriage. Both sleeping
 /// (`sleeping`) and awake runs start from the same state.
 fn world(acceleration: f64, sleeping: bool) -> (Model, State) {
+    world_with(acceleration, sleeping, None)
+}
+
+/// [`world`], with a still wall across the plate's path at x = `wall` (a vertical square
+/// just clear of the plate) if given.
+fn world_with(acceleration: f64, sleeping: bool, wall: Option<f64>) -> (Model, State) {
     let square = |x0: f64, x1: f64, y: f64, z: f64| {
         let vertices = vec![
             DVec3::new(x0, -y, z),
@@ -75,9 +82,27 @@ fn world(acceleration: f64, sleeping: bool) -> (Model, State) {
         sections: vec![Section::new(0.010, 2.0 * RADIUS)],
         normal_hint: Some(DVec3::Y),
     };
+    let mut rigid_parts = vec![carriage, plate];
+    if let Some(x) = wall {
+        rigid_parts.push(RigidPartSpec {
+            name: "wall".into(),
+            vertices: vec![
+                DVec3::new(x, -0.2, 0.001),
+                DVec3::new(x, 0.2, 0.001),
+                DVec3::new(x, 0.2, 0.1),
+                DVec3::new(x, -0.2, 0.1),
+            ],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            friction_static: MU_STATIC,
+            friction_sliding: MU_SLIDING,
+            motion: None,
+            parent: None,
+            movable: false,
+        });
+    }
     let model = Model::build(&WorldSpec {
         hoses: vec![hose],
-        rigid_parts: vec![carriage, plate],
+        rigid_parts,
         settings: SimSettings::default(),
     })
     .unwrap();
@@ -102,8 +127,13 @@ struct Runs {
 }
 
 fn run(acceleration: f64, duration: f64, probe: f64) -> Runs {
-    let (model, mut asleep) = world(acceleration, true);
-    let (_, mut awake) = world(acceleration, false);
+    run_world(|sleeping| world(acceleration, sleeping), duration, probe)
+}
+
+/// The sleeping and the awake run of the world `make(sleeping)` side by side.
+fn run_world(make: impl Fn(bool) -> (Model, State), duration: f64, probe: f64) -> Runs {
+    let (model, mut asleep) = make(true);
+    let (_, mut awake) = make(false);
     let mean_vx = |s: &State| s.v.iter().map(|v| v.x).sum::<f64>() / s.v.len() as f64;
     let mut runs = Runs {
         deviation: 0.0,
@@ -209,4 +239,48 @@ fn a_plate_accelerating_beyond_mu_s_g_wakes_the_hose_and_it_slips() {
         "speed gained {gain} m/s, Coulomb drag gives {expected_gain} m/s"
     );
     assert!(r.plate_speed - r.hose_speed.1 > 0.5 * (a - coulomb) * (end - ACCELERATE_AT));
+}
+
+#[test]
+fn a_hose_carried_towards_a_still_wall_wakes_before_it_touches_and_stops_there() {
+    // the hose's front end (x = 0.6 + r) reaches the wall at 0.65 after ≈ 0.8 s
+    let wall = 0.65;
+    let r = run_world(|sleeping| world_with(0.0, sleeping, Some(wall)), 1.5, 1.0);
+    eprintln!(
+        "slept at {:?} s, woke at {:?}, deviation {:.2e} m, hose {:?} m/s",
+        r.slept_at, r.woke_at, r.deviation, r.hose_speed
+    );
+    assert!(r.slept_at.is_some());
+    let woke = r.woke_at.expect("the wall ahead wakes it");
+    // it wakes as it comes within contact reach of the wall (the hose lags the plate by
+    // the v²/(2 μ_k g) ≈ 0.3 mm friction needed to bring it up to speed, ≈ 6 ms)
+    let reach_time = (wall - 0.6 - RADIUS * 1.01) / GLIDE;
+    let lag = GLIDE * GLIDE / (2.0 * MU_SLIDING * 9.81) / GLIDE;
+    assert!(
+        woke > reach_time - 0.01 && woke <= reach_time + 2.0 * lag,
+        "woke at {woke} s, reach at {reach_time} s"
+    );
+    // and the awake run's contact with the wall is the sleeping run's
+    assert!(r.deviation <= TRAJECTORY_TOLERANCE, "{:.3e} m", r.deviation);
+    // stopped by the wall while the plate slides on beneath it
+    assert!(r.hose_speed.1.abs() < 1e-3, "{} m/s", r.hose_speed.1);
+}
+
+#[test]
+fn a_hose_fixed_in_the_world_on_the_gliding_plate_never_sleeps() {
+    let make = |sleeping: bool| {
+        let (model, mut state) = world(0.0, sleeping);
+        state.loads.add(LoadCase::Fix(Fix {
+            node: 0,
+            position: state.x[0],
+            orientation: state.q[0],
+        }));
+        (model, state)
+    };
+    let r = run_world(make, 1.5, 1.0);
+    assert_eq!(
+        r.asleep_steps, 0,
+        "the plate slides under it: not at rest on the plate"
+    );
+    assert_eq!(r.deviation, 0.0);
 }
