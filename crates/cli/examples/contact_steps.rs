@@ -4,7 +4,7 @@
 //! counts (`valgrind --tool=callgrind`), where the bench's timed repeats would vary:
 //!
 //! ```sh
-//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose] [floor motion: 1 = it sways as in the bench's moving rows, 2 = it glides at 0.05 m/s]
+//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose] [floor motion: 1 = it sways as in the bench's moving rows, 2 = it glides at 0.05 m/s] [1: sleeping on, the hoses free]
 //! ```
 //!
 //! Prints the CPU time of the steps (and per element-step), the candidate-list counters,
@@ -29,6 +29,18 @@ fn main() -> anyhow::Result<()> {
     };
     let (mut model, mut state) = bench::setup_moving(hoses, elements, quads, motion)?;
     model.threads = 1;
+    if args.get(7).map(String::as_str) == Some("1") {
+        // sleeping on, the hoses' first nodes let go: they come to rest on the floor,
+        // and sleep (carried by it when it moves)
+        state.loads = Default::default();
+        state.sleep.enabled = true;
+        if let Some(c) = std::env::var("CONTACT_STEPS_DAMPING")
+            .ok()
+            .and_then(|s| s.parse().ok())
+        {
+            model.damping_mass = c;
+        }
+    }
     run(&model, &mut state, warm);
     let before = state.contact.candidates.clone();
     let rebuilds = state.hose_contact.rebuilds;
@@ -41,6 +53,22 @@ fn main() -> anyhow::Result<()> {
             hash = (hash ^ c.to_bits()).wrapping_mul(0x0100_0000_01b3);
         }
     }
+    if std::env::var_os("CONTACT_STEPS_SPEEDS").is_some() {
+        for h in &model.hoses {
+            let fastest = h
+                .nodes()
+                .map(|i| (state.v[i].length(), i))
+                .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a });
+            let spin = h
+                .nodes()
+                .map(|i| state.w[i].length() * model.radius[i])
+                .fold(0.0, f64::max);
+            eprintln!(
+                "{}: fastest node {} at {:.3e} m/s {:?}, spin {:.3e} m/s",
+                h.name, fastest.1, fastest.0, state.x[fastest.1], spin
+            );
+        }
+    }
     let c = &state.contact.candidates;
     let (refreshes, truncations, fallbacks) = (
         c.refreshes - before.refreshes,
@@ -50,7 +78,8 @@ fn main() -> anyhow::Result<()> {
     println!(
         "{steps} steps of {hoses} × {elements} on {} triangles: {:.2} µs CPU per step \
          ({:.1} ns per element-step), {:.2} contact points per step, {} refreshes, \
-         {} truncations, {} fresh fallbacks, {} pair-list rebuilds, hash {hash:016x}",
+         {} truncations, {} fresh fallbacks, {} pair-list rebuilds, {} hoses asleep \
+         ({} carried), hash {hash:016x}",
         2 * quads * quads,
         cpu * 1e6 / steps as f64,
         cpu * 1e9 / (steps as f64 * model.elements.len() as f64),
@@ -59,6 +88,10 @@ fn main() -> anyhow::Result<()> {
         truncations,
         fallbacks,
         state.hose_contact.rebuilds - rebuilds,
+        state.sleep.sleeping(),
+        (0..model.hoses.len())
+            .filter(|&h| state.sleep.carried.part_of_hose(h).is_some())
+            .count(),
     );
     Ok(())
 }

@@ -6,7 +6,7 @@
 use glam::DVec3;
 use pliant_core::integrators::explicit::step;
 use pliant_core::kinematics::{PartMotion, Profile, Slide};
-use pliant_core::loads::{Fix, LoadCase};
+use pliant_core::loads::{Fix, LoadCase, Mount};
 use pliant_core::{
     HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings, State, WorldSpec,
 };
@@ -283,4 +283,30 @@ fn a_hose_fixed_in_the_world_on_the_gliding_plate_never_sleeps() {
         "the plate slides under it: not at rest on the plate"
     );
     assert_eq!(r.deviation, 0.0);
+}
+
+#[test]
+fn a_hose_clamped_to_the_gliding_plate_sleeps_carried_with_its_clamp() {
+    let make = |sleeping: bool| {
+        let (model, mut state) = world(0.0, sleeping);
+        // the plate's reference placement is its pose at t = 0
+        state.loads.add(LoadCase::Mount(Mount {
+            node: 0,
+            part: 1,
+            position: state.x[0],
+            orientation: state.q[0],
+        }));
+        (model, state)
+    };
+    let r = run_world(make, 2.0, 1.0);
+    eprintln!(
+        "slept at {:?} s, woke at {:?}, deviation {:.2e} m",
+        r.slept_at, r.woke_at, r.deviation
+    );
+    assert!(r.slept_at.is_some_and(|t| t < 1.0), "{:?}", r.slept_at);
+    assert_eq!(
+        r.woke_at, None,
+        "the clamp moves with the part carrying the hose"
+    );
+    assert!(r.deviation <= TRAJECTORY_TOLERANCE, "{:.3e} m", r.deviation);
 }
