@@ -34,12 +34,6 @@ fn main() -> anyhow::Result<()> {
         // and sleep (carried by it when it moves)
         state.loads = Default::default();
         state.sleep.enabled = true;
-        if let Some(c) = std::env::var("CONTACT_STEPS_DAMPING")
-            .ok()
-            .and_then(|s| s.parse().ok())
-        {
-            model.damping_mass = c;
-        }
     }
     run(&model, &mut state, warm);
     let before = state.contact.candidates.clone();
@@ -51,22 +45,6 @@ fn main() -> anyhow::Result<()> {
     for v in state.x.iter().chain(state.v.iter()) {
         for c in v.to_array() {
             hash = (hash ^ c.to_bits()).wrapping_mul(0x0100_0000_01b3);
-        }
-    }
-    if std::env::var_os("CONTACT_STEPS_SPEEDS").is_some() {
-        for h in &model.hoses {
-            let fastest = h
-                .nodes()
-                .map(|i| (state.v[i].length(), i))
-                .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a });
-            let spin = h
-                .nodes()
-                .map(|i| state.w[i].length() * model.radius[i])
-                .fold(0.0, f64::max);
-            eprintln!(
-                "{}: fastest node {} at {:.3e} m/s {:?}, spin {:.3e} m/s",
-                h.name, fastest.1, fastest.0, state.x[fastest.1], spin
-            );
         }
     }
     let c = &state.contact.candidates;

@@ -36,7 +36,7 @@
 use crate::kinematics::{Placement, Pose};
 use crate::math::log_map;
 use crate::{Model, State};
-use glam::{DQuat, DVec3};
+use glam::{DMat3, DQuat, DVec3};
 
 /// A hose falls asleep on a moving part only if each node's contact force lies within
 /// this fraction of the static friction cone: |f_t| ≤ SLEEP_CONE μ_s f_n.
@@ -79,8 +79,13 @@ pub struct Carriage {
     /// searched again \[m\], and its nodes' largest distance from the part's origin.
     clearance: Vec<f64>,
     spread: Vec<f64>,
-    /// Per part (while it carries a hose): its pose at the step's end.
+    /// Per part (while it carries a hose): its pose at the step's end, its angular
+    /// velocity over the step, the effective gravity in its frame at the step's start
+    /// ([`gravity_map`]), and the step's start time and length they are for.
     end_pose: Vec<Pose>,
+    end_spin: Vec<DVec3>,
+    gravity: Vec<(DVec3, DMat3)>,
+    placed_for: Vec<(f64, f64)>,
     /// Per hose (scratch): the one part its contacts touched this step (or none, mixed).
     seen: Vec<usize>,
     /// Per hose (scratch): the part its network lies on.
@@ -103,6 +108,9 @@ impl Carriage {
             clearance: vec![0.0; hoses],
             spread: vec![0.0; hoses],
             end_pose: vec![Pose::IDENTITY; model.environment.parts.len()],
+            end_spin: vec![DVec3::ZERO; model.environment.parts.len()],
+            gravity: vec![(DVec3::ZERO, DMat3::ZERO); model.environment.parts.len()],
+            placed_for: vec![(f64::NAN, f64::NAN); model.environment.parts.len()],
             seen: vec![NONE; hoses],
             network_part: vec![NONE; hoses],
             normal_now: vec![DVec3::ZERO; nodes],
@@ -150,34 +158,30 @@ fn hose_of(model: &Model, i: usize) -> Option<usize> {
     model.hoses[h].nodes().contains(&i).then_some(h)
 }
 
-/// Acceleration \[m/s²\] at time `t` of the material point of part `k` at `local` (its
-/// reference placement), by central differences of its velocity over ±`h`.
-fn material_acceleration(
-    model: &Model,
-    state: &State,
-    k: usize,
-    local: DVec3,
-    t: f64,
-    h: f64,
-) -> DVec3 {
-    let velocity = |p: Placement| p.velocity_at(p.pose.apply(local));
-    let before = model.kinematics.placement_at(k, t - h, &state.part_moves);
-    let after = model.kinematics.placement_at(k, t + h, &state.part_moves);
-    (velocity(after) - velocity(before)) / (2.0 * h)
+/// Part `k`'s placements at `t` ∓ `h`, between which [`gravity_map`] differentiates
+/// its velocity field.
+fn placements_about(model: &Model, state: &State, k: usize, t: f64, h: f64) -> [Placement; 2] {
+    let at = |t| model.kinematics.placement_at(k, t, &state.part_moves);
+    [at(t - h), at(t + h)]
 }
 
-/// The effective gravity g − a_p at `local` of part `k` at time `t`, in the part's frame
-/// (`rotation`: the part's at `t`).
-fn effective_gravity(
-    model: &Model,
-    state: &State,
-    k: usize,
-    local: DVec3,
-    t: f64,
-    rotation: DQuat,
-) -> DVec3 {
-    let h = 0.5 * model.time_step;
-    rotation.inverse() * (model.gravity - material_acceleration(model, state, k, local, t, h))
+/// The effective gravity g − a_p in the frame `rotation` of the part (its rotation at the
+/// time between `about`, [`placements_about`] ±`h`), a_p the acceleration of the
+/// material point at l (reference placement) by central differences of its velocity
+/// ω × (R l) + Ṫ: an affine map of l, returned as (G, N) with g_eff(l) = G + N l.
+fn gravity_map(model: &Model, about: &[Placement; 2], h: f64, rotation: DQuat) -> (DVec3, DMat3) {
+    let skew = |w: DVec3| {
+        DMat3::from_cols(
+            DVec3::new(0.0, w.z, -w.y),
+            DVec3::new(-w.z, 0.0, w.x),
+            DVec3::new(w.y, -w.x, 0.0),
+        )
+    };
+    let field = |p: &Placement| skew(p.twist.angular) * DMat3::from_quat(p.pose.rotation);
+    let a0 = (about[1].twist.linear - about[0].twist.linear) / (2.0 * h);
+    let m = (field(&about[1]) - field(&about[0])) * (1.0 / (2.0 * h));
+    let back = DMat3::from_quat(rotation.inverse());
+    (back * (model.gravity - a0), -(back * m))
 }
 
 /// Whether contact force `f` with normal `n` lies within `fraction` of the static cone.
@@ -296,11 +300,14 @@ pub(super) fn begin(model: &Model, state: &mut State, h: usize, k: usize) {
         .kinematics
         .placement_at(k, state.time, &state.part_moves);
     let mid = state.contact.placements[k];
+    let half = 0.5 * model.time_step;
+    let about = placements_about(model, state, k, state.time, half);
+    let (g0, n0) = gravity_map(model, &about, half, now.pose.rotation);
     let inverse = now.pose.rotation.inverse();
     let mut spread = 0.0_f64;
     for i in model.hoses[h].nodes() {
         let local = now.pose.inverse_apply(state.x[i]);
-        let gravity = effective_gravity(model, state, k, local, state.time, now.pose.rotation);
+        let gravity = g0 + n0 * local;
         let c = &mut state.sleep.carried;
         c.part_of_node[i] = k;
         c.local_x[i] = local;
@@ -333,10 +340,16 @@ pub(crate) fn before_step(model: &Model, state: &mut State, dt: f64) {
         if k == NONE {
             continue;
         }
-        state.sleep.carried.end_pose[k] = model
-            .kinematics
-            .placement_at(k, t + dt, &state.part_moves)
-            .pose;
+        if state.sleep.carried.placed_for[k] != (t, dt) {
+            let end = model.kinematics.placement_at(k, t + dt, &state.part_moves);
+            let about = placements_about(model, state, k, t, 0.5 * dt);
+            let start = state.contact.placements[k].pose.rotation;
+            let map = gravity_map(model, &about, 0.5 * dt, start);
+            let spin = log_map(end.pose.rotation * start.conjugate()) / dt;
+            let c = &mut state.sleep.carried;
+            (c.end_pose[k], c.end_spin[k], c.gravity[k]) = (end.pose, spin, map);
+            c.placed_for[k] = (t, dt);
+        }
         let place = state.contact.placements[k];
         let mu = model.environment.parts[k].friction_static;
         let c = &state.sleep.carried;
@@ -354,7 +367,7 @@ pub(crate) fn before_step(model: &Model, state: &mut State, dt: f64) {
                 break;
             }
             let c = &state.sleep.carried;
-            let gravity = effective_gravity(model, state, k, c.local_x[i], t, place.pose.rotation);
+            let gravity = c.gravity[k].0 + c.gravity[k].1 * c.local_x[i];
             let change = model.mass[i] * (gravity - c.gravity0[i]);
             wake = if c.normal0[i] == DVec3::ZERO {
                 change.length() > WAKE_FORCE + WAKE_GRAVITY_CHANGE * model.mass[i] * g
@@ -369,8 +382,9 @@ pub(crate) fn before_step(model: &Model, state: &mut State, dt: f64) {
     }
 }
 
-/// Places the carried nodes still asleep and not held otherwise at their part's pose at the step's end,
-/// with the velocities of that motion over the step of `dt`; they count as held.
+/// Places the carried nodes still asleep and not held otherwise at their part's pose at
+/// the step's end, with the velocities of that motion over the step of `dt`; they count
+/// as held.
 pub(crate) fn carry(state: &mut State, dt: f64) {
     for i in 0..state.x.len() {
         if state.held[i] || !state.sleep.node_asleep[i] {
@@ -380,7 +394,7 @@ pub(crate) fn carry(state: &mut State, dt: f64) {
             continue;
         };
         state.v[i] = (x - state.x[i]) / dt;
-        state.w[i] = log_map(q * state.q[i].conjugate()) / dt;
+        state.w[i] = state.sleep.carried.end_spin[state.sleep.carried.part_of_node[i]];
         state.x[i] = x;
         state.q[i] = q;
         state.held[i] = true;
