@@ -75,7 +75,7 @@ fn world(glide: bool) -> anyhow::Result<(Model, State)> {
             triangles.push([idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)]);
         }
     }
-    let motion = glide.then(|| {
+    let motion = glide.then_some({
         PartMotion::Slide(Slide {
             direction: DVec3::X,
             distance: Profile::UniformAcceleration {
