@@ -266,18 +266,24 @@ fn a_hose_carried_towards_a_still_wall_wakes_before_it_touches_and_stops_there()
     assert!(r.hose_speed.1.abs() < 1e-3, "{} m/s", r.hose_speed.1);
 }
 
+/// The gliding [`world`] with the hose's first node held by the load case `hold` makes.
+fn gliding_with_end_held(sleeping: bool, hold: impl Fn(&State) -> LoadCase) -> (Model, State) {
+    let (model, mut state) = world(0.0, sleeping);
+    let case = hold(&state);
+    state.loads.add(case);
+    (model, state)
+}
+
 #[test]
 fn a_hose_fixed_in_the_world_on_the_gliding_plate_never_sleeps() {
-    let make = |sleeping: bool| {
-        let (model, mut state) = world(0.0, sleeping);
-        state.loads.add(LoadCase::Fix(Fix {
+    let fix = |s: &State| {
+        LoadCase::Fix(Fix {
             node: 0,
-            position: state.x[0],
-            orientation: state.q[0],
-        }));
-        (model, state)
+            position: s.x[0],
+            orientation: s.q[0],
+        })
     };
-    let r = run_world(make, 1.5, 1.0);
+    let r = run_world(|sleeping| gliding_with_end_held(sleeping, fix), 1.5, 1.0);
     assert_eq!(
         r.asleep_steps, 0,
         "the plate slides under it: not at rest on the plate"
@@ -287,18 +293,16 @@ fn a_hose_fixed_in_the_world_on_the_gliding_plate_never_sleeps() {
 
 #[test]
 fn a_hose_clamped_to_the_gliding_plate_sleeps_carried_with_its_clamp() {
-    let make = |sleeping: bool| {
-        let (model, mut state) = world(0.0, sleeping);
-        // the plate's reference placement is its pose at t = 0
-        state.loads.add(LoadCase::Mount(Mount {
+    // the plate's reference placement is its pose at t = 0
+    let mount = |s: &State| {
+        LoadCase::Mount(Mount {
             node: 0,
             part: 1,
-            position: state.x[0],
-            orientation: state.q[0],
-        }));
-        (model, state)
+            position: s.x[0],
+            orientation: s.q[0],
+        })
     };
-    let r = run_world(make, 2.0, 1.0);
+    let r = run_world(|sleeping| gliding_with_end_held(sleeping, mount), 2.0, 1.0);
     eprintln!(
         "slept at {:?} s, woke at {:?}, deviation {:.2e} m",
         r.slept_at, r.woke_at, r.deviation
