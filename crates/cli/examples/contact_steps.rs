@@ -4,7 +4,7 @@
 //! counts (`valgrind --tool=callgrind`), where the bench's timed repeats would vary:
 //!
 //! ```sh
-//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose] [floor motion: 1 = it sways as in the bench's moving rows, 2 = it glides at 0.05 m/s]
+//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose] [floor motion: 1 = it sways as in the bench's moving rows, 2 = it glides at 0.05 m/s] [sleeping: 1 = on, the hoses free; 2 = on, the hoses free and lying straight on a flat floor; 3 = the same, sleeping off]
 //! ```
 //!
 //! Prints the CPU time of the steps (and per element-step), the candidate-list counters,
@@ -27,8 +27,22 @@ fn main() -> anyhow::Result<()> {
         Some("2") => Some(floor_glide()),
         _ => None,
     };
-    let (mut model, mut state) = bench::setup_moving(hoses, elements, quads, motion)?;
+    let sleeping = args.get(7).map_or("0", String::as_str);
+    let (mut model, mut state) = if sleeping == "2" || sleeping == "3" {
+        lying_on_flat_floor(hoses, elements, quads, motion)?
+    } else {
+        bench::setup_moving(hoses, elements, quads, motion)?
+    };
     model.threads = 1;
+    if sleeping == "1" || sleeping == "2" {
+        // sleeping on, the hoses' first nodes let go: they come to rest on the floor,
+        // and sleep (carried by it when it moves)
+        state.loads = Default::default();
+        state.sleep.enabled = true;
+    }
+    if sleeping == "3" {
+        state.loads = Default::default();
+    }
     run(&model, &mut state, warm);
     let before = state.contact.candidates.clone();
     let rebuilds = state.hose_contact.rebuilds;
@@ -50,7 +64,8 @@ fn main() -> anyhow::Result<()> {
     println!(
         "{steps} steps of {hoses} × {elements} on {} triangles: {:.2} µs CPU per step \
          ({:.1} ns per element-step), {:.2} contact points per step, {} refreshes, \
-         {} truncations, {} fresh fallbacks, {} pair-list rebuilds, hash {hash:016x}",
+         {} truncations, {} fresh fallbacks, {} pair-list rebuilds, {} hoses asleep \
+         ({} carried), hash {hash:016x}",
         2 * quads * quads,
         cpu * 1e6 / steps as f64,
         cpu * 1e9 / (steps as f64 * model.elements.len() as f64),
@@ -59,6 +74,10 @@ fn main() -> anyhow::Result<()> {
         truncations,
         fallbacks,
         state.hose_contact.rebuilds - rebuilds,
+        state.sleep.sleeping(),
+        (0..model.hoses.len())
+            .filter(|&h| state.sleep.carried.part_of_hose(h).is_some())
+            .count(),
     );
     Ok(())
 }
@@ -79,6 +98,28 @@ fn run(model: &pliant_core::Model, state: &mut pliant_core::State, steps: u64) -
         points += state.contact.points.len();
     }
     points
+}
+
+/// The bench's hoses lying straight at rest on a flat floor of `2·quads²` triangles (the
+/// bench floor's area, 3 cm down) moving by `motion`: at rest on it from the start, they
+/// fall asleep after [`pliant_core::sleep::SLEEP_AFTER_STEPS`] steps (carried by it when it
+/// moves, [`pliant_core::sleep::carried`]).
+fn lying_on_flat_floor(
+    hoses: usize,
+    elements: usize,
+    quads: usize,
+    motion: Option<pliant_core::kinematics::PartMotion>,
+) -> anyhow::Result<(pliant_core::Model, pliant_core::State)> {
+    let mut world = bench::world_with_floor(hoses, elements, 0)?;
+    let mut floor = bench::grid_floor(quads, |_, _| -0.03);
+    floor.motion = motion;
+    world.rigid_parts = vec![floor];
+    let model = pliant_core::Model::build(&world)?;
+    let mut state = pliant_core::State::at_rest(&model);
+    for (x, r) in state.x.iter_mut().zip(&model.radius) {
+        x.z = -0.03 + r;
+    }
+    Ok((model, state))
 }
 
 /// User + system CPU time of this process \[s\].

@@ -374,17 +374,21 @@ pub const FLOOR_QUADS: usize = 224;
 /// A bumpy floor of `2·quads²` triangles 3 cm below the hoses (bumps ±1 cm), covering
 /// them and the area they can fall onto — the hoses land on it within the warm-up.
 pub fn bumpy_floor(quads: usize) -> RigidPartSpec {
+    grid_floor(quads, |x, y| {
+        -0.03 + 0.01 * (17.0 * x).sin() * (13.0 * y).cos()
+    })
+}
+
+/// A floor of `2·quads²` triangles over the area of [`bumpy_floor`], at height
+/// `height(x, y)`.
+pub fn grid_floor(quads: usize, height: impl Fn(f64, f64) -> f64) -> RigidPartSpec {
     let (x0, x1, y0, y1) = (-0.3, 1.0, -0.8, 1.2);
     let mut vertices = Vec::with_capacity((quads + 1) * (quads + 1));
     for j in 0..=quads {
         for i in 0..=quads {
             let x = x0 + (x1 - x0) * i as f64 / quads as f64;
             let y = y0 + (y1 - y0) * j as f64 / quads as f64;
-            vertices.push(DVec3::new(
-                x,
-                y,
-                -0.03 + 0.01 * (17.0 * x).sin() * (13.0 * y).cos(),
-            ));
+            vertices.push(DVec3::new(x, y, height(x, y)));
         }
     }
     let mut triangles = Vec::with_capacity(2 * quads * quads);

@@ -12,6 +12,12 @@
 //! tie ([`crate::loads::Tie`]) moves. Hoses joined by junctions ([`crate::junction`])
 //! sleep and wake together, as one network: a network falls asleep when all its hoses
 //! are calm, and wakes whole.
+//!
+//! A network lying on one moving part is calm when its nodes are at rest *relative to the
+//! part*; it then sleeps carried by the part ([`carried`]), and wakes besides when the
+//! part's motion would make it slip, lift off or sag, or carries it into something.
+
+pub mod carried;
 
 use crate::{Model, State};
 use glam::DVec3;
@@ -34,6 +40,8 @@ pub struct Sleep {
     calm: Vec<u32>,
     /// Per node: the hose–hose contact force when its hose fell asleep.
     contact_at_sleep: Vec<DVec3>,
+    /// The hoses asleep on a moving part, carried by it.
+    pub carried: carried::Carriage,
 }
 
 impl Sleep {
@@ -44,6 +52,7 @@ impl Sleep {
             node_asleep: vec![false; model.node_count()],
             calm: vec![0; model.hoses.len()],
             contact_at_sleep: vec![DVec3::ZERO; model.node_count()],
+            carried: carried::Carriage::new(model),
         }
     }
 
@@ -59,6 +68,7 @@ impl Sleep {
             }
             self.hose_asleep[k] = false;
             self.calm[k] = 0;
+            self.carried.release(model, k);
             for i in info.nodes() {
                 self.node_asleep[i] = false;
             }
@@ -89,6 +99,7 @@ pub fn update(model: &Model, state: &mut State, moved: impl Fn(usize) -> bool) {
     if !state.sleep.enabled {
         return;
     }
+    carried::survey(model, state);
     for (h, info) in model.hoses.iter().enumerate() {
         let driven = info.nodes().any(&moved);
         if state.sleep.hose_asleep[h] {
@@ -101,10 +112,11 @@ pub fn update(model: &Model, state: &mut State, moved: impl Fn(usize) -> bool) {
             }
             continue;
         }
+        // at rest, or at rest relative to the moving part its network lies on
         let calm = !driven
             && info.nodes().all(|i| {
-                state.v[i].length() < SLEEP_SPEED
-                    && state.w[i].length() * model.radius[i] < SLEEP_SPEED
+                let (v, w) = carried::relative_motion(state, h, i);
+                v.length() < SLEEP_SPEED && w.length() * model.radius[i] < SLEEP_SPEED
             });
         let s = &mut state.sleep;
         s.calm[h] = if calm { s.calm[h] + 1 } else { 0 };
@@ -119,14 +131,22 @@ pub fn update(model: &Model, state: &mut State, moved: impl Fn(usize) -> bool) {
         let all_calm = (0..model.hoses.len()).all(|k| {
             model.hose_network[k] != network || s.hose_asleep[k] || s.calm[k] >= SLEEP_AFTER_STEPS
         });
-        if all_calm {
-            s.hose_asleep[h] = true;
-            for i in info.nodes() {
-                s.node_asleep[i] = true;
-                s.contact_at_sleep[i] = state.hose_contact_force[i];
-                state.v[i] = DVec3::ZERO;
-                state.w[i] = DVec3::ZERO;
-            }
+        if !all_calm {
+            continue;
+        }
+        let Ok(carrier) = carried::carrier(model, state, h) else {
+            continue; // on a moving part that would not carry it at rest
+        };
+        let s = &mut state.sleep;
+        s.hose_asleep[h] = true;
+        for i in info.nodes() {
+            s.node_asleep[i] = true;
+            s.contact_at_sleep[i] = state.hose_contact_force[i];
+            state.v[i] = DVec3::ZERO;
+            state.w[i] = DVec3::ZERO;
+        }
+        if let Some(k) = carrier {
+            carried::begin(model, state, h, k);
         }
     }
     // a moving hose wakes the hoses tied to it (one that is merely awake but calm does

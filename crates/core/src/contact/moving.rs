@@ -307,7 +307,8 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
 }
 
 /// Wakes the sleeping nodes within reach of a moving part's box (a part that moves
-/// under a hose asleep on it must carry it); whether any woke.
+/// under a hose asleep on it must carry it) — but for the part that carries them
+/// ([`crate::sleep::carried`]); whether any woke.
 pub(crate) fn wake_near(model: &Model, state: &mut State, dt: f64) -> bool {
     let env = &model.environment;
     for slot in 0..env.moving.len() {
@@ -322,8 +323,12 @@ pub(crate) fn wake_near(model: &Model, state: &mut State, dt: f64) -> bool {
         }
         let reach = 2.0 * model.radius[i];
         let x = state.x[i];
+        let carrier = state.sleep.carried.part_of_node[i];
         let near = (0..env.moving.len()).any(|s| {
             let sweep = state.contact.moving_sweep[s];
+            if env.moving[s] == carrier {
+                return false;
+            }
             sweep > 0.0 && meets(&state.contact.moving_box[s], x, x, reach + sweep)
         });
         if near {

@@ -41,7 +41,7 @@ use parry3d_f64::bounding_volume::Aabb;
 use parry3d_f64::shape::Triangle;
 
 /// Detection distance beyond touching, as a fraction of the radius.
-pub(super) const SKIN: f64 = 0.01;
+pub(crate) const SKIN: f64 = 0.01;
 /// Largest penetration push-out per step, as a fraction of the radius.
 const MAX_PUSH: f64 = 0.1;
 /// Beam-interior contacts are those strictly between the nodes.

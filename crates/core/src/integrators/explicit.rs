@@ -44,6 +44,10 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
             &state.part_moves,
             placements,
         );
+        if state.sleep.enabled {
+            // hoses asleep on a moving part wake if it would no longer carry them at rest
+            crate::sleep::carried::before_step(model, state, dt);
+        }
     }
     {
         let config = NodeView {
@@ -119,7 +123,13 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
             continue;
         };
         let i = case.node();
-        if state.sleep.enabled && (x_new != state.x[i] || q_new != state.q[i]) {
+        // a support on the part that carries the node's hose asleep moves with it
+        let (x_now, q_now) = state
+            .sleep
+            .carried
+            .target(i)
+            .unwrap_or((state.x[i], state.q[i]));
+        if state.sleep.enabled && !same_pose((x_new, q_new), (x_now, q_now)) {
             // a moving support wakes its hose below
             state.sleep.node_asleep[i] = false;
             moved_any = true;
@@ -165,7 +175,9 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
         }
     }
     if state.sleep.enabled {
-        // sleeping nodes stay where they are, like held ones (no reaction reported)
+        // sleeping nodes go with the part that carries them, or stay where they are,
+        // like held ones (no reaction reported)
+        crate::sleep::carried::carry(state, dt);
         for i in 0..state.x.len() {
             if state.sleep.node_asleep[i] && !state.held[i] {
                 state.held[i] = true;
@@ -234,6 +246,14 @@ fn advance_nodes(model: &Model, state: &mut State, dt: f64, what: Advance) {
         w: &mut state.w,
     };
     advance(&mut nodes, dt, what);
+}
+
+/// Whether a support's pose is the one a sleeping node has (to rounding, when the node is
+/// carried by a part: the support's and the carried pose are composed differently).
+fn same_pose(a: (DVec3, glam::DQuat), b: (DVec3, glam::DQuat)) -> bool {
+    const ROUNDING: f64 = 1e-12;
+    a == b
+        || ((a.0 - b.0).length() <= ROUNDING && log_map(a.1 * b.1.conjugate()).length() <= ROUNDING)
 }
 
 /// Sleep bookkeeping after a step: a node whose support moved this step was marked awake
