@@ -52,4 +52,4 @@ pub use segment_triangle::{
 
 pub(crate) use moving::wake_near as wake_near_moving_parts;
 pub(crate) use penalty::add_penalty_forces;
-pub(crate) use rigid::{project_positions, resolve_velocities};
+pub(crate) use rigid::{project_positions, resolve_velocities, SKIN};
