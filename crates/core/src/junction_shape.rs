@@ -167,6 +167,26 @@ impl Model {
         }
     }
 
+    /// Part `k`'s placement in `state` at time `t`: a junction shape's from its body's
+    /// state, any other part's from the kinematics (moved by the state's inputs).
+    pub fn part_placement(&self, state: &State, k: usize, t: f64) -> Placement {
+        match self
+            .junction_shapes
+            .junction_of_part
+            .get(k)
+            .copied()
+            .flatten()
+        {
+            Some(j) => self.junction_shape_placement(j, &state.bodies[self.junctions[j].body]),
+            None => self.kinematics.placement_at(k, t, &state.part_moves),
+        }
+    }
+
+    /// Whether part `k` moves: by its motion, its parent or inputs, or as a junction shape.
+    pub fn part_moves(&self, k: usize) -> bool {
+        self.kinematics.moves(k) || self.environment.parts.get(k).is_some_and(|p| p.moves)
+    }
+
     /// Places every junction shape at its body's pose in `state.contact.placements`
     /// (after the parts' kinematics have placed the others).
     pub(crate) fn place_junction_shapes(&self, state: &mut State) {

@@ -764,13 +764,13 @@ impl Sim {
                 .as_deref(),
             Stage::Running,
         );
-        let kinematics = &self.cell.model().kinematics;
+        let model = self.cell.model();
+        let kinematics = &model.kinematics;
+        // a junction body's shape rides on its body (pliant_core::junction_shape)
         let part_poses = (0..kinematics.len())
-            .filter(|&k| kinematics.moves(k))
+            .filter(|&k| model.part_moves(k))
             .map(|k| {
-                let pose = kinematics
-                    .placement_at(k, state.time, &state.part_moves)
-                    .pose;
+                let pose = model.part_placement(state, k, state.time).pose;
                 PartPose {
                     part: k,
                     translation: pose.translation.to_array(),
