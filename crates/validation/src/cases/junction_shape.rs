@@ -273,7 +273,7 @@ pub fn run_impact() -> Vec<Check> {
     vec![
         Check::scaled(
             CASE,
-            "largest drift of the total momentum |Σ m_i v_i − p₀| / |p₀|",
+            "largest drift of the total momentum, norm of (Σ m_i v_i − p₀) / norm of p₀",
             drift,
             0.0,
             scale,
@@ -281,7 +281,7 @@ pub fn run_impact() -> Vec<Check> {
         ),
         Check::with_error(
             CASE,
-            "momentum the network took up / |p₀| (≥ 0.1)",
+            "momentum the network took up / norm of p₀ (≥ 0.1)",
             taken / scale,
             0.1,
             (0.1 - taken / scale).max(0.0),
