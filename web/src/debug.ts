@@ -41,10 +41,12 @@ export function installDebugHandle(app: App): void {
     get xrHitTest() { return src.xr.hitTest; },
     /** AR: stands the scene on a real surface at `hit` (three.js space), as select on the reticle does. */
     xrStandOn(hit: [number, number, number]) { src.xr.standOn(hit); },
-    /** The worker drawn: shown or not, its capsules (manikin_model.ts), the panel's lines. */
-    manikin(): { visible: boolean; capsules: ManikinCapsule[]; lines: string[] } {
+    /** The worker drawn: shown or not, its capsules (manikin_model.ts), the panel's lines,
+     *  and a seated worker's seat box (shown or not, its centre and its full lengths along
+     *  the worker's forward, left and up, in the scene's frame). */
+    manikin(): { visible: boolean; capsules: ManikinCapsule[]; lines: string[]; seat: { visible: boolean; centre: number[]; size: number[] } } {
       const lines = [...document.querySelectorAll('#worker div')].map((d) => d.textContent ?? '');
-      return { visible: app.manikin.group.visible, capsules: app.manikin.drawn, lines };
+      return { visible: app.manikin.group.visible, capsules: app.manikin.drawn, lines, seat: app.manikin.seatDrawn() };
     },
     /** The scene's lowest height in three.js space (y up; in AR, the real floor is 0) and
      *  whether its own background is drawn. */

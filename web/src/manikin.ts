@@ -3,15 +3,16 @@
 // snapshot's `worker` (live and in replays); a segment inside a part or hose is red, and
 // the panel lists reach, contacts and the posture scores (manikin_model.ts). When the
 // worker steps or turns, the body glides to the new stance over STEP_DRAW_S (`tick`, each
-// frame) instead of jumping there.
+// frame) instead of jumping there. A seated worker's seat is drawn as a grey box.
 
 import * as THREE from 'three';
 import { el } from './panel';
-import { glide, manikinCapsules, manikinLines, STEP_DRAW_S, stepped, type ManikinCapsule } from './manikin_model';
+import { glide, manikinCapsules, manikinLines, seatBox, STEP_DRAW_S, stepped, type ManikinCapsule } from './manikin_model';
 import type { Snapshot, WorkerData } from './protocol';
 
 const BODY_COLOUR = 0xc8b08c;
 const CONTACT_COLOUR = 0xe5484d;
+const SEAT_COLOUR = 0x7a7f87;
 const Y = new THREE.Vector3(0, 1, 0);
 
 interface DrawnSegment {
@@ -35,10 +36,18 @@ export class ManikinView {
   /** A step being drawn: the capsules it started from and when [performance.now ms]. */
   private gliding: { from: ManikinCapsule[]; start: number } | null = null;
   private linesShown = '';
+  /** A seated worker's seat (hidden while standing). */
+  private readonly seat = new THREE.Mesh(
+    new THREE.BoxGeometry(1, 1, 1),
+    new THREE.MeshStandardMaterial({ color: SEAT_COLOUR, roughness: 0.8 }),
+  );
+  private readonly basis = new THREE.Matrix4();
 
   constructor(private readonly slot: HTMLElement) {
     this.group.name = 'manikin';
     this.group.visible = false;
+    this.seat.name = 'manikin:seat';
+    this.seat.visible = false;
   }
 
   /** A new session: its worker's segments (none: nothing is drawn). */
@@ -50,6 +59,7 @@ export class ManikinView {
       this.slot.replaceChildren(el('div', { class: 'muted' }, 'no worker in this scene'));
       return;
     }
+    this.group.add(this.seat);
     this.segments = this.data.segments.map((name) => {
       const material = new THREE.MeshStandardMaterial({ color: BODY_COLOUR, roughness: 0.7, transparent: true, opacity: 0.85 });
       const shaft = new THREE.Mesh(this.cylinder, material);
@@ -73,6 +83,7 @@ export class ManikinView {
       this.gliding = { from: this.shown, start: performance.now() };
     }
     this.lastPose = pose;
+    this.placeSeat(pose);
     if (this.gliding === null) this.place(this.drawn);
     else this.tick(performance.now());
     const lines = manikinLines(data, pose, this.drawn);
@@ -88,6 +99,24 @@ export class ManikinView {
     const f = (now - this.gliding.start) / (1000 * STEP_DRAW_S);
     if (f >= 1) this.gliding = null;
     this.place(f >= 1 ? this.drawn : glide(this.gliding?.from ?? this.drawn, this.drawn, f));
+  }
+
+  /** The seat as drawn: shown or not, its mesh's centre and scale (its full lengths). */
+  seatDrawn(): { visible: boolean; centre: number[]; size: number[] } {
+    const s = this.seat;
+    return { visible: s.visible && this.group.visible, centre: s.position.toArray(), size: s.scale.toArray() };
+  }
+
+  /** Puts the seat box where the snapshot says (hidden without one). */
+  private placeSeat(pose: Snapshot['worker']): void {
+    const box = seatBox(pose);
+    this.seat.visible = box !== null;
+    if (box === null) return;
+    const v = (a: readonly number[]) => new THREE.Vector3(a[0], a[1], a[2]);
+    this.basis.makeBasis(v(box.forward), v(box.left), v(box.up));
+    this.seat.quaternion.setFromRotationMatrix(this.basis);
+    this.seat.scale.set(box.size[0], box.size[1], box.size[2]);
+    this.seat.position.set(box.centre[0], box.centre[1], box.centre[2]);
   }
 
   /** Puts the segments' meshes on the capsules `caps`. */
@@ -116,6 +145,7 @@ export class ManikinView {
   private clear(): void {
     for (const d of this.segments) d.material.dispose();
     this.group.clear();
+    this.seat.visible = false;
     this.segments = [];
     this.drawn = [];
     this.shown = [];

@@ -1,9 +1,9 @@
 // What the viewer draws of the worker (pure, no three.js): the capsules of the posed
 // body from a snapshot's `worker` and the welcome's segments and radii, which of them
 // collide and with what, and the panel's lines — reach shortfall per arm, RULA, REBA and
-// the posture class (docs/worker.md, docs/protocol.md).
+// the posture class (docs/worker.md, docs/protocol.md); a seated worker's seat as a box.
 
-import type { Vec3, WorkerData, WorkerSnapshot } from './protocol';
+import type { SeatBox, Vec3, WorkerData, WorkerSnapshot } from './protocol';
 
 /** One capsule to draw: the axis a–b and radius [m]; `contact` what it is inside now. */
 export interface ManikinCapsule {
@@ -21,7 +21,25 @@ const CLASS_WORDS: Record<WorkerSnapshot['posture_class'], string> = {
   upright: 'standing upright',
   bent_trunk: 'bent trunk',
   arms_above_shoulder: 'arms above shoulder',
+  sitting: 'sitting',
+  sitting_bent_trunk: 'sitting with bent trunk',
 };
+
+/** The seat to draw: the snapshot's box with its left direction (up × forward), or null
+ *  for a standing worker or a box that is not finite, has a size not above zero, or
+ *  directions that are not unit vectors at right angles (to 1e-6). */
+export function seatBox(pose: WorkerSnapshot | undefined): (SeatBox & { left: Vec3 }) | null {
+  const s = pose?.seat;
+  if (s === undefined || s === null) return null;
+  const all = [...s.centre, ...s.size, ...s.forward, ...s.up];
+  if (all.length !== 12 || !all.every(Number.isFinite) || !s.size.every((x) => x > 0)) return null;
+  const dot = (a: Vec3, b: Vec3) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const unit = (a: Vec3) => Math.abs(dot(a, a) - 1) < 1e-6;
+  if (!unit(s.forward) || !unit(s.up) || Math.abs(dot(s.forward, s.up)) > 1e-6) return null;
+  const [f, u] = [s.forward, s.up];
+  const left: Vec3 = [u[1] * f[2] - u[2] * f[1], u[2] * f[0] - u[0] * f[2], u[0] * f[1] - u[1] * f[0]];
+  return { centre: s.centre, size: s.size, forward: f, up: u, left };
+}
 
 /** The capsules of `pose` for the body `data`; `names` the welcome's part and hose
  *  names. A pose that does not fit the body (wrong count, a non-finite number) draws
@@ -57,6 +75,8 @@ export function manikinCapsules(
 export function manikinLines(data: WorkerData, pose: WorkerSnapshot | undefined, capsules: readonly ManikinCapsule[]): string[] {
   if (pose === undefined) return [`${data.who}: not posed yet`];
   const lines = [`${data.who} at t = ${pose.time.toFixed(2)} s: RULA ${pose.rula}, REBA ${pose.reba}, ${CLASS_WORDS[pose.posture_class] ?? pose.posture_class}`];
+  const seat = seatBox(pose);
+  if (seat !== null) lines.push(`seated, the seat ${(1e3 * seat.size[2]).toFixed(0)} mm high`);
   ['right', 'left'].forEach((side, i) => {
     const arm = pose.arms[i];
     if (arm === null || arm === undefined) return;

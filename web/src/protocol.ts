@@ -103,13 +103,17 @@ export interface WorkerSnapshot {
   arms: ({ hand: number; shortfall: number } | null)[];
   rula: number;
   reba: number;
-  posture_class: 'upright' | 'bent_trunk' | 'arms_above_shoulder';
+  posture_class: 'upright' | 'bent_trunk' | 'arms_above_shoulder' | 'sitting' | 'sitting_bent_trunk';
   /** Where it stands: the floor point between the feet [m] and the unit direction it
    *  faces (absent in recordings made before the snapshot carried it). */
   stance?: { position: Vec3; forward: Vec3 };
   /** Steps taken so far. */
   steps?: number;
+  /** A seated worker's seat as a box (absent: standing): its centre [m], its full lengths
+   *  along the worker's forward, left and up directions [m], and those directions. */
+  seat?: SeatBox;
 }
+export interface SeatBox { centre: Vec3; size: Vec3; forward: Vec3; up: Vec3 }
 export interface Welcome { type: 'welcome'; version: number; client_id: number; session: SceneData }
 
 export type LoadKind = 'push' | 'pull' | 'twist' | 'bending';

@@ -1,7 +1,7 @@
 //! From the fitted laws to the material's inelastic entries, in the scene format
 //! (docs/scene-format.md, `[materials.NAME]`): `yield_stress_mpa` and
-//! `hardening_modulus_mpa` from a test past yield (bending or torsion; σ_y = √3 τ_y from
-//! torsion), `relaxation = [{ weight, time_s
+//! `hardening_modulus_mpa` from the tests past yield (a bending one, a torsion one or one
+//! of each: [`crate::yield_combination`]), `relaxation = [{ weight, time_s
 //! }, …]` from a relaxation test, `hysteresis = { bending_moment_n_m, … }` from cyclic
 //! bending (and torsion) tests — every value with its 95 % interval and source — and the
 //! elastic stiffness each law fit measured (E·I, EI or GJ), which joins the stiffness
@@ -12,6 +12,7 @@ use crate::law_fit::LawFit;
 use crate::material_entry::{num, Derived, Measured};
 use crate::mechanics::{Property, TestKind};
 use crate::nonlinear_least_squares::Estimate;
+use crate::yield_combination;
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -42,6 +43,10 @@ pub struct LawEntries {
     pub relaxation: Vec<PronyEntry>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub hysteresis: Option<HysteresisEntry>,
+    /// How the entries were put together from several tests (for the material's
+    /// warnings).
+    #[serde(skip)]
+    pub notes: Vec<String>,
 }
 
 /// A law fit described for a source line.
@@ -80,7 +85,7 @@ pub fn is_yield_test(kind: TestKind) -> bool {
 
 /// An estimate in a display unit (`scale` from SI) with its interval and the fit as
 /// source.
-fn derived(e: &Estimate, scale: f64, f: &LawFit) -> Derived {
+pub(crate) fn derived(e: &Estimate, scale: f64, f: &LawFit) -> Derived {
     Derived::source(
         e.value * scale,
         Some([e.ci95[0] * scale, e.ci95[1] * scale]),
@@ -88,7 +93,7 @@ fn derived(e: &Estimate, scale: f64, f: &LawFit) -> Derived {
     )
 }
 
-fn estimate<'a>(f: &'a LawFit, name: &str) -> Result<&'a Estimate, String> {
+pub(crate) fn estimate<'a>(f: &'a LawFit, name: &str) -> Result<&'a Estimate, String> {
     f.estimate(name)
         .ok_or_else(|| format!("{}: the fit has no {name}", f.csv))
 }
@@ -144,16 +149,22 @@ pub fn entries(laws: &[LawFit]) -> Result<LawEntries, String> {
         }
     };
     let yield_tests: Vec<&LawFit> = laws.iter().filter(|f| is_yield_test(f.kind)).collect();
-    if let [first, second, ..] = yield_tests[..] {
+    let bending_yield: Vec<&LawFit> = yield_tests
+        .iter()
+        .copied()
+        .filter(|f| f.kind != TestKind::PlasticTorsion)
+        .collect();
+    if let [first, second, ..] = bending_yield[..] {
         return Err(format!(
-            "two tests past yield ({} {} and {} {}): give one per calibration (the yield law has one σ_y and one H)",
+            "two bending tests past yield ({} {} and {} {}): give one per calibration (the yield law has one σ_y and one H; a plastic_torsion test may join it)",
             first.kind.name(),
             first.csv,
             second.kind.name(),
             second.csv
         ));
     }
-    let plastic = yield_tests.first().copied();
+    let torsion_yield = of(TestKind::PlasticTorsion)?;
+    let plastic = yield_combination::combine(bending_yield.first().copied(), torsion_yield)?;
     let relaxation = of(TestKind::Relaxation)?;
     let bending = of(TestKind::CyclicBending)?;
     let torsion = of(TestKind::CyclicTorsion)?;
@@ -172,21 +183,10 @@ pub fn entries(laws: &[LawFit]) -> Result<LawEntries, String> {
         return Err("a cyclic_torsion test needs a cyclic_bending test too: the scene's hysteresis has a bending pair and an optional torsion pair".into());
     }
     let mut out = LawEntries::default();
-    if let Some(f) = plastic {
-        out.yield_stress_mpa = Some(if f.kind == TestKind::PlasticTorsion {
-            // von Mises: σ_y = √3 τ_y
-            derived(estimate(f, "tau_y")?, 3f64.sqrt() * 1e-6, f)
-        } else {
-            derived(estimate(f, "sigma_y")?, 1e-6, f)
-        });
-        let h = estimate(f, "H")?;
-        let mut h = derived(h, 1e-6, f);
-        // a hardening interval reaching below zero means "consistent with perfect
-        // plasticity": the law takes H ≥ 0
-        if let Some(ci) = h.ci95.as_mut() {
-            ci[0] = ci[0].max(0.0);
-        }
-        out.hardening_modulus_mpa = Some(h);
+    if let Some(y) = plastic {
+        out.yield_stress_mpa = Some(y.yield_stress);
+        out.hardening_modulus_mpa = Some(y.hardening);
+        out.notes.extend(y.note);
     }
     if let Some(f) = relaxation {
         let values = &f.fit.estimates;

@@ -47,6 +47,7 @@ pub mod spec;
 pub mod student_t;
 pub mod synthetic;
 pub mod synthetic_laws;
+pub mod yield_combination;
 pub mod yield_fit;
 pub mod yield_law_fit;
 

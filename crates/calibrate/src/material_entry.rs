@@ -229,6 +229,7 @@ pub fn derive(
 ) -> Result<MaterialResult, String> {
     let mut warnings = Vec::new();
     let law_entries = law_entry::entries(laws)?;
+    warnings.extend(law_entries.notes.iter().cloned());
     let measured: Vec<Measured> = fits
         .iter()
         .map(Measured::of_test)

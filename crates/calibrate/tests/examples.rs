@@ -188,11 +188,15 @@ fn the_law_examples_give_their_laws_back() {
     }
     // (file, parameter, truth) of each example
     let sy = law.yield_stress;
-    let checks: [(&str, &[(&str, f64)]); 7] = [
+    let checks: [(&str, &[(&str, f64)]); 8] = [
         ("metal_line.toml", &[("E", e), ("sigma_y", sy)]),
         (
             "metal_line_torsion.toml",
             &[("G", g), ("tau_y", sy / 3f64.sqrt())],
+        ),
+        (
+            "metal_line_bending_and_torsion.toml",
+            &[("E", e), ("sigma_y", sy), ("G", g)],
         ),
         ("metal_line_cantilever.toml", &[("E", e), ("sigma_y", sy)]),
         ("metal_line_three_point.toml", &[("E", e), ("sigma_y", sy)]),

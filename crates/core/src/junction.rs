@@ -182,12 +182,12 @@ impl Model {
                     nodes.clone(),
                     (&self.rest_x, &self.rest_q),
                     (&self.mass, &self.inertia),
-                    spec.body_mass,
+                    spec.body_mass * self.mass_scaling,
                     centre,
-                    inertia,
+                    inertia * self.mass_scaling,
                 )
             } else {
-                let share = spec.body_mass / nodes.len() as f64;
+                let share = spec.body_mass * self.mass_scaling / nodes.len() as f64;
                 for &i in &nodes {
                     self.mass[i] += share;
                 }

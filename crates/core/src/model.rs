@@ -42,18 +42,32 @@ impl HoseInfo {
 pub struct Model {
     pub hoses: Vec<HoseInfo>,
     pub elements: Vec<BeamElement>,
-    /// Lumped translational mass per node \[kg\].
+    /// Lumped translational mass per node \[kg\], times [`Self::mass_scaling`]: the
+    /// inertia the solvers move.
     pub mass: Vec<f64>,
-    /// Lumped isotropic rotational inertia per node \[kg·m²\] (see [`crate::rod::mass`]).
+    /// Lumped isotropic rotational inertia per node \[kg·m²\] (see [`crate::rod::mass`]),
+    /// times [`Self::mass_scaling`].
     pub inertia: Vec<f64>,
     /// Outer radius per node \[m\] (for drawing and contact).
     pub radius: Vec<f64>,
     /// Rest positions \[m\] and rest material frames.
     pub rest_x: Vec<DVec3>,
     pub rest_q: Vec<DQuat>,
+    /// Gravity per unit of [`Self::mass`] \[m/s²\]: g / s, so that `mass · gravity` is
+    /// the physical weight m g whatever the mass scaling s.
     pub gravity: DVec3,
-    /// Mass-proportional Rayleigh damping α \[1/s\].
+    /// Mass-proportional Rayleigh damping per unit of [`Self::mass`] \[1/s\]: α / s, so
+    /// that the damping force α m v is the one the scene asks for.
     pub damping_mass: f64,
+    /// Mass scaling s ≥ 1 ([`crate::spec::SimSettings::mass_scaling`]): the inertia of
+    /// every node and body is s times its mass, its weight and mass damping are not. The
+    /// explicit step grows by √s (every natural frequency falls by √s) while the
+    /// equilibria stay exactly the same — the standard device for quasi-static processes
+    /// in explicit dynamics (Belytschko, Liu & Moran, "Nonlinear Finite Elements", §6.5;
+    /// Olovsson, Simonsson & Unosson 2005): inertial forces grow by s, so it is right only
+    /// while they stay small against the static ones, which a study checks by running
+    /// some of its variants again unscaled.
+    pub mass_scaling: f64,
     /// Stiffness-proportional Rayleigh damping β \[s\] (resolved default if not given).
     pub damping_stiffness: f64,
     /// The time step used \[s\].
@@ -96,6 +110,9 @@ pub struct Model {
 /// The environment variable that sets the explicit step's thread count, overriding the
 /// settings (`pliant … --threads N` sets it).
 pub const THREADS_ENV: &str = "PLIANT_THREADS";
+
+/// Largest mass scaling accepted: the explicit step grows by √s, 100 × at most.
+pub const MAX_MASS_SCALING: f64 = 1e4;
 
 /// Most Newton iterations the static solver may be allowed per equilibrium (each costs
 /// one assembly and factorisation: 10 000 bound the work of one input).
@@ -272,8 +289,9 @@ impl Model {
             radius: Vec::with_capacity(total_nodes),
             rest_x: Vec::with_capacity(total_nodes),
             rest_q: Vec::with_capacity(total_nodes),
-            gravity: spec.settings.gravity,
-            damping_mass: spec.settings.damping_mass,
+            gravity: spec.settings.gravity / spec.settings.mass_scaling,
+            damping_mass: spec.settings.damping_mass / spec.settings.mass_scaling,
+            mass_scaling: spec.settings.mass_scaling,
             damping_stiffness: 0.0,
             time_step: 0.0,
             time_step_report: TimeStepReport::default(),
@@ -295,6 +313,9 @@ impl Model {
         for h in &spec.hoses {
             check_hose(h)?;
             model.add_hose(h);
+        }
+        for m in model.mass.iter_mut().chain(model.inertia.iter_mut()) {
+            *m *= model.mass_scaling;
         }
         let report = stable_time_step(&model, &spec.settings)?;
         model.damping_stiffness = report.damping_stiffness;
@@ -468,6 +489,12 @@ fn check_settings(s: &SimSettings) -> Result<(), ModelError> {
     }
     if !(s.damping_mass >= 0.0 && s.damping_mass.is_finite()) {
         return bad(format!("mass damping must be ≥ 0, is {}", s.damping_mass));
+    }
+    if !(s.mass_scaling >= 1.0 && s.mass_scaling <= MAX_MASS_SCALING) {
+        return bad(format!(
+            "mass scaling must lie in 1 … {MAX_MASS_SCALING}, is {}",
+            s.mass_scaling
+        ));
     }
     if let Some(b) = s.damping_stiffness {
         if !(b >= 0.0 && b.is_finite()) {

@@ -98,6 +98,19 @@ pub struct SimSettings {
         skip_serializing_if = "is_default_max_contact_pairs"
     )]
     pub max_contact_pairs: usize,
+    /// Mass scaling s ≥ 1 for quasi-static runs ([`crate::model::Model::mass_scaling`]):
+    /// every node's and body's inertia is s times its mass, its weight and mass damping
+    /// stay as they are. 1 (the default): the physical dynamics.
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub mass_scaling: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn is_one(s: &f64) -> bool {
+    *s == 1.0
 }
 
 /// Default of [`SimSettings::max_contact_pairs`]: the pairs 4 GiB hold.
@@ -123,6 +136,7 @@ impl Default for SimSettings {
             threads: None,
             hose_contact: HoseContactRule::All,
             max_contact_pairs: DEFAULT_MAX_CONTACT_PAIRS,
+            mass_scaling: 1.0,
         }
     }
 }

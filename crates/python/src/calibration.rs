@@ -226,14 +226,18 @@ fn columns_csv(data: &BTreeMap<String, Vec<f64>>) -> Result<String, String> {
 ///
 /// Either ``spec``, a calibration file (TOML, format "pliant-calibration"), or one test:
 /// ``kind`` (tension, compression, three_point_bending, cantilever, torsion, iso10619;
-/// or an inelastic law: plastic_bending, cyclic_bending, cyclic_torsion — relaxation
-/// needs a stiffness test beside it, so a calibration file) with its curve as ``csv`` (a file) or ``data`` (a dict of columns named with units,
+/// or an inelastic law: plastic_cantilever, plastic_three_point_bending, plastic_torsion,
+/// relaxation, cyclic_bending, cyclic_torsion) with its curve as ``csv`` (a file) or
+/// ``data`` (a dict of columns named with units,
 /// e.g. ``{"force_N": f, "displacement_mm": d}``), ``length_mm`` (gauge length, span,
 /// free length, grip distance or lever arm), the specimen's ``d_outer_mm`` and
 /// ``d_inner_mm``, and the material's ``name``, ``density_kg_m3`` and ``poisson``.
+/// A relaxation test alone needs ``held_strain`` (the strain held: it gives E₀);
+/// ``terms`` forces its number of Prony terms (else chosen by BIC). Both are refused
+/// for the other kinds, as in a calibration file.
 /// ``out``: also write the four files there. Raises :class:`CalibrationError`.
 #[pyfunction]
-#[pyo3(signature = (spec=None, *, kind=None, csv=None, data=None, length_mm=None, d_outer_mm=None, d_inner_mm=0.0, name="calibrated", density_kg_m3=1100.0, poisson=None, out=None))]
+#[pyo3(signature = (spec=None, *, kind=None, csv=None, data=None, length_mm=None, d_outer_mm=None, d_inner_mm=0.0, name="calibrated", density_kg_m3=1100.0, poisson=None, terms=None, held_strain=None, out=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn calibrate(
     py: Python<'_>,
@@ -247,6 +251,8 @@ pub fn calibrate(
     name: &str,
     density_kg_m3: f64,
     poisson: Option<f64>,
+    terms: Option<usize>,
+    held_strain: Option<f64>,
     out: Option<PathBuf>,
 ) -> PyResult<Calibration> {
     let inner = match spec {
@@ -254,6 +260,11 @@ pub fn calibrate(
             if kind.is_some() || csv.is_some() || data.is_some() {
                 return Err(PyValueError::new_err(
                     "give either a calibration file or kind with csv or data, not both",
+                ));
+            }
+            if terms.is_some() || held_strain.is_some() {
+                return Err(PyValueError::new_err(
+                    "terms and held_strain are for one test given by kind; in a calibration file they belong to its [[tests]] entry",
                 ));
             }
             py.allow_threads(|| pliant_calibrate::calibrate_file(&path))
@@ -305,8 +316,8 @@ pub fn calibrate(
                     length_mm,
                     d_inner_mm: None,
                     d_outer_mm: None,
-                    terms: None,
-                    held_strain: None,
+                    terms,
+                    held_strain,
                 }],
             };
             let origin = format!("pliant.calibrate(kind={:?})", kind.name());

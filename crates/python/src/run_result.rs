@@ -308,7 +308,7 @@ impl RunResult {
 
     /// What the worker of the scene's ``[worker]`` did (SPEC E1–E2), or ``None`` without
     /// one: the summary of ``Simulation.worker()`` without its ``series`` — ``who``,
-    /// ``reach`` per arm, ``collisions``, ``worst_rula``, ``worst_reba``,
+    /// ``seat`` (a seated worker's ``height`` [m], ``None`` standing), ``reach`` per arm, ``collisions``, ``worst_rula``, ``worst_reba``,
     /// ``class_instants``, ``steps`` (each step: ``time``, ``length`` [m], ``turn`` [rad,
     /// positive to the left], ``words``,
     /// ``from``, ``to``, ``cause``) and ``step_count``, ``findings`` (typed).

@@ -928,10 +928,15 @@ impl Simulation {
         Ok(vectors(py, self.model().rest_x[r].iter().copied()))
     }
 
-    /// Lumped node masses \[kg\], shape (N,).
+    /// Lumped node masses \[kg\], shape (N,) (physical: without the mass scaling).
     fn masses<'py>(&self, py: Python<'py>, hose: HoseRef) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let r = self.nodes(&hose)?;
-        Ok(PyArray1::from_slice(py, &self.model().mass[r]))
+        let model = self.model();
+        let masses: Vec<f64> = model.mass[r]
+            .iter()
+            .map(|m| m / model.mass_scaling)
+            .collect();
+        Ok(PyArray1::from_vec(py, masses))
     }
 
     /// Kinetic energy \[J\].
@@ -960,7 +965,9 @@ impl Simulation {
 
     /// The worker of the scene's ``[worker]`` so far (SPEC E1–E2), or ``None`` without
     /// one: ``who``, ``body`` (stature and segment lengths [m], joint limits [rad]),
-    /// ``placement``, ``instants``, ``reach`` (per arm, right then left: ``worst``
+    /// ``seat`` (a seated worker's ``height`` [m], ``None`` standing), ``placement``,
+    /// ``instants``, ``class_instants`` (per posture class: ``upright``, ``bent_trunk``,
+    /// ``arms_above_shoulder``, ``sitting``, ``sitting_bent_trunk``), ``reach`` (per arm, right then left: ``worst``
     /// residual [m], its ``time`` [s], ``hand``, ``first_out``, ``last_out``),
     /// ``collisions`` (segment, part, depth [m], times), ``worst_rula`` and
     /// ``worst_reba`` (every body-part score and the time), ``worst_posture``, ``steps``
@@ -968,7 +975,8 @@ impl Simulation {
     /// ``findings`` (out of reach and body collisions, typed) and ``series``: one list per
     /// column of ``worker.csv`` (``time``, ``right_residual`` and ``left_residual`` —
     /// ``None`` where the arm has no target —, ``rula``, ``reba``, ``trunk_flexion``, …
-    /// in SI; ``numpy.asarray`` makes arrays of them).
+    /// in SI, and ``posture_class``, the class's name at each instant; ``numpy.asarray``
+    /// makes arrays of them).
     fn worker<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let Some(track) = self.engine.cell().worker() else {
             return Ok(py.None().into_bound(py));
@@ -993,6 +1001,7 @@ impl Simulation {
                 "trunk_twist": column(&|w| w.trunk_twist),
                 "neck_flexion": column(&|w| w.neck_flexion),
                 "collision_depth": column(&|w| w.collision_depth),
+                "posture_class": series.iter().map(|w| w.posture_class.name()).collect::<Vec<_>>(),
         });
         to_python(py, &value)
     }

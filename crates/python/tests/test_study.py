@@ -544,6 +544,17 @@ def test_profile_solver_and_scene_values_reach_the_scene(scene_path):
         variant_scene(load_study(d), s)
 
 
+def test_mass_scaling_reaches_every_run_and_is_checked(scene_path):
+    d = study_dict(scene_path, absurd=False)
+    d["mass_scaling"] = 9
+    scene = variant_scene(load_study(d), samples(load_study(d))[0])
+    assert scene["simulation"]["mass_scaling"] == 9.0
+    for bad in (0.5, "9", True, 2e4):
+        d["mass_scaling"] = bad
+        with pytest.raises(StudyError, match="mass_scaling"):
+            load_study(d)
+
+
 def test_scene_values_are_set_in_every_run_and_checked_on_load(scene_path):
     d = study_dict(scene_path, absurd=False)
     d["scene_values"] = {"simulation.time_step_safety": 0.9, "timeline[3].duration_s": 0.5}

@@ -190,3 +190,21 @@ def test_the_sample_is_the_same_for_the_same_seed_and_never_repeats():
     a = agreement.choose(list(range(100)), 30, seed=4)
     assert a == agreement.choose(list(range(100)), 30, seed=4) and len(set(a)) == 30
     assert agreement.choose(list(range(5)), 30, seed=4) == list(range(5))
+
+
+def test_mass_scaled_runs_are_checked_against_unscaled_ones(tmp_path):
+    """A study with mass scaling 4: its reference runs are the scene's own physics (no
+    scaling), labelled so, and their step counts show it (the scaled step is twice as
+    long, so the same timeline takes about half the steps)."""
+    import pyarrow.parquet as pq
+
+    scene = tmp_path / "s.toml"
+    scene.write_text(SCENE)
+    d = dict(study_dict(scene, runs=4, absurd=False), mass_scaling=4)
+    result = pliant.study(d, str(tmp_path / "out"), workers=2, progress=False, check_agreement=4)
+    summary = result.agreement
+    assert summary["solver"] == "explicit (mass scaling 4)"
+    assert summary["reference_solver"] == "explicit (unscaled)"
+    rows = pq.read_table(tmp_path / "out" / agreement.AGREEMENT_ROWS).to_pandas()
+    assert len(rows) == 4
+    assert (rows["reference_steps"] > 1.5 * rows["steps"]).all(), rows[["steps", "reference_steps"]]

@@ -47,7 +47,10 @@ def test_the_small_woman_is_out_of_reach_and_the_series_are_arrays():
     sim = simulate(scene_text(5))
     w = sim.worker()
     assert w["who"] == "the 5th-percentile woman"
-    series = {k: np.asarray(v, dtype=float) for k, v in w["series"].items()}
+    series = {
+        k: np.asarray(v, dtype=str if k == "posture_class" else float)
+        for k, v in w["series"].items()
+    }
     n = len(series["time"])
     assert n == w["instants"] > 2
     assert all(len(v) == n for v in series.values())
@@ -65,7 +68,15 @@ def test_the_small_woman_is_out_of_reach_and_the_series_are_arrays():
     assert w["worst_rula"]["score"]["grand"] == series["rula"].max()
     assert w["worst_reba"]["score"]["reba"] == series["reba"].max()
     # reaching up, the arm is above the shoulder at every instant (SPEC E2)
-    assert w["class_instants"] == {"upright": 0, "bent_trunk": 0, "arms_above_shoulder": n}
+    assert w["class_instants"] == {
+        "upright": 0,
+        "bent_trunk": 0,
+        "arms_above_shoulder": n,
+        "sitting": 0,
+        "sitting_bent_trunk": 0,
+    }
+    assert list(series["posture_class"]) == ["arms_above_shoulder"] * n
+    assert w["seat"] is None
     finding = w["findings"][0]
     assert finding["kind"] == "out_of_reach" and finding["arm"] == "right"
     assert finding["distance"] == reach["worst"]
@@ -124,3 +135,23 @@ def test_the_percentile_is_a_study_axis_and_the_worker_has_columns(tmp_path):
     assert row["status"] == "ok", row["message"]
     assert "worst_rula" not in row and "reach_shortfall_m" not in row
     assert not math.isnan(row["peak_hand_force_n"])
+
+
+SEATED = '[worker]\npopulation = "male 50"\nposture = "sitting"\nposition = [0, 0, 0]\nfacing = [1, 0, 0]\n'
+
+
+def test_a_seated_worker_reaches_the_table_and_is_classed_sitting():
+    """The 50th-percentile man on the default seat (his ANSUR II popliteal height,
+    0.435 m) holds the hose end at table height (720 mm) 0.5 m in front of the seat."""
+    text = held_hose_scene(SEATED, 720.0)
+    w = pliant.run_timeline(pliant.Scene.from_toml(text), solver="static").worker
+    assert w["seat"]["height"] == pytest.approx(0.435, abs=1e-12)
+    assert w["class_instants"]["sitting"] == w["instants"] > 0
+    assert w["reach"][0]["worst"] < 1e-3
+    # feet on the floor: RULA's and REBA's leg scores 1
+    assert w["worst_rula"]["score"]["legs"] == 1 and w["worst_reba"]["score"]["legs"] == 1
+    sim = pliant.Simulation(pliant.Scene.from_toml(text), solver="static")
+    sim.grab(0, [0.5, -0.2, 0.72])
+    sim.move_hand(0, by=[0.0, 0.0, -0.02], duration=0.3)
+    classes = np.asarray(sim.worker()["series"]["posture_class"], dtype=str)
+    assert classes.size > 2 and np.all(classes == "sitting")

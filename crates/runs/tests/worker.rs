@@ -5,7 +5,8 @@
 //! time, and `summary.json`, `worker.csv` and the report carry it. Without `[worker]`
 //! nothing of it appears.
 
-use pliant_assembly::report::{write_outputs, Outputs};
+mod support;
+
 use pliant_assembly::{Stage, Verdict};
 use pliant_core::SolverKind;
 use pliant_scene::load_scene_str;
@@ -119,24 +120,7 @@ position = [250, 0, 1200]
     assert_eq!(again.worker, run1.worker);
 
     // the outputs: summary.json's worker with typed findings, worker.csv, the report
-    let dir = tempfile::tempdir().unwrap();
-    let s = load_scene_str(&text, "worker.toml").unwrap();
-    let model = cell.model().clone();
-    let outputs = Outputs {
-        scene_name: "worker",
-        source: "worker.toml",
-        model: &model,
-        state: cell.state(),
-        run: &run1,
-        diverged: None,
-        hand_series: &[],
-        profile: &s.ergonomics,
-        solver: SolverKind::Static,
-        time_step: cell.time_step(),
-        wall_time: 1.0,
-        worker_series: cell.worker_series(),
-    };
-    write_outputs(dir.path(), &outputs).unwrap();
+    let dir = support::static_outputs(&text, "worker.toml", &cell, &run1);
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("summary.json")).unwrap())
             .unwrap();
@@ -186,7 +170,7 @@ fn bad_worker_fields_are_named() {
             "worker.percentile",
         ),
         (
-            "population = \"male\"\nposture = \"sitting\"",
+            "population = \"male\"\nposture = \"kneeling\"",
             "worker.posture",
         ),
         (

@@ -107,6 +107,10 @@ pub struct SimulationSection {
     /// but those overlapping in the shape as drawn — bundles a CAD route draws through
     /// one another) or `off`.
     pub hose_contact: Option<String>,
+    /// Mass scaling s, 1 … 10 000 (default 1): inertia s times the mass, weight and mass
+    /// damping unchanged, the explicit step √s longer. For quasi-static timelines; the
+    /// equilibria are unchanged, inertial forces s times larger.
+    pub mass_scaling: Option<f64>,
 }
 
 /// `[output]`: what to record.
@@ -223,17 +227,23 @@ pub struct WorkerSection {
     pub population: String,
     /// Percentile of stature, in [1, 99], when `population` names only the sex. Default 50.
     pub percentile: Option<f64>,
-    /// Where the worker stands: `[x, y, z]`, the floor point between the feet (in
-    /// `length_unit`), or `"auto"` (default): in front of the first point a hand holds,
-    /// which is then 0.6 of the arm's reach ahead of the feet.
+    /// Where the worker stands: `[x, y, z]`, the floor point between the feet (seated:
+    /// under the pelvis, where the seat stands) in `length_unit`, or `"auto"` (default):
+    /// in front of the first point a hand holds, which is then 0.6 of the arm's reach
+    /// ahead of that floor point.
     pub position: Option<WorkerPosition>,
     /// The direction the worker faces (its horizontal part counts). Default `[1, 0, 0]`.
     pub facing: Option<Vec3>,
     /// Height of the floor along the vertical (against gravity) for `position = "auto"`,
     /// in `length_unit`. Default 0.
     pub floor: Option<f64>,
-    /// `standing`, the only posture modelled (feet on the floor, knees straight).
+    /// `standing` (default: feet on the floor, knees straight) or `sitting` (on a seat
+    /// under the pelvis, thighs horizontal, feet on the floor; no steps).
     pub posture: Option<String>,
+    /// Seated: the height of the seat surface above the floor, in `length_unit`, > 0 and
+    /// below the height that would put the hips as high as standing. Default: the
+    /// worker's popliteal height (ANSUR II, the same percentile as the stature).
+    pub seat_height: Option<f64>,
     /// REBA's coupling, how well the hand holds the hose: `good`, `fair` (default),
     /// `poor` or `unacceptable`.
     pub coupling: Option<String>,

@@ -96,6 +96,20 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
         }
         solver.static_max_iterations = n as usize;
     }
+    let mass_scaling = match raw.mass_scaling {
+        Some(s) => {
+            let most = pliant_core::model::MAX_MASS_SCALING;
+            if !(1.0..=most).contains(&s) {
+                return Err(FieldError::new(
+                    "simulation.mass_scaling",
+                    with_unit(s, ""),
+                    format!("must lie in 1 … {most} (the inertia's multiple of the mass)"),
+                ));
+            }
+            s
+        }
+        None => default.mass_scaling,
+    };
     let hose_contact = match &raw.hose_contact {
         Some(name) => name.parse().map_err(|reason: String| {
             FieldError::new("simulation.hose_contact", name.clone(), &reason)
@@ -112,6 +126,7 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
         threads: default.threads,
         hose_contact,
         max_contact_pairs: default.max_contact_pairs,
+        mass_scaling,
     })
 }
 

@@ -9,7 +9,7 @@ use crate::units::LengthUnit;
 use crate::validate::{finite, finite_vec, non_zero_vec};
 use glam::DVec3;
 use pliant_assembly::worker::{Stance, WorkerSettings};
-use pliant_worker::{Coupling, Placement, Population, ScoreOptions, Sex, WorkerError};
+use pliant_worker::{Coupling, Placement, Population, ScoreOptions, Seat, Sex, WorkerError};
 
 fn field_error(field: &str, e: WorkerError) -> FieldError {
     match e {
@@ -48,15 +48,53 @@ pub fn build_worker(
                 .map_err(|e| field_error("worker.percentile", e))?
         }
     };
-    if let Some(p) = &raw.posture {
-        if !p.trim().eq_ignore_ascii_case("standing") {
+    let sitting = match raw
+        .posture
+        .as_deref()
+        .map(|p| p.trim().to_ascii_lowercase())
+    {
+        None => false,
+        Some(p) if p == "standing" => false,
+        Some(p) if p == "sitting" => true,
+        Some(_) => {
             return Err(FieldError::new(
                 "worker.posture",
-                format!("\"{p}\""),
-                "only \"standing\" is modelled (feet on the floor, knees straight)",
-            ));
+                format!("\"{}\"", raw.posture.as_deref().unwrap_or_default()),
+                "expected \"standing\" or \"sitting\"",
+            ))
         }
-    }
+    };
+    let steps = raw.steps.unwrap_or(false);
+    let to_m = unit.to_metres();
+    let seat =
+        match (sitting, raw.seat_height) {
+            (false, None) => None,
+            (false, Some(h)) => {
+                return Err(FieldError::new(
+                    "worker.seat_height",
+                    h.to_string(),
+                    "a seat height needs worker.posture = \"sitting\"",
+                ))
+            }
+            (true, _) if steps => return Err(FieldError::new(
+                "worker.steps",
+                "true",
+                "a seated worker does not step (worker.posture = \"sitting\"): a target out of \
+                 reach from the seat is out of reach",
+            )),
+            (true, height) => {
+                let body = pliant_worker::body(population)
+                    .map_err(|e| field_error("worker.population", e))?;
+                Some(match height {
+                    None => Seat::for_body(&body),
+                    Some(h) => {
+                        let h = finite("worker.seat_height", h, unit.symbol())?;
+                        Seat::new(&body, h * to_m, "worker.seat_height")
+                            .map_err(|e| field_error("worker.seat_height", e))?
+                    }
+                })
+            }
+        };
     let coupling = match &raw.coupling {
         Some(c) => Coupling::parse(c).ok_or_else(|| {
             FieldError::new(
@@ -72,7 +110,6 @@ pub fn build_worker(
         Some(f) => non_zero_vec("worker.facing", f, "")?,
         None => DVec3::X,
     };
-    let to_m = unit.to_metres();
     let stance = match &raw.position {
         None | Some(WorkerPosition::Auto(_)) => {
             let floor = finite("worker.floor", raw.floor.unwrap_or(0.0), unit.symbol())? * to_m;
@@ -87,9 +124,10 @@ pub fn build_worker(
     Ok(Some(WorkerSettings {
         population,
         stance,
+        seat,
         interval,
         decide: raw.decide.unwrap_or(true),
-        steps: raw.steps.unwrap_or(false),
+        steps,
         scores: ScoreOptions {
             static_or_repeated: false,
             coupling,

@@ -780,7 +780,7 @@ impl Sim {
             .collect();
         let worker = self.cell.worker().and_then(|w| {
             w.now()
-                .map(|now| crate::snapshot::WorkerSnapshot::of(w.body(), now))
+                .map(|now| crate::snapshot::WorkerSnapshot::of(w.body(), w.settings().seat, now))
         });
         Snapshot {
             time: state.time,

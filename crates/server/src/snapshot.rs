@@ -388,6 +388,19 @@ pub struct WorkerSnapshot {
     /// direction it faces; and the steps it took so far (a step or turn changes these).
     pub stance: WorkerStance,
     pub steps: u64,
+    /// A seated worker's seat, drawn as a box (absent: standing).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seat: Option<SeatBox>,
+}
+
+/// A seat as a box: its centre \[m\], its full lengths along the worker's forward, left
+/// and up directions \[m\], and those directions (unit; left = up × forward).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct SeatBox {
+    pub centre: [f64; 3],
+    pub size: [f64; 3],
+    pub forward: [f64; 3],
+    pub up: [f64; 3],
 }
 
 /// The worker's stance.
@@ -418,8 +431,13 @@ pub struct ArmReach {
 }
 
 impl WorkerSnapshot {
-    /// The snapshot of the worker's last posed instant `now`, its body `body`.
-    pub fn of(body: &pliant_worker::Body, now: &pliant_assembly::worker::WorkerNow) -> Self {
+    /// The snapshot of the worker's last posed instant `now`, its body `body`, seated
+    /// on `seat` if any.
+    pub fn of(
+        body: &pliant_worker::Body,
+        seat: Option<pliant_worker::Seat>,
+        now: &pliant_assembly::worker::WorkerNow,
+    ) -> Self {
         use pliant_assembly::worker::Obstacle;
         let capsules = pliant_worker::capsules(body, &now.posture)
             .iter()
@@ -462,6 +480,15 @@ impl WorkerSnapshot {
                 forward: now.placement.forward.to_array(),
             },
             steps: now.steps,
+            seat: seat.map(|s| {
+                let b = s.seat_box(body, &now.placement);
+                SeatBox {
+                    centre: b.centre.to_array(),
+                    size: b.size.to_array(),
+                    forward: b.forward.to_array(),
+                    up: b.up.to_array(),
+                }
+            }),
         }
     }
 }

@@ -125,6 +125,10 @@ fn junction_shape_impact() {
     assert_case("junction_shape_impact");
 }
 #[test]
+fn mass_scaling() {
+    assert_case("mass_scaling");
+}
+#[test]
 fn curved_reactions() {
     assert_case("curved_reactions");
 }

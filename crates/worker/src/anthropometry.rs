@@ -113,15 +113,17 @@ impl Population {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Table {
-    stature: StatureTable,
+    stature: MeasureTable,
+    popliteal_height: MeasureTable,
     proportions: Dimensions,
     radii: SegmentRadii,
     joint_limits: JointLimits,
 }
 
+/// A measure's mean and standard deviation per sex \[m\] (stature, popliteal height).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct StatureTable {
+struct MeasureTable {
     female_mean: f64,
     female_sd: f64,
     male_mean: f64,
@@ -176,6 +178,10 @@ pub struct Body {
     pub population: Population,
     /// Stature H \[m\].
     pub stature: f64,
+    /// Popliteal height \[m\]: floor to the underside of the thigh behind the knee,
+    /// seated with the knees at 90° (ANSUR II, the same percentile; the default seat
+    /// height, [`crate::seat::Seat`]).
+    pub popliteal_height: f64,
     /// Heights, widths and segment lengths \[m\].
     #[serde(flatten)]
     pub dims: Dimensions,
@@ -281,12 +287,21 @@ fn table() -> Result<&'static Table, WorkerError> {
 
 /// Stature \[m\] of `population`: ANSUR II mean + z(p) · sd of its sex.
 pub fn stature(population: Population) -> Result<f64, WorkerError> {
-    let t = &table()?.stature;
+    Ok(percentile_of(&table()?.stature, population))
+}
+
+/// Popliteal height \[m\] of `population`: ANSUR II mean + z(p) · sd of its sex.
+pub fn popliteal_height(population: Population) -> Result<f64, WorkerError> {
+    Ok(percentile_of(&table()?.popliteal_height, population))
+}
+
+/// The percentile of `population` of measure `t`: mean + z(p) · sd of its sex.
+fn percentile_of(t: &MeasureTable, population: Population) -> f64 {
     let (mean, sd) = match population.sex {
         Sex::Female => (t.female_mean, t.female_sd),
         Sex::Male => (t.male_mean, t.male_sd),
     };
-    Ok(mean + normal_quantile(population.percentile / 100.0) * sd)
+    mean + normal_quantile(population.percentile / 100.0) * sd
 }
 
 /// The body of `population`: the table's proportions and radii scaled to its stature.
@@ -296,6 +311,7 @@ pub fn body(population: Population) -> Result<Body, WorkerError> {
     Ok(Body {
         population,
         stature: h,
+        popliteal_height: popliteal_height(population)?,
         dims: t.proportions.scaled(h),
         radii: t.radii.scaled(h),
         limits: t.joint_limits.to_radians(),

@@ -21,14 +21,19 @@
 //! reach, and biases a reached target by well under a micrometre). The same targets always give the same posture bit for bit: the search
 //! visits its points in a fixed order and keeps the first of equal costs.
 //!
-//! What the model does not do: knees and hips stay straight (no squatting or kneeling;
+//! Seated ([`crate::seat`]), the lumbar joint is at the seated hip joints' height above
+//! the placement's floor point, the pelvis stays on the seat and the same search bends
+//! the trunk over it; the legs rest on the seat and the floor.
+//!
+//! What the model does not do: standing, knees and hips stay straight (no squatting or kneeling;
 //! the feet stay where the worker was placed — a step moves the placement, [`crate::step`]), the wrist stays straight, the
 //! shoulder girdle does not move (no shoulder raising or protraction), and the shoulder's
 //! adduction and rotation are not limited.
 
 use crate::anthropometry::Body;
 use crate::placement::Placement;
-use crate::posture::{ArmPose, Joints, Posture, Side, TrunkAngles};
+use crate::posture::{ArmPose, Joints, Posture, Side, Sitting, TrunkAngles};
+use crate::seat::Seat;
 use glam::{DQuat, DVec3};
 
 /// The weight of trunk rotation against reach in the cost \[m²/rad²\] (module doc).
@@ -48,11 +53,13 @@ pub struct HeadTarget {
     pub gaze: DVec3,
 }
 
-/// A worker's body standing at a placement.
+/// A worker's body standing at a placement, or seated there.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Manikin {
     pub body: Body,
     pub placement: Placement,
+    /// The seat under the pelvis at the placement's floor point (`None`: standing).
+    pub seat: Option<Seat>,
 }
 
 /// The trunk's frame in the world: unit forward, left, up axes.
@@ -64,23 +71,49 @@ struct TrunkFrame {
 }
 
 impl Manikin {
+    /// The worker standing at `placement`.
     pub fn new(body: Body, placement: Placement) -> Manikin {
-        Manikin { body, placement }
+        Manikin {
+            body,
+            placement,
+            seat: None,
+        }
     }
 
-    /// The lumbar joint: at hip height above the floor point.
+    /// The worker seated on `seat` at `placement` (its floor point under the pelvis).
+    pub fn seated(body: Body, placement: Placement, seat: Seat) -> Manikin {
+        Manikin {
+            body,
+            placement,
+            seat: Some(seat),
+        }
+    }
+
+    /// The same worker (standing or seated alike) at `placement`.
+    pub fn at(&self, placement: Placement) -> Manikin {
+        Manikin { placement, ..*self }
+    }
+
+    /// Height of the hip joints above the floor \[m\]: standing, the body's hip height;
+    /// seated, the seat's ([`Seat::hip_height`]).
+    pub fn hip_height(&self) -> f64 {
+        self.seat
+            .map_or(self.body.dims.hip_height, |s| s.hip_height(&self.body))
+    }
+
+    /// The lumbar joint: at the hips' height above the floor point.
     pub fn lumbar(&self) -> DVec3 {
         self.placement
-            .point(DVec3::new(0.0, 0.0, self.body.dims.hip_height))
+            .point(DVec3::new(0.0, 0.0, self.hip_height()))
     }
 
-    /// Upright standing: where each shoulder joint is \[m\].
+    /// Upright trunk: where each shoulder joint is \[m\].
     pub fn shoulder_upright(&self, side: Side) -> DVec3 {
         let b = &self.body;
         self.placement.point(DVec3::new(
             0.0,
             side.outward() * 0.5 * b.dims.shoulder_width,
-            b.dims.shoulder_height,
+            self.hip_height() + b.dims.shoulder_height - b.dims.hip_height,
         ))
     }
 
@@ -390,27 +423,34 @@ impl Manikin {
         };
         let (neck_flexion, neck_twist) = self.neck_angles(&f, gaze);
         let (chin, head_joint) = self.head_points(&f, neck_base, neck_flexion, neck_twist);
-        let hips = Side::BOTH.map(|s| {
-            p.point(DVec3::new(
-                0.0,
-                s.outward() * 0.5 * b.dims.hip_width,
-                b.dims.hip_height,
-            ))
-        });
-        let knees = Side::BOTH.map(|s| {
-            p.point(DVec3::new(
-                0.0,
-                s.outward() * 0.5 * b.dims.hip_width,
-                b.dims.knee_height,
-            ))
-        });
-        let ankles = Side::BOTH.map(|s| {
-            p.point(DVec3::new(
-                0.0,
-                s.outward() * 0.5 * b.dims.hip_width,
-                b.dims.ankle_height,
-            ))
-        });
+        let (hips, knees, ankles, sitting) = match self.seat {
+            Some(seat) => {
+                let legs = seat.legs(b, p);
+                let sitting = Sitting {
+                    seat_height: seat.height,
+                    knee_flexion: legs.knee_flexion,
+                    feet_on_floor: legs.feet_on_floor(),
+                };
+                (legs.hips, legs.knees, legs.ankles, Some(sitting))
+            }
+            None => {
+                let leg = |height: f64| {
+                    Side::BOTH.map(|s| {
+                        p.point(DVec3::new(
+                            0.0,
+                            s.outward() * 0.5 * b.dims.hip_width,
+                            height,
+                        ))
+                    })
+                };
+                (
+                    leg(b.dims.hip_height),
+                    leg(b.dims.knee_height),
+                    leg(b.dims.ankle_height),
+                    None,
+                )
+            }
+        };
         Posture {
             trunk: t,
             neck_flexion,
@@ -425,6 +465,7 @@ impl Manikin {
                 knees,
                 ankles,
             },
+            sitting,
         }
     }
 }

@@ -10,7 +10,9 @@
 //!   header), [`Population`], [`Body`];
 //! - [`placement`]: where the worker stands and faces;
 //! - [`posture`]: joint angles and positions;
-//! - [`posture_class`]: upright, bent trunk or arms above shoulder, for the force limits;
+//! - [`seat`]: a seated worker's seat and legs;
+//! - [`posture_class`]: upright, bent trunk, arms above shoulder or sitting (trunk
+//!   supported or bent), for the force limits;
 //! - [`ik`]: the inverse kinematics ([`Manikin::solve`]);
 //! - [`mod@capsules`]: the body of capsules of a posture;
 //! - [`step`]: where the feet step when a target is out of reach or a VR user walks;
@@ -28,18 +30,20 @@ pub mod quantile;
 pub mod reba;
 pub mod rula;
 pub mod scores;
+pub mod seat;
 pub mod step;
 
-pub use anthropometry::{body, stature, Body, JointLimits, Population, Sex};
+pub use anthropometry::{body, popliteal_height, stature, Body, JointLimits, Population, Sex};
 pub use capsules::{capsules, Capsule, Segment, CAPSULE_COUNT, SEGMENTS};
 pub use error::WorkerError;
 pub use ik::{assign_hands, HeadTarget, Manikin};
 pub use placement::Placement;
-pub use posture::{ArmPose, Joints, Posture, Side, TrunkAngles};
+pub use posture::{ArmPose, Joints, Posture, Side, Sitting, TrunkAngles};
 pub use posture_class::PostureClass;
 pub use reba::{Coupling, RebaInput, RebaScore};
 pub use rula::{RulaInput, RulaScore};
 pub use scores::{score_posture, PostureScores, ScoreOptions};
+pub use seat::{Seat, SeatBox, SeatedLegs};
 pub use step::{
     describe_step, max_step, reach_step, reach_turn, walk_step, STEP_FRACTION, TURN_BEARING,
 };

@@ -93,6 +93,17 @@ pub struct Joints {
     pub ankles: [DVec3; 2],
 }
 
+/// How a seated posture sits (crate::seat), for the scores and the posture class.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Sitting {
+    /// Height of the seat surface above the floor \[m\].
+    pub seat_height: f64,
+    /// Knee flexion from the straight leg \[rad\].
+    pub knee_flexion: f64,
+    /// Whether the feet rest on the floor (a seat no higher than the popliteal height).
+    pub feet_on_floor: bool,
+}
+
 /// A whole posture: what inverse kinematics found.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Posture {
@@ -104,6 +115,8 @@ pub struct Posture {
     /// Right arm, then left.
     pub arms: [ArmPose; 2],
     pub joints: Joints,
+    /// Seated on a seat (`None`: standing on straight legs).
+    pub sitting: Option<Sitting>,
 }
 
 impl Posture {

@@ -13,8 +13,15 @@
 //!   band ("over 90°").
 //!
 //! Arms above the shoulder outrank a bent trunk (both at once: arms above shoulder). An
-//! arm without a target hangs and never counts. Kneeling, squatting and sitting are not
-//! classes: the manikin stands on straight legs (module [`crate::ik`]).
+//! arm without a target hangs and never counts.
+//!
+//! A seated worker ([`crate::seat`]) is in one of two sitting classes whatever the arms
+//! do: the tables have a single seated push row (the dissertation's figure 3.24) and no
+//! seated row for raised arms, and EN 1005-3 (table 1) distinguishes seated arm work
+//! "with trunk support" from "without trunk support". The trunk counts as supported (by
+//! the seat's backrest) while it is within [`BENT_TRUNK`] of upright — the same edge as
+//! standing, a modelling choice: a trunk flexed further forward has left the backrest.
+//! Kneeling and squatting are not classes.
 
 use crate::posture::Posture;
 use glam::DVec3;
@@ -38,14 +45,20 @@ pub enum PostureClass {
     BentTrunk,
     /// A working arm's elbow above its shoulder.
     ArmsAboveShoulder,
+    /// Seated, the trunk within 20° of upright (supported by the backrest).
+    Sitting,
+    /// Seated, the trunk flexed beyond 20° (off the backrest: no trunk support).
+    SittingBentTrunk,
 }
 
 impl PostureClass {
     /// Every class, in the order of [`Self::index`].
-    pub const ALL: [PostureClass; 3] = [
+    pub const ALL: [PostureClass; 5] = [
         PostureClass::Upright,
         PostureClass::BentTrunk,
         PostureClass::ArmsAboveShoulder,
+        PostureClass::Sitting,
+        PostureClass::SittingBentTrunk,
     ];
 
     /// Position in [`Self::ALL`].
@@ -59,21 +72,38 @@ impl PostureClass {
             PostureClass::Upright => "upright",
             PostureClass::BentTrunk => "bent_trunk",
             PostureClass::ArmsAboveShoulder => "arms_above_shoulder",
+            PostureClass::Sitting => "sitting",
+            PostureClass::SittingBentTrunk => "sitting_bent_trunk",
         }
     }
 
     /// In words, as the verdict writes it: "standing upright", "bent trunk", "arms
-    /// above shoulder".
+    /// above shoulder", "sitting", "sitting with bent trunk".
     pub fn words(self) -> &'static str {
         match self {
             PostureClass::Upright => "standing upright",
             PostureClass::BentTrunk => "bent trunk",
             PostureClass::ArmsAboveShoulder => "arms above shoulder",
+            PostureClass::Sitting => "sitting",
+            PostureClass::SittingBentTrunk => "sitting with bent trunk",
         }
+    }
+
+    /// Whether the class is seated.
+    pub fn is_sitting(self) -> bool {
+        matches!(self, PostureClass::Sitting | PostureClass::SittingBentTrunk)
     }
 
     /// The class of `posture`, the world's vertical `up` (unit).
     pub fn of(posture: &Posture, up: DVec3) -> PostureClass {
+        let bent = posture.trunk.flexion > BENT_TRUNK;
+        if posture.sitting.is_some() {
+            return if bent {
+                PostureClass::SittingBentTrunk
+            } else {
+                PostureClass::Sitting
+            };
+        }
         let raised = posture.arms.iter().any(|arm| {
             let upper = (arm.elbow - arm.shoulder).normalize_or_zero();
             // angle from hanging (straight down) against the vertical
@@ -81,7 +111,7 @@ impl PostureClass {
         });
         if raised {
             PostureClass::ArmsAboveShoulder
-        } else if posture.trunk.flexion > BENT_TRUNK {
+        } else if bent {
             PostureClass::BentTrunk
         } else {
             PostureClass::Upright

@@ -3,6 +3,15 @@
 //! twist mid-range, shoulders not raised, arms unsupported, standing evenly on both feet
 //! with straight knees — filled in as neutral (module [`crate::ik`]'s limits).
 //!
+//! The legs: standing evenly on straight legs, or seated ([`crate::seat`]). RULA's leg
+//! score (McAtamney & Corlett 1993, step 11: "if legs and feet are well supported and in
+//! an evenly balanced posture" 1, "if not" 2) is 1 standing and seated with the feet on
+//! the floor, 2 seated with the feet hanging above it (a seat higher than the popliteal
+//! height). REBA's (Hignett & McAtamney 2000, table 1, legs: "bilateral weight bearing,
+//! walking or sitting" 1) is 1 for every seated posture, and its knee-flexion
+//! additions (+1 at 30–60°, +2 over 60°) are for standing postures only: they do not
+//! apply seated (the knees of a seated worker are flexed by the seat, not loaded).
+//!
 //! The methods leave "twisted", "side-bent" and "abducted" to the observer's eye; here
 //! they are flagged when the angle exceeds [`ADJUSTMENT_ANGLE`] (10°, a modelling
 //! choice). Each arm is scored with its own hand's force (RULA scores each arm
@@ -51,7 +60,7 @@ pub fn rula_input(posture: &Posture, side: Side, force: f64, options: &ScoreOpti
         trunk: t.flexion,
         trunk_twisted: t.twist.abs() > ADJUSTMENT_ANGLE,
         trunk_side_bent: t.lateral.abs() > ADJUSTMENT_ANGLE,
-        legs_balanced: true,
+        legs_balanced: posture.sitting.is_none_or(|s| s.feet_on_floor),
         static_or_repeated: options.static_or_repeated,
         load_kg: force / STANDARD_GRAVITY,
         ..Default::default()
@@ -76,6 +85,8 @@ pub fn reba_input(
         upper_arm: arm.flexion,
         arm_abducted_or_rotated: arm.abduction > ADJUSTMENT_ANGLE,
         lower_arm: arm.elbow_flexion,
+        sitting: posture.sitting.is_some(),
+        knee_flexion: posture.sitting.map_or(0.0, |s| s.knee_flexion),
         coupling: options.coupling,
         activity: options.static_or_repeated as u8,
         ..Default::default()

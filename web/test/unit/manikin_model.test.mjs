@@ -90,3 +90,50 @@ test('a step is drawn as a glide with a smooth start and stop', () => {
   assert.ok(Math.abs(M.glide(from, to, 0.1)[0].a[0] - (from[0].a[0] + 0.4 * 0.028)) < 1e-12);
   assert.deepEqual(M.glide(from.slice(1), to, 0.5), to, 'another body: no glide');
 });
+
+// A seated 50th-percentile man as the server sends him (docs/worker.md, "Sitting"): the
+// pelvis between the hips 0.505 m up, the thigh level to the knee 0.43 m ahead, the shank
+// straight down to the ankle; the seat a box from the floor to 0.435 m under the hips.
+const seated = {
+  data: { who: 'the 50th-percentile man', stature: 1.756, segments: ['pelvis', 'right thigh', 'right shank'], radii: [0.105, 0.07, 0.049] },
+  pose: pose({
+    capsules: [0, -0.084, 0.505, 0, 0.084, 0.505, 0, -0.084, 0.505, 0.43, -0.084, 0.505, 0.43, -0.084, 0.505, 0.43, -0.084, 0.068],
+    posture_class: 'sitting',
+    arms: [null, null],
+    seat: { centre: [0.12, 0, 0.2175], size: [0.45, 0.308, 0.435], forward: [1, 0, 0], up: [0, 0, 1] },
+  }),
+};
+
+test('a seated pose: thighs level, knees bent at a right angle, the seat under the thighs', () => {
+  const caps = M.manikinCapsules(seated.data, seated.pose, names);
+  const [thigh, shank] = [caps[1], caps[2]];
+  assert.equal(thigh.a[2], thigh.b[2]);
+  const t = thigh.b.map((x, k) => x - thigh.a[k]);
+  const s = shank.b.map((x, k) => x - shank.a[k]);
+  assert.equal(t[0] * s[0] + t[1] * s[1] + t[2] * s[2], 0);
+  const box = M.seatBox(seated.pose);
+  assert.deepEqual(box.left, [0, 1, 0]);
+  const top = box.centre[2] + 0.5 * box.size[2];
+  assert.ok(Math.abs(top - 0.435) < 1e-12 && top < thigh.a[2]);
+  // the box ends in front of the hips and short of the knee
+  const front = box.centre[0] + 0.5 * box.size[0];
+  assert.ok(front > thigh.a[0] && front < thigh.b[0]);
+  assert.deepEqual(M.manikinLines(seated.data, seated.pose, caps).slice(0, 2), [
+    'the 50th-percentile man at t = 1.25 s: RULA 5, REBA 7, sitting',
+    'seated, the seat 435 mm high',
+  ]);
+});
+
+test('no seat standing; a malformed seat draws none', () => {
+  assert.equal(M.seatBox(pose()), null);
+  assert.equal(M.seatBox(undefined), null);
+  for (const bad of [
+    { ...seated.pose.seat, size: [0.45, 0, 0.435] },
+    { ...seated.pose.seat, centre: [0, Number.NaN, 0] },
+    { ...seated.pose.seat, forward: [1, 0, 1] },
+    { ...seated.pose.seat, up: [1, 0, 0] },
+  ]) {
+    assert.equal(M.seatBox({ ...seated.pose, seat: bad }), null, JSON.stringify(bad));
+  }
+  assert.equal(M.manikinLines(data, pose({ posture_class: 'sitting_bent_trunk' }), [])[0].endsWith('sitting with bent trunk'), true);
+});

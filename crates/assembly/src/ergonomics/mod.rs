@@ -27,6 +27,6 @@ pub use limits::{ErgonomicLimits, GuideRange, TableInfo, ERGONOMICS_TOML};
 pub use names::{
     allowed_names, Duty, Named, Population, Posture, PullPosture, PushPosture, TorqueGrip,
 };
-pub use posture_class::table_posture;
+pub use posture_class::{en1005_action, table_posture};
 pub use profile::{ErgonomicProfile, Standard};
 pub use quantile::normal_quantile;

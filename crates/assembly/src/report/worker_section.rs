@@ -106,7 +106,11 @@ pub fn worker_section(
         Some(p) => {
             let _ = write!(
                 s,
-                "standing at ({:.3}, {:.3}, {:.3}) m facing ({:.2}, {:.2}, {:.2}); posed at {} instants.</p>",
+                "{} at ({:.3}, {:.3}, {:.3}) m facing ({:.2}, {:.2}, {:.2}); posed at {} instants.</p>",
+                match w.seat {
+                    Some(seat) => format!("seated on a seat {:.0} mm high", 1e3 * seat.height),
+                    None => "standing".to_string(),
+                },
                 p.position.x, p.position.y, p.position.z, p.forward.x, p.forward.y, p.forward.z, w.instants
             );
         }
@@ -116,8 +120,8 @@ pub fn worker_section(
     if w.instants > 0 {
         let _ = write!(
             s,
-            "<p>Posture class (it chooses the rows of the push and pull tables): standing upright at {} instants, bent trunk at {}, arms above shoulder at {}.</p>",
-            c.upright, c.bent_trunk, c.arms_above_shoulder
+            "<p>Posture class (it chooses the rows of the push and pull tables): standing upright at {} instants, bent trunk at {}, arms above shoulder at {}, sitting at {}, sitting with bent trunk at {}.</p>",
+            c.upright, c.bent_trunk, c.arms_above_shoulder, c.sitting, c.sitting_bent_trunk
         );
     }
     let findings = w.findings();

@@ -8,8 +8,8 @@ use super::input::HandNumber;
 use super::solver_doubt::{InstabilityNote, SolverDoubt};
 use super::solver_record::SolverRecord;
 use crate::ergonomics::{
-    En1005Judgement, En1005Limit, ErgonomicLimits, ErgonomicProfile, GuideRange, HandAssessment,
-    LoadKind, Standard,
+    en1005_action, En1005Action, En1005Judgement, En1005Limit, En1005Params, ErgonomicLimits,
+    ErgonomicProfile, GuideRange, HandAssessment, LoadKind, Named, Standard,
 };
 use crate::fasteners::{FastenerReport, FastenerSample};
 use crate::hand::HandLoad;
@@ -434,17 +434,21 @@ impl Tally {
                     && !kind.is_moment()
                     && peak.magnitude > 0.0
                 {
-                    let l = limits
-                        .en1005()
-                        .limit(&profile.en1005, kind == LoadKind::Push);
-                    p.zones.push(ZoneNote {
-                        kind,
-                        magnitude: peak.magnitude,
-                        time: peak.time,
-                        action: limits.en1005().describe(profile.en1005.action).to_string(),
-                        limit: l,
-                        judgement: l.judge(peak.magnitude),
-                    });
+                    for (action, peak) in en1005_peaks(p, profile, kind, peak) {
+                        let params = En1005Params {
+                            action,
+                            ..profile.en1005
+                        };
+                        let l = limits.en1005().limit(&params, kind == LoadKind::Push);
+                        p.zones.push(ZoneNote {
+                            kind,
+                            magnitude: peak.magnitude,
+                            time: peak.time,
+                            action: limits.en1005().describe(action).to_string(),
+                            limit: l,
+                            judgement: l.judge(peak.magnitude),
+                        });
+                    }
                 }
                 if kind.is_moment() && peak.magnitude > guide.hi {
                     p.moment_notes.push(MomentNote {
@@ -490,6 +494,41 @@ impl HandPeak {
             self.worst_class = class;
         }
     }
+}
+
+/// The peak push or pull (`kind`) of hand `p` per EN 1005-3 action it was judged by, in
+/// table order: the profile's own action, or a seated posture class's
+/// ([`crate::ergonomics::en1005_action`]); `overall` the hand's peak when no class was met.
+/// A worker who only stood gives the profile's action with the overall peak.
+fn en1005_peaks(
+    p: &HandPeak,
+    profile: &ErgonomicProfile,
+    kind: LoadKind,
+    overall: Peak,
+) -> Vec<(En1005Action, Peak)> {
+    let mut by_action = [None::<Peak>; En1005Action::ALL.len()];
+    if p.class_peaks.is_empty() {
+        by_action[profile.en1005.action.index()] = Some(overall);
+    }
+    for c in &p.class_peaks {
+        let action = c
+            .class
+            .and_then(en1005_action)
+            .unwrap_or(profile.en1005.action);
+        let peak = if kind == LoadKind::Pull {
+            c.pull
+        } else {
+            c.push
+        };
+        let slot = &mut by_action[action.index()];
+        if peak.magnitude > 0.0 && slot.is_none_or(|s| peak.magnitude > s.magnitude) {
+            *slot = Some(peak);
+        }
+    }
+    En1005Action::ALL
+        .iter()
+        .filter_map(|&a| by_action[a.index()].map(|peak| (a, peak)))
+        .collect()
 }
 
 /// Whether a force \[N\] or moment \[N·m\] is a physical value and may become a peak: the

@@ -2,7 +2,7 @@
 //! how often they are posed, and whether what they cannot do decides feasibility.
 
 use glam::DVec3;
-use pliant_worker::{Body, Placement, Population, ScoreOptions, WorkerError};
+use pliant_worker::{Body, Placement, Population, ScoreOptions, Seat, WorkerError};
 use serde::Serialize;
 
 /// Where the worker stands.
@@ -31,6 +31,9 @@ pub const AUTO_REACH_FRACTION: f64 = 0.6;
 pub struct WorkerSettings {
     pub population: Population,
     pub stance: Stance,
+    /// The seat a seated worker sits on, under the pelvis at the stance's floor point
+    /// (`None`: standing). A seated worker neither steps nor turns.
+    pub seat: Option<Seat>,
     /// Simulated time between posed instants \[s\] (the scene's record interval; 0: every
     /// step).
     pub interval: f64,
@@ -38,7 +41,8 @@ pub struct WorkerSettings {
     /// study NOT FEASIBLE (else they are warnings).
     pub decide: bool,
     /// Whether the worker may step towards a hand target out of reach with the feet
-    /// kept ([`pliant_worker::step`]); a VR user's walking moves the stance either way.
+    /// kept ([`pliant_worker::step`]); a VR user's walking moves the stance either way
+    /// (standing: a seated worker stays on the seat).
     pub steps: bool,
     /// What the posture scores need beyond the posture (REBA's coupling; whether the
     /// work is static is taken from the ergonomic profile's duty as the study runs).
@@ -46,6 +50,14 @@ pub struct WorkerSettings {
 }
 
 impl WorkerSettings {
+    /// The manikin of `body` (these settings' posture) at `placement`.
+    pub fn manikin(&self, body: Body, placement: Placement) -> pliant_worker::Manikin {
+        match self.seat {
+            Some(seat) => pliant_worker::Manikin::seated(body, placement, seat),
+            None => pliant_worker::Manikin::new(body, placement),
+        }
+    }
+
     /// The automatic stance facing `facing` with `up` the vertical; refuses a facing
     /// without a horizontal component.
     pub fn auto_stance(facing: DVec3, up: DVec3, floor: f64) -> Result<Stance, WorkerError> {

@@ -1,7 +1,8 @@
 //! The worker's account of a study (SPEC E1–E2): at every posed instant (the scene's
 //! record interval) the manikin reaches for the hands' positions by inverse kinematics,
 //! its capsules are checked against the parts and the hoses, and its posture is scored by RULA and
-//! REBA with the hands' forces, and classed (upright, bent trunk, arms above shoulder) for
+//! REBA with the hands' forces, and classed (upright, bent trunk, arms above shoulder,
+//! sitting, sitting with bent trunk) for
 //! the hand-force limits until the next posed instant. Kept: each arm's worst reach residual, each segment's
 //! deepest collision per part, the worst scores and when, and a time series for
 //! `worker.csv`. Nothing is allocated per instant except the series' amortised growth
@@ -23,7 +24,7 @@ use pliant_worker::rula::RulaScore;
 use pliant_worker::scores::PostureScores;
 use pliant_worker::{
     body, capsules, describe_step, reach_step, reach_turn, score_posture, walk_step, Body, Manikin,
-    Placement, Posture, PostureClass, ScoreOptions, Segment, Side, TrunkAngles, WorkerError,
+    Placement, Posture, PostureClass, ScoreOptions, Seat, Segment, Side, TrunkAngles, WorkerError,
     CAPSULE_COUNT,
 };
 use serde::Serialize;
@@ -105,6 +106,8 @@ pub struct WorkerSummary {
     /// "the 5th-percentile woman".
     pub who: String,
     pub body: Body,
+    /// The seat of a seated worker (`None`: standing).
+    pub seat: Option<Seat>,
     /// Where the worker stood (`None`: never placed — no hand acted under an automatic
     /// placement).
     pub placement: Option<Placement>,
@@ -120,7 +123,8 @@ pub struct WorkerSummary {
     /// that the picture draws a moving part where it was.
     #[serde(skip)]
     pub worst_part_poses: Vec<Pose>,
-    /// Posed instants per posture class: upright, bent trunk, arms above shoulder.
+    /// Posed instants per posture class: upright, bent trunk, arms above shoulder,
+    /// sitting, sitting with bent trunk.
     pub class_instants: ClassInstants,
     /// The first [`MAX_STEP_NOTES`] steps the worker took, and how many in all.
     pub steps: Vec<StepNote>,
@@ -134,6 +138,8 @@ pub struct ClassInstants {
     pub upright: u64,
     pub bent_trunk: u64,
     pub arms_above_shoulder: u64,
+    pub sitting: u64,
+    pub sitting_bent_trunk: u64,
 }
 
 /// The manikin at its last posed instant (what the live viewer draws).
@@ -176,7 +182,7 @@ pub struct WorkerTrack {
     /// A VR user's body posing the worker (the last [`crate::Input::WorkerPose`]).
     body_pose: Option<BodyPose>,
     /// Posed instants per class, in the order of [`PostureClass::ALL`].
-    class_instants: [u64; 3],
+    class_instants: [u64; PostureClass::ALL.len()],
     /// The hand each arm followed at the last posed instant (right, left).
     arm_of: [Option<usize>; 2],
     series: Vec<WorkerSample>,
@@ -206,7 +212,7 @@ impl WorkerTrack {
             worst_part_poses: Vec::new(),
             now: None,
             body_pose: None,
-            class_instants: [0; 3],
+            class_instants: [0; PostureClass::ALL.len()],
             arm_of: [None; 2],
             series: Vec::with_capacity(1024),
             cap: SeriesCap::of_rows(std::mem::size_of::<WorkerSample>()),
@@ -218,7 +224,7 @@ impl WorkerTrack {
     /// Back to the start of a study.
     pub fn reset(&mut self) {
         self.manikin = match self.settings.stance {
-            super::settings::Stance::At(p) => Some(Manikin::new(self.body, p)),
+            super::settings::Stance::At(p) => Some(self.settings.manikin(self.body, p)),
             super::settings::Stance::Auto { .. } => None,
         };
         self.home = self.manikin.map(|m| m.placement);
@@ -234,7 +240,7 @@ impl WorkerTrack {
         self.worst_part_poses.clear();
         self.now = None;
         self.body_pose = None;
-        self.class_instants = [0; 3];
+        self.class_instants = [0; PostureClass::ALL.len()];
         self.arm_of = [None; 2];
         self.series.clear();
         self.cap.reset();
@@ -305,19 +311,23 @@ impl WorkerTrack {
             (Some(m), _, _) => m,
             (None, Some(first), _) => {
                 let p = self.settings.stance.place(first.load.position, &self.body);
-                let m = Manikin::new(self.body, p);
+                let m = self.settings.manikin(self.body, p);
                 self.manikin = Some(m);
                 m
             }
             (None, None, Some(h)) => {
-                let m = Manikin::new(self.body, self.settings.stance.place_under(h));
+                let m = self
+                    .settings
+                    .manikin(self.body, self.settings.stance.place_under(h));
                 self.manikin = Some(m);
                 m
             }
             (None, None, None) => return,
         };
         self.home.get_or_insert(manikin.placement);
-        if let Some(step) = head.and_then(|h| walk_step(&self.body, &manikin.placement, h.eyes)) {
+        let seated = manikin.seat.is_some();
+        let walked = head.filter(|_| !seated);
+        if let Some(step) = walked.and_then(|h| walk_step(&self.body, &manikin.placement, h.eyes)) {
             let to = Placement {
                 position: manikin.placement.position + step,
                 ..manikin.placement
@@ -364,7 +374,7 @@ impl WorkerTrack {
             }
         }
         let mut posture = manikin.solve_with_head(target, head);
-        if self.settings.steps && head.is_none() {
+        if self.settings.steps && head.is_none() && !seated {
             if let Some((to, hand)) = self.reach_step(model, state, &manikin, &posture, hand) {
                 self.take_step(&mut manikin, to, time, StepCause::Reach { hand });
                 posture = manikin.solve_with_head(target, head);
@@ -492,7 +502,7 @@ impl WorkerTrack {
             if same_stance(&to, &manikin.placement) {
                 return None;
             }
-            if !self.legs_inside(model, state, &Manikin::new(self.body, to)) {
+            if !self.legs_inside(model, state, &manikin.at(to)) {
                 return Some((to, hand[side.index()]?));
             }
             if offset == DVec3::ZERO {
@@ -522,7 +532,7 @@ impl WorkerTrack {
         if same_stance(&home, &manikin.placement) || !reaches(posture) {
             return None;
         }
-        let placed = Manikin::new(self.body, home);
+        let placed = manikin.at(home);
         (reaches(&placed.solve(target)) && !self.legs_inside(model, state, &placed)).then_some(home)
     }
 
@@ -646,6 +656,7 @@ impl WorkerTrack {
         WorkerSummary {
             who: self.settings.population.describe(),
             body: self.body,
+            seat: self.settings.seat,
             placement: self.manikin.map(|m| m.placement),
             instants: self.instants,
             reach: self.reach,
@@ -658,6 +669,8 @@ impl WorkerTrack {
                 upright: self.class_instants[PostureClass::Upright.index()],
                 bent_trunk: self.class_instants[PostureClass::BentTrunk.index()],
                 arms_above_shoulder: self.class_instants[PostureClass::ArmsAboveShoulder.index()],
+                sitting: self.class_instants[PostureClass::Sitting.index()],
+                sitting_bent_trunk: self.class_instants[PostureClass::SittingBentTrunk.index()],
             },
             steps: self.steps.clone(),
             step_count: self.step_count,

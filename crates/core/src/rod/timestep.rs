@@ -59,12 +59,15 @@ pub fn stable_time_step(
             let ea = e.axial_stiffness_tension.max(e.axial_stiffness_compression);
             e.rest_length / (ea / e.mass_per_length).sqrt() // l₀ / c, c = √(EA/ρA)
         })
-        .fold(f64::INFINITY, f64::min);
+        .fold(f64::INFINITY, f64::min)
+        * model.mass_scaling.sqrt(); // c falls by √s with the inertia
     let omega = max_frequency(model);
     let eigen_bound = 2.0 / omega;
+    // the default β of the unscaled model: a mass scaling s leaves the damping force
+    // β K v as it was (ω_max of the unscaled model is √s ω)
     let beta = settings
         .damping_stiffness
-        .unwrap_or(2.0 * DEFAULT_HIGH_MODE_DAMPING_RATIO / omega);
+        .unwrap_or(2.0 * DEFAULT_HIGH_MODE_DAMPING_RATIO / (omega * model.mass_scaling.sqrt()));
     // Rayleigh damping ratio of the highest mode: mass part α/2ω, stiffness part βω/2
     let xi = 0.5 * settings.damping_mass / omega + 0.5 * beta * omega;
     let undamped = axial_bound.min(eigen_bound);

@@ -503,7 +503,11 @@ def calibrate(
     name: str = "calibrated",
     density_kg_m3: float = 1100.0,
     poisson: Optional[float] = None,
+    terms: Optional[int] = None,
+    held_strain: Optional[float] = None,
     out: Optional[StrPath] = None,
 ) -> Calibration:
     """Fits a material's stiffness to measured test curves: a calibration file, or one
-    test (``kind`` with ``csv`` or ``data``). See docs/calibration.md."""
+    test (``kind`` with ``csv`` or ``data``). A relaxation test alone needs
+    ``held_strain`` (gives E0); ``terms`` forces its Prony term count. See
+    docs/calibration.md."""

@@ -16,6 +16,7 @@ mod invariance;
 mod junction_body;
 mod junction_shape;
 mod large_frames;
+mod mass_scaling;
 mod moving_parts;
 mod plastic_bending;
 mod postbuckling;
@@ -42,6 +43,7 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("torsion", torsion::run),
     ("invariance", invariance::run),
     ("energy", energy::run),
+    ("mass_scaling", mass_scaling::run),
     ("convergence", convergence::run),
     ("scale", scale::run),
     ("contact_rest", contact::run_rest),

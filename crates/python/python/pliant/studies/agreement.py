@@ -77,7 +77,8 @@ def compare(study_rows: Dict[int, Dict[str, Any]], reference_rows: Dict[int, Dic
                "solver": solver, "reference_solver": reference_solver,
                "peak_hand_force_n": mine.get("peak_hand_force_n"),
                "reference_peak_hand_force_n": ref.get("peak_hand_force_n"),
-               "cpu_time_s": mine.get("cpu_time_s"), "reference_cpu_time_s": ref.get("cpu_time_s")}
+               "cpu_time_s": mine.get("cpu_time_s"), "reference_cpu_time_s": ref.get("cpu_time_s"),
+               "steps": mine.get("steps"), "reference_steps": ref.get("steps")}
         for c in columns:
             row[c], row["reference_" + c] = _json_value(a[c]), _json_value(b[c])
         rows.append(row)

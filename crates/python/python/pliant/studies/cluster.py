@@ -359,7 +359,10 @@ def run_study(
                 text = json.dumps(variant.relative_meshes(scene, layout.runs))
                 _atomic_write(path, lambda p: open(p, "w").write(text))
         else:
-            scene.setdefault("simulation", {})["solver"] = reference_solver
+            # the reference is the scene's own physics: that solver, no mass scaling
+            simulation = scene.setdefault("simulation", {})
+            simulation["solver"] = reference_solver
+            simulation.pop("mass_scaling", None)
         solver = scene.get("simulation", {}).get("solver", "explicit")
         text = json.dumps(upload.scene_for_workers(scene))
         if reference:
@@ -434,9 +437,13 @@ def run_study(
                            batch_size(len(chosen), nthreads, batch), 2 * nthreads,
                            f"pliant-{study.fingerprint()}-{reference_solver}",
                            lambda c, res: reference.update(zip(c, with_ids(c, res))))
-            solvers = sorted({str(rows[i].get("solver")) for i in chosen})
-            measured = agreement.compare({i: rows[i] for i in chosen}, reference, ",".join(solvers),
-                                         reference_solver)
+            solvers = ",".join(sorted({str(rows[i].get("solver")) for i in chosen}))
+            scaling = study.mass_scaling or study.scene.get("simulation", {}).get("mass_scaling") or 1
+            reference_label = reference_solver
+            if scaling != 1:
+                solvers += f" (mass scaling {scaling:g})"
+                reference_label += " (unscaled)"
+            measured = agreement.compare({i: rows[i] for i in chosen}, reference, solvers, reference_label)
             agreement.write(layout.out, measured)
             log(agreement.sentence(measured["summary"]))
     finally:

@@ -146,6 +146,7 @@ class Study:
     solver: Optional[str]
     ergonomics: Optional[str]
     scene_values: Dict[str, Any]
+    mass_scaling: Optional[float]
     envelope_voxel_m: Optional[float]
     envelope_hoses: Optional[List[str]]
     source: Dict[str, Any] = field(repr=False, default_factory=dict)
@@ -446,7 +447,9 @@ def load_study(study: Any, *, runs: Optional[int] = None) -> Study:
     return parse_study(raw, origin, base_dir, runs=runs)
 
 
-TOP_KEYS = {"format", "version", "name", "scene", "length_unit", "solver", "ergonomics", "scene_values", "sampling", "parameters", "envelope"}
+TOP_KEYS = {"format", "version", "name", "scene", "length_unit", "solver", "mass_scaling", "ergonomics", "scene_values",
+            "sampling", "parameters", "envelope"}
+MAX_MASS_SCALING = 1e4  # as the physics core (pliant_core::model::MAX_MASS_SCALING)
 
 
 def _scene_values(origin: str, table: Any, scene: Dict[str, Any], scene_dir: str) -> Dict[str, Any]:
@@ -505,6 +508,11 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
     solver = raw.get("solver")
     if solver is not None and solver not in SOLVERS:
         raise _fail(origin, "solver", solver, f"must be one of {', '.join(SOLVERS)}")
+    mass_scaling = raw.get("mass_scaling")
+    if mass_scaling is not None and (isinstance(mass_scaling, bool) or not isinstance(mass_scaling, (int, float))
+                                     or not 1 <= mass_scaling <= MAX_MASS_SCALING):
+        raise _fail(origin, "mass_scaling", mass_scaling,
+                    f"must be a number in 1 … {MAX_MASS_SCALING:g} (every run's [simulation] mass_scaling)")
     ergonomics = raw.get("ergonomics")
     if ergonomics is not None and not isinstance(ergonomics, str):
         raise _fail(origin, "ergonomics", ergonomics, 'must be a profile string like "posture=sitting, population=men"')
@@ -565,6 +573,7 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
         solver=solver,
         ergonomics=ergonomics,
         scene_values=scene_values,
+        mass_scaling=None if mass_scaling is None else float(mass_scaling),
         envelope_voxel_m=None if voxel is None else voxel * UNITS_M[unit],
         envelope_hoses=hoses,
         source=raw,

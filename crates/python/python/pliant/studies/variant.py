@@ -192,6 +192,8 @@ def apply(study: Study, sample: Dict[str, Any]) -> Dict[str, Any]:
     unit = length_factor(scene)
     if study.solver:
         scene.setdefault("simulation", {})["solver"] = study.solver
+    if study.mass_scaling is not None:
+        scene.setdefault("simulation", {})["mass_scaling"] = study.mass_scaling
     if study.ergonomics:
         scene["ergonomics"] = parse_ergonomics(study.ergonomics)
     for path, value in study.scene_values.items():
