@@ -1,9 +1,10 @@
-// Junction bodies (moulded T and Y pieces joining hose ends): a hub at the mean of the
-// outlets with an arm out to each, moved to where the outlet nodes are in every snapshot
-// (live and in replays). Shared geometry; per snapshot only transforms change.
+// Junction bodies (moulded T and Y pieces joining hose ends) without a shape of their
+// own: a hub at the mean of the outlets with an arm out to each, moved to where the outlet
+// nodes are in every snapshot (live and in replays). Shared geometry; per snapshot only
+// transforms change. A body with a shape is drawn as its part, posed by `part_poses`.
 
 import * as THREE from 'three';
-import { hubRadius, junctionPose } from './junction_geometry';
+import { drawnAsHub, hubRadius, junctionPose } from './junction_geometry';
 import { surface } from './materials';
 import type { JunctionBodyData, Vec3 } from './protocol';
 
@@ -27,7 +28,8 @@ export class JunctionBodies {
   /** `radii`: per hose, its outer radius at each node [m]. */
   constructor(bodies: JunctionBodyData[], radii: number[][]) {
     this.group.name = 'junction_bodies';
-    for (const data of bodies) {
+    // a body with a shape is drawn as its part (posed with the parts)
+    for (const data of bodies.filter(drawnAsHub)) {
       const outletRadii = data.outlets.map((o) => radii[o.hose]?.[o.node] ?? 0);
       const hub = new THREE.Mesh(this.sphere, this.material);
       hub.name = `junction:${data.name}`;

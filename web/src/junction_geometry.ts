@@ -1,6 +1,7 @@
 // A junction body's pose from its outlets (pure, no three.js): the body sits at the mean
-// of its outlet nodes, an arm reaching out to each outlet. The scene format gives a body
-// its outlets and mass, not a shape of its own, so this hub-and-arms shape is drawn.
+// of its outlet nodes, an arm reaching out to each outlet. A body without a shape of its
+// own (`body.part` in the scene) is drawn as this hub with arms; a body with one is drawn
+// as that part, at the pose the snapshot's `part_poses` give it.
 
 import type { Vec3 } from './protocol';
 
@@ -27,4 +28,10 @@ export function junctionPose(outlets: Vec3[]): JunctionPose {
 /** Radius of the hub [m]: a third more than the thickest outlet's, at least 2 mm. */
 export function hubRadius(outletRadii: number[]): number {
   return Math.max(0.002, 1.35 * Math.max(0, ...outletRadii));
+}
+
+/** Whether a junction body is drawn as a hub with arms: only when it has no shape of its
+ *  own (a body with one is drawn as its part, posed by the snapshot). */
+export function drawnAsHub(body: { shape?: number | null }): boolean {
+  return body.shape === undefined || body.shape === null;
 }

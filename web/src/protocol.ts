@@ -33,6 +33,9 @@ export interface JunctionBodyData {
   /** Whether the mass is lumped on the outlets (no centre of mass or inertia given). */
   lumped?: boolean;
   outlets: { hose: number; node: number }[];
+  /** The part (index into `parts`) that is its shape, posed by the snapshot's
+   *  `part_poses`; null or absent: no shape (drawn as a hub with arms). */
+  shape?: number | null;
 }
 export interface PartData {
   name: string;

@@ -24,10 +24,10 @@ impl PartFrame {
     /// Part `part`'s frame at time `t`, the parts moved by the state's inputs (the
     /// world's for no part or a part that stands still).
     pub fn at(model: &Model, state: &State, part: Option<usize>, t: f64) -> PartFrame {
-        match part.filter(|&k| model.kinematics.moves(k)) {
+        match part.filter(|&k| model.part_moves(k)) {
             Some(k) => PartFrame {
                 part: Some(k),
-                placement: model.kinematics.placement_at(k, t, &state.part_moves),
+                placement: model.part_placement(state, k, t),
             },
             None => PartFrame::default(),
         }

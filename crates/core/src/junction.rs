@@ -45,6 +45,11 @@ pub struct JunctionSpec {
     /// \[kg·m²\]. Absent with `body_centre` given: zero (a point mass there).
     #[serde(default)]
     pub body_inertia: Option<DMat3>,
+    /// The rigid part (index into the world's parts) that is the body's shape, given
+    /// where the hoses lie at rest: it rides on the body and hoses touch it
+    /// ([`crate::junction_shape`]). None: the body has no shape.
+    #[serde(default)]
+    pub shape: Option<usize>,
 }
 
 impl JunctionSpec {
@@ -65,6 +70,8 @@ pub struct Junction {
     /// The junction body's own mass properties at rest (zero mass for a welded branch
     /// point).
     pub own: OwnMass,
+    /// The part that is the body's shape, if it has one ([`crate::junction_shape`]).
+    pub shape: Option<usize>,
 }
 
 /// A junction body's own mass, centre of mass and inertia about it (world axes, at
@@ -200,8 +207,17 @@ impl Model {
                 nodes,
                 body: self.bodies.len(),
                 own,
+                shape: spec.shape,
             });
             self.bodies.push(body);
+            if let Some(part) = spec.shape {
+                let junction = self.junctions.len() - 1;
+                self.attach_junction_shape(junction, part)
+                    .map_err(|reason| ModelError::Junction {
+                        junction: spec.name.clone(),
+                        reason,
+                    })?;
+            }
         }
         self.hose_network = networks(self.hoses.len(), junctions);
         self.hose_contact = crate::contact::HoseContactModel::new(&self, self.hose_contact.rule);

@@ -27,6 +27,7 @@ pub mod curve;
 pub mod health;
 pub mod integrators;
 pub mod junction;
+pub mod junction_shape;
 pub mod kinematics;
 pub mod loads;
 pub mod material;

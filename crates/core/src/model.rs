@@ -83,6 +83,9 @@ pub struct Model {
     pub body_of: Vec<Option<usize>>,
     /// Junctions joining hose ends into networks (SPEC N1; [`crate::junction`]).
     pub junctions: Vec<Junction>,
+    /// The parts that ride on junction bodies as their shapes
+    /// ([`crate::junction_shape`]).
+    pub junction_shapes: crate::junction_shape::JunctionShapes,
     /// Per hose: its network, the smallest index of the hoses joined to it through
     /// junctions (its own index when it joins none).
     pub hose_network: Vec<usize>,
@@ -298,6 +301,7 @@ impl Model {
             bodies: Vec::new(),
             body_of: vec![None; total_nodes],
             junctions: Vec::new(),
+            junction_shapes: Default::default(),
             hose_network: (0..spec.hoses.len()).collect(),
             solver: spec.settings.solver,
             hose_contact: HoseContactModel::default(),

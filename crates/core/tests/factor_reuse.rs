@@ -35,6 +35,7 @@ fn world(branches: bool) -> Model {
                 body_mass: 0.0,
                 body_centre: None,
                 body_inertia: None,
+                shape: None,
             }])
             .unwrap()
     } else {

@@ -35,6 +35,7 @@ fn y_network() -> (Model, State) {
         body_mass: 0.0,
         body_centre: None,
         body_inertia: None,
+        shape: None,
     }])
     .unwrap();
     let mut state = State::at_rest(&model);
@@ -193,6 +194,7 @@ fn a_loop_is_refused_by_the_newton_solvers_and_stepped_by_the_explicit_one() {
             body_mass: 0.0,
             body_centre: None,
             body_inertia: None,
+            shape: None,
         },
         JunctionSpec {
             name: "c".into(),
@@ -200,6 +202,7 @@ fn a_loop_is_refused_by_the_newton_solvers_and_stepped_by_the_explicit_one() {
             body_mass: 0.0,
             body_centre: None,
             body_inertia: None,
+            shape: None,
         },
         JunctionSpec {
             name: "a".into(),
@@ -207,6 +210,7 @@ fn a_loop_is_refused_by_the_newton_solvers_and_stepped_by_the_explicit_one() {
             body_mass: 0.0,
             body_centre: None,
             body_inertia: None,
+            shape: None,
         },
     ])
     .unwrap();
@@ -239,6 +243,7 @@ fn junction_errors_name_the_junction() {
             body_mass: 0.0,
             body_centre: None,
             body_inertia: None,
+            shape: None,
         },
         JunctionSpec {
             name: "two".into(),
@@ -246,6 +251,7 @@ fn junction_errors_name_the_junction() {
             body_mass: 0.0,
             body_centre: None,
             body_inertia: None,
+            shape: None,
         },
     ]);
     let e = twice.unwrap_err().to_string();
@@ -259,6 +265,7 @@ fn junction_errors_name_the_junction() {
         body_mass: 0.0,
         body_centre: None,
         body_inertia: None,
+        shape: None,
     }]);
     assert!(lonely.unwrap_err().to_string().contains("at least 2"));
 }

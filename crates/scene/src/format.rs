@@ -588,7 +588,7 @@ pub struct JunctionEndEntry {
 }
 
 /// A junction body.
-#[derive(Clone, Copy, Debug, Deserialize, JsonSchema)]
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct JunctionBodyEntry {
     /// The body's own mass \[kg\], ≥ 0; > 0 with `centre_of_mass` or `inertia_kg_m2`.
@@ -604,6 +604,13 @@ pub struct JunctionBodyEntry {
     /// principal moments satisfying the triangle inequality. Default with
     /// `centre_of_mass`: zero (a point mass there).
     pub inertia_kg_m2: Option<InertiaEntry>,
+    /// The body's shape: the `name` of a part of `[[parts]]` (mesh, STEP solid or
+    /// primitive), placed where it sits while the hoses lie as the scene gives them. It
+    /// then rides on the body and hoses touch it (explicit solver only). The part must
+    /// have no `motion` and no `parent`, be moved by no timeline action, carry no other
+    /// part and be the shape of no other junction. Absent: no shape (the viewer draws
+    /// a hub with an arm to each outlet).
+    pub part: Option<String>,
 }
 
 /// An inertia tensor \[kg·m²\]: its diagonal or all of it.

@@ -8,7 +8,7 @@ use crate::units::LengthUnit;
 use crate::validate::{finite_vec, non_negative};
 use glam::{DMat3, DVec3};
 use pliant_core::rod::attached::check_inertia;
-use pliant_core::{HoseEnd, HoseSpec, JunctionSpec};
+use pliant_core::{HoseEnd, HoseSpec, JunctionSpec, RigidPartSpec};
 
 /// How far apart a welded branch point's ends may lie \[m\]: what a CAD export rounds to.
 pub const WELD_TOLERANCE: f64 = 1e-5;
@@ -17,6 +17,7 @@ pub const WELD_TOLERANCE: f64 = 1e-5;
 pub fn build_junctions(
     entries: &[JunctionEntry],
     hoses: &[HoseSpec],
+    parts: &[RigidPartSpec],
     unit: LengthUnit,
 ) -> Result<Vec<JunctionSpec>, FieldError> {
     let mut specs: Vec<JunctionSpec> = Vec::with_capacity(entries.len());
@@ -110,15 +111,67 @@ pub fn build_junctions(
             Some(body) => own_mass(body, body_mass, unit, &at)?,
             None => (None, None),
         };
+        let shape = match raw.body.as_ref().and_then(|b| b.part.as_deref()) {
+            Some(name) => Some(shape_part(name, parts, &specs, entries, &at)?),
+            None => None,
+        };
         specs.push(JunctionSpec {
             name: raw.name.clone(),
             ends,
             body_mass,
             body_centre,
             body_inertia,
+            shape,
         });
     }
     Ok(specs)
+}
+
+/// The index of the part named `name` that a junction body takes as its shape, checked:
+/// it exists, stands still on its own (no motion, no parent, not moved by the
+/// timeline), carries no other part and is no earlier junction's shape (`done`).
+fn shape_part(
+    name: &str,
+    parts: &[RigidPartSpec],
+    done: &[JunctionSpec],
+    entries: &[JunctionEntry],
+    at: &dyn Fn(&str) -> String,
+) -> Result<usize, FieldError> {
+    let field = at("body.part");
+    let value = format!("\"{name}\"");
+    let refuse = |reason: String| Err(FieldError::new(&field, &value, reason));
+    let Some(k) = parts.iter().position(|p| p.name == name) else {
+        return refuse("no part of this name in [[parts]]".into());
+    };
+    let part = &parts[k];
+    if part.motion.is_some() {
+        return refuse(
+            "the part has a `motion`; a junction body's shape moves with the body only".into(),
+        );
+    }
+    if part.parent.is_some() {
+        return refuse(
+            "the part has a `parent`; a junction body's shape moves with the body only".into(),
+        );
+    }
+    if part.movable {
+        return refuse(
+            "the timeline moves the part; a junction body's shape moves with the body only".into(),
+        );
+    }
+    if let Some(child) = parts.iter().find(|p| p.parent == Some(k)) {
+        return refuse(format!(
+            "part \"{}\" has it as its `parent`; a junction body's shape carries no parts",
+            child.name
+        ));
+    }
+    if let Some(other) = done.iter().position(|s| s.shape == Some(k)) {
+        return refuse(format!(
+            "the part is already the shape of junctions[{other}] (\"{}\")",
+            entries[other].name
+        ));
+    }
+    Ok(k)
 }
 
 /// A body's own centre of mass \[m\] and inertia tensor, checked (`at` names a field of

@@ -461,10 +461,11 @@ fn build(
             nodes: h.nodes.len(),
         })
         .collect();
-    let junctions = crate::junctions::build_junctions(&file.junctions, &hoses, file.length_unit)?;
     let timeline = build_timeline(&file.timeline, &nodes, file.length_unit)?;
     let mut parts = build_parts(&file.parts, file.length_unit, &files, &mut budget)?;
     crate::timeline::make_moved_parts_movable(&timeline, &mut parts.specs)?;
+    let junctions =
+        crate::junctions::build_junctions(&file.junctions, &hoses, &parts.specs, file.length_unit)?;
     let part_names: Vec<&str> = parts.specs.iter().map(|p| p.name.as_str()).collect();
     let (stubs, connectors, clips) = build_fasteners(file, &hoses, &part_names)?;
     let ergonomics = build_ergonomics(file.ergonomics.as_ref())?;

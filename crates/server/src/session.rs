@@ -764,13 +764,13 @@ impl Sim {
                 .as_deref(),
             Stage::Running,
         );
-        let kinematics = &self.cell.model().kinematics;
+        let model = self.cell.model();
+        let kinematics = &model.kinematics;
+        // a junction body's shape rides on its body (pliant_core::junction_shape)
         let part_poses = (0..kinematics.len())
-            .filter(|&k| kinematics.moves(k))
+            .filter(|&k| model.part_moves(k))
             .map(|k| {
-                let pose = kinematics
-                    .placement_at(k, state.time, &state.part_moves)
-                    .pose;
+                let pose = model.part_placement(state, k, state.time).pose;
                 PartPose {
                     part: k,
                     translation: pose.translation.to_array(),
@@ -871,6 +871,71 @@ elements = 10
         session.report(dir.path()).unwrap();
         assert_eq!(computed_on_this_thread(), before + 1);
         assert!(dir.path().join("report.html").is_file());
+    }
+
+    /// A tee piece whose shape is a box, falling freely under gravity (mm).
+    const SHAPED_TEE: &str = r#"
+format = "pliant-scene"
+version = 1
+length_unit = "mm"
+
+[[hoses]]
+name = "a"
+material = "hose1"
+elements = 4
+start = [0, 0, 0]
+path = [{ line = { to = [200, 0, 0] } }]
+
+[[hoses]]
+name = "b"
+material = "hose1"
+elements = 4
+start = [220, 0, 0]
+path = [{ line = { to = [400, 0, 0] } }]
+
+[[parts]]
+name = "tee_box"
+box = { size = [20, 10, 10] }
+position = [210, 0, 0]
+
+[[junctions]]
+name = "tee"
+ends = [{ hose = "a", end = "end" }, { hose = "b", end = "start" }]
+body = { mass_kg = 0.02, centre_of_mass = [210, 0, 0], inertia_kg_m2 = [3e-7, 8e-7, 8e-7], part = "tee_box" }
+"#;
+
+    /// The welcome names a junction body's shape, and every snapshot poses it where the
+    /// body is: its rest mesh carried by the pose puts the outlets on the outlet nodes.
+    #[test]
+    fn a_junction_shape_is_posed_where_its_body_is() {
+        let scene =
+            pliant_scene::load_scene_str_in(SHAPED_TEE, "tee.toml", Path::new(".")).unwrap();
+        let (cell, _, _) = live_workcell(&scene, None).unwrap();
+        let model = cell.model().clone();
+        let data = crate::snapshot::SceneData::new(&scene, &model, &(Vec::new(), Vec::new()), 30.0);
+        assert_eq!(data.junction_bodies.len(), 1);
+        assert_eq!(data.junction_bodies[0].shape, Some(0));
+        let mut sim = Sim::new(cell, Arc::new(AtomicU64::new(0)), false);
+        for _ in 0..200 {
+            assert!(sim.step());
+        }
+        let snapshot = sim.snapshot(1.0);
+        let pose = snapshot
+            .part_poses
+            .iter()
+            .find(|p| p.part == 0)
+            .expect("the shape is posed");
+        let (rotation, translation) = (
+            glam::DQuat::from_array(pose.rotation),
+            glam::DVec3::from_array(pose.translation),
+        );
+        assert!(translation.length() > 1e-6, "the body fell: {translation}");
+        for (hose, node) in [(0, 4), (1, 0)] {
+            let rest = model.rest_x[model.hoses[hose].node(node)];
+            let now = glam::DVec3::from_array(snapshot.hoses[hose].positions[node]);
+            let carried = rotation * rest + translation;
+            assert!((carried - now).length() < 1e-9, "{carried} vs {now}");
+        }
     }
 
     /// Waits until `done` holds, looking again whenever the thread is scheduled (a

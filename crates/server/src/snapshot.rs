@@ -95,6 +95,10 @@ pub struct JunctionBodyData {
     /// Whether its mass is lumped on its outlets (no centre of mass or inertia given).
     pub lumped: bool,
     pub outlets: Vec<OutletData>,
+    /// The part (index into `parts`) that is its shape, drawn at the pose the snapshot's
+    /// `part_poses` give it (its mesh in `parts` is where it sits with the hoses at
+    /// rest); `null`: no shape (drawn as a hub with an arm to each outlet).
+    pub shape: Option<usize>,
 }
 
 /// One outlet of a junction body: a hose (index into the welcome's `hoses`) and the node
@@ -231,6 +235,7 @@ impl SceneData {
                 inertia: own_of(j)
                     .map_or([[0.0; 3]; 3], |o| o.inertia.transpose().to_cols_array_2d()),
                 lumped: own_of(j).is_none_or(|o| o.lumped),
+                shape: j.shape,
                 outlets: j
                     .ends
                     .iter()

@@ -117,6 +117,14 @@ fn junction_body_torsion() {
     assert_case("junction_body_torsion");
 }
 #[test]
+fn junction_shape_rest() {
+    assert_case("junction_shape_rest");
+}
+#[test]
+fn junction_shape_impact() {
+    assert_case("junction_shape_impact");
+}
+#[test]
 fn mass_scaling() {
     assert_case("mass_scaling");
 }

@@ -193,12 +193,8 @@ impl InstallationChecks {
                 p.min_bend_radius_time = time;
                 p.curvature.copy_from_slice(&self.kappa[range.clone()]);
                 if worst > 1.0 {
-                    let poses = (0..model.environment.parts.len()).map(|k| {
-                        model
-                            .kinematics
-                            .placement_at(k, time, &state.part_moves)
-                            .pose
-                    });
+                    let poses = (0..model.environment.parts.len())
+                        .map(|k| model.part_placement(state, k, time).pose);
                     self.pictures.note(h, worst, time, &state.x, poses);
                 }
             }

@@ -109,6 +109,13 @@ impl RigidEnvironment {
         Ok(RigidEnvironment { parts, moving })
     }
 
+    /// Makes part `k` a moving one (a junction body's shape, [`crate::junction_shape`]).
+    pub(crate) fn add_moving(&mut self, k: usize) {
+        if let Err(at) = self.moving.binary_search(&k) {
+            self.moving.insert(at, k);
+        }
+    }
+
     /// Whether any part moves.
     pub fn any_moves(&self) -> bool {
         !self.moving.is_empty()
@@ -152,8 +159,19 @@ impl RigidEnvironment {
         max_distance: f64,
         placements: &[crate::kinematics::Placement],
     ) -> Option<(usize, DVec3, f64)> {
+        self.closest_moving_where(p, max_distance, placements, |_| true)
+    }
+
+    /// [`Self::closest_moving`] among the moving parts `k` with `allowed(k)`.
+    pub(crate) fn closest_moving_where(
+        &self,
+        p: DVec3,
+        max_distance: f64,
+        placements: &[crate::kinematics::Placement],
+        allowed: impl Fn(usize) -> bool,
+    ) -> Option<(usize, DVec3, f64)> {
         let mut best: Option<(usize, DVec3, f64)> = None;
-        for &k in &self.moving {
+        for &k in self.moving.iter().filter(|&&k| allowed(k)) {
             let Some(place) = placements.get(k) else {
                 continue;
             };

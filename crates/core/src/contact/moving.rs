@@ -153,6 +153,9 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
         let mut best: Option<(usize, DVec3, f64)> = None; // part, local point, distance
         for s in 0..moving {
             let k = env.moving[s];
+            if model.junction_shapes.excludes_node(k, i) {
+                continue; // inside its own junction body's shape (crate::junction_shape)
+            }
             let sweep = contact.moving_sweep[s];
             let reach = r * (1.0 + SKIN) + sweep + own;
             if !meets(&contact.moving_box[s], x, x, reach) {
@@ -243,6 +246,9 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
         let mut best = None;
         for s in 0..moving {
             let k = env.moving[s];
+            if model.junction_shapes.excludes_beam(k, a, b) {
+                continue; // inside its own junction body's shape (crate::junction_shape)
+            }
             let (base, reach) = beam_reach(model, &state.v, e, contact.moving_sweep[s], dt);
             if !meets(&contact.moving_box[s], xa.min(xb), xa.max(xb), reach) {
                 continue;

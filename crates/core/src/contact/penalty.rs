@@ -35,7 +35,10 @@ pub(crate) fn add_penalty_forces(model: &Model, state: &mut State) {
             };
             let placements = &state.contact.placements;
             let moving = if env.any_moves() {
-                env.closest_moving(x, still.map_or(r, |h| h.2), placements)
+                // not the shape of its own junction body, which it sits in
+                let shapes = &model.junction_shapes;
+                let allowed = |k: usize| !shapes.excludes_node(k, i);
+                env.closest_moving_where(x, still.map_or(r, |h| h.2), placements, allowed)
             } else {
                 None
             };

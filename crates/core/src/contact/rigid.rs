@@ -106,6 +106,10 @@ pub struct ContactScratch {
     /// The beam whose list each node searches (`u32::MAX`: none, a fresh query), in the
     /// still parts' lists and the moving parts' ([`super::moving`]).
     pub(crate) node_beam: Vec<u32>,
+    /// Per part riding on a junction body ([`crate::junction_shape`]): the impulse its
+    /// contacts gave the hose nodes this step and that impulse's moment about the world
+    /// origin, Σ J_n and Σ x_n × J_n (empty without junction shapes).
+    pub(crate) shape_impulse: Vec<(DVec3, DVec3)>,
 }
 
 impl ContactScratch {
@@ -131,6 +135,11 @@ impl ContactScratch {
             moving_box: vec![Aabb::new_invalid(); model.environment.moving.len()],
             moving_sweep: vec![0.0; model.environment.moving.len()],
             moving_candidates: super::moving::candidate_lists(model),
+            shape_impulse: if model.junction_shapes.any() {
+                vec![(DVec3::ZERO, DVec3::ZERO); model.environment.parts.len()]
+            } else {
+                Vec::new()
+            },
         }
     }
 }
@@ -441,9 +450,13 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
             continue;
         };
         let part = &env.parts[c.part];
+        // a junction body's shape moves with its body's velocity now and shares the
+        // impulse with it ([`crate::junction_shape`])
+        let shape = model.junction_shape_contact(state, &c);
+        let part_velocity = shape.map_or(c.part_velocity, |s| s.velocity);
         // relative to the part's velocity; a moving part's contact found with a gap lets
         // the point approach by the gap in this step ([`super::moving`])
-        let v_c = contact_velocity(state, &c) - c.part_velocity;
+        let v_c = contact_velocity(state, &c) - part_velocity;
         let vn = v_c.dot(c.normal);
         let allowed = if part.moves {
             (-c.depth).max(0.0) / dt
@@ -453,20 +466,33 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         if vn >= -allowed {
             continue;
         }
-        let dvn = -vn - allowed;
         let vt = v_c - vn * c.normal;
         let speed_t = vt.length();
-        let dvt = if speed_t <= part.friction_static * dvn {
-            -vt
+        // the hose point's shares of the normal and the tangential change: all of them
+        // against a part, 1/(1 + m_h k_b) against a junction body's shape (the hose
+        // point's effective mass m_h = Σ m_n w_n)
+        let (share_n, share_t) = shape.map_or((1.0, 1.0), |s| {
+            let hose_mass = model.mass[c.node_a] * wa + model.mass[c.node_b] * wb;
+            s.hose_shares(model, state, hose_mass, c.normal, vt)
+        });
+        let dvn = share_n * (-vn - allowed);
+        let dvt = if share_t * speed_t <= part.friction_static * dvn {
+            -vt * share_t
         } else {
             -vt * (part.friction_sliding * dvn / speed_t)
         };
         let dv = dvn * c.normal + dvt;
+        let (mut impulse, mut moment) = (DVec3::ZERO, DVec3::ZERO);
         for (node, w) in [(c.node_a, wa), (c.node_b, wb)] {
             if w != 0.0 {
                 state.v[node] += w * dv;
                 state.contact_force[node] += model.mass[node] * w * dv / dt;
+                impulse += model.mass[node] * w * dv;
+                moment += state.x[node].cross(model.mass[node] * w * dv);
             }
+        }
+        if let Some(s) = shape {
+            model.push_junction_shape(state, s, impulse, moment);
         }
     }
 }

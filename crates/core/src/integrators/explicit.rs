@@ -44,6 +44,9 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
             &state.part_moves,
             placements,
         );
+        if model.junction_shapes.any() {
+            model.place_junction_shapes(state);
+        }
         if state.sleep.enabled {
             // hoses asleep on a moving part wake if it would no longer carry them at rest
             crate::sleep::carried::before_step(model, state, dt);
@@ -192,6 +195,9 @@ pub fn step_by(model: &Model, state: &mut State, dt: f64) {
     if contact {
         advance_nodes(model, state, dt, Advance::Velocities);
         resolve_velocities(model, state, dt);
+        if model.junction_shapes.any() {
+            model.react_on_junction_shapes(state, dt);
+        }
         advance_nodes(model, state, dt, Advance::Positions);
         project_positions(model, state, dt);
     } else {

@@ -133,10 +133,19 @@ pub enum TopologyError {
     NotAChain(usize),
     #[error(transparent)]
     Loop(#[from] NotATree),
+    #[error("junction '{junction}': its body's shape (part '{part}') has contact with hoses in the explicit solver only; the static and implicit solvers cannot take it (choose solver = \"explicit\", or remove the shape)")]
+    JunctionShape { junction: String, part: String },
 }
 
 impl NewtonSystem {
     pub fn new(model: &Model) -> Result<Self, TopologyError> {
+        if let Some(j) = model.junctions.iter().find(|j| j.shape.is_some()) {
+            let part = j.shape.map_or(0, |k| k);
+            return Err(TopologyError::JunctionShape {
+                junction: j.name.clone(),
+                part: model.environment.parts[part].name.clone(),
+            });
+        }
         let n = model.node_count();
         let mut elements = model.elements.clone();
         let mut contact_stiffness = vec![0.0_f64; n];

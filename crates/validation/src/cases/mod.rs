@@ -14,6 +14,7 @@ pub mod hose_contact;
 mod hysteresis;
 mod invariance;
 mod junction_body;
+mod junction_shape;
 mod large_frames;
 mod mass_scaling;
 mod moving_parts;
@@ -56,6 +57,8 @@ pub const ALL: &[(&str, CaseFn)] = &[
     ("large_frames", large_frames::run),
     ("junction_body", junction_body::run_static),
     ("junction_body_torsion", junction_body::run_torsion),
+    ("junction_shape_rest", junction_shape::run_rest),
+    ("junction_shape_impact", junction_shape::run_impact),
     ("curved_reactions", curved_reactions::run),
     ("stub", fasteners::run_stub),
     ("clip", fasteners::run_clip),
