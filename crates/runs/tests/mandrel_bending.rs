@@ -1,9 +1,14 @@
-//! A metal line bent round a mandrel by contact (SPEC X1, issue item "bent around a part"):
-//! a steel brake line (library `steel_tube`) clamped tangent to a cylinder part, its end
-//! carried round the cylinder so that the line wraps a quarter turn onto it, then let go.
-//! In the middle of the wrapped arc the line springs back by the elastic unloading of the
-//! moment it carried, 1/R_after = 1/R_eff − M(1/R_eff)/EI (M the closed-form
-//! moment–curvature of the hardening tube, R_eff the radius it reached under load).
+//! A metal line bent round a mandrel by contact (SPEC X1): a steel brake line (library
+//! `steel_tube`) clamped tangent to a cylinder part, its end carried round the cylinder so
+//! that the line wraps a quarter turn onto it, then let go. In the middle of the wrapped
+//! arc it keeps the bend less a springback that is an elastic unloading bounded by the
+//! closed-form M(κ)/EI of the hardening tube (Lubliner 1990, ch. 4; κ the loaded
+//! curvature). The springback measured is less than half of M(κ)/EI; the likely reason
+//! (not measured here: the element moments are no output) is that the arc's middle
+//! carries less than M(κ) in the loaded state — bent when the line's departure point from
+//! the mandrel passed it, unloaded partly as the end went on round — so that
+//! 1/R_after = 1/R_eff − M(1/R_eff)/EI would hold for the curvature it reached at its
+//! peak, which the loaded shape alone does not give.
 
 use glam::DVec3;
 use pliant_core::rod::plastic_moment::hardening_bending_moment;
@@ -106,7 +111,7 @@ fn run(text: &str) -> Vec<DVec3> {
     cell.state().x.clone()
 }
 
-/// Mean curvature [1/m] of the centre line between nodes `a` and `b`: the turn of the
+/// Mean curvature \[1/m\] of the centre line between nodes `a` and `b`: the turn of the
 /// element chord from the element starting at `a` to the one ending at `b`, over the
 /// distance between those chords' midpoints.
 fn mean_curvature(x: &[DVec3], a: usize, b: usize) -> f64 {
