@@ -13,7 +13,8 @@
 use glam::DVec3;
 use pliant_core::rod::plastic_moment::hardening_bending_moment;
 use pliant_scene::load_scene_str;
-use pliant_testkit::scenes::WEIGHTLESS_MM;
+use pliant_testkit::scene_text::{action, run_for, SceneText};
+use pliant_testkit::scenes::{ELASTIC_STEEL, WEIGHTLESS_MM};
 use std::f64::consts::PI;
 
 const R_OUTER: f64 = 2.375e-3;
@@ -88,18 +89,10 @@ duration_s = 0.1
         ));
     }
     if release {
-        text.push_str(
-            r#"
-[[timeline]]
-action = "release"
-hose = "line"
-node = -1
-
-[[timeline]]
-action = "run"
-duration_s = 0.05
-"#,
-        );
+        let end = SceneText::piece()
+            .with(action("release").text("hose", "line").number("node", -1.0))
+            .with(run_for(0.05));
+        text.push_str(&String::from(end));
     }
     text
 }
@@ -166,14 +159,7 @@ fn a_steel_line_wrapped_round_a_mandrel_keeps_the_bend_less_its_springback() {
 
 #[test]
 fn an_elastic_line_wrapped_round_the_mandrel_springs_straight() {
-    let elastic = r#"
-[materials.elastic_steel]
-e_tension_mpa = 210000
-e_compression_mpa = 210000
-poisson = 0.3
-density_kg_m3 = 7850
-"#;
-    let after = run(&scene("elastic_steel", elastic, 64, true));
+    let after = run(&scene("elastic_steel", ELASTIC_STEEL, 64, true));
     let (a, b) = middle_of_arc();
     let k_after = mean_curvature(&after, a, b);
     assert!(k_after.abs() < 0.5, "the elastic line keeps {k_after} 1/m");
