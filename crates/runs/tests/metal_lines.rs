@@ -4,7 +4,7 @@
 //! bend; the same line with the same elastic data but no yield stress springs straight.
 
 use pliant_scene::load_scene_str;
-use pliant_testkit::scenes::WEIGHTLESS_MM;
+use pliant_testkit::scenes::{ELASTIC_STEEL, WEIGHTLESS_MM};
 
 /// The line fixed at its start, its end moved onto the quarter circle and turned with it,
 /// then released; `material` names the line's material, `extra` goes before the hoses.
@@ -62,13 +62,6 @@ fn a_steel_line_bent_by_hand_keeps_its_bend_and_an_elastic_one_springs_back() {
         kept > 0.110 && kept < 0.1274,
         "the steel line's end at z = {kept} m"
     );
-    let elastic = r#"
-[materials.elastic_steel]
-e_tension_mpa = 210000
-e_compression_mpa = 210000
-poisson = 0.3
-density_kg_m3 = 7850
-"#;
-    let back = end_height(&scene("elastic_steel", elastic));
+    let back = end_height(&scene("elastic_steel", ELASTIC_STEEL));
     assert!(back.abs() < 1e-3, "the elastic line's end at z = {back} m");
 }

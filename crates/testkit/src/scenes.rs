@@ -83,6 +83,16 @@ poisson = 0.45
 density_kg_m3 = 1150
 "#;
 
+/// The steel of the library's metal lines (E = 210 GPa, ν 0.3, ρ 7850 kg/m³) without a
+/// yield stress, called "elastic_steel": the elastic twin of a yielding steel line.
+pub const ELASTIC_STEEL: &str = r#"
+[materials.elastic_steel]
+e_tension_mpa = 210000
+e_compression_mpa = 210000
+poisson = 0.3
+density_kg_m3 = 7850
+"#;
+
 /// `scene` and then hose `name` of library hose 3, 10 elements, straight from `start` to
 /// `end` (mm), fixed at its start, its end grabbed by hand 0 and moved by `by` (mm) over
 /// `duration_s`: what a worker's tests give him to hold.
