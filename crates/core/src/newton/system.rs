@@ -59,7 +59,7 @@ pub struct NewtonSystem {
     /// Friction of each node touching a part, last assembly (None: not in contact).
     pub friction: Vec<Option<FrictionResponse>>,
     /// Give a slipping node's friction its secant stiffness μ f_n/|g_t| along the slip as
-    /// well (the static solver: [`Self::add_contact`]).
+    /// well (the static solver: `add_contact`).
     pub regularise_slip: bool,
     /// Normal force of each node's rigid-part contact in the last assembly \[N\].
     normal_force: Vec<f64>,

@@ -46,7 +46,7 @@ pub const SLEEP_CONE: f64 = 0.8;
 /// hose does not wake and fall asleep by turns).
 pub const WAKE_CONE: f64 = 0.9;
 /// A carried node without contact wakes its hose when its effective gravity (in the
-/// part's frame) changes by more than this fraction of |g| (plus [`WAKE_FORCE`]/m).
+/// part's frame) changes by more than this fraction of |g| (plus `WAKE_FORCE`/m).
 pub const WAKE_GRAVITY_CHANGE: f64 = 0.01;
 /// Force change \[N\] that always counts (the same floor as for sleeping in place).
 const WAKE_FORCE: f64 = 1e-6;
@@ -59,7 +59,7 @@ const NONE: usize = usize::MAX;
 /// More than one part.
 const MIXED: usize = usize::MAX - 1;
 
-/// The carried-sleep state of a [`State`]'s hoses (part of [`Sleep`], so of every
+/// The carried-sleep state of a [`State`]'s hoses (part of [`crate::sleep::Sleep`], so of every
 /// checkpoint).
 #[derive(Clone, Debug, Default)]
 pub struct Carriage {
