@@ -36,8 +36,8 @@ const DATA_ROOT: &[&str] = &[
 const SOLVERS: &[&str] = &["integrators", "newton", "relax", "health"];
 
 /// The types of higher layers a data module carries, path by path: the model holds its
-/// built elements, rest frames, masses, stiffened bodies and stable step (kernels) and
-/// its contact environment; the state holds the per-step scratch of contact, loads and
+/// built elements, rest frames, masses, stiffened bodies and stable step (kernels), its
+/// contact environment and the junction bodies' shapes (parts posed from the bodies); the state holds the per-step scratch of contact, loads and
 /// sleeping, and the parts inputs moved; a spec names the hose contact rule.
 const DATA_EXCEPTIONS: &[(&str, &[&str])] = &[
     (
@@ -49,6 +49,7 @@ const DATA_EXCEPTIONS: &[(&str, &[&str])] = &[
         &[
             "contact::HoseContactModel",
             "contact::RigidEnvironment",
+            "junction_shape::JunctionShapes",
             "kinematics::PartKinematics",
             "parallel::available_cores",
             "rod::element::BeamElement",
