@@ -873,43 +873,22 @@ elements = 10
         assert!(dir.path().join("report.html").is_file());
     }
 
-    /// A tee piece whose shape is a box, falling freely under gravity (mm).
-    const SHAPED_TEE: &str = r#"
-format = "pliant-scene"
-version = 1
-length_unit = "mm"
-
-[[hoses]]
-name = "a"
-material = "hose1"
-elements = 4
-start = [0, 0, 0]
-path = [{ line = { to = [200, 0, 0] } }]
-
-[[hoses]]
-name = "b"
-material = "hose1"
-elements = 4
-start = [220, 0, 0]
-path = [{ line = { to = [400, 0, 0] } }]
-
-[[parts]]
-name = "tee_box"
-box = { size = [20, 10, 10] }
-position = [210, 0, 0]
-
-[[junctions]]
-name = "tee"
-ends = [{ hose = "a", end = "end" }, { hose = "b", end = "start" }]
-body = { mass_kg = 0.02, centre_of_mass = [210, 0, 0], inertia_kg_m2 = [3e-7, 8e-7, 8e-7], part = "tee_box" }
-"#;
+    /// The testkit's tee whose body's shape is a box, falling freely under gravity (mm).
+    fn shaped_tee() -> String {
+        use pliant_testkit::scenes::{HEAD_MM, TEE_MM};
+        format!(
+            "{HEAD_MM}{TEE_MM}body = {{ mass_kg = 0.02, centre_of_mass = [210, 0, 0], \
+             inertia_kg_m2 = [3e-7, 8e-7, 8e-7], part = \"tee_box\" }}\n\
+             [[parts]]\nname = \"tee_box\"\nbox = {{ size = [20, 10, 10] }}\nposition = [210, 0, 0]\n"
+        )
+    }
 
     /// The welcome names a junction body's shape, and every snapshot poses it where the
     /// body is: its rest mesh carried by the pose puts the outlets on the outlet nodes.
     #[test]
     fn a_junction_shape_is_posed_where_its_body_is() {
         let scene =
-            pliant_scene::load_scene_str_in(SHAPED_TEE, "tee.toml", Path::new(".")).unwrap();
+            pliant_scene::load_scene_str_in(&shaped_tee(), "tee.toml", Path::new(".")).unwrap();
         let (cell, _, _) = live_workcell(&scene, None).unwrap();
         let model = cell.model().clone();
         let data = crate::snapshot::SceneData::new(&scene, &model, &(Vec::new(), Vec::new()), 30.0);
