@@ -9,7 +9,7 @@ import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
 import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openViewer, repo, simulated, startServer } from './harness.mjs';
+import { dist, launchBrowser, openViewer, repo, simulated, startServer } from './harness.mjs';
 
 const FIXTURE = path.join(repo, 'web', 'test', 'fixtures', 'author_start.toml');
 const LOW = { width: 1100, height: 760, query: '?quality=low' };
@@ -28,7 +28,6 @@ after(async () => {
   await server?.stop();
 });
 
-const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 
 /** A real mouse click on the screen position of world point `p`. */
 async function clickAt(page, p) {

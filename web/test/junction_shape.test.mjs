@@ -10,7 +10,7 @@ import { mkdtempSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { describe, test } from 'node:test';
-import { openViewer, sharedSession } from './harness.mjs';
+import { dist, openViewer, sharedSession } from './harness.mjs';
 
 const dir = mkdtempSync(path.join(os.tmpdir(), 'pliant-junction-shape-'));
 const scene = path.join(dir, 'tee.toml');
@@ -56,7 +56,6 @@ node = -1
 
 const shared = sharedSession([scene]);
 
-const dist = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
 
 describe('junction shape', () => {
   test('a shaped junction body is drawn as its part and rides on its outlets', async () => {
