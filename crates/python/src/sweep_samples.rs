@@ -1,7 +1,7 @@
 //! Centre-line samples of recorded hose frames for tolerance envelopes (SPEC T2; the
 //! method is `pliant_assembly::sweep::centreline_samples`, shared with `pliant run`'s
 //! swept envelopes, and described in `pliant/studies/envelope.py`). A study unites the
-//! keys of its runs and dilates them to voxels once per batch, so this is the part of the
+//! keys of its runs and dilates the union to voxels once at its end, so this is the part of the
 //! envelope each run pays for; numpy spent ≈ 20 ms on it per run of the engine-bay demo,
 //! mostly in allocating its (T·E·(n+1), 3) temporaries.
 

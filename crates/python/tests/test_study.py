@@ -17,7 +17,7 @@ pytest.importorskip("pyarrow")
 
 import pliant  # noqa: E402
 from pliant.studies import StudyError, load_study, samples, variant_scene  # noqa: E402
-from pliant.studies import envelope, geometry  # noqa: E402
+from pliant.studies import envelope, geometry, variant  # noqa: E402
 from pliant.studies.sampling import unit_samples  # noqa: E402
 
 from conftest import EXAMPLES  # noqa: E402
@@ -430,6 +430,24 @@ def test_resume_does_no_new_work_and_redoes_what_was_lost(done, client, scene_pa
         pliant.study(study_dict(scene_path, seed=99), done.out, client=client, progress=False)
 
 
+def test_the_envelope_is_dilated_from_the_samples_on_disk_and_an_older_folder_is_refused(done, client, scene_path,
+                                                                                       tmp_path):
+    """The union of the runs' centre-line samples is what a study keeps on disk; its
+    voxels are that union dilated once. A folder from before (voxels, no samples) cannot
+    be resumed: its envelope would miss the runs on disk."""
+    folder = os.path.join(done.out, "envelope")
+    samples = np.load(os.path.join(folder, "samples-h.npy"))
+    voxels = np.load(os.path.join(folder, "voxels-h.npy"))
+    radius = variant.hose_radii(done.study.scene)["h"]
+    assert 0 < len(samples) and np.array_equal(envelope.voxels_of_samples(samples, radius, done.envelope["voxel_m"]),
+                                               voxels)
+    older = str(tmp_path / "older")
+    shutil.copytree(done.out, older)
+    os.remove(os.path.join(older, "envelope", "samples-h.npy"))
+    with pytest.raises(StudyError, match="samples-h.npy is missing"):
+        pliant.study(study_dict(scene_path), older, client=client, progress=False)
+
+
 def centreline_samples(frames, spacing):
     """The envelope's centre-line samples, written with numpy as the reference of the Rust
     ``centreline_sample_keys``: every element of every frame (T, N, 3) at n + 1 points,
@@ -718,7 +736,8 @@ def test_sample_keys_equal_the_numpy_reference():
 
 def test_a_batch_dilates_its_united_samples_to_the_union_of_its_runs_voxels():
     """Dilating the united samples of several runs once gives exactly the union of each
-    run's own voxels (a batch's shortcut, runner.run_batch)."""
+    run's own voxels (the study's shortcut: batches unite their runs' samples, the study
+    dilates the union of all once, cluster._dilate)."""
     h, r = 0.004, 0.006
     rng = np.random.default_rng(17)
     runs = []

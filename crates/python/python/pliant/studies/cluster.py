@@ -2,9 +2,10 @@
 or any cluster by its scheduler address. Runs are submitted in a bounded window and
 collected as they finish (``distributed.as_completed``); rows stream to Parquet parts
 (``OUT/parts/part-NNNNN.parquet``, each written whole and renamed into place) and the
-envelope voxels to ``OUT/envelope/voxels-<hose>.npy``. A study started again in the same
-folder skips the runs whose rows are there (resume); the voxel union is idempotent, so a
-run done twice changes nothing.
+union of the runs' centre-line samples to ``OUT/envelope/samples-<hose>.npy``, dilated to
+the envelope's voxels (``voxels-<hose>.npy``) once at the end. A study started again in
+the same folder skips the runs whose rows are there (resume); the union is idempotent, so
+a run done twice changes nothing.
 
 Layout of OUT: ``study.json`` (what the study is), ``runs/<id>.json`` (each run's scene:
 its replay input), ``parts/`` (rows as they came), ``results.parquet`` (all rows, by
@@ -165,6 +166,11 @@ class Layout:
     def voxels(self, hose: str) -> str:
         return os.path.join(self.envelope, f"voxels-{column_name(hose)}.npy")
 
+    def samples(self, hose: str) -> str:
+        """The union of the runs' centre-line samples on disk: what a resumed study
+        starts from (the voxels are dilated from it at the end)."""
+        return os.path.join(self.envelope, f"samples-{column_name(hose)}.npy")
+
 
 def done_run_ids(layout: Layout) -> set:
     """Run ids whose rows are already on disk."""
@@ -287,7 +293,7 @@ def stream_batches(client, runs: List[int], make_task: Callable[[int], Task], si
             continue
         if isinstance(res, BaseException):
             res = {"results": [{"row": {"status": "error", "message": f"{type(res).__name__}: {res}"}}],
-                   "voxels": {}}
+                   "samples": {}}
         on_batch(chosen, res)
         nxt = submit()
         if nxt is not None:
@@ -337,8 +343,7 @@ def run_study(
     voxel = study.envelope_voxel_m or min(0.005, min(radii.values()) / 2)
     parts = geometry.parts(base_scene)
     fasteners = [s["name"] for s in study.scene.get("stubs", []) + study.scene.get("clips", [])]
-    union = {h: (np.load(layout.voxels(h)) if os.path.exists(layout.voxels(h)) else np.zeros(0, np.int64))
-             for h in hoses}
+    union = _samples_on_disk(layout, hoses, done)
     sch = schema(study)
     seq = 1 + max((int(os.path.basename(p)[5:10]) for p in glob.glob(os.path.join(layout.parts, "part-*.parquet"))),
                   default=-1)
@@ -375,8 +380,8 @@ def run_study(
     def flush() -> None:
         if not buffer:
             return
-        for h in hoses:  # voxels first: a row on disk always has its voxels in the union
-            _atomic_write(layout.voxels(h), lambda p, h=h: np.save(open(p, "wb"), union[h]))
+        for h in hoses:  # samples first: a row on disk always has its samples in the union
+            _atomic_write(layout.samples(h), lambda p, h=h: np.save(open(p, "wb"), union[h]))
         table = pa.Table.from_pylist(buffer, schema=sch)
         path = os.path.join(layout.parts, f"part-{state['seq']:05d}.parquet")
         _atomic_write(path, lambda p: pq.write_table(table, p))
@@ -392,7 +397,7 @@ def run_study(
         return rows
 
     def record(chosen: List[int], res: Dict[str, Any]) -> None:
-        for h, keys in res["voxels"].items():  # voxels first (see flush)
+        for h, keys in res["samples"].items():  # samples first (see flush)
             union[h] = envelope.union(union[h], keys)
         for i, row in zip(chosen, with_ids(chosen, res)):
             row.update({p.column: str(samples[i][p.name]) if p.categorical else samples[i][p.name]
@@ -454,5 +459,41 @@ def run_study(
             client.close()
         if cluster is not None:
             cluster.close()
-    frame = finish(study, layout, sch, union, voxel, parts, log)
+    voxels = _dilate(layout, union, radii, voxel, log)
+    frame = finish(study, layout, sch, voxels, voxel, parts, log)
     return StudyResult(out=os.path.abspath(out), frame=frame, study=study)
+
+
+def _samples_on_disk(layout: Layout, hoses: List[str], done: set) -> Dict[str, np.ndarray]:
+    """The union of the centre-line samples of the runs on disk, per hose (empty for a
+    new study); a folder whose rows have no samples (written before the samples were
+    kept) cannot be resumed: its envelope would miss those runs."""
+    union = {}
+    for h in hoses:
+        if os.path.exists(layout.samples(h)):
+            union[h] = np.load(layout.samples(h))
+        elif done and os.path.exists(layout.voxels(h)):
+            raise StudyError(
+                f"{layout.out}: its envelope holds voxels but not the runs' centre-line samples "
+                f"({os.path.basename(layout.samples(h))} is missing: written by an older Pliant), so "
+                "the study cannot resume there; choose another --out, or delete the folder to start again")
+        else:
+            union[h] = np.zeros(0, np.int64)
+    return union
+
+
+def _dilate(layout: Layout, union: Dict[str, np.ndarray], radii: Dict[str, float], voxel: float,
+            log: Callable[[str], None]) -> Dict[str, np.ndarray]:
+    """The envelope's voxels: each hose's united samples dilated by its tube once
+    (:func:`envelope.voxels_of_samples`), written to ``voxels-<hose>.npy``. A hose whose
+    swept region is too large for the voxel size gets no envelope, and the log says why
+    (the rows stay)."""
+    voxels = {}
+    for h, keys in union.items():
+        try:
+            voxels[h] = envelope.voxels_of_samples(keys, radii[h], voxel)
+        except ValueError as e:
+            log(f"no envelope for hose {h!r}: {e}")
+            continue
+        _atomic_write(layout.voxels(h), lambda p, h=h: np.save(open(p, "wb"), voxels[h]))
+    return voxels

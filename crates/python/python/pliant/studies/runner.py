@@ -107,7 +107,7 @@ def _worker_columns(worker: Dict[str, Any]) -> Dict[str, Any]:
 
 def _sweep(result, task: Task, row: Dict[str, Any]) -> Dict[str, np.ndarray]:
     """Centre-line samples of each envelope hose (keys of :func:`envelope.sample_keys`;
-    the batch dilates them to voxels once), and the hoses' smallest clearance to each part
+    the study dilates their union to voxels once), and the hoses' smallest clearance to each part
     [m] (nodes and element midpoints of every recorded instant)."""
     samples: Dict[str, np.ndarray] = {}
     points, radii = [], []
@@ -133,9 +133,10 @@ def _sweep(result, task: Task, row: Dict[str, Any]) -> Dict[str, np.ndarray]:
 def run_batch(tasks: List[Task]) -> Dict[str, Any]:
     """Runs several variants in one Dask task (each as :func:`run_variant`): the task's
     scheduling, (de)serialisation and the parts' geometry are paid once per batch, and
-    the batch's centre-line samples are united and dilated to voxels once (the same voxels
-    as run by run: see :func:`envelope.sample_keys`). Returns
-    {"results": [{"row": ...}, ...], "voxels": {hose: sorted keys}}."""
+    the batch's centre-line samples are united (the study unites every batch's and
+    dilates the whole union to voxels once at its end: the same voxels as run by run,
+    see :func:`envelope.sample_keys`). Returns {"results": [{"row": ...}, ...],
+    "samples": {hose: sorted keys}}."""
     # one thread per run: a study keeps every core busy with runs of its own (the
     # explicit solver would otherwise start a thread per core for a scene of several
     # hoses, for each worker); a worker started with PLIANT_THREADS set keeps its value
@@ -146,10 +147,7 @@ def run_batch(tasks: List[Task]) -> Dict[str, Any]:
         for h, keys in res.pop("samples").items():
             samples[h] = envelope.union(samples[h], keys) if h in samples else keys
         results.append(res)
-    # every task of a study has the same radii and voxel size (the base scene's)
-    voxels = {h: envelope.voxels_of_samples(keys, tasks[0].radii[h], tasks[0].voxel)
-              for h, keys in samples.items()}
-    return {"results": results, "voxels": voxels}
+    return {"results": results, "samples": samples}
 
 
 def run_variant(task: Task) -> Dict[str, Any]:
