@@ -139,7 +139,10 @@ fn the_newton_solvers_take_a_shape_and_its_reaction_reaches_the_clamp() {
     let drift = (moving.x.iter().zip(&settled.x))
         .map(|(a, b)| (*a - *b).length())
         .fold(0.0, f64::max);
-    assert!(drift < 1e-6, "implicit moved {drift} m off the static equilibrium");
+    assert!(
+        drift < 1e-6,
+        "implicit moved {drift} m off the static equilibrium"
+    );
     for (solver, s) in [("static", &settled), ("implicit", &moving)] {
         // the clamps carry every weight, the resting hose's through the box and the tee
         let b_end = model.hoses[1].nodes().end - 1;

@@ -184,7 +184,10 @@ pub fn run_rest() -> Vec<Check> {
         }
     }
     out.extend(rest_checks(&model, "", (force, moment), EXPLICIT));
-    for (kind, tolerances) in [(SolverKind::Static, STATIC), (SolverKind::Implicit, IMPLICIT)] {
+    for (kind, tolerances) in [
+        (SolverKind::Static, STATIC),
+        (SolverKind::Implicit, IMPLICIT),
+    ] {
         let label = format!("{kind}: ");
         match newton_rest(&model, kind) {
             Ok(reaction) => out.extend(rest_checks(&model, &label, reaction, tolerances)),
@@ -265,9 +268,7 @@ fn rest_checks(
         ),
         Check::relative(
             CASE,
-            &format!(
-                "{label}resting hose's weight at the clamp (R_z − g Σ m of the rest) / g m_c"
-            ),
+            &format!("{label}resting hose's weight at the clamp (R_z − g Σ m of the rest) / g m_c"),
             (force.z - (weight - c_weight)) / c_weight,
             1.0,
             share,
