@@ -24,7 +24,7 @@
 //! K_mm = Bᵀ S B + [0, −[f]×; [f]×, −[a]×[f]×]  (the master's block)
 //! ```
 //!
-//! the geometric terms [f]× from the force turning with the body and the arm a changing
+//! the geometric terms \[f\]× from the force turning with the body and the arm a changing
 //! with both nodes. It is exact where S is (a node on a face of the shape; S leaves out
 //! the normal's turn around an edge or corner, of relative size depth/distance, and the
 //! friction tangent is its symmetric part, [`crate::contact::friction`]). K_ii and K_mm
