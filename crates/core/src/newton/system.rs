@@ -398,17 +398,20 @@ impl NewtonSystem {
             let nn = normal_projector(n);
             let friction = (with_friction && !self.prescribed[i])
                 .then(|| self.friction_response(model, state, i, part, n, k * depth, k));
-            let mut tangent = nn * k;
+            let mut block = self.matrix.diag[i].fixed_view_mut::<3, 3>(0, 0);
+            block += nn * k;
             if let Some(r) = friction {
-                tangent += r.tangent;
+                block += r.tangent;
                 f += r.force;
                 self.friction[i] = Some(r);
             }
-            let mut block = self.matrix.diag[i].fixed_view_mut::<3, 3>(0, 0);
-            block += tangent;
             self.force[i] += f;
             self.contact_force[i] += f;
             if let Some(j) = shape_contact::shape_junction(model, part) {
+                let tangent = match friction {
+                    Some(r) => nn * k + r.tangent,
+                    None => nn * k,
+                };
                 let s = glam::DMat3::from_cols_slice(tangent.as_slice());
                 let coupling = shape_contact::add_reaction(
                     model,
