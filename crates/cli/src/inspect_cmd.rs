@@ -1,11 +1,12 @@
 //! `pliant inspect SCENE [--json]`: what a scene builds — its hoses (length, elements,
 //! node positions), junctions (degree, position; a junction body's own mass, centre of
-//! mass and inertia tensor about it), fixings (stubs and clips) and parts —
+//! mass and inertia tensor about it, and its shape: the part, its kind and box),
+//! fixings (stubs and clips) and parts —
 //! in metres, for people (a summary) and scripts (JSON).
 
 use anyhow::{anyhow, Result};
 use pliant_core::Model;
-use pliant_scene::{load_scene_file_with, LoadedScene};
+use pliant_scene::{load_scene_file_with, LoadedScene, PartInfo};
 use serde_json::{json, Value};
 use std::path::Path;
 use std::process::ExitCode;
@@ -62,6 +63,7 @@ pub fn describe(scene: &LoadedScene, model: &Model) -> Value {
                 "position": body.rest_centre.to_array(),
                 "mass_kg": body.mass,
                 "body": own,
+                "shape": junction_shape(scene, model, j),
                 "ends": ends,
             })
         })
@@ -129,6 +131,32 @@ pub fn describe(scene: &LoadedScene, model: &Model) -> Value {
     })
 }
 
+/// The part a junction body carries as its shape (`body.part`), in the scene's parts.
+fn shape_part<'a>(
+    scene: &'a LoadedScene,
+    model: &Model,
+    j: &pliant_core::Junction,
+) -> Option<&'a PartInfo> {
+    let name = &model.environment.parts.get(j.shape?)?.name;
+    scene.parts.iter().find(|p| &p.name == name)
+}
+
+/// A junction body's shape as JSON: the part's name, its kind (`box`, `cylinder`,
+/// `sphere` or the mesh file), its triangles and its bounding box at rest; `null`
+/// without a shape.
+fn junction_shape(scene: &LoadedScene, model: &Model, j: &pliant_core::Junction) -> Value {
+    match shape_part(scene, model, j) {
+        Some(p) => json!({
+            "part": p.name,
+            "kind": p.source,
+            "triangles": p.triangles,
+            "bounds_m": [p.bounds.0.to_array(), p.bounds.1.to_array()],
+            "size_m": (p.bounds.1 - p.bounds.0).to_array(),
+        }),
+        None => Value::Null,
+    }
+}
+
 /// Loads and builds the scene and prints what it holds.
 pub fn run(scene_path: &Path, as_json: bool) -> Result<ExitCode> {
     let scene = load_scene_file_with(scene_path, &pliant_runs::load_options())
@@ -172,8 +200,18 @@ pub fn run(scene_path: &Path, as_json: bool) -> Result<ExitCode> {
     }
     for j in &model.junctions {
         let p = model.bodies[j.body].rest_centre * 1e3;
+        let shape = match shape_part(&scene, &model, j) {
+            Some(part) => {
+                let size = (part.bounds.1 - part.bounds.0) * 1e3;
+                format!(
+                    "  shape: part {} ({}, {:.1} × {:.1} × {:.1} mm)",
+                    part.name, part.source, size.x, size.y, size.z
+                )
+            }
+            None => String::new(),
+        };
         println!(
-            "  junction {:<20} degree {:>2}  at ({:.1}, {:.1}, {:.1}) mm",
+            "  junction {:<20} degree {:>2}  at ({:.1}, {:.1}, {:.1}) mm{shape}",
             j.name,
             j.nodes.len(),
             p.x,

@@ -27,8 +27,10 @@
 //!   ones before left it. A body held by a support, or asleep, is immovable: a held
 //!   body's support takes the impulses into its reaction.
 //!
-//! The Newton solvers (static, implicit) have no shape contact: they refuse a model with
-//! a junction shape ([`crate::newton::TopologyError::JunctionShape`]).
+//! The Newton solvers (static, implicit) pose the shape from the body's master node and
+//! give the contact's reaction to the body as a force and moment on it, the contact
+//! coupling the hose node with the body in their tangent
+//! ([`crate::newton::shape_contact`]).
 
 use crate::kinematics::{Placement, Pose, Twist};
 use crate::{Model, State};

@@ -2,8 +2,10 @@
 //! P5; the integrators themselves are in [`crate::integrators`]): the assembly of loads
 //! and consistent tangent ([`system`]), the O(N) linear solve of a chain or tree of
 //! nodes ([`block_tree`]), the condensation of junctions onto their master nodes
-//! ([`condensation`]), a junction body's own mass on its master ([`body_terms`]), GMRES for the hose–hose contact coupling outside its band
-//! ([`gmres`]) and the convergence test ([`convergence`]).
+//! ([`condensation`]), a junction body's own mass on its master ([`body_terms`]), the
+//! contact of hoses with a junction body's shape ([`shape_contact`]), GMRES for the
+//! contact coupling outside the band ([`gmres`]) and the convergence test
+//! ([`convergence`]).
 
 pub mod block_tree;
 pub mod body_terms;
@@ -11,6 +13,7 @@ pub mod condensation;
 pub mod convergence;
 pub mod factor_reuse;
 pub mod gmres;
+pub mod shape_contact;
 pub mod system;
 pub mod ties;
 

@@ -15,6 +15,8 @@
 //! * rigid parts: a penalty spring per penetrating node ball, f = k (r − d) n with
 //!   k = E_c A / l₀ of the node's elements and tangent k n nᵀ, and Coulomb friction by an
 //!   elastoplastic tangential spring of the same stiffness ([`crate::contact::friction`]);
+//!   a junction body's shape is such a part posed from the body, its reaction on the
+//!   body's master node coupling the two ([`super::shape_contact`]);
 //! * hose–hose contact: the explicit solver's penalty forces at the current positions,
 //!   with each pair's tangent: within the block band (each node with itself, the two nodes
 //!   of a beam with each other) in the matrix, across the two beams by GMRES on the
@@ -29,6 +31,7 @@ use super::condensation::{Condensation, Factored};
 use super::convergence::LoadScale;
 use super::factor_reuse::FactorReuse;
 use super::gmres::Gmres;
+use super::shape_contact::{self, ShapeCoupling};
 use super::ties::TieCouplings;
 use crate::contact::friction::{outer, FrictionResponse};
 use crate::contact::{hose_contact_forces_with, ContactPair};
@@ -76,6 +79,9 @@ pub struct NewtonSystem {
     /// Hose–hose contact pairs of the last assembly (their cross-beam coupling is applied
     /// iteratively in [`Self::solve_linear`]).
     pub pairs: Vec<ContactPair>,
+    /// Hose nodes touching a junction body's shape at the last assembly, coupled with the
+    /// body's master node (applied in [`Self::solve_linear`] with the pairs).
+    pub shape_couplings: Vec<ShapeCoupling>,
     /// Ties of the last assembly (their tangent, applied in [`Self::solve_linear`]).
     pub ties: TieCouplings,
     /// Size of the loads of the last assembly (for the convergence test).
@@ -124,19 +130,10 @@ pub enum TopologyError {
     NotAChain(usize),
     #[error(transparent)]
     Loop(#[from] NotATree),
-    #[error("junction '{junction}': its body's shape (part '{part}') has contact with hoses in the explicit solver only; the static and implicit solvers cannot take it (choose solver = \"explicit\", or remove the shape)")]
-    JunctionShape { junction: String, part: String },
 }
 
 impl NewtonSystem {
     pub fn new(model: &Model) -> Result<Self, TopologyError> {
-        if let Some(j) = model.junctions.iter().find(|j| j.shape.is_some()) {
-            let part = j.shape.map_or(0, |k| k);
-            return Err(TopologyError::JunctionShape {
-                junction: j.name.clone(),
-                part: model.environment.parts[part].name.clone(),
-            });
-        }
         let n = model.node_count();
         let mut elements = model.elements.clone();
         let mut contact_stiffness = vec![0.0_f64; n];
@@ -188,6 +185,11 @@ impl NewtonSystem {
             target_q: vec![DQuat::IDENTITY; n],
             pending: false,
             pairs: Vec::with_capacity(4 * n),
+            shape_couplings: if model.junction_shapes.any() {
+                Vec::with_capacity(n)
+            } else {
+                Vec::new()
+            },
             ties: TieCouplings::default(),
             base_rhs: vec![Vector6::zeros(); n],
             coupling: if model.hose_contact.active {
@@ -204,7 +206,9 @@ impl NewtonSystem {
     /// `contact_force` and `matrix` (prescribed nodes not yet eliminated).
     pub fn assemble(&mut self, model: &Model, state: &mut State, rate_factor: f64) {
         model.place_junction_nodes(&mut state.x, &mut state.q);
+        self.place_shapes(model, state);
         self.matrix.clear();
+        self.shape_couplings.clear();
         self.force.fill(DVec3::ZERO);
         self.moment.fill(DVec3::ZERO);
         self.contact_force.fill(DVec3::ZERO);
@@ -367,6 +371,15 @@ impl NewtonSystem {
         }
     }
 
+    /// Poses the junction bodies' shapes in `placements` from their master nodes
+    /// ([`shape_contact::place_shapes`]).
+    fn place_shapes(&mut self, model: &Model, state: &State) {
+        if model.junction_shapes.any() {
+            let (pose, twist) = ((&state.x[..], &state.q[..]), (&state.v[..], &state.w[..]));
+            shape_contact::place_shapes(model, pose, twist, &mut self.placements);
+        }
+    }
+
     /// Penalty contact of node balls with the rigid parts, with friction (see the module
     /// doc).
     fn add_contact(&mut self, model: &Model, state: &State) {
@@ -394,6 +407,22 @@ impl NewtonSystem {
             }
             self.force[i] += f;
             self.contact_force[i] += f;
+            if let Some(j) = shape_contact::shape_junction(model, part) {
+                let tangent = match friction {
+                    Some(r) => nn * k + r.tangent,
+                    None => nn * k,
+                };
+                let s = glam::DMat3::from_cols_slice(tangent.as_slice());
+                let coupling = shape_contact::add_reaction(
+                    model,
+                    j,
+                    (i, &state.x),
+                    (f, s),
+                    (&mut self.force, &mut self.moment),
+                    &mut self.matrix.diag,
+                );
+                self.shape_couplings.push(coupling);
+            }
         }
     }
 
@@ -440,11 +469,21 @@ impl NewtonSystem {
     }
 
     /// The part node `i` at `x` penetrates, the unit normal towards the node and the
-    /// depth r − d > 0; None when the node's ball is clear of every part.
+    /// depth r − d > 0; None when the node's ball is clear of every part. A node inside
+    /// its own junction body's shape ignores it ([`crate::junction_shape`]).
     fn touching(&self, model: &Model, x: DVec3, i: usize) -> Option<(usize, DVec3, f64)> {
         let r = model.radius[i];
         let env = &model.environment;
-        let (part, p, d) = if env.any_moves() {
+        let (part, p, d) = if model.junction_shapes.any() {
+            let still = env.closest_point(x, r);
+            let shapes = &model.junction_shapes;
+            let allowed = |k: usize| !shapes.excludes_node(k, i);
+            let reach = still.map_or(r, |h| h.2);
+            match env.closest_moving_where(x, reach, &self.placements, allowed) {
+                Some(m) if still.is_none_or(|h| m.2 < h.2) => m,
+                _ => still?,
+            }
+        } else if env.any_moves() {
             env.closest_point_placed(x, r, &self.placements)?
         } else {
             env.closest_point(x, r)?
@@ -494,6 +533,7 @@ impl NewtonSystem {
     /// under finite rotations) and are left out.
     pub fn potential_energy(&mut self, model: &Model, state: &mut State) -> f64 {
         model.place_junction_nodes(&mut state.x, &mut state.q);
+        self.place_shapes(model, state);
         let mut e = 0.0;
         for el in &self.elements {
             let (a, b) = (el.node_a, el.node_b);
@@ -647,8 +687,10 @@ impl NewtonSystem {
 
     /// Solves J δu = rhs (rhs becomes δu) for J = T + C: T the block-tridiagonal part in
     /// `matrix`, C the hose–hose contact coupling between the two beams of each pair,
-    /// −k wᵢ wⱼ n nᵀ (T includes the cable ties, solved exactly by their rank-one updates,
-    /// [`super::ties`]). Without contact pairs this is one O(N) solve; with them, GMRES on
+    /// −k wᵢ wⱼ n nᵀ, and that of each hose node touching a junction body's shape with
+    /// the body's master node ([`super::shape_contact`]) (T includes the cable ties,
+    /// solved exactly by their rank-one updates, [`super::ties`]). Without such
+    /// couplings this is one O(N) solve; with them, GMRES on
     /// (I + T⁻¹C) δu = T⁻¹ rhs with the factorised T ([`super::gmres`]), to a relative
     /// residual of `COUPLING_TOLERANCE`. (The fixed-point iteration δu ← T⁻¹(rhs − C δu)
     /// on the same splitting, used before, converges at the rate k/(k + k_hose) of the
@@ -681,7 +723,7 @@ impl NewtonSystem {
         if tied {
             self.ties.correct(&mut self.rhs, &self.prescribed);
         }
-        if self.pairs.is_empty() {
+        if self.pairs.is_empty() && self.shape_couplings.is_empty() {
             return Ok(inertia);
         }
         // b' = T⁻¹ rhs, also the start (the solution without the coupling)
@@ -691,6 +733,7 @@ impl NewtonSystem {
             self.coupling = Gmres::new(self.rhs.len());
         }
         let (pairs, prescribed) = (&self.pairs, &self.prescribed);
+        let shapes = &self.shape_couplings;
         let ties = &mut self.ties;
         let mut failed = None;
         self.coupling.solve(
@@ -701,6 +744,7 @@ impl NewtonSystem {
                 // (I + K⁻¹C) v = v − K⁻¹(−C v), K = T with the ties' rank-one updates
                 out.fill(Vector6::zeros());
                 add_minus_coupling(pairs, prescribed, v, out);
+                shape_contact::add_minus_shape_coupling(shapes, prescribed, v, out);
                 if let Err(e) = factored.solve_factored(out) {
                     failed = Some(e);
                 }
@@ -735,6 +779,9 @@ impl NewtonSystem {
         }
         for p in &mut self.pairs {
             p.stiffness *= factor;
+        }
+        for c in &mut self.shape_couplings {
+            c.scale(factor);
         }
     }
 
@@ -1000,8 +1047,9 @@ pub fn residual_norms(force: &[DVec3], moment: &[DVec3], prescribed: &[bool]) ->
     (f, m)
 }
 
-/// Puts each stiffened section's body state where its nodes now are (the Newton solvers
-/// move the nodes; the explicit solver and the reports read the bodies).
+/// Puts each stiffened section's body state where its nodes now are, and each junction
+/// body's shape where its body now is (the Newton solvers move the nodes; the explicit
+/// solver and the reports read the bodies and the parts' placements).
 pub fn sync_bodies(model: &Model, state: &mut State) {
     for (b, body) in model.bodies.iter().enumerate() {
         let first = body.nodes[0];
@@ -1033,5 +1081,9 @@ pub fn sync_bodies(model: &Model, state: &mut State) {
         s.orientation = orientation;
         s.velocity = velocity;
         s.angular_velocity = state.w[first];
+    }
+    if model.junction_shapes.any() && !state.contact.placements.is_empty() {
+        // the shapes ride on the bodies (reports and the viewer read their placements)
+        model.place_junction_shapes(state);
     }
 }
