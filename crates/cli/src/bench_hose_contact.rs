@@ -17,14 +17,14 @@
 //!   contact), still swaying gently: their kinetic energy has fallen to ≈ 1 % of its
 //!   peak, not to rest.
 
-use crate::bench::{self, median, ELEMENT_LENGTH};
+use crate::bench::{self, ELEMENT_LENGTH};
+use crate::bench_contact_phases::time_chunks;
 use anyhow::{bail, Context, Result};
 use glam::DVec3;
+use pliant_core::health;
 use pliant_core::loads::{Fix, LoadCase};
-use pliant_core::{health, integrators::explicit};
 use pliant_core::{HoseSpec, Model, SimSettings, State, WorldSpec};
 use serde::Serialize;
-use std::time::Instant;
 
 /// Hoses per layer of the grid.
 pub const HOSES_PER_LAYER: usize = 5;
@@ -65,9 +65,6 @@ fn windows(quick: bool) -> [(&'static str, u64, u64); 2] {
         [("falling", 1_000, 5_000), ("lying", 40_000, 5_000)]
     }
 }
-
-/// Chunks each window is timed in.
-const CHUNKS: u64 = 5;
 
 /// The grid of hoses lying across each other (see the module doc): the model and its
 /// initial state, every hose straight and clamped at both ends.
@@ -133,22 +130,13 @@ fn time_windows(contact: bool, quick: bool) -> Result<Vec<(f64, f64)>> {
     let mut out = Vec::new();
     for (name, first, steps) in windows(quick) {
         bench::run_steps(&model, &mut state, first - step);
-        step = first;
-        let chunk = (steps / CHUNKS).max(1);
-        let (mut per_step, mut pairs) = (Vec::new(), 0usize);
-        for _ in 0..CHUNKS {
-            let t = Instant::now();
-            for _ in 0..chunk {
-                explicit::step(&model, &mut state);
-                pairs += state.hose_contact.pairs_in_contact;
-            }
-            per_step.push(t.elapsed().as_nanos() as f64 / chunk as f64);
-            step += chunk;
-        }
+        let pairs = |s: &State| s.hose_contact.pairs_in_contact;
+        let (ns, pairs, done) = time_chunks(&model, &mut state, steps, pairs);
+        step = first + done;
         if let Err(d) = health::check(&model, &state) {
             bail!("hose-contact benchmark ({name} window) diverged: {d}");
         }
-        out.push((median(&per_step), pairs as f64 / (CHUNKS * chunk) as f64));
+        out.push((ns, pairs));
     }
     Ok(out)
 }
