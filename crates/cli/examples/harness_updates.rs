@@ -106,6 +106,8 @@ mod bench_contact_phases;
 mod bench_engine_bay;
 #[path = "../src/bench_harness.rs"]
 mod bench_harness;
+#[path = "../src/bench_hose_contact.rs"]
+mod bench_hose_contact;
 #[path = "../src/bench_newton.rs"]
 mod bench_newton;
 #[path = "../src/bench_snapshot.rs"]

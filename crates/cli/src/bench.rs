@@ -821,17 +821,19 @@ fn print_result<T: Serialize + ?Sized>(
     Ok(())
 }
 
-/// `--only contact`: the time-boxed rows and the fixed windows
-/// ([`crate::bench_contact_phases`]).
+/// `--only contact`: the time-boxed rows, the fixed windows
+/// ([`crate::bench_contact_phases`]) and hose–hose contact
+/// ([`crate::bench_hose_contact`]).
 #[derive(Clone, Debug, Serialize)]
 pub struct ContactOnly {
     #[serde(flatten)]
     pub rows: ContactCost,
     pub phases: Vec<crate::bench_contact_phases::ContactPhase>,
+    pub hose_hose: crate::bench_hose_contact::HoseContactCost,
 }
 
 /// `--only contact`: the contact-free and the floor rows of 5 × 30, and their ratio; then
-/// the same at fixed windows of steps.
+/// the same at fixed windows of steps; then hose–hose contact.
 fn run_contact_only(opts: &BenchOptions) -> Result<()> {
     let budget = Budget::new(opts.quick);
     let free = measure(5, 30, 0, 1, budget)?;
@@ -865,11 +867,19 @@ fn run_contact_only(opts: &BenchOptions) -> Result<()> {
         println!("the same at fixed steps of its world:");
     }
     let phases = crate::bench_contact_phases::measure(opts.quick)?;
+    if !opts.json {
+        print!("{}", crate::bench_contact_phases::render(&phases));
+    }
+    let hose_hose = crate::bench_hose_contact::measure(opts.quick)?;
     if opts.json {
-        let out = ContactOnly { rows: cost, phases };
+        let out = ContactOnly {
+            rows: cost,
+            phases,
+            hose_hose,
+        };
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
-        print!("{}", crate::bench_contact_phases::render(&phases));
+        print!("{}", crate::bench_hose_contact::render(&hose_hose));
     }
     Ok(())
 }

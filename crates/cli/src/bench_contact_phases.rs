@@ -18,7 +18,7 @@
 use crate::bench::{self, median, FLOOR_QUADS};
 use anyhow::{bail, Result};
 use pliant_core::kinematics::PartMotion;
-use pliant_core::{health, integrators::explicit};
+use pliant_core::{health, integrators::explicit, Model, State};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -69,24 +69,37 @@ fn time_windows(
     let mut out = Vec::new();
     for (name, first, steps) in windows(quick) {
         bench::run_steps(&model, &mut state, first - step);
-        step = first;
-        let chunk = (steps / CHUNKS).max(1);
-        let (mut per_step, mut points) = (Vec::new(), 0usize);
-        for _ in 0..CHUNKS {
-            let t = Instant::now();
-            for _ in 0..chunk {
-                explicit::step(&model, &mut state);
-                points += state.contact.points.len();
-            }
-            per_step.push(t.elapsed().as_nanos() as f64 / chunk as f64);
-            step += chunk;
-        }
+        let (ns, points, done) = time_chunks(&model, &mut state, steps, |s| s.contact.points.len());
+        step = first + done;
         if let Err(d) = health::check(&model, &state) {
             bail!("contact benchmark ({name} window) diverged: {d}");
         }
-        out.push((median(&per_step), points as f64 / (CHUNKS * chunk) as f64));
+        out.push((ns, points));
     }
     Ok(out)
+}
+
+/// Times about `steps` steps of `state` in [`CHUNKS`] chunks: wall ns per step (median
+/// over the chunks), `count` of the state after each step averaged over the steps, and
+/// the steps taken.
+pub(crate) fn time_chunks(
+    model: &Model,
+    state: &mut State,
+    steps: u64,
+    count: impl Fn(&State) -> usize,
+) -> (f64, f64, u64) {
+    let chunk = (steps / CHUNKS).max(1);
+    let (mut per_step, mut total) = (Vec::new(), 0usize);
+    for _ in 0..CHUNKS {
+        let t = Instant::now();
+        for _ in 0..chunk {
+            explicit::step(model, state);
+            total += count(state);
+        }
+        per_step.push(t.elapsed().as_nanos() as f64 / chunk as f64);
+    }
+    let done = CHUNKS * chunk;
+    (median(&per_step), total as f64 / done as f64, done)
 }
 
 /// Measures both windows without, with the 100 352-triangle floor and with it swaying.

@@ -9,6 +9,7 @@ mod bench;
 mod bench_contact_phases;
 mod bench_engine_bay;
 mod bench_harness;
+mod bench_hose_contact;
 mod bench_newton;
 mod bench_snapshot;
 mod bench_worker;

@@ -265,8 +265,9 @@ fn validate_json_prints_the_documented_fields() {
 }
 
 /// `bench --only contact --json` prints the time-boxed rows and both fixed windows, at
-/// the steps documented, without, with the floor and with it swaying, with finite
-/// positive times (no timing is judged here).
+/// the steps documented, without, with the floor and with it swaying, and the hose–hose
+/// rows of the crossed grid, with finite positive times (no timing is judged here) and
+/// its layers touching.
 #[test]
 fn contact_bench_reports_its_fixed_windows() {
     let v = json_of(&["bench", "--only", "contact", "--quick", "--json"]);
@@ -288,6 +289,19 @@ fn contact_bench_reports_its_fixed_windows() {
             assert!(x.is_finite() && x > 0.0, "{key} = {x}");
         }
         assert!(p["first_step"].as_u64().unwrap() > 0 && p["steps"].as_u64().unwrap() > 0);
+    }
+    let grid = &v["hose_hose"];
+    assert_eq!(grid["hoses"].as_u64(), Some(10));
+    let phases = grid["phases"].as_array().unwrap();
+    let names: Vec<_> = phases.iter().map(|p| p["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["falling", "lying"]);
+    for p in phases {
+        for key in ["ns_per_step_free", "ns_per_step_contact", "ratio"] {
+            let x = p[key].as_f64().unwrap();
+            assert!(x.is_finite() && x > 0.0, "{key} = {x}");
+        }
+        let pairs = p["pairs_in_contact_per_step"].as_f64().unwrap();
+        assert!(pairs > 0.0, "{pairs} pairs in contact");
     }
 }
 

@@ -114,12 +114,12 @@ fn list_reach(current: f64, need: f64, base: f64) -> f64 {
     }
 }
 
-/// Beam `e`'s reach at rest and this step's (node velocities `v`), against a part moving
+/// Beam `e`'s reach at rest and this step's (node speeds `speed`), against a part moving
 /// by up to `sweep` in the step of `dt`.
-fn beam_reach(model: &Model, v: &[DVec3], e: usize, sweep: f64, dt: f64) -> (f64, f64) {
+fn beam_reach(model: &Model, speed: &[f64], e: usize, sweep: f64, dt: f64) -> (f64, f64) {
     let (a, b) = (model.elements[e].node_a, model.elements[e].node_b);
     let base = model.radius[a].max(model.radius[b]) * (1.0 + SKIN);
-    let own = v[a].length().max(v[b].length()) * dt;
+    let own = speed[a].max(speed[b]) * dt;
     (base, base + sweep + own)
 }
 
@@ -142,6 +142,18 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
     for s in 0..moving {
         contact.moving_candidates[s].follow(&frame(s));
     }
+    // each node's speed, and its position in each moving part's frame, once a step
+    let n = state.x.len();
+    for (speed, v) in contact.moving_speed.iter_mut().zip(&state.v) {
+        *speed = v.length();
+    }
+    for (s, local) in contact.moving_local.chunks_exact_mut(n.max(1)).enumerate() {
+        let pose = contact.placements[env.moving[s]].pose;
+        for (l, &x) in local.iter_mut().zip(&state.x) {
+            *l = pose.inverse_apply(x);
+        }
+    }
+    let local_of = |s: usize, i: usize| s * n + i;
     // nodes: the nearest moving part's closest point within reach
     for i in 0..state.x.len() {
         if state.held[i] || model.body_of[i].is_some() {
@@ -149,8 +161,8 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
             continue;
         }
         let (x, r) = (state.x[i], model.radius[i]);
-        let own = state.v[i].length() * dt;
-        let mut best: Option<(usize, DVec3, f64)> = None; // part, local point, distance
+        let own = contact.moving_speed[i] * dt;
+        let mut best: Option<(usize, DVec3, f64)> = None; // slot, local point, distance
         for s in 0..moving {
             let k = env.moving[s];
             if model.junction_shapes.excludes_node(k, i) {
@@ -161,8 +173,7 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
             if !meets(&contact.moving_box[s], x, x, reach) {
                 continue;
             }
-            let pose = contact.placements[k].pose;
-            let local = pose.inverse_apply(x);
+            let local = contact.moving_local[local_of(s, i)];
             let bound = best.map_or(reach, |b| b.2.min(reach));
             let e = contact.node_beam[i] as usize;
             let hit = match model.elements.get(e) {
@@ -176,10 +187,10 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
                         Searcher::EndNode
                     };
                     let (la, lb) = (
-                        pose.inverse_apply(state.x[el.node_a]),
-                        pose.inverse_apply(state.x[el.node_b]),
+                        contact.moving_local[local_of(s, el.node_a)],
+                        contact.moving_local[local_of(s, el.node_b)],
                     );
-                    let (base, need) = beam_reach(model, &state.v, e, sweep, dt);
+                    let (base, need) = beam_reach(model, &contact.moving_speed, e, sweep, dt);
                     let lists = &mut contact.moving_candidates[s];
                     let list = list_reach(lists.slot_reach(e), need, base);
                     if lists.clear_slack(e, la, lb, list).is_some()
@@ -207,17 +218,18 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
             };
             if let Some(hit) = hit {
                 if best.is_none_or(|b| hit.distance < b.2) {
-                    best = Some((k, hit.point, hit.distance));
+                    best = Some((s, hit.point, hit.distance));
                 }
             }
         }
         let memory = &mut contact.moving_node_normal[i];
-        let Some((k, q_local, _)) = best else {
+        let Some((s, q_local, _)) = best else {
             *memory = (usize::MAX, DVec3::ZERO);
             continue;
         };
+        let k = env.moving[s];
         let place = contact.placements[k];
-        let local = place.pose.inverse_apply(x);
+        let local = contact.moving_local[local_of(s, i)];
         let remembered = if memory.0 == k { memory.1 } else { DVec3::ZERO };
         let (normal_local, depth) = side(local, q_local, r, remembered);
         *memory = (k, normal_local);
@@ -249,12 +261,15 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
             if model.junction_shapes.excludes_beam(k, a, b) {
                 continue; // inside its own junction body's shape (crate::junction_shape)
             }
-            let (base, reach) = beam_reach(model, &state.v, e, contact.moving_sweep[s], dt);
+            let sweep = contact.moving_sweep[s];
+            let (base, reach) = beam_reach(model, &contact.moving_speed, e, sweep, dt);
             if !meets(&contact.moving_box[s], xa.min(xb), xa.max(xb), reach) {
                 continue;
             }
-            let pose = contact.placements[k].pose;
-            let (la, lb) = (pose.inverse_apply(xa), pose.inverse_apply(xb));
+            let (la, lb) = (
+                contact.moving_local[local_of(s, a)],
+                contact.moving_local[local_of(s, b)],
+            );
             let lists = &mut contact.moving_candidates[s];
             let list = list_reach(lists.slot_reach(e), reach, base);
             if lists.clear_slack(e, la, lb, list).is_some()

@@ -100,6 +100,12 @@ pub struct ContactScratch {
     /// Per moving part this step: its box at its placement and how far it moves at most.
     pub(crate) moving_box: Vec<Aabb>,
     pub(crate) moving_sweep: Vec<f64>,
+    /// This step, per node: its speed |v| (when a part moves; read by every search that
+    /// reaches as far as the node moves in the step, [`super::moving`]).
+    pub(crate) moving_speed: Vec<f64>,
+    /// This step, per moving part and node (part-major): the node's position in the
+    /// part's frame, mapped once and read by the node's and its beams' searches.
+    pub(crate) moving_local: Vec<DVec3>,
     /// Per moving part: each beam's candidate triangles of that part, in the part's own
     /// frame ([`super::moving`]; no slots beyond the memory budget, then fresh queries).
     pub(crate) moving_candidates: Vec<CandidateCache>,
@@ -134,6 +140,11 @@ impl ContactScratch {
             moving_element_normal: vec![(usize::MAX, DVec3::ZERO); moving_slots(model, elements)],
             moving_box: vec![Aabb::new_invalid(); model.environment.moving.len()],
             moving_sweep: vec![0.0; model.environment.moving.len()],
+            moving_speed: vec![0.0; moving_slots(model, nodes)],
+            moving_local: vec![
+                DVec3::ZERO;
+                moving_slots(model, nodes) * model.environment.moving.len()
+            ],
             moving_candidates: super::moving::candidate_lists(model),
             shape_impulse: if model.junction_shapes.any() {
                 vec![(DVec3::ZERO, DVec3::ZERO); model.environment.parts.len()]
