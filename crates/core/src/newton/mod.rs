@@ -5,6 +5,7 @@
 //! ([`condensation`]), a junction body's own mass on its master ([`body_terms`]), GMRES for the hose–hose contact coupling outside its band
 //! ([`gmres`]) and the convergence test ([`convergence`]).
 
+pub mod block_lu;
 pub mod block_tree;
 pub mod body_terms;
 pub mod condensation;
