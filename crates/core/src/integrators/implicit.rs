@@ -211,7 +211,7 @@ impl ImplicitSolver {
                 state.w[i] = DVec3::ZERO;
             }
         }
-        sys.assemble_loads(model, state, 0.0);
+        sys.assemble(model, state, 0.0);
         for i in 0..state.x.len() {
             let free = !sys.prescribed[i] && !history.zero_acceleration;
             history.f_prev[i] = sys.force[i];
@@ -232,9 +232,7 @@ impl ImplicitSolver {
 
     /// The HHT residual r = (1+α) f_{n+1} − α f_n − m a_{n+1} at the current iterate
     /// (Newmark kinematics of the free nodes from their positions) into `system.rhs`, and
-    /// its Jacobian (1+α) K + m/(βh²) [𝟙, J_l⁻¹(Θ)] into `system.matrix` but for the
-    /// elements' tangents, which only an iterate that is not yet converged needs:
-    /// [`Self::complete_jacobian`] adds them (1 + α) K_e. Returns the
+    /// its Jacobian (1+α) K + m/(βh²) [𝟙, J_l⁻¹(Θ)] into `system.matrix`. Returns the
     /// largest force and moment residual on a free node, and the residual's norm
     /// √(Σ |r_f|² + Σ |r_m|²/ℓ²) (ℓ the mean element length) that the line search
     /// compares.
@@ -264,7 +262,7 @@ impl ImplicitSolver {
             state.v[i] = self.v0[i] + h * ((1.0 - gamma) * a + gamma * a_new);
             state.w[i] = self.w0[i] + h * ((1.0 - gamma) * alp + gamma * alp_new);
         }
-        sys.assemble_loads(model, state, c_vel);
+        sys.assemble(model, state, c_vel);
         for i in 0..n {
             let a_new = c_acc * (state.x[i] - self.x0[i] - h * self.v0[i])
                 - (0.5 - beta) / beta * history.acc[i];
@@ -327,16 +325,6 @@ impl ImplicitSolver {
         (rf.sqrt(), rm.sqrt(), sum.sqrt())
     }
 
-    /// Adds the elements' share (1 + α) K_e to the Jacobian [`Self::evaluate`] left in
-    /// `system.matrix` for the current iterate.
-    fn complete_jacobian(&mut self, model: &Model, state: &State, h: f64) {
-        let alpha = self.options.alpha;
-        let beta = 0.25 * (1.0 - alpha) * (1.0 - alpha);
-        let c_vel = (0.5 - alpha) / (beta * h);
-        self.system
-            .add_element_tangents(model, state, c_vel, 1.0 + alpha);
-    }
-
     /// One HHT step of size h from the saved start state; Ok(false) if Newton did not
     /// converge (the caller retries with smaller steps).
     fn try_step(
@@ -377,13 +365,12 @@ impl ImplicitSolver {
             if !(rf.is_finite() && rm.is_finite()) {
                 return Ok(false);
             }
-            if !self.system.pending() && o.tolerance.met(self.system.scale, rf, rm) {
+            let sys = &mut self.system;
+            let pending = sys.pending();
+            if !pending && o.tolerance.met(sys.scale, rf, rm) {
                 converged = true;
                 break;
             }
-            self.complete_jacobian(model, state, h);
-            let sys = &mut self.system;
-            let pending = sys.pending();
             if pending {
                 sys.add_prescribed_coupling(state);
             }

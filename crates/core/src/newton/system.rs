@@ -34,7 +34,7 @@ use crate::contact::friction::{outer, FrictionResponse};
 use crate::contact::{hose_contact_forces_with, ContactPair};
 use crate::loads::{LoadCase, Support, SupportLoad};
 use crate::rod::element::{BeamElement, ElementEnds, ElementLoads};
-use crate::rod::tangent::{block_loads, block_tangent, inelastic_tangent, ElementTangent};
+use crate::rod::tangent::{block_tangent, inelastic_tangent, ElementTangent};
 use crate::{Model, State};
 use glam::{DQuat, DVec3};
 use nalgebra::{Matrix3, Vector6};
@@ -91,89 +91,6 @@ pub struct NewtonSystem {
     pub junctions: Option<Condensation>,
     /// The input of the last modified factorisation, to skip factorising it again.
     pub reuse: FactorReuse,
-}
-
-/// The ends of up to four consecutive elements (the lanes beyond the chunk repeat its
-/// last element).
-fn chunk_ends(chunk: &[BeamElement], state: &State) -> [ElementEnds; 4] {
-    let last = chunk.len() - 1;
-    std::array::from_fn(|k| {
-        let e = &chunk[k.min(last)];
-        let (a, b) = (e.node_a, e.node_b);
-        ElementEnds {
-            x: [state.x[a], state.x[b]],
-            q: [state.q[a], state.q[b]],
-            v: [state.v[a], state.v[b]],
-            w: [state.w[a], state.w[b]],
-        }
-    })
-}
-
-/// The loads and tangents of up to four elements into `out`: by the tangent kernel, an
-/// inelastic element by its own law's tangent ([`inelastic_tangent`]) at its history at
-/// `solve_time`.
-#[allow(clippy::too_many_arguments)]
-fn element_tangents(
-    model: &Model,
-    state: &State,
-    solve_time: f64,
-    chunk: &[BeamElement],
-    ends: &[ElementEnds; 4],
-    beta: f64,
-    rate_factor: f64,
-    out: &mut [(ElementLoads, ElementTangent); 4],
-) {
-    let last = chunk.len() - 1;
-    let element = |k: usize| &chunk[k.min(last)];
-    block_tangent(
-        [element(0), element(1), element(2), element(3)],
-        [&ends[0], &ends[1], &ends[2], &ends[3]],
-        chunk.len(),
-        beta,
-        rate_factor,
-        out,
-    );
-    for ((e, ends), out) in chunk.iter().zip(ends).zip(out.iter_mut()) {
-        if let Some(hinge) = &e.inelastic {
-            let history = state.inelastic_view_at(solve_time);
-            *out = inelastic_tangent(
-                &model.inelastic,
-                (e, hinge),
-                history,
-                ends,
-                beta,
-                rate_factor,
-            );
-        }
-    }
-}
-
-/// The loads of up to four elements into `out`, the values [`element_tangents`] gives
-/// ([`block_loads`]; an inelastic element by its own law).
-fn element_loads(
-    model: &Model,
-    state: &State,
-    solve_time: f64,
-    chunk: &[BeamElement],
-    ends: &[ElementEnds; 4],
-    beta: f64,
-    out: &mut [ElementLoads; 4],
-) {
-    let last = chunk.len() - 1;
-    let element = |k: usize| &chunk[k.min(last)];
-    block_loads(
-        [element(0), element(1), element(2), element(3)],
-        [&ends[0], &ends[1], &ends[2], &ends[3]],
-        chunk.len(),
-        beta,
-        out,
-    );
-    for ((e, ends), out) in chunk.iter().zip(ends).zip(out.iter_mut()) {
-        if let Some(hinge) = &e.inelastic {
-            let history = state.inelastic_view_at(solve_time);
-            *out = model.inelastic.loads(e, hinge, history, ends, beta);
-        }
-    }
 }
 
 /// A support's load on its node at the state's configuration ([`Support::load`]).
@@ -286,63 +203,6 @@ impl NewtonSystem {
     /// ∂v/∂δx (0 for statics, γ/(βΔt) for Newmark). Writes `force`, `moment`,
     /// `contact_force` and `matrix` (prescribed nodes not yet eliminated).
     pub fn assemble(&mut self, model: &Model, state: &mut State, rate_factor: f64) {
-        self.assemble_with(model, state, rate_factor, true);
-    }
-
-    /// [`Self::assemble`] without the elements' tangents: the loads, and in `matrix` the
-    /// tangent of everything else (supports, contact, damping, junction bodies) — what a
-    /// Newton solver needs to judge an iterate, at a fraction of the work. Where the
-    /// iterate is not yet converged, [`Self::add_element_tangents`] at the same state
-    /// completes the matrix.
-    pub fn assemble_loads(&mut self, model: &Model, state: &mut State, rate_factor: f64) {
-        self.assemble_with(model, state, rate_factor, false);
-    }
-
-    /// Adds `factor` × the elements' tangents at the state's configuration (as
-    /// [`Self::assemble_loads`] last left it: junction nodes placed, velocities set) to
-    /// `matrix`: after [`Self::assemble_loads`] with the same `rate_factor`, the matrix
-    /// is [`Self::assemble`]'s up to the order of the sums (and the factor the caller
-    /// applies to the rest).
-    pub fn add_element_tangents(
-        &mut self,
-        model: &Model,
-        state: &State,
-        rate_factor: f64,
-        factor: f64,
-    ) {
-        let beta = model.damping_stiffness;
-        let mut tangents = [(ElementLoads::default(), ElementTangent::zeros()); 4];
-        for chunk in self.elements.chunks(4) {
-            let ends = chunk_ends(chunk, state);
-            element_tangents(
-                model,
-                state,
-                self.solve_time,
-                chunk,
-                &ends,
-                beta,
-                rate_factor,
-                &mut tangents,
-            );
-            for (e, (_, k)) in chunk.iter().zip(&tangents) {
-                let (a, b) = (e.node_a, e.node_b);
-                self.matrix.diag[a] += k.fixed_view::<6, 6>(0, 0) * factor;
-                self.matrix.diag[b] += k.fixed_view::<6, 6>(6, 6) * factor;
-                self.matrix.upper[a] += k.fixed_view::<6, 6>(0, 6) * factor;
-                self.matrix.lower[a] += k.fixed_view::<6, 6>(6, 0) * factor;
-            }
-        }
-    }
-
-    /// [`Self::assemble`], with the elements' tangents or without them
-    /// ([`Self::assemble_loads`]).
-    fn assemble_with(
-        &mut self,
-        model: &Model,
-        state: &mut State,
-        rate_factor: f64,
-        with_element_tangents: bool,
-    ) {
         model.place_junction_nodes(&mut state.x, &mut state.q);
         self.matrix.clear();
         self.force.fill(DVec3::ZERO);
@@ -354,42 +214,47 @@ impl NewtonSystem {
         let beta = model.damping_stiffness;
         // four elements at a time (the tangent kernel's lanes), added in element order
         let mut tangents = [(ElementLoads::default(), ElementTangent::zeros()); 4];
-        let mut loads_alone = [ElementLoads::default(); 4];
         for chunk in self.elements.chunks(4) {
-            let ends = chunk_ends(chunk, state);
-            if with_element_tangents {
-                element_tangents(
-                    model,
-                    state,
-                    self.solve_time,
-                    chunk,
-                    &ends,
-                    beta,
-                    rate_factor,
-                    &mut tangents,
-                );
-                for (e, (_, k)) in chunk.iter().zip(&tangents) {
-                    let (a, b) = (e.node_a, e.node_b);
-                    self.matrix.diag[a] += k.fixed_view::<6, 6>(0, 0);
-                    self.matrix.diag[b] += k.fixed_view::<6, 6>(6, 6);
-                    self.matrix.upper[a] += k.fixed_view::<6, 6>(0, 6);
-                    self.matrix.lower[a] += k.fixed_view::<6, 6>(6, 0);
-                }
-                for (alone, (loads, _)) in loads_alone.iter_mut().zip(&tangents) {
-                    *alone = *loads;
-                }
-            } else {
-                element_loads(
-                    model,
-                    state,
-                    self.solve_time,
-                    chunk,
-                    &ends,
-                    beta,
-                    &mut loads_alone,
-                );
+            let last = chunk.len() - 1;
+            let element = |k: usize| &chunk[k.min(last)];
+            let mut ends = [ElementEnds {
+                x: [DVec3::ZERO; 2],
+                q: [DQuat::IDENTITY; 2],
+                v: [DVec3::ZERO; 2],
+                w: [DVec3::ZERO; 2],
+            }; 4];
+            for (k, ends) in ends.iter_mut().enumerate() {
+                let (a, b) = (element(k).node_a, element(k).node_b);
+                *ends = ElementEnds {
+                    x: [state.x[a], state.x[b]],
+                    q: [state.q[a], state.q[b]],
+                    v: [state.v[a], state.v[b]],
+                    w: [state.w[a], state.w[b]],
+                };
             }
-            for (e, loads) in chunk.iter().zip(&loads_alone) {
+            block_tangent(
+                [element(0), element(1), element(2), element(3)],
+                [&ends[0], &ends[1], &ends[2], &ends[3]],
+                chunk.len(),
+                beta,
+                rate_factor,
+                &mut tangents,
+            );
+            for (e, out) in chunk.iter().zip(&mut tangents) {
+                if let Some(hinge) = &e.inelastic {
+                    let (a, b) = (e.node_a, e.node_b);
+                    let ends = ElementEnds {
+                        x: [state.x[a], state.x[b]],
+                        q: [state.q[a], state.q[b]],
+                        v: [state.v[a], state.v[b]],
+                        w: [state.w[a], state.w[b]],
+                    };
+                    let history = state.inelastic_view_at(self.solve_time);
+                    let hinges = &model.inelastic;
+                    *out = inelastic_tangent(hinges, (e, hinge), history, &ends, beta, rate_factor);
+                }
+            }
+            for (e, (loads, k)) in chunk.iter().zip(&tangents) {
                 let (a, b) = (e.node_a, e.node_b);
                 scale.include(
                     loads.force[0].length(),
@@ -399,6 +264,10 @@ impl NewtonSystem {
                 self.force[b] += loads.force[1];
                 self.moment[a] += loads.moment[0];
                 self.moment[b] += loads.moment[1];
+                self.matrix.diag[a] += k.fixed_view::<6, 6>(0, 0);
+                self.matrix.diag[b] += k.fixed_view::<6, 6>(6, 6);
+                self.matrix.upper[a] += k.fixed_view::<6, 6>(0, 6);
+                self.matrix.lower[a] += k.fixed_view::<6, 6>(6, 0);
             }
         }
         let alpha = model.damping_mass;

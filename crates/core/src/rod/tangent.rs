@@ -27,7 +27,7 @@ use crate::autodiff::{Quat, Scalar, V3};
 use crate::rod::element::{BeamElement, ElementEnds, ElementLoads, ElementLoadsOf};
 use crate::rod::element_block::Kernel;
 use crate::rod::inelastic::{HistoryView, Inelastic, InelasticElements};
-use crate::rod::tangent_kernel::{block_load_rows, block_tangent_rows, BlockRows, LoadRows, D9};
+use crate::rod::tangent_kernel::{block_tangent_rows, BlockRows, LoadRows, D9};
 use glam::{DQuat, DVec3};
 use nalgebra::SMatrix;
 
@@ -168,37 +168,6 @@ pub fn block_tangent(
         } else {
             from_lane(&rows, k, out);
         }
-    }
-}
-
-/// The loads of four elements at `ends` without their tangents: the values
-/// [`block_tangent`] gives (the same bits where the kernel's series cover the element; the
-/// reference [`BeamElement::loads`] elsewhere) for the fraction of its work that has no
-/// derivatives — a Newton solver's residual where no new tangent is needed. Fewer than
-/// four elements repeat the last one in the lanes beyond `count`; `out` receives `count`
-/// results.
-pub fn block_loads(
-    elements: [&BeamElement; 4],
-    ends: [&ElementEnds; 4],
-    count: usize,
-    beta: f64,
-    out: &mut [ElementLoads; 4],
-) {
-    let rows = block_load_rows(Kernel::detect(), elements, ends, beta);
-    for (k, out) in out.iter_mut().enumerate().take(count) {
-        *out = if rows.outside.lane(k) {
-            elements[k].loads(ends[k], beta)
-        } else {
-            let vector = |b: usize| {
-                let v = &rows.rows[b];
-                DVec3::new(v.x.re.0[k], v.y.re.0[k], v.z.re.0[k])
-            };
-            ElementLoads {
-                force: [vector(0), vector(2)],
-                moment: [vector(1), vector(3)],
-                axial_force: rows.axial.0[k],
-            }
-        };
     }
 }
 
@@ -494,67 +463,5 @@ mod tests {
             tension > 500 && compression > 500,
             "{tension} {compression}"
         );
-    }
-
-    /// The loads alone ([`block_loads`]) are the tangent's loads ([`block_tangent`]):
-    /// the same bits where the kernel covers the element, within 1e-12 of the loads'
-    /// scale where the reference evaluates it (relative rotations 0.2 … 2.5 rad, damping,
-    /// four elements at a time with fewer than four in the last call).
-    #[test]
-    fn loads_alone_are_the_tangents_loads() {
-        use crate::rod::test_elements::{random_element, random_ends, Rng};
-        let mut rng = Rng(41);
-        let (mut same_bits, mut by_reference) = (0, 0);
-        for round in 0..1500 {
-            let elements: Vec<BeamElement> = (0..4).map(|_| random_element(&mut rng, 0)).collect();
-            let ends: Vec<ElementEnds> = elements
-                .iter()
-                .enumerate()
-                .map(|(k, e)| {
-                    let rest = (
-                        [DVec3::ZERO, DVec3::X * e.rest_length],
-                        [
-                            e.rest_offset_a.inverse().normalize(),
-                            e.rest_offset_b.inverse().normalize(),
-                        ],
-                    );
-                    random_ends(&mut rng, e, rest, [0.2, 0.7, 1.0, 2.5][(round + k) % 4])
-                })
-                .collect();
-            let beta = if round % 3 == 0 {
-                0.0
-            } else {
-                rng.range(0.0, 2e-5)
-            };
-            let count = 1 + round % 4;
-            let e = [&elements[0], &elements[1], &elements[2], &elements[3]];
-            let n = [&ends[0], &ends[1], &ends[2], &ends[3]];
-            let mut with_tangent = [(ElementLoads::default(), ElementTangent::zeros()); 4];
-            block_tangent(e, n, count, beta, 1000.0, &mut with_tangent);
-            let mut alone = [ElementLoads::default(); 4];
-            block_loads(e, n, count, beta, &mut alone);
-            for k in 0..count {
-                let (got, want) = (&alone[k], &with_tangent[k].0);
-                if got == want {
-                    same_bits += 1;
-                    continue;
-                }
-                assert!(
-                    kernel_tangent(Kernel::detect(), e[k], n[k], beta, 1000.0).is_none(),
-                    "round {round}, lane {k}: the kernel's loads differ from its tangent's"
-                );
-                by_reference += 1;
-                let (g, w) = (flat(got), flat(want));
-                let scale = w.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-                for i in 0..12 {
-                    assert!(
-                        (g[i] - w[i]).abs() <= 1e-12 * scale,
-                        "round {round}: {g:?} vs {w:?}"
-                    );
-                }
-            }
-        }
-        eprintln!("loads alone: {same_bits} the same bits, {by_reference} by the reference");
-        assert!(same_bits > 1000, "{same_bits}");
     }
 }

@@ -38,24 +38,23 @@ use glam::{DMat3, DQuat, DVec3};
 /// Dual components: δx_b (0..3), δθ_a (3..6), δθ_b (6..9), as in [`crate::rod::tangent`].
 pub(crate) const N: usize = 9;
 pub(crate) type D9 = Dual<N>;
-/// Lane duals with M derivative components (N for the tangent, 0 for the loads alone).
-type L<const M: usize, F> = LaneDual<M, F>;
+type L<F> = LaneDual<N, F>;
 
 /// The loads of one element as duals: force on a, moment on a, force on b, moment on b;
 /// and the axial force N.
 pub(crate) type LoadRows = ([V3<D9>; 4], f64);
 
-/// The loads of four elements as lane duals with M derivative components (rows as in
-/// [`LoadRows`]), their axial forces, and the lanes outside the kernel's series.
-pub(crate) struct BlockRows<const M: usize = N> {
-    pub rows: [V3<L<M, F4>>; 4],
+/// The loads of four elements as lane duals (rows as in [`LoadRows`]), their axial
+/// forces, and the lanes outside the kernel's series.
+pub(crate) struct BlockRows {
+    pub rows: [V3<L<F4>>; 4],
     pub axial: F4,
     pub outside: M4,
 }
 
 /// Σ cₖ tᵏ for the lane duals `t`: value and derivative by Horner.
 #[inline(always)]
-fn series<const M: usize, F: Lane4>(t: L<M, F>, coeffs: &[f64]) -> L<M, F> {
+fn series<F: Lane4>(t: L<F>, coeffs: &[f64]) -> L<F> {
     let n = coeffs.len();
     let (mut p, mut dp) = (F::splat(coeffs[n - 1]), F::splat(0.0));
     for &c in coeffs[..n - 1].iter().rev() {
@@ -67,13 +66,13 @@ fn series<const M: usize, F: Lane4>(t: L<M, F>, coeffs: &[f64]) -> L<M, F> {
 
 /// 1/√t for the lane duals `t`.
 #[inline(always)]
-fn inv_sqrt<const M: usize, F: Lane4>(t: L<M, F>) -> L<M, F> {
+fn inv_sqrt<F: Lane4>(t: L<F>) -> L<F> {
     let s = F::splat(1.0) / t.re.sqrt();
     t.apply(s, s * F::splat(-0.5) / t.re)
 }
 
 #[inline(always)]
-fn scale_q<const M: usize, F: Lane4>(q: Quat<L<M, F>>, s: L<M, F>) -> Quat<L<M, F>> {
+fn scale_q<F: Lane4>(q: Quat<L<F>>, s: L<F>) -> Quat<L<F>> {
     Quat {
         x: q.x * s,
         y: q.y * s,
@@ -83,7 +82,7 @@ fn scale_q<const M: usize, F: Lane4>(q: Quat<L<M, F>>, s: L<M, F>) -> Quat<L<M, 
 }
 
 #[inline(always)]
-fn select_q<const M: usize, F: Lane4>(m: M4, a: Quat<L<M, F>>, b: Quat<L<M, F>>) -> Quat<L<M, F>> {
+fn select_q<F: Lane4>(m: M4, a: Quat<L<F>>, b: Quat<L<F>>) -> Quat<L<F>> {
     Quat {
         x: L::select(m, a.x, b.x),
         y: L::select(m, a.y, b.y),
@@ -101,35 +100,29 @@ fn f4(f: impl Fn(usize) -> f64) -> F4 {
 /// Lane constants `value`, component i with derivative `factor` in dual component
 /// `first + i`.
 #[inline(always)]
-fn seeded_vector<const M: usize, F: Lane4>(
-    value: [DVec3; 4],
-    first: usize,
-    factor: f64,
-) -> V3<L<M, F>> {
+fn seeded_vector<F: Lane4>(value: [DVec3; 4], first: usize, factor: f64) -> V3<L<F>> {
     let mut out = V3::new(
         L::lanes(c4(|k| value[k].x)),
         L::lanes(c4(|k| value[k].y)),
         L::lanes(c4(|k| value[k].z)),
     );
-    if M > 0 {
-        out.x.eps[first] = F::splat(factor);
-        out.y.eps[first + 1] = F::splat(factor);
-        out.z.eps[first + 2] = F::splat(factor);
-    }
+    out.x.eps[first] = F::splat(factor);
+    out.y.eps[first + 1] = F::splat(factor);
+    out.z.eps[first + 2] = F::splat(factor);
     out
 }
 
 /// r = exp(δθ) r₀ seeded on δθ (dual components `first..first + 3`), lane by lane:
 /// ∂r/∂δθᵢ = ½ (w₀ eᵢ + eᵢ × v₀, −v₀ᵢ).
 #[inline(always)]
-fn seeded_frame<const M: usize, F: Lane4>(r: [DQuat; 4], first: usize) -> Quat<L<M, F>> {
+fn seeded_frame<F: Lane4>(r: [DQuat; 4], first: usize) -> Quat<L<F>> {
     let mut out = Quat {
         x: L::lanes(c4(|k| r[k].x)),
         y: L::lanes(c4(|k| r[k].y)),
         z: L::lanes(c4(|k| r[k].z)),
         w: L::lanes(c4(|k| r[k].w)),
     };
-    for i in (0..3).filter(|_| M > 0) {
+    for i in 0..3 {
         let e = DVec3::AXES[i];
         let mut dv = [DVec3::ZERO; 4];
         for (d, r) in dv.iter_mut().zip(&r) {
@@ -151,20 +144,13 @@ fn c4<F: Lane4>(f: impl Fn(usize) -> f64) -> F {
 
 /// The shallow arch's strain of one bending plane, (2a² − ab + 2b²)/30.
 #[inline(always)]
-fn plane<const M: usize, F: Lane4>(a: L<M, F>, b: L<M, F>) -> L<M, F> {
+fn plane<F: Lane4>(a: L<F>, b: L<F>) -> L<F> {
     (a * a * 2.0 - a * b + b * b * 2.0) * (1.0 / 30.0)
 }
 
 /// An end moment of one bending plane: (E I/l₀)(4 tₐ + 2 t_b) + (N l₀/30)(4 θₐ − θ_b).
 #[inline(always)]
-fn bend<const M: usize, F: Lane4>(
-    ta: L<M, F>,
-    tb: L<M, F>,
-    th_a: L<M, F>,
-    th_b: L<M, F>,
-    k: F,
-    k_arch: L<M, F>,
-) -> L<M, F> {
+fn bend<F: Lane4>(ta: L<F>, tb: L<F>, th_a: L<F>, th_b: L<F>, k: F, k_arch: L<F>) -> L<F> {
     (ta * 4.0 + tb * 2.0).mul4(k) + (th_a * 4.0 - th_b) * k_arch
 }
 
@@ -182,7 +168,7 @@ fn end_axes<F: Lane4>(e: [&BeamElement; 4], end: usize) -> [[F; 3]; 3] {
 
 /// Aᵀ v for lane-constant columns `a`.
 #[inline(always)]
-fn read_axes<const M: usize, F: Lane4>(a: &[[F; 3]; 3], v: V3<L<M, F>>) -> V3<L<M, F>> {
+fn read_axes<F: Lane4>(a: &[[F; 3]; 3], v: V3<L<F>>) -> V3<L<F>> {
     V3::new(
         column_dot(&a[0], v),
         column_dot(&a[1], v),
@@ -192,24 +178,24 @@ fn read_axes<const M: usize, F: Lane4>(a: &[[F; 3]; 3], v: V3<L<M, F>>) -> V3<L<
 
 /// c · v for a lane-constant column `c`.
 #[inline(always)]
-fn column_dot<const M: usize, F: Lane4>(c: &[F; 3], v: V3<L<M, F>>) -> L<M, F> {
+fn column_dot<F: Lane4>(c: &[F; 3], v: V3<L<F>>) -> L<F> {
     v.x.mul4(c[0]) + v.y.mul4(c[1]) + v.z.mul4(c[2])
 }
 
 /// c s for a lane-constant column `c`.
 #[inline(always)]
-fn column_times<const M: usize, F: Lane4>(c: &[F; 3], s: L<M, F>) -> V3<L<M, F>> {
+fn column_times<F: Lane4>(c: &[F; 3], s: L<F>) -> V3<L<F>> {
     V3::new(s.mul4(c[0]), s.mul4(c[1]), s.mul4(c[2]))
 }
 
 /// A v for lane-constant columns `a`.
 #[inline(always)]
-fn back_axes<const M: usize, F: Lane4>(a: &[[F; 3]; 3], v: V3<L<M, F>>) -> V3<L<M, F>> {
+fn back_axes<F: Lane4>(a: &[[F; 3]; 3], v: V3<L<F>>) -> V3<L<F>> {
     column_times(&a[0], v.x) + column_times(&a[1], v.y) + column_times(&a[2], v.z)
 }
 
 #[inline(always)]
-fn select_v<const M: usize, F: Lane4>(m: M4, a: V3<L<M, F>>, b: V3<L<M, F>>) -> V3<L<M, F>> {
+fn select_v<F: Lane4>(m: M4, a: V3<L<F>>, b: V3<L<F>>) -> V3<L<F>> {
     V3::new(
         L::select(m, a.x, b.x),
         L::select(m, a.y, b.y),
@@ -220,12 +206,7 @@ fn select_v<const M: usize, F: Lane4>(m: M4, a: V3<L<M, F>>, b: V3<L<M, F>>) -> 
 /// The linear law's end moment at end a for end rotations `ta`, `tb` (their ends' axes):
 /// (−torque, (EI₁/l)(4 tₐ + 2 t_b), (EI₂/l)(4 tₐ + 2 t_b)); `k` = EI₁/l, EI₂/l.
 #[inline(always)]
-fn linear_moment<const M: usize, F: Lane4>(
-    ta: V3<L<M, F>>,
-    tb: V3<L<M, F>>,
-    torque: L<M, F>,
-    k: [F; 2],
-) -> V3<L<M, F>> {
+fn linear_moment<F: Lane4>(ta: V3<L<F>>, tb: V3<L<F>>, torque: L<F>, k: [F; 2]) -> V3<L<F>> {
     V3::new(
         torque,
         (ta.y * 4.0 + tb.y * 2.0).mul4(k[0]),
@@ -235,11 +216,7 @@ fn linear_moment<const M: usize, F: Lane4>(
 
 /// The shallow arch's end moment at end a for the slopes `sa`, `sb`: (N l₀/30)(4 θₐ − θ_b).
 #[inline(always)]
-fn arch_moment<const M: usize, F: Lane4>(
-    sa: V3<L<M, F>>,
-    sb: V3<L<M, F>>,
-    k_arch: L<M, F>,
-) -> V3<L<M, F>> {
+fn arch_moment<F: Lane4>(sa: V3<L<F>>, sb: V3<L<F>>, k_arch: L<F>) -> V3<L<F>> {
     V3::new(
         L::cst(0.0),
         (sa.y * 4.0 - sb.y) * k_arch,
@@ -252,13 +229,13 @@ fn arch_moment<const M: usize, F: Lane4>(
 /// (Aₖ Mₖ), plus the shallow arch's moments of the `slopes` against the chord; `k` holds
 /// EI₁/l, EI₂/l, GJ/l (as the kernel, [`crate::rod::element_block`]).
 #[inline(always)]
-fn curved_local_moments<const M: usize, F: Lane4>(
+fn curved_local_moments<F: Lane4>(
     axes: &[[[F; 3]; 3]; 2],
-    t: [V3<L<M, F>>; 2],
-    slopes: [V3<L<M, F>>; 2],
+    t: [V3<L<F>>; 2],
+    slopes: [V3<L<F>>; 2],
     k: [F; 3],
-    k_arch: L<M, F>,
-) -> (V3<L<M, F>>, V3<L<M, F>>) {
+    k_arch: L<F>,
+) -> (V3<L<F>>, V3<L<F>>) {
     let ta = read_axes(&axes[0], t[0]);
     let tb = read_axes(&axes[1], t[1]);
     let torque = (tb.x - ta.x).mul4(k[2]);
@@ -271,8 +248,8 @@ fn curved_local_moments<const M: usize, F: Lane4>(
 }
 
 #[inline(always)]
-fn portable_dual<const M: usize, F: Lane4>(d: L<M, F>) -> L<M, F4> {
-    let mut eps = [F4::ZERO; M];
+fn portable_dual<F: Lane4>(d: L<F>) -> L<F4> {
+    let mut eps = [F4::ZERO; N];
     for (o, e) in eps.iter_mut().zip(d.eps) {
         *o = e.to_f4();
     }
@@ -284,13 +261,13 @@ fn portable_dual<const M: usize, F: Lane4>(d: L<M, F>) -> L<M, F4> {
 
 /// Lane duals as portable lanes.
 #[inline(always)]
-fn portable<const M: usize, F: Lane4>(v: V3<L<M, F>>) -> V3<L<M, F4>> {
+fn portable<F: Lane4>(v: V3<L<F>>) -> V3<L<F4>> {
     V3::new(portable_dual(v.x), portable_dual(v.y), portable_dual(v.z))
 }
 
 /// Rows of the rotation matrix of the unit quaternion `q`.
 #[inline(always)]
-fn rotation_matrix<const M: usize, F: Lane4>(q: Quat<L<M, F>>) -> [V3<L<M, F>>; 3] {
+fn rotation_matrix<F: Lane4>(q: Quat<L<F>>) -> [V3<L<F>>; 3] {
     let (x2, y2, z2) = (q.x * 2.0, q.y * 2.0, q.z * 2.0);
     let (xx, yy, zz) = (q.x * x2, q.y * y2, q.z * z2);
     let (xy, xz, yz) = (q.x * y2, q.x * z2, q.y * z2);
@@ -304,19 +281,19 @@ fn rotation_matrix<const M: usize, F: Lane4>(q: Quat<L<M, F>>) -> [V3<L<M, F>>; 
 }
 
 #[inline(always)]
-fn times<const M: usize, F: Lane4>(m: &[V3<L<M, F>>; 3], v: V3<L<M, F>>) -> V3<L<M, F>> {
+fn times<F: Lane4>(m: &[V3<L<F>>; 3], v: V3<L<F>>) -> V3<L<F>> {
     V3::new(m[0].dot(v), m[1].dot(v), m[2].dot(v))
 }
 
 #[inline(always)]
-fn transpose_times<const M: usize, F: Lane4>(m: &[V3<L<M, F>>; 3], v: V3<L<M, F>>) -> V3<L<M, F>> {
+fn transpose_times<F: Lane4>(m: &[V3<L<F>>; 3], v: V3<L<F>>) -> V3<L<F>> {
     m[0].scale(v.x) + m[1].scale(v.y) + m[2].scale(v.z)
 }
 
 /// Rotation vector of unit quaternions (the shorter of ±q) by the half-angle series,
 /// and the lanes within its range.
 #[inline(always)]
-fn log_map<const M: usize, F: Lane4>(q: Quat<L<M, F>>) -> (V3<L<M, F>>, M4) {
+fn log_map<F: Lane4>(q: Quat<L<F>>) -> (V3<L<F>>, M4) {
     let q = select_q(q.w.re.to_f4().lt(F4::ZERO), q.negate(), q);
     let w1 = q.w.re + F::splat(1.0);
     let r = F::splat(1.0) / w1;
@@ -330,10 +307,7 @@ fn log_map<const M: usize, F: Lane4>(q: Quat<L<M, F>>) -> (V3<L<M, F>>, M4) {
 /// J_l(θ)⁻ᵀ M = M + ½ θ × M + c(θ) θ × (θ × M) by the series of c, and the lanes within
 /// its range.
 #[inline(always)]
-fn jacobian_inverse_transpose_times<const M: usize, F: Lane4>(
-    theta: V3<L<M, F>>,
-    moment: V3<L<M, F>>,
-) -> (V3<L<M, F>>, M4) {
+fn jacobian_inverse_transpose_times<F: Lane4>(theta: V3<L<F>>, moment: V3<L<F>>) -> (V3<L<F>>, M4) {
     let t2 = theta.dot(theta);
     let ok = t2.re.to_f4().le(F4::splat(JACOBIAN_T2_MAX));
     let c = series(t2, &JACOBIAN_C);
@@ -344,12 +318,12 @@ fn jacobian_inverse_transpose_times<const M: usize, F: Lane4>(
 /// The loads of four elements as lane duals on their increments, by the kernel's algebra
 /// (the element law of [`crate::rod::element`]).
 #[inline(always)]
-fn rows<const M: usize, F: Lane4>(
+fn rows<F: Lane4>(
     e: [&BeamElement; 4],
     ends: [&ElementEnds; 4],
     beta: f64,
     rate: f64,
-) -> BlockRows<M> {
+) -> BlockRows {
     let l0: F = c4(|k| e[k].rest_length);
     let inv_l0 = F::splat(1.0) / l0;
     // chord and end frames
@@ -364,12 +338,12 @@ fn rows<const M: usize, F: Lane4>(
         ra0[k] = n.q[0] * e[k].rest_offset_a;
         rb0[k] = n.q[1] * e[k].rest_offset_b;
     }
-    let chord = seeded_vector::<M, F>(chord0, 0, 1.0);
+    let chord = seeded_vector::<F>(chord0, 0, 1.0);
     let length = chord.dot(chord).sqrt();
-    let inv_length = L::<M, F>::cst(1.0) / length;
+    let inv_length = L::<F>::cst(1.0) / length;
     let e1 = chord.scale(inv_length);
-    let ra = seeded_frame::<M, F>(ra0, 3);
-    let rb = seeded_frame::<M, F>(rb0, 6);
+    let ra = seeded_frame::<F>(ra0, 3);
+    let rb = seeded_frame::<F>(rb0, 6);
     let flip = ra.dot(rb).re.to_f4().lt(F4::ZERO);
     let rb = select_q(flip, rb.negate(), rb);
     // element frame: the mean of the end frames, turned onto the chord (Crisfield 1990)
@@ -500,42 +474,19 @@ fn rows<const M: usize, F: Lane4>(
 /// [`rows`] compiled for AVX2 + FMA (the same bits: no fused operations are used).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn rows_avx2<const M: usize>(
+unsafe fn rows_avx2(
     e: [&BeamElement; 4],
     ends: [&ElementEnds; 4],
     beta: f64,
     rate: f64,
-) -> BlockRows<M> {
-    rows::<M, crate::rod::lane_arith::Avx4>(e, ends, beta, rate)
+) -> BlockRows {
+    rows::<crate::rod::lane_arith::Avx4>(e, ends, beta, rate)
 }
 
 /// [`rows`] as portable code.
 #[inline(never)]
-fn rows_portable<const M: usize>(
-    e: [&BeamElement; 4],
-    ends: [&ElementEnds; 4],
-    beta: f64,
-    rate: f64,
-) -> BlockRows<M> {
-    rows::<M, F4>(e, ends, beta, rate)
-}
-
-/// [`rows`] with M dual components on `kernel`.
-fn rows_on<const M: usize>(
-    kernel: Kernel,
-    e: [&BeamElement; 4],
-    ends: [&ElementEnds; 4],
-    beta: f64,
-    rate: f64,
-) -> BlockRows<M> {
-    match kernel {
-        #[cfg(target_arch = "x86_64")]
-        Kernel::Avx2Fma if Kernel::detect() == Kernel::Avx2Fma => {
-            // SAFETY: the CPU has AVX2 and FMA (checked just above; the check is cached).
-            unsafe { rows_avx2::<M>(e, ends, beta, rate) }
-        }
-        _ => rows_portable::<M>(e, ends, beta, rate),
-    }
+fn rows_portable(e: [&BeamElement; 4], ends: [&ElementEnds; 4], beta: f64, rate: f64) -> BlockRows {
+    rows::<F4>(e, ends, beta, rate)
 }
 
 /// The loads of four elements as duals on their 9 increments each (velocities
@@ -548,18 +499,12 @@ pub(crate) fn block_tangent_rows(
     beta: f64,
     rate: f64,
 ) -> BlockRows {
-    rows_on::<N>(kernel, e, ends, beta, rate)
-}
-
-/// The loads of four elements alone, by the same algebra as [`block_tangent_rows`]
-/// without derivative components: the values are the same bits as the tangent's loads
-/// (a dual's value never depends on its derivatives) at a fraction of the work.
-/// [`BlockRows::outside`] flags the lanes to be evaluated by the reference instead.
-pub(crate) fn block_load_rows(
-    kernel: Kernel,
-    e: [&BeamElement; 4],
-    ends: [&ElementEnds; 4],
-    beta: f64,
-) -> BlockRows<0> {
-    rows_on::<0>(kernel, e, ends, beta, 0.0)
+    match kernel {
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Avx2Fma if Kernel::detect() == Kernel::Avx2Fma => {
+            // SAFETY: the CPU has AVX2 and FMA (checked just above; the check is cached).
+            unsafe { rows_avx2(e, ends, beta, rate) }
+        }
+        _ => rows_portable(e, ends, beta, rate),
+    }
 }
