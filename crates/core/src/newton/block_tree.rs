@@ -235,22 +235,21 @@ impl BlockTree {
     pub fn factor(&mut self) -> Result<(), SingularBlock> {
         for k in 0..self.order.len() {
             let i = self.order[k];
-            let lu = BlockLu::new(&self.diag[i]);
-            self.pivot(i, lu)?;
+            self.pivot(i)?;
         }
         Ok(())
     }
 
     /// Stores node `i`'s pivot factors, its multipliers, and eliminates it from its
     /// parent's diagonal block.
-    fn pivot(&mut self, i: usize, lu: BlockLu) -> Result<(), SingularBlock> {
+    fn pivot(&mut self, i: usize) -> Result<(), SingularBlock> {
+        let lu = self.factors[i].insert(BlockLu::new(&self.diag[i]));
         let p = self.parent[i];
         if p != NO_PARENT {
             self.gain[i] = lu.solve_matrix(&self.upper[i]).ok_or(SingularBlock(i))?;
             let l = self.lower[i];
             self.diag[p] -= l * self.gain[i];
         }
-        self.factors[i] = Some(lu);
         Ok(())
     }
 
@@ -288,8 +287,7 @@ impl BlockTree {
                     self.diag[i] += v * v.transpose() * (raised - lambda);
                 }
             }
-            let lu = BlockLu::new(&self.diag[i]);
-            self.pivot(i, lu)?;
+            self.pivot(i)?;
         }
         Ok(inertia)
     }
