@@ -16,7 +16,7 @@
 //! in code, so no big file is committed; `--quick` builds ≈ 12 000 triangles, skips the
 //! settle and times a few steps (a smoke run, its numbers are not the engine bay's).
 
-use crate::bench::material_1;
+use crate::bench::{material_1, thread_cpu_seconds};
 use anyhow::{Context, Result};
 use glam::DVec3;
 use pliant_assembly::workcell::WorkcellSetup;
@@ -88,6 +88,11 @@ pub struct EngineBayRow {
     pub wall_s: f64,
     /// Simulated seconds per wall second.
     pub realtime_factor: f64,
+    /// CPU time of the case's thread over the timed span \[s\], and simulated seconds
+    /// per CPU second: what the real-time factor would be with a core to itself (on a
+    /// loaded machine the wall time also counts the time other work held the core).
+    pub cpu_s: f64,
+    pub realtime_factor_cpu: f64,
     /// Mean number of hoses asleep over the timed steps.
     pub hoses_asleep_mean: f64,
     /// Peak hand force during the timed span \[N\].
@@ -348,7 +353,7 @@ fn case(
     .map_err(|e| anyhow::anyhow!("the hand's path: {e}"))?;
     let steps = cell.steps_until_done(simulated);
     let (mut asleep_sum, mut peak) = (0usize, 0.0_f64);
-    let start = Instant::now();
+    let (start, cpu_start) = (Instant::now(), thread_cpu_seconds());
     let (mut taken, mut diverged) = (0u64, None);
     let cap = if quick { 2.0 } else { WALL_CAP };
     for k in 0..steps {
@@ -376,6 +381,7 @@ fn case(
         };
     }
     let wall = start.elapsed().as_secs_f64();
+    let cpu = thread_cpu_seconds() - cpu_start;
     if diverged.is_none() {
         if let Err(d) = cell.check() {
             diverged = Some(format!("diverged at the end: {d}"));
@@ -392,6 +398,8 @@ fn case(
             time_step_s: cell.time_step(),
             wall_s: wall,
             realtime_factor: sim / wall.max(1e-12),
+            cpu_s: cpu,
+            realtime_factor_cpu: sim / cpu.max(1e-12),
             hoses_asleep_mean: asleep_sum as f64 / taken.max(1) as f64,
             hand_force_peak_n: peak,
             stopped: diverged,
@@ -463,6 +471,8 @@ pub fn run(quick: bool, progress: bool) -> Result<EngineBayBench> {
                         time_step_s: p.time_step,
                         wall_s: p.wall,
                         realtime_factor: if p.wall > 0.0 { sim / p.wall } else { 0.0 },
+                        cpu_s: 0.0,
+                        realtime_factor_cpu: 0.0,
                         hoses_asleep_mean: p.asleep_sum as f64 / p.taken.max(1) as f64,
                         hand_force_peak_n: p.peak,
                         stopped: Some(why),
@@ -494,6 +504,8 @@ fn not_measured(solver: SolverKind, sleeping: bool) -> EngineBayRow {
         time_step_s: 0.0,
         wall_s: 0.0,
         realtime_factor: 0.0,
+        cpu_s: 0.0,
+        realtime_factor_cpu: 0.0,
         hoses_asleep_mean: 0.0,
         hand_force_peak_n: 0.0,
         stopped: Some("not measured: an earlier case overran its wall-time budget".into()),
@@ -511,10 +523,10 @@ pub fn render(b: &EngineBayBench) -> String {
         b.presettle_s,
         if b.quick { "; --quick: coarse parts, no settle" } else { "" }
     );
-    s.push_str("  solver    sleeping  Δt [ms]  steps  simulated [s]  wall [s]  real-time factor  hoses asleep  peak hand force [N]\n");
+    s.push_str("  solver    sleeping  Δt [ms]  steps  simulated [s]  wall [s]  real-time factor  (by CPU)  hoses asleep  peak hand force [N]\n");
     for r in &b.rows {
         s.push_str(&format!(
-            "  {:<9} {:<9} {:>7.4} {:>6} {:>14.3} {:>9.3} {:>17.3} {:>13.1} {:>20.2}\n",
+            "  {:<9} {:<9} {:>7.4} {:>6} {:>14.3} {:>9.3} {:>17.3} {:>9.3} {:>13.1} {:>20.2}\n",
             r.solver,
             if r.sleeping { "on" } else { "off" },
             r.time_step_s * 1e3,
@@ -522,6 +534,7 @@ pub fn render(b: &EngineBayBench) -> String {
             r.simulated_s,
             r.wall_s,
             r.realtime_factor,
+            r.realtime_factor_cpu,
             r.hoses_asleep_mean,
             r.hand_force_peak_n
         ));

@@ -9,7 +9,7 @@
 //!   1000 elements: ns per element-step and the log-log slope of the cost (linear in N
 //!   = slope 1).
 
-use crate::bench::{fit_loglog, material_1, median};
+use crate::bench::{fit_loglog, material_1, median, thread_cpu_seconds};
 use anyhow::{Context, Result};
 use glam::DVec3;
 use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
@@ -35,6 +35,10 @@ pub struct NewtonBench {
     pub implicit_rows: Vec<(usize, f64)>,
     /// Mean Newton iterations per implicit step, per row.
     pub implicit_iterations: Vec<f64>,
+    /// (elements, ns of the thread's CPU time per element-step) of the same runs: the
+    /// cost with a core to itself (wall time on a loaded machine also counts the time
+    /// other work held the core).
+    pub implicit_rows_cpu: Vec<(usize, f64)>,
     pub implicit_loglog_slope: f64,
 }
 
@@ -154,11 +158,11 @@ fn static_update(updates: usize, against_part: bool) -> Result<(f64, f64, f64)> 
 }
 
 /// ns per element-step of the implicit solver on a hose of `elements` hanging and
-/// swinging under gravity.
-fn implicit_cost(elements: usize, steps: usize) -> Result<(f64, f64)> {
+/// swinging under gravity (wall and thread CPU time), and the mean iterations per step.
+fn implicit_cost(elements: usize, steps: usize) -> Result<(f64, f64, f64)> {
     let (model, mut state) = hose(elements, 1.0)?;
     let mut solver = ImplicitSolver::new(&model, ImplicitOptions::default())?;
-    let start = Instant::now();
+    let (start, cpu) = (Instant::now(), thread_cpu_seconds());
     let mut iterations = 0usize;
     for k in 0..steps {
         iterations += solver
@@ -166,8 +170,10 @@ fn implicit_cost(elements: usize, steps: usize) -> Result<(f64, f64)> {
             .with_context(|| format!("implicit step {k} of the {elements}-element hose"))?
             .iterations;
     }
-    let ns = start.elapsed().as_secs_f64() * 1e9 / (steps * elements) as f64;
-    Ok((ns, iterations as f64 / steps as f64))
+    let per_element_step = 1e9 / (steps * elements) as f64;
+    let ns = start.elapsed().as_secs_f64() * per_element_step;
+    let ns_cpu = (thread_cpu_seconds() - cpu) * per_element_step;
+    Ok((ns, ns_cpu, iterations as f64 / steps as f64))
 }
 
 pub fn run(quick: bool) -> Result<NewtonBench> {
@@ -179,7 +185,7 @@ pub fn run(quick: bool) -> Result<NewtonBench> {
     } else {
         &[10, 30, 100, 300, 1000]
     };
-    let mut rows = Vec::new();
+    let (mut rows, mut rows_cpu) = (Vec::new(), Vec::new());
     let mut its = Vec::new();
     for &n in sizes {
         let steps = if quick {
@@ -187,8 +193,9 @@ pub fn run(quick: bool) -> Result<NewtonBench> {
         } else {
             (20_000 / n).clamp(20, 400)
         };
-        let (ns, it) = implicit_cost(n, steps)?;
+        let (ns, ns_cpu, it) = implicit_cost(n, steps)?;
         rows.push((n, ns));
+        rows_cpu.push((n, ns_cpu));
         its.push(it);
     }
     let fit = fit_loglog(
@@ -206,6 +213,7 @@ pub fn run(quick: bool) -> Result<NewtonBench> {
         static_contact_nodes_30: contact_nodes,
         implicit_rows: rows,
         implicit_iterations: its,
+        implicit_rows_cpu: rows_cpu,
         implicit_loglog_slope: fit.slope,
     })
 }
@@ -220,10 +228,16 @@ pub fn render(b: &NewtonBench) -> String {
         "  the same held against a part (contact active, {:.1} nodes touching): {:.3} ms median ({:.1} Newton iterations; goal ≤ {} ms)\n",
         b.static_contact_nodes_30, b.static_update_contact_ms_30, b.static_contact_iterations_30, b.static_goal_ms
     ));
-    s.push_str("  implicit HHT-α step, Δt = 10 ms (ns per element-step, iterations per step):\n");
-    for ((n, ns), it) in b.implicit_rows.iter().zip(&b.implicit_iterations) {
+    s.push_str("  implicit HHT-α step, Δt = 10 ms (ns per element-step, by wall and CPU time; iterations per step):\n");
+    for (((n, ns), (_, cpu)), it) in b
+        .implicit_rows
+        .iter()
+        .zip(&b.implicit_rows_cpu)
+        .zip(&b.implicit_iterations)
+    {
         s.push_str(&format!(
-            "    {n:>5} elements: {ns:>8.0} ns  ({it:.1} it)\n"
+            "    {n:>5} elements: {ns:>8.0} ns  (CPU {cpu:>8.0} ns, {:>6.0} ns per element-iteration; {it:.1} it)\n",
+            cpu / it.max(1.0)
         ));
     }
     s.push_str(&format!(

@@ -7,6 +7,7 @@
 //! contact coupling outside the band ([`gmres`]) and the convergence test
 //! ([`convergence`]).
 
+pub mod block_lu;
 pub mod block_tree;
 pub mod body_terms;
 pub mod condensation;
