@@ -9,9 +9,13 @@
 //! M = (m_a − m_b)/2, m_a and m_b the moments the element exerts on its nodes — the
 //! moment of the uniform-curvature mode, the antisymmetric mode's end moments cancelling
 //! (Przemieniecki 1968, "Theory of Matrix Structural Analysis", §5.4: the beam's end
-//! moments are the midspan moment ± half the shear times the length). Its sign follows
-//! the curvature's: M = EI κ for an elastic element. Damping is left out (the loads at
-//! rest).
+//! moments are the midspan moment ± half the shear times the length). Of that mean, the
+//! part the axial force N puts in through the element's shallow-arch strain
+//! ([`crate::rod::element`]: ∂(N l₀ ε)/∂θ = N l₀ (4θ_a − θ_b, 4θ_b − θ_a)/30, whose
+//! mean is N l₀ l κ/12) is not the section's: it is taken off, so that what remains is
+//! the moment of the section's law — M = EI κ for an elastic element, whatever its axial
+//! force (exact for an element straight at rest). Its sign follows the curvature's.
+//! Damping is left out (the loads at rest).
 
 use crate::rod::element::{ElementEnds, ElementLoads};
 use crate::{Model, State};
@@ -51,10 +55,12 @@ pub fn section_loads(model: &Model, state: &State, e: usize) -> SectionLoads {
     let strain = d.frame * ((d.bend_twist[1] - d.bend_twist[0]) / el.axis_length);
     let torque = m.dot(axis);
     let twist_rate = strain.dot(axis);
+    let curvature = strain - twist_rate * axis;
+    let arch = loads.axial_force * el.rest_length * el.axis_length / 12.0;
     SectionLoads {
-        bending_moment: m - torque * axis,
+        bending_moment: m - torque * axis - arch * curvature,
         torque,
-        curvature: strain - twist_rate * axis,
+        curvature,
         twist_rate,
     }
 }
@@ -113,6 +119,31 @@ mod tests {
             assert!(
                 s.torque.abs() < 1e-9 * ei * kappa && s.twist_rate.abs() < 1e-9,
                 "{s:?}"
+            );
+        }
+    }
+
+    /// The arc stretched along its chords (axial force N = EA ε ≠ 0): the section still
+    /// carries EI κ, the axial force's shallow-arch moment taken off.
+    #[test]
+    fn a_stretched_arc_carries_ei_kappa() {
+        let model = straight_hose();
+        let (kappa, stretch) = (4.0, 1.002);
+        let mut state = State::at_rest(&model);
+        for i in 0..=N {
+            let phi = kappa * L * i as f64 / N as f64;
+            let x = DVec3::new(phi.sin() / kappa, (1.0 - phi.cos()) / kappa, 0.0);
+            state.x[i] = stretch * x;
+            state.q[i] = DQuat::from_rotation_z(phi) * model.rest_q[i];
+        }
+        let ei = model.elements[0].bending_stiffness[1];
+        for e in 0..N {
+            let s = section_loads(&model, &state, e);
+            let m = s.bending_moment;
+            assert!(
+                (m - ei * s.curvature).length() < 1e-6 * ei * kappa,
+                "{s:?}: EI κ = {}",
+                ei * kappa
             );
         }
     }
