@@ -25,8 +25,9 @@ use glam::DVec3;
 use nalgebra::Matrix3;
 
 /// Friction history of every node, carried in the state from one accepted step to the
-/// next (allocated once).
-#[derive(Clone, Debug, Default)]
+/// next (allocated once; `clone_from` reuses the buffers, so that the Newton solvers'
+/// saving and restoring it in every step allocates nothing).
+#[derive(Debug, Default)]
 pub struct FrictionMemory {
     /// Where each node's tangential spring is anchored \[m\].
     pub anchor: Vec<DVec3>,
@@ -47,6 +48,20 @@ pub struct FrictionResponse {
     /// g_c = μ f_n / k_t, then growing by μ_k f_n per metre) \[J\]: its gradient is −f_t at
     /// fixed f_n, so that the static line search sees friction as it sees a spring.
     pub energy: f64,
+}
+
+impl Clone for FrictionMemory {
+    fn clone(&self) -> Self {
+        Self {
+            anchor: self.anchor.clone(),
+            sliding: self.sliding.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.anchor.clone_from(&source.anchor);
+        self.sliding.clone_from(&source.sliding);
+    }
 }
 
 impl FrictionMemory {

@@ -8,7 +8,7 @@
 //! [`fibre_law`], the fibre section [`fibre_section`], the yielding hinge of an element
 //! [`plastic_hinges`] and the closed forms of the elastic–plastic tube
 //! [`plastic_moment`]), relaxing ones (SPEC X2, [`relaxation`]) and rubbing ones (SPEC
-//! X2, [`hysteresis`]).
+//! X2, [`hysteresis`]); what an element's section carries, for output ([`section_loads`]).
 //!
 //! The kernels read the plain data of the crate (model, sections, materials) and nothing
 //! above it: no loads, contact or solvers.
@@ -30,6 +30,7 @@ pub mod node_view;
 pub mod plastic_hinges;
 pub mod plastic_moment;
 pub mod relaxation;
+pub mod section_loads;
 pub mod stiffened;
 pub mod tangent;
 pub mod tangent_kernel;

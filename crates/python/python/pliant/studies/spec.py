@@ -58,6 +58,8 @@ MATERIAL_PROPERTIES = {
     "density_kg_m3": 1.0,
     "poisson": 1.0,
     "min_bend_radius_mm": 1e-3,
+    "yield_stress_mpa": 1e6,  # a metal line's σ_y (docs/scene-format.md)
+    "hardening_modulus_mpa": 1e6,
 }
 PARAMETER_KEYS = {
     "name", "vary", "apply", "distribution", "mean", "std", "min", "max", "mode",

@@ -104,11 +104,10 @@ def _own_material(scene: Dict[str, Any], name: str) -> Dict[str, Any]:
         raise StudyError(f"material {name!r} is neither in the scene's [materials] nor in the library")
     copy_name = f"{name}_study"
     if copy_name not in materials:
+        # every law of the entry (a metal line's yield stress and hardening with its
+        # moduli): only the description and the section stay behind
         materials[copy_name] = {
-            k: lib[k]
-            for k in ("e_tension_mpa", "e_compression_mpa", "e_bending_mpa", "poisson",
-                      "density_kg_m3", "min_bend_radius_mm")
-            if k in lib
+            k: v for k, v in lib.items() if k not in ("description", "d_inner_mm", "d_outer_mm")
         }
         unit = length_factor(scene)
         for hose in scene.get("hoses", []):
