@@ -334,10 +334,49 @@ impl StaticSolver {
     /// energy's kink). The step is doubled while the energy keeps falling that fast
     /// (within the contact step limit) and the minimum found in the bracket
     /// ([`Self::bracketed_minimum`]). Returns the step taken, the state moved there.
+    ///
+    /// The extension is kept only where it leaves the free nodes farther from balance
+    /// than the full step did (residuals relative to their limits, [`Self::imbalance`]):
+    /// where the increment also moves nodes that do not slip — a stiff structure the full
+    /// Newton step brought to balance along with a slipping node — every step beyond 1
+    /// takes that part past its minimum again (at s = 2 it is reflected: as far out of
+    /// balance as before the step), while the slip's constant friction still lets the
+    /// energy fall along the line. Taking such steps, Newton alternates between two
+    /// states and never converges; the full step is taken instead.
     fn extend_to_kink(&mut self, model: &Model, state: &mut State, line: Line) -> f64 {
+        self.system.assemble(model, state, 0.0);
+        let at_full_step = self.imbalance(state);
+        let s = self.extend_along_slip(model, state, line);
+        if s == 1.0 {
+            return s;
+        }
+        self.system.assemble(model, state, 0.0);
+        if self.imbalance(state) <= at_full_step {
+            return s;
+        }
+        state.x.copy_from_slice(&self.saved_x);
+        state.q.copy_from_slice(&self.saved_q);
+        apply_increment(state, &self.system.rhs, &self.system.prescribed, 1.0);
+        1.0
+    }
+
+    /// How far the last assembly is from balance: the larger of the force and moment
+    /// residuals over the free nodes, each relative to its limit ([`Tolerance`]; a node
+    /// within its round-off floor counting as balanced), so that 1 is the convergence
+    /// limit.
+    fn imbalance(&self, state: &State) -> f64 {
+        let sys = &self.system;
+        let (f, m) = sys.residuals_above_noise(state);
+        let (f_limit, m_limit) = self.options.tolerance.limits(sys.scale);
+        let relative = |r: f64, limit: f64| if r > 0.0 { r / limit } else { 0.0 };
+        relative(f, f_limit).max(relative(m, m_limit))
+    }
+
+    /// The doubling and bracketing of [`Self::extend_to_kink`], from the full step with
+    /// the system assembled there.
+    fn extend_along_slip(&mut self, model: &Model, state: &mut State, line: Line) -> f64 {
         let sys = &mut self.system;
         let mut s = 1.0;
-        sys.assemble(model, state, 0.0);
         let mut slope = slope_along(sys);
         while slope < -0.5 * line.directional && 2.0 * s <= line.longest {
             let before = (s, slope);
