@@ -256,12 +256,7 @@ impl StaticSolver {
 
     fn backtrack(&mut self, model: &Model, state: &mut State, residual0: f64) -> f64 {
         let sys = &mut self.system;
-        // a node on a part without friction "slips" with no force: no kink ahead there
-        let slipping = sys
-            .friction
-            .iter()
-            .flatten()
-            .any(|r| r.slipping && r.secant > 0.0);
+        let slipping = sys.friction.iter().flatten().any(|r| r.slipping);
         // −dΠ/ds along the step = (f, m)·δu (the loads are −∇Π)
         let directional = -slope_along(sys);
         let mut s: f64 = rotation_limited_step(&sys.rhs, &sys.prescribed);
@@ -310,11 +305,10 @@ impl StaticSolver {
             }
             if tries >= MAX_BACKTRACKS {
                 // the shortest trial is past the minimum along the line (the energy rises
-                // there): while nodes slip, a kink closer than the halvings reach — a
-                // slipping node passing its friction anchor, where the energy bends by
-                // 2 μ f_n over the width of its stick ball. Find the minimum inside the
-                // bracket. (Without slip the shortest trial is taken as before.)
-                if slipping && descent && slope_along(sys) > 0.0 {
+                // there): a kink closer than the halvings reach — a slipping node passing
+                // its friction anchor, where the energy bends by 2 μ f_n over the width of
+                // its stick ball. Find the minimum inside the bracket.
+                if descent && slope_along(sys) > 0.0 {
                     let high = (s, slope_along(sys));
                     return self.bracketed_minimum(
                         model,
