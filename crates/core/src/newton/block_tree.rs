@@ -5,10 +5,9 @@
 //! already eliminated leaves a coupling to its parent only, so no block fills in (Parter,
 //! "The use of linear graphs in Gauss elimination", SIAM Review 3, 1961; for a chain this
 //! is the block Thomas algorithm, Golub & Van Loan, "Matrix Computations", §4.5.1). Each
-//! pivot block is factorised by LU with partial pivoting ([`super::block_lu`]). All storage
-//! is allocated once; a solve allocates nothing.
+//! pivot block is factorised by LU with partial pivoting. All storage is allocated once; a
+//! solve allocates nothing.
 
-use super::block_lu::BlockLu;
 use nalgebra::{Matrix6, Vector6};
 
 /// No parent: the node is the root of its tree.
@@ -36,6 +35,8 @@ pub struct BlockTree {
     /// LU factors of the eliminated diagonal blocks D'.
     factors: Vec<Option<BlockLu>>,
 }
+
+type BlockLu = nalgebra::LU<f64, nalgebra::Const<6>, nalgebra::Const<6>>;
 
 /// What the elimination of a symmetric tangent says about its definiteness (Sylvester's
 /// law of inertia on the block LDLᵀ factorisation K = L D Lᵀ, D = diag(D'ᵢ): K has as
@@ -235,21 +236,22 @@ impl BlockTree {
     pub fn factor(&mut self) -> Result<(), SingularBlock> {
         for k in 0..self.order.len() {
             let i = self.order[k];
-            self.pivot(i)?;
+            let lu = self.diag[i].lu();
+            self.pivot(i, lu)?;
         }
         Ok(())
     }
 
     /// Stores node `i`'s pivot factors, its multipliers, and eliminates it from its
     /// parent's diagonal block.
-    fn pivot(&mut self, i: usize) -> Result<(), SingularBlock> {
-        let lu = self.factors[i].insert(BlockLu::new(&self.diag[i]));
+    fn pivot(&mut self, i: usize, lu: BlockLu) -> Result<(), SingularBlock> {
         let p = self.parent[i];
         if p != NO_PARENT {
-            self.gain[i] = lu.solve_matrix(&self.upper[i]).ok_or(SingularBlock(i))?;
+            self.gain[i] = lu.solve(&self.upper[i]).ok_or(SingularBlock(i))?;
             let l = self.lower[i];
             self.diag[p] -= l * self.gain[i];
         }
+        self.factors[i] = Some(lu);
         Ok(())
     }
 
@@ -287,7 +289,8 @@ impl BlockTree {
                     self.diag[i] += v * v.transpose() * (raised - lambda);
                 }
             }
-            self.pivot(i)?;
+            let lu = self.diag[i].lu();
+            self.pivot(i, lu)?;
         }
         Ok(inertia)
     }

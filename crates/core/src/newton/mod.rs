@@ -7,7 +7,6 @@
 //! contact coupling outside the band ([`gmres`]) and the convergence test
 //! ([`convergence`]).
 
-pub mod block_lu;
 pub mod block_tree;
 pub mod body_terms;
 pub mod condensation;
