@@ -37,10 +37,17 @@ pub struct HarnessBench {
     /// Median CPU time of the simulating thread for one update \[ms\]: the cost on one
     /// core, without the waits of a shared machine.
     pub update_cpu_ms: f64,
+    /// Newton iterations of the update whose CPU time is the median, and the fewest and
+    /// most of any update: the median's cost depends on which iteration count it falls
+    /// on (the first updates take more, while the grabbed segment leaves its installed
+    /// shape).
+    pub update_iterations: usize,
+    pub update_iterations_range: [usize; 2],
     pub goal_ms: f64,
     /// The same update on one chain of as many elements \[ms\] (wall, CPU).
     pub chain_update_ms: f64,
     pub chain_update_cpu_ms: f64,
+    pub chain_update_iterations: usize,
     /// CPU cost per element of an update, network and chain \[µs\].
     pub update_us_per_element: f64,
     pub chain_update_us_per_element: f64,
@@ -107,9 +114,18 @@ pub(crate) fn settled(scene: &LoadedScene) -> Result<(Workcell, f64)> {
     Ok((cell, start.elapsed().as_secs_f64()))
 }
 
-/// Median wall and CPU time of `updates` updates \[ms\]: a hand grabs `at` and moves by
-/// [`HAND_STEP`] along `direction` before each.
-fn updates(cell: &mut Workcell, at: DVec3, direction: DVec3, updates: usize) -> Result<(f64, f64)> {
+/// What [`updates`] measured: median wall and CPU time \[ms\], the Newton iterations of
+/// the update at the CPU median, and the fewest and most iterations of any update.
+struct Updates {
+    wall_ms: f64,
+    cpu_ms: f64,
+    iterations_at_median: usize,
+    iterations_range: [usize; 2],
+}
+
+/// Times `updates` updates: a hand grabs `at` and moves by [`HAND_STEP`] along
+/// `direction` before each.
+fn updates(cell: &mut Workcell, at: DVec3, direction: DVec3, updates: usize) -> Result<Updates> {
     let refused = |r| anyhow!("the benchmark hand was refused: {r:?}");
     cell.apply(Input::Grab {
         hand: 1,
@@ -120,6 +136,7 @@ fn updates(cell: &mut Workcell, at: DVec3, direction: DVec3, updates: usize) -> 
     let step = cell.time_step();
     let mut times = Vec::with_capacity(updates);
     let mut cpu_times = Vec::with_capacity(updates);
+    let mut iterations = Vec::with_capacity(updates);
     for k in 1..=updates {
         cell.apply(Input::MoveHand {
             hand: 1,
@@ -133,8 +150,19 @@ fn updates(cell: &mut Workcell, at: DVec3, direction: DVec3, updates: usize) -> 
             .map_err(|d| anyhow!("update {k} diverged: {d}"))?;
         times.push(start.elapsed().as_secs_f64() * 1e3);
         cpu_times.push((thread_cpu_seconds() - cpu) * 1e3);
+        iterations.push(cell.solver().last.iterations);
     }
-    Ok((median(&times), median(&cpu_times)))
+    // the update at the (upper) middle of the CPU times
+    let mut by_cpu: Vec<usize> = (0..updates).collect();
+    by_cpu.sort_by(|&a, &b| cpu_times[a].total_cmp(&cpu_times[b]));
+    let fewest = iterations.iter().copied().min().unwrap_or(0);
+    let most = iterations.iter().copied().max().unwrap_or(0);
+    Ok(Updates {
+        wall_ms: median(&times),
+        cpu_ms: median(&cpu_times),
+        iterations_at_median: by_cpu.get(updates / 2).map_or(0, |&k| iterations[k]),
+        iterations_range: [fewest, most],
+    })
 }
 
 /// The middle node of the longest hose and a direction across it.
@@ -160,23 +188,26 @@ pub fn run(quick: bool) -> Result<HarnessBench> {
     let model = cell.model().clone();
     let length: f64 = model.elements.iter().map(|e| e.rest_length).sum();
     let (at, across) = grab_point(&cell);
-    let (update_ms, update_cpu_ms) = updates(&mut cell, at, across, count)?;
+    let network = updates(&mut cell, at, across, count)?;
     let elements = model.elements.len();
     let (mut line, _) = settled(&chain(elements, length)?)?;
     let span_middle = line.state().x[20];
-    let (chain_update_ms, chain_update_cpu_ms) = updates(&mut line, span_middle, DVec3::Y, count)?;
+    let chain = updates(&mut line, span_middle, DVec3::Y, count)?;
     Ok(HarnessBench {
         segments: model.hoses.len(),
         junctions: model.junctions.len(),
         elements,
         settle_s,
-        update_ms,
-        update_cpu_ms,
+        update_ms: network.wall_ms,
+        update_cpu_ms: network.cpu_ms,
+        update_iterations: network.iterations_at_median,
+        update_iterations_range: network.iterations_range,
         goal_ms: GOAL_MS,
-        chain_update_ms,
-        chain_update_cpu_ms,
-        update_us_per_element: update_cpu_ms * 1e3 / elements as f64,
-        chain_update_us_per_element: chain_update_cpu_ms * 1e3 / elements as f64,
+        chain_update_ms: chain.wall_ms,
+        chain_update_cpu_ms: chain.cpu_ms,
+        chain_update_iterations: chain.iterations_at_median,
+        update_us_per_element: network.cpu_ms * 1e3 / elements as f64,
+        chain_update_us_per_element: chain.cpu_ms * 1e3 / elements as f64,
         updates: count,
     })
 }
@@ -186,8 +217,10 @@ pub fn render(b: &HarnessBench) -> String {
     format!(
         "main harness: {} segments, {} junctions, {} elements (static solver, one core)\n\
          \x20 settled in its installed state in {:.2} s\n\
-         \x20 one update after the hand moves {} mm: {:.2} ms CPU, {:.2} ms wall (goal {} ms), {:.2} µs CPU per element\n\
-         \x20 one chain of as many elements:     {:.2} ms CPU, {:.2} ms wall, {:.2} µs CPU per element (network / chain {:.2})\n",
+         \x20 one update after the hand moves {} mm: {:.2} ms CPU, {:.2} ms wall (goal {} ms), {:.2} µs CPU per element; \
+         {} Newton iterations at the median ({}–{} over the updates)\n\
+         \x20 one chain of as many elements:     {:.2} ms CPU, {:.2} ms wall, {:.2} µs CPU per element (network / chain {:.2}); \
+         {} Newton iterations at the median\n",
         b.segments,
         b.junctions,
         b.elements,
@@ -197,9 +230,13 @@ pub fn render(b: &HarnessBench) -> String {
         b.update_ms,
         b.goal_ms,
         b.update_us_per_element,
+        b.update_iterations,
+        b.update_iterations_range[0],
+        b.update_iterations_range[1],
         b.chain_update_cpu_ms,
         b.chain_update_ms,
         b.chain_update_us_per_element,
         b.update_cpu_ms / b.chain_update_cpu_ms,
+        b.chain_update_iterations,
     )
 }
