@@ -345,7 +345,8 @@ enum Command {
         engine_bay: bool,
         /// Only the harness section: the main harness of data/harness/ imported, settled
         /// and moved by a hand in a quasi-static session (`update_cpu_ms`, `update_ms`: CPU
-        /// and wall time of one update), beside one chain of as many elements.
+        /// and wall time of one update, median; `update_iterations`: the Newton iterations
+        /// of the median update), beside one chain of as many elements.
         #[arg(long)]
         harness: bool,
         /// Measure one group of rows only: `contact` (5 × 30 without and with the floor),
