@@ -39,8 +39,7 @@ pub struct HarnessBench {
     pub update_cpu_ms: f64,
     /// Newton iterations of the update whose CPU time is the median, and the fewest and
     /// most of any update: the median's cost depends on which iteration count it falls
-    /// on (the first updates take more, while the grabbed segment leaves its installed
-    /// shape).
+    /// on (the bench's first updates take more iterations than its later ones).
     pub update_iterations: usize,
     pub update_iterations_range: [usize; 2],
     pub goal_ms: f64,
