@@ -14,6 +14,14 @@
 //! compares the floor's world with the contact-free one at the same steps. The same
 //! windows of the world whose floor sways ([`bench::floor_sway`]) give the moving floor's
 //! cost over the floor at rest, at the same steps every run.
+//!
+//! The floor at rest and the swaying one do not hold the same contacts (the hoses are
+//! clamped in the world while the floor heaves under them, so it presses more of each
+//! hose into contact). The **frozen** row therefore also times each window on the
+//! swaying world's own state at the window's first step, its floor stopped where the
+//! sway has it then: the same part at rest in the same pose, the hoses as they lie on
+//! it — the moving floor over that is the cost of the motion at (initially) equal
+//! contacts.
 
 use crate::bench::{self, median, FLOOR_QUADS};
 use anyhow::{bail, Result};
@@ -42,6 +50,12 @@ pub struct ContactPhase {
     pub moving_ratio: f64,
     /// Active contact points per step with the floor swaying.
     pub moving_contact_points_per_step: f64,
+    /// Wall ns per step of the swaying world's state at the window's first step with its
+    /// floor frozen in its pose there ([`freeze_floor`]), and the swaying floor over that.
+    pub ns_per_step_frozen: f64,
+    pub moving_over_frozen: f64,
+    /// Active contact points per step with the floor frozen.
+    pub frozen_contact_points_per_step: f64,
 }
 
 /// The windows: name, first step, steps (`quick`: a smoke-test size).
@@ -79,6 +93,60 @@ fn time_windows(
     Ok(out)
 }
 
+/// Per window: wall ns per step (median over the chunks) and contact points per step of
+/// the world whose floor sways, taken at the window's first step and timed with the floor
+/// frozen there ([`freeze_floor`]). The swaying run itself is not advanced by the timing.
+fn time_frozen_windows(floor_quads: usize, quick: bool) -> Result<Vec<(f64, f64)>> {
+    let sway = bench::floor_sway();
+    let (mut model, mut state) = bench::setup_moving(5, 30, floor_quads, Some(sway.clone()))?;
+    model.threads = 1;
+    let mut step = 0u64;
+    let mut out = Vec::new();
+    for (name, first, steps) in windows(quick) {
+        bench::run_steps(&model, &mut state, first - step);
+        step = first;
+        let (frozen_model, mut frozen) = freeze_floor(&model, &state, floor_quads, &sway)?;
+        let (ns, points, _) = time_chunks(&frozen_model, &mut frozen, steps, |s| {
+            s.contact.points.len()
+        });
+        if let Err(d) = health::check(&frozen_model, &frozen) {
+            bail!("contact benchmark ({name} window, floor frozen) diverged: {d}");
+        }
+        out.push((ns, points));
+    }
+    Ok(out)
+}
+
+/// The bench world with its floor at rest in the pose `motion` gives it at `state`'s time
+/// (its vertices mapped by that pose), and `state`'s hoses on it: positions, orientations,
+/// velocities and loads. (The contacts' remembered normals start afresh: they decide the
+/// side only for a hose axis exactly on the surface.)
+fn freeze_floor(
+    model: &Model,
+    state: &State,
+    floor_quads: usize,
+    motion: &PartMotion,
+) -> Result<(Model, State)> {
+    let pose = motion.placement_at(state.time).pose;
+    let mut world = bench::world_with_floor(5, 30, floor_quads)?;
+    for part in &mut world.rigid_parts {
+        for v in &mut part.vertices {
+            *v = pose.apply(*v);
+        }
+    }
+    let mut frozen_model = Model::build(&world)?;
+    frozen_model.threads = model.threads;
+    let mut frozen = State::at_rest(&frozen_model);
+    frozen.time = state.time;
+    frozen.step = state.step;
+    frozen.x.clone_from(&state.x);
+    frozen.q.clone_from(&state.q);
+    frozen.v.clone_from(&state.v);
+    frozen.w.clone_from(&state.w);
+    frozen.loads = state.loads.clone();
+    Ok((frozen_model, frozen))
+}
+
 /// Times about `steps` steps of `state` in [`CHUNKS`] chunks: wall ns per step (median
 /// over the chunks), `count` of the state after each step averaged over the steps, and
 /// the steps taken.
@@ -107,11 +175,18 @@ pub fn measure(quick: bool) -> Result<Vec<ContactPhase>> {
     let free = time_windows(0, None, quick)?;
     let floor = time_windows(FLOOR_QUADS, None, quick)?;
     let moving = time_windows(FLOOR_QUADS, Some(bench::floor_sway()), quick)?;
+    let frozen = time_frozen_windows(FLOOR_QUADS, quick)?;
     Ok(windows(quick)
         .iter()
-        .zip(free.iter().zip(floor.iter().zip(&moving)))
+        .zip(
+            free.iter()
+                .zip(floor.iter().zip(moving.iter().zip(&frozen))),
+        )
         .map(
-            |(&(name, first_step, steps), (&(f, _), (&(c, points), &(m, moving_points))))| {
+            |(
+                &(name, first_step, steps),
+                (&(f, _), (&(c, points), (&(m, moving_points), &(z, frozen_points)))),
+            )| {
                 ContactPhase {
                     name,
                     first_step,
@@ -123,6 +198,9 @@ pub fn measure(quick: bool) -> Result<Vec<ContactPhase>> {
                     ns_per_step_moving: m,
                     moving_ratio: m / c,
                     moving_contact_points_per_step: moving_points,
+                    ns_per_step_frozen: z,
+                    moving_over_frozen: m / z,
+                    frozen_contact_points_per_step: frozen_points,
                 }
             },
         )
@@ -137,7 +215,8 @@ pub fn render(phases: &[ContactPhase]) -> String {
             format!(
                 "  {} (steps {}–{}): {:.0} ns/step free, {:.0} ns/step on the floor \
                  ({:.1} contact points): ×{:.2}; swaying {:.0} ns/step ({:.1} contact \
-                 points): ×{:.2} the floor at rest (goal ≤ 1.3)\n",
+                 points): ×{:.2} the floor at rest (goal ≤ 1.3); ×{:.2} the floor frozen \
+                 mid-sway ({:.0} ns/step, {:.1} contact points)\n",
                 p.name,
                 p.first_step,
                 p.first_step + p.steps,
@@ -147,7 +226,10 @@ pub fn render(phases: &[ContactPhase]) -> String {
                 p.ratio,
                 p.ns_per_step_moving,
                 p.moving_contact_points_per_step,
-                p.moving_ratio
+                p.moving_ratio,
+                p.moving_over_frozen,
+                p.ns_per_step_frozen,
+                p.frozen_contact_points_per_step
             )
         })
         .collect()

@@ -265,7 +265,8 @@ fn validate_json_prints_the_documented_fields() {
 }
 
 /// `bench --only contact --json` prints the time-boxed rows and both fixed windows, at
-/// the steps documented, without, with the floor and with it swaying, and the hose–hose
+/// the steps documented, without, with the floor, with it swaying and with it frozen in
+/// its pose at the window's start (the swaying world's state there), and the hose–hose
 /// rows of the crossed grid, with finite positive times (no timing is judged here) and
 /// its layers touching.
 #[test]
@@ -284,6 +285,8 @@ fn contact_bench_reports_its_fixed_windows() {
             "ratio",
             "ns_per_step_moving",
             "moving_ratio",
+            "ns_per_step_frozen",
+            "moving_over_frozen",
         ] {
             let x = p[key].as_f64().unwrap();
             assert!(x.is_finite() && x > 0.0, "{key} = {x}");
