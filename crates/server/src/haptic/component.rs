@@ -1,0 +1,236 @@
+//! The part of the scene a hand can move (SPEC H1, P5): in a static equilibrium a node
+//! held kinematically — in all six degrees of freedom, by a fix, drive or mount (a seated
+//! clip, a stub's fixed end, a fixing pressed in, the hand itself) — transmits nothing of
+//! its neighbours' motion to the others, so the network falls apart at such nodes into
+//! independent problems. The hand's component is what is coupled to the hand's nodes
+//! without passing a held node: along the elements, through the rigid bodies (a
+//! junction's ends and a stiffened section's nodes are always taken together), along the
+//! cable ties, and — with hose–hose contact on — across every pair of beams near enough
+//! to touch ([`contact_reach`]). The held nodes where it ends belong to it as its
+//! boundary (held where they are).
+
+use pliant_core::loads::LoadCase;
+use pliant_core::{Model, State};
+use std::collections::HashMap;
+
+/// Two beams are taken as coupled by contact when their centre-lines come within
+/// `CONTACT_REACH_FACTOR` × (r₁ + r₂) of each other: touching beams (distance ≤ r₁ + r₂)
+/// and beams one more radius sum apart, which the hand's moves between two
+/// re-synchronisations of the mirror (a few millimetres) cannot close.
+pub const CONTACT_REACH_FACTOR: f64 = 2.0;
+
+/// The sorted global nodes of the component of `seeds` (the hand's held nodes) in
+/// `state`: the seeds, every node reached from them without passing a held node, and
+/// the held nodes where it stops.
+pub fn component(model: &Model, state: &State, seeds: &[usize]) -> Vec<usize> {
+    let n = model.node_count();
+    let mut held = vec![false; n];
+    let mut ties: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (_, case) in state.loads.iter() {
+        match case {
+            LoadCase::Fix(_) | LoadCase::Drive(_) | LoadCase::Mount(_) => {
+                held[case.node()] = true
+            }
+            LoadCase::Tie(t) => {
+                ties.entry(t.nodes[0]).or_default().push(t.nodes[1]);
+                ties.entry(t.nodes[1]).or_default().push(t.nodes[0]);
+            }
+            LoadCase::DeadLoad(_) | LoadCase::Support(_) => {}
+        }
+    }
+    // the elements at each node: a hose's interior node has two, an end one
+    let mut node_elements = vec![[usize::MAX; 2]; n];
+    for (e, el) in model.elements.iter().enumerate() {
+        node_elements[el.node_a][1] = e;
+        node_elements[el.node_b][0] = e;
+    }
+    let near = if model.hose_contact.active {
+        beams_near(model, state)
+    } else {
+        Vec::new()
+    };
+    let mut inside = vec![false; n];
+    let mut stack: Vec<usize> = Vec::new();
+    let reach = |node: usize, inside: &mut Vec<bool>, stack: &mut Vec<usize>| {
+        if !inside[node] {
+            inside[node] = true;
+            stack.push(node);
+        }
+    };
+    for &s in seeds {
+        reach(s, &mut inside, &mut stack);
+    }
+    while let Some(node) = stack.pop() {
+        // a held node is a boundary: nothing beyond it moves with the hand (the seeds
+        // are the hand's own held nodes, the problem's driven boundary)
+        let expand = !held[node] || seeds.contains(&node);
+        if let Some(b) = model.body_of[node] {
+            // a rigid body moves as one: all its nodes, held or not
+            for &m in &model.bodies[b].nodes {
+                reach(m, &mut inside, &mut stack);
+            }
+        }
+        if !expand {
+            continue;
+        }
+        for e in node_elements[node] {
+            if e == usize::MAX {
+                continue;
+            }
+            let el = &model.elements[e];
+            reach(el.node_a, &mut inside, &mut stack);
+            reach(el.node_b, &mut inside, &mut stack);
+            if let Some(others) = near.get(e) {
+                for &f in others {
+                    let other = &model.elements[f];
+                    reach(other.node_a, &mut inside, &mut stack);
+                    reach(other.node_b, &mut inside, &mut stack);
+                }
+            }
+        }
+        if let Some(tied) = ties.get(&node) {
+            for &m in tied {
+                reach(m, &mut inside, &mut stack);
+            }
+        }
+    }
+    (0..n).filter(|&i| inside[i]).collect()
+}
+
+/// The reach within which two beams count as coupled by contact \[m\].
+pub fn contact_reach(model: &Model, a: usize, b: usize) -> f64 {
+    let r = |e: usize| {
+        let el = &model.elements[e];
+        model.radius[el.node_a].max(model.radius[el.node_b])
+    };
+    CONTACT_REACH_FACTOR * (r(a) + r(b))
+}
+
+/// Per beam, the other beams whose centre-lines come within [`contact_reach`] of its
+/// own in `state` (a uniform grid of cells as large as the longest beam plus the
+/// largest reach, so that only beams in the same or neighbouring cells can be near).
+fn beams_near(model: &Model, state: &State) -> Vec<Vec<usize>> {
+    let ne = model.elements.len();
+    let mut near = vec![Vec::new(); ne];
+    let r_max = model.radius.iter().copied().fold(0.0, f64::max);
+    let longest = model
+        .elements
+        .iter()
+        .map(|el| (state.x[el.node_b] - state.x[el.node_a]).length())
+        .fold(0.0, f64::max);
+    let cell = longest + 2.0 * CONTACT_REACH_FACTOR * r_max;
+    if !(cell > 0.0 && cell.is_finite()) {
+        return near;
+    }
+    let key = |e: usize| {
+        let el = &model.elements[e];
+        let mid = 0.5 * (state.x[el.node_a] + state.x[el.node_b]);
+        let c = (mid / cell).floor();
+        (c.x as i64, c.y as i64, c.z as i64)
+    };
+    let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
+    for e in 0..ne {
+        grid.entry(key(e)).or_default().push(e);
+    }
+    for e in 0..ne {
+        let (cx, cy, cz) = key(e);
+        let el = &model.elements[e];
+        let (a0, a1) = (state.x[el.node_a], state.x[el.node_b]);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(cands) = grid.get(&(cx + dx, cy + dy, cz + dz)) else {
+                        continue;
+                    };
+                    for &f in cands {
+                        if f == e {
+                            continue;
+                        }
+                        let other = &model.elements[f];
+                        let (b0, b1) = (state.x[other.node_a], state.x[other.node_b]);
+                        if segment_distance(a0, a1, b0, b1) <= contact_reach(model, e, f) {
+                            near[e].push(f);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    near
+}
+
+/// Distance between the segments p0p1 and q0q1 (Ericson, "Real-Time Collision
+/// Detection", 2005, §5.1.9, closest points of two segments).
+fn segment_distance(
+    p0: glam::DVec3,
+    p1: glam::DVec3,
+    q0: glam::DVec3,
+    q1: glam::DVec3,
+) -> f64 {
+    let (d1, d2, r) = (p1 - p0, q1 - q0, p0 - q0);
+    let (a, e, f) = (d1.length_squared(), d2.length_squared(), d2.dot(r));
+    let eps = 1e-30;
+    let (s, t) = if a <= eps && e <= eps {
+        (0.0, 0.0)
+    } else if a <= eps {
+        (0.0, (f / e).clamp(0.0, 1.0))
+    } else {
+        let c = d1.dot(r);
+        if e <= eps {
+            ((-c / a).clamp(0.0, 1.0), 0.0)
+        } else {
+            let b = d1.dot(d2);
+            let denom = a * e - b * b;
+            let mut s = if denom > eps {
+                ((b * f - c * e) / denom).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let mut t = (b * s + f) / e;
+            if t < 0.0 {
+                t = 0.0;
+                s = (-c / a).clamp(0.0, 1.0);
+            } else if t > 1.0 {
+                t = 1.0;
+                s = ((b - c) / a).clamp(0.0, 1.0);
+            }
+            (s, t)
+        }
+    };
+    ((p0 + d1 * s) - (q0 + d2 * t)).length()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::segment_distance;
+    use glam::DVec3;
+
+    #[test]
+    fn segment_distance_of_crossing_parallel_and_apart_segments() {
+        let v = DVec3::new;
+        // crossing at right angles, 0.3 apart in z
+        let d = segment_distance(
+            v(-1.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(0.0, -1.0, 0.3),
+            v(0.0, 1.0, 0.3),
+        );
+        assert!((d - 0.3).abs() < 1e-15, "{d}");
+        // parallel, overlapping, 0.2 apart
+        let d = segment_distance(
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(0.5, 0.2, 0.0),
+            v(1.5, 0.2, 0.0),
+        );
+        assert!((d - 0.2).abs() < 1e-15, "{d}");
+        // collinear, end to end with a gap of 0.5
+        let d = segment_distance(
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(1.5, 0.0, 0.0),
+            v(2.5, 0.0, 0.0),
+        );
+        assert!((d - 0.5).abs() < 1e-15, "{d}");
+    }
+}
