@@ -13,12 +13,6 @@ use pliant_core::loads::LoadCase;
 use pliant_core::{Model, State};
 use std::collections::HashMap;
 
-/// Two beams are taken as coupled by contact when their centre-lines come within
-/// `CONTACT_REACH_FACTOR` × (r₁ + r₂) of each other: touching beams (distance ≤ r₁ + r₂)
-/// and beams one more radius sum apart, which the hand's moves between two
-/// re-synchronisations of the mirror (a few millimetres) cannot close.
-pub const CONTACT_REACH_FACTOR: f64 = 2.0;
-
 /// The sorted global nodes of the component of `seeds` (the hand's held nodes) in
 /// `state`: the seeds, every node reached from them without passing a held node, and
 /// the held nodes where it stops.
@@ -97,13 +91,18 @@ pub fn component(model: &Model, state: &State, seeds: &[usize]) -> Vec<usize> {
     (0..n).filter(|&i| inside[i]).collect()
 }
 
-/// The reach within which two beams count as coupled by contact \[m\].
+/// The reach within which two beams count as coupled by contact \[m\]: r₁ + r₂ (they
+/// touch) plus the contact model's skin (its smallest beam radius: how far a node may
+/// move before its broad phase looks again), more than the hand moves the hose between
+/// two re-synchronisations of the mirror. The skin is below (π − 2) r, so two beams of
+/// one straight hose that the contact model lets touch (apart by π r along it) are never
+/// within reach: a clip on a straight run cuts.
 pub fn contact_reach(model: &Model, a: usize, b: usize) -> f64 {
     let r = |e: usize| {
         let el = &model.elements[e];
         model.radius[el.node_a].max(model.radius[el.node_b])
     };
-    CONTACT_REACH_FACTOR * (r(a) + r(b))
+    r(a) + r(b) + model.hose_contact.skin
 }
 
 /// Per beam, the other beams whose centre-lines come within [`contact_reach`] of its
@@ -118,7 +117,7 @@ fn beams_near(model: &Model, state: &State) -> Vec<Vec<usize>> {
         .iter()
         .map(|el| (state.x[el.node_b] - state.x[el.node_a]).length())
         .fold(0.0, f64::max);
-    let cell = longest + 2.0 * CONTACT_REACH_FACTOR * r_max;
+    let cell = longest + 2.0 * r_max + model.hose_contact.skin;
     if !(cell > 0.0 && cell.is_finite()) {
         return near;
     }
@@ -143,7 +142,7 @@ fn beams_near(model: &Model, state: &State) -> Vec<Vec<usize>> {
                         continue;
                     };
                     for &f in cands {
-                        if f == e {
+                        if model.hose_contact.excluded(e, f) {
                             continue;
                         }
                         let other = &model.elements[f];
