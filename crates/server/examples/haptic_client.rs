@@ -2,7 +2,8 @@
 //! through the haptic stream, then sends poses along a path at a fixed rate (1 kHz by
 //! default) for a while, one request in flight at a time, and measures the rate held
 //! (answers per second, and the share of periods answered within the period) and the
-//! round-trip latency (send → reply with the same sequence number: p50, p90, p99, max),
+//! round-trip latency (send → reply with the same sequence number: p50, p90, p99, p99.9,
+//! max),
 //! with the server's own solve time and Newton iterations from the replies.
 //!
 //! ```text
@@ -259,6 +260,7 @@ fn run(a: Args, addr: SocketAddr, grab: DVec3) -> Result<serde_json::Value, Stri
             "p50": percentile(&latencies, 50.0),
             "p90": percentile(&latencies, 90.0),
             "p99": percentile(&latencies, 99.0),
+            "p99_9": percentile(&latencies, 99.9),
             "max": latencies.last().copied().unwrap_or(f64::NAN),
         },
         "server_solve_us": {
@@ -291,10 +293,11 @@ fn print_text(v: &serde_json::Value) {
         v["late_sends"],
     );
     println!(
-        "latency (send → reply): p50 {:.0} µs, p90 {:.0} µs, p99 {:.0} µs, max {:.0} µs",
+        "latency (send → reply): p50 {:.0} µs, p90 {:.0} µs, p99 {:.0} µs, p99.9 {:.0} µs, max {:.0} µs",
         l["p50"].as_f64().unwrap_or(f64::NAN),
         l["p90"].as_f64().unwrap_or(f64::NAN),
         l["p99"].as_f64().unwrap_or(f64::NAN),
+        l["p99_9"].as_f64().unwrap_or(f64::NAN),
         l["max"].as_f64().unwrap_or(f64::NAN),
     );
     println!(
