@@ -9,6 +9,8 @@
 //! to touch ([`contact_reach`]). The held nodes where it ends belong to it as its
 //! boundary (held where they are).
 
+use glam::DVec3;
+use pliant_core::contact::hose_hose::closest_segment_segment;
 use pliant_core::loads::LoadCase;
 use pliant_core::{Model, State};
 use std::collections::HashMap;
@@ -22,9 +24,7 @@ pub fn component(model: &Model, state: &State, seeds: &[usize]) -> Vec<usize> {
     let mut ties: HashMap<usize, Vec<usize>> = HashMap::new();
     for (_, case) in state.loads.iter() {
         match case {
-            LoadCase::Fix(_) | LoadCase::Drive(_) | LoadCase::Mount(_) => {
-                held[case.node()] = true
-            }
+            LoadCase::Fix(_) | LoadCase::Drive(_) | LoadCase::Mount(_) => held[case.node()] = true,
             LoadCase::Tie(t) => {
                 ties.entry(t.nodes[0]).or_default().push(t.nodes[1]);
                 ties.entry(t.nodes[1]).or_default().push(t.nodes[0]);
@@ -158,78 +158,9 @@ fn beams_near(model: &Model, state: &State) -> Vec<Vec<usize>> {
     near
 }
 
-/// Distance between the segments p0p1 and q0q1 (Ericson, "Real-Time Collision
-/// Detection", 2005, §5.1.9, closest points of two segments).
-fn segment_distance(
-    p0: glam::DVec3,
-    p1: glam::DVec3,
-    q0: glam::DVec3,
-    q1: glam::DVec3,
-) -> f64 {
-    let (d1, d2, r) = (p1 - p0, q1 - q0, p0 - q0);
-    let (a, e, f) = (d1.length_squared(), d2.length_squared(), d2.dot(r));
-    let eps = 1e-30;
-    let (s, t) = if a <= eps && e <= eps {
-        (0.0, 0.0)
-    } else if a <= eps {
-        (0.0, (f / e).clamp(0.0, 1.0))
-    } else {
-        let c = d1.dot(r);
-        if e <= eps {
-            ((-c / a).clamp(0.0, 1.0), 0.0)
-        } else {
-            let b = d1.dot(d2);
-            let denom = a * e - b * b;
-            let mut s = if denom > eps {
-                ((b * f - c * e) / denom).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let mut t = (b * s + f) / e;
-            if t < 0.0 {
-                t = 0.0;
-                s = (-c / a).clamp(0.0, 1.0);
-            } else if t > 1.0 {
-                t = 1.0;
-                s = ((b - c) / a).clamp(0.0, 1.0);
-            }
-            (s, t)
-        }
-    };
-    ((p0 + d1 * s) - (q0 + d2 * t)).length()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::segment_distance;
-    use glam::DVec3;
-
-    #[test]
-    fn segment_distance_of_crossing_parallel_and_apart_segments() {
-        let v = DVec3::new;
-        // crossing at right angles, 0.3 apart in z
-        let d = segment_distance(
-            v(-1.0, 0.0, 0.0),
-            v(1.0, 0.0, 0.0),
-            v(0.0, -1.0, 0.3),
-            v(0.0, 1.0, 0.3),
-        );
-        assert!((d - 0.3).abs() < 1e-15, "{d}");
-        // parallel, overlapping, 0.2 apart
-        let d = segment_distance(
-            v(0.0, 0.0, 0.0),
-            v(1.0, 0.0, 0.0),
-            v(0.5, 0.2, 0.0),
-            v(1.5, 0.2, 0.0),
-        );
-        assert!((d - 0.2).abs() < 1e-15, "{d}");
-        // collinear, end to end with a gap of 0.5
-        let d = segment_distance(
-            v(0.0, 0.0, 0.0),
-            v(1.0, 0.0, 0.0),
-            v(1.5, 0.0, 0.0),
-            v(2.5, 0.0, 0.0),
-        );
-        assert!((d - 0.5).abs() < 1e-15, "{d}");
-    }
+/// Distance between the segments p0p1 and q0q1 (their closest points by the contact
+/// model's own [`closest_segment_segment`]).
+fn segment_distance(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> f64 {
+    let (s, t) = closest_segment_segment(p0, p1, q0, q1);
+    (p0.lerp(p1, s) - q0.lerp(q1, t)).length()
 }

@@ -35,14 +35,18 @@ pub struct Cut {
 }
 
 impl Cut {
+    /// Whether a cut of `model` can be exact (see the module doc).
+    pub fn carries(model: &Model) -> bool {
+        model.inelastic.history_len == 0
+            && model.elements.iter().all(|e| e.inelastic.is_none())
+            && !model.junction_shapes.any()
+    }
+
     /// The cut of `model` to `nodes` (sorted, a [`super::component::component`]) in
     /// `state`, with `hand` renumbered; `None` when the model has what a cut cannot
     /// carry (see the module doc) or the hand's nodes are not in `nodes`.
     pub fn new(model: &Model, state: &State, nodes: Vec<usize>, hand: &HeldHand) -> Option<Cut> {
-        if model.inelastic.history_len > 0
-            || model.elements.iter().any(|e| e.inelastic.is_some())
-            || model.junction_shapes.any()
-        {
+        if !Cut::carries(model) {
             return None;
         }
         let mut index = vec![usize::MAX; model.node_count()];
@@ -57,7 +61,10 @@ impl Cut {
         let mut k = 0;
         while k < nodes.len() {
             let first = nodes[k];
-            let h = model.hoses.iter().position(|h| h.nodes().contains(&first))?;
+            let h = model
+                .hoses
+                .iter()
+                .position(|h| h.nodes().contains(&first))?;
             let info = &model.hoses[h];
             let mut last = k;
             while last + 1 < nodes.len()
@@ -120,7 +127,11 @@ impl Cut {
         }
         // networks: each hose joined to the smallest hose index through junctions
         let mut hose_network: Vec<usize> = (0..hoses.len()).collect();
-        let hose_at = |node: usize| hoses.iter().position(|h: &HoseInfo| h.nodes().contains(&node));
+        let hose_at = |node: usize| {
+            hoses
+                .iter()
+                .position(|h: &HoseInfo| h.nodes().contains(&node))
+        };
         loop {
             let mut changed = false;
             for j in &junctions {
@@ -205,7 +216,12 @@ impl Cut {
         })?;
         let renumbered = hand.hand.renumbered(
             lookup,
-            |id| cases.iter().find(|(from, _)| *from == id).map(|(_, to)| *to),
+            |id| {
+                cases
+                    .iter()
+                    .find(|(from, _)| *from == id)
+                    .map(|(_, to)| *to)
+            },
             element,
             hose,
         )?;
@@ -342,4 +358,3 @@ fn set(node: &mut usize, index: impl Fn(usize) -> Option<usize>) -> bool {
         None => false,
     }
 }
-

@@ -11,6 +11,12 @@
 //! puts the mirror back on the session's newest state, so the two never drift apart by
 //! more than one snapshot interval. The mirror changes nothing in the session: the pose
 //! reaches the session as the hand's `move` (see [`super`]).
+//!
+//! Each pose is solved on the hand's component alone ([`super::component`], [`Cut`]):
+//! the part of the scene between the nodes held in all six degrees of freedom around the
+//! hand, whose equilibrium does not depend on the rest. The cut is kept while its nodes
+//! and load cases stay the same from one synchronisation to the next, and made again
+//! otherwise.
 
 use glam::{DQuat, DVec3};
 use pliant_assembly::workcell::{HandNumber, HeldHand};
@@ -172,7 +178,7 @@ impl Mirror {
         held.aim = None;
         held.hand.set_pose(position, orientation);
         held.hand.update(&mut self.state, time);
-        if self.cutting && self.refused != Some(hand) {
+        if self.cutting && self.refused != Some(hand) && Cut::carries(&self.source.model) {
             if let Some(answer) = self.answer_on_cut(hand, position, orientation) {
                 return answer;
             }
