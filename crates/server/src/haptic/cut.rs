@@ -148,7 +148,8 @@ impl Cut {
                 break;
             }
         }
-        let hose_chunks = vec![0..hoses.len()];
+        // the explicit step's pieces of work: one (the mirror never steps explicitly)
+        let hose_chunks = std::iter::once(0..hoses.len()).collect();
         let packed = PackedElements::new(&elements, &hoses);
         let mut cut = Model {
             hoses,
@@ -191,14 +192,14 @@ impl Cut {
         for (id, case) in state.loads.iter() {
             let mut case = case.clone();
             let inside = match &mut case {
-                LoadCase::Fix(c) => set(&mut c.node, &lookup),
-                LoadCase::Drive(c) => set(&mut c.node, &lookup),
-                LoadCase::DeadLoad(c) => set(&mut c.node, &lookup),
-                LoadCase::Support(c) => set(&mut c.node, &lookup),
-                LoadCase::Mount(c) => set(&mut c.node, &lookup),
+                LoadCase::Fix(c) => set(&mut c.node, lookup),
+                LoadCase::Drive(c) => set(&mut c.node, lookup),
+                LoadCase::DeadLoad(c) => set(&mut c.node, lookup),
+                LoadCase::Support(c) => set(&mut c.node, lookup),
+                LoadCase::Mount(c) => set(&mut c.node, lookup),
                 LoadCase::Tie(c) => {
                     let [a, b] = &mut c.nodes;
-                    let (a_in, b_in) = (set(a, &lookup), set(b, &lookup));
+                    let (a_in, b_in) = (set(a, lookup), set(b, lookup));
                     if a_in != b_in {
                         return None; // a tie is never cut (component follows it)
                     }
