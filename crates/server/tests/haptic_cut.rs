@@ -10,113 +10,62 @@ use pliant_assembly::workcell::{Input, NoObserver, Workcell, WorkcellOptions};
 use pliant_core::SolverKind;
 use pliant_server::haptic::datagram::Status;
 use pliant_server::haptic::mirror::{Mirror, SessionCopy};
+use pliant_testkit::scene_text::{fix, hose, simulation, SceneText, Table};
 use std::sync::Arc;
 
+/// The `[simulation]` of both scenes: gravity, the static solver.
+fn statics() -> Table {
+    simulation()
+        .point("gravity", [0.0, 0.0, -9.81])
+        .text("solver", "static")
+}
+
+/// A straight hose of library material 1 in `elements` elements (mm).
+fn hose_of(name: &str, start: [f64; 3], to: [f64; 3], elements: usize) -> Table {
+    hose(name, "hose1", start, to).number("elements", elements as f64)
+}
+
 /// A hose fixed at its start with a clip seated at node 10 of 20 (a fix), the hand
-/// taking it beyond the clip; a second hose fixed at both ends sags beside it.
-const CLIPPED: &str = r#"
-format = "pliant-scene"
-version = 1
-name = "clipped hose beside another"
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, -9.81]
-solver = "static"
-
-[[hoses]]
-name = "clipped"
-material = "hose1"
-start = [0, 0, 0]
-elements = 20
-path = [{ line = { to = [400, 0, 0] } }]
-
-[[hoses]]
-name = "beside"
-material = "hose1"
-start = [0, 80, 0]
-elements = 20
-path = [{ line = { to = [400, 80, 0] } }]
-
-[[timeline]]
-action = "fix"
-hose = "clipped"
-node = 0
-
-[[timeline]]
-action = "fix"
-hose = "clipped"
-node = 10
-
-[[timeline]]
-action = "fix"
-hose = "beside"
-node = 0
-
-[[timeline]]
-action = "fix"
-hose = "beside"
-node = -1
-"#;
+/// taking it beyond the clip; a second hose fixed at both ends sags 80 mm beside it.
+fn clipped() -> String {
+    SceneText::mm_named("clipped hose beside another")
+        .with(statics())
+        .with(hose_of("clipped", [0.0; 3], [400.0, 0.0, 0.0], 20))
+        .with(hose_of("beside", [0.0, 80.0, 0.0], [400.0, 80.0, 0.0], 20))
+        .with_all([
+            fix("clipped", 0),
+            fix("clipped", 10),
+            fix("beside", 0),
+            fix("beside", -1),
+        ])
+        .into()
+}
 
 /// Three hoses joined at a tee (no body shape), fixed at their far ends, and a fixing
-/// (a fix) in the middle of the "to engine" branch.
-const NETWORK: &str = r#"
-format = "pliant-scene"
-version = 1
-name = "tee with a fixing"
-length_unit = "mm"
-
-[simulation]
-gravity = [0, 0, -9.81]
-solver = "static"
-
-[[hoses]]
-name = "supply"
-material = "hose1"
-start = [-250, 0, 0]
-elements = 12
-path = [{ line = { to = [-15, 0, 0] } }]
-
-[[hoses]]
-name = "to engine"
-material = "hose1"
-start = [15, 0, 0]
-elements = 24
-path = [{ line = { to = [500, 0, 0] } }]
-
-[[hoses]]
-name = "bleed"
-material = "hose1"
-start = [0, 0, -10]
-elements = 8
-path = [{ line = { to = [0, 0, -160] } }]
-
-[[junctions]]
-name = "tee"
-ends = [{ hose = "supply", end = "end" }, { hose = "to engine", end = "start" }, { hose = "bleed", end = "start" }]
-body = { mass_kg = 0.03 }
-
-[[timeline]]
-action = "fix"
-hose = "supply"
-node = 0
-
-[[timeline]]
-action = "fix"
-hose = "to engine"
-node = -1
-
-[[timeline]]
-action = "fix"
-hose = "to engine"
-node = 16
-
-[[timeline]]
-action = "fix"
-hose = "bleed"
-node = -1
-"#;
+/// (a fix) at node 16 of the 24 of the "to engine" branch.
+fn network() -> String {
+    SceneText::mm_named("tee with a fixing")
+        .with(statics())
+        .with(hose_of("supply", [-250.0, 0.0, 0.0], [-15.0, 0.0, 0.0], 12))
+        .with(hose_of("to engine", [15.0, 0.0, 0.0], [500.0, 0.0, 0.0], 24))
+        .with(hose_of("bleed", [0.0, 0.0, -10.0], [0.0, 0.0, -160.0], 8))
+        .with(
+            Table::entry("junctions")
+                .text("name", "tee")
+                .inline(
+                    "ends",
+                    r#"[{ hose = "supply", end = "end" }, { hose = "to engine", end = "start" }, { hose = "bleed", end = "start" }]"#,
+                )
+                .inline("body", "{ mass_kg = 0.03 }"),
+        )
+        .with_all([
+            fix("supply", 0),
+            fix("to engine", -1),
+            fix("to engine", 16),
+            fix("bleed", -1),
+        ])
+        .into()
+}
 
 /// The settled scene with hand 0 holding it at `grab`, as the session publishes it.
 fn copy_of(text: &str, grab: DVec3) -> Arc<SessionCopy> {
@@ -189,7 +138,7 @@ fn same_answers(copy: Arc<SessionCopy>, grab: DVec3) -> (usize, usize) {
 #[test]
 fn a_clip_between_hand_and_hose_cuts_the_problem_exactly() {
     let grab = DVec3::new(0.38, 0.0, 0.0);
-    let copy = copy_of(CLIPPED, grab);
+    let copy = copy_of(&clipped(), grab);
     let grab = copy.hands[0].1.hand.pose_at(copy.state.time).0;
     let (cut, whole) = same_answers(copy, grab);
     // the clipped hose's nodes from the clip on (11 of 42): the hose beside is 80 mm
@@ -201,7 +150,7 @@ fn a_clip_between_hand_and_hose_cuts_the_problem_exactly() {
 #[test]
 fn a_fixing_in_a_branch_cuts_the_network_exactly() {
     let grab = DVec3::new(0.2, 0.0, 0.0);
-    let copy = copy_of(NETWORK, grab);
+    let copy = copy_of(&network(), grab);
     let grab = copy.hands[0].1.hand.pose_at(copy.state.time).0;
     let (cut, whole) = same_answers(copy, grab);
     // supply 13 + bleed 9 + "to engine" up to its fixing 17; not the 8 nodes beyond
