@@ -190,25 +190,12 @@ impl Cut {
         let mut sub = State::at_rest(&cut);
         let mut cases: Vec<(LoadCaseId, LoadCaseId)> = Vec::new();
         for (id, case) in state.loads.iter() {
-            let mut case = case.clone();
-            let inside = match &mut case {
-                LoadCase::Fix(c) => set(&mut c.node, lookup),
-                LoadCase::Drive(c) => set(&mut c.node, lookup),
-                LoadCase::DeadLoad(c) => set(&mut c.node, lookup),
-                LoadCase::Support(c) => set(&mut c.node, lookup),
-                LoadCase::Mount(c) => set(&mut c.node, lookup),
-                LoadCase::Tie(c) => {
-                    let [a, b] = &mut c.nodes;
-                    let (a_in, b_in) = (set(a, lookup), set(b, lookup));
-                    if a_in != b_in {
-                        return None; // a tie is never cut (component follows it)
-                    }
-                    a_in
-                }
-            };
-            if inside {
-                cases.push((*id, sub.loads.add(case)));
+            if !touches(case, lookup) {
+                continue;
             }
+            // a tie is never cut: the component follows it
+            let case = renumbered(case, lookup)?;
+            cases.push((*id, sub.loads.add(case)));
         }
         let held_element = hand.hand.element;
         let element = element_of.iter().position(|&e| e == held_element)?;
@@ -260,38 +247,20 @@ impl Cut {
         let index = |i: usize| self.nodes.binary_search(&i).ok();
         let mut k = 0;
         for (id, case) in state.loads.iter() {
-            let inside = match case {
-                LoadCase::Tie(t) => index(t.nodes[0]).is_some(),
-                _ => index(case.node()).is_some(),
-            };
-            if !inside {
+            if !touches(case, index) {
                 continue;
             }
             let Some(&(from, to)) = self.cases.get(k) else {
                 return false;
             };
-            if from != *id {
-                return false;
-            }
-            let Some(mine) = self.state.loads.get_mut(to) else {
+            let (Some(case), Some(mine)) = (renumbered(case, index), self.state.loads.get_mut(to))
+            else {
                 return false;
             };
+            if from != *id || std::mem::discriminant(mine) != std::mem::discriminant(&case) {
+                return false;
+            }
             // the same case, renumbered: its values (a hand's pose, a ramp) may be newer
-            let mut case = case.clone();
-            let ok = match &mut case {
-                LoadCase::Fix(c) => set(&mut c.node, index),
-                LoadCase::Drive(c) => set(&mut c.node, index),
-                LoadCase::DeadLoad(c) => set(&mut c.node, index),
-                LoadCase::Support(c) => set(&mut c.node, index),
-                LoadCase::Mount(c) => set(&mut c.node, index),
-                LoadCase::Tie(c) => {
-                    let [a, b] = &mut c.nodes;
-                    set(a, index) && set(b, index)
-                }
-            };
-            if !ok || std::mem::discriminant(mine) != std::mem::discriminant(&case) {
-                return false;
-            }
             *mine = case;
             k += 1;
         }
@@ -347,6 +316,32 @@ impl Cut {
             state.bodies[from] = self.state.bodies[b];
         }
     }
+}
+
+/// Whether any node `case` acts on lies in the cut (`index` gives a scene node's place
+/// there).
+fn touches(case: &LoadCase, index: impl Fn(usize) -> Option<usize>) -> bool {
+    match case {
+        LoadCase::Tie(t) => t.nodes.iter().any(|&n| index(n).is_some()),
+        _ => index(case.node()).is_some(),
+    }
+}
+
+/// `case` renumbered into the cut; `None` when a node it acts on lies outside.
+fn renumbered(case: &LoadCase, index: impl Fn(usize) -> Option<usize> + Copy) -> Option<LoadCase> {
+    let mut case = case.clone();
+    let ok = match &mut case {
+        LoadCase::Fix(c) => set(&mut c.node, index),
+        LoadCase::Drive(c) => set(&mut c.node, index),
+        LoadCase::DeadLoad(c) => set(&mut c.node, index),
+        LoadCase::Support(c) => set(&mut c.node, index),
+        LoadCase::Mount(c) => set(&mut c.node, index),
+        LoadCase::Tie(c) => {
+            let [a, b] = &mut c.nodes;
+            set(a, index) && set(b, index)
+        }
+    };
+    ok.then_some(case)
 }
 
 /// Renumbers `node` by `index`; whether it lies in the cut.
