@@ -38,11 +38,12 @@ pub fn component(model: &Model, state: &State, seeds: &[usize]) -> Vec<usize> {
         node_elements[el.node_a][1] = e;
         node_elements[el.node_b][0] = e;
     }
-    let near = if model.hose_contact.active {
-        beams_near(model, state)
-    } else {
-        Vec::new()
-    };
+    let grid = model
+        .hose_contact
+        .active
+        .then(|| BeamGrid::new(model, state));
+    let mut searched = vec![false; model.elements.len()];
+    let mut near = Vec::new();
     let mut inside = vec![false; n];
     let mut stack: Vec<usize> = Vec::new();
     let reach = |node: usize, inside: &mut Vec<bool>, stack: &mut Vec<usize>| {
@@ -74,11 +75,15 @@ pub fn component(model: &Model, state: &State, seeds: &[usize]) -> Vec<usize> {
             let el = &model.elements[e];
             reach(el.node_a, &mut inside, &mut stack);
             reach(el.node_b, &mut inside, &mut stack);
-            if let Some(others) = near.get(e) {
-                for &f in others {
-                    let other = &model.elements[f];
-                    reach(other.node_a, &mut inside, &mut stack);
-                    reach(other.node_b, &mut inside, &mut stack);
+            if let Some(grid) = &grid {
+                if !searched[e] {
+                    searched[e] = true;
+                    grid.near(model, state, e, &mut near);
+                    for &f in &near {
+                        let other = &model.elements[f];
+                        reach(other.node_a, &mut inside, &mut stack);
+                        reach(other.node_b, &mut inside, &mut stack);
+                    }
                 }
             }
         }
@@ -105,57 +110,75 @@ pub fn contact_reach(model: &Model, a: usize, b: usize) -> f64 {
     r(a) + r(b) + model.hose_contact.skin
 }
 
-/// Per beam, the other beams whose centre-lines come within [`contact_reach`] of its
-/// own in `state` (a uniform grid of cells as large as the longest beam plus the
-/// largest reach, so that only beams in the same or neighbouring cells can be near).
-fn beams_near(model: &Model, state: &State) -> Vec<Vec<usize>> {
-    let ne = model.elements.len();
-    let mut near = vec![Vec::new(); ne];
-    let r_max = model.radius.iter().copied().fold(0.0, f64::max);
-    let longest = model
-        .elements
-        .iter()
-        .map(|el| (state.x[el.node_b] - state.x[el.node_a]).length())
-        .fold(0.0, f64::max);
-    let cell = longest + 2.0 * r_max + model.hose_contact.skin;
-    if !(cell > 0.0 && cell.is_finite()) {
-        return near;
+/// The beams in a uniform grid of cells as large as the longest beam plus the largest
+/// reach, by their midpoints: only beams in the same or neighbouring cells can come
+/// within [`contact_reach`] of each other.
+struct BeamGrid {
+    cell: f64,
+    cells: HashMap<(i64, i64, i64), Vec<usize>>,
+}
+
+impl BeamGrid {
+    fn new(model: &Model, state: &State) -> BeamGrid {
+        let r_max = model.radius.iter().copied().fold(0.0, f64::max);
+        let longest = model
+            .elements
+            .iter()
+            .map(|el| (state.x[el.node_b] - state.x[el.node_a]).length())
+            .fold(0.0, f64::max);
+        let cell = longest + 2.0 * r_max + model.hose_contact.skin;
+        let mut grid = BeamGrid {
+            cell,
+            cells: HashMap::new(),
+        };
+        if cell > 0.0 && cell.is_finite() {
+            for e in 0..model.elements.len() {
+                grid.cells
+                    .entry(grid.key(model, state, e))
+                    .or_default()
+                    .push(e);
+            }
+        }
+        grid
     }
-    let key = |e: usize| {
+
+    fn key(&self, model: &Model, state: &State, e: usize) -> (i64, i64, i64) {
         let el = &model.elements[e];
         let mid = 0.5 * (state.x[el.node_a] + state.x[el.node_b]);
-        let c = (mid / cell).floor();
+        let c = (mid / self.cell).floor();
         (c.x as i64, c.y as i64, c.z as i64)
-    };
-    let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
-    for e in 0..ne {
-        grid.entry(key(e)).or_default().push(e);
     }
-    for e in 0..ne {
-        let (cx, cy, cz) = key(e);
+
+    /// The beams the contact model lets touch beam `e` that come within
+    /// [`contact_reach`] of it, into `out`.
+    fn near(&self, model: &Model, state: &State, e: usize, out: &mut Vec<usize>) {
+        out.clear();
+        if !(self.cell > 0.0 && self.cell.is_finite()) {
+            return;
+        }
+        let (cx, cy, cz) = self.key(model, state, e);
         let el = &model.elements[e];
         let (a0, a1) = (state.x[el.node_a], state.x[el.node_b]);
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    let Some(cands) = grid.get(&(cx + dx, cy + dy, cz + dz)) else {
+                    let Some(beams) = self.cells.get(&(cx + dx, cy + dy, cz + dz)) else {
                         continue;
                     };
-                    for &f in cands {
+                    for &f in beams {
                         if model.hose_contact.excluded(e, f) {
                             continue;
                         }
                         let other = &model.elements[f];
                         let (b0, b1) = (state.x[other.node_a], state.x[other.node_b]);
                         if segment_distance(a0, a1, b0, b1) <= contact_reach(model, e, f) {
-                            near[e].push(f);
+                            out.push(f);
                         }
                     }
                 }
             }
         }
     }
-    near
 }
 
 /// Distance between the segments p0p1 and q0q1 (their closest points by the contact
