@@ -140,6 +140,27 @@ impl Hand {
         })
     }
 
+    /// This hand in another numbering of the same world — a model cut out of this one
+    /// (e.g. the part of the scene a hand can move): `node` and `case` give each held
+    /// node's index and its load case's handle there, `element` and `hose` the held beam's
+    /// and its hose's. `None` when a held node or its load case has no counterpart.
+    pub fn renumbered(
+        &self,
+        node: impl Fn(usize) -> Option<usize>,
+        case: impl Fn(LoadCaseId) -> Option<LoadCaseId>,
+        element: usize,
+        hose: usize,
+    ) -> Option<Hand> {
+        let mut hand = self.clone();
+        for held in &mut hand.held[..self.count] {
+            held.0 = node(held.0)?;
+            held.1 = case(held.1)?;
+        }
+        hand.element = element;
+        hand.hose = hose;
+        Some(hand)
+    }
+
     /// The hand's grip.
     pub fn grip(&self) -> Grip {
         self.grip

@@ -2,18 +2,23 @@
 //! through the haptic stream, then sends poses along a path at a fixed rate (1 kHz by
 //! default) for a while, one request in flight at a time, and measures the rate held
 //! (answers per second, and the share of periods answered within the period) and the
-//! round-trip latency (send → reply with the same sequence number: p50, p90, p99, max),
+//! round-trip latency (send → reply with the same sequence number: p50, p90, p99, p99.9,
+//! max),
 //! with the server's own solve time and Newton iterations from the replies.
 //!
 //! ```text
 //! cargo run --release -p pliant-server --example haptic_client -- [--seconds 5]
 //!     [--rate 1000] [--radius 0.02] [--solver explicit|implicit|static] [--scene FILE]
-//!     [--addr 127.0.0.1:PORT --grab X,Y,Z [--token T]] [--json]
+//!     [--timeline] [--whole-scene] [--grab X,Y,Z] [--addr 127.0.0.1:PORT --grab X,Y,Z [--token T]] [--json]
 //! ```
 //!
 //! Without `--addr` it serves the scene (the demo engine bay by default) in this process,
 //! the haptic stream on a free loopback port, and grabs the free end of the demo's lower
-//! hose (the last node of the scene's last hose otherwise). With `--addr` it talks to a
+//! hose (the middle node of the scene's hose of most nodes otherwise; `--grab` takes it there
+//! instead); `--timeline` runs the scene's timeline before serving (an imported harness:
+//! its fixings pressed in; the engine bay: its clips seated); `--whole-scene` has the
+//! stream solve each pose on the whole scene instead of the part the hand can move (the
+//! same answers; for comparing costs). With `--addr` it talks to a
 //! running `pliant serve --haptic-port PORT` and grabs at `--grab`. The path is a
 //! horizontal circle of `--radius` through the grab point, once every 4 s. A benchmark,
 //! not a test: it asserts nothing; every loop is bounded by `--seconds`.
@@ -40,6 +45,8 @@ struct Args {
     radius: f64,
     solver: Option<SolverKind>,
     scene: Option<String>,
+    timeline: bool,
+    whole_scene: bool,
     addr: Option<SocketAddr>,
     grab: Option<DVec3>,
     token: Option<String>,
@@ -53,6 +60,8 @@ fn args() -> Result<Args, String> {
         radius: 0.02,
         solver: None,
         scene: None,
+        timeline: false,
+        whole_scene: false,
         addr: None,
         grab: None,
         token: None,
@@ -73,6 +82,8 @@ fn args() -> Result<Args, String> {
             "--radius" => a.radius = number(value()?, "--radius")?.min(1.0),
             "--solver" => a.solver = Some(value()?.parse()?),
             "--scene" => a.scene = Some(value()?),
+            "--timeline" => a.timeline = true,
+            "--whole-scene" => a.whole_scene = true,
             "--addr" => {
                 let v = value()?;
                 a.addr = Some(v.parse().map_err(|e| format!("--addr {v}: {e}"))?)
@@ -102,21 +113,20 @@ fn args() -> Result<Args, String> {
     Ok(a)
 }
 
-/// The demo's lower hose's free end (the last node of the last hose otherwise).
+/// The demo's lower hose's free end; in another scene the middle node of its hose of
+/// most nodes.
 fn default_grab(s: &RunningServer) -> DVec3 {
     let session = s.session();
     let snap = session.latest();
-    let names: Vec<&str> = session
-        .scene()
+    if let Some(k) = session.scene().hoses.iter().position(|h| h.name == "lower") {
+        return DVec3::from_array(*snap.hoses[k].positions.last().expect("a hose has nodes"));
+    }
+    let longest = snap
         .hoses
         .iter()
-        .map(|h| h.name.as_str())
-        .collect();
-    let k = names
-        .iter()
-        .position(|n| *n == "lower")
-        .unwrap_or(names.len() - 1);
-    DVec3::from_array(*snap.hoses[k].positions.last().expect("a hose has nodes"))
+        .max_by_key(|h| h.positions.len())
+        .expect("a scene has hoses");
+    DVec3::from_array(longest.positions[longest.positions.len() / 2])
 }
 
 fn percentile(sorted: &[f64], p: f64) -> f64 {
@@ -250,6 +260,7 @@ fn run(a: Args, addr: SocketAddr, grab: DVec3) -> Result<serde_json::Value, Stri
             "p50": percentile(&latencies, 50.0),
             "p90": percentile(&latencies, 90.0),
             "p99": percentile(&latencies, 99.0),
+            "p99_9": percentile(&latencies, 99.9),
             "max": latencies.last().copied().unwrap_or(f64::NAN),
         },
         "server_solve_us": {
@@ -282,10 +293,11 @@ fn print_text(v: &serde_json::Value) {
         v["late_sends"],
     );
     println!(
-        "latency (send → reply): p50 {:.0} µs, p90 {:.0} µs, p99 {:.0} µs, max {:.0} µs",
+        "latency (send → reply): p50 {:.0} µs, p90 {:.0} µs, p99 {:.0} µs, p99.9 {:.0} µs, max {:.0} µs",
         l["p50"].as_f64().unwrap_or(f64::NAN),
         l["p90"].as_f64().unwrap_or(f64::NAN),
         l["p99"].as_f64().unwrap_or(f64::NAN),
+        l["p99_9"].as_f64().unwrap_or(f64::NAN),
         l["max"].as_f64().unwrap_or(f64::NAN),
     );
     println!(
@@ -336,17 +348,20 @@ fn serve_and_run(a: Args) -> Result<serde_json::Value, String> {
         .enable_all()
         .build()
         .map_err(|e| e.to_string())?;
-    let session = Session::start(
-        &scene,
-        SessionOptions {
-            solver: a.solver,
-            ..SessionOptions::default()
-        },
-    )
+    let options = SessionOptions {
+        solver: a.solver,
+        ..SessionOptions::default()
+    };
+    let session = if a.timeline {
+        Session::start_settled(&scene, options)
+    } else {
+        Session::start(&scene, options)
+    }
     .map_err(|e| e.to_string())?;
     let config = ServerConfig {
         port: 0,
         haptic_port: Some(0),
+        haptic_whole_scene: a.whole_scene,
         ..ServerConfig::default()
     };
     let server = runtime

@@ -75,6 +75,10 @@ pub struct ServerConfig {
     /// The haptic force stream's UDP port on 127.0.0.1 (0 picks a free one; `None`: no
     /// stream). Always loopback, whatever `host` is ([`crate::haptic`]).
     pub haptic_port: Option<u16>,
+    /// The haptic stream solves each pose on the whole scene rather than on the part
+    /// the hand can move ([`crate::haptic::mirror::Mirror::set_cutting`]): the same
+    /// answers, slower; for comparing the two.
+    pub haptic_whole_scene: bool,
 }
 
 /// Default [`ServerConfig::hello_timeout`].
@@ -94,6 +98,7 @@ impl Default for ServerConfig {
             max_clients: MAX_CLIENTS,
             client_scenes: ClientScenes::default(),
             haptic_port: None,
+            haptic_whole_scene: false,
         }
     }
 }
@@ -299,7 +304,11 @@ pub async fn start(session: Session, config: &ServerConfig) -> std::io::Result<R
     let addr = listener.local_addr()?;
     let shared = Arc::new(Shared::new(session, config));
     let haptic = match config.haptic_port {
-        Some(port) => Some(crate::haptic::HapticStream::start(shared.clone(), port)?),
+        Some(port) => Some(crate::haptic::HapticStream::start(
+            shared.clone(),
+            port,
+            !config.haptic_whole_scene,
+        )?),
         None => None,
     };
     let task = tokio::spawn(serve_shared(listener, shared.clone()));

@@ -95,6 +95,10 @@ pub enum SessionError {
     /// What the session would keep in memory while it runs exceeds the scene's limit.
     #[error("{0}")]
     Budget(String),
+    /// The scene's timeline failed while settling the session's start
+    /// ([`Session::start_settled`]).
+    #[error("running the scene's timeline: {0}")]
+    Timeline(String),
 }
 
 /// Options of the simulation thread.
@@ -148,6 +152,25 @@ pub struct Session {
 impl Session {
     /// Builds the workcell of `scene` and starts its simulation thread.
     pub fn start(scene: &LoadedScene, options: SessionOptions) -> Result<Session, SessionError> {
+        Self::start_with(scene, options, false)
+    }
+
+    /// As [`Session::start`], with the scene's timeline run to its end first (its inputs
+    /// in the session's log): a live session on the scene as the timeline leaves it —
+    /// an imported harness with its fixings pressed in, an engine bay with its clips
+    /// seated. A reset goes back to the scene's start, before the timeline.
+    pub fn start_settled(
+        scene: &LoadedScene,
+        options: SessionOptions,
+    ) -> Result<Session, SessionError> {
+        Self::start_with(scene, options, true)
+    }
+
+    fn start_with(
+        scene: &LoadedScene,
+        options: SessionOptions,
+        settle: bool,
+    ) -> Result<Session, SessionError> {
         scene.check_live_session().map_err(SessionError::Budget)?;
         let (mut cell, sites, cell_options) = live_workcell(scene, options.solver)?;
         if let Some(dir) = &options.folder {
@@ -157,6 +180,10 @@ impl Session {
                     reason: e.to_string(),
                 })?;
             cell.log_to(Box::new(file));
+        }
+        if settle {
+            pliant_assembly::run_timeline(&mut cell, &scene.timeline, &mut NoObserver)
+                .map_err(|e| SessionError::Timeline(e.reason))?;
         }
         let header = LogHeader::new(
             &scene.name,

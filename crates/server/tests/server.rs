@@ -11,7 +11,9 @@
 use futures_util::{SinkExt, StreamExt};
 use pliant_server::session::SessionOptions;
 use pliant_server::{start, RunningServer, ServerConfig, Session};
-use pliant_testkit::scene_text::{action, box_part, hose, simulation, SceneText, Table};
+use pliant_testkit::scene_text::{
+    action, box_part, fix, hose, settle, simulation, solver, SceneText, Table,
+};
 use serde_json::{json, Value};
 use std::time::{Duration, Instant};
 use tokio::net::TcpStream;
@@ -1734,4 +1736,34 @@ async fn the_worker_is_posed_by_the_hands_and_by_a_vr_body_and_bad_poses_are_ref
         e["message"].as_str().unwrap().contains("no [worker]"),
         "{e}"
     );
+}
+
+/// `Session::start_settled` serves the scene as its timeline leaves it: a hose the
+/// timeline clips at its middle node and fixes at its start, then settles, sags beyond
+/// the clip; the
+/// plain start serves it at rest, straight.
+#[test]
+fn a_settled_session_starts_where_the_timeline_ends() {
+    let text: String = SceneText::mm_named("clipped hose")
+        .with(solver("static").point("gravity", [0.0, 0.0, -9.81]))
+        .with(hose("clipped", "hose1", [0.0; 3], [400.0, 0.0, 0.0]).number("elements", 20.0))
+        .with_all([fix("clipped", 0), fix("clipped", 10), settle(1e-6, 1.0)])
+        .into();
+    let scene = pliant_scene::load_scene_str(&text, "clipped.toml").unwrap();
+    let options = || SessionOptions {
+        paused: true,
+        ..SessionOptions::default()
+    };
+    let settled = Session::start_settled(&scene, options()).unwrap();
+    let snap = settled.latest();
+    let clip = snap.hoses[0].positions[10];
+    assert!(
+        dist(clip, [0.2, 0.0, 0.0]) < 1e-9,
+        "the clipped node stays held: {clip:?}"
+    );
+    let end = snap.hoses[0].positions[20];
+    assert!(end[2] < -1e-3, "the free end sags beyond the clip: {end:?}");
+    let plain = Session::start(&scene, options()).unwrap();
+    let end = plain.latest().hoses[0].positions[20];
+    assert_eq!(end, [0.4, 0.0, 0.0], "no timeline ran: the hose at rest");
 }

@@ -11,14 +11,23 @@
 //! puts the mirror back on the session's newest state, so the two never drift apart by
 //! more than one snapshot interval. The mirror changes nothing in the session: the pose
 //! reaches the session as the hand's `move` (see [`super`]).
+//!
+//! Each pose is solved on the hand's component alone ([`super::component`], [`Cut`]):
+//! the part of the scene between the nodes held in all six degrees of freedom around the
+//! hand, whose equilibrium does not depend on the rest. The cut is kept while its nodes
+//! and load cases stay the same from one synchronisation to the next, and made again
+//! otherwise.
 
 use glam::{DQuat, DVec3};
 use pliant_assembly::workcell::{HandNumber, HeldHand};
+use pliant_core::integrators::statics::{StaticError, StaticReport};
 use pliant_core::integrators::StaticSolver;
 use pliant_core::{Model, State};
 use std::sync::Arc;
 use std::time::Instant;
 
+use super::component::component;
+use super::cut::Cut;
 use super::datagram::Status;
 
 /// What the session publishes for the mirror: its model, a copy of its state and hands.
@@ -66,6 +75,13 @@ pub struct Mirror {
     state: State,
     hands: Vec<(HandNumber, HeldHand)>,
     solver: StaticSolver,
+    /// Whether poses are solved on the hand's component alone ([`Cut`]).
+    cutting: bool,
+    /// The component of the hand answered last, with its own solver.
+    cut: Option<(HandNumber, Cut, StaticSolver)>,
+    /// The component a cut was refused for (solved whole until the next
+    /// re-synchronisation).
+    refused: Option<HandNumber>,
 }
 
 impl Mirror {
@@ -77,7 +93,26 @@ impl Mirror {
             hands: source.hands.clone(),
             source,
             solver,
+            cutting: true,
+            cut: None,
+            refused: None,
         })
+    }
+
+    /// Whether poses are solved on the hand's component alone (the default) or on the
+    /// whole scene; both give the same equilibrium to the solver's tolerance.
+    pub fn set_cutting(&mut self, cutting: bool) {
+        self.cutting = cutting;
+        self.cut = None;
+    }
+
+    /// Nodes of the problem the last answer solved: its component's, or the whole
+    /// scene's.
+    pub fn solved_nodes(&self) -> usize {
+        match &self.cut {
+            Some((_, cut, _)) => cut.nodes.len(),
+            None => self.state.x.len(),
+        }
     }
 
     /// Whether `source` is of the same model (else a new mirror is needed).
@@ -95,6 +130,23 @@ impl Mirror {
         self.state.clone_from(&source.state);
         self.hands.clone_from(&source.hands);
         self.source = source;
+        self.refused = None;
+        // the component again on the new state: the same nodes and load cases keep the
+        // cut (put on the new state), anything else makes a new one at the next answer
+        if let Some((hand, cut, _)) = &mut self.cut {
+            let kept = self
+                .hands
+                .iter()
+                .find(|(k, _)| k == hand)
+                .is_some_and(|(_, held)| {
+                    let seeds: Vec<usize> = held.hand.held_nodes().collect();
+                    let nodes = component(&self.source.model, &self.state, &seeds);
+                    cut.refresh(&self.state, &nodes)
+                });
+            if !kept {
+                self.cut = None;
+            }
+        }
     }
 
     /// Whether the session holds `hand`.
@@ -126,21 +178,77 @@ impl Mirror {
         held.aim = None;
         held.hand.set_pose(position, orientation);
         held.hand.update(&mut self.state, time);
+        if self.cutting && self.refused != Some(hand) && Cut::carries(&self.source.model) {
+            if let Some(answer) = self.answer_on_cut(hand, position, orientation) {
+                return answer;
+            }
+            self.refused = Some(hand);
+        }
         let start = Instant::now();
         let solved = self.solver.solve(&self.source.model, &mut self.state);
         let solve_seconds = start.elapsed().as_secs_f64();
+        let load = solved.as_ref().ok().map(|_| {
+            let (_, held) = self
+                .hands
+                .iter()
+                .find(|(k, _)| *k == hand)
+                .expect("found above");
+            let load = held.hand.load(&self.source.model, &self.state);
+            (load.force, load.torque, load.hose)
+        });
+        self.finish(solved, load, solve_seconds)
+    }
+
+    /// The answer on the hand's component ([`Cut`]), made for this hand if the last
+    /// one was another's; `None` when the scene cannot be cut (then it is solved whole).
+    fn answer_on_cut(
+        &mut self,
+        hand: HandNumber,
+        position: DVec3,
+        orientation: DQuat,
+    ) -> Option<Answer> {
+        if self.cut.as_ref().is_some_and(|(k, ..)| *k != hand) {
+            let (_, cut, _) = self.cut.take().expect("checked");
+            cut.write_back(&mut self.state);
+        }
+        if self.cut.is_none() {
+            let (_, held) = self.hands.iter().find(|(k, _)| *k == hand)?;
+            let seeds: Vec<usize> = held.hand.held_nodes().collect();
+            let nodes = component(&self.source.model, &self.state, &seeds);
+            let cut = Cut::new(&self.source.model, &self.state, nodes, held)?;
+            let solver = StaticSolver::new(&cut.model).ok()?;
+            self.cut = Some((hand, cut, solver));
+        }
+        let (_, cut, solver) = self.cut.as_mut().expect("made above");
+        let time = cut.state.time;
+        cut.hand.hand.set_pose(position, orientation);
+        cut.hand.hand.update(&mut cut.state, time);
+        let start = Instant::now();
+        let solved = solver.solve(&cut.model, &mut cut.state);
+        let solve_seconds = start.elapsed().as_secs_f64();
+        let load = solved.as_ref().ok().map(|_| {
+            let load = cut.hand.hand.load(&cut.model, &cut.state);
+            (load.force, load.torque, cut.hose_of[load.hose])
+        });
+        Some(self.finish(solved, load, solve_seconds))
+    }
+
+    /// The answer of a solve that gave `load` (force, torque, scene hose).
+    fn finish(
+        &mut self,
+        solved: Result<StaticReport, StaticError>,
+        load: Option<(DVec3, DVec3, usize)>,
+        solve_seconds: f64,
+    ) -> Answer {
         let session_time = self.source.state.time;
-        match solved {
-            Ok(report) => {
-                let (_, held) = self
-                    .hands
-                    .iter()
-                    .find(|(k, _)| *k == hand)
-                    .expect("found above");
-                let load = held.hand.load(&self.source.model, &self.state);
-                if !(load.force.is_finite() && load.torque.is_finite()) {
+        match (solved, load) {
+            (Ok(report), Some((force, torque, hose))) => {
+                if !(force.is_finite() && torque.is_finite()) {
                     self.put_back();
-                    return Answer::status(Status::SolveFailed, session_time);
+                    return Answer {
+                        solve_seconds,
+                        ..Answer::status(Status::SolveFailed, session_time)
+                    };
                 }
                 Answer {
                     status: if report.converged {
@@ -148,15 +256,15 @@ impl Mirror {
                     } else {
                         Status::NotConverged
                     },
-                    force: load.force,
-                    torque: load.torque,
-                    hose: load.hose as u32,
+                    force,
+                    torque,
+                    hose: hose as u32,
                     iterations: report.iterations.min(u16::MAX as usize) as u16,
                     session_time,
                     solve_seconds,
                 }
             }
-            Err(_) => {
+            _ => {
                 self.put_back();
                 Answer {
                     solve_seconds,
@@ -169,5 +277,6 @@ impl Mirror {
     fn put_back(&mut self) {
         self.state.clone_from(&self.source.state);
         self.hands.clone_from(&self.source.hands);
+        self.cut = None;
     }
 }

@@ -22,6 +22,8 @@
 //! is counted and dropped, never a crash. A hand the stream has not heard of for [`IDLE_RELEASE`]
 //! is released (a device that stops sending does not hold a hose for ever).
 
+pub mod component;
+pub mod cut;
 pub mod datagram;
 pub mod mirror;
 
@@ -56,8 +58,14 @@ pub struct HapticStream {
 }
 
 impl HapticStream {
-    /// Binds 127.0.0.1:`port` (0 picks a free port) and starts the stream's thread.
-    pub(crate) fn start(shared: Arc<Shared>, port: u16) -> std::io::Result<HapticStream> {
+    /// Binds 127.0.0.1:`port` (0 picks a free port) and starts the stream's thread;
+    /// `cutting`: poses are solved on the part of the scene the hand can move
+    /// ([`mirror::Mirror::set_cutting`]).
+    pub(crate) fn start(
+        shared: Arc<Shared>,
+        port: u16,
+        cutting: bool,
+    ) -> std::io::Result<HapticStream> {
         let socket = UdpSocket::bind(("127.0.0.1", port))?;
         socket.set_read_timeout(Some(POLL))?;
         let addr = socket.local_addr()?;
@@ -75,7 +83,7 @@ impl HapticStream {
         let thread = std::thread::Builder::new()
             .name("pliant-haptic".into())
             .spawn(move || {
-                let mut stream = Stream::new(shared, key);
+                let mut stream = Stream::new(shared, key, cutting);
                 stream.run(&socket, &stop2);
             })?;
         Ok(HapticStream {
@@ -118,6 +126,8 @@ struct Stream {
     token: bool,
     session: Option<Arc<Session>>,
     mirror: Option<Mirror>,
+    /// Whether the mirror solves the hand's component alone.
+    cutting: bool,
     hands: HashMap<u32, StreamHand>,
     malformed: u32,
 }
@@ -128,7 +138,7 @@ fn same_key(a: &[u8; KEY_BYTES], b: &[u8; KEY_BYTES]) -> bool {
 }
 
 impl Stream {
-    fn new(shared: Arc<Shared>, key: [u8; KEY_BYTES]) -> Stream {
+    fn new(shared: Arc<Shared>, key: [u8; KEY_BYTES], cutting: bool) -> Stream {
         let token = shared.access.token().is_some();
         Stream {
             shared,
@@ -136,6 +146,7 @@ impl Stream {
             token,
             session: None,
             mirror: None,
+            cutting,
             hands: HashMap::new(),
             malformed: 0,
         }
@@ -289,7 +300,10 @@ impl Stream {
                 }
             }
             _ => match Mirror::new(copy) {
-                Ok(m) => self.mirror = Some(m),
+                Ok(mut m) => {
+                    m.set_cutting(self.cutting);
+                    self.mirror = Some(m)
+                }
                 Err(_) => {
                     return Answer {
                         status: Status::SolveFailed,
