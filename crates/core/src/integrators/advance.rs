@@ -7,17 +7,13 @@
 //! ([`crate::rod::lanes`] arithmetic, each lane an independent IEEE operation), in the
 //! same order, so the results are the same to the last bit — without gathering the
 //! nodes' vectors into lanes and scattering them back, which cost more than the
-//! arithmetic for a handful of nodes, and with held nodes costing one check. Only the
-//! divisions Δt/m, Δt/I and the normalisation's square root and division — whose latency
-//! the node-by-node loop waited for — are taken four consecutive nodes at a time, one
-//! lane each (the same IEEE operations, so the same bits). A node's
+//! arithmetic for a handful of nodes, and with held nodes costing one check. A node's
 //! result depends on nothing but its own data — not on how the nodes are split between
 //! threads. The exponential map uses the reference's Taylor series of cos h and
 //! sin h/(2h), h = |Δt ω|/2 < 0.05 (truncation < 1e-19); a node turning faster in one
 //! step is advanced by the reference [`crate::math::exp_map`] (exact for any angle).
 
 use crate::math::exp_map;
-use crate::rod::lanes::F4;
 use glam::{DQuat, DVec3};
 
 /// The node arrays a step updates, for the nodes of one range.
@@ -72,11 +68,10 @@ fn exp_series(phi: DVec3) -> (DQuat, bool) {
     (DQuat::from_xyzw(phi.x * s, phi.y * s, phi.z * s, c), ok)
 }
 
-/// The Hamilton product a · b with fused multiply–adds, and its squared norm: the
-/// operations of [`crate::rod::lanes::Q4::mul`] and of [`crate::rod::lanes::Q4::normalize`]
-/// before its square root and division, for one quaternion.
+/// The Hamilton product a · b with fused multiply–adds, normalised: the operations of
+/// [`crate::rod::lanes::Q4::mul`] and [`crate::rod::lanes::Q4::normalize`] for one quaternion.
 #[inline(always)]
-fn mul_norm2(a: DQuat, b: DQuat) -> (DQuat, f64) {
+fn mul_normalize(a: DQuat, b: DQuat) -> DQuat {
     let w =
         a.w.mul_add(b.w, -(a.x.mul_add(b.x, a.y.mul_add(b.y, a.z * b.z))));
     let x =
@@ -85,42 +80,8 @@ fn mul_norm2(a: DQuat, b: DQuat) -> (DQuat, f64) {
         a.w.mul_add(b.y, a.y.mul_add(b.w, a.z.mul_add(b.x, -(a.x * b.z))));
     let z =
         a.w.mul_add(b.z, a.z.mul_add(b.w, a.x.mul_add(b.y, -(a.y * b.x))));
-    let n2 = x.mul_add(x, y.mul_add(y, z.mul_add(z, w * w)));
-    (DQuat::from_xyzw(x, y, z, w), n2)
-}
-
-/// Node `j`'s update, its orientation's normalisation left out: the product exp(Δt ω) q
-/// and its squared norm when the series covers the turn (`None` when the node is held, a
-/// velocity pass, or the reference exponential map has set q already). `step` is
-/// (Δt/m, Δt/I) of the node.
-#[inline(always)]
-fn advance_node(
-    n: &mut Nodes,
-    j: usize,
-    dt: f64,
-    step: (f64, f64),
-    what: Advance,
-) -> Option<(DQuat, f64)> {
-    if n.held[j] {
-        return None;
-    }
-    if what != Advance::Positions {
-        n.v[j] = scale_add(n.force[j], step.0, n.v[j]);
-        n.w[j] = scale_add(n.moment[j], step.1, n.w[j]);
-    }
-    if what == Advance::Velocities {
-        return None;
-    }
-    n.x[j] = scale_add(n.v[j], dt, n.x[j]);
-    let w = n.w[j];
-    let (e, inside) = exp_series(w * dt);
-    if inside {
-        Some(mul_norm2(e, n.q[j]))
-    } else {
-        // a large turn in one step: the reference exponential map
-        n.q[j] = (exp_map(dt * w) * n.q[j]).normalize();
-        None
-    }
+    let s = 1.0 / x.mul_add(x, y.mul_add(y, z.mul_add(z, w * w))).sqrt();
+    DQuat::from_xyzw(x * s, y * s, z * s, w * s)
 }
 
 #[inline(always)]
@@ -136,45 +97,24 @@ fn advance_nodes(n: &mut Nodes, dt: f64, what: Advance) {
             && n.v.len() >= count
             && n.w.len() >= count
     );
-    // Four nodes at a time: their divisions Δt/m, Δt/I and the normalisations' square
-    // roots and divisions in lanes (one instruction for four nodes; each lane the same
-    // IEEE operation as node by node), the rest node by node.
-    let groups = count / 4;
-    for g in 0..groups {
-        let j0 = 4 * g;
-        if n.held[j0..j0 + 4] == [true; 4] {
+    for j in 0..count {
+        if n.held[j] {
             continue;
         }
-        let dt4 = F4::splat(dt);
-        let lanes = |a: &[f64]| F4([a[j0], a[j0 + 1], a[j0 + 2], a[j0 + 3]]);
-        let (by_mass, by_inertia) = if what != Advance::Positions {
-            // through memory: kept as vectors, the divisions are one instruction each
-            std::hint::black_box((dt4 / lanes(n.mass), dt4 / lanes(n.inertia)))
-        } else {
-            (F4::ZERO, F4::ZERO)
-        };
-        let mut products = [None; 4];
-        let mut norm2 = F4::splat(1.0);
-        for k in 0..4 {
-            products[k] = advance_node(n, j0 + k, dt, (by_mass.0[k], by_inertia.0[k]), what);
-            if let Some((_, n2)) = products[k] {
-                norm2.0[k] = n2;
-            }
+        if what != Advance::Positions {
+            n.v[j] = scale_add(n.force[j], dt / n.mass[j], n.v[j]);
+            n.w[j] = scale_add(n.moment[j], dt / n.inertia[j], n.w[j]);
         }
-        if products == [None; 4] {
-            continue;
-        }
-        let scale = std::hint::black_box(F4::splat(1.0) / norm2.sqrt());
-        for k in 0..4 {
-            if let Some((p, _)) = products[k] {
-                n.q[j0 + k] = p * scale.0[k];
-            }
-        }
-    }
-    for j in 4 * groups..count {
-        let step = (dt / n.mass[j], dt / n.inertia[j]);
-        if let Some((p, n2)) = advance_node(n, j, dt, step, what) {
-            n.q[j] = p * (1.0 / n2.sqrt());
+        if what != Advance::Velocities {
+            n.x[j] = scale_add(n.v[j], dt, n.x[j]);
+            let w = n.w[j];
+            let (e, inside) = exp_series(w * dt);
+            n.q[j] = if inside {
+                mul_normalize(e, n.q[j])
+            } else {
+                // a large turn in one step: the reference exponential map
+                (exp_map(dt * w) * n.q[j]).normalize()
+            };
         }
     }
 }
