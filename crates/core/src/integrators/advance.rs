@@ -179,7 +179,10 @@ mod tests {
             for n in [1.0 + d, 1.0 - d] {
                 let exact = 1.0 / n.sqrt();
                 let got = inverse_sqrt_near_one(n);
-                assert!((got - exact).abs() <= 2.0 * ulp, "n = 1 {d:+e}: {got} vs {exact}");
+                assert!(
+                    (got - exact).abs() <= 2.0 * ulp,
+                    "n = 1 {d:+e}: {got} vs {exact}"
+                );
             }
         }
         for n in [1.0 + 2.0 * NEAR_ONE, 0.25, 4.0, 1e-300] {
