@@ -3,14 +3,11 @@
 //! x ← x + Δt v and q ← normalise(exp(Δt ω) q) — the leapfrog of [`super::explicit`],
 //! with fused multiply–adds.
 //!
-//! Node by node: the operations are those of the four-lane kernel this replaced
+//! Node by node: the operations are those of the four-lane kernel this replaces
 //! ([`crate::rod::lanes`] arithmetic, each lane an independent IEEE operation), in the
-//! same order — without gathering the
+//! same order, so the results are the same to the last bit — without gathering the
 //! nodes' vectors into lanes and scattering them back, which cost more than the
-//! arithmetic for a handful of nodes, and with held nodes costing one check. The
-//! normalisation of the turned orientation, whose norm is 1 to a few rounding errors,
-//! takes the series of 1/√n about 1 (exact to below rounding) instead of a square root and
-//! a division, which sat on the update's dependency chain. A node's
+//! arithmetic for a handful of nodes, and with held nodes costing one check. A node's
 //! result depends on nothing but its own data — not on how the nodes are split between
 //! threads. The exponential map uses the reference's Taylor series of cos h and
 //! sin h/(2h), h = |Δt ω|/2 < 0.05 (truncation < 1e-19); a node turning faster in one
@@ -72,8 +69,7 @@ fn exp_series(phi: DVec3) -> (DQuat, bool) {
 }
 
 /// The Hamilton product a · b with fused multiply–adds, normalised: the operations of
-/// [`crate::rod::lanes::Q4::mul`] for one quaternion, then the scaling by 1/|a b|
-/// ([`inverse_sqrt_near_one`]).
+/// [`crate::rod::lanes::Q4::mul`] and [`crate::rod::lanes::Q4::normalize`] for one quaternion.
 #[inline(always)]
 fn mul_normalize(a: DQuat, b: DQuat) -> DQuat {
     let w =
@@ -84,26 +80,8 @@ fn mul_normalize(a: DQuat, b: DQuat) -> DQuat {
         a.w.mul_add(b.y, a.y.mul_add(b.w, a.z.mul_add(b.x, -(a.x * b.z))));
     let z =
         a.w.mul_add(b.z, a.z.mul_add(b.w, a.x.mul_add(b.y, -(a.y * b.x))));
-    let n2 = x.mul_add(x, y.mul_add(y, z.mul_add(z, w * w)));
-    let s = inverse_sqrt_near_one(n2);
+    let s = 1.0 / x.mul_add(x, y.mul_add(y, z.mul_add(z, w * w))).sqrt();
     DQuat::from_xyzw(x * s, y * s, z * s, w * s)
-}
-
-/// Largest |n − 1| for which [`inverse_sqrt_near_one`] takes its series.
-const NEAR_ONE: f64 = 1e-8;
-
-/// 1/√n. The product of two unit quaternions has n = 1 + d with |d| of a few rounding
-/// errors (≈ 1e-15), where the Taylor series 1/√(1 + d) = 1 − d/2 + 3d²/8 − … cut after
-/// the linear term, 1.5 − n/2, is off by less than 3d²/8 ≤ 3.75e-17 for |d| ≤ 1e-8, below
-/// the rounding of 1 (1.1e-16): as exact as the square root and division, without their
-/// latency on the update's dependency chain. Any other n is taken by 1/√n.
-#[inline(always)]
-fn inverse_sqrt_near_one(n: f64) -> f64 {
-    if (n - 1.0).abs() <= NEAR_ONE {
-        (-0.5f64).mul_add(n, 1.5)
-    } else {
-        1.0 / n.sqrt()
-    }
 }
 
 #[inline(always)]
@@ -165,30 +143,6 @@ pub fn advance(n: &mut Nodes, dt: f64, what: Advance) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The series of 1/√n about 1 agrees with the square root and division to within two
-    /// roundings of 1 (theirs: two, the series': one, and its truncation < 0.2 of one)
-    /// wherever it is taken (|n − 1| ≤ 1e-8, tried at the bound and at
-    /// rounding-sized offsets), and outside that range the square root is taken.
-    #[test]
-    fn inverse_sqrt_near_one_is_exact_to_rounding() {
-        let ulp = f64::EPSILON;
-        let mut offsets = vec![NEAR_ONE, 0.5 * NEAR_ONE, 1e-12, 0.0];
-        offsets.extend((1..64).map(|k| k as f64 * ulp));
-        for d in offsets {
-            for n in [1.0 + d, 1.0 - d] {
-                let exact = 1.0 / n.sqrt();
-                let got = inverse_sqrt_near_one(n);
-                assert!(
-                    (got - exact).abs() <= 2.0 * ulp,
-                    "n = 1 {d:+e}: {got} vs {exact}"
-                );
-            }
-        }
-        for n in [1.0 + 2.0 * NEAR_ONE, 0.25, 4.0, 1e-300] {
-            assert_eq!(inverse_sqrt_near_one(n), 1.0 / n.sqrt());
-        }
-    }
 
     /// The update agrees with the reference update (the plain per-node loop, written out
     /// in the test) to rounding, and the kernels (AVX2 + FMA, portable) agree bit for bit.
