@@ -87,7 +87,7 @@ def table(report: Dict[str, Any], measured: str) -> str:
         f"{head['ns_per_element_step_max']:.1f}), ≈ {count(head['elements_in_real_time'])} elements in real time "
         f"at Δt = {head['time_step_s'] * 1e6:.1f} µs; {head['gflops']:.1f} GFLOP/s of the core's "
         f"{peak['gflops_per_core']:.1f} peak ({100 * head['peak_fraction']:.0f} %) | {GOALS['element']} |")
-    for n in (1000, 10_000):
+    for n in (1000, 2500, 10_000):
         r = row(rows, 1, n)
         if r:
             lines.append(f"| one {count(n)}-element hose | {times(r['realtime_factor'])} real time | — |")

@@ -350,8 +350,9 @@ enum Command {
         #[arg(long)]
         harness: bool,
         /// Measure one group of rows only: `contact` (5 × 30 without and with the floor),
-        /// `newton` (the Newton solvers' rows) or `snapshot` (a live snapshot's cost beside
-        /// a small and a large part).
+        /// `newton` (the Newton solvers' rows), `snapshot` (a live snapshot's cost beside
+        /// a small and a large part), `worker` or `explicit` (the single-hose rows of the
+        /// explicit step, 10 … 10 000 elements).
         #[arg(long, value_enum)]
         only: Option<bench::BenchOnly>,
     },

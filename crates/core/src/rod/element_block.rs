@@ -17,6 +17,12 @@
 //! * the element frame's rotation matrix is formed once and rotates the four vectors
 //!   (end rates into the frame, end moments out of it) instead of four quaternion
 //!   rotations;
+//! * the element frame (the mean of the end frames turned onto the chord) is normalised
+//!   once, at the end: the mean m = rₐ + r_b and the turn (x × e₁, 1 + x·e₁) stay
+//!   unnormalised (the mean's x axis is the first column of the rotation matrix of m
+//!   with 2/|m|² for the 2 of a unit quaternion), since normalising the product
+//!   normalises both factors — two square roots and two divisions fewer on the
+//!   kernel's longest dependency chain;
 //! * the log map uses the half-angle identity θ = 4 atan(y)/y · v/(1 + w) with
 //!   y = |v|/(1 + w) = tan(|θ|/4) for a unit quaternion (v, w), w ≥ 0, and the series of
 //!   atan(y)/y to y²⁰ (truncation < 5e-18 for y² ≤ 0.035, i.e. |θ| ≤ 0.75 rad); the tangent
@@ -294,21 +300,25 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
         z: flip.select(-rb.z, rb.z),
         w: flip.select(-rb.w, rb.w),
     };
+    // the mean of the end frames, not normalised: m = rₐ + r_b, |m|² ≥ 2 after the flip
     let mean = Q4 {
         x: ra.x + rb.x,
         y: ra.y + rb.y,
         z: ra.z + rb.z,
         w: ra.w + rb.w,
-    }
-    .normalize();
-    // the mean frame's x axis: first column of its rotation matrix
-    let (y2, z2) = (mean.y + mean.y, mean.z + mean.z);
+    };
+    // the mean frame's x axis: first column of the rotation matrix of m/|m|, whose
+    // entries are quadratic in m, so 2/|m|² replaces the 2 of a unit quaternion's
+    let two_by_norm2 = F4::splat(2.0) / mean.dot(mean);
+    let (y2, z2) = (mean.y * two_by_norm2, mean.z * two_by_norm2);
     let x_axis = V4::new(
         one - mean.y.mul_add(y2, mean.z * z2),
         mean.x.mul_add(y2, mean.w * z2),
         mean.x.mul_add(z2, -(mean.w * y2)),
     );
-    // smallest rotation of that axis onto the chord: ∝ (x × e₁, 1 + x·e₁)
+    // smallest rotation of that axis onto the chord: ∝ (x × e₁, 1 + x·e₁), not
+    // normalised either; the frame (turn · mean) is normalised once, as a product of
+    // two quaternions whose norms are positive factors of its norm
     let w_turn = x_axis.dot(e1) + one;
     let not_antiparallel = F4::splat(1e-12).le(w_turn);
     let axis = x_axis.cross(e1);
@@ -317,8 +327,7 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
         y: axis.y,
         z: axis.z,
         w: w_turn,
-    }
-    .normalize();
+    };
     let frame = (turn * mean).normalize();
     let (theta_a, ok_a) = log_map(frame.conj_mul(ra));
     let (theta_b, ok_b) = log_map(frame.conj_mul(rb));
