@@ -187,6 +187,21 @@ impl StaticSolver {
                     // taken whole (the energy before and after the supports moved is not
                     // comparable)
                     let s = rotation_limited_step(&sys.rhs, &sys.prescribed);
+                    let near_contact =
+                        contact_translation_limit(model, state, self.options.contact_step_fraction)
+                            .map_or(1.0, |limit| {
+                                translation_limited_step(&sys.rhs, &sys.prescribed, limit)
+                            });
+                    if near_contact < 1.0 {
+                        // the whole response would carry free nodes farther than contact
+                        // allows in one iteration — through a part's surface, balanced
+                        // then on its far side: the supports and the free nodes go that
+                        // part of the way, and the next iteration continues from there
+                        let s = s.min(near_contact);
+                        apply_increment(state, &sys.rhs, &sys.prescribed, s);
+                        sys.move_prescribed_part(state, s);
+                        continue;
+                    }
                     apply_increment(state, &sys.rhs, &sys.prescribed, s);
                     sys.move_prescribed(state);
                     continue;

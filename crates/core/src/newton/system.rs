@@ -718,6 +718,18 @@ impl NewtonSystem {
         }
     }
 
+    /// Moves the prescribed nodes the fraction `s` < 1 of the way to their targets
+    /// (x += s δx, q ← exp(s δθ) q with [`Self::prescribed_increment`]); they stay pending.
+    pub fn move_prescribed_part(&self, state: &mut State, s: f64) {
+        for i in 0..self.prescribed.len() {
+            if self.prescribed[i] {
+                let (dx, dth) = self.prescribed_increment(state, i);
+                state.x[i] += s * dx;
+                state.q[i] = (crate::math::exp_map(s * dth) * state.q[i]).normalize();
+            }
+        }
+    }
+
     /// Puts the prescribed nodes on their targets.
     pub fn move_prescribed(&mut self, state: &mut State) {
         for i in 0..self.prescribed.len() {
