@@ -187,8 +187,12 @@ impl StaticSolver {
                     // taken whole (the energy before and after the supports moved is not
                     // comparable)
                     let s = rotation_limited_step(&sys.rhs, &sys.prescribed);
+                    // (rigid parts only: with hose–hose contact alone, the tip of a line
+                    // bent into a curl was sent off its path)
+                    let parts = !model.environment.is_empty();
                     let near_contact =
                         contact_translation_limit(model, state, self.options.contact_step_fraction)
+                            .filter(|_| parts)
                             .map_or(1.0, |limit| {
                                 translation_limited_step(&sys.rhs, &sys.prescribed, limit)
                             });
