@@ -1739,9 +1739,8 @@ async fn the_worker_is_posed_by_the_hands_and_by_a_vr_body_and_bad_poses_are_ref
 }
 
 /// `Session::start_settled` serves the scene as its timeline leaves it: a hose the
-/// timeline clips at its middle node and fixes at its start, then settles, sags beyond
-/// the clip; the
-/// plain start serves it at rest, straight.
+/// timeline fixes at its start and its middle node, then settles, sags beyond the
+/// middle; the plain start serves it at rest, straight.
 #[test]
 fn a_settled_session_starts_where_the_timeline_ends() {
     let text: String = SceneText::mm_named("clipped hose")
