@@ -442,6 +442,9 @@ struct Sim {
     taken: u64,
     /// Where state copies go for the haptic mirror, and whether one is wanted.
     copies: Option<(CopySender, Arc<AtomicBool>)>,
+    /// Whether this thread has lowered its priority for a haptic stream
+    /// ([`crate::haptic::priority`]).
+    yielded: bool,
 }
 
 /// Where the simulation thread sends its state copies.
@@ -463,6 +466,7 @@ impl Sim {
             anchor_sim: 0.0,
             taken: 0,
             copies: None,
+            yielded: false,
         }
     }
 
@@ -582,12 +586,17 @@ impl Sim {
     }
 
     /// Publishes a copy of the state for the haptic mirror, if one is wanted.
-    fn publish_copy(&self) {
+    fn publish_copy(&mut self) {
         let Some((out, wanted)) = &self.copies else {
             return;
         };
         if !wanted.load(Ordering::Relaxed) {
             return;
+        }
+        if !self.yielded {
+            // a haptic stream listens: its period comes before this thread's steps
+            crate::haptic::priority::lower_this_thread();
+            self.yielded = true;
         }
         let copy = SessionCopy {
             model: self.cell.model().clone(),

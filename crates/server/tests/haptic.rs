@@ -9,6 +9,7 @@ use glam::DVec3;
 use pliant_core::SolverKind;
 use pliant_server::access::Access;
 use pliant_server::haptic::datagram::{Kind, Reply, Request, Status, KEY_BYTES, REQUEST_BYTES};
+use pliant_server::haptic::priority;
 use pliant_server::session::SessionOptions;
 use pliant_server::{start, RunningServer, ServerConfig, Session};
 use std::net::UdpSocket;
@@ -181,6 +182,7 @@ async fn stream_force_equals_the_sessions() {
         first.torque
     );
     assert_eq!(reply.hose, 0);
+    session_thread_gave_way();
     // a pose elsewhere gives another answer at once (the stream solves for the pose
     // sent, not the session's lagging hand)
     let other = c.ask(Kind::Pose, 1, END + DVec3::new(0.0, -0.05, 0.0));
@@ -189,6 +191,42 @@ async fn stream_force_equals_the_sessions() {
     // released: the session lets go, the stream says so
     assert_eq!(c.ask(Kind::Release, 1, pose).status, Status::Ok);
     assert_eq!(c.ask(Kind::Pose, 1, pose).status, Status::NotHeld);
+}
+
+/// Once a stream has been answered from the session's state, the session thread runs
+/// [`priority::SESSION_NICE_INCREMENT`] nice levels below the rest of the process, whose
+/// other threads keep their priority (Linux, where the nice value is the thread's). The
+/// test process may hold other tests' sessions: one `pliant-sim` thread at that value is
+/// what is asserted.
+fn session_thread_gave_way() {
+    if !cfg!(target_os = "linux") {
+        return;
+    }
+    let nice_of = |stat: &str| -> i32 {
+        // the fields after the command's closing parenthesis start at field 3; nice is 19
+        let rest = &stat[stat.rfind(')').expect("a stat line") + 2..];
+        rest.split(' ').nth(19 - 3).unwrap().parse().unwrap()
+    };
+    // the test's own thread has the process's priority (`nice cargo test` included)
+    let own = nice_of(&std::fs::read_to_string("/proc/thread-self/stat").unwrap());
+    let lowered = (own + priority::SESSION_NICE_INCREMENT).min(priority::NICE_MAX);
+    let mut sessions = Vec::new();
+    for task in std::fs::read_dir("/proc/self/task").unwrap() {
+        let dir = task.unwrap().path();
+        let (Ok(name), Ok(stat)) = (
+            std::fs::read_to_string(dir.join("comm")),
+            std::fs::read_to_string(dir.join("stat")),
+        ) else {
+            continue; // a thread that ended meanwhile
+        };
+        if name.trim() == "pliant-sim" {
+            sessions.push(nice_of(&stat));
+        }
+    }
+    assert!(
+        sessions.contains(&lowered),
+        "session threads' nice values {sessions:?}, the process's {own}"
+    );
 }
 
 /// Only a datagram of a request's size and magic is answered (a reply is

@@ -26,6 +26,7 @@ pub mod component;
 pub mod cut;
 pub mod datagram;
 pub mod mirror;
+pub mod priority;
 
 use crate::ownership::{ClientId, Refusal};
 use crate::server::{lock, Shared};
