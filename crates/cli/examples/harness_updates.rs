@@ -1,7 +1,7 @@
 //! The main harness settled in its installed state, then `updates` updates of a hand
 //! moving back and forth in 2 mm steps (`pliant bench --harness`'s world and motion,
-//! `bench_harness::hand_offset`; `pulled` as an argument: 2 mm further each update, the
-//! bench's pulled-hard row), printing each update's wall time,
+//! `bench_harness::hand_offset`; `pulled` as an argument: the middle of the longest
+//! segment dragged 2 mm further each update, the bench's pulled-hard row), printing each update's wall time,
 //! Newton iterations and load steps — for profilers, where the bench reports a median:
 //!
 //! ```sh
@@ -29,7 +29,8 @@ fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
     let updates: usize = args.get(1).map_or(Ok(30), |s| s.parse())?;
     let chain = args.iter().skip(2).any(|s| s == "chain");
-    let offset = if args.iter().skip(2).any(|s| s == "pulled") {
+    let pulled = args.iter().skip(2).any(|s| s == "pulled");
+    let offset = if pulled {
         bench_harness::pulled_offset
     } else {
         bench_harness::hand_offset
@@ -51,6 +52,8 @@ fn main() -> anyhow::Result<()> {
     );
     let (at, direction) = if chain {
         (cell.state().x[20], DVec3::Y)
+    } else if pulled {
+        bench_harness::middle_of_longest(&cell)
     } else {
         bench_harness::grab_point(&cell)
     };

@@ -10,9 +10,10 @@
 //! the workcell — the equilibrium, fasteners, checks and hand loads a user waits for.
 //! Beside it, the same motion on one chain of as many elements (held every 40 elements,
 //! the hand in the middle of a span): the cost per element of a network against a chain.
-//! A secondary row, "pulled hard", then drags the harness's grabbed point 2 mm per update
-//! in one direction (60 mm in 30 updates): the span is stretched by centimetres and its
-//! forces grow to meganewtons — not a hand's motion, kept to show the cost of updates
+//! A secondary row, "pulled hard" (the bench's headline before): the hand lets go, grabs
+//! the middle of the longest segment — a span held by fixings on both sides — and drags
+//! it 2 mm per update in one direction (60 mm in 30 updates): the span is stretched by
+//! centimetres and its forces grow to meganewtons — not a hand's motion, kept to show the cost of updates
 //! far from the settled state. Nothing here asserts a time.
 
 use crate::bench::{median, thread_cpu_seconds};
@@ -248,6 +249,22 @@ pub(crate) fn grab_point(cell: &Workcell) -> (DVec3, DVec3) {
     (x[mid], along.any_orthonormal_vector())
 }
 
+/// The middle node of the longest segment and a direction across it: where the pulled
+/// row's hand grabs (a span held by fixings on both sides).
+pub(crate) fn middle_of_longest(cell: &Workcell) -> (DVec3, DVec3) {
+    let model = cell.model();
+    let x = &cell.state().x;
+    let longest = model
+        .hoses
+        .iter()
+        .max_by_key(|h| h.element_count)
+        .expect("a scene has a hose");
+    let nodes = longest.nodes();
+    let mid = nodes.start + (nodes.end - nodes.start) / 2;
+    let along = (x[mid + 1] - x[mid - 1]).normalize_or(DVec3::X);
+    (x[mid], along.any_orthonormal_vector())
+}
+
 /// Measures the rows (`quick`: 3 updates each instead of 30).
 pub fn run(quick: bool) -> Result<HarnessBench> {
     let count = if quick { 3 } else { 30 };
@@ -258,7 +275,12 @@ pub fn run(quick: bool) -> Result<HarnessBench> {
     let (at, across) = grab_point(&cell);
     grab(&mut cell, at)?;
     let network = updates(&mut cell, at, across, count, hand_offset)?;
-    // the hand is back where it grabbed (the wave ends on a whole period)
+    // the hand is back where it grabbed (the wave ends on a whole period); it lets go
+    // and pulls the middle of the longest segment, between its fixings
+    cell.apply(Input::ReleaseHand { hand: 1 })
+        .map_err(|r| anyhow!("the benchmark hand could not let go: {r:?}"))?;
+    let (at, across) = middle_of_longest(&cell);
+    grab(&mut cell, at)?;
     let pulled = updates(&mut cell, at, across, count, pulled_offset)?;
     let elements = model.elements.len();
     let (mut line, _) = settled(&chain(elements, length)?)?;
