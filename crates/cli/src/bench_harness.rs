@@ -347,3 +347,28 @@ pub fn render(b: &HarnessBench) -> String {
         b.pulled_update_iterations_range[1],
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The hand's wave: every move is one step, it never leaves ±reach, reaches both
+    /// sides, and the bench's 30 updates end where the hand grabbed.
+    #[test]
+    fn the_hand_goes_back_and_forth_in_steps() {
+        let offsets: Vec<f64> = (0..=30).map(hand_offset).collect();
+        assert_eq!(offsets[0], 0.0);
+        for pair in offsets.windows(2) {
+            assert!(
+                ((pair[1] - pair[0]).abs() - HAND_STEP).abs() < 1e-15,
+                "{pair:?}"
+            );
+        }
+        assert!(offsets.iter().all(|o| o.abs() <= HAND_REACH + 1e-15));
+        let (lo, hi) = offsets
+            .iter()
+            .fold((0.0_f64, 0.0_f64), |(l, h), &o| (l.min(o), h.max(o)));
+        assert!((hi - HAND_REACH).abs() < 1e-15 && (lo + HAND_REACH).abs() < 1e-15);
+        assert!(offsets[30].abs() < 1e-15);
+    }
+}
