@@ -53,6 +53,9 @@ pub struct HarnessBench {
     /// on (the bench's first updates take more iterations than its later ones).
     pub update_iterations: usize,
     pub update_iterations_range: [usize; 2],
+    /// The largest force the hand exerted after any of these updates \[N\]: how gently
+    /// it moves the harness.
+    pub hand_force_n: f64,
     pub goal_ms: f64,
     /// The same update on one chain of as many elements \[ms\] (wall, CPU).
     pub chain_update_ms: f64,
@@ -68,6 +71,7 @@ pub struct HarnessBench {
     pub pulled_update_cpu_ms: f64,
     pub pulled_update_iterations: usize,
     pub pulled_update_iterations_range: [usize; 2],
+    pub pulled_hand_force_n: f64,
     pub updates: usize,
 }
 
@@ -154,6 +158,8 @@ struct Updates {
     cpu_ms: f64,
     iterations_at_median: usize,
     iterations_range: [usize; 2],
+    /// The largest force the hand exerted after any update \[N\].
+    hand_force_n: f64,
 }
 
 /// A hand grabs `at` firmly.
@@ -181,6 +187,7 @@ fn updates(
     let mut times = Vec::with_capacity(updates);
     let mut cpu_times = Vec::with_capacity(updates);
     let mut iterations = Vec::with_capacity(updates);
+    let mut hand_force_n: f64 = 0.0;
     for k in 1..=updates {
         cell.apply(Input::MoveHand {
             hand: 1,
@@ -195,6 +202,8 @@ fn updates(
         times.push(start.elapsed().as_secs_f64() * 1e3);
         cpu_times.push((thread_cpu_seconds() - cpu) * 1e3);
         iterations.push(cell.solver().last.iterations);
+        let load = cell.hand_record(1).map_err(refused)?.load;
+        hand_force_n = hand_force_n.max(load.force.length());
     }
     // the update at the (upper) middle of the CPU times
     let mut by_cpu: Vec<usize> = (0..updates).collect();
@@ -206,6 +215,7 @@ fn updates(
         cpu_ms: median(&cpu_times),
         iterations_at_median: by_cpu.get(updates / 2).map_or(0, |&k| iterations[k]),
         iterations_range: [fewest, most],
+        hand_force_n,
     })
 }
 
@@ -296,6 +306,7 @@ pub fn run(quick: bool) -> Result<HarnessBench> {
         update_cpu_ms: network.cpu_ms,
         update_iterations: network.iterations_at_median,
         update_iterations_range: network.iterations_range,
+        hand_force_n: network.hand_force_n,
         goal_ms: GOAL_MS,
         chain_update_ms: chain.wall_ms,
         chain_update_cpu_ms: chain.cpu_ms,
@@ -306,6 +317,7 @@ pub fn run(quick: bool) -> Result<HarnessBench> {
         pulled_update_cpu_ms: pulled.cpu_ms,
         pulled_update_iterations: pulled.iterations_at_median,
         pulled_update_iterations_range: pulled.iterations_range,
+        pulled_hand_force_n: pulled.hand_force_n,
         updates: count,
     })
 }
@@ -316,11 +328,11 @@ pub fn render(b: &HarnessBench) -> String {
         "main harness: {} segments, {} junctions, {} elements (static solver, one core)\n\
          \x20 settled in its installed state in {:.2} s\n\
          \x20 one update after the hand moves {} mm (back and forth, ±{} mm): {:.2} ms CPU, {:.2} ms wall (goal {} ms), \
-         {:.2} µs CPU per element; {} Newton iterations at the median ({}–{} over the updates)\n\
+         {:.2} µs CPU per element; {} Newton iterations at the median ({}–{} over the updates); hand force ≤ {:.3} N\n\
          \x20 one chain of as many elements, the same motion: {:.2} ms CPU, {:.2} ms wall, {:.2} µs CPU per element \
          (network / chain {:.2}); {} Newton iterations at the median\n\
          \x20 the harness pulled hard ({} mm further each update): {:.2} ms CPU, {:.2} ms wall; \
-         {} Newton iterations at the median ({}–{})\n",
+         {} Newton iterations at the median ({}–{}); hand force ≤ {:.3e} N\n",
         b.segments,
         b.junctions,
         b.elements,
@@ -334,6 +346,7 @@ pub fn render(b: &HarnessBench) -> String {
         b.update_iterations,
         b.update_iterations_range[0],
         b.update_iterations_range[1],
+        b.hand_force_n,
         b.chain_update_cpu_ms,
         b.chain_update_ms,
         b.chain_update_us_per_element,
@@ -345,6 +358,7 @@ pub fn render(b: &HarnessBench) -> String {
         b.pulled_update_iterations,
         b.pulled_update_iterations_range[0],
         b.pulled_update_iterations_range[1],
+        b.pulled_hand_force_n,
     )
 }
 
