@@ -1,9 +1,11 @@
 //! The main harness settled in its installed state, then `updates` updates of a hand
-//! moving 2 mm each (`pliant bench --harness`'s world), printing each update's wall time,
+//! moving back and forth in 2 mm steps (`pliant bench --harness`'s world and motion,
+//! `bench_harness::hand_offset`; `pulled` as an argument: the middle of the longest
+//! segment dragged 2 mm further each update, the bench's pulled-hard row), printing each update's wall time,
 //! Newton iterations and load steps — for profilers, where the bench reports a median:
 //!
 //! ```sh
-//! cargo run --release -p pliant --example harness_updates -- [updates] [chain]
+//! cargo run --release -p pliant --example harness_updates -- [updates] [chain] [pulled]
 //! ```
 //!
 //! With `chain` as the second argument the world is the bench's single chain of as many
@@ -26,7 +28,13 @@ use std::time::Instant;
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
     let updates: usize = args.get(1).map_or(Ok(30), |s| s.parse())?;
-    let chain = args.get(2).is_some_and(|s| s == "chain");
+    let chain = args.iter().skip(2).any(|s| s == "chain");
+    let pulled = args.iter().skip(2).any(|s| s == "pulled");
+    let offset = if pulled {
+        bench_harness::pulled_offset
+    } else {
+        bench_harness::hand_offset
+    };
     let harness = bench_harness::import_main_harness()?;
     let scene = if chain {
         let (cell, _) = bench_harness::settled(&harness)?;
@@ -44,9 +52,18 @@ fn main() -> anyhow::Result<()> {
     );
     let (at, direction) = if chain {
         (cell.state().x[20], DVec3::Y)
+    } else if pulled {
+        bench_harness::middle_of_longest(&cell)
     } else {
         bench_harness::grab_point(&cell)
     };
+    let grabbed = (0..cell.state().x.len())
+        .min_by(|&a, &b| {
+            let x = &cell.state().x;
+            x[a].distance(at).total_cmp(&x[b].distance(at))
+        })
+        .unwrap_or(0);
+    eprintln!("the hand grabs node {grabbed}");
     cell.apply(Input::Grab {
         hand: 1,
         at,
@@ -60,7 +77,7 @@ fn main() -> anyhow::Result<()> {
     for k in 1..=updates {
         cell.apply(Input::MoveHand {
             hand: 1,
-            waypoints: vec![at + direction * (bench_harness::HAND_STEP * k as f64)],
+            waypoints: vec![at + direction * offset(k)],
             rotation: DVec3::ZERO,
             duration: step,
         })
@@ -77,13 +94,17 @@ fn main() -> anyhow::Result<()> {
         let cpu = (bench::thread_cpu_seconds() - cpu) * 1e3;
         println!(
             "update {k}: {wall:.2} ms ({cpu:.2} ms CPU), {} iterations, {} load steps, \
-             {} factorisations reused, {} pair-list rebuilds, {} candidate pairs, {} in contact",
+             {} factorisations reused, {} pair-list rebuilds, {} candidate pairs, {} in contact, \
+             residual {:.3e} N (limit {:.3e} N), hand force {:.2} N",
             s.iterations,
             s.substeps,
             cell.solver().factorizations_reused() - reused,
             contact.rebuilds - rebuilds,
             contact.candidates.len(),
             contact.pairs_in_contact,
+            s.residual_force,
+            s.force_limit,
+            cell.state().reaction_force[grabbed].length(),
         );
     }
     // a change that must keep the results bit for bit keeps this hash

@@ -344,9 +344,11 @@ enum Command {
         #[arg(long = "engine-bay")]
         engine_bay: bool,
         /// Only the harness section: the main harness of data/harness/ imported, settled
-        /// and moved by a hand in a quasi-static session (`update_cpu_ms`, `update_ms`: CPU
-        /// and wall time of one update, median; `update_iterations`: the Newton iterations
-        /// of the median update), beside one chain of as many elements.
+        /// and moved by a hand in a quasi-static session, back and forth ±10 mm in 2 mm
+        /// steps where nothing holds it (`update_cpu_ms`, `update_ms`: CPU and wall time
+        /// of one update, median; `update_iterations`: the Newton iterations of the median
+        /// update), beside one chain of as many elements, and the harness pulled hard
+        /// (`pulled_update_cpu_ms`: a span between fixings dragged 2 mm per update).
         #[arg(long)]
         harness: bool,
         /// Measure one group of rows only: `contact` (5 × 30 without and with the floor),
