@@ -11,8 +11,9 @@
 //! once. Every lane does one node's IEEE operations in a fixed order, so a node's result
 //! depends on nothing but its own data — not on its lane, its neighbours, the
 //! instruction set, or how the nodes are split between threads. A block of four with a
-//! held node, and the last `n mod 4` nodes, are advanced in a copy (the last node
-//! repeated in the spare lanes) and only the nodes not held are written back. The
+//! held node is advanced whole and the held node restored; the last block, when the
+//! count is not a multiple of four, overlaps the one before and restores the nodes
+//! already advanced (a range of fewer than four nodes goes through a copy). The
 //! exponential map uses the reference's Taylor series of cos h and sin h/(2h),
 //! h = |Δt ω|/2 < 0.05 (truncation < 1e-19); a node turning faster in one step is
 //! advanced by the reference [`crate::math::exp_map`] (exact for any angle).
@@ -132,32 +133,55 @@ fn advance_four<L: Lane4>(n: Four, dt: f64, what: Advance) {
     }
 }
 
-/// Advances the four nodes `first..first + 4`, or, `held` among them or `count` < 4 at the
-/// end, the `count` nodes from `first` that are not held (in a copy of four).
+/// The four nodes `first..first + 4` as a block of lanes.
 #[inline(always)]
-fn advance_block<L: Lane4>(n: &mut Nodes, first: usize, count: usize, dt: f64, what: Advance) {
-    let r = first..first + count;
-    let held = &n.held[r.clone()];
-    if count == 4 && !held.contains(&true) {
-        let four = |a: &[f64]| [a[first], a[first + 1], a[first + 2], a[first + 3]];
-        let block = Four {
-            mass: four(n.mass),
-            inertia: four(n.inertia),
-            force: (&n.force[r.clone()]).try_into().expect("four nodes"),
-            moment: (&n.moment[r.clone()]).try_into().expect("four nodes"),
-            x: (&mut n.x[r.clone()]).try_into().expect("four nodes"),
-            q: (&mut n.q[r.clone()]).try_into().expect("four nodes"),
-            v: (&mut n.v[r.clone()]).try_into().expect("four nodes"),
-            w: (&mut n.w[r]).try_into().expect("four nodes"),
-        };
-        advance_four::<L>(block, dt, what);
+fn four<'a>(n: &'a mut Nodes, first: usize) -> Four<'a> {
+    let r = first..first + 4;
+    let four = |a: &[f64]| [a[first], a[first + 1], a[first + 2], a[first + 3]];
+    Four {
+        mass: four(n.mass),
+        inertia: four(n.inertia),
+        force: (&n.force[r.clone()]).try_into().expect("four nodes"),
+        moment: (&n.moment[r.clone()]).try_into().expect("four nodes"),
+        x: (&mut n.x[r.clone()]).try_into().expect("four nodes"),
+        q: (&mut n.q[r.clone()]).try_into().expect("four nodes"),
+        v: (&mut n.v[r.clone()]).try_into().expect("four nodes"),
+        w: (&mut n.w[r]).try_into().expect("four nodes"),
+    }
+}
+
+/// Advances the nodes `first..first + 4` but the first `done` of them (advanced already)
+/// and the held ones, which are computed in their lanes and restored.
+#[inline(always)]
+fn advance_block<L: Lane4>(n: &mut Nodes, first: usize, done: usize, dt: f64, what: Advance) {
+    let held = &n.held[first..first + 4];
+    let keep = [0, 1, 2, 3].map(|k| k < done || held[k]);
+    if keep == [false; 4] {
+        advance_four::<L>(four(n, first), dt, what);
         return;
     }
-    if !held.contains(&false) {
+    if keep == [true; 4] {
         return;
     }
-    // node first + k in lane k, the last one repeated beyond `count`
-    let node = |k: usize| first + k.min(count - 1);
+    let r = first..first + 4;
+    let saved = (
+        <[DVec3; 4]>::try_from(&n.x[r.clone()]).expect("four nodes"),
+        <[DQuat; 4]>::try_from(&n.q[r.clone()]).expect("four nodes"),
+        <[DVec3; 4]>::try_from(&n.v[r.clone()]).expect("four nodes"),
+        <[DVec3; 4]>::try_from(&n.w[r]).expect("four nodes"),
+    );
+    advance_four::<L>(four(n, first), dt, what);
+    for k in (0..4).filter(|&k| keep[k]) {
+        let i = first + k;
+        (n.x[i], n.q[i], n.v[i], n.w[i]) = (saved.0[k], saved.1[k], saved.2[k], saved.3[k]);
+    }
+}
+
+/// Advances the `count` < 4 nodes (a range that short) that are not held, in a copy of
+/// four lanes (the last node repeated).
+#[inline(always)]
+fn advance_few<L: Lane4>(n: &mut Nodes, count: usize, dt: f64, what: Advance) {
+    let node = |k: usize| k.min(count - 1);
     let (mut x, mut q) = (
         [0, 1, 2, 3].map(|k| n.x[node(k)]),
         [0, 1, 2, 3].map(|k| n.q[node(k)]),
@@ -177,11 +201,8 @@ fn advance_block<L: Lane4>(n: &mut Nodes, first: usize, count: usize, dt: f64, w
         w: &mut w,
     };
     advance_four::<L>(block, dt, what);
-    for k in 0..count {
-        if !held[k] {
-            let i = first + k;
-            (n.x[i], n.q[i], n.v[i], n.w[i]) = (x[k], q[k], v[k], w[k]);
-        }
+    for i in (0..count).filter(|&i| !n.held[i]) {
+        (n.x[i], n.q[i], n.v[i], n.w[i]) = (x[i], q[i], v[i], w[i]);
     }
 }
 
@@ -198,8 +219,17 @@ fn advance_nodes<L: Lane4>(n: &mut Nodes, dt: f64, what: Advance) {
             && n.v.len() >= count
             && n.w.len() >= count
     );
+    if count < 4 {
+        if count > 0 {
+            advance_few::<L>(n, count, dt, what);
+        }
+        return;
+    }
     for first in (0..count).step_by(4) {
-        advance_block::<L>(n, first, (count - first).min(4), dt, what);
+        // the last block, when count mod 4 ≠ 0, overlaps the one before: its first
+        // nodes are advanced already
+        let start = first.min(count - 4);
+        advance_block::<L>(n, start, first - start, dt, what);
     }
 }
 
