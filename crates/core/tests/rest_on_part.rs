@@ -61,9 +61,9 @@ fn settle(model: &Model, state: &mut State, max_steps: u64) -> RelaxReport {
 /// A 200 mm span of hose 3 held at both ends (position and orientation) 2 or 5 mm lower
 /// than it would rest on a block under its middle: it bends over the block's two top
 /// edges, where its beams' interiors touch. It comes to rest — converged, kinetic energy
-/// below the `settle` action's default 1 µJ — and, at rest, the block's push and the fixes' reactions carry its weight
-/// (0.84 N) to the residual's tolerance summed over the three free nodes, 3 mN (the
-/// elastic forces are internal).
+/// below the `settle` action's default 1 µJ — and, at rest, the block's push and the
+/// fixes' reactions carry its weight (0.84 N) to the residual's tolerance summed over the
+/// three free nodes, 3 mN (the elastic forces are internal).
 #[test]
 fn a_span_between_two_fixes_pressed_onto_a_block_comes_to_rest() {
     for lower in [0.002, 0.005] {

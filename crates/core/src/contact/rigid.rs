@@ -15,11 +15,11 @@
 //!    which find exactly the contacts fresh BVH queries would.
 //! 2. Velocities: the contact point loses the approaching normal velocity that would take
 //!    it past the surface in this step — all of it when touching or penetrating, and
-//!    beyond gap/Δt when found within the detection skin still short of the surface
-//!    (a speculative contact, as for moving parts, [`super::moving`]; E. Catto,
-//!    "Continuous collision", GDC 2013): the point closes the gap and is held only there, never
+//!    beyond gap/Δt when found within the detection skin still short of the surface (a
+//!    speculative contact, as for moving parts, [`super::moving`]; E. Catto, "Continuous
+//!    collision", GDC 2013): the point closes the gap and is held only there, never
 //!    hovering at the gap it was found at, where each release when the gap grew past the
-//!    skin dropped it onto the part again, a self-sustained cycle). Coulomb friction
+//!    skin dropped it onto the part again, a self-sustained cycle. Coulomb friction
 //!    removes the tangential velocity if it is below μ_s times the normal velocity change
 //!    (sticking), else reduces it by μ_k times that change (sliding). A beam-interior point
 //!    at parameter t is changed by spreading the change over its two nodes with weights
