@@ -5,10 +5,10 @@
 
 use glam::DVec3;
 use parry3d_f64::shape::Cuboid;
-use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::relax::{relax, RelaxOptions, RelaxReport};
 use pliant_core::{HoseSpec, Model, RigidPartSpec, SimSettings, State, WorldSpec};
 use pliant_testkit::hoses::hose3;
+use pliant_testkit::models::fix_in_place;
 
 /// Hose 3's outer radius \[m\].
 const R: f64 = 0.0175;
@@ -70,13 +70,7 @@ fn a_span_between_two_fixes_pressed_onto_a_block_comes_to_rest() {
         let elements = 4;
         let model = hose_over_block(elements, R - lower, 0.1);
         let mut state = State::at_rest(&model);
-        for node in [0, elements] {
-            state.loads.add(LoadCase::Fix(Fix {
-                node,
-                position: state.x[node],
-                orientation: model.rest_q[node],
-            }));
-        }
+        fix_in_place(&mut state, [0, elements]);
         let report = settle(&model, &mut state, 20_000);
         assert!(report.converged, "{lower} m lower: {report:?}");
         let energy = state.kinetic_energy(&model);
