@@ -63,6 +63,20 @@ pub struct SolverSettings {
     /// harness from CAD springing out between its fixings — needs more for its first.
     #[serde(default = "default_static_iterations")]
     pub static_max_iterations: usize,
+    /// Static solver: explicit steps the snap relaxation (the fallback of an input step
+    /// Newton does not converge, [`crate::integrators::snap`]) may take over the whole run
+    /// (default [`DEFAULT_STATIC_RELAXATION_BUDGET`]). Once spent, a step Newton does not
+    /// converge is reported unconverged instead of relaxed again.
+    #[serde(default = "default_relaxation_budget")]
+    pub static_relaxation_budget: u64,
+}
+
+/// Explicit steps of snap relaxation allowed over a run, unless set: five relaxations at
+/// their cap per relaxation (minutes on a harness of a thousand elements, not hours).
+pub const DEFAULT_STATIC_RELAXATION_BUDGET: u64 = 10_000_000;
+
+fn default_relaxation_budget() -> u64 {
+    DEFAULT_STATIC_RELAXATION_BUDGET
 }
 
 /// Newton iterations the static solver allows per equilibrium sought, unless set.
@@ -79,6 +93,7 @@ impl Default for SolverSettings {
             implicit_time_step: 0.01,
             static_input_step: 0.01,
             static_max_iterations: default_static_iterations(),
+            static_relaxation_budget: default_relaxation_budget(),
         }
     }
 }

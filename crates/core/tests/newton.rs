@@ -307,10 +307,17 @@ fn a_relaxation_that_stopped_moving_gives_up() {
     let (model, mut state) = cantilever(10, mat, sec, DVec3::new(0.0, 0.0, -9.81));
     let (time, before) = (state.time, state.step);
     let mut anchor = Vec::new();
-    let outcome =
-        pliant_core::integrators::snap::relax(&model, &mut state, time, 0.0, 0.0, &mut anchor);
-    assert_eq!(outcome, None);
+    let outcome = pliant_core::integrators::snap::relax(
+        &model,
+        &mut state,
+        time,
+        (0.0, 0.0),
+        u64::MAX,
+        &mut anchor,
+    );
+    assert!(!outcome.reached);
     let taken = state.step - before;
+    assert_eq!(outcome.steps, taken);
     assert!(taken < 200_000, "{taken} explicit steps");
     let (f, m) = pliant_core::relax::residual(&state);
     assert!(f < 1e-9 && m < 1e-9, "residual {f} N, {m} N·m");
@@ -350,5 +357,56 @@ fn a_stiff_section_far_from_the_origin_converges_to_the_same_shape() {
     for (a, b) in at_origin.iter().zip(&far_out) {
         // 2.4e-15 m measured: the coordinates' own round-off at 40 m is 4e-15 m
         assert!((*a - *b).length() < 1e-12, "{a} against {b}");
+    }
+}
+
+/// A snap relaxation stops at the steps it is given, and says how many it took: the run's
+/// budget ([`pliant_core::SolverSettings::static_relaxation_budget`]) is spent by them.
+#[test]
+fn a_relaxation_takes_no_more_steps_than_it_is_given() {
+    let (mat, sec) = hose1();
+    let (model, mut state) = cantilever(10, mat, sec, DVec3::new(0.0, 0.0, -9.81));
+    let (time, before) = (state.time, state.step);
+    let mut anchor = Vec::new();
+    let outcome = pliant_core::integrators::snap::relax(
+        &model,
+        &mut state,
+        time,
+        (0.0, 0.0),
+        1000,
+        &mut anchor,
+    );
+    assert!(!outcome.reached);
+    assert_eq!(outcome.steps, 1000);
+    assert_eq!(state.step - before, 1000);
+}
+
+/// The snap relaxation's budget holds across a run: a static solver allowed one Newton
+/// iteration per equilibrium cannot converge the first sag of a cantilever and falls
+/// back on relaxation; with a budget of 0 it relaxes not at all, with 500 steps it takes
+/// those and then, spent, reports the next unconverged step without relaxing.
+#[test]
+fn the_relaxation_budget_is_spent_once_per_run() {
+    use pliant_core::integrators::Solver;
+    use pliant_core::{SolverKind, SolverSettings};
+    let (mat, sec) = hose1();
+    for budget in [0, 500] {
+        let (model, mut state) = cantilever(10, mat.clone(), sec, DVec3::new(0.0, 0.0, -9.81));
+        let settings = SolverSettings {
+            kind: SolverKind::Static,
+            static_max_iterations: 1,
+            static_relaxation_budget: budget,
+            ..Default::default()
+        };
+        let mut solver = Solver::new(&model, settings).unwrap();
+        let mut explicit_steps = 0;
+        for k in 0..3 {
+            let before = state.step;
+            let stats = solver.step(&model, &mut state).unwrap();
+            assert!(!stats.converged, "budget {budget}, step {k}");
+            // the static step counts one, each explicit step of the relaxation one
+            explicit_steps += state.step - before - 1;
+        }
+        assert_eq!(explicit_steps, budget, "budget {budget}");
     }
 }

@@ -103,6 +103,10 @@ pub struct SimulationSection {
     pub static_input_step_s: Option<f64>,
     /// Static solver: Newton iterations allowed per equilibrium, 1 … 10 000. Default 60.
     pub static_max_iterations: Option<u64>,
+    /// Static solver: explicit steps the snap relaxation (the fallback of a step Newton
+    /// does not converge) may take over the whole run, ≥ 0. Default 10 000 000. Once spent,
+    /// such a step is reported unconverged (the verdict uncertain).
+    pub static_relaxation_budget: Option<u64>,
     /// Which pairs of beams press on each other: `all` (default), `apart_at_rest` (all
     /// but those overlapping in the shape as drawn — bundles a CAD route draws through
     /// one another) or `off`.

@@ -96,6 +96,9 @@ pub fn build_settings(raw: Option<&SimulationSection>) -> Result<SimSettings, Fi
         }
         solver.static_max_iterations = n as usize;
     }
+    if let Some(n) = raw.static_relaxation_budget {
+        solver.static_relaxation_budget = n;
+    }
     let mass_scaling = match raw.mass_scaling {
         Some(s) => {
             let most = pliant_core::model::MAX_MASS_SCALING;
@@ -149,13 +152,16 @@ mod tests {
         let raw = SimulationSection {
             hose_contact: Some("apart_at_rest".into()),
             static_max_iterations: Some(5000),
+            static_relaxation_budget: Some(0),
             ..Default::default()
         };
         let s = build_settings(Some(&raw)).unwrap();
         assert_eq!(s.hose_contact, HoseContactRule::ApartAtRest);
         assert_eq!(s.solver.static_max_iterations, 5000);
+        assert_eq!(s.solver.static_relaxation_budget, 0);
         let default = build_settings(None).unwrap();
         assert_eq!(default.hose_contact, HoseContactRule::All);
         assert_eq!(default.solver.static_max_iterations, 60);
+        assert_eq!(default.solver.static_relaxation_budget, 10_000_000);
     }
 }

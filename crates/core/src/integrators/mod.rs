@@ -167,6 +167,9 @@ struct Buffers {
     events: Vec<StabilityEvent>,
     /// Positions at the snap relaxation's last check ([`snap::relax`]).
     relax_anchor: Vec<DVec3>,
+    /// Explicit steps of snap relaxation left for the run
+    /// ([`SolverSettings::static_relaxation_budget`]).
+    relaxation_left: u64,
 }
 
 impl Solver {
@@ -195,6 +198,7 @@ impl Solver {
             previous_friction: crate::contact::friction::FrictionMemory::new(&model.rest_x),
             events: Vec::new(),
             relax_anchor: Vec::with_capacity(model.node_count()),
+            relaxation_left: settings.static_relaxation_budget,
         };
         Ok(Self {
             settings,
@@ -406,17 +410,21 @@ impl Buffers {
             self.events.clear();
             // the relaxation hands over where the residual is small — near the snap's
             // saddle too, from where Newton may not converge: relax on from where it left
+            // (within the run's budget: once spent, the step stays unconverged)
             for _ in 0..SNAP_ROUNDS {
-                if snap::relax(
+                if self.relaxation_left == 0 {
+                    break;
+                }
+                let relaxation = snap::relax(
                     model,
                     state,
                     time + h,
-                    report.force_limit,
-                    report.moment_limit,
+                    (report.force_limit, report.moment_limit),
+                    self.relaxation_left,
                     &mut self.relax_anchor,
-                )
-                .is_none()
-                {
+                );
+                self.relaxation_left = self.relaxation_left.saturating_sub(relaxation.steps);
+                if !relaxation.reached {
                     break;
                 }
                 state.time = time + h;

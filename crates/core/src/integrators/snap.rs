@@ -40,6 +40,8 @@ struct AtTime<'a> {
     model: &'a Model,
     state: &'a mut State,
     time: f64,
+    /// Steps taken.
+    steps: u64,
 }
 
 impl Relaxing for AtTime<'_> {
@@ -52,6 +54,7 @@ impl Relaxing for AtTime<'_> {
     fn step(&mut self) -> Result<(), Divergence> {
         self.state.time = self.time - self.model.time_step;
         step(self.model, self.state);
+        self.steps += 1;
         self.state.time = self.time;
         Ok(())
     }
@@ -60,22 +63,31 @@ impl Relaxing for AtTime<'_> {
     }
 }
 
+/// How a snap relaxation ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Relaxation {
+    /// Explicit steps taken (also when it failed).
+    pub steps: u64,
+    /// It reached the hand-over residual.
+    pub reached: bool,
+}
+
 /// Relaxes `state` under its loads at time `time` ([`crate::relax::relax_with`], with
 /// kinetic damping, from rest) until the largest out-of-balance force and moment on free
 /// nodes ([`crate::relax::residual`], contact counted) are within `HANDOVER` ×
-/// (`force_limit`, `moment_limit`). Returns the explicit steps taken, or `None` if the
-/// relaxation diverged, stopped moving short of the limits (`FROZEN_WINDOWS`) or did not
-/// get there within `MAX_RELAXATION_STEPS` (the caller then reports the input step
-/// unconverged). `anchor` is scratch space for the positions at the last check (resized
-/// to the nodes).
+/// (`force_limit`, `moment_limit`), in at most `max_steps` explicit steps (and
+/// `MAX_RELAXATION_STEPS`). It has not `reached` them if it diverged, stopped moving
+/// short of the limits (`FROZEN_WINDOWS`) or ran out of steps (the caller then reports
+/// the input step unconverged). `anchor` is scratch space for the positions at the last
+/// check (resized to the nodes).
 pub fn relax(
     model: &Model,
     state: &mut State,
     time: f64,
-    force_limit: f64,
-    moment_limit: f64,
+    (force_limit, moment_limit): (f64, f64),
+    max_steps: u64,
     anchor: &mut Vec<DVec3>,
-) -> Option<usize> {
+) -> Relaxation {
     stop(state);
     let still = FROZEN_FRACTION * shortest_element(model);
     anchor.clear();
@@ -84,10 +96,16 @@ pub fn relax(
     let options = RelaxOptions {
         force_tolerance: HANDOVER * force_limit,
         moment_tolerance: HANDOVER * moment_limit,
-        max_steps: MAX_RELAXATION_STEPS,
+        max_steps: max_steps.min(MAX_RELAXATION_STEPS),
         kinetic_damping: true,
     };
-    let report = relax_with(&mut AtTime { model, state, time }, &options, |state| {
+    let mut relaxing = AtTime {
+        model,
+        state,
+        time,
+        steps: 0,
+    };
+    let report = relax_with(&mut relaxing, &options, |state| {
         frozen_windows = if frozen(&state.x, anchor, still) {
             frozen_windows + 1
         } else {
@@ -98,9 +116,11 @@ pub fn relax(
         }
         anchor.copy_from_slice(&state.x);
         ControlFlow::Continue(())
-    })
-    .ok()?;
-    report.converged.then_some(report.steps as usize)
+    });
+    Relaxation {
+        steps: relaxing.steps,
+        reached: report.is_ok_and(|r| r.converged),
+    }
 }
 
 /// Whether no node moved more than `still` since `anchor`. A free node with an
