@@ -303,20 +303,8 @@ fn an_implicit_step_newton_cannot_converge_is_taken_explicitly() {
 /// explicit steps; it has relaxed the hose to rest by then.
 #[test]
 fn a_relaxation_that_stopped_moving_gives_up() {
-    let (mat, sec) = hose1();
-    let (model, mut state) = cantilever(10, mat, sec, DVec3::new(0.0, 0.0, -9.81));
-    let (time, before) = (state.time, state.step);
-    let mut anchor = Vec::new();
-    let outcome = pliant_core::integrators::snap::relax(
-        &model,
-        &mut state,
-        time,
-        (0.0, 0.0),
-        u64::MAX,
-        &mut anchor,
-    );
+    let (outcome, state, taken) = relaxed_cantilever(u64::MAX);
     assert!(!outcome.reached);
-    let taken = state.step - before;
     assert_eq!(outcome.steps, taken);
     assert!(taken < 200_000, "{taken} explicit steps");
     let (f, m) = pliant_core::relax::residual(&state);
@@ -364,6 +352,16 @@ fn a_stiff_section_far_from_the_origin_converges_to_the_same_shape() {
 /// budget ([`pliant_core::SolverSettings::static_relaxation_budget`]) is spent by them.
 #[test]
 fn a_relaxation_takes_no_more_steps_than_it_is_given() {
+    let (outcome, _, taken) = relaxed_cantilever(1000);
+    assert!(!outcome.reached);
+    assert_eq!(outcome.steps, 1000);
+    assert_eq!(taken, 1000);
+}
+
+/// A 10-element hose-1 cantilever sagging under gravity, relaxed by the snap relaxation
+/// towards a balance it cannot reach (limits 0) with at most `steps` explicit steps: the
+/// outcome, the state after it and the steps the state took.
+fn relaxed_cantilever(steps: u64) -> (pliant_core::integrators::snap::Relaxation, State, u64) {
     let (mat, sec) = hose1();
     let (model, mut state) = cantilever(10, mat, sec, DVec3::new(0.0, 0.0, -9.81));
     let (time, before) = (state.time, state.step);
@@ -373,12 +371,11 @@ fn a_relaxation_takes_no_more_steps_than_it_is_given() {
         &mut state,
         time,
         (0.0, 0.0),
-        1000,
+        steps,
         &mut anchor,
     );
-    assert!(!outcome.reached);
-    assert_eq!(outcome.steps, 1000);
-    assert_eq!(state.step - before, 1000);
+    let taken = state.step - before;
+    (outcome, state, taken)
 }
 
 /// The snap relaxation's budget holds across a run: a static solver allowed one Newton
