@@ -7,7 +7,8 @@
 //! 24(2)) — the session thread lowers its own scheduling priority once a stream asks
 //! for its state. Lowering needs no privileges; raising the stream's would.
 
-/// How much the session thread raises its nice value while a haptic stream listens.
+/// How much the session thread raises its nice value once a haptic stream has asked for
+/// its state (for the rest of the session: a stream that stops does not restore it).
 pub const SESSION_NICE_INCREMENT: i32 = 10;
 /// The largest nice value (lowest priority) on Linux.
 pub const NICE_MAX: i32 = 19;
