@@ -45,36 +45,7 @@ pub struct NewtonBench {
 /// A block 0.2 m long under the middle of the benchmark hose, its top `top` \[m\] high.
 fn block(top: f64) -> RigidPartSpec {
     let (lo, hi) = (DVec3::new(0.2, -0.3, top - 0.1), DVec3::new(0.4, 0.5, top));
-    let v = |i: usize| {
-        DVec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        )
-    };
-    RigidPartSpec {
-        name: "block".into(),
-        vertices: (0..8).map(v).collect(),
-        triangles: vec![
-            [0, 2, 3],
-            [0, 3, 1],
-            [4, 5, 7],
-            [4, 7, 6],
-            [0, 1, 5],
-            [0, 5, 4],
-            [2, 6, 7],
-            [2, 7, 3],
-            [0, 4, 6],
-            [0, 6, 2],
-            [1, 3, 7],
-            [1, 7, 5],
-        ],
-        friction_static: 0.5,
-        friction_sliding: 0.4,
-        motion: None,
-        parent: None,
-        movable: false,
-    }
+    RigidPartSpec::cuboid("block", lo, hi, (0.5, 0.4))
 }
 
 fn hose(elements: usize, length: f64) -> Result<(Model, State)> {

@@ -171,6 +171,43 @@ pub struct RigidPartSpec {
     pub movable: bool,
 }
 
+impl RigidPartSpec {
+    /// A standing box from corner `lo` to corner `hi` \[m\] (12 triangles), with Coulomb
+    /// coefficients (μ_s, μ_k).
+    pub fn cuboid(name: &str, lo: DVec3, hi: DVec3, (mu_static, mu_sliding): (f64, f64)) -> Self {
+        let corner = |i: usize| {
+            DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        };
+        Self {
+            name: name.into(),
+            vertices: (0..8).map(corner).collect(),
+            triangles: vec![
+                [0, 2, 3],
+                [0, 3, 1],
+                [4, 5, 7],
+                [4, 7, 6],
+                [0, 1, 5],
+                [0, 5, 4],
+                [2, 6, 7],
+                [2, 7, 3],
+                [0, 4, 6],
+                [0, 6, 2],
+                [1, 3, 7],
+                [1, 7, 5],
+            ],
+            friction_static: mu_static,
+            friction_sliding: mu_sliding,
+            motion: None,
+            parent: None,
+            movable: false,
+        }
+    }
+}
+
 /// A whole world to simulate.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct WorldSpec {

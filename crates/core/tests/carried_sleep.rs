@@ -123,6 +123,8 @@ struct Runs {
     /// The sleeping run's mean hose velocity along x at `probe` and at its end, and the
     /// plate's at the end.
     hose_speed: (f64, f64),
+    /// The sleeping run's mean hose position along x at `probe` and at its end.
+    hose_x: (f64, f64),
     plate_speed: f64,
 }
 
@@ -135,12 +137,14 @@ fn run_world(make: impl Fn(bool) -> (Model, State), duration: f64, probe: f64) -
     let (model, mut asleep) = make(true);
     let (_, mut awake) = make(false);
     let mean_vx = |s: &State| s.v.iter().map(|v| v.x).sum::<f64>() / s.v.len() as f64;
+    let mean_x = |s: &State| s.x.iter().map(|x| x.x).sum::<f64>() / s.x.len() as f64;
     let mut runs = Runs {
         deviation: 0.0,
         slept_at: None,
         woke_at: None,
         asleep_steps: 0,
         hose_speed: (f64::NAN, f64::NAN),
+        hose_x: (f64::NAN, f64::NAN),
         plate_speed: f64::NAN,
     };
     while asleep.time < duration {
@@ -158,9 +162,11 @@ fn run_world(make: impl Fn(bool) -> (Model, State), duration: f64, probe: f64) -
         }
         if (asleep.time - probe).abs() < 0.5 * model.time_step {
             runs.hose_speed.0 = mean_vx(&asleep);
+            runs.hose_x.0 = mean_x(&asleep);
         }
     }
     runs.hose_speed.1 = mean_vx(&asleep);
+    runs.hose_x.1 = mean_x(&asleep);
     runs.plate_speed = asleep.contact.placements[1].twist.linear.x;
     runs
 }
@@ -245,7 +251,8 @@ fn a_plate_accelerating_beyond_mu_s_g_wakes_the_hose_and_it_slips() {
 fn a_hose_carried_towards_a_still_wall_wakes_before_it_touches_and_stops_there() {
     // the hose's front end (x = 0.6 + r) reaches the wall at 0.65 after ≈ 0.8 s
     let wall = 0.65;
-    let r = run_world(|sleeping| world_with(0.0, sleeping, Some(wall)), 1.5, 1.0);
+    let (end, probe) = (1.5, 1.0);
+    let r = run_world(|sleeping| world_with(0.0, sleeping, Some(wall)), end, probe);
     eprintln!(
         "slept at {:?} s, woke at {:?}, deviation {:.2e} m, hose {:?} m/s",
         r.slept_at, r.woke_at, r.deviation, r.hose_speed
@@ -262,8 +269,12 @@ fn a_hose_carried_towards_a_still_wall_wakes_before_it_touches_and_stops_there()
     );
     // and the awake run's contact with the wall is the sleeping run's
     assert!(r.deviation <= TRAJECTORY_TOLERANCE, "{:.3e} m", r.deviation);
-    // stopped by the wall while the plate slides on beneath it
-    assert!(r.hose_speed.1.abs() < 1e-3, "{} m/s", r.hose_speed.1);
+    // stopped by the wall while the plate slides on beneath it: from the probe on, its
+    // mean speed along x (its mean position's change over the time) is below 1 mm/s —
+    // the speed at one instant is not, the hose pressed to the wall rings axially at
+    // ±3 mm/s, decaying with the mass damping
+    let mean_speed = (r.hose_x.1 - r.hose_x.0) / (end - probe);
+    assert!(mean_speed.abs() < 1e-3, "{mean_speed} m/s");
 }
 
 /// The gliding [`world`] with the hose's first node held by the load case `hold` makes.

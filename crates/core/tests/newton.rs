@@ -6,6 +6,7 @@ use pliant_core::integrators::{ImplicitOptions, ImplicitSolver, StaticSolver};
 use pliant_core::loads::{DeadLoad, Fix, LoadCase};
 use pliant_core::{HoseSpec, Material, Model, Section, SimSettings, State, WorldSpec};
 use pliant_testkit::hose1;
+use pliant_testkit::models::fix_in_place;
 
 fn cantilever(n: usize, material: Material, section: Section, gravity: DVec3) -> (Model, State) {
     let nodes = (0..=n)
@@ -325,13 +326,7 @@ fn a_stiff_section_far_from_the_origin_converges_to_the_same_shape() {
     let solve = |offset: DVec3| {
         let model = stiffened_hose(offset, DVec3::new(0.0, 0.0, -9.81));
         let mut state = State::at_rest(&model);
-        for node in [0, n] {
-            state.loads.add(LoadCase::Fix(Fix {
-                node,
-                position: state.x[node],
-                orientation: state.q[node],
-            }));
-        }
+        fix_in_place(&mut state, [0, n]);
         let mut solver = StaticSolver::new(&model).unwrap();
         let report = solver.solve(&model, &mut state).unwrap();
         let shape: Vec<DVec3> = state.x.iter().map(|x| *x - offset).collect();

@@ -3,12 +3,20 @@
 //! that the line wraps a quarter turn onto it, then let go. In the middle of the wrapped
 //! arc it keeps the bend less a springback that is the elastic unloading of the moment
 //! each element carries under load: κ_after = κ_loaded − M/EI element by element
-//! (Lubliner 1990, "Plasticity Theory", §4.1; the line let go carries no moment). That
-//! moment is not the closed-form M(κ_loaded) of a section bent monotonically to the
-//! loaded curvature (`plastic_moment`): the arc's sections were bent past yield as the
-//! line's departure point from the mandrel passed them, and unloaded partly while the end
-//! went on round — they carry 0.77–1.39 N·m against M(κ) = 2.2 N·m — so the springback is
-//! less than half of M(κ)/EI.
+//! (Lubliner 1990, "Plasticity Theory", §4.1; the line let go carries no moment).
+//!
+//! That moment is bounded by the closed-form M(κ_loaded) of a section bent monotonically
+//! to the loaded curvature (`plastic_moment`) but not equal to it: the steel hardens
+//! little (H/E = 0.0023), so a section bent a little past the mandrel's curvature where
+//! the line leaves it, and pressed back onto it as the end goes on round, unloads
+//! elastically by EI·Δκ — 1 % of overshoot (0.3 1/m) takes 1.2 N·m of the 2.2 N·m.
+//! Measured, the sections carry 0.71–0.81 of M(κ) (0.42–0.74 before the static solver's
+//! predictor obeyed the contact step limit): the fraction follows the solver's path. The mandrel is a 256-sided prism (facets 0.74 mm,
+//! shorter than the line's 1.35 mm elements, its circle's sagitta 2.3 µm) wrapped in 1°
+//! steps: on a 64-sided one (facets 2.9 mm) wrapped in 10° steps the line lies in a
+//! zigzag of plastic hinges at the prism's vertices (element curvatures 21–41 1/m), snaps
+//! between steps, and the moments it carries change sign with small changes of the
+//! solver's path.
 
 use pliant_assembly::Workcell;
 use pliant_core::rod::plastic_moment::hardening_bending_moment;
@@ -27,7 +35,9 @@ const H: f64 = 480e6;
 const LEAD_MM: f64 = 10.0;
 const TAIL_MM: f64 = 30.0;
 const ELEMENTS: usize = 60;
-const WRAP_STEPS: usize = 9;
+const WRAP_STEPS: usize = 90;
+/// Sides of the mandrel's prism.
+const SIDES: usize = 256;
 
 fn centre_radius_mm() -> f64 {
     MANDREL_RADIUS_MM + R_OUTER * 1e3
@@ -84,9 +94,10 @@ hose = "line"
 node = -1
 to = [{x}, 0, {z}]
 rotate = {{ axis = [0, 1, 0], angle_deg = {a} }}
-duration_s = 0.1
+duration_s = {d}
 "#,
-            a = step.to_degrees()
+            a = step.to_degrees(),
+            d = 0.9 / WRAP_STEPS as f64
         ));
     }
     if release {
@@ -136,8 +147,8 @@ fn middle_of_arc() -> (usize, usize) {
 
 #[test]
 fn a_steel_line_wrapped_round_a_mandrel_springs_back_by_the_moment_it_carries() {
-    let loaded = std::thread::spawn(|| run(&scene("steel_tube", "", 64, false)));
-    let after = run(&scene("steel_tube", "", 64, true));
+    let loaded = std::thread::spawn(|| run(&scene("steel_tube", "", SIDES, false)));
+    let after = run(&scene("steel_tube", "", SIDES, true));
     let loaded = loaded.join().unwrap();
     let (a, b) = middle_of_arc();
     let k_loaded = mean_curvature(&loaded.state().x, a, b);
@@ -150,17 +161,18 @@ fn a_steel_line_wrapped_round_a_mandrel_springs_back_by_the_moment_it_carries() 
          springback {:.4} against M(k)/EI {monotonic:.4}",
         k_loaded - k_after
     );
-    // wrapped onto the mandrel by contact: the 64-sided prism and the line bridging its
-    // vertices leave the loaded curvature within 1 % of the centre line's circle
+    // wrapped onto the mandrel by contact: the prism's facets and the contact's
+    // penetration leave the loaded curvature within 0.5 % of the centre line's circle
+    // (0.10–0.15 % measured)
     assert!(
-        (k_loaded - k_mandrel).abs() < 0.01 * k_mandrel,
+        (k_loaded - k_mandrel).abs() < 0.005 * k_mandrel,
         "loaded {k_loaded} 1/m against 1/R = {k_mandrel} 1/m"
     );
     // element by element over the arc's middle half (the curvature the law reads, bent
     // about the mandrel's axis y): let go, each element springs back by the moment it
     // carried, M/EI — an elastic unloading, exact but for the solves' round-off (10⁻¹³
-    // 1/m measured; 10⁻⁹ of a springback of ~0.25 1/m allowed) — and that moment is
-    // below M(κ) of the curvature it was loaded to in magnitude
+    // 1/m measured; 10⁻⁹ of a springback of ~0.3 1/m allowed) — and that moment is
+    // between zero and M(κ) of the curvature it was loaded to
     let (before, kept) = (sections(&loaded), sections(&after));
     let (mut worst, mut carried, mut sprung, mut length) = (0.0_f64, 0.0, 0.0, 0.0);
     let l0 = loaded.model().elements[a].axis_length;
@@ -175,11 +187,10 @@ fn a_steel_line_wrapped_round_a_mandrel_springs_back_by_the_moment_it_carries() 
             kept[e].bending_moment.length()
         );
         worst = worst.max((springback - m / ei).abs());
-        // bounded by the monotonic curve in magnitude, not in sign: a section the
-        // departure point has passed can be unloaded past zero (its permanent set above
-        // the curvature the contact now holds it at)
+        // bent the mandrel's way, at most as far as the monotonic curve allows: no
+        // section unloaded past zero
         assert!(
-            m.abs() < m_k,
+            m > 0.0 && m < m_k,
             "element {e}: M {m} N·m against M(κ) {m_k} N·m"
         );
         carried += m / ei * l0;
@@ -196,14 +207,14 @@ fn a_steel_line_wrapped_round_a_mandrel_springs_back_by_the_moment_it_carries() 
         worst < 2e-3,
         "an element sprang back {worst} 1/m off its M/EI"
     );
-    // the carried moment is less than half the monotonic one, and so is the springback
-    assert!(carried / length < 0.5 * monotonic);
-    assert!(k_loaded - k_after > 0.0 && k_loaded - k_after < 0.5 * monotonic);
+    // so the arc springs back, by less than the monotonic curve's M(κ)/EI
+    assert!(carried / length < monotonic);
+    assert!(k_loaded - k_after > 0.0 && k_loaded - k_after < monotonic);
 }
 
 #[test]
 fn an_elastic_line_wrapped_round_the_mandrel_springs_straight() {
-    let after = run(&scene("elastic_steel", ELASTIC_STEEL, 64, true));
+    let after = run(&scene("elastic_steel", ELASTIC_STEEL, SIDES, true));
     let (a, b) = middle_of_arc();
     let k_after = mean_curvature(&after.state().x, a, b);
     assert!(k_after.abs() < 0.5, "the elastic line keeps {k_after} 1/m");

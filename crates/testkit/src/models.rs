@@ -2,7 +2,8 @@
 
 use crate::hoses::{hose1_material, hose1_section, hose3};
 use glam::DVec3;
-use pliant_core::{HoseSpec, Model, SimSettings, WorldSpec};
+use pliant_core::loads::{Fix, LoadCase};
+use pliant_core::{HoseSpec, Model, SimSettings, State, WorldSpec};
 
 /// A model of hose 3 in `elements` beams of 25 mm along global X from the origin, with
 /// `settings`.
@@ -34,5 +35,16 @@ pub fn straight_hose1(name: &str, from: DVec3, to: DVec3, n: usize) -> HoseSpec 
             .collect(),
         sections: vec![hose1_section()],
         normal_hint: None,
+    }
+}
+
+/// Fixes each of `nodes` where it is now: its position and orientation in `state`.
+pub fn fix_in_place(state: &mut State, nodes: impl IntoIterator<Item = usize>) {
+    for node in nodes {
+        state.loads.add(LoadCase::Fix(Fix {
+            node,
+            position: state.x[node],
+            orientation: state.q[node],
+        }));
     }
 }

@@ -10,7 +10,9 @@
 //! * slip otherwise: f_t = −μ_k f_n g_t/|g_t| (the return onto the sliding cone), tangent
 //!   μ_k f_n/|g_t| (I − n nᵀ − t tᵀ) (its symmetric part; the term μ k t nᵀ from the
 //!   normal force's variation is left out — the solvers stay symmetric and converge
-//!   linearly while slipping).
+//!   linearly while slipping). Along the slip itself that tangent has no stiffness; the
+//!   static solver, which has no inertia to fill it, adds the secant μ_k f_n/|g_t| t tᵀ
+//!   there ([`FrictionResponse::secant`]; `NewtonSystem::regularise_slip`).
 //!
 //! μ in the stick test is the static coefficient for a node that stuck in the last step
 //! and the sliding one for a node that slipped — so a node breaks away at μ_s f_n and
@@ -48,6 +50,9 @@ pub struct FrictionResponse {
     /// g_c = μ f_n / k_t, then growing by μ_k f_n per metre) \[J\]: its gradient is −f_t at
     /// fixed f_n, so that the static line search sees friction as it sees a spring.
     pub energy: f64,
+    /// μ f_n / |g_t| while slipping, the secant stiffness of the friction force along the
+    /// slip (0 while sticking) \[N/m\].
+    pub secant: f64,
 }
 
 impl Clone for FrictionMemory {
@@ -108,6 +113,7 @@ impl FrictionMemory {
                 tangent: tangential * k_t,
                 slipping: false,
                 energy: 0.5 * k_t * g * g,
+                secant: 0.0,
             }
         } else {
             let t = gap / g;
@@ -117,6 +123,7 @@ impl FrictionMemory {
                 tangent: (tangential - outer(t, t)) * (limit / g),
                 slipping: true,
                 energy: 0.5 * k_t * reach * reach + limit * (g - reach),
+                secant: limit / g,
             }
         }
     }

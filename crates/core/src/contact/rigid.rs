@@ -13,7 +13,13 @@
 //!    surface and the remembered side is kept (SPEC L4, ch. 5.3.3).
 //!    The triangles examined come from lists kept from step to step ([`super::coherence`]),
 //!    which find exactly the contacts fresh BVH queries would.
-//! 2. Velocities: the contact point loses its approaching normal velocity; Coulomb friction
+//! 2. Velocities: the contact point loses the approaching normal velocity that would take
+//!    it past the surface in this step — all of it when touching or penetrating, and
+//!    beyond gap/Δt when found within the detection skin still short of the surface (a
+//!    speculative contact, as for moving parts, [`super::moving`]; E. Catto, "Continuous
+//!    collision", GDC 2013): the point closes the gap and is held only there, never
+//!    hovering at the gap it was found at, where each release when the gap grew past the
+//!    skin dropped it onto the part again, a self-sustained cycle. Coulomb friction
 //!    removes the tangential velocity if it is below μ_s times the normal velocity change
 //!    (sticking), else reduces it by μ_k times that change (sliding). A beam-interior point
 //!    at parameter t is changed by spreading the change over its two nodes with weights
@@ -465,15 +471,11 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
         // impulse with it ([`crate::junction_shape`])
         let shape = model.junction_shape_contact(state, &c);
         let part_velocity = shape.map_or(c.part_velocity, |s| s.velocity);
-        // relative to the part's velocity; a moving part's contact found with a gap lets
-        // the point approach by the gap in this step ([`super::moving`])
+        // relative to the part's velocity; a contact found with a gap lets the point
+        // approach by the gap in this step (step 2 of the module doc)
         let v_c = contact_velocity(state, &c) - part_velocity;
         let vn = v_c.dot(c.normal);
-        let allowed = if part.moves {
-            (-c.depth).max(0.0) / dt
-        } else {
-            0.0
-        };
+        let allowed = (-c.depth).max(0.0) / dt;
         if vn >= -allowed {
             continue;
         }

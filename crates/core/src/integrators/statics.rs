@@ -106,8 +106,11 @@ pub struct StaticSolver {
 impl StaticSolver {
     pub fn new(model: &Model) -> Result<Self, crate::newton::TopologyError> {
         let n = model.node_count();
+        let mut system = NewtonSystem::new(model)?;
+        // without inertia, a hose slipping at every node has no stiffness along the slip
+        system.regularise_slip = true;
         Ok(Self {
-            system: NewtonSystem::new(model)?,
+            system,
             options: StaticOptions::default(),
             events: Vec::new(),
             escape: Escape::new(n),
@@ -184,6 +187,25 @@ impl StaticSolver {
                     // taken whole (the energy before and after the supports moved is not
                     // comparable)
                     let s = rotation_limited_step(&sys.rhs, &sys.prescribed);
+                    // (rigid parts only: with hose–hose contact alone, the tip of a line
+                    // bent into a curl was sent off its path)
+                    let parts = !model.environment.is_empty();
+                    let near_contact =
+                        contact_translation_limit(model, state, self.options.contact_step_fraction)
+                            .filter(|_| parts)
+                            .map_or(1.0, |limit| {
+                                translation_limited_step(&sys.rhs, &sys.prescribed, limit)
+                            });
+                    if near_contact < 1.0 {
+                        // the whole response would carry free nodes farther than contact
+                        // allows in one iteration — through a part's surface, balanced
+                        // then on its far side: the supports and the free nodes go that
+                        // part of the way, and the next iteration continues from there
+                        let s = s.min(near_contact);
+                        apply_increment(state, &sys.rhs, &sys.prescribed, s);
+                        sys.move_prescribed_part(state, s);
+                        continue;
+                    }
                     apply_increment(state, &sys.rhs, &sys.prescribed, s);
                     sys.move_prescribed(state);
                     continue;
@@ -240,23 +262,35 @@ impl StaticSolver {
 
     /// Backtracking along the Newton increment in `system.rhs` (Armijo on the potential
     /// energy, the residual where the energy does not decide); returns the step taken.
+    /// While a node slips, the friction potential is taken at the normal forces of the
+    /// step's start ([`NewtonSystem::lag_friction_normal`]), and a full step along which
+    /// the energy still falls at its initial rate is extended to the kink ahead
+    /// ([`Self::extend_to_kink`]).
     fn line_search(&mut self, model: &Model, state: &mut State, residual0: f64) -> f64 {
+        self.system.lag_friction_normal(true);
+        let s = self.backtrack(model, state, residual0);
+        self.system.lag_friction_normal(false);
+        s
+    }
+
+    fn backtrack(&mut self, model: &Model, state: &mut State, residual0: f64) -> f64 {
         let sys = &mut self.system;
+        let slipping = sys.friction.iter().flatten().any(|r| r.slipping);
         // −dΠ/ds along the step = (f, m)·δu (the loads are −∇Π)
-        let mut directional = 0.0;
-        for i in 0..sys.rhs.len() {
-            if !sys.prescribed[i] {
-                let d = sys.rhs[i];
-                directional += sys.force[i].dot(DVec3::new(d[0], d[1], d[2]))
-                    + sys.moment[i].dot(DVec3::new(d[3], d[4], d[5]));
-            }
-        }
+        let directional = -slope_along(sys);
         let mut s: f64 = rotation_limited_step(&sys.rhs, &sys.prescribed);
+        // the longest step contact allows (beyond the full Newton step too)
+        let mut longest = f64::INFINITY;
         if let Some(limit) =
             contact_translation_limit(model, state, self.options.contact_step_fraction)
         {
+            let largest = largest_free(&sys.rhs, &sys.prescribed, 0);
+            if largest > 0.0 {
+                longest = limit / largest;
+            }
             s = s.min(translation_limited_step(&sys.rhs, &sys.prescribed, limit));
         }
+        let full = s == 1.0;
         // dead moments have no global potential; along this search line their work is
         // s Σ M·δθ (exact for a fixed axis, first order otherwise)
         let moment_work = dead_moment_work(state, &sys.rhs);
@@ -277,7 +311,32 @@ impl StaticSolver {
                 let (f, m) = residual_norms(&sys.force, &sys.moment, &sys.prescribed);
                 f.max(m) < residual0
             };
-            if accept || tries >= 12 {
+            if accept {
+                if slipping && full && tries == 0 && descent && enough && moment_work == 0.0 {
+                    let line = Line {
+                        directional,
+                        energy0,
+                        longest,
+                    };
+                    return self.extend_to_kink(model, state, line);
+                }
+                return s;
+            }
+            if tries >= MAX_BACKTRACKS {
+                // the shortest trial is past the minimum along the line (the energy rises
+                // there): a kink closer than the halvings reach — a slipping node passing
+                // its friction anchor, where the energy bends by 2 μ f_n over the width of
+                // its stick ball. Find the minimum inside the bracket.
+                if descent && slope_along(sys) > 0.0 {
+                    let high = (s, slope_along(sys));
+                    return self.bracketed_minimum(
+                        model,
+                        state,
+                        (0.0, -directional),
+                        high,
+                        directional,
+                    );
+                }
                 return s;
             }
             tries += 1;
@@ -286,6 +345,169 @@ impl StaticSolver {
             state.q.copy_from_slice(&self.saved_q);
         }
     }
+
+    /// After a full Newton step was accepted while nodes slip: where the energy still
+    /// falls at more than half its initial rate at the step's end, the step met no
+    /// curvature — the slip's friction is constant along it — and the minimum along the
+    /// line lies beyond, where a slipping node reaches the stick ball of its anchor (the
+    /// energy's kink). The step is doubled while the energy keeps falling that fast
+    /// (within the contact step limit) and the minimum found in the bracket
+    /// ([`Self::bracketed_minimum`]). Returns the step taken, the state moved there.
+    ///
+    /// The extension is kept only where it leaves the free nodes farther from balance
+    /// than the full step did (residuals relative to their limits, [`Self::imbalance`]):
+    /// where the increment also moves nodes that do not slip — a stiff structure the full
+    /// Newton step brought to balance along with a slipping node — every step beyond 1
+    /// takes that part past its minimum again (at s = 2 it is reflected: as far out of
+    /// balance as before the step), while the slip's constant friction still lets the
+    /// energy fall along the line. Taking such steps, Newton alternates between two
+    /// states and never converges; the full step is taken instead.
+    fn extend_to_kink(&mut self, model: &Model, state: &mut State, line: Line) -> f64 {
+        self.system.assemble(model, state, 0.0);
+        let at_full_step = self.imbalance(state);
+        let s = self.extend_along_slip(model, state, line);
+        if s == 1.0 {
+            return s;
+        }
+        self.system.assemble(model, state, 0.0);
+        if self.imbalance(state) <= at_full_step {
+            return s;
+        }
+        state.x.copy_from_slice(&self.saved_x);
+        state.q.copy_from_slice(&self.saved_q);
+        apply_increment(state, &self.system.rhs, &self.system.prescribed, 1.0);
+        1.0
+    }
+
+    /// How far the last assembly is from balance: the larger of the force and moment
+    /// residuals over the free nodes, each relative to its limit ([`Tolerance`]; a node
+    /// within its round-off floor counting as balanced), so that 1 is the convergence
+    /// limit.
+    fn imbalance(&self, state: &State) -> f64 {
+        let sys = &self.system;
+        let (f, m) = sys.residuals_above_noise(state);
+        let (f_limit, m_limit) = self.options.tolerance.limits(sys.scale);
+        let relative = |r: f64, limit: f64| if r > 0.0 { r / limit } else { 0.0 };
+        relative(f, f_limit).max(relative(m, m_limit))
+    }
+
+    /// The doubling and bracketing of [`Self::extend_to_kink`], from the full step with
+    /// the system assembled there.
+    fn extend_along_slip(&mut self, model: &Model, state: &mut State, line: Line) -> f64 {
+        let sys = &mut self.system;
+        let mut s = 1.0;
+        let mut slope = slope_along(sys);
+        while slope < -0.5 * line.directional && 2.0 * s <= line.longest {
+            let before = (s, slope);
+            s *= 2.0;
+            state.x.copy_from_slice(&self.saved_x);
+            state.q.copy_from_slice(&self.saved_q);
+            apply_increment(state, &sys.rhs, &sys.prescribed, s);
+            let energy = sys.potential_energy(model, state);
+            if energy > line.energy0 - 1e-4 * s * line.directional {
+                // the energy rose again within the doubling: the minimum is inside
+                sys.assemble(model, state, 0.0);
+                let after = (s, slope_along(sys));
+                if after.1 > 0.0 {
+                    return self.bracketed_minimum(model, state, before, after, line.directional);
+                }
+                s = before.0;
+                state.x.copy_from_slice(&self.saved_x);
+                state.q.copy_from_slice(&self.saved_q);
+                apply_increment(state, &sys.rhs, &sys.prescribed, s);
+                return s;
+            }
+            sys.assemble(model, state, 0.0);
+            slope = slope_along(sys);
+            if slope > 0.0 {
+                return self.bracketed_minimum(model, state, before, (s, slope), line.directional);
+            }
+        }
+        s
+    }
+
+    /// The minimum of the energy along the Newton increment in `system.rhs` between the
+    /// steps `low` and `high` (each with the energy's slope φ'(s) = −(f, m)·δu there),
+    /// where the slope changes sign: φ'(low) < 0 < φ'(high). Regula falsi with the
+    /// Illinois modification (Dowell & Jarratt, BIT 11, 1971) on φ', which is continuous
+    /// where the energy is smooth and jumps (upwards: φ' increasing) where a node's
+    /// friction turns — the bracket then closes on the jump. Stops at the strong Wolfe
+    /// curvature condition |φ'(s)| ≤ 0.1 φ'(0)| (`directional` = −φ'(0); Nocedal &
+    /// Wright, 2006, eq. 3.7b); returns the step taken, the state moved there (the
+    /// bracket's descending end if the budget runs out).
+    fn bracketed_minimum(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        low: (f64, f64),
+        high: (f64, f64),
+        directional: f64,
+    ) -> f64 {
+        let sys = &mut self.system;
+        let ((mut lo, mut slope_lo), (mut hi, mut slope_hi)) = (low, high);
+        let mut side = 0i8;
+        for _ in 0..MAX_BRACKET_EVALUATIONS {
+            let s = (lo * slope_hi - hi * slope_lo) / (slope_hi - slope_lo);
+            // a secant point on an end (round-off): halve instead
+            let s = if s > lo && s < hi { s } else { 0.5 * (lo + hi) };
+            state.x.copy_from_slice(&self.saved_x);
+            state.q.copy_from_slice(&self.saved_q);
+            apply_increment(state, &sys.rhs, &sys.prescribed, s);
+            sys.assemble(model, state, 0.0);
+            let slope = slope_along(sys);
+            if slope.abs() <= 0.1 * directional {
+                return s;
+            }
+            if slope < 0.0 {
+                (lo, slope_lo) = (s, slope);
+                if side < 0 {
+                    slope_hi *= 0.5;
+                }
+                side = -1;
+            } else {
+                (hi, slope_hi) = (s, slope);
+                if side > 0 {
+                    slope_lo *= 0.5;
+                }
+                side = 1;
+            }
+            if hi - lo <= f64::EPSILON * hi {
+                break;
+            }
+        }
+        state.x.copy_from_slice(&self.saved_x);
+        state.q.copy_from_slice(&self.saved_q);
+        apply_increment(state, &sys.rhs, &sys.prescribed, lo);
+        lo
+    }
+}
+
+/// A line search's start: −φ'(0), the energy there, and the longest step contact allows.
+#[derive(Clone, Copy, Debug)]
+struct Line {
+    directional: f64,
+    energy0: f64,
+    longest: f64,
+}
+
+/// Halvings of a static Newton step before the line search gives up shortening it.
+const MAX_BACKTRACKS: usize = 12;
+/// Energy slopes evaluated to find the minimum in a bracket along a Newton step
+/// ([`StaticSolver::bracketed_minimum`]).
+const MAX_BRACKET_EVALUATIONS: usize = 60;
+
+/// The energy's slope along the Newton increment in `system.rhs` at the last assembly:
+/// dΠ/ds = −Σ (f, m)·δu over the free nodes (the loads are −∇Π).
+fn slope_along(sys: &NewtonSystem) -> f64 {
+    let mut slope = 0.0;
+    for i in 0..sys.rhs.len() {
+        if !sys.prescribed[i] {
+            let d = sys.rhs[i];
+            slope -= sys.force[i].dot(DVec3::new(d[0], d[1], d[2]))
+                + sys.moment[i].dot(DVec3::new(d[3], d[4], d[5]));
+        }
+    }
+    slope
 }
 
 /// Whether any dead load carries a moment (a load without a potential).

@@ -61,6 +61,15 @@ pub struct NewtonSystem {
     pub contact_stiffness: Vec<f64>,
     /// Friction of each node touching a part, last assembly (None: not in contact).
     pub friction: Vec<Option<FrictionResponse>>,
+    /// Give a slipping node's friction its secant stiffness μ f_n/|g_t| along the slip as
+    /// well (the static solver: `add_contact`).
+    pub regularise_slip: bool,
+    /// Normal force of each node's rigid-part contact in the last assembly \[N\].
+    normal_force: Vec<f64>,
+    /// The normal forces the friction potential is evaluated with while
+    /// [`Self::lag_friction_normal`] is on \[N\].
+    lagged_normal: Vec<f64>,
+    lag_normal: bool,
     /// The part each node touched at the last assembly (`usize::MAX`: none).
     contact_part: Vec<usize>,
     /// The time the solve is for (set with the prescribed poses): the time the inelastic
@@ -173,6 +182,10 @@ impl NewtonSystem {
             contact_force: vec![DVec3::ZERO; n],
             contact_stiffness,
             friction: vec![None; n],
+            regularise_slip: false,
+            normal_force: vec![0.0; n],
+            lagged_normal: vec![0.0; n],
+            lag_normal: false,
             contact_part: vec![usize::MAX; n],
             solve_time: 0.0,
             placements: if model.environment.any_moves() {
@@ -387,6 +400,7 @@ impl NewtonSystem {
         for i in 0..self.force.len() {
             self.friction[i] = None;
             self.contact_part[i] = usize::MAX;
+            self.normal_force[i] = 0.0;
             let Some((part, n, depth)) = self.touching(model, state.x[i], i) else {
                 continue;
             };
@@ -394,6 +408,7 @@ impl NewtonSystem {
                 self.contact_part[i] = part;
             }
             let k = self.contact_stiffness[i];
+            self.normal_force[i] = k * depth;
             let mut f = n * (k * depth);
             let nn = normal_projector(n);
             let friction = (with_friction && !self.prescribed[i])
@@ -402,6 +417,13 @@ impl NewtonSystem {
             block += nn * k;
             if let Some(r) = friction {
                 block += r.tangent;
+                if self.regularise_slip && r.slipping && r.secant > 0.0 {
+                    // the slip's own direction gets the secant stiffness: the consistent
+                    // tangent has none there, and a hose slipping at every node would
+                    // leave Newton no stiffness along the slip at all
+                    let t = -r.force / r.force.length();
+                    block += outer(t, t) * r.secant;
+                }
                 f += r.force;
                 self.friction[i] = Some(r);
             }
@@ -584,12 +606,34 @@ impl NewtonSystem {
                 let k = self.contact_stiffness[i];
                 e += 0.5 * k * depth * depth;
                 if with_friction && !self.prescribed[i] {
-                    let r = self.friction_response(model, state, i, part, n, k * depth, k);
+                    let lagged = self.lagged_normal[i];
+                    let normal = if self.lag_normal && lagged > 0.0 {
+                        lagged
+                    } else {
+                        k * depth
+                    };
+                    let r = self.friction_response(model, state, i, part, n, normal, k);
                     e += r.energy;
                 }
             }
         }
         e
+    }
+
+    /// Evaluates the friction potential of [`Self::potential_energy`] with the normal
+    /// forces of the last assembly (`on`) or with the normal forces where it is evaluated.
+    /// The friction potential is a potential only at a fixed normal force (Coulomb friction
+    /// is not conservative): its change with the penetration, μ k |g_t| per metre, is no
+    /// force of the model, and along a line search it would outweigh the forces' work
+    /// where a node has slipped far from its anchor. Lagging the normal force makes the
+    /// line search's energy the incremental potential whose gradient is the loads (the
+    /// lagged normal force of Li et al., "Incremental Potential Contact", ACM Trans.
+    /// Graph. 39(4), 2020, §5).
+    pub fn lag_friction_normal(&mut self, on: bool) {
+        if on {
+            self.lagged_normal.copy_from_slice(&self.normal_force);
+        }
+        self.lag_normal = on;
     }
 
     /// Marks the nodes prescribed by kinematic load cases at time `t` and records their
@@ -670,6 +714,18 @@ impl NewtonSystem {
             if p + 1 < n && !self.prescribed[p + 1] {
                 // block (p+1, p)
                 self.rhs[p + 1] -= self.matrix.lower[p] * d;
+            }
+        }
+    }
+
+    /// Moves the prescribed nodes the fraction `s` < 1 of the way to their targets
+    /// (x += s δx, q ← exp(s δθ) q with [`Self::prescribed_increment`]); they stay pending.
+    pub fn move_prescribed_part(&self, state: &mut State, s: f64) {
+        for i in 0..self.prescribed.len() {
+            if self.prescribed[i] {
+                let (dx, dth) = self.prescribed_increment(state, i);
+                state.x[i] += s * dx;
+                state.q[i] = (crate::math::exp_map(s * dth) * state.q[i]).normalize();
             }
         }
     }

@@ -14,6 +14,13 @@
 //! up-slope, and 2 mm down-slope, of where the hose lies: every step converges by Newton
 //! (no explicit fallback), no node's friction is outside its cone (|f_t| ≤ μ_s f_n, to
 //! round-off) and the hose comes to rest (every node slower than 1 mm/s at the end).
+//!
+//! The same under the static solver (three 10 ms input steps): the hose lying in balance
+//! with its anchors then moved 2 mm up- or down-slope, and a hose released 1 mm above the
+//! slope — every node slipping when Newton starts. Each step converges; the balance is
+//! the incremental problem's from the anchors: every node within the friction spring's
+//! reach of its anchor (the hose moved by the anchor shift, to 10 µm), no friction outside
+//! its cone, the weight carried (0.1 %).
 
 use super::contact::{incline_plane, world, G};
 use crate::Check;
@@ -27,10 +34,18 @@ const MU: (f64, f64) = (0.5, 0.4);
 /// The node the displacements are read at (the hose's middle).
 const MIDDLE: usize = 10;
 
-/// Where the friction anchors start, down the slope from the nodes \[m\].
-type AnchorShift = f64;
+/// How the hose starts: where its friction anchors are, down the slope from its nodes
+/// \[m\], and how high above the slope it is released (vertically) \[m\].
+#[derive(Clone, Copy)]
+struct Start {
+    anchor_shift: f64,
+    lift: f64,
+}
 
-const LYING: AnchorShift = 0.0;
+const LYING: Start = Start {
+    anchor_shift: 0.0,
+    lift: 0.0,
+};
 
 /// What a run on an incline of angle φ gave.
 struct Run {
@@ -53,12 +68,12 @@ fn incline(
     kind: SolverKind,
     step: f64,
     seconds: f64,
-    anchor_shift: AnchorShift,
+    start: Start,
 ) -> Result<Run, String> {
     let r = crate::harness::hose1().1.outer_radius();
     let (plane, down, normal) = incline_plane(phi, MU);
     let model = world(
-        |s| -down * (0.5 * s - 0.25) + normal * r,
+        |s| -down * (0.5 * s - 0.25) + normal * r + DVec3::Z * start.lift,
         vec![plane],
         DVec3::new(0.0, 0.0, -G),
         0.0,
@@ -71,7 +86,19 @@ fn incline(
     };
     let mut solver = Solver::new(&model, settings).map_err(|e| e.to_string())?;
     let mut state = State::at_rest(&model);
-    let anchors: Vec<DVec3> = state.x.iter().map(|x| *x + down * anchor_shift).collect();
+    if kind == SolverKind::Static && start.anchor_shift != 0.0 {
+        // the static stress cases start from the hose lying in balance (one static step
+        // with the anchors where it lies), its anchors then moved
+        let stats = solver.step(&model, &mut state).map_err(|e| e.to_string())?;
+        if !stats.converged {
+            return Err("the hose did not settle on the slope".into());
+        }
+    }
+    let anchors: Vec<DVec3> = state
+        .x
+        .iter()
+        .map(|x| *x + down * start.anchor_shift)
+        .collect();
     state.friction = FrictionMemory::new(&anchors);
     let begin = state.x[MIDDLE];
     let mut converged = true;
@@ -178,6 +205,7 @@ pub fn run() -> Vec<Check> {
         Err(e) => out.push(Check::failed(CASE, "implicit slide", &e)),
     }
     out.extend(back_to_the_apex());
+    out.extend(static_from_slip());
     out
 }
 
@@ -189,7 +217,11 @@ fn back_to_the_apex() -> Vec<Check> {
     for (name, shift) in [("up-slope", -offset), ("down-slope", offset)] {
         let label =
             |what: &str| format!("implicit, tan(phi)=0.8 mu_k, anchors 2 mm {name}: {what}");
-        match incline(phi, SolverKind::Implicit, 0.01, 0.5, shift) {
+        let start = Start {
+            anchor_shift: shift,
+            lift: 0.0,
+        };
+        match incline(phi, SolverKind::Implicit, 0.01, 0.5, start) {
             Ok(run) => {
                 let fell_back = run.fallback as f64;
                 out.push(Check::with_error(
@@ -220,4 +252,69 @@ fn back_to_the_apex() -> Vec<Check> {
 fn coulomb(quantity: &str, cone: f64) -> Check {
     let beyond = (cone - 1.0).max(0.0);
     Check::with_error(CASE, quantity, cone, 1.0, beyond, 1e-9)
+}
+
+/// The stress cases under the static solver (three 10 ms input steps) at tan φ = 0.8 μ_k:
+/// the hose lying in balance on the slope with its anchors then moved 2 mm up- or
+/// down-slope, and a hose released 1 mm (vertically) above the slope with its anchors
+/// where it is released (it first touches the slope in slip) — every node in slip when
+/// Newton starts. A static step is the
+/// incremental problem from the anchors: the friction springs hold the slope's pull
+/// tan φ f_n < μ_k f_n only near their anchors, so the balance has every node sticking
+/// within the spring's reach μ_s f_n / k_t (below 10 µm, the creep bound of the stick
+/// check) of its anchor — the hose moved by the anchor shift — with its friction inside
+/// the cone and the parts carrying its weight (0.1 %).
+fn static_from_slip() -> Vec<Check> {
+    let phi = (0.8 * MU.1).atan();
+    let starts = [
+        (
+            "anchors 2 mm up-slope",
+            Start {
+                anchor_shift: -0.002,
+                lift: 0.0,
+            },
+        ),
+        (
+            "anchors 2 mm down-slope",
+            Start {
+                anchor_shift: 0.002,
+                lift: 0.0,
+            },
+        ),
+        (
+            "released 1 mm above",
+            Start {
+                anchor_shift: 0.0,
+                lift: 0.001,
+            },
+        ),
+    ];
+    let mut out = Vec::new();
+    for (name, start) in starts {
+        let label = |what: &str| format!("static, tan(phi)=0.8 mu_k, {name}: {what}");
+        match incline(phi, SolverKind::Static, 0.01, 0.03, start) {
+            Ok(run) if run.converged => {
+                out.push(Check::with_error(
+                    CASE,
+                    &label("distance from the anchor along the slope m (abs)"),
+                    run.slid,
+                    start.anchor_shift,
+                    (run.slid - start.anchor_shift).abs(),
+                    1e-5,
+                ));
+                out.push(coulomb(&label("largest |f_t| / (mu_s f_n)"), run.cone));
+                out.push(Check::with_error(
+                    CASE,
+                    &label("|contact force + weight| / weight"),
+                    run.imbalance,
+                    0.0,
+                    run.imbalance,
+                    1e-3,
+                ));
+            }
+            Ok(_) => out.push(Check::failed(CASE, &label("converged"), "did not converge")),
+            Err(e) => out.push(Check::failed(CASE, &label("ran"), &e)),
+        }
+    }
+    out
 }
