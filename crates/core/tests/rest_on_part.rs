@@ -17,7 +17,7 @@ const R: f64 = 0.0175;
 /// 80 × 80 × 10 mm block whose top face is at z = 0, centred under x = `over`.
 fn hose_over_block(elements: usize, z: f64, over: f64) -> Model {
     let (material, section) = hose3();
-    let (vertices, triangles) = Cuboid::new(DVec3::new(0.04, 0.04, 0.005).into()).to_trimesh();
+    let (vertices, triangles) = Cuboid::new(DVec3::new(0.04, 0.04, 0.005)).to_trimesh();
     let block = RigidPartSpec {
         name: "block".into(),
         vertices: vertices
