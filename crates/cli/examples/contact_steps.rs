@@ -4,7 +4,7 @@
 //! counts (`valgrind --tool=callgrind`), where the bench's timed repeats would vary:
 //!
 //! ```sh
-//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose] [floor motion: 1 = it sways as in the bench's moving rows, 2 = it glides at 0.05 m/s] [sleeping: 1 = on, the hoses free; 2 = on, the hoses free and lying straight on a flat floor; 3 = the same, sleeping off]
+//! cargo run --release -p pliant --example contact_steps -- [steps] [floor quads, 0: none] [warm-up steps] [hoses] [elements per hose] [floor motion: 1 = it sways as in the bench's moving rows, 2 = it glides at 0.05 m/s, 3 = it sways through the warm-up and is then frozen in its pose there, the bench's frozen row] [sleeping: 1 = on, the hoses free; 2 = on, the hoses free and lying straight on a flat floor; 3 = the same, sleeping off]
 //! ```
 //!
 //! Prints the CPU time of the steps (and per element-step), the candidate-list counters,
@@ -23,7 +23,7 @@ fn main() -> anyhow::Result<()> {
     let hoses: usize = args.get(4).map_or(Ok(5), |s| s.parse())?;
     let elements: usize = args.get(5).map_or(Ok(30), |s| s.parse())?;
     let motion = match args.get(6).map(String::as_str) {
-        Some("1") => Some(bench::floor_sway()),
+        Some("1") | Some("3") => Some(bench::floor_sway()),
         Some("2") => Some(floor_glide()),
         _ => None,
     };
@@ -44,6 +44,10 @@ fn main() -> anyhow::Result<()> {
         state.loads = Default::default();
     }
     run(&model, &mut state, warm);
+    if args.get(6).map(String::as_str) == Some("3") {
+        (model, state) =
+            bench_contact_phases::freeze_floor(&model, &state, quads, &bench::floor_sway())?;
+    }
     let before = state.contact.candidates.clone();
     let rebuilds = state.hose_contact.rebuilds;
     let t0 = cpu_seconds();

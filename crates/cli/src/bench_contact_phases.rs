@@ -121,7 +121,7 @@ fn time_frozen_windows(floor_quads: usize, quick: bool) -> Result<Vec<(f64, f64)
 /// (its vertices mapped by that pose), and `state`'s hoses on it: positions, orientations,
 /// velocities and loads. (The contacts' remembered normals start afresh: they decide the
 /// side only for a hose axis exactly on the surface.)
-fn freeze_floor(
+pub(crate) fn freeze_floor(
     model: &Model,
     state: &State,
     floor_quads: usize,

@@ -24,6 +24,11 @@
 //! the part costs one displacement test. The lists give the contacts a fresh query of the
 //! part's BVH gives, to the last bit. Their reach is this step's search reach rounded up
 //! (it grows with the speeds), so that it need not be made anew each step.
+//!
+//! Each step, before any search, every beam's reach, list reach and clear test against
+//! each moving part are taken once ([`BeamStep`]) and read by the beam's interior search
+//! and by the node that searches its list: a beam clear of the part settles both without
+//! any further set-up, as the still parts' first pass does in [`super::rigid`].
 
 use super::coherence::{CandidateCache, Searcher};
 use super::environment::{cube, ClosestPoint};
@@ -114,13 +119,41 @@ fn list_reach(current: f64, need: f64, base: f64) -> f64 {
     }
 }
 
-/// Beam `e`'s reach at rest and this step's (node speeds `speed`), against a part moving
-/// by up to `sweep` in the step of `dt`.
-fn beam_reach(model: &Model, speed: &[f64], e: usize, sweep: f64, dt: f64) -> (f64, f64) {
-    let (a, b) = (model.elements[e].node_a, model.elements[e].node_b);
-    let base = model.radius[a].max(model.radius[b]) * (1.0 + SKIN);
-    let own = speed[a].max(speed[b]) * dt;
-    (base, base + sweep + own)
+/// What a beam's searches against one moving part share in a step, made once per beam
+/// and part before any search ([`beam_steps`]) and read by the beam's interior search and
+/// the node that searches its list.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct BeamStep {
+    /// The beam's reach this step: its capsule's, plus how far the part and the beam's
+    /// end points can move in the step.
+    need: f64,
+    /// The reach its list is kept for ([`list_reach`]).
+    list: f64,
+    /// No triangle of the part within reach of the beam, nor of its nodes
+    /// ([`CandidateCache::clear_slack`]): its searches need not be set up.
+    clear: bool,
+}
+
+/// Fills `steps` (one per beam) for the moving part whose lists are `lists`, moving by up
+/// to `sweep` in the step of `dt`: the beams' end points in the part's frame are `local`,
+/// the nodes' speeds `speed`.
+fn beam_steps(
+    model: &Model,
+    lists: &CandidateCache,
+    local: &[DVec3],
+    speed: &[f64],
+    sweep: f64,
+    dt: f64,
+    steps: &mut [BeamStep],
+) {
+    for (e, (el, step)) in model.elements.iter().zip(steps).enumerate() {
+        let (a, b) = (el.node_a, el.node_b);
+        let base = model.radius[a].max(model.radius[b]) * (1.0 + SKIN);
+        let need = base + sweep + speed[a].max(speed[b]) * dt;
+        let list = list_reach(lists.slot_reach(e), need, base);
+        let clear = lists.clear_slack(e, local[a], local[b], list).is_some();
+        *step = BeamStep { need, list, clear };
+    }
 }
 
 /// Detects the contacts of nodes and beam interiors with the moving parts and appends
@@ -153,32 +186,48 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
             *l = pose.inverse_apply(x);
         }
     }
+    // each beam's reach, list reach and clear test per part, once a step
+    let elements = model.elements.len();
+    for s in 0..moving {
+        beam_steps(
+            model,
+            &contact.moving_candidates[s],
+            &contact.moving_local[s * n..(s + 1) * n],
+            &contact.moving_speed,
+            contact.moving_sweep[s],
+            dt,
+            &mut contact.moving_beam[s * elements..(s + 1) * elements],
+        );
+    }
     let local_of = |s: usize, i: usize| s * n + i;
     // nodes: the nearest moving part's closest point within reach
-    for i in 0..state.x.len() {
+    for i in 0..n {
         if state.held[i] || model.body_of[i].is_some() {
             contact.moving_node_normal[i] = (usize::MAX, DVec3::ZERO);
             continue;
         }
-        let (x, r) = (state.x[i], model.radius[i]);
-        let own = contact.moving_speed[i] * dt;
+        let e = contact.node_beam[i] as usize;
+        let beam = model.elements.get(e);
         let mut best: Option<(usize, DVec3, f64)> = None; // slot, local point, distance
         for s in 0..moving {
+            let step = beam.map(|_| contact.moving_beam[s * elements + e]);
+            if step.is_some_and(|b| b.clear) {
+                continue; // no triangle within reach of its beam
+            }
             let k = env.moving[s];
             if model.junction_shapes.excludes_node(k, i) {
                 continue; // inside its own junction body's shape (crate::junction_shape)
             }
+            let (x, r) = (state.x[i], model.radius[i]);
             let sweep = contact.moving_sweep[s];
-            let reach = r * (1.0 + SKIN) + sweep + own;
+            let reach = r * (1.0 + SKIN) + sweep + contact.moving_speed[i] * dt;
             if !meets(&contact.moving_box[s], x, x, reach) {
                 continue;
             }
             let local = contact.moving_local[local_of(s, i)];
             let bound = best.map_or(reach, |b| b.2.min(reach));
-            let e = contact.node_beam[i] as usize;
-            let hit = match model.elements.get(e) {
-                None => env.parts[k].closest_point_local(k, local, bound),
-                Some(el) => {
+            let hit = match (beam, step) {
+                (Some(el), Some(step)) => {
                     // the node searches its beam's list: a point of the segment is no
                     // nearer to any triangle than the segment (as for still parts)
                     let searcher = if el.node_a == i {
@@ -190,13 +239,9 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
                         contact.moving_local[local_of(s, el.node_a)],
                         contact.moving_local[local_of(s, el.node_b)],
                     );
-                    let (base, need) = beam_reach(model, &contact.moving_speed, e, sweep, dt);
                     let lists = &mut contact.moving_candidates[s];
-                    let list = list_reach(lists.slot_reach(e), need, base);
-                    if lists.clear_slack(e, la, lb, list).is_some()
-                        || lists.settled(e, searcher, la, lb, bound)
-                    {
-                        None // no triangle within reach, or its search would find none
+                    if lists.settled(e, searcher, la, lb, bound) {
+                        None // its search would find none
                     } else {
                         let mut search = ClosestPoint::new(local, bound);
                         let query = cube(local, bound);
@@ -206,7 +251,7 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
                             e,
                             la,
                             lb,
-                            list,
+                            step.list,
                             searcher,
                             probe,
                             &query,
@@ -215,6 +260,7 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
                         search.best
                     }
                 }
+                _ => env.parts[k].closest_point_local(k, local, bound),
             };
             if let Some(hit) = hit {
                 if best.is_none_or(|b| hit.distance < b.2) {
@@ -231,7 +277,7 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
         let place = contact.placements[k];
         let local = contact.moving_local[local_of(s, i)];
         let remembered = if memory.0 == k { memory.1 } else { DVec3::ZERO };
-        let (normal_local, depth) = side(local, q_local, r, remembered);
+        let (normal_local, depth) = side(local, q_local, model.radius[i], remembered);
         *memory = (k, normal_local);
         contact.points.push(ContactPoint {
             node_a: i,
@@ -246,23 +292,24 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
     // beam interiors: the nearest pair strictly inside the segment, as for still parts
     for (e, el) in model.elements.iter().enumerate() {
         let (a, b) = (el.node_a, el.node_b);
-        if (state.held[a] && state.held[b])
+        let near = (0..moving).any(|s| !contact.moving_beam[s * elements + e].clear);
+        if !near
+            || (state.held[a] && state.held[b])
             || model.body_of[a].is_some()
             || model.body_of[b].is_some()
         {
             contact.moving_element_normal[e] = (usize::MAX, DVec3::ZERO);
-            continue;
+            continue; // no triangle within reach, or no interior contact to find
         }
         let (xa, xb) = (state.x[a], state.x[b]);
-        let r = model.radius[a].max(model.radius[b]);
         let mut best = None;
         for s in 0..moving {
+            let step = contact.moving_beam[s * elements + e];
             let k = env.moving[s];
-            if model.junction_shapes.excludes_beam(k, a, b) {
-                continue; // inside its own junction body's shape (crate::junction_shape)
+            if step.clear || model.junction_shapes.excludes_beam(k, a, b) {
+                continue; // clear, or inside its own junction body's shape
             }
-            let sweep = contact.moving_sweep[s];
-            let (base, reach) = beam_reach(model, &contact.moving_speed, e, sweep, dt);
+            let reach = step.need;
             if !meets(&contact.moving_box[s], xa.min(xb), xa.max(xb), reach) {
                 continue;
             }
@@ -271,10 +318,7 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
                 contact.moving_local[local_of(s, b)],
             );
             let lists = &mut contact.moving_candidates[s];
-            let list = list_reach(lists.slot_reach(e), reach, base);
-            if lists.clear_slack(e, la, lb, list).is_some()
-                || lists.settled(e, Searcher::Interior, la, lb, reach)
-            {
+            if lists.settled(e, Searcher::Interior, la, lb, reach) {
                 continue;
             }
             let mut search = BeamSearch::new(la, lb, reach);
@@ -290,7 +334,7 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
                 e,
                 la,
                 lb,
-                list,
+                step.list,
                 interior,
                 probe,
                 &query,
@@ -309,6 +353,7 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
             continue;
         };
         let place = contact.placements[k];
+        let r = model.radius[a].max(model.radius[b]);
         let remembered = if memory.0 == k { memory.1 } else { DVec3::ZERO };
         let (normal_local, depth) = side(hit.p, hit.q, r, remembered);
         *memory = (k, normal_local);
@@ -367,14 +412,14 @@ mod tests {
     use crate::{HoseSpec, Material, Model, RigidPartSpec, Section, SimSettings, State, WorldSpec};
     use glam::DVec3;
 
-    /// A rippled floor of 2·n² triangles, 0.6 m square, rocking (±3 mm up and down at
-    /// 2 Hz, ±2° roll at 1.5 Hz), and a bent hose of 24 elements dropped onto it.
-    fn rocking_floor(n: usize) -> Model {
-        let (size, step) = (0.6, 0.6 / n as f64);
+    /// A rippled floor patch of 2·n² triangles over x in `[x0, x1]` and y in ±0.3 m,
+    /// rocking ±3 mm up and down at `heave` Hz and ±2° in roll at 1.5 Hz.
+    fn floor_patch(name: &str, n: usize, (x0, x1): (f64, f64), heave: f64) -> RigidPartSpec {
         let mut vertices = Vec::new();
         for i in 0..=n {
             for j in 0..=n {
-                let (x, y) = (i as f64 * step - size / 2.0, j as f64 * step - size / 2.0);
+                let x = x0 + (x1 - x0) * i as f64 / n as f64;
+                let y = 0.6 * j as f64 / n as f64 - 0.3;
                 vertices.push(DVec3::new(
                     x,
                     y,
@@ -395,8 +440,8 @@ mod tests {
             frequency,
             phase: 0.0,
         };
-        let floor = RigidPartSpec {
-            name: "floor".into(),
+        RigidPartSpec {
+            name: name.into(),
             vertices,
             triangles,
             friction_static: 0.6,
@@ -406,7 +451,7 @@ mod tests {
                 translation: [
                     Oscillation::default(),
                     Oscillation::default(),
-                    swing(0.003, 2.0),
+                    swing(0.003, heave),
                 ],
                 rotation: [
                     swing(2f64.to_radians(), 1.5),
@@ -416,7 +461,11 @@ mod tests {
             })),
             parent: None,
             movable: false,
-        };
+        }
+    }
+
+    /// A bent hose of 24 elements dropped onto `parts`.
+    fn hose_over(parts: Vec<RigidPartSpec>) -> Model {
         let nodes = (0..=24)
             .map(|i| {
                 let s = i as f64 / 24.0;
@@ -432,10 +481,41 @@ mod tests {
         };
         Model::build(&WorldSpec {
             hoses: vec![hose],
-            rigid_parts: vec![floor],
+            rigid_parts: parts,
             settings: SimSettings::default(),
         })
         .unwrap()
+    }
+
+    /// A rippled floor of 2·n² triangles, 0.6 m square, rocking (±3 mm up and down at
+    /// 2 Hz, ±2° roll at 1.5 Hz), and a bent hose of 24 elements dropped onto it.
+    fn rocking_floor(n: usize) -> Model {
+        hose_over(vec![floor_patch("floor", n, (-0.3, 0.3), 2.0)])
+    }
+
+    /// `steps` steps of `model` with the moving parts' candidate lists and with fresh
+    /// queries instead: the same positions and contacts to the last bit at every step.
+    /// Returns the steps in contact and the lists' refreshes.
+    fn kept_against_fresh(model: &Model, steps: usize) -> (usize, u64) {
+        let (mut kept, mut fresh) = (State::at_rest(model), State::at_rest(model));
+        for lists in &mut fresh.contact.moving_candidates {
+            lists.enabled = false;
+        }
+        let mut touching = 0;
+        for step in 0..steps {
+            explicit::step(model, &mut kept);
+            explicit::step(model, &mut fresh);
+            assert_eq!(kept.x, fresh.x, "step {step}");
+            assert_eq!(kept.contact.points, fresh.contact.points, "step {step}");
+            touching += usize::from(!kept.contact.points.is_empty());
+        }
+        let refreshes = kept
+            .contact
+            .moving_candidates
+            .iter()
+            .map(|c| c.refreshes)
+            .sum();
+        (touching, refreshes)
     }
 
     /// The candidate lists kept in the moving part's frame find, step after step, the
@@ -443,28 +523,31 @@ mod tests {
     /// hose falls onto the rocking floor, bounces and rides on it.
     #[test]
     fn lists_in_the_part_frame_give_the_fresh_queries_contacts_to_the_bit() {
-        let model = rocking_floor(60);
-        let (mut kept, mut fresh) = (State::at_rest(&model), State::at_rest(&model));
-        for lists in &mut fresh.contact.moving_candidates {
-            lists.enabled = false;
-        }
-        let mut touching = 0;
-        for step in 0..4000 {
-            explicit::step(&model, &mut kept);
-            explicit::step(&model, &mut fresh);
-            assert_eq!(kept.x, fresh.x, "step {step}");
-            assert_eq!(kept.contact.points, fresh.contact.points, "step {step}");
-            touching += usize::from(!kept.contact.points.is_empty());
-        }
-        let refreshes: u64 = kept
-            .contact
-            .moving_candidates
-            .iter()
-            .map(|c| c.refreshes)
-            .sum();
+        let (touching, refreshes) = kept_against_fresh(&rocking_floor(60), 4000);
         eprintln!("{touching} of 4000 steps in contact; {refreshes} list refreshes");
         assert!(touching > 2000, "{touching} steps in contact");
         // the lists are kept, not remade every step: fewer refreshes than beams × steps / 10
         assert!(refreshes < 24 * 4000 / 10, "{refreshes} refreshes");
+    }
+
+    /// Two floor patches rocking at different rates, overlapping by 4 cm under the middle
+    /// of the hose: the beams and nodes there search both parts' lists and take the
+    /// nearer contact, as fresh queries of both parts do, to the last bit.
+    #[test]
+    fn two_moving_parts_under_one_hose_give_the_fresh_queries_contacts_to_the_bit() {
+        let model = hose_over(vec![
+            floor_patch("left", 30, (-0.3, 0.02), 2.0),
+            floor_patch("right", 30, (-0.02, 0.3), 2.5),
+        ]);
+        let (mut state, mut parts_touched) = (State::at_rest(&model), [false; 2]);
+        for _ in 0..3000 {
+            explicit::step(&model, &mut state);
+            for c in &state.contact.points {
+                parts_touched[c.part] = true;
+            }
+        }
+        assert_eq!(parts_touched, [true, true], "the hose lies on both parts");
+        let (touching, _) = kept_against_fresh(&model, 3000);
+        assert!(touching > 1500, "{touching} steps in contact");
     }
 }

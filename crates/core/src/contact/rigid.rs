@@ -112,6 +112,9 @@ pub struct ContactScratch {
     /// This step, per moving part and node (part-major): the node's position in the
     /// part's frame, mapped once and read by the node's and its beams' searches.
     pub(crate) moving_local: Vec<DVec3>,
+    /// This step, per moving part and beam (part-major): what the beam's searches
+    /// against the part share ([`super::moving`]).
+    pub(crate) moving_beam: Vec<super::moving::BeamStep>,
     /// Per moving part: each beam's candidate triangles of that part, in the part's own
     /// frame ([`super::moving`]; no slots beyond the memory budget, then fresh queries).
     pub(crate) moving_candidates: Vec<CandidateCache>,
@@ -150,6 +153,10 @@ impl ContactScratch {
             moving_local: vec![
                 DVec3::ZERO;
                 moving_slots(model, nodes) * model.environment.moving.len()
+            ],
+            moving_beam: vec![
+                Default::default();
+                moving_slots(model, elements) * model.environment.moving.len()
             ],
             moving_candidates: super::moving::candidate_lists(model),
             shape_impulse: if model.junction_shapes.any() {
