@@ -1,23 +1,25 @@
-//! The part of the scene a hand can move (SPEC H1, P5): in a static equilibrium a node
+//! The part of the scene a hand — or any change of loads — can move (SPEC H1, P5): in a
+//! static equilibrium a node
 //! held kinematically — in all six degrees of freedom, by a fix, drive or mount (a seated
 //! clip, a stub's fixed end, a fixing pressed in, the hand itself) — transmits nothing of
 //! its neighbours' motion to the others, so the network falls apart at such nodes into
-//! independent problems. The hand's component is what is coupled to the hand's nodes
-//! without passing a held node: along the elements, through the rigid bodies (a
+//! independent problems. The component of some seed nodes (the hand's, or the nodes out
+//! of balance) is what is coupled to them without passing a held node: along the elements, through the rigid bodies (a
 //! junction's ends and a stiffened section's nodes are always taken together), along the
 //! cable ties, and — with hose–hose contact on — across every pair of beams near enough
 //! to touch ([`contact_reach`]). The held nodes where it ends belong to it as its
 //! boundary (held where they are).
 
+use crate::contact::hose_hose::closest_segment_segment;
+use crate::loads::LoadCase;
+use crate::{Model, State};
 use glam::DVec3;
-use pliant_core::contact::hose_hose::closest_segment_segment;
-use pliant_core::loads::LoadCase;
-use pliant_core::{Model, State};
 use std::collections::HashMap;
 
-/// The sorted global nodes of the component of `seeds` (the hand's held nodes) in
-/// `state`: the seeds, every node reached from them without passing a held node, and
-/// the held nodes where it stops.
+/// The sorted global nodes of the component of `seeds` (a hand's held nodes, nodes out of
+/// balance, held nodes that move) in `state`: the seeds, every node reached from them
+/// without passing a held node (a seed is passed even when held: it moves), and the held
+/// nodes where it stops.
 pub fn component(model: &Model, state: &State, seeds: &[usize]) -> Vec<usize> {
     let n = model.node_count();
     let mut held = vec![false; n];
@@ -46,6 +48,10 @@ pub fn component(model: &Model, state: &State, seeds: &[usize]) -> Vec<usize> {
     let mut near = Vec::new();
     let mut inside = vec![false; n];
     let mut stack: Vec<usize> = Vec::new();
+    let mut seed = vec![false; n];
+    for &s in seeds {
+        seed[s] = true;
+    }
     let reach = |node: usize, inside: &mut Vec<bool>, stack: &mut Vec<usize>| {
         if !inside[node] {
             inside[node] = true;
@@ -56,9 +62,10 @@ pub fn component(model: &Model, state: &State, seeds: &[usize]) -> Vec<usize> {
         reach(s, &mut inside, &mut stack);
     }
     while let Some(node) = stack.pop() {
-        // a held node is a boundary: nothing beyond it moves with the hand (the seeds
-        // are the hand's own held nodes, the problem's driven boundary)
-        let expand = !held[node] || seeds.contains(&node);
+        // a held node is a boundary: nothing beyond it moves with the hand (held seeds
+        // are the hand's own nodes or nodes driven elsewhere: the problem's driven
+        // boundary)
+        let expand = !held[node] || seed[node];
         if let Some(b) = model.body_of[node] {
             // a rigid body moves as one: all its nodes, held or not
             for &m in &model.bodies[b].nodes {
