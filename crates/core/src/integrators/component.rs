@@ -14,93 +14,133 @@ use crate::contact::hose_hose::closest_segment_segment;
 use crate::loads::LoadCase;
 use crate::{Model, State};
 use glam::DVec3;
-use std::collections::HashMap;
 
 /// The sorted global nodes of the component of `seeds` (a hand's held nodes, nodes out of
 /// balance, held nodes that move) in `state`: the seeds, every node reached from them
 /// without passing a held node (a seed is passed even when held: it moves), and the held
-/// nodes where it stops.
+/// nodes where it stops. (A search that allocates nothing once its buffers are sized:
+/// [`ComponentSearch`].)
 pub fn component(model: &Model, state: &State, seeds: &[usize]) -> Vec<usize> {
-    let n = model.node_count();
-    let mut held = vec![false; n];
-    let mut ties: HashMap<usize, Vec<usize>> = HashMap::new();
-    for (_, case) in state.loads.iter() {
-        match case {
-            LoadCase::Fix(_) | LoadCase::Drive(_) | LoadCase::Mount(_) => held[case.node()] = true,
-            LoadCase::Tie(t) => {
-                ties.entry(t.nodes[0]).or_default().push(t.nodes[1]);
-                ties.entry(t.nodes[1]).or_default().push(t.nodes[0]);
-            }
-            LoadCase::DeadLoad(_) | LoadCase::Support(_) => {}
-        }
-    }
-    // the elements at each node: a hose's interior node has two, an end one
-    let mut node_elements = vec![[usize::MAX; 2]; n];
-    for (e, el) in model.elements.iter().enumerate() {
-        node_elements[el.node_a][1] = e;
-        node_elements[el.node_b][0] = e;
-    }
-    let grid = model
-        .hose_contact
-        .active
-        .then(|| BeamGrid::new(model, state));
-    let mut searched = vec![false; model.elements.len()];
-    let mut near = Vec::new();
-    let mut inside = vec![false; n];
-    let mut stack: Vec<usize> = Vec::new();
-    let mut seed = vec![false; n];
-    for &s in seeds {
-        seed[s] = true;
-    }
-    let reach = |node: usize, inside: &mut Vec<bool>, stack: &mut Vec<usize>| {
-        if !inside[node] {
-            inside[node] = true;
-            stack.push(node);
-        }
-    };
-    for &s in seeds {
-        reach(s, &mut inside, &mut stack);
-    }
-    while let Some(node) = stack.pop() {
-        // a held node is a boundary: nothing beyond it moves with the hand (held seeds
-        // are the hand's own nodes or nodes driven elsewhere: the problem's driven
-        // boundary)
-        let expand = !held[node] || seed[node];
-        if let Some(b) = model.body_of[node] {
-            // a rigid body moves as one: all its nodes, held or not
-            for &m in &model.bodies[b].nodes {
-                reach(m, &mut inside, &mut stack);
+    ComponentSearch::default().run(model, state, seeds).to_vec()
+}
+
+/// The buffers of a [`component`] search, kept from one search to the next (the static
+/// solver searches once per solve).
+#[derive(Clone, Debug, Default)]
+pub struct ComponentSearch {
+    held: Vec<bool>,
+    seed: Vec<bool>,
+    inside: Vec<bool>,
+    stack: Vec<usize>,
+    /// The elements at each node: a hose's interior node has two, an end one.
+    node_elements: Vec<[usize; 2]>,
+    /// The cable ties as (node, other node), both ways, sorted.
+    ties: Vec<(usize, usize)>,
+    searched: Vec<bool>,
+    near: Vec<usize>,
+    grid: BeamGrid,
+    /// The component found last, sorted.
+    nodes: Vec<usize>,
+}
+
+impl ComponentSearch {
+    /// The component of `seeds` in `state` ([`component`]).
+    pub fn run(&mut self, model: &Model, state: &State, seeds: &[usize]) -> &[usize] {
+        let n = model.node_count();
+        let refill = |v: &mut Vec<bool>, len: usize| {
+            v.clear();
+            v.resize(len, false);
+        };
+        refill(&mut self.held, n);
+        refill(&mut self.seed, n);
+        refill(&mut self.inside, n);
+        refill(&mut self.searched, model.elements.len());
+        self.ties.clear();
+        for (_, case) in state.loads.iter() {
+            match case {
+                LoadCase::Fix(_) | LoadCase::Drive(_) | LoadCase::Mount(_) => {
+                    self.held[case.node()] = true
+                }
+                LoadCase::Tie(t) => {
+                    self.ties.push((t.nodes[0], t.nodes[1]));
+                    self.ties.push((t.nodes[1], t.nodes[0]));
+                }
+                LoadCase::DeadLoad(_) | LoadCase::Support(_) => {}
             }
         }
-        if !expand {
-            continue;
+        self.ties.sort_unstable();
+        self.node_elements.clear();
+        self.node_elements.resize(n, [usize::MAX; 2]);
+        for (e, el) in model.elements.iter().enumerate() {
+            self.node_elements[el.node_a][1] = e;
+            self.node_elements[el.node_b][0] = e;
         }
-        for e in node_elements[node] {
-            if e == usize::MAX {
+        let contact = model.hose_contact.active;
+        if contact {
+            self.grid.fill(model, state);
+        }
+        self.stack.clear();
+        let (inside, stack) = (&mut self.inside, &mut self.stack);
+        let mut reach = |node: usize| {
+            if !inside[node] {
+                inside[node] = true;
+                stack.push(node);
+            }
+        };
+        for &s in seeds {
+            self.seed[s] = true;
+            reach(s);
+        }
+        while let Some(node) = self.stack.pop() {
+            let (inside, stack) = (&mut self.inside, &mut self.stack);
+            let mut reach = |node: usize| {
+                if !inside[node] {
+                    inside[node] = true;
+                    stack.push(node);
+                }
+            };
+            // a held node is a boundary: nothing beyond it moves with the hand (held
+            // seeds are the hand's own nodes or nodes driven elsewhere: the problem's
+            // driven boundary)
+            let expand = !self.held[node] || self.seed[node];
+            if let Some(b) = model.body_of[node] {
+                // a rigid body moves as one: all its nodes, held or not
+                for &m in &model.bodies[b].nodes {
+                    reach(m);
+                }
+            }
+            if !expand {
                 continue;
             }
-            let el = &model.elements[e];
-            reach(el.node_a, &mut inside, &mut stack);
-            reach(el.node_b, &mut inside, &mut stack);
-            if let Some(grid) = &grid {
-                if !searched[e] {
-                    searched[e] = true;
-                    grid.near(model, state, e, &mut near);
-                    for &f in &near {
+            for e in self.node_elements[node] {
+                if e == usize::MAX {
+                    continue;
+                }
+                let el = &model.elements[e];
+                reach(el.node_a);
+                reach(el.node_b);
+                if contact && !self.searched[e] {
+                    self.searched[e] = true;
+                    self.grid.near(model, state, e, &mut self.near);
+                    for &f in &self.near {
                         let other = &model.elements[f];
-                        reach(other.node_a, &mut inside, &mut stack);
-                        reach(other.node_b, &mut inside, &mut stack);
+                        reach(other.node_a);
+                        reach(other.node_b);
                     }
                 }
             }
-        }
-        if let Some(tied) = ties.get(&node) {
-            for &m in tied {
-                reach(m, &mut inside, &mut stack);
+            let first = self.ties.partition_point(|&(a, _)| a < node);
+            for &(a, m) in &self.ties[first..] {
+                if a != node {
+                    break;
+                }
+                reach(m);
             }
         }
+        self.nodes.clear();
+        self.nodes.extend((0..n).filter(|&i| self.inside[i]));
+        &self.nodes
     }
-    (0..n).filter(|&i| inside[i]).collect()
 }
 
 /// The reach within which two beams count as coupled by contact \[m\]: r₁ + r₂ (they
@@ -119,34 +159,34 @@ pub fn contact_reach(model: &Model, a: usize, b: usize) -> f64 {
 
 /// The beams in a uniform grid of cells as large as the longest beam plus the largest
 /// reach, by their midpoints: only beams in the same or neighbouring cells can come
-/// within [`contact_reach`] of each other.
+/// within [`contact_reach`] of each other. The beams are kept sorted by cell.
+#[derive(Clone, Debug, Default)]
 struct BeamGrid {
     cell: f64,
-    cells: HashMap<(i64, i64, i64), Vec<usize>>,
+    beams: Vec<((i64, i64, i64), usize)>,
 }
 
 impl BeamGrid {
-    fn new(model: &Model, state: &State) -> BeamGrid {
+    /// Files the beams of `model` at their places in `state`.
+    fn fill(&mut self, model: &Model, state: &State) {
         let r_max = model.radius.iter().copied().fold(0.0, f64::max);
         let longest = model
             .elements
             .iter()
             .map(|el| (state.x[el.node_b] - state.x[el.node_a]).length())
             .fold(0.0, f64::max);
-        let cell = longest + 2.0 * r_max + model.hose_contact.skin;
-        let mut grid = BeamGrid {
-            cell,
-            cells: HashMap::new(),
-        };
-        if cell > 0.0 && cell.is_finite() {
+        self.cell = longest + 2.0 * r_max + model.hose_contact.skin;
+        self.beams.clear();
+        if self.usable() {
             for e in 0..model.elements.len() {
-                grid.cells
-                    .entry(grid.key(model, state, e))
-                    .or_default()
-                    .push(e);
+                self.beams.push((self.key(model, state, e), e));
             }
+            self.beams.sort_unstable();
         }
-        grid
+    }
+
+    fn usable(&self) -> bool {
+        self.cell > 0.0 && self.cell.is_finite()
     }
 
     fn key(&self, model: &Model, state: &State, e: usize) -> (i64, i64, i64) {
@@ -160,7 +200,7 @@ impl BeamGrid {
     /// [`contact_reach`] of it, into `out`.
     fn near(&self, model: &Model, state: &State, e: usize, out: &mut Vec<usize>) {
         out.clear();
-        if !(self.cell > 0.0 && self.cell.is_finite()) {
+        if !self.usable() {
             return;
         }
         let (cx, cy, cz) = self.key(model, state, e);
@@ -169,10 +209,12 @@ impl BeamGrid {
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    let Some(beams) = self.cells.get(&(cx + dx, cy + dy, cz + dz)) else {
-                        continue;
-                    };
-                    for &f in beams {
+                    let key = (cx + dx, cy + dy, cz + dz);
+                    let first = self.beams.partition_point(|(k, _)| *k < key);
+                    for &(k, f) in &self.beams[first..] {
+                        if k != key {
+                            break;
+                        }
                         if model.hose_contact.excluded(e, f) {
                             continue;
                         }

@@ -17,7 +17,7 @@
 //! Models a cut cannot carry exactly (yielding or relaxing elements, parts riding on
 //! junction bodies) are solved whole.
 
-use super::component::component;
+use super::component::ComponentSearch;
 use super::cut::Cut;
 use super::stability::StabilityEvent;
 use super::statics::{StaticError, StaticOptions, StaticReport, StaticSolver};
@@ -46,12 +46,12 @@ pub(super) enum Outcome {
 
 /// Solves only the components of `model` out of balance in `state` (module doc), with
 /// the prescribed poses `solver.system` was set up with ([`crate::newton::NewtonSystem::set_prescribed`]).
-/// `seeds` is scratch.
+/// `seeds` and `search` are scratch.
 pub(super) fn solve_out_of_balance(
     solver: &mut StaticSolver,
     model: &Model,
     state: &mut State,
-    seeds: &mut Vec<usize>,
+    (seeds, search): (&mut Vec<usize>, &mut ComponentSearch),
 ) -> Result<Outcome, StaticError> {
     let whole = Outcome::Whole(None);
     if !Cut::carries(model) {
@@ -79,16 +79,16 @@ pub(super) fn solve_out_of_balance(
     if seeds.is_empty() {
         return Ok(whole); // in balance: the whole path confirms it and checks stability
     }
-    let nodes = component(model, state, seeds);
+    let nodes = search.run(model, state, seeds);
     if nodes.len() == n {
         return Ok(whole);
     }
     let kept = match &mut solver.split {
-        Some(split) => split.cut.refresh(state, &nodes),
+        Some(split) => split.cut.refresh(state, nodes),
         None => false,
     };
     if !kept {
-        let Some(cut) = Cut::new(model, state, nodes) else {
+        let Some(cut) = Cut::new(model, state, nodes.to_vec()) else {
             return Ok(whole);
         };
         let Ok(own) = StaticSolver::new(&cut.model) else {

@@ -13,6 +13,7 @@
 //! solved — a hand's move solves the stretch between the held nodes around it — and the
 //! result is checked on the whole model ([`super::split`]).
 
+use super::component::ComponentSearch;
 use super::split::{solve_out_of_balance, Outcome, Split};
 use super::stability::{dead_moment_work, Escape, StabilityEvent};
 use crate::newton::convergence::Tolerance;
@@ -113,8 +114,9 @@ pub struct StaticSolver {
     saved_q: Vec<glam::DQuat>,
     /// The component solved last on its own ([`super::split`]).
     pub(super) split: Option<Box<Split>>,
-    /// Scratch of the split: the nodes out of balance.
+    /// Scratch of the split: the nodes out of balance, the component search.
     seeds: Vec<usize>,
+    search: ComponentSearch,
 }
 
 impl StaticSolver {
@@ -129,6 +131,7 @@ impl StaticSolver {
             saved_q: vec![glam::DQuat::IDENTITY; n],
             split: None,
             seeds: Vec::with_capacity(n),
+            search: ComponentSearch::default(),
         })
     }
 
@@ -160,8 +163,10 @@ impl StaticSolver {
         };
         if self.options.split {
             let mut seeds = std::mem::take(&mut self.seeds);
-            let outcome = solve_out_of_balance(self, model, state, &mut seeds);
+            let mut search = std::mem::take(&mut self.search);
+            let outcome = solve_out_of_balance(self, model, state, (&mut seeds, &mut search));
             self.seeds = seeds;
+            self.search = search;
             match outcome? {
                 Outcome::Solved(r) => return Ok(r),
                 Outcome::Whole(None) => {}
