@@ -1,4 +1,4 @@
-//! The haptic mirror's cut (crates/server/src/haptic/component.rs, cut.rs) is exact: the
+//! The haptic mirror's cut (crates/core/src/integrators/component.rs, cut.rs) is exact: the
 //! same poses answered on the whole scene and on the hand's component alone give the same
 //! force and torque, to the static solver's tolerance. Two scenes: a hose held by a
 //! seated clip (a fixed node) between the hand and the rest of it, beside a second hose;

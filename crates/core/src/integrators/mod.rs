@@ -16,10 +16,13 @@
 
 use crate::health::{check_for, Divergence};
 pub mod advance;
+pub mod component;
+pub mod cut;
 pub mod explicit;
 pub mod fallback;
 pub mod implicit;
 pub mod snap;
+pub mod split;
 pub mod stability;
 pub mod statics;
 

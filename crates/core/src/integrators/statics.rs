@@ -9,8 +9,12 @@
 //! judged against the problem's load scale ([`Tolerance`]); every equilibrium found is
 //! checked for stability and an unstable one is left for the stable branch nearby
 //! ([`super::stability`]). Velocities are zero: what manual assembly at walking pace
-//! needs, one solve per input.
+//! needs, one solve per input. Only the components of the network out of balance are
+//! solved — a hand's move solves the stretch between the held nodes around it — and the
+//! result is checked on the whole model ([`super::split`]).
 
+use super::component::ComponentSearch;
+use super::split::{solve_out_of_balance, Outcome, Split};
 use super::stability::{dead_moment_work, Escape, StabilityEvent};
 use crate::newton::convergence::Tolerance;
 use crate::newton::system::{
@@ -38,6 +42,9 @@ pub struct StaticOptions {
     /// Unstable equilibria one solve may step off before it reports the last one as
     /// unstable.
     pub max_escapes: usize,
+    /// Solve only the components out of balance, then check the whole model
+    /// ([`super::split`]); off: every solve assembles and factorises the whole model.
+    pub split: bool,
 }
 
 impl Default for StaticOptions {
@@ -48,6 +55,7 @@ impl Default for StaticOptions {
             contact_step_fraction: 0.5,
             stability: true,
             max_escapes: 8,
+            split: true,
         }
     }
 }
@@ -79,6 +87,9 @@ pub struct StaticReport {
     /// Newton iterations whose tangent was not positive definite (factorised with the
     /// modification): the iterates crossed a region where the potential is not convex.
     pub indefinite_iterations: usize,
+    /// Nodes the Newton iterations solved: those of the components out of balance
+    /// ([`super::split`]), or the whole model's.
+    pub solved_nodes: usize,
 }
 
 /// Why the solve failed outright (not just "not converged").
@@ -101,6 +112,11 @@ pub struct StaticSolver {
     /// Configuration before a trial step (line search).
     saved_x: Vec<DVec3>,
     saved_q: Vec<glam::DQuat>,
+    /// The component solved last on its own ([`super::split`]).
+    pub(super) split: Option<Box<Split>>,
+    /// Scratch of the split: the nodes out of balance, the component search.
+    seeds: Vec<usize>,
+    search: ComponentSearch,
 }
 
 impl StaticSolver {
@@ -116,6 +132,9 @@ impl StaticSolver {
             escape: Escape::new(n),
             saved_x: vec![DVec3::ZERO; n],
             saved_q: vec![glam::DQuat::IDENTITY; n],
+            split: None,
+            seeds: Vec::with_capacity(n),
+            search: ComponentSearch::default(),
         })
     }
 
@@ -143,8 +162,27 @@ impl StaticSolver {
             unstable: false,
             first_increment: 0.0,
             indefinite_iterations: 0,
+            solved_nodes: model.node_count(),
         };
-        let mut budget = self.options.max_iterations;
+        if self.options.split {
+            let mut seeds = std::mem::take(&mut self.seeds);
+            let mut search = std::mem::take(&mut self.search);
+            let outcome = solve_out_of_balance(self, model, state, (&mut seeds, &mut search));
+            self.seeds = seeds;
+            self.search = search;
+            match outcome? {
+                Outcome::Solved(r) => return Ok(r),
+                Outcome::Whole(None) => {}
+                Outcome::Whole(Some(part)) => {
+                    // the component's solve is the start of this one
+                    report.iterations = part.iterations;
+                    report.shortened_steps = part.shortened_steps;
+                    report.first_increment = part.first_increment;
+                    report.indefinite_iterations = part.indefinite_iterations;
+                }
+            }
+        }
+        let mut budget = report.iterations + self.options.max_iterations;
         // Dead moments have no potential (their load stiffness is not symmetric): the
         // symmetric part of the tangent then says nothing sure about stability, and Newton
         // runs on the tangent as it is.
@@ -538,7 +576,7 @@ pub(crate) fn increment_at_round_off(
 /// prescribed node, so that support + loads balance), contact forces, body states.
 /// Friction anchors move with the accepted configuration; plastic strains with a
 /// converged one.
-fn finish(model: &Model, state: &mut State, sys: &NewtonSystem, converged: bool) {
+pub(super) fn finish(model: &Model, state: &mut State, sys: &NewtonSystem, converged: bool) {
     sys.commit_friction(state);
     if converged {
         // an equilibrium: yielding elements keep their plastic strains

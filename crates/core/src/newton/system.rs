@@ -676,12 +676,15 @@ impl NewtonSystem {
             }
         }
         for i in 0..self.prescribed.len() {
-            if self.prescribed[i]
-                && (self.target_x[i] != state.x[i] || self.target_q[i] != state.q[i])
-            {
+            if self.moves(state, i) {
                 self.pending = true;
             }
         }
+    }
+
+    /// Whether node `i` is prescribed and not yet on its target.
+    pub fn moves(&self, state: &State, i: usize) -> bool {
+        self.prescribed[i] && (self.target_x[i] != state.x[i] || self.target_q[i] != state.q[i])
     }
 
     /// Whether prescribed nodes still have to be moved to their targets.

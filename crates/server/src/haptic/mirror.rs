@@ -12,7 +12,7 @@
 //! more than one snapshot interval. The mirror changes nothing in the session: the pose
 //! reaches the session as the hand's `move` (see [`super`]).
 //!
-//! Each pose is solved on the hand's component alone ([`super::component`], [`Cut`]):
+//! Each pose is solved on the hand's component alone ([`component`], [`HandCut`]):
 //! the part of the scene between the nodes held in all six degrees of freedom around the
 //! hand, whose equilibrium does not depend on the rest. The cut is kept while its nodes
 //! and load cases stay the same from one synchronisation to the next, and made again
@@ -26,9 +26,10 @@ use pliant_core::{Model, State};
 use std::sync::Arc;
 use std::time::Instant;
 
-use super::component::component;
-use super::cut::Cut;
+use super::cut::HandCut;
 use super::datagram::Status;
+use pliant_core::integrators::component::component;
+use pliant_core::integrators::cut::Cut;
 
 /// What the session publishes for the mirror: its model, a copy of its state and hands.
 #[derive(Clone)]
@@ -78,7 +79,7 @@ pub struct Mirror {
     /// Whether poses are solved on the hand's component alone ([`Cut`]).
     cutting: bool,
     /// The component of the hand answered last, with its own solver.
-    cut: Option<(HandNumber, Cut, StaticSolver)>,
+    cut: Option<(HandNumber, HandCut, StaticSolver)>,
     /// The component a cut was refused for (solved whole until the next
     /// re-synchronisation).
     refused: Option<HandNumber>,
@@ -110,7 +111,7 @@ impl Mirror {
     /// scene's.
     pub fn solved_nodes(&self) -> usize {
         match &self.cut {
-            Some((_, cut, _)) => cut.nodes.len(),
+            Some((_, cut, _)) => cut.cut.nodes.len(),
             None => self.state.x.len(),
         }
     }
@@ -141,7 +142,7 @@ impl Mirror {
                 .is_some_and(|(_, held)| {
                     let seeds: Vec<usize> = held.hand.held_nodes().collect();
                     let nodes = component(&self.source.model, &self.state, &seeds);
-                    cut.refresh(&self.state, &nodes)
+                    cut.cut.refresh(&self.state, &nodes)
                 });
             if !kept {
                 self.cut = None;
@@ -209,25 +210,27 @@ impl Mirror {
     ) -> Option<Answer> {
         if self.cut.as_ref().is_some_and(|(k, ..)| *k != hand) {
             let (_, cut, _) = self.cut.take().expect("checked");
-            cut.write_back(&mut self.state);
+            cut.cut.write_back(&mut self.state);
         }
         if self.cut.is_none() {
             let (_, held) = self.hands.iter().find(|(k, _)| *k == hand)?;
             let seeds: Vec<usize> = held.hand.held_nodes().collect();
             let nodes = component(&self.source.model, &self.state, &seeds);
-            let cut = Cut::new(&self.source.model, &self.state, nodes, held)?;
-            let solver = StaticSolver::new(&cut.model).ok()?;
+            let cut = HandCut::new(&self.source.model, &self.state, nodes, held)?;
+            let mut solver = StaticSolver::new(&cut.cut.model).ok()?;
+            // the cut is one component already
+            solver.options.split = false;
             self.cut = Some((hand, cut, solver));
         }
-        let (_, cut, solver) = self.cut.as_mut().expect("made above");
+        let (_, HandCut { cut, hand: held }, solver) = self.cut.as_mut().expect("made above");
         let time = cut.state.time;
-        cut.hand.hand.set_pose(position, orientation);
-        cut.hand.hand.update(&mut cut.state, time);
+        held.hand.set_pose(position, orientation);
+        held.hand.update(&mut cut.state, time);
         let start = Instant::now();
         let solved = solver.solve(&cut.model, &mut cut.state);
         let solve_seconds = start.elapsed().as_secs_f64();
         let load = solved.as_ref().ok().map(|_| {
-            let load = cut.hand.hand.load(&cut.model, &cut.state);
+            let load = held.hand.load(&cut.model, &cut.state);
             (load.force, load.torque, cut.hose_of[load.hose])
         });
         Some(self.finish(solved, load, solve_seconds))

@@ -22,7 +22,6 @@
 //! is counted and dropped, never a crash. A hand the stream has not heard of for [`IDLE_RELEASE`]
 //! is released (a device that stops sending does not hold a hose for ever).
 
-pub mod component;
 pub mod cut;
 pub mod datagram;
 pub mod mirror;
