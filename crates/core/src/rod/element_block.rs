@@ -14,6 +14,9 @@
 //! agree with the reference to rounding (a test checks ≤ 1e-12 of each load's scale on
 //! random large-rotation configurations):
 //!
+//! * a block whose rest offsets are all the identity — a hose straight at rest, whose
+//!   node frames are its elements' frames — takes the node frames as the end frames
+//!   without the two products q · 1 (which would return q's bits);
 //! * the element frame's rotation matrix is formed once and rotates the four vectors
 //!   (end rates into the frame, end moments out of it) instead of four quaternion
 //!   rotations;
@@ -100,6 +103,9 @@ pub struct ElementBlock {
     torsion: F4,
     offset_a: Q4,
     offset_b: Q4,
+    /// Every lane's rest offsets are the identity (a hose straight at rest whose node
+    /// frames are its elements' frames): the end frames are the node frames.
+    identity_offsets: bool,
     /// The lanes whose element is curved at rest, and whether some or all are: those read
     /// their bending and twist in their ends' axes A_a, A_b ([`crate::rod::element::EndAxes`];
     /// the identity in the other lanes).
@@ -185,6 +191,9 @@ impl ElementBlock {
             torsion: lanes(&|e| e.torsion_stiffness / e.axis_length),
             offset_a: quat(&|e| e.rest_offset_a),
             offset_b: quat(&|e| e.rest_offset_b),
+            identity_offsets: (0..4).all(|k| {
+                el(k).rest_offset_a == DQuat::IDENTITY && el(k).rest_offset_b == DQuat::IDENTITY
+            }),
             curved: M4([0, 1, 2, 3].map(|k| if el(k).end_axes.is_some() { !0 } else { 0 })),
             curved_lanes: match (0..4).filter(|&k| el(k).end_axes.is_some()).count() {
                 0 => CurvedLanes::None,
@@ -291,8 +300,12 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
     let length = chord.dot(chord).sqrt();
     let inv_length = one / length;
     let e1 = chord.scale(inv_length);
-    let ra = qa * b.offset_a;
-    let rb = qb * b.offset_b;
+    // q · 1 = q: the product would give q's bits (up to the sign of a zero component)
+    let (ra, rb) = if b.identity_offsets {
+        (qa, qb)
+    } else {
+        (qa * b.offset_a, qb * b.offset_b)
+    };
     let flip = ra.dot(rb).lt(F4::ZERO);
     let rb = Q4 {
         x: flip.select(-rb.x, rb.x),
@@ -885,6 +898,66 @@ mod tests {
             .chunks(3)
             .map(force)
             .all(|f| f.is_finite() && f.length() > 0.0));
+    }
+
+    /// Blocks whose rest offsets are all the identity (a hose straight at rest) skip the
+    /// end frames' products q · 1 and get the product's bits, on both kernels; blocks with
+    /// other offsets take the products.
+    #[test]
+    fn identity_offsets_skip_the_products_with_the_same_bits() {
+        let mut rng = Rng(8);
+        let mut elements = Vec::new();
+        let mut ends = Vec::new();
+        for k in 0..7 {
+            let e = random_element(&mut rng, k);
+            let rest = (
+                [DVec3::ZERO, DVec3::X * e.rest_length],
+                [e.rest_offset_a.inverse(), e.rest_offset_b.inverse()],
+            );
+            ends.push(random_ends(&mut rng, &e, rest, 0.6));
+            elements.push(e);
+        }
+        let hose = HoseInfo {
+            name: "h".into(),
+            first_node: 0,
+            node_count: 14,
+            first_element: 0,
+            element_count: 7,
+        };
+        let general = PackedElements::new(&elements, std::slice::from_ref(&hose));
+        assert!(general.blocks.iter().all(|b| !b.identity_offsets));
+        for e in &mut elements {
+            (e.rest_offset_a, e.rest_offset_b) = (DQuat::IDENTITY, DQuat::IDENTITY);
+        }
+        let skipping = PackedElements::new(&elements, &[hose]);
+        assert!(skipping.blocks.iter().all(|b| b.identity_offsets));
+        let mut multiplying = skipping.clone();
+        for b in &mut multiplying.blocks {
+            b.identity_offsets = false;
+        }
+        let node = |f: &dyn Fn(&ElementEnds, usize) -> DVec3| -> Vec<DVec3> {
+            (0..14).map(|i| f(&ends[i / 2], i % 2)).collect()
+        };
+        let (x, v, w) = (
+            node(&|e, j| e.x[j]),
+            node(&|e, j| e.v[j]),
+            node(&|e, j| e.w[j]),
+        );
+        let q: Vec<DQuat> = (0..14).map(|i| ends[i / 2].q[i % 2]).collect();
+        let c = NodeView {
+            x: &x,
+            q: &q,
+            v: &v,
+            w: &w,
+            inelastic_history: HistoryView::NONE,
+        };
+        let start = [DVec3::ZERO; 2];
+        for kernel in [Kernel::detect(), Kernel::Portable] {
+            assert_eq!(
+                load_bits(kernel, &skipping, &elements, &c, start),
+                load_bits(kernel, &multiplying, &elements, &c, start)
+            );
+        }
     }
 
     /// The bits of the forces and moments `add_loads` adds to `start` (force, moment) at
