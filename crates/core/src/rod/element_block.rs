@@ -16,7 +16,8 @@
 //!
 //! * a block whose rest offsets are all the identity — a hose straight at rest, whose
 //!   node frames are its elements' frames — takes the node frames as the end frames
-//!   without the two products q · 1 (which would return q's bits);
+//!   without the two products q · 1 (which return q exactly, but for the sign of a
+//!   zero component);
 //! * the element frame's rotation matrix is formed once and rotates the four vectors
 //!   (end rates into the frame, end moments out of it) instead of four quaternion
 //!   rotations;
@@ -300,7 +301,7 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
     let length = chord.dot(chord).sqrt();
     let inv_length = one / length;
     let e1 = chord.scale(inv_length);
-    // q · 1 = q: the product would give q's bits (up to the sign of a zero component)
+    // q · 1 = q exactly (with fused multiply–adds; a zero component may change sign)
     let (ra, rb) = if b.identity_offsets {
         (qa, qb)
     } else {
