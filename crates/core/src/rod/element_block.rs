@@ -16,8 +16,8 @@
 //!
 //! * a block whose rest offsets are all the identity — a hose straight at rest, whose
 //!   node frames are its elements' frames — takes the node frames as the end frames
-//!   without the two products q · 1 (which return q exactly, but for the sign of a
-//!   zero component);
+//!   without the two products q · 1 (which return a finite q exactly, but for the
+//!   sign of a zero component);
 //! * the element frame's rotation matrix is formed once and rotates the four vectors
 //!   (end rates into the frame, end moments out of it) instead of four quaternion
 //!   rotations;
@@ -290,6 +290,23 @@ fn ends<T, L>(
 /// less `base` index `c`'s arrays), with stiffness-proportional damping `beta`.
 #[inline(always)]
 pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> BlockLoads {
+    // two instances of the kernel rather than a branch inside it, which the compiler
+    // turns into computing the products and selecting
+    if b.identity_offsets {
+        loads_of_block::<true>(b, c, base, beta)
+    } else {
+        loads_of_block::<false>(b, c, base, beta)
+    }
+}
+
+/// [`block_loads`], with `IDENTITY` the block's `identity_offsets`.
+#[inline(always)]
+fn loads_of_block<const IDENTITY: bool>(
+    b: &ElementBlock,
+    c: &NodeView,
+    base: usize,
+    beta: f64,
+) -> BlockLoads {
     let na = b.node_a.map(|i| i - base);
     let nb = b.node_b.map(|i| i - base);
     let one = F4::splat(1.0);
@@ -302,7 +319,7 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
     let inv_length = one / length;
     let e1 = chord.scale(inv_length);
     // q · 1 = q exactly (with fused multiply–adds; a zero component may change sign)
-    let (ra, rb) = if b.identity_offsets {
+    let (ra, rb) = if IDENTITY {
         (qa, qb)
     } else {
         (qa * b.offset_a, qb * b.offset_b)
