@@ -865,45 +865,9 @@ mod tests {
     #[test]
     fn kernels_agree_bit_for_bit() {
         let mut rng = Rng(3);
-        let mut elements = Vec::new();
-        let mut rests = Vec::new();
-        for k in 0..7 {
-            let e = random_element(&mut rng, k);
-            let qa = e.rest_offset_a.inverse().normalize();
-            let qb = e.rest_offset_b.inverse().normalize();
-            rests.push(([DVec3::ZERO, DVec3::X * e.rest_length], [qa, qb]));
-            elements.push(e);
-        }
-        let n = 14;
-        let (mut x, mut q) = (vec![DVec3::ZERO; n], vec![DQuat::IDENTITY; n]);
-        let (mut v, mut w) = (vec![DVec3::ZERO; n], vec![DVec3::ZERO; n]);
-        for k in 0..7 {
-            let ends = random_ends(
-                &mut rng,
-                &elements[k],
-                rests[k],
-                if k == 3 { 2.5 } else { 0.6 },
-            );
-            for j in 0..2 {
-                (x[2 * k + j], q[2 * k + j]) = (ends.x[j], ends.q[j]);
-                (v[2 * k + j], w[2 * k + j]) = (ends.v[j], ends.w[j]);
-            }
-        }
-        let hose = HoseInfo {
-            name: "h".into(),
-            first_node: 0,
-            node_count: n,
-            first_element: 0,
-            element_count: 7,
-        };
-        let packed = PackedElements::new(&elements, &[hose]);
-        let c = NodeView {
-            x: &x,
-            q: &q,
-            v: &v,
-            w: &w,
-            inelastic_history: HistoryView::NONE,
-        };
+        let (elements, nodes) = seven_elements(&mut rng, |k| if k == 3 { 2.5 } else { 0.6 });
+        let packed = PackedElements::new(&elements, &[nodes.hose()]);
+        let c = nodes.view();
         let start = [DVec3::ZERO; 2];
         let a = load_bits(Kernel::detect(), &packed, &elements, &c, start);
         assert_eq!(
@@ -924,51 +888,19 @@ mod tests {
     #[test]
     fn identity_offsets_skip_the_products_with_the_same_bits() {
         let mut rng = Rng(8);
-        let mut elements = Vec::new();
-        let mut ends = Vec::new();
-        for k in 0..7 {
-            let e = random_element(&mut rng, k);
-            let rest = (
-                [DVec3::ZERO, DVec3::X * e.rest_length],
-                [e.rest_offset_a.inverse(), e.rest_offset_b.inverse()],
-            );
-            ends.push(random_ends(&mut rng, &e, rest, 0.6));
-            elements.push(e);
-        }
-        let hose = HoseInfo {
-            name: "h".into(),
-            first_node: 0,
-            node_count: 14,
-            first_element: 0,
-            element_count: 7,
-        };
-        let general = PackedElements::new(&elements, std::slice::from_ref(&hose));
+        let (mut elements, nodes) = seven_elements(&mut rng, |_| 0.6);
+        let general = PackedElements::new(&elements, &[nodes.hose()]);
         assert!(general.blocks.iter().all(|b| !b.identity_offsets));
         for e in &mut elements {
             (e.rest_offset_a, e.rest_offset_b) = (DQuat::IDENTITY, DQuat::IDENTITY);
         }
-        let skipping = PackedElements::new(&elements, &[hose]);
+        let skipping = PackedElements::new(&elements, &[nodes.hose()]);
         assert!(skipping.blocks.iter().all(|b| b.identity_offsets));
         let mut multiplying = skipping.clone();
         for b in &mut multiplying.blocks {
             b.identity_offsets = false;
         }
-        let node = |f: &dyn Fn(&ElementEnds, usize) -> DVec3| -> Vec<DVec3> {
-            (0..14).map(|i| f(&ends[i / 2], i % 2)).collect()
-        };
-        let (x, v, w) = (
-            node(&|e, j| e.x[j]),
-            node(&|e, j| e.v[j]),
-            node(&|e, j| e.w[j]),
-        );
-        let q: Vec<DQuat> = (0..14).map(|i| ends[i / 2].q[i % 2]).collect();
-        let c = NodeView {
-            x: &x,
-            q: &q,
-            v: &v,
-            w: &w,
-            inelastic_history: HistoryView::NONE,
-        };
+        let c = nodes.view();
         let start = [DVec3::ZERO; 2];
         for kernel in [Kernel::detect(), Kernel::Portable] {
             assert_eq!(
@@ -976,6 +908,65 @@ mod tests {
                 load_bits(kernel, &multiplying, &elements, &c, start)
             );
         }
+    }
+
+    /// The configuration of a hose's nodes.
+    struct NodeArrays {
+        x: Vec<DVec3>,
+        q: Vec<DQuat>,
+        v: Vec<DVec3>,
+        w: Vec<DVec3>,
+    }
+
+    impl NodeArrays {
+        fn view(&self) -> NodeView<'_> {
+            NodeView {
+                x: &self.x,
+                q: &self.q,
+                v: &self.v,
+                w: &self.w,
+                inelastic_history: HistoryView::NONE,
+            }
+        }
+
+        /// One hose of all the nodes, one element per two nodes.
+        fn hose(&self) -> HoseInfo {
+            HoseInfo {
+                name: "h".into(),
+                first_node: 0,
+                node_count: self.x.len(),
+                first_element: 0,
+                element_count: self.x.len() / 2,
+            }
+        }
+    }
+
+    /// Seven random elements, element k between nodes 2k and 2k + 1, and a configuration
+    /// of their nodes with element k's ends turned by up to `bend(k)` from its rest.
+    fn seven_elements(
+        rng: &mut Rng,
+        bend: impl Fn(usize) -> f64,
+    ) -> (Vec<BeamElement>, NodeArrays) {
+        let mut elements = Vec::new();
+        let mut rests = Vec::new();
+        for k in 0..7 {
+            let e = random_element(rng, k);
+            let qa = e.rest_offset_a.inverse().normalize();
+            let qb = e.rest_offset_b.inverse().normalize();
+            rests.push(([DVec3::ZERO, DVec3::X * e.rest_length], [qa, qb]));
+            elements.push(e);
+        }
+        let n = 14;
+        let (mut x, mut q) = (vec![DVec3::ZERO; n], vec![DQuat::IDENTITY; n]);
+        let (mut v, mut w) = (vec![DVec3::ZERO; n], vec![DVec3::ZERO; n]);
+        for k in 0..7 {
+            let ends = random_ends(rng, &elements[k], rests[k], bend(k));
+            for j in 0..2 {
+                (x[2 * k + j], q[2 * k + j]) = (ends.x[j], ends.q[j]);
+                (v[2 * k + j], w[2 * k + j]) = (ends.v[j], ends.w[j]);
+            }
+        }
+        (elements, NodeArrays { x, q, v, w })
     }
 
     /// The bits of the forces and moments `add_loads` adds to `start` (force, moment) at
