@@ -14,6 +14,10 @@
 //! agree with the reference to rounding (a test checks ≤ 1e-12 of each load's scale on
 //! random large-rotation configurations):
 //!
+//! * a block whose rest offsets are all the identity — a hose straight at rest, whose
+//!   node frames are its elements' frames — takes the node frames as the end frames
+//!   without the two products q · 1 (which return a finite q exactly, but for the
+//!   sign of a zero component);
 //! * the element frame's rotation matrix is formed once and rotates the four vectors
 //!   (end rates into the frame, end moments out of it) instead of four quaternion
 //!   rotations;
@@ -100,6 +104,9 @@ pub struct ElementBlock {
     torsion: F4,
     offset_a: Q4,
     offset_b: Q4,
+    /// Every lane's rest offsets are the identity (a hose straight at rest whose node
+    /// frames are its elements' frames): the end frames are the node frames.
+    identity_offsets: bool,
     /// The lanes whose element is curved at rest, and whether some or all are: those read
     /// their bending and twist in their ends' axes A_a, A_b ([`crate::rod::element::EndAxes`];
     /// the identity in the other lanes).
@@ -185,6 +192,9 @@ impl ElementBlock {
             torsion: lanes(&|e| e.torsion_stiffness / e.axis_length),
             offset_a: quat(&|e| e.rest_offset_a),
             offset_b: quat(&|e| e.rest_offset_b),
+            identity_offsets: (0..4).all(|k| {
+                el(k).rest_offset_a == DQuat::IDENTITY && el(k).rest_offset_b == DQuat::IDENTITY
+            }),
             curved: M4([0, 1, 2, 3].map(|k| if el(k).end_axes.is_some() { !0 } else { 0 })),
             curved_lanes: match (0..4).filter(|&k| el(k).end_axes.is_some()).count() {
                 0 => CurvedLanes::None,
@@ -280,6 +290,23 @@ fn ends<T, L>(
 /// less `base` index `c`'s arrays), with stiffness-proportional damping `beta`.
 #[inline(always)]
 pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> BlockLoads {
+    // two instances of the kernel rather than a branch inside it, which the compiler
+    // turns into computing the products and selecting
+    if b.identity_offsets {
+        loads_of_block::<true>(b, c, base, beta)
+    } else {
+        loads_of_block::<false>(b, c, base, beta)
+    }
+}
+
+/// [`block_loads`], with `IDENTITY` the block's `identity_offsets`.
+#[inline(always)]
+fn loads_of_block<const IDENTITY: bool>(
+    b: &ElementBlock,
+    c: &NodeView,
+    base: usize,
+    beta: f64,
+) -> BlockLoads {
     let na = b.node_a.map(|i| i - base);
     let nb = b.node_b.map(|i| i - base);
     let one = F4::splat(1.0);
@@ -291,8 +318,12 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
     let length = chord.dot(chord).sqrt();
     let inv_length = one / length;
     let e1 = chord.scale(inv_length);
-    let ra = qa * b.offset_a;
-    let rb = qb * b.offset_b;
+    // q · 1 = q exactly (with fused multiply–adds; a zero component may change sign)
+    let (ra, rb) = if IDENTITY {
+        (qa, qb)
+    } else {
+        (qa * b.offset_a, qb * b.offset_b)
+    };
     let flip = ra.dot(rb).lt(F4::ZERO);
     let rb = Q4 {
         x: flip.select(-rb.x, rb.x),
@@ -834,45 +865,9 @@ mod tests {
     #[test]
     fn kernels_agree_bit_for_bit() {
         let mut rng = Rng(3);
-        let mut elements = Vec::new();
-        let mut rests = Vec::new();
-        for k in 0..7 {
-            let e = random_element(&mut rng, k);
-            let qa = e.rest_offset_a.inverse().normalize();
-            let qb = e.rest_offset_b.inverse().normalize();
-            rests.push(([DVec3::ZERO, DVec3::X * e.rest_length], [qa, qb]));
-            elements.push(e);
-        }
-        let n = 14;
-        let (mut x, mut q) = (vec![DVec3::ZERO; n], vec![DQuat::IDENTITY; n]);
-        let (mut v, mut w) = (vec![DVec3::ZERO; n], vec![DVec3::ZERO; n]);
-        for k in 0..7 {
-            let ends = random_ends(
-                &mut rng,
-                &elements[k],
-                rests[k],
-                if k == 3 { 2.5 } else { 0.6 },
-            );
-            for j in 0..2 {
-                (x[2 * k + j], q[2 * k + j]) = (ends.x[j], ends.q[j]);
-                (v[2 * k + j], w[2 * k + j]) = (ends.v[j], ends.w[j]);
-            }
-        }
-        let hose = HoseInfo {
-            name: "h".into(),
-            first_node: 0,
-            node_count: n,
-            first_element: 0,
-            element_count: 7,
-        };
-        let packed = PackedElements::new(&elements, &[hose]);
-        let c = NodeView {
-            x: &x,
-            q: &q,
-            v: &v,
-            w: &w,
-            inelastic_history: HistoryView::NONE,
-        };
+        let (elements, nodes) = seven_elements(&mut rng, |k| if k == 3 { 2.5 } else { 0.6 });
+        let packed = PackedElements::new(&elements, &[nodes.hose()]);
+        let c = nodes.view();
         let start = [DVec3::ZERO; 2];
         let a = load_bits(Kernel::detect(), &packed, &elements, &c, start);
         assert_eq!(
@@ -885,6 +880,93 @@ mod tests {
             .chunks(3)
             .map(force)
             .all(|f| f.is_finite() && f.length() > 0.0));
+    }
+
+    /// Blocks whose rest offsets are all the identity (a hose straight at rest) skip the
+    /// end frames' products q · 1 and get the product's bits, on both kernels; blocks with
+    /// other offsets take the products.
+    #[test]
+    fn identity_offsets_skip_the_products_with_the_same_bits() {
+        let mut rng = Rng(8);
+        let (mut elements, nodes) = seven_elements(&mut rng, |_| 0.6);
+        let general = PackedElements::new(&elements, &[nodes.hose()]);
+        assert!(general.blocks.iter().all(|b| !b.identity_offsets));
+        for e in &mut elements {
+            (e.rest_offset_a, e.rest_offset_b) = (DQuat::IDENTITY, DQuat::IDENTITY);
+        }
+        let skipping = PackedElements::new(&elements, &[nodes.hose()]);
+        assert!(skipping.blocks.iter().all(|b| b.identity_offsets));
+        let mut multiplying = skipping.clone();
+        for b in &mut multiplying.blocks {
+            b.identity_offsets = false;
+        }
+        let c = nodes.view();
+        let start = [DVec3::ZERO; 2];
+        for kernel in [Kernel::detect(), Kernel::Portable] {
+            assert_eq!(
+                load_bits(kernel, &skipping, &elements, &c, start),
+                load_bits(kernel, &multiplying, &elements, &c, start)
+            );
+        }
+    }
+
+    /// The configuration of a hose's nodes.
+    struct NodeArrays {
+        x: Vec<DVec3>,
+        q: Vec<DQuat>,
+        v: Vec<DVec3>,
+        w: Vec<DVec3>,
+    }
+
+    impl NodeArrays {
+        fn view(&self) -> NodeView<'_> {
+            NodeView {
+                x: &self.x,
+                q: &self.q,
+                v: &self.v,
+                w: &self.w,
+                inelastic_history: HistoryView::NONE,
+            }
+        }
+
+        /// One hose of all the nodes, one element per two nodes.
+        fn hose(&self) -> HoseInfo {
+            HoseInfo {
+                name: "h".into(),
+                first_node: 0,
+                node_count: self.x.len(),
+                first_element: 0,
+                element_count: self.x.len() / 2,
+            }
+        }
+    }
+
+    /// Seven random elements, element k between nodes 2k and 2k + 1, and a configuration
+    /// of their nodes with element k's ends turned by up to `bend(k)` from its rest.
+    fn seven_elements(
+        rng: &mut Rng,
+        bend: impl Fn(usize) -> f64,
+    ) -> (Vec<BeamElement>, NodeArrays) {
+        let mut elements = Vec::new();
+        let mut rests = Vec::new();
+        for k in 0..7 {
+            let e = random_element(rng, k);
+            let qa = e.rest_offset_a.inverse().normalize();
+            let qb = e.rest_offset_b.inverse().normalize();
+            rests.push(([DVec3::ZERO, DVec3::X * e.rest_length], [qa, qb]));
+            elements.push(e);
+        }
+        let n = 14;
+        let (mut x, mut q) = (vec![DVec3::ZERO; n], vec![DQuat::IDENTITY; n]);
+        let (mut v, mut w) = (vec![DVec3::ZERO; n], vec![DVec3::ZERO; n]);
+        for k in 0..7 {
+            let ends = random_ends(rng, &elements[k], rests[k], bend(k));
+            for j in 0..2 {
+                (x[2 * k + j], q[2 * k + j]) = (ends.x[j], ends.q[j]);
+                (v[2 * k + j], w[2 * k + j]) = (ends.v[j], ends.w[j]);
+            }
+        }
+        (elements, NodeArrays { x, q, v, w })
     }
 
     /// The bits of the forces and moments `add_loads` adds to `start` (force, moment) at
