@@ -106,10 +106,16 @@ def table(report: Dict[str, Any], measured: str) -> str:
         lines.append(f"| the same floor moving | {times(contact['moving_ratio'])} the floor at rest | {GOALS['moving']} |")
     newton = report.get("newton")
     if newton:
+        # updates whose solve did not converge (fields absent in older reports)
+        unconverged = "".join(
+            f"; {newton[key]} {what} did not converge" for key, what in
+            (("static_unconverged_30", "updates"), ("static_contact_unconverged_30", "updates against the part"))
+            if newton.get(key))
         lines.append(
             f"| quasi-static update, 30 elements | {newton['static_update_ms_30']:.3f} ms "
             f"({newton['static_iterations_30']:.1f} Newton iterations); against a part "
-            f"{newton['static_update_contact_ms_30']:.3f} ms | {GOALS['static'].format(goal=newton['static_goal_ms'])} |")
+            f"{newton['static_update_contact_ms_30']:.3f} ms ({newton['static_contact_iterations_30']:.1f} iterations)"
+            f"{unconverged} | {GOALS['static'].format(goal=newton['static_goal_ms'])} |")
         implicit = ", ".join(f"{count(ns)} ns at {count(n)}" for n, ns in newton["implicit_rows"])
         lines.append(f"| implicit HHT-α step, per element-step | {implicit} elements; cost ∝ elements^"
                      f"{newton['implicit_loglog_slope']:.2f} | — |")

@@ -93,3 +93,17 @@ def test_a_partial_report_is_refused_naming_the_missing_field(tmp_path):
     assert result.returncode == 1
     assert "contact-only.json: report: no field `rows`" in result.stderr
     assert doc.read_text() == PAGE
+
+
+def test_quasi_static_updates_that_did_not_converge_are_named_in_their_row(tmp_path):
+    doc = tmp_path / "performance.md"
+    doc.write_text(PAGE)
+    counted = tmp_path / "unconverged.json"
+    report = json.loads(FIXTURE.read_text())
+    report["newton"]["static_unconverged_30"] = 0
+    report["newton"]["static_contact_unconverged_30"] = 31
+    counted.write_text(json.dumps(report))
+    assert run(doc, counted).returncode == 0
+    row = table_rows(doc.read_text())["quasi-static update, 30 elements"]
+    assert "; 31 updates against the part did not converge" in row
+    assert "; 0 updates" not in row

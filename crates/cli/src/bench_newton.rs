@@ -31,6 +31,11 @@ pub struct NewtonBench {
     pub static_update_contact_ms_30: f64,
     pub static_contact_iterations_30: f64,
     pub static_contact_nodes_30: f64,
+    /// Updates whose Newton solve did not converge within its iterations, of the
+    /// plain and the held-against-a-part rows (the next update starts from where it
+    /// stopped; counted, not hidden).
+    pub static_unconverged_30: usize,
+    pub static_contact_unconverged_30: usize,
     /// (elements, ns per element-step) of the implicit step.
     pub implicit_rows: Vec<(usize, f64)>,
     /// Mean Newton iterations per implicit step, per row.
@@ -85,10 +90,23 @@ fn hose_over(
     Ok((model, state))
 }
 
+/// What [`static_update`] measured.
+struct Updates {
+    /// Median wall time of an update \[ms\].
+    median_ms: f64,
+    /// Mean Newton iterations per update.
+    iterations: f64,
+    /// Mean nodes touching a part at the end of an update.
+    touching: f64,
+    /// Updates that did not converge.
+    unconverged: usize,
+}
+
 /// Median time of a quasi-static update with the free end walked along a path, mean
-/// iterations and mean nodes touching a part. With `against_part` the hose's middle is
-/// pressed onto [`block`]: the hand holds the end 2 cm low and walks it sideways.
-fn static_update(updates: usize, against_part: bool) -> Result<(f64, f64, f64)> {
+/// iterations, mean nodes touching a part and the updates that did not converge. With
+/// `against_part` the hose's middle is pressed onto [`block`]: the hand holds the end
+/// 2 cm low and walks it sideways.
+fn static_update(updates: usize, against_part: bool) -> Result<Updates> {
     let (model, mut state) = if against_part {
         hose_over(30, 0.6, vec![block(-0.02)])?
     } else {
@@ -103,7 +121,7 @@ fn static_update(updates: usize, against_part: bool) -> Result<(f64, f64, f64)> 
     let mut solver = StaticSolver::new(&model)?;
     solver.solve(&model, &mut state)?; // sag into equilibrium first
     let mut times = Vec::with_capacity(updates);
-    let (mut iterations, mut touching) = (0usize, 0usize);
+    let (mut iterations, mut touching, mut unconverged) = (0usize, 0usize, 0usize);
     for k in 0..updates {
         let t = k as f64 * 0.002;
         if let Some(LoadCase::Fix(f)) = state.loads.get_mut(hand) {
@@ -117,7 +135,19 @@ fn static_update(updates: usize, against_part: bool) -> Result<(f64, f64, f64)> 
         let r = solver.solve(&model, &mut state)?;
         times.push(start.elapsed().as_secs_f64() * 1e3);
         iterations += r.iterations;
-        anyhow::ensure!(r.converged, "static update {k} did not converge: {r:?}");
+        if !r.converged {
+            unconverged += 1;
+            if unconverged == 1 {
+                eprintln!(
+                    "pliant bench: quasi-static update {k}{} did not converge in {} iterations \
+                     (residual {:.3e} N against {:.3e} N); counted, and the next update starts there",
+                    if against_part { " against a part" } else { "" },
+                    r.iterations,
+                    r.residual_force,
+                    r.force_limit
+                );
+            }
+        }
         touching += state
             .contact_force
             .iter()
@@ -125,7 +155,12 @@ fn static_update(updates: usize, against_part: bool) -> Result<(f64, f64, f64)> 
             .count();
     }
     let per_update = |n: usize| n as f64 / updates as f64;
-    Ok((median(&times), per_update(iterations), per_update(touching)))
+    Ok(Updates {
+        median_ms: median(&times),
+        iterations: per_update(iterations),
+        touching: per_update(touching),
+        unconverged,
+    })
 }
 
 /// ns per element-step of the implicit solver on a hose of `elements` hanging and
@@ -149,8 +184,8 @@ fn implicit_cost(elements: usize, steps: usize) -> Result<(f64, f64, f64)> {
 
 pub fn run(quick: bool) -> Result<NewtonBench> {
     let updates = if quick { 50 } else { 400 };
-    let (static_ms, static_it, _) = static_update(updates, false)?;
-    let (contact_ms, contact_it, contact_nodes) = static_update(updates, true)?;
+    let plain = static_update(updates, false)?;
+    let contact = static_update(updates, true)?;
     let sizes: &[usize] = if quick {
         &[10, 100]
     } else {
@@ -176,12 +211,14 @@ pub fn run(quick: bool) -> Result<NewtonBench> {
             .collect::<Vec<_>>(),
     );
     Ok(NewtonBench {
-        static_update_ms_30: static_ms,
-        static_iterations_30: static_it,
+        static_update_ms_30: plain.median_ms,
+        static_iterations_30: plain.iterations,
         static_goal_ms: 1.0,
-        static_update_contact_ms_30: contact_ms,
-        static_contact_iterations_30: contact_it,
-        static_contact_nodes_30: contact_nodes,
+        static_update_contact_ms_30: contact.median_ms,
+        static_contact_iterations_30: contact.iterations,
+        static_contact_nodes_30: contact.touching,
+        static_unconverged_30: plain.unconverged,
+        static_contact_unconverged_30: contact.unconverged,
         implicit_rows: rows,
         implicit_iterations: its,
         implicit_rows_cpu: rows_cpu,
@@ -199,6 +236,14 @@ pub fn render(b: &NewtonBench) -> String {
         "  the same held against a part (contact active, {:.1} nodes touching): {:.3} ms median ({:.1} Newton iterations; goal ≤ {} ms)\n",
         b.static_contact_nodes_30, b.static_update_contact_ms_30, b.static_contact_iterations_30, b.static_goal_ms
     ));
+    for (row, n) in [
+        ("quasi-static update", b.static_unconverged_30),
+        ("held against a part", b.static_contact_unconverged_30),
+    ] {
+        if n > 0 {
+            s.push_str(&format!("  {row}: {n} update(s) did not converge\n"));
+        }
+    }
     s.push_str("  implicit HHT-α step, Δt = 10 ms (ns per element-step, by wall and CPU time; iterations per step):\n");
     for (((n, ns), (_, cpu)), it) in b
         .implicit_rows
