@@ -12,8 +12,8 @@
 use glam::DVec3;
 use pliant_core::integrators::StaticSolver;
 use pliant_core::loads::{Fix, LoadCase};
-use pliant_core::{HoseSpec, Model, RigidPartSpec, SimSettings, State, WorldSpec};
-use pliant_testkit::hose1;
+use pliant_core::{Model, RigidPartSpec, SimSettings, State, WorldSpec};
+use pliant_testkit::models::{fix_in_place, straight_hose1};
 
 /// A block 0.2 m long (x from 0.2 to 0.4 m) under the hose's middle, its top 2 cm below
 /// the hose's straight rest line; μ_s 0.5, μ_k 0.4.
@@ -26,29 +26,17 @@ const ELEMENTS: usize = 30;
 const MU_STATIC: f64 = 0.5;
 
 fn hose_over_block() -> (Model, State) {
-    let (material, section) = hose1();
-    let nodes = (0..=ELEMENTS)
-        .map(|i| DVec3::new(0.6 * i as f64 / ELEMENTS as f64, 0.0, 0.0))
-        .collect();
+    let mut hose = straight_hose1("hose", DVec3::ZERO, DVec3::new(0.6, 0.0, 0.0), ELEMENTS);
+    hose.normal_hint = Some(DVec3::Z);
     let mut model = Model::build(&WorldSpec {
-        hoses: vec![HoseSpec {
-            name: "hose".into(),
-            material,
-            nodes,
-            sections: vec![section],
-            normal_hint: Some(DVec3::Z),
-        }],
+        hoses: vec![hose],
         rigid_parts: vec![block()],
         settings: SimSettings::default(),
     })
     .unwrap();
     model.hose_contact.active = false;
     let mut state = State::at_rest(&model);
-    state.loads.add(LoadCase::Fix(Fix {
-        node: 0,
-        position: DVec3::ZERO,
-        orientation: model.rest_q[0],
-    }));
+    fix_in_place(&mut state, [0]);
     (model, state)
 }
 
