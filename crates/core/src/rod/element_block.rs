@@ -603,7 +603,11 @@ fn add_chained<L: Lane4>(a: V4, b: V4, out: &mut [DVec3]) {
     let four: &mut [DVec3; 4] = (&mut out[..4]).try_into().expect("four nodes");
     let [x, y, z] = L::load_vectors(four);
     let sum = |o: L, b: F4, a: F4| (o + L::from_f4(b)) + L::from_f4(a);
-    let sum = [sum(x, b_up.x, a.x), sum(y, b_up.y, a.y), sum(z, b_up.z, a.z)];
+    let sum = [
+        sum(x, b_up.x, a.x),
+        sum(y, b_up.y, a.y),
+        sum(z, b_up.z, a.z),
+    ];
     L::store_vectors(sum, four);
     out[4] += lane(b, 3);
 }

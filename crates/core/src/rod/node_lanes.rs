@@ -77,9 +77,21 @@ impl NodeLanes {
                     d[c0 + k][i..i + 4].copy_from_slice(&l.to_f4().0);
                 }
             };
-            put(d, X, &L::load_vectors(x[four.clone()].try_into().expect("four")));
-            put(d, Q, &L::load_quats(q[four.clone()].try_into().expect("four")));
-            put(d, V, &L::load_vectors(v[four.clone()].try_into().expect("four")));
+            put(
+                d,
+                X,
+                &L::load_vectors(x[four.clone()].try_into().expect("four")),
+            );
+            put(
+                d,
+                Q,
+                &L::load_quats(q[four.clone()].try_into().expect("four")),
+            );
+            put(
+                d,
+                V,
+                &L::load_vectors(v[four.clone()].try_into().expect("four")),
+            );
             put(d, W, &L::load_vectors(w[four].try_into().expect("four")));
             i += 4;
         }
@@ -148,11 +160,15 @@ mod tests {
     fn window_lanes_are_the_gathered_ones() {
         let n = WINDOW + 23;
         let f = |i: usize, k: usize| (i * 13 + k) as f64 * 0.37 - 5.0;
-        let x: Vec<DVec3> = (0..n).map(|i| DVec3::new(f(i, 0), f(i, 1), f(i, 2))).collect();
+        let x: Vec<DVec3> = (0..n)
+            .map(|i| DVec3::new(f(i, 0), f(i, 1), f(i, 2)))
+            .collect();
         let q: Vec<DQuat> = (0..n)
             .map(|i| DQuat::from_xyzw(f(i, 3), f(i, 4), f(i, 5), f(i, 6)))
             .collect();
-        let v: Vec<DVec3> = (0..n).map(|i| DVec3::new(f(i, 7), f(i, 8), f(i, 9))).collect();
+        let v: Vec<DVec3> = (0..n)
+            .map(|i| DVec3::new(f(i, 7), f(i, 8), f(i, 9)))
+            .collect();
         let w: Vec<DVec3> = (0..n)
             .map(|i| DVec3::new(f(i, 10), f(i, 11), f(i, 12)))
             .collect();
