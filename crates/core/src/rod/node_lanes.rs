@@ -6,8 +6,9 @@
 //! its five nodes twice, as the lanes of its ends a (nodes n … n + 3) and b (n + 1 …
 //! n + 4); gathered from the node arrays, that takes a shuffle or an insert for most of
 //! the 2 × 52 numbers, on the floating-point pipes the kernel's multiplies need. Here
-//! the nodes of a window are transposed once (four nodes per 256-bit load and a few
-//! shuffles, [`Lane4::load_vectors`]), each component stored as consecutive f64, and a
+//! the nodes of a window are transposed once (four nodes' vectors by three 256-bit loads
+//! and seven shuffles, their frames by four loads and eight, [`Lane4::load_vectors`] and
+//! [`Lane4::load_quats`]), each component stored as consecutive f64, and a
 //! block's lanes are plain loads: x of nodes n … n + 3 is `x[n..n + 4]`, of n + 1 …
 //! n + 4 is `x[n + 1..n + 5]`.
 //!
