@@ -573,6 +573,25 @@ def test_mass_scaling_reaches_every_run_and_is_checked(scene_path):
             load_study(d)
 
 
+def test_settle_finish_reaches_every_settle_and_is_checked(scene_path, tmp_path):
+    path = tmp_path / "settles.toml"
+    path.write_text(SCENE + '\n[[timeline]]\naction = "settle"\n\n[[timeline]]\naction = "settle"\n')
+    d = study_dict(path, absurd=False)
+    d["settle"] = "static"
+    st = load_study(d)
+    scene = variant_scene(st, samples(st)[0])
+    settles = [a for a in scene["timeline"] if a["action"] == "settle"]
+    assert [a["finish"] for a in settles] == ["static", "static"]
+    assert all("finish" not in a for a in scene["timeline"] if a["action"] != "settle")
+    assert pliant.Scene.from_dict(scene)  # the engine takes the field
+    variant.set_settle_finish(scene, None)  # what the agreement's reference runs get
+    assert all("finish" not in a for a in scene["timeline"])
+    for bad in ("quasi-static", 1, True):
+        d["settle"] = bad
+        with pytest.raises(StudyError, match="settle"):
+            load_study(d)
+
+
 def test_scene_values_are_set_in_every_run_and_checked_on_load(scene_path):
     d = study_dict(scene_path, absurd=False)
     d["scene_values"] = {"simulation.time_step_safety": 0.9, "timeline[3].duration_s": 0.5}

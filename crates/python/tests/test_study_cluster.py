@@ -208,3 +208,21 @@ def test_mass_scaled_runs_are_checked_against_unscaled_ones(tmp_path):
     rows = pq.read_table(tmp_path / "out" / agreement.AGREEMENT_ROWS).to_pandas()
     assert len(rows) == 4
     assert (rows["reference_steps"] > 1.5 * rows["steps"]).all(), rows[["steps", "reference_steps"]]
+
+
+def test_settles_finished_static_are_checked_against_dynamic_ones(tmp_path):
+    """A study whose settles the static solver finishes: its reference runs settle
+    dynamically (labelled so), each verdict compared; the static finish reaches rest in
+    fewer steps than the dynamic settle of the same run."""
+    import pyarrow.parquet as pq
+
+    scene = tmp_path / "s.toml"
+    scene.write_text(SCENE + '\n[[timeline]]\naction = "settle"\nmax_duration_s = 10\n')
+    d = dict(study_dict(scene, runs=4, absurd=False), settle="static")
+    result = pliant.study(d, str(tmp_path / "out"), workers=2, progress=False, check_agreement=4)
+    summary = result.agreement
+    assert summary["solver"] == "explicit (settles finished static)"
+    assert summary["reference_solver"] == "explicit (settles dynamic)"
+    rows = pq.read_table(tmp_path / "out" / agreement.AGREEMENT_ROWS).to_pandas()
+    assert len(rows) == 4
+    assert (rows["steps"] < rows["reference_steps"]).all(), rows[["steps", "reference_steps"]]

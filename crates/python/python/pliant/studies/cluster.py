@@ -364,10 +364,12 @@ def run_study(
                 text = json.dumps(variant.relative_meshes(scene, layout.runs))
                 _atomic_write(path, lambda p: open(p, "w").write(text))
         else:
-            # the reference is the scene's own physics: that solver, no mass scaling
+            # the reference is the scene's own physics: that solver, no mass scaling, its
+            # settles relaxed dynamically all the way
             simulation = scene.setdefault("simulation", {})
             simulation["solver"] = reference_solver
             simulation.pop("mass_scaling", None)
+            variant.set_settle_finish(scene, None)
         solver = scene.get("simulation", {}).get("solver", "explicit")
         text = json.dumps(upload.scene_for_workers(scene))
         if reference:
@@ -448,6 +450,9 @@ def run_study(
             if scaling != 1:
                 solvers += f" (mass scaling {scaling:g})"
                 reference_label += " (unscaled)"
+            if study.settle == "static":
+                solvers += " (settles finished static)"
+                reference_label += " (settles dynamic)"
             measured = agreement.compare({i: rows[i] for i in chosen}, reference, solvers, reference_label)
             agreement.write(layout.out, measured)
             log(agreement.sentence(measured["summary"]))
