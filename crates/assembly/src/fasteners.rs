@@ -266,10 +266,12 @@ impl Fasteners {
     pub fn quiet(&self) -> bool {
         let stub_quiet = |s: &StubRun| {
             s.fix.is_some()
-                || !matches!(s.state, StubState::Inserting { .. } | StubState::Fixed { .. })
+                || !matches!(
+                    s.state,
+                    StubState::Inserting { .. } | StubState::Fixed { .. }
+                )
         };
-        self.stubs.iter().all(stub_quiet)
-            && self.clips.iter().all(|c| !c.state.force_acts())
+        self.stubs.iter().all(stub_quiet) && self.clips.iter().all(|c| !c.state.force_acts())
     }
 
     /// One step's update, before the physics step to `t_next`. `held` lists the nodes the

@@ -270,7 +270,10 @@ fn a_static_finish_the_solver_cannot_take_falls_back_to_the_dynamic_settle_bit_f
         .unwrap();
     assert!(d.converged, "{d:?}");
     assert_eq!(f.solve, None, "{f:?}");
-    assert!(static_solve_ticks(&fallback).is_empty(), "a refused solve is not logged");
+    assert!(
+        static_solve_ticks(&fallback).is_empty(),
+        "a refused solve is not logged"
+    );
     assert_eq!(f.relax, d);
     assert_eq!(fallback.state().x, dynamic.state().x);
     // given the iterations it needs, the same start takes the solve
@@ -280,5 +283,8 @@ fn a_static_finish_the_solver_cannot_take_falls_back_to_the_dynamic_settle_bit_f
         .unwrap();
     let (solve, _) = t.solve.expect("the static solve taken");
     assert!(solve.converged && !solve.unstable, "{solve:?}");
-    assert!(t.relax.converged && t.relax.steps < d.steps, "{t:?} against {d:?}");
+    assert!(
+        t.relax.converged && t.relax.steps < d.steps,
+        "{t:?} against {d:?}"
+    );
 }

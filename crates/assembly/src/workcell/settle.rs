@@ -124,7 +124,13 @@ impl Workcell {
                 max_steps: CHECK_EVERY.min(budget - steps),
                 ..opts.relax
             };
-            let r = self.settle(&SettleOptions { relax: chunk, ..*opts }, obs)?;
+            let r = self.settle(
+                &SettleOptions {
+                    relax: chunk,
+                    ..*opts
+                },
+                obs,
+            )?;
             steps += r.steps;
             if r.converged || steps >= budget {
                 return Ok(StaticFinish {
@@ -146,7 +152,13 @@ impl Workcell {
             max_steps: budget - steps,
             ..opts.relax
         };
-        let r = self.settle(&SettleOptions { relax: rest, ..*opts }, obs)?;
+        let r = self.settle(
+            &SettleOptions {
+                relax: rest,
+                ..*opts
+            },
+            obs,
+        )?;
         Ok(StaticFinish {
             relax: RelaxReport {
                 steps: steps + r.steps,

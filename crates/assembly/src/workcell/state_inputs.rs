@@ -34,7 +34,11 @@ impl Workcell {
                 Err(Refusal::Invalid(format!(
                     "static solve kept only at a stable equilibrium: {} after {} iterations \
                      (residual {:.3e} N, {:.3e} N·m)",
-                    if r.unstable { "unstable" } else { "unconverged" },
+                    if r.unstable {
+                        "unstable"
+                    } else {
+                        "unconverged"
+                    },
                     r.iterations,
                     r.residual_force,
                     r.residual_moment

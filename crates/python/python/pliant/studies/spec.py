@@ -151,6 +151,7 @@ class Study:
     scene_values: Dict[str, Any]
     mass_scaling: Optional[float]
     settle: Optional[str]  # every settle action's `finish`; None: the scene's
+    rerun_unsettled: bool  # a run whose settles do not all rest runs again with the scene's own physics
     envelope_voxel_m: Optional[float]
     envelope_hoses: Optional[List[str]]
     source: Dict[str, Any] = field(repr=False, default_factory=dict)
@@ -451,8 +452,8 @@ def load_study(study: Any, *, runs: Optional[int] = None) -> Study:
     return parse_study(raw, origin, base_dir, runs=runs)
 
 
-TOP_KEYS = {"format", "version", "name", "scene", "length_unit", "solver", "mass_scaling", "settle", "ergonomics",
-            "scene_values",
+TOP_KEYS = {"format", "version", "name", "scene", "length_unit", "solver", "mass_scaling", "settle",
+            "rerun_unsettled", "ergonomics", "scene_values",
             "sampling", "parameters", "envelope"}
 MAX_MASS_SCALING = 1e4  # as the physics core (pliant_core::model::MAX_MASS_SCALING)
 
@@ -522,6 +523,9 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
     if settle is not None and settle not in SETTLE_FINISHES:
         raise _fail(origin, "settle", settle,
                     f"must be one of {', '.join(SETTLE_FINISHES)} (every settle action's finish)")
+    rerun_unsettled = raw.get("rerun_unsettled", False)
+    if not isinstance(rerun_unsettled, bool):
+        raise _fail(origin, "rerun_unsettled", rerun_unsettled, "must be true or false")
     ergonomics = raw.get("ergonomics")
     if ergonomics is not None and not isinstance(ergonomics, str):
         raise _fail(origin, "ergonomics", ergonomics, 'must be a profile string like "posture=sitting, population=men"')
@@ -584,6 +588,7 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
         scene_values=scene_values,
         mass_scaling=None if mass_scaling is None else float(mass_scaling),
         settle=settle,
+        rerun_unsettled=rerun_unsettled,
         envelope_voxel_m=None if voxel is None else voxel * UNITS_M[unit],
         envelope_hoses=hoses,
         source=raw,

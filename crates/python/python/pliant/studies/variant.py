@@ -26,7 +26,7 @@ import pickle
 import os
 import re
 from functools import lru_cache
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List
 
 from . import scene_files
 from .spec import MATERIAL_PROPERTIES, UNITS_M, Study, StudyError
@@ -186,14 +186,11 @@ def parse_ergonomics(profile: str) -> Dict[str, Any]:
     return table
 
 
-def set_settle_finish(scene: Dict[str, Any], finish: Optional[str]) -> None:
-    """Sets every settle action's ``finish`` (``None``: removed, the default dynamic one)."""
+def set_settle_finish(scene: Dict[str, Any], finish: str) -> None:
+    """Sets every settle action's ``finish``."""
     for action in scene.get("timeline", []):
         if isinstance(action, dict) and action.get("action") == "settle":
-            if finish is None:
-                action.pop("finish", None)
-            else:
-                action["finish"] = finish
+            action["finish"] = finish
 
 
 def apply(study: Study, sample: Dict[str, Any]) -> Dict[str, Any]:
