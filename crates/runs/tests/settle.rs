@@ -12,6 +12,7 @@ use pliant_assembly::{Input, NoObserver, RunSummary, SettleOutcome, Workcell};
 use pliant_core::relax::{residual_after, RelaxOptions};
 use pliant_core::{SolverKind, State};
 use pliant_scene::load_scene_str;
+use pliant_testkit::scene_text::{action, box_part, fix, grab, move_hand, SceneText};
 use pliant_testkit::scenes::RAISED_HOSE3_300;
 
 const SOLVERS: [SolverKind; 3] = [
@@ -146,50 +147,26 @@ fn a_settle_too_short_to_come_to_rest_says_so_with_its_residual() {
 /// damping), its tip taken by a hand, lifted 20 mm and let go; then a settle with
 /// `finish`.
 fn lifted_and_let_go(finish: &str) -> String {
-    format!(
-        r#"{}
-[[timeline]]
-action = "settle"
-force_tolerance_n = {FORCE_TOLERANCE}
-moment_tolerance_nm = {MOMENT_TOLERANCE}
-max_duration_s = 30
-finish = "{finish}"
-"#,
-        lifted_hose()
-    )
+    let settle = action("settle")
+        .number("force_tolerance_n", FORCE_TOLERANCE)
+        .number("moment_tolerance_nm", MOMENT_TOLERANCE)
+        .number("max_duration_s", 30.0)
+        .text("finish", finish);
+    SceneText::piece().raw(&lifted_hose()).with(settle).into()
 }
 
 /// [`lifted_and_let_go`] without its settle.
 fn lifted_hose() -> String {
-    format!(
-        r#"{RAISED_HOSE3_300}elements = 10
-
-[[parts]]
-name = "slab"
-box = {{ size = [400, 100, 40] }}
-position = [150, 0, 1962.5]
-
-[[timeline]]
-action = "fix"
-hose = "h"
-node = 0
-
-[[timeline]]
-action = "grab"
-hand = 0
-at = [300, 0, 2000]
-
-[[timeline]]
-action = "move_hand"
-hand = 0
-by = [0, 0, 20]
-duration_s = 0.5
-
-[[timeline]]
-action = "release_hand"
-hand = 0
-"#
-    )
+    SceneText::piece()
+        .raw(&format!("{RAISED_HOSE3_300}elements = 10"))
+        .with_all([
+            box_part("slab", [400.0, 100.0, 40.0], [150.0, 0.0, 1962.5]),
+            fix("h", 0),
+            grab(0, [300.0, 0.0, 2000.0]),
+            move_hand(0, [0.0, 0.0, 20.0], 0.5),
+            action("release_hand").number("hand", 0.0),
+        ])
+        .into()
 }
 
 /// Largest distance between the two states' nodes \[m\].
