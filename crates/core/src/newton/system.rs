@@ -106,6 +106,16 @@ pub struct NewtonSystem {
     pub junctions: Option<Condensation>,
     /// The input of the last modified factorisation, to skip factorising it again.
     pub reuse: FactorReuse,
+    /// Assemblies so far: with the elements' tangents ([`Self::assemble`]) and of the
+    /// loads alone ([`Self::assemble_loads`]).
+    pub assemblies: Assemblies,
+}
+
+/// How many assemblies a [`NewtonSystem`] has done, by kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Assemblies {
+    pub with_tangent: usize,
+    pub loads_only: usize,
 }
 
 /// A support's load on its node at the state's configuration ([`Support::load`]).
@@ -211,6 +221,7 @@ impl NewtonSystem {
                 Gmres::default()
             },
             junctions,
+            assemblies: Assemblies::default(),
         })
     }
 
@@ -218,6 +229,26 @@ impl NewtonSystem {
     /// ∂v/∂δx (0 for statics, γ/(βΔt) for Newmark). Writes `force`, `moment`,
     /// `contact_force` and `matrix` (prescribed nodes not yet eliminated).
     pub fn assemble(&mut self, model: &Model, state: &mut State, rate_factor: f64) {
+        self.assemble_with(model, state, rate_factor, true);
+    }
+
+    /// The loads of [`Self::assemble`] without the elements' tangents, for a line search
+    /// that only compares residuals or slopes along a step: each element's loads from
+    /// [`BeamElement::loads`] (the same loads as the tangent kernel's, to round-off)
+    /// instead of the tangent kernel, which costs several times as much. `matrix` is not
+    /// a tangent afterwards (its element blocks are missing) until the next
+    /// [`Self::assemble`]; `pairs` holds no hose–hose pair.
+    pub fn assemble_loads(&mut self, model: &Model, state: &mut State, rate_factor: f64) {
+        self.assemble_with(model, state, rate_factor, false);
+    }
+
+    /// [`Self::assemble`], with the elements' tangents only if `tangent`.
+    fn assemble_with(&mut self, model: &Model, state: &mut State, rate_factor: f64, tangent: bool) {
+        if tangent {
+            self.assemblies.with_tangent += 1;
+        } else {
+            self.assemblies.loads_only += 1;
+        }
         model.place_junction_nodes(&mut state.x, &mut state.q);
         self.place_shapes(model, state);
         self.matrix.clear();
@@ -229,9 +260,35 @@ impl NewtonSystem {
         self.ties.clear();
         let mut scale = LoadScale::default();
         let beta = model.damping_stiffness;
+        if !tangent {
+            for e in &self.elements {
+                let (a, b) = (e.node_a, e.node_b);
+                let ends = ElementEnds {
+                    x: [state.x[a], state.x[b]],
+                    q: [state.q[a], state.q[b]],
+                    v: [state.v[a], state.v[b]],
+                    w: [state.w[a], state.w[b]],
+                };
+                let loads = match &e.inelastic {
+                    Some(hinge) => {
+                        let history = state.inelastic_view_at(self.solve_time);
+                        model.inelastic.loads(e, hinge, history, &ends, beta)
+                    }
+                    None => e.loads(&ends, beta),
+                };
+                scale.include(
+                    loads.force[0].length(),
+                    loads.moment[0].length().max(loads.moment[1].length()),
+                );
+                self.force[a] += loads.force[0];
+                self.force[b] += loads.force[1];
+                self.moment[a] += loads.moment[0];
+                self.moment[b] += loads.moment[1];
+            }
+        }
         // four elements at a time (the tangent kernel's lanes), added in element order
         let mut tangents = [(ElementLoads::default(), ElementTangent::zeros()); 4];
-        for chunk in self.elements.chunks(4) {
+        for chunk in self.elements.chunks(4).filter(|_| tangent) {
             let last = chunk.len() - 1;
             let element = |k: usize| &chunk[k.min(last)];
             let mut ends = [ElementEnds {
@@ -350,10 +407,12 @@ impl NewtonSystem {
                 &mut state.hose_contact,
                 &mut state.hose_contact_force,
                 |mut pair| {
-                    // the damper acts through v = v₀ + c δx: stiffness k + c·damping
-                    pair.stiffness += pair.damping * rate_factor;
-                    add_pair_tangent(matrix, &pair);
-                    pairs.push(pair);
+                    if tangent {
+                        // the damper acts through v = v₀ + c δx: stiffness k + c·damping
+                        pair.stiffness += pair.damping * rate_factor;
+                        add_pair_tangent(matrix, &pair);
+                        pairs.push(pair);
+                    }
                 },
             );
             for (f, c) in self.force.iter_mut().zip(&state.hose_contact_force) {
