@@ -131,6 +131,36 @@ fn support_load(model: &Model, state: &State, s: &Support, rate_factor: f64) -> 
     )
 }
 
+/// The poses and rates of element `e`'s end nodes in `state`.
+fn element_ends(state: &State, e: &BeamElement) -> ElementEnds {
+    let (a, b) = (e.node_a, e.node_b);
+    ElementEnds {
+        x: [state.x[a], state.x[b]],
+        q: [state.q[a], state.q[b]],
+        v: [state.v[a], state.v[b]],
+        w: [state.w[a], state.w[b]],
+    }
+}
+
+/// Adds element `e`'s `loads` to its end nodes' forces and moments, and their sizes to
+/// the load `scale`.
+fn add_element_loads(
+    e: &BeamElement,
+    loads: &ElementLoads,
+    (force, moment): (&mut [DVec3], &mut [DVec3]),
+    scale: &mut LoadScale,
+) {
+    let (a, b) = (e.node_a, e.node_b);
+    scale.include(
+        loads.force[0].length(),
+        loads.moment[0].length().max(loads.moment[1].length()),
+    );
+    force[a] += loads.force[0];
+    force[b] += loads.force[1];
+    moment[a] += loads.moment[0];
+    moment[b] += loads.moment[1];
+}
+
 /// A glam 3×3 matrix as nalgebra's.
 fn mat3(m: glam::DMat3) -> Matrix3<f64> {
     Matrix3::from_column_slice(&m.to_cols_array())
@@ -262,13 +292,7 @@ impl NewtonSystem {
         let beta = model.damping_stiffness;
         if !tangent {
             for e in &self.elements {
-                let (a, b) = (e.node_a, e.node_b);
-                let ends = ElementEnds {
-                    x: [state.x[a], state.x[b]],
-                    q: [state.q[a], state.q[b]],
-                    v: [state.v[a], state.v[b]],
-                    w: [state.w[a], state.w[b]],
-                };
+                let ends = element_ends(state, e);
                 let loads = match &e.inelastic {
                     Some(hinge) => {
                         let history = state.inelastic_view_at(self.solve_time);
@@ -276,14 +300,7 @@ impl NewtonSystem {
                     }
                     None => e.loads(&ends, beta),
                 };
-                scale.include(
-                    loads.force[0].length(),
-                    loads.moment[0].length().max(loads.moment[1].length()),
-                );
-                self.force[a] += loads.force[0];
-                self.force[b] += loads.force[1];
-                self.moment[a] += loads.moment[0];
-                self.moment[b] += loads.moment[1];
+                add_element_loads(e, &loads, (&mut self.force, &mut self.moment), &mut scale);
             }
         }
         // four elements at a time (the tangent kernel's lanes), added in element order
@@ -298,13 +315,7 @@ impl NewtonSystem {
                 w: [DVec3::ZERO; 2],
             }; 4];
             for (k, ends) in ends.iter_mut().enumerate() {
-                let (a, b) = (element(k).node_a, element(k).node_b);
-                *ends = ElementEnds {
-                    x: [state.x[a], state.x[b]],
-                    q: [state.q[a], state.q[b]],
-                    v: [state.v[a], state.v[b]],
-                    w: [state.w[a], state.w[b]],
-                };
+                *ends = element_ends(state, element(k));
             }
             block_tangent(
                 [element(0), element(1), element(2), element(3)],
@@ -316,13 +327,7 @@ impl NewtonSystem {
             );
             for (e, out) in chunk.iter().zip(&mut tangents) {
                 if let Some(hinge) = &e.inelastic {
-                    let (a, b) = (e.node_a, e.node_b);
-                    let ends = ElementEnds {
-                        x: [state.x[a], state.x[b]],
-                        q: [state.q[a], state.q[b]],
-                        v: [state.v[a], state.v[b]],
-                        w: [state.w[a], state.w[b]],
-                    };
+                    let ends = element_ends(state, e);
                     let history = state.inelastic_view_at(self.solve_time);
                     let hinges = &model.inelastic;
                     *out = inelastic_tangent(hinges, (e, hinge), history, &ends, beta, rate_factor);
@@ -330,14 +335,7 @@ impl NewtonSystem {
             }
             for (e, (loads, k)) in chunk.iter().zip(&tangents) {
                 let (a, b) = (e.node_a, e.node_b);
-                scale.include(
-                    loads.force[0].length(),
-                    loads.moment[0].length().max(loads.moment[1].length()),
-                );
-                self.force[a] += loads.force[0];
-                self.force[b] += loads.force[1];
-                self.moment[a] += loads.moment[0];
-                self.moment[b] += loads.moment[1];
+                add_element_loads(e, loads, (&mut self.force, &mut self.moment), &mut scale);
                 self.matrix.diag[a] += k.fixed_view::<6, 6>(0, 0);
                 self.matrix.diag[b] += k.fixed_view::<6, 6>(6, 6);
                 self.matrix.upper[a] += k.fixed_view::<6, 6>(0, 6);
