@@ -344,8 +344,8 @@ impl StaticSolver {
             let accept = if descent && enough {
                 true
             } else {
-                // the energy does not decide: compare residuals
-                sys.assemble(model, state, 0.0);
+                // the energy does not decide: compare residuals (no tangent needed)
+                sys.assemble_loads(model, state, 0.0);
                 let (f, m) = residual_norms(&sys.force, &sys.moment, &sys.prescribed);
                 f.max(m) < residual0
             };
@@ -491,7 +491,7 @@ impl StaticSolver {
             state.x.copy_from_slice(&self.saved_x);
             state.q.copy_from_slice(&self.saved_q);
             apply_increment(state, &sys.rhs, &sys.prescribed, s);
-            sys.assemble(model, state, 0.0);
+            sys.assemble_loads(model, state, 0.0);
             let slope = slope_along(sys);
             if slope.abs() <= 0.1 * directional {
                 return s;

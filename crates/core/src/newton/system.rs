@@ -106,6 +106,16 @@ pub struct NewtonSystem {
     pub junctions: Option<Condensation>,
     /// The input of the last modified factorisation, to skip factorising it again.
     pub reuse: FactorReuse,
+    /// Assemblies so far: with the elements' tangents ([`Self::assemble`]) and of the
+    /// loads alone ([`Self::assemble_loads`]).
+    pub assemblies: Assemblies,
+}
+
+/// How many assemblies a [`NewtonSystem`] has done, by kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Assemblies {
+    pub with_tangent: usize,
+    pub loads_only: usize,
 }
 
 /// A support's load on its node at the state's configuration ([`Support::load`]).
@@ -119,6 +129,36 @@ fn support_load(model: &Model, state: &State, s: &Support, rate_factor: f64) -> 
         (model.mass[i], model.inertia[i], model.time_step),
         rate_factor,
     )
+}
+
+/// The poses and rates of element `e`'s end nodes in `state`.
+fn element_ends(state: &State, e: &BeamElement) -> ElementEnds {
+    let (a, b) = (e.node_a, e.node_b);
+    ElementEnds {
+        x: [state.x[a], state.x[b]],
+        q: [state.q[a], state.q[b]],
+        v: [state.v[a], state.v[b]],
+        w: [state.w[a], state.w[b]],
+    }
+}
+
+/// Adds element `e`'s `loads` to its end nodes' forces and moments, and their sizes to
+/// the load `scale`.
+fn add_element_loads(
+    e: &BeamElement,
+    loads: &ElementLoads,
+    (force, moment): (&mut [DVec3], &mut [DVec3]),
+    scale: &mut LoadScale,
+) {
+    let (a, b) = (e.node_a, e.node_b);
+    scale.include(
+        loads.force[0].length(),
+        loads.moment[0].length().max(loads.moment[1].length()),
+    );
+    force[a] += loads.force[0];
+    force[b] += loads.force[1];
+    moment[a] += loads.moment[0];
+    moment[b] += loads.moment[1];
 }
 
 /// A glam 3×3 matrix as nalgebra's.
@@ -211,6 +251,7 @@ impl NewtonSystem {
                 Gmres::default()
             },
             junctions,
+            assemblies: Assemblies::default(),
         })
     }
 
@@ -218,6 +259,26 @@ impl NewtonSystem {
     /// ∂v/∂δx (0 for statics, γ/(βΔt) for Newmark). Writes `force`, `moment`,
     /// `contact_force` and `matrix` (prescribed nodes not yet eliminated).
     pub fn assemble(&mut self, model: &Model, state: &mut State, rate_factor: f64) {
+        self.assemble_with(model, state, rate_factor, true);
+    }
+
+    /// The loads of [`Self::assemble`] without the elements' tangents, for a line search
+    /// that only compares residuals or slopes along a step: each element's loads from
+    /// [`BeamElement::loads`] (the same loads as the tangent kernel's, to round-off)
+    /// instead of the tangent kernel, which costs several times as much. `matrix` is not
+    /// a tangent afterwards (its element blocks are missing) until the next
+    /// [`Self::assemble`]; `pairs` holds no hose–hose pair.
+    pub fn assemble_loads(&mut self, model: &Model, state: &mut State, rate_factor: f64) {
+        self.assemble_with(model, state, rate_factor, false);
+    }
+
+    /// [`Self::assemble`], with the elements' tangents only if `tangent`.
+    fn assemble_with(&mut self, model: &Model, state: &mut State, rate_factor: f64, tangent: bool) {
+        if tangent {
+            self.assemblies.with_tangent += 1;
+        } else {
+            self.assemblies.loads_only += 1;
+        }
         model.place_junction_nodes(&mut state.x, &mut state.q);
         self.place_shapes(model, state);
         self.matrix.clear();
@@ -229,9 +290,22 @@ impl NewtonSystem {
         self.ties.clear();
         let mut scale = LoadScale::default();
         let beta = model.damping_stiffness;
+        if !tangent {
+            for e in &self.elements {
+                let ends = element_ends(state, e);
+                let loads = match &e.inelastic {
+                    Some(hinge) => {
+                        let history = state.inelastic_view_at(self.solve_time);
+                        model.inelastic.loads(e, hinge, history, &ends, beta)
+                    }
+                    None => e.loads(&ends, beta),
+                };
+                add_element_loads(e, &loads, (&mut self.force, &mut self.moment), &mut scale);
+            }
+        }
         // four elements at a time (the tangent kernel's lanes), added in element order
         let mut tangents = [(ElementLoads::default(), ElementTangent::zeros()); 4];
-        for chunk in self.elements.chunks(4) {
+        for chunk in self.elements.chunks(4).filter(|_| tangent) {
             let last = chunk.len() - 1;
             let element = |k: usize| &chunk[k.min(last)];
             let mut ends = [ElementEnds {
@@ -241,13 +315,7 @@ impl NewtonSystem {
                 w: [DVec3::ZERO; 2],
             }; 4];
             for (k, ends) in ends.iter_mut().enumerate() {
-                let (a, b) = (element(k).node_a, element(k).node_b);
-                *ends = ElementEnds {
-                    x: [state.x[a], state.x[b]],
-                    q: [state.q[a], state.q[b]],
-                    v: [state.v[a], state.v[b]],
-                    w: [state.w[a], state.w[b]],
-                };
+                *ends = element_ends(state, element(k));
             }
             block_tangent(
                 [element(0), element(1), element(2), element(3)],
@@ -259,13 +327,7 @@ impl NewtonSystem {
             );
             for (e, out) in chunk.iter().zip(&mut tangents) {
                 if let Some(hinge) = &e.inelastic {
-                    let (a, b) = (e.node_a, e.node_b);
-                    let ends = ElementEnds {
-                        x: [state.x[a], state.x[b]],
-                        q: [state.q[a], state.q[b]],
-                        v: [state.v[a], state.v[b]],
-                        w: [state.w[a], state.w[b]],
-                    };
+                    let ends = element_ends(state, e);
                     let history = state.inelastic_view_at(self.solve_time);
                     let hinges = &model.inelastic;
                     *out = inelastic_tangent(hinges, (e, hinge), history, &ends, beta, rate_factor);
@@ -273,14 +335,7 @@ impl NewtonSystem {
             }
             for (e, (loads, k)) in chunk.iter().zip(&tangents) {
                 let (a, b) = (e.node_a, e.node_b);
-                scale.include(
-                    loads.force[0].length(),
-                    loads.moment[0].length().max(loads.moment[1].length()),
-                );
-                self.force[a] += loads.force[0];
-                self.force[b] += loads.force[1];
-                self.moment[a] += loads.moment[0];
-                self.moment[b] += loads.moment[1];
+                add_element_loads(e, loads, (&mut self.force, &mut self.moment), &mut scale);
                 self.matrix.diag[a] += k.fixed_view::<6, 6>(0, 0);
                 self.matrix.diag[b] += k.fixed_view::<6, 6>(6, 6);
                 self.matrix.upper[a] += k.fixed_view::<6, 6>(0, 6);
@@ -350,10 +405,12 @@ impl NewtonSystem {
                 &mut state.hose_contact,
                 &mut state.hose_contact_force,
                 |mut pair| {
-                    // the damper acts through v = v₀ + c δx: stiffness k + c·damping
-                    pair.stiffness += pair.damping * rate_factor;
-                    add_pair_tangent(matrix, &pair);
-                    pairs.push(pair);
+                    if tangent {
+                        // the damper acts through v = v₀ + c δx: stiffness k + c·damping
+                        pair.stiffness += pair.damping * rate_factor;
+                        add_pair_tangent(matrix, &pair);
+                        pairs.push(pair);
+                    }
                 },
             );
             for (f, c) in self.force.iter_mut().zip(&state.hose_contact_force) {
