@@ -18,7 +18,7 @@ use super::split::{solve_out_of_balance, Outcome, Split};
 use super::stability::{dead_moment_work, Escape, StabilityEvent};
 use crate::newton::convergence::Tolerance;
 use crate::newton::system::{
-    apply_increment, contact_translation_limit, largest_free, residual_norms,
+    apply_increment, contact_translation_limit, first_touch_step, largest_free, residual_norms,
     rotation_limited_step, sync_bodies, translation_limited_step, NewtonSystem,
 };
 use crate::{Model, State};
@@ -329,13 +329,21 @@ impl StaticSolver {
             s = s.min(translation_limited_step(&sys.rhs, &sys.prescribed, limit));
         }
         let full = s == 1.0;
+        // a trial past twice the step at which two hoses apart now touch would land them
+        // in or through each other: halved before it is tried (such trials were most of
+        // the halvings of a hand's move on a harness)
+        let touch = first_touch_step(model, state, &sys.rhs, &sys.prescribed);
+        let mut tries = 0;
+        while s > 2.0 * touch && tries < MAX_BACKTRACKS {
+            s *= 0.5;
+            tries += 1;
+        }
         // dead moments have no global potential; along this search line their work is
         // s Σ M·δθ (exact for a fixed axis, first order otherwise)
         let moment_work = dead_moment_work(state, &sys.rhs);
         let energy0 = sys.potential_energy(model, state);
         self.saved_x.copy_from_slice(&state.x);
         self.saved_q.copy_from_slice(&state.q);
-        let mut tries = 0;
         loop {
             apply_increment(state, &sys.rhs, &sys.prescribed, s);
             let energy = sys.potential_energy(model, state) - s * moment_work;
