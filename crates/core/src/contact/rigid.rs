@@ -112,9 +112,17 @@ pub struct ContactScratch {
     /// This step, per moving part and node (part-major): the node's position in the
     /// part's frame, mapped once and read by the node's and its beams' searches.
     pub(crate) moving_local: Vec<DVec3>,
-    /// This step, per moving part and beam (part-major): what the beam's searches
+    /// This step, per beam and moving part (beam-major): what the beam's searches
     /// against the part share ([`super::moving`]).
     pub(crate) moving_beam: Vec<super::moving::BeamStep>,
+    /// This step's beams near some moving part, in order ([`super::moving`]; capacity:
+    /// every beam).
+    pub(crate) moving_near: Vec<u32>,
+    /// This step's beam-interior contacts with the moving parts, appended to `points`
+    /// after the nodes' (capacity: every beam).
+    pub(crate) moving_interior: Vec<ContactPoint>,
+    /// The nodes without a beam (searched by fresh queries of the moving parts).
+    pub(crate) moving_beamless: Vec<u32>,
     /// Per moving part: each beam's candidate triangles of that part, in the part's own
     /// frame ([`super::moving`]; no slots beyond the memory budget, then fresh queries).
     pub(crate) moving_candidates: Vec<CandidateCache>,
@@ -158,6 +166,13 @@ impl ContactScratch {
                 Default::default();
                 moving_slots(model, elements) * model.environment.moving.len()
             ],
+            moving_near: Vec::with_capacity(moving_slots(model, elements)),
+            moving_interior: Vec::with_capacity(moving_slots(model, elements)),
+            moving_beamless: if model.environment.any_moves() {
+                beamless_nodes(model)
+            } else {
+                Vec::new()
+            },
             moving_candidates: super::moving::candidate_lists(model),
             shape_impulse: if model.junction_shapes.any() {
                 vec![(DVec3::ZERO, DVec3::ZERO); model.environment.parts.len()]
@@ -191,6 +206,17 @@ fn node_beams(model: &Model) -> Vec<u32> {
         }
     }
     beam
+}
+
+/// The nodes no beam starts or ends at, in order.
+fn beamless_nodes(model: &Model) -> Vec<u32> {
+    let mut has_beam = vec![false; model.node_count()];
+    for el in &model.elements {
+        (has_beam[el.node_a], has_beam[el.node_b]) = (true, true);
+    }
+    (0..model.node_count() as u32)
+        .filter(|&i| !has_beam[i as usize])
+        .collect()
 }
 
 /// Reach of the capsule of beam `e`: its larger end radius plus the skin.
