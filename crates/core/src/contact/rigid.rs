@@ -339,11 +339,11 @@ impl Nearest for BeamSearch {
     }
 }
 
-/// Steps 1 and 2: detect contacts and correct velocities (see the module doc).
-pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
+/// Step 1 for the still parts: their contacts with the nodes and the beam interiors,
+/// appended to `state.contact.points` (see the module doc).
+fn detect_still(model: &Model, state: &mut State) {
     let env = &model.environment;
     let contact = &mut state.contact;
-    contact.points.clear();
     contact.candidates.follow(env);
     // Most beams are clear: they are settled here (their interior is not in contact, and
     // a beam not held at both ends forgets its normal), and the beam loop below visits
@@ -491,6 +491,15 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
             None => contact.element_normal[e] = DVec3::ZERO,
         }
     }
+}
+
+/// Steps 1 and 2: detect contacts and correct velocities (see the module doc).
+pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
+    let env = &model.environment;
+    state.contact.points.clear();
+    if env.any_still() {
+        detect_still(model, state);
+    } // else no still part: no contact to find, the normals stay zero
     if env.any_moves() {
         super::moving::detect(model, state, dt);
     }
