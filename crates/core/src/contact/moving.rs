@@ -134,50 +134,55 @@ pub(crate) struct BeamStep {
     clear: bool,
 }
 
-/// Takes each beam's [`BeamStep`] against every moving part (`steps`, beam-major: the
-/// parts' steps of beam e at `e·parts ..`) and lists the beams near some part (`near`,
-/// in order: not clear of every part); forgets the remembered normals of the beams
-/// clear of every part and of the nodes that search such a beam's list (their searches
-/// would find nothing). `local` holds the nodes' positions in each part's frame
-/// (part-major), `speed` their speeds; `sweep` how far each part moves at most in the
-/// step of `dt`.
+/// Fills `steps` (one per beam) for moving part `s`, whose lists are `lists`, moving by
+/// up to `sweep` in the step of `dt`: the beams' end points in the part's frame are
+/// `local`, the nodes' speeds `speed`. Appends to `near` the beams within reach of this
+/// part and clear of every earlier one (`earlier`: their steps, part-major).
 #[allow(clippy::too_many_arguments)]
 fn beam_steps(
     model: &Model,
-    lists: &[CandidateCache],
+    lists: &CandidateCache,
     local: &[DVec3],
     speed: &[f64],
-    sweep: &[f64],
+    sweep: f64,
     dt: f64,
-    steps: &mut [BeamStep],
+    (earlier, steps): (&[BeamStep], &mut [BeamStep]),
     near: &mut Vec<u32>,
-    memory: (&mut [(usize, DVec3)], &mut [(usize, DVec3)]),
-    node_beam: &[u32],
 ) {
-    let (node_memory, element_memory) = memory;
-    let (parts, n) = (lists.len(), speed.len());
-    near.clear();
-    let beams = model.elements.iter().zip(steps.chunks_exact_mut(parts.max(1)));
-    for (e, ((el, steps), forget)) in beams.zip(element_memory).enumerate() {
+    let elements = steps.len();
+    for (e, (el, step)) in model.elements.iter().zip(steps).enumerate() {
         let (a, b) = (el.node_a, el.node_b);
         let base = model.radius[a].max(model.radius[b]) * (1.0 + SKIN);
-        let travel = speed[a].max(speed[b]) * dt;
-        let mut clear_of_all = true;
-        for (s, (step, lists)) in steps.iter_mut().zip(lists).enumerate() {
-            let need = base + sweep[s] + travel;
-            let list = list_reach(lists.slot_reach(e), need, base);
-            let (la, lb) = (local[s * n + a], local[s * n + b]);
-            let clear = lists.clear_slack(e, la, lb, list).is_some();
-            *step = BeamStep { need, list, clear };
-            clear_of_all &= clear;
-        }
-        if !clear_of_all {
+        let need = base + sweep + speed[a].max(speed[b]) * dt;
+        let list = list_reach(lists.slot_reach(e), need, base);
+        let clear = lists.clear_slack(e, local[a], local[b], list).is_some();
+        *step = BeamStep { need, list, clear };
+        if !clear && earlier.iter().skip(e).step_by(elements).all(|t| t.clear) {
             near.push(e as u32);
-            continue;
         }
-        *forget = (usize::MAX, DVec3::ZERO);
-        for i in [a, b] {
-            if node_beam[i] as usize == e {
+    }
+}
+
+/// Forgets the remembered normals of the beams near a moving part last step (`last`)
+/// but not in this one (`now`; both in order), and of the nodes that search their lists
+/// (`node_beam`): their searches would find nothing, so the beams are not visited.
+fn forget_left(
+    model: &Model,
+    (last, now): (&[u32], &[u32]),
+    node_beam: &[u32],
+    node_memory: &mut [(usize, DVec3)],
+    element_memory: &mut [(usize, DVec3)],
+) {
+    let mut now = now.iter().peekable();
+    for &e in last {
+        while now.next_if(|&&f| f < e).is_some() {}
+        if now.peek() == Some(&&e) {
+            continue; // still near
+        }
+        element_memory[e as usize] = (usize::MAX, DVec3::ZERO);
+        let el = &model.elements[e as usize];
+        for i in [el.node_a, el.node_b] {
+            if node_beam[i] == e {
                 node_memory[i] = (usize::MAX, DVec3::ZERO);
             }
         }
@@ -189,8 +194,9 @@ fn beam_steps(
 /// order, then the beam interiors' in the beams' order. Before the velocity correction of
 /// [`super::resolve_velocities`], which handles them with the still parts' contacts.
 ///
-/// Only the beams near some part ([`beam_steps`]) are visited, each once: the nodes that
-/// search its list and its interior, with its end points in the part's frame loaded once.
+/// Only the beams near some part are visited ([`beam_steps`]), each once: the nodes that
+/// search its list, then its interior. The others' searches would find nothing: their
+/// remembered normals are forgotten when they leave ([`forget_left`]).
 pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
     let env = &model.environment;
     for slot in 0..env.moving.len() {
@@ -219,48 +225,61 @@ pub(crate) fn detect(model: &Model, state: &mut State, dt: f64) {
         }
     }
     // each beam's reach, list reach and clear test per part, once a step; the near beams
-    beam_steps(
+    let elements = model.elements.len();
+    std::mem::swap(&mut contact.moving_near, &mut contact.moving_near_last);
+    contact.moving_near.clear();
+    for s in 0..moving {
+        let (earlier, steps) = contact.moving_beam[..(s + 1) * elements].split_at_mut(s * elements);
+        beam_steps(
+            model,
+            &contact.moving_candidates[s],
+            &contact.moving_local[s * n..(s + 1) * n],
+            &contact.moving_speed,
+            contact.moving_sweep[s],
+            dt,
+            (earlier, steps),
+            &mut contact.moving_near,
+        );
+    }
+    if moving > 1 {
+        contact.moving_near.sort_unstable();
+    }
+    forget_left(
         model,
-        &contact.moving_candidates,
-        &contact.moving_local,
-        &contact.moving_speed,
-        &contact.moving_sweep,
-        dt,
-        &mut contact.moving_beam,
-        &mut contact.moving_near,
-        (
-            &mut contact.moving_node_normal,
-            &mut contact.moving_element_normal,
-        ),
+        (&contact.moving_near_last, &contact.moving_near),
         &contact.node_beam,
+        &mut contact.moving_node_normal,
+        &mut contact.moving_element_normal,
     );
     let first_node_contact = contact.points.len();
     let mut last_node = None; // the node contacts are in the nodes' order while rising
     let mut in_order = true;
     contact.moving_interior.clear();
     let (x, held) = (&state.x[..], &state.held[..]);
-    let beams = contact.moving_near.len();
-    for v in 0..beams + contact.moving_beamless.len() {
-        // the near beams, then the nodes without a beam (a fresh query each)
-        let (e, own) = match contact.moving_near.get(v) {
-            Some(&e) => {
-                let el = &model.elements[e as usize];
-                let own = |i: usize| (contact.node_beam[i] == e).then_some(i);
-                (Some(e as usize), [own(el.node_a), own(el.node_b)])
+    for v in 0..contact.moving_near.len() {
+        let e = contact.moving_near[v];
+        let el = &model.elements[e as usize];
+        for i in [el.node_a, el.node_b] {
+            if contact.node_beam[i] != e {
+                continue; // it searches another beam's list
             }
-            None => (None, [Some(contact.moving_beamless[v - beams] as usize), None]),
-        };
-        for i in own.into_iter().flatten() {
-            if let Some(c) = node_contact(model, x, held, contact, e, i, dt) {
+            if let Some(c) = node_contact(model, x, held, contact, Some(e as usize), i, dt) {
                 in_order &= last_node < Some(i);
                 last_node = Some(i);
                 contact.points.push(c);
             }
         }
-        if let Some(e) = e {
-            if let Some(c) = interior_contact(model, x, held, contact, e) {
-                contact.moving_interior.push(c);
-            }
+        if let Some(c) = interior_contact(model, x, held, contact, e as usize) {
+            contact.moving_interior.push(c);
+        }
+    }
+    // the nodes without a beam: a fresh query each
+    for v in 0..contact.moving_beamless.len() {
+        let i = contact.moving_beamless[v] as usize;
+        if let Some(c) = node_contact(model, x, held, contact, None, i, dt) {
+            in_order &= last_node < Some(i);
+            last_node = Some(i);
+            contact.points.push(c);
         }
     }
     if !in_order {
@@ -290,7 +309,7 @@ fn node_contact(
     let n = x.len();
     let mut best: Option<(usize, DVec3, f64)> = None; // slot, local point, distance
     for s in 0..moving {
-        let step = e.map(|e| contact.moving_beam[e * moving + s]);
+        let step = e.map(|e| contact.moving_beam[s * model.elements.len() + e]);
         if step.is_some_and(|b| b.clear) {
             continue; // no triangle within reach of its beam
         }
@@ -396,7 +415,7 @@ fn interior_contact(
     let (xa, xb) = (x[a], x[b]);
     let mut best = None;
     for s in 0..moving {
-        let step = contact.moving_beam[e * moving + s];
+        let step = contact.moving_beam[s * model.elements.len() + e];
         let k = env.moving[s];
         if step.clear || model.junction_shapes.excludes_beam(k, a, b) {
             continue; // clear, or inside its own junction body's shape
@@ -405,7 +424,10 @@ fn interior_contact(
         if !meets(&contact.moving_box[s], xa.min(xb), xa.max(xb), reach) {
             continue;
         }
-        let (la, lb) = (contact.moving_local[s * n + a], contact.moving_local[s * n + b]);
+        let (la, lb) = (
+            contact.moving_local[s * n + a],
+            contact.moving_local[s * n + b],
+        );
         let lists = &mut contact.moving_candidates[s];
         if lists.settled(e, Searcher::Interior, la, lb, reach) {
             continue;

@@ -112,12 +112,14 @@ pub struct ContactScratch {
     /// This step, per moving part and node (part-major): the node's position in the
     /// part's frame, mapped once and read by the node's and its beams' searches.
     pub(crate) moving_local: Vec<DVec3>,
-    /// This step, per beam and moving part (beam-major): what the beam's searches
+    /// This step, per moving part and beam (part-major): what the beam's searches
     /// against the part share ([`super::moving`]).
     pub(crate) moving_beam: Vec<super::moving::BeamStep>,
     /// This step's beams near some moving part, in order ([`super::moving`]; capacity:
     /// every beam).
     pub(crate) moving_near: Vec<u32>,
+    /// The last step's `moving_near` (their memories are forgotten when they leave it).
+    pub(crate) moving_near_last: Vec<u32>,
     /// This step's beam-interior contacts with the moving parts, appended to `points`
     /// after the nodes' (capacity: every beam).
     pub(crate) moving_interior: Vec<ContactPoint>,
@@ -167,6 +169,7 @@ impl ContactScratch {
                 moving_slots(model, elements) * model.environment.moving.len()
             ],
             moving_near: Vec::with_capacity(moving_slots(model, elements)),
+            moving_near_last: Vec::with_capacity(moving_slots(model, elements)),
             moving_interior: Vec::with_capacity(moving_slots(model, elements)),
             moving_beamless: if model.environment.any_moves() {
                 beamless_nodes(model)
