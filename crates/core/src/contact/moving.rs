@@ -609,19 +609,24 @@ mod tests {
 
     /// `steps` steps of `model` with the moving parts' candidate lists and with fresh
     /// queries instead: the same positions and contacts to the last bit at every step.
-    /// Returns the steps in contact and the lists' refreshes.
-    fn kept_against_fresh(model: &Model, steps: usize) -> (usize, u64) {
+    /// Returns the steps in contact, the lists' refreshes, and how often a beam left the
+    /// beams visited with the lists (with fresh queries every beam is visited, none clear).
+    fn kept_against_fresh(model: &Model, steps: usize) -> (usize, u64, usize) {
         let (mut kept, mut fresh) = (State::at_rest(model), State::at_rest(model));
         for lists in &mut fresh.contact.moving_candidates {
             lists.enabled = false;
         }
-        let mut touching = 0;
+        let (mut touching, mut left) = (0, 0);
         for step in 0..steps {
             explicit::step(model, &mut kept);
             explicit::step(model, &mut fresh);
             assert_eq!(kept.x, fresh.x, "step {step}");
             assert_eq!(kept.contact.points, fresh.contact.points, "step {step}");
+            assert_eq!(fresh.contact.moving_near.len(), model.elements.len());
             touching += usize::from(!kept.contact.points.is_empty());
+            let near = &kept.contact.moving_near;
+            let last = &kept.contact.moving_near_last;
+            left += last.iter().filter(|e| !near.contains(e)).count();
         }
         let refreshes = kept
             .contact
@@ -629,7 +634,7 @@ mod tests {
             .iter()
             .map(|c| c.refreshes)
             .sum();
-        (touching, refreshes)
+        (touching, refreshes, left)
     }
 
     /// The candidate lists kept in the moving part's frame find, step after step, the
@@ -637,9 +642,15 @@ mod tests {
     /// hose falls onto the rocking floor, bounces and rides on it.
     #[test]
     fn lists_in_the_part_frame_give_the_fresh_queries_contacts_to_the_bit() {
-        let (touching, refreshes) = kept_against_fresh(&rocking_floor(60), 4000);
-        eprintln!("{touching} of 4000 steps in contact; {refreshes} list refreshes");
+        let (touching, refreshes, left) = kept_against_fresh(&rocking_floor(60), 4000);
+        eprintln!(
+            "{touching} of 4000 steps in contact; {refreshes} list refreshes; \
+             {left} times a beam left the beams visited"
+        );
         assert!(touching > 2000, "{touching} steps in contact");
+        // beams clear of the part are not visited, and leave the visited ones (their
+        // normals forgotten) as the hose bounces
+        assert!(left > 0, "no beam left the beams visited");
         // the lists are kept, not remade every step: fewer refreshes than beams × steps / 10
         assert!(refreshes < 24 * 4000 / 10, "{refreshes} refreshes");
     }
@@ -661,7 +672,8 @@ mod tests {
             }
         }
         assert_eq!(parts_touched, [true, true], "the hose lies on both parts");
-        let (touching, _) = kept_against_fresh(&model, 3000);
+        let (touching, _, left) = kept_against_fresh(&model, 3000);
         assert!(touching > 1500, "{touching} steps in contact");
+        assert!(left > 0, "no beam left the beams visited");
     }
 }
