@@ -5,10 +5,14 @@ scratch; a baseline runs the same variants one after another in this process, wi
 Dask. ``--cluster tcp`` starts the cluster as on separate machines instead: a
 ``dask scheduler`` process and ``dask worker --nworkers N`` (single-threaded workers
 under a nanny, in their own working directory; the scene's files are sent to them).
-``--solver`` runs every variant with that solver. Usage:
+``--solver`` runs every variant with that solver, ``--settle static`` finishes every settle
+with the static solver (the study's ``settle``), ``--mass-scaling S`` scales the inertia (the
+study's ``mass_scaling``), ``--rerun-unsettled`` runs again with the scene's own physics the
+runs whose settles do not rest (the study's ``rerun_unsettled``). Usage:
 
     .venv/bin/python bench/study_bench.py [--study examples/engine_bay_study.toml]
-        [--runs 24] [--workers 1,2] [--batch N] [--cluster local|tcp] [--solver S] [--json]
+        [--runs 24] [--workers 1,2] [--batch N] [--cluster local|tcp] [--solver S]
+        [--settle dynamic|static] [--mass-scaling S] [--rerun-unsettled] [--json]
 
 Results go to docs/performance.md ("Studies") by hand, as ratios: the absolute numbers
 depend on the machine and on what else runs on it.
@@ -98,6 +102,10 @@ def main():
     ap.add_argument("--cluster", choices=("local", "tcp"), default="local")
     ap.add_argument("--solver", choices=("explicit", "implicit", "static"), default=None,
                     help="every run with this solver (default: the study's)")
+    ap.add_argument("--settle", choices=("dynamic", "static"), default=None,
+                    help="every settle finished so (default: the study's)")
+    ap.add_argument("--mass-scaling", type=float, default=None, help="every run's mass scaling (default: the study's)")
+    ap.add_argument("--rerun-unsettled", action="store_true", help="runs whose settles do not rest run again plain")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args()
 
@@ -107,8 +115,15 @@ def main():
     study = load_study(a.study, runs=a.runs)
     if a.solver:
         study.solver = a.solver
+    if a.settle:
+        study.settle = a.settle
+    if a.mass_scaling:
+        study.mass_scaling = a.mass_scaling
+    if a.rerun_unsettled:
+        study.rerun_unsettled = True
     results = {"study": os.path.basename(a.study), "runs": a.runs, "cores": os.cpu_count(), "workers": {},
-               "cluster": a.cluster, "solver": a.solver}
+               "cluster": a.cluster, "solver": a.solver, "settle": a.settle, "mass_scaling": a.mass_scaling,
+               "rerun_unsettled": a.rerun_unsettled}
 
     # baseline: the same variants in this process, one after another, no Dask, no envelope
     nb = max(1, a.runs // 2) if a.baseline is None else a.baseline

@@ -260,6 +260,20 @@ impl Fasteners {
         self.stubs.is_empty() && self.clips.is_empty()
     }
 
+    /// Whether no fastener's force law acts now: no clip snapping and no stub pushing on
+    /// its hose (a stub holds a released end by a load case), so that the loads on the hoses are their load cases alone (what the
+    /// quasi-static solver sees).
+    pub fn quiet(&self) -> bool {
+        let stub_quiet = |s: &StubRun| {
+            s.fix.is_some()
+                || !matches!(
+                    s.state,
+                    StubState::Inserting { .. } | StubState::Fixed { .. }
+                )
+        };
+        self.stubs.iter().all(stub_quiet) && self.clips.iter().all(|c| !c.state.force_acts())
+    }
+
     /// One step's update, before the physics step to `t_next`. `held` lists the nodes the
     /// hands hold, each with the force of the hand holding it (last step).
     pub fn update(

@@ -27,7 +27,7 @@ pub use fasteners::{ClipSite, FastenerReport, FastenerSample, StubSite};
 pub use grip::Grip;
 pub use hand::{Hand, HandLoad};
 pub use runner::{run_timeline, RunError, Runner};
-pub use timeline::{Action, MovePath, NodeRef, Rotation, Timeline};
+pub use timeline::{Action, MovePath, NodeRef, Rotation, SettleFinish, Timeline};
 pub use workcell::{
     Applied, ContactEpisode, Findings, HandPeak, HandRecord, InitialLoad, Input, InstabilityNote,
     NoObserver, NodePeak, Observer, Reason, Refusal, RunSummary, SettleOutcome, SolverDoubt, Stage,

@@ -7,7 +7,7 @@
 use crate::ergonomics::ErgonomicProfile;
 use crate::fasteners::{ClipSite, StubSite};
 use crate::report::summary::{OtherStop, Stopped};
-use crate::timeline::{Action, MovePath, Timeline};
+use crate::timeline::{Action, MovePath, SettleFinish, Timeline};
 use crate::workcell::{
     HandNumber, InitialLoad, Input, Observer, Refusal, RunSummary, SettleOptions, SettleOutcome,
     Workcell, WorkcellError, WorkcellOptions, WorkcellSetup,
@@ -16,6 +16,7 @@ use glam::DVec3;
 use pliant_core::curve::catmull_rom;
 use pliant_core::health::Divergence;
 use pliant_core::relax::RelaxOptions;
+use pliant_core::settings::DEFAULT_STATIC_MAX_ITERATIONS;
 use pliant_core::{Model, SolverKind, State};
 use std::sync::Arc;
 
@@ -485,13 +486,14 @@ fn apply(
             force_tolerance,
             moment_tolerance,
             max_duration,
+            finish,
         } => {
             let rest = Rest {
                 force: *force_tolerance,
                 moment: *moment_tolerance,
                 kinetic_energy: *kinetic_energy_threshold,
             };
-            let outcome = settle(cell, index, rest, *max_duration, obs)?;
+            let outcome = settle(cell, index, rest, (*max_duration, *finish), obs)?;
             settles.push(outcome);
         }
     }
@@ -519,14 +521,15 @@ fn steps(cell: &mut Workcell, n: u64, obs: &mut dyn Observer) -> Result<(), Stop
     Ok(())
 }
 
-/// The action's settle: [`Workcell::settle`] for at most `max_duration`, ending with
-/// its residual (the timeline's motion stays physical: no kinetic damping, see
+/// The action's settle: [`Workcell::settle`] (or, finished by the static solver,
+/// [`Workcell::settle_finishing_static`]) for at most `max_duration`, ending with its
+/// residual (the timeline's motion stays physical: no kinetic damping, see
 /// [`SETTLE_KINETIC_DAMPING`]).
 fn settle(
     cell: &mut Workcell,
     index: usize,
     rest: Rest,
-    max_duration: f64,
+    (max_duration, finish): (f64, SettleFinish),
     obs: &mut dyn Observer,
 ) -> Result<SettleOutcome, Stop> {
     let opts = SettleOptions {
@@ -538,7 +541,13 @@ fn settle(
         },
         kinetic_energy: rest.kinetic_energy,
     };
-    let report = cell.settle(&opts, obs).map_err(Stop::Diverged)?;
+    let (report, static_solve_time) = match finish {
+        SettleFinish::Dynamic => cell.settle(&opts, obs).map(|r| (r, None)),
+        SettleFinish::Static => cell
+            .settle_finishing_static(&opts, DEFAULT_STATIC_MAX_ITERATIONS, obs)
+            .map(|f| (f.relax, f.solve.map(|(_, t)| t))),
+    }
+    .map_err(Stop::Diverged)?;
     let state = cell.state();
     Ok(SettleOutcome {
         action: index,
@@ -547,5 +556,6 @@ fn settle(
         kinetic_energy: state.kinetic_energy(cell.model()),
         residual_force: report.residual_force,
         residual_moment: report.residual_moment,
+        static_solve_time,
     })
 }

@@ -148,13 +148,38 @@ pub enum Action {
     /// rest when the largest out-of-balance force and moment on a free node, contact
     /// counted, are within `force_tolerance` \[N\] and `moment_tolerance` \[N·m\],
     /// nothing moves and the total kinetic energy is below `kinetic_energy_threshold`
-    /// \[J\]; after `max_duration` \[s\] it is reported as not at rest.
+    /// \[J\]; after `max_duration` \[s\] it is reported as not at rest. `finish` says
+    /// how the rest is reached ([`SettleFinish`]).
     Settle {
         kinetic_energy_threshold: f64,
         force_tolerance: f64,
         moment_tolerance: f64,
         max_duration: f64,
+        #[serde(default, skip_serializing_if = "SettleFinish::is_dynamic")]
+        finish: SettleFinish,
     },
+}
+
+/// How a `settle` reaches static equilibrium.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SettleFinish {
+    /// Dynamic relaxation all the way: the explicit model's own motion to rest
+    /// ([`Workcell::settle`](crate::Workcell::settle)).
+    #[default]
+    Dynamic,
+    /// Dynamic relaxation until the hands, drives and fasteners are done, then the
+    /// quasi-static solver's stable equilibrium from there, confirmed (or, where the static
+    /// solve fails, reached) by dynamic relaxation
+    /// ([`Workcell::settle_finishing_static`](crate::Workcell::settle_finishing_static)).
+    Static,
+}
+
+impl SettleFinish {
+    /// Whether this is the default, [`SettleFinish::Dynamic`].
+    pub fn is_dynamic(&self) -> bool {
+        *self == SettleFinish::Dynamic
+    }
 }
 
 /// The ordered list of actions of a scene.

@@ -208,6 +208,7 @@ fn released_hand_applies_nothing_and_hose_relaxes() {
             force_tolerance: 1e-3,
             moment_tolerance: 1e-4,
             max_duration: 20.0,
+            finish: pliant_assembly::SettleFinish::Dynamic,
         },
     ]);
     // springs back to straight

@@ -213,6 +213,7 @@ fn explicit_solver_through_the_tie_action() {
                 force_tolerance: 1e-3,
                 moment_tolerance: 1e-4,
                 max_duration: 30.0,
+                finish: pliant_assembly::SettleFinish::Dynamic,
             },
         ],
     };

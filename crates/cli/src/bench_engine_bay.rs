@@ -308,6 +308,7 @@ fn case(
             force_tolerance: 1e-3,
             moment_tolerance: 1e-4,
             max_iterations: 200,
+            stable_only: false,
         })
         .map_err(|e| anyhow::anyhow!("the engine bay's static pre-settle: {e}"))?;
         cell.apply(Input::Arrest)

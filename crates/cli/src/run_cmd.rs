@@ -168,6 +168,9 @@ pub fn print_outcome(verdict: &Verdict, summary: &Summary, out: &Path) {
             s.residual_moment,
             s.kinetic_energy
         );
+        if let Some(t) = s.static_solve_time {
+            println!("  finished by the static solver from t = {t:.3} s");
+        }
     }
     println!(
         "{} steps, {:.3} s simulated in {:.3} s wall ({:.1}× real time); outputs in {}",

@@ -139,6 +139,7 @@ impl Engine {
             force_tolerance,
             moment_tolerance,
             max_iterations,
+            stable_only: false,
         })? {
             Applied::Static(r) => Ok(r),
             _ => Err(Refusal::Invalid("the static solve reported nothing".into())),

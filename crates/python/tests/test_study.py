@@ -17,7 +17,7 @@ pytest.importorskip("pyarrow")
 
 import pliant  # noqa: E402
 from pliant.studies import StudyError, load_study, samples, variant_scene  # noqa: E402
-from pliant.studies import envelope, geometry, variant  # noqa: E402
+from pliant.studies import envelope, geometry, runner, variant  # noqa: E402
 from pliant.studies.sampling import unit_samples  # noqa: E402
 
 from conftest import EXAMPLES  # noqa: E402
@@ -571,6 +571,54 @@ def test_mass_scaling_reaches_every_run_and_is_checked(scene_path):
         d["mass_scaling"] = bad
         with pytest.raises(StudyError, match="mass_scaling"):
             load_study(d)
+
+
+def test_settle_finish_reaches_every_settle_and_is_checked(scene_path, tmp_path):
+    path = tmp_path / "settles.toml"
+    path.write_text(SCENE + '\n[[timeline]]\naction = "settle"\n\n[[timeline]]\naction = "settle"\n')
+    d = study_dict(path, absurd=False)
+    d["settle"] = "static"
+    st = load_study(d)
+    scene = variant_scene(st, samples(st)[0])
+    settles = [a for a in scene["timeline"] if a["action"] == "settle"]
+    assert [a["finish"] for a in settles] == ["static", "static"]
+    assert all("finish" not in a for a in scene["timeline"] if a["action"] != "settle")
+    assert pliant.Scene.from_dict(scene)  # the engine takes the field
+    scene["simulation"] = {"mass_scaling": 9}
+    runner.plain_physics(scene)  # what the agreement's reference runs and the reruns get
+    assert all("finish" not in a for a in scene["timeline"]) and scene["simulation"] == {}
+    for bad in ("quasi-static", 1, True):
+        d["settle"] = bad
+        with pytest.raises(StudyError, match="settle"):
+            load_study(d)
+    d["settle"] = "static"
+    assert load_study(d).rerun_unsettled is False
+    assert load_study(dict(d, rerun_unsettled=True)).rerun_unsettled is True
+    with pytest.raises(StudyError, match="rerun_unsettled"):
+        load_study(dict(d, rerun_unsettled="yes"))
+
+
+def test_an_unsettled_run_is_run_again_with_the_scenes_own_physics(tmp_path):
+    """Mass-scaled with its settles finished static, a run whose settle cannot come to rest
+    in its 10 ms is run again plain (no scaling, settle dynamic): the row is the plain
+    run's, to the step; one that rests keeps its own row."""
+    base = tomllib.loads(SCENE)
+    base["simulation"] = {"mass_scaling": 4}
+
+    def row(settle_s, rerun):
+        scene = variant.plain_copy(base)
+        scene["timeline"].append({"action": "settle", "max_duration_s": settle_s, "finish": "static"})
+        task = runner.Task("r", 0, json.dumps(scene), str(tmp_path), {}, [], 0.0, rerun_unsettled=rerun)
+        return runner.run_variant(task)["row"], scene
+
+    short, scene = row(0.01, True)
+    assert short["status"] == "ok" and short["rerun"] is True
+    plain = pliant.run_timeline(pliant.Scene.from_dict(runner.plain_physics(scene)))
+    assert short["steps"] == plain.steps and short["feasible"] == plain.feasible
+    cheap, _ = row(0.01, False)
+    assert cheap["rerun"] is False and cheap["steps"] < 0.75 * short["steps"]  # the step is twice as long
+    rested, _ = row(10.0, True)
+    assert rested["rerun"] is False
 
 
 def test_scene_values_are_set_in_every_run_and_checked_on_load(scene_path):

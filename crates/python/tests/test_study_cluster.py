@@ -192,19 +192,37 @@ def test_the_sample_is_the_same_for_the_same_seed_and_never_repeats():
     assert agreement.choose(list(range(5)), 30, seed=4) == list(range(5))
 
 
+def checked_study(tmp_path, scene_text, **options):
+    """Four runs of the small study on ``scene_text`` with the study ``options``, all four
+    checked against the reference solver: (agreement summary, agreement rows)."""
+    import pyarrow.parquet as pq
+
+    scene = tmp_path / "s.toml"
+    scene.write_text(scene_text)
+    d = dict(study_dict(scene, runs=4, absurd=False), **options)
+    result = pliant.study(d, str(tmp_path / "out"), workers=2, progress=False, check_agreement=4)
+    rows = pq.read_table(tmp_path / "out" / agreement.AGREEMENT_ROWS).to_pandas()
+    assert len(rows) == 4 and result.agreement["checked"] == 4
+    return result.agreement, rows
+
+
 def test_mass_scaled_runs_are_checked_against_unscaled_ones(tmp_path):
     """A study with mass scaling 4: its reference runs are the scene's own physics (no
     scaling), labelled so, and their step counts show it (the scaled step is twice as
     long, so the same timeline takes about half the steps)."""
-    import pyarrow.parquet as pq
-
-    scene = tmp_path / "s.toml"
-    scene.write_text(SCENE)
-    d = dict(study_dict(scene, runs=4, absurd=False), mass_scaling=4)
-    result = pliant.study(d, str(tmp_path / "out"), workers=2, progress=False, check_agreement=4)
-    summary = result.agreement
+    summary, rows = checked_study(tmp_path, SCENE, mass_scaling=4)
     assert summary["solver"] == "explicit (mass scaling 4)"
     assert summary["reference_solver"] == "explicit (unscaled)"
-    rows = pq.read_table(tmp_path / "out" / agreement.AGREEMENT_ROWS).to_pandas()
-    assert len(rows) == 4
     assert (rows["reference_steps"] > 1.5 * rows["steps"]).all(), rows[["steps", "reference_steps"]]
+
+
+def test_settles_finished_static_are_checked_against_dynamic_ones(tmp_path):
+    """A study whose settles the static solver finishes: its reference runs settle
+    dynamically (labelled so: their step counts are the dynamic settles', not the
+    study's), each verdict compared."""
+    summary, rows = checked_study(tmp_path, SCENE + '\n[[timeline]]\naction = "settle"\nmax_duration_s = 10\n',
+                                  settle="static")
+    assert summary["solver"] == "explicit (settles finished static)"
+    assert summary["reference_solver"] == "explicit (settles dynamic)"
+    assert (rows["steps"] != rows["reference_steps"]).all(), rows[["steps", "reference_steps"]]
+    assert 0 <= summary["agreeing"] <= 4

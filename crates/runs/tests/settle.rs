@@ -2,12 +2,17 @@
 //! rest when the residual — the largest out-of-balance force and moment on a free node,
 //! contact counted — is within its tolerances, under every solver; a hose lying on a part
 //! is in balance only with the part's push counted; a settle given too little time says
-//! it is not at rest and reports the residual it had.
+//! it is not at rest and reports the residual it had. A settle finished by the static
+//! solver (`finish = "static"`) waits for the hands, takes the static equilibrium and
+//! lands where the dynamic settle does; where the static solve cannot be taken it is the
+//! dynamic settle, bit for bit.
 
-use pliant_assembly::{RunSummary, SettleOutcome, Workcell};
-use pliant_core::relax::residual_after;
+use pliant_assembly::workcell::SettleOptions;
+use pliant_assembly::{Input, NoObserver, RunSummary, SettleOutcome, Workcell};
+use pliant_core::relax::{residual_after, RelaxOptions};
 use pliant_core::{SolverKind, State};
 use pliant_scene::load_scene_str;
+use pliant_testkit::scene_text::{action, box_part, fix, grab, move_hand, SceneText};
 use pliant_testkit::scenes::RAISED_HOSE3_300;
 
 const SOLVERS: [SolverKind; 3] = [
@@ -136,4 +141,128 @@ fn a_settle_too_short_to_come_to_rest_says_so_with_its_residual() {
             s.time
         );
     }
+}
+
+/// The hose of [`scene`] lying on a slab under it, lightly damped (the scene's default
+/// damping), its tip taken by a hand, lifted 20 mm and let go; then a settle with
+/// `finish`.
+fn lifted_and_let_go(finish: &str) -> String {
+    let settle = action("settle")
+        .number("force_tolerance_n", FORCE_TOLERANCE)
+        .number("moment_tolerance_nm", MOMENT_TOLERANCE)
+        .number("max_duration_s", 30.0)
+        .text("finish", finish);
+    SceneText::piece().raw(&lifted_hose()).with(settle).into()
+}
+
+/// [`lifted_and_let_go`] without its settle.
+fn lifted_hose() -> String {
+    SceneText::piece()
+        .raw(&format!("{RAISED_HOSE3_300}elements = 10"))
+        .with_all([
+            box_part("slab", [400.0, 100.0, 40.0], [150.0, 0.0, 1962.5]),
+            fix("h", 0),
+            grab(0, [300.0, 0.0, 2000.0]),
+            move_hand(0, [0.0, 0.0, 20.0], 0.5),
+            action("release_hand").number("hand", 0.0),
+        ])
+        .into()
+}
+
+/// Largest distance between the two states' nodes \[m\].
+fn largest_distance(a: &State, b: &State) -> f64 {
+    a.x.iter()
+        .zip(&b.x)
+        .map(|(p, q)| p.distance(*q))
+        .fold(0.0, f64::max)
+}
+
+/// The ticks of the static solves a run's settle took.
+fn static_solve_ticks(cell: &Workcell) -> Vec<u64> {
+    cell.log()
+        .iter()
+        .filter(|s| matches!(s.input, Input::SolveStatic { .. }))
+        .map(|s| s.tick)
+        .collect()
+}
+
+#[test]
+fn a_settle_finished_by_the_static_solver_lands_on_the_dynamic_settles_equilibrium() {
+    let (dynamic, dynamic_run) = run(&lifted_and_let_go("dynamic"), SolverKind::Explicit);
+    let (fast, fast_run) = run(&lifted_and_let_go("static"), SolverKind::Explicit);
+    let (d, s) = (only_settle(&dynamic_run), only_settle(&fast_run));
+    assert!(d.at_rest && s.at_rest, "dynamic {d:?}, static finish {s:?}");
+    assert!(s.residual_force <= FORCE_TOLERANCE && s.residual_moment <= MOMENT_TOLERANCE);
+    // one static solve, once the hand had let go and opened (a tenth of a second)
+    let ticks = static_solve_ticks(&fast);
+    assert_eq!(ticks.len(), 1, "{ticks:?}");
+    let released = fast
+        .log()
+        .iter()
+        .find(|s| matches!(s.input, Input::ReleaseHand { .. }))
+        .map(|s| s.tick)
+        .unwrap();
+    let dt = fast.time_step();
+    assert!(
+        (ticks[0] - released) as f64 * dt >= 0.1 - 1e-9,
+        "solved {} s after the release",
+        (ticks[0] - released) as f64 * dt
+    );
+    assert!(static_solve_ticks(&dynamic).is_empty());
+    // the same equilibrium, the hose back on the slab: two states each within 1 mN of
+    // balance, 0.1 mm apart at most against the 20 mm the tip was lifted (measured:
+    // 0.27 µm)
+    let gap = largest_distance(dynamic.state(), fast.state());
+    assert!(gap < 1e-4, "the two rests are {gap} m apart");
+    // resting on the slab in both
+    let carried = |c: &Workcell| c.state().contact_force.iter().map(|f| f.z).sum::<f64>();
+    assert!(carried(&fast) > 0.0 && carried(&dynamic) > 0.0);
+    // and sooner: the slow decay of the last oscillation is not stepped through
+    assert!(
+        s.time < d.time,
+        "static finish at rest at {} s, dynamic at {} s",
+        s.time,
+        d.time
+    );
+}
+
+#[test]
+fn a_static_finish_the_solver_cannot_take_falls_back_to_the_dynamic_settle_bit_for_bit() {
+    // the run up to its settle, twice; then the dynamic settle on one, and on the other
+    // the static finish with one Newton iteration allowed: unconverged, so refused
+    let text = lifted_hose();
+    let (mut dynamic, _) = run(&text, SolverKind::Explicit);
+    let (mut fallback, _) = run(&text, SolverKind::Explicit);
+    let opts = SettleOptions {
+        relax: RelaxOptions {
+            force_tolerance: FORCE_TOLERANCE,
+            moment_tolerance: MOMENT_TOLERANCE,
+            max_steps: dynamic.steps_until_done(30.0),
+            kinetic_damping: false,
+        },
+        kinetic_energy: 1e-6,
+    };
+    let d = dynamic.settle(&opts, &mut NoObserver).unwrap();
+    let f = fallback
+        .settle_finishing_static(&opts, 1, &mut NoObserver)
+        .unwrap();
+    assert!(d.converged, "{d:?}");
+    assert_eq!(f.solve, None, "{f:?}");
+    assert!(
+        static_solve_ticks(&fallback).is_empty(),
+        "a refused solve is not logged"
+    );
+    assert_eq!(f.relax, d);
+    assert_eq!(fallback.state().x, dynamic.state().x);
+    // given the iterations it needs, the same start takes the solve
+    let (mut taken, _) = run(&text, SolverKind::Explicit);
+    let t = taken
+        .settle_finishing_static(&opts, 60, &mut NoObserver)
+        .unwrap();
+    let (solve, _) = t.solve.expect("the static solve taken");
+    assert!(solve.converged && !solve.unstable, "{solve:?}");
+    assert!(
+        t.relax.converged && t.relax.steps < d.steps,
+        "{t:?} against {d:?}"
+    );
 }

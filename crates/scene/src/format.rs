@@ -1343,4 +1343,20 @@ pub struct SettleEntry {
     pub kinetic_energy_j: Option<f64>,
     /// Give up after this long (s), > 0. Default 30.
     pub max_duration_s: Option<f64>,
+    /// How rest is reached: `dynamic` (default) relaxes with the scene's solver all the
+    /// way; `static` relaxes until the hands and fasteners are done, then takes the
+    /// quasi-static solver's stable equilibrium from there, confirmed by the same rest
+    /// criterion (relaxing on where it is not met or the static solve fails).
+    pub finish: Option<SettleFinishName>,
+}
+
+/// `finish` of a settle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SettleFinishName {
+    /// Dynamic relaxation all the way.
+    #[default]
+    Dynamic,
+    /// The quasi-static solver finishes once the hands and fasteners are done.
+    Static,
 }

@@ -5,13 +5,13 @@ use crate::error::FieldError;
 use crate::format::{
     ActionEntry, AimHandEntry, AlignHandEntry, FixEntry, GrabEntry, GripName, HandEntry, LoadEntry,
     MountEntry, MoveEntry, MoveHandEntry, MovePartEntry, NodeEntry, Points, RotateEntry,
-    RotatePartEntry, RunEntry, SettleEntry, TieEntry, UnloadEntry,
+    RotatePartEntry, RunEntry, SettleEntry, SettleFinishName, TieEntry, UnloadEntry,
 };
 use crate::ranges::{at_most, vec_at_most, MAX_LOAD_FORCE, MAX_LOAD_MOMENT, MAX_ROTATION_DEG};
 use crate::units::LengthUnit;
 use crate::validate::{finite, finite_vec, node_index, non_negative, non_zero_vec, positive};
 use glam::DVec3;
-use pliant_assembly::{Action, Grip, MovePath, NodeRef, Rotation, Timeline};
+use pliant_assembly::{Action, Grip, MovePath, NodeRef, Rotation, SettleFinish, Timeline};
 
 /// Default residual force tolerance of `settle` (N), as Python's `Simulation.settle`.
 pub const DEFAULT_SETTLE_FORCE_TOLERANCE: f64 = 1e-3;
@@ -599,6 +599,7 @@ fn build_action(
             moment_tolerance_nm,
             kinetic_energy_j,
             max_duration_s,
+            finish,
         }) => Action::Settle {
             force_tolerance: positive(
                 &sub("force_tolerance_n"),
@@ -620,6 +621,10 @@ fn build_action(
                 max_duration_s.unwrap_or(DEFAULT_SETTLE_MAX_DURATION),
                 "s",
             )?,
+            finish: match finish.unwrap_or_default() {
+                SettleFinishName::Dynamic => SettleFinish::Dynamic,
+                SettleFinishName::Static => SettleFinish::Static,
+            },
         },
     })
 }

@@ -124,11 +124,15 @@ pub enum Input {
     /// All velocities set to zero (kinetic damping while relaxing to rest).
     Arrest,
     /// The state moved to the static equilibrium under the current loads by the
-    /// quasi-static Newton solver; time does not advance.
+    /// quasi-static Newton solver; time does not advance. With `stable_only` the result is
+    /// kept only if the solve converged to a stable equilibrium; otherwise the input is
+    /// refused and the state stays as it was.
     SolveStatic {
         force_tolerance: f64,
         moment_tolerance: f64,
         max_iterations: usize,
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        stable_only: bool,
     },
     /// After a divergence: back to the newest healthy recovery point (a fraction of a
     /// second earlier; [`super::recovery`]), releasing the hands that held the diverging

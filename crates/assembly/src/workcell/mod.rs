@@ -36,7 +36,7 @@ pub use hands::{Aim, Feel, HandLimits, HeldHand};
 pub use input::{HandNumber, InitialLoad, Input, Refusal, StampedInput};
 pub use observer::{NoObserver, Observer};
 pub use reason::{Reason, WorkedFastener};
-pub use settle::SettleOptions;
+pub use settle::{SettleOptions, StaticFinish};
 pub use solver_doubt::{InstabilityNote, SolverDoubt};
 pub use solver_record::{Instability, SolverRecord, Unconverged};
 pub use tally::{
@@ -754,7 +754,12 @@ impl Workcell {
                 force_tolerance,
                 moment_tolerance,
                 max_iterations,
-            } => self.solve_static(*force_tolerance, *moment_tolerance, *max_iterations),
+                stable_only,
+            } => self.solve_static(
+                (*force_tolerance, *moment_tolerance),
+                *max_iterations,
+                *stable_only,
+            ),
             Input::Reset => {
                 self.start().map_err(|e| Refusal::Invalid(e.to_string()))?;
                 Ok(Applied::Done)

@@ -2,9 +2,11 @@
 //! Cundall 1976; Barnes 1999) run on the workcell's own step, so that hands, stubs and
 //! clips act, contact counts in the residual, the tally takes every step in and a session
 //! logs it. The timeline's `settle` action and Python's `Simulation.settle` both call
-//! [`Workcell::settle`].
+//! [`Workcell::settle`]; a `settle` with `finish = "static"` calls
+//! [`Workcell::settle_finishing_static`], which lets the quasi-static solver
+//! ([`pliant_core::integrators::StaticSolver`]) take the last, slow stretch to rest.
 
-use super::{Input, Observer, Workcell};
+use super::{Applied, Input, Observer, Workcell};
 use pliant_core::health::Divergence;
 use pliant_core::relax::{relax_with, RelaxOptions, RelaxReport, Relaxing, CHECK_EVERY};
 use pliant_core::{Model, SolverKind, State};
@@ -19,6 +21,18 @@ pub struct SettleOptions {
     /// At rest also needs the total kinetic energy below this \[J\] (`f64::INFINITY`:
     /// the residual alone decides).
     pub kinetic_energy: f64,
+}
+
+/// How a settle finished by the static solver went ([`Workcell::settle_finishing_static`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StaticFinish {
+    /// The relaxation as a whole: steps (both dynamic stretches), residual, at rest.
+    pub relax: RelaxReport,
+    /// The static solve taken (converged to a stable equilibrium) and the simulated time
+    /// it was taken at \[s\], or `None`: the hands, drives or fasteners were never done
+    /// within the budget, or the solve was refused (unconverged, unstable or failed) and
+    /// the settle stayed dynamic.
+    pub solve: Option<(pliant_core::integrators::StaticReport, f64)>,
 }
 
 /// The workcell as dynamic relaxation drives it: one workcell step a step (shown to
@@ -79,5 +93,85 @@ impl Workcell {
             kinetic_energy: opts.kinetic_energy,
         };
         relax_with(&mut sys, &opts.relax, |_| ControlFlow::Continue(()))
+    }
+
+    /// A settle whose last stretch the quasi-static solver takes. Dynamic relaxation as in
+    /// [`Workcell::settle`] (checked every [`CHECK_EVERY`] steps) until the hands, drives
+    /// and loads have stopped changing and no fastener's force law acts
+    /// ([`Workcell::moving`], a clip seated or free, a stub's end held or off it): from
+    /// then on the loads on the hoses are their load cases alone, so the static
+    /// equilibrium the Newton solver finds from the state reached (velocities zeroed) is an
+    /// equilibrium of the explicit model. It is taken as one logged
+    /// [`Input::SolveStatic`] kept only at a stable, converged equilibrium (to the
+    /// settle's own force and moment tolerances), and dynamic relaxation goes on from
+    /// there with the rest of the step budget: it confirms rest at its first check when
+    /// the equilibrium is the explicit model's, and relaxes on when not (a clip loosened
+    /// by the static load, contact the explicit step resolves differently). A refused
+    /// solve leaves the state untouched: the settle is then the dynamic one. If rest comes
+    /// before the hands are done, no solve is taken.
+    pub fn settle_finishing_static(
+        &mut self,
+        opts: &SettleOptions,
+        max_iterations: usize,
+        obs: &mut dyn Observer,
+    ) -> Result<StaticFinish, Divergence> {
+        let budget = opts.relax.max_steps;
+        let mut steps = 0;
+        // the dynamic stretch, in chunks of one check each: the same steps and checks as
+        // the dynamic settle's until the hands and fasteners are done
+        while !self.ready_for_static() {
+            let chunk = RelaxOptions {
+                max_steps: CHECK_EVERY.min(budget - steps),
+                ..opts.relax
+            };
+            let r = self.settle(
+                &SettleOptions {
+                    relax: chunk,
+                    ..*opts
+                },
+                obs,
+            )?;
+            steps += r.steps;
+            if r.converged || steps >= budget {
+                return Ok(StaticFinish {
+                    relax: RelaxReport { steps, ..r },
+                    solve: None,
+                });
+            }
+        }
+        let solve = match self.apply(Input::SolveStatic {
+            force_tolerance: opts.relax.force_tolerance,
+            moment_tolerance: opts.relax.moment_tolerance,
+            max_iterations,
+            stable_only: true,
+        }) {
+            Ok(Applied::Static(r)) => Some((r, self.state.time)),
+            _ => None,
+        };
+        let rest = RelaxOptions {
+            max_steps: budget - steps,
+            ..opts.relax
+        };
+        let r = self.settle(
+            &SettleOptions {
+                relax: rest,
+                ..*opts
+            },
+            obs,
+        )?;
+        Ok(StaticFinish {
+            relax: RelaxReport {
+                steps: steps + r.steps,
+                ..r
+            },
+            solve,
+        })
+    }
+
+    /// Whether the loads on the hoses are their load cases alone and stay so: nothing
+    /// moving or changing ([`Workcell::moving`]), no hand opening, no fastener's force law
+    /// acting.
+    fn ready_for_static(&self) -> bool {
+        !self.moving() && self.opening_until.is_none() && self.fasteners.quiet()
     }
 }

@@ -210,6 +210,12 @@ pub struct SettleOutcome {
     pub residual_force: f64,
     /// Largest out-of-balance moment on a free node then \[N·m\].
     pub residual_moment: f64,
+    /// A settle finished by the static solver (`finish = "static"`,
+    /// [`Workcell::settle_finishing_static`](super::Workcell::settle_finishing_static)):
+    /// the simulated time the static equilibrium was taken at \[s\]; `None` when no
+    /// static solve was taken (a dynamic settle, or the solve refused).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub static_solve_time: Option<f64>,
 }
 
 /// What a whole run did.

@@ -40,9 +40,12 @@
 
 use crate::model::HoseInfo;
 use crate::rod::element::{BeamElement, ElementEnds};
-use crate::rod::lanes::{gather3, gather4, lane, scatter3, shift_up, F4, M34, M4, Q4, V4};
+use crate::rod::lane_arith::Lane4;
+use crate::rod::lanes::{gather3, gather4, lane, shift_up, F4, M34, M4, Q4, V4};
+use crate::rod::node_lanes::NodeLanes;
 use crate::rod::node_view::NodeView;
 use glam::{DMat3, DQuat, DVec3};
+use std::cell::RefCell;
 
 /// Largest y² = tan²(|θ|/4) of the log map's series (|θ| ≤ 0.75 rad).
 pub(crate) const LOG_Y2_MAX: f64 = 0.035;
@@ -286,16 +289,97 @@ fn ends<T, L>(
     }
 }
 
+/// Where a block reads its elements' end data: positions, frames, velocities and
+/// angular velocities of the ends a and b in lanes.
+trait EndData {
+    fn x(&self) -> (V4, V4);
+    fn q(&self) -> (Q4, Q4);
+    fn v(&self) -> (V4, V4);
+    fn w(&self) -> (V4, V4);
+}
+
+/// Gathered from the node arrays (`na`, `nb`: the ends' indices in `c`'s arrays).
+struct Gathered<'a> {
+    c: &'a NodeView<'a>,
+    chain: bool,
+    na: [usize; 4],
+    nb: [usize; 4],
+}
+
+impl EndData for Gathered<'_> {
+    #[inline(always)]
+    fn x(&self) -> (V4, V4) {
+        ends(self.c.x, self.chain, self.na, self.nb, gather3)
+    }
+    #[inline(always)]
+    fn q(&self) -> (Q4, Q4) {
+        ends(self.c.q, self.chain, self.na, self.nb, gather4)
+    }
+    #[inline(always)]
+    fn v(&self) -> (V4, V4) {
+        ends(self.c.v, self.chain, self.na, self.nb, gather3)
+    }
+    #[inline(always)]
+    fn w(&self) -> (V4, V4) {
+        ends(self.c.w, self.chain, self.na, self.nb, gather3)
+    }
+}
+
+/// A chained block's five nodes `n..n + 5` read from a window of node lanes that holds
+/// them: plain loads, no shuffles.
+struct Windowed<'a> {
+    lanes: &'a NodeLanes,
+    n: usize,
+}
+
+impl EndData for Windowed<'_> {
+    #[inline(always)]
+    fn x(&self) -> (V4, V4) {
+        (self.lanes.x(self.n), self.lanes.x(self.n + 1))
+    }
+    #[inline(always)]
+    fn q(&self) -> (Q4, Q4) {
+        (self.lanes.q(self.n), self.lanes.q(self.n + 1))
+    }
+    #[inline(always)]
+    fn v(&self) -> (V4, V4) {
+        (self.lanes.v(self.n), self.lanes.v(self.n + 1))
+    }
+    #[inline(always)]
+    fn w(&self) -> (V4, V4) {
+        (self.lanes.w(self.n), self.lanes.w(self.n + 1))
+    }
+}
+
 /// The loads of the four elements of block `b` in the configuration `c` (node indices
 /// less `base` index `c`'s arrays), with stiffness-proportional damping `beta`.
 #[inline(always)]
 pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> BlockLoads {
+    let ends = Gathered {
+        c,
+        chain: b.chain,
+        na: b.node_a.map(|i| i - base),
+        nb: b.node_b.map(|i| i - base),
+    };
+    loads_from(b, &ends, beta)
+}
+
+/// [`block_loads`] of a chained block whose nodes `lanes` holds (`n`: its first node's
+/// index in the view the window was filled from).
+#[inline(always)]
+fn chained_block_loads(b: &ElementBlock, lanes: &NodeLanes, n: usize, beta: f64) -> BlockLoads {
+    loads_from(b, &Windowed { lanes, n }, beta)
+}
+
+/// The loads of block `b` with its end data from `ends`.
+#[inline(always)]
+fn loads_from(b: &ElementBlock, ends: &impl EndData, beta: f64) -> BlockLoads {
     // two instances of the kernel rather than a branch inside it, which the compiler
     // turns into computing the products and selecting
     if b.identity_offsets {
-        loads_of_block::<true>(b, c, base, beta)
+        loads_of_block::<true>(b, ends, beta)
     } else {
-        loads_of_block::<false>(b, c, base, beta)
+        loads_of_block::<false>(b, ends, beta)
     }
 }
 
@@ -303,15 +387,12 @@ pub fn block_loads(b: &ElementBlock, c: &NodeView, base: usize, beta: f64) -> Bl
 #[inline(always)]
 fn loads_of_block<const IDENTITY: bool>(
     b: &ElementBlock,
-    c: &NodeView,
-    base: usize,
+    ends: &impl EndData,
     beta: f64,
 ) -> BlockLoads {
-    let na = b.node_a.map(|i| i - base);
-    let nb = b.node_b.map(|i| i - base);
     let one = F4::splat(1.0);
-    let (xa, xb) = ends(c.x, b.chain, na, nb, gather3);
-    let (qa, qb) = ends(c.q, b.chain, na, nb, gather4);
+    let (xa, xb) = ends.x();
+    let (qa, qb) = ends.q();
 
     // chord, end frames, element frame (aligned mean of the end frames)
     let chord = xb - xa;
@@ -378,8 +459,8 @@ fn loads_of_block<const IDENTITY: bool>(
     let arch = plane(slope_a.y, slope_b.y) + plane(slope_a.z, slope_b.z) - b.rest_arch;
     let l0 = b.rest_length;
     let strain = (length - l0).mul_add(b.inv_rest_length, arch);
-    let (va, vb) = ends(c.v, b.chain, na, nb, gather3);
-    let (wa, wb) = ends(c.w, b.chain, na, nb, gather3);
+    let (va, vb) = ends.v();
+    let (wa, wb) = ends.w();
     let dv = vb - va;
     let strain_rate = e1.dot(dv) * b.inv_rest_length;
     let spin = e1
@@ -513,11 +594,21 @@ fn reference_loads(e: &BeamElement, c: &NodeView, base: usize, beta: f64) -> [DV
 /// lane-by-lane loop in element order, bit for bit: node k gets b of element k − 1, then
 /// a of element k — (out[k] + b[k − 1]) + a[k], with −0.0 (x + (−0) = x for every x) for
 /// the b that node 0 does not get.
+/// The four nodes are moved into lanes and back by [`Lane4`]'s loads and stores (three
+/// 256-bit loads or stores and seven shuffles for AVX).
 #[inline(always)]
-fn add_chained(a: V4, b: V4, out: &mut [DVec3]) {
+fn add_chained<L: Lane4>(a: V4, b: V4, out: &mut [DVec3]) {
     let out = &mut out[..5];
-    let sum = (gather3(out, [0, 1, 2, 3]) + shift_up(-0.0, b)) + a;
-    scatter3(sum, out);
+    let b_up = shift_up(-0.0, b);
+    let four: &mut [DVec3; 4] = (&mut out[..4]).try_into().expect("four nodes");
+    let [x, y, z] = L::load_vectors(four);
+    let sum = |o: L, b: F4, a: F4| (o + L::from_f4(b)) + L::from_f4(a);
+    let sum = [
+        sum(x, b_up.x, a.x),
+        sum(y, b_up.y, a.y),
+        sum(z, b_up.z, a.z),
+    ];
+    L::store_vectors(sum, four);
     out[4] += lane(b, 3);
 }
 
@@ -536,8 +627,10 @@ struct Job<'a, S> {
 }
 
 impl<S: Fn(usize) -> bool> Job<'_, S> {
+    /// Runs the job, with `L` the lanes of the node window's transposes and of
+    /// `add_chained`, and `window` the window (its contents are forgotten first).
     #[inline(always)]
-    fn run(self) {
+    fn run<L: Lane4>(self, window: &mut NodeLanes) {
         let Job {
             blocks,
             elements,
@@ -548,6 +641,7 @@ impl<S: Fn(usize) -> bool> Job<'_, S> {
             moment,
             skip,
         } = self;
+        window.clear();
         for b in blocks {
             let lanes = b.lanes;
             let mut active = [false; 4];
@@ -560,11 +654,17 @@ impl<S: Fn(usize) -> bool> Job<'_, S> {
             // through memory: stored as vectors, the loads are computed in 256-bit
             // registers; extracted lane by lane for `add_chained` without it, LLVM
             // computed the whole block lane by lane
-            let l = std::hint::black_box(block_loads(b, c, base, beta));
+            let l = if b.chain {
+                let n = b.node_a[0] - base;
+                window.hold::<L>(c, n, 5);
+                std::hint::black_box(chained_block_loads(b, window, n, beta))
+            } else {
+                std::hint::black_box(block_loads(b, c, base, beta))
+            };
             if b.chain && active == [true; 4] && !l.outside.any() {
                 let n = b.node_a[0] - base;
-                add_chained(l.force_a, l.force_b, &mut force[n..n + 5]);
-                add_chained(l.moment_a, l.moment_b, &mut moment[n..n + 5]);
+                add_chained::<L>(l.force_a, l.force_b, &mut force[n..n + 5]);
+                add_chained::<L>(l.moment_a, l.moment_b, &mut moment[n..n + 5]);
                 continue;
             }
             for k in 0..lanes {
@@ -594,14 +694,20 @@ impl<S: Fn(usize) -> bool> Job<'_, S> {
 /// [`Job::run`] compiled for AVX2 + FMA.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn run_avx2_fma<S: Fn(usize) -> bool>(job: Job<S>) {
-    job.run()
+unsafe fn run_avx2_fma<S: Fn(usize) -> bool>(job: Job<S>, lanes: &mut NodeLanes) {
+    job.run::<crate::rod::lane_arith::Avx4>(lanes)
 }
 
 /// [`Job::run`] as portable code.
 #[inline(never)]
-fn run_portable<S: Fn(usize) -> bool>(job: Job<S>) {
-    job.run()
+fn run_portable<S: Fn(usize) -> bool>(job: Job<S>, lanes: &mut NodeLanes) {
+    job.run::<F4>(lanes)
+}
+
+thread_local! {
+    /// Each thread's window of node lanes for [`add_loads`] (a fixed array: nothing is
+    /// allocated).
+    static NODE_LANES: RefCell<NodeLanes> = const { RefCell::new(NodeLanes::EMPTY) };
 }
 
 /// Which kernel [`add_loads`] runs.
@@ -656,14 +762,14 @@ pub fn add_loads(
         moment,
         skip,
     };
-    match kernel {
+    NODE_LANES.with_borrow_mut(|lanes| match kernel {
         #[cfg(target_arch = "x86_64")]
         Kernel::Avx2Fma if Kernel::detect() == Kernel::Avx2Fma => {
             // SAFETY: the CPU has AVX2 and FMA (checked just above; the check is cached).
-            unsafe { run_avx2_fma(job) }
+            unsafe { run_avx2_fma(job, lanes) }
         }
-        _ => run_portable(job),
-    }
+        _ => run_portable(job, lanes),
+    })
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! computes with it — the element in scalar form ([`element`]) and four at a time
 //! ([`element_block`], [`lanes`], [`lane_arith`]), its consistent tangent ([`tangent`],
 //! [`tangent_kernel`]), the assembly of element and body loads over a model ([`forces`],
-//! [`body_loads`]) over the node arrays ([`node_view`]), lumped masses ([`mass`]), rest frames ([`frames`]), stiffened
+//! [`body_loads`]) over the node arrays ([`node_view`], and as lanes for the kernel, [`node_lanes`]), lumped masses ([`mass`]), rest frames ([`frames`]), stiffened
 //! sections ([`stiffened`]) and a body's own mass ([`attached`]) and the stable explicit time step ([`timestep`]); elements
 //! with a history ([`inelastic`]): yielding ones (SPEC X1: the fibre law
 //! [`fibre_law`], the fibre section [`fibre_section`], the yielding hinge of an element
@@ -26,6 +26,7 @@ pub mod inelastic;
 pub mod lane_arith;
 pub mod lanes;
 pub mod mass;
+pub mod node_lanes;
 pub mod node_view;
 pub mod plastic_hinges;
 pub mod plastic_moment;

@@ -167,6 +167,7 @@ impl Stream {
                         debug_assert!(reply.len() <= n);
                         // a reply that cannot go out (the client is gone) is its loss
                         let _ = socket.send_to(&reply, from);
+                        self.sync_mirror();
                     }
                 }
                 Err(e)
@@ -275,8 +276,23 @@ impl Stream {
         }
     }
 
+    /// Puts the mirror on the session's newest state copy right after a reply has gone
+    /// out, so the next pose's answer finds it synchronised and does not wait for it (on
+    /// a harness a re-synchronisation — the state copied, the hand's component searched
+    /// again, the cut refreshed — costs several times a pose's solve).
+    fn sync_mirror(&mut self) {
+        let (Some(session), Some(mirror)) = (&self.session, &mut self.mirror) else {
+            return;
+        };
+        if let Some(copy) = session.state_copy() {
+            if mirror.same_model(&copy) && !mirror.synced_with(&copy) {
+                mirror.sync(copy);
+            }
+        }
+    }
+
     /// The mirror's answer to a pose, after bringing the mirror onto the session's
-    /// newest state copy.
+    /// newest state copy (if [`Stream::sync_mirror`] has not already).
     fn answer(&mut self, session: &Session, grab: u64, hand: u32, request: &Request) -> Answer {
         let pending = Answer {
             status: Status::Pending,

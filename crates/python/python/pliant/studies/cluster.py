@@ -25,7 +25,7 @@ from typing import Any, Callable, Dict, List, Optional
 import numpy as np
 
 from . import agreement, envelope, geometry, motion, sampling, scene_files, variant
-from .runner import Task, column_name, run_batch
+from .runner import Task, column_name, plain_physics, run_batch
 from .spec import SOLVERS, Study, StudyError, load_study
 
 FLUSH_ROWS = 50  # a part is written after this many rows or seconds
@@ -70,7 +70,7 @@ def schema(study: Study):
     fields += [(column_name("clearance", p["name"], "m"), pa.float64()) for p in study.scene.get("parts", [])]
     fields += [(name, pa.float64() if kind == "float" else pa.string()) for name, kind in motion.fields(study.scene)]
     fields += [
-        ("steps", pa.int64()), ("simulated_time_s", pa.float64()), ("solver", pa.string()),
+        ("steps", pa.int64()), ("simulated_time_s", pa.float64()), ("solver", pa.string()), ("rerun", pa.bool_()),
         ("solver_warnings", pa.int64()), ("unconverged_steps", pa.int64()),
         ("instabilities", pa.int64()), ("wall_time_s", pa.float64()), ("cpu_time_s", pa.float64()),
     ]
@@ -364,15 +364,16 @@ def run_study(
                 text = json.dumps(variant.relative_meshes(scene, layout.runs))
                 _atomic_write(path, lambda p: open(p, "w").write(text))
         else:
-            # the reference is the scene's own physics: that solver, no mass scaling
-            simulation = scene.setdefault("simulation", {})
-            simulation["solver"] = reference_solver
-            simulation.pop("mass_scaling", None)
+            # the reference is the scene's own physics: that solver, no mass scaling, its
+            # settles relaxed dynamically all the way
+            scene.setdefault("simulation", {})["solver"] = reference_solver
+            plain_physics(scene)
         solver = scene.get("simulation", {}).get("solver", "explicit")
         text = json.dumps(upload.scene_for_workers(scene))
         if reference:
             return Task(ids[i], i, text, "", radii, [], 0.0, [], fasteners, solver, max_steps, upload.key)
-        return Task(ids[i], i, text, "", radii, hoses, voxel, parts, fasteners, solver, max_steps, upload.key)
+        return Task(ids[i], i, text, "", radii, hoses, voxel, parts, fasteners, solver, max_steps, upload.key,
+                    study.rerun_unsettled)
 
     buffer: List[Dict[str, Any]] = []
     state = {"seq": seq, "flushed": time.monotonic(), "failed": 0, "count": len(done)}
@@ -448,6 +449,11 @@ def run_study(
             if scaling != 1:
                 solvers += f" (mass scaling {scaling:g})"
                 reference_label += " (unscaled)"
+            if study.settle == "static":
+                solvers += " (settles finished static)"
+                reference_label += " (settles dynamic)"
+            if study.rerun_unsettled:
+                solvers += " (unsettled runs rerun plain)"
             measured = agreement.compare({i: rows[i] for i in chosen}, reference, solvers, reference_label)
             agreement.write(layout.out, measured)
             log(agreement.sentence(measured["summary"]))

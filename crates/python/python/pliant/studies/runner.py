@@ -10,6 +10,7 @@ state), an unconverged Newton solve sets ``uncertain``; any other exception is
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import time
@@ -46,6 +47,7 @@ class Task:
     solver: str = "explicit"
     max_steps: Optional[int] = None  # None: pliant.DEFAULT_MAX_STEPS
     files_key: Optional[str] = None  # the scene's files were sent to the workers: paths start there
+    rerun_unsettled: bool = False  # a run whose settles do not all come to rest runs again, plain (see run_variant)
 
 
 def _result_row(result, task: Task) -> Dict[str, Any]:
@@ -60,6 +62,7 @@ def _result_row(result, task: Task) -> Dict[str, Any]:
         "steps": int(result.steps),
         "simulated_time_s": float(result.simulated_time),
         "solver": task.solver,
+        "rerun": False,
         "solver_warnings": len(result.solver_warnings),
         "unconverged_steps": int(solver.get("unconverged_steps") or 0),
         "instabilities": int(solver.get("instability_count") or 0),
@@ -150,24 +153,53 @@ def run_batch(tasks: List[Task]) -> Dict[str, Any]:
     return {"results": results, "samples": samples}
 
 
+def plain_physics(scene: Dict[str, Any]) -> Dict[str, Any]:
+    """The scene with its own physics: no mass scaling, every settle relaxed dynamically
+    all the way (what the cheaper study modes change; changed in place, returned)."""
+    scene.get("simulation", {}).pop("mass_scaling", None)
+    for action in scene.get("timeline", []):
+        if isinstance(action, dict) and action.get("action") == "settle":
+            action.pop("finish", None)
+    return scene
+
+
+def _unsettled(result) -> bool:
+    """Whether a settle of the run ended without coming to rest."""
+    return any(not s.get("at_rest") for s in (result.summary.get("settles") or []))
+
+
+def _run(task: Task, scene_json: str):
+    """The timeline of one scene (JSON) of the task."""
+    import pliant
+
+    base_dir = scene_files.folder(task.files_key) if task.files_key else task.base_dir
+    scene = pliant.Scene.from_json(scene_json, origin=f"runs/{task.run_id}.json", base_dir=base_dir)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", pliant.SolverWarning)
+        if task.max_steps is None:
+            return pliant.run_timeline(scene)
+        return pliant.run_timeline(scene, max_steps=task.max_steps)
+
+
 def run_variant(task: Task) -> Dict[str, Any]:
     """Runs one variant; returns {"row": {...}, "samples": {hose: centre-line sample
-    keys}}. Never raises for a bad variant: its status and message are in the row."""
+    keys}}. Never raises for a bad variant: its status and message are in the row. With
+    ``task.rerun_unsettled`` a run (mass-scaled, or its settles finished by the static
+    solver) whose settles do not all come to rest is run again with the scene's own
+    physics (:func:`plain_physics`), and the row is that run's (``rerun`` true; the CPU
+    time is both runs')."""
     import pliant
 
     row: Dict[str, Any] = {"run_id": task.run_id, "index": task.index, "status": "ok", "message": ""}
     samples: Dict[str, np.ndarray] = {}
     start, cpu = time.perf_counter(), time.process_time()
     result = None
+    rerun = False
     try:
-        base_dir = scene_files.folder(task.files_key) if task.files_key else task.base_dir
-        scene = pliant.Scene.from_json(task.scene_json, origin=f"runs/{task.run_id}.json", base_dir=base_dir)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", pliant.SolverWarning)
-            if task.max_steps is None:
-                result = pliant.run_timeline(scene)
-            else:
-                result = pliant.run_timeline(scene, max_steps=task.max_steps)
+        result = _run(task, task.scene_json)
+        if task.rerun_unsettled and _unsettled(result):
+            rerun = True
+            result = _run(task, json.dumps(plain_physics(json.loads(task.scene_json))))
     except pliant.SceneError as e:
         row.update(status="invalid", message=str(e))
     except pliant.SimulationDiverged as e:
@@ -178,6 +210,7 @@ def run_variant(task: Task) -> Dict[str, Any]:
     if result is not None:
         try:
             row.update(_result_row(result, task))
+            row["rerun"] = rerun
             if row["status"] == "diverged":
                 row["feasible"] = False
             if row["status"] == "ok":  # a diverged run's last states are not physical

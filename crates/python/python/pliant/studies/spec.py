@@ -28,6 +28,7 @@ FORMAT = "pliant-study"
 VERSION = 1
 METHODS = ("monte_carlo", "latin_hypercube", "grid", "saltelli")
 SOLVERS = ("explicit", "implicit", "static")
+SETTLE_FINISHES = ("dynamic", "static")  # a settle action's `finish` (docs/scene-format.md)
 DISTRIBUTIONS = ("normal", "uniform", "triangular", "choice")
 UNITS_M = {"m": 1.0, "mm": 1e-3}
 
@@ -149,6 +150,8 @@ class Study:
     ergonomics: Optional[str]
     scene_values: Dict[str, Any]
     mass_scaling: Optional[float]
+    settle: Optional[str]  # every settle action's `finish`; None: the scene's
+    rerun_unsettled: bool  # a run whose settles do not all rest runs again with the scene's own physics
     envelope_voxel_m: Optional[float]
     envelope_hoses: Optional[List[str]]
     source: Dict[str, Any] = field(repr=False, default_factory=dict)
@@ -449,7 +452,8 @@ def load_study(study: Any, *, runs: Optional[int] = None) -> Study:
     return parse_study(raw, origin, base_dir, runs=runs)
 
 
-TOP_KEYS = {"format", "version", "name", "scene", "length_unit", "solver", "mass_scaling", "ergonomics", "scene_values",
+TOP_KEYS = {"format", "version", "name", "scene", "length_unit", "solver", "mass_scaling", "settle",
+            "rerun_unsettled", "ergonomics", "scene_values",
             "sampling", "parameters", "envelope"}
 MAX_MASS_SCALING = 1e4  # as the physics core (pliant_core::model::MAX_MASS_SCALING)
 
@@ -515,6 +519,13 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
                                      or not 1 <= mass_scaling <= MAX_MASS_SCALING):
         raise _fail(origin, "mass_scaling", mass_scaling,
                     f"must be a number in 1 … {MAX_MASS_SCALING:g} (every run's [simulation] mass_scaling)")
+    settle = raw.get("settle")
+    if settle is not None and settle not in SETTLE_FINISHES:
+        raise _fail(origin, "settle", settle,
+                    f"must be one of {', '.join(SETTLE_FINISHES)} (every settle action's finish)")
+    rerun_unsettled = raw.get("rerun_unsettled", False)
+    if not isinstance(rerun_unsettled, bool):
+        raise _fail(origin, "rerun_unsettled", rerun_unsettled, "must be true or false")
     ergonomics = raw.get("ergonomics")
     if ergonomics is not None and not isinstance(ergonomics, str):
         raise _fail(origin, "ergonomics", ergonomics, 'must be a profile string like "posture=sitting, population=men"')
@@ -576,6 +587,8 @@ def parse_study(raw: Dict[str, Any], origin: str, base_dir: str, *, runs: Option
         ergonomics=ergonomics,
         scene_values=scene_values,
         mass_scaling=None if mass_scaling is None else float(mass_scaling),
+        settle=settle,
+        rerun_unsettled=rerun_unsettled,
         envelope_voxel_m=None if voxel is None else voxel * UNITS_M[unit],
         envelope_hoses=hoses,
         source=raw,

@@ -15,6 +15,7 @@ How each kind acts (values are SI; the scene's ``length_unit`` is respected):
 - ``grab_offset``: the grab action's ``at`` moves by value × direction.
 - ``hand_path_offset``: every waypoint of the move_hand action (``to`` or ``by``) moves.
 - ``ergonomics`` / ``solver``: the scene's ``[ergonomics]`` / ``[simulation] solver``.
+- the study's ``settle``: every settle action's ``finish`` (dynamic or static).
 - ``scene_value``: any number at a path like ``hoses[0].section.d_outer`` (scene units).
 """
 
@@ -185,6 +186,13 @@ def parse_ergonomics(profile: str) -> Dict[str, Any]:
     return table
 
 
+def set_settle_finish(scene: Dict[str, Any], finish: str) -> None:
+    """Sets every settle action's ``finish``."""
+    for action in scene.get("timeline", []):
+        if isinstance(action, dict) and action.get("action") == "settle":
+            action["finish"] = finish
+
+
 def apply(study: Study, sample: Dict[str, Any]) -> Dict[str, Any]:
     """The variant scene (a new dict) for one sample of the study."""
     scene = absolute_meshes(study.scene, os.path.dirname(study.scene_path))
@@ -193,6 +201,8 @@ def apply(study: Study, sample: Dict[str, Any]) -> Dict[str, Any]:
         scene.setdefault("simulation", {})["solver"] = study.solver
     if study.mass_scaling is not None:
         scene.setdefault("simulation", {})["mass_scaling"] = study.mass_scaling
+    if study.settle is not None:
+        set_settle_finish(scene, study.settle)
     if study.ergonomics:
         scene["ergonomics"] = parse_ergonomics(study.ergonomics)
     for path, value in study.scene_values.items():
