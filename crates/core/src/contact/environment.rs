@@ -121,6 +121,11 @@ impl RigidEnvironment {
         !self.moving.is_empty()
     }
 
+    /// Whether any part stands still (the still parts' searches have anything to find).
+    pub fn any_still(&self) -> bool {
+        self.parts.iter().any(|p| !p.moves)
+    }
+
     pub fn is_empty(&self) -> bool {
         self.parts.is_empty()
     }

@@ -115,6 +115,16 @@ pub struct ContactScratch {
     /// This step, per moving part and beam (part-major): what the beam's searches
     /// against the part share ([`super::moving`]).
     pub(crate) moving_beam: Vec<super::moving::BeamStep>,
+    /// This step's beams near some moving part, in order ([`super::moving`]; capacity:
+    /// every beam).
+    pub(crate) moving_near: Vec<u32>,
+    /// The last step's `moving_near` (their memories are forgotten when they leave it).
+    pub(crate) moving_near_last: Vec<u32>,
+    /// This step's beam-interior contacts with the moving parts, appended to `points`
+    /// after the nodes' (capacity: every beam).
+    pub(crate) moving_interior: Vec<ContactPoint>,
+    /// The nodes without a beam (searched by fresh queries of the moving parts).
+    pub(crate) moving_beamless: Vec<u32>,
     /// Per moving part: each beam's candidate triangles of that part, in the part's own
     /// frame ([`super::moving`]; no slots beyond the memory budget, then fresh queries).
     pub(crate) moving_candidates: Vec<CandidateCache>,
@@ -158,6 +168,14 @@ impl ContactScratch {
                 Default::default();
                 moving_slots(model, elements) * model.environment.moving.len()
             ],
+            moving_near: Vec::with_capacity(moving_slots(model, elements)),
+            moving_near_last: Vec::with_capacity(moving_slots(model, elements)),
+            moving_interior: Vec::with_capacity(moving_slots(model, elements)),
+            moving_beamless: if model.environment.any_moves() {
+                beamless_nodes(model)
+            } else {
+                Vec::new()
+            },
             moving_candidates: super::moving::candidate_lists(model),
             shape_impulse: if model.junction_shapes.any() {
                 vec![(DVec3::ZERO, DVec3::ZERO); model.environment.parts.len()]
@@ -191,6 +209,17 @@ fn node_beams(model: &Model) -> Vec<u32> {
         }
     }
     beam
+}
+
+/// The nodes no beam starts or ends at, in order.
+fn beamless_nodes(model: &Model) -> Vec<u32> {
+    let mut has_beam = vec![false; model.node_count()];
+    for el in &model.elements {
+        (has_beam[el.node_a], has_beam[el.node_b]) = (true, true);
+    }
+    (0..model.node_count() as u32)
+        .filter(|&i| !has_beam[i as usize])
+        .collect()
 }
 
 /// Reach of the capsule of beam `e`: its larger end radius plus the skin.
@@ -313,11 +342,11 @@ impl Nearest for BeamSearch {
     }
 }
 
-/// Steps 1 and 2: detect contacts and correct velocities (see the module doc).
-pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
+/// Step 1 for the still parts: their contacts with the nodes and the beam interiors,
+/// appended to `state.contact.points` (see the module doc).
+fn detect_still(model: &Model, state: &mut State) {
     let env = &model.environment;
     let contact = &mut state.contact;
-    contact.points.clear();
     contact.candidates.follow(env);
     // Most beams are clear: they are settled here (their interior is not in contact, and
     // a beam not held at both ends forgets its normal), and the beam loop below visits
@@ -465,6 +494,15 @@ pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
             None => contact.element_normal[e] = DVec3::ZERO,
         }
     }
+}
+
+/// Steps 1 and 2: detect contacts and correct velocities (see the module doc).
+pub(crate) fn resolve_velocities(model: &Model, state: &mut State, dt: f64) {
+    let env = &model.environment;
+    state.contact.points.clear();
+    if env.any_still() {
+        detect_still(model, state);
+    } // else no still part: no contact to find, the normals stay zero
     if env.any_moves() {
         super::moving::detect(model, state, dt);
     }
