@@ -5,39 +5,17 @@
 //! rate, the crossing pair first (a pair farther apart closes more slowly), so the step is
 //! gap / rate; moved apart, no pair closes.
 
-use glam::DVec3;
 use nalgebra::Vector6;
 use pliant_core::newton::system::{first_touch_step, NewtonSystem};
-use pliant_core::{Model, SimSettings, State, WorldSpec};
-use pliant_testkit::models::{fix_in_place, straight_hose1};
+use pliant_core::{Model, State};
+use pliant_testkit::models::crossing_hoses;
 
 const ELEMENTS: usize = 20;
 
-/// Hose A along x, hose B along y under A's middle, `gap` between their surfaces; both
-/// clamped at their ends; the hose–hose candidates of one assembly.
+/// The crossing hoses ([`crossing_hoses`]) with the hose–hose candidates of one
+/// assembly, and which nodes are prescribed (the clamped ends).
 fn crossing(gap: f64) -> (Model, State, Vec<bool>) {
-    let a = straight_hose1("a", DVec3::ZERO, DVec3::new(0.4, 0.0, 0.0), ELEMENTS);
-    let probe = Model::build(&WorldSpec {
-        hoses: vec![a.clone()],
-        rigid_parts: vec![],
-        settings: SimSettings::default(),
-    })
-    .unwrap();
-    let z = -(2.0 * probe.radius[0] + gap);
-    let b = straight_hose1(
-        "b",
-        DVec3::new(0.2, -0.2, z),
-        DVec3::new(0.2, 0.2, z),
-        ELEMENTS,
-    );
-    let model = Model::build(&WorldSpec {
-        hoses: vec![a, b],
-        rigid_parts: vec![],
-        settings: SimSettings::default(),
-    })
-    .unwrap();
-    let mut state = State::at_rest(&model);
-    fix_in_place(&mut state, [0, ELEMENTS, ELEMENTS + 1, 2 * ELEMENTS + 1]);
+    let (model, mut state) = crossing_hoses(gap, ELEMENTS);
     let mut sys = NewtonSystem::new(&model).unwrap();
     sys.set_prescribed(&model, &state, 0.0);
     sys.assemble(&model, &mut state, 0.0);

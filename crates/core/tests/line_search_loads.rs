@@ -10,37 +10,15 @@ use glam::{DQuat, DVec3};
 use pliant_core::integrators::{StaticOptions, StaticSolver};
 use pliant_core::loads::{Fix, LoadCase};
 use pliant_core::newton::system::NewtonSystem;
-use pliant_core::{Model, SimSettings, State, WorldSpec};
-use pliant_testkit::models::{fix_in_place, straight_hose1};
+use pliant_core::{Model, State};
+use pliant_testkit::models::crossing_hoses;
 
 const ELEMENTS: usize = 20;
 
-/// Hose A along x, hose B along y under A's middle, the gap between their surfaces
-/// `gap` (negative: pressed into each other); both clamped at their ends.
+/// The crossing hoses ([`crossing_hoses`]), the hose–hose contact on.
 fn crossing(gap: f64) -> (Model, State) {
-    let a = straight_hose1("a", DVec3::ZERO, DVec3::new(0.4, 0.0, 0.0), ELEMENTS);
-    let probe = Model::build(&WorldSpec {
-        hoses: vec![a.clone()],
-        rigid_parts: vec![],
-        settings: SimSettings::default(),
-    })
-    .unwrap();
-    let z = -(2.0 * probe.radius[0] + gap);
-    let b = straight_hose1(
-        "b",
-        DVec3::new(0.2, -0.2, z),
-        DVec3::new(0.2, 0.2, z),
-        ELEMENTS,
-    );
-    let model = Model::build(&WorldSpec {
-        hoses: vec![a, b],
-        rigid_parts: vec![],
-        settings: SimSettings::default(),
-    })
-    .unwrap();
+    let (model, state) = crossing_hoses(gap, ELEMENTS);
     assert!(model.hose_contact.active);
-    let mut state = State::at_rest(&model);
-    fix_in_place(&mut state, [0, ELEMENTS, ELEMENTS + 1, 2 * ELEMENTS + 1]);
     (model, state)
 }
 

@@ -48,3 +48,33 @@ pub fn fix_in_place(state: &mut State, nodes: impl IntoIterator<Item = usize>) {
         }));
     }
 }
+
+/// Two straight hoses of library hose 1 crossing at right angles, each of `elements`
+/// elements and clamped at its ends: hose "a" along x from the origin to 0.4 m, hose "b"
+/// along y under a's middle, `gap` \[m\] between their surfaces (negative: pressed into
+/// each other).
+pub fn crossing_hoses(gap: f64, elements: usize) -> (Model, State) {
+    let a = straight_hose1("a", DVec3::ZERO, DVec3::new(0.4, 0.0, 0.0), elements);
+    let probe = Model::build(&WorldSpec {
+        hoses: vec![a.clone()],
+        rigid_parts: vec![],
+        settings: SimSettings::default(),
+    })
+    .unwrap();
+    let z = -(2.0 * probe.radius[0] + gap);
+    let b = straight_hose1(
+        "b",
+        DVec3::new(0.2, -0.2, z),
+        DVec3::new(0.2, 0.2, z),
+        elements,
+    );
+    let model = Model::build(&WorldSpec {
+        hoses: vec![a, b],
+        rigid_parts: vec![],
+        settings: SimSettings::default(),
+    })
+    .unwrap();
+    let mut state = State::at_rest(&model);
+    fix_in_place(&mut state, [0, elements, elements + 1, 2 * elements + 1]);
+    (model, state)
+}
