@@ -546,6 +546,9 @@ fn settle(
         SettleFinish::Static => cell
             .settle_finishing_static(&opts, DEFAULT_STATIC_MAX_ITERATIONS, obs)
             .map(|f| (f.relax, f.solve.map(|(_, t)| t))),
+        SettleFinish::StaticEquilibrium => cell
+            .settle_ending_static(&opts, DEFAULT_STATIC_MAX_ITERATIONS, obs)
+            .map(|f| (f.relax, f.solve.map(|(_, t)| t))),
     }
     .map_err(Stop::Diverged)?;
     let state = cell.state();

@@ -173,6 +173,11 @@ pub enum SettleFinish {
     /// solve fails, reached) by dynamic relaxation
     /// ([`Workcell::settle_finishing_static`](crate::Workcell::settle_finishing_static)).
     Static,
+    /// As [`SettleFinish::Static`] up to the static solve, and at rest there: the state is
+    /// the quasi-static solver's stable equilibrium within the settle's tolerances, not
+    /// confirmed by the scene's solver (where the solve is refused, the settle stays
+    /// dynamic) ([`Workcell::settle_ending_static`](crate::Workcell::settle_ending_static)).
+    StaticEquilibrium,
 }
 
 impl SettleFinish {

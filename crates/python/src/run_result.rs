@@ -269,6 +269,14 @@ impl RunResult {
         to_python(py, &self.run.solver)
     }
 
+    /// The settles' outcomes (the summary's ``settles``: ``action``, ``at_rest``, ``time``
+    /// \[s\], ``kinetic_energy``, ``residual_force``, ``residual_moment``,
+    /// ``static_solve_time``), without decoding the whole summary.
+    #[getter]
+    fn settles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.run.settles)
+    }
+
     /// Why the run is uncertain (the summary's ``solver_warnings``); empty when it is not.
     #[getter]
     fn solver_warnings(&self) -> Vec<String> {

@@ -577,13 +577,14 @@ def test_settle_finish_reaches_every_settle_and_is_checked(scene_path, tmp_path)
     path = tmp_path / "settles.toml"
     path.write_text(SCENE + '\n[[timeline]]\naction = "settle"\n\n[[timeline]]\naction = "settle"\n')
     d = study_dict(path, absurd=False)
-    d["settle"] = "static"
-    st = load_study(d)
-    scene = variant_scene(st, samples(st)[0])
-    settles = [a for a in scene["timeline"] if a["action"] == "settle"]
-    assert [a["finish"] for a in settles] == ["static", "static"]
-    assert all("finish" not in a for a in scene["timeline"] if a["action"] != "settle")
-    assert pliant.Scene.from_dict(scene)  # the engine takes the field
+    for finish in ("static", "static_equilibrium"):
+        d["settle"] = finish
+        st = load_study(d)
+        scene = variant_scene(st, samples(st)[0])
+        settles = [a for a in scene["timeline"] if a["action"] == "settle"]
+        assert [a["finish"] for a in settles] == [finish, finish]
+        assert all("finish" not in a for a in scene["timeline"] if a["action"] != "settle")
+        assert pliant.Scene.from_dict(scene)  # the engine takes the field
     scene["simulation"] = {"mass_scaling": 9}
     runner.plain_physics(scene)  # what the agreement's reference runs and the reruns get
     assert all("finish" not in a for a in scene["timeline"]) and scene["simulation"] == {}
@@ -619,6 +620,29 @@ def test_an_unsettled_run_is_run_again_with_the_scenes_own_physics(tmp_path):
     assert cheap["rerun"] is False and cheap["steps"] < 0.75 * short["steps"]  # the step is twice as long
     rested, _ = row(10.0, True)
     assert rested["rerun"] is False
+
+
+def test_a_mass_scaled_run_with_a_fastener_left_free_is_run_again():
+    """A run is doubtful — run again plain — when a settle did not rest, or when it is
+    mass-scaled and a clip or stub ended unassembled (seating is decided by the release's
+    dynamics, which the scaled inertia changes); an unscaled run keeps a free clip."""
+    from types import SimpleNamespace
+
+    def result(at_rest, assembled):
+        return SimpleNamespace(settles=[{"at_rest": at_rest}],
+                               fasteners=[{"kind": "clip", "name": "c", "assembled": assembled},
+                                          {"kind": "stub", "name": "s", "assembled": True}])
+
+    def task(scaling):
+        scene = {"simulation": {"mass_scaling": scaling}} if scaling else {}
+        return runner.Task("r", 0, json.dumps(scene), "", {}, [], 0.0, rerun_unsettled=True)
+
+    for scaling in (None, 1, 9):
+        assert runner._doubtful(result(False, True), task(scaling))
+        assert not runner._doubtful(result(True, True), task(scaling))
+    assert runner._doubtful(result(True, False), task(9))
+    assert not runner._doubtful(result(True, False), task(1))
+    assert not runner._doubtful(result(True, False), task(None))
 
 
 def test_scene_values_are_set_in_every_run_and_checked_on_load(scene_path):

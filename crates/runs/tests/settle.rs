@@ -4,8 +4,9 @@
 //! is in balance only with the part's push counted; a settle given too little time says
 //! it is not at rest and reports the residual it had. A settle finished by the static
 //! solver (`finish = "static"`) waits for the hands, takes the static equilibrium and
-//! lands where the dynamic settle does; where the static solve cannot be taken it is the
-//! dynamic settle, bit for bit.
+//! lands where the dynamic settle does; one ending on the static equilibrium
+//! (`finish = "static_equilibrium"`) is at rest there; where the static solve cannot be
+//! taken either is the dynamic settle, bit for bit.
 
 use pliant_assembly::workcell::SettleOptions;
 use pliant_assembly::{Input, NoObserver, RunSummary, SettleOutcome, Workcell};
@@ -227,6 +228,36 @@ fn a_settle_finished_by_the_static_solver_lands_on_the_dynamic_settles_equilibri
 }
 
 #[test]
+fn a_settle_ending_on_the_static_equilibrium_rests_where_the_solve_put_it() {
+    let (dynamic, dynamic_run) = run(&lifted_and_let_go("dynamic"), SolverKind::Explicit);
+    let (confirmed, confirmed_run) = run(&lifted_and_let_go("static"), SolverKind::Explicit);
+    let (ended, ended_run) = run(
+        &lifted_and_let_go("static_equilibrium"),
+        SolverKind::Explicit,
+    );
+    let (d, c, e) = (
+        only_settle(&dynamic_run),
+        only_settle(&confirmed_run),
+        only_settle(&ended_run),
+    );
+    assert!(e.at_rest, "{e:?}");
+    // at rest at the instant of its one static solve, the same solve as the confirmed
+    // finish's (the same steps up to it), with the solve's residual and no motion
+    assert_eq!(static_solve_ticks(&ended), static_solve_ticks(&confirmed));
+    assert_eq!(e.static_solve_time, Some(e.time));
+    assert_eq!(e.static_solve_time, c.static_solve_time);
+    assert!(e.residual_force <= FORCE_TOLERANCE && e.residual_moment <= MOMENT_TOLERANCE);
+    assert!(ended.state().v.iter().all(|v| *v == glam::DVec3::ZERO));
+    assert_eq!(e.kinetic_energy, 0.0);
+    // sooner than the confirmed finish, which steps on from the same state
+    assert!(e.time < c.time, "ended {e:?}, confirmed {c:?}");
+    // and at the dynamic settle's equilibrium, as the confirmed finish is (0.1 mm of the
+    // 20 mm lift)
+    let gap = largest_distance(dynamic.state(), ended.state());
+    assert!(gap < 1e-4, "the two rests are {gap} m apart ({d:?})");
+}
+
+#[test]
 fn a_static_finish_the_solver_cannot_take_falls_back_to_the_dynamic_settle_bit_for_bit() {
     // the run up to its settle, twice; then the dynamic settle on one, and on the other
     // the static finish with one Newton iteration allowed: unconverged, so refused
@@ -254,6 +285,13 @@ fn a_static_finish_the_solver_cannot_take_falls_back_to_the_dynamic_settle_bit_f
     );
     assert_eq!(f.relax, d);
     assert_eq!(fallback.state().x, dynamic.state().x);
+    // and so does one that would end on the static equilibrium
+    let (mut ending, _) = run(&text, SolverKind::Explicit);
+    let e = ending
+        .settle_ending_static(&opts, 1, &mut NoObserver)
+        .unwrap();
+    assert_eq!(e, f);
+    assert_eq!(ending.state().x, dynamic.state().x);
     // given the iterations it needs, the same start takes the solve
     let (mut taken, _) = run(&text, SolverKind::Explicit);
     let t = taken

@@ -1346,7 +1346,9 @@ pub struct SettleEntry {
     /// How rest is reached: `dynamic` (default) relaxes with the scene's solver all the
     /// way; `static` relaxes until the hands and fasteners are done, then takes the
     /// quasi-static solver's stable equilibrium from there, confirmed by the same rest
-    /// criterion (relaxing on where it is not met or the static solve fails).
+    /// criterion (relaxing on where it is not met or the static solve fails);
+    /// `static_equilibrium` the same up to the static solve, and at rest at its stable
+    /// equilibrium, unconfirmed by the scene's solver.
     pub finish: Option<SettleFinishName>,
 }
 
@@ -1359,4 +1361,6 @@ pub enum SettleFinishName {
     Dynamic,
     /// The quasi-static solver finishes once the hands and fasteners are done.
     Static,
+    /// As `static`, at rest at the static solver's stable equilibrium (unconfirmed).
+    StaticEquilibrium,
 }

@@ -624,6 +624,7 @@ fn build_action(
             finish: match finish.unwrap_or_default() {
                 SettleFinishName::Dynamic => SettleFinish::Dynamic,
                 SettleFinishName::Static => SettleFinish::Static,
+                SettleFinishName::StaticEquilibrium => SettleFinish::StaticEquilibrium,
             },
         },
     })

@@ -449,8 +449,8 @@ def run_study(
             if scaling != 1:
                 solvers += f" (mass scaling {scaling:g})"
                 reference_label += " (unscaled)"
-            if study.settle == "static":
-                solvers += " (settles finished static)"
+            if study.settle in ("static", "static_equilibrium"):
+                solvers += " (settles finished static)" if study.settle == "static" else " (settles ended static)"
                 reference_label += " (settles dynamic)"
             if study.rerun_unsettled:
                 solvers += " (unsettled runs rerun plain)"

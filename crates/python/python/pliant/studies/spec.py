@@ -28,7 +28,7 @@ FORMAT = "pliant-study"
 VERSION = 1
 METHODS = ("monte_carlo", "latin_hypercube", "grid", "saltelli")
 SOLVERS = ("explicit", "implicit", "static")
-SETTLE_FINISHES = ("dynamic", "static")  # a settle action's `finish` (docs/scene-format.md)
+SETTLE_FINISHES = ("dynamic", "static", "static_equilibrium")  # a settle action's `finish` (docs/scene-format.md)
 DISTRIBUTIONS = ("normal", "uniform", "triangular", "choice")
 UNITS_M = {"m": 1.0, "mm": 1e-3}
 

@@ -15,7 +15,8 @@ How each kind acts (values are SI; the scene's ``length_unit`` is respected):
 - ``grab_offset``: the grab action's ``at`` moves by value × direction.
 - ``hand_path_offset``: every waypoint of the move_hand action (``to`` or ``by``) moves.
 - ``ergonomics`` / ``solver``: the scene's ``[ergonomics]`` / ``[simulation] solver``.
-- the study's ``settle``: every settle action's ``finish`` (dynamic or static).
+- the study's ``settle``: every settle action's ``finish`` (dynamic, static or
+  static_equilibrium).
 - ``scene_value``: any number at a path like ``hoses[0].section.d_outer`` (scene units).
 """
 
