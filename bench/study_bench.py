@@ -12,7 +12,7 @@ runs whose settles do not rest (the study's ``rerun_unsettled``). Usage:
 
     .venv/bin/python bench/study_bench.py [--study examples/engine_bay_study.toml]
         [--runs 24] [--workers 1,2] [--batch N] [--cluster local|tcp] [--solver S]
-        [--settle dynamic|static] [--mass-scaling S] [--rerun-unsettled] [--json]
+        [--settle dynamic|static|static_equilibrium] [--mass-scaling S] [--rerun-unsettled] [--json]
 
 Results go to docs/performance.md ("Studies") by hand, as ratios: the absolute numbers
 depend on the machine and on what else runs on it.
@@ -102,7 +102,7 @@ def main():
     ap.add_argument("--cluster", choices=("local", "tcp"), default="local")
     ap.add_argument("--solver", choices=("explicit", "implicit", "static"), default=None,
                     help="every run with this solver (default: the study's)")
-    ap.add_argument("--settle", choices=("dynamic", "static"), default=None,
+    ap.add_argument("--settle", choices=("dynamic", "static", "static_equilibrium"), default=None,
                     help="every settle finished so (default: the study's)")
     ap.add_argument("--mass-scaling", type=float, default=None, help="every run's mass scaling (default: the study's)")
     ap.add_argument("--rerun-unsettled", action="store_true", help="runs whose settles do not rest run again plain")
