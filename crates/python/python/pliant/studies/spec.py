@@ -151,7 +151,7 @@ class Study:
     scene_values: Dict[str, Any]
     mass_scaling: Optional[float]
     settle: Optional[str]  # every settle action's `finish`; None: the scene's
-    rerun_unsettled: bool  # a run whose settles do not all rest runs again with the scene's own physics
+    rerun_unsettled: bool  # a run whose settles do not all rest (or, mass-scaled, whose clip ends free) runs again plain
     envelope_voxel_m: Optional[float]
     envelope_hoses: Optional[List[str]]
     source: Dict[str, Any] = field(repr=False, default_factory=dict)
