@@ -30,7 +30,6 @@ use super::statics::increment_at_round_off;
 use crate::math::{left_jacobian_inverse_transpose_times, log_map};
 use crate::newton::block_tree::SingularBlock;
 use crate::newton::convergence::Tolerance;
-use crate::newton::modified::FrozenJacobian;
 use crate::newton::system::{
     apply_increment, contact_translation_limit, rotation_limited_step, sync_bodies,
     translation_limited_step, NewtonSystem, TopologyError,
@@ -42,14 +41,6 @@ use nalgebra::Vector6;
 
 /// Halvings the line search may make of one Newton step.
 const MAX_BACKTRACKS: usize = 10;
-
-/// A modified Newton step ([`crate::newton::modified`]) is followed by another as long as
-/// it shrinks the residual's norm at least by this factor; otherwise the Jacobian is
-/// assembled and factorised afresh.
-const MODIFIED_CONTRACTION: f64 = 0.5;
-
-/// Modified Newton steps one factorisation may serve.
-const MAX_REUSES: usize = 10;
 
 /// Settings of the implicit solver.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,10 +61,6 @@ pub struct ImplicitOptions {
     /// through a hose or part it has not yet touched. Only the path of the iterates
     /// changes, not the step's solution.
     pub contact_step_fraction: f64,
-    /// Modified Newton steps ([`crate::newton::modified`]): the step's last factorised
-    /// Jacobian is used again while the residual's norm at least halves
-    /// ([`MODIFIED_CONTRACTION`]). The step converges to the same tolerance either way.
-    pub modified_newton: bool,
 }
 
 impl Default for ImplicitOptions {
@@ -85,7 +72,6 @@ impl Default for ImplicitOptions {
             max_iterations: 25,
             max_halvings: 4,
             contact_step_fraction: 0.5,
-            modified_newton: true,
         }
     }
 }
@@ -102,8 +88,6 @@ pub struct ImplicitReport {
     pub converged: bool,
     /// Newton steps the line search shortened.
     pub shortened_steps: usize,
-    /// Jacobians factorised (the other iterations were modified Newton steps).
-    pub factorisations: usize,
 }
 
 /// Why a step failed.
@@ -130,18 +114,14 @@ pub struct ImplicitSolver {
     increment: Vec<Vector6<f64>>,
     trial_x: Vec<DVec3>,
     trial_q: Vec<DQuat>,
-    /// The step's last factorised Jacobian, for modified Newton steps.
-    frozen: FrozenJacobian,
 }
 
 impl ImplicitSolver {
     pub fn new(model: &Model, options: ImplicitOptions) -> Result<Self, TopologyError> {
         let n = model.node_count();
         let z = vec![DVec3::ZERO; n];
-        let system = NewtonSystem::new(model)?;
         Ok(Self {
-            frozen: FrozenJacobian::new(&system),
-            system,
+            system: NewtonSystem::new(model)?,
             options,
             x0: z.clone(),
             q0: vec![DQuat::IDENTITY; n],
@@ -256,18 +236,12 @@ impl ImplicitSolver {
     /// largest force and moment residual on a free node, and the residual's norm
     /// √(Σ |r_f|² + Σ |r_m|²/ℓ²) (ℓ the mean element length) that the line search
     /// compares.
-    ///
-    /// `tangent` false: the residual alone, from the loads without the elements' tangents
-    /// ([`NewtonSystem::assemble_loads`]), the factors of the last Jacobian kept for
-    /// modified Newton steps ([`FrozenJacobian`]); true: the Jacobian too (the kept
-    /// factors are overwritten).
     fn evaluate(
         &mut self,
         model: &Model,
         state: &mut State,
         history: &ImplicitHistory,
         h: f64,
-        tangent: bool,
     ) -> (f64, f64, f64) {
         let alpha = self.options.alpha;
         let beta = 0.25 * (1.0 - alpha) * (1.0 - alpha);
@@ -275,12 +249,6 @@ impl ImplicitSolver {
         let c_acc = 1.0 / (beta * h * h);
         let c_vel = gamma / (beta * h);
         let n = state.x.len();
-        if tangent {
-            self.frozen.thaw();
-        } else {
-            // the assembly writes into spare buffers; the factors come back below
-            self.frozen.exchange(&mut self.system);
-        }
         let sys = &mut self.system;
         for i in 0..n {
             if sys.prescribed[i] {
@@ -294,11 +262,7 @@ impl ImplicitSolver {
             state.v[i] = self.v0[i] + h * ((1.0 - gamma) * a + gamma * a_new);
             state.w[i] = self.w0[i] + h * ((1.0 - gamma) * alp + gamma * alp_new);
         }
-        if tangent {
-            sys.assemble(model, state, c_vel);
-        } else {
-            sys.assemble_loads(model, state, c_vel);
-        }
+        sys.assemble(model, state, c_vel);
         for i in 0..n {
             let a_new = c_acc * (state.x[i] - self.x0[i] - h * self.v0[i])
                 - (0.5 - beta) / beta * history.acc[i];
@@ -311,9 +275,6 @@ impl ImplicitSolver {
                 - alpha * history.m_prev[i]
                 - model.inertia[i] * alp_new;
             sys.rhs[i] = Vector6::new(rf.x, rf.y, rf.z, rm.x, rm.y, rm.z);
-            if !tangent {
-                continue;
-            }
             let d = &mut sys.matrix.diag[i];
             *d *= 1.0 + alpha;
             let (cm, ci) = (model.mass[i] * c_acc, model.inertia[i] * c_acc);
@@ -346,9 +307,7 @@ impl ImplicitSolver {
         );
         // the off-diagonal blocks and the contact pairs' coupling outside the band (the
         // diagonal blocks were scaled above, before the mass term)
-        if tangent {
-            sys.scale_off_diagonal_tangent(1.0 + alpha);
-        }
+        sys.scale_off_diagonal_tangent(1.0 + alpha);
         sys.fold_rhs();
         let (mut rf, mut rm, mut sum) = (0.0_f64, 0.0_f64, 0.0);
         let l2 = sys.mean_length * sys.mean_length;
@@ -362,9 +321,6 @@ impl ImplicitSolver {
                 rm = rm.max(m);
                 sum += f + m / l2;
             }
-        }
-        if !tangent {
-            self.frozen.exchange(&mut self.system);
         }
         (rf.sqrt(), rm.sqrt(), sum.sqrt())
     }
@@ -402,100 +358,50 @@ impl ImplicitSolver {
         }
         let c_acc = 1.0 / (beta * h * h);
         let mut converged = false;
-        let (mut rf, mut rm, mut merit) = self.evaluate(model, state, history, h, true);
-        // whether `system.matrix` holds the Jacobian of the current iterate (assembled
-        // with it), and whether the next step must factorise one afresh
-        let (mut assembled, mut refactorise) = (true, true);
-        let (mut factorisations, mut reuses) = (0, 0);
-        loop {
+        let (mut rf, mut rm, mut merit) = self.evaluate(model, state, history, h);
+        for _ in 0..o.max_iterations {
             report.residual_force = rf;
             report.residual_moment = rm;
             if !(rf.is_finite() && rm.is_finite()) {
                 return Ok(false);
             }
-            let pending = self.system.pending();
-            if !pending && o.tolerance.met(self.system.scale, rf, rm) {
+            let sys = &mut self.system;
+            let pending = sys.pending();
+            if !pending && o.tolerance.met(sys.scale, rf, rm) {
                 converged = true;
                 break;
             }
-            // a modified step with the kept factors while they contract the residual
-            // fast enough; moving prescribed nodes need the coupling of a fresh Jacobian
-            let modified = o.modified_newton
-                && !pending
-                && !refactorise
-                && self.frozen.is_frozen()
-                && reuses < MAX_REUSES;
-            if modified {
-                self.frozen.solve(&mut self.system)?;
-                reuses += 1;
-            } else {
-                if factorisations >= o.max_iterations {
-                    break;
-                }
-                if !assembled {
-                    (rf, rm, merit) = self.evaluate(model, state, history, h, true);
-                }
-                let sys = &mut self.system;
-                if pending {
-                    sys.add_prescribed_coupling(state);
-                }
-                sys.eliminate_prescribed();
-                sys.solve_linear(false)?;
-                self.frozen.freeze();
-                factorisations += 1;
-                report.factorisations += 1;
-                reuses = 0;
+            if pending {
+                sys.add_prescribed_coupling(state);
             }
-            assembled = false;
-            refactorise = false;
-            let sys = &mut self.system;
+            sys.eliminate_prescribed();
+            sys.solve_linear(false)?;
             let mut s = rotation_limited_step(&sys.rhs, &sys.prescribed);
             report.iterations += 1;
             if pending {
                 apply_increment(state, &sys.rhs, &sys.prescribed, s);
                 sys.move_prescribed(state);
-                (rf, rm, merit) = self.evaluate(model, state, history, h, false);
+                (rf, rm, merit) = self.evaluate(model, state, history, h);
                 continue;
             }
             if let Some(limit) = contact_translation_limit(model, state, o.contact_step_fraction) {
                 s = s.min(translation_limited_step(&sys.rhs, &sys.prescribed, limit));
             }
             if increment_at_round_off(&sys.rhs, &sys.prescribed, model) {
-                if modified {
-                    // only a fresh Jacobian's increment tells that the iterate is converged
-                    refactorise = true;
-                    continue;
-                }
                 apply_increment(state, &sys.rhs, &sys.prescribed, s);
                 converged = true;
                 break;
             }
+            // backtracking on the residual's norm: a full step that raises it (a contact
+            // switching on or off between iterates) is halved until it does not
             self.increment.copy_from_slice(&sys.rhs);
             self.trial_x.copy_from_slice(&state.x);
             self.trial_q.copy_from_slice(&state.q);
-            if modified {
-                // the kept factors' step is taken whole if it lowers the residual's norm;
-                // if not, the iterate stays and the Jacobian is factorised afresh there
-                apply_increment(state, &self.increment, &self.system.prescribed, s);
-                let trial = self.evaluate(model, state, history, h, false);
-                if trial.2 < merit {
-                    refactorise = trial.2 > MODIFIED_CONTRACTION * merit;
-                    (rf, rm, merit) = trial;
-                } else {
-                    state.x.copy_from_slice(&self.trial_x);
-                    state.q.copy_from_slice(&self.trial_q);
-                    refactorise = true;
-                }
-                continue;
-            }
-            // backtracking on the residual's norm: a full step that raises it (a contact
-            // switching on or off between iterates) is halved until it does not
             let mut tries = 0;
             loop {
                 apply_increment(state, &self.increment, &self.system.prescribed, s);
-                let trial = self.evaluate(model, state, history, h, false);
+                let trial = self.evaluate(model, state, history, h);
                 if trial.2 < merit || tries >= MAX_BACKTRACKS {
-                    refactorise = trial.2 > MODIFIED_CONTRACTION * merit;
                     (rf, rm, merit) = trial;
                     if tries > 0 {
                         report.shortened_steps += 1;

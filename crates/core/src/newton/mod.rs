@@ -4,8 +4,7 @@
 //! nodes ([`block_tree`]), the condensation of junctions onto their master nodes
 //! ([`condensation`]), a junction body's own mass on its master ([`body_terms`]), the
 //! contact of hoses with a junction body's shape ([`shape_contact`]), GMRES for the
-//! contact coupling outside the band ([`gmres`]), the factors kept for modified Newton
-//! steps ([`modified`]) and the convergence test
+//! contact coupling outside the band ([`gmres`]) and the convergence test
 //! ([`convergence`]).
 
 pub mod block_tree;
@@ -14,7 +13,6 @@ pub mod condensation;
 pub mod convergence;
 pub mod factor_reuse;
 pub mod gmres;
-pub mod modified;
 pub mod shape_contact;
 pub mod system;
 pub mod ties;

@@ -827,15 +827,6 @@ impl NewtonSystem {
             }
             Inertia::default()
         };
-        self.solve_with_factors()?;
-        Ok(inertia)
-    }
-
-    /// The solve of [`Self::solve_linear`] with the factors in hand (of the last
-    /// factorisation of T, however the matrix has been used since): the ties' rank-one
-    /// updates and the contact coupling's GMRES with the current `ties`, `pairs` and
-    /// `shape_couplings`.
-    pub fn solve_with_factors(&mut self) -> Result<(), SingularBlock> {
         let factored = match &self.junctions {
             Some(j) => Factored::Condensed(j),
             None => Factored::Chain(&self.matrix),
@@ -849,7 +840,7 @@ impl NewtonSystem {
             self.ties.correct(&mut self.rhs, &self.prescribed);
         }
         if self.pairs.is_empty() && self.shape_couplings.is_empty() {
-            return Ok(());
+            return Ok(inertia);
         }
         // b' = T⁻¹ rhs, also the start (the solution without the coupling)
         self.base_rhs.copy_from_slice(&self.rhs);
@@ -881,10 +872,10 @@ impl NewtonSystem {
                 }
             },
         );
-        match failed {
-            Some(e) => Err(e),
-            None => Ok(()),
+        if let Some(e) = failed {
+            return Err(e);
         }
+        Ok(inertia)
     }
 
     /// Multiplies the tangent's off-diagonal blocks and the hose–hose contact pairs'
