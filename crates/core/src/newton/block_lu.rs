@@ -20,7 +20,7 @@ pub fn solve(lu: &BlockLu, b: &Vector6<f64>) -> Option<Vector6<f64>> {
     for i in 0..5 {
         let c = x[i];
         for r in i + 1..6 {
-            x[r] = -c * m[(r, i)] + x[r];
+            x[r] += -c * m[(r, i)]; // y + a·x as nalgebra's axpy (addition commutes exactly)
         }
     }
     // U x = y from the last row up: x_r −= x_i u_ri, column by column
@@ -32,7 +32,7 @@ pub fn solve(lu: &BlockLu, b: &Vector6<f64>) -> Option<Vector6<f64>> {
         let c = x[i] / d;
         x[i] = c;
         for r in 0..i {
-            x[r] = -c * m[(r, i)] + x[r];
+            x[r] += -c * m[(r, i)]; // y + a·x as nalgebra's axpy (addition commutes exactly)
         }
     }
     Some(x)
