@@ -374,8 +374,10 @@ impl HoseContactModel {
             }
             let along =
                 |e: usize, h: u32| (self.arc_a[e], self.hose_length[h as usize] - self.arc_b[e]);
-            let gap = self.gaps.gap(hi, along(i, hi), hj, along(j, hj));
-            return gap < 0.5 * PI * (self.element_radius[i] + self.element_radius[j]);
+            let limit = 0.5 * PI * (self.element_radius[i] + self.element_radius[j]);
+            return self
+                .gaps
+                .shorter_than((hi, along(i, hi)), (hj, along(j, hj)), limit);
         }
         let (i, j) = if i < j { (i, j) } else { (j, i) };
         let gap = self.arc_a[j] - self.arc_b[i];

@@ -106,6 +106,24 @@ impl NetworkGaps {
         self.pairs.is_empty()
     }
 
+    /// Whether the distance along the network between a point of hose `a` and one of
+    /// hose `b` ([`Self::gap`]) is below `limit`. Every path leaves through an end of each
+    /// hose, so the gap is at least the nearer end's arc length on each: when that sum
+    /// reaches `limit` the answer needs no look-up (floating-point addition is monotone,
+    /// so the bound holds for the rounded sums too).
+    pub fn shorter_than(
+        &self,
+        (a, along_a): (u32, (f64, f64)),
+        (b, along_b): (u32, (f64, f64)),
+        limit: f64,
+    ) -> bool {
+        let nearest_end = |(from_start, from_end): (f64, f64)| from_start.min(from_end);
+        if nearest_end(along_a) + nearest_end(along_b) >= limit {
+            return false;
+        }
+        self.gap(a, along_a, b, along_b) < limit
+    }
+
     /// The shortest distance along the network between a point `(a_from_start,
     /// a_from_end)` of hose `a` (its arc lengths to the hose's first and last node) and
     /// one of hose `b`, through their ends; infinite when no short path joins them.

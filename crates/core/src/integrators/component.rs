@@ -208,21 +208,20 @@ impl BeamGrid {
         let (a0, a1) = (state.x[el.node_a], state.x[el.node_b]);
         for dx in -1..=1 {
             for dy in -1..=1 {
-                for dz in -1..=1 {
-                    let key = (cx + dx, cy + dy, cz + dz);
-                    let first = self.beams.partition_point(|(k, _)| *k < key);
-                    for &(k, f) in &self.beams[first..] {
-                        if k != key {
-                            break;
-                        }
-                        if model.hose_contact.excluded(e, f) {
-                            continue;
-                        }
-                        let other = &model.elements[f];
-                        let (b0, b1) = (state.x[other.node_a], state.x[other.node_b]);
-                        if segment_distance(a0, a1, b0, b1) <= contact_reach(model, e, f) {
-                            out.push(f);
-                        }
+                // the three cells along z are neighbours in the sorted list: one search
+                let (lo, hi) = ((cx + dx, cy + dy, cz - 1), (cx + dx, cy + dy, cz + 1));
+                let first = self.beams.partition_point(|(k, _)| *k < lo);
+                for &(k, f) in &self.beams[first..] {
+                    if k > hi {
+                        break;
+                    }
+                    if model.hose_contact.excluded(e, f) {
+                        continue;
+                    }
+                    let other = &model.elements[f];
+                    let (b0, b1) = (state.x[other.node_a], state.x[other.node_b]);
+                    if segment_distance(a0, a1, b0, b1) <= contact_reach(model, e, f) {
+                        out.push(f);
                     }
                 }
             }

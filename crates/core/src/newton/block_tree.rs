@@ -8,6 +8,7 @@
 //! pivot block is factorised by LU with partial pivoting. All storage is allocated once; a
 //! solve allocates nothing.
 
+use super::block_lu::{self, BlockLu};
 use nalgebra::{Matrix6, Vector6};
 
 /// No parent: the node is the root of its tree.
@@ -35,8 +36,6 @@ pub struct BlockTree {
     /// LU factors of the eliminated diagonal blocks D'.
     factors: Vec<Option<BlockLu>>,
 }
-
-type BlockLu = nalgebra::LU<f64, nalgebra::Const<6>, nalgebra::Const<6>>;
 
 /// What the elimination of a symmetric tangent says about its definiteness (Sylvester's
 /// law of inertia on the block LDLᵀ factorisation K = L D Lᵀ, D = diag(D'ᵢ): K has as
@@ -247,7 +246,7 @@ impl BlockTree {
     fn pivot(&mut self, i: usize, lu: BlockLu) -> Result<(), SingularBlock> {
         let p = self.parent[i];
         if p != NO_PARENT {
-            self.gain[i] = lu.solve(&self.upper[i]).ok_or(SingularBlock(i))?;
+            self.gain[i] = block_lu::solve_matrix(&lu, &self.upper[i]).ok_or(SingularBlock(i))?;
             let l = self.lower[i];
             self.diag[p] -= l * self.gain[i];
         }
@@ -324,7 +323,7 @@ impl BlockTree {
     pub fn solve_factored(&self, rhs: &mut [Vector6<f64>]) -> Result<(), SingularBlock> {
         for &i in &self.order {
             let lu = self.factors[i].as_ref().ok_or(SingularBlock(i))?;
-            rhs[i] = lu.solve(&rhs[i]).ok_or(SingularBlock(i))?;
+            rhs[i] = block_lu::solve(lu, &rhs[i]).ok_or(SingularBlock(i))?;
             if !rhs[i].iter().all(|v| v.is_finite()) {
                 return Err(SingularBlock(i));
             }
