@@ -266,6 +266,7 @@ fn run(a: Args, addr: SocketAddr, grab: DVec3) -> Result<serde_json::Value, Stri
         "server_solve_us": {
             "p50": percentile(&solves, 50.0),
             "p99": percentile(&solves, 99.0),
+            "p99_9": percentile(&solves, 99.9),
         },
         "newton_iterations_mean": iterations as f64 / solves.len().max(1) as f64,
         "statuses": statuses,
@@ -301,9 +302,10 @@ fn print_text(v: &serde_json::Value) {
         l["max"].as_f64().unwrap_or(f64::NAN),
     );
     println!(
-        "server solve: p50 {:.0} µs, p99 {:.0} µs, {:.2} Newton iterations per pose; statuses {}",
+        "server solve: p50 {:.0} µs, p99 {:.0} µs, p99.9 {:.0} µs, {:.2} Newton iterations per pose; statuses {}",
         s["p50"].as_f64().unwrap_or(f64::NAN),
         s["p99"].as_f64().unwrap_or(f64::NAN),
+        s["p99_9"].as_f64().unwrap_or(f64::NAN),
         v["newton_iterations_mean"].as_f64().unwrap_or(f64::NAN),
         v["statuses"],
     );

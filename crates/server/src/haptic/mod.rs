@@ -9,8 +9,9 @@
 //! session as the hand's `move` (at most every [`FORWARD_EVERY`] per hand; the newest pose
 //! always goes out), so the viewer shows the same hand and the session's verdict and log
 //! record its loads. The mirror is put back on the session's newest state at the
-//! session's snapshot rate (≤ 240 Hz), so stream and session never diverge by more than
-//! one snapshot interval; with the session on the static solver, both answer the same
+//! session's snapshot rate (≤ 240 Hz), between poses where the time is free
+//! ([`slack::SyncSlack`]), so stream and session never diverge by more than one snapshot
+//! interval and [`slack::MAX_DEFER`]; with the session on the static solver, both answer the same
 //! equilibrium for the same pose (server test `haptic::stream_force_equals_the_sessions`).
 //!
 //! Security (SPEC R1): the socket is bound to 127.0.0.1 only, whatever `--host` says, so
@@ -26,13 +27,15 @@ pub mod cut;
 pub mod datagram;
 pub mod mirror;
 pub mod priority;
+pub mod slack;
 
 use crate::ownership::{ClientId, Refusal};
 use crate::server::{lock, Shared};
 use crate::session::{Command, Session};
 use datagram::{hand_of, sequence_of, Kind, Reply, Request, Status, KEY_BYTES};
 use glam::{DQuat, DVec3};
-use mirror::{Answer, Mirror};
+use mirror::{Answer, Mirror, SessionCopy};
+use slack::SyncSlack;
 use std::collections::HashMap;
 use std::net::{SocketAddr, UdpSocket};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -130,6 +133,8 @@ struct Stream {
     cutting: bool,
     hands: HashMap<u32, StreamHand>,
     malformed: u32,
+    /// When the mirror's re-synchronisation fits between poses.
+    slack: SyncSlack,
 }
 
 /// Compares two keys in time independent of where they differ.
@@ -149,6 +154,7 @@ impl Stream {
             cutting,
             hands: HashMap::new(),
             malformed: 0,
+            slack: SyncSlack::default(),
         }
     }
 
@@ -163,18 +169,25 @@ impl Stream {
                         // not a request: counted, never answered
                         self.malformed = self.malformed.saturating_add(1);
                     } else {
+                        self.slack.pose_arrived(Instant::now());
                         let reply = self.handle(bytes).encode();
                         debug_assert!(reply.len() <= n);
                         // a reply that cannot go out (the client is gone) is its loss
                         let _ = socket.send_to(&reply, from);
-                        self.sync_mirror();
+                        if self.slack.fits(Instant::now()) {
+                            self.sync_mirror();
+                        }
                     }
                 }
                 Err(e)
                     if matches!(
                         e.kind(),
                         std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
-                    ) => {}
+                    ) =>
+                {
+                    // no pose for a while: nothing to keep the time free for
+                    self.sync_mirror();
+                }
                 // e.g. ICMP port unreachable of an earlier reply: nothing to do
                 Err(_) => {}
             }
@@ -276,23 +289,25 @@ impl Stream {
         }
     }
 
-    /// Puts the mirror on the session's newest state copy right after a reply has gone
-    /// out, so the next pose's answer finds it synchronised and does not wait for it (on
-    /// a harness a re-synchronisation — the state copied, the hand's component searched
-    /// again, the cut refreshed — costs several times a pose's solve).
+    /// Puts the mirror on the session's newest state copy between poses (after a reply
+    /// has gone out, where [`SyncSlack`] finds the time, or while no pose comes), so a
+    /// pose's answer does not wait for it: on a harness a re-synchronisation — the state
+    /// copied, the hand's component searched again, the cut refreshed — costs several
+    /// times a pose's solve.
     fn sync_mirror(&mut self) {
         let (Some(session), Some(mirror)) = (&self.session, &mut self.mirror) else {
             return;
         };
         if let Some(copy) = session.state_copy() {
             if mirror.same_model(&copy) && !mirror.synced_with(&copy) {
-                mirror.sync(copy);
+                sync_timed(mirror, copy, &mut self.slack);
             }
         }
     }
 
-    /// The mirror's answer to a pose, after bringing the mirror onto the session's
-    /// newest state copy (if [`Stream::sync_mirror`] has not already).
+    /// The mirror's answer to a pose. The mirror is put on the session's newest state
+    /// copy first only where it must be: it does not hold the hand yet, the session was
+    /// reset, or a due re-synchronisation has found no slack for [`slack::MAX_DEFER`].
     fn answer(&mut self, session: &Session, grab: u64, hand: u32, request: &Request) -> Answer {
         let pending = Answer {
             status: Status::Pending,
@@ -311,8 +326,10 @@ impl Stream {
         }
         match &mut self.mirror {
             Some(m) if m.same_model(&copy) => {
-                if !m.synced_with(&copy) {
-                    m.sync(copy);
+                let must =
+                    !m.holds(hand) || m.epoch() != copy.epoch || self.slack.overdue(Instant::now());
+                if must && !m.synced_with(&copy) {
+                    sync_timed(m, copy, &mut self.slack);
                 }
             }
             _ => match Mirror::new(copy) {
@@ -352,6 +369,13 @@ impl Stream {
             false
         });
     }
+}
+
+/// Puts `mirror` on `copy`, telling `slack` what it cost.
+fn sync_timed(mirror: &mut Mirror, copy: Arc<SessionCopy>, slack: &mut SyncSlack) {
+    let start = Instant::now();
+    mirror.sync(copy);
+    slack.synced(start.elapsed());
 }
 
 /// Sends the hand's newest pose to the session as its `move`, unless one went out less
